@@ -1,0 +1,101 @@
+#include "analysis/run_summary.h"
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <tuple>
+#include <vector>
+
+#include "analysis/descriptive.h"
+#include "runner/atomic_file.h"
+#include "runner/records.h"
+
+namespace fs = std::filesystem;
+
+namespace ra {
+namespace {
+
+struct Cell {
+  std::array<uint64_t, 5> visibility{};
+  uint64_t not_ok = 0, conformant = 0, compared = 0;
+  std::vector<double> metric, render_us;
+  std::string fov, window;
+};
+
+// The metric the summary shows for each kind (the paper's headline metric).
+double headline_metric(const Record& r) {
+  if (r.kind == "point") return r.pe;
+  if (r.kind == "line") return r.lse_u_norm;
+  return r.te_u_norm;
+}
+const char* headline_name(const std::string& kind) {
+  if (kind == "point") return "PE (px)";
+  if (kind == "line") return "LSEu-norm";
+  return "TEu-norm";
+}
+
+std::string fmt(double v, const char* f = "%.5g") {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+std::string write_run_summary(const std::string& run_dir) {
+  using Key = std::tuple<std::string, std::string, int>;  // platform, kind, view
+  std::map<Key, Cell> cells;
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(run_dir + "/records"))
+    if (e.path().extension() == ".csv") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) {
+    read_records(f, [&](const Record& r) {
+      Cell& c = cells[{r.platform, r.kind, r.view}];
+      c.fov = fmt(r.fov_deg, "%g");
+      c.window = std::to_string(r.width) + "x" + std::to_string(r.height);
+      if (r.status != CaseStatus::kOk) {
+        ++c.not_ok;
+        return;
+      }
+      ++c.visibility[int(r.visibility)];
+      if (r.visibility == Visibility::kTrueVisible && !std::isnan(headline_metric(r)))
+        c.metric.push_back(headline_metric(r));
+      if (!std::isnan(r.render_us)) c.render_us.push_back(r.render_us);
+      if (r.ref_diff >= 0) {
+        ++c.compared;
+        c.conformant += r.ref_diff == 0;
+      }
+    });
+  }
+
+  std::ostringstream md;
+  md << "# Run summary: " << run_dir << "\n\n"
+     << "Counts of the visibility classes (paper, section 3.4), the median and IQR (Hyndman-Fan 6)\n"
+     << "of each kind's headline metric over true-visible cases, the share of cases whose pixels\n"
+     << "equal the reference rasterizer's, and the median render time (draw + glFinish).\n\n"
+     << "| platform | kind | view | FOV | window | true-vis | true-invis | false-vis | false-invis "
+        "| multiple | invalid/failed | metric | median | IQR | ref-equal | median us |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (auto& [key, c] : cells) {
+    const auto& [platform, kind, view] = key;
+    md << "| " << platform << " | " << kind << " | " << view << " | " << c.fov << " | " << c.window;
+    for (uint64_t n : c.visibility) md << " | " << n;
+    md << " | " << c.not_ok << " | " << headline_name(kind) << " | ";
+    if (c.metric.empty()) {
+      md << "n/a | n/a";
+    } else {
+      const stats::Description d = stats::describe(c.metric);
+      md << fmt(d.median) << " | " << fmt(d.iqr);
+    }
+    md << " | " << (c.compared ? fmt(100.0 * c.conformant / c.compared, "%.2f%%") : "n/a");
+    md << " | " << (c.render_us.empty() ? "n/a" : fmt(stats::describe(c.render_us).median, "%.1f"))
+       << " |\n";
+  }
+  write_file_atomic(run_dir + "/summary.md", md.str());
+  return md.str();
+}
+
+}  // namespace ra

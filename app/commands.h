@@ -1,0 +1,18 @@
+// The subcommands of the `renderaudit` program. Each registers itself on the CLI11 app; its
+// callback throws ra::UserError for bad input and sets the process exit code through `exit_code`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace ra::app {
+
+// Exit codes shared by all subcommands.
+constexpr int kExitOk = 0;
+constexpr int kExitFindings = 1;  // the command ran, and what it found is not clean (failed shards)
+constexpr int kExitUsage = 2;     // bad input: nothing was run
+
+void register_run_command(CLI::App& app, int& exit_code);
+void register_worker_command(CLI::App& app, int& exit_code);  // internal: one shard, one process
+void register_stats_command(CLI::App& app, int& exit_code);
+
+}  // namespace ra::app

@@ -1,0 +1,32 @@
+// renderaudit: measures how accurately and how fast renderers draw points, lines and triangles.
+// One program, git-style subcommands; see README.md.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "app/commands.h"
+#include "runner/errors.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "renderaudit: how accurately and how fast a renderer draws.\n"
+      "Runs declarative experiments (experiments/*.toml) and turns them into statistics."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "renderaudit 0.1.0");
+  int exit_code = ra::app::kExitOk;
+  ra::app::register_run_command(app, exit_code);
+  ra::app::register_worker_command(app, exit_code);
+  // STATS-PENDING ra::app::register_stats_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : ra::app::kExitUsage;
+  } catch (const ra::UserError& e) {
+    std::fprintf(stderr, "renderaudit: %s\n", e.what());
+    return ra::app::kExitUsage;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "renderaudit: error: %s\n", e.what());
+    return ra::app::kExitFindings;
+  }
+  return exit_code;
+}

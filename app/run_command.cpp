@@ -1,0 +1,47 @@
+// `renderaudit run EXPERIMENT.toml [--out DIR] [--jobs N]`.
+#include <cstdio>
+
+#include "analysis/run_summary.h"
+#include "app/commands.h"
+#include "runner/run_coordinator.h"
+
+namespace ra::app {
+
+void register_run_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "run",
+      "Render and measure every case of an experiment in parallel shards.\n"
+      "Results go to DIR (default outputs/<experiment name>): records/*.csv, manifest.json,\n"
+      "summary.md. Re-running the same command over DIR resumes: finished shards are kept.");
+  static RunOptions opt;
+  static bool quiet = false;
+  cmd->add_option("experiment", opt.experiment_path, "experiment file (TOML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out,-o", opt.out_dir, "run directory (default: outputs/<name>)");
+  cmd->add_option("--jobs,-j", opt.jobs, "worker processes at once (default: number of cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--timeout", opt.timeout_s,
+                  "seconds before a shard is killed (default: run.shard_timeout_s, 600)")
+      ->check(CLI::Range(1.0, 86400.0));
+  cmd->add_flag("--quiet,-q", quiet, "no progress line");
+  cmd->callback([&exit_code] {
+    opt.progress = !quiet;
+    const RunResult r = run_experiment(opt);
+    std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu failed)\n",
+                r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
+                r.failures.size());
+    for (const auto& f : r.failures) std::printf("  FAILED %s: %s\n", f.shard.c_str(), f.reason.c_str());
+    if (r.interrupted) {
+      std::printf("interrupted: run the same command again to resume\n");
+      exit_code = 130;
+      return;
+    }
+    const std::string summary = write_run_summary(r.run_dir);
+    std::printf("%s", summary.c_str());
+    std::printf("summary: %s/summary.md\n", r.run_dir.c_str());
+    exit_code = r.failures.empty() ? kExitOk : kExitFindings;
+  });
+}
+
+}  // namespace ra::app

@@ -1,0 +1,304 @@
+#include "runner/experiment.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#define TOML_EXCEPTIONS 1
+#include <toml++/toml.h>
+
+#include "runner/errors.h"
+#include "runner/platform.h"
+
+namespace ra {
+namespace {
+
+// Builds "file:line:column: message" for a node (or the file start when it has no source).
+class Locator {
+ public:
+  explicit Locator(std::string path) : path_(std::move(path)) {}
+
+  [[noreturn]] void fail(const toml::node* node, const std::string& message) const {
+    std::ostringstream out;
+    out << path_ << ":";
+    if (node && node->source().begin.line > 0)
+      out << node->source().begin.line << ":" << node->source().begin.column;
+    else
+      out << "1:1";
+    out << ": " << message;
+    throw UserError(out.str());
+  }
+
+  // Every key of `table` must be in `allowed`: a typo is an error, never silently ignored.
+  void reject_unknown_keys(const toml::table& table, const std::string& where,
+                           const std::set<std::string>& allowed) const {
+    for (const auto& [key, node] : table) {
+      if (!allowed.count(std::string(key.str()))) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        fail(&node, "unknown key '" + where + std::string(key.str()) + "' (allowed: " + list + ")");
+      }
+    }
+  }
+
+ private:
+  std::string path_;
+};
+
+double as_number(const Locator& loc, const toml::node& node, const std::string& key) {
+  if (auto v = node.as_integer()) return double(v->get());
+  if (auto v = node.as_floating_point()) return v->get();
+  loc.fail(&node, "'" + key + "' must be a number");
+}
+
+int64_t as_integer(const Locator& loc, const toml::node& node, const std::string& key,
+                   int64_t lo, int64_t hi) {
+  auto v = node.as_integer();
+  if (!v) loc.fail(&node, "'" + key + "' must be an integer (allowed: " + std::to_string(lo) +
+                              " to " + std::to_string(hi) + ")");
+  if (v->get() < lo || v->get() > hi)
+    loc.fail(&node, "'" + key + "' = " + std::to_string(v->get()) + " is out of range (allowed: " +
+                        std::to_string(lo) + " to " + std::to_string(hi) + ")");
+  return v->get();
+}
+
+// A key that may hold one value or an array of values.
+std::vector<const toml::node*> one_or_many(const toml::node& node) {
+  std::vector<const toml::node*> out;
+  if (auto arr = node.as_array()) {
+    for (const auto& e : *arr) out.push_back(&e);
+  } else {
+    out.push_back(&node);
+  }
+  return out;
+}
+
+std::string canonical_hash(const toml::table& root) {
+  std::ostringstream canon;
+  canon << root;  // toml++ re-serialises without comments or layout
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : canon.str()) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+std::vector<uint64_t> index_list(const Locator& loc, const toml::node& node, const std::string& key) {
+  std::vector<uint64_t> out;
+  const auto* arr = node.as_array();
+  if (!arr) loc.fail(&node, "'" + key + "' must be an array of primitive indices");
+  for (const auto& e : *arr)
+    out.push_back(uint64_t(as_integer(loc, e, key, 0, int64_t(kMaxPrimitives) - 1)));
+  return out;
+}
+
+void parse_views(const Locator& loc, const toml::table& root, Experiment& exp) {
+  const toml::node* views_node = root.get("views");
+  if (!views_node || !views_node->is_table())
+    loc.fail(views_node, "missing table [views] (keys: orientations, fov_deg, windows, near, far)");
+  const toml::table& t = *views_node->as_table();
+  loc.reject_unknown_keys(t, "views.", {"orientations", "fov_deg", "windows", "near", "far"});
+
+  // Orientations: a count drawn from the seed, or explicit [yaw, pitch, roll] in degrees.
+  std::vector<Mat4> rotations;
+  const toml::node* o = t.get("orientations");
+  if (!o) loc.fail(views_node, "missing key 'views.orientations' (a count, or [[yaw, pitch, roll], ...])");
+  if (o->is_integer()) {
+    const int64_t n = as_integer(loc, *o, "views.orientations", 1, kMaxOrientations);
+    for (int i = 1; i <= n; ++i) rotations.push_back(random_rotation(exp.seed, i));
+  } else if (const auto* arr = o->as_array(); arr && !arr->empty()) {
+    for (const auto& e : *arr) {
+      const auto* triple = e.as_array();
+      if (!triple || triple->size() != 3)
+        loc.fail(&e, "each explicit orientation must be [yaw, pitch, roll] in degrees");
+      double a[3];
+      for (int k = 0; k < 3; ++k) {
+        a[k] = as_number(loc, *triple->get(k), "views.orientations");
+        if (!std::isfinite(a[k]) || std::fabs(a[k]) > 360)
+          loc.fail(triple->get(k), "orientation angle out of range (allowed: -360 to 360 degrees)");
+      }
+      rotations.push_back(rotation_from_euler_deg(a[0], a[1], a[2]));
+    }
+  } else {
+    loc.fail(o, "'views.orientations' must be a count (1 to " + std::to_string(kMaxOrientations) +
+                    ") or a non-empty array of [yaw, pitch, roll]");
+  }
+
+  auto required = [&](const char* key) -> const toml::node& {
+    const toml::node* n = t.get(key);
+    if (!n) loc.fail(views_node, std::string("missing key 'views.") + key + "'");
+    if (const auto* arr = n->as_array(); arr && arr->empty())
+      loc.fail(n, std::string("'views.") + key + "' must not be empty");
+    return *n;
+  };
+
+  std::vector<double> fovs;
+  for (const toml::node* n : one_or_many(required("fov_deg"))) {
+    const double f = as_number(loc, *n, "views.fov_deg");
+    if (!(f > 0 && f < 180)) loc.fail(n, "field of view out of range (allowed: 0 < fov_deg < 180)");
+    fovs.push_back(f);
+  }
+
+  std::vector<std::pair<int, int>> windows;
+  for (const toml::node* n : one_or_many(required("windows"))) {
+    int w, h;
+    if (const auto* pair = n->as_array()) {
+      if (pair->size() != 2) loc.fail(n, "a window is a size N or a pair [width, height]");
+      w = int(as_integer(loc, *pair->get(0), "views.windows", 1, kMaxWindow));
+      h = int(as_integer(loc, *pair->get(1), "views.windows", 1, kMaxWindow));
+    } else {
+      w = h = int(as_integer(loc, *n, "views.windows", 1, kMaxWindow));
+    }
+    windows.emplace_back(w, h);
+  }
+
+  std::vector<const toml::node*> nears = one_or_many(required("near"));
+  std::vector<const toml::node*> fars = one_or_many(required("far"));
+  std::vector<std::pair<double, double>> planes;
+  for (const toml::node* nn : nears) {
+    const double nv = as_number(loc, *nn, "views.near");
+    if (!(nv > 0) || !std::isfinite(nv)) loc.fail(nn, "near plane must be > 0 (allowed: 0 < near < far)");
+    for (const toml::node* fn : fars) {
+      const double fv = as_number(loc, *fn, "views.far");
+      if (!(fv > nv) || !std::isfinite(fv))
+        loc.fail(fn, "far plane must be beyond the near plane (allowed: 0 < near < far < inf)");
+      planes.emplace_back(nv, fv);
+    }
+  }
+
+  // Numbered as in the paper's Table 1: window outermost, orientation innermost.
+  int id = 1, group = 0;
+  for (auto [w, h] : windows)
+    for (double f : fovs)
+      for (auto [nv, fv] : planes) {
+        for (size_t r = 0; r < rotations.size(); ++r) {
+          View v;
+          v.id = id++;
+          v.group = group;
+          v.orientation = int(r) + 1;
+          v.fov_deg = f;
+          v.width = w;
+          v.height = h;
+          v.near = nv;
+          v.far = fv;
+          v.rotation = rotations[r];
+          finish_view(v);
+          exp.views.push_back(v);
+        }
+        ++group;
+      }
+}
+
+}  // namespace
+
+Experiment parse_experiment(const std::string& text, const std::string& path) {
+  Locator loc(path);
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream out;
+    out << path << ":" << e.source().begin.line << ":" << e.source().begin.column << ": "
+        << e.description();
+    throw UserError(out.str());
+  }
+
+  Experiment exp;
+  exp.path = path;
+  exp.text = text;
+  exp.hash = canonical_hash(root);
+  loc.reject_unknown_keys(root, "",
+                          {"name", "seed", "platforms", "views", "primitives", "run", "faults"});
+
+  const std::string stem = path.substr(path.find_last_of('/') + 1);
+  exp.name = stem.substr(0, stem.rfind(".toml"));
+  if (const toml::node* n = root.get("name")) {
+    const auto* s = n->as_string();
+    if (!s || s->get().empty() ||
+        s->get().find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") !=
+            std::string::npos)
+      loc.fail(n, "'name' must be a non-empty string of letters, digits, '_', '-', '.'");
+    exp.name = s->get();
+  }
+
+  const toml::node* seed = root.get("seed");
+  if (!seed) loc.fail(nullptr, "missing key 'seed' (a non-negative integer)");
+  exp.seed = uint64_t(as_integer(loc, *seed, "seed", 0, INT64_MAX));
+
+  const toml::node* plats = root.get("platforms");
+  if (!plats || !plats->is_array() || plats->as_array()->empty())
+    loc.fail(plats, "'platforms' must be a non-empty array (allowed: " + platform_names() + ")");
+  for (const auto& e : *plats->as_array()) {
+    const auto* s = e.as_string();
+    if (!s || !find_platform(s->get()))
+      loc.fail(&e, "unknown platform '" + (s ? s->get() : std::string("?")) +
+                       "' (allowed: " + platform_names() + ")");
+    for (const auto& seen : exp.platforms)
+      if (seen == s->get()) loc.fail(&e, "platform '" + seen + "' is listed twice");
+    exp.platforms.push_back(s->get());
+  }
+
+  parse_views(loc, root, exp);
+
+  const toml::node* prims = root.get("primitives");
+  if (!prims || !prims->is_table())
+    loc.fail(prims, "missing table [primitives] (keys: points, lines, triangles)");
+  loc.reject_unknown_keys(*prims->as_table(), "primitives.", {"points", "lines", "triangles"});
+  uint64_t total = 0;
+  for (Kind k : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
+    if (const toml::node* n = prims->as_table()->get(kind_plural(k))) {
+      exp.counts[int(k)] = uint64_t(
+          as_integer(loc, *n, std::string("primitives.") + kind_plural(k), 0, int64_t(kMaxPrimitives)));
+      total += exp.counts[int(k)];
+    }
+  }
+  if (total == 0) loc.fail(prims, "[primitives] asks for nothing: give points, lines or triangles a count > 0");
+
+  if (const toml::node* run = root.get("run")) {
+    if (!run->is_table()) loc.fail(run, "'run' must be a table");
+    loc.reject_unknown_keys(*run->as_table(), "run.", {"shard_size", "shard_timeout_s"});
+    if (const toml::node* n = run->as_table()->get("shard_size"))
+      exp.shard_size = uint64_t(as_integer(loc, *n, "run.shard_size", 1, int64_t(kMaxPrimitives)));
+    if (const toml::node* n = run->as_table()->get("shard_timeout_s")) {
+      exp.shard_timeout_s = as_number(loc, *n, "run.shard_timeout_s");
+      if (!(exp.shard_timeout_s >= 1 && exp.shard_timeout_s <= 86400))
+        loc.fail(n, "'run.shard_timeout_s' out of range (allowed: 1 to 86400 seconds)");
+    }
+  }
+
+  if (const toml::node* f = root.get("faults")) {
+    if (!f->is_table()) loc.fail(f, "'faults' must be a table");
+    const toml::table& t = *f->as_table();
+    loc.reject_unknown_keys(t, "faults.",
+                            {"crash", "hang", "wild_pixel", "shift_fraction", "flaky_fraction"});
+    if (const toml::node* n = t.get("crash")) exp.faults.crash = index_list(loc, *n, "faults.crash");
+    if (const toml::node* n = t.get("hang")) exp.faults.hang = index_list(loc, *n, "faults.hang");
+    if (const toml::node* n = t.get("wild_pixel"))
+      exp.faults.wild_pixel = index_list(loc, *n, "faults.wild_pixel");
+    for (auto [key, dst] : {std::pair{"shift_fraction", &exp.faults.shift_fraction},
+                            std::pair{"flaky_fraction", &exp.faults.flaky_fraction}}) {
+      if (const toml::node* n = t.get(key)) {
+        *dst = as_number(loc, *n, std::string("faults.") + key);
+        if (!(*dst >= 0 && *dst <= 1)) loc.fail(n, std::string("'faults.") + key + "' out of range (allowed: 0 to 1)");
+      }
+    }
+    bool faulty = false;
+    for (const auto& p : exp.platforms) faulty |= (p == "faulty");
+    if (!faulty) loc.fail(f, "[faults] only applies to the 'faulty' test platform, which is not listed");
+  }
+  return exp;
+}
+
+Experiment load_experiment(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UserError(path + ": cannot read the experiment file");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  return parse_experiment(buf.str(), path);
+}
+
+}  // namespace ra

@@ -1,0 +1,73 @@
+// The `faulty` test platform: the reference rasterizer plus the failures listed in the experiment's
+// [faults] table. It exists so the pipeline's own handling of crashing and hanging drivers, wild
+// pixels and changed primitives can be tested without a broken driver at hand.
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <thread>
+
+#include "runner/counter_rng.h"
+#include "runner/experiment.h"
+#include "runner/platform.h"
+#include "runner/reference_platform.h"
+
+namespace ra {
+namespace {
+
+bool listed(const std::vector<uint64_t>& v, uint64_t i) {
+  return std::find(v.begin(), v.end(), i) != v.end();
+}
+
+// A deterministic per-primitive draw in [0, 1), independent of shard and process.
+double fault_draw(const Primitive& prim, uint64_t salt) {
+  return double(splitmix64(splitmix64(prim.index * 3 + uint64_t(prim.kind)) ^ salt) >> 11) * 0x1.0p-53;
+}
+
+class FaultyPlatform : public Platform {
+ public:
+  explicit FaultyPlatform(FaultPlan plan) : plan_(std::move(plan)) {}
+
+  DriverInfo driver_info() const override {
+    return {"renderaudit faulty test platform", "reference + injected faults", "renderaudit", 0, false};
+  }
+  void set_view(const View& view) override { view_ = view; }
+
+  RenderResult render(const Primitive& prim, const PixelRect&) override {
+    if (listed(plan_.crash, prim.index)) std::raise(SIGSEGV);  // what a crashing driver does
+    if (listed(plan_.hang, prim.index))
+      for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+    RenderResult out;
+    out.lit = reference_render(view_, prim);
+    bool shift = fault_draw(prim, 1) < plan_.shift_fraction;
+    if (fault_draw(prim, 2) < plan_.flaky_fraction && first_render_) shift = true;
+    first_render_ = false;
+    if (shift)
+      for (Pixel& p : out.lit) p.x += 1;
+    if (listed(plan_.wild_pixel, prim.index)) {
+      // One pixel far from everything else: the opposite quadrant of the window.
+      Pixel anchor = out.lit.empty() ? Pixel{0, 0} : out.lit.front();
+      out.lit.push_back({(anchor.x + view_.width / 2) % view_.width,
+                         (anchor.y + view_.height / 2) % view_.height});
+    }
+    out.lit.erase(std::remove_if(out.lit.begin(), out.lit.end(),
+                                 [&](Pixel p) { return p.x < 0 || p.x >= view_.width; }),
+                  out.lit.end());
+    normalize(out.lit);
+    out.render_us = 0;
+    out.full_scan = true;
+    return out;
+  }
+
+ private:
+  FaultPlan plan_;
+  View view_;
+  bool first_render_ = true;
+};
+
+}  // namespace
+
+std::unique_ptr<Platform> create_faulty_platform(const Experiment& exp) {
+  return std::make_unique<FaultyPlatform>(exp.faults);
+}
+
+}  // namespace ra

@@ -1,0 +1,161 @@
+// Mesa's OSMesa (llvmpipe or softpipe) as a platform. Renders into memory the process owns, so no
+// GPU and no display are needed.
+//
+// Completeness of the readback: only the expected region is scanned, and an occlusion query
+// (GL_SAMPLES_PASSED) counts the fragments the primitive produced. Without multisampling and with
+// no depth or stencil test, every fragment of one point, line or polygon lights a distinct pixel, so
+// when the count equals the number of lit pixels found in the region nothing was lit elsewhere;
+// when it differs, the whole window is scanned (RenderResult::full_scan).
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <GL/osmesa.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+#include "runner/platform.h"
+
+namespace ra {
+namespace {
+
+class OsmesaPlatform : public Platform {
+ public:
+  explicit OsmesaPlatform(const PlatformSpec& spec) {
+    // Mesa reads these when the first context is made; only validated names reach it.
+    setenv("GALLIUM_DRIVER", spec.gallium_driver, 1);
+    setenv("LP_NUM_THREADS", "0", 0);
+    context_ = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, nullptr);
+    if (!context_) throw std::runtime_error(std::string("OSMesaCreateContextExt failed for ") + spec.name);
+    resize(1, 1);
+    gen_queries_ = reinterpret_cast<PFNGLGENQUERIESPROC>(OSMesaGetProcAddress("glGenQueries"));
+    begin_query_ = reinterpret_cast<PFNGLBEGINQUERYPROC>(OSMesaGetProcAddress("glBeginQuery"));
+    end_query_ = reinterpret_cast<PFNGLENDQUERYPROC>(OSMesaGetProcAddress("glEndQuery"));
+    get_query_ = reinterpret_cast<PFNGLGETQUERYOBJECTUIVPROC>(
+        OSMesaGetProcAddress("glGetQueryObjectuiv"));
+    if (!gen_queries_ || !begin_query_ || !end_query_ || !get_query_)
+      throw std::runtime_error("OSMesa lacks occlusion queries (GL 1.5)");
+    gen_queries_(1, &query_);
+
+    const char* ext = reinterpret_cast<const char*>(glGetString(GL_EXTENSIONS));
+    info_.renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    info_.version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    info_.vendor = reinterpret_cast<const char*>(glGetString(GL_VENDOR));
+    GLint bits = 0;
+    glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
+    info_.subpixel_bits = bits;
+    info_.timer_query = ext && std::strstr(ext, "GL_ARB_timer_query");
+
+    // The paper's conditions: white on black, size/width 1, no antialiasing, both faces filled.
+    for (GLenum cap : {GL_DEPTH_TEST, GL_LIGHTING, GL_DITHER, GL_POINT_SMOOTH, GL_LINE_SMOOTH,
+                       GL_POLYGON_SMOOTH, GL_MULTISAMPLE, GL_CULL_FACE, GL_BLEND, GL_SCISSOR_TEST})
+      glDisable(cap);
+    glPointSize(1);
+    glLineWidth(1);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glClearColor(0, 0, 0, 0);
+    glColor4f(1, 1, 1, 1);
+  }
+
+  ~OsmesaPlatform() override { OSMesaDestroyContext(context_); }
+
+  DriverInfo driver_info() const override { return info_; }
+
+  void set_view(const View& view) override {
+    if (view.width != width_ || view.height != height_) resize(view.width, view.height);
+    glViewport(0, 0, width_, height_);
+    glMatrixMode(GL_PROJECTION);
+    glLoadMatrixd(view.projection.m.data());
+    glMatrixMode(GL_MODELVIEW);
+    glLoadMatrixd(view.view_matrix.m.data());
+    glClear(GL_COLOR_BUFFER_BIT);
+    dirty_ = {};
+  }
+
+  RenderResult render(const Primitive& prim, const PixelRect& expected) override {
+    clear_dirty();
+    RenderResult out;
+    begin_query_(GL_SAMPLES_PASSED, query_);
+    const auto t0 = std::chrono::steady_clock::now();
+    static const GLenum modes[] = {GL_POINTS, GL_LINES, GL_TRIANGLES};
+    glBegin(modes[int(prim.kind)]);
+    for (int i = 0; i < vertex_count(prim.kind); ++i) glVertex3d(prim.v[i].x, prim.v[i].y, prim.v[i].z);
+    glEnd();
+    end_query_(GL_SAMPLES_PASSED);
+    glFinish();
+    const auto t1 = std::chrono::steady_clock::now();
+    out.render_us = std::chrono::duration<double, std::micro>(t1 - t0).count();
+    GLuint samples = 0;
+    get_query_(query_, GL_QUERY_RESULT, &samples);
+
+    PixelRect region = clamp(expected);
+    scan(region, out.lit);
+    if (out.lit.size() != samples) {
+      out.lit.clear();
+      region = {0, 0, width_, height_};
+      scan(region, out.lit);
+      out.full_scan = true;
+    }
+    dirty_ = region;
+    return out;
+  }
+
+ private:
+  void resize(int w, int h) {
+    width_ = w;
+    height_ = h;
+    buffer_.assign(size_t(w) * h * 4, 0);
+    if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, w, h))
+      throw std::runtime_error("OSMesaMakeCurrent failed for a " + std::to_string(w) + "x" +
+                               std::to_string(h) + " window");
+    OSMesaPixelStore(OSMESA_Y_UP, 1);  // row 0 is the bottom row, as in GL window coordinates
+  }
+
+  PixelRect clamp(PixelRect r) const {
+    r.x0 = std::max(r.x0, 0);
+    r.y0 = std::max(r.y0, 0);
+    r.x1 = std::min(r.x1, width_);
+    r.y1 = std::min(r.y1, height_);
+    return r;
+  }
+
+  // Clears what the previous primitive may have lit: a scissored clear of the scanned region.
+  void clear_dirty() {
+    if (dirty_.empty()) return;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(dirty_.x0, dirty_.y0, dirty_.x1 - dirty_.x0, dirty_.y1 - dirty_.y0);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
+    dirty_ = {};
+  }
+
+  // After glFinish the colour buffer (our memory) holds the image: no glReadPixels copy needed.
+  void scan(const PixelRect& r, PixelSet& lit) const {
+    if (r.empty()) return;
+    for (int y = r.y0; y < r.y1; ++y) {
+      const uint32_t* row = reinterpret_cast<const uint32_t*>(buffer_.data()) + size_t(y) * width_;
+      for (int x = r.x0; x < r.x1; ++x)
+        if (row[x] & 0x00ffffffu) lit.push_back({x, y});
+    }
+  }
+
+  OSMesaContext context_ = nullptr;
+  std::vector<uint8_t> buffer_;
+  int width_ = 0, height_ = 0;
+  PixelRect dirty_;
+  DriverInfo info_;
+  GLuint query_ = 0;
+  PFNGLGENQUERIESPROC gen_queries_ = nullptr;
+  PFNGLBEGINQUERYPROC begin_query_ = nullptr;
+  PFNGLENDQUERYPROC end_query_ = nullptr;
+  PFNGLGETQUERYOBJECTUIVPROC get_query_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Platform> create_osmesa_platform(const PlatformSpec& spec) {
+  return std::make_unique<OsmesaPlatform>(spec);
+}
+
+}  // namespace ra

@@ -1,0 +1,63 @@
+// Platforms: the renderers the runner draws through. A worker process serves exactly one platform
+// (Mesa picks its driver from GALLIUM_DRIVER when the first context is made).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runner/pixel_set.h"
+#include "runner/primitive.h"
+#include "runner/view.h"
+
+namespace ra {
+
+struct Experiment;
+
+struct PlatformSpec {
+  const char* name;            // as written in experiment files
+  const char* description;
+  const char* gallium_driver;  // value of GALLIUM_DRIVER for OSMesa platforms, else nullptr
+};
+
+// The platforms this build knows. Only names from this table ever reach Mesa's environment.
+const std::vector<PlatformSpec>& platform_specs();
+const PlatformSpec* find_platform(const std::string& name);
+std::string platform_names();  // "osmesa-llvmpipe, osmesa-softpipe, ..."
+
+// What a driver says about itself (glGetString and a few capabilities).
+struct DriverInfo {
+  std::string renderer, version, vendor;
+  int subpixel_bits = 0;        // GL_SUBPIXEL_BITS; 0 for exact rasterizers
+  bool timer_query = false;     // GL_ARB_timer_query
+};
+
+// One primitive as rendered.
+struct RenderResult {
+  PixelSet lit;             // every lit pixel, GL window coordinates
+  double render_us = 0;     // CPU wall time of draw + glFinish, microseconds
+  bool full_scan = false;   // the whole window was inspected (no proof for a partial readback)
+};
+
+class Platform {
+ public:
+  virtual ~Platform() = default;
+  virtual DriverInfo driver_info() const = 0;
+  // Makes `view` current: window size, projection and modelview matrices.
+  virtual void set_view(const View& view) = 0;
+  // Draws `prim` alone, white on black, width/size 1, no antialiasing, both faces filled, and
+  // returns every pixel it lit. `expected` is the window region where the ideal primitive lies
+  // (clipped bounding box plus a margin, possibly empty): an implementation may read back only
+  // that region when it proves that nothing was lit outside it.
+  virtual RenderResult render(const Primitive& prim, const PixelRect& expected) = 0;
+};
+
+// Creates the platform for this process. OSMesa platforms set GALLIUM_DRIVER (and
+// LP_NUM_THREADS=0 unless the user set it: thread hand-off dominates one-primitive frames).
+std::unique_ptr<Platform> create_platform(const std::string& name, const Experiment& exp);
+
+std::unique_ptr<Platform> create_osmesa_platform(const PlatformSpec& spec);
+std::unique_ptr<Platform> create_reference_platform();
+std::unique_ptr<Platform> create_faulty_platform(const Experiment& exp);
+
+}  // namespace ra

@@ -1,0 +1,67 @@
+// Audit records: one CSV row per (platform, view, primitive), the interface between the runner and
+// every later stage. The schema (columns, units, empty cells) is documented in README.md.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <limits>
+#include <string>
+
+namespace ra {
+
+constexpr int kRecordsSchemaVersion = 1;
+
+enum class Visibility {
+  kTrueVisible,
+  kTrueInvisible,
+  kFalseVisible,
+  kFalseInvisible,
+  kMultipleVisible,
+};
+const char* visibility_name(Visibility v);  // "true-visible", ...
+bool parse_visibility(const std::string& s, Visibility* out);
+
+// Case status: the metrics are meaningful only for `ok`.
+enum class CaseStatus { kOk, kInvalid, kCrash, kTimeout };
+const char* status_name(CaseStatus s);  // "ok", "invalid", "crash", "timeout"
+bool parse_status(const std::string& s, CaseStatus* out);
+
+// Missing values (not applicable to the kind, or not true-visible) are NaN and written empty.
+constexpr double kNA = std::numeric_limits<double>::quiet_NaN();
+
+struct Record {
+  std::string platform;
+  int view = 0, view_group = 0, orientation = 0;
+  double fov_deg = 0;
+  int width = 0, height = 0;
+  double near = 0, far = 0;
+  std::string kind;  // "point", "line", "triangle"
+  uint64_t index = 0;
+  CaseStatus status = CaseStatus::kOk;
+  Visibility visibility = Visibility::kTrueInvisible;
+  int64_t pixels = 0;  // lit pixels found
+  // Points (paper 3.4): pixels, and / sqrt(W*H).
+  double pe = kNA, pe_norm = kNA;
+  // Lines (paper 3.5): pixels, and / sqrt(W*H); gaps count; chain: 1 if one 8-connected chain.
+  double lse_s = kNA, lse_u = kNA, extent_error = kNA, lse_s_norm = kNA, lse_u_norm = kNA;
+  int chain_8connected = -1;  // -1 = not applicable
+  int64_t gaps = -1;
+  // Triangles (paper 3.6): px^2; / (W*H); TEu / visible edge length (pixels).
+  double te_s = kNA, te_u = kNA, te_s_norm = kNA, te_u_norm = kNA, te_u_edge_norm = kNA;
+  int full_window = -1, simply_connected = -1;
+  // Pixels in the symmetric difference with the reference rasterizer (0 = conformant).
+  int64_t ref_diff = -1;
+  uint64_t pixel_hash = 0;  // FNV-1a of the sorted lit pixels (exact comparison across runs)
+  double render_us = kNA;   // CPU time of draw + glFinish, microseconds
+};
+
+std::string records_header();  // the header line, without newline
+void write_record(std::ostream& out, const Record& r);  // one line, with newline
+
+// Reads a records CSV; calls `row` for each record. Throws UserError naming file and line on a
+// malformed row or an unexpected header (a schema change is an error, not a silent shift).
+void read_records(const std::string& path, const std::function<void(const Record&)>& row);
+
+}  // namespace ra

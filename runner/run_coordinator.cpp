@@ -1,0 +1,241 @@
+#include "runner/run_coordinator.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <thread>
+
+#include "runner/atomic_file.h"
+#include "runner/errors.h"
+#include "runner/experiment.h"
+#include "runner/manifest.h"
+#include "runner/shard.h"
+
+namespace fs = std::filesystem;
+
+namespace ra {
+namespace {
+
+volatile std::sig_atomic_t g_interrupted = 0;
+void on_signal(int) { g_interrupted = 1; }
+
+using Clock = std::chrono::steady_clock;
+
+struct Running {
+  Shard shard;
+  Clock::time_point started;
+};
+
+std::string describe_exit(int status) {
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    return "crashed (signal " + std::to_string(sig) + ", " + strsignal(sig) + ")";
+  }
+  return "exited with status " + std::to_string(WEXITSTATUS(status));
+}
+
+pid_t spawn_worker(const std::string& program, const std::string& dir, const Shard& s) {
+  const std::string log = dir + "/logs/" + s.id() + ".log";
+  const std::vector<std::string> args = {program, "worker", dir, s.platform, kind_name(s.kind),
+                                         std::to_string(s.view), std::to_string(s.begin),
+                                         std::to_string(s.end)};
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    ::setpgid(0, 0);  // its own process group, so a timeout kills everything it started
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      ::dup2(fd, 1);
+      ::dup2(fd, 2);
+      ::close(fd);
+    }
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(program.c_str(), argv.data());
+    std::perror("execv");
+    ::_exit(127);
+  }
+  return pid;
+}
+
+std::string format_duration(double s) {
+  if (!std::isfinite(s) || s < 0) return "--:--";
+  const long t = std::lround(s);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
+  return buf;
+}
+
+void prepare_run_dir(const Experiment& exp, const std::string& dir) {
+  const std::string copy = dir + "/experiment.toml";
+  if (fs::exists(copy)) {
+    const Experiment previous = load_experiment(copy);
+    if (previous.hash != exp.hash)
+      throw UserError(dir + ": holds a run of a different experiment (hash " + previous.hash +
+                      ", this one " + exp.hash + "); choose another --out or remove the directory");
+  } else if (fs::exists(dir) && !fs::is_empty(dir)) {
+    throw UserError(dir + ": exists and is not a run directory (no experiment.toml); choose "
+                          "another --out");
+  }
+  for (const char* sub : {"", "/records", "/drivers", "/logs"}) fs::create_directories(dir + sub);
+  if (!fs::exists(copy)) write_file_atomic(copy, exp.text);
+  // Temporary files are what a killed run left behind: their shards are simply redone.
+  for (const auto& e : fs::directory_iterator(dir + "/records"))
+    if (e.path().extension() == ".tmp") fs::remove(e.path());
+}
+
+nlohmann::json drivers_json(const std::string& dir) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& e : fs::directory_iterator(dir + "/drivers")) {
+    if (e.path().extension() != ".json") continue;
+    try {
+      out[e.path().stem().string()] = nlohmann::json::parse(read_file(e.path().string()));
+    } catch (const std::exception&) {
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+RunResult run_experiment(const RunOptions& options) {
+  const Experiment exp = load_experiment(options.experiment_path);
+  RunResult result;
+  result.run_dir = options.out_dir.empty() ? "outputs/" + exp.name : options.out_dir;
+  const std::string& dir = result.run_dir;
+  const int jobs = options.jobs > 0 ? options.jobs : int(std::max(1u, std::thread::hardware_concurrency()));
+  const double timeout_s = options.timeout_s > 0 ? options.timeout_s : exp.shard_timeout_s;
+  std::string program = options.worker_program;
+  if (program.empty()) program = fs::read_symlink("/proc/self/exe").string();
+
+  prepare_run_dir(exp, dir);
+
+  std::vector<Shard> todo;
+  const std::vector<Shard> all = plan_shards(exp);
+  for (const Shard& s : all) {
+    if (fs::exists(s.records_path(dir)))
+      ++result.shards_done_before;  // finished by an earlier invocation: kept as is
+    else
+      todo.push_back(s);
+  }
+  result.shards_total = all.size();
+
+  nlohmann::json manifest;
+  const std::string manifest_path = dir + "/manifest.json";
+  if (fs::exists(manifest_path)) {
+    try {
+      manifest = nlohmann::json::parse(read_file(manifest_path));
+    } catch (const std::exception&) {
+      manifest = nlohmann::json::object();
+    }
+  }
+  const std::string started = utc_now_iso8601();
+  if (!manifest.contains("started")) manifest["started"] = started;
+  manifest["schema_version"] = kManifestSchemaVersion;
+  manifest["tool"] = {{"name", "renderaudit"}, {"version", project_version()},
+                      {"commit", project_commit()}};
+  manifest["experiment"] = {{"name", exp.name}, {"file", options.experiment_path},
+                            {"hash", exp.hash}, {"seed", exp.seed},
+                            {"platforms", exp.platforms}};
+  manifest["host"] = host_description();
+  manifest["invocations"].push_back({{"started", started}, {"jobs", jobs},
+                                     {"shards_to_run", todo.size()}});
+  manifest["status"] = "running";
+  write_file_atomic(manifest_path, manifest.dump(2) + "\n");
+
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  struct sigaction old_int {}, old_term {};
+  sigaction(SIGINT, &sa, &old_int);
+  sigaction(SIGTERM, &sa, &old_term);
+
+  const bool show = options.progress && ::isatty(2);
+  const auto t_start = Clock::now();
+  uint64_t primitives_done = 0, primitives_todo = 0;
+  for (const Shard& s : todo) primitives_todo += s.end - s.begin;
+
+  std::map<pid_t, Running> running;
+  size_t next = 0, finished = 0;
+  auto last_progress = Clock::now() - std::chrono::seconds(1);
+  while ((next < todo.size() || !running.empty())) {
+    if (g_interrupted) {
+      for (auto& [pid, r] : running) ::kill(-pid, SIGKILL);
+      for (auto& [pid, r] : running) ::waitpid(pid, nullptr, 0);
+      result.interrupted = true;
+      break;
+    }
+    while (next < todo.size() && int(running.size()) < jobs) {
+      const pid_t pid = spawn_worker(program, dir, todo[next]);
+      running[pid] = {todo[next++], Clock::now()};
+    }
+    int status = 0;
+    const pid_t pid = ::waitpid(-1, &status, WNOHANG);
+    if (pid > 0 && running.count(pid)) {
+      const Running r = running[pid];
+      running.erase(pid);
+      ++finished;
+      if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(r.shard.records_path(dir))) {
+        ++result.shards_run;
+        primitives_done += r.shard.end - r.shard.begin;
+      } else {
+        result.failures.push_back({r.shard.id(), describe_exit(status) + "; log: " + dir +
+                                                     "/logs/" + r.shard.id() + ".log"});
+      }
+      continue;  // reap everything that is ready before sleeping
+    }
+    const auto now = Clock::now();
+    for (auto& [p, r] : running) {
+      if (std::chrono::duration<double>(now - r.started).count() > timeout_s) {
+        ::kill(-p, SIGKILL);
+        ::waitpid(p, nullptr, 0);
+        ++finished;
+        result.failures.push_back({r.shard.id(), "timed out after " + std::to_string(int(timeout_s)) +
+                                                     " s (killed)"});
+        running.erase(p);
+        break;
+      }
+    }
+    if (show && now - last_progress > std::chrono::milliseconds(250)) {
+      last_progress = now;
+      const double elapsed = std::chrono::duration<double>(now - t_start).count();
+      const double rate = primitives_done / std::max(elapsed, 1e-9);
+      std::fprintf(stderr, "\r[%zu/%zu shards] %llu primitives, %.0f/s, %zu failed, left %s   ",
+                   finished, todo.size(), static_cast<unsigned long long>(primitives_done), rate,
+                   result.failures.size(),
+                   format_duration(primitives_done ? (primitives_todo - primitives_done) / rate : NAN).c_str());
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (show) std::fprintf(stderr, "\n");
+  sigaction(SIGINT, &old_int, nullptr);
+  sigaction(SIGTERM, &old_term, nullptr);
+
+  manifest["drivers"] = drivers_json(dir);
+  manifest["finished"] = utc_now_iso8601();
+  manifest["invocations"].back()["elapsed_s"] =
+      std::chrono::duration<double>(Clock::now() - t_start).count();
+  size_t complete = 0;
+  for (const Shard& s : all) complete += fs::exists(s.records_path(dir));
+  manifest["shards"] = {{"total", all.size()}, {"complete", complete}};
+  nlohmann::json failures = nlohmann::json::array();
+  for (const auto& f : result.failures) failures.push_back({{"shard", f.shard}, {"reason", f.reason}});
+  manifest["failures"] = failures;
+  manifest["status"] = result.interrupted ? "interrupted"
+                       : complete == all.size() ? "complete"
+                                                : "failed";
+  write_file_atomic(manifest_path, manifest.dump(2) + "\n");
+  return result;
+}
+
+}  // namespace ra

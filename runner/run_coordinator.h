@@ -1,0 +1,34 @@
+// `renderaudit run`: plans the shards of an experiment, runs them in worker processes (at most
+// `jobs` at once), resumes an interrupted run, enforces the per-shard timeout, shows progress and
+// writes the run directory's manifest.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace ra {
+
+struct RunOptions {
+  std::string experiment_path;
+  std::string out_dir;          // empty: outputs/<experiment name>
+  int jobs = 0;                 // 0: the number of cores
+  double timeout_s = 0;         // 0: the experiment's run.shard_timeout_s
+  bool progress = true;         // a progress line on stderr (only when it is a terminal)
+  std::string worker_program;   // the executable that runs `worker` (default: this one)
+};
+
+struct ShardFailure {
+  std::string shard, reason;  // reason: "crashed (signal 11)", "timed out after 600 s", ...
+};
+
+struct RunResult {
+  std::string run_dir;
+  size_t shards_total = 0, shards_done_before = 0, shards_run = 0;
+  std::vector<ShardFailure> failures;
+  bool interrupted = false;
+};
+
+// Runs the experiment. Bad input throws UserError before anything is written.
+RunResult run_experiment(const RunOptions& options);
+
+}  // namespace ra

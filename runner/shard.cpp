@@ -1,0 +1,80 @@
+#include "runner/shard.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "runner/atomic_file.h"
+#include "runner/case_measurement.h"
+#include "runner/experiment.h"
+#include "runner/platform.h"
+
+namespace ra {
+
+std::string Shard::id() const {
+  return platform + "." + kind_name(kind) + ".v" + std::to_string(view) + "." +
+         std::to_string(begin) + "-" + std::to_string(end);
+}
+
+std::string Shard::records_path(const std::string& run_dir) const {
+  return run_dir + "/records/" + id() + ".csv";
+}
+
+std::vector<Shard> plan_shards(const Experiment& exp) {
+  std::vector<Shard> out;
+  for (const auto& platform : exp.platforms)
+    for (const View& v : exp.views)
+      for (Kind k : {Kind::kPoint, Kind::kLine, Kind::kTriangle})
+        for (uint64_t b = 0; b < exp.counts[int(k)]; b += exp.shard_size)
+          out.push_back({platform, k, v.id, b, std::min(b + exp.shard_size, exp.counts[int(k)])});
+  return out;
+}
+
+static void write_driver_info(const std::string& run_dir, const std::string& name,
+                              const DriverInfo& info) {
+  const std::string path = run_dir + "/drivers/" + name + ".json";
+  struct stat st;
+  if (::stat(path.c_str(), &st) == 0) return;
+  nlohmann::json j = {{"renderer", info.renderer},           {"version", info.version},
+                      {"vendor", info.vendor},               {"subpixel_bits", info.subpixel_bits},
+                      {"timer_query", info.timer_query}};
+  // Several shards may race here; each writes a complete file under its own temporary name.
+  const std::string tmp = path + "." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << "\n";
+    if (!out) throw std::runtime_error("cannot write " + tmp);
+  }
+  commit_file(tmp, path);
+}
+
+void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& shard) {
+  const View* view = nullptr;
+  for (const View& v : exp.views)
+    if (v.id == shard.view) view = &v;
+  if (!view) throw std::runtime_error("shard " + shard.id() + ": no such view");
+
+  auto platform = create_platform(shard.platform, exp);
+  write_driver_info(run_dir, shard.platform, platform->driver_info());
+  platform->set_view(*view);
+  const bool exact = shard.platform == "reference";
+
+  const std::string path = shard.records_path(run_dir);
+  const std::string tmp = path + ".tmp";
+  std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+  if (!out) throw std::runtime_error("cannot create " + tmp);
+  out << records_header() << '\n';
+  for (uint64_t i = shard.begin; i < shard.end; ++i) {
+    const Primitive prim = make_primitive(exp.seed, shard.kind, i);
+    write_record(out, measure_case(shard.platform, *platform, *view, prim, !exact));
+  }
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + tmp + " (disk full?)");
+  commit_file(tmp, path);
+}
+
+}  // namespace ra

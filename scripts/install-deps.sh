@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages renderaudit needs, or says exactly which are missing.
+# Usage: scripts/install-deps.sh            (build + run + test dependencies)
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libosmesa6-dev        # OSMesa: the llvmpipe / softpipe platforms
+  libvtk9-dev           # VTK: figures (charts to PNG and PDF)
+  libopenimageio-dev    # OpenImageIO: PNG of single primitives (renderaudit show)
+  libboost-math-dev     # Boost.Math: t, F, normal distributions for the statistics
+  libtomlplusplus-dev   # toml++: experiment files
+  libcli11-dev          # CLI11: the command line
+  nlohmann-json3-dev    # nlohmann/json: manifest and JSON output
+  libmeshoptimizer-dev  # meshoptimizer: vertex-cache analysis and simplification
+  libsqlite3-dev        # SQLite: audit history database
+  libgtest-dev          # GoogleTest: the test suite
+  xvfb                  # a private X server for VTK on machines with no display
+  poppler-utils         # pdfunite / pdftotext: assembling and checking the PDF report
+  python3-scipy         # independent reference values in tests (/usr/bin/python3)
+  libopenmpi-dev        # Debian's VTK CMake config requires MPI's C bindings to resolve
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "renderaudit: installing missing Debian packages: ${missing[*]}" >&2
+if [ "$(id -u)" -eq 0 ]; then
+  SUDO=""
+elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+  SUDO="sudo"
+else
+  echo "renderaudit: cannot install as a normal user. Run as root:" >&2
+  echo "  apt-get update && apt-get install -y ${missing[*]}" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+if ! $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null; then
+  echo "renderaudit: apt-get failed. Install by hand: apt-get install ${missing[*]}" >&2
+  exit 1
+fi
