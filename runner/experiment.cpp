@@ -20,10 +20,14 @@ class Locator {
   explicit Locator(std::string path) : path_(std::move(path)) {}
 
   [[noreturn]] void fail(const toml::node* node, const std::string& message) const {
+    fail_at(node ? node->source().begin : toml::source_position{}, message);
+  }
+
+  [[noreturn]] void fail_at(toml::source_position at, const std::string& message) const {
     std::ostringstream out;
     out << path_ << ":";
-    if (node && node->source().begin.line > 0)
-      out << node->source().begin.line << ":" << node->source().begin.column;
+    if (at.line > 0)
+      out << at.line << ":" << at.column;
     else
       out << "1:1";
     out << ": " << message;
@@ -37,7 +41,7 @@ class Locator {
       if (!allowed.count(std::string(key.str()))) {
         std::string list;
         for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail(&node, "unknown key '" + where + std::string(key.str()) + "' (allowed: " + list + ")");
+        fail_at(key.source().begin, "unknown key '" + where + std::string(key.str()) + "' (allowed: " + list + ")");
       }
     }
   }
@@ -74,9 +78,12 @@ std::vector<const toml::node*> one_or_many(const toml::node& node) {
   return out;
 }
 
-std::string canonical_hash(const toml::table& root) {
+// Hash of what determines the results: the canonical TOML without comments, layout or the [run]
+// table (shard size and timeout change how the work is cut, never a record).
+std::string canonical_hash(toml::table root) {
+  root.erase("run");
   std::ostringstream canon;
-  canon << root;  // toml++ re-serialises without comments or layout
+  canon << root;
   uint64_t h = 0xcbf29ce484222325ull;
   for (unsigned char c : canon.str()) {
     h ^= c;

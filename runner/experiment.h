@@ -28,7 +28,7 @@ struct Experiment {
   std::string path;        // the file as given
   std::string name;        // `name` key, default the file's stem; names outputs/<name>/
   std::string text;        // the file's bytes
-  std::string hash;        // hex FNV-1a 64 of the canonical (comment-free) TOML
+  std::string hash;        // hex FNV-1a 64 of the canonical TOML, [run] excluded
   uint64_t seed = 0;
   std::vector<std::string> platforms;
   std::vector<View> views;             // cartesian product, numbered as in the paper's Table 1

@@ -1,0 +1,60 @@
+// Helpers for end-to-end tests of the `renderaudit` program: run it, read what it wrote.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace ra::testing_cli {
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// Runs `renderaudit ARGS` (a shell fragment) and returns its exit code and output.
+inline Outcome run_renderaudit(const std::string& args) {
+  Outcome o;
+  const std::string cmd = std::string(RA_BINARY) + " " + args + " 2>&1";
+  FILE* p = ::popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) o.output.append(buf.data(), n);
+  const int status = ::pclose(p);
+  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return o;
+}
+
+// A fresh directory under the system temp dir, removed first if it exists.
+inline std::string fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("renderaudit_test_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+inline void write_text(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+// Every record line of a run directory, with the timing column (the last) removed, as a set
+// ordered by content: equal sets mean identical records whatever the sharding.
+inline std::multiset<std::string> records_without_timing(const std::string& run_dir) {
+  std::multiset<std::string> rows;
+  for (const auto& e : std::filesystem::directory_iterator(run_dir + "/records")) {
+    if (e.path().extension() != ".csv") continue;
+    std::ifstream in(e.path());
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) rows.insert(line.substr(0, line.rfind(',')));
+  }
+  return rows;
+}
+
+}  // namespace ra::testing_cli
