@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   int exit_code = ra::app::kExitOk;
   ra::app::register_run_command(app, exit_code);
   ra::app::register_worker_command(app, exit_code);
-  // STATS-PENDING ra::app::register_stats_command(app, exit_code);
+  ra::app::register_stats_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

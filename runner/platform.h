@@ -56,7 +56,15 @@ class Platform {
 // LP_NUM_THREADS=0 unless the user set it: thread hand-off dominates one-primitive frames).
 std::unique_ptr<Platform> create_platform(const std::string& name, const Experiment& exp);
 
-std::unique_ptr<Platform> create_osmesa_platform(const PlatformSpec& spec);
+// How an OSMesa platform finds the lit pixels. Only kRegionWithProof is used by `run`; the others
+// exist for the benchmark (`make bench`), which compares them side by side.
+enum class ReadbackMethod {
+  kRegionWithProof,  // read the expected region; an occlusion query proves nothing lit elsewhere
+  kFullWindow,       // clear and read back the whole window for every primitive (the paper's way)
+  kDrawOnly,         // draw + glFinish, nothing read: the floor (RenderResult::lit stays empty)
+};
+std::unique_ptr<Platform> create_osmesa_platform(
+    const PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof);
 std::unique_ptr<Platform> create_reference_platform();
 std::unique_ptr<Platform> create_faulty_platform(const Experiment& exp);
 
