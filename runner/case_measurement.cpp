@@ -1,8 +1,11 @@
 #include "runner/case_measurement.h"
 #include <stdexcept>
 
+#include "runner/clipping.h"
+#include "runner/line_metrics.h"
 #include "runner/point_metrics.h"
-#include "runner/reference_platform.h"
+#include "runner/reference_rasterizer.h"
+#include "runner/triangle_metrics.h"
 
 namespace ra {
 
@@ -36,20 +39,72 @@ Record measure_case(const std::string& platform_name, Platform& platform, const 
   switch (prim.kind) {
     case Kind::kPoint: {
       const IdealPoint ideal = project_point(view, prim.v[0]);
-      rendered = platform.render(prim, point_region(view, ideal));
+      rendered = platform.render(prim, point_region(view, ideal, kRegionMargin));
       measure_point(view, ideal, rendered.lit, rec);
       break;
     }
-    case Kind::kLine:
-    case Kind::kTriangle:
-      throw std::logic_error("lines and triangles are not measured yet");
+    case Kind::kLine: {
+      const ClippedSegment seg = clip_segment(view, prim.v[0], prim.v[1]);
+      if (seg.status == ClipStatus::kInvalid) {  // e.g. w = 0 at a vertex: no projection
+        rec.status = CaseStatus::kInvalid;
+        return rec;
+      }
+      rendered = platform.render(prim, bounding_rect(seg, view.width, view.height, kRegionMargin));
+      measure_segment_case(seg, view, rendered.lit, rec);
+      break;
+    }
+    case Kind::kTriangle: {
+      const ClippedPolygon poly = clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
+      if (poly.status == ClipStatus::kInvalid) {
+        rec.status = CaseStatus::kInvalid;
+        return rec;
+      }
+      rendered = platform.render(prim, bounding_rect(poly, view.width, view.height, kRegionMargin));
+      measure_triangle_case(poly, view, rendered.lit, rec);
+      break;
+    }
   }
   rec.render_us = rendered.render_us;
   rec.pixel_hash = pixel_set_hash(rendered.lit);
   rec.ref_diff = compare_with_reference
-                     ? symmetric_difference_size(rendered.lit, reference_render(view, prim))
+                     ? symmetric_difference_size(rendered.lit, rasterize_reference(view, prim))
                      : 0;
   return rec;
+}
+
+void measure_segment_case(const ClippedSegment& seg, const View& view, const PixelSet& lit,
+                          Record& rec) {
+  rec.pixels = int64_t(lit.size());
+  rec.visibility = classify_extended(ideally_visible(seg), lit.size());
+  if (rec.visibility != Visibility::kTrueVisible) return;
+  const LineMetrics m = measure_line(seg, lit, view.width, view.height);
+  rec.lse_s = m.lse_signed;
+  rec.lse_u = m.lse_unsigned;
+  rec.extent_error = m.extent_error;
+  rec.lse_s_norm = m.lse_signed_norm;
+  rec.lse_u_norm = m.lse_unsigned_norm;
+  rec.chain_8connected = m.chain ? 1 : 0;
+  rec.gaps = m.gaps;
+}
+
+void measure_triangle_case(const ClippedPolygon& poly, const View& view, const PixelSet& lit,
+                           Record& rec) {
+  rec.pixels = int64_t(lit.size());
+  rec.visibility = classify_extended(ideally_visible(poly), lit.size());
+  if (rec.visibility != Visibility::kTrueVisible) return;
+  const TriangleMetrics m = measure_triangle(poly, lit, view.width, view.height);
+  rec.te_s = m.te_signed;
+  rec.te_u = m.te_unsigned;
+  rec.te_s_norm = m.te_signed_norm;
+  rec.te_u_norm = m.te_unsigned_norm;
+  rec.te_u_edge_norm = m.te_unsigned_edge_norm;
+  rec.full_window = m.full_window ? 1 : 0;
+  rec.simply_connected = m.simply_connected ? 1 : 0;
+}
+
+Visibility classify_extended(bool ideal_visible, size_t lit_pixels) {
+  if (lit_pixels > 0) return ideal_visible ? Visibility::kTrueVisible : Visibility::kFalseVisible;
+  return ideal_visible ? Visibility::kFalseInvisible : Visibility::kTrueInvisible;
 }
 
 }  // namespace ra

@@ -9,7 +9,7 @@
 #include "runner/counter_rng.h"
 #include "runner/experiment.h"
 #include "runner/platform.h"
-#include "runner/reference_platform.h"
+#include "runner/reference_rasterizer.h"
 
 namespace ra {
 namespace {
@@ -37,7 +37,7 @@ class FaultyPlatform : public Platform {
     if (listed(plan_.hang, prim.index))
       for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
     RenderResult out;
-    out.lit = reference_render(view_, prim);
+    out.lit = rasterize_reference(view_, prim);
     bool shift = fault_draw(prim, 1) < plan_.shift_fraction;
     if (fault_draw(prim, 2) < plan_.flaky_fraction && first_render_) shift = true;
     first_render_ = false;

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "runner/reference_platform.h"
+#include "runner/reference_rasterizer.h"
 
 namespace ra {
 namespace {
@@ -67,7 +67,7 @@ TEST(PointMetrics, ReferencePeIsAtMostHalfADiagonal) {
     const Primitive prim = make_primitive(11, Kind::kPoint, i);
     const IdealPoint p = project_point(v, prim.v[0]);
     Record rec;
-    measure_point(v, p, reference_render(v, prim), rec);
+    measure_point(v, p, rasterize_reference(v, prim), rec);
     if (rec.visibility == Visibility::kTrueVisible) {
       EXPECT_LE(rec.pe, std::sqrt(0.5) + 1e-12);
     } else {
