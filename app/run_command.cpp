@@ -24,6 +24,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--timeout", opt.timeout_s,
                   "seconds before a shard is killed (default: run.shard_timeout_s, 600)")
       ->check(CLI::Range(1.0, 86400.0));
+  cmd->add_option("--platform,-p", opt.only_platforms,
+                  "run only this platform's shards (repeatable; default: all of the experiment's)");
   cmd->add_flag("--quiet,-q", quiet, "no progress line");
   cmd->callback([&exit_code] {
     opt.progress = !quiet;

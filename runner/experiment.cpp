@@ -281,7 +281,15 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
     if (!f->is_table()) loc.fail(f, "'faults' must be a table");
     const toml::table& t = *f->as_table();
     loc.reject_unknown_keys(t, "faults.",
-                            {"crash", "hang", "wild_pixel", "shift_fraction", "flaky_fraction"});
+                            {"base", "crash", "hang", "wild_pixel", "shift_fraction", "flaky_fraction"});
+    if (const toml::node* n = t.get("base")) {
+      const auto* name = n->as_string();
+      const PlatformSpec* spec = name ? find_platform(name->get()) : nullptr;
+      if (!spec || (!spec->gallium_driver && name->get() != "reference"))
+        loc.fail(n, "'faults.base' must name the platform that draws (allowed: reference, "
+                    "osmesa-llvmpipe, osmesa-softpipe)");
+      exp.faults.base = name->get();
+    }
     if (const toml::node* n = t.get("crash")) exp.faults.crash = index_list(loc, *n, "faults.crash");
     if (const toml::node* n = t.get("hang")) exp.faults.hang = index_list(loc, *n, "faults.hang");
     if (const toml::node* n = t.get("wild_pixel"))

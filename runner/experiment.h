@@ -17,6 +17,7 @@ namespace ra {
 // pipeline's own crash, hang and completeness handling can be tested. Indices apply to every kind
 // and view.
 struct FaultPlan {
+  std::string base = "reference";    // the platform that draws: "reference" or an OSMesa platform
   std::vector<uint64_t> crash;       // the worker aborts on these primitive indices
   std::vector<uint64_t> hang;        // the worker sleeps forever on these
   std::vector<uint64_t> wild_pixel;  // one extra pixel lit far from the primitive

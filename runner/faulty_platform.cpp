@@ -25,17 +25,28 @@ double fault_draw(const Primitive& prim, uint64_t salt) {
 
 class FaultyPlatform : public Platform {
  public:
-  explicit FaultyPlatform(FaultPlan plan) : plan_(std::move(plan)) {}
+  explicit FaultyPlatform(FaultPlan plan) : plan_(std::move(plan)) {
+    const PlatformSpec* spec = find_platform(plan_.base);
+    if (spec && spec->gallium_driver)  // wild pixels are then drawn by GL itself
+      base_ = create_osmesa_platform(*spec, ReadbackMethod::kRegionWithProof, plan_.wild_pixel);
+  }
 
   DriverInfo driver_info() const override {
-    return {"renderaudit faulty test platform", "reference + injected faults", "renderaudit", 0, false};
+    DriverInfo info{"renderaudit faulty test platform", "reference + injected faults",
+                    "renderaudit", 0, false};
+    if (base_) info = base_->driver_info(), info.renderer += " + injected faults";
+    return info;
   }
-  void set_view(const View& view) override { view_ = view; }
+  void set_view(const View& view) override {
+    view_ = view;
+    if (base_) base_->set_view(view);
+  }
 
-  RenderResult render(const Primitive& prim, const PixelRect&) override {
+  RenderResult render(const Primitive& prim, const PixelRect& expected) override {
     if (listed(plan_.crash, prim.index)) std::raise(SIGSEGV);  // what a crashing driver does
     if (listed(plan_.hang, prim.index))
       for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+    if (base_) return base_->render(prim, expected);
     RenderResult out;
     out.lit = rasterize_reference(view_, prim);
     bool shift = fault_draw(prim, 1) < plan_.shift_fraction;
@@ -60,6 +71,7 @@ class FaultyPlatform : public Platform {
 
  private:
   FaultPlan plan_;
+  std::unique_ptr<Platform> base_;  // an OSMesa platform when [faults] base names one
   View view_;
   bool first_render_ = true;
 };

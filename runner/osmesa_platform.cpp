@@ -14,6 +14,7 @@
 #include <GL/glext.h>
 #include <GL/osmesa.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -26,7 +27,8 @@ namespace {
 
 class OsmesaPlatform : public Platform {
  public:
-  OsmesaPlatform(const PlatformSpec& spec, ReadbackMethod method) : method_(method) {
+  OsmesaPlatform(const PlatformSpec& spec, ReadbackMethod method, std::vector<uint64_t> wild)
+      : method_(method), wild_pixel_indices_(std::move(wild)) {
     // Mesa reads these when the first context is made; only validated names reach it.
     setenv("GALLIUM_DRIVER", spec.gallium_driver, 1);
     setenv("LP_NUM_THREADS", "0", 0);
@@ -108,7 +110,7 @@ class OsmesaPlatform : public Platform {
     }
     clear_dirty();
     begin_query_(GL_SAMPLES_PASSED, query_);
-    out.render_us = draw_and_finish(prim, true);
+    out.render_us = draw_and_finish(prim, true, wild_pixel_for(prim, expected));
     GLuint samples = 0;
     get_query_(query_, GL_QUERY_RESULT, &samples);
 
@@ -127,15 +129,45 @@ class OsmesaPlatform : public Platform {
  private:
   // Draws the primitive and waits for it; returns the CPU time in microseconds. With
   // `end_query`, the running occlusion query is ended right after the draw.
-  double draw_and_finish(const Primitive& prim, bool end_query = false) {
+  double draw_and_finish(const Primitive& prim, bool end_query = false, const Pixel* wild = nullptr) {
     static const GLenum modes[] = {GL_POINTS, GL_LINES, GL_TRIANGLES};
     const auto t0 = std::chrono::steady_clock::now();
     glBegin(modes[int(prim.kind)]);
     for (int i = 0; i < vertex_count(prim.kind); ++i) glVertex3d(prim.v[i].x, prim.v[i].y, prim.v[i].z);
     glEnd();
+    if (wild) draw_wild_pixel(*wild);
     if (end_query) end_query_(GL_SAMPLES_PASSED);
     glFinish();
     return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  // Test-only fault: where the extra pixel goes (the quadrant opposite the expected region), or
+  // nullptr when this primitive has none.
+  const Pixel* wild_pixel_for(const Primitive& prim, const PixelRect& expected) {
+    if (std::find(wild_pixel_indices_.begin(), wild_pixel_indices_.end(), prim.index) ==
+        wild_pixel_indices_.end())
+      return nullptr;
+    const int cx = expected.empty() ? 0 : (expected.x0 + expected.x1) / 2;
+    const int cy = expected.empty() ? 0 : (expected.y0 + expected.y1) / 2;
+    wild_ = {(cx + width_ / 2) % width_, (cy + height_ / 2) % height_};
+    return &wild_;
+  }
+
+  // Lights pixel p through GL (so only the readback can find it): a point at its centre in NDC.
+  void draw_wild_pixel(Pixel p) {
+    glMatrixMode(GL_PROJECTION);
+    glPushMatrix();
+    glLoadIdentity();
+    glMatrixMode(GL_MODELVIEW);
+    glPushMatrix();
+    glLoadIdentity();
+    glBegin(GL_POINTS);
+    glVertex2d(2.0 * (p.x + 0.5) / width_ - 1.0, 2.0 * (p.y + 0.5) / height_ - 1.0);
+    glEnd();
+    glPopMatrix();
+    glMatrixMode(GL_PROJECTION);
+    glPopMatrix();
+    glMatrixMode(GL_MODELVIEW);
   }
 
   template <typename F>
@@ -193,6 +225,8 @@ class OsmesaPlatform : public Platform {
   }
 
   ReadbackMethod method_;
+  std::vector<uint64_t> wild_pixel_indices_;
+  Pixel wild_;
   OSMesaContext context_ = nullptr;
   uint8_t winsys_pixel_[4] = {};
   std::vector<uint32_t> readback_;
@@ -218,8 +252,9 @@ class OsmesaPlatform : public Platform {
 
 }  // namespace
 
-std::unique_ptr<Platform> create_osmesa_platform(const PlatformSpec& spec, ReadbackMethod method) {
-  return std::make_unique<OsmesaPlatform>(spec, method);
+std::unique_ptr<Platform> create_osmesa_platform(const PlatformSpec& spec, ReadbackMethod method,
+                                                 std::vector<uint64_t> wild_pixel_indices) {
+  return std::make_unique<OsmesaPlatform>(spec, method, std::move(wild_pixel_indices));
 }
 
 }  // namespace ra

@@ -63,8 +63,11 @@ enum class ReadbackMethod {
   kFullWindow,       // clear and read back the whole window for every primitive (the paper's way)
   kDrawOnly,         // draw + glFinish, nothing read: the floor (RenderResult::lit stays empty)
 };
+// `wild_pixel_indices` (tests only): for these primitive indices GL also lights one pixel far from
+// the primitive, inside the same occlusion query, as a driver bug would; the readback must find it.
 std::unique_ptr<Platform> create_osmesa_platform(
-    const PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof);
+    const PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
+    std::vector<uint64_t> wild_pixel_indices = {});
 std::unique_ptr<Platform> create_reference_platform();
 std::unique_ptr<Platform> create_faulty_platform(const Experiment& exp);
 

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -118,10 +119,21 @@ RunResult run_experiment(const RunOptions& options) {
   std::string program = options.worker_program;
   if (program.empty()) program = fs::read_symlink("/proc/self/exe").string();
 
+  for (const auto& p : options.only_platforms)
+    if (std::find(exp.platforms.begin(), exp.platforms.end(), p) == exp.platforms.end())
+      throw UserError(options.experiment_path + ": --platform " + p +
+                      " is not one of the experiment's platforms");
   prepare_run_dir(exp, dir);
 
   std::vector<Shard> todo;
-  const std::vector<Shard> all = plan_shards(exp);
+  std::vector<Shard> all = plan_shards(exp);
+  if (!options.only_platforms.empty()) {
+    const auto& keep = options.only_platforms;
+    all.erase(std::remove_if(all.begin(), all.end(), [&](const Shard& s) {
+                return std::find(keep.begin(), keep.end(), s.platform) == keep.end();
+              }),
+              all.end());
+  }
   for (const Shard& s : all) {
     if (fs::exists(s.records_path(dir)))
       ++result.shards_done_before;  // finished by an earlier invocation: kept as is

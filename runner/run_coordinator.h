@@ -14,6 +14,7 @@ struct RunOptions {
   int jobs = 0;                 // 0: the number of cores
   double timeout_s = 0;         // 0: the experiment's run.shard_timeout_s
   bool progress = true;         // a progress line on stderr (only when it is a terminal)
+  std::vector<std::string> only_platforms;  // non-empty: run only these platforms' shards
   std::string worker_program;   // the executable that runs `worker` (default: this one)
 };
 
