@@ -25,6 +25,11 @@ run: build
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# Benchmarks: side-by-side medians, printed as tables and written as JSON under outputs/bench/.
+bench: build
+	$(BUILD)/readback_bench --primitives 300 --rounds 3 --json outputs/bench/readback.json
+	$(BUILD)/analysis_bench --records 2400000 --platforms 2
+
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
 

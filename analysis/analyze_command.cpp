@@ -1,0 +1,282 @@
+// `renderaudit analyze DIR`: the paper's section-4 procedure; see analyze_command.h.
+#include "analysis/analyze_command.h"
+
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <regex>
+
+#include "analysis/figure_data.h"
+#include "analysis/paper_tables.h"
+#include "analysis/run_records.h"
+#include "analysis/view_equivalence.h"
+#include "app/commands.h"
+#include "runner/atomic_file.h"
+#include "runner/errors.h"
+
+namespace fs = std::filesystem;
+
+namespace ra::analysis {
+namespace {
+
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+void check_options(const AnalyzeOptions& o) {
+  if (!(o.alpha > 0 && o.alpha < 1)) {
+    throw UserError("--alpha " + format_significant(std::isfinite(o.alpha) ? o.alpha : -1, 6) +
+                    ": the significance level must lie strictly between 0 and 1");
+  }
+  if (o.pixel_pitches_mm.empty()) throw UserError("--pixel-pitch-mm: give at least one pitch");
+  for (double p : o.pixel_pitches_mm) {
+    if (!(p > 0) || !std::isfinite(p)) {
+      throw UserError("--pixel-pitch-mm: " + std::to_string(p) +
+                      " is not a pixel pitch (a positive number of millimetres, e.g. 0.255)");
+    }
+  }
+  if (o.box_cox_subsample < 3) {
+    throw UserError("--box-cox-subsample " + std::to_string(o.box_cox_subsample) +
+                    ": at least 3 values are needed to choose lambda");
+  }
+}
+
+// One file to write and its line in README.md.
+struct Output {
+  std::string name;
+  std::string what;
+  std::string content;
+};
+
+// Files of an earlier analysis that this one may not rewrite (a kind absent now, one platform).
+bool generated_name(const std::string& name) {
+  static const std::regex pattern(
+      R"((table\d\d[a-z]?_[a-z_]+|speed|cross_platform|view_equivalence)\.(csv|md|tex)|figures\.json|report\.md|README\.md)");
+  return std::regex_match(name, pattern);
+}
+
+std::string files_readme(const std::vector<Output>& outputs, const RunRecords& run,
+                         const AnalyzeOptions& o) {
+  std::string md = "# Analysis of " + run.run_dir +
+                   "\n\nWritten by `renderaudit analyze` from the records alone (" +
+                   std::to_string(run.record_count) + " records in " +
+                   std::to_string(run.files.size()) +
+                   " files); alpha = " + format_significant(o.alpha, 3) + ", quartiles " +
+                   quantile_label(o.quantiles) +
+                   ". Tables come as .csv (title and notes as '# ' lines, then a header row), .md "
+                   "and .tex (booktabs).\n\n| file | what |\n| :--- | :--- |\n";
+  for (const Output& out : outputs)
+    md += "| " + out.name + " | " + markdown_escape(out.what) + " |\n";
+  md += "| README.md | this list |\n";
+  return md;
+}
+
+}  // namespace
+
+AnalyzeResult analyze_run(const AnalyzeOptions& o) {
+  check_options(o);
+  AnalyzeResult result;
+  Stopwatch watch;
+
+  LoadOptions load;
+  load.jobs = o.jobs;
+  const RunRecords run = load_run_records(o.run_dir, load);
+  result.records = run.record_count;
+  result.timings.push_back({"load", watch.lap()});
+
+  EquivalenceOptions eq;
+  eq.alpha = o.alpha;
+  eq.quantiles = o.quantiles;
+  eq.comparison.box_cox_subsample = o.box_cox_subsample;
+  eq.jobs = o.jobs;
+  const std::vector<ViewEquivalence> equivalence = assess_view_equivalence(run, eq);
+  result.comparisons = equivalence.size();
+  for (const ViewEquivalence& e : equivalence)
+    result.not_equivalent += e.verdict == Verdict::kNotEquivalent;
+  result.timings.push_back({"equivalence", watch.lap()});
+
+  TableOptions to;
+  to.quantiles = o.quantiles;
+  to.pixel_pitches_mm = o.pixel_pitches_mm;
+  to.alpha = o.alpha;
+  to.comparison = eq.comparison;
+  to.jobs = o.jobs;
+  const std::vector<Table> tables = paper_tables(run, to);
+  result.timings.push_back({"tables", watch.lap()});
+
+  FigureOptions fo;
+  fo.quantiles = o.quantiles;
+  fo.jobs = o.jobs;
+  const nlohmann::json figures = figure_data(run, fo);
+  result.timings.push_back({"figures", watch.lap()});
+
+  // render everything, then write
+  std::vector<Output> outputs;
+  outputs.push_back(
+      {"report.md", "every table below in Markdown, with the view-equivalence verdicts", ""});
+  outputs.push_back({"view_equivalence.md",
+                     "orientation views compared (t, F, Levene; raw and Box-Cox), the rule, every "
+                     "group not equivalent, the pooling note",
+                     view_equivalence_markdown(run, equivalence, eq)});
+  outputs.push_back({"view_equivalence.csv",
+                     "the same comparisons with every statistic, one row each",
+                     render_csv(view_equivalence_table(run, equivalence, eq))});
+  std::string all_tables;
+  std::string printed;
+  for (const Table& t : tables) {
+    const std::string md = render_markdown(t);
+    all_tables += md + "\n";
+    const bool supplement = t.file_stem.rfind("table", 0) == 0 &&
+                            std::isalpha(static_cast<unsigned char>(t.file_stem[7])) != 0;
+    if (!supplement && t.file_stem != "cross_platform") printed += md + "\n";
+    const std::string what = t.title.substr(0, t.title.find(';'));
+    outputs.push_back({t.file_stem + ".csv", what + " (CSV)", render_csv(t)});
+    outputs.push_back({t.file_stem + ".md", what + " (Markdown)", md});
+    outputs.push_back({t.file_stem + ".tex", what + " (LaTeX)", render_latex(t)});
+  }
+  outputs.push_back({"figures.json",
+                     "figure data for the plots stage: box plots, Q-Q plots, relative "
+                     "bihistograms (schema renderaudit-figures v" +
+                         std::to_string(kFiguresSchemaVersion) + ", analysis/figure_data.h)",
+                     figures.dump() + "\n"});
+
+  // the equivalence verdicts in brief, for report.md and the terminal
+  std::string verdicts = "## View equivalence\n\n";
+  {
+    std::size_t undecided = 0, none = 0;
+    for (const ViewEquivalence& e : equivalence) {
+      undecided += e.verdict == Verdict::kUndecided;
+      none += e.verdict == Verdict::kNoComparison;
+    }
+    verdicts += std::to_string(equivalence.size()) +
+                " comparisons of orientation views (alpha = " + format_significant(o.alpha, 3) +
+                "; location t/ANOVA and Levene median on raw " + "data): " +
+                std::to_string(equivalence.size() - result.not_equivalent - undecided - none) +
+                " equivalent, " + std::to_string(result.not_equivalent) + " NOT equivalent, " +
+                std::to_string(undecided) + " undecided, " + std::to_string(none) +
+                " without comparison.\n";
+    std::size_t listed = 0;
+    for (const ViewEquivalence& e : equivalence) {
+      if (e.verdict != Verdict::kNotEquivalent) continue;
+      if (listed++ == 12) {
+        verdicts += "- ... (all in view_equivalence.md)\n";
+        break;
+      }
+      verdicts += std::string("- NOT equivalent: ") + run.platforms[e.platform] + ", " +
+                  kind_plural(e.kind) + ", " + kind_metrics(e.kind)[e.metric].symbol +
+                  ", view group " + e.label + ": " + e.explanation + "\n";
+    }
+    verdicts +=
+        std::string(result.not_equivalent ? "The views were pooled into view groups anyway, "
+                                            "as the paper did (see view_equivalence.md).\n"
+                                          : "Views pooled into view groups, as the paper "
+                                            "did.\n");
+  }
+  const std::string header = "# Analysis of " + run.run_dir + "\n\n" +
+                             std::to_string(run.record_count) + " records; platforms: ";
+  std::string platforms;
+  for (std::size_t p = 0; p < run.platforms.size(); ++p) {
+    platforms += (p ? ", " : "") + run.platforms[p];
+  }
+  outputs[0].content = header + platforms + "; quartiles " + quantile_label(o.quantiles) + ".\n\n" +
+                       verdicts + "\n" + all_tables;
+  result.summary = header + platforms + ".\n\n" + verdicts + "\n" + printed;
+
+  const fs::path out_dir = fs::path(o.run_dir) / "analysis";
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec)
+    throw UserError(out_dir.string() + ": cannot create the directory (" + ec.message() + ")");
+  for (const auto& e : fs::directory_iterator(out_dir)) {
+    const std::string name = e.path().filename().string();
+    bool current = false;
+    for (const Output& out : outputs) current = current || out.name == name;
+    if (!current && e.is_regular_file() && generated_name(name)) fs::remove(e.path(), ec);
+  }
+  for (const Output& out : outputs) {
+    write_file_atomic((out_dir / out.name).string(), out.content);
+    result.files.push_back(out.name);
+  }
+  write_file_atomic((out_dir / "README.md").string(), files_readme(outputs, run, o));
+  result.files.push_back("README.md");
+  result.out_dir = out_dir.string();
+  result.timings.push_back({"write", watch.lap()});
+  return result;
+}
+
+}  // namespace ra::analysis
+
+namespace ra::app {
+
+void register_analyze_command(CLI::App& app, int& exit_code) {
+  struct Options {
+    std::string dir;
+    double alpha = 0.05;
+    std::vector<double> pitches;
+    std::string quantiles = "hf6";
+    unsigned jobs = 0;
+    std::size_t box_cox_subsample = 10000;
+    bool timings = false;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand(
+      "analyze",
+      "The paper's section-4 analysis of a run directory, from its records alone: equivalence of "
+      "orientation views (t, F, Levene; raw and Box-Cox), Tables 2-11 as CSV, Markdown and LaTeX, "
+      "the cross-platform comparison, render time beside error, and figure data; writes "
+      "DIR/analysis/ and prints the tables.");
+  cmd->add_option("dir", o->dir, "run directory written by `renderaudit run`")->required();
+  cmd->add_option("--alpha", o->alpha, "significance level of the tests (default 0.05)");
+  cmd->add_option("--pixel-pitch-mm", o->pitches,
+                  "pixel pitch in mm for Table 11; a list for several displays, e.g. "
+                  "0.255,0.294,1.5 (default 0.255, the paper's LCD)")
+      ->delimiter(',');
+  cmd->add_option("--quantiles", o->quantiles,
+                  "quartile definition: hf6 (Hyndman-Fan 6, NIST e-Handbook / Dataplot; default) "
+                  "or hf7 (R and NumPy default)")
+      ->check(CLI::IsMember({"hf6", "hf7"}));
+  cmd->add_option("--jobs", o->jobs, "threads (default: the number of cores)");
+  cmd->add_option("--box-cox-subsample", o->box_cox_subsample,
+                  "Box-Cox lambda is chosen on at most this many order statistics of the pooled "
+                  "data (default 10000)");
+  cmd->add_flag("--timings", o->timings, "print the time each stage took");
+  cmd->callback([o, &exit_code] {
+    analysis::AnalyzeOptions options;
+    options.run_dir = o->dir;
+    options.alpha = o->alpha;
+    if (!o->pitches.empty()) options.pixel_pitches_mm = o->pitches;
+    options.quantiles = o->quantiles == "hf7" ? stats::QuantileDefinition::kHyndmanFan7
+                                              : stats::QuantileDefinition::kHyndmanFan6;
+    options.jobs = o->jobs;
+    options.box_cox_subsample = o->box_cox_subsample;
+    const analysis::AnalyzeResult r = analysis::analyze_run(options);
+    std::cout << r.summary;
+    if (o->timings) {
+      std::cout << "Timings (s):";
+      for (const auto& t : r.timings) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, " %s %.3f", t.stage.c_str(), t.seconds);
+        std::cout << buf;
+      }
+      std::cout << "\n";
+    }
+    std::cout << "Wrote " << r.files.size() << " files to " << r.out_dir
+              << " (README.md lists them; every table in report.md).\n";
+    exit_code = kExitOk;
+  });
+}
+
+}  // namespace ra::app

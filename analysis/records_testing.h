@@ -1,0 +1,105 @@
+// Test support for the analysis-stage tests (included by analysis/*_test.cpp only): synthetic
+// records with the views of the paper's Table 1, written as a run directory with ra::write_record.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "analysis/stats_testing.h"
+#include "runner/records.h"
+
+namespace ra::analysis::testing {
+
+// A fresh temporary directory (stats::testing::temp_dir) removed when the test ends.
+struct ScopedTempDir {
+  explicit ScopedTempDir(const std::string& tag) : path(stats::testing::temp_dir(tag)) {}
+  ~ScopedTempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  ScopedTempDir(const ScopedTempDir&) = delete;
+  ScopedTempDir& operator=(const ScopedTempDir&) = delete;
+  std::filesystem::path path;
+};
+
+// The paper's Table 1: views 1-8, orientation innermost, then FOV (30, 150), then window (128,
+// 907).
+inline void set_view(Record& r, int view) {
+  const int v = view - 1;
+  r.view = view;
+  r.orientation = v % 2 + 1;
+  r.view_group = v / 2;
+  r.fov_deg = (v / 2) % 2 ? 150 : 30;
+  r.width = r.height = v / 4 ? 907 : 128;
+  r.near = 0.01;
+  r.far = 10;
+}
+
+// A point record; true-visible ones carry pe (pixels) and pe_norm = pe / sqrt(W*H).
+inline Record point(const std::string& platform, int view, std::uint64_t index, double pe,
+                    Visibility visibility = Visibility::kTrueVisible,
+                    CaseStatus status = CaseStatus::kOk) {
+  Record r;
+  r.platform = platform;
+  set_view(r, view);
+  r.kind = "point";
+  r.index = index;
+  r.status = status;
+  r.visibility = visibility;
+  r.pixels = visibility == Visibility::kTrueVisible ? 1 : 0;
+  if (visibility == Visibility::kTrueVisible && status == CaseStatus::kOk) {
+    r.pe = pe;
+    r.pe_norm = pe / r.width;
+  }
+  r.render_us = 10 + static_cast<double>(index % 7);
+  return r;
+}
+
+// A line record whose metric cells are empty (a runner that does not measure lines yet).
+inline Record unmeasured_line(const std::string& platform, int view, std::uint64_t index) {
+  Record r;
+  r.platform = platform;
+  set_view(r, view);
+  r.kind = "line";
+  r.index = index;
+  r.visibility = Visibility::kTrueVisible;
+  r.pixels = 10;
+  r.render_us = 5;
+  return r;
+}
+
+// Writes `records` as RUN/records/NAME with the records header; returns the file's path.
+inline std::string write_records(const std::filesystem::path& run,
+                                 const std::vector<Record>& records,
+                                 const std::string& name = "x.csv") {
+  std::filesystem::create_directories(run / "records");
+  const auto path = run / "records" / name;
+  std::ofstream out(path);
+  out << records_header() << "\n";
+  for (const Record& r : records) write_record(out, r);
+  return path.string();
+}
+
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+inline std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::string line;
+  for (char c : text) {
+    if (c == '\n') {
+      lines.push_back(line);
+      line.clear();
+    } else {
+      line += c;
+    }
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+}  // namespace ra::analysis::testing

@@ -1,0 +1,172 @@
+// The records of a run directory (DIR/records/*.csv, schema in README.md and runner/records.h),
+// loaded as the samples the analysis stage needs and nothing more: per platform, kind and view the
+// visibility-class counts, the values of each error metric over the true-visible cases with status
+// `ok` (float64, in record units), and the render times. Views that differ only by camera
+// orientation (the same `view_group`) are gathered into view groups A, B, C, ... (paper, section 4:
+// "View A is the aggregate of views 1 and 2").
+//
+// Reading: the columns are located by name in records_header() (runner/records.h stays the single
+// definition of the schema) and every file's header must equal it. The files are parsed in parallel
+// with std::from_chars (locale-independent, exact); only the columns used here are converted, and
+// each of those is validated: a malformed record is a ra::UserError "FILE:LINE: what is wrong".
+// Records are checked for consistency: a view has the same parameters in every record of every
+// file, the views of a group share field of view, window and clip planes, and no (platform, kind,
+// view, index) appears twice (a copied shard would be counted twice otherwise).
+//
+// Units: PE, LSEs, LSEu and TEu-edge-norm in pixels; TEs, TEu in pixels^2; *_norm divide lengths by
+// sqrt(W*H) and areas by W*H (normalised window coordinates, paper section 3.2); render_us in
+// microseconds of CPU time (draw + glFinish).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "analysis/descriptive.h"
+
+namespace ra::analysis {
+
+enum class PrimitiveKind { kPoint = 0, kLine = 1, kTriangle = 2 };
+constexpr std::size_t kKindCount = 3;
+constexpr std::array<PrimitiveKind, kKindCount> kAllKinds = {
+    PrimitiveKind::kPoint, PrimitiveKind::kLine, PrimitiveKind::kTriangle};
+
+const char* kind_name(PrimitiveKind kind);    // "point", "line", "triangle" (the records' spelling)
+const char* kind_plural(PrimitiveKind kind);  // "points", "line segments", "triangles"
+std::optional<PrimitiveKind> parse_kind(std::string_view name);
+
+// What a metric's values measure, for unit labels and conversions to physical units.
+enum class MetricUnit {
+  kPixels,            // a length in pixels
+  kSquarePixels,      // an area in pixels^2
+  kNormalizedLength,  // a length / sqrt(W*H)
+  kNormalizedArea,    // an area / (W*H)
+};
+const char* unit_name(MetricUnit unit);  // "px", "px^2", "sqrt(W*H) units", "W*H units"
+
+// One error-metric column of the records.
+struct MetricSpec {
+  const char* column;       // records column, e.g. "pe_norm"
+  PrimitiveKind kind;       // the kind whose records carry it
+  const char* symbol;       // the paper's symbol, e.g. "PEnorm"
+  const char* description;  // e.g. "normalized point rendering error"
+  MetricUnit unit;
+};
+
+// The metrics analysed for a kind, the paper's headline ones first: points PE, PEnorm; lines
+// LSEs-norm, LSEu-norm, LSEs, LSEu; triangles TEs-norm, TEu-norm, TEs, TEu, TEu-edge-norm (TEu per
+// pixel of visible edge, pixels).
+const std::vector<MetricSpec>& kind_metrics(PrimitiveKind kind);
+
+// The index of `column` in kind_metrics(kind); std::logic_error when it is not one of them.
+std::size_t metric_index(PrimitiveKind kind, std::string_view column);
+
+// The parameters of one view (README "Records schema").
+struct ViewMeta {
+  int view = 0;         // 1-based, Table 1 order
+  int view_group = 0;   // 0 = A
+  int orientation = 0;  // 1-based camera orientation
+  double fov_deg = 0;
+  int width = 0, height = 0;  // pixels
+  double near = 0, far = 0;   // world units
+};
+
+// Counts of one platform, kind and view. The five classes count records with status `ok` only; the
+// other statuses are counted apart (their visibility means nothing).
+struct VisibilityCounts {
+  std::array<std::uint64_t, 5> by_class{};  // indexed by int(ra::Visibility)
+  std::uint64_t invalid = 0, crash = 0, timeout = 0;
+  std::uint64_t total() const;
+};
+
+// The samples of one platform, kind and view.
+struct ViewData {
+  ViewMeta meta;
+  VisibilityCounts counts;
+  // values[m]: metric kind_metrics(kind)[m] over true-visible `ok` records whose cell is not empty,
+  // ascending (no statistic here depends on the record order; sorted once at loading, every later
+  // quantile is cheap, and results do not depend on the order in which files were read)
+  std::vector<std::vector<double>> values;
+  // missing[m]: true-visible `ok` records whose cell of metric m is empty (metric not yet measured)
+  std::vector<std::uint64_t> missing;
+  std::vector<double> render_us_visible;  // true-visible `ok` records with a time, us, ascending
+  std::vector<double> render_us_other;    // the other `ok` records with a time, ascending
+};
+
+struct ViewKey {
+  std::size_t platform = 0;  // index into RunRecords::platforms
+  PrimitiveKind kind = PrimitiveKind::kPoint;
+  int view = 0;
+  bool operator<(const ViewKey& o) const;
+};
+
+// The views of one platform and kind that differ only by camera orientation.
+struct ViewGroup {
+  std::size_t platform = 0;
+  PrimitiveKind kind = PrimitiveKind::kPoint;
+  int view_group = 0;
+  std::string label;                   // "A", "B", ... (ra::View::group_name)
+  std::vector<const ViewData*> views;  // ascending by orientation, then view number
+  const ViewMeta& meta() const { return views.front()->meta; }  // fov, window, planes of all
+  std::size_t count(std::size_t metric) const;  // values of a metric over the group's views
+  std::vector<double> pooled(std::size_t metric) const;  // the views' values merged, ascending
+  VisibilityCounts counts() const;                       // summed over the views
+  std::vector<int> view_numbers() const;
+};
+
+struct RunRecords {
+  RunRecords() = default;
+  RunRecords(const RunRecords&) = delete;  // groups point into views
+  RunRecords& operator=(const RunRecords&) = delete;
+  RunRecords(RunRecords&&) = default;
+  RunRecords& operator=(RunRecords&&) = default;
+
+  std::string run_dir;
+  std::vector<std::string> files;      // the records files read, sorted
+  std::uint64_t record_count = 0;      // rows read
+  std::vector<std::string> platforms;  // sorted by name: Platform I, II, ... in the tables
+  std::map<ViewKey, ViewData> views;
+  std::vector<ViewGroup> groups;  // by platform, kind, view_group
+
+  // The kinds that have at least one record, in kAllKinds order.
+  std::vector<PrimitiveKind> kinds() const;
+  // The groups of one platform and kind, ascending by view_group.
+  std::vector<const ViewGroup*> groups_of(std::size_t platform, PrimitiveKind kind) const;
+  // The group, or nullptr.
+  const ViewGroup* find_group(std::size_t platform, PrimitiveKind kind, int view_group) const;
+  // The view groups numbers present for a kind on any platform, ascending.
+  std::vector<int> view_groups(PrimitiveKind kind) const;
+};
+
+struct LoadOptions {
+  unsigned jobs = 0;  // threads parsing files; 0: the number of cores
+};
+
+// Loads DIR/records/*.csv (*.csv.tmp, unfinished shards, are ignored). Throws ra::UserError when
+// DIR or DIR/records does not exist, holds no records file, or a file is malformed or inconsistent
+// (message "FILE:LINE: what", or naming both files of an inconsistency).
+RunRecords load_run_records(const std::string& run_dir, const LoadOptions& options = {});
+
+// "A", "B", ..., "Z", "AA", ... for view_group 0, 1, ...
+std::string view_group_label(int view_group);
+
+// stats::describe() of an ascending, non-empty vector without sorting it again (the samples here
+// are kept sorted). std::logic_error when `ascending` is empty or not ascending.
+stats::Description describe_sorted(const std::vector<double>& ascending,
+                                   stats::QuantileDefinition definition);
+
+// The ascending vectors `parts` merged into one ascending vector.
+std::vector<double> merge_sorted(const std::vector<const std::vector<double>*>& parts);
+
+// Runs task(0) ... task(count - 1) on up to `jobs` threads (0: the number of cores). Each task must
+// write only its own results. The first exception (by task index) is rethrown after all finish.
+void run_in_parallel(std::size_t count, unsigned jobs,
+                     const std::function<void(std::size_t)>& task);
+
+}  // namespace ra::analysis
