@@ -4,10 +4,11 @@ JOBS ?= $(shell nproc)
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
-.PHONY: all deps build run test bench format clean
+.PHONY: all deps build run analyze plot report test bench format clean
 
-# Installs what is missing, builds, runs the default experiment and leaves its results in $(OUT).
-all: run
+# Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
+# and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
+all: report
 
 deps:
 	@scripts/install-deps.sh
@@ -20,6 +21,17 @@ build: deps $(BUILD)/CMakeCache.txt
 
 run: build
 	$(BUILD)/renderaudit run $(EXPERIMENT) --out $(OUT)
+
+analyze: run
+	$(BUILD)/renderaudit analyze $(OUT)
+
+# Figures and report need no display: a private Xvfb is started when DISPLAY is unset.
+plot: analyze
+	$(BUILD)/renderaudit plot $(OUT)
+
+report: plot
+	$(BUILD)/renderaudit report $(OUT)
+	@echo "Report of $(EXPERIMENT): $(OUT)/report/report.pdf (and report.html)"
 
 # The whole test suite (CTest). CI runs exactly this.
 test: build

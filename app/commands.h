@@ -14,5 +14,8 @@ constexpr int kExitUsage = 2;     // bad input: nothing was run
 void register_run_command(CLI::App& app, int& exit_code);
 void register_worker_command(CLI::App& app, int& exit_code);  // internal: one shard, one process
 void register_stats_command(CLI::App& app, int& exit_code);
+void register_analyze_command(CLI::App& app, int& exit_code);
+void register_plot_command(CLI::App& app, int& exit_code);    // figures: PNG + PDF (plots/)
+void register_report_command(CLI::App& app, int& exit_code);  // report.pdf + report.html (report/)
 
 }  // namespace ra::app

@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
   ra::app::register_run_command(app, exit_code);
   ra::app::register_worker_command(app, exit_code);
   ra::app::register_stats_command(app, exit_code);
+  ra::app::register_analyze_command(app, exit_code);
+  ra::app::register_plot_command(app, exit_code);
+  ra::app::register_report_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -16,6 +16,11 @@ packages=(
   libsqlite3-dev        # SQLite: audit history database
   libgtest-dev          # GoogleTest: the test suite
   xvfb                  # a private X server for VTK on machines with no display
+  libgl1-mesa-dri       # Mesa's GLX driver inside Xvfb (VTK's OpenGL context for figures)
+  libx11-dev            # Xlib: checking that a DISPLAY answers before VTK opens it
+  libcairo2-dev         # cairo: the report's text and table pages (PDF surface)
+  fonts-dejavu-core     # DejaVu Sans / Mono: the report's fonts (embedded in the PDF)
+  fonts-urw-base35      # Nimbus Sans: Helvetica metrics, so poppler shows the figure PDFs' text right
   poppler-utils         # pdfunite / pdftotext: assembling and checking the PDF report
   python3-scipy         # independent reference values in tests (/usr/bin/python3)
   libopenmpi-dev        # Debian's VTK CMake config requires MPI's C bindings to resolve

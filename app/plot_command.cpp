@@ -1,0 +1,34 @@
+// `renderaudit plot DIR`: every figure of a run as PNG + vector PDF (+ the numbers as CSV) in
+// DIR/figures/, from DIR/analysis/figures.json and the records. Works without a display: a
+// private Xvfb is started when DISPLAY is unset or unusable (plots/headless_display.h).
+#include <cstdio>
+
+#include "app/commands.h"
+#include "plots/plot_run.h"
+
+namespace ra::app {
+
+void register_plot_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "plot",
+      "Draw every figure of a run (Q-Q plots, relative bihistograms, box plots, histograms,\n"
+      "visibility classes, conformance with the reference rasterizer) as PNG and vector PDF,\n"
+      "with the numbers drawn as CSV beside each, into DIR/figures/ (index.json lists them).\n"
+      "Needs DIR/analysis/figures.json: run `renderaudit analyze DIR` first. Needs no display:\n"
+      "starts a private Xvfb when DISPLAY is unset.");
+  static plots::PlotOptions options;
+  cmd->add_option("dir", options.run_dir, "run directory")->required();
+  cmd->add_flag("--progress", options.progress, "a line per figure on stderr");
+  cmd->callback([&exit_code] {
+    const plots::PlotResult r = plots::plot_run(options);
+    std::printf("%zu figures (PNG + PDF + CSV) in %s, %.1f s, display %s%s\n", r.figures.size(),
+                r.figures_dir.c_str(), r.seconds, r.display.c_str(),
+                r.private_xvfb ? " (private Xvfb, stopped)" : "");
+    for (const auto& s : r.skipped)
+      std::printf("  skipped (%s): %s: %s\n", s.section.c_str(), s.what.c_str(), s.reason.c_str());
+    std::printf("index: %s\n", r.index_path.c_str());
+    exit_code = kExitOk;
+  });
+}
+
+}  // namespace ra::app

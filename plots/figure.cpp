@@ -1,0 +1,138 @@
+// Figure helpers that need no VTK: kinds, legends, the box-plot range and note, the CSV beside
+// each figure.
+#include "plots/figure.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "runner/errors.h"
+
+namespace ra::plots {
+namespace {
+
+std::string num(double v) {
+  if (std::isnan(v)) return "";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string short_num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+// CSV cell: quoted when it holds a comma, quote or line break.
+std::string cell(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) {
+    if (c == '"') q += '"';
+    q += c;
+  }
+  return q + "\"";
+}
+
+}  // namespace
+
+const char* figure_kind_name(const Figure& figure) {
+  switch (figure.content.index()) {
+    case 0: return "qq";
+    case 1: return "bihistogram";
+    case 2: return "boxplot";
+    case 3: return "histogram";
+    default: return "bars";
+  }
+}
+
+void box_plot_y_range(const BoxPlotContent& content, double* y_lo, double* y_hi) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const Box& b : content.boxes) {
+    lo = std::min(lo, b.lower_whisker);
+    hi = std::max(hi, b.upper_whisker);
+  }
+  if (!std::isfinite(lo) || !std::isfinite(hi)) lo = 0, hi = 1;
+  double pad = 0.05 * (hi - lo);
+  if (pad <= 0) pad = std::max(1e-12, 0.05 * std::fabs(hi)) + (hi == 0 ? 0.5 : 0);
+  *y_lo = lo - pad;
+  *y_hi = hi + pad;
+}
+
+std::string box_plot_outside_note(const BoxPlotContent& content, double y_lo, double y_hi) {
+  std::vector<std::string> above, below;
+  for (const Box& b : content.boxes) {
+    // The category's short name ("A" of "A: 30 deg, 128x128").
+    const std::string cat = b.category.substr(0, b.category.find(':'));
+    const std::string who = cat + (content.series.size() > 1 ? " " + b.series : "");
+    if (b.max > y_hi) above.push_back(who + " (max " + short_num(b.max) + ")");
+    if (b.min < y_lo) below.push_back(who + " (min " + short_num(b.min) + ")");
+  }
+  if (above.empty() && below.empty()) return "";
+  std::string s =
+      "Y range restricted to the box bodies and whiskers (1.5 IQR) so the boxes can be compared.";
+  auto list = [](const std::vector<std::string>& v) {
+    std::string out;
+    for (std::size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + v[i];
+    return out;
+  };
+  if (!above.empty()) s += "\nAbove the plot: " + list(above) + ".";
+  if (!below.empty()) s += "\nBelow the plot: " + list(below) + ".";
+  return s;
+}
+
+void write_figure_data(const Figure& figure, const std::string& path) {
+  std::ostringstream o;
+  if (auto* q = std::get_if<QQContent>(&figure.content)) {
+    o << "p,x,y\n";
+    for (std::size_t i = 0; i < q->x.size(); ++i)
+      o << (i < q->p.size() ? num(q->p[i]) : "") << ',' << num(q->x[i]) << ',' << num(q->y[i])
+        << '\n';
+  } else if (auto* b = std::get_if<BihistogramContent>(&figure.content)) {
+    o << "bin_lo,bin_hi,upper_count,lower_count,upper_height,lower_height\n";
+    for (std::size_t i = 0; i + 1 < b->edges.size(); ++i)
+      o << num(b->edges[i]) << ',' << num(b->edges[i + 1]) << ',' << b->upper_count.at(i) << ','
+        << b->lower_count.at(i) << ',' << num(b->upper_height.at(i)) << ','
+        << num(b->lower_height.at(i)) << '\n';
+  } else if (auto* bp = std::get_if<BoxPlotContent>(&figure.content)) {
+    std::size_t max_n = 1;
+    for (const Box& x : bp->boxes) max_n = std::max(max_n, x.n);
+    o << "category,series,n,min,lower_whisker,q1,median,q3,upper_whisker,max,n_outliers_low,"
+         "n_outliers_high,relative_width\n";
+    for (const Box& x : bp->boxes)
+      o << cell(x.category) << ',' << cell(x.series) << ',' << x.n << ',' << num(x.min) << ','
+        << num(x.lower_whisker) << ',' << num(x.q1) << ',' << num(x.median) << ',' << num(x.q3)
+        << ',' << num(x.upper_whisker) << ',' << num(x.max) << ',' << x.n_outliers_low << ','
+        << x.n_outliers_high << ',' << num(double(x.n) / double(max_n)) << '\n';
+  } else if (auto* h = std::get_if<HistogramContent>(&figure.content)) {
+    o << "series,bin_lo,bin_hi,count,height\n";
+    for (const auto& s : h->series)
+      for (std::size_t i = 0; i + 1 < s.edges.size(); ++i)
+        o << cell(s.name) << ',' << num(s.edges[i]) << ',' << num(s.edges[i + 1]) << ','
+          << s.counts.at(i) << ',' << num(s.heights.at(i)) << '\n';
+  } else {
+    const auto& c = std::get<BarChartContent>(figure.content);
+    o << "category,series,value,label\n";
+    for (const auto& s : c.series)
+      for (std::size_t i = 0; i < c.categories.size(); ++i)
+        o << cell(c.categories[i]) << ',' << cell(s.name) << ',' << num(s.values.at(i)) << ','
+          << cell(i < s.labels.size() ? s.labels[i] : "") << '\n';
+  }
+  std::ofstream f(path, std::ios::binary);
+  f << o.str();
+  if (!f) throw UserError("cannot write " + path);
+}
+
+int display_exponent(double max_abs) {
+  if (!(max_abs > 0) || !std::isfinite(max_abs) || max_abs >= 0.1) return 0;
+  int e = 0;
+  while (max_abs * std::pow(10.0, e) < 0.1 && e < 30) e += 3;
+  return e;
+}
+
+}  // namespace ra::plots

@@ -1,0 +1,53 @@
+// Figures from the analysis stage's numbers (analysis/distribution_plots.h): each builder takes
+// data in record units and a display scale, and returns a Figure in display units (figure.h).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "analysis/distribution_plots.h"
+#include "plots/figure.h"
+
+namespace ra::plots {
+
+// Q-Q plot (paper Fig. 4). `scale` multiplies every quantile (e.g. 1e3 for "x 10^-3" units).
+// At most `max_points` markers are drawn: more are thinned to evenly spaced plotting positions,
+// always keeping the first and last (the CSV beside the figure holds the points drawn).
+Figure qq_figure(const std::string& id, const std::string& title, const std::string& axis_label,
+                 const std::string& x_sample, const std::string& y_sample,
+                 const ra::stats::QQPlotData& data, std::size_t n_x, std::size_t n_y,
+                 double scale = 1.0, std::size_t max_points = 2000);
+
+// Relative bihistogram (paper Figs. 5, 7, 9, 11, 13). Edges are multiplied by `scale` and the
+// heights divided by it, so each side keeps area 1 in display units.
+Figure bihistogram_figure(const std::string& id, const std::string& title,
+                          const std::string& axis_label, const std::string& upper_sample,
+                          const std::string& lower_sample, const ra::stats::BihistogramData& data,
+                          double scale = 1.0);
+
+// A histogram of one or more samples on common bins (Freedman-Diaconis on the combined data, as
+// relative_bihistogram chooses them), as densities. Empty samples are skipped; returns a figure
+// with no series when every sample is empty.
+struct NamedSample {
+  std::string name;
+  std::vector<double> values;  // record units
+};
+Figure histogram_figure(const std::string& id, const std::string& title,
+                        const std::string& axis_label, const std::vector<NamedSample>& samples,
+                        double scale = 1.0, std::size_t max_bins = 200);
+
+// Box plots of samples by category and series (paper Figs. 6, 8, 10, 12): quartiles Hyndman-Fan 6,
+// whiskers to the most extreme values within 1.5 IQR of the box. Empty samples are skipped.
+struct CategorySample {
+  std::string category, series;
+  std::vector<double> values;  // record units
+};
+Figure box_plot_figure(const std::string& id, const std::string& title,
+                       const std::string& x_label, const std::string& y_label,
+                       const std::vector<CategorySample>& samples, double scale = 1.0);
+
+// "x 10^-3" style suffix for a display exponent (display_exponent()); "" for 0.
+std::string scale_suffix(int exponent);
+
+}  // namespace ra::plots

@@ -1,0 +1,229 @@
+// FigureRenderer: figures are drawn where their data say, and the numbers beside them are the
+// numbers drawn. Each test reads back what was written (PNG through vtkPNGReader, the CSV beside
+// it, the PDF through pdftotext) rather than checking that files exist.
+#include "plots/figure_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "analysis/csv_table.h"
+#include "analysis/distribution_plots.h"
+#include "plots/figure_builders.h"
+#include "plots/headless_display.h"
+
+namespace ra::plots {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("renderaudit_plots_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d.string();
+}
+
+std::string shell_output(const std::string& cmd) {
+  std::string out;
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  ::pclose(p);
+  return out;
+}
+
+// One display and one render window for the whole suite: a private Xvfb when there is no
+// DISPLAY (CI has none), exactly what `renderaudit plot` does.
+class RendererTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    display_ = std::make_unique<HeadlessDisplay>();
+    renderer_ = std::make_unique<FigureRenderer>();
+  }
+  static void TearDownTestSuite() {
+    renderer_.reset();
+    display_.reset();
+  }
+  static std::unique_ptr<HeadlessDisplay> display_;
+  static std::unique_ptr<FigureRenderer> renderer_;
+};
+std::unique_ptr<HeadlessDisplay> RendererTest::display_;
+std::unique_ptr<FigureRenderer> RendererTest::renderer_;
+
+bool near_color(const unsigned char* p, const unsigned char c[3], int tol) {
+  return std::abs(p[0] - c[0]) <= tol && std::abs(p[1] - c[1]) <= tol &&
+         std::abs(p[2] - c[2]) <= tol;
+}
+
+// Why: Fig. 4's reading is "points on the 45-degree line mean equal distributions"; a Q-Q plot of
+// a sample against itself must put every marker on the diagonal of the (square, equal-range) plot.
+TEST_F(RendererTest, QQPlotOfIdenticalSamplesHasItsMarkersOnTheDiagonal) {
+  std::vector<double> s;
+  for (int i = 0; i < 400; ++i) s.push_back(0.7071 * std::pow((i + 0.5) / 400.0, 0.7));
+  const Figure f = qq_figure("qq_identical", "Q-Q plot: PE, test platform, view 1 vs view 2",
+                             "PE (px)", "view 1", "view 2", ra::stats::qq_plot(s, s), s.size(),
+                             s.size());
+  const std::string dir = temp_dir("qq");
+  const RenderedFigure r = renderer_->render(f, dir + "/qq_identical");
+  const FigureLayout& L = r.layout;
+  ASSERT_GT(L.plot_right, L.plot_left);
+  ASSERT_GT(L.plot_bottom, L.plot_top);
+  EXPECT_DOUBLE_EQ(L.x_min, L.y_min);
+  EXPECT_DOUBLE_EQ(L.x_max, L.y_max);
+
+  const RgbImage img = read_png(r.png);
+  ASSERT_EQ(img.width, L.width);
+  ASSERT_EQ(img.height, L.height);
+  unsigned char marker[3];
+  series_color(0, marker);
+  std::size_t marker_pixels = 0;
+  double worst = 0;
+  for (int y = int(L.plot_top) + 1; y < int(L.plot_bottom); ++y)
+    for (int x = int(L.plot_left) + 1; x < int(L.plot_right); ++x) {
+      if (!near_color(img.at(x, y), marker, 12)) continue;
+      ++marker_pixels;
+      // Pixel centre -> data coordinates.
+      const double dx = L.x_min + (x + 0.5 - L.plot_left) / (L.plot_right - L.plot_left) *
+                                      (L.x_max - L.x_min);
+      const double dy = L.y_max - (y + 0.5 - L.plot_top) / (L.plot_bottom - L.plot_top) *
+                                      (L.y_max - L.y_min);
+      worst = std::max(worst, std::fabs(dx - dy));
+    }
+  EXPECT_GT(marker_pixels, 400u);  // hundreds of markers of ~50 pixels each
+  // A marker has a radius of 4 px: its pixels are within about 2 x 5 px of the diagonal.
+  const double px = (L.x_max - L.x_min) / (L.plot_right - L.plot_left);
+  EXPECT_LT(worst, 10 * px);
+
+  // The data beside the figure are the quantiles: x == y row by row.
+  const auto table = ra::analysis::CsvTable::read_file(r.csv);
+  const auto xs = table.numeric_column("x").values, ys = table.numeric_column("y").values;
+  ASSERT_EQ(xs.size(), s.size());
+  for (std::size_t i = 0; i < xs.size(); ++i) EXPECT_EQ(xs[i], ys[i]);
+}
+
+// Why: a Q-Q plot of two different samples must put its markers off the diagonal (the test above
+// would pass for a picture that draws the diagonal in the marker colour).
+TEST_F(RendererTest, QQPlotOfShiftedSamplesIsOffTheDiagonal) {
+  std::vector<double> a, b;
+  for (int i = 0; i < 200; ++i) a.push_back(i * 0.01), b.push_back(i * 0.01 + 0.5);
+  const Figure f = qq_figure("qq_shifted", "Q-Q plot: shifted", "value (px)", "a", "b",
+                             ra::stats::qq_plot(a, b), a.size(), b.size());
+  const RenderedFigure r = renderer_->render(f, temp_dir("qq2") + "/qq_shifted");
+  const RgbImage img = read_png(r.png);
+  const FigureLayout& L = r.layout;
+  unsigned char marker[3];
+  series_color(0, marker);
+  double sum = 0;
+  std::size_t n = 0;
+  for (int y = int(L.plot_top) + 1; y < int(L.plot_bottom); ++y)
+    for (int x = int(L.plot_left) + 1; x < int(L.plot_right); ++x)
+      if (near_color(img.at(x, y), marker, 12)) {
+        const double dx = L.x_min + (x + 0.5 - L.plot_left) / (L.plot_right - L.plot_left) *
+                                        (L.x_max - L.x_min);
+        const double dy = L.y_max - (y + 0.5 - L.plot_top) / (L.plot_bottom - L.plot_top) *
+                                        (L.y_max - L.y_min);
+        sum += dy - dx;
+        ++n;
+      }
+  ASSERT_GT(n, 100u);
+  EXPECT_NEAR(sum / double(n), 0.5, 0.03);
+}
+
+// Why: the relative bihistogram's heights are densities (count / (n * width)) of each sample on
+// common bins, so samples of different sizes compare; checked against hand-computed values.
+TEST_F(RendererTest, BihistogramHasTheExpectedBarHeights) {
+  // Common bins span [0, 2] (min and max of both): [0, 1) and [1, 2]. Upper: 4 values -> 3 and
+  // 1; lower: 2 values -> 1 and 1.
+  const std::vector<double> upper = {0.0, 0.2, 0.3, 1.5}, lower = {0.5, 2.0};
+  ra::stats::BihistogramOptions opt;
+  opt.bins = 2;
+  const Figure f = bihistogram_figure("bihist", "Relative bihistogram: test", "PE (px)",
+                                      "platform I, view A", "platform II, view A",
+                                      ra::stats::relative_bihistogram(upper, lower, opt), 1.0);
+  const RenderedFigure r = renderer_->render(f, temp_dir("bihist") + "/bihist");
+  const auto t = ra::analysis::CsvTable::read_file(r.csv);
+  ASSERT_EQ(t.row_count(), 2u);
+  const auto h1 = t.numeric_column("upper_height").values;
+  const auto h2 = t.numeric_column("lower_height").values;
+  // Width 1: heights 3/4, 1/4 above and 1/2, 1/2 below; each side has area 1.
+  EXPECT_DOUBLE_EQ(h1[0], 0.75);
+  EXPECT_DOUBLE_EQ(h1[1], 0.25);
+  EXPECT_DOUBLE_EQ(h2[0], 0.5);
+  EXPECT_DOUBLE_EQ(h2[1], 0.5);
+  EXPECT_EQ(t.numeric_column("upper_count").values, (std::vector<double>{3, 1}));
+
+  // In the picture: the first upper bar (colour 0) reaches 0.75 and the first lower bar
+  // (colour 1) reaches -0.5, read at the bar's centre column.
+  const RgbImage img = read_png(r.png);
+  const FigureLayout& L = r.layout;
+  auto column_of = [&](double x) {
+    return int(L.plot_left + (x - L.x_min) / (L.x_max - L.x_min) * (L.plot_right - L.plot_left));
+  };
+  auto value_of_row = [&](double y) {
+    return L.y_max - (y + 0.5 - L.plot_top) / (L.plot_bottom - L.plot_top) * (L.y_max - L.y_min);
+  };
+  unsigned char c0[3], c1[3];
+  series_color(0, c0);
+  series_color(1, c1);
+  // Bars are filled with the colour at alpha 200 over white: compare with the blend.
+  unsigned char b0[3], b1[3];
+  for (int k = 0; k < 3; ++k) {
+    b0[k] = (unsigned char)std::lround((c0[k] * 200 + 255 * 55) / 255.0);
+    b1[k] = (unsigned char)std::lround((c1[k] * 200 + 255 * 55) / 255.0);
+  }
+  const int col = column_of(0.5);
+  int top_upper = -1, bottom_lower = -1;
+  for (int y = int(L.plot_top); y < int(L.plot_bottom); ++y) {
+    if (top_upper < 0 && near_color(img.at(col, y), b0, 20)) top_upper = y;
+    if (near_color(img.at(col, y), b1, 20)) bottom_lower = y;
+  }
+  ASSERT_GE(top_upper, 0);
+  ASSERT_GE(bottom_lower, 0);
+  const double px = (L.y_max - L.y_min) / (L.plot_bottom - L.plot_top);
+  EXPECT_NEAR(value_of_row(top_upper), 0.75, 3 * px);
+  EXPECT_NEAR(value_of_row(bottom_lower), -0.5, 3 * px);
+}
+
+// Why: the box plots' y range is restricted to the box bodies (paper Figs. 6, 8, 10, 12), and the
+// figure must say so when a maximum lies outside it; widths are proportional to n.
+TEST_F(RendererTest, BoxPlotRestrictsTheRangeAndSaysWhatIsOutside) {
+  BoxPlotContent c;
+  c.categories = {"A", "B"};
+  c.series = {"platform I", "platform II"};
+  c.boxes = {{"A", "platform I", 0, 1, 2, 3, 5, 0, 100, 400, 0, 3},
+             {"A", "platform II", 0, 1, 2, 3, 5, 0, 4, 100, 0, 0},
+             {"B", "platform I", 1, 2, 3, 4, 6, 1, 6, 400, 0, 0},
+             {"B", "platform II", 1, 2, 3, 4, 6, -50, 6, 200, 1, 0}};
+  Figure f;
+  f.id = "box";
+  f.title = "Box plot: LSEs-norm by view group and platform";
+  f.x_label = "view group";
+  f.y_label = "LSEs-norm (x 10^-3)";
+  f.content = c;
+  const RenderedFigure r = renderer_->render(f, temp_dir("box") + "/box");
+  double lo, hi;
+  box_plot_y_range(c, &lo, &hi);
+  EXPECT_DOUBLE_EQ(r.layout.y_min, lo);
+  EXPECT_DOUBLE_EQ(r.layout.y_max, hi);
+  EXPECT_LT(hi, 100);  // the maximum of A / platform I is far outside
+  EXPECT_NE(r.note.find("Above the plot: A platform I (max 100)"), std::string::npos) << r.note;
+  EXPECT_NE(r.note.find("Below the plot: B platform II (min -50)"), std::string::npos) << r.note;
+  const auto t = ra::analysis::CsvTable::read_file(r.csv);
+  EXPECT_EQ(t.numeric_column("relative_width").values,
+            (std::vector<double>{1.0, 0.25, 1.0, 0.5}));
+  // The note is printed on the figure: it is in the PDF's text.
+  const std::string text = shell_output("pdftotext -layout '" + r.pdf + "' -");
+  EXPECT_NE(text.find("Above the plot"), std::string::npos) << text;
+  EXPECT_NE(text.find("Box plot: LSEs-norm"), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace ra::plots

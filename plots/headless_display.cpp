@@ -1,0 +1,259 @@
+// HeadlessDisplay: a private Xvfb when this process has no usable X display (see the header).
+#include "plots/headless_display.h"
+
+#include <X11/Xlib.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <ctime>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "runner/errors.h"
+
+namespace ra::plots {
+namespace {
+
+constexpr const char* kInstallHint =
+    "VTK (Debian's libvtk9 is built for X11 only) needs an X display to draw figures, and none is "
+    "usable: DISPLAY is unset or no X server with GLX answers there, and no private server could "
+    "be started. Install Debian's Xvfb and Mesa's GLX: `apt-get install xvfb libgl1-mesa-dri` (or "
+    "run scripts/install-deps.sh), or set DISPLAY to a working X server";
+
+// The private server of this process, for the exit and signal handlers (async-signal-safe).
+volatile pid_t g_server_pid = -1;
+struct sigaction g_old_actions[3];
+constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+bool g_handlers_installed = false;
+
+// Stops the server and reaps it (up to 2 s), using async-signal-safe calls only.
+void kill_server_now() {
+  const pid_t pid = g_server_pid;
+  if (pid > 0) {
+    g_server_pid = -1;
+    ::kill(pid, SIGTERM);
+    struct timespec tick {0, 10 * 1000 * 1000};
+    for (int i = 0; i < 200; ++i) {
+      int status = 0;
+      const pid_t r = ::waitpid(pid, &status, WNOHANG);
+      if (r == pid || r < 0) return;
+      ::nanosleep(&tick, nullptr);
+    }
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+  }
+}
+
+void on_signal(int sig) {
+  kill_server_now();
+  // Restore the previous disposition and re-raise: the process ends as it would have.
+  for (int i = 0; i < 3; ++i)
+    if (kSignals[i] == sig) ::sigaction(sig, &g_old_actions[i], nullptr);
+  ::raise(sig);
+}
+
+void install_handlers_once() {
+  if (g_handlers_installed) return;
+  g_handlers_installed = true;
+  std::atexit(kill_server_now);
+  for (int i = 0; i < 3; ++i) {
+    struct sigaction sa {};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    ::sigaction(kSignals[i], &sa, &g_old_actions[i]);
+    // Keep "ignored" signals ignored (e.g. SIGHUP under nohup).
+    if (g_old_actions[i].sa_handler == SIG_IGN) ::sigaction(kSignals[i], &g_old_actions[i], nullptr);
+  }
+}
+
+std::string read_tail(const std::string& path, std::size_t max_chars = 2000) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string s = ss.str();
+  if (s.size() > max_chars) s = "..." + s.substr(s.size() - max_chars);
+  while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+  return s;
+}
+
+bool wait_exit(pid_t pid, double seconds, int* status) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < end) {
+    const pid_t r = ::waitpid(pid, status, WNOHANG);
+    if (r == pid || (r < 0 && errno == ECHILD)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+}  // namespace
+
+std::string find_on_path(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  const std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
+  std::stringstream ss(dirs);
+  std::string dir;
+  while (std::getline(ss, dir, ':')) {
+    if (dir.empty()) continue;
+    const std::string candidate = dir + "/" + program;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  return "";
+}
+
+bool x_display_usable(const std::string& display) {
+  if (display.empty()) return false;
+  Display* dpy = XOpenDisplay(display.c_str());
+  if (!dpy) return false;
+  int opcode = 0, event = 0, error = 0;
+  const bool glx = XQueryExtension(dpy, "GLX", &opcode, &event, &error);
+  XCloseDisplay(dpy);
+  return glx;
+}
+
+HeadlessDisplay::HeadlessDisplay(const std::string& log_path) {
+  const char* env = std::getenv("DISPLAY");
+  had_display_ = env != nullptr;
+  previous_display_ = env ? env : "";
+  if (env && *env && x_display_usable(env)) {
+    display_ = env;
+    return;
+  }
+
+  const std::string xvfb = find_on_path("Xvfb");
+  if (xvfb.empty()) throw UserError(std::string(kInstallHint) + " (Xvfb is not installed).");
+
+  if (log_path.empty()) {
+    char tmpl[] = "/tmp/renderaudit-xvfb-XXXXXX";
+    const int fd = ::mkstemp(tmpl);
+    if (fd >= 0) ::close(fd);
+    log_path_ = tmpl;
+    remove_log_ = true;
+  } else {
+    log_path_ = log_path;
+  }
+
+  int pipefd[2];
+  if (::pipe2(pipefd, O_CLOEXEC) != 0)
+    throw UserError(std::string("cannot create a pipe for Xvfb: ") + std::strerror(errno));
+  install_handlers_once();
+
+  // Everything the child needs is prepared before fork (only async-signal-safe calls after it).
+  const std::string fd = std::to_string(pipefd[1]);
+  std::vector<std::string> args = {"Xvfb",    "-displayfd", fd,           "-nolisten",
+                                   "tcp",     "-screen",    "0",          "1600x1200x24",
+                                   "-noreset", "+extension", "GLX"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(pipefd[0]);
+    ::close(pipefd[1]);
+    throw UserError(std::string("cannot start Xvfb: fork failed: ") + std::strerror(errno));
+  }
+  if (pid == 0) {
+    // Child: dies with its parent; the write end of the pipe stays open across exec.
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (::getppid() != parent) ::_exit(127);
+    ::setpgid(0, 0);  // a Ctrl-C on the terminal goes to the parent, which stops us itself
+    const int out = ::open(log_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (out >= 0) {
+      ::dup2(out, 1);
+      ::dup2(out, 2);
+    }
+    const int devnull = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+    if (devnull >= 0) ::dup2(devnull, 0);
+    ::fcntl(pipefd[1], F_SETFD, 0);  // keep the write end across exec
+    ::execv(xvfb.c_str(), argv.data());
+    ::_exit(127);
+  }
+  ::close(pipefd[1]);
+  pid_ = pid;
+  g_server_pid = pid;
+
+  // The server writes its display number when it accepts connections; EOF means it died.
+  std::string number;
+  bool ok = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (std::chrono::steady_clock::now() < deadline) {
+    struct pollfd p {pipefd[0], POLLIN, 0};
+    const int r = ::poll(&p, 1, 200);
+    if (r < 0 && errno == EINTR) continue;
+    if (r > 0) {
+      char buf[32];
+      const ssize_t n = ::read(pipefd[0], buf, sizeof buf);
+      if (n <= 0) break;  // the server exited
+      number.append(buf, buf + n);
+      if (number.find('\n') != std::string::npos) {
+        ok = true;
+        break;
+      }
+    }
+  }
+  ::close(pipefd[0]);
+  while (!number.empty() && (number.back() == '\n' || number.back() == ' ')) number.pop_back();
+
+  // Its socket must exist before a client can connect.
+  if (ok && !number.empty()) {
+    const std::string socket = "/tmp/.X11-unix/X" + number;
+    ok = false;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    struct stat st {};
+    while (std::chrono::steady_clock::now() < until) {
+      if (::stat(socket.c_str(), &st) == 0) {
+        ok = true;
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  }
+  if (ok) {
+    display_ = ":" + number;
+    ::setenv("DISPLAY", display_.c_str(), 1);
+    if (x_display_usable(display_)) return;
+    ok = false;
+  }
+
+  const std::string log = read_tail(log_path_);
+  stop();
+  throw UserError(std::string(kInstallHint) + ". A private Xvfb (" + xvfb +
+                  ") did not start" + (log.empty() ? "." : ":\n" + log));
+}
+
+void HeadlessDisplay::stop() {
+  if (pid_ > 0) {
+    g_server_pid = -1;
+    ::kill(pid_, SIGTERM);
+    int status = 0;
+    if (!wait_exit(pid_, 5.0, &status)) {
+      ::kill(pid_, SIGKILL);
+      wait_exit(pid_, 5.0, &status);
+    }
+    pid_ = -1;
+    if (had_display_)
+      ::setenv("DISPLAY", previous_display_.c_str(), 1);
+    else
+      ::unsetenv("DISPLAY");
+  }
+  if (remove_log_ && !log_path_.empty()) {
+    ::unlink(log_path_.c_str());
+    remove_log_ = false;
+  }
+}
+
+HeadlessDisplay::~HeadlessDisplay() { stop(); }
+
+}  // namespace ra::plots

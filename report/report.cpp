@@ -1,0 +1,577 @@
+// The report of a run: content from the run directory's files, PDF (cairo + VTK figure PDFs +
+// pdfunite) and HTML (see report.h).
+#include "report/report.h"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "plots/headless_display.h"
+#include "plots/plot_run.h"
+#include "plots/record_scan.h"
+#include "report/document.h"
+#include "report/html_writer.h"
+#include "report/pdf_writer.h"
+#include "runner/atomic_file.h"
+#include "runner/errors.h"
+#include "runner/manifest.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace ra::report {
+namespace {
+
+std::string fmt(double v, const char* f = "%.4g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string str(const json& j) {
+  if (j.is_string()) return j.get<std::string>();
+  if (j.is_null()) return "";
+  return j.dump();
+}
+
+// Runs argv (argv[0] looked up on PATH when it has no '/'); stderr (and stdout when `quiet`) go to
+// `log` when given. Returns the exit status (128 + signal when killed); -1 when it cannot start.
+int run_program(const std::vector<std::string>& args, const std::string& log = "",
+                bool quiet = false) {
+  std::vector<char*> argv;
+  std::vector<std::string> copy = args;
+  for (auto& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    if (!log.empty()) {
+      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (fd >= 0) {
+        ::dup2(fd, 2);
+        if (quiet) ::dup2(fd, 1);
+      }
+    }
+    ::execvp(argv[0], argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+std::string self_program() {
+  std::error_code ec;
+  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("renderaudit") : p.string();
+}
+
+fs::file_time_type newest_input(const std::string& run_dir) {
+  fs::file_time_type t = fs::file_time_type::min();
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(fs::path(run_dir) / "records", ec))
+    if (e.path().extension() == ".csv") t = std::max(t, fs::last_write_time(e.path(), ec));
+  const fs::path manifest = fs::path(run_dir) / "manifest.json";
+  if (fs::exists(manifest)) t = std::max(t, fs::last_write_time(manifest, ec));
+  return t;
+}
+
+json read_json(const std::string& path) {
+  try {
+    return json::parse(read_file(path));
+  } catch (const std::exception& e) {
+    throw UserError(path + ": cannot read as JSON: " + e.what());
+  }
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  const std::size_t m = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + m, v.end());
+  double x = v[m];
+  if (v.size() % 2 == 0) x = 0.5 * (x + *std::max_element(v.begin(), v.begin() + m));
+  return x;
+}
+// Hyndman-Fan 6 quantile (the analysis stage's default).
+double quantile_hf6(std::vector<double> v, double p) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const double h = p * double(v.size() + 1);
+  if (h <= 1) return v.front();
+  if (h >= double(v.size())) return v.back();
+  const std::size_t lo = std::size_t(std::floor(h));
+  return v[lo - 1] + (h - double(lo)) * (v[lo] - v[lo - 1]);
+}
+
+// Kinds in the paper's order: points, lines, triangles, then anything else.
+int kind_rank(const std::string& kind) {
+  return kind == "point" ? 0 : kind == "line" ? 1 : kind == "triangle" ? 2 : 3;
+}
+
+// The keys of a map ordered by platform, then kind in the paper's order, then the rest.
+template <typename Map>
+std::vector<typename Map::key_type> paper_order(const Map& m) {
+  std::vector<typename Map::key_type> keys;
+  for (const auto& kv : m) keys.push_back(kv.first);
+  std::stable_sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) {
+    if (std::get<0>(a) != std::get<0>(b)) return std::get<0>(a) < std::get<0>(b);
+    return kind_rank(std::get<1>(a)) < kind_rank(std::get<1>(b));
+  });
+  return keys;
+}
+
+Block heading(const std::string& text, int level, const std::string& anchor = "") {
+  Block b;
+  b.kind = Block::Kind::kHeading;
+  b.level = level;
+  b.text = text;
+  b.anchor = anchor;
+  return b;
+}
+Block paragraph(const std::string& text) {
+  Block b;
+  b.kind = Block::Kind::kParagraph;
+  b.text = text;
+  return b;
+}
+Block table_block(Table t) {
+  Block b;
+  b.kind = Block::Kind::kTable;
+  b.table = std::move(t);
+  return b;
+}
+Block bullets(std::vector<std::string> items) {
+  Block b;
+  b.kind = Block::Kind::kBullets;
+  b.items = std::move(items);
+  return b;
+}
+
+// The analysis tables (*.md) in the order of DIR/analysis/README.md, then any others by name.
+std::vector<std::string> table_files(const std::string& analysis_dir) {
+  std::vector<std::string> order;
+  std::set<std::string> seen;
+  const std::string readme = analysis_dir + "/README.md";
+  if (fs::exists(readme)) {
+    std::stringstream ss(read_file(readme));
+    std::string line;
+    while (std::getline(ss, line)) {
+      if (line.rfind("| ", 0) != 0) continue;
+      const std::string name = line.substr(2, line.find(' ', 2) - 2);
+      if (name.size() > 3 && name.substr(name.size() - 3) == ".md" && !seen.count(name)) {
+        seen.insert(name);
+        order.push_back(name);
+      }
+    }
+  }
+  std::vector<std::string> rest;
+  for (const auto& e : fs::directory_iterator(analysis_dir))
+    if (e.path().extension() == ".md" && !seen.count(e.path().filename().string()))
+      rest.push_back(e.path().filename().string());
+  std::sort(rest.begin(), rest.end());
+  order.insert(order.end(), rest.begin(), rest.end());
+  std::vector<std::string> out;
+  for (const auto& n : order)
+    if (n != "README.md" && n != "report.md" && n != "view_equivalence.md" &&
+        fs::exists(analysis_dir + "/" + n))
+      out.push_back(n);
+  return out;
+}
+
+struct Content {
+  Document doc;
+  std::vector<std::string> table_titles;
+};
+
+Content build_document(const std::string& run_dir, const plots::PlotResult& figures,
+                       const plots::RecordScan& scan) {
+  Content c;
+  Document& d = c.doc;
+  const std::string manifest_path = run_dir + "/manifest.json";
+  const json m = fs::exists(manifest_path) ? read_json(manifest_path) : json::object();
+  const json exp = m.value("experiment", json::object());
+  const json tool = m.value("tool", json::object());
+  const json host = m.value("host", json::object());
+  const std::string name = exp.value("name", fs::path(run_dir).filename().string());
+
+  d.title = "renderaudit report: " + name;
+  d.footer = "renderaudit report: " + name + " (" + run_dir + ")";
+  d.subtitle = {
+      "How accurately, and how fast, OpenGL renderers draw points, line segments and triangles: "
+      "the rendering-error audit of Hagedorn et al., J. Res. NIST 113 (2008), section 4, "
+      "reproduced on this run.",
+      "Run directory: " + run_dir + ". Experiment " + name + " (" + exp.value("file", "?") +
+          ", hash " + exp.value("hash", "?") + "), seed " + str(exp.value("seed", json())) + ".",
+      "Produced by " + tool.value("name", std::string("renderaudit")) + " " +
+          tool.value("version", project_version()) + " (commit " +
+          tool.value("commit", project_commit()) + "); report generated " + utc_now_iso8601() +
+          " by renderaudit " + project_version() + " (commit " + project_commit() + ")."};
+  Block contents;
+  contents.kind = Block::Kind::kContents;
+  d.blocks.push_back(contents);
+
+  // 1. Provenance.
+  d.blocks.push_back(heading("1. Experiment and provenance", 1, "provenance"));
+  {
+    Table t;
+    t.title = "The run (manifest.json, schema version " + str(m.value("schema_version", json())) + ")";
+    t.header = {"what", "value"};
+    t.right = {false, false};
+    std::vector<std::string> platforms;
+    for (const auto& p : exp.value("platforms", json::array())) platforms.push_back(str(p));
+    std::string plist;
+    for (std::size_t i = 0; i < platforms.size(); ++i) plist += (i ? ", " : "") + platforms[i];
+    double elapsed = 0;
+    for (const auto& inv : m.value("invocations", json::array())) elapsed += inv.value("elapsed_s", 0.0);
+    const json shards = m.value("shards", json::object());
+    auto row = [&](const std::string& k, const std::string& v) { t.rows.push_back({k, v}); };
+    row("experiment", name + " (" + exp.value("file", "?") + ")");
+    row("experiment hash", exp.value("hash", "?"));
+    row("seed", str(exp.value("seed", json())));
+    row("platforms", plist);
+    row("status", m.value("status", "?") + ": " + str(shards.value("complete", json())) + " of " +
+                      str(shards.value("total", json())) + " shards complete");
+    row("records", std::to_string(scan.records) + " in " + std::to_string(scan.files) + " files");
+    row("started / finished (UTC)", m.value("started", "?") + " / " + m.value("finished", "?"));
+    row("run time", fmt(elapsed, "%.1f") + " s over " +
+                        std::to_string(m.value("invocations", json::array()).size()) +
+                        " invocation(s)");
+    row("tool", tool.value("name", std::string("renderaudit")) + " " + tool.value("version", "?") +
+                    ", commit " + tool.value("commit", "?"));
+    row("host", host.value("hostname", "?") + ": " + host.value("cpu", "?") + ", " +
+                    str(host.value("cores", json())) + " cores, " + host.value("os", "?"));
+    d.blocks.push_back(table_block(std::move(t)));
+  }
+  {
+    Table t;
+    t.title = "Drivers: what each platform's OpenGL said about itself (manifest.json, drivers/)";
+    t.header = {"platform", "GL_RENDERER", "GL_VERSION", "GL_VENDOR", "GL_SUBPIXEL_BITS",
+                "timer query"};
+    t.right = {false, false, false, false, true, false};
+    const json drivers = m.value("drivers", json::object());
+    for (const auto& [platform, dj] : drivers.items())
+      t.rows.push_back({platform, dj.value("renderer", "?"), dj.value("version", "?"),
+                        dj.value("vendor", "?"), str(dj.value("subpixel_bits", json())),
+                        str(dj.value("timer_query", json()))});
+    if (t.rows.empty()) t.notes.push_back("manifest.json lists no driver.");
+    d.blocks.push_back(table_block(std::move(t)));
+  }
+  const std::string toml = run_dir + "/experiment.toml";
+  if (fs::exists(toml)) {
+    d.blocks.push_back(heading("The experiment file (experiment.toml, copied into the run)", 2));
+    Block b;
+    b.kind = Block::Kind::kPreformatted;
+    b.text = read_file(toml);
+    d.blocks.push_back(b);
+  }
+
+  // 2. Failures.
+  d.blocks.push_back(heading("2. Failures and invalid cases", 1, "failures"));
+  {
+    const json failures = m.value("failures", json::array());
+    if (failures.empty()) {
+      d.blocks.push_back(paragraph(
+          "No shard crashed or timed out (manifest.json: \"failures\" is empty)."));
+    } else {
+      Table t;
+      t.title = "Shards that crashed or timed out (manifest.json \"failures\"): " +
+                std::to_string(failures.size());
+      t.header = {"shard (platform.kind.view.index range)", "what happened"};
+      t.right = {false, false};
+      for (const auto& f : failures) t.rows.push_back({f.value("shard", "?"), f.value("reason", "?")});
+      t.notes.push_back("Their records are missing from every statistic; run the same `renderaudit "
+                        "run` command again to retry them (finished shards are kept).");
+      d.blocks.push_back(table_block(std::move(t)));
+    }
+    if (scan.non_ok_counts.empty()) {
+      d.blocks.push_back(paragraph("Every record has status ok: no invalid (non-finite) input, "
+                                   "no per-primitive crash or timeout."));
+    } else {
+      Table t;
+      t.title = "Records whose status is not ok (excluded from every metric)";
+      t.header = {"platform", "kind", "status", "records"};
+      t.right = {false, false, false, true};
+      for (const auto& k : paper_order(scan.non_ok_counts)) {
+        const auto n = scan.non_ok_counts.at(k);
+        t.rows.push_back({std::get<0>(k), std::get<1>(k), std::get<2>(k), std::to_string(n)});
+      }
+      d.blocks.push_back(table_block(std::move(t)));
+      Table e;
+      e.title = "The first " + std::to_string(std::min<std::size_t>(30, scan.non_ok_examples.size())) +
+                " of them";
+      e.header = {"platform", "kind", "view", "primitive index", "status", "records file:line"};
+      e.right = {false, false, true, true, false, false};
+      for (std::size_t i = 0; i < scan.non_ok_examples.size() && i < 30; ++i) {
+        const auto& x = scan.non_ok_examples[i];
+        e.rows.push_back({x.platform, x.kind, std::to_string(x.view), std::to_string(x.index),
+                          x.status, x.file + ":" + std::to_string(x.line)});
+      }
+      d.blocks.push_back(table_block(std::move(e)));
+    }
+    if (figures.skipped.empty()) {
+      d.blocks.push_back(paragraph("Every planned figure was drawn."));
+    } else {
+      d.blocks.push_back(paragraph("Figures not drawn for lack of data:"));
+      std::vector<std::string> items;
+      for (const auto& s : figures.skipped) items.push_back(s.section + ": " + s.what + ": " + s.reason + ".");
+      d.blocks.push_back(bullets(items));
+    }
+  }
+
+  // 3. Time per primitive.
+  d.blocks.push_back(heading("3. Time per primitive", 1, "timing"));
+  d.blocks.push_back(paragraph(
+      "render_us is the CPU time of one primitive's draw call and glFinish, measured by the "
+      "runner (microseconds; one primitive per frame). Medians and IQRs (Hyndman-Fan 6) over the "
+      "records with status ok; the analysis table 'Render time beside error' breaks them down by "
+      "view group. Times depend on the machine and its load, unlike the errors."));
+  {
+    Table t;
+    t.title = "Median render time per primitive, by platform and kind";
+    t.header = {"platform", "kind", "cases", "median us", "IQR us", "true-visible",
+                "median us (true-visible)", "primitives per second (1 / median)"};
+    t.right = {false, false, true, true, true, true, true, true};
+    for (const auto& k : paper_order(scan.render_us)) {
+      const std::vector<double>& v = scan.render_us.at(k);
+      const auto vis = scan.render_us_visible.count(k) ? scan.render_us_visible.at(k) : std::vector<double>{};
+      const double med = median(v);
+      t.rows.push_back({k.first, k.second, std::to_string(v.size()), fmt(med, "%.2f"),
+                        fmt(quantile_hf6(v, 0.75) - quantile_hf6(v, 0.25), "%.2f"),
+                        std::to_string(vis.size()), vis.empty() ? "no data" : fmt(median(vis), "%.2f"),
+                        med > 0 ? fmt(1e6 / med, "%.0f") : "n/a"});
+    }
+    if (t.rows.empty()) t.notes.push_back("No record has a render time.");
+    d.blocks.push_back(table_block(std::move(t)));
+  }
+
+  // 4. Conformance.
+  d.blocks.push_back(heading("4. Conformance with the reference rasterizer", 1, "conformance"));
+  d.blocks.push_back(paragraph(
+      "ref_diff counts the pixels in the symmetric difference between what a platform lit and "
+      "what the project's exact reference rasterizer (the GL rules, no driver) lights for the same "
+      "primitive; 0 means the pixel sets are identical. The rate is the share of records (status "
+      "ok) with ref_diff = 0, over all compared records and over those where either rasterizer "
+      "lit a pixel (invisible primitives agree trivially)."));
+  {
+    Table t;
+    t.title = "Share of primitives whose pixels equal the reference rasterizer's, by platform, "
+              "kind and view group";
+    t.header = {"platform", "kind", "view group", "compared", "identical", "rate %",
+                "lit by either", "identical", "rate % (lit)"};
+    t.right = {false, false, false, true, true, true, true, true, true};
+    for (const auto& k : paper_order(scan.conformance)) {
+      const plots::Conformance& cf = scan.conformance.at(k);
+      std::string group(1, char('A' + std::get<2>(k)));
+      const auto label = scan.group_labels.find(k);
+      if (label != scan.group_labels.end()) group += " (" + label->second + ")";
+      t.rows.push_back({std::get<0>(k), std::get<1>(k), group, std::to_string(cf.compared),
+                        std::to_string(cf.identical), fmt(100 * cf.rate(), "%.2f"),
+                        std::to_string(cf.drawn), std::to_string(cf.drawn_identical),
+                        cf.drawn ? fmt(100 * cf.drawn_rate(), "%.2f") : "n/a"});
+    }
+    if (t.rows.empty()) t.notes.push_back("No record carries a reference comparison (ref_diff).");
+    d.blocks.push_back(table_block(std::move(t)));
+  }
+
+  // 5. View equivalence.
+  const std::string analysis = run_dir + "/analysis";
+  d.blocks.push_back(heading("5. View pooling: the equivalence tests", 1, "equivalence"));
+  {
+    const std::string csv = analysis + "/view_equivalence.csv", md = analysis + "/view_equivalence.md";
+    if (fs::exists(csv)) {
+      const Table full = read_csv_table(csv);
+      d.blocks.push_back(paragraph("Every statistic (t, F, Levene W, degrees of freedom, Box-Cox "
+                                   "lambda and shift) is in analysis/view_equivalence.csv: " +
+                                   full.title + "."));
+    }
+    if (fs::exists(md)) {
+      std::vector<Block> blocks = parse_markdown(read_file(md), 1);
+      // The file's own title repeats this section's heading.
+      if (!blocks.empty() && blocks.front().kind == Block::Kind::kHeading) blocks.erase(blocks.begin());
+      for (Block& b : blocks) {
+        if (b.kind == Block::Kind::kTable && !b.table.title.empty())
+          c.table_titles.push_back(plain_text(b.table.title));
+        d.blocks.push_back(std::move(b));
+      }
+    } else {
+      d.blocks.push_back(paragraph("analysis/view_equivalence.md is missing: run `renderaudit "
+                                   "analyze " + run_dir + "`."));
+    }
+  }
+
+  // 6. Tables.
+  d.blocks.push_back(heading("6. Tables", 1, "tables"));
+  d.blocks.push_back(paragraph(
+      "Every table of the analysis (DIR/analysis/, also as .csv, .md and .tex). Tables 2-11 "
+      "mirror the paper's; 's' and 'e' tables supplement them with the non-normalized metrics."));
+  if (fs::is_directory(analysis)) {
+    for (const std::string& file : table_files(analysis)) {
+      std::vector<Block> blocks = parse_markdown(read_file(analysis + "/" + file), 1);
+      for (Block& b : blocks) {
+        if (b.kind == Block::Kind::kTable && !b.table.title.empty())
+          c.table_titles.push_back(plain_text(b.table.title));
+        d.blocks.push_back(std::move(b));
+      }
+    }
+  }
+
+  // 7. Figures.
+  d.blocks.push_back(heading("7. Figures", 1, "figures"));
+  d.blocks.push_back(paragraph(
+      "Drawn by `renderaudit plot` with VTK charts: PNG through vtkWindowToImageFilter and "
+      "vtkPNGWriter, vector PDF through vtkPDFExporter (the pages that follow), the numbers "
+      "drawn as CSV beside each (DIR/figures/). Metric values are shown x 10^k with the k of the "
+      "tables. Box plots restrict the y range to the box bodies, as the paper's do, and say on "
+      "the figure which extremes lie outside."));
+  Block list;
+  list.kind = Block::Kind::kFigureList;
+  d.blocks.push_back(list);
+  int number = 0;
+  for (const auto& f : figures.figures) {
+    FigureRef r;
+    r.number = ++number;
+    r.id = f.id;
+    r.section = f.section;
+    r.title = f.title;
+    r.caption = f.caption;
+    r.note = f.note;
+    r.png = "../figures/" + f.png;
+    r.pdf = "../figures/" + f.pdf;
+    r.pdf_path = (fs::path(figures.figures_dir) / f.pdf).string();
+    d.figures.push_back(r);
+  }
+  return c;
+}
+
+}  // namespace
+
+std::vector<Step> missing_steps(const std::string& run_dir) {
+  std::vector<Step> steps;
+  const fs::path dir(run_dir);
+  const fs::path figures_json = dir / "analysis" / "figures.json";
+  const fs::path index = dir / "figures" / "index.json";
+  std::error_code ec;
+  bool analyze = false;
+  if (!fs::exists(figures_json)) {
+    steps.push_back({"analyze", "renderaudit analyze " + run_dir, figures_json.string() + " is missing"});
+    analyze = true;
+  } else if (fs::last_write_time(figures_json, ec) < newest_input(run_dir)) {
+    steps.push_back({"analyze", "renderaudit analyze " + run_dir,
+                     figures_json.string() + " is older than the records"});
+    analyze = true;
+  }
+  if (analyze || !fs::exists(index)) {
+    steps.push_back({"plot", "renderaudit plot " + run_dir,
+                     analyze ? "the figures follow the analysis" : index.string() + " is missing"});
+  } else if (fs::last_write_time(index, ec) < fs::last_write_time(figures_json, ec)) {
+    steps.push_back({"plot", "renderaudit plot " + run_dir, index.string() + " is older than the analysis"});
+  }
+  return steps;
+}
+
+ReportResult write_report(const ReportOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string& run_dir = options.run_dir;
+  if (!fs::is_directory(run_dir)) throw UserError(run_dir + ": no such run directory");
+  if (!fs::is_directory(fs::path(run_dir) / "records"))
+    throw UserError(run_dir + " is not a run directory (no records/): run `renderaudit run "
+                    "EXPERIMENT.toml --out " + run_dir + "` first");
+  const std::string pdfunite = plots::find_on_path("pdfunite");
+  if (pdfunite.empty())
+    throw UserError("pdfunite not found: install poppler-utils (apt-get install poppler-utils)");
+
+  ReportResult result;
+  const std::vector<Step> steps = missing_steps(run_dir);
+  if (!steps.empty() && !options.run_missing) {
+    std::string msg = "the report needs what these commands write; run them first:";
+    for (const auto& s : steps) msg += "\n  " + s.command + "    (" + s.reason + ")";
+    throw UserError(msg);
+  }
+  for (const Step& s : steps) {
+    std::fprintf(stderr, "report: running `%s` (%s)\n", s.command.c_str(), s.reason.c_str());
+    if (s.stage == "analyze") {
+      const std::string program = options.program.empty() ? self_program() : options.program;
+      const int rc = run_program({program, "analyze", run_dir});
+      if (rc != 0)
+        throw UserError("`" + s.command + "` failed (exit " + std::to_string(rc) +
+                        "); fix what it says and run the report again");
+    } else {
+      plots::PlotOptions po;
+      po.run_dir = run_dir;
+      plots::plot_run(po);
+    }
+    result.ran.push_back(s);
+  }
+
+  const plots::PlotResult figures = plots::read_figure_index(run_dir);
+  const plots::RecordScan scan = plots::scan_records(run_dir, 200);
+  Content content = build_document(run_dir, figures, scan);
+  Document& doc = content.doc;
+  for (const auto& f : doc.figures)
+    if (!fs::exists(f.pdf_path))
+      throw UserError(f.pdf_path + " is missing: run `renderaudit plot " + run_dir + "` again");
+
+  const fs::path out_dir = fs::path(run_dir) / "report";
+  fs::create_directories(out_dir);
+  result.pdf = (out_dir / "report.pdf").string();
+  result.html = (out_dir / "report.html").string();
+
+  // Text pages: lay out until the page numbers they print are the ones they get.
+  PageNumbers numbers;
+  PdfLayoutResult layout = write_text_pdf(doc, "", numbers);
+  for (int pass = 0; pass < 3; ++pass) {
+    numbers.first_figure_page = doc.figures.empty() ? 0 : layout.pages + 1;
+    numbers.total = layout.pages + int(doc.figures.size());
+    numbers.heading_pages = layout.heading_pages;
+    const PdfLayoutResult again = write_text_pdf(doc, "", numbers);
+    const bool stable = again.pages == layout.pages && again.heading_pages == layout.heading_pages;
+    layout = again;
+    if (stable) break;
+  }
+  const std::string text_pdf = (out_dir / "report-text.pdf.tmp").string();
+  layout = write_text_pdf(doc, text_pdf, numbers);
+
+  // Assemble: text pages, then one page per figure.
+  std::vector<std::string> args = {pdfunite, text_pdf};
+  for (const auto& f : doc.figures) args.push_back(f.pdf_path);
+  const std::string tmp = result.pdf + ".tmp";
+  args.push_back(tmp);
+  const std::string log = (out_dir / "pdfunite.log").string();
+  const int rc = run_program(args, log, true);
+  fs::remove(text_pdf);
+  if (rc != 0) {
+    std::string why;
+    try {
+      why = read_file(log);
+    } catch (...) {
+    }
+    fs::remove(tmp);
+    throw UserError("pdfunite failed (exit " + std::to_string(rc) + ") assembling " + result.pdf +
+                    (why.empty() ? "" : ": " + why));
+  }
+  fs::remove(log);
+  fs::rename(tmp, result.pdf);
+  write_file_atomic(result.html, render_html(doc));
+
+  result.text_pages = layout.pages;
+  result.figure_pages = int(doc.figures.size());
+  result.pages = result.text_pages + result.figure_pages;
+  result.table_titles = content.table_titles;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace ra::report

@@ -1,0 +1,61 @@
+// `renderaudit report DIR`: one document about a run, as DIR/report/report.pdf and
+// DIR/report/report.html:
+//   1. the experiment and its provenance (manifest.json: experiment, seed, platforms with their
+//      drivers' GL_RENDERER / GL_VERSION / GL_VENDOR, host, project commit, times; the
+//      experiment file itself);
+//   2. failures: crashed or timed-out shards (manifest.json "failures"), records whose status is
+//      not ok (counts and the first cases), figures skipped for lack of data;
+//   3. time per primitive: median render_us per platform and kind (from the records);
+//   4. conformance with the reference rasterizer per platform, kind and view group (ref_diff);
+//   5. the equivalence tests behind pooling views into view groups (analysis/view_equivalence.md);
+//   6. every table of DIR/analysis/ (in the order of its README.md);
+//   7. the list of figures with their pages, then every figure, one page each (DIR/figures/).
+//
+// PDF route: the text and table pages are drawn with cairo's PDF surface (Debian libcairo2: text
+// as real, searchable text with embedded DejaVu fonts); each figure is the vector PDF that VTK's
+// vtkPDFExporter wrote in `renderaudit plot`; `pdfunite` (poppler-utils) joins them. All pages
+// are 1123 x 794 pt (pdf_writer.h).
+//
+// Stages: the report reads only files. When DIR/analysis/figures.json or DIR/figures/index.json is
+// missing, or older than what it was made from (records, manifest), the report runs
+// `renderaudit analyze DIR` and/or the plot stage first (ReportOptions::run_missing), and says so;
+// without run_missing it stops and names the command to run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace ra::report {
+
+struct ReportOptions {
+  std::string run_dir;
+  bool run_missing = true;  // run `analyze` / `plot` first when their output is missing or stale
+  std::string program;      // the renderaudit binary that runs `analyze`; empty: this process's
+};
+
+// A stage that must run before the report, and why.
+struct Step {
+  std::string stage;    // "analyze" or "plot"
+  std::string command;  // e.g. "renderaudit analyze outputs/quick"
+  std::string reason;   // e.g. "outputs/quick/analysis/figures.json is missing"
+};
+
+// The stages whose output is missing or older than their input, in order.
+std::vector<Step> missing_steps(const std::string& run_dir);
+
+struct ReportResult {
+  std::string pdf, html;                  // paths written
+  int pages = 0;                          // pages of report.pdf
+  int text_pages = 0;                     // of them, text and table pages
+  int figure_pages = 0;                   // of them, figures (one each)
+  std::vector<std::string> table_titles;  // titles of the tables the report shows
+  std::vector<Step> ran;                  // stages run first
+  double seconds = 0;                     // wall-clock, stages run first included
+};
+
+// Writes DIR/report/report.pdf and report.html. Throws ra::UserError when the run directory is not
+// one, a stage is missing and run_missing is false (naming the command), or a tool fails
+// (pdfunite: "install poppler-utils").
+ReportResult write_report(const ReportOptions& options);
+
+}  // namespace ra::report

@@ -1,0 +1,171 @@
+// End to end, as CI runs it (no DISPLAY): run -> report, the report running `analyze` and `plot`
+// itself; then the PDF is read back with poppler's pdfinfo / pdftotext and compared with what the
+// analysis and plot stages wrote.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+
+#include "tests/cli_harness.h"
+
+namespace {
+
+using namespace ra::testing_cli;
+namespace fs = std::filesystem;
+
+std::string shell_output(const std::string& cmd) {
+  std::string out;
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  ::pclose(p);
+  return out;
+}
+
+std::string squeeze(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    const bool space = c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\f';
+    if (space) {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string read(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A small run: points only (lines and triangles have no records, so their figures are skipped
+// and the report must say so), one view group of two orientations.
+std::string small_run(const std::string& name) {
+  const std::string dir = fresh_dir(name);
+  write_text(dir + "/exp.toml",
+             "name = \"report_e2e\"\nseed = 11\nplatforms = [\"osmesa-llvmpipe\"]\n"
+             "[views]\norientations = 2\nfov_deg = [150]\nwindows = [128]\nnear = 0.01\n"
+             "far = 10.0\n[primitives]\npoints = 600\nlines = 0\ntriangles = 0\n");
+  const Outcome o = run_renderaudit("run " + dir + "/exp.toml --out " + dir + "/run -q");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  return dir + "/run";
+}
+
+// Why: `renderaudit report` must work where CI runs it (no display), run the stages it needs,
+// and produce a PDF with one page per figure after the text pages, holding every table's title;
+// the HTML must show every figure.
+TEST(ReportCommand, HeadlessReportHasEveryTableAndOnePagePerFigure) {
+  ::unsetenv("DISPLAY");  // as on CI, whatever the developer's session has
+  const std::string run = small_run("report_e2e");
+
+  // Without --no-run... first with it: nothing analysed yet, the exact commands are named.
+  const Outcome refused = run_renderaudit("report " + run + " --no-run");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("renderaudit analyze " + run), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("renderaudit plot " + run), std::string::npos) << refused.output;
+
+  const Outcome o = run_renderaudit("report " + run);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("running `renderaudit analyze"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("running `renderaudit plot"), std::string::npos) << o.output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(o.output, m, std::regex(R"((\d+) pages \((\d+) text, (\d+) figures\))")))
+      << o.output;
+  const int pages = std::stoi(m[1]), text_pages = std::stoi(m[2]), figure_pages = std::stoi(m[3]);
+
+  // The figures: as many PDF pages as index.json lists, each PNG and PDF present.
+  const auto index = nlohmann::json::parse(read(run + "/figures/index.json"));
+  const auto& figures = index.at("figures");
+  ASSERT_GE(figures.size(), 6u);  // visibility, conformance, 2 box plots, 2 histograms, 2 Q-Q
+  EXPECT_EQ(int(figures.size()), figure_pages);
+  for (const auto& f : figures) {
+    EXPECT_TRUE(fs::exists(run + "/figures/" + f.at("png").get<std::string>()));
+    EXPECT_TRUE(fs::exists(run + "/figures/" + f.at("pdf").get<std::string>()));
+    EXPECT_TRUE(fs::exists(run + "/figures/" + f.at("csv").get<std::string>()));
+  }
+  std::string skipped = index.at("skipped").dump();
+  EXPECT_NE(skipped.find("line segments"), std::string::npos) << skipped;
+  EXPECT_NE(skipped.find("triangles"), std::string::npos) << skipped;
+
+  // (That the private Xvfb is stopped is HeadlessDisplay's test: a display number is free again
+  // at once, so another test running beside this one may be using it by now.)
+  EXPECT_EQ(index.at("display").get<std::string>().rfind("private Xvfb :", 0), 0u);
+
+  // The PDF: text pages + one page per figure, in the index's order.
+  const std::string pdf = run + "/report/report.pdf";
+  const std::string info = shell_output("pdfinfo '" + pdf + "'");
+  EXPECT_NE(info.find("Pages:           " + std::to_string(pages) + "\n"), std::string::npos) << info;
+  EXPECT_EQ(pages, text_pages + figure_pages);
+  for (std::size_t i = 0; i < figures.size(); ++i) {
+    const int page = text_pages + 1 + int(i);
+    const std::string text = squeeze(shell_output("pdftotext -f " + std::to_string(page) + " -l " +
+                                                  std::to_string(page) + " '" + pdf + "' -"));
+    const std::string title = figures[i].at("title");
+    EXPECT_NE(text.find(squeeze(title)), std::string::npos) << "page " << page << ": " << text;
+  }
+
+  // Every table of the analysis, by the title on the first line of its CSV, is in the text.
+  const std::string all_text = squeeze(shell_output("pdftotext '" + pdf + "' -"));
+  int tables = 0;
+  for (const auto& e : fs::directory_iterator(run + "/analysis")) {
+    if (e.path().extension() != ".csv") continue;
+    std::ifstream in(e.path());
+    std::string first;
+    std::getline(in, first);
+    ASSERT_EQ(first.rfind("# ", 0), 0u) << e.path();
+    const std::string title = squeeze(first.substr(2));
+    EXPECT_NE(all_text.find(title), std::string::npos) << e.path() << ": " << title;
+    ++tables;
+  }
+  EXPECT_GE(tables, 4);  // view equivalence, Tables 2, 3, 4, 11, speed
+  // Provenance, failures and timing are there too.
+  for (const char* s : {"GL_RENDERER", "llvmpipe", "seed", "No shard crashed",
+                        "Median render time per primitive", "Figures not drawn for lack of data"})
+    EXPECT_NE(all_text.find(s), std::string::npos) << s;
+
+  // Failures: a crashed shard in the manifest and an invalid record must be reported, and the
+  // changed inputs make the analysis stale, so the report runs it again.
+  std::string records_file;
+  for (const auto& e : fs::directory_iterator(run + "/records"))
+    if (e.path().extension() == ".csv" && (records_file.empty() || e.path().string() < records_file))
+      records_file = e.path().string();
+  {
+    std::string text = read(records_file);
+    const auto line2 = text.find('\n') + 1;
+    const auto ok = text.find(",ok,", line2);
+    ASSERT_LT(ok, text.find('\n', line2));
+    text.replace(ok, 4, ",invalid,");
+    write_text(records_file, text);
+    auto manifest = nlohmann::json::parse(read(run + "/manifest.json"));
+    manifest["failures"].push_back({{"shard", "osmesa-llvmpipe.point.v9.0-100"},
+                                    {"reason", "crashed (signal 11, Segmentation fault)"}});
+    write_text(run + "/manifest.json", manifest.dump(2));
+  }
+  const Outcome again = run_renderaudit("report " + run);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("is older than the records"), std::string::npos) << again.output;
+  const std::string failures_text = squeeze(shell_output("pdftotext '" + pdf + "' -"));
+  for (const std::string& s :
+       {std::string("Records whose status is not ok"), std::string("invalid"),
+        "records/" + fs::path(records_file).filename().string() + ":2",
+        std::string("osmesa-llvmpipe.point.v9.0-100"), std::string("crashed (signal 11")})
+    EXPECT_NE(failures_text.find(s), std::string::npos) << s;
+
+  // The HTML shows every figure, by a relative path that exists.
+  const std::string html = read(run + "/report/report.html");
+  for (const auto& f : figures) {
+    const std::string src = "../figures/" + f.at("png").get<std::string>();
+    EXPECT_NE(html.find("src=\"" + src + "\""), std::string::npos) << src;
+  }
+}
+
+}  // namespace
