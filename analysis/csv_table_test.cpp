@@ -8,19 +8,15 @@
 
 #include "analysis/stats_testing.h"
 #include "runner/errors.h"
+#include "tests/cli_harness.h"
 
 namespace ra::analysis {
 namespace {
 
-// The message of the UserError thrown by `f`, or "" when none is thrown.
+// The message of the UserError that `f` throws ("" when it throws none).
 template <typename F>
 std::string user_error(F f) {
-  try {
-    f();
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  return "";
+  return ra::testing_cli::error_message<UserError>(f);
 }
 
 TEST(CsvTable, QuotedCellsAndMissingValues) {

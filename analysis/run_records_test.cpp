@@ -8,6 +8,7 @@
 
 #include "analysis/records_testing.h"
 #include "runner/errors.h"
+#include "tests/cli_harness.h"
 
 namespace ra::analysis {
 namespace {
@@ -18,12 +19,7 @@ using testing::write_records;
 // The message of the UserError that `f` throws ("" when it throws none).
 template <typename F>
 std::string user_error(F f) {
-  try {
-    f();
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  return "";
+  return ra::testing_cli::error_message<UserError>(f);
 }
 
 TEST(RunRecords, CountsSamplesAndGroups) {

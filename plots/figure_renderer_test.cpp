@@ -16,9 +16,13 @@
 #include "analysis/distribution_plots.h"
 #include "plots/figure_builders.h"
 #include "plots/headless_display.h"
+#include "tests/cli_harness.h"
 
 namespace ra::plots {
 namespace {
+
+using ra::testing_cli::shell_output;
+using ra::testing_cli::squeeze;
 
 namespace fs = std::filesystem;
 
@@ -29,16 +33,6 @@ std::string temp_dir(const std::string& name) {
   return d.string();
 }
 
-std::string shell_output(const std::string& cmd) {
-  std::string out;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  ::pclose(p);
-  return out;
-}
 
 // One display and one render window for the whole suite: a private Xvfb when there is no
 // DISPLAY (CI has none), exactly what `renderaudit plot` does.

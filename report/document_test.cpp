@@ -9,34 +9,15 @@
 
 #include "report/html_writer.h"
 #include "report/pdf_writer.h"
+#include "tests/cli_harness.h"
 
 namespace ra::report {
 namespace {
 
-std::string shell_output(const std::string& cmd) {
-  std::string out;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  ::pclose(p);
-  return out;
-}
+using ra::testing_cli::shell_output;
+using ra::testing_cli::squeeze;
 
-// Collapses runs of white space (line breaks included) to one space.
-std::string squeeze(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    const bool space = c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\f';
-    if (space) {
-      if (!out.empty() && out.back() != ' ') out += ' ';
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
+
 
 // Why: the analysis stage's tables come as Markdown ("### title", pipe table, "- " notes); the
 // report must keep the title with its table, the alignment and the notes.

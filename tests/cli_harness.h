@@ -18,6 +18,43 @@ struct Outcome {
   std::string output;  // stdout and stderr together
 };
 
+// Standard output of a shell command ("" when it cannot be started).
+inline std::string shell_output(const std::string& cmd) {
+  std::string out;
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  ::pclose(p);
+  return out;
+}
+
+// Collapses runs of white space (line breaks included) to one space: text from pdftotext wraps.
+inline std::string squeeze(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    const bool space = c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\f';
+    if (space) {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// The message of the exception of type E that `f` throws ("" when it throws none).
+template <typename E, typename F>
+std::string error_message(F f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  }
+  return "";
+}
+
 // Runs `renderaudit ARGS` (a shell fragment) and returns its exit code and output.
 inline Outcome run_renderaudit(const std::string& args) {
   Outcome o;
