@@ -44,14 +44,7 @@ double median(std::vector<double> v) {
 }
 
 View bench_view(double fov, int window) {
-  View v;
-  v.fov_deg = fov;
-  v.width = v.height = window;
-  v.near = 0.01;
-  v.far = 10;
-  v.rotation = random_rotation(2008, 1);
-  finish_view(v);
-  return v;
+  return make_view(fov, window, window, 0.01, 10.0, random_rotation(2008, 1));
 }
 
 // One platform, in this process: prints one JSON object per configuration on stdout.

@@ -10,17 +10,6 @@
 namespace ra {
 namespace {
 
-View make_view(double fov, int w, int h, double near = 0.01, double far = 10.0) {
-  View v;
-  v.fov_deg = fov;
-  v.width = w;
-  v.height = h;
-  v.near = near;
-  v.far = far;
-  v.rotation = Mat4::identity();  // looks down world -Z
-  finish_view(v);
-  return v;
-}
 
 // Window position of an eye-space point under make_view's projection, from the closed form of
 // gluPerspective (independent of the matrix code): x_ndc = (f / aspect) x / -z.

@@ -111,11 +111,7 @@ TEST(LineMetrics, ZeroLengthUsesThePoint) {
 // A segment nearly along the view direction, through a real 150-degree view: projected length
 // under a pixel; the metrics are finite numbers (or NaN with no pixel), never garbage.
 TEST(LineMetrics, NearlyAlongTheViewDirection) {
-  View v;
-  v.fov_deg = 150;
-  v.width = v.height = 907;
-  v.rotation = Mat4::identity();
-  finish_view(v);
+  const View v = make_view(150, 907, 907);
   const Vec3 dir{0.31, -0.17, -0.9};
   const ClippedSegment s = clip_segment(v, 0.2 * dir, 0.9 * dir + Vec3{1e-4, 0, 0});
   ASSERT_TRUE(ideally_visible(s));
@@ -159,11 +155,7 @@ TEST(LineMetrics, GapsAndChains) {
 // pixels form one chain, every offset is under half a pixel, and the ordering along the line
 // starts and ends at the metric's first and last pixels.
 TEST(LineMetrics, ReferenceLinesAreChainsWithSmallOffsets) {
-  View v;
-  v.fov_deg = 150;
-  v.width = v.height = 907;
-  v.rotation = Mat4::identity();
-  finish_view(v);
+  const View v = make_view(150, 907, 907);
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> u(-1, 1);
   int tested = 0;
@@ -189,11 +181,7 @@ TEST(LineMetrics, ReferenceLinesAreChainsWithSmallOffsets) {
 
 // The View + Primitive entry point is clip_segment followed by the segment version.
 TEST(LineMetrics, PrimitiveEntryPoint) {
-  View v;
-  v.fov_deg = 30;
-  v.width = v.height = 128;
-  v.rotation = Mat4::identity();
-  finish_view(v);
+  const View v = make_view(30, 128, 128);
   Primitive prim;
   prim.kind = Kind::kLine;
   prim.v = {Vec3{0.05, 0.02, -0.5}, Vec3{-0.04, 0.03, -0.6}, Vec3{}};

@@ -160,11 +160,7 @@ TEST(PixelCoverage, HugeCoordinates) {
 // Property: the sum of pixel areas equals the shoelace area, 1e-9 relative, for clipped random
 // triangles of a 150-degree 907 x 907 view; and each row's run lies between its partial pixels.
 TEST(PixelCoverage, SumEqualsAreaForClippedTriangles) {
-  View v;
-  v.fov_deg = 150;
-  v.width = v.height = 907;
-  v.rotation = Mat4::identity();
-  finish_view(v);
+  const View v = make_view(150, 907, 907);
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
   int tested = 0;

@@ -12,16 +12,7 @@ namespace {
 
 // Camera looking down -Z, 90-degree FOV, 128x128: a point (x, y, -1) projects to
 // ((x + 1) * 64, (y + 1) * 64) exactly, since tan(45 deg) = 1.
-View simple_view(int size = 128, double fov = 90) {
-  View v;
-  v.fov_deg = fov;
-  v.width = v.height = size;
-  v.near = 0.01;
-  v.far = 10;
-  v.rotation = Mat4::identity();
-  finish_view(v);
-  return v;
-}
+View simple_view(int size = 128, double fov = 90) { return make_view(fov, size, size); }
 
 TEST(PointMetrics, ProjectionMatchesTheAnalyticPosition) {
   const IdealPoint p = project_point(simple_view(), {0.1, 0.2, -1.0});

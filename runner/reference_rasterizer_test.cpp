@@ -14,14 +14,7 @@
 namespace ra {
 namespace {
 
-View make_view(double fov, int size) {
-  View v;
-  v.fov_deg = fov;
-  v.width = v.height = size;
-  v.rotation = Mat4::identity();
-  finish_view(v);
-  return v;
-}
+View make_view(double fov, int size) { return ra::make_view(fov, size, size); }
 
 // ---- Points ----
 

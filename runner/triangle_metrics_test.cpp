@@ -21,14 +21,7 @@ ClippedPolygon window_triangle(Vec2 a, Vec2 b, Vec2 c, int w, int h) {
                        h);
 }
 
-View make_view(double fov, int size) {
-  View v;
-  v.fov_deg = fov;
-  v.width = v.height = size;
-  v.rotation = Mat4::identity();
-  finish_view(v);
-  return v;
-}
+View make_view(double fov, int size) { return ra::make_view(fov, size, size); }
 
 // Hand-built: triangle (0,0), (4,0), (0,4) in an 8 x 8 window. Pixels with i + j <= 2 lie inside
 // (area 1), those with i + j == 3 are cut in half by the hypotenuse. Lit: the six inside pixels

@@ -74,4 +74,17 @@ void finish_view(View& v) {
   v.view_projection = v.projection * v.view_matrix;
 }
 
+View make_view(double fov_deg, int width, int height, double near, double far,
+               const Mat4& rotation) {
+  View v;
+  v.fov_deg = fov_deg;
+  v.width = width;
+  v.height = height;
+  v.near = near;
+  v.far = far;
+  v.rotation = rotation;
+  finish_view(v);
+  return v;
+}
+
 }  // namespace ra

@@ -50,4 +50,9 @@ Mat4 random_rotation(uint64_t seed, int orientation_number);
 // Fills view_matrix, projection and view_projection from rotation, fov, window and planes.
 void finish_view(View& v);
 
+// A complete view: `fov_deg` degrees, width x height pixels, clip planes in world units, camera at
+// the origin looking down -Z unless `rotation` (camera-to-world) turns it.
+View make_view(double fov_deg, int width, int height, double near = 0.01, double far = 10.0,
+               const Mat4& rotation = Mat4::identity());
+
 }  // namespace ra
