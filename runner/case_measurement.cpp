@@ -25,6 +25,25 @@ Record case_identity(const std::string& platform_name, const View& view, const P
   return r;
 }
 
+namespace {
+
+// Renders a clipped segment or triangle, reading back first around its visible part, and measures
+// it with `measure`. False (status invalid, nothing drawn) when the clip found no projection, e.g.
+// w = 0 at a vertex.
+template <typename Clipped, typename Measure>
+bool render_clipped(const Clipped& clipped, Platform& platform, const View& view,
+                    const Primitive& prim, Record& rec, RenderResult& rendered, Measure measure) {
+  if (clipped.status == ClipStatus::kInvalid) {
+    rec.status = CaseStatus::kInvalid;
+    return false;
+  }
+  rendered = platform.render(prim, bounding_rect(clipped, view.width, view.height, kRegionMargin));
+  measure(clipped, view, rendered.lit, rec);
+  return true;
+}
+
+}  // namespace
+
 Record measure_case(const std::string& platform_name, Platform& platform, const View& view,
                     const Primitive& prim, bool compare_with_reference) {
   Record rec = case_identity(platform_name, view, prim);
@@ -43,26 +62,16 @@ Record measure_case(const std::string& platform_name, Platform& platform, const 
       measure_point(view, ideal, rendered.lit, rec);
       break;
     }
-    case Kind::kLine: {
-      const ClippedSegment seg = clip_segment(view, prim.v[0], prim.v[1]);
-      if (seg.status == ClipStatus::kInvalid) {  // e.g. w = 0 at a vertex: no projection
-        rec.status = CaseStatus::kInvalid;
+    case Kind::kLine:
+      if (!render_clipped(clip_segment(view, prim.v[0], prim.v[1]), platform, view, prim, rec,
+                          rendered, measure_segment_case))
         return rec;
-      }
-      rendered = platform.render(prim, bounding_rect(seg, view.width, view.height, kRegionMargin));
-      measure_segment_case(seg, view, rendered.lit, rec);
       break;
-    }
-    case Kind::kTriangle: {
-      const ClippedPolygon poly = clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
-      if (poly.status == ClipStatus::kInvalid) {
-        rec.status = CaseStatus::kInvalid;
+    case Kind::kTriangle:
+      if (!render_clipped(clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]), platform, view,
+                          prim, rec, rendered, measure_triangle_case))
         return rec;
-      }
-      rendered = platform.render(prim, bounding_rect(poly, view.width, view.height, kRegionMargin));
-      measure_triangle_case(poly, view, rendered.lit, rec);
       break;
-    }
   }
   rec.render_us = rendered.render_us;
   rec.pixel_hash = pixel_set_hash(rendered.lit);
