@@ -33,6 +33,29 @@ void require_size(const std::vector<double>& sample, std::size_t minimum, const 
   }
 }
 
+// The checks every two-sample test starts with: at least `minimum` values in each sample, and all
+// of them finite.
+void require_two_samples(const std::vector<double>& sample1, const std::vector<double>& sample2,
+                         std::size_t minimum, const char* test) {
+  require_size(sample1, minimum, test, "sample 1");
+  require_size(sample2, minimum, test, "sample 2");
+  require_finite(sample1, (std::string(test) + ", sample 1").c_str());
+  require_finite(sample2, (std::string(test) + ", sample 2").c_str());
+}
+
+// Moments of both samples, shifted by the same reference (see shifted_moments), and their sizes.
+struct TwoSampleMoments {
+  MeanVariance a, b;
+  double n1 = 0, n2 = 0;
+};
+
+TwoSampleMoments two_sample_moments(const std::vector<double>& sample1,
+                                    const std::vector<double>& sample2) {
+  const double reference = sample1.front();
+  return {shifted_moments(sample1, reference), shifted_moments(sample2, reference),
+          static_cast<double>(sample1.size()), static_cast<double>(sample2.size())};
+}
+
 double two_sided_t_p(double t, double df) {
   const boost::math::students_t dist(df);
   return std::min(1.0, 2 * boost::math::cdf(boost::math::complement(dist, std::fabs(t))));
@@ -58,19 +81,11 @@ double compensated_sum(const std::vector<double>& terms) {
 }  // namespace
 
 TTestResult t_test_pooled(const std::vector<double>& sample1, const std::vector<double>& sample2) {
-  const char* test = "pooled t test";
-  require_size(sample1, 1, test, "sample 1");
-  require_size(sample2, 1, test, "sample 2");
+  require_two_samples(sample1, sample2, 1, "pooled t test");
   if (sample1.size() + sample2.size() < 3) {
     throw std::invalid_argument("pooled t test: n1 + n2 = 2; at least 3 values needed");
   }
-  require_finite(sample1, "pooled t test, sample 1");
-  require_finite(sample2, "pooled t test, sample 2");
-  const double reference = sample1.front();
-  const MeanVariance a = shifted_moments(sample1, reference);
-  const MeanVariance b = shifted_moments(sample2, reference);
-  const double n1 = static_cast<double>(sample1.size());
-  const double n2 = static_cast<double>(sample2.size());
+  const auto [a, b, n1, n2] = two_sample_moments(sample1, sample2);
 
   TTestResult r;
   r.df = n1 + n2 - 2;
@@ -87,16 +102,8 @@ TTestResult t_test_pooled(const std::vector<double>& sample1, const std::vector<
 }
 
 TTestResult t_test_welch(const std::vector<double>& sample1, const std::vector<double>& sample2) {
-  const char* test = "Welch t test";
-  require_size(sample1, 2, test, "sample 1");
-  require_size(sample2, 2, test, "sample 2");
-  require_finite(sample1, "Welch t test, sample 1");
-  require_finite(sample2, "Welch t test, sample 2");
-  const double reference = sample1.front();
-  const MeanVariance a = shifted_moments(sample1, reference);
-  const MeanVariance b = shifted_moments(sample2, reference);
-  const double n1 = static_cast<double>(sample1.size());
-  const double n2 = static_cast<double>(sample2.size());
+  require_two_samples(sample1, sample2, 2, "Welch t test");
+  const auto [a, b, n1, n2] = two_sample_moments(sample1, sample2);
 
   const double v1 = a.variance / n1;  // squared standard errors of the two means
   const double v2 = b.variance / n2;
@@ -115,11 +122,7 @@ TTestResult t_test_welch(const std::vector<double>& sample1, const std::vector<d
 
 FTestResult f_test_variances(const std::vector<double>& sample1,
                              const std::vector<double>& sample2) {
-  const char* test = "F test";
-  require_size(sample1, 2, test, "sample 1");
-  require_size(sample2, 2, test, "sample 2");
-  require_finite(sample1, "F test, sample 1");
-  require_finite(sample2, "F test, sample 2");
+  require_two_samples(sample1, sample2, 2, "F test");
   const double var1 = mean_and_variance(sample1).variance;
   const double var2 = mean_and_variance(sample2).variance;
   if (!(var2 > 0)) {
