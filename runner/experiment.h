@@ -22,7 +22,7 @@ struct FaultPlan {
   std::vector<uint64_t> hang;        // the worker sleeps forever on these
   std::vector<uint64_t> wild_pixel;  // one extra pixel lit far from the primitive
   double shift_fraction = 0;         // this fraction of primitives is drawn one pixel to the right
-  double flaky_fraction = 0;         // ... shifted only on the first render in a process
+  double flaky_fraction = 0;         // ... shifted only on the first attempt (RA_RENDER_ATTEMPT < 2)
 };
 
 struct Experiment {

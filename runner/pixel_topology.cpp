@@ -2,7 +2,6 @@
 #include "runner/pixel_topology.h"
 
 #include <algorithm>
-#include <limits>
 #include <numeric>
 
 namespace ra {
@@ -47,65 +46,6 @@ int64_t join_rows(const std::vector<PixelRun>& runs, size_t a0, size_t a1, size_
 
 }  // namespace
 
-size_t lower_bound_from(const PixelSet& s, size_t from, Pixel key, size_t guess) {
-  const size_t n = s.size();
-  size_t lo = from;  // every index below lo holds a pixel < key
-  const size_t g = from + guess;
-  if (guess > 0 && g < n) {
-    if (s[g] < key) {
-      lo = g + 1;
-    } else {  // the answer is in [lo, g]: double steps back from g
-      size_t upper = g, step = 1;
-      while (upper > lo) {
-        const size_t p = upper - std::min(step, upper - lo);
-        if (s[p] < key) {
-          lo = p + 1;
-          break;
-        }
-        upper = p;
-        step *= 2;
-      }
-      return size_t(std::lower_bound(s.begin() + lo, s.begin() + upper, key) - s.begin());
-    }
-  }
-  size_t probe = lo, step = 1;  // double steps forward from lo
-  while (probe < n && s[probe] < key) {
-    lo = probe + 1;
-    probe += step;
-    step *= 2;
-  }
-  const size_t hi = std::min(probe, n);
-  return size_t(std::lower_bound(s.begin() + lo, s.begin() + hi, key) - s.begin());
-}
-
-std::vector<PixelRun> pixel_runs(const PixelSet& s) {
-  std::vector<PixelRun> runs;
-  size_t k = 0, last_len = 0;
-  while (k < s.size()) {
-    const int32_t y = s[k].y;
-    // Neighbouring rows of a filled shape have similar lengths: guess the previous one.
-    const size_t end =
-        lower_bound_from(s, k, Pixel{std::numeric_limits<int32_t>::min(), y + 1}, last_len);
-    last_len = end - k;
-    if (int64_t(s[end - 1].x) - s[k].x == int64_t(end - k) - 1) {  // consecutive: one run
-      runs.push_back({y, s[k].x, s[end - 1].x + 1});
-    } else {
-      PixelRun r{y, s[k].x, s[k].x + 1};
-      for (size_t i = k + 1; i < end; ++i) {
-        if (s[i].x == r.x_end) {
-          ++r.x_end;
-        } else {
-          runs.push_back(r);
-          r = {y, s[i].x, s[i].x + 1};
-        }
-      }
-      runs.push_back(r);
-    }
-    k = end;
-  }
-  return runs;
-}
-
 namespace {
 
 // Index ranges [row_begin[r], row_begin[r + 1]) of the runs of each distinct row.
@@ -134,11 +74,11 @@ int64_t components_of_runs(const std::vector<PixelRun>& runs) {
 
 }  // namespace
 
-int64_t count_components8(const PixelSet& s) { return components_of_runs(pixel_runs(s)); }
+int64_t count_components8(const PixelSet& s) { return components_of_runs(s.runs()); }
 
 PixelTopology pixel_topology(const PixelSet& s) {
   PixelTopology t;
-  const std::vector<PixelRun> runs = pixel_runs(s);
+  const std::vector<PixelRun>& runs = s.runs();
   t.components = components_of_runs(runs);
   if (runs.empty()) return t;
   // Background runs inside the bounding box grown by one pixel on every side: the grown frame is
@@ -175,15 +115,16 @@ bool is_simple_chain8(const PixelSet& s) {
   if (s.empty()) return false;
   if (s.size() == 1) return true;
   if (count_components8(s) != 1) return false;
+  const std::vector<Pixel> px = s.pixels();  // a chain is thin: O(length)
   // Rows of the set: [start[r], start[r + 1]) holds row ys[r].
   std::vector<size_t> start;
   std::vector<int32_t> ys;
-  for (size_t i = 0; i < s.size(); ++i)
-    if (i == 0 || s[i].y != s[i - 1].y) start.push_back(i), ys.push_back(s[i].y);
-  start.push_back(s.size());
+  for (size_t i = 0; i < px.size(); ++i)
+    if (i == 0 || px[i].y != px[i - 1].y) start.push_back(i), ys.push_back(px[i].y);
+  start.push_back(px.size());
   // Lit pixels among x-1..x+1 of row r (r may be out of range).
   auto lit_around = [&](size_t r, int32_t x) {
-    auto b = s.begin() + start[r], e = s.begin() + start[r + 1];
+    auto b = px.begin() + start[r], e = px.begin() + start[r + 1];
     auto it = std::lower_bound(b, e, Pixel{x - 1, ys[r]});
     int n = 0;
     for (; it != e && it->x <= x + 1; ++it) ++n;
@@ -194,10 +135,10 @@ bool is_simple_chain8(const PixelSet& s) {
     const bool below = r > 0 && ys[r - 1] == ys[r] - 1;
     const bool above = r + 1 < ys.size() && ys[r + 1] == ys[r] + 1;
     for (size_t i = start[r]; i < start[r + 1]; ++i) {
-      const int32_t x = s[i].x;
+      const int32_t x = px[i].x;
       int degree = 0;
-      degree += i > start[r] && s[i - 1].x == x - 1;
-      degree += i + 1 < start[r + 1] && s[i + 1].x == x + 1;
+      degree += i > start[r] && px[i - 1].x == x - 1;
+      degree += i + 1 < start[r + 1] && px[i + 1].x == x + 1;
       if (below) degree += lit_around(r - 1, x);
       if (above) degree += lit_around(r + 1, x);
       if (degree == 1) {

@@ -9,8 +9,7 @@
 // - Background (unlit) pixels are 4-connected (|dx| + |dy| == 1), the dual of 8 for lit pixels. A
 //   hole is a 4-connected background component that cannot reach the outside of the set's
 //   bounding box, i.e. background enclosed by lit pixels (a diagonal wall of lit pixels encloses).
-// Cost: O(pixels) to read the set plus union-find over horizontal runs (O(runs)); a row whose
-// pixels are consecutive is recognised in O(1), so filled shapes cost O(rows log pixels).
+// Cost: union-find over the set's horizontal runs, O(runs): a filled shape costs O(rows).
 #pragma once
 
 #include <cstdint>
@@ -19,20 +18,6 @@
 #include "runner/pixel_set.h"
 
 namespace ra {
-
-// A maximal horizontal run of lit pixels: columns [x_begin, x_end) of row y.
-struct PixelRun {
-  int32_t y = 0, x_begin = 0, x_end = 0;
-};
-
-// The runs of a sorted PixelSet, ordered by (y, x_begin).
-std::vector<PixelRun> pixel_runs(const PixelSet& s);
-
-// First index i >= from with !(s[i] < key) in (y, x) order (s.size() if none), for walking a
-// sorted set row by row. Probes from + guess first, then doubles its steps away from there:
-// O(log |answer - from - guess|) and memory near the answer. Precondition: no index below `from`
-// is the answer (s[from - 1] < key).
-size_t lower_bound_from(const PixelSet& s, size_t from, Pixel key, size_t guess = 0);
 
 struct PixelTopology {
   int64_t components = 0;  // 8-connected components of the lit pixels (0 for an empty set)

@@ -14,14 +14,13 @@ PixelSet from_rows(const std::vector<std::string>& rows) {  // rows[0] is the to
   const int h = int(rows.size());
   for (int r = 0; r < h; ++r)
     for (int x = 0; x < int(rows[r].size()); ++x)
-      if (rows[r][x] == '#') s.push_back({x, h - 1 - r});
-  normalize(s);
+      if (rows[r][x] == '#') s.insert({x, h - 1 - r});
   return s;
 }
 
 // Runs: consecutive pixels of a row merge; a gap splits.
 TEST(PixelTopology, Runs) {
-  const std::vector<PixelRun> r = pixel_runs(from_rows({"##.###", "######"}));
+  const std::vector<PixelRun> r = from_rows({"##.###", "######"}).runs();
   ASSERT_EQ(r.size(), 3u);
   EXPECT_EQ(r[0].y, 0);
   EXPECT_EQ(r[0].x_end, 6);
@@ -79,7 +78,7 @@ TEST(PixelTopology, MatchesFloodFill) {
       for (int x = 0; x < w; ++x)
         if (std::uniform_real_distribution<double>(0, 1)(rng) < density) {
           grid[(y + 1) * (w + 2) + x + 1] = 1;
-          s.push_back({x, y});
+          s.insert({x, y});
         }
     auto fill = [&](int value, bool eight) {
       std::vector<int> seen(grid.size(), 0);

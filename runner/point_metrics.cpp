@@ -37,7 +37,7 @@ void measure_point(const View& view, const IdealPoint& ideal, const PixelSet& li
   rec.pixels = int64_t(lit.size());
   rec.visibility = classify_point(ideal.visible, lit.size());
   if (rec.visibility == Visibility::kTrueVisible) {
-    rec.pe = point_error(ideal.window, lit[0]);
+    rec.pe = point_error(ideal.window, lit.front());
     rec.pe_norm = rec.pe / view.norm_length();
   }
 }

@@ -110,11 +110,10 @@ bool diamond_exit_fragment(Vec2 a, Vec2 b, Pixel f) {
 }
 
 PixelSet rasterize_segment(Vec2 a, Vec2 b, int width, int height, int subpixel_bits) {
-  PixelSet out;
-  if (!finite(a) || !finite(b)) return out;
+  if (!finite(a) || !finite(b)) return {};
   a = snap(a, subpixel_bits);
   b = snap(b, subpixel_bits);
-  if (same_point(a, b)) return out;  // it exits no diamond
+  if (same_point(a, b)) return {};  // it exits no diamond
   // Enumerate along the major axis u (v the minor one): with |dv/du| <= 1 the L1 distance from a
   // centre to the segment is |cu - uq| + |cv - vq|, (uq, vq) the segment point nearest in u, so
   // only rows floor(vq) - 1 .. floor(vq) + 1 can be lit in a column. Clear cases are decided in
@@ -129,6 +128,7 @@ PixelSet rasterize_segment(Vec2 a, Vec2 b, int width, int height, int subpixel_b
   // The window bounds also keep the int conversions in range.
   const int32_t i0 = int32_t(std::max(std::floor(umin) - 1, 0.0));
   const int32_t i1 = int32_t(std::min(std::floor(umax) + 1, double(nu - 1)));
+  std::vector<Pixel> out;  // a segment lights O(length) pixels: collect, then sort into runs
   for (int32_t i = i0; i <= i1; ++i) {
     const double cu = i + 0.5;
     const double uq = std::clamp(cu, umin, umax);
@@ -153,8 +153,7 @@ PixelSet rasterize_segment(Vec2 a, Vec2 b, int width, int height, int subpixel_b
       if (lit) out.push_back(f);
     }
   }
-  normalize(out);
-  return out;
+  return PixelSet::from_pixels(std::move(out));
 }
 
 PixelSet rasterize_segment(const ClippedSegment& s, int width, int height, int subpixel_bits) {
@@ -183,8 +182,6 @@ PixelSet rasterize_convex_polygon(const std::vector<Vec2>& polygon, int width, i
   // Rows whose centre height lies in [ymin, ymax] (exact comparisons below).
   const int32_t j0 = int32_t(std::clamp(std::floor(ymin - 0.5), 0.0, double(height)));
   const int32_t j1 = int32_t(std::clamp(std::ceil(ymax - 0.5), -1.0, double(height - 1)));
-  const double area = polygon_signed_area(poly);
-  out.reserve(size_t(std::min(area + 2.0 * (ymax - ymin) + 8.0, 1e8)));
   for (int32_t j = j0; j <= j1; ++j) {
     const double yc = j + 0.5;
     if (yc < ymin || yc > ymax) continue;
@@ -205,12 +202,9 @@ PixelSet rasterize_convex_polygon(const std::vector<Vec2>& polygon, int width, i
     int32_t hi = int32_t(std::clamp(i1 + 1, -1.0, double(width - 1)));
     while (lo <= hi && !covers(poly, {lo + 0.5, yc})) ++lo;
     while (hi >= lo && !covers(poly, {hi + 0.5, yc})) --hi;
-    if (lo > hi) continue;
-    const size_t at = out.size();
-    out.resize(at + size_t(hi - lo + 1));  // one resize per row, then plain stores
-    for (int32_t i = lo; i <= hi; ++i) out[at + size_t(i - lo)] = Pixel{i, j};
+    out.append_run(j, lo, hi + 1);  // rows ascend: one run per row (a convex row is one interval)
   }
-  return out;  // rows ascend, x ascends within a row: already sorted
+  return out;
 }
 
 PixelSet rasterize_polygon(const ClippedPolygon& p, int width, int height, int subpixel_bits) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "runner/pixel_topology.h"
 
@@ -50,7 +51,7 @@ TriangleMetrics measure_triangle(const View& view, const Primitive& prim, const 
 TriangleMetrics measure_triangle(const ClippedPolygon& proj, const PolygonCoverage& cov,
                                  const PixelSet& lit, int width, int height) {
   TriangleMetrics m;
-  m.rendered = int64_t(lit.size());
+  m.rendered = lit.size();
   if (proj.status == ClipStatus::kInvalid) {
     m.projected_area = m.rendered_outside = m.unrendered_inside = kNaN;
     m.te_signed = m.te_unsigned = m.te_signed_norm = m.te_unsigned_norm = kNaN;
@@ -60,47 +61,41 @@ TriangleMetrics measure_triangle(const ClippedPolygon& proj, const PolygonCovera
   m.valid = true;
   m.projected_area = proj.status == ClipStatus::kVisible ? proj.area : 0.0;
 
-  // Walk the coverage rows and the lit pixels together. Lit pixels in no coverage row, or in a
-  // row but neither in its run nor among its partial pixels, are wholly outside (outside = 1).
-  int64_t lit_wholly_outside = 0;
+  // Walk the coverage rows and the lit runs together. Lit pixels in no coverage row, or in a row
+  // but neither in its run nor among its partial pixels, are wholly outside (outside = 1).
+  const std::vector<PixelRun>& runs = lit.runs();
+  int64_t lit_covered = 0;  // lit pixels with positive area inside proj(T)
   double lit_partly_outside = 0, unlit_inside = 0;
-  size_t k = 0;
-  const size_t n = lit.size();
+  size_t j = 0;
   for (const CoverageRow& row : cov.rows) {
-    // Each search starts where the last one ended, guessing that lit pixels are consecutive
-    // (exact for a filled row), so a row costs O(1) probes instead of O(log |P|).
-    constexpr int32_t kLeft = std::numeric_limits<int32_t>::min();
-    const size_t row_begin = lower_bound_from(lit, k, Pixel{kLeft, row.y});
-    lit_wholly_outside += int64_t(row_begin - k);
-    const bool row_lit = row_begin < n && lit[row_begin].y == row.y;
-    const int64_t skip = row_lit ? int64_t(row.run_begin) - lit[row_begin].x : 0;
-    const size_t run_lo = lower_bound_from(lit, row_begin, Pixel{row.run_begin, row.y},
-                                           size_t(std::max<int64_t>(skip, 0)));
-    const int64_t run_len = std::max(0, row.run_end - row.run_begin);
-    const size_t run_hi = lower_bound_from(lit, run_lo, Pixel{row.run_end, row.y}, size_t(run_len));
-    const size_t row_end = lower_bound_from(lit, run_hi, Pixel{kLeft, row.y + 1});
+    while (j < runs.size() && runs[j].y < row.y) ++j;
+    size_t row_end = j;
+    while (row_end < runs.size() && runs[row_end].y == row.y) ++row_end;
     // The run: lit run pixels lose (1 - run_area) each, unlit ones miss run_area each.
-    const int64_t run_lit = int64_t(run_hi - run_lo);
+    int64_t run_lit = 0;
+    for (size_t r = j; r < row_end; ++r)
+      run_lit += std::max<int64_t>(0, int64_t(std::min(runs[r].x_end, row.run_end)) -
+                                          std::max(runs[r].x_begin, row.run_begin));
+    const int64_t run_len = std::max(0, row.run_end - row.run_begin);
     lit_partly_outside += double(run_lit) * (1.0 - row.run_area);
     unlit_inside += double(run_len - run_lit) * row.run_area;
-    // The partial pixels, merged with the row's lit pixels (skipping the run's lit pixels).
+    // The partial pixels (increasing x) against the row's lit runs.
     int64_t partial_lit = 0;
-    size_t q = row_begin;
+    size_t q = j;
     for (uint32_t i = row.partial_begin; i < row.partial_end; ++i) {
       const PixelArea& pa = cov.partial[i];
-      if (pa.x >= row.run_end && q < run_hi) q = run_hi;
-      while (q < row_end && lit[q].x < pa.x) ++q;
-      if (q < row_end && lit[q].x == pa.x) {
+      while (q < row_end && runs[q].x_end <= pa.x) ++q;
+      if (q < row_end && runs[q].x_begin <= pa.x) {
         lit_partly_outside += 1.0 - pa.area;
         ++partial_lit;
       } else {
         unlit_inside += pa.area;
       }
     }
-    lit_wholly_outside += int64_t(row_end - row_begin) - run_lit - partial_lit;
-    k = row_end;
+    lit_covered += run_lit + partial_lit;
+    j = row_end;
   }
-  lit_wholly_outside += int64_t(n - k);
+  const int64_t lit_wholly_outside = m.rendered - lit_covered;
 
   m.rendered_outside = double(lit_wholly_outside) + lit_partly_outside;
   m.unrendered_inside = unlit_inside;
@@ -117,9 +112,9 @@ TriangleMetrics measure_triangle(const ClippedPolygon& proj, const PolygonCovera
   // Full window: as many in-window lit pixels as window pixels (the set has no duplicates).
   const int64_t window_pixels = int64_t(width) * int64_t(height);
   if (m.rendered >= window_pixels && window_pixels > 0) {
-    int64_t inside = 0;
-    for (const Pixel& p : lit) inside += p.x >= 0 && p.x < width && p.y >= 0 && p.y < height;
-    m.full_window = inside == window_pixels;
+    PixelSet inside = lit;
+    inside.clip_to({0, 0, width, height});
+    m.full_window = inside.size() == window_pixels;
   }
   const PixelTopology topo = pixel_topology(lit);
   m.components = topo.components;

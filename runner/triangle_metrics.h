@@ -8,9 +8,9 @@
 //   TEu = sum_{p in P(T)} outside(proj T, p) + sum_{p not in P(T)} inside(proj T, p)   (eq. 10)
 // over all pixels, with inside + outside = 1 (eq. 8). A rendered pixel wholly inside proj(T) and
 // an unrendered pixel wholly outside contribute 0, so only the polygon's boundary pixels are
-// visited one by one; its interior runs are counted against P(T) with a few probes per row:
-// O(rows + boundary pixels + lit pixels outside proj T), never O(W * H) or O(|P|). The
-// connectivity fields cost O(rows + runs) (pixel_topology.h). Note TEs = |P(T)| - area(proj T).
+// visited one by one; its interior runs are counted against the lit runs of P(T) (pixel_set.h):
+// O(rows + boundary pixels + lit runs), never O(W * H) or O(|P|). The connectivity fields cost
+// O(runs) (pixel_topology.h). Note TEs = |P(T)| - area(proj T).
 //
 // Edge normalisation (the paper's alternative, "divide by the combined length of the visible
 // edges"). Decision: the visible edges are the boundary of proj(T) that lies inside the window:

@@ -65,11 +65,9 @@ TEST(TriangleMetrics, ReferenceTEuIsTheSamplingMisclassification) {
       const PixelSet lit = rasterize_polygon(p, 128, 128);
       const TriangleMetrics m = measure_triangle(p, lit, 128, 128);
       double brute = 0;
-      size_t k = 0;
       for (int y = 0; y < 128; ++y)
         for (int x = 0; x < 128; ++x) {
-          const bool on = k < lit.size() && lit[k].x == x && lit[k].y == y;
-          k += on;
+          const bool on = lit.contains({x, y});
           const double a = pixel_area_in_convex_polygon(p.vertices, {x, y});
           brute += on ? 1 - a : a;
         }
@@ -87,7 +85,7 @@ TEST(TriangleMetrics, FullWindow) {
   ASSERT_EQ(p.status, ClipStatus::kVisible);
   PixelSet lit;
   for (int y = 0; y < 16; ++y)
-    for (int x = 0; x < 16; ++x) lit.push_back({x, y});
+    for (int x = 0; x < 16; ++x) lit.insert({x, y});
   const TriangleMetrics m = measure_triangle(p, lit, 16, 16);
   EXPECT_TRUE(m.full_window);
   EXPECT_EQ(m.te_unsigned, 0.0);
@@ -95,7 +93,7 @@ TEST(TriangleMetrics, FullWindow) {
   EXPECT_EQ(m.visible_edge_length, 0.0);
   EXPECT_TRUE(std::isnan(m.te_unsigned_edge_norm));
   EXPECT_TRUE(m.simply_connected);
-  lit.pop_back();
+  lit.erase({15, 15});
   EXPECT_FALSE(measure_triangle(p, lit, 16, 16).full_window);
 }
 
@@ -132,10 +130,9 @@ TEST(TriangleMetrics, StrayPixelsAndRunsAreCounted) {
   const ClippedPolygon p = window_triangle({2, 2}, {30, 2}, {2, 30}, 40, 40);
   PixelSet lit = rasterize_polygon(p, 40, 40);
   const TriangleMetrics clean = measure_triangle(p, lit, 40, 40);
-  lit.push_back({0, 0});    // below the polygon's rows
-  lit.push_back({35, 10});  // in a polygon row, right of it
-  lit.push_back({39, 39});  // above
-  normalize(lit);
+  lit.insert({0, 0});    // below the polygon's rows
+  lit.insert({35, 10});  // in a polygon row, right of it
+  lit.insert({39, 39});  // above
   const TriangleMetrics m = measure_triangle(p, lit, 40, 40);
   EXPECT_NEAR(m.rendered_outside, clean.rendered_outside + 3, 1e-12);
   EXPECT_NEAR(m.unrendered_inside, clean.unrendered_inside, 1e-12);
@@ -143,7 +140,7 @@ TEST(TriangleMetrics, StrayPixelsAndRunsAreCounted) {
   EXPECT_FALSE(m.simply_connected);
   // Removing an interior pixel: its whole area (1) goes missing, and it makes a hole.
   PixelSet holed = rasterize_polygon(p, 40, 40);
-  holed.erase(std::find(holed.begin(), holed.end(), Pixel{8, 8}));
+  holed.erase({8, 8});
   const TriangleMetrics h = measure_triangle(p, holed, 40, 40);
   EXPECT_NEAR(h.unrendered_inside, clean.unrendered_inside + 1, 1e-12);
   EXPECT_EQ(h.holes, 1);
