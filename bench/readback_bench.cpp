@@ -2,9 +2,10 @@
 // window and field of view (median microseconds per primitive over interleaved rounds):
 //   floor    draw + glFinish only: what the renderer itself must spend;
 //   naive    full-window clear + draw + glFinish + full-window glReadPixels (the paper's method);
-//   region   the project's readback: scissored clear, draw, occlusion query, region glReadPixels;
-//   project  everything `renderaudit run` does per primitive (region readback, ideal geometry,
-//            metrics, reference rasterizer comparison).
+//   region   the project's readback one primitive at a time: draw in the primitive's own colour,
+//            occlusion query, region glReadPixels (and its metrics, without the reference);
+//   project  everything `renderaudit run` does (measure_cases: small primitives batched under one
+//            proof, ideal geometry, metrics, reference rasterizer comparison).
 // Mesa picks its driver once per process, so each platform is measured in a child process
 // (`readback_bench --platform P`) and the parent gathers the rows into one table and a JSON file.
 #include <sys/wait.h>
@@ -17,6 +18,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -47,7 +49,32 @@ View bench_view(double fov, int window) {
   return make_view(fov, window, window, 0.01, 10.0, random_rotation(2008, 1));
 }
 
-// One platform, in this process: prints one JSON object per configuration on stdout.
+// Primitives per call of measure_cases, as `renderaudit run` calls it (in chunks of its own).
+constexpr int kChunk = 64;
+
+double mean(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return v.empty() ? 0 : sum / double(v.size());
+}
+
+struct Timings {
+  std::map<std::string, std::vector<double>> per_primitive;  // floor, naive, region, project
+};
+
+nlohmann::json summary_row(const std::string& platform, Kind kind, int window, double fov,
+                           int primitives, const Timings& t) {
+  nlohmann::json row = {{"platform", platform}, {"kind", kind_name(kind)}, {"window", window},
+                        {"fov_deg", fov},       {"primitives", primitives}};
+  for (const char* m : {"floor", "naive", "region", "project"}) {
+    row[std::string(m) + "_us"] = median(t.per_primitive.at(m));
+    row[std::string(m) + "_mean_us"] = mean(t.per_primitive.at(m));
+  }
+  return row;
+}
+
+// One platform, in this process: prints one JSON object per configuration on stdout, and per
+// kind and window one pooled over both fields of view (fov_deg 0).
 int measure_platform(const Options& opt) {
   const PlatformSpec* spec = find_platform(opt.platform);
   if (!spec || !spec->gallium_driver) {
@@ -57,42 +84,56 @@ int measure_platform(const Options& opt) {
   const char* methods[] = {"floor", "naive", "region", "project"};
   for (Kind kind : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
     for (int window : {128, 907}) {
+      Timings pooled;
       for (double fov : {30.0, 150.0}) {
         const View view = bench_view(fov, window);
-        std::map<std::string, std::vector<double>> us;
-        uint64_t full_scans = 0, project_total = 0;
+        Timings t;
         for (int round = 0; round < opt.rounds; ++round) {
-          for (int m = 0; m < 4; ++m) {
+          std::vector<Primitive> prims;
+          for (int i = 0; i < opt.primitives; ++i)
+            prims.push_back(make_primitive(2008, kind, uint64_t(round) * opt.primitives + i));
+          for (int m = 0; m < 4; ++m) {  // interleaved: every method in every round
             const ReadbackMethod rm = m == 0   ? ReadbackMethod::kDrawOnly
                                       : m == 1 ? ReadbackMethod::kFullWindow
                                                : ReadbackMethod::kRegionWithProof;
             auto platform = create_osmesa_platform(*spec, rm);
             platform->set_view(view);
-            for (int i = 0; i < opt.primitives; ++i) {
-              const Primitive prim = make_primitive(2008, kind, uint64_t(round) * opt.primitives + i);
+            // Mesa compiles its shaders on the first draws: keep that out of the timings.
+            for (uint64_t w = 0; w < 16; ++w)
+              platform->render(make_primitive(7, kind, w), {0, 0, window, window});
+            if (m == 3) {  // exactly what `renderaudit run` does, chunk by chunk
+              std::vector<double>& us = t.per_primitive["project"];
+              for (size_t i = 0; i < prims.size(); i += kChunk) {
+                const std::vector<Primitive> chunk(
+                    prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
+                std::vector<double> cost;
+                measure_cases(opt.platform, *platform, view, chunk, true, &cost);
+                us.insert(us.end(), cost.begin(), cost.end());
+              }
+              continue;
+            }
+            std::vector<double>& us = t.per_primitive[methods[m]];
+            for (const Primitive& prim : prims) {
               const auto t0 = Clock::now();
-              if (m == 3) {
-                measure_case(opt.platform, *platform, view, prim, true);
-              } else if (m == 2) {
-                // Same region as `run` computes, so the readback cost is the project's.
-                const Record r = measure_case(opt.platform, *platform, view, prim, false);
-                (void)r;
+              if (m == 2) {
+                // One primitive at a time with its own proof: the readback without batching.
+                measure_case(opt.platform, *platform, view, prim, false);
               } else {
                 platform->render(prim, {});
               }
-              us[methods[m]].push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+              us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
             }
           }
         }
-        (void)full_scans;
-        (void)project_total;
-        nlohmann::json row = {{"platform", opt.platform}, {"kind", kind_name(kind)},
-                              {"window", window},         {"fov_deg", fov},
-                              {"primitives", opt.primitives * opt.rounds}};
-        for (const char* m : methods) row[std::string(m) + "_us"] = median(us[m]);
-        std::printf("%s\n", row.dump().c_str());
+        for (const auto& [m, v] : t.per_primitive)
+          pooled.per_primitive[m].insert(pooled.per_primitive[m].end(), v.begin(), v.end());
+        std::printf("%s\n", summary_row(opt.platform, kind, window, fov,
+                                        opt.primitives * opt.rounds, t).dump().c_str());
         std::fflush(stdout);
       }
+      std::printf("%s\n", summary_row(opt.platform, kind, window, 0,
+                                      2 * opt.primitives * opt.rounds, pooled).dump().c_str());
+      std::fflush(stdout);
     }
   }
   return 0;
@@ -111,16 +152,26 @@ int run_children(const Options& opt, const char* self) {
       return 1;
     }
   }
-  std::printf("Median microseconds per primitive (%d primitives x %d interleaved rounds each)\n",
-              opt.primitives, opt.rounds);
-  std::printf("%-16s %-9s %6s %5s %9s %9s %9s %9s %13s %13s\n", "platform", "kind", "window", "fov",
-              "floor", "naive", "region", "project", "project/floor", "naive/project");
+  std::printf(
+      "Microseconds per primitive, %d primitives x %d interleaved rounds per field of view ('both'\n"
+      "pools the two). region: the project's readback and metrics one primitive at a time; project:\n"
+      "what `run` spends per primitive (its batch's drawing and proof shared equally, plus its own\n"
+      "geometry, metrics and reference comparison). ratios: of medians, and naive/project of means.\n",
+      opt.primitives, opt.rounds);
+  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %7s %7s\n", "platform", "kind", "window",
+              "fov", "floor", "naive", "region", "project", "floor", "project", "project", "naive");
+  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %7s %7s\n", "", "", "", "", "median",
+              "median", "median", "median", "mean", "mean", "/floor", "/proj");
   for (const auto& r : rows) {
-    const double floor = r["floor_us"], naive = r["naive_us"], project = r["project_us"];
-    std::printf("%-16s %-9s %6d %5.0f %9.1f %9.1f %9.1f %9.1f %13.2f %13.2f\n",
+    const double fov = r["fov_deg"];
+    const std::string fov_text = fov == 0 ? "both" : std::to_string(int(fov));
+    const double floor = r["floor_us"], project = r["project_us"];
+    std::printf("%-16s %-9s %6d %5s %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %7.2f %7.1f\n",
                 r["platform"].get<std::string>().c_str(), r["kind"].get<std::string>().c_str(),
-                r["window"].get<int>(), r["fov_deg"].get<double>(), floor, naive,
-                r["region_us"].get<double>(), project, project / floor, naive / project);
+                r["window"].get<int>(), fov_text.c_str(), floor, r["naive_us"].get<double>(),
+                r["region_us"].get<double>(), project, r["floor_mean_us"].get<double>(),
+                r["project_mean_us"].get<double>(), project / floor,
+                r["naive_mean_us"].get<double>() / r["project_mean_us"].get<double>());
   }
   const std::string dir = opt.json_path.substr(0, opt.json_path.rfind('/'));
   if (!dir.empty()) std::system(("mkdir -p " + dir).c_str());
@@ -148,11 +199,16 @@ int main(int argc, char** argv) {
     };
     if (a == "--platform") opt.platform = value();
     else if (a == "--json") opt.json_path = value();
+    else if (a == "--platforms") {
+      opt.platforms.clear();
+      std::stringstream list(value());
+      for (std::string p; std::getline(list, p, ',');) opt.platforms.push_back(p);
+    }
     else if (a == "--primitives") opt.primitives = std::max(1, std::stoi(value()));
     else if (a == "--rounds") opt.rounds = std::max(1, std::stoi(value()));
     else {
       std::fprintf(stderr,
-                   "usage: readback_bench [--primitives N] [--rounds R] [--json FILE] [--platform P]\n");
+                   "usage: readback_bench [--primitives N] [--rounds R] [--json FILE] [--platforms P,Q]\n");
       return 2;
     }
   }

@@ -1,5 +1,7 @@
 #include "runner/case_measurement.h"
+#include <chrono>
 #include <stdexcept>
+#include <vector>
 
 #include "runner/clipping.h"
 #include "runner/line_metrics.h"
@@ -27,51 +29,52 @@ Record case_identity(const std::string& platform_name, const View& view, const P
 
 namespace {
 
-// Renders a clipped segment or triangle, reading back first around its visible part, and measures
-// it with `measure`. False (status invalid, nothing drawn) when the clip found no projection, e.g.
-// w = 0 at a vertex.
-template <typename Clipped, typename Measure>
-bool render_clipped(const Clipped& clipped, Platform& platform, const View& view,
-                    const Primitive& prim, Record& rec, RenderResult& rendered, Measure measure) {
-  if (clipped.status == ClipStatus::kInvalid) {
-    rec.status = CaseStatus::kInvalid;
-    return false;
-  }
-  rendered = platform.render(prim, bounding_rect(clipped, view.width, view.height, kRegionMargin));
-  measure(clipped, view, rendered.lit, rec);
-  return true;
-}
+// The ideal side of one case, computed before anything is drawn.
+struct PreparedCase {
+  Record rec;              // identity; status kInvalid when nothing may be drawn
+  IdealPoint point;        // Kind::kPoint
+  ClippedSegment segment;  // Kind::kLine
+  ClippedPolygon polygon;  // Kind::kTriangle
+  PixelRect expected;      // where the ideal primitive lies, plus kRegionMargin
+};
 
-}  // namespace
-
-Record measure_case(const std::string& platform_name, Platform& platform, const View& view,
-                    const Primitive& prim, bool compare_with_reference) {
-  Record rec = case_identity(platform_name, view, prim);
+PreparedCase prepare_case(const std::string& platform_name, const View& view,
+                          const Primitive& prim) {
+  PreparedCase c;
+  c.rec = case_identity(platform_name, view, prim);
   for (int i = 0; i < vertex_count(prim.kind); ++i) {
     if (!is_finite(prim.v[i])) {  // never hand a driver NaN or inf, never a silent number
-      rec.status = CaseStatus::kInvalid;
-      return rec;
+      c.rec.status = CaseStatus::kInvalid;
+      return c;
     }
   }
-
-  RenderResult rendered;
   switch (prim.kind) {
-    case Kind::kPoint: {
-      const IdealPoint ideal = project_point(view, prim.v[0]);
-      rendered = platform.render(prim, point_region(view, ideal, kRegionMargin));
-      measure_point(view, ideal, rendered.lit, rec);
+    case Kind::kPoint:
+      c.point = project_point(view, prim.v[0]);
+      c.expected = point_region(view, c.point, kRegionMargin);
       break;
-    }
     case Kind::kLine:
-      if (!render_clipped(clip_segment(view, prim.v[0], prim.v[1]), platform, view, prim, rec,
-                          rendered, measure_segment_case))
-        return rec;
+      c.segment = clip_segment(view, prim.v[0], prim.v[1]);
+      // No projection (e.g. w = 0 at a vertex): status invalid, nothing drawn.
+      if (c.segment.status == ClipStatus::kInvalid) c.rec.status = CaseStatus::kInvalid;
+      c.expected = bounding_rect(c.segment, view.width, view.height, kRegionMargin);
       break;
     case Kind::kTriangle:
-      if (!render_clipped(clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]), platform, view,
-                          prim, rec, rendered, measure_triangle_case))
-        return rec;
+      c.polygon = clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
+      if (c.polygon.status == ClipStatus::kInvalid) c.rec.status = CaseStatus::kInvalid;
+      c.expected = bounding_rect(c.polygon, view.width, view.height, kRegionMargin);
       break;
+  }
+  return c;
+}
+
+Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
+                   const RenderResult& rendered, bool compare_with_reference) {
+  Record& rec = c.rec;
+  switch (prim.kind) {
+    case Kind::kPoint: measure_point(view, c.point, rendered.lit, rec); break;
+    case Kind::kLine: measure_segment_case(c.segment, view, rendered.lit, rec); break;
+    case Kind::kTriangle: measure_triangle_case(c.polygon, view, rendered.lit, rec); break;
   }
   rec.render_us = rendered.render_us;
   rec.pixel_hash = pixel_set_hash(rendered.lit);
@@ -79,6 +82,70 @@ Record measure_case(const std::string& platform_name, Platform& platform, const 
                      ? symmetric_difference_size(rendered.lit, rasterize_reference(view, prim))
                      : 0;
   return rec;
+}
+
+bool overlaps(const PixelRect& a, const PixelRect& b) {
+  return !a.empty() && !b.empty() && a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+}  // namespace
+
+std::vector<Record> measure_cases(const std::string& platform_name, Platform& platform,
+                                  const View& view, const std::vector<Primitive>& prims,
+                                  bool compare_with_reference, std::vector<double>* cost_us) {
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t0) {
+    return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+  };
+  std::vector<double> cost(prims.size(), 0.0);
+  std::vector<PreparedCase> cases;
+  cases.reserve(prims.size());
+  for (size_t i = 0; i < prims.size(); ++i) {
+    const auto t0 = Clock::now();
+    cases.push_back(prepare_case(platform_name, view, prims[i]));
+    cost[i] += since(t0);
+  }
+
+  std::vector<Record> records(prims.size());
+  std::vector<size_t> batch;  // indices into prims
+  std::vector<Primitive> batch_prims;
+  std::vector<PixelRect> batch_regions;
+  auto flush = [&] {
+    if (batch.empty()) return;
+    auto t0 = Clock::now();
+    const std::vector<RenderResult> results = platform.render_batch(batch_prims, batch_regions);
+    const double shared = since(t0) / double(batch.size());  // the batch shares its proof
+    for (size_t k = 0; k < batch.size(); ++k) {
+      t0 = Clock::now();
+      records[batch[k]] = finish_case(cases[batch[k]], view, prims[batch[k]], results[k],
+                                      compare_with_reference);
+      cost[batch[k]] += shared + since(t0);
+    }
+    batch.clear(), batch_prims.clear(), batch_regions.clear();
+  };
+  for (size_t i = 0; i < prims.size(); ++i) {
+    if (cases[i].rec.status == CaseStatus::kInvalid) {
+      records[i] = cases[i].rec;
+      continue;
+    }
+    // Batch small primitives with disjoint regions (the usual case for all but large triangles
+    // and lines), so that one completeness proof covers the batch; a large one goes alone.
+    const PixelRect& r = cases[i].expected;
+    const bool large = r.area() > kBatchMaxRegionArea;
+    bool clash = batch.size() >= kMaxBatch || large;
+    for (size_t k = 0; k < batch_regions.size() && !clash; ++k) clash = overlaps(batch_regions[k], r);
+    if (clash) flush();
+    batch.push_back(i), batch_prims.push_back(prims[i]), batch_regions.push_back(r);
+    if (large) flush();
+  }
+  flush();
+  if (cost_us) *cost_us = std::move(cost);
+  return records;
+}
+
+Record measure_case(const std::string& platform_name, Platform& platform, const View& view,
+                    const Primitive& prim, bool compare_with_reference) {
+  return measure_cases(platform_name, platform, view, {prim}, compare_with_reference).front();
 }
 
 void measure_segment_case(const ClippedSegment& seg, const View& view, const PixelSet& lit,

@@ -3,8 +3,10 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "runner/clipping.h"
+#include "runner/point_metrics.h"
 #include "runner/platform.h"
 #include "runner/records.h"
 
@@ -14,9 +16,24 @@ namespace ra {
 // looked for first (the occlusion-query proof, or a full scan, covers the rest of the window).
 constexpr int kRegionMargin = 2;
 
-// Renders `prim` on `platform` and fills its record: visibility, the kind's metrics, pixel hash,
-// render time. The reference rasterizer's pixel set is compared with the rendered one (ref_diff)
-// unless the platform is itself the reference (`compare_with_reference` false: ref_diff = 0).
+// Primitives whose expected regions are disjoint and at most this large (px^2) are drawn in
+// batches of up to kMaxBatch under one completeness proof (Platform::render_batch); larger ones
+// are drawn alone, where the proof's fixed cost no longer matters.
+constexpr int64_t kBatchMaxRegionArea = 64 * 64;
+constexpr size_t kMaxBatch = 64;
+
+// Renders each of `prims` on `platform` and fills their records, in order: visibility, the kind's
+// metrics, pixel hash, render time. The reference rasterizer's pixel set is compared with the
+// rendered one (ref_diff) unless the platform is itself the reference (`compare_with_reference`
+// false: ref_diff = 0). Primitives with NaN/inf coordinates, or no projection, are never drawn:
+// status invalid. `cost_us` (for benchmarks), when given, receives each primitive's share of the
+// wall time in microseconds: its own geometry and measurement, plus an equal share of its batch's
+// drawing and proof.
+std::vector<Record> measure_cases(const std::string& platform_name, Platform& platform,
+                                  const View& view, const std::vector<Primitive>& prims,
+                                  bool compare_with_reference,
+                                  std::vector<double>* cost_us = nullptr);
+// The same for one primitive.
 Record measure_case(const std::string& platform_name, Platform& platform, const View& view,
                     const Primitive& prim, bool compare_with_reference);
 

@@ -50,6 +50,16 @@ class Platform {
   // (clipped bounding box plus a margin, possibly empty): an implementation may read back only
   // that region when it proves that nothing was lit outside it.
   virtual RenderResult render(const Primitive& prim, const PixelRect& expected) = 0;
+  // Draws each primitive as render() would, in order, and returns their results. An
+  // implementation may share one completeness proof among the batch (osmesa_platform.cpp); this
+  // default draws them one by one.
+  virtual std::vector<RenderResult> render_batch(const std::vector<Primitive>& prims,
+                                                 const std::vector<PixelRect>& expected) {
+    std::vector<RenderResult> out;
+    out.reserve(prims.size());
+    for (size_t i = 0; i < prims.size(); ++i) out.push_back(render(prims[i], expected[i]));
+    return out;
+  }
 };
 
 // Creates the platform for this process. OSMesa platforms set GALLIUM_DRIVER (and

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -68,9 +69,14 @@ void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& s
   std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
   if (!out) throw std::runtime_error("cannot create " + tmp);
   out << records_header() << '\n';
-  for (uint64_t i = shard.begin; i < shard.end; ++i) {
-    const Primitive prim = make_primitive(exp.seed, shard.kind, i);
-    write_record(out, measure_case(shard.platform, *platform, *view, prim, !exact));
+  constexpr uint64_t kChunk = 1024;  // primitives measured together (and batched inside)
+  std::vector<Primitive> prims;
+  for (uint64_t first = shard.begin; first < shard.end; first += kChunk) {
+    prims.clear();
+    for (uint64_t i = first; i < std::min(shard.end, first + kChunk); ++i)
+      prims.push_back(make_primitive(exp.seed, shard.kind, i));
+    for (const Record& r : measure_cases(shard.platform, *platform, *view, prims, !exact))
+      write_record(out, r);
   }
   out.close();
   if (!out) throw std::runtime_error("cannot write " + tmp + " (disk full?)");
