@@ -1,4 +1,4 @@
-// `renderaudit run EXPERIMENT.toml [--out DIR] [--jobs N]`.
+// `renderaudit run EXPERIMENT.toml [--out DIR] [--jobs N] ...`.
 #include <cstdio>
 
 #include "analysis/run_summary.h"
@@ -26,14 +26,26 @@ void register_run_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1.0, 86400.0));
   cmd->add_option("--platform,-p", opt.only_platforms,
                   "run only this platform's shards (repeatable; default: all of the experiment's)");
+  cmd->add_option("--expect-renderer", opt.expect_renderer,
+                  "stop (exit 2) as soon as a Mesa platform's GL_RENDERER does not match this "
+                  "regular expression, e.g. 'llvmpipe'");
   cmd->add_flag("--quiet,-q", quiet, "no progress line");
   cmd->callback([&exit_code] {
     opt.progress = !quiet;
     const RunResult r = run_experiment(opt);
-    std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu failed)\n",
+    std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
                 r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
-                r.failures.size());
-    for (const auto& f : r.failures) std::printf("  FAILED %s: %s\n", f.shard.c_str(), f.reason.c_str());
+                r.shards_total - r.shards_complete);
+    for (const auto& f : r.failures) std::printf("  worker failed: %s: %s\n", f.shard.c_str(), f.reason.c_str());
+    for (const auto& f : r.failed_primitives)
+      std::printf("  primitive %llu of %s recorded as %s: %s\n",
+                  static_cast<unsigned long long>(f.index), f.shard.c_str(), status_name(f.status),
+                  f.reason.c_str());
+    if (!r.wrong_renderer.empty()) {
+      std::printf("stopped: %s\n", r.wrong_renderer.c_str());
+      exit_code = kExitUsage;
+      return;
+    }
     if (r.interrupted) {
       std::printf("interrupted: run the same command again to resume\n");
       exit_code = 130;
@@ -42,7 +54,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
     const std::string summary = write_run_summary(r.run_dir);
     std::printf("%s", summary.c_str());
     std::printf("summary: %s/summary.md\n", r.run_dir.c_str());
-    exit_code = r.failures.empty() ? kExitOk : kExitFindings;
+    const bool clean = r.shards_complete == r.shards_total && r.failed_primitives.empty();
+    exit_code = clean ? kExitOk : kExitFindings;
   });
 }
 

@@ -1,5 +1,6 @@
-// `renderaudit worker DIR PLATFORM KIND VIEW BEGIN END`: runs one shard in this process. Started by
-// `renderaudit run`; not meant to be typed by hand.
+// `renderaudit worker DIR PLATFORM KIND VIEW BEGIN END [--records-dir D]`: runs one shard (or a
+// part of one, when bisecting a crash) in this process. Started by `renderaudit run`; not meant to
+// be typed by hand.
 #include "app/commands.h"
 #include "runner/errors.h"
 #include "runner/experiment.h"
@@ -10,7 +11,7 @@ namespace ra::app {
 void register_worker_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("worker", "internal: run one shard (started by `run`)");
   cmd->group("");  // hidden from --help
-  static std::string dir, platform, kind;
+  static std::string dir, platform, kind, records_dir;
   static int view = 0;
   static uint64_t begin = 0, end = 0;
   cmd->add_option("dir", dir)->required();
@@ -19,11 +20,12 @@ void register_worker_command(CLI::App& app, int& exit_code) {
   cmd->add_option("view", view)->required();
   cmd->add_option("begin", begin)->required();
   cmd->add_option("end", end)->required();
+  cmd->add_option("--records-dir", records_dir, "where the records file goes (default DIR/records)");
   cmd->callback([&exit_code] {
     const Experiment exp = load_experiment(dir + "/experiment.toml");
     Shard shard{platform, Kind::kPoint, view, begin, end};
     if (!parse_kind(kind, &shard.kind)) throw UserError("unknown kind '" + kind + "'");
-    run_shard(dir, exp, shard);
+    run_shard(dir, exp, shard, records_dir);
     exit_code = kExitOk;
   });
 }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <map>
 #include <thread>
@@ -19,7 +20,9 @@
 #include "runner/errors.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
+#include "runner/renderer_check.h"
 #include "runner/shard.h"
+#include "runner/shard_recovery.h"
 
 namespace fs = std::filesystem;
 
@@ -32,7 +35,7 @@ void on_signal(int) { g_interrupted = 1; }
 using Clock = std::chrono::steady_clock;
 
 struct Running {
-  Shard shard;
+  WorkItem item;
   Clock::time_point started;
 };
 
@@ -44,15 +47,19 @@ std::string describe_exit(int status) {
   return "exited with status " + std::to_string(WEXITSTATUS(status));
 }
 
-pid_t spawn_worker(const std::string& program, const std::string& dir, const Shard& s) {
-  const std::string log = dir + "/logs/" + s.id() + ".log";
+pid_t spawn_worker(const std::string& program, const std::string& dir, const WorkItem& item,
+                   const std::string& records_dir) {
+  const Shard& s = item.shard;
+  const std::string log = dir + "/logs/" + s.id() + (item.attempt > 1 ? ".retry" : "") + ".log";
   const std::vector<std::string> args = {program, "worker", dir, s.platform, kind_name(s.kind),
                                          std::to_string(s.view), std::to_string(s.begin),
-                                         std::to_string(s.end)};
+                                         std::to_string(s.end), "--records-dir", records_dir};
+  const std::string attempt = std::to_string(item.attempt);
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {
     ::setpgid(0, 0);  // its own process group, so a timeout kills everything it started
+    ::setenv("RA_RENDER_ATTEMPT", attempt.c_str(), 1);
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       ::dup2(fd, 1);
@@ -89,6 +96,7 @@ void prepare_run_dir(const Experiment& exp, const std::string& dir) {
                           "another --out");
   }
   for (const char* sub : {"", "/records", "/drivers", "/logs"}) fs::create_directories(dir + sub);
+  fs::remove_all(ShardRecovery::parts_dir(dir));  // a bisection cut short restarts from scratch
   if (!fs::exists(copy)) write_file_atomic(copy, exp.text);
   // Temporary files are what a killed run left behind: their shards are simply redone.
   for (const auto& e : fs::directory_iterator(dir + "/records"))
@@ -125,7 +133,7 @@ RunResult run_experiment(const RunOptions& options) {
                       " is not one of the experiment's platforms");
   prepare_run_dir(exp, dir);
 
-  std::vector<Shard> todo;
+  std::deque<WorkItem> todo;
   std::vector<Shard> all = plan_shards(exp);
   if (!options.only_platforms.empty()) {
     const auto& keep = options.only_platforms;
@@ -138,7 +146,7 @@ RunResult run_experiment(const RunOptions& options) {
     if (fs::exists(s.records_path(dir)))
       ++result.shards_done_before;  // finished by an earlier invocation: kept as is
     else
-      todo.push_back(s);
+      todo.push_back(WorkItem{s, "", 1, timeout_s});
   }
   result.shards_total = all.size();
 
@@ -175,46 +183,80 @@ RunResult run_experiment(const RunOptions& options) {
   const bool show = options.progress && ::isatty(2);
   const auto t_start = Clock::now();
   uint64_t primitives_done = 0, primitives_todo = 0;
-  for (const Shard& s : todo) primitives_todo += s.end - s.begin;
+  for (const WorkItem& w : todo) primitives_todo += w.shard.size();
+  const size_t shards_to_run = todo.size();
 
+  ShardRecovery recovery(dir, exp, timeout_s);
+  RendererCheck renderer_check(dir, options.expect_renderer);
   std::map<pid_t, Running> running;
-  size_t next = 0, finished = 0;
+  size_t finished = 0;
   auto last_progress = Clock::now() - std::chrono::seconds(1);
-  while ((next < todo.size() || !running.empty())) {
+  // A worker ended: count it, and queue what follows from a crash or hang (a re-run first, then
+  // the halves of a bisection, ahead of the shards not yet started).
+  auto conclude = [&](const Running& r, WorkOutcome outcome, const std::string& reason) {
+    const WorkItem& w = r.item;
+    if (outcome == WorkOutcome::kOk) {
+      primitives_done += w.shard.size();
+      if (!w.is_part()) ++finished, ++result.shards_run;
+    } else if (!w.is_part()) {
+      result.failures.push_back({w.shard.id(), reason + (w.attempt == 1 ? "; re-running it"
+                                                                        : "; bisecting it")});
+    }
+    bool assembled = false;
+    const std::vector<WorkItem> next = recovery.on_finished(w, outcome, reason, &assembled);
+    for (auto it = next.rbegin(); it != next.rend(); ++it) todo.push_front(*it);
+    if (assembled) ++finished, ++result.shards_run;
+  };
+  while (!todo.empty() || !running.empty()) {
     if (g_interrupted) {
       for (auto& [pid, r] : running) ::kill(-pid, SIGKILL);
       for (auto& [pid, r] : running) ::waitpid(pid, nullptr, 0);
       result.interrupted = true;
       break;
     }
-    while (next < todo.size() && int(running.size()) < jobs) {
-      const pid_t pid = spawn_worker(program, dir, todo[next]);
-      running[pid] = {todo[next++], Clock::now()};
+    if (const std::string wrong = renderer_check.mismatch(); !wrong.empty()) {
+      for (auto& [pid, r] : running) ::kill(-pid, SIGKILL);
+      for (auto& [pid, r] : running) ::waitpid(pid, nullptr, 0);
+      running.clear();
+      todo.clear();
+      result.wrong_renderer = wrong;
+      break;
+    }
+    while (!todo.empty() && int(running.size()) < jobs) {
+      const WorkItem w = todo.front();
+      todo.pop_front();
+      const pid_t pid = spawn_worker(program, dir, w, recovery.records_dir(w));
+      running[pid] = {w, Clock::now()};
     }
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, WNOHANG);
     if (pid > 0 && running.count(pid)) {
       const Running r = running[pid];
       running.erase(pid);
-      ++finished;
-      if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(r.shard.records_path(dir))) {
-        ++result.shards_run;
-        primitives_done += r.shard.end - r.shard.begin;
-      } else {
-        result.failures.push_back({r.shard.id(), describe_exit(status) + "; log: " + dir +
-                                                     "/logs/" + r.shard.id() + ".log"});
+      const std::string written = recovery.records_dir(r.item) + "/" + r.item.shard.id() + ".csv";
+      const std::string log = "; log: " + dir + "/logs/" + r.item.shard.id() +
+                              (r.item.attempt > 1 ? ".retry" : "") + ".log";
+      if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(written)) {
+        conclude(r, WorkOutcome::kOk, "");
+      } else if (WIFSIGNALED(status)) {  // the driver crashed: re-run, then bisect
+        conclude(r, WorkOutcome::kCrash, describe_exit(status) + log);
+      } else {  // an error the worker reported (I/O, bad input): no primitive to blame
+        ++finished;
+        result.failures.push_back({r.item.shard.id(), describe_exit(status) + log});
       }
       continue;  // reap everything that is ready before sleeping
     }
     const auto now = Clock::now();
     for (auto& [p, r] : running) {
-      if (std::chrono::duration<double>(now - r.started).count() > timeout_s) {
+      if (std::chrono::duration<double>(now - r.started).count() > r.item.timeout_s) {
         ::kill(-p, SIGKILL);
         ::waitpid(p, nullptr, 0);
-        ++finished;
-        result.failures.push_back({r.shard.id(), "timed out after " + std::to_string(int(timeout_s)) +
-                                                     " s (killed)"});
+        const Running timed_out = r;
         running.erase(p);
+        char limit[32];
+        std::snprintf(limit, sizeof limit, "%g", timed_out.item.timeout_s);
+        conclude(timed_out, WorkOutcome::kTimeout,
+                 std::string("timed out after ") + limit + " s (killed)");
         break;
       }
     }
@@ -223,13 +265,14 @@ RunResult run_experiment(const RunOptions& options) {
       const double elapsed = std::chrono::duration<double>(now - t_start).count();
       const double rate = primitives_done / std::max(elapsed, 1e-9);
       std::fprintf(stderr, "\r[%zu/%zu shards] %llu primitives, %.0f/s, %zu failed, left %s   ",
-                   finished, todo.size(), static_cast<unsigned long long>(primitives_done), rate,
+                   finished, shards_to_run, static_cast<unsigned long long>(primitives_done), rate,
                    result.failures.size(),
                    format_duration(primitives_done ? (primitives_todo - primitives_done) / rate : NAN).c_str());
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   if (show) std::fprintf(stderr, "\n");
+  fs::remove_all(ShardRecovery::parts_dir(dir));  // what killed workers left half-written
   sigaction(SIGINT, &old_int, nullptr);
   sigaction(SIGTERM, &old_term, nullptr);
 
@@ -243,9 +286,19 @@ RunResult run_experiment(const RunOptions& options) {
   nlohmann::json failures = nlohmann::json::array();
   for (const auto& f : result.failures) failures.push_back({{"shard", f.shard}, {"reason", f.reason}});
   manifest["failures"] = failures;
-  manifest["status"] = result.interrupted ? "interrupted"
-                       : complete == all.size() ? "complete"
-                                                : "failed";
+  result.failed_primitives = recovery.failed_primitives();
+  nlohmann::json failed = manifest.value("failed_primitives", nlohmann::json::array());
+  for (const FailedPrimitive& f : result.failed_primitives)
+    failed.push_back({{"shard", f.shard}, {"index", f.index}, {"status", status_name(f.status)},
+                      {"reason", f.reason}});
+  manifest["failed_primitives"] = failed;
+  result.shards_complete = complete;
+  if (!result.wrong_renderer.empty()) manifest["wrong_renderer"] = result.wrong_renderer;
+  manifest["status"] = result.interrupted                 ? "interrupted"
+                       : !result.wrong_renderer.empty()   ? "wrong-renderer"
+                       : complete != all.size()           ? "failed"
+                       : !failed.empty()                  ? "complete-with-failed-primitives"
+                                                          : "complete";
   write_file_atomic(manifest_path, manifest.dump(2) + "\n");
   return result;
 }

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "runner/shard_recovery.h"
+
 namespace ra {
 
 struct RunOptions {
@@ -16,16 +18,21 @@ struct RunOptions {
   bool progress = true;         // a progress line on stderr (only when it is a terminal)
   std::vector<std::string> only_platforms;  // non-empty: run only these platforms' shards
   std::string worker_program;   // the executable that runs `worker` (default: this one)
+  std::string expect_renderer;  // non-empty: ECMAScript regex every driver's GL_RENDERER must match
 };
 
 struct ShardFailure {
   std::string shard, reason;  // reason: "crashed (signal 11)", "timed out after 600 s", ...
 };
 
+
 struct RunResult {
   std::string run_dir;
   size_t shards_total = 0, shards_done_before = 0, shards_run = 0;
-  std::vector<ShardFailure> failures;
+  size_t shards_complete = 0;            // with a records file, this or an earlier invocation
+  std::vector<ShardFailure> failures;    // every worker that crashed, hung or failed (events)
+  std::vector<FailedPrimitive> failed_primitives;  // recorded as crash / timeout
+  std::string wrong_renderer;            // why --expect-renderer stopped the run, or empty
   bool interrupted = false;
 };
 

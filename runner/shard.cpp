@@ -53,7 +53,8 @@ static void write_driver_info(const std::string& run_dir, const std::string& nam
   commit_file(tmp, path);
 }
 
-void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& shard) {
+void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& shard,
+               const std::string& records_dir) {
   const View* view = nullptr;
   for (const View& v : exp.views)
     if (v.id == shard.view) view = &v;
@@ -64,7 +65,8 @@ void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& s
   platform->set_view(*view);
   const bool exact = shard.platform == "reference";
 
-  const std::string path = shard.records_path(run_dir);
+  const std::string path = records_dir.empty() ? shard.records_path(run_dir)
+                                               : records_dir + "/" + shard.id() + ".csv";
   const std::string tmp = path + ".tmp";
   std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
   if (!out) throw std::runtime_error("cannot create " + tmp);
