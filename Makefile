@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
-.PHONY: all deps build run analyze plot report test bench format clean
+.PHONY: all deps build run analyze plot report test bench nightly format clean
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
@@ -41,6 +41,11 @@ test: build
 bench: build
 	$(BUILD)/readback_bench --primitives 300 --rounds 3 --json outputs/bench/readback.json
 	$(BUILD)/analysis_bench --records 2400000 --platforms 2
+
+# The nightly driver audit (README, "Nightly audit"): run, audit against the baseline, history,
+# report. Exit code: 0 unchanged, 1 changed, 2 failed.
+nightly: build
+	BUILD=$(BUILD) JOBS=$(JOBS) scripts/nightly.sh
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

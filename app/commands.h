@@ -17,5 +17,8 @@ void register_stats_command(CLI::App& app, int& exit_code);
 void register_analyze_command(CLI::App& app, int& exit_code);
 void register_plot_command(CLI::App& app, int& exit_code);    // figures: PNG + PDF (plots/)
 void register_report_command(CLI::App& app, int& exit_code);  // report.pdf + report.html (report/)
+void register_audit_command(CLI::App& app, int& exit_code);    // run vs baseline: verdict (audit/)
+void register_history_command(CLI::App& app, int& exit_code);  // audit history + trend figures
+void register_show_command(CLI::App& app, int& exit_code);     // one primitive as a PNG
 
 }  // namespace ra::app

@@ -23,6 +23,7 @@
 #include "runner/renderer_check.h"
 #include "runner/shard.h"
 #include "runner/shard_recovery.h"
+#include "runner/worker_program.h"
 
 namespace fs = std::filesystem;
 
@@ -125,7 +126,7 @@ RunResult run_experiment(const RunOptions& options) {
   const int jobs = options.jobs > 0 ? options.jobs : int(std::max(1u, std::thread::hardware_concurrency()));
   const double timeout_s = options.timeout_s > 0 ? options.timeout_s : exp.shard_timeout_s;
   std::string program = options.worker_program;
-  if (program.empty()) program = fs::read_symlink("/proc/self/exe").string();
+  if (program.empty()) program = worker_program();
 
   for (const auto& p : options.only_platforms)
     if (std::find(exp.platforms.begin(), exp.platforms.end(), p) == exp.platforms.end())

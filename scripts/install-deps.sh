@@ -13,6 +13,7 @@ packages=(
   libcli11-dev          # CLI11: the command line
   nlohmann-json3-dev    # nlohmann/json: manifest and JSON output
   libmeshoptimizer-dev  # meshoptimizer: vertex-cache analysis and simplification
+  libeigen3-dev         # Eigen: QR / SVD least squares (stats regress, timing models)
   libsqlite3-dev        # SQLite: audit history database
   libgtest-dev          # GoogleTest: the test suite
   xvfb                  # a private X server for VTK on machines with no display

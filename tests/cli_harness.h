@@ -2,6 +2,7 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -69,8 +70,11 @@ inline Outcome run_renderaudit(const std::string& args) {
 }
 
 // A fresh directory under the system temp dir, removed first if it exists.
+// A new empty directory for one test. The process id keeps tests that ctest runs at once (each
+// in its own process) out of each other's way, even when they share a helper that names a dir.
 inline std::string fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("renderaudit_test_" + name);
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("renderaudit_test_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();

@@ -58,13 +58,16 @@ TEST(Completeness, AWildPixelFarFromThePrimitiveIsFoundAndClassified) {
     if (std::get<0>(key) == "point") {
       ++checked_points;
       // A visible point now lights two pixels; an invisible one lights a pixel it should not.
-      if (c.visibility == ra::Visibility::kTrueVisible)
+      if (c.visibility == ra::Visibility::kTrueVisible) {
         EXPECT_EQ(w.visibility, ra::Visibility::kMultipleVisible);
-      if (c.visibility == ra::Visibility::kTrueInvisible)
+      }
+      if (c.visibility == ra::Visibility::kTrueInvisible) {
         EXPECT_EQ(w.visibility, ra::Visibility::kFalseVisible);
+      }
     }
-    if (std::get<0>(key) != "point" && c.visibility == ra::Visibility::kTrueInvisible)
+    if (std::get<0>(key) != "point" && c.visibility == ra::Visibility::kTrueInvisible) {
       EXPECT_EQ(w.visibility, ra::Visibility::kFalseVisible);
+    }
   }
   EXPECT_EQ(checked_points, 6);
 }

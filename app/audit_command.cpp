@@ -1,0 +1,130 @@
+// `renderaudit audit BASELINE_DIR CURRENT_DIR` / `renderaudit audit RUN_DIR --between P1 P2`: a
+// run against its baseline, or two platforms of one run; a verdict, its files and a history entry.
+// The procedure is audit/audit.h's; the files audit/audit_report.h's.
+//
+// Exit codes: the verdict (0 unchanged, 1 changed, 2 failed). 2 is also bad input (nothing
+// compared: not run directories, different experiments, an unknown platform), as for every command
+// (app/commands.h), and a history database that could not be appended (the audit files are written
+// first, so the verdict is not lost; the message says so).
+#include <cstdio>
+
+#include "app/commands.h"
+#include "audit/audit.h"
+#include "audit/audit_report.h"
+#include "audit/history_db.h"
+#include "runner/errors.h"
+
+namespace ra::app {
+namespace {
+
+struct AuditCli {
+  std::vector<std::string> dirs;
+  audit::AuditOptions options;
+  std::string db;
+  bool no_history = false;
+};
+
+void print_result(const audit::AuditResult& r, const std::vector<std::string>& files) {
+  std::printf("audit: %s (exit %d)", verdict_name(r.verdict), int(r.verdict));
+  for (std::size_t i = 0; i < r.reasons.size(); ++i)
+    std::printf("%s%s", i ? "; " : ": ", r.reasons[i].c_str());
+  std::printf("\n");
+  for (std::size_t p = 0; p < r.pairs.size(); ++p) {
+    uint64_t compared = 0, changed = 0, flakes = 0, failed = 0;
+    for (const auto& v : r.primitives.views)
+      if (v.pair == p) compared += v.compared;
+    for (const auto& c : r.primitives.changed)
+      if (c.pair == p) ++(c.recheck == audit::Recheck::kFlake ? flakes : changed);
+    for (const auto& f : r.primitives.failed) failed += f.pair == p;
+    std::printf(
+        "  %s: %llu of %llu primitives changed, %llu flake(s), %llu crash/timeout record(s)\n",
+        r.pairs[p].label().c_str(), static_cast<unsigned long long>(changed),
+        static_cast<unsigned long long>(compared), static_cast<unsigned long long>(flakes),
+        static_cast<unsigned long long>(failed));
+    std::printf("    baseline %s: %s | %s\n    current  %s: %s | %s\n", r.pairs[p].baseline.c_str(),
+                r.baseline_drivers[p].renderer.c_str(), r.baseline_drivers[p].version.c_str(),
+                r.pairs[p].current.c_str(), r.current_drivers[p].renderer.c_str(),
+                r.current_drivers[p].version.c_str());
+  }
+  for (const auto& m : r.renderer_mismatches) std::printf("  FAILED %s\n", m.c_str());
+  if (r.flakes.not_checked)
+    std::printf("  flake check capped: %zu changed primitive(s) not re-rendered\n",
+                r.flakes.not_checked);
+  std::printf("  significant distribution tests: %zu of %zu (Holm, alpha %g)\n",
+              r.distributions.significant, r.distributions.family_size, r.distributions.alpha);
+  for (const auto& f : files) std::printf("  wrote %s\n", f.c_str());
+}
+
+}  // namespace
+
+void register_audit_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "audit",
+      "Compare a run with its baseline (same experiment), or two platforms of one run\n"
+      "(--between), primitive by primitive and in distribution, and give a verdict:\n"
+      "exit 0 unchanged, 1 changed, 2 failed (crash/timeout records, missing or failed shards,\n"
+      "a driver not matching --expect-renderer) or bad input. Changed primitives are rendered\n"
+      "once more first: a difference that disappears is reported as a flake, not a change.\n"
+      "Writes audit.json, audit.md, junit.xml and changed_primitives.csv into --out and appends\n"
+      "a summary to the history database.");
+  static AuditCli cli;
+  cmd->add_option("runs", cli.dirs, "BASELINE_DIR CURRENT_DIR, or RUN_DIR with --between")
+      ->required()
+      ->expected(1, 2)
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--between", cli.options.between,
+                  "compare two platforms of one run: P1 (baseline role) and P2")
+      ->expected(2);
+  cmd->add_option("--alpha", cli.options.alpha,
+                  "family-wise error rate of the distribution tests (Holm), default 0.05")
+      ->check(CLI::Range(1e-12, 0.5));
+  cmd->add_option("--out,-o", cli.options.out_dir,
+                  "output directory (default CURRENT_DIR/audit, or RUN_DIR/audit-P1-vs-P2)");
+  cmd->add_option("--db", cli.db, "history database (default outputs/history.sqlite)");
+  cmd->add_flag("--no-history", cli.no_history, "do not append to the history database");
+  cmd->add_option("--expect-renderer", cli.options.expect_renderer,
+                  "regular expression (ECMAScript, searched) every current GL_RENDERER must "
+                  "match; otherwise the verdict is failed");
+  cmd->add_option("--max-rerenders", cli.options.max_rerenders,
+                  "changed primitives re-rendered by the flake check, default 2000 (0: no check)");
+  cmd->add_option("--jobs,-j", cli.options.jobs,
+                  "threads and re-render processes (default: number of cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->callback([&exit_code] {
+    if (cli.options.between.empty() && cli.dirs.size() != 2)
+      throw UserError("audit needs BASELINE_DIR CURRENT_DIR, or RUN_DIR --between P1 P2");
+    if (!cli.options.between.empty() && cli.dirs.size() != 1)
+      throw UserError("audit --between compares two platforms of one run: give one RUN_DIR");
+    cli.options.current_dir = cli.dirs.back();
+    if (cli.dirs.size() == 2) cli.options.baseline_dir = cli.dirs.front();
+
+    // Any error is exit 2 here: main() maps other exceptions to 1, which an audit reads as
+    // "changed".
+    audit::AuditResult r;
+    std::vector<std::string> files;
+    try {
+      r = audit::run_audit(cli.options);
+      files = audit::write_audit_outputs(r);
+    } catch (const UserError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw UserError(std::string("audit failed: ") + e.what());
+    }
+    print_result(r, files);
+    exit_code = int(r.verdict);
+    if (cli.no_history) return;
+    const std::string db = cli.db.empty() ? default_history_path() : cli.db;
+    try {
+      append_history(db, r.summary);
+      std::printf("  history: appended to %s\n", db.c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr,
+                   "renderaudit: the audit files are written, but the history could not be "
+                   "appended: %s\n",
+                   e.what());
+      exit_code = kExitUsage;
+    }
+  });
+}
+
+}  // namespace ra::app

@@ -1,0 +1,187 @@
+// `renderaudit history [--db FILE] [--last N] [--out DIR] [--metric NAME...]`: the recent audits
+// of the history database (audit/history_db.h) as a table, and a trend figure per metric
+// (plots/trend_figure.h) as PNG + PDF + CSV.
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "app/commands.h"
+#include "audit/history_db.h"
+#include "plots/trend_figure.h"
+#include "runner/errors.h"
+
+namespace fs = std::filesystem;
+
+namespace ra::app {
+namespace {
+
+struct HistoryOptions {
+  std::string db = default_history_path();
+  std::size_t last = 20;
+  std::string out_dir;  // empty: DIR-of-db/history
+  std::vector<std::string> metrics;
+};
+
+// Left-aligned text columns, numbers right-aligned, two spaces apart.
+std::string text_table(const std::vector<std::vector<std::string>>& rows,
+                       const std::vector<bool>& right) {
+  std::vector<std::size_t> width(rows.front().size(), 0);
+  for (const auto& r : rows)
+    for (std::size_t c = 0; c < r.size(); ++c) width[c] = std::max(width[c], r[c].size());
+  std::string out;
+  for (const auto& r : rows) {
+    std::string line;
+    for (std::size_t c = 0; c < r.size(); ++c) {
+      const std::string pad(width[c] - r[c].size(), ' ');
+      line += (c ? "  " : "") + (right[c] ? pad + r[c] : r[c] + pad);
+    }
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + "\n";
+  }
+  return out;
+}
+
+std::string run_name(const std::string& run) {
+  const fs::path p = fs::path(run).lexically_normal();
+  const std::string name = (p.has_filename() ? p : p.parent_path()).filename().string();
+  return name.empty() ? run : name;
+}
+
+std::string drivers_text(const std::vector<DriverIdentity>& drivers) {
+  std::string s;
+  for (const DriverIdentity& d : drivers)
+    s += (s.empty() ? "" : "; ") + d.platform + ": " + d.renderer + ", " + d.version;
+  return s.empty() ? "(none recorded)" : s;
+}
+
+// View group 1..4 is A..D (audit_summary.h).
+std::string group_name(int view_group) {
+  return view_group >= 1 && view_group <= 26 ? std::string(1, char('A' + view_group - 1))
+                                             : std::to_string(view_group);
+}
+
+std::string figure_id(const std::string& metric) {
+  std::string id = "trend_";
+  for (char c : metric) {
+    const char l = char(std::tolower(static_cast<unsigned char>(c)));
+    id += (std::isalnum(static_cast<unsigned char>(l)) || l == '.' || l == '-') ? l : '_';
+  }
+  return id;
+}
+
+// One trend per metric: a series per platform x kind x view group, a point per audit.
+std::vector<plots::TrendData> trends(const std::vector<HistoryEntry>& h,
+                                     const std::vector<std::string>& metrics) {
+  std::vector<plots::TrendData> out;
+  for (const std::string& metric : metrics) {
+    plots::TrendData t;
+    t.id = figure_id(metric);
+    t.metric = metric;
+    std::map<std::tuple<std::string, std::string, int>, plots::TrendSeries> series;
+    for (std::size_t a = 0; a < h.size(); ++a) {
+      t.audits.push_back("#" + std::to_string(h[a].id));
+      t.dates.push_back(h[a].summary.date_utc);
+      for (const MetricSummary& m : h[a].summary.metrics) {
+        if (m.metric != metric) continue;
+        plots::TrendSeries& s = series[{m.platform, m.kind, m.view_group}];
+        s.name = m.platform + " " + m.kind + " " + group_name(m.view_group);
+        s.points.push_back({a, m.median, m.iqr, uint64_t(std::max<int64_t>(0, m.n))});
+      }
+    }
+    for (auto& [key, s] : series) t.series.push_back(std::move(s));
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+void run_history(const HistoryOptions& o, int& exit_code) {
+  const std::vector<HistoryEntry> h = read_history(o.db, o.last);
+  const int64_t total = history_audit_count(o.db);
+  std::printf("%s: %lld audit%s", o.db.c_str(), static_cast<long long>(total),
+              total == 1 ? "" : "s");
+  if (h.empty()) {
+    std::printf(" (nothing to show yet: `renderaudit audit` appends one per run)\n");
+    exit_code = kExitOk;
+    return;
+  }
+  std::printf(", the last %zu:\n\n", h.size());
+
+  std::vector<std::vector<std::string>> rows = {{"id", "date (UTC)", "verdict", "changed", "flaky",
+                                                 "failed", "tests", "current run", "baseline run"}};
+  const std::vector<bool> right = {true, false, false, true, true, true, true, false, false};
+  for (const HistoryEntry& e : h) {
+    const AuditSummary& s = e.summary;
+    rows.push_back({"#" + std::to_string(e.id), s.date_utc, verdict_name(s.verdict),
+                    std::to_string(s.changed_primitives), std::to_string(s.flaky_primitives),
+                    std::to_string(s.failed_primitives), std::to_string(s.significant_tests),
+                    run_name(s.current_run), run_name(s.baseline_run)});
+  }
+  std::printf("%s", text_table(rows, right).c_str());
+  std::printf(
+      "\n(changed: primitives whose pixels changed and stayed changed on re-render; flaky: "
+      "changed only once; failed: crash or timeout records; tests: distribution tests "
+      "rejected)\n\ndrivers (current run; baseline when it differs):\n");
+  for (const HistoryEntry& e : h) {
+    const AuditSummary& s = e.summary;
+    std::printf("  #%lld  %s\n", static_cast<long long>(e.id),
+                drivers_text(s.current_drivers).c_str());
+    const std::string base = drivers_text(s.baseline_drivers);
+    if (base != drivers_text(s.current_drivers))
+      std::printf("  %*s  baseline: %s\n", int(std::to_string(e.id).size()) + 1, "", base.c_str());
+  }
+
+  // Metrics to draw: those asked for, or every metric in the audits shown, in first-seen order.
+  std::vector<std::string> present;
+  for (const HistoryEntry& e : h)
+    for (const MetricSummary& m : e.summary.metrics)
+      if (std::find(present.begin(), present.end(), m.metric) == present.end())
+        present.push_back(m.metric);
+  std::vector<std::string> metrics = o.metrics.empty() ? present : o.metrics;
+  for (const std::string& m : metrics)
+    if (std::find(present.begin(), present.end(), m) == present.end()) {
+      std::string list;
+      for (const std::string& p : present) list += (list.empty() ? "" : ", ") + p;
+      throw UserError("no metric '" + m + "' in the last " + std::to_string(h.size()) +
+                      " audits of " + o.db + " (present: " + (list.empty() ? "none" : list) + ")");
+    }
+  if (metrics.empty()) {
+    std::printf("\nno metric summaries in these audits: no trend figures\n");
+    exit_code = kExitOk;
+    return;
+  }
+  const std::string out_dir =
+      o.out_dir.empty() ? (fs::path(o.db).parent_path() / "history").string() : o.out_dir;
+  const std::vector<plots::RenderedFigure> figures =
+      plots::draw_trend_figures(trends(h, metrics), out_dir);
+  std::printf("\ntrend figures (median and IQR per platform, kind and view group) in %s:\n",
+              out_dir.c_str());
+  for (const plots::RenderedFigure& f : figures)
+    std::printf("  %s  (+ .pdf, .csv)\n", f.png.c_str());
+  exit_code = kExitOk;
+}
+
+}  // namespace
+
+void register_history_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "history",
+      "The audit history: the recent audits (date, verdict, runs, drivers, changed / flaky /\n"
+      "failed counts) as a table, and a trend figure per metric (median and IQR per platform,\n"
+      "kind and view group, over the audits) as PNG + vector PDF + CSV. Needs no display.");
+  static HistoryOptions o;
+  cmd->add_option("--db", o.db, "history database (default: outputs/history.sqlite)");
+  cmd->add_option("--last,-n", o.last, "show the last N audits (default: 20)")
+      ->check(CLI::Range(std::size_t(1), std::size_t(1000000)));
+  cmd->add_option("--out,-o", o.out_dir,
+                  "directory for the trend figures (default: the db's directory /history)");
+  cmd->add_option("--metric,-m", o.metrics,
+                  "records column to draw, e.g. te_u (repeatable; default: every metric stored)");
+  cmd->callback([&exit_code] { run_history(o, exit_code); });
+}
+
+}  // namespace ra::app

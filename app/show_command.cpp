@@ -1,0 +1,87 @@
+// `renderaudit show RUN --platform P --kind K --view V --index I [--out FILE.png] [--scale S]`:
+// one primitive of a run, re-rendered in this process, as a PNG (audit/primitive_image.h), and
+// its record.
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/commands.h"
+#include "audit/primitive_image.h"
+#include "runner/records.h"
+
+namespace ra::app {
+namespace {
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.push_back("");
+  return cells;
+}
+
+// The measured columns of the record (status onwards), as the records file would hold them;
+// columns that do not apply (empty cells) are left out.
+std::string measured_fields(const Record& r) {
+  std::ostringstream row;
+  write_record(row, r);
+  std::string line = row.str();
+  if (!line.empty() && line.back() == '\n') line.pop_back();
+  const std::vector<std::string> names = split_csv_line(records_header());
+  const std::vector<std::string> values = split_csv_line(line);
+  std::string out;
+  bool measured = false;
+  for (std::size_t i = 0; i < names.size() && i < values.size(); ++i) {
+    measured = measured || names[i] == "status";
+    if (!measured || values[i].empty()) continue;
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "  %-16s %s\n", names[i].c_str(), values[i].c_str());
+    out += buf;
+  }
+  return out;
+}
+
+}  // namespace
+
+void register_show_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "show",
+      "Re-render one primitive of a run on a platform, in this process, and write it as a PNG:\n"
+      "each window pixel a block (light grey: lit by the platform and the reference rasterizer;\n"
+      "orange: platform only; blue: reference only) and the ideal projection as a red line.\n"
+      "Prints the image's path and the primitive's record (visibility, pixels, metrics, "
+      "ref_diff).");
+  static ShowRequest q;
+  cmd->add_option("run", q.run_dir, "run directory (holds experiment.toml)")->required();
+  cmd->add_option("--platform,-p", q.platform, "platform to render on (any known platform)")
+      ->required();
+  cmd->add_option("--kind,-k", q.kind, "point, line or triangle")->required();
+  cmd->add_option("--view,-v", q.view, "view number, 1-based (Table 1 order)")->required();
+  cmd->add_option("--index,-i", q.index, "primitive index under the run's seed")->required();
+  cmd->add_option("--out,-o", q.out_path,
+                  "PNG to write (default: RUN/show/PLATFORM.KIND.vVIEW.INDEX.png)");
+  cmd->add_option("--scale", q.scale,
+                  "image pixels per window pixel (default: the image is about 512 px)")
+      ->check(CLI::Range(1, kMaxImageScale));
+  cmd->callback([&exit_code] {
+    const PrimitiveImage im = show_primitive(q);
+    const View& v = im.view;
+    std::printf("wrote %s (%d x %d px: window pixels x %d-%d, y %d-%d of %d x %d, %d px each)\n",
+                im.path.c_str(), im.width, im.height, im.shown.x0, im.shown.x1 - 1, im.shown.y0,
+                im.shown.y1 - 1, v.width, v.height, im.scale);
+    std::printf(
+        "colours: light grey = lit by both (%lld), orange = platform (%s) only (%lld), blue = "
+        "reference only (%lld), red line = ideal projection\n",
+        static_cast<long long>(im.both), q.platform.c_str(),
+        static_cast<long long>(im.platform_only), static_cast<long long>(im.reference_only));
+    std::printf("%s %llu, view %d (group %s, fov %g deg, %d x %d px), platform %s:\n",
+                im.record.kind.c_str(), static_cast<unsigned long long>(q.index), v.id,
+                v.group_name().c_str(), v.fov_deg, v.width, v.height, q.platform.c_str());
+    std::printf("%s", measured_fields(im.record).c_str());
+    exit_code = kExitOk;
+  });
+}
+
+}  // namespace ra::app

@@ -1,0 +1,180 @@
+#include "audit/audit_compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "analysis/run_records.h"
+#include "runner/errors.h"
+#include "runner/experiment.h"
+#include "runner/shard.h"
+
+namespace fs = std::filesystem;
+
+namespace ra::audit {
+namespace {
+
+struct Row {
+  uint64_t index = 0;
+  PrimitiveState state;
+};
+
+double headline_value(const Record& r, Kind kind) {
+  switch (kind) {
+    case Kind::kPoint:
+      return r.pe;
+    case Kind::kLine:
+      return r.lse_u;
+    case Kind::kTriangle:
+      return r.te_u;
+  }
+  return kNA;
+}
+
+// The records of one platform, kind and view of a run, ascending by index.
+std::vector<Row> read_view(const std::string& dir, const std::vector<Shard>& plan,
+                           const std::string& platform, Kind kind, int view) {
+  std::vector<Row> rows;
+  for (const Shard& s : plan) {
+    if (s.platform != platform || s.kind != kind || s.view != view) continue;
+    const std::string path = s.records_path(dir);
+    if (!fs::exists(path)) continue;  // a missing shard: reported by missing_shards()
+    read_records(path, [&](const Record& r) {
+      if (r.platform != platform || r.kind != kind_name(kind) || r.view != view ||
+          r.index < s.begin || r.index >= s.end)
+        throw UserError(path + ": holds a record of " + r.platform + " " + r.kind + " view " +
+                        std::to_string(r.view) + " index " + std::to_string(r.index) +
+                        ", outside its shard");
+      rows.push_back(
+          {r.index,
+           {r.status, r.visibility, r.pixels, r.pixel_hash, headline_value(r, kind), r.ref_diff}});
+    });
+  }
+  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.index < b.index; });
+  return rows;
+}
+
+bool failed_status(CaseStatus s) { return s == CaseStatus::kCrash || s == CaseStatus::kTimeout; }
+
+struct Task {
+  std::size_t pair;
+  Kind kind;
+  int view, view_group;
+};
+
+struct TaskResult {
+  ViewCounts counts;
+  std::vector<ChangedPrimitive> changed;
+  std::vector<FailedPrimitive> failed;
+};
+
+TaskResult compare_view(const std::string& baseline_dir, const std::vector<Shard>& baseline_plan,
+                        const std::string& current_dir, const std::vector<Shard>& current_plan,
+                        const PlatformPair& pair, const Task& t) {
+  TaskResult out;
+  out.counts = {t.pair, t.kind, t.view, t.view_group, 0, 0, 0, 0};
+  const std::vector<Row> before =
+      read_view(baseline_dir, baseline_plan, pair.baseline, t.kind, t.view);
+  const std::vector<Row> after = read_view(current_dir, current_plan, pair.current, t.kind, t.view);
+  auto note_failure = [&](const Row& r, const char* side, const std::string& platform) {
+    if (failed_status(r.state.status))
+      out.failed.push_back(
+          {t.pair, side, platform, t.kind, t.view, t.view_group, r.index, r.state.status});
+  };
+  // Merge-join on the index: both are ascending.
+  std::size_t i = 0, j = 0;
+  while (i < before.size() || j < after.size()) {
+    if (j == after.size() || (i < before.size() && before[i].index < after[j].index)) {
+      ++out.counts.unmatched;
+      note_failure(before[i++], "baseline", pair.baseline);
+      continue;
+    }
+    if (i == before.size() || after[j].index < before[i].index) {
+      ++out.counts.unmatched;
+      note_failure(after[j++], "current", pair.current);
+      continue;
+    }
+    const Row& b = before[i++];
+    const Row& a = after[j++];
+    ++out.counts.compared;
+    if (failed_status(b.state.status) || failed_status(a.state.status)) {
+      ++out.counts.failed;
+      note_failure(b, "baseline", pair.baseline);
+      note_failure(a, "current", pair.current);
+      continue;
+    }
+    if (!states_differ(b.state, a.state)) continue;
+    ++out.counts.changed;
+    out.changed.push_back({t.pair, t.kind, t.view, t.view_group, a.index, b.state, a.state,
+                           Recheck::kNotRerendered, 0});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string PlatformPair::label() const {
+  return baseline == current ? current : baseline + " vs " + current;
+}
+
+const char* headline_metric(Kind kind) {
+  switch (kind) {
+    case Kind::kPoint:
+      return "pe";
+    case Kind::kLine:
+      return "lse_u";
+    case Kind::kTriangle:
+      return "te_u";
+  }
+  return "";
+}
+
+const char* recheck_name(Recheck r) {
+  switch (r) {
+    case Recheck::kNotRerendered:
+      return "not re-rendered";
+    case Recheck::kStillDifferent:
+      return "still different";
+    case Recheck::kFlake:
+      return "flake";
+    case Recheck::kRerenderFailed:
+      return "re-render failed";
+  }
+  return "";
+}
+
+bool states_differ(const PrimitiveState& a, const PrimitiveState& b) {
+  return a.status != b.status || a.visibility != b.visibility || a.pixel_hash != b.pixel_hash;
+}
+
+PrimitiveComparison compare_primitives(const std::string& baseline_dir,
+                                       const std::string& current_dir,
+                                       const std::vector<PlatformPair>& pairs, unsigned jobs) {
+  const Experiment baseline_exp = load_experiment(baseline_dir + "/experiment.toml");
+  const Experiment current_exp = load_experiment(current_dir + "/experiment.toml");
+  const std::vector<Shard> baseline_plan = plan_shards(baseline_exp);
+  const std::vector<Shard> current_plan = plan_shards(current_exp);
+
+  // One task per pair, kind and view (the experiments agree on views and counts: same hash).
+  std::vector<Task> tasks;
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    for (Kind k : {Kind::kPoint, Kind::kLine, Kind::kTriangle})
+      for (const View& v : current_exp.views)
+        if (current_exp.counts[int(k)] > 0) tasks.push_back({p, k, v.id, v.group});
+
+  std::vector<TaskResult> results(tasks.size());
+  analysis::run_in_parallel(tasks.size(), jobs, [&](std::size_t i) {
+    results[i] = compare_view(baseline_dir, baseline_plan, current_dir, current_plan,
+                              pairs[tasks[i].pair], tasks[i]);
+  });
+
+  PrimitiveComparison out;
+  for (TaskResult& r : results) {
+    out.views.push_back(r.counts);
+    out.changed.insert(out.changed.end(), r.changed.begin(), r.changed.end());
+    out.failed.insert(out.failed.end(), r.failed.begin(), r.failed.end());
+  }
+  return out;
+}
+
+}  // namespace ra::audit

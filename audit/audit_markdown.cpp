@@ -1,0 +1,258 @@
+// audit.md: the summary a person reads first (audit/audit_report.h).
+#include <algorithm>
+#include <sstream>
+
+#include "audit/audit_report.h"
+
+namespace ra::audit {
+namespace {
+
+std::string upper(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return char(std::toupper(c)); });
+  return s;
+}
+
+// A table cell: pipes escaped, line breaks flattened.
+std::string cell(std::string s) {
+  std::string out;
+  for (char c : s)
+    out += c == '|' ? std::string("\\|") : c == '\n' ? std::string(" ") : std::string(1, c);
+  return out;
+}
+
+std::string views_text(const std::vector<int>& views) {
+  std::string s;
+  for (int v : views) s += (s.empty() ? "" : ", ") + std::to_string(v);
+  return s;
+}
+
+std::string arrow(const std::string& a, const std::string& b) {
+  return a == b ? a : a + " -> " + b;
+}
+
+std::string state_line(const ChangedPrimitive& c) {
+  const std::string metric = headline_metric(c.kind);
+  auto diff = [](int64_t d) { return d >= 0 ? std::to_string(d) : std::string("n/a"); };
+  return "status " + arrow(status_name(c.before.status), status_name(c.after.status)) +
+         ", visibility " +
+         arrow(visibility_name(c.before.visibility), visibility_name(c.after.visibility)) +
+         ", pixels " + arrow(std::to_string(c.before.pixels), std::to_string(c.after.pixels)) +
+         ", " + metric + " " +
+         arrow(format_number(c.before.metric, 6), format_number(c.after.metric, 6)) +
+         ", ref_diff " + arrow(diff(c.before.ref_diff), diff(c.after.ref_diff));
+}
+
+void list_primitives(std::ostream& md, const AuditResult& r, bool flakes) {
+  std::size_t total = 0, shown = 0;
+  for (const ChangedPrimitive& c : r.primitives.changed) {
+    if ((c.recheck == Recheck::kFlake) != flakes) continue;
+    if (++total > kMarkdownListed) continue;
+    ++shown;
+    md << "- " << r.pairs[c.pair].label() << " " << kind_name(c.kind) << ", view " << c.view
+       << " (group " << analysis::view_group_label(c.view_group) << "), index " << c.index << ": "
+       << state_line(c) << "; re-render: " << recheck_name(c.recheck) << "  \n  `"
+       << show_command(r, c) << "`\n";
+  }
+  if (total == 0)
+    md << "None.\n";
+  else if (shown < total)
+    md << "\n... and " << total - shown << " more: " << total
+       << " in all (every one in `changed_primitives.csv`).\n";
+  else
+    md << "\n" << total << " in all.\n";
+}
+
+void drivers(std::ostream& md, const AuditResult& r) {
+  md << "## Drivers\n\n";
+  if (r.mode == "between") {
+    md << "| | " << cell(r.pairs[0].baseline) << " (baseline role) | " << cell(r.pairs[0].current)
+       << " |\n| :--- | :--- | :--- |\n";
+    md << "| GL_RENDERER | " << cell(r.baseline_drivers[0].renderer) << " | "
+       << cell(r.current_drivers[0].renderer) << " |\n";
+    md << "| GL_VERSION | " << cell(r.baseline_drivers[0].version) << " | "
+       << cell(r.current_drivers[0].version) << " |\n";
+  } else {
+    md << "| platform | baseline GL_RENDERER | baseline GL_VERSION | current GL_RENDERER | current "
+          "GL_VERSION |\n"
+          "| :--- | :--- | :--- | :--- | :--- |\n";
+    for (std::size_t p = 0; p < r.pairs.size(); ++p)
+      md << "| " << cell(r.pairs[p].current) << " | " << cell(r.baseline_drivers[p].renderer)
+         << " | " << cell(r.baseline_drivers[p].version) << " | "
+         << cell(r.current_drivers[p].renderer) << " | " << cell(r.current_drivers[p].version)
+         << " |\n";
+  }
+  if (!r.expect_renderer.empty())
+    md << "\n--expect-renderer `" << r.expect_renderer << "`: "
+       << (r.renderer_mismatches.empty()
+               ? "every current driver matches."
+               : std::to_string(r.renderer_mismatches.size()) + " mismatch(es), see Failures.")
+       << "\n";
+  md << "\n";
+}
+
+void counts(std::ostream& md, const AuditResult& r) {
+  md << "## Primitives compared (per platform, kind, view group)\n\n"
+        "| platform | kind | group | views | compared | changed | flakes | crash/timeout | missing "
+        "shards | significant tests | outcome |\n"
+        "| :--- | :--- | :---: | :--- | ---: | ---: | ---: | ---: | ---: | ---: | :--- |\n";
+  for (const GroupOutcome& g : group_outcomes(r))
+    md << "| " << cell(r.pairs[g.pair].label()) << " | " << kind_name(g.kind) << " | " << g.label
+       << " | " << views_text(g.views) << " | " << g.compared << " | " << g.changed << " | "
+       << g.flakes << " | " << g.failed << " | " << g.missing_shards << " | " << g.significant_tests
+       << " | " << verdict_name(g.verdict()) << " |\n";
+  md << "\nPer view: `audit.json` key `views`. A primitive is changed when its lit pixels "
+        "(records' "
+        "`pixel_hash`), its status or its visibility class differ.\n\n";
+}
+
+void tests(std::ostream& md, const AuditResult& r) {
+  const DistributionAudit& d = r.distributions;
+  md << "## Distribution tests\n\n"
+     << "Per platform, kind, view group and metric, baseline against current: Welch's t test "
+        "(location) and Levene's test with median centre (spread), on the raw values and, where "
+        "every value is > 0, on Box-Cox transformed values (one lambda, by maximum PPCC on both "
+        "samples pooled). Holm-Bonferroni correction over all "
+     << d.family_size << " defined tests of this audit, alpha = " << format_number(d.alpha)
+     << ". Effect sizes: differences (current - baseline) of medians and IQRs (Hyndman-Fan 6), "
+        "in the metric's units.\n\n";
+  if (!d.significant) {
+    md << "No test is significant after correction.\n\n";
+    return;
+  }
+  md << d.significant << " significant:\n\n"
+     << "| platform | kind | group | metric | unit | n before / after | median before -> after "
+        "(diff) | IQR before -> after (diff) | test | data | p | p (Holm) |\n"
+        "| :--- | :--- | :---: | :--- | :--- | ---: | ---: | ---: | :--- | :--- | ---: | ---: |\n";
+  for (const DistributionComparison& c : d.comparisons)
+    for (const DistributionTest& t : c.tests) {
+      if (!t.significant) continue;
+      const analysis::MetricSpec& m = analysis::kind_metrics(c.kind)[c.metric];
+      md << "| " << cell(r.pairs[c.pair].label()) << " | " << analysis::kind_name(c.kind) << " | "
+         << c.label << " | " << m.column << " | " << analysis::unit_name(m.unit) << " | "
+         << c.n_before << " / " << c.n_after << " | " << format_number(c.median_before) << " -> "
+         << format_number(c.median_after) << " (" << format_number(c.median_difference(), 3)
+         << ") | " << format_number(c.iqr_before) << " -> " << format_number(c.iqr_after) << " ("
+         << format_number(c.iqr_difference(), 3) << ") | "
+         << (t.test == "welch_t" ? "Welch t" : "Levene (median)") << " | "
+         << (t.data == "raw" ? std::string("raw")
+                             : "Box-Cox lambda " + format_number(c.box_cox.lambda, 3))
+         << " | " << format_number(t.outcome.p_value, 3) << " | " << format_number(t.p_adjusted, 3)
+         << " |\n";
+    }
+  md << "\n";
+}
+
+void classes(std::ostream& md, const AuditResult& r) {
+  md << "## Visibility classes\n\n";
+  std::ostringstream rows;
+  std::size_t n = 0;
+  for (const ClassCountChange& c : r.classes) {
+    if (c.before == c.after) continue;
+    ++n;
+    rows << "| " << cell(r.pairs[c.pair].label()) << " | " << analysis::kind_name(c.kind) << " | "
+         << c.label << " | " << c.visibility << " | " << c.before << " | " << c.after << " | "
+         << (c.after >= c.before ? "+" : "") << int64_t(c.after) - int64_t(c.before) << " |\n";
+  }
+  if (!n) {
+    md << "Every class count is the same on both sides.\n\n";
+    return;
+  }
+  md << "Counts that differ (all of them: `audit.json` key `visibility`):\n\n"
+        "| platform | kind | group | class | before | after | difference |\n"
+        "| :--- | :--- | :---: | :--- | ---: | ---: | ---: |\n"
+     << rows.str() << "\n";
+}
+
+void flakes(std::ostream& md, const AuditResult& r) {
+  const FlakeCheckSummary& f = r.flakes;
+  md << "## Flakes\n\n";
+  if (!f.performed) {
+    md << "The flake check was off (--max-rerenders 0): every difference counts as a change.\n\n";
+    return;
+  }
+  md << "Every changed primitive (at most " << f.cap << ") was rendered once more in a child "
+     << "process with RA_RENDER_ATTEMPT=2; a difference that disappears is a flake and does not "
+     << "count as a change. "
+     << (f.both_sides ? "Both platforms were rendered again (they are two platforms of one run); "
+                        "a flake when the two re-renders agree.\n\n"
+                      : "Only the current run was rendered again (the baseline's driver may be "
+                        "gone); a flake when the re-render equals the baseline.\n\n")
+     << f.checked << " re-checked in " << f.processes << " process(es), "
+     << format_number(f.seconds, 3) << " s: " << f.flakes << " flake(s), " << f.still_different
+     << " still different, " << f.rerender_failed << " re-render(s) failed.\n";
+  if (f.not_checked)
+    md << "\n**Capped**: " << f.not_checked << " changed primitive(s) beyond the cap of " << f.cap
+       << " were not re-rendered; they count as changed.\n";
+  md << "\n";
+  list_primitives(md, r, true);
+  if (r.recovered_count()) {
+    md << "\nWorker failures that did not recur (the manifest lists them; the shard's re-run "
+          "completed without a crash or timeout record):\n\n";
+    for (const ManifestFailure& m : r.manifest_failures)
+      if (m.outcome == FailureOutcome::kRecovered)
+        md << "- " << m.side << " " << m.shard << ": " << m.reason << "\n";
+  }
+  md << "\n";
+}
+
+void failures(std::ostream& md, const AuditResult& r) {
+  md << "## Failures\n\n";
+  const bool none =
+      r.primitives.failed.empty() && r.missing.empty() && r.flakes.failed_batches.empty() &&
+      r.renderer_mismatches.empty() &&
+      std::none_of(r.manifest_failures.begin(), r.manifest_failures.end(),
+                   [](const ManifestFailure& m) { return m.outcome == FailureOutcome::kUnknown; });
+  if (none) {
+    md << "None: no crash or timeout record, no missing shard, no re-render failure.\n";
+    return;
+  }
+  for (const auto& m : r.renderer_mismatches) md << "- driver: " << m << "\n";
+  std::size_t shown = 0;
+  for (const FailedPrimitive& f : r.primitives.failed)
+    if (shown++ < kMarkdownListed)
+      md << "- " << status_name(f.status) << ": " << f.side << " " << f.platform << " "
+         << kind_name(f.kind) << ", view " << f.view << ", index " << f.index << "\n";
+  if (shown > kMarkdownListed)
+    md << "- ... " << shown - kMarkdownListed << " more crash/timeout records (`audit.json`)\n";
+  for (const MissingShard& m : r.missing)
+    md << "- missing shard: " << m.side << " " << m.id << " (" << kind_name(m.kind) << ", view "
+       << m.view << ", indices " << m.begin << " to " << m.end - 1 << "): " << m.reason << "\n";
+  for (const ManifestFailure& m : r.manifest_failures)
+    if (m.outcome == FailureOutcome::kUnknown)
+      md << "- manifest: " << m.side << " " << m.shard
+         << " (not a shard of the experiment): " << m.reason << "\n";
+  for (const RerenderBatch& b : r.flakes.failed_batches)
+    md << "- re-render of " << b.platform << " " << kind_name(b.kind) << ", view " << b.view
+       << ", indices " << b.begin << " to " << b.end - 1 << ": " << b.error << "\n";
+}
+
+}  // namespace
+
+std::string audit_markdown(const AuditResult& r) {
+  std::ostringstream md;
+  md << "# renderaudit audit: " << upper(verdict_name(r.verdict)) << "\n\n";
+  md << "**Verdict: " << verdict_name(r.verdict) << "** (exit code " << int(r.verdict) << ")";
+  for (std::size_t i = 0; i < r.reasons.size(); ++i) md << (i ? "; " : ": ") << r.reasons[i];
+  md << ".\n\n";
+  if (r.mode == "between")
+    md << "Platforms `" << r.pairs[0].baseline << "` (baseline role) and `" << r.pairs[0].current
+       << "` of run `" << r.current.dir << "`";
+  else
+    md << "Baseline `" << r.baseline.dir << "`, current `" << r.current.dir << "`";
+  md << "; experiment `" << r.current.name << "` (hash " << r.current.hash << ", seed "
+     << r.current.seed << "); audited " << r.date_utc << ".\n\n";
+  drivers(md, r);
+  counts(md, r);
+  md << "## Changed primitives\n\n";
+  list_primitives(md, r, false);
+  md << "\n";
+  tests(md, r);
+  classes(md, r);
+  flakes(md, r);
+  failures(md, r);
+  md << "\nFiles: `audit.json` (everything), `junit.xml`, `changed_primitives.csv`.\n";
+  return md.str();
+}
+
+}  // namespace ra::audit

@@ -1,0 +1,135 @@
+// The verdict rule (audit/audit.h) and the writers (audit/audit_report.h) on hand-built results.
+#include "audit/audit_report.h"
+
+#include <gtest/gtest.h>
+
+namespace ra::audit {
+namespace {
+
+AuditResult result_with(std::vector<Recheck> changes) {
+  AuditResult r;
+  r.mode = "runs";
+  r.date_utc = "2026-01-01T03:00:00Z";
+  r.baseline.dir = "outputs/base";
+  r.current.dir = "outputs/cur rent";  // a space: the show line must quote it
+  r.current.name = "nightly";
+  r.current.hash = "0123456789abcdef";
+  r.pairs = {{"osmesa-llvmpipe", "osmesa-llvmpipe"}};
+  r.baseline_drivers = {{"osmesa-llvmpipe", "llvmpipe (LLVM 15)", "Mesa 22.3.6"}};
+  r.current_drivers = {{"osmesa-llvmpipe", "llvmpipe (LLVM 16)", "Mesa 23.0.0"}};
+  r.primitives.views = {{0, Kind::kLine, 1, 0, 100, uint64_t(changes.size()), 0, 0},
+                        {0, Kind::kLine, 2, 0, 100, 0, 0, 0}};
+  uint64_t index = 10;
+  for (Recheck c : changes) {
+    ChangedPrimitive p;
+    p.kind = Kind::kLine, p.view = 1, p.index = index++;
+    p.before.pixel_hash = 1, p.after.pixel_hash = 2, p.before.pixels = 5, p.after.pixels = 6;
+    p.before.metric = 0.25, p.after.metric = 0.5;
+    p.recheck = c;
+    r.primitives.changed.push_back(p);
+  }
+  r.flakes.performed = true;
+  r.flakes.cap = 2000;
+  return r;
+}
+
+TEST(AuditVerdict, NothingChangedIsUnchanged) {
+  AuditResult r = result_with({});
+  decide_verdict(r);
+  EXPECT_EQ(r.verdict, Verdict::kUnchanged);
+}
+
+// Flakes alone leave the verdict unchanged and are counted apart.
+TEST(AuditVerdict, FlakesAreNotChanges) {
+  AuditResult r = result_with({Recheck::kFlake, Recheck::kFlake});
+  decide_verdict(r);
+  EXPECT_EQ(r.verdict, Verdict::kUnchanged);
+  EXPECT_EQ(r.flake_count(), 2u);
+  EXPECT_EQ(r.changed_count(), 0u);
+  EXPECT_NE(r.reasons.at(0).find("flakes"), std::string::npos) << r.reasons[0];
+}
+
+// A persisting difference, or one never re-rendered (over the cap), is a change.
+TEST(AuditVerdict, PersistingOrUncheckedDifferencesAreChanges) {
+  AuditResult r = result_with({Recheck::kFlake, Recheck::kStillDifferent});
+  decide_verdict(r);
+  EXPECT_EQ(r.verdict, Verdict::kChanged);
+  AuditResult capped = result_with({Recheck::kNotRerendered});
+  decide_verdict(capped);
+  EXPECT_EQ(capped.verdict, Verdict::kChanged);
+}
+
+// Failures win over changes: crash records, missing shards, renderer mismatches.
+TEST(AuditVerdict, FailuresWin) {
+  AuditResult crash = result_with({Recheck::kStillDifferent});
+  crash.primitives.failed.push_back(
+      {0, "current", "osmesa-llvmpipe", Kind::kLine, 2, 0, 7, CaseStatus::kCrash});
+  decide_verdict(crash);
+  EXPECT_EQ(crash.verdict, Verdict::kFailed);
+  AuditResult missing = result_with({});
+  missing.missing.push_back({"current", "osmesa-llvmpipe", Kind::kLine, 1, 0, 0, 10,
+                             "osmesa-llvmpipe.line.v1.0-10", "no records file"});
+  decide_verdict(missing);
+  EXPECT_EQ(missing.verdict, Verdict::kFailed);
+  AuditResult driver = result_with({});
+  driver.renderer_mismatches.push_back("osmesa-llvmpipe: GL_RENDERER 'x' does not match");
+  decide_verdict(driver);
+  EXPECT_EQ(driver.verdict, Verdict::kFailed);
+  EXPECT_EQ(driver.reasons.at(0), driver.renderer_mismatches[0]);
+}
+
+TEST(AuditReport, MarkdownLeadsWithTheVerdictAndListsShowLines) {
+  AuditResult r = result_with({Recheck::kStillDifferent, Recheck::kFlake});
+  decide_verdict(r);
+  const std::string md = audit_markdown(r);
+  EXPECT_EQ(md.rfind("# renderaudit audit: CHANGED\n\n**Verdict: changed** (exit code 1)", 0), 0u)
+      << md;
+  EXPECT_NE(md.find("| osmesa-llvmpipe | llvmpipe (LLVM 15) | Mesa 22.3.6 | llvmpipe (LLVM 16) | "
+                    "Mesa 23.0.0 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("`renderaudit show 'outputs/cur rent' --platform osmesa-llvmpipe --kind line "
+                    "--view 1 --index 10`"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("lse_u 0.25 -> 0.5"), std::string::npos) << md;
+  EXPECT_NE(md.find("## Flakes"), std::string::npos);
+  EXPECT_NE(md.find("index 11"), std::string::npos);  // the flake, listed under Flakes
+}
+
+// One testcase per kind x view group (+ drivers, shards); a failure element when changed.
+TEST(AuditReport, JunitHasOneCasePerGroup) {
+  AuditResult r = result_with({Recheck::kStillDifferent});
+  decide_verdict(r);
+  const std::string xml = audit_junit(r);
+  EXPECT_NE(xml.find("<testsuites name=\"renderaudit audit\" tests=\"3\" failures=\"1\""),
+            std::string::npos)
+      << xml;
+  EXPECT_NE(xml.find("name=\"group A (views 1, 2)\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<failure type=\"changed\" message=\"1 primitive(s) changed"),
+            std::string::npos)
+      << xml;
+  EXPECT_NE(xml.find("classname=\"renderaudit.audit.osmesa-llvmpipe.line\""), std::string::npos);
+}
+
+TEST(AuditReport, JsonCarriesSchemaVersionAndLists) {
+  AuditResult r = result_with({Recheck::kStillDifferent, Recheck::kFlake});
+  decide_verdict(r);
+  const nlohmann::json j = audit_json(r);
+  EXPECT_EQ(j["schema_version"], 1);
+  EXPECT_EQ(j["verdict"], "changed");
+  EXPECT_EQ(j["exit_code"], 1);
+  EXPECT_EQ(j["changed_primitives"]["total"], 1);
+  EXPECT_EQ(j["changed_primitives"]["items"][0]["index"], 10);
+  EXPECT_EQ(j["changed_primitives"]["items"][0]["before"]["pixel_hash"], "1");
+  EXPECT_EQ(j["flakes"]["items"][0]["index"], 11);
+  EXPECT_EQ(j["views"][0]["changed"], 1);  // flakes apart
+  EXPECT_EQ(j["views"][0]["flakes"], 1);
+  const std::string csv = changed_primitives_csv(r);
+  EXPECT_NE(csv.find("\nosmesa-llvmpipe,osmesa-llvmpipe,line,1,0,10,still different,"),
+            std::string::npos)
+      << csv;
+}
+
+}  // namespace
+}  // namespace ra::audit

@@ -1,0 +1,253 @@
+#include "audit/flake_check.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <thread>
+
+#include "runner/atomic_file.h"
+#include "runner/experiment.h"
+#include "runner/shard.h"
+#include "runner/worker_program.h"
+
+namespace fs = std::filesystem;
+
+namespace ra::audit {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Shard shard_of(const RerenderBatch& b) { return {b.platform, b.kind, b.view, b.begin, b.end}; }
+
+// The environment of a child: ours, with RA_RENDER_ATTEMPT replaced. Built before fork so the
+// child only calls async-signal-safe functions.
+std::vector<std::string> child_environment(int attempt) {
+  std::vector<std::string> env;
+  for (char** e = environ; e && *e; ++e)
+    if (std::strncmp(*e, "RA_RENDER_ATTEMPT=", 18) != 0) env.emplace_back(*e);
+  env.push_back("RA_RENDER_ATTEMPT=" + std::to_string(attempt));
+  return env;
+}
+
+pid_t spawn(const std::string& program, const std::string& dir, const RerenderBatch& b,
+            const std::vector<std::string>& env) {
+  const std::string log = dir + "/logs/" + shard_of(b).id() + ".log";
+  const std::vector<std::string> args = {program,
+                                         "worker",
+                                         dir,
+                                         b.platform,
+                                         kind_name(b.kind),
+                                         std::to_string(b.view),
+                                         std::to_string(b.begin),
+                                         std::to_string(b.end)};
+  std::vector<char*> argv, envp;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  for (const auto& e : env) envp.push_back(const_cast<char*>(e.c_str()));
+  envp.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("fork failed: " + std::string(std::strerror(errno)));
+  if (pid == 0) {
+    ::setpgid(0, 0);  // its own process group: a timeout kills whatever it started too
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) ::dup2(fd, 1), ::dup2(fd, 2), ::close(fd);
+    ::execve(program.c_str(), argv.data(), envp.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+std::string describe_exit(int status) {
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    return "crashed (signal " + std::to_string(sig) + ", " + strsignal(sig) + ")";
+  }
+  return "exited with status " + std::to_string(WEXITSTATUS(status));
+}
+
+// The last non-empty line of a child's log, for the error message (the directory is removed).
+std::string last_log_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+
+}  // namespace
+
+void KnownFailures::add(const std::string& platform, Kind kind, int view, uint64_t begin,
+                        uint64_t end) {
+  ranges[{platform, int(kind), view}].push_back({begin, end});
+}
+
+bool KnownFailures::hits(const std::string& platform, Kind kind, int view, uint64_t begin,
+                         uint64_t end) const {
+  const auto it = ranges.find({platform, int(kind), view});
+  if (it == ranges.end()) return false;
+  for (const auto& [b, e] : it->second)
+    if (b < end && begin < e) return true;
+  return false;
+}
+
+std::vector<RerenderBatch> plan_rerender(std::vector<RerenderRequest> requests,
+                                         const KnownFailures& avoid, uint64_t max_gap) {
+  auto key = [](const RerenderRequest& r) { return std::tie(r.platform, r.kind, r.view, r.index); };
+  std::sort(requests.begin(), requests.end(),
+            [&](const RerenderRequest& a, const RerenderRequest& b) { return key(a) < key(b); });
+  requests.erase(std::unique(requests.begin(), requests.end(),
+                             [&](const RerenderRequest& a, const RerenderRequest& b) {
+                               return key(a) == key(b);
+                             }),
+                 requests.end());
+  std::vector<RerenderBatch> out;
+  for (const RerenderRequest& r : requests) {
+    if (!out.empty()) {
+      RerenderBatch& last = out.back();
+      // Extend the open range over the gap [last.end, r.index) when it is short and safe.
+      if (last.platform == r.platform && last.kind == r.kind && last.view == r.view &&
+          r.index - last.end < max_gap &&
+          !avoid.hits(r.platform, r.kind, r.view, last.end, r.index)) {
+        last.end = r.index + 1;
+        continue;
+      }
+    }
+    out.push_back({r.platform, r.kind, r.view, r.index, r.index + 1, ""});
+  }
+  return out;
+}
+
+RerenderResult rerender(const std::vector<RerenderBatch>& batches, const RerenderOptions& options) {
+  RerenderResult result;
+  result.batches = batches;
+  if (batches.empty()) return result;
+  const Experiment exp = load_experiment(options.run_dir + "/experiment.toml");
+  const double timeout_s = options.timeout_s > 0 ? options.timeout_s : exp.shard_timeout_s;
+  const std::string program =
+      options.program.empty() ? worker_program() : options.program;
+  const unsigned jobs =
+      options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+
+  // A private run directory: the experiment, and the folders a worker writes into.
+  std::string templ = (fs::temp_directory_path() / "renderaudit-flake-XXXXXX").string();
+  if (!::mkdtemp(templ.data()))
+    throw std::runtime_error("cannot create a temporary directory for the flake check: " +
+                             std::string(std::strerror(errno)));
+  const std::string dir = templ;
+  for (const char* sub : {"/records", "/drivers", "/logs"}) fs::create_directories(dir + sub);
+  write_file_atomic(dir + "/experiment.toml", exp.text);
+  const std::vector<std::string> env = child_environment(options.attempt);
+
+  struct Running {
+    std::size_t batch;
+    Clock::time_point started;
+  };
+  std::vector<std::pair<pid_t, Running>> running;
+  const auto t0 = Clock::now();
+  std::size_t next = 0;
+  auto finish = [&](std::size_t b, const std::string& error) {
+    RerenderBatch& batch = result.batches[b];
+    const Shard s = shard_of(batch);
+    const std::string log = last_log_line(dir + "/logs/" + s.id() + ".log");
+    batch.error = error.empty() || log.empty() ? error : error + ": " + log;
+    if (!batch.error.empty() || !fs::exists(s.records_path(dir))) {
+      if (batch.error.empty()) batch.error = "wrote no records";
+      return;
+    }
+    read_records(s.records_path(dir), [&](const Record& r) {
+      result.hashes[{batch.platform, int(batch.kind), batch.view, r.index}] = r.pixel_hash;
+    });
+  };
+  try {
+    while (next < result.batches.size() || !running.empty()) {
+      while (next < result.batches.size() && running.size() < jobs) {
+        running.push_back({spawn(program, dir, result.batches[next], env), {next, Clock::now()}});
+        ++next;
+      }
+      bool reaped = false;
+      for (std::size_t i = 0; i < running.size(); ++i) {
+        const auto [pid, r] = running[i];
+        int status = 0;
+        if (::waitpid(pid, &status, WNOHANG) == pid) {
+          const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+          finish(r.batch, ok ? "" : describe_exit(status));
+        } else if (std::chrono::duration<double>(Clock::now() - r.started).count() > timeout_s) {
+          ::kill(-pid, SIGKILL);
+          ::waitpid(pid, nullptr, 0);
+          finish(r.batch, "timed out after " + std::to_string(int(timeout_s)) + " s (killed)");
+        } else {
+          continue;
+        }
+        running.erase(running.begin() + long(i--));
+        reaped = true;
+      }
+      if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  } catch (...) {
+    for (const auto& [pid, r] : running) ::kill(-pid, SIGKILL), ::waitpid(pid, nullptr, 0);
+    fs::remove_all(dir);
+    throw;
+  }
+  result.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  return result;
+}
+
+FlakeCheckSummary apply_flake_check(PrimitiveComparison& comparison,
+                                    const std::vector<PlatformPair>& pairs, bool between,
+                                    const KnownFailures& avoid, std::size_t cap,
+                                    const RerenderOptions& options) {
+  FlakeCheckSummary s;
+  s.performed = cap > 0;
+  s.both_sides = between;
+  s.cap = cap;
+  const std::size_t n = std::min(cap, comparison.changed.size());
+  s.checked = n;
+  s.not_checked = comparison.changed.size() - n;
+  if (n == 0) return s;
+
+  std::vector<RerenderRequest> requests;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ChangedPrimitive& c = comparison.changed[i];
+    requests.push_back({pairs[c.pair].current, c.kind, c.view, c.index});
+    if (between) requests.push_back({pairs[c.pair].baseline, c.kind, c.view, c.index});
+  }
+  const RerenderResult r = rerender(plan_rerender(requests, avoid, options.max_gap), options);
+  s.processes = r.batches.size();
+  s.seconds = r.seconds;
+  for (const RerenderBatch& b : r.batches)
+    if (!b.error.empty()) s.failed_batches.push_back(b);
+
+  for (std::size_t i = 0; i < n; ++i) {
+    ChangedPrimitive& c = comparison.changed[i];
+    const auto now = r.hashes.find({pairs[c.pair].current, int(c.kind), c.view, c.index});
+    const auto base = r.hashes.find({pairs[c.pair].baseline, int(c.kind), c.view, c.index});
+    if (now == r.hashes.end() || (between && base == r.hashes.end())) {
+      c.recheck = Recheck::kRerenderFailed;
+      ++s.rerender_failed;
+      continue;
+    }
+    c.rerender_hash = now->second;
+    if (c.before.pixel_hash == c.after.pixel_hash) {  // status or class changed, not the pixels:
+      c.recheck = Recheck::kStillDifferent;           // pixels alone cannot clear it
+      ++s.still_different;
+      continue;
+    }
+    const uint64_t reference = between ? base->second : c.before.pixel_hash;
+    c.recheck = c.rerender_hash == reference ? Recheck::kFlake : Recheck::kStillDifferent;
+    ++(c.recheck == Recheck::kFlake ? s.flakes : s.still_different);
+  }
+  return s;
+}
+
+}  // namespace ra::audit

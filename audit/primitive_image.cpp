@@ -1,0 +1,257 @@
+// One primitive as a PNG: platform pixels, reference pixels and the ideal projection
+// (primitive_image.h).
+#include "audit/primitive_image.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "runner/case_measurement.h"
+#include "runner/clipping.h"
+#include "runner/errors.h"
+#include "runner/experiment.h"
+#include "runner/platform.h"
+#include "runner/point_metrics.h"
+#include "runner/reference_rasterizer.h"
+
+namespace fs = std::filesystem;
+
+namespace ra {
+namespace {
+
+// Passes everything to the real platform and keeps the last rendering, so that the image shows
+// the very pixels measure_case() measured.
+class RecordingPlatform : public Platform {
+ public:
+  explicit RecordingPlatform(Platform& inner) : inner_(inner) {}
+  DriverInfo driver_info() const override { return inner_.driver_info(); }
+  void set_view(const View& view) override { inner_.set_view(view); }
+  RenderResult render(const Primitive& prim, const PixelRect& expected) override {
+    last = inner_.render(prim, expected);
+    return last;
+  }
+  RenderResult last;
+
+ private:
+  Platform& inner_;
+};
+
+// The ideal projection to outline, GL window coordinates (pixels), and the window pixels it
+// touches plus the margin.
+struct IdealShape {
+  std::vector<Vec2> points;  // 1: a point (cross); 2: a segment; >= 3: a closed polygon
+  PixelRect rect;
+};
+
+IdealShape ideal_shape(const View& view, const Primitive& prim) {
+  IdealShape s;
+  switch (prim.kind) {
+    case Kind::kPoint: {
+      const IdealPoint p = project_point(view, prim.v[0]);
+      if (p.visible) s.points = {p.window};
+      s.rect = point_region(view, p, kImageMargin);
+      break;
+    }
+    case Kind::kLine: {
+      const ClippedSegment c = clip_segment(view, prim.v[0], prim.v[1]);
+      if (ideally_visible(c))
+        s.points = c.status == ClipStatus::kDegenerate ? std::vector<Vec2>{c.p0}
+                                                       : std::vector<Vec2>{c.p0, c.p1};
+      s.rect = bounding_rect(c, view.width, view.height, kImageMargin);
+      break;
+    }
+    case Kind::kTriangle: {
+      const ClippedPolygon c = clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
+      s.points = c.vertices;  // visible: the polygon; degenerate: its point or segment
+      s.rect = bounding_rect(c, view.width, view.height, kImageMargin);
+      break;
+    }
+  }
+  return s;
+}
+
+PixelRect unite(const PixelRect& a, const PixelRect& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
+
+// The pixels of `s` grown by `margin`, clamped to the window.
+PixelRect around(const PixelSet& s, int margin, int width, int height) {
+  if (s.empty()) return {};
+  PixelRect r{s.runs().front().x_begin, s.runs().front().y, s.runs().front().x_end,
+              s.runs().back().y + 1};
+  for (const PixelRun& run : s.runs())
+    r.x0 = std::min(r.x0, run.x_begin), r.x1 = std::max(r.x1, run.x_end);
+  return {std::max(0, r.x0 - margin), std::max(0, r.y0 - margin), std::min(width, r.x1 + margin),
+          std::min(height, r.y1 + margin)};
+}
+
+Rgb8 darker(Rgb8 c) { return {uint8_t(c.r * 4 / 5), uint8_t(c.g * 4 / 5), uint8_t(c.b * 4 / 5)}; }
+
+void check_request(const ShowRequest& q, const Experiment& exp, Kind kind) {
+  if (q.view < 1 || q.view > int(exp.views.size()))
+    throw UserError("view " + std::to_string(q.view) + " out of range (allowed: 1 to " +
+                    std::to_string(exp.views.size()) + ": " + exp.path + " has " +
+                    std::to_string(exp.views.size()) +
+                    (exp.views.size() == 1 ? " view)" : " views)"));
+  const uint64_t count = exp.counts[int(kind)];
+  if (count == 0)
+    throw UserError("index " + std::to_string(q.index) + " out of range: " + exp.path + " has no " +
+                    kind_plural(kind) + " (primitives." + kind_plural(kind) + " = 0)");
+  if (q.index >= count)
+    throw UserError("index " + std::to_string(q.index) + " out of range (allowed: 0 to " +
+                    std::to_string(count - 1) + ": " + exp.path + " has " + std::to_string(count) +
+                    " " + kind_plural(kind) + " per view)");
+  if (q.scale < 0 || q.scale > kMaxImageScale)
+    throw UserError("scale " + std::to_string(q.scale) + " out of range (allowed: 1 to " +
+                    std::to_string(kMaxImageScale) + ")");
+  if (q.platform == "faulty") {
+    // The faulty platform aborts or sleeps forever on these by design: say so instead.
+    for (const auto& [list, what] :
+         {std::pair{&exp.faults.crash, "crash"}, std::pair{&exp.faults.hang, "hang"}})
+      if (std::find(list->begin(), list->end(), q.index) != list->end())
+        throw UserError("primitive " + std::to_string(q.index) + " is a planned " + what +
+                        " of the faulty platform ([faults] " + what + " in " + exp.path + ")");
+  }
+}
+
+}  // namespace
+
+PrimitiveImage show_primitive(const ShowRequest& q) {
+  const std::string toml = (fs::path(q.run_dir) / "experiment.toml").string();
+  if (!fs::is_regular_file(toml))
+    throw UserError(q.run_dir + ": not a run directory (no experiment.toml)");
+  const Experiment exp = load_experiment(toml);
+  if (!find_platform(q.platform))
+    throw UserError("unknown platform '" + q.platform + "' (allowed: " + platform_names() + ")");
+  Kind kind;
+  if (!parse_kind(q.kind, &kind))
+    throw UserError("unknown kind '" + q.kind + "' (allowed: point, line, triangle)");
+  check_request(q, exp, kind);
+
+  PrimitiveImage out;
+  for (const View& v : exp.views)
+    if (v.id == q.view) out.view = v;
+  const View& view = out.view;
+  const Primitive prim = make_primitive(exp.seed, kind, q.index);
+
+  // Render once, measure that rendering, and rasterize the reference for comparison.
+  const std::unique_ptr<Platform> platform = create_platform(q.platform, exp);
+  RecordingPlatform recorder(*platform);
+  recorder.set_view(view);
+  out.record = measure_case(q.platform, recorder, view, prim, q.platform != "reference");
+  const PixelSet& lit = recorder.last.lit;
+  const PixelSet reference = rasterize_reference(view, prim);
+  for (const Pixel& p : lit) (reference.contains(p) ? out.both : out.platform_only) += 1;
+  for (const Pixel& p : reference)
+    if (!lit.contains(p)) ++out.reference_only;
+
+  // The window pixels shown.
+  const IdealShape ideal = ideal_shape(view, prim);
+  PixelRect shown =
+      unite(ideal.rect, unite(around(lit, kImageMargin, view.width, view.height),
+                              around(reference, kImageMargin, view.width, view.height)));
+  if (shown.empty() || (view.width <= kWholeWindowMax && view.height <= kWholeWindowMax))
+    shown = {0, 0, view.width, view.height};
+  out.shown = shown;
+  const int cols = shown.x1 - shown.x0, rows = shown.y1 - shown.y0;
+  const int S = q.scale > 0 ? q.scale : std::max(1, kTargetImageSize / std::max(cols, rows));
+  if (int64_t(cols) * S > kMaxImageSide || int64_t(rows) * S > kMaxImageSide)
+    throw UserError("the image would be " + std::to_string(int64_t(cols) * S) + " x " +
+                    std::to_string(int64_t(rows) * S) + " px (at most " +
+                    std::to_string(kMaxImageSide) + " per side): choose a smaller --scale");
+  out.scale = S;
+  out.width = cols * S;
+  out.height = rows * S;
+
+  // Which rasterizer lit each shown pixel: bit 0 platform, bit 1 reference.
+  std::vector<uint8_t> who(std::size_t(cols) * rows, 0);
+  auto mark = [&](const PixelSet& s, uint8_t bit) {
+    for (const Pixel& p : s)
+      if (p.x >= shown.x0 && p.x < shown.x1 && p.y >= shown.y0 && p.y < shown.y1)
+        who[std::size_t(p.y - shown.y0) * cols + (p.x - shown.x0)] |= bit;
+  };
+  mark(lit, 1);
+  mark(reference, 2);
+  const Rgb8 colors[4] = {kUnlitColor, kPlatformOnlyColor, kReferenceOnlyColor, kBothColor};
+
+  // Blocks, rows flipped: window row y (up) is image rows (shown.y1 - 1 - y) * S ... + S - 1.
+  std::vector<uint8_t> rgb(std::size_t(out.width) * out.height * 3);
+  for (int wy = 0; wy < rows; ++wy)
+    for (int wx = 0; wx < cols; ++wx) {
+      const Rgb8 fill = colors[who[std::size_t(wy) * cols + wx]];
+      const Rgb8 edge = S >= 8 ? darker(fill) : fill;
+      const int top = (rows - 1 - wy) * S, left = wx * S;
+      for (int i = 0; i < S; ++i)
+        for (int j = 0; j < S; ++j) {
+          const Rgb8 c = (i == 0 || j == 0) ? edge : fill;
+          uint8_t* px = &rgb[(std::size_t(top + i) * out.width + left + j) * 3];
+          px[0] = c.r, px[1] = c.g, px[2] = c.b;
+        }
+    }
+
+  OIIO::ImageSpec spec(out.width, out.height, 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("Software", "renderaudit show");
+  spec.attribute("ImageDescription", q.platform + " " + kind_name(kind) + " " +
+                                         std::to_string(q.index) + ", view " +
+                                         std::to_string(q.view) + " of " + q.run_dir +
+                                         ": grey both, orange platform "
+                                         "only, blue reference only, red the ideal projection");
+  OIIO::ImageBuf buf(spec, rgb.data());
+
+  // The ideal projection, 1 px wide, on top. Window (x, y) -> image (column, row), clamped so
+  // that ends on the window's far edges land on the last pixel.
+  auto to_image = [&](Vec2 p) {
+    const int ix = int(std::floor((p.x - shown.x0) * S));
+    const int iy = int(std::floor((shown.y1 - p.y) * S));
+    return std::pair<int, int>{std::clamp(ix, 0, out.width - 1), std::clamp(iy, 0, out.height - 1)};
+  };
+  const float red[3] = {kIdealColor.r / 255.f, kIdealColor.g / 255.f, kIdealColor.b / 255.f};
+  auto line = [&](std::pair<int, int> a, std::pair<int, int> b) {
+    OIIO::ImageBufAlgo::render_line(buf, a.first, a.second, b.first, b.second, red);
+  };
+  const std::vector<Vec2>& pts = ideal.points;
+  if (pts.size() == 1) {
+    const auto c = to_image(pts[0]);
+    const int arm = std::max(3, S / 3);
+    line({std::max(0, c.first - arm), c.second},
+         {std::min(out.width - 1, c.first + arm), c.second});
+    line({c.first, std::max(0, c.second - arm)},
+         {c.first, std::min(out.height - 1, c.second + arm)});
+  } else if (pts.size() == 2) {
+    line(to_image(pts[0]), to_image(pts[1]));
+  } else {
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      line(to_image(pts[i]), to_image(pts[(i + 1) % pts.size()]));
+  }
+
+  out.path = q.out_path.empty()
+                 ? (fs::path(q.run_dir) / "show" /
+                    (q.platform + "." + kind_name(kind) + ".v" + std::to_string(q.view) + "." +
+                     std::to_string(q.index) + ".png"))
+                       .string()
+                 : q.out_path;
+  std::string ext = fs::path(out.path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".png") throw UserError(out.path + ": the image is a PNG: name a .png file");
+  const fs::path parent = fs::path(out.path).parent_path();
+  if (!parent.empty()) {
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+  }
+  if (!buf.write(out.path))
+    throw UserError(out.path + ": cannot write the image: " + buf.geterror());
+  return out;
+}
+
+}  // namespace ra

@@ -1,0 +1,136 @@
+#include "audit/run_identity.h"
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "runner/atomic_file.h"
+#include "runner/errors.h"
+#include "runner/shard.h"
+
+namespace fs = std::filesystem;
+
+namespace ra::audit {
+namespace {
+
+nlohmann::json read_json(const std::string& path) {
+  if (!fs::exists(path)) throw UserError(path + ": missing (not a run directory?)");
+  try {
+    return nlohmann::json::parse(read_file(path));
+  } catch (const nlohmann::json::exception& e) {
+    throw UserError(path + ": not valid JSON (" + e.what() + ")");
+  }
+}
+
+std::string string_or(const nlohmann::json& j, const char* key, const std::string& fallback) {
+  return j.is_object() && j.contains(key) && j[key].is_string() ? j[key].get<std::string>()
+                                                                : fallback;
+}
+
+}  // namespace
+
+RunIdentity load_run_identity(const std::string& dir) {
+  RunIdentity run;
+  run.dir = dir;
+  if (!fs::is_directory(dir)) throw UserError(dir + ": no such run directory");
+  const nlohmann::json manifest = read_json(dir + "/manifest.json");
+  const std::string toml = dir + "/experiment.toml";
+  if (!fs::exists(toml)) throw UserError(toml + ": missing (not a run directory?)");
+  run.experiment = load_experiment(toml);
+
+  const nlohmann::json exp = manifest.value("experiment", nlohmann::json::object());
+  run.name = string_or(exp, "name", run.experiment.name);
+  run.hash = string_or(exp, "hash", "");
+  if (run.hash.empty())
+    throw UserError(dir + "/manifest.json: no experiment hash (not a renderaudit run manifest)");
+  if (!exp.contains("seed") || !exp["seed"].is_number_unsigned())
+    throw UserError(dir + "/manifest.json: no experiment seed (not a renderaudit run manifest)");
+  run.seed = exp["seed"].get<uint64_t>();
+  run.status = string_or(manifest, "status", "unknown");
+
+  // Drivers: the manifest's copy, else what the workers wrote into drivers/ (a run killed before
+  // its manifest was finished still has those).
+  nlohmann::json drivers = manifest.value("drivers", nlohmann::json::object());
+  if (fs::is_directory(dir + "/drivers"))
+    for (const auto& e : fs::directory_iterator(dir + "/drivers")) {
+      const std::string platform = e.path().stem().string();
+      if (e.path().extension() != ".json" || drivers.contains(platform)) continue;
+      try {
+        drivers[platform] = nlohmann::json::parse(read_file(e.path().string()));
+      } catch (const std::exception&) {
+      }
+    }
+  for (const auto& [platform, d] : drivers.items())
+    run.drivers[platform] = {platform, string_or(d, "renderer", "unknown"),
+                             string_or(d, "version", "unknown")};
+
+  for (const auto& f : manifest.value("failures", nlohmann::json::array()))
+    run.manifest_failures.push_back({string_or(f, "shard", "?"), string_or(f, "reason", "failed")});
+  return run;
+}
+
+void require_same_experiment(const RunIdentity& baseline, const RunIdentity& current) {
+  if (baseline.hash == current.hash && baseline.seed == current.seed) return;
+  throw UserError("not runs of the same experiment: baseline " + baseline.dir +
+                  " has experiment hash " + baseline.hash + " (seed " +
+                  std::to_string(baseline.seed) + "), current " + current.dir +
+                  " has experiment hash " + current.hash + " (seed " +
+                  std::to_string(current.seed) + "); an audit compares the same primitives, so " +
+                  "both runs must come from the same experiment file");
+}
+
+DriverIdentity driver_of(const RunIdentity& run, const std::string& platform) {
+  const auto it = run.drivers.find(platform);
+  return it != run.drivers.end() ? it->second : DriverIdentity{platform, "unknown", "unknown"};
+}
+
+std::vector<MissingShard> missing_shards(const RunIdentity& run, const std::string& platform,
+                                         const std::string& side) {
+  std::vector<MissingShard> out;
+  for (const Shard& s : plan_shards(run.experiment)) {
+    if (s.platform != platform || fs::exists(s.records_path(run.dir))) continue;
+    MissingShard m{side, s.platform, s.kind, s.view, 0, s.begin, s.end, s.id(), "no records file"};
+    for (const View& v : run.experiment.views)
+      if (v.id == s.view) m.view_group = v.group;
+    for (const ShardFailureNote& f : run.manifest_failures)
+      if (f.shard == m.id) m.reason = f.reason;  // the last word on it
+    out.push_back(m);
+  }
+  return out;
+}
+
+const char* failure_outcome_name(FailureOutcome o) {
+  switch (o) {
+    case FailureOutcome::kMissing:
+      return "missing";
+    case FailureOutcome::kPrimitivesFailed:
+      return "primitives failed";
+    case FailureOutcome::kRecovered:
+      return "recovered";
+    case FailureOutcome::kUnknown:
+      return "unknown shard";
+  }
+  return "";
+}
+
+std::vector<ManifestFailure> manifest_failures_of(const RunIdentity& run,
+                                                  const std::string& platform,
+                                                  const std::string& side) {
+  std::vector<ManifestFailure> out;
+  const std::vector<Shard> plan = plan_shards(run.experiment);
+  for (const ShardFailureNote& f : run.manifest_failures) {
+    if (f.shard.rfind(platform + ".", 0) != 0) continue;
+    ManifestFailure m{side, platform, f.shard, f.reason};
+    for (const Shard& s : plan) {
+      if (s.id() != f.shard) continue;
+      m.kind = s.kind, m.view = s.view, m.begin = s.begin, m.end = s.end;
+      for (const View& v : run.experiment.views)
+        if (v.id == s.view) m.view_group = v.group;
+      m.outcome = fs::exists(s.records_path(run.dir)) ? FailureOutcome::kRecovered
+                                                      : FailureOutcome::kMissing;
+    }
+    out.push_back(m);
+  }
+  return out;
+}
+
+}  // namespace ra::audit

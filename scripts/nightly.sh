@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The nightly driver audit: run the experiment into a dated directory, audit it against the
+# baseline run (promoting tonight's run if there is none yet), append the verdict to the history
+# database, and write tonight's report. Exit code: the audit's (0 unchanged, 1 changed, 2 failed).
+#
+#   scripts/nightly.sh                       # what `make nightly` runs
+#   scripts/nightly.sh --promote RUN_DIR     # make RUN_DIR the baseline from now on
+#
+# Settings (environment): NIGHTLY_EXPERIMENT (experiments/nightly.toml), NIGHTLY_DIR
+# (outputs/nightly), BUILD (build), JOBS (nproc), EXPECT_RENDERER (a GL_RENDERER regex, optional).
+set -euo pipefail
+
+experiment=${NIGHTLY_EXPERIMENT:-experiments/nightly.toml}
+root=${NIGHTLY_DIR:-outputs/nightly}
+bin=${BUILD:-build}/renderaudit
+jobs=${JOBS:-$(nproc)}
+baseline="$root/baseline"  # a symbolic link to the baseline run directory
+db="$root/history.sqlite"
+
+if [[ ${1:-} == --promote ]]; then
+  run=${2:?usage: scripts/nightly.sh --promote RUN_DIR}
+  [[ -f $run/manifest.json ]] || { echo "nightly: $run is not a run directory" >&2; exit 2; }
+  mkdir -p "$root"
+  ln -sfn "$(realpath "$run")" "$baseline"
+  echo "nightly: baseline is now $(realpath "$run")"
+  exit 0
+fi
+
+tonight="$root/runs/$(date -u +%Y-%m-%dT%H%MZ)"
+mkdir -p "$root/runs"
+expect=()
+[[ -n ${EXPECT_RENDERER:-} ]] && expect=(--expect-renderer "$EXPECT_RENDERER")
+
+status=0
+"$bin" run "$experiment" --out "$tonight" --jobs "$jobs" "${expect[@]}" || status=$?
+if (( status == 2 || status == 130 )); then
+  echo "nightly: the run did not complete (exit $status); see $tonight" >&2
+  exit 2
+fi
+
+if [[ ! -e $baseline ]]; then
+  ln -sfn "$(realpath "$tonight")" "$baseline"
+  echo "nightly: no baseline yet; tonight's run is the baseline: $(realpath "$tonight")"
+fi
+
+verdict=0
+"$bin" audit "$baseline/" "$tonight" --db "$db" || verdict=$?
+"$bin" analyze "$tonight" >/dev/null
+"$bin" plot "$tonight" >/dev/null
+"$bin" report "$tonight"
+"$bin" history --db "$db" --last 14 || true
+echo "nightly: verdict in $tonight/audit/audit.md; report in $tonight/report/report.pdf"
+exit "$verdict"

@@ -1,0 +1,213 @@
+// End-to-end tests of `renderaudit show`: the PNG of one primitive (read back with OpenImageIO),
+// its record, and the errors for a bad platform, kind, view, index or run directory.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "audit/primitive_image.h"
+#include "runner/experiment.h"
+#include "runner/records.h"
+#include "runner/reference_rasterizer.h"
+#include "tests/cli_harness.h"
+
+namespace fs = std::filesystem;
+using namespace ra::testing_cli;
+
+namespace {
+
+// One view, 64 x 64 px (shown whole, 8 image px per window pixel: 512 x 512).
+std::string experiment(const std::string& platforms, const std::string& extra = "") {
+  return "seed = 7\nplatforms = [" + platforms +
+         "]\n[views]\norientations = 1\nfov_deg = [60]\nwindows = [64]\nnear = 0.01\nfar = 10.0\n"
+         "[primitives]\n"
+         "points = 4\nlines = 4\ntriangles = 20\n" +
+         extra;
+}
+
+struct Image {
+  int width = 0, height = 0, channels = 0;
+  std::vector<unsigned char> pixels;
+  ra::Rgb8 at(int x, int y) const {
+    const unsigned char* p = &pixels[(std::size_t(y) * width + x) * channels];
+    return {p[0], p[1], p[2]};
+  }
+};
+
+Image read_image(const std::string& path) {
+  Image im;
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return im;
+  const OIIO::ImageSpec& spec = in->spec();
+  im.width = spec.width, im.height = spec.height, im.channels = spec.nchannels;
+  im.pixels.resize(std::size_t(im.width) * im.height * im.channels);
+  in->read_image(0, 0, 0, im.channels, OIIO::TypeDesc::UINT8, im.pixels.data());
+  return im;
+}
+
+// Window pixels (blocks of `scale` image px) whose block has a pixel of `colour`, with a block
+// interior pixel (not the grid border) checked so the red outline cannot hide a block.
+int blocks_with(const Image& im, int scale, ra::Rgb8 colour) {
+  int n = 0;
+  for (int by = 0; by < im.height / scale; ++by)
+    for (int bx = 0; bx < im.width / scale; ++bx) {
+      bool found = false;
+      for (int i = 1; i < scale && !found; ++i)
+        for (int j = 1; j < scale && !found; ++j)
+          found = im.at(bx * scale + j, by * scale + i) == colour;
+      n += found;
+    }
+  return n;
+}
+
+int pixels_with(const Image& im, ra::Rgb8 colour) {
+  int n = 0;
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x) n += im.at(x, y) == colour;
+  return n;
+}
+
+// The value printed for `field` in show's record block ("  pixels           37").
+std::string field(const std::string& output, const std::string& name) {
+  std::istringstream in(output);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string key, value;
+    if (words >> key >> value && key == name) return value;
+  }
+  return "";
+}
+
+// Runs the tiny experiment once for all the tests of this file.
+const std::string& reference_run() {
+  static const std::string run = [] {
+    const std::string dir = fresh_dir("show_run");
+    write_text(dir + "/e.toml", experiment("\"reference\""));
+    const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 1 -q");
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    return dir + "/run";
+  }();
+  return run;
+}
+
+// The largest true-visible triangle of the run, and its record.
+ra::Record largest_triangle(const std::string& run) {
+  ra::Record best;
+  for (const auto& e : fs::directory_iterator(run + "/records"))
+    if (e.path().extension() == ".csv")
+      ra::read_records(e.path().string(), [&](const ra::Record& r) {
+        if (r.kind == "triangle" && r.visibility == ra::Visibility::kTrueVisible &&
+            r.pixels > best.pixels)
+          best = r;
+      });
+  return best;
+}
+
+TEST(ShowCommand, ATriangleOnTheReferenceIsGreyWithARedOutline) {
+  const std::string run = reference_run();
+  const ra::Record rec = largest_triangle(run);
+  ASSERT_GT(rec.pixels, 10) << "the experiment should have a triangle with some pixels";
+  const std::string png = fs::path(run).parent_path().string() + "/shown/t.png";
+  const Outcome o = run_renderaudit("show " + run +
+                                    " --platform reference --kind triangle --view 1 "
+                                    "--index " +
+                                    std::to_string(rec.index) + " --out " + png);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("wrote " + png +
+                          " (512 x 512 px: window pixels x 0-63, y 0-63 of "
+                          "64 x 64, 8 px each)"),
+            std::string::npos)
+      << o.output;
+  // The record of this rendering is the run's record.
+  EXPECT_EQ(field(o.output, "visibility"), "true-visible") << o.output;
+  EXPECT_EQ(field(o.output, "pixels"), std::to_string(rec.pixels)) << o.output;
+  EXPECT_EQ(field(o.output, "ref_diff"), "0") << o.output;
+  EXPECT_NE(field(o.output, "te_u"), "") << o.output;
+  EXPECT_EQ(field(o.output, "pe"), "") << "point metrics do not apply to a triangle";
+
+  const Image im = read_image(png);
+  ASSERT_EQ(im.width, 512);
+  ASSERT_EQ(im.height, 512);
+  ASSERT_EQ(im.channels, 3);
+  // Every lit pixel is a grey block; nothing is platform-only or reference-only on the reference.
+  EXPECT_EQ(blocks_with(im, 8, ra::kBothColor), rec.pixels);
+  EXPECT_EQ(pixels_with(im, ra::kPlatformOnlyColor), 0);
+  EXPECT_EQ(pixels_with(im, ra::kReferenceOnlyColor), 0);
+  // A 1-px line cannot cover a block's 7 x 7 interior: every other block shows white.
+  EXPECT_EQ(blocks_with(im, 8, ra::kUnlitColor), 64 * 64 - rec.pixels);
+  // The outline of a triangle lighting more than 10 pixels is longer than 3 window pixels.
+  EXPECT_GT(pixels_with(im, ra::kIdealColor), 3 * 8);
+  // Blocks of 8 px carry a grid: a darker border.
+  EXPECT_GT(pixels_with(im, ra::Rgb8{160, 160, 160}), 0);
+}
+
+TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
+  // The faulty platform (reference base) draws every primitive one pixel to the right: each run
+  // of a row gains a platform-only pixel at its right end and loses a reference pixel at its left.
+  const std::string dir = fresh_dir("show_faulty");
+  fs::create_directories(dir + "/run");
+  write_text(dir + "/run/experiment.toml",
+             experiment("\"faulty\"", "[faults]\nshift_fraction = 1.0\n"));
+  // A triangle of some size away from the window's right edge, so no shifted pixel falls off.
+  const ra::Experiment exp = ra::load_experiment(dir + "/run/experiment.toml");
+  ra::PixelSet ref;
+  uint64_t index = 0;
+  for (; index < 20; ++index) {
+    ref = ra::rasterize_reference(exp.views[0],
+                                  ra::make_primitive(exp.seed, ra::Kind::kTriangle, index));
+    bool inside = ref.size() >= 20;
+    for (const ra::PixelRun& r : ref.runs()) inside = inside && r.x_end < 64;
+    if (inside) break;
+  }
+  ASSERT_LT(index, 20u) << "no suitable triangle under this seed";
+  const int64_t runs = int64_t(ref.runs().size());
+
+  const Outcome o = run_renderaudit("show " + dir + "/run -p faulty -k triangle -v 1 -i " +
+                                    std::to_string(index) + " --scale 4");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::string png = dir + "/run/show/faulty.triangle.v1." + std::to_string(index) + ".png";
+  const Image im = read_image(png);
+  ASSERT_EQ(im.width, 256);  // --scale 4 on the whole 64 x 64 window
+  ASSERT_EQ(im.height, 256);
+  EXPECT_EQ(blocks_with(im, 4, ra::kPlatformOnlyColor), runs);
+  EXPECT_EQ(blocks_with(im, 4, ra::kReferenceOnlyColor), runs);
+  EXPECT_EQ(blocks_with(im, 4, ra::kBothColor), ref.size() - runs);
+  EXPECT_EQ(field(o.output, "ref_diff"), std::to_string(2 * runs)) << o.output;
+  EXPECT_NE(o.output.find("light grey = lit by both (" + std::to_string(ref.size() - runs) +
+                          "), orange = platform (faulty) only (" + std::to_string(runs) +
+                          "), blue = reference only (" + std::to_string(runs) + ")"),
+            std::string::npos)
+      << o.output;
+}
+
+TEST(ShowCommand, BadRequestsSayWhatIsAllowed) {
+  const std::string run = reference_run();
+  const std::string base = "show " + run + " ";
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      {"-p swrast -k triangle -v 1 -i 0", "unknown platform 'swrast' (allowed: osmesa-llvmpipe, "},
+      {"-p reference -k quad -v 1 -i 0", "unknown kind 'quad' (allowed: point, line, triangle)"},
+      {"-p reference -k triangle -v 2 -i 0",
+       "view 2 out of range (allowed: 1 to 1: " + run + "/experiment.toml has 1 view)"},
+      {"-p reference -k triangle -v 1 -i 20", "index 20 out of range (allowed: 0 to 19: " + run +
+                                                  "/experiment.toml has 20 triangles per view)"},
+  };
+  for (const Case& c : cases) {
+    const Outcome o = run_renderaudit(base + c.args);
+    EXPECT_EQ(o.exit_code, 2) << c.args << "\n" << o.output;
+    EXPECT_NE(o.output.find("renderaudit: " + c.message), std::string::npos) << o.output;
+  }
+  const std::string missing = fresh_dir("show_missing") + "/nothing";
+  const Outcome o = run_renderaudit("show " + missing + " -p reference -k point -v 1 -i 0");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("renderaudit: " + missing + ": not a run directory (no experiment.toml)"),
+            std::string::npos)
+      << o.output;
+}
+
+}  // namespace
