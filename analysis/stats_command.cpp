@@ -1,6 +1,8 @@
-// `renderaudit stats describe|compare|anova`: the statistics of the analysis stage on any CSV
-// column, so that a reader can check a report's numbers, or compare two runs, by hand.
-// Methods and conventions: analysis/descriptive.h, hypothesis_tests.h, box_cox.h (NIST e-Handbook).
+// `renderaudit stats describe|compare|anova|regress`: the statistics of the analysis stage on any
+// CSV column, so that a reader can check a report's numbers, or compare two runs, by hand, and fit
+// rendering-time models by least squares.
+// Methods and conventions: analysis/descriptive.h, hypothesis_tests.h, box_cox.h (NIST e-Handbook),
+// linear_regression.h (QR least squares, NIST StRD).
 //
 // Output: human-readable text, or with --json one JSON object (snake_case keys, doubles written so
 // that they read back exactly). A statistic that is undefined for the data (both samples constant,
@@ -12,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,6 +23,7 @@
 #include "analysis/csv_table.h"
 #include "analysis/descriptive.h"
 #include "analysis/hypothesis_tests.h"
+#include "analysis/linear_regression.h"
 #include "app/commands.h"
 #include "runner/errors.h"
 
@@ -37,6 +41,9 @@ struct StatsOptions {
   std::string group;
   std::string value;
   std::string quantiles = "hf6";
+  std::string y;               // regress: response column
+  std::vector<std::string> x;  // regress: predictor columns
+  bool no_intercept = false;   // regress
   bool json = false;
 };
 
@@ -392,6 +399,127 @@ void run_anova(const StatsOptions& o) {
   out("\nLevene tests of equal variances (e-Handbook 1.3.5.10)\n%s", levene_text.c_str());
 }
 
+// Least squares of one column on others. Rows with an empty cell in any of the columns used are
+// skipped and counted; a cell that is not a number stops with file:line (CsvTable::number).
+void run_regress(const StatsOptions& o) {
+  const std::string& file = o.files.at(0);
+  std::set<std::string> seen;
+  for (const auto& name : o.x) {
+    if (name.empty()) throw UserError(file + ": --x has an empty column name");
+    if (!seen.insert(name).second) {
+      throw UserError(file + ": --x names column '" + name +
+                      "' twice; each predictor may appear once");
+    }
+    if (name == o.y) {
+      throw UserError(file + ": column '" + name +
+                      "' is both the response (--y) and a predictor (--x)");
+    }
+  }
+  const analysis::CsvTable table = analysis::CsvTable::read_file(file);
+  const std::size_t y_column = table.column(o.y);
+  std::vector<std::size_t> x_columns;
+  for (const auto& name : o.x) x_columns.push_back(table.column(name));
+
+  std::vector<double> y;
+  std::vector<std::vector<double>> predictors(o.x.size());
+  std::size_t n_missing = 0;
+  std::vector<double> row_x(o.x.size());
+  for (std::size_t row = 0; row < table.row_count(); ++row) {
+    const std::optional<double> value = table.number(row, y_column);
+    bool complete = value.has_value();
+    for (std::size_t j = 0; j < x_columns.size(); ++j) {
+      const std::optional<double> v = table.number(row, x_columns[j]);
+      if (v) row_x[j] = *v;
+      complete = complete && v.has_value();
+    }
+    if (!complete) {
+      ++n_missing;
+      continue;
+    }
+    y.push_back(*value);
+    for (std::size_t j = 0; j < row_x.size(); ++j) predictors[j].push_back(row_x[j]);
+  }
+
+  stats::LinearFit fit;
+  try {
+    fit = stats::fit_least_squares(predictors, y, !o.no_intercept, o.x);
+  } catch (const UserError& e) {
+    throw UserError(file + ": '" + o.y + "' on " + (o.no_intercept ? "" : "an intercept and ") +
+                    std::to_string(o.x.size()) + " predictor(s), " + std::to_string(y.size()) +
+                    " complete row(s) (" + std::to_string(n_missing) +
+                    " skipped for empty cells): " + e.what());
+  }
+  std::vector<Reported> tests;
+  for (std::size_t j = 0; j < fit.coefficients.size(); ++j) {
+    tests.push_back(report_test(
+        {"t_value", "p_value"}, [&] { return stats::coefficient_t_test(fit, j); },
+        [](const stats::CoefficientTest& t, Reported& r) {
+          r.j = json{{"t_value", number(t.t)}, {"p_value", number(t.p_value)}};
+          char buf[128];
+          std::snprintf(buf, sizeof buf, " %16s %16s", text_number(t.t).c_str(),
+                        text_number(t.p_value).c_str());
+          r.text = buf;
+        }));
+  }
+  const char* r2_definition = fit.r_squared_centred ? "centred" : "uncentred";
+  const std::string r2_reason = fit.r_squared_centred
+                                    ? "y is constant: no variation about its mean to explain"
+                                    : "y is 0 in every row: no variation about 0 to explain";
+
+  if (o.json) {
+    json j = header_json("stats regress");
+    j["file"] = file;
+    j["y_column"] = o.y;
+    j["x_columns"] = o.x;
+    j["intercept"] = fit.intercept;
+    j["method"] = "householder_qr_column_pivoting";
+    j["n"] = fit.n;
+    j["n_missing"] = n_missing;
+    j["df"] = fit.df;
+    j["rank"] = fit.rank;
+    json cj = json::array();
+    for (std::size_t k = 0; k < fit.coefficients.size(); ++k) {
+      json c{{"name", fit.names[k]},
+             {"estimate", number(fit.coefficients[k])},
+             {"sd", number(fit.standard_deviations[k])}};
+      c.update(tests[k].j);
+      cj.push_back(c);
+    }
+    j["coefficients"] = cj;
+    j["residual_sd"] = number(fit.residual_sd);
+    j["rss"] = number(fit.rss);
+    j["r_squared_definition"] = r2_definition;
+    if (fit.r_squared) {
+      j["r_squared"] = number(*fit.r_squared);
+    } else {
+      j["r_squared"] = nullptr;
+      j["r_squared_reason"] = r2_reason;
+    }
+    print_json(j);
+    return;
+  }
+  std::string predictors_text;
+  for (const auto& name : o.x)
+    predictors_text += (predictors_text.empty() ? "'" : ", '") + name + "'";
+  out("%s: '%s' on %s%s; %zu rows (%zu skipped: empty cells)\n", file.c_str(), o.y.c_str(),
+      fit.intercept ? "an intercept and " : "", predictors_text.c_str(), fit.n, n_missing);
+  out("Least squares by Householder QR with column pivoting (checked against NIST StRD)\n\n");
+  out("  %-20s %24s %24s %16s %16s\n", "parameter", "estimate", "std dev", "t value", "p");
+  for (std::size_t k = 0; k < fit.coefficients.size(); ++k) {
+    const std::string& t = tests[k].text;  // "undefined (why)" for an exact fit
+    out("  %-20s %24s %24s%s\n", fit.names[k].c_str(), text_number(fit.coefficients[k]).c_str(),
+        text_number(fit.standard_deviations[k]).c_str(),
+        (t.rfind("undefined", 0) == 0 ? "   t " + t : t).c_str());
+  }
+  out("\n  residual SD = %s on %zu degrees of freedom (n = %zu, %zu parameters)\n",
+      text_number(fit.residual_sd).c_str(), fit.df, fit.n, fit.coefficients.size());
+  if (fit.r_squared) {
+    out("  R-squared = %s (%s)\n", text_number(*fit.r_squared).c_str(), r2_definition);
+  } else {
+    out("  R-squared undefined (%s)\n", r2_reason.c_str());
+  }
+}
+
 // --json, and --quantiles where quartiles are printed.
 void add_common_options(CLI::App* cmd, StatsOptions& o, bool quantiles) {
   cmd->add_flag("--json", o.json, "one JSON object instead of text");
@@ -408,7 +536,7 @@ void register_stats_command(CLI::App& app, int& exit_code) {
   auto* stats_cmd = app.add_subcommand(
       "stats",
       "Statistics of CSV columns with the NIST e-Handbook's conventions: summaries, t / F / "
-      "Levene tests, one-way ANOVA, Box-Cox lambda.");
+      "Levene tests, one-way ANOVA, Box-Cox lambda; least-squares regression.");
   stats_cmd->require_subcommand(1);
 
   // each subcommand owns its options; shared_ptr keeps them alive as long as the callbacks
@@ -453,6 +581,26 @@ void register_stats_command(CLI::App& app, int& exit_code) {
   add_common_options(anova, *anova_opt, false);
   anova->callback([anova_opt, &exit_code] {
     run_anova(*anova_opt);
+    exit_code = kExitOk;
+  });
+
+  auto regress_opt = std::make_shared<StatsOptions>();
+  auto* regress = stats_cmd->add_subcommand(
+      "regress",
+      "Least-squares fit of one column on others (QR; checked against NIST StRD): coefficients "
+      "with their standard deviations and t tests, residual SD, R-squared");
+  regress->add_option("file", regress_opt->files, "CSV file with a header row")
+      ->required()
+      ->expected(1);
+  regress->add_option("--y", regress_opt->y, "response column (numeric)")->required();
+  regress->add_option("--x", regress_opt->x, "predictor column(s), comma-separated or repeated")
+      ->required()
+      ->delimiter(',');
+  regress->add_flag("--no-intercept", regress_opt->no_intercept,
+                    "fit without a constant term (R-squared is then uncentred, as NIST's)");
+  add_common_options(regress, *regress_opt, false);
+  regress->callback([regress_opt, &exit_code] {
+    run_regress(*regress_opt);
     exit_code = kExitOk;
   });
 }

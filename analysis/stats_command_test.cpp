@@ -16,6 +16,7 @@
 #include "analysis/box_cox.h"
 #include "analysis/descriptive.h"
 #include "analysis/hypothesis_tests.h"
+#include "analysis/linear_regression.h"
 #include "analysis/stats_testing.h"
 #include "app/commands.h"
 #include "runner/errors.h"
@@ -198,6 +199,156 @@ TEST_F(StatsCommand, BadInputIsALocatedUserError) {
   EXPECT_NE(few.find(one + ": column 'error_px' has 1 value(s)"), std::string::npos) << few;
   const std::string groups = message({"anova", good, "--group", "label", "--value", "error_px"});
   EXPECT_NE(groups.find("1 group(s)"), std::string::npos) << groups;
+}
+
+std::string format17(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// StRD Norris written as CSV (columns in another order than the file's, plus a text column):
+// `regress --json` carries exactly the library's fit, which reproduces the certified values.
+TEST_F(StatsCommand, RegressNorrisJson) {
+  const auto rows = testing::strd_data_rows(testing::read_lines(testing::strd_path("Norris.dat")));
+  ASSERT_EQ(rows.size(), 36u);
+  std::vector<double> x, y;
+  std::vector<std::string> lines;
+  for (const auto& r : rows) {
+    y.push_back(r.at(0));
+    x.push_back(r.at(1));
+    lines.push_back("ozone," + format17(r.at(1)) + "," + format17(r.at(0)));
+  }
+  const std::string file = write_csv(dir_, "norris.csv", "label,x,y", lines);
+  const json j = json::parse(run_stats({"regress", file, "--y", "y", "--x", "x", "--json"}));
+  EXPECT_EQ(j["schema_version"], 1);
+  EXPECT_EQ(j["command"], "stats regress");
+  EXPECT_EQ(j["file"], file);
+  EXPECT_EQ(j["y_column"], "y");
+  EXPECT_EQ(j["x_columns"], json::array({"x"}));
+  EXPECT_EQ(j["intercept"], true);
+  EXPECT_EQ(j["method"], "householder_qr_column_pivoting");
+  EXPECT_EQ(j["n"], 36);
+  EXPECT_EQ(j["n_missing"], 0);
+  EXPECT_EQ(j["df"], 34);
+  EXPECT_EQ(j["rank"], 2);
+  EXPECT_EQ(j["r_squared_definition"], "centred");
+  const LinearFit fit = fit_least_squares({x}, y, true, {"x"});
+  const json& c = j["coefficients"];
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[0]["name"], "(intercept)");
+  EXPECT_EQ(c[1]["name"], "x");
+  for (std::size_t k = 0; k < 2; ++k) {
+    // exact equality: the JSON numbers read back to the same doubles
+    EXPECT_EQ(c[k]["estimate"].get<double>(), fit.coefficients[k]);
+    EXPECT_EQ(c[k]["sd"].get<double>(), fit.standard_deviations[k]);
+    EXPECT_EQ(c[k]["t_value"].get<double>(), coefficient_t_test(fit, k).t);
+    EXPECT_EQ(c[k]["p_value"].get<double>(), coefficient_t_test(fit, k).p_value);
+  }
+  EXPECT_EQ(j["residual_sd"].get<double>(), fit.residual_sd);
+  EXPECT_EQ(j["rss"].get<double>(), fit.rss);
+  EXPECT_EQ(j["r_squared"].get<double>(), *fit.r_squared);
+  // certified values, Norris.dat lines 31-37 (all of them: linear_regression_test.cpp)
+  EXPECT_GE(testing::lre(c[0]["estimate"].get<double>(), -0.262323073774029), 9);
+  EXPECT_GE(testing::lre(c[1]["estimate"].get<double>(), 1.00211681802045), 9);
+  EXPECT_GE(testing::lre(c[1]["sd"].get<double>(), 0.429796848199937E-03), 9);
+  EXPECT_GE(testing::lre(j["residual_sd"].get<double>(), 0.884796396144373), 9);
+  EXPECT_GE(testing::lre(j["r_squared"].get<double>(), 0.999993745883712), 9);
+
+  const std::string text = run_stats({"regress", file, "--y", "y", "--x", "x"});
+  EXPECT_NE(text.find("(intercept)"), std::string::npos) << text;
+  EXPECT_NE(text.find("residual SD = 0.8847963961 on 34 degrees of freedom"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("R-squared = 0.9999937459 (centred)"), std::string::npos) << text;
+}
+
+// Two predictors given as a comma list or as repeated --x, no intercept, and a row with an empty
+// cell (skipped and counted): the uncentred R-squared of the library.
+TEST_F(StatsCommand, RegressNoInterceptSkipsIncompleteRows) {
+  const std::string file =
+      write_csv(dir_, "timing.csv", "polys,pixels,ms",
+                {"1000,50000,2.531", "2500,120000,6.174", "4000,30000,8.362", "5200,,12.385",
+                 "7000,90000,14.853", "8800,160000,19.247", "10000,60000,20.588"});
+  const json j = json::parse(
+      run_stats({"regress", file, "--y", "ms", "--x", "polys,pixels", "--no-intercept", "--json"}));
+  const LinearFit fit = fit_least_squares(
+      {{1000, 2500, 4000, 7000, 8800, 10000}, {50000, 120000, 30000, 90000, 160000, 60000}},
+      {2.531, 6.174, 8.362, 14.853, 19.247, 20.588}, false, {"polys", "pixels"});
+  EXPECT_EQ(j["intercept"], false);
+  EXPECT_EQ(j["n"], 6);
+  EXPECT_EQ(j["n_missing"], 1);
+  EXPECT_EQ(j["df"], 4);
+  EXPECT_EQ(j["r_squared_definition"], "uncentred");
+  ASSERT_EQ(j["coefficients"].size(), 2u);
+  EXPECT_EQ(j["coefficients"][0]["name"], "polys");
+  EXPECT_EQ(j["coefficients"][1]["estimate"].get<double>(), fit.coefficients[1]);
+  EXPECT_EQ(j["coefficients"][0]["sd"].get<double>(), fit.standard_deviations[0]);
+  EXPECT_EQ(j["r_squared"].get<double>(), *fit.r_squared);
+  const json repeated = json::parse(run_stats(
+      {"regress", file, "--y", "ms", "--x", "polys", "--x", "pixels", "--no-intercept", "--json"}));
+  EXPECT_EQ(repeated["coefficients"], j["coefficients"]);
+  const std::string text =
+      run_stats({"regress", file, "--y", "ms", "--x", "polys,pixels", "--no-intercept"});
+  EXPECT_NE(text.find("'ms' on 'polys', 'pixels'; 6 rows (1 skipped: empty cells)"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("(uncentred)"), std::string::npos) << text;
+}
+
+// An exact fit: t undefined, written as null with the reason; never NaN.
+TEST_F(StatsCommand, RegressExactFitHasNullT) {
+  const std::string file = write_csv(dir_, "exact.csv", "x,y", {"1,3", "2,5", "3,7", "4,9"});
+  const std::string out = run_stats({"regress", file, "--y", "y", "--x", "x", "--json"});
+  EXPECT_EQ(out.find("NaN"), std::string::npos) << out;
+  const json j = json::parse(out);
+  // y = 1 + 2x is exact in binary: the residuals, and with them every SD, are exactly 0
+  EXPECT_EQ(j["residual_sd"].get<double>(), 0);
+  EXPECT_TRUE(j["coefficients"][1]["t_value"].is_null());
+  EXPECT_TRUE(j["coefficients"][1]["p_value"].is_null());
+  EXPECT_NE(j["coefficients"][1]["reason"].get<std::string>().find("the fit is exact"),
+            std::string::npos);
+  const std::string constant = write_csv(dir_, "constant.csv", "x,y", {"1,3", "2,3", "3,3", "4,3"});
+  const json jc = json::parse(run_stats({"regress", constant, "--y", "y", "--x", "x", "--json"}));
+  EXPECT_TRUE(jc["r_squared"].is_null());
+  EXPECT_NE(jc["r_squared_reason"].get<std::string>().find("y is constant"), std::string::npos);
+}
+
+TEST_F(StatsCommand, RegressBadInputIsALocatedUserError) {
+  const std::string file =
+      write_csv(dir_, "t.csv", "polys,verts,fov,ms",
+                {"100,300,60,1.1", "250,750,60,2.4", "400,1200,60,3.9", "520,1560,60,5.3"});
+  auto message = [](std::vector<std::string> args) -> std::string {
+    try {
+      run_stats(std::move(args));
+    } catch (const UserError& e) {
+      return e.what();
+    }
+    return "(no UserError)";
+  };
+  const std::string unknown = message({"regress", file, "--y", "ms", "--x", "polys,pixels"});
+  EXPECT_NE(unknown.find(file + ":1: no column named 'pixels' (available: polys, verts, fov, ms)"),
+            std::string::npos)
+      << unknown;
+  const std::string unknown_y = message({"regress", file, "--y", "time", "--x", "polys"});
+  EXPECT_NE(unknown_y.find("no column named 'time'"), std::string::npos) << unknown_y;
+  const std::string both = message({"regress", file, "--y", "ms", "--x", "polys,ms"});
+  EXPECT_NE(both.find(file + ": column 'ms' is both the response (--y) and a predictor (--x)"),
+            std::string::npos)
+      << both;
+  const std::string twice = message({"regress", file, "--y", "ms", "--x", "polys,polys"});
+  EXPECT_NE(twice.find("names column 'polys' twice"), std::string::npos) << twice;
+  // 3 vertices per polygon: proportional columns
+  const std::string rank = message({"regress", file, "--y", "ms", "--x", "polys,verts"});
+  EXPECT_NE(rank.find(file + ": 'ms' on an intercept and 2 predictor(s), 4 complete row(s)"),
+            std::string::npos)
+      << rank;
+  EXPECT_NE(rank.find("rank 2 for 3 parameters"), std::string::npos) << rank;
+  // a constant column duplicates the intercept; without an intercept it is fine
+  EXPECT_NE(message({"regress", file, "--y", "ms", "--x", "polys,fov"}).find("rank 2"),
+            std::string::npos);
+  EXPECT_NO_THROW(run_stats({"regress", file, "--y", "ms", "--x", "polys,fov", "--no-intercept"}));
+  const std::string few = message({"regress", file, "--y", "ms", "--x", "polys,verts,fov"});
+  EXPECT_NE(few.find("4 observation(s) for 4 parameter(s)"), std::string::npos) << few;
 }
 
 // The built program: `renderaudit stats describe --json` prints the library's numbers and exits 0;
