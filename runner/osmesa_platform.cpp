@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -134,8 +135,11 @@ class OsmesaPlatform : public Platform {
     out.lit.clear();
     read_and_scan({0, 0, width_, height_}, colour_, out.lit);
     if (out.lit.size() == samples) return out;
-    // The colour did not come back exactly. Draw the primitive white on a
-    // cleared window; the count still has to agree.
+    // Either the colour did not come back exactly, or the driver produced more fragments than
+    // pixels: it lit some pixel twice (softpipe does, for some large triangles of the nist2008
+    // views: 16,355 fragments for 16,336 pixels in one case). Draw
+    // the primitive white on a cleared window and take every non-black pixel of the whole window:
+    // complete by construction, whatever the count says.
     clear_all();
     glColor4ub(255, 255, 255, 255);
     begin_query_(GL_SAMPLES_PASSED, query_);
@@ -144,11 +148,14 @@ class OsmesaPlatform : public Platform {
     out.lit.clear();
     read_and_scan({0, 0, width_, height_}, kAnyColour, out.lit);
     clear_all();
-    if (out.lit.size() != samples)
-      throw std::runtime_error("the driver's fragment count (" + std::to_string(samples) +
-                               ") disagrees with the pixels it lit (" +
-                               std::to_string(out.lit.size()) + ") for primitive " +
-                               std::to_string(prim.index));
+    if (out.lit.size() > samples)  // more lit pixels than fragments on a cleared window
+      throw std::runtime_error("the driver lit " + std::to_string(out.lit.size()) +
+                               " pixels with " + std::to_string(samples) +
+                               " fragments for primitive " + std::to_string(prim.index));
+    if (out.lit.size() < samples)
+      std::fprintf(stderr, "primitive %llu: %u fragments for %lld pixels (pixels lit twice)\n",
+                   static_cast<unsigned long long>(prim.index), samples,
+                   static_cast<long long>(out.lit.size()));
     return out;
   }
 
