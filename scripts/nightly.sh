@@ -26,7 +26,7 @@ if [[ ${1:-} == --promote ]]; then
   exit 0
 fi
 
-tonight="$root/runs/$(date -u +%Y-%m-%dT%H%MZ)"
+tonight="$root/runs/$(date -u +%Y-%m-%dT%H%M%SZ)"
 mkdir -p "$root/runs"
 expect=()
 [[ -n ${EXPECT_RENDERER:-} ]] && expect=(--expect-renderer "$EXPECT_RENDERER")
@@ -44,7 +44,7 @@ if [[ ! -e $baseline ]]; then
 fi
 
 verdict=0
-"$bin" audit "$baseline/" "$tonight" --db "$db" || verdict=$?
+"$bin" audit "$(realpath "$baseline")" "$tonight" --db "$db" || verdict=$?
 "$bin" analyze "$tonight" >/dev/null
 "$bin" plot "$tonight" >/dev/null
 "$bin" report "$tonight"
