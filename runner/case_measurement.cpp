@@ -78,9 +78,18 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
   }
   rec.render_us = rendered.render_us;
   rec.pixel_hash = pixel_set_hash(rendered.lit);
-  rec.ref_diff = compare_with_reference
-                     ? symmetric_difference_size(rendered.lit, rasterize_reference(view, prim))
-                     : 0;
+  if (compare_with_reference) {
+    // The reference rasterizer, from the geometry prepare_case already clipped.
+    PixelSet reference;
+    switch (prim.kind) {
+      case Kind::kPoint: reference = rasterize_reference(view, prim); break;
+      case Kind::kLine: reference = rasterize_segment(c.segment, view.width, view.height); break;
+      case Kind::kTriangle: reference = rasterize_polygon(c.polygon, view.width, view.height); break;
+    }
+    rec.ref_diff = symmetric_difference_size(rendered.lit, reference);
+  } else {
+    rec.ref_diff = 0;
+  }
   return rec;
 }
 
