@@ -14,7 +14,6 @@ packages=(
   nlohmann-json3-dev    # nlohmann/json: manifest and JSON output
   libmeshoptimizer-dev  # meshoptimizer: vertex-cache analysis and simplification
   libeigen3-dev         # Eigen: QR / SVD least squares (stats regress, timing models)
-  libmeshoptimizer-dev  # FIFO vertex-cache analysis of the timing scenes (transformed vertices)
   libsqlite3-dev        # SQLite: audit history database
   libgtest-dev          # GoogleTest: the test suite
   xvfb                  # a private X server for VTK on machines with no display
