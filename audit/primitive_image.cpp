@@ -34,7 +34,7 @@ class RecordingPlatform : public Platform {
   explicit RecordingPlatform(Platform& inner) : inner_(inner) {}
   DriverInfo driver_info() const override { return inner_.driver_info(); }
   void set_view(const View& view) override { inner_.set_view(view); }
-  RenderResult render(const Primitive& prim, const PixelRect& expected) override {
+  RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
     last = inner_.render(prim, expected);
     return last;
   }

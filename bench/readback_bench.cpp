@@ -1,6 +1,8 @@
 // `make bench`: the cost of finding every lit pixel, side by side in one run, per platform, kind,
 // window and field of view (median microseconds per primitive over interleaved rounds):
-//   floor    draw + glFinish only: what the renderer itself must spend;
+//   floor    draw + glFinish only: what the renderer itself must spend for one primitive alone;
+//   batched  64 primitives drawn under one glFinish, nothing read back: the same floor when the
+//            flush is shared, as `run` shares it among small primitives;
 //   naive    full-window clear + draw + glFinish + full-window glReadPixels (the paper's method);
 //   region   the project's readback one primitive at a time: draw in the primitive's own colour,
 //            occlusion query, region glReadPixels (and its metrics, without the reference);
@@ -66,7 +68,7 @@ nlohmann::json summary_row(const std::string& platform, Kind kind, int window, d
                            int primitives, const Timings& t) {
   nlohmann::json row = {{"platform", platform}, {"kind", kind_name(kind)}, {"window", window},
                         {"fov_deg", fov},       {"primitives", primitives}};
-  for (const char* m : {"floor", "naive", "region", "project"}) {
+  for (const char* m : {"floor", "batched", "naive", "region", "project"}) {
     row[std::string(m) + "_us"] = median(t.per_primitive.at(m));
     row[std::string(m) + "_mean_us"] = mean(t.per_primitive.at(m));
   }
@@ -81,7 +83,7 @@ int measure_platform(const Options& opt) {
     std::fprintf(stderr, "readback_bench: not an OSMesa platform: %s\n", opt.platform.c_str());
     return 2;
   }
-  const char* methods[] = {"floor", "naive", "region", "project"};
+  const char* methods[] = {"floor", "naive", "region", "project", "batched"};
   for (Kind kind : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
     for (int window : {128, 907}) {
       Timings pooled;
@@ -92,15 +94,26 @@ int measure_platform(const Options& opt) {
           std::vector<Primitive> prims;
           for (int i = 0; i < opt.primitives; ++i)
             prims.push_back(make_primitive(2008, kind, uint64_t(round) * opt.primitives + i));
-          for (int m = 0; m < 4; ++m) {  // interleaved: every method in every round
-            const ReadbackMethod rm = m == 0   ? ReadbackMethod::kDrawOnly
+          for (int m = 0; m < 5; ++m) {  // interleaved: every method in every round
+            const ReadbackMethod rm = m == 0 || m == 4 ? ReadbackMethod::kDrawOnly
                                       : m == 1 ? ReadbackMethod::kFullWindow
                                                : ReadbackMethod::kRegionWithProof;
             auto platform = create_osmesa_platform(*spec, rm);
             platform->set_view(view);
             // Mesa compiles its shaders on the first draws: keep that out of the timings.
             for (uint64_t w = 0; w < 16; ++w)
-              platform->render(make_primitive(7, kind, w), {0, 0, window, window});
+              platform->render(make_primitive(7, kind, w), PixelRect{0, 0, window, window});
+            if (m == 4) {  // the floor with the flush shared by kChunk primitives
+              std::vector<double>& us = t.per_primitive["batched"];
+              for (size_t i = 0; i < prims.size(); i += kChunk) {
+                const std::vector<Primitive> chunk(
+                    prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
+                for (const RenderResult& r :
+                     platform->render_batch(chunk, std::vector<PixelRegion>(chunk.size())))
+                  us.push_back(r.render_us);
+              }
+              continue;
+            }
             if (m == 3) {  // exactly what `renderaudit run` does, chunk by chunk
               std::vector<double>& us = t.per_primitive["project"];
               for (size_t i = 0; i < prims.size(); i += kChunk) {
@@ -156,19 +169,22 @@ int run_children(const Options& opt, const char* self) {
       "Microseconds per primitive, %d primitives x %d interleaved rounds per field of view ('both'\n"
       "pools the two). region: the project's readback and metrics one primitive at a time; project:\n"
       "what `run` spends per primitive (its batch's drawing and proof shared equally, plus its own\n"
-      "geometry, metrics and reference comparison). ratios: of medians, and naive/project of means.\n",
-      opt.primitives, opt.rounds);
-  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %7s %7s\n", "platform", "kind", "window",
-              "fov", "floor", "naive", "region", "project", "floor", "project", "project", "naive");
-  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %7s %7s\n", "", "", "", "", "median",
-              "median", "median", "median", "mean", "mean", "/floor", "/proj");
+      "geometry, metrics and reference comparison); batched: the floor with one glFinish per %d\n"
+      "primitives. ratios: of medians, and naive/project of means.\n",
+      opt.primitives, opt.rounds, kChunk);
+  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %8s %7s %7s\n", "platform", "kind",
+              "window", "fov", "floor", "batched", "naive", "region", "project", "floor", "project",
+              "project", "naive");
+  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %8s %7s %7s\n", "", "", "", "", "median",
+              "median", "median", "median", "median", "mean", "mean", "/floor", "/proj");
   for (const auto& r : rows) {
     const double fov = r["fov_deg"];
     const std::string fov_text = fov == 0 ? "both" : std::to_string(int(fov));
     const double floor = r["floor_us"], project = r["project_us"];
-    std::printf("%-16s %-9s %6d %5s %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %7.2f %7.1f\n",
+    std::printf("%-16s %-9s %6d %5s %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %7.2f %7.1f\n",
                 r["platform"].get<std::string>().c_str(), r["kind"].get<std::string>().c_str(),
-                r["window"].get<int>(), fov_text.c_str(), floor, r["naive_us"].get<double>(),
+                r["window"].get<int>(), fov_text.c_str(), floor, r["batched_us"].get<double>(),
+                r["naive_us"].get<double>(),
                 r["region_us"].get<double>(), project, r["floor_mean_us"].get<double>(),
                 r["project_mean_us"].get<double>(), project / floor,
                 r["naive_mean_us"].get<double>() / r["project_mean_us"].get<double>());

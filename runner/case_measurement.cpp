@@ -35,7 +35,7 @@ struct PreparedCase {
   IdealPoint point;        // Kind::kPoint
   ClippedSegment segment;  // Kind::kLine
   ClippedPolygon polygon;  // Kind::kTriangle
-  PixelRect expected;      // where the ideal primitive lies, plus kRegionMargin
+  PixelRegion expected;    // where the ideal primitive lies, plus kRegionMargin
 };
 
 PreparedCase prepare_case(const std::string& platform_name, const View& view,
@@ -57,7 +57,7 @@ PreparedCase prepare_case(const std::string& platform_name, const View& view,
       c.segment = clip_segment(view, prim.v[0], prim.v[1]);
       // No projection (e.g. w = 0 at a vertex): status invalid, nothing drawn.
       if (c.segment.status == ClipStatus::kInvalid) c.rec.status = CaseStatus::kInvalid;
-      c.expected = bounding_rect(c.segment, view.width, view.height, kRegionMargin);
+      c.expected = strip_region(c.segment, view.width, view.height, kRegionMargin);
       break;
     case Kind::kTriangle:
       c.polygon = clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
@@ -77,6 +77,7 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
     case Kind::kTriangle: measure_triangle_case(c.polygon, view, rendered.lit, rec); break;
   }
   rec.render_us = rendered.render_us;
+  rec.batch_size = rendered.batch_size;
   rec.pixel_hash = pixel_set_hash(rendered.lit);
   if (compare_with_reference) {
     // The reference rasterizer, from the geometry prepare_case already clipped.
@@ -91,10 +92,6 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
     rec.ref_diff = 0;
   }
   return rec;
-}
-
-bool overlaps(const PixelRect& a, const PixelRect& b) {
-  return !a.empty() && !b.empty() && a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
 }
 
 }  // namespace
@@ -118,7 +115,7 @@ std::vector<Record> measure_cases(const std::string& platform_name, Platform& pl
   std::vector<Record> records(prims.size());
   std::vector<size_t> batch;  // indices into prims
   std::vector<Primitive> batch_prims;
-  std::vector<PixelRect> batch_regions;
+  std::vector<PixelRegion> batch_regions;
   auto flush = [&] {
     if (batch.empty()) return;
     auto t0 = Clock::now();
@@ -139,10 +136,10 @@ std::vector<Record> measure_cases(const std::string& platform_name, Platform& pl
     }
     // Batch small primitives with disjoint regions (the usual case for all but large triangles
     // and lines), so that one completeness proof covers the batch; a large one goes alone.
-    const PixelRect& r = cases[i].expected;
+    const PixelRegion& r = cases[i].expected;
     const bool large = r.area() > kBatchMaxRegionArea;
     bool clash = batch.size() >= kMaxBatch || large;
-    for (size_t k = 0; k < batch_regions.size() && !clash; ++k) clash = overlaps(batch_regions[k], r);
+    for (size_t k = 0; k < batch_regions.size() && !clash; ++k) clash = batch_regions[k].overlaps(r);
     if (clash) flush();
     batch.push_back(i), batch_prims.push_back(prims[i]), batch_regions.push_back(r);
     if (large) flush();

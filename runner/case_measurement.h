@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "runner/clipping.h"
+#include "runner/pixel_region.h"
 #include "runner/point_metrics.h"
 #include "runner/platform.h"
 #include "runner/records.h"

@@ -48,7 +48,7 @@ class FaultyPlatform : public Platform {
     if (base_) base_->set_view(view);
   }
 
-  RenderResult render(const Primitive& prim, const PixelRect& expected) override {
+  RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
     if (listed(plan_.crash, prim.index)) std::raise(SIGSEGV);  // what a crashing driver does
     if (listed(plan_.hang, prim.index))
       for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));

@@ -105,7 +105,7 @@ class OsmesaPlatform : public Platform {
     clear_all();
   }
 
-  RenderResult render(const Primitive& prim, const PixelRect& expected) override {
+  RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
     RenderResult out;
     switch (method_) {
       case ReadbackMethod::kDrawOnly:  // the floor: what the renderer itself must spend
@@ -129,7 +129,7 @@ class OsmesaPlatform : public Platform {
     GLuint samples = 0;
     get_query_(query_, GL_QUERY_RESULT, &samples);
 
-    read_and_scan(clamp(expected), colour_, out.lit);
+    read_and_scan(expected, colour_, out.lit);
     if (out.lit.size() == samples) return out;
     out.full_scan = true;
     out.lit.clear();
@@ -159,29 +159,38 @@ class OsmesaPlatform : public Platform {
     return out;
   }
 
-  // A batch: each primitive in its own colour, one occlusion query around them all. The sum over
-  // the batch of the pixels found in each primitive's region with its colour equals the fragment
-  // count only when every fragment was found where it belongs and none was overwritten by another
-  // (each found pixel is a distinct fragment); any other outcome redraws the batch one primitive
-  // at a time, each with its own proof.
+  // A batch: each primitive in its own colour, one occlusion query and one glFinish around them
+  // all (a glFinish per primitive cost more than the small primitive's drawing: llvmpipe walks all
+  // its tiles at every flush). The sum over the batch of the pixels found in each primitive's
+  // region with its colour equals the fragment count only when every fragment was found where it
+  // belongs and none was overwritten by another (each found pixel is a distinct fragment); any
+  // other outcome redraws the batch one primitive at a time, each with its own proof and time.
   std::vector<RenderResult> render_batch(const std::vector<Primitive>& prims,
-                                         const std::vector<PixelRect>& expected) override {
+                                         const std::vector<PixelRegion>& expected) override {
+    if (method_ == ReadbackMethod::kDrawOnly) return draw_batch_only(prims);
     if (method_ != ReadbackMethod::kRegionWithProof || prims.size() < 2)
       return Platform::render_batch(prims, expected);
     reserve_colours(prims.size());
     const uint32_t first = colour_ + 1;
     std::vector<RenderResult> out(prims.size());
+    const auto t0 = std::chrono::steady_clock::now();
     begin_query_(GL_SAMPLES_PASSED, query_);
     for (size_t i = 0; i < prims.size(); ++i) {
       use_colour(++colour_);
-      out[i].render_us = draw_and_finish(prims[i], false, wild_pixel_for(prims[i], expected[i]));
+      draw(prims[i], wild_pixel_for(prims[i], expected[i]));
     }
     end_query_(GL_SAMPLES_PASSED);
+    glFinish();
+    const double share_us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() /
+        double(prims.size());
     GLuint samples = 0;
     get_query_(query_, GL_QUERY_RESULT, &samples);
     int64_t found = 0;
     for (size_t i = 0; i < prims.size(); ++i) {
-      read_and_scan(clamp(expected[i]), first + uint32_t(i), out[i].lit);
+      out[i].render_us = share_us;
+      out[i].batch_size = int(prims.size());
+      read_and_scan(expected[i], first + uint32_t(i), out[i].lit);
       found += out[i].lit.size();
     }
     if (found == int64_t(samples)) return out;
@@ -192,23 +201,39 @@ class OsmesaPlatform : public Platform {
   // Draws the primitive and waits for it; returns the CPU time in microseconds. With
   // `end_query`, the running occlusion query is ended right after the draw.
   double draw_and_finish(const Primitive& prim, bool end_query = false, const Pixel* wild = nullptr) {
-    static const GLenum modes[] = {GL_POINTS, GL_LINES, GL_TRIANGLES};
     const auto t0 = std::chrono::steady_clock::now();
-    glBegin(modes[int(prim.kind)]);
-    for (int i = 0; i < vertex_count(prim.kind); ++i) glVertex3d(prim.v[i].x, prim.v[i].y, prim.v[i].z);
-    glEnd();
-    if (wild) draw_wild_pixel(*wild);
+    draw(prim, wild);
     if (end_query) end_query_(GL_SAMPLES_PASSED);
     glFinish();
     return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   }
 
+  void draw(const Primitive& prim, const Pixel* wild) {
+    static const GLenum modes[] = {GL_POINTS, GL_LINES, GL_TRIANGLES};
+    glBegin(modes[int(prim.kind)]);
+    for (int i = 0; i < vertex_count(prim.kind); ++i) glVertex3d(prim.v[i].x, prim.v[i].y, prim.v[i].z);
+    glEnd();
+    if (wild) draw_wild_pixel(*wild);
+  }
+
+  // The batched floor (benchmark only): the batch drawn under one glFinish, nothing read back.
+  std::vector<RenderResult> draw_batch_only(const std::vector<Primitive>& prims) {
+    std::vector<RenderResult> out(prims.size());
+    const auto t0 = std::chrono::steady_clock::now();
+    for (const Primitive& prim : prims) draw(prim, nullptr);
+    glFinish();
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    for (RenderResult& r : out) r.render_us = us / double(prims.size()), r.batch_size = int(prims.size());
+    return out;
+  }
+
   // Test-only fault: where the extra pixel goes (the quadrant opposite the expected region), or
   // nullptr when this primitive has none.
-  const Pixel* wild_pixel_for(const Primitive& prim, const PixelRect& expected) {
+  const Pixel* wild_pixel_for(const Primitive& prim, const PixelRegion& region) {
     if (std::find(wild_pixel_indices_.begin(), wild_pixel_indices_.end(), prim.index) ==
         wild_pixel_indices_.end())
       return nullptr;
+    const PixelRect expected = region.bounds();
     const int cx = expected.empty() ? 0 : (expected.x0 + expected.x1) / 2;
     const int cy = expected.empty() ? 0 : (expected.y0 + expected.y1) / 2;
     wild_ = {(cx + width_ / 2) % width_, (cy + height_ / 2) % height_};
@@ -278,8 +303,29 @@ class OsmesaPlatform : public Platform {
     colour_ = 0;
   }
 
-  // Reads the region back (rows bottom-up, as GL window coordinates) and appends as runs the
-  // pixels whose RGB is `colour` (0xBBGGRR), or with kAnyColour every pixel that is not black.
+  // Reads the region back rectangle by rectangle and adds the pixels of `colour` (0xBBGGRR), or
+  // with kAnyColour every pixel that is not black. The runs of several rectangles side by side
+  // are put in (y, x) order before they join `lit`.
+  void read_and_scan(const PixelRegion& region, uint32_t colour, PixelSet& lit) {
+    std::vector<PixelRect> rects;
+    for (const PixelRect& r : region.rects)
+      if (!clamp(r).empty()) rects.push_back(clamp(r));
+    if (rects.size() == 1) return read_and_scan(rects.front(), colour, lit);
+    PixelSet part;
+    runs_.clear();
+    for (const PixelRect& r : rects) {
+      part.clear();
+      read_and_scan(r, colour, part);
+      runs_.insert(runs_.end(), part.runs().begin(), part.runs().end());
+    }
+    std::sort(runs_.begin(), runs_.end(), [](const PixelRun& a, const PixelRun& b) {
+      return a.y != b.y ? a.y < b.y : a.x_begin < b.x_begin;
+    });
+    for (const PixelRun& run : runs_) lit.append_run(run.y, run.x_begin, run.x_end);
+  }
+
+  // Reads one rectangle back (rows bottom-up, as GL window coordinates) and appends its pixels of
+  // `colour` as runs.
   void read_and_scan(const PixelRect& r, uint32_t colour, PixelSet& lit) {
     if (r.empty()) return;
     const int w = r.x1 - r.x0, h = r.y1 - r.y0;
@@ -313,6 +359,7 @@ class OsmesaPlatform : public Platform {
   OSMesaContext context_ = nullptr;
   uint8_t winsys_pixel_[4] = {};
   std::vector<uint32_t> readback_;
+  std::vector<PixelRun> runs_;
   GLuint framebuffer_ = 0, renderbuffer_ = 0;
   GLint max_size_ = 0;
   PFNGLGENFRAMEBUFFERSPROC gen_framebuffers_ = nullptr;

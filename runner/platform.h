@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "runner/pixel_region.h"
 #include "runner/pixel_set.h"
 #include "runner/primitive.h"
 #include "runner/view.h"
@@ -35,7 +36,10 @@ struct DriverInfo {
 // One primitive as rendered.
 struct RenderResult {
   PixelSet lit;             // every lit pixel, GL window coordinates
-  double render_us = 0;     // CPU wall time of draw + glFinish, microseconds
+  // CPU wall time of draw + glFinish, microseconds; for a batch drawn under one glFinish, the
+  // batch's time divided equally among its `batch_size` primitives.
+  double render_us = 0;
+  int batch_size = 1;
   bool full_scan = false;   // the whole window was inspected (no proof for a partial readback)
 };
 
@@ -47,14 +51,14 @@ class Platform {
   virtual void set_view(const View& view) = 0;
   // Draws `prim` alone, white on black, width/size 1, no antialiasing, both faces filled, and
   // returns every pixel it lit. `expected` is the window region where the ideal primitive lies
-  // (clipped bounding box plus a margin, possibly empty): an implementation may read back only
-  // that region when it proves that nothing was lit outside it.
-  virtual RenderResult render(const Primitive& prim, const PixelRect& expected) = 0;
+  // (its clipped bounding box, or a strip along a line, plus a margin; possibly empty): an
+  // implementation may read back only that region when it proves that nothing was lit outside it.
+  virtual RenderResult render(const Primitive& prim, const PixelRegion& expected) = 0;
   // Draws each primitive as render() would, in order, and returns their results. An
   // implementation may share one completeness proof among the batch (osmesa_platform.cpp); this
   // default draws them one by one.
   virtual std::vector<RenderResult> render_batch(const std::vector<Primitive>& prims,
-                                                 const std::vector<PixelRect>& expected) {
+                                                 const std::vector<PixelRegion>& expected) {
     std::vector<RenderResult> out;
     out.reserve(prims.size());
     for (size_t i = 0; i < prims.size(); ++i) out.push_back(render(prims[i], expected[i]));

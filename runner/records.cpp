@@ -22,7 +22,7 @@ const char* const kColumns[] = {
     "visibility", "pixels",    "pe",               "pe_norm",     "lse_s",      "lse_u",
     "extent_error", "lse_s_norm", "lse_u_norm",    "chain_8connected", "gaps",  "te_s",
     "te_u",      "te_s_norm",  "te_u_norm",        "te_u_edge_norm", "full_window",
-    "simply_connected", "ref_diff", "pixel_hash",  "render_us"};
+    "simply_connected", "ref_diff", "pixel_hash",  "render_us", "batch_size"};
 constexpr int kColumnCount = sizeof(kColumns) / sizeof(kColumns[0]);
 
 void put_double(std::ostream& out, double v) {
@@ -87,6 +87,8 @@ void write_record(std::ostream& out, const Record& r) {
   put_optional(out, r.ref_diff);
   out << ',' << r.pixel_hash << ',';
   put_double(out, r.render_us);
+  out << ',';
+  if (r.batch_size > 0) out << r.batch_size;
   out << '\n';
 }
 
@@ -142,6 +144,8 @@ void read_records(const std::string& path, const std::function<void(const Record
       r.ref_diff = get_optional(f[i++]);
       r.pixel_hash = std::stoull(f[i++]);
       r.render_us = get_double(f[i++]);
+      r.batch_size = f[i].empty() ? 0 : std::stoll(f[i]);
+      ++i;
     } catch (const std::logic_error& e) {  // stoi and friends
       bad(std::string("malformed number (") + e.what() + ")");
     }

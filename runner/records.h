@@ -11,7 +11,7 @@
 
 namespace ra {
 
-constexpr int kRecordsSchemaVersion = 1;
+constexpr int kRecordsSchemaVersion = 2;  // 2: batch_size after render_us
 
 enum class Visibility {
   kTrueVisible,
@@ -54,7 +54,8 @@ struct Record {
   // Pixels in the symmetric difference with the reference rasterizer (0 = conformant).
   int64_t ref_diff = -1;
   uint64_t pixel_hash = 0;  // FNV-1a of the sorted lit pixels (exact comparison across runs)
-  double render_us = kNA;   // CPU time of draw + glFinish, microseconds
+  double render_us = kNA;   // CPU time of draw + glFinish, microseconds (a batch's share)
+  int64_t batch_size = 0;   // primitives drawn under that one glFinish (1: alone; 0: not drawn)
 };
 
 std::string records_header();  // the header line, without newline

@@ -15,7 +15,7 @@ class ReferencePlatform : public Platform {
     return {"renderaudit reference rasterizer", "exact double precision", "renderaudit", 0, false};
   }
   void set_view(const View& view) override { view_ = view; }
-  RenderResult render(const Primitive& prim, const PixelRect&) override {
+  RenderResult render(const Primitive& prim, const PixelRegion&) override {
     RenderResult out;
     const auto t0 = std::chrono::steady_clock::now();
     out.lit = rasterize_reference(view_, prim);
