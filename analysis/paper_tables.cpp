@@ -531,8 +531,10 @@ Table speed_table(const RunRecords& run, const TableOptions& options) {
   t.notes = {
       "Cases: records with status ok and a render time; True visible: those of them that "
       "are true-visible (the error is measured on these).",
-      "render_us is the CPU time of one primitive's draw call and glFinish, measured by the "
-      "runner; it depends on the machine and its load, unlike the errors."};
+      "render_us is the CPU time of a primitive's draw call and glFinish, measured by the "
+      "runner: alone for a large primitive, an equal share of one glFinish for small ones drawn "
+      "in a batch (records column batch_size); it depends on the machine and its load, unlike "
+      "the errors."};
   return t;
 }
 

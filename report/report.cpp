@@ -334,8 +334,10 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
   // 3. Time per primitive.
   d.blocks.push_back(heading("3. Time per primitive", 1, "timing"));
   d.blocks.push_back(paragraph(
-      "render_us is the CPU time of one primitive's draw call and glFinish, measured by the "
-      "runner (microseconds; one primitive per frame). Medians and IQRs (Hyndman-Fan 6) over the "
+      "render_us is the CPU time of a primitive's draw call and glFinish, measured by the "
+      "runner (microseconds). A large primitive is drawn and timed alone; small ones are drawn "
+      "in batches of up to 64 under one glFinish and each gets an equal share of the batch's "
+      "time (records column batch_size). Medians and IQRs (Hyndman-Fan 6) over the "
       "records with status ok; the analysis table 'Render time beside error' breaks them down by "
       "view group. Times depend on the machine and its load, unlike the errors."));
   {
