@@ -10,62 +10,10 @@
 
 #include "runner/errors.h"
 #include "runner/platform.h"
+#include "runner/toml_locator.h"
 
 namespace ra {
 namespace {
-
-// Builds "file:line:column: message" for a node (or the file start when it has no source).
-class Locator {
- public:
-  explicit Locator(std::string path) : path_(std::move(path)) {}
-
-  [[noreturn]] void fail(const toml::node* node, const std::string& message) const {
-    fail_at(node ? node->source().begin : toml::source_position{}, message);
-  }
-
-  [[noreturn]] void fail_at(toml::source_position at, const std::string& message) const {
-    std::ostringstream out;
-    out << path_ << ":";
-    if (at.line > 0)
-      out << at.line << ":" << at.column;
-    else
-      out << "1:1";
-    out << ": " << message;
-    throw UserError(out.str());
-  }
-
-  // Every key of `table` must be in `allowed`: a typo is an error, never silently ignored.
-  void reject_unknown_keys(const toml::table& table, const std::string& where,
-                           const std::set<std::string>& allowed) const {
-    for (const auto& [key, node] : table) {
-      if (!allowed.count(std::string(key.str()))) {
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        fail_at(key.source().begin, "unknown key '" + where + std::string(key.str()) + "' (allowed: " + list + ")");
-      }
-    }
-  }
-
- private:
-  std::string path_;
-};
-
-double as_number(const Locator& loc, const toml::node& node, const std::string& key) {
-  if (auto v = node.as_integer()) return double(v->get());
-  if (auto v = node.as_floating_point()) return v->get();
-  loc.fail(&node, "'" + key + "' must be a number");
-}
-
-int64_t as_integer(const Locator& loc, const toml::node& node, const std::string& key,
-                   int64_t lo, int64_t hi) {
-  auto v = node.as_integer();
-  if (!v) loc.fail(&node, "'" + key + "' must be an integer (allowed: " + std::to_string(lo) +
-                              " to " + std::to_string(hi) + ")");
-  if (v->get() < lo || v->get() > hi)
-    loc.fail(&node, "'" + key + "' = " + std::to_string(v->get()) + " is out of range (allowed: " +
-                        std::to_string(lo) + " to " + std::to_string(hi) + ")");
-  return v->get();
-}
 
 // A key that may hold one value or an array of values.
 std::vector<const toml::node*> one_or_many(const toml::node& node) {
@@ -94,16 +42,16 @@ std::string canonical_hash(toml::table root) {
   return buf;
 }
 
-std::vector<uint64_t> index_list(const Locator& loc, const toml::node& node, const std::string& key) {
+std::vector<uint64_t> index_list(const TomlLocator& loc, const toml::node& node, const std::string& key) {
   std::vector<uint64_t> out;
   const auto* arr = node.as_array();
   if (!arr) loc.fail(&node, "'" + key + "' must be an array of primitive indices");
   for (const auto& e : *arr)
-    out.push_back(uint64_t(as_integer(loc, e, key, 0, int64_t(kMaxPrimitives) - 1)));
+    out.push_back(uint64_t(loc.integer(e, key, 0, int64_t(kMaxPrimitives) - 1)));
   return out;
 }
 
-void parse_views(const Locator& loc, const toml::table& root, Experiment& exp) {
+void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& exp) {
   const toml::node* views_node = root.get("views");
   if (!views_node || !views_node->is_table())
     loc.fail(views_node, "missing table [views] (keys: orientations, fov_deg, windows, near, far)");
@@ -115,7 +63,7 @@ void parse_views(const Locator& loc, const toml::table& root, Experiment& exp) {
   const toml::node* o = t.get("orientations");
   if (!o) loc.fail(views_node, "missing key 'views.orientations' (a count, or [[yaw, pitch, roll], ...])");
   if (o->is_integer()) {
-    const int64_t n = as_integer(loc, *o, "views.orientations", 1, kMaxOrientations);
+    const int64_t n = loc.integer(*o, "views.orientations", 1, kMaxOrientations);
     for (int i = 1; i <= n; ++i) rotations.push_back(random_rotation(exp.seed, i));
   } else if (const auto* arr = o->as_array(); arr && !arr->empty()) {
     for (const auto& e : *arr) {
@@ -124,7 +72,7 @@ void parse_views(const Locator& loc, const toml::table& root, Experiment& exp) {
         loc.fail(&e, "each explicit orientation must be [yaw, pitch, roll] in degrees");
       double a[3];
       for (int k = 0; k < 3; ++k) {
-        a[k] = as_number(loc, *triple->get(k), "views.orientations");
+        a[k] = loc.number(*triple->get(k), "views.orientations");
         if (!std::isfinite(a[k]) || std::fabs(a[k]) > 360)
           loc.fail(triple->get(k), "orientation angle out of range (allowed: -360 to 360 degrees)");
       }
@@ -145,7 +93,7 @@ void parse_views(const Locator& loc, const toml::table& root, Experiment& exp) {
 
   std::vector<double> fovs;
   for (const toml::node* n : one_or_many(required("fov_deg"))) {
-    const double f = as_number(loc, *n, "views.fov_deg");
+    const double f = loc.number(*n, "views.fov_deg");
     if (!(f > 0 && f < 180)) loc.fail(n, "field of view out of range (allowed: 0 < fov_deg < 180)");
     fovs.push_back(f);
   }
@@ -155,10 +103,10 @@ void parse_views(const Locator& loc, const toml::table& root, Experiment& exp) {
     int w, h;
     if (const auto* pair = n->as_array()) {
       if (pair->size() != 2) loc.fail(n, "a window is a size N or a pair [width, height]");
-      w = int(as_integer(loc, *pair->get(0), "views.windows", 1, kMaxWindow));
-      h = int(as_integer(loc, *pair->get(1), "views.windows", 1, kMaxWindow));
+      w = int(loc.integer(*pair->get(0), "views.windows", 1, kMaxWindow));
+      h = int(loc.integer(*pair->get(1), "views.windows", 1, kMaxWindow));
     } else {
-      w = h = int(as_integer(loc, *n, "views.windows", 1, kMaxWindow));
+      w = h = int(loc.integer(*n, "views.windows", 1, kMaxWindow));
     }
     windows.emplace_back(w, h);
   }
@@ -167,10 +115,10 @@ void parse_views(const Locator& loc, const toml::table& root, Experiment& exp) {
   std::vector<const toml::node*> fars = one_or_many(required("far"));
   std::vector<std::pair<double, double>> planes;
   for (const toml::node* nn : nears) {
-    const double nv = as_number(loc, *nn, "views.near");
+    const double nv = loc.number(*nn, "views.near");
     if (!(nv > 0) || !std::isfinite(nv)) loc.fail(nn, "near plane must be > 0 (allowed: 0 < near < far)");
     for (const toml::node* fn : fars) {
-      const double fv = as_number(loc, *fn, "views.far");
+      const double fv = loc.number(*fn, "views.far");
       if (!(fv > nv) || !std::isfinite(fv))
         loc.fail(fn, "far plane must be beyond the near plane (allowed: 0 < near < far < inf)");
       planes.emplace_back(nv, fv);
@@ -203,7 +151,7 @@ void parse_views(const Locator& loc, const toml::table& root, Experiment& exp) {
 }  // namespace
 
 Experiment parse_experiment(const std::string& text, const std::string& path) {
-  Locator loc(path);
+  TomlLocator loc(path);
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -234,7 +182,7 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
 
   const toml::node* seed = root.get("seed");
   if (!seed) loc.fail(nullptr, "missing key 'seed' (a non-negative integer)");
-  exp.seed = uint64_t(as_integer(loc, *seed, "seed", 0, INT64_MAX));
+  exp.seed = uint64_t(loc.integer(*seed, "seed", 0, INT64_MAX));
 
   const toml::node* plats = root.get("platforms");
   if (!plats || !plats->is_array() || plats->as_array()->empty())
@@ -259,7 +207,7 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
   for (Kind k : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
     if (const toml::node* n = prims->as_table()->get(kind_plural(k))) {
       exp.counts[int(k)] = uint64_t(
-          as_integer(loc, *n, std::string("primitives.") + kind_plural(k), 0, int64_t(kMaxPrimitives)));
+          loc.integer(*n, std::string("primitives.") + kind_plural(k), 0, int64_t(kMaxPrimitives)));
       total += exp.counts[int(k)];
     }
   }
@@ -269,9 +217,9 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
     if (!run->is_table()) loc.fail(run, "'run' must be a table");
     loc.reject_unknown_keys(*run->as_table(), "run.", {"shard_size", "shard_timeout_s"});
     if (const toml::node* n = run->as_table()->get("shard_size"))
-      exp.shard_size = uint64_t(as_integer(loc, *n, "run.shard_size", 1, int64_t(kMaxPrimitives)));
+      exp.shard_size = uint64_t(loc.integer(*n, "run.shard_size", 1, int64_t(kMaxPrimitives)));
     if (const toml::node* n = run->as_table()->get("shard_timeout_s")) {
-      exp.shard_timeout_s = as_number(loc, *n, "run.shard_timeout_s");
+      exp.shard_timeout_s = loc.number(*n, "run.shard_timeout_s");
       if (!(exp.shard_timeout_s >= 1 && exp.shard_timeout_s <= 86400))
         loc.fail(n, "'run.shard_timeout_s' out of range (allowed: 1 to 86400 seconds)");
     }
@@ -297,7 +245,7 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
     for (auto [key, dst] : {std::pair{"shift_fraction", &exp.faults.shift_fraction},
                             std::pair{"flaky_fraction", &exp.faults.flaky_fraction}}) {
       if (const toml::node* n = t.get(key)) {
-        *dst = as_number(loc, *n, std::string("faults.") + key);
+        *dst = loc.number(*n, std::string("faults.") + key);
         if (!(*dst >= 0 && *dst <= 1)) loc.fail(n, std::string("'faults.") + key + "' out of range (allowed: 0 to 1)");
       }
     }

@@ -1,0 +1,53 @@
+#include "runner/toml_locator.h"
+
+#include <sstream>
+
+#include "runner/errors.h"
+
+namespace ra {
+
+void TomlLocator::fail(const toml::node* node, const std::string& message) const {
+  fail_at(node ? node->source().begin : toml::source_position{}, message);
+}
+
+void TomlLocator::fail_at(toml::source_position at, const std::string& message) const {
+  std::ostringstream out;
+  out << path_ << ":";
+  if (at.line > 0)
+    out << at.line << ":" << at.column;
+  else
+    out << "1:1";
+  out << ": " << message;
+  throw UserError(out.str());
+}
+
+void TomlLocator::reject_unknown_keys(const toml::table& table, const std::string& where,
+                                      const std::set<std::string>& allowed) const {
+  for (const auto& [key, node] : table) {
+    if (allowed.count(std::string(key.str()))) continue;
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+    fail_at(key.source().begin,
+            "unknown key '" + where + std::string(key.str()) + "' (allowed: " + list + ")");
+  }
+}
+
+double TomlLocator::number(const toml::node& node, const std::string& key) const {
+  if (auto v = node.as_integer()) return double(v->get());
+  if (auto v = node.as_floating_point()) return v->get();
+  fail(&node, "'" + key + "' must be a number");
+}
+
+int64_t TomlLocator::integer(const toml::node& node, const std::string& key, int64_t lo,
+                             int64_t hi) const {
+  auto v = node.as_integer();
+  if (!v)
+    fail(&node, "'" + key + "' must be an integer (allowed: " + std::to_string(lo) + " to " +
+                    std::to_string(hi) + ")");
+  if (v->get() < lo || v->get() > hi)
+    fail(&node, "'" + key + "' = " + std::to_string(v->get()) + " is out of range (allowed: " +
+                    std::to_string(lo) + " to " + std::to_string(hi) + ")");
+  return v->get();
+}
+
+}  // namespace ra

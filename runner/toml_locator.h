@@ -1,0 +1,35 @@
+// Error messages for values read from a TOML file: "file:line:column: message", naming the key and
+// the allowed range, thrown as UserError. Shared by every reader of experiment files (runner/,
+// scenes/, timing/) so that they all report bad input the same way.
+#pragma once
+
+#include <cstdint>
+#include <set>
+#include <string>
+#include <toml++/toml.h>
+
+namespace ra {
+
+class TomlLocator {
+ public:
+  explicit TomlLocator(std::string path) : path_(std::move(path)) {}
+  const std::string& path() const { return path_; }
+
+  // At the node's position (or the file start when it has no source).
+  [[noreturn]] void fail(const toml::node* node, const std::string& message) const;
+  [[noreturn]] void fail_at(toml::source_position at, const std::string& message) const;
+  // Every key of `table` must be in `allowed`: a typo is an error, never silently ignored.
+  // `where` prefixes the key in the message (e.g. "views.").
+  void reject_unknown_keys(const toml::table& table, const std::string& where,
+                           const std::set<std::string>& allowed) const;
+
+  // An integer or floating-point value, as a double.
+  double number(const toml::node& node, const std::string& key) const;
+  // An integer in [lo, hi].
+  int64_t integer(const toml::node& node, const std::string& key, int64_t lo, int64_t hi) const;
+
+ private:
+  std::string path_;
+};
+
+}  // namespace ra
