@@ -10,31 +10,27 @@
 #include <stdexcept>
 
 #include "runner/errors.h"
+#include "runner/toml_locator.h"
 
 namespace ra {
 namespace {
 
+// A table of the file: errors at its nodes (runner/toml_locator.h), keys named "scene[i].key".
 class Located {
  public:
-  Located(std::string file, std::string where) : file_(std::move(file)), where_(std::move(where)) {}
+  Located(std::string file, std::string where) : at_(std::move(file)), where_(std::move(where)) {}
 
   [[noreturn]] void fail(const toml::node* node, const std::string& message) const {
-    fail_at(node ? node->source().begin : toml::source_position{}, message);
+    at_.fail(node, message);
   }
   [[noreturn]] void fail_at(toml::source_position at, const std::string& message) const {
-    std::ostringstream out;
-    out << file_ << ":";
-    if (at.line > 0)
-      out << at.line << ":" << at.column;
-    else
-      out << "1:1";
-    out << ": " << message;
-    throw UserError(out.str());
+    at_.fail_at(at, message);
   }
   std::string key(const std::string& k) const { return where_ + "." + k; }
 
  private:
-  std::string file_, where_;
+  TomlLocator at_;
+  std::string where_;
 };
 
 std::string join(const std::set<std::string>& keys) {
