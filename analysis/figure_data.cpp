@@ -231,7 +231,74 @@ std::string comparison_id(const RunRecords& run, const Comparison& c) {
          c.what + "." + side(c.a) + "-" + side(c.b);
 }
 
+// Median and quartiles of an ascending sample under the run's quantile definition, as
+// {"median"SUFFIX, "q1"SUFFIX, "q3"SUFFIX} (nulls when the sample is empty: nothing to describe).
+void quartiles_json(json& j, const std::vector<double>& ascending, const std::string& suffix,
+                    stats::QuantileDefinition q) {
+  if (ascending.empty()) {
+    j["median" + suffix] = nullptr;
+    j["q1" + suffix] = nullptr;
+    j["q3" + suffix] = nullptr;
+    return;
+  }
+  const stats::Description d = describe_sorted(ascending, q);
+  j["median" + suffix] = finite(d.median);
+  j["q1" + suffix] = finite(d.q1);
+  j["q3" + suffix] = finite(d.q3);
+}
+
+// One kind's speed-against-error points: per platform and view group, the render time of every
+// `ok` record with a time (speed_table's data) beside the normalised unsigned error.
+json speed_error_json(const RunRecords& run, PrimitiveKind kind, const FigureOptions& o) {
+  const char* column = speed_error_metric(kind);
+  const std::size_t metric = metric_index(kind, column);
+  const MetricSpec& spec = kind_metrics(kind)[metric];
+  json points = json::array();
+  for (std::size_t p = 0; p < run.platforms.size(); ++p) {
+    for (const ViewGroup* g : run.groups_of(p, kind)) {
+      std::vector<const std::vector<double>*> time, error;
+      for (const ViewData* view : g->views) {
+        time.push_back(&view->render_us_visible);
+        time.push_back(&view->render_us_other);
+        error.push_back(&view->values[metric]);
+      }
+      const std::vector<double> t = merge_sorted(time), e = merge_sorted(error);
+      if (t.empty() && e.empty()) continue;
+      json pt{{"platform", run.platforms[p]},
+              {"view_group", g->label},
+              {"views", g->view_numbers()},
+              {"fov_deg", g->meta().fov_deg},
+              {"width", g->meta().width},
+              {"height", g->meta().height},
+              {"n_time", t.size()}};
+      quartiles_json(pt, t, "_us", o.quantiles);
+      pt["n_error"] = e.size();
+      pt["metric"] = column;
+      quartiles_json(pt, e, "_error", o.quantiles);
+      points.push_back(std::move(pt));
+    }
+  }
+  return json{{"kind", kind_name(kind)},
+              {"metric", column},
+              {"symbol", spec.symbol},
+              {"units", unit_name(spec.unit)},
+              {"time_units", "us"},
+              {"points", std::move(points)}};
+}
+
 }  // namespace
+
+const char* speed_error_metric(PrimitiveKind kind) {
+  switch (kind) {
+    case PrimitiveKind::kPoint:
+      return "pe_norm";
+    case PrimitiveKind::kLine:
+      return "lse_u_norm";
+    case PrimitiveKind::kTriangle:
+      return "te_u_norm";
+  }
+  return "";
+}
 
 json figure_data(const RunRecords& run, const FigureOptions& options) {
   json doc{{"schema", "renderaudit-figures"},
@@ -317,6 +384,9 @@ json figure_data(const RunRecords& run, const FigureOptions& options) {
   }
   doc["box_plots"] = std::move(box_list);
   doc["comparisons"] = std::move(comparisons);
+  json speed = json::array();
+  for (PrimitiveKind kind : run.kinds()) speed.push_back(speed_error_json(run, kind, options));
+  doc["speed_error"] = std::move(speed);
   return doc;
 }
 

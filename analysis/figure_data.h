@@ -35,7 +35,17 @@
 //             "min_a": .., "max_a": .., "min_b": .., "max_b": ..},
 //      "bihistogram": {"edges": [..], "count_a": [..], "count_b": [..], "height_a": [..],
 //                      "height_b": [..], "bin_width": .., "n_a": .., "n_b": ..,
-//                      "outside_a": .., "outside_b": ..}}]
+//                      "outside_a": .., "outside_b": ..}}],
+//   "speed_error": [                    // render time against error (issue 8): one entry per kind
+//     {"kind": "line", "metric": "lse_u_norm", "symbol": "LSEu-norm", "units": "sqrt(W*H) units",
+//      "time_units": "us",
+//      "points": [                      // per platform, then view group (every condition)
+//        {"platform": "...", "view_group": "A", "views": [1, 2], "fov_deg": 30, "width": 128,
+//         "height": 128,
+//         "n_time": 4000,               // status ok records with a render time (any visibility)
+//         "median_us": .., "q1_us": .., "q3_us": ..,          // render_us of those; null if none
+//         "n_error": 3850,              // true-visible ok records with a value of the metric
+//         "metric": "lse_u_norm", "median_error": .., "q1_error": .., "q3_error": ..}]}]
 // }
 // Q-Q: with m = min(n_a, n_b) <= 2000 the Dataplot convention of distribution_plots.h (x = a, y =
 // b); above that, the Hyndman-Fan 6 quantiles of both samples at p_i = i / 2001, i = 1..2000 (the
@@ -47,6 +57,13 @@
 // digits; summary numbers (quartiles, fences) are exact. Comparisons cover the paper's headline
 // metrics, the first two of each kind in run_records.h (PE, PEnorm; LSEs-norm, LSEu-norm;
 // TEs-norm, TEu-norm); box plots cover every metric.
+// Speed against error: the time is render_us (CPU us of draw + glFinish; for primitives drawn in a
+// batch, an equal share of the batch's time: records column batch_size) over every `ok` record of
+// the group with a time, as speed_table (paper_tables.h) counts its "Cases"; the error is the
+// kind's normalised unsigned metric (PEnorm, LSEu-norm, TEu-norm: speed_error_metric()), so that
+// groups with different windows share one error axis. Quartiles by `quantiles`, as the box plots;
+// numbers exact. A group with neither a time nor an error value is left out; a point lacking one
+// of the two has nulls for that side's statistics (median, q1, q3).
 #pragma once
 
 #include <cstddef>
@@ -68,6 +85,10 @@ struct FigureOptions {
   int significant_digits = 7;
   unsigned jobs = 0;  // threads; 0: the number of cores
 };
+
+// The records column of the error the speed-against-error points use for `kind`: its normalised
+// unsigned metric ("pe_norm", "lse_u_norm", "te_u_norm").
+const char* speed_error_metric(PrimitiveKind kind);
 
 // The whole figures.json document for a run.
 nlohmann::json figure_data(const RunRecords& run, const FigureOptions& options = {});

@@ -47,7 +47,8 @@ const char* figure_kind_name(const Figure& figure) {
     case 1: return "bihistogram";
     case 2: return "boxplot";
     case 3: return "histogram";
-    default: return "bars";
+    case 4: return "bars";
+    default: return "scatter";
   }
 }
 
@@ -86,6 +87,27 @@ std::string box_plot_outside_note(const BoxPlotContent& content, double y_lo, do
   return s;
 }
 
+std::string scatter_omitted_note(const ScatterContent& content) {
+  std::vector<std::string> omitted;
+  for (const ScatterSeries& s : content.series) {
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      std::string why;
+      if (content.x_log10 && !(s.x[i] > 0)) why = "x = " + short_num(s.x[i]);
+      if (content.y_log10 && !(s.y.at(i) > 0))
+        why += (why.empty() ? "" : ", ") + std::string("y = ") + short_num(s.y.at(i));
+      if (why.empty()) continue;
+      std::string who = i < s.labels.size() ? s.labels[i] : "";
+      if (content.series.size() > 1 || who.empty()) who += (who.empty() ? "" : " ") + s.name;
+      omitted.push_back(who + " (" + why + ")");
+    }
+  }
+  if (omitted.empty()) return "";
+  std::string list;
+  for (std::size_t i = 0; i < omitted.size(); ++i) list += (i ? ", " : "") + omitted[i];
+  return std::to_string(omitted.size()) + (omitted.size() == 1 ? " point" : " points") +
+         " not drawn: a zero or negative value cannot be placed on a log axis: " + list + ".";
+}
+
 void write_figure_data(const Figure& figure, const std::string& path) {
   std::ostringstream o;
   if (auto* q = std::get_if<QQContent>(&figure.content)) {
@@ -115,6 +137,16 @@ void write_figure_data(const Figure& figure, const std::string& path) {
       for (std::size_t i = 0; i + 1 < s.edges.size(); ++i)
         o << cell(s.name) << ',' << num(s.edges[i]) << ',' << num(s.edges[i + 1]) << ','
           << s.counts.at(i) << ',' << num(s.heights.at(i)) << '\n';
+  } else if (auto* sc = std::get_if<ScatterContent>(&figure.content)) {
+    o << "series,label,x,y,x_lo,x_hi,y_lo,y_hi\n";
+    const auto at = [](const std::vector<double>& v, std::size_t i) {
+      return i < v.size() ? num(v[i]) : std::string();
+    };
+    for (const ScatterSeries& s : sc->series)
+      for (std::size_t i = 0; i < s.x.size(); ++i)
+        o << cell(s.name) << ',' << cell(i < s.labels.size() ? s.labels[i] : "") << ','
+          << num(s.x[i]) << ',' << num(s.y.at(i)) << ',' << at(s.x_lo, i) << ',' << at(s.x_hi, i)
+          << ',' << at(s.y_lo, i) << ',' << at(s.y_hi, i) << '\n';
   } else {
     const auto& c = std::get<BarChartContent>(figure.content);
     o << "category,series,value,label\n";

@@ -81,8 +81,25 @@ struct BarChartContent {
   double y_max = 0;  // fixed top of the y axis when > 0 (e.g. 100 for percentages)
 };
 
-using FigureContent =
-    std::variant<QQContent, BihistogramContent, BoxPlotContent, HistogramContent, BarChartContent>;
+// Scatter plot: one marker per point, coloured by series (legend), labelled beside the marker, with
+// optional error bars (e.g. the interquartile range [q1, q3] around a median). Either axis may be
+// log10: ticks at powers of ten (and 2, 5 x 10^k when the range spans few decades); a point with
+// a non-positive coordinate on a log axis cannot be placed and is omitted, and the figure's note
+// says which (scatter_omitted_note()); a bar end <= 0 on a log axis is drawn to the plot's edge.
+struct ScatterSeries {
+  std::string name;                 // legend entry, e.g. a platform
+  std::vector<double> x, y;         // display units, one per point
+  std::vector<std::string> labels;  // text beside each marker (e.g. "A"); empty = none
+  // Error bars, one per point or empty (none); NaN in both ends of a pair = no bar for that point.
+  std::vector<double> x_lo, x_hi, y_lo, y_hi;
+};
+struct ScatterContent {
+  std::vector<ScatterSeries> series;
+  bool x_log10 = false, y_log10 = false;  // log10 axes
+};
+
+using FigureContent = std::variant<QQContent, BihistogramContent, BoxPlotContent, HistogramContent,
+                                   BarChartContent, ScatterContent>;
 
 struct Figure {
   std::string id;       // file stem: [a-z0-9_.-] only, unique in a run directory
@@ -95,7 +112,7 @@ struct Figure {
   FigureContent content;
 };
 
-// "qq", "bihistogram", "boxplot", "histogram", "bars".
+// "qq", "bihistogram", "boxplot", "histogram", "bars", "scatter".
 const char* figure_kind_name(const Figure& figure);
 
 // The note a box plot must carry: which boxes have values outside the restricted y range
@@ -105,6 +122,10 @@ std::string box_plot_outside_note(const BoxPlotContent& content, double y_lo, do
 // The y range of a box plot restricted to the bodies (whiskers) of the boxes, padded by 5 %.
 void box_plot_y_range(const BoxPlotContent& content, double* y_lo, double* y_hi);
 
+// The note a scatter plot must carry when a point has a non-positive coordinate on a log10 axis:
+// how many points are omitted and which ("A osmesa-llvmpipe (y = 0)"). Empty when none.
+std::string scatter_omitted_note(const ScatterContent& content);
+
 // Writes the numbers a figure shows, as CSV (header row, full precision), to `path`:
 //   qq:          p,x,y
 //   bihistogram: bin_lo,bin_hi,upper_count,lower_count,upper_height,lower_height
@@ -113,6 +134,8 @@ void box_plot_y_range(const BoxPlotContent& content, double* y_lo, double* y_hi)
 //                n_outliers_low,n_outliers_high,relative_width
 //   histogram:   series,bin_lo,bin_hi,count,height
 //   bars:        category,series,value,label
+//   scatter:     series,label,x,y,x_lo,x_hi,y_lo,y_hi (every point given, also those a log axis
+//                omits; empty cells: no error bar)
 void write_figure_data(const Figure& figure, const std::string& path);
 
 // Display scale for values of magnitude up to `max_abs`: a power of 1000 (1, 10^3, 10^6, ...)

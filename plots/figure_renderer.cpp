@@ -88,7 +88,9 @@ class ShapesPlot : public vtkPlot {
   struct Label {
     double x, y;
     std::string text;
-    float dy_px = 4;  // offset upwards, pixels
+    float dy_px = 4;     // offset upwards, pixels
+    float dx_px = 0;     // offset to the right, pixels
+    bool beside = false;  // left-justified and vertically centred at the offset point (scatter)
   };
 
   std::vector<Rect> rects;
@@ -104,6 +106,7 @@ class ShapesPlot : public vtkPlot {
   Shape marker_shape = kCircle;
   int pen_type = vtkPen::SOLID_LINE;
   bool vertical_labels_if_crowded = true;
+  int label_font = kBarLabelFont;
 
   bool Paint(vtkContext2D* painter) override {
     // The chart's transform maps shifted-and-scaled data to the screen.
@@ -180,7 +183,7 @@ class ShapesPlot : public vtkPlot {
     }
     if (!labels.empty()) {
       vtkTextProperty* tp = painter->GetTextProp();
-      style_text(tp, kBarLabelFont);
+      style_text(tp, label_font);
       // Vertical labels when horizontal ones would touch their neighbours.
       float min_gap = 1e9f;
       for (std::size_t i = 1; i < labels.size(); ++i)
@@ -193,8 +196,12 @@ class ShapesPlot : public vtkPlot {
       }
       const bool vertical = vertical_labels_if_crowded && widest + 4 > min_gap;
       for (const auto& l : labels) {
-        style_text(tp, kBarLabelFont);
-        if (vertical) {
+        style_text(tp, label_font);
+        if (l.beside) {
+          tp->SetOrientation(0);
+          tp->SetJustificationToLeft();
+          tp->SetVerticalJustificationToCentered();
+        } else if (vertical) {
           tp->SetOrientation(90);
           tp->SetJustificationToLeft();
           tp->SetVerticalJustificationToCentered();
@@ -203,7 +210,7 @@ class ShapesPlot : public vtkPlot {
           tp->SetJustificationToCentered();
           tp->SetVerticalJustificationToBottom();
         }
-        painter->DrawString(sx(l.x), sy(l.y) + l.dy_px, l.text);
+        painter->DrawString(sx(l.x) + l.dx_px, sy(l.y) + l.dy_px, l.text);
       }
       tp->SetOrientation(0);
     }
@@ -385,6 +392,40 @@ std::string tick_text(double v, double step) {
   return buf;
 }
 
+// A tick label for 10^k-scale values on a log axis: plain decimals from 0.001 to 10000 ("0.002",
+// "1", "50"), "10^k" / "2x10^k" beyond.
+std::string log_tick_text(int mantissa, int exponent) {
+  char buf[40];
+  if (exponent >= -3 && exponent <= 4) {
+    std::snprintf(buf, sizeof buf, "%.*f", std::max(0, -exponent),
+                  mantissa * std::pow(10.0, exponent));
+  } else if (mantissa == 1) {
+    std::snprintf(buf, sizeof buf, "10^%d", exponent);
+  } else {
+    std::snprintf(buf, sizeof buf, "%dx10^%d", mantissa, exponent);
+  }
+  return buf;
+}
+
+// Ticks of a log10 axis showing [lo, hi] (log10 of display units): every power of ten; with 2 and
+// 5 x 10^k as well when the range spans at most 3 decades, and 2, 3, 5 x 10^k up to 1.5 decades,
+// so a narrow range still has labelled ticks. Positions in log10 units.
+void log_ticks(double lo, double hi, std::vector<double>* at, std::vector<std::string>* text) {
+  const double span = hi - lo;
+  std::vector<int> mantissas = {1};
+  if (span <= 1.5)
+    mantissas = {1, 2, 3, 5};
+  else if (span <= 3.2)
+    mantissas = {1, 2, 5};
+  for (int k = int(std::floor(lo)) - 1; k <= int(std::ceil(hi)); ++k)
+    for (int m : mantissas) {
+      const double v = k + std::log10(double(m));
+      if (v < lo - 1e-9 || v > hi + 1e-9) continue;
+      at->push_back(v);
+      text->push_back(log_tick_text(m, k));
+    }
+}
+
 }  // namespace
 
 void series_color(std::size_t i, unsigned char rgb[3]) {
@@ -448,6 +489,7 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
   std::vector<LegendItem::Entry> legend;
   double x_lo = NAN, x_hi = NAN, y_lo = NAN, y_hi = NAN;  // fixed ranges (NaN: automatic)
   bool square = false;
+  bool x_grid_at_ticks = false;  // custom x ticks keep their grid lines (log axes)
   std::vector<double> x_ticks, y_ticks;
   std::vector<std::string> x_tick_labels, y_tick_labels;
 
@@ -642,6 +684,94 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
       x_lo = lo - pad, x_hi = hi + pad;
     }
     y_lo = 0, y_hi = (top > 0 ? top : 1) * 1.05;
+  } else if (auto* sc = std::get_if<ScatterContent>(&figure.content)) {
+    // Values to axis units: log10 on a log axis (NaN: cannot be placed).
+    const auto to_x = [&](double v) { return sc->x_log10 ? (v > 0 ? std::log10(v) : NAN) : v; };
+    const auto to_y = [&](double v) { return sc->y_log10 ? (v > 0 ? std::log10(v) : NAN) : v; };
+    // The range: every drawable marker and bar end.
+    double xl = INFINITY, xh = -INFINITY, yl = INFINITY, yh = -INFINITY;
+    const auto extend = [](double v, double* l, double* h) {
+      if (std::isfinite(v)) *l = std::min(*l, v), *h = std::max(*h, v);
+    };
+    const auto bar_end = [](const std::vector<double>& v, std::size_t i) {
+      return i < v.size() ? v[i] : NAN;
+    };
+    for (const ScatterSeries& se : sc->series)
+      for (std::size_t i = 0; i < se.x.size(); ++i) {
+        const double x = to_x(se.x[i]), y = to_y(se.y.at(i));
+        if (!std::isfinite(x) || !std::isfinite(y)) continue;
+        extend(x, &xl, &xh), extend(y, &yl, &yh);
+        extend(to_x(bar_end(se.x_lo, i)), &xl, &xh), extend(to_x(bar_end(se.x_hi, i)), &xl, &xh);
+        extend(to_y(bar_end(se.y_lo, i)), &yl, &yh), extend(to_y(bar_end(se.y_hi, i)), &yl, &yh);
+      }
+    // Padding: 6 % of the range, at least 0.12 decades on a log axis (room for the labels).
+    const auto pad_range = [](double* l, double* h, bool log) {
+      if (!(*l <= *h)) *l = 0, *h = 1;
+      double pad = 0.06 * (*h - *l);
+      if (log) pad = std::max(pad, 0.12);
+      if (pad <= 0) pad = std::max(0.5, 0.05 * std::fabs(*h));
+      *l -= pad, *h += pad;
+    };
+    pad_range(&xl, &xh, sc->x_log10);
+    pad_range(&yl, &yh, sc->y_log10);
+    x_lo = xl, x_hi = xh, y_lo = yl, y_hi = yh;
+    // Marks: every series' IQR bars first, then the markers with their labels on top (a bar of one
+    // platform never hides another's marker).
+    std::size_t clipped = 0;
+    std::vector<vtkSmartPointer<ShapesPlot>> marker_plots;
+    for (std::size_t s = 0; s < sc->series.size(); ++s) {
+      const ScatterSeries& se = sc->series[s];
+      auto bars = vtkSmartPointer<ShapesPlot>::New();
+      bars->stroke = palette(s, 200);
+      bars->line_width = 2.0f;
+      auto pts = vtkSmartPointer<ShapesPlot>::New();
+      pts->stroke = palette(s);
+      pts->marker_radius = 6.0f;
+      pts->label_font = 16;
+      pts->vertical_labels_if_crowded = false;
+      // A bar between two ends; an end that a log axis cannot place goes to the plot's edge.
+      const auto bar = [&](double a, double b, double at, bool along_x) {
+        if (std::isnan(a) && std::isnan(b)) return;
+        double u = along_x ? to_x(a) : to_y(a), v = along_x ? to_x(b) : to_y(b);
+        const double edge = along_x ? x_lo : y_lo;
+        if (std::isnan(u)) u = edge, ++clipped;
+        if (std::isnan(v)) v = edge, ++clipped;
+        if (along_x)
+          bars->lines.push_back({{u, v}, {at, at}});
+        else
+          bars->lines.push_back({{at, at}, {u, v}});
+      };
+      for (std::size_t i = 0; i < se.x.size(); ++i) {
+        const double x = to_x(se.x[i]), y = to_y(se.y.at(i));
+        if (!std::isfinite(x) || !std::isfinite(y)) continue;  // in the note
+        bar(bar_end(se.x_lo, i), bar_end(se.x_hi, i), y, true);
+        bar(bar_end(se.y_lo, i), bar_end(se.y_hi, i), x, false);
+        pts->markers.push_back({x, y});
+        if (i < se.labels.size() && !se.labels[i].empty()) {
+          ShapesPlot::Label l{x, y, se.labels[i]};
+          // upper right of the marker, clear of the horizontal bar through it
+          l.dx_px = pts->marker_radius + 2;
+          l.dy_px = pts->marker_radius + 5;
+          l.beside = true;
+          pts->labels.push_back(l);
+        }
+      }
+      add_plot(bars);
+      marker_plots.push_back(pts);
+      legend.push_back({se.name, palette(s), LegendItem::kMarker});
+    }
+    for (auto& pts : marker_plots) add_plot(pts);
+    x_grid_at_ticks = true;
+    out.layout.x_log10 = sc->x_log10;
+    out.layout.y_log10 = sc->y_log10;
+    if (sc->x_log10) log_ticks(x_lo, x_hi, &x_ticks, &x_tick_labels);
+    if (sc->y_log10) log_ticks(y_lo, y_hi, &y_ticks, &y_tick_labels);
+    std::string extra = scatter_omitted_note(*sc);
+    if (clipped)
+      extra += std::string(extra.empty() ? "" : "\n") + std::to_string(clipped) +
+               (clipped == 1 ? " bar end" : " bar ends") +
+               " at zero or below drawn to the edge of the log axis.";
+    if (!extra.empty()) out.note = extra + (out.note.empty() ? "" : "\n" + out.note);
   } else {
     const auto& c = std::get<BarChartContent>(figure.content);
     const std::size_t C = std::max<std::size_t>(1, c.categories.size());
@@ -732,7 +862,7 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
   };
   custom_ticks(xa, x_ticks, x_tick_labels);
   custom_ticks(ya, y_ticks, y_tick_labels);
-  if (!x_ticks.empty()) xa->SetGridVisible(false);
+  if (!x_ticks.empty() && !x_grid_at_ticks) xa->SetGridVisible(false);
   scene->AddItem(chart);
 
   // Title: shrunk to fit the width (down to 18 px), wrapped when still too long.

@@ -22,13 +22,15 @@
 namespace ra::plots {
 
 // Where a figure was drawn, for checks that read the PNG back: the plot area in PNG pixels
-// (x to the right, y downwards from the top row) and the data range it shows.
+// (x to the right, y downwards from the top row) and the data range it shows; on a log10 axis
+// (scatter plots) the range is in log10 of display units, and the axis is linear in those.
 struct FigureLayout {
   int width = 0, height = 0;            // image size, pixels
   double plot_left = 0, plot_right = 0;  // plot area, pixel columns
   double plot_top = 0, plot_bottom = 0;  // plot area, pixel rows (top < bottom)
   double x_min = 0, x_max = 0;           // data range along x (display units)
   double y_min = 0, y_max = 0;           // data range along y
+  bool x_log10 = false, y_log10 = false;  // the axis shows log10 of the values
 };
 
 struct RenderedFigure {

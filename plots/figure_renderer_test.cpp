@@ -219,5 +219,77 @@ TEST_F(RendererTest, BoxPlotRestrictsTheRangeAndSaysWhatIsOutside) {
   EXPECT_NE(text.find("Box plot: LSEs-norm"), std::string::npos) << text;
 }
 
+// Why: the speed-against-error figure (issue 8) is read by where its markers sit on log axes; each
+// marker's centre pixel must be its series' colour at log10 of its values, the legend must name
+// each series (platform), the ticks must be readable powers of ten, and a point with a zero value
+// cannot sit on a log axis: it is left out and the note says so.
+TEST_F(RendererTest, ScatterOnLogAxesPutsMarkersWhereTheValuesAreAndNamesTheOmitted) {
+  ScatterContent c;
+  c.x_log10 = c.y_log10 = true;
+  c.series = {{"platform I", {2, 200}, {0.05, 5}, {"A", "C"}, {1.5, 150}, {3, 260}, {0.04, 4},
+               {0.07, 6}},
+              {"platform II", {20, 50}, {0.5, 0}, {"A", "C"}, {}, {}, {}, {}}};
+  Figure f;
+  f.id = "scatter";
+  f.title = "Render time against error: test";
+  f.x_label = "render time per primitive, median (us, log scale)";
+  f.y_label = "PEnorm x 10^3, median, log scale";
+  f.content = c;
+  const RenderedFigure r = renderer_->render(f, temp_dir("scatter") + "/scatter");
+  const FigureLayout& L = r.layout;
+  ASSERT_TRUE(L.x_log10 && L.y_log10);
+  // The range holds every drawable value and bar end (log10 units).
+  EXPECT_LT(L.x_min, std::log10(1.5));
+  EXPECT_GT(L.x_max, std::log10(260));
+  EXPECT_LT(L.y_min, std::log10(0.04));
+  EXPECT_GT(L.y_max, std::log10(6));
+  const RgbImage img = read_png(r.png);
+  const auto column = [&](double v) {
+    return int(std::lround(L.plot_left + (std::log10(v) - L.x_min) / (L.x_max - L.x_min) *
+                                             (L.plot_right - L.plot_left) - 0.5));
+  };
+  const auto row = [&](double v) {
+    return int(std::lround(L.plot_top + (L.y_max - std::log10(v)) / (L.y_max - L.y_min) *
+                                            (L.plot_bottom - L.plot_top) - 0.5));
+  };
+  // A marker's centre (radius 6 px) is its colour within a pixel or two of where it should be.
+  const auto marker_at = [&](double x, double y, const unsigned char rgb[3]) {
+    const int cx = column(x), cy = row(y);
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (!near_color(img.at(cx + dx, cy + dy), rgb, 12)) return false;
+    return true;
+  };
+  unsigned char c0[3], c1[3];
+  series_color(0, c0);
+  series_color(1, c1);
+  EXPECT_TRUE(marker_at(2, 0.05, c0));
+  EXPECT_TRUE(marker_at(200, 5, c0));
+  EXPECT_TRUE(marker_at(20, 0.5, c1));
+  // ... and nowhere else: no marker colour at a place without a point (and the picture is not
+  // one colour).
+  EXPECT_FALSE(near_color(img.at(column(20), row(5)), c0, 12));
+  EXPECT_FALSE(near_color(img.at(column(20), row(5)), c1, 12));
+  std::size_t c1_pixels = 0;
+  for (int y = int(L.plot_top) + 1; y < int(L.plot_bottom); ++y)
+    for (int x = int(L.plot_left) + 1; x < int(L.plot_right); ++x)
+      c1_pixels += near_color(img.at(x, y), c1, 12);
+  EXPECT_GT(c1_pixels, 60u);   // one marker of radius 6: about 113 px
+  EXPECT_LT(c1_pixels, 200u);  // not two: the zero-error point is not drawn
+  // The note names it, on the figure too; the legend names both platforms; ticks read as numbers.
+  EXPECT_NE(r.note.find("1 point not drawn"), std::string::npos) << r.note;
+  EXPECT_NE(r.note.find("C platform II (y = 0)"), std::string::npos) << r.note;
+  const std::string text = squeeze(shell_output("pdftotext -layout '" + r.pdf + "' -"));
+  EXPECT_NE(text.find("1 point not drawn"), std::string::npos) << text;
+  EXPECT_NE(text.find("platform I"), std::string::npos) << text;
+  EXPECT_NE(text.find("platform II"), std::string::npos) << text;
+  EXPECT_NE(text.find("100"), std::string::npos) << text;
+  EXPECT_NE(text.find("0.1"), std::string::npos) << text;
+  // The CSV keeps every point, the omitted one included.
+  const auto t = ra::analysis::CsvTable::read_file(r.csv);
+  EXPECT_EQ(t.row_count(), 4u);
+  EXPECT_EQ(t.numeric_column("y").values, (std::vector<double>{0.05, 5, 0.5, 0}));
+}
+
 }  // namespace
 }  // namespace ra::plots

@@ -14,13 +14,17 @@
 //   histogram   every metric per platform, the view groups overlaid
 //   qq          orientation views of one group (Fig. 4)
 //   bihistogram platforms, view groups differing in FOV, first vs last (Figs. 5, 7, 9, 11, 13)
+//   speed_error median render time per primitive against median normalised unsigned error
+//               (PEnorm, LSEu-norm, TEu-norm), one point per platform x view group, IQR bars,
+//               log10 axes (issue 8; figures.json "speed_error")
 // Metric values are shown x 10^k with the k of the paper's tables (analysis/paper_tables.h).
 //
 // index.json, schema "renderaudit-figure-index", schema_version 1:
 //   {"schema", "schema_version", "run_dir", "png_route", "pdf_route", "display",
 //    "figures": [{"id", "kind", "section", "title", "caption", "note", "png", "pdf", "csv"
 //                 (paths relative to DIR/figures), "layout": {"width", "height", "plot_left",
-//                 "plot_right", "plot_top", "plot_bottom", "x_min", "x_max", "y_min", "y_max"}}],
+//                 "plot_right", "plot_top", "plot_bottom", "x_min", "x_max", "y_min", "y_max",
+//                 "x_log10", "y_log10" (true: that range is log10 of the values)}}],
 //    "skipped": [{"section", "what", "reason"}], "seconds"}
 #pragma once
 
