@@ -149,7 +149,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   }
   outputs.push_back({"figures.json",
                      "figure data for the plots stage: box plots, Q-Q plots, relative "
-                     "bihistograms (schema renderaudit-figures v" +
+                     "bihistograms, speed against error (schema renderaudit-figures v" +
                          std::to_string(kFiguresSchemaVersion) + ", analysis/figure_data.h)",
                      figures.dump() + "\n"});
 
