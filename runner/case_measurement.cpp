@@ -74,11 +74,18 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
   switch (prim.kind) {
     case Kind::kPoint: measure_point(view, c.point, rendered.lit, rec); break;
     case Kind::kLine: measure_segment_case(c.segment, view, rendered.lit, rec); break;
-    case Kind::kTriangle: measure_triangle_case(c.polygon, view, rendered.lit, rec); break;
+    case Kind::kTriangle:
+      // Points and lines of an antialiased rendering are measured on the pixels with any
+      // coverage, as lit pixels; triangles compare coverage with area.
+      if (rendered.samples > 0)
+        measure_triangle_coverage_case(c.polygon, view, rendered, rec);
+      else
+        measure_triangle_case(c.polygon, view, rendered.lit, rec);
+      break;
   }
   rec.render_us = rendered.render_us;
   rec.batch_size = rendered.batch_size;
-  rec.pixel_hash = pixel_set_hash(rendered.lit);
+  rec.pixel_hash = rendered_pixel_hash(rendered);
   if (compare_with_reference) {
     // The reference rasterizer, from the geometry prepare_case already clipped.
     PixelSet reference;
@@ -182,6 +189,32 @@ void measure_triangle_case(const ClippedPolygon& poly, const View& view, const P
   rec.te_u_edge_norm = m.te_unsigned_edge_norm;
   rec.full_window = m.full_window ? 1 : 0;
   rec.simply_connected = m.simply_connected ? 1 : 0;
+}
+
+void measure_triangle_coverage_case(const ClippedPolygon& poly, const View& view,
+                                    const RenderResult& rendered, Record& rec) {
+  rec.pixels = int64_t(rendered.lit.size());
+  rec.visibility = classify_extended(ideally_visible(poly), rendered.lit.size());
+  if (rec.visibility != Visibility::kTrueVisible) return;
+  const TriangleMetrics m = measure_triangle_coverage(poly, rendered.lit, rendered.samples_lit,
+                                                      rendered.samples, view.width, view.height);
+  rec.te_s = m.te_signed;
+  rec.te_u = m.te_unsigned;
+  rec.te_s_norm = m.te_signed_norm;
+  rec.te_u_norm = m.te_unsigned_norm;
+  rec.te_u_edge_norm = m.te_unsigned_edge_norm;
+  rec.full_window = m.full_window ? 1 : 0;
+  rec.simply_connected = m.simply_connected ? 1 : 0;
+}
+
+uint64_t rendered_pixel_hash(const RenderResult& rendered) {
+  uint64_t h = pixel_set_hash(rendered.lit);
+  if (rendered.samples <= 0) return h;
+  for (uint8_t k : rendered.samples_lit) {  // FNV-1a, continued
+    h ^= k;
+    h *= 0x100000001b3ull;
+  }
+  return h;
 }
 
 Visibility classify_extended(bool ideal_visible, size_t lit_pixels) {

@@ -46,6 +46,16 @@ void measure_segment_case(const ClippedSegment& seg, const View& view, const Pix
                           Record& rec);
 void measure_triangle_case(const ClippedPolygon& poly, const View& view, const PixelSet& lit,
                            Record& rec);
+// The same for an antialiased rendering (RenderResult::samples > 0): the te_* columns get the
+// coverage form of the metrics (TEs_cov, TEu_cov, triangle_metrics.h); visibility and `pixels`
+// count the pixels with any coverage.
+void measure_triangle_coverage_case(const ClippedPolygon& poly, const View& view,
+                                    const RenderResult& rendered, Record& rec);
+
+// The record's pixel_hash: pixel_set_hash(lit) for an aliased rendering; for an antialiased one
+// the same FNV-1a 64 continued over the samples-lit byte of each lit pixel in (y, x) order, so a
+// change of coverage alone changes the hash.
+uint64_t rendered_pixel_hash(const RenderResult& rendered);
 
 // The record fields that describe the case itself (platform, view, kind, index).
 Record case_identity(const std::string& platform_name, const View& view, const Primitive& prim);

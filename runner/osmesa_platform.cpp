@@ -18,12 +18,36 @@
 // driver not return the colour exactly, or leave pixels of another colour, the full scan still
 // disagrees with the count and the primitive is drawn again the old way: whole window cleared,
 // white, every non-black pixel taken (the end of render()).
+//
+// Multisample platforms (PlatformSpec::samples > 0, the antialiasing condition). The primitive is
+// drawn into a multisample FBO (GL_RGBA8, `samples` samples per pixel, GL_MULTISAMPLE enabled) and
+// the expected region is resolved (glBlitFramebuffer) into a single-sample FBO that glReadPixels
+// reads. Resolved colours blend with the background, so the colour counter cannot work here: every
+// primitive is drawn white on black and the resolved red value v of a pixel gives the number of its
+// samples the primitive covered, k = round(v * samples / 255) (llvmpipe, 4 samples: v is one of
+// 0, 64, 128, 191, 255 for k = 0..4, i.e. 255 k / 4 rounded to nearest; any value more than 1 away
+// from 255 k / samples aborts the primitive with the value). Sample positions (llvmpipe 4x, from
+// glGetMultisamplefv): (0.375, 0.125), (0.875, 0.375), (0.125, 0.625), (0.625, 0.875).
+// render_us = draw + resolve of the expected region + glFinish: what antialiasing costs includes
+// the resolve.
+// Completeness: under multisampling GL_SAMPLES_PASSED counts samples, not fragments, so the proof
+// compares it with the sum of k over the region read (each covered sample of one point, line or
+// triangle is covered once); when they differ the whole window is resolved and read.
+// Clearing: after the readback the primitive is drawn again in the clear colour (black, alpha 0):
+// the same vertices and state but the colour give the same samples (GL invariance; the colour is
+// a vertex attribute), so exactly what it lit is cleared. This costs one more draw, outside
+// render_us; a scissored clear (a quad draw in Mesa) cost 2-3x more, and a whole-window clear of
+// the 4x buffer about 25 ms at 907 x 907. After a whole-window scan the whole window is cleared.
+// Should a sample stay lit anyway, the next primitive's count exposes it (more samples found than
+// passed), and that primitive is drawn again on a cleared window, read whole. The colour-counter
+// batching is not used (render_batch draws one primitive at a time).
 #include <GL/gl.h>
 #include <GL/glext.h>
 #include <GL/osmesa.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -41,7 +65,8 @@ constexpr uint32_t kLastColour = 0x00ffffffu;
 class OsmesaPlatform : public Platform {
  public:
   OsmesaPlatform(const PlatformSpec& spec, ReadbackMethod method, std::vector<uint64_t> wild)
-      : method_(method), wild_pixel_indices_(std::move(wild)) {
+      : method_(method), wild_pixel_indices_(std::move(wild)), name_(spec.name),
+        samples_(spec.samples) {
     // Mesa reads these when the first context is made; only validated names reach it.
     setenv("GALLIUM_DRIVER", spec.gallium_driver, 1);
     setenv("LP_NUM_THREADS", "0", 0);
@@ -69,6 +94,7 @@ class OsmesaPlatform : public Platform {
     if (!gen_queries_ || !begin_query_ || !end_query_ || !get_query_)
       throw std::runtime_error("OSMesa lacks occlusion queries (GL 1.5)");
     gen_queries_(1, &query_);
+    if (samples_ > 0) init_multisample();
 
     const char* ext = reinterpret_cast<const char*>(glGetString(GL_EXTENSIONS));
     info_.renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -89,6 +115,7 @@ class OsmesaPlatform : public Platform {
     glClearColor(0, 0, 0, 0);
     glColor4f(1, 1, 1, 1);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    if (samples_ > 0) glEnable(GL_MULTISAMPLE);  // the antialiasing condition
   }
 
   ~OsmesaPlatform() override { OSMesaDestroyContext(context_); }
@@ -96,6 +123,7 @@ class OsmesaPlatform : public Platform {
   DriverInfo driver_info() const override { return info_; }
 
   void set_view(const View& view) override {
+    make_current();
     if (view.width != width_ || view.height != height_) resize(view.width, view.height);
     glViewport(0, 0, width_, height_);
     glMatrixMode(GL_PROJECTION);
@@ -106,6 +134,8 @@ class OsmesaPlatform : public Platform {
   }
 
   RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
+    make_current();
+    if (samples_ > 0) return render_multisample(prim, expected);
     RenderResult out;
     switch (method_) {
       case ReadbackMethod::kDrawOnly:  // the floor: what the renderer itself must spend
@@ -167,8 +197,9 @@ class OsmesaPlatform : public Platform {
   // other outcome redraws the batch one primitive at a time, each with its own proof and time.
   std::vector<RenderResult> render_batch(const std::vector<Primitive>& prims,
                                          const std::vector<PixelRegion>& expected) override {
+    make_current();
     if (method_ == ReadbackMethod::kDrawOnly) return draw_batch_only(prims);
-    if (method_ != ReadbackMethod::kRegionWithProof || prims.size() < 2)
+    if (method_ != ReadbackMethod::kRegionWithProof || prims.size() < 2 || samples_ > 0)
       return Platform::render_batch(prims, expected);
     reserve_colours(prims.size());
     const uint32_t first = colour_ + 1;
@@ -198,6 +229,167 @@ class OsmesaPlatform : public Platform {
   }
 
  private:
+  // Several platforms in one process (tests: an aliased and a multisample one side by side) each
+  // have their own context; GL calls go to the current one.
+  void make_current() {
+    if (OSMesaGetCurrentContext() != context_ &&
+        !OSMesaMakeCurrent(context_, winsys_pixel_, GL_UNSIGNED_BYTE, 1, 1))
+      throw std::runtime_error("OSMesaMakeCurrent failed for " + name_);
+  }
+
+  // The multisample FBO's entry points and its resolve target; fails, naming the platform, when the
+  // driver cannot give `samples_` samples per pixel.
+  void init_multisample() {
+    GLint max_samples = 0;
+    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    if (max_samples < samples_)
+      throw std::runtime_error("platform " + name_ + " needs " + std::to_string(samples_) +
+                               " samples per pixel, but this driver (" +
+                               reinterpret_cast<const char*>(glGetString(GL_RENDERER)) +
+                               ") has GL_MAX_SAMPLES " + std::to_string(max_samples));
+    load(renderbuffer_storage_multisample_, "glRenderbufferStorageMultisample");
+    load(blit_framebuffer_, "glBlitFramebuffer");
+    load(get_renderbuffer_parameter_, "glGetRenderbufferParameteriv");
+    gen_framebuffers_(1, &resolve_framebuffer_);
+    // k samples lit <-> resolved value 255 k / samples rounded either way; anything else is 255.
+    for (int v = 0; v < 256; ++v) {
+      const int k = int(std::lround(v * samples_ / 255.0));
+      decode_[v] = std::fabs(v - 255.0 * k / samples_) <= 1.0 ? uint8_t(k) : uint8_t(255);
+    }
+  }
+
+  // Multisample rendering (the antialiasing condition; see the top of this file).
+  RenderResult render_multisample(const Primitive& prim, const PixelRegion& expected) {
+    RenderResult out;
+    out.samples = samples_;
+    const PixelRegion window = PixelRect{0, 0, width_, height_};
+    glColor4ub(255, 255, 255, 255);
+    switch (method_) {
+      case ReadbackMethod::kDrawOnly:  // the floor: drawing alone, no resolve
+        out.render_us = draw_and_finish(prim);
+        erase(prim, nullptr);
+        return out;
+      case ReadbackMethod::kFullWindow:
+        clear_all();
+        out.render_us = draw_resolve_finish(prim, nullptr, window);
+        read_coverage(window, out);
+        out.full_scan = true;
+        clear_all();
+        return out;
+      case ReadbackMethod::kRegionWithProof:
+        break;
+    }
+    const Pixel* wild = wild_pixel_for(prim, expected);
+    begin_query_(GL_SAMPLES_PASSED, query_);
+    out.render_us = draw_resolve_finish(prim, wild, expected, true);
+    GLuint passed = 0;
+    get_query_(query_, GL_QUERY_RESULT, &passed);
+    int64_t found = read_coverage(expected, out);
+    if (found == int64_t(passed)) {
+      erase(prim, wild);
+      return out;
+    }
+    out.full_scan = true;
+    resolve(window);
+    found = read_coverage(window, out);
+    clear_all();
+    if (found == int64_t(passed)) return out;
+    // More samples found than passed: some stayed lit from an earlier primitive; fewer: the driver
+    // covered some sample twice. Draw again on the cleared window and read it whole.
+    begin_query_(GL_SAMPLES_PASSED, query_);
+    out.render_us = draw_resolve_finish(prim, wild, expected, true);
+    get_query_(query_, GL_QUERY_RESULT, &passed);
+    resolve(window);
+    found = read_coverage(window, out);
+    clear_all();
+    if (found > int64_t(passed))
+      throw std::runtime_error("the driver lit " + std::to_string(found) + " samples with " +
+                               std::to_string(passed) + " samples passed for primitive " +
+                               std::to_string(prim.index));
+    if (found < int64_t(passed))
+      std::fprintf(stderr, "primitive %llu: %u samples passed for %lld samples lit (lit twice)\n",
+                   static_cast<unsigned long long>(prim.index), passed,
+                   static_cast<long long>(found));
+    return out;
+  }
+
+  // Draws, resolves `region` into the single-sample FBO and waits; returns the CPU time, us.
+  double draw_resolve_finish(const Primitive& prim, const Pixel* wild, const PixelRegion& region,
+                             bool end_query = false) {
+    const auto t0 = std::chrono::steady_clock::now();
+    draw(prim, wild);
+    if (end_query) end_query_(GL_SAMPLES_PASSED);
+    resolve(region);
+    glFinish();
+    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  // Resolves the region's rectangles from the multisample FBO into the resolve FBO (same place).
+  void resolve(const PixelRegion& region) {
+    bind_framebuffer_(GL_READ_FRAMEBUFFER, framebuffer_);
+    bind_framebuffer_(GL_DRAW_FRAMEBUFFER, resolve_framebuffer_);
+    for (const PixelRect& r : region.rects) {
+      const PixelRect c = clamp(r);
+      if (!c.empty())
+        blit_framebuffer_(c.x0, c.y0, c.x1, c.y1, c.x0, c.y0, c.x1, c.y1, GL_COLOR_BUFFER_BIT,
+                          GL_NEAREST);
+    }
+    // Steady state: draw (and clear) into the multisample FBO, read from the resolved one.
+    bind_framebuffer_(GL_DRAW_FRAMEBUFFER, framebuffer_);
+    bind_framebuffer_(GL_READ_FRAMEBUFFER, resolve_framebuffer_);
+  }
+
+  // Draws the primitive again in the clear colour: exactly its samples go back to black.
+  void erase(const Primitive& prim, const Pixel* wild) {
+    glColor4ub(0, 0, 0, 0);
+    draw(prim, wild);
+    glFinish();
+    glColor4ub(255, 255, 255, 255);
+  }
+
+  // Reads the region's resolved pixels and replaces out.lit / out.samples_lit with those that
+  // have any coverage; returns the sum of their samples lit.
+  int64_t read_coverage(const PixelRegion& region, RenderResult& out) {
+    covered_.clear();
+    size_t rects = 0;
+    for (const PixelRect& r0 : region.rects) {
+      const PixelRect r = clamp(r0);
+      if (r.empty()) continue;
+      ++rects;
+      const int w = r.x1 - r.x0, h = r.y1 - r.y0;
+      readback_.resize(size_t(w) * h);
+      glReadPixels(r.x0, r.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readback_.data());
+      for (int y = 0; y < h; ++y) {
+        const uint32_t* row = readback_.data() + size_t(y) * w;
+        for (int x = 0; x < w; ++x) {
+          const uint8_t v = uint8_t(row[x]);  // red: the low byte of a little-endian RGBA8 pixel
+          if (v == 0) continue;
+          const uint8_t k = decode_[v];
+          if (k == 255)
+            throw std::runtime_error("platform " + name_ + ": resolved value " +
+                                     std::to_string(v) + " at pixel (" + std::to_string(r.x0 + x) +
+                                     ", " + std::to_string(r.y0 + y) + ") is no multiple of 255/" +
+                                     std::to_string(samples_));
+          covered_.push_back({r.y0 + y, r.x0 + x, k});
+        }
+      }
+    }
+    if (rects > 1)  // a line's strip: rectangles side by side, put in (y, x) order
+      std::sort(covered_.begin(), covered_.end(), [](const Covered& a, const Covered& b) {
+        return a.y != b.y ? a.y < b.y : a.x < b.x;
+      });
+    out.lit.clear();
+    out.samples_lit.clear();
+    out.samples_lit.reserve(covered_.size());
+    int64_t sum = 0;
+    for (const Covered& c : covered_) {
+      out.lit.append_run(c.y, c.x, c.x + 1);
+      out.samples_lit.push_back(c.k);
+      sum += c.k;
+    }
+    return sum;
+  }
+
   // Draws the primitive and waits for it; returns the CPU time in microseconds. With
   // `end_query`, the running occlusion query is ended right after the draw.
   double draw_and_finish(const Primitive& prim, bool end_query = false, const Pixel* wild = nullptr) {
@@ -268,6 +460,7 @@ class OsmesaPlatform : public Platform {
       throw std::runtime_error("window " + std::to_string(w) + "x" + std::to_string(h) +
                                " exceeds this driver's GL_MAX_RENDERBUFFER_SIZE " +
                                std::to_string(max_size_));
+    if (samples_ > 0) return resize_multisample(w, h);
     if (renderbuffer_) delete_renderbuffers_(1, &renderbuffer_);
     gen_renderbuffers_(1, &renderbuffer_);
     bind_renderbuffer_(GL_RENDERBUFFER, renderbuffer_);
@@ -276,6 +469,37 @@ class OsmesaPlatform : public Platform {
     if (check_framebuffer_(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw std::runtime_error("incomplete framebuffer for a " + std::to_string(w) + "x" +
                                std::to_string(h) + " window");
+    width_ = w;
+    height_ = h;
+  }
+
+  // The multisample FBO (drawn into) and the single-sample resolve FBO (read back), both w x h.
+  void resize_multisample(int w, int h) {
+    const std::string size = std::to_string(w) + "x" + std::to_string(h);
+    if (renderbuffer_) delete_renderbuffers_(1, &renderbuffer_);
+    if (resolve_renderbuffer_) delete_renderbuffers_(1, &resolve_renderbuffer_);
+    gen_renderbuffers_(1, &renderbuffer_);
+    bind_renderbuffer_(GL_RENDERBUFFER, renderbuffer_);
+    renderbuffer_storage_multisample_(GL_RENDERBUFFER, samples_, GL_RGBA8, w, h);
+    GLint got = 0;  // GL may give more samples than asked for: coverage would then be k / got
+    get_renderbuffer_parameter_(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &got);
+    if (got != samples_)
+      throw std::runtime_error("platform " + name_ + ": asked for " + std::to_string(samples_) +
+                               " samples per pixel, the driver gave " + std::to_string(got));
+    bind_framebuffer_(GL_FRAMEBUFFER, framebuffer_);
+    framebuffer_renderbuffer_(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_);
+    if (check_framebuffer_(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("incomplete multisample framebuffer for a " + size + " window");
+    gen_renderbuffers_(1, &resolve_renderbuffer_);
+    bind_renderbuffer_(GL_RENDERBUFFER, resolve_renderbuffer_);
+    renderbuffer_storage_(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    bind_framebuffer_(GL_FRAMEBUFFER, resolve_framebuffer_);
+    framebuffer_renderbuffer_(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              resolve_renderbuffer_);
+    if (check_framebuffer_(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("incomplete resolve framebuffer for a " + size + " window");
+    bind_framebuffer_(GL_DRAW_FRAMEBUFFER, framebuffer_);
+    bind_framebuffer_(GL_READ_FRAMEBUFFER, resolve_framebuffer_);
     width_ = w;
     height_ = h;
   }
@@ -355,6 +579,19 @@ class OsmesaPlatform : public Platform {
 
   ReadbackMethod method_;
   std::vector<uint64_t> wild_pixel_indices_;
+  std::string name_;  // the platform's name, for messages
+  int samples_ = 0;   // PlatformSpec::samples; 0 = aliased
+  // Multisample platforms: the resolve target, and resolved red value -> samples lit (255: invalid).
+  GLuint resolve_framebuffer_ = 0, resolve_renderbuffer_ = 0;
+  uint8_t decode_[256] = {};
+  struct Covered {
+    int32_t y, x;
+    uint8_t k;
+  };
+  std::vector<Covered> covered_;
+  PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC renderbuffer_storage_multisample_ = nullptr;
+  PFNGLBLITFRAMEBUFFERPROC blit_framebuffer_ = nullptr;
+  PFNGLGETRENDERBUFFERPARAMETERIVPROC get_renderbuffer_parameter_ = nullptr;
   Pixel wild_;
   OSMesaContext context_ = nullptr;
   uint8_t winsys_pixel_[4] = {};

@@ -12,6 +12,12 @@ const std::vector<PlatformSpec>& platform_specs() {
        "softpipe"},
       {"reference", "the project's exact rasterizer following the GL rules (no driver)", nullptr},
       {"faulty", "test platform: the reference rasterizer plus the faults of [faults]", nullptr},
+      // The antialiasing condition; last, so that the names before it keep their place in
+      // messages. softpipe has no multisample variant: its GL_MAX_SAMPLES is 1 (Mesa 22.3.6), and
+      // glRenderbufferStorageMultisample(4) fails there.
+      {"osmesa-llvmpipe-msaa4",
+       "Mesa OSMesa with llvmpipe, antialiased: 4x multisampling, coverage = samples lit / 4",
+       "llvmpipe", 4},
   };
   return specs;
 }

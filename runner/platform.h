@@ -19,6 +19,10 @@ struct PlatformSpec {
   const char* name;            // as written in experiment files
   const char* description;
   const char* gallium_driver;  // value of GALLIUM_DRIVER for OSMesa platforms, else nullptr
+  // Samples per pixel of the multisample colour buffer drawn into (OSMesa platforms only): 0 for
+  // the aliased platforms (one sample at the pixel centre, the paper's condition), 4 for the
+  // antialiasing condition (`osmesa-llvmpipe-msaa4`, see osmesa_platform.cpp).
+  int samples = 0;
 };
 
 // The platforms this build knows. Only names from this table ever reach Mesa's environment.
@@ -35,9 +39,16 @@ struct DriverInfo {
 
 // One primitive as rendered.
 struct RenderResult {
-  PixelSet lit;             // every lit pixel, GL window coordinates
+  PixelSet lit;             // every lit pixel (any coverage), GL window coordinates
+  // Multisample platforms only (`samples` > 0): samples_lit[i] = samples of the i-th pixel of
+  // `lit`, in its (y, x) iteration order, that the primitive covered, 1..samples; the pixel's
+  // coverage is samples_lit[i] / samples. Aliased platforms: samples = 0, samples_lit empty (each
+  // lit pixel is wholly lit).
+  int samples = 0;
+  std::vector<uint8_t> samples_lit;
   // CPU wall time of draw + glFinish, microseconds; for a batch drawn under one glFinish, the
-  // batch's time divided equally among its `batch_size` primitives.
+  // batch's time divided equally among its `batch_size` primitives. Multisample platforms: draw +
+  // resolve of the expected region (glBlitFramebuffer) + glFinish.
   double render_us = 0;
   int batch_size = 1;
   bool full_scan = false;   // the whole window was inspected (no proof for a partial readback)
@@ -49,8 +60,8 @@ class Platform {
   virtual DriverInfo driver_info() const = 0;
   // Makes `view` current: window size, projection and modelview matrices.
   virtual void set_view(const View& view) = 0;
-  // Draws `prim` alone, white on black, width/size 1, no antialiasing, both faces filled, and
-  // returns every pixel it lit. `expected` is the window region where the ideal primitive lies
+  // Draws `prim` alone, white on black, width/size 1, no antialiasing (multisampling on the
+  // multisample platforms), both faces filled, and returns every pixel it lit. `expected` is the window region where the ideal primitive lies
   // (its clipped bounding box, or a strip along a line, plus a margin; possibly empty): an
   // implementation may read back only that region when it proves that nothing was lit outside it.
   virtual RenderResult render(const Primitive& prim, const PixelRegion& expected) = 0;

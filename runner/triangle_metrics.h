@@ -18,9 +18,19 @@
 // far planes (pixels are sampled, and can be wrong, along those too), but not the edges created
 // by (or lying on) the window sides x = 0, x = W, y = 0, y = H: pixels end exactly there, so no
 // rasterization error is possible along them.
+//
+// Antialiased renderings (multisample platforms, see osmesa_platform.cpp): a pixel p is partly lit,
+// with coverage c(p) = samples lit / samples in [0, 1], and the same sums become
+//   TEs_cov = sum_p (c(p) - a(p)) = total coverage - area(proj T)
+//   TEu_cov = sum_p |c(p) - a(p)|
+// over all pixels, a(p) = inside(proj T, p) the exact area; with c in {0, 1} they are eqs. 9-10.
+// rendered_outside becomes the coverage in excess of the area (sum of max(c - a, 0)) and
+// unrendered_inside the area in excess of the coverage (sum of max(a - c, 0)). Normalisations,
+// edge length and connectivity (of the pixels with any coverage) are as above.
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "runner/clipping.h"
 #include "runner/pixel_coverage.h"
@@ -64,5 +74,18 @@ TriangleMetrics measure_triangle(const View& view, const Primitive& prim, const 
 // triangle when several renderers are compared.
 TriangleMetrics measure_triangle(const ClippedPolygon& proj, const PolygonCoverage& coverage,
                                  const PixelSet& lit, int width, int height);
+
+// The coverage form of the metrics (TEs_cov, TEu_cov, see the top of this file) for an antialiased
+// rendering: `lit` the pixels with any coverage (sorted, GL window coordinates), `samples_lit[i]`
+// the samples lit of the i-th pixel of `lit` in its (y, x) order, 1..samples, `samples` (>= 1) the
+// samples per pixel. Cost: O(rows + boundary pixels + lit runs + |lit|), the last a pass over the
+// bytes of samples_lit (the readback of those pixels already cost as much). `rendered` = |lit|.
+TriangleMetrics measure_triangle_coverage(const ClippedPolygon& proj, const PixelSet& lit,
+                                          const std::vector<uint8_t>& samples_lit, int samples,
+                                          int width, int height);
+TriangleMetrics measure_triangle_coverage(const ClippedPolygon& proj,
+                                          const PolygonCoverage& coverage, const PixelSet& lit,
+                                          const std::vector<uint8_t>& samples_lit, int samples,
+                                          int width, int height);
 
 }  // namespace ra
