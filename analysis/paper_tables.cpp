@@ -533,8 +533,9 @@ Table speed_table(const RunRecords& run, const TableOptions& options) {
       "are true-visible (the error is measured on these).",
       "render_us is the CPU time of a primitive's draw call and glFinish, measured by the "
       "runner: alone for a large primitive, an equal share of one glFinish for small ones drawn "
-      "in a batch (records column batch_size); it depends on the machine and its load, unlike "
-      "the errors."};
+      "in a batch (records column batch_size); on an antialiased platform it includes the "
+      "resolve of the multisample buffer. It depends on the machine and its load, unlike the "
+      "errors."};
   return t;
 }
 
