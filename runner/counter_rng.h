@@ -23,13 +23,22 @@ enum class RngStream : uint64_t { kPoint = 1, kLine = 2, kTriangle = 3, kOrienta
 class CounterRng {
  public:
   CounterRng(uint64_t seed, RngStream stream, uint64_t index)
-      : key_(splitmix64(splitmix64(splitmix64(seed) ^ static_cast<uint64_t>(stream)) ^ index)) {}
+      : CounterRng(seed, static_cast<uint64_t>(stream), index) {}
+  // Any 64-bit stream tag (other parts of the project keep their own enums of tags).
+  CounterRng(uint64_t seed, uint64_t stream, uint64_t index)
+      : key_(splitmix64(splitmix64(splitmix64(seed) ^ stream) ^ index)) {}
 
   uint64_t next_u64() { return splitmix64(key_ + 0x632BE59BD9B4E019ull * ++counter_); }
   // Uniform on [0, 1) with 53 random bits.
   double uniform01() { return static_cast<double>(next_u64() >> 11) * 0x1.0p-53; }
   // Uniform on [lo, hi).
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform01(); }
+  // Uniform integer on [lo, hi] (inclusive; hi >= lo). The modulo bias is below 2^-32 for ranges
+  // of fewer than 2^32 values.
+  int64_t integer(int64_t lo, int64_t hi) {
+    const uint64_t span = static_cast<uint64_t>(hi - lo) + 1;
+    return lo + static_cast<int64_t>(next_u64() % span);
+  }
 
  private:
   uint64_t key_;
