@@ -176,12 +176,10 @@ void measure_segment_case(const ClippedSegment& seg, const View& view, const Pix
   rec.gaps = m.gaps;
 }
 
-void measure_triangle_case(const ClippedPolygon& poly, const View& view, const PixelSet& lit,
-                           Record& rec) {
-  rec.pixels = int64_t(lit.size());
-  rec.visibility = classify_extended(ideally_visible(poly), lit.size());
-  if (rec.visibility != Visibility::kTrueVisible) return;
-  const TriangleMetrics m = measure_triangle(poly, lit, view.width, view.height);
+namespace {
+
+// The triangle columns of a record from its metrics (aliased or coverage form alike).
+void set_triangle_columns(const TriangleMetrics& m, Record& rec) {
   rec.te_s = m.te_signed;
   rec.te_u = m.te_unsigned;
   rec.te_s_norm = m.te_signed_norm;
@@ -191,20 +189,24 @@ void measure_triangle_case(const ClippedPolygon& poly, const View& view, const P
   rec.simply_connected = m.simply_connected ? 1 : 0;
 }
 
+}  // namespace
+
+void measure_triangle_case(const ClippedPolygon& poly, const View& view, const PixelSet& lit,
+                           Record& rec) {
+  rec.pixels = int64_t(lit.size());
+  rec.visibility = classify_extended(ideally_visible(poly), lit.size());
+  if (rec.visibility != Visibility::kTrueVisible) return;
+  set_triangle_columns(measure_triangle(poly, lit, view.width, view.height), rec);
+}
+
 void measure_triangle_coverage_case(const ClippedPolygon& poly, const View& view,
                                     const RenderResult& rendered, Record& rec) {
   rec.pixels = int64_t(rendered.lit.size());
   rec.visibility = classify_extended(ideally_visible(poly), rendered.lit.size());
   if (rec.visibility != Visibility::kTrueVisible) return;
-  const TriangleMetrics m = measure_triangle_coverage(poly, rendered.lit, rendered.samples_lit,
-                                                      rendered.samples, view.width, view.height);
-  rec.te_s = m.te_signed;
-  rec.te_u = m.te_unsigned;
-  rec.te_s_norm = m.te_signed_norm;
-  rec.te_u_norm = m.te_unsigned_norm;
-  rec.te_u_edge_norm = m.te_unsigned_edge_norm;
-  rec.full_window = m.full_window ? 1 : 0;
-  rec.simply_connected = m.simply_connected ? 1 : 0;
+  set_triangle_columns(measure_triangle_coverage(poly, rendered.lit, rendered.samples_lit,
+                                                 rendered.samples, view.width, view.height),
+                       rec);
 }
 
 uint64_t rendered_pixel_hash(const RenderResult& rendered) {
