@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
-.PHONY: all deps build run analyze plot report test bench nightly format clean
+.PHONY: all deps build run analyze plot report test bench nightly timing format clean
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
@@ -46,6 +46,11 @@ bench: build
 # report. Exit code: 0 unchanged, 1 changed, 2 failed.
 nightly: build
 	BUILD=$(BUILD) JOBS=$(JOBS) scripts/nightly.sh
+
+# The rendering-time study (Wimmer & Wonka 2003): experiments/timing.toml -> outputs/timing/
+# (timing.json, CSV files, figures). About 15 minutes on 2 cores; run it on an idle machine.
+timing: build
+	$(BUILD)/renderaudit timing experiments/timing.toml --out outputs/timing
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

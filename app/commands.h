@@ -20,5 +20,6 @@ void register_report_command(CLI::App& app, int& exit_code);  // report.pdf + re
 void register_audit_command(CLI::App& app, int& exit_code);    // run vs baseline: verdict (audit/)
 void register_history_command(CLI::App& app, int& exit_code);  // audit history + trend figures
 void register_show_command(CLI::App& app, int& exit_code);     // one primitive as a PNG
+void register_timing_command(CLI::App& app, int& exit_code);   // rendering-time study (timing/)
 
 }  // namespace ra::app

@@ -1,0 +1,133 @@
+// End to end: `renderaudit timing experiments/timing_smoke.toml` on llvmpipe writes a timing.json
+// with real, positive times, fits with positive H2 / H4 coefficients, Table 6 for every scene and
+// method, the GPU timer's availability, and the CSV files and figures beside it.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "tests/cli_harness.h"
+
+namespace ra {
+namespace {
+
+using testing_cli::fresh_dir;
+using testing_cli::run_renderaudit;
+
+double param(const nlohmann::json& fit, const std::string& name) {
+  for (const auto& p : fit.at("parameters"))
+    if (p.at("name") == name) return p.at("value").get<double>();
+  ADD_FAILURE() << "no parameter " << name;
+  return NAN;
+}
+
+TEST(TimingCommand, SmokeStudyOnLlvmpipe) {
+  const std::string dir = fresh_dir("timing_smoke");
+  const auto o = run_renderaudit("timing " RA_SOURCE_DIR "/experiments/timing_smoke.toml --out " +
+                                 dir + " --platform osmesa-llvmpipe --quiet");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("Table 6"), std::string::npos) << o.output;
+
+  std::ifstream in(dir + "/timing.json");
+  ASSERT_TRUE(in.good());
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("schema"), "renderaudit-timing/1");
+  ASSERT_EQ(j.at("platforms").size(), 1u);
+  const nlohmann::json& p = j.at("platforms")[0];
+  EXPECT_EQ(p.at("name"), "osmesa-llvmpipe");
+  EXPECT_TRUE(p.at("error").is_null());
+  EXPECT_NE(p.at("renderer").at("renderer").get<std::string>().find("llvmpipe"), std::string::npos);
+
+  // GPU timer availability is reported, and used when supported
+  const nlohmann::json& tq = p.at("timer_query");
+  ASSERT_TRUE(tq.at("supported").is_boolean());
+  EXPECT_EQ(tq.at("used").get<bool>(), tq.at("supported").get<bool>());
+  if (tq.at("supported").get<bool>()) {
+    EXPECT_GT(tq.at("counter_bits").get<int>(), 0);
+    EXPECT_FALSE(p.at("cpu_vs_gpu").is_null());
+    EXPECT_EQ(p.at("system_task").at("gpu_us").size(), 200u);
+  } else {
+    EXPECT_TRUE(p.at("cpu_vs_gpu").is_null());
+  }
+
+  // the system task: every rendering kept, real positive times, c = q99 - min >= 0
+  const nlohmann::json& st = p.at("system_task");
+  ASSERT_EQ(st.at("cpu_us").size(), 200u);
+  for (const auto& t : st.at("cpu_us")) EXPECT_GT(t.get<double>(), 0);
+  EXPECT_GT(st.at("min_us").get<double>(), 0);
+  EXPECT_GE(st.at("c_us").get<double>(), 0);
+  EXPECT_NEAR(st.at("c_us").get<double>(),
+              st.at("q99_us").get<double>() - st.at("min_us").get<double>(), 1e-9);
+
+  // fits: h1..h4 without and with intercept; H2 and H4 coefficients positive
+  ASSERT_EQ(p.at("fits").size(), 8u);
+  for (const auto& f : p.at("fits")) {
+    EXPECT_EQ(f.at("n").get<int>(), 90);
+    if (f.at("intercept").get<bool>()) continue;
+    if (f.at("heuristic") == "h2") EXPECT_GT(param(f, "c"), 0) << f.dump();
+    if (f.at("heuristic") == "h4") {
+      EXPECT_GT(param(f, "c1"), 0) << f.dump();
+      EXPECT_GT(param(f, "c2"), 0) << f.dump();
+    }
+  }
+
+  // Table 6: every scene, every method, a finite non-negative error
+  const nlohmann::json& t6 = p.at("table6_ms2");
+  ASSERT_EQ(t6.size(), 3u);
+  for (const char* scene : {"city", "terrain", "forest"})
+    for (const char* method : {"h1", "h2", "h3", "h4", "h1+b", "h2+b", "h3+b", "h4+b", "pos"})
+      EXPECT_GE(t6.at(scene).at(method).get<double>(), 0) << scene << " " << method;
+  for (const auto& s : p.at("scenes")) {
+    EXPECT_EQ(s.at("frames_measured").get<int>(), 6);
+    EXPECT_GT(s.at("frame_base_us").get<double>(), 0);
+    EXPECT_GT(s.at("triangles").get<int64_t>(), 0);
+  }
+
+  // the CSV files and figures
+  std::ifstream objects(dir + "/object_samples.csv");
+  std::string header, line;
+  std::getline(objects, header);
+  EXPECT_EQ(header.rfind("platform,scene,object,alpha,gamma,phi,triangles,vertices,transformed,"
+                         "pixels,state_changes,repetitions,cpu_median_us",
+                         0),
+            0u);
+  int rows = 0;
+  while (std::getline(objects, line)) ++rows;
+  EXPECT_EQ(rows, 90);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/frames.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/pos_tables.csv"));
+  for (const char* ext : {".png", ".pdf", ".csv"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/figures/system_task_density_osmesa-llvmpipe" +
+                                        std::string(ext)));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/figures/path_osmesa-llvmpipe_city_h4" +
+                                        std::string(ext)));
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// Bad input: exit code 2, a located message, nothing written.
+TEST(TimingCommand, BadInputWritesNothing) {
+  const std::string dir = fresh_dir("timing_bad");
+  const std::string exp = dir + "/bad.toml";
+  testing_cli::write_text(exp, "[timing]\nobject_samples = 5\n[[scene]]\nkind = \"forest\"\n");
+  const auto o = run_renderaudit("timing " + exp + " --out " + dir + "/out --quiet");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("bad.toml:2:18: 'timing.object_samples' = 5 is out of range (allowed: 10 "
+                          "to 10000000)"),
+            std::string::npos)
+      << o.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  const auto p = run_renderaudit("timing " RA_SOURCE_DIR
+                                 "/experiments/timing_smoke.toml --platform reference --out " +
+                                 dir + "/out2");
+  EXPECT_EQ(p.exit_code, 2);
+  EXPECT_NE(p.output.find("not a platform of"), std::string::npos) << p.output;
+  const auto q = run_renderaudit("timing " + dir + "/missing.toml --out " + dir + "/out3");
+  EXPECT_EQ(q.exit_code, 2);
+  EXPECT_NE(q.output.find("cannot read the experiment file"), std::string::npos) << q.output;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ra

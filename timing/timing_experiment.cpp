@@ -1,0 +1,219 @@
+// The [timing] table of a timing experiment file (timing_experiment.h).
+#include "timing/timing_experiment.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "runner/errors.h"
+#include "runner/platform.h"
+#include "runner/toml_locator.h"
+
+namespace ra::timing {
+namespace {
+
+using Locator = TomlLocator;  // file:line:column errors, as every experiment reader
+
+int64_t integer(const Locator& loc, const toml::node& node, const std::string& key, int64_t lo,
+                int64_t hi) {
+  return loc.integer(node, key, lo, hi);
+}
+
+// A number in the open or closed interval described by `allowed` and checked by `ok`.
+template <typename Ok>
+double number(const Locator& loc, const toml::node& node, const std::string& key,
+              const std::string& allowed, Ok ok) {
+  double v;
+  if (const auto* i = node.as_integer())
+    v = double(i->get());
+  else if (const auto* f = node.as_floating_point())
+    v = f->get();
+  else
+    loc.fail(&node, "'" + key + "' must be a number (allowed: " + allowed + ")");
+  if (!std::isfinite(v) || !ok(v)) {
+    std::ostringstream s;
+    s << "'" << key << "' = " << v << " is out of range (allowed: " << allowed << ")";
+    loc.fail(&node, s.str());
+  }
+  return v;
+}
+
+const toml::array& array_of(const Locator& loc, const toml::node& node, const std::string& key,
+                            std::size_t size, const std::string& what) {
+  const auto* a = node.as_array();
+  if (!a || (size && a->size() != size)) loc.fail(&node, "'" + key + "' must be " + what);
+  return *a;
+}
+
+void parse_work(const Locator& loc, const toml::table& t, const std::string& where,
+                WorkSettings& w) {
+  if (const auto* n = t.get("repetitions"))
+    w.repetitions = int(integer(loc, *n, where + "repetitions", 1, 1000));
+  if (const auto* n = t.get("system_task_renders"))
+    w.system_task_renders = int(integer(loc, *n, where + "system_task_renders", 10, 1000000));
+  if (const auto* n = t.get("object_samples"))
+    w.object_samples = int(integer(loc, *n, where + "object_samples", 10, 10000000));
+  if (const auto* n = t.get("frame_stride"))
+    w.frame_stride = int(integer(loc, *n, where + "frame_stride", 1, 100000));
+  if (const auto* n = t.get("pos_repetitions"))
+    w.pos_repetitions = int(integer(loc, *n, where + "pos_repetitions", 1, 1000));
+}
+
+}  // namespace
+
+const WorkSettings& TimingSettings::work_for(const std::string& platform) const {
+  auto it = platform_work.find(platform);
+  return it == platform_work.end() ? work : it->second;
+}
+
+TimingSettings read_timing_experiment(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw UserError(path + ": cannot read the experiment file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_timing_experiment(text.str(), path);
+}
+
+TimingSettings parse_timing_experiment(const std::string& text, const std::string& path) {
+  Locator loc(path);
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream out;
+    out << path << ":" << e.source().begin.line << ":" << e.source().begin.column << ": "
+        << e.description();
+    throw UserError(out.str());
+  }
+  loc.reject_unknown_keys(root, "", {"name", "timing", "scene"});
+
+  TimingSettings s;
+  s.file = path;
+  const std::string stem = path.substr(path.find_last_of('/') + 1);
+  s.name = stem.substr(0, stem.rfind(".toml"));
+  if (const auto* n = root.get("name")) {
+    const auto* str = n->as_string();
+    if (!str || str->get().empty() ||
+        str->get().find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") !=
+            std::string::npos)
+      loc.fail(n, "'name' must be a non-empty string of letters, digits, '_', '.', '-'");
+    s.name = str->get();
+  }
+
+  const toml::node* timing_node = root.get("timing");
+  if (timing_node && !timing_node->is_table()) loc.fail(timing_node, "'timing' must be a table");
+  const toml::table empty;
+  const toml::table& t = timing_node ? *timing_node->as_table() : empty;
+  loc.reject_unknown_keys(
+      t, "timing.",
+      {"platforms", "window", "fov_deg", "near", "far", "repetitions", "system_task_renders",
+       "object_samples", "cache_size", "seed", "gpu_timer", "frame_stride", "pos_repetitions",
+       "alpha_min_deg",
+       "phi_deg", "pos_grid", "pos_prune_alpha_deg", "pos_lookup", "platform"});
+
+  if (const auto* n = t.get("platforms")) {
+    const auto& a = array_of(loc, *n, "timing.platforms", 0, "a non-empty array of platform names");
+    if (a.empty()) loc.fail(n, "'timing.platforms' must not be empty");
+    s.platforms.clear();
+    for (const auto& e : a) {
+      const auto* str = e.as_string();
+      const PlatformSpec* spec = str ? find_platform(str->get()) : nullptr;
+      if (!spec || !spec->gallium_driver)
+        loc.fail(&e, "'timing.platforms' holds an unknown or driverless platform (allowed: "
+                     "osmesa-llvmpipe, osmesa-softpipe)");
+      for (const auto& p : s.platforms)
+        if (p == str->get()) loc.fail(&e, "platform '" + p + "' is listed twice");
+      s.platforms.push_back(str->get());
+    }
+  }
+  if (const auto* n = t.get("window")) {
+    const auto& a = array_of(loc, *n, "timing.window", 2, "[width, height] in pixels");
+    s.camera.width = int(integer(loc, *a.get(0), "timing.window", 16, 4096));
+    s.camera.height = int(integer(loc, *a.get(1), "timing.window", 16, 4096));
+  }
+  if (const auto* n = t.get("fov_deg"))
+    s.camera.fov_y_deg = number(loc, *n, "timing.fov_deg", "0 < fov_deg < 180",
+                                [](double v) { return v > 0 && v < 180; });
+  if (const auto* n = t.get("near"))
+    s.camera.near = number(loc, *n, "timing.near", "near > 0", [](double v) { return v > 0; });
+  if (const auto* n = t.get("far")) {
+    const double near = s.camera.near;
+    s.camera.far = number(loc, *n, "timing.far", "far > near",
+                          [near](double v) { return v > near; });
+  } else if (!(s.camera.far > s.camera.near)) {
+    loc.fail(t.get("near"), "'timing.near' must be below far (" + std::to_string(s.camera.far) + ")");
+  }
+  parse_work(loc, t, "timing.", s.work);
+  if (const auto* n = t.get("cache_size"))
+    s.cache_size = unsigned(integer(loc, *n, "timing.cache_size", 3, 1024));
+  if (const auto* n = t.get("seed"))
+    s.seed = uint64_t(integer(loc, *n, "timing.seed", 0, INT64_MAX));
+  if (const auto* n = t.get("gpu_timer")) {
+    const auto* b = n->as_boolean();
+    if (!b) loc.fail(n, "'timing.gpu_timer' must be true or false");
+    s.gpu_timer = b->get();
+  }
+  if (const auto* n = t.get("alpha_min_deg"))
+    s.alpha_min_deg = number(loc, *n, "timing.alpha_min_deg", "0 < alpha_min_deg < 90",
+                             [](double v) { return v > 0 && v < 90; });
+  if (const auto* n = t.get("phi_deg")) {
+    const auto& a = array_of(loc, *n, "timing.phi_deg", 2, "[lowest, highest] elevation in degrees");
+    auto in_range = [](double v) { return v >= -90 && v <= 90; };
+    s.phi_min_deg = number(loc, *a.get(0), "timing.phi_deg", "-90 to 90", in_range);
+    s.phi_max_deg = number(loc, *a.get(1), "timing.phi_deg", "-90 to 90", in_range);
+    if (s.phi_max_deg < s.phi_min_deg)
+      loc.fail(n, "'timing.phi_deg' must be [lowest, highest] (allowed: lowest <= highest)");
+  }
+  if (const auto* n = t.get("pos_grid")) {
+    const auto& a = array_of(loc, *n, "timing.pos_grid", 3, "[alpha points, gamma points, phi points]");
+    s.pos_grid.n_alpha = int(integer(loc, *a.get(0), "timing.pos_grid[0] (alpha)", 2, 64));
+    s.pos_grid.n_gamma = int(integer(loc, *a.get(1), "timing.pos_grid[1] (gamma)", 1, 64));
+    s.pos_grid.n_phi = int(integer(loc, *a.get(2), "timing.pos_grid[2] (phi)", 1, 64));
+  }
+  if (const auto* n = t.get("pos_prune_alpha_deg"))
+    s.pos_prune_alpha_deg = number(loc, *n, "timing.pos_prune_alpha_deg", "0 <= value < 180",
+                                   [](double v) { return v >= 0 && v < 180; });
+  if (const auto* n = t.get("pos_lookup")) {
+    const auto* str = n->as_string();
+    if (!str || (str->get() != "interpolate" && str->get() != "nearest"))
+      loc.fail(n, "'timing.pos_lookup' must be a string (allowed: \"interpolate\", \"nearest\")");
+    s.pos_lookup = str->get() == "nearest" ? PosLookup::kNearest : PosLookup::kInterpolate;
+  }
+  const double deg = M_PI / 180.0;
+  s.pos_grid.alpha_min = s.alpha_min_deg * deg;
+  s.pos_grid.alpha_max = max_clipped_alpha(s.camera);
+  if (s.pos_grid.alpha_max <= s.pos_grid.alpha_min)
+    loc.fail(t.get("alpha_min_deg"), "'timing.alpha_min_deg' must be below the largest clipped "
+                                     "alpha of the window (" +
+                                         std::to_string(s.pos_grid.alpha_max / deg) + " degrees)");
+  s.pos_grid.phi_min = s.phi_min_deg * deg;
+  s.pos_grid.phi_max = s.phi_max_deg * deg;
+
+  for (const auto& p : s.platforms) s.platform_work[p] = s.work;
+  if (const auto* n = t.get("platform")) {
+    const auto* pt = n->as_table();
+    if (!pt) loc.fail(n, "'timing.platform' must be a table of per-platform tables");
+    for (const auto& [key, node] : *pt) {
+      const std::string name(key.str());
+      if (!s.platform_work.count(name))
+        loc.fail_at(key.source().begin, "'timing.platform." + name +
+                                            "' names a platform not in timing.platforms");
+      const auto* wt = node.as_table();
+      if (!wt) loc.fail(&node, "'timing.platform." + name + "' must be a table");
+      const std::string where = "timing.platform." + name + ".";
+      loc.reject_unknown_keys(*wt, where,
+                              {"repetitions", "system_task_renders", "object_samples", "frame_stride",
+                               "pos_repetitions"});
+      parse_work(loc, *wt, where, s.platform_work[name]);
+    }
+  }
+
+  s.scenes = parse_scene_specs(root, path);
+  if (s.scenes.empty())
+    loc.fail(nullptr, "no [[scene]] table: the study needs at least one scene (kind = \"city\", "
+                      "\"terrain\" or \"forest\")");
+  return s;
+}
+
+}  // namespace ra::timing

@@ -1,0 +1,417 @@
+// The outputs of `renderaudit timing` (timing_report.h).
+#include "timing/timing_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "analysis/descriptive.h"
+#include "plots/figure_renderer.h"
+#include "plots/headless_display.h"
+#include "runner/atomic_file.h"
+#include "runner/errors.h"
+#include "runner/manifest.h"
+
+namespace ra::timing {
+namespace {
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "";
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string list(const std::vector<double>& v) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ";" : "") + num(v[i]);
+  return s;
+}
+
+std::string csv_cell(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+double median_or_nan(const std::vector<double>& v) { return v.empty() ? NAN : median_of(v); }
+
+nlohmann::json nullable(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+
+nlohmann::json fit_json(const HeuristicFit& f) {
+  nlohmann::json j = {{"heuristic", heuristic_name(f.heuristic)},
+                      {"formula", heuristic_formula(f.heuristic)},
+                      {"intercept", f.intercept},
+                      {"n", f.n},
+                      {"rmse_us", nullable(f.rmse)},
+                      {"r_squared", nullable(f.r_squared)}};
+  j["parameters"] = nlohmann::json::array();
+  for (std::size_t k = 0; k < f.coefficients.size(); ++k)
+    j["parameters"].push_back({{"name", f.names[k]},
+                               {"unit", f.units[k]},
+                               {"value", nullable(f.coefficients[k])},
+                               {"standard_error", nullable(f.standard_errors[k])}});
+  if (f.heuristic == Heuristic::kH3) {
+    j["geometry_limited"] = f.geometry_limited;
+    j["raster_limited"] = f.raster_limited;
+    j["iterations"] = f.iterations;
+    j["start"] = f.start;
+    j["converged"] = f.converged;
+  }
+  return j;
+}
+
+nlohmann::json comparison_json(const CpuGpuComparison& c) {
+  return {{"n", c.n}, {"median_ratio", nullable(c.median_ratio)}, {"pearson_r", nullable(c.pearson_r)}};
+}
+
+// Frame-time histogram (density) of the system task, the paper's Figure 3, in ms; the range is
+// [min, q_0.999]: the few slowest renderings would squash the picture (they are counted in the note).
+plots::Figure density_figure(const PlatformMeasurements& m, const PlatformAnalysis& a) {
+  std::vector<double> ms;
+  for (double v : m.system_cpu_us) ms.push_back(v / 1000.0);
+  std::sort(ms.begin(), ms.end());
+  const double lo = ms.front();
+  const double hi = std::max(stats::quantile_sorted(ms, 0.999), lo + 1e-6);
+  const double iqr = stats::quantile_sorted(ms, 0.75) - stats::quantile_sorted(ms, 0.25);
+  // Freedman-Diaconis bin width, at most 200 bins
+  double width = iqr > 0 ? 2 * iqr / std::cbrt(double(ms.size())) : (hi - lo) / 50;
+  int bins = int(std::ceil((hi - lo) / width));
+  bins = std::clamp(bins, 10, 200);
+  width = (hi - lo) / bins;
+  plots::HistogramSeries s;
+  s.name = m.renderer.platform;
+  for (int b = 0; b <= bins; ++b) s.edges.push_back(lo + width * b);
+  s.counts.assign(std::size_t(bins), 0);
+  std::size_t beyond = 0;
+  for (double v : ms) {
+    if (v > hi) {
+      ++beyond;
+      continue;
+    }
+    s.counts[std::size_t(std::min(bins - 1, int((v - lo) / width)))]++;
+  }
+  for (std::size_t c : s.counts) s.heights.push_back(double(c) / (double(ms.size()) * width));
+  s.n = ms.size();
+  plots::Figure f;
+  f.id = "system_task_density_" + m.renderer.platform;
+  f.title = m.renderer.platform + ": frame time of one viewpoint rendered " +
+            std::to_string(ms.size()) + " times (" + m.system_scene + ", frame " +
+            std::to_string(m.system_frame) + ")";
+  f.x_label = "frame time (ms)";
+  f.y_label = "empirical density (1/ms)";
+  char note[256];
+  std::snprintf(note, sizeof note,
+                "min %.4g ms, median %.4g ms, q0.99 %.4g ms: c = q0.99 - min = %.4g ms. %zu "
+                "rendering(s) above q0.999 (%.4g ms) not shown.",
+                a.system.min_us / 1000, a.system.median_us / 1000, a.system.q99_us / 1000,
+                a.system.c_us / 1000, beyond, hi);
+  f.note = note;
+  f.caption = "Empirical density of the frame time of one viewpoint (Wimmer & Wonka 2003, Fig. 3).";
+  f.section = "timing";
+  plots::HistogramContent c;
+  c.density = true;
+  c.series.push_back(std::move(s));
+  f.content = std::move(c);
+  return f;
+}
+
+std::string id_part(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    const char l = char(std::tolower(static_cast<unsigned char>(c)));
+    o += (std::isalnum(static_cast<unsigned char>(l)) || l == '-' || l == '.') ? l : '_';
+  }
+  return o;
+}
+
+// Measured and predicted frame time along the path: one step line per series over frame numbers.
+plots::Figure path_figure(const std::string& platform, const std::string& scene,
+                          const std::vector<FramePrediction>& preds, const std::string& method,
+                          double error_ms2) {
+  plots::Figure f;
+  f.id = "path_" + id_part(platform) + "_" + id_part(scene) + "_" + id_part(method == "pos" ? method : method);
+  for (char& c : f.id)
+    if (c == '+') c = 'b';
+  f.title = platform + ", " + scene + ": measured vs predicted (" + method + ") frame time";
+  f.x_label = "frame of the camera path";
+  f.y_label = "frame time (ms)";
+  char note[160];
+  std::snprintf(note, sizeof note, "Average squared error (Table 6): %.4g ms^2 over %zu frames.",
+                error_ms2, preds.size());
+  f.note = note;
+  f.caption = "Frame time along the camera path: measured (median of the repetitions) and "
+              "predicted by " + method + ".";
+  f.section = "timing";
+  plots::HistogramContent c;
+  c.density = false;
+  plots::HistogramSeries meas, pred;
+  meas.name = "measured";
+  pred.name = "predicted " + method;
+  // Each measured frame is a step from its frame number to the next measured one.
+  for (std::size_t i = 0; i < preds.size(); ++i) {
+    const double x0 = preds[i].frame;
+    const double x1 = i + 1 < preds.size() ? preds[i + 1].frame : x0 + (i ? x0 - preds[i - 1].frame : 1);
+    if (i == 0) meas.edges.push_back(x0), pred.edges.push_back(x0);
+    meas.edges.push_back(x1);
+    pred.edges.push_back(x1);
+    meas.heights.push_back(preds[i].measured_us / 1000.0);
+    pred.heights.push_back(preds[i].predicted_us.at(method) / 1000.0);
+    meas.counts.push_back(1);
+    pred.counts.push_back(1);
+  }
+  meas.n = pred.n = preds.size();
+  c.series = {meas, pred};
+  f.content = std::move(c);
+  return f;
+}
+
+}  // namespace
+
+nlohmann::json timing_json(const StudyResults& r) {
+  const TimingSettings& s = r.settings;
+  nlohmann::json j;
+  j["schema"] = "renderaudit-timing/1";
+  j["program"] = "renderaudit 0.1.0";
+  j["created_utc"] = utc_now_iso8601();
+  j["host"] = host_description();
+  j["wall_s"] = r.wall_s;
+  nlohmann::json scenes = nlohmann::json::array();
+  for (const SceneSpec& sc : s.scenes) scenes.push_back({{"name", sc.name}, {"kind", sc.kind}});
+  nlohmann::json work = nlohmann::json::object();
+  for (const auto& [p, w] : s.platform_work)
+    work[p] = {{"repetitions", w.repetitions},
+               {"system_task_renders", w.system_task_renders},
+               {"object_samples", w.object_samples},
+               {"frame_stride", w.frame_stride},
+               {"pos_repetitions", w.pos_repetitions}};
+  j["experiment"] = {
+      {"file", s.file},
+      {"name", s.name},
+      {"settings",
+       {{"window", {s.camera.width, s.camera.height}},
+        {"fov_deg", s.camera.fov_y_deg},
+        {"near", s.camera.near},
+        {"far", s.camera.far},
+        {"cache_size", s.cache_size},
+        {"seed", s.seed},
+        {"gpu_timer", s.gpu_timer},
+        {"alpha_min_deg", s.alpha_min_deg},
+        {"phi_deg", {s.phi_min_deg, s.phi_max_deg}},
+        {"pos_grid", {s.pos_grid.n_alpha, s.pos_grid.n_gamma, s.pos_grid.n_phi}},
+        {"pos_alpha_range_rad", {s.pos_grid.alpha_min, s.pos_grid.alpha_max}},
+        {"pos_prune_alpha_deg", s.pos_prune_alpha_deg},
+        {"pos_lookup", s.pos_lookup == PosLookup::kNearest ? "nearest" : "interpolate"},
+        {"work", work}}},
+      {"scenes", scenes}};
+  j["units"] = {{"time", "microseconds (_us), milliseconds (_ms); Table 6 in ms^2"},
+                {"measurement", "median of the repetitions, CPU clock around draw + glFinish"},
+                {"angles", "radians"}};
+  j["platforms"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.measured.size(); ++i) {
+    const PlatformMeasurements& m = r.measured[i];
+    nlohmann::json p;
+    p["name"] = m.renderer.platform;
+    p["renderer"] = {{"renderer", m.renderer.renderer},
+                     {"version", m.renderer.version},
+                     {"vendor", m.renderer.vendor},
+                     {"gallium_driver", m.renderer.gallium_driver},
+                     {"lp_num_threads", m.renderer.lp_num_threads},
+                     {"depth_bits", m.renderer.depth_bits}};
+    p["timer_query"] = {{"supported", m.renderer.timer_query},
+                        {"extension_listed", m.renderer.timer_query_listed},
+                        {"counter_bits", m.renderer.timer_query_bits},
+                        {"used", !m.system_gpu_us.empty()}};
+    p["wall_s"] = m.seconds;
+    p["error"] = m.error.empty() ? nlohmann::json() : nlohmann::json(m.error);
+    if (!m.error.empty() || i >= r.analysed.size()) {
+      j["platforms"].push_back(std::move(p));
+      continue;
+    }
+    const PlatformAnalysis& a = r.analysed[i];
+    p["system_task"] = {{"scene", m.system_scene},
+                        {"frame", m.system_frame},
+                        {"visible_objects", m.system_visible_objects},
+                        {"n", a.system.n},
+                        {"confidence", a.system.confidence},
+                        {"quantile_definition", "hyndman_fan_6"},
+                        {"min_us", a.system.min_us},
+                        {"median_us", a.system.median_us},
+                        {"mean_us", a.system.mean_us},
+                        {"sd_us", a.system.sd_us},
+                        {"max_us", a.system.max_us},
+                        {"q99_us", a.system.q99_us},
+                        {"c_us", a.system.c_us},
+                        {"c_ms", a.system.c_us / 1000.0},
+                        {"cpu_us", m.system_cpu_us},
+                        {"gpu_us", m.system_gpu_us}};
+    p["fits"] = nlohmann::json::array();
+    for (const HeuristicFit& f : a.fits) p["fits"].push_back(fit_json(f));
+    p["scenes"] = nlohmann::json::array();
+    for (const SceneMeasurements& sm : m.scenes) {
+      int64_t cells = 0;
+      for (const MeasuredPosTable& t : sm.pos) cells += int64_t(t.table.points_to_measure().size());
+      p["scenes"].push_back(
+          {{"name", sm.name},
+           {"kind", sm.kind},
+           {"objects", sm.objects},
+           {"triangles", sm.triangles},
+           {"vertices", sm.vertices},
+           {"transformed", sm.transformed},
+           {"tv_per_triangle", sm.triangles ? double(sm.transformed) / double(sm.triangles) : 0.0},
+           {"textures", sm.textures},
+           {"state_switches", sm.state_switches},
+           {"path_frames", sm.path_frames},
+           {"frames_measured", sm.frames.size()},
+           {"object_samples", sm.object_samples.size()},
+           {"pos_tables", sm.pos.size()},
+           {"pos_cells_measured", cells},
+           {"frame_base_us", a.frame_base_us.count(sm.name) ? a.frame_base_us.at(sm.name) : NAN},
+           {"seconds", sm.seconds}});
+    }
+    p["table6_ms2"] = a.table6_ms2;
+    p["table6_methods"] = a.methods;
+    p["cpu_vs_gpu"] = a.gpu_measured
+                          ? nlohmann::json{{"objects", comparison_json(a.cpu_gpu_objects)},
+                                           {"frames", comparison_json(a.cpu_gpu_frames)},
+                                           {"ratio", "gpu median / cpu median per draw"}}
+                          : nlohmann::json();
+    j["platforms"].push_back(std::move(p));
+  }
+  return j;
+}
+
+std::string object_samples_csv(const StudyResults& r) {
+  std::ostringstream o;
+  o << "platform,scene,object,alpha,gamma,phi,triangles,vertices,transformed,pixels,"
+       "state_changes,repetitions,cpu_median_us,gpu_median_us,cpu_us,gpu_us\n";
+  for (const PlatformMeasurements& m : r.measured)
+    for (const SceneMeasurements& s : m.scenes)
+      for (const ObjectSample& x : s.object_samples)
+        o << csv_cell(m.renderer.platform) << ',' << csv_cell(s.name) << ',' << x.object << ','
+          << num(x.alpha) << ',' << num(x.gamma) << ',' << num(x.phi) << ',' << x.triangles << ','
+          << x.vertices << ',' << x.transformed << ',' << x.pixels << ',' << x.state_changes
+          << ',' << x.cpu_us.size() << ',' << num(median_of(x.cpu_us)) << ','
+          << num(median_or_nan(x.gpu_us)) << ',' << list(x.cpu_us) << ',' << list(x.gpu_us)
+          << '\n';
+  return o.str();
+}
+
+std::string frames_csv(const StudyResults& r) {
+  std::vector<std::string> methods;
+  for (const PlatformAnalysis& a : r.analysed)
+    if (!a.methods.empty()) {
+      methods = a.methods;
+      break;
+    }
+  std::ostringstream o;
+  o << "platform,scene,frame,visible_objects,triangles,vertices,transformed,pixels,state_changes,"
+       "repetitions,measured_us,measured_gpu_us";
+  for (const std::string& m : methods) o << ",pred_" << m << "_us";
+  o << ",cpu_us,gpu_us\n";
+  for (std::size_t i = 0; i < r.measured.size() && i < r.analysed.size(); ++i) {
+    const PlatformMeasurements& m = r.measured[i];
+    const PlatformAnalysis& a = r.analysed[i];
+    for (const SceneMeasurements& s : m.scenes) {
+      if (!a.frames.count(s.name)) continue;
+      const std::vector<FramePrediction>& preds = a.frames.at(s.name);
+      for (std::size_t f = 0; f < s.frames.size() && f < preds.size(); ++f) {
+        const FrameSample& fs = s.frames[f];
+        int64_t tris = 0, verts = 0, tv = 0, pix = 0, sw = 0;
+        for (const ObjectSample& x : fs.objects)
+          tris += x.triangles, verts += x.vertices, tv += x.transformed, pix += x.pixels,
+              sw += x.state_changes;
+        o << csv_cell(m.renderer.platform) << ',' << csv_cell(s.name) << ',' << fs.frame << ','
+          << fs.objects.size() << ',' << tris << ',' << verts << ',' << tv << ',' << pix << ','
+          << sw << ',' << fs.cpu_us.size() << ',' << num(preds[f].measured_us) << ','
+          << num(preds[f].measured_gpu_us);
+        for (const std::string& meth : methods) o << ',' << num(preds[f].predicted_us.at(meth));
+        o << ',' << list(fs.cpu_us) << ',' << list(fs.gpu_us) << '\n';
+      }
+    }
+  }
+  return o.str();
+}
+
+std::string pos_tables_csv(const StudyResults& r) {
+  std::ostringstream o;
+  o << "platform,scene,object,alpha_index,gamma_index,phi_index,alpha,gamma,phi,pruned,us\n";
+  for (const PlatformMeasurements& m : r.measured)
+    for (const SceneMeasurements& s : m.scenes)
+      for (const MeasuredPosTable& t : s.pos) {
+        const PosGrid& g = t.table.grid();
+        for (int i = 0; i < g.n_alpha; ++i)
+          for (int k = 0; k < g.n_gamma; ++k)
+            for (int j = 0; j < g.n_phi; ++j)
+              o << csv_cell(m.renderer.platform) << ',' << csv_cell(s.name) << ',' << t.object
+                << ',' << i << ',' << k << ',' << j << ',' << num(g.alpha_at(i)) << ','
+                << num(g.gamma_at(k)) << ',' << num(g.phi_at(j)) << ','
+                << (t.table.pruned_row(i) ? 1 : 0) << ',' << num(t.table.at(i, k, j)) << '\n';
+      }
+  return o.str();
+}
+
+std::vector<plots::Figure> timing_figures(const StudyResults& r) {
+  std::vector<plots::Figure> out;
+  for (std::size_t i = 0; i < r.measured.size() && i < r.analysed.size(); ++i) {
+    const PlatformMeasurements& m = r.measured[i];
+    const PlatformAnalysis& a = r.analysed[i];
+    if (!m.error.empty()) continue;
+    if (!m.system_cpu_us.empty()) out.push_back(density_figure(m, a));
+    for (const SceneMeasurements& s : m.scenes) {
+      if (!a.frames.count(s.name) || a.frames.at(s.name).empty()) continue;
+      for (const std::string& method : a.methods) {
+        if (method.find("+b") != std::string::npos) continue;  // the paper's forms and pos
+        out.push_back(path_figure(m.renderer.platform, s.name, a.frames.at(s.name), method,
+                                  a.table6_ms2.at(s.name).at(method)));
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> write_timing_outputs(const StudyResults& r, const std::string& dir,
+                                              bool figures) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (!std::filesystem::is_directory(dir))
+    throw UserError("cannot create the output directory " + dir + ": " + ec.message());
+  std::vector<std::string> written;
+  auto put = [&](const std::string& name, const std::string& text) {
+    write_file_atomic(dir + "/" + name, text);
+    written.push_back(dir + "/" + name);
+  };
+  put("object_samples.csv", object_samples_csv(r));
+  put("frames.csv", frames_csv(r));
+  put("pos_tables.csv", pos_tables_csv(r));
+  if (figures) {
+    const std::vector<plots::Figure> figs = timing_figures(r);
+    if (!figs.empty()) {
+      const std::string fig_dir = dir + "/figures";
+      std::filesystem::create_directories(fig_dir, ec);
+      plots::HeadlessDisplay display;
+      {
+        plots::FigureRenderer renderer;
+        for (const plots::Figure& f : figs) {
+          // FigureRenderer writes STEM.png/.pdf/.csv in place; render into a temporary stem and
+          // rename, so that a figure is either complete or absent.
+          const std::string tmp = fig_dir + "/.tmp-" + f.id;
+          const plots::RenderedFigure rf = renderer.render(f, tmp);
+          for (const std::string& p : {rf.png, rf.pdf, rf.csv}) {
+            const std::string final_path = fig_dir + "/" + f.id + p.substr(p.rfind('.'));
+            commit_file(p, final_path);
+            written.push_back(final_path);
+          }
+        }
+      }
+      display.stop();
+    }
+  }
+  put("timing.json", timing_json(r).dump(2) + "\n");  // last: its presence means a complete run
+  return written;
+}
+
+}  // namespace ra::timing

@@ -1,0 +1,62 @@
+// What `renderaudit timing` writes (every file atomically, runner/atomic_file.h):
+//
+// DIR/timing.json (schema "renderaudit-timing/1"): provenance (program, commit-free: the binary's
+// version, UTC date, host, experiment file and its settings), then "platforms": one object per
+// platform measured:
+//   name, renderer {renderer, version, vendor, gallium_driver, lp_num_threads, depth_bits},
+//   timer_query {supported, extension_listed, counter_bits, used},
+//   wall_s, error (null when it succeeded),
+//   system_task {scene, frame, visible_objects, n, confidence, quantile_definition, min_us,
+//                median_us, mean_us, sd_us, max_us, q99_us, c_us, c_ms, cpu_us [every frame time],
+//                gpu_us [every GPU frame time, or empty]},
+//   fits [{heuristic, formula, intercept, parameters [{name, unit, value, standard_error}], n,
+//          rmse_us, r_squared, (h3:) geometry_limited, raster_limited, iterations, start,
+//          converged}] (timer: CPU medians),
+//   scenes [{name, kind, objects, triangles, vertices, transformed, tv_per_triangle, textures,
+//            state_switches, path_frames, frames_measured, object_samples, pos_tables,
+//            pos_cells_measured, frame_base_us, seconds}],
+//   table6_ms2 {scene: {method: average squared error, ms^2}} for the methods h1..h4 (the paper's
+//              forms), h1+b..h4+b (with a per-object intercept) and pos,
+//   cpu_vs_gpu {objects: {n, median_ratio, pearson_r}, frames: {...}} (null without GPU timer).
+// DIR/object_samples.csv: one row per object measurement (every repetition in cpu_us / gpu_us,
+//   ';'-separated).
+// DIR/frames.csv: one row per measured path frame: counts summed over the visible objects, the
+//   measured median and every repetition, and each method's prediction.
+// DIR/pos_tables.csv: every cell of every per-object sampling table.
+// DIR/figures/: system_task_density_<platform> (the paper's Figure 3) and
+//   path_<platform>_<scene>_<method> (predicted vs measured frame time along the path), each as
+//   PNG, PDF and CSV (plots/figure_renderer.h).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "plots/figure.h"
+#include "timing/timing_study.h"
+
+namespace ra::timing {
+
+struct StudyResults {
+  TimingSettings settings;
+  std::vector<PlatformMeasurements> measured;
+  std::vector<PlatformAnalysis> analysed;  // same order; empty analysis where measurement failed
+  double wall_s = 0;
+};
+
+nlohmann::json timing_json(const StudyResults& r);
+std::string object_samples_csv(const StudyResults& r);
+std::string frames_csv(const StudyResults& r);
+std::string pos_tables_csv(const StudyResults& r);
+
+// The figures (plots/figure.h): density of the system task's frame times per platform, and per
+// platform, scene and method the measured and predicted frame times along the path.
+std::vector<plots::Figure> timing_figures(const StudyResults& r);
+
+// Writes everything above into `dir` (created when missing); figures unless `figures` is false.
+// Returns the paths written.
+std::vector<std::string> write_timing_outputs(const StudyResults& r, const std::string& dir,
+                                              bool figures = true);
+
+}  // namespace ra::timing

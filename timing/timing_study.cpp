@@ -1,0 +1,556 @@
+// The rendering-time study (timing_study.h; Wimmer & Wonka 2003, sections 4.2, 5.2, 5.3, 7.2).
+#include "timing/timing_study.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <stdexcept>
+
+#include "runner/atomic_file.h"
+#include "runner/counter_rng.h"
+#include "runner/errors.h"
+#include "scenes/scene_statistics.h"
+#include "scenes/vertex_cache.h"
+
+namespace ra::timing {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Counter-based uniform numbers: the viewpoints of scene s are the same on every platform.
+class Rng {
+ public:
+  Rng(uint64_t seed, uint64_t stream) : key_(splitmix64(splitmix64(seed) ^ (stream * 0x9E37u))) {}
+  double uniform01() { return double(splitmix64(key_ + 0x632BE59BD9B4E019ull * ++n_) >> 11) * 0x1.0p-53; }
+  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform01(); }
+  int64_t integer(int64_t lo, int64_t hi) {
+    return lo + int64_t(splitmix64(key_ + 0x632BE59BD9B4E019ull * ++n_) % uint64_t(hi - lo + 1));
+  }
+
+ private:
+  uint64_t key_, n_ = 0;
+};
+
+// Throttled progress lines.
+class Reporter {
+ public:
+  Reporter(const Progress& p, std::string prefix) : p_(p), prefix_(std::move(prefix)) {}
+  void line(const std::string& what, bool force = false) {
+    if (!p_) return;
+    const auto now = Clock::now();
+    if (!force && std::chrono::duration<double>(now - last_).count() < 2.0) return;
+    last_ = now;
+    p_(prefix_ + what);
+  }
+
+ private:
+  const Progress& p_;
+  std::string prefix_;
+  Clock::time_point last_{};
+};
+
+struct ObjectStatic {
+  int64_t triangles = 0, vertices = 0, transformed = 0;
+};
+
+// Times `objects` drawn alone (the clear not timed), `reps` times; pixels counted first.
+void measure_object(SceneRenderer& r, int object, int reps, ObjectSample& s) {
+  s.pixels = r.pixels_alone(object);
+  std::vector<int64_t> binds;
+  const std::vector<int> one{object};
+  s.cpu_us.clear();
+  s.gpu_us.clear();
+  for (int k = 0; k < reps; ++k) {
+    const DrawTime t = r.time_draw(one, false, k == 0 ? &binds : nullptr);
+    s.cpu_us.push_back(t.cpu_us);
+    if (r.measuring_gpu()) s.gpu_us.push_back(t.gpu_us);
+  }
+  s.state_changes = binds.empty() ? 0 : binds[0];
+}
+
+double median_or_nan(const std::vector<double>& v) { return v.empty() ? kNaN : median_of(v); }
+
+}  // namespace
+
+PlatformMeasurements measure_platform(const TimingSettings& settings, const std::string& platform,
+                                      const std::vector<Scene>& scenes,
+                                      const std::vector<std::vector<Viewpoint>>& paths,
+                                      const Progress& progress) {
+  const auto t_start = Clock::now();
+  const WorkSettings& work = settings.work_for(platform);
+  PlatformMeasurements out;
+  SceneRenderer r(platform, settings.camera, settings.gpu_timer);
+  out.renderer = r.info();
+  Reporter rep(progress, platform + ": ");
+  rep.line(r.info().renderer + " (" + r.info().version + "), GL_TIME_ELAPSED " +
+               (r.info().timer_query ? "supported" : "not supported"),
+           true);
+  const CameraSettings& cam = settings.camera;
+  const Mat4 projection = projection_of(cam);
+  const double deg = M_PI / 180.0;
+  const double alpha_lo = settings.alpha_min_deg * deg, alpha_hi = max_clipped_alpha(cam);
+
+  for (std::size_t si = 0; si < scenes.size(); ++si) {
+    const auto t_scene = Clock::now();
+    const Scene& scene = scenes[si];
+    const std::vector<Viewpoint>& path = paths[si];
+    SceneMeasurements sm;
+    sm.name = settings.scenes[si].name;
+    sm.kind = scene.kind;
+    sm.path_frames = int(path.size());
+    const std::string tag = sm.name + ": ";
+    rep.line(tag + "uploading " + std::to_string(scene.objects.size()) + " objects", true);
+    r.upload(scene);
+
+    std::vector<ObjectStatic> stat(scene.objects.size());
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+      const StripMesh& mesh = scene.objects[o].mesh;
+      stat[o].triangles = int64_t(mesh.triangle_count());
+      stat[o].vertices = int64_t(mesh.vertex_count());
+      stat[o].transformed = transformed_vertices(mesh, settings.cache_size);
+      sm.triangles += stat[o].triangles;
+      sm.vertices += stat[o].vertices;
+      sm.transformed += stat[o].transformed;
+    }
+    sm.objects = int64_t(scene.objects.size());
+    sm.textures = int64_t(scene.textures.size());
+    sm.state_switches = scene_texture_binds(scene);
+
+    // 1. frame base: clear + glFinish
+    {
+      r.set_viewpoint(path.empty() ? Viewpoint{} : path.front());
+      const int n = std::max(10, work.repetitions * 10);
+      for (int k = 0; k < n; ++k) sm.frame_base_us.push_back(r.time_draw({}, true).cpu_us);
+    }
+
+    // 2. object measurements
+    const int share = work.object_samples / int(scenes.size()) +
+                      (int(si) < work.object_samples % int(scenes.size()) ? 1 : 0);
+    Rng rng(settings.seed, si);
+    for (int k = 0; k < share; ++k) {
+      ObjectSample s;
+      s.object = int(rng.integer(0, int64_t(scene.objects.size()) - 1));
+      const BoundingSphere& b = scene.objects[std::size_t(s.object)].bounds;
+      const double alpha = alpha_lo * std::pow(alpha_hi / alpha_lo, rng.uniform01());
+      s.gamma = rng.uniform(0, 2 * M_PI);
+      s.phi = rng.uniform(settings.phi_min_deg * deg, settings.phi_max_deg * deg);
+      const Viewpoint vp = viewpoint_for(b, cam, alpha, s.gamma, s.phi);
+      s.alpha = clipped_alpha(look_at(vp), cam, b);
+      r.set_viewpoint(vp);
+      s.triangles = stat[std::size_t(s.object)].triangles;
+      s.vertices = stat[std::size_t(s.object)].vertices;
+      s.transformed = stat[std::size_t(s.object)].transformed;
+      measure_object(r, s.object, work.repetitions, s);
+      sm.object_samples.push_back(std::move(s));
+      rep.line(tag + "object measurements " + std::to_string(k + 1) + "/" + std::to_string(share));
+    }
+
+    // 3. camera path
+    std::set<int> seen;
+    int measured_frames = 0;
+    const int total_frames = (int(path.size()) + work.frame_stride - 1) / work.frame_stride;
+    for (std::size_t f = 0; f < path.size(); f += std::size_t(work.frame_stride)) {
+      const Viewpoint& vp = path[f];
+      const Mat4 view = look_at(vp);
+      const Frustum fr = frustum_of(projection * view);
+      FrameSample fs;
+      fs.frame = int(f);
+      std::vector<int> visible;
+      for (std::size_t o = 0; o < scene.objects.size(); ++o)
+        if (fr.intersects(scene.objects[o].bounds)) visible.push_back(int(o));
+      r.set_viewpoint(vp);
+      std::vector<int64_t> binds;
+      for (int k = 0; k < work.repetitions; ++k) {
+        const DrawTime t = r.time_draw(visible, true, k == 0 ? &binds : nullptr);
+        fs.cpu_us.push_back(t.cpu_us);
+        if (r.measuring_gpu()) fs.gpu_us.push_back(t.gpu_us);
+      }
+      for (std::size_t i = 0; i < visible.size(); ++i) {
+        const int o = visible[i];
+        ObjectSample s;
+        s.object = o;
+        const BoundingSphere& b = scene.objects[std::size_t(o)].bounds;
+        s.alpha = clipped_alpha(view, cam, b);
+        view_direction_angles(vp.eye, b.centre, &s.gamma, &s.phi);
+        s.triangles = stat[std::size_t(o)].triangles;
+        s.vertices = stat[std::size_t(o)].vertices;
+        s.transformed = stat[std::size_t(o)].transformed;
+        s.pixels = r.pixels_alone(o);
+        s.state_changes = binds.empty() ? 0 : binds[i];
+        fs.objects.push_back(std::move(s));
+        seen.insert(o);
+      }
+      sm.frames.push_back(std::move(fs));
+      ++measured_frames;
+      rep.line(tag + "path frames " + std::to_string(measured_frames) + "/" +
+               std::to_string(total_frames));
+    }
+
+    // 4. per-object sampling tables of the objects the path sees
+    int done = 0;
+    for (int o : seen) {
+      MeasuredPosTable mt;
+      mt.object = o;
+      mt.table = PosTable(settings.pos_grid, settings.pos_prune_alpha_deg * deg);
+      const BoundingSphere& b = scene.objects[std::size_t(o)].bounds;
+      for (const auto& p : mt.table.points_to_measure()) {
+        const Viewpoint vp = viewpoint_for(b, cam, settings.pos_grid.alpha_at(p[0]),
+                                           settings.pos_grid.gamma_at(p[1]),
+                                           settings.pos_grid.phi_at(p[2]));
+        r.set_viewpoint(vp);
+        std::vector<double> cpu;
+        for (int k = 0; k < work.pos_repetitions; ++k)
+          cpu.push_back(r.time_draw({o}, false).cpu_us);
+        mt.table.set(p[0], p[1], p[2], median_of(cpu));
+      }
+      sm.pos.push_back(std::move(mt));
+      ++done;
+      rep.line(tag + "pos tables " + std::to_string(done) + "/" + std::to_string(seen.size()));
+    }
+
+    // the system task: the middle viewpoint of the first scene's path
+    if (si == 0 && !path.empty()) {
+      const std::size_t f = path.size() / 2;
+      const Frustum fr = frustum_of(projection * look_at(path[f]));
+      std::vector<int> visible;
+      for (std::size_t o = 0; o < scene.objects.size(); ++o)
+        if (fr.intersects(scene.objects[o].bounds)) visible.push_back(int(o));
+      r.set_viewpoint(path[f]);
+      out.system_scene = sm.name;
+      out.system_frame = int(f);
+      out.system_visible_objects = int(visible.size());
+      for (int k = 0; k < work.system_task_renders; ++k) {
+        const DrawTime t = r.time_draw(visible, true);
+        out.system_cpu_us.push_back(t.cpu_us);
+        if (r.measuring_gpu()) out.system_gpu_us.push_back(t.gpu_us);
+        rep.line(tag + "system task " + std::to_string(k + 1) + "/" +
+                 std::to_string(work.system_task_renders));
+      }
+    }
+    sm.seconds = seconds_since(t_scene);
+    rep.line(tag + "done in " + std::to_string(int(std::lround(sm.seconds))) + " s", true);
+    out.scenes.push_back(std::move(sm));
+  }
+  out.seconds = seconds_since(t_start);
+  return out;
+}
+
+PlatformMeasurements measure_platform_in_child(const TimingSettings& settings,
+                                               const std::string& platform,
+                                               const std::vector<Scene>& scenes,
+                                               const std::vector<std::vector<Viewpoint>>& paths,
+                                               const std::string& scratch_dir,
+                                               const Progress& progress) {
+  const std::string result = scratch_dir + "/.timing-" + platform + ".json";
+  std::filesystem::remove(result);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error("fork failed for platform " + platform);
+  if (pid == 0) {
+    int code = 0;
+    PlatformMeasurements m;
+    try {
+      m = measure_platform(settings, platform, scenes, paths, progress);
+    } catch (const std::exception& e) {
+      m = PlatformMeasurements{};
+      m.renderer.platform = platform;
+      m.error = e.what();
+      code = 3;
+    }
+    try {
+      write_file_atomic(result, to_json(m).dump());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "renderaudit timing: %s\n", e.what());
+      code = 4;
+    }
+    std::fflush(stderr);
+    ::_exit(code);
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  PlatformMeasurements m;
+  std::string text;
+  try {
+    text = read_file(result);
+    m = platform_measurements_from_json(nlohmann::json::parse(text));
+    std::filesystem::remove(result);
+  } catch (const std::exception& e) {
+    m = PlatformMeasurements{};
+    m.renderer.platform = platform;
+    m.error = "the measuring process ";
+    if (WIFSIGNALED(status))
+      m.error += "died of signal " + std::to_string(WTERMSIG(status));
+    else
+      m.error += "exited with status " + std::to_string(WEXITSTATUS(status)) +
+                 " without a result (" + e.what() + ")";
+  }
+  return m;
+}
+
+// ---- JSON of the measurements (child -> parent) ----
+
+namespace {
+
+nlohmann::json sample_json(const ObjectSample& s) {
+  return {{"object", s.object},        {"alpha", s.alpha},
+          {"gamma", s.gamma},          {"phi", s.phi},
+          {"triangles", s.triangles},  {"vertices", s.vertices},
+          {"transformed", s.transformed}, {"pixels", s.pixels},
+          {"state_changes", s.state_changes}, {"cpu_us", s.cpu_us},
+          {"gpu_us", s.gpu_us}};
+}
+
+ObjectSample sample_from(const nlohmann::json& j) {
+  ObjectSample s;
+  s.object = j.at("object");
+  s.alpha = j.at("alpha");
+  s.gamma = j.at("gamma");
+  s.phi = j.at("phi");
+  s.triangles = j.at("triangles");
+  s.vertices = j.at("vertices");
+  s.transformed = j.at("transformed");
+  s.pixels = j.at("pixels");
+  s.state_changes = j.at("state_changes");
+  s.cpu_us = j.at("cpu_us").get<std::vector<double>>();
+  s.gpu_us = j.at("gpu_us").get<std::vector<double>>();
+  return s;
+}
+
+}  // namespace
+
+nlohmann::json to_json(const PlatformMeasurements& m) {
+  nlohmann::json j;
+  const RendererInfo& r = m.renderer;
+  j["renderer"] = {{"platform", r.platform},
+                   {"gallium_driver", r.gallium_driver},
+                   {"lp_num_threads", r.lp_num_threads},
+                   {"renderer", r.renderer},
+                   {"version", r.version},
+                   {"vendor", r.vendor},
+                   {"timer_query", r.timer_query},
+                   {"timer_query_listed", r.timer_query_listed},
+                   {"timer_query_bits", r.timer_query_bits},
+                   {"depth_bits", r.depth_bits}};
+  j["system_scene"] = m.system_scene;
+  j["system_frame"] = m.system_frame;
+  j["system_visible_objects"] = m.system_visible_objects;
+  j["system_cpu_us"] = m.system_cpu_us;
+  j["system_gpu_us"] = m.system_gpu_us;
+  j["seconds"] = m.seconds;
+  j["error"] = m.error;
+  j["scenes"] = nlohmann::json::array();
+  for (const SceneMeasurements& s : m.scenes) {
+    nlohmann::json js = {{"name", s.name},          {"kind", s.kind},
+                         {"objects", s.objects},    {"triangles", s.triangles},
+                         {"vertices", s.vertices},  {"transformed", s.transformed},
+                         {"textures", s.textures},  {"state_switches", s.state_switches},
+                         {"path_frames", s.path_frames}, {"frame_base_us", s.frame_base_us},
+                         {"seconds", s.seconds}};
+    js["object_samples"] = nlohmann::json::array();
+    for (const ObjectSample& o : s.object_samples) js["object_samples"].push_back(sample_json(o));
+    js["frames"] = nlohmann::json::array();
+    for (const FrameSample& f : s.frames) {
+      nlohmann::json jf = {{"frame", f.frame}, {"cpu_us", f.cpu_us}, {"gpu_us", f.gpu_us}};
+      jf["objects"] = nlohmann::json::array();
+      for (const ObjectSample& o : f.objects) jf["objects"].push_back(sample_json(o));
+      js["frames"].push_back(std::move(jf));
+    }
+    js["pos"] = nlohmann::json::array();
+    for (const MeasuredPosTable& p : s.pos) {
+      const PosGrid& g = p.table.grid();
+      js["pos"].push_back({{"object", p.object},
+                           {"grid", {g.n_alpha, g.n_gamma, g.n_phi}},
+                           {"alpha", {g.alpha_min, g.alpha_max}},
+                           {"phi", {g.phi_min, g.phi_max}},
+                           {"prune_alpha", p.table.prune_alpha()},
+                           {"us", p.table.values()}});
+    }
+    j["scenes"].push_back(std::move(js));
+  }
+  return j;
+}
+
+PlatformMeasurements platform_measurements_from_json(const nlohmann::json& j) {
+  PlatformMeasurements m;
+  const auto& r = j.at("renderer");
+  m.renderer.platform = r.at("platform");
+  m.renderer.gallium_driver = r.at("gallium_driver");
+  m.renderer.lp_num_threads = r.at("lp_num_threads");
+  m.renderer.renderer = r.at("renderer");
+  m.renderer.version = r.at("version");
+  m.renderer.vendor = r.at("vendor");
+  m.renderer.timer_query = r.at("timer_query");
+  m.renderer.timer_query_listed = r.at("timer_query_listed");
+  m.renderer.timer_query_bits = r.at("timer_query_bits");
+  m.renderer.depth_bits = r.at("depth_bits");
+  m.system_scene = j.at("system_scene");
+  m.system_frame = j.at("system_frame");
+  m.system_visible_objects = j.at("system_visible_objects");
+  m.system_cpu_us = j.at("system_cpu_us").get<std::vector<double>>();
+  m.system_gpu_us = j.at("system_gpu_us").get<std::vector<double>>();
+  m.seconds = j.at("seconds");
+  m.error = j.at("error");
+  for (const auto& js : j.at("scenes")) {
+    SceneMeasurements s;
+    s.name = js.at("name");
+    s.kind = js.at("kind");
+    s.objects = js.at("objects");
+    s.triangles = js.at("triangles");
+    s.vertices = js.at("vertices");
+    s.transformed = js.at("transformed");
+    s.textures = js.at("textures");
+    s.state_switches = js.at("state_switches");
+    s.path_frames = js.at("path_frames");
+    s.frame_base_us = js.at("frame_base_us").get<std::vector<double>>();
+    s.seconds = js.at("seconds");
+    for (const auto& o : js.at("object_samples")) s.object_samples.push_back(sample_from(o));
+    for (const auto& jf : js.at("frames")) {
+      FrameSample f;
+      f.frame = jf.at("frame");
+      f.cpu_us = jf.at("cpu_us").get<std::vector<double>>();
+      f.gpu_us = jf.at("gpu_us").get<std::vector<double>>();
+      for (const auto& o : jf.at("objects")) f.objects.push_back(sample_from(o));
+      s.frames.push_back(std::move(f));
+    }
+    for (const auto& jp : js.at("pos")) {
+      PosGrid g;
+      g.n_alpha = jp.at("grid")[0];
+      g.n_gamma = jp.at("grid")[1];
+      g.n_phi = jp.at("grid")[2];
+      g.alpha_min = jp.at("alpha")[0];
+      g.alpha_max = jp.at("alpha")[1];
+      g.phi_min = jp.at("phi")[0];
+      g.phi_max = jp.at("phi")[1];
+      MeasuredPosTable p;
+      p.object = jp.at("object");
+      p.table = PosTable(g, jp.at("prune_alpha").get<double>());
+      const auto us = jp.at("us").get<std::vector<double>>();
+      for (int i = 0; i < g.n_alpha; ++i)
+        for (int k = 0; k < g.n_gamma; ++k)
+          for (int jj = 0; jj < g.n_phi; ++jj)
+            p.table.set(i, k, jj, us.at((std::size_t(i) * g.n_gamma + k) * g.n_phi + jj));
+      s.pos.push_back(std::move(p));
+    }
+    m.scenes.push_back(std::move(s));
+  }
+  return m;
+}
+
+// ---- estimation ----
+
+double pearson(const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = std::min(x.size(), y.size());
+  if (n < 2) return kNaN;
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < n; ++i) mx += x[i], my += y[i];
+  mx /= double(n), my /= double(n);
+  double sxy = 0, sxx = 0, syy = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sxy += (x[i] - mx) * (y[i] - my);
+    sxx += (x[i] - mx) * (x[i] - mx);
+    syy += (y[i] - my) * (y[i] - my);
+  }
+  if (sxx == 0 || syy == 0) return kNaN;
+  return sxy / std::sqrt(sxx * syy);
+}
+
+namespace {
+
+CpuGpuComparison compare(const std::vector<std::pair<double, double>>& cpu_gpu) {
+  CpuGpuComparison c;
+  std::vector<double> ratio, cpu, gpu;
+  for (auto [a, b] : cpu_gpu) {
+    if (!(a > 0) || !std::isfinite(b)) continue;
+    ratio.push_back(b / a);
+    cpu.push_back(a);
+    gpu.push_back(b);
+  }
+  c.n = ratio.size();
+  c.median_ratio = ratio.empty() ? kNaN : median_of(ratio);
+  c.pearson_r = pearson(cpu, gpu);
+  return c;
+}
+
+}  // namespace
+
+PlatformAnalysis analyse_platform(const TimingSettings& settings, const PlatformMeasurements& m) {
+  PlatformAnalysis a;
+  a.platform = m.renderer.platform;
+  if (!m.system_cpu_us.empty()) a.system = system_task_stats(m.system_cpu_us, 0.99);
+  a.gpu_measured = !m.system_gpu_us.empty();
+
+  // the object measurements of every scene, pooled
+  std::vector<ObjectCounts> x;
+  std::vector<double> y;
+  std::vector<std::pair<double, double>> obj_cpu_gpu, frame_cpu_gpu;
+  for (const SceneMeasurements& s : m.scenes)
+    for (const ObjectSample& o : s.object_samples) {
+      x.push_back(counts_of(o));
+      y.push_back(median_of(o.cpu_us));
+      obj_cpu_gpu.emplace_back(y.back(), median_or_nan(o.gpu_us));
+    }
+  for (bool intercept : {false, true})
+    for (Heuristic h : kAllHeuristics) a.fits.push_back(fit_heuristic(h, x, y, intercept));
+  for (const HeuristicFit& f : a.fits)
+    a.methods.push_back(std::string(heuristic_name(f.heuristic)) + (f.intercept ? "+b" : ""));
+  a.methods.push_back("pos");
+
+  for (const SceneMeasurements& s : m.scenes) {
+    const double base = median_of(s.frame_base_us);
+    a.frame_base_us[s.name] = base;
+    std::map<int, const PosTable*> pos;
+    for (const MeasuredPosTable& p : s.pos) pos[p.object] = &p.table;
+    std::vector<FramePrediction>& preds = a.frames[s.name];
+    for (const FrameSample& f : s.frames) {
+      FramePrediction p;
+      p.frame = f.frame;
+      p.visible = int(f.objects.size());
+      p.measured_us = median_of(f.cpu_us);
+      p.measured_gpu_us = median_or_nan(f.gpu_us);
+      frame_cpu_gpu.emplace_back(p.measured_us, p.measured_gpu_us);
+      for (std::size_t k = 0; k < a.fits.size(); ++k) {
+        double sum = base;
+        for (const ObjectSample& o : f.objects) sum += a.fits[k].predict(counts_of(o));
+        p.predicted_us[a.methods[k]] = sum;
+      }
+      double sum = base;
+      // (alpha 0: kept by the sphere test, yet its cone misses the window; it is still drawn
+      // and clipped, and the lookup clamps it to the table's smallest alpha)
+      for (const ObjectSample& o : f.objects)
+        sum += pos.at(o.object)->lookup(o.alpha, o.gamma, o.phi, settings.pos_lookup);
+      p.predicted_us["pos"] = sum;
+      preds.push_back(std::move(p));
+    }
+    if (preds.empty()) continue;
+    std::vector<double> measured;
+    for (const FramePrediction& p : preds) measured.push_back(p.measured_us);
+    for (const std::string& method : a.methods) {
+      std::vector<double> predicted;
+      for (const FramePrediction& p : preds) predicted.push_back(p.predicted_us.at(method));
+      a.table6_ms2[s.name][method] = average_squared_error_ms2(predicted, measured);
+    }
+  }
+  if (a.gpu_measured) {
+    a.cpu_gpu_objects = compare(obj_cpu_gpu);
+    a.cpu_gpu_frames = compare(frame_cpu_gpu);
+  }
+  return a;
+}
+
+}  // namespace ra::timing
