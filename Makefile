@@ -48,9 +48,11 @@ nightly: build
 	BUILD=$(BUILD) JOBS=$(JOBS) scripts/nightly.sh
 
 # The rendering-time study (Wimmer & Wonka 2003): experiments/timing.toml -> outputs/timing/
-# (timing.json, CSV files, figures). About 15 minutes on 2 cores; run it on an idle machine.
+# (timing.json, timing.md, CSV files, figures) and its report. About 15 minutes on 2 cores; run it on an idle machine.
 timing: build
 	$(BUILD)/renderaudit timing experiments/timing.toml --out outputs/timing
+	$(BUILD)/renderaudit report outputs/timing
+	@echo "Timing report: outputs/timing/report/report.pdf (and report.html)"
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

@@ -458,74 +458,10 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
   return c;
 }
 
-}  // namespace
-
-std::vector<Step> missing_steps(const std::string& run_dir) {
-  std::vector<Step> steps;
-  const fs::path dir(run_dir);
-  const fs::path figures_json = dir / "analysis" / "figures.json";
-  const fs::path index = dir / "figures" / "index.json";
-  std::error_code ec;
-  bool analyze = false;
-  if (!fs::exists(figures_json)) {
-    steps.push_back({"analyze", "renderaudit analyze " + run_dir, figures_json.string() + " is missing"});
-    analyze = true;
-  } else if (fs::last_write_time(figures_json, ec) < newest_input(run_dir)) {
-    steps.push_back({"analyze", "renderaudit analyze " + run_dir,
-                     figures_json.string() + " is older than the records"});
-    analyze = true;
-  }
-  if (analyze || !fs::exists(index)) {
-    steps.push_back({"plot", "renderaudit plot " + run_dir,
-                     analyze ? "the figures follow the analysis" : index.string() + " is missing"});
-  } else if (fs::last_write_time(index, ec) < fs::last_write_time(figures_json, ec)) {
-    steps.push_back({"plot", "renderaudit plot " + run_dir, index.string() + " is older than the analysis"});
-  }
-  return steps;
-}
-
-ReportResult write_report(const ReportOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::string& run_dir = options.run_dir;
-  if (!fs::is_directory(run_dir)) throw UserError(run_dir + ": no such run directory");
-  if (!fs::is_directory(fs::path(run_dir) / "records"))
-    throw UserError(run_dir + " is not a run directory (no records/): run `renderaudit run "
-                    "EXPERIMENT.toml --out " + run_dir + "` first");
-  const std::string pdfunite = plots::find_on_path("pdfunite");
-  if (pdfunite.empty())
-    throw UserError("pdfunite not found: install poppler-utils (apt-get install poppler-utils)");
-
-  ReportResult result;
-  const std::vector<Step> steps = missing_steps(run_dir);
-  if (!steps.empty() && !options.run_missing) {
-    std::string msg = "the report needs what these commands write; run them first:";
-    for (const auto& s : steps) msg += "\n  " + s.command + "    (" + s.reason + ")";
-    throw UserError(msg);
-  }
-  for (const Step& s : steps) {
-    std::fprintf(stderr, "report: running `%s` (%s)\n", s.command.c_str(), s.reason.c_str());
-    if (s.stage == "analyze") {
-      const std::string program = options.program.empty() ? self_program() : options.program;
-      const int rc = run_program({program, "analyze", run_dir});
-      if (rc != 0)
-        throw UserError("`" + s.command + "` failed (exit " + std::to_string(rc) +
-                        "); fix what it says and run the report again");
-    } else {
-      plots::PlotOptions po;
-      po.run_dir = run_dir;
-      plots::plot_run(po);
-    }
-    result.ran.push_back(s);
-  }
-
-  const plots::PlotResult figures = plots::read_figure_index(run_dir);
-  const plots::RecordScan scan = plots::scan_records(run_dir, 200);
-  Content content = build_document(run_dir, figures, scan);
-  Document& doc = content.doc;
-  for (const auto& f : doc.figures)
-    if (!fs::exists(f.pdf_path))
-      throw UserError(f.pdf_path + " is missing: run `renderaudit plot " + run_dir + "` again");
-
+// Lays out the text pages, joins them with the figures' PDFs into DIR/report/report.pdf and writes
+// report.html; fills the paths and page counts of `result`.
+void assemble(Document& doc, const std::string& run_dir, const std::string& pdfunite,
+              ReportResult& result) {
   const fs::path out_dir = fs::path(run_dir) / "report";
   fs::create_directories(out_dir);
   result.pdf = (out_dir / "report.pdf").string();
@@ -571,6 +507,120 @@ ReportResult write_report(const ReportOptions& options) {
   result.text_pages = layout.pages;
   result.figure_pages = int(doc.figures.size());
   result.pages = result.text_pages + result.figure_pages;
+}
+
+// The report of a timing study (`renderaudit timing`): DIR/timing.md and DIR/figures/index.json.
+Document timing_document(const std::string& dir) {
+  Document d;
+  const std::string name = fs::path(dir).filename().string();
+  d.title = "renderaudit timing report: " + name;
+  d.footer = "renderaudit timing report: " + name + " (" + dir + ")";
+  d.subtitle = {"How long renderers take to draw a frame, and how well the heuristics of Wimmer & "
+                "Wonka (EGSR 2003) predict it, measured on this machine."};
+  for (Block& b : parse_markdown(read_file(dir + "/timing.md"))) d.blocks.push_back(std::move(b));
+  if (!fs::exists(dir + "/figures/index.json")) return d;
+  const plots::PlotResult figures = plots::read_figure_index(dir);
+  Block heading_block;
+  heading_block.kind = Block::Kind::kHeading;
+  heading_block.level = 1;
+  heading_block.text = "Figures";
+  heading_block.anchor = "figures";
+  d.blocks.push_back(heading_block);
+  Block list;
+  list.kind = Block::Kind::kFigureList;
+  d.blocks.push_back(list);
+  int number = 0;
+  for (const auto& f : figures.figures) {
+    FigureRef r;
+    r.number = ++number;
+    r.id = f.id, r.section = f.section, r.title = f.title, r.caption = f.caption, r.note = f.note;
+    r.png = "../figures/" + f.png;
+    r.pdf = "../figures/" + f.pdf;
+    r.pdf_path = (fs::path(figures.figures_dir) / f.pdf).string();
+    d.figures.push_back(r);
+  }
+  return d;
+}
+
+}  // namespace
+
+std::vector<Step> missing_steps(const std::string& run_dir) {
+  std::vector<Step> steps;
+  const fs::path dir(run_dir);
+  const fs::path figures_json = dir / "analysis" / "figures.json";
+  const fs::path index = dir / "figures" / "index.json";
+  std::error_code ec;
+  bool analyze = false;
+  if (!fs::exists(figures_json)) {
+    steps.push_back({"analyze", "renderaudit analyze " + run_dir, figures_json.string() + " is missing"});
+    analyze = true;
+  } else if (fs::last_write_time(figures_json, ec) < newest_input(run_dir)) {
+    steps.push_back({"analyze", "renderaudit analyze " + run_dir,
+                     figures_json.string() + " is older than the records"});
+    analyze = true;
+  }
+  if (analyze || !fs::exists(index)) {
+    steps.push_back({"plot", "renderaudit plot " + run_dir,
+                     analyze ? "the figures follow the analysis" : index.string() + " is missing"});
+  } else if (fs::last_write_time(index, ec) < fs::last_write_time(figures_json, ec)) {
+    steps.push_back({"plot", "renderaudit plot " + run_dir, index.string() + " is older than the analysis"});
+  }
+  return steps;
+}
+
+ReportResult write_report(const ReportOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string& run_dir = options.run_dir;
+  if (!fs::is_directory(run_dir)) throw UserError(run_dir + ": no such run directory");
+  const bool timing_study = fs::exists(fs::path(run_dir) / "timing.json") &&
+                            !fs::is_directory(fs::path(run_dir) / "records");
+  if (!timing_study && !fs::is_directory(fs::path(run_dir) / "records"))
+    throw UserError(run_dir + " is not a run directory (no records/): run `renderaudit run "
+                    "EXPERIMENT.toml --out " + run_dir + "` first");
+  const std::string pdfunite = plots::find_on_path("pdfunite");
+  if (pdfunite.empty())
+    throw UserError("pdfunite not found: install poppler-utils (apt-get install poppler-utils)");
+
+  ReportResult result;
+  if (timing_study) {
+    if (!fs::exists(fs::path(run_dir) / "timing.md"))
+      throw UserError(run_dir + "/timing.md is missing: run `renderaudit timing` again");
+    Document doc = timing_document(run_dir);
+    assemble(doc, run_dir, pdfunite, result);
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+  }
+  const std::vector<Step> steps = missing_steps(run_dir);
+  if (!steps.empty() && !options.run_missing) {
+    std::string msg = "the report needs what these commands write; run them first:";
+    for (const auto& s : steps) msg += "\n  " + s.command + "    (" + s.reason + ")";
+    throw UserError(msg);
+  }
+  for (const Step& s : steps) {
+    std::fprintf(stderr, "report: running `%s` (%s)\n", s.command.c_str(), s.reason.c_str());
+    if (s.stage == "analyze") {
+      const std::string program = options.program.empty() ? self_program() : options.program;
+      const int rc = run_program({program, "analyze", run_dir});
+      if (rc != 0)
+        throw UserError("`" + s.command + "` failed (exit " + std::to_string(rc) +
+                        "); fix what it says and run the report again");
+    } else {
+      plots::PlotOptions po;
+      po.run_dir = run_dir;
+      plots::plot_run(po);
+    }
+    result.ran.push_back(s);
+  }
+
+  const plots::PlotResult figures = plots::read_figure_index(run_dir);
+  const plots::RecordScan scan = plots::scan_records(run_dir, 200);
+  Content content = build_document(run_dir, figures, scan);
+  Document& doc = content.doc;
+  for (const auto& f : doc.figures)
+    if (!fs::exists(f.pdf_path))
+      throw UserError(f.pdf_path + " is missing: run `renderaudit plot " + run_dir + "` again");
+
+  assemble(doc, run_dir, pdfunite, result);
   result.table_titles = content.table_titles;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;

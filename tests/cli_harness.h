@@ -56,10 +56,10 @@ std::string error_message(F f) {
   return "";
 }
 
-// Runs `renderaudit ARGS` (a shell fragment) and returns its exit code and output.
-inline Outcome run_renderaudit(const std::string& args) {
+// Runs a shell command line and returns its exit code and output (stderr included).
+inline Outcome run_command(const std::string& command_line) {
   Outcome o;
-  const std::string cmd = std::string(RA_BINARY) + " " + args + " 2>&1";
+  const std::string cmd = command_line + " 2>&1";
   FILE* p = ::popen(cmd.c_str(), "r");
   std::array<char, 4096> buf;
   size_t n;
@@ -69,7 +69,11 @@ inline Outcome run_renderaudit(const std::string& args) {
   return o;
 }
 
-// A fresh directory under the system temp dir, removed first if it exists.
+// Runs `renderaudit ARGS` (a shell fragment) and returns its exit code and output.
+inline Outcome run_renderaudit(const std::string& args) {
+  return run_command(std::string(RA_BINARY) + " " + args);
+}
+
 // A new empty directory for one test. The process id keeps tests that ctest runs at once (each
 // in its own process) out of each other's way, even when they share a helper that names a dir.
 inline std::string fresh_dir(const std::string& name) {

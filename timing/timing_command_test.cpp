@@ -1,10 +1,12 @@
 // End to end: `renderaudit timing experiments/timing_smoke.toml` on llvmpipe writes a timing.json
 // with real, positive times, fits with positive H2 / H4 coefficients, Table 6 for every scene and
-// method, the GPU timer's availability, and the CSV files and figures beside it.
+// method, the GPU timer's availability, the CSV files and figures beside it, and its report.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "tests/cli_harness.h"
@@ -65,7 +67,9 @@ TEST(TimingCommand, SmokeStudyOnLlvmpipe) {
   for (const auto& f : p.at("fits")) {
     EXPECT_EQ(f.at("n").get<int>(), 90);
     if (f.at("intercept").get<bool>()) continue;
-    if (f.at("heuristic") == "h2") EXPECT_GT(param(f, "c"), 0) << f.dump();
+    if (f.at("heuristic") == "h2") {
+      EXPECT_GT(param(f, "c"), 0) << f.dump();
+    }
     if (f.at("heuristic") == "h4") {
       EXPECT_GT(param(f, "c1"), 0) << f.dump();
       EXPECT_GT(param(f, "c2"), 0) << f.dump();
@@ -103,6 +107,26 @@ TEST(TimingCommand, SmokeStudyOnLlvmpipe) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/figures/path_osmesa-llvmpipe_city_h4" +
                                         std::string(ext)));
   }
+
+  // The report: timing.md's tables (Table 6 with the value of timing.json) and every figure of
+  // figures/index.json, one page each.
+  std::ifstream md_in(dir + "/timing.md");
+  const std::string md((std::istreambuf_iterator<char>(md_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("### Table 6, osmesa-llvmpipe"), std::string::npos);
+  char h4_city[32];
+  std::snprintf(h4_city, sizeof h4_city, "%.4g", t6.at("city").at("h4").get<double>());
+  EXPECT_NE(md.find(h4_city), std::string::npos) << h4_city;
+  std::ifstream index_in(dir + "/figures/index.json");
+  const nlohmann::json index = nlohmann::json::parse(index_in);
+  const size_t figures = index.at("figures").size();
+  EXPECT_EQ(figures, 1u + 3 * 5);  // the density, then 3 scenes x (h1-h4, pos)
+  const auto r = run_renderaudit("report " + dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto info = testing_cli::run_command("pdfinfo " + dir + "/report/report.pdf");
+  EXPECT_NE(info.output.find("Pages:"), std::string::npos) << info.output;
+  const auto text = testing_cli::run_command("pdftotext " + dir + "/report/report.pdf -");
+  EXPECT_NE(text.output.find("Table 6, osmesa-llvmpipe"), std::string::npos);
+  EXPECT_NE(r.output.find(std::to_string(figures) + " figures"), std::string::npos) << r.output;
   std::filesystem::remove_all(dir);
 }
 

@@ -1,5 +1,6 @@
 // The outputs of `renderaudit timing` (timing_report.h).
 #include "timing/timing_report.h"
+#include "timing/timing_markdown.h"
 
 #include <algorithm>
 #include <cmath>
@@ -408,9 +409,23 @@ std::vector<std::string> write_timing_outputs(const StudyResults& r, const std::
         }
       }
       display.stop();
+      // The index `renderaudit report` reads (plots/plot_run.h's schema), in drawing order.
+      nlohmann::json index = {{"schema", "renderaudit-figure-index"}, {"schema_version", 1},
+                              {"run_dir", dir}, {"figures", nlohmann::json::array()},
+                              {"skipped", nlohmann::json::array()}};
+      for (const plots::Figure& f : figs)
+        index["figures"].push_back({{"id", f.id}, {"kind", plots::figure_kind_name(f)},
+                                    {"section", f.section}, {"title", f.title},
+                                    {"caption", f.caption}, {"note", f.note},
+                                    {"png", f.id + ".png"}, {"pdf", f.id + ".pdf"},
+                                    {"csv", f.id + ".csv"}});
+      write_file_atomic(fig_dir + "/index.json", index.dump(2) + "\n");
+      written.push_back(fig_dir + "/index.json");
     }
   }
-  put("timing.json", timing_json(r).dump(2) + "\n");  // last: its presence means a complete run
+  const nlohmann::json doc = timing_json(r);
+  put("timing.md", timing_markdown(doc));
+  put("timing.json", doc.dump(2) + "\n");  // last: its presence means a complete run
   return written;
 }
 

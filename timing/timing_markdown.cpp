@@ -1,0 +1,134 @@
+#include "timing/timing_markdown.h"
+
+#include <cstdio>
+#include <sstream>
+#include <vector>
+
+namespace ra::timing {
+namespace {
+
+using nlohmann::json;
+
+std::string num(const json& v, const char* format = "%.4g") {
+  if (!v.is_number()) return "n/a";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v.get<double>());
+  return buf;
+}
+
+std::string row(const std::vector<std::string>& cells) {
+  std::string s = "|";
+  for (const auto& c : cells) s += " " + c + " |";
+  return s + "\n";
+}
+
+std::string header(const std::vector<std::string>& names, size_t left_columns) {
+  std::string s = row(names) + "|";
+  for (size_t i = 0; i < names.size(); ++i) s += i < left_columns ? " --- |" : " ---: |";
+  return s + "\n";
+}
+
+}  // namespace
+
+std::string timing_markdown(const json& j) {
+  std::ostringstream md;
+  const json host = j.value("host", json::object());
+  md << "# Rendering-time study\n\n"
+     << "The study of Wimmer & Wonka, Rendering Time Estimation for Real-Time Rendering (EGSR "
+        "2003), on this machine: experiment `"
+     << j.value("experiment", json::object()).value("file", "") << "`, measured "
+     << j.value("created_utc", "") << " on " << host.value("hostname", "") << " ("
+     << host.value("cpu", "") << ", " << host.value("cores", 0) << " cores, "
+     << host.value("os", "") << "). Times are wall-clock; run the study on an otherwise idle "
+        "machine.\n\n";
+
+  const json platforms = j.value("platforms", json::array());
+  md << "### Platforms and timers\n\n"
+     << header({"Platform", "GL_RENDERER", "Timer query", "Wall s", "Error"}, 3);
+  for (const json& p : platforms) {
+    const json tq = p.value("timer_query", json::object());
+    md << row({p.value("name", ""), p.value("renderer", json::object()).value("renderer", ""),
+               tq.value("supported", false) ? "GL_TIME_ELAPSED, " + std::to_string(tq.value("counter_bits", 0)) + " bits" : "no",
+               num(p.value("wall_s", json()), "%.0f"),
+               p.value("error", json()).is_string() ? p["error"].get<std::string>() : ""});
+  }
+  md << "\n";
+
+  md << "### System task: frame times of one viewpoint and the constant c\n\n"
+     << header({"Platform", "Scene", "Renderings", "Min ms", "Median ms", "q99 ms", "c = q99 - min, ms"}, 2);
+  for (const json& p : platforms) {
+    const json st = p.value("system_task", json());
+    if (!st.is_object()) continue;
+    auto ms = [&](const char* k) { return st.contains(k) && st[k].is_number() ? num(json(st[k].get<double>() / 1000.0), "%.3f") : "n/a"; };
+    md << row({p.value("name", ""), st.value("scene", ""), std::to_string(st.value("n", 0)),
+               ms("min_us"), ms("median_us"), ms("q99_us"), num(st.value("c_ms", json()), "%.3f")});
+  }
+  md << "\nc is the width of the one-sided interval from the fastest rendering that holds 99% of "
+        "them (Hyndman-Fan 6 quantile): a frame budget of min + c is met by 99% of renderings.\n\n";
+
+  md << "### Scenes (the paper's Table 5)\n\n"
+     << header({"Platform", "Scene", "Objects", "Triangles", "#tv", "#tv / tri", "Textures",
+                "State switches", "Path frames measured", "Object samples"}, 2);
+  for (const json& p : platforms)
+    for (const json& s : p.value("scenes", json::array()))
+      md << row({p.value("name", ""), s.value("name", ""), std::to_string(s.value("objects", 0)),
+                 std::to_string(s.value("triangles", 0)), std::to_string(s.value("transformed", 0)),
+                 num(s.value("tv_per_triangle", json()), "%.2f"), std::to_string(s.value("textures", 0)),
+                 std::to_string(s.value("state_switches", 0)),
+                 std::to_string(s.value("frames_measured", 0)),
+                 std::to_string(s.value("object_samples", 0))});
+  md << "\n";
+
+  md << "### Fitted heuristics (least squares, QR; CPU medians of the object measurements)\n\n"
+     << header({"Platform", "Heuristic", "Formula", "Coefficients (value +- standard error)", "n", "R^2", "RMSE us"}, 4);
+  for (const json& p : platforms)
+    for (const json& f : p.value("fits", json::array())) {
+      std::string coef;
+      for (const json& c : f.value("parameters", json::array()))
+        coef += (coef.empty() ? "" : "; ") + c.value("name", "") + " = " +
+                num(c.value("value", json())) + " +- " + num(c.value("standard_error", json()), "%.2g") +
+                " " + c.value("unit", "");
+      md << row({p.value("name", ""), f.value("heuristic", "") + (f.value("intercept", false) ? " (+b)" : ""),
+                 f.value("formula", ""), coef, std::to_string(f.value("n", 0)),
+                 num(f.value("r_squared", json()), "%.3f"), num(f.value("rmse_us", json()), "%.0f")});
+    }
+  md << "\n";
+
+  for (const json& p : platforms) {
+    const json t6 = p.value("table6_ms2", json::object());
+    if (t6.empty()) continue;
+    std::vector<std::string> methods = p.value("table6_methods", std::vector<std::string>{});
+    if (methods.empty())
+      for (const auto& [m, v] : t6.begin().value().items()) methods.push_back(m);
+    std::vector<std::string> cols = {"Scene"};
+    cols.insert(cols.end(), methods.begin(), methods.end());
+    md << "### Table 6, " << p.value("name", "")
+       << ": average squared error of the predicted frame time along the camera path (ms^2)\n\n"
+       << header(cols, 1);
+    for (const auto& [scene, by_method] : t6.items()) {
+      std::vector<std::string> cells = {scene};
+      for (const auto& m : methods) cells.push_back(num(by_method.value(m, json()), "%.4g"));
+      md << row(cells);
+    }
+    md << "\nh1-h4: the paper's forms (no intercept); +b: with a per-object intercept; pos: "
+          "per-object sampling tables. Predictions add the measured empty frame.\n\n";
+  }
+
+  md << "### CPU clock against GL_TIME_ELAPSED\n\n"
+     << header({"Platform", "Draws", "Objects: GPU/CPU median ratio", "Pearson r", "Frames: ratio", "Pearson r"}, 1);
+  for (const json& p : platforms) {
+    const json c = p.value("cpu_vs_gpu", json());
+    if (!c.is_object()) {
+      md << row({p.value("name", ""), "no GPU timer", "", "", "", ""});
+      continue;
+    }
+    const json o = c.value("objects", json::object()), f = c.value("frames", json::object());
+    md << row({p.value("name", ""), std::to_string(o.value("n", 0)), num(o.value("median_ratio", json())),
+               num(o.value("pearson_r", json()), "%.3f"), num(f.value("median_ratio", json())),
+               num(f.value("pearson_r", json()), "%.3f")});
+  }
+  md << "\n";
+  return md.str();
+}
+
+}  // namespace ra::timing
