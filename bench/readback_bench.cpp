@@ -79,8 +79,8 @@ nlohmann::json summary_row(const std::string& platform, Kind kind, int window, d
 // kind and window one pooled over both fields of view (fov_deg 0).
 int measure_platform(const Options& opt) {
   const PlatformSpec* spec = find_platform(opt.platform);
-  if (!spec || !spec->gallium_driver) {
-    std::fprintf(stderr, "readback_bench: not an OSMesa platform: %s\n", opt.platform.c_str());
+  if (!spec || !spec->gallium_driver || spec->samples > 0) {  // the aliased readback only
+    std::fprintf(stderr, "readback_bench: not an aliased OSMesa platform: %s\n", opt.platform.c_str());
     return 2;
   }
   const char* methods[] = {"floor", "naive", "region", "project", "batched"};

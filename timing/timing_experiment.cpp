@@ -119,9 +119,10 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
     for (const auto& e : a) {
       const auto* str = e.as_string();
       const PlatformSpec* spec = str ? find_platform(str->get()) : nullptr;
-      if (!spec || !spec->gallium_driver)
-        loc.fail(&e, "'timing.platforms' holds an unknown or driverless platform (allowed: "
-                     "osmesa-llvmpipe, osmesa-softpipe)");
+      // The study draws aliased frames: a multisample platform would be measured as aliased.
+      if (!spec || !spec->gallium_driver || spec->samples > 0)
+        loc.fail(&e, "'timing.platforms' holds an unknown, driverless or multisample platform "
+                     "(allowed: osmesa-llvmpipe, osmesa-softpipe)");
       for (const auto& p : s.platforms)
         if (p == str->get()) loc.fail(&e, "platform '" + p + "' is listed twice");
       s.platforms.push_back(str->get());
