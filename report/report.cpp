@@ -191,6 +191,23 @@ std::vector<std::string> table_files(const std::string& analysis_dir) {
   return out;
 }
 
+// The list of figures, then one page per figure of the index (paths relative to DIR/report).
+void add_figures(const plots::PlotResult& figures, Document& d) {
+  Block list;
+  list.kind = Block::Kind::kFigureList;
+  d.blocks.push_back(list);
+  int number = 0;
+  for (const auto& f : figures.figures) {
+    FigureRef r;
+    r.number = ++number;
+    r.id = f.id, r.section = f.section, r.title = f.title, r.caption = f.caption, r.note = f.note;
+    r.png = "../figures/" + f.png;
+    r.pdf = "../figures/" + f.pdf;
+    r.pdf_path = (fs::path(figures.figures_dir) / f.pdf).string();
+    d.figures.push_back(r);
+  }
+}
+
 struct Content {
   Document doc;
   std::vector<std::string> table_titles;
@@ -438,23 +455,7 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
       "drawn as CSV beside each (DIR/figures/). Metric values are shown x 10^k with the k of the "
       "tables. Box plots restrict the y range to the box bodies, as the paper's do, and say on "
       "the figure which extremes lie outside."));
-  Block list;
-  list.kind = Block::Kind::kFigureList;
-  d.blocks.push_back(list);
-  int number = 0;
-  for (const auto& f : figures.figures) {
-    FigureRef r;
-    r.number = ++number;
-    r.id = f.id;
-    r.section = f.section;
-    r.title = f.title;
-    r.caption = f.caption;
-    r.note = f.note;
-    r.png = "../figures/" + f.png;
-    r.pdf = "../figures/" + f.pdf;
-    r.pdf_path = (fs::path(figures.figures_dir) / f.pdf).string();
-    d.figures.push_back(r);
-  }
+  add_figures(figures, d);
   return c;
 }
 
@@ -526,19 +527,7 @@ Document timing_document(const std::string& dir) {
   heading_block.text = "Figures";
   heading_block.anchor = "figures";
   d.blocks.push_back(heading_block);
-  Block list;
-  list.kind = Block::Kind::kFigureList;
-  d.blocks.push_back(list);
-  int number = 0;
-  for (const auto& f : figures.figures) {
-    FigureRef r;
-    r.number = ++number;
-    r.id = f.id, r.section = f.section, r.title = f.title, r.caption = f.caption, r.note = f.note;
-    r.png = "../figures/" + f.png;
-    r.pdf = "../figures/" + f.pdf;
-    r.pdf_path = (fs::path(figures.figures_dir) / f.pdf).string();
-    d.figures.push_back(r);
-  }
+  add_figures(figures, d);
   return d;
 }
 
