@@ -21,6 +21,19 @@
 #include "scenes/scene_statistics.h"
 #include "scenes/vertex_cache.h"
 
+// What a platform's child process sends its parent (timing.json's raw measurements): the members
+// under their own names.
+namespace ra {
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ObjectSample, object, alpha, gamma, phi, triangles, vertices,
+                                   transformed, pixels, state_changes, cpu_us, gpu_us)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FrameSample, frame, objects, cpu_us, gpu_us)
+namespace timing {
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RendererInfo, platform, gallium_driver, lp_num_threads,
+                                   renderer, version, vendor, timer_query, timer_query_listed,
+                                   timer_query_bits, depth_bits)
+}  // namespace timing
+}  // namespace ra
+
 namespace ra::timing {
 namespace {
 
@@ -303,50 +316,11 @@ PlatformMeasurements measure_platform_in_child(const TimingSettings& settings,
   return m;
 }
 
-// ---- JSON of the measurements (child -> parent) ----
-
-namespace {
-
-nlohmann::json sample_json(const ObjectSample& s) {
-  return {{"object", s.object},        {"alpha", s.alpha},
-          {"gamma", s.gamma},          {"phi", s.phi},
-          {"triangles", s.triangles},  {"vertices", s.vertices},
-          {"transformed", s.transformed}, {"pixels", s.pixels},
-          {"state_changes", s.state_changes}, {"cpu_us", s.cpu_us},
-          {"gpu_us", s.gpu_us}};
-}
-
-ObjectSample sample_from(const nlohmann::json& j) {
-  ObjectSample s;
-  s.object = j.at("object");
-  s.alpha = j.at("alpha");
-  s.gamma = j.at("gamma");
-  s.phi = j.at("phi");
-  s.triangles = j.at("triangles");
-  s.vertices = j.at("vertices");
-  s.transformed = j.at("transformed");
-  s.pixels = j.at("pixels");
-  s.state_changes = j.at("state_changes");
-  s.cpu_us = j.at("cpu_us").get<std::vector<double>>();
-  s.gpu_us = j.at("gpu_us").get<std::vector<double>>();
-  return s;
-}
-
-}  // namespace
+// ---- JSON of the measurements (child -> parent; samples and renderer: the macros above) ----
 
 nlohmann::json to_json(const PlatformMeasurements& m) {
   nlohmann::json j;
-  const RendererInfo& r = m.renderer;
-  j["renderer"] = {{"platform", r.platform},
-                   {"gallium_driver", r.gallium_driver},
-                   {"lp_num_threads", r.lp_num_threads},
-                   {"renderer", r.renderer},
-                   {"version", r.version},
-                   {"vendor", r.vendor},
-                   {"timer_query", r.timer_query},
-                   {"timer_query_listed", r.timer_query_listed},
-                   {"timer_query_bits", r.timer_query_bits},
-                   {"depth_bits", r.depth_bits}};
+  j["renderer"] = m.renderer;
   j["system_scene"] = m.system_scene;
   j["system_frame"] = m.system_frame;
   j["system_visible_objects"] = m.system_visible_objects;
@@ -362,15 +336,8 @@ nlohmann::json to_json(const PlatformMeasurements& m) {
                          {"textures", s.textures},  {"state_switches", s.state_switches},
                          {"path_frames", s.path_frames}, {"frame_base_us", s.frame_base_us},
                          {"seconds", s.seconds}};
-    js["object_samples"] = nlohmann::json::array();
-    for (const ObjectSample& o : s.object_samples) js["object_samples"].push_back(sample_json(o));
-    js["frames"] = nlohmann::json::array();
-    for (const FrameSample& f : s.frames) {
-      nlohmann::json jf = {{"frame", f.frame}, {"cpu_us", f.cpu_us}, {"gpu_us", f.gpu_us}};
-      jf["objects"] = nlohmann::json::array();
-      for (const ObjectSample& o : f.objects) jf["objects"].push_back(sample_json(o));
-      js["frames"].push_back(std::move(jf));
-    }
+    js["object_samples"] = s.object_samples;
+    js["frames"] = s.frames;
     js["pos"] = nlohmann::json::array();
     for (const MeasuredPosTable& p : s.pos) {
       const PosGrid& g = p.table.grid();
@@ -388,17 +355,7 @@ nlohmann::json to_json(const PlatformMeasurements& m) {
 
 PlatformMeasurements platform_measurements_from_json(const nlohmann::json& j) {
   PlatformMeasurements m;
-  const auto& r = j.at("renderer");
-  m.renderer.platform = r.at("platform");
-  m.renderer.gallium_driver = r.at("gallium_driver");
-  m.renderer.lp_num_threads = r.at("lp_num_threads");
-  m.renderer.renderer = r.at("renderer");
-  m.renderer.version = r.at("version");
-  m.renderer.vendor = r.at("vendor");
-  m.renderer.timer_query = r.at("timer_query");
-  m.renderer.timer_query_listed = r.at("timer_query_listed");
-  m.renderer.timer_query_bits = r.at("timer_query_bits");
-  m.renderer.depth_bits = r.at("depth_bits");
+  m.renderer = j.at("renderer").get<RendererInfo>();
   m.system_scene = j.at("system_scene");
   m.system_frame = j.at("system_frame");
   m.system_visible_objects = j.at("system_visible_objects");
@@ -419,15 +376,8 @@ PlatformMeasurements platform_measurements_from_json(const nlohmann::json& j) {
     s.path_frames = js.at("path_frames");
     s.frame_base_us = js.at("frame_base_us").get<std::vector<double>>();
     s.seconds = js.at("seconds");
-    for (const auto& o : js.at("object_samples")) s.object_samples.push_back(sample_from(o));
-    for (const auto& jf : js.at("frames")) {
-      FrameSample f;
-      f.frame = jf.at("frame");
-      f.cpu_us = jf.at("cpu_us").get<std::vector<double>>();
-      f.gpu_us = jf.at("gpu_us").get<std::vector<double>>();
-      for (const auto& o : jf.at("objects")) f.objects.push_back(sample_from(o));
-      s.frames.push_back(std::move(f));
-    }
+    s.object_samples = js.at("object_samples").get<std::vector<ObjectSample>>();
+    s.frames = js.at("frames").get<std::vector<FrameSample>>();
     for (const auto& jp : js.at("pos")) {
       PosGrid g;
       g.n_alpha = jp.at("grid")[0];
