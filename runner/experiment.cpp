@@ -152,15 +152,7 @@ void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& ex
 
 Experiment parse_experiment(const std::string& text, const std::string& path) {
   TomlLocator loc(path);
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream out;
-    out << path << ":" << e.source().begin.line << ":" << e.source().begin.column << ": "
-        << e.description();
-    throw UserError(out.str());
-  }
+  const toml::table root = loc.parse(text);
 
   Experiment exp;
   exp.path = path;

@@ -32,6 +32,14 @@ void TomlLocator::reject_unknown_keys(const toml::table& table, const std::strin
   }
 }
 
+toml::table TomlLocator::parse(const std::string& text) const {
+  try {
+    return toml::parse(text, path_);
+  } catch (const toml::parse_error& e) {
+    fail_at(e.source().begin, std::string(e.description()));
+  }
+}
+
 double TomlLocator::number(const toml::node& node, const std::string& key) const {
   if (auto v = node.as_integer()) return double(v->get());
   if (auto v = node.as_floating_point()) return v->get();

@@ -23,6 +23,9 @@ class TomlLocator {
   void reject_unknown_keys(const toml::table& table, const std::string& where,
                            const std::set<std::string>& allowed) const;
 
+  // The TOML text of this file; a syntax error becomes "file:line:column: description".
+  toml::table parse(const std::string& text) const;
+
   // An integer or floating-point value, as a double.
   double number(const toml::node& node, const std::string& key) const;
   // An integer in [lo, hi].

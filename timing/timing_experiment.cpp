@@ -77,15 +77,7 @@ TimingSettings read_timing_experiment(const std::string& path) {
 
 TimingSettings parse_timing_experiment(const std::string& text, const std::string& path) {
   Locator loc(path);
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream out;
-    out << path << ":" << e.source().begin.line << ":" << e.source().begin.column << ": "
-        << e.description();
-    throw UserError(out.str());
-  }
+  const toml::table root = loc.parse(text);
   loc.reject_unknown_keys(root, "", {"name", "timing", "scene"});
 
   TimingSettings s;
