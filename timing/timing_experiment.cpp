@@ -100,7 +100,7 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
   loc.reject_unknown_keys(
       t, "timing.",
       {"platforms", "window", "fov_deg", "near", "far", "repetitions", "system_task_renders",
-       "object_samples", "cache_size", "seed", "gpu_timer", "frame_stride", "pos_repetitions",
+       "object_samples", "system_task_scene", "system_task_frame", "cache_size", "seed", "gpu_timer", "frame_stride", "pos_repetitions",
        "alpha_min_deg",
        "phi_deg", "pos_grid", "pos_prune_alpha_deg", "pos_lookup", "platform"});
 
@@ -206,6 +206,24 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
   if (s.scenes.empty())
     loc.fail(nullptr, "no [[scene]] table: the study needs at least one scene (kind = \"city\", "
                       "\"terrain\" or \"forest\")");
+  const SceneSpec* system_scene = &s.scenes.front();
+  if (const auto* n = t.get("system_task_scene")) {
+    const auto* str = n->as_string();
+    std::string names;
+    system_scene = nullptr;
+    for (const SceneSpec& spec : s.scenes) {
+      names += (names.empty() ? "" : ", ") + spec.name;
+      if (str && spec.name == str->get()) system_scene = &spec;
+    }
+    if (!system_scene)
+      loc.fail(n, "'timing.system_task_scene' must name a scene of the file (allowed: " + names + ")");
+    s.system_task_scene = str->get();
+  }
+  if (const auto* n = t.get("system_task_frame"))
+    // A recorded path's length is known only once it is read: the study checks it then.
+    s.system_task_frame = int(integer(loc, *n, "timing.system_task_frame", 0,
+                                      system_scene->path_file.empty() ? system_scene->path.frames - 1
+                                                                      : 999999));
   return s;
 }
 

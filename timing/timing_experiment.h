@@ -11,6 +11,8 @@
 //   far = 20000                     # metres, > near
 //   repetitions = 5                 # timed repetitions per measurement, 1..1000
 //   system_task_renders = 10000     # renderings of the system-task viewpoint, 10..1000000
+//   system_task_scene = "city"      # whose path holds that viewpoint (default: the first scene)
+//   system_task_frame = 10          # which frame of that path, 0..frames-1 (default: the middle)
 //   object_samples = 10000          # random object measurements per platform, 10..10000000
 //   cache_size = 16                 # FIFO vertex-cache entries for #tv, 3..1024
 //   seed = 1                        # viewpoints of the object measurements, 0..2^63-1
@@ -64,6 +66,8 @@ struct TimingSettings {
   double pos_prune_alpha_deg = 3;
   PosLookup pos_lookup = PosLookup::kInterpolate;
   std::vector<SceneSpec> scenes;
+  std::string system_task_scene;  // a scene's name; empty: the first scene
+  int system_task_frame = -1;     // a frame of that scene's camera path; -1: the middle one
 
   const WorkSettings& work_for(const std::string& platform) const;
 };

@@ -94,6 +94,13 @@ TEST(TimingExperiment, DefaultsAndValues) {
   EXPECT_EQ(d.camera.height, 480);
   EXPECT_EQ(d.cache_size, 16u);
   EXPECT_EQ(d.platforms, std::vector<std::string>{"osmesa-llvmpipe"});
+  EXPECT_EQ(d.system_task_scene, "");
+  EXPECT_EQ(d.system_task_frame, -1);
+  const TimingSettings t = parse_timing_experiment(
+      std::string("[timing]\nsystem_task_scene = \"forest\"\nsystem_task_frame = 3\n") + kScene,
+      "t.toml");
+  EXPECT_EQ(t.system_task_scene, "forest");
+  EXPECT_EQ(t.system_task_frame, 3);
 }
 
 std::string error_of(const std::string& text) {
@@ -122,6 +129,11 @@ TEST(TimingExperiment, BadInputIsLocated) {
             std::string::npos);
   EXPECT_NE(error_of(std::string("[timing.platform.osmesa-softpipe]\nrepetitions = 2\n") + kScene)
                 .find("not in timing.platforms"),
+            std::string::npos);
+  EXPECT_EQ(error_of(std::string("[timing]\nsystem_task_scene = \"city\"\n") + kScene),
+            "bad.toml:2:21: 'timing.system_task_scene' must name a scene of the file (allowed: forest)");
+  EXPECT_NE(error_of(std::string("[timing]\nsystem_task_frame = 100000\n") + kScene)
+                .find("'timing.system_task_frame' = 100000 is out of range (allowed: 0 to "),
             std::string::npos);
   EXPECT_NE(error_of("[[scene]]\nkind = \"castle\"\n").find("bad.toml:2"), std::string::npos);
 }

@@ -235,9 +235,16 @@ PlatformMeasurements measure_platform(const TimingSettings& settings, const std:
       rep.line(tag + "pos tables " + std::to_string(done) + "/" + std::to_string(seen.size()));
     }
 
-    // the system task: the middle viewpoint of the first scene's path
-    if (si == 0 && !path.empty()) {
-      const std::size_t f = path.size() / 2;
+    // the system task: one viewpoint of one scene's path (default: the first scene's middle one)
+    const bool system_here = settings.system_task_scene.empty() ? si == 0
+                                                                : sm.name == settings.system_task_scene;
+    if (system_here && !path.empty()) {
+      if (settings.system_task_frame >= int(path.size()))
+        throw UserError(settings.file + ": timing.system_task_frame = " +
+                        std::to_string(settings.system_task_frame) + " is out of range (allowed: 0 to " +
+                        std::to_string(path.size() - 1) + ", the frames of scene " + sm.name + ")");
+      const std::size_t f = settings.system_task_frame >= 0 ? std::size_t(settings.system_task_frame)
+                                                            : path.size() / 2;
       const Frustum fr = frustum_of(projection * look_at(path[f]));
       std::vector<int> visible;
       for (std::size_t o = 0; o < scene.objects.size(); ++o)
