@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
-.PHONY: all deps build run analyze plot report test bench nightly timing format clean
+.PHONY: all deps build run analyze plot report test bench nightly timing lod regulation format clean
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
@@ -48,11 +48,28 @@ nightly: build
 	BUILD=$(BUILD) JOBS=$(JOBS) scripts/nightly.sh
 
 # The rendering-time study (Wimmer & Wonka 2003): experiments/timing.toml -> outputs/timing/
-# (timing.json, timing.md, CSV files, figures) and its report. About 15 minutes on 2 cores; run it on an idle machine.
+# (timing.json, timing.md, CSV files, figures) and its report. About 35 minutes on 2 cores (llvmpipe
+# 7, softpipe 26); run it on an idle machine.
 timing: build
 	$(BUILD)/renderaudit timing experiments/timing.toml --out outputs/timing
 	$(BUILD)/renderaudit report outputs/timing
 	@echo "Timing report: outputs/timing/report/report.pdf (and report.html)"
+
+# The terrain level-of-detail study (seed 003) and the regulation study (seed 004): run, analyze,
+# plot, report, like any experiment; a few minutes each.
+lod: build
+	$(BUILD)/renderaudit run experiments/lod.toml --out outputs/lod
+	$(BUILD)/renderaudit analyze outputs/lod
+	$(BUILD)/renderaudit plot outputs/lod
+	$(BUILD)/renderaudit report outputs/lod
+	@echo "LOD report: outputs/lod/report/report.pdf (and report.html)"
+
+regulation: build
+	$(BUILD)/renderaudit run experiments/regulation.toml --out outputs/regulation
+	$(BUILD)/renderaudit analyze outputs/regulation
+	$(BUILD)/renderaudit plot outputs/regulation
+	$(BUILD)/renderaudit report outputs/regulation
+	@echo "Regulation report: outputs/regulation/report/report.pdf (and report.html)"
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

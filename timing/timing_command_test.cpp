@@ -1,4 +1,5 @@
-// End to end: `renderaudit timing experiments/timing_smoke.toml` on llvmpipe writes a timing.json
+// End to end: `renderaudit run experiments/timing_smoke.toml` (a [timing] file: the same as
+// `renderaudit timing`) on llvmpipe writes a timing.json
 // with real, positive times, fits with positive H2 / H4 coefficients, Table 6 for every scene and
 // method, the GPU timer's availability, the CSV files and figures beside it, and its report.
 #include <gtest/gtest.h>
@@ -26,7 +27,7 @@ double param(const nlohmann::json& fit, const std::string& name) {
 
 TEST(TimingCommand, SmokeStudyOnLlvmpipe) {
   const std::string dir = fresh_dir("timing_smoke");
-  const auto o = run_renderaudit("timing " RA_SOURCE_DIR "/experiments/timing_smoke.toml --out " +
+  const auto o = run_renderaudit("run " RA_SOURCE_DIR "/experiments/timing_smoke.toml --out " +
                                  dir + " --platform osmesa-llvmpipe --quiet");
   ASSERT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(o.output.find("Table 6"), std::string::npos) << o.output;
@@ -55,6 +56,8 @@ TEST(TimingCommand, SmokeStudyOnLlvmpipe) {
 
   // the system task: every rendering kept, real positive times, c = q99 - min >= 0
   const nlohmann::json& st = p.at("system_task");
+  EXPECT_EQ(st.at("scene"), "terrain");  // system_task_scene, system_task_frame of the file
+  EXPECT_EQ(st.at("frame"), 2);
   ASSERT_EQ(st.at("cpu_us").size(), 200u);
   for (const auto& t : st.at("cpu_us")) EXPECT_GT(t.get<double>(), 0);
   EXPECT_GT(st.at("min_us").get<double>(), 0);
@@ -120,6 +123,14 @@ TEST(TimingCommand, SmokeStudyOnLlvmpipe) {
   const nlohmann::json index = nlohmann::json::parse(index_in);
   const size_t figures = index.at("figures").size();
   EXPECT_EQ(figures, 1u + 3 * 5);  // the density, then 3 scenes x (h1-h4, pos)
+  // study.json marks the folder; analyze and plot have nothing left to do on it
+  std::ifstream study_in(dir + "/study.json");
+  const nlohmann::json study = nlohmann::json::parse(study_in);
+  EXPECT_EQ(study.at("kind"), "timing");
+  EXPECT_EQ(study.at("document"), "timing.md");
+  const auto a = run_renderaudit("analyze " + dir);
+  EXPECT_EQ(a.exit_code, 0) << a.output;
+  EXPECT_NE(a.output.find("a timing study is analysed as it runs"), std::string::npos) << a.output;
   const auto r = run_renderaudit("report " + dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto info = testing_cli::run_command("pdfinfo " + dir + "/report/report.pdf");

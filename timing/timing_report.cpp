@@ -9,11 +9,11 @@
 #include <sstream>
 
 #include "analysis/descriptive.h"
-#include "plots/figure_renderer.h"
-#include "plots/headless_display.h"
+#include "plots/figure_set.h"
 #include "runner/atomic_file.h"
 #include "runner/errors.h"
 #include "runner/manifest.h"
+#include "runner/study_dir.h"
 
 namespace ra::timing {
 namespace {
@@ -388,44 +388,23 @@ std::vector<std::string> write_timing_outputs(const StudyResults& r, const std::
   put("object_samples.csv", object_samples_csv(r));
   put("frames.csv", frames_csv(r));
   put("pos_tables.csv", pos_tables_csv(r));
-  if (figures) {
-    const std::vector<plots::Figure> figs = timing_figures(r);
-    if (!figs.empty()) {
-      const std::string fig_dir = dir + "/figures";
-      std::filesystem::create_directories(fig_dir, ec);
-      plots::HeadlessDisplay display;
-      {
-        plots::FigureRenderer renderer;
-        for (const plots::Figure& f : figs) {
-          // FigureRenderer writes STEM.png/.pdf/.csv in place; render into a temporary stem and
-          // rename, so that a figure is either complete or absent.
-          const std::string tmp = fig_dir + "/.tmp-" + f.id;
-          const plots::RenderedFigure rf = renderer.render(f, tmp);
-          for (const std::string& p : {rf.png, rf.pdf, rf.csv}) {
-            const std::string final_path = fig_dir + "/" + f.id + p.substr(p.rfind('.'));
-            commit_file(p, final_path);
-            written.push_back(final_path);
-          }
-        }
-      }
-      display.stop();
-      // The index `renderaudit report` reads (plots/plot_run.h's schema), in drawing order.
-      nlohmann::json index = {{"schema", "renderaudit-figure-index"}, {"schema_version", 1},
-                              {"run_dir", dir}, {"figures", nlohmann::json::array()},
-                              {"skipped", nlohmann::json::array()}};
-      for (const plots::Figure& f : figs)
-        index["figures"].push_back({{"id", f.id}, {"kind", plots::figure_kind_name(f)},
-                                    {"section", f.section}, {"title", f.title},
-                                    {"caption", f.caption}, {"note", f.note},
-                                    {"png", f.id + ".png"}, {"pdf", f.id + ".pdf"},
-                                    {"csv", f.id + ".csv"}});
-      write_file_atomic(fig_dir + "/index.json", index.dump(2) + "\n");
-      written.push_back(fig_dir + "/index.json");
-    }
-  }
+  if (figures)
+    for (const std::string& p : plots::write_figure_set(timing_figures(r), dir)) written.push_back(p);
   const nlohmann::json doc = timing_json(r);
   put("timing.md", timing_markdown(doc));
-  put("timing.json", doc.dump(2) + "\n");  // last: its presence means a complete run
+  put("timing.json", doc.dump(2) + "\n");
+  // last: its presence means a complete study folder; the study is analysed as it runs
+  StudyInfo info;
+  info.kind = StudyKind::kTiming;
+  info.name = r.settings.name;
+  info.title = "renderaudit timing report: " + r.settings.name;
+  info.subtitle =
+      "How long renderers take to draw a frame, and how well the heuristics of Wimmer & Wonka "
+      "(EGSR 2003) predict it, measured on this machine.";
+  info.document = "timing.md";
+  info.analysed = true;
+  write_study_info(dir, info);
+  written.push_back(dir + "/study.json");
   return written;
 }
 

@@ -1,0 +1,51 @@
+// Drawing a study's figures and their index (figure_set.h).
+#include "plots/figure_set.h"
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <system_error>
+
+#include "plots/figure_renderer.h"
+#include "plots/headless_display.h"
+#include "runner/atomic_file.h"
+#include "runner/errors.h"
+
+namespace ra::plots {
+
+std::vector<std::string> write_figure_set(const std::vector<Figure>& figures, const std::string& dir) {
+  std::vector<std::string> written;
+  if (figures.empty()) return written;
+  const std::string fig_dir = dir + "/figures";
+  std::error_code ec;
+  std::filesystem::create_directories(fig_dir, ec);
+  if (!std::filesystem::is_directory(fig_dir))
+    throw UserError("cannot create the figure directory " + fig_dir + ": " + ec.message());
+  HeadlessDisplay display;
+  {
+    FigureRenderer renderer;
+    for (const Figure& f : figures) {
+      const std::string tmp = fig_dir + "/.tmp-" + f.id;
+      const RenderedFigure rf = renderer.render(f, tmp);
+      for (const std::string& p : {rf.png, rf.pdf, rf.csv}) {
+        const std::string final_path = fig_dir + "/" + f.id + p.substr(p.rfind('.'));
+        commit_file(p, final_path);
+        written.push_back(final_path);
+      }
+    }
+  }
+  display.stop();
+  nlohmann::json index = {{"schema", "renderaudit-figure-index"}, {"schema_version", 1},
+                          {"run_dir", dir}, {"figures", nlohmann::json::array()},
+                          {"skipped", nlohmann::json::array()}};
+  for (const Figure& f : figures)
+    index["figures"].push_back({{"id", f.id}, {"kind", figure_kind_name(f)},
+                                {"section", f.section}, {"title", f.title},
+                                {"caption", f.caption}, {"note", f.note},
+                                {"png", f.id + ".png"}, {"pdf", f.id + ".pdf"},
+                                {"csv", f.id + ".csv"}});
+  write_file_atomic(fig_dir + "/index.json", index.dump(2) + "\n");
+  written.push_back(fig_dir + "/index.json");
+  return written;
+}
+
+}  // namespace ra::plots

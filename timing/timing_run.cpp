@@ -1,0 +1,123 @@
+// The rendering-time study from an experiment file (timing_run.h).
+#include "timing/timing_run.h"
+
+#include <chrono>
+#include <cstdarg>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "runner/errors.h"
+#include "timing/timing_report.h"
+#include "timing/timing_study.h"
+
+namespace ra::timing {
+namespace {
+
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* fmt, ...) {
+  char buf[512];
+  va_list args;
+  va_start(args, fmt);
+  std::vsnprintf(buf, sizeof buf, fmt, args);
+  va_end(args);
+  return buf;
+}
+
+std::string summary_of(const StudyResults& r, const std::string& dir) {
+  std::string s;
+  for (std::size_t i = 0; i < r.measured.size(); ++i) {
+    const PlatformMeasurements& m = r.measured[i];
+    if (!m.error.empty()) {
+      s += m.renderer.platform + ": FAILED: " + m.error + "\n";
+      continue;
+    }
+    const PlatformAnalysis& a = r.analysed[i];
+    s += format("%s (%s): %.0f s; GL_TIME_ELAPSED %s\n", m.renderer.platform.c_str(),
+                m.renderer.renderer.c_str(), m.seconds,
+                m.renderer.timer_query ? "supported" : "not supported");
+    s += format("  system task: %zu renderings, min %.3f ms, median %.3f ms, c (99%%) = %.3f ms\n",
+                a.system.n, a.system.min_us / 1000, a.system.median_us / 1000, a.system.c_us / 1000);
+    if (a.gpu_measured)
+      s += format("  GPU/CPU timer: median ratio %.3f (objects), %.3f (frames); r = %.3f, %.3f\n",
+                  a.cpu_gpu_objects.median_ratio, a.cpu_gpu_frames.median_ratio,
+                  a.cpu_gpu_objects.pearson_r, a.cpu_gpu_frames.pearson_r);
+    s += format("  Table 6 (average squared error, ms^2):\n    %-10s", "scene");
+    for (const std::string& meth : a.methods) s += format(" %9s", meth.c_str());
+    s += "\n";
+    for (const auto& [scene, row] : a.table6_ms2) {
+      s += format("    %-10s", scene.c_str());
+      for (const std::string& meth : a.methods) s += format(" %9.4g", row.at(meth));
+      s += "\n";
+    }
+  }
+  s += "wrote " + dir + "/timing.json (and object_samples.csv, frames.csv, pos_tables.csv, figures/)\n";
+  return s;
+}
+
+}  // namespace
+
+StudyRunResult run_timing_study(const StudyRunOptions& options, bool figures) {
+  const auto t0 = std::chrono::steady_clock::now();
+  StudyResults r;
+  r.settings = read_timing_experiment(options.experiment);
+  std::vector<std::string> platforms = r.settings.platforms;
+  if (!options.platforms.empty()) {
+    std::string allowed;
+    for (const std::string& e : r.settings.platforms) allowed += (allowed.empty() ? "" : ", ") + e;
+    for (const std::string& p : options.platforms) {
+      bool listed = false;
+      for (const std::string& e : r.settings.platforms) listed = listed || e == p;
+      if (!listed)
+        throw UserError("--platform " + p + ": not a platform of " + options.experiment +
+                        " (allowed: " + allowed + ")");
+    }
+    platforms = options.platforms;
+  }
+  const std::string dir = options.out_dir.empty() ? "outputs/" + r.settings.name : options.out_dir;
+  const Progress progress = options.progress ? Progress([](const std::string& line) {
+    std::fprintf(stderr, "timing: %s\n", line.c_str());
+  })
+                                             : Progress();
+
+  // Scenes and paths are built once, before any GL (the children inherit them).
+  std::vector<Scene> scenes;
+  std::vector<std::vector<Viewpoint>> paths;
+  for (const SceneSpec& spec : r.settings.scenes) {
+    if (progress) progress("building scene " + spec.name + " (" + spec.kind + ")");
+    scenes.push_back(build_scene(spec));
+    paths.push_back(build_camera_path(spec, scenes.back()));
+  }
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const bool system_scene = r.settings.system_task_scene.empty()
+                                  ? i == 0
+                                  : r.settings.scenes[i].name == r.settings.system_task_scene;
+    if (system_scene && r.settings.system_task_frame >= int(paths[i].size()))
+      throw UserError(options.experiment + ": timing.system_task_frame = " +
+                      std::to_string(r.settings.system_task_frame) + " is out of range (allowed: 0 to " +
+                      std::to_string(int(paths[i].size()) - 1) + ", the frames of scene " +
+                      r.settings.scenes[i].name + ")");
+  }
+  std::filesystem::create_directories(dir);
+  StudyRunResult result;
+  result.dir = dir;
+  for (const std::string& p : platforms) {
+    r.measured.push_back(measure_platform_in_child(r.settings, p, scenes, paths, dir, progress));
+    const PlatformMeasurements& m = r.measured.back();
+    if (!m.error.empty()) {
+      std::fprintf(stderr, "renderaudit timing: %s failed: %s\n", p.c_str(), m.error.c_str());
+      result.findings = true;
+      r.analysed.emplace_back();
+      continue;
+    }
+    r.analysed.push_back(analyse_platform(r.settings, m));
+  }
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (progress) progress("writing outputs to " + dir);
+  write_timing_outputs(r, dir, figures);
+  result.summary = summary_of(r, dir);
+  return result;
+}
+
+}  // namespace ra::timing
