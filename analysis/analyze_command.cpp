@@ -14,7 +14,6 @@
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
 #include "analysis/view_equivalence.h"
-#include "app/commands.h"
 #include "runner/atomic_file.h"
 #include "runner/errors.h"
 
@@ -218,65 +217,3 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
 }
 
 }  // namespace ra::analysis
-
-namespace ra::app {
-
-void register_analyze_command(CLI::App& app, int& exit_code) {
-  struct Options {
-    std::string dir;
-    double alpha = 0.05;
-    std::vector<double> pitches;
-    std::string quantiles = "hf6";
-    unsigned jobs = 0;
-    std::size_t box_cox_subsample = 10000;
-    bool timings = false;
-  };
-  auto o = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand(
-      "analyze",
-      "The paper's section-4 analysis of a run directory, from its records alone: equivalence of "
-      "orientation views (t, F, Levene; raw and Box-Cox), Tables 2-11 as CSV, Markdown and LaTeX, "
-      "the cross-platform comparison, render time beside error, and figure data; writes "
-      "DIR/analysis/ and prints the tables.");
-  cmd->add_option("dir", o->dir, "run directory written by `renderaudit run`")->required();
-  cmd->add_option("--alpha", o->alpha, "significance level of the tests (default 0.05)");
-  cmd->add_option("--pixel-pitch-mm", o->pitches,
-                  "pixel pitch in mm for Table 11; a list for several displays, e.g. "
-                  "0.255,0.294,1.5 (default 0.255, the paper's LCD)")
-      ->delimiter(',');
-  cmd->add_option("--quantiles", o->quantiles,
-                  "quartile definition: hf6 (Hyndman-Fan 6, NIST e-Handbook / Dataplot; default) "
-                  "or hf7 (R and NumPy default)")
-      ->check(CLI::IsMember({"hf6", "hf7"}));
-  cmd->add_option("--jobs", o->jobs, "threads (default: the number of cores)");
-  cmd->add_option("--box-cox-subsample", o->box_cox_subsample,
-                  "Box-Cox lambda is chosen on at most this many order statistics of the pooled "
-                  "data (default 10000)");
-  cmd->add_flag("--timings", o->timings, "print the time each stage took");
-  cmd->callback([o, &exit_code] {
-    analysis::AnalyzeOptions options;
-    options.run_dir = o->dir;
-    options.alpha = o->alpha;
-    if (!o->pitches.empty()) options.pixel_pitches_mm = o->pitches;
-    options.quantiles = o->quantiles == "hf7" ? stats::QuantileDefinition::kHyndmanFan7
-                                              : stats::QuantileDefinition::kHyndmanFan6;
-    options.jobs = o->jobs;
-    options.box_cox_subsample = o->box_cox_subsample;
-    const analysis::AnalyzeResult r = analysis::analyze_run(options);
-    std::cout << r.summary;
-    if (o->timings) {
-      std::cout << "Timings (s):";
-      for (const auto& t : r.timings) {
-        char buf[64];
-        std::snprintf(buf, sizeof buf, " %s %.3f", t.stage.c_str(), t.seconds);
-        std::cout << buf;
-      }
-      std::cout << "\n";
-    }
-    std::cout << "Wrote " << r.files.size() << " files to " << r.out_dir
-              << " (README.md lists them; every table in report.md).\n";
-    exit_code = kExitOk;
-  });
-}
-
-}  // namespace ra::app

@@ -3,6 +3,9 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <string>
+
+#include "runner/study_dir.h"
 
 namespace ra::app {
 
@@ -21,5 +24,14 @@ void register_audit_command(CLI::App& app, int& exit_code);    // run vs baselin
 void register_history_command(CLI::App& app, int& exit_code);  // audit history + trend figures
 void register_show_command(CLI::App& app, int& exit_code);     // one primitive as a PNG
 void register_timing_command(CLI::App& app, int& exit_code);   // rendering-time study (timing/)
+
+// The studies (app/study_dispatch.cpp): each returns false when its argument is not a study (an
+// audit experiment or run folder), and otherwise does the study's stage and sets exit_code.
+bool run_study_if_declared(const StudyRunOptions& options, int& exit_code);
+bool analyze_study_if_present(const std::string& dir, int& exit_code);
+bool plot_study_if_present(const std::string& dir, int& exit_code);
+// Before `report` on a LOD or regulation folder: runs its analyze and plot stages when their
+// outputs are missing and `run_missing`. True when it ran something.
+bool prepare_study_report(const std::string& dir, bool run_missing);
 
 }  // namespace ra::app

@@ -15,11 +15,13 @@ void register_plot_command(CLI::App& app, int& exit_code) {
       "visibility classes, conformance with the reference rasterizer) as PNG and vector PDF,\n"
       "with the numbers drawn as CSV beside each, into DIR/figures/ (index.json lists them).\n"
       "Needs DIR/analysis/figures.json: run `renderaudit analyze DIR` first. Needs no display:\n"
-      "starts a private Xvfb when DISPLAY is unset.");
+      "starts a private Xvfb when DISPLAY is unset. For a study folder (study.json), the study's\n"
+      "figures.");
   static plots::PlotOptions options;
   cmd->add_option("dir", options.run_dir, "run directory")->required();
   cmd->add_flag("--progress", options.progress, "a line per figure on stderr");
   cmd->callback([&exit_code] {
+    if (plot_study_if_present(options.run_dir, exit_code)) return;
     const plots::PlotResult r = plots::plot_run(options);
     std::printf("%zu figures (PNG + PDF + CSV) in %s, %.1f s, display %s%s\n", r.figures.size(),
                 r.figures_dir.c_str(), r.seconds, r.display.c_str(),

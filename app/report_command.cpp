@@ -14,13 +14,15 @@ void register_report_command(CLI::App& app, int& exit_code) {
       "failures, time per primitive, conformance with the reference rasterizer, the view-\n"
       "equivalence tests, every table of DIR/analysis/ and every figure of DIR/figures/.\n"
       "Runs `renderaudit analyze DIR` and `renderaudit plot DIR` first when their output is\n"
-      "missing or older than the records (--no-run: stop and name them instead). Needs no display.");
+      "missing or older than the records (--no-run: stop and name them instead). Needs no display.\n"
+      "For a study folder (study.json: timing, LOD, regulation): its text, tables and figures.");
   static report::ReportOptions options;
   static bool no_run = false;
   cmd->add_option("dir", options.run_dir, "run directory")->required();
   cmd->add_flag("--no-run", no_run, "do not run missing stages; say which command to run");
   cmd->callback([&exit_code] {
     options.run_missing = !no_run;
+    prepare_study_report(options.run_dir, options.run_missing);
     const report::ReportResult r = report::write_report(options);
     std::printf("report: %d pages (%d text, %d figures), %zu tables, %.1f s\n", r.pages,
                 r.text_pages, r.figure_pages, r.table_titles.size(), r.seconds);

@@ -12,7 +12,9 @@ void register_run_command(CLI::App& app, int& exit_code) {
       "run",
       "Render and measure every case of an experiment in parallel shards.\n"
       "Results go to DIR (default outputs/<experiment name>): records/*.csv, manifest.json,\n"
-      "summary.md. Re-running the same command over DIR resumes: finished shards are kept.");
+      "summary.md. Re-running the same command over DIR resumes: finished shards are kept.\n"
+      "A file with a [timing], [lod] or [regulation] table runs that study instead (into DIR,\n"
+      "with its study.json; --jobs, --timeout and --expect-renderer do not apply to studies).");
   static RunOptions opt;
   static bool quiet = false;
   cmd->add_option("experiment", opt.experiment_path, "experiment file (TOML)")
@@ -32,6 +34,12 @@ void register_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet,-q", quiet, "no progress line");
   cmd->callback([&exit_code] {
     opt.progress = !quiet;
+    StudyRunOptions study;
+    study.experiment = opt.experiment_path;
+    study.out_dir = opt.out_dir;
+    study.platforms = opt.only_platforms;
+    study.progress = !quiet;
+    if (run_study_if_declared(study, exit_code)) return;
     const RunResult r = run_experiment(opt);
     std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
                 r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -26,6 +27,7 @@
 #include "runner/atomic_file.h"
 #include "runner/errors.h"
 #include "runner/manifest.h"
+#include "runner/study_dir.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -510,15 +512,14 @@ void assemble(Document& doc, const std::string& run_dir, const std::string& pdfu
   result.pages = result.text_pages + result.figure_pages;
 }
 
-// The report of a timing study (`renderaudit timing`): DIR/timing.md and DIR/figures/index.json.
-Document timing_document(const std::string& dir) {
+// The report of a study folder (runner/study_dir.h): its title and subtitle from study.json, its
+// markdown document, then its figures (DIR/figures/index.json).
+Document study_document(const std::string& dir, const StudyInfo& info) {
   Document d;
-  const std::string name = fs::path(dir).filename().string();
-  d.title = "renderaudit timing report: " + name;
-  d.footer = "renderaudit timing report: " + name + " (" + dir + ")";
-  d.subtitle = {"How long renderers take to draw a frame, and how well the heuristics of Wimmer & "
-                "Wonka (EGSR 2003) predict it, measured on this machine."};
-  for (Block& b : parse_markdown(read_file(dir + "/timing.md"))) d.blocks.push_back(std::move(b));
+  d.title = info.title;
+  d.footer = info.title + " (" + dir + ")";
+  if (!info.subtitle.empty()) d.subtitle = {info.subtitle};
+  for (Block& b : parse_markdown(read_file(dir + "/" + info.document))) d.blocks.push_back(std::move(b));
   if (!fs::exists(dir + "/figures/index.json")) return d;
   const plots::PlotResult figures = plots::read_figure_index(dir);
   Block heading_block;
@@ -529,6 +530,20 @@ Document timing_document(const std::string& dir) {
   d.blocks.push_back(heading_block);
   add_figures(figures, d);
   return d;
+}
+
+// A study folder's description; a timing folder written before study.json existed gets one.
+std::optional<StudyInfo> study_of(const std::string& dir) {
+  std::optional<StudyInfo> info = read_study_info(dir);
+  if (info || !fs::exists(fs::path(dir) / "timing.json") || fs::is_directory(fs::path(dir) / "records"))
+    return info;
+  StudyInfo t;
+  t.kind = StudyKind::kTiming;
+  t.name = fs::path(dir).filename().string();
+  t.title = "renderaudit timing report: " + t.name;
+  t.document = "timing.md";
+  t.analysed = true;
+  return t;
 }
 
 }  // namespace
@@ -561,20 +576,24 @@ ReportResult write_report(const ReportOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string& run_dir = options.run_dir;
   if (!fs::is_directory(run_dir)) throw UserError(run_dir + ": no such run directory");
-  const bool timing_study = fs::exists(fs::path(run_dir) / "timing.json") &&
-                            !fs::is_directory(fs::path(run_dir) / "records");
-  if (!timing_study && !fs::is_directory(fs::path(run_dir) / "records"))
-    throw UserError(run_dir + " is not a run directory (no records/): run `renderaudit run "
-                    "EXPERIMENT.toml --out " + run_dir + "` first");
+  const std::optional<StudyInfo> study = study_of(run_dir);
+  if (!study && !fs::is_directory(fs::path(run_dir) / "records"))
+    throw UserError(run_dir + " is not a run directory (no records/ and no study.json): run "
+                    "`renderaudit run EXPERIMENT.toml --out " + run_dir + "` first");
   const std::string pdfunite = plots::find_on_path("pdfunite");
   if (pdfunite.empty())
     throw UserError("pdfunite not found: install poppler-utils (apt-get install poppler-utils)");
 
   ReportResult result;
-  if (timing_study) {
-    if (!fs::exists(fs::path(run_dir) / "timing.md"))
-      throw UserError(run_dir + "/timing.md is missing: run `renderaudit timing` again");
-    Document doc = timing_document(run_dir);
+  if (study) {
+    if (!study->analysed || study->document.empty() || !fs::exists(fs::path(run_dir) / study->document))
+      throw UserError(run_dir + " has not been analysed yet: run `renderaudit analyze " + run_dir +
+                      "` and `renderaudit plot " + run_dir + "` first");
+    // (a timing study run with --no-figures has none, and says so in its text)
+    if (study->kind != StudyKind::kTiming && !fs::exists(fs::path(run_dir) / "figures" / "index.json"))
+      throw UserError(run_dir + "/figures/index.json is missing: run `renderaudit plot " + run_dir +
+                      "` first");
+    Document doc = study_document(run_dir, *study);
     assemble(doc, run_dir, pdfunite, result);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
