@@ -1,0 +1,32 @@
+// The terrain level-of-detail study (issue 9, seed 003): `renderaudit run / analyze / report` of an
+// experiment file with a top-level [lod] table (lod_experiment.h).
+//
+// run: builds the height field and its nested hierarchy, flies the camera path, and for every
+// frame and tau refines the LOD (the experiment's lambda, drawn and timed, and each check_lambda,
+// only refined and checked), checks conformity, seams and the measured screen error, draws the
+// LOD and the full-resolution mesh `repetitions` times each and compares their images. Writes
+//   DIR/frames.csv        one row per (lambda, tau, frame) (columns in lod_study.cpp)
+//   DIR/lod_summary.json  settings, terrain, renderer, lambdas, the checks' verdicts
+//   DIR/study.json        last (kind "lod", analysed false)
+// analyze: DIR/lod_table.csv (per lambda and tau), DIR/lod.md, study.json (document "lod.md").
+// plot: DIR/figures/ (speed against image error, triangles and measured screen error against tau).
+#pragma once
+
+#include <string>
+
+#include "runner/study_dir.h"
+
+namespace ra::lod {
+
+// Measures; findings = true when a check of the experiment's own lambda failed on some frame
+// (a mesh not conforming, a seam used differently from its two sides, or a measured screen error
+// above tau). Throws UserError for a bad experiment or height file.
+StudyRunResult run_lod_study(const StudyRunOptions& options);
+
+// Throws UserError when `dir` is not a complete LOD run.
+void analyze_lod_study(const std::string& dir);
+
+// Needs analyze_lod_study's lod_table.csv; throws UserError when it is missing.
+void plot_lod_study(const std::string& dir);
+
+}  // namespace ra::lod
