@@ -3,7 +3,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "runner/errors.h"
@@ -100,11 +99,7 @@ void validate_platform(const std::string& name) {
 }
 
 RegulationSettings read_regulation_experiment(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UserError(path + ": cannot read the experiment file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_regulation_experiment(text.str(), path);
+  return parse_regulation_experiment(TomlLocator::read_text(path), path);
 }
 
 RegulationSettings parse_regulation_experiment(const std::string& text, const std::string& path) {
@@ -113,16 +108,7 @@ RegulationSettings parse_regulation_experiment(const std::string& text, const st
   loc.reject_unknown_keys(root, "", {"name", "regulation", "scene"});
   RegulationSettings s;
   s.file = path;
-  const std::string stem = path.substr(path.find_last_of('/') + 1);
-  s.name = stem.substr(0, stem.rfind(".toml"));
-  if (const auto* n = root.get("name")) {
-    const auto* str = n->as_string();
-    if (!str || str->get().empty() ||
-        str->get().find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") !=
-            std::string::npos)
-      loc.fail(n, "'name' must be a non-empty string of letters, digits, '_', '.', '-'");
-    s.name = str->get();
-  }
+  s.name = loc.experiment_name(root);
   const toml::node* reg = root.get("regulation");
   if (!reg || !reg->is_table()) loc.fail(reg, "the file needs a [regulation] table");
   const toml::table& t = *reg->as_table();

@@ -1,7 +1,6 @@
 #include "runner/experiment.h"
 
 #include <cmath>
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -161,16 +160,7 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
   loc.reject_unknown_keys(root, "",
                           {"name", "seed", "platforms", "views", "primitives", "run", "faults"});
 
-  const std::string stem = path.substr(path.find_last_of('/') + 1);
-  exp.name = stem.substr(0, stem.rfind(".toml"));
-  if (const toml::node* n = root.get("name")) {
-    const auto* s = n->as_string();
-    if (!s || s->get().empty() ||
-        s->get().find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") !=
-            std::string::npos)
-      loc.fail(n, "'name' must be a non-empty string of letters, digits, '_', '-', '.'");
-    exp.name = s->get();
-  }
+  exp.name = loc.experiment_name(root);
 
   const toml::node* seed = root.get("seed");
   if (!seed) loc.fail(nullptr, "missing key 'seed' (a non-negative integer)");
@@ -249,11 +239,7 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
 }
 
 Experiment load_experiment(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path + ": cannot read the experiment file");
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return parse_experiment(buf.str(), path);
+  return parse_experiment(TomlLocator::read_text(path), path);
 }
 
 }  // namespace ra

@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "runner/atomic_file.h"
 #include "runner/errors.h"
@@ -23,12 +22,8 @@ const char* study_kind_name(StudyKind kind) {
 }
 
 StudyKind experiment_study_kind(const std::string& experiment_path) {
-  std::ifstream in(experiment_path);
-  if (!in) throw UserError(experiment_path + ": cannot read the experiment file");
-  std::stringstream text;
-  text << in.rdbuf();
   const TomlLocator loc(experiment_path);
-  const toml::table root = loc.parse(text.str());
+  const toml::table root = loc.parse(TomlLocator::read_text(experiment_path));
   StudyKind kind = StudyKind::kAudit;
   const toml::node* first = nullptr;
   for (const auto& [key, k] : {std::pair<const char*, StudyKind>{"timing", StudyKind::kTiming},

@@ -1,5 +1,6 @@
 #include "runner/toml_locator.h"
 
+#include <fstream>
 #include <sstream>
 
 #include "runner/errors.h"
@@ -38,6 +39,28 @@ toml::table TomlLocator::parse(const std::string& text) const {
   } catch (const toml::parse_error& e) {
     fail_at(e.source().begin, std::string(e.description()));
   }
+}
+
+std::string TomlLocator::read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UserError(path + ": cannot read the experiment file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string TomlLocator::experiment_name(const toml::table& root) const {
+  const toml::node* n = root.get("name");
+  if (!n) {
+    const std::string stem = path_.substr(path_.find_last_of('/') + 1);
+    return stem.substr(0, stem.rfind(".toml"));
+  }
+  const auto* s = n->as_string();
+  if (!s || s->get().empty() ||
+      s->get().find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") !=
+          std::string::npos)
+    fail(n, "'name' must be a non-empty string of letters, digits, '_', '.', '-'");
+  return s->get();
 }
 
 double TomlLocator::number(const toml::node& node, const std::string& key) const {

@@ -23,8 +23,13 @@ class TomlLocator {
   void reject_unknown_keys(const toml::table& table, const std::string& where,
                            const std::set<std::string>& allowed) const;
 
+  // The whole text of the file at `path`; UserError "PATH: cannot read the experiment file".
+  static std::string read_text(const std::string& path);
   // The TOML text of this file; a syntax error becomes "file:line:column: description".
   toml::table parse(const std::string& text) const;
+  // An experiment's name: the top-level `name` when present (a non-empty string of letters,
+  // digits, '_', '.', '-': it names output folders), otherwise the file's stem.
+  std::string experiment_name(const toml::table& root) const;
 
   // An integer or floating-point value, as a double.
   double number(const toml::node& node, const std::string& key) const;

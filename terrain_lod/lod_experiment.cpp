@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "runner/errors.h"
@@ -70,11 +69,7 @@ LodSettings::LodSettings() {
 }
 
 LodSettings read_lod_experiment(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UserError(path + ": cannot read the experiment file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_lod_experiment(text.str(), path);
+  return parse_lod_experiment(TomlLocator::read_text(path), path);
 }
 
 LodSettings parse_lod_experiment(const std::string& text, const std::string& path) {
@@ -83,14 +78,7 @@ LodSettings parse_lod_experiment(const std::string& text, const std::string& pat
   loc.reject_unknown_keys(root, "", {"name", "title", "lod"});
   LodSettings s;
   s.file = path;
-  const std::string stem = path.substr(path.find_last_of('/') + 1);
-  s.name = stem.substr(0, stem.rfind(".toml"));
-  if (const auto* n = root.get("name")) {
-    const std::string v = string_of(loc, *n, "name", {});
-    if (v.empty() || v.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") != std::string::npos)
-      loc.fail(n, "'name' must be a non-empty string of letters, digits, '_', '.', '-'");
-    s.name = v;
-  }
+  s.name = loc.experiment_name(root);
   if (const auto* n = root.get("title")) s.title = string_of(loc, *n, "title", {});
   const toml::node* lod_node = root.get("lod");
   if (!lod_node || !lod_node->is_table()) loc.fail(lod_node, "'lod' must be a table");

@@ -2,7 +2,6 @@
 #include "timing/timing_experiment.h"
 
 #include <cmath>
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -68,11 +67,7 @@ const WorkSettings& TimingSettings::work_for(const std::string& platform) const 
 }
 
 TimingSettings read_timing_experiment(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UserError(path + ": cannot read the experiment file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_timing_experiment(text.str(), path);
+  return parse_timing_experiment(TomlLocator::read_text(path), path);
 }
 
 TimingSettings parse_timing_experiment(const std::string& text, const std::string& path) {
@@ -82,16 +77,7 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
 
   TimingSettings s;
   s.file = path;
-  const std::string stem = path.substr(path.find_last_of('/') + 1);
-  s.name = stem.substr(0, stem.rfind(".toml"));
-  if (const auto* n = root.get("name")) {
-    const auto* str = n->as_string();
-    if (!str || str->get().empty() ||
-        str->get().find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") !=
-            std::string::npos)
-      loc.fail(n, "'name' must be a non-empty string of letters, digits, '_', '.', '-'");
-    s.name = str->get();
-  }
+  s.name = loc.experiment_name(root);
 
   const toml::node* timing_node = root.get("timing");
   if (timing_node && !timing_node->is_table()) loc.fail(timing_node, "'timing' must be a table");
