@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -13,6 +12,7 @@
 #include <sstream>
 
 #include "analysis/descriptive.h"
+#include "analysis/table_writer.h"
 #include "plots/figure.h"
 #include "plots/figure_set.h"
 #include "regulation/attention.h"
@@ -23,6 +23,7 @@
 #include "regulation/regulation_experiment.h"
 #include "runner/atomic_file.h"
 #include "runner/errors.h"
+#include "runner/manifest.h"
 
 namespace ra::regulation {
 namespace {
@@ -48,13 +49,6 @@ std::string fmt(const json& v, const char* f = "%.4g") {
   return b;
 }
 
-std::string csv_cell(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
 // Quantiles of the finite values (HF6); nulls when there are none.
 json quantiles(std::vector<double> v) {
   v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
@@ -67,13 +61,6 @@ json quantiles(std::vector<double> v) {
           {"q99", stats::quantile_sorted(v, 0.99)},
           {"max", v.back()},
           {"mean", stats::mean(v)}};
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char b[32];
-  std::strftime(b, sizeof b, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return b;
 }
 
 const char* kTitle = "Decision-theoretic regulation of levels of detail";
@@ -108,7 +95,7 @@ StudyRunResult run_regulation_study(const StudyRunOptions& options) {
 
   json j;
   j["schema"] = 1;
-  j["created_utc"] = utc_now();
+  j["created_utc"] = utc_now_iso8601();
   j["experiment"] = {{"file", s.file}, {"name", s.name}};
   std::vector<std::string> findings;
 
@@ -182,7 +169,7 @@ StudyRunResult run_regulation_study(const StudyRunOptions& options) {
     for (std::size_t i = 0; i < chains.size(); ++i)
       for (std::size_t k = 0; k < chains[i].levels.size(); ++k) {
         const LodLevel& l = chains[i].levels[k];
-        o << i << ',' << csv_cell(chains[i].name) << ',' << category_name(tags[i]) << ','
+        o << i << ',' << analysis::csv_escape(chains[i].name) << ',' << category_name(tags[i]) << ','
           << num(weights[i]) << ',' << k << ',' << num(l.target_ratio) << ',' << l.triangles << ','
           << l.vertices << ',' << l.transformed << ',' << num(l.error_m) << ','
           << num(l.simplifier_error_m) << '\n';
@@ -264,7 +251,7 @@ StudyRunResult run_regulation_study(const StudyRunOptions& options) {
       std::vector<double> ratio;  // measured level 0 / estimated, objects seen whole and far
       for (const PixelSample& p : ro.pixels) {
         for (std::size_t k = 0; k < p.measured.size(); ++k)
-          px << p.frame << ',' << p.object << ',' << csv_cell(chains[p.object].name) << ','
+          px << p.frame << ',' << p.object << ',' << analysis::csv_escape(chains[p.object].name) << ','
              << num(p.distance_m) << ',' << num(p.radius_m) << ',' << num(p.estimated) << ',' << k << ','
              << num(p.measured[k]) << '\n';
         if (p.estimated > 0 && !p.measured.empty()) ratio.push_back(p.measured[0] / p.estimated);

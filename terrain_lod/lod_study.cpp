@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -18,6 +17,7 @@
 #include "plots/figure_set.h"
 #include "runner/atomic_file.h"
 #include "runner/errors.h"
+#include "runner/manifest.h"
 #include "scenes/camera_path.h"
 #include "terrain_lod/lod_checks.h"
 #include "terrain_lod/lod_experiment.h"
@@ -75,13 +75,6 @@ std::vector<std::string> split(const std::string& line, char sep) {
 }
 
 double cell_number(const std::string& s) { return s.empty() ? std::nan("") : std::stod(s); }
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char b[32];
-  std::strftime(b, sizeof b, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return b;
-}
 
 // One (lambda, tau) row of lod_table.csv.
 struct TableRow {
@@ -247,7 +240,7 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
     lj[lambda_kind_name(k)] = lambda_for(k, s.camera);
   json summary = {
       {"schema", 1},
-      {"created_utc", utc_now()},
+      {"created_utc", utc_now_iso8601()},
       {"experiment", {{"file", s.file}, {"name", s.name}}},
       {"platform", s.platform},
       {"gl_renderer", renderer.gl_renderer()},
