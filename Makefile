@@ -48,8 +48,8 @@ nightly: build
 	BUILD=$(BUILD) JOBS=$(JOBS) scripts/nightly.sh
 
 # The rendering-time study (Wimmer & Wonka 2003): experiments/timing.toml -> outputs/timing/
-# (timing.json, timing.md, CSV files, figures) and its report. About 35 minutes on 2 cores (llvmpipe
-# 7, softpipe 26); run it on an idle machine.
+# (timing.json, timing.md, CSV files, figures) and its report. About 28 minutes on an idle 2-core
+# machine (llvmpipe 7, softpipe 22); work running beside it inflates softpipe's c.
 timing: build
 	$(BUILD)/renderaudit timing experiments/timing.toml --out outputs/timing
 	$(BUILD)/renderaudit report outputs/timing
