@@ -1,9 +1,6 @@
 // Plans along a camera path and their rendering (plan_rendering.h).
 #include "regulation/plan_rendering.h"
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -15,6 +12,7 @@
 #include <stdexcept>
 
 #include "runner/atomic_file.h"
+#include "runner/gl_child_process.h"
 #include "timing/scene_renderer.h"
 #include "timing/time_heuristics.h"
 #include "timing/timing_geometry.h"
@@ -176,16 +174,10 @@ RenderOutcome plan_and_render(const Scene& scene, const std::vector<LodChain>& c
     for (std::size_t k = 0; k < c.levels.size(); ++k)
       lod.objects.push_back({c.name + " L" + std::to_string(k), c.levels[k].mesh, c.bounds});
 
-  const std::string result = scratch_dir + "/.regulation-render.json";
-  std::filesystem::remove(result);
-  std::fflush(stdout);
-  std::fflush(stderr);
-  const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid == 0) {
-    int code = 0;
-    nlohmann::json j;
-    try {
+  nlohmann::json measured;
+  try {
+    measured = run_in_child(scratch_dir, "regulation-render", [&] {
+      nlohmann::json j;
       timing::SceneRenderer r(s.platform, s.camera, /*gpu_timer=*/false);
       r.upload(lod);
       std::vector<int> all(lod.objects.size());
@@ -232,37 +224,22 @@ RenderOutcome plan_and_render(const Scene& scene, const std::vector<LodChain>& c
       j["base_reps_us"] = base;
       j["records"] = nlohmann::json::array();
       for (const FrameRecord& fr : recs) j["records"].push_back(record_json(fr));
-    } catch (const std::exception& e) {
-      j = {{"error", e.what()}};
-      code = 3;
-    }
+      return j;
+    });
+  } catch (const ChildProcessError& e) {
+    out.error = e.what();
+  }
+  if (out.error.empty()) {
     try {
-      write_file_atomic(result, j.dump());
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "regulation: %s\n", e.what());
-      code = 4;
-    }
-    std::fflush(stderr);
-    ::_exit(code);
-  }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  try {
-    const nlohmann::json j = nlohmann::json::parse(read_file(result));
-    std::filesystem::remove(result);
-    if (j.contains("error")) {
-      out.error = j["error"].get<std::string>();
-    } else {
-      out.renderer = j.value("renderer", "");
-      out.version = j.value("version", "");
-      out.base_us = j["base_us"].get<double>();
-      out.base_reps_us = j["base_reps_us"].get<std::vector<double>>();
+      out.renderer = measured.value("renderer", "");
+      out.version = measured.value("version", "");
+      out.base_us = measured["base_us"].get<double>();
+      out.base_reps_us = measured["base_reps_us"].get<std::vector<double>>();
       // the planning is deterministic: redo it here with the child's base and pixels, attach
       // the times
       std::vector<FramePixels> pixels;
-      if (j.contains("pixels")) {
-        pixels = j["pixels"].get<std::vector<FramePixels>>();
+      if (measured.contains("pixels")) {
+        pixels = measured["pixels"].get<std::vector<FramePixels>>();
         out.pixels_measured = true;
         const std::vector<int> frames = frames_of(path, s.frame_stride);
         if (pixels.size() != frames.size()) throw std::runtime_error("pixel frame count differs");
@@ -286,7 +263,7 @@ RenderOutcome plan_and_render(const Scene& scene, const std::vector<LodChain>& c
       }
       out.records = plan_all(chains, weights, path, s, out.base_us, level_offset,
                              out.pixels_measured ? &pixels : nullptr);
-      const auto& rs = j["records"];
+      const auto& rs = measured["records"];
       if (rs.size() != out.records.size()) throw std::runtime_error("record count differs");
       for (std::size_t i = 0; i < out.records.size(); ++i) {
         FrameRecord& fr = out.records[i];
@@ -294,13 +271,9 @@ RenderOutcome plan_and_render(const Scene& scene, const std::vector<LodChain>& c
         fr.measured_median_us = timing::median_of(fr.measured_us);
         fr.skipped = fr.measured_median_us > fr.budget_ms * 1000.0;
       }
+    } catch (const std::exception& e) {
+      out.error = std::string("the measuring process's result is unreadable (") + e.what() + ")";
     }
-  } catch (const std::exception& e) {
-    out.error = "the measuring process ";
-    if (WIFSIGNALED(status))
-      out.error += "died of signal " + std::to_string(WTERMSIG(status));
-    else
-      out.error += "exited with status " + std::to_string(WEXITSTATUS(status)) + " without a result (" + e.what() + ")";
   }
   if (!out.error.empty()) {
     out.pixels_measured = false;

@@ -17,6 +17,7 @@
 #include "plots/figure_set.h"
 #include "runner/atomic_file.h"
 #include "runner/errors.h"
+#include "runner/gl_child_process.h"
 #include "runner/manifest.h"
 #include "scenes/camera_path.h"
 #include "terrain_lod/lod_checks.h"
@@ -130,6 +131,44 @@ std::vector<TableRow> read_table(const std::string& dir) {
   return rows;
 }
 
+// The GL part of the run, in a child process (Mesa picks its driver once per process;
+// gl_child_process.h): per frame of the path, the full-resolution mesh drawn `repetitions` times,
+// then per tau the experiment's own lambda's mesh (refined here as the parent refines it) drawn
+// `repetitions` times and its last image compared with the full mesh's. Returns
+//   {"gl_renderer", "gl_version",
+//    "frames": [{"full_us": [..], "lod": [per tau {"triangles", "us": [..], "image_mean_abs",
+//                                                  "image_differing"}]}]}
+json draw_frames(const LodSettings& s, const HeightField& field, const TerrainHierarchy& hierarchy,
+                 const std::vector<Viewpoint>& path, const LodMesh& full, bool progress) {
+  LodRenderer renderer(s.platform, s.camera, field);
+  json frames = json::array();
+  for (size_t fi = 0; fi < path.size(); ++fi) {
+    const Viewpoint& vp = path[fi];
+    renderer.set_viewpoint(vp);
+    renderer.upload(full);
+    std::vector<double> full_us;
+    for (int r = 0; r < s.repetitions; ++r) full_us.push_back(renderer.draw());
+    const std::vector<uint8_t> full_image = renderer.image();
+    json lod = json::array();
+    for (double tau : s.tau) {
+      const LodMesh mesh = refine(hierarchy, make_metric(s.lambda, s.camera, tau, vp.eye));
+      renderer.upload(mesh);
+      std::vector<double> us;
+      for (int r = 0; r < s.repetitions; ++r) us.push_back(renderer.draw());
+      const ImageDifference d = image_difference(renderer.image(), full_image);
+      lod.push_back({{"triangles", mesh.triangle_count()},
+                     {"us", us},
+                     {"image_mean_abs", d.mean_abs},
+                     {"image_differing", d.differing}});
+    }
+    frames.push_back({{"full_us", full_us}, {"lod", std::move(lod)}});
+    if (progress && (fi % 10 == 0 || fi + 1 == path.size()))
+      std::cerr << "lod: drawn frame " << fi + 1 << "/" << path.size() << "\n";
+  }
+  return {{"gl_renderer", renderer.gl_renderer()}, {"gl_version", renderer.gl_version()},
+          {"frames", std::move(frames)}};
+}
+
 }  // namespace
 
 StudyRunResult run_lod_study(const StudyRunOptions& options) {
@@ -173,8 +212,19 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
   pp.look_ahead = s.look_ahead;
   const std::vector<Viewpoint> path = generate_camera_path(layout_scene(field), pp);
 
-  LodRenderer renderer(s.platform, s.camera, field);
   const LodMesh full = full_resolution(hierarchy);
+  json drawn;
+  try {
+    drawn = run_in_child(result.dir, "lod-render",
+                         [&] { return draw_frames(s, field, hierarchy, path, full, options.progress); });
+  } catch (const ChildProcessError& e) {
+    if (e.user_error()) throw UserError(e.what());
+    throw std::runtime_error(std::string("lod: ") + e.what());
+  }
+  const json& drawn_frames = drawn.at("frames");
+  if (drawn_frames.size() != path.size())
+    throw std::runtime_error("lod: the measuring process drew " + std::to_string(drawn_frames.size()) +
+                             " frames, not " + std::to_string(path.size()));
   std::vector<LambdaKind> lambdas = {s.lambda};
   lambdas.insert(lambdas.end(), s.check_lambdas.begin(), s.check_lambdas.end());
 
@@ -185,14 +235,11 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
   std::string first_failure;
   for (size_t fi = 0; fi < path.size(); ++fi) {
     const Viewpoint& vp = path[fi];
-    renderer.set_viewpoint(vp);
-    renderer.upload(full);
-    std::vector<double> full_us;
-    for (int r = 0; r < s.repetitions; ++r) full_us.push_back(renderer.draw());
-    const std::vector<uint8_t> full_image = renderer.image();
-    const double full_median = median_of(full_us);
+    const json& drawn_frame = drawn_frames.at(fi);
+    const double full_median = median_of(drawn_frame.at("full_us").get<std::vector<double>>());
     for (LambdaKind kind : lambdas)
-      for (double tau : s.tau) {
+      for (size_t ti = 0; ti < s.tau.size(); ++ti) {
+        const double tau = s.tau[ti];
         const LodMesh mesh = refine(hierarchy, make_metric(kind, s.camera, tau, vp.eye));
         const ConformityResult conf = check_conformity(all_triangles(mesh), field.nx, field.ny);
         const SeamResult seams = check_seams(mesh, hierarchy);
@@ -211,17 +258,16 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
         }
         double med = std::nan(""), mean_abs = std::nan(""), differing = std::nan("");
         std::string reps;
-        if (kind == s.lambda) {
-          renderer.upload(mesh);
-          std::vector<double> us;
-          for (int r = 0; r < s.repetitions; ++r) {
-            us.push_back(renderer.draw());
-            reps += (r ? ";" : "") + fmt(us.back(), "%.1f");
-          }
+        if (kind == s.lambda) {  // drawn by draw_frames
+          const json& drawn_lod = drawn_frame.at("lod").at(ti);
+          if (drawn_lod.at("triangles").get<size_t>() != mesh.triangle_count())
+            throw std::runtime_error("lod: frame " + std::to_string(fi) + ", tau " + fmt(tau, "%g") +
+                                     ": the measuring process drew another mesh");
+          const std::vector<double> us = drawn_lod.at("us").get<std::vector<double>>();
+          for (size_t r = 0; r < us.size(); ++r) reps += (r ? ";" : "") + fmt(us[r], "%.1f");
           med = median_of(us);
-          const ImageDifference d = image_difference(renderer.image(), full_image);
-          mean_abs = d.mean_abs;
-          differing = d.differing;
+          mean_abs = drawn_lod.at("image_mean_abs").get<double>();
+          differing = drawn_lod.at("image_differing").get<double>();
         }
         csv << lambda_kind_name(kind) << ',' << fmt(tau) << ',' << fi << ',' << mesh.triangle_count() << ','
             << mesh.vertex_count() << ',' << mesh.strip_index_count() << ',' << int(conf.conforming) << ','
@@ -243,8 +289,8 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
       {"created_utc", utc_now_iso8601()},
       {"experiment", {{"file", s.file}, {"name", s.name}}},
       {"platform", s.platform},
-      {"gl_renderer", renderer.gl_renderer()},
-      {"gl_version", renderer.gl_version()},
+      {"gl_renderer", drawn.at("gl_renderer")},
+      {"gl_version", drawn.at("gl_version")},
       {"window", {s.camera.width, s.camera.height}},
       {"fov_y_deg", s.camera.fov_y_deg},
       {"near", s.camera.near},

@@ -1,9 +1,6 @@
 // The rendering-time study (timing_study.h; Wimmer & Wonka 2003, sections 4.2, 5.2, 5.3, 7.2).
 #include "timing/timing_study.h"
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -18,6 +15,7 @@
 #include "runner/atomic_file.h"
 #include "runner/counter_rng.h"
 #include "runner/errors.h"
+#include "runner/gl_child_process.h"
 #include "scenes/scene_statistics.h"
 #include "scenes/vertex_cache.h"
 
@@ -275,52 +273,25 @@ PlatformMeasurements measure_platform_in_child(const TimingSettings& settings,
                                                const std::vector<std::vector<Viewpoint>>& paths,
                                                const std::string& scratch_dir,
                                                const Progress& progress) {
-  const std::string result = scratch_dir + "/.timing-" + platform + ".json";
-  std::filesystem::remove(result);
-  std::fflush(stdout);
-  std::fflush(stderr);
-  const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("fork failed for platform " + platform);
-  if (pid == 0) {
-    int code = 0;
+  auto failed = [&](const std::string& error) {
     PlatformMeasurements m;
-    try {
-      m = measure_platform(settings, platform, scenes, paths, progress);
-    } catch (const std::exception& e) {
-      m = PlatformMeasurements{};
-      m.renderer.platform = platform;
-      m.error = e.what();
-      code = 3;
-    }
-    try {
-      write_file_atomic(result, to_json(m).dump());
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "renderaudit timing: %s\n", e.what());
-      code = 4;
-    }
-    std::fflush(stderr);
-    ::_exit(code);
-  }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  PlatformMeasurements m;
-  std::string text;
-  try {
-    text = read_file(result);
-    m = platform_measurements_from_json(nlohmann::json::parse(text));
-    std::filesystem::remove(result);
-  } catch (const std::exception& e) {
-    m = PlatformMeasurements{};
     m.renderer.platform = platform;
-    m.error = "the measuring process ";
-    if (WIFSIGNALED(status))
-      m.error += "died of signal " + std::to_string(WTERMSIG(status));
-    else
-      m.error += "exited with status " + std::to_string(WEXITSTATUS(status)) +
-                 " without a result (" + e.what() + ")";
+    m.error = error;
+    return m;
+  };
+  nlohmann::json j;
+  try {
+    j = run_in_child(scratch_dir, "timing-" + platform, [&] {
+      return to_json(measure_platform(settings, platform, scenes, paths, progress));
+    });
+  } catch (const ChildProcessError& e) {
+    return failed(e.what());
   }
-  return m;
+  try {
+    return platform_measurements_from_json(j);
+  } catch (const std::exception& e) {
+    return failed(std::string("the measuring process's result is unreadable (") + e.what() + ")");
+  }
 }
 
 // ---- JSON of the measurements (child -> parent; samples and renderer: the macros above) ----
