@@ -96,7 +96,8 @@ LodRenderer::LodRenderer(const std::string& platform, const timing::CameraSettin
       m.context = nullptr;
       throw std::runtime_error("platform " + platform + " expects the Mesa driver '" + spec->gallium_driver +
                                "', but the OSMesa context draws with GL_RENDERER '" + renderer +
-                               "' (this process already chose another driver: run the LOD study in its own process)");
+                               "' (Mesa chose another driver before: the study's drawing process, a forked child, "
+                               "inherits the driver of a GL context its parent made)");
     }
   }
   load(m.gen_buffers, "glGenBuffers");
