@@ -1,6 +1,8 @@
 # renderaudit: the two commands a new user needs are `make` and `make test` (see README.md).
 BUILD ?= build
 JOBS ?= $(shell nproc)
+# Release: -O2, no debug information (a third less compile time than RelWithDebInfo).
+BUILD_TYPE ?= Release
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
@@ -14,7 +16,7 @@ deps:
 	@scripts/install-deps.sh
 
 $(BUILD)/CMakeCache.txt: | deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
 
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
@@ -35,10 +37,12 @@ report: plot
 
 # The whole test suite (CTest). CI runs exactly this.
 test: build
+	cmake --build $(BUILD) -j $(JOBS) --target test_programs
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # Benchmarks: side-by-side medians, printed as tables and written as JSON under outputs/bench/.
 bench: build
+	cmake --build $(BUILD) -j $(JOBS) --target benchmarks
 	$(BUILD)/readback_bench --primitives 300 --rounds 3 --json outputs/bench/readback.json
 	$(BUILD)/analysis_bench --records 2400000 --platforms 2
 

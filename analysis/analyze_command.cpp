@@ -14,8 +14,8 @@
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
 #include "analysis/view_equivalence.h"
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
 
 namespace fs = std::filesystem;
 

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/descriptive.h"
+#include "stats/descriptive.h"
 
 namespace ra::analysis {
 

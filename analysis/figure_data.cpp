@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "analysis/distribution_plots.h"
+#include "stats/distribution_plots.h"
 #include "analysis/view_equivalence.h"
 
 namespace ra::analysis {

@@ -1,7 +1,7 @@
 // The numbers behind the paper's figures, written as DIR/analysis/figures.json for the plots stage
 // (which draws them; nothing is drawn here). Box plots (Figs. 6, 8, 10, 12), quantile-quantile
 // plots (Fig. 4) and relative bihistograms (Figs. 5, 7, 9, 11, 13) come from
-// analysis/distribution_plots.h; NIST e-Handbook 1.3.3.7, 1.3.3.24, 1.3.3.2.
+// stats/distribution_plots.h; NIST e-Handbook 1.3.3.7, 1.3.3.24, 1.3.3.2.
 //
 // figures.json, schema "renderaudit-figures", schema_version 1:
 // {
@@ -69,7 +69,7 @@
 #include <cstddef>
 #include <nlohmann/json.hpp>
 
-#include "analysis/descriptive.h"
+#include "stats/descriptive.h"
 #include "analysis/run_records.h"
 
 namespace ra::analysis {

@@ -33,9 +33,9 @@
 #include <tuple>
 #include <vector>
 
-#include "analysis/descriptive.h"
+#include "stats/descriptive.h"
 #include "analysis/run_records.h"
-#include "analysis/table_writer.h"
+#include "stats/table_writer.h"
 #include "analysis/view_equivalence.h"
 
 namespace ra::analysis {

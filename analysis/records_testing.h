@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "analysis/stats_testing.h"
-#include "runner/records.h"
+#include "stats/stats_testing.h"
+#include "metrics/records.h"
 
 namespace ra::analysis::testing {
 

@@ -3,7 +3,7 @@
 // Speed: ra::read_records builds a Record per row with std::getline, substr and std::stod (about a
 // microsecond per field); the analysis needs 14 of the 33 columns, so this reader splits each line
 // into string views in place and converts only those with std::from_chars, reading files in blocks
-// of 4 MiB on several threads. The schema still comes from runner/records.h (records_header()).
+// of 4 MiB on several threads. The schema still comes from metrics/records.h (records_header()).
 #include "analysis/run_records.h"
 
 #include <algorithm>
@@ -19,9 +19,9 @@
 #include <thread>
 #include <tuple>
 
-#include "runner/errors.h"
-#include "runner/records.h"
-#include "runner/view.h"
+#include "util/errors.h"
+#include "metrics/records.h"
+#include "geometry/view.h"
 
 namespace fs = std::filesystem;
 
@@ -280,7 +280,7 @@ Layout make_layout() {
   const auto at = [&](std::string_view name) {
     const auto it = std::find(l.names.begin(), l.names.end(), name);
     if (it == l.names.end()) {
-      throw std::logic_error("runner/records.h has no column '" + std::string(name) +
+      throw std::logic_error("metrics/records.h has no column '" + std::string(name) +
                              "': the analysis stage must follow the schema change");
     }
     return static_cast<std::size_t>(it - l.names.begin());

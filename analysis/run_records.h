@@ -1,11 +1,11 @@
-// The records of a run directory (DIR/records/*.csv, schema in README.md and runner/records.h),
+// The records of a run directory (DIR/records/*.csv, schema in README.md and metrics/records.h),
 // loaded as the samples the analysis stage needs and nothing more: per platform, kind and view the
 // visibility-class counts, the values of each error metric over the true-visible cases with status
 // `ok` (float64, in record units), and the render times. Views that differ only by camera
 // orientation (the same `view_group`) are gathered into view groups A, B, C, ... (paper, section 4:
 // "View A is the aggregate of views 1 and 2").
 //
-// Reading: the columns are located by name in records_header() (runner/records.h stays the single
+// Reading: the columns are located by name in records_header() (metrics/records.h stays the single
 // definition of the schema) and every file's header must equal it. The files are parsed in parallel
 // with std::from_chars (locale-independent, exact); only the columns used here are converted, and
 // each of those is validated: a malformed record is a ra::UserError "FILE:LINE: what is wrong".
@@ -28,7 +28,7 @@
 #include <string_view>
 #include <vector>
 
-#include "analysis/descriptive.h"
+#include "stats/descriptive.h"
 
 namespace ra::analysis {
 

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "analysis/records_testing.h"
-#include "runner/errors.h"
+#include "util/errors.h"
 #include "tests/cli_harness.h"
 
 namespace ra::analysis {

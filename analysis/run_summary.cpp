@@ -8,9 +8,9 @@
 #include <tuple>
 #include <vector>
 
-#include "analysis/descriptive.h"
-#include "runner/atomic_file.h"
-#include "runner/records.h"
+#include "stats/descriptive.h"
+#include "util/atomic_file.h"
+#include "metrics/records.h"
 
 namespace fs = std::filesystem;
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "analysis/box_cox.h"
-#include "analysis/hypothesis_tests.h"
+#include "stats/box_cox.h"
+#include "stats/hypothesis_tests.h"
 
 namespace ra::analysis {
 namespace {

@@ -8,9 +8,9 @@
 // The battery (compare_samples), for k samples:
 // - k = 2: pooled t test (location), Welch t test, F test of variances, Levene with median centre
 //   (Brown-Forsythe) and with mean centre; k > 2: one-way ANOVA (location) and the two Levene
-//   tests. NIST e-Handbook 1.3.5.3, 1.3.5.9, 1.3.5.10, 1.3.5.4; analysis/hypothesis_tests.h.
+//   tests. NIST e-Handbook 1.3.5.3, 1.3.5.9, 1.3.5.10, 1.3.5.4; stats/hypothesis_tests.h.
 // - The same tests on Box-Cox transformed data: lambda by maximum PPCC (e-Handbook 1.3.3.6,
-//   analysis/box_cox.h) on the pooled data of all k samples, the same lambda (and shift) for every
+//   stats/box_cox.h) on the pooled data of all k samples, the same lambda (and shift) for every
 //   sample. Data with a value <= 0 are shifted first as Dataplot does: y - min + 1, min over the
 //   pooled data. For speed lambda is chosen on a systematic subsample of the sorted pooled data (at
 //   most `box_cox_subsample` = 10000 order statistics at ranks floor((i + 1/2) n / m), i = 0..m-1:
@@ -34,9 +34,9 @@
 #include <string>
 #include <vector>
 
-#include "analysis/descriptive.h"
+#include "stats/descriptive.h"
 #include "analysis/run_records.h"
-#include "analysis/table_writer.h"
+#include "stats/table_writer.h"
 
 namespace ra::analysis {
 

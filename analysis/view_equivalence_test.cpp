@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "analysis/box_cox.h"
-#include "analysis/hypothesis_tests.h"
+#include "stats/box_cox.h"
+#include "stats/hypothesis_tests.h"
 #include "analysis/records_testing.h"
 
 namespace ra::analysis {

@@ -12,7 +12,7 @@
 #include "audit/audit.h"
 #include "audit/audit_report.h"
 #include "audit/history_db.h"
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::app {
 namespace {

@@ -13,7 +13,7 @@
 #include "app/commands.h"
 #include "audit/history_db.h"
 #include "plots/trend_figure.h"
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace fs = std::filesystem;
 

@@ -5,7 +5,7 @@
 #include <exception>
 
 #include "app/commands.h"
-#include "runner/errors.h"
+#include "util/errors.h"
 
 int main(int argc, char** argv) {
   CLI::App app{

@@ -8,7 +8,7 @@
 
 #include "app/commands.h"
 #include "audit/primitive_image.h"
-#include "runner/records.h"
+#include "metrics/records.h"
 
 namespace ra::app {
 namespace {

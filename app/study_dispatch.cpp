@@ -7,7 +7,7 @@
 
 #include "app/commands.h"
 #include "regulation/regulation_study.h"
-#include "runner/errors.h"
+#include "util/errors.h"
 #include "runner/study_dir.h"
 #include "terrain_lod/lod_study.h"
 #include "timing/timing_run.h"

@@ -2,7 +2,7 @@
 // part of one, when bisecting a crash) in this process. Started by `renderaudit run`; not meant to
 // be typed by hand.
 #include "app/commands.h"
-#include "runner/errors.h"
+#include "util/errors.h"
 #include "runner/experiment.h"
 #include "runner/shard.h"
 

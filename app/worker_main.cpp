@@ -8,7 +8,7 @@
 #include <exception>
 
 #include "app/commands.h"
-#include "runner/errors.h"
+#include "util/errors.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"renderaudit-worker: runs one shard of a run (started by `renderaudit run`)"};

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <regex>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 #include "runner/manifest.h"
 
 namespace fs = std::filesystem;

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "analysis/run_records.h"
-#include "runner/errors.h"
+#include "util/errors.h"
 #include "runner/experiment.h"
 #include "runner/shard.h"
 

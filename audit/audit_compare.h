@@ -1,5 +1,5 @@
 // Per-primitive comparison of two sides of an audit. Primitive i of a kind is the same primitive in
-// both (a pure function of seed, kind and index: runner/primitive.h), so its lit pixels are
+// both (a pure function of seed, kind and index: geometry/primitive.h), so its lit pixels are
 // compared exactly, through the records' `pixel_hash` (FNV-1a 64 of the sorted lit pixels), with
 // the case status and the visibility class. Nothing here depends on how the runner stores pixels.
 //
@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "runner/primitive.h"
-#include "runner/records.h"
+#include "geometry/primitive.h"
+#include "metrics/records.h"
 
 namespace ra::audit {
 

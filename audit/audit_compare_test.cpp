@@ -7,7 +7,7 @@
 
 #include "audit/audit_testing.h"
 #include "audit/run_identity.h"
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::audit {
 namespace {

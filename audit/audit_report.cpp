@@ -7,7 +7,7 @@
 #include <map>
 #include <sstream>
 
-#include "runner/atomic_file.h"
+#include "util/atomic_file.h"
 
 namespace fs = std::filesystem;
 

@@ -1,5 +1,5 @@
 // What `renderaudit audit` writes into its output directory, each file atomically (temp + rename,
-// runner/atomic_file.h):
+// util/atomic_file.h):
 //   audit.json              everything, machine-readable ("schema_version": 1; keys in README)
 //   audit.md                for a person, read first: verdict, drivers side by side, counts, the
 //                           changed primitives (first 50 + total, each with its `renderaudit show`

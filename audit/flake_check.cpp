@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "runner/atomic_file.h"
+#include "util/atomic_file.h"
 #include "runner/experiment.h"
 #include "runner/shard.h"
 #include "runner/worker_program.h"

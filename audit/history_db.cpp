@@ -11,7 +11,7 @@
 #include <system_error>
 #include <utility>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace fs = std::filesystem;
 

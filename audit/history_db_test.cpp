@@ -13,7 +13,7 @@
 #include <fstream>
 #include <set>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 #include "tests/cli_harness.h"
 
 namespace fs = std::filesystem;

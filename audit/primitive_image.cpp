@@ -14,13 +14,13 @@
 #include <utility>
 #include <vector>
 
-#include "runner/case_measurement.h"
-#include "runner/clipping.h"
-#include "runner/errors.h"
+#include "metrics/case_measurement.h"
+#include "geometry/clipping.h"
+#include "util/errors.h"
 #include "runner/experiment.h"
-#include "runner/platform.h"
-#include "runner/point_metrics.h"
-#include "runner/reference_rasterizer.h"
+#include "platforms/platform.h"
+#include "metrics/point_metrics.h"
+#include "geometry/reference_rasterizer.h"
 
 namespace fs = std::filesystem;
 
@@ -145,7 +145,7 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   const Primitive prim = make_primitive(exp.seed, kind, q.index);
 
   // Render once, measure that rendering, and rasterize the reference for comparison.
-  const std::unique_ptr<Platform> platform = create_platform(q.platform, exp);
+  const std::unique_ptr<Platform> platform = create_platform(q.platform, exp.faults);
   RecordingPlatform recorder(*platform);
   recorder.set_view(view);
   out.record = measure_case(q.platform, recorder, view, prim, q.platform != "reference");

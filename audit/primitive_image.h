@@ -18,9 +18,9 @@
 #include <cstdint>
 #include <string>
 
-#include "runner/pixel_set.h"
-#include "runner/records.h"
-#include "runner/view.h"
+#include "geometry/pixel_set.h"
+#include "metrics/records.h"
+#include "geometry/view.h"
 
 namespace ra {
 

@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
 #include "runner/shard.h"
 
 namespace fs = std::filesystem;

@@ -11,7 +11,7 @@
 
 #include "audit/audit_summary.h"
 #include "runner/experiment.h"
-#include "runner/primitive.h"
+#include "geometry/primitive.h"
 
 namespace ra::audit {
 

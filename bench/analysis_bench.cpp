@@ -25,8 +25,8 @@
 
 #include "analysis/analyze_command.h"
 #include "analysis/view_equivalence.h"
-#include "runner/errors.h"
-#include "runner/records.h"
+#include "util/errors.h"
+#include "metrics/records.h"
 
 namespace fs = std::filesystem;
 
@@ -209,7 +209,7 @@ int main(int argc, char** argv) {
         if (e.path().extension() == ".csv")
           ra::read_records(e.path().string(), [&](const ra::Record&) { ++n; });
       }
-      std::printf("ra::read_records (runner/records.h, one thread): %llu records in %.2f s\n",
+      std::printf("ra::read_records (metrics/records.h, one thread): %llu records in %.2f s\n",
                   static_cast<unsigned long long>(n), seconds_since(t0));
     }
 

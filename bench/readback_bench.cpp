@@ -24,9 +24,9 @@
 #include <string>
 #include <vector>
 
-#include "runner/case_measurement.h"
+#include "metrics/case_measurement.h"
 #include "runner/experiment.h"
-#include "runner/platform.h"
+#include "platforms/platform.h"
 
 using namespace ra;
 using Clock = std::chrono::steady_clock;

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::plots {
 namespace {

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "analysis/descriptive.h"
+#include "stats/descriptive.h"
 
 namespace ra::plots {
 

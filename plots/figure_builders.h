@@ -1,4 +1,4 @@
-// Figures from the analysis stage's numbers (analysis/distribution_plots.h): each builder takes
+// Figures from the analysis stage's numbers (stats/distribution_plots.h): each builder takes
 // data in record units and a display scale, and returns a Figure in display units (figure.h).
 #pragma once
 
@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/distribution_plots.h"
+#include "stats/distribution_plots.h"
 #include "plots/figure.h"
 
 namespace ra::plots {

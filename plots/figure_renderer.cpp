@@ -38,7 +38,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::plots {
 namespace {

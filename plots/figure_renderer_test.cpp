@@ -12,8 +12,8 @@
 #include <memory>
 #include <sstream>
 
-#include "analysis/csv_table.h"
-#include "analysis/distribution_plots.h"
+#include "stats/csv_table.h"
+#include "stats/distribution_plots.h"
 #include "plots/figure_builders.h"
 #include "plots/headless_display.h"
 #include "tests/cli_harness.h"

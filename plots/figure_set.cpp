@@ -7,8 +7,8 @@
 
 #include "plots/figure_renderer.h"
 #include "plots/headless_display.h"
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
 
 namespace ra::plots {
 

@@ -20,7 +20,7 @@
 #include <thread>
 #include <vector>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::plots {
 namespace {

@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <string>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::plots {
 namespace {

@@ -19,9 +19,9 @@
 #include "plots/figure_renderer.h"
 #include "plots/headless_display.h"
 #include "plots/record_scan.h"
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
-#include "runner/records.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
+#include "metrics/records.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;

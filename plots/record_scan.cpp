@@ -13,8 +13,8 @@
 #include <string_view>
 #include <thread>
 
-#include "runner/errors.h"
-#include "runner/records.h"
+#include "util/errors.h"
+#include "metrics/records.h"
 
 namespace fs = std::filesystem;
 

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/analyze_command.h"
-#include "analysis/csv_table.h"
+#include "stats/csv_table.h"
 #include "analysis/records_testing.h"
 #include "plots/figure.h"
 #include "plots/plot_run.h"

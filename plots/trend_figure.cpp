@@ -10,7 +10,7 @@
 #include "analysis/run_records.h"
 #include "plots/figure_builders.h"
 #include "plots/headless_display.h"
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::plots {
 namespace {

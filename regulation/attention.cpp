@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-#include "runner/counter_rng.h"
+#include "util/counter_rng.h"
 
 namespace ra::regulation {
 

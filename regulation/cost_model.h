@@ -30,7 +30,7 @@
 #include <cstdint>
 #include <string>
 
-#include "runner/vector_math.h"
+#include "geometry/vector_math.h"
 #include "scenes/scene.h"
 #include "timing/timing_geometry.h"
 

@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "runner/atomic_file.h"
-#include "runner/gl_child_process.h"
+#include "util/atomic_file.h"
+#include "util/gl_child_process.h"
 #include "timing/scene_renderer.h"
 #include "timing/time_heuristics.h"
 #include "timing/timing_geometry.h"

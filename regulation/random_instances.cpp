@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "runner/counter_rng.h"
+#include "util/counter_rng.h"
 
 namespace ra::regulation {
 namespace {

@@ -1,7 +1,7 @@
 // Random multiple-choice knapsack instances for the greedy / optimal comparison (policies.h), and
 // the per-instance comparison the study reports (instances.csv).
 //
-// An instance (a pure function of seed and index, runner/counter_rng.h): n items, n uniform in
+// An instance (a pure function of seed and index, util/counter_rng.h): n items, n uniform in
 // [objects_min, objects_max]; item j has L levels, L uniform in [levels_min, levels_max]; the
 // finest costs c0 ~ U{1..max_cost} units and each coarser level a factor U(0.25, 0.95) of the one
 // before (rounded, >= 1, so costs never increase); the loss of level 0 is 0 and each coarser level

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::regulation {
 namespace {

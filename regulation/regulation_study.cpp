@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "analysis/descriptive.h"
-#include "analysis/table_writer.h"
+#include "stats/descriptive.h"
+#include "stats/table_writer.h"
 #include "plots/figure.h"
 #include "plots/figure_set.h"
 #include "regulation/attention.h"
@@ -21,8 +21,8 @@
 #include "regulation/policies.h"
 #include "regulation/random_instances.h"
 #include "regulation/regulation_experiment.h"
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
 #include "runner/manifest.h"
 
 namespace ra::regulation {

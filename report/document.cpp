@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <sstream>
 
-#include "analysis/csv_table.h"
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
+#include "stats/csv_table.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
 
 namespace ra::report {
 namespace {

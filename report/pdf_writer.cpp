@@ -8,7 +8,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::report {
 namespace {

@@ -24,8 +24,8 @@
 #include "report/document.h"
 #include "report/html_writer.h"
 #include "report/pdf_writer.h"
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
 #include "runner/manifest.h"
 #include "runner/study_dir.h"
 

@@ -7,9 +7,9 @@
 #define TOML_EXCEPTIONS 1
 #include <toml++/toml.h>
 
-#include "runner/errors.h"
-#include "runner/platform.h"
-#include "runner/toml_locator.h"
+#include "util/errors.h"
+#include "platforms/platform.h"
+#include "util/toml_locator.h"
 
 namespace ra {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra {
 namespace {

@@ -16,11 +16,11 @@
 #include <map>
 #include <thread>
 
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
-#include "runner/renderer_check.h"
+#include "platforms/renderer_check.h"
 #include "runner/shard.h"
 #include "runner/shard_recovery.h"
 #include "runner/worker_program.h"

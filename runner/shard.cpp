@@ -9,10 +9,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "runner/atomic_file.h"
-#include "runner/case_measurement.h"
+#include "util/atomic_file.h"
+#include "metrics/case_measurement.h"
 #include "runner/experiment.h"
-#include "runner/platform.h"
+#include "platforms/platform.h"
 
 namespace ra {
 
@@ -60,7 +60,7 @@ void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& s
     if (v.id == shard.view) view = &v;
   if (!view) throw std::runtime_error("shard " + shard.id() + ": no such view");
 
-  auto platform = create_platform(shard.platform, exp);
+  auto platform = create_platform(shard.platform, exp.faults);
   write_driver_info(run_dir, shard.platform, platform->driver_info());
   platform->set_view(*view);
   const bool exact = shard.platform == "reference";

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "runner/primitive.h"
+#include "geometry/primitive.h"
 
 namespace ra {
 

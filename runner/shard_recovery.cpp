@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "runner/atomic_file.h"
-#include "runner/case_measurement.h"
+#include "util/atomic_file.h"
+#include "metrics/case_measurement.h"
 
 namespace fs = std::filesystem;
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "runner/experiment.h"
-#include "runner/records.h"
+#include "metrics/records.h"
 #include "runner/shard.h"
 
 namespace ra {

@@ -5,9 +5,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
-#include "runner/toml_locator.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
+#include "util/toml_locator.h"
 
 namespace ra {
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra {
 namespace {

@@ -9,8 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
 #include "scenes/scene_rng.h"
 
 namespace ra {

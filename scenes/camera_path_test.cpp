@@ -8,7 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 #include "scenes/city_scene.h"
 #include "scenes/forest_scene.h"
 #include "scenes/terrain_scene.h"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "runner/vector_math.h"
+#include "geometry/vector_math.h"
 
 namespace ra {
 

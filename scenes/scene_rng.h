@@ -1,11 +1,11 @@
 // Seeded random numbers for the scene generators: a pure function of (seed, purpose, item, draw)
-// built on SplitMix64 (runner/counter_rng.h), integer arithmetic only, so a seed gives the same
+// built on SplitMix64 (util/counter_rng.h), integer arithmetic only, so a seed gives the same
 // scene on every machine and standard library (std::uniform_*_distribution would not).
 #pragma once
 
 #include <cstdint>
 
-#include "runner/counter_rng.h"
+#include "util/counter_rng.h"
 
 namespace ra {
 

@@ -9,13 +9,13 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "runner/errors.h"
-#include "runner/toml_locator.h"
+#include "util/errors.h"
+#include "util/toml_locator.h"
 
 namespace ra {
 namespace {
 
-// A table of the file: errors at its nodes (runner/toml_locator.h), keys named "scene[i].key".
+// A table of the file: errors at its nodes (util/toml_locator.h), keys named "scene[i].key".
 class Located {
  public:
   Located(std::string file, std::string where) : at_(std::move(file)), where_(std::move(where)) {}

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <fstream>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra {
 namespace {

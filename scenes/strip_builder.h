@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "runner/vector_math.h"
+#include "geometry/vector_math.h"
 #include "scenes/scene.h"
 
 namespace ra {

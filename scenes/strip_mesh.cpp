@@ -3,7 +3,7 @@
 #include <cstring>
 #include <limits>
 
-#include "runner/vector_math.h"
+#include "geometry/vector_math.h"
 #include "scenes/scene.h"
 
 namespace ra {

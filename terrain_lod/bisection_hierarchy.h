@@ -25,7 +25,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "runner/vector_math.h"
+#include "geometry/vector_math.h"
 #include "terrain_lod/height_field.h"
 
 namespace ra::lod {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <memory>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::lod {
 

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::lod {
 namespace {

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <sstream>
 
-#include "runner/errors.h"
-#include "runner/platform.h"
-#include "runner/toml_locator.h"
+#include "util/errors.h"
+#include "platforms/platform.h"
+#include "util/toml_locator.h"
 
 namespace ra::lod {
 namespace {

@@ -11,8 +11,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "runner/errors.h"
-#include "runner/platform.h"
+#include "util/errors.h"
+#include "platforms/platform.h"
 
 namespace ra::lod {
 namespace {

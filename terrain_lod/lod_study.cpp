@@ -13,11 +13,11 @@
 #include <map>
 #include <sstream>
 
-#include "analysis/descriptive.h"
+#include "stats/descriptive.h"
 #include "plots/figure_set.h"
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
-#include "runner/gl_child_process.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
+#include "util/gl_child_process.h"
 #include "runner/manifest.h"
 #include "scenes/camera_path.h"
 #include "terrain_lod/lod_checks.h"

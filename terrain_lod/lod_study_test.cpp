@@ -10,8 +10,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
 #include "terrain_lod/height_field.h"
 #include "terrain_lod/lod_experiment.h"
 

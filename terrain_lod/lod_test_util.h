@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "runner/counter_rng.h"
+#include "util/counter_rng.h"
 #include "scenes/scene.h"
 #include "terrain_lod/height_field.h"
 #include "timing/timing_geometry.h"

@@ -26,7 +26,7 @@
 
 #include <string>
 
-#include "runner/vector_math.h"
+#include "geometry/vector_math.h"
 #include "timing/timing_geometry.h"
 
 namespace ra::lod {

@@ -7,7 +7,7 @@
 #include <map>
 #include <tuple>
 
-#include "runner/records.h"
+#include "metrics/records.h"
 #include "tests/cli_harness.h"
 
 using namespace ra::testing_cli;

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <map>
 
-#include "analysis/descriptive.h"
-#include "runner/records.h"
+#include "stats/descriptive.h"
+#include "metrics/records.h"
 #include "tests/cli_harness.h"
 
 using namespace ra::testing_cli;

@@ -6,7 +6,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "runner/records.h"
+#include "metrics/records.h"
 #include "tests/cli_harness.h"
 
 namespace fs = std::filesystem;

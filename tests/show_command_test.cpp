@@ -9,8 +9,8 @@
 
 #include "audit/primitive_image.h"
 #include "runner/experiment.h"
-#include "runner/records.h"
-#include "runner/reference_rasterizer.h"
+#include "metrics/records.h"
+#include "geometry/reference_rasterizer.h"
 #include "tests/cli_harness.h"
 
 namespace fs = std::filesystem;

@@ -1,5 +1,5 @@
 // A scene drawn through OSMesa for the rendering-time study (scene_renderer.h; Wimmer & Wonka
-// 2003, sections 4.2, 7.1). The context is made as runner/osmesa_platform.cpp makes it: the
+// 2003, sections 4.2, 7.1). The context is made as platforms/osmesa_platform.cpp makes it: the
 // window-system buffer is 1x1 and never drawn to; drawing goes to a framebuffer object of the
 // window size, here with a depth renderbuffer as well.
 #include "timing/scene_renderer.h"
@@ -16,8 +16,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "runner/errors.h"
-#include "runner/platform.h"
+#include "util/errors.h"
+#include "platforms/platform.h"
 
 namespace ra::timing {
 namespace {

@@ -52,7 +52,7 @@ struct DrawTime {
 
 class SceneRenderer {
  public:
-  // Makes the context of `platform` (an OSMesa platform of runner/platform.h; sets GALLIUM_DRIVER
+  // Makes the context of `platform` (an OSMesa platform of platforms/platform.h; sets GALLIUM_DRIVER
   // and LP_NUM_THREADS=0 unless already set), a framebuffer object of cam.width x cam.height with
   // RGBA8 colour and 24-bit depth. `gpu_timer`: use GL_TIME_ELAPSED when supported.
   // Throws ra::UserError for a platform without a Mesa driver, std::runtime_error when GL fails.

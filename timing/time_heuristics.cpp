@@ -7,9 +7,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "analysis/descriptive.h"
-#include "analysis/linear_regression.h"
-#include "runner/errors.h"
+#include "stats/descriptive.h"
+#include "stats/linear_regression.h"
+#include "util/errors.h"
 
 namespace ra::timing {
 namespace {

@@ -22,7 +22,7 @@
 //   1. start from coefficients (see the starts below);
 //   2. assign each sample to the geometry branch when c1 #tris + c2 #v (+ bg) >= c3 #pix (+ br)
 //      under the current coefficients, else to the raster branch;
-//   3. refit each branch by least squares (analysis/linear_regression.h) on its own samples only;
+//   3. refit each branch by least squares (stats/linear_regression.h) on its own samples only;
 //   4. repeat 2-3 until the assignment no longer changes (or 100 iterations);
 //   5. the result is the iterate with the smallest SSE of the max model, sum (y - H3(x))^2, over
 //      all iterations of all starts.
@@ -101,7 +101,7 @@ HeuristicFit fit_h3(const std::vector<ObjectCounts>& x, const std::vector<double
 // empirical probability distribution function of a test measurement." We read this as the
 // one-sided interval that starts at the smallest observed frame time and holds the given share
 // of the renderings: c = q_p - min, where q_p is the empirical p-quantile (p = 0.99 for the
-// paper's "99 %"), Hyndman-Fan definition 6 (the project's default, analysis/descriptive.h).
+// paper's "99 %"), Hyndman-Fan definition 6 (the project's default, stats/descriptive.h).
 // A frame budget of min + c then is met by 99 % of the renderings of that viewpoint.
 struct SystemTaskStats {
   std::size_t n = 0;

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 
 namespace ra::timing {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "runner/view.h"
+#include "geometry/view.h"
 
 namespace ra::timing {
 namespace {

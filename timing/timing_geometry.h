@@ -6,7 +6,7 @@
 // Units: metres, radians; world coordinates +Z up (scenes/scene.h).
 #pragma once
 
-#include "runner/vector_math.h"
+#include "geometry/vector_math.h"
 #include "scenes/scene.h"
 
 namespace ra::timing {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 #include "timing/timing_experiment.h"
 
 namespace ra::timing {

@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <sstream>
 
-#include "analysis/descriptive.h"
+#include "stats/descriptive.h"
 #include "plots/figure_set.h"
-#include "runner/atomic_file.h"
-#include "runner/errors.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
 #include "runner/manifest.h"
 #include "runner/study_dir.h"
 

@@ -1,4 +1,4 @@
-// What `renderaudit timing` writes (every file atomically, runner/atomic_file.h):
+// What `renderaudit timing` writes (every file atomically, util/atomic_file.h):
 //
 // DIR/timing.json (schema "renderaudit-timing/1"): provenance (program, commit-free: the binary's
 // version, UTC date, host, experiment file and its settings), then "platforms": one object per

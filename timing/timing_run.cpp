@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "runner/errors.h"
+#include "util/errors.h"
 #include "timing/timing_report.h"
 #include "timing/timing_study.h"
 

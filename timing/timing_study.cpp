@@ -12,10 +12,10 @@
 #include <set>
 #include <stdexcept>
 
-#include "runner/atomic_file.h"
-#include "runner/counter_rng.h"
-#include "runner/errors.h"
-#include "runner/gl_child_process.h"
+#include "util/atomic_file.h"
+#include "util/counter_rng.h"
+#include "util/errors.h"
+#include "util/gl_child_process.h"
 #include "scenes/scene_statistics.h"
 #include "scenes/vertex_cache.h"
 

@@ -1,0 +1,608 @@
+// `renderaudit stats describe|compare|anova|regress`: the statistics of the analysis stage on any
+// CSV column, so that a reader can check a report's numbers, or compare two runs, by hand, and fit
+// rendering-time models by least squares.
+// Methods and conventions: stats/descriptive.h, hypothesis_tests.h, box_cox.h (NIST e-Handbook),
+// linear_regression.h (QR least squares, NIST StRD).
+//
+// Output: human-readable text, or with --json one JSON object (snake_case keys, doubles written so
+// that they read back exactly). A statistic that is undefined for the data (both samples constant,
+// say) is written as null with a "reason"; NaN never appears.
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "stats/box_cox.h"
+#include "stats/csv_table.h"
+#include "stats/descriptive.h"
+#include "stats/hypothesis_tests.h"
+#include "stats/linear_regression.h"
+#include "app/commands.h"
+#include "util/errors.h"
+
+namespace ra::app {
+namespace {
+
+using nlohmann::json;
+using stats::QuantileDefinition;
+
+constexpr int kSchemaVersion = 1;
+
+struct StatsOptions {
+  std::vector<std::string> files;
+  std::string column;
+  std::string group;
+  std::string value;
+  std::string quantiles = "hf6";
+  std::string y;               // regress: response column
+  std::vector<std::string> x;  // regress: predictor columns
+  bool no_intercept = false;   // regress
+  bool json = false;
+};
+
+QuantileDefinition quantile_definition(const std::string& name) {
+  return name == "hf7" ? QuantileDefinition::kHyndmanFan7 : QuantileDefinition::kHyndmanFan6;
+}
+
+// A number for JSON. The statistics library never returns a non-finite value; if it ever did, that
+// is a bug to report loudly, not a NaN to print.
+json number(double x) {
+  if (!std::isfinite(x)) throw std::logic_error("stats: internal error: a non-finite result");
+  return x;
+}
+
+// printf-style text to std::cout (one stream for text and JSON, so tests can capture both).
+void out(const char* format, ...) __attribute__((format(printf, 1, 2)));
+void out(const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  va_list again;
+  va_copy(again, args);
+  const int size = std::vsnprintf(nullptr, 0, format, args);
+  va_end(args);
+  std::string text(static_cast<std::size_t>(size > 0 ? size : 0) + 1, '\0');
+  std::vsnprintf(text.data(), text.size(), format, again);
+  va_end(again);
+  text.pop_back();
+  std::cout << text;
+}
+
+std::string text_number(double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", x);
+  return buf;
+}
+
+// One sample: a numeric column of a CSV file, with at least two values.
+struct Sample {
+  std::string file;
+  std::string column;
+  std::vector<double> values;
+  std::size_t n_missing = 0;
+};
+
+Sample read_sample(const std::string& file, const std::string& column) {
+  const analysis::CsvTable table = analysis::CsvTable::read_file(file);
+  analysis::NumericColumn c = table.numeric_column(column);
+  if (c.values.size() < 2) {
+    throw UserError(file + ": column '" + column + "' has " + std::to_string(c.values.size()) +
+                    " value(s) (" + std::to_string(c.n_missing) +
+                    " empty cells skipped); at least 2 are needed");
+  }
+  return Sample{file, column, std::move(c.values), c.n_missing};
+}
+
+json description_json(const stats::Description& d) {
+  return json{{"n", d.n},
+              {"mean", number(d.mean)},
+              {"sd", number(d.sd)},
+              {"median", number(d.median)},
+              {"q1", number(d.q1)},
+              {"q3", number(d.q3)},
+              {"iqr", number(d.iqr)},
+              {"min", number(d.min)},
+              {"max", number(d.max)}};
+}
+
+void print_description_rows(const std::vector<stats::Description>& ds,
+                            const std::vector<std::string>& titles) {
+  out("%-8s", "");
+  for (const auto& t : titles) out(" %24s", t.c_str());
+  out("\n");
+  const auto row = [&](const char* name, auto field) {
+    out("%-8s", name);
+    for (const auto& d : ds) out(" %24s", field(d).c_str());
+    out("\n");
+  };
+  row("n", [](const stats::Description& d) { return std::to_string(d.n); });
+  row("mean", [](const stats::Description& d) { return text_number(d.mean); });
+  row("sd", [](const stats::Description& d) { return text_number(d.sd); });
+  row("median", [](const stats::Description& d) { return text_number(d.median); });
+  row("q1", [](const stats::Description& d) { return text_number(d.q1); });
+  row("q3", [](const stats::Description& d) { return text_number(d.q3); });
+  row("iqr", [](const stats::Description& d) { return text_number(d.iqr); });
+  row("min", [](const stats::Description& d) { return text_number(d.min); });
+  row("max", [](const stats::Description& d) { return text_number(d.max); });
+}
+
+// A test that may be undefined for the data: its JSON and its text line.
+struct Reported {
+  json j;
+  std::string text;
+};
+
+template <typename Compute, typename Fill>
+Reported report_test(const std::vector<std::string>& null_keys, Compute compute, Fill fill) {
+  Reported r;
+  try {
+    fill(compute(), r);
+  } catch (const std::invalid_argument& e) {
+    r.j = json::object();
+    for (const auto& k : null_keys) r.j[k] = nullptr;
+    r.j["reason"] = e.what();
+    r.text = std::string("undefined (") + e.what() + ")";
+  }
+  return r;
+}
+
+Reported t_report(const std::vector<double>& a, const std::vector<double>& b, bool pooled) {
+  return report_test(
+      {"statistic", "df", "p_value"},
+      [&] { return pooled ? stats::t_test_pooled(a, b) : stats::t_test_welch(a, b); },
+      [](const stats::TTestResult& t, Reported& r) {
+        r.j = json{{"statistic", number(t.statistic)},
+                   {"df", number(t.df)},
+                   {"p_value", number(t.p_value)},
+                   {"mean_difference", number(t.mean_difference)},
+                   {"standard_error", number(t.standard_error)}};
+        if (t.pooled_sd) r.j["pooled_sd"] = number(*t.pooled_sd);
+        r.text = "t = " + text_number(t.statistic) + ", df = " + text_number(t.df) +
+                 ", p = " + text_number(t.p_value);
+      });
+}
+
+void fill_f(const stats::FTestResult& f, Reported& r, const char* symbol) {
+  r.j = json{{"statistic", number(f.statistic)},
+             {"df1", number(f.df1)},
+             {"df2", number(f.df2)},
+             {"p_value", number(f.p_value)}};
+  r.text = std::string(symbol) + " = " + text_number(f.statistic) + ", df = (" +
+           text_number(f.df1) + ", " + text_number(f.df2) + "), p = " + text_number(f.p_value);
+}
+
+// Levene's test with each centre: JSON object keyed by centre, and text lines.
+json levene_reports(const std::vector<std::vector<double>>& groups, std::string& text) {
+  json j = json::object();
+  for (const auto center : {stats::LeveneCenter::kMedian, stats::LeveneCenter::kMean,
+                            stats::LeveneCenter::kTrimmedMean}) {
+    const Reported r = report_test(
+        {"statistic", "df1", "df2", "p_value"}, [&] { return stats::levene_test(groups, center); },
+        [](const stats::FTestResult& f, Reported& r) { fill_f(f, r, "W"); });
+    j[stats::levene_center_name(center)] = r.j;
+    char label[64];
+    std::snprintf(
+        label, sizeof label, "  %-28s: ",
+        (std::string("Levene (") + stats::levene_center_name(center) + " centre)").c_str());
+    text += label + r.text + "\n";
+  }
+  return j;
+}
+
+json box_cox_json(const stats::BoxCoxResult& b) {
+  json j{{"method", stats::box_cox_method_name(b.method)},
+         {"applicable", b.applicable},
+         {"n", b.n},
+         {"shift", number(b.shift)}};
+  if (!b.applicable) {
+    j["lambda"] = nullptr;
+    j["reason"] = b.reason;
+    return j;
+  }
+  j["lambda"] = number(b.lambda);
+  j[b.method == stats::BoxCoxMethod::kPpcc ? "correlation" : "log_likelihood"] =
+      number(b.objective);
+  j["ppcc_at_lambda"] = number(b.ppcc_at_lambda);
+  j["at_boundary"] = b.at_boundary;
+  return j;
+}
+
+std::string box_cox_text(const stats::BoxCoxResult& b) {
+  if (!b.applicable) return "not applicable (" + b.reason + ")";
+  std::string s = "lambda = " + text_number(b.lambda);
+  s += b.method == stats::BoxCoxMethod::kPpcc ? ", correlation = " : ", log-likelihood = ";
+  s += text_number(b.objective);
+  if (b.shift != 0) s += ", data shifted by " + text_number(b.shift);
+  if (b.at_boundary) s += " (at the end of the search range [-2, 2])";
+  return s;
+}
+
+void print_json(const json& j) { std::cout << j.dump(2) << "\n"; }
+
+json header_json(const char* command) {
+  return json{{"schema_version", kSchemaVersion}, {"command", command}};
+}
+
+void run_describe(const StatsOptions& o) {
+  const Sample s = read_sample(o.files.at(0), o.column);
+  const stats::Description d = stats::describe(s.values, quantile_definition(o.quantiles));
+  if (o.json) {
+    json j = header_json("stats describe");
+    j["quantile_definition"] = stats::quantile_definition_name(quantile_definition(o.quantiles));
+    j["file"] = s.file;
+    j["column"] = s.column;
+    j["n_missing"] = s.n_missing;
+    j["description"] = description_json(d);
+    print_json(j);
+    return;
+  }
+  out("%s, column '%s' (%zu empty cells skipped); quartiles: %s\n", s.file.c_str(),
+      s.column.c_str(), s.n_missing,
+      stats::quantile_definition_name(quantile_definition(o.quantiles)));
+  print_description_rows({d}, {s.column});
+}
+
+void run_compare(const StatsOptions& o) {
+  const Sample a = read_sample(o.files.at(0), o.column);
+  const Sample b = read_sample(o.files.at(1), o.column);
+  const QuantileDefinition q = quantile_definition(o.quantiles);
+  const stats::Description da = stats::describe(a.values, q);
+  const stats::Description db = stats::describe(b.values, q);
+  const Reported pooled = t_report(a.values, b.values, true);
+  const Reported welch = t_report(a.values, b.values, false);
+  const Reported f = report_test(
+      {"statistic", "df1", "df2", "p_value"},
+      [&] { return stats::f_test_variances(a.values, b.values); },
+      [](const stats::FTestResult& f, Reported& r) { fill_f(f, r, "F"); });
+  std::string levene_text;
+  const json levene = levene_reports({a.values, b.values}, levene_text);
+  const stats::BoxCoxResult ppcc_a = stats::box_cox_lambda(a.values, stats::BoxCoxMethod::kPpcc);
+  const stats::BoxCoxResult ppcc_b = stats::box_cox_lambda(b.values, stats::BoxCoxMethod::kPpcc);
+  const stats::BoxCoxResult mle_a = stats::box_cox_lambda(a.values, stats::BoxCoxMethod::kMle);
+  const stats::BoxCoxResult mle_b = stats::box_cox_lambda(b.values, stats::BoxCoxMethod::kMle);
+
+  if (o.json) {
+    json j = header_json("stats compare");
+    j["quantile_definition"] = stats::quantile_definition_name(quantile_definition(o.quantiles));
+    j["column"] = o.column;
+    j["a"] = {{"file", a.file}, {"n_missing", a.n_missing}, {"description", description_json(da)}};
+    j["b"] = {{"file", b.file}, {"n_missing", b.n_missing}, {"description", description_json(db)}};
+    j["t_test_pooled"] = pooled.j;
+    j["t_test_welch"] = welch.j;
+    j["f_test"] = f.j;
+    j["levene"] = levene;
+    j["box_cox"] = {{"a", {{"ppcc", box_cox_json(ppcc_a)}, {"mle", box_cox_json(mle_a)}}},
+                    {"b", {{"ppcc", box_cox_json(ppcc_b)}, {"mle", box_cox_json(mle_b)}}}};
+    print_json(j);
+    return;
+  }
+  out("A: %s\nB: %s\ncolumn '%s'; quartiles: %s\n\n", a.file.c_str(), b.file.c_str(),
+      o.column.c_str(), stats::quantile_definition_name(q));
+  print_description_rows({da, db}, {"A", "B"});
+  out("\nTests of A against B (two-sided p-values; e-Handbook 1.3.5.3, 1.3.5.9, 1.3.5.10)\n");
+  out("  t test, pooled variance     : %s\n", pooled.text.c_str());
+  out("  t test, Welch               : %s\n", welch.text.c_str());
+  out("  F test, var A / var B       : %s\n", f.text.c_str());
+  out("%s", levene_text.c_str());
+  out("\nBox-Cox lambda (e-Handbook 1.3.3.6), search range [-2, 2]\n");
+  out("  A, max PPCC                 : %s\n", box_cox_text(ppcc_a).c_str());
+  out("  A, max likelihood           : %s\n", box_cox_text(mle_a).c_str());
+  out("  B, max PPCC                 : %s\n", box_cox_text(ppcc_b).c_str());
+  out("  B, max likelihood           : %s\n", box_cox_text(mle_b).c_str());
+}
+
+void run_anova(const StatsOptions& o) {
+  const std::string& file = o.files.at(0);
+  const analysis::CsvTable table = analysis::CsvTable::read_file(file);
+  const std::size_t group_column = table.column(o.group);
+  const std::size_t value_column = table.column(o.value);
+
+  // groups in order of first appearance; rows missing the group or the value are skipped
+  std::vector<std::string> names;
+  std::map<std::string, std::size_t> index;
+  std::vector<std::vector<double>> groups;
+  std::size_t n_missing = 0;
+  for (std::size_t row = 0; row < table.row_count(); ++row) {
+    const std::string& label = table.cell(row, group_column);
+    const std::optional<double> value = table.number(row, value_column);
+    if (label.empty() || !value) {
+      ++n_missing;
+      continue;
+    }
+    auto [it, inserted] = index.emplace(label, names.size());
+    if (inserted) {
+      names.push_back(label);
+      groups.emplace_back();
+    }
+    groups[it->second].push_back(*value);
+  }
+  std::size_t n = 0;
+  for (const auto& g : groups) n += g.size();
+  if (groups.size() < 2 || n <= groups.size()) {
+    throw UserError(file + ": column '" + o.group + "' gives " + std::to_string(groups.size()) +
+                    " group(s) with " + std::to_string(n) + " value(s) of '" + o.value +
+                    "'; ANOVA needs at least 2 groups and more values than groups");
+  }
+
+  const Reported anova = report_test(
+      {"f", "p_value"}, [&] { return stats::one_way_anova(groups); },
+      [](const stats::AnovaResult& a, Reported& r) {
+        r.j = json{{"k", a.k},
+                   {"n", a.n},
+                   {"df_between", number(a.df_between)},
+                   {"df_within", number(a.df_within)},
+                   {"ss_between", number(a.ss_between)},
+                   {"ss_within", number(a.ss_within)},
+                   {"ms_between", number(a.ms_between)},
+                   {"ms_within", number(a.ms_within)},
+                   {"f", number(a.f)},
+                   {"p_value", number(a.p_value)},
+                   {"r_squared", number(a.r_squared)},
+                   {"residual_sd", number(a.residual_sd)}};
+        char buf[1024];
+        std::snprintf(buf, sizeof buf,
+                      "  %-8s %8s %24s %24s %16s %16s\n"
+                      "  %-8s %8s %24s %24s %16s %16s\n"
+                      "  %-8s %8s %24s %24s\n"
+                      "  R-squared = %s, residual SD = %s\n",
+                      "source", "df", "SS", "MS", "F", "p", "between",
+                      text_number(a.df_between).c_str(), text_number(a.ss_between).c_str(),
+                      text_number(a.ms_between).c_str(), text_number(a.f).c_str(),
+                      text_number(a.p_value).c_str(), "within", text_number(a.df_within).c_str(),
+                      text_number(a.ss_within).c_str(), text_number(a.ms_within).c_str(),
+                      text_number(a.r_squared).c_str(), text_number(a.residual_sd).c_str());
+        r.text = buf;
+      });
+  std::string levene_text;
+  const json levene = levene_reports(groups, levene_text);
+
+  if (o.json) {
+    json j = header_json("stats anova");
+    j["file"] = file;
+    j["group_column"] = o.group;
+    j["value_column"] = o.value;
+    j["n_missing"] = n_missing;
+    json gj = json::array();
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      const stats::MeanVariance mv = stats::mean_and_variance(groups[g]);
+      gj.push_back({{"name", names[g]},
+                    {"n", groups[g].size()},
+                    {"mean", number(mv.mean)},
+                    {"sd", number(std::sqrt(mv.variance))}});
+    }
+    j["groups"] = gj;
+    j["anova"] = anova.j;
+    j["levene"] = levene;
+    print_json(j);
+    return;
+  }
+  out("%s: '%s' by '%s', %zu groups, %zu values (%zu rows skipped: empty cells)\n\n", file.c_str(),
+      o.value.c_str(), o.group.c_str(), groups.size(), n, n_missing);
+  out("  %-16s %8s %24s %24s\n", "group", "n", "mean", "sd");
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const stats::MeanVariance mv = stats::mean_and_variance(groups[g]);
+    out("  %-16s %8zu %24s %24s\n", names[g].c_str(), groups[g].size(),
+        text_number(mv.mean).c_str(), text_number(std::sqrt(mv.variance)).c_str());
+  }
+  out("\nOne-way ANOVA (e-Handbook 1.3.5.4)\n");
+  if (anova.text.rfind("undefined", 0) == 0) {
+    out("  %s\n", anova.text.c_str());
+  } else {
+    out("%s", anova.text.c_str());
+  }
+  out("\nLevene tests of equal variances (e-Handbook 1.3.5.10)\n%s", levene_text.c_str());
+}
+
+// Least squares of one column on others. Rows with an empty cell in any of the columns used are
+// skipped and counted; a cell that is not a number stops with file:line (CsvTable::number).
+void run_regress(const StatsOptions& o) {
+  const std::string& file = o.files.at(0);
+  std::set<std::string> seen;
+  for (const auto& name : o.x) {
+    if (name.empty()) throw UserError(file + ": --x has an empty column name");
+    if (!seen.insert(name).second) {
+      throw UserError(file + ": --x names column '" + name +
+                      "' twice; each predictor may appear once");
+    }
+    if (name == o.y) {
+      throw UserError(file + ": column '" + name +
+                      "' is both the response (--y) and a predictor (--x)");
+    }
+  }
+  const analysis::CsvTable table = analysis::CsvTable::read_file(file);
+  const std::size_t y_column = table.column(o.y);
+  std::vector<std::size_t> x_columns;
+  for (const auto& name : o.x) x_columns.push_back(table.column(name));
+
+  std::vector<double> y;
+  std::vector<std::vector<double>> predictors(o.x.size());
+  std::size_t n_missing = 0;
+  std::vector<double> row_x(o.x.size());
+  for (std::size_t row = 0; row < table.row_count(); ++row) {
+    const std::optional<double> value = table.number(row, y_column);
+    bool complete = value.has_value();
+    for (std::size_t j = 0; j < x_columns.size(); ++j) {
+      const std::optional<double> v = table.number(row, x_columns[j]);
+      if (v) row_x[j] = *v;
+      complete = complete && v.has_value();
+    }
+    if (!complete) {
+      ++n_missing;
+      continue;
+    }
+    y.push_back(*value);
+    for (std::size_t j = 0; j < row_x.size(); ++j) predictors[j].push_back(row_x[j]);
+  }
+
+  stats::LinearFit fit;
+  try {
+    fit = stats::fit_least_squares(predictors, y, !o.no_intercept, o.x);
+  } catch (const UserError& e) {
+    throw UserError(file + ": '" + o.y + "' on " + (o.no_intercept ? "" : "an intercept and ") +
+                    std::to_string(o.x.size()) + " predictor(s), " + std::to_string(y.size()) +
+                    " complete row(s) (" + std::to_string(n_missing) +
+                    " skipped for empty cells): " + e.what());
+  }
+  std::vector<Reported> tests;
+  for (std::size_t j = 0; j < fit.coefficients.size(); ++j) {
+    tests.push_back(report_test(
+        {"t_value", "p_value"}, [&] { return stats::coefficient_t_test(fit, j); },
+        [](const stats::CoefficientTest& t, Reported& r) {
+          r.j = json{{"t_value", number(t.t)}, {"p_value", number(t.p_value)}};
+          char buf[128];
+          std::snprintf(buf, sizeof buf, " %16s %16s", text_number(t.t).c_str(),
+                        text_number(t.p_value).c_str());
+          r.text = buf;
+        }));
+  }
+  const char* r2_definition = fit.r_squared_centred ? "centred" : "uncentred";
+  const std::string r2_reason = fit.r_squared_centred
+                                    ? "y is constant: no variation about its mean to explain"
+                                    : "y is 0 in every row: no variation about 0 to explain";
+
+  if (o.json) {
+    json j = header_json("stats regress");
+    j["file"] = file;
+    j["y_column"] = o.y;
+    j["x_columns"] = o.x;
+    j["intercept"] = fit.intercept;
+    j["method"] = "householder_qr_column_pivoting";
+    j["n"] = fit.n;
+    j["n_missing"] = n_missing;
+    j["df"] = fit.df;
+    j["rank"] = fit.rank;
+    json cj = json::array();
+    for (std::size_t k = 0; k < fit.coefficients.size(); ++k) {
+      json c{{"name", fit.names[k]},
+             {"estimate", number(fit.coefficients[k])},
+             {"sd", number(fit.standard_deviations[k])}};
+      c.update(tests[k].j);
+      cj.push_back(c);
+    }
+    j["coefficients"] = cj;
+    j["residual_sd"] = number(fit.residual_sd);
+    j["rss"] = number(fit.rss);
+    j["r_squared_definition"] = r2_definition;
+    if (fit.r_squared) {
+      j["r_squared"] = number(*fit.r_squared);
+    } else {
+      j["r_squared"] = nullptr;
+      j["r_squared_reason"] = r2_reason;
+    }
+    print_json(j);
+    return;
+  }
+  std::string predictors_text;
+  for (const auto& name : o.x)
+    predictors_text += (predictors_text.empty() ? "'" : ", '") + name + "'";
+  out("%s: '%s' on %s%s; %zu rows (%zu skipped: empty cells)\n", file.c_str(), o.y.c_str(),
+      fit.intercept ? "an intercept and " : "", predictors_text.c_str(), fit.n, n_missing);
+  out("Least squares by Householder QR with column pivoting (checked against NIST StRD)\n\n");
+  out("  %-20s %24s %24s %16s %16s\n", "parameter", "estimate", "std dev", "t value", "p");
+  for (std::size_t k = 0; k < fit.coefficients.size(); ++k) {
+    const std::string& t = tests[k].text;  // "undefined (why)" for an exact fit
+    out("  %-20s %24s %24s%s\n", fit.names[k].c_str(), text_number(fit.coefficients[k]).c_str(),
+        text_number(fit.standard_deviations[k]).c_str(),
+        (t.rfind("undefined", 0) == 0 ? "   t " + t : t).c_str());
+  }
+  out("\n  residual SD = %s on %zu degrees of freedom (n = %zu, %zu parameters)\n",
+      text_number(fit.residual_sd).c_str(), fit.df, fit.n, fit.coefficients.size());
+  if (fit.r_squared) {
+    out("  R-squared = %s (%s)\n", text_number(*fit.r_squared).c_str(), r2_definition);
+  } else {
+    out("  R-squared undefined (%s)\n", r2_reason.c_str());
+  }
+}
+
+// --json, and --quantiles where quartiles are printed.
+void add_common_options(CLI::App* cmd, StatsOptions& o, bool quantiles) {
+  cmd->add_flag("--json", o.json, "one JSON object instead of text");
+  if (!quantiles) return;
+  cmd->add_option("--quantiles", o.quantiles,
+                  "quartile definition: hf6 (Hyndman-Fan 6, NIST e-Handbook / Dataplot; default) "
+                  "or hf7 (R and NumPy default)")
+      ->check(CLI::IsMember({"hf6", "hf7"}));
+}
+
+}  // namespace
+
+void register_stats_command(CLI::App& app, int& exit_code) {
+  auto* stats_cmd = app.add_subcommand(
+      "stats",
+      "Statistics of CSV columns with the NIST e-Handbook's conventions: summaries, t / F / "
+      "Levene tests, one-way ANOVA, Box-Cox lambda; least-squares regression.");
+  stats_cmd->require_subcommand(1);
+
+  // each subcommand owns its options; shared_ptr keeps them alive as long as the callbacks
+  auto describe_opt = std::make_shared<StatsOptions>();
+  auto* describe = stats_cmd->add_subcommand(
+      "describe", "n, mean, sd, median, quartiles, IQR, min, max of one column");
+  describe->add_option("file", describe_opt->files, "CSV file with a header row")
+      ->required()
+      ->expected(1);
+  describe->add_option("--column,-c", describe_opt->column, "column name")->required();
+  add_common_options(describe, *describe_opt, true);
+  describe->callback([describe_opt, &exit_code] {
+    run_describe(*describe_opt);
+    exit_code = kExitOk;
+  });
+
+  auto compare_opt = std::make_shared<StatsOptions>();
+  auto* compare = stats_cmd->add_subcommand(
+      "compare",
+      "Compare one column of two CSV files: summaries, pooled and Welch t tests, F test, Levene "
+      "tests (median, mean, 10% trimmed mean centres), Box-Cox lambda (PPCC and ML)");
+  compare->add_option("files", compare_opt->files, "the two CSV files, A then B")
+      ->required()
+      ->expected(2);
+  compare->add_option("--column,-c", compare_opt->column, "column name (in both files)")
+      ->required();
+  add_common_options(compare, *compare_opt, true);
+  compare->callback([compare_opt, &exit_code] {
+    run_compare(*compare_opt);
+    exit_code = kExitOk;
+  });
+
+  auto anova_opt = std::make_shared<StatsOptions>();
+  auto* anova = stats_cmd->add_subcommand(
+      "anova", "One-way ANOVA of a value column grouped by another column, and Levene tests");
+  anova->add_option("file", anova_opt->files, "CSV file with a header row")
+      ->required()
+      ->expected(1);
+  anova->add_option("--group,-g", anova_opt->group, "column whose distinct texts are the groups")
+      ->required();
+  anova->add_option("--value,-v", anova_opt->value, "numeric column to analyse")->required();
+  add_common_options(anova, *anova_opt, false);
+  anova->callback([anova_opt, &exit_code] {
+    run_anova(*anova_opt);
+    exit_code = kExitOk;
+  });
+
+  auto regress_opt = std::make_shared<StatsOptions>();
+  auto* regress = stats_cmd->add_subcommand(
+      "regress",
+      "Least-squares fit of one column on others (QR; checked against NIST StRD): coefficients "
+      "with their standard deviations and t tests, residual SD, R-squared");
+  regress->add_option("file", regress_opt->files, "CSV file with a header row")
+      ->required()
+      ->expected(1);
+  regress->add_option("--y", regress_opt->y, "response column (numeric)")->required();
+  regress->add_option("--x", regress_opt->x, "predictor column(s), comma-separated or repeated")
+      ->required()
+      ->delimiter(',');
+  regress->add_flag("--no-intercept", regress_opt->no_intercept,
+                    "fit without a constant term (R-squared is then uncentred, as NIST's)");
+  add_common_options(regress, *regress_opt, false);
+  regress->callback([regress_opt, &exit_code] {
+    run_regress(*regress_opt);
+    exit_code = kExitOk;
+  });
+}
+
+}  // namespace ra::app

@@ -1,0 +1,227 @@
+#include "metrics/case_measurement.h"
+#include <chrono>
+#include <stdexcept>
+#include <vector>
+
+#include "geometry/clipping.h"
+#include "metrics/line_metrics.h"
+#include "metrics/point_metrics.h"
+#include "geometry/reference_rasterizer.h"
+#include "metrics/triangle_metrics.h"
+
+namespace ra {
+
+Record case_identity(const std::string& platform_name, const View& view, const Primitive& prim) {
+  Record r;
+  r.platform = platform_name;
+  r.view = view.id;
+  r.view_group = view.group;
+  r.orientation = view.orientation;
+  r.fov_deg = view.fov_deg;
+  r.width = view.width;
+  r.height = view.height;
+  r.near = view.near;
+  r.far = view.far;
+  r.kind = kind_name(prim.kind);
+  r.index = prim.index;
+  return r;
+}
+
+namespace {
+
+// The ideal side of one case, computed before anything is drawn.
+struct PreparedCase {
+  Record rec;              // identity; status kInvalid when nothing may be drawn
+  IdealPoint point;        // Kind::kPoint
+  ClippedSegment segment;  // Kind::kLine
+  ClippedPolygon polygon;  // Kind::kTriangle
+  PixelRegion expected;    // where the ideal primitive lies, plus kRegionMargin
+};
+
+PreparedCase prepare_case(const std::string& platform_name, const View& view,
+                          const Primitive& prim) {
+  PreparedCase c;
+  c.rec = case_identity(platform_name, view, prim);
+  for (int i = 0; i < vertex_count(prim.kind); ++i) {
+    if (!is_finite(prim.v[i])) {  // never hand a driver NaN or inf, never a silent number
+      c.rec.status = CaseStatus::kInvalid;
+      return c;
+    }
+  }
+  switch (prim.kind) {
+    case Kind::kPoint:
+      c.point = project_point(view, prim.v[0]);
+      c.expected = point_region(view, c.point, kRegionMargin);
+      break;
+    case Kind::kLine:
+      c.segment = clip_segment(view, prim.v[0], prim.v[1]);
+      // No projection (e.g. w = 0 at a vertex): status invalid, nothing drawn.
+      if (c.segment.status == ClipStatus::kInvalid) c.rec.status = CaseStatus::kInvalid;
+      c.expected = strip_region(c.segment, view.width, view.height, kRegionMargin);
+      break;
+    case Kind::kTriangle:
+      c.polygon = clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
+      if (c.polygon.status == ClipStatus::kInvalid) c.rec.status = CaseStatus::kInvalid;
+      c.expected = bounding_rect(c.polygon, view.width, view.height, kRegionMargin);
+      break;
+  }
+  return c;
+}
+
+Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
+                   const RenderResult& rendered, bool compare_with_reference) {
+  Record& rec = c.rec;
+  switch (prim.kind) {
+    case Kind::kPoint: measure_point(view, c.point, rendered.lit, rec); break;
+    case Kind::kLine: measure_segment_case(c.segment, view, rendered.lit, rec); break;
+    case Kind::kTriangle:
+      // Points and lines of an antialiased rendering are measured on the pixels with any
+      // coverage, as lit pixels; triangles compare coverage with area.
+      if (rendered.samples > 0)
+        measure_triangle_coverage_case(c.polygon, view, rendered, rec);
+      else
+        measure_triangle_case(c.polygon, view, rendered.lit, rec);
+      break;
+  }
+  rec.render_us = rendered.render_us;
+  rec.batch_size = rendered.batch_size;
+  rec.pixel_hash = rendered_pixel_hash(rendered);
+  if (compare_with_reference) {
+    // The reference rasterizer, from the geometry prepare_case already clipped.
+    PixelSet reference;
+    switch (prim.kind) {
+      case Kind::kPoint: reference = rasterize_reference(view, prim); break;
+      case Kind::kLine: reference = rasterize_segment(c.segment, view.width, view.height); break;
+      case Kind::kTriangle: reference = rasterize_polygon(c.polygon, view.width, view.height); break;
+    }
+    rec.ref_diff = symmetric_difference_size(rendered.lit, reference);
+  } else {
+    rec.ref_diff = 0;
+  }
+  return rec;
+}
+
+}  // namespace
+
+std::vector<Record> measure_cases(const std::string& platform_name, Platform& platform,
+                                  const View& view, const std::vector<Primitive>& prims,
+                                  bool compare_with_reference, std::vector<double>* cost_us) {
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t0) {
+    return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+  };
+  std::vector<double> cost(prims.size(), 0.0);
+  std::vector<PreparedCase> cases;
+  cases.reserve(prims.size());
+  for (size_t i = 0; i < prims.size(); ++i) {
+    const auto t0 = Clock::now();
+    cases.push_back(prepare_case(platform_name, view, prims[i]));
+    cost[i] += since(t0);
+  }
+
+  std::vector<Record> records(prims.size());
+  std::vector<size_t> batch;  // indices into prims
+  std::vector<Primitive> batch_prims;
+  std::vector<PixelRegion> batch_regions;
+  auto flush = [&] {
+    if (batch.empty()) return;
+    auto t0 = Clock::now();
+    const std::vector<RenderResult> results = platform.render_batch(batch_prims, batch_regions);
+    const double shared = since(t0) / double(batch.size());  // the batch shares its proof
+    for (size_t k = 0; k < batch.size(); ++k) {
+      t0 = Clock::now();
+      records[batch[k]] = finish_case(cases[batch[k]], view, prims[batch[k]], results[k],
+                                      compare_with_reference);
+      cost[batch[k]] += shared + since(t0);
+    }
+    batch.clear(), batch_prims.clear(), batch_regions.clear();
+  };
+  for (size_t i = 0; i < prims.size(); ++i) {
+    if (cases[i].rec.status == CaseStatus::kInvalid) {
+      records[i] = cases[i].rec;
+      continue;
+    }
+    // Batch small primitives with disjoint regions (the usual case for all but large triangles
+    // and lines), so that one completeness proof covers the batch; a large one goes alone.
+    const PixelRegion& r = cases[i].expected;
+    const bool large = r.area() > kBatchMaxRegionArea;
+    bool clash = batch.size() >= kMaxBatch || large;
+    for (size_t k = 0; k < batch_regions.size() && !clash; ++k) clash = batch_regions[k].overlaps(r);
+    if (clash) flush();
+    batch.push_back(i), batch_prims.push_back(prims[i]), batch_regions.push_back(r);
+    if (large) flush();
+  }
+  flush();
+  if (cost_us) *cost_us = std::move(cost);
+  return records;
+}
+
+Record measure_case(const std::string& platform_name, Platform& platform, const View& view,
+                    const Primitive& prim, bool compare_with_reference) {
+  return measure_cases(platform_name, platform, view, {prim}, compare_with_reference).front();
+}
+
+void measure_segment_case(const ClippedSegment& seg, const View& view, const PixelSet& lit,
+                          Record& rec) {
+  rec.pixels = int64_t(lit.size());
+  rec.visibility = classify_extended(ideally_visible(seg), lit.size());
+  if (rec.visibility != Visibility::kTrueVisible) return;
+  const LineMetrics m = measure_line(seg, lit, view.width, view.height);
+  rec.lse_s = m.lse_signed;
+  rec.lse_u = m.lse_unsigned;
+  rec.extent_error = m.extent_error;
+  rec.lse_s_norm = m.lse_signed_norm;
+  rec.lse_u_norm = m.lse_unsigned_norm;
+  rec.chain_8connected = m.chain ? 1 : 0;
+  rec.gaps = m.gaps;
+}
+
+namespace {
+
+// The triangle columns of a record from its metrics (aliased or coverage form alike).
+void set_triangle_columns(const TriangleMetrics& m, Record& rec) {
+  rec.te_s = m.te_signed;
+  rec.te_u = m.te_unsigned;
+  rec.te_s_norm = m.te_signed_norm;
+  rec.te_u_norm = m.te_unsigned_norm;
+  rec.te_u_edge_norm = m.te_unsigned_edge_norm;
+  rec.full_window = m.full_window ? 1 : 0;
+  rec.simply_connected = m.simply_connected ? 1 : 0;
+}
+
+}  // namespace
+
+void measure_triangle_case(const ClippedPolygon& poly, const View& view, const PixelSet& lit,
+                           Record& rec) {
+  rec.pixels = int64_t(lit.size());
+  rec.visibility = classify_extended(ideally_visible(poly), lit.size());
+  if (rec.visibility != Visibility::kTrueVisible) return;
+  set_triangle_columns(measure_triangle(poly, lit, view.width, view.height), rec);
+}
+
+void measure_triangle_coverage_case(const ClippedPolygon& poly, const View& view,
+                                    const RenderResult& rendered, Record& rec) {
+  rec.pixels = int64_t(rendered.lit.size());
+  rec.visibility = classify_extended(ideally_visible(poly), rendered.lit.size());
+  if (rec.visibility != Visibility::kTrueVisible) return;
+  set_triangle_columns(measure_triangle_coverage(poly, rendered.lit, rendered.samples_lit,
+                                                 rendered.samples, view.width, view.height),
+                       rec);
+}
+
+uint64_t rendered_pixel_hash(const RenderResult& rendered) {
+  uint64_t h = pixel_set_hash(rendered.lit);
+  if (rendered.samples <= 0) return h;
+  for (uint8_t k : rendered.samples_lit) {  // FNV-1a, continued
+    h ^= k;
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+Visibility classify_extended(bool ideal_visible, size_t lit_pixels) {
+  if (lit_pixels > 0) return ideal_visible ? Visibility::kTrueVisible : Visibility::kFalseVisible;
+  return ideal_visible ? Visibility::kFalseInvisible : Visibility::kTrueInvisible;
+}
+
+}  // namespace ra

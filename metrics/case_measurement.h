@@ -1,0 +1,63 @@
+// One case of the audit: render one primitive in one view on one platform and measure it against
+// its ideal projection (NIST paper, section 3). Produces the case's record.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/clipping.h"
+#include "geometry/pixel_region.h"
+#include "metrics/point_metrics.h"
+#include "platforms/platform.h"
+#include "metrics/records.h"
+
+namespace ra {
+
+// Pixels of margin around the ideal primitive's window bounding box in which a platform's pixels are
+// looked for first (the occlusion-query proof, or a full scan, covers the rest of the window).
+constexpr int kRegionMargin = 2;
+
+// Primitives whose expected regions are disjoint and at most this large (px^2) are drawn in
+// batches of up to kMaxBatch under one completeness proof (Platform::render_batch); larger ones
+// are drawn alone, where the proof's fixed cost no longer matters.
+constexpr int64_t kBatchMaxRegionArea = 64 * 64;
+constexpr size_t kMaxBatch = 64;
+
+// Renders each of `prims` on `platform` and fills their records, in order: visibility, the kind's
+// metrics, pixel hash, render time. The reference rasterizer's pixel set is compared with the
+// rendered one (ref_diff) unless the platform is itself the reference (`compare_with_reference`
+// false: ref_diff = 0). Primitives with NaN/inf coordinates, or no projection, are never drawn:
+// status invalid. `cost_us` (for benchmarks), when given, receives each primitive's share of the
+// wall time in microseconds: its own geometry and measurement, plus an equal share of its batch's
+// drawing and proof.
+std::vector<Record> measure_cases(const std::string& platform_name, Platform& platform,
+                                  const View& view, const std::vector<Primitive>& prims,
+                                  bool compare_with_reference,
+                                  std::vector<double>* cost_us = nullptr);
+// The same for one primitive.
+Record measure_case(const std::string& platform_name, Platform& platform, const View& view,
+                    const Primitive& prim, bool compare_with_reference);
+
+// Visibility of a segment or triangle (no multiple-visible class for them, paper 3.5-3.6).
+Visibility classify_extended(bool ideal_visible, size_t lit_pixels);
+
+// Fill pixels, visibility and, for true-visible cases, the metrics (paper 3.5 and 3.6).
+void measure_segment_case(const ClippedSegment& seg, const View& view, const PixelSet& lit,
+                          Record& rec);
+void measure_triangle_case(const ClippedPolygon& poly, const View& view, const PixelSet& lit,
+                           Record& rec);
+// The same for an antialiased rendering (RenderResult::samples > 0): the te_* columns get the
+// coverage form of the metrics (TEs_cov, TEu_cov, triangle_metrics.h); visibility and `pixels`
+// count the pixels with any coverage.
+void measure_triangle_coverage_case(const ClippedPolygon& poly, const View& view,
+                                    const RenderResult& rendered, Record& rec);
+
+// The record's pixel_hash: pixel_set_hash(lit) for an aliased rendering; for an antialiased one
+// the same FNV-1a 64 continued over the samples-lit byte of each lit pixel in (y, x) order, so a
+// change of coverage alone changes the hash.
+uint64_t rendered_pixel_hash(const RenderResult& rendered);
+
+// The record fields that describe the case itself (platform, view, kind, index).
+Record case_identity(const std::string& platform_name, const View& view, const Primitive& prim);
+
+}  // namespace ra

@@ -1,0 +1,45 @@
+#include "metrics/point_metrics.h"
+
+#include <cmath>
+
+namespace ra {
+
+IdealPoint project_point(const View& view, Vec3 p) {
+  IdealPoint out;
+  const Vec4 c = view.to_clip(p);
+  out.visible = View::inside_clip_volume(c);
+  if (out.visible) out.window = view.clip_to_window(c);
+  return out;
+}
+
+PixelRect point_region(const View& view, const IdealPoint& ideal, int margin) {
+  if (!ideal.visible) return {};
+  const int x = int(std::floor(ideal.window.x)), y = int(std::floor(ideal.window.y));
+  PixelRect r{x - margin, y - margin, x + margin + 1, y + margin + 1};
+  r.x0 = std::max(r.x0, 0);
+  r.y0 = std::max(r.y0, 0);
+  r.x1 = std::min(r.x1, view.width);
+  r.y1 = std::min(r.y1, view.height);
+  return r;
+}
+
+Visibility classify_point(bool ideal_visible, size_t lit_pixels) {
+  if (lit_pixels > 1) return Visibility::kMultipleVisible;
+  if (lit_pixels == 1) return ideal_visible ? Visibility::kTrueVisible : Visibility::kFalseVisible;
+  return ideal_visible ? Visibility::kFalseInvisible : Visibility::kTrueInvisible;
+}
+
+double point_error(Vec2 projected, Pixel rendered) {
+  return std::hypot(projected.x - (rendered.x + 0.5), projected.y - (rendered.y + 0.5));
+}
+
+void measure_point(const View& view, const IdealPoint& ideal, const PixelSet& lit, Record& rec) {
+  rec.pixels = int64_t(lit.size());
+  rec.visibility = classify_point(ideal.visible, lit.size());
+  if (rec.visibility == Visibility::kTrueVisible) {
+    rec.pe = point_error(ideal.window, lit.front());
+    rec.pe_norm = rec.pe / view.norm_length();
+  }
+}
+
+}  // namespace ra

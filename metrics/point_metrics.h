@@ -1,0 +1,31 @@
+// The point audit of the NIST paper (section 3.4): ideal projection, visibility and the point
+// rendering error PE. Coordinates: GL window coordinates in pixels (pixel centres at +0.5).
+#pragma once
+
+#include "geometry/pixel_set.h"
+#include "metrics/records.h"
+#include "geometry/view.h"
+
+namespace ra {
+
+struct IdealPoint {
+  bool visible = false;  // strictly inside the clip volume (GL discards points outside it)
+  Vec2 window;           // projected position, pixels (meaningful when visible)
+};
+
+IdealPoint project_point(const View& view, Vec3 p);
+
+// Where a rendered point may be: the pixel containing the ideal position plus `margin` pixels on
+// each side; empty when the point is not visible.
+PixelRect point_region(const View& view, const IdealPoint& ideal, int margin = 2);
+
+// Visibility class of a point (true-visible needs exactly one lit pixel).
+Visibility classify_point(bool ideal_visible, size_t lit_pixels);
+
+// PE (eq. 1): distance from the projected point to the centre of the rendered pixel, pixels.
+double point_error(Vec2 projected, Pixel rendered);
+
+// Fills visibility, pixels, pe and pe_norm (eq. 2: PE / sqrt(W*H)) of `rec`.
+void measure_point(const View& view, const IdealPoint& ideal, const PixelSet& lit, Record& rec);
+
+}  // namespace ra

@@ -1,0 +1,23 @@
+// What the `faulty` test platform injects, as read from an experiment's [faults] table
+// (runner/experiment.h parses it; platforms/faulty_platform.cpp acts on it).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ra {
+
+// Faults injected by the `faulty` test platform (the reference rasterizer plus failures), so the
+// pipeline's own crash, hang and completeness handling can be tested. Indices apply to every kind
+// and view.
+struct FaultPlan {
+  std::string base = "reference";    // the platform that draws: "reference" or an OSMesa platform
+  std::vector<uint64_t> crash;       // the worker aborts on these primitive indices
+  std::vector<uint64_t> hang;        // the worker sleeps forever on these
+  std::vector<uint64_t> wild_pixel;  // one extra pixel lit far from the primitive
+  double shift_fraction = 0;         // this fraction of primitives is drawn one pixel to the right
+  double flaky_fraction = 0;         // ... shifted only on the first attempt (RA_RENDER_ATTEMPT < 2)
+};
+
+}  // namespace ra

@@ -1,0 +1,87 @@
+// The `faulty` test platform: the reference rasterizer plus the failures listed in the experiment's
+// [faults] table. It exists so the pipeline's own handling of crashing and hanging drivers, wild
+// pixels and changed primitives can be tested without a broken driver at hand.
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <thread>
+
+#include "util/counter_rng.h"
+#include "platforms/platform.h"
+#include "geometry/reference_rasterizer.h"
+
+namespace ra {
+namespace {
+
+bool listed(const std::vector<uint64_t>& v, uint64_t i) {
+  return std::find(v.begin(), v.end(), i) != v.end();
+}
+
+int render_attempt() {
+  const char* a = std::getenv("RA_RENDER_ATTEMPT");
+  return a ? std::atoi(a) : 1;
+}
+
+// A deterministic per-primitive draw in [0, 1), independent of shard and process.
+double fault_draw(const Primitive& prim, uint64_t salt) {
+  return double(splitmix64(splitmix64(prim.index * 3 + uint64_t(prim.kind)) ^ salt) >> 11) * 0x1.0p-53;
+}
+
+class FaultyPlatform : public Platform {
+ public:
+  explicit FaultyPlatform(FaultPlan plan) : plan_(std::move(plan)) {
+    const PlatformSpec* spec = find_platform(plan_.base);
+    if (spec && spec->gallium_driver)  // wild pixels are then drawn by GL itself
+      base_ = create_osmesa_platform(*spec, ReadbackMethod::kRegionWithProof, plan_.wild_pixel);
+  }
+
+  DriverInfo driver_info() const override {
+    DriverInfo info{"renderaudit faulty test platform", "reference + injected faults",
+                    "renderaudit", 0, false};
+    if (base_) info = base_->driver_info(), info.renderer += " + injected faults";
+    return info;
+  }
+  void set_view(const View& view) override {
+    view_ = view;
+    if (base_) base_->set_view(view);
+  }
+
+  RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
+    if (listed(plan_.crash, prim.index)) std::raise(SIGSEGV);  // what a crashing driver does
+    if (listed(plan_.hang, prim.index))
+      for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+    if (base_) return base_->render(prim, expected);
+    RenderResult out;
+    out.lit = rasterize_reference(view_, prim);
+    bool shift = fault_draw(prim, 1) < plan_.shift_fraction;
+    if (fault_draw(prim, 2) < plan_.flaky_fraction && first_attempt_) shift = true;
+    if (shift) out.lit.translate(1, 0);
+    if (listed(plan_.wild_pixel, prim.index)) {
+      // One pixel far from everything else: the opposite quadrant of the window.
+      Pixel anchor = out.lit.empty() ? Pixel{0, 0} : out.lit.front();
+      out.lit.insert({(anchor.x + view_.width / 2) % view_.width,
+                      (anchor.y + view_.height / 2) % view_.height});
+    }
+    out.lit.clip_to({0, 0, view_.width, view_.height});
+    out.render_us = 0;
+    out.full_scan = true;
+    return out;
+  }
+
+ private:
+  FaultPlan plan_;
+  std::unique_ptr<Platform> base_;  // an OSMesa platform when [faults] base names one
+  View view_;
+  // Flaky primitives are wrong on the first attempt only: a re-render (the coordinator's retry of
+  // a failed shard, the audit's flake check) runs its worker with RA_RENDER_ATTEMPT=2.
+  bool first_attempt_ = render_attempt() < 2;
+};
+
+}  // namespace
+
+std::unique_ptr<Platform> create_faulty_platform(const FaultPlan& faults) {
+  return std::make_unique<FaultyPlatform>(faults);
+}
+
+}  // namespace ra

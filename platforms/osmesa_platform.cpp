@@ -1,0 +1,627 @@
+// Mesa's OSMesa (llvmpipe or softpipe) as a platform: no GPU and no display are needed.
+//
+// Drawing goes to a framebuffer object of the view's size, not to OSMesa's window-system buffer:
+// glFinish on the latter copies the whole window into the caller's memory (about 150 us at
+// 907x907 here, 30x the cost of drawing one primitive); with an FBO only the pixels read back are
+// copied, by glReadPixels.
+//
+// Completeness of the readback: only the expected region is scanned, and an occlusion query
+// (GL_SAMPLES_PASSED) counts the fragments the primitive produced. Without multisampling and with
+// no depth or stencil test, every fragment of one point, line or polygon lights a distinct pixel, so
+// when the count equals the number of lit pixels found in the region nothing was lit elsewhere;
+// when it differs, the whole window is scanned (RenderResult::full_scan).
+//
+// No clear between primitives: each primitive is drawn in its own colour (a 24-bit counter) and its
+// pixels are those holding exactly that colour. Coverage does not depend on the colour (it is a
+// vertex attribute, not a rasterization parameter), and a scissored clear is a quad draw in Mesa:
+// it cost 1.7x (llvmpipe) to 1.8x (softpipe) the drawing of a large 907x907 triangle. Should a
+// driver not return the colour exactly, or leave pixels of another colour, the full scan still
+// disagrees with the count and the primitive is drawn again the old way: whole window cleared,
+// white, every non-black pixel taken (the end of render()).
+//
+// Multisample platforms (PlatformSpec::samples > 0, the antialiasing condition). The primitive is
+// drawn into a multisample FBO (GL_RGBA8, `samples` samples per pixel, GL_MULTISAMPLE enabled) and
+// the expected region is resolved (glBlitFramebuffer) into a single-sample FBO that glReadPixels
+// reads. Resolved colours blend with the background, so the colour counter cannot work here: every
+// primitive is drawn white on black and the resolved red value v of a pixel gives the number of its
+// samples the primitive covered, k = round(v * samples / 255) (llvmpipe, 4 samples: v is one of
+// 0, 64, 128, 191, 255 for k = 0..4, i.e. 255 k / 4 rounded to nearest; any value more than 1 away
+// from 255 k / samples aborts the primitive with the value). Sample positions (llvmpipe 4x, from
+// glGetMultisamplefv): (0.375, 0.125), (0.875, 0.375), (0.125, 0.625), (0.625, 0.875).
+// render_us = draw + resolve of the expected region + glFinish: what antialiasing costs includes
+// the resolve.
+// Completeness: under multisampling GL_SAMPLES_PASSED counts samples, not fragments, so the proof
+// compares it with the sum of k over the region read (each covered sample of one point, line or
+// triangle is covered once); when they differ the whole window is resolved and read.
+// Clearing: after the readback the primitive is drawn again in the clear colour (black, alpha 0):
+// the same vertices and state but the colour give the same samples (GL invariance; the colour is
+// a vertex attribute), so exactly what it lit is cleared. This costs one more draw, outside
+// render_us; a scissored clear (a quad draw in Mesa) cost 2-3x more, and a whole-window clear of
+// the 4x buffer about 25 ms at 907 x 907. After a whole-window scan the whole window is cleared.
+// Should a sample stay lit anyway, the next primitive's count exposes it (more samples found than
+// passed), and that primitive is drawn again on a cleared window, read whole. The colour-counter
+// batching is not used (render_batch draws one primitive at a time).
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <GL/osmesa.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+#include "platforms/platform.h"
+
+namespace ra {
+namespace {
+
+constexpr uint32_t kRgb = 0x00ffffffu;  // RGB bytes of a little-endian RGBA8 pixel
+constexpr uint32_t kAnyColour = 0xffffffffu;
+constexpr uint32_t kLastColour = 0x00ffffffu;
+
+class OsmesaPlatform : public Platform {
+ public:
+  OsmesaPlatform(const PlatformSpec& spec, ReadbackMethod method, std::vector<uint64_t> wild)
+      : method_(method), wild_pixel_indices_(std::move(wild)), name_(spec.name),
+        samples_(spec.samples) {
+    // Mesa reads these when the first context is made; only validated names reach it.
+    setenv("GALLIUM_DRIVER", spec.gallium_driver, 1);
+    setenv("LP_NUM_THREADS", "0", 0);
+    context_ = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, nullptr);
+    if (!context_) throw std::runtime_error(std::string("OSMesaCreateContextExt failed for ") + spec.name);
+    // The window-system buffer is never drawn to; it only has to exist for MakeCurrent.
+    if (!OSMesaMakeCurrent(context_, winsys_pixel_, GL_UNSIGNED_BYTE, 1, 1))
+      throw std::runtime_error("OSMesaMakeCurrent failed");
+    load(gen_framebuffers_, "glGenFramebuffers");
+    load(bind_framebuffer_, "glBindFramebuffer");
+    load(gen_renderbuffers_, "glGenRenderbuffers");
+    load(delete_renderbuffers_, "glDeleteRenderbuffers");
+    load(bind_renderbuffer_, "glBindRenderbuffer");
+    load(renderbuffer_storage_, "glRenderbufferStorage");
+    load(framebuffer_renderbuffer_, "glFramebufferRenderbuffer");
+    load(check_framebuffer_, "glCheckFramebufferStatus");
+    gen_framebuffers_(1, &framebuffer_);
+    bind_framebuffer_(GL_FRAMEBUFFER, framebuffer_);
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size_);
+    gen_queries_ = reinterpret_cast<PFNGLGENQUERIESPROC>(OSMesaGetProcAddress("glGenQueries"));
+    begin_query_ = reinterpret_cast<PFNGLBEGINQUERYPROC>(OSMesaGetProcAddress("glBeginQuery"));
+    end_query_ = reinterpret_cast<PFNGLENDQUERYPROC>(OSMesaGetProcAddress("glEndQuery"));
+    get_query_ = reinterpret_cast<PFNGLGETQUERYOBJECTUIVPROC>(
+        OSMesaGetProcAddress("glGetQueryObjectuiv"));
+    if (!gen_queries_ || !begin_query_ || !end_query_ || !get_query_)
+      throw std::runtime_error("OSMesa lacks occlusion queries (GL 1.5)");
+    gen_queries_(1, &query_);
+    if (samples_ > 0) init_multisample();
+
+    const char* ext = reinterpret_cast<const char*>(glGetString(GL_EXTENSIONS));
+    info_.renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    info_.version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    info_.vendor = reinterpret_cast<const char*>(glGetString(GL_VENDOR));
+    GLint bits = 0;
+    glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
+    info_.subpixel_bits = bits;
+    info_.timer_query = ext && std::strstr(ext, "GL_ARB_timer_query");
+
+    // The paper's conditions: white on black, size/width 1, no antialiasing, both faces filled.
+    for (GLenum cap : {GL_DEPTH_TEST, GL_LIGHTING, GL_DITHER, GL_POINT_SMOOTH, GL_LINE_SMOOTH,
+                       GL_POLYGON_SMOOTH, GL_MULTISAMPLE, GL_CULL_FACE, GL_BLEND, GL_SCISSOR_TEST})
+      glDisable(cap);
+    glPointSize(1);
+    glLineWidth(1);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glClearColor(0, 0, 0, 0);
+    glColor4f(1, 1, 1, 1);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    if (samples_ > 0) glEnable(GL_MULTISAMPLE);  // the antialiasing condition
+  }
+
+  ~OsmesaPlatform() override { OSMesaDestroyContext(context_); }
+
+  DriverInfo driver_info() const override { return info_; }
+
+  void set_view(const View& view) override {
+    make_current();
+    if (view.width != width_ || view.height != height_) resize(view.width, view.height);
+    glViewport(0, 0, width_, height_);
+    glMatrixMode(GL_PROJECTION);
+    glLoadMatrixd(view.projection.m.data());
+    glMatrixMode(GL_MODELVIEW);
+    glLoadMatrixd(view.view_matrix.m.data());
+    clear_all();
+  }
+
+  RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
+    make_current();
+    if (samples_ > 0) return render_multisample(prim, expected);
+    RenderResult out;
+    switch (method_) {
+      case ReadbackMethod::kDrawOnly:  // the floor: what the renderer itself must spend
+        out.render_us = draw_and_finish(prim);
+        return out;
+      case ReadbackMethod::kFullWindow:  // the paper's method: clear, draw, read everything
+        glClear(GL_COLOR_BUFFER_BIT);
+        glFinish();  // keep the clear out of render_us
+        out.render_us = draw_and_finish(prim);
+        read_and_scan({0, 0, width_, height_}, kAnyColour, out.lit);
+        out.full_scan = true;
+        return out;
+      case ReadbackMethod::kRegionWithProof:
+        break;
+    }
+    reserve_colours(1);
+    use_colour(++colour_);
+    const Pixel* wild = wild_pixel_for(prim, expected);
+    begin_query_(GL_SAMPLES_PASSED, query_);
+    out.render_us = draw_and_finish(prim, true, wild);
+    GLuint samples = 0;
+    get_query_(query_, GL_QUERY_RESULT, &samples);
+
+    read_and_scan(expected, colour_, out.lit);
+    if (out.lit.size() == samples) return out;
+    out.full_scan = true;
+    out.lit.clear();
+    read_and_scan({0, 0, width_, height_}, colour_, out.lit);
+    if (out.lit.size() == samples) return out;
+    // Either the colour did not come back exactly, or the driver produced more fragments than
+    // pixels: it lit some pixel twice (softpipe does, for some large triangles of the nist2008
+    // views: 16,355 fragments for 16,336 pixels in one case). Draw
+    // the primitive white on a cleared window and take every non-black pixel of the whole window:
+    // complete by construction, whatever the count says.
+    clear_all();
+    glColor4ub(255, 255, 255, 255);
+    begin_query_(GL_SAMPLES_PASSED, query_);
+    out.render_us = draw_and_finish(prim, true, wild);
+    get_query_(query_, GL_QUERY_RESULT, &samples);
+    out.lit.clear();
+    read_and_scan({0, 0, width_, height_}, kAnyColour, out.lit);
+    clear_all();
+    if (out.lit.size() > samples)  // more lit pixels than fragments on a cleared window
+      throw std::runtime_error("the driver lit " + std::to_string(out.lit.size()) +
+                               " pixels with " + std::to_string(samples) +
+                               " fragments for primitive " + std::to_string(prim.index));
+    if (out.lit.size() < samples)
+      std::fprintf(stderr, "primitive %llu: %u fragments for %lld pixels (pixels lit twice)\n",
+                   static_cast<unsigned long long>(prim.index), samples,
+                   static_cast<long long>(out.lit.size()));
+    return out;
+  }
+
+  // A batch: each primitive in its own colour, one occlusion query and one glFinish around them
+  // all (a glFinish per primitive cost more than the small primitive's drawing: llvmpipe walks all
+  // its tiles at every flush). The sum over the batch of the pixels found in each primitive's
+  // region with its colour equals the fragment count only when every fragment was found where it
+  // belongs and none was overwritten by another (each found pixel is a distinct fragment); any
+  // other outcome redraws the batch one primitive at a time, each with its own proof and time.
+  std::vector<RenderResult> render_batch(const std::vector<Primitive>& prims,
+                                         const std::vector<PixelRegion>& expected) override {
+    make_current();
+    if (method_ == ReadbackMethod::kDrawOnly) return draw_batch_only(prims);
+    if (method_ != ReadbackMethod::kRegionWithProof || prims.size() < 2 || samples_ > 0)
+      return Platform::render_batch(prims, expected);
+    reserve_colours(prims.size());
+    const uint32_t first = colour_ + 1;
+    std::vector<RenderResult> out(prims.size());
+    const auto t0 = std::chrono::steady_clock::now();
+    begin_query_(GL_SAMPLES_PASSED, query_);
+    for (size_t i = 0; i < prims.size(); ++i) {
+      use_colour(++colour_);
+      draw(prims[i], wild_pixel_for(prims[i], expected[i]));
+    }
+    end_query_(GL_SAMPLES_PASSED);
+    glFinish();
+    const double share_us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() /
+        double(prims.size());
+    GLuint samples = 0;
+    get_query_(query_, GL_QUERY_RESULT, &samples);
+    int64_t found = 0;
+    for (size_t i = 0; i < prims.size(); ++i) {
+      out[i].render_us = share_us;
+      out[i].batch_size = int(prims.size());
+      read_and_scan(expected[i], first + uint32_t(i), out[i].lit);
+      found += out[i].lit.size();
+    }
+    if (found == int64_t(samples)) return out;
+    return Platform::render_batch(prims, expected);
+  }
+
+ private:
+  // Several platforms in one process (tests: an aliased and a multisample one side by side) each
+  // have their own context; GL calls go to the current one.
+  void make_current() {
+    if (OSMesaGetCurrentContext() != context_ &&
+        !OSMesaMakeCurrent(context_, winsys_pixel_, GL_UNSIGNED_BYTE, 1, 1))
+      throw std::runtime_error("OSMesaMakeCurrent failed for " + name_);
+  }
+
+  // The multisample FBO's entry points and its resolve target; fails, naming the platform, when the
+  // driver cannot give `samples_` samples per pixel.
+  void init_multisample() {
+    GLint max_samples = 0;
+    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    if (max_samples < samples_)
+      throw std::runtime_error("platform " + name_ + " needs " + std::to_string(samples_) +
+                               " samples per pixel, but this driver (" +
+                               reinterpret_cast<const char*>(glGetString(GL_RENDERER)) +
+                               ") has GL_MAX_SAMPLES " + std::to_string(max_samples));
+    load(renderbuffer_storage_multisample_, "glRenderbufferStorageMultisample");
+    load(blit_framebuffer_, "glBlitFramebuffer");
+    load(get_renderbuffer_parameter_, "glGetRenderbufferParameteriv");
+    gen_framebuffers_(1, &resolve_framebuffer_);
+    // k samples lit <-> resolved value 255 k / samples rounded either way; anything else is 255.
+    for (int v = 0; v < 256; ++v) {
+      const int k = int(std::lround(v * samples_ / 255.0));
+      decode_[v] = std::fabs(v - 255.0 * k / samples_) <= 1.0 ? uint8_t(k) : uint8_t(255);
+    }
+  }
+
+  // Multisample rendering (the antialiasing condition; see the top of this file).
+  RenderResult render_multisample(const Primitive& prim, const PixelRegion& expected) {
+    RenderResult out;
+    out.samples = samples_;
+    const PixelRegion window = PixelRect{0, 0, width_, height_};
+    glColor4ub(255, 255, 255, 255);
+    switch (method_) {
+      case ReadbackMethod::kDrawOnly:  // the floor: drawing alone, no resolve
+        out.render_us = draw_and_finish(prim);
+        erase(prim, nullptr);
+        return out;
+      case ReadbackMethod::kFullWindow:
+        clear_all();
+        out.render_us = draw_resolve_finish(prim, nullptr, window);
+        read_coverage(window, out);
+        out.full_scan = true;
+        clear_all();
+        return out;
+      case ReadbackMethod::kRegionWithProof:
+        break;
+    }
+    const Pixel* wild = wild_pixel_for(prim, expected);
+    begin_query_(GL_SAMPLES_PASSED, query_);
+    out.render_us = draw_resolve_finish(prim, wild, expected, true);
+    GLuint passed = 0;
+    get_query_(query_, GL_QUERY_RESULT, &passed);
+    int64_t found = read_coverage(expected, out);
+    if (found == int64_t(passed)) {
+      erase(prim, wild);
+      return out;
+    }
+    out.full_scan = true;
+    resolve(window);
+    found = read_coverage(window, out);
+    clear_all();
+    if (found == int64_t(passed)) return out;
+    // More samples found than passed: some stayed lit from an earlier primitive; fewer: the driver
+    // covered some sample twice. Draw again on the cleared window and read it whole.
+    begin_query_(GL_SAMPLES_PASSED, query_);
+    out.render_us = draw_resolve_finish(prim, wild, expected, true);
+    get_query_(query_, GL_QUERY_RESULT, &passed);
+    resolve(window);
+    found = read_coverage(window, out);
+    clear_all();
+    if (found > int64_t(passed))
+      throw std::runtime_error("the driver lit " + std::to_string(found) + " samples with " +
+                               std::to_string(passed) + " samples passed for primitive " +
+                               std::to_string(prim.index));
+    if (found < int64_t(passed))
+      std::fprintf(stderr, "primitive %llu: %u samples passed for %lld samples lit (lit twice)\n",
+                   static_cast<unsigned long long>(prim.index), passed,
+                   static_cast<long long>(found));
+    return out;
+  }
+
+  // Draws, resolves `region` into the single-sample FBO and waits; returns the CPU time, us.
+  double draw_resolve_finish(const Primitive& prim, const Pixel* wild, const PixelRegion& region,
+                             bool end_query = false) {
+    const auto t0 = std::chrono::steady_clock::now();
+    draw(prim, wild);
+    if (end_query) end_query_(GL_SAMPLES_PASSED);
+    resolve(region);
+    glFinish();
+    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  // Resolves the region's rectangles from the multisample FBO into the resolve FBO (same place).
+  void resolve(const PixelRegion& region) {
+    bind_framebuffer_(GL_READ_FRAMEBUFFER, framebuffer_);
+    bind_framebuffer_(GL_DRAW_FRAMEBUFFER, resolve_framebuffer_);
+    for (const PixelRect& r : region.rects) {
+      const PixelRect c = clamp(r);
+      if (!c.empty())
+        blit_framebuffer_(c.x0, c.y0, c.x1, c.y1, c.x0, c.y0, c.x1, c.y1, GL_COLOR_BUFFER_BIT,
+                          GL_NEAREST);
+    }
+    // Steady state: draw (and clear) into the multisample FBO, read from the resolved one.
+    bind_framebuffer_(GL_DRAW_FRAMEBUFFER, framebuffer_);
+    bind_framebuffer_(GL_READ_FRAMEBUFFER, resolve_framebuffer_);
+  }
+
+  // Draws the primitive again in the clear colour: exactly its samples go back to black.
+  void erase(const Primitive& prim, const Pixel* wild) {
+    glColor4ub(0, 0, 0, 0);
+    draw(prim, wild);
+    glFinish();
+    glColor4ub(255, 255, 255, 255);
+  }
+
+  // Reads the region's resolved pixels and replaces out.lit / out.samples_lit with those that
+  // have any coverage; returns the sum of their samples lit.
+  int64_t read_coverage(const PixelRegion& region, RenderResult& out) {
+    covered_.clear();
+    size_t rects = 0;
+    for (const PixelRect& r0 : region.rects) {
+      const PixelRect r = clamp(r0);
+      if (r.empty()) continue;
+      ++rects;
+      const int w = r.x1 - r.x0, h = r.y1 - r.y0;
+      readback_.resize(size_t(w) * h);
+      glReadPixels(r.x0, r.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readback_.data());
+      for (int y = 0; y < h; ++y) {
+        const uint32_t* row = readback_.data() + size_t(y) * w;
+        for (int x = 0; x < w; ++x) {
+          const uint8_t v = uint8_t(row[x]);  // red: the low byte of a little-endian RGBA8 pixel
+          if (v == 0) continue;
+          const uint8_t k = decode_[v];
+          if (k == 255)
+            throw std::runtime_error("platform " + name_ + ": resolved value " +
+                                     std::to_string(v) + " at pixel (" + std::to_string(r.x0 + x) +
+                                     ", " + std::to_string(r.y0 + y) + ") is no multiple of 255/" +
+                                     std::to_string(samples_));
+          covered_.push_back({r.y0 + y, r.x0 + x, k});
+        }
+      }
+    }
+    if (rects > 1)  // a line's strip: rectangles side by side, put in (y, x) order
+      std::sort(covered_.begin(), covered_.end(), [](const Covered& a, const Covered& b) {
+        return a.y != b.y ? a.y < b.y : a.x < b.x;
+      });
+    out.lit.clear();
+    out.samples_lit.clear();
+    out.samples_lit.reserve(covered_.size());
+    int64_t sum = 0;
+    for (const Covered& c : covered_) {
+      out.lit.append_run(c.y, c.x, c.x + 1);
+      out.samples_lit.push_back(c.k);
+      sum += c.k;
+    }
+    return sum;
+  }
+
+  // Draws the primitive and waits for it; returns the CPU time in microseconds. With
+  // `end_query`, the running occlusion query is ended right after the draw.
+  double draw_and_finish(const Primitive& prim, bool end_query = false, const Pixel* wild = nullptr) {
+    const auto t0 = std::chrono::steady_clock::now();
+    draw(prim, wild);
+    if (end_query) end_query_(GL_SAMPLES_PASSED);
+    glFinish();
+    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  void draw(const Primitive& prim, const Pixel* wild) {
+    static const GLenum modes[] = {GL_POINTS, GL_LINES, GL_TRIANGLES};
+    glBegin(modes[int(prim.kind)]);
+    for (int i = 0; i < vertex_count(prim.kind); ++i) glVertex3d(prim.v[i].x, prim.v[i].y, prim.v[i].z);
+    glEnd();
+    if (wild) draw_wild_pixel(*wild);
+  }
+
+  // The batched floor (benchmark only): the batch drawn under one glFinish, nothing read back.
+  std::vector<RenderResult> draw_batch_only(const std::vector<Primitive>& prims) {
+    std::vector<RenderResult> out(prims.size());
+    const auto t0 = std::chrono::steady_clock::now();
+    for (const Primitive& prim : prims) draw(prim, nullptr);
+    glFinish();
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    for (RenderResult& r : out) r.render_us = us / double(prims.size()), r.batch_size = int(prims.size());
+    return out;
+  }
+
+  // Test-only fault: where the extra pixel goes (the quadrant opposite the expected region), or
+  // nullptr when this primitive has none.
+  const Pixel* wild_pixel_for(const Primitive& prim, const PixelRegion& region) {
+    if (std::find(wild_pixel_indices_.begin(), wild_pixel_indices_.end(), prim.index) ==
+        wild_pixel_indices_.end())
+      return nullptr;
+    const PixelRect expected = region.bounds();
+    const int cx = expected.empty() ? 0 : (expected.x0 + expected.x1) / 2;
+    const int cy = expected.empty() ? 0 : (expected.y0 + expected.y1) / 2;
+    wild_ = {(cx + width_ / 2) % width_, (cy + height_ / 2) % height_};
+    return &wild_;
+  }
+
+  // Lights pixel p through GL (so only the readback can find it): a point at its centre in NDC.
+  void draw_wild_pixel(Pixel p) {
+    glMatrixMode(GL_PROJECTION);
+    glPushMatrix();
+    glLoadIdentity();
+    glMatrixMode(GL_MODELVIEW);
+    glPushMatrix();
+    glLoadIdentity();
+    glBegin(GL_POINTS);
+    glVertex2d(2.0 * (p.x + 0.5) / width_ - 1.0, 2.0 * (p.y + 0.5) / height_ - 1.0);
+    glEnd();
+    glPopMatrix();
+    glMatrixMode(GL_PROJECTION);
+    glPopMatrix();
+    glMatrixMode(GL_MODELVIEW);
+  }
+
+  template <typename F>
+  void load(F& fn, const char* name) {
+    fn = reinterpret_cast<F>(OSMesaGetProcAddress(name));
+    if (!fn) throw std::runtime_error(std::string("OSMesa lacks ") + name);
+  }
+
+  void resize(int w, int h) {
+    if (w > max_size_ || h > max_size_)
+      throw std::runtime_error("window " + std::to_string(w) + "x" + std::to_string(h) +
+                               " exceeds this driver's GL_MAX_RENDERBUFFER_SIZE " +
+                               std::to_string(max_size_));
+    if (samples_ > 0) return resize_multisample(w, h);
+    if (renderbuffer_) delete_renderbuffers_(1, &renderbuffer_);
+    gen_renderbuffers_(1, &renderbuffer_);
+    bind_renderbuffer_(GL_RENDERBUFFER, renderbuffer_);
+    renderbuffer_storage_(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    framebuffer_renderbuffer_(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_);
+    if (check_framebuffer_(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("incomplete framebuffer for a " + std::to_string(w) + "x" +
+                               std::to_string(h) + " window");
+    width_ = w;
+    height_ = h;
+  }
+
+  // The multisample FBO (drawn into) and the single-sample resolve FBO (read back), both w x h.
+  void resize_multisample(int w, int h) {
+    const std::string size = std::to_string(w) + "x" + std::to_string(h);
+    if (renderbuffer_) delete_renderbuffers_(1, &renderbuffer_);
+    if (resolve_renderbuffer_) delete_renderbuffers_(1, &resolve_renderbuffer_);
+    gen_renderbuffers_(1, &renderbuffer_);
+    bind_renderbuffer_(GL_RENDERBUFFER, renderbuffer_);
+    renderbuffer_storage_multisample_(GL_RENDERBUFFER, samples_, GL_RGBA8, w, h);
+    GLint got = 0;  // GL may give more samples than asked for: coverage would then be k / got
+    get_renderbuffer_parameter_(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &got);
+    if (got != samples_)
+      throw std::runtime_error("platform " + name_ + ": asked for " + std::to_string(samples_) +
+                               " samples per pixel, the driver gave " + std::to_string(got));
+    bind_framebuffer_(GL_FRAMEBUFFER, framebuffer_);
+    framebuffer_renderbuffer_(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_);
+    if (check_framebuffer_(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("incomplete multisample framebuffer for a " + size + " window");
+    gen_renderbuffers_(1, &resolve_renderbuffer_);
+    bind_renderbuffer_(GL_RENDERBUFFER, resolve_renderbuffer_);
+    renderbuffer_storage_(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    bind_framebuffer_(GL_FRAMEBUFFER, resolve_framebuffer_);
+    framebuffer_renderbuffer_(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              resolve_renderbuffer_);
+    if (check_framebuffer_(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("incomplete resolve framebuffer for a " + size + " window");
+    bind_framebuffer_(GL_DRAW_FRAMEBUFFER, framebuffer_);
+    bind_framebuffer_(GL_READ_FRAMEBUFFER, resolve_framebuffer_);
+    width_ = w;
+    height_ = h;
+  }
+
+  PixelRect clamp(PixelRect r) const {
+    r.x0 = std::max(r.x0, 0);
+    r.y0 = std::max(r.y0, 0);
+    r.x1 = std::min(r.x1, width_);
+    r.y1 = std::min(r.y1, height_);
+    return r;
+  }
+
+  // Makes room for n more colours before the 24-bit counter would wrap.
+  void reserve_colours(size_t n) {
+    if (colour_ + n > kLastColour) clear_all();  // after 16.7 million primitives in one view
+  }
+  void use_colour(uint32_t c) {
+    glColor4ub(GLubyte(c), GLubyte(c >> 8), GLubyte(c >> 16), 255);
+  }
+
+  // Clears the whole window (a fast path in Mesa, unlike a scissored clear) and restarts colours.
+  void clear_all() {
+    glClear(GL_COLOR_BUFFER_BIT);
+    glFinish();
+    colour_ = 0;
+  }
+
+  // Reads the region back rectangle by rectangle and adds the pixels of `colour` (0xBBGGRR), or
+  // with kAnyColour every pixel that is not black. The runs of several rectangles side by side
+  // are put in (y, x) order before they join `lit`.
+  void read_and_scan(const PixelRegion& region, uint32_t colour, PixelSet& lit) {
+    std::vector<PixelRect> rects;
+    for (const PixelRect& r : region.rects)
+      if (!clamp(r).empty()) rects.push_back(clamp(r));
+    if (rects.size() == 1) return read_and_scan(rects.front(), colour, lit);
+    PixelSet part;
+    runs_.clear();
+    for (const PixelRect& r : rects) {
+      part.clear();
+      read_and_scan(r, colour, part);
+      runs_.insert(runs_.end(), part.runs().begin(), part.runs().end());
+    }
+    std::sort(runs_.begin(), runs_.end(), [](const PixelRun& a, const PixelRun& b) {
+      return a.y != b.y ? a.y < b.y : a.x_begin < b.x_begin;
+    });
+    for (const PixelRun& run : runs_) lit.append_run(run.y, run.x_begin, run.x_end);
+  }
+
+  // Reads one rectangle back (rows bottom-up, as GL window coordinates) and appends its pixels of
+  // `colour` as runs.
+  void read_and_scan(const PixelRect& r, uint32_t colour, PixelSet& lit) {
+    if (r.empty()) return;
+    const int w = r.x1 - r.x0, h = r.y1 - r.y0;
+    readback_.resize(size_t(w) * h);
+    glReadPixels(r.x0, r.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readback_.data());
+    if (colour == kAnyColour) {
+      scan(r, [](uint32_t v) { return (v & kRgb) != 0; }, lit);
+    } else {
+      scan(r, [colour](uint32_t v) { return (v & kRgb) == colour; }, lit);
+    }
+  }
+
+  template <typename IsLit>
+  void scan(const PixelRect& r, IsLit is_lit, PixelSet& lit) const {
+    const int w = r.x1 - r.x0, h = r.y1 - r.y0;
+    for (int y = 0; y < h; ++y) {
+      const uint32_t* row = readback_.data() + size_t(y) * w;
+      int x = 0;
+      while (x < w) {
+        while (x < w && !is_lit(row[x])) ++x;
+        const int begin = x;
+        while (x < w && is_lit(row[x])) ++x;
+        lit.append_run(r.y0 + y, r.x0 + begin, r.x0 + x);
+      }
+    }
+  }
+
+  ReadbackMethod method_;
+  std::vector<uint64_t> wild_pixel_indices_;
+  std::string name_;  // the platform's name, for messages
+  int samples_ = 0;   // PlatformSpec::samples; 0 = aliased
+  // Multisample platforms: the resolve target, and resolved red value -> samples lit (255: invalid).
+  GLuint resolve_framebuffer_ = 0, resolve_renderbuffer_ = 0;
+  uint8_t decode_[256] = {};
+  struct Covered {
+    int32_t y, x;
+    uint8_t k;
+  };
+  std::vector<Covered> covered_;
+  PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC renderbuffer_storage_multisample_ = nullptr;
+  PFNGLBLITFRAMEBUFFERPROC blit_framebuffer_ = nullptr;
+  PFNGLGETRENDERBUFFERPARAMETERIVPROC get_renderbuffer_parameter_ = nullptr;
+  Pixel wild_;
+  OSMesaContext context_ = nullptr;
+  uint8_t winsys_pixel_[4] = {};
+  std::vector<uint32_t> readback_;
+  std::vector<PixelRun> runs_;
+  GLuint framebuffer_ = 0, renderbuffer_ = 0;
+  GLint max_size_ = 0;
+  PFNGLGENFRAMEBUFFERSPROC gen_framebuffers_ = nullptr;
+  PFNGLBINDFRAMEBUFFERPROC bind_framebuffer_ = nullptr;
+  PFNGLGENRENDERBUFFERSPROC gen_renderbuffers_ = nullptr;
+  PFNGLDELETERENDERBUFFERSPROC delete_renderbuffers_ = nullptr;
+  PFNGLBINDRENDERBUFFERPROC bind_renderbuffer_ = nullptr;
+  PFNGLRENDERBUFFERSTORAGEPROC renderbuffer_storage_ = nullptr;
+  PFNGLFRAMEBUFFERRENDERBUFFERPROC framebuffer_renderbuffer_ = nullptr;
+  PFNGLCHECKFRAMEBUFFERSTATUSPROC check_framebuffer_ = nullptr;
+  int width_ = 0, height_ = 0;
+  uint32_t colour_ = 0;  // of the last primitive drawn; 0 (black) = none since the last clear
+  DriverInfo info_;
+  GLuint query_ = 0;
+  PFNGLGENQUERIESPROC gen_queries_ = nullptr;
+  PFNGLBEGINQUERYPROC begin_query_ = nullptr;
+  PFNGLENDQUERYPROC end_query_ = nullptr;
+  PFNGLGETQUERYOBJECTUIVPROC get_query_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Platform> create_osmesa_platform(const PlatformSpec& spec, ReadbackMethod method,
+                                                 std::vector<uint64_t> wild_pixel_indices) {
+  return std::make_unique<OsmesaPlatform>(spec, method, std::move(wild_pixel_indices));
+}
+
+}  // namespace ra

@@ -1,0 +1,98 @@
+// Platforms: the renderers the runner draws through. A worker process serves exactly one platform
+// (Mesa picks its driver from GALLIUM_DRIVER when the first context is made).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/pixel_region.h"
+#include "geometry/pixel_set.h"
+#include "geometry/primitive.h"
+#include "geometry/view.h"
+#include "platforms/fault_plan.h"
+
+namespace ra {
+
+struct PlatformSpec {
+  const char* name;            // as written in experiment files
+  const char* description;
+  const char* gallium_driver;  // value of GALLIUM_DRIVER for OSMesa platforms, else nullptr
+  // Samples per pixel of the multisample colour buffer drawn into (OSMesa platforms only): 0 for
+  // the aliased platforms (one sample at the pixel centre, the paper's condition), 4 for the
+  // antialiasing condition (`osmesa-llvmpipe-msaa4`, see osmesa_platform.cpp).
+  int samples = 0;
+};
+
+// The platforms this build knows. Only names from this table ever reach Mesa's environment.
+const std::vector<PlatformSpec>& platform_specs();
+const PlatformSpec* find_platform(const std::string& name);
+std::string platform_names();  // "osmesa-llvmpipe, osmesa-softpipe, ..."
+
+// What a driver says about itself (glGetString and a few capabilities).
+struct DriverInfo {
+  std::string renderer, version, vendor;
+  int subpixel_bits = 0;        // GL_SUBPIXEL_BITS; 0 for exact rasterizers
+  bool timer_query = false;     // GL_ARB_timer_query
+};
+
+// One primitive as rendered.
+struct RenderResult {
+  PixelSet lit;             // every lit pixel (any coverage), GL window coordinates
+  // Multisample platforms only (`samples` > 0): samples_lit[i] = samples of the i-th pixel of
+  // `lit`, in its (y, x) iteration order, that the primitive covered, 1..samples; the pixel's
+  // coverage is samples_lit[i] / samples. Aliased platforms: samples = 0, samples_lit empty (each
+  // lit pixel is wholly lit).
+  int samples = 0;
+  std::vector<uint8_t> samples_lit;
+  // CPU wall time of draw + glFinish, microseconds; for a batch drawn under one glFinish, the
+  // batch's time divided equally among its `batch_size` primitives. Multisample platforms: draw +
+  // resolve of the expected region (glBlitFramebuffer) + glFinish.
+  double render_us = 0;
+  int batch_size = 1;
+  bool full_scan = false;   // the whole window was inspected (no proof for a partial readback)
+};
+
+class Platform {
+ public:
+  virtual ~Platform() = default;
+  virtual DriverInfo driver_info() const = 0;
+  // Makes `view` current: window size, projection and modelview matrices.
+  virtual void set_view(const View& view) = 0;
+  // Draws `prim` alone, white on black, width/size 1, no antialiasing (multisampling on the
+  // multisample platforms), both faces filled, and returns every pixel it lit. `expected` is the window region where the ideal primitive lies
+  // (its clipped bounding box, or a strip along a line, plus a margin; possibly empty): an
+  // implementation may read back only that region when it proves that nothing was lit outside it.
+  virtual RenderResult render(const Primitive& prim, const PixelRegion& expected) = 0;
+  // Draws each primitive as render() would, in order, and returns their results. An
+  // implementation may share one completeness proof among the batch (osmesa_platform.cpp); this
+  // default draws them one by one.
+  virtual std::vector<RenderResult> render_batch(const std::vector<Primitive>& prims,
+                                                 const std::vector<PixelRegion>& expected) {
+    std::vector<RenderResult> out;
+    out.reserve(prims.size());
+    for (size_t i = 0; i < prims.size(); ++i) out.push_back(render(prims[i], expected[i]));
+    return out;
+  }
+};
+
+// Creates the platform for this process. OSMesa platforms set GALLIUM_DRIVER (and
+// LP_NUM_THREADS=0 unless the user set it: thread hand-off dominates one-primitive frames).
+std::unique_ptr<Platform> create_platform(const std::string& name, const FaultPlan& faults);
+
+// How an OSMesa platform finds the lit pixels. Only kRegionWithProof is used by `run`; the others
+// exist for the benchmark (`make bench`), which compares them side by side.
+enum class ReadbackMethod {
+  kRegionWithProof,  // read the expected region; an occlusion query proves nothing lit elsewhere
+  kFullWindow,       // clear and read back the whole window for every primitive (the paper's way)
+  kDrawOnly,         // draw + glFinish, nothing read: the floor (RenderResult::lit stays empty)
+};
+// `wild_pixel_indices` (tests only): for these primitive indices GL also lights one pixel far from
+// the primitive, inside the same occlusion query, as a driver bug would; the readback must find it.
+std::unique_ptr<Platform> create_osmesa_platform(
+    const PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
+    std::vector<uint64_t> wild_pixel_indices = {});
+std::unique_ptr<Platform> create_reference_platform();
+std::unique_ptr<Platform> create_faulty_platform(const FaultPlan& faults);
+
+}  // namespace ra
