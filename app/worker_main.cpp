@@ -8,6 +8,7 @@
 #include <exception>
 
 #include "app/commands.h"
+#include "util/child_process.h"
 #include "util/errors.h"
 
 int main(int argc, char** argv) {
@@ -20,9 +21,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : ra::app::kExitUsage;
   } catch (const ra::UserError& e) {
+    ra::send_message_to_parent(e.what());
     std::fprintf(stderr, "renderaudit-worker: %s\n", e.what());
     return ra::app::kExitUsage;
   } catch (const std::exception& e) {
+    ra::send_message_to_parent(e.what());
     std::fprintf(stderr, "renderaudit-worker: error: %s\n", e.what());
     return ra::app::kExitFindings;
   }

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "util/atomic_file.h"
+#include "util/child_process.h"
 #include "runner/experiment.h"
 #include "runner/shard.h"
 #include "runner/worker_program.h"
@@ -28,50 +29,18 @@ using Clock = std::chrono::steady_clock;
 
 Shard shard_of(const RerenderBatch& b) { return {b.platform, b.kind, b.view, b.begin, b.end}; }
 
-// The environment of a child: ours, with RA_RENDER_ATTEMPT replaced. Built before fork so the
-// child only calls async-signal-safe functions.
-std::vector<std::string> child_environment(int attempt) {
-  std::vector<std::string> env;
-  for (char** e = environ; e && *e; ++e)
-    if (std::strncmp(*e, "RA_RENDER_ATTEMPT=", 18) != 0) env.emplace_back(*e);
-  env.push_back("RA_RENDER_ATTEMPT=" + std::to_string(attempt));
-  return env;
-}
-
+// A re-render worker: its own process group (a timeout kills all it started), dying with us, its
+// output in its log, RA_RENDER_ATTEMPT set to `attempt`.
 pid_t spawn(const std::string& program, const std::string& dir, const RerenderBatch& b,
-            const std::vector<std::string>& env) {
-  const std::string log = dir + "/logs/" + shard_of(b).id() + ".log";
-  const std::vector<std::string> args = {program,
-                                         "worker",
-                                         dir,
-                                         b.platform,
-                                         kind_name(b.kind),
-                                         std::to_string(b.view),
-                                         std::to_string(b.begin),
-                                         std::to_string(b.end)};
-  std::vector<char*> argv, envp;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  for (const auto& e : env) envp.push_back(const_cast<char*>(e.c_str()));
-  envp.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("fork failed: " + std::string(std::strerror(errno)));
-  if (pid == 0) {
-    ::setpgid(0, 0);  // its own process group: a timeout kills whatever it started too
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) ::dup2(fd, 1), ::dup2(fd, 2), ::close(fd);
-    ::execve(program.c_str(), argv.data(), envp.data());
-    ::_exit(127);
-  }
-  return pid;
-}
-
-std::string describe_exit(int status) {
-  if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    return "crashed (signal " + std::to_string(sig) + ", " + strsignal(sig) + ")";
-  }
-  return "exited with status " + std::to_string(WEXITSTATUS(status));
+            int attempt) {
+  ChildSpec spec;
+  spec.argv = {program, "worker", dir, b.platform, kind_name(b.kind), std::to_string(b.view),
+               std::to_string(b.begin), std::to_string(b.end)};
+  spec.set_env = {"RA_RENDER_ATTEMPT=" + std::to_string(attempt)};
+  spec.log_to(dir + "/logs/" + shard_of(b).id() + ".log");
+  spec.stdin_null = true;
+  spec.own_process_group = true;
+  return start_child(spec).pid;
 }
 
 // The last non-empty line of a child's log, for the error message (the directory is removed).
@@ -145,7 +114,6 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   const std::string dir = templ;
   for (const char* sub : {"/records", "/drivers", "/logs"}) fs::create_directories(dir + sub);
   write_file_atomic(dir + "/experiment.toml", exp.text);
-  const std::vector<std::string> env = child_environment(options.attempt);
 
   struct Running {
     std::size_t batch;
@@ -170,7 +138,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   try {
     while (next < result.batches.size() || !running.empty()) {
       while (next < result.batches.size() && running.size() < jobs) {
-        running.push_back({spawn(program, dir, result.batches[next], env), {next, Clock::now()}});
+        running.push_back({spawn(program, dir, result.batches[next], options.attempt), {next, Clock::now()}});
         ++next;
       }
       bool reaped = false;
@@ -179,7 +147,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
         int status = 0;
         if (::waitpid(pid, &status, WNOHANG) == pid) {
           const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-          finish(r.batch, ok ? "" : describe_exit(status));
+          finish(r.batch, ok ? "" : describe_exit_status(status));
         } else if (std::chrono::duration<double>(Clock::now() - r.started).count() > timeout_s) {
           ::kill(-pid, SIGKILL);
           ::waitpid(pid, nullptr, 0);

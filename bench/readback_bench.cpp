@@ -10,6 +10,8 @@
 //            proof, ideal geometry, metrics, reference rasterizer comparison).
 // Mesa picks its driver once per process, so each platform is measured in a child process
 // (`readback_bench --platform P`) and the parent gathers the rows into one table and a JSON file.
+#include <cerrno>
+#include <filesystem>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -27,6 +29,7 @@
 #include "metrics/case_measurement.h"
 #include "runner/experiment.h"
 #include "platforms/platform.h"
+#include "util/child_process.h"
 
 using namespace ra;
 using Clock = std::chrono::steady_clock;
@@ -159,14 +162,32 @@ int measure_platform(const Options& opt) {
 int run_children(const Options& opt, const char* self) {
   std::vector<nlohmann::json> rows;
   for (const auto& p : opt.platforms) {
-    const std::string cmd = std::string(self) + " --platform " + p + " --primitives " +
-                            std::to_string(opt.primitives) + " --rounds " + std::to_string(opt.rounds);
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    char line[4096];
-    while (std::fgets(line, sizeof line, pipe)) rows.push_back(nlohmann::json::parse(line));
-    if (::pclose(pipe) != 0) {
-      std::fprintf(stderr, "readback_bench: measuring %s failed\n", p.c_str());
+    const PlatformSpec* spec = find_platform(p);
+    if (!spec || !spec->gallium_driver || spec->samples > 0) {  // checked before anything runs
+      std::fprintf(stderr, "readback_bench: --platforms: '%s' is not an aliased OSMesa platform "
+                   "(allowed: osmesa-llvmpipe, osmesa-softpipe)\n", p.c_str());
+      return 2;
+    }
+  }
+  for (const auto& p : opt.platforms) {
+    // One process per platform (Mesa picks its driver once per process), from an argument list.
+    ChildSpec spec;
+    spec.argv = {self, "--platform", p, "--primitives", std::to_string(opt.primitives),
+                 "--rounds", std::to_string(opt.rounds)};
+    spec.stdin_null = true;
+    const ProgramResult measured = run_program(spec);  // stdout and stderr, interleaved
+    const int status = measured.status;
+    if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+      std::fprintf(stderr, "readback_bench: measuring %s failed (%s)\n", p.c_str(),
+                   describe_exit_status(status).c_str());
       return 1;
+    }
+    std::stringstream lines(measured.output);
+    for (std::string line; std::getline(lines, line);) {
+      if (!line.empty() && line[0] == '{')
+        rows.push_back(nlohmann::json::parse(line));
+      else
+        std::fprintf(stderr, "%s\n", line.c_str());  // the child's own messages
     }
   }
   std::printf(
@@ -193,8 +214,8 @@ int run_children(const Options& opt, const char* self) {
                 r["project_mean_us"].get<double>(), project / floor,
                 r["naive_mean_us"].get<double>() / r["project_mean_us"].get<double>());
   }
-  const std::string dir = opt.json_path.substr(0, opt.json_path.rfind('/'));
-  if (!dir.empty()) std::system(("mkdir -p " + dir).c_str());
+  const std::filesystem::path dir = std::filesystem::path(opt.json_path).parent_path();
+  if (!dir.empty()) std::filesystem::create_directories(dir);
   std::ofstream(opt.json_path) << nlohmann::json({{"schema_version", 1},
                                                    {"benchmark", "readback"},
                                                    {"rows", rows}})

@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "util/child_process.h"
 #include "util/errors.h"
 
 namespace ra::plots {
@@ -149,36 +150,24 @@ HeadlessDisplay::HeadlessDisplay(const std::string& log_path) {
     throw UserError(std::string("cannot create a pipe for Xvfb: ") + std::strerror(errno));
   install_handlers_once();
 
-  // Everything the child needs is prepared before fork (only async-signal-safe calls after it).
-  const std::string fd = std::to_string(pipefd[1]);
-  std::vector<std::string> args = {"Xvfb",    "-displayfd", fd,           "-nolisten",
-                                   "tcp",     "-screen",    "0",          "1600x1200x24",
-                                   "-noreset", "+extension", "GLX"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const pid_t parent = ::getpid();
-  const pid_t pid = ::fork();
-  if (pid < 0) {
+  // Only holders of a fresh cookie may connect: another local user cannot reach the server.
+  write_authority();
+  ChildSpec spec;
+  spec.argv = {xvfb, "-displayfd", std::to_string(pipefd[1]), "-nolisten", "tcp", "-auth",
+               authority_path_, "-screen", "0", "1600x1200x24", "-noreset", "+extension", "GLX"};
+  spec.log_to(log_path_);
+  spec.stdin_null = true;
+  spec.own_process_group = true;  // a Ctrl-C on the terminal goes to us; we stop the server
+  spec.death_signal = SIGTERM;    // lets it remove its socket and lock file
+  spec.inherit_fds = {pipefd[1]};
+  pid_t pid = -1;
+  try {
+    pid = start_child(spec).pid;
+  } catch (const std::exception& e) {
     ::close(pipefd[0]);
     ::close(pipefd[1]);
-    throw UserError(std::string("cannot start Xvfb: fork failed: ") + std::strerror(errno));
-  }
-  if (pid == 0) {
-    // Child: dies with its parent; the write end of the pipe stays open across exec.
-    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
-    if (::getppid() != parent) ::_exit(127);
-    ::setpgid(0, 0);  // a Ctrl-C on the terminal goes to the parent, which stops us itself
-    const int out = ::open(log_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (out >= 0) {
-      ::dup2(out, 1);
-      ::dup2(out, 2);
-    }
-    const int devnull = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
-    if (devnull >= 0) ::dup2(devnull, 0);
-    ::fcntl(pipefd[1], F_SETFD, 0);  // keep the write end across exec
-    ::execv(xvfb.c_str(), argv.data());
-    ::_exit(127);
+    remove_authority();
+    throw UserError(std::string("cannot start Xvfb: ") + e.what());
   }
   ::close(pipefd[1]);
   pid_ = pid;
@@ -223,6 +212,7 @@ HeadlessDisplay::HeadlessDisplay(const std::string& log_path) {
   if (ok) {
     display_ = ":" + number;
     ::setenv("DISPLAY", display_.c_str(), 1);
+    ::setenv("XAUTHORITY", authority_path_.c_str(), 1);
     if (x_display_usable(display_)) return;
     ok = false;
   }
@@ -247,7 +237,12 @@ void HeadlessDisplay::stop() {
       ::setenv("DISPLAY", previous_display_.c_str(), 1);
     else
       ::unsetenv("DISPLAY");
+    if (had_authority_)
+      ::setenv("XAUTHORITY", previous_authority_.c_str(), 1);
+    else
+      ::unsetenv("XAUTHORITY");
   }
+  remove_authority();
   if (remove_log_ && !log_path_.empty()) {
     ::unlink(log_path_.c_str());
     remove_log_ = false;
@@ -255,5 +250,50 @@ void HeadlessDisplay::stop() {
 }
 
 HeadlessDisplay::~HeadlessDisplay() { stop(); }
+
+// An Xauthority file (the format of libXau: big-endian 16-bit lengths before each field) holding
+// one entry: family FamilyWild (any address), no display number (any display: -displayfd picks it
+// later), MIT-MAGIC-COOKIE-1 with 16 bytes from /dev/urandom. In a fresh 0700 directory, mode 0600.
+void HeadlessDisplay::write_authority() {
+  char dir_template[] = "/tmp/renderaudit-xauth-XXXXXX";
+  if (!::mkdtemp(dir_template))
+    throw UserError(std::string("cannot create a private directory for Xvfb's authority file: ") +
+                    std::strerror(errno));
+  authority_dir_ = dir_template;
+  authority_path_ = authority_dir_ + "/Xauthority";
+  unsigned char cookie[16];
+  std::ifstream random("/dev/urandom", std::ios::binary);
+  random.read(reinterpret_cast<char*>(cookie), sizeof cookie);
+  if (random.gcount() != std::streamsize(sizeof cookie)) {
+    remove_authority();
+    throw UserError("cannot read /dev/urandom for Xvfb's authority cookie");
+  }
+  std::string entry;
+  auto put16 = [&](unsigned v) { entry += char((v >> 8) & 0xff), entry += char(v & 0xff); };
+  auto field = [&](const std::string& bytes) { put16(unsigned(bytes.size())), entry += bytes; };
+  put16(0xffff);  // FamilyWild
+  field("");      // address
+  field("");      // display number
+  field("MIT-MAGIC-COOKIE-1");
+  field(std::string(reinterpret_cast<const char*>(cookie), sizeof cookie));
+  const int fd = ::open(authority_path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  const bool ok = fd >= 0 && ::write(fd, entry.data(), entry.size()) == ssize_t(entry.size());
+  if (fd >= 0) ::close(fd);
+  if (!ok) {
+    remove_authority();
+    throw UserError("cannot write Xvfb's authority file in " + authority_dir_);
+  }
+  const char* previous = std::getenv("XAUTHORITY");
+  had_authority_ = previous != nullptr;
+  previous_authority_ = previous ? previous : "";
+}
+
+void HeadlessDisplay::remove_authority() {
+  if (authority_dir_.empty()) return;
+  if (!authority_path_.empty()) ::unlink(authority_path_.c_str());
+  ::rmdir(authority_dir_.c_str());
+  authority_dir_.clear();
+  authority_path_.clear();
+}
 
 }  // namespace ra::plots

@@ -6,7 +6,9 @@
 // The private server:
 // - picks a free display number itself (`Xvfb -displayfd`: the server takes the first free number
 //   under its own lock files, so concurrent processes never collide) and listens on no TCP port
-//   (`-nolisten tcp`);
+//   (`-nolisten tcp`), and accepts only clients holding a fresh MIT-MAGIC-COOKIE-1 (`-auth`, a
+//   file of mode 0600 in a private directory, named in this process's XAUTHORITY), so another
+//   local user cannot connect to it;
 // - is ready when it has written its number and its socket /tmp/.X11-unix/X<n> exists;
 // - is named in this process's DISPLAY before any VTK window is made;
 // - is stopped (SIGTERM, then SIGKILL) when the HeadlessDisplay is destroyed, at exit(), on
@@ -34,6 +36,8 @@ class HeadlessDisplay {
   // True when this object started a private Xvfb (false: an existing DISPLAY is used).
   bool private_server() const { return pid_ > 0; }
   pid_t server_pid() const { return pid_; }
+  // The private server's authority file (empty when none was started).
+  const std::string& authority_file() const { return authority_path_; }
 
   // Stops the private server now (idempotent); DISPLAY is restored to what it was.
   void stop();
@@ -45,6 +49,10 @@ class HeadlessDisplay {
   pid_t pid_ = -1;
   std::string log_path_;
   bool remove_log_ = false;
+  std::string authority_dir_, authority_path_, previous_authority_;
+  bool had_authority_ = false;
+  void write_authority();
+  void remove_authority();
 };
 
 // True when an X server with the GLX extension answers at `display` (e.g. ":0").

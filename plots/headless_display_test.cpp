@@ -3,6 +3,7 @@
 #include "plots/headless_display.h"
 
 #include <gtest/gtest.h>
+#include <fstream>
 #include <signal.h>
 #include <sys/stat.h>
 
@@ -63,6 +64,31 @@ TEST(HeadlessDisplay, StartsAPrivateXvfbWhenThereIsNoDisplayAndStopsIt) {
   EXPECT_FALSE(process_alive(pid));  // stopped and reaped (its display number may be reused at
                                      // once by a test running beside this one)
   EXPECT_EQ(std::getenv("DISPLAY"), nullptr);  // restored: it was unset
+}
+
+// Why: the private server must not be open to every local user (issue: no access control). Only a
+// client holding its cookie (the 0600 file named in XAUTHORITY) connects.
+TEST(HeadlessDisplay, OnlyAClientHoldingTheCookieConnects) {
+  if (find_on_path("Xvfb").empty()) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
+  ScopedEnv no_display("DISPLAY", nullptr);
+  HeadlessDisplay d;
+  ASSERT_TRUE(d.private_server());
+  const std::string cookie = d.authority_file();
+  ASSERT_FALSE(cookie.empty());
+  struct stat st {};
+  ASSERT_EQ(::stat(cookie.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  EXPECT_TRUE(x_display_usable(d.display()));  // XAUTHORITY names the cookie
+  {
+    const std::string empty = cookie + ".empty";
+    std::ofstream(empty).close();
+    ScopedEnv stranger("XAUTHORITY", empty.c_str());
+    EXPECT_FALSE(x_display_usable(d.display())) << "a client without the cookie was let in";
+    ::unlink(empty.c_str());
+  }
+  EXPECT_TRUE(x_display_usable(d.display()));
+  d.stop();
+  EXPECT_FALSE(std::filesystem::exists(cookie));
 }
 
 // Why: a DISPLAY that names no server (a stale ssh forward, say) must not reach VTK either.

@@ -12,6 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "runner/shard_file.h"
+#include "util/child_process.h"
+
 namespace ra::testing_cli {
 
 struct Outcome {
@@ -19,16 +22,41 @@ struct Outcome {
   std::string output;  // stdout and stderr together
 };
 
-// Standard output of a shell command ("" when it cannot be started).
+// Splits a command line into words as a shell would for plain words, 'single' and "double" quoted
+// ones, and nothing else: no variables, globs, pipes or redirections. No shell ever runs (a path
+// with a ';' in it is a path); a test needing more builds its ChildSpec itself.
+inline std::vector<std::string> split_words(const std::string& line) {
+  std::vector<std::string> words;
+  std::string word;
+  bool in_word = false;
+  char quote = 0;
+  for (char c : line) {
+    if (quote) {
+      if (c == quote) quote = 0; else word += c;
+    } else if (c == '\'' || c == '"') {
+      quote = c;
+      in_word = true;
+    } else if (c == ' ' || c == '\t' || c == '\n') {
+      if (in_word) words.push_back(word), word.clear(), in_word = false;
+    } else {
+      word += c;
+      in_word = true;
+    }
+  }
+  if (in_word) words.push_back(word);
+  return words;
+}
+
+// Output (stdout and stderr) of a command line split by split_words ("" when it cannot start).
 inline std::string shell_output(const std::string& cmd) {
-  std::string out;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
-  ::pclose(p);
-  return out;
+  ra::ChildSpec spec;
+  spec.argv = split_words(cmd);
+  spec.stdin_null = true;
+  try {
+    return ra::run_program(spec).output;
+  } catch (const std::exception&) {
+    return "";
+  }
 }
 
 // Collapses runs of white space (line breaks included) to one space: text from pdftotext wraps.
@@ -56,20 +84,16 @@ std::string error_message(F f) {
   return "";
 }
 
-// Runs a shell command line and returns its exit code and output (stderr included).
+// Runs a command line (split_words) and returns its exit code and output (stderr included).
 inline Outcome run_command(const std::string& command_line) {
-  Outcome o;
-  const std::string cmd = command_line + " 2>&1";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) o.output.append(buf.data(), n);
-  const int status = ::pclose(p);
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return o;
+  ra::ChildSpec spec;
+  spec.argv = split_words(command_line);
+  spec.stdin_null = true;
+  const ra::ProgramResult r = ra::run_program(spec);
+  return Outcome{r.exit_code(), r.output};
 }
 
-// Runs `renderaudit ARGS` (a shell fragment) and returns its exit code and output.
+// Runs `renderaudit ARGS` (words as split_words reads them) and returns its exit code and output.
 inline Outcome run_renderaudit(const std::string& args) {
   return run_command(std::string(RA_BINARY) + " " + args);
 }
@@ -88,6 +112,26 @@ inline void write_text(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
+// Seals a records file again after a test edited it (runner/shard_file.h), as if a run had written
+// those records: drops its old trailer, appends the one its content now has.
+inline void reseal_records_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  std::string body;
+  std::size_t rows = 0, start = 0;
+  for (bool header = true; start < text.size(); header = false) {
+    std::size_t end = text.find('\n', start);
+    end = end == std::string::npos ? text.size() : end + 1;
+    if (text[start] != '#') {
+      body.append(text, start, end - start);
+      rows += !header;
+    }
+    start = end;
+  }
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << body << ra::shard_trailer(body, rows);
+}
+
 // Every record line of a run directory, with the timing columns (the last two) removed, as a set
 // ordered by content: equal sets mean identical records whatever the sharding.
 inline std::multiset<std::string> records_without_timing(const std::string& run_dir) {
@@ -100,6 +144,7 @@ inline std::multiset<std::string> records_without_timing(const std::string& run_
     // The last two columns, render_us and batch_size, depend on timing and on how the
     // primitives fell into batches.
     while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#') continue;  // the shard file's seal
       line.erase(line.rfind(','));
       rows.insert(line.substr(0, line.rfind(',')));
     }

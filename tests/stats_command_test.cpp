@@ -19,6 +19,7 @@
 #include "stats/linear_regression.h"
 #include "stats/stats_testing.h"
 #include "app/commands.h"
+#include "util/child_process.h"
 #include "util/errors.h"
 
 namespace ra::stats {
@@ -359,9 +360,15 @@ TEST_F(StatsCommand, EndToEndThroughTheBinary) {
   const std::string out_path = (dir_ / "out.json").string();
   const std::string err_path = (dir_ / "err.txt").string();
   const std::string binary = RA_BINARY;
-  const std::string run = "'" + binary + "' stats describe '" + file +
-                          "' --column error_px --json > '" + out_path + "' 2> '" + err_path + "'";
-  const int status = std::system(run.c_str());
+  auto run = [&](const std::string& column) {  // stdout to out.json, stderr to err.txt
+    ChildSpec spec;
+    spec.argv = {binary, "stats", "describe", file, "--column", column, "--json"};
+    spec.stdout_path = out_path;
+    spec.stderr_path = err_path;
+    spec.stdin_null = true;
+    return wait_child(start_child(spec).pid);
+  };
+  const int status = run("error_px");
   std::ifstream err_in(err_path);
   const std::string err((std::istreambuf_iterator<char>(err_in)), std::istreambuf_iterator<char>());
   ASSERT_EQ(WEXITSTATUS(status), 0)
@@ -370,9 +377,7 @@ TEST_F(StatsCommand, EndToEndThroughTheBinary) {
   const json j = json::parse(out_in);
   EXPECT_EQ(j["description"]["sd"].get<double>(), describe(x).sd);
 
-  const std::string bad = "'" + binary + "' stats describe '" + file + "' --column nope > '" +
-                          out_path + "' 2> '" + err_path + "'";
-  const int bad_status = std::system(bad.c_str());
+  const int bad_status = run("nope");
   EXPECT_EQ(WEXITSTATUS(bad_status), ra::app::kExitUsage);
   std::ifstream err2(err_path);
   const std::string bad_err((std::istreambuf_iterator<char>(err2)),

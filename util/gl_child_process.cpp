@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "util/atomic_file.h"
+#include "util/child_process.h"
 #include "util/errors.h"
 
 namespace ra {
@@ -53,13 +54,13 @@ nlohmann::json run_in_child(const std::string& scratch_dir, const std::string& n
   std::filesystem::remove(file, ec);
   std::fflush(stdout);
   std::fflush(stderr);
-  const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("fork failed for " + name + ": " + std::strerror(errno));
-  if (pid == 0) child_main(file, name, work);
-
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  pid_t pid = -1;
+  try {
+    pid = fork_child([&]() -> int { child_main(file, name, work); });
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(name + ": " + e.what());
   }
+  const int status = wait_child(pid);
   nlohmann::json envelope;
   std::string unreadable;
   try {
@@ -70,7 +71,10 @@ nlohmann::json run_in_child(const std::string& scratch_dir, const std::string& n
     unreadable = e.what();
   }
   std::filesystem::remove(file, ec);
-  std::filesystem::remove(file + ".tmp", ec);  // a child killed while writing
+  // A child killed while writing leaves its temporary (atomic_file.h: FILE.<pid>.<n>.tmp).
+  const std::string temp_prefix = "." + name + ".json." + std::to_string(pid) + ".";
+  for (const auto& e : std::filesystem::directory_iterator(scratch_dir, ec))
+    if (e.path().filename().string().rfind(temp_prefix, 0) == 0) std::filesystem::remove(e.path(), ec);
   if (unreadable.empty()) {
     if (envelope.contains("result")) return std::move(envelope["result"]);
     const nlohmann::json& message = envelope["error"];

@@ -1,0 +1,195 @@
+#include "util/child_process.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+extern char** environ;
+
+namespace ra {
+
+void die_with_parent(pid_t parent, int sig) {
+  ::prctl(PR_SET_PDEATHSIG, sig);
+  if (::getppid() != parent) ::_exit(127);  // the parent died before prctl took effect
+}
+
+Child start_child(const ChildSpec& spec) {
+  if (spec.argv.empty()) throw std::logic_error("start_child: empty argument list");
+  // Everything the child needs, prepared before fork.
+  std::vector<std::string> env;
+  for (char** e = environ; e && *e; ++e) {
+    const char* eq = std::strchr(*e, '=');
+    const size_t len = eq ? size_t(eq - *e) + 1 : std::strlen(*e);
+    bool replaced = false;
+    for (const auto& s : spec.set_env)
+      if (s.compare(0, len, *e, len) == 0) replaced = true;
+    if (!replaced) env.emplace_back(*e);
+  }
+  for (const auto& s : spec.set_env) env.push_back(s);
+  if (spec.message_pipe) env.push_back("RA_MESSAGE_FD=3");
+  std::vector<char*> argv, envp;
+  for (const auto& a : spec.argv) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  for (const auto& e : env) envp.push_back(const_cast<char*>(e.c_str()));
+  envp.push_back(nullptr);
+
+  int out_pipe[2] = {-1, -1}, msg_pipe[2] = {-1, -1};
+  auto close_all = [&] {
+    for (int fd : {out_pipe[0], out_pipe[1], msg_pipe[0], msg_pipe[1]})
+      if (fd >= 0) ::close(fd);
+  };
+  if (spec.capture_output && ::pipe2(out_pipe, O_CLOEXEC) != 0)
+    throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
+  if (spec.message_pipe && ::pipe2(msg_pipe, O_CLOEXEC) != 0) {
+    close_all();
+    throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
+  }
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    close_all();
+    throw std::runtime_error(std::string("cannot start ") + spec.argv[0] + ": fork failed: " +
+                             std::strerror(errno));
+  }
+  if (pid == 0) {  // only async-signal-safe calls from here to exec
+    die_with_parent(parent, spec.death_signal);
+    if (spec.own_process_group) ::setpgid(0, 0);
+    if (spec.stdin_null) {
+      const int in = ::open("/dev/null", O_RDONLY);
+      if (in >= 0) ::dup2(in, 0), ::close(in);
+    }
+    if (spec.capture_output) {
+      ::dup2(out_pipe[1], 1);
+      ::dup2(out_pipe[1], 2);
+    }
+    if (!spec.stdout_path.empty()) {
+      const int out = ::open(spec.stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (out >= 0) {
+        ::dup2(out, 1);
+        if (spec.stderr_path == spec.stdout_path) ::dup2(out, 2);
+        ::close(out);
+      }
+    }
+    if (!spec.stderr_path.empty() && spec.stderr_path != spec.stdout_path) {
+      const int err = ::open(spec.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (err >= 0) ::dup2(err, 2), ::close(err);
+    }
+    if (spec.message_pipe) {
+      if (msg_pipe[1] == 3)
+        ::fcntl(3, F_SETFD, 0);
+      else
+        ::dup2(msg_pipe[1], 3);  // dup2 clears close-on-exec on the copy
+    }
+    for (int fd : spec.inherit_fds) ::fcntl(fd, F_SETFD, 0);
+    ::execvpe(argv[0], argv.data(), envp.data());
+    ::_exit(127);
+  }
+  Child child;
+  child.pid = pid;
+  if (spec.capture_output) {
+    ::close(out_pipe[1]);
+    child.output_fd = out_pipe[0];
+  }
+  if (spec.message_pipe) {
+    ::close(msg_pipe[1]);
+    ::fcntl(msg_pipe[0], F_SETFL, O_NONBLOCK);
+    child.message_fd = msg_pipe[0];
+  }
+  return child;
+}
+
+pid_t fork_child(const std::function<int()>& body) {
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
+  if (pid == 0) {
+    die_with_parent(parent);
+    ::_exit(body());
+  }
+  return pid;
+}
+
+int wait_child(pid_t pid) {
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return 0;
+  }
+  return status;
+}
+
+std::string describe_exit_status(int status) {
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    return "crashed (signal " + std::to_string(sig) + ", " + strsignal(sig) + ")";
+  }
+  return "exited with status " + std::to_string(WEXITSTATUS(status));
+}
+
+std::string drain_fd(int fd) {
+  std::string out;
+  if (fd < 0) return out;
+  const int flags = ::fcntl(fd, F_GETFL);
+  ::fcntl(fd, F_SETFL, flags | O_NONBLOCK);
+  char buf[4096];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n > 0) {
+      out.append(buf, size_t(n));
+      continue;
+    }
+    if (n < 0 && errno == EINTR) continue;
+    break;
+  }
+  ::fcntl(fd, F_SETFL, flags);
+  return out;
+}
+
+bool ProgramResult::exited_ok() const { return WIFEXITED(status) && WEXITSTATUS(status) == 0; }
+
+int ProgramResult::exit_code() const {
+  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status);
+}
+
+ProgramResult run_program(const ChildSpec& spec) {
+  ChildSpec s = spec;
+  s.capture_output = true;
+  const Child c = start_child(s);
+  ProgramResult r;
+  char buf[4096];
+  for (;;) {
+    const ssize_t n = ::read(c.output_fd, buf, sizeof buf);
+    if (n > 0) {
+      r.output.append(buf, size_t(n));
+    } else if (n < 0 && errno == EINTR) {
+      continue;
+    } else {
+      break;
+    }
+  }
+  ::close(c.output_fd);
+  r.status = wait_child(c.pid);
+  return r;
+}
+
+void send_message_to_parent(const std::string& message) {
+  const char* fd_text = std::getenv("RA_MESSAGE_FD");
+  if (!fd_text) return;
+  const int fd = std::atoi(fd_text);
+  if (fd <= 2) return;
+  size_t done = 0;
+  while (done < message.size()) {
+    const ssize_t n = ::write(fd, message.data() + done, message.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    done += size_t(n);
+  }
+}
+
+}  // namespace ra
