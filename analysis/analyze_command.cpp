@@ -1,5 +1,6 @@
 // `renderaudit analyze DIR`: the paper's section-4 procedure; see analyze_command.h.
 #include "analysis/analyze_command.h"
+#include "analysis/run_completeness.h"
 
 #include <cctype>
 #include <chrono>
@@ -68,9 +69,9 @@ bool generated_name(const std::string& name) {
 }
 
 std::string files_readme(const std::vector<Output>& outputs, const RunRecords& run,
-                         const AnalyzeOptions& o) {
-  std::string md = "# Analysis of " + run.run_dir +
-                   "\n\nWritten by `renderaudit analyze` from the records alone (" +
+                         const AnalyzeOptions& o, const RunCompleteness& completeness) {
+  std::string md = "# Analysis of " + run.run_dir + "\n\n" + completeness.markdown() +
+                   "\nWritten by `renderaudit analyze` from the records alone (" +
                    std::to_string(run.record_count) + " records in " +
                    std::to_string(run.files.size()) +
                    " files); alpha = " + format_significant(o.alpha, 3) + ", quartiles " +
@@ -89,6 +90,12 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   check_options(o);
   AnalyzeResult result;
   Stopwatch watch;
+  const RunCompleteness completeness = check_run_completeness(o.run_dir);
+  if (completeness.has_plan && !completeness.complete() && !o.allow_incomplete)
+    throw IncompleteRunError(o.run_dir + ": " + completeness.markdown() +
+                             "Finish the run (the same `renderaudit run` command), or pass "
+                             "--allow-incomplete to analyse it as it is.");
+  result.completeness = completeness.headline();
 
   LoadOptions load;
   load.jobs = o.jobs;
@@ -184,8 +191,8 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
                                           : "Views pooled into view groups, as the paper "
                                             "did.\n");
   }
-  const std::string header = "# Analysis of " + run.run_dir + "\n\n" +
-                             std::to_string(run.record_count) + " records; platforms: ";
+  const std::string header = "# Analysis of " + run.run_dir + "\n\n" + completeness.markdown() +
+                             "\n" + std::to_string(run.record_count) + " records; platforms: ";
   std::string platforms;
   for (std::size_t p = 0; p < run.platforms.size(); ++p) {
     platforms += (p ? ", " : "") + run.platforms[p];
@@ -209,7 +216,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
     write_file_atomic((out_dir / out.name).string(), out.content);
     result.files.push_back(out.name);
   }
-  write_file_atomic((out_dir / "README.md").string(), files_readme(outputs, run, o));
+  write_file_atomic((out_dir / "README.md").string(), files_readme(outputs, run, o, completeness));
   result.files.push_back("README.md");
   result.out_dir = out_dir.string();
   result.timings.push_back({"write", watch.lap()});

@@ -31,6 +31,7 @@ struct AnalyzeOptions {
   stats::QuantileDefinition quantiles = stats::QuantileDefinition::kHyndmanFan6;
   std::size_t box_cox_subsample = 10000;  // order statistics choosing lambda
   unsigned jobs = 0;                      // threads; 0: the number of cores
+  bool allow_incomplete = false;  // analyse a run with missing or damaged shards (and say so)
 };
 
 struct StageTime {
@@ -46,10 +47,14 @@ struct AnalyzeResult {
   std::uint64_t records = 0;
   std::size_t comparisons = 0;     // view-equivalence comparisons
   std::size_t not_equivalent = 0;  // of them NOT equivalent
+  std::string completeness;        // the run's completeness headline (run_completeness.h)
 };
 
-// Runs the whole analysis and writes DIR/analysis/. Throws ra::UserError on bad options or input
-// (a missing directory, no records, a malformed record: located messages).
+// Runs the whole analysis and writes DIR/analysis/. First compares the records with the run's plan
+// (run_completeness.h): a run that is not whole throws IncompleteRunError, naming what is missing,
+// unless allow_incomplete (then README.md and the summary start with what is missing). Throws
+// ra::UserError on bad options or input (a missing directory, no records, a malformed record:
+// located messages).
 AnalyzeResult analyze_run(const AnalyzeOptions& options);
 
 }  // namespace ra::analysis

@@ -436,6 +436,7 @@ class FileParser {
       if (text != l_.header) bad_header();
       return;
     }
+    if (!text.empty() && text.front() == '#') return;  // the seal of a shard file (shard_file.h)
     // split into fields_ without copying
     std::size_t n = 0;
     std::size_t start = 0;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "analysis/analyze_command.h"
+#include "analysis/run_completeness.h"
 #include "app/commands.h"
 
 namespace ra::app {
@@ -20,6 +21,7 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
     unsigned jobs = 0;
     std::size_t box_cox_subsample = 10000;
     bool timings = false;
+    bool allow_incomplete = false;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
@@ -44,6 +46,9 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
                   "Box-Cox lambda is chosen on at most this many order statistics of the pooled "
                   "data (default 10000)");
   cmd->add_flag("--timings", o->timings, "print the time each stage took");
+  cmd->add_flag("--allow-incomplete", o->allow_incomplete,
+                "analyse a run with missing or damaged shards (README.md and the summary say "
+                "what is missing); without it such a run is refused with exit code 3");
   cmd->callback([o, &exit_code] {
     if (app::analyze_study_if_present(o->dir, exit_code)) return;
     analysis::AnalyzeOptions options;
@@ -54,7 +59,15 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
                                               : stats::QuantileDefinition::kHyndmanFan6;
     options.jobs = o->jobs;
     options.box_cox_subsample = o->box_cox_subsample;
-    const analysis::AnalyzeResult r = analysis::analyze_run(options);
+    options.allow_incomplete = o->allow_incomplete;
+    analysis::AnalyzeResult r;
+    try {
+      r = analysis::analyze_run(options);
+    } catch (const analysis::IncompleteRunError& e) {
+      std::fprintf(stderr, "renderaudit analyze: %s\n", e.what());
+      exit_code = kExitIncomplete;
+      return;
+    }
     std::cout << r.summary;
     if (o->timings) {
       std::cout << "Timings (s):";

@@ -13,6 +13,9 @@ namespace ra::app {
 constexpr int kExitOk = 0;
 constexpr int kExitFindings = 1;  // the command ran, and what it found is not clean (failed shards)
 constexpr int kExitUsage = 2;     // bad input: nothing was run
+constexpr int kExitIncomplete = 3;  // analyze / report: the run is not whole (missing or damaged
+                                    // shards, a writer at work); nothing written
+                                    // (--allow-incomplete goes on)
 
 void register_run_command(CLI::App& app, int& exit_code);
 void register_worker_command(CLI::App& app, int& exit_code);  // internal: one shard, one process

@@ -1,33 +1,68 @@
 // `renderaudit report DIR`: DIR/report/report.pdf and report.html, the whole run in one document
-// (report/report.h). Runs `analyze` and `plot` first when their output is missing or stale.
+// (report/report.h). The report stage only reads; this command first runs, in this process, the
+// stages whose output is missing or stale (`analyze`, `plot`) unless --no-run.
 #include <cstdio>
 
+#include "analysis/analyze_command.h"
+#include "analysis/run_completeness.h"
 #include "app/commands.h"
+#include "plots/plot_run.h"
 #include "report/report.h"
 
 namespace ra::app {
+namespace {
+
+// The stages a run's report needs, run here (the report stage itself never starts one).
+void prepare_run_report(const std::string& dir, bool allow_incomplete) {
+  for (const report::Step& s : report::missing_steps(dir)) {
+    std::fprintf(stderr, "report: running `%s` (%s)\n", s.command.c_str(), s.reason.c_str());
+    if (s.stage == "analyze") {
+      analysis::AnalyzeOptions o;
+      o.run_dir = dir;
+      o.allow_incomplete = allow_incomplete;
+      analysis::analyze_run(o);
+    } else {
+      plots::PlotOptions po;
+      po.run_dir = dir;
+      plots::plot_run(po);
+    }
+  }
+}
+
+}  // namespace
 
 void register_report_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "report",
       "Write DIR/report/report.pdf and DIR/report/report.html: the experiment and its provenance,\n"
-      "failures, time per primitive, conformance with the reference rasterizer, the view-\n"
-      "equivalence tests, every table of DIR/analysis/ and every figure of DIR/figures/.\n"
+      "completeness, failures, time per primitive, conformance with the reference rasterizer, the\n"
+      "view-equivalence tests, every table of DIR/analysis/ and every figure of DIR/figures/.\n"
       "Runs `renderaudit analyze DIR` and `renderaudit plot DIR` first when their output is\n"
       "missing or older than the records (--no-run: stop and name them instead). Needs no display.\n"
+      "A run with missing or damaged shards is refused (exit 3) unless --allow-incomplete.\n"
       "For a study folder (study.json: timing, LOD, regulation): its text, tables and figures.");
   static report::ReportOptions options;
   static bool no_run = false;
   cmd->add_option("dir", options.run_dir, "run directory")->required();
   cmd->add_flag("--no-run", no_run, "do not run missing stages; say which command to run");
+  cmd->add_flag("--allow-incomplete", options.allow_incomplete,
+                "report a run with missing or damaged shards, saying so on its first page");
   cmd->callback([&exit_code] {
-    options.run_missing = !no_run;
-    prepare_study_report(options.run_dir, options.run_missing);
-    const report::ReportResult r = report::write_report(options);
-    std::printf("report: %d pages (%d text, %d figures), %zu tables, %.1f s\n", r.pages,
-                r.text_pages, r.figure_pages, r.table_titles.size(), r.seconds);
-    std::printf("%s\n%s\n", r.pdf.c_str(), r.html.c_str());
-    exit_code = kExitOk;
+    try {
+      if (read_study_info(options.run_dir))
+        prepare_study_report(options.run_dir, !no_run);
+      else if (!no_run)
+        prepare_run_report(options.run_dir, options.allow_incomplete);
+      const report::ReportResult r = report::write_report(options);
+      std::printf("report: %d pages (%d text, %d figures), %zu tables, %.1f s\n", r.pages,
+                  r.text_pages, r.figure_pages, r.table_titles.size(), r.seconds);
+      if (!r.completeness.empty()) std::printf("run %s\n", r.completeness.c_str());
+      std::printf("%s\n%s\n", r.pdf.c_str(), r.html.c_str());
+      exit_code = kExitOk;
+    } catch (const analysis::IncompleteRunError& e) {
+      std::fprintf(stderr, "renderaudit report: %s\n", e.what());
+      exit_code = kExitIncomplete;
+    }
   });
 }
 

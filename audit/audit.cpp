@@ -1,5 +1,7 @@
 #include "audit/audit.h"
 
+#include "util/dir_lock.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <regex>
@@ -94,6 +96,8 @@ AuditResult run_audit(const AuditOptions& o) {
     for (const auto& p : r.current.experiment.platforms) r.pairs.push_back({p, p});
     r.out_dir = o.out_dir.empty() ? o.current_dir + "/audit" : o.out_dir;
   }
+  // The audited run must not change under us, and its audit/ has one writer (util/dir_lock.h).
+  const DirLock lock(o.current_dir, "audit");
   for (const PlatformPair& p : r.pairs) {
     r.baseline_drivers.push_back(driver_of(r.baseline, p.baseline));
     r.current_drivers.push_back(driver_of(r.current, p.current));

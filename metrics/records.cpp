@@ -1,5 +1,6 @@
 #include "metrics/records.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -96,12 +97,21 @@ void read_records(const std::string& path, const std::function<void(const Record
   std::ifstream in(path);
   if (!in) throw UserError(path + ": cannot read records file");
   std::string line;
-  if (!std::getline(in, line) || line != records_header())
+  const bool has_header = bool(std::getline(in, line));
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  if (!has_header || line != records_header())
     throw UserError(path + ":1: unexpected records header (schema version " +
                     std::to_string(kRecordsSchemaVersion) + " expects: " + records_header() + ")");
   std::vector<std::string> f;
   f.reserve(kColumnCount);
+  std::vector<std::string> names;  // column names, for messages
+  {
+    std::stringstream header(records_header());
+    for (std::string n; std::getline(header, n, ',');) names.push_back(n);
+  }
   for (int64_t line_no = 2; std::getline(in, line); ++line_no) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF files read as LF ones
+    if (!line.empty() && line[0] == '#') continue;  // the seal of a shard file (shard_file.h)
     f.clear();
     size_t start = 0;
     for (;;) {
@@ -116,8 +126,8 @@ void read_records(const std::string& path, const std::function<void(const Record
     if (int(f.size()) != kColumnCount)
       bad("expected " + std::to_string(kColumnCount) + " fields, found " + std::to_string(f.size()));
     Record r;
+    int i = 0;  // after each field is taken, the index of the next one
     try {
-      int i = 0;
       r.platform = f[i++];
       r.view = std::stoi(f[i++]);
       r.view_group = std::stoi(f[i++]);
@@ -144,10 +154,12 @@ void read_records(const std::string& path, const std::function<void(const Record
       r.ref_diff = get_optional(f[i++]);
       r.pixel_hash = std::stoull(f[i++]);
       r.render_us = get_double(f[i++]);
-      r.batch_size = f[i].empty() ? 0 : std::stoll(f[i]);
-      ++i;
-    } catch (const std::logic_error& e) {  // stoi and friends
-      bad(std::string("malformed number (") + e.what() + ")");
+      const std::string& batch = f[i++];
+      r.batch_size = batch.empty() ? 0 : std::stoll(batch);
+    } catch (const std::logic_error&) {  // stoi and friends: the field just taken is not a number
+      const int column = std::max(0, i - 1);
+      bad("column '" + (column < int(names.size()) ? names[column] : std::to_string(column + 1)) +
+          "': '" + f[column] + "' is not a number");
     }
     row(r);
   }

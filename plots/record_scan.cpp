@@ -73,7 +73,7 @@ void scan_file(const fs::path& path, const std::string& rel, const Columns& c,
   while (std::getline(in, line)) {
     ++lineno;
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
+    if (line.empty() || line[0] == '#') continue;  // '#': the seal of a shard file
     std::size_t k = 0, start = 0;
     for (std::size_t i = 0; i <= line.size() && k < c.count; ++i)
       if (i == line.size() || line[i] == ',') {

@@ -24,7 +24,9 @@
 #include "report/document.h"
 #include "report/html_writer.h"
 #include "report/pdf_writer.h"
+#include "analysis/run_completeness.h"
 #include "util/atomic_file.h"
+#include "util/child_process.h"
 #include "util/errors.h"
 #include "runner/manifest.h"
 #include "runner/study_dir.h"
@@ -45,40 +47,6 @@ std::string str(const json& j) {
   if (j.is_string()) return j.get<std::string>();
   if (j.is_null()) return "";
   return j.dump();
-}
-
-// Runs argv (argv[0] looked up on PATH when it has no '/'); stderr (and stdout when `quiet`) go to
-// `log` when given. Returns the exit status (128 + signal when killed); -1 when it cannot start.
-int run_program(const std::vector<std::string>& args, const std::string& log = "",
-                bool quiet = false) {
-  std::vector<char*> argv;
-  std::vector<std::string> copy = args;
-  for (auto& a : copy) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid < 0) return -1;
-  if (pid == 0) {
-    if (!log.empty()) {
-      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      if (fd >= 0) {
-        ::dup2(fd, 2);
-        if (quiet) ::dup2(fd, 1);
-      }
-    }
-    ::execvp(argv[0], argv.data());
-    ::_exit(127);
-  }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-}
-
-std::string self_program() {
-  std::error_code ec;
-  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? std::string("renderaudit") : p.string();
 }
 
 fs::file_time_type newest_input(const std::string& run_dir) {
@@ -216,7 +184,8 @@ struct Content {
 };
 
 Content build_document(const std::string& run_dir, const plots::PlotResult& figures,
-                       const plots::RecordScan& scan) {
+                       const plots::RecordScan& scan,
+                       const analysis::RunCompleteness& completeness) {
   Content c;
   Document& d = c.doc;
   const std::string manifest_path = run_dir + "/manifest.json";
@@ -255,14 +224,17 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
     for (std::size_t i = 0; i < platforms.size(); ++i) plist += (i ? ", " : "") + platforms[i];
     double elapsed = 0;
     for (const auto& inv : m.value("invocations", json::array())) elapsed += inv.value("elapsed_s", 0.0);
-    const json shards = m.value("shards", json::object());
     auto row = [&](const std::string& k, const std::string& v) { t.rows.push_back({k, v}); };
     row("experiment", name + " (" + exp.value("file", "?") + ")");
     row("experiment hash", exp.value("hash", "?"));
     row("seed", str(exp.value("seed", json())));
     row("platforms", plist);
-    row("status", m.value("status", "?") + ": " + str(shards.value("complete", json())) + " of " +
-                      str(shards.value("total", json())) + " shards complete");
+    // What the records say, checked against the plan; the manifest's own word in brackets.
+    row("completeness", completeness.headline());
+    for (std::size_t i = 0; i < completeness.problems.size() && i < 10; ++i)
+      row(i == 0 ? "what is missing" : "", completeness.problems[i]);
+    if (completeness.problems.size() > 10)
+      row("", "... and " + std::to_string(completeness.problems.size() - 10) + " more");
     row("records", std::to_string(scan.records) + " in " + std::to_string(scan.files) + " files");
     row("started / finished (UTC)", m.value("started", "?") + " / " + m.value("finished", "?"));
     row("run time", fmt(elapsed, "%.1f") + " s over " +
@@ -491,7 +463,12 @@ void assemble(Document& doc, const std::string& run_dir, const std::string& pdfu
   const std::string tmp = result.pdf + ".tmp";
   args.push_back(tmp);
   const std::string log = (out_dir / "pdfunite.log").string();
-  const int rc = run_program(args, log, true);
+  ChildSpec pdfunite_run;
+  pdfunite_run.argv = args;
+  pdfunite_run.log_to(log);
+  pdfunite_run.stdin_null = true;
+  const ProgramResult done{wait_child(start_child(pdfunite_run).pid), ""};
+  const int rc = done.exit_code();
   fs::remove(text_pdf);
   if (rc != 0) {
     std::string why;
@@ -599,30 +576,21 @@ ReportResult write_report(const ReportOptions& options) {
     return result;
   }
   const std::vector<Step> steps = missing_steps(run_dir);
-  if (!steps.empty() && !options.run_missing) {
+  if (!steps.empty()) {
     std::string msg = "the report needs what these commands write; run them first:";
     for (const auto& s : steps) msg += "\n  " + s.command + "    (" + s.reason + ")";
     throw UserError(msg);
   }
-  for (const Step& s : steps) {
-    std::fprintf(stderr, "report: running `%s` (%s)\n", s.command.c_str(), s.reason.c_str());
-    if (s.stage == "analyze") {
-      const std::string program = options.program.empty() ? self_program() : options.program;
-      const int rc = run_program({program, "analyze", run_dir});
-      if (rc != 0)
-        throw UserError("`" + s.command + "` failed (exit " + std::to_string(rc) +
-                        "); fix what it says and run the report again");
-    } else {
-      plots::PlotOptions po;
-      po.run_dir = run_dir;
-      plots::plot_run(po);
-    }
-    result.ran.push_back(s);
-  }
+  const analysis::RunCompleteness completeness = analysis::check_run_completeness(run_dir);
+  if (completeness.has_plan && !completeness.complete() && !options.allow_incomplete)
+    throw analysis::IncompleteRunError(run_dir + ": " + completeness.markdown() +
+                                       "Finish the run (the same `renderaudit run` command), or "
+                                       "pass --allow-incomplete to report it as it is.");
+  result.completeness = completeness.headline();
 
   const plots::PlotResult figures = plots::read_figure_index(run_dir);
   const plots::RecordScan scan = plots::scan_records(run_dir, 200);
-  Content content = build_document(run_dir, figures, scan);
+  Content content = build_document(run_dir, figures, scan, completeness);
   Document& doc = content.doc;
   for (const auto& f : doc.figures)
     if (!fs::exists(f.pdf_path))

@@ -16,10 +16,12 @@
 // vtkPDFExporter wrote in `renderaudit plot`; `pdfunite` (poppler-utils) joins them. All pages
 // are 1123 x 794 pt (pdf_writer.h).
 //
-// Stages: the report reads only files. When DIR/analysis/figures.json or DIR/figures/index.json is
-// missing, or older than what it was made from (records, manifest), the report runs
-// `renderaudit analyze DIR` and/or the plot stage first (ReportOptions::run_missing), and says so;
-// without run_missing it stops and names the command to run.
+// Stages: the report reads only files, and only what the stages before it wrote. When
+// DIR/analysis/figures.json or DIR/figures/index.json is missing, or older than what it was made
+// from (records, manifest), it stops and names the command to run (missing_steps); the command
+// `renderaudit report` (app/report_command.cpp) runs those stages first unless told not to.
+// A run that is not whole (analysis/run_completeness.h) is refused unless allow_incomplete; then
+// its first page says what is missing.
 #pragma once
 
 #include <string>
@@ -29,8 +31,7 @@ namespace ra::report {
 
 struct ReportOptions {
   std::string run_dir;
-  bool run_missing = true;  // run `analyze` / `plot` first when their output is missing or stale
-  std::string program;      // the renderaudit binary that runs `analyze`; empty: this process's
+  bool allow_incomplete = false;  // report a run with missing or damaged shards (and say so)
 };
 
 // A stage that must run before the report, and why.
@@ -49,13 +50,14 @@ struct ReportResult {
   int text_pages = 0;                     // of them, text and table pages
   int figure_pages = 0;                   // of them, figures (one each)
   std::vector<std::string> table_titles;  // titles of the tables the report shows
-  std::vector<Step> ran;                  // stages run first
-  double seconds = 0;                     // wall-clock, stages run first included
+  std::string completeness;               // the run's completeness headline (run_completeness.h)
+  double seconds = 0;                     // wall-clock
 };
 
 // Writes DIR/report/report.pdf and report.html. Throws ra::UserError when the run directory is not
-// one, a stage is missing and run_missing is false (naming the command), or a tool fails
-// (pdfunite: "install poppler-utils").
+// one, a stage's output is missing or stale (naming the command), or a tool fails (pdfunite:
+// "install poppler-utils"); analysis::IncompleteRunError when the run is not whole and
+// allow_incomplete is false.
 ReportResult write_report(const ReportOptions& options);
 
 }  // namespace ra::report

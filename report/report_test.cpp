@@ -123,6 +123,7 @@ TEST(ReportCommand, HeadlessReportHasEveryTableAndOnePagePerFigure) {
     ASSERT_LT(ok, text.find('\n', line2));
     text.replace(ok, 4, ",invalid,");
     write_text(records_file, text);
+    reseal_records_file(records_file);  // as a run that recorded it so would have
     auto manifest = nlohmann::json::parse(read(run + "/manifest.json"));
     manifest["failures"].push_back({{"shard", "osmesa-llvmpipe.point.v9.0-100"},
                                     {"reason", "crashed (signal 11, Segmentation fault)"}});

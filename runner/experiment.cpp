@@ -147,6 +147,39 @@ void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& ex
       }
 }
 
+// The plan's size, before anything is planned or written: renders = platforms x views x primitives,
+// shards = platforms x views x sum over kinds of ceil(count / shard_size). Computed in 128 bits
+// (1,000 orientations x 10^8 primitives overflow nothing there).
+void check_plan_size(const TomlLocator& loc, const toml::table& root, const Experiment& exp) {
+  using u128 = unsigned __int128;
+  const u128 cases = u128(exp.platforms.size()) * exp.views.size();
+  u128 primitives = 0, shards_per_case = 0;
+  for (uint64_t c : exp.counts) {
+    primitives += c;
+    shards_per_case += (c + exp.shard_size - 1) / exp.shard_size;
+  }
+  const u128 renders = cases * primitives, shards = cases * shards_per_case;
+  auto text = [](u128 v) {
+    std::string s;
+    do s.insert(s.begin(), char('0' + int(v % 10))), v /= 10; while (v > 0);
+    return s;
+  };
+  const std::string plan = std::to_string(exp.platforms.size()) + " platforms x " +
+                           std::to_string(exp.views.size()) + " views x " + text(primitives) +
+                           " primitives per view = " + text(renders) + " renders in " +
+                           text(shards) + " shards";
+  const toml::node* at = root.get("primitives");
+  if (renders > exp.max_renders)
+    loc.fail(at, "the plan is too large: " + plan + ", above run.max_renders = " +
+                     std::to_string(exp.max_renders) +
+                     " (lower the counts or views, or raise run.max_renders)");
+  if (shards > exp.max_shards)
+    loc.fail(at, "the plan has too many shards: " + plan + ", above run.max_shards = " +
+                     std::to_string(exp.max_shards) +
+                     " (raise run.shard_size, or raise run.max_shards up to " +
+                     std::to_string(kMaxShardsCeiling) + ")");
+}
+
 }  // namespace
 
 Experiment parse_experiment(const std::string& text, const std::string& path) {
@@ -197,7 +230,8 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
 
   if (const toml::node* run = root.get("run")) {
     if (!run->is_table()) loc.fail(run, "'run' must be a table");
-    loc.reject_unknown_keys(*run->as_table(), "run.", {"shard_size", "shard_timeout_s"});
+    loc.reject_unknown_keys(*run->as_table(), "run.",
+                            {"shard_size", "shard_timeout_s", "max_renders", "max_shards"});
     if (const toml::node* n = run->as_table()->get("shard_size"))
       exp.shard_size = uint64_t(loc.integer(*n, "run.shard_size", 1, int64_t(kMaxPrimitives)));
     if (const toml::node* n = run->as_table()->get("shard_timeout_s")) {
@@ -205,7 +239,12 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
       if (!(exp.shard_timeout_s >= 1 && exp.shard_timeout_s <= 86400))
         loc.fail(n, "'run.shard_timeout_s' out of range (allowed: 1 to 86400 seconds)");
     }
+    if (const toml::node* n = run->as_table()->get("max_renders"))
+      exp.max_renders = uint64_t(loc.integer(*n, "run.max_renders", 1, INT64_MAX));
+    if (const toml::node* n = run->as_table()->get("max_shards"))
+      exp.max_shards = uint64_t(loc.integer(*n, "run.max_shards", 1, int64_t(kMaxShardsCeiling)));
   }
+  check_plan_size(loc, root, exp);
 
   if (const toml::node* f = root.get("faults")) {
     if (!f->is_table()) loc.fail(f, "'faults' must be a table");

@@ -25,6 +25,11 @@ struct Experiment {
   std::array<uint64_t, 3> counts{};    // primitives per view, indexed by Kind
   uint64_t shard_size = 5000;          // primitives per shard
   double shard_timeout_s = 600;        // a shard still running after this is killed
+  // Ceilings on the plan, checked before anything is written ([run] max_renders, max_shards): a
+  // typo of a few zeros must not start a month-long run, and the coordinator's memory (about 150
+  // bytes per planned shard) stays bounded.
+  uint64_t max_renders = 2000000000;
+  uint64_t max_shards = 1000000;
   FaultPlan faults;
 };
 
@@ -32,6 +37,7 @@ struct Experiment {
 constexpr int kMaxWindow = 16384;
 constexpr uint64_t kMaxPrimitives = 100000000;  // per kind and view
 constexpr int kMaxOrientations = 1000;
+constexpr uint64_t kMaxShardsCeiling = 100000000;  // the largest run.max_shards allowed
 
 // Parses and validates; throws UserError "file:line:column: what (allowed: ...)".
 Experiment load_experiment(const std::string& path);

@@ -1,9 +1,15 @@
 #include "runner/manifest.h"
 
+#include "util/atomic_file.h"
+
 #include <sys/utsname.h>
 #include <unistd.h>
 
+#include <fcntl.h>
+
 #include <ctime>
+#include <stdexcept>
+#include <sys/stat.h>
 #include <fstream>
 #include <thread>
 
@@ -38,6 +44,57 @@ std::string utc_now_iso8601() {
   char buf[32];
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
+}
+
+namespace {
+
+// Overwrites `path` from offset 0 with `text` padded with spaces to the file's current size (JSON
+// allows trailing white space): no block is allocated, so it works on a full disk.
+bool overwrite_in_place(const std::string& path, std::string text) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  struct stat st {};
+  bool ok = ::fstat(fd, &st) == 0 && text.size() <= size_t(st.st_size);
+  if (ok) {
+    text.append(size_t(st.st_size) - text.size(), ' ');
+    ok = ::pwrite(fd, text.data(), text.size(), 0) == ssize_t(text.size()) && ::fsync(fd) == 0;
+  }
+  ::close(fd);
+  return ok;
+}
+
+}  // namespace
+
+void write_manifest(const std::string& path, const nlohmann::json& manifest) {
+  try {
+    write_file_atomic(path, manifest.dump(2) + "\n");
+    return;
+  } catch (const std::runtime_error& e) {
+    const std::string reason = std::string("cannot write the manifest: ") + e.what();
+    // Shortest first that still says what the run was: drop the bulky parts, then everything.
+    nlohmann::json failed = manifest;
+    for (const char* bulky : {"invocations", "drivers", "failed_primitives", "failures", "host"})
+      failed.erase(bulky);
+    failed["status"] = "failed";
+    failed["reason"] = reason;
+    bool saved = overwrite_in_place(path, failed.dump() + "\n");
+    if (!saved) {  // the essentials, with as much of the reason as the file has room for
+      struct stat st {};
+      const size_t room = ::stat(path.c_str(), &st) == 0 ? size_t(st.st_size) : 0;
+      nlohmann::json minimal = {{"schema_version", kManifestSchemaVersion}, {"status", "failed"}};
+      minimal["experiment"] = manifest.value("experiment", nlohmann::json::object()).value("name", "");
+      const size_t overhead = minimal.dump().size() + std::string(",\"reason\":\"\"\n").size();
+      if (room > overhead) {
+        minimal["reason"] = reason.substr(0, room - overhead);
+        while (minimal.dump().size() + 1 > room && !minimal["reason"].get<std::string>().empty())
+          minimal["reason"] = minimal["reason"].get<std::string>().substr(
+              0, minimal["reason"].get<std::string>().size() - 1);  // escapes took room
+      }
+      saved = overwrite_in_place(path, minimal.dump() + "\n");
+    }
+    throw std::runtime_error(reason + (saved ? "; " + path + " now says \"failed\""
+                                             : "; " + path + " could not be updated either"));
+  }
 }
 
 }  // namespace ra

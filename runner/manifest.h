@@ -15,3 +15,13 @@ nlohmann::json host_description();  // hostname, CPU model, cores, OS
 std::string utc_now_iso8601();
 
 }  // namespace ra
+
+namespace ra {
+
+// Writes the manifest atomically. When that fails (a full disk, typically), the manifest already
+// on disk is overwritten in place, within the blocks it already occupies, by a shortened one with
+// "status": "failed" and the reason, so that it never stays "running"; then throws
+// std::runtime_error naming the file and the free space.
+void write_manifest(const std::string& path, const nlohmann::json& manifest);
+
+}  // namespace ra

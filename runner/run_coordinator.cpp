@@ -14,10 +14,14 @@
 #include <deque>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <thread>
 
 #include "util/atomic_file.h"
+#include "util/child_process.h"
+#include "util/dir_lock.h"
 #include "util/errors.h"
+#include "runner/shard_file.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
 #include "platforms/renderer_check.h"
@@ -38,43 +42,31 @@ using Clock = std::chrono::steady_clock;
 struct Running {
   WorkItem item;
   Clock::time_point started;
+  int message_fd = -1;  // the worker's message pipe
 };
 
-std::string describe_exit(int status) {
-  if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    return "crashed (signal " + std::to_string(sig) + ", " + strsignal(sig) + ")";
-  }
-  return "exited with status " + std::to_string(WEXITSTATUS(status));
-}
-
-pid_t spawn_worker(const std::string& program, const std::string& dir, const WorkItem& item,
+// A worker: its own process group (a timeout kills all it started), dies with this process, its
+// output in its log, and a message pipe for its last words (they reach us even when the disk of
+// the log is full).
+Child spawn_worker(const std::string& program, const std::string& dir, const WorkItem& item,
                    const std::string& records_dir) {
   const Shard& s = item.shard;
-  const std::string log = dir + "/logs/" + s.id() + (item.attempt > 1 ? ".retry" : "") + ".log";
-  const std::vector<std::string> args = {program, "worker", dir, s.platform, kind_name(s.kind),
-                                         std::to_string(s.view), std::to_string(s.begin),
-                                         std::to_string(s.end), "--records-dir", records_dir};
-  const std::string attempt = std::to_string(item.attempt);
-  const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
-  if (pid == 0) {
-    ::setpgid(0, 0);  // its own process group, so a timeout kills everything it started
-    ::setenv("RA_RENDER_ATTEMPT", attempt.c_str(), 1);
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      ::dup2(fd, 1);
-      ::dup2(fd, 2);
-      ::close(fd);
-    }
-    std::vector<char*> argv;
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    ::execv(program.c_str(), argv.data());
-    std::perror("execv");
-    ::_exit(127);
-  }
-  return pid;
+  ChildSpec spec;
+  spec.argv = {program, "worker", dir, s.platform, kind_name(s.kind), std::to_string(s.view),
+               std::to_string(s.begin), std::to_string(s.end), "--records-dir", records_dir};
+  spec.set_env = {"RA_RENDER_ATTEMPT=" + std::to_string(item.attempt)};
+  spec.log_to(dir + "/logs/" + s.id() + (item.attempt > 1 ? ".retry" : "") + ".log");
+  spec.stdin_null = true;
+  spec.own_process_group = true;
+  spec.message_pipe = true;
+  return start_child(spec);
+}
+
+// What a finished worker said through its message pipe (the error it stopped on), one line.
+std::string last_words(int fd) {
+  std::string text = drain_fd(fd);
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  return text;
 }
 
 std::string format_duration(double s) {
@@ -85,23 +77,42 @@ std::string format_duration(double s) {
   return buf;
 }
 
-void prepare_run_dir(const Experiment& exp, const std::string& dir) {
+// Temporary files of writers that are gone (we hold the lock, so none is being written).
+void remove_temporaries(const std::string& dir) {
+  std::error_code ec;
+  for (const char* sub : {"/records", "/drivers", ""})
+    for (const auto& e : fs::directory_iterator(dir + sub, ec))
+      if (e.path().extension() == ".tmp") fs::remove(e.path(), ec);
+}
+
+// Creates (or reopens) the run directory and takes its lock before looking inside, so that two
+// runs started together never judge each other's half-made directory.
+std::unique_ptr<DirLock> prepare_run_dir(const Experiment& exp, const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw UserError(dir + ": cannot create the run directory (" + ec.message() + ")");
+  auto lock = std::make_unique<DirLock>(dir, "run");
   const std::string copy = dir + "/experiment.toml";
+  bool empty = true;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename() != ".lock") empty = false;
   if (fs::exists(copy)) {
     const Experiment previous = load_experiment(copy);
     if (previous.hash != exp.hash)
       throw UserError(dir + ": holds a run of a different experiment (hash " + previous.hash +
                       ", this one " + exp.hash + "); choose another --out or remove the directory");
-  } else if (fs::exists(dir) && !fs::is_empty(dir)) {
+  } else if (!empty) {
     throw UserError(dir + ": exists and is not a run directory (no experiment.toml); choose "
                           "another --out");
   }
-  for (const char* sub : {"", "/records", "/drivers", "/logs"}) fs::create_directories(dir + sub);
+  for (const char* sub : {"/records", "/drivers", "/logs"}) {
+    fs::create_directories(dir + sub, ec);
+    if (ec) throw UserError(dir + sub + ": cannot create (" + ec.message() + ")");
+  }
   fs::remove_all(ShardRecovery::parts_dir(dir));  // a bisection cut short restarts from scratch
   if (!fs::exists(copy)) write_file_atomic(copy, exp.text);
-  // Temporary files are what a killed run left behind: their shards are simply redone.
-  for (const auto& e : fs::directory_iterator(dir + "/records"))
-    if (e.path().extension() == ".tmp") fs::remove(e.path());
+  remove_temporaries(dir);  // what a killed run left behind: their shards are redone
+  return lock;
 }
 
 nlohmann::json drivers_json(const std::string& dir) {
@@ -132,7 +143,7 @@ RunResult run_experiment(const RunOptions& options) {
     if (std::find(exp.platforms.begin(), exp.platforms.end(), p) == exp.platforms.end())
       throw UserError(options.experiment_path + ": --platform " + p +
                       " is not one of the experiment's platforms");
-  prepare_run_dir(exp, dir);
+  const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, dir);
 
   std::deque<WorkItem> todo;
   std::vector<Shard> all = plan_shards(exp);
@@ -144,10 +155,20 @@ RunResult run_experiment(const RunOptions& options) {
               all.end());
   }
   for (const Shard& s : all) {
-    if (fs::exists(s.records_path(dir)))
-      ++result.shards_done_before;  // finished by an earlier invocation: kept as is
-    else
-      todo.push_back(WorkItem{s, "", 1, timeout_s});
+    const std::string path = s.records_path(dir);
+    if (fs::exists(path)) {
+      const std::string damage = check_shard_file(path, s.size());
+      if (damage.empty()) {
+        ++result.shards_done_before;  // finished by an earlier invocation: kept as is
+        continue;
+      }
+      // Never counted: set aside (not deleted: it is evidence) and redone.
+      std::fprintf(stderr, "renderaudit: %s: not a complete shard file: %s; redoing shard %s\n",
+                   path.c_str(), damage.c_str(), s.id().c_str());
+      fs::rename(path, path + ".damaged");
+      result.damaged.push_back({s.id(), damage});
+    }
+    todo.push_back(WorkItem{s, "", 1, timeout_s});
   }
   result.shards_total = all.size();
 
@@ -172,7 +193,7 @@ RunResult run_experiment(const RunOptions& options) {
   manifest["invocations"].push_back({{"started", started}, {"jobs", jobs},
                                      {"shards_to_run", todo.size()}});
   manifest["status"] = "running";
-  write_file_atomic(manifest_path, manifest.dump(2) + "\n");
+  write_manifest(manifest_path, manifest);
 
   struct sigaction sa {};
   sa.sa_handler = on_signal;
@@ -190,6 +211,19 @@ RunResult run_experiment(const RunOptions& options) {
   ShardRecovery recovery(dir, exp, timeout_s);
   RendererCheck renderer_check(dir, options.expect_renderer);
   std::map<pid_t, Running> running;
+  // Every exit path (an exception included) kills and reaps the workers still running.
+  struct Reaper {
+    std::map<pid_t, Running>& running;
+    ~Reaper() { stop_all(); }
+    void stop_all() {
+      for (auto& [pid, r] : running) ::kill(-pid, SIGKILL);
+      for (auto& [pid, r] : running) {
+        wait_child(pid);
+        if (r.message_fd >= 0) ::close(r.message_fd);
+      }
+      running.clear();
+    }
+  } reaper{running};
   size_t finished = 0;
   auto last_progress = Clock::now() - std::chrono::seconds(1);
   // A worker ended: count it, and queue what follows from a crash or hang (a re-run first, then
@@ -210,15 +244,10 @@ RunResult run_experiment(const RunOptions& options) {
   };
   while (!todo.empty() || !running.empty()) {
     if (g_interrupted) {
-      for (auto& [pid, r] : running) ::kill(-pid, SIGKILL);
-      for (auto& [pid, r] : running) ::waitpid(pid, nullptr, 0);
       result.interrupted = true;
-      break;
+      break;  // the reaper kills the workers
     }
     if (const std::string wrong = renderer_check.mismatch(); !wrong.empty()) {
-      for (auto& [pid, r] : running) ::kill(-pid, SIGKILL);
-      for (auto& [pid, r] : running) ::waitpid(pid, nullptr, 0);
-      running.clear();
       todo.clear();
       result.wrong_renderer = wrong;
       break;
@@ -226,24 +255,29 @@ RunResult run_experiment(const RunOptions& options) {
     while (!todo.empty() && int(running.size()) < jobs) {
       const WorkItem w = todo.front();
       todo.pop_front();
-      const pid_t pid = spawn_worker(program, dir, w, recovery.records_dir(w));
-      running[pid] = {w, Clock::now()};
+      const Child child = spawn_worker(program, dir, w, recovery.records_dir(w));
+      running[child.pid] = {w, Clock::now(), child.message_fd};
     }
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, WNOHANG);
     if (pid > 0 && running.count(pid)) {
       const Running r = running[pid];
       running.erase(pid);
+      const std::string words = last_words(r.message_fd);
+      ::close(r.message_fd);
       const std::string written = recovery.records_dir(r.item) + "/" + r.item.shard.id() + ".csv";
       const std::string log = "; log: " + dir + "/logs/" + r.item.shard.id() +
                               (r.item.attempt > 1 ? ".retry" : "") + ".log";
       if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(written)) {
         conclude(r, WorkOutcome::kOk, "");
       } else if (WIFSIGNALED(status)) {  // the driver crashed: re-run, then bisect
-        conclude(r, WorkOutcome::kCrash, describe_exit(status) + log);
+        conclude(r, WorkOutcome::kCrash, describe_exit_status(status) + log);
       } else {  // an error the worker reported (I/O, bad input): no primitive to blame
         ++finished;
-        result.failures.push_back({r.item.shard.id(), describe_exit(status) + log});
+        const std::string why = describe_exit_status(status) + (words.empty() ? "" : ": " + words);
+        std::fprintf(stderr, "%srenderaudit: shard %s: worker %s\n", show ? "\n" : "",
+                     r.item.shard.id().c_str(), why.c_str());
+        result.failures.push_back({r.item.shard.id(), why + log});
       }
       continue;  // reap everything that is ready before sleeping
     }
@@ -251,8 +285,9 @@ RunResult run_experiment(const RunOptions& options) {
     for (auto& [p, r] : running) {
       if (std::chrono::duration<double>(now - r.started).count() > r.item.timeout_s) {
         ::kill(-p, SIGKILL);
-        ::waitpid(p, nullptr, 0);
+        wait_child(p);
         const Running timed_out = r;
+        ::close(timed_out.message_fd);
         running.erase(p);
         char limit[32];
         std::snprintf(limit, sizeof limit, "%g", timed_out.item.timeout_s);
@@ -273,7 +308,9 @@ RunResult run_experiment(const RunOptions& options) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   if (show) std::fprintf(stderr, "\n");
-  fs::remove_all(ShardRecovery::parts_dir(dir));  // what killed workers left half-written
+  reaper.stop_all();  // no worker runs past this point
+  fs::remove_all(ShardRecovery::parts_dir(dir));
+  remove_temporaries(dir);  // what killed (timed-out) workers left  // what killed workers left half-written
   sigaction(SIGINT, &old_int, nullptr);
   sigaction(SIGTERM, &old_term, nullptr);
 
@@ -287,6 +324,11 @@ RunResult run_experiment(const RunOptions& options) {
   nlohmann::json failures = nlohmann::json::array();
   for (const auto& f : result.failures) failures.push_back({{"shard", f.shard}, {"reason", f.reason}});
   manifest["failures"] = failures;
+  if (!result.damaged.empty()) {
+    nlohmann::json damaged = manifest.value("damaged_shards_redone", nlohmann::json::array());
+    for (const auto& d : result.damaged) damaged.push_back({{"shard", d.shard}, {"reason", d.reason}});
+    manifest["damaged_shards_redone"] = damaged;
+  }
   result.failed_primitives = recovery.failed_primitives();
   nlohmann::json failed = manifest.value("failed_primitives", nlohmann::json::array());
   for (const FailedPrimitive& f : result.failed_primitives)
@@ -300,7 +342,7 @@ RunResult run_experiment(const RunOptions& options) {
                        : complete != all.size()           ? "failed"
                        : !failed.empty()                  ? "complete-with-failed-primitives"
                                                           : "complete";
-  write_file_atomic(manifest_path, manifest.dump(2) + "\n");
+  write_manifest(manifest_path, manifest);
   return result;
 }
 

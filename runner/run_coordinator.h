@@ -31,6 +31,7 @@ struct RunResult {
   size_t shards_total = 0, shards_done_before = 0, shards_run = 0;
   size_t shards_complete = 0;            // with a records file, this or an earlier invocation
   std::vector<ShardFailure> failures;    // every worker that crashed, hung or failed (events)
+  std::vector<ShardFailure> damaged;     // shard files found incomplete or damaged, then redone
   std::vector<FailedPrimitive> failed_primitives;  // recorded as crash / timeout
   std::string wrong_renderer;            // why --expect-renderer stopped the run, or empty
   bool interrupted = false;

@@ -4,12 +4,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
 #include "util/atomic_file.h"
+#include "runner/shard_file.h"
 #include "metrics/case_measurement.h"
 #include "runner/experiment.h"
 #include "platforms/platform.h"
@@ -44,13 +46,7 @@ static void write_driver_info(const std::string& run_dir, const std::string& nam
                       {"vendor", info.vendor},               {"subpixel_bits", info.subpixel_bits},
                       {"timer_query", info.timer_query}};
   // Several shards may race here; each writes a complete file under its own temporary name.
-  const std::string tmp = path + "." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp);
-    out << j.dump(2) << "\n";
-    if (!out) throw std::runtime_error("cannot write " + tmp);
-  }
-  commit_file(tmp, path);
+  write_file_atomic(path, j.dump(2) + "\n");
 }
 
 void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& shard,
@@ -67,9 +63,11 @@ void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& s
 
   const std::string path = records_dir.empty() ? shard.records_path(run_dir)
                                                : records_dir + "/" + shard.id() + ".csv";
-  const std::string tmp = path + ".tmp";
+  // A temporary of this writer alone: a second writer (a run that ignored the lock) cannot
+  // interleave its rows with ours, and a killed one leaves only its own temporary behind.
+  const std::string tmp = create_unique_temp(path);
   std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-  if (!out) throw std::runtime_error("cannot create " + tmp);
+  if (!out) throw std::runtime_error(io_error_message("cannot open", tmp));
   out << records_header() << '\n';
   constexpr uint64_t kChunk = 1024;  // primitives measured together (and batched inside)
   std::vector<Primitive> prims;
@@ -81,7 +79,17 @@ void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& s
       write_record(out, r);
   }
   out.close();
-  if (!out) throw std::runtime_error("cannot write " + tmp + " (disk full?)");
+  if (!out) {
+    const std::string why = io_error_message("cannot write", tmp);
+    std::remove(tmp.c_str());
+    throw std::runtime_error(why);
+  }
+  try {
+    seal_shard_file(tmp);
+  } catch (...) {
+    std::remove(tmp.c_str());
+    throw;
+  }
   commit_file(tmp, path);
 }
 

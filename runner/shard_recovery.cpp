@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "util/atomic_file.h"
+#include "runner/shard_file.h"
 #include "metrics/case_measurement.h"
 
 namespace fs = std::filesystem;
@@ -104,7 +105,9 @@ void ShardRecovery::assemble(Bisection& b) {
   std::ostringstream out;
   out << records_header() << '\n';
   for (const Record& r : records) write_record(out, r);
-  write_file_atomic(b.shard.records_path(run_dir_), out.str());
+  std::string body = out.str();
+  body += shard_trailer(body, records.size());
+  write_file_atomic(b.shard.records_path(run_dir_), body);
   for (const std::string& part : b.parts) fs::remove(part);
 }
 

@@ -250,6 +250,7 @@ TEST(AuditCommand, CrashRecordsAndMissingShardsFail) {
   const std::size_t status =
       std::size_t(std::find(header.begin(), header.end(), "status") - header.begin());
   while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;  // the seal, made again below
     std::vector<std::string> f = split(line);
     if (f.at(std::size_t(std::find(header.begin(), header.end(), "index") - header.begin())) == "4")
       f.at(status) = "crash";
@@ -257,6 +258,7 @@ TEST(AuditCommand, CrashRecordsAndMissingShardsFail) {
     edited += "\n";
   }
   write_text(shard, edited);
+  reseal_records_file(shard);
   const Outcome crash = run_renderaudit("audit " + dir + "/base " + dir + "/crash --no-history");
   EXPECT_EQ(crash.exit_code, 2) << crash.output;
   const nlohmann::json jc = read_json(dir + "/crash/audit/audit.json");

@@ -1,27 +1,63 @@
 #include "util/atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 namespace ra {
 
+std::string free_space_note(const std::string& path) {
+  std::string dir = std::filesystem::path(path).parent_path().string();
+  if (dir.empty()) dir = ".";
+  struct statvfs st {};
+  if (::statvfs(dir.c_str(), &st) != 0) return "";
+  const unsigned long long bytes = static_cast<unsigned long long>(st.f_bavail) * st.f_frsize;
+  return " (" + std::to_string(bytes) + " bytes free on the file system of " + dir + ")";
+}
+
+std::string io_error_message(const std::string& what, const std::string& path) {
+  const int err = errno;
+  std::string msg = what + " " + path + ": " + std::strerror(err);
+  if (err == ENOSPC || err == EDQUOT) msg += free_space_note(path);
+  return msg;
+}
+
 static std::runtime_error io_error(const std::string& what, const std::string& path) {
-  return std::runtime_error(what + " " + path + ": " + std::strerror(errno));
+  return std::runtime_error(io_error_message(what, path));
 }
 
 static void fsync_path(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY);
   if (fd < 0) throw io_error("cannot open", path);
   const int rc = ::fsync(fd);
+  const int saved = errno;
   ::close(fd);
+  errno = saved;
   if (rc != 0) throw io_error("cannot sync", path);
+}
+
+std::string create_unique_temp(const std::string& path) {
+  static std::atomic<unsigned> counter{0};
+  for (int tries = 0; tries < 100; ++tries) {
+    const std::string tmp = path + "." + std::to_string(::getpid()) + "." +
+                            std::to_string(counter++) + ".tmp";
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd >= 0) {
+      ::close(fd);
+      return tmp;
+    }
+    if (errno != EEXIST) throw io_error("cannot create", tmp);
+  }
+  throw std::runtime_error("cannot create a unique temporary file beside " + path);
 }
 
 void commit_file(const std::string& tmp_path, const std::string& path) {
@@ -35,15 +71,16 @@ void commit_file(const std::string& tmp_path, const std::string& path) {
 }
 
 void write_file_atomic(const std::string& path, const std::string& content) {
-  const std::string tmp = path + ".tmp";
+  const std::string tmp = create_unique_temp(path);
   FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) throw io_error("cannot create", tmp);
   const bool ok = std::fwrite(content.data(), 1, content.size(), f) == content.size();
   const int saved = errno;
   if (std::fclose(f) != 0 || !ok) {
-    errno = ok ? errno : saved;
+    if (!ok) errno = saved;
+    const std::runtime_error e = io_error("cannot write", path);
     std::remove(tmp.c_str());
-    throw io_error("cannot write", tmp);
+    throw e;
   }
   commit_file(tmp, path);
 }

@@ -1,5 +1,6 @@
-// Files that are either complete or absent: write to `path.tmp`, flush, fsync, then rename.
-// A killed process or a full disk never leaves half a file under the final name.
+// Files that are either complete or absent: write to a temporary file unique to this writer
+// (PATH.<pid>.<n>.tmp, created exclusively), flush, fsync, then rename. A killed process, a full
+// disk or a second writer never leaves half a file, or another writer's file, under the final name.
 #pragma once
 
 #include <string>
@@ -7,12 +8,23 @@
 namespace ra {
 
 // Writes `content` to `path` atomically; throws std::runtime_error naming the path and the system
-// error (e.g. "No space left on device") on failure, removing the temporary file.
+// error (e.g. "No space left on device", with the free space) on failure, removing the temporary.
 void write_file_atomic(const std::string& path, const std::string& content);
+
+// A fresh, exclusively created, empty temporary file beside `path`, unique to this process and
+// call: "PATH.<pid>.<n>.tmp". Throws like write_file_atomic.
+std::string create_unique_temp(const std::string& path);
 
 // Renames a finished temporary file into place after fsyncing it; throws like write_file_atomic.
 void commit_file(const std::string& tmp_path, const std::string& path);
 
 std::string read_file(const std::string& path);  // throws std::runtime_error when unreadable
+
+// " (N bytes free on the file system of PATH)", or "" when it cannot be told: for disk-full errors.
+std::string free_space_note(const std::string& path);
+
+// The message of an I/O failure on `path`: "WHAT PATH: strerror(errno)", plus the free space when
+// errno says the disk is full.
+std::string io_error_message(const std::string& what, const std::string& path);
 
 }  // namespace ra

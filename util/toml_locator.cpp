@@ -1,5 +1,7 @@
 #include "util/toml_locator.h"
 
+#include <cctype>
+
 #include <fstream>
 #include <sstream>
 
@@ -49,17 +51,30 @@ std::string TomlLocator::read_text(const std::string& path) {
   return text.str();
 }
 
+// A run's name becomes a directory (outputs/NAME): a plain file name, never a path, ".", ".." or a
+// hidden file, and short enough for any file system.
+static bool valid_run_name(const std::string& name) {
+  static const std::string allowed =
+      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-";
+  return !name.empty() && name.size() <= kMaxRunNameLength && std::isalnum((unsigned char)name[0]) &&
+         name.find_first_not_of(allowed) == std::string::npos;
+}
+
 std::string TomlLocator::experiment_name(const toml::table& root) const {
+  static const std::string rule = "(allowed: 1 to " + std::to_string(kMaxRunNameLength) +
+                                  " letters, digits, '_', '.', '-', starting with a letter or digit)";
   const toml::node* n = root.get("name");
   if (!n) {
-    const std::string stem = path_.substr(path_.find_last_of('/') + 1);
-    return stem.substr(0, stem.rfind(".toml"));
+    const std::string file = path_.substr(path_.find_last_of('/') + 1);
+    const std::string stem = file.substr(0, file.rfind(".toml"));
+    if (!valid_run_name(stem))
+      fail(nullptr, "the file name '" + stem + "' cannot name the run's directory; set 'name' " + rule);
+    return stem;
   }
   const auto* s = n->as_string();
-  if (!s || s->get().empty() ||
-      s->get().find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") !=
-          std::string::npos)
-    fail(n, "'name' must be a non-empty string of letters, digits, '_', '.', '-'");
+  if (!s || !valid_run_name(s->get()))
+    fail(n, "'name' must be a plain file name " + rule + ", not " +
+                (s ? "'" + s->get() + "'" : std::string("a value of another type")));
   return s->get();
 }
 

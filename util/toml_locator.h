@@ -10,6 +10,8 @@
 
 namespace ra {
 
+constexpr size_t kMaxRunNameLength = 100;  // characters of an experiment's `name`
+
 class TomlLocator {
  public:
   explicit TomlLocator(std::string path) : path_(std::move(path)) {}

@@ -1,0 +1,139 @@
+#include "analysis/run_completeness.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "metrics/records.h"
+#include "runner/experiment.h"
+#include "runner/shard.h"
+#include "runner/shard_file.h"
+#include "util/atomic_file.h"
+#include "util/dir_lock.h"
+
+namespace fs = std::filesystem;
+
+namespace ra::analysis {
+namespace {
+
+std::string range(const Shard& s) {
+  return "primitives " + std::to_string(s.begin) + "-" + std::to_string(s.end - 1);
+}
+
+// A records file written before shard files were sealed: checked row by row instead. Empty when
+// it holds each of the shard's primitives exactly once and nothing else.
+std::string check_unsealed(const std::string& path, const Shard& s) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  if (!std::getline(in, line)) return "empty file";
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  if (line != records_header()) return "unexpected header";
+  size_t index_column = 0;
+  {
+    std::stringstream header(line);
+    for (std::string name; std::getline(header, name, ',') && name != "index";) ++index_column;
+  }
+  std::vector<bool> seen(s.size(), false);
+  uint64_t rows = 0, line_no = 1;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty() || line[0] == '#') continue;
+    size_t start = 0;
+    for (size_t c = 0; c < index_column && start != std::string::npos; ++c) {
+      start = line.find(',', start);
+      if (start != std::string::npos) ++start;
+    }
+    if (start == std::string::npos) return "line " + std::to_string(line_no) + ": too few fields";
+    const uint64_t index = std::strtoull(line.c_str() + start, nullptr, 10);
+    if (index < s.begin || index >= s.end)
+      return "line " + std::to_string(line_no) + ": primitive " + std::to_string(index) +
+             " lies outside the shard (" + range(s) + ")";
+    if (seen[index - s.begin])
+      return "line " + std::to_string(line_no) + ": primitive " + std::to_string(index) + " twice";
+    seen[index - s.begin] = true;
+    ++rows;
+  }
+  if (rows != s.size())
+    return std::to_string(rows) + " of the shard's " + std::to_string(s.size()) + " primitives";
+  return "";
+}
+
+}  // namespace
+
+std::string RunCompleteness::headline() const {
+  if (!has_plan) return "completeness unknown: no experiment.toml, so no plan to compare with";
+  std::string h = complete() ? "complete: " : "INCOMPLETE: ";
+  h += std::to_string(shards_whole) + " of " + std::to_string(shards_planned) + " shards, " +
+       std::to_string(primitives_present) + " of " + std::to_string(primitives_planned) +
+       " primitives";
+  if (!writer.empty()) h += "; being written now by " + writer;
+  if (!problems.empty())
+    h += "; " + std::to_string(problems.size()) + " problem" + (problems.size() > 1 ? "s" : "");
+  if (!manifest_status.empty()) h += " (manifest: " + manifest_status + ")";
+  return h;
+}
+
+std::string RunCompleteness::markdown(std::size_t max_listed) const {
+  std::string md = "**Run " + headline() + ".**\n";
+  if (!problems.empty()) {
+    md += "\n";
+    for (std::size_t i = 0; i < problems.size() && i < max_listed; ++i) md += "- " + problems[i] + "\n";
+    if (problems.size() > max_listed)
+      md += "- ... and " + std::to_string(problems.size() - max_listed) + " more\n";
+  }
+  return md;
+}
+
+RunCompleteness check_run_completeness(const std::string& run_dir) {
+  RunCompleteness c;
+  const std::string toml = run_dir + "/experiment.toml";
+  if (!fs::exists(toml)) return c;
+  c.has_plan = true;
+  const Experiment exp = load_experiment(toml);
+  c.writer = DirLock::current_holder(run_dir);
+  try {
+    const nlohmann::json m = nlohmann::json::parse(read_file(run_dir + "/manifest.json"));
+    c.manifest_status = m.value("status", "");
+  } catch (const std::exception&) {
+    c.problems.push_back("manifest.json is missing or unreadable");
+  }
+  if (c.manifest_status == "running" && c.writer.empty())
+    c.problems.push_back("the manifest says \"running\" but nobody is writing: the run was killed "
+                         "(run the same command again to finish it)");
+
+  std::set<std::string> planned_files;
+  for (const Shard& s : plan_shards(exp)) {
+    ++c.shards_planned;
+    c.primitives_planned += s.size();
+    const std::string path = s.records_path(run_dir);
+    planned_files.insert(fs::path(path).filename().string());
+    if (!fs::exists(path)) {
+      c.problems.push_back("missing shard " + s.id() + " (" + range(s) + ")");
+      continue;
+    }
+    std::string why = check_shard_file(path, s.size());
+    if (why.rfind("no trailer", 0) == 0) why = check_unsealed(path, s);  // an older run
+    if (!why.empty()) {
+      c.problems.push_back("damaged shard " + s.id() + ": " + why);
+      continue;
+    }
+    ++c.shards_whole;
+    c.primitives_present += s.size();
+  }
+  std::error_code ec;
+  std::vector<std::string> stray;
+  for (const auto& e : fs::directory_iterator(run_dir + "/records", ec))
+    if (e.path().extension() == ".csv" && !planned_files.count(e.path().filename().string()))
+      stray.push_back(e.path().filename().string());
+  std::sort(stray.begin(), stray.end());
+  for (const std::string& f : stray)
+    c.problems.push_back("records/" + f + " is not a shard of this experiment's plan (another "
+                         "shard_size?): its records would be counted twice");
+  return c;
+}
+
+}  // namespace ra::analysis

@@ -1,0 +1,44 @@
+// Is a run directory whole? Its records are compared with the plan its experiment.toml makes
+// (runner/shard.h): every planned shard must have a sealed records file (runner/shard_file.h)
+// holding exactly its primitives, no other records file may be there, and no writer may be at work.
+// `analyze` and `report` check this first and stop (exit 3, kExitIncomplete) when it fails, unless
+// told to go on (--allow-incomplete), in which case what is missing is written at the top of what
+// they produce.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "util/errors.h"
+
+namespace ra::analysis {
+
+struct RunCompleteness {
+  bool has_plan = false;  // DIR/experiment.toml present (runs made by `run` always have it)
+  uint64_t shards_planned = 0, shards_whole = 0;
+  uint64_t primitives_planned = 0, primitives_present = 0;  // renders: platforms x views x counts
+  std::string manifest_status;       // as manifest.json says ("complete", "running", ...), or ""
+  std::string writer;                // who is writing the directory now, or ""
+  std::vector<std::string> problems;  // one line each, e.g. "missing shard X (primitives 0-4999)"
+
+  bool complete() const { return has_plan && problems.empty() && writer.empty(); }
+  // "complete: 16 of 16 shards, 64000 of 64000 primitives", or what is wrong, in one line.
+  std::string headline() const;
+  // Markdown: the headline and the problems (at most `max_listed`, then how many more).
+  std::string markdown(std::size_t max_listed = 20) const;
+};
+
+// Reads DIR/experiment.toml, DIR/manifest.json and DIR/records/ (every records file once, in
+// blocks: memory does not depend on the run's size). Throws ra::UserError when the experiment file
+// is unreadable.
+RunCompleteness check_run_completeness(const std::string& run_dir);
+
+// What analyze and report throw when the run is incomplete and going on was not allowed.
+class IncompleteRunError : public UserError {
+ public:
+  explicit IncompleteRunError(const std::string& what) : UserError(what) {}
+};
+
+}  // namespace ra::analysis

@@ -1,0 +1,23 @@
+// FNV-1a 64, incrementally: a fast, non-cryptographic fingerprint of bytes (file integrity checks,
+// exact comparison of pixel sets across runs). Not a defence against deliberate tampering.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+namespace ra {
+
+struct Fnv1a64 {
+  static constexpr uint64_t kOffsetBasis = 0xcbf29ce484222325ull;
+  static constexpr uint64_t kPrime = 0x100000001b3ull;
+  uint64_t value = kOffsetBasis;
+
+  void add(const void* data, size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < n; ++i) value = (value ^ p[i]) * kPrime;
+  }
+  void add(std::string_view s) { add(s.data(), s.size()); }
+};
+
+}  // namespace ra
