@@ -143,7 +143,7 @@ stats::Description describe_sorted(const std::vector<double>& ascending,
   stats::Description d;
   d.n = ascending.size();
   d.mean = mv.mean;
-  d.sd = std::sqrt(mv.variance);
+  d.sd = mv.sd;
   d.median = stats::quantile_sorted(ascending, 0.5, definition);
   d.q1 = stats::quantile_sorted(ascending, 0.25, definition);
   d.q3 = stats::quantile_sorted(ascending, 0.75, definition);

@@ -53,8 +53,13 @@ QuantileDefinition quantile_definition(const std::string& name) {
 
 // A number for JSON. The statistics library never returns a non-finite value; if it ever did, that
 // is a bug to report loudly, not a NaN to print.
+// A result that is not representable in double precision (a sum of squares of data near 1e200 is
+// near 1e400) is written as a string saying so, never as NaN or inf: the statistics that matter
+// (t, F, p, sd) are computed on scaled data and are always finite.
+constexpr const char* kOutOfRange = "out of double range (|x| > 1.8e308)";
 json number(double x) {
-  if (!std::isfinite(x)) throw std::logic_error("stats: internal error: a non-finite result");
+  if (std::isnan(x)) throw std::logic_error("stats: internal error: a NaN result");
+  if (!std::isfinite(x)) return kOutOfRange;
   return x;
 }
 
@@ -75,6 +80,7 @@ void out(const char* format, ...) {
 }
 
 std::string text_number(double x) {
+  if (std::isinf(x)) return kOutOfRange;
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.10g", x);
   return buf;
@@ -388,7 +394,7 @@ void run_anova(const StatsOptions& o) {
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const stats::MeanVariance mv = stats::mean_and_variance(groups[g]);
     out("  %-16s %8zu %24s %24s\n", names[g].c_str(), groups[g].size(),
-        text_number(mv.mean).c_str(), text_number(std::sqrt(mv.variance)).c_str());
+        text_number(mv.mean).c_str(), text_number(mv.sd).c_str());
   }
   out("\nOne-way ANOVA (e-Handbook 1.3.5.4)\n");
   if (anova.text.rfind("undefined", 0) == 0) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -56,9 +57,35 @@ void require_finite(const std::vector<double>& values, const char* what) {
   }
 }
 
-MeanVariance mean_and_variance(const std::vector<double>& values) {
-  require_non_empty(values, "mean_and_variance");
-  require_finite(values, "mean_and_variance");
+int scale_exponent(const std::vector<double>& values) {
+  double largest = 0;
+  for (double x : values) largest = std::max(largest, std::fabs(x));
+  if (!(largest > 0) || !std::isfinite(largest)) return 0;
+  int e = 0;
+  std::frexp(largest, &e);  // largest = m 2^e with 0.5 <= m < 1
+  return e;
+}
+
+int scale_exponent(const std::vector<std::vector<double>>& groups) {
+  int e = std::numeric_limits<int>::min();
+  for (const auto& g : groups)
+    if (std::any_of(g.begin(), g.end(), [](double x) { return x != 0; }))
+      e = std::max(e, scale_exponent(g));
+  return e == std::numeric_limits<int>::min() ? 0 : e;
+}
+
+std::vector<double> scaled(const std::vector<double>& values, int e) {
+  std::vector<double> out(values.size());
+  std::transform(values.begin(), values.end(), out.begin(),
+                 [e](double x) { return std::ldexp(x, -e); });
+  return out;
+}
+
+MeanVariance mean_and_variance(const std::vector<double>& unscaled) {
+  require_non_empty(unscaled, "mean_and_variance");
+  require_finite(unscaled, "mean_and_variance");
+  const int e = scale_exponent(unscaled);
+  const std::vector<double> values = scaled(unscaled, e);  // every |x| < 1
   const double n = static_cast<double>(values.size());
 
   // first pass: provisional mean of the values shifted by the first one, so that constant leading
@@ -78,10 +105,13 @@ MeanVariance mean_and_variance(const std::vector<double>& values) {
     squares.add(r * r);
   }
   MeanVariance result;
-  result.mean = provisional + residuals.value() / n;
+  result.scale_exponent = e;
+  result.mean = std::ldexp(provisional + residuals.value() / n, e);
   if (values.size() >= 2) {
     const double ss = squares.value() - residuals.value() * residuals.value() / n;
-    result.variance = std::max(0.0, ss) / (n - 1);
+    result.scaled_variance = std::max(0.0, ss) / (n - 1);
+    result.sd = std::ldexp(std::sqrt(result.scaled_variance), e);
+    result.variance = std::ldexp(result.scaled_variance, 2 * e);
   }
   return result;
 }
@@ -111,8 +141,12 @@ double quantile_sorted(const std::vector<double>& sorted, double p, QuantileDefi
   const std::size_t below = static_cast<std::size_t>(k) - 1;  // 0-based index of x_(k)
   const double lo = sorted[below];
   const double hi = sorted[below + 1];
-  // note: lo + f * (hi - lo) is exact when lo == hi and stays inside [lo, hi]
-  return lo + fraction * (hi - lo);
+  // note: lo + f * (hi - lo) is exact when lo == hi and stays inside [lo, hi]; when hi - lo
+  // overflows (values of both signs near 1e308) the same is formed on halves (exact but for
+  // subnormals, which cannot occur beside a difference that overflows)
+  const double gap = hi - lo;
+  if (std::isfinite(gap)) return lo + fraction * gap;
+  return 2 * (lo / 2 + fraction * (hi / 2 - lo / 2));
 }
 
 Description describe(std::vector<double> values, QuantileDefinition definition) {
@@ -123,7 +157,7 @@ Description describe(std::vector<double> values, QuantileDefinition definition) 
   Description d;
   d.n = values.size();
   d.mean = mv.mean;
-  d.sd = std::sqrt(mv.variance);
+  d.sd = mv.sd;
   d.median = quantile_sorted(values, 0.5, definition);
   d.q1 = quantile_sorted(values, 0.25, definition);
   d.q3 = quantile_sorted(values, 0.75, definition);

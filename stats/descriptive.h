@@ -40,11 +40,25 @@ double mean(const std::vector<double>& values);
 // Mean and sample variance (denominator n - 1) computed together; see mean_and_variance().
 struct MeanVariance {
   double mean = 0;      // units of the data
-  double variance = 0;  // units of the data, squared; 0 when n = 1 (no spread can be estimated)
+  double variance = 0;  // units of the data, squared; 0 when n = 1 (no spread can be estimated).
+                        // inf (or 0) when sd^2 leaves the double range (sd above 1.3e154 or
+                        // below 1e-162): use `sd`, which is always right, or scaled_variance
+  double sd = 0;        // units of the data: sqrt(variance), computed without squaring the data
+  double scaled_variance = 0;  // variance / 4^scale_exponent, always representable
+  int scale_exponent = 0;      // the data were divided by 2^scale_exponent (scale_exponent())
 };
 
-// Mean and sample variance (denominator n - 1) by the corrected two-pass algorithm (Chan, Golub and
-// LeVeque 1983): sum of squared residuals minus (sum of residuals)^2 / n. Variance of a single
+// A power of two 2^e with every |x| / 2^e below 1 (e = 0 when all values are 0). Dividing by it is
+// exact, and squares and sums of the scaled values can neither overflow nor underflow, so the
+// statistics hold across the whole double range (1e-300 to 1e308); values that underflow when
+// scaled are below one ulp of the largest and change no result.
+int scale_exponent(const std::vector<double>& values);
+int scale_exponent(const std::vector<std::vector<double>>& groups);
+// values x 2^-e, exactly.
+std::vector<double> scaled(const std::vector<double>& values, int e);
+
+// Mean and sample variance (denominator n - 1) of the values scaled by scale_exponent, by the
+// corrected two-pass algorithm (Chan, Golub and LeVeque 1983): sum of squared residuals minus (sum of residuals)^2 / n. Variance of a single
 // value is reported as 0, not NaN; callers that need a spread estimate must check n >= 2
 // themselves. Throws std::invalid_argument when empty or non-finite.
 MeanVariance mean_and_variance(const std::vector<double>& values);

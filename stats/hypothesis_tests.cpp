@@ -85,7 +85,10 @@ TTestResult t_test_pooled(const std::vector<double>& sample1, const std::vector<
   if (sample1.size() + sample2.size() < 3) {
     throw std::invalid_argument("pooled t test: n1 + n2 = 2; at least 3 values needed");
   }
-  const auto [a, b, n1, n2] = two_sample_moments(sample1, sample2);
+  // Both samples scaled by one power of two (exact): t is scale-free, and nothing squared can
+  // overflow or underflow; the results in data units are scaled back.
+  const int e = scale_exponent({sample1, sample2});
+  const auto [a, b, n1, n2] = two_sample_moments(scaled(sample1, e), scaled(sample2, e));
 
   TTestResult r;
   r.df = n1 + n2 - 2;
@@ -93,17 +96,21 @@ TTestResult t_test_pooled(const std::vector<double>& sample1, const std::vector<
   if (!(pooled_variance > 0)) {
     throw std::invalid_argument("pooled t test: both samples are constant (pooled sd = 0)");
   }
-  r.pooled_sd = std::sqrt(pooled_variance);
-  r.mean_difference = a.mean - b.mean;
-  r.standard_error = *r.pooled_sd * std::sqrt(1 / n1 + 1 / n2);
-  r.statistic = r.mean_difference / r.standard_error;
+  const double pooled_sd = std::sqrt(pooled_variance);
+  const double difference = a.mean - b.mean;
+  const double standard_error = pooled_sd * std::sqrt(1 / n1 + 1 / n2);
+  r.statistic = difference / standard_error;
+  r.pooled_sd = std::ldexp(pooled_sd, e);
+  r.mean_difference = std::ldexp(difference, e);
+  r.standard_error = std::ldexp(standard_error, e);
   r.p_value = two_sided_t_p(r.statistic, r.df);
   return r;
 }
 
 TTestResult t_test_welch(const std::vector<double>& sample1, const std::vector<double>& sample2) {
   require_two_samples(sample1, sample2, 2, "Welch t test");
-  const auto [a, b, n1, n2] = two_sample_moments(sample1, sample2);
+  const int e = scale_exponent({sample1, sample2});  // as in t_test_pooled
+  const auto [a, b, n1, n2] = two_sample_moments(scaled(sample1, e), scaled(sample2, e));
 
   const double v1 = a.variance / n1;  // squared standard errors of the two means
   const double v2 = b.variance / n2;
@@ -111,9 +118,9 @@ TTestResult t_test_welch(const std::vector<double>& sample1, const std::vector<d
     throw std::invalid_argument("Welch t test: both samples are constant (standard error = 0)");
   }
   TTestResult r;
-  r.mean_difference = a.mean - b.mean;
-  r.standard_error = std::sqrt(v1 + v2);
-  r.statistic = r.mean_difference / r.standard_error;
+  r.statistic = (a.mean - b.mean) / std::sqrt(v1 + v2);
+  r.mean_difference = std::ldexp(a.mean - b.mean, e);
+  r.standard_error = std::ldexp(std::sqrt(v1 + v2), e);
   // Welch-Satterthwaite degrees of freedom
   r.df = (v1 + v2) * (v1 + v2) / (v1 * v1 / (n1 - 1) + v2 * v2 / (n2 - 1));
   r.p_value = two_sided_t_p(r.statistic, r.df);
@@ -123,8 +130,9 @@ TTestResult t_test_welch(const std::vector<double>& sample1, const std::vector<d
 FTestResult f_test_variances(const std::vector<double>& sample1,
                              const std::vector<double>& sample2) {
   require_two_samples(sample1, sample2, 2, "F test");
-  const double var1 = mean_and_variance(sample1).variance;
-  const double var2 = mean_and_variance(sample2).variance;
+  const int e = scale_exponent({sample1, sample2});  // the ratio is scale-free
+  const double var1 = mean_and_variance(scaled(sample1, e)).variance;
+  const double var2 = mean_and_variance(scaled(sample2, e)).variance;
   if (!(var2 > 0)) {
     throw std::invalid_argument(
         "F test: sample 2 is constant (its variance, the denominator, is 0)");
@@ -165,11 +173,16 @@ FTestResult levene_test(const std::vector<std::vector<double>>& groups, LeveneCe
       throw std::invalid_argument("Levene test: group " + std::to_string(g + 1) + " is empty");
     }
     require_finite(groups[g], "Levene test");
-    if (g == 0) reference = groups[g].front();
+  }
+  // W is scale-free: one power of two for all groups, so deviations never overflow
+  const int e = scale_exponent(groups);
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const std::vector<double> group = scaled(groups[g], e);
+    if (g == 0) reference = group.front();
     // centres and deviations are formed relative to one reference value (W is shift-invariant):
     // a centre of data near 1e9 would otherwise be rounded to 1e-7 before any deviation is taken
-    std::vector<double> y(groups[g].size());
-    std::transform(groups[g].begin(), groups[g].end(), y.begin(),
+    std::vector<double> y(group.size());
+    std::transform(group.begin(), group.end(), y.begin(),
                    [reference](double x) { return x - reference; });
     double c = 0;
     switch (center) {
@@ -219,13 +232,16 @@ AnovaResult one_way_anova(const std::vector<std::vector<double>>& groups) {
                                 std::to_string(r.k) + " groups; more values than groups needed");
   }
 
-  // center every value on one reference before any sum is formed, so that leading digits shared by
-  // all data (StRD SmLs04: 1000000.4) cancel exactly
-  const double reference = groups.front().front();
+  // scale every group by one power of two (exact; F is scale-free, sums of squares are scaled
+  // back), then center every value on one reference before any sum is formed, so that leading
+  // digits shared by all data (StRD SmLs04: 1000000.4) cancel exactly
+  const int e = scale_exponent(groups);
+  const double reference = std::ldexp(groups.front().front(), -e);
   std::vector<MeanVariance> moments;
   std::vector<double> all_shifted;
   all_shifted.reserve(r.n);
-  for (const auto& y : groups) {
+  for (const auto& unscaled_group : groups) {
+    const std::vector<double> y = scaled(unscaled_group, e);
     moments.push_back(shifted_moments(y, reference));
     for (double x : y) all_shifted.push_back(x - reference);
   }
@@ -239,19 +255,25 @@ AnovaResult one_way_anova(const std::vector<std::vector<double>>& groups) {
     between_terms.push_back(n_g * d * d);
     within_terms.push_back((n_g - 1) * moments[g].variance);
   }
-  r.ss_between = compensated_sum(between_terms);
-  r.ss_within = compensated_sum(within_terms);
+  const double ss_between = compensated_sum(between_terms);  // scaled units
+  const double ss_within = compensated_sum(within_terms);
   r.df_between = static_cast<double>(r.k - 1);
   r.df_within = static_cast<double>(r.n - r.k);
-  r.ms_between = r.ss_between / r.df_between;
-  r.ms_within = r.ss_within / r.df_within;
-  if (!(r.ms_within > 0)) {
+  const double ms_between = ss_between / r.df_between;
+  const double ms_within = ss_within / r.df_within;
+  if (!(ms_within > 0)) {
     throw std::invalid_argument("one-way ANOVA: every group is constant (within-group SS = 0)");
   }
-  r.f = r.ms_between / r.ms_within;
+  r.f = ms_between / ms_within;
   r.p_value = upper_f_p(r.f, r.df_between, r.df_within);
-  r.r_squared = r.ss_between / (r.ss_between + r.ss_within);
-  r.residual_sd = std::sqrt(r.ms_within);
+  r.r_squared = ss_between / (ss_between + ss_within);
+  r.residual_sd = std::ldexp(std::sqrt(ms_within), e);
+  // Sums and means of squares in data units squared: inf or 0 when they leave the double range
+  // (data near 1e200 have squares near 1e400); F, p and R^2 above do not depend on them.
+  r.ss_between = std::ldexp(ss_between, 2 * e);
+  r.ss_within = std::ldexp(ss_within, 2 * e);
+  r.ms_between = std::ldexp(ms_between, 2 * e);
+  r.ms_within = std::ldexp(ms_within, 2 * e);
   return r;
 }
 

@@ -50,9 +50,31 @@ long double sum_of_squares(const Eigen::VectorXd& v) {
 
 }  // namespace
 
+namespace {
+LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& predictors,
+                                        const std::vector<double>& y, bool intercept,
+                                        const std::vector<std::string>& names);
+}  // namespace
+
+// y is scaled by a power of two first (exact): the residual sum of squares of y near 1e200 would
+// be near 1e400; t, p and R^2 are scale-free, coefficients and their standard deviations scale
+// with y and are scaled back. (The predictors' columns are scaled to unit norm below.)
 LinearFit fit_least_squares(const std::vector<std::vector<double>>& predictors,
                             const std::vector<double>& y, bool intercept,
                             const std::vector<std::string>& names) {
+  const int e = scale_exponent(y);
+  LinearFit fit = fit_least_squares_of_scaled_y(predictors, scaled(y, e), intercept, names);
+  for (double& b : fit.coefficients) b = std::ldexp(b, e);
+  for (double& sd : fit.standard_deviations) sd = std::ldexp(sd, e);
+  fit.residual_sd = std::ldexp(fit.residual_sd, e);
+  fit.rss = std::ldexp(fit.rss, 2 * e);  // inf when it leaves the double range
+  return fit;
+}
+
+namespace {
+LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& predictors,
+                                        const std::vector<double>& y, bool intercept,
+                                        const std::vector<std::string>& names) {
   // check the input before any arithmetic, so that every message names what is wrong
   const std::size_t k = predictors.size();
   if (!names.empty() && names.size() != k) {
@@ -172,6 +194,7 @@ LinearFit fit_least_squares(const std::vector<std::vector<double>>& predictors,
   }
   return fit;
 }
+}  // namespace
 
 CoefficientTest coefficient_t_test(const LinearFit& fit, std::size_t j) {
   const double sd = fit.standard_deviations.at(j);

@@ -75,6 +75,40 @@ class StatsCommand : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
+// Data near the ends of the double range: every command answers with finite numbers or says that a
+// value (an sd or a sum of squares above 1.8e308) is out of range; never NaN, inf or an internal
+// error (values 1e200 once gave sd 0 and "every group is constant").
+TEST_F(StatsCommand, ExtremeMagnitudesNeverPrintNaNOrInf) {
+  const std::string groups = write_csv(
+      dir_, "g.csv", "group,y,x",
+      {"a,1e200,1", "a,2e200,2", "a,1.5e200,3", "b,3e200,4", "b,3.5e200,5", "b,2.75e200,6",
+       "c,1e-170,7", "c,2e-170,8", "c,3e-170,9"});
+  const std::string huge = column_csv(dir_, "h.csv", {1.7e308, -1.7e308, 1.6e308, 1.0e308});
+  const std::vector<std::vector<std::string>> commands = {
+      {"describe", huge, "--column", "error_px"},
+      {"describe", huge, "--column", "error_px", "--json"},
+      {"describe", groups, "--column", "y"},
+      {"anova", groups, "--value", "y", "--group", "group"},
+      {"anova", groups, "--value", "y", "--group", "group", "--json"},
+      {"regress", groups, "--y", "y", "--x", "x"},
+      {"regress", groups, "--y", "y", "--x", "x", "--json"}};
+  for (const auto& c : commands) {
+    const std::string out = run_stats(c);
+    std::string lower = out;
+    for (char& ch : lower) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    EXPECT_EQ(lower.find("nan"), std::string::npos) << c[0] << ":\n" << out;
+    EXPECT_EQ(lower.find(" inf"), std::string::npos) << c[0] << ":\n" << out;
+    EXPECT_EQ(lower.find("internal error"), std::string::npos) << c[0] << ":\n" << out;
+    EXPECT_EQ(lower.find("constant"), std::string::npos) << c[0] << ":\n" << out;
+  }
+  const json d = json::parse(run_stats({"describe", huge, "--column", "error_px", "--json"}));
+  // deviations from the mean 0.65e308: 1.05, -2.35, 0.95, 0.35 (e308); ss = 7.65, var = 2.55
+  EXPECT_NEAR(d["description"]["sd"].get<double>() / 1e308, std::sqrt(2.55), 1e-15);
+  // q3 - q1 = 1.675e308 - (-1.025e308) = 2.7e308: beyond the largest double
+  EXPECT_EQ(d["description"]["iqr"], "out of double range (|x| > 1.8e308)");
+  EXPECT_DOUBLE_EQ(d["description"]["median"].get<double>(), 1.3e308);
+}
+
 TEST_F(StatsCommand, DescribeJsonCarriesTheLibraryNumbers) {
   const auto x = testing::lognormal_sample(501, 0, 1, 81);
   const std::string file = column_csv(dir_, "a.csv", x);
