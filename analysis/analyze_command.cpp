@@ -182,7 +182,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
         break;
       }
       verdicts += std::string("- NOT equivalent: ") + run.platforms[e.platform] + ", " +
-                  kind_plural(e.kind) + ", " + kind_metrics(e.kind)[e.metric].symbol +
+                  kind_label_plural(e.kind) + ", " + kind_metrics(e.kind)[e.metric].symbol +
                   ", view group " + e.label + ": " + e.explanation + "\n";
     }
     verdicts +=

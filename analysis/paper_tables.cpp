@@ -197,7 +197,7 @@ Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
   Table t;
   t.file_stem = "table0" + std::to_string(number) + "_" + kind_name(kind) + "_visibility";
   t.title = "Table " + std::to_string(number) + " (mirrors the paper's Table " +
-            std::to_string(number) + "): the counts of " + kind_plural(kind) +
+            std::to_string(number) + "): the counts of " + kind_label_plural(kind) +
             " rendered in each visibility category for each view group and platform; counts of "
             "records, unscaled";
   bool multiple = kind == PrimitiveKind::kPoint;
@@ -295,7 +295,7 @@ Table metric_table(const RunRecords& run, const GroupSummaries& summaries,
                                " (1.000 means 1e-" + std::to_string(spec.scale_exponent) + ")"
                          : "") +
                     ".");
-  t.notes.push_back(std::string("Sample: true-visible ") + kind_plural(spec.kind) +
+  t.notes.push_back(std::string("Sample: true-visible ") + kind_label_plural(spec.kind) +
                     " with status ok and a value of " + spec.column + ".");
   t.notes.push_back(group_note(run, spec.kind));
   std::uint64_t missing = 0;

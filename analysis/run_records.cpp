@@ -27,19 +27,7 @@ namespace fs = std::filesystem;
 
 namespace ra::analysis {
 
-const char* kind_name(PrimitiveKind kind) {
-  switch (kind) {
-    case PrimitiveKind::kPoint:
-      return "point";
-    case PrimitiveKind::kLine:
-      return "line";
-    case PrimitiveKind::kTriangle:
-      return "triangle";
-  }
-  return "unknown";
-}
-
-const char* kind_plural(PrimitiveKind kind) {
+const char* kind_label_plural(PrimitiveKind kind) {
   switch (kind) {
     case PrimitiveKind::kPoint:
       return "points";

@@ -28,18 +28,22 @@
 #include <string_view>
 #include <vector>
 
+#include "geometry/primitive.h"
 #include "stats/descriptive.h"
 
 namespace ra::analysis {
 
-enum class PrimitiveKind { kPoint = 0, kLine = 1, kTriangle = 2 };
+// The kind of a record is the project's one primitive kind (geometry/primitive.h); records spell
+// it with kind_name: "point", "line", "triangle".
+using PrimitiveKind = Kind;
 constexpr std::size_t kKindCount = 3;
 constexpr std::array<PrimitiveKind, kKindCount> kAllKinds = {
     PrimitiveKind::kPoint, PrimitiveKind::kLine, PrimitiveKind::kTriangle};
+using ra::kind_name;
 
-const char* kind_name(PrimitiveKind kind);    // "point", "line", "triangle" (the records' spelling)
-const char* kind_plural(PrimitiveKind kind);  // "points", "line segments", "triangles"
-std::optional<PrimitiveKind> parse_kind(std::string_view name);
+// "points", "line segments", "triangles": the words of the paper's captions, for table titles.
+const char* kind_label_plural(PrimitiveKind kind);
+std::optional<PrimitiveKind> parse_kind(std::string_view name);  // the records' spelling
 
 // What a metric's values measure, for unit labels and conversions to physical units.
 enum class MetricUnit {

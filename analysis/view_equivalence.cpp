@@ -499,7 +499,7 @@ std::string view_equivalence_markdown(const RunRecords& run,
   for (const ViewEquivalence& r : results) {
     if (r.verdict != Verdict::kNotEquivalent && r.verdict != Verdict::kUndecided) continue;
     md += std::string("- **") + verdict_name(r.verdict) + "**: " + run.platforms[r.platform] +
-          ", " + kind_plural(r.kind) + ", " + kind_metrics(r.kind)[r.metric].symbol +
+          ", " + kind_label_plural(r.kind) + ", " + kind_metrics(r.kind)[r.metric].symbol +
           ", view group " + r.label + " (views " + join_ints(r.views, ", ") +
           "): " + r.explanation + ".\n";
   }
@@ -518,7 +518,7 @@ std::string view_equivalence_markdown(const RunRecords& run,
   for (std::size_t p = 0; p < run.platforms.size(); ++p) {
     for (PrimitiveKind kind : run.kinds()) {
       Table t;
-      t.title = run.platforms[p] + ", " + kind_plural(kind) + ": p-values (raw | Box-Cox)";
+      t.title = run.platforms[p] + ", " + kind_label_plural(kind) + ": p-values (raw | Box-Cox)";
       for (const char* c : {"metric", "group", "views", "n", "median"}) {
         t.columns.push_back({c, Align::kLeft});
       }

@@ -25,6 +25,7 @@
 #include "stats/hypothesis_tests.h"
 #include "stats/linear_regression.h"
 #include "app/commands.h"
+#include "runner/manifest.h"
 #include "util/errors.h"
 
 namespace ra::app {
@@ -232,7 +233,9 @@ std::string box_cox_text(const stats::BoxCoxResult& b) {
 void print_json(const json& j) { std::cout << j.dump(2) << "\n"; }
 
 json header_json(const char* command) {
-  return json{{"schema_version", kSchemaVersion}, {"command", command}};
+  json j = document_header("stats", kSchemaVersion, false);
+  j["command"] = command;
+  return j;
 }
 
 void run_describe(const StatsOptions& o) {

@@ -93,8 +93,7 @@ json comparison_json(const AuditResult& r, const DistributionComparison& c) {
 }  // namespace
 
 json audit_json(const AuditResult& r) {
-  json j;
-  j["schema_version"] = kAuditSchemaVersion;
+  json j = document_header("audit", kAuditSchemaVersion, false);
   j["tool"] = {
       {"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
   j["date_utc"] = r.date_utc;

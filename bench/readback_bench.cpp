@@ -29,6 +29,7 @@
 #include "metrics/case_measurement.h"
 #include "runner/experiment.h"
 #include "platforms/platform.h"
+#include "stats/descriptive.h"
 #include "util/child_process.h"
 
 using namespace ra;
@@ -44,11 +45,8 @@ struct Options {
   std::vector<std::string> platforms = {"osmesa-llvmpipe", "osmesa-softpipe"};
 };
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
+// The analysis stage's median (stats/descriptive.h); 0 for no timings.
+double median(const std::vector<double>& v) { return v.empty() ? 0 : stats::median(v); }
 
 View bench_view(double fov, int window) {
   return make_view(fov, window, window, 0.01, 10.0, random_rotation(2008, 1));
@@ -216,7 +214,8 @@ int run_children(const Options& opt, const char* self) {
   }
   const std::filesystem::path dir = std::filesystem::path(opt.json_path).parent_path();
   if (!dir.empty()) std::filesystem::create_directories(dir);
-  std::ofstream(opt.json_path) << nlohmann::json({{"schema_version", 1},
+  std::ofstream(opt.json_path) << nlohmann::json({{"schema", "renderaudit-bench-readback"},
+                                                   {"schema_version", 1},
                                                    {"benchmark", "readback"},
                                                    {"rows", rows}})
                                       .dump(2)

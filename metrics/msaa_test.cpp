@@ -4,6 +4,8 @@
 // finds a wild pixel, and antialiasing lowers the triangle error (what it buys).
 #include <gtest/gtest.h>
 
+#include "stats/descriptive.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -46,11 +48,7 @@ Primitive window_triangle(const View& v, Vec2 a, Vec2 b, Vec2 c) {
   return p;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using stats::median;
 
 TEST(OsmesaMsaa, PlatformIsInTheTableAndSoftpipeHasNone) {
   EXPECT_EQ(msaa4().samples, 4);

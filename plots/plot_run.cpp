@@ -83,7 +83,7 @@ std::string groups_text(const std::vector<std::string>& labels) {
   return consecutive ? labels.front() + "-" + labels.back() : join(labels, ", ");
 }
 
-const char* section_of(an::PrimitiveKind kind) { return an::kind_plural(kind); }
+const char* section_of(an::PrimitiveKind kind) { return an::kind_label_plural(kind); }
 
 struct Planner {
   const std::string run_dir;

@@ -93,9 +93,7 @@ StudyRunResult run_regulation_study(const StudyRunOptions& options) {
     if (options.progress) std::fprintf(stderr, "regulation: %s\n", line.c_str());
   };
 
-  json j;
-  j["schema"] = 1;
-  j["created_utc"] = utc_now_iso8601();
+  json j = document_header("regulation", 1);
   j["experiment"] = {{"file", s.file}, {"name", s.name}};
   std::vector<std::string> findings;
 

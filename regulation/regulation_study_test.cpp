@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "plots/figure_testing.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -74,8 +76,9 @@ TEST(RegulationStudy, SmokeExperimentRunsAnalysesAndPlots) {
   plot_regulation_study(dir);
   const auto index = nlohmann::json::parse(read_file(dir + "/figures/index.json"));
   EXPECT_NE(index.dump().find("regulation_ratio_histogram"), std::string::npos);
-  EXPECT_TRUE(std::filesystem::exists(dir + "/figures/regulation_cost_vs_budget.png"));
-  EXPECT_TRUE(std::filesystem::exists(dir + "/figures/regulation_frame_skips.png"));
+  plots::testing::expect_drawn_png(dir + "/figures/regulation_cost_vs_budget.png");
+  plots::testing::expect_drawn_png(dir + "/figures/regulation_frame_skips.png");
+  plots::testing::expect_whole_pdf(dir + "/figures/regulation_cost_vs_budget.pdf");
   std::filesystem::remove_all(dir);
 }
 

@@ -25,6 +25,7 @@
 #include "report/html_writer.h"
 #include "report/pdf_writer.h"
 #include "analysis/run_completeness.h"
+#include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/errors.h"
@@ -67,23 +68,10 @@ json read_json(const std::string& path) {
   }
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  const std::size_t m = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + m, v.end());
-  double x = v[m];
-  if (v.size() % 2 == 0) x = 0.5 * (x + *std::max_element(v.begin(), v.begin() + m));
-  return x;
-}
-// Hyndman-Fan 6 quantile (the analysis stage's default).
-double quantile_hf6(std::vector<double> v, double p) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const double h = p * double(v.size() + 1);
-  if (h <= 1) return v.front();
-  if (h >= double(v.size())) return v.back();
-  const std::size_t lo = std::size_t(std::floor(h));
-  return v[lo - 1] + (h - double(lo)) * (v[lo] - v[lo - 1]);
+// Medians and quartiles as the analysis stage computes them (stats/descriptive.h), NaN for no data.
+double median(const std::vector<double>& v) { return v.empty() ? NAN : stats::median(v); }
+double quantile_hf6(const std::vector<double>& v, double p) {
+  return v.empty() ? NAN : stats::quantile(v, p, stats::QuantileDefinition::kHyndmanFan6);
 }
 
 // Kinds in the paper's order: points, lines, triangles, then anything else.

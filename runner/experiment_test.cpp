@@ -108,7 +108,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"UnknownPlatform", with("\"osmesa-llvmpipe\"", "\"swrast\""), "exp.toml:2:14",
                 "unknown platform 'swrast' (allowed: osmesa-llvmpipe, osmesa-softpipe, reference"},
         BadCase{"MissingSeed", with("seed = 1", ""), "exp.toml:1:1", "missing key 'seed'"},
-        BadCase{"SyntaxError", with("seed = 1", "seed = = 1"), "exp.toml:1:", ""},
+        BadCase{"SyntaxError", with("seed = 1", "seed = = 1"), "exp.toml:1:8",
+                "could not determine value type"},
         BadCase{"ZeroOrientations", with("orientations = 2", "orientations = 0"), "exp.toml:4:16",
                 "out of range (allowed: 1 to 1000)"},
         BadCase{"BadOrientation", with("orientations = 2", "orientations = [[1, 2]]"),
@@ -116,7 +117,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"FaultsWithoutFaulty", with("[primitives]", "[faults]\ncrash = [1]\n[primitives]"),
                 "exp.toml:9:1", "only applies to the 'faulty' test platform"},
         BadCase{"ShardSizeZero", std::string(kValid) + "[run]\nshard_size = 0\n", "exp.toml:12:14",
-                "out of range (allowed: 1 to 100000000)"}),
+                "out of range (allowed: 1 to 100000000)"},
+        BadCase{"NameDotDot", "name = \"..\"\n" + std::string(kValid), "exp.toml:1:8",
+                "'name' must be a plain file name"},
+        BadCase{"NameWithSlash", "name = \"a/b\"\n" + std::string(kValid), "exp.toml:1:8",
+                "'name' must be a plain file name"},
+        BadCase{"TooManyShards", std::string(kValid) + "[run]\nshard_size = 1\nmax_shards = 10\n",
+                "exp.toml:", "the plan has too many shards"}),
     [](const testing::TestParamInfo<BadCase>& info) { return std::string(info.param.name); });
 
 TEST(Experiment, ExplicitOrientationsAreRotations) {

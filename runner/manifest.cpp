@@ -46,6 +46,16 @@ std::string utc_now_iso8601() {
   return buf;
 }
 
+nlohmann::json document_header(const std::string& name, int version, bool provenance) {
+  nlohmann::json j = {{"schema", "renderaudit-" + name}, {"schema_version", version}};
+  if (provenance) {
+    j["tool"] = {{"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
+    j["host"] = host_description();
+    j["created_utc"] = utc_now_iso8601();
+  }
+  return j;
+}
+
 namespace {
 
 // Overwrites `path` from offset 0 with `text` padded with spaces to the file's current size (JSON

@@ -14,6 +14,11 @@ std::string project_version();  // renderaudit's version
 nlohmann::json host_description();  // hostname, CPU model, cores, OS
 std::string utc_now_iso8601();
 
+// The opening of every JSON document the project writes, one spelling for all of them:
+// {"schema": "renderaudit-NAME", "schema_version": VERSION} and, with `provenance`, "tool" (name,
+// version, commit), "host" (host_description) and "created_utc", as the run manifest has.
+nlohmann::json document_header(const std::string& name, int version, bool provenance = true);
+
 }  // namespace ra
 
 namespace ra {

@@ -183,7 +183,7 @@ RunResult run_experiment(const RunOptions& options) {
   }
   const std::string started = utc_now_iso8601();
   if (!manifest.contains("started")) manifest["started"] = started;
-  manifest["schema_version"] = kManifestSchemaVersion;
+  manifest.update(document_header("manifest", kManifestSchemaVersion, false));
   manifest["tool"] = {{"name", "renderaudit"}, {"version", project_version()},
                       {"commit", project_commit()}};
   manifest["experiment"] = {{"name", exp.name}, {"file", options.experiment_path},

@@ -14,6 +14,7 @@
 #include "runner/shard_file.h"
 #include "metrics/case_measurement.h"
 #include "runner/experiment.h"
+#include "runner/manifest.h"
 #include "platforms/platform.h"
 
 namespace ra {
@@ -45,6 +46,7 @@ static void write_driver_info(const std::string& run_dir, const std::string& nam
   nlohmann::json j = {{"renderer", info.renderer},           {"version", info.version},
                       {"vendor", info.vendor},               {"subpixel_bits", info.subpixel_bits},
                       {"timer_query", info.timer_query}};
+  j.update(document_header("driver", 1, false));
   // Several shards may race here; each writes a complete file under its own temporary name.
   write_file_atomic(path, j.dump(2) + "\n");
 }

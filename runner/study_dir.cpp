@@ -1,6 +1,8 @@
 // Study kinds and study.json (study_dir.h).
 #include "runner/study_dir.h"
 
+#include "runner/manifest.h"
+
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -42,13 +44,13 @@ StudyKind experiment_study_kind(const std::string& experiment_path) {
 }
 
 void write_study_info(const std::string& dir, const StudyInfo& info) {
-  const nlohmann::json j = {{"schema", 1},
-                            {"kind", study_kind_name(info.kind)},
+  nlohmann::json j = {{"kind", study_kind_name(info.kind)},
                             {"name", info.name},
                             {"title", info.title},
                             {"subtitle", info.subtitle},
                             {"document", info.document},
                             {"analysed", info.analysed}};
+  j.update(document_header("study", 1, false));
   write_file_atomic(dir + "/study.json", j.dump(2) + "\n");
 }
 

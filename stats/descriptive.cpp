@@ -149,6 +149,14 @@ double quantile_sorted(const std::vector<double>& sorted, double p, QuantileDefi
   return 2 * (lo / 2 + fraction * (hi / 2 - lo / 2));
 }
 
+double quantile(std::vector<double> values, double p, QuantileDefinition definition) {
+  require_non_empty(values, "quantile");
+  std::sort(values.begin(), values.end());
+  return quantile_sorted(values, p, definition);
+}
+
+double median(std::vector<double> values) { return quantile(std::move(values), 0.5); }
+
 Description describe(std::vector<double> values, QuantileDefinition definition) {
   require_non_empty(values, "describe");
   require_finite(values, "describe");

@@ -69,6 +69,12 @@ MeanVariance mean_and_variance(const std::vector<double>& values);
 double quantile_sorted(const std::vector<double>& sorted, double p,
                        QuantileDefinition definition = QuantileDefinition::kHyndmanFan6);
 
+// The same of unsorted values (sorted here, on a copy); median = quantile 0.5 (every definition
+// agrees on it). Throw std::invalid_argument when empty, like quantile_sorted.
+double quantile(std::vector<double> values, double p,
+                QuantileDefinition definition = QuantileDefinition::kHyndmanFan6);
+double median(std::vector<double> values);
+
 // Summary of one sample. All fields but n are in the units of the data.
 struct Description {
   std::size_t n = 0;  // number of values

@@ -42,11 +42,7 @@ std::string fmt(double v, const char* f = "%.17g") {
   return b;
 }
 
-double median_of(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  return stats::quantile_sorted(v, 0.5);
-}
+double median_of(const std::vector<double>& v) { return v.empty() ? std::nan("") : stats::median(v); }
 
 Scene layout_scene(const HeightField& f) {
   Scene s;
@@ -285,8 +281,6 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
   for (LambdaKind k : {LambdaKind::kWindow, LambdaKind::kPlanar, LambdaKind::kSpherical})
     lj[lambda_kind_name(k)] = lambda_for(k, s.camera);
   json summary = {
-      {"schema", 1},
-      {"created_utc", utc_now_iso8601()},
       {"experiment", {{"file", s.file}, {"name", s.name}}},
       {"platform", s.platform},
       {"gl_renderer", drawn.at("gl_renderer")},
@@ -309,6 +303,7 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
       {"failed_frames", failures},
       {"first_failure", first_failure},
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count()}};
+  summary.update(document_header("lod", 1));
   write_file_atomic(result.dir + "/lod_summary.json", summary.dump(2) + "\n");
 
   StudyInfo info;

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "plots/figure_testing.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "terrain_lod/height_field.h"
@@ -113,9 +114,17 @@ TEST(LodStudy, SmokeExperimentRunsAnalysesAndPlots) {
   EXPECT_NE(md.find("# Terrain level of detail"), std::string::npos);
   EXPECT_NE(md.find("### At tau = 1 pixel"), std::string::npos);
   plot_lod_study(dir);
-  for (const char* f : {"figures/index.json", "figures/lod_speed_vs_error.png", "figures/lod_triangles_vs_tau.csv",
-                        "figures/lod_screen_error_vs_tau.pdf"})
-    EXPECT_TRUE(std::filesystem::exists(dir + "/" + f)) << f;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/figures/index.json"));
+  plots::testing::expect_drawn_png(dir + "/figures/lod_speed_vs_error.png");
+  plots::testing::expect_whole_pdf(dir + "/figures/lod_screen_error_vs_tau.pdf");
+  {  // the figure draws numbers: at least one row per tau of the window lambda after its header
+    std::ifstream csv(dir + "/figures/lod_triangles_vs_tau.csv");
+    std::string row;
+    int data_rows = -1;  // the header
+    while (std::getline(csv, row))
+      if (!row.empty() && row[0] != '#') ++data_rows;
+    EXPECT_GE(data_rows, window_rows) << "lod_triangles_vs_tau.csv";
+  }
   // a re-run removes what analyze and plot derived, and plot refuses until analyze runs again
   {
     const StudyRunResult again = run_lod_study(o);

@@ -174,11 +174,7 @@ plots::Figure path_figure(const std::string& platform, const std::string& scene,
 
 nlohmann::json timing_json(const StudyResults& r) {
   const TimingSettings& s = r.settings;
-  nlohmann::json j;
-  j["schema"] = "renderaudit-timing/1";
-  j["program"] = "renderaudit 0.1.0";
-  j["created_utc"] = utc_now_iso8601();
-  j["host"] = host_description();
+  nlohmann::json j = document_header("timing", 1);
   j["wall_s"] = r.wall_s;
   nlohmann::json scenes = nlohmann::json::array();
   for (const SceneSpec& sc : s.scenes) scenes.push_back({{"name", sc.name}, {"kind", sc.kind}});
