@@ -89,6 +89,12 @@ void remove_temporaries(const std::string& dir) {
 // runs started together never judge each other's half-made directory.
 std::unique_ptr<DirLock> prepare_run_dir(const Experiment& exp, const std::string& dir) {
   std::error_code ec;
+  // A folder of something else is refused before anything is written into it (a run's folder
+  // has experiment.toml, or at least the .lock of a run that is making it).
+  if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !fs::exists(dir + "/experiment.toml") &&
+      !fs::exists(DirLock::lock_path(dir)))
+    throw UserError(dir + ": exists and is not a run directory (no experiment.toml); choose "
+                          "another --out");
   fs::create_directories(dir, ec);
   if (ec) throw UserError(dir + ": cannot create the run directory (" + ec.message() + ")");
   auto lock = std::make_unique<DirLock>(dir, "run");

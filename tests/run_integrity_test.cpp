@@ -197,6 +197,21 @@ TEST(RunIntegrity, NamesThatAreNotPlainFileNamesAreRefused) {
   }
 }
 
+// A folder of something else is refused, and nothing (not even the lock file) is written into it.
+TEST(RunIntegrity, AForeignFolderIsRefusedAndLeftUntouched) {
+  const std::string dir = fresh_dir("integrity_foreign");
+  write_text(dir + "/thesis.tex", "mine");
+  write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 1\n"));
+  fs::rename(dir + "/e.toml", dir + "/../integrity_foreign_e.toml");
+  const Outcome o = run_renderaudit("run " + dir + "/../integrity_foreign_e.toml --out " + dir);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("exists and is not a run directory"), std::string::npos) << o.output;
+  std::size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(dir)) ++entries, (void)e;
+  EXPECT_EQ(entries, 1u);  // thesis.tex alone
+  fs::remove(dir + "/../integrity_foreign_e.toml");
+}
+
 TEST(RunIntegrity, AnUnwritableOutputDirectoryIsBadInput) {
   const Outcome o = run_renderaudit("run " RA_SOURCE_DIR "/experiments/quick.toml --out /proc/renderaudit-x");
   EXPECT_EQ(o.exit_code, 2) << o.output;
