@@ -27,7 +27,7 @@ Child start_child(const ChildSpec& spec) {
   for (char** e = environ; e && *e; ++e) {
     const char* eq = std::strchr(*e, '=');
     const size_t len = eq ? size_t(eq - *e) + 1 : std::strlen(*e);
-    bool replaced = false;
+    bool replaced = std::strncmp(*e, "RA_MESSAGE_FD=", 14) == 0;  // set below, or not at all
     for (const auto& s : spec.set_env)
       if (s.compare(0, len, *e, len) == 0) replaced = true;
     if (!replaced) env.emplace_back(*e);

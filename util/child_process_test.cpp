@@ -53,6 +53,10 @@ TEST(ChildProcess, SetEnvReplacesAVariableOnce) {
   EXPECT_NE(out.find("RA_CHILD_TEST=child\n"), std::string::npos);
   EXPECT_EQ(out.find("RA_CHILD_TEST=parent"), std::string::npos);
   ::unsetenv("RA_CHILD_TEST");
+  // A message pipe is never inherited by name: a child without one must not write to our fd 3.
+  ::setenv("RA_MESSAGE_FD", "3", 1);
+  EXPECT_EQ(run_program(spec).output.find("RA_MESSAGE_FD"), std::string::npos);
+  ::unsetenv("RA_MESSAGE_FD");
 }
 
 // A middle process starts `sleep 60` and is killed: the sleep must go too (PR_SET_PDEATHSIG).
