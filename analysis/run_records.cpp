@@ -1,26 +1,19 @@
 // Loading a run directory's records into samples; see run_records.h.
 //
-// Speed: ra::read_records builds a Record per row with std::getline, substr and std::stod (about a
-// microsecond per field); the analysis needs 14 of the 33 columns, so this reader splits each line
-// into string views in place and converts only those with std::from_chars, reading files in blocks
-// of 4 MiB on several threads. The schema still comes from metrics/records.h (records_header()).
+// Speed: the analysis needs 14 of the 34 columns, so each row is read with metrics/records_reader.h
+// (split in place, only those cells converted) and files are parsed on several threads.
 #include "analysis/run_records.h"
 
 #include <algorithm>
-#include <atomic>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <exception>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
-#include <thread>
 #include <tuple>
 
 #include "util/errors.h"
 #include "metrics/records.h"
+#include "metrics/records_reader.h"
 #include "geometry/view.h"
 
 namespace fs = std::filesystem;
@@ -154,30 +147,6 @@ std::vector<double> merge_sorted(const std::vector<const std::vector<double>*>& 
   return all;
 }
 
-void run_in_parallel(std::size_t count, unsigned jobs,
-                     const std::function<void(std::size_t)>& task) {
-  std::vector<std::exception_ptr> errors(count);
-  std::atomic<std::size_t> next{0};
-  const auto work = [&] {
-    for (std::size_t i; (i = next.fetch_add(1)) < count;) {
-      try {
-        task(i);
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-    }
-  };
-  unsigned threads = jobs ? jobs : std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(std::min<std::size_t>(threads, count));
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
-  for (const auto& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
-}
-
 VisibilityCounts ViewGroup::counts() const {
   VisibilityCounts sum;
   for (const ViewData* v : views) {
@@ -243,60 +212,27 @@ std::string view_group_label(int view_group) {
 
 namespace {
 
-// Where the columns the analysis reads sit in a records row, found by name in records_header().
-struct Layout {
-  std::string header;
-  std::size_t count = 0;
-  std::size_t platform = 0, view = 0, view_group = 0, orientation = 0, fov = 0, width = 0,
-              height = 0, near = 0, far = 0, kind = 0, index = 0, status = 0, visibility = 0,
-              render_us = 0;
-  std::array<std::vector<std::size_t>, kKindCount> metrics;
-  std::vector<std::string> names;
-};
+// The records column of each metric of each kind (kind_metrics names them).
+using MetricColumns = std::array<std::vector<RecordColumn>, kKindCount>;
 
-Layout make_layout() {
-  Layout l;
-  l.header = records_header();
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = l.header.find(',', start);
-    l.names.push_back(l.header.substr(start, comma == std::string::npos ? comma : comma - start));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  l.count = l.names.size();
-  const auto at = [&](std::string_view name) {
-    const auto it = std::find(l.names.begin(), l.names.end(), name);
-    if (it == l.names.end()) {
-      throw std::logic_error("metrics/records.h has no column '" + std::string(name) +
-                             "': the analysis stage must follow the schema change");
-    }
-    return static_cast<std::size_t>(it - l.names.begin());
-  };
-  l.platform = at("platform");
-  l.view = at("view");
-  l.view_group = at("view_group");
-  l.orientation = at("orientation");
-  l.fov = at("fov_deg");
-  l.width = at("width");
-  l.height = at("height");
-  l.near = at("near");
-  l.far = at("far");
-  l.kind = at("kind");
-  l.index = at("index");
-  l.status = at("status");
-  l.visibility = at("visibility");
-  l.render_us = at("render_us");
+MetricColumns make_metric_columns() {
+  MetricColumns columns;
   for (PrimitiveKind k : kAllKinds) {
-    for (const MetricSpec& m : kind_metrics(k))
-      l.metrics[static_cast<std::size_t>(k)].push_back(at(m.column));
+    for (const MetricSpec& m : kind_metrics(k)) {
+      const std::optional<RecordColumn> c = find_record_column(m.column);
+      if (!c) {
+        throw std::logic_error("metrics/records.h has no column '" + std::string(m.column) +
+                               "': the analysis stage must follow the schema change");
+      }
+      columns[static_cast<std::size_t>(k)].push_back(*c);
+    }
   }
-  return l;
+  return columns;
 }
 
-const Layout& layout() {
-  static const Layout l = make_layout();
-  return l;
+const MetricColumns& metric_columns() {
+  static const MetricColumns columns = make_metric_columns();
+  return columns;
 }
 
 // One view's data as read from one file (or merged from several).
@@ -338,118 +274,36 @@ std::string meta_difference(const ViewMeta& here, const ViewMeta& there) {
   return "";
 }
 
+// A view's parameters: the cells compared between its records.
+constexpr std::array<RecordColumn, 7> kMetaColumns = {
+    RecordColumn::kViewGroup, RecordColumn::kOrientation, RecordColumn::kFovDeg,
+    RecordColumn::kWidth,     RecordColumn::kHeight,      RecordColumn::kNear,
+    RecordColumn::kFar};
+
 class FileParser {
  public:
-  FileParser(const std::string& path, const Layout& layout) : path_(path), l_(layout) {
-    for (int s = 0; s < 4; ++s) status_names_[s] = status_name(static_cast<CaseStatus>(s));
-    for (int v = 0; v < 5; ++v) visibility_names_[v] = visibility_name(static_cast<Visibility>(v));
-    fields_.resize(l_.count);
-    meta_columns_ = {l_.view_group, l_.orientation, l_.fov, l_.width, l_.height, l_.near, l_.far};
-  }
+  FileParser(const std::string& path, const MetricColumns& metrics)
+      : path_(path), metrics_(metrics) {}
 
   FileChunk parse() {
-    std::ifstream in(path_, std::ios::binary);
-    if (!in) throw UserError(path_ + ": cannot read records file");
-    std::vector<char> block(std::size_t{4} << 20);
-    std::string carry;  // an incomplete line from the previous block
-    while (in) {
-      in.read(block.data(), static_cast<std::streamsize>(block.size()));
-      const std::size_t n = static_cast<std::size_t>(in.gcount());
-      if (n == 0) break;
-      std::size_t start = 0;
-      for (;;) {
-        const void* found = std::memchr(block.data() + start, '\n', n - start);
-        if (!found) break;
-        const std::size_t end =
-            static_cast<std::size_t>(static_cast<const char*>(found) - block.data());
-        if (carry.empty()) {
-          line(std::string_view(block.data() + start, end - start));
-        } else {
-          carry.append(block.data() + start, end - start);
-          line(carry);
-          carry.clear();
-        }
-        start = end + 1;
-      }
-      carry.append(block.data() + start, n - start);
-    }
-    if (in.bad()) throw UserError(path_ + ": read error");
-    if (!carry.empty()) line(carry);
-    if (line_no_ == 0) bad_header();
+    for_each_record_row(path_, [this](const RecordRow& row) { record(row); });
     return std::move(chunk_);
   }
 
  private:
-  [[noreturn]] void fail(const std::string& why) const {
-    throw UserError(path_ + ":" + std::to_string(line_no_) + ": " + why);
-  }
-  [[noreturn]] void bad_header() const {
-    throw UserError(path_ + ":1: unexpected records header (schema version " +
-                    std::to_string(kRecordsSchemaVersion) + " expects: " + l_.header + ")");
-  }
-
-  template <typename Int>
-  Int integer(std::size_t column) const {
-    const std::string_view f = fields_[column];
-    Int v{};
-    const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
-    if (ec != std::errc() || end != f.data() + f.size() || f.empty()) {
-      fail("column '" + l_.names[column] + "': '" + std::string(f) + "' is not an integer");
-    }
-    return v;
-  }
-
-  // A finite number, or nullopt for an empty cell.
-  std::optional<double> number(std::size_t column) const {
-    const std::string_view f = fields_[column];
-    if (f.empty()) return std::nullopt;
-    double v = 0;
-    const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
-    if (ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v)) {
-      fail("column '" + l_.names[column] + "': '" + std::string(f) + "' is not a finite number");
-    }
-    return v;
-  }
-
-  double required_number(std::size_t column) const {
-    const std::optional<double> v = number(column);
-    if (!v) fail("column '" + l_.names[column] + "' is empty");
-    return *v;
-  }
-
-  void line(std::string_view text) {
-    ++line_no_;
-    if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
-    if (line_no_ == 1) {
-      if (text != l_.header) bad_header();
-      return;
-    }
-    if (!text.empty() && text.front() == '#') return;  // the seal of a shard file (shard_file.h)
-    // split into fields_ without copying
-    std::size_t n = 0;
-    std::size_t start = 0;
-    for (;;) {
-      const std::size_t comma = text.find(',', start);
-      if (n < fields_.size()) {
-        fields_[n] = text.substr(start, comma == std::string_view::npos ? comma : comma - start);
-      }
-      ++n;
-      if (comma == std::string_view::npos) break;
-      start = comma + 1;
-    }
-    if (n != l_.count) {
-      fail("expected " + std::to_string(l_.count) + " fields, found " + std::to_string(n));
-    }
+  void record(const RecordRow& row) {
     ++chunk_.records;
-
-    const std::string_view platform = fields_[l_.platform];
-    if (platform.empty()) fail("column 'platform' is empty");
-    const std::optional<PrimitiveKind> kind = parse_kind(fields_[l_.kind]);
+    const std::string_view platform = row.cell(RecordColumn::kPlatform);
+    if (platform.empty()) row.fail("column 'platform' is empty");
+    const std::optional<PrimitiveKind> kind = parse_kind(row.cell(RecordColumn::kKind));
     if (!kind) {
-      fail("unknown kind '" + std::string(fields_[l_.kind]) + "' (allowed: point, line, triangle)");
+      row.fail("unknown kind '" + std::string(row.cell(RecordColumn::kKind)) +
+               "' (allowed: point, line, triangle)");
     }
-    const int view = integer<int>(l_.view);
-    if (view < 1) fail("column 'view': " + std::to_string(view) + " is not a view number (>= 1)");
+    const int view = row.integer<int>(RecordColumn::kView);
+    if (view < 1) {
+      row.fail("column 'view': " + std::to_string(view) + " is not a view number (>= 1)");
+    }
 
     if (current_ == nullptr || platform != current_platform_ || *kind != current_kind_ ||
         view != current_view_) {
@@ -463,34 +317,26 @@ class FileParser {
         const std::size_t metrics = kind_metrics(*kind).size();
         current_->data.values.resize(metrics);
         current_->data.missing.assign(metrics, 0);
-        current_->data.meta = read_meta(view);
-        current_->meta_line = line_no_;
-        for (std::size_t c : meta_columns_) current_->meta_text.emplace_back(fields_[c]);
+        current_->data.meta = read_meta(row, view);
+        current_->meta_line = row.line();
+        for (RecordColumn c : kMetaColumns) current_->meta_text.emplace_back(row.cell(c));
       } else {
-        check_meta(view);
+        check_meta(row, view);
       }
     } else {
-      check_meta(view);
+      check_meta(row, view);
     }
     PartialView& pv = *current_;
 
-    const std::uint64_t index = integer<std::uint64_t>(l_.index);
+    const std::uint64_t index = row.integer<std::uint64_t>(RecordColumn::kIndex);
     pv.indices.push_back(index);
     pv.min_index = std::min(pv.min_index, index);
     pv.max_index = std::max(pv.max_index, index);
 
-    const std::string_view status = fields_[l_.status];
-    int s = 0;
-    while (s < 4 && status != status_names_[s]) ++s;
-    if (s == 4)
-      fail("unknown status '" + std::string(status) + "' (allowed: ok, invalid, crash, timeout)");
-    const std::string_view visibility = fields_[l_.visibility];
-    int v = 0;
-    while (v < 5 && visibility != visibility_names_[v]) ++v;
-    if (v == 5) fail("unknown visibility '" + std::string(visibility) + "'");
-
+    const CaseStatus status = row.status();
+    const Visibility visibility = row.visibility();
     VisibilityCounts& counts = pv.data.counts;
-    switch (static_cast<CaseStatus>(s)) {
+    switch (status) {
       case CaseStatus::kOk:
         break;
       case CaseStatus::kInvalid:
@@ -503,15 +349,15 @@ class FileParser {
         ++counts.timeout;
         return;
     }
-    ++counts.by_class[static_cast<std::size_t>(v)];
-    const bool visible = static_cast<Visibility>(v) == Visibility::kTrueVisible;
-    if (const std::optional<double> t = number(l_.render_us)) {
+    ++counts.by_class[static_cast<std::size_t>(visibility)];
+    const bool visible = visibility == Visibility::kTrueVisible;
+    if (const std::optional<double> t = row.number(RecordColumn::kRenderUs)) {
       (visible ? pv.data.render_us_visible : pv.data.render_us_other).push_back(*t);
     }
     if (!visible) return;
-    const std::vector<std::size_t>& columns = l_.metrics[static_cast<std::size_t>(*kind)];
+    const std::vector<RecordColumn>& columns = metrics_[static_cast<std::size_t>(*kind)];
     for (std::size_t m = 0; m < columns.size(); ++m) {
-      if (const std::optional<double> x = number(columns[m])) {
+      if (const std::optional<double> x = row.number(columns[m])) {
         pv.data.values[m].push_back(*x);
       } else {
         ++pv.data.missing[m];
@@ -519,44 +365,41 @@ class FileParser {
     }
   }
 
-  ViewMeta read_meta(int view) const {
+  static ViewMeta read_meta(const RecordRow& row, int view) {
     ViewMeta m;
     m.view = view;
-    m.view_group = integer<int>(l_.view_group);
-    m.orientation = integer<int>(l_.orientation);
-    m.fov_deg = required_number(l_.fov);
-    m.width = integer<int>(l_.width);
-    m.height = integer<int>(l_.height);
-    m.near = required_number(l_.near);
-    m.far = required_number(l_.far);
-    if (m.view_group < 0) fail("column 'view_group': " + std::to_string(m.view_group) + " < 0");
-    if (m.width < 1 || m.height < 1) fail("the window must be at least 1x1 pixels");
+    m.view_group = row.integer<int>(RecordColumn::kViewGroup);
+    m.orientation = row.integer<int>(RecordColumn::kOrientation);
+    m.fov_deg = row.required_number(RecordColumn::kFovDeg);
+    m.width = row.integer<int>(RecordColumn::kWidth);
+    m.height = row.integer<int>(RecordColumn::kHeight);
+    m.near = row.required_number(RecordColumn::kNear);
+    m.far = row.required_number(RecordColumn::kFar);
+    if (m.view_group < 0) {
+      row.fail("column 'view_group': " + std::to_string(m.view_group) + " < 0");
+    }
+    if (m.width < 1 || m.height < 1) row.fail("the window must be at least 1x1 pixels");
     return m;
   }
 
-  void check_meta(int view) const {
+  void check_meta(const RecordRow& row, int view) const {
     // the same text as the first record of the view: the same parameters (the usual case, and
     // cheaper than converting 7 numbers per record); otherwise compare the numbers
     bool same_text = true;
-    for (std::size_t i = 0; i < meta_columns_.size() && same_text; ++i) {
-      same_text = fields_[meta_columns_[i]] == current_->meta_text[i];
+    for (std::size_t i = 0; i < kMetaColumns.size() && same_text; ++i) {
+      same_text = row.cell(kMetaColumns[i]) == current_->meta_text[i];
     }
     if (same_text) return;
-    const std::string diff = meta_difference(read_meta(view), current_->data.meta);
+    const std::string diff = meta_difference(read_meta(row, view), current_->data.meta);
     if (!diff.empty()) {
-      fail("view " + std::to_string(view) + " (" + current_platform_ + ", " +
-           kind_name(current_kind_) + ") has " + diff + " on line " +
-           std::to_string(current_->meta_line));
+      row.fail("view " + std::to_string(view) + " (" + current_platform_ + ", " +
+               kind_name(current_kind_) + ") has " + diff + " on line " +
+               std::to_string(current_->meta_line));
     }
   }
 
   const std::string& path_;
-  const Layout& l_;
-  std::array<std::string_view, 4> status_names_;
-  std::array<std::string_view, 5> visibility_names_;
-  std::vector<std::string_view> fields_;
-  std::vector<std::size_t> meta_columns_;  // the columns of a view's parameters
-  std::int64_t line_no_ = 0;
+  const MetricColumns& metrics_;
   FileChunk chunk_;
   PartialView* current_ = nullptr;
   std::string current_platform_;
@@ -632,11 +475,11 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   }
 
   // parse in parallel; keep each file's result so that merging follows the file order
-  const Layout& l = layout();
+  const MetricColumns& metric_cols = metric_columns();
   const std::size_t n_files = run.files.size();
   std::vector<FileChunk> chunks(n_files);
   run_in_parallel(n_files, options.jobs,
-                  [&](std::size_t f) { chunks[f] = FileParser(run.files[f], l).parse(); });
+                  [&](std::size_t f) { chunks[f] = FileParser(run.files[f], metric_cols).parse(); });
 
   // merge, checking that a view has the same parameters everywhere
   std::map<PartialKey, MergedView> merged;

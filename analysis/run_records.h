@@ -30,6 +30,7 @@
 
 #include "geometry/primitive.h"
 #include "stats/descriptive.h"
+#include "util/parallel.h"
 
 namespace ra::analysis {
 
@@ -167,10 +168,5 @@ stats::Description describe_sorted(const std::vector<double>& ascending,
 
 // The ascending vectors `parts` merged into one ascending vector.
 std::vector<double> merge_sorted(const std::vector<const std::vector<double>*>& parts);
-
-// Runs task(0) ... task(count - 1) on up to `jobs` threads (0: the number of cores). Each task must
-// write only its own results. The first exception (by task index) is rethrown after all finish.
-void run_in_parallel(std::size_t count, unsigned jobs,
-                     const std::function<void(std::size_t)>& task);
 
 }  // namespace ra::analysis

@@ -163,7 +163,7 @@ PrimitiveComparison compare_primitives(const std::string& baseline_dir,
         if (current_exp.counts[int(k)] > 0) tasks.push_back({p, k, v.id, v.group});
 
   std::vector<TaskResult> results(tasks.size());
-  analysis::run_in_parallel(tasks.size(), jobs, [&](std::size_t i) {
+  run_in_parallel(tasks.size(), jobs, [&](std::size_t i) {
     results[i] = compare_view(baseline_dir, baseline_plan, current_dir, current_plan,
                               pairs[tasks[i].pair], tasks[i]);
   });

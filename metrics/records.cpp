@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "metrics/records_reader.h"
 #include "util/errors.h"
 
 namespace ra {
@@ -25,6 +26,7 @@ const char* const kColumns[] = {
     "te_u",      "te_s_norm",  "te_u_norm",        "te_u_edge_norm", "full_window",
     "simply_connected", "ref_diff", "pixel_hash",  "render_us", "batch_size"};
 constexpr int kColumnCount = sizeof(kColumns) / sizeof(kColumns[0]);
+static_assert(kColumnCount == int(kRecordColumnCount), "RecordColumn and kColumns must agree");
 
 void put_double(std::ostream& out, double v) {
   if (std::isnan(v)) return;  // empty cell = not applicable
@@ -36,8 +38,6 @@ void put_optional(std::ostream& out, int64_t v) {
   if (v >= 0) out << v;
 }
 
-double get_double(const std::string& s) { return s.empty() ? kNA : std::stod(s); }
-int64_t get_optional(const std::string& s) { return s.empty() ? -1 : std::stoll(s); }
 }  // namespace
 
 const char* visibility_name(Visibility v) { return kVisibilityNames[int(v)]; }
@@ -51,6 +51,14 @@ bool parse_status(const std::string& s, CaseStatus* out) {
   for (int i = 0; i < 4; ++i)
     if (s == kStatusNames[i]) return *out = CaseStatus(i), true;
   return false;
+}
+
+const char* record_column_name(RecordColumn c) { return kColumns[static_cast<std::size_t>(c)]; }
+
+std::optional<RecordColumn> find_record_column(std::string_view name) {
+  for (int i = 0; i < kColumnCount; ++i)
+    if (name == kColumns[i]) return static_cast<RecordColumn>(i);
+  return std::nullopt;
 }
 
 std::string records_header() {
@@ -94,75 +102,7 @@ void write_record(std::ostream& out, const Record& r) {
 }
 
 void read_records(const std::string& path, const std::function<void(const Record&)>& row) {
-  std::ifstream in(path);
-  if (!in) throw UserError(path + ": cannot read records file");
-  std::string line;
-  const bool has_header = bool(std::getline(in, line));
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  if (!has_header || line != records_header())
-    throw UserError(path + ":1: unexpected records header (schema version " +
-                    std::to_string(kRecordsSchemaVersion) + " expects: " + records_header() + ")");
-  std::vector<std::string> f;
-  f.reserve(kColumnCount);
-  std::vector<std::string> names;  // column names, for messages
-  {
-    std::stringstream header(records_header());
-    for (std::string n; std::getline(header, n, ',');) names.push_back(n);
-  }
-  for (int64_t line_no = 2; std::getline(in, line); ++line_no) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF files read as LF ones
-    if (!line.empty() && line[0] == '#') continue;  // the seal of a shard file (shard_file.h)
-    f.clear();
-    size_t start = 0;
-    for (;;) {
-      const size_t comma = line.find(',', start);
-      f.push_back(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-      if (comma == std::string::npos) break;
-      start = comma + 1;
-    }
-    auto bad = [&](const std::string& why) {
-      throw UserError(path + ":" + std::to_string(line_no) + ": " + why);
-    };
-    if (int(f.size()) != kColumnCount)
-      bad("expected " + std::to_string(kColumnCount) + " fields, found " + std::to_string(f.size()));
-    Record r;
-    int i = 0;  // after each field is taken, the index of the next one
-    try {
-      r.platform = f[i++];
-      r.view = std::stoi(f[i++]);
-      r.view_group = std::stoi(f[i++]);
-      r.orientation = std::stoi(f[i++]);
-      r.fov_deg = get_double(f[i++]);
-      r.width = std::stoi(f[i++]);
-      r.height = std::stoi(f[i++]);
-      r.near = get_double(f[i++]);
-      r.far = get_double(f[i++]);
-      r.kind = f[i++];
-      r.index = std::stoull(f[i++]);
-      if (!parse_status(f[i++], &r.status)) bad("unknown status '" + f[i - 1] + "'");
-      if (!parse_visibility(f[i++], &r.visibility)) bad("unknown visibility '" + f[i - 1] + "'");
-      r.pixels = std::stoll(f[i++]);
-      for (double* d : {&r.pe, &r.pe_norm, &r.lse_s, &r.lse_u, &r.extent_error, &r.lse_s_norm,
-                        &r.lse_u_norm})
-        *d = get_double(f[i++]);
-      r.chain_8connected = int(get_optional(f[i++]));
-      r.gaps = get_optional(f[i++]);
-      for (double* d : {&r.te_s, &r.te_u, &r.te_s_norm, &r.te_u_norm, &r.te_u_edge_norm})
-        *d = get_double(f[i++]);
-      r.full_window = int(get_optional(f[i++]));
-      r.simply_connected = int(get_optional(f[i++]));
-      r.ref_diff = get_optional(f[i++]);
-      r.pixel_hash = std::stoull(f[i++]);
-      r.render_us = get_double(f[i++]);
-      const std::string& batch = f[i++];
-      r.batch_size = batch.empty() ? 0 : std::stoll(batch);
-    } catch (const std::logic_error&) {  // stoi and friends: the field just taken is not a number
-      const int column = std::max(0, i - 1);
-      bad("column '" + (column < int(names.size()) ? names[column] : std::to_string(column + 1)) +
-          "': '" + f[column] + "' is not a number");
-    }
-    row(r);
-  }
+  for_each_record_row(path, [&](const RecordRow& cells) { row(parse_record(cells)); });
 }
 
 }  // namespace ra

@@ -3,11 +3,14 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
 #include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace ra {
 
@@ -58,11 +61,24 @@ struct Record {
   int64_t batch_size = 0;   // primitives drawn under that one glFinish (1: alone; 0: not drawn)
 };
 
+// The columns of a records row, in file order (records_header() spells them).
+enum class RecordColumn : std::size_t {
+  kPlatform, kView, kViewGroup, kOrientation, kFovDeg, kWidth, kHeight, kNear, kFar, kKind,
+  kIndex, kStatus, kVisibility, kPixels, kPe, kPeNorm, kLseS, kLseU, kExtentError, kLseSNorm,
+  kLseUNorm, kChain8Connected, kGaps, kTeS, kTeU, kTeSNorm, kTeUNorm, kTeUEdgeNorm, kFullWindow,
+  kSimplyConnected, kRefDiff, kPixelHash, kRenderUs, kBatchSize,
+};
+constexpr std::size_t kRecordColumnCount = 34;
+const char* record_column_name(RecordColumn c);  // "platform", "view", ...
+// The column called `name`, or nullopt.
+std::optional<RecordColumn> find_record_column(std::string_view name);
+
 std::string records_header();  // the header line, without newline
 void write_record(std::ostream& out, const Record& r);  // one line, with newline
 
 // Reads a records CSV; calls `row` for each record. Throws UserError naming file and line on a
-// malformed row or an unexpected header (a schema change is an error, not a silent shift).
+// malformed row or an unexpected header (a schema change is an error, not a silent shift). A
+// convenience over metrics/records_reader.h, which converts only the cells a caller needs.
 void read_records(const std::string& path, const std::function<void(const Record&)>& row);
 
 }  // namespace ra

@@ -1,5 +1,7 @@
-// Tests of metrics/records.h's reader: CRLF files read as LF ones (audit once rejected what analyze
-// accepted), the seal line of a shard file is skipped, a bad number names its column and line.
+// Tests of the records reader (metrics/records_reader.h, metrics/records.h's read_records): CRLF
+// files read as LF ones (audit once rejected what analyze accepted), the seal line of a shard file
+// is skipped, a bad number names its column and line, every column survives a write and a read, and
+// a row that straddles two 4 MiB blocks is read whole.
 #include "metrics/records.h"
 
 #include <gtest/gtest.h>
@@ -61,7 +63,87 @@ TEST_F(RecordsReader, ABadNumberNamesItsColumnAndLine) {
     read(bad);
     FAIL() << "a bad index was accepted";
   } catch (const UserError& e) {
-    EXPECT_EQ(std::string(e.what()), path_ + ":3: column 'index': 'x5' is not a number");
+    EXPECT_EQ(std::string(e.what()), path_ + ":3: column 'index': 'x5' is not an integer");
+  }
+}
+
+TEST_F(RecordsReader, EveryColumnSurvivesAWriteAndARead) {
+  Record r;
+  r.platform = "osmesa-llvmpipe";
+  r.view = 7;
+  r.view_group = 3;
+  r.orientation = 2;
+  r.fov_deg = 150;
+  r.width = 907;
+  r.height = 907;
+  r.near = 0.1;
+  r.far = 1e6;
+  r.kind = "triangle";
+  r.index = 123456789012ull;
+  r.status = CaseStatus::kTimeout;
+  r.visibility = Visibility::kMultipleVisible;
+  r.pixels = 42;
+  r.pe = 0.1, r.pe_norm = 0.2, r.lse_s = 0.3, r.lse_u = 0.4, r.extent_error = 0.5;
+  r.lse_s_norm = 1.0 / 3, r.lse_u_norm = 2e-300;
+  r.chain_8connected = 1;
+  r.gaps = 0;
+  r.te_s = 5, r.te_u = 6, r.te_s_norm = 7, r.te_u_norm = 8, r.te_u_edge_norm = 9.5;
+  r.full_window = 0;
+  r.simply_connected = 1;
+  r.ref_diff = 3;
+  r.pixel_hash = 18446744073709551615ull;
+  r.render_us = 12.75;
+  r.batch_size = 64;
+  std::ostringstream out;
+  out << records_header() << '\n';
+  write_record(out, r);
+  const auto rows = read(out.str());
+  ASSERT_EQ(rows.size(), 1u);
+  std::ostringstream again;
+  write_record(again, rows[0]);
+  std::ostringstream first;
+  write_record(first, r);
+  EXPECT_EQ(again.str(), first.str());
+  EXPECT_EQ(rows[0].pixel_hash, r.pixel_hash);
+  EXPECT_EQ(rows[0].lse_u_norm, 2e-300);
+  EXPECT_EQ(rows[0].status, CaseStatus::kTimeout);
+}
+
+TEST_F(RecordsReader, RowsStraddlingTheReadBlocksAreReadWhole) {
+  // more than 4 MiB of rows, so that some row crosses the reader's block boundary
+  std::ostringstream out;
+  out << records_header() << '\n';
+  Record r;
+  r.platform = "reference";
+  r.kind = "line";
+  constexpr std::uint64_t kRows = 60000;
+  for (std::uint64_t i = 0; i < kRows; ++i) {
+    r.index = i;
+    r.lse_s = double(i) / 7;
+    write_record(out, r);
+  }
+  ASSERT_GT(out.str().size(), std::size_t{4} << 20);
+  const auto rows = read(out.str());
+  ASSERT_EQ(rows.size(), kRows);
+  for (std::uint64_t i = 0; i < kRows; ++i) {
+    ASSERT_EQ(rows[i].index, i);
+    ASSERT_EQ(rows[i].lse_s, double(i) / 7);
+  }
+}
+
+TEST_F(RecordsReader, AWrongHeaderAndAShortRowAreErrorsWithTheirLine) {
+  try {
+    read("platform,view\n");
+    FAIL() << "a wrong header was accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find(path_ + ":1: unexpected records header"),
+              std::string::npos);
+  }
+  try {
+    read(text_ + "reference,1,0\n");
+    FAIL() << "a short row was accepted";
+  } catch (const UserError& e) {
+    EXPECT_EQ(std::string(e.what()), path_ + ":4: expected 34 fields, found 3");
   }
 }
 

@@ -438,6 +438,436 @@ struct FigureRenderer::Impl {
   int width = 0, height = 0;
 };
 
+namespace {
+
+// What drawing one kind of figure decides: the marks (added to the chart), the legend, the axis
+// ranges and ticks (data units; NaN range: automatic) and the note under the figure.
+struct ChartMarks {
+  vtkChartXY* chart = nullptr;
+  std::vector<LegendItem::Entry> legend;
+  double x_lo = NAN, x_hi = NAN, y_lo = NAN, y_hi = NAN;
+  bool square = false;           // equal axes (Q-Q plots)
+  bool x_grid_at_ticks = false;  // custom x ticks keep their grid lines (log axes)
+  std::vector<double> x_ticks, y_ticks;
+  std::vector<std::string> x_tick_labels, y_tick_labels;
+  std::string note;  // the figure's note and what the drawing adds to it
+  bool x_log10 = false, y_log10 = false;
+  void add_plot(vtkSmartPointer<ShapesPlot> p) { chart->AddPlot(p); }
+};
+
+void draw_marks(const QQContent& q, ChartMarks& m) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (double v : q.x) lo = std::min(lo, v), hi = std::max(hi, v);
+  for (double v : q.y) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (!(lo <= hi)) lo = 0, hi = 1;
+  double pad = 0.04 * (hi - lo);
+  if (pad == 0) pad = std::max(0.5, 0.05 * std::fabs(hi));
+  m.x_lo = m.y_lo = lo - pad;
+  m.x_hi = m.y_hi = hi + pad;
+  m.square = true;
+  auto diag = vtkSmartPointer<ShapesPlot>::New();
+  diag->lines.push_back({{m.x_lo, m.x_hi}, {m.x_lo, m.x_hi}});
+  diag->stroke = {kLineColor[0], kLineColor[1], kLineColor[2], 255};
+  diag->line_width = 1.5f;
+  auto pts = vtkSmartPointer<ShapesPlot>::New();
+  for (std::size_t i = 0; i < q.x.size(); ++i) pts->markers.push_back({q.x[i], q.y[i]});
+  pts->stroke = palette(0);
+  pts->marker_radius = 4.0f;
+  m.add_plot(pts);
+  m.add_plot(diag);  // on top, so the line stays visible under dense markers
+  m.legend.push_back({"quantiles: " + q.x_sample + " (n = " + std::to_string(q.n_x) + ") vs " +
+                        q.y_sample + " (n = " + std::to_string(q.n_y) + ")",
+                    palette(0), LegendItem::kMarker});
+  m.legend.push_back({"y = x", {kLineColor[0], kLineColor[1], kLineColor[2], 255},
+                    LegendItem::kLine});
+}
+
+void draw_marks(const BihistogramContent& b, ChartMarks& m) {
+  auto up = vtkSmartPointer<ShapesPlot>::New();
+  auto down = vtkSmartPointer<ShapesPlot>::New();
+  double top = 0, bottom = 0;
+  for (std::size_t i = 0; i + 1 < b.edges.size(); ++i) {
+    if (b.upper_height[i] > 0)
+      up->rects.push_back({b.edges[i], b.edges[i + 1], 0, b.upper_height[i]});
+    if (b.lower_height[i] > 0)
+      down->rects.push_back({b.edges[i], b.edges[i + 1], -b.lower_height[i], 0});
+    top = std::max(top, b.upper_height[i]);
+    bottom = std::max(bottom, b.lower_height[i]);
+  }
+  up->fill = palette(0, 200), up->stroke = palette(0), up->line_width = 1.0f;
+  down->fill = palette(1, 200), down->stroke = palette(1), down->line_width = 1.0f;
+  m.add_plot(up);
+  m.add_plot(down);
+  if (!b.edges.empty()) {
+    m.x_lo = b.edges.front();
+    m.x_hi = b.edges.back();
+    const double pad = 0.02 * (m.x_hi - m.x_lo);
+    m.x_lo -= pad, m.x_hi += pad;
+    auto zero = vtkSmartPointer<ShapesPlot>::New();
+    zero->lines.push_back({{m.x_lo, m.x_hi}, {0, 0}});
+    zero->stroke = {0, 0, 0, 255};
+    zero->line_width = 1.5f;
+    m.add_plot(zero);
+  }
+  if (top == 0) top = 1;
+  if (bottom == 0) bottom = 1;
+  m.y_hi = top * 1.05, m.y_lo = -bottom * 1.05;
+  // Ticks show densities on both sides as positive numbers.
+  const double step = nice_step(m.y_hi - m.y_lo, 8);
+  for (double t = -std::floor(bottom * 1.05 / step) * step; t <= m.y_hi + 1e-12 * step; t += step) {
+    m.y_ticks.push_back(t);
+    m.y_tick_labels.push_back(tick_text(std::fabs(t), step));
+  }
+  m.legend.push_back({"above: " + b.upper_sample + " (n = " + std::to_string(b.n_upper) + ")",
+                    palette(0, 200), LegendItem::kBox});
+  m.legend.push_back({"below: " + b.lower_sample + " (n = " + std::to_string(b.n_lower) + ")",
+                    palette(1, 200), LegendItem::kBox});
+}
+
+void draw_marks(const BoxPlotContent& bp, ChartMarks& m) {
+  const std::size_t C = std::max<std::size_t>(1, bp.categories.size());
+  const std::size_t S = std::max<std::size_t>(1, bp.series.size());
+  std::size_t max_n = 1;
+  for (const Box& x : bp.boxes) max_n = std::max(max_n, x.n);
+  const double slot = 0.8 / double(S);
+  std::vector<vtkSmartPointer<ShapesPlot>> body(S), lines(S), med(S), ext(S);
+  struct EdgeMarker {
+    double centre, max, min;
+    std::size_t series;
+  };
+  std::vector<EdgeMarker> edge_markers;
+  for (std::size_t s = 0; s < S; ++s) {
+    body[s] = vtkSmartPointer<ShapesPlot>::New();
+    body[s]->fill = palette(s, 90);
+    body[s]->stroke = palette(s);
+    body[s]->line_width = 2.0f;
+    lines[s] = vtkSmartPointer<ShapesPlot>::New();
+    lines[s]->stroke = palette(s);
+    lines[s]->line_width = 2.0f;
+    med[s] = vtkSmartPointer<ShapesPlot>::New();
+    med[s]->stroke = {0, 0, 0, 255};
+    med[s]->line_width = 3.0f;
+    ext[s] = vtkSmartPointer<ShapesPlot>::New();
+    ext[s]->stroke = palette(s);
+    ext[s]->hollow_markers = true;
+    ext[s]->marker_radius = 4.5f;
+  }
+  for (const Box& x : bp.boxes) {
+    const auto ci = std::find(bp.categories.begin(), bp.categories.end(), x.category);
+    const auto si = std::find(bp.series.begin(), bp.series.end(), x.series);
+    const std::size_t c = std::size_t(ci - bp.categories.begin());
+    const std::size_t s = si == bp.series.end() ? 0 : std::size_t(si - bp.series.begin());
+    const double centre = double(c + 1) + (double(s) - 0.5 * double(S - 1)) * slot;
+    const double half = 0.5 * 0.85 * slot * double(x.n) / double(max_n);
+    body[s]->rects.push_back({centre - half, centre + half, x.q1, x.q3, 3.0f});
+    const double cap = std::max(half * 0.5, 0.02);
+    lines[s]->lines.push_back({{centre, centre}, {x.q3, x.upper_whisker}});
+    lines[s]->lines.push_back({{centre, centre}, {x.q1, x.lower_whisker}});
+    lines[s]->lines.push_back({{centre - cap, centre + cap}, {x.upper_whisker, x.upper_whisker}});
+    lines[s]->lines.push_back({{centre - cap, centre + cap}, {x.lower_whisker, x.lower_whisker}});
+    med[s]->lines.push_back({{centre - std::max(half, 0.01), centre + std::max(half, 0.01)},
+                             {x.median, x.median}});
+    if (x.max > x.upper_whisker) ext[s]->markers.push_back({centre, x.max});
+    if (x.min < x.lower_whisker) ext[s]->markers.push_back({centre, x.min});
+    edge_markers.push_back({centre, x.max, x.min, s});
+  }
+  for (std::size_t s = 0; s < S; ++s) {
+    m.add_plot(body[s]);
+    m.add_plot(lines[s]);
+    m.add_plot(med[s]);
+    m.add_plot(ext[s]);
+    if (bp.series.size() > 1)
+      m.legend.push_back({bp.series[s], palette(s, 90), LegendItem::kBox});
+  }
+  box_plot_y_range(bp, &m.y_lo, &m.y_hi);
+  // Extremes outside the restricted range: a triangle at the edge of the plot, pointing out.
+  for (const EdgeMarker& e : edge_markers) {
+    if (!(e.max > m.y_hi) && !(e.min < m.y_lo)) continue;
+    auto t = vtkSmartPointer<ShapesPlot>::New();
+    t->stroke = palette(e.series);
+    t->marker_radius = 7.0f;
+    if (e.max > m.y_hi) {
+      t->marker_shape = ShapesPlot::kUpTriangle;
+      t->markers.push_back({e.centre, m.y_hi});
+    } else {
+      t->marker_shape = ShapesPlot::kDownTriangle;
+      t->markers.push_back({e.centre, m.y_lo});
+    }
+    m.add_plot(t);
+    if (e.max > m.y_hi && e.min < m.y_lo) {
+      auto d = vtkSmartPointer<ShapesPlot>::New();
+      d->stroke = palette(e.series);
+      d->marker_radius = 7.0f;
+      d->marker_shape = ShapesPlot::kDownTriangle;
+      d->markers.push_back({e.centre, m.y_lo});
+      m.add_plot(d);
+    }
+  }
+  const std::string outside = box_plot_outside_note(bp, m.y_lo, m.y_hi);
+  if (!outside.empty()) m.note = outside + (m.note.empty() ? "" : "\n" + m.note);
+  m.note += std::string(m.note.empty() ? "" : "\n") +
+              "Box widths proportional to n; open circles: minimum and maximum beyond the "
+              "whiskers; triangles at the edge: beyond the plot.";
+  m.x_lo = 0.5, m.x_hi = double(C) + 0.5;
+  for (std::size_t c = 0; c < bp.categories.size(); ++c) {
+    m.x_ticks.push_back(double(c + 1));
+    m.x_tick_labels.push_back(bp.categories[c]);
+  }
+}
+
+void draw_marks(const HistogramContent& h, ChartMarks& m) {
+  double lo = INFINITY, hi = -INFINITY, top = 0;
+  const bool single = h.series.size() == 1;
+  for (std::size_t s = 0; s < h.series.size(); ++s) {
+    const auto& se = h.series[s];
+    auto p = vtkSmartPointer<ShapesPlot>::New();
+    if (single) {
+      for (std::size_t i = 0; i + 1 < se.edges.size(); ++i)
+        if (se.heights[i] > 0) p->rects.push_back({se.edges[i], se.edges[i + 1], 0, se.heights[i]});
+      p->fill = palette(s, 200);
+      p->stroke = palette(s);
+      p->line_width = 1.0f;
+    } else {
+      ShapesPlot::Polyline l;
+      for (std::size_t i = 0; i + 1 < se.edges.size(); ++i) {
+        if (i == 0) l.x.push_back(se.edges[0]), l.y.push_back(0);
+        l.x.push_back(se.edges[i]), l.y.push_back(se.heights[i]);
+        l.x.push_back(se.edges[i + 1]), l.y.push_back(se.heights[i]);
+      }
+      if (!se.edges.empty()) l.x.push_back(se.edges.back()), l.y.push_back(0);
+      p->lines.push_back(l);
+      p->stroke = palette(s);
+      p->line_width = 2.5f;
+      m.legend.push_back({se.name + " (n = " + std::to_string(se.n) + ")", palette(s),
+                        LegendItem::kLine});
+    }
+    for (double e : se.edges) lo = std::min(lo, e), hi = std::max(hi, e);
+    for (double v : se.heights) top = std::max(top, v);
+    m.add_plot(p);
+  }
+  if (lo <= hi) {
+    const double pad = 0.02 * (hi - lo);
+    m.x_lo = lo - pad, m.x_hi = hi + pad;
+  }
+  m.y_lo = 0, m.y_hi = (top > 0 ? top : 1) * 1.05;
+}
+
+void draw_marks(const ScatterContent& sc, ChartMarks& m) {
+  // Values to axis units: log10 on a log axis (NaN: cannot be placed).
+  const auto to_x = [&](double v) { return sc.x_log10 ? (v > 0 ? std::log10(v) : NAN) : v; };
+  const auto to_y = [&](double v) { return sc.y_log10 ? (v > 0 ? std::log10(v) : NAN) : v; };
+  // The range: every drawable marker and bar end.
+  double xl = INFINITY, xh = -INFINITY, yl = INFINITY, yh = -INFINITY;
+  const auto extend = [](double v, double* l, double* h) {
+    if (std::isfinite(v)) *l = std::min(*l, v), *h = std::max(*h, v);
+  };
+  const auto bar_end = [](const std::vector<double>& v, std::size_t i) {
+    return i < v.size() ? v[i] : NAN;
+  };
+  for (const ScatterSeries& se : sc.series)
+    for (std::size_t i = 0; i < se.x.size(); ++i) {
+      const double x = to_x(se.x[i]), y = to_y(se.y.at(i));
+      if (!std::isfinite(x) || !std::isfinite(y)) continue;
+      extend(x, &xl, &xh), extend(y, &yl, &yh);
+      extend(to_x(bar_end(se.x_lo, i)), &xl, &xh), extend(to_x(bar_end(se.x_hi, i)), &xl, &xh);
+      extend(to_y(bar_end(se.y_lo, i)), &yl, &yh), extend(to_y(bar_end(se.y_hi, i)), &yl, &yh);
+    }
+  // Padding: 6 % of the range, at least 0.12 decades on a log axis (room for the labels).
+  const auto pad_range = [](double* l, double* h, bool log) {
+    if (!(*l <= *h)) *l = 0, *h = 1;
+    double pad = 0.06 * (*h - *l);
+    if (log) pad = std::max(pad, 0.12);
+    if (pad <= 0) pad = std::max(0.5, 0.05 * std::fabs(*h));
+    *l -= pad, *h += pad;
+  };
+  pad_range(&xl, &xh, sc.x_log10);
+  pad_range(&yl, &yh, sc.y_log10);
+  m.x_lo = xl, m.x_hi = xh, m.y_lo = yl, m.y_hi = yh;
+  // Marks: every series' IQR bars first, then the markers with their labels on top (a bar of one
+  // platform never hides another's marker).
+  std::size_t clipped = 0;
+  std::vector<vtkSmartPointer<ShapesPlot>> marker_plots;
+  for (std::size_t s = 0; s < sc.series.size(); ++s) {
+    const ScatterSeries& se = sc.series[s];
+    auto bars = vtkSmartPointer<ShapesPlot>::New();
+    bars->stroke = palette(s, 200);
+    bars->line_width = 2.0f;
+    auto pts = vtkSmartPointer<ShapesPlot>::New();
+    pts->stroke = palette(s);
+    pts->marker_radius = 6.0f;
+    pts->label_font = 16;
+    pts->vertical_labels_if_crowded = false;
+    // A bar between two ends; an end that a log axis cannot place goes to the plot's edge.
+    const auto bar = [&](double a, double b, double at, bool along_x) {
+      if (std::isnan(a) && std::isnan(b)) return;
+      double u = along_x ? to_x(a) : to_y(a), v = along_x ? to_x(b) : to_y(b);
+      const double edge = along_x ? m.x_lo : m.y_lo;
+      if (std::isnan(u)) u = edge, ++clipped;
+      if (std::isnan(v)) v = edge, ++clipped;
+      if (along_x)
+        bars->lines.push_back({{u, v}, {at, at}});
+      else
+        bars->lines.push_back({{at, at}, {u, v}});
+    };
+    for (std::size_t i = 0; i < se.x.size(); ++i) {
+      const double x = to_x(se.x[i]), y = to_y(se.y.at(i));
+      if (!std::isfinite(x) || !std::isfinite(y)) continue;  // in the note
+      bar(bar_end(se.x_lo, i), bar_end(se.x_hi, i), y, true);
+      bar(bar_end(se.y_lo, i), bar_end(se.y_hi, i), x, false);
+      pts->markers.push_back({x, y});
+      if (i < se.labels.size() && !se.labels[i].empty()) {
+        ShapesPlot::Label l{x, y, se.labels[i]};
+        // upper right of the marker, clear of the horizontal bar through it
+        l.dx_px = pts->marker_radius + 2;
+        l.dy_px = pts->marker_radius + 5;
+        l.beside = true;
+        pts->labels.push_back(l);
+      }
+    }
+    m.add_plot(bars);
+    marker_plots.push_back(pts);
+    m.legend.push_back({se.name, palette(s), LegendItem::kMarker});
+  }
+  for (auto& pts : marker_plots) m.add_plot(pts);
+  m.x_grid_at_ticks = true;
+  m.x_log10 = sc.x_log10;
+  m.y_log10 = sc.y_log10;
+  if (sc.x_log10) log_ticks(m.x_lo, m.x_hi, &m.x_ticks, &m.x_tick_labels);
+  if (sc.y_log10) log_ticks(m.y_lo, m.y_hi, &m.y_ticks, &m.y_tick_labels);
+  std::string extra = scatter_omitted_note(sc);
+  if (clipped)
+    extra += std::string(extra.empty() ? "" : "\n") + std::to_string(clipped) +
+             (clipped == 1 ? " bar end" : " bar ends") +
+             " at zero or below drawn to the edge of the log axis.";
+  if (!extra.empty()) m.note = extra + (m.note.empty() ? "" : "\n" + m.note);
+}
+
+void draw_marks(const BarChartContent& c, ChartMarks& m) {
+  const std::size_t C = std::max<std::size_t>(1, c.categories.size());
+  const std::size_t S = std::max<std::size_t>(1, c.series.size());
+  const double slot = 0.8 / double(S);
+  double top = 0;
+  bool any_label = false;
+  for (std::size_t s = 0; s < c.series.size(); ++s) {
+    auto p = vtkSmartPointer<ShapesPlot>::New();
+    p->fill = palette(s, 220);
+    p->stroke = palette(s);
+    p->line_width = 1.0f;
+    for (std::size_t i = 0; i < c.categories.size(); ++i) {
+      const double v = c.series[s].values.at(i);
+      const double centre = double(i + 1) + (double(s) - 0.5 * double(S - 1)) * slot;
+      p->rects.push_back({centre - 0.45 * slot, centre + 0.45 * slot, 0, v});
+      top = std::max(top, v);
+      if (i < c.series[s].labels.size() && !c.series[s].labels[i].empty()) {
+        p->labels.push_back({centre, std::max(v, 0.0), c.series[s].labels[i]});
+        any_label = true;
+      }
+    }
+    m.add_plot(p);
+    if (c.series.size() > 1 || !c.series[s].name.empty())
+      m.legend.push_back({c.series[s].name, palette(s, 220), LegendItem::kBox});
+  }
+  if (c.series.size() == 1 && m.legend.size() == 1) m.legend.clear();
+  m.x_lo = 0.5, m.x_hi = double(C) + 0.5;
+  for (std::size_t i = 0; i < c.categories.size(); ++i) {
+    m.x_ticks.push_back(double(i + 1));
+    m.x_tick_labels.push_back(c.categories[i]);
+  }
+  m.y_lo = 0;
+  const double y_top = c.y_max > 0 ? c.y_max : (top > 0 ? top : 1);
+  m.y_hi = any_label ? y_top * 1.22 : y_top * 1.05;  // room for the labels above the bars
+  // Ticks only up to the top of the scale (no "120 %").
+  const double step = nice_step(y_top, 8);
+  for (double t = 0; t <= y_top * (1 + 1e-9); t += step) {
+    m.y_ticks.push_back(t);
+    m.y_tick_labels.push_back(tick_text(t, step));
+  }
+}
+
+
+// An empty chart in the report's style: white, no legend or title of its own (this file draws
+// them), black axes with light grid lines.
+vtkSmartPointer<vtkChartXY> new_chart() {
+  auto chart = vtkSmartPointer<vtkChartXY>::New();
+  chart->SetShowLegend(false);
+  chart->SetTitle("");
+  chart->GetBackgroundBrush()->SetColor(255, 255, 255, 255);
+  chart->SetRenderEmpty(true);
+  vtkAxis* xa = chart->GetAxis(vtkAxis::BOTTOM);
+  vtkAxis* ya = chart->GetAxis(vtkAxis::LEFT);
+  for (vtkAxis* ax : {xa, ya}) {
+    style_text(ax->GetTitleProperties(), kAxisTitleFont, true);
+    style_text(ax->GetLabelProperties(), kTickFont);
+    ax->GetGridPen()->SetColor(225, 225, 225, 255);
+    ax->GetPen()->SetColor(0, 0, 0, 255);
+    ax->GetPen()->SetWidth(1.5f);
+  }
+  // Axis titles are this file's TextItems (placed below the tick labels with a fixed gap; VTK's
+  // own put the x title against the labels).
+  xa->SetTitle("");
+  ya->SetTitle("");
+  return chart;
+}
+
+// The ranges and ticks the figure's drawing chose, on VTK's axes.
+void fix_axes(const ChartMarks& marks, vtkAxis* xa, vtkAxis* ya) {
+  auto apply_range = [](vtkAxis* ax, double lo, double hi) {
+    if (std::isnan(lo)) return;
+    ax->SetBehavior(vtkAxis::FIXED);
+    ax->SetUnscaledRange(lo, hi);
+    ax->SetRange(lo, hi);
+  };
+  apply_range(xa, marks.x_lo, marks.x_hi);
+  apply_range(ya, marks.y_lo, marks.y_hi);
+  auto custom_ticks = [](vtkAxis* ax, const std::vector<double>& at,
+                         const std::vector<std::string>& text) {
+    if (at.empty()) return;
+    vtkNew<vtkDoubleArray> pos;
+    vtkNew<vtkStringArray> lab;
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      pos->InsertNextValue(at[i]);
+      lab->InsertNextValue(text[i]);
+    }
+    ax->SetCustomTickPositions(pos, lab);
+  };
+  custom_ticks(xa, marks.x_ticks, marks.x_tick_labels);
+  custom_ticks(ya, marks.y_ticks, marks.y_tick_labels);
+  if (!marks.x_ticks.empty() && !marks.x_grid_at_ticks) xa->SetGridVisible(false);
+}
+
+// STEM.png (the window as rendered), STEM.pdf (the same scene, vector) and STEM.csv (the data).
+void write_figure_files(vtkRenderWindow* win, const Figure& figure, const std::string& stem,
+                        RenderedFigure* out) {
+  const std::filesystem::path dir = std::filesystem::path(stem).parent_path();
+  if (!dir.empty()) std::filesystem::create_directories(dir);
+  out->png = stem + ".png";
+  out->pdf = stem + ".pdf";
+  out->csv = stem + ".csv";
+
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(win);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff();  // the frame just rendered
+  grab->Update();
+  vtkNew<vtkPNGWriter> png;
+  png->SetFileName(out->png.c_str());
+  png->SetInputConnection(grab->GetOutputPort());
+  png->Write();
+
+  vtkNew<vtkPDFExporter> pdf;
+  pdf->SetRenderWindow(win);
+  pdf->SetFileName(out->pdf.c_str());
+  pdf->SetTitle(figure.title.c_str());
+  pdf->Write();
+
+  write_figure_data(figure, out->csv);
+  if (!std::filesystem::exists(out->png) || !std::filesystem::exists(out->pdf))
+    throw UserError("VTK did not write " + out->png + " / " + out->pdf);
+}
+
+}  // namespace
+
 FigureRenderer::FigureRenderer(int width, int height) : impl_(new Impl) {
   impl_->width = width;
   impl_->height = height;
@@ -464,359 +894,20 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
   scene->ClearItems();
 
   RenderedFigure out;
-  out.note = figure.note;
-
-  auto chart = vtkSmartPointer<vtkChartXY>::New();
-  chart->SetShowLegend(false);
-  chart->SetTitle("");
-  chart->GetBackgroundBrush()->SetColor(255, 255, 255, 255);
-  chart->SetRenderEmpty(true);
+  vtkSmartPointer<vtkChartXY> chart = new_chart();
   vtkAxis* xa = chart->GetAxis(vtkAxis::BOTTOM);
   vtkAxis* ya = chart->GetAxis(vtkAxis::LEFT);
-  for (vtkAxis* ax : {xa, ya}) {
-    style_text(ax->GetTitleProperties(), kAxisTitleFont, true);
-    style_text(ax->GetLabelProperties(), kTickFont);
-    ax->GetGridPen()->SetColor(225, 225, 225, 255);
-    ax->GetPen()->SetColor(0, 0, 0, 255);
-    ax->GetPen()->SetWidth(1.5f);
-  }
-  // Axis titles are this file's TextItems (placed below the tick labels with a fixed gap; VTK's
-  // own put the x title against the labels).
-  xa->SetTitle("");
-  ya->SetTitle("");
 
-  // Legend entries and marks.
-  std::vector<LegendItem::Entry> legend;
-  double x_lo = NAN, x_hi = NAN, y_lo = NAN, y_hi = NAN;  // fixed ranges (NaN: automatic)
-  bool square = false;
-  bool x_grid_at_ticks = false;  // custom x ticks keep their grid lines (log axes)
-  std::vector<double> x_ticks, y_ticks;
-  std::vector<std::string> x_tick_labels, y_tick_labels;
-
-  auto add_plot = [&](vtkSmartPointer<ShapesPlot> p) { chart->AddPlot(p); };
-
-  if (auto* q = std::get_if<QQContent>(&figure.content)) {
-    double lo = INFINITY, hi = -INFINITY;
-    for (double v : q->x) lo = std::min(lo, v), hi = std::max(hi, v);
-    for (double v : q->y) lo = std::min(lo, v), hi = std::max(hi, v);
-    if (!(lo <= hi)) lo = 0, hi = 1;
-    double pad = 0.04 * (hi - lo);
-    if (pad == 0) pad = std::max(0.5, 0.05 * std::fabs(hi));
-    x_lo = y_lo = lo - pad;
-    x_hi = y_hi = hi + pad;
-    square = true;
-    auto diag = vtkSmartPointer<ShapesPlot>::New();
-    diag->lines.push_back({{x_lo, x_hi}, {x_lo, x_hi}});
-    diag->stroke = {kLineColor[0], kLineColor[1], kLineColor[2], 255};
-    diag->line_width = 1.5f;
-    auto pts = vtkSmartPointer<ShapesPlot>::New();
-    for (std::size_t i = 0; i < q->x.size(); ++i) pts->markers.push_back({q->x[i], q->y[i]});
-    pts->stroke = palette(0);
-    pts->marker_radius = 4.0f;
-    add_plot(pts);
-    add_plot(diag);  // on top, so the line stays visible under dense markers
-    legend.push_back({"quantiles: " + q->x_sample + " (n = " + std::to_string(q->n_x) + ") vs " +
-                          q->y_sample + " (n = " + std::to_string(q->n_y) + ")",
-                      palette(0), LegendItem::kMarker});
-    legend.push_back({"y = x", {kLineColor[0], kLineColor[1], kLineColor[2], 255},
-                      LegendItem::kLine});
-  } else if (auto* b = std::get_if<BihistogramContent>(&figure.content)) {
-    auto up = vtkSmartPointer<ShapesPlot>::New();
-    auto down = vtkSmartPointer<ShapesPlot>::New();
-    double top = 0, bottom = 0;
-    for (std::size_t i = 0; i + 1 < b->edges.size(); ++i) {
-      if (b->upper_height[i] > 0)
-        up->rects.push_back({b->edges[i], b->edges[i + 1], 0, b->upper_height[i]});
-      if (b->lower_height[i] > 0)
-        down->rects.push_back({b->edges[i], b->edges[i + 1], -b->lower_height[i], 0});
-      top = std::max(top, b->upper_height[i]);
-      bottom = std::max(bottom, b->lower_height[i]);
-    }
-    up->fill = palette(0, 200), up->stroke = palette(0), up->line_width = 1.0f;
-    down->fill = palette(1, 200), down->stroke = palette(1), down->line_width = 1.0f;
-    add_plot(up);
-    add_plot(down);
-    if (!b->edges.empty()) {
-      x_lo = b->edges.front();
-      x_hi = b->edges.back();
-      const double pad = 0.02 * (x_hi - x_lo);
-      x_lo -= pad, x_hi += pad;
-      auto zero = vtkSmartPointer<ShapesPlot>::New();
-      zero->lines.push_back({{x_lo, x_hi}, {0, 0}});
-      zero->stroke = {0, 0, 0, 255};
-      zero->line_width = 1.5f;
-      add_plot(zero);
-    }
-    if (top == 0) top = 1;
-    if (bottom == 0) bottom = 1;
-    y_hi = top * 1.05, y_lo = -bottom * 1.05;
-    // Ticks show densities on both sides as positive numbers.
-    const double step = nice_step(y_hi - y_lo, 8);
-    for (double t = -std::floor(bottom * 1.05 / step) * step; t <= y_hi + 1e-12 * step; t += step) {
-      y_ticks.push_back(t);
-      y_tick_labels.push_back(tick_text(std::fabs(t), step));
-    }
-    legend.push_back({"above: " + b->upper_sample + " (n = " + std::to_string(b->n_upper) + ")",
-                      palette(0, 200), LegendItem::kBox});
-    legend.push_back({"below: " + b->lower_sample + " (n = " + std::to_string(b->n_lower) + ")",
-                      palette(1, 200), LegendItem::kBox});
-  } else if (auto* bp = std::get_if<BoxPlotContent>(&figure.content)) {
-    const std::size_t C = std::max<std::size_t>(1, bp->categories.size());
-    const std::size_t S = std::max<std::size_t>(1, bp->series.size());
-    std::size_t max_n = 1;
-    for (const Box& x : bp->boxes) max_n = std::max(max_n, x.n);
-    const double slot = 0.8 / double(S);
-    std::vector<vtkSmartPointer<ShapesPlot>> body(S), lines(S), med(S), ext(S);
-    struct EdgeMarker {
-      double centre, max, min;
-      std::size_t series;
-    };
-    std::vector<EdgeMarker> edge_markers;
-    for (std::size_t s = 0; s < S; ++s) {
-      body[s] = vtkSmartPointer<ShapesPlot>::New();
-      body[s]->fill = palette(s, 90);
-      body[s]->stroke = palette(s);
-      body[s]->line_width = 2.0f;
-      lines[s] = vtkSmartPointer<ShapesPlot>::New();
-      lines[s]->stroke = palette(s);
-      lines[s]->line_width = 2.0f;
-      med[s] = vtkSmartPointer<ShapesPlot>::New();
-      med[s]->stroke = {0, 0, 0, 255};
-      med[s]->line_width = 3.0f;
-      ext[s] = vtkSmartPointer<ShapesPlot>::New();
-      ext[s]->stroke = palette(s);
-      ext[s]->hollow_markers = true;
-      ext[s]->marker_radius = 4.5f;
-    }
-    for (const Box& x : bp->boxes) {
-      const auto ci = std::find(bp->categories.begin(), bp->categories.end(), x.category);
-      const auto si = std::find(bp->series.begin(), bp->series.end(), x.series);
-      const std::size_t c = std::size_t(ci - bp->categories.begin());
-      const std::size_t s = si == bp->series.end() ? 0 : std::size_t(si - bp->series.begin());
-      const double centre = double(c + 1) + (double(s) - 0.5 * double(S - 1)) * slot;
-      const double half = 0.5 * 0.85 * slot * double(x.n) / double(max_n);
-      body[s]->rects.push_back({centre - half, centre + half, x.q1, x.q3, 3.0f});
-      const double cap = std::max(half * 0.5, 0.02);
-      lines[s]->lines.push_back({{centre, centre}, {x.q3, x.upper_whisker}});
-      lines[s]->lines.push_back({{centre, centre}, {x.q1, x.lower_whisker}});
-      lines[s]->lines.push_back({{centre - cap, centre + cap}, {x.upper_whisker, x.upper_whisker}});
-      lines[s]->lines.push_back({{centre - cap, centre + cap}, {x.lower_whisker, x.lower_whisker}});
-      med[s]->lines.push_back({{centre - std::max(half, 0.01), centre + std::max(half, 0.01)},
-                               {x.median, x.median}});
-      if (x.max > x.upper_whisker) ext[s]->markers.push_back({centre, x.max});
-      if (x.min < x.lower_whisker) ext[s]->markers.push_back({centre, x.min});
-      edge_markers.push_back({centre, x.max, x.min, s});
-    }
-    for (std::size_t s = 0; s < S; ++s) {
-      add_plot(body[s]);
-      add_plot(lines[s]);
-      add_plot(med[s]);
-      add_plot(ext[s]);
-      if (bp->series.size() > 1)
-        legend.push_back({bp->series[s], palette(s, 90), LegendItem::kBox});
-    }
-    box_plot_y_range(*bp, &y_lo, &y_hi);
-    // Extremes outside the restricted range: a triangle at the edge of the plot, pointing out.
-    for (const EdgeMarker& m : edge_markers) {
-      if (!(m.max > y_hi) && !(m.min < y_lo)) continue;
-      auto t = vtkSmartPointer<ShapesPlot>::New();
-      t->stroke = palette(m.series);
-      t->marker_radius = 7.0f;
-      if (m.max > y_hi) {
-        t->marker_shape = ShapesPlot::kUpTriangle;
-        t->markers.push_back({m.centre, y_hi});
-      } else {
-        t->marker_shape = ShapesPlot::kDownTriangle;
-        t->markers.push_back({m.centre, y_lo});
-      }
-      add_plot(t);
-      if (m.max > y_hi && m.min < y_lo) {
-        auto d = vtkSmartPointer<ShapesPlot>::New();
-        d->stroke = palette(m.series);
-        d->marker_radius = 7.0f;
-        d->marker_shape = ShapesPlot::kDownTriangle;
-        d->markers.push_back({m.centre, y_lo});
-        add_plot(d);
-      }
-    }
-    const std::string outside = box_plot_outside_note(*bp, y_lo, y_hi);
-    if (!outside.empty()) out.note = outside + (out.note.empty() ? "" : "\n" + out.note);
-    out.note += std::string(out.note.empty() ? "" : "\n") +
-                "Box widths proportional to n; open circles: minimum and maximum beyond the "
-                "whiskers; triangles at the edge: beyond the plot.";
-    x_lo = 0.5, x_hi = double(C) + 0.5;
-    for (std::size_t c = 0; c < bp->categories.size(); ++c) {
-      x_ticks.push_back(double(c + 1));
-      x_tick_labels.push_back(bp->categories[c]);
-    }
-  } else if (auto* h = std::get_if<HistogramContent>(&figure.content)) {
-    double lo = INFINITY, hi = -INFINITY, top = 0;
-    const bool single = h->series.size() == 1;
-    for (std::size_t s = 0; s < h->series.size(); ++s) {
-      const auto& se = h->series[s];
-      auto p = vtkSmartPointer<ShapesPlot>::New();
-      if (single) {
-        for (std::size_t i = 0; i + 1 < se.edges.size(); ++i)
-          if (se.heights[i] > 0) p->rects.push_back({se.edges[i], se.edges[i + 1], 0, se.heights[i]});
-        p->fill = palette(s, 200);
-        p->stroke = palette(s);
-        p->line_width = 1.0f;
-      } else {
-        ShapesPlot::Polyline l;
-        for (std::size_t i = 0; i + 1 < se.edges.size(); ++i) {
-          if (i == 0) l.x.push_back(se.edges[0]), l.y.push_back(0);
-          l.x.push_back(se.edges[i]), l.y.push_back(se.heights[i]);
-          l.x.push_back(se.edges[i + 1]), l.y.push_back(se.heights[i]);
-        }
-        if (!se.edges.empty()) l.x.push_back(se.edges.back()), l.y.push_back(0);
-        p->lines.push_back(l);
-        p->stroke = palette(s);
-        p->line_width = 2.5f;
-        legend.push_back({se.name + " (n = " + std::to_string(se.n) + ")", palette(s),
-                          LegendItem::kLine});
-      }
-      for (double e : se.edges) lo = std::min(lo, e), hi = std::max(hi, e);
-      for (double v : se.heights) top = std::max(top, v);
-      add_plot(p);
-    }
-    if (lo <= hi) {
-      const double pad = 0.02 * (hi - lo);
-      x_lo = lo - pad, x_hi = hi + pad;
-    }
-    y_lo = 0, y_hi = (top > 0 ? top : 1) * 1.05;
-  } else if (auto* sc = std::get_if<ScatterContent>(&figure.content)) {
-    // Values to axis units: log10 on a log axis (NaN: cannot be placed).
-    const auto to_x = [&](double v) { return sc->x_log10 ? (v > 0 ? std::log10(v) : NAN) : v; };
-    const auto to_y = [&](double v) { return sc->y_log10 ? (v > 0 ? std::log10(v) : NAN) : v; };
-    // The range: every drawable marker and bar end.
-    double xl = INFINITY, xh = -INFINITY, yl = INFINITY, yh = -INFINITY;
-    const auto extend = [](double v, double* l, double* h) {
-      if (std::isfinite(v)) *l = std::min(*l, v), *h = std::max(*h, v);
-    };
-    const auto bar_end = [](const std::vector<double>& v, std::size_t i) {
-      return i < v.size() ? v[i] : NAN;
-    };
-    for (const ScatterSeries& se : sc->series)
-      for (std::size_t i = 0; i < se.x.size(); ++i) {
-        const double x = to_x(se.x[i]), y = to_y(se.y.at(i));
-        if (!std::isfinite(x) || !std::isfinite(y)) continue;
-        extend(x, &xl, &xh), extend(y, &yl, &yh);
-        extend(to_x(bar_end(se.x_lo, i)), &xl, &xh), extend(to_x(bar_end(se.x_hi, i)), &xl, &xh);
-        extend(to_y(bar_end(se.y_lo, i)), &yl, &yh), extend(to_y(bar_end(se.y_hi, i)), &yl, &yh);
-      }
-    // Padding: 6 % of the range, at least 0.12 decades on a log axis (room for the labels).
-    const auto pad_range = [](double* l, double* h, bool log) {
-      if (!(*l <= *h)) *l = 0, *h = 1;
-      double pad = 0.06 * (*h - *l);
-      if (log) pad = std::max(pad, 0.12);
-      if (pad <= 0) pad = std::max(0.5, 0.05 * std::fabs(*h));
-      *l -= pad, *h += pad;
-    };
-    pad_range(&xl, &xh, sc->x_log10);
-    pad_range(&yl, &yh, sc->y_log10);
-    x_lo = xl, x_hi = xh, y_lo = yl, y_hi = yh;
-    // Marks: every series' IQR bars first, then the markers with their labels on top (a bar of one
-    // platform never hides another's marker).
-    std::size_t clipped = 0;
-    std::vector<vtkSmartPointer<ShapesPlot>> marker_plots;
-    for (std::size_t s = 0; s < sc->series.size(); ++s) {
-      const ScatterSeries& se = sc->series[s];
-      auto bars = vtkSmartPointer<ShapesPlot>::New();
-      bars->stroke = palette(s, 200);
-      bars->line_width = 2.0f;
-      auto pts = vtkSmartPointer<ShapesPlot>::New();
-      pts->stroke = palette(s);
-      pts->marker_radius = 6.0f;
-      pts->label_font = 16;
-      pts->vertical_labels_if_crowded = false;
-      // A bar between two ends; an end that a log axis cannot place goes to the plot's edge.
-      const auto bar = [&](double a, double b, double at, bool along_x) {
-        if (std::isnan(a) && std::isnan(b)) return;
-        double u = along_x ? to_x(a) : to_y(a), v = along_x ? to_x(b) : to_y(b);
-        const double edge = along_x ? x_lo : y_lo;
-        if (std::isnan(u)) u = edge, ++clipped;
-        if (std::isnan(v)) v = edge, ++clipped;
-        if (along_x)
-          bars->lines.push_back({{u, v}, {at, at}});
-        else
-          bars->lines.push_back({{at, at}, {u, v}});
-      };
-      for (std::size_t i = 0; i < se.x.size(); ++i) {
-        const double x = to_x(se.x[i]), y = to_y(se.y.at(i));
-        if (!std::isfinite(x) || !std::isfinite(y)) continue;  // in the note
-        bar(bar_end(se.x_lo, i), bar_end(se.x_hi, i), y, true);
-        bar(bar_end(se.y_lo, i), bar_end(se.y_hi, i), x, false);
-        pts->markers.push_back({x, y});
-        if (i < se.labels.size() && !se.labels[i].empty()) {
-          ShapesPlot::Label l{x, y, se.labels[i]};
-          // upper right of the marker, clear of the horizontal bar through it
-          l.dx_px = pts->marker_radius + 2;
-          l.dy_px = pts->marker_radius + 5;
-          l.beside = true;
-          pts->labels.push_back(l);
-        }
-      }
-      add_plot(bars);
-      marker_plots.push_back(pts);
-      legend.push_back({se.name, palette(s), LegendItem::kMarker});
-    }
-    for (auto& pts : marker_plots) add_plot(pts);
-    x_grid_at_ticks = true;
-    out.layout.x_log10 = sc->x_log10;
-    out.layout.y_log10 = sc->y_log10;
-    if (sc->x_log10) log_ticks(x_lo, x_hi, &x_ticks, &x_tick_labels);
-    if (sc->y_log10) log_ticks(y_lo, y_hi, &y_ticks, &y_tick_labels);
-    std::string extra = scatter_omitted_note(*sc);
-    if (clipped)
-      extra += std::string(extra.empty() ? "" : "\n") + std::to_string(clipped) +
-               (clipped == 1 ? " bar end" : " bar ends") +
-               " at zero or below drawn to the edge of the log axis.";
-    if (!extra.empty()) out.note = extra + (out.note.empty() ? "" : "\n" + out.note);
-  } else {
-    const auto& c = std::get<BarChartContent>(figure.content);
-    const std::size_t C = std::max<std::size_t>(1, c.categories.size());
-    const std::size_t S = std::max<std::size_t>(1, c.series.size());
-    const double slot = 0.8 / double(S);
-    double top = 0;
-    bool any_label = false;
-    for (std::size_t s = 0; s < c.series.size(); ++s) {
-      auto p = vtkSmartPointer<ShapesPlot>::New();
-      p->fill = palette(s, 220);
-      p->stroke = palette(s);
-      p->line_width = 1.0f;
-      for (std::size_t i = 0; i < c.categories.size(); ++i) {
-        const double v = c.series[s].values.at(i);
-        const double centre = double(i + 1) + (double(s) - 0.5 * double(S - 1)) * slot;
-        p->rects.push_back({centre - 0.45 * slot, centre + 0.45 * slot, 0, v});
-        top = std::max(top, v);
-        if (i < c.series[s].labels.size() && !c.series[s].labels[i].empty()) {
-          p->labels.push_back({centre, std::max(v, 0.0), c.series[s].labels[i]});
-          any_label = true;
-        }
-      }
-      add_plot(p);
-      if (c.series.size() > 1 || !c.series[s].name.empty())
-        legend.push_back({c.series[s].name, palette(s, 220), LegendItem::kBox});
-    }
-    if (c.series.size() == 1 && legend.size() == 1) legend.clear();
-    x_lo = 0.5, x_hi = double(C) + 0.5;
-    for (std::size_t i = 0; i < c.categories.size(); ++i) {
-      x_ticks.push_back(double(i + 1));
-      x_tick_labels.push_back(c.categories[i]);
-    }
-    y_lo = 0;
-    const double y_top = c.y_max > 0 ? c.y_max : (top > 0 ? top : 1);
-    y_hi = any_label ? y_top * 1.22 : y_top * 1.05;  // room for the labels above the bars
-    // Ticks only up to the top of the scale (no "120 %").
-    const double step = nice_step(y_top, 8);
-    for (double t = 0; t <= y_top * (1 + 1e-9); t += step) {
-      y_ticks.push_back(t);
-      y_tick_labels.push_back(tick_text(t, step));
-    }
-  }
+  ChartMarks marks;
+  marks.chart = chart;
+  marks.note = figure.note;
+  std::visit([&](const auto& content) { draw_marks(content, marks); }, figure.content);
+  out.note = marks.note;
+  out.layout.x_log10 = marks.x_log10;
+  out.layout.y_log10 = marks.y_log10;
 
   // Layout (VTK screen coordinates: y up). From the top: title, plot; from the bottom: note,
-  // legend, x-axis title and tick labels.
+  // marks.legend, x-axis title and tick labels.
   int title_size = kTitleFont;
   std::vector<std::string> title_lines = {figure.title};
   while (title_size > 18 && text_width(figure.title, title_size, true) > W - 40) --title_size;
@@ -825,7 +916,7 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
   const float title_line_h = float(title_size) * 1.3f;
   const float title_h = 24 + float(title_lines.size()) * title_line_h;
   const std::vector<std::string> note_lines = wrap_px(out.note, W - 48, kNoteFont);
-  const auto legend_rows = LegendItem::layout(legend, W - 60);
+  const auto legend_rows = LegendItem::layout(marks.legend, W - 60);
   const float legend_h = legend_rows.empty() ? 0.f : float(legend_rows.size()) * LegendItem::kRowHeight + 6;
   const float note_h = note_lines.empty() ? 0.f : float(note_lines.size()) * kNoteFont * 1.35f + 8;
   const float axis_h = 78;  // tick labels and the x-axis title
@@ -833,7 +924,7 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
   const float left = 118, right = 36;
   float plot_w = W - left - right, plot_h = H - title_h - bottom;
   float plot_x = left;
-  if (square) {
+  if (marks.square) {
     const float side = std::min(plot_w, plot_h);
     plot_x = left + 0.5f * (plot_w - side);
     plot_w = plot_h = side;
@@ -841,28 +932,7 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
   chart->SetLayoutStrategy(vtkChart::AXES_TO_RECT);
   chart->SetSize(vtkRectf(plot_x, bottom, plot_w, plot_h));
 
-  auto apply_range = [](vtkAxis* ax, double lo, double hi) {
-    if (std::isnan(lo)) return;
-    ax->SetBehavior(vtkAxis::FIXED);
-    ax->SetUnscaledRange(lo, hi);
-    ax->SetRange(lo, hi);
-  };
-  apply_range(xa, x_lo, x_hi);
-  apply_range(ya, y_lo, y_hi);
-  auto custom_ticks = [](vtkAxis* ax, const std::vector<double>& at,
-                         const std::vector<std::string>& text) {
-    if (at.empty()) return;
-    vtkNew<vtkDoubleArray> pos;
-    vtkNew<vtkStringArray> lab;
-    for (std::size_t i = 0; i < at.size(); ++i) {
-      pos->InsertNextValue(at[i]);
-      lab->InsertNextValue(text[i]);
-    }
-    ax->SetCustomTickPositions(pos, lab);
-  };
-  custom_ticks(xa, x_ticks, x_tick_labels);
-  custom_ticks(ya, y_ticks, y_tick_labels);
-  if (!x_ticks.empty() && !x_grid_at_ticks) xa->SetGridVisible(false);
+  fix_axes(marks, xa, ya);
   scene->AddItem(chart);
 
   // Title: shrunk to fit the width (down to 18 px), wrapped when still too long.
@@ -911,32 +981,7 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
   vtkRenderWindow* win = impl_->view->GetRenderWindow();
   win->Render();
 
-  const std::filesystem::path dir = std::filesystem::path(stem).parent_path();
-  if (!dir.empty()) std::filesystem::create_directories(dir);
-  out.png = stem + ".png";
-  out.pdf = stem + ".pdf";
-  out.csv = stem + ".csv";
-
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(win);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff();  // the frame just rendered
-  grab->Update();
-  vtkNew<vtkPNGWriter> png;
-  png->SetFileName(out.png.c_str());
-  png->SetInputConnection(grab->GetOutputPort());
-  png->Write();
-
-  vtkNew<vtkPDFExporter> pdf;
-  pdf->SetRenderWindow(win);
-  pdf->SetFileName(out.pdf.c_str());
-  pdf->SetTitle(figure.title.c_str());
-  pdf->Write();
-
-  write_figure_data(figure, out.csv);
-  if (!std::filesystem::exists(out.png) || !std::filesystem::exists(out.pdf))
-    throw UserError("VTK did not write " + out.png + " / " + out.pdf);
+  write_figure_files(win, figure, stem, &out);
 
   // Where the plot area ended up, in PNG pixels (rows from the top).
   const vtkVector2f p1 = xa->GetPosition1(), p2 = xa->GetPosition2();

@@ -1,8 +1,7 @@
 // What the figures and the report need from the records beyond the analysis stage's samples
 // (analysis/run_records.h): conformance with the reference rasterizer (`ref_diff`) and the cases
-// whose status is not `ok`. One fast pass over DIR/records/*.csv (columns located by name in the
-// header, which must equal metrics/records.h's records_header(); cells split in place, numbers
-// parsed with std::from_chars; files on several threads).
+// whose status is not `ok`. One pass over DIR/records/*.csv with metrics/records_reader.h (only the
+// cells needed are converted; files on several threads).
 #pragma once
 
 #include <cstddef>

@@ -67,94 +67,79 @@ const char* kTitle = "Decision-theoretic regulation of levels of detail";
 
 }  // namespace
 
-StudyRunResult run_regulation_study(const StudyRunOptions& options) {
-  const auto t_start = Clock::now();
-  RegulationSettings s = read_regulation_experiment(options.experiment);
-  if (!options.platforms.empty()) {
-    if (options.platforms.size() != 1)
-      throw UserError("the regulation study renders on one platform: give at most one --platform");
-    try {
-      validate_platform(options.platforms.front());  // names the allowed platforms
-    } catch (const UserError& e) {
-      throw UserError(std::string("--platform: ") + e.what());
-    }
-    s.platform = options.platforms.front();
-  }
-  const std::string dir = options.out_dir.empty() ? "outputs/" + s.name : options.out_dir;
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (!std::filesystem::is_directory(dir))
-    throw UserError("cannot create the output directory " + dir + ": " + ec.message());
-  std::filesystem::remove(dir + "/study.json");  // a folder is complete only when it is rewritten
-  // derived outputs of an earlier run (analyze, plot) would describe the old numbers
-  std::filesystem::remove(dir + "/regulation.md", ec);
-  std::filesystem::remove_all(dir + "/figures", ec);
-  auto say = [&](const std::string& line) {
-    if (options.progress) std::fprintf(stderr, "regulation: %s\n", line.c_str());
-  };
+namespace {
 
-  json j = document_header("regulation", 1);
-  j["experiment"] = {{"file", s.file}, {"name", s.name}};
-  std::vector<std::string> findings;
-
-  // ---- random instances: greedy against the optimum ----
-  auto t = Clock::now();
-  say("random instances: " + std::to_string(s.random.instances));
+// Random instances: greedy against the exact optimum (and brute force on small ones); writes
+// instances.csv, fills j["random"], returns the number of instances.
+std::size_t random_instances_stage(const RegulationSettings& s, const std::string& dir, json& j,
+                                   std::vector<std::string>& findings) {
+  const auto t = Clock::now();
   const std::vector<InstanceComparison> inst = run_random_instances(s.random);
   write_file_atomic(dir + "/instances.csv", instances_csv(inst));
-  {
-    std::vector<double> ratio, ratio_only, loss_ratio;
-    int over2 = 0, over2_only = 0, brute = 0, mismatch = 0, over_budget = 0, adversarial = 0, no_opt = 0;
-    for (const InstanceComparison& c : inst) {
-      ratio.push_back(c.value_ratio);
-      ratio_only.push_back(c.value_ratio_ratio_only);
-      loss_ratio.push_back(c.loss_ratio);
-      over2 += c.value_ratio > 2 + 1e-9;
-      over2_only += c.value_ratio_ratio_only > 2 + 1e-9;
-      brute += c.brute_forced;
-      mismatch += !c.dp_matches_brute_force;
-      over_budget += !c.within_budget;
-      adversarial += c.adversarial;
-      no_opt += !c.optimum_computed;
-    }
-    j["random"] = {{"instances", inst.size()},
-                   {"adversarial", adversarial},
-                   {"objects", {s.random.objects_min, s.random.objects_max}},
-                   {"levels", {s.random.levels_min, s.random.levels_max}},
-                   {"max_cost", s.random.max_cost},
-                   {"brute_forced", brute},
-                   {"dp_mismatches", mismatch},
-                   {"over_budget", over_budget},
-                   {"optimum_not_computed", no_opt},
-                   {"value_ratio", quantiles(ratio)},
-                   {"value_ratio_above_2", over2},
-                   {"value_ratio_ratio_only", quantiles(ratio_only)},
-                   {"value_ratio_ratio_only_above_2", over2_only},
-                   {"loss_ratio", quantiles(loss_ratio)},
-                   {"seconds", seconds_since(t)}};
-    std::vector<json> r, ro;
-    for (double v : ratio) r.push_back(nullable(v));
-    for (double v : ratio_only) ro.push_back(nullable(v));
-    j["random"]["ratios"] = r;
-    j["random"]["ratios_ratio_only"] = ro;
-    if (over2) findings.push_back(std::to_string(over2) + " random instances with value(OPT) / value(greedy) > 2");
-    if (mismatch) findings.push_back(std::to_string(mismatch) + " random instances where the DP differs from brute force");
-    if (over_budget) findings.push_back(std::to_string(over_budget) + " random instances with a plan over budget");
+  std::vector<double> ratio, ratio_only, loss_ratio;
+  int over2 = 0, over2_only = 0, brute = 0, mismatch = 0, over_budget = 0, adversarial = 0, no_opt = 0;
+  for (const InstanceComparison& c : inst) {
+    ratio.push_back(c.value_ratio);
+    ratio_only.push_back(c.value_ratio_ratio_only);
+    loss_ratio.push_back(c.loss_ratio);
+    over2 += c.value_ratio > 2 + 1e-9;
+    over2_only += c.value_ratio_ratio_only > 2 + 1e-9;
+    brute += c.brute_forced;
+    mismatch += !c.dp_matches_brute_force;
+    over_budget += !c.within_budget;
+    adversarial += c.adversarial;
+    no_opt += !c.optimum_computed;
   }
+  j["random"] = {{"instances", inst.size()},
+                 {"adversarial", adversarial},
+                 {"objects", {s.random.objects_min, s.random.objects_max}},
+                 {"levels", {s.random.levels_min, s.random.levels_max}},
+                 {"max_cost", s.random.max_cost},
+                 {"brute_forced", brute},
+                 {"dp_mismatches", mismatch},
+                 {"over_budget", over_budget},
+                 {"optimum_not_computed", no_opt},
+                 {"value_ratio", quantiles(ratio)},
+                 {"value_ratio_above_2", over2},
+                 {"value_ratio_ratio_only", quantiles(ratio_only)},
+                 {"value_ratio_ratio_only_above_2", over2_only},
+                 {"loss_ratio", quantiles(loss_ratio)},
+                 {"seconds", seconds_since(t)}};
+  std::vector<json> r, ro;
+  for (double v : ratio) r.push_back(nullable(v));
+  for (double v : ratio_only) ro.push_back(nullable(v));
+  j["random"]["ratios"] = r;
+  j["random"]["ratios_ratio_only"] = ro;
+  if (over2) findings.push_back(std::to_string(over2) + " random instances with value(OPT) / value(greedy) > 2");
+  if (mismatch) findings.push_back(std::to_string(mismatch) + " random instances where the DP differs from brute force");
+  if (over_budget) findings.push_back(std::to_string(over_budget) + " random instances with a plan over budget");
+  return inst.size();
+}
 
-  // ---- the scene, its LOD chains and attention tags ----
-  t = Clock::now();
-  say("scene " + s.scene.name + " and LOD chains");
-  const Scene scene = build_scene(s.scene);
-  const std::vector<Viewpoint> path = build_camera_path(s.scene, scene);
+// The scene, its LOD chains (lod_levels.csv) and attention tags; fills j["lod"], j["scene"],
+// j["cost_model"] and j["attention"].
+struct StudyScene {
+  Scene scene;
+  std::vector<Viewpoint> path;
   std::vector<LodChain> chains;
+  std::vector<double> weights;  // attention weight of each object
+};
+
+StudyScene scene_stage(const RegulationSettings& s, const std::string& dir, json& j) {
+  const auto t = Clock::now();
+  StudyScene out;
+  out.scene = build_scene(s.scene);
+  out.path = build_camera_path(s.scene, out.scene);
+  std::vector<LodChain>& chains = out.chains;
+  const Scene& scene = out.scene;
+  const std::vector<Viewpoint>& path = out.path;
   std::vector<std::string> names;
   for (const SceneObject& o : scene.objects) {
     chains.push_back(build_lod_chain(o, s.lod_ratios, s.cache_size));
     names.push_back(o.name);
   }
   const std::vector<Category> tags = tag_objects(names, s.attention, s.seed);
-  std::vector<double> weights;
+  std::vector<double>& weights = out.weights;
   std::map<std::string, int> tag_count;
   for (Category c : tags) {
     weights.push_back(attention_weight(s.attention, c));
@@ -209,10 +194,169 @@ StudyRunResult run_regulation_study(const StudyRunOptions& options) {
   j["attention"] = {{"alpha", s.attention.alpha}, {"element_given_object", s.attention.element_given_object},
                     {"categories", probs}, {"declared_tags", s.attention.tags.size()},
                     {"error_exponent", s.error_exponent}};
+  return out;
+}
+
+// budget_sweep.csv, frames.csv and (when measured) pixels.csv from the rendered plans.
+void write_plan_tables(const RenderOutcome& ro, const std::vector<LodChain>& chains,
+                       const std::string& dir, json& j) {
+  std::ostringstream sw, fr;
+  sw << "frame,budget_ms,policy,visible,budget_units,plan_units,fits,expected_cost,value,"
+        "value_ratio_opt_over_policy,predicted_us,triangles,pixels,predicted_estimated_us,transformed\n";
+  fr << "frame,budget_ms,policy,predicted_us,measured_median_us,skipped,repetitions,measured_us,"
+        "predicted_estimated_us\n";
+  for (const FrameRecord& r : ro.records) {
+    sw << r.frame << ',' << num(r.budget_ms) << ',' << r.policy << ',' << r.visible << ','
+       << r.budget_units << ',' << r.plan_units << ',' << int(r.fits) << ',' << num(r.expected_cost)
+       << ',' << num(r.value) << ',' << num(r.value_ratio_to_optimal) << ',' << num(r.predicted_us)
+       << ',' << r.triangles << ',' << num(r.pixels) << ',' << num(r.predicted_estimated_us) << ',' << r.transformed << '\n';
+    std::string reps;
+    for (double v : r.measured_us) reps += (reps.empty() ? "" : ";") + num(v);
+    fr << r.frame << ',' << num(r.budget_ms) << ',' << r.policy << ',' << num(r.predicted_us) << ','
+       << num(r.measured_median_us) << ',' << int(r.skipped) << ',' << r.measured_us.size() << ','
+       << reps << ',' << num(r.predicted_estimated_us) << '\n';
+  }
+  write_file_atomic(dir + "/budget_sweep.csv", sw.str());
+  write_file_atomic(dir + "/frames.csv", fr.str());
+  if (ro.pixels_measured) {
+    std::ostringstream px;
+    px << "frame,object,name,distance_m,radius_m,estimated_pixels,level,measured_pixels\n";
+    std::vector<double> ratio;  // measured level 0 / estimated, objects seen whole and far
+    for (const PixelSample& p : ro.pixels) {
+      for (std::size_t k = 0; k < p.measured.size(); ++k)
+        px << p.frame << ',' << p.object << ',' << analysis::csv_escape(chains[p.object].name) << ','
+           << num(p.distance_m) << ',' << num(p.radius_m) << ',' << num(p.estimated) << ',' << k << ','
+           << num(p.measured[k]) << '\n';
+      if (p.estimated > 0 && !p.measured.empty()) ratio.push_back(p.measured[0] / p.estimated);
+    }
+    write_file_atomic(dir + "/pixels.csv", px.str());
+    j["cost_model"]["measured_over_estimated_pixels"] = quantiles(ratio);
+  }
+}
+
+// Per policy and budget: costs, predictions against measurements, value against the optimum;
+// fills j["sweep"] and the render's error summaries.
+void sweep_stage(const RegulationSettings& s, const RenderOutcome& ro, json& j,
+                 std::vector<std::string>& findings) {
+  json sweep = json::array(), points = json::array();
+  int scene_over2 = 0, greedy_over = 0, scene_no_opt = 0;
+  std::vector<double> all_abs_rel, all_abs_rel_est;
+  for (Policy p : kAllPolicies)
+    for (double b : s.budgets_ms) {
+      std::vector<double> cost, pred, meas, rel, ratio, abs_rel, abs_rel_est;
+      int frames = 0, fits = 0, skips = 0, rendered = 0, feasible = 0;
+      for (const FrameRecord& r : ro.records) {
+        if (r.policy != policy_name(p) || r.budget_ms != b) continue;
+        ++frames;
+        fits += r.fits;
+        feasible += r.feasible;
+        cost.push_back(r.expected_cost);
+        pred.push_back(r.predicted_us / 1000.0);
+        ratio.push_back(r.value_ratio_to_optimal);
+        if (p == Policy::kGreedy && r.value_ratio_to_optimal > 2 + 1e-9) ++scene_over2;
+        if (p == Policy::kGreedy && r.feasible && !r.fits) ++greedy_over;
+        if (p == Policy::kGreedy && std::isnan(r.value_ratio_to_optimal)) ++scene_no_opt;
+        if (!r.measured_us.empty()) {
+          ++rendered;
+          skips += r.skipped;
+          meas.push_back(r.measured_median_us / 1000.0);
+          rel.push_back((r.measured_median_us - r.predicted_us) / r.predicted_us);
+          abs_rel.push_back(std::abs(r.predicted_us - r.measured_median_us) / r.measured_median_us);
+          abs_rel_est.push_back(std::abs(r.predicted_estimated_us - r.measured_median_us) /
+                                r.measured_median_us);
+          all_abs_rel.push_back(abs_rel.back());
+          all_abs_rel_est.push_back(abs_rel_est.back());
+          points.push_back({{"policy", r.policy}, {"budget_ms", b}, {"frame", r.frame},
+                            {"predicted_ms", r.predicted_us / 1000.0},
+                            {"measured_ms", r.measured_median_us / 1000.0}});
+        }
+      }
+      if (!frames) continue;
+      const json qc = quantiles(cost), qp = quantiles(pred), qm = quantiles(meas), qr = quantiles(rel),
+                 qv = quantiles(ratio);
+      sweep.push_back({{"policy", policy_name(p)}, {"budget_ms", b}, {"frames", frames},
+                       {"fits", fits}, {"feasible", feasible}, {"mean_expected_cost", qc.value("mean", json())},
+                       {"median_expected_cost", qc.value("q50", json())},
+                       {"mean_predicted_ms", qp.value("mean", json())},
+                       {"max_value_ratio_to_optimal", qv.value("max", json())},
+                       {"rendered", rendered}, {"skips", skips},
+                       {"skip_fraction", rendered ? json(double(skips) / rendered) : json()},
+                       {"median_measured_ms", qm.value("q50", json())},
+                       {"median_relative_error", qr.value("q50", json())},
+                       {"median_abs_relative_error", quantiles(abs_rel).value("q50", json())},
+                       {"median_abs_relative_error_estimated_pixels",
+                        quantiles(abs_rel_est).value("q50", json())}});
+    }
+  j["sweep"] = sweep;
+  j["render"]["points"] = points;
+  // |predicted - measured| / measured over every rendered plan: the prediction used, and the
+  // same plans predicted with the estimated #pix
+  j["render"]["abs_relative_error"] = quantiles(all_abs_rel);
+  j["render"]["abs_relative_error_estimated_pixels"] = quantiles(all_abs_rel_est);
+  j["scene_value_ratio_above_2"] = scene_over2;
+  // frame x budget instances whose exact DP would exceed dp_max_cells (no optimal row for them)
+  j["scene_optimum_not_computed"] = scene_no_opt;
+  if (scene_over2) findings.push_back(std::to_string(scene_over2) + " scene frames with value(OPT) / value(greedy) > 2");
+  if (greedy_over) findings.push_back(std::to_string(greedy_over) + " scene frames where greedy's plan exceeds a feasible budget");
+}
+
+// The lines `renderaudit run` prints when the study is done.
+std::string summary_text(const json& j, const std::string& dir, std::size_t instances,
+                         const std::vector<std::string>& findings) {
+  std::ostringstream sum;
+  const json& rq = j["random"]["value_ratio"];
+  sum << "regulation study -> " << dir << " (" << fmt(j["wall_s"], "%.1f") << " s)\n"
+      << "random instances: " << instances << ", value(OPT)/value(greedy) max " << fmt(rq.value("max", json()))
+      << ", median " << fmt(rq.value("q50", json())) << "; ratio-only greedy max "
+      << fmt(j["random"]["value_ratio_ratio_only"].value("max", json())) << "\n";
+  for (const json& row : j["sweep"])
+    if (row["policy"] == "greedy")
+      sum << "budget " << fmt(row["budget_ms"]) << " ms: greedy expected cost "
+          << fmt(row["mean_expected_cost"]) << ", skips " << row["skips"].get<int>() << "/"
+          << row["rendered"].get<int>() << "\n";
+  for (const std::string& f : findings) sum << "FINDING: " << f << "\n";
+  return sum.str();
+}
+}  // namespace
+
+StudyRunResult run_regulation_study(const StudyRunOptions& options) {
+  const auto t_start = Clock::now();
+  RegulationSettings s = read_regulation_experiment(options.experiment);
+  if (!options.platforms.empty()) {
+    if (options.platforms.size() != 1)
+      throw UserError("the regulation study renders on one platform: give at most one --platform");
+    try {
+      validate_platform(options.platforms.front());  // names the allowed platforms
+    } catch (const UserError& e) {
+      throw UserError(std::string("--platform: ") + e.what());
+    }
+    s.platform = options.platforms.front();
+  }
+  const std::string dir = options.out_dir.empty() ? "outputs/" + s.name : options.out_dir;
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (!std::filesystem::is_directory(dir))
+    throw UserError("cannot create the output directory " + dir + ": " + ec.message());
+  std::filesystem::remove(dir + "/study.json");  // a folder is complete only when it is rewritten
+  // derived outputs of an earlier run (analyze, plot) would describe the old numbers
+  std::filesystem::remove(dir + "/regulation.md", ec);
+  std::filesystem::remove_all(dir + "/figures", ec);
+  auto say = [&](const std::string& line) {
+    if (options.progress) std::fprintf(stderr, "regulation: %s\n", line.c_str());
+  };
+
+  json j = document_header("regulation", 1);
+  j["experiment"] = {{"file", s.file}, {"name", s.name}};
+  std::vector<std::string> findings;
+
+  say("random instances: " + std::to_string(s.random.instances));
+  const std::size_t instances = random_instances_stage(s, dir, j, findings);
+  say("scene " + s.scene.name + " and LOD chains");
+  const StudyScene st = scene_stage(s, dir, j);
 
   // ---- plans along the path, rendered ----
   say(std::string(s.render ? "planning and rendering on " + s.platform : "planning (no rendering)"));
-  const RenderOutcome ro = plan_and_render(scene, chains, weights, path, s, dir, options.progress);
+  const RenderOutcome ro = plan_and_render(st.scene, st.chains, st.weights, st.path, s, dir, options.progress);
   j["platform"] = s.platform;
   j["render"] = {{"enabled", s.render}, {"renderer", ro.renderer}, {"version", ro.version},
                  {"base_us", ro.base_us}, {"base_reps_us", ro.base_reps_us},
@@ -224,102 +368,8 @@ StudyRunResult run_regulation_study(const StudyRunOptions& options) {
           ? "measured: GL_SAMPLES_PASSED of each level of each visible object drawn alone, depth test off, per frame"
           : "estimated: projected bounding-sphere disc clipped to the window";
   j["cost_model"]["pixels_measured"] = ro.pixels_measured;
-  {
-    std::ostringstream sw, fr;
-    sw << "frame,budget_ms,policy,visible,budget_units,plan_units,fits,expected_cost,value,"
-          "value_ratio_opt_over_policy,predicted_us,triangles,pixels,predicted_estimated_us,transformed\n";
-    fr << "frame,budget_ms,policy,predicted_us,measured_median_us,skipped,repetitions,measured_us,"
-          "predicted_estimated_us\n";
-    for (const FrameRecord& r : ro.records) {
-      sw << r.frame << ',' << num(r.budget_ms) << ',' << r.policy << ',' << r.visible << ','
-         << r.budget_units << ',' << r.plan_units << ',' << int(r.fits) << ',' << num(r.expected_cost)
-         << ',' << num(r.value) << ',' << num(r.value_ratio_to_optimal) << ',' << num(r.predicted_us)
-         << ',' << r.triangles << ',' << num(r.pixels) << ',' << num(r.predicted_estimated_us) << ',' << r.transformed << '\n';
-      std::string reps;
-      for (double v : r.measured_us) reps += (reps.empty() ? "" : ";") + num(v);
-      fr << r.frame << ',' << num(r.budget_ms) << ',' << r.policy << ',' << num(r.predicted_us) << ','
-         << num(r.measured_median_us) << ',' << int(r.skipped) << ',' << r.measured_us.size() << ','
-         << reps << ',' << num(r.predicted_estimated_us) << '\n';
-    }
-    write_file_atomic(dir + "/budget_sweep.csv", sw.str());
-    write_file_atomic(dir + "/frames.csv", fr.str());
-    if (ro.pixels_measured) {
-      std::ostringstream px;
-      px << "frame,object,name,distance_m,radius_m,estimated_pixels,level,measured_pixels\n";
-      std::vector<double> ratio;  // measured level 0 / estimated, objects seen whole and far
-      for (const PixelSample& p : ro.pixels) {
-        for (std::size_t k = 0; k < p.measured.size(); ++k)
-          px << p.frame << ',' << p.object << ',' << analysis::csv_escape(chains[p.object].name) << ','
-             << num(p.distance_m) << ',' << num(p.radius_m) << ',' << num(p.estimated) << ',' << k << ','
-             << num(p.measured[k]) << '\n';
-        if (p.estimated > 0 && !p.measured.empty()) ratio.push_back(p.measured[0] / p.estimated);
-      }
-      write_file_atomic(dir + "/pixels.csv", px.str());
-      j["cost_model"]["measured_over_estimated_pixels"] = quantiles(ratio);
-    }
-  }
-  {
-    json sweep = json::array(), points = json::array();
-    int scene_over2 = 0, greedy_over = 0, scene_no_opt = 0;
-    std::vector<double> all_abs_rel, all_abs_rel_est;
-    for (Policy p : kAllPolicies)
-      for (double b : s.budgets_ms) {
-        std::vector<double> cost, pred, meas, rel, ratio, abs_rel, abs_rel_est;
-        int frames = 0, fits = 0, skips = 0, rendered = 0, feasible = 0;
-        for (const FrameRecord& r : ro.records) {
-          if (r.policy != policy_name(p) || r.budget_ms != b) continue;
-          ++frames;
-          fits += r.fits;
-          feasible += r.feasible;
-          cost.push_back(r.expected_cost);
-          pred.push_back(r.predicted_us / 1000.0);
-          ratio.push_back(r.value_ratio_to_optimal);
-          if (p == Policy::kGreedy && r.value_ratio_to_optimal > 2 + 1e-9) ++scene_over2;
-          if (p == Policy::kGreedy && r.feasible && !r.fits) ++greedy_over;
-          if (p == Policy::kGreedy && std::isnan(r.value_ratio_to_optimal)) ++scene_no_opt;
-          if (!r.measured_us.empty()) {
-            ++rendered;
-            skips += r.skipped;
-            meas.push_back(r.measured_median_us / 1000.0);
-            rel.push_back((r.measured_median_us - r.predicted_us) / r.predicted_us);
-            abs_rel.push_back(std::abs(r.predicted_us - r.measured_median_us) / r.measured_median_us);
-            abs_rel_est.push_back(std::abs(r.predicted_estimated_us - r.measured_median_us) /
-                                  r.measured_median_us);
-            all_abs_rel.push_back(abs_rel.back());
-            all_abs_rel_est.push_back(abs_rel_est.back());
-            points.push_back({{"policy", r.policy}, {"budget_ms", b}, {"frame", r.frame},
-                              {"predicted_ms", r.predicted_us / 1000.0},
-                              {"measured_ms", r.measured_median_us / 1000.0}});
-          }
-        }
-        if (!frames) continue;
-        const json qc = quantiles(cost), qp = quantiles(pred), qm = quantiles(meas), qr = quantiles(rel),
-                   qv = quantiles(ratio);
-        sweep.push_back({{"policy", policy_name(p)}, {"budget_ms", b}, {"frames", frames},
-                         {"fits", fits}, {"feasible", feasible}, {"mean_expected_cost", qc.value("mean", json())},
-                         {"median_expected_cost", qc.value("q50", json())},
-                         {"mean_predicted_ms", qp.value("mean", json())},
-                         {"max_value_ratio_to_optimal", qv.value("max", json())},
-                         {"rendered", rendered}, {"skips", skips},
-                         {"skip_fraction", rendered ? json(double(skips) / rendered) : json()},
-                         {"median_measured_ms", qm.value("q50", json())},
-                         {"median_relative_error", qr.value("q50", json())},
-                         {"median_abs_relative_error", quantiles(abs_rel).value("q50", json())},
-                         {"median_abs_relative_error_estimated_pixels",
-                          quantiles(abs_rel_est).value("q50", json())}});
-      }
-    j["sweep"] = sweep;
-    j["render"]["points"] = points;
-    // |predicted - measured| / measured over every rendered plan: the prediction used, and the
-    // same plans predicted with the estimated #pix
-    j["render"]["abs_relative_error"] = quantiles(all_abs_rel);
-    j["render"]["abs_relative_error_estimated_pixels"] = quantiles(all_abs_rel_est);
-    j["scene_value_ratio_above_2"] = scene_over2;
-    // frame x budget instances whose exact DP would exceed dp_max_cells (no optimal row for them)
-    j["scene_optimum_not_computed"] = scene_no_opt;
-    if (scene_over2) findings.push_back(std::to_string(scene_over2) + " scene frames with value(OPT) / value(greedy) > 2");
-    if (greedy_over) findings.push_back(std::to_string(greedy_over) + " scene frames where greedy's plan exceeds a feasible budget");
-  }
+  write_plan_tables(ro, st.chains, dir, j);
+  sweep_stage(s, ro, j, findings);
   j["findings"] = findings;
   j["wall_s"] = seconds_since(t_start);
   write_file_atomic(dir + "/regulation.json", j.dump(1) + "\n");
@@ -336,19 +386,7 @@ StudyRunResult run_regulation_study(const StudyRunOptions& options) {
   StudyRunResult res;
   res.dir = dir;
   res.findings = !findings.empty();
-  std::ostringstream sum;
-  const json& rq = j["random"]["value_ratio"];
-  sum << "regulation study -> " << dir << " (" << fmt(j["wall_s"], "%.1f") << " s)\n"
-      << "random instances: " << inst.size() << ", value(OPT)/value(greedy) max " << fmt(rq.value("max", json()))
-      << ", median " << fmt(rq.value("q50", json())) << "; ratio-only greedy max "
-      << fmt(j["random"]["value_ratio_ratio_only"].value("max", json())) << "\n";
-  for (const json& row : j["sweep"])
-    if (row["policy"] == "greedy")
-      sum << "budget " << fmt(row["budget_ms"]) << " ms: greedy expected cost "
-          << fmt(row["mean_expected_cost"]) << ", skips " << row["skips"].get<int>() << "/"
-          << row["rendered"].get<int>() << "\n";
-  for (const std::string& f : findings) sum << "FINDING: " << f << "\n";
-  res.summary = sum.str();
+  res.summary = summary_text(j, dir, instances, findings);
   return res;
 }
 

@@ -1,0 +1,180 @@
+// Block reading and in-place splitting of records files (see the header).
+#include "metrics/records_reader.h"
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <vector>
+
+#include "util/errors.h"
+
+namespace ra {
+
+std::optional<double> RecordRow::number(RecordColumn c) const {
+  const std::string_view f = cell(c);
+  if (f.empty()) return std::nullopt;
+  double v = 0;
+  const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
+  if (ec != std::errc() || end != f.data() + f.size() || !std::isfinite(v)) {
+    fail("column '" + std::string(record_column_name(c)) + "': '" + std::string(f) +
+         "' is not a finite number");
+  }
+  return v;
+}
+
+double RecordRow::required_number(RecordColumn c) const {
+  const std::optional<double> v = number(c);
+  if (!v) fail("column '" + std::string(record_column_name(c)) + "' is empty");
+  return *v;
+}
+
+CaseStatus RecordRow::status() const {
+  const std::string_view s = cell(RecordColumn::kStatus);
+  for (int i = 0; i < 4; ++i)
+    if (s == status_name(static_cast<CaseStatus>(i))) return static_cast<CaseStatus>(i);
+  fail("unknown status '" + std::string(s) + "' (allowed: ok, invalid, crash, timeout)");
+}
+
+Visibility RecordRow::visibility() const {
+  const std::string_view s = cell(RecordColumn::kVisibility);
+  for (int i = 0; i < 5; ++i)
+    if (s == visibility_name(static_cast<Visibility>(i))) return static_cast<Visibility>(i);
+  fail("unknown visibility '" + std::string(s) +
+       "' (allowed: true-visible, true-invisible, false-visible, false-invisible, "
+       "multiple-visible)");
+}
+
+void RecordRow::fail(const std::string& why) const {
+  throw UserError(*file_ + ":" + std::to_string(line_) + ": " + why);
+}
+
+void RecordRow::not_an_integer(RecordColumn c) const {
+  fail("column '" + std::string(record_column_name(c)) + "': '" + std::string(cell(c)) +
+       "' is not an integer");
+}
+
+// Feeds lines to a RecordRow and the caller's callback.
+class RecordsFileReader {
+ public:
+  RecordsFileReader(const std::string& path, const std::function<void(const RecordRow&)>& row)
+      : path_(path), callback_(row), header_(records_header()) {
+    row_.file_ = &path_;
+  }
+
+  void read() {
+    std::ifstream in(path_, std::ios::binary);
+    if (!in) throw UserError(path_ + ": cannot read records file");
+    std::vector<char> block(std::size_t{4} << 20);
+    std::string carry;  // an incomplete line from the previous block
+    while (in) {
+      in.read(block.data(), static_cast<std::streamsize>(block.size()));
+      const std::size_t n = static_cast<std::size_t>(in.gcount());
+      if (n == 0) break;
+      std::size_t start = 0;
+      for (;;) {
+        const void* found = std::memchr(block.data() + start, '\n', n - start);
+        if (!found) break;
+        const std::size_t end =
+            static_cast<std::size_t>(static_cast<const char*>(found) - block.data());
+        if (carry.empty()) {
+          line(std::string_view(block.data() + start, end - start));
+        } else {
+          carry.append(block.data() + start, end - start);
+          line(carry);
+          carry.clear();
+        }
+        start = end + 1;
+      }
+      carry.append(block.data() + start, n - start);
+    }
+    if (in.bad()) throw UserError(path_ + ": read error");
+    if (!carry.empty()) line(carry);
+    if (row_.line_ == 0) bad_header();
+  }
+
+ private:
+  [[noreturn]] void bad_header() const {
+    throw UserError(path_ + ":1: unexpected records header (schema version " +
+                    std::to_string(kRecordsSchemaVersion) + " expects: " + header_ + ")");
+  }
+
+  void line(std::string_view text) {
+    ++row_.line_;
+    if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
+    if (row_.line_ == 1) {
+      if (text != header_) bad_header();
+      return;
+    }
+    if (!text.empty() && text.front() == '#') return;  // the seal of a shard file
+    std::size_t n = 0;
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t comma = text.find(',', start);
+      if (n < kRecordColumnCount) {
+        row_.cells_[n] =
+            text.substr(start, comma == std::string_view::npos ? comma : comma - start);
+      }
+      ++n;
+      if (comma == std::string_view::npos) break;
+      start = comma + 1;
+    }
+    if (n != kRecordColumnCount) {
+      row_.fail("expected " + std::to_string(kRecordColumnCount) + " fields, found " +
+                std::to_string(n));
+    }
+    callback_(row_);
+  }
+
+  const std::string path_;
+  const std::function<void(const RecordRow&)>& callback_;
+  const std::string header_;
+  RecordRow row_;
+};
+
+void for_each_record_row(const std::string& path,
+                         const std::function<void(const RecordRow&)>& row) {
+  RecordsFileReader(path, row).read();
+}
+
+Record parse_record(const RecordRow& row) {
+  using C = RecordColumn;
+  const auto number = [&](C c) { return row.number(c).value_or(kNA); };
+  Record r;
+  r.platform = std::string(row.cell(C::kPlatform));
+  r.view = row.integer<int>(C::kView);
+  r.view_group = row.integer<int>(C::kViewGroup);
+  r.orientation = row.integer<int>(C::kOrientation);
+  r.fov_deg = number(C::kFovDeg);
+  r.width = row.integer<int>(C::kWidth);
+  r.height = row.integer<int>(C::kHeight);
+  r.near = number(C::kNear);
+  r.far = number(C::kFar);
+  r.kind = std::string(row.cell(C::kKind));
+  r.index = row.integer<uint64_t>(C::kIndex);
+  r.status = row.status();
+  r.visibility = row.visibility();
+  r.pixels = row.integer<int64_t>(C::kPixels);
+  r.pe = number(C::kPe);
+  r.pe_norm = number(C::kPeNorm);
+  r.lse_s = number(C::kLseS);
+  r.lse_u = number(C::kLseU);
+  r.extent_error = number(C::kExtentError);
+  r.lse_s_norm = number(C::kLseSNorm);
+  r.lse_u_norm = number(C::kLseUNorm);
+  r.chain_8connected = row.optional_integer<int>(C::kChain8Connected, -1);
+  r.gaps = row.optional_integer<int64_t>(C::kGaps, -1);
+  r.te_s = number(C::kTeS);
+  r.te_u = number(C::kTeU);
+  r.te_s_norm = number(C::kTeSNorm);
+  r.te_u_norm = number(C::kTeUNorm);
+  r.te_u_edge_norm = number(C::kTeUEdgeNorm);
+  r.full_window = row.optional_integer<int>(C::kFullWindow, -1);
+  r.simply_connected = row.optional_integer<int>(C::kSimplyConnected, -1);
+  r.ref_diff = row.optional_integer<int64_t>(C::kRefDiff, -1);
+  r.pixel_hash = row.integer<uint64_t>(C::kPixelHash);
+  r.render_us = number(C::kRenderUs);
+  r.batch_size = row.optional_integer<int64_t>(C::kBatchSize, 0);
+  return r;
+}
+
+}  // namespace ra
