@@ -79,9 +79,9 @@ nlohmann::json summary_row(const std::string& platform, Kind kind, int window, d
 // One platform, in this process: prints one JSON object per configuration on stdout, and per
 // kind and window one pooled over both fields of view (fov_deg 0).
 int measure_platform(const Options& opt) {
-  const PlatformSpec* spec = find_platform(opt.platform);
-  if (!spec || !spec->gallium_driver || spec->samples > 0) {  // the aliased readback only
-    std::fprintf(stderr, "readback_bench: not an aliased OSMesa platform: %s\n", opt.platform.c_str());
+  const std::optional<PlatformSpec> spec = find_platform(opt.platform);
+  if (!spec || !spec->draws_with_gl() || spec->samples > 0) {  // the aliased readback only
+    std::fprintf(stderr, "readback_bench: not an aliased GL platform: %s\n", opt.platform.c_str());
     return 2;
   }
   const char* methods[] = {"floor", "naive", "region", "project", "batched"};
@@ -99,7 +99,7 @@ int measure_platform(const Options& opt) {
             const ReadbackMethod rm = m == 0 || m == 4 ? ReadbackMethod::kDrawOnly
                                       : m == 1 ? ReadbackMethod::kFullWindow
                                                : ReadbackMethod::kRegionWithProof;
-            auto platform = create_osmesa_platform(*spec, rm);
+            auto platform = create_gl_platform(*spec, rm);
             platform->set_view(view);
             // Mesa compiles its shaders on the first draws, single and batched (the first batch
             // cost 8 ms on llvmpipe): keep that out of the timings.
@@ -160,10 +160,9 @@ int measure_platform(const Options& opt) {
 int run_children(const Options& opt, const char* self) {
   std::vector<nlohmann::json> rows;
   for (const auto& p : opt.platforms) {
-    const PlatformSpec* spec = find_platform(p);
-    if (!spec || !spec->gallium_driver || spec->samples > 0) {  // checked before anything runs
-      std::fprintf(stderr, "readback_bench: --platforms: '%s' is not an aliased OSMesa platform "
-                   "(allowed: osmesa-llvmpipe, osmesa-softpipe)\n", p.c_str());
+    if (!is_aliased_gl_platform(p)) {  // checked before anything runs
+      std::fprintf(stderr, "readback_bench: --platforms: '%s' is not an aliased GL platform "
+                   "(allowed: %s)\n", p.c_str(), aliased_gl_platform_names().c_str());
       return 2;
     }
   }

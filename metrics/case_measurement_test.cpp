@@ -70,7 +70,7 @@ namespace {
 // Small primitives are drawn in batches under one occlusion query (measure_cases); the pixel sets
 // must be exactly those found one primitive at a time, each with its own proof.
 TEST(CaseMeasurementBatches, FindTheSamePixelsAsSinglePrimitives) {
-  auto platform = create_osmesa_platform(*find_platform("osmesa-llvmpipe"));
+  auto platform = create_gl_platform(*find_platform("osmesa-llvmpipe"));
   for (double fov : {30.0, 150.0}) {
     const View view = make_view(fov, 128, 128, 0.01, 10.0, random_rotation(2008, 1));
     platform->set_view(view);
@@ -97,8 +97,8 @@ TEST(CaseMeasurementBatches, FindTheSamePixelsAsSinglePrimitives) {
 // charged to that primitive only: the batch's count disagrees, so each is drawn again alone.
 TEST(CaseMeasurementBatches, AWildPixelInABatchIsChargedToItsPrimitive) {
   const View view = make_view(30, 128, 128, 0.01, 10.0, random_rotation(2008, 1));
-  auto clean = create_osmesa_platform(*find_platform("osmesa-llvmpipe"));
-  auto wild = create_osmesa_platform(*find_platform("osmesa-llvmpipe"),
+  auto clean = create_gl_platform(*find_platform("osmesa-llvmpipe"));
+  auto wild = create_gl_platform(*find_platform("osmesa-llvmpipe"),
                                      ReadbackMethod::kRegionWithProof, {5, 40});
   clean->set_view(view);
   wild->set_view(view);

@@ -21,7 +21,7 @@
 namespace ra {
 namespace {
 
-const PlatformSpec& msaa4() { return *find_platform("osmesa-llvmpipe-msaa4"); }
+PlatformSpec msaa4() { return *find_platform("osmesa-llvmpipe-msaa4"); }
 
 // Coverage of each lit pixel of a rendering, by pixel.
 std::map<Pixel, double> coverage_of(const RenderResult& r) {
@@ -52,17 +52,19 @@ using stats::median;
 
 TEST(OsmesaMsaa, PlatformIsInTheTableAndSoftpipeHasNone) {
   EXPECT_EQ(msaa4().samples, 4);
-  EXPECT_STREQ(msaa4().gallium_driver, "llvmpipe");
+  EXPECT_EQ(msaa4().mesa_driver, "llvmpipe");
+  EXPECT_EQ(msaa4().backend, Backend::kOsmesa);
   EXPECT_EQ(find_platform("osmesa-llvmpipe")->samples, 0);
-  EXPECT_EQ(find_platform("osmesa-softpipe-msaa4"), nullptr);  // softpipe: GL_MAX_SAMPLES 1
+  EXPECT_FALSE(find_platform("osmesa-softpipe-msaa4"));  // softpipe: GL_MAX_SAMPLES 1
+  EXPECT_FALSE(find_platform("egl-softpipe-msaa4"));
 }
 
 // Asking for more samples than the driver has fails at creation, naming the platform and the
 // driver's GL_MAX_SAMPLES (llvmpipe has 4).
 TEST(OsmesaMsaa, TooManySamplesFailsWithAClearError) {
-  const PlatformSpec sixteen{"osmesa-llvmpipe-msaa16", "test", "llvmpipe", 16};
+  const PlatformSpec sixteen{"osmesa-llvmpipe-msaa16", "test", Backend::kOsmesa, "llvmpipe", 16};
   try {
-    create_osmesa_platform(sixteen);
+    create_gl_platform(sixteen);
     FAIL() << "created a 16-sample platform";
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
@@ -83,7 +85,7 @@ TEST(OsmesaMsaa, PixelCornerTriangleIsCoveredExactly) {
   ASSERT_EQ(poly.status, ClipStatus::kVisible);
   ASSERT_NEAR(poly.area, 48.0 * 48.0 / 2, 1e-9);
 
-  auto platform = create_osmesa_platform(msaa4());
+  auto platform = create_gl_platform(msaa4());
   platform->set_view(view);
   const RenderResult r = platform->render(tri, PixelRect{0, 0, 64, 64});
   ASSERT_EQ(r.samples, 4);
@@ -109,7 +111,7 @@ TEST(OsmesaMsaa, PixelCornerTriangleIsCoveredExactly) {
   EXPECT_NEAR(m.te_signed, 0.0, 1e-9);
   EXPECT_EQ(m.rendered, interior + diagonal);
 
-  auto aliased = create_osmesa_platform(*find_platform("osmesa-llvmpipe"));
+  auto aliased = create_gl_platform(*find_platform("osmesa-llvmpipe"));
   aliased->set_view(view);
   const RenderResult ra = aliased->render(tri, PixelRect{0, 0, 64, 64});
   EXPECT_EQ(ra.samples, 0);
@@ -122,7 +124,7 @@ TEST(OsmesaMsaa, PixelCornerTriangleIsCoveredExactly) {
 // polygon to each pixel square: independent of the row walk of compute_coverage); and the record
 // measure_cases writes carries the same numbers.
 TEST(OsmesaMsaa, CoverageMetricMatchesBruteForceOnRandomTriangles) {
-  auto platform = create_osmesa_platform(msaa4());
+  auto platform = create_gl_platform(msaa4());
   int checked = 0, partial_pixels = 0;
   for (double fov : {30.0, 150.0}) {
     const View view = make_view(fov, 64, 64, 0.01, 10.0, random_rotation(77, 1));
@@ -171,8 +173,8 @@ TEST(OsmesaMsaa, CoverageMetricMatchesBruteForceOnRandomTriangles) {
 // window is read. Also: a coverage change alone changes the pixel hash.
 TEST(CompletenessMsaa, AWildPixelIsFoundUnderMultisampling) {
   const View view = make_view(30, 128, 128, 0.01, 10.0, random_rotation(2008, 1));
-  auto clean = create_osmesa_platform(msaa4());
-  auto wild = create_osmesa_platform(msaa4(), ReadbackMethod::kRegionWithProof, {5, 40});
+  auto clean = create_gl_platform(msaa4());
+  auto wild = create_gl_platform(msaa4(), ReadbackMethod::kRegionWithProof, {5, 40});
   clean->set_view(view);
   wild->set_view(view);
   for (Kind kind : {Kind::kPoint, Kind::kLine}) {
@@ -234,8 +236,8 @@ TEST(CompletenessMsaa, AWildPixelIsFoundUnderMultisampling) {
 // 150, 128 x 128), the median TEu_cov-norm of the 4x platform is strictly below the median
 // aliased TEu-norm.
 TEST(OsmesaMsaa, MultisamplingLowersTheMedianTriangleError) {
-  auto aliased = create_osmesa_platform(*find_platform("osmesa-llvmpipe"));
-  auto msaa = create_osmesa_platform(msaa4());
+  auto aliased = create_gl_platform(*find_platform("osmesa-llvmpipe"));
+  auto msaa = create_gl_platform(msaa4());
   for (double fov : {30.0, 150.0}) {
     const View view = make_view(fov, 128, 128, 0.01, 10.0, random_rotation(2008, 1));
     aliased->set_view(view);
@@ -305,7 +307,7 @@ TEST(TriangleCoverage, HandMadePatternGivesHandComputedErrors) {
 // With every lit pixel fully covered the coverage form is the aliased metric (eqs. 9-10).
 TEST(TriangleCoverage, FullCoverageEqualsTheAliasedMetric) {
   const View view = make_view(150, 96, 96, 0.01, 10.0, random_rotation(5, 2));
-  auto platform = create_osmesa_platform(*find_platform("osmesa-llvmpipe"));
+  auto platform = create_gl_platform(*find_platform("osmesa-llvmpipe"));
   platform->set_view(view);
   int checked = 0;
   for (uint64_t i = 0; i < 60; ++i) {

@@ -31,14 +31,14 @@ double fault_draw(const Primitive& prim, uint64_t salt) {
 class FaultyPlatform : public Platform {
  public:
   explicit FaultyPlatform(FaultPlan plan) : plan_(std::move(plan)) {
-    const PlatformSpec* spec = find_platform(plan_.base);
-    if (spec && spec->gallium_driver)  // wild pixels are then drawn by GL itself
-      base_ = create_osmesa_platform(*spec, ReadbackMethod::kRegionWithProof, plan_.wild_pixel);
+    const std::optional<PlatformSpec> spec = find_platform(plan_.base);
+    if (spec && spec->draws_with_gl())  // wild pixels are then drawn by GL itself
+      base_ = create_gl_platform(*spec, ReadbackMethod::kRegionWithProof, plan_.wild_pixel);
   }
 
   DriverInfo driver_info() const override {
     DriverInfo info{"renderaudit faulty test platform", "reference + injected faults",
-                    "renderaudit", 0, false};
+                    "renderaudit", 0, false, 0, "none"};
     if (base_) info = base_->driver_info(), info.renderer += " + injected faults";
     return info;
   }

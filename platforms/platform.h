@@ -1,5 +1,5 @@
 // Platforms: the renderers the runner draws through. A worker process serves exactly one platform
-// (Mesa picks its driver from GALLIUM_DRIVER when the first context is made).
+// (Mesa picks its driver from the environment when the first context is made).
 #pragma once
 
 #include <memory>
@@ -11,29 +11,17 @@
 #include "geometry/primitive.h"
 #include "geometry/view.h"
 #include "platforms/fault_plan.h"
+#include "platforms/platform_spec.h"
 
 namespace ra {
-
-struct PlatformSpec {
-  const char* name;            // as written in experiment files
-  const char* description;
-  const char* gallium_driver;  // value of GALLIUM_DRIVER for OSMesa platforms, else nullptr
-  // Samples per pixel of the multisample colour buffer drawn into (OSMesa platforms only): 0 for
-  // the aliased platforms (one sample at the pixel centre, the paper's condition), 4 for the
-  // antialiasing condition (`osmesa-llvmpipe-msaa4`, see osmesa_platform.cpp).
-  int samples = 0;
-};
-
-// The platforms this build knows. Only names from this table ever reach Mesa's environment.
-const std::vector<PlatformSpec>& platform_specs();
-const PlatformSpec* find_platform(const std::string& name);
-std::string platform_names();  // "osmesa-llvmpipe, osmesa-softpipe, ..."
 
 // What a driver says about itself (glGetString and a few capabilities).
 struct DriverInfo {
   std::string renderer, version, vendor;
   int subpixel_bits = 0;        // GL_SUBPIXEL_BITS; 0 for exact rasterizers
   bool timer_query = false;     // GL_ARB_timer_query
+  int max_samples = 0;          // GL_MAX_SAMPLES (0 for the non-GL platforms)
+  std::string backend;          // GlContext::backend(): how the context was made
 };
 
 // One primitive as rendered.
@@ -76,11 +64,12 @@ class Platform {
   }
 };
 
-// Creates the platform for this process. OSMesa platforms set GALLIUM_DRIVER (and
-// LP_NUM_THREADS=0 unless the user set it: thread hand-off dominates one-primitive frames).
+// Creates the platform for this process. GL platforms make their context with
+// create_gl_context (platforms/gl_context.h), which sets Mesa's environment (and LP_NUM_THREADS=0
+// unless the user set it: thread hand-off dominates one-primitive frames).
 std::unique_ptr<Platform> create_platform(const std::string& name, const FaultPlan& faults);
 
-// How an OSMesa platform finds the lit pixels. Only kRegionWithProof is used by `run`; the others
+// How a GL platform finds the lit pixels. Only kRegionWithProof is used by `run`; the others
 // exist for the benchmark (`make bench`), which compares them side by side.
 enum class ReadbackMethod {
   kRegionWithProof,  // read the expected region; an occlusion query proves nothing lit elsewhere
@@ -89,7 +78,7 @@ enum class ReadbackMethod {
 };
 // `wild_pixel_indices` (tests only): for these primitive indices GL also lights one pixel far from
 // the primitive, inside the same occlusion query, as a driver bug would; the readback must find it.
-std::unique_ptr<Platform> create_osmesa_platform(
+std::unique_ptr<Platform> create_gl_platform(
     const PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
     std::vector<uint64_t> wild_pixel_indices = {});
 std::unique_ptr<Platform> create_reference_platform();

@@ -83,19 +83,14 @@ void parse_categories(const Locator& loc, const toml::table& t, const std::strin
   }
 }
 
-constexpr const char* kAllowedPlatforms = "osmesa-llvmpipe, osmesa-softpipe";
-
-bool platform_allowed(const std::string& name) {
-  const PlatformSpec* spec = find_platform(name);
-  return spec && spec->gallium_driver && spec->samples == 0;
-}
+bool platform_allowed(const std::string& name) { return is_aliased_gl_platform(name); }
 
 }  // namespace
 
 void validate_platform(const std::string& name) {
   if (!platform_allowed(name))
-    throw UserError("'regulation.platform' = \"" + name + "\" is not an aliased OSMesa platform (allowed: " +
-                    kAllowedPlatforms + ")");
+    throw UserError("'regulation.platform' = \"" + name + "\" is not an aliased GL platform (allowed: " +
+                    aliased_gl_platform_names() + ")");
 }
 
 RegulationSettings read_regulation_experiment(const std::string& path) {
@@ -119,8 +114,8 @@ RegulationSettings parse_regulation_experiment(const std::string& text, const st
   if (const auto* n = t.get("platform")) {
     const auto* str = n->as_string();
     if (!str || !platform_allowed(str->get()))
-      loc.fail(n, "'regulation.platform' is not an aliased OSMesa platform (allowed: " +
-                      std::string(kAllowedPlatforms) + ")");
+      loc.fail(n, "'regulation.platform' is not an aliased GL platform (allowed: " +
+                      aliased_gl_platform_names() + ")");
     s.platform = str->get();
   }
   if (const auto* n = t.get("window")) {

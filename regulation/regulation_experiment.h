@@ -86,8 +86,8 @@ struct RegulationSettings {
   SceneSpec scene;
 };
 
-// Throws UserError "'regulation.platform' = NAME is not an aliased OSMesa platform (allowed:
-// osmesa-llvmpipe, osmesa-softpipe)" unless `name` is one the study can render on.
+// Throws UserError "'regulation.platform' = NAME is not an aliased GL platform (allowed: ...)"
+// unless `name` is one the study can render on (platforms/platform_spec.h).
 void validate_platform(const std::string& name);
 
 RegulationSettings read_regulation_experiment(const std::string& path);

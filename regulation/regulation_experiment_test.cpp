@@ -93,11 +93,17 @@ TEST(RegulationExperiment, RandomInstancesMustFitTheDpLimit) {
 TEST(RegulationExperiment, ValidatePlatformNamesTheAllowedOnes) {
   EXPECT_NO_THROW(validate_platform("osmesa-llvmpipe"));
   EXPECT_NO_THROW(validate_platform("osmesa-softpipe"));
+  EXPECT_NO_THROW(validate_platform("egl-llvmpipe"));
+  EXPECT_NO_THROW(validate_platform("egl-device:1"));
+  EXPECT_THROW(validate_platform("egl-llvmpipe-msaa4"), UserError);  // the study draws aliased
+  EXPECT_THROW(validate_platform("reference"), UserError);           // no GL to time
   try {
     validate_platform("a\"b");
     ADD_FAILURE();
   } catch (const UserError& e) {
-    EXPECT_NE(std::string(e.what()).find("(allowed: osmesa-llvmpipe, osmesa-softpipe)"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find(
+                  "(allowed: osmesa-llvmpipe, osmesa-softpipe, egl-llvmpipe, egl-softpipe, "
+                  "egl-zink, egl-device, egl-device:N)"), std::string::npos);
   }
 }
 

@@ -253,10 +253,11 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
                             {"base", "crash", "hang", "wild_pixel", "shift_fraction", "flaky_fraction"});
     if (const toml::node* n = t.get("base")) {
       const auto* name = n->as_string();
-      const PlatformSpec* spec = name ? find_platform(name->get()) : nullptr;
-      if (!spec || (!spec->gallium_driver && name->get() != "reference"))
-        loc.fail(n, "'faults.base' must name the platform that draws (allowed: reference, "
-                    "osmesa-llvmpipe, osmesa-softpipe)");
+      const std::optional<PlatformSpec> spec =
+          name ? find_platform(name->get()) : std::optional<PlatformSpec>();
+      if (!spec || (!spec->draws_with_gl() && name->get() != "reference"))
+        loc.fail(n, "'faults.base' must name the platform that draws (allowed: reference, " +
+                        aliased_gl_platform_names() + ")");
       exp.faults.base = name->get();
     }
     if (const toml::node* n = t.get("crash")) exp.faults.crash = index_list(loc, *n, "faults.crash");

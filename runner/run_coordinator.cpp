@@ -24,6 +24,7 @@
 #include "runner/shard_file.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
+#include "platforms/platform_probe.h"
 #include "platforms/renderer_check.h"
 #include "runner/shard.h"
 #include "runner/shard_recovery.h"
@@ -149,6 +150,10 @@ RunResult run_experiment(const RunOptions& options) {
     if (std::find(exp.platforms.begin(), exp.platforms.end(), p) == exp.platforms.end())
       throw UserError(options.experiment_path + ": --platform " + p +
                       " is not one of the experiment's platforms");
+  // A platform that cannot draw here (no such device, a missing library or driver) stops the
+  // run before its directory is touched, rather than filling it with failed shards.
+  require_platforms_draw(options.only_platforms.empty() ? exp.platforms : options.only_platforms,
+                         options.experiment_path);
   const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, dir);
 
   std::deque<WorkItem> todo;

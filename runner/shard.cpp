@@ -45,7 +45,8 @@ static void write_driver_info(const std::string& run_dir, const std::string& nam
   if (::stat(path.c_str(), &st) == 0) return;
   nlohmann::json j = {{"renderer", info.renderer},           {"version", info.version},
                       {"vendor", info.vendor},               {"subpixel_bits", info.subpixel_bits},
-                      {"timer_query", info.timer_query}};
+                      {"timer_query", info.timer_query},     {"max_samples", info.max_samples},
+                      {"backend", info.backend}};
   j.update(document_header("driver", 1, false));
   // Several shards may race here; each writes a complete file under its own temporary name.
   write_file_atomic(path, j.dump(2) + "\n");

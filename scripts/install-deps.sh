@@ -5,7 +5,11 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  libosmesa6-dev        # OSMesa: the llvmpipe / softpipe platforms
+  libgl-dev             # GL headers (the GL functions are fetched from each platform's driver)
+  libosmesa6            # OSMesa, loaded at run time: the osmesa-* platforms (the embedded default)
+  libegl-dev            # EGL headers and libEGL (glvnd), loaded at run time: the egl-* platforms
+  libegl-mesa0          # Mesa's EGL: surfaceless egl-llvmpipe, egl-softpipe (and egl-zink with
+                        #   mesa-vulkan-drivers libvulkan1, not installed by default)
   libvtk9-dev           # VTK: figures (charts to PNG and PDF)
   libopenimageio-dev    # OpenImageIO: PNG of single primitives (renderaudit show)
   libboost-math-dev     # Boost.Math: t, F, normal distributions for the statistics

@@ -88,7 +88,12 @@ LodSettings parse_lod_experiment(const std::string& text, const std::string& pat
                            "error_propagation", "seams", "tile_size", "tiles", "spacing", "height_scale", "seed",
                            "feature_size", "octaves", "persistence", "height_file", "frames", "path_seed",
                            "flight_height", "look_ahead", "repetitions"});
-  if (const auto* n = t.get("platform")) s.platform = string_of(loc, *n, "lod.platform", {"osmesa-llvmpipe", "osmesa-softpipe"});
+  if (const auto* n = t.get("platform")) {
+    s.platform = string_of(loc, *n, "lod.platform", {});
+    if (!is_aliased_gl_platform(s.platform))
+      loc.fail(n, "'lod.platform' = \"" + s.platform + "\" is out of range (allowed: " +
+                      aliased_gl_platform_names() + ")");
+  }
   if (const auto* n = t.get("window")) {
     const auto& a = array_of(loc, *n, "lod.window", 2, "[width, height] in pixels");
     s.camera.width = int(loc.integer(*a.get(0), "lod.window", 16, 4096));

@@ -1,9 +1,7 @@
-// OSMesa drawing of LOD meshes (lod_renderer.h).
+// Drawing of LOD meshes through a GL platform (lod_renderer.h), into a framebuffer object of the
+// window size (colour and depth); the image is read back only when asked for, outside the timing.
 #include "terrain_lod/lod_renderer.h"
 
-#include <GL/gl.h>
-#include <GL/glext.h>
-#include <GL/osmesa.h>
 
 #include <algorithm>
 #include <chrono>
@@ -12,16 +10,11 @@
 #include <stdexcept>
 
 #include "util/errors.h"
+#include "platforms/gl_context.h"
 #include "platforms/platform.h"
 
 namespace ra::lod {
 namespace {
-
-template <typename F>
-void load(F& fn, const char* name) {
-  fn = reinterpret_cast<F>(OSMesaGetProcAddress(name));
-  if (!fn) throw std::runtime_error(std::string("OSMesa lacks ") + name);
-}
 
 struct Vertex {
   float x, y, z;
@@ -61,49 +54,46 @@ ImageDifference image_difference(const std::vector<uint8_t>& a, const std::vecto
 
 struct LodRenderer::Impl {
   timing::CameraSettings cam;
-  OSMesaContext context = nullptr;
-  std::vector<uint8_t> colour;
+  std::unique_ptr<GlContext> context;
+  const GlApi* gl = nullptr;  // context->gl()
+  GLuint framebuffer = 0, colour_rb = 0, depth_rb = 0;
+  std::vector<uint8_t> colour;  // the last frame, read back when image() asks for it
+  bool colour_stale = true;
   GLuint vbo = 0, ibo = 0;
   std::vector<std::pair<GLsizei, size_t>> draws;  // per tile: index count, byte offset
-  PFNGLGENBUFFERSPROC gen_buffers = nullptr;
-  PFNGLDELETEBUFFERSPROC delete_buffers = nullptr;
-  PFNGLBINDBUFFERPROC bind_buffer = nullptr;
-  PFNGLBUFFERDATAPROC buffer_data = nullptr;
 };
 
 LodRenderer::LodRenderer(const std::string& platform, const timing::CameraSettings& cam, const HeightField& f)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
-  const PlatformSpec* spec = find_platform(platform);
-  if (!spec || !spec->gallium_driver)
-    throw UserError("platform '" + platform + "' has no Mesa driver (allowed: osmesa-llvmpipe, osmesa-softpipe)");
+  const std::optional<PlatformSpec> spec = find_platform(platform);
+  if (!spec || !spec->draws_with_gl())
+    throw UserError("platform '" + platform + "' has no GL driver (allowed: " +
+                    aliased_gl_platform_names() + ")");
   m.cam = cam;
-  setenv("GALLIUM_DRIVER", spec->gallium_driver, 1);  // only validated names reach Mesa
-  setenv("LP_NUM_THREADS", "0", 0);
-  m.context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
-  if (!m.context) throw std::runtime_error("OSMesaCreateContextExt failed for " + platform);
+  m.context = create_gl_context(*spec);  // sets Mesa's environment and checks the driver
+  m.gl = &m.context->gl();
+  const GlApi* gl = m.gl;
+  // Framebuffer object: RGBA8 colour + 24-bit depth of the window size.
+  GLint max_size = 0;
+  gl->GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+  if (cam.width > max_size || cam.height > max_size)
+    throw UserError("window " + std::to_string(cam.width) + "x" + std::to_string(cam.height) +
+                    " exceeds " + platform + "'s GL_MAX_RENDERBUFFER_SIZE " +
+                    std::to_string(max_size));
+  gl->GenFramebuffers(1, &m.framebuffer);
+  gl->BindFramebuffer(GL_FRAMEBUFFER, m.framebuffer);
+  gl->GenRenderbuffers(1, &m.colour_rb);
+  gl->BindRenderbuffer(GL_RENDERBUFFER, m.colour_rb);
+  gl->RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, cam.width, cam.height);
+  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m.colour_rb);
+  gl->GenRenderbuffers(1, &m.depth_rb);
+  gl->BindRenderbuffer(GL_RENDERBUFFER, m.depth_rb);
+  gl->RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, cam.width, cam.height);
+  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m.depth_rb);
+  if (gl->CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("incomplete framebuffer (RGBA8 + DEPTH24) for " + platform);
   m.colour.assign(size_t(cam.width) * cam.height * 4, 0);
-  if (!OSMesaMakeCurrent(m.context, m.colour.data(), GL_UNSIGNED_BYTE, cam.width, cam.height))
-    throw std::runtime_error("OSMesaMakeCurrent failed");
-  {
-    // Mesa picks the driver at the process's first context: GALLIUM_DRIVER set now has no effect
-    // when an earlier context (e.g. another study or the figures) chose another one. Refuse to
-    // measure on the wrong driver.
-    const GLubyte* r = glGetString(GL_RENDERER);
-    const std::string renderer = r ? reinterpret_cast<const char*>(r) : "";
-    if (renderer.find(spec->gallium_driver) == std::string::npos) {
-      OSMesaDestroyContext(m.context);
-      m.context = nullptr;
-      throw std::runtime_error("platform " + platform + " expects the Mesa driver '" + spec->gallium_driver +
-                               "', but the OSMesa context draws with GL_RENDERER '" + renderer +
-                               "' (Mesa chose another driver before: the study's drawing process, a forked child, "
-                               "inherits the driver of a GL context its parent made)");
-    }
-  }
-  load(m.gen_buffers, "glGenBuffers");
-  load(m.delete_buffers, "glDeleteBuffers");
-  load(m.bind_buffer, "glBindBuffer");
-  load(m.buffer_data, "glBufferData");
 
   // vertex colours from the full-resolution surface (see the header)
   double zmin = 1e300, zmax = -1e300;
@@ -128,45 +118,51 @@ LodRenderer::LodRenderer(const std::string& platform, const timing::CameraSettin
       v = {float(i * f.spacing), float(j * f.spacing), float(f.at(i, j)), {0, 0, 0, 255}};
       for (int c = 0; c < 3; ++c) v.rgba[c] = uint8_t(std::clamp(255 * rgb[c] * (0.25 + 0.75 * lambert), 0.0, 255.0));
     }
-  m.gen_buffers(1, &m.vbo);
-  m.gen_buffers(1, &m.ibo);
-  m.bind_buffer(GL_ARRAY_BUFFER, m.vbo);
-  m.buffer_data(GL_ARRAY_BUFFER, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), GL_STATIC_DRAW);
-  glEnableClientState(GL_VERTEX_ARRAY);
-  glEnableClientState(GL_COLOR_ARRAY);
-  glVertexPointer(3, GL_FLOAT, sizeof(Vertex), reinterpret_cast<const void*>(0));
-  glColorPointer(4, GL_UNSIGNED_BYTE, sizeof(Vertex), reinterpret_cast<const void*>(3 * sizeof(float)));
-  glViewport(0, 0, cam.width, cam.height);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDisable(GL_CULL_FACE);  // seen from below through a crack, a back face still shows
-  glDisable(GL_LIGHTING);
-  glShadeModel(GL_SMOOTH);
-  glClearColor(0.55f, 0.70f, 0.90f, 1.0f);  // sky
-  glMatrixMode(GL_PROJECTION);
-  glLoadMatrixd(timing::projection_of(cam).m.data());
-  glMatrixMode(GL_MODELVIEW);
-  if (glGetError() != GL_NO_ERROR) throw std::runtime_error("GL error while setting up the terrain renderer");
+  gl->GenBuffers(1, &m.vbo);
+  gl->GenBuffers(1, &m.ibo);
+  gl->BindBuffer(GL_ARRAY_BUFFER, m.vbo);
+  gl->BufferData(GL_ARRAY_BUFFER, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), GL_STATIC_DRAW);
+  gl->EnableClientState(GL_VERTEX_ARRAY);
+  gl->EnableClientState(GL_COLOR_ARRAY);
+  gl->VertexPointer(3, GL_FLOAT, sizeof(Vertex), reinterpret_cast<const void*>(0));
+  gl->ColorPointer(4, GL_UNSIGNED_BYTE, sizeof(Vertex), reinterpret_cast<const void*>(3 * sizeof(float)));
+  gl->Viewport(0, 0, cam.width, cam.height);
+  gl->Enable(GL_DEPTH_TEST);
+  gl->DepthFunc(GL_LESS);
+  gl->Disable(GL_CULL_FACE);  // seen from below through a crack, a back face still shows
+  gl->Disable(GL_LIGHTING);
+  gl->ShadeModel(GL_SMOOTH);
+  gl->ClearColor(0.55f, 0.70f, 0.90f, 1.0f);  // sky
+  gl->MatrixMode(GL_PROJECTION);
+  gl->LoadMatrixd(timing::projection_of(cam).m.data());
+  gl->MatrixMode(GL_MODELVIEW);
+  if (gl->GetError() != GL_NO_ERROR) throw std::runtime_error("GL error while setting up the terrain renderer");
 }
 
 LodRenderer::~LodRenderer() {
   if (impl_ && impl_->context) {
-    impl_->delete_buffers(1, &impl_->vbo);
-    impl_->delete_buffers(1, &impl_->ibo);
-    OSMesaDestroyContext(impl_->context);
+    impl_->context->make_current();
+    impl_->gl->DeleteBuffers(1, &impl_->vbo);
+    impl_->gl->DeleteBuffers(1, &impl_->ibo);
   }
 }
 
-std::string LodRenderer::gl_renderer() const { return reinterpret_cast<const char*>(glGetString(GL_RENDERER)); }
-std::string LodRenderer::gl_version() const { return reinterpret_cast<const char*>(glGetString(GL_VERSION)); }
+std::string LodRenderer::gl_renderer() const {
+  return reinterpret_cast<const char*>(impl_->gl->GetString(GL_RENDERER));
+}
+std::string LodRenderer::gl_version() const {
+  return reinterpret_cast<const char*>(impl_->gl->GetString(GL_VERSION));
+}
 
 void LodRenderer::set_viewpoint(const Viewpoint& vp) {
-  glMatrixMode(GL_MODELVIEW);
-  glLoadMatrixd(timing::look_at(vp).m.data());
+  const GlApi* gl = impl_->gl;
+  gl->MatrixMode(GL_MODELVIEW);
+  gl->LoadMatrixd(timing::look_at(vp).m.data());
 }
 
 void LodRenderer::upload(const LodMesh& mesh) {
   Impl& m = *impl_;
+  const GlApi* gl = m.gl;
   std::vector<uint32_t> indices;
   indices.reserve(mesh.strip_index_count());
   m.draws.clear();
@@ -174,24 +170,34 @@ void LodRenderer::upload(const LodMesh& mesh) {
     m.draws.push_back({GLsizei(t.strip.size()), indices.size() * sizeof(uint32_t)});
     indices.insert(indices.end(), t.strip.begin(), t.strip.end());
   }
-  m.bind_buffer(GL_ELEMENT_ARRAY_BUFFER, m.ibo);
-  m.buffer_data(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), GL_STREAM_DRAW);
-  glFinish();
+  gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ibo);
+  gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), GL_STREAM_DRAW);
+  gl->Finish();
 }
 
 double LodRenderer::draw() {
   Impl& m = *impl_;
-  glFinish();
+  const GlApi* gl = m.gl;
+  m.colour_stale = true;
+  gl->Finish();
   const auto t0 = std::chrono::steady_clock::now();
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   for (const auto& [count, offset] : m.draws)
-    glDrawElements(GL_TRIANGLE_STRIP, count, GL_UNSIGNED_INT, reinterpret_cast<const void*>(offset));
-  glFinish();
+    gl->DrawElements(GL_TRIANGLE_STRIP, count, GL_UNSIGNED_INT, reinterpret_cast<const void*>(offset));
+  gl->Finish();
   const auto t1 = std::chrono::steady_clock::now();
-  if (glGetError() != GL_NO_ERROR) throw std::runtime_error("GL error while drawing the terrain");
+  if (gl->GetError() != GL_NO_ERROR) throw std::runtime_error("GL error while drawing the terrain");
   return std::chrono::duration<double, std::micro>(t1 - t0).count();
 }
 
-const std::vector<uint8_t>& LodRenderer::image() const { return impl_->colour; }
+const std::vector<uint8_t>& LodRenderer::image() const {
+  Impl& m = *impl_;
+  if (m.colour_stale) {
+    m.gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
+    m.gl->ReadPixels(0, 0, m.cam.width, m.cam.height, GL_RGBA, GL_UNSIGNED_BYTE, m.colour.data());
+    m.colour_stale = false;
+  }
+  return m.colour;
+}
 
 }  // namespace ra::lod

@@ -1,6 +1,8 @@
 // The terrain LOD study: run, analyze, plot (lod_study.h).
 #include "terrain_lod/lod_study.h"
 
+#include "platforms/platform_probe.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -173,6 +175,7 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
   if (!options.platforms.empty() &&
       std::find(options.platforms.begin(), options.platforms.end(), s.platform) == options.platforms.end())
     throw UserError(options.experiment + ": the LOD study draws on " + s.platform + ", which --platform leaves out");
+  require_platforms_draw({s.platform}, options.experiment);  // before anything is written
   StudyRunResult result;
   result.dir = options.out_dir.empty() ? "outputs/" + s.name : options.out_dir;
   std::error_code ec;

@@ -35,7 +35,8 @@ namespace ra::timing {
 
 struct RendererInfo {
   std::string platform;        // e.g. "osmesa-llvmpipe"
-  std::string gallium_driver;  // GALLIUM_DRIVER given to Mesa
+  std::string gallium_driver;  // the Mesa driver asked for (PlatformSpec::mesa_driver); "" for a device
+  std::string backend;         // how the context was made (GlContext::backend())
   std::string lp_num_threads;  // LP_NUM_THREADS as Mesa saw it
   std::string renderer, version, vendor;  // glGetString
   bool timer_query = false;    // GL_ARB_timer_query listed and GL_QUERY_COUNTER_BITS > 0

@@ -96,11 +96,10 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
     s.platforms.clear();
     for (const auto& e : a) {
       const auto* str = e.as_string();
-      const PlatformSpec* spec = str ? find_platform(str->get()) : nullptr;
       // The study draws aliased frames: a multisample platform would be measured as aliased.
-      if (!spec || !spec->gallium_driver || spec->samples > 0)
+      if (!str || !is_aliased_gl_platform(str->get()))
         loc.fail(&e, "'timing.platforms' holds an unknown, driverless or multisample platform "
-                     "(allowed: osmesa-llvmpipe, osmesa-softpipe)");
+                     "(allowed: " + aliased_gl_platform_names() + ")");
       for (const auto& p : s.platforms)
         if (p == str->get()) loc.fail(&e, "platform '" + p + "' is listed twice");
       s.platforms.push_back(str->get());

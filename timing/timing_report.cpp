@@ -216,6 +216,7 @@ nlohmann::json timing_json(const StudyResults& r) {
                      {"version", m.renderer.version},
                      {"vendor", m.renderer.vendor},
                      {"gallium_driver", m.renderer.gallium_driver},
+                     {"backend", m.renderer.backend},
                      {"lp_num_threads", m.renderer.lp_num_threads},
                      {"depth_bits", m.renderer.depth_bits}};
     p["timer_query"] = {{"supported", m.renderer.timer_query},

@@ -1,6 +1,7 @@
 // The rendering-time study from an experiment file (timing_run.h).
 #include "timing/timing_run.h"
 
+#include "platforms/platform_probe.h"
 #include <chrono>
 #include <cstdarg>
 #include <cstdio>
@@ -76,6 +77,7 @@ StudyRunResult run_timing_study(const StudyRunOptions& options, bool figures) {
     platforms = options.platforms;
   }
   const std::string dir = options.out_dir.empty() ? "outputs/" + r.settings.name : options.out_dir;
+  require_platforms_draw(platforms, options.experiment);  // before anything is written
   const Progress progress = options.progress ? Progress([](const std::string& line) {
     std::fprintf(stderr, "timing: %s\n", line.c_str());
   })

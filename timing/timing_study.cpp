@@ -26,7 +26,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ObjectSample, object, alpha, gamma, phi, tria
                                    transformed, pixels, state_changes, cpu_us, gpu_us)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FrameSample, frame, objects, cpu_us, gpu_us)
 namespace timing {
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RendererInfo, platform, gallium_driver, lp_num_threads,
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RendererInfo, platform, gallium_driver, backend, lp_num_threads,
                                    renderer, version, vendor, timer_query, timer_query_listed,
                                    timer_query_bits, depth_bits)
 }  // namespace timing

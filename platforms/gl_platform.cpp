@@ -1,9 +1,11 @@
-// Mesa's OSMesa (llvmpipe or softpipe) as a platform: no GPU and no display are needed.
+// A GL driver as a platform: the measurement of every GL back end (OSMesa, Mesa's surfaceless EGL,
+// an EGL device), one code path. The context comes from platforms/gl_context.h; every GL call goes
+// through its function table.
 //
-// Drawing goes to a framebuffer object of the view's size, not to OSMesa's window-system buffer:
-// glFinish on the latter copies the whole window into the caller's memory (about 150 us at
-// 907x907 here, 30x the cost of drawing one primitive); with an FBO only the pixels read back are
-// copied, by glReadPixels.
+// Drawing goes to a framebuffer object of the view's size, never to a window-system buffer (EGL
+// has none here; OSMesa's: glFinish on it copies the whole window into the caller's memory, about
+// 150 us at 907x907, 30x the cost of drawing one primitive); with an FBO only the pixels read back
+// are copied, by glReadPixels.
 //
 // Completeness of the readback: only the expected region is scanned, and an occlusion query
 // (GL_SAMPLES_PASSED) counts the fragments the primitive produced. Without multisampling and with
@@ -41,9 +43,6 @@
 // Should a sample stay lit anyway, the next primitive's count exposes it (more samples found than
 // passed), and that primitive is drawn again on a cleared window, read whole. The colour-counter
 // batching is not used (render_batch draws one primitive at a time).
-#include <GL/gl.h>
-#include <GL/glext.h>
-#include <GL/osmesa.h>
 
 #include <algorithm>
 #include <chrono>
@@ -53,6 +52,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "platforms/gl_context.h"
 #include "platforms/platform.h"
 
 namespace ra {
@@ -62,74 +62,55 @@ constexpr uint32_t kRgb = 0x00ffffffu;  // RGB bytes of a little-endian RGBA8 pi
 constexpr uint32_t kAnyColour = 0xffffffffu;
 constexpr uint32_t kLastColour = 0x00ffffffu;
 
-class OsmesaPlatform : public Platform {
+class GlPlatform : public Platform {
  public:
-  OsmesaPlatform(const PlatformSpec& spec, ReadbackMethod method, std::vector<uint64_t> wild)
+  GlPlatform(const PlatformSpec& spec, ReadbackMethod method, std::vector<uint64_t> wild)
       : method_(method), wild_pixel_indices_(std::move(wild)), name_(spec.name),
         samples_(spec.samples) {
-    // Mesa reads these when the first context is made; only validated names reach it.
-    setenv("GALLIUM_DRIVER", spec.gallium_driver, 1);
-    setenv("LP_NUM_THREADS", "0", 0);
-    context_ = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, nullptr);
-    if (!context_) throw std::runtime_error(std::string("OSMesaCreateContextExt failed for ") + spec.name);
-    // The window-system buffer is never drawn to; it only has to exist for MakeCurrent.
-    if (!OSMesaMakeCurrent(context_, winsys_pixel_, GL_UNSIGNED_BYTE, 1, 1))
-      throw std::runtime_error("OSMesaMakeCurrent failed");
-    load(gen_framebuffers_, "glGenFramebuffers");
-    load(bind_framebuffer_, "glBindFramebuffer");
-    load(gen_renderbuffers_, "glGenRenderbuffers");
-    load(delete_renderbuffers_, "glDeleteRenderbuffers");
-    load(bind_renderbuffer_, "glBindRenderbuffer");
-    load(renderbuffer_storage_, "glRenderbufferStorage");
-    load(framebuffer_renderbuffer_, "glFramebufferRenderbuffer");
-    load(check_framebuffer_, "glCheckFramebufferStatus");
-    gen_framebuffers_(1, &framebuffer_);
-    bind_framebuffer_(GL_FRAMEBUFFER, framebuffer_);
-    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size_);
-    gen_queries_ = reinterpret_cast<PFNGLGENQUERIESPROC>(OSMesaGetProcAddress("glGenQueries"));
-    begin_query_ = reinterpret_cast<PFNGLBEGINQUERYPROC>(OSMesaGetProcAddress("glBeginQuery"));
-    end_query_ = reinterpret_cast<PFNGLENDQUERYPROC>(OSMesaGetProcAddress("glEndQuery"));
-    get_query_ = reinterpret_cast<PFNGLGETQUERYOBJECTUIVPROC>(
-        OSMesaGetProcAddress("glGetQueryObjectuiv"));
-    if (!gen_queries_ || !begin_query_ || !end_query_ || !get_query_)
-      throw std::runtime_error("OSMesa lacks occlusion queries (GL 1.5)");
-    gen_queries_(1, &query_);
+    context_ = create_gl_context(spec);  // sets Mesa's environment and checks the driver
+    info_.backend = context_->backend();
+    gl().GenFramebuffers(1, &framebuffer_);
+    gl().BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    gl().GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size_);
+    gl().GenQueries(1, &query_);
     if (samples_ > 0) init_multisample();
 
-    const char* ext = reinterpret_cast<const char*>(glGetString(GL_EXTENSIONS));
-    info_.renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    info_.version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
-    info_.vendor = reinterpret_cast<const char*>(glGetString(GL_VENDOR));
+    const char* ext = reinterpret_cast<const char*>(gl().GetString(GL_EXTENSIONS));
+    info_.renderer = reinterpret_cast<const char*>(gl().GetString(GL_RENDERER));
+    info_.version = reinterpret_cast<const char*>(gl().GetString(GL_VERSION));
+    info_.vendor = reinterpret_cast<const char*>(gl().GetString(GL_VENDOR));
     GLint bits = 0;
-    glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
+    gl().GetIntegerv(GL_SUBPIXEL_BITS, &bits);
     info_.subpixel_bits = bits;
     info_.timer_query = ext && std::strstr(ext, "GL_ARB_timer_query");
+    GLint max_samples = 0;
+    gl().GetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    info_.max_samples = max_samples;
 
     // The paper's conditions: white on black, size/width 1, no antialiasing, both faces filled.
     for (GLenum cap : {GL_DEPTH_TEST, GL_LIGHTING, GL_DITHER, GL_POINT_SMOOTH, GL_LINE_SMOOTH,
                        GL_POLYGON_SMOOTH, GL_MULTISAMPLE, GL_CULL_FACE, GL_BLEND, GL_SCISSOR_TEST})
-      glDisable(cap);
-    glPointSize(1);
-    glLineWidth(1);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-    glClearColor(0, 0, 0, 0);
-    glColor4f(1, 1, 1, 1);
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    if (samples_ > 0) glEnable(GL_MULTISAMPLE);  // the antialiasing condition
+      gl().Disable(cap);
+    gl().PointSize(1);
+    gl().LineWidth(1);
+    gl().PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    gl().ClearColor(0, 0, 0, 0);
+    gl().Color4f(1, 1, 1, 1);
+    gl().PixelStorei(GL_PACK_ALIGNMENT, 4);
+    if (samples_ > 0) gl().Enable(GL_MULTISAMPLE);  // the antialiasing condition
   }
 
-  ~OsmesaPlatform() override { OSMesaDestroyContext(context_); }
 
   DriverInfo driver_info() const override { return info_; }
 
   void set_view(const View& view) override {
     make_current();
     if (view.width != width_ || view.height != height_) resize(view.width, view.height);
-    glViewport(0, 0, width_, height_);
-    glMatrixMode(GL_PROJECTION);
-    glLoadMatrixd(view.projection.m.data());
-    glMatrixMode(GL_MODELVIEW);
-    glLoadMatrixd(view.view_matrix.m.data());
+    gl().Viewport(0, 0, width_, height_);
+    gl().MatrixMode(GL_PROJECTION);
+    gl().LoadMatrixd(view.projection.m.data());
+    gl().MatrixMode(GL_MODELVIEW);
+    gl().LoadMatrixd(view.view_matrix.m.data());
     clear_all();
   }
 
@@ -142,8 +123,8 @@ class OsmesaPlatform : public Platform {
         out.render_us = draw_and_finish(prim);
         return out;
       case ReadbackMethod::kFullWindow:  // the paper's method: clear, draw, read everything
-        glClear(GL_COLOR_BUFFER_BIT);
-        glFinish();  // keep the clear out of render_us
+        gl().Clear(GL_COLOR_BUFFER_BIT);
+        gl().Finish();  // keep the clear out of render_us
         out.render_us = draw_and_finish(prim);
         read_and_scan({0, 0, width_, height_}, kAnyColour, out.lit);
         out.full_scan = true;
@@ -154,10 +135,10 @@ class OsmesaPlatform : public Platform {
     reserve_colours(1);
     use_colour(++colour_);
     const Pixel* wild = wild_pixel_for(prim, expected);
-    begin_query_(GL_SAMPLES_PASSED, query_);
+    gl().BeginQuery(GL_SAMPLES_PASSED, query_);
     out.render_us = draw_and_finish(prim, true, wild);
     GLuint samples = 0;
-    get_query_(query_, GL_QUERY_RESULT, &samples);
+    gl().GetQueryObjectuiv(query_, GL_QUERY_RESULT, &samples);
 
     read_and_scan(expected, colour_, out.lit);
     if (out.lit.size() == samples) return out;
@@ -171,10 +152,10 @@ class OsmesaPlatform : public Platform {
     // the primitive white on a cleared window and take every non-black pixel of the whole window:
     // complete by construction, whatever the count says.
     clear_all();
-    glColor4ub(255, 255, 255, 255);
-    begin_query_(GL_SAMPLES_PASSED, query_);
+    gl().Color4ub(255, 255, 255, 255);
+    gl().BeginQuery(GL_SAMPLES_PASSED, query_);
     out.render_us = draw_and_finish(prim, true, wild);
-    get_query_(query_, GL_QUERY_RESULT, &samples);
+    gl().GetQueryObjectuiv(query_, GL_QUERY_RESULT, &samples);
     out.lit.clear();
     read_and_scan({0, 0, width_, height_}, kAnyColour, out.lit);
     clear_all();
@@ -205,18 +186,18 @@ class OsmesaPlatform : public Platform {
     const uint32_t first = colour_ + 1;
     std::vector<RenderResult> out(prims.size());
     const auto t0 = std::chrono::steady_clock::now();
-    begin_query_(GL_SAMPLES_PASSED, query_);
+    gl().BeginQuery(GL_SAMPLES_PASSED, query_);
     for (size_t i = 0; i < prims.size(); ++i) {
       use_colour(++colour_);
       draw(prims[i], wild_pixel_for(prims[i], expected[i]));
     }
-    end_query_(GL_SAMPLES_PASSED);
-    glFinish();
+    gl().EndQuery(GL_SAMPLES_PASSED);
+    gl().Finish();
     const double share_us =
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() /
         double(prims.size());
     GLuint samples = 0;
-    get_query_(query_, GL_QUERY_RESULT, &samples);
+    gl().GetQueryObjectuiv(query_, GL_QUERY_RESULT, &samples);
     int64_t found = 0;
     for (size_t i = 0; i < prims.size(); ++i) {
       out[i].render_us = share_us;
@@ -229,28 +210,25 @@ class OsmesaPlatform : public Platform {
   }
 
  private:
+  const GlApi& gl() const { return context_->gl(); }
+
   // Several platforms in one process (tests: an aliased and a multisample one side by side) each
   // have their own context; GL calls go to the current one.
   void make_current() {
-    if (OSMesaGetCurrentContext() != context_ &&
-        !OSMesaMakeCurrent(context_, winsys_pixel_, GL_UNSIGNED_BYTE, 1, 1))
-      throw std::runtime_error("OSMesaMakeCurrent failed for " + name_);
+    context_->make_current();
   }
 
   // The multisample FBO's entry points and its resolve target; fails, naming the platform, when the
   // driver cannot give `samples_` samples per pixel.
   void init_multisample() {
     GLint max_samples = 0;
-    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    gl().GetIntegerv(GL_MAX_SAMPLES, &max_samples);
     if (max_samples < samples_)
       throw std::runtime_error("platform " + name_ + " needs " + std::to_string(samples_) +
                                " samples per pixel, but this driver (" +
-                               reinterpret_cast<const char*>(glGetString(GL_RENDERER)) +
+                               reinterpret_cast<const char*>(gl().GetString(GL_RENDERER)) +
                                ") has GL_MAX_SAMPLES " + std::to_string(max_samples));
-    load(renderbuffer_storage_multisample_, "glRenderbufferStorageMultisample");
-    load(blit_framebuffer_, "glBlitFramebuffer");
-    load(get_renderbuffer_parameter_, "glGetRenderbufferParameteriv");
-    gen_framebuffers_(1, &resolve_framebuffer_);
+    gl().GenFramebuffers(1, &resolve_framebuffer_);
     // k samples lit <-> resolved value 255 k / samples rounded either way; anything else is 255.
     for (int v = 0; v < 256; ++v) {
       const int k = int(std::lround(v * samples_ / 255.0));
@@ -263,7 +241,7 @@ class OsmesaPlatform : public Platform {
     RenderResult out;
     out.samples = samples_;
     const PixelRegion window = PixelRect{0, 0, width_, height_};
-    glColor4ub(255, 255, 255, 255);
+    gl().Color4ub(255, 255, 255, 255);
     switch (method_) {
       case ReadbackMethod::kDrawOnly:  // the floor: drawing alone, no resolve
         out.render_us = draw_and_finish(prim);
@@ -280,10 +258,10 @@ class OsmesaPlatform : public Platform {
         break;
     }
     const Pixel* wild = wild_pixel_for(prim, expected);
-    begin_query_(GL_SAMPLES_PASSED, query_);
+    gl().BeginQuery(GL_SAMPLES_PASSED, query_);
     out.render_us = draw_resolve_finish(prim, wild, expected, true);
     GLuint passed = 0;
-    get_query_(query_, GL_QUERY_RESULT, &passed);
+    gl().GetQueryObjectuiv(query_, GL_QUERY_RESULT, &passed);
     int64_t found = read_coverage(expected, out);
     if (found == int64_t(passed)) {
       erase(prim, wild);
@@ -296,9 +274,9 @@ class OsmesaPlatform : public Platform {
     if (found == int64_t(passed)) return out;
     // More samples found than passed: some stayed lit from an earlier primitive; fewer: the driver
     // covered some sample twice. Draw again on the cleared window and read it whole.
-    begin_query_(GL_SAMPLES_PASSED, query_);
+    gl().BeginQuery(GL_SAMPLES_PASSED, query_);
     out.render_us = draw_resolve_finish(prim, wild, expected, true);
-    get_query_(query_, GL_QUERY_RESULT, &passed);
+    gl().GetQueryObjectuiv(query_, GL_QUERY_RESULT, &passed);
     resolve(window);
     found = read_coverage(window, out);
     clear_all();
@@ -318,33 +296,33 @@ class OsmesaPlatform : public Platform {
                              bool end_query = false) {
     const auto t0 = std::chrono::steady_clock::now();
     draw(prim, wild);
-    if (end_query) end_query_(GL_SAMPLES_PASSED);
+    if (end_query) gl().EndQuery(GL_SAMPLES_PASSED);
     resolve(region);
-    glFinish();
+    gl().Finish();
     return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   }
 
   // Resolves the region's rectangles from the multisample FBO into the resolve FBO (same place).
   void resolve(const PixelRegion& region) {
-    bind_framebuffer_(GL_READ_FRAMEBUFFER, framebuffer_);
-    bind_framebuffer_(GL_DRAW_FRAMEBUFFER, resolve_framebuffer_);
+    gl().BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+    gl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_framebuffer_);
     for (const PixelRect& r : region.rects) {
       const PixelRect c = clamp(r);
       if (!c.empty())
-        blit_framebuffer_(c.x0, c.y0, c.x1, c.y1, c.x0, c.y0, c.x1, c.y1, GL_COLOR_BUFFER_BIT,
+        gl().BlitFramebuffer(c.x0, c.y0, c.x1, c.y1, c.x0, c.y0, c.x1, c.y1, GL_COLOR_BUFFER_BIT,
                           GL_NEAREST);
     }
     // Steady state: draw (and clear) into the multisample FBO, read from the resolved one.
-    bind_framebuffer_(GL_DRAW_FRAMEBUFFER, framebuffer_);
-    bind_framebuffer_(GL_READ_FRAMEBUFFER, resolve_framebuffer_);
+    gl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
+    gl().BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_framebuffer_);
   }
 
   // Draws the primitive again in the clear colour: exactly its samples go back to black.
   void erase(const Primitive& prim, const Pixel* wild) {
-    glColor4ub(0, 0, 0, 0);
+    gl().Color4ub(0, 0, 0, 0);
     draw(prim, wild);
-    glFinish();
-    glColor4ub(255, 255, 255, 255);
+    gl().Finish();
+    gl().Color4ub(255, 255, 255, 255);
   }
 
   // Reads the region's resolved pixels and replaces out.lit / out.samples_lit with those that
@@ -358,7 +336,7 @@ class OsmesaPlatform : public Platform {
       ++rects;
       const int w = r.x1 - r.x0, h = r.y1 - r.y0;
       readback_.resize(size_t(w) * h);
-      glReadPixels(r.x0, r.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readback_.data());
+      gl().ReadPixels(r.x0, r.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readback_.data());
       for (int y = 0; y < h; ++y) {
         const uint32_t* row = readback_.data() + size_t(y) * w;
         for (int x = 0; x < w; ++x) {
@@ -395,16 +373,16 @@ class OsmesaPlatform : public Platform {
   double draw_and_finish(const Primitive& prim, bool end_query = false, const Pixel* wild = nullptr) {
     const auto t0 = std::chrono::steady_clock::now();
     draw(prim, wild);
-    if (end_query) end_query_(GL_SAMPLES_PASSED);
-    glFinish();
+    if (end_query) gl().EndQuery(GL_SAMPLES_PASSED);
+    gl().Finish();
     return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   }
 
   void draw(const Primitive& prim, const Pixel* wild) {
     static const GLenum modes[] = {GL_POINTS, GL_LINES, GL_TRIANGLES};
-    glBegin(modes[int(prim.kind)]);
-    for (int i = 0; i < vertex_count(prim.kind); ++i) glVertex3d(prim.v[i].x, prim.v[i].y, prim.v[i].z);
-    glEnd();
+    gl().Begin(modes[int(prim.kind)]);
+    for (int i = 0; i < vertex_count(prim.kind); ++i) gl().Vertex3d(prim.v[i].x, prim.v[i].y, prim.v[i].z);
+    gl().End();
     if (wild) draw_wild_pixel(*wild);
   }
 
@@ -413,7 +391,7 @@ class OsmesaPlatform : public Platform {
     std::vector<RenderResult> out(prims.size());
     const auto t0 = std::chrono::steady_clock::now();
     for (const Primitive& prim : prims) draw(prim, nullptr);
-    glFinish();
+    gl().Finish();
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     for (RenderResult& r : out) r.render_us = us / double(prims.size()), r.batch_size = int(prims.size());
     return out;
@@ -434,25 +412,19 @@ class OsmesaPlatform : public Platform {
 
   // Lights pixel p through GL (so only the readback can find it): a point at its centre in NDC.
   void draw_wild_pixel(Pixel p) {
-    glMatrixMode(GL_PROJECTION);
-    glPushMatrix();
-    glLoadIdentity();
-    glMatrixMode(GL_MODELVIEW);
-    glPushMatrix();
-    glLoadIdentity();
-    glBegin(GL_POINTS);
-    glVertex2d(2.0 * (p.x + 0.5) / width_ - 1.0, 2.0 * (p.y + 0.5) / height_ - 1.0);
-    glEnd();
-    glPopMatrix();
-    glMatrixMode(GL_PROJECTION);
-    glPopMatrix();
-    glMatrixMode(GL_MODELVIEW);
-  }
-
-  template <typename F>
-  void load(F& fn, const char* name) {
-    fn = reinterpret_cast<F>(OSMesaGetProcAddress(name));
-    if (!fn) throw std::runtime_error(std::string("OSMesa lacks ") + name);
+    gl().MatrixMode(GL_PROJECTION);
+    gl().PushMatrix();
+    gl().LoadIdentity();
+    gl().MatrixMode(GL_MODELVIEW);
+    gl().PushMatrix();
+    gl().LoadIdentity();
+    gl().Begin(GL_POINTS);
+    gl().Vertex2d(2.0 * (p.x + 0.5) / width_ - 1.0, 2.0 * (p.y + 0.5) / height_ - 1.0);
+    gl().End();
+    gl().PopMatrix();
+    gl().MatrixMode(GL_PROJECTION);
+    gl().PopMatrix();
+    gl().MatrixMode(GL_MODELVIEW);
   }
 
   void resize(int w, int h) {
@@ -461,12 +433,12 @@ class OsmesaPlatform : public Platform {
                                " exceeds this driver's GL_MAX_RENDERBUFFER_SIZE " +
                                std::to_string(max_size_));
     if (samples_ > 0) return resize_multisample(w, h);
-    if (renderbuffer_) delete_renderbuffers_(1, &renderbuffer_);
-    gen_renderbuffers_(1, &renderbuffer_);
-    bind_renderbuffer_(GL_RENDERBUFFER, renderbuffer_);
-    renderbuffer_storage_(GL_RENDERBUFFER, GL_RGBA8, w, h);
-    framebuffer_renderbuffer_(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_);
-    if (check_framebuffer_(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    if (renderbuffer_) gl().DeleteRenderbuffers(1, &renderbuffer_);
+    gl().GenRenderbuffers(1, &renderbuffer_);
+    gl().BindRenderbuffer(GL_RENDERBUFFER, renderbuffer_);
+    gl().RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    gl().FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_);
+    if (gl().CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw std::runtime_error("incomplete framebuffer for a " + std::to_string(w) + "x" +
                                std::to_string(h) + " window");
     width_ = w;
@@ -476,30 +448,30 @@ class OsmesaPlatform : public Platform {
   // The multisample FBO (drawn into) and the single-sample resolve FBO (read back), both w x h.
   void resize_multisample(int w, int h) {
     const std::string size = std::to_string(w) + "x" + std::to_string(h);
-    if (renderbuffer_) delete_renderbuffers_(1, &renderbuffer_);
-    if (resolve_renderbuffer_) delete_renderbuffers_(1, &resolve_renderbuffer_);
-    gen_renderbuffers_(1, &renderbuffer_);
-    bind_renderbuffer_(GL_RENDERBUFFER, renderbuffer_);
-    renderbuffer_storage_multisample_(GL_RENDERBUFFER, samples_, GL_RGBA8, w, h);
+    if (renderbuffer_) gl().DeleteRenderbuffers(1, &renderbuffer_);
+    if (resolve_renderbuffer_) gl().DeleteRenderbuffers(1, &resolve_renderbuffer_);
+    gl().GenRenderbuffers(1, &renderbuffer_);
+    gl().BindRenderbuffer(GL_RENDERBUFFER, renderbuffer_);
+    gl().RenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, GL_RGBA8, w, h);
     GLint got = 0;  // GL may give more samples than asked for: coverage would then be k / got
-    get_renderbuffer_parameter_(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &got);
+    gl().GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &got);
     if (got != samples_)
       throw std::runtime_error("platform " + name_ + ": asked for " + std::to_string(samples_) +
                                " samples per pixel, the driver gave " + std::to_string(got));
-    bind_framebuffer_(GL_FRAMEBUFFER, framebuffer_);
-    framebuffer_renderbuffer_(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_);
-    if (check_framebuffer_(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    gl().BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    gl().FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_);
+    if (gl().CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw std::runtime_error("incomplete multisample framebuffer for a " + size + " window");
-    gen_renderbuffers_(1, &resolve_renderbuffer_);
-    bind_renderbuffer_(GL_RENDERBUFFER, resolve_renderbuffer_);
-    renderbuffer_storage_(GL_RENDERBUFFER, GL_RGBA8, w, h);
-    bind_framebuffer_(GL_FRAMEBUFFER, resolve_framebuffer_);
-    framebuffer_renderbuffer_(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+    gl().GenRenderbuffers(1, &resolve_renderbuffer_);
+    gl().BindRenderbuffer(GL_RENDERBUFFER, resolve_renderbuffer_);
+    gl().RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    gl().BindFramebuffer(GL_FRAMEBUFFER, resolve_framebuffer_);
+    gl().FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
                               resolve_renderbuffer_);
-    if (check_framebuffer_(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    if (gl().CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw std::runtime_error("incomplete resolve framebuffer for a " + size + " window");
-    bind_framebuffer_(GL_DRAW_FRAMEBUFFER, framebuffer_);
-    bind_framebuffer_(GL_READ_FRAMEBUFFER, resolve_framebuffer_);
+    gl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
+    gl().BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_framebuffer_);
     width_ = w;
     height_ = h;
   }
@@ -517,13 +489,13 @@ class OsmesaPlatform : public Platform {
     if (colour_ + n > kLastColour) clear_all();  // after 16.7 million primitives in one view
   }
   void use_colour(uint32_t c) {
-    glColor4ub(GLubyte(c), GLubyte(c >> 8), GLubyte(c >> 16), 255);
+    gl().Color4ub(GLubyte(c), GLubyte(c >> 8), GLubyte(c >> 16), 255);
   }
 
   // Clears the whole window (a fast path in Mesa, unlike a scissored clear) and restarts colours.
   void clear_all() {
-    glClear(GL_COLOR_BUFFER_BIT);
-    glFinish();
+    gl().Clear(GL_COLOR_BUFFER_BIT);
+    gl().Finish();
     colour_ = 0;
   }
 
@@ -554,7 +526,7 @@ class OsmesaPlatform : public Platform {
     if (r.empty()) return;
     const int w = r.x1 - r.x0, h = r.y1 - r.y0;
     readback_.resize(size_t(w) * h);
-    glReadPixels(r.x0, r.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readback_.data());
+    gl().ReadPixels(r.x0, r.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readback_.data());
     if (colour == kAnyColour) {
       scan(r, [](uint32_t v) { return (v & kRgb) != 0; }, lit);
     } else {
@@ -589,39 +561,23 @@ class OsmesaPlatform : public Platform {
     uint8_t k;
   };
   std::vector<Covered> covered_;
-  PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC renderbuffer_storage_multisample_ = nullptr;
-  PFNGLBLITFRAMEBUFFERPROC blit_framebuffer_ = nullptr;
-  PFNGLGETRENDERBUFFERPARAMETERIVPROC get_renderbuffer_parameter_ = nullptr;
   Pixel wild_;
-  OSMesaContext context_ = nullptr;
-  uint8_t winsys_pixel_[4] = {};
+  std::unique_ptr<GlContext> context_;
   std::vector<uint32_t> readback_;
   std::vector<PixelRun> runs_;
   GLuint framebuffer_ = 0, renderbuffer_ = 0;
   GLint max_size_ = 0;
-  PFNGLGENFRAMEBUFFERSPROC gen_framebuffers_ = nullptr;
-  PFNGLBINDFRAMEBUFFERPROC bind_framebuffer_ = nullptr;
-  PFNGLGENRENDERBUFFERSPROC gen_renderbuffers_ = nullptr;
-  PFNGLDELETERENDERBUFFERSPROC delete_renderbuffers_ = nullptr;
-  PFNGLBINDRENDERBUFFERPROC bind_renderbuffer_ = nullptr;
-  PFNGLRENDERBUFFERSTORAGEPROC renderbuffer_storage_ = nullptr;
-  PFNGLFRAMEBUFFERRENDERBUFFERPROC framebuffer_renderbuffer_ = nullptr;
-  PFNGLCHECKFRAMEBUFFERSTATUSPROC check_framebuffer_ = nullptr;
   int width_ = 0, height_ = 0;
   uint32_t colour_ = 0;  // of the last primitive drawn; 0 (black) = none since the last clear
   DriverInfo info_;
   GLuint query_ = 0;
-  PFNGLGENQUERIESPROC gen_queries_ = nullptr;
-  PFNGLBEGINQUERYPROC begin_query_ = nullptr;
-  PFNGLENDQUERYPROC end_query_ = nullptr;
-  PFNGLGETQUERYOBJECTUIVPROC get_query_ = nullptr;
 };
 
 }  // namespace
 
-std::unique_ptr<Platform> create_osmesa_platform(const PlatformSpec& spec, ReadbackMethod method,
+std::unique_ptr<Platform> create_gl_platform(const PlatformSpec& spec, ReadbackMethod method,
                                                  std::vector<uint64_t> wild_pixel_indices) {
-  return std::make_unique<OsmesaPlatform>(spec, method, std::move(wild_pixel_indices));
+  return std::make_unique<GlPlatform>(spec, method, std::move(wild_pixel_indices));
 }
 
 }  // namespace ra

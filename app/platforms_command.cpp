@@ -1,0 +1,99 @@
+// `renderaudit platforms [--json]`: every platform this machine can draw through, with its
+// driver's identity, and every one it cannot, with the reason and the packages that would provide
+// it. Each GL platform is probed in its own child process (platforms/platform_probe.h).
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "platforms/gl_context.h"
+#include "platforms/platform_probe.h"
+#include "util/errors.h"
+
+namespace ra::app {
+namespace {
+
+// The fixed-name platforms, then egl-device:N for every EGL device (when EGL can list them).
+std::vector<PlatformSpec> platforms_to_probe(std::string* device_note) {
+  std::vector<PlatformSpec> specs;
+  for (const PlatformSpec& s : platform_specs())
+    if (s.backend != Backend::kFaulty) specs.push_back(s);
+  try {
+    for (const EglDevice& d : list_egl_devices()) {
+      PlatformSpec s = *find_platform("egl-device:" + std::to_string(d.index));
+      s.description = "EGL device " + std::to_string(d.index) +
+                      (d.software ? ": Mesa's software device (EGL_MESA_device_software)"
+                                  : d.drm_node.empty() ? "" : " (" + d.drm_node + ")");
+      specs.push_back(s);
+    }
+  } catch (const UserError& e) {
+    *device_note = e.what();
+  }
+  return specs;
+}
+
+}  // namespace
+
+void register_platforms_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "platforms",
+      "List the platforms this machine can draw through (GL_RENDERER, GL_VERSION, GL_VENDOR,\n"
+      "GL_SUBPIXEL_BITS, GL_MAX_SAMPLES, timer queries) and, for each one it cannot, why and\n"
+      "which packages would provide it. Each GL platform is brought up in a child process.");
+  static bool as_json = false;
+  cmd->add_flag("--json", as_json, "one JSON document on stdout");
+  cmd->callback([&exit_code] {
+    std::string device_note;
+    const std::vector<PlatformSpec> specs = platforms_to_probe(&device_note);
+    nlohmann::json list = nlohmann::json::array();
+    for (const PlatformSpec& spec : specs) {
+      const PlatformProbe p = probe_platform(spec);
+      nlohmann::json j = {{"name", spec.name},
+                          {"description", spec.description},
+                          {"available", p.available}};
+      if (p.available) {
+        j["renderer"] = p.driver.renderer;
+        j["version"] = p.driver.version;
+        j["vendor"] = p.driver.vendor;
+        j["subpixel_bits"] = p.driver.subpixel_bits;
+        j["max_samples"] = p.driver.max_samples;
+        j["timer_query"] = p.driver.timer_query;
+        j["backend"] = p.driver.backend;
+      } else {
+        j["reason"] = p.reason;
+        j["packages"] = packages_for(spec);
+      }
+      list.push_back(j);
+    }
+    if (as_json) {
+      nlohmann::json doc = {{"platforms", list}};
+      if (!device_note.empty()) doc["egl_devices"] = device_note;
+      std::printf("%s\n", doc.dump(2).c_str());
+    } else {
+      for (const nlohmann::json& j : list) {
+        const std::string name = j["name"];
+        if (j["available"] && j["backend"] == "none") {
+          std::printf("%-22s %s\n", name.c_str(), j["description"].get<std::string>().c_str());
+        } else if (j["available"]) {
+          std::printf("%-22s %s | %s | %s | subpixel bits %d | max samples %d | timer query %s | %s\n",
+                      name.c_str(), j["renderer"].get<std::string>().c_str(),
+                      j["version"].get<std::string>().c_str(),
+                      j["vendor"].get<std::string>().c_str(), j["subpixel_bits"].get<int>(),
+                      j["max_samples"].get<int>(), j["timer_query"].get<bool>() ? "yes" : "no",
+                      j["backend"].get<std::string>().c_str());
+        } else {
+          const std::string reason = j["reason"];
+          const std::string packages = j["packages"];
+          std::printf("%-22s cannot draw here: %s%s\n", name.c_str(), reason.c_str(),
+                      reason.find("apt-get") != std::string::npos || packages.empty()
+                          ? ""
+                          : (" (needs: " + packages + ")").c_str());
+        }
+      }
+      if (!device_note.empty()) std::printf("EGL devices: %s\n", device_note.c_str());
+    }
+    exit_code = kExitOk;
+  });
+}
+
+}  // namespace ra::app

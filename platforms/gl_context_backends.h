@@ -1,0 +1,13 @@
+// The back ends behind create_gl_context (gl_context.cpp), one file each.
+#pragma once
+
+#include <memory>
+
+#include "platforms/gl_context.h"
+
+namespace ra {
+
+std::unique_ptr<GlContext> create_osmesa_context(const PlatformSpec& spec);   // osmesa_context.cpp
+std::unique_ptr<GlContext> create_egl_context(const PlatformSpec& spec);      // egl_context.cpp
+
+}  // namespace ra

@@ -1,0 +1,82 @@
+// Probing platforms in forked children (see the header).
+#include "platforms/platform_probe.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "platforms/gl_context.h"
+#include "util/errors.h"
+#include "util/gl_child_process.h"
+
+namespace ra {
+
+PlatformProbe probe_platform(const PlatformSpec& spec) {
+  PlatformProbe out;
+  out.name = spec.name;
+  if (!spec.draws_with_gl()) {
+    out.available = true;
+    out.driver.renderer = spec.backend == Backend::kReference ? "renderaudit reference rasterizer"
+                                                              : "renderaudit faulty test platform";
+    out.driver.backend = "none";
+    return out;
+  }
+  const std::string scratch = std::filesystem::temp_directory_path().string();
+  const std::string name = "renderaudit-probe-" + std::to_string(::getpid()) + "-" + spec.name;
+  try {
+    const nlohmann::json j = run_in_child(scratch, name, [&spec]() {
+      const std::unique_ptr<GlContext> context = create_gl_context(spec);
+      const GlApi& gl = context->gl();
+      const auto text = [&gl](GLenum what) {
+        const GLubyte* s = gl.GetString(what);
+        return std::string(s ? reinterpret_cast<const char*>(s) : "");
+      };
+      GLint subpixel_bits = 0, max_samples = 0;
+      gl.GetIntegerv(GL_SUBPIXEL_BITS, &subpixel_bits);
+      gl.GetIntegerv(GL_MAX_SAMPLES, &max_samples);
+      const std::string extensions = text(GL_EXTENSIONS);
+      if (spec.samples > max_samples) {
+        throw UserError(spec.name + " needs " + std::to_string(spec.samples) +
+                        " samples per pixel, but " + text(GL_RENDERER) + " has GL_MAX_SAMPLES " +
+                        std::to_string(max_samples));
+      }
+      return nlohmann::json{
+          {"renderer", text(GL_RENDERER)},
+          {"version", text(GL_VERSION)},
+          {"vendor", text(GL_VENDOR)},
+          {"subpixel_bits", subpixel_bits},
+          {"max_samples", max_samples},
+          {"timer_query", extensions.find("GL_ARB_timer_query") != std::string::npos},
+          {"backend", context->backend()}};
+    });
+    out.available = true;
+    out.driver.renderer = j.value("renderer", "");
+    out.driver.version = j.value("version", "");
+    out.driver.vendor = j.value("vendor", "");
+    out.driver.subpixel_bits = j.value("subpixel_bits", 0);
+    out.driver.max_samples = j.value("max_samples", 0);
+    out.driver.timer_query = j.value("timer_query", false);
+    out.driver.backend = j.value("backend", "");
+  } catch (const ChildProcessError& e) {
+    out.reason = e.what();
+    const std::string prefix = spec.name + ": ";  // the platform is named by the caller
+    if (out.reason.compare(0, prefix.size(), prefix) == 0) out.reason.erase(0, prefix.size());
+  }
+  return out;
+}
+
+void require_platforms_draw(const std::vector<std::string>& names, const std::string& context) {
+  std::string problems;
+  for (const std::string& name : names) {
+    const std::optional<PlatformSpec> spec = find_platform(name);
+    if (!spec || !spec->draws_with_gl()) continue;
+    const PlatformProbe p = probe_platform(*spec);
+    if (!p.available) problems += "\n  " + name + ": " + p.reason;
+  }
+  if (!problems.empty()) {
+    throw UserError(context + ": platform(s) that cannot draw on this machine (nothing was "
+                    "written; `renderaudit platforms` lists what can):" + problems);
+  }
+}
+
+}  // namespace ra

@@ -1,0 +1,30 @@
+// Asking a platform whether it can draw here, before anything is written: each GL platform is
+// brought up in a forked child (Mesa picks its driver once per process, and a driver that crashes
+// takes only the child with it), which reports the driver's identity or why it cannot draw.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "platforms/platform.h"
+
+namespace ra {
+
+struct PlatformProbe {
+  std::string name;
+  bool available = false;
+  DriverInfo driver;   // when available
+  std::string reason;  // when not: the error, with the package that would provide it
+};
+
+// Probes one platform (the non-GL ones are always available). Never throws for a platform that
+// cannot draw: that is the result.
+PlatformProbe probe_platform(const PlatformSpec& spec);
+
+// Throws ra::UserError listing every GL platform of `names` that cannot draw here, with each one's
+// reason (the run then stops before its directory is written). Unknown names are the experiment
+// parser's business and are skipped here.
+void require_platforms_draw(const std::vector<std::string>& names, const std::string& context);
+
+}  // namespace ra

@@ -1,0 +1,99 @@
+// The platform table and the parsing of `egl-device:N` (see the header).
+#include "platforms/platform_spec.h"
+
+#include <charconv>
+
+namespace ra {
+
+const std::vector<PlatformSpec>& platform_specs() {
+  using B = Backend;
+  static const std::vector<PlatformSpec> specs = {
+      {"osmesa-llvmpipe", "Mesa OSMesa with the llvmpipe driver (the embedded default)", B::kOsmesa,
+       "llvmpipe"},
+      {"osmesa-softpipe", "Mesa OSMesa with the softpipe driver (an independent second platform)",
+       B::kOsmesa, "softpipe"},
+      {"reference", "the project's exact rasterizer following the GL rules (no driver)",
+       B::kReference},
+      {"faulty", "test platform: the reference rasterizer plus the faults of [faults]", B::kFaulty},
+      // The antialiasing condition; after the first four, so that those keep their place in
+      // messages. softpipe has no multisample variant: its GL_MAX_SAMPLES is 1 (Mesa 22.3.6), and
+      // glRenderbufferStorageMultisample(4) fails there.
+      {"osmesa-llvmpipe-msaa4",
+       "Mesa OSMesa with llvmpipe, antialiased: 4x multisampling, coverage = samples lit / 4",
+       B::kOsmesa, "llvmpipe", 4},
+      {"egl-llvmpipe", "Mesa surfaceless EGL with llvmpipe (the same rasterizer as osmesa-llvmpipe)",
+       B::kEglSurfaceless, "llvmpipe"},
+      {"egl-softpipe", "Mesa surfaceless EGL with softpipe", B::kEglSurfaceless, "softpipe"},
+      {"egl-zink", "Mesa surfaceless EGL with zink: GL on Vulkan (lavapipe where no GPU)",
+       B::kEglSurfaceless, "zink"},
+      {"egl-llvmpipe-msaa4", "Mesa surfaceless EGL with llvmpipe, antialiased: 4x multisampling",
+       B::kEglSurfaceless, "llvmpipe", 4},
+      {"egl-device", "the first hardware EGL device (EGL_EXT_platform_device): a GPU's own driver",
+       B::kEglDevice},
+      {"egl-device-msaa4", "the first hardware EGL device, antialiased: 4x multisampling",
+       B::kEglDevice, "", 4},
+  };
+  return specs;
+}
+
+std::optional<PlatformSpec> find_platform(const std::string& name) {
+  for (const PlatformSpec& s : platform_specs())
+    if (name == s.name) return s;
+  // egl-device:N and egl-device:N-msaa4
+  const std::string prefix = "egl-device:", msaa = "-msaa4";
+  if (name.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
+  std::string digits = name.substr(prefix.size());
+  const bool antialiased =
+      digits.size() > msaa.size() && digits.compare(digits.size() - msaa.size(), msaa.size(), msaa) == 0;
+  if (antialiased) digits.resize(digits.size() - msaa.size());
+  int index = -1;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+  if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() || index < 0 ||
+      index > 255)
+    return std::nullopt;
+  PlatformSpec s;
+  s.name = name;
+  s.description = "EGL device " + std::to_string(index) + " (EGL_EXT_platform_device)" +
+                  (antialiased ? ", antialiased: 4x multisampling" : "");
+  s.backend = Backend::kEglDevice;
+  s.device = index;
+  s.samples = antialiased ? 4 : 0;
+  return s;
+}
+
+std::string platform_names() {
+  std::string out;
+  for (const auto& s : platform_specs()) out += (out.empty() ? "" : ", ") + s.name;
+  return out + ", egl-device:N";
+}
+
+std::string aliased_gl_platform_names() {
+  std::string out;
+  for (const auto& s : platform_specs())
+    if (s.draws_with_gl() && s.samples == 0) out += (out.empty() ? "" : ", ") + s.name;
+  return out + ", egl-device:N";
+}
+
+bool is_aliased_gl_platform(const std::string& name) {
+  const std::optional<PlatformSpec> spec = find_platform(name);
+  return spec && spec->draws_with_gl() && spec->samples == 0;
+}
+
+std::string packages_for(const PlatformSpec& spec) {
+  switch (spec.backend) {
+    case Backend::kOsmesa:
+      return "libosmesa6";
+    case Backend::kEglSurfaceless:
+      return spec.mesa_driver == "zink"
+                 ? "libegl1 libegl-mesa0 libgl1-mesa-dri mesa-vulkan-drivers libvulkan1"
+                 : "libegl1 libegl-mesa0 libgl1-mesa-dri";
+    case Backend::kEglDevice:
+      return "libegl1 and the GPU vendor's EGL driver (e.g. libnvidia-egl or libegl-mesa0)";
+    case Backend::kReference:
+    case Backend::kFaulty:
+      return "";
+  }
+  return "";
+}
+
+}  // namespace ra

@@ -1,0 +1,56 @@
+// Platform names: what each name in an experiment file draws through. Only values from this table
+// ever reach Mesa's environment (GALLIUM_DRIVER=swrast made OSMesa 22.3 segfault).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ra {
+
+// How a platform draws.
+enum class Backend {
+  kOsmesa,          // Mesa's OSMesa (libOSMesa.so.8); the driver picked by GALLIUM_DRIVER
+  kEglSurfaceless,  // Mesa's EGL_MESA_platform_surfaceless; the driver picked by the environment
+  kEglDevice,       // a device of EGL_EXT_platform_device: a GPU through its vendor's driver
+  kReference,       // the project's exact rasterizer (no driver)
+  kFaulty,          // test platform: the reference plus injected faults
+};
+
+struct PlatformSpec {
+  std::string name;  // as written in experiment files
+  std::string description;
+  Backend backend = Backend::kReference;
+  // The Mesa driver the environment asks for ("llvmpipe", "softpipe", "zink"); empty for EGL
+  // devices (the device decides) and the non-GL platforms.
+  std::string mesa_driver;
+  // Samples per pixel of the multisample colour buffer drawn into: 0 for the aliased platforms
+  // (one sample at the pixel centre, the paper's condition), 4 for the antialiasing condition
+  // (`*-msaa4`, see gl_platform.cpp).
+  int samples = 0;
+  // kEglDevice: the index among EGL devices (`egl-device:N`); -1 for `egl-device`, the first
+  // device that is not Mesa's software one.
+  int device = -1;
+
+  bool draws_with_gl() const {
+    return backend == Backend::kOsmesa || backend == Backend::kEglSurfaceless ||
+           backend == Backend::kEglDevice;
+  }
+};
+
+// The platforms with a fixed name, in the order messages list them (`egl-device:N` and
+// `egl-device:N-msaa4` are parsed by find_platform).
+const std::vector<PlatformSpec>& platform_specs();
+// The platform called `name`, or nullopt.
+std::optional<PlatformSpec> find_platform(const std::string& name);
+std::string platform_names();  // "osmesa-llvmpipe, osmesa-softpipe, ..., egl-device:N"
+
+// The aliased GL platforms (draws_with_gl, samples 0): the ones the timing, LOD and regulation
+// studies draw on. A list for messages ("osmesa-llvmpipe, ..., egl-device:N"), and the test.
+std::string aliased_gl_platform_names();
+bool is_aliased_gl_platform(const std::string& name);
+
+// Debian packages a back end needs, for messages ("libegl1 libegl-mesa0").
+std::string packages_for(const PlatformSpec& spec);
+
+}  // namespace ra
