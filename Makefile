@@ -21,8 +21,15 @@ $(BUILD)/CMakeCache.txt: | deps
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
+# The embedded default is osmesa-llvmpipe; where OSMesa is missing (Mesa >= 25.1) the same driver
+# is drawn through EGL (experiments/quick-egl.toml), and the line below says which.
 run: build
-	$(BUILD)/renderaudit run $(EXPERIMENT) --out $(OUT)
+	@platform=$$($(BUILD)/renderaudit platforms --embedded-default) || exit 2; \
+	experiment=$(EXPERIMENT); \
+	if [ "$$platform" = egl-llvmpipe ] && [ "$$experiment" = experiments/quick.toml ]; then \
+	  experiment=experiments/quick-egl.toml; fi; \
+	echo "renderaudit: drawing with $$platform ($$experiment)"; \
+	$(BUILD)/renderaudit run $$experiment --out $(OUT)
 
 analyze: run
 	$(BUILD)/renderaudit analyze $(OUT)

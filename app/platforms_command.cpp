@@ -40,9 +40,26 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
       "List the platforms this machine can draw through (GL_RENDERER, GL_VERSION, GL_VENDOR,\n"
       "GL_SUBPIXEL_BITS, GL_MAX_SAMPLES, timer queries) and, for each one it cannot, why and\n"
       "which packages would provide it. Each GL platform is brought up in a child process.");
-  static bool as_json = false;
+  static bool as_json = false, embedded_default = false;
   cmd->add_flag("--json", as_json, "one JSON document on stdout");
+  cmd->add_flag("--embedded-default", embedded_default,
+                "print the platform `make` draws with: osmesa-llvmpipe where OSMesa works, else "
+                "egl-llvmpipe (the same driver through EGL); exit 2 with the reasons when neither "
+                "can draw");
   cmd->callback([&exit_code] {
+    if (embedded_default) {
+      std::string reasons;
+      for (const char* name : {"osmesa-llvmpipe", "egl-llvmpipe"}) {
+        const PlatformProbe p = probe_platform(*find_platform(name));
+        if (p.available) {
+          std::printf("%s\n", name);
+          exit_code = kExitOk;
+          return;
+        }
+        reasons += std::string("\n  ") + name + ": " + p.reason;
+      }
+      throw UserError("neither embedded platform can draw on this machine:" + reasons);
+    }
     std::string device_note;
     const std::vector<PlatformSpec> specs = platforms_to_probe(&device_note);
     nlohmann::json list = nlohmann::json::array();

@@ -9,7 +9,8 @@
 //   project  everything `renderaudit run` does (measure_cases: small primitives batched under one
 //            proof, ideal geometry, metrics, reference rasterizer comparison).
 // Mesa picks its driver once per process, so each platform is measured in a child process
-// (`readback_bench --platform P`) and the parent gathers the rows into one table and a JSON file.
+// (`readback_bench --platform P`), one per platform and round, the platforms alternating; the
+// parent gathers the rows into one table (and EGL / OSMesa ratios) and a JSON file.
 #include <cerrno>
 #include <filesystem>
 #include <sys/wait.h>
@@ -21,6 +22,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -42,7 +44,9 @@ struct Options {
   std::string json_path = "outputs/bench/readback.json";
   int primitives = 1000;  // per configuration and round
   int rounds = 3;
-  std::vector<std::string> platforms = {"osmesa-llvmpipe", "osmesa-softpipe"};
+  // OSMesa and EGL on the same drivers, so that the back ends' costs are compared side by side
+  std::vector<std::string> platforms = {"osmesa-llvmpipe", "egl-llvmpipe", "osmesa-softpipe",
+                                        "egl-softpipe"};
 };
 
 // The analysis stage's median (stats/descriptive.h); 0 for no timings.
@@ -166,29 +170,58 @@ int run_children(const Options& opt, const char* self) {
       return 2;
     }
   }
-  for (const auto& p : opt.platforms) {
-    // One process per platform (Mesa picks its driver once per process), from an argument list.
-    ChildSpec spec;
-    spec.argv = {self, "--platform", p, "--primitives", std::to_string(opt.primitives),
-                 "--rounds", std::to_string(opt.rounds)};
-    spec.stdin_null = true;
-    const ProgramResult measured = run_program(spec);  // stdout and stderr, interleaved
-    const int status = measured.status;
-    if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
-      std::fprintf(stderr, "readback_bench: measuring %s failed (%s)\n", p.c_str(),
-                   describe_exit_status(status).c_str());
-      return 1;
-    }
-    std::stringstream lines(measured.output);
-    for (std::string line; std::getline(lines, line);) {
-      if (!line.empty() && line[0] == '{')
-        rows.push_back(nlohmann::json::parse(line));
-      else
-        std::fprintf(stderr, "%s\n", line.c_str());  // the child's own messages
+  // One process per platform and round (Mesa picks its driver once per process), the platforms
+  // alternating round by round so that a noisy stretch of the machine falls on all of them; each
+  // configuration's figure is the median of its rounds' medians. A platform that cannot draw here
+  // (no EGL, no device) is left out with a note.
+  std::map<std::string, std::vector<nlohmann::json>> by_config;  // platform/kind/window/fov
+  std::vector<std::string> key_order;
+  std::set<std::string> unavailable;
+  for (int round = 0; round < opt.rounds; ++round) {
+    for (const auto& p : opt.platforms) {
+      if (unavailable.count(p)) continue;
+      ChildSpec spec;
+      spec.argv = {self, "--platform", p, "--primitives", std::to_string(opt.primitives),
+                   "--rounds", "1"};
+      spec.stdin_null = true;
+      const ProgramResult measured = run_program(spec);  // stdout and stderr, interleaved
+      const int status = measured.status;
+      if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+        std::fprintf(stderr, "readback_bench: %s left out: measuring it failed (%s): %s\n",
+                     p.c_str(), describe_exit_status(status).c_str(), measured.output.c_str());
+        unavailable.insert(p);
+        continue;
+      }
+      std::stringstream lines(measured.output);
+      for (std::string line; std::getline(lines, line);) {
+        if (line.empty() || line[0] != '{') {
+          if (!line.empty()) std::fprintf(stderr, "%s\n", line.c_str());  // the child's messages
+          continue;
+        }
+        const nlohmann::json row = nlohmann::json::parse(line);
+        const std::string key = row["platform"].get<std::string>() + "/" +
+                                row["kind"].get<std::string>() + "/" + row["window"].dump() + "/" +
+                                row["fov_deg"].dump();
+        if (!by_config.count(key)) key_order.push_back(key);
+        by_config[key].push_back(row);
+      }
     }
   }
+  for (const std::string& key : key_order) {
+    const std::vector<nlohmann::json>& rounds = by_config[key];
+    nlohmann::json row = rounds.front();
+    row["primitives"] = rounds.front()["primitives"].get<int>() * int(rounds.size());
+    for (auto it = row.begin(); it != row.end(); ++it) {
+      if (it.key().size() < 3 || it.key().compare(it.key().size() - 3, 3, "_us") != 0) continue;
+      std::vector<double> v;
+      for (const nlohmann::json& r : rounds) v.push_back(r[it.key()].get<double>());
+      *it = median(v);
+    }
+    rows.push_back(row);
+  }
   std::printf(
-      "Microseconds per primitive, %d primitives x %d interleaved rounds per field of view ('both'\n"
+      "Microseconds per primitive, %d primitives x %d rounds (one process per platform and round,\n"
+      "platforms alternating) per field of view ('both'\n"
       "pools the two). region: the project's readback and metrics one primitive at a time; project:\n"
       "what `run` spends per primitive (its batch's drawing and proof shared equally, plus its own\n"
       "geometry, metrics and reference comparison); batched: the floor with one glFinish per %d\n"
@@ -210,6 +243,28 @@ int run_children(const Options& opt, const char* self) {
                 r["region_us"].get<double>(), project, r["floor_mean_us"].get<double>(),
                 r["project_mean_us"].get<double>(), project / floor,
                 r["naive_mean_us"].get<double>() / r["project_mean_us"].get<double>());
+  }
+  // EGL against OSMesa on the same driver: the back end's own cost
+  bool header = false;
+  for (const auto& egl : rows) {
+    const std::string name = egl["platform"];
+    if (name.rfind("egl-", 0) != 0) continue;
+    for (const auto& os : rows) {
+      if (os["platform"] != "osmesa-" + name.substr(4) || os["kind"] != egl["kind"] ||
+          os["window"] != egl["window"] || os["fov_deg"] != egl["fov_deg"] || os["fov_deg"] != 0)
+        continue;
+      if (!header) {
+        std::printf("\nEGL / OSMesa on the same driver (medians, both fields of view pooled):\n");
+        std::printf("%-16s %-9s %6s %9s %9s %9s\n", "platform", "kind", "window", "floor",
+                    "batched", "project");
+        header = true;
+      }
+      std::printf("%-16s %-9s %6d %9.3f %9.3f %9.3f\n", name.c_str(),
+                  egl["kind"].get<std::string>().c_str(), egl["window"].get<int>(),
+                  egl["floor_us"].get<double>() / os["floor_us"].get<double>(),
+                  egl["batched_us"].get<double>() / os["batched_us"].get<double>(),
+                  egl["project_us"].get<double>() / os["project_us"].get<double>());
+    }
   }
   const std::filesystem::path dir = std::filesystem::path(opt.json_path).parent_path();
   if (!dir.empty()) std::filesystem::create_directories(dir);

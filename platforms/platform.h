@@ -53,7 +53,7 @@ class Platform {
   // implementation may read back only that region when it proves that nothing was lit outside it.
   virtual RenderResult render(const Primitive& prim, const PixelRegion& expected) = 0;
   // Draws each primitive as render() would, in order, and returns their results. An
-  // implementation may share one completeness proof among the batch (osmesa_platform.cpp); this
+  // implementation may share one completeness proof among the batch (gl_platform.cpp); this
   // default draws them one by one.
   virtual std::vector<RenderResult> render_batch(const std::vector<Primitive>& prims,
                                                  const std::vector<PixelRegion>& expected) {

@@ -105,6 +105,22 @@ TEST(EglPlatforms, AMachineWithoutLibEglIsRefusedWithThePackage) {
                  "apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri");
 }
 
+// Mesa >= 25.1 has no OSMesa: the osmesa platforms say what to use instead, and `make` draws
+// through EGL (platforms --embedded-default).
+TEST(EglPlatforms, AMachineWithoutOsmesaIsToldToUseEgl) {
+  const std::vector<std::string> no_osmesa = {"RENDERAUDIT_LIBOSMESA=/nonexistent/libOSMesa.so.8"};
+  expect_refused("osmesa-llvmpipe", no_osmesa,
+                 "egl-llvmpipe draws with the same driver through EGL");
+  ra::ChildSpec spec;
+  spec.argv = {RA_BINARY, "platforms", "--embedded-default"};
+  spec.set_env = no_osmesa;
+  spec.stdin_null = true;
+  const ra::ProgramResult r = ra::run_program(spec);
+  EXPECT_EQ(r.exit_code(), 0) << r.output;
+  EXPECT_NE(r.output.find("egl-llvmpipe"), std::string::npos) << r.output;
+  EXPECT_EQ(run_renderaudit("platforms --embedded-default").output.find("osmesa-llvmpipe"), 0u);
+}
+
 TEST(EglPlatforms, AMissingEglExtensionIsNamed) {
   expect_refused("egl-llvmpipe",
                  {"RENDERAUDIT_EGL_EXTENSION_OVERRIDE=-EGL_KHR_surfaceless_context"},
@@ -126,6 +142,43 @@ TEST(EglPlatforms, ZinkNeedsAVulkanDriver) {
   const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet");
   ASSERT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(ra::read_file(dir + "/run/drivers/egl-zink.json").find("zink"), std::string::npos);
+}
+
+// The timing, LOD and regulation studies draw through the same layer: their smoke experiments,
+// moved to EGL platforms by their experiment files, run and name the EGL context they drew with.
+TEST(EglPlatforms, TheStudiesDrawThroughEglFromTheirExperimentFiles) {
+  const std::string dir = fresh_dir("egl_studies");
+  const std::string src = std::string(RA_SOURCE_DIR) + "/experiments/";
+  const auto replaced = [](std::string text, const std::string& from, const std::string& to) {
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? text : text.replace(at, from.size(), to);
+  };
+  write_text(dir + "/timing.toml",
+             replaced(ra::read_file(src + "timing_smoke.toml"),
+                      "platforms = [\"osmesa-llvmpipe\", \"osmesa-softpipe\"]",
+                      "platforms = [\"egl-llvmpipe\"]"));
+  write_text(dir + "/regulation.toml",
+             replaced(ra::read_file(src + "regulation_smoke.toml"), "platform = \"osmesa-llvmpipe\"",
+                      "platform = \"egl-softpipe\""));
+  write_text(dir + "/lod.toml", replaced(ra::read_file(src + "lod_smoke.toml"), "[lod]\n",
+                                         "[lod]\nplatform = \"egl-llvmpipe\"\n"));
+  for (const char* study : {"timing", "regulation", "lod"}) {
+    const Outcome o = run_renderaudit("run " + dir + "/" + study + ".toml --out " + dir + "/" +
+                                      study + " --quiet");
+    ASSERT_EQ(o.exit_code, 0) << study << ": " << o.output;
+  }
+  const nlohmann::json timing = nlohmann::json::parse(ra::read_file(dir + "/timing/timing.json"));
+  ASSERT_EQ(timing.at("platforms").size(), 1u);
+  EXPECT_EQ(timing["platforms"][0]["name"], "egl-llvmpipe");
+  EXPECT_EQ(timing["platforms"][0]["renderer"]["backend"], "EGL surfaceless (Mesa, llvmpipe)");
+  const nlohmann::json regulation =
+      nlohmann::json::parse(ra::read_file(dir + "/regulation/regulation.json"));
+  EXPECT_EQ(regulation.at("platform"), "egl-softpipe");
+  EXPECT_EQ(regulation.at("render").at("renderer"), "softpipe");
+  const nlohmann::json lod = nlohmann::json::parse(ra::read_file(dir + "/lod/lod_summary.json"));
+  EXPECT_EQ(lod.at("platform"), "egl-llvmpipe");
+  EXPECT_EQ(lod.at("gl_renderer").get<std::string>().rfind("llvmpipe", 0), 0u) << lod.dump();
 }
 
 TEST(EglPlatforms, PlatformsListsWhatCanDrawAndWhyTheRestCannot) {
