@@ -2,6 +2,7 @@
 // (Mesa picks its driver from the environment when the first context is made).
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,9 @@ struct DriverInfo {
   bool timer_query = false;     // GL_ARB_timer_query
   int max_samples = 0;          // GL_MAX_SAMPLES (0 for the non-GL platforms)
   std::string backend;          // GlContext::backend(): how the context was made
+  // GL_TIME_ELAPSED / CPU wall time over the same draws (gl_platform.cpp): near 1 where the
+  // driver's timer measures what the CPU waits for; NaN without a timer query.
+  double timer_over_cpu = std::numeric_limits<double>::quiet_NaN();
 };
 
 // One primitive as rendered.

@@ -12,7 +12,8 @@ namespace {
 class ReferencePlatform : public Platform {
  public:
   DriverInfo driver_info() const override {
-    return {"renderaudit reference rasterizer", "exact double precision", "renderaudit", 0, false};
+    return {"renderaudit reference rasterizer", "exact double precision", "renderaudit", 0, false,
+            0, "none"};
   }
   void set_view(const View& view) override { view_ = view; }
   RenderResult render(const Primitive& prim, const PixelRegion&) override {

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -46,7 +47,10 @@ static void write_driver_info(const std::string& run_dir, const std::string& nam
   nlohmann::json j = {{"renderer", info.renderer},           {"version", info.version},
                       {"vendor", info.vendor},               {"subpixel_bits", info.subpixel_bits},
                       {"timer_query", info.timer_query},     {"max_samples", info.max_samples},
-                      {"backend", info.backend}};
+                      {"backend", info.backend},
+                      {"timer_over_cpu", std::isnan(info.timer_over_cpu)
+                                             ? nlohmann::json()
+                                             : nlohmann::json(info.timer_over_cpu)}};
   j.update(document_header("driver", 1, false));
   // Several shards may race here; each writes a complete file under its own temporary name.
   write_file_atomic(path, j.dump(2) + "\n");

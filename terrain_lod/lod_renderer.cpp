@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "util/errors.h"
+#include "platforms/colour_depth_framebuffer.h"
 #include "platforms/gl_context.h"
 #include "platforms/platform.h"
 
@@ -56,7 +57,7 @@ struct LodRenderer::Impl {
   timing::CameraSettings cam;
   std::unique_ptr<GlContext> context;
   const GlApi* gl = nullptr;  // context->gl()
-  GLuint framebuffer = 0, colour_rb = 0, depth_rb = 0;
+  ColourDepthFramebuffer target;
   std::vector<uint8_t> colour;  // the last frame, read back when image() asks for it
   bool colour_stale = true;
   GLuint vbo = 0, ibo = 0;
@@ -74,25 +75,7 @@ LodRenderer::LodRenderer(const std::string& platform, const timing::CameraSettin
   m.context = create_gl_context(*spec);  // sets Mesa's environment and checks the driver
   m.gl = &m.context->gl();
   const GlApi* gl = m.gl;
-  // Framebuffer object: RGBA8 colour + 24-bit depth of the window size.
-  GLint max_size = 0;
-  gl->GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
-  if (cam.width > max_size || cam.height > max_size)
-    throw UserError("window " + std::to_string(cam.width) + "x" + std::to_string(cam.height) +
-                    " exceeds " + platform + "'s GL_MAX_RENDERBUFFER_SIZE " +
-                    std::to_string(max_size));
-  gl->GenFramebuffers(1, &m.framebuffer);
-  gl->BindFramebuffer(GL_FRAMEBUFFER, m.framebuffer);
-  gl->GenRenderbuffers(1, &m.colour_rb);
-  gl->BindRenderbuffer(GL_RENDERBUFFER, m.colour_rb);
-  gl->RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, cam.width, cam.height);
-  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m.colour_rb);
-  gl->GenRenderbuffers(1, &m.depth_rb);
-  gl->BindRenderbuffer(GL_RENDERBUFFER, m.depth_rb);
-  gl->RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, cam.width, cam.height);
-  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m.depth_rb);
-  if (gl->CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw std::runtime_error("incomplete framebuffer (RGBA8 + DEPTH24) for " + platform);
+  m.target = create_colour_depth_framebuffer(*gl, cam.width, cam.height, platform);
   m.colour.assign(size_t(cam.width) * cam.height * 4, 0);
 
   // vertex colours from the full-resolution surface (see the header)

@@ -167,31 +167,25 @@ json draw_frames(const LodSettings& s, const HeightField& field, const TerrainHi
           {"frames", std::move(frames)}};
 }
 
-}  // namespace
-
-StudyRunResult run_lod_study(const StudyRunOptions& options) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  const LodSettings s = read_lod_experiment(options.experiment);
-  if (!options.platforms.empty() &&
-      std::find(options.platforms.begin(), options.platforms.end(), s.platform) == options.platforms.end())
-    throw UserError(options.experiment + ": the LOD study draws on " + s.platform + ", which --platform leaves out");
-  require_platforms_draw({s.platform}, options.experiment);  // before anything is written
-  StudyRunResult result;
-  result.dir = options.out_dir.empty() ? "outputs/" + s.name : options.out_dir;
+// The study's folder, emptied of what an earlier run and its analyze / plot stages wrote.
+void prepare_output_dir(const std::string& dir) {
   std::error_code ec;
-  std::filesystem::create_directories(result.dir, ec);
-  if (!std::filesystem::is_directory(result.dir))
-    throw UserError("cannot create the output directory " + result.dir + ": " + ec.message());
-  std::filesystem::remove(result.dir + "/study.json", ec);  // a rerun is incomplete until it ends
+  std::filesystem::create_directories(dir, ec);
+  if (!std::filesystem::is_directory(dir))
+    throw UserError("cannot create the output directory " + dir + ": " + ec.message());
+  std::filesystem::remove(dir + "/study.json", ec);  // a rerun is incomplete until it ends
   // and what analyze / plot derived from an earlier run no longer describes this one
-  std::filesystem::remove(result.dir + "/lod_table.csv", ec);
-  std::filesystem::remove(result.dir + "/lod.md", ec);
-  std::filesystem::remove_all(result.dir + "/figures", ec);
+  std::filesystem::remove(dir + "/lod_table.csv", ec);
+  std::filesystem::remove(dir + "/lod.md", ec);
+  std::filesystem::remove_all(dir + "/figures", ec);
   for (const char* f : {"/lod_table.csv", "/lod.md", "/figures"})
-    if (std::filesystem::exists(result.dir + f))
-      throw UserError("cannot remove the stale " + result.dir + f + " of an earlier run");
+    if (std::filesystem::exists(dir + f))
+      throw UserError("cannot remove the stale " + dir + f + " of an earlier run");
 
-  // terrain and hierarchy
+}
+
+// The height field of the experiment: generated, or read from its file and cropped to whole tiles.
+HeightField load_terrain(const LodSettings& s) {
   HeightField field = s.height_file.empty()
                           ? generate_height_field(s.terrain, s.tiles_x * (s.tile_size - 1) + 1, s.tiles_y * (s.tile_size - 1) + 1)
                           : crop_to_tiles(read_height_file(s.height_file, s.terrain.spacing, s.terrain.height_scale),
@@ -200,38 +194,32 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
     throw UserError(s.height_file + ": cropped to " + std::to_string(field.nx) + " x " + std::to_string(field.ny) +
                     " vertices, more than the allowed maximum of " + std::to_string(kMaxTerrainVertices) +
                     " (2^24): lower 'lod.tiles' or 'lod.tile_size'");
-  const auto h0 = std::chrono::steady_clock::now();
-  const TerrainHierarchy hierarchy(field, s.tile_size, s.propagation, s.equalise_seams);
-  const double hierarchy_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - h0).count();
+  return field;
+}
 
-  CameraPathParams pp;
-  pp.seed = s.path_seed;
-  pp.frames = s.frames;
-  pp.flight_height = s.flight_height;
-  pp.look_ahead = s.look_ahead;
-  const std::vector<Viewpoint> path = generate_camera_path(layout_scene(field), pp);
+// What the frames' checks found, per lambda.
+struct FrameChecks {
+  std::map<std::string, int> failures;  // lambda -> (frame, tau) with a failed check
+  int main_failures = 0;                // of them, with the experiment's own lambda
+  std::string first_failure;            // the first of those, described
+};
 
-  const LodMesh full = full_resolution(hierarchy);
-  json drawn;
-  try {
-    drawn = run_in_child(result.dir, "lod-render",
-                         [&] { return draw_frames(s, field, hierarchy, path, full, options.progress); });
-  } catch (const ChildProcessError& e) {
-    if (e.user_error()) throw UserError(e.what());
-    throw std::runtime_error(std::string("lod: ") + e.what());
-  }
-  const json& drawn_frames = drawn.at("frames");
-  if (drawn_frames.size() != path.size())
-    throw std::runtime_error("lod: the measuring process drew " + std::to_string(drawn_frames.size()) +
-                             " frames, not " + std::to_string(path.size()));
+// Every frame and tau refined with every lambda and checked (conformity, seams, screen error <=
+// tau); the experiment's lambda with the drawing times and image differences the measuring process
+// gave. Writes DIR/frames.csv.
+FrameChecks check_frames(const LodSettings& s, const HeightField& field,
+                         const TerrainHierarchy& hierarchy, const std::vector<Viewpoint>& path,
+                         const LodMesh& full, const json& drawn_frames, const std::string& dir,
+                         bool progress) {
   std::vector<LambdaKind> lambdas = {s.lambda};
   lambdas.insert(lambdas.end(), s.check_lambdas.begin(), s.check_lambdas.end());
 
   std::ostringstream csv;
   csv << kFramesHeader << "\n";
-  std::map<std::string, int> failures;  // per lambda: frames with a failed check
-  int main_failures = 0;
-  std::string first_failure;
+  FrameChecks out;
+  std::map<std::string, int>& failures = out.failures;
+  int& main_failures = out.main_failures;
+  std::string& first_failure = out.first_failure;
   for (size_t fi = 0; fi < path.size(); ++fi) {
     const Viewpoint& vp = path[fi];
     const json& drawn_frame = drawn_frames.at(fi);
@@ -275,10 +263,56 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
             << ',' << full.triangle_count() << ',' << fmt(full_median, "%.1f") << ',' << fmt(mean_abs, "%.6g") << ','
             << fmt(differing, "%.6g") << ',' << se.partially_visible << ',' << se.holes << "\n";
       }
-    if (options.progress && (fi % 10 == 0 || fi + 1 == path.size()))
+    if (progress && (fi % 10 == 0 || fi + 1 == path.size()))
       std::cerr << "lod: frame " << fi + 1 << "/" << path.size() << "\n";
   }
-  write_file_atomic(result.dir + "/frames.csv", csv.str());
+  write_file_atomic(dir + "/frames.csv", csv.str());
+  return out;
+}
+
+}  // namespace
+
+StudyRunResult run_lod_study(const StudyRunOptions& options) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const LodSettings s = read_lod_experiment(options.experiment);
+  if (!options.platforms.empty() &&
+      std::find(options.platforms.begin(), options.platforms.end(), s.platform) == options.platforms.end())
+    throw UserError(options.experiment + ": the LOD study draws on " + s.platform + ", which --platform leaves out");
+  require_platforms_draw({s.platform}, options.experiment);  // before anything is written
+  StudyRunResult result;
+  result.dir = options.out_dir.empty() ? "outputs/" + s.name : options.out_dir;
+  prepare_output_dir(result.dir);
+
+  const HeightField field = load_terrain(s);
+  const auto h0 = std::chrono::steady_clock::now();
+  const TerrainHierarchy hierarchy(field, s.tile_size, s.propagation, s.equalise_seams);
+  const double hierarchy_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - h0).count();
+
+  CameraPathParams pp;
+  pp.seed = s.path_seed;
+  pp.frames = s.frames;
+  pp.flight_height = s.flight_height;
+  pp.look_ahead = s.look_ahead;
+  const std::vector<Viewpoint> path = generate_camera_path(layout_scene(field), pp);
+
+  const LodMesh full = full_resolution(hierarchy);
+  json drawn;
+  try {
+    drawn = run_in_child(result.dir, "lod-render",
+                         [&] { return draw_frames(s, field, hierarchy, path, full, options.progress); });
+  } catch (const ChildProcessError& e) {
+    if (e.user_error()) throw UserError(e.what());
+    throw std::runtime_error(std::string("lod: ") + e.what());
+  }
+  const json& drawn_frames = drawn.at("frames");
+  if (drawn_frames.size() != path.size())
+    throw std::runtime_error("lod: the measuring process drew " + std::to_string(drawn_frames.size()) +
+                             " frames, not " + std::to_string(path.size()));
+  const FrameChecks checks =
+      check_frames(s, field, hierarchy, path, full, drawn_frames, result.dir, options.progress);
+  std::map<std::string, int> failures = checks.failures;  // [] below counts a lambda without failures as 0
+  const int main_failures = checks.main_failures;
+  const std::string& first_failure = checks.first_failure;
 
   json lj = json::object();
   for (LambdaKind k : {LambdaKind::kWindow, LambdaKind::kPlanar, LambdaKind::kSpherical})

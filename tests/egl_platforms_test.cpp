@@ -73,6 +73,17 @@ TEST(EglPlatforms, TheSameDriverThroughEglDrawsWhatItDrawsThroughOsmesa) {
   const std::string driver = ra::read_file(dir + "/run/drivers/egl-llvmpipe.json");
   EXPECT_NE(driver.find("EGL surfaceless (Mesa, llvmpipe)"), std::string::npos) << driver;
   EXPECT_NE(driver.find("\"renderer\": \"llvmpipe"), std::string::npos) << driver;
+  // GL_TIME_ELAPSED against the CPU clock: softpipe's timer measures what the CPU waits for;
+  // llvmpipe's a part of it (0.07 here), but never more than the wall time
+  for (const char* p : {"osmesa-softpipe", "egl-softpipe", "osmesa-llvmpipe", "egl-llvmpipe"}) {
+    const nlohmann::json j =
+        nlohmann::json::parse(ra::read_file(dir + "/run/drivers/" + p + ".json"));
+    ASSERT_TRUE(j.at("timer_over_cpu").is_number()) << p << ": " << j.dump();
+    const double ratio = j["timer_over_cpu"];
+    EXPECT_GT(ratio, 0) << p;
+    EXPECT_LT(ratio, 1.5) << p;
+    if (std::string(p).find("softpipe") != std::string::npos) EXPECT_GT(ratio, 0.5) << p;
+  }
 }
 
 // Runs an experiment on `platform` with `env` and expects exit 2, `message` in the output and no

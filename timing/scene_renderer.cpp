@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "util/errors.h"
+#include "platforms/colour_depth_framebuffer.h"
 #include "platforms/gl_context.h"
 #include "platforms/platform.h"
 
@@ -39,7 +40,7 @@ struct SceneRenderer::Impl {
   bool gpu = false;
   std::unique_ptr<GlContext> context;
   const GlApi* gl = nullptr;  // context->gl()
-  GLuint framebuffer = 0, colour_rb = 0, depth_rb = 0;
+  ColourDepthFramebuffer target;
   GLuint occlusion_query = 0, timer_query = 0;
   std::vector<ObjectBuffers> objects;
   std::vector<GLuint> textures;
@@ -113,25 +114,7 @@ SceneRenderer::SceneRenderer(const std::string& platform, const CameraSettings& 
   m.info.timer_query = m.info.timer_query_listed && m.info.timer_query_bits > 0;
   m.gpu = gpu_timer && m.info.timer_query;
 
-  // Framebuffer object: RGBA8 colour + 24-bit depth of the window size.
-  GLint max_size = 0;
-  gl->GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
-  if (cam.width > max_size || cam.height > max_size)
-    throw UserError("window " + std::to_string(cam.width) + "x" + std::to_string(cam.height) +
-                    " exceeds " + platform + "'s GL_MAX_RENDERBUFFER_SIZE " +
-                    std::to_string(max_size));
-  gl->GenFramebuffers(1, &m.framebuffer);
-  gl->BindFramebuffer(GL_FRAMEBUFFER, m.framebuffer);
-  gl->GenRenderbuffers(1, &m.colour_rb);
-  gl->BindRenderbuffer(GL_RENDERBUFFER, m.colour_rb);
-  gl->RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, cam.width, cam.height);
-  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m.colour_rb);
-  gl->GenRenderbuffers(1, &m.depth_rb);
-  gl->BindRenderbuffer(GL_RENDERBUFFER, m.depth_rb);
-  gl->RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, cam.width, cam.height);
-  gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, m.depth_rb);
-  if (gl->CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw std::runtime_error("incomplete framebuffer (RGBA8 + DEPTH24) for " + platform);
+  m.target = create_colour_depth_framebuffer(*gl, cam.width, cam.height, platform);
   GLint depth_bits = 0;
   gl->GetIntegerv(GL_DEPTH_BITS, &depth_bits);
   m.info.depth_bits = depth_bits;
