@@ -8,6 +8,8 @@
 #include <tuple>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "metrics/records.h"
@@ -40,6 +42,40 @@ std::string fmt(double v, const char* f = "%.5g") {
   char buf[32];
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
+}
+
+// What the run cost against the drivers' own drawing: the sum of render_us, and, when the last
+// invocation ran every shard, wall time x jobs / drawing (1 = nothing but drawing) and the
+// core-seconds no worker used. "" when the manifest lacks what it needs.
+template <typename Cells>
+std::string cost_paragraph(const std::string& run_dir, const Cells& cells) {
+  double drawing_us = 0;
+  for (const auto& [key, c] : cells)
+    for (double us : c.render_us) drawing_us += us;
+  nlohmann::json m;
+  try {
+    m = nlohmann::json::parse(read_file(run_dir + "/manifest.json"));
+  } catch (const std::exception&) {
+    return "";
+  }
+  const nlohmann::json inv = m.value("invocations", nlohmann::json::array()).empty()
+                                 ? nlohmann::json()
+                                 : m["invocations"].back();
+  std::ostringstream out;
+  out << "\nDrawing (the sum of render_us): " << fmt(drawing_us / 1e6, "%.1f") << " s";
+  if (inv.is_object() && inv.contains("elapsed_s") && inv.contains("jobs") &&
+      inv.value("shards_to_run", -1) == m.value("shards", nlohmann::json::object()).value("total", -2) &&
+      drawing_us > 0) {
+    const double elapsed = inv["elapsed_s"], jobs = inv["jobs"];
+    out << "; this invocation ran every shard in " << fmt(elapsed, "%.1f") << " s on " << jobs
+        << " jobs: wall x jobs / drawing = " << fmt(elapsed * jobs / (drawing_us / 1e6), "%.3f");
+    if (inv.contains("idle_core_s"))
+      out << ", " << fmt(inv["idle_core_s"].get<double>(), "%.1f")
+          << " core-seconds without a worker (shard order: " << inv.value("shard_order", "?")
+          << ")";
+  }
+  out << ".\n";
+  return out.str();
 }
 
 }  // namespace
@@ -94,6 +130,7 @@ std::string write_run_summary(const std::string& run_dir) {
     md << " | " << (c.render_us.empty() ? "n/a" : fmt(stats::describe(c.render_us).median, "%.1f"))
        << " |\n";
   }
+  md << cost_paragraph(run_dir, cells);
   write_file_atomic(run_dir + "/summary.md", md.str());
   return md.str();
 }

@@ -31,9 +31,16 @@ void register_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--expect-renderer", opt.expect_renderer,
                   "stop (exit 2) as soon as a Mesa platform's GL_RENDERER does not match this "
                   "regular expression, e.g. 'llvmpipe'");
+  static std::string shard_order = "cost";
+  cmd->add_option("--shard-order", shard_order,
+                  "which shards start first: cost (the largest expected cost, so that no core "
+                  "idles at the end; default) or plan (platform, view, kind)")
+      ->check(CLI::IsMember({"cost", "plan"}));
   cmd->add_flag("--quiet,-q", quiet, "no progress line");
   cmd->callback([&exit_code] {
     opt.progress = !quiet;
+    opt.shard_order = shard_order == "plan" ? RunOptions::ShardOrder::kPlan
+                                            : RunOptions::ShardOrder::kLargestCostFirst;
     StudyRunOptions study;
     study.experiment = opt.experiment_path;
     study.out_dir = opt.out_dir;

@@ -21,6 +21,7 @@
 #include "util/child_process.h"
 #include "util/dir_lock.h"
 #include "util/errors.h"
+#include "runner/shard_cost.h"
 #include "runner/shard_file.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
@@ -182,6 +183,13 @@ RunResult run_experiment(const RunOptions& options) {
     todo.push_back(WorkItem{s, "", 1, timeout_s});
   }
   result.shards_total = all.size();
+  if (options.shard_order == RunOptions::ShardOrder::kLargestCostFirst) {
+    std::vector<Shard> queued;
+    for (const WorkItem& w : todo) queued.push_back(w.shard);
+    todo.clear();
+    for (Shard& s : largest_expected_cost_first(std::move(queued), exp))
+      todo.push_back(WorkItem{std::move(s), "", 1, timeout_s});
+  }
 
   nlohmann::json manifest;
   const std::string manifest_path = dir + "/manifest.json";
@@ -236,6 +244,7 @@ RunResult run_experiment(const RunOptions& options) {
     }
   } reaper{running};
   size_t finished = 0;
+  double busy_s = 0;  // worker-seconds, every worker from start to end
   auto last_progress = Clock::now() - std::chrono::seconds(1);
   // A worker ended: count it, and queue what follows from a crash or hang (a re-run first, then
   // the halves of a bisection, ahead of the shards not yet started).
@@ -274,6 +283,7 @@ RunResult run_experiment(const RunOptions& options) {
     if (pid > 0 && running.count(pid)) {
       const Running r = running[pid];
       running.erase(pid);
+      busy_s += std::chrono::duration<double>(Clock::now() - r.started).count();
       const std::string words = last_words(r.message_fd);
       ::close(r.message_fd);
       const std::string written = recovery.records_dir(r.item) + "/" + r.item.shard.id() + ".csv";
@@ -298,6 +308,7 @@ RunResult run_experiment(const RunOptions& options) {
         ::kill(-p, SIGKILL);
         wait_child(p);
         const Running timed_out = r;
+        busy_s += std::chrono::duration<double>(now - timed_out.started).count();
         ::close(timed_out.message_fd);
         running.erase(p);
         char limit[32];
@@ -327,8 +338,14 @@ RunResult run_experiment(const RunOptions& options) {
 
   manifest["drivers"] = drivers_json(dir);
   manifest["finished"] = utc_now_iso8601();
-  manifest["invocations"].back()["elapsed_s"] =
-      std::chrono::duration<double>(Clock::now() - t_start).count();
+  const double elapsed_s = std::chrono::duration<double>(Clock::now() - t_start).count();
+  manifest["invocations"].back()["elapsed_s"] = elapsed_s;
+  // How well the cores were used: worker-seconds, and the core-seconds no worker used (the tail
+  // when the last shards run alone, plus the coordinator's own gaps)
+  manifest["invocations"].back()["shard_order"] =
+      options.shard_order == RunOptions::ShardOrder::kPlan ? "plan" : "largest-expected-cost-first";
+  manifest["invocations"].back()["worker_busy_s"] = busy_s;
+  manifest["invocations"].back()["idle_core_s"] = std::max(0.0, jobs * elapsed_s - busy_s);
   size_t complete = 0;
   for (const Shard& s : all) complete += fs::exists(s.records_path(dir));
   manifest["shards"] = {{"total", all.size()}, {"complete", complete}};

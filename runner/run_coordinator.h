@@ -19,6 +19,9 @@ struct RunOptions {
   std::vector<std::string> only_platforms;  // non-empty: run only these platforms' shards
   std::string worker_program;   // the executable that runs `worker` (default: this one)
   std::string expect_renderer;  // non-empty: ECMAScript regex every driver's GL_RENDERER must match
+  // Which shards start first: the largest expected cost (runner/shard_cost.h; keeps every core
+  // busy to the end), or plan order (platform, view, kind, begin), as before 2026-11-24.
+  enum class ShardOrder { kLargestCostFirst, kPlan } shard_order = ShardOrder::kLargestCostFirst;
 };
 
 struct ShardFailure {

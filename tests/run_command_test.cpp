@@ -8,6 +8,7 @@
 
 #include "metrics/records.h"
 #include "tests/cli_harness.h"
+#include "util/atomic_file.h"
 
 namespace fs = std::filesystem;
 using namespace ra::testing_cli;
@@ -36,6 +37,40 @@ TEST(RunCommand, OneShardAndManyShardsGiveIdenticalRecords) {
   EXPECT_TRUE(ra == rb);
   EXPECT_TRUE(fs::exists(dir + "/many/manifest.json"));
   EXPECT_TRUE(fs::exists(dir + "/many/summary.md"));
+}
+
+// Starting the largest expected cost first (the default) and plan order give the same records;
+// the manifest says which order ran and how many core-seconds no worker used.
+TEST(RunCommand, TheShardOrderChangesNoRecordAndTheManifestSaysHowTheCoresWereUsed) {
+  const std::string dir = fresh_dir("order");
+  write_text(dir + "/e.toml", experiment("\"osmesa-softpipe\", \"reference\"", 300, 100));
+  const Outcome a = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/cost --jobs 2");
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  const Outcome b =
+      run_renderaudit("run " + dir + "/e.toml --out " + dir + "/plan --jobs 2 --shard-order plan");
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  EXPECT_TRUE(records_without_timing(dir + "/cost") == records_without_timing(dir + "/plan"));
+  for (const char* order : {"cost", "plan"}) {
+    const nlohmann::json m =
+        nlohmann::json::parse(ra::read_file(dir + "/" + order + "/manifest.json"));
+    const nlohmann::json& inv = m.at("invocations").back();
+    EXPECT_EQ(inv.at("shard_order"),
+              std::string(order) == "plan" ? "plan" : "largest-expected-cost-first");
+    const double busy = inv.at("worker_busy_s"), idle = inv.at("idle_core_s"),
+                 elapsed = inv.at("elapsed_s");
+    EXPECT_GT(busy, 0) << order;
+    EXPECT_GE(idle, 0) << order;
+    EXPECT_NEAR(idle, std::max(0.0, 2 * elapsed - busy), 1e-6) << order;
+    // the summary sets the run against the drivers' own drawing
+    const std::string summary = ra::read_file(dir + "/" + order + "/summary.md");
+    EXPECT_NE(summary.find("on 2 jobs: wall x jobs / drawing = "), std::string::npos) << summary;
+    EXPECT_NE(summary.find("(shard order: " + inv.at("shard_order").get<std::string>() + ")"),
+              std::string::npos)
+        << summary;
+  }
+  const Outcome bad = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/x --shard-order fast");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;  // bad input: nothing run
+  EXPECT_NE(bad.output.find("--shard-order"), std::string::npos) << bad.output;
 }
 
 TEST(RunCommand, AResumedRunEqualsAnUninterruptedOne) {
