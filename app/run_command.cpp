@@ -14,7 +14,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
       "Results go to DIR (default outputs/<experiment name>): records/*.csv, manifest.json,\n"
       "summary.md. Re-running the same command over DIR resumes: finished shards are kept.\n"
       "A file with a [timing], [lod] or [regulation] table runs that study instead (into DIR,\n"
-      "with its study.json; --jobs, --timeout and --expect-renderer do not apply to studies).");
+      "with its study.json; --jobs, --timeout, --expect-renderer and --slice do not apply to\n"
+      "studies).");
   static RunOptions opt;
   static bool quiet = false;
   cmd->add_option("experiment", opt.experiment_path, "experiment file (TOML)")
@@ -36,11 +37,16 @@ void register_run_command(CLI::App& app, int& exit_code) {
                   "which shards start first: cost (the largest expected cost, so that no core "
                   "idles at the end; default) or plan (platform, view, kind)")
       ->check(CLI::IsMember({"cost", "plan"}));
+  static std::string slice;
+  cmd->add_option("--slice", slice,
+                  "run only slice K/N of the shards (disjoint, deterministic, balanced by "
+                  "expected cost), for N machines; gather them with `renderaudit merge`");
   cmd->add_flag("--quiet,-q", quiet, "no progress line");
   cmd->callback([&exit_code] {
     opt.progress = !quiet;
     opt.shard_order = shard_order == "plan" ? RunOptions::ShardOrder::kPlan
                                             : RunOptions::ShardOrder::kLargestCostFirst;
+    if (!slice.empty()) opt.slice = parse_slice(slice);
     StudyRunOptions study;
     study.experiment = opt.experiment_path;
     study.out_dir = opt.out_dir;

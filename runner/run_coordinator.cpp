@@ -21,6 +21,7 @@
 #include "util/child_process.h"
 #include "util/dir_lock.h"
 #include "util/errors.h"
+#include "runner/run_dir.h"
 #include "runner/shard_cost.h"
 #include "runner/shard_file.h"
 #include "runner/experiment.h"
@@ -79,50 +80,6 @@ std::string format_duration(double s) {
   return buf;
 }
 
-// Temporary files of writers that are gone (we hold the lock, so none is being written).
-void remove_temporaries(const std::string& dir) {
-  std::error_code ec;
-  for (const char* sub : {"/records", "/drivers", ""})
-    for (const auto& e : fs::directory_iterator(dir + sub, ec))
-      if (e.path().extension() == ".tmp") fs::remove(e.path(), ec);
-}
-
-// Creates (or reopens) the run directory and takes its lock before looking inside, so that two
-// runs started together never judge each other's half-made directory.
-std::unique_ptr<DirLock> prepare_run_dir(const Experiment& exp, const std::string& dir) {
-  std::error_code ec;
-  // A folder of something else is refused before anything is written into it (a run's folder
-  // has experiment.toml, or at least the .lock of a run that is making it).
-  if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !fs::exists(dir + "/experiment.toml") &&
-      !fs::exists(DirLock::lock_path(dir)))
-    throw UserError(dir + ": exists and is not a run directory (no experiment.toml); choose "
-                          "another --out");
-  fs::create_directories(dir, ec);
-  if (ec) throw UserError(dir + ": cannot create the run directory (" + ec.message() + ")");
-  auto lock = std::make_unique<DirLock>(dir, "run");
-  const std::string copy = dir + "/experiment.toml";
-  bool empty = true;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().filename() != ".lock") empty = false;
-  if (fs::exists(copy)) {
-    const Experiment previous = load_experiment(copy);
-    if (previous.hash != exp.hash)
-      throw UserError(dir + ": holds a run of a different experiment (hash " + previous.hash +
-                      ", this one " + exp.hash + "); choose another --out or remove the directory");
-  } else if (!empty) {
-    throw UserError(dir + ": exists and is not a run directory (no experiment.toml); choose "
-                          "another --out");
-  }
-  for (const char* sub : {"/records", "/drivers", "/logs"}) {
-    fs::create_directories(dir + sub, ec);
-    if (ec) throw UserError(dir + sub + ": cannot create (" + ec.message() + ")");
-  }
-  fs::remove_all(ShardRecovery::parts_dir(dir));  // a bisection cut short restarts from scratch
-  if (!fs::exists(copy)) write_file_atomic(copy, exp.text);
-  remove_temporaries(dir);  // what a killed run left behind: their shards are redone
-  return lock;
-}
-
 nlohmann::json drivers_json(const std::string& dir) {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& e : fs::directory_iterator(dir + "/drivers")) {
@@ -166,6 +123,7 @@ RunResult run_experiment(const RunOptions& options) {
               }),
               all.end());
   }
+  if (options.slice) all = shards_of_slice(all, exp, *options.slice);
   for (const Shard& s : all) {
     const std::string path = s.records_path(dir);
     if (fs::exists(path)) {
@@ -209,6 +167,10 @@ RunResult run_experiment(const RunOptions& options) {
                             {"hash", exp.hash}, {"seed", exp.seed},
                             {"platforms", exp.platforms}};
   manifest["host"] = host_description();
+  if (options.slice) {
+    manifest["slice"] = {{"index", options.slice->index}, {"count", options.slice->count},
+                         {"shards", all.size()}};
+  }
   manifest["invocations"].push_back({{"started", started}, {"jobs", jobs},
                                      {"shards_to_run", todo.size()}});
   manifest["status"] = "running";

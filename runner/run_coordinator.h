@@ -3,10 +3,12 @@
 // writes the run directory's manifest.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "runner/shard_recovery.h"
+#include "runner/slicing.h"
 
 namespace ra {
 
@@ -22,6 +24,8 @@ struct RunOptions {
   // Which shards start first: the largest expected cost (runner/shard_cost.h; keeps every core
   // busy to the end), or plan order (platform, view, kind, begin), as before 2026-11-24.
   enum class ShardOrder { kLargestCostFirst, kPlan } shard_order = ShardOrder::kLargestCostFirst;
+  // Run only slice K of N (runner/slicing.h); none: the whole run.
+  std::optional<Slice> slice;
 };
 
 struct ShardFailure {

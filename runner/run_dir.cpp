@@ -1,0 +1,58 @@
+// Creating and reopening run directories (see the header).
+#include "runner/run_dir.h"
+
+#include <filesystem>
+#include <system_error>
+
+#include "runner/shard_recovery.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
+
+namespace fs = std::filesystem;
+
+namespace ra {
+
+// Temporary files of writers that are gone (we hold the lock, so none is being written).
+void remove_temporaries(const std::string& dir) {
+  std::error_code ec;
+  for (const char* sub : {"/records", "/drivers", ""})
+    for (const auto& e : fs::directory_iterator(dir + sub, ec))
+      if (e.path().extension() == ".tmp") fs::remove(e.path(), ec);
+}
+
+std::unique_ptr<DirLock> prepare_run_dir(const Experiment& exp, const std::string& dir,
+                                         const std::string& who) {
+  std::error_code ec;
+  // A folder of something else is refused before anything is written into it (a run's folder
+  // has experiment.toml, or at least the .lock of a run that is making it).
+  if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !fs::exists(dir + "/experiment.toml") &&
+      !fs::exists(DirLock::lock_path(dir)))
+    throw UserError(dir + ": exists and is not a run directory (no experiment.toml); choose "
+                          "another --out");
+  fs::create_directories(dir, ec);
+  if (ec) throw UserError(dir + ": cannot create the run directory (" + ec.message() + ")");
+  auto lock = std::make_unique<DirLock>(dir, who);
+  const std::string copy = dir + "/experiment.toml";
+  bool empty = true;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename() != ".lock") empty = false;
+  if (fs::exists(copy)) {
+    const Experiment previous = load_experiment(copy);
+    if (previous.hash != exp.hash)
+      throw UserError(dir + ": holds a run of a different experiment (hash " + previous.hash +
+                      ", this one " + exp.hash + "); choose another --out or remove the directory");
+  } else if (!empty) {
+    throw UserError(dir + ": exists and is not a run directory (no experiment.toml); choose "
+                          "another --out");
+  }
+  for (const char* sub : {"/records", "/drivers", "/logs"}) {
+    fs::create_directories(dir + sub, ec);
+    if (ec) throw UserError(dir + sub + ": cannot create (" + ec.message() + ")");
+  }
+  fs::remove_all(ShardRecovery::parts_dir(dir));  // a bisection cut short restarts from scratch
+  if (!fs::exists(copy)) write_file_atomic(copy, exp.text);
+  remove_temporaries(dir);  // what a killed run left behind: their shards are redone
+  return lock;
+}
+
+}  // namespace ra

@@ -1,0 +1,24 @@
+// A run directory being written: created (or reopened) and locked before anything in it is judged,
+// so that two writers started together never judge each other's half-made directory. Used by
+// `run` and `merge`.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "runner/experiment.h"
+#include "util/dir_lock.h"
+
+namespace ra {
+
+// Creates DIR (records/, drivers/, logs/, experiment.toml) or reopens a run of the same experiment,
+// holding DIR/.lock for the returned lock's life. `who` names the writer in the lock ("run",
+// "merge"). Throws ra::UserError for a folder of something else (refused before anything is
+// written into it), a run of another experiment, or a directory that cannot be created.
+std::unique_ptr<DirLock> prepare_run_dir(const Experiment& exp, const std::string& dir,
+                                         const std::string& who = "run");
+
+// Removes the temporary files of writers that are gone (the caller holds the lock).
+void remove_temporaries(const std::string& dir);
+
+}  // namespace ra

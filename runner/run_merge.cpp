@@ -1,0 +1,163 @@
+// Gathering run directories of one experiment into one (see the header).
+#include "runner/run_merge.h"
+
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "runner/experiment.h"
+#include "runner/manifest.h"
+#include "runner/run_dir.h"
+#include "runner/shard.h"
+#include "runner/shard_file.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
+
+namespace fs = std::filesystem;
+
+namespace ra {
+namespace {
+
+nlohmann::json read_json_or_null(const std::string& path) {
+  try {
+    return nlohmann::json::parse(read_file(path));
+  } catch (const std::exception&) {
+    return nullptr;
+  }
+}
+
+// platform -> its driver file, from DIR/drivers/*.json
+std::map<std::string, nlohmann::json> drivers_of(const std::string& dir) {
+  std::map<std::string, nlohmann::json> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir + "/drivers", ec))
+    if (e.path().extension() == ".json")
+      out[e.path().stem().string()] = read_json_or_null(e.path().string());
+  return out;
+}
+
+void copy_atomically(const std::string& from, const std::string& to) {
+  const std::string tmp = create_unique_temp(to);
+  std::error_code ec;
+  fs::copy_file(from, tmp, fs::copy_options::overwrite_existing, ec);
+  if (ec) {
+    fs::remove(tmp);
+    throw std::runtime_error("cannot copy " + from + " to " + tmp + ": " + ec.message() +
+                             free_space_note(to));
+  }
+  commit_file(tmp, to);
+}
+
+}  // namespace
+
+MergeResult merge_runs(const MergeOptions& options) {
+  if (options.inputs.empty()) throw UserError("merge: name at least one run directory");
+  // The inputs: one experiment, one driver per platform.
+  std::vector<Experiment> experiments;
+  for (const std::string& in : options.inputs) {
+    std::error_code ec;
+    if (in == options.out_dir || fs::equivalent(in, options.out_dir, ec))
+      throw UserError("merge: " + in + " is both an input and --out");
+    if (!fs::exists(in + "/experiment.toml"))
+      throw UserError("merge: " + in + ": not a run directory (no experiment.toml)");
+    experiments.push_back(load_experiment(in + "/experiment.toml"));
+    if (experiments.back().hash != experiments.front().hash) {
+      throw UserError("merge: " + in + " holds experiment " + experiments.back().name + " (hash " +
+                      experiments.back().hash + "), " + options.inputs.front() + " holds " +
+                      experiments.front().name + " (hash " + experiments.front().hash +
+                      "): only slices of one experiment can be merged");
+    }
+  }
+  const Experiment& exp = experiments.front();
+  std::map<std::string, std::pair<std::string, std::string>> driver_seen;  // platform -> text, dir
+  for (const std::string& in : options.inputs) {
+    for (const auto& [platform, j] : drivers_of(in)) {
+      if (!j.is_object()) continue;
+      const std::string text = j.value("renderer", "") + " | " + j.value("version", "");
+      const auto [it, first] = driver_seen.try_emplace(platform, text, in);
+      if (!first && it->second.first != text && !options.allow_driver_mismatch) {
+        throw UserError("merge: platform " + platform + " drew with '" + text + "' in " + in +
+                        " but with '" + it->second.first + "' in " + it->second.second +
+                        " (--allow-driver-mismatch merges them anyway)");
+      }
+    }
+  }
+
+  const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, options.out_dir, "merge");
+  const std::string& out = options.out_dir;
+  MergeResult result;
+  const std::vector<Shard> plan = plan_shards(exp);
+  result.shards_total = plan.size();
+  nlohmann::json taken_from = nlohmann::json::object();  // input dir -> shards copied from it
+  for (const Shard& s : plan) {
+    const std::string target = s.records_path(out);
+    if (fs::exists(target) && check_shard_file(target, s.size()).empty()) {
+      ++result.shards_present;  // an earlier merge put it there
+      continue;
+    }
+    int holders = 0;
+    for (const std::string& in : options.inputs) {
+      const std::string source = s.records_path(in);
+      if (!fs::exists(source) || !check_shard_file(source, s.size()).empty()) continue;
+      if (++holders == 1) {
+        copy_atomically(source, target);
+        ++result.shards_copied;
+        ++result.shards_present;
+        taken_from[in] = taken_from.value(in, 0) + 1;
+      }
+    }
+    if (holders > 1) ++result.shards_in_several_inputs;
+    if (holders == 0) result.missing.push_back(s.id());
+  }
+  // the driver files: the first input's of each platform
+  std::map<std::string, std::string> driver_file;
+  for (auto it = options.inputs.rbegin(); it != options.inputs.rend(); ++it)
+    for (const auto& [platform, j] : drivers_of(*it))
+      driver_file[platform] = *it + "/drivers/" + platform + ".json";
+  for (const auto& [platform, path] : driver_file)
+    copy_atomically(path, out + "/drivers/" + platform + ".json");
+
+  // The manifest: every input's provenance, the failures they recorded, the merged shard count.
+  nlohmann::json m = document_header("manifest", kManifestSchemaVersion, false);
+  m["tool"] = {{"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
+  m["experiment"] = {{"name", exp.name}, {"file", out + "/experiment.toml"}, {"hash", exp.hash},
+                     {"seed", exp.seed}, {"platforms", exp.platforms}};
+  m["host"] = host_description();
+  m["merged"] = utc_now_iso8601();
+  nlohmann::json slices = nlohmann::json::array();
+  nlohmann::json failures = nlohmann::json::array(), failed = nlohmann::json::array();
+  for (const std::string& in : options.inputs) {
+    const nlohmann::json im = read_json_or_null(in + "/manifest.json");
+    nlohmann::json drivers = nlohmann::json::object();
+    for (const auto& [platform, j] : drivers_of(in))
+      if (j.is_object())
+        drivers[platform] = j.value("renderer", "") + " | " + j.value("version", "");
+    nlohmann::json entry = {{"dir", in},
+                            {"shards_taken", taken_from.value(in, 0)},
+                            {"drivers", drivers}};
+    if (im.is_object()) {
+      for (const char* key : {"slice", "host", "invocations", "status", "started", "finished"})
+        if (im.contains(key)) entry[key] = im[key];
+      for (const auto& f : im.value("failures", nlohmann::json::array())) failures.push_back(f);
+      for (const auto& f : im.value("failed_primitives", nlohmann::json::array()))
+        failed.push_back(f);
+    }
+    slices.push_back(entry);
+  }
+  m["inputs"] = slices;
+  m["drivers"] = nlohmann::json::object();
+  for (const auto& [platform, path] : driver_file)
+    m["drivers"][platform] = read_json_or_null(out + "/drivers/" + platform + ".json");
+  m["shards"] = {{"total", result.shards_total}, {"complete", result.shards_present},
+                 {"in_several_inputs", result.shards_in_several_inputs}};
+  m["failures"] = failures;
+  m["failed_primitives"] = failed;
+  m["status"] = !result.missing.empty() ? "failed"
+                : !failed.empty()       ? "complete-with-failed-primitives"
+                                        : "complete";
+  if (!result.missing.empty()) m["missing_shards"] = result.missing;
+  write_manifest(out + "/manifest.json", m);
+  return result;
+}
+
+}  // namespace ra
