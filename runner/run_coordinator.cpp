@@ -207,6 +207,9 @@ RunResult run_experiment(const RunOptions& options) {
   } reaper{running};
   size_t finished = 0;
   double busy_s = 0;  // worker-seconds, every worker from start to end
+  // wall seconds of each shard's worker (whole shards run at the first attempt), kept across
+  // invocations: what a cost model or a simulation of more machines can learn from
+  nlohmann::json shard_seconds = manifest.value("shard_seconds", nlohmann::json::object());
   auto last_progress = Clock::now() - std::chrono::seconds(1);
   // A worker ended: count it, and queue what follows from a crash or hang (a re-run first, then
   // the halves of a bisection, ahead of the shards not yet started).
@@ -245,13 +248,15 @@ RunResult run_experiment(const RunOptions& options) {
     if (pid > 0 && running.count(pid)) {
       const Running r = running[pid];
       running.erase(pid);
-      busy_s += std::chrono::duration<double>(Clock::now() - r.started).count();
+      const double worker_s = std::chrono::duration<double>(Clock::now() - r.started).count();
+      busy_s += worker_s;
       const std::string words = last_words(r.message_fd);
       ::close(r.message_fd);
       const std::string written = recovery.records_dir(r.item) + "/" + r.item.shard.id() + ".csv";
       const std::string log = "; log: " + dir + "/logs/" + r.item.shard.id() +
                               (r.item.attempt > 1 ? ".retry" : "") + ".log";
       if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(written)) {
+        if (!r.item.is_part()) shard_seconds[r.item.shard.id()] = worker_s;
         conclude(r, WorkOutcome::kOk, "");
       } else if (WIFSIGNALED(status)) {  // the driver crashed: re-run, then bisect
         conclude(r, WorkOutcome::kCrash, describe_exit_status(status) + log);
@@ -308,6 +313,7 @@ RunResult run_experiment(const RunOptions& options) {
       options.shard_order == RunOptions::ShardOrder::kPlan ? "plan" : "largest-expected-cost-first";
   manifest["invocations"].back()["worker_busy_s"] = busy_s;
   manifest["invocations"].back()["idle_core_s"] = std::max(0.0, jobs * elapsed_s - busy_s);
+  manifest["shard_seconds"] = shard_seconds;
   size_t complete = 0;
   for (const Shard& s : all) complete += fs::exists(s.records_path(dir));
   manifest["shards"] = {{"total", all.size()}, {"complete", complete}};

@@ -61,6 +61,13 @@ TEST(RunCommand, TheShardOrderChangesNoRecordAndTheManifestSaysHowTheCoresWereUs
     EXPECT_GT(busy, 0) << order;
     EXPECT_GE(idle, 0) << order;
     EXPECT_NEAR(idle, std::max(0.0, 2 * elapsed - busy), 1e-6) << order;
+    // every shard's measured wall time, for cost models and simulations of more machines
+    const nlohmann::json& seconds = m.at("shard_seconds");
+    EXPECT_EQ(seconds.size(), 2u * 4 * 3);  // platforms x views x shards of 100
+    double sum = 0;
+    for (const auto& [id, s] : seconds.items()) sum += s.get<double>();
+    EXPECT_LE(sum, busy + 1e-6) << order;
+    EXPECT_GT(sum, 0.5 * busy) << order;
     // the summary sets the run against the drivers' own drawing
     const std::string summary = ra::read_file(dir + "/" + order + "/summary.md");
     EXPECT_NE(summary.find("on 2 jobs: wall x jobs / drawing = "), std::string::npos) << summary;
