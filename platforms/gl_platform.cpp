@@ -51,8 +51,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <vector>
 #include <stdexcept>
+#include <vector>
 
 #include "platforms/gl_context.h"
 #include "platforms/platform.h"
@@ -102,7 +102,6 @@ class GlPlatform : public Platform {
     if (samples_ > 0) gl().Enable(GL_MULTISAMPLE);  // the antialiasing condition
     if (info_.timer_query) info_.timer_over_cpu = timer_over_cpu();
   }
-
 
   DriverInfo driver_info() const override { return info_; }
 
