@@ -6,7 +6,7 @@ BUILD_TYPE ?= Release
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
-.PHONY: all deps build run analyze plot report test bench nightly timing lod regulation format clean
+.PHONY: all deps build run analyze plot report test slurm-test bench nightly timing lod regulation format clean
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
@@ -46,6 +46,12 @@ report: plot
 test: build
 	cmake --build $(BUILD) -j $(JOBS) --target test_programs
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# `run --slurm` on a one-machine Slurm (scripts/slurm-local.sh; needs root, installs slurm-wlm and
+# munge): a job array against a local run, then a cancelled and a requeued task. Also in `make test`
+# (skipped there, loudly, where no Slurm can be started).
+slurm-test: build
+	scripts/slurm-test.sh $(BUILD)
 
 # Benchmarks: side-by-side medians, printed as tables and written as JSON under outputs/bench/.
 bench: build

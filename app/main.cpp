@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   ra::app::register_timing_command(app, exit_code);
   ra::app::register_platforms_command(app, exit_code);
   ra::app::register_merge_command(app, exit_code);
+  ra::app::register_status_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,9 +1,12 @@
 // `renderaudit run EXPERIMENT.toml [--out DIR] [--jobs N] ...`.
 #include <cstdio>
+#include <cstdlib>
 
 #include "analysis/run_summary.h"
 #include "app/commands.h"
 #include "runner/run_coordinator.h"
+#include "runner/slurm_submission.h"
+#include "util/errors.h"
 
 namespace ra::app {
 
@@ -42,6 +45,30 @@ void register_run_command(CLI::App& app, int& exit_code) {
                   "run only slice K/N of the shards (disjoint, deterministic, balanced by "
                   "expected cost), for N machines; gather them with `renderaudit merge`");
   cmd->add_flag("--quiet,-q", quiet, "no progress line");
+  static bool slurm = false;
+  static SlurmOptions slurm_opt;
+  auto* on_slurm = cmd->add_flag(
+      "--slurm", slurm,
+      "submit the run to Slurm instead: a job array of --slices tasks (each `run --slice K/N` "
+      "into DIR/slices/K, --jobs cores each, default 2) and a gather job that merges them and "
+      "finishes the run. DIR must be on a file system every node sees. Watch it with "
+      "`renderaudit status DIR`");
+  cmd->add_option("--slices", slurm_opt.slices, "--slurm: array tasks (default: min(shards, 16))")
+      ->check(CLI::Range(1, 100000))
+      ->needs(on_slurm);
+  cmd->add_option("--partition", slurm_opt.partition, "--slurm: the partition")->needs(on_slurm);
+  cmd->add_option("--max-parallel", slurm_opt.max_parallel,
+                  "--slurm: at most this many tasks at once (sbatch --array=...%M)")
+      ->check(CLI::Range(1, 100000))
+      ->needs(on_slurm);
+  cmd->add_option("--time-limit", slurm_opt.time_limit,
+                  "--slurm: each task's time limit, in sbatch --time syntax (e.g. 2:00:00)")
+      ->needs(on_slurm);
+  cmd->add_flag("--dry-run", slurm_opt.dry_run, "--slurm: print the sbatch scripts, submit nothing")
+      ->needs(on_slurm);
+  cmd->add_flag("--allow-node-local", slurm_opt.allow_node_local,
+                "--slurm: accept a DIR under /tmp or on a tmpfs (a one-node cluster)")
+      ->needs(on_slurm);
   cmd->callback([&exit_code] {
     opt.progress = !quiet;
     opt.shard_order = shard_order == "plan" ? RunOptions::ShardOrder::kPlan
@@ -52,6 +79,28 @@ void register_run_command(CLI::App& app, int& exit_code) {
     study.out_dir = opt.out_dir;
     study.platforms = opt.only_platforms;
     study.progress = !quiet;
+    if (slurm) {
+      if (experiment_study_kind(opt.experiment_path) != StudyKind::kAudit)
+        throw UserError(opt.experiment_path + ": --slurm runs sharded experiments; a study "
+                        "([timing], [lod], [regulation]) runs on one machine");
+      if (opt.slice) throw UserError("--slurm cuts the run into slices itself; drop --slice");
+      const char* sbatch = std::getenv("RENDERAUDIT_SBATCH");  // tests substitute a fake
+      if (sbatch && *sbatch) slurm_opt.sbatch = sbatch;
+      const SlurmSubmission sub = submit_slurm_run(opt, slurm_opt);
+      if (slurm_opt.dry_run) {
+        std::printf("# %s/slurm/array.sbatch, submitted with: sbatch --parsable array.sbatch\n%s\n",
+                    sub.run_dir.c_str(), sub.array_script.c_str());
+        std::printf("# %s/slurm/gather.sbatch, submitted with: sbatch --parsable "
+                    "--dependency=afterany:ARRAY_JOB gather.sbatch\n%s",
+                    sub.run_dir.c_str(), sub.gather_script.c_str());
+        return;
+      }
+      std::printf("%s: submitted %d slices as Slurm array job %s, gather job %s (afterany)\n"
+                  "follow it with: renderaudit status %s [--wait]\n",
+                  sub.run_dir.c_str(), sub.slices, sub.array_job.c_str(), sub.gather_job.c_str(),
+                  sub.run_dir.c_str());
+      return;
+    }
     if (run_study_if_declared(study, exit_code)) return;
     const RunResult r = run_experiment(opt);
     std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",

@@ -22,6 +22,7 @@
 #include "util/dir_lock.h"
 #include "util/errors.h"
 #include "runner/run_dir.h"
+#include "runner/run_progress.h"
 #include "runner/shard_cost.h"
 #include "runner/shard_file.h"
 #include "runner/experiment.h"
@@ -211,6 +212,27 @@ RunResult run_experiment(const RunOptions& options) {
   // invocations: what a cost model or a simulation of more machines can learn from
   nlohmann::json shard_seconds = manifest.value("shard_seconds", nlohmann::json::object());
   auto last_progress = Clock::now() - std::chrono::seconds(1);
+  // DIR/progress.json for `renderaudit status`: every 2 s and at the end
+  auto last_progress_file = Clock::now() - std::chrono::seconds(10);
+  const std::string this_host = manifest["host"].value("hostname", "");
+  auto progress_now = [&](bool at_end) {
+    RunProgress p;
+    p.host = this_host;
+    p.pid = ::getpid();
+    p.updated_utc = utc_now_iso8601();
+    p.shards_to_run = shards_to_run;
+    p.shards_finished = finished;
+    for (const auto& [pid, r] : running) p.running.push_back(r.item.shard.id());
+    for (const auto& f : result.failures) p.failed.push_back(f.shard);
+    p.primitives_done = primitives_done;
+    p.primitives_todo = primitives_todo;
+    p.elapsed_s = std::chrono::duration<double>(Clock::now() - t_start).count();
+    if (primitives_done > 0)
+      p.left_s = (primitives_todo - std::min(primitives_todo, primitives_done)) /
+                 (primitives_done / std::max(p.elapsed_s, 1e-9));
+    if (at_end) p.finished = true, p.left_s = 0;
+    write_run_progress(dir, p);
+  };
   // A worker ended: count it, and queue what follows from a crash or hang (a re-run first, then
   // the halves of a bisection, ahead of the shards not yet started).
   auto conclude = [&](const Running& r, WorkOutcome outcome, const std::string& reason) {
@@ -285,6 +307,10 @@ RunResult run_experiment(const RunOptions& options) {
         break;
       }
     }
+    if (now - last_progress_file > std::chrono::seconds(2)) {
+      last_progress_file = now;
+      progress_now(false);
+    }
     if (show && now - last_progress > std::chrono::milliseconds(250)) {
       last_progress = now;
       const double elapsed = std::chrono::duration<double>(now - t_start).count();
@@ -298,8 +324,9 @@ RunResult run_experiment(const RunOptions& options) {
   }
   if (show) std::fprintf(stderr, "\n");
   reaper.stop_all();  // no worker runs past this point
+  progress_now(true);
   fs::remove_all(ShardRecovery::parts_dir(dir));
-  remove_temporaries(dir);  // what killed (timed-out) workers left  // what killed workers left half-written
+  remove_temporaries(dir);  // what killed (timed-out) workers left half-written
   sigaction(SIGINT, &old_int, nullptr);
   sigaction(SIGTERM, &old_term, nullptr);
 

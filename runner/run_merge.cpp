@@ -36,9 +36,20 @@ std::map<std::string, nlohmann::json> drivers_of(const std::string& dir) {
   return out;
 }
 
+// A hard link where both are on one file system (a Slurm run's slices live under its directory:
+// no second copy of the records), a copy otherwise. Either way the file appears whole or not at
+// all; a slice re-run later replaces its own file by rename, never the linked one's contents.
 void copy_atomically(const std::string& from, const std::string& to) {
-  const std::string tmp = create_unique_temp(to);
   std::error_code ec;
+  const std::string link_tmp = to + ".link.tmp";
+  fs::remove(link_tmp, ec);
+  fs::create_hard_link(from, link_tmp, ec);
+  if (!ec) {
+    fs::rename(link_tmp, to, ec);
+    if (!ec) return;
+    fs::remove(link_tmp, ec);
+  }
+  const std::string tmp = create_unique_temp(to);
   fs::copy_file(from, tmp, fs::copy_options::overwrite_existing, ec);
   if (ec) {
     fs::remove(tmp);
@@ -119,6 +130,10 @@ MergeResult merge_runs(const MergeOptions& options) {
 
   // The manifest: every input's provenance, the failures they recorded, the merged shard count.
   nlohmann::json m = document_header("manifest", kManifestSchemaVersion, false);
+  // what ran in DIR itself before (a gather's `run` after an earlier merge) stays on record
+  if (const nlohmann::json before = read_json_or_null(out + "/manifest.json");
+      before.is_object() && before.contains("invocations"))
+    m["invocations"] = before["invocations"];
   m["tool"] = {{"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
   m["experiment"] = {{"name", exp.name}, {"file", out + "/experiment.toml"}, {"hash", exp.hash},
                      {"seed", exp.seed}, {"platforms", exp.platforms}};
@@ -126,6 +141,8 @@ MergeResult merge_runs(const MergeOptions& options) {
   m["merged"] = utc_now_iso8601();
   nlohmann::json slices = nlohmann::json::array();
   nlohmann::json failures = nlohmann::json::array(), failed = nlohmann::json::array();
+  // each shard's worker time, from whichever input ran it (for cost models and simulations)
+  nlohmann::json shard_seconds = nlohmann::json::object();
   for (const std::string& in : options.inputs) {
     const nlohmann::json im = read_json_or_null(in + "/manifest.json");
     nlohmann::json drivers = nlohmann::json::object();
@@ -136,8 +153,12 @@ MergeResult merge_runs(const MergeOptions& options) {
                             {"shards_taken", taken_from.value(in, 0)},
                             {"drivers", drivers}};
     if (im.is_object()) {
-      for (const char* key : {"slice", "host", "invocations", "status", "started", "finished"})
+      for (const char* key :
+           {"slice", "host", "invocations", "status", "started", "finished", "failures"})
         if (im.contains(key)) entry[key] = im[key];
+      const nlohmann::json seconds_of = im.value("shard_seconds", nlohmann::json::object());
+      for (const auto& [id, seconds] : seconds_of.items())
+        if (!shard_seconds.contains(id)) shard_seconds[id] = seconds;
       for (const auto& f : im.value("failures", nlohmann::json::array())) failures.push_back(f);
       for (const auto& f : im.value("failed_primitives", nlohmann::json::array()))
         failed.push_back(f);
@@ -152,6 +173,7 @@ MergeResult merge_runs(const MergeOptions& options) {
                  {"in_several_inputs", result.shards_in_several_inputs}};
   m["failures"] = failures;
   m["failed_primitives"] = failed;
+  m["shard_seconds"] = shard_seconds;
   m["status"] = !result.missing.empty() ? "failed"
                 : !failed.empty()       ? "complete-with-failed-primitives"
                                         : "complete";

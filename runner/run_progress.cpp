@@ -1,0 +1,58 @@
+// DIR/progress.json (see the header).
+#include "runner/run_progress.h"
+
+#include "util/atomic_file.h"
+
+namespace ra {
+
+nlohmann::json to_json(const RunProgress& p) {
+  return {{"host", p.host},
+          {"pid", p.pid},
+          {"updated", p.updated_utc},
+          {"shards_to_run", p.shards_to_run},
+          {"shards_finished", p.shards_finished},
+          {"running", p.running},
+          {"failed", p.failed},
+          {"primitives_done", p.primitives_done},
+          {"primitives_todo", p.primitives_todo},
+          {"elapsed_s", p.elapsed_s},
+          {"left_s", p.left_s},
+          {"finished", p.finished}};
+}
+
+RunProgress run_progress_from_json(const nlohmann::json& j) {
+  RunProgress p;
+  if (!j.is_object()) return p;
+  p.host = j.value("host", "");
+  p.pid = j.value("pid", 0L);
+  p.updated_utc = j.value("updated", "");
+  p.shards_to_run = j.value("shards_to_run", size_t{0});
+  p.shards_finished = j.value("shards_finished", size_t{0});
+  p.running = j.value("running", std::vector<std::string>{});
+  p.failed = j.value("failed", std::vector<std::string>{});
+  p.primitives_done = j.value("primitives_done", 0ULL);
+  p.primitives_todo = j.value("primitives_todo", 0ULL);
+  p.elapsed_s = j.value("elapsed_s", 0.0);
+  p.left_s = j.value("left_s", -1.0);
+  p.finished = j.value("finished", false);
+  return p;
+}
+
+std::string progress_path(const std::string& run_dir) { return run_dir + "/progress.json"; }
+
+void write_run_progress(const std::string& run_dir, const RunProgress& p) {
+  try {
+    write_file_atomic(progress_path(run_dir), to_json(p).dump(1) + "\n");
+  } catch (const std::exception&) {
+  }
+}
+
+RunProgress read_run_progress(const std::string& run_dir) {
+  try {
+    return run_progress_from_json(nlohmann::json::parse(read_file(progress_path(run_dir))));
+  } catch (const std::exception&) {
+    return {};
+  }
+}
+
+}  // namespace ra

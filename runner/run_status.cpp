@@ -1,0 +1,220 @@
+// Where a run stands (see the header).
+#include "runner/run_status.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "runner/experiment.h"
+#include "runner/shard.h"
+#include "runner/slicing.h"
+#include "util/atomic_file.h"
+#include "util/child_process.h"
+#include "util/dir_lock.h"
+#include "util/errors.h"
+
+namespace fs = std::filesystem;
+
+namespace ra {
+namespace {
+
+nlohmann::json read_json_or_null(const std::string& path) {
+  try {
+    return nlohmann::json::parse(read_file(path));
+  } catch (const std::exception&) {
+    return nullptr;
+  }
+}
+
+std::string hms(double s) {
+  if (!std::isfinite(s) || s < 0) return "unknown";
+  const long t = std::lround(s);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
+  return buf;
+}
+
+bool is_pending(const std::string& state) {
+  return state == "PENDING" || state == "REQUEUED" || state == "CONFIGURING" ||
+         state == "REQUEUE_HOLD" || state == "REQUEUE_FED" || state == "RESIZING";
+}
+
+// The Slurm jobs of DIR/slurm/jobs.json that squeue still lists (array tasks one by one).
+void ask_squeue(RunStatus& s, const std::string& squeue) {
+  ChildSpec spec;
+  spec.argv = {squeue, "-h", "-r", "-j", s.array_job + "," + s.gather_job, "-o", "%i|%T|%r"};
+  spec.capture_output = true;
+  spec.stdin_null = true;
+  const ProgramResult r = run_program(spec);
+  if (!r.exited_ok()) {
+    // jobs Slurm has forgotten (they ended long ago) are not an error
+    if (r.output.find("Invalid job id") == std::string::npos)
+      s.squeue_error = r.exit_code() == 127 ? "squeue not found"
+                                            : r.output.substr(0, r.output.find('\n'));
+    return;
+  }
+  std::istringstream lines(r.output);
+  for (std::string line; std::getline(lines, line);) {
+    const size_t a = line.find('|'), b = line.find('|', a + 1);
+    if (a == std::string::npos || b == std::string::npos) continue;
+    s.jobs.push_back({line.substr(0, a), line.substr(a + 1, b - a - 1), line.substr(b + 1)});
+  }
+}
+
+}  // namespace
+
+std::string RunStatus::state() const {
+  if (!writers.empty()) return "running";
+  bool queued = false;
+  for (const auto& j : jobs) {
+    if (j.state == "RUNNING" || j.state == "COMPLETING") return "running";
+    queued = queued || is_pending(j.state);
+  }
+  if (queued) return "queued";
+  if (planned > 0 && done == planned && manifest_status.rfind("complete", 0) == 0) return "complete";
+  if (manifest_status == "interrupted") return "interrupted";
+  if (manifest_status == "failed" || failed > 0 || (gather_exit > 0)) return "failed";
+  return "incomplete";
+}
+
+RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
+  if (!fs::exists(dir + "/experiment.toml"))
+    throw UserError(dir + ": not a run directory (no experiment.toml)");
+  RunStatus s;
+  s.dir = dir;
+  const Experiment exp = load_experiment(dir + "/experiment.toml");
+  s.experiment = exp.name;
+  const nlohmann::json manifest = read_json_or_null(dir + "/manifest.json");
+  if (manifest.is_object()) {
+    s.manifest_status = manifest.value("status", "");
+    // the name the run was given (a copy named experiment.toml would name it "experiment")
+    if (manifest.contains("experiment") && manifest["experiment"].is_object())
+      s.experiment = manifest["experiment"].value("name", s.experiment);
+  }
+
+  // Where shards can be: DIR, and the slices of a Slurm run beneath it.
+  std::vector<std::string> sources = {dir};
+  std::error_code ec;
+  std::vector<std::string> slice_dirs;
+  for (const auto& e : fs::directory_iterator(dir + "/slices", ec))
+    if (fs::exists(e.path() / "experiment.toml")) slice_dirs.push_back(e.path().string());
+  std::sort(slice_dirs.begin(), slice_dirs.end());
+  sources.insert(sources.end(), slice_dirs.begin(), slice_dirs.end());
+
+  std::vector<Shard> shards = plan_shards(exp);
+  if (manifest.is_object() && manifest.contains("slice") && slice_dirs.empty()) {
+    const auto& sl = manifest["slice"];
+    shards = shards_of_slice(shards, exp, Slice{sl.value("index", 1), sl.value("count", 1)});
+  }
+  s.planned = shards.size();
+
+  std::set<std::string> running, failed;
+  for (const std::string& src : sources) {
+    const std::string holder = DirLock::current_holder(src);
+    if (!holder.empty()) {
+      WriterStatus w{src, holder, read_run_progress(src)};
+      running.insert(w.progress.running.begin(), w.progress.running.end());
+      failed.insert(w.progress.failed.begin(), w.progress.failed.end());
+      s.writers.push_back(std::move(w));
+    } else {
+      const nlohmann::json m = src == dir ? manifest : read_json_or_null(src + "/manifest.json");
+      if (m.is_object())
+        for (const auto& f : m.value("failures", nlohmann::json::array()))
+          if (f.is_object()) failed.insert(f.value("shard", ""));
+    }
+  }
+  for (const Shard& sh : shards) {
+    bool have = false;
+    for (const std::string& src : sources) have = have || fs::exists(sh.records_path(src));
+    const std::string id = sh.id();
+    if (have) ++s.done;
+    else if (running.count(id)) ++s.running;
+    else if (failed.count(id)) ++s.failed;
+    else ++s.waiting;
+  }
+  for (const auto& w : s.writers)
+    if (w.progress.left_s >= 0) s.left_s = std::max(s.left_s, w.progress.left_s);
+
+  const nlohmann::json jobs = read_json_or_null(dir + "/slurm/jobs.json");
+  if (jobs.is_object()) {
+    s.slurm = true;
+    s.array_job = jobs.value("array_job", "");
+    s.gather_job = jobs.value("gather_job", "");
+    s.slices = jobs.value("slices", 0);
+    ask_squeue(s, squeue);
+    for (const auto& j : s.jobs)
+      if (j.id.rfind(s.array_job + "_", 0) == 0 && is_pending(j.state)) ++s.slices_not_started;
+    try {
+      s.gather_exit = std::stoi(read_file(dir + "/slurm/gather.exit"));
+    } catch (const std::exception&) {
+    }
+  }
+  return s;
+}
+
+std::string format_run_status(const RunStatus& s) {
+  std::ostringstream o;
+  const double pct = s.planned ? 100.0 * s.done / s.planned : 0;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.0f%%", pct);
+  o << s.dir << ": experiment " << s.experiment << ": " << s.state() << "\n";
+  o << "  shards: " << s.planned << " planned, " << s.done << " done (" << buf << "), " << s.running
+    << " running, " << s.failed << " failed, " << s.waiting << " waiting\n";
+  for (const auto& w : s.writers) {
+    o << "  writer " << w.dir << ": " << w.holder;
+    if (!w.progress.host.empty())
+      o << "; " << w.progress.shards_finished << " of " << w.progress.shards_to_run
+        << " shards, left " << hms(w.progress.left_s);
+    o << "\n";
+  }
+  if (s.slurm) {
+    size_t tasks_running = 0, tasks_pending = 0;
+    std::string gather = "not listed by squeue";
+    for (const auto& j : s.jobs) {
+      if (j.id == s.gather_job) {
+        gather = j.state + (j.reason.empty() || j.reason == "None" ? "" : " (" + j.reason + ")");
+      } else {
+        tasks_running += j.state == "RUNNING" || j.state == "COMPLETING";
+        tasks_pending += is_pending(j.state);
+      }
+    }
+    if (s.gather_exit >= 0) gather = "ended, exit " + std::to_string(s.gather_exit);
+    o << "  slurm: array job " << s.array_job << " (" << s.slices << " slices): " << tasks_running
+      << " running, " << tasks_pending << " pending; gather job " << s.gather_job << ": " << gather
+      << "\n";
+    if (!s.squeue_error.empty()) o << "  squeue: " << s.squeue_error << "\n";
+  }
+  if (s.state() == "running" || s.state() == "queued") {
+    o << "  time left: ";
+    if (s.left_s >= 0) o << "about " << hms(s.left_s) << " for the running writers";
+    else o << "not known yet";
+    if (s.slices_not_started) o << ", then " << s.slices_not_started << " slices not started";
+    o << "\n";
+  }
+  if (!s.manifest_status.empty()) o << "  manifest: " << s.manifest_status << "\n";
+  return o.str();
+}
+
+nlohmann::json to_json(const RunStatus& s) {
+  nlohmann::json writers = nlohmann::json::array();
+  for (const auto& w : s.writers)
+    writers.push_back({{"dir", w.dir}, {"holder", w.holder}, {"progress", to_json(w.progress)}});
+  nlohmann::json j = {{"dir", s.dir},         {"experiment", s.experiment}, {"state", s.state()},
+                      {"planned", s.planned}, {"done", s.done},             {"running", s.running},
+                      {"failed", s.failed},   {"waiting", s.waiting},       {"writers", writers},
+                      {"manifest_status", s.manifest_status},
+                      {"left_s", s.left_s}};
+  if (s.slurm) {
+    nlohmann::json jobs = nlohmann::json::array();
+    for (const auto& job : s.jobs)
+      jobs.push_back({{"id", job.id}, {"state", job.state}, {"reason", job.reason}});
+    j["slurm"] = {{"array_job", s.array_job}, {"gather_job", s.gather_job}, {"slices", s.slices},
+                  {"jobs", jobs}, {"gather_exit", s.gather_exit},
+                  {"slices_not_started", s.slices_not_started}};
+  }
+  return j;
+}
+
+}  // namespace ra

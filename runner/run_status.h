@@ -1,0 +1,50 @@
+// `renderaudit status DIR`: where a run stands, read from its directory without taking its lock:
+// shards done, running, failed and waiting, the writers at work (DIR itself, or the slices of a
+// Slurm run under DIR/slices/) with their time left, and the Slurm jobs when there are some.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "runner/run_progress.h"
+
+namespace ra {
+
+struct WriterStatus {
+  std::string dir;          // DIR or DIR/slices/K
+  std::string holder;       // who holds its lock ("process P (run) on host H since T")
+  RunProgress progress;     // its progress.json
+};
+
+struct SlurmJobStatus {
+  std::string id;           // "12_3" for an array task, "13" for the gather
+  std::string state;        // PENDING, RUNNING, ... as squeue says
+  std::string reason;       // squeue's reason (Dependency, Resources, ...)
+};
+
+struct RunStatus {
+  std::string dir, experiment;
+  size_t planned = 0, done = 0, running = 0, failed = 0, waiting = 0;
+  std::string manifest_status;  // DIR/manifest.json's "status", or "" when none yet
+  std::vector<WriterStatus> writers;  // only those whose lock is held
+  // Slurm (DIR/slurm/jobs.json present)
+  bool slurm = false;
+  std::string array_job, gather_job;
+  int slices = 0;
+  std::vector<SlurmJobStatus> jobs;   // what squeue still lists
+  std::string squeue_error;           // why squeue could not be asked, or ""
+  int gather_exit = -1;               // DIR/slurm/gather.exit, or -1
+  double left_s = -1;                 // the longest writer's estimate; -1 unknown
+  size_t slices_not_started = 0;      // Slurm tasks still pending
+
+  // "complete", "running", "queued", "failed", "interrupted", "incomplete"
+  std::string state() const;
+};
+
+// Throws ra::UserError when DIR is not a run directory.
+RunStatus read_run_status(const std::string& dir, const std::string& squeue = "squeue");
+
+std::string format_run_status(const RunStatus& s);
+nlohmann::json to_json(const RunStatus& s);
+
+}  // namespace ra

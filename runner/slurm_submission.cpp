@@ -1,0 +1,199 @@
+// Submitting a run to Slurm (see the header).
+#include "runner/slurm_submission.h"
+
+#include <sys/vfs.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "runner/experiment.h"
+#include "runner/manifest.h"
+#include "runner/run_dir.h"
+#include "runner/shard.h"
+#include "runner/worker_program.h"
+#include "util/atomic_file.h"
+#include "util/child_process.h"
+#include "util/errors.h"
+
+namespace fs = std::filesystem;
+
+namespace ra {
+namespace {
+
+constexpr long kTmpfsMagic = 0x01021994, kRamfsMagic = 0x858458f6;
+
+// 'text' quoted for bash (single quotes, with ' written as '\'').
+std::string sh_quote(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// The options every slice and the gather pass on to `run`.
+std::string passed_on(const RunOptions& run, int jobs) {
+  std::string s = " --jobs " + std::to_string(jobs) + " --quiet";
+  for (const auto& p : run.only_platforms) s += " --platform " + sh_quote(p);
+  if (run.timeout_s > 0) s += " --timeout " + std::to_string(run.timeout_s);
+  if (!run.expect_renderer.empty()) s += " --expect-renderer " + sh_quote(run.expect_renderer);
+  if (run.shard_order == RunOptions::ShardOrder::kPlan) s += " --shard-order plan";
+  return s;
+}
+
+std::string header(const std::string& job_name, int jobs, const SlurmOptions& slurm,
+                   const std::string& log) {
+  std::string s = "#!/bin/bash\n";
+  s += "#SBATCH --job-name=" + job_name + "\n";
+  s += "#SBATCH --cpus-per-task=" + std::to_string(jobs) + "\n";
+  s += "#SBATCH --requeue\n";  // a node failure runs the task again; it resumes
+  s += "#SBATCH --open-mode=append\n";  // a requeued task's log follows the first attempt's
+  s += "#SBATCH --output=" + log + "\n";
+  if (!slurm.partition.empty()) s += "#SBATCH --partition=" + slurm.partition + "\n";
+  if (!slurm.time_limit.empty()) s += "#SBATCH --time=" + slurm.time_limit + "\n";
+  return s;
+}
+
+std::string submit(const SlurmOptions& slurm, const std::vector<std::string>& args,
+                   const std::string& script_path) {
+  ChildSpec spec;
+  spec.argv = {slurm.sbatch, "--parsable"};
+  spec.argv.insert(spec.argv.end(), args.begin(), args.end());
+  spec.argv.push_back(script_path);
+  spec.capture_output = true;
+  spec.stdin_null = true;
+  const ProgramResult r = run_program(spec);
+  if (r.exit_code() == 127)
+    throw UserError("--slurm: cannot run '" + slurm.sbatch +
+                    "' (is this a Slurm login node? Debian: apt-get install slurm-client)");
+  std::string out = r.output;
+  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+  if (!r.exited_ok())
+    throw UserError("--slurm: sbatch refused " + script_path + " (" +
+                    describe_exit_status(r.status) + "): " + out);
+  // --parsable prints "JOBID" or "JOBID;CLUSTER" as its last line
+  std::string id = out.substr(out.find_last_of('\n') == std::string::npos ? 0
+                                                                          : out.find_last_of('\n') + 1);
+  id = id.substr(0, id.find(';'));
+  if (id.empty() || !std::all_of(id.begin(), id.end(), ::isdigit))
+    throw UserError("--slurm: sbatch answered '" + out + "', not a job id");
+  return id;
+}
+
+}  // namespace
+
+std::string node_local_reason(const std::string& dir) {
+  for (const char* prefix : {"/tmp", "/var/tmp", "/dev/shm", "/run"}) {
+    const std::string p = prefix;
+    if (dir == p || dir.rfind(p + "/", 0) == 0)
+      return "is under " + p + ", which every node has its own of";
+  }
+  // the nearest existing ancestor's file system
+  fs::path probe = dir;
+  std::error_code ec;
+  while (!probe.empty() && !fs::exists(probe, ec)) probe = probe.parent_path();
+  struct statfs st {};
+  if (!probe.empty() && ::statfs(probe.c_str(), &st) == 0 &&
+      (long(st.f_type) == kTmpfsMagic || long(st.f_type) == kRamfsMagic))
+    return "is on a tmpfs (the memory of one node)";
+  return "";
+}
+
+SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slurm) {
+  const Experiment exp = load_experiment(run.experiment_path);
+  SlurmSubmission sub;
+  sub.run_dir = fs::weakly_canonical(fs::absolute(run.out_dir.empty() ? "outputs/" + exp.name
+                                                                      : run.out_dir))
+                    .string();
+  const std::string& dir = sub.run_dir;
+  if (!slurm.allow_node_local) {
+    if (const std::string why = node_local_reason(dir); !why.empty())
+      throw UserError("--slurm: --out " + dir + " " + why +
+                      "; the tasks on other nodes could not write it nor the gather read it. "
+                      "Choose a directory on a shared file system (or --allow-node-local on a "
+                      "one-node cluster)");
+  }
+  std::vector<Shard> shards = plan_shards(exp);
+  if (!run.only_platforms.empty())
+    shards.erase(std::remove_if(shards.begin(), shards.end(),
+                                [&](const Shard& s) {
+                                  return std::find(run.only_platforms.begin(),
+                                                   run.only_platforms.end(),
+                                                   s.platform) == run.only_platforms.end();
+                                }),
+                 shards.end());
+  if (shards.empty()) throw UserError("--slurm: " + run.experiment_path + " plans no shards");
+  const int jobs = run.jobs > 0 ? run.jobs : 2;
+  sub.slices = slurm.slices > 0 ? slurm.slices : int(std::min<size_t>(shards.size(), 16));
+  if (size_t(sub.slices) > shards.size())
+    throw UserError("--slices " + std::to_string(sub.slices) + ": the run has only " +
+                    std::to_string(shards.size()) + " shards (allowed: 1 to " +
+                    std::to_string(shards.size()) + ")");
+
+  const std::string program = fs::read_symlink("/proc/self/exe").string();
+  // The experiment file as given, where every node can read it (its name stays the run's name);
+  // otherwise the run's copy on the shared disk. A file changed after submission is refused by
+  // the tasks (another experiment's hash), never mixed in.
+  std::string experiment = fs::absolute(run.experiment_path).lexically_normal().string();
+  if (!slurm.allow_node_local && !node_local_reason(experiment).empty())
+    experiment = dir + "/experiment.toml";
+  const std::string n = std::to_string(sub.slices);
+  const std::string opts = passed_on(run, jobs);
+
+  sub.array_script = header("renderaudit-" + exp.name, jobs, slurm, dir + "/slurm/slice-%a.log");
+  sub.array_script += "#SBATCH --array=1-" + n +
+                      (slurm.max_parallel > 0 ? "%" + std::to_string(slurm.max_parallel) : "") +
+                      "\n";
+  sub.array_script +=
+      "# One slice of the run (written by `renderaudit run --slurm`). A requeued task resumes it.\n"
+      "set -u\n"
+      "k=$SLURM_ARRAY_TASK_ID\n"
+      "echo \"renderaudit: slice $k/" + n + " on $(hostname) (job ${SLURM_JOB_ID}, restart "
+      "${SLURM_RESTART_COUNT:-0})\"\n"
+      "exec " + sh_quote(program) + " run " + sh_quote(experiment) + " --out " + sh_quote(dir) +
+      "/slices/$k --slice $k/" + n + opts + "\n";
+
+  sub.gather_script = header("renderaudit-" + exp.name + "-gather", jobs, slurm,
+                             dir + "/slurm/gather.log");
+  sub.gather_script +=
+      "# Runs after every task of the array has ended, however it ended (afterany): merges the\n"
+      "# slices into the run directory, then runs what is still missing there (a cancelled task's\n"
+      "# shards, a failed worker's), with a local run's retries and bisection, and writes the\n"
+      "# manifest. Its exit status is the run's: 0 complete, 1 failures, 2 refused.\n"
+      "set -u\n"
+      "dir=" + sh_quote(dir) + "\n"
+      "slices=()\n"
+      "for d in \"$dir\"/slices/*; do [ -f \"$d/experiment.toml\" ] && slices+=(\"$d\"); done\n"
+      "if [ ${#slices[@]} -gt 0 ]; then\n"
+      "  " + sh_quote(program) + " merge \"${slices[@]}\" --out \"$dir\"\n"
+      "  rc=$?\n"
+      "  if [ $rc -gt 1 ]; then echo $rc > \"$dir/slurm/gather.exit\"; exit $rc; fi\n"
+      "fi\n" +
+      sh_quote(program) + " run " + sh_quote(experiment) + " --out \"$dir\"" + opts + "\n"
+      "rc=$?\n"
+      "echo $rc > \"$dir/slurm/gather.exit\"\n"
+      "exit $rc\n";
+
+  const std::vector<std::string> array_args;
+  if (slurm.dry_run) return sub;
+
+  // DIR made (or reopened: the same experiment only) before anything is submitted
+  prepare_run_dir(exp, dir, "run --slurm");
+  std::error_code ec;
+  fs::create_directories(dir + "/slurm", ec);
+  fs::create_directories(dir + "/slices", ec);
+  if (ec) throw UserError(dir + "/slices: cannot create (" + ec.message() + ")");
+  fs::remove(dir + "/slurm/gather.exit", ec);
+  write_file_atomic(dir + "/slurm/array.sbatch", sub.array_script);
+  write_file_atomic(dir + "/slurm/gather.sbatch", sub.gather_script);
+  sub.array_job = submit(slurm, {}, dir + "/slurm/array.sbatch");
+  sub.gather_job = submit(slurm, {"--dependency=afterany:" + sub.array_job},
+                          dir + "/slurm/gather.sbatch");
+  nlohmann::json jobs_json = {{"array_job", sub.array_job},  {"gather_job", sub.gather_job},
+                              {"slices", sub.slices},        {"submitted", utc_now_iso8601()},
+                              {"max_parallel", slurm.max_parallel}, {"cpus_per_task", jobs}};
+  write_file_atomic(dir + "/slurm/jobs.json", jobs_json.dump(1) + "\n");
+  return sub;
+}
+
+}  // namespace ra

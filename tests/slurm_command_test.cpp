@@ -1,0 +1,196 @@
+// `run --slurm` without a cluster: the sbatch scripts it writes (dry run), its refusals, and the
+// whole path through a stand-in sbatch that runs each array task and then the gather at once, as
+// Slurm would; and `renderaudit status` of finished, running and sliced runs. The same run on a
+// real Slurm, with a cancelled and a requeued task, is scripts/slurm-test.sh (ctest
+// slurm_job_array).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "runner/run_progress.h"
+#include "tests/cli_harness.h"
+#include "util/atomic_file.h"
+#include "util/dir_lock.h"
+
+namespace fs = std::filesystem;
+using namespace ra::testing_cli;
+
+namespace {
+
+const char* kExperiment =
+    "seed = 5\nplatforms = [\"reference\", \"osmesa-llvmpipe\"]\n[views]\norientations = 1\n"
+    "fov_deg = [30, 150]\nwindows = [64, 200]\nnear = 0.01\nfar = 10.0\n[primitives]\n"
+    "points = 200\nlines = 100\ntriangles = 100\n[run]\nshard_size = 50\n";  // 64 shards
+
+// A stand-in for sbatch: prints a job id (101, 102, ...) and runs the script at once, every task
+// of an array in turn with SLURM_ARRAY_TASK_ID set; records its arguments in sbatch.calls.
+const char* kFakeSbatch = R"(#!/bin/bash
+here=$(dirname "$0")
+echo "$*" >> "$here/sbatch.calls"
+script="${@: -1}"
+n=$(cat "$here/sbatch.count" 2>/dev/null || echo 100); n=$((n + 1)); echo $n > "$here/sbatch.count"
+tasks=$(sed -n 's/^#SBATCH --array=1-\([0-9]*\).*/\1/p' "$script")
+if [ -n "$tasks" ]; then
+  for k in $(seq "$tasks"); do
+    SLURM_ARRAY_TASK_ID=$k SLURM_JOB_ID=$n bash "$script" >> "$here/tasks.log" 2>&1
+  done
+else
+  SLURM_JOB_ID=$n bash "$script" >> "$here/tasks.log" 2>&1
+fi
+echo "$n"
+)";
+
+std::string fake_sbatch(const std::string& dir, const std::string& text = kFakeSbatch) {
+  const std::string path = dir + "/sbatch";
+  write_text(path, text);
+  fs::permissions(path, fs::perms::owner_all);
+  return path;
+}
+
+TEST(SlurmCommand, DryRunPrintsAnArrayOfSlicesAndAGatherAndWritesNothing) {
+  const std::string dir = fresh_dir("slurm_dry_run");
+  write_text(dir + "/e.toml", kExperiment);
+  const Outcome o = run_renderaudit(
+      "run " + dir + "/e.toml --out " + dir + "/run --slurm --dry-run --allow-node-local "
+      "--slices 3 --max-parallel 2 --partition gpu --time-limit 1:30:00 --jobs 4 "
+      "--platform reference --timeout 60");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  for (const char* line :
+       {"#SBATCH --array=1-3%2\n", "#SBATCH --partition=gpu\n", "#SBATCH --time=1:30:00\n",
+        "#SBATCH --cpus-per-task=4\n", "#SBATCH --requeue\n", "--slice $k/3 --jobs 4 --quiet "
+        "--platform 'reference' --timeout 60", "/run'/slices/$k", " merge \"${slices[@]}\" --out",
+        "echo $rc > \"$dir/slurm/gather.exit\"", "--dependency=afterany:ARRAY_JOB"})
+    EXPECT_NE(o.output.find(line), std::string::npos) << line << "\n" << o.output;
+  EXPECT_FALSE(fs::exists(dir + "/run")) << "a dry run writes nothing";
+}
+
+TEST(SlurmCommand, RefusesANodeLocalDirectoryAStudyAndASliceAndSaysWhatSbatchSaid) {
+  const std::string dir = fresh_dir("slurm_refusals");
+  write_text(dir + "/e.toml", kExperiment);
+  Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --slurm --dry-run");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("is under /tmp, which every node has its own of"), std::string::npos)
+      << o.output;
+  o = run_renderaudit("run " + std::string(RA_SOURCE_DIR) +
+                      "/experiments/timing_smoke.toml --slurm --dry-run --allow-node-local");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("a study ([timing], [lod], [regulation]) runs on one machine"),
+            std::string::npos)
+      << o.output;
+  o = run_renderaudit("run " + dir + "/e.toml --out " + dir +
+                      "/run --slurm --allow-node-local --slice 1/2");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("drop --slice"), std::string::npos) << o.output;
+  o = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --slices 3");
+  EXPECT_EQ(o.exit_code, 2) << "--slices needs --slurm";
+  o = run_renderaudit("run " + dir + "/e.toml --out " + dir +
+                      "/run --slurm --allow-node-local --slices 65 --dry-run");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("the run has only 64 shards (allowed: 1 to 64)"), std::string::npos)
+      << o.output;
+  // sbatch refusing the script (a wrong partition, say): its words, exit 2
+  const std::string refusing =
+      fake_sbatch(dir, "#!/bin/bash\necho 'sbatch: error: invalid partition specified: x' >&2\n"
+                       "exit 1\n");
+  o = run_command("env RENDERAUDIT_SBATCH=" + refusing + " " + RA_BINARY + " run " + dir +
+                  "/e.toml --out " + dir + "/run --slurm --allow-node-local --partition x");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("sbatch refused"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("invalid partition specified: x"), std::string::npos) << o.output;
+}
+
+TEST(SlurmCommand, TheScriptsRunAsSlurmWouldGiveTheOneMachineRun) {
+  const std::string dir = fresh_dir("slurm_fake");
+  write_text(dir + "/e.toml", kExperiment);
+  const Outcome whole = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/whole --quiet");
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  const std::string sbatch = fake_sbatch(dir);
+  const std::string run = dir + "/run";
+  const Outcome o =
+      run_command("env RENDERAUDIT_SBATCH=" + sbatch + " " + RA_BINARY + " run " + dir +
+                  "/e.toml --out " + run + " --slurm --allow-node-local --slices 5 --jobs 1");
+  ASSERT_EQ(o.exit_code, 0) << o.output << ra::read_file(dir + "/tasks.log");
+  EXPECT_NE(o.output.find("submitted 5 slices as Slurm array job 101, gather job 102"),
+            std::string::npos)
+      << o.output;
+  const std::string calls = ra::read_file(dir + "/sbatch.calls");
+  EXPECT_NE(calls.find("--parsable " + run + "/slurm/array.sbatch\n"), std::string::npos) << calls;
+  EXPECT_NE(calls.find("--parsable --dependency=afterany:101 " + run + "/slurm/gather.sbatch\n"),
+            std::string::npos)
+      << calls;
+  const nlohmann::json jobs = nlohmann::json::parse(ra::read_file(run + "/slurm/jobs.json"));
+  EXPECT_EQ(jobs.at("array_job"), "101");
+  EXPECT_EQ(jobs.at("gather_job"), "102");
+  EXPECT_EQ(jobs.at("slices"), 5);
+  EXPECT_EQ(ra::read_file(run + "/slurm/gather.exit"), "0\n");
+  for (int k = 1; k <= 5; ++k)
+    EXPECT_TRUE(fs::exists(run + "/slices/" + std::to_string(k) + "/manifest.json")) << k;
+  EXPECT_TRUE(records_without_timing(run) == records_without_timing(dir + "/whole"));
+  const nlohmann::json m = nlohmann::json::parse(ra::read_file(run + "/manifest.json"));
+  EXPECT_EQ(m.at("status"), "complete");
+  EXPECT_EQ(m.at("inputs").size(), 5u);
+  EXPECT_EQ(m.at("shard_seconds").size(), 64u) << "every shard's time, from its slice";
+  EXPECT_EQ(m.at("invocations").back().at("shards_to_run"), 0) << "the gather found all";
+  // squeue has forgotten both jobs (they ended): what it answers then
+  const std::string squeue = dir + "/squeue";
+  write_text(squeue, "#!/bin/sh\necho 'slurm_load_jobs error: Invalid job id specified' >&2\n"
+                     "exit 1\n");
+  fs::permissions(squeue, fs::perms::owner_all);
+  const Outcome status = run_command("env RENDERAUDIT_SQUEUE=" + squeue + " " +
+                                     std::string(RA_BINARY) + " status " + run);
+  EXPECT_EQ(status.exit_code, 0) << status.output;
+  EXPECT_NE(status.output.find(": experiment e: complete\n"), std::string::npos) << status.output;
+  EXPECT_NE(status.output.find("64 planned, 64 done (100%), 0 running, 0 failed, 0 waiting"),
+            std::string::npos)
+      << status.output;
+  EXPECT_NE(status.output.find("gather job 102: ended, exit 0"), std::string::npos)
+      << status.output;
+}
+
+TEST(SlurmCommand, StatusSaysWhatIsDoneRunningAndLeftWhileAWriterIsAtWork) {
+  const std::string dir = fresh_dir("status_running");
+  write_text(dir + "/e.toml", std::string("name = \"e\"\n") + kExperiment);
+  // slice 1 of 2 finished: a run directory with 32 of the 64 shards
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --slice 2/2 --quiet")
+                .exit_code, 0);
+  const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + dir +
+                                    "/run/slices/1 --quiet --slice 1/2");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  for (const auto& e : fs::directory_iterator(dir + "/run/records")) fs::remove(e.path());
+  fs::remove(dir + "/run/manifest.json");
+  // ... and a writer at work in DIR, with two shards running and 100 s left
+  ra::DirLock lock(dir + "/run", "run");
+  ra::RunProgress p;
+  p.host = "node7";
+  p.pid = 4242;
+  p.shards_to_run = 32;
+  p.shards_finished = 3;
+  p.running = {"reference.point.v1.0-50", "reference.point.v1.50-100"};
+  p.left_s = 100;
+  ra::write_run_progress(dir + "/run", p);
+  Outcome s = run_renderaudit("status " + dir + "/run");
+  EXPECT_EQ(s.exit_code, 3) << s.output;
+  EXPECT_NE(s.output.find(": experiment e: running\n"), std::string::npos) << s.output;
+  // the two running shards are slice 2's only if slice 1 lacks them
+  const bool in_slice_1 = fs::exists(dir + "/run/slices/1/records/reference.point.v1.0-50.csv");
+  const int running = (in_slice_1 ? 0 : 1) +
+                      (fs::exists(dir + "/run/slices/1/records/reference.point.v1.50-100.csv")
+                           ? 0 : 1);
+  EXPECT_NE(s.output.find("64 planned, 32 done (50%), " + std::to_string(running) + " running, 0 "
+                          "failed, " + std::to_string(32 - running) + " waiting"),
+            std::string::npos)
+      << s.output;
+  EXPECT_NE(s.output.find("3 of 32 shards, left 0:01:40"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("time left: about 0:01:40"), std::string::npos) << s.output;
+  s = run_renderaudit("status " + dir + "/run --json");
+  const nlohmann::json j = nlohmann::json::parse(s.output);
+  EXPECT_EQ(j.at("state"), "running");
+  EXPECT_EQ(j.at("done"), 32);
+  EXPECT_EQ(j.at("writers").at(0).at("progress").at("host"), "node7");
+  s = run_renderaudit("status " + dir);
+  EXPECT_EQ(s.exit_code, 2);
+  EXPECT_NE(s.output.find("not a run directory (no experiment.toml)"), std::string::npos);
+}
+
+}  // namespace
