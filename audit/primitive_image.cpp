@@ -33,6 +33,7 @@ class RecordingPlatform : public Platform {
  public:
   explicit RecordingPlatform(Platform& inner) : inner_(inner) {}
   DriverInfo driver_info() const override { return inner_.driver_info(); }
+  double measure_timer_over_cpu() override { return inner_.measure_timer_over_cpu(); }
   void set_view(const View& view) override { inner_.set_view(view); }
   RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
     last = inner_.render(prim, expected);

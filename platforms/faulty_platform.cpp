@@ -42,6 +42,9 @@ class FaultyPlatform : public Platform {
     if (base_) info = base_->driver_info(), info.renderer += " + injected faults";
     return info;
   }
+  double measure_timer_over_cpu() override {
+    return base_ ? base_->measure_timer_over_cpu() : Platform::measure_timer_over_cpu();
+  }
   void set_view(const View& view) override {
     view_ = view;
     if (base_) base_->set_view(view);

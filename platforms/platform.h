@@ -49,6 +49,10 @@ class Platform {
  public:
   virtual ~Platform() = default;
   virtual DriverInfo driver_info() const = 0;
+  // Measures DriverInfo::timer_over_cpu (a few hundred milliseconds on softpipe), stores it in
+  // what driver_info() returns from now on, and returns it; NaN where there is no timer. Asked
+  // once per run, by the worker that writes the run's driver file, not by every worker.
+  virtual double measure_timer_over_cpu() { return std::numeric_limits<double>::quiet_NaN(); }
   // Makes `view` current: window size, projection and modelview matrices.
   virtual void set_view(const View& view) = 0;
   // Draws `prim` alone, white on black, width/size 1, no antialiasing (multisampling on the
