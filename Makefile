@@ -58,6 +58,7 @@ bench: build
 	cmake --build $(BUILD) -j $(JOBS) --target benchmarks
 	$(BUILD)/readback_bench --primitives 300 --rounds 3 --json outputs/bench/readback.json
 	$(BUILD)/analysis_bench --records 2400000 --platforms 2
+	$(BUILD)/run_overhead_bench --rounds 3 --jobs 2 --json outputs/bench/run_overhead.json
 
 # The nightly driver audit (README, "Nightly audit"): run, audit against the baseline, history,
 # report. Exit code: 0 unchanged, 1 changed, 2 failed.

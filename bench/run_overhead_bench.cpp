@@ -1,0 +1,141 @@
+// `run_overhead_bench [--experiment bench/run_overhead.toml] [--rounds 3] [--jobs 2]`: the whole
+// run's cost against the drivers' own drawing, the figure issue 21 is judged by. Each round runs
+// the fixed experiment with `renderaudit run` into a fresh directory and reads back its records
+// (render_us: the drawing of each primitive, CPU microseconds) and manifest (wall time, each
+// shard's worker seconds). Printed: per round, wall x jobs / drawing (1.0 is the floor: the
+// drivers drawing on every core without pause), and per platform x kind the worker time per
+// primitive beside the drawing per primitive (the per-primitive floor), medians over the rounds.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "metrics/records_reader.h"
+#include "runner/shard.h"
+#include "util/atomic_file.h"
+#include "util/child_process.h"
+
+namespace fs = std::filesystem;
+using namespace ra;
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct KindCost {
+  double drawing_s = 0, worker_s = 0;
+  uint64_t primitives = 0;
+};
+
+struct Round {
+  double wall_s = 0, elapsed_s = 0, busy_s = 0, drawing_s = 0;
+  std::map<std::string, KindCost> kinds;  // "platform kind"
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string experiment = "bench/run_overhead.toml", json_out;
+  int rounds = 3, jobs = 2;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
+    if (a == "--experiment") experiment = next();
+    else if (a == "--rounds") rounds = std::max(1, std::atoi(next().c_str()));
+    else if (a == "--jobs") jobs = std::max(1, std::atoi(next().c_str()));
+    else if (a == "--json") json_out = next();
+    else {
+      std::fprintf(stderr, "usage: run_overhead_bench [--experiment F] [--rounds N] [--jobs J] "
+                           "[--json OUT]\n");
+      return 2;
+    }
+  }
+  const std::string program =
+      (fs::read_symlink("/proc/self/exe").parent_path() / "renderaudit").string();
+  std::vector<Round> results;
+  for (int r = 1; r <= rounds; ++r) {
+    const std::string dir = "outputs/bench/run-overhead/round" + std::to_string(r);
+    fs::remove_all(dir);
+    ChildSpec spec;
+    spec.argv = {program, "run", experiment, "--out", dir, "--jobs", std::to_string(jobs), "--quiet"};
+    spec.capture_output = true;
+    spec.stdin_null = true;
+    const auto t0 = std::chrono::steady_clock::now();
+    const ProgramResult res = run_program(spec);
+    Round round;
+    round.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!res.exited_ok()) {
+      std::fprintf(stderr, "run_overhead_bench: %s run failed (%s):\n%s\n", experiment.c_str(),
+                   describe_exit_status(res.status).c_str(), res.output.c_str());
+      return 1;
+    }
+    const nlohmann::json m = nlohmann::json::parse(read_file(dir + "/manifest.json"));
+    round.elapsed_s = m["invocations"].back().value("elapsed_s", 0.0);
+    round.busy_s = m["invocations"].back().value("worker_busy_s", 0.0);
+    for (const auto& [id, seconds] : m["shard_seconds"].items()) {
+      // id: platform.kind.vN.begin-end
+      const size_t a = id.find('.'), b = id.find('.', a + 1);
+      KindCost& k = round.kinds[id.substr(0, a) + " " + id.substr(a + 1, b - a - 1)];
+      k.worker_s += seconds.get<double>();
+    }
+    for (const auto& e : fs::directory_iterator(dir + "/records")) {
+      for_each_record_row(e.path().string(), [&](const RecordRow& row) {
+        const double us = row.number(RecordColumn::kRenderUs).value_or(0);
+        KindCost& k = round.kinds[std::string(row.cell(RecordColumn::kPlatform)) + " " +
+                                  std::string(row.cell(RecordColumn::kKind))];
+        k.drawing_s += us * 1e-6;
+        ++k.primitives;
+        round.drawing_s += us * 1e-6;
+      });
+    }
+    results.push_back(std::move(round));
+  }
+
+  std::printf("\nWhole run against the drivers' own drawing: %s, --jobs %d, %d rounds\n\n",
+              experiment.c_str(), jobs, rounds);
+  std::printf("| round | wall s | worker-s | drawing s (sum render_us) | wall x jobs / drawing | "
+              "worker-s / drawing |\n| ---: | ---: | ---: | ---: | ---: | ---: |\n");
+  std::vector<double> ratio, worker_ratio;
+  for (size_t r = 0; r < results.size(); ++r) {
+    const Round& x = results[r];
+    ratio.push_back(x.elapsed_s * jobs / x.drawing_s);
+    worker_ratio.push_back(x.busy_s / x.drawing_s);
+    std::printf("| %zu | %.2f | %.2f | %.2f | %.3f | %.3f |\n", r + 1, x.elapsed_s, x.busy_s,
+                x.drawing_s, ratio.back(), worker_ratio.back());
+  }
+  std::printf("| median | | | | **%.3f** | %.3f |\n", median(ratio), median(worker_ratio));
+  std::printf("\nPer primitive (medians over the rounds): the worker's time (its shard's wall time "
+              "/ primitives) against the drawing (render_us), the floor\n\n");
+  std::printf("| platform | kind | primitives | drawing us | worker us | worker / drawing |\n"
+              "| --- | --- | ---: | ---: | ---: | ---: |\n");
+  nlohmann::json out = {{"experiment", experiment}, {"jobs", jobs}, {"rounds", rounds},
+                        {"ratio_median", median(ratio)}, {"kinds", nlohmann::json::array()}};
+  for (const auto& [key, first] : results.front().kinds) {
+    std::vector<double> draw_us, worker_us;
+    for (const Round& x : results) {
+      const KindCost& k = x.kinds.at(key);
+      draw_us.push_back(1e6 * k.drawing_s / k.primitives);
+      worker_us.push_back(1e6 * k.worker_s / k.primitives);
+    }
+    const double d = median(draw_us), w = median(worker_us);
+    const std::string platform = key.substr(0, key.find(' ')), kind = key.substr(key.find(' ') + 1);
+    std::printf("| %s | %s | %llu | %.1f | %.1f | %.2f |\n", platform.c_str(), kind.c_str(),
+                static_cast<unsigned long long>(first.primitives), d, w, w / d);
+    out["kinds"].push_back({{"platform", platform}, {"kind", kind}, {"drawing_us", d},
+                            {"worker_us", w}});
+  }
+  if (!json_out.empty()) {
+    fs::create_directories(fs::path(json_out).parent_path());
+    write_file_atomic(json_out, out.dump(1) + "\n");
+  }
+  return 0;
+}
