@@ -5,6 +5,8 @@
 // shard's worker seconds). Printed: per round, wall x jobs / drawing (1.0 is the floor: the
 // drivers drawing on every core without pause), and per platform x kind the worker time per
 // primitive beside the drawing per primitive (the per-primitive floor), medians over the rounds.
+// `--from RUN_DIR` prints the same tables for a run already made (one round; e.g. the full
+// nist2008 run), without running anything.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -44,41 +46,54 @@ struct Round {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string experiment = "bench/run_overhead.toml", json_out;
+  std::string experiment = "bench/run_overhead.toml", json_out, from;
   int rounds = 3, jobs = 2;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
-    if (a == "--experiment") experiment = next();
-    else if (a == "--rounds") rounds = std::max(1, std::atoi(next().c_str()));
-    else if (a == "--jobs") jobs = std::max(1, std::atoi(next().c_str()));
-    else if (a == "--json") json_out = next();
+    if (a == "--experiment")
+      experiment = next();
+    else if (a == "--rounds")
+      rounds = std::max(1, std::atoi(next().c_str()));
+    else if (a == "--jobs")
+      jobs = std::max(1, std::atoi(next().c_str()));
+    else if (a == "--json")
+      json_out = next();
+    else if (a == "--from")
+      from = next();
     else {
-      std::fprintf(stderr, "usage: run_overhead_bench [--experiment F] [--rounds N] [--jobs J] "
-                           "[--json OUT]\n");
+      std::fprintf(stderr,
+                   "usage: run_overhead_bench [--experiment F] [--rounds N] [--jobs J] "
+                   "[--json OUT] [--from RUN_DIR]\n");
       return 2;
     }
   }
   const std::string program =
       (fs::read_symlink("/proc/self/exe").parent_path() / "renderaudit").string();
   std::vector<Round> results;
+  if (!from.empty()) rounds = 1, experiment = from + "/experiment.toml";
   for (int r = 1; r <= rounds; ++r) {
-    const std::string dir = "outputs/bench/run-overhead/round" + std::to_string(r);
-    fs::remove_all(dir);
-    ChildSpec spec;
-    spec.argv = {program, "run", experiment, "--out", dir, "--jobs", std::to_string(jobs), "--quiet"};
-    spec.capture_output = true;
-    spec.stdin_null = true;
-    const auto t0 = std::chrono::steady_clock::now();
-    const ProgramResult res = run_program(spec);
+    const std::string dir =
+        !from.empty() ? from : "outputs/bench/run-overhead/round" + std::to_string(r);
     Round round;
-    round.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!res.exited_ok()) {
-      std::fprintf(stderr, "run_overhead_bench: %s run failed (%s):\n%s\n", experiment.c_str(),
-                   describe_exit_status(res.status).c_str(), res.output.c_str());
-      return 1;
+    if (from.empty()) {
+      fs::remove_all(dir);
+      ChildSpec spec;
+      spec.argv = {program, "run",    experiment,           "--out",
+                   dir,     "--jobs", std::to_string(jobs), "--quiet"};
+      spec.capture_output = true;
+      spec.stdin_null = true;
+      const auto t0 = std::chrono::steady_clock::now();
+      const ProgramResult res = run_program(spec);
+      round.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (!res.exited_ok()) {
+        std::fprintf(stderr, "run_overhead_bench: %s run failed (%s):\n%s\n", experiment.c_str(),
+                     describe_exit_status(res.status).c_str(), res.output.c_str());
+        return 1;
+      }
     }
     const nlohmann::json m = nlohmann::json::parse(read_file(dir + "/manifest.json"));
+    jobs = m["invocations"].back().value("jobs", jobs);
     round.elapsed_s = m["invocations"].back().value("elapsed_s", 0.0);
     round.busy_s = m["invocations"].back().value("worker_busy_s", 0.0);
     for (const auto& [id, seconds] : m["shard_seconds"].items()) {
@@ -102,8 +117,9 @@ int main(int argc, char** argv) {
 
   std::printf("\nWhole run against the drivers' own drawing: %s, --jobs %d, %d rounds\n\n",
               experiment.c_str(), jobs, rounds);
-  std::printf("| round | wall s | worker-s | drawing s (sum render_us) | wall x jobs / drawing | "
-              "worker-s / drawing |\n| ---: | ---: | ---: | ---: | ---: | ---: |\n");
+  std::printf(
+      "| round | wall s | worker-s | drawing s (sum render_us) | wall x jobs / drawing | "
+      "worker-s / drawing |\n| ---: | ---: | ---: | ---: | ---: | ---: |\n");
   std::vector<double> ratio, worker_ratio;
   for (size_t r = 0; r < results.size(); ++r) {
     const Round& x = results[r];
@@ -113,12 +129,17 @@ int main(int argc, char** argv) {
                 x.drawing_s, ratio.back(), worker_ratio.back());
   }
   std::printf("| median | | | | **%.3f** | %.3f |\n", median(ratio), median(worker_ratio));
-  std::printf("\nPer primitive (medians over the rounds): the worker's time (its shard's wall time "
-              "/ primitives) against the drawing (render_us), the floor\n\n");
-  std::printf("| platform | kind | primitives | drawing us | worker us | worker / drawing |\n"
-              "| --- | --- | ---: | ---: | ---: | ---: |\n");
-  nlohmann::json out = {{"experiment", experiment}, {"jobs", jobs}, {"rounds", rounds},
-                        {"ratio_median", median(ratio)}, {"kinds", nlohmann::json::array()}};
+  std::printf(
+      "\nPer primitive (medians over the rounds): the worker's time (its shard's wall time "
+      "/ primitives) against the drawing (render_us), the floor\n\n");
+  std::printf(
+      "| platform | kind | primitives | drawing us | worker us | worker / drawing |\n"
+      "| --- | --- | ---: | ---: | ---: | ---: |\n");
+  nlohmann::json out = {{"experiment", experiment},
+                        {"jobs", jobs},
+                        {"rounds", rounds},
+                        {"ratio_median", median(ratio)},
+                        {"kinds", nlohmann::json::array()}};
   for (const auto& [key, first] : results.front().kinds) {
     std::vector<double> draw_us, worker_us;
     for (const Round& x : results) {
@@ -130,8 +151,8 @@ int main(int argc, char** argv) {
     const std::string platform = key.substr(0, key.find(' ')), kind = key.substr(key.find(' ') + 1);
     std::printf("| %s | %s | %llu | %.1f | %.1f | %.2f |\n", platform.c_str(), kind.c_str(),
                 static_cast<unsigned long long>(first.primitives), d, w, w / d);
-    out["kinds"].push_back({{"platform", platform}, {"kind", kind}, {"drawing_us", d},
-                            {"worker_us", w}});
+    out["kinds"].push_back(
+        {{"platform", platform}, {"kind", kind}, {"drawing_us", d}, {"worker_us", w}});
   }
   if (!json_out.empty()) {
     fs::create_directories(fs::path(json_out).parent_path());

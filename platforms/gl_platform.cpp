@@ -44,6 +44,10 @@
 // passed), and that primitive is drawn again on a cleared window, read whole. The colour-counter
 // batching is not used (render_batch draws one primitive at a time).
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -600,26 +604,54 @@ class GlPlatform : public Platform {
     const int w = r.x1 - r.x0, h = r.y1 - r.y0;
     readback_.resize(size_t(w) * h);
     gl().ReadPixels(r.x0, r.y0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readback_.data());
-    if (colour == kAnyColour) {
-      scan(r, [](uint32_t v) { return (v & kRgb) != 0; }, lit);
-    } else {
-      scan(r, [colour](uint32_t v) { return (v & kRgb) == colour; }, lit);
-    }
+    scan(r, colour == kAnyColour, colour, lit);
   }
 
-  template <typename IsLit>
-  void scan(const PixelRect& r, IsLit is_lit, PixelSet& lit) const {
+  // Appends the runs of lit pixels of the read-back rectangle, row by row. A pixel is lit when
+  // its RGB is not black (any_colour) or equals `colour`.
+  void scan(const PixelRect& r, bool any_colour, uint32_t colour, PixelSet& lit) const {
     const int w = r.x1 - r.x0, h = r.y1 - r.y0;
     for (int y = 0; y < h; ++y) {
       const uint32_t* row = readback_.data() + size_t(y) * w;
       int x = 0;
       while (x < w) {
-        while (x < w && !is_lit(row[x])) ++x;
-        const int begin = x;
-        while (x < w && is_lit(row[x])) ++x;
+        const int begin = next_change(row, x, w, any_colour, colour, false);
+        if (begin == w) break;
+        x = next_change(row, begin, w, any_colour, colour, true);
         lit.append_run(r.y0 + y, r.x0 + begin, r.x0 + x);
       }
     }
+  }
+
+  // The first x in [x, w) whose pixel is lit when `lit_now` is false (dark when it is true), or w.
+  // Four pixels per step with SSE2: the scan was a sixth of a large triangle's time on llvmpipe.
+  static int next_change(const uint32_t* row, int x, int w, bool any_colour, uint32_t colour,
+                         bool lit_now) {
+#if defined(__SSE2__)
+    const __m128i rgb = _mm_set1_epi32(int(kRgb));
+    const __m128i target = _mm_set1_epi32(any_colour ? 0 : int(colour));
+    // bit i set: pixel x + i equals the target (black, or `colour`)
+    auto equal4 = [&](int at) {
+      const __m128i v =
+          _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(row + at)), rgb);
+      return unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(v, target))));
+    };
+    const unsigned flip = (any_colour ? 1u : 0u) ^ (lit_now ? 1u : 0u);  // bits that mean "change"
+    for (; x + 16 <= w; x += 16) {
+      unsigned equal = equal4(x) | equal4(x + 4) << 4 | equal4(x + 8) << 8 | equal4(x + 12) << 12;
+      const unsigned change = flip ? ~equal & 0xffffu : equal;
+      if (change) return x + __builtin_ctz(change);
+    }
+    for (; x + 4 <= w; x += 4) {
+      const unsigned change = flip ? ~equal4(x) & 0xfu : equal4(x);
+      if (change) return x + __builtin_ctz(change);
+    }
+#endif
+    for (; x < w; ++x) {
+      const uint32_t v = row[x] & kRgb;
+      if ((any_colour ? v != 0 : v == colour) != lit_now) return x;
+    }
+    return w;
   }
 
   ReadbackMethod method_;

@@ -168,6 +168,9 @@ RunResult run_experiment(const RunOptions& options) {
                             {"hash", exp.hash}, {"seed", exp.seed},
                             {"platforms", exp.platforms}};
   manifest["host"] = host_description();
+  // which platforms' shards this directory is meant to hold (--platform), for `status`
+  if (!options.only_platforms.empty()) manifest["platforms_run"] = options.only_platforms;
+  else manifest.erase("platforms_run");
   if (options.slice) {
     manifest["slice"] = {{"index", options.slice->index}, {"count", options.slice->count},
                          {"shards", all.size()}};
@@ -188,6 +191,19 @@ RunResult run_experiment(const RunOptions& options) {
   const auto t_start = Clock::now();
   uint64_t primitives_done = 0, primitives_todo = 0;
   for (const WorkItem& w : todo) primitives_todo += w.shard.size();
+  // The time left is estimated in expected cost (runner/shard_cost.h), not in primitives: the
+  // most expensive shards run first, so a rate in primitives per second would overestimate it.
+  auto expected_cost = [&](const Shard& s) {
+    for (const View& v : exp.views)
+      if (v.id == s.view) return expected_shard_cost_us(s, v);
+    return double(s.size());
+  };
+  double cost_todo = 0, cost_done = 0;
+  for (const WorkItem& w : todo) cost_todo += expected_cost(w.shard);
+  auto seconds_left = [&](double elapsed_s) {
+    if (cost_done <= 0) return -1.0;
+    return elapsed_s * std::max(0.0, cost_todo - cost_done) / cost_done;
+  };
   const size_t shards_to_run = todo.size();
 
   ShardRecovery recovery(dir, exp, timeout_s);
@@ -227,9 +243,7 @@ RunResult run_experiment(const RunOptions& options) {
     p.primitives_done = primitives_done;
     p.primitives_todo = primitives_todo;
     p.elapsed_s = std::chrono::duration<double>(Clock::now() - t_start).count();
-    if (primitives_done > 0)
-      p.left_s = (primitives_todo - std::min(primitives_todo, primitives_done)) /
-                 (primitives_done / std::max(p.elapsed_s, 1e-9));
+    p.left_s = seconds_left(p.elapsed_s);
     if (at_end) p.finished = true, p.left_s = 0;
     write_run_progress(dir, p);
   };
@@ -239,6 +253,7 @@ RunResult run_experiment(const RunOptions& options) {
     const WorkItem& w = r.item;
     if (outcome == WorkOutcome::kOk) {
       primitives_done += w.shard.size();
+      cost_done += expected_cost(w.shard);
       if (!w.is_part()) ++finished, ++result.shards_run;
     } else if (!w.is_part()) {
       result.failures.push_back({w.shard.id(), reason + (w.attempt == 1 ? "; re-running it"
@@ -318,7 +333,7 @@ RunResult run_experiment(const RunOptions& options) {
       std::fprintf(stderr, "\r[%zu/%zu shards] %llu primitives, %.0f/s, %zu failed, left %s   ",
                    finished, shards_to_run, static_cast<unsigned long long>(primitives_done), rate,
                    result.failures.size(),
-                   format_duration(primitives_done ? (primitives_todo - primitives_done) / rate : NAN).c_str());
+                   format_duration(cost_done > 0 ? seconds_left(elapsed) : NAN).c_str());
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }

@@ -51,8 +51,8 @@ void ask_squeue(RunStatus& s, const std::string& squeue) {
   if (!r.exited_ok()) {
     // jobs Slurm has forgotten (they ended long ago) are not an error
     if (r.output.find("Invalid job id") == std::string::npos)
-      s.squeue_error = r.exit_code() == 127 ? "squeue not found"
-                                            : r.output.substr(0, r.output.find('\n'));
+      s.squeue_error =
+          r.exit_code() == 127 ? "squeue not found" : r.output.substr(0, r.output.find('\n'));
     return;
   }
   std::istringstream lines(r.output);
@@ -73,7 +73,8 @@ std::string RunStatus::state() const {
     queued = queued || is_pending(j.state);
   }
   if (queued) return "queued";
-  if (planned > 0 && done == planned && manifest_status.rfind("complete", 0) == 0) return "complete";
+  if (planned > 0 && done == planned && manifest_status.rfind("complete", 0) == 0)
+    return "complete";
   if (manifest_status == "interrupted") return "interrupted";
   if (manifest_status == "failed" || failed > 0 || (gather_exit > 0)) return "failed";
   return "incomplete";
@@ -104,6 +105,22 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
   sources.insert(sources.end(), slice_dirs.begin(), slice_dirs.end());
 
   std::vector<Shard> shards = plan_shards(exp);
+  // a run of some platforms only (--platform): the manifest of DIR or of its first slice says so
+  nlohmann::json platforms_run =
+      manifest.is_object() ? manifest.value("platforms_run", nlohmann::json()) : nlohmann::json();
+  if (platforms_run.is_null() && !slice_dirs.empty()) {
+    const nlohmann::json first = read_json_or_null(slice_dirs.front() + "/manifest.json");
+    if (first.is_object()) platforms_run = first.value("platforms_run", nlohmann::json());
+  }
+  if (platforms_run.is_array()) {
+    const auto keep = platforms_run.get<std::vector<std::string>>();
+    shards.erase(std::remove_if(shards.begin(), shards.end(),
+                                [&](const Shard& sh) {
+                                  return std::find(keep.begin(), keep.end(), sh.platform) ==
+                                         keep.end();
+                                }),
+                 shards.end());
+  }
   if (manifest.is_object() && manifest.contains("slice") && slice_dirs.empty()) {
     const auto& sl = manifest["slice"];
     shards = shards_of_slice(shards, exp, Slice{sl.value("index", 1), sl.value("count", 1)});
@@ -129,10 +146,14 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
     bool have = false;
     for (const std::string& src : sources) have = have || fs::exists(sh.records_path(src));
     const std::string id = sh.id();
-    if (have) ++s.done;
-    else if (running.count(id)) ++s.running;
-    else if (failed.count(id)) ++s.failed;
-    else ++s.waiting;
+    if (have)
+      ++s.done;
+    else if (running.count(id))
+      ++s.running;
+    else if (failed.count(id))
+      ++s.failed;
+    else
+      ++s.waiting;
   }
   for (const auto& w : s.writers)
     if (w.progress.left_s >= 0) s.left_s = std::max(s.left_s, w.progress.left_s);
@@ -188,8 +209,10 @@ std::string format_run_status(const RunStatus& s) {
   }
   if (s.state() == "running" || s.state() == "queued") {
     o << "  time left: ";
-    if (s.left_s >= 0) o << "about " << hms(s.left_s) << " for the running writers";
-    else o << "not known yet";
+    if (s.left_s >= 0)
+      o << "about " << hms(s.left_s) << " for the running writers";
+    else
+      o << "not known yet";
     if (s.slices_not_started) o << ", then " << s.slices_not_started << " slices not started";
     o << "\n";
   }
@@ -201,18 +224,19 @@ nlohmann::json to_json(const RunStatus& s) {
   nlohmann::json writers = nlohmann::json::array();
   for (const auto& w : s.writers)
     writers.push_back({{"dir", w.dir}, {"holder", w.holder}, {"progress", to_json(w.progress)}});
-  nlohmann::json j = {{"dir", s.dir},         {"experiment", s.experiment}, {"state", s.state()},
-                      {"planned", s.planned}, {"done", s.done},             {"running", s.running},
-                      {"failed", s.failed},   {"waiting", s.waiting},       {"writers", writers},
-                      {"manifest_status", s.manifest_status},
+  nlohmann::json j = {{"dir", s.dir},       {"experiment", s.experiment},
+                      {"state", s.state()}, {"planned", s.planned},
+                      {"done", s.done},     {"running", s.running},
+                      {"failed", s.failed}, {"waiting", s.waiting},
+                      {"writers", writers}, {"manifest_status", s.manifest_status},
                       {"left_s", s.left_s}};
   if (s.slurm) {
     nlohmann::json jobs = nlohmann::json::array();
     for (const auto& job : s.jobs)
       jobs.push_back({{"id", job.id}, {"state", job.state}, {"reason", job.reason}});
-    j["slurm"] = {{"array_job", s.array_job}, {"gather_job", s.gather_job}, {"slices", s.slices},
-                  {"jobs", jobs}, {"gather_exit", s.gather_exit},
-                  {"slices_not_started", s.slices_not_started}};
+    j["slurm"] = {{"array_job", s.array_job},     {"gather_job", s.gather_job},
+                  {"slices", s.slices},           {"jobs", jobs},
+                  {"gather_exit", s.gather_exit}, {"slices_not_started", s.slices_not_started}};
   }
   return j;
 }

@@ -188,6 +188,14 @@ TEST(SlurmCommand, StatusSaysWhatIsDoneRunningAndLeftWhileAWriterIsAtWork) {
   EXPECT_EQ(j.at("state"), "running");
   EXPECT_EQ(j.at("done"), 32);
   EXPECT_EQ(j.at("writers").at(0).at("progress").at("host"), "node7");
+  // a run of one platform of two (--platform) is complete with that platform's 32 shards
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/one --platform reference "
+                            "--quiet").exit_code, 0);
+  s = run_renderaudit("status " + dir + "/one");
+  EXPECT_EQ(s.exit_code, 0) << s.output;
+  EXPECT_NE(s.output.find("32 planned, 32 done (100%), 0 running, 0 failed, 0 waiting"),
+            std::string::npos)
+      << s.output;
   s = run_renderaudit("status " + dir);
   EXPECT_EQ(s.exit_code, 2);
   EXPECT_NE(s.output.find("not a run directory (no experiment.toml)"), std::string::npos);
