@@ -120,6 +120,8 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   to.alpha = o.alpha;
   to.comparison = eq.comparison;
   to.jobs = o.jobs;
+  to.bootstrap.resamples = o.bootstrap_resamples;
+  to.bootstrap.seed = o.bootstrap_seed;
   const std::vector<Table> tables = paper_tables(run, to);
   result.timings.push_back({"tables", watch.lap()});
 

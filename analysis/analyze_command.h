@@ -32,6 +32,8 @@ struct AnalyzeOptions {
   std::size_t box_cox_subsample = 10000;  // order statistics choosing lambda
   unsigned jobs = 0;                      // threads; 0: the number of cores
   bool allow_incomplete = false;  // analyse a run with missing or damaged shards (and say so)
+  int bootstrap_resamples = 2000;  // of every median and IQR (uncertainty.md); 0: none
+  std::uint64_t bootstrap_seed = 2008;
 };
 
 struct StageTime {

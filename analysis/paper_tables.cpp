@@ -165,7 +165,9 @@ const std::vector<MetricTableSpec>& metric_table_specs() {
   return specs;
 }
 
-GroupSummaries::GroupSummaries(const RunRecords& run, QuantileDefinition quantiles, unsigned jobs) {
+GroupSummaries::GroupSummaries(const RunRecords& run, QuantileDefinition quantiles, unsigned jobs,
+                               stats::BootstrapOptions bootstrap) {
+  bootstrap.definition = quantiles;
   struct Task {
     const ViewGroup* group;
     std::size_t metric;
@@ -175,14 +177,19 @@ GroupSummaries::GroupSummaries(const RunRecords& run, QuantileDefinition quantil
     for (std::size_t m = 0; m < kind_metrics(g.kind).size(); ++m) tasks.push_back({&g, m});
   }
   std::vector<std::optional<Description>> out(tasks.size());
+  std::vector<std::optional<stats::MedianIqrBootstrap>> boot(tasks.size());
   run_in_parallel(tasks.size(), jobs, [&](std::size_t i) {
-    out[i] = describe_if_any(tasks[i].group->pooled(tasks[i].metric), quantiles);
+    const std::vector<double> sample = tasks[i].group->pooled(tasks[i].metric);  // ascending
+    out[i] = describe_if_any(sample, quantiles);
+    if (out[i] && bootstrap.resamples > 0) boot[i] = stats::bootstrap_median_iqr(sample, bootstrap);
   });
   for (std::size_t i = 0; i < tasks.size(); ++i) {
     if (!out[i]) continue;
     const ViewGroup& g = *tasks[i].group;
-    d_.emplace(std::make_tuple(g.platform, static_cast<int>(g.kind), tasks[i].metric, g.view_group),
-               *out[i]);
+    const auto key =
+        std::make_tuple(g.platform, static_cast<int>(g.kind), tasks[i].metric, g.view_group);
+    d_.emplace(key, *out[i]);
+    if (boot[i]) b_.emplace(key, *boot[i]);
   }
 }
 
@@ -190,6 +197,65 @@ const Description* GroupSummaries::find(std::size_t platform, PrimitiveKind kind
                                         std::size_t metric, int view_group) const {
   const auto it = d_.find(std::make_tuple(platform, static_cast<int>(kind), metric, view_group));
   return it == d_.end() ? nullptr : &it->second;
+}
+
+const stats::MedianIqrBootstrap* GroupSummaries::bootstrap(std::size_t platform, PrimitiveKind kind,
+                                                           std::size_t metric,
+                                                           int view_group) const {
+  const auto it = b_.find(std::make_tuple(platform, static_cast<int>(kind), metric, view_group));
+  return it == b_.end() ? nullptr : &it->second;
+}
+
+Table uncertainty_table(const RunRecords& run, const GroupSummaries& summaries,
+                        const TableOptions& options) {
+  Table t;
+  t.file_stem = "uncertainty";
+  t.title =
+      "Uncertainty of Tables 3, 4, 6, 7, 9, 10: bootstrap standard error (SE) and 95% "
+      "percentile interval of each median and IQR, in the units and scale of its table";
+  for (const char* c : {"Table", "Metric", "View", "Platform"})
+    t.columns.push_back({c, Align::kLeft});
+  for (const char* c :
+       {"n", "Median", "SE", "95% low", "95% high", "IQR", "SE", "95% low", "95% high"})
+    t.columns.push_back({c, Align::kRight});
+  for (const MetricTableSpec& spec : metric_table_specs()) {
+    if (!std::isdigit(static_cast<unsigned char>(spec.number.back()))) continue;  // supplements
+    const std::size_t metric = metric_index(spec.kind, spec.column);
+    const MetricSpec& m = kind_metrics(spec.kind)[metric];
+    const double scale = std::pow(10.0, spec.scale_exponent);
+    const int decimals = spec.decimals + 1;  // one more than the table: the SE's first digit
+    for (int g : run.view_groups(spec.kind)) {
+      for (std::size_t p = 0; p < run.platforms.size(); ++p) {
+        const Description* d = summaries.find(p, spec.kind, metric, g);
+        const stats::MedianIqrBootstrap* b = summaries.bootstrap(p, spec.kind, metric, g);
+        if (!d || !b) continue;
+        std::vector<TableCell> row = {
+            text_cell(spec.number),
+            text_cell(std::string(m.symbol) + " " + scale_text(spec.scale_exponent)),
+            text_cell(view_group_label(g)), text_cell(run.platforms[p]),
+            text_cell(std::to_string(d->n))};
+        for (const auto& [value, e] :
+             {std::pair{d->median, b->median}, std::pair{d->iqr, b->iqr}}) {
+          row.push_back(number_cell(value * scale, decimals));
+          row.push_back(number_cell(e.se * scale, decimals));
+          row.push_back(number_cell(e.lo95 * scale, decimals));
+          row.push_back(number_cell(e.hi95 * scale, decimals));
+        }
+        t.rows.push_back(std::move(row));
+      }
+    }
+  }
+  t.notes.push_back("Bootstrap: " + std::to_string(options.bootstrap.resamples) +
+                    " resamples of each pooled view-group sample, seed " +
+                    std::to_string(options.bootstrap.seed) +
+                    " (reproducible); each resample's median and quartiles by " +
+                    quantile_label(options.quantiles) +
+                    "; SE = standard deviation of the resampled statistic; interval = its 2.5% "
+                    "and 97.5% percentiles (stats/bootstrap.h).");
+  t.notes.push_back(
+      "A difference between two cells (two platforms, or ours and the paper's) "
+      "larger than 3 x sqrt(SE_a^2 + SE_b^2) is unlikely to be sampling noise.");
+  return t;
 }
 
 Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
@@ -647,7 +713,7 @@ Table cross_platform_table(const RunRecords& run, const std::vector<PlatformComp
 }
 
 std::vector<Table> paper_tables(const RunRecords& run, const TableOptions& options) {
-  const GroupSummaries summaries(run, options.quantiles, options.jobs);
+  const GroupSummaries summaries(run, options.quantiles, options.jobs, options.bootstrap);
   const std::vector<PrimitiveKind> kinds = run.kinds();
   const auto has = [&](PrimitiveKind k) {
     return std::find(kinds.begin(), kinds.end(), k) != kinds.end();
@@ -658,6 +724,10 @@ std::vector<Table> paper_tables(const RunRecords& run, const TableOptions& optio
       const bool is_supplement = !std::isdigit(static_cast<unsigned char>(spec.number.back()));
       if (spec.kind == kind && is_supplement == supplements) {
         tables.push_back(metric_table(run, summaries, spec, options.quantiles));
+        if (!is_supplement && options.bootstrap.resamples > 0)
+          tables.back().notes.push_back(
+              "The bootstrap standard error and 95% interval of every "
+              "cell: uncertainty.md.");
       }
     }
   };
@@ -669,6 +739,8 @@ std::vector<Table> paper_tables(const RunRecords& run, const TableOptions& optio
   for (PrimitiveKind kind : kAllKinds) {
     if (has(kind)) metric_tables(kind, true);
   }
+  if (!kinds.empty() && options.bootstrap.resamples > 0)
+    tables.push_back(uncertainty_table(run, summaries, options));
   if (!kinds.empty()) tables.push_back(physical_units_table(run, summaries, options));
   if (!kinds.empty()) tables.push_back(speed_table(run, options));
   if (run.platforms.size() > 1) {

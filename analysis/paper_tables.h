@@ -33,6 +33,7 @@
 #include <tuple>
 #include <vector>
 
+#include "stats/bootstrap.h"
 #include "stats/descriptive.h"
 #include "analysis/run_records.h"
 #include "stats/table_writer.h"
@@ -61,18 +62,26 @@ struct TableOptions {
   double alpha = 0.05;                             // cross-platform "differs" columns
   ComparisonOptions comparison;                    // Box-Cox subsample
   unsigned jobs = 0;                               // threads; 0: the number of cores
+  // Bootstrap standard errors and intervals of every median and IQR (the uncertainty table);
+  // resamples 0: none computed. Its quantile definition follows `quantiles`.
+  stats::BootstrapOptions bootstrap;
 };
 
 // Description (n, median, quartiles, ...) of every pooled view-group sample of the run, computed
 // once (in parallel) and shared by the tables. Absent: the sample is empty.
 class GroupSummaries {
  public:
-  GroupSummaries(const RunRecords& run, stats::QuantileDefinition quantiles, unsigned jobs);
+  // bootstrap.resamples > 0: also the bootstrap of each sample's median and IQR.
+  GroupSummaries(const RunRecords& run, stats::QuantileDefinition quantiles, unsigned jobs,
+                 stats::BootstrapOptions bootstrap = {0});
   const stats::Description* find(std::size_t platform, PrimitiveKind kind, std::size_t metric,
                                  int view_group) const;
+  const stats::MedianIqrBootstrap* bootstrap(std::size_t platform, PrimitiveKind kind,
+                                             std::size_t metric, int view_group) const;
 
  private:
   std::map<std::tuple<std::size_t, int, std::size_t, int>, stats::Description> d_;
+  std::map<std::tuple<std::size_t, int, std::size_t, int>, stats::MedianIqrBootstrap> b_;
 };
 
 // "Hyndman-Fan 6 (NIST e-Handbook, Dataplot)" / "Hyndman-Fan 7 (R, NumPy default)".
@@ -84,6 +93,12 @@ Table visibility_table(const RunRecords& run, PrimitiveKind kind);
 // A metric table: median and IQR by view group (rows) and platform (column blocks).
 Table metric_table(const RunRecords& run, const GroupSummaries& summaries,
                    const MetricTableSpec& spec, stats::QuantileDefinition quantiles);
+
+// The uncertainty of Tables 3, 4, 6, 7, 9 and 10: for each table, view group and platform, n, the
+// median and the IQR (scaled as in its table), each with its bootstrap standard error and 95%
+// percentile interval (stats/bootstrap.h; resample count and seed in the notes).
+Table uncertainty_table(const RunRecords& run, const GroupSummaries& summaries,
+                        const TableOptions& options);
 
 // Table 11: medians of PE (mm), LSEu (mm) and TEu (mm^2) for each pixel pitch (mm) and view group
 // (and all groups pooled), per platform: mm = px x pitch, mm^2 = px^2 x pitch^2.

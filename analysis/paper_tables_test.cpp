@@ -88,6 +88,36 @@ TEST_F(PaperTables, MedianAndIqrAreHandComputedHf6) {
   EXPECT_EQ(t4.groups[2].label, "p2");
 }
 
+TEST_F(PaperTables, UncertaintyTableHasTheBootstrapErrorOfEveryCell) {
+  TableOptions o;  // on by default: 2,000 resamples, seed 2008
+  const auto tables = paper_tables(run_, o);
+  const Table& u = find_table(tables, "uncertainty");
+  std::vector<std::vector<std::string>> table3;
+  for (const auto& row : u.rows)
+    if (row[0].text == "3") table3.push_back(texts(row));
+  ASSERT_EQ(table3.size(), 3u);  // p1 A, p2 A, p1 C (B has no data)
+  EXPECT_EQ(table3[0][2] + table3[0][3] + table3[0][4] + table3[0][5], "Ap190.300000");
+  EXPECT_GT(std::stod(table3[0][6]), 0.0);
+  // p1's group C is constant 0.2: every resample says so
+  EXPECT_EQ(std::vector<std::string>(table3[2].begin() + 2, table3[2].end()),
+            (std::vector<std::string>{"C", "p1", "5", "0.200000", "0.000000", "0.200000",
+                                      "0.200000", "0.000000", "0.000000", "0.000000",
+                                      "0.000000"}));
+  // p2's group A {0.2, 0.4}: a resample's HF6 median is the mean of two draws, 0.2 / 0.3 / 0.4
+  // with probabilities 1/4, 1/2, 1/4, so its SE is sqrt(0.005) = 0.0707 (2,000 resamples: +-2%)
+  EXPECT_EQ(table3[1][3], "p2");
+  EXPECT_NEAR(std::stod(table3[1][6]), std::sqrt(0.005), 0.004);
+  EXPECT_EQ(table3[1][7], "0.200000");
+  EXPECT_EQ(table3[1][8], "0.400000");
+  EXPECT_NE(u.notes[0].find("2000 resamples of each pooled view-group sample, seed 2008"),
+            std::string::npos);
+  const Table again = find_table(paper_tables(run_, o), "uncertainty");  // seeded: the same
+  ASSERT_EQ(again.rows.size(), u.rows.size());
+  for (std::size_t i = 0; i < u.rows.size(); ++i) EXPECT_EQ(texts(again.rows[i]), texts(u.rows[i]));
+  o.bootstrap.resamples = 0;
+  for (const Table& t : paper_tables(run_, o)) EXPECT_NE(t.file_stem, "uncertainty");
+}
+
 TEST_F(PaperTables, QuantileDefinitionHf7) {
   TableOptions o;
   o.quantiles = QuantileDefinition::kHyndmanFan7;

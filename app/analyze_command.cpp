@@ -9,6 +9,7 @@
 #include "analysis/analyze_command.h"
 #include "analysis/run_completeness.h"
 #include "app/commands.h"
+#include "util/errors.h"
 
 namespace ra::app {
 
@@ -22,6 +23,8 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
     std::size_t box_cox_subsample = 10000;
     bool timings = false;
     bool allow_incomplete = false;
+    int bootstrap = 2000;
+    std::uint64_t seed = 2008;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
@@ -45,6 +48,11 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--box-cox-subsample", o->box_cox_subsample,
                   "Box-Cox lambda is chosen on at most this many order statistics of the pooled "
                   "data (default 10000)");
+  cmd->add_option("--bootstrap", o->bootstrap,
+                  "bootstrap resamples for the standard error and 95% interval of every median "
+                  "and IQR (uncertainty.md; default 2000, 0: none)")
+      ->check(CLI::Range(0, 1000000));
+  cmd->add_option("--bootstrap-seed", o->seed, "seed of the bootstrap (default 2008)");
   cmd->add_flag("--timings", o->timings, "print the time each stage took");
   cmd->add_flag("--allow-incomplete", o->allow_incomplete,
                 "analyse a run with missing or damaged shards (README.md and the summary say "
@@ -60,6 +68,9 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
     options.jobs = o->jobs;
     options.box_cox_subsample = o->box_cox_subsample;
     options.allow_incomplete = o->allow_incomplete;
+    if (o->bootstrap == 1) throw UserError("--bootstrap 1: use 0 (none) or at least 2 resamples");
+    options.bootstrap_resamples = o->bootstrap;
+    options.bootstrap_seed = o->seed;
     analysis::AnalyzeResult r;
     try {
       r = analysis::analyze_run(options);
