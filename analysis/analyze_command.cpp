@@ -122,6 +122,10 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   to.jobs = o.jobs;
   to.bootstrap.resamples = o.bootstrap_resamples;
   to.bootstrap.seed = o.bootstrap_seed;
+  if (o.paper_values != "none") {
+    const std::string path = o.paper_values.empty() ? default_paper_values_path() : o.paper_values;
+    if (!path.empty()) to.paper = load_paper_values(path);
+  }
   const std::vector<Table> tables = paper_tables(run, to);
   result.timings.push_back({"tables", watch.lap()});
 

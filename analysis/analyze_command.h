@@ -34,6 +34,9 @@ struct AnalyzeOptions {
   bool allow_incomplete = false;  // analyse a run with missing or damaged shards (and say so)
   int bootstrap_resamples = 2000;  // of every median and IQR (uncertainty.md); 0: none
   std::uint64_t bootstrap_seed = 2008;
+  // The paper's published values (analysis/paper_values.h); "" = default_paper_values_path();
+  // "none": no comparison.
+  std::string paper_values;
 };
 
 struct StageTime {

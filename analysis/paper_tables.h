@@ -35,6 +35,7 @@
 
 #include "stats/bootstrap.h"
 #include "stats/descriptive.h"
+#include "analysis/paper_values.h"
 #include "analysis/run_records.h"
 #include "stats/table_writer.h"
 #include "analysis/view_equivalence.h"
@@ -65,6 +66,8 @@ struct TableOptions {
   // Bootstrap standard errors and intervals of every median and IQR (the uncertainty table);
   // resamples 0: none computed. Its quantile definition follows `quantiles`.
   stats::BootstrapOptions bootstrap;
+  // The paper's published values (paper_values.h); empty: no comparison with the paper.
+  std::vector<PaperTableValues> paper;
 };
 
 // Description (n, median, quartiles, ...) of every pooled view-group sample of the run, computed
@@ -99,6 +102,12 @@ Table metric_table(const RunRecords& run, const GroupSummaries& summaries,
 // percentile interval (stats/bootstrap.h; resample count and seed in the notes).
 Table uncertainty_table(const RunRecords& run, const GroupSummaries& summaries,
                         const TableOptions& options);
+
+// Our tables beside the paper's: for each of its tables, statistic (median, IQR), view group whose
+// FOV and window are the paper's, and platform of the run: ours and its bootstrap SE, the paper's
+// Platform I and II, and z = (ours - paper) / SE, marked when |z| > 3. Needs the bootstrap.
+Table paper_comparison_table(const RunRecords& run, const GroupSummaries& summaries,
+                             const TableOptions& options);
 
 // Table 11: medians of PE (mm), LSEu (mm) and TEu (mm^2) for each pixel pitch (mm) and view group
 // (and all groups pooled), per platform: mm = px x pitch, mm^2 = px^2 x pitch^2.

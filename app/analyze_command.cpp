@@ -25,6 +25,7 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
     bool allow_incomplete = false;
     int bootstrap = 2000;
     std::uint64_t seed = 2008;
+    std::string paper;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
@@ -53,6 +54,9 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
                   "and IQR (uncertainty.md; default 2000, 0: none)")
       ->check(CLI::Range(0, 1000000));
   cmd->add_option("--bootstrap-seed", o->seed, "seed of the bootstrap (default 2008)");
+  cmd->add_option("--paper", o->paper,
+                  "the paper's published values to set beside ours (paper_comparison.md; default "
+                  "experiments/papers/nist2008-tables.toml; none: no comparison)");
   cmd->add_flag("--timings", o->timings, "print the time each stage took");
   cmd->add_flag("--allow-incomplete", o->allow_incomplete,
                 "analyse a run with missing or damaged shards (README.md and the summary say "
@@ -71,6 +75,7 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
     if (o->bootstrap == 1) throw UserError("--bootstrap 1: use 0 (none) or at least 2 resamples");
     options.bootstrap_resamples = o->bootstrap;
     options.bootstrap_seed = o->seed;
+    options.paper_values = o->paper;
     analysis::AnalyzeResult r;
     try {
       r = analysis::analyze_run(options);

@@ -1,0 +1,129 @@
+// The paper's published values as data: the file reads, its cells agree with each other where the
+// paper's tables are tied (Table 4 = Table 3 / window x 10^3), and every number appears, as
+// printed, in the extracted paper when it is at hand (shared/seeds beside the repository); and the
+// comparison table's z = (ours - paper) / SE, computed by hand.
+#include "analysis/paper_values.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "analysis/paper_tables.h"
+#include "analysis/records_testing.h"
+#include "util/errors.h"
+
+namespace ra::analysis {
+namespace {
+
+const std::string kFile = std::string(RA_SOURCE_DIR) + "/experiments/papers/nist2008-tables.toml";
+
+const PaperTableValues& table(const std::vector<PaperTableValues>& all, const std::string& n) {
+  for (const auto& t : all)
+    if (t.number == n) return t;
+  throw std::runtime_error("no table " + n);
+}
+
+TEST(PaperValues, ReadAndTiedTogetherAsThePaperTiesThem) {
+  const std::vector<PaperTableValues> all = load_paper_values(kFile);
+  ASSERT_EQ(all.size(), 6u);
+  const PaperTableValues &t3 = table(all, "3"), &t4 = table(all, "4");
+  EXPECT_EQ(t3.page, 229);
+  for (int platform = 0; platform < 2; ++platform) {
+    for (int g = 0; g < 4; ++g) {
+      // PEnorm = PE / window: Table 4 (x10^3, 3 decimals) from Table 3 (5 decimals)
+      EXPECT_NEAR(t4.median[platform][g], t3.median[platform][g] / t3.window[g] * 1e3, 0.0006);
+      EXPECT_NEAR(t4.iqr[platform][g], t3.iqr[platform][g] / t3.window[g] * 1e3, 0.0006);
+    }
+  }
+  EXPECT_TRUE(std::isnan(table(all, "10").iqr[1][3]));  // lost in the extraction
+  EXPECT_TRUE(std::isnan(table(all, "9").median[1][0]));
+  EXPECT_EQ(table(all, "10").iqr[0][1], 0.680);  // the TEu IQR of group B (issue 19)
+  EXPECT_EQ(table(all, "7").median[0], (std::array<double, 4>{1.906, 1.920, 0.257, 0.258}));
+}
+
+TEST(PaperValues, EveryNumberIsPrintedInTheExtractedPaper) {
+  const std::string seed = std::string(RA_SOURCE_DIR) + "/../shared/seeds/000_fcd947f0656c8c36.txt";
+  if (!std::filesystem::exists(seed)) GTEST_SKIP() << seed << " is not beside this checkout";
+  std::ifstream in(seed);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string paper = text.str();
+  // the extraction prints minus signs as en dashes
+  for (std::size_t at; (at = paper.find("\xe2\x80\x93")) != std::string::npos;)
+    paper.replace(at, 3, "-");
+  for (const PaperTableValues& t : load_paper_values(kFile)) {
+    const int decimals = t.number == "3" ? 5 : (t.number == "6" || t.number == "9") ? 2 : 3;
+    for (const auto* block : {&t.median, &t.iqr})
+      for (const auto& four : *block)
+        for (double v : four) {
+          if (std::isnan(v)) continue;
+          char printed[32];
+          std::snprintf(printed, sizeof printed, "%.*f", decimals, v);
+          EXPECT_NE(paper.find(printed), std::string::npos)
+              << "Table " << t.number << ": " << printed;
+        }
+  }
+}
+
+TEST(PaperValues, BadFilesAreRefusedWithTheirLine) {
+  const std::string path = ::testing::TempDir() + "/paper_bad.toml";
+  std::ofstream(path) << "[[table]]\nnumber = \"3\"\ncolumn = \"pe\"\nscale_exponent = 0\n"
+                         "reading = \"x\"\nfov_deg = [30, 150, 30]\n";
+  try {
+    load_paper_values(path);
+    FAIL() << "accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("table.fov_deg: four numbers, groups A-D"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find(path + ":6:"), std::string::npos) << e.what();
+  }
+}
+
+// Platform p1, group A (view 1 and 2: FOV 30, 128 x 128): PE {0.05 ... 0.60}, HF6 median 0.30.
+TEST(PaperValues, TheComparisonSaysHowManyStandardErrorsApartWeAre) {
+  testing::ScopedTempDir dir{"paper_comparison"};
+  std::vector<Record> rs;
+  std::uint64_t i = 0;
+  for (double x : {0.30, 0.10, 0.45, 0.20}) rs.push_back(testing::point("p1", 1, i++, x));
+  for (double x : {0.25, 0.60, 0.05, 0.50, 0.40}) rs.push_back(testing::point("p1", 2, i++, x));
+  testing::write_records(dir.path, rs);
+  const RunRecords run = load_run_records(dir.path.string());
+  TableOptions o;
+  PaperTableValues t3;
+  t3.number = "3";
+  t3.column = "pe";
+  t3.fov_deg = {30, 150, 30, 150};
+  t3.window = {128, 128, 907, 907};
+  const double nan = std::nan("");
+  t3.median = {std::array<double, 4>{0.2, nan, nan, nan}, {0.3, nan, nan, nan}};
+  t3.iqr = {std::array<double, 4>{nan, nan, nan, nan}, {0.325, nan, nan, nan}};
+  t3.reading = "by hand";
+  o.paper = {t3};
+  const std::vector<Table> tables = paper_tables(run, o);
+  const Table* c = nullptr;
+  for (const Table& t : tables)
+    if (t.file_stem == "paper_comparison") c = &t;
+  ASSERT_NE(c, nullptr);
+  ASSERT_EQ(c->rows.size(), 2u);  // median and IQR of group A
+  const auto& median = c->rows[0];
+  EXPECT_EQ(median[4].text, "0.300000");
+  const double se = std::stod(median[5].csv.empty() ? median[5].text : median[5].csv);
+  ASSERT_GT(se, 0);
+  char z[16];
+  std::snprintf(z, sizeof z, "%.1f", (0.3 - 0.2) / se);
+  EXPECT_EQ(median[7].text, z);      // z I
+  EXPECT_EQ(median[9].text, "0.0");  // z II: the paper says 0.3 too
+  EXPECT_EQ(median[10].text, (0.3 - 0.2) / se > 3 ? "I" : "");
+  const auto& iqr = c->rows[1];
+  EXPECT_EQ(iqr[6].text, "lost");
+  EXPECT_EQ(iqr[7].text, "n/a");
+  EXPECT_EQ(iqr[9].text, "0.0");  // 0.325, as ours
+  EXPECT_NE(c->notes.back().find("Paper Table 3: by hand."), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ra::analysis
