@@ -20,6 +20,7 @@
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/dir_lock.h"
+#include "util/duration_text.h"
 #include "util/errors.h"
 #include "runner/run_dir.h"
 #include "runner/run_progress.h"
@@ -71,14 +72,6 @@ std::string last_words(int fd) {
   std::string text = drain_fd(fd);
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
   return text;
-}
-
-std::string format_duration(double s) {
-  if (!std::isfinite(s) || s < 0) return "--:--";
-  const long t = std::lround(s);
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
-  return buf;
 }
 
 nlohmann::json drivers_json(const std::string& dir) {
@@ -333,7 +326,7 @@ RunResult run_experiment(const RunOptions& options) {
       std::fprintf(stderr, "\r[%zu/%zu shards] %llu primitives, %.0f/s, %zu failed, left %s   ",
                    finished, shards_to_run, static_cast<unsigned long long>(primitives_done), rate,
                    result.failures.size(),
-                   format_duration(cost_done > 0 ? seconds_left(elapsed) : NAN).c_str());
+                   duration_text(cost_done > 0 ? seconds_left(elapsed) : NAN).c_str());
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }

@@ -12,19 +12,12 @@
 #include "runner/shard_file.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "util/json_file.h"
 
 namespace fs = std::filesystem;
 
 namespace ra {
 namespace {
-
-nlohmann::json read_json_or_null(const std::string& path) {
-  try {
-    return nlohmann::json::parse(read_file(path));
-  } catch (const std::exception&) {
-    return nullptr;
-  }
-}
 
 // platform -> its driver file, from DIR/drivers/*.json
 std::map<std::string, nlohmann::json> drivers_of(const std::string& dir) {
@@ -134,9 +127,13 @@ MergeResult merge_runs(const MergeOptions& options) {
   if (const nlohmann::json before = read_json_or_null(out + "/manifest.json");
       before.is_object() && before.contains("invocations"))
     m["invocations"] = before["invocations"];
-  m["tool"] = {{"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
-  m["experiment"] = {{"name", exp.name}, {"file", out + "/experiment.toml"}, {"hash", exp.hash},
-                     {"seed", exp.seed}, {"platforms", exp.platforms}};
+  m["tool"] = {
+      {"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
+  m["experiment"] = {{"name", exp.name},
+                     {"file", out + "/experiment.toml"},
+                     {"hash", exp.hash},
+                     {"seed", exp.seed},
+                     {"platforms", exp.platforms}};
   m["host"] = host_description();
   m["merged"] = utc_now_iso8601();
   nlohmann::json slices = nlohmann::json::array();
@@ -149,9 +146,8 @@ MergeResult merge_runs(const MergeOptions& options) {
     for (const auto& [platform, j] : drivers_of(in))
       if (j.is_object())
         drivers[platform] = j.value("renderer", "") + " | " + j.value("version", "");
-    nlohmann::json entry = {{"dir", in},
-                            {"shards_taken", taken_from.value(in, 0)},
-                            {"drivers", drivers}};
+    nlohmann::json entry = {
+        {"dir", in}, {"shards_taken", taken_from.value(in, 0)}, {"drivers", drivers}};
     if (im.is_object()) {
       for (const char* key :
            {"slice", "host", "invocations", "status", "started", "finished", "failures"})
@@ -169,7 +165,8 @@ MergeResult merge_runs(const MergeOptions& options) {
   m["drivers"] = nlohmann::json::object();
   for (const auto& [platform, path] : driver_file)
     m["drivers"][platform] = read_json_or_null(out + "/drivers/" + platform + ".json");
-  m["shards"] = {{"total", result.shards_total}, {"complete", result.shards_present},
+  m["shards"] = {{"total", result.shards_total},
+                 {"complete", result.shards_present},
                  {"in_several_inputs", result.shards_in_several_inputs}};
   m["failures"] = failures;
   m["failed_primitives"] = failed;

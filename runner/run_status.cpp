@@ -13,28 +13,14 @@
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/dir_lock.h"
+#include "util/duration_text.h"
 #include "util/errors.h"
+#include "util/json_file.h"
 
 namespace fs = std::filesystem;
 
 namespace ra {
 namespace {
-
-nlohmann::json read_json_or_null(const std::string& path) {
-  try {
-    return nlohmann::json::parse(read_file(path));
-  } catch (const std::exception&) {
-    return nullptr;
-  }
-}
-
-std::string hms(double s) {
-  if (!std::isfinite(s) || s < 0) return "unknown";
-  const long t = std::lround(s);
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
-  return buf;
-}
 
 bool is_pending(const std::string& state) {
   return state == "PENDING" || state == "REQUEUED" || state == "CONFIGURING" ||
@@ -187,7 +173,7 @@ std::string format_run_status(const RunStatus& s) {
     o << "  writer " << w.dir << ": " << w.holder;
     if (!w.progress.host.empty())
       o << "; " << w.progress.shards_finished << " of " << w.progress.shards_to_run
-        << " shards, left " << hms(w.progress.left_s);
+        << " shards, left " << duration_text(w.progress.left_s, "unknown");
     o << "\n";
   }
   if (s.slurm) {
@@ -210,7 +196,7 @@ std::string format_run_status(const RunStatus& s) {
   if (s.state() == "running" || s.state() == "queued") {
     o << "  time left: ";
     if (s.left_s >= 0)
-      o << "about " << hms(s.left_s) << " for the running writers";
+      o << "about " << duration_text(s.left_s, "unknown") << " for the running writers";
     else
       o << "not known yet";
     if (s.slices_not_started) o << ", then " << s.slices_not_started << " slices not started";
