@@ -101,6 +101,22 @@ int64_t symmetric_difference_size(const PixelSet& a, const PixelSet& b) {
   return a.size() + b.size() - 2 * common;
 }
 
+PixelSet set_difference(const PixelSet& a, const PixelSet& b) {
+  PixelSet out;
+  const std::vector<PixelRun>& rb = b.runs();
+  size_t j = 0;  // first run of b that can still overlap a run of a (both sorted by (y, x))
+  for (const PixelRun& r : a.runs()) {
+    while (j < rb.size() && (rb[j].y < r.y || (rb[j].y == r.y && rb[j].x_end <= r.x_begin))) ++j;
+    int32_t x = r.x_begin;
+    for (size_t k = j; k < rb.size() && rb[k].y == r.y && rb[k].x_begin < r.x_end; ++k) {
+      out.append_run(r.y, x, std::max(x, rb[k].x_begin));
+      x = std::max(x, rb[k].x_end);
+    }
+    out.append_run(r.y, x, r.x_end);
+  }
+  return out;
+}
+
 uint64_t pixel_set_hash(const PixelSet& s) {
   uint64_t h = 0xcbf29ce484222325ull;
   auto mix = [&h](int32_t value) {

@@ -107,6 +107,9 @@ class PixelSet {
 // Size of the symmetric difference of two sets: 0 when they are equal. O(runs).
 int64_t symmetric_difference_size(const PixelSet& a, const PixelSet& b);
 
+// The pixels of `a` that are not in `b`. O(runs).
+PixelSet set_difference(const PixelSet& a, const PixelSet& b);
+
 // FNV-1a over the runs (y, x_begin, x_end as little-endian 32-bit words): lets two runs of the
 // audit compare pixel sets exactly from their records alone.
 uint64_t pixel_set_hash(const PixelSet& s);

@@ -101,3 +101,31 @@ TEST(PixelSet, Hash) {
 
 }  // namespace
 }  // namespace ra
+
+namespace ra {
+namespace {
+
+// set_difference against a brute-force difference of random sets (runs that touch, overlap,
+// contain one another, rows present in one set only).
+TEST(PixelSet, SetDifferenceEqualsTheBruteForceOne) {
+  uint64_t state = 12345;
+  auto next = [&state](int n) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return int32_t((state >> 33) % uint64_t(n));
+  };
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<Pixel> pa, pb;
+    for (int k = next(60); k > 0; --k) pa.push_back({next(12) - 2, next(6) - 1});
+    for (int k = next(60); k > 0; --k) pb.push_back({next(12) - 2, next(6) - 1});
+    const PixelSet a = PixelSet::from_pixels(pa), b = PixelSet::from_pixels(pb);
+    std::vector<Pixel> expected;
+    for (const Pixel& p : a)
+      if (!b.contains(p)) expected.push_back(p);
+    EXPECT_EQ(set_difference(a, b), PixelSet::from_pixels(expected)) << "trial " << trial;
+  }
+  EXPECT_TRUE(set_difference(PixelSet{}, PixelSet{{1, 1}}).empty());
+  EXPECT_EQ(set_difference(PixelSet{{1, 1}}, PixelSet{}), (PixelSet{{1, 1}}));
+}
+
+}  // namespace
+}  // namespace ra

@@ -83,21 +83,31 @@ bool covers(const std::vector<Vec2>& poly, Vec2 q) {
   return true;
 }
 
-Vec2 snap(Vec2 p, int bits) { return {snap_to_subpixel(p.x, bits), snap_to_subpixel(p.y, bits)}; }
+Vec2 snap(Vec2 p, SubpixelGrid g) { return {snap_to_subpixel(p.x, g), snap_to_subpixel(p.y, g)}; }
 
 }  // namespace
 
-double snap_to_subpixel(double v, int subpixel_bits) {
-  if (subpixel_bits <= 0) return v;
-  const double scale = std::ldexp(1.0, subpixel_bits);
+const char* snap_rounding_name(SnapRounding r) {
+  return r == SnapRounding::kNearest ? "nearest" : "truncation";
+}
+
+std::string subpixel_grid_text(SubpixelGrid grid) {
+  if (grid.exact()) return "exact";
+  return std::to_string(grid.bits) + " bits, " + snap_rounding_name(grid.rounding);
+}
+
+double snap_to_subpixel(double v, SubpixelGrid grid) {
+  if (grid.exact()) return v;
+  const double scale = std::ldexp(1.0, grid.bits);  // exact: a power of two
+  if (grid.rounding == SnapRounding::kTruncate) return std::floor(v * scale) / scale;
   return std::nearbyint(v * scale) / scale;  // default rounding mode: nearest, ties to even
 }
 
-PixelSet rasterize_point(Vec4 c, int width, int height, int subpixel_bits) {
+PixelSet rasterize_point(Vec4 c, int width, int height, SubpixelGrid grid) {
   if (!View::inside_clip_volume(c)) return {};
   // The same expression as View::clip_to_window.
-  const double x = snap_to_subpixel((c.x / c.w + 1.0) * 0.5 * width, subpixel_bits);
-  const double y = snap_to_subpixel((c.y / c.w + 1.0) * 0.5 * height, subpixel_bits);
+  const double x = snap_to_subpixel((c.x / c.w + 1.0) * 0.5 * width, grid);
+  const double y = snap_to_subpixel((c.y / c.w + 1.0) * 0.5 * height, grid);
   // Strictly inside the volume means x < W; only rounding can reach W (or -0 below 0).
   const int32_t px = std::clamp(int32_t(std::floor(x)), 0, width - 1);
   const int32_t py = std::clamp(int32_t(std::floor(y)), 0, height - 1);
@@ -109,10 +119,10 @@ bool diamond_exit_fragment(Vec2 a, Vec2 b, Pixel f) {
   return segment_meets_diamond(a, b, c) && !perturbed_end_in_diamond(b, c);
 }
 
-PixelSet rasterize_segment(Vec2 a, Vec2 b, int width, int height, int subpixel_bits) {
+PixelSet rasterize_segment(Vec2 a, Vec2 b, int width, int height, SubpixelGrid grid) {
   if (!finite(a) || !finite(b)) return {};
-  a = snap(a, subpixel_bits);
-  b = snap(b, subpixel_bits);
+  a = snap(a, grid);
+  b = snap(b, grid);
   if (same_point(a, b)) return {};  // it exits no diamond
   // Enumerate along the major axis u (v the minor one): with |dv/du| <= 1 the L1 distance from a
   // centre to the segment is |cu - uq| + |cv - vq|, (uq, vq) the segment point nearest in u, so
@@ -156,9 +166,9 @@ PixelSet rasterize_segment(Vec2 a, Vec2 b, int width, int height, int subpixel_b
   return PixelSet::from_pixels(std::move(out));
 }
 
-PixelSet rasterize_segment(const ClippedSegment& s, int width, int height, int subpixel_bits) {
+PixelSet rasterize_segment(const ClippedSegment& s, int width, int height, SubpixelGrid grid) {
   if (s.status != ClipStatus::kVisible) return {};
-  return rasterize_segment(s.p0, s.p1, width, height, subpixel_bits);
+  return rasterize_segment(s.p0, s.p1, width, height, grid);
 }
 
 bool polygon_covers_sample(const std::vector<Vec2>& ccw_polygon, Vec2 q) {
@@ -166,14 +176,14 @@ bool polygon_covers_sample(const std::vector<Vec2>& ccw_polygon, Vec2 q) {
 }
 
 PixelSet rasterize_convex_polygon(const std::vector<Vec2>& polygon, int width, int height,
-                                  int subpixel_bits) {
+                                  SubpixelGrid grid) {
   PixelSet out;
   for (const Vec2& v : polygon)
     if (!finite(v)) return out;
   // The hull (exact) makes any input convex counter-clockwise without repeats; after a snap it
   // also removes the rare reflex vertex that rounding to the grid can create.
   std::vector<Vec2> pts = polygon;
-  for (Vec2& v : pts) v = snap(v, subpixel_bits);
+  for (Vec2& v : pts) v = snap(v, grid);
   const std::vector<Vec2> poly = convex_hull(std::move(pts));
   const size_t n = poly.size();
   if (n < 3) return out;
@@ -207,21 +217,21 @@ PixelSet rasterize_convex_polygon(const std::vector<Vec2>& polygon, int width, i
   return out;
 }
 
-PixelSet rasterize_polygon(const ClippedPolygon& p, int width, int height, int subpixel_bits) {
+PixelSet rasterize_polygon(const ClippedPolygon& p, int width, int height, SubpixelGrid grid) {
   if (p.status != ClipStatus::kVisible) return {};
-  return rasterize_convex_polygon(p.vertices, width, height, subpixel_bits);
+  return rasterize_convex_polygon(p.vertices, width, height, grid);
 }
 
-PixelSet rasterize_reference(const View& view, const Primitive& prim, int subpixel_bits) {
+PixelSet rasterize_reference(const View& view, const Primitive& prim, SubpixelGrid grid) {
   switch (prim.kind) {
     case Kind::kPoint:
-      return rasterize_point(view.to_clip(prim.v[0]), view.width, view.height, subpixel_bits);
+      return rasterize_point(view.to_clip(prim.v[0]), view.width, view.height, grid);
     case Kind::kLine:
       return rasterize_segment(clip_segment(view, prim.v[0], prim.v[1]), view.width, view.height,
-                               subpixel_bits);
+                               grid);
     case Kind::kTriangle:
       return rasterize_polygon(clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]), view.width,
-                               view.height, subpixel_bits);
+                               view.height, grid);
   }
   return {};
 }

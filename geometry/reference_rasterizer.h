@@ -26,15 +26,16 @@
 //
 // Arithmetic: every decision is an exact sign (exact_predicates.h) on the double window
 // coordinates, so ties (centres on edges, segments through diamond corners) are real ties, never
-// rounding noise. Subpixel precision: `subpixel_bits` = 0 uses the double coordinates as they are
-// (the ideal of the paper: no precision is lost before sampling). subpixel_bits = b > 0 first
-// snaps window coordinates to the grid 2^-b px (round to nearest, ties to even), as hardware with
+// rounding noise. Subpixel precision: an exact `grid` (bits 0) uses the double coordinates as they
+// are (the ideal of the paper: no precision is lost before sampling). A grid of b > 0 bits first
+// snaps window coordinates to 2^-b px (to nearest, ties to even, or truncating), as hardware with
 // GL_SUBPIXEL_BITS = b does, so the reference can match a real implementation's sampling.
 // Note: snapping applies to the clipped vertices (for a polygon, the hull is retaken after the
 // snap); hardware with guard bands snaps the unclipped vertices instead, which can differ by less
 // than 2^-b px along edges cut by the window sides.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "geometry/clipping.h"
@@ -45,11 +46,28 @@
 
 namespace ra {
 
-// Window coordinate (px) snapped to the 2^-subpixel_bits grid; unchanged for subpixel_bits <= 0.
-double snap_to_subpixel(double v, int subpixel_bits);
+// How window coordinates are snapped before sampling: to the grid of 2^-bits px (bits <= 0: not
+// at all, the exact reference), rounding to the nearest grid point (ties to even) or truncating
+// (down, as dropping the fraction bits of a two's-complement fixed-point number does).
+enum class SnapRounding { kNearest, kTruncate };
+struct SubpixelGrid {
+  int bits = 0;
+  SnapRounding rounding = SnapRounding::kNearest;
+  SubpixelGrid(int b = 0, SnapRounding r = SnapRounding::kNearest) : bits(b), rounding(r) {}
+  bool exact() const { return bits <= 0; }
+  bool operator==(const SubpixelGrid& o) const {
+    return exact() ? o.exact() : bits == o.bits && rounding == o.rounding;
+  }
+};
+// "exact", "8 bits, nearest", "4 bits, truncation".
+std::string subpixel_grid_text(SubpixelGrid grid);
+const char* snap_rounding_name(SnapRounding r);  // "nearest", "truncation"
+
+// Window coordinate (px) snapped to `grid`; unchanged for an exact grid.
+double snap_to_subpixel(double v, SubpixelGrid grid);
 
 // The pixel a point lights: empty unless c (clip coordinates) is strictly inside the clip volume.
-PixelSet rasterize_point(Vec4 c, int width, int height, int subpixel_bits = 0);
+PixelSet rasterize_point(Vec4 c, int width, int height, SubpixelGrid grid = {});
 
 // The diamond-exit rule for one fragment: true when the segment a -> b (window coordinates, px)
 // produces the fragment of pixel f. Exact, with the spec's perturbation.
@@ -57,9 +75,9 @@ bool diamond_exit_fragment(Vec2 a, Vec2 b, Pixel f);
 
 // The pixels of the segment a -> b (window coordinates, px; normally ClippedSegment::p0 -> p1),
 // by the diamond-exit rule; O(length). Non-finite ends: empty.
-PixelSet rasterize_segment(Vec2 a, Vec2 b, int width, int height, int subpixel_bits = 0);
+PixelSet rasterize_segment(Vec2 a, Vec2 b, int width, int height, SubpixelGrid grid = {});
 // The clipped segment's pixels; empty unless it is visible.
-PixelSet rasterize_segment(const ClippedSegment& s, int width, int height, int subpixel_bits = 0);
+PixelSet rasterize_segment(const ClippedSegment& s, int width, int height, SubpixelGrid grid = {});
 
 // Whether the sample point q (window coordinates) is covered by the convex counter-clockwise
 // polygon under the top-left rule above. Exact.
@@ -68,11 +86,11 @@ bool polygon_covers_sample(const std::vector<Vec2>& ccw_polygon, Vec2 q);
 // The pixels whose centres the convex counter-clockwise polygon covers (window coordinates, px;
 // normally ClippedPolygon::vertices); O(rows + lit pixels). Zero area: empty.
 PixelSet rasterize_convex_polygon(const std::vector<Vec2>& ccw_polygon, int width, int height,
-                                  int subpixel_bits = 0);
+                                  SubpixelGrid grid = {});
 // The clipped triangle's pixels; empty unless it is visible.
-PixelSet rasterize_polygon(const ClippedPolygon& p, int width, int height, int subpixel_bits = 0);
+PixelSet rasterize_polygon(const ClippedPolygon& p, int width, int height, SubpixelGrid grid = {});
 
 // The pixels the reference lights for `prim` under `view` (clip, project, rasterize as above).
-PixelSet rasterize_reference(const View& view, const Primitive& prim, int subpixel_bits = 0);
+PixelSet rasterize_reference(const View& view, const Primitive& prim, SubpixelGrid grid = {});
 
 }  // namespace ra
