@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "geometry/clipping.h"
+#include "metrics/conformance.h"
 #include "metrics/line_metrics.h"
 #include "metrics/point_metrics.h"
 #include "geometry/reference_rasterizer.h"
@@ -69,7 +70,7 @@ PreparedCase prepare_case(const std::string& platform_name, const View& view,
 }
 
 Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
-                   const RenderResult& rendered, bool compare_with_reference) {
+                   const RenderResult& rendered, const CaseComparison& comparison) {
   Record& rec = c.rec;
   switch (prim.kind) {
     case Kind::kPoint: measure_point(view, c.point, rendered.lit, rec); break;
@@ -86,18 +87,40 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
   rec.render_us = rendered.render_us;
   rec.batch_size = rendered.batch_size;
   rec.pixel_hash = rendered_pixel_hash(rendered);
-  if (compare_with_reference) {
-    // The reference rasterizer, from the geometry prepare_case already clipped.
-    PixelSet reference;
-    switch (prim.kind) {
-      case Kind::kPoint: reference = rasterize_reference(view, prim); break;
-      case Kind::kLine: reference = rasterize_segment(c.segment, view.width, view.height); break;
-      case Kind::kTriangle: reference = rasterize_polygon(c.polygon, view.width, view.height); break;
-    }
-    rec.ref_diff = symmetric_difference_size(rendered.lit, reference);
-  } else {
+  if (!comparison.with_reference) {
     rec.ref_diff = 0;
+    rec.conformance = Conformance::kExact;
+    rec.violating_pixels = 0;
+    return rec;
   }
+  // The reference rasterizer, from the geometry prepare_case already clipped.
+  const int w = view.width, h = view.height;
+  PixelSet reference;
+  switch (prim.kind) {
+    case Kind::kPoint: reference = rasterize_reference(view, prim); break;
+    case Kind::kLine: reference = rasterize_segment(c.segment, w, h); break;
+    case Kind::kTriangle: reference = rasterize_polygon(c.polygon, w, h); break;
+  }
+  rec.ref_diff = symmetric_difference_size(rendered.lit, reference);
+  // Coverage (multisample) renderings are not judged: GL's multisample rules are another test.
+  if (!comparison.conformance || rendered.samples > 0) return rec;
+  ConformanceVerdict v;
+  switch (prim.kind) {
+    case Kind::kPoint:
+      v = judge_point(view.to_clip(prim.v[0]), w, h, rendered.lit, reference, comparison.effective);
+      break;
+    case Kind::kLine:
+      v = judge_segment(c.segment, near_clipped_window_magnitude(view, prim), w, h, rendered.lit,
+                        reference, comparison.effective);
+      break;
+    case Kind::kTriangle:
+      v = judge_polygon(c.polygon, near_clipped_window_magnitude(view, prim), w, h, rendered.lit,
+                        reference, comparison.effective);
+      break;
+  }
+  rec.conformance = v.conformance;
+  rec.violating_pixels = v.violating_pixels;
+  rec.violated_rules = std::move(v.violated_rules);
   return rec;
 }
 
@@ -105,7 +128,7 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
 
 std::vector<Record> measure_cases(const std::string& platform_name, Platform& platform,
                                   const View& view, const std::vector<Primitive>& prims,
-                                  bool compare_with_reference, std::vector<double>* cost_us) {
+                                  const CaseComparison& comparison, std::vector<double>* cost_us) {
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t0) {
     return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
@@ -131,7 +154,7 @@ std::vector<Record> measure_cases(const std::string& platform_name, Platform& pl
     for (size_t k = 0; k < batch.size(); ++k) {
       t0 = Clock::now();
       records[batch[k]] = finish_case(cases[batch[k]], view, prims[batch[k]], results[k],
-                                      compare_with_reference);
+                                      comparison);
       cost[batch[k]] += shared + since(t0);
     }
     batch.clear(), batch_prims.clear(), batch_regions.clear();
@@ -157,8 +180,8 @@ std::vector<Record> measure_cases(const std::string& platform_name, Platform& pl
 }
 
 Record measure_case(const std::string& platform_name, Platform& platform, const View& view,
-                    const Primitive& prim, bool compare_with_reference) {
-  return measure_cases(platform_name, platform, view, {prim}, compare_with_reference).front();
+                    const Primitive& prim, const CaseComparison& comparison) {
+  return measure_cases(platform_name, platform, view, {prim}, comparison).front();
 }
 
 void measure_segment_case(const ClippedSegment& seg, const View& view, const PixelSet& lit,

@@ -10,6 +10,7 @@
 #include "metrics/point_metrics.h"
 #include "platforms/platform.h"
 #include "metrics/records.h"
+#include "geometry/reference_rasterizer.h"
 
 namespace ra {
 
@@ -23,20 +24,34 @@ constexpr int kRegionMargin = 2;
 constexpr int64_t kBatchMaxRegionArea = 64 * 64;
 constexpr size_t kMaxBatch = 64;
 
+// What each rendered case is compared with.
+struct CaseComparison {
+  // The exact reference rasterizer's pixels: ref_diff and the conformance verdict. False on the
+  // reference platform itself (ref_diff 0, conformance exact).
+  bool with_reference = true;
+  // The conformance verdict (metrics/conformance.h); false only in benchmarks, to show its cost.
+  bool conformance = true;
+  // The grid the platform effectively snaps to (metrics/effective_subpixel.h): "snapped" means
+  // equal to the reference on this grid. Exact: the platform does not snap.
+  SubpixelGrid effective;
+  // Implicit from a bool (with_reference), as most callers only say whether to compare.
+  CaseComparison(bool with_reference_ = true, SubpixelGrid effective_ = {})
+      : with_reference(with_reference_), effective(effective_) {}
+};
+
 // Renders each of `prims` on `platform` and fills their records, in order: visibility, the kind's
-// metrics, pixel hash, render time. The reference rasterizer's pixel set is compared with the
-// rendered one (ref_diff) unless the platform is itself the reference (`compare_with_reference`
-// false: ref_diff = 0). Primitives with NaN/inf coordinates, or no projection, are never drawn:
+// metrics, pixel hash, render time, and the comparison with the reference (ref_diff and the
+// conformance verdict; see CaseComparison). Primitives with NaN/inf coordinates, or no projection, are never drawn:
 // status invalid. `cost_us` (for benchmarks), when given, receives each primitive's share of the
 // wall time in microseconds: its own geometry and measurement, plus an equal share of its batch's
 // drawing and proof.
 std::vector<Record> measure_cases(const std::string& platform_name, Platform& platform,
                                   const View& view, const std::vector<Primitive>& prims,
-                                  bool compare_with_reference,
+                                  const CaseComparison& comparison,
                                   std::vector<double>* cost_us = nullptr);
 // The same for one primitive.
 Record measure_case(const std::string& platform_name, Platform& platform, const View& view,
-                    const Primitive& prim, bool compare_with_reference);
+                    const Primitive& prim, const CaseComparison& comparison);
 
 // Visibility of a segment or triangle (no multiple-visible class for them, paper 3.5-3.6).
 Visibility classify_extended(bool ideal_visible, size_t lit_pixels);

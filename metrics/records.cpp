@@ -17,6 +17,7 @@ namespace {
 const char* const kVisibilityNames[] = {"true-visible", "true-invisible", "false-visible",
                                         "false-invisible", "multiple-visible"};
 const char* const kStatusNames[] = {"ok", "invalid", "crash", "timeout"};
+const char* const kConformanceNames[] = {"", "exact", "snapped", "within-spec", "violation"};
 
 const char* const kColumns[] = {
     "platform",  "view",       "view_group",       "orientation", "fov_deg",    "width",
@@ -24,7 +25,8 @@ const char* const kColumns[] = {
     "visibility", "pixels",    "pe",               "pe_norm",     "lse_s",      "lse_u",
     "extent_error", "lse_s_norm", "lse_u_norm",    "chain_8connected", "gaps",  "te_s",
     "te_u",      "te_s_norm",  "te_u_norm",        "te_u_edge_norm", "full_window",
-    "simply_connected", "ref_diff", "pixel_hash",  "render_us", "batch_size"};
+    "simply_connected", "ref_diff", "pixel_hash",  "render_us", "batch_size",
+    "conformance", "violating_pixels", "violated_rules"};
 constexpr int kColumnCount = sizeof(kColumns) / sizeof(kColumns[0]);
 static_assert(kColumnCount == int(kRecordColumnCount), "RecordColumn and kColumns must agree");
 
@@ -53,6 +55,14 @@ bool parse_status(const std::string& s, CaseStatus* out) {
   return false;
 }
 
+const char* conformance_name(Conformance c) { return kConformanceNames[int(c)]; }
+
+bool parse_conformance(std::string_view s, Conformance* out) {
+  for (int i = 0; i < 5; ++i)
+    if (s == kConformanceNames[i]) return *out = Conformance(i), true;
+  return false;
+}
+
 const char* record_column_name(RecordColumn c) { return kColumns[static_cast<std::size_t>(c)]; }
 
 std::optional<RecordColumn> find_record_column(std::string_view name) {
@@ -64,6 +74,12 @@ std::optional<RecordColumn> find_record_column(std::string_view name) {
 std::string records_header() {
   std::string h;
   for (int i = 0; i < kColumnCount; ++i) h += (i ? "," : "") + std::string(kColumns[i]);
+  return h;
+}
+
+std::string records_header_v2() {
+  std::string h;
+  for (int i = 0; i < int(kRecordColumnCountV2); ++i) h += (i ? "," : "") + std::string(kColumns[i]);
   return h;
 }
 
@@ -98,7 +114,9 @@ void write_record(std::ostream& out, const Record& r) {
   put_double(out, r.render_us);
   out << ',';
   if (r.batch_size > 0) out << r.batch_size;
-  out << '\n';
+  out << ',' << conformance_name(r.conformance) << ',';
+  put_optional(out, r.violating_pixels);
+  out << ',' << r.violated_rules << '\n';
 }
 
 void read_records(const std::string& path, const std::function<void(const Record&)>& row) {

@@ -14,7 +14,9 @@
 
 namespace ra {
 
-constexpr int kRecordsSchemaVersion = 2;  // 2: batch_size after render_us
+// 2: batch_size after render_us; 3: conformance, violating_pixels, violated_rules at the end
+// (version 2 files are still read: those cells are empty, "not compared").
+constexpr int kRecordsSchemaVersion = 3;
 
 enum class Visibility {
   kTrueVisible,
@@ -30,6 +32,17 @@ bool parse_visibility(const std::string& s, Visibility* out);
 enum class CaseStatus { kOk, kInvalid, kCrash, kTimeout };
 const char* status_name(CaseStatus s);  // "ok", "invalid", "crash", "timeout"
 bool parse_status(const std::string& s, CaseStatus* out);
+
+// How a primitive's lit pixels relate to what the GL spec allows (metrics/conformance.h).
+enum class Conformance {
+  kNotCompared,  // the reference platform itself, a case not drawn, or a version 2 record
+  kExact,        // equal to the exact reference rasterizer's pixels
+  kSnapped,      // equal to the reference with vertices snapped to the platform's effective grid
+  kWithinSpec,   // neither, but every differing pixel is one GL allows
+  kViolation,    // at least one pixel no conforming implementation could light or leave dark
+};
+const char* conformance_name(Conformance c);  // "", "exact", "snapped", "within-spec", "violation"
+bool parse_conformance(std::string_view s, Conformance* out);
 
 // Missing values (not applicable to the kind, or not true-visible) are NaN and written empty.
 constexpr double kNA = std::numeric_limits<double>::quiet_NaN();
@@ -59,6 +72,9 @@ struct Record {
   uint64_t pixel_hash = 0;  // FNV-1a of the sorted lit pixels (exact comparison across runs)
   double render_us = kNA;   // CPU time of draw + glFinish, microseconds (a batch's share)
   int64_t batch_size = 0;   // primitives drawn under that one glFinish (1: alone; 0: not drawn)
+  Conformance conformance = Conformance::kNotCompared;
+  int64_t violating_pixels = -1;  // pixels of the verdict kViolation (0 otherwise; -1 not compared)
+  std::string violated_rules;     // the rules broken, '+'-joined (conformance.h); empty if none
 };
 
 // The columns of a records row, in file order (records_header() spells them).
@@ -66,14 +82,18 @@ enum class RecordColumn : std::size_t {
   kPlatform, kView, kViewGroup, kOrientation, kFovDeg, kWidth, kHeight, kNear, kFar, kKind,
   kIndex, kStatus, kVisibility, kPixels, kPe, kPeNorm, kLseS, kLseU, kExtentError, kLseSNorm,
   kLseUNorm, kChain8Connected, kGaps, kTeS, kTeU, kTeSNorm, kTeUNorm, kTeUEdgeNorm, kFullWindow,
-  kSimplyConnected, kRefDiff, kPixelHash, kRenderUs, kBatchSize,
+  kSimplyConnected, kRefDiff, kPixelHash, kRenderUs, kBatchSize, kConformance, kViolatingPixels,
+  kViolatedRules,
 };
-constexpr std::size_t kRecordColumnCount = 34;
+constexpr std::size_t kRecordColumnCount = 37;
+// Version 2 files have the first 34 columns only.
+constexpr std::size_t kRecordColumnCountV2 = 34;
 const char* record_column_name(RecordColumn c);  // "platform", "view", ...
 // The column called `name`, or nullopt.
 std::optional<RecordColumn> find_record_column(std::string_view name);
 
 std::string records_header();  // the header line, without newline
+std::string records_header_v2();  // the header line of schema version 2 files
 void write_record(std::ostream& out, const Record& r);  // one line, with newline
 
 // Reads a records CSV; calls `row` for each record. Throws UserError naming file and line on a

@@ -44,6 +44,15 @@ Visibility RecordRow::visibility() const {
        "multiple-visible)");
 }
 
+Conformance RecordRow::conformance() const {
+  Conformance c = Conformance::kNotCompared;
+  const std::string_view s = cell(RecordColumn::kConformance);
+  if (!parse_conformance(s, &c))
+    fail("unknown conformance '" + std::string(s) +
+         "' (allowed: exact, snapped, within-spec, violation, or empty)");
+  return c;
+}
+
 void RecordRow::fail(const std::string& why) const {
   throw UserError(*file_ + ":" + std::to_string(line_) + ": " + why);
 }
@@ -57,7 +66,7 @@ void RecordRow::not_an_integer(RecordColumn c) const {
 class RecordsFileReader {
  public:
   RecordsFileReader(const std::string& path, const std::function<void(const RecordRow&)>& row)
-      : path_(path), callback_(row), header_(records_header()) {
+      : path_(path), callback_(row), header_(records_header()), header_v2_(records_header_v2()) {
     row_.file_ = &path_;
   }
 
@@ -102,7 +111,10 @@ class RecordsFileReader {
     ++row_.line_;
     if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
     if (row_.line_ == 1) {
-      if (text != header_) bad_header();
+      if (text == header_v2_)
+        columns_ = kRecordColumnCountV2;  // the later cells stay empty: "not compared"
+      else if (text != header_)
+        bad_header();
       return;
     }
     if (!text.empty() && text.front() == '#') return;  // the seal of a shard file
@@ -118,8 +130,8 @@ class RecordsFileReader {
       if (comma == std::string_view::npos) break;
       start = comma + 1;
     }
-    if (n != kRecordColumnCount) {
-      row_.fail("expected " + std::to_string(kRecordColumnCount) + " fields, found " +
+    if (n != columns_) {
+      row_.fail("expected " + std::to_string(columns_) + " fields, found " +
                 std::to_string(n));
     }
     callback_(row_);
@@ -127,7 +139,8 @@ class RecordsFileReader {
 
   const std::string path_;
   const std::function<void(const RecordRow&)>& callback_;
-  const std::string header_;
+  const std::string header_, header_v2_;
+  std::size_t columns_ = kRecordColumnCount;
   RecordRow row_;
 };
 
@@ -174,6 +187,9 @@ Record parse_record(const RecordRow& row) {
   r.pixel_hash = row.integer<uint64_t>(C::kPixelHash);
   r.render_us = number(C::kRenderUs);
   r.batch_size = row.optional_integer<int64_t>(C::kBatchSize, 0);
+  r.conformance = row.conformance();
+  r.violating_pixels = row.optional_integer<int64_t>(C::kViolatingPixels, -1);
+  r.violated_rules = std::string(row.cell(C::kViolatedRules));
   return r;
 }
 

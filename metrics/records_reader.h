@@ -2,7 +2,8 @@
 // stage that reads records goes through it: the file is read in blocks of 4 MiB, each row is split
 // in place (cells are views into the buffer, nothing is copied), and only the cells a caller asks
 // for are converted, with std::from_chars (locale-independent, exact). The header must equal
-// records_header(); '#' lines (the seal of a shard file, runner/shard_file.h) are skipped and a
+// records_header() or, for a schema version 2 file, records_header_v2() (its missing cells read as
+// empty); '#' lines (the seal of a shard file, runner/shard_file.h) are skipped and a
 // CRLF file reads as an LF one. Every error is a ra::UserError "FILE:LINE: what is wrong".
 #pragma once
 
@@ -47,6 +48,7 @@ class RecordRow {
   // The status and visibility cells, checked against their names.
   CaseStatus status() const;
   Visibility visibility() const;
+  Conformance conformance() const;  // empty: kNotCompared
 
   [[noreturn]] void fail(const std::string& why) const;  // "FILE:LINE: why"
 

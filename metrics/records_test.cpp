@@ -94,6 +94,9 @@ TEST_F(RecordsReader, EveryColumnSurvivesAWriteAndARead) {
   r.pixel_hash = 18446744073709551615ull;
   r.render_us = 12.75;
   r.batch_size = 64;
+  r.conformance = Conformance::kViolation;
+  r.violating_pixels = 7;
+  r.violated_rules = "line-deviation+line-count";
   std::ostringstream out;
   out << records_header() << '\n';
   write_record(out, r);
@@ -107,6 +110,34 @@ TEST_F(RecordsReader, EveryColumnSurvivesAWriteAndARead) {
   EXPECT_EQ(rows[0].pixel_hash, r.pixel_hash);
   EXPECT_EQ(rows[0].lse_u_norm, 2e-300);
   EXPECT_EQ(rows[0].status, CaseStatus::kTimeout);
+  EXPECT_EQ(rows[0].conformance, Conformance::kViolation);
+  EXPECT_EQ(rows[0].violating_pixels, 7);
+  EXPECT_EQ(rows[0].violated_rules, "line-deviation+line-count");
+}
+
+// Schema version 2 files (34 columns, before the conformance verdict) stay readable: the verdict
+// reads as not compared. A version 3 row in a version 2 file is still an error.
+TEST_F(RecordsReader, SchemaVersion2FilesReadWithoutAVerdict) {
+  Record r;
+  r.platform = "osmesa-softpipe";
+  r.kind = "line";
+  r.index = 9;
+  r.ref_diff = 4;
+  r.batch_size = 1;
+  std::ostringstream row;
+  write_record(row, r);
+  std::string v2 = row.str();
+  v2.erase(v2.size() - 1);                 // newline
+  for (int k = 0; k < 3; ++k) v2.erase(v2.rfind(','));  // the three version 3 cells
+  const auto rows = read(records_header_v2() + "\n" + v2 + "\n");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].index, 9u);
+  EXPECT_EQ(rows[0].ref_diff, 4);
+  EXPECT_EQ(rows[0].batch_size, 1);
+  EXPECT_EQ(rows[0].conformance, Conformance::kNotCompared);
+  EXPECT_EQ(rows[0].violating_pixels, -1);
+  EXPECT_THROW(read(records_header_v2() + "\n" + row.str()), UserError);
+  EXPECT_EQ(records_header().rfind(records_header_v2() + ",conformance,", 0), 0u);
 }
 
 TEST_F(RecordsReader, RowsStraddlingTheReadBlocksAreReadWhole) {
@@ -143,7 +174,7 @@ TEST_F(RecordsReader, AWrongHeaderAndAShortRowAreErrorsWithTheirLine) {
     read(text_ + "reference,1,0\n");
     FAIL() << "a short row was accepted";
   } catch (const UserError& e) {
-    EXPECT_EQ(std::string(e.what()), path_ + ":4: expected 34 fields, found 3");
+    EXPECT_EQ(std::string(e.what()), path_ + ":4: expected 37 fields, found 3");
   }
 }
 

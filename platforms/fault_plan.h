@@ -18,6 +18,10 @@ struct FaultPlan {
   std::vector<uint64_t> wild_pixel;  // one extra pixel lit far from the primitive
   double shift_fraction = 0;         // this fraction of primitives is drawn one pixel to the right
   double flaky_fraction = 0;         // ... shifted only on the first attempt (RA_RENDER_ATTEMPT < 2)
+  // Conformance variants (outcomes known in advance, metrics/conformance.h), reference base only:
+  int snap_bits = 0;                 // vertices snapped to 2^-snap_bits px first (0: exact)
+  bool snap_truncate = false;        // ... truncating instead of rounding to nearest
+  double drop_line_end_fraction = 0; // this fraction of lines loses its last pixel (as Bresenham)
 };
 
 }  // namespace ra

@@ -3,12 +3,14 @@
 // pixels and changed primitives can be tested without a broken driver at hand.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <thread>
 
 #include "util/counter_rng.h"
 #include "platforms/platform.h"
+#include "geometry/clipping.h"
 #include "geometry/reference_rasterizer.h"
 
 namespace ra {
@@ -56,7 +58,11 @@ class FaultyPlatform : public Platform {
       for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
     if (base_) return base_->render(prim, expected);
     RenderResult out;
-    out.lit = rasterize_reference(view_, prim);
+    const SubpixelGrid grid(plan_.snap_bits,
+                            plan_.snap_truncate ? SnapRounding::kTruncate : SnapRounding::kNearest);
+    out.lit = rasterize_reference(view_, prim, grid);
+    if (prim.kind == Kind::kLine && fault_draw(prim, 3) < plan_.drop_line_end_fraction)
+      drop_last_pixel(prim, grid, out.lit);
     bool shift = fault_draw(prim, 1) < plan_.shift_fraction;
     if (fault_draw(prim, 2) < plan_.flaky_fraction && first_attempt_) shift = true;
     if (shift) out.lit.translate(1, 0);
@@ -73,6 +79,21 @@ class FaultyPlatform : public Platform {
   }
 
  private:
+  // Removes the pixel nearest the segment's second end along its major axis, as a Bresenham
+  // loop that stops one step early does.
+  void drop_last_pixel(const Primitive& prim, SubpixelGrid grid, PixelSet& lit) const {
+    if (lit.empty()) return;
+    const ClippedSegment s = clip_segment(view_, prim.v[0], prim.v[1]);
+    const Vec2 a{snap_to_subpixel(s.p0.x, grid), snap_to_subpixel(s.p0.y, grid)};
+    const Vec2 b{snap_to_subpixel(s.p1.x, grid), snap_to_subpixel(s.p1.y, grid)};
+    const bool x_major = std::fabs(b.x - a.x) >= std::fabs(b.y - a.y);
+    const double dir = x_major ? b.x - a.x : b.y - a.y;
+    Pixel last = lit.front();
+    for (const Pixel& p : lit)
+      if ((x_major ? p.x - last.x : p.y - last.y) * dir > 0) last = p;
+    lit.erase(last);
+  }
+
   FaultPlan plan_;
   std::unique_ptr<Platform> base_;  // an OSMesa platform when [faults] base names one
   View view_;

@@ -250,7 +250,8 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
     if (!f->is_table()) loc.fail(f, "'faults' must be a table");
     const toml::table& t = *f->as_table();
     loc.reject_unknown_keys(t, "faults.",
-                            {"base", "crash", "hang", "wild_pixel", "shift_fraction", "flaky_fraction"});
+                            {"base", "crash", "hang", "wild_pixel", "shift_fraction", "flaky_fraction",
+                             "snap_bits", "snap_rounding", "drop_line_end_fraction"});
     if (const toml::node* n = t.get("base")) {
       const auto* name = n->as_string();
       const std::optional<PlatformSpec> spec =
@@ -264,8 +265,17 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
     if (const toml::node* n = t.get("hang")) exp.faults.hang = index_list(loc, *n, "faults.hang");
     if (const toml::node* n = t.get("wild_pixel"))
       exp.faults.wild_pixel = index_list(loc, *n, "faults.wild_pixel");
+    if (const toml::node* n = t.get("snap_bits"))
+      exp.faults.snap_bits = int(loc.integer(*n, "faults.snap_bits", 0, 12));
+    if (const toml::node* n = t.get("snap_rounding")) {
+      const auto* r = n->as_string();
+      if (!r || (r->get() != "nearest" && r->get() != "truncation"))
+        loc.fail(n, "'faults.snap_rounding' must be \"nearest\" or \"truncation\"");
+      exp.faults.snap_truncate = r->get() == "truncation";
+    }
     for (auto [key, dst] : {std::pair{"shift_fraction", &exp.faults.shift_fraction},
-                            std::pair{"flaky_fraction", &exp.faults.flaky_fraction}}) {
+                            std::pair{"flaky_fraction", &exp.faults.flaky_fraction},
+                            std::pair{"drop_line_end_fraction", &exp.faults.drop_line_end_fraction}}) {
       if (const toml::node* n = t.get(key)) {
         *dst = loc.number(*n, std::string("faults.") + key);
         if (!(*dst >= 0 && *dst <= 1)) loc.fail(n, std::string("'faults.") + key + "' out of range (allowed: 0 to 1)");

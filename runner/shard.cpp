@@ -14,6 +14,7 @@
 #include "util/atomic_file.h"
 #include "runner/shard_file.h"
 #include "metrics/case_measurement.h"
+#include "metrics/effective_subpixel.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
 #include "platforms/platform.h"
@@ -43,7 +44,7 @@ std::vector<Shard> plan_shards(const Experiment& exp) {
 // for measuring the timer (hundreds of milliseconds on softpipe: it was a third of a softpipe
 // point shard's time when every worker measured it).
 static void write_driver_info(const std::string& run_dir, const std::string& name,
-                              Platform& platform) {
+                              Platform& platform, const EffectiveSubpixel& effective) {
   const std::string path = run_dir + "/drivers/" + name + ".json";
   struct stat st;
   if (::stat(path.c_str(), &st) == 0) return;
@@ -56,6 +57,7 @@ static void write_driver_info(const std::string& run_dir, const std::string& nam
                       {"timer_over_cpu", std::isnan(info.timer_over_cpu)
                                              ? nlohmann::json()
                                              : nlohmann::json(info.timer_over_cpu)}};
+  j["effective_subpixel"] = effective_subpixel_json(effective);
   j.update(document_header("driver", 1, false));
   // Several shards may race here; each writes a complete file under its own temporary name.
   write_file_atomic(path, j.dump(2) + "\n");
@@ -69,9 +71,13 @@ void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& s
   if (!view) throw std::runtime_error("shard " + shard.id() + ": no such view");
 
   auto platform = create_platform(shard.platform, exp.faults);
-  write_driver_info(run_dir, shard.platform, *platform);
-  platform->set_view(*view);
   const bool exact = shard.platform == "reference";
+  // Every worker measures the grid itself (about 96 small triangles: tens of milliseconds), so
+  // that its verdicts never depend on which worker wrote the driver file first.
+  const EffectiveSubpixel effective = exact ? EffectiveSubpixel{} : measure_effective_subpixel(*platform);
+  write_driver_info(run_dir, shard.platform, *platform, effective);
+  platform->set_view(*view);
+  const CaseComparison comparison(!exact, effective.grid);
 
   const std::string path = records_dir.empty() ? shard.records_path(run_dir)
                                                : records_dir + "/" + shard.id() + ".csv";
@@ -87,7 +93,7 @@ void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& s
     prims.clear();
     for (uint64_t i = first; i < std::min(shard.end, first + kChunk); ++i)
       prims.push_back(make_primitive(exp.seed, shard.kind, i));
-    for (const Record& r : measure_cases(shard.platform, *platform, *view, prims, !exact))
+    for (const Record& r : measure_cases(shard.platform, *platform, *view, prims, comparison))
       write_record(out, r);
   }
   out.close();

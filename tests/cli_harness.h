@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "metrics/records.h"
 #include "runner/shard_file.h"
 #include "util/child_process.h"
 
@@ -141,12 +142,16 @@ inline std::multiset<std::string> records_without_timing(const std::string& run_
     std::ifstream in(e.path());
     std::string line;
     std::getline(in, line);  // header
-    // The last two columns, render_us and batch_size, depend on timing and on how the
-    // primitives fell into batches.
+    // The columns render_us and batch_size depend on timing and on how the primitives fell
+    // into batches.
+    const std::size_t timing = static_cast<std::size_t>(RecordColumn::kRenderUs);
+    static_assert(static_cast<std::size_t>(RecordColumn::kBatchSize) == timing + 1);
     while (std::getline(in, line)) {
       if (line.empty() || line[0] == '#') continue;  // the shard file's seal
-      line.erase(line.rfind(','));
-      rows.insert(line.substr(0, line.rfind(',')));
+      std::size_t begin = 0;  // of cell `timing`
+      for (std::size_t k = 0; k < timing; ++k) begin = line.find(',', begin) + 1;
+      const std::size_t end = line.find(',', line.find(',', begin) + 1);  // after batch_size
+      rows.insert(line.substr(0, begin) + (end == std::string::npos ? "" : line.substr(end + 1)));
     }
   }
   return rows;

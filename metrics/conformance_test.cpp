@@ -1,0 +1,266 @@
+// Conformance verdicts on hand-made cases whose class and count are known: a sliver that 4-bit
+// snapping lights, a hole and a one-pixel shift in a triangle, a Bresenham that drops one or two
+// end pixels, a doubled column, a point snapped across a pixel border; and the faulty platform's
+// variants (snap, shift, dropped line end) measured end to end.
+#include "metrics/conformance.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "metrics/case_measurement.h"
+#include "metrics/effective_subpixel.h"
+#include "platforms/platform.h"
+
+namespace ra {
+namespace {
+
+constexpr int kW = 64, kH = 64;
+
+ClippedPolygon polygon(std::vector<Vec2> ccw) {
+  ClippedPolygon p;
+  p.status = ClipStatus::kVisible;
+  p.vertices = std::move(ccw);
+  p.area = 1;
+  p.orientation = 1;
+  p.on_window_border.assign(p.vertices.size(), false);
+  return p;
+}
+
+ClippedSegment segment(Vec2 a, Vec2 b) {
+  ClippedSegment s;
+  s.status = ClipStatus::kVisible;
+  s.p0 = a, s.p1 = b;
+  return s;
+}
+
+// Window position (x, y) at depth 0 as clip coordinates (w = 1).
+Vec4 clip_of(double x, double y) { return {2 * x / kW - 1, 2 * y / kH - 1, 0, 1}; }
+
+const SubpixelGrid kExact{}, kFour{4, SnapRounding::kNearest};
+
+TEST(Conformance, ASliverThatFourBitSnappingLightsIsWithinSpecOrSnapped) {
+  // Exact: no centre inside (x = 10.5 lies left of the edge x = 10.51). Snapped to 1/16 px the
+  // left edge moves to x = 10.5, a left edge, so the centres of column 10 on it are inside.
+  const ClippedPolygon sliver = polygon({{10.51, 2}, {10.6, 2}, {10.51, 40}});
+  const PixelSet exact = rasterize_polygon(sliver, kW, kH);
+  const PixelSet snapped = rasterize_polygon(sliver, kW, kH, kFour);
+  ASSERT_TRUE(exact.empty());
+  ASSERT_EQ(snapped.size(), 38);  // rows 2..39 of column 10
+  for (const Pixel& p : snapped) EXPECT_EQ(p.x, 10);
+  const ConformanceVerdict v = judge_polygon(sliver, kW, kW, kH, snapped, exact, kExact);
+  EXPECT_EQ(v.conformance, Conformance::kWithinSpec);
+  EXPECT_EQ(v.violating_pixels, 0);
+  EXPECT_EQ(judge_polygon(sliver, kW, kW, kH, snapped, exact, kFour).conformance,
+            Conformance::kSnapped);
+  EXPECT_EQ(judge_polygon(sliver, kW, kW, kH, exact, exact, kFour).conformance,
+            Conformance::kExact);
+}
+
+TEST(Conformance, AHoleInATriangleIsAViolationOfOnePixel) {
+  const ClippedPolygon t = polygon({{2, 2}, {40, 2}, {2, 40}});
+  const PixelSet exact = rasterize_polygon(t, kW, kH);
+  PixelSet lit = exact;
+  lit.erase({12, 10});
+  PixelSet where;
+  const ConformanceVerdict v = judge_polygon(t, kW, kW, kH, lit, exact, kFour, &where);
+  EXPECT_EQ(v.conformance, Conformance::kViolation);
+  EXPECT_EQ(v.violating_pixels, 1);
+  EXPECT_EQ(v.violated_rules, "polygon-edge");
+  EXPECT_EQ(where, (PixelSet{{12, 10}}));
+}
+
+TEST(Conformance, ATriangleShiftedByOnePixelViolatesWhereCentresLieBeyondTheAllowance) {
+  const Vec2 a{3.3, 4.1}, b{41.7, 6.2}, c{9.4, 37.9};
+  const ClippedPolygon t = polygon({a, b, c});
+  const PixelSet exact = rasterize_polygon(t, kW, kH);
+  PixelSet lit = exact;
+  lit.translate(1, 0);
+  // Brute force: a differing pixel is allowed when its centre lies within sqrt(2) x the allowance
+  // of one of the three edge lines' segments (distance by the area formula and the ends).
+  const double allow = std::sqrt(2.0) * (0.0625 + 1e-5 * kW);
+  auto dist = [](Vec2 q, Vec2 p0, Vec2 p1) {
+    const double len = std::hypot(p1.x - p0.x, p1.y - p0.y);
+    const double t = ((q.x - p0.x) * (p1.x - p0.x) + (q.y - p0.y) * (p1.y - p0.y)) / (len * len);
+    if (t <= 0) return std::hypot(q.x - p0.x, q.y - p0.y);
+    if (t >= 1) return std::hypot(q.x - p1.x, q.y - p1.y);
+    return std::fabs((p1.x - p0.x) * (q.y - p0.y) - (p1.y - p0.y) * (q.x - p0.x)) / len;
+  };
+  int64_t expected = 0, differing = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      if (exact.contains({x, y}) == lit.contains({x, y})) continue;
+      ++differing;
+      const Vec2 q{x + 0.5, y + 0.5};
+      if (std::min({dist(q, a, b), dist(q, b, c), dist(q, c, a)}) > allow) ++expected;
+    }
+  ASSERT_GT(expected, 20);  // the left side's column, at least
+  ASSERT_LT(expected, differing);  // some pixels along the right side are within the allowance
+  const ConformanceVerdict v = judge_polygon(t, kW, kW, kH, lit, exact, kExact);
+  EXPECT_EQ(v.conformance, Conformance::kViolation);
+  EXPECT_EQ(v.violating_pixels, expected);
+}
+
+TEST(Conformance, ABresenhamThatDropsItsLastPixelIsWithinSpecTwoAreNot) {
+  const ClippedSegment s = segment({2.3, 3.2}, {20.7, 9.9});  // x-major
+  const PixelSet exact = rasterize_segment(s, kW, kH);
+  ASSERT_EQ(exact.size(), 19);  // one fragment per column 2..20 (the end's diamond holds 20.5?)
+  Pixel last = exact.front();
+  for (const Pixel& p : exact)
+    if (p.x > last.x) last = p;
+  PixelSet lit = exact;
+  lit.erase(last);
+  ConformanceVerdict v = judge_segment(s, 21, kW, kH, lit, exact, kExact);
+  EXPECT_EQ(v.conformance, Conformance::kWithinSpec);
+  EXPECT_EQ(v.violating_pixels, 0);
+  Pixel second = lit.front();
+  for (const Pixel& p : lit)
+    if (p.x > second.x) second = p;
+  lit.erase(second);
+  v = judge_segment(s, 21, kW, kH, lit, exact, kExact);
+  EXPECT_EQ(v.conformance, Conformance::kViolation);
+  EXPECT_EQ(v.violating_pixels, 1);  // rule 2: 17 fragments where diamond-exit has 19
+  EXPECT_EQ(v.violated_rules, "line-count");
+}
+
+TEST(Conformance, TwoFragmentsInAColumnOrOneTwoRowsOffAreViolations) {
+  const ClippedSegment s = segment({2.3, 3.2}, {20.7, 9.9});
+  const PixelSet exact = rasterize_segment(s, kW, kH);
+  PixelSet lit = exact;
+  const Pixel first = exact.front();
+  lit.insert({first.x, first.y + 1});  // rule 1 holds (one row off), rule 2 too (one more)
+  PixelSet where;
+  ConformanceVerdict v = judge_segment(s, 21, kW, kH, lit, exact, kExact, &where);
+  EXPECT_EQ(v.conformance, Conformance::kViolation);
+  EXPECT_EQ(v.violating_pixels, 1);
+  EXPECT_EQ(v.violated_rules, "line-column");
+  EXPECT_EQ(where.size(), 2);  // both fragments of that column
+  // A middle fragment moved two rows up: rule 1 (and rule 3 does not see it: still one a column).
+  lit = exact;
+  const Pixel mid = exact.pixels()[9];
+  lit.erase(mid);
+  lit.insert({mid.x, mid.y + 2});
+  v = judge_segment(s, 21, kW, kH, lit, exact, kExact, &where);
+  EXPECT_EQ(v.conformance, Conformance::kViolation);
+  EXPECT_EQ(v.violating_pixels, 1);
+  EXPECT_EQ(v.violated_rules, "line-deviation");
+  EXPECT_EQ(where, (PixelSet{{mid.x, mid.y + 2}}));
+  // The same segment one pixel to the right: rule 1 allows it.
+  lit = exact;
+  lit.translate(1, 0);
+  EXPECT_EQ(judge_segment(s, 21, kW, kH, lit, exact, kExact).conformance,
+            Conformance::kWithinSpec);
+}
+
+TEST(Conformance, PointsSnappedAcrossAPixelBorderShiftedOrMissing) {
+  // x = 10.99: exact pixel 10; a 4-bit nearest snap gives 11.0, pixel 11.
+  Vec4 c = clip_of(10.99, 5.3);
+  const PixelSet exact = rasterize_point(c, kW, kH);
+  ASSERT_EQ(exact, (PixelSet{{10, 5}}));
+  const PixelSet eleven{{11, 5}};
+  EXPECT_EQ(judge_point(c, kW, kH, eleven, exact, kFour).conformance, Conformance::kSnapped);
+  EXPECT_EQ(judge_point(c, kW, kH, eleven, exact, kExact).conformance, Conformance::kWithinSpec);
+  ConformanceVerdict v = judge_point(c, kW, kH, PixelSet{{10, 5}, {11, 5}}, exact, kExact);
+  EXPECT_EQ(v.conformance, Conformance::kViolation);
+  EXPECT_EQ(v.violated_rules, "point-count");
+  // x = 10.5: pixel 11 is beyond any snap; nothing at all is not allowed either.
+  c = clip_of(10.5, 5.5);
+  v = judge_point(c, kW, kH, eleven, rasterize_point(c, kW, kH), kFour);
+  EXPECT_EQ(v.conformance, Conformance::kViolation);
+  EXPECT_EQ(v.violating_pixels, 1);
+  EXPECT_EQ(v.violated_rules, "point-pixel");
+  v = judge_point(c, kW, kH, PixelSet{}, rasterize_point(c, kW, kH), kFour);
+  EXPECT_EQ(v.violated_rules, "point-missing");
+  // Within the allowance of the window's left side, a point may be culled.
+  c = clip_of(0.01, 20.5);
+  EXPECT_EQ(judge_point(c, kW, kH, PixelSet{}, rasterize_point(c, kW, kH), kExact).conformance,
+            Conformance::kWithinSpec);
+}
+
+TEST(Conformance, TheNearClippedMagnitudeOfAPrimitiveBehindTheCameraIsItsNearPlanePoint) {
+  const View view = make_view(90, 100, 100, 1.0, 10.0);
+  Primitive p;
+  p.kind = Kind::kLine;
+  // (0.5, 0, -2) -> window x = (0.5 / 2 + 1) * 50 = 62.5; (0.5, 0, +2) is behind the camera.
+  // On the near plane (z = -1) the line is at x = 0.5: window (0.5 + 1) * 50 = 75.
+  p.v[0] = {0.5, 0, -2};
+  p.v[1] = {0.5, 0, 2};
+  EXPECT_NEAR(near_clipped_window_magnitude(view, p), 75.0, 1e-9);
+}
+
+// The faulty platform's conformance variants, each measured as `run` measures it. FOV 150: most
+// primitives are visible.
+View faulty_view() { return make_view(150, 128, 128); }
+
+std::vector<Record> faulty_records(const FaultPlan& plan, Kind kind, SubpixelGrid* measured) {
+  auto platform = create_faulty_platform(plan);
+  *measured = measure_effective_subpixel(*platform).grid;
+  const View view = faulty_view();
+  platform->set_view(view);
+  std::vector<Primitive> prims;
+  for (uint64_t i = 0; i < 1500; ++i) prims.push_back(make_primitive(7, kind, i));
+  return measure_cases("faulty", *platform, view, prims, CaseComparison(true, *measured));
+}
+
+TEST(Conformance, FaultyPlatformSnappingToSixBitsIsMeasuredAndNeverAViolation) {
+  FaultPlan plan;
+  plan.snap_bits = 6;
+  plan.snap_truncate = true;
+  for (Kind kind : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
+    SubpixelGrid grid;
+    int snapped = 0;
+    for (const Record& r : faulty_records(plan, kind, &grid)) {
+      if (r.status != CaseStatus::kOk) continue;
+      EXPECT_TRUE(r.conformance == Conformance::kExact || r.conformance == Conformance::kSnapped)
+          << kind_name(kind) << " " << r.index << " " << conformance_name(r.conformance);
+      snapped += r.conformance == Conformance::kSnapped;
+    }
+    EXPECT_EQ(grid, SubpixelGrid(6, SnapRounding::kTruncate));
+    // Truncating to a grid never moves a point across a pixel border (floor of the snapped value
+    // is the floor of the value): points stay exact; lines and triangles do change.
+    if (kind == Kind::kPoint)
+      EXPECT_EQ(snapped, 0);
+    else
+      EXPECT_GT(snapped, 0) << kind_name(kind);
+  }
+  SubpixelGrid grid;
+  faulty_records(FaultPlan{}, Kind::kPoint, &grid);
+  EXPECT_TRUE(grid.exact());
+}
+
+TEST(Conformance, FaultyPlatformDroppingLineEndsIsWithinSpecShiftedPointsAreCountedExactly) {
+  FaultPlan drop;
+  drop.drop_line_end_fraction = 1;
+  SubpixelGrid grid;
+  int within = 0;
+  for (const Record& r : faulty_records(drop, Kind::kLine, &grid)) {
+    if (r.status != CaseStatus::kOk || r.pixels + r.ref_diff == 0) continue;
+    EXPECT_EQ(r.conformance, Conformance::kWithinSpec) << r.index;
+    EXPECT_EQ(r.ref_diff, 1) << r.index;
+    ++within;
+  }
+  EXPECT_GT(within, 300);
+
+  // Points one pixel to the right: a violation of one pixel unless the position lies within the
+  // allowance of the pixel's right border (then the shifted pixel is one a snap could give).
+  FaultPlan shift;
+  shift.shift_fraction = 1;
+  const View view = faulty_view();
+  int violations = 0;
+  for (const Record& r : faulty_records(shift, Kind::kPoint, &grid)) {
+    if (r.visibility != Visibility::kTrueVisible) continue;
+    const Vec4 c = view.to_clip(make_primitive(7, Kind::kPoint, r.index).v[0]);
+    const double x = view.clip_to_window(c).x;
+    const bool near_border = x - std::floor(x) > 1 - (0.0625 + 1e-5 * 128);
+    const bool off_window = std::floor(x) + 1 >= 128;  // shifted out: nothing lit
+    if (off_window) continue;
+    EXPECT_EQ(r.conformance, near_border ? Conformance::kWithinSpec : Conformance::kViolation)
+        << r.index;
+    EXPECT_EQ(r.violating_pixels, near_border ? 0 : 1) << r.index;
+    violations += r.conformance == Conformance::kViolation;
+  }
+  EXPECT_GT(violations, 100);
+}
+
+}  // namespace
+}  // namespace ra
