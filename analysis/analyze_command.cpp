@@ -12,6 +12,7 @@
 #include <regex>
 
 #include "analysis/figure_data.h"
+#include "analysis/conformance_summary.h"
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
 #include "analysis/view_equivalence.h"
@@ -64,7 +65,7 @@ struct Output {
 // Files of an earlier analysis that this one may not rewrite (a kind absent now, one platform).
 bool generated_name(const std::string& name) {
   static const std::regex pattern(
-      R"((table\d\d[a-z]?_[a-z_]+|speed|cross_platform|view_equivalence)\.(csv|md|tex)|figures\.json|report\.md|README\.md)");
+      R"((table\d\d[a-z]?_[a-z_]+|speed|cross_platform|view_equivalence|conformance)\.(csv|md|tex)|figures\.json|report\.md|violations\.md|README\.md)");
   return std::regex_match(name, pattern);
 }
 
@@ -129,6 +130,10 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   const std::vector<Table> tables = paper_tables(run, to);
   result.timings.push_back({"tables", watch.lap()});
 
+  const ConformanceSummary conformance = summarize_conformance(run.files);
+  const Table conformance_tab = conformance_table(conformance);
+  result.timings.push_back({"conformance", watch.lap()});
+
   FigureOptions fo;
   fo.quantiles = o.quantiles;
   fo.jobs = o.jobs;
@@ -146,8 +151,18 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   outputs.push_back({"view_equivalence.csv",
                      "the same comparisons with every statistic, one row each",
                      render_csv(view_equivalence_table(run, equivalence, eq))});
-  std::string all_tables;
-  std::string printed;
+  // Conformance first: "does this driver rasterize as GL allows?" before the details.
+  const std::string conformance_md = render_markdown(conformance_tab);
+  std::string all_tables = conformance_md + "\n";
+  std::string printed = conformance_tab.rows.empty() ? "" : conformance_md + "\n";
+  outputs.push_back({"conformance.csv", "conformance classes per platform, kind, view group (CSV)",
+                     render_csv(conformance_tab)});
+  outputs.push_back({"conformance.md", "the same (Markdown)", conformance_md});
+  outputs.push_back({"conformance.tex", "the same (LaTeX)", render_latex(conformance_tab)});
+  outputs.push_back({"violations.md",
+                     "every record that breaks a GL rasterization rule, worst first, with the "
+                     "`renderaudit show` line that draws it",
+                     violations_markdown(conformance, o.run_dir)});
   for (const Table& t : tables) {
     const std::string md = render_markdown(t);
     all_tables += md + "\n";

@@ -7,10 +7,11 @@
 //   equivalence  orientation views compared per platform, kind, metric, view group
 //                (view_equivalence.h), then pooled into view groups A, B, C, ...
 //   tables       Tables 2-11, supplements, speed, cross-platform comparison (paper_tables.h)
+//   conformance  the conformance classes and violations (conformance_summary.h)
 //   figures      figures.json for the plots stage (figure_data.h)
 //   write        every file rendered and written atomically
 // Files (README.md in DIR/analysis lists them with one line each): view_equivalence.{csv,md};
-// each table as .csv, .md and .tex; figures.json; report.md (every table in Markdown). Files of
+// each table as .csv, .md and .tex (conformance.* first); violations.md; figures.json; report.md (every table in Markdown). Files of
 // earlier analyses with the same names are replaced; those of tables this run has no data for are
 // removed, so the directory always describes the last analysis.
 #pragma once

@@ -106,8 +106,9 @@ TEST(AnalyzeCommand, WritesEveryFileWithoutNaN) {
   // the summary printed holds the main tables, not the supplements
   EXPECT_NE(r.summary.find("### Table 3 (mirrors the paper's Table 3)"), std::string::npos);
   EXPECT_EQ(r.summary.find("### Table 6s"), std::string::npos);
-  ASSERT_EQ(r.timings.size(), 5u);
+  ASSERT_EQ(r.timings.size(), 6u);
   EXPECT_EQ(r.timings[0].stage, "load");
+  EXPECT_EQ(r.timings[3].stage, "conformance");
 
   // figures.json: schema, box plots with widths proportional to n, Q-Q of the orientation views
   const nlohmann::json fig = nlohmann::json::parse(read_text(dir / "analysis" / "figures.json"));
@@ -177,7 +178,7 @@ TEST(AnalyzeCommand, BadOptionsAndInputAreUserErrors) {
   EXPECT_NE(user_error([&] { analyze_run(o); }).find("no records files"), std::string::npos);
   const std::string path = write_records(dir, {point("p", 1, 0, 0.3)});
   std::ofstream(path, std::ios::app) << "p,1,0,1,30,128,128,0.01,10,point,1,ok\n";
-  EXPECT_NE(user_error([&] { analyze_run(o); }).find(path + ":3: expected 34 fields, found 12"),
+  EXPECT_NE(user_error([&] { analyze_run(o); }).find(path + ":3: expected 37 fields, found 12"),
             std::string::npos);
   o.alpha = 1.5;
   EXPECT_NE(user_error([&] { analyze_run(o); }).find("--alpha 1.5"), std::string::npos);

@@ -225,6 +225,51 @@ struct Planner {
     add(std::move(f));
   }
 
+  // The GL verdicts per view group, one figure per platform that has them.
+  void conformance_classes(an::PrimitiveKind kind) {
+    const std::string section = section_of(kind);
+    const std::string kname = an::kind_name(kind);
+    const std::vector<int> groups = run.view_groups(kind);
+    for (const auto& p : run.platforms) {
+      BarChartContent c;
+      const char* names[] = {"", "exact", "snapped", "within-spec", "violation"};
+      std::vector<BarSeries> series(5);
+      for (int k = 1; k < 5; ++k) series[k].name = names[k];
+      bool has = false;
+      for (int g : groups) {
+        c.categories.push_back(an::view_group_label(g));
+        const auto it = scan.conformance.find({p, kname, g});
+        std::uint64_t judged = 0;
+        if (it != scan.conformance.end())
+          for (int k = 1; k < 5; ++k) judged += it->second.classes[k];
+        has = has || judged > 0;
+        for (int k = 1; k < 5; ++k) {
+          const double share = judged ? 100.0 * double(it->second.classes[k]) / double(judged) : 0;
+          series[k].values.push_back(share);
+          series[k].labels.push_back(judged ? fmt(share, "%.2f") : "n/a");
+        }
+      }
+      if (!has) continue;  // the reference platform, or records without verdicts
+      for (int k = 1; k < 5; ++k) c.series.push_back(std::move(series[k]));
+      c.y_max = 100;
+      Figure f;
+      f.id = "conformance_classes." + kname + "." + p;
+      f.title = "GL conformance classes, " + section + ", " + p + ": view groups " +
+                groups_text(c.categories);
+      f.x_label = "view group";
+      f.y_label = "share of records (%)";
+      f.note = "exact: the reference rasterizer's pixels; snapped: the reference's on the "
+               "platform's effective subpixel grid; within-spec: other pixels GL allows; "
+               "violation: a pixel GL forbids (analysis/violations.md lists them). Numbers above "
+               "the bars: percent.";
+      f.caption = "Does " + p + " rasterize " + section + " as GL allows? The verdict classes "
+                  "per view group.";
+      f.section = section;
+      f.content = std::move(c);
+      add(std::move(f));
+    }
+  }
+
   void box_plots(an::PrimitiveKind kind) {
     const std::string section = section_of(kind);
     for (const json& bp : doc.value("box_plots", json::array())) {
@@ -580,6 +625,7 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
       }
       p.visibility(kind);
       p.conformance(kind);
+      p.conformance_classes(kind);
       p.box_plots(kind);
       p.histograms(kind);
       p.comparisons(kind);

@@ -54,6 +54,7 @@ void scan_file(const fs::path& path, const std::string& rel, std::size_t max_exa
     Conformance& cf = out.scan.conformance[key];
     ++cf.compared;
     cf.identical += diff == 0;
+    ++cf.classes[int(row.conformance())];
     if (pixels > 0 || diff > 0) {
       ++cf.drawn;
       cf.drawn_identical += diff == 0;
@@ -87,6 +88,7 @@ RecordScan scan_records(const std::string& run_dir, std::size_t max_examples, un
       cf.identical += v.identical;
       cf.drawn += v.drawn;
       cf.drawn_identical += v.drawn_identical;
+      for (int c = 0; c < 5; ++c) cf.classes[c] += v.classes[c];
     }
     for (const auto& [k, v] : p.scan.non_ok_counts) out.non_ok_counts[k] += v;
     for (const auto& [k, v] : p.scan.group_labels) out.group_labels.emplace(k, v);

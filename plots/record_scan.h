@@ -22,6 +22,9 @@ struct Conformance {
   std::uint64_t drawn = 0;      // of the compared, those where either rasterizer lit a pixel
                                 // (pixels > 0 or ref_diff > 0)
   std::uint64_t drawn_identical = 0;
+  // Of the compared, records per conformance verdict (metrics/conformance.h), indexed by
+  // ra::Conformance: not compared (schema 2, reference), exact, snapped, within-spec, violation.
+  std::uint64_t classes[5] = {};
   // Share identical, in [0, 1]; 0 when nothing was compared.
   double rate() const { return compared ? double(identical) / double(compared) : 0; }
   double drawn_rate() const { return drawn ? double(drawn_identical) / double(drawn) : 0; }

@@ -144,6 +144,7 @@ std::vector<std::string> table_files(const std::string& analysis_dir) {
   std::vector<std::string> out;
   for (const auto& n : order)
     if (n != "README.md" && n != "report.md" && n != "view_equivalence.md" &&
+        n != "conformance.md" && n != "violations.md" &&  // section 4 shows these
         fs::exists(analysis_dir + "/" + n))
       out.push_back(n);
   return out;
@@ -238,14 +239,27 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
     Table t;
     t.title = "Drivers: what each platform's OpenGL said about itself (manifest.json, drivers/)";
     t.header = {"platform", "GL_RENDERER", "GL_VERSION", "GL_VENDOR", "GL_SUBPIXEL_BITS",
-                "timer query"};
-    t.right = {false, false, false, false, true, false};
+                "effective subpixel grid (measured)", "timer query"};
+    t.right = {false, false, false, false, true, false, false};
     const json drivers = m.value("drivers", json::object());
-    for (const auto& [platform, dj] : drivers.items())
+    for (const auto& [platform, dj] : drivers.items()) {
+      const json e = dj.value("effective_subpixel", json());
+      const std::string effective =
+          e.is_object() ? e.value("text", "?") + " (" + str(e.value("matches", json())) + " of " +
+                              str(e.value("triangles", json())) + " triangles)"
+                        : "not measured";
       t.rows.push_back({platform, dj.value("renderer", "?"), dj.value("version", "?"),
-                        dj.value("vendor", "?"), str(dj.value("subpixel_bits", json())),
+                        dj.value("vendor", "?"), str(dj.value("subpixel_bits", json())), effective,
                         str(dj.value("timer_query", json()))});
+    }
     if (t.rows.empty()) t.notes.push_back("manifest.json lists no driver.");
+    t.notes.push_back(
+        "GL_SUBPIXEL_BITS is what the driver says (GL requires at least 4); the effective grid is "
+        "what its pixels show: the subpixel grid (bits, rounding) under which the reference "
+        "rasterizer lights the same pixels as the driver for the most of 96 calibration triangles "
+        "(metrics/effective_subpixel.h). A driver whose effective grid is finer than it says only "
+        "undersells itself; one whose grid is coarser than it says snaps more than it promises, "
+        "and one coarser than 4 bits breaks GL's rule.");
     d.blocks.push_back(table_block(std::move(t)));
   }
   const std::string toml = run_dir + "/experiment.toml";
@@ -339,7 +353,29 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
   }
 
   // 4. Conformance.
-  d.blocks.push_back(heading("4. Conformance with the reference rasterizer", 1, "conformance"));
+  d.blocks.push_back(heading("4. Does each driver rasterize as GL allows?", 1, "conformance"));
+  {
+    const std::string dir = run_dir + "/analysis";
+    if (fs::exists(dir + "/conformance.md")) {
+      for (Block& b : parse_markdown(read_file(dir + "/conformance.md"), 1)) {
+        if (b.kind == Block::Kind::kTable && !b.table.title.empty())
+          c.table_titles.push_back(plain_text(b.table.title));
+        d.blocks.push_back(std::move(b));
+      }
+    } else {
+      d.blocks.push_back(paragraph("analysis/conformance.md is missing: run `renderaudit analyze " +
+                                   run_dir + "`."));
+    }
+    if (fs::exists(dir + "/violations.md")) {
+      // The first violations, worst first; the whole list is analysis/violations.md.
+      std::string text = read_file(dir + "/violations.md");
+      std::size_t cut = 0;
+      for (int rows = 0; rows < 22 && cut != std::string::npos; ++rows)
+        cut = text.find("\n| ", cut + 1);
+      if (cut != std::string::npos) text = text.substr(0, cut) + "\n";
+      for (Block& b : parse_markdown(text, 2)) d.blocks.push_back(std::move(b));
+    }
+  }
   d.blocks.push_back(paragraph(
       "ref_diff counts the pixels in the symmetric difference between what a platform lit and "
       "what the project's exact reference rasterizer (the GL rules, no driver) lights for the same "

@@ -1,0 +1,126 @@
+#include "analysis/conformance_summary.h"
+
+#include <algorithm>
+
+#include "analysis/run_records.h"
+#include "metrics/records_reader.h"
+#include "stats/binomial_interval.h"
+
+namespace ra::analysis {
+
+ConformanceSummary summarize_conformance(const std::vector<std::string>& records_files) {
+  using C = RecordColumn;
+  ConformanceSummary s;
+  for (const std::string& path : records_files) {
+    for_each_record_row(path, [&](const RecordRow& row) {
+      if (row.status() != CaseStatus::kOk) return;
+      const Conformance c = row.conformance();
+      if (c == Conformance::kNotCompared) {
+        ++s.not_compared;
+        return;
+      }
+      const std::string platform(row.cell(C::kPlatform)), kind(row.cell(C::kKind));
+      const int group = row.integer<int>(C::kViewGroup);
+      ConformanceCounts& n = s.groups[{platform, kind, group}];
+      ++n.compared;
+      switch (c) {
+        case Conformance::kExact: ++n.exact; break;
+        case Conformance::kSnapped: ++n.snapped; break;
+        case Conformance::kWithinSpec: ++n.within_spec; break;
+        case Conformance::kViolation: ++n.violation; break;
+        case Conformance::kNotCompared: break;
+      }
+      if (c != Conformance::kViolation) return;
+      Violation v{platform, kind, row.integer<int>(C::kView), group,
+                  row.integer<std::uint64_t>(C::kIndex),
+                  row.optional_integer<std::int64_t>(C::kViolatingPixels, 0),
+                  std::string(row.cell(C::kViolatedRules))};
+      n.violating_pixels += std::uint64_t(std::max<std::int64_t>(v.violating_pixels, 0));
+      std::string_view rules = v.rules;
+      while (!rules.empty()) {  // '+'-joined
+        const std::size_t plus = rules.find('+');
+        ++n.rules[std::string(rules.substr(0, plus))];
+        rules = plus == std::string_view::npos ? std::string_view() : rules.substr(plus + 1);
+      }
+      s.violations.push_back(std::move(v));
+    });
+  }
+  std::sort(s.violations.begin(), s.violations.end(), [](const Violation& a, const Violation& b) {
+    return std::tie(b.violating_pixels, a.platform, a.kind, a.view, a.index) <
+           std::tie(a.violating_pixels, b.platform, b.kind, b.view, b.index);
+  });
+  return s;
+}
+
+namespace {
+
+// "97.50 (97.1-97.9)": a share in percent with its Clopper-Pearson 95% interval.
+TableCell share_cell(std::uint64_t k, std::uint64_t n) {
+  const stats::ProportionInterval ci = stats::clopper_pearson(k, n);
+  const double p = n ? 100.0 * double(k) / double(n) : 0.0;
+  return {format_fixed(p, 2) + " (" + format_fixed(100 * ci.low, 2) + "-" +
+              format_fixed(100 * ci.high, 2) + ")",
+          format_significant(p, 9)};
+}
+
+}  // namespace
+
+Table conformance_table(const ConformanceSummary& s) {
+  Table t;
+  t.file_stem = "conformance";
+  t.title = "Conformance with the OpenGL rasterization rules: share of records (%) per class, "
+            "with Clopper-Pearson 95% intervals";
+  t.notes = {
+      "exact: the pixels equal the exact reference rasterizer's; snapped: they equal the "
+      "reference with vertices snapped to the platform's effective subpixel grid (measured, "
+      "drivers/PLATFORM.json); within-spec: neither, but every differing pixel is one GL allows "
+      "(polygons: centre within the snapping and rounding allowance of an edge; lines: the rules "
+      "of GL 4.6 section 14.5.1; points: the pixel of a snapped position); violation: at least "
+      "one pixel no conforming implementation could light or leave dark.",
+      "violating px: the sum of violating_pixels; rules: how many records broke each rule "
+      "(metrics/conformance.h names them). Records of the reference platform and records "
+      "written before schema version 3 carry no verdict and are not counted."};
+  t.columns = {{"platform", Align::kLeft}, {"kind", Align::kLeft}, {"group", Align::kLeft},
+               {"records"}, {"exact %"}, {"snapped %"}, {"within-spec %"}, {"violation %"},
+               {"violating px"}, {"rules broken", Align::kLeft}};
+  for (const auto& [key, n] : s.groups) {
+    const auto& [platform, kind, group] = key;
+    std::string rules;
+    for (const auto& [rule, count] : n.rules)
+      rules += (rules.empty() ? "" : ", ") + rule + " " + std::to_string(count);
+    t.rows.push_back({text_cell(platform), text_cell(kind), text_cell(view_group_label(group)),
+                      count_cell(n.compared), share_cell(n.exact, n.compared),
+                      share_cell(n.snapped, n.compared), share_cell(n.within_spec, n.compared),
+                      share_cell(n.violation, n.compared), count_cell(n.violating_pixels),
+                      text_cell(rules.empty() ? "-" : rules)});
+  }
+  if (t.rows.empty()) t.notes.push_back("No record of this run carries a conformance verdict.");
+  return t;
+}
+
+std::string violations_markdown(const ConformanceSummary& s, const std::string& run_dir,
+                                std::size_t limit) {
+  std::string md = "# Conformance violations\n\n";
+  if (s.violations.empty()) {
+    std::uint64_t compared = 0;
+    for (const auto& [key, n] : s.groups) compared += n.compared;
+    return md + "None: every one of the " + std::to_string(compared) +
+           " records with a verdict is exact, snapped or within the GL rules.\n";
+  }
+  md += std::to_string(s.violations.size()) +
+        " records break a GL rasterization rule (metrics/conformance.h). Worst first" +
+        (s.violations.size() > limit ? " (the first " + std::to_string(limit) + ")" : "") +
+        "; `renderaudit show` draws one (black: the violating pixels).\n\n"
+        "| platform | kind | view | index | violating px | rules | draw it |\n"
+        "| :--- | :--- | ---: | ---: | ---: | :--- | :--- |\n";
+  for (std::size_t i = 0; i < s.violations.size() && i < limit; ++i) {
+    const Violation& v = s.violations[i];
+    md += "| " + v.platform + " | " + v.kind + " | " + std::to_string(v.view) + " | " +
+          std::to_string(v.index) + " | " + std::to_string(v.violating_pixels) + " | " + v.rules +
+          " | `renderaudit show " + run_dir + " -p " + v.platform + " -k " + v.kind + " -v " +
+          std::to_string(v.view) + " -i " + std::to_string(v.index) + "` |\n";
+  }
+  return md;
+}
+
+}  // namespace ra::analysis
