@@ -47,7 +47,8 @@ std::vector<Row> read_view(const std::string& dir, const std::vector<Shard>& pla
                         ", outside its shard");
       rows.push_back(
           {r.index,
-           {r.status, r.visibility, r.pixels, r.pixel_hash, headline_value(r, kind), r.ref_diff}});
+           {r.status, r.visibility, r.pixels, r.pixel_hash, headline_value(r, kind), r.ref_diff,
+            r.conformance, r.violating_pixels}});
     });
   }
   std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.index < b.index; });
@@ -144,7 +145,15 @@ const char* recheck_name(Recheck r) {
 }
 
 bool states_differ(const PrimitiveState& a, const PrimitiveState& b) {
-  return a.status != b.status || a.visibility != b.visibility || a.pixel_hash != b.pixel_hash;
+  const bool both_judged =
+      a.conformance != Conformance::kNotCompared && b.conformance != Conformance::kNotCompared;
+  return a.status != b.status || a.visibility != b.visibility || a.pixel_hash != b.pixel_hash ||
+         (both_judged && a.conformance != b.conformance);
+}
+
+bool new_violation(const ChangedPrimitive& c) {
+  return c.after.conformance == Conformance::kViolation &&
+         c.before.conformance != Conformance::kViolation;
 }
 
 PrimitiveComparison compare_primitives(const std::string& baseline_dir,

@@ -39,7 +39,13 @@ struct PrimitiveState {
   uint64_t pixel_hash = 0;  // FNV-1a 64 of the sorted lit pixels
   double metric = kNA;      // headline_metric(kind); NaN when not applicable
   int64_t ref_diff = -1;    // pixels differing from the reference rasterizer; -1: not measured
+  Conformance conformance = Conformance::kNotCompared;  // the GL verdict (metrics/conformance.h)
+  int64_t violating_pixels = -1;
 };
+
+// True when `c` is a violation its baseline did not have: the current side violates a GL rule
+// and the baseline's record of the primitive did not (another class, or no verdict at all).
+bool new_violation(const struct ChangedPrimitive& c);
 
 // What re-rendering a changed primitive showed (audit/flake_check.h).
 enum class Recheck {
@@ -96,7 +102,8 @@ PrimitiveComparison compare_primitives(const std::string& baseline_dir,
                                        const std::string& current_dir,
                                        const std::vector<PlatformPair>& pairs, unsigned jobs = 0);
 
-// True when two records of one primitive differ: status, visibility or lit pixels.
+// True when two records of one primitive differ: status, visibility, lit pixels, or the
+// conformance class (when both records have one: a baseline of schema version 2 has none).
 bool states_differ(const PrimitiveState& a, const PrimitiveState& b);
 
 }  // namespace ra::audit

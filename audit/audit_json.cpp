@@ -1,5 +1,6 @@
 // audit.json: everything the audit found, machine-readable (audit/audit_report.h; keys in
 // README). Numbers that are undefined are null; 64-bit pixel hashes are decimal strings.
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -21,7 +22,11 @@ json state_json(const PrimitiveState& s, Kind kind) {
           {"pixel_hash", std::to_string(s.pixel_hash)},  // a string: JSON readers lose 64-bit ints
           {"metric", headline_metric(kind)},
           {"value", number_or_null(s.metric)},
-          {"ref_diff", s.ref_diff >= 0 ? json(s.ref_diff) : json(nullptr)}};
+          {"ref_diff", s.ref_diff >= 0 ? json(s.ref_diff) : json(nullptr)},
+          {"conformance", s.conformance == Conformance::kNotCompared
+                              ? json(nullptr)
+                              : json(conformance_name(s.conformance))},
+          {"violating_pixels", s.violating_pixels >= 0 ? json(s.violating_pixels) : json(nullptr)}};
 }
 
 json changed_json(const AuditResult& r, const ChangedPrimitive& c) {
@@ -127,7 +132,13 @@ json audit_json(const AuditResult& r) {
                  {"failed_primitives", r.primitives.failed.size()},
                  {"missing_shards", r.missing.size()},
                  {"unmatched", unmatched},
-                 {"significant_tests", r.distributions.significant}};
+                 {"significant_tests", r.distributions.significant},
+                 {"new_violations", std::count_if(r.primitives.changed.begin(),
+                                                  r.primitives.changed.end(),
+                                                  [](const ChangedPrimitive& c) {
+                                                    return c.recheck != Recheck::kFlake &&
+                                                           new_violation(c);
+                                                  })}};
   json views = json::array();
   std::map<std::tuple<std::size_t, int, int>, uint64_t> flakes;
   for (const ChangedPrimitive& c : r.primitives.changed)

@@ -10,6 +10,8 @@
 //         <properties> compared, changed, flakes, crash_timeout, missing_shards, significant_tests
 //         <failure type="changed|failed" message="...">the primitives and tests</failure>
 //         <system-out>flakes and significant tests, one per line</system-out>
+//       <testcase classname="renderaudit.audit.PLATFORM.KIND" name="conformance, group A (...)">
+//         <failure type="violation">primitives breaking a GL rule the baseline did not break
 #include <sstream>
 
 #include "audit/audit_report.h"
@@ -137,6 +139,27 @@ Case group_case(const AuditResult& r, const GroupOutcome& g) {
   return c;
 }
 
+// The group's conformance case: fails when primitives break a GL rasterization rule that their
+// baseline records did not break (metrics/conformance.h).
+Case conformance_case(const AuditResult& r, const GroupOutcome& g) {
+  Case c;
+  c.classname = class_prefix(r.pairs[g.pair]) + "." + kind_name(g.kind);
+  c.name = "conformance, " + group_name(g);
+  c.properties = {{"new_violations", std::to_string(g.new_violations)}};
+  if (g.new_violations == 0) return c;
+  std::ostringstream text;
+  for (const ChangedPrimitive& p : r.primitives.changed)
+    if (p.pair == g.pair && p.kind == g.kind && p.view_group == g.view_group &&
+        p.recheck != Recheck::kFlake && new_violation(p))
+      text << kind_name(p.kind) << " view " << p.view << " index " << p.index << ": "
+           << p.after.violating_pixels << " violating pixel(s); " << show_command(r, p) << "\n";
+  c.failure_type = "violation";
+  c.failure_message = std::to_string(g.new_violations) +
+                      " primitive(s) break a GL rasterization rule the baseline did not break";
+  c.failure_text = text.str();
+  return c;
+}
+
 }  // namespace
 
 std::string audit_junit(const AuditResult& r) {
@@ -179,7 +202,10 @@ std::string audit_junit(const AuditResult& r) {
       shards.failure_message = std::to_string(missing) + " shard(s) failed";
     suites[p].push_back(shards);
   }
-  for (const GroupOutcome& g : groups) suites[g.pair].push_back(group_case(r, g));
+  for (const GroupOutcome& g : groups) {
+    suites[g.pair].push_back(group_case(r, g));
+    suites[g.pair].push_back(conformance_case(r, g));
+  }
 
   std::size_t tests = 0, failures = 0;
   for (const auto& s : suites)

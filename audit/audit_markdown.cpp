@@ -31,6 +31,15 @@ std::string arrow(const std::string& a, const std::string& b) {
   return a == b ? a : a + " -> " + b;
 }
 
+// "violation (3 px: polygon-edge)", "within-spec", "n/a" (no verdict).
+std::string verdict_text(const PrimitiveState& s) {
+  if (s.conformance == Conformance::kNotCompared) return "n/a";
+  std::string t = conformance_name(s.conformance);
+  if (s.conformance == Conformance::kViolation)
+    t += " (" + std::to_string(s.violating_pixels) + " px)";
+  return t;
+}
+
 std::string state_line(const ChangedPrimitive& c) {
   const std::string metric = headline_metric(c.kind);
   auto diff = [](int64_t d) { return d >= 0 ? std::to_string(d) : std::string("n/a"); };
@@ -40,7 +49,29 @@ std::string state_line(const ChangedPrimitive& c) {
          ", pixels " + arrow(std::to_string(c.before.pixels), std::to_string(c.after.pixels)) +
          ", " + metric + " " +
          arrow(format_number(c.before.metric, 6), format_number(c.after.metric, 6)) +
-         ", ref_diff " + arrow(diff(c.before.ref_diff), diff(c.after.ref_diff));
+         ", ref_diff " + arrow(diff(c.before.ref_diff), diff(c.after.ref_diff)) +
+         ", conformance " + arrow(verdict_text(c.before), verdict_text(c.after));
+}
+
+// New GL violations first: the one thing a driver team must not miss.
+void new_violations(std::ostream& md, const AuditResult& r) {
+  md << "## New conformance violations\n\n";
+  std::size_t total = 0;
+  for (const ChangedPrimitive& c : r.primitives.changed) {
+    if (c.recheck == Recheck::kFlake || !new_violation(c)) continue;
+    if (++total > kMarkdownListed) continue;
+    md << "- " << r.pairs[c.pair].label() << " " << kind_name(c.kind) << ", view " << c.view
+       << " (group " << analysis::view_group_label(c.view_group) << "), index " << c.index
+       << ": " << verdict_text(c.before) << " -> " << verdict_text(c.after) << "  \n  `"
+       << show_command(r, c) << "`\n";
+  }
+  if (total == 0)
+    md << "None: no primitive breaks a GL rasterization rule that did not break it in the "
+          "baseline.\n\n";
+  else
+    md << "\n" << total << " primitives break a GL rasterization rule (metrics/conformance.h) "
+       << "that their baseline records did not break" << (total > kMarkdownListed ? " (the first "
+       + std::to_string(kMarkdownListed) + " above)" : "") << ".\n\n";
 }
 
 void list_primitives(std::ostream& md, const AuditResult& r, bool flakes) {
@@ -242,6 +273,7 @@ std::string audit_markdown(const AuditResult& r) {
     md << "Baseline `" << r.baseline.dir << "`, current `" << r.current.dir << "`";
   md << "; experiment `" << r.current.name << "` (hash " << r.current.hash << ", seed "
      << r.current.seed << "); audited " << r.date_utc << ".\n\n";
+  new_violations(md, r);
   drivers(md, r);
   counts(md, r);
   md << "## Changed primitives\n\n";

@@ -30,9 +30,11 @@ std::vector<GroupOutcome> group_outcomes(const AuditResult& r) {
     g.views.push_back(v.view);
     g.compared += v.compared, g.unmatched += v.unmatched;
   }
-  for (const ChangedPrimitive& c : r.primitives.changed)
-    ++(c.recheck == Recheck::kFlake ? at(c.pair, c.kind, c.view_group).flakes
-                                    : at(c.pair, c.kind, c.view_group).changed);
+  for (const ChangedPrimitive& c : r.primitives.changed) {
+    GroupOutcome& g = at(c.pair, c.kind, c.view_group);
+    ++(c.recheck == Recheck::kFlake ? g.flakes : g.changed);
+    if (c.recheck != Recheck::kFlake && new_violation(c)) ++g.new_violations;
+  }
   // Crash / timeout records of either side (those without a partner, too).
   for (const FailedPrimitive& f : r.primitives.failed) ++at(f.pair, f.kind, f.view_group).failed;
   for (const MissingShard& m : r.missing)

@@ -1,11 +1,14 @@
 // What `renderaudit audit` writes into its output directory, each file atomically (temp + rename,
 // util/atomic_file.h):
 //   audit.json              everything, machine-readable ("schema_version": 1; keys in README)
-//   audit.md                for a person, read first: verdict, drivers side by side, counts, the
+//   audit.md                for a person, read first: verdict, new conformance violations (first:
+//                           what a driver team must see), drivers side by side, counts, the
 //                           changed primitives (first 50 + total, each with its `renderaudit show`
 //                           line), significant tests with effect sizes, classes, flakes, failures
 //   junit.xml               one testsuite per platform (pair), one testcase per kind x view group
-//                           (failure when changed or failed), plus `drivers` and `shards` cases
+//                           (failure when changed or failed) and one "conformance" testcase per
+//                           kind x view group (failure: new GL violations), plus `drivers` and
+//                           `shards` cases
 //   changed_primitives.csv  every changed primitive (flakes included, `recheck` says which)
 #pragma once
 
@@ -31,6 +34,7 @@ struct GroupOutcome {
   std::string label;       // "A", ...
   std::vector<int> views;  // view numbers of the group, ascending
   uint64_t compared = 0, changed = 0, flakes = 0, failed = 0, unmatched = 0;
+  uint64_t new_violations = 0;  // changed primitives that now break a GL rule (not flakes)
   std::size_t missing_shards = 0, rerender_failures = 0, significant_tests = 0;
   Verdict verdict() const;  // failed > changed > unchanged, by the rule of audit/audit.h
 };

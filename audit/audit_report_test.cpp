@@ -97,12 +97,13 @@ TEST(AuditReport, MarkdownLeadsWithTheVerdictAndListsShowLines) {
   EXPECT_NE(md.find("index 11"), std::string::npos);  // the flake, listed under Flakes
 }
 
-// One testcase per kind x view group (+ drivers, shards); a failure element when changed.
+// Two testcases per kind x view group (the pixels, the conformance verdicts) + drivers, shards;
+// a failure element when changed.
 TEST(AuditReport, JunitHasOneCasePerGroup) {
   AuditResult r = result_with({Recheck::kStillDifferent});
   decide_verdict(r);
   const std::string xml = audit_junit(r);
-  EXPECT_NE(xml.find("<testsuites name=\"renderaudit audit\" tests=\"3\" failures=\"1\""),
+  EXPECT_NE(xml.find("<testsuites name=\"renderaudit audit\" tests=\"4\" failures=\"1\""),
             std::string::npos)
       << xml;
   EXPECT_NE(xml.find("name=\"group A (views 1, 2)\""), std::string::npos) << xml;
@@ -110,6 +111,48 @@ TEST(AuditReport, JunitHasOneCasePerGroup) {
             std::string::npos)
       << xml;
   EXPECT_NE(xml.find("classname=\"renderaudit.audit.osmesa-llvmpipe.line\""), std::string::npos);
+}
+
+// A primitive that now breaks a GL rule (and did not in the baseline) comes first in audit.md and
+// fails the group's conformance testcase; one that already broke it in the baseline does not.
+TEST(AuditReport, NewViolationsComeFirstAndFailTheirConformanceCase) {
+  AuditResult r = result_with({Recheck::kStillDifferent, Recheck::kStillDifferent});
+  r.primitives.changed[0].before.conformance = Conformance::kWithinSpec;
+  r.primitives.changed[0].after.conformance = Conformance::kViolation;
+  r.primitives.changed[0].after.violating_pixels = 3;
+  r.primitives.changed[1].before.conformance = Conformance::kViolation;
+  r.primitives.changed[1].after.conformance = Conformance::kViolation;
+  decide_verdict(r);
+  const std::vector<GroupOutcome> g = group_outcomes(r);
+  ASSERT_EQ(g.size(), 1u);
+  EXPECT_EQ(g[0].new_violations, 1u);
+  const std::string md = audit_markdown(r);
+  const std::size_t first = md.find("## New conformance violations");
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_LT(first, md.find("## Drivers"));
+  EXPECT_NE(md.find("index 10: within-spec -> violation (3 px)"), std::string::npos) << md;
+  EXPECT_EQ(md.find("index 11: violation"), std::string::npos) << md;
+  EXPECT_NE(md.find("1 primitives break a GL rasterization rule"), std::string::npos) << md;
+  const std::string xml = audit_junit(r);
+  EXPECT_NE(xml.find("tests=\"4\" failures=\"2\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("name=\"conformance, group A (views 1, 2)\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<failure type=\"violation\" message=\"1 primitive(s) break a GL "
+                     "rasterization rule the baseline did not break\">line view 1 index 10: 3 "
+                     "violating pixel(s)"),
+            std::string::npos)
+      << xml;
+}
+
+// A change of class alone (same pixels, a new effective grid) is a change; a baseline without
+// verdicts (schema version 2) is not.
+TEST(AuditCompare, AChangeOfClassIsAChangeWhenBothSidesHaveOne) {
+  PrimitiveState a, b;
+  a.pixel_hash = b.pixel_hash = 7;
+  a.conformance = Conformance::kExact;
+  b.conformance = Conformance::kSnapped;
+  EXPECT_TRUE(states_differ(a, b));
+  a.conformance = Conformance::kNotCompared;
+  EXPECT_FALSE(states_differ(a, b));
 }
 
 TEST(AuditReport, JsonCarriesSchemaVersionAndLists) {

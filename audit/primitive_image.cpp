@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "metrics/case_measurement.h"
+#include "metrics/conformance.h"
+#include "metrics/effective_subpixel.h"
 #include "geometry/clipping.h"
 #include "util/errors.h"
 #include "runner/experiment.h"
@@ -147,11 +149,18 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
 
   // Render once, measure that rendering, and rasterize the reference for comparison.
   const std::unique_ptr<Platform> platform = create_platform(q.platform, exp.faults);
+  const bool is_reference = q.platform == "reference";
+  // The grid the runner's workers measured (the same calibration: deterministic platforms agree).
+  const SubpixelGrid effective =
+      is_reference ? SubpixelGrid{} : measure_effective_subpixel(*platform).grid;
   RecordingPlatform recorder(*platform);
   recorder.set_view(view);
-  out.record = measure_case(q.platform, recorder, view, prim, q.platform != "reference");
+  out.record = measure_case(q.platform, recorder, view, prim, CaseComparison(!is_reference, effective));
   const PixelSet& lit = recorder.last.lit;
   const PixelSet reference = rasterize_reference(view, prim);
+  PixelSet violating;
+  if (!is_reference) judge_primitive(view, prim, lit, effective, &violating);
+  out.violating = violating.size();
   for (const Pixel& p : lit) (reference.contains(p) ? out.both : out.platform_only) += 1;
   for (const Pixel& p : reference)
     if (!lit.contains(p)) ++out.reference_only;
@@ -183,7 +192,9 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   };
   mark(lit, 1);
   mark(reference, 2);
-  const Rgb8 colors[4] = {kUnlitColor, kPlatformOnlyColor, kReferenceOnlyColor, kBothColor};
+  mark(violating, 4);
+  const Rgb8 colors[8] = {kUnlitColor,     kPlatformOnlyColor, kReferenceOnlyColor, kBothColor,
+                          kViolationColor, kViolationColor,    kViolationColor,     kViolationColor};
 
   // Blocks, rows flipped: window row y (up) is image rows (shown.y1 - 1 - y) * S ... + S - 1.
   std::vector<uint8_t> rgb(std::size_t(out.width) * out.height * 3);
@@ -206,7 +217,8 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
                                          std::to_string(q.index) + ", view " +
                                          std::to_string(q.view) + " of " + q.run_dir +
                                          ": grey both, orange platform "
-                                         "only, blue reference only, red the ideal projection");
+                                         "only, blue reference only (both allowed by GL), black "
+                                         "a pixel GL forbids, red the ideal projection");
   OIIO::ImageBuf buf(spec, rgb.data());
 
   // The ideal projection, 1 px wide, on top. Window (x, y) -> image (column, row), clamped so

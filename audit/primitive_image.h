@@ -8,7 +8,8 @@
 //   when it is small (both sides <= kWholeWindowMax) or nothing is visible;
 // - draws each window pixel as a scale x scale block, rows flipped (GL window y is up, image rows
 //   go down): white = unlit, light grey = lit by both, orange = platform only, blue = reference
-//   only; blocks of scale >= 8 have a darker 1-px border, a pixel grid;
+//   only (both differences GL allows), black = a pixel no conforming implementation could light
+//   or leave dark (metrics/conformance.h); blocks of scale >= 8 have a darker 1-px border, a pixel grid;
 // - draws the ideal projection (clipping.h, window coordinates) as a 1-px red line on top: the
 //   clipped polygon's outline, the clipped segment, or a cross at a projected point.
 // The primitive is rendered once; the record printed with the image is measure_case()'s record of
@@ -40,6 +41,7 @@ constexpr Rgb8 kBothColor{200, 200, 200};
 constexpr Rgb8 kPlatformOnlyColor{230, 159, 0};   // Okabe-Ito orange
 constexpr Rgb8 kReferenceOnlyColor{0, 114, 178};  // Okabe-Ito blue
 constexpr Rgb8 kIdealColor{220, 0, 0};
+constexpr Rgb8 kViolationColor{0, 0, 0};
 
 struct ShowRequest {
   std::string run_dir;   // holds experiment.toml
@@ -59,6 +61,7 @@ struct PrimitiveImage {
   View view;
   Record record;                                            // measure_case() of this rendering
   int64_t both = 0, platform_only = 0, reference_only = 0;  // lit pixels, whole window
+  int64_t violating = 0;  // pixels of platform_only + reference_only that GL forbids
 };
 
 // Loads RUN/experiment.toml, renders primitive `index` of `kind` in `view` on `platform` in this

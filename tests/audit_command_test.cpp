@@ -118,8 +118,8 @@ TEST(AuditCommand, ARerunOfTheSameExperimentIsUnchanged) {
   EXPECT_EQ(j["counts"]["changed"], 0);
   EXPECT_EQ(j["distribution_tests"]["significant"], 0);
   EXPECT_EQ(read_text(dir + "/cur/audit/audit.md").rfind("# renderaudit audit: UNCHANGED", 0), 0u);
-  EXPECT_NE(read_text(dir + "/cur/audit/junit.xml").find("tests=\"5\" failures=\"0\""),
-            std::string::npos);  // drivers, shards, point/line/triangle group A
+  EXPECT_NE(read_text(dir + "/cur/audit/junit.xml").find("tests=\"8\" failures=\"0\""),
+            std::string::npos);  // drivers, shards, point/line/triangle group A and conformance
   const std::vector<ra::HistoryEntry> history = ra::read_history(dir + "/h.sqlite");
   ASSERT_EQ(history.size(), 1u);
   const ra::AuditSummary& s = history[0].summary;

@@ -172,13 +172,21 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
   const Image im = read_image(png);
   ASSERT_EQ(im.width, 256);  // --scale 4 on the whole 64 x 64 window
   ASSERT_EQ(im.height, 256);
-  EXPECT_EQ(blocks_with(im, 4, ra::kPlatformOnlyColor), runs);
-  EXPECT_EQ(blocks_with(im, 4, ra::kReferenceOnlyColor), runs);
+  // Of the 2 x runs differing pixels, those GL forbids (centres beyond the snapping allowance of
+  // every edge: metrics/conformance.h) are black, the others orange or blue.
+  const int black = blocks_with(im, 4, ra::kViolationColor);
+  EXPECT_GT(black, 0);
+  EXPECT_EQ(field(o.output, "violating_pixels"), std::to_string(black)) << o.output;
+  EXPECT_EQ(field(o.output, "conformance"), "violation") << o.output;
+  EXPECT_EQ(blocks_with(im, 4, ra::kPlatformOnlyColor) + blocks_with(im, 4, ra::kReferenceOnlyColor) +
+                black,
+            2 * runs);
   EXPECT_EQ(blocks_with(im, 4, ra::kBothColor), ref.size() - runs);
   EXPECT_EQ(field(o.output, "ref_diff"), std::to_string(2 * runs)) << o.output;
   EXPECT_NE(o.output.find("light grey = lit by both (" + std::to_string(ref.size() - runs) +
                           "), orange = platform (faulty) only (" + std::to_string(runs) +
-                          "), blue = reference only (" + std::to_string(runs) + ")"),
+                          "), blue = reference only (" + std::to_string(runs) +
+                          "), black = of those, pixels GL forbids (" + std::to_string(black) + ")"),
             std::string::npos)
       << o.output;
 }
