@@ -7,7 +7,9 @@
 //   region   the project's readback one primitive at a time: draw in the primitive's own colour,
 //            occlusion query, region glReadPixels (and its metrics, without the reference);
 //   project  everything `renderaudit run` does (measure_cases: small primitives batched under one
-//            proof, ideal geometry, metrics, reference rasterizer comparison).
+//            proof, ideal geometry, metrics, reference rasterizer comparison, conformance verdict
+//            on the platform's measured effective subpixel grid);
+//   unjudged the same without the conformance verdict: project / unjudged - 1 is its cost.
 // Mesa picks its driver once per process, so each platform is measured in a child process
 // (`readback_bench --platform P`), one per platform and round, the platforms alternating; the
 // parent gathers the rows into one table (and EGL / OSMesa ratios) and a JSON file.
@@ -29,6 +31,7 @@
 #include <vector>
 
 #include "metrics/case_measurement.h"
+#include "metrics/effective_subpixel.h"
 #include "runner/experiment.h"
 #include "platforms/platform.h"
 #include "stats/descriptive.h"
@@ -73,7 +76,7 @@ nlohmann::json summary_row(const std::string& platform, Kind kind, int window, d
                            int primitives, const Timings& t) {
   nlohmann::json row = {{"platform", platform}, {"kind", kind_name(kind)}, {"window", window},
                         {"fov_deg", fov},       {"primitives", primitives}};
-  for (const char* m : {"floor", "batched", "naive", "region", "project"}) {
+  for (const char* m : {"floor", "batched", "naive", "region", "project", "unjudged"}) {
     row[std::string(m) + "_us"] = median(t.per_primitive.at(m));
     row[std::string(m) + "_mean_us"] = mean(t.per_primitive.at(m));
   }
@@ -89,6 +92,18 @@ int measure_platform(const Options& opt) {
     return 2;
   }
   const char* methods[] = {"floor", "naive", "region", "project", "batched"};
+  // The grid `run`'s workers would measure (metrics/effective_subpixel.h).
+  SubpixelGrid effective;
+  {
+    auto probe = create_gl_platform(*spec, ReadbackMethod::kRegionWithProof);
+    probe->set_view(bench_view(30, 128));  // context made and shaders compiled: not timed below
+    const auto t0 = Clock::now();
+    effective = measure_effective_subpixel(*probe).grid;
+    std::printf("%s: effective subpixel grid %s, measured in %.1f ms (every worker of `run` "
+                "pays this once)\n",
+                opt.platform.c_str(), subpixel_grid_text(effective).c_str(),
+                std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+  }
   for (Kind kind : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
     for (int window : {128, 907}) {
       Timings pooled;
@@ -123,14 +138,23 @@ int measure_platform(const Options& opt) {
               }
               continue;
             }
-            if (m == 3) {  // exactly what `renderaudit run` does, chunk by chunk
-              std::vector<double>& us = t.per_primitive["project"];
+            if (m == 3) {
+              // Exactly what `renderaudit run` does, chunk by chunk, with and without the
+              // conformance verdict on the same platform, chunk by chunk, the order alternating:
+              // the two are compared side by side, not across rounds.
+              CaseComparison judged(true, effective), unjudged(true, effective);
+              unjudged.conformance = false;
               for (size_t i = 0; i < prims.size(); i += kChunk) {
                 const std::vector<Primitive> chunk(
                     prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
-                std::vector<double> cost;
-                measure_cases(opt.platform, *platform, view, chunk, true, &cost);
-                us.insert(us.end(), cost.begin(), cost.end());
+                for (int k = 0; k < 2; ++k) {
+                  const bool judge = (k == 0) == ((i / kChunk) % 2 == 0);
+                  std::vector<double> cost;
+                  measure_cases(opt.platform, *platform, view, chunk, judge ? judged : unjudged,
+                                &cost);
+                  std::vector<double>& us = t.per_primitive[judge ? "project" : "unjudged"];
+                  us.insert(us.end(), cost.begin(), cost.end());
+                }
               }
               continue;
             }
@@ -224,25 +248,31 @@ int run_children(const Options& opt, const char* self) {
       "platforms alternating) per field of view ('both'\n"
       "pools the two). region: the project's readback and metrics one primitive at a time; project:\n"
       "what `run` spends per primitive (its batch's drawing and proof shared equally, plus its own\n"
-      "geometry, metrics and reference comparison); batched: the floor with one glFinish per %d\n"
-      "primitives. ratios: of medians, and naive/project of means.\n",
+      "geometry, metrics, reference comparison and conformance verdict); batched: the floor with\n"
+      "one glFinish per %d primitives; verdict: what the conformance verdict adds to project\n"
+      "(project / project without it - 1, of means). ratios: of medians, and naive/project of\n"
+      "means.\n",
       opt.primitives, opt.rounds, kChunk);
-  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %8s %7s %7s\n", "platform", "kind",
+  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s\n", "platform", "kind",
               "window", "fov", "floor", "batched", "naive", "region", "project", "floor", "project",
-              "project", "naive");
-  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %8s %7s %7s\n", "", "", "", "", "median",
-              "median", "median", "median", "median", "mean", "mean", "/floor", "/proj");
+              "project", "naive", "verdict");
+  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s\n", "", "", "", "",
+              "median", "median", "median", "median", "median", "mean", "mean", "/floor", "/proj",
+              "cost");
   for (const auto& r : rows) {
     const double fov = r["fov_deg"];
     const std::string fov_text = fov == 0 ? "both" : std::to_string(int(fov));
     const double floor = r["floor_us"], project = r["project_us"];
-    std::printf("%-16s %-9s %6d %5s %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %7.2f %7.1f\n",
+    const double verdict_cost =
+        r["project_mean_us"].get<double>() / r["unjudged_mean_us"].get<double>() - 1;
+    std::printf("%-16s %-9s %6d %5s %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %7.2f %7.1f %7.1f%%\n",
                 r["platform"].get<std::string>().c_str(), r["kind"].get<std::string>().c_str(),
                 r["window"].get<int>(), fov_text.c_str(), floor, r["batched_us"].get<double>(),
                 r["naive_us"].get<double>(),
                 r["region_us"].get<double>(), project, r["floor_mean_us"].get<double>(),
                 r["project_mean_us"].get<double>(), project / floor,
-                r["naive_mean_us"].get<double>() / r["project_mean_us"].get<double>());
+                r["naive_mean_us"].get<double>() / r["project_mean_us"].get<double>(),
+                100 * verdict_cost);
   }
   // EGL against OSMesa on the same driver: the back end's own cost
   bool header = false;

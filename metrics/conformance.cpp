@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
-#include <map>
 #include <optional>
 #include <vector>
 
@@ -30,14 +29,6 @@ struct Violations {
   }
 };
 
-// Euclidean distance from q to the segment a-b (a == b: to the point).
-double distance_to_segment(Vec2 q, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a, aq = q - a;
-  const double len2 = dot(ab, ab);
-  const double t = len2 > 0 ? std::clamp(dot(aq, ab) / len2, 0.0, 1.0) : 0.0;
-  return length(q - (a + t * ab));
-}
-
 // The pixels within one unit in x and in y of a pixel of `s` (its 3 x 3 dilation).
 PixelSet dilate_by_one(const PixelSet& s) {
   std::vector<PixelRun> runs;
@@ -57,8 +48,41 @@ PixelSet dilate_by_one(const PixelSet& s) {
   return out;
 }
 
+// Fragments beyond the first in each column (x-major) or row (y-major) of `lit`, and which.
+int64_t extra_per_line(const PixelSet& lit, bool by_column, std::vector<Pixel>* where) {
+  if (lit.empty()) return 0;
+  int64_t extra = 0;
+  if (!by_column) {  // runs come row by row: count each row's pixels in one pass
+    const std::vector<PixelRun>& runs = lit.runs();
+    for (size_t i = 0; i < runs.size();) {
+      size_t j = i;
+      int64_t n = 0;
+      for (; j < runs.size() && runs[j].y == runs[i].y; ++j) n += runs[j].length();
+      if (n > 1) {
+        extra += n - 1;
+        if (where)
+          for (size_t k = i; k < j; ++k)
+            for (int32_t x = runs[k].x_begin; x < runs[k].x_end; ++x) where->push_back({x, runs[k].y});
+      }
+      i = j;
+    }
+    return extra;
+  }
+  int32_t x0 = INT32_MAX, x1 = INT32_MIN;
+  for (const PixelRun& r : lit.runs()) x0 = std::min(x0, r.x_begin), x1 = std::max(x1, r.x_end);
+  std::vector<int32_t> count(size_t(int64_t(x1) - x0), 0);  // a segment's columns: O(length)
+  for (const PixelRun& r : lit.runs())
+    for (int32_t x = r.x_begin; x < r.x_end; ++x) ++count[size_t(x - x0)];
+  for (int32_t n : count) extra += n > 1 ? n - 1 : 0;
+  if (where && extra > 0)
+    for (const Pixel& p : lit)
+      if (count[size_t(p.x - x0)] > 1) where->push_back(p);
+  return extra;
+}
+
 // 14.5.1's rules 1-3 for `lit` against the diamond-exit pixels `diamond`. The count rule applies
-// only when `count_applies` (see judge_segment); `majors` says which axes may be the major one.
+// only when `count_applies` (see judge_segment); rule 3 is taken under each allowed major axis,
+// and the one with fewer extra fragments counts.
 Violations line_rules(const PixelSet& lit, const PixelSet& diamond, bool count_applies,
                       bool x_major_allowed, bool y_major_allowed) {
   Violations v;
@@ -66,20 +90,11 @@ Violations line_rules(const PixelSet& lit, const PixelSet& diamond, bool count_a
   v.add("line-deviation", deviating.size());
   for (const Pixel& p : deviating) v.where.push_back(p);
   if (count_applies) v.add("line-count", std::abs(lit.size() - diamond.size()) - 1);
-  // Rule 3 under each allowed major axis; the one with fewer extra fragments counts.
-  std::map<int32_t, int64_t> per_column, per_row;
-  for (const Pixel& p : lit) ++per_column[p.x], ++per_row[p.y];
-  auto extra = [](const std::map<int32_t, int64_t>& m) {
-    int64_t e = 0;
-    for (const auto& [line, n] : m) e += n - 1;
-    return e;
-  };
-  const int64_t by_x = x_major_allowed ? extra(per_column) : INT64_MAX;
-  const int64_t by_y = y_major_allowed ? extra(per_row) : INT64_MAX;
+  const int64_t by_x = x_major_allowed ? extra_per_line(lit, true, nullptr) : INT64_MAX;
+  const int64_t by_y = y_major_allowed ? extra_per_line(lit, false, nullptr) : INT64_MAX;
   const bool x = by_x <= by_y;
   v.add("line-column", x ? by_x : by_y);
-  for (const Pixel& p : lit)
-    if ((x ? per_column[p.x] : per_row[p.y]) > 1) v.where.push_back(p);
+  if ((x ? by_x : by_y) > 0) extra_per_line(lit, x, &v.where);
   return v;
 }
 
@@ -207,24 +222,30 @@ ConformanceVerdict judge_polygon(const ClippedPolygon& polygon, double magnitude
     return verdict(Conformance::kSnapped);
   // The edges a snap or rounding can move, each with its allowance (a vertex moves by up to the
   // allowance in x and in y: sqrt(2) times that in distance). Edges on the window border are cut
-  // by the window itself and never move.
+  // by the window itself and never move. Distances are compared squared (no sqrt per pixel).
   struct Edge {
-    Vec2 a, b;
-    double allowance;
+    Vec2 a, ab;
+    double len2, allowance2;
   };
   std::vector<Edge> edges;
   const std::vector<Vec2>& p = polygon.vertices;
   const size_t n = p.size();
+  const double allowance = std::sqrt(2.0) * conformance_allowance(magnitude, width, height);
   for (size_t i = 0; i < n; ++i) {
     const size_t j = (i + 1) % n;
     if (n > 2 && i < polygon.on_window_border.size() && polygon.on_window_border[i]) continue;
     if (n == 2 && i == 1) break;  // a degenerate polygon: one segment
-    edges.push_back({p[i], p[j], std::sqrt(2.0) * conformance_allowance(magnitude, width, height)});
+    const Vec2 ab = p[j] - p[i];
+    edges.push_back({p[i], ab, dot(ab, ab), allowance * allowance});
   }
   auto allowed = [&](Pixel px) {
     const Vec2 c{px.x + 0.5, px.y + 0.5};
-    for (const Edge& e : edges)
-      if (distance_to_segment(c, e.a, e.b) <= e.allowance) return true;
+    for (const Edge& e : edges) {
+      const Vec2 ac = c - e.a;
+      const double t = e.len2 > 0 ? std::clamp(dot(ac, e.ab) / e.len2, 0.0, 1.0) : 0.0;
+      const Vec2 d = ac - t * e.ab;
+      if (dot(d, d) <= e.allowance2) return true;
+    }
     return false;
   };
   Violations v;
