@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "stats/binomial_interval.h"
+
 namespace ra::analysis {
 namespace {
 
@@ -343,6 +345,51 @@ Table paper_comparison_table(const RunRecords& run, const GroupSummaries& summar
     t.notes.push_back("Paper Table " + paper.number +
                       (paper.page ? " (page " + std::to_string(paper.page) + ")" : "") + ": " +
                       paper.reading + ".");
+  return t;
+}
+
+// So that two platforms' (or the paper's) counts can be compared with their uncertainty.
+Table visibility_share_table(const RunRecords& run, PrimitiveKind kind) {
+  const int number = kind == PrimitiveKind::kPoint ? 2 : kind == PrimitiveKind::kLine ? 5 : 8;
+  Table t;
+  t.file_stem = "table0" + std::to_string(number) + "s_" + kind_name(kind) + "_visibility_shares";
+  t.title = "Table " + std::to_string(number) + "s (supplements Table " + std::to_string(number) +
+            "): the share of " + kind_label_plural(kind) +
+            " in each visibility category, percent of the view group's ok records, with "
+            "Clopper-Pearson 95% intervals";
+  bool multiple = kind == PrimitiveKind::kPoint;
+  for (const ViewGroup& g : run.groups)
+    if (g.kind == kind) multiple = multiple || g.counts().by_class[4] > 0;
+  t.columns = {{"Platform", Align::kLeft},       {"View", Align::kLeft},
+               {"Records", Align::kRight},       {"True visible", Align::kRight},
+               {"True invisible", Align::kRight}, {"False visible", Align::kRight},
+               {"False invisible", Align::kRight}};
+  if (multiple) t.columns.push_back({"Multiple visible", Align::kRight});
+  const int classes = multiple ? 5 : 4;
+  for (std::size_t p = 0; p < run.platforms.size(); ++p) {
+    bool first = true;
+    for (const ViewGroup* g : run.groups_of(p, kind)) {
+      if (first) t.rules_before.push_back(t.rows.size());
+      first = false;
+      const VisibilityCounts c = g->counts();
+      std::uint64_t ok = 0;
+      for (std::uint64_t n : c.by_class) ok += n;
+      std::vector<TableCell> row = {text_cell(run.platforms[p]), text_cell(g->label),
+                                    count_cell(ok)};
+      for (int v = 0; v < classes; ++v) {
+        const std::uint64_t k = c.by_class[static_cast<std::size_t>(v)];
+        const stats::ProportionInterval ci = stats::clopper_pearson(k, ok);
+        const double share = ok ? 100.0 * double(k) / double(ok) : 0.0;
+        row.push_back({format_fixed(share, 2) + " (" + format_fixed(100 * ci.low, 2) + "-" +
+                           format_fixed(100 * ci.high, 2) + ")",
+                       format_significant(share, 9)});
+      }
+      t.rows.push_back(std::move(row));
+    }
+  }
+  t.notes = {"Shares of the records with status ok; the interval is exact (Clopper-Pearson, "
+             "stats/binomial_interval.h). CSV: the share alone.",
+             group_note(run, kind)};
   return t;
 }
 
@@ -822,6 +869,7 @@ std::vector<Table> paper_tables(const RunRecords& run, const TableOptions& optio
   for (PrimitiveKind kind : kAllKinds) {
     if (!has(kind)) continue;
     tables.push_back(visibility_table(run, kind));
+    tables.push_back(visibility_share_table(run, kind));
     metric_tables(kind, false);
   }
   for (PrimitiveKind kind : kAllKinds) {

@@ -92,6 +92,9 @@ std::string quantile_label(stats::QuantileDefinition q);
 
 // Table 2 (points), 5 (lines) or 8 (triangles): visibility-class counts by platform and view group.
 Table visibility_table(const RunRecords& run, PrimitiveKind kind);
+// Its supplement (table02s, 05s, 08s): each class as a percentage of the group's ok records with
+// its Clopper-Pearson 95% interval.
+Table visibility_share_table(const RunRecords& run, PrimitiveKind kind);
 
 // A metric table: median and IQR by view group (rows) and platform (column blocks).
 Table metric_table(const RunRecords& run, const GroupSummaries& summaries,

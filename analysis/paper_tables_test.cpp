@@ -144,6 +144,20 @@ TEST_F(PaperTables, VisibilityCounts) {
   EXPECT_NE(t.notes[1].find("A = views 1, 2 (FOV 30, window 128)"), std::string::npos);
 }
 
+// Shares of the ok records (the timeout apart) with Clopper-Pearson intervals: SciPy 1.10's
+// binomtest(k, 14).proportion_ci(0.95, "exact") for p1's group A.
+TEST_F(PaperTables, VisibilitySharesWithIntervals) {
+  const Table t = visibility_share_table(run_, PrimitiveKind::kPoint);
+  EXPECT_EQ(t.file_stem, "table02s_point_visibility_shares");
+  ASSERT_EQ(t.rows.size(), 4u);
+  EXPECT_EQ(texts(t.rows[0]),
+            (std::vector<std::string>{"p1", "A", "14", "64.29 (35.14-87.24)", "14.29 (1.78-42.81)",
+                                      "7.14 (0.18-33.87)", "7.14 (0.18-33.87)",
+                                      "7.14 (0.18-33.87)"}));
+  EXPECT_EQ(t.rows[3][6].text, "0.00 (0.00-84.19)");  // p2 A: 0 of 2 false invisible
+  EXPECT_EQ(t.rows[0][3].csv, "64.2857143");
+}
+
 TEST_F(PaperTables, PhysicalUnitsForSeveralPitches) {
   TableOptions o;
   o.pixel_pitches_mm = {0.255, 1.5};
