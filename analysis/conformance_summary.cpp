@@ -4,7 +4,6 @@
 
 #include "analysis/run_records.h"
 #include "metrics/records_reader.h"
-#include "stats/binomial_interval.h"
 
 namespace ra::analysis {
 
@@ -51,19 +50,6 @@ ConformanceSummary summarize_conformance(const std::vector<std::string>& records
   });
   return s;
 }
-
-namespace {
-
-// "97.50 (97.1-97.9)": a share in percent with its Clopper-Pearson 95% interval.
-TableCell share_cell(std::uint64_t k, std::uint64_t n) {
-  const stats::ProportionInterval ci = stats::clopper_pearson(k, n);
-  const double p = n ? 100.0 * double(k) / double(n) : 0.0;
-  return {format_fixed(p, 2) + " (" + format_fixed(100 * ci.low, 2) + "-" +
-              format_fixed(100 * ci.high, 2) + ")",
-          format_significant(p, 9)};
-}
-
-}  // namespace
 
 Table conformance_table(const ConformanceSummary& s) {
   Table t;

@@ -6,8 +6,6 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "stats/binomial_interval.h"
-
 namespace ra::analysis {
 namespace {
 
@@ -376,14 +374,8 @@ Table visibility_share_table(const RunRecords& run, PrimitiveKind kind) {
       for (std::uint64_t n : c.by_class) ok += n;
       std::vector<TableCell> row = {text_cell(run.platforms[p]), text_cell(g->label),
                                     count_cell(ok)};
-      for (int v = 0; v < classes; ++v) {
-        const std::uint64_t k = c.by_class[static_cast<std::size_t>(v)];
-        const stats::ProportionInterval ci = stats::clopper_pearson(k, ok);
-        const double share = ok ? 100.0 * double(k) / double(ok) : 0.0;
-        row.push_back({format_fixed(share, 2) + " (" + format_fixed(100 * ci.low, 2) + "-" +
-                           format_fixed(100 * ci.high, 2) + ")",
-                       format_significant(share, 9)});
-      }
+      for (int v = 0; v < classes; ++v)
+        row.push_back(share_cell(c.by_class[static_cast<std::size_t>(v)], ok));
       t.rows.push_back(std::move(row));
     }
   }

@@ -7,6 +7,8 @@
 #include <regex>
 #include <stdexcept>
 
+#include "stats/binomial_interval.h"
+
 namespace ra::analysis {
 namespace {
 
@@ -64,6 +66,14 @@ TableCell significant_cell(double value, int significant) {
 }
 
 TableCell count_cell(std::uint64_t n) { return text_cell(std::to_string(n)); }
+
+TableCell share_cell(std::uint64_t k, std::uint64_t n) {
+  const stats::ProportionInterval ci = stats::clopper_pearson(k, n);
+  const double share = n ? 100.0 * double(k) / double(n) : 0.0;
+  return {format_fixed(share, 2) + " (" + format_fixed(100 * ci.low, 2) + "-" +
+              format_fixed(100 * ci.high, 2) + ")",
+          format_significant(share, 9)};
+}
 
 void check_table(const Table& t) {
   if (t.columns.empty()) throw std::logic_error("table " + t.file_stem + ": no columns");

@@ -40,6 +40,9 @@ TableCell number_cell(double value, int decimals);
 TableCell significant_cell(double value, int significant = 3);
 // An exact count.
 TableCell count_cell(std::uint64_t n);
+// k of n as a percentage with its Clopper-Pearson 95% interval, "97.50 (97.10-97.86)"; CSV: the
+// percentage alone (stats/binomial_interval.h). n = 0 reads "0.00 (0.00-100.00)".
+TableCell share_cell(std::uint64_t k, std::uint64_t n);
 
 // "%.*f" without the sign of a zero; throws std::logic_error on a non-finite value.
 std::string format_fixed(double value, int decimals);
