@@ -88,7 +88,7 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
       {"platforms", "window", "fov_deg", "near", "far", "repetitions", "system_task_renders",
        "object_samples", "system_task_scene", "system_task_frame", "cache_size", "seed", "gpu_timer", "frame_stride", "pos_repetitions",
        "alpha_min_deg",
-       "phi_deg", "pos_grid", "pos_prune_alpha_deg", "pos_lookup", "platform"});
+       "phi_deg", "pos_grid", "pos_prune_alpha_deg", "pos_lookup", "platform", "study_runs"});
 
   if (const auto* n = t.get("platforms")) {
     const auto& a = array_of(loc, *n, "timing.platforms", 0, "a non-empty array of platform names");
@@ -123,6 +123,8 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
     loc.fail(t.get("near"), "'timing.near' must be below far (" + std::to_string(s.camera.far) + ")");
   }
   parse_work(loc, t, "timing.", s.work);
+  if (const auto* n = t.get("study_runs"))
+    s.study_runs = int(integer(loc, *n, "timing.study_runs", 1, 100));
   if (const auto* n = t.get("cache_size"))
     s.cache_size = unsigned(integer(loc, *n, "timing.cache_size", 3, 1024));
   if (const auto* n = t.get("seed"))

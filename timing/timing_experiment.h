@@ -24,6 +24,8 @@
 //   pos_grid = [6, 8, 3]            # per-object table points in alpha, gamma, phi: 2..64, 1..64, 1..64
 //   pos_prune_alpha_deg = 3         # table rows below this alpha: one measurement, [0, 180)
 //   pos_lookup = "interpolate"      # or "nearest"
+//   study_runs = 1                  # independent runs of the whole measurement, 1..100 (Table 6
+//                                   # and c then also as mean and spread over the runs)
 //   [timing.platform."osmesa-softpipe"]   # optional per-platform overrides of:
 //   repetitions = 3                 #   repetitions, system_task_renders, object_samples,
 //   frame_stride = 2                #   frame_stride, pos_repetitions
@@ -68,6 +70,10 @@ struct TimingSettings {
   std::vector<SceneSpec> scenes;
   std::string system_task_scene;  // a scene's name; empty: the first scene
   int system_task_frame = -1;     // a frame of that scene's camera path; -1: the middle one
+  // Independent runs of the whole measurement (every platform measured afresh each time), to see
+  // how far Table 6 and c move between runs; not `repetitions`, which counts the timed draws of
+  // one measurement. 1: the single study as before.
+  int study_runs = 1;
 
   const WorkSettings& work_for(const std::string& platform) const;
 };
