@@ -1,12 +1,14 @@
 // End to end: `renderaudit run experiments/timing_smoke.toml` (a [timing] file: the same as
 // `renderaudit timing`) on llvmpipe writes a timing.json
 // with real, positive times, fits with positive H2 / H4 coefficients, Table 6 for every scene and
-// method, the GPU timer's availability, the CSV files and figures beside it, and its report.
+// method, the GPU timer's availability, the CSV files and figures beside it, and its report; with
+// study_runs = 2 also Table 6 and c over the two runs, with the wins of each method.
 #include <gtest/gtest.h>
 #include <sstream>
 #include <map>
 #include <algorithm>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/cli_harness.h"
+#include "util/atomic_file.h"
 
 namespace ra {
 namespace {
@@ -46,6 +49,10 @@ TEST(TimingCommand, SmokeStudyOnLlvmpipe) {
   const nlohmann::json& p = j.at("platforms")[0];
   EXPECT_EQ(p.at("name"), "osmesa-llvmpipe");
   EXPECT_TRUE(p.at("error").is_null());
+  // one run (study_runs absent): nothing of the repeated runs is written
+  EXPECT_FALSE(j.contains("repeated"));
+  EXPECT_FALSE(j.at("experiment").at("settings").contains("study_runs"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/table6_repeated.csv"));
   EXPECT_NE(p.at("renderer").at("renderer").get<std::string>().find("llvmpipe"), std::string::npos);
 
   // GPU timer availability is reported, and used when supported
@@ -174,6 +181,111 @@ TEST(TimingCommand, SmokeStudyOnLlvmpipe) {
   const auto text = testing_cli::run_command("pdftotext " + dir + "/report/report.pdf -");
   EXPECT_NE(text.output.find("Table 6, osmesa-llvmpipe"), std::string::npos);
   EXPECT_NE(r.output.find(std::to_string(figures) + " figures"), std::string::npos) << r.output;
+  std::filesystem::remove_all(dir);
+}
+
+// study_runs = 2: the smoke study measured twice, one run after the other. The study's files are
+// run 1's; timing.json, timing.md, table6_repeated.csv and the report add Table 6 and c over both
+// runs, each run's ranking, and how often each method won (once per scene and run).
+TEST(TimingCommand, RepeatedRunsGiveSpreadAndWins) {
+  const std::string dir = fresh_dir("timing_runs");
+  std::string text = read_file(RA_SOURCE_DIR "/experiments/timing_smoke.toml");
+  const std::size_t at = text.find("[timing]\n");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + 9, "study_runs = 2\n");
+  testing_cli::write_text(dir + "/runs.toml", text);
+  const auto o = run_renderaudit("timing " + dir + "/runs.toml --out " + dir +
+                                 "/out --platform osmesa-llvmpipe --quiet --no-figures");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("osmesa-llvmpipe over 2 runs (0 failed"), std::string::npos) << o.output;
+  const std::string out = dir + "/out";
+  const nlohmann::json j = nlohmann::json::parse(read_file(out + "/timing.json"));
+  EXPECT_EQ(j.at("experiment").at("settings").at("study_runs"), 2);
+  const nlohmann::json& rep = j.at("repeated");
+  EXPECT_EQ(rep.at("runs"), 2);
+  EXPECT_EQ(rep.at("primary_run"), 1);
+  ASSERT_EQ(rep.at("platforms").size(), 1u);
+  const nlohmann::json& rp = rep.at("platforms")[0];
+  const nlohmann::json& p = j.at("platforms")[0];
+  EXPECT_EQ(rp.at("name"), "osmesa-llvmpipe");
+  EXPECT_EQ(rp.at("runs"), 2);
+  EXPECT_EQ(rp.at("failed"), 0);
+  EXPECT_EQ(rp.at("wall_s").size(), 2u);
+  EXPECT_EQ(rp.at("wall_s")[0].get<double>(), p.at("wall_s").get<double>());
+
+  // c over the runs: run 1's is the study's c; mean of the two inside its t interval
+  const nlohmann::json& c = rp.at("system_task_c");
+  ASSERT_EQ(c.at("per_run_us").size(), 2u);
+  const double c1 = c.at("per_run_us")[0], c2 = c.at("per_run_us")[1];
+  EXPECT_EQ(c1, p.at("system_task").at("c_us").get<double>());
+  EXPECT_GE(c2, 0);
+  EXPECT_NEAR(c.at("mean_us").get<double>(), (c1 + c2) / 2, 1e-9 * (1 + c1 + c2));
+  EXPECT_EQ(c.at("min_us").get<double>(), std::min(c1, c2));
+  EXPECT_EQ(c.at("max_us").get<double>(), std::max(c1, c2));
+  EXPECT_LE(c.at("ci_low_us").get<double>(), std::min(c1, c2));  // t_0.975(1) = 12.7 > 1
+  EXPECT_GE(c.at("ci_high_us").get<double>(), std::max(c1, c2));
+
+  // Table 6 over the runs: run 1's value is the study's Table 6; every method ranked once per run;
+  // the wins of each scene add up to the runs, as do those among the paper's forms
+  const std::vector<std::string> methods{"h1", "h2", "h3", "h4", "h1+b", "h2+b", "h3+b", "h4+b", "pos"};
+  EXPECT_EQ(rp.at("methods").get<std::vector<std::string>>(), methods);
+  for (const char* scene : {"city", "terrain", "forest"}) {
+    for (const std::string& m : methods) {
+      const nlohmann::json& cell = rp.at("table6_ms2").at(scene).at(m);
+      ASSERT_EQ(cell.at("per_run").size(), 2u) << scene << " " << m;
+      const double a = cell.at("per_run")[0], b = cell.at("per_run")[1];
+      EXPECT_EQ(a, p.at("table6_ms2").at(scene).at(m).get<double>()) << scene << " " << m;
+      EXPECT_NEAR(cell.at("mean").get<double>(), (a + b) / 2, 1e-9 * (1 + a + b));
+      EXPECT_NEAR(cell.at("sd").get<double>(), std::fabs(a - b) / std::sqrt(2.0), 1e-9 * (1 + a + b));
+    }
+    const nlohmann::json& rk = rp.at("ranking").at(scene);
+    ASSERT_EQ(rk.at("per_run").size(), 2u);
+    int wins = 0, paper_wins = 0;
+    for (const auto& [m, k] : rk.at("wins").items()) wins += k.get<int>();
+    for (const auto& [m, k] : rk.at("paper_wins").items()) paper_wins += k.get<int>();
+    EXPECT_EQ(wins, 2) << scene;
+    EXPECT_EQ(paper_wins, 2) << scene;
+    for (const auto& order : rk.at("per_run")) {
+      std::vector<std::string> sorted = order.get<std::vector<std::string>>();
+      std::sort(sorted.begin(), sorted.end());
+      std::vector<std::string> all = methods;
+      std::sort(all.begin(), all.end());
+      EXPECT_EQ(sorted, all);
+      EXPECT_GE(rk.at("wins").at(order[0].get<std::string>()).get<int>(), 1);
+    }
+  }
+
+  // the CSV: one row per scene and method, wins adding up to the runs per scene
+  std::ifstream csv(out + "/table6_repeated.csv");
+  std::string head, line;
+  std::getline(csv, head);
+  EXPECT_EQ(head, "platform,scene,method,runs,mean_ms2,sd_ms2,min_ms2,max_ms2,ci_low_ms2,"
+                  "ci_high_ms2,confidence,wins,paper_wins,rank_per_run,ms2_per_run");
+  std::map<std::string, int> csv_wins;
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> cells;
+    std::stringstream rs(line);
+    for (std::string cell; std::getline(rs, cell, ',');) cells.push_back(cell);
+    ASSERT_GE(cells.size(), 12u) << line;
+    csv_wins[cells[1]] += std::stoi(cells[11]);
+    ++rows;
+  }
+  EXPECT_EQ(rows, 3 * 9);
+  EXPECT_EQ(csv_wins, (std::map<std::string, int>{{"city", 2}, {"forest", 2}, {"terrain", 2}}));
+  EXPECT_TRUE(std::filesystem::exists(out + "/system_task_c_repeated.csv"));
+
+  // timing.md and the report made from it show the repeated Table 6 and the wins
+  const std::string md = read_file(out + "/timing.md");
+  EXPECT_NE(md.find("### Table 6 over 2 runs, osmesa-llvmpipe"), std::string::npos);
+  EXPECT_NE(md.find("### Which method was best, osmesa-llvmpipe: runs won out of 2"), std::string::npos);
+  EXPECT_NE(md.find("### System task c (99%) over 2 runs"), std::string::npos);
+  EXPECT_NE(md.find("### Table 6, osmesa-llvmpipe"), std::string::npos);  // run 1's, as before
+  const auto r = run_renderaudit("report " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto pdf = testing_cli::run_command("pdftotext " + out + "/report/report.pdf -");
+  EXPECT_NE(pdf.output.find("Table 6 over 2 runs, osmesa-llvmpipe"), std::string::npos);
+  EXPECT_NE(pdf.output.find("Which method was best"), std::string::npos);
   std::filesystem::remove_all(dir);
 }
 

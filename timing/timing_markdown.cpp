@@ -28,6 +28,104 @@ std::string header(const std::vector<std::string>& names, size_t left_columns) {
   return s + "\n";
 }
 
+// "mean +- sd" of a spread of timing.json's `repeated` block (keys with `unit` appended), scaled.
+std::string mean_sd(const json& spread, const std::string& unit = "", double scale = 1) {
+  auto v = [&](const char* k) {
+    const json x = spread.value(std::string(k) + unit, json());
+    return x.is_number() ? json(x.get<double>() * scale) : json();
+  };
+  return num(v("mean")) + " +- " + num(v("sd"), "%.2g");
+}
+
+// "lo - hi" of two numbers of a spread, scaled.
+std::string range(const json& spread, const std::string& lo, const std::string& hi,
+                  double scale = 1) {
+  auto v = [&](const std::string& k) {
+    const json x = spread.value(k, json());
+    return x.is_number() ? json(x.get<double>() * scale) : json();
+  };
+  return num(v(lo)) + " - " + num(v(hi));
+}
+
+// Table 6 and c over the repeated runs (timing.json's `repeated`, repeated_runs.h).
+void repeated_markdown(const json& rep, std::ostringstream& md) {
+  const std::string n = std::to_string(rep.value("runs", 0));
+  const std::string ci = num(json(100 * rep.value("confidence", 0.95)), "%.0f") + "%";
+  md << "## Repeated runs: Table 6 and c over " << n << " independent measurements\n\n"
+     << "The study was measured " << n << " times, one run after the other: in each run every "
+        "platform was measured afresh (frame base, object measurements, camera paths, per-object "
+        "tables, system task) with the same experiment and seed, so the spread below is that of "
+        "the measurement on this machine, not of the sampled viewpoints. The tables above are run "
+     << rep.value("primary_run", 1)
+     << "'s. Spread: SD across runs (n - 1), min - max, and the Student-t " << ci
+     << " interval of the mean (wide with few runs: t = 12.7 for 2, 4.3 for 3; a bound below 0, "
+        "where no squared error lies, says only that the runs are too few). A method wins a run "
+        "when its average squared error is the lowest of the scene's row.\n\n";
+
+  md << "### System task c (99%) over " << n << " runs\n\n"
+     << header({"Platform", "Runs ok", "Failed", "c mean +- SD, ms", "Min - max, ms",
+                ci + " interval of the mean, ms"}, 1);
+  for (const json& p : rep.value("platforms", json::array())) {
+    const json c = p.value("system_task_c", json::object());
+    md << row({p.value("name", ""), std::to_string(p.value("runs", 0)),
+               std::to_string(p.value("failed", 0)), mean_sd(c, "_us", 1e-3),
+               range(c, "min_us", "max_us", 1e-3), range(c, "ci_low_us", "ci_high_us", 1e-3)});
+  }
+  md << "\n";
+
+  for (const json& p : rep.value("platforms", json::array())) {
+    const std::string name = p.value("name", "");
+    const std::vector<std::string> methods = p.value("methods", std::vector<std::string>{});
+    const json t6 = p.value("table6_ms2", json::object());
+    const json ranking = p.value("ranking", json::object());
+    if (t6.empty()) continue;
+    std::vector<std::string> cols = {"Scene"};
+    cols.insert(cols.end(), methods.begin(), methods.end());
+    md << "### Table 6 over " << n << " runs, " << name
+       << ": mean +- SD of the average squared error (ms^2)\n\n"
+       << header(cols, 1);
+    for (const auto& [scene, by_method] : t6.items()) {
+      std::vector<std::string> cells = {scene};
+      for (const auto& m : methods) cells.push_back(mean_sd(by_method.value(m, json::object())));
+      md << row(cells);
+    }
+    md << "\n### Which method was best, " << name << ": runs won out of " << n
+       << " (all methods; in brackets among the paper's forms h1-h4 and pos)\n\n"
+       << header(cols, 1);
+    for (const auto& [scene, rk] : ranking.items()) {
+      std::vector<std::string> cells = {scene};
+      const json wins = rk.value("wins", json::object());
+      const json paper = rk.value("paper_wins", json::object());
+      for (const auto& m : methods)
+        cells.push_back(std::to_string(wins.value(m, 0)) +
+                        (paper.contains(m) ? " (" + std::to_string(paper.value(m, 0)) + ")" : ""));
+      md << row(cells);
+    }
+    md << "\n### Table 6 over " << n << " runs, " << name << ", cell by cell (ms^2)\n\n"
+       << header({"Scene", "Method", "Mean", "SD", "Min - max", ci + " interval of the mean",
+                  "Wins"}, 2);
+    for (const auto& [scene, by_method] : t6.items()) {
+      const json wins = ranking.value(scene, json::object()).value("wins", json::object());
+      for (const auto& m : methods) {
+        const json c = by_method.value(m, json::object());
+        md << row({scene, m, num(c.value("mean", json())), num(c.value("sd", json()), "%.2g"),
+                   range(c, "min", "max"), range(c, "ci_low", "ci_high"),
+                   std::to_string(wins.value(m, 0))});
+      }
+    }
+    md << "\n### Ranking per run, " << name << " (best first)\n\n"
+       << header({"Scene", "Run", "Methods from the lowest to the highest error"}, 3);
+    for (const auto& [scene, rk] : ranking.items()) {
+      int k = 0;
+      for (const json& order : rk.value("per_run", json::array())) {
+        std::string line;
+        for (const json& m : order) line += (line.empty() ? "" : " < ") + m.get<std::string>();
+        md << row({scene, std::to_string(++k), line});
+      }
+    }
+    md << "\n";
+  }
+}
 }  // namespace
 
 std::string timing_markdown(const json& j) {
@@ -41,6 +139,10 @@ std::string timing_markdown(const json& j) {
      << host.value("cpu", "") << ", " << host.value("cores", 0) << " cores, "
      << host.value("os", "") << "). Times are wall-clock; run the study on an otherwise idle "
         "machine.\n\n";
+  if (j.contains("repeated") && j["repeated"].is_object())
+    md << "Measured " << j["repeated"].value("runs", 0) << " times (study_runs): the tables are "
+       << "run " << j["repeated"].value("primary_run", 1) << "'s; Table 6 and c over every run "
+       << "are in the last section.\n\n";
 
   const json platforms = j.value("platforms", json::array());
   md << "### Platforms and timers\n\n"
@@ -128,6 +230,7 @@ std::string timing_markdown(const json& j) {
                num(f.value("pearson_r", json()), "%.3f")});
   }
   md << "\n";
+  if (j.contains("repeated") && j["repeated"].is_object()) repeated_markdown(j["repeated"], md);
   return md.str();
 }
 

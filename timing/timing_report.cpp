@@ -25,6 +25,13 @@ std::string num(double v) {
   return buf;
 }
 
+// A setting such as a confidence level, as written ("0.95", not "0.94999999999999996").
+std::string short_num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
 std::string list(const std::vector<double>& v) {
   std::string s;
   for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ";" : "") + num(v[i]);
@@ -67,6 +74,45 @@ nlohmann::json fit_json(const HeuristicFit& f) {
 
 nlohmann::json comparison_json(const CpuGpuComparison& c) {
   return {{"n", c.n}, {"median_ratio", nullable(c.median_ratio)}, {"pearson_r", nullable(c.pearson_r)}};
+}
+
+// A quantity over the repeated runs; `unit` is appended to the names of the numbers ("_us").
+nlohmann::json spread_json(const RunSpread& s, const std::string& unit) {
+  nlohmann::json per_run = nlohmann::json::array();
+  for (double v : s.values) per_run.push_back(nullable(v));
+  return {{"per_run" + unit, per_run},       {"n", s.n},
+          {"mean" + unit, nullable(s.mean)}, {"sd" + unit, nullable(s.sd)},
+          {"min" + unit, nullable(s.min)},   {"max" + unit, nullable(s.max)},
+          {"ci_low" + unit, nullable(s.ci_low)}, {"ci_high" + unit, nullable(s.ci_high)}};
+}
+
+nlohmann::json repeated_json(const StudyResults& r) {
+  nlohmann::json platforms = nlohmann::json::array();
+  for (const RepeatedPlatform& p : r.repeated) {
+    nlohmann::json t6 = nlohmann::json::object(), ranking = nlohmann::json::object();
+    for (const auto& [scene, by_method] : p.table6_ms2)
+      for (const auto& [method, spread] : by_method) t6[scene][method] = spread_json(spread, "");
+    for (const auto& [scene, rk] : p.ranking)
+      ranking[scene] = {{"per_run", rk.per_run},
+                        {"wins", rk.wins},
+                        {"paper_wins", rk.paper_wins},
+                        {"runs_without_winner", rk.runs_without_winner}};
+    platforms.push_back({{"name", p.platform},
+                         {"runs", p.runs},
+                         {"failed", p.failed},
+                         {"wall_s", p.wall_s},
+                         {"methods", p.methods},
+                         {"system_task_c", spread_json(p.c_us, "_us")},
+                         {"table6_ms2", t6},
+                         {"ranking", ranking}});
+  }
+  const double confidence = r.repeated.empty() ? 0.95 : r.repeated.front().c_us.confidence;
+  return {{"runs", r.settings.study_runs},
+          {"primary_run", 1},
+          {"confidence", confidence},
+          {"what", "each run a complete, independent measurement of every platform (same "
+                   "experiment and seed); the rest of this file is the primary run's"},
+          {"platforms", platforms}};
 }
 
 // Frame-time histogram (density) of the system task, the paper's Figure 3, in ms; the range is
@@ -204,6 +250,11 @@ nlohmann::json timing_json(const StudyResults& r) {
         {"pos_lookup", s.pos_lookup == PosLookup::kNearest ? "nearest" : "interpolate"},
         {"work", work}}},
       {"scenes", scenes}};
+  // (a single run writes neither key: its file is as it was before study_runs existed)
+  if (!r.repeated.empty()) {
+    j["experiment"]["settings"]["study_runs"] = s.study_runs;
+    j["repeated"] = repeated_json(r);
+  }
   j["units"] = {{"time", "microseconds (_us), milliseconds (_ms); Table 6 in ms^2"},
                 {"measurement", "median of the repetitions, CPU clock around draw + glFinish"},
                 {"angles", "radians"}};
@@ -352,6 +403,48 @@ std::string pos_tables_csv(const StudyResults& r) {
   return o.str();
 }
 
+std::string table6_repeated_csv(const StudyResults& r) {
+  std::ostringstream o;
+  o << "platform,scene,method,runs,mean_ms2,sd_ms2,min_ms2,max_ms2,ci_low_ms2,ci_high_ms2,"
+       "confidence,wins,paper_wins,rank_per_run,ms2_per_run\n";
+  for (const RepeatedPlatform& p : r.repeated)
+    for (const auto& [scene, by_method] : p.table6_ms2) {
+      const SceneRanking& rk = p.ranking.at(scene);
+      for (const std::string& method : p.methods) {
+        const RunSpread& s = by_method.at(method);
+        std::string ranks;
+        for (std::size_t k = 0; k < rk.per_run.size(); ++k) {
+          const auto& order = rk.per_run[k];
+          const auto at = std::find(order.begin(), order.end(), method);
+          ranks += (k ? ";" : "") + std::to_string(at - order.begin() + 1);
+        }
+        o << csv_cell(p.platform) << ',' << csv_cell(scene) << ',' << csv_cell(method) << ','
+          << s.n << ',' << num(s.mean) << ',' << num(s.sd) << ',' << num(s.min) << ','
+          << num(s.max) << ',' << num(s.ci_low) << ',' << num(s.ci_high) << ','
+          << short_num(s.confidence) << ',' << rk.wins.at(method) << ','
+          << (is_paper_method(method) ? std::to_string(rk.paper_wins.at(method)) : "") << ','
+          << ranks << ',' << list(s.values) << '\n';
+      }
+    }
+  return o.str();
+}
+
+std::string system_task_c_repeated_csv(const StudyResults& r) {
+  std::ostringstream o;
+  o << "platform,runs,failed,mean_ms,sd_ms,min_ms,max_ms,ci_low_ms,ci_high_ms,confidence,"
+       "c_ms_per_run\n";
+  auto ms = [](double us) { return num(us / 1000.0); };
+  for (const RepeatedPlatform& p : r.repeated) {
+    const RunSpread& c = p.c_us;
+    std::vector<double> per_run;
+    for (double v : c.values) per_run.push_back(v / 1000.0);
+    o << csv_cell(p.platform) << ',' << p.runs << ',' << p.failed << ',' << ms(c.mean) << ','
+      << ms(c.sd) << ',' << ms(c.min) << ',' << ms(c.max) << ',' << ms(c.ci_low) << ','
+      << ms(c.ci_high) << ',' << short_num(c.confidence) << ',' << list(per_run) << '\n';
+  }
+  return o.str();
+}
+
 std::vector<plots::Figure> timing_figures(const StudyResults& r) {
   std::vector<plots::Figure> out;
   for (std::size_t i = 0; i < r.measured.size() && i < r.analysed.size(); ++i) {
@@ -385,6 +478,10 @@ std::vector<std::string> write_timing_outputs(const StudyResults& r, const std::
   put("object_samples.csv", object_samples_csv(r));
   put("frames.csv", frames_csv(r));
   put("pos_tables.csv", pos_tables_csv(r));
+  if (!r.repeated.empty()) {
+    put("table6_repeated.csv", table6_repeated_csv(r));
+    put("system_task_c_repeated.csv", system_task_c_repeated_csv(r));
+  }
   if (figures)
     for (const std::string& p : plots::write_figure_set(timing_figures(r), dir)) written.push_back(p);
   const nlohmann::json doc = timing_json(r);

@@ -18,6 +18,17 @@
 //   table6_ms2 {scene: {method: average squared error, ms^2}} for the methods h1..h4 (the paper's
 //              forms), h1+b..h4+b (with a per-object intercept) and pos,
 //   cpu_vs_gpu {objects: {n, median_ratio, pearson_r}, frames: {...}} (null without GPU timer).
+// With study_runs = N >= 2 (repeated_runs.h) everything above is the first run's, and timing.json
+// also has experiment.settings.study_runs and
+//   repeated {runs, primary_run (1), confidence (0.95), platforms [{name, runs, failed, wall_s
+//             [per run], methods, system_task_c {per_run_us, n, mean_us, sd_us, min_us, max_us,
+//             ci_low_us, ci_high_us}, table6_ms2 {scene: {method: {per_run, n, mean, sd, min,
+//             max, ci_low, ci_high}}}, ranking {scene: {per_run [[methods, best first]], wins
+//             {method: runs}, paper_wins {method: runs}, runs_without_winner}}}]};
+//   with N = 1 neither key is written, so the file is as it was before study_runs existed.
+// DIR/table6_repeated.csv (N >= 2 only): one row per platform, scene and method: the spread over
+//   the runs, wins, the rank and the value of every run (';'-separated).
+// DIR/system_task_c_repeated.csv (N >= 2 only): one row per platform: c over the runs.
 // DIR/object_samples.csv: one row per object measurement (every repetition in cpu_us / gpu_us,
 //   ';'-separated).
 // DIR/frames.csv: one row per measured path frame: counts summed over the visible objects, the
@@ -34,6 +45,7 @@
 #include <nlohmann/json.hpp>
 
 #include "plots/figure.h"
+#include "timing/repeated_runs.h"
 #include "timing/timing_study.h"
 
 namespace ra::timing {
@@ -42,6 +54,9 @@ struct StudyResults {
   TimingSettings settings;
   std::vector<PlatformMeasurements> measured;
   std::vector<PlatformAnalysis> analysed;  // same order; empty analysis where measurement failed
+  // study_runs >= 2: per platform (same order) Table 6 and c over every run; measured and
+  // analysed above are then the first run's. Empty for a single run.
+  std::vector<RepeatedPlatform> repeated;
   double wall_s = 0;
 };
 
@@ -49,6 +64,8 @@ nlohmann::json timing_json(const StudyResults& r);
 std::string object_samples_csv(const StudyResults& r);
 std::string frames_csv(const StudyResults& r);
 std::string pos_tables_csv(const StudyResults& r);
+std::string table6_repeated_csv(const StudyResults& r);
+std::string system_task_c_repeated_csv(const StudyResults& r);
 
 // The figures (plots/figure.h): density of the system task's frame times per platform, and per
 // platform, scene and method the measured and predicted frame times along the path.

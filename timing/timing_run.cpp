@@ -3,6 +3,7 @@
 
 #include "platforms/platform_probe.h"
 #include <chrono>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
@@ -53,7 +54,27 @@ std::string summary_of(const StudyResults& r, const std::string& dir) {
       s += "\n";
     }
   }
-  s += "wrote " + dir + "/timing.json (and object_samples.csv, frames.csv, pos_tables.csv, figures/)\n";
+  for (const RepeatedPlatform& p : r.repeated) {
+    s += format("%s over %d runs (%d failed; the files above are run 1's):\n", p.platform.c_str(),
+                p.runs, p.failed);
+    const RunSpread& c = p.c_us;
+    s += format("  c (99%%) = %.3f ms, SD %.3f, min-max %.3f-%.3f, %.0f%% t interval of the mean "
+                "%.3f-%.3f ms\n",
+                c.mean / 1000, c.sd / 1000, c.min / 1000, c.max / 1000, 100 * c.confidence,
+                c.ci_low / 1000, c.ci_high / 1000);
+    s += "  best method (runs won):";
+    const char* sep = " ";
+    for (const auto& [scene, rk] : p.ranking) {
+      s += sep + scene + ":";
+      for (const std::string& m : p.methods)
+        if (rk.wins.at(m)) s += format(" %s %d", m.c_str(), rk.wins.at(m));
+      sep = "; ";
+    }
+    s += "\n";
+  }
+  s += "wrote " + dir + "/timing.json (and object_samples.csv, frames.csv, pos_tables.csv, " +
+       (r.repeated.empty() ? "" : "table6_repeated.csv, system_task_c_repeated.csv, ") +
+       "figures/)\n";
   return s;
 }
 
@@ -104,17 +125,45 @@ StudyRunResult run_timing_study(const StudyRunOptions& options, bool figures) {
   std::filesystem::create_directories(dir);
   StudyRunResult result;
   result.dir = dir;
-  for (const std::string& p : platforms) {
-    r.measured.push_back(measure_platform_in_child(r.settings, p, scenes, paths, dir, progress));
-    const PlatformMeasurements& m = r.measured.back();
-    if (!m.error.empty()) {
-      std::fprintf(stderr, "renderaudit timing: %s failed: %s\n", p.c_str(), m.error.c_str());
-      result.findings = true;
-      r.analysed.emplace_back();
-      continue;
+  // study_runs independent runs, one after the other, every platform measured afresh in each (a
+  // new child process: frame base, object measurements, path, pos tables, system task). The
+  // first run's measurements are the study's files; the others keep their Table 6 and c.
+  const int runs = r.settings.study_runs;
+  std::vector<std::vector<RunOutcome>> outcomes(platforms.size());
+  std::vector<std::string> methods;
+  for (int run = 0; run < runs; ++run) {
+    const std::string tag = runs > 1 ? format("run %d/%d: ", run + 1, runs) : "";
+    const Progress run_progress =
+        progress && runs > 1 ? Progress([&](const std::string& line) { progress(tag + line); })
+                             : progress;
+    for (std::size_t i = 0; i < platforms.size(); ++i) {
+      const std::string& p = platforms[i];
+      PlatformMeasurements m =
+          measure_platform_in_child(r.settings, p, scenes, paths, dir, run_progress);
+      RunOutcome outcome;
+      outcome.wall_s = m.seconds;
+      PlatformAnalysis a;
+      if (!m.error.empty()) {
+        std::fprintf(stderr, "renderaudit timing: %s%s failed: %s\n", tag.c_str(), p.c_str(),
+                     m.error.c_str());
+        result.findings = true;
+      } else {
+        a = analyse_platform(r.settings, m);
+        outcome.ok = true;
+        outcome.table6_ms2 = a.table6_ms2;
+        outcome.c_us = a.system.n ? a.system.c_us : NAN;
+        if (methods.empty()) methods = a.methods;
+      }
+      outcomes[i].push_back(std::move(outcome));
+      if (run == 0) {
+        r.measured.push_back(std::move(m));
+        r.analysed.push_back(std::move(a));
+      }
     }
-    r.analysed.push_back(analyse_platform(r.settings, m));
   }
+  if (runs > 1)
+    for (std::size_t i = 0; i < platforms.size(); ++i)
+      r.repeated.push_back(aggregate_runs(platforms[i], methods, outcomes[i]));
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (progress) progress("writing outputs to " + dir);
   write_timing_outputs(r, dir, figures);
