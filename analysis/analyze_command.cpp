@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <regex>
 
 #include "analysis/figure_data.h"
@@ -49,6 +50,10 @@ void check_options(const AnalyzeOptions& o) {
                       " is not a pixel pitch (a positive number of millimetres, e.g. 0.255)");
     }
   }
+  if (!(o.point_margin_px >= 0 && o.point_margin_px <= 16)) {
+    throw UserError("--point-margin-px " + format_significant(o.point_margin_px, 6) +
+                    ": a margin in pixels from 0 to 16 (0.5 is the paper's convention)");
+  }
   if (o.box_cox_subsample < 3) {
     throw UserError("--box-cox-subsample " + std::to_string(o.box_cox_subsample) +
                     ": at least 3 values are needed to choose lambda");
@@ -65,7 +70,7 @@ struct Output {
 // Files of an earlier analysis that this one may not rewrite (a kind absent now, one platform).
 bool generated_name(const std::string& name) {
   static const std::regex pattern(
-      R"((table\d\d[a-z]?_[a-z_]+|speed|cross_platform|view_equivalence|conformance)\.(csv|md|tex)|figures\.json|report\.md|violations\.md|README\.md)");
+      R"((table\d\d[a-z]?_[a-z_]+|speed|cross_platform|view_equivalence|conformance|uncertainty|paper_comparison|paper_differences)\.(csv|md|tex)|figures\.json|report\.md|violations\.md|README\.md)");
   return std::regex_match(name, pattern);
 }
 
@@ -100,6 +105,16 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
 
   LoadOptions load;
   load.jobs = o.jobs;
+  std::optional<Experiment> experiment;  // the views and seed that generate each point again
+  if (o.point_margin_px > 0) {
+    const std::string path = o.run_dir + "/experiment.toml";
+    if (!std::filesystem::exists(path))
+      throw UserError(o.run_dir + ": --point-margin-px needs the run's experiment.toml (" + path +
+                      " is missing)");
+    experiment = load_experiment(path);
+    load.point_margin_px = o.point_margin_px;
+    load.experiment = &*experiment;
+  }
   const RunRecords run = load_run_records(o.run_dir, load);
   result.records = run.record_count;
   result.timings.push_back({"load", watch.lap()});
@@ -125,7 +140,12 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   to.bootstrap.seed = o.bootstrap_seed;
   if (o.paper_values != "none") {
     const std::string path = o.paper_values.empty() ? default_paper_values_path() : o.paper_values;
-    if (!path.empty()) to.paper = load_paper_values(path);
+    if (!path.empty()) {
+      PaperValues paper = load_paper_values(path);
+      to.paper = std::move(paper.tables);
+      to.paper_differences = std::move(paper.differences);
+      to.paper_primitives_per_group = paper.primitives_per_view_group;
+    }
   }
   const std::vector<Table> tables = paper_tables(run, to);
   result.timings.push_back({"tables", watch.lap()});

@@ -68,6 +68,8 @@ struct TableOptions {
   stats::BootstrapOptions bootstrap;
   // The paper's published values (paper_values.h); empty: no comparison with the paper.
   std::vector<PaperTableValues> paper;
+  std::vector<PaperDifference> paper_differences;  // established reasons, paper_differences_table
+  double paper_primitives_per_group = 0;  // behind each paper cell; 0: z uses our SE alone
 };
 
 // Description (n, median, quartiles, ...) of every pooled view-group sample of the run, computed
@@ -111,6 +113,13 @@ Table uncertainty_table(const RunRecords& run, const GroupSummaries& summaries,
 // Platform I and II, and z = (ours - paper) / SE, marked when |z| > 3. Needs the bootstrap.
 Table paper_comparison_table(const RunRecords& run, const GroupSummaries& summaries,
                              const TableOptions& options);
+
+// "Where we differ from the paper and why": the cells of paper_comparison_table beyond 3 SE of
+// each of the paper's platforms that gives a value, each citing the first of
+// options.paper_differences that covers it ("not explained" otherwise); the explanations are the
+// notes, numbered in citation order.
+Table paper_differences_table(const RunRecords& run, const GroupSummaries& summaries,
+                              const TableOptions& options);
 
 // Table 11: medians of PE (mm), LSEu (mm) and TEu (mm^2) for each pixel pitch (mm) and view group
 // (and all groups pooled), per platform: mm = px x pitch, mm^2 = px^2 x pitch^2.

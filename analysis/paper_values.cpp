@@ -1,6 +1,7 @@
 // Reading the paper's published values (see the header).
 #include "analysis/paper_values.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -10,13 +11,77 @@ namespace fs = std::filesystem;
 
 namespace ra::analysis {
 
-std::vector<PaperTableValues> load_paper_values(const std::string& path) {
+bool PaperDifference::covers(const std::string& table, const std::string& statistic,
+                             const std::string& group, const std::string& platform) const {
+  const auto in = [](const std::vector<std::string>& list, const std::string& x) {
+    return list.empty() || std::find(list.begin(), list.end(), x) != list.end();
+  };
+  return in(tables, table) && in(statistics, statistic) && in(groups, group) &&
+         platform.find(platform_contains) != std::string::npos;
+}
+
+namespace {
+
+// [[difference]] entries: lists of strings checked against what they may hold.
+std::vector<PaperDifference> read_differences(const TomlLocator& loc, const toml::table& root) {
+  std::vector<PaperDifference> out;
+  const toml::node* node = root.get("difference");
+  if (!node) return out;
+  const toml::array* list = node->as_array();
+  if (!list) loc.fail(node, "difference: one [[difference]] per explanation");
+  for (const toml::node& entry : *list) {
+    const toml::table* t = entry.as_table();
+    if (!t) loc.fail(&entry, "difference: each entry must be a [[difference]]");
+    loc.reject_unknown_keys(*t, "difference.",
+                            {"tables", "statistics", "groups", "platform_contains", "explanation"});
+    PaperDifference d;
+    auto strings = [&](const char* key, std::vector<std::string> allowed) {
+      std::vector<std::string> v;
+      const toml::node* n = t->get(key);
+      if (!n) return v;
+      const toml::array* a = n->as_array();
+      if (!a) loc.fail(n, std::string("difference.") + key + ": a list of strings");
+      for (const toml::node& x : *a) {
+        const auto s = x.value<std::string>();
+        bool ok = s.has_value();
+        if (ok && !allowed.empty())
+          ok = std::find(allowed.begin(), allowed.end(), *s) != allowed.end();
+        if (!ok) {
+          std::string allowed_text;
+          for (const std::string& a_ : allowed) allowed_text += (allowed_text.empty() ? "" : ", ") + a_;
+          loc.fail(&x, std::string("difference.") + key + ": a string" +
+                           (allowed.empty() ? "" : " (allowed: " + allowed_text + ")"));
+        }
+        v.push_back(*s);
+      }
+      return v;
+    };
+    d.tables = strings("tables", {});
+    d.statistics = strings("statistics", {"median", "IQR"});
+    d.groups = strings("groups", {"A", "B", "C", "D"});
+    d.platform_contains = (*t)["platform_contains"].value_or(std::string());
+    const auto text = (*t)["explanation"].value<std::string>();
+    if (!text || text->empty()) loc.fail(t, "difference.explanation: missing (a string)");
+    d.explanation = *text;
+    out.push_back(std::move(d));
+  }
+  return out;
+}
+
+}  // namespace
+
+PaperValues load_paper_values(const std::string& path) {
   const TomlLocator loc(path);
   const toml::table root = loc.parse(TomlLocator::read_text(path));
-  loc.reject_unknown_keys(root, "", {"table"});
+  loc.reject_unknown_keys(root, "", {"table", "difference", "primitives_per_view_group"});
+  PaperValues values;
+  if (const toml::node* n = root.get("primitives_per_view_group"))
+    values.primitives_per_view_group =
+        double(loc.integer(*n, "primitives_per_view_group", 1, 1000000000000));
+  values.differences = read_differences(loc, root);
   const toml::array* tables = root["table"].as_array();
   if (!tables) loc.fail(&root, "no [[table]] (allowed: one [[table]] per paper table)");
-  std::vector<PaperTableValues> out;
+  std::vector<PaperTableValues>& out = values.tables;
   for (const toml::node& node : *tables) {
     const toml::table* t = node.as_table();
     if (!t) loc.fail(&node, "table: each entry must be a [[table]]");
@@ -52,7 +117,7 @@ std::vector<PaperTableValues> load_paper_values(const std::string& path) {
     v.iqr = {four("platform_1_iqr"), four("platform_2_iqr")};
     out.push_back(std::move(v));
   }
-  return out;
+  return values;
 }
 
 std::string default_paper_values_path() {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -20,8 +21,29 @@ struct PaperTableValues {
   std::array<std::array<double, 4>, 2> median{}, iqr{};  // [platform I / II][group]
 };
 
+// One established reason why our cells differ from the paper's ([[difference]] in the file): the
+// cells it covers (tables, statistics, view groups, platforms whose name contains a text; empty:
+// all) and the explanation, with where its evidence is.
+struct PaperDifference {
+  std::vector<std::string> tables;      // "10", ...; empty: every table
+  std::vector<std::string> statistics;  // "median", "IQR"; empty: both
+  std::vector<std::string> groups;      // "A" ... "D"; empty: all
+  std::string platform_contains;        // "" matches every platform
+  std::string explanation;
+  bool covers(const std::string& table, const std::string& statistic, const std::string& group,
+              const std::string& platform) const;
+};
+
+struct PaperValues {
+  std::vector<PaperTableValues> tables;
+  std::vector<PaperDifference> differences;
+  // Primitives per view group behind each of the paper's cells (100,000 per view x 2 views); 0:
+  // not given, and z uses our SE alone.
+  double primitives_per_view_group = 0;
+};
+
 // Parses the file; UserError "FILE:LINE:COLUMN: ..." naming the key on bad input.
-std::vector<PaperTableValues> load_paper_values(const std::string& path);
+PaperValues load_paper_values(const std::string& path);
 
 // experiments/papers/nist2008-tables.toml from the working directory, else from beside the
 // program's build folder (BUILD/../experiments/...); "" when neither exists.

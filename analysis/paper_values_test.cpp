@@ -27,7 +27,7 @@ const PaperTableValues& table(const std::vector<PaperTableValues>& all, const st
 }
 
 TEST(PaperValues, ReadAndTiedTogetherAsThePaperTiesThem) {
-  const std::vector<PaperTableValues> all = load_paper_values(kFile);
+  const std::vector<PaperTableValues> all = load_paper_values(kFile).tables;
   ASSERT_EQ(all.size(), 6u);
   const PaperTableValues &t3 = table(all, "3"), &t4 = table(all, "4");
   EXPECT_EQ(t3.page, 229);
@@ -54,7 +54,7 @@ TEST(PaperValues, EveryNumberIsPrintedInTheExtractedPaper) {
   // the extraction prints minus signs as en dashes
   for (std::size_t at; (at = paper.find("\xe2\x80\x93")) != std::string::npos;)
     paper.replace(at, 3, "-");
-  for (const PaperTableValues& t : load_paper_values(kFile)) {
+  for (const PaperTableValues& t : load_paper_values(kFile).tables) {
     const int decimals = t.number == "3" ? 5 : (t.number == "6" || t.number == "9") ? 2 : 3;
     for (const auto* block : {&t.median, &t.iqr})
       for (const auto& four : *block)

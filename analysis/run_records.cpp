@@ -15,6 +15,7 @@
 #include "metrics/records.h"
 #include "metrics/records_reader.h"
 #include "geometry/view.h"
+#include "metrics/point_metrics.h"
 
 namespace fs = std::filesystem;
 
@@ -249,6 +250,7 @@ using PartialKey = std::tuple<std::string, int, int>;  // platform, kind, view
 struct FileChunk {
   std::map<PartialKey, PartialView> views;
   std::uint64_t records = 0;
+  std::uint64_t points_within_margin = 0;  // LoadOptions::point_margin_px reclassifications
 };
 
 // Difference between two views' parameters, "" when equal.
@@ -282,8 +284,8 @@ constexpr std::array<RecordColumn, 7> kMetaColumns = {
 
 class FileParser {
  public:
-  FileParser(const std::string& path, const MetricColumns& metrics)
-      : path_(path), metrics_(metrics) {}
+  FileParser(const std::string& path, const MetricColumns& metrics, const LoadOptions& options)
+      : path_(path), metrics_(metrics), options_(options) {}
 
   FileChunk parse() {
     for_each_record_row(path_, [this](const RecordRow& row) { record(row); });
@@ -349,7 +351,8 @@ class FileParser {
         ++counts.timeout;
         return;
     }
-    ++counts.by_class[static_cast<std::size_t>(visibility)];
+    const Visibility counted = paper_point_class(*kind, view, index, visibility);
+    ++counts.by_class[static_cast<std::size_t>(counted)];
     const bool visible = visibility == Visibility::kTrueVisible;
     if (const std::optional<double> t = row.number(RecordColumn::kRenderUs)) {
       (visible ? pv.data.render_us_visible : pv.data.render_us_other).push_back(*t);
@@ -363,6 +366,24 @@ class FileParser {
         ++pv.data.missing[m];
       }
     }
+  }
+
+  // The class under LoadOptions::point_margin_px: a true-invisible point within the margin outside
+  // the window is false-invisible (nothing is drawn outside a window, so it is never lit).
+  Visibility paper_point_class(PrimitiveKind kind, int view, std::uint64_t index,
+                               Visibility visibility) {
+    if (options_.point_margin_px <= 0 || kind != PrimitiveKind::kPoint ||
+        visibility != Visibility::kTrueInvisible)
+      return visibility;
+    const Experiment& e = *options_.experiment;
+    if (view > int(e.views.size()))
+      throw UserError(path_ + ": view " + std::to_string(view) + " is not in the run's experiment (" +
+                      std::to_string(e.views.size()) + " views)");
+    const Primitive point = make_primitive(e.seed, Kind::kPoint, index);
+    if (!inside_window_margin(e.views[std::size_t(view - 1)], point.v[0], options_.point_margin_px))
+      return visibility;
+    ++chunk_.points_within_margin;
+    return Visibility::kFalseInvisible;
   }
 
   static ViewMeta read_meta(const RecordRow& row, int view) {
@@ -400,6 +421,7 @@ class FileParser {
 
   const std::string& path_;
   const MetricColumns& metrics_;
+  const LoadOptions& options_;
   FileChunk chunk_;
   PartialView* current_ = nullptr;
   std::string current_platform_;
@@ -462,8 +484,11 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
     throw UserError(run_dir + ": no records directory (" + records_dir.string() +
                     "); is this a run directory written by `renderaudit run`?");
   }
+  if (options.point_margin_px > 0 && options.experiment == nullptr)
+    throw std::logic_error("load_run_records: point_margin_px needs the run's experiment");
   RunRecords run;
   run.run_dir = run_dir;
+  run.point_margin_px = options.point_margin_px;
   for (const auto& e : fs::directory_iterator(records_dir)) {
     if (e.path().extension() == ".csv" && e.is_regular_file())
       run.files.push_back(e.path().string());
@@ -479,13 +504,14 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   const std::size_t n_files = run.files.size();
   std::vector<FileChunk> chunks(n_files);
   run_in_parallel(n_files, options.jobs,
-                  [&](std::size_t f) { chunks[f] = FileParser(run.files[f], metric_cols).parse(); });
+                  [&](std::size_t f) { chunks[f] = FileParser(run.files[f], metric_cols, options).parse(); });
 
   // merge, checking that a view has the same parameters everywhere
   std::map<PartialKey, MergedView> merged;
   std::map<int, std::pair<ViewMeta, std::size_t>> view_meta;  // view -> parameters, file
   for (std::size_t f = 0; f < n_files; ++f) {
     run.record_count += chunks[f].records;
+    run.points_within_margin += chunks[f].points_within_margin;
     for (auto& [key, part] : chunks[f].views) {
       const ViewMeta& meta = part.data.meta;
       auto [vm, first] = view_meta.try_emplace(meta.view, meta, f);

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "geometry/primitive.h"
+#include "runner/experiment.h"
 #include "stats/descriptive.h"
 #include "util/parallel.h"
 
@@ -138,6 +139,8 @@ struct RunRecords {
   std::vector<std::string> platforms;  // sorted by name: Platform I, II, ... in the tables
   std::map<ViewKey, ViewData> views;
   std::vector<ViewGroup> groups;  // by platform, kind, view_group
+  double point_margin_px = 0;             // LoadOptions::point_margin_px applied
+  std::uint64_t points_within_margin = 0;  // true-invisible points counted false-invisible by it
 
   // The kinds that have at least one record, in kAllKinds order.
   std::vector<PrimitiveKind> kinds() const;
@@ -151,6 +154,12 @@ struct RunRecords {
 
 struct LoadOptions {
   unsigned jobs = 0;  // threads parsing files; 0: the number of cores
+  // The paper's point convention (metrics/point_metrics.h, inside_window_margin): an `ok`
+  // true-invisible point whose projection lies within this many pixels outside the window is
+  // counted false-invisible instead. 0: the records' own classes. Needs `experiment` (the run's
+  // views and seed, from which each point is generated again by its index).
+  double point_margin_px = 0;
+  const Experiment* experiment = nullptr;
 };
 
 // Loads DIR/records/*.csv (*.csv.tmp, unfinished shards, are ignored). Throws ra::UserError when

@@ -12,6 +12,14 @@ IdealPoint project_point(const View& view, Vec3 p) {
   return out;
 }
 
+bool inside_window_margin(const View& view, Vec3 p, double margin_px) {
+  const Vec4 c = view.to_clip(p);
+  if (!(c.w > 0 && -c.w < c.z && c.z < c.w)) return false;  // behind, nearer or farther
+  const Vec2 w = view.clip_to_window(c);
+  return -margin_px < w.x && w.x < view.width + margin_px && -margin_px < w.y &&
+         w.y < view.height + margin_px;
+}
+
 PixelRect point_region(const View& view, const IdealPoint& ideal, int margin) {
   if (!ideal.visible) return {};
   const int x = int(std::floor(ideal.window.x)), y = int(std::floor(ideal.window.y));

@@ -50,6 +50,30 @@ TEST(PointMetrics, PointsBehindTheCameraOrOutsideThePlanesAreInvisible) {
   EXPECT_TRUE(project_point(v, {0, 0, -0.02}).visible);
 }
 
+// The paper's margin convention on hand-placed points: in simple_view a point (x, y, -1) projects
+// to ((x + 1) * 64, (y + 1) * 64), so x = 1 + d / 64 lies d pixels right of the window.
+TEST(PointMetrics, WindowMarginCountsPointsJustOutsideTheWindow) {
+  const View v = simple_view();
+  auto right_of_window = [](double d_px) { return Vec3{1 + d_px / 64, 0, -1}; };
+  EXPECT_TRUE(inside_window_margin(v, {0, 0, -1}, 0));
+  EXPECT_FALSE(inside_window_margin(v, right_of_window(0.49), 0));
+  EXPECT_TRUE(inside_window_margin(v, right_of_window(0.49), 0.5));
+  EXPECT_FALSE(inside_window_margin(v, right_of_window(0.51), 0.5));
+  EXPECT_TRUE(inside_window_margin(v, {-1 - 0.25 / 64, 1 + 0.25 / 64, -1}, 0.5));  // a corner
+  // Margin 0 is project_point's visibility, also exactly on the border (open on both sides).
+  EXPECT_FALSE(inside_window_margin(v, {1, 0, -1}, 0));
+  EXPECT_FALSE(project_point(v, {1, 0, -1}).visible);
+  // Depth is not widened: behind the camera, nearer than near or beyond far stays outside.
+  EXPECT_FALSE(inside_window_margin(v, {0, 0, 1}, 0.5));
+  EXPECT_FALSE(inside_window_margin(v, {0, 0, -0.005}, 0.5));
+  EXPECT_FALSE(inside_window_margin(v, {0, 0, -11}, 0.5));
+  for (int i = 0; i < 5000; ++i) {  // margin 0 agrees with project_point everywhere
+    const Vec3 q = make_primitive(5, Kind::kPoint, i).v[0];
+    const View w = simple_view(128, 150);
+    EXPECT_EQ(inside_window_margin(w, q, 0), project_point(w, q).visible) << i;
+  }
+}
+
 // The reference rasterizer lights the pixel containing the projection, so its PE is at most
 // sqrt(2)/2 and it is the distance to the nearest pixel centre.
 TEST(PointMetrics, ReferencePeIsAtMostHalfADiagonal) {
