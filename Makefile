@@ -6,7 +6,7 @@ BUILD_TYPE ?= Release
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
-.PHONY: all deps build run analyze plot report test slurm-test bench nightly timing lod regulation format clean
+.PHONY: all deps build run analyze plot report test slurm-test bench investigations nightly timing lod regulation format clean
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
@@ -59,6 +59,12 @@ bench: build
 	$(BUILD)/readback_bench --primitives 300 --rounds 3 --json outputs/bench/readback.json
 	$(BUILD)/analysis_bench --records 2400000 --platforms 2
 	$(BUILD)/run_overhead_bench --rounds 3 --jobs 2 --json outputs/bench/run_overhead.json
+
+# Investigations: programs whose output a finding of the README quotes ("Where we differ from the
+# paper and why": the paper's method under candidate readings, on the reference rasterizer).
+investigations: build
+	cmake --build $(BUILD) -j $(JOBS) --target paper_readings
+	$(BUILD)/paper_readings
 
 # The nightly driver audit (README, "Nightly audit"): run, audit against the baseline, history,
 # report. Exit code: 0 unchanged, 1 changed, 2 failed.
