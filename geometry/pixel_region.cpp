@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 namespace ra {
 
@@ -73,6 +75,42 @@ PixelRegion strip_region(const ClippedSegment& s, int width, int height, int mar
     const int v1 = std::min(minor_size, int(std::floor(std::max(m0, m1))) + 1 + margin);
     if (v1 <= v0) continue;
     region.rects.push_back(x_major ? PixelRect{u0, v0, u1, v1} : PixelRect{v0, u0, v1, u1});
+  }
+  return region;
+}
+
+PixelRegion band_region(const ClippedPolygon& p, int width, int height, int margin, int band_rows) {
+  PixelRegion region;
+  if (p.status != ClipStatus::kVisible && p.status != ClipStatus::kDegenerate) return region;
+  const PixelRect box = bounding_rect(p, width, height, margin);
+  if (box.empty()) return region;
+  const std::vector<Vec2>& v = p.vertices;
+  const size_t n = v.size();
+  // The polygon's x-range over the slab lo <= y <= hi: its edges clipped to the slab (a convex
+  // polygon's extreme x over a slab lies on an edge), vertices included. {+inf, -inf} when none.
+  auto x_range = [&](double lo, double hi) {
+    double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
+    auto take = [&](double x) { x_min = std::min(x_min, x), x_max = std::max(x_max, x); };
+    for (size_t i = 0; i < n; ++i) {
+      Vec2 a = v[i], b = v[(i + 1) % n];
+      if (a.y > b.y) std::swap(a, b);
+      if (b.y < lo || a.y > hi) continue;
+      auto x_at = [&](double y) {  // on the edge; a horizontal edge lies inside the slab whole
+        return b.y > a.y ? a.x + (b.x - a.x) * ((y - a.y) / (b.y - a.y)) : a.x;
+      };
+      take(a.y >= lo ? a.x : x_at(lo));
+      take(b.y <= hi ? b.x : x_at(hi));
+      if (b.y == a.y) take(b.x);
+    }
+    return std::pair{x_min, x_max};
+  };
+  for (int y0 = box.y0; y0 < box.y1; y0 += band_rows) {
+    const int y1 = std::min(box.y1, y0 + band_rows);
+    const auto [x_min, x_max] = x_range(double(y0 - margin), double(y1 + margin));
+    if (!(x_min <= x_max)) continue;  // the polygon does not reach this band
+    PixelRect r{std::max(box.x0, int32_t(std::floor(x_min)) - margin), y0,
+                std::min(box.x1, int32_t(std::floor(x_max)) + 1 + margin), y1};
+    if (!r.empty()) region.rects.push_back(r);
   }
   return region;
 }

@@ -94,6 +94,85 @@ TEST(StripRegion, ClampsToTheWindowAndHandlesPointLikeSegments) {
   EXPECT_TRUE(strip_region(window_segment({-30, -30}, {-10, -5}, w, h), w, h, 2).empty());
 }
 
+bool same_rect(const PixelRect& a, const PixelRect& b) {
+  return a.x0 == b.x0 && a.y0 == b.y0 && a.x1 == b.x1 && a.y1 == b.y1;
+}
+
+// A triangle given in window coordinates (w = 1 clip coordinates), clipped to the window.
+ClippedPolygon window_triangle(Vec2 a, Vec2 b, Vec2 c, int w, int h) {
+  auto clip = [&](Vec2 p) { return Vec4{2 * p.x / w - 1, 2 * p.y / h - 1, 0, 1}; };
+  return clip_triangle(clip(a), clip(b), clip(c), w, h);
+}
+
+// Every pixel within `margin` rows and columns of a pixel the reference lights, and of each
+// vertex's pixel, lies in the bands (checked row by row: a convex polygon lights one run a row); the bands lie in the bounding rectangle with the same
+// margin, are disjoint, and for a large triangle read much less than it.
+TEST(BandRegion, HoldsTheDilatedReferenceTriangleOnRandomTriangles) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> coord(-300.0, 1200.0);
+  const int w = 907, h = 907, margin = 2;
+  int checked = 0;
+  int64_t band_area = 0, box_area = 0;
+  for (int trial = 0; trial < 120; ++trial) {
+    const ClippedPolygon p = window_triangle({coord(rng), coord(rng)}, {coord(rng), coord(rng)},
+                                             {coord(rng), coord(rng)}, w, h);
+    if (!ideally_visible(p)) continue;
+    const PixelRegion bands = band_region(p, w, h, margin, 32);
+    expect_disjoint(bands);
+    const PixelRect box = bounding_rect(p, w, h, margin);
+    for (const PixelRect& r : bands.rects) {
+      EXPECT_TRUE(box.x0 <= r.x0 && r.x1 <= box.x1 && box.y0 <= r.y0 && r.y1 <= box.y1);
+      EXPECT_LE(r.y1 - r.y0, 32);
+    }
+    PixelSet lit = rasterize_polygon(p, w, h);
+    for (const Vec2& v : p.vertices)  // the vertices' pixels too (a sliver may light none)
+      lit.insert({std::min(w - 1, int(std::floor(v.x))), std::min(h - 1, int(std::floor(v.y)))});
+    // Per row, the columns that must be read: the lit columns of rows within `margin`, widened by
+    // `margin`; each row's band must hold them.
+    std::vector<int> lo(h, w), hi(h, -1);
+    for (const PixelRun& run : lit.runs())
+      for (int y = std::max(0, run.y - margin); y <= std::min(h - 1, run.y + margin); ++y) {
+        lo[y] = std::min(lo[y], std::max(0, run.x_begin - margin));
+        hi[y] = std::max(hi[y], std::min(w - 1, run.x_end - 1 + margin));
+      }
+    for (int y = 0; y < h; ++y) {
+      if (hi[y] < 0) continue;
+      ASSERT_TRUE(bands.contains({lo[y], y}) && bands.contains({hi[y], y}))
+          << "trial " << trial << " row " << y << " columns " << lo[y] << "-" << hi[y];
+      for (const PixelRect& r : bands.rects)  // one band per row: the ends' band holds the row
+        if (r.y0 <= y && y < r.y1) EXPECT_TRUE(r.x0 <= lo[y] && hi[y] < r.x1);
+    }
+    band_area += bands.area();
+    box_area += box.area();
+    ++checked;
+  }
+  EXPECT_GT(checked, 50);
+  EXPECT_LT(double(band_area), 0.8 * double(box_area));  // triangles fill at most half their box
+}
+
+TEST(BandRegion, OneBandIsTheBoundingRectangleAndDegenerateCasesStayBounded) {
+  const int w = 128, h = 128;
+  const ClippedPolygon p = window_triangle({10.3, 20.7}, {100.2, 30.1}, {40.5, 90.9}, w, h);
+  const PixelRegion one = band_region(p, w, h, 2, 1000);
+  ASSERT_EQ(one.rects.size(), 1u);
+  const PixelRect box = bounding_rect(p, w, h, 2);
+  EXPECT_TRUE(same_rect(one.rects[0], box));
+  // A right triangle with legs along the box: bands of 8 rows follow the hypotenuse exactly.
+  const ClippedPolygon right = window_triangle({0, 0}, {128, 0}, {0, 128}, w, h);
+  const PixelRegion bands = band_region(right, w, h, 0, 8);
+  ASSERT_EQ(bands.rects.size(), 16u);
+  EXPECT_TRUE(same_rect(bands.rects[0], {0, 0, 128, 8}));
+  EXPECT_TRUE(same_rect(bands.rects[15], {0, 120, 9, 128}));  // x <= 128 - 120 = 8 at y = 120
+  // A degenerate triangle (a segment) and an invisible one.
+  const ClippedPolygon flat = window_triangle({10, 10}, {50, 50}, {90, 90}, w, h);
+  ASSERT_EQ(flat.status, ClipStatus::kDegenerate);
+  const PixelRegion seg = band_region(flat, w, h, 1, 16);
+  EXPECT_TRUE(seg.contains({30, 30}));
+  EXPECT_FALSE(seg.contains({80, 10}));
+  EXPECT_TRUE(band_region(window_triangle({200, 200}, {300, 200}, {250, 300}, w, h), w, h, 2, 8)
+                  .empty());
+}
+
 TEST(PixelRegion, OverlapAndContainment) {
   PixelRegion a;
   a.rects = {{0, 0, 4, 4}, {4, 2, 8, 6}};

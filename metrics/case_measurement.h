@@ -17,6 +17,10 @@ namespace ra {
 // Pixels of margin around the ideal primitive's window bounding box in which a platform's pixels are
 // looked for first (the occlusion-query proof, or a full scan, covers the rest of the window).
 constexpr int kRegionMargin = 2;
+// Triangles whose box (with the margin) is larger than this many pixels are read back in bands
+// of kTriangleBandRows rows (geometry/pixel_region.h band_region), smaller ones as their box.
+constexpr int64_t kTriangleBandMinArea = 128 * 128;
+constexpr int kTriangleBandRows = 32;
 
 // Primitives whose expected regions are disjoint and at most this large (px^2) are drawn in
 // batches of up to kMaxBatch under one completeness proof (Platform::render_batch); larger ones
