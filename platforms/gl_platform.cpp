@@ -591,9 +591,13 @@ class GlPlatform : public Platform {
       read_and_scan(r, colour, part);
       runs_.insert(runs_.end(), part.runs().begin(), part.runs().end());
     }
-    std::sort(runs_.begin(), runs_.end(), [](const PixelRun& a, const PixelRun& b) {
+    // A line's strip has rectangles side by side (rows interleave); a triangle's bands come in
+    // row order already.
+    const auto before = [](const PixelRun& a, const PixelRun& b) {
       return a.y != b.y ? a.y < b.y : a.x_begin < b.x_begin;
-    });
+    };
+    if (!std::is_sorted(runs_.begin(), runs_.end(), before))
+      std::sort(runs_.begin(), runs_.end(), before);
     for (const PixelRun& run : runs_) lit.append_run(run.y, run.x_begin, run.x_end);
   }
 
