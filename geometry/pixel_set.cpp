@@ -17,27 +17,16 @@ PixelSet::PixelSet(std::initializer_list<Pixel> pixels)
     : PixelSet(from_pixels(std::vector<Pixel>(pixels))) {}
 
 PixelSet PixelSet::from_pixels(std::vector<Pixel> pixels) {
-  std::sort(pixels.begin(), pixels.end());
+  // Often in order already (a segment rasterized along y, or along x with a slope >= 0).
+  if (!std::is_sorted(pixels.begin(), pixels.end())) std::sort(pixels.begin(), pixels.end());
   pixels.erase(std::unique(pixels.begin(), pixels.end()), pixels.end());
   PixelSet s;
   for (const Pixel& p : pixels) s.append_run(p.y, p.x, p.x + 1);
   return s;
 }
 
-void PixelSet::append_run(int32_t y, int32_t x_begin, int32_t x_end) {
-  if (x_end <= x_begin) return;
-  if (!runs_.empty()) {
-    PixelRun& last = runs_.back();
-    if (y < last.y || (y == last.y && x_begin < last.x_end))
-      throw std::logic_error("PixelSet::append_run: runs out of (y, x) order or overlapping");
-    if (y == last.y && x_begin == last.x_end) {
-      last.x_end = x_end;
-      count_ += int64_t(x_end) - x_begin;
-      return;
-    }
-  }
-  runs_.push_back({y, x_begin, x_end});
-  count_ += int64_t(x_end) - x_begin;
+void PixelSet::out_of_order() {
+  throw std::logic_error("PixelSet::append_run: runs out of (y, x) order or overlapping");
 }
 
 bool PixelSet::contains(Pixel p) const {

@@ -44,8 +44,21 @@ class PixelSet {
 
   // Appends columns [x_begin, x_end) of row y. Runs must come in (y, x) order without overlap
   // (x_begin >= the previous run's x_end on the same row); touching runs are merged. Empty runs
-  // are ignored.
-  void append_run(int32_t y, int32_t x_begin, int32_t x_end);
+  // are ignored. Inline: the readback scan and the reference rasterizers call it per run or pixel.
+  void append_run(int32_t y, int32_t x_begin, int32_t x_end) {
+    if (x_end <= x_begin) return;
+    if (!runs_.empty()) {
+      PixelRun& last = runs_.back();
+      if (y < last.y || (y == last.y && x_begin < last.x_end)) out_of_order();
+      if (y == last.y && x_begin == last.x_end) {
+        last.x_end = x_end;
+        count_ += int64_t(x_end) - x_begin;
+        return;
+      }
+    }
+    runs_.push_back({y, x_begin, x_end});
+    count_ += int64_t(x_end) - x_begin;
+  }
   // Adds or removes one pixel anywhere: O(runs). For tests and fault injection, not hot paths.
   void insert(Pixel p);
   void erase(Pixel p);
@@ -100,6 +113,7 @@ class PixelSet {
   }
 
  private:
+  [[noreturn]] static void out_of_order();  // throws std::logic_error
   std::vector<PixelRun> runs_;  // maximal, sorted by (y, x_begin), disjoint and not touching
   int64_t count_ = 0;
 };
