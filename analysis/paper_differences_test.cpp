@@ -76,24 +76,14 @@ TEST(PaperConventions, PointsWithinHalfAPixelOutsideTheWindowBecomeFalseInvisibl
   EXPECT_TRUE(noted);
 }
 
-// Group A of platform "p1": PE {0.05 ... 0.60} (median 0.30); the paper says 0.10 and 0.20.
+// The nine-point run (records_testing.h): median 0.30, IQR 0.325, beside a hand-made Table 3.
 TEST(PaperDifferences, CellsBeyondBothPlatformsAreListedWithTheirExplanation) {
   testing::ScopedTempDir dir{"paper_differences"};
-  std::vector<Record> rs;
-  std::uint64_t i = 0;
-  for (double x : {0.30, 0.10, 0.45, 0.20}) rs.push_back(testing::point("p1", 1, i++, x));
-  for (double x : {0.25, 0.60, 0.05, 0.50, 0.40}) rs.push_back(testing::point("p1", 2, i++, x));
-  testing::write_records(dir.path, rs);
+  testing::write_nine_point_run(dir.path);
   const RunRecords run = load_run_records(dir.path.string());
-  PaperTableValues t3;
-  t3.number = "3";
-  t3.column = "pe";
-  t3.fov_deg = {30, 150, 30, 150};
-  t3.window = {128, 128, 907, 907};
   const double nan = std::nan("");
-  t3.median = {std::array<double, 4>{-5.0, nan, nan, nan}, {-6.0, nan, nan, nan}};
-  t3.iqr = {std::array<double, 4>{0.325, nan, nan, nan}, {nan, nan, nan, nan}};  // ours (HF6)
-  t3.reading = "by hand";
+  // Medians -5 and -6 (far from ours), Platform I's IQR 0.325 (ours, HF6).
+  const PaperTableValues t3 = testing::table3_group_a(-5.0, -6.0, 0.325, nan);
   TableOptions o;
   o.paper = {t3};
   PaperDifference why;

@@ -86,22 +86,11 @@ TEST(PaperValues, BadFilesAreRefusedWithTheirLine) {
 // Platform p1, group A (view 1 and 2: FOV 30, 128 x 128): PE {0.05 ... 0.60}, HF6 median 0.30.
 TEST(PaperValues, TheComparisonSaysHowManyStandardErrorsApartWeAre) {
   testing::ScopedTempDir dir{"paper_comparison"};
-  std::vector<Record> rs;
-  std::uint64_t i = 0;
-  for (double x : {0.30, 0.10, 0.45, 0.20}) rs.push_back(testing::point("p1", 1, i++, x));
-  for (double x : {0.25, 0.60, 0.05, 0.50, 0.40}) rs.push_back(testing::point("p1", 2, i++, x));
-  testing::write_records(dir.path, rs);
+  testing::write_nine_point_run(dir.path);
   const RunRecords run = load_run_records(dir.path.string());
   TableOptions o;
-  PaperTableValues t3;
-  t3.number = "3";
-  t3.column = "pe";
-  t3.fov_deg = {30, 150, 30, 150};
-  t3.window = {128, 128, 907, 907};
   const double nan = std::nan("");
-  t3.median = {std::array<double, 4>{0.2, nan, nan, nan}, {0.3, nan, nan, nan}};
-  t3.iqr = {std::array<double, 4>{nan, nan, nan, nan}, {0.325, nan, nan, nan}};
-  t3.reading = "by hand";
+  const PaperTableValues t3 = testing::table3_group_a(0.2, 0.3, nan, 0.325);
   o.paper = {t3};
   const std::vector<Table> tables = paper_tables(run, o);
   const Table* c = nullptr;

@@ -2,12 +2,15 @@
 // records with the views of the paper's Table 1, written as a run directory with ra::write_record.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "stats/stats_testing.h"
+#include "analysis/paper_values.h"
 #include "metrics/records.h"
 
 namespace ra::analysis::testing {
@@ -80,6 +83,31 @@ inline std::string write_records(const std::filesystem::path& run,
   out << records_header() << "\n";
   for (const Record& r : records) write_record(out, r);
   return path.string();
+}
+
+// The run of the paper-comparison tests: group A of platform "p1" with PE {0.30, 0.10, 0.45, 0.20}
+// (view 1) and {0.25, 0.60, 0.05, 0.50, 0.40} (view 2): HF6 median 0.30, IQR 0.325.
+inline void write_nine_point_run(const std::filesystem::path& run) {
+  std::vector<Record> rs;
+  std::uint64_t i = 0;
+  for (double x : {0.30, 0.10, 0.45, 0.20}) rs.push_back(point("p1", 1, i++, x));
+  for (double x : {0.25, 0.60, 0.05, 0.50, 0.40}) rs.push_back(point("p1", 2, i++, x));
+  write_records(run, rs);
+}
+
+// The paper's Table 3 (PE) with only group A's cells given, Platform I and II; the rest NaN.
+inline PaperTableValues table3_group_a(double median_1, double median_2, double iqr_1,
+                                       double iqr_2) {
+  const double nan = std::nan("");
+  PaperTableValues t;
+  t.number = "3";
+  t.column = "pe";
+  t.fov_deg = {30, 150, 30, 150};
+  t.window = {128, 128, 907, 907};
+  t.median = {std::array<double, 4>{median_1, nan, nan, nan}, {median_2, nan, nan, nan}};
+  t.iqr = {std::array<double, 4>{iqr_1, nan, nan, nan}, {iqr_2, nan, nan, nan}};
+  t.reading = "by hand";
+  return t;
 }
 
 inline std::string read_text(const std::filesystem::path& path) {

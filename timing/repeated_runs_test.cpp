@@ -1,14 +1,11 @@
-// Table 6 and c over repeated runs (repeated_runs.h) on hand-made per-run numbers, and the
-// experiment key that asks for the runs (study_runs).
+// Table 6 and c over repeated runs (repeated_runs.h) on hand-made per-run numbers (the experiment
+// key that asks for the runs, study_runs, is tested with the others in timing_geometry_test.cpp).
 #include "timing/repeated_runs.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
-
-#include "timing/timing_experiment.h"
-#include "util/errors.h"
 
 namespace ra::timing {
 namespace {
@@ -129,45 +126,6 @@ TEST(RepeatedRuns, AggregatesTable6WinsAndC) {
   int total = 0;
   for (const auto& [m, k] : forest.wins) total += k;
   EXPECT_EQ(total, p.runs);  // every run has exactly one winner
-}
-
-// ---- the experiment key ----
-
-const char* kScene = R"(
-[[scene]]
-kind = "forest"
-trees = 3
-)";
-
-std::string error_of(const std::string& text) {
-  try {
-    parse_timing_experiment(text, "bad.toml");
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-TEST(TimingExperiment, StudyRuns) {
-  EXPECT_EQ(parse_timing_experiment(kScene, "d.toml").study_runs, 1);  // the single study
-  const TimingSettings s =
-      parse_timing_experiment(std::string("[timing]\nstudy_runs = 3\nrepetitions = 7\n") + kScene,
-                              "e.toml");
-  EXPECT_EQ(s.study_runs, 3);
-  EXPECT_EQ(s.work.repetitions, 7);  // a separate knob: timed draws per measurement
-  EXPECT_EQ(parse_timing_experiment(std::string("[timing]\nstudy_runs = 100\n") + kScene, "e.toml")
-                .study_runs,
-            100);
-  EXPECT_EQ(error_of(std::string("[timing]\nstudy_runs = 0\n") + kScene),
-            "bad.toml:2:14: 'timing.study_runs' = 0 is out of range (allowed: 1 to 100)");
-  EXPECT_EQ(error_of(std::string("[timing]\nstudy_runs = 101\n") + kScene),
-            "bad.toml:2:14: 'timing.study_runs' = 101 is out of range (allowed: 1 to 100)");
-  EXPECT_NE(error_of(std::string("[timing]\nstudy_runs = \"3\"\n") + kScene).find("bad.toml:2:14"),
-            std::string::npos);
-  // a study-wide key: not one of the per-platform overrides
-  EXPECT_NE(error_of(std::string("[timing.platform.osmesa-llvmpipe]\nstudy_runs = 2\n") + kScene)
-                .find("unknown key 'timing.platform.osmesa-llvmpipe.study_runs'"),
-            std::string::npos);
 }
 
 }  // namespace

@@ -138,5 +138,28 @@ TEST(TimingExperiment, BadInputIsLocated) {
   EXPECT_NE(error_of("[[scene]]\nkind = \"castle\"\n").find("bad.toml:2"), std::string::npos);
 }
 
+// study_runs (timing/repeated_runs.h): independent repeated runs of the whole study.
+TEST(TimingExperiment, StudyRuns) {
+  EXPECT_EQ(parse_timing_experiment(kScene, "d.toml").study_runs, 1);  // the single study
+  const TimingSettings s =
+      parse_timing_experiment(std::string("[timing]\nstudy_runs = 3\nrepetitions = 7\n") + kScene,
+                              "e.toml");
+  EXPECT_EQ(s.study_runs, 3);
+  EXPECT_EQ(s.work.repetitions, 7);  // a separate knob: timed draws per measurement
+  EXPECT_EQ(parse_timing_experiment(std::string("[timing]\nstudy_runs = 100\n") + kScene, "e.toml")
+                .study_runs,
+            100);
+  EXPECT_EQ(error_of(std::string("[timing]\nstudy_runs = 0\n") + kScene),
+            "bad.toml:2:14: 'timing.study_runs' = 0 is out of range (allowed: 1 to 100)");
+  EXPECT_EQ(error_of(std::string("[timing]\nstudy_runs = 101\n") + kScene),
+            "bad.toml:2:14: 'timing.study_runs' = 101 is out of range (allowed: 1 to 100)");
+  EXPECT_NE(error_of(std::string("[timing]\nstudy_runs = \"3\"\n") + kScene).find("bad.toml:2:14"),
+            std::string::npos);
+  // a study-wide key: not one of the per-platform overrides
+  EXPECT_NE(error_of(std::string("[timing.platform.osmesa-llvmpipe]\nstudy_runs = 2\n") + kScene)
+                .find("unknown key 'timing.platform.osmesa-llvmpipe.study_runs'"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace ra::timing
