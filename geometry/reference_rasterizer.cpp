@@ -83,6 +83,10 @@ bool covers(const std::vector<Vec2>& poly, Vec2 q) {
   return true;
 }
 
+// Bound on the error of a crossing x = a.x + t, t = (yc - a.y) (b.x - a.x) / (b.y - a.y), relative
+// to |a.x| + |t|: six roundings of at most 2^-53 each (the bound's own included), doubled.
+constexpr double kCrossingRelativeError = 16 * 0x1p-53;
+
 Vec2 snap(Vec2 p, SubpixelGrid g) { return {snap_to_subpixel(p.x, g), snap_to_subpixel(p.y, g)}; }
 
 }  // namespace
@@ -196,23 +200,43 @@ PixelSet rasterize_convex_polygon(const std::vector<Vec2>& polygon, int width, i
     const double yc = j + 0.5;
     if (yc < ymin || yc > ymax) continue;
     // The polygon's x interval at yc: each edge line bounds x from below (edge going down, a left
-    // edge) or from above (going up). Approximate; the exact test settles the ends.
-    double xl = -INFINITY, xr = INFINITY;
+    // edge) or from above (going up). Each crossing x is computed in double within
+    // kCrossingRelativeError (|a.x| + |t|) of the exact one; with the bounds kept both ways, a
+    // centre farther than that from the crossings is decided without the exact test.
+    double xl = -INFINITY, xr = INFINITY;            // the crossings as computed
+    double xl_up = -INFINITY, xl_down = -INFINITY;  // max over left edges of x + err, x - err
+    double xr_up = INFINITY, xr_down = INFINITY;    // min over right edges of x + err, x - err
     for (size_t k = 0; k < n; ++k) {
       const Vec2 a = poly[k], b = poly[(k + 1) % n];
       if (a.y == b.y) continue;
-      const double x = a.x + (yc - a.y) * (b.x - a.x) / (b.y - a.y);
-      if (b.y < a.y)
+      const double t = (yc - a.y) * (b.x - a.x) / (b.y - a.y);
+      const double x = a.x + t;
+      const double err = kCrossingRelativeError * (std::fabs(a.x) + std::fabs(t));
+      if (b.y < a.y) {
         xl = std::max(xl, x);
-      else
+        xl_up = std::max(xl_up, x + err), xl_down = std::max(xl_down, x - err);
+      } else {
         xr = std::min(xr, x);
+        xr_up = std::min(xr_up, x + err), xr_down = std::min(xr_down, x - err);
+      }
     }
     const double i0 = std::ceil(xl - 0.5), i1 = std::floor(xr - 0.5);  // centres inside
-    int32_t lo = int32_t(std::clamp(i0 - 1, 0.0, double(width)));
-    int32_t hi = int32_t(std::clamp(i1 + 1, -1.0, double(width - 1)));
-    while (lo <= hi && !covers(poly, {lo + 0.5, yc})) ++lo;
-    while (hi >= lo && !covers(poly, {hi + 0.5, yc})) --hi;
-    out.append_run(j, lo, hi + 1);  // rows ascend: one run per row (a convex row is one interval)
+    int32_t lo = int32_t(std::clamp(i0, 0.0, double(width)));
+    int32_t hi = int32_t(std::clamp(i1, -1.0, double(width - 1)));
+    // Certified: lo's centre right of every left crossing and lo - 1's left of the largest (or
+    // outside the window); the same for hi on the right. Strictly inside the row range, no
+    // horizontal edge is met, so the top-left rule matters only at an exact tie, never certified.
+    const bool certified =
+        yc > ymin && yc < ymax && std::isfinite(xl) && std::isfinite(xr) &&
+        lo + 0.5 > xl_up && (lo == 0 || lo - 0.5 < xl_down) && hi + 0.5 < xr_down &&
+        (hi == width - 1 || hi + 1.5 > xr_up);
+    if (!certified) {  // settle both ends with the exact test, from one pixel outside each
+      lo = int32_t(std::clamp(i0 - 1, 0.0, double(width)));
+      hi = int32_t(std::clamp(i1 + 1, -1.0, double(width - 1)));
+      while (lo <= hi && !covers(poly, {lo + 0.5, yc})) ++lo;
+      while (hi >= lo && !covers(poly, {hi + 0.5, yc})) --hi;
+    }
+    if (lo <= hi) out.append_run(j, lo, hi + 1);  // rows ascend: a convex row is one interval
   }
   return out;
 }

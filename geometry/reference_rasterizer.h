@@ -84,7 +84,8 @@ PixelSet rasterize_segment(const ClippedSegment& s, int width, int height, Subpi
 bool polygon_covers_sample(const std::vector<Vec2>& ccw_polygon, Vec2 q);
 
 // The pixels whose centres the convex counter-clockwise polygon covers (window coordinates, px;
-// normally ClippedPolygon::vertices); O(rows + lit pixels). Zero area: empty.
+// normally ClippedPolygon::vertices); O(rows x vertices): a row's ends are decided in double with a
+// certified error bound, by the exact test only near a tie. Zero area: empty.
 PixelSet rasterize_convex_polygon(const std::vector<Vec2>& ccw_polygon, int width, int height,
                                   SubpixelGrid grid = {});
 // The clipped triangle's pixels; empty unless it is visible.

@@ -224,6 +224,52 @@ TEST(ReferencePolygon, SliversAndDegenerates) {
   EXPECT_TRUE(rasterize_convex_polygon({{1, 1}, {nan, 1}, {4, 2}}, 10, 10).empty());
 }
 
+// The row walk decides most pixels in double arithmetic, with a certified error bound, and only
+// near-ties exactly. Against the exact test at every pixel centre (polygon_covers_sample on the
+// hull): vertices within a few ulp of centres and of pixel edges, edges a ulp from passing through
+// a centre, near-horizontal edges (dy 1e-12), and vertices far outside the window (1e7 px).
+TEST(ReferencePolygon, CertifiedRowsEqualExactTestNearTies) {
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<int> cell(-2, 42), ulps(-3, 3), pick(0, 4);
+  std::uniform_real_distribution<double> u(-5, 45), far(-1e7, 1e7);
+  auto near_tie = [&](double v) {  // v moved by a few ulp, or by 1e-12, or not at all
+    switch (pick(rng)) {
+      case 0: return v;
+      case 1: return v + 1e-12 * ulps(rng);
+      default: {
+        int k = ulps(rng);
+        while (k > 0) v = std::nextafter(v, INFINITY), --k;
+        while (k < 0) v = std::nextafter(v, -INFINITY), ++k;
+        return v;
+      }
+    }
+  };
+  int polygons = 0, lit = 0;
+  for (int t = 0; t < 600; ++t) {
+    std::vector<Vec2> poly;
+    const int n = 3 + t % 3;
+    for (int k = 0; k < n; ++k) {
+      const double half = pick(rng) < 3 ? 0.5 : 0.0;  // a centre or a pixel corner
+      Vec2 v{near_tie(cell(rng) + half), near_tie(cell(rng) + half)};
+      if (t % 7 == 0) v = {u(rng), u(rng)};
+      if (t % 11 == 0 && k == 0) v = {far(rng), far(rng)};
+      poly.push_back(v);
+    }
+    if (t % 5 == 0) poly[1] = {poly[0].x + 17.25, near_tie(poly[0].y + 1e-12)};  // nearly flat
+    const std::vector<Vec2> hull = convex_hull(poly);
+    if (hull.size() < 3) continue;
+    ++polygons;
+    PixelSet expect;
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < 40; ++x)
+        if (polygon_covers_sample(hull, {x + 0.5, y + 0.5})) expect.append_run(y, x, x + 1);
+    lit += int(expect.size());
+    ASSERT_EQ(rasterize_convex_polygon(poly, 40, 40), expect) << "polygon " << t;
+  }
+  EXPECT_GT(polygons, 500);
+  EXPECT_GT(lit, 10000);  // the cases light pixels, not only empty windows
+}
+
 // Both faces: the orientation of the input does not change the pixels.
 TEST(ReferencePolygon, BothFaces) {
   const View v = make_view(30, 128);
