@@ -83,9 +83,11 @@ bool covers(const std::vector<Vec2>& poly, Vec2 q) {
   return true;
 }
 
-// Bound on the error of a crossing x = a.x + t, t = (yc - a.y) (b.x - a.x) / (b.y - a.y), relative
-// to |a.x| + |t|: six roundings of at most 2^-53 each (the bound's own included), doubled.
+// Bound on the error of a crossing x = a.x + t, t = (yc - a.y) ((b.x - a.x) / (b.y - a.y)),
+// relative to |a.x| + |t|: six roundings of at most 2^-53 each (the bound's own included), doubled.
 constexpr double kCrossingRelativeError = 16 * 0x1p-53;
+// A clipped triangle has at most 3 + 6 vertices (one per clip plane crossed); more: exact path.
+constexpr size_t kMaxHullVertices = 16;
 
 Vec2 snap(Vec2 p, SubpixelGrid g) { return {snap_to_subpixel(p.x, g), snap_to_subpixel(p.y, g)}; }
 
@@ -196,23 +198,37 @@ PixelSet rasterize_convex_polygon(const std::vector<Vec2>& polygon, int width, i
   // Rows whose centre height lies in [ymin, ymax] (exact comparisons below).
   const int32_t j0 = int32_t(std::clamp(std::floor(ymin - 0.5), 0.0, double(height)));
   const int32_t j1 = int32_t(std::clamp(std::ceil(ymax - 0.5), -1.0, double(height - 1)));
+  // Each non-horizontal edge line bounds a row's x from below (edge going down, a left edge) or
+  // from above (going up): x = a.x + (yc - a.y) * slope at the row's centre height yc.
+  struct EdgeLine {
+    double ax, ay, slope;  // slope = (b.x - a.x) / (b.y - a.y)
+    bool left;
+  };
+  EdgeLine edges[kMaxHullVertices];
+  size_t edge_count = 0;
+  if (n <= kMaxHullVertices) {
+    for (size_t k = 0; k < n; ++k) {
+      const Vec2 a = poly[k], b = poly[k + 1 == n ? 0 : k + 1];
+      if (a.y != b.y) edges[edge_count++] = {a.x, a.y, (b.x - a.x) / (b.y - a.y), b.y < a.y};
+    }
+  }
   for (int32_t j = j0; j <= j1; ++j) {
     const double yc = j + 0.5;
     if (yc < ymin || yc > ymax) continue;
-    // The polygon's x interval at yc: each edge line bounds x from below (edge going down, a left
-    // edge) or from above (going up). Each crossing x is computed in double within
+    // The polygon's x interval at yc. Each crossing is computed in double within
     // kCrossingRelativeError (|a.x| + |t|) of the exact one; with the bounds kept both ways, a
     // centre farther than that from the crossings is decided without the exact test.
     double xl = -INFINITY, xr = INFINITY;            // the crossings as computed
     double xl_up = -INFINITY, xl_down = -INFINITY;  // max over left edges of x + err, x - err
     double xr_up = INFINITY, xr_down = INFINITY;    // min over right edges of x + err, x - err
-    for (size_t k = 0; k < n; ++k) {
-      const Vec2 a = poly[k], b = poly[(k + 1) % n];
-      if (a.y == b.y) continue;
-      const double t = (yc - a.y) * (b.x - a.x) / (b.y - a.y);
-      const double x = a.x + t;
-      const double err = kCrossingRelativeError * (std::fabs(a.x) + std::fabs(t));
-      if (b.y < a.y) {
+    bool finite_crossings = edge_count > 0;  // an overflowing slope (dy ~ 1e-320) is not certified
+    for (size_t k = 0; k < edge_count; ++k) {
+      const EdgeLine& e = edges[k];
+      const double t = (yc - e.ay) * e.slope;
+      const double x = e.ax + t;
+      const double err = kCrossingRelativeError * (std::fabs(e.ax) + std::fabs(t));
+      finite_crossings &= std::isfinite(x + err);
+      if (e.left) {
         xl = std::max(xl, x);
         xl_up = std::max(xl_up, x + err), xl_down = std::max(xl_down, x - err);
       } else {
@@ -227,7 +243,7 @@ PixelSet rasterize_convex_polygon(const std::vector<Vec2>& polygon, int width, i
     // outside the window); the same for hi on the right. Strictly inside the row range, no
     // horizontal edge is met, so the top-left rule matters only at an exact tie, never certified.
     const bool certified =
-        yc > ymin && yc < ymax && std::isfinite(xl) && std::isfinite(xr) &&
+        finite_crossings && yc > ymin && yc < ymax && std::isfinite(xl) && std::isfinite(xr) &&
         lo + 0.5 > xl_up && (lo == 0 || lo - 0.5 < xl_down) && hi + 0.5 < xr_down &&
         (hi == width - 1 || hi + 1.5 > xr_up);
     if (!certified) {  // settle both ends with the exact test, from one pixel outside each

@@ -268,6 +268,21 @@ TEST(ReferencePolygon, CertifiedRowsEqualExactTestNearTies) {
   }
   EXPECT_GT(polygons, 500);
   EXPECT_GT(lit, 10000);  // the cases light pixels, not only empty windows
+  // Edges so flat that their slope overflows (dy = 5e-324, the smallest double), through a
+  // centre row: the exact test decides those rows.
+  const double tiny = std::numeric_limits<double>::denorm_min();
+  for (const std::vector<Vec2>& poly : std::vector<std::vector<Vec2>>{
+           {{0, 0}, {30, tiny}, {15, 20}},
+           {{2, 0.5}, {30, 0.5 - tiny}, {15, 20}},
+           {{30, 0.5}, {2, 0.5 + tiny}, {15, -20}}}) {
+    const std::vector<Vec2> hull = convex_hull(poly);
+    PixelSet expect;
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < 40; ++x)
+        if (polygon_covers_sample(hull, {x + 0.5, y + 0.5})) expect.append_run(y, x, x + 1);
+    EXPECT_FALSE(expect.empty());
+    EXPECT_EQ(rasterize_convex_polygon(poly, 40, 40), expect);
+  }
 }
 
 // Both faces: the orientation of the input does not change the pixels.
