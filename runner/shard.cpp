@@ -63,23 +63,31 @@ static void write_driver_info(const std::string& run_dir, const std::string& nam
   write_file_atomic(path, j.dump(2) + "\n");
 }
 
-void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& shard,
-               const std::string& records_dir) {
+ShardSession::ShardSession(std::string run_dir, const Experiment& exp, std::string platform)
+    : run_dir_(std::move(run_dir)), exp_(exp), platform_name_(std::move(platform)) {}
+
+ShardSession::~ShardSession() = default;
+
+void ShardSession::run(const Shard& shard, const std::string& records_dir) {
+  if (shard.platform != platform_name_)
+    throw std::logic_error("shard " + shard.id() + " sent to a session of " + platform_name_);
   const View* view = nullptr;
-  for (const View& v : exp.views)
+  for (const View& v : exp_.views)
     if (v.id == shard.view) view = &v;
   if (!view) throw std::runtime_error("shard " + shard.id() + ": no such view");
 
-  auto platform = create_platform(shard.platform, exp.faults);
   const bool exact = shard.platform == "reference";
-  // Every worker measures the grid itself (about 96 small triangles: tens of milliseconds), so
-  // that its verdicts never depend on which worker wrote the driver file first.
-  const EffectiveSubpixel effective = exact ? EffectiveSubpixel{} : measure_effective_subpixel(*platform);
-  write_driver_info(run_dir, shard.platform, *platform, effective);
-  platform->set_view(*view);
-  const CaseComparison comparison(!exact, effective.grid);
+  if (!platform_) {
+    platform_ = create_platform(shard.platform, exp_.faults);
+    // Every process measures the grid itself (about 96 small triangles: tens of milliseconds),
+    // so that its verdicts never depend on which process wrote the driver file first.
+    effective_ = exact ? EffectiveSubpixel{} : measure_effective_subpixel(*platform_);
+    write_driver_info(run_dir_, shard.platform, *platform_, effective_);
+  }
+  platform_->set_view(*view);
+  const CaseComparison comparison(!exact, effective_.grid);
 
-  const std::string path = records_dir.empty() ? shard.records_path(run_dir)
+  const std::string path = records_dir.empty() ? shard.records_path(run_dir_)
                                                : records_dir + "/" + shard.id() + ".csv";
   // A temporary of this writer alone: a second writer (a run that ignored the lock) cannot
   // interleave its rows with ours, and a killed one leaves only its own temporary behind.
@@ -92,8 +100,8 @@ void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& s
   for (uint64_t first = shard.begin; first < shard.end; first += kChunk) {
     prims.clear();
     for (uint64_t i = first; i < std::min(shard.end, first + kChunk); ++i)
-      prims.push_back(make_primitive(exp.seed, shard.kind, i));
-    for (const Record& r : measure_cases(shard.platform, *platform, *view, prims, comparison))
+      prims.push_back(make_primitive(exp_.seed, shard.kind, i));
+    for (const Record& r : measure_cases(shard.platform, *platform_, *view, prims, comparison))
       write_record(out, r);
   }
   out.close();
@@ -109,6 +117,11 @@ void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& s
     throw;
   }
   commit_file(tmp, path);
+}
+
+void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& shard,
+               const std::string& records_dir) {
+  ShardSession(run_dir, exp, shard.platform).run(shard, records_dir);
 }
 
 }  // namespace ra
