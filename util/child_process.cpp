@@ -40,16 +40,17 @@ Child start_child(const ChildSpec& spec) {
   for (const auto& e : env) envp.push_back(const_cast<char*>(e.c_str()));
   envp.push_back(nullptr);
 
-  int out_pipe[2] = {-1, -1}, msg_pipe[2] = {-1, -1};
+  int out_pipe[2] = {-1, -1}, msg_pipe[2] = {-1, -1}, cmd_pipe[2] = {-1, -1};
   auto close_all = [&] {
-    for (int fd : {out_pipe[0], out_pipe[1], msg_pipe[0], msg_pipe[1]})
+    for (int fd : {out_pipe[0], out_pipe[1], msg_pipe[0], msg_pipe[1], cmd_pipe[0], cmd_pipe[1]})
       if (fd >= 0) ::close(fd);
   };
-  if (spec.capture_output && ::pipe2(out_pipe, O_CLOEXEC) != 0)
-    throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
-  if (spec.message_pipe && ::pipe2(msg_pipe, O_CLOEXEC) != 0) {
+  if ((spec.capture_output && ::pipe2(out_pipe, O_CLOEXEC) != 0) ||
+      (spec.message_pipe && ::pipe2(msg_pipe, O_CLOEXEC) != 0) ||
+      (spec.command_pipe && ::pipe2(cmd_pipe, O_CLOEXEC) != 0)) {
+    const std::string why = std::strerror(errno);
     close_all();
-    throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
+    throw std::runtime_error("cannot create a pipe: " + why);
   }
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
@@ -61,7 +62,12 @@ Child start_child(const ChildSpec& spec) {
   if (pid == 0) {  // only async-signal-safe calls from here to exec
     die_with_parent(parent, spec.death_signal);
     if (spec.own_process_group) ::setpgid(0, 0);
-    if (spec.stdin_null) {
+    if (spec.command_pipe) {
+      if (cmd_pipe[0] == 0)
+        ::fcntl(0, F_SETFD, 0);
+      else
+        ::dup2(cmd_pipe[0], 0);  // the copy is not close-on-exec
+    } else if (spec.stdin_null) {
       const int in = ::open("/dev/null", O_RDONLY);
       if (in >= 0) ::dup2(in, 0), ::close(in);
     }
@@ -101,6 +107,10 @@ Child start_child(const ChildSpec& spec) {
     ::close(msg_pipe[1]);
     ::fcntl(msg_pipe[0], F_SETFL, O_NONBLOCK);
     child.message_fd = msg_pipe[0];
+  }
+  if (spec.command_pipe) {
+    ::close(cmd_pipe[0]);
+    child.command_fd = cmd_pipe[1];
   }
   return child;
 }

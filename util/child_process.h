@@ -24,6 +24,7 @@ struct ChildSpec {
   // Both streams to one file (a log).
   void log_to(const std::string& path) { stdout_path = stderr_path = path; }
   bool stdin_null = false;           // stdin from /dev/null
+  bool command_pipe = false;         // stdin from a pipe whose write end is Child::command_fd
   bool own_process_group = false;    // setpgid(0, 0): kill(-pid, ...) reaches all it starts
   int death_signal = SIGKILL;        // what the child gets when this process dies
   std::vector<int> inherit_fds;      // descriptors kept open across exec (others are close-on-exec)
@@ -36,6 +37,8 @@ struct Child {
   pid_t pid = -1;
   int output_fd = -1;   // read end of the capture pipe (capture_output), close-on-exec
   int message_fd = -1;  // read end of the message pipe (message_pipe), non-blocking
+  int command_fd = -1;  // write end of the child's stdin (command_pipe), close-on-exec; writes to
+                        // a child that is gone fail with EPIPE (SIGPIPE must be ignored)
 };
 
 // Starts the program; throws std::runtime_error when fork or the pipes fail. A program that
