@@ -44,6 +44,10 @@ void register_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--slice", slice,
                   "run only slice K/N of the shards (disjoint, deterministic, balanced by "
                   "expected cost), for N machines; gather them with `renderaudit merge`");
+  static bool worker_per_shard = false;
+  cmd->add_flag("--worker-per-shard", worker_per_shard,
+                "start a worker process for every shard (default: a worker serves one platform's "
+                "shards one after another, paying for its start and GL context once)");
   cmd->add_flag("--quiet,-q", quiet, "no progress line");
   static bool slurm = false;
   static SlurmOptions slurm_opt;
@@ -71,6 +75,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
       ->needs(on_slurm);
   cmd->callback([&exit_code] {
     opt.progress = !quiet;
+    opt.serve_shards = !worker_per_shard;
     opt.shard_order = shard_order == "plan" ? RunOptions::ShardOrder::kPlan
                                             : RunOptions::ShardOrder::kLargestCostFirst;
     if (!slice.empty()) opt.slice = parse_slice(slice);

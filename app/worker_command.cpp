@@ -1,10 +1,14 @@
 // `renderaudit worker DIR PLATFORM KIND VIEW BEGIN END [--records-dir D]`: runs one shard (or a
-// part of one, when bisecting a crash) in this process. Started by `renderaudit run`; not meant to
-// be typed by hand.
+// part of one, when bisecting a crash) in this process. `renderaudit serve-shards DIR PLATFORM`:
+// runs the shards of one platform that arrive on stdin (runner/shard_server.h). Both are started
+// by `renderaudit run`; not meant to be typed by hand.
+#include <iostream>
+
 #include "app/commands.h"
 #include "util/errors.h"
 #include "runner/experiment.h"
 #include "runner/shard.h"
+#include "runner/shard_server.h"
 
 namespace ra::app {
 
@@ -26,6 +30,17 @@ void register_worker_command(CLI::App& app, int& exit_code) {
     Shard shard{platform, Kind::kPoint, view, begin, end};
     if (!parse_kind(kind, &shard.kind)) throw UserError("unknown kind '" + kind + "'");
     run_shard(dir, exp, shard, records_dir);
+    exit_code = kExitOk;
+  });
+
+  auto* serve = app.add_subcommand("serve-shards", "internal: run the shards sent on stdin");
+  serve->group("");
+  static std::string serve_dir, serve_platform;
+  serve->add_option("dir", serve_dir)->required();
+  serve->add_option("platform", serve_platform)->required();
+  serve->callback([&exit_code] {
+    const Experiment exp = load_experiment(serve_dir + "/experiment.toml");
+    serve_shards(serve_dir, exp, serve_platform, std::cin);
     exit_code = kExitOk;
   });
 }

@@ -1,12 +1,14 @@
 #include "runner/run_coordinator.h"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -32,6 +34,7 @@
 #include "platforms/renderer_check.h"
 #include "runner/shard.h"
 #include "runner/shard_recovery.h"
+#include "runner/shard_server.h"
 #include "runner/worker_program.h"
 
 namespace fs = std::filesystem;
@@ -44,10 +47,17 @@ void on_signal(int) { g_interrupted = 1; }
 
 using Clock = std::chrono::steady_clock;
 
+// A worker process: one shard's (or part's), or a server of one platform's shards.
 struct Running {
-  WorkItem item;
-  Clock::time_point started;
-  int message_fd = -1;  // the worker's message pipe
+  WorkItem item;                 // what it runs now (a server: valid while busy)
+  bool busy = true;              // a server between shards is idle
+  Clock::time_point started;     // when `item` started
+  Clock::time_point spawned;     // when the process started
+  int message_fd = -1;           // the worker's message pipe
+  int command_fd = -1;           // a server's stdin; -1: a one-shard worker, or a server told to end
+  bool server = false;
+  std::string unread;            // message-pipe bytes not yet a whole line
+  std::string words;             // what it said that is not a reply: its last words
 };
 
 // A worker: its own process group (a timeout kills all it started), dies with this process, its
@@ -67,11 +77,61 @@ Child spawn_worker(const std::string& program, const std::string& dir, const Wor
   return start_child(spec);
 }
 
-// What a finished worker said through its message pipe (the error it stopped on), one line.
-std::string last_words(int fd) {
-  std::string text = drain_fd(fd);
+std::string log_path(const std::string& dir, const WorkItem& item) {
+  return dir + "/logs/" + item.shard.id() + (item.attempt > 1 ? ".retry" : "") + ".log";
+}
+
+// A server of `platform`'s shards (runner/shard_server.h), set up as spawn_worker's workers are.
+Child spawn_server(const std::string& program, const std::string& dir, const WorkItem& first) {
+  ChildSpec spec;
+  spec.argv = {program, "serve-shards", dir, first.shard.platform};
+  spec.set_env = {"RA_RENDER_ATTEMPT=1"};
+  spec.log_to(log_path(dir, first));  // until the first command names it again
+  spec.command_pipe = true;
+  spec.own_process_group = true;
+  spec.message_pipe = true;
+  return start_child(spec);
+}
+
+// Reads what the worker said since last time: the ids of the shards it reports done (a server's
+// replies), in order; anything else is kept as its last words.
+std::vector<std::string> read_replies(Running& r) {
+  r.unread += drain_fd(r.message_fd);
+  std::vector<std::string> done;
+  size_t start = 0;
+  for (size_t nl; (nl = r.unread.find('\n', start)) != std::string::npos; start = nl + 1) {
+    const std::string line = r.unread.substr(start, nl - start);
+    std::string id;
+    if (parse_shard_done(line, &id))
+      done.push_back(id);
+    else
+      r.words += line + "\n";
+  }
+  r.unread.erase(0, start);
+  return done;
+}
+
+// What a finished worker said that was not a reply (the error it stopped on), one line.
+std::string last_words(Running& r) {
+  read_replies(r);
+  std::string text = r.words + r.unread;
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
   return text;
+}
+
+// Sends `item` to a server; false when it is gone (it will be reaped as such).
+bool send_command(Running& r, const std::string& dir, const WorkItem& item,
+                  const std::string& records_dir) {
+  const std::string line =
+      shard_command_line({item.shard, records_dir, log_path(dir, item)}) + "\n";
+  size_t done = 0;
+  while (done < line.size()) {
+    const ssize_t n = ::write(r.command_fd, line.data() + done, line.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += size_t(n);
+  }
+  return true;
 }
 
 nlohmann::json drivers_json(const std::string& dir) {
@@ -211,6 +271,7 @@ RunResult run_experiment(const RunOptions& options) {
       for (auto& [pid, r] : running) {
         wait_child(pid);
         if (r.message_fd >= 0) ::close(r.message_fd);
+        if (r.command_fd >= 0) ::close(r.command_fd);
       }
       running.clear();
     }
@@ -257,6 +318,55 @@ RunResult run_experiment(const RunOptions& options) {
     for (auto it = next.rbegin(); it != next.rend(); ++it) todo.push_front(*it);
     if (assembled) ++finished, ++result.shards_run;
   };
+  // A shard a server may take: a whole one at its first attempt (re-runs and bisection parts get
+  // processes of their own, whose crash names them alone).
+  auto servable = [&](const WorkItem& w) {
+    return options.serve_shards && w.attempt == 1 && !w.is_part();
+  };
+  // The next shard for an idle server of `platform`: the first of its platform among the next
+  // `jobs` in the queue, which would start about now anyway; none: the server ends, and the
+  // queue's order (largest cost first) is kept.
+  auto next_for_server = [&](const std::string& platform) {
+    auto it = todo.begin();
+    for (int k = 0; k < jobs && it != todo.end(); ++k, ++it)
+      if (it->shard.platform == platform && servable(*it)) return it;
+    return todo.end();
+  };
+  // A worker finished `r.item` well (its exit, or a server's reply).
+  auto succeeded = [&](Running& r, double item_s) {
+    if (!r.item.is_part()) shard_seconds[r.item.shard.id()] = item_s;
+    conclude(r, WorkOutcome::kOk, "");
+  };
+  // A worker process ended with `status`; a busy one takes its shard with it.
+  auto reaped = [&](pid_t pid, int status) {
+    Running r = running[pid];
+    running.erase(pid);
+    const auto now = Clock::now();
+    busy_s += std::chrono::duration<double>(now - r.spawned).count();
+    const std::string words = last_words(r);  // replies first: a server may have finished one
+    ::close(r.message_fd);
+    if (r.command_fd >= 0) ::close(r.command_fd);
+    if (!r.busy) return;
+    const double item_s = std::chrono::duration<double>(now - r.started).count();
+    const std::string written = recovery.records_dir(r.item) + "/" + r.item.shard.id() + ".csv";
+    const std::string log = "; log: " + log_path(dir, r.item);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(written)) {
+      succeeded(r, item_s);
+    } else if (WIFSIGNALED(status)) {  // the driver crashed: re-run, then bisect
+      conclude(r, WorkOutcome::kCrash, describe_exit_status(status) + log);
+    } else {  // an error the worker reported (I/O, bad input): no primitive to blame
+      ++finished;
+      const std::string why = describe_exit_status(status) + (words.empty() ? "" : ": " + words);
+      std::fprintf(stderr, "%srenderaudit: shard %s: worker %s\n", show ? "\n" : "",
+                   r.item.shard.id().c_str(), why.c_str());
+      result.failures.push_back({r.item.shard.id(), why + log});
+    }
+  };
+  // SIGPIPE ignored: a server that died before reading its command fails the write instead.
+  struct sigaction ignore_pipe {}, old_pipe {};
+  ignore_pipe.sa_handler = SIG_IGN;
+  sigemptyset(&ignore_pipe.sa_mask);
+  sigaction(SIGPIPE, &ignore_pipe, &old_pipe);
   while (!todo.empty() || !running.empty()) {
     if (g_interrupted) {
       result.interrupted = true;
@@ -267,46 +377,69 @@ RunResult run_experiment(const RunOptions& options) {
       result.wrong_renderer = wrong;
       break;
     }
+    // Idle servers take the next shard of their platform, or are told to end (end of input).
+    for (auto& [pid, r] : running) {
+      if (r.busy || r.command_fd < 0) continue;
+      const auto it = next_for_server(r.item.shard.platform);
+      if (it != todo.end()) {
+        r.item = *it;
+        todo.erase(it);
+        r.busy = true;
+        r.started = Clock::now();
+        if (!send_command(r, dir, r.item, recovery.records_dir(r.item))) {
+          ::close(r.command_fd);  // gone: its exit concludes the shard (a crash, or words)
+          r.command_fd = -1;
+        }
+      } else {
+        ::close(r.command_fd);
+        r.command_fd = -1;
+      }
+    }
     while (!todo.empty() && int(running.size()) < jobs) {
       const WorkItem w = todo.front();
       todo.pop_front();
-      const Child child = spawn_worker(program, dir, w, recovery.records_dir(w));
-      running[child.pid] = {w, Clock::now(), child.message_fd};
+      Running r;
+      r.item = w;
+      r.started = r.spawned = Clock::now();
+      if (servable(w)) {
+        const Child child = spawn_server(program, dir, w);
+        r.server = true, r.message_fd = child.message_fd, r.command_fd = child.command_fd;
+        if (!send_command(r, dir, w, recovery.records_dir(w))) {
+          ::close(r.command_fd);
+          r.command_fd = -1;
+        }
+        running[child.pid] = r;
+      } else {
+        const Child child = spawn_worker(program, dir, w, recovery.records_dir(w));
+        r.message_fd = child.message_fd;
+        running[child.pid] = r;
+      }
+      ++result.worker_processes;
+    }
+    // Servers' replies: the shard is done, the server idle until the next pass.
+    for (auto& [pid, r] : running) {
+      if (!r.server) continue;
+      for (const std::string& id : read_replies(r)) {
+        if (!r.busy || id != r.item.shard.id()) continue;  // cannot happen: one shard at a time
+        r.busy = false;
+        succeeded(r, std::chrono::duration<double>(Clock::now() - r.started).count());
+      }
     }
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, WNOHANG);
     if (pid > 0 && running.count(pid)) {
-      const Running r = running[pid];
-      running.erase(pid);
-      const double worker_s = std::chrono::duration<double>(Clock::now() - r.started).count();
-      busy_s += worker_s;
-      const std::string words = last_words(r.message_fd);
-      ::close(r.message_fd);
-      const std::string written = recovery.records_dir(r.item) + "/" + r.item.shard.id() + ".csv";
-      const std::string log = "; log: " + dir + "/logs/" + r.item.shard.id() +
-                              (r.item.attempt > 1 ? ".retry" : "") + ".log";
-      if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(written)) {
-        if (!r.item.is_part()) shard_seconds[r.item.shard.id()] = worker_s;
-        conclude(r, WorkOutcome::kOk, "");
-      } else if (WIFSIGNALED(status)) {  // the driver crashed: re-run, then bisect
-        conclude(r, WorkOutcome::kCrash, describe_exit_status(status) + log);
-      } else {  // an error the worker reported (I/O, bad input): no primitive to blame
-        ++finished;
-        const std::string why = describe_exit_status(status) + (words.empty() ? "" : ": " + words);
-        std::fprintf(stderr, "%srenderaudit: shard %s: worker %s\n", show ? "\n" : "",
-                     r.item.shard.id().c_str(), why.c_str());
-        result.failures.push_back({r.item.shard.id(), why + log});
-      }
+      reaped(pid, status);
       continue;  // reap everything that is ready before sleeping
     }
     const auto now = Clock::now();
     for (auto& [p, r] : running) {
-      if (std::chrono::duration<double>(now - r.started).count() > r.item.timeout_s) {
+      if (r.busy && std::chrono::duration<double>(now - r.started).count() > r.item.timeout_s) {
         ::kill(-p, SIGKILL);
         wait_child(p);
         const Running timed_out = r;
-        busy_s += std::chrono::duration<double>(now - timed_out.started).count();
+        busy_s += std::chrono::duration<double>(now - timed_out.spawned).count();
         ::close(timed_out.message_fd);
+        if (timed_out.command_fd >= 0) ::close(timed_out.command_fd);
         running.erase(p);
         char limit[32];
         std::snprintf(limit, sizeof limit, "%g", timed_out.item.timeout_s);
@@ -328,7 +461,11 @@ RunResult run_experiment(const RunOptions& options) {
                    result.failures.size(),
                    duration_text(cost_done > 0 ? seconds_left(elapsed) : NAN).c_str());
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    // Sleep up to 5 ms, waking at once when a server replies (the next shard is sent at once).
+    std::vector<pollfd> replies;
+    for (const auto& [p, r] : running)
+      if (r.server && r.busy) replies.push_back({r.message_fd, POLLIN, 0});
+    ::poll(replies.data(), replies.size(), 5);
   }
   if (show) std::fprintf(stderr, "\n");
   reaper.stop_all();  // no worker runs past this point
@@ -337,6 +474,7 @@ RunResult run_experiment(const RunOptions& options) {
   remove_temporaries(dir);  // what killed (timed-out) workers left half-written
   sigaction(SIGINT, &old_int, nullptr);
   sigaction(SIGTERM, &old_term, nullptr);
+  sigaction(SIGPIPE, &old_pipe, nullptr);
 
   manifest["drivers"] = drivers_json(dir);
   manifest["finished"] = utc_now_iso8601();
@@ -347,6 +485,8 @@ RunResult run_experiment(const RunOptions& options) {
   manifest["invocations"].back()["shard_order"] =
       options.shard_order == RunOptions::ShardOrder::kPlan ? "plan" : "largest-expected-cost-first";
   manifest["invocations"].back()["worker_busy_s"] = busy_s;
+  manifest["invocations"].back()["worker_processes"] = result.worker_processes;
+  manifest["invocations"].back()["workers"] = options.serve_shards ? "serve-shards" : "per-shard";
   manifest["invocations"].back()["idle_core_s"] = std::max(0.0, jobs * elapsed_s - busy_s);
   manifest["shard_seconds"] = shard_seconds;
   size_t complete = 0;

@@ -26,6 +26,10 @@ struct RunOptions {
   enum class ShardOrder { kLargestCostFirst, kPlan } shard_order = ShardOrder::kLargestCostFirst;
   // Run only slice K of N (runner/slicing.h); none: the whole run.
   std::optional<Slice> slice;
+  // Whole shards at their first attempt go to worker processes that serve one platform's shards
+  // one after another (runner/shard_server.h); false: one process per shard, as before
+  // 2026-11-25 (re-runs and bisection parts always get a process of their own).
+  bool serve_shards = true;
 };
 
 struct ShardFailure {
@@ -36,6 +40,7 @@ struct ShardFailure {
 struct RunResult {
   std::string run_dir;
   size_t shards_total = 0, shards_done_before = 0, shards_run = 0;
+  size_t worker_processes = 0;           // processes started (servers count once)
   size_t shards_complete = 0;            // with a records file, this or an earlier invocation
   std::vector<ShardFailure> failures;    // every worker that crashed, hung or failed (events)
   std::vector<ShardFailure> damaged;     // shard files found incomplete or damaged, then redone

@@ -150,6 +150,62 @@ TEST(RunCommand, CrashingAndHangingPrimitivesAreBisectedAndRecorded) {
   EXPECT_FALSE(fs::exists(dir + "/run/parts"));
 }
 
+// Workers that serve many shards (the default) give the records of one process per shard, over
+// window sizes that change between shards; a crash stays with its shard: the shards before and
+// after it are served, it alone is re-run and bisected in processes of its own.
+TEST(RunCommand, ServedShardsEqualOneProcessPerShardAndACrashStaysWithItsShard) {
+  const std::string dir = fresh_dir("served");
+  write_text(dir + "/e.toml",
+             "seed = 11\nplatforms = [\"osmesa-llvmpipe\"]\n[views]\norientations = 1\n"
+             "fov_deg = [30, 150]\nwindows = [64, 128]\nnear = 0.01\nfar = 10.0\n"
+             "[primitives]\npoints = 200\nlines = 100\ntriangles = 100\n[run]\nshard_size = 50\n");
+  const Outcome a = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/served --jobs 1");
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  const Outcome b = run_renderaudit("run " + dir + "/e.toml --out " + dir +
+                                    "/per-shard --jobs 2 --worker-per-shard");
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  const auto served = records_without_timing(dir + "/served");
+  EXPECT_EQ(served.size(), 4u * 400);  // views x primitives
+  EXPECT_TRUE(served == records_without_timing(dir + "/per-shard"));
+  auto invocation = [&](const std::string& run) {
+    return nlohmann::json::parse(ra::read_file(dir + "/" + run + "/manifest.json"))
+        .at("invocations")
+        .back();
+  };
+  EXPECT_EQ(invocation("served").at("worker_processes"), 1);  // one platform, one job
+  EXPECT_EQ(invocation("served").at("workers"), "serve-shards");
+  EXPECT_EQ(invocation("per-shard").at("worker_processes"), 4 * 8);  // views x shards
+  EXPECT_EQ(invocation("per-shard").at("workers"), "per-shard");
+  for (const auto& e : fs::directory_iterator(dir + "/served/records"))
+    EXPECT_TRUE(fs::exists(dir + "/served/logs/" + e.path().stem().string() + ".log")) << e.path();
+
+  const std::string faulty =
+      "seed = 3\nplatforms = [\"faulty\"]\n[views]\norientations = 1\nfov_deg = [150]\n"
+      "windows = [64]\nnear = 0.01\nfar = 10.0\n[primitives]\npoints = 60\n[run]\n"
+      "shard_size = 10\n[faults]\ncrash = [25]\n";
+  write_text(dir + "/crash.toml", faulty);
+  const Outcome c = run_renderaudit("run " + dir + "/crash.toml --out " + dir + "/crash --jobs 1");
+  EXPECT_EQ(c.exit_code, 1) << c.output;
+  EXPECT_NE(c.output.find("faulty.point.v1.20-30: crashed (signal 11, Segmentation fault); log: " +
+                          dir + "/crash/logs/faulty.point.v1.20-30.log; re-running it"),
+            std::string::npos)
+      << c.output;
+  EXPECT_NE(c.output.find("primitive 25 of faulty.point.v1.20-30 recorded as crash"),
+            std::string::npos)
+      << c.output;
+  const Outcome d = run_renderaudit("run " + dir + "/crash.toml --out " + dir +
+                                    "/crash-per-shard --jobs 1 --worker-per-shard");
+  EXPECT_EQ(d.exit_code, 1) << d.output;
+  const auto crashed = records_without_timing(dir + "/crash");
+  EXPECT_EQ(crashed.size(), 60u);
+  EXPECT_TRUE(crashed == records_without_timing(dir + "/crash-per-shard"));
+  // The six shards in two servers (before and after the crash) instead of six processes; the
+  // re-run and the bisection the same in both.
+  EXPECT_EQ(invocation("crash-per-shard").at("worker_processes").get<int>() -
+                invocation("crash").at("worker_processes").get<int>(),
+            4);
+}
+
 // --expect-renderer stops a run that loaded another driver, before it renders for hours.
 TEST(RunCommand, ExpectRendererStopsTheWrongDriver) {
   const std::string dir = fresh_dir("renderer");

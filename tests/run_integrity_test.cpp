@@ -47,7 +47,9 @@ int processes_mentioning(const std::string& needle) {
     const std::string stat = read_text(e.path().string() + "/stat");
     const auto close = stat.rfind(')');
     const bool zombie = close != std::string::npos && close + 2 < stat.size() && stat[close + 2] == 'Z';
-    if (!zombie && cmd.find(needle) != std::string::npos && cmd.find(" worker ") != std::string::npos)
+    const bool worker = cmd.find(" worker ") != std::string::npos ||
+                        cmd.find(" serve-shards ") != std::string::npos;  // either kind of worker
+    if (!zombie && cmd.find(needle) != std::string::npos && worker)
       ++n;
   }
   return n;
