@@ -292,7 +292,8 @@ RunResult run_experiment(const RunOptions& options) {
     p.updated_utc = utc_now_iso8601();
     p.shards_to_run = shards_to_run;
     p.shards_finished = finished;
-    for (const auto& [pid, r] : running) p.running.push_back(r.item.shard.id());
+    for (const auto& [pid, r] : running)
+      if (r.busy) p.running.push_back(r.item.shard.id());  // not a server between shards
     for (const auto& f : result.failures) p.failed.push_back(f.shard);
     p.primitives_done = primitives_done;
     p.primitives_todo = primitives_todo;
