@@ -6,7 +6,9 @@
 // drivers drawing on every core without pause), and per platform x kind the worker time per
 // primitive beside the drawing per primitive (the per-primitive floor), medians over the rounds.
 // `--from RUN_DIR` prints the same tables for a run already made (one round; e.g. the full
-// nist2008 run), without running anything.
+// nist2008 run), without running anything. Each round also runs the experiment with
+// `--worker-per-shard` (one process per shard, as before 2026-11-25), the two alternating, so
+// that what serving many shards per process saves is measured side by side.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -40,6 +42,7 @@ struct KindCost {
 
 struct Round {
   double wall_s = 0, elapsed_s = 0, busy_s = 0, drawing_s = 0;
+  int processes = 0;                       // worker processes started
   std::map<std::string, KindCost> kinds;  // "platform kind"
 };
 
@@ -70,17 +73,21 @@ int main(int argc, char** argv) {
   }
   const std::string program =
       (fs::read_symlink("/proc/self/exe").parent_path() / "renderaudit").string();
-  std::vector<Round> results;
+  std::vector<Round> results, per_shard;  // the default (served shards), and --worker-per-shard
   if (!from.empty()) rounds = 1, experiment = from + "/experiment.toml";
-  for (int r = 1; r <= rounds; ++r) {
-    const std::string dir =
-        !from.empty() ? from : "outputs/bench/run-overhead/round" + std::to_string(r);
+  for (int r = 1; r <= rounds; ++r)
+  for (const bool served : {true, false}) {
+    if (!from.empty() && !served) continue;
+    const std::string dir = !from.empty() ? from
+                                          : "outputs/bench/run-overhead/round" + std::to_string(r) +
+                                                (served ? "" : "-per-shard");
     Round round;
     if (from.empty()) {
       fs::remove_all(dir);
       ChildSpec spec;
       spec.argv = {program, "run",    experiment,           "--out",
                    dir,     "--jobs", std::to_string(jobs), "--quiet"};
+      if (!served) spec.argv.push_back("--worker-per-shard");
       spec.capture_output = true;
       spec.stdin_null = true;
       const auto t0 = std::chrono::steady_clock::now();
@@ -96,6 +103,7 @@ int main(int argc, char** argv) {
     jobs = m["invocations"].back().value("jobs", jobs);
     round.elapsed_s = m["invocations"].back().value("elapsed_s", 0.0);
     round.busy_s = m["invocations"].back().value("worker_busy_s", 0.0);
+    round.processes = m["invocations"].back().value("worker_processes", 0);
     for (const auto& [id, seconds] : m["shard_seconds"].items()) {
       // id: platform.kind.vN.begin-end
       const size_t a = id.find('.'), b = id.find('.', a + 1);
@@ -112,26 +120,36 @@ int main(int argc, char** argv) {
         round.drawing_s += us * 1e-6;
       });
     }
-    results.push_back(std::move(round));
+    (served ? results : per_shard).push_back(std::move(round));
   }
 
   std::printf("\nWhole run against the drivers' own drawing: %s, --jobs %d, %d rounds\n\n",
               experiment.c_str(), jobs, rounds);
   std::printf(
-      "| round | wall s | worker-s | drawing s (sum render_us) | wall x jobs / drawing | "
-      "worker-s / drawing |\n| ---: | ---: | ---: | ---: | ---: | ---: |\n");
-  std::vector<double> ratio, worker_ratio;
+      "| round | workers | processes | wall s | worker-s | drawing s (sum render_us) | "
+      "wall x jobs / drawing | worker-s / drawing |\n"
+      "| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+  std::vector<double> ratio, worker_ratio, ratio_per_shard, worker_ratio_per_shard;
+  auto print_round = [&](size_t r, const Round& x, const char* workers, std::vector<double>& rs,
+                         std::vector<double>& ws) {
+    rs.push_back(x.elapsed_s * jobs / x.drawing_s);
+    ws.push_back(x.busy_s / x.drawing_s);
+    std::printf("| %zu | %s | %d | %.2f | %.2f | %.2f | %.3f | %.3f |\n", r + 1, workers,
+                x.processes, x.elapsed_s, x.busy_s, x.drawing_s, rs.back(), ws.back());
+  };
   for (size_t r = 0; r < results.size(); ++r) {
-    const Round& x = results[r];
-    ratio.push_back(x.elapsed_s * jobs / x.drawing_s);
-    worker_ratio.push_back(x.busy_s / x.drawing_s);
-    std::printf("| %zu | %.2f | %.2f | %.2f | %.3f | %.3f |\n", r + 1, x.elapsed_s, x.busy_s,
-                x.drawing_s, ratio.back(), worker_ratio.back());
+    print_round(r, results[r], "serve-shards", ratio, worker_ratio);
+    if (r < per_shard.size())
+      print_round(r, per_shard[r], "per-shard", ratio_per_shard, worker_ratio_per_shard);
   }
-  std::printf("| median | | | | **%.3f** | %.3f |\n", median(ratio), median(worker_ratio));
+  std::printf("| median | serve-shards | | | | | **%.3f** | %.3f |\n", median(ratio),
+              median(worker_ratio));
+  if (!per_shard.empty())
+    std::printf("| median | per-shard | | | | | %.3f | %.3f |\n", median(ratio_per_shard),
+                median(worker_ratio_per_shard));
   std::printf(
-      "\nPer primitive (medians over the rounds): the worker's time (its shard's wall time "
-      "/ primitives) against the drawing (render_us), the floor\n\n");
+      "\nPer primitive (medians over the rounds, serve-shards): the worker's time (its shard's "
+      "wall time / primitives) against the drawing (render_us), the floor\n\n");
   std::printf(
       "| platform | kind | primitives | drawing us | worker us | worker / drawing |\n"
       "| --- | --- | ---: | ---: | ---: | ---: |\n");
@@ -139,6 +157,7 @@ int main(int argc, char** argv) {
                         {"jobs", jobs},
                         {"rounds", rounds},
                         {"ratio_median", median(ratio)},
+                        {"ratio_median_per_shard", median(ratio_per_shard)},
                         {"kinds", nlohmann::json::array()}};
   for (const auto& [key, first] : results.front().kinds) {
     std::vector<double> draw_us, worker_us;

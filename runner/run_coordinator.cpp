@@ -325,11 +325,12 @@ RunResult run_experiment(const RunOptions& options) {
     return options.serve_shards && w.attempt == 1 && !w.is_part();
   };
   // The next shard for an idle server of `platform`: the first of its platform among the next
-  // `jobs` in the queue, which would start about now anyway; none: the server ends, and the
-  // queue's order (largest cost first) is kept.
+  // 4 x jobs in the queue, which would start soon anyway (a shard of another platform waits for
+  // at most that many); none: the server ends, and the queue's order (largest cost first) is
+  // kept. A window of jobs: the short bench run started 16 processes, of 4 x jobs: 8.
   auto next_for_server = [&](const std::string& platform) {
     auto it = todo.begin();
-    for (int k = 0; k < jobs && it != todo.end(); ++k, ++it)
+    for (int k = 0; k < 4 * jobs && it != todo.end(); ++k, ++it)
       if (it->shard.platform == platform && servable(*it)) return it;
     return todo.end();
   };
