@@ -81,6 +81,12 @@ PixelTopology pixel_topology(const PixelSet& s) {
   const std::vector<PixelRun>& runs = s.runs();
   t.components = components_of_runs(runs);
   if (runs.empty()) return t;
+  // At most one run per row (any convex polygon's pixels): no holes, since every unlit pixel of a
+  // row reaches the frame along its row, left or right of the run. Saves the background pass.
+  bool one_run_per_row = true;
+  for (size_t i = 1; i < runs.size() && one_run_per_row; ++i)
+    one_run_per_row = runs[i].y != runs[i - 1].y;
+  if (one_run_per_row) return t;
   // Background runs inside the bounding box grown by one pixel on every side: the grown frame is
   // background and connects everything outside, so holes = background components - 1.
   int32_t xmin = runs[0].x_begin, xmax = runs[0].x_end;  // [xmin, xmax)

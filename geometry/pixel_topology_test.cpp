@@ -66,20 +66,29 @@ TEST(PixelTopology, Chains) {
   EXPECT_FALSE(is_simple_chain8({}));
 }
 
-// Cross-check against breadth-first flood fills on a dense grid, for random sets.
+// Cross-check against breadth-first flood fills on a dense grid, for random sets, and for random
+// sets of at most one run per row (a convex polygon's rasterization; the fast path without holes).
 TEST(PixelTopology, MatchesFloodFill) {
   std::mt19937_64 rng(2);
   const int w = 14, h = 12;
-  for (int t = 0; t < 300; ++t) {
+  for (int t = 0; t < 600; ++t) {
     const double density = 0.2 + 0.6 * (t % 7) / 6.0;
     std::vector<int> grid((w + 2) * (h + 2), 0);  // one background pixel of frame
     PixelSet s;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        if (std::uniform_real_distribution<double>(0, 1)(rng) < density) {
-          grid[(y + 1) * (w + 2) + x + 1] = 1;
-          s.insert({x, y});
-        }
+    for (int y = 0; y < h; ++y) {
+      if (t < 300) {
+        for (int x = 0; x < w; ++x)
+          if (std::uniform_real_distribution<double>(0, 1)(rng) < density) {
+            grid[(y + 1) * (w + 2) + x + 1] = 1;
+            s.insert({x, y});
+          }
+        continue;
+      }
+      if (std::uniform_real_distribution<double>(0, 1)(rng) > density) continue;  // an empty row
+      int a = int(rng() % w), b = int(rng() % w);
+      if (a > b) std::swap(a, b);
+      for (int x = a; x <= b; ++x) grid[(y + 1) * (w + 2) + x + 1] = 1, s.insert({x, y});
+    }
     auto fill = [&](int value, bool eight) {
       std::vector<int> seen(grid.size(), 0);
       int comps = 0;
