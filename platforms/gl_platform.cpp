@@ -44,10 +44,6 @@
 // passed), and that primitive is drawn again on a cleared window, read whole. The colour-counter
 // batching is not used (render_batch draws one primitive at a time).
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -59,12 +55,13 @@
 #include <vector>
 
 #include "platforms/gl_context.h"
+#include "platforms/pixel_scan.h"
 #include "platforms/platform.h"
 
 namespace ra {
 namespace {
 
-constexpr uint32_t kRgb = 0x00ffffffu;  // RGB bytes of a little-endian RGBA8 pixel
+constexpr uint32_t kRgb = kRgbMask;  // RGB bytes of a little-endian RGBA8 pixel
 constexpr uint32_t kAnyColour = 0xffffffffu;
 constexpr uint32_t kLastColour = 0x00ffffffu;
 
@@ -625,37 +622,6 @@ class GlPlatform : public Platform {
         lit.append_run(r.y0 + y, r.x0 + begin, r.x0 + x);
       }
     }
-  }
-
-  // The first x in [x, w) whose pixel is lit when `lit_now` is false (dark when it is true), or w.
-  // Four pixels per step with SSE2: the scan was a sixth of a large triangle's time on llvmpipe.
-  static int next_change(const uint32_t* row, int x, int w, bool any_colour, uint32_t colour,
-                         bool lit_now) {
-#if defined(__SSE2__)
-    const __m128i rgb = _mm_set1_epi32(int(kRgb));
-    const __m128i target = _mm_set1_epi32(any_colour ? 0 : int(colour));
-    // bit i set: pixel x + i equals the target (black, or `colour`)
-    auto equal4 = [&](int at) {
-      const __m128i v =
-          _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(row + at)), rgb);
-      return unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(v, target))));
-    };
-    const unsigned flip = (any_colour ? 1u : 0u) ^ (lit_now ? 1u : 0u);  // bits that mean "change"
-    for (; x + 16 <= w; x += 16) {
-      unsigned equal = equal4(x) | equal4(x + 4) << 4 | equal4(x + 8) << 8 | equal4(x + 12) << 12;
-      const unsigned change = flip ? ~equal & 0xffffu : equal;
-      if (change) return x + __builtin_ctz(change);
-    }
-    for (; x + 4 <= w; x += 4) {
-      const unsigned change = flip ? ~equal4(x) & 0xfu : equal4(x);
-      if (change) return x + __builtin_ctz(change);
-    }
-#endif
-    for (; x < w; ++x) {
-      const uint32_t v = row[x] & kRgb;
-      if ((any_colour ? v != 0 : v == colour) != lit_now) return x;
-    }
-    return w;
   }
 
   ReadbackMethod method_;
