@@ -15,6 +15,8 @@ struct FaultPlan {
   std::string base = "reference";    // the platform that draws: "reference" or an OSMesa platform
   std::vector<uint64_t> crash;       // the worker aborts on these primitive indices
   std::vector<uint64_t> hang;        // the worker sleeps forever on these
+  bool hang_at_exit = false;         // ... and when its platform is torn down (a driver that hangs
+                                     // in its teardown, after every record is written)
   std::vector<uint64_t> wild_pixel;  // one extra pixel lit far from the primitive
   double shift_fraction = 0;         // this fraction of primitives is drawn one pixel to the right
   double flaky_fraction = 0;         // ... shifted only on the first attempt (RA_RENDER_ATTEMPT < 2)

@@ -38,6 +38,11 @@ class FaultyPlatform : public Platform {
       base_ = create_gl_platform(*spec, ReadbackMethod::kRegionWithProof, plan_.wild_pixel);
   }
 
+  ~FaultyPlatform() override {
+    if (plan_.hang_at_exit)  // what a driver that hangs in its teardown does
+      for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+  }
+
   DriverInfo driver_info() const override {
     DriverInfo info{"renderaudit faulty test platform", "reference + injected faults",
                     "renderaudit", 0, false, 0, "none"};

@@ -250,7 +250,7 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
     if (!f->is_table()) loc.fail(f, "'faults' must be a table");
     const toml::table& t = *f->as_table();
     loc.reject_unknown_keys(t, "faults.",
-                            {"base", "crash", "hang", "wild_pixel", "shift_fraction", "flaky_fraction",
+                            {"base", "crash", "hang", "hang_at_exit", "wild_pixel", "shift_fraction", "flaky_fraction",
                              "snap_bits", "snap_rounding", "drop_line_end_fraction"});
     if (const toml::node* n = t.get("base")) {
       const auto* name = n->as_string();
@@ -263,6 +263,11 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
     }
     if (const toml::node* n = t.get("crash")) exp.faults.crash = index_list(loc, *n, "faults.crash");
     if (const toml::node* n = t.get("hang")) exp.faults.hang = index_list(loc, *n, "faults.hang");
+    if (const toml::node* n = t.get("hang_at_exit")) {
+      const auto* b = n->as_boolean();
+      if (!b) loc.fail(n, "'faults.hang_at_exit' must be true or false");
+      exp.faults.hang_at_exit = b->get();
+    }
     if (const toml::node* n = t.get("wild_pixel"))
       exp.faults.wild_pixel = index_list(loc, *n, "faults.wild_pixel");
     if (const toml::node* n = t.get("snap_bits"))

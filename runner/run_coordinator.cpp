@@ -58,7 +58,12 @@ struct Running {
   bool server = false;
   std::string unread;            // message-pipe bytes not yet a whole line
   std::string words;             // what it said that is not a reply: its last words
+  Clock::time_point told_to_end;  // a server: when its input was closed (it has no shard left)
 };
+
+// How long a server may take to exit once told that no shard is left: its shards are all
+// committed, so one that hangs in its driver's teardown is killed, and nothing is lost.
+constexpr double kServerExitGraceS = 10;
 
 // A worker: its own process group (a timeout kills all it started), dies with this process, its
 // output in its log, and a message pipe for its last words (they reach us even when the disk of
@@ -345,14 +350,18 @@ RunResult run_experiment(const RunOptions& options) {
     running.erase(pid);
     const auto now = Clock::now();
     busy_s += std::chrono::duration<double>(now - r.spawned).count();
-    const std::string words = last_words(r);  // replies first: a server may have finished one
+    // A server may have finished its shard and ended before its reply was read: the shard is
+    // done (its file is committed before the reply), whatever the exit status says.
+    bool replied = false;
+    for (const std::string& id : read_replies(r)) replied |= r.busy && id == r.item.shard.id();
+    const std::string words = last_words(r);
     ::close(r.message_fd);
     if (r.command_fd >= 0) ::close(r.command_fd);
     if (!r.busy) return;
     const double item_s = std::chrono::duration<double>(now - r.started).count();
     const std::string written = recovery.records_dir(r.item) + "/" + r.item.shard.id() + ".csv";
     const std::string log = "; log: " + log_path(dir, r.item);
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(written)) {
+    if (replied || (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(written))) {
       succeeded(r, item_s);
     } else if (WIFSIGNALED(status)) {  // the driver crashed: re-run, then bisect
       conclude(r, WorkOutcome::kCrash, describe_exit_status(status) + log);
@@ -395,6 +404,7 @@ RunResult run_experiment(const RunOptions& options) {
       } else {
         ::close(r.command_fd);
         r.command_fd = -1;
+        r.told_to_end = Clock::now();
       }
     }
     while (!todo.empty() && int(running.size()) < jobs) {
@@ -438,15 +448,41 @@ RunResult run_experiment(const RunOptions& options) {
       if (r.busy && std::chrono::duration<double>(now - r.started).count() > r.item.timeout_s) {
         ::kill(-p, SIGKILL);
         wait_child(p);
-        const Running timed_out = r;
+        Running timed_out = r;
         busy_s += std::chrono::duration<double>(now - timed_out.spawned).count();
+        bool replied = false;
+        for (const std::string& id : read_replies(timed_out))
+          replied |= id == timed_out.item.shard.id();
         ::close(timed_out.message_fd);
         if (timed_out.command_fd >= 0) ::close(timed_out.command_fd);
         running.erase(p);
         char limit[32];
         std::snprintf(limit, sizeof limit, "%g", timed_out.item.timeout_s);
+        const std::string written =
+            recovery.records_dir(timed_out.item) + "/" + timed_out.item.shard.id() + ".csv";
+        if (replied || fs::exists(written)) {  // it hung after committing its records: teardown
+          std::fprintf(stderr, "%srenderaudit: shard %s: its worker hung after writing every "
+                       "record (killed after %s s; the shard is complete; log: %s)\n",
+                       show ? "\n" : "", timed_out.item.shard.id().c_str(), limit,
+                       log_path(dir, timed_out.item).c_str());
+          succeeded(timed_out, std::chrono::duration<double>(now - timed_out.started).count());
+          break;
+        }
         conclude(timed_out, WorkOutcome::kTimeout,
                  std::string("timed out after ") + limit + " s (killed)");
+        break;
+      }
+      const double grace_s = std::min(kServerExitGraceS, r.item.timeout_s);
+      if (r.server && !r.busy && r.command_fd < 0 &&
+          std::chrono::duration<double>(now - r.told_to_end).count() > grace_s) {
+        ::kill(-p, SIGKILL);  // every shard it ran is committed: nothing is lost
+        wait_child(p);
+        busy_s += std::chrono::duration<double>(now - r.spawned).count();
+        std::fprintf(stderr, "%srenderaudit: a %s worker did not exit within %g s of its last "
+                     "shard (killed; its shards are complete; log: %s)\n", show ? "\n" : "",
+                     r.item.shard.platform.c_str(), grace_s, log_path(dir, r.item).c_str());
+        ::close(r.message_fd);
+        running.erase(p);
         break;
       }
     }

@@ -206,6 +206,46 @@ TEST(RunCommand, ServedShardsEqualOneProcessPerShardAndACrashStaysWithItsShard) 
             4);
 }
 
+// A driver that hangs in its teardown, after every record is written: the run completes with
+// every record, in either worker mode. A server told that no shard is left is killed after
+// min(10 s, timeout); a one-shard worker at its timeout, its committed file counting as done.
+TEST(RunCommand, AWorkerHangingInTeardownLosesNothing) {
+  const std::string dir = fresh_dir("teardown");
+  write_text(dir + "/e.toml",
+             "seed = 3\nplatforms = [\"faulty\"]\n[views]\norientations = 1\nfov_deg = [150]\n"
+             "windows = [64]\nnear = 0.01\nfar = 10.0\n[primitives]\npoints = 30\n[run]\n"
+             "shard_size = 10\n[faults]\nhang_at_exit = true\n");
+  std::vector<std::multiset<std::string>> stored;
+  for (const std::string mode : {"served", "per-shard"}) {
+    const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/" + mode +
+                                      " --jobs 1 --timeout 2" +
+                                      (mode == "per-shard" ? " --worker-per-shard" : ""));
+    EXPECT_EQ(o.exit_code, 0) << mode << ": " << o.output;
+    const auto records = records_without_timing(dir + "/" + mode);
+    EXPECT_EQ(records.size(), 30u) << mode;
+    const auto manifest = nlohmann::json::parse(ra::read_file(dir + "/" + mode + "/manifest.json"));
+    EXPECT_EQ(manifest.at("status"), "complete") << mode;
+    if (mode == "served") {
+      // One process served all three shards, then hung and was killed.
+      EXPECT_EQ(manifest.at("invocations").back().at("worker_processes"), 1);
+      EXPECT_NE(o.output.find("a faulty worker did not exit within 2 s of its last shard (killed; "
+                              "its shards are complete"),
+                std::string::npos)
+          << o.output;
+    } else {
+      for (const char* shard : {"faulty.point.v1.0-10", "faulty.point.v1.10-20",
+                                "faulty.point.v1.20-30"})
+        EXPECT_NE(o.output.find(std::string("shard ") + shard +
+                                ": its worker hung after writing every record (killed after 2 s"),
+                  std::string::npos)
+            << o.output;
+    }
+    stored.push_back(records);
+  }
+  ASSERT_EQ(stored.size(), 2u);
+  EXPECT_TRUE(stored[0] == stored[1]);  // both modes stored the same records
+}
+
 // --expect-renderer stops a run that loaded another driver, before it renders for hours.
 TEST(RunCommand, ExpectRendererStopsTheWrongDriver) {
   const std::string dir = fresh_dir("renderer");
