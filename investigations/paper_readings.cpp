@@ -265,7 +265,8 @@ int run(const Options& o) {
               "Platform I / II with the paper's own sampling error added.\n",
               o.experiment.c_str(), static_cast<unsigned long long>(o.per_view), o.bootstrap);
   const std::vector<Reading> near_readings = {
-      {"near 0.01 (the text)", 0.01}, {"near 1e-3", 1e-3}, {"near 1e-4", 1e-4}, {"near 1e-5", 1e-5}};
+      {"near 0.01 (the text)", 0.01, false, {}}, {"near 1e-3", 1e-3, false, {}},
+      {"near 1e-4", 1e-4, false, {}}, {"near 1e-5", 1e-5, false, {}}};
   std::vector<Reading> triangle_readings = near_readings;
   Reading r = near_readings[0];
   r.name = "near 0.01, near-clipped left out";
