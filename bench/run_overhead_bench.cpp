@@ -42,7 +42,8 @@ struct KindCost {
 
 struct Round {
   double wall_s = 0, elapsed_s = 0, busy_s = 0, drawing_s = 0;
-  int processes = 0;                       // worker processes started
+  int processes = -1;                      // worker processes started (-1: not recorded)
+  std::string workers;                     // "serve-shards" or "per-shard", from the manifest
   std::map<std::string, KindCost> kinds;  // "platform kind"
 };
 
@@ -103,7 +104,9 @@ int main(int argc, char** argv) {
     jobs = m["invocations"].back().value("jobs", jobs);
     round.elapsed_s = m["invocations"].back().value("elapsed_s", 0.0);
     round.busy_s = m["invocations"].back().value("worker_busy_s", 0.0);
-    round.processes = m["invocations"].back().value("worker_processes", 0);
+    round.processes = m["invocations"].back().value("worker_processes", -1);
+    // Runs made before 2026-11-25 started a process per shard and did not say so.
+    round.workers = m["invocations"].back().value("workers", std::string("per-shard"));
     for (const auto& [id, seconds] : m["shard_seconds"].items()) {
       // id: platform.kind.vN.begin-end
       const size_t a = id.find('.'), b = id.find('.', a + 1);
@@ -134,16 +137,18 @@ int main(int argc, char** argv) {
                          std::vector<double>& ws) {
     rs.push_back(x.elapsed_s * jobs / x.drawing_s);
     ws.push_back(x.busy_s / x.drawing_s);
-    std::printf("| %zu | %s | %d | %.2f | %.2f | %.2f | %.3f | %.3f |\n", r + 1, workers,
-                x.processes, x.elapsed_s, x.busy_s, x.drawing_s, rs.back(), ws.back());
+    const std::string processes = x.processes < 0 ? "?" : std::to_string(x.processes);
+    std::printf("| %zu | %s | %s | %.2f | %.2f | %.2f | %.3f | %.3f |\n", r + 1,
+                x.workers.empty() ? workers : x.workers.c_str(), processes.c_str(), x.elapsed_s,
+                x.busy_s, x.drawing_s, rs.back(), ws.back());
   };
   for (size_t r = 0; r < results.size(); ++r) {
     print_round(r, results[r], "serve-shards", ratio, worker_ratio);
     if (r < per_shard.size())
       print_round(r, per_shard[r], "per-shard", ratio_per_shard, worker_ratio_per_shard);
   }
-  std::printf("| median | serve-shards | | | | | **%.3f** | %.3f |\n", median(ratio),
-              median(worker_ratio));
+  std::printf("| median | %s | | | | | **%.3f** | %.3f |\n", results.front().workers.c_str(),
+              median(ratio), median(worker_ratio));
   if (!per_shard.empty())
     std::printf("| median | per-shard | | | | | %.3f | %.3f |\n", median(ratio_per_shard),
                 median(worker_ratio_per_shard));
