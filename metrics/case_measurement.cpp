@@ -121,14 +121,15 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
   ConformanceVerdict v;
   switch (prim.kind) {
     case Kind::kPoint:
-      v = judge_point(view.to_clip(prim.v[0]), w, h, rendered.lit, reference, comparison.effective);
+      v = judge_point(clip_with_error(view, prim.v[0]), w, h, rendered.lit, reference,
+                      comparison.effective);
       break;
     case Kind::kLine:
-      v = judge_segment(c.segment, near_clipped_window_magnitude(view, prim), w, h, rendered.lit,
+      v = judge_segment(c.segment, near_clipped_vertices(view, prim), w, h, rendered.lit,
                         reference, comparison.effective);
       break;
     case Kind::kTriangle:
-      v = judge_polygon(c.polygon, near_clipped_window_magnitude(view, prim), w, h, rendered.lit,
+      v = judge_polygon(c.polygon, near_clipped_vertices(view, prim), w, h, rendered.lit,
                         reference, comparison.effective);
       break;
   }

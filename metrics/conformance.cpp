@@ -105,61 +105,130 @@ ConformanceVerdict finish(const Violations& v, PixelSet* violating) {
 
 }  // namespace
 
-double near_clipped_window_magnitude(const View& view, const Primitive& prim) {
-  const int n = vertex_count(prim.kind);
-  Vec4 c[3];
-  for (int i = 0; i < n; ++i) c[i] = view.to_clip(prim.v[i]);
-  double m = 0;
-  auto include = [&](Vec4 q) {  // q in front of the near plane (w > 0)
-    const Vec2 p = view.clip_to_window(q);
-    m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
+namespace {
+
+// Whether window point q lies within the tapered capsule of the edge a -> b: the union of the
+// discs of radius (1 - s) ra + s rb about a + s (b - a), s in [0, 1] (every point of the edge moves
+// by at most its ends' moves interpolated). The distance to the edge minus the radius is convex in
+// s; its minimum is at an end or where its derivative vanishes.
+bool in_tapered_capsule(Vec2 q, Vec2 a, double ra, Vec2 b, double rb) {
+  if (!std::isfinite(ra) || !std::isfinite(rb)) return true;
+  auto excess = [&](double s) {
+    const Vec2 p{a.x + s * (b.x - a.x), a.y + s * (b.y - a.y)};
+    return length(q - p) - ((1 - s) * ra + s * rb);
   };
-  for (int i = 0; i < n; ++i) {
-    const double di = c[i].z + c[i].w;  // >= 0 on the near plane's visible side
-    if (di > 0 && c[i].w > 0) include(c[i]);
-    if (n == 1) break;
-    const int j = (i + 1) % n;
-    if (n == 2 && i == 1) break;
-    const double dj = c[j].z + c[j].w;
-    if ((di > 0) != (dj > 0)) {  // the edge crosses the near plane: where
-      const double t = di / (di - dj);
-      const Vec4 q{c[i].x + t * (c[j].x - c[i].x), c[i].y + t * (c[j].y - c[i].y),
-                   c[i].z + t * (c[j].z - c[i].z), c[i].w + t * (c[j].w - c[i].w)};
-      if (q.w > 0) include(q);
+  if (excess(0) <= 0 || excess(1) <= 0) return true;
+  const Vec2 ab = b - a;
+  const double len = length(ab);
+  if (!(len > 0)) return false;
+  const double g = (rb - ra) / len;  // radius gained per unit of length
+  if (std::fabs(g) >= 1) return false;  // one end disc holds the other: the ends decide
+  const Vec2 u{ab.x / len, ab.y / len};
+  const Vec2 aq = q - a;
+  const double along = dot(aq, u), perp = std::fabs(cross(u, aq));
+  const double tau = -g * perp / std::sqrt(1 - g * g);  // along - s len at the minimum
+  const double s = std::clamp((along - tau) / len, 0.0, 1.0);
+  return excess(s) <= 0;
+}
+
+// Columns (by_column) or rows of the window that hold a fragment of the segment a -> b for every
+// placement of its ends within their allowances: crossed with half a pixel to spare beyond each
+// end, with the line at least three pixels inside the window across (conformance.h, rule 2 in the
+// window). `cells`, when given, receives those columns or rows.
+int64_t certain_window_lines(AllowedVertex a, AllowedVertex b, int width, int height,
+                             bool by_column, std::vector<int32_t>* cells) {
+  if (!std::isfinite(a.allowance) || !std::isfinite(b.allowance)) return 0;
+  if (!by_column) {  // rows of a y-major segment: the same with x and y exchanged
+    std::swap(a.p.x, a.p.y);
+    std::swap(b.p.x, b.p.y);
+    std::swap(width, height);
+  }
+  if (a.p.x > b.p.x) std::swap(a, b);
+  const double dx = b.p.x - a.p.x;
+  if (!(dx > 0)) return 0;
+  const double first = std::max(0.0, std::ceil(a.p.x + a.allowance));  // column's left edge
+  const double last = std::min(double(width), std::floor(b.p.x - b.allowance));  // right edge
+  int64_t n = 0;
+  for (double left = first; left + 1 <= last; ++left) {
+    const double xc = left + 0.5;
+    const double s = (xc - a.p.x) / dx;
+    const double y = a.p.y + s * (b.p.y - a.p.y);
+    const double shift = 2 * ((1 - s) * a.allowance + s * b.allowance);  // y and slope x x
+    if (y - shift >= 3 && y + shift <= height - 3) {
+      ++n;
+      if (cells) cells->push_back(int32_t(left));
     }
   }
-  return std::isfinite(m) ? m : 0.0;
+  return n;
 }
 
-double conformance_allowance(double magnitude, int width, int height) {
-  return kSnapAllowancePx +
-         kFloatRelativeError * std::max({magnitude, double(width), double(height)});
+// The float part of the allowance (px) at point p of the segment a -> b: the ends' float
+// allowances interpolated by p's place along it.
+double float_allowance_at(const AllowedVertex& a, const AllowedVertex& b, Vec2 p) {
+  const double fa = a.allowance - kSnapAllowancePx, fb = b.allowance - kSnapAllowancePx;
+  if (!std::isfinite(fa) || !std::isfinite(fb)) return INFINITY;
+  const Vec2 ab = b.p - a.p;
+  const double len2 = dot(ab, ab);
+  const double s = len2 > 0 ? std::clamp(dot(p - a.p, ab) / len2, 0.0, 1.0) : 0.0;
+  return (1 - s) * fa + s * fb;
 }
 
-ConformanceVerdict judge_point(Vec4 clip, int width, int height, const PixelSet& lit,
-                               const PixelSet& exact, SubpixelGrid effective,
+// Pixels of `lit` inside the window.
+int64_t inside_window(const PixelSet& lit, int width, int height) {
+  int64_t n = 0;
+  for (const PixelRun& r : lit.runs())
+    if (r.y >= 0 && r.y < height)
+      n += std::max(0, std::min(r.x_end, int32_t(width)) - std::max(r.x_begin, int32_t(0)));
+  return n;
+}
+
+// Rule 2 inside the window for a segment a window side cut: at least certain - 3 fragments.
+void judge_window_count(const AllowedVertex& a, const AllowedVertex& b, int width, int height,
+                        bool x_major, bool y_major, const PixelSet& lit, const PixelSet& exact,
+                        Violations& v) {
+  std::vector<int32_t> columns, rows;
+  const int64_t by_x = x_major ? certain_window_lines(a, b, width, height, true, &columns)
+                               : INT64_MAX;
+  const int64_t by_y = y_major ? certain_window_lines(a, b, width, height, false, &rows)
+                               : INT64_MAX;
+  const bool x = by_x <= by_y;
+  const int64_t shortfall = (x ? by_x : by_y) - 3 - inside_window(lit, width, height);
+  if (shortfall <= 0) return;
+  v.add(lit.empty() ? "line-missing" : "line-window-count", shortfall);
+  const std::vector<int32_t>& cells = x ? columns : rows;
+  for (const Pixel& p : set_difference(exact, lit))
+    if (std::binary_search(cells.begin(), cells.end(), x ? p.x : p.y)) v.where.push_back(p);
+}
+
+}  // namespace
+
+ConformanceVerdict judge_point(const ClipWithError& clip, int width, int height,
+                               const PixelSet& lit, const PixelSet& exact, SubpixelGrid effective,
                                PixelSet* violating) {
   if (violating) violating->clear();
   if (lit == exact) return verdict(Conformance::kExact);
-  if (!effective.exact() && lit == rasterize_point(clip, width, height, effective))
+  const Vec4 c = clip.c;
+  if (!effective.exact() && lit == rasterize_point(c, width, height, effective))
     return verdict(Conformance::kSnapped);
   Violations v;
-  if (!(clip.w > 0) || !std::isfinite(clip.w)) {  // behind the camera: nothing may be lit
+  if (!(c.w > 0) || !std::isfinite(c.w)) {  // behind the camera: nothing may be lit
     v.add("point-pixel", lit.size());
     for (const Pixel& p : lit) v.where.push_back(p);
     return finish(v, violating);
   }
-  const double x = (clip.x / clip.w + 1.0) * 0.5 * width;  // as View::clip_to_window
-  const double y = (clip.y / clip.w + 1.0) * 0.5 * height;
-  const double z = clip.z / clip.w;  // normalized device depth, -1 (near) to 1 (far)
-  const double tol = conformance_allowance(std::max(std::fabs(x), std::fabs(y)), width, height);
-  const double ztol = 2 * kFloatRelativeError;
+  const AllowedVertex at = window_vertex(clip, width, height);
+  const double x = at.p.x, y = at.p.y, tol = at.allowance;
+  // Normalized device depth, -1 (near) to 1 (far), and its float error (window_error.h).
+  const double z = c.z / c.w;
+  const double ztol = clip.err.w < c.w ? (clip.err.z + std::fabs(z) * clip.err.w) / c.w +
+                                             kFloatRelativeError * std::fabs(z)
+                                       : INFINITY;
   const bool may_be_lit =
       x > -tol && x < width + tol && y > -tol && y < height + tol && std::fabs(z) < 1 + ztol;
   const bool may_be_empty = !(x > tol && x < width - tol && y > tol && y < height - tol &&
                               std::fabs(z) < 1 - ztol);
   int64_t allowed_lit = 0;
-  if (may_be_lit) {
+  if (may_be_lit && std::isfinite(tol)) {
     const PixelRect allowed{int32_t(std::floor(x - tol)), int32_t(std::floor(y - tol)),
                             int32_t(std::floor(x + tol)) + 1, int32_t(std::floor(y + tol)) + 1};
     for (const Pixel& p : lit)
@@ -167,6 +236,8 @@ ConformanceVerdict judge_point(Vec4 clip, int width, int height, const PixelSet&
         ++allowed_lit;
       else
         v.where.push_back(p);
+  } else if (may_be_lit) {
+    allowed_lit = lit.size();
   } else {
     for (const Pixel& p : lit) v.where.push_back(p);
   }
@@ -179,7 +250,15 @@ ConformanceVerdict judge_point(Vec4 clip, int width, int height, const PixelSet&
   return finish(v, violating);
 }
 
-ConformanceVerdict judge_segment(const ClippedSegment& segment, double magnitude, int width,
+ConformanceVerdict judge_point(Vec4 clip, int width, int height, const PixelSet& lit,
+                               const PixelSet& exact, SubpixelGrid effective,
+                               PixelSet* violating) {
+  return judge_point(ClipWithError{clip, Vec4{0, 0, 0, 0}}, width, height, lit, exact, effective,
+                     violating);
+}
+
+ConformanceVerdict judge_segment(const ClippedSegment& segment,
+                                 const std::vector<AllowedVertex>& near_clipped, int width,
                                  int height, const PixelSet& lit, const PixelSet& exact,
                                  SubpixelGrid effective, PixelSet* violating) {
   if (violating) violating->clear();
@@ -189,16 +268,25 @@ ConformanceVerdict judge_segment(const ClippedSegment& segment, double magnitude
     snapped = rasterize_segment(segment, width, height, effective);
     if (lit == *snapped) return verdict(Conformance::kSnapped);
   }
-  // Rule 2 counts every fragment of the segment, also those the window then discards: where a
-  // window side cut an end, the visible count says nothing (a one-pixel shift that rule 1 allows
-  // moves where a nearly parallel segment leaves the window by many pixels).
+  // The segment as GL may place it: its ends before any window side cut them.
+  const std::vector<AllowedVertex> ends =
+      near_clipped.size() == 2 ? near_clipped : uniform_allowance({segment.p0, segment.p1}, width,
+                                                                  height);
   auto side = [](int plane) { return plane >= kPlaneLeft && plane <= kPlaneTop; };
   const bool count_applies = !side(segment.plane0) && !side(segment.plane1);
-  // The major axis of the segment as the implementation may have snapped it: each end may move
-  // by the allowance in x and y, so |dx| and |dy| by twice that.
-  const double tol = conformance_allowance(magnitude, width, height);
-  const double dx = std::fabs(segment.p1.x - segment.p0.x), dy = std::fabs(segment.p1.y - segment.p0.y);
-  const bool x_major = dx + 2 * tol >= dy - 2 * tol, y_major = dy + 2 * tol >= dx - 2 * tol;
+  // The major axis as the implementation may have placed the ends: |dx| and |dy| each move by up
+  // to the two allowances. Either ends: those before the window cut them (a guard band), or the
+  // cut ones, snapped after the cut, with the float allowance of their place on the segment.
+  auto allowed_axes = [](Vec2 a, Vec2 b, double tol, bool& x, bool& y) {
+    const double dx = std::fabs(b.x - a.x), dy = std::fabs(b.y - a.y);
+    x = x || !(dx + tol < dy - tol);
+    y = y || !(dy + tol < dx - tol);
+  };
+  bool x_major = false, y_major = false;
+  allowed_axes(ends[0].p, ends[1].p, ends[0].allowance + ends[1].allowance, x_major, y_major);
+  const double cut_tol = 2 * kSnapAllowancePx + float_allowance_at(ends[0], ends[1], segment.p0) +
+                         float_allowance_at(ends[0], ends[1], segment.p1);
+  allowed_axes(segment.p0, segment.p1, cut_tol, x_major, y_major);
   Violations best = line_rules(lit, exact, count_applies, x_major, y_major);
   auto consider = [&](const PixelSet& diamond) {
     Violations s = line_rules(lit, diamond, count_applies, x_major, y_major);
@@ -210,50 +298,84 @@ ConformanceVerdict judge_segment(const ClippedSegment& segment, double magnitude
   for (SnapRounding r : {SnapRounding::kNearest, SnapRounding::kTruncate})
     if (best.pixels > 0)
       consider(rasterize_segment(segment, width, height, SubpixelGrid(kLeastSubpixelBits, r)));
+  if (!count_applies)
+    judge_window_count(ends[0], ends[1], width, height, x_major, y_major, lit, exact, best);
   return finish(best, violating);
 }
 
-ConformanceVerdict judge_polygon(const ClippedPolygon& polygon, double magnitude, int width,
+ConformanceVerdict judge_segment(const ClippedSegment& segment, double magnitude, int width,
+                                 int height, const PixelSet& lit, const PixelSet& exact,
+                                 SubpixelGrid effective, PixelSet* violating) {
+  const double a = conformance_allowance(magnitude, width, height);
+  return judge_segment(segment, {{segment.p0, a}, {segment.p1, a}}, width, height, lit, exact,
+                       effective, violating);
+}
+
+ConformanceVerdict judge_polygon(const ClippedPolygon& polygon,
+                                 const std::vector<AllowedVertex>& near_clipped, int width,
                                  int height, const PixelSet& lit, const PixelSet& exact,
                                  SubpixelGrid effective, PixelSet* violating) {
   if (violating) violating->clear();
   if (lit == exact) return verdict(Conformance::kExact);
   if (!effective.exact() && lit == rasterize_polygon(polygon, width, height, effective))
     return verdict(Conformance::kSnapped);
-  // The edges a snap or rounding can move, each with its allowance (a vertex moves by up to the
-  // allowance in x and in y: sqrt(2) times that in distance). Edges on the window border are cut
-  // by the window itself and never move. Distances are compared squared (no sqrt per pixel).
+  // The edges a snap or float error can move: those of the polygon clipped to the near plane,
+  // each end with its own allowance (sqrt 2 of it: a move in x and in y).
   struct Edge {
-    Vec2 a, ab;
-    double len2, allowance2;
+    Vec2 a, b;
+    double ra, rb;
   };
   std::vector<Edge> edges;
+  const size_t n = near_clipped.size();
+  for (size_t i = 0; i < n && n >= 2; ++i) {
+    if (n == 2 && i == 1) break;  // a segment: one edge
+    const AllowedVertex& a = near_clipped[i];
+    const AllowedVertex& b = near_clipped[(i + 1) % n];
+    edges.push_back({a.p, b.p, std::sqrt(2.0) * a.allowance, std::sqrt(2.0) * b.allowance});
+  }
+  // Edges of the visible polygon on none of those lines were cut by the far plane: the uniform
+  // allowance. Edges on the window border never move a pixel inside the window.
+  const double uniform = std::sqrt(2.0) * conformance_allowance(0, width, height);
   const std::vector<Vec2>& p = polygon.vertices;
-  const size_t n = p.size();
-  const double allowance = std::sqrt(2.0) * conformance_allowance(magnitude, width, height);
-  for (size_t i = 0; i < n; ++i) {
-    const size_t j = (i + 1) % n;
-    if (n > 2 && i < polygon.on_window_border.size() && polygon.on_window_border[i]) continue;
-    if (n == 2 && i == 1) break;  // a degenerate polygon: one segment
-    const Vec2 ab = p[j] - p[i];
-    edges.push_back({p[i], ab, dot(ab, ab), allowance * allowance});
+  const size_t m = p.size();
+  const size_t near_edges = edges.size();
+  auto on_line = [](Vec2 q, const Edge& e) {
+    const Vec2 ab = e.b - e.a;
+    const double len = length(ab);
+    const double scale = 1 + std::max({std::fabs(e.a.x), std::fabs(e.a.y), std::fabs(e.b.x),
+                                       std::fabs(e.b.y)});
+    return len > 0 && std::fabs(cross(ab, q - e.a)) / len <= 1e-9 * scale;
+  };
+  for (size_t i = 0; i < m; ++i) {
+    if (m == 2 && i == 1) break;
+    if (m > 2 && i < polygon.on_window_border.size() && polygon.on_window_border[i]) continue;
+    const Vec2 a = p[i], b = p[(i + 1) % m];
+    bool known = false;
+    for (size_t k = 0; k < near_edges && !known; ++k)
+      known = on_line(a, edges[k]) && on_line(b, edges[k]);
+    if (!known) edges.push_back({a, b, uniform, uniform});
   }
   auto allowed = [&](Pixel px) {
     const Vec2 c{px.x + 0.5, px.y + 0.5};
-    for (const Edge& e : edges) {
-      const Vec2 ac = c - e.a;
-      const double t = e.len2 > 0 ? std::clamp(dot(ac, e.ab) / e.len2, 0.0, 1.0) : 0.0;
-      const Vec2 d = ac - t * e.ab;
-      if (dot(d, d) <= e.allowance2) return true;
-    }
+    for (const Edge& e : edges)
+      if (in_tapered_capsule(c, e.a, e.ra, e.b, e.rb)) return true;
     return false;
   };
   Violations v;
   for (const PixelSet& differing : {set_difference(lit, exact), set_difference(exact, lit)})
     for (const Pixel& px : differing)
       if (!allowed(px)) v.where.push_back(px);
-  v.add("polygon-edge", int64_t(v.where.size()));
+  v.add(lit.empty() ? "polygon-missing" : "polygon-edge", int64_t(v.where.size()));
   return finish(v, violating);
+}
+
+ConformanceVerdict judge_polygon(const ClippedPolygon& polygon, double magnitude, int width,
+                                 int height, const PixelSet& lit, const PixelSet& exact,
+                                 SubpixelGrid effective, PixelSet* violating) {
+  std::vector<AllowedVertex> vertices;
+  for (const Vec2& q : polygon.vertices)
+    vertices.push_back({q, conformance_allowance(magnitude, width, height)});
+  return judge_polygon(polygon, vertices, width, height, lit, exact, effective, violating);
 }
 
 ConformanceVerdict judge_primitive(const View& view, const Primitive& prim, const PixelSet& lit,
@@ -262,14 +384,14 @@ ConformanceVerdict judge_primitive(const View& view, const Primitive& prim, cons
   const PixelSet exact = rasterize_reference(view, prim);
   switch (prim.kind) {
     case Kind::kPoint:
-      return judge_point(view.to_clip(prim.v[0]), w, h, lit, exact, effective, violating);
+      return judge_point(clip_with_error(view, prim.v[0]), w, h, lit, exact, effective, violating);
     case Kind::kLine:
       return judge_segment(clip_segment(view, prim.v[0], prim.v[1]),
-                           near_clipped_window_magnitude(view, prim), w, h, lit, exact, effective,
+                           near_clipped_vertices(view, prim), w, h, lit, exact, effective,
                            violating);
     case Kind::kTriangle:
       return judge_polygon(clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]),
-                           near_clipped_window_magnitude(view, prim), w, h, lit, exact, effective,
+                           near_clipped_vertices(view, prim), w, h, lit, exact, effective,
                            violating);
   }
   return {};

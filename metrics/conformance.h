@@ -7,13 +7,18 @@
 // - Subpixel precision: window coordinates may be snapped to a grid of GL_SUBPIXEL_BITS bits, and
 //   the least value an implementation may report is 4 (chapter 23, implementation-dependent
 //   values). A vertex may therefore move by up to 2^-4 px in x and in y: kSnapAllowancePx.
-// - Floating point: results are accurate to "about 1 part in 10^5" (section 2.3.4.1). A window
-//   coordinate of magnitude m may also be off by 1e-5 m (m at least the window's size), where m
-//   is taken before clipping to the window's sides (near_clipped_window_magnitude): a guard-band
-//   rasterizer carries vertices far outside the window, and clips them in float.
+// - Floating point: results are accurate to "about 1 part in 10^5" (section 2.3.4.1). How far
+//   that moves a vertex's window position is derived stage by stage in metrics/window_error.h:
+//   each vertex of the primitive clipped to the near plane has its own allowance (snap plus
+//   float error), and a point of an edge may move by the allowances of its two ends interpolated
+//   along it (a vertex the near clip put far outside the window moves the far end of its edges,
+//   not the end inside the window).
 // Per kind, what may differ from the exact reference (the "allowance" below is the sum of both):
-// - Polygons (14.6.1): a pixel whose centre lies within the allowance of an edge of the clipped
-//   polygon (moving every vertex by at most d moves every edge by at most d). Broken: "polygon-edge".
+// - Polygons (14.6.1): a pixel whose centre lies within the allowance of an edge: of the polygon
+//   clipped to the near plane (its vertices with their allowances, x sqrt 2 for a move in x and
+//   y), or of an edge the far plane cut (the uniform allowance). The window's sides never remove
+//   a pixel inside the window. Broken: "polygon-edge"; a polygon drawn as nothing with a pixel
+//   no edge can remove: "polygon-missing".
 // - Lines (14.5.1), other algorithms than diamond-exit are allowed when (1) every fragment lies
 //   within one unit in x and in y of a diamond-exit fragment ("line-deviation"), (2) the fragment
 //   count differs from diamond-exit's by at most one ("line-count"), (3) an x-major segment has no
@@ -21,30 +26,43 @@
 //   ends of connected segments) does not apply to a lone segment. Diamond-exit is taken on the
 //   exact ends, on the ends snapped to the platform's effective grid and on the ends snapped to
 //   GL's coarsest grid (4 bits, either rounding); the best one counts.
-//   Rule 2 is not judged where a window side cut an end (it counts fragments the window then
-//   discards); rule 3 takes either axis as the major one where the allowance could swap them.
+//   Rule 2 counts every fragment, also those the window discards: where a window side cut an end
+//   it is judged on the fragments inside the window instead ("line-window-count"; "line-missing"
+//   when nothing is drawn). Diamond-exit lights one fragment per column of an x-major segment;
+//   a column is certain to hold a fragment inside the window when, for every placement of the
+//   ends within their allowances, the segment crosses it by more than half a pixel beyond each end
+//   and its line lies at least three rows inside the window (rule 1 lets a fragment lie one unit
+//   from the diamond-exit fragment of a neighbouring column, whose row may differ by one more,
+//   and a tie may put a fragment one row lower). An implementation may drop one
+//   fragment (rule 2) and shift its fragments by one column (rule 1), so at least certain - 3
+//   fragments must lie inside the window (likewise rows for a y-major segment; where the
+//   allowance could swap the axes, the smaller count). Rule 3 takes either axis as the major one
+//   where the allowance could swap them: for the ends before the window cut them, or for the cut
+//   ends snapped after the cut.
 // - Points (14.4), size 1: exactly one fragment, the pixel containing the (snapped) position: any
 //   pixel within the allowance of the position, in x and in y ("point-pixel", more than one:
-//   "point-count"); none at all only when the position lies within the allowance of the clip
-//   volume's boundary ("point-missing").
+//   "point-count"); none at all only when the position lies within the allowance of a window side
+//   or its depth within its float error of the near or far plane ("point-missing").
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "geometry/clipping.h"
 #include "geometry/pixel_set.h"
 #include "geometry/reference_rasterizer.h"
 #include "geometry/view.h"
 #include "metrics/records.h"
+#include "metrics/window_error.h"
 
 namespace ra {
 
-// The least subpixel grid GL allows, 4 bits: a truncating snap moves a coordinate by < 2^-4 px.
-constexpr int kLeastSubpixelBits = 4;
-constexpr double kSnapAllowancePx = 0.0625;
-// GL's "about 1 part in 10^5" for the results of floating-point operations.
-constexpr double kFloatRelativeError = 1e-5;
+// The version of the rules above, in the run manifest ("conformance_rules"; a manifest without it
+// was judged by version 1): an audit compares two runs' classes only when both were judged by the
+// same rules. Version 2 judges a window-cut segment's count inside the window, names missing
+// primitives, and gives each vertex its own float allowance (window_error.h).
+constexpr int kConformanceRulesVersion = 2;
 
 struct ConformanceVerdict {
   Conformance conformance = Conformance::kNotCompared;
@@ -54,33 +72,37 @@ struct ConformanceVerdict {
 
 // The verdict for a rendered point, segment or triangle. `exact` is the exact reference's pixels
 // (rasterize_* with an exact grid), `lit` the platform's; `effective` the grid the platform
-// effectively snaps to (metrics/effective_subpixel.h; exact when it does not snap); `magnitude`
-// near_clipped_window_magnitude() of the primitive. `violating`,
-// when given, receives the pixels that break a rule (lit or left dark; a count rule names none).
+// effectively snaps to (metrics/effective_subpixel.h; exact when it does not snap);
+// `near_clipped` near_clipped_vertices() of the primitive (the segment's two ends, the polygon's
+// vertices). `violating`, when given, receives the pixels that break a rule (lit or left dark; a
+// count rule names the reference's pixels it misses).
+ConformanceVerdict judge_point(const ClipWithError& clip, int width, int height,
+                               const PixelSet& lit, const PixelSet& exact, SubpixelGrid effective,
+                               PixelSet* violating = nullptr);
+ConformanceVerdict judge_segment(const ClippedSegment& segment,
+                                 const std::vector<AllowedVertex>& near_clipped, int width,
+                                 int height, const PixelSet& lit, const PixelSet& exact,
+                                 SubpixelGrid effective, PixelSet* violating = nullptr);
+ConformanceVerdict judge_polygon(const ClippedPolygon& polygon,
+                                 const std::vector<AllowedVertex>& near_clipped, int width,
+                                 int height, const PixelSet& lit, const PixelSet& exact,
+                                 SubpixelGrid effective, PixelSet* violating = nullptr);
+
+// Hand-made cases with no view: a point exactly at `clip` (no transform error), a segment or
+// polygon whose clipped vertices all have the uniform allowance conformance_allowance(magnitude).
 ConformanceVerdict judge_point(Vec4 clip, int width, int height, const PixelSet& lit,
                                const PixelSet& exact, SubpixelGrid effective,
                                PixelSet* violating = nullptr);
 ConformanceVerdict judge_segment(const ClippedSegment& segment, double magnitude, int width,
-                                 int height,
-                                 const PixelSet& lit, const PixelSet& exact,
+                                 int height, const PixelSet& lit, const PixelSet& exact,
                                  SubpixelGrid effective, PixelSet* violating = nullptr);
 ConformanceVerdict judge_polygon(const ClippedPolygon& polygon, double magnitude, int width,
-                                 int height,
-                                 const PixelSet& lit, const PixelSet& exact,
+                                 int height, const PixelSet& lit, const PixelSet& exact,
                                  SubpixelGrid effective, PixelSet* violating = nullptr);
 
 // The same for primitive `prim` under `view`, clipping it and rasterizing its exact reference here
 // (for one primitive at a time, as `renderaudit show` needs; the runner reuses its own).
 ConformanceVerdict judge_primitive(const View& view, const Primitive& prim, const PixelSet& lit,
                                    SubpixelGrid effective, PixelSet* violating = nullptr);
-
-// The largest |window coordinate| (px) of the primitive clipped to the near plane only (w > 0):
-// the scale of the floating-point error GL allows in its window coordinates. 0 when nothing of
-// it lies in front of the near plane.
-double near_clipped_window_magnitude(const View& view, const Primitive& prim);
-
-// The allowance (px) of a window coordinate of magnitude up to `magnitude` in a width x height
-// window: kSnapAllowancePx plus the floating-point error.
-double conformance_allowance(double magnitude, int width, int height);
 
 }  // namespace ra

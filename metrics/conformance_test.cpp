@@ -177,15 +177,95 @@ TEST(Conformance, PointsSnappedAcrossAPixelBorderShiftedOrMissing) {
             Conformance::kWithinSpec);
 }
 
-TEST(Conformance, TheNearClippedMagnitudeOfAPrimitiveBehindTheCameraIsItsNearPlanePoint) {
-  const View view = make_view(90, 100, 100, 1.0, 10.0);
+// Drawn as nothing, or as half of itself: a primitive the reference lights across the window is
+// a violation when no placement of its vertices within their allowances lets it vanish. Built
+// through judge_primitive, as `run` and `show` judge a record.
+Primitive line_of(Vec3 a, Vec3 b) {
   Primitive p;
   p.kind = Kind::kLine;
-  // (0.5, 0, -2) -> window x = (0.5 / 2 + 1) * 50 = 62.5; (0.5, 0, +2) is behind the camera.
-  // On the near plane (z = -1) the line is at x = 0.5: window (0.5 + 1) * 50 = 75.
-  p.v[0] = {0.5, 0, -2};
-  p.v[1] = {0.5, 0, 2};
-  EXPECT_NEAR(near_clipped_window_magnitude(view, p), 75.0, 1e-9);
+  p.v = {a, b, Vec3{}};
+  return p;
+}
+
+PixelSet columns_below(const PixelSet& s, int32_t x_end) {
+  std::vector<Pixel> kept;
+  for (const Pixel& p : s)
+    if (p.x < x_end) kept.push_back(p);
+  return PixelSet::from_pixels(kept);
+}
+
+TEST(Conformance, ASegmentCutByTwoWindowSidesDrawnAsNothingIsMissing) {
+  // Both ends beyond the window's sides: rule 2 cannot count the fragments the window discards,
+  // and rules 1 and 3 hold for an empty set. The count inside the window must still be there.
+  const View view = make_view(30, 907, 907);
+  const Primitive line = line_of({-5, 0.1, -3}, {5, 0.13, -3});
+  const PixelSet exact = rasterize_reference(view, line);
+  ASSERT_EQ(exact.size(), 907);  // one pixel per column, across the whole window
+  const ConformanceVerdict v = judge_primitive(view, line, PixelSet{}, kExact);
+  EXPECT_EQ(v.conformance, Conformance::kViolation);
+  EXPECT_EQ(v.violated_rules, "line-missing");
+  EXPECT_GE(v.violating_pixels, 890);  // all but the columns near the window's sides
+  EXPECT_LE(v.violating_pixels, 904);
+}
+
+TEST(Conformance, ASegmentCutByTwoWindowSidesDrawnAsHalfOfItselfIsAViolation) {
+  const View view = make_view(30, 907, 907);
+  const Primitive line = line_of({-5, 0.1, -3}, {5, 0.13, -3});
+  const PixelSet exact = rasterize_reference(view, line);
+  PixelSet where;
+  const ConformanceVerdict v =
+      judge_primitive(view, line, columns_below(exact, 453), kExact, &where);
+  EXPECT_EQ(v.conformance, Conformance::kViolation);
+  EXPECT_EQ(v.violated_rules, "line-window-count");
+  EXPECT_GE(v.violating_pixels, 440);
+  EXPECT_LE(v.violating_pixels, 454);
+  // The missing reference pixels are named, all in the right half.
+  EXPECT_GE(where.size(), 440);
+  for (const Pixel& p : where) EXPECT_GE(p.x, 453);
+}
+
+TEST(Conformance, ASegmentCutByTwoWindowSidesKeepsItsFreedom) {
+  // What GL allows stays within spec: one row up (rule 1), two fragments fewer at the sides (the
+  // window discards a fragment that a shifted end moves out).
+  const View view = make_view(30, 907, 907);
+  const Primitive line = line_of({-5, 0.1, -3}, {5, 0.13, -3});
+  const PixelSet exact = rasterize_reference(view, line);
+  std::vector<Pixel> up, trimmed;
+  for (const Pixel& p : exact) {
+    up.push_back({p.x, p.y + 1});
+    if (p.x > 0 && p.x < 906) trimmed.push_back(p);
+  }
+  EXPECT_EQ(judge_primitive(view, line, PixelSet::from_pixels(up), kExact).conformance,
+            Conformance::kWithinSpec);
+  EXPECT_EQ(judge_primitive(view, line, PixelSet::from_pixels(trimmed), kExact).conformance,
+            Conformance::kWithinSpec);
+}
+
+TEST(Conformance, ATriangleMissingFarFromEveryBoundaryIsAViolationWhateverItsFarVertex) {
+  // A near plane at 10^-5 and a vertex just in front of it, ~4e7 px to the right. An allowance of
+  // eps times that for every edge (400 px) let the whole triangle vanish; the edges near the
+  // window keep their own small allowance, widening only towards the far vertex.
+  const View view = make_view(30, 907, 907, 1e-5, 10.0);
+  Primitive t;
+  t.kind = Kind::kTriangle;
+  t.v = {Vec3{-0.02, -0.02, -0.5}, Vec3{0.02, -0.02, -0.5}, Vec3{0.5, 0.3, -2e-5}};
+  const PixelSet exact = rasterize_reference(view, t);
+  ASSERT_GT(exact.size(), 30000);
+  const ConformanceVerdict v = judge_primitive(view, t, PixelSet{}, kExact);
+  EXPECT_EQ(v.conformance, Conformance::kViolation);
+  EXPECT_EQ(v.violated_rules, "polygon-missing");
+  EXPECT_GT(v.violating_pixels, exact.size() * 9 / 10);
+}
+
+TEST(Conformance, APointMissingFarFromEveryBoundaryIsAViolation) {
+  const View view = make_view(30, 128, 128);
+  Primitive p;
+  p.kind = Kind::kPoint;
+  p.v = {Vec3{0.01, 0.02, -2.0}, Vec3{}, Vec3{}};
+  ASSERT_EQ(rasterize_reference(view, p).size(), 1);
+  const ConformanceVerdict v = judge_primitive(view, p, PixelSet{}, kExact);
+  EXPECT_EQ(v.conformance, Conformance::kViolation);
+  EXPECT_EQ(v.violated_rules, "point-missing");
 }
 
 // The faulty platform's conformance variants, each measured as `run` measures it. FOV 150: most
