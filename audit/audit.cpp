@@ -115,7 +115,8 @@ AuditResult run_audit(const AuditOptions& o) {
   }
 
   // 3. Per primitive.
-  r.primitives = compare_primitives(r.baseline.dir, r.current.dir, r.pairs, o.jobs);
+  const bool same_rules = r.baseline.conformance_rules == r.current.conformance_rules;
+  r.primitives = compare_primitives(r.baseline.dir, r.current.dir, r.pairs, o.jobs, same_rules);
   for (ManifestFailure& m : r.manifest_failures)  // a bisected shard: its primitives are named
     for (const FailedPrimitive& f : r.primitives.failed)
       if (m.outcome == FailureOutcome::kRecovered && f.side == m.side && f.platform == m.platform &&
@@ -144,6 +145,11 @@ AuditResult run_audit(const AuditOptions& o) {
 
   // 6. Verdict, and the history record.
   decide_verdict(r);
+  if (!same_rules)
+    r.reasons.push_back("conformance classes not compared: the baseline was judged by conformance "
+                        "rules " + std::to_string(r.baseline.conformance_rules) + ", the run by " +
+                        std::to_string(r.current.conformance_rules) +
+                        " (re-run the baseline with this renderaudit to compare them)");
   r.summary = make_summary(r, current);
   return r;
 }

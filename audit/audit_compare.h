@@ -97,10 +97,13 @@ struct PrimitiveComparison {
 // Compares every primitive of every pair. Each side's shards are those its run's experiment plans
 // (same primitives, perhaps another shard size); absent records files count as unmatched here and
 // are reported as missing shards by audit/run_identity.h. `jobs` threads read views in parallel
-// (0: the number of cores). Throws ra::UserError on a malformed records file.
+// (0: the number of cores). `compare_verdicts` false: the runs were judged by different
+// conformance rules (RunIdentity::conformance_rules), so a class change alone is no change.
+// Throws ra::UserError on a malformed records file.
 PrimitiveComparison compare_primitives(const std::string& baseline_dir,
                                        const std::string& current_dir,
-                                       const std::vector<PlatformPair>& pairs, unsigned jobs = 0);
+                                       const std::vector<PlatformPair>& pairs, unsigned jobs = 0,
+                                       bool compare_verdicts = true);
 
 // True when two records of one primitive differ: status, visibility, lit pixels, or the
 // conformance class (when both records have one: a baseline of schema version 2 has none).

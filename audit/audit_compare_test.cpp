@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "audit/audit_testing.h"
 #include "audit/run_identity.h"
+#include "metrics/conformance.h"
 #include "util/errors.h"
 
 namespace ra::audit {
@@ -50,6 +52,52 @@ TEST(AuditCompare, FindsExactlyThePrimitivesWhosePixelsOrClassDiffer) {
   EXPECT_DOUBLE_EQ(c.changed[0].before.metric, 0.25);
   EXPECT_DOUBLE_EQ(c.changed[0].after.metric, 0.5);
   EXPECT_TRUE(c.failed.empty());
+}
+
+// Runs judged by different conformance rules: a class that moved with the rules is no change of
+// the driver, while other pixels still are.
+TEST(AuditCompare, ClassesJudgedByOtherRulesAreNotCompared) {
+  const std::string a = fresh_dir("rules_a"), b = fresh_dir("rules_b");
+  const std::string text = experiment_text("\"reference\"", 10, 10);
+  const Experiment exp = write_run(a, text);
+  write_run(b, text);
+  auto judged = [&](int view, uint64_t i, Conformance c) {
+    Record r = point_record(exp, "reference", view, i, 1000 + i, 0.25);
+    r.conformance = c;
+    r.violating_pixels = c == Conformance::kViolation ? 1 : 0;
+    if (c == Conformance::kViolation) r.violated_rules = "point-missing";
+    return r;
+  };
+  write_points(a, exp, "reference",
+               [&](int view, uint64_t i) { return judged(view, i, Conformance::kWithinSpec); });
+  write_points(b, exp, "reference", [&](int view, uint64_t i) {
+    Record r = judged(view, i, i == 4 ? Conformance::kViolation : Conformance::kWithinSpec);
+    if (i == 7) r.pixel_hash = 3;
+    return r;
+  });
+  const std::vector<PlatformPair> pair = {{"reference", "reference"}};
+  EXPECT_EQ(changed_indices(compare_primitives(a, b, pair, 1)), (std::vector<uint64_t>{4, 7}));
+  EXPECT_EQ(changed_indices(compare_primitives(a, b, pair, 1, false)), (std::vector<uint64_t>{7}));
+}
+
+TEST(RunIdentity, ReadsTheConformanceRulesOfAManifestAndRefusesNonsense) {
+  const std::string a = fresh_dir("rules_id");
+  write_run(a, experiment_text("\"reference\"", 10, 10));
+  EXPECT_EQ(load_run_identity(a).conformance_rules, 1);  // a manifest without the key
+  nlohmann::json m = nlohmann::json::parse(std::ifstream(a + "/manifest.json"));
+  m["conformance_rules"] = kConformanceRulesVersion;
+  std::ofstream(a + "/manifest.json") << m.dump();
+  EXPECT_EQ(load_run_identity(a).conformance_rules, kConformanceRulesVersion);
+  m["conformance_rules"] = "two";
+  std::ofstream(a + "/manifest.json") << m.dump();
+  try {
+    load_run_identity(a);
+    FAIL() << "a non-integer conformance_rules was accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("manifest.json: \"conformance_rules\" must be an integer"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // Another shard size in one run (the [run] table is not part of the experiment) changes nothing.

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "metrics/conformance.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "runner/shard.h"
@@ -46,6 +47,15 @@ RunIdentity load_run_identity(const std::string& dir) {
     throw UserError(dir + "/manifest.json: no experiment seed (not a renderaudit run manifest)");
   run.seed = exp["seed"].get<uint64_t>();
   run.status = string_or(manifest, "status", "unknown");
+  if (manifest.contains("conformance_rules")) {
+    const nlohmann::json& rules = manifest["conformance_rules"];
+    if (!rules.is_number_integer() || rules.get<int64_t>() < 1 ||
+        rules.get<int64_t>() > kConformanceRulesVersion)
+      throw UserError(dir + "/manifest.json: \"conformance_rules\" must be an integer from 1 to " +
+                      std::to_string(kConformanceRulesVersion) + " (this renderaudit's), not " +
+                      rules.dump());
+    run.conformance_rules = rules.get<int>();
+  }
 
   // Drivers: the manifest's copy, else what the workers wrote into drivers/ (a run killed before
   // its manifest was finished still has those).

@@ -27,6 +27,7 @@ struct RunIdentity {
   std::string name, hash;  // manifest.json "experiment": name, hash
   uint64_t seed = 0;       // manifest.json "experiment": seed
   std::string status;      // manifest.json "status": "complete", "failed", "running", ...
+  int conformance_rules = 1;  // manifest.json "conformance_rules" (absent: 1), metrics/conformance.h
   std::map<std::string, DriverIdentity> drivers;    // by platform; "unknown" when never recorded
   std::vector<ShardFailureNote> manifest_failures;  // in the manifest's order
 };

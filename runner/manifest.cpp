@@ -1,6 +1,7 @@
 #include "runner/manifest.h"
 
 #include "util/atomic_file.h"
+#include "util/errors.h"
 
 #include <sys/utsname.h>
 #include <unistd.h>
@@ -105,6 +106,19 @@ void write_manifest(const std::string& path, const nlohmann::json& manifest) {
     throw std::runtime_error(reason + (saved ? "; " + path + " now says \"failed\""
                                              : "; " + path + " could not be updated either"));
   }
+}
+
+}  // namespace ra
+
+namespace ra {
+
+int conformance_rules_of(const nlohmann::json& manifest, const std::string& path) {
+  if (!manifest.is_object()) return 0;
+  if (!manifest.contains("conformance_rules")) return manifest.contains("invocations") ? 1 : 0;
+  const nlohmann::json& v = manifest["conformance_rules"];
+  if (!v.is_number_integer() || v.get<int64_t>() < 1 || v.get<int64_t>() > 1000)
+    throw UserError(path + ": \"conformance_rules\" must be a positive integer, not " + v.dump());
+  return v.get<int>();
 }
 
 }  // namespace ra

@@ -29,4 +29,9 @@ namespace ra {
 // std::runtime_error naming the file and the free space.
 void write_manifest(const std::string& path, const nlohmann::json& manifest);
 
+// The conformance rules (metrics/conformance.h) a run directory's records were judged by: its
+// manifest's "conformance_rules", 1 for a manifest of an earlier run without it, 0 for none (a
+// new directory). Throws UserError naming `path` when the value is not a positive integer.
+int conformance_rules_of(const nlohmann::json& manifest, const std::string& path);
+
 }  // namespace ra

@@ -24,6 +24,7 @@
 #include "util/dir_lock.h"
 #include "util/duration_text.h"
 #include "util/errors.h"
+#include "metrics/conformance.h"
 #include "runner/run_dir.h"
 #include "runner/run_progress.h"
 #include "runner/shard_cost.h"
@@ -222,6 +223,14 @@ RunResult run_experiment(const RunOptions& options) {
   manifest.update(document_header("manifest", kManifestSchemaVersion, false));
   manifest["tool"] = {{"name", "renderaudit"}, {"version", project_version()},
                       {"commit", project_commit()}};
+  // A directory's records are judged by one version of the conformance rules.
+  const int rules = conformance_rules_of(manifest, manifest_path);
+  if (rules != 0 && rules != kConformanceRulesVersion)
+    throw UserError(manifest_path + ": its records were judged by conformance rules " +
+                    std::to_string(rules) + ", this renderaudit judges by " +
+                    std::to_string(kConformanceRulesVersion) +
+                    "; resuming would mix them: run into a new directory");
+  manifest["conformance_rules"] = kConformanceRulesVersion;
   manifest["experiment"] = {{"name", exp.name}, {"file", options.experiment_path},
                             {"hash", exp.hash}, {"seed", exp.seed},
                             {"platforms", exp.platforms}};

@@ -5,6 +5,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "metrics/conformance.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
 #include "runner/run_dir.h"
@@ -129,6 +130,19 @@ MergeResult merge_runs(const MergeOptions& options) {
     m["invocations"] = before["invocations"];
   m["tool"] = {
       {"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
+  // One version of the conformance rules for every input's records.
+  int rules = 0;
+  std::string rules_from;
+  for (const std::string& in : options.inputs) {
+    const std::string path = in + "/manifest.json";
+    const int r = conformance_rules_of(read_json_or_null(path), path);
+    if (r == 0) continue;
+    if (rules != 0 && r != rules)
+      throw UserError(rules_from + " was judged by conformance rules " + std::to_string(rules) +
+                      ", " + path + " by " + std::to_string(r) + ": their records cannot be merged");
+    rules = r, rules_from = path;
+  }
+  m["conformance_rules"] = rules != 0 ? rules : kConformanceRulesVersion;
   m["experiment"] = {{"name", exp.name},
                      {"file", out + "/experiment.toml"},
                      {"hash", exp.hash},

@@ -6,6 +6,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "metrics/conformance.h"
 #include "metrics/records.h"
 #include "tests/cli_harness.h"
 #include "util/atomic_file.h"
@@ -97,6 +98,28 @@ TEST(RunCommand, AResumedRunEqualsAnUninterruptedOne) {
   EXPECT_TRUE(records_without_timing(dir + "/full") == records_without_timing(dir + "/resumed"));
   for (const auto& e : fs::directory_iterator(dir + "/resumed/records"))
     EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+}
+
+// A directory's verdicts come from one version of the conformance rules: the manifest says which,
+// and resuming a directory judged by other rules is refused before any shard runs.
+TEST(RunCommand, AResumeUnderOtherConformanceRulesIsRefused) {
+  const std::string dir = fresh_dir("rules");
+  write_text(dir + "/e.toml", experiment("\"reference\"", 40, 20));
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/r").exit_code, 0);
+  nlohmann::json m = nlohmann::json::parse(ra::read_file(dir + "/r/manifest.json"));
+  EXPECT_EQ(m.at("conformance_rules"), ra::kConformanceRulesVersion);
+  m.erase("conformance_rules");  // as an earlier renderaudit wrote it
+  write_text(dir + "/r/manifest.json", m.dump(2));
+  for (const auto& e : fs::directory_iterator(dir + "/r/records")) {
+    fs::remove(e.path());  // one shard left to run
+    break;
+  }
+  const Outcome again = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/r");
+  EXPECT_EQ(again.exit_code, 2) << again.output;
+  EXPECT_NE(again.output.find("judged by conformance rules 1, this renderaudit judges by " +
+                              std::to_string(ra::kConformanceRulesVersion)),
+            std::string::npos)
+      << again.output;
 }
 
 // A worker that crashes or hangs is re-run once, then its shard is bisected down to the primitive
