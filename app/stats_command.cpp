@@ -17,6 +17,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "stats/box_cox.h"
@@ -44,6 +45,7 @@ struct StatsOptions {
   std::string quantiles = "hf6";
   std::string y;               // regress: response column
   std::vector<std::string> x;  // regress: predictor columns
+  std::string poly;            // regress: "COLUMN:DEGREE", a polynomial in one column
   bool no_intercept = false;   // regress
   bool json = false;
 };
@@ -410,10 +412,46 @@ void run_anova(const StatsOptions& o) {
 
 // Least squares of one column on others. Rows with an empty cell in any of the columns used are
 // skipped and counted; a cell that is not a number stops with file:line (CsvTable::number).
+// "--poly COLUMN:DEGREE" -> the column and the degree (1..kMaxPolynomialDegree).
+constexpr int kMaxPolynomialDegree = 30;
+std::pair<std::string, int> parse_poly(const std::string& file, const std::string& spec) {
+  const auto colon = spec.rfind(':');
+  const std::string column = colon == std::string::npos ? "" : spec.substr(0, colon);
+  const std::string degree = colon == std::string::npos ? "" : spec.substr(colon + 1);
+  int d = 0;
+  std::size_t used = 0;
+  try {
+    d = std::stoi(degree, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (column.empty() || used == 0 || used != degree.size() || d < 1 ||
+      d > kMaxPolynomialDegree) {
+    throw UserError(file + ": --poly '" + spec + "' is not COLUMN:DEGREE with a column name and "
+                    "a degree from 1 to " + std::to_string(kMaxPolynomialDegree) +
+                    " (e.g. --poly x:10 fits x, x^2, ..., x^10)");
+  }
+  return {column, d};
+}
+
+// Least squares of one column on others, or on a polynomial in one column. Rows with an empty
+// cell in any of the columns used are skipped and counted; a cell that is not a number stops with
+// file:line (CsvTable::number).
 void run_regress(const StatsOptions& o) {
   const std::string& file = o.files.at(0);
+  if (o.x.empty() && o.poly.empty()) {
+    throw UserError(file + ": name the predictors with --x COLUMN[,COLUMN...] or a polynomial "
+                    "with --poly COLUMN:DEGREE");
+  }
+  int degree = 0;
+  std::vector<std::string> columns = o.x;
+  if (!o.poly.empty()) {
+    auto [column, d] = parse_poly(file, o.poly);
+    columns = {column};
+    degree = d;
+  }
   std::set<std::string> seen;
-  for (const auto& name : o.x) {
+  for (const auto& name : columns) {
     if (name.empty()) throw UserError(file + ": --x has an empty column name");
     if (!seen.insert(name).second) {
       throw UserError(file + ": --x names column '" + name +
@@ -421,18 +459,18 @@ void run_regress(const StatsOptions& o) {
     }
     if (name == o.y) {
       throw UserError(file + ": column '" + name +
-                      "' is both the response (--y) and a predictor (--x)");
+                      "' is both the response (--y) and a predictor (--x or --poly)");
     }
   }
   const analysis::CsvTable table = analysis::CsvTable::read_file(file);
   const std::size_t y_column = table.column(o.y);
   std::vector<std::size_t> x_columns;
-  for (const auto& name : o.x) x_columns.push_back(table.column(name));
+  for (const auto& name : columns) x_columns.push_back(table.column(name));
 
   std::vector<double> y;
-  std::vector<std::vector<double>> predictors(o.x.size());
+  std::vector<std::vector<double>> predictors(columns.size());
   std::size_t n_missing = 0;
-  std::vector<double> row_x(o.x.size());
+  std::vector<double> row_x(columns.size());
   for (std::size_t row = 0; row < table.row_count(); ++row) {
     const std::optional<double> value = table.number(row, y_column);
     bool complete = value.has_value();
@@ -450,13 +488,17 @@ void run_regress(const StatsOptions& o) {
   }
 
   stats::LinearFit fit;
+  const std::string design =
+      degree > 0 ? "a polynomial of degree " + std::to_string(degree) + " in '" + columns[0] + "'"
+                 : std::to_string(columns.size()) + " predictor(s)";
   try {
-    fit = stats::fit_least_squares(predictors, y, !o.no_intercept, o.x);
+    fit = degree > 0
+              ? stats::fit_polynomial(predictors[0], y, degree, !o.no_intercept, columns[0])
+              : stats::fit_least_squares(predictors, y, !o.no_intercept, columns);
   } catch (const UserError& e) {
     throw UserError(file + ": '" + o.y + "' on " + (o.no_intercept ? "" : "an intercept and ") +
-                    std::to_string(o.x.size()) + " predictor(s), " + std::to_string(y.size()) +
-                    " complete row(s) (" + std::to_string(n_missing) +
-                    " skipped for empty cells): " + e.what());
+                    design + ", " + std::to_string(y.size()) + " complete row(s) (" +
+                    std::to_string(n_missing) + " skipped for empty cells): " + e.what());
   }
   std::vector<Reported> tests;
   for (std::size_t j = 0; j < fit.coefficients.size(); ++j) {
@@ -479,9 +521,11 @@ void run_regress(const StatsOptions& o) {
     json j = header_json("stats regress");
     j["file"] = file;
     j["y_column"] = o.y;
-    j["x_columns"] = o.x;
+    j["x_columns"] = columns;
+    if (degree > 0) j["polynomial_degree"] = degree;
     j["intercept"] = fit.intercept;
-    j["method"] = "householder_qr_column_pivoting";
+    j["method"] = stats::fit_method_name(fit.method);
+    j["condition_number"] = number(fit.condition_number);
     j["n"] = fit.n;
     j["n_missing"] = n_missing;
     j["df"] = fit.df;
@@ -508,11 +552,20 @@ void run_regress(const StatsOptions& o) {
     return;
   }
   std::string predictors_text;
-  for (const auto& name : o.x)
+  for (const auto& name : columns)
     predictors_text += (predictors_text.empty() ? "'" : ", '") + name + "'";
+  if (degree > 0) predictors_text = design;
   out("%s: '%s' on %s%s; %zu rows (%zu skipped: empty cells)\n", file.c_str(), o.y.c_str(),
       fit.intercept ? "an intercept and " : "", predictors_text.c_str(), fit.n, n_missing);
-  out("Least squares by Householder QR with column pivoting (checked against NIST StRD)\n\n");
+  const char* method = fit.method == stats::FitMethod::kDoubleQr
+                           ? "Householder QR in double precision"
+                       : fit.method == stats::FitMethod::kBinary128Qr
+                           ? "Householder QR in binary128 (quad) precision"
+                           : "normal equations (Cholesky) in binary128 (quad) precision";
+  // three digits: the condition number says how many digits are lost, not a value to reuse
+  out("Least squares by %s (checked against NIST StRD); condition number of the column-scaled "
+      "design %.3g\n\n",
+      method, fit.condition_number);
   out("  %-20s %24s %24s %16s %16s\n", "parameter", "estimate", "std dev", "t value", "p");
   for (std::size_t k = 0; k < fit.coefficients.size(); ++k) {
     const std::string& t = tests[k].text;  // "undefined (why)" for an exact fit
@@ -596,15 +649,22 @@ void register_stats_command(CLI::App& app, int& exit_code) {
   auto regress_opt = std::make_shared<StatsOptions>();
   auto* regress = stats_cmd->add_subcommand(
       "regress",
-      "Least-squares fit of one column on others (QR; checked against NIST StRD): coefficients "
-      "with their standard deviations and t tests, residual SD, R-squared");
+      "Least-squares fit of one column on others, or on a polynomial in one (QR in double or "
+      "binary128; checked against NIST StRD): coefficients with their standard deviations and t "
+      "tests, residual SD, R-squared, the design's condition number and the method");
   regress->add_option("file", regress_opt->files, "CSV file with a header row")
       ->required()
       ->expected(1);
   regress->add_option("--y", regress_opt->y, "response column (numeric)")->required();
-  regress->add_option("--x", regress_opt->x, "predictor column(s), comma-separated or repeated")
-      ->required()
-      ->delimiter(',');
+  auto* x_opt =
+      regress->add_option("--x", regress_opt->x, "predictor column(s), comma-separated or repeated")
+          ->delimiter(',');
+  auto* poly_opt = regress->add_option(
+      "--poly", regress_opt->poly,
+      "COLUMN:DEGREE: a polynomial in one column, its powers formed in binary128 from the "
+      "column's values (a CSV of rounded powers loses digits on ill-conditioned designs)");
+  x_opt->excludes(poly_opt);
+  poly_opt->excludes(x_opt);
   regress->add_flag("--no-intercept", regress_opt->no_intercept,
                     "fit without a constant term (R-squared is then uncentred, as NIST's)");
   add_common_options(regress, *regress_opt, false);

@@ -1,6 +1,9 @@
-// Least squares by column-scaled, column-pivoted Householder QR; see linear_regression.h.
+// Least squares by column-scaled Householder QR in double or binary128; see linear_regression.h.
 // Golub and Van Loan, Matrix Computations (4th ed.), 5.4.2 (QR with column pivoting) and 5.3
-// (least-squares sensitivity); checked against NIST StRD linear regression (Norris, Pontius).
+// (least-squares sensitivity); checked against every NIST StRD linear regression set.
+// Eigen's triangular matrix-vector kernel trips GCC's -Wmaybe-uninitialized on a temporary it
+// assigns before use.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include "stats/linear_regression.h"
 
 #include <Eigen/Dense>
@@ -8,8 +11,10 @@
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <cstdio>
+#include <set>
 #include <stdexcept>
 
+#include "stats/binary128_least_squares.h"
 #include "stats/descriptive.h"
 #include "util/errors.h"
 
@@ -54,51 +59,54 @@ namespace {
 LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& predictors,
                                         const std::vector<double>& y, bool intercept,
                                         const std::vector<std::string>& names);
-}  // namespace
+LinearFit fit_polynomial_of_scaled_y(const std::vector<double>& x, const std::vector<double>& y,
+                                     int degree, bool intercept, const std::string& x_name);
 
 // y is scaled by a power of two first (exact): the residual sum of squares of y near 1e200 would
 // be near 1e400; t, p and R^2 are scale-free, coefficients and their standard deviations scale
 // with y and are scaled back. (The predictors' columns are scaled to unit norm below.)
-LinearFit fit_least_squares(const std::vector<std::vector<double>>& predictors,
-                            const std::vector<double>& y, bool intercept,
-                            const std::vector<std::string>& names) {
+template <typename Fit>
+LinearFit with_scaled_y(const std::vector<double>& y, Fit fit_scaled) {
   const int e = scale_exponent(y);
-  LinearFit fit = fit_least_squares_of_scaled_y(predictors, scaled(y, e), intercept, names);
+  LinearFit fit = fit_scaled(scaled(y, e));
   for (double& b : fit.coefficients) b = std::ldexp(b, e);
   for (double& sd : fit.standard_deviations) sd = std::ldexp(sd, e);
   fit.residual_sd = std::ldexp(fit.residual_sd, e);
   fit.rss = std::ldexp(fit.rss, 2 * e);  // inf when it leaves the double range
   return fit;
 }
+}  // namespace
+
+LinearFit fit_least_squares(const std::vector<std::vector<double>>& predictors,
+                            const std::vector<double>& y, bool intercept,
+                            const std::vector<std::string>& names) {
+  return with_scaled_y(y, [&](const std::vector<double>& ys) {
+    return fit_least_squares_of_scaled_y(predictors, ys, intercept, names);
+  });
+}
+
+LinearFit fit_polynomial(const std::vector<double>& x, const std::vector<double>& y, int degree,
+                         bool intercept, const std::string& x_name) {
+  return with_scaled_y(y, [&](const std::vector<double>& ys) {
+    return fit_polynomial_of_scaled_y(x, ys, degree, intercept, x_name);
+  });
+}
 
 namespace {
-LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& predictors,
-                                        const std::vector<double>& y, bool intercept,
-                                        const std::vector<std::string>& names) {
-  // check the input before any arithmetic, so that every message names what is wrong
-  const std::size_t k = predictors.size();
-  if (!names.empty() && names.size() != k) {
-    throw std::invalid_argument("fit_least_squares: " + std::to_string(names.size()) +
-                                " names for " + std::to_string(k) + " predictors");
-  }
+
+// The parameters' names and the checks every fit makes before any arithmetic, so that every
+// message names what is wrong. `columns` are the predictors' names, in order.
+LinearFit checked_start(const std::vector<std::string>& columns, const std::vector<double>& y,
+                        bool intercept) {
   LinearFit fit;
   fit.intercept = intercept;
   fit.r_squared_centred = intercept;
   if (intercept) fit.names.push_back(kInterceptName);
-  for (std::size_t j = 0; j < k; ++j) {
-    fit.names.push_back(names.empty() ? "x" + std::to_string(j + 1) : names[j]);
-  }
+  fit.names.insert(fit.names.end(), columns.begin(), columns.end());
   const std::size_t p = fit.names.size();
   const std::size_t n = y.size();
   if (p == 0) {
     throw UserError("least squares: no parameters to fit (no predictors and no intercept)");
-  }
-  for (std::size_t j = 0; j < k; ++j) {
-    if (predictors[j].size() != n) {
-      throw UserError("least squares: predictor '" + fit.names[j + intercept] + "' has " +
-                      std::to_string(predictors[j].size()) + " values but y has " +
-                      std::to_string(n) + "; each observation needs a value of every column");
-    }
   }
   if (n <= p) {
     throw UserError("least squares: " + std::to_string(n) + " observation(s) for " +
@@ -106,22 +114,106 @@ LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& 
                     "); at least " + std::to_string(p + 1) +
                     " are needed, so that the residual standard deviation is defined");
   }
-  const auto require_finite_column = [](const std::vector<double>& v, const std::string& what) {
-    for (std::size_t i = 0; i < v.size(); ++i) {
-      if (!std::isfinite(v[i])) {
-        throw UserError("least squares: " + what + ", observation " + std::to_string(i + 1) +
-                        " of " + std::to_string(v.size()) + ", is " + std::to_string(v[i]) +
-                        "; only finite numbers can be fitted");
-      }
+  fit.n = n;
+  fit.df = n - p;
+  fit.rank = p;
+  return fit;
+}
+
+void require_finite_column(const std::vector<double>& v, const std::string& what) {
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) {
+      throw UserError("least squares: " + what + ", observation " + std::to_string(i + 1) + " of " +
+                      std::to_string(v.size()) + ", is " + std::to_string(v[i]) +
+                      "; only finite numbers can be fitted");
     }
-  };
+  }
+}
+
+std::string condition_text(double kappa) {
+  if (std::isinf(kappa)) return "infinite (a zero pivot)";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", kappa);
+  return buf;
+}
+
+// The refusal of a design whose coefficients the data do not determine. `dependent` are the
+// columns last in the pivoted order (those pivoting found nearly dependent on the others).
+[[noreturn]] void refuse_undetermined(const LinearFit& fit,
+                                      const std::vector<std::string>& dependent,
+                                      const std::vector<std::string>& others, double kappa) {
+  const std::size_t p = fit.names.size();
+  throw UserError(
+      "least squares: the design has rank " + std::to_string(p - dependent.size()) + " for " +
+      std::to_string(p) + " parameters: " + quoted_list(dependent) +
+      (dependent.size() == 1 ? " is" : " are") + " a linear combination of " +
+      quoted_list(others) + " to within the data's own rounding (condition number of the "
+      "column-scaled design " + condition_text(kappa) + ", above 2^52 = 4.5e15), so the "
+      "coefficients are not determined; drop a column (typical causes: a constant predictor "
+      "beside the intercept, two proportional columns such as #vertices = 3 #polygons)");
+}
+
+// Residual SD, RSS, R^2 and standard deviations of a binary128 solution. `tss` as in the header.
+void finish_binary128(LinearFit& fit, const Binary128Solution& s, const float128& tss) {
+  const float128 s2 = s.rss / static_cast<double>(fit.df);
+  fit.rss = static_cast<double>(s.rss);
+  fit.residual_sd = static_cast<double>(sqrt(s2));
+  if (tss > 0) fit.r_squared = static_cast<double>(1 - s.rss / tss);
+  fit.coefficients = s.coefficients;
+  fit.standard_deviations.resize(s.sd_factors.size());
+  for (std::size_t j = 0; j < s.sd_factors.size(); ++j) {
+    fit.standard_deviations[j] = static_cast<double>(sqrt(s2) * s.sd_factors[j]);
+  }
+  fit.condition_number = s.condition_number;
+  fit.method = s.factor == Binary128Factor::kCholesky ? FitMethod::kBinary128NormalEquations
+                                                      : FitMethod::kBinary128Qr;
+}
+
+// Total sum of squares in binary128: about the mean with an intercept, about 0 without.
+float128 total_sum_of_squares(const Vector128& y, bool centred) {
+  const float128 m = centred ? float128(y.sum() / static_cast<double>(y.size())) : float128(0);
+  float128 tss = 0;
+  for (Eigen::Index i = 0; i < y.size(); ++i) tss += (y(i) - m) * (y(i) - m);
+  return tss;
+}
+
+// The largest singular value of R over its smallest: the 2-norm condition number of the scaled
+// design (double: trustworthy up to ~1e14; beyond, binary128 decides).
+double condition_of(const Eigen::MatrixXd& r_factor) {
+  const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(r_factor).singularValues();
+  const double smallest = sv(sv.size() - 1);
+  return smallest > 0 ? sv(0) / smallest : std::numeric_limits<double>::infinity();
+}
+
+LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& predictors,
+                                        const std::vector<double>& y, bool intercept,
+                                        const std::vector<std::string>& names) {
+  const std::size_t k = predictors.size();
+  if (!names.empty() && names.size() != k) {
+    throw std::invalid_argument("fit_least_squares: " + std::to_string(names.size()) +
+                                " names for " + std::to_string(k) + " predictors");
+  }
+  std::vector<std::string> columns;
+  for (std::size_t j = 0; j < k; ++j) {
+    columns.push_back(names.empty() ? "x" + std::to_string(j + 1) : names[j]);
+  }
+  const std::size_t n = y.size();
+  for (std::size_t j = 0; j < k; ++j) {
+    if (predictors[j].size() != n) {
+      throw UserError("least squares: predictor '" + columns[j] + "' has " +
+                      std::to_string(predictors[j].size()) + " values but y has " +
+                      std::to_string(n) + "; each observation needs a value of every column");
+    }
+  }
+  LinearFit fit = checked_start(columns, y, intercept);
+  const std::size_t p = fit.names.size();
   require_finite_column(y, "the response y");
   for (std::size_t j = 0; j < k; ++j) {
-    require_finite_column(predictors[j], "predictor '" + fit.names[j + intercept] + "'");
+    require_finite_column(predictors[j], "predictor '" + columns[j] + "'");
   }
 
   // design matrix, each column scaled to unit norm: pivots become comparable across columns of
-  // very different magnitudes (Pontius: 1, x ~ 1e6, x^2 ~ 1e12), so the rank test is meaningful
+  // very different magnitudes (Pontius: 1, x ~ 1e6, x^2 ~ 1e12), and kappa measures dependence
   Eigen::MatrixXd x(n, p);
   if (intercept) x.col(0).setOnes();
   for (std::size_t j = 0; j < k; ++j) {
@@ -139,36 +231,40 @@ LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& 
   const Eigen::MatrixXd xs = x * scale.cwiseInverse().asDiagonal();
   const Eigen::Map<const Eigen::VectorXd> yv(y.data(), static_cast<Eigen::Index>(n));
 
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(xs.rows(), xs.cols());
-  qr.setThreshold(kRankTolerance);
-  qr.compute(xs);
-  fit.rank = static_cast<std::size_t>(qr.rank());
-  if (fit.rank < p) {
-    // pivoting moves the columns that depend on the others to the end
-    std::vector<std::string> dependent, others;
-    for (std::size_t pos = 0; pos < p; ++pos) {
-      const auto j = static_cast<std::size_t>(qr.colsPermutation().indices()(pos));
-      (pos < fit.rank ? others : dependent).push_back(fit.names[j]);
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(xs);
+  const Eigen::MatrixXd r_factor = qr.matrixR().topLeftCorner(p, p).triangularView<Eigen::Upper>();
+  fit.condition_number = condition_of(r_factor);
+  if (fit.condition_number > kDoubleConditionLimit) {
+    std::optional<Binary128Solution> normal;
+    if (fit.condition_number <= kNormalEquationsLimit) {
+      normal = solve_binary128_normal_equations(x, Eigen::VectorXd(yv));
     }
-    char tolerance[32];
-    std::snprintf(tolerance, sizeof tolerance, "%g", kRankTolerance);
-    throw UserError("least squares: the design has rank " + std::to_string(fit.rank) + " for " +
-                    std::to_string(p) + " parameters: " + quoted_list(dependent) +
-                    (dependent.size() == 1 ? " is" : " are") + " (to within a relative " +
-                    tolerance + ") a linear combination of " + quoted_list(others) +
-                    ", so the coefficients are not determined; drop a column (typical causes: a "
-                    "constant predictor beside the intercept, two proportional columns such as "
-                    "#vertices = 3 #polygons)");
+    const Binary128Solution s =
+        normal ? *normal : solve_binary128_qr(x.cast<float128>(), yv.cast<float128>());
+    if (!(s.condition_number <= kMaxCondition)) {
+      // pivoting moves the columns that depend on the others to the end
+      const double largest = std::abs(r_factor(0, 0));
+      std::size_t m = 0;
+      for (std::size_t pos = 0; pos < p; ++pos) m += std::abs(r_factor(pos, pos)) < 1e-8 * largest;
+      m = std::max<std::size_t>(m, 1);
+      std::vector<std::string> dependent, others;
+      for (std::size_t pos = 0; pos < p; ++pos) {
+        const auto j = static_cast<std::size_t>(qr.colsPermutation().indices()(pos));
+        (pos + m >= p ? dependent : others).push_back(fit.names[j]);
+      }
+      refuse_undetermined(fit, dependent, others, s.condition_number);
+    }
+    finish_binary128(fit, s, total_sum_of_squares(yv.cast<float128>(), intercept));
+    return fit;
   }
 
-  // solve in scaled coordinates, then one step of iterative refinement on the residual
+  // double precision: solve in scaled coordinates, then one step of iterative refinement on
+  // the residual
   Eigen::VectorXd bs = qr.solve(yv);
   Eigen::VectorXd b = bs.cwiseQuotient(scale);
   b += qr.solve(residuals(x, yv, b)).cwiseQuotient(scale);
 
   const Eigen::VectorXd r = residuals(x, yv, b);
-  fit.n = n;
-  fit.df = n - p;
   fit.rss = static_cast<double>(sum_of_squares(r));
   fit.residual_sd = std::sqrt(fit.rss / static_cast<double>(fit.df));
 
@@ -183,7 +279,6 @@ LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& 
 
   // var(b_j) = s^2 [(X'X)^-1]_jj; with Xs = X D^-1 = Q R P', (X'X)^-1 = D^-1 P R^-1 R^-T P' D^-1,
   // so the diagonal is the squared norm of a row of R^-1 over the squared column scale
-  const Eigen::MatrixXd r_factor = qr.matrixR().topLeftCorner(p, p).triangularView<Eigen::Upper>();
   const Eigen::MatrixXd r_inverse =
       r_factor.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
   fit.coefficients.assign(b.data(), b.data() + p);
@@ -194,7 +289,66 @@ LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& 
   }
   return fit;
 }
+
+LinearFit fit_polynomial_of_scaled_y(const std::vector<double>& x, const std::vector<double>& y,
+                                     int degree, bool intercept, const std::string& x_name) {
+  if (degree < 1) {
+    throw UserError("least squares: polynomial degree " + std::to_string(degree) + " of '" +
+                    x_name + "'; it must be 1 or more");
+  }
+  if (x.size() != y.size()) {
+    throw UserError("least squares: predictor '" + x_name + "' has " + std::to_string(x.size()) +
+                    " values but y has " + std::to_string(y.size()) +
+                    "; each observation needs a value of every column");
+  }
+  std::vector<std::string> columns{x_name};
+  for (int d = 2; d <= degree; ++d) columns.push_back(x_name + "^" + std::to_string(d));
+  LinearFit fit = checked_start(columns, y, intercept);
+  require_finite_column(y, "the response y");
+  require_finite_column(x, "predictor '" + x_name + "'");
+  // a Vandermonde design has full rank exactly when x has as many distinct values as it has
+  // columns (nonzero ones without the column of ones): a test on the data, not on rounding
+  std::set<double> distinct;
+  for (double v : x) {
+    if (intercept || v != 0) distinct.insert(v);
+  }
+  if (distinct.size() < static_cast<std::size_t>(degree) + intercept) {
+    throw UserError("least squares: a polynomial of degree " + std::to_string(degree) + " in '" +
+                    x_name + "'" + (intercept ? " with" : " without") + " an intercept needs " +
+                    std::to_string(degree + intercept) + " distinct " +
+                    (intercept ? "" : "nonzero ") + "values of '" + x_name + "', the data have " +
+                    std::to_string(distinct.size()) + "; the coefficients are not determined");
+  }
+  const auto n = static_cast<Eigen::Index>(y.size());
+  const auto p = static_cast<Eigen::Index>(fit.names.size());
+  Matrix128 design(n, p);
+  Vector128 y128(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    y128(i) = y[static_cast<std::size_t>(i)];
+    const float128 xi = x[static_cast<std::size_t>(i)];
+    float128 power = intercept ? float128(1) : xi;
+    for (Eigen::Index j = 0; j < p; ++j, power *= xi) design(i, j) = power;
+  }
+  const Binary128Solution s = solve_binary128_qr(design, y128);
+  if (!(s.condition_number <= kMaxCondition)) {
+    refuse_undetermined(fit, {fit.names.back()},
+                        std::vector<std::string>(fit.names.begin(), fit.names.end() - 1),
+                        s.condition_number);
+  }
+  finish_binary128(fit, s, total_sum_of_squares(y128, intercept));
+  return fit;
+}
+
 }  // namespace
+
+const char* fit_method_name(FitMethod m) {
+  switch (m) {
+    case FitMethod::kDoubleQr: return "householder_qr_double";
+    case FitMethod::kBinary128NormalEquations: return "normal_equations_binary128";
+    case FitMethod::kBinary128Qr: return "householder_qr_binary128";
+  }
+  return "?";
+}
 
 CoefficientTest coefficient_t_test(const LinearFit& fit, std::size_t j) {
   const double sd = fit.standard_deviations.at(j);

@@ -1,17 +1,34 @@
 // Ordinary least squares y = b0 + b1 x1 + ... + bk xk + e: coefficients (units of y per unit of
 // their predictor), their standard deviations, the residual standard deviation (units of y) and
 // R-squared. Used to fit rendering-time models (Wimmer and Wonka's heuristics H1..H4: frame time as
-// a linear function of #polygons, #vertices, #pixels); checked against NIST StRD Norris and
-// Pontius.
+// a linear function of #polygons, #vertices, #pixels); checked against every NIST StRD linear
+// regression set (Norris, Pontius, NoInt1, NoInt2, Filip, Longley, Wampler1-5).
 //
 // Method: the design matrix (a column of ones first when there is an intercept) is scaled to unit
-// column norms and factored by Householder QR with column pivoting (Eigen's ColPivHouseholderQR);
-// one step of iterative refinement on the residual follows (on StRD Norris and Pontius it raises
-// the worst coefficient from 12.5 to 13.5 correct digits). The normal equations X'X b = X'y are
-// never formed: they square the condition number (on Pontius, with x up to 3e6 and x^2 up to 9e12,
-// NumPy's normal-equations solution keeps 11.2 digits of B0; on NIST's harder sets, none).
-// Standard deviations come from R^-1 (the diagonal of (X'X)^-1 = P R^-1 R^-T P', scaled back), not
-// from inverting X'X.
+// column norms and factored by Householder QR with column pivoting in double precision (Eigen's
+// ColPivHouseholderQR). Its 2-norm condition number kappa (from the singular values of R) picks the
+// precision of the solution:
+// - kappa <= kDoubleConditionLimit: the double factor is used, with one step of iterative
+//   refinement on a long-double residual. Every digit it loses is a factor of kappa (and kappa^2
+//   times the relative residual): at kappa <= 100 at least 13 digits remain on the StRD sets.
+// - above: the problem is solved again in IEEE binary128 (113-bit significand, ~34 digits;
+//   Boost.Multiprecision float128 over GCC's libquadmath): the solution, its residuals and R^-1
+//   all in binary128, the triangular factor R from the Cholesky factor of the scaled X'X up to
+//   kNormalEquationsLimit (they lose 2 log10(kappa) <= 12 of the 34 digits and cost a quarter of
+//   a QR: the timing study's H3 refits many ill-conditioned subsets), from Householder QR beyond.
+//   Double QR with refinement would not do: past kappa ~ 1e3 its R keeps too few digits for the
+//   standard deviations, and the kappa^2 term of large residuals defeats refinement (Wampler4/5:
+//   7.9 and 5.9 digits).
+// Polynomial designs (fit_polynomial) form the powers x^k of the double x in binary128 and always
+// take the binary128 Householder path: a design of powers rounded to doubles has lost digits
+// before any solver sees it (NIST Filip, kappa 5e9: its rounded powers determine 7.6 digits, its
+// exact powers 14).
+//
+// Rank: a column is dropped by nobody. The fit is refused (UserError naming the columns) only when
+// the data do not determine its coefficients: kappa of the scaled design (from the binary128 factor
+// when double cannot tell) above kMaxCondition = 2^52, where rounding each datum in its last bit
+// could change the solution by 100 %. Exact dependence (#vertices = 3 #polygons, a constant beside
+// the intercept) gives kappa ~ 1e30 and more in binary128.
 //
 // Conventions:
 // - R-squared is 1 - RSS / TSS. With an intercept TSS is centred, sum (y - mean y)^2; without one
@@ -19,7 +36,7 @@
 //   NoInt2) and as R's summary.lm reports it. `r_squared_centred` says which.
 // - Bad input throws ra::UserError naming what is wrong: fewer observations than parameters plus
 //   one, predictors of another length than y, a NaN or infinite value (which column, which
-//   observation), a rank-deficient design (which columns depend on the others).
+//   observation), a design whose coefficients the data do not determine (which columns).
 #pragma once
 
 #include <cstddef>
@@ -29,11 +46,18 @@
 
 namespace ra::stats {
 
-// Columns whose pivot in the scaled QR factor is below this fraction of the largest pivot are
-// taken as linear combinations of the others, and the fit is refused. Same tolerance as R's lm()
-// (LINPACK dqrdc2, tol = 1e-7): past a condition number of about 1e7 a double-precision solution
-// may have no correct digit when the residuals are not small.
-constexpr double kRankTolerance = 1e-7;
+// Condition numbers (2-norm, column-scaled design, dimensionless) that choose the method.
+constexpr double kDoubleConditionLimit = 100;  // up to here: double QR and refinement
+constexpr double kNormalEquationsLimit = 1e6;  // up to here: binary128 normal equations
+constexpr double kMaxCondition = 4503599627370496.0;  // 2^52: beyond, the fit is refused
+
+enum class FitMethod {
+  kDoubleQr,  // Householder QR in double, one refinement step (long-double residuals)
+  kBinary128NormalEquations,  // Cholesky of the scaled X'X; solution, residuals, R^-1 in binary128
+  kBinary128Qr,               // Householder QR; solution, residuals and R^-1 in binary128
+};
+// "householder_qr_double", "normal_equations_binary128" or "householder_qr_binary128"
+const char* fit_method_name(FitMethod m);
 
 // Result of fit_least_squares(). Parameter j is the intercept (j = 0) when there is one, then the
 // predictors in the order given.
@@ -51,6 +75,10 @@ struct LinearFit {
   std::size_t n = 0;     // observations
   std::size_t rank = 0;  // numerical rank of the design; always the number of parameters
   std::size_t df = 0;    // residual degrees of freedom, n - number of parameters
+  // 2-norm condition number of the design with its columns scaled to unit norm (dimensionless):
+  // about 10^d means d of the data's 16 digits are lost to any solution of the double data
+  double condition_number = 1;
+  FitMethod method = FitMethod::kDoubleQr;
 };
 
 // Least-squares fit of y on the predictor columns.
@@ -63,6 +91,15 @@ struct LinearFit {
 LinearFit fit_least_squares(const std::vector<std::vector<double>>& predictors,
                             const std::vector<double>& y, bool intercept,
                             const std::vector<std::string>& names = {});
+
+// Least-squares fit of a polynomial in x of the given degree: y = b0 + b1 x + ... + bd x^d (b0
+// only with `intercept`). The powers of the double x are formed in binary128, not rounded to
+// doubles, and the fit is always solved in binary128 (see above). Parameters are named
+// "(intercept)", x_name, x_name^2, ... Throws ra::UserError on the bad input listed above, and
+// when x has fewer distinct values (nonzero ones without an intercept) than the degree needs: the
+// design of powers then has exactly dependent columns.
+LinearFit fit_polynomial(const std::vector<double>& x, const std::vector<double>& y, int degree,
+                         bool intercept, const std::string& x_name = "x");
 
 // t test of H0: coefficient j = 0 with the fit's residual degrees of freedom.
 struct CoefficientTest {

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -262,7 +263,8 @@ TEST_F(StatsCommand, RegressNorrisJson) {
   EXPECT_EQ(j["y_column"], "y");
   EXPECT_EQ(j["x_columns"], json::array({"x"}));
   EXPECT_EQ(j["intercept"], true);
-  EXPECT_EQ(j["method"], "householder_qr_column_pivoting");
+  EXPECT_EQ(j["method"], "householder_qr_double");
+  EXPECT_NEAR(j["condition_number"].get<double>(), 2.8, 0.05);  // NumPy: 2.8
   EXPECT_EQ(j["n"], 36);
   EXPECT_EQ(j["n_missing"], 0);
   EXPECT_EQ(j["df"], 34);
@@ -295,6 +297,83 @@ TEST_F(StatsCommand, RegressNorrisJson) {
   EXPECT_NE(text.find("residual SD = 0.8847963961 on 34 degrees of freedom"), std::string::npos)
       << text;
   EXPECT_NE(text.find("R-squared = 0.9999937459 (centred)"), std::string::npos) << text;
+}
+
+// StRD Filip (y on a degree-10 polynomial in x, condition number 5e9) through `--poly x:10`:
+// every certified value to LRE >= 13, exactly the library's fit_polynomial(), and the text names
+// the method and the condition number. Bad --poly specifications are refused.
+TEST_F(StatsCommand, RegressPolynomialFilip) {
+  const auto lines = testing::read_lines(testing::strd_path("Filip.dat"));
+  const auto rows = testing::strd_data_rows(lines);
+  ASSERT_EQ(rows.size(), 82u);
+  std::vector<double> x, y;
+  std::vector<std::string> csv;
+  for (const auto& r : rows) {
+    y.push_back(r.at(0));
+    x.push_back(r.at(1));
+    csv.push_back(format17(r.at(1)) + "," + format17(r.at(0)));
+  }
+  const std::string file = write_csv(dir_, "filip.csv", "x,y", csv);
+  const json j = json::parse(run_stats({"regress", file, "--y", "y", "--poly", "x:10", "--json"}));
+  EXPECT_EQ(j["method"], "householder_qr_binary128");
+  EXPECT_EQ(j["polynomial_degree"], 10);
+  EXPECT_EQ(j["x_columns"], json::array({"x"}));
+  EXPECT_EQ(j["rank"], 11);
+  EXPECT_NEAR(std::log10(j["condition_number"].get<double>()), std::log10(5.21e9), 0.01);
+  const LinearFit fit = fit_polynomial(x, y, 10, true, "x");
+  const json& c = j["coefficients"];
+  ASSERT_EQ(c.size(), 11u);
+  EXPECT_EQ(c[10]["name"], "x^10");
+  // certified values, Filip.dat lines 31-43
+  const double b[] = {-1467.48961422980, -2772.17959193342, -2316.37108160893,
+                      -1127.97394098372, -354.478233703349, -75.1242017393757,
+                      -10.8753180355343, -1.06221498588947, -0.670191154593408E-01,
+                      -0.246781078275479E-02, -0.402962525080404E-04};
+  const double sd[] = {298.084530995537,  559.779865474950,       466.477572127796,
+                       227.204274477751,  71.6478660875927,       15.2897178747400,
+                       2.23691159816033,  0.221624321934227,      0.142363763154724E-01,
+                       0.535617408889821E-03, 0.896632837373868E-05};
+  for (std::size_t k = 0; k < 11; ++k) {
+    EXPECT_EQ(c[k]["estimate"].get<double>(), fit.coefficients[k]);
+    EXPECT_EQ(c[k]["sd"].get<double>(), fit.standard_deviations[k]);
+    EXPECT_GE(testing::lre(c[k]["estimate"].get<double>(), b[k]), 13) << k;
+    EXPECT_GE(testing::lre(c[k]["sd"].get<double>(), sd[k]), 13) << k;
+  }
+  EXPECT_GE(testing::lre(j["residual_sd"].get<double>(), 0.334801051324544E-02), 13);
+  EXPECT_GE(testing::lre(j["r_squared"].get<double>(), 0.996727416185620), 13);
+
+  const std::string text = run_stats({"regress", file, "--y", "y", "--poly", "x:10"});
+  EXPECT_NE(text.find("'y' on an intercept and a polynomial of degree 10 in 'x'; 82 rows"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("Householder QR in binary128 (quad) precision"), std::string::npos) << text;
+  EXPECT_NE(text.find("condition number of the column-scaled design 5.21e+09"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("x^10"), std::string::npos) << text;
+
+  const auto message = [](const std::vector<std::string>& args) {
+    try {
+      run_stats(args);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  for (const char* bad : {"x", "x:", ":3", "x:0", "x:31", "x:2.5", "x:ten"}) {
+    const std::string m = message({"regress", file, "--y", "y", "--poly", bad});
+    EXPECT_NE(m.find(file + ": --poly '" + bad + "' is not COLUMN:DEGREE"), std::string::npos)
+        << m;
+    EXPECT_NE(m.find("a degree from 1 to 30"), std::string::npos) << m;
+  }
+  EXPECT_NE(message({"regress", file, "--y", "y"}).find("--x COLUMN[,COLUMN...] or a polynomial"),
+            std::string::npos);
+  EXPECT_NE(message({"regress", file, "--y", "y", "--poly", "z:2"}).find("no column named 'z'"),
+            std::string::npos);
+  EXPECT_NE(message({"regress", file, "--y", "y", "--poly", "y:2"}).find("is both the response"),
+            std::string::npos);
+  // --x and --poly exclude each other (CLI11)
+  EXPECT_NE(message({"regress", file, "--y", "y", "--x", "x", "--poly", "x:2"}).find("excludes"),
+            std::string::npos);
 }
 
 // Two predictors given as a comma list or as repeated --x, no intercept, and a row with an empty
@@ -367,7 +446,8 @@ TEST_F(StatsCommand, RegressBadInputIsALocatedUserError) {
   const std::string unknown_y = message({"regress", file, "--y", "time", "--x", "polys"});
   EXPECT_NE(unknown_y.find("no column named 'time'"), std::string::npos) << unknown_y;
   const std::string both = message({"regress", file, "--y", "ms", "--x", "polys,ms"});
-  EXPECT_NE(both.find(file + ": column 'ms' is both the response (--y) and a predictor (--x)"),
+  EXPECT_NE(both.find(file + ": column 'ms' is both the response (--y) and a predictor (--x or "
+                      "--poly)"),
             std::string::npos)
       << both;
   const std::string twice = message({"regress", file, "--y", "ms", "--x", "polys,polys"});
