@@ -285,6 +285,28 @@ TEST(RunCommand, RefusesARunDirectoryOfAnotherExperiment) {
   EXPECT_NE(o.output.find("holds a run of a different experiment"), std::string::npos) << o.output;
 }
 
+// [run] shard_size is outside the experiment's hash but names the records files: a run into a
+// directory cut with another size is refused before anything is written, never rendered twice.
+TEST(RunCommand, AnotherShardSizeIntoTheSameDirectoryIsRefused) {
+  const std::string dir = fresh_dir("shard_size");
+  write_text(dir + "/a.toml", experiment("\"reference\"", 30, 10));
+  write_text(dir + "/b.toml", experiment("\"reference\"", 30, 7));
+  ASSERT_EQ(run_renderaudit("run " + dir + "/a.toml --out " + dir + "/run --quiet").exit_code, 0);
+  const auto before = records_without_timing(dir + "/run");
+  ASSERT_EQ(before.size(), 4u * 30);  // views x points
+  const Outcome o = run_renderaudit("run " + dir + "/b.toml --out " + dir + "/run --quiet");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("holds a run cut into shards of 10 primitives ([run] shard_size), " +
+                          dir + "/b.toml asks for 7"),
+            std::string::npos)
+      << o.output;
+  EXPECT_TRUE(records_without_timing(dir + "/run") == before);  // nothing rendered twice
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir + "/run/records")) files += e.path().extension() == ".csv";
+  EXPECT_EQ(files, 4u * 3);  // views x shards of 10
+  EXPECT_EQ(run_renderaudit("analyze " + dir + "/run").exit_code, 0);
+}
+
 TEST(RunCommand, HelpNamesTheOptions) {
   const Outcome o = run_renderaudit("run --help");
   EXPECT_EQ(o.exit_code, 0);
