@@ -30,6 +30,7 @@
 #include "runner/shard_file.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
+#include "runner/recorded_failures.h"
 #include "platforms/platform_probe.h"
 #include "platforms/renderer_check.h"
 #include "runner/shard.h"
@@ -539,8 +540,15 @@ RunResult run_experiment(const RunOptions& options) {
     manifest["damaged_shards_redone"] = damaged;
   }
   result.failed_primitives = recovery.failed_primitives();
-  nlohmann::json failed = manifest.value("failed_primitives", nlohmann::json::array());
+  // What the records hold, whoever wrote them (an earlier invocation, a merge), with the reasons
+  // this invocation and the manifest before it gave.
+  std::map<std::string, std::string> reasons;
+  add_failure_reasons(manifest.value("failed_primitives", nlohmann::json::array()), &reasons);
   for (const FailedPrimitive& f : result.failed_primitives)
+    reasons[failure_key(f.shard, f.index)] = f.reason;
+  result.failed_primitives_held = failed_primitives_in_records(dir, all, reasons);
+  nlohmann::json failed = nlohmann::json::array();
+  for (const FailedPrimitive& f : result.failed_primitives_held)
     failed.push_back({{"shard", f.shard}, {"index", f.index}, {"status", status_name(f.status)},
                       {"reason", f.reason}});
   manifest["failed_primitives"] = failed;

@@ -1,12 +1,14 @@
 // Gathering run directories of one experiment into one (see the header).
 #include "runner/run_merge.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 
 #include "runner/experiment.h"
 #include "runner/manifest.h"
+#include "runner/recorded_failures.h"
 #include "runner/run_dir.h"
 #include "runner/shard.h"
 #include "runner/shard_file.h"
@@ -122,11 +124,12 @@ MergeResult merge_runs(const MergeOptions& options) {
     copy_atomically(path, out + "/drivers/" + platform + ".json");
 
   // The manifest: every input's provenance, the failures they recorded, the merged shard count.
+  // It describes what DIR holds however it was assembled: what an earlier merge into DIR took
+  // (its inputs, shard times and failures) and what ran in DIR itself (a gather's `run`) stay.
   nlohmann::json m = document_header("manifest", kManifestSchemaVersion, false);
-  // what ran in DIR itself before (a gather's `run` after an earlier merge) stays on record
-  if (const nlohmann::json before = read_json_or_null(out + "/manifest.json");
-      before.is_object() && before.contains("invocations"))
-    m["invocations"] = before["invocations"];
+  nlohmann::json before = read_json_or_null(out + "/manifest.json");
+  if (!before.is_object()) before = nlohmann::json::object();
+  if (before.contains("invocations")) m["invocations"] = before["invocations"];
   m["tool"] = {
       {"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
   m["experiment"] = {{"name", exp.name},
@@ -137,9 +140,18 @@ MergeResult merge_runs(const MergeOptions& options) {
   m["host"] = host_description();
   m["merged"] = utc_now_iso8601();
   nlohmann::json slices = nlohmann::json::array();
-  nlohmann::json failures = nlohmann::json::array(), failed = nlohmann::json::array();
+  for (const auto& entry : before.value("inputs", nlohmann::json::array()))
+    if (entry.is_object() && entry.contains("dir") &&
+        std::find(options.inputs.begin(), options.inputs.end(), entry["dir"]) ==
+            options.inputs.end())
+      slices.push_back(entry);  // an earlier merge's input, not merged again now
+  nlohmann::json failures = before.value("failures", nlohmann::json::array());
+  if (!failures.is_array()) failures = nlohmann::json::array();
+  std::map<std::string, std::string> reasons;  // of failed primitives, by failure_key
+  add_failure_reasons(before.value("failed_primitives", nlohmann::json::array()), &reasons);
   // each shard's worker time, from whichever input ran it (for cost models and simulations)
-  nlohmann::json shard_seconds = nlohmann::json::object();
+  nlohmann::json shard_seconds = before.value("shard_seconds", nlohmann::json::object());
+  if (!shard_seconds.is_object()) shard_seconds = nlohmann::json::object();
   for (const std::string& in : options.inputs) {
     const nlohmann::json im = read_json_or_null(in + "/manifest.json");
     nlohmann::json drivers = nlohmann::json::object();
@@ -155,9 +167,9 @@ MergeResult merge_runs(const MergeOptions& options) {
       const nlohmann::json seconds_of = im.value("shard_seconds", nlohmann::json::object());
       for (const auto& [id, seconds] : seconds_of.items())
         if (!shard_seconds.contains(id)) shard_seconds[id] = seconds;
-      for (const auto& f : im.value("failures", nlohmann::json::array())) failures.push_back(f);
-      for (const auto& f : im.value("failed_primitives", nlohmann::json::array()))
-        failed.push_back(f);
+      for (const auto& f : im.value("failures", nlohmann::json::array()))
+        if (std::find(failures.begin(), failures.end(), f) == failures.end()) failures.push_back(f);
+      add_failure_reasons(im.value("failed_primitives", nlohmann::json::array()), &reasons);
     }
     slices.push_back(entry);
   }
@@ -169,6 +181,12 @@ MergeResult merge_runs(const MergeOptions& options) {
                  {"complete", result.shards_present},
                  {"in_several_inputs", result.shards_in_several_inputs}};
   m["failures"] = failures;
+  // the crash and timeout records DIR holds now, whichever merge or run put them there
+  nlohmann::json failed = nlohmann::json::array();
+  for (const FailedPrimitive& f : failed_primitives_in_records(out, plan, reasons))
+    failed.push_back({{"shard", f.shard}, {"index", f.index}, {"status", status_name(f.status)},
+                      {"reason", f.reason}});
+  result.failed_primitives = failed.size();
   m["failed_primitives"] = failed;
   m["shard_seconds"] = shard_seconds;
   m["status"] = !result.missing.empty() ? "failed"
