@@ -100,6 +100,42 @@ TEST(SlurmCommand, RefusesANodeLocalDirectoryAStudyAndASliceAndSaysWhatSbatchSai
   EXPECT_NE(o.output.find("invalid partition specified: x"), std::string::npos) << o.output;
 }
 
+// Every value that reaches an #SBATCH line is checked before anything is written or submitted:
+// sbatch's own tokenizer would split it at white space, consume quotes, cut it at '#', expand '%',
+// and a line break would put a command into the script.
+TEST(SlurmCommand, ValuesSbatchCannotCarryAreRefusedWithTheReason) {
+  const std::string dir = fresh_dir("slurm_injection");
+  write_text(dir + "/e.toml", kExperiment);
+  const std::string run = "run " + dir + "/e.toml --slurm --dry-run --allow-node-local ";
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"--out '" + dir + "/nl\ntouch " + dir + "/injected #'", "a line break would end the #SBATCH line"},
+      {"--out '" + dir + "/my runs'", "sbatch splits an #SBATCH line at white space"},
+      {"--out \"" + dir + "/it's\"", "sbatch's #SBATCH parser consumes '"},
+      {"--out " + dir + "/run#2", "'#' starts a comment in an #SBATCH line"},
+      {"--out " + dir + "/run%j", "sbatch expands '%' patterns"},
+      {"--out " + dir + "/run --partition 'gpu\ntouch x'", "not a Slurm partition name"},
+      {"--out " + dir + "/run --time-limit '1:00:00 --wrap=id'", "not in sbatch --time syntax"},
+      {"--out " + dir + "/run --time-limit 1:00:00:00", "not in sbatch --time syntax"},
+  };
+  for (const auto& [args, reason] : refused) {
+    const Outcome o = run_renderaudit(run + args);
+    EXPECT_EQ(o.exit_code, 2) << args << "\n" << o.output;
+    EXPECT_NE(o.output.find(reason), std::string::npos) << args << "\n" << o.output;
+    EXPECT_EQ(o.output.find("#SBATCH --array"), std::string::npos) << "no script printed";
+  }
+  EXPECT_FALSE(fs::exists(dir + "/injected"));
+  // what sbatch's syntax allows is taken as given
+  for (const char* limit : {"90", "90:30", "2:00:00", "1-12", "1-12:30", "1-12:30:15", "UNLIMITED"}) {
+    const Outcome o = run_renderaudit(run + "--out " + dir + "/run --time-limit " + limit +
+                                      " --partition gpu,debug_2");
+    EXPECT_EQ(o.exit_code, 0) << limit << "\n" << o.output;
+    EXPECT_NE(o.output.find("#SBATCH --time=" + std::string(limit) + "\n"), std::string::npos)
+        << o.output;
+    EXPECT_NE(o.output.find("#SBATCH --partition=gpu,debug_2\n"), std::string::npos) << o.output;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/run")) << "dry runs write nothing";
+}
+
 TEST(SlurmCommand, TheScriptsRunAsSlurmWouldGiveTheOneMachineRun) {
   const std::string dir = fresh_dir("slurm_fake");
   write_text(dir + "/e.toml", kExperiment);
