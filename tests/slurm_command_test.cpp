@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <utility>
+#include <vector>
 
 #include "runner/run_progress.h"
 #include "tests/cli_harness.h"
@@ -134,6 +137,47 @@ TEST(SlurmCommand, ValuesSbatchCannotCarryAreRefusedWithTheReason) {
     EXPECT_NE(o.output.find("#SBATCH --partition=gpu,debug_2\n"), std::string::npos) << o.output;
   }
   EXPECT_FALSE(fs::exists(dir + "/run")) << "dry runs write nothing";
+}
+
+// A manifest edited by hand: every field status acts on is checked, and the message names the
+// file and the key (a slice of count 0 crashed it; a numeric status gave a bare JSON error).
+TEST(SlurmCommand, StatusNamesTheFileAndKeyOfABadManifestField) {
+  const std::string dir = fresh_dir("status_bad_manifest");
+  write_text(dir + "/e.toml",
+             "seed = 5\nplatforms = [\"reference\"]\n[views]\norientations = 1\nfov_deg = [30]\n"
+             "windows = [64]\nnear = 0.01\nfar = 10.0\n[primitives]\npoints = 20\n[run]\n"
+             "shard_size = 10\n");
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet --slice 1/2")
+                .exit_code, 0);
+  const std::string path = dir + "/run/manifest.json";
+  const nlohmann::json good = nlohmann::json::parse(ra::read_file(path));
+  ASSERT_EQ(run_renderaudit("status " + dir + "/run").exit_code, 0);
+  const std::vector<std::pair<std::function<void(nlohmann::json&)>, std::string>> edits = {
+      {[](nlohmann::json& m) { m["slice"] = {{"index", 0}, {"count", 0}}; },
+       "'slice.count' must be an integer from 1 to 100000 (found 0)"},
+      {[](nlohmann::json& m) { m["slice"] = {{"index", 3}, {"count", 2}}; },
+       "'slice.index' must be an integer from 1 to 2 (found 3)"},
+      {[](nlohmann::json& m) { m["slice"] = {{"index", "1"}, {"count", 2}}; },
+       "'slice.index' must be an integer from 1 to 2 (found \"1\")"},
+      {[](nlohmann::json& m) { m["status"] = 3; }, "'status' must be a string (found 3)"},
+      {[](nlohmann::json& m) { m["experiment"]["name"] = nullptr; },
+       "'experiment.name' must be a string (found null)"},
+      {[](nlohmann::json& m) { m["platforms_run"] = {"reference", 1}; },
+       "'platforms_run' must be an array of platform names"},
+      {[](nlohmann::json& m) { m["failures"] = {{{"shard", 7}}}; },
+       "'failures[].shard' must be a string (found 7)"},
+      {[](nlohmann::json& m) { m = nlohmann::json::array(); },
+       "'(the document)' must be a JSON object (found [])"},
+  };
+  for (const auto& [edit, message] : edits) {
+    nlohmann::json m = good;
+    edit(m);
+    ra::write_file_atomic(path, m.dump());
+    const Outcome o = run_renderaudit("status " + dir + "/run");
+    EXPECT_EQ(o.exit_code, 2) << message << "\n" << o.output;
+    EXPECT_NE(o.output.find(path + ": " + message), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("json.exception"), std::string::npos) << o.output;
+  }
 }
 
 TEST(SlurmCommand, TheScriptsRunAsSlurmWouldGiveTheOneMachineRun) {
