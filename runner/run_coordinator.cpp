@@ -172,9 +172,6 @@ RunResult run_experiment(const RunOptions& options) {
   // run before its directory is touched, rather than filling it with failed shards.
   require_platforms_draw(options.only_platforms.empty() ? exp.platforms : options.only_platforms,
                          options.experiment_path);
-  const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, dir);
-
-  std::deque<WorkItem> todo;
   std::vector<Shard> all = plan_shards(exp);
   if (!options.only_platforms.empty()) {
     const auto& keep = options.only_platforms;
@@ -183,7 +180,17 @@ RunResult run_experiment(const RunOptions& options) {
               }),
               all.end());
   }
+  // Every slice holds a shard, as `run --slurm --slices` requires: an empty slice would be a
+  // "complete" run of nothing.
+  if (options.slice && size_t(options.slice->count) > all.size())
+    throw UserError("--slice " + std::to_string(options.slice->index) + "/" +
+                    std::to_string(options.slice->count) + ": the run has only " +
+                    std::to_string(all.size()) + " shards (allowed: N from 1 to " +
+                    std::to_string(all.size()) + ")");
   if (options.slice) all = shards_of_slice(all, exp, *options.slice);
+  const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, dir);
+
+  std::deque<WorkItem> todo;
   for (const Shard& s : all) {
     const std::string path = s.records_path(dir);
     if (fs::exists(path)) {

@@ -184,4 +184,24 @@ TEST(MergeCommand, SlicesMergedOneAtATimeKeepEveryFactAndTheExitCodeFollowsTheRe
   EXPECT_EQ(w.at("status"), "complete-with-failed-primitives");
 }
 
+// One rule for a slice's size in `run --slice` and `run --slurm --slices`: every slice holds a
+// shard, so more slices than shards is refused before anything is written.
+TEST(MergeCommand, MoreSlicesThanShardsIsRefusedAsSlurmRefusesIt) {
+  const std::string dir = fresh_dir("merge_empty_slice");
+  write_text(dir + "/e.toml", kExperiment);  // 64 shards
+  const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/x --slice 100/100");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("--slice 100/100: the run has only 64 shards (allowed: N from 1 to 64)"),
+            std::string::npos)
+      << o.output;
+  EXPECT_FALSE(fs::exists(dir + "/x"));
+  const Outcome p = run_renderaudit("run " + dir + "/e.toml --out " + dir +
+                                    "/x --slice 3/20 --platform reference");  // 32 shards
+  EXPECT_EQ(p.exit_code, 0) << p.output;
+  const Outcome q = run_renderaudit("run " + dir + "/e.toml --out " + dir +
+                                    "/y --slice 1/33 --platform reference");
+  EXPECT_EQ(q.exit_code, 2) << q.output;
+  EXPECT_NE(q.output.find("the run has only 32 shards"), std::string::npos) << q.output;
+}
+
 }  // namespace
