@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "runner/experiment.h"
@@ -75,6 +76,30 @@ MergeResult merge_runs(const MergeOptions& options) {
     }
   }
   const Experiment& exp = experiments.front();
+  // [run] shard_size is outside the hash but names the records files: slices cut with another
+  // size hold none of this plan's shards.
+  for (std::size_t i = 1; i < experiments.size(); ++i)
+    if (experiments[i].shard_size != exp.shard_size)
+      throw UserError("merge: " + options.inputs[i] + " was cut into shards of " +
+                      std::to_string(experiments[i].shard_size) + " primitives ([run] shard_size), " +
+                      options.inputs.front() + " into shards of " + std::to_string(exp.shard_size) +
+                      ": their records files name other shards; run the slices with one "
+                      "shard_size");
+  // Every platform an input holds records of must say which driver drew them.
+  const std::vector<Shard> plan = plan_shards(exp);
+  if (!options.allow_driver_mismatch) {
+    for (const std::string& in : options.inputs) {
+      std::set<std::string> platforms;
+      for (const Shard& s : plan)
+        if (!platforms.count(s.platform) && fs::exists(s.records_path(in)))
+          platforms.insert(s.platform);
+      for (const std::string& platform : platforms)
+        if (!fs::exists(in + "/drivers/" + platform + ".json"))
+          throw UserError("merge: " + in + " holds records of " + platform + " but no drivers/" +
+                          platform + ".json, so the driver that drew them cannot be compared "
+                          "with the other inputs' (--allow-driver-mismatch merges it anyway)");
+    }
+  }
   std::map<std::string, std::pair<std::string, std::string>> driver_seen;  // platform -> text, dir
   for (const std::string& in : options.inputs) {
     for (const auto& [platform, j] : drivers_of(in)) {
@@ -92,7 +117,6 @@ MergeResult merge_runs(const MergeOptions& options) {
   const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, options.out_dir, "merge");
   const std::string& out = options.out_dir;
   MergeResult result;
-  const std::vector<Shard> plan = plan_shards(exp);
   result.shards_total = plan.size();
   nlohmann::json taken_from = nlohmann::json::object();  // input dir -> shards copied from it
   for (const Shard& s : plan) {

@@ -204,4 +204,38 @@ TEST(MergeCommand, MoreSlicesThanShardsIsRefusedAsSlurmRefusesIt) {
   EXPECT_NE(q.output.find("the run has only 32 shards"), std::string::npos) << q.output;
 }
 
+// Slices cut with another shard_size, or without the driver file of a platform whose records they
+// hold, are refused with the reason before anything is written.
+TEST(MergeCommand, AnotherShardSizeOrAMissingDriverFileIsSaid) {
+  const std::string dir = fresh_dir("merge_shard_size");
+  write_text(dir + "/e.toml", kExperiment);
+  std::string other = kExperiment;
+  other.replace(other.find("shard_size = 50"), 15, "shard_size = 40");
+  write_text(dir + "/f.toml", other);
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/a --quiet --slice 1/2 "
+                            "--platform reference").exit_code, 0);
+  ASSERT_EQ(run_renderaudit("run " + dir + "/f.toml --out " + dir + "/b --quiet --slice 2/2 "
+                            "--platform reference").exit_code, 0);
+  const Outcome o = run_renderaudit("merge " + dir + "/a " + dir + "/b --out " + dir + "/m");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("merge: " + dir + "/b was cut into shards of 40 primitives ([run] "
+                          "shard_size), " + dir + "/a into shards of 50"),
+            std::string::npos)
+      << o.output;
+  EXPECT_FALSE(fs::exists(dir + "/m"));
+  // a slice without drivers/P.json for a platform it holds records of
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/c --quiet --slice 2/2 "
+                            "--platform osmesa-llvmpipe").exit_code, 0);
+  fs::remove(dir + "/c/drivers/osmesa-llvmpipe.json");
+  const Outcome d = run_renderaudit("merge " + dir + "/a " + dir + "/c --out " + dir + "/n");
+  EXPECT_EQ(d.exit_code, 2) << d.output;
+  EXPECT_NE(d.output.find("merge: " + dir + "/c holds records of osmesa-llvmpipe but no "
+                          "drivers/osmesa-llvmpipe.json"),
+            std::string::npos)
+      << d.output;
+  EXPECT_FALSE(fs::exists(dir + "/n"));
+  EXPECT_EQ(run_renderaudit("merge " + dir + "/a " + dir + "/c --out " + dir +
+                            "/n --allow-driver-mismatch").exit_code, 1);  // merged; shards missing
+}
+
 }  // namespace
