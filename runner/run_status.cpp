@@ -62,6 +62,8 @@ std::string RunStatus::state() const {
   if (queued) return "queued";
   if (planned > 0 && done == planned && manifest_status.rfind("complete", 0) == 0)
     return "complete";
+  // squeue failed and the gather has not ended: the jobs may be queued, running or gone
+  if (slurm && !squeue_error.empty() && gather_exit < 0) return "unknown";
   if (manifest_status == "interrupted") return "interrupted";
   if (manifest_status == "failed" || failed > 0 || (gather_exit > 0)) return "failed";
   return "incomplete";
@@ -188,6 +190,9 @@ std::string format_run_status(const RunStatus& s) {
       << " running, " << tasks_pending << " pending; gather job " << s.gather_job << ": " << gather
       << "\n";
     if (!s.squeue_error.empty()) o << "  squeue: " << s.squeue_error << "\n";
+    if (s.state() == "unknown")
+      o << "  the scheduler could not be asked, so whether the jobs are queued, running or gone "
+           "is not known; ask again when squeue answers\n";
   }
   if (s.state() == "running" || s.state() == "queued") {
     o << "  time left: ";

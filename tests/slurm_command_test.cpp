@@ -180,6 +180,48 @@ TEST(SlurmCommand, StatusNamesTheFileAndKeyOfABadManifestField) {
   }
 }
 
+// A submitted run whose scheduler cannot be asked (squeue missing, the controller down) is not
+// called incomplete: status says why it cannot tell and exits 4, and --wait stops with it rather
+// than answering as if the run had ended.
+TEST(SlurmCommand, StatusSaysWhenTheSchedulerCannotBeAsked) {
+  const std::string dir = fresh_dir("status_no_scheduler");
+  write_text(dir + "/e.toml", kExperiment);
+  const std::string sbatch = fake_sbatch(dir, "#!/bin/bash\n"
+      "n=$(cat \"$(dirname \"$0\")/count\" 2>/dev/null || echo 300); n=$((n + 1))\n"
+      "echo $n > \"$(dirname \"$0\")/count\"; echo $n\n");  // submits, runs nothing
+  const std::string run = dir + "/run";
+  ASSERT_EQ(run_command("env RENDERAUDIT_SBATCH=" + sbatch + " " + RA_BINARY + " run " + dir +
+                        "/e.toml --out " + run + " --slurm --allow-node-local --slices 2")
+                .exit_code, 0);
+  auto status = [&](const std::string& squeue, const std::string& extra = "") {
+    return run_command("env RENDERAUDIT_SQUEUE=" + squeue + " " + RA_BINARY + " status " + run +
+                       extra);
+  };
+  const std::string down = dir + "/squeue_down";
+  write_text(down, "#!/bin/sh\necho 'squeue: error: Unable to contact slurm controller "
+                   "(connect failure)' >&2\nexit 1\n");
+  fs::permissions(down, fs::perms::owner_all);
+  for (const std::string& squeue : {dir + "/no_such_squeue", down}) {
+    const Outcome o = status(squeue);
+    EXPECT_EQ(o.exit_code, 4) << o.output;
+    EXPECT_NE(o.output.find(run + ": experiment experiment: unknown\n"), std::string::npos)
+        << o.output;
+    EXPECT_NE(o.output.find("the scheduler could not be asked"), std::string::npos) << o.output;
+    EXPECT_EQ(status(squeue, " --wait --every 0.1").exit_code, 4);
+  }
+  EXPECT_NE(status(dir + "/no_such_squeue").output.find("squeue: squeue not found"),
+            std::string::npos);
+  EXPECT_NE(status(down).output.find("Unable to contact slurm controller"), std::string::npos);
+  // the scheduler answering that the tasks wait: queued (exit 3), as before
+  const std::string pending = dir + "/squeue_pending";
+  write_text(pending, "#!/bin/sh\necho '301_1|PENDING|Resources'\necho '302|PENDING|Dependency'\n");
+  fs::permissions(pending, fs::perms::owner_all);
+  const Outcome q = status(pending);
+  EXPECT_EQ(q.exit_code, 3) << q.output;
+  EXPECT_NE(q.output.find(run + ": experiment experiment: queued\n"), std::string::npos)
+      << q.output;
+}
+
 TEST(SlurmCommand, TheScriptsRunAsSlurmWouldGiveTheOneMachineRun) {
   const std::string dir = fresh_dir("slurm_fake");
   write_text(dir + "/e.toml", kExperiment);
