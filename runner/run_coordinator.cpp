@@ -140,6 +140,28 @@ bool send_command(Running& r, const std::string& dir, const WorkItem& item,
   return true;
 }
 
+// A GL worker holds its view's colour buffer, 4 bytes per pixel (RGBA8), for the whole shard; past
+// this size the run says how much memory it will take, once, before it starts.
+constexpr double kLargeWorkerBytes = 256.0 * 1024 * 1024;
+
+void note_large_views(const std::vector<Shard>& shards, const Experiment& exp, int jobs) {
+  double largest = 0;
+  const View* at = nullptr;
+  for (const View& v : exp.views) {
+    const bool used = std::any_of(shards.begin(), shards.end(),
+                                  [&](const Shard& s) { return s.view == v.id; });
+    const double bytes = double(v.width) * v.height * 4;
+    if (used && bytes > largest) largest = bytes, at = &v;
+  }
+  if (!at || largest < kLargeWorkerBytes) return;
+  jobs = int(std::min<size_t>(size_t(jobs), shards.size()));
+  const double gib = 1024.0 * 1024 * 1024;
+  std::fprintf(stderr,
+               "renderaudit: note: views of %d x %d pixels need about %.2f GiB of memory in each "
+               "GL worker (its colour buffer); %d workers at once: about %.2f GiB\n",
+               at->width, at->height, largest / gib, jobs, largest * jobs / gib);
+}
+
 nlohmann::json drivers_json(const std::string& dir) {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& e : fs::directory_iterator(dir + "/drivers")) {
@@ -191,6 +213,7 @@ RunResult run_experiment(const RunOptions& options) {
   const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, dir);
 
   std::deque<WorkItem> todo;
+  note_large_views(all, exp, jobs);
   for (const Shard& s : all) {
     const std::string path = s.records_path(dir);
     if (fs::exists(path)) {
@@ -249,9 +272,12 @@ RunResult run_experiment(const RunOptions& options) {
   struct sigaction sa {};
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
-  struct sigaction old_int {}, old_term {};
+  // A closed terminal (SIGHUP) stops the run as Ctrl-C does: workers reaped, temporaries removed,
+  // the manifest saying "interrupted".
+  struct sigaction old_int {}, old_term {}, old_hup {};
   sigaction(SIGINT, &sa, &old_int);
   sigaction(SIGTERM, &sa, &old_term);
+  sigaction(SIGHUP, &sa, &old_hup);
 
   const bool show = options.progress && ::isatty(2);
   const auto t_start = Clock::now();
@@ -520,6 +546,7 @@ RunResult run_experiment(const RunOptions& options) {
   remove_temporaries(dir);  // what killed (timed-out) workers left half-written
   sigaction(SIGINT, &old_int, nullptr);
   sigaction(SIGTERM, &old_term, nullptr);
+  sigaction(SIGHUP, &old_hup, nullptr);
   sigaction(SIGPIPE, &old_pipe, nullptr);
 
   manifest["drivers"] = drivers_json(dir);

@@ -354,6 +354,24 @@ TEST(RunCommand, ExtremeNearFarRatiosJudgePointsAsAModerateOneDoes) {
   }
 }
 
+// A plan whose views need a large colour buffer per worker says how much before it starts:
+// 16384 x 16384 RGBA8 pixels are 1.00 GiB each.
+TEST(RunCommand, ALargeWindowSaysTheMemoryAWorkerNeeds) {
+  const std::string dir = fresh_dir("large_window");
+  std::string toml = experiment("\"reference\"", 1, 1);
+  toml.replace(toml.find("windows = [64]"), 14, "windows = [16384]");
+  write_text(dir + "/e.toml", toml);
+  const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet --jobs 3");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("note: views of 16384 x 16384 pixels need about 1.00 GiB of memory in "
+                          "each GL worker (its colour buffer); 3 workers at once: about 3.00 GiB"),
+            std::string::npos)
+      << o.output;
+  write_text(dir + "/small.toml", experiment("\"reference\"", 1, 1));
+  const Outcome small = run_renderaudit("run " + dir + "/small.toml --out " + dir + "/small --quiet");
+  EXPECT_EQ(small.output.find("GiB of memory"), std::string::npos) << small.output;
+}
+
 TEST(RunCommand, HelpNamesTheOptions) {
   const Outcome o = run_renderaudit("run --help");
   EXPECT_EQ(o.exit_code, 0);

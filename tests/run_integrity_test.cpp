@@ -90,6 +90,24 @@ TEST(RunIntegrity, ASecondRunOnTheSameDirectoryIsRefusedAndNamesTheFirst) {
   ra::wait_child(first.pid);
 }
 
+// A closed terminal (SIGHUP) stops a run as Ctrl-C does: the manifest says "interrupted", no
+// worker and no temporary file is left behind.
+TEST(RunIntegrity, AHangupLeavesAnInterruptedManifestAndNoTemporaries) {
+  const std::string dir = fresh_dir("integrity_hup");
+  const ra::Child coordinator = start_hanging_run(dir);
+  ASSERT_TRUE(wait_for([&] { return processes_mentioning(dir + "/run") >= 2; }, 20));
+  ::kill(coordinator.pid, SIGHUP);
+  const int status = ra::wait_child(coordinator.pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << status;
+  EXPECT_EQ(processes_mentioning(dir + "/run"), 0);
+  const nlohmann::json m = nlohmann::json::parse(read_text(dir + "/run/manifest.json"));
+  EXPECT_EQ(m.at("status"), "interrupted");
+  std::size_t temporaries = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir + "/run"))
+    temporaries += e.path().extension() == ".tmp";
+  EXPECT_EQ(temporaries, 0u);
+}
+
 TEST(RunIntegrity, WorkersDieWithAKilledCoordinatorAndAnalyzeSaysTheRunWasKilled) {
   const std::string dir = fresh_dir("integrity_kill");
   const ra::Child coordinator = start_hanging_run(dir);
