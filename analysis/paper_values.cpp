@@ -22,6 +22,8 @@ bool PaperDifference::covers(const std::string& table, const std::string& statis
 
 namespace {
 
+constexpr double kLargestPaperValue = 1e15;
+
 // [[difference]] entries: lists of strings checked against what they may hold.
 std::vector<PaperDifference> read_differences(const TomlLocator& loc, const toml::table& root) {
   std::vector<PaperDifference> out;
@@ -72,7 +74,7 @@ std::vector<PaperDifference> read_differences(const TomlLocator& loc, const toml
 
 PaperValues load_paper_values(const std::string& path) {
   const TomlLocator loc(path);
-  const toml::table root = loc.parse(TomlLocator::read_text(path));
+  const toml::table root = loc.parse(TomlLocator::read_text(path, "the paper's values (--paper)"));
   loc.reject_unknown_keys(root, "", {"table", "difference", "primitives_per_view_group"});
   PaperValues values;
   if (const toml::node* n = root.get("primitives_per_view_group"))
@@ -101,7 +103,15 @@ PaperValues load_paper_values(const std::string& path) {
         loc.fail(a ? static_cast<const toml::node*>(a) : t,
                  std::string("table.") + key + ": four numbers, groups A-D (nan for a lost cell)");
       std::array<double, 4> x{};
-      for (int i = 0; i < 4; ++i) x[i] = loc.number(*a->get(i), std::string("table.") + key);
+      for (int i = 0; i < 4; ++i) {
+        x[i] = loc.number(*a->get(i), std::string("table.") + key);
+        // a printed table value: finite (nan marks a lost cell), and small enough that no
+        // scaling or difference taken from it overflows
+        if (std::isinf(x[i]) || std::fabs(x[i]) > kLargestPaperValue)
+          loc.fail(a->get(i), std::string("table.") + key + ": value " + std::to_string(i + 1) +
+                                  " of 4 is not a table value (allowed: -1e15 to 1e15, or nan "
+                                  "for a lost cell)");
+      }
       return x;
     };
     v.number = text("number");

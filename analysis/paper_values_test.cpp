@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -80,6 +81,48 @@ TEST(PaperValues, BadFilesAreRefusedWithTheirLine) {
               std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find(path + ":6:"), std::string::npos) << e.what();
+  }
+}
+
+// A value no printed table holds (inf, -inf, 1e308) stops at its line and column: it used to reach
+// the table formatter and abort analyze there, naming no file. A missing file says what it was for.
+TEST(PaperValues, NonFiniteOrHugeValuesAreRefusedAtTheirLine) {
+  std::ifstream in(kFile);
+  std::stringstream whole;
+  whole << in.rdbuf();
+  const std::string good = whole.str();
+  const std::string cell = "platform_1_median = [0.39555,";
+  const std::size_t at = good.find(cell);
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t line = std::size_t(std::count(good.begin(), good.begin() + at, '\n')) + 1;
+  const std::string path = ::testing::TempDir() + "/paper_huge.toml";
+  for (const std::string value : {"inf", "-inf", "+inf", "1e308", "-2e15"}) {
+    std::string text = good;
+    text.replace(at, cell.size(), "platform_1_median = [" + value + ",");
+    std::ofstream(path, std::ios::trunc) << text;
+    try {
+      load_paper_values(path);
+      ADD_FAILURE() << value << " accepted";
+    } catch (const UserError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(path + ":" + std::to_string(line) + ":22: table.platform_1_median: "
+                          "value 1 of 4 is not a table value (allowed: -1e15 to 1e15, or nan "
+                          "for a lost cell)"),
+                std::string::npos)
+          << value << ": " << what;
+    }
+  }
+  std::string lost = good;  // nan still marks a lost cell
+  lost.replace(at, cell.size(), "platform_1_median = [nan,");
+  std::ofstream(path, std::ios::trunc) << lost;
+  EXPECT_TRUE(std::isnan(table(load_paper_values(path).tables, "3").median[0][0]));
+  const std::string missing = ::testing::TempDir() + "/no_such_paper.toml";
+  try {
+    load_paper_values(missing);
+    ADD_FAILURE() << "a missing file accepted";
+  } catch (const UserError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              missing + ": cannot read the paper's values (--paper) (No such file or directory)");
   }
 }
 

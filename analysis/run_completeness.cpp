@@ -24,14 +24,18 @@ std::string range(const Shard& s) {
   return "primitives " + std::to_string(s.begin) + "-" + std::to_string(s.end - 1);
 }
 
-// A records file written before shard files were sealed: checked row by row instead. Empty when
-// it holds each of the shard's primitives exactly once and nothing else.
-std::string check_unsealed(const std::string& path, const Shard& s) {
+// A records file without a seal. The seal came during records schema version 2, so every version 3
+// file was written sealed: one of version 3 without its seal is damaged (cut short, or edited), as
+// `run` judges it. A version 2 file may predate the seal: it is checked row by row instead. Empty when it holds each of the shard's primitives exactly once and nothing else.
+std::string check_unsealed(const std::string& path, const Shard& s, const std::string& no_seal) {
   std::ifstream in(path, std::ios::binary);
   std::string line;
   if (!std::getline(in, line)) return "empty file";
   if (!line.empty() && line.back() == '\r') line.pop_back();
-  if (line != records_header()) return "unexpected header";
+  if (line == records_header())
+    return no_seal + "; records of schema version " + std::to_string(kRecordsSchemaVersion) +
+           " are always written sealed, so this file is damaged";
+  if (line != records_header_v2()) return "unexpected header";
   size_t index_column = 0;
   {
     std::stringstream header(line);
@@ -116,7 +120,7 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
       continue;
     }
     std::string why = check_shard_file(path, s.size());
-    if (why.rfind("no trailer", 0) == 0) why = check_unsealed(path, s);  // an older run
+    if (why.rfind("no trailer", 0) == 0) why = check_unsealed(path, s, why);  // an older run?
     if (!why.empty()) {
       c.problems.push_back("damaged shard " + s.id() + ": " + why);
       continue;

@@ -14,7 +14,8 @@ void register_merge_command(CLI::App& app, int& exit_code) {
       "Gather run directories of one experiment (the slices of `run --slice K/N`, run on\n"
       "several machines) into one run directory: every planned shard taken once from the first\n"
       "input that holds it whole, one manifest recording every input's slice, host, times and\n"
-      "driver strings. Exit 0 when every shard is there, 1 when some are missing (listed).");
+      "driver strings. Exit 0 when every shard is there, 1 when some are missing (listed) or the\n"
+      "records hold primitives that crashed or hung.");
   static MergeOptions opt;
   cmd->add_option("inputs", opt.inputs, "run directories (slices)")->required()->check(
       CLI::ExistingDirectory);
@@ -32,7 +33,10 @@ void register_merge_command(CLI::App& app, int& exit_code) {
     if (r.missing.size() > 20) std::printf("  ... and %zu more\n", r.missing.size() - 20);
     write_run_summary(opt.out_dir);
     std::printf("summary: %s/summary.md\n", opt.out_dir.c_str());
-    exit_code = r.missing.empty() ? kExitOk : kExitFindings;
+    if (r.failed_primitives > 0)
+      std::printf("  %zu primitives recorded as crash or timeout (manifest.json lists them)\n",
+                  r.failed_primitives);
+    exit_code = r.missing.empty() && r.failed_primitives == 0 ? kExitOk : kExitFindings;
   });
 }
 

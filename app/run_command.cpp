@@ -129,7 +129,12 @@ void register_run_command(CLI::App& app, int& exit_code) {
     const std::string summary = write_run_summary(r.run_dir);
     std::printf("%s", summary.c_str());
     std::printf("summary: %s/summary.md\n", r.run_dir.c_str());
-    const bool clean = r.shards_complete == r.shards_total && r.failed_primitives.empty();
+    if (r.failed_primitives_held.size() > r.failed_primitives.size())
+      std::printf("  %zu primitives recorded as crash or timeout by earlier invocations or "
+                  "merges (manifest.json lists them)\n",
+                  r.failed_primitives_held.size() - r.failed_primitives.size());
+    // the exit code says what the directory holds, not what this invocation did
+    const bool clean = r.shards_complete == r.shards_total && r.failed_primitives_held.empty();
     exit_code = clean ? kExitOk : kExitFindings;
   });
 }

@@ -10,12 +10,16 @@
 
 namespace ra::app {
 
+// status only: the scheduler could not be asked, so the run's state is not known (--wait stops)
+constexpr int kExitSchedulerUnknown = 4;
+
 void register_status_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "status",
       "Where a run stands: shards done, running, failed and waiting, the time left, and the\n"
       "Slurm jobs of a `run --slurm`. Exit 0 when the run is complete, 3 while it is at work or\n"
-      "queued, 1 when it stopped incomplete.");
+      "queued, 1 when it stopped incomplete, 4 when the Slurm scheduler could not be asked\n"
+      "(squeue missing or the controller unreachable: the state is not known).");
   static std::string dir;
   static bool json = false, wait = false;
   static double every_s = 10;
@@ -37,6 +41,7 @@ void register_status_command(CLI::App& app, int& exit_code) {
     const std::string state = s.state();
     exit_code = state == "complete"                      ? kExitOk
                 : state == "running" || state == "queued" ? kExitIncomplete
+                : state == "unknown"                      ? kExitSchedulerUnknown
                                                           : kExitFindings;
   });
 }

@@ -264,8 +264,14 @@ PixelSet rasterize_polygon(const ClippedPolygon& p, int width, int height, Subpi
 
 PixelSet rasterize_reference(const View& view, const Primitive& prim, SubpixelGrid grid) {
   switch (prim.kind) {
-    case Kind::kPoint:
-      return rasterize_point(view.to_clip(prim.v[0]), view.width, view.height, grid);
+    case Kind::kPoint: {
+      // Depth judged in eye space (View::point_inside), right for every near / far ratio; then
+      // only x, y and w are left for the clip-space test.
+      if (!view.point_inside(prim.v[0])) return {};
+      Vec4 c = view.to_clip(prim.v[0]);
+      c.z = 0;
+      return rasterize_point(c, view.width, view.height, grid);
+    }
     case Kind::kLine:
       return rasterize_segment(clip_segment(view, prim.v[0], prim.v[1]), view.width, view.height,
                                grid);

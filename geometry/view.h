@@ -36,6 +36,16 @@ struct View {
     return c.w > 0 && -c.w < c.x && c.x < c.w && -c.w < c.y && c.y < c.w && -c.w < c.z &&
            c.z < c.w;
   }
+  // A point strictly inside the view volume: x and y against w in clip coordinates, depth as
+  // -far < z_eye < -near in camera coordinates (world units). The clip-space depth test -w < z < w
+  // is the same in exact arithmetic but not in doubles once far / near passes about 1e15 (z then
+  // rounds to w, and every point would be judged outside); the eye-space one holds for every ratio.
+  bool point_inside(Vec3 p) const {
+    const Vec4 c = to_clip(p);
+    const double z_eye = (view_matrix * Vec4{p.x, p.y, p.z, 1.0}).z;
+    return c.w > 0 && -c.w < c.x && c.x < c.w && -c.w < c.y && c.y < c.w && -far < z_eye &&
+           z_eye < -near;
+  }
   double norm_length() const;  // sqrt(W * H): one normalised window unit, in pixels
   std::string group_name() const;  // "A", "B", ...
 };

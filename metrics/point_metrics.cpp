@@ -6,15 +6,15 @@ namespace ra {
 
 IdealPoint project_point(const View& view, Vec3 p) {
   IdealPoint out;
-  const Vec4 c = view.to_clip(p);
-  out.visible = View::inside_clip_volume(c);
-  if (out.visible) out.window = view.clip_to_window(c);
+  out.visible = view.point_inside(p);  // depth in eye space: right for every near / far ratio
+  if (out.visible) out.window = view.clip_to_window(view.to_clip(p));
   return out;
 }
 
 bool inside_window_margin(const View& view, Vec3 p, double margin_px) {
   const Vec4 c = view.to_clip(p);
-  if (!(c.w > 0 && -c.w < c.z && c.z < c.w)) return false;  // behind, nearer or farther
+  const double z_eye = (view.view_matrix * Vec4{p.x, p.y, p.z, 1.0}).z;
+  if (!(c.w > 0 && -view.far < z_eye && z_eye < -view.near)) return false;  // behind, nearer, farther
   const Vec2 w = view.clip_to_window(c);
   return -margin_px < w.x && w.x < view.width + margin_px && -margin_px < w.y &&
          w.y < view.height + margin_px;

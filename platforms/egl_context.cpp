@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 
 #include "platforms/gl_context_backends.h"
@@ -41,9 +42,16 @@ const char* egl_error_name(EGLint e) {
 
 // RENDERAUDIT_EGL_EXTENSION_OVERRIDE="-EGL_foo -EGL_bar" hides extensions the library has, as
 // MESA_EXTENSION_OVERRIDE does for GL ones: to see what renderaudit does on an EGL without them.
+// An entry without its '-' would hide nothing: refused rather than ignored.
 bool hidden_by_override(const char* name) {
   const char* o = std::getenv("RENDERAUDIT_EGL_EXTENSION_OVERRIDE");
   if (!o) return false;
+  std::istringstream entries(o);
+  for (std::string entry; entries >> entry;)
+    if (entry.size() < 2 || entry[0] != '-')
+      throw UserError("RENDERAUDIT_EGL_EXTENSION_OVERRIDE: entry '" + entry + "' does not hide "
+                      "an extension (allowed: -EXTENSION_NAME entries separated by spaces; an "
+                      "extension the library lacks cannot be added)");
   const std::string list = std::string(" ") + o + " ";
   return list.find(std::string(" -") + name + " ") != std::string::npos;
 }
@@ -86,10 +94,16 @@ const EglLibrary& egl_library(const std::string& who, const std::string& package
   static EglLibrary lib;
   if (lib.get_proc) return lib;
   const char* name = std::getenv("RENDERAUDIT_LIBEGL");
-  if (!name || !*name) name = "libEGL.so.1";
+  const bool named = name && *name;
+  if (!named) name = "libEGL.so.1";
   void* handle = dlopen(name, RTLD_NOW | RTLD_LOCAL);
   if (!handle) {
-    throw UserError(who + ": cannot load " + name + " (" + dlerror() +
+    const std::string error = dlerror();
+    if (named)  // the variable chose it: say so, not only which package has the default
+      throw UserError(who + ": cannot load " + name + " (" + error + "), the library "
+                      "RENDERAUDIT_LIBEGL names; point it at an EGL library or unset it (the "
+                      "default libEGL.so.1 comes with: apt-get install " + packages + ")");
+    throw UserError(who + ": cannot load " + name + " (" + error +
                     "); install it with: apt-get install " + packages);
   }
   const auto symbol = [&](const char* fn) {

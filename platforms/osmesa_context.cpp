@@ -28,11 +28,17 @@ class OsmesaContext : public GlContext {
  public:
   explicit OsmesaContext(const PlatformSpec& spec) {
     const char* library = std::getenv("RENDERAUDIT_LIBOSMESA");
-    if (!library || !*library) library = "libOSMesa.so.8";
+    const bool named = library && *library;
+    if (!named) library = "libOSMesa.so.8";
     library_ = dlopen(library, RTLD_NOW | RTLD_LOCAL);
     if (!library_) {
+      // when the variable chose the library, it is named: the package alone would mislead
       throw UserError("platform " + spec.name + ": cannot load " + library + " (" + dlerror() +
-                      "); install it with: apt-get install " + packages_for(spec) +
+                      (named ? "), the library RENDERAUDIT_LIBOSMESA names; point it at an "
+                               "OSMesa library or unset it (the default libOSMesa.so.8 comes "
+                               "with: apt-get install "
+                             : "); install it with: apt-get install ") +
+                      packages_for(spec) + (named ? ")" : "") +
                       " (OSMesa was removed from Mesa 25.1; egl-" + spec.mesa_driver +
                       " draws with the same driver through EGL)");
     }

@@ -59,6 +59,72 @@ nlohmann::json document_header(const std::string& name, int version, bool proven
 
 namespace {
 
+[[noreturn]] void bad_field(const std::string& path, const std::string& key,
+                            const std::string& rule, const nlohmann::json& found) {
+  std::string text = found.dump();
+  if (text.size() > 60) text = text.substr(0, 57) + "...";
+  throw UserError(path + ": '" + key + "' must be " + rule + " (found " + text + ")");
+}
+
+std::string text_field(const nlohmann::json& object, const std::string& path,
+                       const std::string& key, const std::string& shown_key) {
+  if (!object.contains(key)) return "";
+  if (!object[key].is_string()) bad_field(path, shown_key, "a string", object[key]);
+  return object[key].get<std::string>();
+}
+
+// An integer in [low, high] at `key` of `object`.
+int int_field(const nlohmann::json& object, const std::string& path, const std::string& key,
+              const std::string& shown_key, int64_t low, int64_t high) {
+  const std::string rule =
+      "an integer from " + std::to_string(low) + " to " + std::to_string(high);
+  if (!object.contains(key) || !object[key].is_number_integer())
+    bad_field(path, shown_key, rule, object.value(key, nlohmann::json()));
+  const int64_t v = object[key].get<int64_t>();
+  if (v < low || v > high) bad_field(path, shown_key, rule, object[key]);
+  return int(v);
+}
+
+}  // namespace
+
+ManifestFields read_manifest_fields(const nlohmann::json& m, const std::string& path) {
+  ManifestFields f;
+  if (m.is_null()) return f;
+  if (!m.is_object()) bad_field(path, "(the document)", "a JSON object", m);
+  f.status = text_field(m, path, "status", "status");
+  if (m.contains("experiment")) {
+    if (!m["experiment"].is_object()) bad_field(path, "experiment", "an object", m["experiment"]);
+    f.experiment_name = text_field(m["experiment"], path, "name", "experiment.name");
+  }
+  if (m.contains("platforms_run")) {
+    const auto& p = m["platforms_run"];
+    if (!p.is_array()) bad_field(path, "platforms_run", "an array of platform names", p);
+    for (const auto& name : p) {
+      if (!name.is_string()) bad_field(path, "platforms_run", "an array of platform names", p);
+      f.platforms_run.push_back(name.get<std::string>());
+    }
+    f.has_platforms_run = true;
+  }
+  if (m.contains("slice")) {
+    const auto& sl = m["slice"];
+    if (!sl.is_object()) bad_field(path, "slice", "an object {index, count}", sl);
+    f.slice_count = int_field(sl, path, "count", "slice.count", 1, 100000);
+    f.slice_index = int_field(sl, path, "index", "slice.index", 1, f.slice_count);
+    f.has_slice = true;
+  }
+  if (m.contains("failures")) {
+    const auto& failures = m["failures"];
+    if (!failures.is_array()) bad_field(path, "failures", "an array", failures);
+    for (const auto& e : failures) {
+      if (!e.is_object()) bad_field(path, "failures[]", "an object {shard, reason}", e);
+      f.failed_shards.push_back(text_field(e, path, "shard", "failures[].shard"));
+    }
+  }
+  return f;
+}
+
+namespace {
+
 // Overwrites `path` from offset 0 with `text` padded with spaces to the file's current size (JSON
 // allows trailing white space): no block is allocated, so it works on a full disk.
 bool overwrite_in_place(const std::string& path, std::string text) {

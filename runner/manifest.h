@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace ra {
 
@@ -22,6 +23,23 @@ nlohmann::json document_header(const std::string& name, int version, bool proven
 }  // namespace ra
 
 namespace ra {
+
+// The fields of a manifest that `status` acts on, each checked for its type and range when read:
+// a manifest edited by hand or by another tool gives an error naming the file and the key, never
+// a crash or a bare JSON library message. Absent fields keep these defaults.
+struct ManifestFields {
+  std::string status;                       // "complete", "running", ...; "" when absent
+  std::string experiment_name;              // experiment.name; "" when absent
+  bool has_platforms_run = false;
+  std::vector<std::string> platforms_run;   // --platform of the run
+  bool has_slice = false;
+  int slice_index = 1, slice_count = 1;     // 1 <= index <= count <= 100000
+  std::vector<std::string> failed_shards;   // failures[].shard
+};
+
+// `manifest` as parsed from `path` (null: nothing known, the defaults). Throws ra::UserError
+// "PATH: 'KEY' must be ... (found ...)".
+ManifestFields read_manifest_fields(const nlohmann::json& manifest, const std::string& path);
 
 // Writes the manifest atomically. When that fails (a full disk, typically), the manifest already
 // on disk is overwritten in place, within the blocks it already occupies, by a shortened one with

@@ -31,6 +31,7 @@
 #include "runner/shard_file.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
+#include "runner/recorded_failures.h"
 #include "platforms/platform_probe.h"
 #include "platforms/renderer_check.h"
 #include "runner/shard.h"
@@ -140,6 +141,28 @@ bool send_command(Running& r, const std::string& dir, const WorkItem& item,
   return true;
 }
 
+// A GL worker holds its view's colour buffer, 4 bytes per pixel (RGBA8), for the whole shard; past
+// this size the run says how much memory it will take, once, before it starts.
+constexpr double kLargeWorkerBytes = 256.0 * 1024 * 1024;
+
+void note_large_views(const std::vector<Shard>& shards, const Experiment& exp, int jobs) {
+  double largest = 0;
+  const View* at = nullptr;
+  for (const View& v : exp.views) {
+    const bool used = std::any_of(shards.begin(), shards.end(),
+                                  [&](const Shard& s) { return s.view == v.id; });
+    const double bytes = double(v.width) * v.height * 4;
+    if (used && bytes > largest) largest = bytes, at = &v;
+  }
+  if (!at || largest < kLargeWorkerBytes) return;
+  jobs = int(std::min<size_t>(size_t(jobs), shards.size()));
+  const double gib = 1024.0 * 1024 * 1024;
+  std::fprintf(stderr,
+               "renderaudit: note: views of %d x %d pixels need about %.2f GiB of memory in each "
+               "GL worker (its colour buffer); %d workers at once: about %.2f GiB\n",
+               at->width, at->height, largest / gib, jobs, largest * jobs / gib);
+}
+
 nlohmann::json drivers_json(const std::string& dir) {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& e : fs::directory_iterator(dir + "/drivers")) {
@@ -172,9 +195,6 @@ RunResult run_experiment(const RunOptions& options) {
   // run before its directory is touched, rather than filling it with failed shards.
   require_platforms_draw(options.only_platforms.empty() ? exp.platforms : options.only_platforms,
                          options.experiment_path);
-  const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, dir);
-
-  std::deque<WorkItem> todo;
   std::vector<Shard> all = plan_shards(exp);
   if (!options.only_platforms.empty()) {
     const auto& keep = options.only_platforms;
@@ -183,7 +203,18 @@ RunResult run_experiment(const RunOptions& options) {
               }),
               all.end());
   }
+  // Every slice holds a shard, as `run --slurm --slices` requires: an empty slice would be a
+  // "complete" run of nothing.
+  if (options.slice && size_t(options.slice->count) > all.size())
+    throw UserError("--slice " + std::to_string(options.slice->index) + "/" +
+                    std::to_string(options.slice->count) + ": the run has only " +
+                    std::to_string(all.size()) + " shards (allowed: N from 1 to " +
+                    std::to_string(all.size()) + ")");
   if (options.slice) all = shards_of_slice(all, exp, *options.slice);
+  const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, dir);
+
+  std::deque<WorkItem> todo;
+  note_large_views(all, exp, jobs);
   for (const Shard& s : all) {
     const std::string path = s.records_path(dir);
     if (fs::exists(path)) {
@@ -250,9 +281,12 @@ RunResult run_experiment(const RunOptions& options) {
   struct sigaction sa {};
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
-  struct sigaction old_int {}, old_term {};
+  // A closed terminal (SIGHUP) stops the run as Ctrl-C does: workers reaped, temporaries removed,
+  // the manifest saying "interrupted".
+  struct sigaction old_int {}, old_term {}, old_hup {};
   sigaction(SIGINT, &sa, &old_int);
   sigaction(SIGTERM, &sa, &old_term);
+  sigaction(SIGHUP, &sa, &old_hup);
 
   const bool show = options.progress && ::isatty(2);
   const auto t_start = Clock::now();
@@ -521,6 +555,7 @@ RunResult run_experiment(const RunOptions& options) {
   remove_temporaries(dir);  // what killed (timed-out) workers left half-written
   sigaction(SIGINT, &old_int, nullptr);
   sigaction(SIGTERM, &old_term, nullptr);
+  sigaction(SIGHUP, &old_hup, nullptr);
   sigaction(SIGPIPE, &old_pipe, nullptr);
 
   manifest["drivers"] = drivers_json(dir);
@@ -548,8 +583,15 @@ RunResult run_experiment(const RunOptions& options) {
     manifest["damaged_shards_redone"] = damaged;
   }
   result.failed_primitives = recovery.failed_primitives();
-  nlohmann::json failed = manifest.value("failed_primitives", nlohmann::json::array());
+  // What the records hold, whoever wrote them (an earlier invocation, a merge), with the reasons
+  // this invocation and the manifest before it gave.
+  std::map<std::string, std::string> reasons;
+  add_failure_reasons(manifest.value("failed_primitives", nlohmann::json::array()), &reasons);
   for (const FailedPrimitive& f : result.failed_primitives)
+    reasons[failure_key(f.shard, f.index)] = f.reason;
+  result.failed_primitives_held = failed_primitives_in_records(dir, all, reasons);
+  nlohmann::json failed = nlohmann::json::array();
+  for (const FailedPrimitive& f : result.failed_primitives_held)
     failed.push_back({{"shard", f.shard}, {"index", f.index}, {"status", status_name(f.status)},
                       {"reason", f.reason}});
   manifest["failed_primitives"] = failed;

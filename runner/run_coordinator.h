@@ -44,7 +44,8 @@ struct RunResult {
   size_t shards_complete = 0;            // with a records file, this or an earlier invocation
   std::vector<ShardFailure> failures;    // every worker that crashed, hung or failed (events)
   std::vector<ShardFailure> damaged;     // shard files found incomplete or damaged, then redone
-  std::vector<FailedPrimitive> failed_primitives;  // recorded as crash / timeout
+  std::vector<FailedPrimitive> failed_primitives;  // recorded as crash / timeout by this invocation
+  std::vector<FailedPrimitive> failed_primitives_held;  // ... in the directory's records, by anyone
   std::string wrong_renderer;            // why --expect-renderer stopped the run, or empty
   bool interrupted = false;
 };

@@ -41,6 +41,15 @@ std::unique_ptr<DirLock> prepare_run_dir(const Experiment& exp, const std::strin
     if (previous.hash != exp.hash)
       throw UserError(dir + ": holds a run of a different experiment (hash " + previous.hash +
                       ", this one " + exp.hash + "); choose another --out or remove the directory");
+    // [run] is outside the hash, but shard_size names the records files: another size would
+    // write every shard again under new names beside the old ones, and count each twice.
+    if (previous.shard_size != exp.shard_size)
+      throw UserError(dir + ": holds a run cut into shards of " +
+                      std::to_string(previous.shard_size) + " primitives ([run] shard_size), " +
+                      exp.path + " asks for " + std::to_string(exp.shard_size) +
+                      ": shard_size names the records files, so the two cannot share a "
+                      "directory; set shard_size = " + std::to_string(previous.shard_size) +
+                      " again, or choose another --out");
   } else if (!empty) {
     throw UserError(dir + ": exists and is not a run directory (no experiment.toml); choose "
                           "another --out");

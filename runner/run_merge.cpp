@@ -1,13 +1,16 @@
 // Gathering run directories of one experiment into one (see the header).
 #include "runner/run_merge.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "metrics/conformance.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
+#include "runner/recorded_failures.h"
 #include "runner/run_dir.h"
 #include "runner/shard.h"
 #include "runner/shard_file.h"
@@ -74,6 +77,30 @@ MergeResult merge_runs(const MergeOptions& options) {
     }
   }
   const Experiment& exp = experiments.front();
+  // [run] shard_size is outside the hash but names the records files: slices cut with another
+  // size hold none of this plan's shards.
+  for (std::size_t i = 1; i < experiments.size(); ++i)
+    if (experiments[i].shard_size != exp.shard_size)
+      throw UserError("merge: " + options.inputs[i] + " was cut into shards of " +
+                      std::to_string(experiments[i].shard_size) + " primitives ([run] shard_size), " +
+                      options.inputs.front() + " into shards of " + std::to_string(exp.shard_size) +
+                      ": their records files name other shards; run the slices with one "
+                      "shard_size");
+  // Every platform an input holds records of must say which driver drew them.
+  const std::vector<Shard> plan = plan_shards(exp);
+  if (!options.allow_driver_mismatch) {
+    for (const std::string& in : options.inputs) {
+      std::set<std::string> platforms;
+      for (const Shard& s : plan)
+        if (!platforms.count(s.platform) && fs::exists(s.records_path(in)))
+          platforms.insert(s.platform);
+      for (const std::string& platform : platforms)
+        if (!fs::exists(in + "/drivers/" + platform + ".json"))
+          throw UserError("merge: " + in + " holds records of " + platform + " but no drivers/" +
+                          platform + ".json, so the driver that drew them cannot be compared "
+                          "with the other inputs' (--allow-driver-mismatch merges it anyway)");
+    }
+  }
   std::map<std::string, std::pair<std::string, std::string>> driver_seen;  // platform -> text, dir
   for (const std::string& in : options.inputs) {
     for (const auto& [platform, j] : drivers_of(in)) {
@@ -91,7 +118,6 @@ MergeResult merge_runs(const MergeOptions& options) {
   const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, options.out_dir, "merge");
   const std::string& out = options.out_dir;
   MergeResult result;
-  const std::vector<Shard> plan = plan_shards(exp);
   result.shards_total = plan.size();
   nlohmann::json taken_from = nlohmann::json::object();  // input dir -> shards copied from it
   for (const Shard& s : plan) {
@@ -123,11 +149,12 @@ MergeResult merge_runs(const MergeOptions& options) {
     copy_atomically(path, out + "/drivers/" + platform + ".json");
 
   // The manifest: every input's provenance, the failures they recorded, the merged shard count.
+  // It describes what DIR holds however it was assembled: what an earlier merge into DIR took
+  // (its inputs, shard times and failures) and what ran in DIR itself (a gather's `run`) stay.
   nlohmann::json m = document_header("manifest", kManifestSchemaVersion, false);
-  // what ran in DIR itself before (a gather's `run` after an earlier merge) stays on record
-  if (const nlohmann::json before = read_json_or_null(out + "/manifest.json");
-      before.is_object() && before.contains("invocations"))
-    m["invocations"] = before["invocations"];
+  nlohmann::json before = read_json_or_null(out + "/manifest.json");
+  if (!before.is_object()) before = nlohmann::json::object();
+  if (before.contains("invocations")) m["invocations"] = before["invocations"];
   m["tool"] = {
       {"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
   // One version of the conformance rules for every input's records.
@@ -151,9 +178,18 @@ MergeResult merge_runs(const MergeOptions& options) {
   m["host"] = host_description();
   m["merged"] = utc_now_iso8601();
   nlohmann::json slices = nlohmann::json::array();
-  nlohmann::json failures = nlohmann::json::array(), failed = nlohmann::json::array();
+  for (const auto& entry : before.value("inputs", nlohmann::json::array()))
+    if (entry.is_object() && entry.contains("dir") &&
+        std::find(options.inputs.begin(), options.inputs.end(), entry["dir"]) ==
+            options.inputs.end())
+      slices.push_back(entry);  // an earlier merge's input, not merged again now
+  nlohmann::json failures = before.value("failures", nlohmann::json::array());
+  if (!failures.is_array()) failures = nlohmann::json::array();
+  std::map<std::string, std::string> reasons;  // of failed primitives, by failure_key
+  add_failure_reasons(before.value("failed_primitives", nlohmann::json::array()), &reasons);
   // each shard's worker time, from whichever input ran it (for cost models and simulations)
-  nlohmann::json shard_seconds = nlohmann::json::object();
+  nlohmann::json shard_seconds = before.value("shard_seconds", nlohmann::json::object());
+  if (!shard_seconds.is_object()) shard_seconds = nlohmann::json::object();
   for (const std::string& in : options.inputs) {
     const nlohmann::json im = read_json_or_null(in + "/manifest.json");
     nlohmann::json drivers = nlohmann::json::object();
@@ -169,9 +205,9 @@ MergeResult merge_runs(const MergeOptions& options) {
       const nlohmann::json seconds_of = im.value("shard_seconds", nlohmann::json::object());
       for (const auto& [id, seconds] : seconds_of.items())
         if (!shard_seconds.contains(id)) shard_seconds[id] = seconds;
-      for (const auto& f : im.value("failures", nlohmann::json::array())) failures.push_back(f);
-      for (const auto& f : im.value("failed_primitives", nlohmann::json::array()))
-        failed.push_back(f);
+      for (const auto& f : im.value("failures", nlohmann::json::array()))
+        if (std::find(failures.begin(), failures.end(), f) == failures.end()) failures.push_back(f);
+      add_failure_reasons(im.value("failed_primitives", nlohmann::json::array()), &reasons);
     }
     slices.push_back(entry);
   }
@@ -183,6 +219,12 @@ MergeResult merge_runs(const MergeOptions& options) {
                  {"complete", result.shards_present},
                  {"in_several_inputs", result.shards_in_several_inputs}};
   m["failures"] = failures;
+  // the crash and timeout records DIR holds now, whichever merge or run put them there
+  nlohmann::json failed = nlohmann::json::array();
+  for (const FailedPrimitive& f : failed_primitives_in_records(out, plan, reasons))
+    failed.push_back({{"shard", f.shard}, {"index", f.index}, {"status", status_name(f.status)},
+                      {"reason", f.reason}});
+  result.failed_primitives = failed.size();
   m["failed_primitives"] = failed;
   m["shard_seconds"] = shard_seconds;
   m["status"] = !result.missing.empty() ? "failed"

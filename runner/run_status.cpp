@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "runner/experiment.h"
+#include "runner/manifest.h"
 #include "runner/shard.h"
 #include "runner/slicing.h"
 #include "util/atomic_file.h"
@@ -61,6 +62,8 @@ std::string RunStatus::state() const {
   if (queued) return "queued";
   if (planned > 0 && done == planned && manifest_status.rfind("complete", 0) == 0)
     return "complete";
+  // squeue failed and the gather has not ended: the jobs may be queued, running or gone
+  if (slurm && !squeue_error.empty() && gather_exit < 0) return "unknown";
   if (manifest_status == "interrupted") return "interrupted";
   if (manifest_status == "failed" || failed > 0 || (gather_exit > 0)) return "failed";
   return "incomplete";
@@ -73,13 +76,11 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
   s.dir = dir;
   const Experiment exp = load_experiment(dir + "/experiment.toml");
   s.experiment = exp.name;
-  const nlohmann::json manifest = read_json_or_null(dir + "/manifest.json");
-  if (manifest.is_object()) {
-    s.manifest_status = manifest.value("status", "");
-    // the name the run was given (a copy named experiment.toml would name it "experiment")
-    if (manifest.contains("experiment") && manifest["experiment"].is_object())
-      s.experiment = manifest["experiment"].value("name", s.experiment);
-  }
+  const ManifestFields manifest =
+      read_manifest_fields(read_json_or_null(dir + "/manifest.json"), dir + "/manifest.json");
+  s.manifest_status = manifest.status;
+  // the name the run was given (a copy named experiment.toml would name it "experiment")
+  if (!manifest.experiment_name.empty()) s.experiment = manifest.experiment_name;
 
   // Where shards can be: DIR, and the slices of a Slurm run beneath it.
   std::vector<std::string> sources = {dir};
@@ -92,14 +93,12 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
 
   std::vector<Shard> shards = plan_shards(exp);
   // a run of some platforms only (--platform): the manifest of DIR or of its first slice says so
-  nlohmann::json platforms_run =
-      manifest.is_object() ? manifest.value("platforms_run", nlohmann::json()) : nlohmann::json();
-  if (platforms_run.is_null() && !slice_dirs.empty()) {
-    const nlohmann::json first = read_json_or_null(slice_dirs.front() + "/manifest.json");
-    if (first.is_object()) platforms_run = first.value("platforms_run", nlohmann::json());
-  }
-  if (platforms_run.is_array()) {
-    const auto keep = platforms_run.get<std::vector<std::string>>();
+  ManifestFields platforms_from = manifest;
+  if (!manifest.has_platforms_run && !slice_dirs.empty())
+    platforms_from = read_manifest_fields(read_json_or_null(slice_dirs.front() + "/manifest.json"),
+                                          slice_dirs.front() + "/manifest.json");
+  if (platforms_from.has_platforms_run) {
+    const auto& keep = platforms_from.platforms_run;
     shards.erase(std::remove_if(shards.begin(), shards.end(),
                                 [&](const Shard& sh) {
                                   return std::find(keep.begin(), keep.end(), sh.platform) ==
@@ -107,10 +106,8 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
                                 }),
                  shards.end());
   }
-  if (manifest.is_object() && manifest.contains("slice") && slice_dirs.empty()) {
-    const auto& sl = manifest["slice"];
-    shards = shards_of_slice(shards, exp, Slice{sl.value("index", 1), sl.value("count", 1)});
-  }
+  if (manifest.has_slice && slice_dirs.empty())
+    shards = shards_of_slice(shards, exp, Slice{manifest.slice_index, manifest.slice_count});
   s.planned = shards.size();
 
   std::set<std::string> running, failed;
@@ -122,10 +119,11 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
       failed.insert(w.progress.failed.begin(), w.progress.failed.end());
       s.writers.push_back(std::move(w));
     } else {
-      const nlohmann::json m = src == dir ? manifest : read_json_or_null(src + "/manifest.json");
-      if (m.is_object())
-        for (const auto& f : m.value("failures", nlohmann::json::array()))
-          if (f.is_object()) failed.insert(f.value("shard", ""));
+      const ManifestFields m =
+          src == dir ? manifest
+                     : read_manifest_fields(read_json_or_null(src + "/manifest.json"),
+                                            src + "/manifest.json");
+      failed.insert(m.failed_shards.begin(), m.failed_shards.end());
     }
   }
   for (const Shard& sh : shards) {
@@ -192,6 +190,9 @@ std::string format_run_status(const RunStatus& s) {
       << " running, " << tasks_pending << " pending; gather job " << s.gather_job << ": " << gather
       << "\n";
     if (!s.squeue_error.empty()) o << "  squeue: " << s.squeue_error << "\n";
+    if (s.state() == "unknown")
+      o << "  the scheduler could not be asked, so whether the jobs are queued, running or gone "
+           "is not known; ask again when squeue answers\n";
   }
   if (s.state() == "running" || s.state() == "queued") {
     o << "  time left: ";

@@ -37,7 +37,8 @@ struct RunStatus {
   double left_s = -1;                 // the longest writer's estimate; -1 unknown
   size_t slices_not_started = 0;      // Slurm tasks still pending
 
-  // "complete", "running", "queued", "failed", "interrupted", "incomplete"
+  // "complete", "running", "queued", "failed", "interrupted", "incomplete", or "unknown" (a
+  // Slurm run whose scheduler could not be asked, its gather not ended)
   std::string state() const;
 };
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 
 #include "runner/experiment.h"
@@ -39,6 +40,45 @@ std::string passed_on(const RunOptions& run, int jobs) {
   if (!run.expect_renderer.empty()) s += " --expect-renderer " + sh_quote(run.expect_renderer);
   if (run.shard_order == RunOptions::ShardOrder::kPlan) s += " --shard-order plan";
   return s;
+}
+
+// Why `value` cannot stand in an #SBATCH line, or "". sbatch reads those lines with a tokenizer of
+// its own (no shell): white space ends a value (a newline would end the line, and the next one runs
+// as a command), quotes and backslashes are consumed or fatal, '#' starts a comment, and in a file
+// name '%' introduces a pattern (%j, %a). Such characters are refused rather than escaped: no
+// quoting is carried the same way by every Slurm version.
+std::string sbatch_value_problem(const std::string& value) {
+  for (const char c : value) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (c == '\n' || c == '\r') return "a line break would end the #SBATCH line";
+    if (u < 0x20 || u == 0x7f) return "a control character cannot be carried";
+    if (c == ' ') return "sbatch splits an #SBATCH line at white space";
+    if (c == '\'' || c == '"' || c == '\\') return std::string("sbatch's #SBATCH parser consumes ") + c;
+    if (c == '#') return "'#' starts a comment in an #SBATCH line";
+    if (c == '%') return "sbatch expands '%' patterns (%j, %a) in file names";
+  }
+  return "";
+}
+
+void require_sbatch_value(const std::string& what, const std::string& value) {
+  if (const std::string why = sbatch_value_problem(value); !why.empty())
+    throw UserError("--slurm: " + what + " '" + value + "' cannot go into an sbatch script: " +
+                    why + " (allowed: no white space, quotes, backslash, '#' or '%')");
+}
+
+// The values that reach #SBATCH lines: partition names as Slurm spells them (letters, digits, '_',
+// '-', '.', and ',' between several), a time limit in sbatch --time syntax.
+void validate_slurm_options(const SlurmOptions& slurm) {
+  static const std::regex partition("[A-Za-z0-9_.-]+(,[A-Za-z0-9_.-]+)*");
+  if (!slurm.partition.empty() && !std::regex_match(slurm.partition, partition))
+    throw UserError("--partition '" + slurm.partition + "': not a Slurm partition name (allowed: "
+                    "letters, digits, '_', '-', '.', and ',' between several partitions)");
+  static const std::regex time(
+      "[0-9]+(:[0-9]+){0,2}|[0-9]+-[0-9]+(:[0-9]+){0,2}|UNLIMITED|INFINITE|unlimited|infinite");
+  if (!slurm.time_limit.empty() && !std::regex_match(slurm.time_limit, time))
+    throw UserError("--time-limit '" + slurm.time_limit + "': not in sbatch --time syntax "
+                    "(allowed: MINUTES, MINUTES:SECONDS, HOURS:MINUTES:SECONDS, DAYS-HOURS, "
+                    "DAYS-HOURS:MINUTES, DAYS-HOURS:MINUTES:SECONDS, UNLIMITED)");
 }
 
 std::string header(const std::string& job_name, int jobs, const SlurmOptions& slurm,
@@ -101,11 +141,14 @@ std::string node_local_reason(const std::string& dir) {
 
 SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slurm) {
   const Experiment exp = load_experiment(run.experiment_path);
+  validate_slurm_options(slurm);
   SlurmSubmission sub;
   sub.run_dir = fs::weakly_canonical(fs::absolute(run.out_dir.empty() ? "outputs/" + exp.name
                                                                       : run.out_dir))
                     .string();
   const std::string& dir = sub.run_dir;
+  require_sbatch_value("--out", dir);  // in --output=DIR/slurm/...
+  require_sbatch_value(run.experiment_path + ": the experiment's name", exp.name);  // --job-name
   if (!slurm.allow_node_local) {
     if (const std::string why = node_local_reason(dir); !why.empty())
       throw UserError("--slurm: --out " + dir + " " + why +

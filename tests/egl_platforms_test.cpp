@@ -116,6 +116,21 @@ TEST(EglPlatforms, AMachineWithoutLibEglIsRefusedWithThePackage) {
                  "apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri");
 }
 
+// A library chosen by RENDERAUDIT_LIBEGL / RENDERAUDIT_LIBOSMESA that cannot load is blamed on the
+// variable, not only on a package; an extension override entry that hides nothing is refused.
+TEST(EglPlatforms, TheVariableThatChoseAMissingLibraryIsNamed) {
+  expect_refused("egl-llvmpipe", {"RENDERAUDIT_LIBEGL=/nonexistent/libEGL.so.1"},
+                 "(/nonexistent/libEGL.so.1: cannot open shared object file: No such file or "
+                 "directory), the library RENDERAUDIT_LIBEGL names; point it at an EGL library or "
+                 "unset it");
+  expect_refused("osmesa-llvmpipe", {"RENDERAUDIT_LIBOSMESA=/nonexistent/libOSMesa.so.8"},
+                 "the library RENDERAUDIT_LIBOSMESA names; point it at an OSMesa library or "
+                 "unset it");
+  expect_refused("egl-llvmpipe", {"RENDERAUDIT_EGL_EXTENSION_OVERRIDE=EGL_KHR_surfaceless_context"},
+                 "RENDERAUDIT_EGL_EXTENSION_OVERRIDE: entry 'EGL_KHR_surfaceless_context' does "
+                 "not hide an extension");
+}
+
 // Mesa >= 25.1 has no OSMesa: the osmesa platforms say what to use instead, and `make` draws
 // through EGL (platforms --embedded-default).
 TEST(EglPlatforms, AMachineWithoutOsmesaIsToldToUseEgl) {

@@ -120,4 +120,122 @@ TEST(MergeCommand, AMissingSliceADifferentExperimentAndAnotherDriverAreSaid) {
   EXPECT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/x --slice 3/2").exit_code, 2);
 }
 
+// A faulty platform that crashes on primitive 5 of every view: 4 shards of 10 points per view,
+// two views, so slice 1 of 2 and slice 2 of 2 each hold crash records.
+const char* kCrashing =
+    "seed = 3\nplatforms = [\"faulty\"]\n[views]\norientations = 1\nfov_deg = [30, 150]\n"
+    "windows = [64]\nnear = 0.01\nfar = 10.0\n[primitives]\npoints = 40\n[run]\n"
+    "shard_size = 10\n[faults]\ncrash = [5]\n";
+
+std::size_t crash_records(const std::string& run_dir) {
+  std::size_t n = 0;
+  for (const auto& e : fs::directory_iterator(run_dir + "/records"))
+    if (e.path().extension() == ".csv")
+      ra::read_records(e.path().string(),
+                       [&](const ra::Record& r) { n += r.status == ra::CaseStatus::kCrash; });
+  return n;
+}
+
+// The manifest describes what the directory holds however it was assembled: slices merged one at a
+// time keep the first merge's inputs, shard times and failed primitives, and the exit code of
+// merge and of the gather's run follows the crash records the directory holds.
+TEST(MergeCommand, SlicesMergedOneAtATimeKeepEveryFactAndTheExitCodeFollowsTheRecords) {
+  const std::string dir = fresh_dir("merge_incremental");
+  write_text(dir + "/e.toml", kCrashing);
+  std::size_t seconds = 0;
+  for (int k = 1; k <= 2; ++k) {
+    const std::string out = dir + "/s" + std::to_string(k);
+    const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + out +
+                                      " --quiet --timeout 20 --slice " + std::to_string(k) + "/2");
+    ASSERT_LE(o.exit_code, 1) << o.output;  // 1 where its slice holds a crash record
+    seconds += nlohmann::json::parse(ra::read_file(out + "/manifest.json")).at("shard_seconds").size();
+  }
+  ASSERT_EQ(crash_records(dir + "/s1") + crash_records(dir + "/s2"), 2u);  // one per view
+  EXPECT_EQ(run_renderaudit("merge " + dir + "/s1 --out " + dir + "/m").exit_code, 1);
+  const Outcome second = run_renderaudit("merge " + dir + "/s2 --out " + dir + "/m");
+  EXPECT_EQ(second.exit_code, 1) << "complete, but the records hold crashes\n" << second.output;
+  EXPECT_NE(second.output.find("2 primitives recorded as crash or timeout"), std::string::npos)
+      << second.output;
+  const nlohmann::json m = nlohmann::json::parse(ra::read_file(dir + "/m/manifest.json"));
+  EXPECT_EQ(m.at("status"), "complete-with-failed-primitives");
+  ASSERT_EQ(m.at("failed_primitives").size(), 2u);
+  for (const auto& f : m.at("failed_primitives")) {
+    EXPECT_EQ(f.at("index"), 5);
+    EXPECT_EQ(f.at("status"), "crash");
+    EXPECT_NE(f.at("reason").get<std::string>().find("signal"), std::string::npos) << f;
+  }
+  ASSERT_EQ(m.at("inputs").size(), 2u);
+  EXPECT_EQ(m.at("inputs")[0].at("dir"), dir + "/s1");
+  EXPECT_EQ(m.at("inputs")[1].at("dir"), dir + "/s2");
+  EXPECT_EQ(m.at("shard_seconds").size(), seconds);
+  // the gather's run over the merged directory: nothing left to run, and it still says exit 1
+  const Outcome gather = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/m --quiet");
+  EXPECT_EQ(gather.exit_code, 1) << gather.output;
+  EXPECT_NE(gather.output.find("2 primitives recorded as crash or timeout by earlier"),
+            std::string::npos)
+      << gather.output;
+  // a plain re-run of a finished run with crash records answers as its first run did
+  const Outcome first = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/whole --quiet --timeout 20");
+  EXPECT_EQ(first.exit_code, 1) << first.output;
+  const Outcome again = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/whole --quiet");
+  EXPECT_EQ(again.exit_code, 1) << again.output;
+  const nlohmann::json w = nlohmann::json::parse(ra::read_file(dir + "/whole/manifest.json"));
+  EXPECT_EQ(w.at("failed_primitives").size(), 2u) << "listed once, not once per invocation";
+  EXPECT_EQ(w.at("status"), "complete-with-failed-primitives");
+}
+
+// One rule for a slice's size in `run --slice` and `run --slurm --slices`: every slice holds a
+// shard, so more slices than shards is refused before anything is written.
+TEST(MergeCommand, MoreSlicesThanShardsIsRefusedAsSlurmRefusesIt) {
+  const std::string dir = fresh_dir("merge_empty_slice");
+  write_text(dir + "/e.toml", kExperiment);  // 64 shards
+  const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/x --slice 100/100");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("--slice 100/100: the run has only 64 shards (allowed: N from 1 to 64)"),
+            std::string::npos)
+      << o.output;
+  EXPECT_FALSE(fs::exists(dir + "/x"));
+  const Outcome p = run_renderaudit("run " + dir + "/e.toml --out " + dir +
+                                    "/x --slice 3/20 --platform reference");  // 32 shards
+  EXPECT_EQ(p.exit_code, 0) << p.output;
+  const Outcome q = run_renderaudit("run " + dir + "/e.toml --out " + dir +
+                                    "/y --slice 1/33 --platform reference");
+  EXPECT_EQ(q.exit_code, 2) << q.output;
+  EXPECT_NE(q.output.find("the run has only 32 shards"), std::string::npos) << q.output;
+}
+
+// Slices cut with another shard_size, or without the driver file of a platform whose records they
+// hold, are refused with the reason before anything is written.
+TEST(MergeCommand, AnotherShardSizeOrAMissingDriverFileIsSaid) {
+  const std::string dir = fresh_dir("merge_shard_size");
+  write_text(dir + "/e.toml", kExperiment);
+  std::string other = kExperiment;
+  other.replace(other.find("shard_size = 50"), 15, "shard_size = 40");
+  write_text(dir + "/f.toml", other);
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/a --quiet --slice 1/2 "
+                            "--platform reference").exit_code, 0);
+  ASSERT_EQ(run_renderaudit("run " + dir + "/f.toml --out " + dir + "/b --quiet --slice 2/2 "
+                            "--platform reference").exit_code, 0);
+  const Outcome o = run_renderaudit("merge " + dir + "/a " + dir + "/b --out " + dir + "/m");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("merge: " + dir + "/b was cut into shards of 40 primitives ([run] "
+                          "shard_size), " + dir + "/a into shards of 50"),
+            std::string::npos)
+      << o.output;
+  EXPECT_FALSE(fs::exists(dir + "/m"));
+  // a slice without drivers/P.json for a platform it holds records of
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/c --quiet --slice 2/2 "
+                            "--platform osmesa-llvmpipe").exit_code, 0);
+  fs::remove(dir + "/c/drivers/osmesa-llvmpipe.json");
+  const Outcome d = run_renderaudit("merge " + dir + "/a " + dir + "/c --out " + dir + "/n");
+  EXPECT_EQ(d.exit_code, 2) << d.output;
+  EXPECT_NE(d.output.find("merge: " + dir + "/c holds records of osmesa-llvmpipe but no "
+                          "drivers/osmesa-llvmpipe.json"),
+            std::string::npos)
+      << d.output;
+  EXPECT_FALSE(fs::exists(dir + "/n"));
+  EXPECT_EQ(run_renderaudit("merge " + dir + "/a " + dir + "/c --out " + dir +
+                            "/n --allow-driver-mismatch").exit_code, 1);  // merged; shards missing
+}
+
 }  // namespace

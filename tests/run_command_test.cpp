@@ -1,9 +1,11 @@
 // End-to-end tests of `renderaudit run`: sharding, resume, failures, bad input.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <tuple>
 #include <nlohmann/json.hpp>
 
 #include "metrics/conformance.h"
@@ -306,6 +308,91 @@ TEST(RunCommand, RefusesARunDirectoryOfAnotherExperiment) {
   const Outcome o = run_renderaudit("run " + dir + "/b.toml --out " + dir + "/run");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.output.find("holds a run of a different experiment"), std::string::npos) << o.output;
+}
+
+// [run] shard_size is outside the experiment's hash but names the records files: a run into a
+// directory cut with another size is refused before anything is written, never rendered twice.
+TEST(RunCommand, AnotherShardSizeIntoTheSameDirectoryIsRefused) {
+  const std::string dir = fresh_dir("shard_size");
+  write_text(dir + "/a.toml", experiment("\"reference\"", 30, 10));
+  write_text(dir + "/b.toml", experiment("\"reference\"", 30, 7));
+  ASSERT_EQ(run_renderaudit("run " + dir + "/a.toml --out " + dir + "/run --quiet").exit_code, 0);
+  const auto before = records_without_timing(dir + "/run");
+  ASSERT_EQ(before.size(), 4u * 30);  // views x points
+  const Outcome o = run_renderaudit("run " + dir + "/b.toml --out " + dir + "/run --quiet");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("holds a run cut into shards of 10 primitives ([run] shard_size), " +
+                          dir + "/b.toml asks for 7"),
+            std::string::npos)
+      << o.output;
+  EXPECT_TRUE(records_without_timing(dir + "/run") == before);  // nothing rendered twice
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir + "/run/records")) files += e.path().extension() == ".csv";
+  EXPECT_EQ(files, 4u * 3);  // views x shards of 10
+  EXPECT_EQ(run_renderaudit("analyze " + dir + "/run").exit_code, 0);
+}
+
+// Points are judged inside the depth range in eye space: with far / near of 1e18 and beyond,
+// clip-space depth rounds onto w and every point looked outside (the driver, which draws them, was
+// blamed: false-visible). Points lie in the unit ball, none nearer than 0.01 for this seed, so
+// every near plane below 0.01 must give the records of near = 0.01, on a driver and on the
+// reference, but for the near column.
+TEST(RunCommand, ExtremeNearFarRatiosJudgePointsAsAModerateOneDoes) {
+  const std::string dir = fresh_dir("near_far");
+  auto toml = [](const std::string& near) {
+    return "seed = 9\nplatforms = [\"osmesa-llvmpipe\", \"reference\"]\n[views]\n"
+           "orientations = 1\nfov_deg = [30, 150]\nwindows = [128]\nnear = " + near +
+           "\nfar = 10.0\n[primitives]\npoints = 300\n[run]\nshard_size = 300\n";
+  };
+  // what a point's judgement is made of: everything but near, timing and batching
+  using Judgement = std::tuple<int, int64_t, double, int64_t, uint64_t, int>;
+  auto judged = [&](const std::string& name) {
+    std::map<std::tuple<std::string, int, uint64_t>, Judgement> out;
+    for (const auto& e : fs::directory_iterator(dir + "/" + name + "/records"))
+      ra::read_records(e.path().string(), [&](const ra::Record& r) {
+        const double pe = std::isnan(r.pe) ? -1.0 : r.pe;  // empty when not true-visible
+        out[{r.platform, r.view, r.index}] = {int(r.visibility), r.pixels, pe, r.ref_diff,
+                                              r.pixel_hash, int(r.conformance)};
+      });
+    return out;
+  };
+  write_text(dir + "/moderate.toml", toml("0.01"));
+  ASSERT_EQ(run_renderaudit("run " + dir + "/moderate.toml --out " + dir + "/moderate --quiet")
+                .exit_code, 0);
+  const auto expected = judged("moderate");
+  ASSERT_EQ(expected.size(), 2u * 2 * 300);
+  std::size_t visible = 0;
+  for (const auto& [key, j] : expected) visible += std::get<0>(j) == int(ra::Visibility::kTrueVisible);
+  EXPECT_GT(visible, 100u);  // the comparison means something
+  for (const std::string near : {"1e-15", "1e-17", "1e-30", "1e-300"}) {
+    write_text(dir + "/tiny.toml", toml(near));
+    fs::remove_all(dir + "/tiny");
+    const Outcome o = run_renderaudit("run " + dir + "/tiny.toml --out " + dir + "/tiny --quiet");
+    EXPECT_EQ(o.exit_code, 0) << near << "\n" << o.output;
+    const auto got = judged("tiny");
+    ASSERT_EQ(got.size(), expected.size()) << near;
+    std::size_t differ = 0;
+    for (const auto& [key, j] : expected) differ += got.at(key) != j;
+    EXPECT_EQ(differ, 0u) << "near = " << near;
+  }
+}
+
+// A plan whose views need a large colour buffer per worker says how much before it starts:
+// 16384 x 16384 RGBA8 pixels are 1.00 GiB each.
+TEST(RunCommand, ALargeWindowSaysTheMemoryAWorkerNeeds) {
+  const std::string dir = fresh_dir("large_window");
+  std::string toml = experiment("\"reference\"", 1, 1);
+  toml.replace(toml.find("windows = [64]"), 14, "windows = [16384]");
+  write_text(dir + "/e.toml", toml);
+  const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet --jobs 3");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("note: views of 16384 x 16384 pixels need about 1.00 GiB of memory in "
+                          "each GL worker (its colour buffer); 3 workers at once: about 3.00 GiB"),
+            std::string::npos)
+      << o.output;
+  write_text(dir + "/small.toml", experiment("\"reference\"", 1, 1));
+  const Outcome small = run_renderaudit("run " + dir + "/small.toml --out " + dir + "/small --quiet");
+  EXPECT_EQ(small.output.find("GiB of memory"), std::string::npos) << small.output;
 }
 
 TEST(RunCommand, HelpNamesTheOptions) {

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 
 #include "tests/cli_harness.h"
@@ -89,6 +90,24 @@ TEST(RunIntegrity, ASecondRunOnTheSameDirectoryIsRefusedAndNamesTheFirst) {
   ra::wait_child(first.pid);
 }
 
+// A closed terminal (SIGHUP) stops a run as Ctrl-C does: the manifest says "interrupted", no
+// worker and no temporary file is left behind.
+TEST(RunIntegrity, AHangupLeavesAnInterruptedManifestAndNoTemporaries) {
+  const std::string dir = fresh_dir("integrity_hup");
+  const ra::Child coordinator = start_hanging_run(dir);
+  ASSERT_TRUE(wait_for([&] { return processes_mentioning(dir + "/run") >= 2; }, 20));
+  ::kill(coordinator.pid, SIGHUP);
+  const int status = ra::wait_child(coordinator.pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << status;
+  EXPECT_EQ(processes_mentioning(dir + "/run"), 0);
+  const nlohmann::json m = nlohmann::json::parse(read_text(dir + "/run/manifest.json"));
+  EXPECT_EQ(m.at("status"), "interrupted");
+  std::size_t temporaries = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir + "/run"))
+    temporaries += e.path().extension() == ".tmp";
+  EXPECT_EQ(temporaries, 0u);
+}
+
 TEST(RunIntegrity, WorkersDieWithAKilledCoordinatorAndAnalyzeSaysTheRunWasKilled) {
   const std::string dir = fresh_dir("integrity_kill");
   const ra::Child coordinator = start_hanging_run(dir);
@@ -146,17 +165,32 @@ TEST(RunIntegrity, AnalyzeAndReportRefuseAnIncompleteRunAndSayWhatIsMissing) {
             std::string::npos);
 }
 
+// A records file of schema version 2 as written before shard files were sealed: the seal gone, the
+// header of version 2, each row without the last three (version 3) cells.
+std::string as_unsealed_version_2(const std::string& sealed) {
+  std::string out;
+  std::istringstream lines(sealed);
+  bool header = true;
+  for (std::string line; std::getline(lines, line); header = false) {
+    if (line.rfind("# complete", 0) == 0) continue;
+    if (header) {
+      out += ra::records_header_v2() + "\n";
+      continue;
+    }
+    for (int cells = 0; cells < 3; ++cells) line.erase(line.rfind(','));
+    out += line + "\n";
+  }
+  return out;
+}
+
 // Records written before shard files were sealed are checked row by row: a primitive outside its
 // shard, or one missing, is named.
 TEST(RunIntegrity, AnUnsealedRecordOutsideItsShardIsReported) {
   const std::string dir = fresh_dir("integrity_unsealed");
   write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 200\n"));
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2").exit_code, 0);
-  for (const auto& e : fs::directory_iterator(dir + "/run/records")) {  // as an older version wrote
-    std::string text = read_text(e.path());
-    text.erase(text.rfind("# complete"));
-    write_text(e.path(), text);
-  }
+  for (const auto& e : fs::directory_iterator(dir + "/run/records"))  // as an older version wrote
+    write_text(e.path(), as_unsealed_version_2(read_text(e.path())));
   EXPECT_EQ(run_renderaudit("analyze " + dir + "/run").exit_code, 0);  // old runs stay readable
   const std::string shard = dir + "/run/records/reference.point.v1.0-100.csv";
   std::string text = read_text(shard);
@@ -168,6 +202,30 @@ TEST(RunIntegrity, AnUnsealedRecordOutsideItsShardIsReported) {
   EXPECT_EQ(a.exit_code, 3) << a.output;
   EXPECT_NE(a.output.find("primitive 150 lies outside the shard (primitives 0-99)"), std::string::npos)
       << a.output;
+}
+
+// Every records file of schema version 3 was written sealed: one without its seal is damaged for
+// analyze as it is for run (which redoes it), even when its rows look whole: nothing vouches for
+// its values any more.
+TEST(RunIntegrity, AnUnsealedVersion3FileIsDamagedForAnalyzeAsForRun) {
+  const std::string dir = fresh_dir("integrity_unsealed_v3");
+  write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 200\n"));
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2").exit_code, 0);
+  const std::string shard = dir + "/run/records/reference.point.v1.0-100.csv";
+  std::string text = read_text(shard);
+  text.erase(text.rfind("# complete"));
+  write_text(shard, text);
+  const Outcome a = run_renderaudit("analyze " + dir + "/run");
+  EXPECT_EQ(a.exit_code, 3) << a.output;
+  EXPECT_NE(a.output.find("damaged shard reference.point.v1.0-100: no trailer"), std::string::npos)
+      << a.output;
+  EXPECT_NE(a.output.find("records of schema version 3 are always written sealed"),
+            std::string::npos)
+      << a.output;
+  const Outcome r = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("not a complete shard file: no trailer"), std::string::npos) << r.output;
+  EXPECT_EQ(run_renderaudit("analyze " + dir + "/run").exit_code, 0);
 }
 
 TEST(RunIntegrity, APlanAboveTheCeilingIsRefusedBeforeAnythingIsWritten) {

@@ -210,6 +210,15 @@ TEST(ShowCommand, BadRequestsSayWhatIsAllowed) {
     EXPECT_EQ(o.exit_code, 2) << c.args << "\n" << o.output;
     EXPECT_NE(o.output.find("renderaudit: " + c.message), std::string::npos) << o.output;
   }
+  // an index is read as written: -1 and a number past 2^64 - 1 do not wrap to 2^64 - 1
+  for (const std::string index : {"-1", "18446744073709551616", "1e3", "0x10", "''"}) {
+    const Outcome o = run_renderaudit(base + "-p reference -k triangle -v 1 -i " + index);
+    EXPECT_EQ(o.exit_code, 2) << index << "\n" << o.output;
+    EXPECT_NE(o.output.find(": not a primitive index (allowed: a whole number from 0"),
+              std::string::npos)
+        << index << "\n" << o.output;
+    EXPECT_EQ(o.output.find("18446744073709551615 out of range"), std::string::npos) << o.output;
+  }
   const std::string missing = fresh_dir("show_missing") + "/nothing";
   const Outcome o = run_renderaudit("show " + missing + " -p reference -k point -v 1 -i 0");
   EXPECT_EQ(o.exit_code, 2);

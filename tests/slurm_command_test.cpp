@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <utility>
+#include <vector>
 
 #include "runner/run_progress.h"
 #include "tests/cli_harness.h"
@@ -98,6 +101,125 @@ TEST(SlurmCommand, RefusesANodeLocalDirectoryAStudyAndASliceAndSaysWhatSbatchSai
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.output.find("sbatch refused"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("invalid partition specified: x"), std::string::npos) << o.output;
+}
+
+// Every value that reaches an #SBATCH line is checked before anything is written or submitted:
+// sbatch's own tokenizer would split it at white space, consume quotes, cut it at '#', expand '%',
+// and a line break would put a command into the script.
+TEST(SlurmCommand, ValuesSbatchCannotCarryAreRefusedWithTheReason) {
+  const std::string dir = fresh_dir("slurm_injection");
+  write_text(dir + "/e.toml", kExperiment);
+  const std::string run = "run " + dir + "/e.toml --slurm --dry-run --allow-node-local ";
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"--out '" + dir + "/nl\ntouch " + dir + "/injected #'", "a line break would end the #SBATCH line"},
+      {"--out '" + dir + "/my runs'", "sbatch splits an #SBATCH line at white space"},
+      {"--out \"" + dir + "/it's\"", "sbatch's #SBATCH parser consumes '"},
+      {"--out " + dir + "/run#2", "'#' starts a comment in an #SBATCH line"},
+      {"--out " + dir + "/run%j", "sbatch expands '%' patterns"},
+      {"--out " + dir + "/run --partition 'gpu\ntouch x'", "not a Slurm partition name"},
+      {"--out " + dir + "/run --time-limit '1:00:00 --wrap=id'", "not in sbatch --time syntax"},
+      {"--out " + dir + "/run --time-limit 1:00:00:00", "not in sbatch --time syntax"},
+  };
+  for (const auto& [args, reason] : refused) {
+    const Outcome o = run_renderaudit(run + args);
+    EXPECT_EQ(o.exit_code, 2) << args << "\n" << o.output;
+    EXPECT_NE(o.output.find(reason), std::string::npos) << args << "\n" << o.output;
+    EXPECT_EQ(o.output.find("#SBATCH --array"), std::string::npos) << "no script printed";
+  }
+  EXPECT_FALSE(fs::exists(dir + "/injected"));
+  // what sbatch's syntax allows is taken as given
+  for (const char* limit : {"90", "90:30", "2:00:00", "1-12", "1-12:30", "1-12:30:15", "UNLIMITED"}) {
+    const Outcome o = run_renderaudit(run + "--out " + dir + "/run --time-limit " + limit +
+                                      " --partition gpu,debug_2");
+    EXPECT_EQ(o.exit_code, 0) << limit << "\n" << o.output;
+    EXPECT_NE(o.output.find("#SBATCH --time=" + std::string(limit) + "\n"), std::string::npos)
+        << o.output;
+    EXPECT_NE(o.output.find("#SBATCH --partition=gpu,debug_2\n"), std::string::npos) << o.output;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/run")) << "dry runs write nothing";
+}
+
+// A manifest edited by hand: every field status acts on is checked, and the message names the
+// file and the key (a slice of count 0 crashed it; a numeric status gave a bare JSON error).
+TEST(SlurmCommand, StatusNamesTheFileAndKeyOfABadManifestField) {
+  const std::string dir = fresh_dir("status_bad_manifest");
+  write_text(dir + "/e.toml",
+             "seed = 5\nplatforms = [\"reference\"]\n[views]\norientations = 1\nfov_deg = [30]\n"
+             "windows = [64]\nnear = 0.01\nfar = 10.0\n[primitives]\npoints = 20\n[run]\n"
+             "shard_size = 10\n");
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet --slice 1/2")
+                .exit_code, 0);
+  const std::string path = dir + "/run/manifest.json";
+  const nlohmann::json good = nlohmann::json::parse(ra::read_file(path));
+  ASSERT_EQ(run_renderaudit("status " + dir + "/run").exit_code, 0);
+  const std::vector<std::pair<std::function<void(nlohmann::json&)>, std::string>> edits = {
+      {[](nlohmann::json& m) { m["slice"] = {{"index", 0}, {"count", 0}}; },
+       "'slice.count' must be an integer from 1 to 100000 (found 0)"},
+      {[](nlohmann::json& m) { m["slice"] = {{"index", 3}, {"count", 2}}; },
+       "'slice.index' must be an integer from 1 to 2 (found 3)"},
+      {[](nlohmann::json& m) { m["slice"] = {{"index", "1"}, {"count", 2}}; },
+       "'slice.index' must be an integer from 1 to 2 (found \"1\")"},
+      {[](nlohmann::json& m) { m["status"] = 3; }, "'status' must be a string (found 3)"},
+      {[](nlohmann::json& m) { m["experiment"]["name"] = nullptr; },
+       "'experiment.name' must be a string (found null)"},
+      {[](nlohmann::json& m) { m["platforms_run"] = {"reference", 1}; },
+       "'platforms_run' must be an array of platform names"},
+      {[](nlohmann::json& m) { m["failures"] = {{{"shard", 7}}}; },
+       "'failures[].shard' must be a string (found 7)"},
+      {[](nlohmann::json& m) { m = nlohmann::json::array(); },
+       "'(the document)' must be a JSON object (found [])"},
+  };
+  for (const auto& [edit, message] : edits) {
+    nlohmann::json m = good;
+    edit(m);
+    ra::write_file_atomic(path, m.dump());
+    const Outcome o = run_renderaudit("status " + dir + "/run");
+    EXPECT_EQ(o.exit_code, 2) << message << "\n" << o.output;
+    EXPECT_NE(o.output.find(path + ": " + message), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("json.exception"), std::string::npos) << o.output;
+  }
+}
+
+// A submitted run whose scheduler cannot be asked (squeue missing, the controller down) is not
+// called incomplete: status says why it cannot tell and exits 4, and --wait stops with it rather
+// than answering as if the run had ended.
+TEST(SlurmCommand, StatusSaysWhenTheSchedulerCannotBeAsked) {
+  const std::string dir = fresh_dir("status_no_scheduler");
+  write_text(dir + "/e.toml", kExperiment);
+  const std::string sbatch = fake_sbatch(dir, "#!/bin/bash\n"
+      "n=$(cat \"$(dirname \"$0\")/count\" 2>/dev/null || echo 300); n=$((n + 1))\n"
+      "echo $n > \"$(dirname \"$0\")/count\"; echo $n\n");  // submits, runs nothing
+  const std::string run = dir + "/run";
+  ASSERT_EQ(run_command("env RENDERAUDIT_SBATCH=" + sbatch + " " + RA_BINARY + " run " + dir +
+                        "/e.toml --out " + run + " --slurm --allow-node-local --slices 2")
+                .exit_code, 0);
+  auto status = [&](const std::string& squeue, const std::string& extra = "") {
+    return run_command("env RENDERAUDIT_SQUEUE=" + squeue + " " + RA_BINARY + " status " + run +
+                       extra);
+  };
+  const std::string down = dir + "/squeue_down";
+  write_text(down, "#!/bin/sh\necho 'squeue: error: Unable to contact slurm controller "
+                   "(connect failure)' >&2\nexit 1\n");
+  fs::permissions(down, fs::perms::owner_all);
+  for (const std::string& squeue : {dir + "/no_such_squeue", down}) {
+    const Outcome o = status(squeue);
+    EXPECT_EQ(o.exit_code, 4) << o.output;
+    EXPECT_NE(o.output.find(run + ": experiment experiment: unknown\n"), std::string::npos)
+        << o.output;
+    EXPECT_NE(o.output.find("the scheduler could not be asked"), std::string::npos) << o.output;
+    EXPECT_EQ(status(squeue, " --wait --every 0.1").exit_code, 4);
+  }
+  EXPECT_NE(status(dir + "/no_such_squeue").output.find("squeue: squeue not found"),
+            std::string::npos);
+  EXPECT_NE(status(down).output.find("Unable to contact slurm controller"), std::string::npos);
+  // the scheduler answering that the tasks wait: queued (exit 3), as before
+  const std::string pending = dir + "/squeue_pending";
+  write_text(pending, "#!/bin/sh\necho '301_1|PENDING|Resources'\necho '302|PENDING|Dependency'\n");
+  fs::permissions(pending, fs::perms::owner_all);
+  const Outcome q = status(pending);
+  EXPECT_EQ(q.exit_code, 3) << q.output;
+  EXPECT_NE(q.output.find(run + ": experiment experiment: queued\n"), std::string::npos)
+      << q.output;
 }
 
 TEST(SlurmCommand, TheScriptsRunAsSlurmWouldGiveTheOneMachineRun) {

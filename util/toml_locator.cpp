@@ -2,6 +2,8 @@
 
 #include <cctype>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -43,9 +45,9 @@ toml::table TomlLocator::parse(const std::string& text) const {
   }
 }
 
-std::string TomlLocator::read_text(const std::string& path) {
+std::string TomlLocator::read_text(const std::string& path, const std::string& what) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path + ": cannot read the experiment file");
+  if (!in) throw UserError(path + ": cannot read " + what + " (" + std::strerror(errno) + ")");
   std::stringstream text;
   text << in.rdbuf();
   return text.str();

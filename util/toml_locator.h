@@ -25,8 +25,10 @@ class TomlLocator {
   void reject_unknown_keys(const toml::table& table, const std::string& where,
                            const std::set<std::string>& allowed) const;
 
-  // The whole text of the file at `path`; UserError "PATH: cannot read the experiment file".
-  static std::string read_text(const std::string& path);
+  // The whole text of the file at `path`; UserError "PATH: cannot read WHAT (the system's
+  // reason)", WHAT naming what the file was to be.
+  static std::string read_text(const std::string& path,
+                               const std::string& what = "the experiment file");
   // The TOML text of this file; a syntax error becomes "file:line:column: description".
   toml::table parse(const std::string& text) const;
   // An experiment's name: the top-level `name` when present (a non-empty string of letters,
