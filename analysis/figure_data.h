@@ -36,7 +36,7 @@
 //      "bihistogram": {"edges": [..], "count_a": [..], "count_b": [..], "height_a": [..],
 //                      "height_b": [..], "bin_width": .., "n_a": .., "n_b": ..,
 //                      "outside_a": .., "outside_b": ..}}],
-//   "speed_error": [                    // render time against error (issue 8): one entry per kind
+//   "speed_error": [                    // render time against error: one entry per kind
 //     {"kind": "line", "metric": "lse_u_norm", "symbol": "LSEu-norm", "units": "sqrt(W*H) units",
 //      "time_units": "us",
 //      "points": [                      // per platform, then view group (every condition)

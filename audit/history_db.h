@@ -2,7 +2,7 @@
 // SQLite database (default outputs/history.sqlite); `renderaudit history` reads it back for the
 // table of recent audits and the trend figures.
 //
-// Schema (version kHistorySchemaVersion, stored in PRAGMA user_version; README "History"):
+// Schema (version kHistorySchemaVersion, stored in PRAGMA user_version; docs/operations.md):
 //   audits   one row per audit: id (1, 2, ... in append order), date_utc, experiment,
 //            experiment_hash, seed (decimal text: SQLite integers are signed), baseline_run,
 //            current_run, verdict ('unchanged' | 'changed' | 'failed'), changed_primitives,

@@ -219,7 +219,7 @@ TEST_F(RendererTest, BoxPlotRestrictsTheRangeAndSaysWhatIsOutside) {
   EXPECT_NE(text.find("Box plot: LSEs-norm"), std::string::npos) << text;
 }
 
-// Why: the speed-against-error figure (issue 8) is read by where its markers sit on log axes; each
+// Why: the speed-against-error figure is read by where its markers sit on log axes; each
 // marker's centre pixel must be its series' colour at log10 of its values, the legend must name
 // each series (platform), the ticks must be readable powers of ten, and a point with a zero value
 // cannot sit on a log axis: it is left out and the note says so.

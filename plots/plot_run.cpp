@@ -383,7 +383,7 @@ struct Planner {
     }
   }
 
-  // Speed against error (issue 8): one point per platform x view group, x = median render time
+  // Speed against error: one point per platform x view group, x = median render time
   // per primitive, y = median of the kind's normalised unsigned error, IQR bars on both, log axes.
   void speed_error(an::PrimitiveKind kind) {
     const std::string section = section_of(kind);
