@@ -40,8 +40,9 @@ namespace ra {
 constexpr int kHistorySchemaVersion = 1;
 constexpr int kHistoryBusyTimeoutMs = 30000;  // how long an appender or reader waits for the lock
 
-// outputs/history.sqlite (relative to the working directory).
-std::string default_history_path();
+// The history an audit appends to when none is named: history.sqlite beside the current run
+// directory (outputs/history.sqlite for outputs/RUN), never a path relative to the working directory.
+std::string default_history_path(const std::string& current_run_dir);
 
 // Appends `s` as one audit, in one transaction. Creates the parent directory, the file and the
 // schema when missing. Throws ra::UserError naming the file when it cannot be opened or written,

@@ -110,6 +110,8 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
   if (manifest.is_object() && manifest.contains("slice") && slice_dirs.empty()) {
     const auto& sl = manifest["slice"];
     shards = shards_of_slice(shards, exp, Slice{sl.value("index", 1), sl.value("count", 1)});
+    s.slice_index = sl.value("index", 1);
+    s.slice_count = sl.value("count", 1);
   }
   s.planned = shards.size();
 
@@ -166,7 +168,11 @@ std::string format_run_status(const RunStatus& s) {
   const double pct = s.planned ? 100.0 * s.done / s.planned : 0;
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.0f%%", pct);
-  o << s.dir << ": experiment " << s.experiment << ": " << s.state() << "\n";
+  o << s.dir << ": experiment " << s.experiment << ": " << s.state();
+  if (s.slice_count > 0)
+    o << " (slice " << s.slice_index << " of " << s.slice_count
+      << ": its own shards; `renderaudit merge` joins the slices into one run to analyse)";
+  o << "\n";
   o << "  shards: " << s.planned << " planned, " << s.done << " done (" << buf << "), " << s.running
     << " running, " << s.failed << " failed, " << s.waiting << " waiting\n";
   for (const auto& w : s.writers) {
@@ -215,7 +221,8 @@ nlohmann::json to_json(const RunStatus& s) {
                       {"done", s.done},     {"running", s.running},
                       {"failed", s.failed}, {"waiting", s.waiting},
                       {"writers", writers}, {"manifest_status", s.manifest_status},
-                      {"left_s", s.left_s}};
+                      {"left_s", seconds_or_null(s.left_s)}};
+  if (s.slice_count > 0) j["slice"] = {{"index", s.slice_index}, {"count", s.slice_count}};
   if (s.slurm) {
     nlohmann::json jobs = nlohmann::json::array();
     for (const auto& job : s.jobs)
