@@ -137,7 +137,8 @@ Table findings_table(const std::string& run_dir, std::vector<std::string>& sente
       "As the reference: the same pixels as the exact reference rasterizer; other, as GL allows: "
       "other pixels, each one GL permits (the driver's subpixel snapping, ties, line ends); a "
       "violation lights or leaves dark a pixel no conforming implementation could (section 4 lists them, with the command that "
-      "draws each). The reference platform and antialiased platforms are not judged.");
+      "draws each). The reference platform is exact by definition; antialiased platforms are not "
+      "judged.");
   if (!paper.empty())
     t.notes.push_back(
         "Paper cells: the medians and IQRs of the paper's Tables 3-10 that this run's views "

@@ -198,6 +198,7 @@ struct Content {
   Document doc;
   std::vector<std::string> table_titles;
   std::set<std::string> html_only;  // figure ids left out of the PDF (kPdfAllPairsMax)
+  std::string pdf_pairs_with;       // the baseline platform when the PDF shows only its pairs
 };
 
 // Pairwise figures grow with the square of the platforms. Beyond this many platforms, the PDF's
@@ -214,9 +215,30 @@ bool pair_without(const FigureRef& f, const std::string& baseline) {
          f.title.find(" vs " + baseline + " (below)") == std::string::npos;
 }
 
-// `doc` with only the figures the PDF shows, numbered 1, 2, ... in order.
-Document pdf_document(const Document& doc, const std::set<std::string>& html_only) {
+// `doc` with only the figures the PDF shows, numbered 1, 2, ... in order; with `pairs_with` set,
+// the rows of pairwise tables (columns "Platform a", "Platform b") are those of its pairs.
+Document pdf_document(const Document& doc, const std::set<std::string>& html_only,
+                      const std::string& pairs_with) {
   Document pdf = doc;
+  if (!pairs_with.empty())
+    for (Block& b : pdf.blocks) {
+      if (b.kind != Block::Kind::kTable) continue;
+      Table& t = b.table;
+      const auto a = std::find(t.header.begin(), t.header.end(), "Platform a");
+      const auto z = std::find(t.header.begin(), t.header.end(), "Platform b");
+      if (a == t.header.end() || z == t.header.end()) continue;
+      const std::size_t ia = std::size_t(a - t.header.begin()), iz = std::size_t(z - t.header.begin());
+      const std::size_t before = t.rows.size();
+      std::vector<std::vector<std::string>> kept;
+      for (auto& row : t.rows)
+        if (row.size() > std::max(ia, iz) &&
+            (plain_text(row[ia]) == pairs_with || plain_text(row[iz]) == pairs_with))
+          kept.push_back(std::move(row));
+      t.rows = std::move(kept);
+      t.notes.push_back("This PDF shows the " + std::to_string(t.rows.size()) + " of " +
+                        std::to_string(before) + " rows that pair " + pairs_with +
+                        " with another platform; report.html and the CSV file hold every pair.");
+    }
   pdf.figures.clear();
   for (const FigureRef& f : doc.figures)
     if (!html_only.count(f.id)) {
@@ -521,6 +543,7 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
   std::vector<std::string> platforms;
   for (const auto& p : exp.value("platforms", json::array())) platforms.push_back(str(p));
   if (platforms.size() > kPdfAllPairsMax) {
+    c.pdf_pairs_with = platforms.front();
     for (const FigureRef& f : d.figures)
       if (pair_without(f, platforms.front())) c.html_only.insert(f.id);
     const std::size_t n = platforms.size();
@@ -531,7 +554,8 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
                               std::to_string(n - 1) + " of the " +
                               std::to_string(n * (n - 1) / 2) + " pairs of each view group and "
                               "metric (" + std::to_string(c.html_only.size()) + " figures left "
-                              "out). report.html and figures/ hold every pair."));
+                              "out), and the cross-platform tests of those pairs only. "
+                              "report.html, figures/ and analysis/ hold every pair."));
   }
   return c;
 }
@@ -698,7 +722,8 @@ ReportResult write_report(const ReportOptions& options) {
     if (!fs::exists(f.pdf_path))
       throw UserError(f.pdf_path + " is missing: run `renderaudit plot " + run_dir + "` again");
 
-  assemble(pdf_document(doc, content.html_only), doc, run_dir, pdfunite, result);
+  assemble(pdf_document(doc, content.html_only, content.pdf_pairs_with), doc, run_dir, pdfunite,
+           result);
   result.table_titles = content.table_titles;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
