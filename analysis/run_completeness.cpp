@@ -75,6 +75,12 @@ std::string RunCompleteness::headline() const {
   h += std::to_string(shards_whole) + " of " + std::to_string(shards_planned) + " shards, " +
        std::to_string(primitives_present) + " of " + std::to_string(primitives_planned) +
        " primitives";
+  if (!platforms_run.empty()) {
+    std::string list;
+    for (const std::string& p : platforms_run) list += (list.empty() ? "" : ", ") + p;
+    h += " of the platforms run (--platform " + list + "; the " +
+         std::to_string(shards_of_other_platforms) + " shards of the others were not asked for)";
+  }
   if (!writer.empty()) h += "; being written now by " + writer;
   if (!problems.empty())
     h += "; " + std::to_string(problems.size()) + " problem" + (problems.size() > 1 ? "s" : "");
@@ -117,6 +123,9 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
       c.slice_count = m["slice"].value("count", 0);
       if (c.slice_index < 1 || c.slice_index > c.slice_count) c.slice_index = c.slice_count = 0;
     }
+    if (m.contains("platforms_run") && m["platforms_run"].is_array())
+      for (const auto& p : m["platforms_run"])
+        if (p.is_string()) c.platforms_run.push_back(p.get<std::string>());
   } catch (const std::exception&) {
     c.problems.push_back("manifest.json is missing or unreadable");
   }
@@ -125,7 +134,15 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
                          "(run the same command again to finish it)");
 
   std::set<std::string> planned_files;
-  const std::vector<Shard> plan = plan_shards(exp);
+  std::vector<Shard> plan;  // the platforms run (all without --platform), as `status` plans it
+  for (Shard& s : plan_shards(exp)) {
+    planned_files.insert(fs::path(s.records_path(run_dir)).filename().string());  // any platform's
+    if (c.platforms_run.empty() || std::find(c.platforms_run.begin(), c.platforms_run.end(),
+                                             s.platform) != c.platforms_run.end())
+      plan.push_back(std::move(s));
+    else
+      ++c.shards_of_other_platforms;
+  }
   std::set<std::string> own;  // a slice's own shards (ids); empty for a whole run
   if (c.is_slice())
     for (const Shard& s : shards_of_slice(plan, exp, Slice{c.slice_index, c.slice_count}))
@@ -134,7 +151,6 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
     ++c.shards_planned;
     c.primitives_planned += s.size();
     const std::string path = s.records_path(run_dir);
-    planned_files.insert(fs::path(path).filename().string());
     if (c.is_slice() && !own.count(s.id()) && !fs::exists(path)) {
       ++c.shards_of_other_slices;
       continue;

@@ -26,6 +26,10 @@ struct RunCompleteness {
   // are checked as above; the other slices' shards are counted, not listed, and the remedy is
   // `renderaudit merge`, not running it again.
   int slice_index = 0, slice_count = 0;  // 0: not a slice
+  // A run of some platforms only (`run --platform P`, manifest "platforms_run"), as `status`
+  // counts it: whole when their shards are; the other platforms' shards are not planned here.
+  std::vector<std::string> platforms_run;  // empty: every platform of the experiment
+  uint64_t shards_of_other_platforms = 0;
   uint64_t shards_of_other_slices = 0;   // planned shards that belong to the other slices
 
   bool is_slice() const { return slice_count > 0; }
