@@ -52,6 +52,6 @@ verdict=0
 "$bin" analyze "$tonight" >/dev/null
 "$bin" plot "$tonight" >/dev/null
 "$bin" report "$tonight"
-"$bin" history --db "$db" --last 14 || true
+[[ -f $db ]] && { "$bin" history --db "$db" --last 14 || true; }
 echo "nightly: verdict in $tonight/audit/audit.md; report in $tonight/report/report.pdf"
 exit "$verdict"
