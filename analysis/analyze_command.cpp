@@ -99,8 +99,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   const RunCompleteness completeness = check_run_completeness(o.run_dir);
   if (completeness.has_plan && !completeness.complete() && !o.allow_incomplete)
     throw IncompleteRunError(o.run_dir + ": " + completeness.markdown() +
-                             "Finish the run (the same `renderaudit run` command), or pass "
-                             "--allow-incomplete to analyse it as it is.");
+                             completeness.remedy("analyze"));
   result.completeness = completeness.headline();
 
   LoadOptions load;
@@ -157,6 +156,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   FigureOptions fo;
   fo.quantiles = o.quantiles;
   fo.jobs = o.jobs;
+  fo.alpha = o.alpha;
   const nlohmann::json figures = figure_data(run, fo);
   result.timings.push_back({"figures", watch.lap()});
 

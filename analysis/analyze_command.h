@@ -38,7 +38,7 @@ struct AnalyzeOptions {
   // The paper's published values (analysis/paper_values.h); "" = default_paper_values_path();
   // "none": no comparison.
   std::string paper_values;
-  // The paper's point convention (README, "Where we differ from the paper"): true-invisible
+  // The paper's point convention (docs/method.md, "Where we differ from the paper"): true-invisible
   // points within this many pixels outside the window count as false-invisible; 0 to 16 px,
   // default 0 (the records' classes). 0.5 reproduces the paper's Table 2.
   double point_margin_px = 0;

@@ -9,6 +9,7 @@
 #include <regex>
 
 #include "analysis/records_testing.h"
+#include "stats/csv_table.h"
 #include "util/errors.h"
 #include "tests/cli_harness.h"
 
@@ -128,6 +129,24 @@ TEST(AnalyzeCommand, WritesEveryFileWithoutNaN) {
       EXPECT_EQ(c["qq"]["x"].size(), 300u);
       EXPECT_EQ(c["qq"]["subsampled"], false);
       EXPECT_EQ(c["a"]["views"], nlohmann::json::array({1}));
+      // The figure's test is the view-equivalence analysis' test of the same pair: same p-values,
+      // same verdict (the Q-Q page states it)
+      const CsvTable eq = CsvTable::read_file((dir / "analysis" / "view_equivalence.csv").string());
+      bool found = false;
+      for (std::size_t r = 0; r < eq.row_count(); ++r) {
+        if (eq.cell(r, eq.column("platform")) != c["a"]["platform"].get<std::string>() ||
+            eq.cell(r, eq.column("metric")) != "pe" || eq.cell(r, eq.column("view_group")) != "A")
+          continue;
+        found = true;
+        EXPECT_EQ(c["test"]["location"], "t_pooled");
+        EXPECT_NEAR(c["test"]["location_p"].get<double>(),
+                    *eq.number(r, eq.column("raw_location_p")), 1e-8);
+        EXPECT_NEAR(c["test"]["levene_median_p"].get<double>(),
+                    *eq.number(r, eq.column("raw_levene_median_p")), 1e-8);
+        EXPECT_EQ(c["test"]["differ"].get<bool>(),
+                  eq.cell(r, eq.column("verdict")) != "equivalent");
+      }
+      EXPECT_TRUE(found);
     }
   }
   EXPECT_TRUE(orientation_qq);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "stats/distribution_plots.h"
+#include "stats/hypothesis_tests.h"
 #include "analysis/view_equivalence.h"
 
 namespace ra::analysis {
@@ -90,6 +91,29 @@ json qq_json(std::vector<double> a, std::vector<double> b, const FigureOptions& 
   j["p"] = rounded(qq.p, o.significant_digits);
   j["x"] = rounded(qq.x, o.significant_digits);
   j["y"] = rounded(qq.y, o.significant_digits);
+  return j;
+}
+
+// The pair's location and spread tests (see the header, "Test").
+json test_json(const std::vector<double>& a, const std::vector<double>& b, bool pooled,
+               double alpha) {
+  json j{{"location", pooled ? "t_pooled" : "t_welch"}, {"alpha", alpha}};
+  bool differ = false;
+  try {
+    const double p = (pooled ? stats::t_test_pooled(a, b) : stats::t_test_welch(a, b)).p_value;
+    j["location_p"] = p;
+    differ = differ || p < alpha;
+  } catch (const std::invalid_argument&) {
+    j["location_p"] = nullptr;
+  }
+  try {
+    const double p = stats::levene_test({a, b}, stats::LeveneCenter::kMedian).p_value;
+    j["levene_median_p"] = p;
+    differ = differ || p < alpha;
+  } catch (const std::invalid_argument&) {
+    j["levene_median_p"] = nullptr;
+  }
+  j["differ"] = differ;
   return j;
 }
 
@@ -373,7 +397,8 @@ json figure_data(const RunRecords& run, const FigureOptions& options) {
                     {"a", c.a.describe(run)},
                     {"b", c.b.describe(run)},
                     {"qq", qq_json(a, b, options)},
-                    {"bihistogram", bihistogram_json(a, b, options)}};
+                    {"bihistogram", bihistogram_json(a, b, options)},
+                    {"test", test_json(a, b, c.what == "orientations", options.alpha)}};
   });
 
   json box_list = json::array();

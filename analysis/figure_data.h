@@ -35,8 +35,10 @@
 //             "min_a": .., "max_a": .., "min_b": .., "max_b": ..},
 //      "bihistogram": {"edges": [..], "count_a": [..], "count_b": [..], "height_a": [..],
 //                      "height_b": [..], "bin_width": .., "n_a": .., "n_b": ..,
-//                      "outside_a": .., "outside_b": ..}}],
-//   "speed_error": [                    // render time against error (issue 8): one entry per kind
+//                      "outside_a": .., "outside_b": ..},
+//      "test": {"location": "t_pooled" | "t_welch", "location_p": .., "levene_median_p": ..,
+//               "alpha": 0.05, "differ": bool}}],  // p null where a test is undefined
+//   "speed_error": [                    // render time against error: one entry per kind
 //     {"kind": "line", "metric": "lse_u_norm", "symbol": "LSEu-norm", "units": "sqrt(W*H) units",
 //      "time_units": "us",
 //      "points": [                      // per platform, then view group (every condition)
@@ -57,6 +59,10 @@
 // digits; summary numbers (quartiles, fences) are exact. Comparisons cover the paper's headline
 // metrics, the first two of each kind in run_records.h (PE, PEnorm; LSEs-norm, LSEu-norm;
 // TEs-norm, TEu-norm); box plots cover every metric.
+// Test: what each pair's figure is read for, decided as the view-equivalence analysis decides it:
+// the samples differ when the location test or Levene's test (median centre) gives p < alpha on
+// the raw values. Orientation pairs use the pooled t test (view_equivalence.h: the same verdict
+// as its table), other pairs Welch's (their spreads need not be equal).
 // Speed against error: the time is render_us (CPU us of draw + glFinish; for primitives drawn in a
 // batch, an equal share of the batch's time: records column batch_size) over every `ok` record of
 // the group with a time, as speed_table (paper_tables.h) counts its "Cases"; the error is the
@@ -84,6 +90,7 @@ struct FigureOptions {
   double bihistogram_central_fraction = 0.99;
   int significant_digits = 7;
   unsigned jobs = 0;  // threads; 0: the number of cores
+  double alpha = 0.05;  // significance level of each comparison's "test" (analyze --alpha)
 };
 
 // The records column of the error the speed-against-error points use for `kind`: its normalised

@@ -548,7 +548,7 @@ Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
         format_significant(run.point_margin_px, 6) + "): " +
         std::to_string(run.points_within_margin) +
         " true-invisible points whose projection lies within that many pixels outside the window "
-        "are counted false-invisible (README, \"Where we differ from the paper\").");
+        "are counted false-invisible (docs/method.md, \"Where we differ from the paper\").");
   }
   if (kind != PrimitiveKind::kPoint && multiple) {
     t.notes.push_back(

@@ -41,7 +41,7 @@ TEST(PaperValues, ReadAndTiedTogetherAsThePaperTiesThem) {
   }
   EXPECT_TRUE(std::isnan(table(all, "10").iqr[1][3]));  // lost in the extraction
   EXPECT_TRUE(std::isnan(table(all, "9").median[1][0]));
-  EXPECT_EQ(table(all, "10").iqr[0][1], 0.680);  // the TEu IQR of group B (issue 19)
+  EXPECT_EQ(table(all, "10").iqr[0][1], 0.680);  // the TEu IQR of group B (Platform I)
   EXPECT_EQ(table(all, "7").median[0], (std::array<double, 4>{1.906, 1.920, 0.257, 0.258}));
 }
 

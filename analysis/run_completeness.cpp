@@ -12,6 +12,7 @@
 #include "runner/experiment.h"
 #include "runner/shard.h"
 #include "runner/shard_file.h"
+#include "runner/slicing.h"
 #include "util/atomic_file.h"
 #include "util/dir_lock.h"
 
@@ -71,9 +72,19 @@ std::string check_unsealed(const std::string& path, const Shard& s, const std::s
 std::string RunCompleteness::headline() const {
   if (!has_plan) return "completeness unknown: no experiment.toml, so no plan to compare with";
   std::string h = complete() ? "complete: " : "INCOMPLETE: ";
+  if (is_slice() && shards_of_other_slices > 0)
+    h = "a slice (" + std::to_string(slice_index) + " of " + std::to_string(slice_count) +
+        ", one machine's share; " + std::to_string(shards_of_other_slices) +
+        " shards belong to the other slices): ";
   h += std::to_string(shards_whole) + " of " + std::to_string(shards_planned) + " shards, " +
        std::to_string(primitives_present) + " of " + std::to_string(primitives_planned) +
        " primitives";
+  if (!platforms_run.empty()) {
+    std::string list;
+    for (const std::string& p : platforms_run) list += (list.empty() ? "" : ", ") + p;
+    h += " of the platforms run (--platform " + list + "; the " +
+         std::to_string(shards_of_other_platforms) + " shards of the others were not asked for)";
+  }
   if (!writer.empty()) h += "; being written now by " + writer;
   if (!problems.empty())
     h += "; " + std::to_string(problems.size()) + " problem" + (problems.size() > 1 ? "s" : "");
@@ -92,6 +103,15 @@ std::string RunCompleteness::markdown(std::size_t max_listed) const {
   return md;
 }
 
+std::string RunCompleteness::remedy(const std::string& command) const {
+  if (is_slice())
+    return "Join the " + std::to_string(slice_count) + " slices with `renderaudit merge SLICE_DIR_1 "
+           "... SLICE_DIR_" + std::to_string(slice_count) + " --out DIR` and " + command +
+           " DIR, or pass --allow-incomplete to " + command + " this slice alone.";
+  return "Finish the run (the same `renderaudit run` command), or pass --allow-incomplete to " +
+         command + " it as it is.";
+}
+
 RunCompleteness check_run_completeness(const std::string& run_dir) {
   RunCompleteness c;
   const std::string toml = run_dir + "/experiment.toml";
@@ -102,6 +122,14 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
   try {
     const nlohmann::json m = nlohmann::json::parse(read_file(run_dir + "/manifest.json"));
     c.manifest_status = m.value("status", "");
+    if (m.contains("slice") && m["slice"].is_object()) {
+      c.slice_index = m["slice"].value("index", 0);
+      c.slice_count = m["slice"].value("count", 0);
+      if (c.slice_index < 1 || c.slice_index > c.slice_count) c.slice_index = c.slice_count = 0;
+    }
+    if (m.contains("platforms_run") && m["platforms_run"].is_array())
+      for (const auto& p : m["platforms_run"])
+        if (p.is_string()) c.platforms_run.push_back(p.get<std::string>());
   } catch (const std::exception&) {
     c.problems.push_back("manifest.json is missing or unreadable");
   }
@@ -110,11 +138,27 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
                          "(run the same command again to finish it)");
 
   std::set<std::string> planned_files;
-  for (const Shard& s : plan_shards(exp)) {
+  std::vector<Shard> plan;  // the platforms run (all without --platform), as `status` plans it
+  for (Shard& s : plan_shards(exp)) {
+    planned_files.insert(fs::path(s.records_path(run_dir)).filename().string());  // any platform's
+    if (c.platforms_run.empty() || std::find(c.platforms_run.begin(), c.platforms_run.end(),
+                                             s.platform) != c.platforms_run.end())
+      plan.push_back(std::move(s));
+    else
+      ++c.shards_of_other_platforms;
+  }
+  std::set<std::string> own;  // a slice's own shards (ids); empty for a whole run
+  if (c.is_slice())
+    for (const Shard& s : shards_of_slice(plan, exp, Slice{c.slice_index, c.slice_count}))
+      own.insert(s.id());
+  for (const Shard& s : plan) {
     ++c.shards_planned;
     c.primitives_planned += s.size();
     const std::string path = s.records_path(run_dir);
-    planned_files.insert(fs::path(path).filename().string());
+    if (c.is_slice() && !own.count(s.id()) && !fs::exists(path)) {
+      ++c.shards_of_other_slices;
+      continue;
+    }
     if (!fs::exists(path)) {
       c.problems.push_back("missing shard " + s.id() + " (" + range(s) + ")");
       continue;

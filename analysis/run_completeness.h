@@ -22,12 +22,28 @@ struct RunCompleteness {
   std::string manifest_status;       // as manifest.json says ("complete", "running", ...), or ""
   std::string writer;                // who is writing the directory now, or ""
   std::vector<std::string> problems;  // one line each, e.g. "missing shard X (primitives 0-4999)"
+  // A slice (`run --slice K/N`, manifest "slice"): one machine's share of the plan. Its own shards
+  // are checked as above; the other slices' shards are counted, not listed, and the remedy is
+  // `renderaudit merge`, not running it again.
+  int slice_index = 0, slice_count = 0;  // 0: not a slice
+  // A run of some platforms only (`run --platform P`, manifest "platforms_run"), as `status`
+  // counts it: whole when their shards are; the other platforms' shards are not planned here.
+  std::vector<std::string> platforms_run;  // empty: every platform of the experiment
+  uint64_t shards_of_other_platforms = 0;
+  uint64_t shards_of_other_slices = 0;   // planned shards that belong to the other slices
 
-  bool complete() const { return has_plan && problems.empty() && writer.empty(); }
+  bool is_slice() const { return slice_count > 0; }
+
+  bool complete() const {
+    return has_plan && problems.empty() && writer.empty() && shards_of_other_slices == 0;
+  }
   // "complete: 16 of 16 shards, 64000 of 64000 primitives", or what is wrong, in one line.
   std::string headline() const;
   // Markdown: the headline and the problems (at most `max_listed`, then how many more).
   std::string markdown(std::size_t max_listed = 20) const;
+  // What to do about it, one sentence for `command` ("analyze", "report"): finish the run, or for
+  // a slice, merge the slices.
+  std::string remedy(const std::string& command) const;
 };
 
 // Reads DIR/experiment.toml, DIR/manifest.json and DIR/records/ (every records file once, in

@@ -1,4 +1,4 @@
-// The records of a run directory (DIR/records/*.csv, schema in README.md and metrics/records.h),
+// The records of a run directory (DIR/records/*.csv, schema in docs/records.md and metrics/records.h),
 // loaded as the samples the analysis stage needs and nothing more: per platform, kind and view the
 // visibility-class counts, the values of each error metric over the true-visible cases with status
 // `ok` (float64, in record units), and the render times. Views that differ only by camera
@@ -73,7 +73,7 @@ const std::vector<MetricSpec>& kind_metrics(PrimitiveKind kind);
 // The index of `column` in kind_metrics(kind); std::logic_error when it is not one of them.
 std::size_t metric_index(PrimitiveKind kind, std::string_view column);
 
-// The parameters of one view (README "Records schema").
+// The parameters of one view (docs/records.md).
 struct ViewMeta {
   int view = 0;         // 1-based, Table 1 order
   int view_group = 0;   // 0 = A

@@ -1,4 +1,4 @@
-// figures.json "speed_error" (issue 8, speed against error): each point's time and error
+// figures.json "speed_error" (speed against error): each point's time and error
 // statistics equal those computed here directly from the synthetic records, with the run's
 // quantile definition, over the records the header says (time: every `ok` record with a time;
 // error: the true-visible ones, normalised unsigned metric).

@@ -27,6 +27,7 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
     std::uint64_t seed = 2008;
     std::string paper;
     double point_margin_px = 0;
+    bool quiet = false;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
@@ -64,6 +65,8 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
                   "default 0: the records' classes)")
       ->check(CLI::Range(0.0, 16.0));
   cmd->add_flag("--timings", o->timings, "print the time each stage took");
+  cmd->add_flag("--quiet,-q", o->quiet,
+                "print only where the files went, not the tables (they are in DIR/analysis/)");
   cmd->add_flag("--allow-incomplete", o->allow_incomplete,
                 "analyse a run with missing or damaged shards (README.md and the summary say "
                 "what is missing); without it such a run is refused with exit code 3");
@@ -91,7 +94,7 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
       exit_code = kExitIncomplete;
       return;
     }
-    std::cout << r.summary;
+    if (!o->quiet) std::cout << r.summary;
     if (o->timings) {
       std::cout << "Timings (s):";
       for (const auto& t : r.timings) {

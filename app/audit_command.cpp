@@ -80,7 +80,9 @@ void register_audit_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1e-12, 0.5));
   cmd->add_option("--out,-o", cli.options.out_dir,
                   "output directory (default CURRENT_DIR/audit, or RUN_DIR/audit-P1-vs-P2)");
-  cmd->add_option("--db", cli.db, "history database (default outputs/history.sqlite)");
+  cmd->add_option("--db", cli.db,
+                  "history database (default: history.sqlite beside CURRENT_DIR, e.g. "
+                  "outputs/history.sqlite for outputs/RUN)");
   cmd->add_flag("--no-history", cli.no_history, "do not append to the history database");
   cmd->add_option("--expect-renderer", cli.options.expect_renderer,
                   "regular expression (ECMAScript, searched) every current GL_RENDERER must "
@@ -113,7 +115,7 @@ void register_audit_command(CLI::App& app, int& exit_code) {
     print_result(r, files);
     exit_code = int(r.verdict);
     if (cli.no_history) return;
-    const std::string db = cli.db.empty() ? default_history_path() : cli.db;
+    const std::string db = cli.db.empty() ? default_history_path(cli.options.current_dir) : cli.db;
     try {
       append_history(db, r.summary);
       std::printf("  history: appended to %s\n", db.c_str());

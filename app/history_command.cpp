@@ -21,7 +21,7 @@ namespace ra::app {
 namespace {
 
 struct HistoryOptions {
-  std::string db = default_history_path();
+  std::string db;  // named explicitly: the working directory says nothing about which history
   std::size_t last = 20;
   std::string out_dir;  // empty: DIR-of-db/history
   std::vector<std::string> metrics;
@@ -50,6 +50,18 @@ std::string run_name(const std::string& run) {
   const fs::path p = fs::path(run).lexically_normal();
   const std::string name = (p.has_filename() ? p : p.parent_path()).filename().string();
   return name.empty() ? run : name;
+}
+
+// What an audit compared: a run with its baseline ("two runs", what `make nightly` appends), or two
+// platforms of one run (`audit --between`: the same directory on both sides), "P1 vs P2".
+std::string compares_text(const AuditSummary& s) {
+  if (s.baseline_run != s.current_run) return "two runs";
+  auto platforms = [](const std::vector<DriverIdentity>& drivers) {
+    std::string p;
+    for (const DriverIdentity& d : drivers) p += (p.empty() ? "" : ",") + d.platform;
+    return p.empty() ? std::string("?") : p;
+  };
+  return platforms(s.baseline_drivers) + " vs " + platforms(s.current_drivers);
 }
 
 std::string drivers_text(const std::vector<DriverIdentity>& drivers) {
@@ -112,20 +124,21 @@ void run_history(const HistoryOptions& o, int& exit_code) {
   std::printf(", the last %zu:\n\n", h.size());
 
   std::vector<std::vector<std::string>> rows = {{"id", "date (UTC)", "verdict", "changed", "flaky",
-                                                 "failed", "tests", "current run", "baseline run"}};
-  const std::vector<bool> right = {true, false, false, true, true, true, true, false, false};
+                                                 "failed", "tests", "compares", "current run",
+                                                 "baseline run"}};
+  const std::vector<bool> right = {true, false, false, true, true, true, true, false, false, false};
   for (const HistoryEntry& e : h) {
     const AuditSummary& s = e.summary;
     rows.push_back({"#" + std::to_string(e.id), s.date_utc, verdict_name(s.verdict),
                     std::to_string(s.changed_primitives), std::to_string(s.flaky_primitives),
                     std::to_string(s.failed_primitives), std::to_string(s.significant_tests),
-                    run_name(s.current_run), run_name(s.baseline_run)});
+                    compares_text(s), run_name(s.current_run), run_name(s.baseline_run)});
   }
   std::printf("%s", text_table(rows, right).c_str());
   std::printf(
       "\n(changed: primitives whose pixels changed and stayed changed on re-render; flaky: "
       "changed only once; failed: crash or timeout records; tests: distribution tests "
-      "rejected)\n\ndrivers (current run; baseline when it differs):\n");
+      "rejected; compares: a run against its baseline, or two platforms of one run)\n\ndrivers (current run; baseline when it differs):\n");
   for (const HistoryEntry& e : h) {
     const AuditSummary& s = e.summary;
     std::printf("  #%lld  %s\n", static_cast<long long>(e.id),
@@ -174,7 +187,11 @@ void register_history_command(CLI::App& app, int& exit_code) {
       "failed counts) as a table, and a trend figure per metric (median and IQR per platform,\n"
       "kind and view group, over the audits) as PNG + vector PDF + CSV. Needs no display.");
   static HistoryOptions o;
-  cmd->add_option("--db", o.db, "history database (default: outputs/history.sqlite)");
+  cmd->add_option("--db", o.db,
+                  "history database: `audit` appends to history.sqlite beside the run it audits "
+                  "(outputs/history.sqlite for outputs/RUN); `make nightly` to "
+                  "outputs/nightly/history.sqlite")
+      ->required();
   cmd->add_option("--last,-n", o.last, "show the last N audits (default: 20)")
       ->check(CLI::Range(std::size_t(1), std::size_t(1000000)));
   cmd->add_option("--out,-o", o.out_dir,

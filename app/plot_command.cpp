@@ -1,6 +1,8 @@
 // `renderaudit plot DIR`: every figure of a run as PNG + vector PDF (+ the numbers as CSV) in
 // DIR/figures/, from DIR/analysis/figures.json and the records. Works without a display: a
 // private Xvfb is started when DISPLAY is unset or unusable (plots/headless_display.h).
+#include <unistd.h>
+
 #include <cstdio>
 
 #include "app/commands.h"
@@ -19,8 +21,13 @@ void register_plot_command(CLI::App& app, int& exit_code) {
       "figures.");
   static plots::PlotOptions options;
   cmd->add_option("dir", options.run_dir, "run directory")->required();
-  cmd->add_flag("--progress", options.progress, "a line per figure on stderr");
+  static bool force_progress = false, quiet = false;
+  cmd->add_flag("--progress", force_progress,
+                "progress on stderr even when it is not a terminal (a line per figure); on a "
+                "terminal it is shown by default, as one line rewritten");
+  cmd->add_flag("--quiet,-q", quiet, "no progress on stderr");
   cmd->callback([&exit_code] {
+    options.progress = !quiet && (force_progress || ::isatty(2));
     if (plot_study_if_present(options.run_dir, exit_code)) return;
     const plots::PlotResult r = plots::plot_run(options);
     std::printf("%zu figures (PNG + PDF + CSV) in %s, %.1f s, display %s%s\n", r.figures.size(),

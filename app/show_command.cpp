@@ -90,11 +90,10 @@ void register_show_command(CLI::App& app, int& exit_code) {
                 im.shown.y1 - 1, v.width, v.height, im.scale);
     std::printf(
         "colours: light grey = lit by both (%lld), orange = platform (%s) only (%lld), blue = "
-        "reference only (%lld), black = of those, pixels GL forbids (%lld), red line = ideal "
-        "projection\n",
+        "reference only (%lld), black = pixels GL forbids (%s), red line = ideal projection\n",
         static_cast<long long>(im.both), q.platform.c_str(),
         static_cast<long long>(im.platform_only), static_cast<long long>(im.reference_only),
-        static_cast<long long>(im.violating));
+        forbidden_pixels_text(im.record.violating_pixels, im.violating).c_str());
     std::printf("%s %llu, view %d (group %s, fov %g deg, %d x %d px), platform %s:\n",
                 im.record.kind.c_str(), static_cast<unsigned long long>(q.index), v.id,
                 v.group_name().c_str(), v.fov_deg, v.width, v.height, q.platform.c_str());

@@ -7,13 +7,16 @@
 // Output: human-readable text, or with --json one JSON object (snake_case keys, doubles written so
 // that they read back exactly). A statistic that is undefined for the data (both samples constant,
 // say) is written as null with a "reason"; NaN never appears.
+#include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -48,6 +51,7 @@ struct StatsOptions {
   std::string poly;            // regress: "COLUMN:DEGREE", a polynomial in one column
   bool no_intercept = false;   // regress
   bool json = false;
+  std::vector<std::string> where;  // describe: COLUMN=VALUE conditions every row must meet
 };
 
 QuantileDefinition quantile_definition(const std::string& name) {
@@ -106,6 +110,53 @@ Sample read_sample(const std::string& file, const std::string& column) {
                     " empty cells skipped); at least 2 are needed");
   }
   return Sample{file, column, std::move(c.values), c.n_missing};
+}
+
+// The rows of `column` where every `where` condition (COLUMN=VALUE, the cell's text) holds, from
+// a CSV file or from a run directory's records (DIR/records/*.csv, all with the records header).
+Sample read_selected_sample(const std::string& path, const std::string& column,
+                            const std::vector<std::string>& where) {
+  namespace fs = std::filesystem;
+  std::vector<std::pair<std::string, std::string>> conditions;
+  for (const std::string& w : where) {
+    const std::size_t eq = w.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw UserError("--where '" + w + "': expected COLUMN=VALUE, e.g. platform=osmesa-llvmpipe");
+    conditions.emplace_back(w.substr(0, eq), w.substr(eq + 1));
+  }
+  std::vector<std::string> files;
+  std::string name = path;
+  if (fs::is_directory(path)) {
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(fs::path(path) / "records", ec))
+      if (e.path().extension() == ".csv") files.push_back(e.path().string());
+    std::sort(files.begin(), files.end());
+    if (files.empty())
+      throw UserError(path + ": a directory without records/*.csv (give a CSV file or a run "
+                      "directory)");
+    name = path + "/records (" + std::to_string(files.size()) + " files)";
+  } else {
+    files.push_back(path);
+  }
+  Sample s{name, column, {}, 0};
+  for (const std::string& file : files) {
+    const analysis::CsvTable t = analysis::CsvTable::read_file(file);
+    const std::size_t col = t.column(column);
+    std::vector<std::pair<std::size_t, std::string>> conds;
+    for (const auto& [c, v] : conditions) conds.emplace_back(t.column(c), v);
+    for (std::size_t r = 0; r < t.row_count(); ++r) {
+      bool keep = true;
+      for (const auto& [c, v] : conds) keep = keep && t.cell(r, c) == v;
+      if (!keep) continue;
+      if (const std::optional<double> x = t.number(r, col)) s.values.push_back(*x);
+      else ++s.n_missing;
+    }
+  }
+  if (s.values.size() < 2)
+    throw UserError(name + ": column '" + column + "' has " + std::to_string(s.values.size()) +
+                    " value(s) in the rows selected (" + std::to_string(s.n_missing) +
+                    " empty cells skipped); at least 2 are needed");
+  return s;
 }
 
 json description_json(const stats::Description& d) {
@@ -241,20 +292,23 @@ json header_json(const char* command) {
 }
 
 void run_describe(const StatsOptions& o) {
-  const Sample s = read_sample(o.files.at(0), o.column);
+  const Sample s = read_selected_sample(o.files.at(0), o.column, o.where);
   const stats::Description d = stats::describe(s.values, quantile_definition(o.quantiles));
   if (o.json) {
     json j = header_json("stats describe");
     j["quantile_definition"] = stats::quantile_definition_name(quantile_definition(o.quantiles));
     j["file"] = s.file;
     j["column"] = s.column;
+    if (!o.where.empty()) j["where"] = o.where;
     j["n_missing"] = s.n_missing;
     j["description"] = description_json(d);
     print_json(j);
     return;
   }
-  out("%s, column '%s' (%zu empty cells skipped); quartiles: %s\n", s.file.c_str(),
-      s.column.c_str(), s.n_missing,
+  std::string selected;
+  for (const std::string& w : o.where) selected += (selected.empty() ? ", rows where " : " and ") + w;
+  out("%s, column '%s'%s (%zu empty cells skipped); quartiles: %s\n", s.file.c_str(),
+      s.column.c_str(), selected.c_str(), s.n_missing,
       stats::quantile_definition_name(quantile_definition(o.quantiles)));
   print_description_rows({d}, {s.column});
 }
@@ -605,10 +659,14 @@ void register_stats_command(CLI::App& app, int& exit_code) {
   auto describe_opt = std::make_shared<StatsOptions>();
   auto* describe = stats_cmd->add_subcommand(
       "describe", "n, mean, sd, median, quartiles, IQR, min, max of one column");
-  describe->add_option("file", describe_opt->files, "CSV file with a header row")
+  describe->add_option("file", describe_opt->files,
+                       "CSV file with a header row, or a run directory (its records/*.csv)")
       ->required()
       ->expected(1);
   describe->add_option("--column,-c", describe_opt->column, "column name")->required();
+  describe->add_option("--where,-w", describe_opt->where,
+                       "only rows whose cell in COLUMN is VALUE: COLUMN=VALUE, repeatable, e.g. "
+                       "--where platform=osmesa-llvmpipe --where kind=line --where view=3");
   add_common_options(describe, *describe_opt, true);
   describe->callback([describe_opt, &exit_code] {
     run_describe(*describe_opt);

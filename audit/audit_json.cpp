@@ -1,5 +1,5 @@
 // audit.json: everything the audit found, machine-readable (audit/audit_report.h; keys in
-// README). Numbers that are undefined are null; 64-bit pixel hashes are decimal strings.
+// docs/nightly-audit.md). Numbers that are undefined are null; 64-bit pixel hashes are decimal strings.
 #include <algorithm>
 #include <cmath>
 #include <map>

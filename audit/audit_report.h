@@ -1,6 +1,6 @@
 // What `renderaudit audit` writes into its output directory, each file atomically (temp + rename,
 // util/atomic_file.h):
-//   audit.json              everything, machine-readable ("schema_version": 1; keys in README)
+//   audit.json              everything, machine-readable ("schema_version": 1; keys in docs/nightly-audit.md)
 //   audit.md                for a person, read first: verdict, new conformance violations (first:
 //                           what a driver team must see), drivers side by side, counts, the
 //                           changed primitives (first 50 + total, each with its `renderaudit show`

@@ -16,7 +16,7 @@ const char* verdict_name(Verdict v);  // "unchanged", "changed", "failed"
 bool parse_verdict(const std::string& s, Verdict* out);
 
 // One metric's distribution in one platform x kind x view group of the current run. Units are the
-// metric's own (README, records schema): e.g. pe in pixels, te_u in px^2.
+// metric's own (docs/records.md): e.g. pe in pixels, te_u in px^2.
 struct MetricSummary {
   std::string platform, kind, metric;
   int view_group = 0;     // 1..4 = groups A..D
@@ -36,7 +36,7 @@ struct DriverIdentity {
 };
 
 struct AuditSummary {
-  std::string date_utc;          // ISO 8601, e.g. "2026-11-21T03:00:00Z": when the audit ran
+  std::string date_utc;          // ISO 8601, e.g. "YYYY-MM-DDTHH:MM:SSZ": when the audit ran
   std::string experiment, experiment_hash;
   uint64_t seed = 0;
   std::string baseline_run, current_run;  // run directories as given (absolute paths)

@@ -218,7 +218,10 @@ Connection open_existing(const std::string& path) {
 
 }  // namespace
 
-std::string default_history_path() { return "outputs/history.sqlite"; }
+std::string default_history_path(const std::string& current_run_dir) {
+  const std::filesystem::path run = std::filesystem::absolute(current_run_dir).lexically_normal();
+  return ((run.has_filename() ? run : run.parent_path()).parent_path() / "history.sqlite").string();
+}
 
 void append_history(const std::string& db_path, const AuditSummary& s) {
   append_history(db_path, s, AppendOptions{});

@@ -2,7 +2,7 @@
 // SQLite database (default outputs/history.sqlite); `renderaudit history` reads it back for the
 // table of recent audits and the trend figures.
 //
-// Schema (version kHistorySchemaVersion, stored in PRAGMA user_version; README "History"):
+// Schema (version kHistorySchemaVersion, stored in PRAGMA user_version; docs/operations.md):
 //   audits   one row per audit: id (1, 2, ... in append order), date_utc, experiment,
 //            experiment_hash, seed (decimal text: SQLite integers are signed), baseline_run,
 //            current_run, verdict ('unchanged' | 'changed' | 'failed'), changed_primitives,
@@ -40,8 +40,9 @@ namespace ra {
 constexpr int kHistorySchemaVersion = 1;
 constexpr int kHistoryBusyTimeoutMs = 30000;  // how long an appender or reader waits for the lock
 
-// outputs/history.sqlite (relative to the working directory).
-std::string default_history_path();
+// The history an audit appends to when none is named: history.sqlite beside the current run
+// directory (outputs/history.sqlite for outputs/RUN), never a path relative to the working directory.
+std::string default_history_path(const std::string& current_run_dir);
 
 // Appends `s` as one audit, in one transaction. Creates the parent directory, the file and the
 // schema when missing. Throws ra::UserError naming the file when it cannot be opened or written,

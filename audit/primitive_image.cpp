@@ -129,6 +129,13 @@ void check_request(const ShowRequest& q, const Experiment& exp, Kind kind) {
 
 }  // namespace
 
+std::string forbidden_pixels_text(int64_t violating_pixels, int64_t marked) {
+  if (violating_pixels < 0) return std::to_string(marked) + " marked; not judged";
+  if (violating_pixels == marked) return std::to_string(marked);
+  return std::to_string(violating_pixels) + " (violating_pixels; " + std::to_string(marked) +
+         " marked: every fragment of a column or row that holds too many)";
+}
+
 PrimitiveImage show_primitive(const ShowRequest& q) {
   const std::string toml = (fs::path(q.run_dir) / "experiment.toml").string();
   if (!fs::is_regular_file(toml))

@@ -1,7 +1,7 @@
 // What an audit needs to know about a run directory before comparing records: which experiment
 // (manifest.json: hash, seed; experiment.toml: views, counts, shard size), which drivers drew it
 // (GL_RENDERER / GL_VERSION per platform), and what is missing (shards without a records file,
-// shard failures the manifest lists). README "A run directory" describes the files.
+// shard failures the manifest lists). docs/records.md describes the files.
 #pragma once
 
 #include <cstdint>

@@ -68,7 +68,7 @@ ra::Record synth(Rng& rng, const std::string& platform, int p, const char* kind,
   ra::Record r;
   r.platform = platform;
   r.view = view;
-  const int v0 = view - 1;  // window outermost, orientation innermost (README)
+  const int v0 = view - 1;  // window outermost, orientation innermost (docs/experiments.md)
   r.orientation = v0 % 2 + 1;
   r.fov_deg = (v0 / 2) % 2 ? 150 : 30;
   r.width = r.height = v0 / 4 ? 907 : 128;

@@ -1,5 +1,5 @@
 // `run_overhead_bench [--experiment bench/run_overhead.toml] [--rounds 3] [--jobs 2]`: the whole
-// run's cost against the drivers' own drawing, the figure issue 21 is judged by. Each round runs
+// run's cost against the drivers' own drawing, the figure the run's overhead is judged by. Each round runs
 // the fixed experiment with `renderaudit run` into a fresh directory and reads back its records
 // (render_us: the drawing of each primitive, CPU microseconds) and manifest (wall time, each
 // shard's worker seconds). Printed: per round, wall x jobs / drawing (1.0 is the floor: the
@@ -7,7 +7,7 @@
 // primitive beside the drawing per primitive (the per-primitive floor), medians over the rounds.
 // `--from RUN_DIR` prints the same tables for a run already made (one round; e.g. the full
 // nist2008 run), without running anything. Each round also runs the experiment with
-// `--worker-per-shard` (one process per shard, as before 2026-11-25), the two alternating, so
+// `--worker-per-shard` (one process per shard), the two alternating, so
 // that what serving many shards per process saves is measured side by side.
 #include <algorithm>
 #include <chrono>
@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
     round.elapsed_s = m["invocations"].back().value("elapsed_s", 0.0);
     round.busy_s = m["invocations"].back().value("worker_busy_s", 0.0);
     round.processes = m["invocations"].back().value("worker_processes", -1);
-    // Runs made before 2026-11-25 started a process per shard and did not say so.
+    // Manifests without "workers" come from builds that always started a process per shard.
     round.workers = m["invocations"].back().value("workers", std::string("per-shard"));
     for (const auto& [id, seconds] : m["shard_seconds"].items()) {
       // id: platform.kind.vN.begin-end

@@ -5,7 +5,7 @@
 # (default 5; the first binary of a round alternates too), and prints per shard the median wall
 # seconds of each, their ratio, and whether the two wrote the same records in every column but
 # the timing ones (render_us, batch_size). Exit status 1 when any shard's records differ.
-# What a performance change is judged by in the README: medians side by side on one machine,
+# What a performance change is judged by in docs/benchmarks.md: medians side by side on one machine,
 # records identical. Example:
 #   bench/worker_ab.sh /tmp/old/build build 5 -- osmesa-llvmpipe:triangle:7:3000 osmesa-llvmpipe:line:7:10000
 set -euo pipefail

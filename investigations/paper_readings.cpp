@@ -11,7 +11,7 @@
 //                window count as lying in the field of view (m = 0, 0.25, 0.5, 1).
 //
 // Units as in the records: TEu-norm x 10^3, TEs-norm x 10^6, LSEu-norm x 10^3, LSEs-norm x 10^6
-// (the paper's scales). Prints Markdown; the README's "Where we differ from the paper" quotes its output.
+// (the paper's scales). Prints Markdown; docs/method.md, "Where we differ from the paper", quotes its output.
 // Build: `cmake --build build --target paper_readings`; run: `build/paper_readings [--per-view N]`.
 #include <CLI/CLI.hpp>
 

@@ -41,7 +41,7 @@ struct PreparedCase {
 
 // A small triangle's box is read back whole (one call, and it can share a batch); a large one's in
 // bands of 32 rows that follow its sides: it fills at most half its box, and the readback copy and
-// scan were a fifth of a 907 x 907 llvmpipe triangle's time (README, "Benchmarks").
+// scan were a fifth of a 907 x 907 llvmpipe triangle's time (docs/benchmarks.md).
 PixelRegion triangle_region(const ClippedPolygon& polygon, int width, int height) {
   const PixelRect box = bounding_rect(polygon, width, height, kRegionMargin);
   if (box.area() <= kTriangleBandMinArea) return box;

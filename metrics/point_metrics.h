@@ -24,7 +24,7 @@ PixelRect point_region(const View& view, const IdealPoint& ideal, int margin = 2
 // by `margin_px` pixels on each side, (-m, W + m) x (-m, H + m) in GL window coordinates. With
 // margin 0 this is project_point's `visible`. The paper's false-invisible counts (72, 154, 11, 29
 // per view group, about 1/W of its visible points, none false-visible) fit a margin of half a pixel
-// on each side (README, "Where we differ from the paper"); GL itself never draws such a point.
+// on each side (docs/method.md, "Where we differ from the paper"); GL itself never draws such a point.
 bool inside_window_margin(const View& view, Vec3 p, double margin_px);
 
 // Visibility class of a point (true-visible needs exactly one lit pixel).

@@ -1,5 +1,5 @@
 // Audit records: one CSV row per (platform, view, primitive), the interface between the runner and
-// every later stage. The schema (columns, units, empty cells) is documented in README.md.
+// every later stage. The schema (columns, units, empty cells) is documented in docs/records.md.
 #pragma once
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The one reader of records CSV files (schema: metrics/records.h, README "Records schema"). Every
+// The one reader of records CSV files (schema: metrics/records.h, docs/records.md). Every
 // stage that reads records goes through it: the file is read in blocks of 4 MiB, each row is split
 // in place (cells are views into the buffer, nothing is copied), and only the cells a caller asks
 // for are converted, with std::from_chars (locale-independent, exact). The header must equal

@@ -58,9 +58,25 @@ constexpr unsigned char kPalette[][3] = {{0, 114, 178},  {230, 159, 0},   {0, 15
 constexpr unsigned char kLineColor[3] = {213, 94, 0};  // the y = x line, the zero line
 
 using Color = std::array<unsigned char, 4>;
+// Series beyond the palette's 8 get hues stepped by the golden ratio (never the same twice),
+// alternating two lightnesses, so that a history of many platforms, kinds and groups stays legible.
 Color palette(std::size_t i, unsigned char alpha = 255) {
-  const auto& c = kPalette[i % (sizeof kPalette / sizeof kPalette[0])];
-  return {c[0], c[1], c[2], alpha};
+  constexpr std::size_t n = sizeof kPalette / sizeof kPalette[0];
+  if (i < n) return {kPalette[i][0], kPalette[i][1], kPalette[i][2], alpha};
+  const double h = std::fmod(0.07 + 0.6180339887498949 * double(i - n), 1.0) * 6.0;
+  const double v = (i - n) % 2 == 0 ? 0.80 : 0.55, s = 0.85;  // HSV value and saturation
+  const double c = v * s, x = c * (1 - std::fabs(std::fmod(h, 2.0) - 1)), m0 = v - c;
+  double r = 0, g = 0, b = 0;
+  switch (int(h)) {
+    case 0: r = c, g = x; break;
+    case 1: r = x, g = c; break;
+    case 2: g = c, b = x; break;
+    case 3: g = x, b = c; break;
+    case 4: r = x, b = c; break;
+    default: r = c, b = x; break;
+  }
+  auto u8 = [m0](double t) { return static_cast<unsigned char>(std::lround(255 * (t + m0))); };
+  return {u8(r), u8(g), u8(b), alpha};
 }
 
 void style_text(vtkTextProperty* p, int size, bool bold = false) {
@@ -605,9 +621,18 @@ void draw_marks(const BoxPlotContent& bp, ChartMarks& m) {
   }
   const std::string outside = box_plot_outside_note(bp, m.y_lo, m.y_hi);
   if (!outside.empty()) m.note = outside + (m.note.empty() ? "" : "\n" + m.note);
-  m.note += std::string(m.note.empty() ? "" : "\n") +
-              "Box widths proportional to n; open circles: minimum and maximum beyond the "
-              "whiskers; triangles at the edge: beyond the plot.";
+  // The legend of the marks says only what this figure draws (a trend's boxes have no whiskers).
+  bool whiskers = false, beyond_whiskers = false, beyond_plot = false;
+  for (const Box& x : bp.boxes) {
+    whiskers = whiskers || x.lower_whisker < x.q1 || x.upper_whisker > x.q3;
+    beyond_whiskers = beyond_whiskers || x.max > x.upper_whisker || x.min < x.lower_whisker;
+  }
+  for (const EdgeMarker& e : edge_markers) beyond_plot = beyond_plot || e.max > m.y_hi || e.min < m.y_lo;
+  std::string marks = "Box widths proportional to n";
+  if (beyond_whiskers) marks += "; open circles: minimum and maximum beyond the whiskers";
+  else if (whiskers) marks += "; whiskers to the minimum and maximum";
+  if (beyond_plot) marks += "; triangles at the edge: beyond the plot";
+  m.note += std::string(m.note.empty() ? "" : "\n") + marks + ".";
   m.x_lo = 0.5, m.x_hi = double(C) + 0.5;
   for (std::size_t c = 0; c < bp.categories.size(); ++c) {
     m.x_ticks.push_back(double(c + 1));

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -219,7 +220,48 @@ TEST_F(RendererTest, BoxPlotRestrictsTheRangeAndSaysWhatIsOutside) {
   EXPECT_NE(text.find("Box plot: LSEs-norm"), std::string::npos) << text;
 }
 
-// Why: the speed-against-error figure (issue 8) is read by where its markers sit on log axes; each
+// Why: the history's trend boxes (the IQR around the median, no whiskers) were captioned "no
+// whiskers" by the trend and "beyond the whiskers" by the renderer. The note says what is drawn.
+TEST_F(RendererTest, BoxPlotNoteNamesOnlyTheMarksItDraws) {
+  BoxPlotContent c;
+  c.categories = {"#1", "#2"};
+  c.series = {"s"};
+  // box, lower_whisker = q1 = min, upper_whisker = q3 = max: a band without whiskers
+  c.boxes = {{"#1", "s", 1, 1, 2, 3, 3, 1, 3, 10, 0, 0}, {"#2", "s", 2, 2, 3, 4, 4, 2, 4, 10, 0, 0}};
+  Figure f;
+  f.id = "band";
+  f.title = "Trend";
+  f.x_label = "audit";
+  f.y_label = "TEu (px^2)";
+  f.content = c;
+  const RenderedFigure r = renderer_->render(f, temp_dir("band") + "/band");
+  EXPECT_EQ(r.note.find("whisker"), std::string::npos) << r.note;
+  EXPECT_EQ(r.note.find("triangles"), std::string::npos) << r.note;
+  EXPECT_NE(r.note.find("Box widths proportional to n."), std::string::npos) << r.note;
+}
+
+// Why: a history of many platforms x kinds x view groups has more series than the 8 colours of
+// the palette; series 9 on took series 1's colour again. Every series gets its own colour.
+TEST(SeriesColor, SixtyFourSeriesHaveSixtyFourDistinctColours) {
+  std::vector<std::array<unsigned char, 3>> seen;
+  for (std::size_t i = 0; i < 64; ++i) {
+    std::array<unsigned char, 3> c{};
+    series_color(i, c.data());
+    for (std::size_t j = 0; j < seen.size(); ++j) {
+      const int d = std::abs(c[0] - seen[j][0]) + std::abs(c[1] - seen[j][1]) +
+                    std::abs(c[2] - seen[j][2]);
+      EXPECT_GT(d, 6) << "series " << i << " and " << j;
+    }
+    seen.push_back(c);
+  }
+  unsigned char first[3];
+  series_color(0, first);
+  EXPECT_EQ(first[0], 0);  // the palette's first colour (Okabe-Ito blue) is kept
+  EXPECT_EQ(first[1], 114);
+  EXPECT_EQ(first[2], 178);
+}
+
+// Why: the speed-against-error figure is read by where its markers sit on log axes; each
 // marker's centre pixel must be its series' colour at log10 of its values, the legend must name
 // each series (platform), the ticks must be readable powers of ten, and a point with a zero value
 // cannot sit on a log axis: it is left out and the note says so.

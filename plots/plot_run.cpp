@@ -13,6 +13,8 @@
 #include <set>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
 #include "plots/figure_builders.h"
@@ -383,7 +385,7 @@ struct Planner {
     }
   }
 
-  // Speed against error (issue 8): one point per platform x view group, x = median render time
+  // Speed against error: one point per platform x view group, x = median render time
   // per primitive, y = median of the kind's normalised unsigned error, IQR bars on both, log axes.
   void speed_error(an::PrimitiveKind kind) {
     const std::string section = section_of(kind);
@@ -486,6 +488,32 @@ struct Planner {
     return t;
   }
 
+  // What the pair's tests concluded (figures.json "test"), one sentence for the figure's note.
+  static std::string test_sentence(const json& c) {
+    if (!c.contains("test") || !c["test"].is_object()) return "";
+    const json& t = c["test"];
+    auto p = [](const json& v) {
+      if (!v.is_number()) return std::string("undefined");
+      const double x = v.get<double>();
+      return x < 0.001 ? std::string("p < 0.001") : "p = " + fmt(x, "%.3f");
+    };
+    const json lp = t.value("location_p", json()), sp = t.value("levene_median_p", json());
+    const bool orientations = c.value("what", "") == "orientations";
+    std::string verdict;
+    if (!lp.is_number() && !sp.is_number())
+      verdict = "no test is defined (constant samples)";
+    else if (orientations)
+      verdict = t.value("differ", false) ? "NOT equivalent (pooled into the group anyway, as the "
+                                           "paper did)"
+                                         : "equivalent: pooled into the view group";
+    else
+      verdict = t.value("differ", false) ? "the two differ significantly"
+                                         : "no significant difference";
+    return "Tests at alpha " + fmt(t.value("alpha", 0.05), "%g") + ": " +
+           (t.value("location", "") == "t_pooled" ? "pooled t " : "Welch t ") + p(lp) +
+           ", Levene (median) " + p(sp) + ": " + verdict + ".";
+  }
+
   void comparisons(an::PrimitiveKind kind) {
     const std::string section = section_of(kind);
     for (const json& c : doc.value("comparisons", json::array())) {
@@ -527,6 +555,10 @@ struct Planner {
                     a.value("platform", "") + " that differ only in camera orientation (view "
                     "group " + a.value("view_group", "") + "; the paper's Fig. 4): points on the "
                     "line y = x mean equal distributions.";
+        if (const std::string t = test_sentence(c); !t.empty()) {
+          f.caption += " " + t;
+          f.note = t + (f.note.empty() ? "" : "\n" + f.note);
+        }
         f.section = section;
         add(std::move(f));
         continue;
@@ -573,6 +605,10 @@ struct Planner {
       f.caption = "Relative bihistogram of " + symbol + ": " + sa + " above the axis, " + sb +
                   " below, on common bins, each side normalised to area 1" +
                   (paper.empty() ? "" : " (like the paper's " + paper + ")") + ".";
+      if (const std::string t = test_sentence(c); !t.empty()) {
+        f.caption += " " + t;
+        f.note = t + (f.note.empty() ? "" : "\n" + f.note);
+      }
       f.section = section;
       add(std::move(f));
     }
@@ -659,10 +695,12 @@ PlotResult plot_run(const PlotOptions& options) {
   json figures = json::array();
   {
     FigureRenderer renderer;
+    const bool tty = ::isatty(2);
     for (std::size_t i = 0; i < plan.figures.size(); ++i) {
       const Figure& f = plan.figures[i];
-      if (options.progress)
-        std::fprintf(stderr, "[%zu/%zu] %s\n", i + 1, plan.figures.size(), f.id.c_str());
+      if (options.progress)  // one line rewritten on a terminal, a line per figure in a log
+        std::fprintf(stderr, tty ? "\r[%zu/%zu] %s\033[K" : "[%zu/%zu] %s\n", i + 1,
+                     plan.figures.size(), f.id.c_str());
       const RenderedFigure r = renderer.render(f, result.figures_dir + "/" + f.id);
       IndexedFigure x{f.id,          figure_kind_name(f), f.section,     f.title,
                       f.caption,     r.note,              f.id + ".png", f.id + ".pdf",
@@ -670,6 +708,7 @@ PlotResult plot_run(const PlotOptions& options) {
       figures.push_back(figure_json(x, &r.layout));
       result.figures.push_back(std::move(x));
     }
+    if (options.progress && tty) std::fputc('\n', stderr);
   }
   display.stop();
 

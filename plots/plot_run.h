@@ -16,7 +16,7 @@
 //   bihistogram platforms, view groups differing in FOV, first vs last (Figs. 5, 7, 9, 11, 13)
 //   speed_error median render time per primitive against median normalised unsigned error
 //               (PEnorm, LSEu-norm, TEu-norm), one point per platform x view group, IQR bars,
-//               log10 axes (issue 8; figures.json "speed_error")
+//               log10 axes (figures.json "speed_error")
 // Metric values are shown x 10^k with the k of the paper's tables (analysis/paper_tables.h).
 //
 // index.json, schema "renderaudit-figure-index", schema_version 1:

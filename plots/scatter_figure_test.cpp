@@ -1,6 +1,6 @@
 // Scatter figures without drawing: the CSV beside a scatter figure holds exactly the numbers drawn,
 // the note names the points a log axis cannot place, and the plots stage turns figures.json's
-// speed_error points into one speed-against-error figure per kind (issue 8).
+// speed_error points into one speed-against-error figure per kind.
 #include <gtest/gtest.h>
 
 #include <algorithm>

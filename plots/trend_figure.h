@@ -22,7 +22,7 @@ namespace ra::plots {
 // One metric's distribution in one audit.
 struct TrendPoint {
   std::size_t audit = 0;  // index into TrendData::audits
-  double median = NAN;    // record units (README, records schema); NaN: no data, not drawn
+  double median = NAN;    // record units (docs/records.md); NaN: no data, not drawn
   double iqr = NAN;       // record units
   std::uint64_t n = 0;    // values the statistics are over
 };

@@ -1,5 +1,5 @@
 // The decision-theoretic regulation study (Horvitz & Lengyel, "Perception, Attention, and
-// Resources: A Decision-Theoretic Approach to Graphics Rendering", UAI 1997; issue 9): levels of
+// Resources: A Decision-Theoretic Approach to Graphics Rendering", UAI 1997): levels of
 // detail from meshoptimizer's simplifier (lod_chain.h), H4 costs from the rendering-time study
 // (cost_model.h), perceptual cost and attention (attention.h, equations 3-7), the greedy policy
 // with the best-single-item check against the exact optimum and baselines (policies.h), random

@@ -65,6 +65,10 @@ std::string html_escape(const std::string& s) {
 }
 
 std::string render_html(const Document& doc) {
+  // The figures get an anchor of their own only where no heading already has id="figures".
+  bool figures_heading = false;
+  for (const Block& b : doc.blocks)
+    figures_heading = figures_heading || (b.kind == Block::Kind::kHeading && b.anchor == "figures");
   std::ostringstream o;
   o << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>"
     << html_escape(doc.title) << "</title>\n<style>\n"
@@ -104,12 +108,13 @@ std::string render_html(const Document& doc) {
           if (h.kind == Block::Kind::kHeading && h.level == 1 && !h.anchor.empty())
             o << "<li><a href=\"#" << html_escape(h.anchor) << "\">" << inline_html(h.text)
               << "</a></li>\n";
-        if (!doc.figures.empty()) o << "<li><a href=\"#figures\">Figures</a></li>\n";
+        if (!doc.figures.empty() && !figures_heading)
+          o << "<li><a href=\"#figures\">Figures</a></li>\n";
         o << "</ul>\n";
         break;
       }
       case Block::Kind::kFigureList: {
-        o << "<div id=\"figures\"></div>\n";
+        if (!figures_heading) o << "<div id=\"figures\"></div>\n";
         if (doc.figures.empty()) o << "<p>No figure was drawn.</p>\n";
         std::string section;
         for (const FigureRef& f : doc.figures) {

@@ -22,6 +22,7 @@
 #include "plots/plot_run.h"
 #include "plots/record_scan.h"
 #include "report/document.h"
+#include "report/headline.h"
 #include "report/html_writer.h"
 #include "report/pdf_writer.h"
 #include "analysis/run_completeness.h"
@@ -111,6 +112,17 @@ Block table_block(Table t) {
   b.table = std::move(t);
   return b;
 }
+// Which renderaudit made the run and which the report: once when they are the same build.
+std::string version_line(const json& tool) {
+  const std::string run_version = tool.value("version", project_version()) + " (commit " +
+                                  tool.value("commit", project_commit()) + ")";
+  const std::string this_version = project_version() + " (commit " + project_commit() + ")";
+  return (run_version == this_version
+              ? "Run and report by renderaudit " + this_version
+              : "Run by renderaudit " + run_version + ", report by renderaudit " + this_version) +
+         "; report generated " + utc_now_iso8601() + ".";
+}
+
 Block bullets(std::vector<std::string> items) {
   Block b;
   b.kind = Block::Kind::kBullets;
@@ -145,9 +157,24 @@ std::vector<std::string> table_files(const std::string& analysis_dir) {
   for (const auto& n : order)
     if (n != "README.md" && n != "report.md" && n != "view_equivalence.md" &&
         n != "conformance.md" && n != "violations.md" &&  // section 4 shows these
+        n != "paper_comparison.md" && n != "paper_differences.md" &&  // so does 6
         fs::exists(analysis_dir + "/" + n))
       out.push_back(n);
   return out;
+}
+
+// The analysis files a section shows whole, in order, headings one level down; table titles are
+// collected for the result.
+void add_markdown_files(const std::string& analysis_dir, const std::vector<std::string>& names,
+                        Document& d, std::vector<std::string>& table_titles) {
+  for (const std::string& n : names) {
+    if (!fs::exists(analysis_dir + "/" + n)) continue;
+    for (Block& b : parse_markdown(read_file(analysis_dir + "/" + n), 1)) {
+      if (b.kind == Block::Kind::kTable && !b.table.title.empty())
+        table_titles.push_back(plain_text(b.table.title));
+      d.blocks.push_back(std::move(b));
+    }
+  }
 }
 
 // The list of figures, then one page per figure of the index (paths relative to DIR/report).
@@ -170,7 +197,56 @@ void add_figures(const plots::PlotResult& figures, Document& d) {
 struct Content {
   Document doc;
   std::vector<std::string> table_titles;
+  std::set<std::string> html_only;  // figure ids left out of the PDF (kPdfAllPairsMax)
+  std::string pdf_pairs_with;       // the baseline platform when the PDF shows only its pairs
 };
+
+// Pairwise figures grow with the square of the platforms. Beyond this many platforms, the PDF's
+// cross-platform bihistograms are the pairs with the baseline platform (the experiment file's
+// first) only: n - 1 pairs per group and metric instead of n (n - 1) / 2. The HTML report and
+// DIR/figures/ keep every pair.
+constexpr std::size_t kPdfAllPairsMax = 3;
+
+// Whether figure `f` is a cross-platform bihistogram that does not involve `baseline` (its title
+// names the platforms as "..., P1 (above) vs P2 (below)", plots/plot_run.cpp).
+bool pair_without(const FigureRef& f, const std::string& baseline) {
+  if (f.id.find(".platforms.") == std::string::npos) return false;
+  return f.title.find(", " + baseline + " (above)") == std::string::npos &&
+         f.title.find(" vs " + baseline + " (below)") == std::string::npos;
+}
+
+// `doc` with only the figures the PDF shows, numbered 1, 2, ... in order; with `pairs_with` set,
+// the rows of pairwise tables (columns "Platform a", "Platform b") are those of its pairs.
+Document pdf_document(const Document& doc, const std::set<std::string>& html_only,
+                      const std::string& pairs_with) {
+  Document pdf = doc;
+  if (!pairs_with.empty())
+    for (Block& b : pdf.blocks) {
+      if (b.kind != Block::Kind::kTable) continue;
+      Table& t = b.table;
+      const auto a = std::find(t.header.begin(), t.header.end(), "Platform a");
+      const auto z = std::find(t.header.begin(), t.header.end(), "Platform b");
+      if (a == t.header.end() || z == t.header.end()) continue;
+      const std::size_t ia = std::size_t(a - t.header.begin()), iz = std::size_t(z - t.header.begin());
+      const std::size_t before = t.rows.size();
+      std::vector<std::vector<std::string>> kept;
+      for (auto& row : t.rows)
+        if (row.size() > std::max(ia, iz) &&
+            (plain_text(row[ia]) == pairs_with || plain_text(row[iz]) == pairs_with))
+          kept.push_back(std::move(row));
+      t.rows = std::move(kept);
+      t.notes.push_back("This PDF shows the " + std::to_string(t.rows.size()) + " of " +
+                        std::to_string(before) + " rows that pair " + pairs_with +
+                        " with another platform; report.html and the CSV file hold every pair.");
+    }
+  pdf.figures.clear();
+  for (const FigureRef& f : doc.figures)
+    if (!html_only.count(f.id)) {
+      pdf.figures.push_back(f);
+      pdf.figures.back().number = int(pdf.figures.size());
+    }
+  return pdf;
+}
 
 Content build_document(const std::string& run_dir, const plots::PlotResult& figures,
                        const plots::RecordScan& scan,
@@ -192,10 +268,9 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
       "reproduced on this run.",
       "Run directory: " + run_dir + ". Experiment " + name + " (" + exp.value("file", "?") +
           ", hash " + exp.value("hash", "?") + "), seed " + str(exp.value("seed", json())) + ".",
-      "Produced by " + tool.value("name", std::string("renderaudit")) + " " +
-          tool.value("version", project_version()) + " (commit " +
-          tool.value("commit", project_commit()) + "); report generated " + utc_now_iso8601() +
-          " by renderaudit " + project_version() + " (commit " + project_commit() + ")."};
+      version_line(tool)};
+  // The conclusion first, on the title page; the contents and the detail after it.
+  for (Block& b : headline_blocks(run_dir)) d.blocks.push_back(std::move(b));
   Block contents;
   contents.kind = Block::Kind::kContents;
   d.blocks.push_back(contents);
@@ -429,8 +504,19 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
     }
   }
 
-  // 6. Tables.
-  d.blocks.push_back(heading("6. Tables", 1, "tables"));
+  // 6. The paper.
+  if (fs::exists(analysis + "/paper_comparison.md")) {
+    d.blocks.push_back(heading("6. Beside the paper", 1, "paper"));
+    d.blocks.push_back(paragraph(
+        "Each median and IQR of the paper's Tables 3-10 that this run's views reproduce, beside "
+        "the paper's two platforms, then every cell beyond 3 standard errors of the paper with "
+        "the reason established for it."));
+    add_markdown_files(analysis, {"paper_comparison.md", "paper_differences.md"}, d,
+                       c.table_titles);
+  }
+
+  // 7. Tables.
+  d.blocks.push_back(heading("7. Tables", 1, "tables"));
   d.blocks.push_back(paragraph(
       "Every table of the analysis (DIR/analysis/, also as .csv, .md and .tex). Tables 2-11 "
       "mirror the paper's; 's' and 'e' tables supplement them with the non-normalized metrics."));
@@ -445,8 +531,8 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
     }
   }
 
-  // 7. Figures.
-  d.blocks.push_back(heading("7. Figures", 1, "figures"));
+  // 8. Figures.
+  d.blocks.push_back(heading("8. Figures", 1, "figures"));
   d.blocks.push_back(paragraph(
       "Drawn by `renderaudit plot` with VTK charts: PNG through vtkWindowToImageFilter and "
       "vtkPNGWriter, vector PDF through vtkPDFExporter (the pages that follow), the numbers "
@@ -454,13 +540,30 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
       "tables. Box plots restrict the y range to the box bodies, as the paper's do, and say on "
       "the figure which extremes lie outside."));
   add_figures(figures, d);
+  std::vector<std::string> platforms;
+  for (const auto& p : exp.value("platforms", json::array())) platforms.push_back(str(p));
+  if (platforms.size() > kPdfAllPairsMax) {
+    c.pdf_pairs_with = platforms.front();
+    for (const FigureRef& f : d.figures)
+      if (pair_without(f, platforms.front())) c.html_only.insert(f.id);
+    const std::size_t n = platforms.size();
+    d.blocks.insert(d.blocks.end() - 1,
+                    paragraph("This run has " + std::to_string(n) + " platforms. The PDF shows "
+                              "the cross-platform bihistograms of the pairs with the baseline "
+                              "platform " + platforms.front() + " (the experiment's first): " +
+                              std::to_string(n - 1) + " of the " +
+                              std::to_string(n * (n - 1) / 2) + " pairs of each view group and "
+                              "metric (" + std::to_string(c.html_only.size()) + " figures left "
+                              "out), and the cross-platform tests of those pairs only. "
+                              "report.html, figures/ and analysis/ hold every pair."));
+  }
   return c;
 }
 
 // Lays out the text pages, joins them with the figures' PDFs into DIR/report/report.pdf and writes
 // report.html; fills the paths and page counts of `result`.
-void assemble(Document& doc, const std::string& run_dir, const std::string& pdfunite,
-              ReportResult& result) {
+void assemble(const Document& doc, const Document& html_doc, const std::string& run_dir,
+              const std::string& pdfunite, ReportResult& result) {
   const fs::path out_dir = fs::path(run_dir) / "report";
   fs::create_directories(out_dir);
   result.pdf = (out_dir / "report.pdf").string();
@@ -506,7 +609,7 @@ void assemble(Document& doc, const std::string& run_dir, const std::string& pdfu
   }
   fs::remove(log);
   fs::rename(tmp, result.pdf);
-  write_file_atomic(result.html, render_html(doc));
+  write_file_atomic(result.html, render_html(html_doc));
 
   result.text_pages = layout.pages;
   result.figure_pages = int(doc.figures.size());
@@ -594,8 +697,8 @@ ReportResult write_report(const ReportOptions& options) {
     if (study->kind != StudyKind::kTiming && !fs::exists(fs::path(run_dir) / "figures" / "index.json"))
       throw UserError(run_dir + "/figures/index.json is missing: run `renderaudit plot " + run_dir +
                       "` first");
-    Document doc = study_document(run_dir, *study);
-    assemble(doc, run_dir, pdfunite, result);
+    const Document doc = study_document(run_dir, *study);
+    assemble(doc, doc, run_dir, pdfunite, result);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
   }
@@ -608,8 +711,7 @@ ReportResult write_report(const ReportOptions& options) {
   const analysis::RunCompleteness completeness = analysis::check_run_completeness(run_dir);
   if (completeness.has_plan && !completeness.complete() && !options.allow_incomplete)
     throw analysis::IncompleteRunError(run_dir + ": " + completeness.markdown() +
-                                       "Finish the run (the same `renderaudit run` command), or "
-                                       "pass --allow-incomplete to report it as it is.");
+                                       completeness.remedy("report"));
   result.completeness = completeness.headline();
 
   const plots::PlotResult figures = plots::read_figure_index(run_dir);
@@ -620,7 +722,8 @@ ReportResult write_report(const ReportOptions& options) {
     if (!fs::exists(f.pdf_path))
       throw UserError(f.pdf_path + " is missing: run `renderaudit plot " + run_dir + "` again");
 
-  assemble(doc, run_dir, pdfunite, result);
+  assemble(pdf_document(doc, content.html_only, content.pdf_pairs_with), doc, run_dir, pdfunite,
+           result);
   result.table_titles = content.table_titles;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;

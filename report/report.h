@@ -1,5 +1,8 @@
 // `renderaudit report DIR`: one document about a run, as DIR/report/report.pdf and
 // DIR/report/report.html:
+//   0. on the title page, the conclusion (report/headline.h): per platform the conformance
+//      summary, violations and agreement with the paper; for an audited run, the verdict per
+//      driver against the baseline;
 //   1. the experiment and its provenance (manifest.json: experiment, seed, platforms with their
 //      drivers' GL_RENDERER / GL_VERSION / GL_VENDOR, host, project commit, times; the
 //      experiment file itself);
@@ -8,8 +11,9 @@
 //   3. time per primitive: median render_us per platform and kind (from the records);
 //   4. conformance with the reference rasterizer per platform, kind and view group (ref_diff);
 //   5. the equivalence tests behind pooling views into view groups (analysis/view_equivalence.md);
-//   6. every table of DIR/analysis/ (in the order of its README.md);
-//   7. the list of figures with their pages, then every figure, one page each (DIR/figures/).
+//   6. beside the paper: analysis/paper_comparison.md and paper_differences.md;
+//   7. every other table of DIR/analysis/ (in the order of its README.md);
+//   8. the list of figures with their pages, then every figure, one page each (DIR/figures/).
 //
 // PDF route: the text and table pages are drawn with cairo's PDF surface (Debian libcairo2: text
 // as real, searchable text with embedded DejaVu fonts); each figure is the vector PDF that VTK's

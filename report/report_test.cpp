@@ -145,6 +145,40 @@ TEST(ReportCommand, HeadlessReportHasEveryTableAndOnePagePerFigure) {
     const std::string src = "../figures/" + f.at("png").get<std::string>();
     EXPECT_NE(html.find("src=\"" + src + "\""), std::string::npos) << src;
   }
+
+  // The first page states the conclusion per platform; the version is named once. With an
+  // audit in the run (as `make nightly` leaves it), the first page gives the verdict per driver
+  // and names the baseline.
+  const auto first_page = [&] {
+    return squeeze(shell_output("pdftotext -f 1 -l 1 '" + pdf + "' -"));
+  };
+  std::string page1 = first_page();
+  EXPECT_NE(page1.find("Conclusion"), std::string::npos) << page1;
+  EXPECT_NE(page1.find("osmesa-llvmpipe: "), std::string::npos) << page1;
+  EXPECT_NE(page1.find("primitives drawn exactly as the reference rasterizer"), std::string::npos)
+      << page1;
+  EXPECT_NE(page1.find("Run and report by renderaudit "), std::string::npos) << page1;
+  EXPECT_EQ(page1.find(", report by renderaudit"), std::string::npos) << "one build: named once";
+  // (the crashed shard the manifest lists above fails the audit, and its driver)
+  const Outcome audit = run_renderaudit("audit " + run + " " + run + " --no-history");
+  EXPECT_EQ(audit.exit_code, 2) << audit.output;
+  ASSERT_EQ(run_renderaudit("report " + run).exit_code, 0);
+  page1 = first_page();
+  EXPECT_NE(page1.find("Audit: failed against the baseline run " + run), std::string::npos)
+      << page1;
+  EXPECT_NE(page1.find("osmesa-llvmpipe osmesa-llvmpipe FAIL 1200 0 0 2 0"), std::string::npos)
+      << page1;
+  // a run without failures passes
+  auto manifest = nlohmann::json::parse(read(run + "/manifest.json"));
+  manifest["failures"] = nlohmann::json::array();
+  write_text(run + "/manifest.json", manifest.dump(2));
+  ASSERT_EQ(run_renderaudit("audit " + run + " " + run + " --no-history").exit_code, 0);
+  ASSERT_EQ(run_renderaudit("report " + run).exit_code, 0);
+  page1 = first_page();
+  EXPECT_NE(page1.find("Audit: unchanged against the baseline run " + run), std::string::npos)
+      << page1;
+  EXPECT_NE(page1.find("osmesa-llvmpipe osmesa-llvmpipe PASS 1200 0 0 0 0"), std::string::npos)
+      << page1;
 }
 
 }  // namespace

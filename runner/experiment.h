@@ -1,5 +1,5 @@
 // A declarative experiment: platforms x views x primitive counts, parsed from a TOML file and
-// validated before anything renders. The file format is documented in README.md ("Experiment
+// validated before anything renders. The file format is documented in docs/experiments.md ("Experiment
 // files"); experiments/quick.toml and experiments/nist2008.toml are complete examples.
 #pragma once
 

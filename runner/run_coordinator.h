@@ -22,13 +22,13 @@ struct RunOptions {
   std::string worker_program;   // the executable that runs `worker` (default: this one)
   std::string expect_renderer;  // non-empty: ECMAScript regex every driver's GL_RENDERER must match
   // Which shards start first: the largest expected cost (runner/shard_cost.h; keeps every core
-  // busy to the end), or plan order (platform, view, kind, begin), as before 2026-11-24.
+  // busy to the end), or plan order (platform, view, kind, begin).
   enum class ShardOrder { kLargestCostFirst, kPlan } shard_order = ShardOrder::kLargestCostFirst;
   // Run only slice K of N (runner/slicing.h); none: the whole run.
   std::optional<Slice> slice;
   // Whole shards at their first attempt go to worker processes that serve one platform's shards
-  // one after another (runner/shard_server.h); false: one process per shard, as before
-  // 2026-11-25 (re-runs and bisection parts always get a process of their own).
+  // one after another (runner/shard_server.h); false: one process per shard
+  // (re-runs and bisection parts always get a process of their own).
   bool serve_shards = true;
 };
 

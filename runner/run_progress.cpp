@@ -5,6 +5,8 @@
 
 namespace ra {
 
+nlohmann::json seconds_or_null(double s) { return s >= 0 ? nlohmann::json(s) : nlohmann::json(); }
+
 nlohmann::json to_json(const RunProgress& p) {
   return {{"host", p.host},
           {"pid", p.pid},
@@ -16,7 +18,7 @@ nlohmann::json to_json(const RunProgress& p) {
           {"primitives_done", p.primitives_done},
           {"primitives_todo", p.primitives_todo},
           {"elapsed_s", p.elapsed_s},
-          {"left_s", p.left_s},
+          {"left_s", seconds_or_null(p.left_s)},
           {"finished", p.finished}};
 }
 
@@ -33,7 +35,7 @@ RunProgress run_progress_from_json(const nlohmann::json& j) {
   p.primitives_done = j.value("primitives_done", 0ULL);
   p.primitives_todo = j.value("primitives_todo", 0ULL);
   p.elapsed_s = j.value("elapsed_s", 0.0);
-  p.left_s = j.value("left_s", -1.0);
+  p.left_s = j.contains("left_s") && j["left_s"].is_number() ? j["left_s"].get<double>() : -1.0;
   p.finished = j.value("finished", false);
   return p;
 }

@@ -23,7 +23,9 @@ struct RunProgress {
   bool finished = false;              // the invocation has ended (the manifest says how)
 };
 
-nlohmann::json to_json(const RunProgress& p);
+nlohmann::json to_json(const RunProgress& p);  // an unknown left_s is written as null
+// Seconds as JSON: null when negative (the "not known" of left_s), else the number.
+nlohmann::json seconds_or_null(double s);
 RunProgress run_progress_from_json(const nlohmann::json& j);  // missing keys keep their defaults
 
 std::string progress_path(const std::string& run_dir);  // DIR/progress.json

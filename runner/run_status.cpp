@@ -106,8 +106,11 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
                                 }),
                  shards.end());
   }
-  if (manifest.has_slice && slice_dirs.empty())
+  if (manifest.has_slice && slice_dirs.empty()) {
     shards = shards_of_slice(shards, exp, Slice{manifest.slice_index, manifest.slice_count});
+    s.slice_index = manifest.slice_index;
+    s.slice_count = manifest.slice_count;
+  }
   s.planned = shards.size();
 
   std::set<std::string> running, failed;
@@ -164,7 +167,11 @@ std::string format_run_status(const RunStatus& s) {
   const double pct = s.planned ? 100.0 * s.done / s.planned : 0;
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.0f%%", pct);
-  o << s.dir << ": experiment " << s.experiment << ": " << s.state() << "\n";
+  o << s.dir << ": experiment " << s.experiment << ": " << s.state();
+  if (s.slice_count > 0)
+    o << " (slice " << s.slice_index << " of " << s.slice_count
+      << ": its own shards; `renderaudit merge` joins the slices into one run to analyse)";
+  o << "\n";
   o << "  shards: " << s.planned << " planned, " << s.done << " done (" << buf << "), " << s.running
     << " running, " << s.failed << " failed, " << s.waiting << " waiting\n";
   for (const auto& w : s.writers) {
@@ -216,7 +223,8 @@ nlohmann::json to_json(const RunStatus& s) {
                       {"done", s.done},     {"running", s.running},
                       {"failed", s.failed}, {"waiting", s.waiting},
                       {"writers", writers}, {"manifest_status", s.manifest_status},
-                      {"left_s", s.left_s}};
+                      {"left_s", seconds_or_null(s.left_s)}};
+  if (s.slice_count > 0) j["slice"] = {{"index", s.slice_index}, {"count", s.slice_count}};
   if (s.slurm) {
     nlohmann::json jobs = nlohmann::json::array();
     for (const auto& job : s.jobs)

@@ -36,6 +36,7 @@ struct RunStatus {
   int gather_exit = -1;               // DIR/slurm/gather.exit, or -1
   double left_s = -1;                 // the longest writer's estimate; -1 unknown
   size_t slices_not_started = 0;      // Slurm tasks still pending
+  int slice_index = 0, slice_count = 0;  // a `run --slice K/N` directory (its shards only); 0: not
 
   // "complete", "running", "queued", "failed", "interrupted", "incomplete", or "unknown" (a
   // Slurm run whose scheduler could not be asked, its gather not ended)

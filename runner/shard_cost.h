@@ -16,7 +16,7 @@ namespace ra {
 // reference) plus the driver's cost per pixel times the pixels a primitive of that kind lights on
 // average in the view's window (points 1, lines 0.3 x the longer side, triangles 2% of the
 // window). Coefficients fitted to the nist2008 views on this project's 2-core machine
-// (2026-11-24, render_us of 48,000 primitives per platform); an unknown driver is costed as
+// (render_us of 48,000 primitives per platform); an unknown driver is costed as
 // llvmpipe.
 double expected_shard_cost_us(const Shard& shard, const View& view);
 

@@ -18,7 +18,7 @@ View window(int id, int size, double fov) {
 }
 
 TEST(ShardCost, RanksShardsAsTheirMeasuredTimesDo) {
-  // measured on the nist2008 views (mean render_us per primitive, 2026-11-24): softpipe triangle
+  // measured on the nist2008 views (mean render_us per primitive): softpipe triangle
   // 907: 5,719; llvmpipe triangle 907: 403; softpipe line 907: 322; llvmpipe triangle 128: 43;
   // llvmpipe point 128: 35; reference point 128: 0.1
   const View big = window(1, 907, 150), small = window(2, 128, 30);

@@ -3,7 +3,7 @@
 // where N counts the record rows (the header excluded) and the hash covers every byte before the
 // trailer. A file cut short, concatenated, interleaved by two writers or edited by hand fails the
 // check, and `run` redoes its shard instead of counting it. Readers of records skip lines that
-// start with '#', so sealed files read as before.
+// start with '#', so readers that skip comment lines read sealed files unchanged.
 #pragma once
 
 #include <cstdint>

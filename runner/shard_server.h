@@ -3,7 +3,7 @@
 // measurement are paid for once, not once per shard (45 ms per llvmpipe shard, 65 ms per softpipe
 // one: 26 s of the full nist2008 run). Crash isolation stays per shard: the coordinator sends one
 // shard at a time, so a crash or hang names the shard being run, which is then re-run and
-// bisected in processes of its own (runner/shard_recovery.h), as before.
+// bisected in processes of its own (runner/shard_recovery.h), as a one-shard worker's would be.
 //
 // Protocol, one line each way per shard:
 // - coordinator -> server (its stdin): a JSON object {"kind", "view", "begin", "end",

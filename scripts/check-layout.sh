@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fails when a folder includes a folder that comes after it in the layout order (README, "Source
+# Fails when a folder includes a folder that comes after it in the layout order (docs/development.md, "Source
 # layout"). Tests (*_test.cpp, *_testing.h, tests/) and benchmarks may include anything.
 set -euo pipefail
 cd "$(dirname "$0")/.."

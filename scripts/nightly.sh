@@ -38,16 +38,20 @@ if (( status == 2 || status == 130 )); then
   exit 2
 fi
 
+# The first night audits its run against itself (so that audit.md and the report exist), and
+# appends nothing to the history: a run compared with itself says nothing about the driver.
+history=(--db "$db")
 if [[ ! -e $baseline ]]; then
   ln -sfn "$(realpath "$tonight")" "$baseline"
   echo "nightly: no baseline yet; tonight's run is the baseline: $(realpath "$tonight")"
+  history=(--no-history)
 fi
 
 verdict=0
-"$bin" audit "$(realpath "$baseline")" "$tonight" --db "$db" || verdict=$?
+"$bin" audit "$(realpath "$baseline")" "$tonight" "${history[@]}" || verdict=$?
 "$bin" analyze "$tonight" >/dev/null
 "$bin" plot "$tonight" >/dev/null
 "$bin" report "$tonight"
-"$bin" history --db "$db" --last 14 || true
+[[ -f $db ]] && { "$bin" history --db "$db" --last 14 || true; }
 echo "nightly: verdict in $tonight/audit/audit.md; report in $tonight/report/report.pdf"
 exit "$verdict"

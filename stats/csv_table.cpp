@@ -46,6 +46,11 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& source) {
   // one record per iteration
   while (i < size) {
     const std::size_t record_line = line;
+    if (text[i] == '#') {  // a comment line (a records file's seal): skipped whole
+      while (i < size && text[i] != '\n') ++i;
+      if (i < size) ++i, ++line;
+      continue;
+    }
     std::vector<std::string> record;
     bool any_quoted = false;
     bool end_of_record = false;

@@ -74,6 +74,22 @@ TEST(CsvTable, ErrorsAreLocated) {
       std::string::npos);
 }
 
+// A records file ends with its seal line ("# complete rows=N fnv1a64=H"); `stats describe` on it
+// failed with "1 cells, but the header has 37 columns" before comment lines were skipped.
+TEST(CsvTable, CommentLinesAreSkippedAndLaterLinesKeepTheirNumbers) {
+  const CsvTable t =
+      CsvTable::parse("# provenance\nplatform,pe\na,0.5\nb,\n# complete rows=2 fnv1a64=99\n", "r.csv");
+  EXPECT_EQ(t.header(), (std::vector<std::string>{"platform", "pe"}));
+  const NumericColumn pe = t.numeric_column("pe");
+  EXPECT_EQ(pe.values, (std::vector<double>{0.5}));
+  EXPECT_EQ(pe.n_missing, 1u);
+  EXPECT_NE(user_error([] { CsvTable::parse("a,b\n# note\n1\n", "f.csv"); }).find("f.csv:3: 1 cells"),
+            std::string::npos);
+  // a '#' that is not the first character of a line is an ordinary cell
+  const CsvTable hash = CsvTable::parse("a,b\nx,#1\n", "f.csv");
+  EXPECT_EQ(hash.cell(0, hash.column("b")), "#1");
+}
+
 TEST(CsvTable, ReadsFiles) {
   const auto dir = stats::testing::temp_dir("csv");
   const auto path = (dir / "t.csv").string();

@@ -73,7 +73,7 @@ StrdRegression read_strd_regression(const std::string& file) {
   return s;
 }
 
-// Every certified value to at least `min_lre` correct digits; prints the LREs for the README.
+// Every certified value to at least `min_lre` correct digits; prints the LREs for docs/stats.md.
 void expect_certified(const std::string& file, const LinearFit& fit, const StrdRegression& c,
                       double min_lre) {
   ASSERT_EQ(fit.coefficients.size(), c.estimate.size()) << file;

@@ -1,4 +1,4 @@
-// Longest-edge bisection, its DAG, and nested errors and radii (bisection_hierarchy.h; seed 003,
+// Longest-edge bisection, its DAG, and nested errors and radii (bisection_hierarchy.h; Lindstrom & Pascucci 2001,
 // "Nested Geometric Error And Screen Error", "Geometric Error Metric", "Seamless Connection").
 #include "terrain_lod/bisection_hierarchy.h"
 

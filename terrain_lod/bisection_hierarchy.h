@@ -1,8 +1,8 @@
 // Longest-edge bisection of a square tile of (2^k + 1) x (2^k + 1) height samples, its dependency
 // graph (DAG), and the nested object-space errors and bounding-sphere radii of Lindstrom &
-// Pascucci ("Visualization of large terrains made easy", 2001) as used by seed 003.
+// Pascucci ("Visualization of large terrains made easy", 2001) as the terrain LOD study uses it.
 //
-// Reading of seed 003's formulas (garbled in the extraction), from its definitions:
+// Reading of the method's formulas, from its definitions:
 //  - The tile is first split into two right triangles by its SW-NE diagonal (so a flat tile is two
 //    triangles); a triangle t = (apex a; hypotenuse l-r) is bisected at m = midpoint(l, r) into
 //    (m; a-l) and (m; r-a). The diamond of m is the one or two triangles with hypotenuse l-r.

@@ -1,4 +1,4 @@
-// The height field of the terrain level-of-detail study (seed 003): a regular grid of elevations,
+// The height field of the terrain level-of-detail study: a regular grid of elevations,
 // generated (the seeded fractal of scenes/terrain_scene.h) or read from an elevation image.
 // Units: metres; x east, y north, z up; vertex (i, j) lies at (i * spacing, j * spacing, z(i, j)).
 #pragma once

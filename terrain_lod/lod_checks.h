@@ -1,4 +1,4 @@
-// Verification of a refined mesh, per frame (issue 9: "verify, do not assume"):
+// Verification of a refined mesh, per frame (verified, not assumed):
 //  (a) conformity: the triangles tile the terrain's rectangle exactly once, with no T-junction or
 //      crack, checked on the whole mesh (all tiles together, so across seams too), and each tile
 //      seam used by the same vertices from both sides;

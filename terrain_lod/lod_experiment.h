@@ -1,4 +1,4 @@
-// The experiment file of the terrain level-of-detail study (seed 003): a top-level [lod] table.
+// The experiment file of the terrain level-of-detail study: a top-level [lod] table.
 // Every key is checked before anything renders; an unknown key, a wrong type or a value out of
 // range is a UserError "FILE:LINE:COLUMN: 'lod.key' = V is out of range (allowed: ...)".
 // Units: metres (x east, y north, z up), pixels, degrees.

@@ -1,4 +1,4 @@
-// Top-down refinement and strips (lod_refinement.h; seed 003, "construct the triangle strip").
+// Top-down refinement and strips (lod_refinement.h; Lindstrom & Pascucci 2001, "construct the triangle strip").
 #include "terrain_lod/lod_refinement.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Top-down refinement of the bisection hierarchy for one viewpoint (seed 003, "Parallel-based Error
+// Top-down refinement of the bisection hierarchy for one viewpoint ("Parallel-based Error
 // Metric"; Lindstrom & Pascucci 2001, section 4): per tile, starting from its two root triangles,
 // a triangle is bisected when its split vertex is active (ScreenErrorMetric), else it is output.
 // With nested errors and balls no dependency needs resolving: the output is conforming.

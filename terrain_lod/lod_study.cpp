@@ -468,7 +468,7 @@ void analyze_lod_study(const std::string& dir) {
   std::ostringstream md;
   md << "# Terrain level of detail\n\n"
      << "Longest-edge bisection of a restricted quadtree with saturated (nested) object-space errors "
-        "and nested bounding balls (Lindstrom and Pascucci; seed 003), refined top-down per tile and "
+        "and nested bounding balls (Lindstrom and Pascucci 2001), refined top-down per tile and "
         "drawn as one triangle strip per tile. Terrain: " << terrain.value("source", "") << ", "
      << terrain.value("vertices", json::array()).dump() << " vertices in tiles of "
      << terrain.value("tile_size", 0) << " x " << terrain.value("tile_size", 0) << " (seam errors " << sj.value("seams", "")

@@ -1,4 +1,4 @@
-// The terrain level-of-detail study (issue 9, seed 003): `renderaudit run / analyze / report` of an
+// The terrain level-of-detail study (Lindstrom & Pascucci 2001): `renderaudit run / analyze / report` of an
 // experiment file with a top-level [lod] table (lod_experiment.h).
 //
 // run: builds the height field and its nested hierarchy, flies the camera path, and for every

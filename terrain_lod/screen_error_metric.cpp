@@ -1,4 +1,4 @@
-// Screen-space error of a vertex (screen_error_metric.h; seed 003, equations (3)-(5)).
+// Screen-space error of a vertex (screen_error_metric.h; Lindstrom & Pascucci 2001, equations (3)-(5)).
 #include "terrain_lod/screen_error_metric.h"
 
 #include <cmath>

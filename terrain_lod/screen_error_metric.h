@@ -1,4 +1,4 @@
-// The view-dependent screen-space error of seed 003 ("Screen Error Metric"; Lindstrom & Pascucci
+// The view-dependent screen-space error ("Screen Error Metric"; Lindstrom & Pascucci
 // 2001, section 3): a vertex with nested error eps and ball radius r at p is active, i.e. kept in
 // the mesh, when the eye e is inside its ball (d = |e - p| <= r) or rho > tau.
 //

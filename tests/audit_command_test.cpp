@@ -150,9 +150,18 @@ TEST(AuditCommand, BetweenLlvmpipeAndSoftpipeListsExactlyTheDifferingPrimitives)
   write_text(dir + "/e.toml", experiment("\"osmesa-llvmpipe\", \"osmesa-softpipe\"", kOneView,
                                          "points = 0\nlines = 40\ntriangles = 40\n"));
   ASSERT_EQ(run_experiment(dir + "/e.toml", dir + "/run").exit_code, 0);
+  // no --db: the history is appended beside the run (DIR/history.sqlite), not under the working
+  // directory, and its row says which two platforms were compared
   const Outcome o = run_renderaudit("audit " + dir + "/run --between osmesa-llvmpipe " +
-                                    "osmesa-softpipe --no-history");
+                                    "osmesa-softpipe");
   ASSERT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("history: appended to " + dir + "/history.sqlite"), std::string::npos)
+      << o.output;
+  const Outcome h = run_renderaudit("history --db " + dir + "/history.sqlite --out " + dir + "/h");
+  EXPECT_EQ(h.exit_code, 0) << h.output;
+  EXPECT_NE(h.output.find(" osmesa-llvmpipe vs osmesa-softpipe "), std::string::npos)
+      << h.output;
+  EXPECT_EQ(run_renderaudit("history").exit_code, 2) << "the database is named explicitly";
   const std::string out = dir + "/run/audit-osmesa-llvmpipe-vs-osmesa-softpipe";
   const std::set<Key> expected = differing(records_of(dir + "/run", "osmesa-llvmpipe"),
                                            records_of(dir + "/run", "osmesa-softpipe"));

@@ -1,5 +1,5 @@
 // End to end: runs of the faulty platform's conformance variants through `renderaudit run` and
-// `analyze` are classified as predicted (issue 18): snapping to 5 bits is measured as such and is
+// `analyze` are classified as predicted: snapping to 5 bits is measured as such and is
 // never a violation; dropping every line's last pixel is within the GL rules; shifting every
 // primitive by one pixel is a violation that violations.md lists and an audit against the clean
 // run reports first, with a failing conformance testcase.

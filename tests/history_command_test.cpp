@@ -77,13 +77,13 @@ TEST(HistoryCommand, PrintsTheRecentAuditsAndDrawsATrendPerMetric) {
   const std::size_t header = o.output.find("id  date");
   ASSERT_NE(header, std::string::npos) << o.output;
   EXPECT_EQ(squeeze(o.output.substr(header, o.output.find('\n', header) - header)),
-            "id date (UTC) verdict changed flaky failed tests current run baseline run");
+            "id date (UTC) verdict changed flaky failed tests compares current run baseline run");
   EXPECT_EQ(table_row(o.output, "#1"),
-            "#1 2026-11-11T03:00:00Z unchanged 0 0 0 0 nightly-1 nightly-0");
+            "#1 2026-11-11T03:00:00Z unchanged 0 0 0 0 two runs nightly-1 nightly-0");
   EXPECT_EQ(table_row(o.output, "#2"),
-            "#2 2026-11-12T03:00:00Z unchanged 0 2 0 0 nightly-2 nightly-1");
+            "#2 2026-11-12T03:00:00Z unchanged 0 2 0 0 two runs nightly-2 nightly-1");
   EXPECT_EQ(table_row(o.output, "#3"),
-            "#3 2026-11-13T03:00:00Z changed 17 0 0 1 nightly-3 nightly-2");
+            "#3 2026-11-13T03:00:00Z changed 17 0 0 1 two runs nightly-3 nightly-2");
   // Drivers: the current ones, and the baseline's where they differ (audit 3: new Mesa).
   EXPECT_NE(o.output.find("  #3  osmesa-llvmpipe: llvmpipe (LLVM 15.0.6, 256 bits), 4.5 Mesa "
                           "23.0.0\n      baseline: osmesa-llvmpipe: llvmpipe (LLVM 15.0.6, 256 "

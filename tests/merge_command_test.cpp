@@ -71,6 +71,17 @@ TEST(MergeCommand, AMissingSliceADifferentExperimentAndAnotherDriverAreSaid) {
                               " --quiet --slice " + std::to_string(k) + "/2")
                   .exit_code,
               0);
+  // a slice is said to be a slice, and the remedy is merge: not "incomplete ... run it again"
+  const Outcome slice = run_renderaudit("analyze " + dir + "/s2_1");
+  EXPECT_EQ(slice.exit_code, 3) << slice.output;
+  EXPECT_NE(slice.output.find("a slice (1 of 2, one machine's share; "), std::string::npos)
+      << slice.output;
+  EXPECT_NE(slice.output.find("renderaudit merge SLICE_DIR_1 ... SLICE_DIR_2 --out DIR"),
+            std::string::npos)
+      << slice.output;
+  EXPECT_EQ(slice.output.find("INCOMPLETE"), std::string::npos) << slice.output;
+  EXPECT_EQ(slice.output.find("missing shard"), std::string::npos) << slice.output;
+  EXPECT_EQ(slice.output.find("same `renderaudit run` command"), std::string::npos) << slice.output;
   // one slice of two: merged, but incomplete (exit 1, the missing shards listed); analyze refuses
   const Outcome half = run_renderaudit("merge " + dir + "/s2_1 --out " + dir + "/half");
   EXPECT_EQ(half.exit_code, 1) << half.output;

@@ -1,4 +1,4 @@
-// End-to-end tests of a run directory's integrity (README, "Crashes and hangs", "Locking",
+// End-to-end tests of a run directory's integrity (docs/operations.md, "Crashes and hangs", "Locking",
 // "Incomplete runs", "Disk full"): one writer at a time, workers that die with their coordinator,
 // damaged shards redone, incomplete runs refused by analyze and report, plans and names checked
 // before anything is written, a full disk that leaves a manifest saying "failed".

@@ -318,6 +318,12 @@ TEST(SlurmCommand, StatusSaysWhatIsDoneRunningAndLeftWhileAWriterIsAtWork) {
   EXPECT_NE(s.output.find("32 planned, 32 done (100%), 0 running, 0 failed, 0 waiting"),
             std::string::npos)
       << s.output;
+  // ... and `analyze` agrees with `status` (it refused such a run as incomplete); --quiet prints
+  // where the files went, not the tables
+  const Outcome a = run_renderaudit("analyze " + dir + "/one --quiet");
+  EXPECT_EQ(a.exit_code, 0) << a.output;
+  EXPECT_NE(a.output.find("Wrote "), std::string::npos) << a.output;
+  EXPECT_EQ(a.output.find("### Table"), std::string::npos) << a.output;
   s = run_renderaudit("status " + dir);
   EXPECT_EQ(s.exit_code, 2);
   EXPECT_NE(s.output.find("not a run directory (no experiment.toml)"), std::string::npos);

@@ -280,7 +280,7 @@ TEST(TimingCommand, RepeatedRunsGiveSpreadAndWins) {
   EXPECT_NE(md.find("### Table 6 over 2 runs, osmesa-llvmpipe"), std::string::npos);
   EXPECT_NE(md.find("### Which method was best, osmesa-llvmpipe: runs won out of 2"), std::string::npos);
   EXPECT_NE(md.find("### System task c (99%) over 2 runs"), std::string::npos);
-  EXPECT_NE(md.find("### Table 6, osmesa-llvmpipe"), std::string::npos);  // run 1's, as before
+  EXPECT_NE(md.find("### Table 6, osmesa-llvmpipe"), std::string::npos);  // run 1's
   const auto r = run_renderaudit("report " + out);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto pdf = testing_cli::run_command("pdftotext " + out + "/report/report.pdf -");

@@ -72,7 +72,7 @@ struct TimingSettings {
   int system_task_frame = -1;     // a frame of that scene's camera path; -1: the middle one
   // Independent runs of the whole measurement (every platform measured afresh each time), to see
   // how far Table 6 and c move between runs; not `repetitions`, which counts the timed draws of
-  // one measurement. 1: the single study as before.
+  // one measurement. 1: a single study.
   int study_runs = 1;
 
   const WorkSettings& work_for(const std::string& platform) const;

@@ -250,7 +250,7 @@ nlohmann::json timing_json(const StudyResults& r) {
         {"pos_lookup", s.pos_lookup == PosLookup::kNearest ? "nearest" : "interpolate"},
         {"work", work}}},
       {"scenes", scenes}};
-  // (a single run writes neither key: its file is as it was before study_runs existed)
+  // (a single run writes neither key: its file is that of a single study)
   if (!r.repeated.empty()) {
     j["experiment"]["settings"]["study_runs"] = s.study_runs;
     j["repeated"] = repeated_json(r);

@@ -25,7 +25,7 @@
 //             ci_low_us, ci_high_us}, table6_ms2 {scene: {method: {per_run, n, mean, sd, min,
 //             max, ci_low, ci_high}}}, ranking {scene: {per_run [[methods, best first]], wins
 //             {method: runs}, paper_wins {method: runs}, runs_without_winner}}}]};
-//   with N = 1 neither key is written, so the file is as it was before study_runs existed.
+//   with N = 1 neither key is written, so the file is that of a single study.
 // DIR/table6_repeated.csv (N >= 2 only): one row per platform, scene and method: the spread over
 //   the runs, wins, the rank and the value of every run (';'-separated).
 // DIR/system_task_c_repeated.csv (N >= 2 only): one row per platform: c over the runs.

@@ -1,4 +1,4 @@
-// The error channels (see README, "Errors"): bad input stops the command with a located message
+// The error channels (docs/operations.md, exit codes): bad input stops the command with a located message
 // (UserError); a driver failure in one case is recorded in that case's record and the run goes on.
 #pragma once
 

@@ -1,0 +1,231 @@
+// The report's conclusion (see the header).
+#include "report/headline.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "analysis/conformance_summary.h"
+#include "stats/csv_table.h"
+#include "util/atomic_file.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace ra::report {
+namespace {
+
+Block make_block(Block::Kind kind, const std::string& text = "") {
+  Block b;
+  b.kind = kind;
+  b.text = text;
+  return b;
+}
+
+std::string percent(std::uint64_t part, std::uint64_t whole) {
+  if (whole == 0) return "n/a";
+  char buf[32];
+  const double p = 100.0 * double(part) / double(whole);
+  // never round a share that is not 100% up to "100.00", nor a non-zero one down to "0.00"
+  if (part != whole && p > 99.99) return ">99.99";
+  if (part != 0 && p < 0.01) return "<0.01";
+  std::snprintf(buf, sizeof buf, "%.2f", p);
+  return buf;
+}
+
+// Per platform: cells of the paper compared, and of those beyond 3 SE (explained or not).
+struct PaperAgreement {
+  std::size_t compared = 0, differing = 0, unexplained = 0;
+};
+
+std::map<std::string, PaperAgreement> paper_agreement(const std::string& analysis_dir) {
+  std::map<std::string, PaperAgreement> out;
+  const std::string comparison = analysis_dir + "/paper_comparison.csv";
+  const std::string differences = analysis_dir + "/paper_differences.csv";
+  if (!fs::exists(comparison)) return out;
+  const analysis::CsvTable c = analysis::CsvTable::read_file(comparison);
+  const std::size_t cp = c.column("Platform");
+  for (std::size_t r = 0; r < c.row_count(); ++r) ++out[c.cell(r, cp)].compared;
+  if (fs::exists(differences)) {
+    const analysis::CsvTable d = analysis::CsvTable::read_file(differences);
+    const std::size_t dp = d.column("Platform"), why = d.column("Why");
+    for (std::size_t r = 0; r < d.row_count(); ++r) {
+      PaperAgreement& a = out[d.cell(r, dp)];
+      ++a.differing;
+      a.unexplained += d.cell(r, why) == "not explained";
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> records_files(const std::string& run_dir) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(run_dir + "/records", ec))
+    if (e.path().extension() == ".csv") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// One sentence per platform: the conclusion in words, before the table that holds its numbers.
+std::string finding_sentence(const std::string& platform, const analysis::ConformanceCounts& n,
+                             const PaperAgreement& a) {
+  std::string s = "**" + platform + "**: ";
+  if (n.compared == 0) {
+    s += "no conformance verdict (the reference itself, or antialiased)";
+  } else {
+    s += percent(n.exact, n.compared) + "% of " + std::to_string(n.compared) +
+         " primitives drawn exactly as the reference rasterizer, ";
+    s += n.violation == 0
+             ? "every other one as GL allows: **no violation**"
+             : "**" + std::to_string(n.violation) + " violating GL's rules** (" +
+                   std::to_string(n.violating_pixels) + " pixels)";
+  }
+  if (a.compared > 0) {
+    s += "; " + std::to_string(a.compared - a.differing) + " of " + std::to_string(a.compared) +
+         " cells of the paper's tables within 3 SE";
+    if (a.differing > 0)
+      s += a.unexplained == 0 ? " (the other " + std::to_string(a.differing) + " explained)"
+                              : " (" + std::to_string(a.unexplained) + " beyond and not explained)";
+  }
+  return s + ".";
+}
+
+// The findings table: one row per platform with a verdict or a paper comparison; `sentences`
+// receives the same per platform in words.
+Table findings_table(const std::string& run_dir, std::vector<std::string>& sentences) {
+  const analysis::ConformanceSummary s = analysis::summarize_conformance(records_files(run_dir));
+  std::map<std::string, analysis::ConformanceCounts> per;
+  for (const auto& [key, n] : s.groups) {
+    analysis::ConformanceCounts& p = per[std::get<0>(key)];
+    p.compared += n.compared, p.exact += n.exact, p.snapped += n.snapped;
+    p.within_spec += n.within_spec, p.violation += n.violation;
+    p.violating_pixels += n.violating_pixels;
+  }
+  const std::map<std::string, PaperAgreement> paper = paper_agreement(run_dir + "/analysis");
+  std::set<std::string> platforms;
+  for (const auto& [p, n] : per) platforms.insert(p);
+  for (const auto& [p, a] : paper) platforms.insert(p);
+
+  Table t;
+  t.title = "What this run found, per platform";
+  t.header = {"platform", "primitives judged", "as the reference %", "other, as GL allows %",
+              "violations", "violating pixels", "paper cells within 3 SE",
+              "beyond: explained / not"};
+  t.right = {false, true, true, true, true, true, true, false};
+  for (const std::string& p : platforms) {
+    const auto n = per.count(p) ? per.at(p) : analysis::ConformanceCounts{};
+    const auto a = paper.count(p) ? paper.at(p) : PaperAgreement{};
+    const bool judged = n.compared > 0;
+    sentences.push_back(finding_sentence(p, n, a));
+    t.rows.push_back(
+        {p, judged ? std::to_string(n.compared) : "not judged",
+         judged ? percent(n.exact, n.compared) : "-",
+         judged ? percent(n.snapped + n.within_spec, n.compared) : "-",
+         judged ? std::to_string(n.violation) : "-",
+         judged ? std::to_string(n.violating_pixels) : "-",
+         a.compared ? std::to_string(a.compared - a.differing) + " of " + std::to_string(a.compared)
+                    : "not compared",
+         a.compared ? std::to_string(a.differing - a.unexplained) + " / " +
+                          std::to_string(a.unexplained)
+                    : "-"});
+  }
+  t.notes.push_back(
+      "As the reference: the same pixels as the exact reference rasterizer; other, as GL allows: "
+      "other pixels, each one GL permits (the driver's subpixel snapping, ties, line ends); a "
+      "violation lights or leaves dark a pixel no conforming implementation could (section 4 lists them, with the command that "
+      "draws each). The reference platform is exact by definition; antialiased platforms are not "
+      "judged.");
+  if (!paper.empty())
+    t.notes.push_back(
+        "Paper cells: the medians and IQRs of the paper's Tables 3-10 that this run's views "
+        "reproduce; within 3 standard errors of at least one of the paper's platforms, or beyond "
+        "with the reason established for it (section 'Beside the paper': paper_differences).");
+  return t;
+}
+
+// The audit's verdict per driver, against the baseline it names.
+std::vector<Block> audit_blocks(const std::string& run_dir) {
+  std::vector<Block> out;
+  const std::string path = run_dir + "/audit/audit.json";
+  if (!fs::exists(path)) return out;
+  const json j = json::parse(read_file(path));
+  const std::string verdict = j.value("verdict", "?");
+  const json baseline = j.value("baseline", json::object());
+  std::string baseline_dir = baseline.value("run_dir", "?");
+  const bool self = baseline_dir == j.value("current", json::object()).value("run_dir", "");
+  out.push_back(make_block(
+      Block::Kind::kParagraph,
+      "**Audit: " + verdict + "** against the baseline run " + baseline_dir +
+          (self ? " (the run itself: the first run of a nightly series is its own baseline)" : "") +
+          ". Per driver, PASS when no primitive changed, no primitive or shard failed and no shard "
+          "is missing; the details are in audit/audit.md."));
+  struct Driver {
+    std::string baseline;
+    std::int64_t compared = 0, changed = 0, flakes = 0, failed = 0;
+  };
+  std::map<std::string, Driver> drivers;
+  for (const auto& v : j.value("views", json::array())) {
+    Driver& d = drivers[v.value("platform", "?")];
+    d.baseline = v.value("baseline_platform", "?");
+    d.compared += v.value("compared", std::int64_t{0});
+    d.changed += v.value("changed", std::int64_t{0});
+    d.flakes += v.value("flakes", std::int64_t{0});
+    d.failed += v.value("failed", std::int64_t{0});
+  }
+  const json failures = j.value("failures", json::object());
+  std::map<std::string, std::int64_t> missing;
+  for (const auto& m : failures.value("missing_shards", json::array()))
+    if (m.is_object()) ++missing[m.value("platform", "?")];
+  // shard failures the manifest lists that did not recover on re-run count against their driver
+  for (const auto& m : failures.value("manifest", json::array()))
+    if (m.is_object() && m.value("outcome", "") != "recovered")
+      ++drivers[m.value("platform", "?")].failed;
+  std::set<std::string> mismatched;
+  for (const auto& m : failures.value("renderer_mismatches", json::array()))  // "PLATFORM: ..."
+    if (m.is_string()) mismatched.insert(m.get<std::string>().substr(0, m.get<std::string>().find(':')));
+  Table t;
+  t.title = "Audit verdict per driver";
+  t.header = {"platform", "baseline platform", "verdict", "compared", "changed", "flaky",
+              "failed (primitives, shards)", "missing shards"};
+  t.right = {false, false, false, true, true, true, true, true};
+  for (const auto& [p, d] : drivers) {
+    const std::int64_t miss = missing.count(p) ? missing.at(p) : 0;
+    const bool pass = d.changed == 0 && d.failed == 0 && miss == 0 && !mismatched.count(p);
+    t.rows.push_back({p, d.baseline, pass ? "PASS" : "FAIL", std::to_string(d.compared),
+                      std::to_string(d.changed), std::to_string(d.flakes),
+                      std::to_string(d.failed), std::to_string(miss)});
+  }
+  if (!mismatched.empty())
+    t.notes.push_back("A driver whose GL_RENDERER does not match --expect-renderer fails.");
+  for (const auto& r : j.value("reasons", json::array()))
+    if (r.is_string()) t.notes.push_back(r.get<std::string>());
+  Block b = make_block(Block::Kind::kTable);
+  b.table = std::move(t);
+  out.push_back(std::move(b));
+  return out;
+}
+
+}  // namespace
+
+std::vector<Block> headline_blocks(const std::string& run_dir) {
+  std::vector<Block> out;
+  Block h = make_block(Block::Kind::kHeading, "Conclusion");
+  h.level = 2;  // on the title page (a level-1 heading would start a page)
+  h.anchor = "conclusion";
+  out.push_back(std::move(h));
+  for (Block& b : audit_blocks(run_dir)) out.push_back(std::move(b));
+  std::vector<std::string> sentences;
+  Block t = make_block(Block::Kind::kTable);
+  t.table = findings_table(run_dir, sentences);
+  Block list = make_block(Block::Kind::kBullets);
+  list.items = std::move(sentences);
+  out.push_back(std::move(list));
+  out.push_back(std::move(t));
+  return out;
+}
+
+}  // namespace ra::report
