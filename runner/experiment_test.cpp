@@ -124,30 +124,30 @@ INSTANTIATE_TEST_SUITE_P(
                 "'name' must be a plain file name"},
         BadCase{"UndeclaredBuild", with("\"osmesa-llvmpipe\"", "\"osmesa-llvmpipe@new\""),
                 "exp.toml:2:14", "names driver build 'new', which no [builds.new] table declares"},
-        BadCase{"BuildOfReference", "[builds.new]\ndir = \"/b\"\n" +
-                                        with("\"osmesa-llvmpipe\"", "\"reference@new\""),
-                "exp.toml:4:14", "unknown platform 'reference@new'"},
+        BadCase{"BuildOfReference", with("\"osmesa-llvmpipe\"", "\"reference@new\"") +
+                                        "[builds.new]\ndir = \"/b\"\n",
+                "exp.toml:2:14", "unknown platform 'reference@new'"},
         BadCase{"BadBuildName", with("\"osmesa-llvmpipe\"", "\"osmesa-llvmpipe@a/b\""),
                 "exp.toml:2:14", "unknown platform 'osmesa-llvmpipe@a/b'"},
-        BadCase{"RelativeBuildDir", "[builds.new]\ndir = \"cache/new\"\n" + std::string(kValid),
-                "exp.toml:2:7", "'builds.new.dir' must be an absolute path"},
-        BadCase{"UnknownBuildKey", "[builds.new]\nfolder = \"/b\"\n" + std::string(kValid),
-                "exp.toml:2:1", "unknown key 'builds.new.folder' (allowed: dir, origin, suite)"},
+        BadCase{"RelativeBuildDir", std::string(kValid) + "[builds.new]\ndir = \"cache/new\"\n",
+                "exp.toml:12:7", "'builds.new.dir' must be an absolute path"},
+        BadCase{"UnknownBuildKey", std::string(kValid) + "[builds.new]\nfolder = \"/b\"\n",
+                "exp.toml:12:1", "unknown key 'builds.new.folder' (allowed: dir, origin, suite)"},
         BadCase{"TooManyShards", std::string(kValid) + "[run]\nshard_size = 1\nmax_shards = 10\n",
                 "exp.toml:", "the plan has too many shards"}),
     [](const testing::TestParamInfo<BadCase>& info) { return std::string(info.param.name); });
 
 // A build's folder: `dir` as written (~ expanded), else NAME in the build cache.
 TEST(Experiment, QualifiedPlatformsDrawWithTheirDeclaredBuild) {
-  const std::string text = "[builds.new]\ndir = \"/opt/mesa-new\"\norigin = \"Debian\"\n"
-                           "[builds.cached]\n" +
-                           with("\"osmesa-llvmpipe\"",
-                                "\"osmesa-llvmpipe\", \"egl-softpipe@new\", \"osmesa-llvmpipe@cached\"");
-  setenv("RENDERAUDIT_BUILD_CACHE", "/var/cache/builds", 1);
+  const std::string text =
+      with("\"osmesa-llvmpipe\"",
+           "\"osmesa-llvmpipe\", \"egl-softpipe@new\", \"osmesa-llvmpipe@cached\"") +
+      "[builds.new]\ndir = \"/opt/mesa-new\"\norigin = \"Debian\"\n[builds.cached]\n";
   const Experiment e = parse_experiment(text, "exp.toml");
-  EXPECT_EQ(experiment_platform(e, "osmesa-llvmpipe@cached").build_dir,
-            "/var/cache/builds/cached");
+  setenv("RENDERAUDIT_BUILD_CACHE", "/var/cache/builds", 1);
+  const std::string cached = experiment_platform(e, "osmesa-llvmpipe@cached").build_dir;
   unsetenv("RENDERAUDIT_BUILD_CACHE");
+  EXPECT_EQ(cached, "/var/cache/builds/cached");
   ASSERT_EQ(e.platforms.size(), 3u);
   const PlatformSpec installed = experiment_platform(e, "osmesa-llvmpipe");
   EXPECT_EQ(installed.build, "");

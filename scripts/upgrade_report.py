@@ -22,7 +22,9 @@ def records(run_dir, platforms):
     """(platform, kind, view, index) -> the columns the report reads."""
     out = {}
     for path in sorted(glob.glob(os.path.join(run_dir, "records", "*.csv"))):
-        if os.path.basename(path).split(".")[0] not in platforms:
+        base = os.path.basename(path)  # PLATFORM.KIND.vV.B-E.csv; a build name may hold dots
+        if not any(base.startswith(p + "." + k + ".") for p in platforms
+                   for k in ("point", "line", "triangle")):
             continue
         with open(path, newline="") as f:
             for r in csv.DictReader(line for line in f if not line.startswith("#")):

@@ -34,8 +34,8 @@ void write_json(const std::string& path, const nlohmann::json& j) {
 
 const char* kSimulatedVersion = "4.5 (Compatibility Profile) Mesa 99.0.0-simulated";
 
-std::string small_experiment(const std::string& platforms, const std::string& extra = "") {
-  return extra + "seed = 5\nplatforms = [" + platforms +
+std::string small_experiment(const std::string& platforms) {
+  return "seed = 5\nplatforms = [" + platforms +
          "]\n[views]\norientations = 1\nfov_deg = [30]\nwindows = [128]\nnear = 0.01\n"
          "far = 10.0\n[primitives]\nlines = 60\ntriangles = 60\n[run]\nshard_size = 1000\n";
 }
@@ -149,8 +149,8 @@ TEST(DriverBuild, TwoBuildsInOneRunAuditTheSameInAnyEnvironment) {
                     "(needs the Debian registry) or RENDERAUDIT_TEST_BUILD=DIR enables this test";
   const std::string dir = fresh_dir("driver_two_builds");
   // FOV 30 at 907 x 907: where llvmpipe 25.0 draws lines differently from 22.3
-  std::string text = "[builds.other]\ndir = \"" + build + "\"\n" +
-                     small_experiment("\"osmesa-llvmpipe\", \"osmesa-llvmpipe@other\"");
+  std::string text = small_experiment("\"osmesa-llvmpipe\", \"osmesa-llvmpipe@other\"") +
+                     "[builds.other]\ndir = \"" + build + "\"\n";
   text.replace(text.find("windows = [128]"), 15, "windows = [907]");
   write_text(dir + "/e.toml", text);
   const Outcome r = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2 --quiet");
@@ -203,4 +203,26 @@ TEST(DriverBuild, ElfDependenciesMatchReadelf) {
   for (const std::string& n : d.needed)
     EXPECT_NE(readelf.find("[" + n + "]"), std::string::npos) << n;
   EXPECT_TRUE(ra::read_elf_dependencies("/etc/hostname").soname.empty());
+}
+
+// `builds fetch` from a registry that cannot be reached: a clear error, and the cache as it was.
+TEST(DriverBuild, FetchFromAnUnreachableRegistryLeavesTheCacheAsItWas) {
+  if (shell_output("apt-get --version").empty()) GTEST_SKIP() << "apt-get is not installed";
+  const std::string dir = fresh_dir("driver_fetch_unreachable");
+  fs::create_directories(dir + "/cache");
+  write_text(dir + "/cache/keep.txt", "a file of the user's\n");
+  const Outcome o = run_renderaudit("builds fetch bookworm-backports --mirror http://127.0.0.1:9/debian "
+                                    "--cache " + dir + "/cache");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("suite 'bookworm-backports' of http://127.0.0.1:9/debian is unreachable"),
+            std::string::npos) << o.output;
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir + "/cache")) left.push_back(e.path().filename());
+  EXPECT_EQ(left, std::vector<std::string>{"keep.txt"});
+  const Outcome list = run_renderaudit("builds list --cache " + dir + "/cache");
+  EXPECT_EQ(list.exit_code, 0) << list.output;
+  EXPECT_NE(list.output.find("no builds in"), std::string::npos) << list.output;
+  const Outcome bad = run_renderaudit("builds fetch 'no/suite' --cache " + dir + "/cache");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("is not a Debian suite name"), std::string::npos) << bad.output;
 }
