@@ -6,7 +6,7 @@ BUILD_TYPE ?= Release
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
-.PHONY: all deps build run analyze plot report paper test slurm-test bench investigations nightly timing lod regulation format clean
+.PHONY: all deps build run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly timing lod regulation format clean
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
@@ -73,6 +73,12 @@ test: build
 # (skipped there, loudly, where no Slurm can be started).
 slurm-test: build
 	scripts/slurm-test.sh $(BUILD)
+
+# The installed Mesa against the newest Mesa of Debian's bookworm-backports on the nist2008 views
+# (scripts/driver-upgrade.sh): fetch, run, audit, report (outputs/driver-upgrade/upgrade-report.md).
+# Needs the Debian registry for the fetch; says so and stops where it cannot be reached.
+driver-upgrade: build
+	scripts/driver-upgrade.sh $(BUILD)
 
 # Benchmarks: side-by-side medians, printed as tables and written as JSON under outputs/bench/.
 bench: build

@@ -29,7 +29,9 @@ void register_show_command(CLI::App& app, int& exit_code);     // one primitive 
 void register_timing_command(CLI::App& app, int& exit_code);   // rendering-time study (timing/)
 void register_platforms_command(CLI::App& app, int& exit_code);  // what this machine can draw with
 void register_merge_command(CLI::App& app, int& exit_code);      // slices of a run gathered
-void register_status_command(CLI::App& app, int& exit_code);     // where a run stands
+void register_status_command(CLI::App& app, int& exit_code);
+void register_builds_command(CLI::App& app, int& exit_code);
+void register_reproduce_command(CLI::App& app, int& exit_code);   // one record as a C program      // driver builds: fetch, list     // where a run stands
 
 // The studies (app/study_dispatch.cpp): each returns false when its argument is not a study (an
 // audit experiment or run folder), and otherwise does the study's stage and sets exit_code.

@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
   ra::app::register_platforms_command(app, exit_code);
   ra::app::register_merge_command(app, exit_code);
   ra::app::register_status_command(app, exit_code);
+  ra::app::register_builds_command(app, exit_code);
+  ra::app::register_reproduce_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

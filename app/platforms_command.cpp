@@ -41,6 +41,10 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
       "GL_SUBPIXEL_BITS, GL_MAX_SAMPLES, timer queries) and, for each one it cannot, why and\n"
       "which packages would provide it. Each GL platform is brought up in a child process.");
   static bool as_json = false, embedded_default = false;
+  static std::vector<std::string> names;
+  cmd->add_option("names", names,
+                  "probe only these platforms; PLATFORM@BUILD draws with a build of the build "
+                  "cache (`renderaudit builds list`), e.g. osmesa-llvmpipe@mesa-25.0.7");
   cmd->add_flag("--json", as_json, "one JSON document on stdout");
   cmd->add_flag("--embedded-default", embedded_default,
                 "print the platform `make` draws with: osmesa-llvmpipe where OSMesa works, else "
@@ -61,7 +65,16 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
       throw UserError("neither embedded platform can draw on this machine:" + reasons);
     }
     std::string device_note;
-    const std::vector<PlatformSpec> specs = platforms_to_probe(&device_note);
+    std::vector<PlatformSpec> specs;
+    if (names.empty()) {
+      specs = platforms_to_probe(&device_note);
+    } else {
+      for (const std::string& n : names) {
+        const std::optional<PlatformSpec> s = find_platform(n);
+        if (!s) throw UserError("unknown platform '" + n + "' (allowed: " + platform_names() + ")");
+        specs.push_back(*s);
+      }
+    }
     nlohmann::json list = nlohmann::json::array();
     for (const PlatformSpec& spec : specs) {
       const PlatformProbe p = probe_platform(spec);

@@ -19,6 +19,8 @@
 #include "runner/experiment.h"
 #include "runner/shard.h"
 #include "runner/worker_program.h"
+#include "platforms/renderer_check.h"
+#include "util/errors.h"
 
 namespace fs = std::filesystem;
 
@@ -114,6 +116,12 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   const std::string dir = templ;
   for (const char* sub : {"/records", "/drivers", "/logs"}) fs::create_directories(dir + sub);
   write_file_atomic(dir + "/experiment.toml", exp.text);
+  // The run's driver files: each re-render worker checks the driver it loaded against them
+  // (platforms/renderer_check.h) and stops rather than draw with another.
+  std::error_code copy_ec;
+  for (const auto& e : fs::directory_iterator(options.run_dir + "/drivers", copy_ec))
+    if (e.path().extension() == ".json")
+      fs::copy_file(e.path(), dir + "/drivers/" + e.path().filename().string(), copy_ec);
 
   struct Running {
     std::size_t batch;
@@ -193,8 +201,14 @@ FlakeCheckSummary apply_flake_check(PrimitiveComparison& comparison,
   const RerenderResult r = rerender(plan_rerender(requests, avoid, options.max_gap), options);
   s.processes = r.batches.size();
   s.seconds = r.seconds;
-  for (const RerenderBatch& b : r.batches)
+  for (const RerenderBatch& b : r.batches) {
+    // A re-render on another driver than the run's is no evidence either way: stop the audit.
+    if (b.error.find(kDriverMismatch) != std::string::npos)
+      throw UserError("the flake check cannot re-render " + b.platform + " with the driver that "
+                      "made " + options.run_dir + ": " +
+                      b.error.substr(b.error.find(kDriverMismatch)));
     if (!b.error.empty()) s.failed_batches.push_back(b);
+  }
 
   for (std::size_t i = 0; i < n; ++i) {
     ChangedPrimitive& c = comparison.changed[i];

@@ -19,6 +19,12 @@
 //   longer exist); a flake when the re-render's pixels equal the baseline's.
 // - `--between P1 P2` (two platforms of one run, both available here): both sides are rendered
 //   again; a flake when the two re-renders have the same pixels, i.e. the difference vanished.
+//
+// One driver per record: the children load each platform's build (PLATFORM@BUILD) from the run's
+// experiment, whatever this process's environment, and check GL_RENDERER and GL_VERSION against
+// the run's driver files (copied into TMPDIR/drivers). A child that loaded another driver makes
+// apply_flake_check throw UserError naming both: the audit stops (exit 2) rather than call a real
+// change a flake.
 #pragma once
 
 #include <cstddef>

@@ -21,6 +21,7 @@
 #include "util/errors.h"
 #include "runner/experiment.h"
 #include "platforms/platform.h"
+#include "platforms/renderer_check.h"
 #include "metrics/point_metrics.h"
 #include "geometry/reference_rasterizer.h"
 
@@ -141,8 +142,7 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   if (!fs::is_regular_file(toml))
     throw UserError(q.run_dir + ": not a run directory (no experiment.toml)");
   const Experiment exp = load_experiment(toml);
-  if (!find_platform(q.platform))
-    throw UserError("unknown platform '" + q.platform + "' (allowed: " + platform_names() + ")");
+  const PlatformSpec platform_spec = experiment_platform(exp, q.platform);
   Kind kind;
   if (!parse_kind(q.kind, &kind))
     throw UserError("unknown kind '" + q.kind + "' (allowed: point, line, triangle)");
@@ -155,7 +155,9 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   const Primitive prim = make_primitive(exp.seed, kind, q.index);
 
   // Render once, measure that rendering, and rasterize the reference for comparison.
-  const std::unique_ptr<Platform> platform = create_platform(q.platform, exp.faults);
+  const std::unique_ptr<Platform> platform = create_platform(platform_spec, exp.faults);
+  // The driver that made the run's records, or a clear stop (renderer_check.h).
+  require_run_driver(q.run_dir, q.platform, platform->driver_info());
   const bool is_reference = q.platform == "reference";
   // The grid the runner's workers measured (the same calibration: deterministic platforms agree).
   const SubpixelGrid effective =

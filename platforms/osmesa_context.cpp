@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "platforms/driver_build.h"
 #include "platforms/gl_context_backends.h"
 #include "util/errors.h"
 
@@ -27,9 +28,13 @@ constexpr GLenum kOsmesaRgba = GL_RGBA;
 class OsmesaContext : public GlContext {
  public:
   explicit OsmesaContext(const PlatformSpec& spec) {
+    // A driver build's own library; else RENDERAUDIT_LIBOSMESA, else the installed one.
+    const std::string build_library =
+        spec.build.empty() ? "" : build_library_dir(spec.build_dir) + "/libOSMesa.so.8";
     const char* library = std::getenv("RENDERAUDIT_LIBOSMESA");
-    const bool named = library && *library;
-    if (!named) library = "libOSMesa.so.8";
+    const bool named = build_library.empty() && library && *library;
+    if (!build_library.empty()) library = build_library.c_str();
+    if (!library || !*library) library = "libOSMesa.so.8";
     library_ = dlopen(library, RTLD_NOW | RTLD_LOCAL);
     if (!library_) {
       // when the variable chose the library, it is named: the package alone would mislead

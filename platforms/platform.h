@@ -75,7 +75,9 @@ class Platform {
 // Creates the platform for this process. GL platforms make their context with
 // create_gl_context (platforms/gl_context.h), which sets Mesa's environment (and LP_NUM_THREADS=0
 // unless the user set it: thread hand-off dominates one-primitive frames).
-std::unique_ptr<Platform> create_platform(const std::string& name, const FaultPlan& faults);
+// `spec` comes from find_platform, or from experiment_platform for a driver build an experiment
+// declares.
+std::unique_ptr<Platform> create_platform(const PlatformSpec& spec, const FaultPlan& faults);
 
 // How a GL platform finds the lit pixels. Only kRegionWithProof is used by `run`; the others
 // exist for the benchmark (`make bench`), which compares them side by side.

@@ -66,12 +66,18 @@ PlatformProbe probe_platform(const PlatformSpec& spec) {
 }
 
 void require_platforms_draw(const std::vector<std::string>& names, const std::string& context) {
+  std::vector<PlatformSpec> specs;
+  for (const std::string& name : names)
+    if (const std::optional<PlatformSpec> spec = find_platform(name)) specs.push_back(*spec);
+  require_platforms_draw(specs, context);
+}
+
+void require_platforms_draw(const std::vector<PlatformSpec>& specs, const std::string& context) {
   std::string problems;
-  for (const std::string& name : names) {
-    const std::optional<PlatformSpec> spec = find_platform(name);
-    if (!spec || !spec->draws_with_gl()) continue;
-    const PlatformProbe p = probe_platform(*spec);
-    if (!p.available) problems += "\n  " + name + ": " + p.reason;
+  for (const PlatformSpec& spec : specs) {
+    if (!spec.draws_with_gl()) continue;
+    const PlatformProbe p = probe_platform(spec);
+    if (!p.available) problems += "\n  " + spec.name + ": " + p.reason;
   }
   if (!problems.empty()) {
     throw UserError(context + ": platform(s) that cannot draw on this machine (nothing was "

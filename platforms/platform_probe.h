@@ -26,5 +26,7 @@ PlatformProbe probe_platform(const PlatformSpec& spec);
 // reason (the run then stops before its directory is written). Unknown names are the experiment
 // parser's business and are skipped here.
 void require_platforms_draw(const std::vector<std::string>& names, const std::string& context);
+// The same for resolved platforms (an experiment's driver builds: runner/experiment.h).
+void require_platforms_draw(const std::vector<PlatformSpec>& specs, const std::string& context);
 
 }  // namespace ra

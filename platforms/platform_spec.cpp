@@ -1,7 +1,10 @@
 // The platform table and the parsing of `egl-device:N` (see the header).
 #include "platforms/platform_spec.h"
 
+#include <cctype>
 #include <charconv>
+
+#include "platforms/driver_build.h"
 
 namespace ra {
 
@@ -36,7 +39,32 @@ const std::vector<PlatformSpec>& platform_specs() {
   return specs;
 }
 
+std::pair<std::string, std::string> split_build(const std::string& name) {
+  const std::size_t at = name.find('@');
+  if (at == std::string::npos) return {name, ""};
+  return {name.substr(0, at), name.substr(at + 1)};
+}
+
+bool is_build_name(const std::string& build) {
+  if (build.empty() || build.size() > 64 || build[0] == '.' || build[0] == '-') return false;
+  for (char c : build)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-')
+      return false;
+  return true;
+}
+
 std::optional<PlatformSpec> find_platform(const std::string& name) {
+  if (const auto [base, build] = split_build(name); name.find('@') != std::string::npos) {
+    std::optional<PlatformSpec> s = find_platform(base);
+    if (!s || !is_build_name(build) ||
+        (s->backend != Backend::kOsmesa && s->backend != Backend::kEglSurfaceless))
+      return std::nullopt;
+    s->name = name;
+    s->description += ", driver build " + build;
+    s->build = build;
+    s->build_dir = build_cache_dir() + "/" + build;
+    return s;
+  }
   for (const PlatformSpec& s : platform_specs())
     if (name == s.name) return s;
   // egl-device:N and egl-device:N-msaa4
@@ -64,7 +92,7 @@ std::optional<PlatformSpec> find_platform(const std::string& name) {
 std::string platform_names() {
   std::string out;
   for (const auto& s : platform_specs()) out += (out.empty() ? "" : ", ") + s.name;
-  return out + ", egl-device:N";
+  return out + ", egl-device:N, and PLATFORM@BUILD for a driver build";
 }
 
 std::string aliased_gl_platform_names() {

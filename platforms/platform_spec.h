@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ra {
@@ -31,6 +32,10 @@ struct PlatformSpec {
   // kEglDevice: the index among EGL devices (`egl-device:N`); -1 for `egl-device`, the first
   // device that is not Mesa's software one.
   int device = -1;
+  // `PLATFORM@BUILD`: the driver build it draws with (platforms/driver_build.h) and the folder
+  // that build's files were unpacked into; both empty for the installed driver.
+  std::string build = "";
+  std::string build_dir = "";
 
   bool draws_with_gl() const {
     return backend == Backend::kOsmesa || backend == Backend::kEglSurfaceless ||
@@ -41,8 +46,15 @@ struct PlatformSpec {
 // The platforms with a fixed name, in the order messages list them (`egl-device:N` and
 // `egl-device:N-msaa4` are parsed by find_platform).
 const std::vector<PlatformSpec>& platform_specs();
-// The platform called `name`, or nullopt.
+// The platform called `name`, or nullopt. `PLATFORM@BUILD` (an OSMesa or surfaceless EGL
+// platform, BUILD of letters, digits and `._-`) is PLATFORM drawn with driver build BUILD, whose
+// folder defaults to BUILD in the build cache (build_cache_dir()); an experiment's [builds] table
+// may name another (runner/experiment.h).
 std::optional<PlatformSpec> find_platform(const std::string& name);
+// Splits `PLATFORM@BUILD`; BUILD is empty for an unqualified name.
+std::pair<std::string, std::string> split_build(const std::string& name);
+// Whether `build` is a valid build name (1 to 64 of [A-Za-z0-9._-], not starting with '.' or '-').
+bool is_build_name(const std::string& build);
 std::string platform_names();  // "osmesa-llvmpipe, osmesa-softpipe, ..., egl-device:N"
 
 // The aliased GL platforms (draws_with_gl, samples 0): the ones the timing, LOD and regulation

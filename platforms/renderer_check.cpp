@@ -23,6 +23,33 @@ RendererCheck::RendererCheck(std::string run_dir, const std::string& pattern)
   }
 }
 
+void require_run_driver(const std::string& run_dir, const std::string& platform,
+                        const DriverInfo& loaded) {
+  const std::optional<PlatformSpec> spec = find_platform(platform);
+  if (!spec || !spec->draws_with_gl()) return;
+  const std::string path = run_dir + "/drivers/" + platform + ".json";
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return;
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(read_file(path));
+  } catch (const std::exception& e) {
+    throw UserError(path + ": not a readable driver file (" + e.what() + ")");
+  }
+  const std::string renderer = j.value("renderer", ""), version = j.value("version", "");
+  if (renderer == loaded.renderer && version == loaded.version) return;
+  std::string where;
+  if (const auto b = j.find("build"); b != j.end() && b->is_object())
+    if (const auto f = b->find("folder"); f != b->end() && f->is_string())
+      where = ", build folder " + f->get<std::string>();
+  throw UserError(std::string(kDriverMismatch) + ": " + platform + ": this process loaded GL_RENDERER '" +
+                  loaded.renderer + "' GL_VERSION '" + loaded.version + "' (" + loaded.backend +
+                  "), but the run's records were made with GL_RENDERER '" + renderer +
+                  "' GL_VERSION '" + version + "' (" + path + where +
+                  "); nothing was drawn. Draw with the driver that made the run: name its build "
+                  "(PLATFORM@BUILD) or run in the environment the run was made in");
+}
+
 std::string RendererCheck::mismatch() {
   if (pattern_.empty()) return "";
   std::error_code ec;

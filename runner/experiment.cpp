@@ -1,6 +1,7 @@
 #include "runner/experiment.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <set>
 #include <sstream>
 
@@ -8,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include "util/errors.h"
+#include "platforms/driver_build.h"
 #include "platforms/platform.h"
 #include "util/toml_locator.h"
 
@@ -180,7 +182,66 @@ void check_plan_size(const TomlLocator& loc, const toml::table& root, const Expe
                      std::to_string(kMaxShardsCeiling) + ")");
 }
 
+// [builds.NAME] tables: dir (absolute or ~/...), suite, origin.
+void parse_builds(const TomlLocator& loc, const toml::table& root, Experiment& exp) {
+  const toml::node* b = root.get("builds");
+  if (!b) return;
+  if (!b->is_table()) loc.fail(b, "'builds' must hold tables [builds.NAME] (keys: dir, suite, origin)");
+  for (const auto& [key, node] : *b->as_table()) {
+    const std::string name(key.str());
+    if (!is_build_name(name))
+      loc.fail(&node, "driver build name '" + name + "' is not valid (allowed: 1 to 64 letters, "
+                      "digits, '.', '_', '-', not starting with '.' or '-')");
+    if (!node.is_table()) loc.fail(&node, "'builds." + name + "' must be a table (keys: dir, suite, origin)");
+    const toml::table& t = *node.as_table();
+    loc.reject_unknown_keys(t, "builds." + name + ".", {"dir", "suite", "origin"});
+    DriverBuildDecl d;
+    d.name = name;
+    for (auto [k, dst] : {std::pair{"dir", &d.dir}, std::pair{"suite", &d.suite},
+                          std::pair{"origin", &d.origin}}) {
+      const toml::node* n = t.get(k);
+      if (!n) continue;
+      const auto* v = n->as_string();
+      if (!v || v->get().empty())
+        loc.fail(n, "'builds." + name + "." + k + "' must be a non-empty string");
+      *dst = v->get();
+    }
+    if (d.dir.rfind("~/", 0) == 0) {
+      const char* home = std::getenv("HOME");
+      d.dir = std::string(home ? home : "") + d.dir.substr(1);
+    }
+    if (!d.dir.empty() && d.dir[0] != '/')
+      loc.fail(t.get("dir"), "'builds." + name + ".dir' must be an absolute path or start with ~/ "
+                             "(the run folder's copy of this file is read from elsewhere)");
+    if (!d.suite.empty() && !is_build_name(d.suite))
+      loc.fail(t.get("suite"), "'builds." + name + ".suite' is not a suite name (letters, digits, ._-)");
+    exp.builds[name] = d;
+  }
+}
+
 }  // namespace
+
+PlatformSpec experiment_platform(const Experiment& exp, const std::string& name) {
+  std::optional<PlatformSpec> spec = find_platform(name);
+  if (!spec) throw UserError("unknown platform '" + name + "' (allowed: " + platform_names() + ")");
+  if (spec->build.empty()) return *spec;
+  const auto it = exp.builds.find(spec->build);
+  if (it == exp.builds.end())
+    throw UserError(exp.path + ": platform '" + name + "' names driver build '" + spec->build +
+                    "', which the experiment does not declare ([builds." + spec->build + "])");
+  const DriverBuildDecl& d = it->second;
+  if (!d.dir.empty()) {
+    spec->build_dir = d.dir;
+  } else if (!d.suite.empty()) {
+    const std::string found = cached_build_of_suite(d.suite);
+    if (found.empty())
+      throw UserError(exp.path + ": driver build '" + d.name + "' is the cached build of suite '" +
+                      d.suite + "', and " + build_cache_dir() + " holds none: fetch it with "
+                      "`renderaudit builds fetch " + d.suite + "`");
+    spec->build_dir = found;
+  }
+  return *spec;
+}
 
 Experiment parse_experiment(const std::string& text, const std::string& path) {
   TomlLocator loc(path);
@@ -191,7 +252,9 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
   exp.text = text;
   exp.hash = canonical_hash(root);
   loc.reject_unknown_keys(root, "",
-                          {"name", "seed", "platforms", "views", "primitives", "run", "faults"});
+                          {"name", "seed", "platforms", "views", "primitives", "run", "faults",
+                           "builds"});
+  parse_builds(loc, root, exp);
 
   exp.name = loc.experiment_name(root);
 
@@ -206,7 +269,17 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
     const auto* s = e.as_string();
     if (!s || !find_platform(s->get()))
       loc.fail(&e, "unknown platform '" + (s ? s->get() : std::string("?")) +
-                       "' (allowed: " + platform_names() + ")");
+                       "' (allowed: " + platform_names() + "; a build qualifies only the osmesa-* "
+                       "and surfaceless egl-* platforms, its name of letters, digits and ._-)");
+    if (const std::string build = split_build(s->get()).second;
+        !build.empty() && !exp.builds.count(build))
+      loc.fail(&e, "platform '" + s->get() + "' names driver build '" + build +
+                       "', which no [builds." + build + "] table declares (declared: " +
+                       (exp.builds.empty() ? std::string("none") : [&] {
+                         std::string names;
+                         for (const auto& [n, b] : exp.builds) names += (names.empty() ? "" : ", ") + n;
+                         return names;
+                       }()) + ")");
     for (const auto& seen : exp.platforms)
       if (seen == s->get()) loc.fail(&e, "platform '" + seen + "' is listed twice");
     exp.platforms.push_back(s->get());

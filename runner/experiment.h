@@ -5,14 +5,26 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "geometry/primitive.h"
 #include "geometry/view.h"
 #include "platforms/fault_plan.h"
+#include "platforms/platform_spec.h"
 
 namespace ra {
+
+// `[builds.NAME]`: a driver build the experiment's `PLATFORM@NAME` platforms draw with
+// (platforms/driver_build.h). Its folder: `dir` (absolute, or under ~/), else the newest build
+// that `renderaudit builds fetch SUITE` put in the cache for `suite`, else NAME in the cache.
+struct DriverBuildDecl {
+  std::string name;
+  std::string dir;     // as written, ~ expanded; empty: from the cache
+  std::string suite;   // e.g. "bookworm-backports"; optional
+  std::string origin;  // where it came from, free text (e.g. "Debian"); optional
+};
 
 struct Experiment {
   std::string path;        // the file as given
@@ -31,7 +43,12 @@ struct Experiment {
   uint64_t max_renders = 2000000000;
   uint64_t max_shards = 1000000;
   FaultPlan faults;
+  std::map<std::string, DriverBuildDecl> builds;  // [builds.NAME], by NAME
 };
+
+// The platform `name` of `exp`, its build's folder resolved as DriverBuildDecl says. Throws
+// UserError for a name the experiment cannot draw with (unknown, or a build it does not declare).
+PlatformSpec experiment_platform(const Experiment& exp, const std::string& name);
 
 // Limits checked by validation (also quoted in error messages).
 constexpr int kMaxWindow = 16384;

@@ -122,9 +122,45 @@ INSTANTIATE_TEST_SUITE_P(
                 "'name' must be a plain file name"},
         BadCase{"NameWithSlash", "name = \"a/b\"\n" + std::string(kValid), "exp.toml:1:8",
                 "'name' must be a plain file name"},
+        BadCase{"UndeclaredBuild", with("\"osmesa-llvmpipe\"", "\"osmesa-llvmpipe@new\""),
+                "exp.toml:2:14", "names driver build 'new', which no [builds.new] table declares"},
+        BadCase{"BuildOfReference", with("\"osmesa-llvmpipe\"", "\"reference@new\"") +
+                                        "[builds.new]\ndir = \"/b\"\n",
+                "exp.toml:2:14", "unknown platform 'reference@new'"},
+        BadCase{"BadBuildName", with("\"osmesa-llvmpipe\"", "\"osmesa-llvmpipe@a/b\""),
+                "exp.toml:2:14", "unknown platform 'osmesa-llvmpipe@a/b'"},
+        BadCase{"RelativeBuildDir", std::string(kValid) + "[builds.new]\ndir = \"cache/new\"\n",
+                "exp.toml:12:7", "'builds.new.dir' must be an absolute path"},
+        BadCase{"UnknownBuildKey", std::string(kValid) + "[builds.new]\nfolder = \"/b\"\n",
+                "exp.toml:12:1", "unknown key 'builds.new.folder' (allowed: dir, origin, suite)"},
         BadCase{"TooManyShards", std::string(kValid) + "[run]\nshard_size = 1\nmax_shards = 10\n",
                 "exp.toml:", "the plan has too many shards"}),
     [](const testing::TestParamInfo<BadCase>& info) { return std::string(info.param.name); });
+
+// A build's folder: `dir` as written (~ expanded), else NAME in the build cache.
+TEST(Experiment, QualifiedPlatformsDrawWithTheirDeclaredBuild) {
+  const std::string text =
+      with("\"osmesa-llvmpipe\"",
+           "\"osmesa-llvmpipe\", \"egl-softpipe@new\", \"osmesa-llvmpipe@cached\"") +
+      "[builds.new]\ndir = \"/opt/mesa-new\"\norigin = \"Debian\"\n[builds.cached]\n";
+  const Experiment e = parse_experiment(text, "exp.toml");
+  setenv("RENDERAUDIT_BUILD_CACHE", "/var/cache/builds", 1);
+  const std::string cached = experiment_platform(e, "osmesa-llvmpipe@cached").build_dir;
+  unsetenv("RENDERAUDIT_BUILD_CACHE");
+  EXPECT_EQ(cached, "/var/cache/builds/cached");
+  ASSERT_EQ(e.platforms.size(), 3u);
+  const PlatformSpec installed = experiment_platform(e, "osmesa-llvmpipe");
+  EXPECT_EQ(installed.build, "");
+  EXPECT_EQ(installed.build_dir, "");
+  const PlatformSpec egl = experiment_platform(e, "egl-softpipe@new");
+  EXPECT_EQ(egl.backend, Backend::kEglSurfaceless);
+  EXPECT_EQ(egl.mesa_driver, "softpipe");
+  EXPECT_EQ(egl.build, "new");
+  EXPECT_EQ(egl.build_dir, "/opt/mesa-new");
+  EXPECT_EQ(e.builds.at("new").origin, "Debian");
+  // the hash changes with the builds (another driver is another experiment)
+  EXPECT_NE(e.hash, parse_experiment(kValid, "exp.toml").hash);
+}
 
 TEST(Experiment, ExplicitOrientationsAreRotations) {
   const Experiment e =

@@ -193,8 +193,12 @@ RunResult run_experiment(const RunOptions& options) {
                       " is not one of the experiment's platforms");
   // A platform that cannot draw here (no such device, a missing library or driver) stops the
   // run before its directory is touched, rather than filling it with failed shards.
-  require_platforms_draw(options.only_platforms.empty() ? exp.platforms : options.only_platforms,
-                         options.experiment_path);
+  {
+    std::vector<PlatformSpec> specs;
+    for (const std::string& p : options.only_platforms.empty() ? exp.platforms : options.only_platforms)
+      specs.push_back(experiment_platform(exp, p));
+    require_platforms_draw(specs, options.experiment_path);
+  }
   std::vector<Shard> all = plan_shards(exp);
   if (!options.only_platforms.empty()) {
     const auto& keep = options.only_platforms;
@@ -408,6 +412,11 @@ RunResult run_experiment(const RunOptions& options) {
       succeeded(r, item_s);
     } else if (WIFSIGNALED(status)) {  // the driver crashed: re-run, then bisect
       conclude(r, WorkOutcome::kCrash, describe_exit_status(status) + log);
+    } else if (words.find(kDriverMismatch) != std::string::npos) {
+      // A worker that loaded another driver than the run's: nothing of this run may be drawn here.
+      ++finished;
+      result.failures.push_back({r.item.shard.id(), describe_exit_status(status) + ": " + words + log});
+      if (result.wrong_renderer.empty()) result.wrong_renderer = words;
     } else {  // an error the worker reported (I/O, bad input): no primitive to blame
       ++finished;
       const std::string why = describe_exit_status(status) + (words.empty() ? "" : ": " + words);
@@ -429,6 +438,10 @@ RunResult run_experiment(const RunOptions& options) {
     if (const std::string wrong = renderer_check.mismatch(); !wrong.empty()) {
       todo.clear();
       result.wrong_renderer = wrong;
+      break;
+    }
+    if (!result.wrong_renderer.empty()) {  // a worker's driver mismatch
+      todo.clear();
       break;
     }
     // Idle servers take the next shard of their platform, or are told to end (end of input).

@@ -17,7 +17,9 @@
 #include "metrics/effective_subpixel.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
+#include "platforms/driver_build.h"
 #include "platforms/platform.h"
+#include "platforms/renderer_check.h"
 
 namespace ra {
 
@@ -43,9 +45,9 @@ std::vector<Shard> plan_shards(const Experiment& exp) {
 // The run's driver file, written by the first worker of each platform: only that worker pays
 // for measuring the timer (hundreds of milliseconds on softpipe: it was a third of a softpipe
 // point shard's time when every worker measured it).
-static void write_driver_info(const std::string& run_dir, const std::string& name,
+static void write_driver_info(const std::string& run_dir, const PlatformSpec& spec,
                               Platform& platform, const EffectiveSubpixel& effective) {
-  const std::string path = run_dir + "/drivers/" + name + ".json";
+  const std::string path = run_dir + "/drivers/" + spec.name + ".json";
   struct stat st;
   if (::stat(path.c_str(), &st) == 0) return;
   platform.measure_timer_over_cpu();
@@ -58,6 +60,16 @@ static void write_driver_info(const std::string& run_dir, const std::string& nam
                                              ? nlohmann::json()
                                              : nlohmann::json(info.timer_over_cpu)}};
   j["effective_subpixel"] = effective_subpixel_json(effective);
+  // The build that drew (none: the installed driver) and every driver library this process
+  // loaded, by path and content fingerprint: what a re-render must load to draw the same.
+  if (spec.draws_with_gl()) {
+    nlohmann::json libs = nlohmann::json::array();
+    for (const LoadedLibrary& l : loaded_driver_libraries())
+      libs.push_back({{"path", l.path}, {"fnv1a64", l.fnv1a64}});
+    j["build"] = {{"name", spec.build.empty() ? nlohmann::json() : nlohmann::json(spec.build)},
+                  {"folder", spec.build.empty() ? nlohmann::json() : nlohmann::json(spec.build_dir)},
+                  {"libraries", libs}};
+  }
   j.update(document_header("driver", 1, false));
   // Several shards may race here; each writes a complete file under its own temporary name.
   write_file_atomic(path, j.dump(2) + "\n");
@@ -78,11 +90,15 @@ void ShardSession::run(const Shard& shard, const std::string& records_dir) {
 
   const bool exact = shard.platform == "reference";
   if (!platform_) {
-    platform_ = create_platform(shard.platform, exp_.faults);
+    const PlatformSpec spec = experiment_platform(exp_, shard.platform);
+    platform_ = create_platform(spec, exp_.faults);
+    // One driver per record: a process that loaded another driver than the one that made the
+    // run's records stops here, before drawing anything (exit status 2).
+    require_run_driver(run_dir_, shard.platform, platform_->driver_info());
     // Every process measures the grid itself (about 96 small triangles: tens of milliseconds),
     // so that its verdicts never depend on which process wrote the driver file first.
     effective_ = exact ? EffectiveSubpixel{} : measure_effective_subpixel(*platform_);
-    write_driver_info(run_dir_, shard.platform, *platform_, effective_);
+    write_driver_info(run_dir_, spec, *platform_, effective_);
   }
   platform_->set_view(*view);
   const CaseComparison comparison(!exact, effective_.grid);

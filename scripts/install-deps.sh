@@ -8,6 +8,7 @@ packages=(
   libgl-dev             # GL headers (the GL functions are fetched from each platform's driver)
   libosmesa6            # OSMesa, loaded at run time: the osmesa-* platforms (the embedded default)
   libegl-dev            # EGL headers and libEGL (glvnd), loaded at run time: the egl-* platforms
+  libopengl-dev         # libOpenGL (glvnd): the C reproducers of `renderaudit reproduce` link it
   libegl-mesa0          # Mesa's EGL: surfaceless egl-llvmpipe, egl-softpipe (and egl-zink with
                         #   mesa-vulkan-drivers libvulkan1, not installed by default)
   libvtk9-dev           # VTK: figures (charts to PNG and PDF)

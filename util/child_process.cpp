@@ -94,6 +94,7 @@ Child start_child(const ChildSpec& spec) {
         ::dup2(msg_pipe[1], 3);  // dup2 clears close-on-exec on the copy
     }
     for (int fd : spec.inherit_fds) ::fcntl(fd, F_SETFD, 0);
+    if (!spec.working_dir.empty() && ::chdir(spec.working_dir.c_str()) != 0) ::_exit(127);
     ::execvpe(argv[0], argv.data(), envp.data());
     ::_exit(127);
   }

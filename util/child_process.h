@@ -23,6 +23,7 @@ struct ChildSpec {
                                      // (Child::output_fd)
   // Both streams to one file (a log).
   void log_to(const std::string& path) { stdout_path = stderr_path = path; }
+  std::string working_dir;           // non-empty: the child starts there (exit 127 if it cannot)
   bool stdin_null = false;           // stdin from /dev/null
   bool command_pipe = false;         // stdin from a pipe whose write end is Child::command_fd
   bool own_process_group = false;    // setpgid(0, 0): kill(-pid, ...) reaches all it starts

@@ -1,0 +1,61 @@
+// `renderaudit builds fetch SUITE` and `renderaudit builds list`: driver builds in the build cache
+// (runner/build_fetch.h), drawn with as PLATFORM@BUILD.
+#include <cstdio>
+
+#include "app/commands.h"
+#include "platforms/driver_build.h"
+#include "runner/build_fetch.h"
+#include "util/errors.h"
+
+namespace ra::app {
+namespace {
+
+void print_build(const BuildSummary& b, bool files) {
+  std::printf("%s  (Debian %s, suite %s, fetched %s)\n  folder: %s\n", b.name.c_str(),
+              b.debian_version.c_str(), b.suite.c_str(), b.fetched_utc.c_str(), b.dir.c_str());
+  std::printf("  OSMesa GL_VERSION: %s\n  EGL    GL_VERSION: %s\n",
+              b.osmesa_version.empty() ? "(cannot draw)" : b.osmesa_version.c_str(),
+              b.egl_version.empty() ? "(cannot draw)" : b.egl_version.c_str());
+  if (files)
+    for (const std::string& f : b.files) std::printf("  %s\n", f.c_str());
+  std::printf("  platforms: osmesa-llvmpipe@%s, osmesa-softpipe@%s, egl-llvmpipe@%s, "
+              "egl-softpipe@%s\n", b.name.c_str(), b.name.c_str(), b.name.c_str(), b.name.c_str());
+}
+
+}  // namespace
+
+void register_builds_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "builds", "Driver builds other than the installed Mesa: fetch a Debian suite's Mesa into the "
+                "build cache, list the cache");
+  cmd->require_subcommand(1);
+  static FetchOptions fetch;
+  auto* f = cmd->add_subcommand(
+      "fetch",
+      "Fetch the Mesa packages of a Debian suite (e.g. bookworm-backports) with apt-get download "
+      "through a private apt configuration (nothing installed), unpack them with dpkg-deb, probe "
+      "OSMesa and EGL, and keep the build in the cache as mesa-VERSION");
+  f->add_option("suite", fetch.suite, "Debian suite, e.g. bookworm-backports")->required();
+  f->add_option("--mirror", fetch.mirror, "Debian archive")->capture_default_str();
+  f->add_option("--cache", fetch.cache,
+                "build cache folder (default $RENDERAUDIT_BUILD_CACHE, else "
+                "~/.cache/renderaudit/builds)");
+  f->callback([&exit_code] {
+    const BuildSummary b = fetch_build(fetch);
+    print_build(b, true);
+    exit_code = kExitOk;
+  });
+  static std::string list_cache;
+  auto* l = cmd->add_subcommand("list", "The builds in the build cache");
+  l->add_option("--cache", list_cache, "build cache folder");
+  l->callback([&exit_code] {
+    const std::string cache = list_cache.empty() ? build_cache_dir() : list_cache;
+    const std::vector<BuildSummary> builds = list_builds(cache);
+    if (builds.empty())
+      std::printf("no builds in %s (renderaudit builds fetch SUITE)\n", cache.c_str());
+    for (const BuildSummary& b : builds) print_build(b, false);
+    exit_code = kExitOk;
+  });
+}
+
+}  // namespace ra::app

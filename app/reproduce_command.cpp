@@ -1,0 +1,49 @@
+// `renderaudit reproduce RUN --platform P --kind K --view V --index I [--out FILE.c]`: one record
+// of a run as a standalone C program for a driver developer (audit/reproducer.h).
+#include <cstdio>
+#include <filesystem>
+
+#include "app/commands.h"
+#include "audit/reproducer.h"
+#include "util/atomic_file.h"
+
+namespace ra::app {
+
+void register_reproduce_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "reproduce",
+      "Write one record of a run as a small standalone C program (EGL surfaceless + desktop GL,\n"
+      "the primitive's coordinates as hex floats, the worker's matrices, viewport and state)\n"
+      "that draws it and prints the pixels lit beside the worker's and the reference's; it\n"
+      "exits 1 when its pixels differ from the reference's. Prints how to build and run it.");
+  static audit::ReproduceRequest q;
+  static std::string out;
+  cmd->add_option("run", q.run_dir, "run directory (holds experiment.toml)")->required();
+  cmd->add_option("--platform,-p", q.platform, "the record's platform (PLATFORM or PLATFORM@BUILD)")
+      ->required();
+  cmd->add_option("--kind,-k", q.kind, "point, line or triangle")->required();
+  cmd->add_option("--view,-v", q.view, "view number, 1-based (Table 1 order)")->required();
+  cmd->add_option("--index,-i", q.index, "primitive index under the run's seed")->required();
+  cmd->add_option("--out,-o", out, "C file to write (default: RUN/reproduce/PLATFORM.KIND.vV.I.c)");
+  cmd->callback([&exit_code] {
+    const std::string path = !out.empty() ? out
+                                          : q.run_dir + "/reproduce/" + q.platform + "." + q.kind +
+                                                ".v" + std::to_string(q.view) + "." +
+                                                std::to_string(q.index) + ".c";
+    const audit::Reproducer r = audit::make_reproducer(q, path);
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path().empty()
+                                            ? "."
+                                            : std::filesystem::path(path).parent_path());
+    write_file_atomic(path, r.source);
+    std::printf("wrote %s\nbuild: %s\nrun:   %s\nworker: %llu pixels (hash %llu); reference: %llu "
+                "pixels (hash %llu)\n",
+                path.c_str(), r.build_line.c_str(), r.run_line.c_str(),
+                static_cast<unsigned long long>(r.record_pixels),
+                static_cast<unsigned long long>(r.record_hash),
+                static_cast<unsigned long long>(r.reference_pixels),
+                static_cast<unsigned long long>(r.reference_hash));
+    exit_code = kExitOk;
+  });
+}
+
+}  // namespace ra::app

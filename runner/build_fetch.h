@@ -1,0 +1,45 @@
+// `renderaudit builds fetch SUITE`: a Debian suite's Mesa as a driver build in the build cache
+// (platforms/driver_build.h), with apt's own tools and nothing installed: a private apt
+// configuration (its own sources list, lists and archive folders), `apt-get update`,
+// `apt-get download` of the Mesa packages, `dpkg-deb -x` of each into one folder, a probe of the
+// folder's OSMesa and EGL, then one rename into the cache. Everything happens in a temporary
+// folder inside the cache, so a failure (no network, a suite or package that does not exist, a
+// build that cannot draw) leaves the cache as it was.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace ra {
+
+struct FetchOptions {
+  std::string suite;                               // e.g. "bookworm-backports"
+  std::string mirror = "http://deb.debian.org/debian";
+  std::string cache;                               // empty: build_cache_dir()
+};
+
+// What a build folder holds (build.json in it).
+struct BuildSummary {
+  std::string name;    // "mesa-25.0.7": the upstream version of its libosmesa6
+  std::string dir;     // its folder in the cache
+  std::string suite;   // where it came from
+  std::string debian_version;  // "25.0.7-2~bpo12+1"
+  std::string osmesa_version, egl_version;  // GL_VERSION through each back end ("" if it cannot)
+  std::string fetched_utc;                  // when
+  std::vector<std::string> files;           // the shared libraries, relative to dir
+};
+
+// The Mesa packages a build is made of: those every suite must have, and those only some releases
+// split out (libglapi-mesa and libgl1-mesa-dri before Mesa 24, mesa-libgallium after).
+const std::vector<std::string>& required_build_packages();
+const std::vector<std::string>& optional_build_packages();
+
+// Fetches, unpacks, probes and moves the build into the cache (replacing a build of the same
+// name). Throws UserError for an unreachable suite, a missing package, a missing tool (apt-get,
+// dpkg-deb) or a build that cannot draw; the cache is then unchanged.
+BuildSummary fetch_build(const FetchOptions& options);
+
+// The builds in the cache (folders with a build.json), by name.
+std::vector<BuildSummary> list_builds(const std::string& cache = "");
+
+}  // namespace ra

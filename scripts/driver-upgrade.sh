@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# `make driver-upgrade`: the installed Mesa against the newest Mesa of Debian's bookworm-backports,
+# end to end: fetch the build into the build cache (renderaudit builds fetch), run
+# experiments/driver-upgrade.toml (nist2008 views; osmesa-* and egl-*, llvmpipe and softpipe, each
+# on both builds), audit every pair with `audit RUN --between P P@backports`, and write one report,
+# OUT/upgrade-report.md, that opens with what changed per driver, back end, kind and view group.
+#
+# Usage: scripts/driver-upgrade.sh [BUILD_DIR] [--smoke]
+#   --smoke: 40 primitives per kind and view into BUILD_DIR/driver-upgrade-smoke, and a build
+#   already in the cache is used as is (the test suite's run of this script).
+# Exit 0: every audit ran (whatever it found); 2: a step failed; 77: the Debian registry cannot
+# be reached and no build is cached (the test suite then skips, loudly).
+set -uo pipefail
+
+build=${1:-build}
+smoke=0
+[ "${2:-}" = --smoke ] && smoke=1
+repo=$(cd "$(dirname "$0")/.." && pwd)
+ra=$(cd "$build" && pwd)/renderaudit
+suite=bookworm-backports
+experiment=${EXPERIMENT:-$repo/experiments/driver-upgrade.toml}
+out=${OUT:-$repo/outputs/driver-upgrade}
+
+say() { echo "driver-upgrade: $*"; }
+die() { echo "driver-upgrade: $*" >&2; exit 2; }
+[ -x "$ra" ] || die "$ra is not built (make build)"
+
+if [ $smoke = 1 ]; then
+  out=$(cd "$build" && pwd)/driver-upgrade-smoke
+  rm -rf "$out"
+  mkdir -p "$out"
+  sed -e 's/^name = .*/name = "driver-upgrade-smoke"/' \
+      -e 's/^\(points\|lines\|triangles\) = [0-9]*/\1 = 40/' \
+      -e 's/^shard_size = .*/shard_size = 40/' "$experiment" > "$out.toml"
+  experiment=$out.toml
+fi
+
+# 1. The build: fetched (always for the real audit: the suite's newest), or the cached one.
+if [ $smoke = 1 ] && "$ra" builds list | grep -q "suite $suite"; then
+  say "using the cached build of $suite"
+else
+  say "fetching the Mesa of $suite (apt-get download through a private apt configuration)"
+  if ! fetched=$("$ra" builds fetch "$suite" 2>&1); then
+    echo "$fetched" >&2
+    if echo "$fetched" | grep -q "unreachable"; then
+      echo "driver-upgrade: SKIPPED: the Debian registry (deb.debian.org) cannot be reached from" \
+           "here, and no build of $suite is cached; nothing was run" >&2
+      exit 77
+    fi
+    die "the fetch failed (above)"
+  fi
+  echo "$fetched"
+fi
+
+# 2. The run.
+say "running $experiment into $out"
+"$ra" run "$experiment" --out "$out" --quiet || die "the run failed (above); run the same command again to resume"
+
+# 3. The audits.
+status=0
+audited=()
+for p in osmesa-llvmpipe osmesa-softpipe egl-llvmpipe egl-softpipe; do
+  dir=$out/audit-$p
+  "$ra" audit "$out" --between "$p" "$p@backports" --no-history --out "$dir" > "$dir.log" 2>&1
+  rc=$?
+  if [ $rc -gt 1 ]; then
+    cat "$dir.log" >&2
+    say "audit of $p failed (exit $rc)"
+    status=2
+  else
+    say "audit of $p: $(head -1 "$dir.log")"
+    audited+=("$p")
+  fi
+done
+
+# 4. The report: what changed per driver, back end, kind and view group (from the records), the
+# worst primitives with pictures and reproducers, then each audit's own report.
+report=$out/upgrade-report.md
+if [ ${#audited[@]} -gt 0 ]; then
+  /usr/bin/python3 "$repo/scripts/upgrade_report.py" "$ra" "$out" backports "${audited[@]}" > "$report" ||
+    die "the report failed (above)"
+  for p in "${audited[@]}"; do
+    { echo; echo "## Audit of $p"; echo; sed -e 's/^# /### /' -e 's/^## /#### /' "$out/audit-$p/audit.md"; } >> "$report"
+  done
+  say "report: $report"
+fi
+exit $status
