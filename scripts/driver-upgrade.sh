@@ -5,7 +5,7 @@
 # on both builds), audit every pair with `audit RUN --between P P@backports`, and write one report,
 # OUT/upgrade-report.md, that opens with what changed per driver, back end, kind and view group.
 #
-# Usage: scripts/driver-upgrade.sh [BUILD_DIR] [--smoke]
+# Usage: scripts/driver-upgrade.sh [BUILD_DIR] [--smoke]   (MIRROR=URL: another Debian archive)
 #   --smoke: 40 primitives per kind and view into BUILD_DIR/driver-upgrade-smoke, and a build
 #   already in the cache is used as is (the test suite's run of this script).
 # Exit 0: every audit ran (whatever it found); 2: a step failed; 77: the Debian registry cannot
@@ -40,10 +40,10 @@ if [ $smoke = 1 ] && "$ra" builds list | grep -q "suite $suite"; then
   say "using the cached build of $suite"
 else
   say "fetching the Mesa of $suite (apt-get download through a private apt configuration)"
-  if ! fetched=$("$ra" builds fetch "$suite" 2>&1); then
+  if ! fetched=$("$ra" builds fetch "$suite" ${MIRROR:+--mirror "$MIRROR"} 2>&1); then
     echo "$fetched" >&2
     if echo "$fetched" | grep -q "unreachable"; then
-      echo "driver-upgrade: SKIPPED: the Debian registry (deb.debian.org) cannot be reached from" \
+      echo "driver-upgrade: SKIPPED: the Debian registry (${MIRROR:-deb.debian.org}) cannot be reached from" \
            "here, and no build of $suite is cached; nothing was run" >&2
       exit 77
     fi
