@@ -186,7 +186,7 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
   EXPECT_NE(o.output.find("light grey = lit by both (" + std::to_string(ref.size() - runs) +
                           "), orange = platform (faulty) only (" + std::to_string(runs) +
                           "), blue = reference only (" + std::to_string(runs) +
-                          "), black = of those, pixels GL forbids (" + std::to_string(black) + ")"),
+                          "), black = pixels GL forbids (" + std::to_string(black) + ")"),
             std::string::npos)
       << o.output;
 }
