@@ -90,18 +90,8 @@ std::string files_readme(const std::vector<Output>& outputs, const RunRecords& r
   return md;
 }
 
-}  // namespace
-
-AnalyzeResult analyze_run(const AnalyzeOptions& o) {
-  check_options(o);
-  AnalyzeResult result;
-  Stopwatch watch;
-  const RunCompleteness completeness = check_run_completeness(o.run_dir);
-  if (completeness.has_plan && !completeness.complete() && !o.allow_incomplete)
-    throw IncompleteRunError(o.run_dir + ": " + completeness.markdown() +
-                             completeness.remedy("analyze"));
-  result.completeness = completeness.headline();
-
+// The run's records, with what --point-margin-px needs to generate each point again.
+RunRecords load_records(const AnalyzeOptions& o) {
   LoadOptions load;
   load.jobs = o.jobs;
   std::optional<Experiment> experiment;  // the views and seed that generate each point again
@@ -114,21 +104,10 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
     load.point_margin_px = o.point_margin_px;
     load.experiment = &*experiment;
   }
-  const RunRecords run = load_run_records(o.run_dir, load);
-  result.records = run.record_count;
-  result.timings.push_back({"load", watch.lap()});
+  return load_run_records(o.run_dir, load);
+}
 
-  EquivalenceOptions eq;
-  eq.alpha = o.alpha;
-  eq.quantiles = o.quantiles;
-  eq.comparison.box_cox_subsample = o.box_cox_subsample;
-  eq.jobs = o.jobs;
-  const std::vector<ViewEquivalence> equivalence = assess_view_equivalence(run, eq);
-  result.comparisons = equivalence.size();
-  for (const ViewEquivalence& e : equivalence)
-    result.not_equivalent += e.verdict == Verdict::kNotEquivalent;
-  result.timings.push_back({"equivalence", watch.lap()});
-
+TableOptions table_options(const AnalyzeOptions& o, const EquivalenceOptions& eq) {
   TableOptions to;
   to.quantiles = o.quantiles;
   to.pixel_pitches_mm = o.pixel_pitches_mm;
@@ -146,21 +125,54 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
       to.paper_primitives_per_group = paper.primitives_per_view_group;
     }
   }
-  const std::vector<Table> tables = paper_tables(run, to);
-  result.timings.push_back({"tables", watch.lap()});
+  return to;
+}
 
-  const ConformanceSummary conformance = summarize_conformance(run.files);
+// The equivalence verdicts in brief, for report.md and the terminal.
+std::string verdicts_markdown(const RunRecords& run, const std::vector<ViewEquivalence>& equivalence,
+                              const AnalyzeOptions& o, std::size_t not_equivalent) {
+  std::string verdicts = "## View equivalence\n\n";
+  std::size_t undecided = 0, none = 0;
+  for (const ViewEquivalence& e : equivalence) {
+    undecided += e.verdict == Verdict::kUndecided;
+    none += e.verdict == Verdict::kNoComparison;
+  }
+  verdicts += std::to_string(equivalence.size()) +
+              " comparisons of orientation views (alpha = " + format_significant(o.alpha, 3) +
+              "; location t/ANOVA and Levene median on raw " + "data): " +
+              std::to_string(equivalence.size() - not_equivalent - undecided - none) +
+              " equivalent, " + std::to_string(not_equivalent) + " NOT equivalent, " +
+              std::to_string(undecided) + " undecided, " + std::to_string(none) +
+              " without comparison.\n";
+  std::size_t listed = 0;
+  for (const ViewEquivalence& e : equivalence) {
+    if (e.verdict != Verdict::kNotEquivalent) continue;
+    if (listed++ == 12) {
+      verdicts += "- ... (all in view_equivalence.md)\n";
+      break;
+    }
+    verdicts += std::string("- NOT equivalent: ") + run.platforms[e.platform] + ", " +
+                kind_label_plural(e.kind) + ", " + kind_metrics(e.kind)[e.metric].symbol +
+                ", view group " + e.label + ": " + e.explanation + "\n";
+  }
+  verdicts +=
+      std::string(not_equivalent ? "The views were pooled into view groups anyway, "
+                                          "as the paper did (see view_equivalence.md).\n"
+                                        : "Views pooled into view groups, as the paper "
+                                          "did.\n");
+  return verdicts;
+}
+
+// Every file of the analysis, rendered: report.md first (its content filled by the caller), then
+// view equivalence, conformance, the paper's tables, the figure data. `all_tables` gets every
+// table in Markdown, `printed` those the terminal shows.
+std::vector<Output> render_outputs(const RunRecords& run, const AnalyzeOptions& o,
+                                   const EquivalenceOptions& eq,
+                                   const std::vector<ViewEquivalence>& equivalence,
+                                   const ConformanceSummary& conformance,
+                                   const std::vector<Table>& tables, const nlohmann::json& figures,
+                                   std::string* all_tables, std::string* printed) {
   const Table conformance_tab = conformance_table(conformance);
-  result.timings.push_back({"conformance", watch.lap()});
-
-  FigureOptions fo;
-  fo.quantiles = o.quantiles;
-  fo.jobs = o.jobs;
-  fo.alpha = o.alpha;
-  const nlohmann::json figures = figure_data(run, fo);
-  result.timings.push_back({"figures", watch.lap()});
-
-  // render everything, then write
   std::vector<Output> outputs;
   outputs.push_back(
       {"report.md", "every table below in Markdown, with the view-equivalence verdicts", ""});
@@ -173,8 +185,8 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
                      render_csv(view_equivalence_table(run, equivalence, eq))});
   // Conformance first: "does this driver rasterize as GL allows?" before the details.
   const std::string conformance_md = render_markdown(conformance_tab);
-  std::string all_tables = conformance_md + "\n";
-  std::string printed = conformance_tab.rows.empty() ? "" : conformance_md + "\n";
+  *all_tables = conformance_md + "\n";
+  *printed = conformance_tab.rows.empty() ? "" : conformance_md + "\n";
   outputs.push_back({"conformance.csv", "conformance classes per platform, kind, view group (CSV)",
                      render_csv(conformance_tab)});
   outputs.push_back({"conformance.md", "the same (Markdown)", conformance_md});
@@ -185,10 +197,10 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
                      violations_markdown(conformance, o.run_dir)});
   for (const Table& t : tables) {
     const std::string md = render_markdown(t);
-    all_tables += md + "\n";
+    *all_tables += md + "\n";
     const bool supplement = t.file_stem.rfind("table", 0) == 0 &&
                             std::isalpha(static_cast<unsigned char>(t.file_stem[7])) != 0;
-    if (!supplement && t.file_stem != "cross_platform") printed += md + "\n";
+    if (!supplement && t.file_stem != "cross_platform") *printed += md + "\n";
     const std::string what = t.title.substr(0, t.title.find(';'));
     outputs.push_back({t.file_stem + ".csv", what + " (CSV)", render_csv(t)});
     outputs.push_back({t.file_stem + ".md", what + " (Markdown)", md});
@@ -200,48 +212,14 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
                          std::to_string(kFiguresSchemaVersion) + ", analysis/figure_data.h)",
                      figures.dump() + "\n"});
 
-  // the equivalence verdicts in brief, for report.md and the terminal
-  std::string verdicts = "## View equivalence\n\n";
-  {
-    std::size_t undecided = 0, none = 0;
-    for (const ViewEquivalence& e : equivalence) {
-      undecided += e.verdict == Verdict::kUndecided;
-      none += e.verdict == Verdict::kNoComparison;
-    }
-    verdicts += std::to_string(equivalence.size()) +
-                " comparisons of orientation views (alpha = " + format_significant(o.alpha, 3) +
-                "; location t/ANOVA and Levene median on raw " + "data): " +
-                std::to_string(equivalence.size() - result.not_equivalent - undecided - none) +
-                " equivalent, " + std::to_string(result.not_equivalent) + " NOT equivalent, " +
-                std::to_string(undecided) + " undecided, " + std::to_string(none) +
-                " without comparison.\n";
-    std::size_t listed = 0;
-    for (const ViewEquivalence& e : equivalence) {
-      if (e.verdict != Verdict::kNotEquivalent) continue;
-      if (listed++ == 12) {
-        verdicts += "- ... (all in view_equivalence.md)\n";
-        break;
-      }
-      verdicts += std::string("- NOT equivalent: ") + run.platforms[e.platform] + ", " +
-                  kind_label_plural(e.kind) + ", " + kind_metrics(e.kind)[e.metric].symbol +
-                  ", view group " + e.label + ": " + e.explanation + "\n";
-    }
-    verdicts +=
-        std::string(result.not_equivalent ? "The views were pooled into view groups anyway, "
-                                            "as the paper did (see view_equivalence.md).\n"
-                                          : "Views pooled into view groups, as the paper "
-                                            "did.\n");
-  }
-  const std::string header = "# Analysis of " + run.run_dir + "\n\n" + completeness.markdown() +
-                             "\n" + std::to_string(run.record_count) + " records; platforms: ";
-  std::string platforms;
-  for (std::size_t p = 0; p < run.platforms.size(); ++p) {
-    platforms += (p ? ", " : "") + run.platforms[p];
-  }
-  outputs[0].content = header + platforms + "; quartiles " + quantile_label(o.quantiles) + ".\n\n" +
-                       verdicts + "\n" + all_tables;
-  result.summary = header + platforms + ".\n\n" + verdicts + "\n" + printed;
+  return outputs;
+}
 
+// Writes the outputs into DIR/analysis, with README.md listing them; removes the files of an
+// earlier analysis that this one does not write again.
+void write_outputs(const AnalyzeOptions& o, const std::vector<Output>& outputs,
+                   const RunRecords& run, const RunCompleteness& completeness,
+                   AnalyzeResult& result) {
   const fs::path out_dir = fs::path(o.run_dir) / "analysis";
   std::error_code ec;
   fs::create_directories(out_dir, ec);
@@ -260,6 +238,63 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   write_file_atomic((out_dir / "README.md").string(), files_readme(outputs, run, o, completeness));
   result.files.push_back("README.md");
   result.out_dir = out_dir.string();
+}
+
+}  // namespace
+
+AnalyzeResult analyze_run(const AnalyzeOptions& o) {
+  check_options(o);
+  AnalyzeResult result;
+  Stopwatch watch;
+  const RunCompleteness completeness = check_run_completeness(o.run_dir);
+  if (completeness.has_plan && !completeness.complete() && !o.allow_incomplete)
+    throw IncompleteRunError(o.run_dir + ": " + completeness.markdown() +
+                             completeness.remedy("analyze"));
+  result.completeness = completeness.headline();
+
+  const RunRecords run = load_records(o);
+  result.records = run.record_count;
+  result.timings.push_back({"load", watch.lap()});
+
+  EquivalenceOptions eq;
+  eq.alpha = o.alpha;
+  eq.quantiles = o.quantiles;
+  eq.comparison.box_cox_subsample = o.box_cox_subsample;
+  eq.jobs = o.jobs;
+  const std::vector<ViewEquivalence> equivalence = assess_view_equivalence(run, eq);
+  result.comparisons = equivalence.size();
+  for (const ViewEquivalence& e : equivalence)
+    result.not_equivalent += e.verdict == Verdict::kNotEquivalent;
+  result.timings.push_back({"equivalence", watch.lap()});
+
+  const std::vector<Table> tables = paper_tables(run, table_options(o, eq));
+  result.timings.push_back({"tables", watch.lap()});
+
+  const ConformanceSummary conformance = summarize_conformance(run.files);
+  result.timings.push_back({"conformance", watch.lap()});
+
+  FigureOptions fo;
+  fo.quantiles = o.quantiles;
+  fo.jobs = o.jobs;
+  fo.alpha = o.alpha;
+  const nlohmann::json figures = figure_data(run, fo);
+  result.timings.push_back({"figures", watch.lap()});
+
+  // render everything, then write
+  std::string all_tables, printed;
+  std::vector<Output> outputs = render_outputs(run, o, eq, equivalence, conformance, tables,
+                                               figures, &all_tables, &printed);
+  const std::string verdicts = verdicts_markdown(run, equivalence, o, result.not_equivalent);
+  const std::string header = "# Analysis of " + run.run_dir + "\n\n" + completeness.markdown() +
+                             "\n" + std::to_string(run.record_count) + " records; platforms: ";
+  std::string platforms;
+  for (std::size_t p = 0; p < run.platforms.size(); ++p) {
+    platforms += (p ? ", " : "") + run.platforms[p];
+  }
+  outputs[0].content = header + platforms + "; quartiles " + quantile_label(o.quantiles) + ".\n\n" +
+                       verdicts + "\n" + all_tables;
+  result.summary = header + platforms + ".\n\n" + verdicts + "\n" + printed;
+  write_outputs(o, outputs, run, completeness, result);
   result.timings.push_back({"write", watch.lap()});
   return result;
 }

@@ -10,6 +10,7 @@
 
 #include "metrics/records.h"
 #include "runner/experiment.h"
+#include "runner/manifest.h"
 #include "runner/shard.h"
 #include "runner/shard_file.h"
 #include "runner/slicing.h"
@@ -120,16 +121,10 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
   const Experiment exp = load_experiment(toml);
   c.writer = DirLock::current_holder(run_dir);
   try {
-    const nlohmann::json m = nlohmann::json::parse(read_file(run_dir + "/manifest.json"));
-    c.manifest_status = m.value("status", "");
-    if (m.contains("slice") && m["slice"].is_object()) {
-      c.slice_index = m["slice"].value("index", 0);
-      c.slice_count = m["slice"].value("count", 0);
-      if (c.slice_index < 1 || c.slice_index > c.slice_count) c.slice_index = c.slice_count = 0;
-    }
-    if (m.contains("platforms_run") && m["platforms_run"].is_array())
-      for (const auto& p : m["platforms_run"])
-        if (p.is_string()) c.platforms_run.push_back(p.get<std::string>());
+    const RunManifest m = read_manifest_file(run_dir + "/manifest.json");
+    c.manifest_status = m.status;
+    if (m.slice) c.slice_index = m.slice->index, c.slice_count = m.slice->count;
+    if (m.platforms_run) c.platforms_run = *m.platforms_run;
   } catch (const std::exception&) {
     c.problems.push_back("manifest.json is missing or unreadable");
   }

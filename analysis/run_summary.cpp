@@ -13,6 +13,7 @@
 #include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "metrics/records.h"
+#include "runner/manifest.h"
 
 namespace fs = std::filesystem;
 
@@ -52,27 +53,23 @@ std::string cost_paragraph(const std::string& run_dir, const Cells& cells) {
   double drawing_us = 0;
   for (const auto& [key, c] : cells)
     for (double us : c.render_us) drawing_us += us;
-  nlohmann::json m;
+  RunManifest m;
   try {
-    m = nlohmann::json::parse(read_file(run_dir + "/manifest.json"));
+    m = read_manifest_file(run_dir + "/manifest.json");
   } catch (const std::exception&) {
     return "";
   }
-  const nlohmann::json inv = m.value("invocations", nlohmann::json::array()).empty()
-                                 ? nlohmann::json()
-                                 : m["invocations"].back();
+  const ManifestInvocation* inv = m.last_invocation();
   std::ostringstream out;
   out << "\nDrawing (the sum of render_us): " << fmt(drawing_us / 1e6, "%.1f") << " s";
-  if (inv.is_object() && inv.contains("elapsed_s") && inv.contains("jobs") &&
-      inv.value("shards_to_run", -1) == m.value("shards", nlohmann::json::object()).value("total", -2) &&
+  if (inv && inv->elapsed_s && m.shards && inv->shards_to_run == m.shards->total &&
       drawing_us > 0) {
-    const double elapsed = inv["elapsed_s"], jobs = inv["jobs"];
+    const double elapsed = *inv->elapsed_s, jobs = double(inv->jobs);
     out << "; this invocation ran every shard in " << fmt(elapsed, "%.1f") << " s on " << jobs
         << " jobs: wall x jobs / drawing = " << fmt(elapsed * jobs / (drawing_us / 1e6), "%.3f");
-    if (inv.contains("idle_core_s"))
-      out << ", " << fmt(inv["idle_core_s"].get<double>(), "%.1f")
-          << " core-seconds without a worker (shard order: " << inv.value("shard_order", "?")
-          << ")";
+    if (inv->idle_core_s)
+      out << ", " << fmt(*inv->idle_core_s, "%.1f") << " core-seconds without a worker (shard order: "
+          << (inv->shard_order.empty() ? "?" : inv->shard_order) << ")";
   }
   out << ".\n";
   return out.str();

@@ -6,6 +6,7 @@
 #include "metrics/conformance.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "runner/manifest.h"
 #include "runner/shard.h"
 
 namespace fs = std::filesystem;
@@ -33,33 +34,33 @@ RunIdentity load_run_identity(const std::string& dir) {
   RunIdentity run;
   run.dir = dir;
   if (!fs::is_directory(dir)) throw UserError(dir + ": no such run directory");
-  const nlohmann::json manifest = read_json(dir + "/manifest.json");
+  const std::string manifest_path = dir + "/manifest.json";
+  const RunManifest manifest = read_manifest(read_json(manifest_path), manifest_path);
   const std::string toml = dir + "/experiment.toml";
   if (!fs::exists(toml)) throw UserError(toml + ": missing (not a run directory?)");
   run.experiment = load_experiment(toml);
 
-  const nlohmann::json exp = manifest.value("experiment", nlohmann::json::object());
-  run.name = string_or(exp, "name", run.experiment.name);
-  run.hash = string_or(exp, "hash", "");
+  const ManifestExperiment exp = manifest.experiment.value_or(ManifestExperiment{});
+  run.name = exp.name.empty() ? run.experiment.name : exp.name;
+  run.hash = exp.hash;
   if (run.hash.empty())
-    throw UserError(dir + "/manifest.json: no experiment hash (not a renderaudit run manifest)");
-  if (!exp.contains("seed") || !exp["seed"].is_number_unsigned())
-    throw UserError(dir + "/manifest.json: no experiment seed (not a renderaudit run manifest)");
-  run.seed = exp["seed"].get<uint64_t>();
-  run.status = string_or(manifest, "status", "unknown");
-  if (manifest.contains("conformance_rules")) {
-    const nlohmann::json& rules = manifest["conformance_rules"];
-    if (!rules.is_number_integer() || rules.get<int64_t>() < 1 ||
-        rules.get<int64_t>() > kConformanceRulesVersion)
-      throw UserError(dir + "/manifest.json: \"conformance_rules\" must be an integer from 1 to " +
+    throw UserError(manifest_path + ": no experiment hash (not a renderaudit run manifest)");
+  if (!exp.seed)
+    throw UserError(manifest_path + ": no experiment seed (not a renderaudit run manifest)");
+  run.seed = *exp.seed;
+  run.status = manifest.status.empty() ? "unknown" : manifest.status;
+  if (manifest.conformance_rules) {
+    const int rules = *manifest.conformance_rules;
+    if (rules > kConformanceRulesVersion)
+      throw UserError(manifest_path + ": \"conformance_rules\" must be an integer from 1 to " +
                       std::to_string(kConformanceRulesVersion) + " (this renderaudit's), not " +
-                      rules.dump());
-    run.conformance_rules = rules.get<int>();
+                      std::to_string(rules));
+    run.conformance_rules = rules;
   }
 
   // Drivers: the manifest's copy, else what the workers wrote into drivers/ (a run killed before
   // its manifest was finished still has those).
-  nlohmann::json drivers = manifest.value("drivers", nlohmann::json::object());
+  nlohmann::json drivers = manifest.drivers.is_object() ? manifest.drivers : nlohmann::json::object();
   if (fs::is_directory(dir + "/drivers"))
     for (const auto& e : fs::directory_iterator(dir + "/drivers")) {
       const std::string platform = e.path().stem().string();
@@ -73,8 +74,8 @@ RunIdentity load_run_identity(const std::string& dir) {
     run.drivers[platform] = {platform, string_or(d, "renderer", "unknown"),
                              string_or(d, "version", "unknown")};
 
-  for (const auto& f : manifest.value("failures", nlohmann::json::array()))
-    run.manifest_failures.push_back({string_or(f, "shard", "?"), string_or(f, "reason", "failed")});
+  for (const ManifestShardNote& f : manifest.failures_or_none())
+    run.manifest_failures.push_back({f.shard, f.reason.empty() ? "failed" : f.reason});
   return run;
 }
 

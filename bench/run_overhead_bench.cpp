@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "metrics/records_reader.h"
+#include "runner/manifest.h"
 #include "runner/shard.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
@@ -100,18 +101,23 @@ int main(int argc, char** argv) {
         return 1;
       }
     }
-    const nlohmann::json m = nlohmann::json::parse(read_file(dir + "/manifest.json"));
-    jobs = m["invocations"].back().value("jobs", jobs);
-    round.elapsed_s = m["invocations"].back().value("elapsed_s", 0.0);
-    round.busy_s = m["invocations"].back().value("worker_busy_s", 0.0);
-    round.processes = m["invocations"].back().value("worker_processes", -1);
+    const RunManifest m = read_manifest_file(dir + "/manifest.json");
+    const ManifestInvocation* inv = m.last_invocation();
+    if (!inv) {
+      std::fprintf(stderr, "run_overhead_bench: %s/manifest.json lists no invocation\n", dir.c_str());
+      return 1;
+    }
+    jobs = int(inv->jobs);
+    round.elapsed_s = inv->elapsed_s.value_or(0.0);
+    round.busy_s = inv->worker_busy_s.value_or(0.0);
+    round.processes = inv->worker_processes ? int(*inv->worker_processes) : -1;
     // Manifests without "workers" come from builds that always started a process per shard.
-    round.workers = m["invocations"].back().value("workers", std::string("per-shard"));
-    for (const auto& [id, seconds] : m["shard_seconds"].items()) {
+    round.workers = inv->workers.empty() ? "per-shard" : inv->workers;
+    for (const auto& [id, seconds] : m.shard_seconds.value_or(std::map<std::string, double>{})) {
       // id: platform.kind.vN.begin-end
       const size_t a = id.find('.'), b = id.find('.', a + 1);
       KindCost& k = round.kinds[id.substr(0, a) + " " + id.substr(a + 1, b - a - 1)];
-      k.worker_s += seconds.get<double>();
+      k.worker_s += seconds;
     }
     for (const auto& e : fs::directory_iterator(dir + "/records")) {
       for_each_record_row(e.path().string(), [&](const RecordRow& row) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "runner/experiment.h"
+#include "runner/manifest.h"
 #include "runner/shard.h"
 #include "runner/shard_cost.h"
 #include "runner/slicing.h"
@@ -64,10 +65,9 @@ int main(int argc, char** argv) {
     }
   }
   const Experiment exp = load_experiment(dir + "/experiment.toml");
-  const nlohmann::json manifest = nlohmann::json::parse(read_file(dir + "/manifest.json"));
-  std::map<std::string, double> seconds;
-  const nlohmann::json measured = manifest.value("shard_seconds", nlohmann::json::object());
-  for (const auto& [id, s] : measured.items()) seconds[id] = s.get<double>();
+  const RunManifest manifest = read_manifest_file(dir + "/manifest.json");
+  std::map<std::string, double> seconds =
+      manifest.shard_seconds.value_or(std::map<std::string, double>{});
   std::vector<Shard> shards;
   for (const Shard& s : plan_shards(exp))
     if (seconds.count(s.id())) shards.push_back(s);

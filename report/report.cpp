@@ -248,50 +248,59 @@ Document pdf_document(const Document& doc, const std::set<std::string>& html_onl
   return pdf;
 }
 
-Content build_document(const std::string& run_dir, const plots::PlotResult& figures,
-                       const plots::RecordScan& scan,
-                       const analysis::RunCompleteness& completeness) {
-  Content c;
-  Document& d = c.doc;
-  const std::string manifest_path = run_dir + "/manifest.json";
-  const json m = fs::exists(manifest_path) ? read_json(manifest_path) : json::object();
-  const json exp = m.value("experiment", json::object());
-  const json tool = m.value("tool", json::object());
-  const json host = m.value("host", json::object());
-  const std::string name = exp.value("name", fs::path(run_dir).filename().string());
+// The run as its manifest describes it: the experiment's name (the directory's when it has none).
+std::string run_name(const std::string& run_dir, const ManifestExperiment& exp) {
+  return exp.name.empty() ? fs::path(run_dir).filename().string() : exp.name;
+}
 
+std::string or_unknown(const std::string& text) { return text.empty() ? "?" : text; }
+
+// The title page: what was run, by which renderaudit, and the headline; then the contents.
+void add_title_page(Document& d, const std::string& run_dir, const RunManifest& m) {
+  const ManifestExperiment exp = m.experiment.value_or(ManifestExperiment{});
+  const std::string name = run_name(run_dir, exp);
   d.title = "renderaudit report: " + name;
   d.footer = "renderaudit report: " + name + " (" + run_dir + ")";
   d.subtitle = {
       "How accurately, and how fast, OpenGL renderers draw points, line segments and triangles: "
       "the rendering-error audit of Hagedorn et al., J. Res. NIST 113 (2008), section 4, "
       "reproduced on this run.",
-      "Run directory: " + run_dir + ". Experiment " + name + " (" + exp.value("file", "?") +
-          ", hash " + exp.value("hash", "?") + "), seed " + str(exp.value("seed", json())) + ".",
-      version_line(tool)};
+      "Run directory: " + run_dir + ". Experiment " + name + " (" + or_unknown(exp.file) +
+          ", hash " + or_unknown(exp.hash) + "), seed " +
+          (exp.seed ? std::to_string(*exp.seed) : "") + ".",
+      version_line(m.tool.is_object() ? m.tool : json::object())};
   // The conclusion first, on the title page; the contents and the detail after it.
   for (Block& b : headline_blocks(run_dir)) d.blocks.push_back(std::move(b));
   Block contents;
   contents.kind = Block::Kind::kContents;
   d.blocks.push_back(contents);
+}
 
+// 1. The run's provenance: experiment, completeness, times, tool, host; the drivers; the file.
+void add_provenance(Document& d, const std::string& run_dir, const RunManifest& m,
+                    const plots::RecordScan& scan,
+                    const analysis::RunCompleteness& completeness) {
+  const ManifestExperiment exp = m.experiment.value_or(ManifestExperiment{});
+  const std::string name = run_name(run_dir, exp);
+  const json tool = m.tool.is_object() ? m.tool : json::object();
+  const json host = m.host.is_object() ? m.host : json::object();
   // 1. Provenance.
   d.blocks.push_back(heading("1. Experiment and provenance", 1, "provenance"));
   {
     Table t;
-    t.title = "The run (manifest.json, schema version " + str(m.value("schema_version", json())) + ")";
+    t.title = "The run (manifest.json, schema version " + (m.schema_version ? std::to_string(*m.schema_version) : "") + ")";
     t.header = {"what", "value"};
     t.right = {false, false};
-    std::vector<std::string> platforms;
-    for (const auto& p : exp.value("platforms", json::array())) platforms.push_back(str(p));
     std::string plist;
-    for (std::size_t i = 0; i < platforms.size(); ++i) plist += (i ? ", " : "") + platforms[i];
+    for (std::size_t i = 0; i < exp.platforms.size(); ++i) plist += (i ? ", " : "") + exp.platforms[i];
+    const std::vector<ManifestInvocation> invocations =
+        m.invocations.value_or(std::vector<ManifestInvocation>{});
     double elapsed = 0;
-    for (const auto& inv : m.value("invocations", json::array())) elapsed += inv.value("elapsed_s", 0.0);
+    for (const ManifestInvocation& inv : invocations) elapsed += inv.elapsed_s.value_or(0.0);
     auto row = [&](const std::string& k, const std::string& v) { t.rows.push_back({k, v}); };
-    row("experiment", name + " (" + exp.value("file", "?") + ")");
-    row("experiment hash", exp.value("hash", "?"));
-    row("seed", str(exp.value("seed", json())));
+    row("experiment", name + " (" + or_unknown(exp.file) + ")");
+    row("experiment hash", or_unknown(exp.hash));
+    row("seed", exp.seed ? std::to_string(*exp.seed) : "");
     row("platforms", plist);
     // What the records say, checked against the plan; the manifest's own word in brackets.
     row("completeness", completeness.headline());
@@ -300,9 +309,8 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
     if (completeness.problems.size() > 10)
       row("", "... and " + std::to_string(completeness.problems.size() - 10) + " more");
     row("records", std::to_string(scan.records) + " in " + std::to_string(scan.files) + " files");
-    row("started / finished (UTC)", m.value("started", "?") + " / " + m.value("finished", "?"));
-    row("run time", fmt(elapsed, "%.1f") + " s over " +
-                        std::to_string(m.value("invocations", json::array()).size()) +
+    row("started / finished (UTC)", or_unknown(m.started) + " / " + or_unknown(m.finished));
+    row("run time", fmt(elapsed, "%.1f") + " s over " + std::to_string(invocations.size()) +
                         " invocation(s)");
     row("tool", tool.value("name", std::string("renderaudit")) + " " + tool.value("version", "?") +
                     ", commit " + tool.value("commit", "?"));
@@ -316,7 +324,7 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
     t.header = {"platform", "GL_RENDERER", "GL_VERSION", "GL_VENDOR", "GL_SUBPIXEL_BITS",
                 "effective subpixel grid (measured)", "timer query"};
     t.right = {false, false, false, false, true, false, false};
-    const json drivers = m.value("drivers", json::object());
+    const json drivers = m.drivers.is_object() ? m.drivers : json::object();
     for (const auto& [platform, dj] : drivers.items()) {
       const json e = dj.value("effective_subpixel", json());
       const std::string effective =
@@ -346,10 +354,15 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
     d.blocks.push_back(b);
   }
 
+}
+
+// 2. Shards that failed, records that are not ok, figures not drawn.
+void add_failures(Document& d, const RunManifest& m, const plots::RecordScan& scan,
+                  const plots::PlotResult& figures) {
   // 2. Failures.
   d.blocks.push_back(heading("2. Failures and invalid cases", 1, "failures"));
   {
-    const json failures = m.value("failures", json::array());
+    const std::vector<ManifestShardNote>& failures = m.failures_or_none();
     if (failures.empty()) {
       d.blocks.push_back(paragraph(
           "No shard crashed or timed out (manifest.json: \"failures\" is empty)."));
@@ -359,7 +372,7 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
                 std::to_string(failures.size());
       t.header = {"shard (platform.kind.view.index range)", "what happened"};
       t.right = {false, false};
-      for (const auto& f : failures) t.rows.push_back({f.value("shard", "?"), f.value("reason", "?")});
+      for (const ManifestShardNote& f : failures) t.rows.push_back({f.shard, or_unknown(f.reason)});
       t.notes.push_back("Their records are missing from every statistic; run the same `renderaudit "
                         "run` command again to retry them (finished shards are kept).");
       d.blocks.push_back(table_block(std::move(t)));
@@ -399,6 +412,10 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
     }
   }
 
+}
+
+// 3. Render time per primitive.
+void add_timing(Document& d, const plots::RecordScan& scan) {
   // 3. Time per primitive.
   d.blocks.push_back(heading("3. Time per primitive", 1, "timing"));
   d.blocks.push_back(paragraph(
@@ -427,6 +444,11 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
     d.blocks.push_back(table_block(std::move(t)));
   }
 
+}
+
+// 4. Conformance: the analysis' conformance and violations pages, the reference comparison.
+void add_conformance(Content& c, const std::string& run_dir, const plots::RecordScan& scan) {
+  Document& d = c.doc;
   // 4. Conformance.
   d.blocks.push_back(heading("4. Does each driver rasterize as GL allows?", 1, "conformance"));
   {
@@ -478,6 +500,11 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
     d.blocks.push_back(table_block(std::move(t)));
   }
 
+}
+
+// 5-7. View equivalence, the paper's tables beside this run's, every analysis table.
+void add_analysis_tables(Content& c, const std::string& run_dir) {
+  Document& d = c.doc;
   // 5. View equivalence.
   const std::string analysis = run_dir + "/analysis";
   d.blocks.push_back(heading("5. View pooling: the equivalence tests", 1, "equivalence"));
@@ -531,6 +558,12 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
     }
   }
 
+}
+
+// 8. The figures; beyond kPdfAllPairsMax platforms the PDF keeps the pairs with the first only.
+void add_figure_section(Content& c, const plots::PlotResult& figures,
+                        const std::vector<std::string>& platforms) {
+  Document& d = c.doc;
   // 8. Figures.
   d.blocks.push_back(heading("8. Figures", 1, "figures"));
   d.blocks.push_back(paragraph(
@@ -540,8 +573,6 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
       "tables. Box plots restrict the y range to the box bodies, as the paper's do, and say on "
       "the figure which extremes lie outside."));
   add_figures(figures, d);
-  std::vector<std::string> platforms;
-  for (const auto& p : exp.value("platforms", json::array())) platforms.push_back(str(p));
   if (platforms.size() > kPdfAllPairsMax) {
     c.pdf_pairs_with = platforms.front();
     for (const FigureRef& f : d.figures)
@@ -557,6 +588,22 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
                               "out), and the cross-platform tests of those pairs only. "
                               "report.html, figures/ and analysis/ hold every pair."));
   }
+}
+
+Content build_document(const std::string& run_dir, const plots::PlotResult& figures,
+                       const plots::RecordScan& scan,
+                       const analysis::RunCompleteness& completeness) {
+  const std::string manifest_path = run_dir + "/manifest.json";
+  const RunManifest m =
+      fs::exists(manifest_path) ? read_manifest(read_json(manifest_path), manifest_path) : RunManifest{};
+  Content c;
+  add_title_page(c.doc, run_dir, m);
+  add_provenance(c.doc, run_dir, m, scan, completeness);
+  add_failures(c.doc, m, scan, figures);
+  add_timing(c.doc, scan);
+  add_conformance(c, run_dir, scan);
+  add_analysis_tables(c, run_dir);
+  add_figure_section(c, figures, m.experiment.value_or(ManifestExperiment{}).platforms);
   return c;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "runner/run_plan.h"
 #include "runner/shard_recovery.h"
 #include "runner/slicing.h"
 
@@ -30,10 +31,6 @@ struct RunOptions {
   // one after another (runner/shard_server.h); false: one process per shard
   // (re-runs and bisection parts always get a process of their own).
   bool serve_shards = true;
-};
-
-struct ShardFailure {
-  std::string shard, reason;  // reason: "crashed (signal 11)", "timed out after 600 s", ...
 };
 
 

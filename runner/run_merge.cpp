@@ -56,11 +56,8 @@ void copy_atomically(const std::string& from, const std::string& to) {
   commit_file(tmp, to);
 }
 
-}  // namespace
-
-MergeResult merge_runs(const MergeOptions& options) {
-  if (options.inputs.empty()) throw UserError("merge: name at least one run directory");
-  // The inputs: one experiment, one driver per platform.
+// The inputs' experiment, after checking they hold one experiment cut into one shard size.
+Experiment common_experiment(const MergeOptions& options) {
   std::vector<Experiment> experiments;
   for (const std::string& in : options.inputs) {
     std::error_code ec;
@@ -86,8 +83,12 @@ MergeResult merge_runs(const MergeOptions& options) {
                       options.inputs.front() + " into shards of " + std::to_string(exp.shard_size) +
                       ": their records files name other shards; run the slices with one "
                       "shard_size");
-  // Every platform an input holds records of must say which driver drew them.
-  const std::vector<Shard> plan = plan_shards(exp);
+  return exp;
+}
+
+// Every platform an input holds records of must say which driver drew them, the same in every
+// input (unless --allow-driver-mismatch).
+void require_one_driver_per_platform(const MergeOptions& options, const std::vector<Shard>& plan) {
   if (!options.allow_driver_mismatch) {
     for (const std::string& in : options.inputs) {
       std::set<std::string> platforms;
@@ -114,16 +115,17 @@ MergeResult merge_runs(const MergeOptions& options) {
       }
     }
   }
+}
 
-  const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, options.out_dir, "merge");
-  const std::string& out = options.out_dir;
-  MergeResult result;
-  result.shards_total = plan.size();
-  nlohmann::json taken_from = nlohmann::json::object();  // input dir -> shards copied from it
+// Copies every planned shard DIR lacks from the first input that holds it whole; returns how many
+// shards were taken from each input.
+std::map<std::string, uint64_t> copy_shards(const MergeOptions& options,
+                                            const std::vector<Shard>& plan, MergeResult* result) {
+  std::map<std::string, uint64_t> taken_from;
   for (const Shard& s : plan) {
-    const std::string target = s.records_path(out);
+    const std::string target = s.records_path(options.out_dir);
     if (fs::exists(target) && check_shard_file(target, s.size()).empty()) {
-      ++result.shards_present;  // an earlier merge put it there
+      ++result->shards_present;  // an earlier merge put it there
       continue;
     }
     int holders = 0;
@@ -132,106 +134,140 @@ MergeResult merge_runs(const MergeOptions& options) {
       if (!fs::exists(source) || !check_shard_file(source, s.size()).empty()) continue;
       if (++holders == 1) {
         copy_atomically(source, target);
-        ++result.shards_copied;
-        ++result.shards_present;
-        taken_from[in] = taken_from.value(in, 0) + 1;
+        ++result->shards_copied;
+        ++result->shards_present;
+        ++taken_from[in];
       }
     }
-    if (holders > 1) ++result.shards_in_several_inputs;
-    if (holders == 0) result.missing.push_back(s.id());
+    if (holders > 1) ++result->shards_in_several_inputs;
+    if (holders == 0) result->missing.push_back(s.id());
   }
-  // the driver files: the first input's of each platform
-  std::map<std::string, std::string> driver_file;
-  for (auto it = options.inputs.rbegin(); it != options.inputs.rend(); ++it)
-    for (const auto& [platform, j] : drivers_of(*it))
-      driver_file[platform] = *it + "/drivers/" + platform + ".json";
-  for (const auto& [platform, path] : driver_file)
-    copy_atomically(path, out + "/drivers/" + platform + ".json");
+  return taken_from;
+}
 
-  // The manifest: every input's provenance, the failures they recorded, the merged shard count.
-  // It describes what DIR holds however it was assembled: what an earlier merge into DIR took
-  // (its inputs, shard times and failures) and what ran in DIR itself (a gather's `run`) stay.
-  nlohmann::json m = document_header("manifest", kManifestSchemaVersion, false);
-  nlohmann::json before = read_json_or_null(out + "/manifest.json");
-  if (!before.is_object()) before = nlohmann::json::object();
-  if (before.contains("invocations")) m["invocations"] = before["invocations"];
-  m["tool"] = {
-      {"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
-  // One version of the conformance rules for every input's records.
+// One version of the conformance rules for every input's records: that version (this
+// renderaudit's when no input says).
+int common_conformance_rules(const std::vector<RunManifest>& inputs, const MergeOptions& options) {
   int rules = 0;
   std::string rules_from;
-  for (const std::string& in : options.inputs) {
-    const std::string path = in + "/manifest.json";
-    const int r = conformance_rules_of(read_json_or_null(path), path);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const std::string path = options.inputs[i] + "/manifest.json";
+    const int r = inputs[i].rules_judged_by();
     if (r == 0) continue;
     if (rules != 0 && r != rules)
       throw UserError(rules_from + " was judged by conformance rules " + std::to_string(rules) +
                       ", " + path + " by " + std::to_string(r) + ": their records cannot be merged");
     rules = r, rules_from = path;
   }
-  m["conformance_rules"] = rules != 0 ? rules : kConformanceRulesVersion;
-  m["experiment"] = {{"name", exp.name},
-                     {"file", out + "/experiment.toml"},
-                     {"hash", exp.hash},
-                     {"seed", exp.seed},
-                     {"platforms", exp.platforms}};
-  m["host"] = host_description();
-  m["merged"] = utc_now_iso8601();
-  nlohmann::json slices = nlohmann::json::array();
-  for (const auto& entry : before.value("inputs", nlohmann::json::array()))
-    if (entry.is_object() && entry.contains("dir") &&
-        std::find(options.inputs.begin(), options.inputs.end(), entry["dir"]) ==
-            options.inputs.end())
-      slices.push_back(entry);  // an earlier merge's input, not merged again now
-  nlohmann::json failures = before.value("failures", nlohmann::json::array());
-  if (!failures.is_array()) failures = nlohmann::json::array();
-  std::map<std::string, std::string> reasons;  // of failed primitives, by failure_key
-  add_failure_reasons(before.value("failed_primitives", nlohmann::json::array()), &reasons);
-  // each shard's worker time, from whichever input ran it (for cost models and simulations)
-  nlohmann::json shard_seconds = before.value("shard_seconds", nlohmann::json::object());
-  if (!shard_seconds.is_object()) shard_seconds = nlohmann::json::object();
+  return rules != 0 ? rules : kConformanceRulesVersion;
+}
+
+// An input as the merged manifest lists it: what was taken, its drivers, its own provenance.
+ManifestInput input_entry(const std::string& in, const nlohmann::json& input_manifest,
+                          uint64_t shards_taken) {
+  ManifestInput entry;
+  entry.dir = in;
+  entry.shards_taken = shards_taken;
+  for (const auto& [platform, j] : drivers_of(in))
+    if (j.is_object()) entry.drivers[platform] = j.value("renderer", "") + " | " + j.value("version", "");
+  if (input_manifest.is_object())
+    for (const char* key : {"slice", "host", "invocations", "status", "started", "finished", "failures"})
+      if (input_manifest.contains(key)) entry.provenance[key] = input_manifest[key];
+  return entry;
+}
+
+// The manifest: every input's provenance, the failures they recorded, the merged shard count. It
+// describes what DIR holds however it was assembled: what an earlier merge into DIR took (its
+// inputs, shard times and failures) and what ran in DIR itself (a gather's `run`) stay.
+RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
+                            const std::vector<Shard>& plan,
+                            const std::map<std::string, uint64_t>& taken_from,
+                            const std::map<std::string, std::string>& driver_file,
+                            MergeResult* result) {
+  const std::string& out = options.out_dir;
+  const RunManifest before = read_manifest_file_or_empty(out + "/manifest.json");
+  std::vector<RunManifest> inputs;
+  std::vector<nlohmann::json> input_json;
   for (const std::string& in : options.inputs) {
-    const nlohmann::json im = read_json_or_null(in + "/manifest.json");
-    nlohmann::json drivers = nlohmann::json::object();
-    for (const auto& [platform, j] : drivers_of(in))
-      if (j.is_object())
-        drivers[platform] = j.value("renderer", "") + " | " + j.value("version", "");
-    nlohmann::json entry = {
-        {"dir", in}, {"shards_taken", taken_from.value(in, 0)}, {"drivers", drivers}};
-    if (im.is_object()) {
-      for (const char* key :
-           {"slice", "host", "invocations", "status", "started", "finished", "failures"})
-        if (im.contains(key)) entry[key] = im[key];
-      const nlohmann::json seconds_of = im.value("shard_seconds", nlohmann::json::object());
-      for (const auto& [id, seconds] : seconds_of.items())
-        if (!shard_seconds.contains(id)) shard_seconds[id] = seconds;
-      for (const auto& f : im.value("failures", nlohmann::json::array()))
-        if (std::find(failures.begin(), failures.end(), f) == failures.end()) failures.push_back(f);
-      add_failure_reasons(im.value("failed_primitives", nlohmann::json::array()), &reasons);
-    }
-    slices.push_back(entry);
+    input_json.push_back(read_json_or_null(in + "/manifest.json"));
+    inputs.push_back(read_manifest(input_json.back(), in + "/manifest.json"));
   }
-  m["inputs"] = slices;
-  m["drivers"] = nlohmann::json::object();
+  RunManifest m;
+  m.schema = "renderaudit-manifest";
+  m.schema_version = kManifestSchemaVersion;
+  m.invocations = before.invocations;
+  m.tool = {{"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
+  m.conformance_rules = common_conformance_rules(inputs, options);
+  m.experiment = ManifestExperiment{exp.name, out + "/experiment.toml", exp.hash, exp.seed,
+                                    exp.platforms};
+  m.host = host_description();
+  m.merged = utc_now_iso8601();
+  m.inputs.emplace();
+  for (const ManifestInput& entry : before.inputs.value_or(std::vector<ManifestInput>{}))
+    if (std::find(options.inputs.begin(), options.inputs.end(), entry.dir) == options.inputs.end())
+      m.inputs->push_back(entry);  // an earlier merge's input, not merged again now
+  m.failures = before.failures_or_none();
+  std::map<std::string, std::string> reasons;  // of failed primitives, by failure_key
+  const auto add_reasons = [&](const RunManifest& from) {
+    for (const ManifestFailedPrimitive& f : from.failed_primitives.value_or(
+             std::vector<ManifestFailedPrimitive>{}))
+      reasons[failure_key(f.shard, f.index)] = f.reason;
+  };
+  add_reasons(before);
+  // each shard's worker time, from whichever input ran it (for cost models and simulations)
+  m.shard_seconds = before.shard_seconds.value_or(std::map<std::string, double>{});
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const std::string& in = options.inputs[i];
+    const auto taken = taken_from.find(in);
+    m.inputs->push_back(input_entry(in, input_json[i], taken == taken_from.end() ? 0 : taken->second));
+    for (const auto& [id, seconds] : inputs[i].shard_seconds.value_or(std::map<std::string, double>{}))
+      m.shard_seconds->emplace(id, seconds);  // the first that ran it
+    for (const ManifestShardNote& f : inputs[i].failures_or_none())
+      if (std::none_of(m.failures->begin(), m.failures->end(), [&](const ManifestShardNote& g) {
+            return g.shard == f.shard && g.reason == f.reason;
+          }))
+        m.failures->push_back(f);
+    add_reasons(inputs[i]);
+  }
+  m.drivers = nlohmann::json::object();
   for (const auto& [platform, path] : driver_file)
-    m["drivers"][platform] = read_json_or_null(out + "/drivers/" + platform + ".json");
-  m["shards"] = {{"total", result.shards_total},
-                 {"complete", result.shards_present},
-                 {"in_several_inputs", result.shards_in_several_inputs}};
-  m["failures"] = failures;
+    m.drivers[platform] = read_json_or_null(out + "/drivers/" + platform + ".json");
+  m.shards = ManifestShardCounts{result->shards_total, result->shards_present,
+                                 result->shards_in_several_inputs};
   // the crash and timeout records DIR holds now, whichever merge or run put them there
-  nlohmann::json failed = nlohmann::json::array();
+  m.failed_primitives.emplace();
   for (const FailedPrimitive& f : failed_primitives_in_records(out, plan, reasons))
-    failed.push_back({{"shard", f.shard}, {"index", f.index}, {"status", status_name(f.status)},
-                      {"reason", f.reason}});
-  result.failed_primitives = failed.size();
-  m["failed_primitives"] = failed;
-  m["shard_seconds"] = shard_seconds;
-  m["status"] = !result.missing.empty() ? "failed"
-                : !failed.empty()       ? "complete-with-failed-primitives"
-                                        : "complete";
-  if (!result.missing.empty()) m["missing_shards"] = result.missing;
-  write_manifest(out + "/manifest.json", m);
+    m.failed_primitives->push_back({f.shard, f.index, status_name(f.status), f.reason});
+  result->failed_primitives = m.failed_primitives->size();
+  m.status = !result->missing.empty()       ? "failed"
+             : !m.failed_primitives->empty() ? "complete-with-failed-primitives"
+                                             : "complete";
+  if (!result->missing.empty()) m.missing_shards = result->missing;
+  return m;
+}
+
+}  // namespace
+
+MergeResult merge_runs(const MergeOptions& options) {
+  if (options.inputs.empty()) throw UserError("merge: name at least one run directory");
+  const Experiment exp = common_experiment(options);
+  const std::vector<Shard> plan = plan_shards(exp);
+  require_one_driver_per_platform(options, plan);
+
+  const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, options.out_dir, "merge");
+  MergeResult result;
+  result.shards_total = plan.size();
+  const std::map<std::string, uint64_t> taken_from = copy_shards(options, plan, &result);
+  // the driver files: the first input's of each platform
+  std::map<std::string, std::string> driver_file;
+  for (auto it = options.inputs.rbegin(); it != options.inputs.rend(); ++it)
+    for (const auto& [platform, j] : drivers_of(*it))
+      driver_file[platform] = *it + "/drivers/" + platform + ".json";
+  for (const auto& [platform, path] : driver_file)
+    copy_atomically(path, options.out_dir + "/drivers/" + platform + ".json");
+
+  write_manifest(options.out_dir + "/manifest.json",
+                 merged_manifest(options, exp, plan, taken_from, driver_file, &result));
   return result;
 }
 

@@ -76,11 +76,11 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
   s.dir = dir;
   const Experiment exp = load_experiment(dir + "/experiment.toml");
   s.experiment = exp.name;
-  const ManifestFields manifest =
-      read_manifest_fields(read_json_or_null(dir + "/manifest.json"), dir + "/manifest.json");
+  const RunManifest manifest = read_manifest_file_or_empty(dir + "/manifest.json");
   s.manifest_status = manifest.status;
   // the name the run was given (a copy named experiment.toml would name it "experiment")
-  if (!manifest.experiment_name.empty()) s.experiment = manifest.experiment_name;
+  if (manifest.experiment && !manifest.experiment->name.empty())
+    s.experiment = manifest.experiment->name;
 
   // Where shards can be: DIR, and the slices of a Slurm run beneath it.
   std::vector<std::string> sources = {dir};
@@ -93,12 +93,11 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
 
   std::vector<Shard> shards = plan_shards(exp);
   // a run of some platforms only (--platform): the manifest of DIR or of its first slice says so
-  ManifestFields platforms_from = manifest;
-  if (!manifest.has_platforms_run && !slice_dirs.empty())
-    platforms_from = read_manifest_fields(read_json_or_null(slice_dirs.front() + "/manifest.json"),
-                                          slice_dirs.front() + "/manifest.json");
-  if (platforms_from.has_platforms_run) {
-    const auto& keep = platforms_from.platforms_run;
+  RunManifest platforms_from = manifest;
+  if (!manifest.platforms_run && !slice_dirs.empty())
+    platforms_from = read_manifest_file_or_empty(slice_dirs.front() + "/manifest.json");
+  if (platforms_from.platforms_run) {
+    const auto& keep = *platforms_from.platforms_run;
     shards.erase(std::remove_if(shards.begin(), shards.end(),
                                 [&](const Shard& sh) {
                                   return std::find(keep.begin(), keep.end(), sh.platform) ==
@@ -106,10 +105,10 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
                                 }),
                  shards.end());
   }
-  if (manifest.has_slice && slice_dirs.empty()) {
-    shards = shards_of_slice(shards, exp, Slice{manifest.slice_index, manifest.slice_count});
-    s.slice_index = manifest.slice_index;
-    s.slice_count = manifest.slice_count;
+  if (manifest.slice && slice_dirs.empty()) {
+    shards = shards_of_slice(shards, exp, Slice{manifest.slice->index, manifest.slice->count});
+    s.slice_index = manifest.slice->index;
+    s.slice_count = manifest.slice->count;
   }
   s.planned = shards.size();
 
@@ -122,11 +121,9 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
       failed.insert(w.progress.failed.begin(), w.progress.failed.end());
       s.writers.push_back(std::move(w));
     } else {
-      const ManifestFields m =
-          src == dir ? manifest
-                     : read_manifest_fields(read_json_or_null(src + "/manifest.json"),
-                                            src + "/manifest.json");
-      failed.insert(m.failed_shards.begin(), m.failed_shards.end());
+      const RunManifest m =
+          src == dir ? manifest : read_manifest_file_or_empty(src + "/manifest.json");
+      for (const ManifestShardNote& f : m.failures_or_none()) failed.insert(f.shard);
     }
   }
   for (const Shard& sh : shards) {
