@@ -98,7 +98,10 @@ class FieldReader {
     return text(key);
   }
   uint64_t count(const char* key) const {
-    if (!has(key) || !at(key).is_number_unsigned()) bad(key, "an integer from 0");
+    // a parsed 7 is unsigned, a 7 set in C++ from an int is signed
+    const bool ok = has(key) && (at(key).is_number_unsigned() ||
+                                 (at(key).is_number_integer() && at(key).get<int64_t>() >= 0));
+    if (!ok) bad(key, "an integer from 0");
     return at(key).get<uint64_t>();
   }
   std::optional<uint64_t> optional_count(const char* key) const {

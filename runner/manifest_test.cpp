@@ -66,7 +66,7 @@ namespace {
 
 // A manifest as `run` writes it (a resumed run with a crash recorded), in the file's own layout:
 // read and written again, it must be the same bytes.
-const char* const kRunManifest = R"({
+const char* const kRunManifest = R"json({
   "conformance_rules": 2,
   "damaged_shards_redone": [
     {
@@ -156,7 +156,7 @@ const char* const kRunManifest = R"({
     "version": "0.1.0"
   }
 }
-)";
+)json";
 
 TEST(Manifest, ARunManifestReadsBackAndRewritesToTheSameBytes) {
   const RunManifest m = read_manifest(nlohmann::json::parse(kRunManifest), "m.json");

@@ -30,16 +30,10 @@ std::string failure_key(const std::string& shard, uint64_t index) {
   return shard + "#" + std::to_string(index);
 }
 
-void add_failure_reasons(const nlohmann::json& failed_primitives,
-                         std::map<std::string, std::string>* reasons) {
-  if (!failed_primitives.is_array()) return;
-  for (const auto& f : failed_primitives) {
-    if (!f.is_object() || !f.contains("shard") || !f["shard"].is_string() ||
-        !f.contains("index") || !f["index"].is_number_unsigned() || !f.contains("reason") ||
-        !f["reason"].is_string())
-      continue;
-    (*reasons)[failure_key(f["shard"], f["index"])] = f["reason"];
-  }
+void add_failure_reasons(const RunManifest& manifest, std::map<std::string, std::string>* reasons) {
+  if (!manifest.failed_primitives) return;
+  for (const ManifestFailedPrimitive& f : *manifest.failed_primitives)
+    (*reasons)[failure_key(f.shard, f.index)] = f.reason;
 }
 
 std::vector<FailedPrimitive> failed_primitives_in_records(

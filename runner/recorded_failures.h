@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "runner/manifest.h"
 #include "runner/shard.h"
 #include "runner/shard_recovery.h"
 
@@ -25,8 +26,7 @@ std::vector<FailedPrimitive> failed_primitives_in_records(
 // "SHARD#INDEX": the key of `reasons`.
 std::string failure_key(const std::string& shard, uint64_t index);
 
-// The reasons a manifest's `failed_primitives` list gives (entries not shaped so are skipped).
-void add_failure_reasons(const nlohmann::json& failed_primitives,
-                         std::map<std::string, std::string>* reasons);
+// Adds the reasons `manifest`'s `failed_primitives` list gives, by failure_key.
+void add_failure_reasons(const RunManifest& manifest, std::map<std::string, std::string>* reasons);
 
 }  // namespace ra

@@ -291,9 +291,7 @@ void finish_manifest(RunManifest& m, const RunOptions& options, const std::strin
   // What the records hold, whoever wrote them (an earlier invocation, a merge), with the reasons
   // this invocation and the manifest before it gave.
   std::map<std::string, std::string> reasons;
-  for (const ManifestFailedPrimitive& f :
-       m.failed_primitives.value_or(std::vector<ManifestFailedPrimitive>{}))
-    reasons[failure_key(f.shard, f.index)] = f.reason;
+  add_failure_reasons(m, &reasons);
   for (const FailedPrimitive& f : result.failed_primitives)
     reasons[failure_key(f.shard, f.index)] = f.reason;
   result.failed_primitives_held = failed_primitives_in_records(dir, shards, reasons);

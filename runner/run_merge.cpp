@@ -208,12 +208,7 @@ RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
       m.inputs->push_back(entry);  // an earlier merge's input, not merged again now
   m.failures = before.failures_or_none();
   std::map<std::string, std::string> reasons;  // of failed primitives, by failure_key
-  const auto add_reasons = [&](const RunManifest& from) {
-    for (const ManifestFailedPrimitive& f : from.failed_primitives.value_or(
-             std::vector<ManifestFailedPrimitive>{}))
-      reasons[failure_key(f.shard, f.index)] = f.reason;
-  };
-  add_reasons(before);
+  add_failure_reasons(before, &reasons);
   // each shard's worker time, from whichever input ran it (for cost models and simulations)
   m.shard_seconds = before.shard_seconds.value_or(std::map<std::string, double>{});
   for (std::size_t i = 0; i < inputs.size(); ++i) {
@@ -227,7 +222,7 @@ RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
             return g.shard == f.shard && g.reason == f.reason;
           }))
         m.failures->push_back(f);
-    add_reasons(inputs[i]);
+    add_failure_reasons(inputs[i], &reasons);
   }
   m.drivers = nlohmann::json::object();
   for (const auto& [platform, path] : driver_file)

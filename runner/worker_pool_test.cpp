@@ -29,7 +29,7 @@ class WorkerPoolTest : public ::testing::Test {
                                "case \"$3\" in\n"
                                "  hang) exec sleep 60 ;;\n"
                                "  crash) kill -SEGV $$ ;;\n"
-                               "  ok) echo x > \"${10}/$3.$4.v$5.$6-$7.csv\" ;;\n"
+                               "  ok) echo x > \"$9/$3.$4.v$5.$6-$7.csv\" ;;\n"
                                "esac\n";
     ::chmod(program_.c_str(), 0755);
   }
