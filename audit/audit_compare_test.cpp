@@ -94,9 +94,8 @@ TEST(RunIdentity, ReadsTheConformanceRulesOfAManifestAndRefusesNonsense) {
     load_run_identity(a);
     FAIL() << "a non-integer conformance_rules was accepted";
   } catch (const UserError& e) {
-    EXPECT_NE(std::string(e.what()).find("manifest.json: \"conformance_rules\" must be an integer"),
-              std::string::npos)
-        << e.what();
+    EXPECT_EQ(std::string(e.what()), a + "/manifest.json: 'conformance_rules' must be an integer "
+                                         "from 1 to 1000 (found \"two\")");
   }
 }
 

@@ -52,9 +52,9 @@ RunIdentity load_run_identity(const std::string& dir) {
   if (manifest.conformance_rules) {
     const int rules = *manifest.conformance_rules;
     if (rules > kConformanceRulesVersion)
-      throw UserError(manifest_path + ": \"conformance_rules\" must be an integer from 1 to " +
-                      std::to_string(kConformanceRulesVersion) + " (this renderaudit's), not " +
-                      std::to_string(rules));
+      throw UserError(manifest_path + ": 'conformance_rules' must be an integer from 1 to " +
+                      std::to_string(kConformanceRulesVersion) + ", this renderaudit's (found " +
+                      std::to_string(rules) + ")");
     run.conformance_rules = rules;
   }
 
