@@ -22,14 +22,13 @@
 #include "runner/recorded_failures.h"
 #include "runner/run_dir.h"
 #include "runner/run_plan.h"
-#include "runner/run_progress.h"
+#include "runner/run_tally.h"
 #include "runner/shard.h"
 #include "runner/shard_recovery.h"
 #include "runner/worker_pool.h"
 #include "runner/worker_program.h"
 #include "util/atomic_file.h"
 #include "util/dir_lock.h"
-#include "util/duration_text.h"
 #include "util/errors.h"
 
 namespace fs = std::filesystem;
@@ -40,7 +39,6 @@ namespace {
 volatile std::sig_atomic_t g_interrupted = 0;
 void on_signal(int) { g_interrupted = 1; }
 
-using Clock = std::chrono::steady_clock;
 
 // While a run goes on: SIGINT, SIGTERM and a closed terminal (SIGHUP) stop it as Ctrl-C does
 // (workers reaped, temporaries removed, the manifest saying "interrupted"); SIGPIPE is ignored, so
@@ -108,72 +106,6 @@ nlohmann::json drivers_json(const std::string& dir) {
   }
   return out;
 }
-
-// How far this invocation is: shards and primitives done, and the time left, estimated in
-// expected cost (runner/shard_cost.h), not in primitives: the most expensive shards run first, so
-// a rate in primitives per second would overestimate it. Shown on stderr and in DIR/progress.json.
-class RunTally {
- public:
-  RunTally(const Experiment& exp, const std::deque<WorkItem>& todo) : exp_(exp) {
-    shards_to_run_ = todo.size();
-    for (const WorkItem& w : todo) {
-      primitives_todo_ += w.shard.size();
-      cost_todo_ += expected_cost_of(w.shard, exp_);
-    }
-  }
-  void item_done(const WorkItem& w) {
-    primitives_done_ += w.shard.size();
-    cost_done_ += expected_cost_of(w.shard, exp_);
-  }
-  void shard_finished() { ++finished_; }
-  size_t finished() const { return finished_; }
-  double elapsed_s() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
-  double seconds_left(double elapsed_s) const {
-    if (cost_done_ <= 0) return -1.0;
-    return elapsed_s * std::max(0.0, cost_todo_ - cost_done_) / cost_done_;
-  }
-  // DIR/progress.json for `renderaudit status`: every 2 s and at the end.
-  void write_file(const std::string& dir, const std::string& host, const WorkerPool& pool,
-                  const std::vector<ShardFailure>& failures, bool at_end) {
-    const auto now = Clock::now();
-    if (!at_end && now - last_file_ <= std::chrono::seconds(2)) return;
-    last_file_ = now;
-    RunProgress p;
-    p.host = host;
-    p.pid = ::getpid();
-    p.updated_utc = utc_now_iso8601();
-    p.shards_to_run = shards_to_run_;
-    p.shards_finished = finished_;
-    p.running = pool.busy_shards();
-    for (const auto& f : failures) p.failed.push_back(f.shard);
-    p.primitives_done = primitives_done_;
-    p.primitives_todo = primitives_todo_;
-    p.elapsed_s = elapsed_s();
-    p.left_s = seconds_left(p.elapsed_s);
-    if (at_end) p.finished = true, p.left_s = 0;
-    write_run_progress(dir, p);
-  }
-  // The progress line on stderr, every 250 ms.
-  void show_line(size_t failed) {
-    const auto now = Clock::now();
-    if (now - last_line_ <= std::chrono::milliseconds(250)) return;
-    last_line_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double rate = primitives_done_ / std::max(elapsed, 1e-9);
-    std::fprintf(stderr, "\r[%zu/%zu shards] %llu primitives, %.0f/s, %zu failed, left %s   ",
-                 finished_, shards_to_run_, primitives_done_, rate, failed,
-                 duration_text(cost_done_ > 0 ? seconds_left(elapsed) : NAN).c_str());
-  }
-
- private:
-  const Experiment& exp_;
-  const Clock::time_point start_ = Clock::now();
-  Clock::time_point last_line_ = start_ - std::chrono::seconds(1);
-  Clock::time_point last_file_ = start_ - std::chrono::seconds(10);
-  size_t shards_to_run_ = 0, finished_ = 0;
-  unsigned long long primitives_done_ = 0, primitives_todo_ = 0;
-  double cost_todo_ = 0, cost_done_ = 0;
-};
 
 // What follows from each item's end: a success is counted (with its shard's wall seconds); a
 // crash or hang queues a re-run first, then the halves of a bisection, ahead of the shards not

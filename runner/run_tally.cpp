@@ -1,0 +1,70 @@
+// How far a run's invocation is (see the header).
+#include "runner/run_tally.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "runner/manifest.h"
+#include "runner/run_progress.h"
+#include "util/duration_text.h"
+
+namespace ra {
+
+RunTally::RunTally(const Experiment& exp, const std::deque<WorkItem>& todo) : exp_(exp) {
+  shards_to_run_ = todo.size();
+  for (const WorkItem& w : todo) {
+    primitives_todo_ += w.shard.size();
+    cost_todo_ += expected_cost_of(w.shard, exp_);
+  }
+}
+
+void RunTally::item_done(const WorkItem& w) {
+  primitives_done_ += w.shard.size();
+  cost_done_ += expected_cost_of(w.shard, exp_);
+}
+
+double RunTally::elapsed_s() const {
+  return std::chrono::duration<double>(Clock::now() - start_).count();
+}
+
+double RunTally::seconds_left(double elapsed_s) const {
+  if (cost_done_ <= 0) return -1.0;
+  return elapsed_s * std::max(0.0, cost_todo_ - cost_done_) / cost_done_;
+}
+
+void RunTally::write_file(const std::string& dir, const std::string& host, const WorkerPool& pool,
+                          const std::vector<ShardFailure>& failures, bool at_end) {
+  const auto now = Clock::now();
+  if (!at_end && now - last_file_ <= std::chrono::seconds(2)) return;
+  last_file_ = now;
+  RunProgress p;
+  p.host = host;
+  p.pid = ::getpid();
+  p.updated_utc = utc_now_iso8601();
+  p.shards_to_run = shards_to_run_;
+  p.shards_finished = finished_;
+  p.running = pool.busy_shards();
+  for (const auto& f : failures) p.failed.push_back(f.shard);
+  p.primitives_done = primitives_done_;
+  p.primitives_todo = primitives_todo_;
+  p.elapsed_s = elapsed_s();
+  p.left_s = seconds_left(p.elapsed_s);
+  if (at_end) p.finished = true, p.left_s = 0;
+  write_run_progress(dir, p);
+}
+
+void RunTally::show_line(std::size_t failed) {
+  const auto now = Clock::now();
+  if (now - last_line_ <= std::chrono::milliseconds(250)) return;
+  last_line_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double rate = primitives_done_ / std::max(elapsed, 1e-9);
+  std::fprintf(stderr, "\r[%zu/%zu shards] %llu primitives, %.0f/s, %zu failed, left %s   ",
+               finished_, shards_to_run_, primitives_done_, rate, failed,
+               duration_text(cost_done_ > 0 ? seconds_left(elapsed) : NAN).c_str());
+}
+
+}  // namespace ra

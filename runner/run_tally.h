@@ -1,0 +1,46 @@
+// How far a run's invocation is: shards and primitives done, and the time left, estimated in
+// expected cost (runner/shard_cost.h), not in primitives: the most expensive shards run first, so
+// a rate in primitives per second would overestimate it. Shown on stderr (a progress line) and in
+// DIR/progress.json for `renderaudit status` (runner/run_progress.h).
+#pragma once
+
+#include <chrono>
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "runner/experiment.h"
+#include "runner/run_plan.h"
+#include "runner/shard_recovery.h"
+#include "runner/worker_pool.h"
+
+namespace ra {
+
+class RunTally {
+ public:
+  // `todo`: what this invocation runs.
+  RunTally(const Experiment& exp, const std::deque<WorkItem>& todo);
+  void item_done(const WorkItem& w);  // a shard or part whose records are committed
+  void shard_finished() { ++finished_; }  // a whole shard ended, well or not
+  std::size_t finished() const { return finished_; }
+  double elapsed_s() const;  // wall seconds since the tally began
+  // Seconds left at `elapsed_s`; negative while nothing is done.
+  double seconds_left(double elapsed_s) const;
+  // DIR/progress.json: every 2 s, and when `at_end`.
+  void write_file(const std::string& dir, const std::string& host, const WorkerPool& pool,
+                  const std::vector<ShardFailure>& failures, bool at_end);
+  // The progress line on stderr, every 250 ms.
+  void show_line(std::size_t failed);
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  const Experiment& exp_;
+  const Clock::time_point start_ = Clock::now();
+  Clock::time_point last_line_ = start_ - std::chrono::seconds(1);
+  Clock::time_point last_file_ = start_ - std::chrono::seconds(10);
+  std::size_t shards_to_run_ = 0, finished_ = 0;
+  unsigned long long primitives_done_ = 0, primitives_todo_ = 0;
+  double cost_todo_ = 0, cost_done_ = 0;
+};
+
+}  // namespace ra
