@@ -10,7 +10,7 @@
 
 #include "analysis/records_testing.h"
 
-namespace ra::analysis {
+namespace ra::stats {
 namespace {
 
 using testing::lines_of;
@@ -137,4 +137,4 @@ TEST(TableWriter, InconsistentTablesAreRejected) {
 }
 
 }  // namespace
-}  // namespace ra::analysis
+}  // namespace ra::stats
