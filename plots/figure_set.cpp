@@ -48,8 +48,9 @@ std::vector<std::string> write_figure_set(const std::vector<Figure>& figures, co
   return written;
 }
 
-Figure& StudyFigures::add(const std::string& id, const std::string& title, const std::string& x_label,
-                         const std::string& y_label, const std::string& caption, FigureContent content) {
+Figure& StudyFigures::add(const std::string& id, const std::string& title,
+                          const std::string& x_label, const std::string& y_label,
+                          const std::string& caption, FigureContent content) {
   Figure f;
   f.id = id;
   f.title = title;

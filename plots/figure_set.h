@@ -24,7 +24,9 @@ class StudyFigures {
   // The figure added, to set a note on it.
   Figure& add(const std::string& id, const std::string& title, const std::string& x_label,
               const std::string& y_label, const std::string& caption, FigureContent content);
-  std::vector<std::string> write(const std::string& dir) const { return write_figure_set(figures_, dir); }
+  std::vector<std::string> write(const std::string& dir) const {
+    return write_figure_set(figures_, dir);
+  }
 
  private:
   std::string section_;
@@ -36,7 +38,7 @@ class StudyFigures {
 class SeriesInOrder {
  public:
   ScatterSeries& operator[](const std::string& name);  // a new, empty series on first use
-  std::vector<ScatterSeries> series() const;            // in first-use order
+  std::vector<ScatterSeries> series() const;           // in first-use order
   const std::vector<std::string>& names() const { return order_; }
 
  private:

@@ -11,8 +11,8 @@
 #include "analysis/run_records.h"
 #include "plots/figure_builders.h"
 #include "plots/headless_display.h"
-#include "util/errors.h"
 #include "util/cell_text.h"
+#include "util/errors.h"
 
 namespace ra::plots {
 namespace {
@@ -20,7 +20,9 @@ namespace {
 namespace an = ra::analysis;
 
 // Not-finite values as empty cells.
-std::string finite_or_empty(double v) { return std::isfinite(v) ? full_precision(v) : std::string(); }
+std::string finite_or_empty(double v) {
+  return std::isfinite(v) ? full_precision(v) : std::string();
+}
 
 // The trend's own numbers, in record units (the box plot's CSV would show the bands as quartiles).
 void write_trend_csv(const TrendData& data, const std::string& path) {

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "util/counter_rng.h"
 #include "util/cell_text.h"
+#include "util/counter_rng.h"
 
 namespace ra::regulation {
 namespace {
@@ -169,13 +169,15 @@ std::string instances_csv(const std::vector<InstanceComparison>& rows) {
        "dp_matches_brute_force,within_budget,optimum_computed\n";
   for (const InstanceComparison& c : rows)
     o << c.index << ',' << int(c.adversarial) << ',' << c.items << ',' << c.options << ','
-      << c.budget << ',' << c.residual << ',' << full_precision(c.base_loss) << ',' << full_precision(c.value_optimal)
-      << ',' << full_precision(c.value_greedy) << ',' << full_precision(c.value_ratio_only) << ','
-      << full_precision(c.value_single) << ',' << full_precision(c.value_uniform) << ',' << full_precision(c.value_distance) << ','
-      << full_precision(c.loss_optimal) << ',' << full_precision(c.loss_greedy) << ',' << full_precision(c.loss_ratio_only) << ','
-      << full_precision(c.value_ratio) << ',' << full_precision(c.value_ratio_ratio_only) << ',' << full_precision(c.loss_ratio)
-      << ',' << int(c.brute_forced) << ',' << int(c.dp_matches_brute_force) << ','
-      << int(c.within_budget) << ',' << int(c.optimum_computed) << '\n';
+      << c.budget << ',' << c.residual << ',' << full_precision(c.base_loss) << ','
+      << full_precision(c.value_optimal) << ',' << full_precision(c.value_greedy) << ','
+      << full_precision(c.value_ratio_only) << ',' << full_precision(c.value_single) << ','
+      << full_precision(c.value_uniform) << ',' << full_precision(c.value_distance) << ','
+      << full_precision(c.loss_optimal) << ',' << full_precision(c.loss_greedy) << ','
+      << full_precision(c.loss_ratio_only) << ',' << full_precision(c.value_ratio) << ','
+      << full_precision(c.value_ratio_ratio_only) << ',' << full_precision(c.loss_ratio) << ','
+      << int(c.brute_forced) << ',' << int(c.dp_matches_brute_force) << ',' << int(c.within_budget)
+      << ',' << int(c.optimum_computed) << '\n';
   return o.str();
 }
 

@@ -198,7 +198,7 @@ RegulationSettings parse_regulation_experiment(const std::string& text, const st
   RegulationSettings s;
   const StudyFile file = read_study_file(loc, text, "regulation", {"scene"}, true, &s);
   const toml::table& root = file.root;
-  const toml::table& t = file.table;
+  const toml::table& t = file.table();
   loc.reject_unknown_keys(t, "regulation.",
                           {"platform", "window", "fov_deg", "near", "far", "lod_ratios", "cache_size",
                            "seed", "budgets_ms", "frame_stride", "repetitions", "render",

@@ -1,8 +1,6 @@
 // The regulation study: run, analyze, plot (regulation_study.h).
 #include "regulation/regulation_study.h"
 
-#include "platforms/platform_probe.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,8 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "stats/descriptive.h"
-#include "stats/table_writer.h"
+#include "platforms/platform_probe.h"
 #include "plots/figure.h"
 #include "plots/figure_set.h"
 #include "regulation/attention.h"
@@ -23,10 +20,12 @@
 #include "regulation/policies.h"
 #include "regulation/random_instances.h"
 #include "regulation/regulation_experiment.h"
-#include "util/atomic_file.h"
-#include "util/errors.h"
 #include "runner/manifest.h"
+#include "stats/descriptive.h"
+#include "stats/table_writer.h"
+#include "util/atomic_file.h"
 #include "util/cell_text.h"
+#include "util/errors.h"
 
 namespace ra::regulation {
 namespace {
@@ -149,9 +148,9 @@ StudyScene scene_stage(const RegulationSettings& s, const std::string& dir, json
       for (std::size_t k = 0; k < chains[i].levels.size(); ++k) {
         const LodLevel& l = chains[i].levels[k];
         o << i << ',' << csv_escape(chains[i].name) << ',' << category_name(tags[i]) << ','
-          << full_precision(weights[i]) << ',' << k << ',' << full_precision(l.target_ratio) << ',' << l.triangles << ','
-          << l.vertices << ',' << l.transformed << ',' << full_precision(l.error_m) << ','
-          << full_precision(l.simplifier_error_m) << '\n';
+          << full_precision(weights[i]) << ',' << k << ',' << full_precision(l.target_ratio) << ','
+          << l.triangles << ',' << l.vertices << ',' << l.transformed << ','
+          << full_precision(l.error_m) << ',' << full_precision(l.simplifier_error_m) << '\n';
       }
     write_file_atomic(dir + "/lod_levels.csv", o.str());
     json lod = json::array();
@@ -202,15 +201,18 @@ void write_plan_tables(const RenderOutcome& ro, const std::vector<LodChain>& cha
   fr << "frame,budget_ms,policy,predicted_us,measured_median_us,skipped,repetitions,measured_us,"
         "predicted_estimated_us\n";
   for (const FrameRecord& r : ro.records) {
-    sw << r.frame << ',' << full_precision(r.budget_ms) << ',' << r.policy << ',' << r.visible << ','
-       << r.budget_units << ',' << r.plan_units << ',' << int(r.fits) << ',' << full_precision(r.expected_cost)
-       << ',' << full_precision(r.value) << ',' << full_precision(r.value_ratio_to_optimal) << ',' << full_precision(r.predicted_us)
-       << ',' << r.triangles << ',' << full_precision(r.pixels) << ',' << full_precision(r.predicted_estimated_us) << ',' << r.transformed << '\n';
+    sw << r.frame << ',' << full_precision(r.budget_ms) << ',' << r.policy << ',' << r.visible
+       << ',' << r.budget_units << ',' << r.plan_units << ',' << int(r.fits) << ','
+       << full_precision(r.expected_cost) << ',' << full_precision(r.value) << ','
+       << full_precision(r.value_ratio_to_optimal) << ',' << full_precision(r.predicted_us) << ','
+       << r.triangles << ',' << full_precision(r.pixels) << ','
+       << full_precision(r.predicted_estimated_us) << ',' << r.transformed << '\n';
     std::string reps;
     for (double v : r.measured_us) reps += (reps.empty() ? "" : ";") + full_precision(v);
-    fr << r.frame << ',' << full_precision(r.budget_ms) << ',' << r.policy << ',' << full_precision(r.predicted_us) << ','
-       << full_precision(r.measured_median_us) << ',' << int(r.skipped) << ',' << r.measured_us.size() << ','
-       << reps << ',' << full_precision(r.predicted_estimated_us) << '\n';
+    fr << r.frame << ',' << full_precision(r.budget_ms) << ',' << r.policy << ','
+       << full_precision(r.predicted_us) << ',' << full_precision(r.measured_median_us) << ','
+       << int(r.skipped) << ',' << r.measured_us.size() << ',' << reps << ','
+       << full_precision(r.predicted_estimated_us) << '\n';
   }
   write_file_atomic(dir + "/budget_sweep.csv", sw.str());
   write_file_atomic(dir + "/frames.csv", fr.str());
@@ -221,8 +223,9 @@ void write_plan_tables(const RenderOutcome& ro, const std::vector<LodChain>& cha
     for (const PixelSample& p : ro.pixels) {
       for (std::size_t k = 0; k < p.measured.size(); ++k)
         px << p.frame << ',' << p.object << ',' << csv_escape(chains[p.object].name) << ','
-           << full_precision(p.distance_m) << ',' << full_precision(p.radius_m) << ',' << full_precision(p.estimated) << ',' << k << ','
-           << full_precision(p.measured[k]) << '\n';
+           << full_precision(p.distance_m) << ',' << full_precision(p.radius_m) << ','
+           << full_precision(p.estimated) << ',' << k << ',' << full_precision(p.measured[k])
+           << '\n';
       if (p.estimated > 0 && !p.measured.empty()) ratio.push_back(p.measured[0] / p.estimated);
     }
     write_file_atomic(dir + "/pixels.csv", px.str());
@@ -580,7 +583,8 @@ void plot_regulation_study(const std::string& dir) {
     figs.add("regulation_ratio_histogram", "value(OPT) / value(greedy) on random instances",
              "value(OPT) / value(greedy)", "instances",
              "Distribution of the ratio of the optimal to the greedy value (perceptual cost saved "
-             "over the all-coarsest plan) on " + std::to_string(r.size()) +
+             "over the all-coarsest plan) on " +
+                 std::to_string(r.size()) +
                  " random knapsack instances; the theorem bounds it by 2.",
              hc);
   }
@@ -597,9 +601,11 @@ void plot_regulation_study(const std::string& dir) {
     sc.series = by.series();
     sc.x_log10 = true;
     sc.y_log10 = true;
-    figs.add("regulation_cost_vs_budget", "Expected perceptual cost against frame budget", "frame budget (ms)",
-             "mean expected perceptual cost",
-             "Mean expected perceptual cost of the plans along the camera path, per policy and budget.", sc)
+    figs.add("regulation_cost_vs_budget", "Expected perceptual cost against frame budget",
+             "frame budget (ms)", "mean expected perceptual cost",
+             "Mean expected perceptual cost of the plans along the camera path, per policy and "
+             "budget.",
+             sc)
         .note = plots::scatter_omitted_note(sc);
   }
   // 3. skip rate per budget and policy; 4. measured against predicted
@@ -623,7 +629,8 @@ void plot_regulation_study(const std::string& dir) {
           100.0 * (r["skip_fraction"].is_number() ? r["skip_fraction"].get<double>() : 0.0);
     }
     bc.y_max = 100;
-    figs.add("regulation_frame_skips", "Frame skips per budget and policy", "frame budget", "frames over budget (%)",
+    figs.add("regulation_frame_skips", "Frame skips per budget and policy", "frame budget",
+             "frames over budget (%)",
              "Share of the planned frames whose median measured time exceeded the budget.", bc);
 
     plots::SeriesInOrder by;
@@ -635,9 +642,11 @@ void plot_regulation_study(const std::string& dir) {
     plots::ScatterContent sc;
     sc.series = by.series();
     sc.x_log10 = sc.y_log10 = true;
-    figs.add("regulation_measured_vs_predicted", "Measured against predicted frame time", "predicted frame time (ms)",
-             "measured median frame time (ms)",
-             "Each rendered plan: the H4 prediction plus the empty frame against the median measured time.", sc)
+    figs.add("regulation_measured_vs_predicted", "Measured against predicted frame time",
+             "predicted frame time (ms)", "measured median frame time (ms)",
+             "Each rendered plan: the H4 prediction plus the empty frame against the median "
+             "measured time.",
+             sc)
         .note = plots::scatter_omitted_note(sc);
   }
   figs.write(dir);

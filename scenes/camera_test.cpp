@@ -63,11 +63,5 @@ TEST(Camera, FrustumCulling) {
   EXPECT_FALSE(f.intersects({{10, edge + 5, 0}, 2}));
 }
 
-const char* kScene = R"(
-[[scene]]
-kind = "forest"
-trees = 3
-)";
-
 }  // namespace
 }  // namespace ra

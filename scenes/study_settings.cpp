@@ -17,9 +17,9 @@ std::string show(double v) {
 }  // namespace
 
 StudyFile read_study_file(const TomlLocator& loc, const std::string& text, const std::string& where,
-                          const std::set<std::string>& other_keys, bool required, StudySettings* s) {
-  StudyFile f;
-  f.root = loc.parse(text);
+                          const std::set<std::string>& other_keys, bool required,
+                          StudySettings* s) {
+  StudyFile f{loc.parse(text), nullptr, {}};
   std::set<std::string> keys = other_keys;
   keys.insert({"name", where});
   loc.reject_unknown_keys(f.root, "", keys);
@@ -28,7 +28,7 @@ StudyFile read_study_file(const TomlLocator& loc, const std::string& text, const
   const toml::node* n = f.root.get(where);
   if (!n && required) loc.fail(nullptr, "the file needs a [" + where + "] table");
   if (n && !n->is_table()) loc.fail(n, "'" + where + "' must be a table");
-  if (n) f.table = *n->as_table();
+  f.table_ = n ? n->as_table() : nullptr;  // copying a table would lose its source positions
   return f;
 }
 
@@ -49,17 +49,19 @@ void read_camera_block(const TomlLocator& loc, const toml::table& t, const std::
     cam->near = loc.number(*n, p + "near", "near > 0 metres", [](double v) { return v > 0; });
   const double near = cam->near;
   if (const auto* n = t.get("far"))
-    cam->far = loc.number(*n, p + "far", "far > near = " + show(near), [near](double v) { return v > near; });
+    cam->far = loc.number(*n, p + "far", "far > near = " + show(near),
+                          [near](double v) { return v > near; });
   else if (!(cam->far > near))
-    loc.fail(t.get("near"), "'" + p + "near' = " + show(near) + " is out of range (allowed: near < far = " +
-                                show(cam->far) + ")");
+    loc.fail(t.get("near"), "'" + p + "near' = " + show(near) +
+                                " is out of range (allowed: near < far = " + show(cam->far) + ")");
 }
 
-std::string read_study_platform(const TomlLocator& loc, const toml::node& node, const std::string& key) {
+std::string read_study_platform(const TomlLocator& loc, const toml::node& node,
+                                const std::string& key) {
   const std::string name = loc.string(node, key, {}, aliased_gl_platform_names());
   if (!is_aliased_gl_platform(name))
-    loc.fail(&node, "'" + key + "' = \"" + name + "\" is out of range (allowed: " +
-                        aliased_gl_platform_names() + ")");
+    loc.fail(&node, "'" + key + "' = \"" + name +
+                        "\" is out of range (allowed: " + aliased_gl_platform_names() + ")");
   return name;
 }
 

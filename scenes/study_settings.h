@@ -4,9 +4,10 @@
 // (`where`: "timing", "lod", "regulation").
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <set>
 #include <string>
-#include <toml++/toml.h>
 
 #include "scenes/camera.h"
 #include "util/toml_locator.h"
@@ -25,10 +26,14 @@ struct StudySettings {
 // empty table; "'where' must be a table" when it is something else.
 struct StudyFile {
   toml::table root;
-  toml::table table;  // [where], or empty
+  const toml::table& table() const { return table_ ? *table_ : empty_; }  // [where], or empty
+
+  const toml::table* table_ = nullptr;  // a node of root (nodes stay put when root moves)
+  toml::table empty_;
 };
 StudyFile read_study_file(const TomlLocator& loc, const std::string& text, const std::string& where,
-                          const std::set<std::string>& other_keys, bool required, StudySettings* settings);
+                          const std::set<std::string>& other_keys, bool required,
+                          StudySettings* settings);
 
 // The keys of the camera block: window = [width, height] (pixels, 16..4096 each), fov_deg
 // (vertical, degrees, 0 < fov_deg < 180), near (> 0) and far (> near), clip planes in metres.
@@ -42,6 +47,7 @@ void read_camera_block(const TomlLocator& loc, const toml::table& table, const s
 // A platform the studies can time: a GL platform that draws aliased frames (a multisample
 // platform would be measured as aliased; the reference has no GL to time). UserError "'key' =
 // "NAME" is out of range (allowed: ...)" otherwise.
-std::string read_study_platform(const TomlLocator& loc, const toml::node& node, const std::string& key);
+std::string read_study_platform(const TomlLocator& loc, const toml::node& node,
+                                const std::string& key);
 
 }  // namespace ra

@@ -15,8 +15,8 @@ std::string error_of(const std::string& text, const std::string& where = "lod") 
     const TomlLocator loc("s.toml");
     StudySettings s;
     const StudyFile f = read_study_file(loc, text, where, {}, true, &s);
-    read_camera_block(loc, f.table, where, &s.camera);
-    if (const auto* n = f.table.get("platform")) read_study_platform(loc, *n, where + ".platform");
+    read_camera_block(loc, f.table(), where, &s.camera);
+    if (const auto* n = f.table().get("platform")) read_study_platform(loc, *n, where + ".platform");
     return "";
   } catch (const UserError& e) {
     return e.what();
@@ -29,7 +29,7 @@ TEST(StudySettings, ReadsTheCameraBlock) {
   const StudyFile f = read_study_file(
       loc, "name = \"n1\"\n[timing]\nwindow = [320, 200]\nfov_deg = 45\nnear = 2\nfar = 900\n", "timing", {},
       true, &s);
-  read_camera_block(loc, f.table, "timing", &s.camera);
+  read_camera_block(loc, f.table(), "timing", &s.camera);
   EXPECT_EQ(s.file, "s.toml");
   EXPECT_EQ(s.name, "n1");
   EXPECT_EQ(s.camera.width, 320);
@@ -56,7 +56,7 @@ TEST(StudySettings, OneWordingOfErrors) {
             0u);
   EXPECT_EQ(error_of("name = \"x\"\n"), "s.toml:1:1: the file needs a [lod] table");
   EXPECT_EQ(error_of("lod = 3\n"), "s.toml:1:7: 'lod' must be a table");
-  EXPECT_EQ(error_of("[lod]\n[extra]\n"), "s.toml:2:1: unknown key 'extra' (allowed: lod, name)");
+  EXPECT_EQ(error_of("[lod]\n[extra]\n"), "s.toml:2:2: unknown key 'extra' (allowed: lod, name)");
 }
 
 }  // namespace

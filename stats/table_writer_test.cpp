@@ -13,7 +13,7 @@
 namespace ra::stats {
 namespace {
 
-using testing::lines_of;
+using analysis::testing::lines_of;
 
 Table small_table() {
   Table t;

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <sstream>
 
-#include "util/errors.h"
 #include "scenes/study_settings.h"
+#include "util/errors.h"
 #include "util/toml_locator.h"
 
 namespace ra::lod {
@@ -37,7 +37,7 @@ LodSettings parse_lod_experiment(const std::string& text, const std::string& pat
   LodSettings s;
   const StudyFile file = read_study_file(loc, text, "lod", {"title"}, true, &s);
   if (const auto* n = file.root.get("title")) s.title = loc.string(*n, "title", {});
-  const toml::table& t = file.table;
+  const toml::table& t = file.table();
   loc.reject_unknown_keys(t, "lod.",
                           {"platform", "window", "fov_deg", "near", "far", "tau", "lambda", "check_lambdas",
                            "error_propagation", "seams", "tile_size", "tiles", "spacing", "height_scale", "seed",
@@ -48,10 +48,13 @@ LodSettings parse_lod_experiment(const std::string& text, const std::string& pat
   if (const auto* n = t.get("tau")) {
     const auto& a = loc.array(*n, "lod.tau", 1, SIZE_MAX, "a non-empty array of pixel thresholds");
     s.tau.clear();
-    for (const auto& e : a) s.tau.push_back(loc.number(e, "lod.tau", "(0, 1000] pixels", [](double v) { return v > 0 && v <= 1000; }));
+    for (const auto& e : a)
+      s.tau.push_back(loc.number(e, "lod.tau", "(0, 1000] pixels",
+                                 [](double v) { return v > 0 && v <= 1000; }));
   }
   const std::vector<std::string> lambdas = {"window", "planar", "spherical"};
-  if (const auto* n = t.get("lambda")) s.lambda = parse_lambda_kind(loc.string(*n, "lod.lambda", lambdas));
+  if (const auto* n = t.get("lambda"))
+    s.lambda = parse_lambda_kind(loc.string(*n, "lod.lambda", lambdas));
   if (const auto* n = t.get("check_lambdas")) {
     const auto* a = n->as_array();
     if (!a) loc.fail(n, "'lod.check_lambdas' must be an array of lambda names (allowed: window, planar, spherical)");
@@ -68,7 +71,8 @@ LodSettings parse_lod_experiment(const std::string& text, const std::string& pat
   }
   if (const auto* n = t.get("error_propagation"))
     s.propagation = loc.string(*n, "lod.error_propagation", {"nested", "unnested"}) == "nested"
-                        ? ErrorPropagation::kNested : ErrorPropagation::kUnnested;
+                        ? ErrorPropagation::kNested
+                        : ErrorPropagation::kUnnested;
   if (const auto* n = t.get("seams"))
     s.equalise_seams = loc.string(*n, "lod.seams", {"equalised", "independent"}) == "equalised";
   if (const auto* n = t.get("tile_size")) {
@@ -93,15 +97,19 @@ LodSettings parse_lod_experiment(const std::string& text, const std::string& pat
     }
   }
   if (const auto* n = t.get("spacing"))
-    s.terrain.spacing = loc.number(*n, "lod.spacing", "(0, 100000] metres", [](double v) { return v > 0 && v <= 1e5; });
+    s.terrain.spacing = loc.number(*n, "lod.spacing", "(0, 100000] metres",
+                                   [](double v) { return v > 0 && v <= 1e5; });
   if (const auto* n = t.get("height_scale"))
-    s.terrain.height_scale = loc.number(*n, "lod.height_scale", "[0, 100000] metres", [](double v) { return v >= 0 && v <= 1e5; });
+    s.terrain.height_scale = loc.number(*n, "lod.height_scale", "[0, 100000] metres",
+                                        [](double v) { return v >= 0 && v <= 1e5; });
   if (const auto* n = t.get("seed")) s.terrain.seed = uint64_t(loc.integer(*n, "lod.seed", 0, INT64_MAX));
   if (const auto* n = t.get("feature_size"))
-    s.terrain.feature_size = loc.number(*n, "lod.feature_size", "(0, 1e7] metres", [](double v) { return v > 0 && v <= 1e7; });
+    s.terrain.feature_size = loc.number(*n, "lod.feature_size", "(0, 1e7] metres",
+                                        [](double v) { return v > 0 && v <= 1e7; });
   if (const auto* n = t.get("octaves")) s.terrain.octaves = int(loc.integer(*n, "lod.octaves", 1, 16));
   if (const auto* n = t.get("persistence"))
-    s.terrain.persistence = loc.number(*n, "lod.persistence", "[0, 1]", [](double v) { return v >= 0 && v <= 1; });
+    s.terrain.persistence =
+        loc.number(*n, "lod.persistence", "[0, 1]", [](double v) { return v >= 0 && v <= 1; });
   if (const auto* n = t.get("height_file")) {
     const std::string f = loc.string(*n, "lod.height_file", {});
     if (f.empty()) loc.fail(n, "'lod.height_file' must not be empty");
@@ -111,9 +119,11 @@ LodSettings parse_lod_experiment(const std::string& text, const std::string& pat
   if (const auto* n = t.get("frames")) s.frames = int(loc.integer(*n, "lod.frames", 1, 100000));
   if (const auto* n = t.get("path_seed")) s.path_seed = uint64_t(loc.integer(*n, "lod.path_seed", 0, INT64_MAX));
   if (const auto* n = t.get("flight_height"))
-    s.flight_height = loc.number(*n, "lod.flight_height", "[0, 100000] metres", [](double v) { return v >= 0 && v <= 1e5; });
+    s.flight_height = loc.number(*n, "lod.flight_height", "[0, 100000] metres",
+                                 [](double v) { return v >= 0 && v <= 1e5; });
   if (const auto* n = t.get("look_ahead"))
-    s.look_ahead = loc.number(*n, "lod.look_ahead", "(0, 100000] metres", [](double v) { return v > 0 && v <= 1e5; });
+    s.look_ahead = loc.number(*n, "lod.look_ahead", "(0, 100000] metres",
+                              [](double v) { return v > 0 && v <= 1e5; });
   if (const auto* n = t.get("repetitions")) s.repetitions = int(loc.integer(*n, "lod.repetitions", 1, 1000));
   return s;
 }

@@ -1,10 +1,6 @@
 // The terrain LOD study: run, analyze, plot (lod_study.h).
 #include "terrain_lod/lod_study.h"
 
-#include "platforms/platform_probe.h"
-
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,19 +9,21 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "stats/descriptive.h"
+#include "platforms/platform_probe.h"
 #include "plots/figure_set.h"
-#include "util/atomic_file.h"
-#include "util/errors.h"
-#include "util/gl_child_process.h"
 #include "runner/manifest.h"
 #include "scenes/camera_path.h"
+#include "stats/descriptive.h"
 #include "terrain_lod/lod_checks.h"
 #include "terrain_lod/lod_experiment.h"
 #include "terrain_lod/lod_renderer.h"
+#include "util/atomic_file.h"
 #include "util/cell_text.h"
+#include "util/errors.h"
+#include "util/gl_child_process.h"
 
 namespace ra::lod {
 namespace {
@@ -45,7 +43,6 @@ std::string fmt(double v, const char* f) {
   std::snprintf(b, sizeof b, f, v);
   return b;
 }
-
 
 Scene layout_scene(const HeightField& f) {
   Scene s;
@@ -224,7 +221,8 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
   for (size_t fi = 0; fi < path.size(); ++fi) {
     const Viewpoint& vp = path[fi];
     const json& drawn_frame = drawn_frames.at(fi);
-    const double full_median = stats::median_or_nan(drawn_frame.at("full_us").get<std::vector<double>>());
+    const double full_median =
+        stats::median_or_nan(drawn_frame.at("full_us").get<std::vector<double>>());
     for (LambdaKind kind : lambdas)
       for (size_t ti = 0; ti < s.tau.size(); ++ti) {
         const double tau = s.tau[ti];
@@ -257,11 +255,13 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
           mean_abs = drawn_lod.at("image_mean_abs").get<double>();
           differing = drawn_lod.at("image_differing").get<double>();
         }
-        csv << lambda_kind_name(kind) << ',' << full_precision_or_empty(tau) << ',' << fi << ',' << mesh.triangle_count() << ','
-            << mesh.vertex_count() << ',' << mesh.strip_index_count() << ',' << int(conf.conforming) << ','
-            << int(seams.ok) << ',' << full_precision_or_empty(se.max_px) << ',' << se.checked << ',' << se.excluded << ','
-            << fmt(se.worst_x, "%.1f") << ',' << fmt(se.worst_y, "%.1f") << ',' << fmt(med, "%.1f") << ',' << reps
-            << ',' << full.triangle_count() << ',' << fmt(full_median, "%.1f") << ',' << fmt(mean_abs, "%.6g") << ','
+        csv << lambda_kind_name(kind) << ',' << full_precision_or_empty(tau) << ',' << fi << ','
+            << mesh.triangle_count() << ',' << mesh.vertex_count() << ','
+            << mesh.strip_index_count() << ',' << int(conf.conforming) << ',' << int(seams.ok)
+            << ',' << full_precision_or_empty(se.max_px) << ',' << se.checked << ',' << se.excluded
+            << ',' << fmt(se.worst_x, "%.1f") << ',' << fmt(se.worst_y, "%.1f") << ','
+            << fmt(med, "%.1f") << ',' << reps << ',' << full.triangle_count() << ','
+            << fmt(full_median, "%.1f") << ',' << fmt(mean_abs, "%.6g") << ','
             << fmt(differing, "%.6g") << ',' << se.partially_visible << ',' << se.holes << "\n";
       }
     if (progress && (fi % 10 == 0 || fi + 1 == path.size()))
@@ -522,9 +522,12 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
 void analyze_lod_study(const std::string& dir) {
   const std::optional<StudyInfo> info = read_study_info(dir);
   if (!info || info->kind != StudyKind::kLod)
-    throw UserError(dir + " is not a complete LOD run (no study.json of kind lod: run `renderaudit run` on a [lod] experiment)");
+    throw UserError(dir +
+                    " is not a complete LOD run (no study.json of kind lod: run `renderaudit run` "
+                    "on a [lod] experiment)");
   for (const char* f : {"frames.csv", "lod_summary.json"})
-    if (!std::filesystem::exists(dir + "/" + f)) throw UserError(dir + " is not a complete LOD run: " + f + " is missing");
+    if (!std::filesystem::exists(dir + "/" + f))
+      throw UserError(dir + " is not a complete LOD run: " + f + " is missing");
   json sj;
   try {
     sj = json::parse(read_file(dir + "/lod_summary.json"));
@@ -535,11 +538,18 @@ void analyze_lod_study(const std::string& dir) {
   std::ostringstream table;
   table << kTableHeader << "\n";
   for (const TableRow& r : rows)
-    table << r.lambda << ',' << full_precision_or_empty(r.tau) << ',' << r.frames << ',' << full_precision_or_empty(r.triangles_median) << ','
-          << full_precision_or_empty(r.triangles_max) << ',' << full_precision_or_empty(r.vertices_median) << ',' << full_precision_or_empty(r.indices_per_triangle) << ','
-          << full_precision_or_empty(r.frame_ms) << ',' << full_precision_or_empty(r.full_ms) << ',' << full_precision_or_empty(r.full_triangles) << ','
-          << full_precision_or_empty(r.image_mean_abs) << ',' << full_precision_or_empty(r.image_differing) << ',' << full_precision_or_empty(r.max_screen_error) << ','
-          << full_precision_or_empty(r.screen_error_q90) << ',' << r.conforming << ',' << r.seams_ok << ',' << r.over_tau << "\n";
+    table << r.lambda << ',' << full_precision_or_empty(r.tau) << ',' << r.frames << ','
+          << full_precision_or_empty(r.triangles_median) << ','
+          << full_precision_or_empty(r.triangles_max) << ','
+          << full_precision_or_empty(r.vertices_median) << ','
+          << full_precision_or_empty(r.indices_per_triangle) << ','
+          << full_precision_or_empty(r.frame_ms) << ',' << full_precision_or_empty(r.full_ms) << ','
+          << full_precision_or_empty(r.full_triangles) << ','
+          << full_precision_or_empty(r.image_mean_abs) << ','
+          << full_precision_or_empty(r.image_differing) << ','
+          << full_precision_or_empty(r.max_screen_error) << ','
+          << full_precision_or_empty(r.screen_error_q90) << ',' << r.conforming << ',' << r.seams_ok
+          << ',' << r.over_tau << "\n";
   write_file_atomic(dir + "/lod_table.csv", table.str());
   write_file_atomic(dir + "/lod.md", lod_document(sj, rows));
   StudyInfo updated = *info;
@@ -573,14 +583,16 @@ void plot_lod_study(const std::string& dir) {
       }
     c.series = {lod, fullres};
     figures.add("lod_speed_vs_error", "LOD: frame time against image error, one point per tau",
-                "image mean absolute difference vs full resolution (levels of 255)", "frame time, median (ms)",
+                "image mean absolute difference vs full resolution (levels of 255)",
+                "frame time, median (ms)",
                 "The speed-against-error curve of the LOD: median frame time and median image "
                 "difference against the full-resolution rendering, one point per tau; the point at "
                 "x = 0 is the full-resolution rendering itself.",
                 c);
   }
   // One series per lambda (y against tau), then a reference series over the first lambda's taus.
-  auto by_lambda = [&rows](double TableRow::*y, const std::string& reference, double TableRow::*reference_y) {
+  auto by_lambda = [&rows](double TableRow::*y, const std::string& reference,
+                           double TableRow::*reference_y) {
     plots::SeriesInOrder by;
     plots::ScatterSeries ref;
     ref.name = reference;
@@ -599,11 +611,14 @@ void plot_lod_study(const std::string& dir) {
     return c;
   };
   {  // triangles against tau
-    plots::ScatterContent c = by_lambda(&TableRow::triangles_median, "full resolution", &TableRow::full_triangles);
+    plots::ScatterContent c =
+        by_lambda(&TableRow::triangles_median, "full resolution", &TableRow::full_triangles);
     c.x_log10 = c.y_log10 = true;
-    figures.add("lod_triangles_vs_tau", "LOD: triangles against the screen-space threshold tau", "tau (pixels)",
-                "triangles, median over frames",
-                "Median triangle count of the refined mesh per tau and lambda, with the full-resolution count.", c);
+    figures.add("lod_triangles_vs_tau", "LOD: triangles against the screen-space threshold tau",
+                "tau (pixels)", "triangles, median over frames",
+                "Median triangle count of the refined mesh per tau and lambda, with the "
+                "full-resolution count.",
+                c);
   }
   {  // measured screen error against tau
     plots::ScatterContent c = by_lambda(&TableRow::max_screen_error, "y = tau", &TableRow::tau);

@@ -5,9 +5,9 @@
 #include <set>
 #include <sstream>
 
-#include "util/errors.h"
 #include "platforms/platform.h"
 #include "scenes/study_settings.h"
+#include "util/errors.h"
 #include "util/toml_locator.h"
 
 namespace ra::timing {
@@ -45,7 +45,7 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
   TimingSettings s;
   const StudyFile file = read_study_file(loc, text, "timing", {"scene"}, false, &s);
   const toml::table& root = file.root;
-  const toml::table& t = file.table;
+  const toml::table& t = file.table();
   loc.reject_unknown_keys(
       t, "timing.",
       {"platforms", "window", "fov_deg", "near", "far", "repetitions", "system_task_renders",
@@ -54,7 +54,8 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
        "phi_deg", "pos_grid", "pos_prune_alpha_deg", "pos_lookup", "platform", "study_runs"});
 
   if (const auto* n = t.get("platforms")) {
-    const auto& a = loc.array(*n, "timing.platforms", 0, SIZE_MAX, "a non-empty array of platform names");
+    const auto& a =
+        loc.array(*n, "timing.platforms", 0, SIZE_MAX, "a non-empty array of platform names");
     if (a.empty()) loc.fail(n, "'timing.platforms' must not be empty");
     s.platforms.clear();
     for (const auto& e : a) {
@@ -83,7 +84,7 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
   }
   if (const auto* n = t.get("alpha_min_deg"))
     s.alpha_min_deg = loc.number(*n, "timing.alpha_min_deg", "0 < alpha_min_deg < 90",
-                             [](double v) { return v > 0 && v < 90; });
+                                 [](double v) { return v > 0 && v < 90; });
   if (const auto* n = t.get("phi_deg")) {
     const auto& a = loc.array(*n, "timing.phi_deg", 2, 2, "[lowest, highest] elevation in degrees");
     auto in_range = [](double v) { return v >= -90 && v <= 90; };
@@ -93,14 +94,15 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
       loc.fail(n, "'timing.phi_deg' must be [lowest, highest] (allowed: lowest <= highest)");
   }
   if (const auto* n = t.get("pos_grid")) {
-    const auto& a = loc.array(*n, "timing.pos_grid", 3, 3, "[alpha points, gamma points, phi points]");
+    const auto& a =
+        loc.array(*n, "timing.pos_grid", 3, 3, "[alpha points, gamma points, phi points]");
     s.pos_grid.n_alpha = int(loc.integer(*a.get(0), "timing.pos_grid[0] (alpha)", 2, 64));
     s.pos_grid.n_gamma = int(loc.integer(*a.get(1), "timing.pos_grid[1] (gamma)", 1, 64));
     s.pos_grid.n_phi = int(loc.integer(*a.get(2), "timing.pos_grid[2] (phi)", 1, 64));
   }
   if (const auto* n = t.get("pos_prune_alpha_deg"))
     s.pos_prune_alpha_deg = loc.number(*n, "timing.pos_prune_alpha_deg", "0 <= value < 180",
-                                   [](double v) { return v >= 0 && v < 180; });
+                                       [](double v) { return v >= 0 && v < 180; });
   if (const auto* n = t.get("pos_lookup")) {
     const auto* str = n->as_string();
     if (!str || (str->get() != "interpolate" && str->get() != "nearest"))
@@ -155,9 +157,9 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
   }
   if (const auto* n = t.get("system_task_frame"))
     // A recorded path's length is known only once it is read: the study checks it then.
-    s.system_task_frame = int(loc.integer(*n, "timing.system_task_frame", 0,
-                                      system_scene->path_file.empty() ? system_scene->path.frames - 1
-                                                                      : 999999));
+    s.system_task_frame =
+        int(loc.integer(*n, "timing.system_task_frame", 0,
+                        system_scene->path_file.empty() ? system_scene->path.frames - 1 : 999999));
   return s;
 }
 

@@ -10,6 +10,12 @@
 namespace ra::timing {
 namespace {
 
+const char* kScene = R"(
+[[scene]]
+kind = "forest"
+trees = 3
+)";
+
 TEST(TimingExperiment, DefaultsAndValues) {
   const TimingSettings s = parse_timing_experiment(
       std::string("[timing]\nwindow = [320, 240]\nrepetitions = 7\ncache_size = 24\n"

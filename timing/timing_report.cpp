@@ -1,6 +1,5 @@
 // The outputs of `renderaudit timing` (timing_report.h).
 #include "timing/timing_report.h"
-#include "timing/timing_markdown.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,13 +7,14 @@
 #include <filesystem>
 #include <sstream>
 
-#include "stats/descriptive.h"
 #include "plots/figure_set.h"
-#include "util/atomic_file.h"
-#include "util/errors.h"
 #include "runner/manifest.h"
 #include "runner/study_dir.h"
+#include "stats/descriptive.h"
+#include "timing/timing_markdown.h"
+#include "util/atomic_file.h"
 #include "util/cell_text.h"
+#include "util/errors.h"
 
 namespace ra::timing {
 namespace {
@@ -34,7 +34,6 @@ std::string list(const std::vector<double>& v) {
   for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ";" : "") + num(v[i]);
   return s;
 }
-
 
 nlohmann::json nullable(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
@@ -331,8 +330,8 @@ std::string object_samples_csv(const StudyResults& r) {
       for (const ObjectSample& x : s.object_samples)
         o << csv_escape(m.renderer.platform) << ',' << csv_escape(s.name) << ',' << x.object << ','
           << num(x.alpha) << ',' << num(x.gamma) << ',' << num(x.phi) << ',' << x.triangles << ','
-          << x.vertices << ',' << x.transformed << ',' << x.pixels << ',' << x.state_changes
-          << ',' << x.cpu_us.size() << ',' << num(stats::median(x.cpu_us)) << ','
+          << x.vertices << ',' << x.transformed << ',' << x.pixels << ',' << x.state_changes << ','
+          << x.cpu_us.size() << ',' << num(stats::median(x.cpu_us)) << ','
           << num(stats::median_or_nan(x.gpu_us)) << ',' << list(x.cpu_us) << ',' << list(x.gpu_us)
           << '\n';
   return o.str();
@@ -408,9 +407,9 @@ std::string table6_repeated_csv(const StudyResults& r) {
           ranks += (k ? ";" : "") + std::to_string(at - order.begin() + 1);
         }
         o << csv_escape(p.platform) << ',' << csv_escape(scene) << ',' << csv_escape(method) << ','
-          << s.n << ',' << num(s.mean) << ',' << num(s.sd) << ',' << num(s.min) << ','
-          << num(s.max) << ',' << num(s.ci_low) << ',' << num(s.ci_high) << ','
-          << short_num(s.confidence) << ',' << rk.wins.at(method) << ','
+          << s.n << ',' << num(s.mean) << ',' << num(s.sd) << ',' << num(s.min) << ',' << num(s.max)
+          << ',' << num(s.ci_low) << ',' << num(s.ci_high) << ',' << short_num(s.confidence) << ','
+          << rk.wins.at(method) << ','
           << (is_paper_method(method) ? std::to_string(rk.paper_wins.at(method)) : "") << ','
           << ranks << ',' << list(s.values) << '\n';
       }

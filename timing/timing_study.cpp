@@ -12,13 +12,13 @@
 #include <set>
 #include <stdexcept>
 
+#include "scenes/scene_statistics.h"
+#include "scenes/vertex_cache.h"
+#include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "util/counter_rng.h"
 #include "util/errors.h"
 #include "util/gl_child_process.h"
-#include "scenes/scene_statistics.h"
-#include "scenes/vertex_cache.h"
-#include "stats/descriptive.h"
 
 // What a platform's child process sends its parent (timing.json's raw measurements): the members
 // under their own names.
@@ -92,11 +92,11 @@ void measure_object(SceneRenderer& r, int object, int reps, ObjectSample& s) {
   s.state_changes = binds.empty() ? 0 : binds[0];
 }
 
-
 // 3. The camera path: every frame_stride-th frame drawn whole `repetitions` times, and the
 // sample of each object in its view. Returns the objects the path sees.
-std::set<int> measure_camera_path(SceneRenderer& r, const TimingSettings& settings, const WorkSettings& work,
-                                  const Scene& scene, const std::vector<Viewpoint>& path,
+std::set<int> measure_camera_path(SceneRenderer& r, const TimingSettings& settings,
+                                  const WorkSettings& work, const Scene& scene,
+                                  const std::vector<Viewpoint>& path,
                                   const std::vector<ObjectStatic>& stat, Reporter& rep,
                                   const std::string& tag, SceneMeasurements& sm) {
   const CameraSettings& cam = settings.camera;
@@ -156,13 +156,12 @@ void measure_pos_tables(SceneRenderer& r, const TimingSettings& settings, const 
     mt.table = PosTable(settings.pos_grid, settings.pos_prune_alpha_deg * deg);
     const BoundingSphere& b = scene.objects[std::size_t(o)].bounds;
     for (const auto& p : mt.table.points_to_measure()) {
-      const Viewpoint vp = viewpoint_for(b, cam, settings.pos_grid.alpha_at(p[0]),
-                                         settings.pos_grid.gamma_at(p[1]),
-                                         settings.pos_grid.phi_at(p[2]));
+      const Viewpoint vp =
+          viewpoint_for(b, cam, settings.pos_grid.alpha_at(p[0]), settings.pos_grid.gamma_at(p[1]),
+                        settings.pos_grid.phi_at(p[2]));
       r.set_viewpoint(vp);
       std::vector<double> cpu;
-      for (int k = 0; k < work.pos_repetitions; ++k)
-        cpu.push_back(r.time_draw({o}, false).cpu_us);
+      for (int k = 0; k < work.pos_repetitions; ++k) cpu.push_back(r.time_draw({o}, false).cpu_us);
       mt.table.set(p[0], p[1], p[2], stats::median(cpu));
     }
     sm.pos.push_back(std::move(mt));
@@ -247,7 +246,8 @@ PlatformMeasurements measure_platform(const TimingSettings& settings, const std:
     }
 
     // 3. camera path; 4. per-object sampling tables of the objects it sees
-    const std::set<int> seen = measure_camera_path(r, settings, work, scene, path, stat, rep, tag, sm);
+    const std::set<int> seen =
+        measure_camera_path(r, settings, work, scene, path, stat, rep, tag, sm);
     measure_pos_tables(r, settings, work, scene, seen, rep, tag, sm);
 
     // the system task: one viewpoint of one scene's path (default: the first scene's middle one)

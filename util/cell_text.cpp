@@ -12,7 +12,9 @@ std::string full_precision(double v) {
   return buf;
 }
 
-std::string full_precision_or_empty(double v) { return std::isnan(v) ? std::string() : full_precision(v); }
+std::string full_precision_or_empty(double v) {
+  return std::isnan(v) ? std::string() : full_precision(v);
+}
 
 std::string csv_escape(const std::string& text) {
   if (text.find_first_of(",\"\r\n") == std::string::npos) return text;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -100,8 +99,9 @@ int64_t TomlLocator::integer(const toml::node& node, const std::string& key, int
   return v->get();
 }
 
-double TomlLocator::number(const toml::node& node, const std::string& key, const std::string& allowed,
-                          const std::function<bool(double)>& ok) const {
+double TomlLocator::number(const toml::node& node, const std::string& key,
+                           const std::string& allowed,
+                           const std::function<bool(double)>& ok) const {
   double v = 0;
   if (const auto* i = node.as_integer())
     v = double(i->get());
@@ -131,11 +131,13 @@ bool TomlLocator::boolean(const toml::node& node, const std::string& key) const 
 }
 
 std::string TomlLocator::string(const toml::node& node, const std::string& key,
-                                const std::vector<std::string>& allowed, const std::string& what) const {
+                                const std::vector<std::string>& allowed,
+                                const std::string& what) const {
   std::string list;
   for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
   const auto* s = node.as_string();
-  if (!s) fail(&node, "'" + key + "' must be a string (allowed: " + (list.empty() ? what : list) + ")");
+  if (!s)
+    fail(&node, "'" + key + "' must be a string (allowed: " + (list.empty() ? what : list) + ")");
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), s->get()) == allowed.end())
     fail(&node, "'" + key + "' = \"" + s->get() + "\" is out of range (allowed: " + list + ")");
   return s->get();

@@ -3,12 +3,13 @@
 // scenes/, the studies) so that they all report bad input the same way.
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <cstdint>
 #include <functional>
 #include <set>
 #include <string>
 #include <vector>
-#include <toml++/toml.h>
 
 namespace ra {
 
@@ -53,7 +54,8 @@ class TomlLocator {
   // A string; one of `allowed` when that is not empty ("'key' = \"V\" is out of range (allowed:
   // a, b)"), else any string (WHAT names it in the error: "a file name").
   std::string string(const toml::node& node, const std::string& key,
-                     const std::vector<std::string>& allowed, const std::string& what = "a string") const;
+                     const std::vector<std::string>& allowed,
+                     const std::string& what = "a string") const;
 
  private:
   std::string path_;
