@@ -7,7 +7,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "analysis/analyze_command.h"
+#include "analysis/run_analysis.h"
 #include "stats/csv_table.h"
 #include "analysis/records_testing.h"
 #include "plots/figure.h"

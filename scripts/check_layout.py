@@ -36,7 +36,7 @@ FLAT_RA_FOLDERS = {"util", "geometry", "platforms", "metrics", "runner", "scenes
 KNOWN_LONG_FUNCTIONS = {
     ("runner/run_coordinator.cpp", "run_experiment"),
     ("runner/run_merge.cpp", "merge_runs"),
-    ("analysis/analyze_command.cpp", "analyze_run"),
+    ("analysis/run_analysis.cpp", "analyze_run"),
     ("report/report.cpp", "build_document"),
 }
 

@@ -1,5 +1,5 @@
-// `renderaudit analyze DIR`: the paper's section-4 procedure; see analyze_command.h.
-#include "analysis/analyze_command.h"
+// `renderaudit analyze DIR`: the paper's section-4 procedure; see run_analysis.h.
+#include "analysis/run_analysis.h"
 #include "analysis/run_completeness.h"
 
 #include <cctype>

@@ -1,7 +1,7 @@
 // Tests of `renderaudit analyze`: the whole analysis in process on synthetic runs (files written,
 // no NaN anywhere, empty and constant samples, options), located errors for bad input, and end to
 // end through the binary on a directory written by `renderaudit run`.
-#include "analysis/analyze_command.h"
+#include "analysis/run_analysis.h"
 
 #include <gtest/gtest.h>
 
