@@ -588,19 +588,24 @@ void plot_regulation_study(const std::string& dir) {
                  " random knapsack instances; the theorem bounds it by 2.",
              hc);
   }
-  // 2. expected perceptual cost against budget, one series per policy
-  {
+  // y against x of `rows` on log axes, one series per policy in the order they first appear; a
+  // row without a number for y is left out (its policy keeps its place).
+  auto by_policy = [](const json& rows, const char* x, const char* y) {
     plots::SeriesInOrder by;
-    for (const json& r : j["sweep"]) {
+    for (const json& r : rows) {
       plots::ScatterSeries& s = by[r.value("policy", "")];
-      if (!r["mean_expected_cost"].is_number()) continue;
-      s.x.push_back(r["budget_ms"].get<double>());
-      s.y.push_back(r["mean_expected_cost"].get<double>());
+      if (!r[y].is_number()) continue;
+      s.x.push_back(r[x].get<double>());
+      s.y.push_back(r[y].get<double>());
     }
     plots::ScatterContent sc;
     sc.series = by.series();
-    sc.x_log10 = true;
-    sc.y_log10 = true;
+    sc.x_log10 = sc.y_log10 = true;
+    return sc;
+  };
+  // 2. expected perceptual cost against budget, one series per policy
+  {
+    const plots::ScatterContent sc = by_policy(j["sweep"], "budget_ms", "mean_expected_cost");
     figs.add("regulation_cost_vs_budget", "Expected perceptual cost against frame budget",
              "frame budget (ms)", "mean expected perceptual cost",
              "Mean expected perceptual cost of the plans along the camera path, per policy and "
@@ -633,15 +638,7 @@ void plot_regulation_study(const std::string& dir) {
              "frames over budget (%)",
              "Share of the planned frames whose median measured time exceeded the budget.", bc);
 
-    plots::SeriesInOrder by;
-    for (const json& p : j["render"]["points"]) {
-      plots::ScatterSeries& s = by[p.value("policy", "")];
-      s.x.push_back(p["predicted_ms"].get<double>());
-      s.y.push_back(p["measured_ms"].get<double>());
-    }
-    plots::ScatterContent sc;
-    sc.series = by.series();
-    sc.x_log10 = sc.y_log10 = true;
+    const plots::ScatterContent sc = by_policy(j["render"]["points"], "predicted_ms", "measured_ms");
     figs.add("regulation_measured_vs_predicted", "Measured against predicted frame time",
              "predicted frame time (ms)", "measured median frame time (ms)",
              "Each rendered plan: the H4 prediction plus the empty frame against the median "
