@@ -107,7 +107,6 @@ def scan_blocks(code):
     block, closing line). A block's header is the code since the last ';', '{' or '}'."""
     stack = []
     header_start = 0
-    i = 0
     preprocessor = re.compile(r"^[ \t]*#.*$", re.M)
     # Preprocessor lines do not take part in headers.
     code = preprocessor.sub(lambda m: " " * len(m.group(0)), code)
@@ -127,8 +126,7 @@ def scan_blocks(code):
                 block = Block("namespace", ns.group(1), line_of(code, pos), line_of(code, first))
             elif parent in ("namespace", "type") and SCOPE_RE.match(stripped):
                 block = Block("type", "", line_of(code, pos), line_of(code, first))
-            elif (parent in ("namespace", "type") and "(" in stripped and not stripped.endswith("=")
-                  and not re.search(r"=\s*$", stripped)):
+            elif parent in ("namespace", "type") and "(" in stripped and not stripped.endswith("="):
                 fm = FUNCTION_NAME_RE.search(re.sub(r"<[^<>()]*>", "", stripped))
                 name = fm.group(1).split("::")[-1] if fm else "?"
                 if stripped.startswith("extern"):
