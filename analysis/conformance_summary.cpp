@@ -51,8 +51,8 @@ ConformanceSummary summarize_conformance(const std::vector<std::string>& records
   return s;
 }
 
-Table conformance_table(const ConformanceSummary& s) {
-  Table t;
+stats::Table conformance_table(const ConformanceSummary& s) {
+  stats::Table t;
   t.file_stem = "conformance";
   t.title = "Conformance with the OpenGL rasterization rules: share of records (%) per class, "
             "with Clopper-Pearson 95% intervals";
@@ -66,19 +66,19 @@ Table conformance_table(const ConformanceSummary& s) {
       "violating px: the sum of violating_pixels; rules: how many records broke each rule "
       "(metrics/conformance.h names them). Records of the reference platform and records "
       "written before schema version 3 carry no verdict and are not counted."};
-  t.columns = {{"platform", Align::kLeft}, {"kind", Align::kLeft}, {"group", Align::kLeft},
+  t.columns = {{"platform", stats::Align::kLeft}, {"kind", stats::Align::kLeft}, {"group", stats::Align::kLeft},
                {"records"}, {"exact %"}, {"snapped %"}, {"within-spec %"}, {"violation %"},
-               {"violating px"}, {"rules broken", Align::kLeft}};
+               {"violating px"}, {"rules broken", stats::Align::kLeft}};
   for (const auto& [key, n] : s.groups) {
     const auto& [platform, kind, group] = key;
     std::string rules;
     for (const auto& [rule, count] : n.rules)
       rules += (rules.empty() ? "" : ", ") + rule + " " + std::to_string(count);
-    t.rows.push_back({text_cell(platform), text_cell(kind), text_cell(view_group_label(group)),
-                      count_cell(n.compared), share_cell(n.exact, n.compared),
-                      share_cell(n.snapped, n.compared), share_cell(n.within_spec, n.compared),
-                      share_cell(n.violation, n.compared), count_cell(n.violating_pixels),
-                      text_cell(rules.empty() ? "-" : rules)});
+    t.rows.push_back({stats::text_cell(platform), stats::text_cell(kind), stats::text_cell(view_group_label(group)),
+                      stats::count_cell(n.compared), stats::share_cell(n.exact, n.compared),
+                      stats::share_cell(n.snapped, n.compared), stats::share_cell(n.within_spec, n.compared),
+                      stats::share_cell(n.violation, n.compared), stats::count_cell(n.violating_pixels),
+                      stats::text_cell(rules.empty() ? "-" : rules)});
   }
   if (t.rows.empty()) t.notes.push_back("No record of this run carries a conformance verdict.");
   return t;

@@ -40,7 +40,7 @@ struct ConformanceSummary {
 ConformanceSummary summarize_conformance(const std::vector<std::string>& records_files);
 
 // The table "conformance": one row per platform x kind x view group with a verdict.
-Table conformance_table(const ConformanceSummary& s);
+stats::Table conformance_table(const ConformanceSummary& s);
 // violations.md: the count, then up to `limit` violations worst first, each with its show line.
 std::string violations_markdown(const ConformanceSummary& s, const std::string& run_dir,
                                 std::size_t limit = 200);

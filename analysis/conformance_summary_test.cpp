@@ -55,7 +55,7 @@ TEST(ConformanceSummary, CountsSharesAndTheWorstViolationsFirst) {
   EXPECT_EQ(s.violations[1].index, 98u);
   EXPECT_EQ(s.violations[2].index, 97u);
 
-  const std::string md = render_markdown(conformance_table(s));
+  const std::string md = stats::render_markdown(conformance_table(s));
   // 97 of 100 exact-or-better shares: 90% exact, Clopper-Pearson 95% (82.38-95.10), SciPy 1.10.
   EXPECT_NE(md.find("| soft | line | A | 100 | 90.00 (82.38-95.10) | 1.00 (0.03-5.45) | 7.00 "
                     "(2.86-13.89) | 2.00 (0.24-7.04) | 4 | line-column 1, line-count 1, "

@@ -69,7 +69,7 @@ TEST(PaperConventions, PointsWithinHalfAPixelOutsideTheWindowBecomeFalseInvisibl
   EXPECT_EQ(c.by_class[int(Visibility::kTrueInvisible)], std::uint64_t(4000 - in_window - in_band));
   EXPECT_EQ(c.by_class[int(Visibility::kTrueVisible)], std::uint64_t(in_window));
   EXPECT_EQ(paper.points_within_margin, std::uint64_t(in_band));
-  const Table t2 = visibility_table(paper, PrimitiveKind::kPoint);
+  const stats::Table t2 = visibility_table(paper, PrimitiveKind::kPoint);
   bool noted = false;
   for (const std::string& n : t2.notes)
     noted = noted || n.find("--point-margin-px 0.5): " + std::to_string(in_band)) != std::string::npos;
@@ -97,9 +97,9 @@ TEST(PaperDifferences, CellsBeyondBothPlatformsAreListedWithTheirExplanation) {
   o.paper_differences = {elsewhere, why};
   o.paper_primitives_per_group = 9;  // as many as ours: SE of the difference = SE x sqrt(2)
 
-  const std::vector<Table> tables = paper_tables(run, o);
-  const Table *comparison = nullptr, *differences = nullptr;
-  for (const Table& t : tables) {
+  const std::vector<stats::Table> tables = paper_tables(run, o);
+  const stats::Table *comparison = nullptr, *differences = nullptr;
+  for (const stats::Table& t : tables) {
     if (t.file_stem == "paper_comparison") comparison = &t;
     if (t.file_stem == "paper_differences") differences = &t;
   }
@@ -122,7 +122,7 @@ TEST(PaperDifferences, CellsBeyondBothPlatformsAreListedWithTheirExplanation) {
 
   o.paper_differences.clear();
   bool found = false;
-  for (const Table& t : paper_tables(run, o)) {
+  for (const stats::Table& t : paper_tables(run, o)) {
     if (t.file_stem == "paper_differences") {
       found = true;
       EXPECT_EQ(t.rows[0].back().text, "not explained");

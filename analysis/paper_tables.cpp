@@ -49,23 +49,23 @@ bool planes_vary(const RunRecords& run) {
 }
 
 // Row-header columns of a per-view-group table.
-void add_view_columns(Table& t, bool planes) {
-  t.columns.push_back({"View", Align::kLeft});
-  t.columns.push_back({"FOV", Align::kRight});
-  t.columns.push_back({"Win Size", Align::kRight});
+void add_view_columns(stats::Table& t, bool planes) {
+  t.columns.push_back({"View", stats::Align::kLeft});
+  t.columns.push_back({"FOV", stats::Align::kRight});
+  t.columns.push_back({"Win Size", stats::Align::kRight});
   if (planes) {
-    t.columns.push_back({"Near", Align::kRight});
-    t.columns.push_back({"Far", Align::kRight});
+    t.columns.push_back({"Near", stats::Align::kRight});
+    t.columns.push_back({"Far", stats::Align::kRight});
   }
 }
 
-void add_view_cells(std::vector<TableCell>& row, const ViewGroup& g, bool planes) {
-  row.push_back(text_cell(g.label));
-  row.push_back(text_cell(fmt_g(g.meta().fov_deg)));
-  row.push_back(text_cell(window_text(g.meta())));
+void add_view_cells(std::vector<stats::TableCell>& row, const ViewGroup& g, bool planes) {
+  row.push_back(stats::text_cell(g.label));
+  row.push_back(stats::text_cell(fmt_g(g.meta().fov_deg)));
+  row.push_back(stats::text_cell(window_text(g.meta())));
   if (planes) {
-    row.push_back(text_cell(fmt_g(g.meta().near)));
-    row.push_back(text_cell(fmt_g(g.meta().far)));
+    row.push_back(stats::text_cell(fmt_g(g.meta().near)));
+    row.push_back(stats::text_cell(fmt_g(g.meta().far)));
   }
 }
 
@@ -206,18 +206,18 @@ const stats::MedianIqrBootstrap* GroupSummaries::bootstrap(std::size_t platform,
   return it == b_.end() ? nullptr : &it->second;
 }
 
-Table uncertainty_table(const RunRecords& run, const GroupSummaries& summaries,
+stats::Table uncertainty_table(const RunRecords& run, const GroupSummaries& summaries,
                         const TableOptions& options) {
-  Table t;
+  stats::Table t;
   t.file_stem = "uncertainty";
   t.title =
       "Uncertainty of Tables 3, 4, 6, 7, 9, 10: bootstrap standard error (SE) and 95% "
       "percentile interval of each median and IQR, in the units and scale of its table";
   for (const char* c : {"Table", "Metric", "View", "Platform"})
-    t.columns.push_back({c, Align::kLeft});
+    t.columns.push_back({c, stats::Align::kLeft});
   for (const char* c :
        {"n", "Median", "SE", "95% low", "95% high", "IQR", "SE", "95% low", "95% high"})
-    t.columns.push_back({c, Align::kRight});
+    t.columns.push_back({c, stats::Align::kRight});
   for (const MetricTableSpec& spec : metric_table_specs()) {
     if (!std::isdigit(static_cast<unsigned char>(spec.number.back()))) continue;  // supplements
     const std::size_t metric = metric_index(spec.kind, spec.column);
@@ -229,17 +229,17 @@ Table uncertainty_table(const RunRecords& run, const GroupSummaries& summaries,
         const Description* d = summaries.find(p, spec.kind, metric, g);
         const stats::MedianIqrBootstrap* b = summaries.bootstrap(p, spec.kind, metric, g);
         if (!d || !b) continue;
-        std::vector<TableCell> row = {
-            text_cell(spec.number),
-            text_cell(std::string(m.symbol) + " " + scale_text(spec.scale_exponent)),
-            text_cell(view_group_label(g)), text_cell(run.platforms[p]),
-            text_cell(std::to_string(d->n))};
+        std::vector<stats::TableCell> row = {
+            stats::text_cell(spec.number),
+            stats::text_cell(std::string(m.symbol) + " " + scale_text(spec.scale_exponent)),
+            stats::text_cell(view_group_label(g)), stats::text_cell(run.platforms[p]),
+            stats::text_cell(std::to_string(d->n))};
         for (const auto& [value, e] :
              {std::pair{d->median, b->median}, std::pair{d->iqr, b->iqr}}) {
-          row.push_back(number_cell(value * scale, decimals));
-          row.push_back(number_cell(e.se * scale, decimals));
-          row.push_back(number_cell(e.lo95 * scale, decimals));
-          row.push_back(number_cell(e.hi95 * scale, decimals));
+          row.push_back(stats::number_cell(value * scale, decimals));
+          row.push_back(stats::number_cell(e.se * scale, decimals));
+          row.push_back(stats::number_cell(e.lo95 * scale, decimals));
+          row.push_back(stats::number_cell(e.hi95 * scale, decimals));
         }
         t.rows.push_back(std::move(row));
       }
@@ -347,47 +347,47 @@ std::string se_difference_note(const TableOptions& options) {
     return "The SE is ours alone (the paper gives none, nor its sample size here).";
   return "The paper's values have sampling error too: z = (ours - paper) / sqrt(SE^2 + "
          "SE_paper^2), SE_paper = SE x sqrt(N / " +
-         format_significant(options.paper_primitives_per_group, 9) +
+         stats::format_significant(options.paper_primitives_per_group, 9) +
          ") (N: our records of the view group; the paper's " +
-         format_significant(options.paper_primitives_per_group, 9) +
+         stats::format_significant(options.paper_primitives_per_group, 9) +
          " primitives per view group; the same distribution assumed).";
 }
 
 }  // namespace
 
-Table paper_comparison_table(const RunRecords& run, const GroupSummaries& summaries,
+stats::Table paper_comparison_table(const RunRecords& run, const GroupSummaries& summaries,
                              const TableOptions& options) {
-  Table t;
+  stats::Table t;
   t.file_stem = "paper_comparison";
   t.title =
       "Ours beside the paper's: each median and IQR of Tables 3, 4, 6, 7, 9, 10 with its "
       "bootstrap SE, the paper's Platform I and II, and z = (ours - paper) / SE of the difference";
   for (const char* c : {"Table", "Statistic", "View", "Platform"})
-    t.columns.push_back({c, Align::kLeft});
+    t.columns.push_back({c, stats::Align::kLeft});
   for (const char* c : {"Ours", "SE", "Paper I", "z I", "Paper II", "z II", "Beyond 3 SE of"})
-    t.columns.push_back({c, Align::kRight});
+    t.columns.push_back({c, stats::Align::kRight});
   std::size_t flagged = 0;
   const std::vector<PaperCell> cells = paper_cells(run, summaries, options);
   for (const PaperCell& c : cells) {
-    std::vector<TableCell> row = {text_cell(c.table), text_cell(c.statistic), text_cell(c.group),
-                                  text_cell(c.platform), number_cell(c.ours, c.spec->decimals + 1),
-                                  number_cell(c.se, c.spec->decimals + 1)};
+    std::vector<stats::TableCell> row = {stats::text_cell(c.table), stats::text_cell(c.statistic), stats::text_cell(c.group),
+                                  stats::text_cell(c.platform), stats::number_cell(c.ours, c.spec->decimals + 1),
+                                  stats::number_cell(c.se, c.spec->decimals + 1)};
     std::string beyond_of;  // "I", "II", "I, II"
     for (int platform = 0; platform < 2; ++platform) {
       const double value = c.paper[platform];
-      row.push_back(std::isnan(value) ? text_cell("lost") : number_cell(value, c.spec->decimals));
+      row.push_back(std::isnan(value) ? stats::text_cell("lost") : stats::number_cell(value, c.spec->decimals));
       // z as text: "n/a" without a paper value; "SE 0" when ours has no spread yet differs
       if (std::isnan(value))
-        row.push_back(text_cell("n/a"));
+        row.push_back(stats::text_cell("n/a"));
       else if (std::isnan(c.z[platform]))
-        row.push_back(c.beyond[platform] ? text_cell("SE 0") : number_cell(0, 1));
+        row.push_back(c.beyond[platform] ? stats::text_cell("SE 0") : stats::number_cell(0, 1));
       else
-        row.push_back(number_cell(c.z[platform], 1));
+        row.push_back(stats::number_cell(c.z[platform], 1));
       if (c.beyond[platform])
         beyond_of += (beyond_of.empty() ? "" : ", ") + std::string(platform ? "II" : "I");
     }
     flagged += !beyond_of.empty();
-    row.push_back(text_cell(beyond_of));
+    row.push_back(stats::text_cell(beyond_of));
     t.rows.push_back(std::move(row));
   }
   t.notes.push_back(
@@ -405,36 +405,36 @@ Table paper_comparison_table(const RunRecords& run, const GroupSummaries& summar
   return t;
 }
 
-Table paper_differences_table(const RunRecords& run, const GroupSummaries& summaries,
+stats::Table paper_differences_table(const RunRecords& run, const GroupSummaries& summaries,
                               const TableOptions& options) {
-  Table t;
+  stats::Table t;
   t.file_stem = "paper_differences";
   t.title =
       "Where we differ from the paper and why: every cell beyond 3 SE of each of the paper's "
       "platforms that gives a value, with the explanation established for it";
   for (const char* c : {"Table", "Statistic", "View", "Platform"})
-    t.columns.push_back({c, Align::kLeft});
+    t.columns.push_back({c, stats::Align::kLeft});
   for (const char* c : {"Ours", "Paper I", "z I", "Paper II", "z II"})
-    t.columns.push_back({c, Align::kRight});
-  t.columns.push_back({"Why", Align::kLeft});
+    t.columns.push_back({c, stats::Align::kRight});
+  t.columns.push_back({"Why", stats::Align::kLeft});
   const std::vector<PaperCell> cells = paper_cells(run, summaries, options);
   std::vector<std::size_t> cited;  // indices into options.paper_differences, in citation order
   std::size_t differing = 0, unexplained = 0;
   for (const PaperCell& c : cells) {
     if (!c.differs()) continue;
     ++differing;
-    std::vector<TableCell> row = {text_cell(c.table), text_cell(c.statistic), text_cell(c.group),
-                                  text_cell(c.platform),
-                                  number_cell(c.ours, c.spec->decimals + 1)};
+    std::vector<stats::TableCell> row = {stats::text_cell(c.table), stats::text_cell(c.statistic), stats::text_cell(c.group),
+                                  stats::text_cell(c.platform),
+                                  stats::number_cell(c.ours, c.spec->decimals + 1)};
     for (int platform = 0; platform < 2; ++platform) {
       if (std::isnan(c.paper[platform])) {
-        row.push_back(text_cell("lost"));
-        row.push_back(text_cell("n/a"));
+        row.push_back(stats::text_cell("lost"));
+        row.push_back(stats::text_cell("n/a"));
         continue;
       }
-      row.push_back(number_cell(c.paper[platform], c.spec->decimals));
-      row.push_back(std::isnan(c.z[platform]) ? text_cell("SE 0")
-                                              : number_cell(c.z[platform], 1));
+      row.push_back(stats::number_cell(c.paper[platform], c.spec->decimals));
+      row.push_back(std::isnan(c.z[platform]) ? stats::text_cell("SE 0")
+                                              : stats::number_cell(c.z[platform], 1));
     }
     std::string why = "not explained";
     for (std::size_t d = 0; d < options.paper_differences.size(); ++d) {
@@ -445,7 +445,7 @@ Table paper_differences_table(const RunRecords& run, const GroupSummaries& summa
       break;
     }
     unexplained += why == "not explained";
-    row.push_back(text_cell(why));
+    row.push_back(stats::text_cell(why));
     t.rows.push_back(std::move(row));
   }
   t.notes.push_back(std::to_string(differing) + " of " + std::to_string(cells.size()) +
@@ -459,9 +459,9 @@ Table paper_differences_table(const RunRecords& run, const GroupSummaries& summa
 }
 
 // So that two platforms' (or the paper's) counts can be compared with their uncertainty.
-Table visibility_share_table(const RunRecords& run, PrimitiveKind kind) {
+stats::Table visibility_share_table(const RunRecords& run, PrimitiveKind kind) {
   const int number = kind == PrimitiveKind::kPoint ? 2 : kind == PrimitiveKind::kLine ? 5 : 8;
-  Table t;
+  stats::Table t;
   t.file_stem = "table0" + std::to_string(number) + "s_" + kind_name(kind) + "_visibility_shares";
   t.title = "Table " + std::to_string(number) + "s (supplements Table " + std::to_string(number) +
             "): the share of " + kind_label_plural(kind) +
@@ -470,11 +470,11 @@ Table visibility_share_table(const RunRecords& run, PrimitiveKind kind) {
   bool multiple = kind == PrimitiveKind::kPoint;
   for (const ViewGroup& g : run.groups)
     if (g.kind == kind) multiple = multiple || g.counts().by_class[4] > 0;
-  t.columns = {{"Platform", Align::kLeft},       {"View", Align::kLeft},
-               {"Records", Align::kRight},       {"True visible", Align::kRight},
-               {"True invisible", Align::kRight}, {"False visible", Align::kRight},
-               {"False invisible", Align::kRight}};
-  if (multiple) t.columns.push_back({"Multiple visible", Align::kRight});
+  t.columns = {{"Platform", stats::Align::kLeft},       {"View", stats::Align::kLeft},
+               {"Records", stats::Align::kRight},       {"True visible", stats::Align::kRight},
+               {"True invisible", stats::Align::kRight}, {"False visible", stats::Align::kRight},
+               {"False invisible", stats::Align::kRight}};
+  if (multiple) t.columns.push_back({"Multiple visible", stats::Align::kRight});
   const int classes = multiple ? 5 : 4;
   for (std::size_t p = 0; p < run.platforms.size(); ++p) {
     bool first = true;
@@ -484,10 +484,10 @@ Table visibility_share_table(const RunRecords& run, PrimitiveKind kind) {
       const VisibilityCounts c = g->counts();
       std::uint64_t ok = 0;
       for (std::uint64_t n : c.by_class) ok += n;
-      std::vector<TableCell> row = {text_cell(run.platforms[p]), text_cell(g->label),
-                                    count_cell(ok)};
+      std::vector<stats::TableCell> row = {stats::text_cell(run.platforms[p]), stats::text_cell(g->label),
+                                    stats::count_cell(ok)};
       for (int v = 0; v < classes; ++v)
-        row.push_back(share_cell(c.by_class[static_cast<std::size_t>(v)], ok));
+        row.push_back(stats::share_cell(c.by_class[static_cast<std::size_t>(v)], ok));
       t.rows.push_back(std::move(row));
     }
   }
@@ -497,9 +497,9 @@ Table visibility_share_table(const RunRecords& run, PrimitiveKind kind) {
   return t;
 }
 
-Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
+stats::Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
   const int number = kind == PrimitiveKind::kPoint ? 2 : kind == PrimitiveKind::kLine ? 5 : 8;
-  Table t;
+  stats::Table t;
   t.file_stem = "table0" + std::to_string(number) + "_" + kind_name(kind) + "_visibility";
   t.title = "Table " + std::to_string(number) + " (mirrors the paper's Table " +
             std::to_string(number) + "): the counts of " + kind_label_plural(kind) +
@@ -515,26 +515,26 @@ Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
     crash = crash || c.crash > 0;
     timeout = timeout || c.timeout > 0;
   }
-  t.columns = {{"Platform", Align::kLeft},       {"View", Align::kLeft},
-               {"True visible", Align::kRight},  {"True invisible", Align::kRight},
-               {"False visible", Align::kRight}, {"False invisible", Align::kRight}};
-  if (multiple) t.columns.push_back({"Multiple visible", Align::kRight});
-  if (invalid) t.columns.push_back({"Invalid", Align::kRight});
-  if (crash) t.columns.push_back({"Crash", Align::kRight});
-  if (timeout) t.columns.push_back({"Timeout", Align::kRight});
+  t.columns = {{"Platform", stats::Align::kLeft},       {"View", stats::Align::kLeft},
+               {"True visible", stats::Align::kRight},  {"True invisible", stats::Align::kRight},
+               {"False visible", stats::Align::kRight}, {"False invisible", stats::Align::kRight}};
+  if (multiple) t.columns.push_back({"Multiple visible", stats::Align::kRight});
+  if (invalid) t.columns.push_back({"Invalid", stats::Align::kRight});
+  if (crash) t.columns.push_back({"Crash", stats::Align::kRight});
+  if (timeout) t.columns.push_back({"Timeout", stats::Align::kRight});
   for (std::size_t p = 0; p < run.platforms.size(); ++p) {
     bool first = true;
     for (const ViewGroup* g : run.groups_of(p, kind)) {
       if (first) t.rules_before.push_back(t.rows.size());
       first = false;
       const VisibilityCounts c = g->counts();
-      std::vector<TableCell> row = {text_cell(run.platforms[p]), text_cell(g->label)};
+      std::vector<stats::TableCell> row = {stats::text_cell(run.platforms[p]), stats::text_cell(g->label)};
       for (int v = 0; v < 4; ++v)
-        row.push_back(count_cell(c.by_class[static_cast<std::size_t>(v)]));
-      if (multiple) row.push_back(count_cell(c.by_class[4]));
-      if (invalid) row.push_back(count_cell(c.invalid));
-      if (crash) row.push_back(count_cell(c.crash));
-      if (timeout) row.push_back(count_cell(c.timeout));
+        row.push_back(stats::count_cell(c.by_class[static_cast<std::size_t>(v)]));
+      if (multiple) row.push_back(stats::count_cell(c.by_class[4]));
+      if (invalid) row.push_back(stats::count_cell(c.invalid));
+      if (crash) row.push_back(stats::count_cell(c.crash));
+      if (timeout) row.push_back(stats::count_cell(c.timeout));
       t.rows.push_back(std::move(row));
     }
   }
@@ -545,7 +545,7 @@ Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
   if (kind == PrimitiveKind::kPoint && run.point_margin_px > 0) {
     t.notes.push_back(
         "The paper's point convention (--point-margin-px " +
-        format_significant(run.point_margin_px, 6) + "): " +
+        stats::format_significant(run.point_margin_px, 6) + "): " +
         std::to_string(run.points_within_margin) +
         " true-invisible points whose projection lies within that many pixels outside the window "
         "are counted false-invisible (docs/method.md, \"Where we differ from the paper\").");
@@ -558,14 +558,14 @@ Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
   return t;
 }
 
-Table metric_table(const RunRecords& run, const GroupSummaries& summaries,
+stats::Table metric_table(const RunRecords& run, const GroupSummaries& summaries,
                    const MetricTableSpec& spec, QuantileDefinition quantiles) {
   const std::size_t metric = metric_index(spec.kind, spec.column);
   const MetricSpec& m = kind_metrics(spec.kind)[metric];
   const bool supplement = !std::isdigit(static_cast<unsigned char>(spec.number.back()));
   const std::string paper_number =
       spec.number.substr(0, spec.number.find_first_not_of("0123456789"));
-  Table t;
+  stats::Table t;
   t.file_stem = spec.file_stem;
   const std::string head = "Table " + spec.number + " (" +
                            (supplement ? "supplement to" : "mirrors") + " the paper's Table " +
@@ -579,23 +579,23 @@ Table metric_table(const RunRecords& run, const GroupSummaries& summaries,
   add_view_columns(t, planes);
   for (const std::string& p : run.platforms) {
     t.groups.push_back({p, 2});
-    t.columns.push_back({"Median", Align::kRight});
-    t.columns.push_back({"IQR", Align::kRight});
+    t.columns.push_back({"Median", stats::Align::kRight});
+    t.columns.push_back({"IQR", stats::Align::kRight});
   }
-  t.groups.insert(t.groups.begin(), ColumnGroup{"", planes ? 5u : 3u});
+  t.groups.insert(t.groups.begin(), stats::ColumnGroup{"", planes ? 5u : 3u});
 
   const double scale = std::pow(10.0, spec.scale_exponent);
   bool no_data = false;
   for (int g : run.view_groups(spec.kind)) {
-    std::vector<TableCell> row;
+    std::vector<stats::TableCell> row;
     add_view_cells(row, *any_group(run, spec.kind, g), planes);
     for (std::size_t p = 0; p < run.platforms.size(); ++p) {
       if (const Description* d = summaries.find(p, spec.kind, metric, g)) {
-        row.push_back(number_cell(d->median * scale, spec.decimals));
-        row.push_back(number_cell(d->iqr * scale, spec.decimals));
+        row.push_back(stats::number_cell(d->median * scale, spec.decimals));
+        row.push_back(stats::number_cell(d->iqr * scale, spec.decimals));
       } else {
-        row.push_back(text_cell("no data"));
-        row.push_back(text_cell("no data"));
+        row.push_back(stats::text_cell("no data"));
+        row.push_back(stats::text_cell("no data"));
         no_data = true;
       }
     }
@@ -640,7 +640,7 @@ Table metric_table(const RunRecords& run, const GroupSummaries& summaries,
   return t;
 }
 
-Table physical_units_table(const RunRecords& run, const GroupSummaries& summaries,
+stats::Table physical_units_table(const RunRecords& run, const GroupSummaries& summaries,
                            const TableOptions& options) {
   struct Column {
     PrimitiveKind kind;
@@ -662,7 +662,7 @@ Table physical_units_table(const RunRecords& run, const GroupSummaries& summarie
     columns.push_back({PrimitiveKind::kTriangle, "te_u", "TEu (mm^2)", 2, 2});
   }
 
-  Table t;
+  stats::Table t;
   t.file_stem = "table11_physical_units";
   t.title =
       "Table 11 (mirrors the paper's Table 11): median rendering errors converted to "
@@ -672,14 +672,14 @@ Table physical_units_table(const RunRecords& run, const GroupSummaries& summarie
   }
   t.title += " mm: PE and LSEu in mm, TEu in mm^2, unscaled; medians, quartiles " +
              quantile_label(options.quantiles);
-  t.columns = {{"Pitch (mm)", Align::kRight},
-               {"View", Align::kLeft},
-               {"FOV", Align::kRight},
-               {"Win Size", Align::kRight}};
+  t.columns = {{"Pitch (mm)", stats::Align::kRight},
+               {"View", stats::Align::kLeft},
+               {"FOV", stats::Align::kRight},
+               {"Win Size", stats::Align::kRight}};
   t.groups.push_back({"", 4});
   for (const std::string& p : run.platforms) {
     t.groups.push_back({p, columns.size()});
-    for (const Column& c : columns) t.columns.push_back({c.name, Align::kRight});
+    for (const Column& c : columns) t.columns.push_back({c.name, stats::Align::kRight});
   }
 
   // all view groups pooled, per platform and column (the paper's overall 0.396 px)
@@ -703,19 +703,19 @@ Table physical_units_table(const RunRecords& run, const GroupSummaries& summarie
     t.rules_before.push_back(t.rows.size());
     for (std::size_t gi = 0; gi <= groups.size(); ++gi) {
       const bool pooled = gi == groups.size();
-      std::vector<TableCell> row = {text_cell(fmt_g(pitch))};
+      std::vector<stats::TableCell> row = {stats::text_cell(fmt_g(pitch))};
       if (pooled) {
-        row.push_back(text_cell("all"));
-        row.push_back(text_cell(""));
-        row.push_back(text_cell(""));
+        row.push_back(stats::text_cell("all"));
+        row.push_back(stats::text_cell(""));
+        row.push_back(stats::text_cell(""));
       } else {
         const ViewGroup* any = nullptr;
         for (PrimitiveKind k : kinds) {
           if (!any) any = any_group(run, k, groups[gi]);
         }
-        row.push_back(text_cell(any->label));
-        row.push_back(text_cell(fmt_g(any->meta().fov_deg)));
-        row.push_back(text_cell(window_text(any->meta())));
+        row.push_back(stats::text_cell(any->label));
+        row.push_back(stats::text_cell(fmt_g(any->meta().fov_deg)));
+        row.push_back(stats::text_cell(window_text(any->meta())));
       }
       for (std::size_t p = 0; p < run.platforms.size(); ++p) {
         for (std::size_t c = 0; c < columns.size(); ++c) {
@@ -724,9 +724,9 @@ Table physical_units_table(const RunRecords& run, const GroupSummaries& summarie
               pooled ? (all[p][c] ? &*all[p][c] : nullptr)
                      : summaries.find(p, col.kind, metric_index(col.kind, col.metric), groups[gi]);
           if (d) {
-            row.push_back(number_cell(d->median * std::pow(pitch, col.power), col.decimals));
+            row.push_back(stats::number_cell(d->median * std::pow(pitch, col.power), col.decimals));
           } else {
-            row.push_back(text_cell("no data"));
+            row.push_back(stats::text_cell("no data"));
             no_data = true;
           }
         }
@@ -743,28 +743,28 @@ Table physical_units_table(const RunRecords& run, const GroupSummaries& summarie
   return t;
 }
 
-Table speed_table(const RunRecords& run, const TableOptions& options) {
-  Table t;
+stats::Table speed_table(const RunRecords& run, const TableOptions& options) {
+  stats::Table t;
   t.file_stem = "speed";
   t.title =
       "Render time beside error (not in the paper): median and IQR of render_us (CPU "
       "microseconds of draw + glFinish) and of each kind's headline error (PE px, LSEu px, "
       "TEu px^2), by platform, kind and view group; quartiles " +
       quantile_label(options.quantiles);
-  t.columns = {{"Platform", Align::kLeft},
-               {"Kind", Align::kLeft},
-               {"View", Align::kLeft},
-               {"FOV", Align::kRight},
-               {"Win Size", Align::kRight},
-               {"Cases", Align::kRight},
-               {"Median us", Align::kRight},
-               {"IQR us", Align::kRight},
-               {"True visible", Align::kRight},
-               {"Median us (visible)", Align::kRight},
-               {"IQR us (visible)", Align::kRight},
-               {"Error", Align::kLeft},
-               {"Median error", Align::kRight},
-               {"IQR error", Align::kRight}};
+  t.columns = {{"Platform", stats::Align::kLeft},
+               {"Kind", stats::Align::kLeft},
+               {"View", stats::Align::kLeft},
+               {"FOV", stats::Align::kRight},
+               {"Win Size", stats::Align::kRight},
+               {"Cases", stats::Align::kRight},
+               {"Median us", stats::Align::kRight},
+               {"IQR us", stats::Align::kRight},
+               {"True visible", stats::Align::kRight},
+               {"Median us (visible)", stats::Align::kRight},
+               {"IQR us (visible)", stats::Align::kRight},
+               {"Error", stats::Align::kLeft},
+               {"Median error", stats::Align::kRight},
+               {"IQR error", stats::Align::kRight}};
 
   struct Row {
     std::size_t platform;
@@ -801,16 +801,16 @@ Table speed_table(const RunRecords& run, const TableOptions& options) {
                    describe_if_any(merge_sorted(visible), options.quantiles),
                    describe_if_any(merge_sorted(error), options.quantiles)};
   });
-  const auto pair = [](std::vector<TableCell>& row, const std::optional<Description>& d,
+  const auto pair = [](std::vector<stats::TableCell>& row, const std::optional<Description>& d,
                        bool with_n, int decimals) {
-    if (with_n) row.push_back(count_cell(d ? d->n : 0));
+    if (with_n) row.push_back(stats::count_cell(d ? d->n : 0));
     if (d) {
-      row.push_back(decimals >= 0 ? number_cell(d->median, decimals)
-                                  : significant_cell(d->median, 5));
-      row.push_back(decimals >= 0 ? number_cell(d->iqr, decimals) : significant_cell(d->iqr, 5));
+      row.push_back(decimals >= 0 ? stats::number_cell(d->median, decimals)
+                                  : stats::significant_cell(d->median, 5));
+      row.push_back(decimals >= 0 ? stats::number_cell(d->iqr, decimals) : stats::significant_cell(d->iqr, 5));
     } else {
-      row.push_back(text_cell("no data"));
-      row.push_back(text_cell("no data"));
+      row.push_back(stats::text_cell("no data"));
+      row.push_back(stats::text_cell("no data"));
     }
   };
   std::size_t last_platform = SIZE_MAX;
@@ -818,22 +818,22 @@ Table speed_table(const RunRecords& run, const TableOptions& options) {
     const Row& r = rows[i];
     if (r.platform != last_platform) t.rules_before.push_back(t.rows.size());
     last_platform = r.platform;
-    std::vector<TableCell> row = {text_cell(run.platforms[r.platform]),
-                                  text_cell(kind_name(r.kind))};
+    std::vector<stats::TableCell> row = {stats::text_cell(run.platforms[r.platform]),
+                                  stats::text_cell(kind_name(r.kind))};
     if (r.group) {
-      row.push_back(text_cell(r.group->label));
-      row.push_back(text_cell(fmt_g(r.group->meta().fov_deg)));
-      row.push_back(text_cell(window_text(r.group->meta())));
+      row.push_back(stats::text_cell(r.group->label));
+      row.push_back(stats::text_cell(fmt_g(r.group->meta().fov_deg)));
+      row.push_back(stats::text_cell(window_text(r.group->meta())));
     } else {
-      row.push_back(text_cell("all"));
-      row.push_back(text_cell(""));
-      row.push_back(text_cell(""));
+      row.push_back(stats::text_cell("all"));
+      row.push_back(stats::text_cell(""));
+      row.push_back(stats::text_cell(""));
     }
     pair(row, computed[i].all, true, 2);
     pair(row, computed[i].visible, true, 2);
     const std::size_t metric = metric_index(r.kind, headline_column(r.kind));
     const MetricSpec& spec = kind_metrics(r.kind)[metric];
-    row.push_back(text_cell(std::string(spec.symbol) + " (" + unit_name(spec.unit) + ")"));
+    row.push_back(stats::text_cell(std::string(spec.symbol) + " (" + unit_name(spec.unit) + ")"));
     // the decimals of the paper's non-normalized tables: PE 5 (Table 3), LSEu 4, TEu 3
     pair(row, computed[i].error, false,
          r.kind == PrimitiveKind::kPoint  ? 5
@@ -891,51 +891,51 @@ std::vector<PlatformComparison> compare_platforms(const RunRecords& run,
   return out;
 }
 
-Table cross_platform_table(const RunRecords& run, const std::vector<PlatformComparison>& rows,
+stats::Table cross_platform_table(const RunRecords& run, const std::vector<PlatformComparison>& rows,
                            const TableOptions& options) {
-  Table t;
+  stats::Table t;
   t.file_stem = "cross_platform";
   t.title =
       "Cross-platform comparison per view group and metric (paper section 4, Figs. 5, 7, 9, "
       "13): medians and IQRs, differences a - b in metric units, p-values on raw and "
       "Box-Cox data, alpha = " +
-      format_significant(options.alpha, 3) + "; quartiles " + quantile_label(options.quantiles);
+      stats::format_significant(options.alpha, 3) + "; quartiles " + quantile_label(options.quantiles);
   for (const char* c : {"Kind", "Metric", "Units", "View", "Platform a", "Platform b"}) {
-    t.columns.push_back({c, Align::kLeft});
+    t.columns.push_back({c, stats::Align::kLeft});
   }
   for (const char* c : {"n a", "n b", "Median a", "Median b", "Median a-b", "IQR a", "IQR b",
                         "IQR a-b", "t pooled p", "Welch p", "F p", "Levene med p", "BC lambda",
                         "BC t pooled p", "BC Welch p", "BC F p", "BC Levene med p"}) {
-    t.columns.push_back({c, Align::kRight});
+    t.columns.push_back({c, stats::Align::kRight});
   }
-  t.columns.push_back({"Location", Align::kLeft});
-  t.columns.push_back({"Spread", Align::kLeft});
+  t.columns.push_back({"Location", stats::Align::kLeft});
+  t.columns.push_back({"Spread", stats::Align::kLeft});
   const auto flag = [&](const TestOutcome& o) {
-    if (!o.defined) return text_cell("undefined");
-    return text_cell(o.p_value < options.alpha ? "differs" : "same");
+    if (!o.defined) return stats::text_cell("undefined");
+    return stats::text_cell(o.p_value < options.alpha ? "differs" : "same");
   };
   for (const PlatformComparison& c : rows) {
     const MetricSpec& spec = kind_metrics(c.kind)[c.metric];
-    std::vector<TableCell> row = {
-        text_cell(kind_name(c.kind)),           text_cell(spec.symbol),
-        text_cell(unit_name(spec.unit)),        text_cell(c.label),
-        text_cell(run.platforms[c.platform_a]), text_cell(run.platforms[c.platform_b]),
-        count_cell(c.a ? c.a->n : 0),           count_cell(c.b ? c.b->n : 0)};
-    const TableCell none = text_cell("no data");
+    std::vector<stats::TableCell> row = {
+        stats::text_cell(kind_name(c.kind)),           stats::text_cell(spec.symbol),
+        stats::text_cell(unit_name(spec.unit)),        stats::text_cell(c.label),
+        stats::text_cell(run.platforms[c.platform_a]), stats::text_cell(run.platforms[c.platform_b]),
+        stats::count_cell(c.a ? c.a->n : 0),           stats::count_cell(c.b ? c.b->n : 0)};
+    const stats::TableCell none = stats::text_cell("no data");
     if (c.a && c.b) {
-      row.push_back(significant_cell(c.a->median, 5));
-      row.push_back(significant_cell(c.b->median, 5));
-      row.push_back(significant_cell(c.a->median - c.b->median, 4));
-      row.push_back(significant_cell(c.a->iqr, 5));
-      row.push_back(significant_cell(c.b->iqr, 5));
-      row.push_back(significant_cell(c.a->iqr - c.b->iqr, 4));
+      row.push_back(stats::significant_cell(c.a->median, 5));
+      row.push_back(stats::significant_cell(c.b->median, 5));
+      row.push_back(stats::significant_cell(c.a->median - c.b->median, 4));
+      row.push_back(stats::significant_cell(c.a->iqr, 5));
+      row.push_back(stats::significant_cell(c.b->iqr, 5));
+      row.push_back(stats::significant_cell(c.a->iqr - c.b->iqr, 4));
       const SampleComparison& s = c.comparison;
       for (const TestOutcome* o :
            {&s.raw.location, &s.raw.welch, &s.raw.f_test, &s.raw.levene_median}) {
         row.push_back(p_value_cell(*o));
       }
-      row.push_back(s.box_cox.applicable ? significant_cell(s.box_cox.lambda, 3)
-                                         : text_cell("n/a"));
+      row.push_back(s.box_cox.applicable ? stats::significant_cell(s.box_cox.lambda, 3)
+                                         : stats::text_cell("n/a"));
       for (const TestOutcome* o : {&s.transformed.location, &s.transformed.welch,
                                    &s.transformed.f_test, &s.transformed.levene_median}) {
         row.push_back(p_value_cell(*o));
@@ -959,13 +959,13 @@ Table cross_platform_table(const RunRecords& run, const std::vector<PlatformComp
   return t;
 }
 
-std::vector<Table> paper_tables(const RunRecords& run, const TableOptions& options) {
+std::vector<stats::Table> paper_tables(const RunRecords& run, const TableOptions& options) {
   const GroupSummaries summaries(run, options.quantiles, options.jobs, options.bootstrap);
   const std::vector<PrimitiveKind> kinds = run.kinds();
   const auto has = [&](PrimitiveKind k) {
     return std::find(kinds.begin(), kinds.end(), k) != kinds.end();
   };
-  std::vector<Table> tables;
+  std::vector<stats::Table> tables;
   const auto metric_tables = [&](PrimitiveKind kind, bool supplements) {
     for (const MetricTableSpec& spec : metric_table_specs()) {
       const bool is_supplement = !std::isdigit(static_cast<unsigned char>(spec.number.back()));
@@ -990,7 +990,7 @@ std::vector<Table> paper_tables(const RunRecords& run, const TableOptions& optio
   if (!kinds.empty() && options.bootstrap.resamples > 0)
     tables.push_back(uncertainty_table(run, summaries, options));
   if (!kinds.empty() && options.bootstrap.resamples > 0 && !options.paper.empty()) {
-    Table comparison = paper_comparison_table(run, summaries, options);
+    stats::Table comparison = paper_comparison_table(run, summaries, options);
     if (!comparison.rows.empty()) {
       tables.push_back(std::move(comparison));
       tables.push_back(paper_differences_table(run, summaries, options));

@@ -93,43 +93,43 @@ class GroupSummaries {
 std::string quantile_label(stats::QuantileDefinition q);
 
 // Table 2 (points), 5 (lines) or 8 (triangles): visibility-class counts by platform and view group.
-Table visibility_table(const RunRecords& run, PrimitiveKind kind);
+stats::Table visibility_table(const RunRecords& run, PrimitiveKind kind);
 // Its supplement (table02s, 05s, 08s): each class as a percentage of the group's ok records with
 // its Clopper-Pearson 95% interval.
-Table visibility_share_table(const RunRecords& run, PrimitiveKind kind);
+stats::Table visibility_share_table(const RunRecords& run, PrimitiveKind kind);
 
 // A metric table: median and IQR by view group (rows) and platform (column blocks).
-Table metric_table(const RunRecords& run, const GroupSummaries& summaries,
+stats::Table metric_table(const RunRecords& run, const GroupSummaries& summaries,
                    const MetricTableSpec& spec, stats::QuantileDefinition quantiles);
 
 // The uncertainty of Tables 3, 4, 6, 7, 9 and 10: for each table, view group and platform, n, the
 // median and the IQR (scaled as in its table), each with its bootstrap standard error and 95%
 // percentile interval (stats/bootstrap.h; resample count and seed in the notes).
-Table uncertainty_table(const RunRecords& run, const GroupSummaries& summaries,
+stats::Table uncertainty_table(const RunRecords& run, const GroupSummaries& summaries,
                         const TableOptions& options);
 
 // Our tables beside the paper's: for each of its tables, statistic (median, IQR), view group whose
 // FOV and window are the paper's, and platform of the run: ours and its bootstrap SE, the paper's
 // Platform I and II, and z = (ours - paper) / SE, marked when |z| > 3. Needs the bootstrap.
-Table paper_comparison_table(const RunRecords& run, const GroupSummaries& summaries,
+stats::Table paper_comparison_table(const RunRecords& run, const GroupSummaries& summaries,
                              const TableOptions& options);
 
 // "Where we differ from the paper and why": the cells of paper_comparison_table beyond 3 SE of
 // each of the paper's platforms that gives a value, each citing the first of
 // options.paper_differences that covers it ("not explained" otherwise); the explanations are the
 // notes, numbered in citation order.
-Table paper_differences_table(const RunRecords& run, const GroupSummaries& summaries,
+stats::Table paper_differences_table(const RunRecords& run, const GroupSummaries& summaries,
                               const TableOptions& options);
 
 // Table 11: medians of PE (mm), LSEu (mm) and TEu (mm^2) for each pixel pitch (mm) and view group
 // (and all groups pooled), per platform: mm = px x pitch, mm^2 = px^2 x pitch^2.
-Table physical_units_table(const RunRecords& run, const GroupSummaries& summaries,
+stats::Table physical_units_table(const RunRecords& run, const GroupSummaries& summaries,
                            const TableOptions& options);
 
 // Render time beside error: per platform, kind and view group (and all pooled), the median and IQR
 // of render_us over all `ok` cases and over the true-visible ones, next to the median and IQR of
 // the kind's headline error (PE px, LSEu px, TEu px^2).
-Table speed_table(const RunRecords& run, const TableOptions& options);
+stats::Table speed_table(const RunRecords& run, const TableOptions& options);
 
 // Two platforms compared on one kind, metric and view group.
 struct PlatformComparison {
@@ -150,12 +150,12 @@ std::vector<PlatformComparison> compare_platforms(const RunRecords& run,
 // The comparisons as one table: medians, IQRs, their differences (a - b, metric units), pooled and
 // Welch t, F, Levene (median) p-values on raw and Box-Cox data, and "differs" flags at alpha
 // (location: Welch t; spread: Levene median).
-Table cross_platform_table(const RunRecords& run, const std::vector<PlatformComparison>& rows,
+stats::Table cross_platform_table(const RunRecords& run, const std::vector<PlatformComparison>& rows,
                            const TableOptions& options);
 
 // Every table above that the run has data for, in paper order: 2, 3, 4, 5, 6, 7, 8, 9, 10 (each
 // kind's tables only when the run has records of that kind), the supplements, 11, speed, and the
 // cross-platform comparison when there is more than one platform.
-std::vector<Table> paper_tables(const RunRecords& run, const TableOptions& options);
+std::vector<stats::Table> paper_tables(const RunRecords& run, const TableOptions& options);
 
 }  // namespace ra::analysis

@@ -41,16 +41,16 @@ std::vector<Record> tiny_run() {
   return rs;
 }
 
-const Table& find_table(const std::vector<Table>& tables, const std::string& stem) {
-  for (const Table& t : tables) {
+const stats::Table& find_table(const std::vector<stats::Table>& tables, const std::string& stem) {
+  for (const stats::Table& t : tables) {
     if (t.file_stem == stem) return t;
   }
   throw std::runtime_error("no table " + stem);
 }
 
-std::vector<std::string> texts(const std::vector<TableCell>& row) {
+std::vector<std::string> texts(const std::vector<stats::TableCell>& row) {
   std::vector<std::string> out;
-  for (const TableCell& c : row) out.push_back(c.text);
+  for (const stats::TableCell& c : row) out.push_back(c.text);
   return out;
 }
 
@@ -67,7 +67,7 @@ class PaperTables : public ::testing::Test {
 TEST_F(PaperTables, MedianAndIqrAreHandComputedHf6) {
   TableOptions o;
   const auto tables = paper_tables(run_, o);
-  const Table& t3 = find_table(tables, "table03_pe");
+  const stats::Table& t3 = find_table(tables, "table03_pe");
   EXPECT_NE(t3.title.find("Table 3 (mirrors the paper's Table 3)"), std::string::npos);
   EXPECT_NE(t3.title.find("Hyndman-Fan 6"), std::string::npos);
   ASSERT_EQ(t3.rows.size(), 3u);  // groups A, B, C
@@ -79,7 +79,7 @@ TEST_F(PaperTables, MedianAndIqrAreHandComputedHf6) {
                                                          "no data", "no data"}));
   // p2's group A {0.2, 0.4}: HF6 median 0.3, quartiles at 0.75 and 2.25 -> 0.2 and 0.4
   // Table 4: PEnorm x10^3 = PE / 128 x 1000
-  const Table& t4 = find_table(tables, "table04_pe_norm");
+  const stats::Table& t4 = find_table(tables, "table04_pe_norm");
   EXPECT_EQ(t4.rows[0][3].text, "2.344");  // 0.30 / 128 = 2.34375e-3
   EXPECT_EQ(t4.rows[0][4].text, "2.539");  // 0.325 / 128 = 2.5390625e-3
   EXPECT_EQ(t4.rows[0][4].csv, "2.5390625");
@@ -91,7 +91,7 @@ TEST_F(PaperTables, MedianAndIqrAreHandComputedHf6) {
 TEST_F(PaperTables, UncertaintyTableHasTheBootstrapErrorOfEveryCell) {
   TableOptions o;  // on by default: 2,000 resamples, seed 2008
   const auto tables = paper_tables(run_, o);
-  const Table& u = find_table(tables, "uncertainty");
+  const stats::Table& u = find_table(tables, "uncertainty");
   std::vector<std::vector<std::string>> table3;
   for (const auto& row : u.rows)
     if (row[0].text == "3") table3.push_back(texts(row));
@@ -111,25 +111,25 @@ TEST_F(PaperTables, UncertaintyTableHasTheBootstrapErrorOfEveryCell) {
   EXPECT_EQ(table3[1][8], "0.400000");
   EXPECT_NE(u.notes[0].find("2000 resamples of each pooled view-group sample, seed 2008"),
             std::string::npos);
-  const Table again = find_table(paper_tables(run_, o), "uncertainty");  // seeded: the same
+  const stats::Table again = find_table(paper_tables(run_, o), "uncertainty");  // seeded: the same
   ASSERT_EQ(again.rows.size(), u.rows.size());
   for (std::size_t i = 0; i < u.rows.size(); ++i) EXPECT_EQ(texts(again.rows[i]), texts(u.rows[i]));
   o.bootstrap.resamples = 0;
-  for (const Table& t : paper_tables(run_, o)) EXPECT_NE(t.file_stem, "uncertainty");
+  for (const stats::Table& t : paper_tables(run_, o)) EXPECT_NE(t.file_stem, "uncertainty");
 }
 
 TEST_F(PaperTables, QuantileDefinitionHf7) {
   TableOptions o;
   o.quantiles = QuantileDefinition::kHyndmanFan7;
-  const std::vector<Table> tables = paper_tables(run_, o);
-  const Table& t3 = find_table(tables, "table03_pe");
+  const std::vector<stats::Table> tables = paper_tables(run_, o);
+  const stats::Table& t3 = find_table(tables, "table03_pe");
   EXPECT_NE(t3.title.find("Hyndman-Fan 7"), std::string::npos);
   EXPECT_EQ(t3.rows[0][3].text, "0.30000");
   EXPECT_EQ(t3.rows[0][4].text, "0.25000");
 }
 
 TEST_F(PaperTables, VisibilityCounts) {
-  const Table t = visibility_table(run_, PrimitiveKind::kPoint);
+  const stats::Table t = visibility_table(run_, PrimitiveKind::kPoint);
   EXPECT_EQ(t.file_stem, "table02_point_visibility");
   std::vector<std::string> names;
   for (const auto& c : t.columns) names.push_back(c.name);
@@ -147,7 +147,7 @@ TEST_F(PaperTables, VisibilityCounts) {
 // Shares of the ok records (the timeout apart) with Clopper-Pearson intervals: SciPy 1.10's
 // binomtest(k, 14).proportion_ci(0.95, "exact") for p1's group A.
 TEST_F(PaperTables, VisibilitySharesWithIntervals) {
-  const Table t = visibility_share_table(run_, PrimitiveKind::kPoint);
+  const stats::Table t = visibility_share_table(run_, PrimitiveKind::kPoint);
   EXPECT_EQ(t.file_stem, "table02s_point_visibility_shares");
   ASSERT_EQ(t.rows.size(), 4u);
   EXPECT_EQ(texts(t.rows[0]),
@@ -161,13 +161,13 @@ TEST_F(PaperTables, VisibilitySharesWithIntervals) {
 TEST_F(PaperTables, PhysicalUnitsForSeveralPitches) {
   TableOptions o;
   o.pixel_pitches_mm = {0.255, 1.5};
-  const Table t = physical_units_table(run_, GroupSummaries(run_, o.quantiles, 1), o);
+  const stats::Table t = physical_units_table(run_, GroupSummaries(run_, o.quantiles, 1), o);
   ASSERT_EQ(t.rows.size(), 8u);  // 2 pitches x (A, B, C, all)
   // PE medians of group A: p1 x(5) = 0.30; p2 HF6 of {0.2, 0.4}: 0.2 + 0.5 (0.4 - 0.2), which is
   // 0.30000000000000004 in doubles (0.0765 rounds down for p1, up for p2)
   EXPECT_EQ(texts(t.rows[0]),
-            (std::vector<std::string>{"0.255", "A", "30", "128", format_fixed(0.30 * 0.255, 3),
-                                      format_fixed((0.2 + 0.5 * (0.4 - 0.2)) * 0.255, 3)}));
+            (std::vector<std::string>{"0.255", "A", "30", "128", stats::format_fixed(0.30 * 0.255, 3),
+                                      stats::format_fixed((0.2 + 0.5 * (0.4 - 0.2)) * 0.255, 3)}));
   EXPECT_EQ(t.rows[1][4].text, "no data");
   EXPECT_EQ(t.rows[2][4].text, "0.051");  // group C: 0.2 x 0.255
   // all of p1 pooled: group A and five 0.2: 14 values, HF6 median at 7.5 between two 0.2
@@ -185,7 +185,7 @@ TEST_F(PaperTables, CrossPlatformComparison) {
   EXPECT_EQ(rows[0].label, "A");
   ASSERT_TRUE(rows[0].a && rows[0].b);
   EXPECT_NEAR(rows[0].a->median - rows[0].b->median, 0.0, 1e-15);
-  const Table t = cross_platform_table(run_, rows, o);
+  const stats::Table t = cross_platform_table(run_, rows, o);
   EXPECT_EQ(t.columns[13].name, "IQR a-b");
   EXPECT_EQ(t.rows[0][13].text, "0.125");  // IQR a - b = 0.325 - 0.2
   EXPECT_TRUE(rows[0].comparison.raw.location.defined);
@@ -194,12 +194,12 @@ TEST_F(PaperTables, CrossPlatformComparison) {
 TEST_F(PaperTables, NoNaNAnywhere) {
   const std::regex not_a_number(R"(\b-?(nan|inf|infinity)\b)", std::regex::icase);
   TableOptions o;
-  const std::vector<Table> tables = paper_tables(run_, o);
+  const std::vector<stats::Table> tables = paper_tables(run_, o);
   ASSERT_GE(tables.size(), 6u) << "the fixture's run must give the point, line and triangle tables";
   std::size_t cells = 0;
-  for (const Table& t : tables) {
+  for (const stats::Table& t : tables) {
     for (const auto& row : t.rows) cells += row.size();
-    for (const std::string& text : {render_csv(t), render_markdown(t), render_latex(t)}) {
+    for (const std::string& text : {stats::render_csv(t), stats::render_markdown(t), stats::render_latex(t)}) {
       EXPECT_FALSE(std::regex_search(text, not_a_number)) << t.file_stem << "\n" << text;
     }
   }

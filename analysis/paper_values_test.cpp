@@ -135,9 +135,9 @@ TEST(PaperValues, TheComparisonSaysHowManyStandardErrorsApartWeAre) {
   const double nan = std::nan("");
   const PaperTableValues t3 = testing::table3_group_a(0.2, 0.3, nan, 0.325);
   o.paper = {t3};
-  const std::vector<Table> tables = paper_tables(run, o);
-  const Table* c = nullptr;
-  for (const Table& t : tables)
+  const std::vector<stats::Table> tables = paper_tables(run, o);
+  const stats::Table* c = nullptr;
+  for (const stats::Table& t : tables)
     if (t.file_stem == "paper_comparison") c = &t;
   ASSERT_NE(c, nullptr);
   ASSERT_EQ(c->rows.size(), 2u);  // median and IQR of group A

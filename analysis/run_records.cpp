@@ -16,6 +16,7 @@
 #include "metrics/records_reader.h"
 #include "geometry/view.h"
 #include "metrics/point_metrics.h"
+#include "util/cell_text.h"
 
 namespace fs = std::filesystem;
 
@@ -255,11 +256,7 @@ struct FileChunk {
 
 // Difference between two views' parameters, "" when equal.
 std::string meta_difference(const ViewMeta& here, const ViewMeta& there) {
-  const auto num = [](double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return std::string(buf);
-  };
+  const auto num = [](double v) { return full_precision(v); };
   if (here.view_group != there.view_group)
     return "view_group " + std::to_string(here.view_group) + " here but " +
            std::to_string(there.view_group);

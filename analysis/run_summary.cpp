@@ -17,7 +17,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::analysis {
 namespace {
 
 struct Cell {
@@ -132,4 +132,4 @@ std::string write_run_summary(const std::string& run_dir) {
   return md.str();
 }
 
-}  // namespace ra
+}  // namespace ra::analysis

@@ -6,9 +6,9 @@
 
 #include <string>
 
-namespace ra {
+namespace ra::analysis {
 
 // Reads DIR/records/*.csv, writes DIR/summary.md and returns its text (Markdown).
 std::string write_run_summary(const std::string& run_dir);
 
-}  // namespace ra
+}  // namespace ra::analysis

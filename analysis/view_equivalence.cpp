@@ -68,7 +68,7 @@ TestBattery battery_not_run(const std::string& reason, std::size_t k) {
   return b;
 }
 
-std::string p_text(double p) { return format_significant(p, 3); }
+std::string p_text(double p) { return stats::format_significant(p, 3); }
 
 std::string join_ints(const std::vector<int>& v, const char* sep) {
   std::string s;
@@ -205,7 +205,7 @@ Verdict decide_equivalence(const std::vector<std::vector<double>>& samples,
       bool same = true;
       for (const auto& s : samples) same = same && s.front() == samples.front().front();
       v = same ? Verdict::kEquivalent : Verdict::kNotEquivalent;
-      why = same ? "every view is the same constant " + format_significant(samples[0][0], 6)
+      why = same ? "every view is the same constant " + stats::format_significant(samples[0][0], 6)
                  : "every view is constant, with different values";
     } else if (!c.raw.location.defined || !c.raw.levene_median.defined) {
       why = !c.raw.location.defined ? c.raw.location_name + " undefined: " + c.raw.location.reason
@@ -290,33 +290,33 @@ std::vector<ViewEquivalence> assess_view_equivalence(const RunRecords& run,
   return results;
 }
 
-TableCell p_value_cell(const TestOutcome& o) {
-  return o.defined ? significant_cell(o.p_value, 3) : text_cell("undefined");
+stats::TableCell p_value_cell(const TestOutcome& o) {
+  return o.defined ? stats::significant_cell(o.p_value, 3) : stats::text_cell("undefined");
 }
 
-TableCell statistic_cell(const TestOutcome& o) {
-  return o.defined ? significant_cell(o.statistic, 4) : text_cell("undefined");
+stats::TableCell statistic_cell(const TestOutcome& o) {
+  return o.defined ? stats::significant_cell(o.statistic, 4) : stats::text_cell("undefined");
 }
 
 namespace {
 
 // "0.39555; 0.39716", or "no data" for an empty view.
-TableCell per_view_cell(const std::vector<double>& values, const std::vector<std::size_t>& n) {
+stats::TableCell per_view_cell(const std::vector<double>& values, const std::vector<std::size_t>& n) {
   std::string text;
   std::string csv;
   for (std::size_t i = 0; i < values.size(); ++i) {
     const std::string sep = i ? "; " : "";
     const bool has = i < n.size() && n[i] > 0;
-    text += sep + (has ? format_significant(values[i], 5) : "no data");
-    csv += sep + (has ? format_significant(values[i], 9) : "no data");
+    text += sep + (has ? stats::format_significant(values[i], 5) : "no data");
+    csv += sep + (has ? stats::format_significant(values[i], 9) : "no data");
   }
-  return TableCell{text, csv};
+  return stats::TableCell{text, csv};
 }
 
-TableCell n_cell(const std::vector<std::size_t>& n) {
+stats::TableCell n_cell(const std::vector<std::size_t>& n) {
   std::string s;
   for (std::size_t i = 0; i < n.size(); ++i) s += (i ? "; " : "") + std::to_string(n[i]);
-  return text_cell(s);
+  return stats::text_cell(s);
 }
 
 // The reasons of the undefined tests of a battery, "; "-separated.
@@ -335,20 +335,20 @@ std::string undefined_reasons(const TestBattery& b, const char* prefix) {
   return s;
 }
 
-std::vector<TableCell> lambda_cells(const BoxCoxFit& f) {
+std::vector<stats::TableCell> lambda_cells(const BoxCoxFit& f) {
   if (!f.applicable) {
-    const TableCell na = text_cell("not applicable");
+    const stats::TableCell na = stats::text_cell("not applicable");
     return {na, na, na, na, na};
   }
-  return {significant_cell(f.lambda, 4), significant_cell(f.shift(), 6), count_cell(f.n_fit),
-          significant_cell(f.ppcc, 6), text_cell(f.at_boundary ? "yes" : "no")};
+  return {stats::significant_cell(f.lambda, 4), stats::significant_cell(f.shift(), 6), stats::count_cell(f.n_fit),
+          stats::significant_cell(f.ppcc, 6), stats::text_cell(f.at_boundary ? "yes" : "no")};
 }
 
 }  // namespace
 
-Table view_equivalence_table(const RunRecords& run, const std::vector<ViewEquivalence>& results,
+stats::Table view_equivalence_table(const RunRecords& run, const std::vector<ViewEquivalence>& results,
                              const EquivalenceOptions& options) {
-  Table t;
+  stats::Table t;
   t.file_stem = "view_equivalence";
   t.title =
       "View equivalence (paper section 4, p. 228): orientation views compared per platform, "
@@ -405,29 +405,29 @@ Table view_equivalence_table(const RunRecords& run, const std::vector<ViewEquiva
                            "bc_levene_mean_p",
                            "explanation",
                            "notes"};
-  for (const char* c : columns) t.columns.push_back({c, Align::kLeft});
+  for (const char* c : columns) t.columns.push_back({c, stats::Align::kLeft});
   for (const ViewEquivalence& r : results) {
     const MetricSpec& spec = kind_metrics(r.kind)[r.metric];
     const SampleComparison& c = r.comparison;
     const auto df_cell = [](const TestOutcome& o, double df) {
-      return o.defined ? significant_cell(df, 6) : text_cell("undefined");
+      return o.defined ? stats::significant_cell(df, 6) : stats::text_cell("undefined");
     };
-    std::vector<TableCell> row = {text_cell(run.platforms[r.platform]),
-                                  text_cell(kind_name(r.kind)),
-                                  text_cell(spec.column),
-                                  text_cell(r.label),
-                                  text_cell(join_ints(r.views, ";")),
-                                  text_cell(join_ints(r.orientations, ";")),
+    std::vector<stats::TableCell> row = {stats::text_cell(run.platforms[r.platform]),
+                                  stats::text_cell(kind_name(r.kind)),
+                                  stats::text_cell(spec.column),
+                                  stats::text_cell(r.label),
+                                  stats::text_cell(join_ints(r.views, ";")),
+                                  stats::text_cell(join_ints(r.orientations, ";")),
                                   n_cell(c.n),
                                   per_view_cell(r.medians, c.n),
                                   per_view_cell(r.iqrs, c.n),
-                                  text_cell(verdict_name(r.verdict)),
-                                  text_cell(c.raw.location_name),
+                                  stats::text_cell(verdict_name(r.verdict)),
+                                  stats::text_cell(c.raw.location_name),
                                   statistic_cell(c.raw.location),
                                   df_cell(c.raw.location, c.raw.location.df1),
                                   c.raw.location_name == "one-way ANOVA"
                                       ? df_cell(c.raw.location, c.raw.location.df2)
-                                      : text_cell("n/a"),
+                                      : stats::text_cell("n/a"),
                                   p_value_cell(c.raw.location),
                                   statistic_cell(c.raw.welch),
                                   p_value_cell(c.raw.welch),
@@ -437,19 +437,19 @@ Table view_equivalence_table(const RunRecords& run, const std::vector<ViewEquiva
                                   p_value_cell(c.raw.levene_median),
                                   statistic_cell(c.raw.levene_mean),
                                   p_value_cell(c.raw.levene_mean)};
-    for (TableCell& cell : lambda_cells(c.box_cox)) row.push_back(std::move(cell));
+    for (stats::TableCell& cell : lambda_cells(c.box_cox)) row.push_back(std::move(cell));
     for (const TestOutcome* o :
          {&c.transformed.location, &c.transformed.welch, &c.transformed.f_test,
           &c.transformed.levene_median, &c.transformed.levene_mean}) {
       row.push_back(statistic_cell(*o));
       row.push_back(p_value_cell(*o));
     }
-    row.push_back(text_cell(r.explanation));
+    row.push_back(stats::text_cell(r.explanation));
     std::string notes = undefined_reasons(c.raw, "raw ");
     const std::string bc = c.box_cox.applicable ? undefined_reasons(c.transformed, "Box-Cox ")
                                                 : "Box-Cox not applicable: " + c.box_cox.reason;
     if (!bc.empty()) notes += (notes.empty() ? "" : "; ") + bc;
-    row.push_back(text_cell(notes));
+    row.push_back(stats::text_cell(notes));
     t.rows.push_back(std::move(row));
   }
   return t;
@@ -517,32 +517,32 @@ std::string view_equivalence_markdown(const RunRecords& run,
 
   for (std::size_t p = 0; p < run.platforms.size(); ++p) {
     for (PrimitiveKind kind : run.kinds()) {
-      Table t;
+      stats::Table t;
       t.title = run.platforms[p] + ", " + kind_label_plural(kind) + ": p-values (raw | Box-Cox)";
       for (const char* c : {"metric", "group", "views", "n", "median"}) {
-        t.columns.push_back({c, Align::kLeft});
+        t.columns.push_back({c, stats::Align::kLeft});
       }
       for (const char* c :
            {"location p", "Welch p", "F p", "Levene med p", "Levene mean p", "BC lambda",
             "BC location p", "BC F p", "BC Levene med p", "BC Levene mean p"}) {
-        t.columns.push_back({c, Align::kRight});
+        t.columns.push_back({c, stats::Align::kRight});
       }
-      t.columns.push_back({"verdict", Align::kLeft});
+      t.columns.push_back({"verdict", stats::Align::kLeft});
       for (const ViewEquivalence& r : results) {
         if (r.platform != p || r.kind != kind) continue;
         const SampleComparison& c = r.comparison;
         t.rows.push_back(
-            {text_cell(kind_metrics(kind)[r.metric].symbol), text_cell(r.label),
-             text_cell(join_ints(r.views, ", ")), n_cell(c.n), per_view_cell(r.medians, c.n),
+            {stats::text_cell(kind_metrics(kind)[r.metric].symbol), stats::text_cell(r.label),
+             stats::text_cell(join_ints(r.views, ", ")), n_cell(c.n), per_view_cell(r.medians, c.n),
              p_value_cell(c.raw.location), p_value_cell(c.raw.welch), p_value_cell(c.raw.f_test),
              p_value_cell(c.raw.levene_median), p_value_cell(c.raw.levene_mean),
-             c.box_cox.applicable ? significant_cell(c.box_cox.lambda, 3) : text_cell("n/a"),
+             c.box_cox.applicable ? stats::significant_cell(c.box_cox.lambda, 3) : stats::text_cell("n/a"),
              p_value_cell(c.transformed.location), p_value_cell(c.transformed.f_test),
              p_value_cell(c.transformed.levene_median), p_value_cell(c.transformed.levene_mean),
-             text_cell(verdict_name(r.verdict))});
+             stats::text_cell(verdict_name(r.verdict))});
       }
       if (t.rows.empty()) continue;
-      md += render_markdown(t) + "\n";
+      md += stats::render_markdown(t) + "\n";
     }
   }
   md +=

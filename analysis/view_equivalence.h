@@ -138,7 +138,7 @@ std::vector<ViewEquivalence> assess_view_equivalence(const RunRecords& run,
                                                      const EquivalenceOptions& options);
 
 // The results as one long table (a row per comparison, every statistic): view_equivalence.csv.
-Table view_equivalence_table(const RunRecords& run, const std::vector<ViewEquivalence>& results,
+stats::Table view_equivalence_table(const RunRecords& run, const std::vector<ViewEquivalence>& results,
                              const EquivalenceOptions& options);
 
 // The report for reading: the rule, the verdicts, every pair not equivalent said explicitly, the
@@ -148,7 +148,7 @@ std::string view_equivalence_markdown(const RunRecords& run,
                                       const EquivalenceOptions& options);
 
 // Cells for reports: the p-value (3 significant digits) or statistic (4), "undefined" otherwise.
-TableCell p_value_cell(const TestOutcome& outcome);
-TableCell statistic_cell(const TestOutcome& outcome);
+stats::TableCell p_value_cell(const TestOutcome& outcome);
+stats::TableCell statistic_cell(const TestOutcome& outcome);
 
 }  // namespace ra::analysis

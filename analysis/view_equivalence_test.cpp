@@ -163,7 +163,7 @@ TEST(ViewEquivalence, RunReportSaysWhichPairIsNotEquivalentAndPools) {
       << md;
   EXPECT_NE(md.find("pooled into view groups anyway"), std::string::npos) << md;
   EXPECT_NE(md.find("trusted Levene"), std::string::npos);
-  const std::string csv = render_csv(view_equivalence_table(run, results, o));
+  const std::string csv = stats::render_csv(view_equivalence_table(run, results, o));
   EXPECT_NE(csv.find("p,point,pe,B,3;4,1;2,2000; 2000"), std::string::npos) << csv.substr(0, 2000);
   EXPECT_EQ(csv.find("nan"), std::string::npos);
 }

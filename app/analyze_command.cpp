@@ -1,4 +1,4 @@
-// `renderaudit analyze DIR`: the command line of analysis/analyze_command.h's analyze_run, and of
+// `renderaudit analyze DIR`: the command line of analysis/run_analysis.h's analyze_run, and of
 // the studies' analyses (app/study_dispatch.cpp) for a study folder.
 #include <cstdio>
 #include <iostream>
@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/analyze_command.h"
+#include "analysis/run_analysis.h"
 #include "analysis/run_completeness.h"
 #include "app/commands.h"
 #include "util/errors.h"

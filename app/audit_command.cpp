@@ -25,7 +25,7 @@ struct AuditCli {
 };
 
 void print_result(const audit::AuditResult& r, const std::vector<std::string>& files) {
-  std::printf("audit: %s (exit %d)", verdict_name(r.verdict), int(r.verdict));
+  std::printf("audit: %s (exit %d)", audit::verdict_name(r.verdict), int(r.verdict));
   for (std::size_t i = 0; i < r.reasons.size(); ++i)
     std::printf("%s%s", i ? "; " : ": ", r.reasons[i].c_str());
   std::printf("\n");
@@ -115,9 +115,9 @@ void register_audit_command(CLI::App& app, int& exit_code) {
     print_result(r, files);
     exit_code = int(r.verdict);
     if (cli.no_history) return;
-    const std::string db = cli.db.empty() ? default_history_path(cli.options.current_dir) : cli.db;
+    const std::string db = cli.db.empty() ? audit::default_history_path(cli.options.current_dir) : cli.db;
     try {
-      append_history(db, r.summary);
+      audit::append_history(db, r.summary);
       std::printf("  history: appended to %s\n", db.c_str());
     } catch (const std::exception& e) {
       std::fprintf(stderr,

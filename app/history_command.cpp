@@ -54,19 +54,19 @@ std::string run_name(const std::string& run) {
 
 // What an audit compared: a run with its baseline ("two runs", what `make nightly` appends), or two
 // platforms of one run (`audit --between`: the same directory on both sides), "P1 vs P2".
-std::string compares_text(const AuditSummary& s) {
+std::string compares_text(const audit::AuditSummary& s) {
   if (s.baseline_run != s.current_run) return "two runs";
-  auto platforms = [](const std::vector<DriverIdentity>& drivers) {
+  auto platforms = [](const std::vector<audit::DriverIdentity>& drivers) {
     std::string p;
-    for (const DriverIdentity& d : drivers) p += (p.empty() ? "" : ",") + d.platform;
+    for (const audit::DriverIdentity& d : drivers) p += (p.empty() ? "" : ",") + d.platform;
     return p.empty() ? std::string("?") : p;
   };
   return platforms(s.baseline_drivers) + " vs " + platforms(s.current_drivers);
 }
 
-std::string drivers_text(const std::vector<DriverIdentity>& drivers) {
+std::string drivers_text(const std::vector<audit::DriverIdentity>& drivers) {
   std::string s;
-  for (const DriverIdentity& d : drivers)
+  for (const audit::DriverIdentity& d : drivers)
     s += (s.empty() ? "" : "; ") + d.platform + ": " + d.renderer + ", " + d.version;
   return s.empty() ? "(none recorded)" : s;
 }
@@ -87,7 +87,7 @@ std::string figure_id(const std::string& metric) {
 }
 
 // One trend per metric: a series per platform x kind x view group, a point per audit.
-std::vector<plots::TrendData> trends(const std::vector<HistoryEntry>& h,
+std::vector<plots::TrendData> trends(const std::vector<audit::HistoryEntry>& h,
                                      const std::vector<std::string>& metrics) {
   std::vector<plots::TrendData> out;
   for (const std::string& metric : metrics) {
@@ -98,7 +98,7 @@ std::vector<plots::TrendData> trends(const std::vector<HistoryEntry>& h,
     for (std::size_t a = 0; a < h.size(); ++a) {
       t.audits.push_back("#" + std::to_string(h[a].id));
       t.dates.push_back(h[a].summary.date_utc);
-      for (const MetricSummary& m : h[a].summary.metrics) {
+      for (const audit::MetricSummary& m : h[a].summary.metrics) {
         if (m.metric != metric) continue;
         plots::TrendSeries& s = series[{m.platform, m.kind, m.view_group}];
         s.name = m.platform + " " + m.kind + " " + group_name(m.view_group);
@@ -112,8 +112,8 @@ std::vector<plots::TrendData> trends(const std::vector<HistoryEntry>& h,
 }
 
 void run_history(const HistoryOptions& o, int& exit_code) {
-  const std::vector<HistoryEntry> h = read_history(o.db, o.last);
-  const int64_t total = history_audit_count(o.db);
+  const std::vector<audit::HistoryEntry> h = audit::read_history(o.db, o.last);
+  const int64_t total = audit::history_audit_count(o.db);
   std::printf("%s: %lld audit%s", o.db.c_str(), static_cast<long long>(total),
               total == 1 ? "" : "s");
   if (h.empty()) {
@@ -127,9 +127,9 @@ void run_history(const HistoryOptions& o, int& exit_code) {
                                                  "failed", "tests", "compares", "current run",
                                                  "baseline run"}};
   const std::vector<bool> right = {true, false, false, true, true, true, true, false, false, false};
-  for (const HistoryEntry& e : h) {
-    const AuditSummary& s = e.summary;
-    rows.push_back({"#" + std::to_string(e.id), s.date_utc, verdict_name(s.verdict),
+  for (const audit::HistoryEntry& e : h) {
+    const audit::AuditSummary& s = e.summary;
+    rows.push_back({"#" + std::to_string(e.id), s.date_utc, audit::verdict_name(s.verdict),
                     std::to_string(s.changed_primitives), std::to_string(s.flaky_primitives),
                     std::to_string(s.failed_primitives), std::to_string(s.significant_tests),
                     compares_text(s), run_name(s.current_run), run_name(s.baseline_run)});
@@ -139,8 +139,8 @@ void run_history(const HistoryOptions& o, int& exit_code) {
       "\n(changed: primitives whose pixels changed and stayed changed on re-render; flaky: "
       "changed only once; failed: crash or timeout records; tests: distribution tests "
       "rejected; compares: a run against its baseline, or two platforms of one run)\n\ndrivers (current run; baseline when it differs):\n");
-  for (const HistoryEntry& e : h) {
-    const AuditSummary& s = e.summary;
+  for (const audit::HistoryEntry& e : h) {
+    const audit::AuditSummary& s = e.summary;
     std::printf("  #%lld  %s\n", static_cast<long long>(e.id),
                 drivers_text(s.current_drivers).c_str());
     const std::string base = drivers_text(s.baseline_drivers);
@@ -150,8 +150,8 @@ void run_history(const HistoryOptions& o, int& exit_code) {
 
   // Metrics to draw: those asked for, or every metric in the audits shown, in first-seen order.
   std::vector<std::string> present;
-  for (const HistoryEntry& e : h)
-    for (const MetricSummary& m : e.summary.metrics)
+  for (const audit::HistoryEntry& e : h)
+    for (const audit::MetricSummary& m : e.summary.metrics)
       if (std::find(present.begin(), present.end(), m.metric) == present.end())
         present.push_back(m.metric);
   std::vector<std::string> metrics = o.metrics.empty() ? present : o.metrics;

@@ -31,7 +31,7 @@ void register_merge_command(CLI::App& app, int& exit_code) {
     for (std::size_t i = 0; i < r.missing.size() && i < 20; ++i)
       std::printf("  missing: %s\n", r.missing[i].c_str());
     if (r.missing.size() > 20) std::printf("  ... and %zu more\n", r.missing.size() - 20);
-    write_run_summary(opt.out_dir);
+    analysis::write_run_summary(opt.out_dir);
     std::printf("summary: %s/summary.md\n", opt.out_dir.c_str());
     if (r.failed_primitives > 0)
       std::printf("  %zu primitives recorded as crash or timeout (manifest.json lists them)\n",

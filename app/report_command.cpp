@@ -3,7 +3,7 @@
 // stages whose output is missing or stale (`analyze`, `plot`) unless --no-run.
 #include <cstdio>
 
-#include "analysis/analyze_command.h"
+#include "analysis/run_analysis.h"
 #include "analysis/run_completeness.h"
 #include "app/commands.h"
 #include "plots/plot_run.h"

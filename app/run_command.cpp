@@ -126,7 +126,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
       exit_code = 130;
       return;
     }
-    const std::string summary = write_run_summary(r.run_dir);
+    const std::string summary = analysis::write_run_summary(r.run_dir);
     std::printf("%s", summary.c_str());
     std::printf("summary: %s/summary.md\n", r.run_dir.c_str());
     if (r.failed_primitives_held.size() > r.failed_primitives.size())

@@ -55,7 +55,7 @@ void register_show_command(CLI::App& app, int& exit_code) {
       "orange: platform only; blue: reference only) and the ideal projection as a red line.\n"
       "Prints the image's path and the primitive's record (visibility, pixels, metrics, "
       "ref_diff).");
-  static ShowRequest q;
+  static audit::ShowRequest q;
   cmd->add_option("run", q.run_dir, "run directory (holds experiment.toml)")->required();
   cmd->add_option("--platform,-p", q.platform, "platform to render on (any known platform)")
       ->required();
@@ -81,9 +81,9 @@ void register_show_command(CLI::App& app, int& exit_code) {
                   "PNG to write (default: RUN/show/PLATFORM.KIND.vVIEW.INDEX.png)");
   cmd->add_option("--scale", q.scale,
                   "image pixels per window pixel (default: the image is about 512 px)")
-      ->check(CLI::Range(1, kMaxImageScale));
+      ->check(CLI::Range(1, audit::kMaxImageScale));
   cmd->callback([&exit_code] {
-    const PrimitiveImage im = show_primitive(q);
+    const audit::PrimitiveImage im = audit::show_primitive(q);
     const View& v = im.view;
     std::printf("wrote %s (%d x %d px: window pixels x %d-%d, y %d-%d of %d x %d, %d px each)\n",
                 im.path.c_str(), im.width, im.height, im.shown.x0, im.shown.x1 - 1, im.shown.y0,
@@ -93,7 +93,7 @@ void register_show_command(CLI::App& app, int& exit_code) {
         "reference only (%lld), black = pixels GL forbids (%s), red line = ideal projection\n",
         static_cast<long long>(im.both), q.platform.c_str(),
         static_cast<long long>(im.platform_only), static_cast<long long>(im.reference_only),
-        forbidden_pixels_text(im.record.violating_pixels, im.violating).c_str());
+        audit::forbidden_pixels_text(im.record.violating_pixels, im.violating).c_str());
     std::printf("%s %llu, view %d (group %s, fov %g deg, %d x %d px), platform %s:\n",
                 im.record.kind.c_str(), static_cast<unsigned long long>(q.index), v.id,
                 v.group_name().c_str(), v.fov_deg, v.width, v.height, q.platform.c_str());

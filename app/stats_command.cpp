@@ -102,8 +102,8 @@ struct Sample {
 };
 
 Sample read_sample(const std::string& file, const std::string& column) {
-  const analysis::CsvTable table = analysis::CsvTable::read_file(file);
-  analysis::NumericColumn c = table.numeric_column(column);
+  const stats::CsvTable table = stats::CsvTable::read_file(file);
+  stats::NumericColumn c = table.numeric_column(column);
   if (c.values.size() < 2) {
     throw UserError(file + ": column '" + column + "' has " + std::to_string(c.values.size()) +
                     " value(s) (" + std::to_string(c.n_missing) +
@@ -140,7 +140,7 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
   }
   Sample s{name, column, {}, 0};
   for (const std::string& file : files) {
-    const analysis::CsvTable t = analysis::CsvTable::read_file(file);
+    const stats::CsvTable t = stats::CsvTable::read_file(file);
     const std::size_t col = t.column(column);
     std::vector<std::pair<std::size_t, std::string>> conds;
     for (const auto& [c, v] : conditions) conds.emplace_back(t.column(c), v);
@@ -364,7 +364,7 @@ void run_compare(const StatsOptions& o) {
 
 void run_anova(const StatsOptions& o) {
   const std::string& file = o.files.at(0);
-  const analysis::CsvTable table = analysis::CsvTable::read_file(file);
+  const stats::CsvTable table = stats::CsvTable::read_file(file);
   const std::size_t group_column = table.column(o.group);
   const std::size_t value_column = table.column(o.value);
 
@@ -516,7 +516,7 @@ void run_regress(const StatsOptions& o) {
                       "' is both the response (--y) and a predictor (--x or --poly)");
     }
   }
-  const analysis::CsvTable table = analysis::CsvTable::read_file(file);
+  const stats::CsvTable table = stats::CsvTable::read_file(file);
   const std::size_t y_column = table.column(o.y);
   std::vector<std::size_t> x_columns;
   for (const auto& name : columns) x_columns.push_back(table.column(name));

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "util/atomic_file.h"
+#include "util/cell_text.h"
 
 namespace fs = std::filesystem;
 
@@ -88,12 +89,7 @@ std::string changed_primitives_csv(const AuditResult& r) {
          "visibility_before,visibility_after,pixels_before,pixels_after,metric,value_before,"
          "value_after,ref_diff_before,ref_diff_after,pixel_hash_before,pixel_hash_after,"
          "pixel_hash_rerender\n";
-  auto value = [](double v) {
-    char buf[40];
-    if (!std::isfinite(v)) return std::string();
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return std::string(buf);
-  };
+  auto value = [](double v) { return std::isfinite(v) ? full_precision(v) : std::string(); };
   auto diff = [](int64_t d) { return d >= 0 ? std::to_string(d) : std::string(); };
   for (const ChangedPrimitive& c : r.primitives.changed) {
     const bool rerendered = c.recheck == Recheck::kStillDifferent || c.recheck == Recheck::kFlake;

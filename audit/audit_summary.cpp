@@ -1,6 +1,6 @@
 #include "audit/audit_summary.h"
 
-namespace ra {
+namespace ra::audit {
 
 const char* verdict_name(Verdict v) {
   switch (v) {
@@ -21,4 +21,4 @@ bool parse_verdict(const std::string& s, Verdict* out) {
   return false;
 }
 
-}  // namespace ra
+}  // namespace ra::audit

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace ra {
+namespace ra::audit {
 
 // Overall outcome of an audit; the process exit code is the enum value (0 / 1 / 2).
 enum class Verdict { kUnchanged = 0, kChanged = 1, kFailed = 2 };
@@ -50,4 +50,4 @@ struct AuditSummary {
   std::vector<ClassCount> classes;
 };
 
-}  // namespace ra
+}  // namespace ra::audit

@@ -15,7 +15,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::audit {
 namespace {
 
 // Marks the file as ours in its header (PRAGMA application_id): "RAHD".
@@ -418,4 +418,4 @@ std::string history_integrity(const std::string& db_path) {
   return problems.empty() ? "ok" : problems;
 }
 
-}  // namespace ra
+}  // namespace ra::audit

@@ -35,7 +35,7 @@
 
 #include "audit/audit_summary.h"
 
-namespace ra {
+namespace ra::audit {
 
 constexpr int kHistorySchemaVersion = 1;
 constexpr int kHistoryBusyTimeoutMs = 30000;  // how long an appender or reader waits for the lock
@@ -82,4 +82,4 @@ int64_t history_audit_count(const std::string& db_path);
 // per line. Same errors as read_history.
 std::string history_integrity(const std::string& db_path);
 
-}  // namespace ra
+}  // namespace ra::audit

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 using ra::testing_cli::error_message;
 using ra::testing_cli::fresh_dir;
 
-namespace ra {
+namespace ra::audit {
 namespace {
 
 // An audit with `metric_rows` metric rows; values derived from `k` so audits differ.
@@ -294,4 +294,4 @@ TEST(HistoryDb, TwoProcessesAppendingAtOnceKeepEveryAudit) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::audit

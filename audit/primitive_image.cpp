@@ -27,7 +27,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::audit {
 namespace {
 
 // Passes everything to the real platform and keeps the last rendering, so that the image shows
@@ -276,4 +276,4 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   return out;
 }
 
-}  // namespace ra
+}  // namespace ra::audit

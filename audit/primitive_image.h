@@ -23,7 +23,7 @@
 #include "metrics/records.h"
 #include "geometry/view.h"
 
-namespace ra {
+namespace ra::audit {
 
 constexpr int kImageMargin = 3;        // window pixels shown around the primitive
 constexpr int kWholeWindowMax = 64;    // windows up to this size are shown whole
@@ -76,4 +76,4 @@ std::string forbidden_pixels_text(int64_t violating_pixels, int64_t marked);
 // index out of range, a scale out of range, a file that cannot be written.
 PrimitiveImage show_primitive(const ShowRequest& request);
 
-}  // namespace ra
+}  // namespace ra::audit

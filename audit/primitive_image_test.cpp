@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-namespace ra {
+namespace ra::audit {
 namespace {
 
 TEST(ForbiddenPixelsText, SaysTheRecordsCountAndHowManyAreMarkedWhenTheyDiffer) {
@@ -16,4 +16,4 @@ TEST(ForbiddenPixelsText, SaysTheRecordsCountAndHowManyAreMarkedWhenTheyDiffer) 
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::audit

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/analyze_command.h"
+#include "analysis/run_analysis.h"
 #include "analysis/view_equivalence.h"
 #include "util/errors.h"
 #include "metrics/records.h"

@@ -23,18 +23,15 @@
 #include "runner/shard.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
+#include "stats/descriptive.h"
 
 namespace fs = std::filesystem;
 using namespace ra;
 
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+// The statistics library's median (stats/descriptive.h); 0 for no values.
+double median(const std::vector<double>& v) { return v.empty() ? 0 : stats::median(v); }
 
 struct KindCost {
   double drawing_s = 0, worker_s = 0;

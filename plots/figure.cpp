@@ -10,33 +10,16 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "util/cell_text.h"
 #include "util/errors.h"
 
 namespace ra::plots {
 namespace {
 
-std::string num(double v) {
-  if (std::isnan(v)) return "";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 std::string short_num(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.4g", v);
   return buf;
-}
-
-// CSV cell: quoted when it holds a comma, quote or line break.
-std::string cell(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) {
-    if (c == '"') q += '"';
-    q += c;
-  }
-  return q + "\"";
 }
 
 }  // namespace
@@ -113,47 +96,53 @@ void write_figure_data(const Figure& figure, const std::string& path) {
   if (auto* q = std::get_if<QQContent>(&figure.content)) {
     o << "p,x,y\n";
     for (std::size_t i = 0; i < q->x.size(); ++i)
-      o << (i < q->p.size() ? num(q->p[i]) : "") << ',' << num(q->x[i]) << ',' << num(q->y[i])
-        << '\n';
+      o << (i < q->p.size() ? full_precision_or_empty(q->p[i]) : "") << ','
+        << full_precision_or_empty(q->x[i]) << ',' << full_precision_or_empty(q->y[i]) << '\n';
   } else if (auto* b = std::get_if<BihistogramContent>(&figure.content)) {
     o << "bin_lo,bin_hi,upper_count,lower_count,upper_height,lower_height\n";
     for (std::size_t i = 0; i + 1 < b->edges.size(); ++i)
-      o << num(b->edges[i]) << ',' << num(b->edges[i + 1]) << ',' << b->upper_count.at(i) << ','
-        << b->lower_count.at(i) << ',' << num(b->upper_height.at(i)) << ','
-        << num(b->lower_height.at(i)) << '\n';
+      o << full_precision_or_empty(b->edges[i]) << ',' << full_precision_or_empty(b->edges[i + 1])
+        << ',' << b->upper_count.at(i) << ',' << b->lower_count.at(i) << ','
+        << full_precision_or_empty(b->upper_height.at(i)) << ','
+        << full_precision_or_empty(b->lower_height.at(i)) << '\n';
   } else if (auto* bp = std::get_if<BoxPlotContent>(&figure.content)) {
     std::size_t max_n = 1;
     for (const Box& x : bp->boxes) max_n = std::max(max_n, x.n);
     o << "category,series,n,min,lower_whisker,q1,median,q3,upper_whisker,max,n_outliers_low,"
          "n_outliers_high,relative_width\n";
     for (const Box& x : bp->boxes)
-      o << cell(x.category) << ',' << cell(x.series) << ',' << x.n << ',' << num(x.min) << ','
-        << num(x.lower_whisker) << ',' << num(x.q1) << ',' << num(x.median) << ',' << num(x.q3)
-        << ',' << num(x.upper_whisker) << ',' << num(x.max) << ',' << x.n_outliers_low << ','
-        << x.n_outliers_high << ',' << num(double(x.n) / double(max_n)) << '\n';
+      o << csv_escape(x.category) << ',' << csv_escape(x.series) << ',' << x.n << ','
+        << full_precision_or_empty(x.min) << ',' << full_precision_or_empty(x.lower_whisker) << ','
+        << full_precision_or_empty(x.q1) << ',' << full_precision_or_empty(x.median) << ','
+        << full_precision_or_empty(x.q3) << ',' << full_precision_or_empty(x.upper_whisker) << ','
+        << full_precision_or_empty(x.max) << ',' << x.n_outliers_low << ',' << x.n_outliers_high
+        << ',' << full_precision_or_empty(double(x.n) / double(max_n)) << '\n';
   } else if (auto* h = std::get_if<HistogramContent>(&figure.content)) {
     o << "series,bin_lo,bin_hi,count,height\n";
     for (const auto& s : h->series)
       for (std::size_t i = 0; i + 1 < s.edges.size(); ++i)
-        o << cell(s.name) << ',' << num(s.edges[i]) << ',' << num(s.edges[i + 1]) << ','
-          << s.counts.at(i) << ',' << num(s.heights.at(i)) << '\n';
+        o << csv_escape(s.name) << ',' << full_precision_or_empty(s.edges[i]) << ','
+          << full_precision_or_empty(s.edges[i + 1]) << ',' << s.counts.at(i) << ','
+          << full_precision_or_empty(s.heights.at(i)) << '\n';
   } else if (auto* sc = std::get_if<ScatterContent>(&figure.content)) {
     o << "series,label,x,y,x_lo,x_hi,y_lo,y_hi\n";
     const auto at = [](const std::vector<double>& v, std::size_t i) {
-      return i < v.size() ? num(v[i]) : std::string();
+      return i < v.size() ? full_precision_or_empty(v[i]) : std::string();
     };
     for (const ScatterSeries& s : sc->series)
       for (std::size_t i = 0; i < s.x.size(); ++i)
-        o << cell(s.name) << ',' << cell(i < s.labels.size() ? s.labels[i] : "") << ','
-          << num(s.x[i]) << ',' << num(s.y.at(i)) << ',' << at(s.x_lo, i) << ',' << at(s.x_hi, i)
-          << ',' << at(s.y_lo, i) << ',' << at(s.y_hi, i) << '\n';
+        o << csv_escape(s.name) << ',' << csv_escape(i < s.labels.size() ? s.labels[i] : "") << ','
+          << full_precision_or_empty(s.x[i]) << ',' << full_precision_or_empty(s.y.at(i)) << ','
+          << at(s.x_lo, i) << ',' << at(s.x_hi, i) << ',' << at(s.y_lo, i) << ',' << at(s.y_hi, i)
+          << '\n';
   } else {
     const auto& c = std::get<BarChartContent>(figure.content);
     o << "category,series,value,label\n";
     for (const auto& s : c.series)
       for (std::size_t i = 0; i < c.categories.size(); ++i)
-        o << cell(c.categories[i]) << ',' << cell(s.name) << ',' << num(s.values.at(i)) << ','
-          << cell(i < s.labels.size() ? s.labels[i] : "") << '\n';
+        o << csv_escape(c.categories[i]) << ',' << csv_escape(s.name) << ','
+          << full_precision_or_empty(s.values.at(i)) << ','
+          << csv_escape(i < s.labels.size() ? s.labels[i] : "") << '\n';
   }
   std::ofstream f(path, std::ios::binary);
   f << o.str();

@@ -98,7 +98,7 @@ TEST_F(RendererTest, QQPlotOfIdenticalSamplesHasItsMarkersOnTheDiagonal) {
   EXPECT_LT(worst, 10 * px);
 
   // The data beside the figure are the quantiles: x == y row by row.
-  const auto table = ra::analysis::CsvTable::read_file(r.csv);
+  const auto table = stats::CsvTable::read_file(r.csv);
   const auto xs = table.numeric_column("x").values, ys = table.numeric_column("y").values;
   ASSERT_EQ(xs.size(), s.size());
   for (std::size_t i = 0; i < xs.size(); ++i) EXPECT_EQ(xs[i], ys[i]);
@@ -144,7 +144,7 @@ TEST_F(RendererTest, BihistogramHasTheExpectedBarHeights) {
                                       "platform I, view A", "platform II, view A",
                                       ra::stats::relative_bihistogram(upper, lower, opt), 1.0);
   const RenderedFigure r = renderer_->render(f, temp_dir("bihist") + "/bihist");
-  const auto t = ra::analysis::CsvTable::read_file(r.csv);
+  const auto t = stats::CsvTable::read_file(r.csv);
   ASSERT_EQ(t.row_count(), 2u);
   const auto h1 = t.numeric_column("upper_height").values;
   const auto h2 = t.numeric_column("lower_height").values;
@@ -211,7 +211,7 @@ TEST_F(RendererTest, BoxPlotRestrictsTheRangeAndSaysWhatIsOutside) {
   EXPECT_LT(hi, 100);  // the maximum of A / platform I is far outside
   EXPECT_NE(r.note.find("Above the plot: A platform I (max 100)"), std::string::npos) << r.note;
   EXPECT_NE(r.note.find("Below the plot: B platform II (min -50)"), std::string::npos) << r.note;
-  const auto t = ra::analysis::CsvTable::read_file(r.csv);
+  const auto t = stats::CsvTable::read_file(r.csv);
   EXPECT_EQ(t.numeric_column("relative_width").values,
             (std::vector<double>{1.0, 0.25, 1.0, 0.5}));
   // The note is printed on the figure: it is in the PDF's text.
@@ -328,7 +328,7 @@ TEST_F(RendererTest, ScatterOnLogAxesPutsMarkersWhereTheValuesAreAndNamesTheOmit
   EXPECT_NE(text.find("100"), std::string::npos) << text;
   EXPECT_NE(text.find("0.1"), std::string::npos) << text;
   // The CSV keeps every point, the omitted one included.
-  const auto t = ra::analysis::CsvTable::read_file(r.csv);
+  const auto t = stats::CsvTable::read_file(r.csv);
   EXPECT_EQ(t.row_count(), 4u);
   EXPECT_EQ(t.numeric_column("y").values, (std::vector<double>{0.05, 5, 0.5, 0}));
 }

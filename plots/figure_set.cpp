@@ -48,4 +48,35 @@ std::vector<std::string> write_figure_set(const std::vector<Figure>& figures, co
   return written;
 }
 
+Figure& StudyFigures::add(const std::string& id, const std::string& title,
+                          const std::string& x_label, const std::string& y_label,
+                          const std::string& caption, FigureContent content) {
+  Figure f;
+  f.id = id;
+  f.title = title;
+  f.x_label = x_label;
+  f.y_label = y_label;
+  f.caption = caption;
+  f.section = section_;
+  f.content = std::move(content);
+  figures_.push_back(std::move(f));
+  return figures_.back();
+}
+
+ScatterSeries& SeriesInOrder::operator[](const std::string& name) {
+  auto it = by_name_.find(name);
+  if (it == by_name_.end()) {
+    order_.push_back(name);
+    it = by_name_.emplace(name, ScatterSeries{}).first;
+    it->second.name = name;
+  }
+  return it->second;
+}
+
+std::vector<ScatterSeries> SeriesInOrder::series() const {
+  std::vector<ScatterSeries> out;
+  for (const std::string& n : order_) out.push_back(by_name_.at(n));
+  return out;
+}
+
 }  // namespace ra::plots

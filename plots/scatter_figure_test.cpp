@@ -7,7 +7,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "analysis/analyze_command.h"
+#include "analysis/run_analysis.h"
 #include "stats/csv_table.h"
 #include "analysis/records_testing.h"
 #include "plots/figure.h"
@@ -46,7 +46,7 @@ TEST(ScatterFigure, CsvRoundTripsExactNumbers) {
   const ra::analysis::testing::ScopedTempDir dir("scatter_csv");
   const std::string path = (dir.path / "s.csv").string();
   write_figure_data(f, path);
-  const auto t = ra::analysis::CsvTable::read_file(path);
+  const auto t = stats::CsvTable::read_file(path);
   EXPECT_EQ(t.header(), (std::vector<std::string>{"series", "label", "x", "y", "x_lo", "x_hi",
                                                   "y_lo", "y_hi"}));
   ASSERT_EQ(t.row_count(), 3u);

@@ -2,6 +2,7 @@
 #include "plots/trend_figure.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include "analysis/run_records.h"
 #include "plots/figure_builders.h"
 #include "plots/headless_display.h"
+#include "util/cell_text.h"
 #include "util/errors.h"
 
 namespace ra::plots {
@@ -17,18 +19,9 @@ namespace {
 
 namespace an = ra::analysis;
 
-std::string full_precision(double v) {
-  if (!std::isfinite(v)) return "";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-std::string csv_cell(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
+// Not-finite values as empty cells.
+std::string finite_or_empty(double v) {
+  return std::isfinite(v) ? full_precision(v) : std::string();
 }
 
 // The trend's own numbers, in record units (the box plot's CSV would show the bands as quartiles).
@@ -37,10 +30,10 @@ void write_trend_csv(const TrendData& data, const std::string& path) {
   out << "audit,date_utc,series,n,median,iqr\n";
   for (const TrendSeries& s : data.series)
     for (const TrendPoint& p : s.points)
-      out << csv_cell(data.audits.at(p.audit)) << ','
-          << csv_cell(p.audit < data.dates.size() ? data.dates[p.audit] : "") << ','
-          << csv_cell(s.name) << ',' << p.n << ',' << full_precision(p.median) << ','
-          << full_precision(p.iqr) << '\n';
+      out << csv_escape(data.audits.at(p.audit)) << ','
+          << csv_escape(p.audit < data.dates.size() ? data.dates[p.audit] : "") << ','
+          << csv_escape(s.name) << ',' << p.n << ',' << finite_or_empty(p.median) << ','
+          << finite_or_empty(p.iqr) << '\n';
   out.close();
   if (!out) throw UserError("cannot write " + path);
 }

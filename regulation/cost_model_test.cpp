@@ -27,13 +27,13 @@ TEST(CostModel, H4ByHand) {
 }
 
 TEST(CostModel, FootprintOfASphereOnTheAxis) {
-  timing::CameraSettings cam;
+  CameraSettings cam;
   cam.width = 640;
   cam.height = 480;
   cam.fov_y_deg = 90;  // focal = 240 px
   const Viewpoint vp{{0, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  const Mat4 view = timing::look_at(vp);
-  const timing::Frustum fr = timing::frustum_of(timing::projection_of(cam) * view);
+  const Mat4 view = look_at(vp);
+  const Frustum fr = frustum_of(projection_of(cam) * view);
   const BoundingSphere s{{0, 100, 0}, 5};
   const Footprint f = footprint_of(s, view, fr, cam);
   ASSERT_TRUE(f.visible);

@@ -15,7 +15,8 @@
 #include "util/gl_child_process.h"
 #include "timing/scene_renderer.h"
 #include "timing/time_heuristics.h"
-#include "timing/timing_geometry.h"
+#include "scenes/camera.h"
+#include "stats/descriptive.h"
 
 namespace ra::regulation {
 namespace {
@@ -99,9 +100,9 @@ nlohmann::json record_json(const FrameRecord& r) {
 }  // namespace
 
 std::vector<int> visible_chains(const std::vector<LodChain>& chains, const Viewpoint& vp,
-                                const timing::CameraSettings& cam) {
-  const Mat4 view = timing::look_at(vp);
-  const timing::Frustum frustum = timing::frustum_of(timing::projection_of(cam) * view);
+                                const CameraSettings& cam) {
+  const Mat4 view = look_at(vp);
+  const Frustum frustum = frustum_of(projection_of(cam) * view);
   std::vector<int> v;
   for (int j = 0; j < int(chains.size()); ++j)
     if (footprint_of(chains[j].bounds, view, frustum, cam).visible) v.push_back(j);
@@ -111,8 +112,8 @@ std::vector<int> visible_chains(const std::vector<LodChain>& chains, const Viewp
 Instance frame_instance(const std::vector<LodChain>& chains, const std::vector<double>& weights,
                         const Viewpoint& vp, const RegulationSettings& s, double budget_us,
                         std::vector<FrameObject>* objects, const FramePixels* measured) {
-  const Mat4 view = timing::look_at(vp);
-  const timing::Frustum frustum = timing::frustum_of(timing::projection_of(s.camera) * view);
+  const Mat4 view = look_at(vp);
+  const Frustum frustum = frustum_of(projection_of(s.camera) * view);
   Instance inst;
   objects->clear();
   for (int j = 0; j < int(chains.size()); ++j) {
@@ -186,7 +187,7 @@ RenderOutcome plan_and_render(const Scene& scene, const std::vector<LodChain>& c
       r.time_draw(all, true);  // warm-up: first use of every buffer and texture, untimed
       std::vector<double> base;
       for (int i = 0; i < std::max(20, s.repetitions); ++i) base.push_back(r.time_draw({}, true).cpu_us);
-      const double base_us = timing::median_of(base);
+      const double base_us = stats::median(base);
       // #pix of every level of every visible object of every planned frame (untimed)
       std::vector<FramePixels> pixels;
       if (s.cost.measured_pixels) {
@@ -245,8 +246,8 @@ RenderOutcome plan_and_render(const Scene& scene, const std::vector<LodChain>& c
         if (pixels.size() != frames.size()) throw std::runtime_error("pixel frame count differs");
         for (std::size_t slot = 0; slot < frames.size(); ++slot) {
           const Viewpoint& vp = path[frames[slot]];
-          const Mat4 view = timing::look_at(vp);
-          const timing::Frustum frustum = timing::frustum_of(timing::projection_of(s.camera) * view);
+          const Mat4 view = look_at(vp);
+          const Frustum frustum = frustum_of(projection_of(s.camera) * view);
           for (int c = 0; c < int(pixels[slot].size()); ++c) {
             if (pixels[slot][c].empty()) continue;
             PixelSample ps;
@@ -268,7 +269,7 @@ RenderOutcome plan_and_render(const Scene& scene, const std::vector<LodChain>& c
       for (std::size_t i = 0; i < out.records.size(); ++i) {
         FrameRecord& fr = out.records[i];
         fr.measured_us = rs[i]["measured_us"].get<std::vector<double>>();
-        fr.measured_median_us = timing::median_of(fr.measured_us);
+        fr.measured_median_us = stats::median(fr.measured_us);
         fr.skipped = fr.measured_median_us > fr.budget_ms * 1000.0;
       }
     } catch (const std::exception& e) {

@@ -50,7 +50,7 @@ using FramePixels = std::vector<std::vector<double>>;
 
 // The chains whose bounding spheres meet the view frustum of `vp` (the items of its instance).
 std::vector<int> visible_chains(const std::vector<LodChain>& chains, const Viewpoint& vp,
-                                const timing::CameraSettings& cam);
+                                const CameraSettings& cam);
 
 // The knapsack instance of viewpoint `vp`; `objects` receives the visible objects (the items, in
 // order). `budget_us` is what the objects may spend. `measured` (optional): #pix of this frame

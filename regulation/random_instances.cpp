@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "util/cell_text.h"
 #include "util/counter_rng.h"
 
 namespace ra::regulation {
@@ -22,13 +23,6 @@ Item two_level(int64_t base, int64_t dcost, double gain, double distance) {
   it.options = {{base + dcost, 0.0}, {base, gain}};
   it.distance = distance;
   return it;
-}
-
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
 }
 
 }  // namespace
@@ -175,13 +169,15 @@ std::string instances_csv(const std::vector<InstanceComparison>& rows) {
        "dp_matches_brute_force,within_budget,optimum_computed\n";
   for (const InstanceComparison& c : rows)
     o << c.index << ',' << int(c.adversarial) << ',' << c.items << ',' << c.options << ','
-      << c.budget << ',' << c.residual << ',' << num(c.base_loss) << ',' << num(c.value_optimal)
-      << ',' << num(c.value_greedy) << ',' << num(c.value_ratio_only) << ','
-      << num(c.value_single) << ',' << num(c.value_uniform) << ',' << num(c.value_distance) << ','
-      << num(c.loss_optimal) << ',' << num(c.loss_greedy) << ',' << num(c.loss_ratio_only) << ','
-      << num(c.value_ratio) << ',' << num(c.value_ratio_ratio_only) << ',' << num(c.loss_ratio)
-      << ',' << int(c.brute_forced) << ',' << int(c.dp_matches_brute_force) << ','
-      << int(c.within_budget) << ',' << int(c.optimum_computed) << '\n';
+      << c.budget << ',' << c.residual << ',' << full_precision(c.base_loss) << ','
+      << full_precision(c.value_optimal) << ',' << full_precision(c.value_greedy) << ','
+      << full_precision(c.value_ratio_only) << ',' << full_precision(c.value_single) << ','
+      << full_precision(c.value_uniform) << ',' << full_precision(c.value_distance) << ','
+      << full_precision(c.loss_optimal) << ',' << full_precision(c.loss_greedy) << ','
+      << full_precision(c.loss_ratio_only) << ',' << full_precision(c.value_ratio) << ','
+      << full_precision(c.value_ratio_ratio_only) << ',' << full_precision(c.loss_ratio) << ','
+      << int(c.brute_forced) << ',' << int(c.dp_matches_brute_force) << ',' << int(c.within_budget)
+      << ',' << int(c.optimum_computed) << '\n';
   return o.str();
 }
 

@@ -7,6 +7,7 @@
 
 #include "util/errors.h"
 #include "platforms/platform.h"
+#include "scenes/study_settings.h"
 #include "util/toml_locator.h"
 
 namespace ra::regulation {
@@ -20,33 +21,6 @@ std::string fmt(double v) {
   return s.str();
 }
 
-// A number accepted by `ok`, else "'key' = V is out of range (allowed: ...)".
-template <typename Ok>
-double number(const Locator& loc, const toml::node& node, const std::string& key,
-              const std::string& allowed, Ok ok) {
-  double v;
-  if (const auto* i = node.as_integer())
-    v = double(i->get());
-  else if (const auto* f = node.as_floating_point())
-    v = f->get();
-  else
-    loc.fail(&node, "'" + key + "' must be a number (allowed: " + allowed + ")");
-  if (!std::isfinite(v) || !ok(v))
-    loc.fail(&node, "'" + key + "' = " + fmt(v) + " is out of range (allowed: " + allowed + ")");
-  return v;
-}
-
-int64_t integer(const Locator& loc, const toml::node& node, const std::string& key, int64_t lo,
-                int64_t hi) {
-  return loc.integer(node, key, lo, hi);
-}
-
-bool boolean(const Locator& loc, const toml::node& node, const std::string& key) {
-  const auto* b = node.as_boolean();
-  if (!b) loc.fail(&node, "'" + key + "' must be true or false");
-  return b->get();
-}
-
 const toml::table& table_of(const Locator& loc, const toml::table& parent, const std::string& key,
                             const std::string& where, const toml::table& empty) {
   const toml::node* n = parent.get(key);
@@ -55,19 +29,12 @@ const toml::table& table_of(const Locator& loc, const toml::table& parent, const
   return *n->as_table();
 }
 
-const toml::array& array_of(const Locator& loc, const toml::node& node, const std::string& key,
-                            std::size_t lo, std::size_t hi, const std::string& what) {
-  const auto* a = node.as_array();
-  if (!a || a->size() < lo || a->size() > hi) loc.fail(&node, "'" + key + "' must be " + what);
-  return *a;
-}
-
 // [lo, hi] integer pair
 void int_pair(const Locator& loc, const toml::node& node, const std::string& key, int64_t lo,
               int64_t hi, int* a, int* b) {
-  const auto& arr = array_of(loc, node, key, 2, 2, "[smallest, largest]");
-  *a = int(integer(loc, *arr.get(0), key, lo, hi));
-  *b = int(integer(loc, *arr.get(1), key, lo, hi));
+  const auto& arr = loc.array(node, key, 2, 2, "[smallest, largest]");
+  *a = int(loc.integer(*arr.get(0), key, lo, hi));
+  *b = int(loc.integer(*arr.get(1), key, lo, hi));
   if (*b < *a) loc.fail(&node, "'" + key + "' must be [smallest, largest] (allowed: smallest <= largest)");
 }
 
@@ -79,104 +46,60 @@ void parse_categories(const Locator& loc, const toml::table& t, const std::strin
   for (int i = 0; i < kCategories; ++i) {
     const std::string name = category_name(Category(i));
     if (const auto* n = t.get(name))
-      (*out)[i] = number(loc, *n, where + "." + name, "0 to 1", [](double v) { return v >= 0 && v <= 1; });
+      (*out)[i] = loc.number(*n, where + "." + name, "0 to 1", [](double v) { return v >= 0 && v <= 1; });
   }
 }
 
-bool platform_allowed(const std::string& name) { return is_aliased_gl_platform(name); }
-
-}  // namespace
-
-void validate_platform(const std::string& name) {
-  if (!platform_allowed(name))
-    throw UserError("'regulation.platform' = \"" + name + "\" is not an aliased GL platform (allowed: " +
-                    aliased_gl_platform_names() + ")");
+// Every random instance's exact DP must fit dp_max_cells (random_instance_dp_cells): the error
+// names the largest max_cost and objects that would fit, or the dp_max_cells that would.
+[[noreturn]] void fail_dp_too_large(const Locator& loc, const toml::table& t, const toml::table& rt,
+                                    const RegulationSettings& s) {
+  RandomInstanceSettings r = s.random;
+  int64_t cost_max = 0;  // the largest max_cost that fits, 0: none
+  for (int64_t lo = 1, hi = 100000; lo <= hi;) {
+    r.max_cost = lo + (hi - lo) / 2;
+    if (random_instance_dp_cells(r) <= s.dp_max_cells) cost_max = r.max_cost, lo = r.max_cost + 1;
+    else hi = r.max_cost - 1;
+  }
+  r.max_cost = s.random.max_cost;
+  int objects_max = 0;  // the largest objects_max that fits with this max_cost, 0: none
+  for (int n = 1; n <= 64; ++n) {
+    r.objects_max = n;
+    if (random_instance_dp_cells(r) <= s.dp_max_cells) objects_max = n;
+  }
+  std::string allowed;
+  if (cost_max > 0) allowed += "regulation.random.max_cost <= " + std::to_string(cost_max) + " with these objects";
+  if (objects_max >= s.random.objects_min)
+    allowed += std::string(allowed.empty() ? "" : ", or ") + "regulation.random.objects up to " +
+               std::to_string(objects_max) + " with this max_cost";
+  allowed += std::string(allowed.empty() ? "" : ", or ") + "regulation.dp_max_cells >= " +
+             std::to_string(random_instance_dp_cells(s.random));
+  const toml::node* at = rt.get("max_cost");
+  if (!at) at = rt.get("objects");
+  if (!at) at = t.get("dp_max_cells");
+  if (!at) at = t.get("random");
+  loc.fail(at, "'regulation.random.max_cost' = " + std::to_string(s.random.max_cost) +
+                   " with 'regulation.random.objects' = [" + std::to_string(s.random.objects_min) + ", " +
+                   std::to_string(s.random.objects_max) + "] needs an exact DP of up to " +
+                   std::to_string(random_instance_dp_cells(s.random)) + " cells, more than " +
+                   "'regulation.dp_max_cells' = " + std::to_string(s.dp_max_cells) + " (allowed: " +
+                   allowed + ")");
 }
 
-RegulationSettings read_regulation_experiment(const std::string& path) {
-  return parse_regulation_experiment(TomlLocator::read_text(path), path);
-}
-
-RegulationSettings parse_regulation_experiment(const std::string& text, const std::string& path) {
-  Locator loc(path);
-  const toml::table root = loc.parse(text);
-  loc.reject_unknown_keys(root, "", {"name", "regulation", "scene"});
-  RegulationSettings s;
-  s.file = path;
-  s.name = loc.experiment_name(root);
-  const toml::node* reg = root.get("regulation");
-  if (!reg || !reg->is_table()) loc.fail(reg, "the file needs a [regulation] table");
-  const toml::table& t = *reg->as_table();
-  loc.reject_unknown_keys(t, "regulation.",
-                          {"platform", "window", "fov_deg", "near", "far", "lod_ratios", "cache_size",
-                           "seed", "budgets_ms", "frame_stride", "repetitions", "render",
-                           "error_exponent", "dp_max_cells", "cost_model", "attention", "random"});
-  if (const auto* n = t.get("platform")) {
-    const auto* str = n->as_string();
-    if (!str || !platform_allowed(str->get()))
-      loc.fail(n, "'regulation.platform' is not an aliased GL platform (allowed: " +
-                      aliased_gl_platform_names() + ")");
-    s.platform = str->get();
-  }
-  if (const auto* n = t.get("window")) {
-    const auto& a = array_of(loc, *n, "regulation.window", 2, 2, "[width, height] in pixels");
-    s.camera.width = int(integer(loc, *a.get(0), "regulation.window", 16, 4096));
-    s.camera.height = int(integer(loc, *a.get(1), "regulation.window", 16, 4096));
-  }
-  if (const auto* n = t.get("fov_deg"))
-    s.camera.fov_y_deg = number(loc, *n, "regulation.fov_deg", "0 < fov_deg < 180",
-                                [](double v) { return v > 0 && v < 180; });
-  if (const auto* n = t.get("near"))
-    s.camera.near = number(loc, *n, "regulation.near", "near > 0", [](double v) { return v > 0; });
-  if (const auto* n = t.get("far")) {
-    const double near = s.camera.near;
-    s.camera.far = number(loc, *n, "regulation.far", "far > near", [near](double v) { return v > near; });
-  } else if (!(s.camera.far > s.camera.near)) {
-    loc.fail(t.get("near"), "'regulation.near' must be below far (" + fmt(s.camera.far) + ")");
-  }
-  if (const auto* n = t.get("lod_ratios")) {
-    const auto& a = array_of(loc, *n, "regulation.lod_ratios", 2, 16, "an array of 2 to 16 ratios");
-    s.lod_ratios.clear();
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      const double prev = i ? s.lod_ratios.back() : 2.0;
-      const std::string allowed = i == 0 ? "the first ratio is 1" : "below the previous ratio, above 0";
-      s.lod_ratios.push_back(number(loc, *a.get(i), "regulation.lod_ratios", allowed, [&](double v) {
-        return i == 0 ? v == 1.0 : (v > 0 && v < prev);
-      }));
-    }
-  }
-  if (const auto* n = t.get("cache_size")) s.cache_size = unsigned(integer(loc, *n, "regulation.cache_size", 3, 1024));
-  if (const auto* n = t.get("seed")) s.seed = uint64_t(integer(loc, *n, "regulation.seed", 0, INT64_MAX));
-  if (const auto* n = t.get("budgets_ms")) {
-    const auto& a = array_of(loc, *n, "regulation.budgets_ms", 1, 64, "an array of 1 to 64 budgets in ms");
-    s.budgets_ms.clear();
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      const double prev = i ? s.budgets_ms.back() : 0.0;
-      s.budgets_ms.push_back(number(loc, *a.get(i), "regulation.budgets_ms",
-                                    "increasing, each in (0, 10000]",
-                                    [&](double v) { return v > prev && v <= 10000; }));
-    }
-  }
-  if (const auto* n = t.get("frame_stride")) s.frame_stride = int(integer(loc, *n, "regulation.frame_stride", 1, 100000));
-  if (const auto* n = t.get("repetitions")) s.repetitions = int(integer(loc, *n, "regulation.repetitions", 1, 1000));
-  if (const auto* n = t.get("render")) s.render = boolean(loc, *n, "regulation.render");
-  if (const auto* n = t.get("error_exponent"))
-    s.error_exponent = number(loc, *n, "regulation.error_exponent", "0 < exponent <= 8",
-                              [](double v) { return v > 0 && v <= 8; });
-  if (const auto* n = t.get("dp_max_cells"))
-    s.dp_max_cells = integer(loc, *n, "regulation.dp_max_cells", 1000, 4'000'000'000);
-
+// [regulation.cost_model]: explicit coefficients or a timing study's JSON.
+void parse_cost_model(const Locator& loc, const toml::table& t, const std::string& path,
+                      RegulationSettings& s) {
   const toml::table empty;
   const toml::table& cm = table_of(loc, t, "cost_model", "regulation.cost_model", empty);
   loc.reject_unknown_keys(cm, "regulation.cost_model.",
                           {"c1_us_per_tv", "c2_us_per_pixel", "intercept_us", "pixel_factor",
                            "cost_unit_us", "timing_json", "timing_platform", "timing_intercept", "pixels"});
   auto nonneg = [](double v) { return v >= 0; };
-  if (const auto* n = cm.get("c1_us_per_tv")) s.cost.c1_us_per_tv = number(loc, *n, "regulation.cost_model.c1_us_per_tv", ">= 0", nonneg);
-  if (const auto* n = cm.get("c2_us_per_pixel")) s.cost.c2_us_per_pixel = number(loc, *n, "regulation.cost_model.c2_us_per_pixel", ">= 0", nonneg);
-  if (const auto* n = cm.get("intercept_us")) s.cost.intercept_us = number(loc, *n, "regulation.cost_model.intercept_us", "a finite number", [](double) { return true; });
-  if (const auto* n = cm.get("pixel_factor")) s.cost.pixel_factor = number(loc, *n, "regulation.cost_model.pixel_factor", "0 < factor <= 100", [](double v) { return v > 0 && v <= 100; });
-  if (const auto* n = cm.get("cost_unit_us")) s.cost.cost_unit_us = number(loc, *n, "regulation.cost_model.cost_unit_us", "0 < unit <= 1000000", [](double v) { return v > 0 && v <= 1e6; });
+  if (const auto* n = cm.get("c1_us_per_tv")) s.cost.c1_us_per_tv = loc.number(*n, "regulation.cost_model.c1_us_per_tv", ">= 0", nonneg);
+  if (const auto* n = cm.get("c2_us_per_pixel")) s.cost.c2_us_per_pixel = loc.number(*n, "regulation.cost_model.c2_us_per_pixel", ">= 0", nonneg);
+  if (const auto* n = cm.get("intercept_us")) s.cost.intercept_us = loc.number(*n, "regulation.cost_model.intercept_us", "a finite number", [](double) { return true; });
+  if (const auto* n = cm.get("pixel_factor")) s.cost.pixel_factor = loc.number(*n, "regulation.cost_model.pixel_factor", "0 < factor <= 100", [](double v) { return v > 0 && v <= 100; });
+  if (const auto* n = cm.get("cost_unit_us")) s.cost.cost_unit_us = loc.number(*n, "regulation.cost_model.cost_unit_us", "0 < unit <= 1000000", [](double v) { return v > 0 && v <= 1e6; });
   if (const auto* n = cm.get("pixels")) {
     const auto* str = n->as_string();
     if (!str || (str->get() != "measured" && str->get() != "estimated"))
@@ -190,7 +113,7 @@ RegulationSettings parse_regulation_experiment(const std::string& text, const st
     if (!str || str->get().empty()) loc.fail(n, "'regulation.cost_model.timing_platform' must be a platform name");
     s.timing_platform = str->get();
   }
-  if (const auto* n = cm.get("timing_intercept")) s.timing_intercept = boolean(loc, *n, "regulation.cost_model.timing_intercept");
+  if (const auto* n = cm.get("timing_intercept")) s.timing_intercept = loc.boolean(*n, "regulation.cost_model.timing_intercept");
   if (const auto* n = cm.get("timing_json")) {
     const auto* str = n->as_string();
     if (!str || str->get().empty()) loc.fail(n, "'regulation.cost_model.timing_json' must be a path");
@@ -207,13 +130,17 @@ RegulationSettings parse_regulation_experiment(const std::string& text, const st
       loc.fail(n, e.what());
     }
   }
+}
 
+// [regulation.attention]: the attention model's probabilities, shares and tags.
+void parse_attention(const Locator& loc, const toml::table& t, RegulationSettings& s) {
+  const toml::table empty;
   const toml::table& at = table_of(loc, t, "attention", "regulation.attention", empty);
   loc.reject_unknown_keys(at, "regulation.attention.", {"alpha", "element_given_object", "probability", "share", "tags"});
   auto unit = [](double v) { return v >= 0 && v <= 1; };
-  if (const auto* n = at.get("alpha")) s.attention.alpha = number(loc, *n, "regulation.attention.alpha", "0 to 1", unit);
+  if (const auto* n = at.get("alpha")) s.attention.alpha = loc.number(*n, "regulation.attention.alpha", "0 to 1", unit);
   if (const auto* n = at.get("element_given_object"))
-    s.attention.element_given_object = number(loc, *n, "regulation.attention.element_given_object", "0 to 1", unit);
+    s.attention.element_given_object = loc.number(*n, "regulation.attention.element_given_object", "0 to 1", unit);
   parse_categories(loc, table_of(loc, at, "probability", "regulation.attention.probability", empty),
                    "regulation.attention.probability", &s.attention.probability);
   if (const auto* n = at.get("share")) {
@@ -234,51 +161,85 @@ RegulationSettings parse_regulation_experiment(const std::string& text, const st
                           "critical_environment, background)");
     s.attention.tags[std::string(key.str())] = c;
   }
+}
 
+// [regulation.random]: the random knapsack instances, each small enough for the exact DP.
+void parse_random(const Locator& loc, const toml::table& t, RegulationSettings& s) {
+  const toml::table empty;
   const toml::table& rt = table_of(loc, t, "random", "regulation.random", empty);
   loc.reject_unknown_keys(rt, "regulation.random.",
                           {"instances", "objects", "levels", "max_cost", "adversarial_every", "brute_force_max_plans"});
   s.random.seed = s.seed;
-  if (const auto* n = rt.get("instances")) s.random.instances = int(integer(loc, *n, "regulation.random.instances", 0, 1000000));
+  if (const auto* n = rt.get("instances")) s.random.instances = int(loc.integer(*n, "regulation.random.instances", 0, 1000000));
   if (const auto* n = rt.get("objects")) int_pair(loc, *n, "regulation.random.objects", 1, 64, &s.random.objects_min, &s.random.objects_max);
   if (const auto* n = rt.get("levels")) int_pair(loc, *n, "regulation.random.levels", 1, 16, &s.random.levels_min, &s.random.levels_max);
-  if (const auto* n = rt.get("max_cost")) s.random.max_cost = integer(loc, *n, "regulation.random.max_cost", 1, 100000);
-  if (const auto* n = rt.get("adversarial_every")) s.random.adversarial_every = int(integer(loc, *n, "regulation.random.adversarial_every", 0, 1000000));
-  if (const auto* n = rt.get("brute_force_max_plans")) s.random.brute_force_max_plans = integer(loc, *n, "regulation.random.brute_force_max_plans", 0, 10000000);
+  if (const auto* n = rt.get("max_cost")) s.random.max_cost = loc.integer(*n, "regulation.random.max_cost", 1, 100000);
+  if (const auto* n = rt.get("adversarial_every")) s.random.adversarial_every = int(loc.integer(*n, "regulation.random.adversarial_every", 0, 1000000));
+  if (const auto* n = rt.get("brute_force_max_plans")) s.random.brute_force_max_plans = loc.integer(*n, "regulation.random.brute_force_max_plans", 0, 10000000);
   s.random.dp_max_cells = s.dp_max_cells;
-  // Every random instance's exact DP must fit dp_max_cells (random_instance_dp_cells).
-  if (s.random.instances > 0 && random_instance_dp_cells(s.random) > s.dp_max_cells) {
-    RandomInstanceSettings r = s.random;
-    int64_t cost_max = 0;  // the largest max_cost that fits, 0: none
-    for (int64_t lo = 1, hi = 100000; lo <= hi;) {
-      r.max_cost = lo + (hi - lo) / 2;
-      if (random_instance_dp_cells(r) <= s.dp_max_cells) cost_max = r.max_cost, lo = r.max_cost + 1;
-      else hi = r.max_cost - 1;
+  if (s.random.instances > 0 && random_instance_dp_cells(s.random) > s.dp_max_cells)
+    fail_dp_too_large(loc, t, rt, s);
+}
+
+}  // namespace
+
+void validate_platform(const std::string& name) {
+  if (!is_aliased_gl_platform(name))
+    throw UserError("'regulation.platform' = \"" + name + "\" is out of range (allowed: " +
+                    aliased_gl_platform_names() + ")");
+}
+
+RegulationSettings read_regulation_experiment(const std::string& path) {
+  return parse_regulation_experiment(TomlLocator::read_text(path), path);
+}
+
+RegulationSettings parse_regulation_experiment(const std::string& text, const std::string& path) {
+  Locator loc(path);
+  RegulationSettings s;
+  const StudyFile file = read_study_file(loc, text, "regulation", {"scene"}, true, &s);
+  const toml::table& root = file.root;
+  const toml::table& t = file.table();
+  loc.reject_unknown_keys(t, "regulation.",
+                          {"platform", "window", "fov_deg", "near", "far", "lod_ratios", "cache_size",
+                           "seed", "budgets_ms", "frame_stride", "repetitions", "render",
+                           "error_exponent", "dp_max_cells", "cost_model", "attention", "random"});
+  if (const auto* n = t.get("platform")) s.platform = read_study_platform(loc, *n, "regulation.platform");
+  read_camera_block(loc, t, "regulation", &s.camera);
+  if (const auto* n = t.get("lod_ratios")) {
+    const auto& a = loc.array(*n, "regulation.lod_ratios", 2, 16, "an array of 2 to 16 ratios");
+    s.lod_ratios.clear();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const double prev = i ? s.lod_ratios.back() : 2.0;
+      const std::string allowed = i == 0 ? "the first ratio is 1" : "below the previous ratio, above 0";
+      s.lod_ratios.push_back(loc.number(*a.get(i), "regulation.lod_ratios", allowed, [&](double v) {
+        return i == 0 ? v == 1.0 : (v > 0 && v < prev);
+      }));
     }
-    r.max_cost = s.random.max_cost;
-    int objects_max = 0;  // the largest objects_max that fits with this max_cost, 0: none
-    for (int n = 1; n <= 64; ++n) {
-      r.objects_max = n;
-      if (random_instance_dp_cells(r) <= s.dp_max_cells) objects_max = n;
-    }
-    std::string allowed;
-    if (cost_max > 0) allowed += "regulation.random.max_cost <= " + std::to_string(cost_max) + " with these objects";
-    if (objects_max >= s.random.objects_min)
-      allowed += std::string(allowed.empty() ? "" : ", or ") + "regulation.random.objects up to " +
-                 std::to_string(objects_max) + " with this max_cost";
-    allowed += std::string(allowed.empty() ? "" : ", or ") + "regulation.dp_max_cells >= " +
-               std::to_string(random_instance_dp_cells(s.random));
-    const toml::node* at = rt.get("max_cost");
-    if (!at) at = rt.get("objects");
-    if (!at) at = t.get("dp_max_cells");
-    if (!at) at = t.get("random");
-    loc.fail(at, "'regulation.random.max_cost' = " + std::to_string(s.random.max_cost) +
-                     " with 'regulation.random.objects' = [" + std::to_string(s.random.objects_min) + ", " +
-                     std::to_string(s.random.objects_max) + "] needs an exact DP of up to " +
-                     std::to_string(random_instance_dp_cells(s.random)) + " cells, more than " +
-                     "'regulation.dp_max_cells' = " + std::to_string(s.dp_max_cells) + " (allowed: " +
-                     allowed + ")");
   }
+  if (const auto* n = t.get("cache_size")) s.cache_size = unsigned(loc.integer(*n, "regulation.cache_size", 3, 1024));
+  if (const auto* n = t.get("seed")) s.seed = uint64_t(loc.integer(*n, "regulation.seed", 0, INT64_MAX));
+  if (const auto* n = t.get("budgets_ms")) {
+    const auto& a = loc.array(*n, "regulation.budgets_ms", 1, 64, "an array of 1 to 64 budgets in ms");
+    s.budgets_ms.clear();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const double prev = i ? s.budgets_ms.back() : 0.0;
+      s.budgets_ms.push_back(loc.number(*a.get(i), "regulation.budgets_ms",
+                                    "increasing, each in (0, 10000]",
+                                    [&](double v) { return v > prev && v <= 10000; }));
+    }
+  }
+  if (const auto* n = t.get("frame_stride")) s.frame_stride = int(loc.integer(*n, "regulation.frame_stride", 1, 100000));
+  if (const auto* n = t.get("repetitions")) s.repetitions = int(loc.integer(*n, "regulation.repetitions", 1, 1000));
+  if (const auto* n = t.get("render")) s.render = loc.boolean(*n, "regulation.render");
+  if (const auto* n = t.get("error_exponent"))
+    s.error_exponent = loc.number(*n, "regulation.error_exponent", "0 < exponent <= 8",
+                              [](double v) { return v > 0 && v <= 8; });
+  if (const auto* n = t.get("dp_max_cells"))
+    s.dp_max_cells = loc.integer(*n, "regulation.dp_max_cells", 1000, 4'000'000'000);
+
+  parse_cost_model(loc, t, path, s);
+  parse_attention(loc, t, s);
+  parse_random(loc, t, s);
 
   std::vector<SceneSpec> scenes = parse_scene_specs(root, path);
   if (scenes.size() != 1) {

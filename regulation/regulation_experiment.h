@@ -59,15 +59,12 @@
 #include "regulation/cost_model.h"
 #include "regulation/random_instances.h"
 #include "scenes/scene_spec.h"
-#include "timing/timing_geometry.h"
+#include "scenes/study_settings.h"
 
 namespace ra::regulation {
 
-struct RegulationSettings {
-  std::string file;  // the experiment file, as given
-  std::string name;  // `name`, or the file's stem
+struct RegulationSettings : StudySettings {  // file, name, camera
   std::string platform = "osmesa-llvmpipe";
-  timing::CameraSettings camera;
   std::vector<double> lod_ratios{1, 0.5, 0.25, 0.125, 0.0625};
   unsigned cache_size = 16;
   uint64_t seed = 1;
@@ -86,7 +83,7 @@ struct RegulationSettings {
   SceneSpec scene;
 };
 
-// Throws UserError "'regulation.platform' = NAME is not an aliased GL platform (allowed: ...)"
+// Throws UserError "'regulation.platform' = "NAME" is out of range (allowed: ...)"
 // unless `name` is one the study can render on (platforms/platform_spec.h).
 void validate_platform(const std::string& name);
 

@@ -1,8 +1,6 @@
 // The regulation study: run, analyze, plot (regulation_study.h).
 #include "regulation/regulation_study.h"
 
-#include "platforms/platform_probe.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,8 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "stats/descriptive.h"
-#include "stats/table_writer.h"
+#include "platforms/platform_probe.h"
 #include "plots/figure.h"
 #include "plots/figure_set.h"
 #include "regulation/attention.h"
@@ -23,9 +20,12 @@
 #include "regulation/policies.h"
 #include "regulation/random_instances.h"
 #include "regulation/regulation_experiment.h"
-#include "util/atomic_file.h"
-#include "util/errors.h"
 #include "runner/manifest.h"
+#include "stats/descriptive.h"
+#include "stats/table_writer.h"
+#include "util/atomic_file.h"
+#include "util/cell_text.h"
+#include "util/errors.h"
 
 namespace ra::regulation {
 namespace {
@@ -36,13 +36,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 json nullable(double v) { return std::isfinite(v) ? json(v) : json(); }
-
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  return b;
-}
 
 std::string fmt(const json& v, const char* f = "%.4g") {
   if (!v.is_number()) return "n/a";
@@ -154,10 +147,10 @@ StudyScene scene_stage(const RegulationSettings& s, const std::string& dir, json
     for (std::size_t i = 0; i < chains.size(); ++i)
       for (std::size_t k = 0; k < chains[i].levels.size(); ++k) {
         const LodLevel& l = chains[i].levels[k];
-        o << i << ',' << analysis::csv_escape(chains[i].name) << ',' << category_name(tags[i]) << ','
-          << num(weights[i]) << ',' << k << ',' << num(l.target_ratio) << ',' << l.triangles << ','
-          << l.vertices << ',' << l.transformed << ',' << num(l.error_m) << ','
-          << num(l.simplifier_error_m) << '\n';
+        o << i << ',' << csv_escape(chains[i].name) << ',' << category_name(tags[i]) << ','
+          << full_precision(weights[i]) << ',' << k << ',' << full_precision(l.target_ratio) << ','
+          << l.triangles << ',' << l.vertices << ',' << l.transformed << ','
+          << full_precision(l.error_m) << ',' << full_precision(l.simplifier_error_m) << '\n';
       }
     write_file_atomic(dir + "/lod_levels.csv", o.str());
     json lod = json::array();
@@ -208,15 +201,18 @@ void write_plan_tables(const RenderOutcome& ro, const std::vector<LodChain>& cha
   fr << "frame,budget_ms,policy,predicted_us,measured_median_us,skipped,repetitions,measured_us,"
         "predicted_estimated_us\n";
   for (const FrameRecord& r : ro.records) {
-    sw << r.frame << ',' << num(r.budget_ms) << ',' << r.policy << ',' << r.visible << ','
-       << r.budget_units << ',' << r.plan_units << ',' << int(r.fits) << ',' << num(r.expected_cost)
-       << ',' << num(r.value) << ',' << num(r.value_ratio_to_optimal) << ',' << num(r.predicted_us)
-       << ',' << r.triangles << ',' << num(r.pixels) << ',' << num(r.predicted_estimated_us) << ',' << r.transformed << '\n';
+    sw << r.frame << ',' << full_precision(r.budget_ms) << ',' << r.policy << ',' << r.visible
+       << ',' << r.budget_units << ',' << r.plan_units << ',' << int(r.fits) << ','
+       << full_precision(r.expected_cost) << ',' << full_precision(r.value) << ','
+       << full_precision(r.value_ratio_to_optimal) << ',' << full_precision(r.predicted_us) << ','
+       << r.triangles << ',' << full_precision(r.pixels) << ','
+       << full_precision(r.predicted_estimated_us) << ',' << r.transformed << '\n';
     std::string reps;
-    for (double v : r.measured_us) reps += (reps.empty() ? "" : ";") + num(v);
-    fr << r.frame << ',' << num(r.budget_ms) << ',' << r.policy << ',' << num(r.predicted_us) << ','
-       << num(r.measured_median_us) << ',' << int(r.skipped) << ',' << r.measured_us.size() << ','
-       << reps << ',' << num(r.predicted_estimated_us) << '\n';
+    for (double v : r.measured_us) reps += (reps.empty() ? "" : ";") + full_precision(v);
+    fr << r.frame << ',' << full_precision(r.budget_ms) << ',' << r.policy << ','
+       << full_precision(r.predicted_us) << ',' << full_precision(r.measured_median_us) << ','
+       << int(r.skipped) << ',' << r.measured_us.size() << ',' << reps << ','
+       << full_precision(r.predicted_estimated_us) << '\n';
   }
   write_file_atomic(dir + "/budget_sweep.csv", sw.str());
   write_file_atomic(dir + "/frames.csv", fr.str());
@@ -226,9 +222,10 @@ void write_plan_tables(const RenderOutcome& ro, const std::vector<LodChain>& cha
     std::vector<double> ratio;  // measured level 0 / estimated, objects seen whole and far
     for (const PixelSample& p : ro.pixels) {
       for (std::size_t k = 0; k < p.measured.size(); ++k)
-        px << p.frame << ',' << p.object << ',' << analysis::csv_escape(chains[p.object].name) << ','
-           << num(p.distance_m) << ',' << num(p.radius_m) << ',' << num(p.estimated) << ',' << k << ','
-           << num(p.measured[k]) << '\n';
+        px << p.frame << ',' << p.object << ',' << csv_escape(chains[p.object].name) << ','
+           << full_precision(p.distance_m) << ',' << full_precision(p.radius_m) << ','
+           << full_precision(p.estimated) << ',' << k << ',' << full_precision(p.measured[k])
+           << '\n';
       if (p.estimated > 0 && !p.measured.empty()) ratio.push_back(p.measured[0] / p.estimated);
     }
     write_file_atomic(dir + "/pixels.csv", px.str());
@@ -567,7 +564,7 @@ void plot_regulation_study(const std::string& dir) {
   const json j = load_complete(dir);
   if (!read_study_info(dir)->analysed)
     throw UserError(dir + " has not been analysed: run `renderaudit analyze " + dir + "` first");
-  std::vector<plots::Figure> figs;
+  plots::StudyFigures figs("regulation");
   // 1. distribution of value(OPT) / value(greedy)
   {
     std::vector<double> r;
@@ -583,43 +580,38 @@ void plot_regulation_study(const std::string& dir) {
     plots::HistogramContent hc;
     hc.density = false;
     hc.series.push_back(hs);
-    plots::Figure f;
-    f.id = "regulation_ratio_histogram";
-    f.title = "value(OPT) / value(greedy) on random instances";
-    f.x_label = "value(OPT) / value(greedy)";
-    f.y_label = "instances";
-    f.caption = "Distribution of the ratio of the optimal to the greedy value (perceptual cost saved "
-                "over the all-coarsest plan) on " + std::to_string(r.size()) +
-                " random knapsack instances; the theorem bounds it by 2.";
-    f.section = "regulation";
-    f.content = hc;
-    figs.push_back(f);
+    figs.add("regulation_ratio_histogram", "value(OPT) / value(greedy) on random instances",
+             "value(OPT) / value(greedy)", "instances",
+             "Distribution of the ratio of the optimal to the greedy value (perceptual cost saved "
+             "over the all-coarsest plan) on " +
+                 std::to_string(r.size()) +
+                 " random knapsack instances; the theorem bounds it by 2.",
+             hc);
   }
+  // y against x of `rows` on log axes, one series per policy in the order they first appear; a
+  // row without a number for y is left out (its policy keeps its place).
+  auto by_policy = [](const json& rows, const char* x, const char* y) {
+    plots::SeriesInOrder by;
+    for (const json& r : rows) {
+      plots::ScatterSeries& s = by[r.value("policy", "")];
+      if (!r[y].is_number()) continue;
+      s.x.push_back(r[x].get<double>());
+      s.y.push_back(r[y].get<double>());
+    }
+    plots::ScatterContent sc;
+    sc.series = by.series();
+    sc.x_log10 = sc.y_log10 = true;
+    return sc;
+  };
   // 2. expected perceptual cost against budget, one series per policy
   {
-    plots::ScatterContent sc;
-    std::map<std::string, plots::ScatterSeries> by;
-    std::vector<std::string> order;
-    for (const json& r : j["sweep"]) {
-      const std::string p = r.value("policy", "");
-      if (!by.count(p)) order.push_back(p), by[p].name = p;
-      if (!r["mean_expected_cost"].is_number()) continue;
-      by[p].x.push_back(r["budget_ms"].get<double>());
-      by[p].y.push_back(r["mean_expected_cost"].get<double>());
-    }
-    for (const auto& p : order) sc.series.push_back(by[p]);
-    sc.x_log10 = true;
-    sc.y_log10 = true;
-    plots::Figure f;
-    f.id = "regulation_cost_vs_budget";
-    f.title = "Expected perceptual cost against frame budget";
-    f.x_label = "frame budget (ms)";
-    f.y_label = "mean expected perceptual cost";
-    f.note = plots::scatter_omitted_note(sc);
-    f.caption = "Mean expected perceptual cost of the plans along the camera path, per policy and budget.";
-    f.section = "regulation";
-    f.content = sc;
-    figs.push_back(f);
+    const plots::ScatterContent sc = by_policy(j["sweep"], "budget_ms", "mean_expected_cost");
+    figs.add("regulation_cost_vs_budget", "Expected perceptual cost against frame budget",
+             "frame budget (ms)", "mean expected perceptual cost",
+             "Mean expected perceptual cost of the plans along the camera path, per policy and "
+             "budget.",
+             sc)
+        .note = plots::scatter_omitted_note(sc);
   }
   // 3. skip rate per budget and policy; 4. measured against predicted
   if (j["render"].value("enabled", false) && j["render"]["error"].is_null()) {
@@ -642,40 +634,19 @@ void plot_regulation_study(const std::string& dir) {
           100.0 * (r["skip_fraction"].is_number() ? r["skip_fraction"].get<double>() : 0.0);
     }
     bc.y_max = 100;
-    plots::Figure f;
-    f.id = "regulation_frame_skips";
-    f.title = "Frame skips per budget and policy";
-    f.x_label = "frame budget";
-    f.y_label = "frames over budget (%)";
-    f.caption = "Share of the planned frames whose median measured time exceeded the budget.";
-    f.section = "regulation";
-    f.content = bc;
-    figs.push_back(f);
+    figs.add("regulation_frame_skips", "Frame skips per budget and policy", "frame budget",
+             "frames over budget (%)",
+             "Share of the planned frames whose median measured time exceeded the budget.", bc);
 
-    plots::ScatterContent sc;
-    std::map<std::string, plots::ScatterSeries> by;
-    std::vector<std::string> order;
-    for (const json& p : j["render"]["points"]) {
-      const std::string name = p.value("policy", "");
-      if (!by.count(name)) order.push_back(name), by[name].name = name;
-      by[name].x.push_back(p["predicted_ms"].get<double>());
-      by[name].y.push_back(p["measured_ms"].get<double>());
-    }
-    for (const auto& p : order) sc.series.push_back(by[p]);
-    sc.x_log10 = sc.y_log10 = true;
-    plots::Figure g;
-    g.id = "regulation_measured_vs_predicted";
-    g.title = "Measured against predicted frame time";
-    g.x_label = "predicted frame time (ms)";
-    g.y_label = "measured median frame time (ms)";
-    g.note = plots::scatter_omitted_note(sc);
-    g.caption = "Each rendered plan: the H4 prediction plus the empty frame against the median "
-                "measured time.";
-    g.section = "regulation";
-    g.content = sc;
-    figs.push_back(g);
+    const plots::ScatterContent sc = by_policy(j["render"]["points"], "predicted_ms", "measured_ms");
+    figs.add("regulation_measured_vs_predicted", "Measured against predicted frame time",
+             "predicted frame time (ms)", "measured median frame time (ms)",
+             "Each rendered plan: the H4 prediction plus the empty frame against the median "
+             "measured time.",
+             sc)
+        .note = plots::scatter_omitted_note(sc);
   }
-  plots::write_figure_set(figs, dir);
+  figs.write(dir);
 }
 
 }  // namespace ra::regulation

@@ -194,14 +194,14 @@ Table read_csv_table(const std::string& path) {
   std::stringstream tail;
   tail << ss.rdbuf();
   rest += tail.str();
-  const auto csv = ra::analysis::CsvTable::parse(rest, path);
+  const auto csv = stats::CsvTable::parse(rest, path);
   t.header = csv.header();
   t.right.assign(t.header.size(), true);
   for (std::size_t r = 0; r < csv.row_count(); ++r) {
     std::vector<std::string> row;
     for (std::size_t c = 0; c < csv.column_count(); ++c) {
       const std::string& cell = csv.cell(r, c);
-      if (!cell.empty() && !ra::analysis::parse_number(cell)) t.right[c] = false;
+      if (!cell.empty() && !stats::parse_number(cell)) t.right[c] = false;
       row.push_back(cell);
     }
     t.rows.push_back(std::move(row));

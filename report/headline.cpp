@@ -46,11 +46,11 @@ std::map<std::string, PaperAgreement> paper_agreement(const std::string& analysi
   const std::string comparison = analysis_dir + "/paper_comparison.csv";
   const std::string differences = analysis_dir + "/paper_differences.csv";
   if (!fs::exists(comparison)) return out;
-  const analysis::CsvTable c = analysis::CsvTable::read_file(comparison);
+  const stats::CsvTable c = stats::CsvTable::read_file(comparison);
   const std::size_t cp = c.column("Platform");
   for (std::size_t r = 0; r < c.row_count(); ++r) ++out[c.cell(r, cp)].compared;
   if (fs::exists(differences)) {
-    const analysis::CsvTable d = analysis::CsvTable::read_file(differences);
+    const stats::CsvTable d = stats::CsvTable::read_file(differences);
     const std::size_t dp = d.column("Platform"), why = d.column("Why");
     for (std::size_t r = 0; r < d.row_count(); ++r) {
       PaperAgreement& a = out[d.cell(r, dp)];

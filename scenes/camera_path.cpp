@@ -9,9 +9,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "util/atomic_file.h"
-#include "util/errors.h"
 #include "scenes/scene_rng.h"
+#include "util/atomic_file.h"
+#include "util/cell_text.h"
+#include "util/errors.h"
 
 namespace ra {
 namespace {
@@ -291,12 +292,12 @@ std::vector<Viewpoint> read_camera_path_csv(const std::string& path) {
 
 void write_camera_path_csv(const std::vector<Viewpoint>& path, const std::string& file) {
   std::string text = "frame,eye_x,eye_y,eye_z,target_x,target_y,target_z\n";
-  char line[512];
   for (size_t k = 0; k < path.size(); ++k) {
     const Viewpoint& v = path[k];
-    std::snprintf(line, sizeof line, "%zu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", k, v.eye.x, v.eye.y,
-                  v.eye.z, v.target.x, v.target.y, v.target.z);
-    text += line;
+    text += std::to_string(k);
+    for (double x : {v.eye.x, v.eye.y, v.eye.z, v.target.x, v.target.y, v.target.z})
+      text += "," + full_precision(x);
+    text += "\n";
   }
   write_file_atomic(file, text);  // complete or absent
 }

@@ -9,7 +9,7 @@
 
 #include "util/errors.h"
 
-namespace ra::analysis {
+namespace ra::stats {
 namespace {
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
@@ -198,4 +198,4 @@ NumericColumn CsvTable::numeric_column(std::string_view name) const {
   return out;
 }
 
-}  // namespace ra::analysis
+}  // namespace ra::stats

@@ -18,7 +18,7 @@
 #include <string_view>
 #include <vector>
 
-namespace ra::analysis {
+namespace ra::stats {
 
 // The values of one numeric column, in row order, without the missing (empty) cells.
 struct NumericColumn {
@@ -72,4 +72,4 @@ class CsvTable {
   std::vector<std::size_t> lines_;  // line of each row
 };
 
-}  // namespace ra::analysis
+}  // namespace ra::stats

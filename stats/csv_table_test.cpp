@@ -10,7 +10,7 @@
 #include "util/errors.h"
 #include "tests/cli_harness.h"
 
-namespace ra::analysis {
+namespace ra::stats {
 namespace {
 
 // The message of the UserError that `f` throws ("" when it throws none).
@@ -101,4 +101,4 @@ TEST(CsvTable, ReadsFiles) {
 }
 
 }  // namespace
-}  // namespace ra::analysis
+}  // namespace ra::stats

@@ -157,6 +157,10 @@ double quantile(std::vector<double> values, double p, QuantileDefinition definit
 
 double median(std::vector<double> values) { return quantile(std::move(values), 0.5); }
 
+double median_or_nan(std::vector<double> values) {
+  return values.empty() ? std::numeric_limits<double>::quiet_NaN() : median(std::move(values));
+}
+
 Description describe(std::vector<double> values, QuantileDefinition definition) {
   require_non_empty(values, "describe");
   require_finite(values, "describe");

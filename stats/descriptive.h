@@ -74,6 +74,8 @@ double quantile_sorted(const std::vector<double>& sorted, double p,
 double quantile(std::vector<double> values, double p,
                 QuantileDefinition definition = QuantileDefinition::kHyndmanFan6);
 double median(std::vector<double> values);
+// The median, or NaN for no values (e.g. a timer that measured nothing); never throws.
+double median_or_nan(std::vector<double> values);
 
 // Summary of one sample. All fields but n are in the units of the data.
 struct Description {

@@ -213,5 +213,16 @@ for x in inp:
   std::printf("  descriptive vs NumPy/SciPy: worst relative difference %.2g\n", worst);
 }
 
+// The median of odd and even counts, as numpy.median gives them (/usr/bin/python3), and NaN for
+// no values where median_or_nan is asked.
+TEST(Descriptive, MedianOrNan) {
+  EXPECT_EQ(median({5, 1, 3}), 3.0);
+  EXPECT_EQ(median({4, 1, 3, 2}), 2.5);
+  EXPECT_DOUBLE_EQ(median({0.1, 0.7, 0.2, 1e-17}), 0.15000000000000002);
+  EXPECT_THROW(median({}), std::invalid_argument);
+  EXPECT_EQ(median_or_nan({4, 1, 3, 2}), 2.5);
+  EXPECT_TRUE(std::isnan(median_or_nan({})));
+}
+
 }  // namespace
 }  // namespace ra::stats

@@ -9,7 +9,7 @@
 
 #include "stats/binomial_interval.h"
 
-namespace ra::analysis {
+namespace ra::stats {
 namespace {
 
 // Column header text of CSV and Markdown: the group label joined to the column name.
@@ -93,16 +93,6 @@ void check_table(const Table& t) {
                              std::to_string(t.columns.size()) + " columns");
     }
   }
-}
-
-std::string csv_escape(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string s = "\"";
-  for (char c : text) {
-    if (c == '"') s += '"';
-    s += c;
-  }
-  return s + "\"";
 }
 
 std::string markdown_escape(const std::string& text) {
@@ -244,4 +234,4 @@ std::string render_latex(const Table& t) {
   return out;
 }
 
-}  // namespace ra::analysis
+}  // namespace ra::stats

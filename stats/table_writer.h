@@ -24,7 +24,9 @@
 #include <string>
 #include <vector>
 
-namespace ra::analysis {
+#include "util/cell_text.h"
+
+namespace ra::stats {
 
 struct TableCell {
   std::string text;  // Markdown and LaTeX
@@ -81,9 +83,8 @@ std::string render_csv(const Table& table);
 std::string render_markdown(const Table& table);
 std::string render_latex(const Table& table);
 
-// Escapes for one cell / text fragment.
-std::string csv_escape(const std::string& text);
+// Escapes for one cell / text fragment (CSV: util/cell_text.h).
 std::string markdown_escape(const std::string& text);
 std::string latex_escape(const std::string& text);
 
-}  // namespace ra::analysis
+}  // namespace ra::stats

@@ -10,10 +10,10 @@
 
 #include "analysis/records_testing.h"
 
-namespace ra::analysis {
+namespace ra::stats {
 namespace {
 
-using testing::lines_of;
+using analysis::testing::lines_of;
 
 Table small_table() {
   Table t;
@@ -137,4 +137,4 @@ TEST(TableWriter, InconsistentTablesAreRejected) {
 }
 
 }  // namespace
-}  // namespace ra::analysis
+}  // namespace ra::stats

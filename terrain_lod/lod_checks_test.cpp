@@ -23,7 +23,7 @@ struct FrameCheck {
 };
 
 FrameCheck check_frame(const TerrainHierarchy& h, LambdaKind kind, double tau, const Viewpoint& vp) {
-  const timing::CameraSettings cam = test_camera();
+  const CameraSettings cam = test_camera();
   const LodMesh mesh = refine(h, make_metric(kind, cam, tau, vp.eye));
   FrameCheck c;
   c.conforming = check_conformity(all_triangles(mesh), h.field().nx, h.field().ny).conforming;
@@ -34,7 +34,7 @@ FrameCheck check_frame(const TerrainHierarchy& h, LambdaKind kind, double tau, c
 }
 
 TEST(LambdaFor, AnalyticValues) {
-  timing::CameraSettings cam;
+  CameraSettings cam;
   cam.width = 1024;
   cam.height = 768;
   cam.fov_y_deg = 60;
@@ -230,7 +230,7 @@ TEST(ScreenError, MeasuresTheVisiblePartOfASegmentCrossingTheWindowEdge) {
   f.spacing = 10;
   f.z = {0, 150, 0};
   std::vector<double> z_lod = {200, 200, std::nan("")};
-  timing::CameraSettings cam;
+  CameraSettings cam;
   cam.width = cam.height = 100;
   cam.fov_y_deg = 90;
   cam.near = 1;

@@ -42,16 +42,13 @@
 
 #include "terrain_lod/bisection_hierarchy.h"
 #include "terrain_lod/screen_error_metric.h"
-#include "timing/timing_geometry.h"
+#include "scenes/study_settings.h"
 
 namespace ra::lod {
 
-struct LodSettings {
-  std::string file;   // the experiment file, as given
-  std::string name;   // `name`, or the file's stem
+struct LodSettings : StudySettings {  // file, name, camera
   std::string title = "Terrain level of detail";
   std::string platform = "osmesa-llvmpipe";
-  timing::CameraSettings camera;  // window 1024 x 768, fov_y 60, near 1, far 50000 by default
   std::vector<double> tau{0.5, 1, 2, 4, 8};
   LambdaKind lambda = LambdaKind::kWindow;
   std::vector<LambdaKind> check_lambdas{LambdaKind::kPlanar, LambdaKind::kSpherical};

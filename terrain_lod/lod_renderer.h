@@ -24,7 +24,7 @@
 #include "scenes/scene.h"
 #include "terrain_lod/height_field.h"
 #include "terrain_lod/lod_refinement.h"
-#include "timing/timing_geometry.h"
+#include "scenes/camera.h"
 
 namespace ra::lod {
 
@@ -38,7 +38,7 @@ ImageDifference image_difference(const std::vector<uint8_t>& a, const std::vecto
 class LodRenderer {
  public:
   // Throws UserError for a platform without a Mesa driver, std::runtime_error when GL fails.
-  LodRenderer(const std::string& platform, const timing::CameraSettings& cam, const HeightField& field);
+  LodRenderer(const std::string& platform, const CameraSettings& cam, const HeightField& field);
   ~LodRenderer();
   LodRenderer(const LodRenderer&) = delete;
   LodRenderer& operator=(const LodRenderer&) = delete;

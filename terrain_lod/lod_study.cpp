@@ -1,10 +1,6 @@
 // The terrain LOD study: run, analyze, plot (lod_study.h).
 #include "terrain_lod/lod_study.h"
 
-#include "platforms/platform_probe.h"
-
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,18 +9,21 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "stats/descriptive.h"
+#include "platforms/platform_probe.h"
 #include "plots/figure_set.h"
-#include "util/atomic_file.h"
-#include "util/errors.h"
-#include "util/gl_child_process.h"
 #include "runner/manifest.h"
 #include "scenes/camera_path.h"
+#include "stats/descriptive.h"
 #include "terrain_lod/lod_checks.h"
 #include "terrain_lod/lod_experiment.h"
 #include "terrain_lod/lod_renderer.h"
+#include "util/atomic_file.h"
+#include "util/cell_text.h"
+#include "util/errors.h"
+#include "util/gl_child_process.h"
 
 namespace ra::lod {
 namespace {
@@ -37,14 +36,13 @@ const char* kFramesHeader =
     "screen_checked,screen_excluded,worst_x_px,worst_y_px,frame_us_median,frame_us_repetitions,"
     "full_triangles,full_us_median,image_mean_abs,image_differing,screen_partially_visible,screen_holes";
 
-std::string fmt(double v, const char* f = "%.17g") {
+// A printf format of v, "" for NaN.
+std::string fmt(double v, const char* f) {
   if (std::isnan(v)) return "";
   char b[64];
   std::snprintf(b, sizeof b, f, v);
   return b;
 }
-
-double median_of(const std::vector<double>& v) { return v.empty() ? std::nan("") : stats::median(v); }
 
 Scene layout_scene(const HeightField& f) {
   Scene s;
@@ -223,7 +221,8 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
   for (size_t fi = 0; fi < path.size(); ++fi) {
     const Viewpoint& vp = path[fi];
     const json& drawn_frame = drawn_frames.at(fi);
-    const double full_median = median_of(drawn_frame.at("full_us").get<std::vector<double>>());
+    const double full_median =
+        stats::median_or_nan(drawn_frame.at("full_us").get<std::vector<double>>());
     for (LambdaKind kind : lambdas)
       for (size_t ti = 0; ti < s.tau.size(); ++ti) {
         const double tau = s.tau[ti];
@@ -252,15 +251,17 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
                                      ": the measuring process drew another mesh");
           const std::vector<double> us = drawn_lod.at("us").get<std::vector<double>>();
           for (size_t r = 0; r < us.size(); ++r) reps += (r ? ";" : "") + fmt(us[r], "%.1f");
-          med = median_of(us);
+          med = stats::median_or_nan(us);
           mean_abs = drawn_lod.at("image_mean_abs").get<double>();
           differing = drawn_lod.at("image_differing").get<double>();
         }
-        csv << lambda_kind_name(kind) << ',' << fmt(tau) << ',' << fi << ',' << mesh.triangle_count() << ','
-            << mesh.vertex_count() << ',' << mesh.strip_index_count() << ',' << int(conf.conforming) << ','
-            << int(seams.ok) << ',' << fmt(se.max_px) << ',' << se.checked << ',' << se.excluded << ','
-            << fmt(se.worst_x, "%.1f") << ',' << fmt(se.worst_y, "%.1f") << ',' << fmt(med, "%.1f") << ',' << reps
-            << ',' << full.triangle_count() << ',' << fmt(full_median, "%.1f") << ',' << fmt(mean_abs, "%.6g") << ','
+        csv << lambda_kind_name(kind) << ',' << full_precision_or_empty(tau) << ',' << fi << ','
+            << mesh.triangle_count() << ',' << mesh.vertex_count() << ','
+            << mesh.strip_index_count() << ',' << int(conf.conforming) << ',' << int(seams.ok)
+            << ',' << full_precision_or_empty(se.max_px) << ',' << se.checked << ',' << se.excluded
+            << ',' << fmt(se.worst_x, "%.1f") << ',' << fmt(se.worst_y, "%.1f") << ','
+            << fmt(med, "%.1f") << ',' << reps << ',' << full.triangle_count() << ','
+            << fmt(full_median, "%.1f") << ',' << fmt(mean_abs, "%.6g") << ','
             << fmt(differing, "%.6g") << ',' << se.partially_visible << ',' << se.holes << "\n";
       }
     if (progress && (fi % 10 == 0 || fi + 1 == path.size()))
@@ -365,18 +366,9 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
   return result;
 }
 
-void analyze_lod_study(const std::string& dir) {
-  const std::optional<StudyInfo> info = read_study_info(dir);
-  if (!info || info->kind != StudyKind::kLod)
-    throw UserError(dir + " is not a complete LOD run (no study.json of kind lod: run `renderaudit run` on a [lod] experiment)");
-  for (const char* f : {"frames.csv", "lod_summary.json"})
-    if (!std::filesystem::exists(dir + "/" + f)) throw UserError(dir + " is not a complete LOD run: " + f + " is missing");
-  json sj;
-  try {
-    sj = json::parse(read_file(dir + "/lod_summary.json"));
-  } catch (const json::exception& e) {
-    throw UserError(dir + "/lod_summary.json: " + e.what());
-  }
+// frames.csv of the run in `dir`, one row per (lambda, tau) in the order of the file: medians over
+// the frames, the q90 and maximum of the measured screen error, the checks' counts.
+std::vector<TableRow> rows_of_frames(const std::string& dir) {
   std::istringstream in(read_file(dir + "/frames.csv"));
   std::string line;
   std::getline(in, line);
@@ -415,8 +407,6 @@ void analyze_lod_study(const std::string& dir) {
     a.full_ms.push_back(cell_number(c[16]) / 1000);
   }
   if (groups.empty()) throw UserError(dir + "/frames.csv has no rows: the run did not complete");
-  std::ostringstream table;
-  table << kTableHeader << "\n";
   std::vector<TableRow> rows;
   for (const auto& key : order) {
     const Acc& a = groups[key];
@@ -424,14 +414,14 @@ void analyze_lod_study(const std::string& dir) {
     r.lambda = key.first;
     r.tau = key.second;
     r.frames = int(a.tri.size());
-    r.triangles_median = median_of(a.tri);
+    r.triangles_median = stats::median_or_nan(a.tri);
     r.triangles_max = *std::max_element(a.tri.begin(), a.tri.end());
-    r.vertices_median = median_of(a.vert);
-    r.indices_per_triangle = median_of(a.idx_per_tri);
-    r.frame_ms = median_of(a.ms);
-    r.full_ms = median_of(a.full_ms);
+    r.vertices_median = stats::median_or_nan(a.vert);
+    r.indices_per_triangle = stats::median_or_nan(a.idx_per_tri);
+    r.frame_ms = stats::median_or_nan(a.ms);
+    r.full_ms = stats::median_or_nan(a.full_ms);
     r.full_triangles = a.full_tri;
-    r.image_mean_abs = median_of(a.mean_abs);
+    r.image_mean_abs = stats::median_or_nan(a.mean_abs);
     double mean_diff = 0;
     for (double d : a.differing) mean_diff += d / double(a.differing.size());
     r.image_differing = a.differing.empty() ? std::nan("") : mean_diff;
@@ -443,15 +433,12 @@ void analyze_lod_study(const std::string& dir) {
     r.seams_ok = a.seams;
     r.over_tau = a.over;
     rows.push_back(r);
-    table << r.lambda << ',' << fmt(r.tau) << ',' << r.frames << ',' << fmt(r.triangles_median) << ','
-          << fmt(r.triangles_max) << ',' << fmt(r.vertices_median) << ',' << fmt(r.indices_per_triangle) << ','
-          << fmt(r.frame_ms) << ',' << fmt(r.full_ms) << ',' << fmt(r.full_triangles) << ','
-          << fmt(r.image_mean_abs) << ',' << fmt(r.image_differing) << ',' << fmt(r.max_screen_error) << ','
-          << fmt(r.screen_error_q90) << ',' << r.conforming << ',' << r.seams_ok << ',' << r.over_tau << "\n";
   }
-  write_file_atomic(dir + "/lod_table.csv", table.str());
+  return rows;
+}
 
-  // the report's text
+// lod.md: the study's text with its check and speed tables, from lod_summary.json and the rows.
+std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
   auto row = [](const std::vector<std::string>& cells) {
     std::string s = "|";
     for (const auto& c : cells) s += " " + c + " |";
@@ -529,7 +516,42 @@ void analyze_lod_study(const std::string& dir) {
     if (!std::isnan(spherical_max)) md << "; " << fmt(spherical_max, "%.3f") << " px with its spherical lambda";
     md << ".\n\n";
   }
-  write_file_atomic(dir + "/lod.md", md.str());
+  return md.str();
+}
+
+void analyze_lod_study(const std::string& dir) {
+  const std::optional<StudyInfo> info = read_study_info(dir);
+  if (!info || info->kind != StudyKind::kLod)
+    throw UserError(dir +
+                    " is not a complete LOD run (no study.json of kind lod: run `renderaudit run` "
+                    "on a [lod] experiment)");
+  for (const char* f : {"frames.csv", "lod_summary.json"})
+    if (!std::filesystem::exists(dir + "/" + f))
+      throw UserError(dir + " is not a complete LOD run: " + f + " is missing");
+  json sj;
+  try {
+    sj = json::parse(read_file(dir + "/lod_summary.json"));
+  } catch (const json::exception& e) {
+    throw UserError(dir + "/lod_summary.json: " + e.what());
+  }
+  const std::vector<TableRow> rows = rows_of_frames(dir);
+  std::ostringstream table;
+  table << kTableHeader << "\n";
+  for (const TableRow& r : rows)
+    table << r.lambda << ',' << full_precision_or_empty(r.tau) << ',' << r.frames << ','
+          << full_precision_or_empty(r.triangles_median) << ','
+          << full_precision_or_empty(r.triangles_max) << ','
+          << full_precision_or_empty(r.vertices_median) << ','
+          << full_precision_or_empty(r.indices_per_triangle) << ','
+          << full_precision_or_empty(r.frame_ms) << ',' << full_precision_or_empty(r.full_ms) << ','
+          << full_precision_or_empty(r.full_triangles) << ','
+          << full_precision_or_empty(r.image_mean_abs) << ','
+          << full_precision_or_empty(r.image_differing) << ','
+          << full_precision_or_empty(r.max_screen_error) << ','
+          << full_precision_or_empty(r.screen_error_q90) << ',' << r.conforming << ',' << r.seams_ok
+          << ',' << r.over_tau << "\n";
+  write_file_atomic(dir + "/lod_table.csv", table.str());
+  write_file_atomic(dir + "/lod.md", lod_document(sj, rows));
   StudyInfo updated = *info;
   updated.document = "lod.md";
   updated.analysed = true;
@@ -541,24 +563,9 @@ void plot_lod_study(const std::string& dir) {
   if (!info || info->kind != StudyKind::kLod || !info->analysed)
     throw UserError(dir + " has not been analysed: run `renderaudit analyze " + dir + "` first");
   const std::vector<TableRow> rows = read_table(dir);
-  std::vector<plots::Figure> figures;
-  std::map<std::string, std::vector<const TableRow*>> by_lambda;
-  std::vector<std::string> lambda_order;
-  for (const TableRow& r : rows) {
-    if (!by_lambda.count(r.lambda)) lambda_order.push_back(r.lambda);
-    by_lambda[r.lambda].push_back(&r);
-  }
   auto label = [](double tau) { return "tau " + fmt(tau, "%g"); };
+  plots::StudyFigures figures("lod");
   {  // speed against error
-    plots::Figure f;
-    f.id = "lod_speed_vs_error";
-    f.title = "LOD: frame time against image error, one point per tau";
-    f.x_label = "image mean absolute difference vs full resolution (levels of 255)";
-    f.y_label = "frame time, median (ms)";
-    f.caption = "The speed-against-error curve of the LOD: median frame time and median image "
-                "difference against the full-resolution rendering, one point per tau; the point at "
-                "x = 0 is the full-resolution rendering itself.";
-    f.section = "lod";
     plots::ScatterContent c;
     plots::ScatterSeries lod, fullres;
     lod.name = "LOD";
@@ -575,74 +582,60 @@ void plot_lod_study(const std::string& dir) {
         }
       }
     c.series = {lod, fullres};
-    f.content = c;
-    figures.push_back(f);
+    figures.add("lod_speed_vs_error", "LOD: frame time against image error, one point per tau",
+                "image mean absolute difference vs full resolution (levels of 255)",
+                "frame time, median (ms)",
+                "The speed-against-error curve of the LOD: median frame time and median image "
+                "difference against the full-resolution rendering, one point per tau; the point at "
+                "x = 0 is the full-resolution rendering itself.",
+                c);
   }
-  {  // triangles against tau
-    plots::Figure f;
-    f.id = "lod_triangles_vs_tau";
-    f.title = "LOD: triangles against the screen-space threshold tau";
-    f.x_label = "tau (pixels)";
-    f.y_label = "triangles, median over frames";
-    f.caption = "Median triangle count of the refined mesh per tau and lambda, with the full-resolution count.";
-    f.section = "lod";
-    plots::ScatterContent c;
-    c.x_log10 = c.y_log10 = true;
-    plots::ScatterSeries fullres;
-    fullres.name = "full resolution";
-    for (const std::string& l : lambda_order) {
-      plots::ScatterSeries s;
-      s.name = "lambda " + l;
-      for (const TableRow* r : by_lambda[l]) {
-        s.x.push_back(r->tau);
-        s.y.push_back(r->triangles_median);
-        if (l == lambda_order.front()) {
-          fullres.x.push_back(r->tau);
-          fullres.y.push_back(r->full_triangles);
-        }
+  // One series per lambda (y against tau), then a reference series over the first lambda's taus.
+  auto by_lambda = [&rows](double TableRow::*y, const std::string& reference,
+                           double TableRow::*reference_y) {
+    plots::SeriesInOrder by;
+    plots::ScatterSeries ref;
+    ref.name = reference;
+    for (const TableRow& r : rows) {
+      plots::ScatterSeries& s = by["lambda " + r.lambda];
+      s.x.push_back(r.tau);
+      s.y.push_back(r.*y);
+      if (r.lambda == rows.front().lambda) {
+        ref.x.push_back(r.tau);
+        ref.y.push_back(r.*reference_y);
       }
-      c.series.push_back(s);
     }
-    c.series.push_back(fullres);
-    f.content = c;
-    figures.push_back(f);
+    plots::ScatterContent c;
+    c.series = by.series();
+    c.series.push_back(ref);
+    return c;
+  };
+  {  // triangles against tau
+    plots::ScatterContent c =
+        by_lambda(&TableRow::triangles_median, "full resolution", &TableRow::full_triangles);
+    c.x_log10 = c.y_log10 = true;
+    figures.add("lod_triangles_vs_tau", "LOD: triangles against the screen-space threshold tau",
+                "tau (pixels)", "triangles, median over frames",
+                "Median triangle count of the refined mesh per tau and lambda, with the "
+                "full-resolution count.",
+                c);
   }
   {  // measured screen error against tau
-    plots::Figure f;
-    f.id = "lod_screen_error_vs_tau";
-    f.title = "LOD: measured maximum screen error against tau";
-    f.x_label = "tau (pixels)";
-    f.y_label = "largest measured screen error over all frames (pixels)";
-    f.caption = "Largest on-screen distance between the full-resolution surface and the LOD surface, "
-                "over every frame, per tau and lambda; points above the line y = tau break the "
-                "error guarantee.";
-    f.section = "lod";
-    plots::ScatterContent c;
+    plots::ScatterContent c = by_lambda(&TableRow::max_screen_error, "y = tau", &TableRow::tau);
     c.x_log10 = true;
     // log y unless a maximum is 0 (a frame set where the LOD equals the full mesh in view), which a
     // log axis cannot show: then a linear y axis
     c.y_log10 = std::all_of(rows.begin(), rows.end(), [](const TableRow& r) { return r.max_screen_error > 0; });
+    plots::Figure& f = figures.add(
+        "lod_screen_error_vs_tau", "LOD: measured maximum screen error against tau", "tau (pixels)",
+        "largest measured screen error over all frames (pixels)",
+        "Largest on-screen distance between the full-resolution surface and the LOD surface, "
+        "over every frame, per tau and lambda; points above the line y = tau break the "
+        "error guarantee.",
+        c);
     if (!c.y_log10) f.note = "linear y axis: a measured maximum screen error is 0";
-    plots::ScatterSeries line;
-    line.name = "y = tau";
-    for (const std::string& l : lambda_order) {
-      plots::ScatterSeries s;
-      s.name = "lambda " + l;
-      for (const TableRow* r : by_lambda[l]) {
-        s.x.push_back(r->tau);
-        s.y.push_back(r->max_screen_error);
-        if (l == lambda_order.front()) {
-          line.x.push_back(r->tau);
-          line.y.push_back(r->tau);
-        }
-      }
-      c.series.push_back(s);
-    }
-    c.series.push_back(line);
-    f.content = c;
-    figures.push_back(f);
   }
-  plots::write_figure_set(figures, dir);
+  figures.write(dir);
 }
 
 }  // namespace ra::lod

@@ -7,7 +7,7 @@
 #include "util/counter_rng.h"
 #include "scenes/scene.h"
 #include "terrain_lod/height_field.h"
-#include "timing/timing_geometry.h"
+#include "scenes/camera.h"
 
 namespace ra::lod::testing {
 
@@ -23,8 +23,8 @@ inline HeightField test_field(int tile, int tiles_x, int tiles_y, uint64_t seed 
   return generate_height_field(p, tiles_x * (tile - 1) + 1, tiles_y * (tile - 1) + 1);
 }
 
-inline timing::CameraSettings test_camera() {
-  timing::CameraSettings cam;
+inline CameraSettings test_camera() {
+  CameraSettings cam;
   cam.width = 320;
   cam.height = 240;
   cam.fov_y_deg = 60;

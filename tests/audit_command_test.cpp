@@ -120,10 +120,10 @@ TEST(AuditCommand, ARerunOfTheSameExperimentIsUnchanged) {
   EXPECT_EQ(read_text(dir + "/cur/audit/audit.md").rfind("# renderaudit audit: UNCHANGED", 0), 0u);
   EXPECT_NE(read_text(dir + "/cur/audit/junit.xml").find("tests=\"8\" failures=\"0\""),
             std::string::npos);  // drivers, shards, point/line/triangle group A and conformance
-  const std::vector<ra::HistoryEntry> history = ra::read_history(dir + "/h.sqlite");
+  const std::vector<ra::audit::HistoryEntry> history = ra::audit::read_history(dir + "/h.sqlite");
   ASSERT_EQ(history.size(), 1u);
-  const ra::AuditSummary& s = history[0].summary;
-  EXPECT_EQ(s.verdict, ra::Verdict::kUnchanged);
+  const ra::audit::AuditSummary& s = history[0].summary;
+  EXPECT_EQ(s.verdict, ra::audit::Verdict::kUnchanged);
   EXPECT_EQ(s.experiment_hash, j["experiment"]["hash"]);
   ASSERT_EQ(s.current_drivers.size(), 1u);
   EXPECT_NE(s.current_drivers[0].renderer.find("llvmpipe"), std::string::npos);

@@ -17,8 +17,8 @@ using namespace ra::testing_cli;
 namespace {
 
 // Audit k: two platforms x view groups A, B of triangles, te_u and te_s; te_u's median grows.
-ra::AuditSummary audit(int k) {
-  ra::AuditSummary s;
+ra::audit::AuditSummary audit(int k) {
+  ra::audit::AuditSummary s;
   s.date_utc = "2026-11-1" + std::to_string(k) + "T03:00:00Z";
   s.experiment = "nightly";
   s.experiment_hash = "feedface";
@@ -29,7 +29,7 @@ ra::AuditSummary audit(int k) {
                         k < 3 ? "4.5 Mesa 22.3.6" : "4.5 Mesa 23.0.0"}};
   s.baseline_drivers = {{"osmesa-llvmpipe", "llvmpipe (LLVM 15.0.6, 256 bits)",
                          k < 4 ? "4.5 Mesa 22.3.6" : "4.5 Mesa 23.0.0"}};
-  s.verdict = k == 3 ? ra::Verdict::kChanged : ra::Verdict::kUnchanged;
+  s.verdict = k == 3 ? ra::audit::Verdict::kChanged : ra::audit::Verdict::kUnchanged;
   s.changed_primitives = k == 3 ? 17 : 0;
   s.flaky_primitives = k == 2 ? 2 : 0;
   s.failed_primitives = 0;
@@ -69,7 +69,7 @@ std::string table_row(const std::string& output, const std::string& id) {
 TEST(HistoryCommand, PrintsTheRecentAuditsAndDrawsATrendPerMetric) {
   const std::string dir = fresh_dir("history_cmd");
   const std::string db = dir + "/outputs/history.sqlite";
-  for (int k = 1; k <= 3; ++k) ra::append_history(db, audit(k));
+  for (int k = 1; k <= 3; ++k) ra::audit::append_history(db, audit(k));
 
   const Outcome o = run_renderaudit("history --db " + db + " --metric te_u");
   ASSERT_EQ(o.exit_code, 0) << o.output;
@@ -140,7 +140,7 @@ TEST(HistoryCommand, AMissingDatabaseOrMetricIsAClearError) {
       << missing.output;
   EXPECT_FALSE(fs::exists(dir + "/none.sqlite")) << "reading never creates the database";
 
-  ra::append_history(dir + "/h.sqlite", audit(1));
+  ra::audit::append_history(dir + "/h.sqlite", audit(1));
   const Outcome metric = run_renderaudit("history --db " + dir + "/h.sqlite --metric pe");
   EXPECT_EQ(metric.exit_code, 2);
   EXPECT_NE(metric.output.find("renderaudit: no metric 'pe' in the last 1 audits of " + dir +

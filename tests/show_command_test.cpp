@@ -30,7 +30,7 @@ std::string experiment(const std::string& platforms, const std::string& extra = 
 struct Image {
   int width = 0, height = 0, channels = 0;
   std::vector<unsigned char> pixels;
-  ra::Rgb8 at(int x, int y) const {
+  ra::audit::Rgb8 at(int x, int y) const {
     const unsigned char* p = &pixels[(std::size_t(y) * width + x) * channels];
     return {p[0], p[1], p[2]};
   }
@@ -49,7 +49,7 @@ Image read_image(const std::string& path) {
 
 // Window pixels (blocks of `scale` image px) whose block has a pixel of `colour`, with a block
 // interior pixel (not the grid border) checked so the red outline cannot hide a block.
-int blocks_with(const Image& im, int scale, ra::Rgb8 colour) {
+int blocks_with(const Image& im, int scale, ra::audit::Rgb8 colour) {
   int n = 0;
   for (int by = 0; by < im.height / scale; ++by)
     for (int bx = 0; bx < im.width / scale; ++bx) {
@@ -62,7 +62,7 @@ int blocks_with(const Image& im, int scale, ra::Rgb8 colour) {
   return n;
 }
 
-int pixels_with(const Image& im, ra::Rgb8 colour) {
+int pixels_with(const Image& im, ra::audit::Rgb8 colour) {
   int n = 0;
   for (int y = 0; y < im.height; ++y)
     for (int x = 0; x < im.width; ++x) n += im.at(x, y) == colour;
@@ -133,15 +133,15 @@ TEST(ShowCommand, ATriangleOnTheReferenceIsGreyWithARedOutline) {
   ASSERT_EQ(im.height, 512);
   ASSERT_EQ(im.channels, 3);
   // Every lit pixel is a grey block; nothing is platform-only or reference-only on the reference.
-  EXPECT_EQ(blocks_with(im, 8, ra::kBothColor), rec.pixels);
-  EXPECT_EQ(pixels_with(im, ra::kPlatformOnlyColor), 0);
-  EXPECT_EQ(pixels_with(im, ra::kReferenceOnlyColor), 0);
+  EXPECT_EQ(blocks_with(im, 8, ra::audit::kBothColor), rec.pixels);
+  EXPECT_EQ(pixels_with(im, ra::audit::kPlatformOnlyColor), 0);
+  EXPECT_EQ(pixels_with(im, ra::audit::kReferenceOnlyColor), 0);
   // A 1-px line cannot cover a block's 7 x 7 interior: every other block shows white.
-  EXPECT_EQ(blocks_with(im, 8, ra::kUnlitColor), 64 * 64 - rec.pixels);
+  EXPECT_EQ(blocks_with(im, 8, ra::audit::kUnlitColor), 64 * 64 - rec.pixels);
   // The outline of a triangle lighting more than 10 pixels is longer than 3 window pixels.
-  EXPECT_GT(pixels_with(im, ra::kIdealColor), 3 * 8);
+  EXPECT_GT(pixels_with(im, ra::audit::kIdealColor), 3 * 8);
   // Blocks of 8 px carry a grid: a darker border.
-  EXPECT_GT(pixels_with(im, ra::Rgb8{160, 160, 160}), 0);
+  EXPECT_GT(pixels_with(im, ra::audit::Rgb8{160, 160, 160}), 0);
 }
 
 TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
@@ -174,14 +174,14 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
   ASSERT_EQ(im.height, 256);
   // Of the 2 x runs differing pixels, those GL forbids (centres beyond the snapping allowance of
   // every edge: metrics/conformance.h) are black, the others orange or blue.
-  const int black = blocks_with(im, 4, ra::kViolationColor);
+  const int black = blocks_with(im, 4, ra::audit::kViolationColor);
   EXPECT_GT(black, 0);
   EXPECT_EQ(field(o.output, "violating_pixels"), std::to_string(black)) << o.output;
   EXPECT_EQ(field(o.output, "conformance"), "violation") << o.output;
-  EXPECT_EQ(blocks_with(im, 4, ra::kPlatformOnlyColor) + blocks_with(im, 4, ra::kReferenceOnlyColor) +
+  EXPECT_EQ(blocks_with(im, 4, ra::audit::kPlatformOnlyColor) + blocks_with(im, 4, ra::audit::kReferenceOnlyColor) +
                 black,
             2 * runs);
-  EXPECT_EQ(blocks_with(im, 4, ra::kBothColor), ref.size() - runs);
+  EXPECT_EQ(blocks_with(im, 4, ra::audit::kBothColor), ref.size() - runs);
   EXPECT_EQ(field(o.output, "ref_diff"), std::to_string(2 * runs)) << o.output;
   EXPECT_NE(o.output.find("light grey = lit by both (" + std::to_string(ref.size() - runs) +
                           "), orange = platform (faulty) only (" + std::to_string(runs) +

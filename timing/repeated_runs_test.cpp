@@ -1,5 +1,5 @@
 // Table 6 and c over repeated runs (repeated_runs.h) on hand-made per-run numbers (the experiment
-// key that asks for the runs, study_runs, is tested with the others in timing_geometry_test.cpp).
+// key that asks for the runs, study_runs, is tested with the others in timing_experiment_test.cpp).
 #include "timing/repeated_runs.h"
 
 #include <gtest/gtest.h>

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "scenes/scene.h"
-#include "timing/timing_geometry.h"
+#include "scenes/camera.h"
 
 namespace ra::timing {
 

@@ -401,11 +401,4 @@ double average_squared_error_ms2(const std::vector<double>& predicted_us,
   return s / double(predicted_us.size());
 }
 
-double median_of(std::vector<double> values) {
-  if (values.empty()) throw std::invalid_argument("median_of: no values");
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 }  // namespace ra::timing

@@ -115,7 +115,7 @@ SystemTaskStats system_task_stats(const std::vector<double>& frame_us, double co
 // ---- Per-object sampling (section 5.2) ----
 
 // A regular grid over (alpha, gamma, phi). alpha: the angle of the bounding sphere's supporting
-// lines seen from the eye, clipped to the view frustum (see clipped_alpha in timing_geometry.h),
+// lines seen from the eye, clipped to the view frustum (see clipped_alpha in scenes/camera.h),
 // n_alpha points from alpha_min to alpha_max; gamma: azimuth of the eye around the centre,
 // n_gamma points 2 pi k / n_gamma (periodic); phi: elevation, n_phi points from phi_min to
 // phi_max (one point: phi_min).
@@ -169,8 +169,5 @@ class PosTable {
 // std::invalid_argument on empty input or different lengths.
 double average_squared_error_ms2(const std::vector<double>& predicted_us,
                                  const std::vector<double>& measured_us);
-
-// Median of the repetitions (the measurement of one draw). Throws std::invalid_argument if empty.
-double median_of(std::vector<double> values);
 
 }  // namespace ra::timing

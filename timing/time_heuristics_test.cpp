@@ -238,11 +238,5 @@ TEST(Table6, AverageSquaredErrorByHand) {
   EXPECT_THROW(average_squared_error_ms2({1}, {1, 2}), std::invalid_argument);
 }
 
-TEST(Table6, MedianOfRepetitions) {
-  EXPECT_DOUBLE_EQ(median_of({5, 1, 3}), 3);
-  EXPECT_DOUBLE_EQ(median_of({4, 1, 3, 2}), 2.5);
-  EXPECT_THROW(median_of({}), std::invalid_argument);
-}
-
 }  // namespace
 }  // namespace ra::timing

@@ -5,8 +5,9 @@
 #include <set>
 #include <sstream>
 
-#include "util/errors.h"
 #include "platforms/platform.h"
+#include "scenes/study_settings.h"
+#include "util/errors.h"
 #include "util/toml_locator.h"
 
 namespace ra::timing {
@@ -14,49 +15,18 @@ namespace {
 
 using Locator = TomlLocator;  // file:line:column errors, as every experiment reader
 
-int64_t integer(const Locator& loc, const toml::node& node, const std::string& key, int64_t lo,
-                int64_t hi) {
-  return loc.integer(node, key, lo, hi);
-}
-
-// A number in the open or closed interval described by `allowed` and checked by `ok`.
-template <typename Ok>
-double number(const Locator& loc, const toml::node& node, const std::string& key,
-              const std::string& allowed, Ok ok) {
-  double v;
-  if (const auto* i = node.as_integer())
-    v = double(i->get());
-  else if (const auto* f = node.as_floating_point())
-    v = f->get();
-  else
-    loc.fail(&node, "'" + key + "' must be a number (allowed: " + allowed + ")");
-  if (!std::isfinite(v) || !ok(v)) {
-    std::ostringstream s;
-    s << "'" << key << "' = " << v << " is out of range (allowed: " << allowed << ")";
-    loc.fail(&node, s.str());
-  }
-  return v;
-}
-
-const toml::array& array_of(const Locator& loc, const toml::node& node, const std::string& key,
-                            std::size_t size, const std::string& what) {
-  const auto* a = node.as_array();
-  if (!a || (size && a->size() != size)) loc.fail(&node, "'" + key + "' must be " + what);
-  return *a;
-}
-
 void parse_work(const Locator& loc, const toml::table& t, const std::string& where,
                 WorkSettings& w) {
   if (const auto* n = t.get("repetitions"))
-    w.repetitions = int(integer(loc, *n, where + "repetitions", 1, 1000));
+    w.repetitions = int(loc.integer(*n, where + "repetitions", 1, 1000));
   if (const auto* n = t.get("system_task_renders"))
-    w.system_task_renders = int(integer(loc, *n, where + "system_task_renders", 10, 1000000));
+    w.system_task_renders = int(loc.integer(*n, where + "system_task_renders", 10, 1000000));
   if (const auto* n = t.get("object_samples"))
-    w.object_samples = int(integer(loc, *n, where + "object_samples", 10, 10000000));
+    w.object_samples = int(loc.integer(*n, where + "object_samples", 10, 10000000));
   if (const auto* n = t.get("frame_stride"))
-    w.frame_stride = int(integer(loc, *n, where + "frame_stride", 1, 100000));
+    w.frame_stride = int(loc.integer(*n, where + "frame_stride", 1, 100000));
   if (const auto* n = t.get("pos_repetitions"))
-    w.pos_repetitions = int(integer(loc, *n, where + "pos_repetitions", 1, 1000));
+    w.pos_repetitions = int(loc.integer(*n, where + "pos_repetitions", 1, 1000));
 }
 
 }  // namespace
@@ -72,17 +42,10 @@ TimingSettings read_timing_experiment(const std::string& path) {
 
 TimingSettings parse_timing_experiment(const std::string& text, const std::string& path) {
   Locator loc(path);
-  const toml::table root = loc.parse(text);
-  loc.reject_unknown_keys(root, "", {"name", "timing", "scene"});
-
   TimingSettings s;
-  s.file = path;
-  s.name = loc.experiment_name(root);
-
-  const toml::node* timing_node = root.get("timing");
-  if (timing_node && !timing_node->is_table()) loc.fail(timing_node, "'timing' must be a table");
-  const toml::table empty;
-  const toml::table& t = timing_node ? *timing_node->as_table() : empty;
+  const StudyFile file = read_study_file(loc, text, "timing", {"scene"}, false, &s);
+  const toml::table& root = file.root;
+  const toml::table& t = file.table();
   loc.reject_unknown_keys(
       t, "timing.",
       {"platforms", "window", "fov_deg", "near", "far", "repetitions", "system_task_renders",
@@ -91,7 +54,8 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
        "phi_deg", "pos_grid", "pos_prune_alpha_deg", "pos_lookup", "platform", "study_runs"});
 
   if (const auto* n = t.get("platforms")) {
-    const auto& a = array_of(loc, *n, "timing.platforms", 0, "a non-empty array of platform names");
+    const auto& a =
+        loc.array(*n, "timing.platforms", 0, SIZE_MAX, "a non-empty array of platform names");
     if (a.empty()) loc.fail(n, "'timing.platforms' must not be empty");
     s.platforms.clear();
     for (const auto& e : a) {
@@ -105,55 +69,40 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
       s.platforms.push_back(str->get());
     }
   }
-  if (const auto* n = t.get("window")) {
-    const auto& a = array_of(loc, *n, "timing.window", 2, "[width, height] in pixels");
-    s.camera.width = int(integer(loc, *a.get(0), "timing.window", 16, 4096));
-    s.camera.height = int(integer(loc, *a.get(1), "timing.window", 16, 4096));
-  }
-  if (const auto* n = t.get("fov_deg"))
-    s.camera.fov_y_deg = number(loc, *n, "timing.fov_deg", "0 < fov_deg < 180",
-                                [](double v) { return v > 0 && v < 180; });
-  if (const auto* n = t.get("near"))
-    s.camera.near = number(loc, *n, "timing.near", "near > 0", [](double v) { return v > 0; });
-  if (const auto* n = t.get("far")) {
-    const double near = s.camera.near;
-    s.camera.far = number(loc, *n, "timing.far", "far > near",
-                          [near](double v) { return v > near; });
-  } else if (!(s.camera.far > s.camera.near)) {
-    loc.fail(t.get("near"), "'timing.near' must be below far (" + std::to_string(s.camera.far) + ")");
-  }
+  read_camera_block(loc, t, "timing", &s.camera);
   parse_work(loc, t, "timing.", s.work);
   if (const auto* n = t.get("study_runs"))
-    s.study_runs = int(integer(loc, *n, "timing.study_runs", 1, 100));
+    s.study_runs = int(loc.integer(*n, "timing.study_runs", 1, 100));
   if (const auto* n = t.get("cache_size"))
-    s.cache_size = unsigned(integer(loc, *n, "timing.cache_size", 3, 1024));
+    s.cache_size = unsigned(loc.integer(*n, "timing.cache_size", 3, 1024));
   if (const auto* n = t.get("seed"))
-    s.seed = uint64_t(integer(loc, *n, "timing.seed", 0, INT64_MAX));
+    s.seed = uint64_t(loc.integer(*n, "timing.seed", 0, INT64_MAX));
   if (const auto* n = t.get("gpu_timer")) {
     const auto* b = n->as_boolean();
     if (!b) loc.fail(n, "'timing.gpu_timer' must be true or false");
     s.gpu_timer = b->get();
   }
   if (const auto* n = t.get("alpha_min_deg"))
-    s.alpha_min_deg = number(loc, *n, "timing.alpha_min_deg", "0 < alpha_min_deg < 90",
-                             [](double v) { return v > 0 && v < 90; });
+    s.alpha_min_deg = loc.number(*n, "timing.alpha_min_deg", "0 < alpha_min_deg < 90",
+                                 [](double v) { return v > 0 && v < 90; });
   if (const auto* n = t.get("phi_deg")) {
-    const auto& a = array_of(loc, *n, "timing.phi_deg", 2, "[lowest, highest] elevation in degrees");
+    const auto& a = loc.array(*n, "timing.phi_deg", 2, 2, "[lowest, highest] elevation in degrees");
     auto in_range = [](double v) { return v >= -90 && v <= 90; };
-    s.phi_min_deg = number(loc, *a.get(0), "timing.phi_deg", "-90 to 90", in_range);
-    s.phi_max_deg = number(loc, *a.get(1), "timing.phi_deg", "-90 to 90", in_range);
+    s.phi_min_deg = loc.number(*a.get(0), "timing.phi_deg", "-90 to 90", in_range);
+    s.phi_max_deg = loc.number(*a.get(1), "timing.phi_deg", "-90 to 90", in_range);
     if (s.phi_max_deg < s.phi_min_deg)
       loc.fail(n, "'timing.phi_deg' must be [lowest, highest] (allowed: lowest <= highest)");
   }
   if (const auto* n = t.get("pos_grid")) {
-    const auto& a = array_of(loc, *n, "timing.pos_grid", 3, "[alpha points, gamma points, phi points]");
-    s.pos_grid.n_alpha = int(integer(loc, *a.get(0), "timing.pos_grid[0] (alpha)", 2, 64));
-    s.pos_grid.n_gamma = int(integer(loc, *a.get(1), "timing.pos_grid[1] (gamma)", 1, 64));
-    s.pos_grid.n_phi = int(integer(loc, *a.get(2), "timing.pos_grid[2] (phi)", 1, 64));
+    const auto& a =
+        loc.array(*n, "timing.pos_grid", 3, 3, "[alpha points, gamma points, phi points]");
+    s.pos_grid.n_alpha = int(loc.integer(*a.get(0), "timing.pos_grid[0] (alpha)", 2, 64));
+    s.pos_grid.n_gamma = int(loc.integer(*a.get(1), "timing.pos_grid[1] (gamma)", 1, 64));
+    s.pos_grid.n_phi = int(loc.integer(*a.get(2), "timing.pos_grid[2] (phi)", 1, 64));
   }
   if (const auto* n = t.get("pos_prune_alpha_deg"))
-    s.pos_prune_alpha_deg = number(loc, *n, "timing.pos_prune_alpha_deg", "0 <= value < 180",
-                                   [](double v) { return v >= 0 && v < 180; });
+    s.pos_prune_alpha_deg = loc.number(*n, "timing.pos_prune_alpha_deg", "0 <= value < 180",
+                                       [](double v) { return v >= 0 && v < 180; });
   if (const auto* n = t.get("pos_lookup")) {
     const auto* str = n->as_string();
     if (!str || (str->get() != "interpolate" && str->get() != "nearest"))
@@ -208,9 +157,9 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
   }
   if (const auto* n = t.get("system_task_frame"))
     // A recorded path's length is known only once it is read: the study checks it then.
-    s.system_task_frame = int(integer(loc, *n, "timing.system_task_frame", 0,
-                                      system_scene->path_file.empty() ? system_scene->path.frames - 1
-                                                                      : 999999));
+    s.system_task_frame =
+        int(loc.integer(*n, "timing.system_task_frame", 0,
+                        system_scene->path_file.empty() ? system_scene->path.frames - 1 : 999999));
   return s;
 }
 

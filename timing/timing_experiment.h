@@ -39,7 +39,7 @@
 
 #include "scenes/scene_spec.h"
 #include "timing/time_heuristics.h"
-#include "timing/timing_geometry.h"
+#include "scenes/study_settings.h"
 
 namespace ra::timing {
 
@@ -52,11 +52,8 @@ struct WorkSettings {
   int pos_repetitions = 3;  // timed draws per per-object sampling table point (median)
 };
 
-struct TimingSettings {
-  std::string file;  // the experiment file, as given
-  std::string name;  // `name`, or the file's stem
+struct TimingSettings : StudySettings {  // file, name, camera
   std::vector<std::string> platforms{"osmesa-llvmpipe"};
-  CameraSettings camera;
   WorkSettings work;
   std::map<std::string, WorkSettings> platform_work;  // resolved per platform (defaults filled in)
   unsigned cache_size = 16;

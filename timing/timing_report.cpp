@@ -1,6 +1,5 @@
 // The outputs of `renderaudit timing` (timing_report.h).
 #include "timing/timing_report.h"
-#include "timing/timing_markdown.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,22 +7,20 @@
 #include <filesystem>
 #include <sstream>
 
-#include "stats/descriptive.h"
 #include "plots/figure_set.h"
-#include "util/atomic_file.h"
-#include "util/errors.h"
 #include "runner/manifest.h"
 #include "runner/study_dir.h"
+#include "stats/descriptive.h"
+#include "timing/timing_markdown.h"
+#include "util/atomic_file.h"
+#include "util/cell_text.h"
+#include "util/errors.h"
 
 namespace ra::timing {
 namespace {
 
-std::string num(double v) {
-  if (!std::isfinite(v)) return "";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+// Not-finite values as empty cells.
+std::string num(double v) { return std::isfinite(v) ? full_precision(v) : std::string(); }
 
 // A setting such as a confidence level, as written ("0.95", not "0.94999999999999996").
 std::string short_num(double v) {
@@ -37,15 +34,6 @@ std::string list(const std::vector<double>& v) {
   for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ";" : "") + num(v[i]);
   return s;
 }
-
-std::string csv_cell(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-double median_or_nan(const std::vector<double>& v) { return v.empty() ? NAN : median_of(v); }
 
 nlohmann::json nullable(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
@@ -340,11 +328,11 @@ std::string object_samples_csv(const StudyResults& r) {
   for (const PlatformMeasurements& m : r.measured)
     for (const SceneMeasurements& s : m.scenes)
       for (const ObjectSample& x : s.object_samples)
-        o << csv_cell(m.renderer.platform) << ',' << csv_cell(s.name) << ',' << x.object << ','
+        o << csv_escape(m.renderer.platform) << ',' << csv_escape(s.name) << ',' << x.object << ','
           << num(x.alpha) << ',' << num(x.gamma) << ',' << num(x.phi) << ',' << x.triangles << ','
-          << x.vertices << ',' << x.transformed << ',' << x.pixels << ',' << x.state_changes
-          << ',' << x.cpu_us.size() << ',' << num(median_of(x.cpu_us)) << ','
-          << num(median_or_nan(x.gpu_us)) << ',' << list(x.cpu_us) << ',' << list(x.gpu_us)
+          << x.vertices << ',' << x.transformed << ',' << x.pixels << ',' << x.state_changes << ','
+          << x.cpu_us.size() << ',' << num(stats::median(x.cpu_us)) << ','
+          << num(stats::median_or_nan(x.gpu_us)) << ',' << list(x.cpu_us) << ',' << list(x.gpu_us)
           << '\n';
   return o.str();
 }
@@ -373,7 +361,7 @@ std::string frames_csv(const StudyResults& r) {
         for (const ObjectSample& x : fs.objects)
           tris += x.triangles, verts += x.vertices, tv += x.transformed, pix += x.pixels,
               sw += x.state_changes;
-        o << csv_cell(m.renderer.platform) << ',' << csv_cell(s.name) << ',' << fs.frame << ','
+        o << csv_escape(m.renderer.platform) << ',' << csv_escape(s.name) << ',' << fs.frame << ','
           << fs.objects.size() << ',' << tris << ',' << verts << ',' << tv << ',' << pix << ','
           << sw << ',' << fs.cpu_us.size() << ',' << num(preds[f].measured_us) << ','
           << num(preds[f].measured_gpu_us);
@@ -395,7 +383,7 @@ std::string pos_tables_csv(const StudyResults& r) {
         for (int i = 0; i < g.n_alpha; ++i)
           for (int k = 0; k < g.n_gamma; ++k)
             for (int j = 0; j < g.n_phi; ++j)
-              o << csv_cell(m.renderer.platform) << ',' << csv_cell(s.name) << ',' << t.object
+              o << csv_escape(m.renderer.platform) << ',' << csv_escape(s.name) << ',' << t.object
                 << ',' << i << ',' << k << ',' << j << ',' << num(g.alpha_at(i)) << ','
                 << num(g.gamma_at(k)) << ',' << num(g.phi_at(j)) << ','
                 << (t.table.pruned_row(i) ? 1 : 0) << ',' << num(t.table.at(i, k, j)) << '\n';
@@ -418,10 +406,10 @@ std::string table6_repeated_csv(const StudyResults& r) {
           const auto at = std::find(order.begin(), order.end(), method);
           ranks += (k ? ";" : "") + std::to_string(at - order.begin() + 1);
         }
-        o << csv_cell(p.platform) << ',' << csv_cell(scene) << ',' << csv_cell(method) << ','
-          << s.n << ',' << num(s.mean) << ',' << num(s.sd) << ',' << num(s.min) << ','
-          << num(s.max) << ',' << num(s.ci_low) << ',' << num(s.ci_high) << ','
-          << short_num(s.confidence) << ',' << rk.wins.at(method) << ','
+        o << csv_escape(p.platform) << ',' << csv_escape(scene) << ',' << csv_escape(method) << ','
+          << s.n << ',' << num(s.mean) << ',' << num(s.sd) << ',' << num(s.min) << ',' << num(s.max)
+          << ',' << num(s.ci_low) << ',' << num(s.ci_high) << ',' << short_num(s.confidence) << ','
+          << rk.wins.at(method) << ','
           << (is_paper_method(method) ? std::to_string(rk.paper_wins.at(method)) : "") << ','
           << ranks << ',' << list(s.values) << '\n';
       }
@@ -438,7 +426,7 @@ std::string system_task_c_repeated_csv(const StudyResults& r) {
     const RunSpread& c = p.c_us;
     std::vector<double> per_run;
     for (double v : c.values) per_run.push_back(v / 1000.0);
-    o << csv_cell(p.platform) << ',' << p.runs << ',' << p.failed << ',' << ms(c.mean) << ','
+    o << csv_escape(p.platform) << ',' << p.runs << ',' << p.failed << ',' << ms(c.mean) << ','
       << ms(c.sd) << ',' << ms(c.min) << ',' << ms(c.max) << ',' << ms(c.ci_low) << ','
       << ms(c.ci_high) << ',' << short_num(c.confidence) << ',' << list(per_run) << '\n';
   }

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace ra {
+namespace ra::timing {
 
 // One object drawn alone from one viewpoint (the paper's "test measurement of an object").
 struct ObjectSample {
@@ -32,4 +32,4 @@ struct FrameSample {
   std::vector<double> gpu_us;         // every repetition; empty when unsupported
 };
 
-}  // namespace ra
+}  // namespace ra::timing

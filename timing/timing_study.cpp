@@ -12,25 +12,24 @@
 #include <set>
 #include <stdexcept>
 
+#include "scenes/scene_statistics.h"
+#include "scenes/vertex_cache.h"
+#include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "util/counter_rng.h"
 #include "util/errors.h"
 #include "util/gl_child_process.h"
-#include "scenes/scene_statistics.h"
-#include "scenes/vertex_cache.h"
 
 // What a platform's child process sends its parent (timing.json's raw measurements): the members
 // under their own names.
-namespace ra {
+namespace ra::timing {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ObjectSample, object, alpha, gamma, phi, triangles, vertices,
                                    transformed, pixels, state_changes, cpu_us, gpu_us)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FrameSample, frame, objects, cpu_us, gpu_us)
-namespace timing {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RendererInfo, platform, gallium_driver, backend, lp_num_threads,
                                    renderer, version, vendor, timer_query, timer_query_listed,
                                    timer_query_bits, depth_bits)
-}  // namespace timing
-}  // namespace ra
+}  // namespace ra::timing
 
 namespace ra::timing {
 namespace {
@@ -93,7 +92,83 @@ void measure_object(SceneRenderer& r, int object, int reps, ObjectSample& s) {
   s.state_changes = binds.empty() ? 0 : binds[0];
 }
 
-double median_or_nan(const std::vector<double>& v) { return v.empty() ? kNaN : median_of(v); }
+// 3. The camera path: every frame_stride-th frame drawn whole `repetitions` times, and the
+// sample of each object in its view. Returns the objects the path sees.
+std::set<int> measure_camera_path(SceneRenderer& r, const TimingSettings& settings,
+                                  const WorkSettings& work, const Scene& scene,
+                                  const std::vector<Viewpoint>& path,
+                                  const std::vector<ObjectStatic>& stat, Reporter& rep,
+                                  const std::string& tag, SceneMeasurements& sm) {
+  const CameraSettings& cam = settings.camera;
+  const Mat4 projection = projection_of(cam);
+  std::set<int> seen;
+  int measured_frames = 0;
+  const int total_frames = (int(path.size()) + work.frame_stride - 1) / work.frame_stride;
+  for (std::size_t f = 0; f < path.size(); f += std::size_t(work.frame_stride)) {
+    const Viewpoint& vp = path[f];
+    const Mat4 view = look_at(vp);
+    const Frustum fr = frustum_of(projection * view);
+    FrameSample fs;
+    fs.frame = int(f);
+    std::vector<int> visible;
+    for (std::size_t o = 0; o < scene.objects.size(); ++o)
+      if (fr.intersects(scene.objects[o].bounds)) visible.push_back(int(o));
+    r.set_viewpoint(vp);
+    std::vector<int64_t> binds;
+    for (int k = 0; k < work.repetitions; ++k) {
+      const DrawTime t = r.time_draw(visible, true, k == 0 ? &binds : nullptr);
+      fs.cpu_us.push_back(t.cpu_us);
+      if (r.measuring_gpu()) fs.gpu_us.push_back(t.gpu_us);
+    }
+    for (std::size_t i = 0; i < visible.size(); ++i) {
+      const int o = visible[i];
+      ObjectSample s;
+      s.object = o;
+      const BoundingSphere& b = scene.objects[std::size_t(o)].bounds;
+      s.alpha = clipped_alpha(view, cam, b);
+      view_direction_angles(vp.eye, b.centre, &s.gamma, &s.phi);
+      s.triangles = stat[std::size_t(o)].triangles;
+      s.vertices = stat[std::size_t(o)].vertices;
+      s.transformed = stat[std::size_t(o)].transformed;
+      s.pixels = r.pixels_alone(o);
+      s.state_changes = binds.empty() ? 0 : binds[i];
+      fs.objects.push_back(std::move(s));
+      seen.insert(o);
+    }
+    sm.frames.push_back(std::move(fs));
+    ++measured_frames;
+    rep.line(tag + "path frames " + std::to_string(measured_frames) + "/" +
+             std::to_string(total_frames));
+  }
+  return seen;
+}
+
+// 4. The per-object sampling tables of the objects the path sees (medians of pos_repetitions).
+void measure_pos_tables(SceneRenderer& r, const TimingSettings& settings, const WorkSettings& work,
+                        const Scene& scene, const std::set<int>& seen, Reporter& rep,
+                        const std::string& tag, SceneMeasurements& sm) {
+  const CameraSettings& cam = settings.camera;
+  const double deg = M_PI / 180.0;
+  int done = 0;
+  for (int o : seen) {
+    MeasuredPosTable mt;
+    mt.object = o;
+    mt.table = PosTable(settings.pos_grid, settings.pos_prune_alpha_deg * deg);
+    const BoundingSphere& b = scene.objects[std::size_t(o)].bounds;
+    for (const auto& p : mt.table.points_to_measure()) {
+      const Viewpoint vp =
+          viewpoint_for(b, cam, settings.pos_grid.alpha_at(p[0]), settings.pos_grid.gamma_at(p[1]),
+                        settings.pos_grid.phi_at(p[2]));
+      r.set_viewpoint(vp);
+      std::vector<double> cpu;
+      for (int k = 0; k < work.pos_repetitions; ++k) cpu.push_back(r.time_draw({o}, false).cpu_us);
+      mt.table.set(p[0], p[1], p[2], stats::median(cpu));
+    }
+    sm.pos.push_back(std::move(mt));
+    ++done;
+    rep.line(tag + "pos tables " + std::to_string(done) + "/" + std::to_string(seen.size()));
+  }
+}
 
 }  // namespace
 
@@ -170,68 +245,10 @@ PlatformMeasurements measure_platform(const TimingSettings& settings, const std:
       rep.line(tag + "object measurements " + std::to_string(k + 1) + "/" + std::to_string(share));
     }
 
-    // 3. camera path
-    std::set<int> seen;
-    int measured_frames = 0;
-    const int total_frames = (int(path.size()) + work.frame_stride - 1) / work.frame_stride;
-    for (std::size_t f = 0; f < path.size(); f += std::size_t(work.frame_stride)) {
-      const Viewpoint& vp = path[f];
-      const Mat4 view = look_at(vp);
-      const Frustum fr = frustum_of(projection * view);
-      FrameSample fs;
-      fs.frame = int(f);
-      std::vector<int> visible;
-      for (std::size_t o = 0; o < scene.objects.size(); ++o)
-        if (fr.intersects(scene.objects[o].bounds)) visible.push_back(int(o));
-      r.set_viewpoint(vp);
-      std::vector<int64_t> binds;
-      for (int k = 0; k < work.repetitions; ++k) {
-        const DrawTime t = r.time_draw(visible, true, k == 0 ? &binds : nullptr);
-        fs.cpu_us.push_back(t.cpu_us);
-        if (r.measuring_gpu()) fs.gpu_us.push_back(t.gpu_us);
-      }
-      for (std::size_t i = 0; i < visible.size(); ++i) {
-        const int o = visible[i];
-        ObjectSample s;
-        s.object = o;
-        const BoundingSphere& b = scene.objects[std::size_t(o)].bounds;
-        s.alpha = clipped_alpha(view, cam, b);
-        view_direction_angles(vp.eye, b.centre, &s.gamma, &s.phi);
-        s.triangles = stat[std::size_t(o)].triangles;
-        s.vertices = stat[std::size_t(o)].vertices;
-        s.transformed = stat[std::size_t(o)].transformed;
-        s.pixels = r.pixels_alone(o);
-        s.state_changes = binds.empty() ? 0 : binds[i];
-        fs.objects.push_back(std::move(s));
-        seen.insert(o);
-      }
-      sm.frames.push_back(std::move(fs));
-      ++measured_frames;
-      rep.line(tag + "path frames " + std::to_string(measured_frames) + "/" +
-               std::to_string(total_frames));
-    }
-
-    // 4. per-object sampling tables of the objects the path sees
-    int done = 0;
-    for (int o : seen) {
-      MeasuredPosTable mt;
-      mt.object = o;
-      mt.table = PosTable(settings.pos_grid, settings.pos_prune_alpha_deg * deg);
-      const BoundingSphere& b = scene.objects[std::size_t(o)].bounds;
-      for (const auto& p : mt.table.points_to_measure()) {
-        const Viewpoint vp = viewpoint_for(b, cam, settings.pos_grid.alpha_at(p[0]),
-                                           settings.pos_grid.gamma_at(p[1]),
-                                           settings.pos_grid.phi_at(p[2]));
-        r.set_viewpoint(vp);
-        std::vector<double> cpu;
-        for (int k = 0; k < work.pos_repetitions; ++k)
-          cpu.push_back(r.time_draw({o}, false).cpu_us);
-        mt.table.set(p[0], p[1], p[2], median_of(cpu));
-      }
-      sm.pos.push_back(std::move(mt));
-      ++done;
-      rep.line(tag + "pos tables " + std::to_string(done) + "/" + std::to_string(seen.size()));
-    }
+    // 3. camera path; 4. per-object sampling tables of the objects it sees
+    const std::set<int> seen =
+        measure_camera_path(r, settings, work, scene, path, stat, rep, tag, sm);
+    measure_pos_tables(r, settings, work, scene, seen, rep, tag, sm);
 
     // the system task: one viewpoint of one scene's path (default: the first scene's middle one)
     const bool system_here = settings.system_task_scene.empty() ? si == 0
@@ -410,7 +427,7 @@ CpuGpuComparison compare(const std::vector<std::pair<double, double>>& cpu_gpu) 
     gpu.push_back(b);
   }
   c.n = ratio.size();
-  c.median_ratio = ratio.empty() ? kNaN : median_of(ratio);
+  c.median_ratio = ratio.empty() ? kNaN : stats::median(ratio);
   c.pearson_r = pearson(cpu, gpu);
   return c;
 }
@@ -430,8 +447,8 @@ PlatformAnalysis analyse_platform(const TimingSettings& settings, const Platform
   for (const SceneMeasurements& s : m.scenes)
     for (const ObjectSample& o : s.object_samples) {
       x.push_back(counts_of(o));
-      y.push_back(median_of(o.cpu_us));
-      obj_cpu_gpu.emplace_back(y.back(), median_or_nan(o.gpu_us));
+      y.push_back(stats::median(o.cpu_us));
+      obj_cpu_gpu.emplace_back(y.back(), stats::median_or_nan(o.gpu_us));
     }
   for (bool intercept : {false, true})
     for (Heuristic h : kAllHeuristics) a.fits.push_back(fit_heuristic(h, x, y, intercept));
@@ -440,7 +457,7 @@ PlatformAnalysis analyse_platform(const TimingSettings& settings, const Platform
   a.methods.push_back("pos");
 
   for (const SceneMeasurements& s : m.scenes) {
-    const double base = median_of(s.frame_base_us);
+    const double base = stats::median(s.frame_base_us);
     a.frame_base_us[s.name] = base;
     std::map<int, const PosTable*> pos;
     for (const MeasuredPosTable& p : s.pos) pos[p.object] = &p.table;
@@ -449,8 +466,8 @@ PlatformAnalysis analyse_platform(const TimingSettings& settings, const Platform
       FramePrediction p;
       p.frame = f.frame;
       p.visible = int(f.objects.size());
-      p.measured_us = median_of(f.cpu_us);
-      p.measured_gpu_us = median_or_nan(f.gpu_us);
+      p.measured_us = stats::median(f.cpu_us);
+      p.measured_gpu_us = stats::median_or_nan(f.gpu_us);
       frame_cpu_gpu.emplace_back(p.measured_us, p.measured_gpu_us);
       for (std::size_t k = 0; k < a.fits.size(); ++k) {
         double sum = base;

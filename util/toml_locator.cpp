@@ -1,8 +1,9 @@
 #include "util/toml_locator.h"
 
+#include <algorithm>
 #include <cctype>
-
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -96,6 +97,50 @@ int64_t TomlLocator::integer(const toml::node& node, const std::string& key, int
     fail(&node, "'" + key + "' = " + std::to_string(v->get()) + " is out of range (allowed: " +
                     std::to_string(lo) + " to " + std::to_string(hi) + ")");
   return v->get();
+}
+
+double TomlLocator::number(const toml::node& node, const std::string& key,
+                           const std::string& allowed,
+                           const std::function<bool(double)>& ok) const {
+  double v = 0;
+  if (const auto* i = node.as_integer())
+    v = double(i->get());
+  else if (const auto* f = node.as_floating_point())
+    v = f->get();
+  else
+    fail(&node, "'" + key + "' must be a number (allowed: " + allowed + ")");
+  if (!std::isfinite(v) || !ok(v)) {
+    std::ostringstream s;  // six significant digits: the value as a person wrote it, mostly
+    s << "'" << key << "' = " << v << " is out of range (allowed: " << allowed << ")";
+    fail(&node, s.str());
+  }
+  return v;
+}
+
+const toml::array& TomlLocator::array(const toml::node& node, const std::string& key, size_t lo,
+                                      size_t hi, const std::string& what) const {
+  const auto* a = node.as_array();
+  if (!a || a->size() < lo || a->size() > hi) fail(&node, "'" + key + "' must be " + what);
+  return *a;
+}
+
+bool TomlLocator::boolean(const toml::node& node, const std::string& key) const {
+  const auto* b = node.as_boolean();
+  if (!b) fail(&node, "'" + key + "' must be true or false");
+  return b->get();
+}
+
+std::string TomlLocator::string(const toml::node& node, const std::string& key,
+                                const std::vector<std::string>& allowed,
+                                const std::string& what) const {
+  std::string list;
+  for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+  const auto* s = node.as_string();
+  if (!s)
+    fail(&node, "'" + key + "' must be a string (allowed: " + (list.empty() ? what : list) + ")");
+  if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), s->get()) == allowed.end())
+    fail(&node, "'" + key + "' = \"" + s->get() + "\" is out of range (allowed: " + list + ")");
+  return s->get();
 }
 
 }  // namespace ra

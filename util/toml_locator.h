@@ -1,12 +1,15 @@
 // Error messages for values read from a TOML file: "file:line:column: message", naming the key and
 // the allowed range, thrown as UserError. Shared by every reader of experiment files (runner/,
-// scenes/, timing/) so that they all report bad input the same way.
+// scenes/, the studies) so that they all report bad input the same way.
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <cstdint>
+#include <functional>
 #include <set>
 #include <string>
-#include <toml++/toml.h>
+#include <vector>
 
 namespace ra {
 
@@ -39,6 +42,20 @@ class TomlLocator {
   double number(const toml::node& node, const std::string& key) const;
   // An integer in [lo, hi].
   int64_t integer(const toml::node& node, const std::string& key, int64_t lo, int64_t hi) const;
+  // A finite number accepted by `ok`; else "'key' must be a number (allowed: ALLOWED)" or
+  // "'key' = V is out of range (allowed: ALLOWED)".
+  double number(const toml::node& node, const std::string& key, const std::string& allowed,
+                const std::function<bool(double)>& ok) const;
+  // An array of `lo` to `hi` elements; else "'key' must be WHAT".
+  const toml::array& array(const toml::node& node, const std::string& key, size_t lo, size_t hi,
+                           const std::string& what) const;
+  // true or false; else "'key' must be true or false".
+  bool boolean(const toml::node& node, const std::string& key) const;
+  // A string; one of `allowed` when that is not empty ("'key' = \"V\" is out of range (allowed:
+  // a, b)"), else any string (WHAT names it in the error: "a file name").
+  std::string string(const toml::node& node, const std::string& key,
+                     const std::vector<std::string>& allowed,
+                     const std::string& what = "a string") const;
 
  private:
   std::string path_;

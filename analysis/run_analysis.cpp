@@ -1,5 +1,5 @@
-// `renderaudit analyze DIR`: the paper's section-4 procedure; see analyze_command.h.
-#include "analysis/analyze_command.h"
+// `renderaudit analyze DIR`: the paper's section-4 procedure; see run_analysis.h.
+#include "analysis/run_analysis.h"
 #include "analysis/run_completeness.h"
 
 #include <cctype>
@@ -40,7 +40,7 @@ class Stopwatch {
 
 void check_options(const AnalyzeOptions& o) {
   if (!(o.alpha > 0 && o.alpha < 1)) {
-    throw UserError("--alpha " + format_significant(std::isfinite(o.alpha) ? o.alpha : -1, 6) +
+    throw UserError("--alpha " + stats::format_significant(std::isfinite(o.alpha) ? o.alpha : -1, 6) +
                     ": the significance level must lie strictly between 0 and 1");
   }
   if (o.pixel_pitches_mm.empty()) throw UserError("--pixel-pitch-mm: give at least one pitch");
@@ -51,7 +51,7 @@ void check_options(const AnalyzeOptions& o) {
     }
   }
   if (!(o.point_margin_px >= 0 && o.point_margin_px <= 16)) {
-    throw UserError("--point-margin-px " + format_significant(o.point_margin_px, 6) +
+    throw UserError("--point-margin-px " + stats::format_significant(o.point_margin_px, 6) +
                     ": a margin in pixels from 0 to 16 (0.5 is the paper's convention)");
   }
   if (o.box_cox_subsample < 3) {
@@ -80,12 +80,12 @@ std::string files_readme(const std::vector<Output>& outputs, const RunRecords& r
                    "\nWritten by `renderaudit analyze` from the records alone (" +
                    std::to_string(run.record_count) + " records in " +
                    std::to_string(run.files.size()) +
-                   " files); alpha = " + format_significant(o.alpha, 3) + ", quartiles " +
+                   " files); alpha = " + stats::format_significant(o.alpha, 3) + ", quartiles " +
                    quantile_label(o.quantiles) +
                    ". Tables come as .csv (title and notes as '# ' lines, then a header row), .md "
                    "and .tex (booktabs).\n\n| file | what |\n| :--- | :--- |\n";
   for (const Output& out : outputs)
-    md += "| " + out.name + " | " + markdown_escape(out.what) + " |\n";
+    md += "| " + out.name + " | " + stats::markdown_escape(out.what) + " |\n";
   md += "| README.md | this list |\n";
   return md;
 }
@@ -138,7 +138,7 @@ std::string verdicts_markdown(const RunRecords& run, const std::vector<ViewEquiv
     none += e.verdict == Verdict::kNoComparison;
   }
   verdicts += std::to_string(equivalence.size()) +
-              " comparisons of orientation views (alpha = " + format_significant(o.alpha, 3) +
+              " comparisons of orientation views (alpha = " + stats::format_significant(o.alpha, 3) +
               "; location t/ANOVA and Levene median on raw " + "data): " +
               std::to_string(equivalence.size() - not_equivalent - undecided - none) +
               " equivalent, " + std::to_string(not_equivalent) + " NOT equivalent, " +
@@ -170,9 +170,9 @@ std::vector<Output> render_outputs(const RunRecords& run, const AnalyzeOptions& 
                                    const EquivalenceOptions& eq,
                                    const std::vector<ViewEquivalence>& equivalence,
                                    const ConformanceSummary& conformance,
-                                   const std::vector<Table>& tables, const nlohmann::json& figures,
+                                   const std::vector<stats::Table>& tables, const nlohmann::json& figures,
                                    std::string* all_tables, std::string* printed) {
-  const Table conformance_tab = conformance_table(conformance);
+  const stats::Table conformance_tab = conformance_table(conformance);
   std::vector<Output> outputs;
   outputs.push_back(
       {"report.md", "every table below in Markdown, with the view-equivalence verdicts", ""});
@@ -182,29 +182,29 @@ std::vector<Output> render_outputs(const RunRecords& run, const AnalyzeOptions& 
                      view_equivalence_markdown(run, equivalence, eq)});
   outputs.push_back({"view_equivalence.csv",
                      "the same comparisons with every statistic, one row each",
-                     render_csv(view_equivalence_table(run, equivalence, eq))});
+                     stats::render_csv(view_equivalence_table(run, equivalence, eq))});
   // Conformance first: "does this driver rasterize as GL allows?" before the details.
-  const std::string conformance_md = render_markdown(conformance_tab);
+  const std::string conformance_md = stats::render_markdown(conformance_tab);
   *all_tables = conformance_md + "\n";
   *printed = conformance_tab.rows.empty() ? "" : conformance_md + "\n";
   outputs.push_back({"conformance.csv", "conformance classes per platform, kind, view group (CSV)",
-                     render_csv(conformance_tab)});
+                     stats::render_csv(conformance_tab)});
   outputs.push_back({"conformance.md", "the same (Markdown)", conformance_md});
-  outputs.push_back({"conformance.tex", "the same (LaTeX)", render_latex(conformance_tab)});
+  outputs.push_back({"conformance.tex", "the same (LaTeX)", stats::render_latex(conformance_tab)});
   outputs.push_back({"violations.md",
                      "every record that breaks a GL rasterization rule, worst first, with the "
                      "`renderaudit show` line that draws it",
                      violations_markdown(conformance, o.run_dir)});
-  for (const Table& t : tables) {
-    const std::string md = render_markdown(t);
+  for (const stats::Table& t : tables) {
+    const std::string md = stats::render_markdown(t);
     *all_tables += md + "\n";
     const bool supplement = t.file_stem.rfind("table", 0) == 0 &&
                             std::isalpha(static_cast<unsigned char>(t.file_stem[7])) != 0;
     if (!supplement && t.file_stem != "cross_platform") *printed += md + "\n";
     const std::string what = t.title.substr(0, t.title.find(';'));
-    outputs.push_back({t.file_stem + ".csv", what + " (CSV)", render_csv(t)});
+    outputs.push_back({t.file_stem + ".csv", what + " (CSV)", stats::render_csv(t)});
     outputs.push_back({t.file_stem + ".md", what + " (Markdown)", md});
-    outputs.push_back({t.file_stem + ".tex", what + " (LaTeX)", render_latex(t)});
+    outputs.push_back({t.file_stem + ".tex", what + " (LaTeX)", stats::render_latex(t)});
   }
   outputs.push_back({"figures.json",
                      "figure data for the plots stage: box plots, Q-Q plots, relative "
@@ -267,7 +267,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
     result.not_equivalent += e.verdict == Verdict::kNotEquivalent;
   result.timings.push_back({"equivalence", watch.lap()});
 
-  const std::vector<Table> tables = paper_tables(run, table_options(o, eq));
+  const std::vector<stats::Table> tables = paper_tables(run, table_options(o, eq));
   result.timings.push_back({"tables", watch.lap()});
 
   const ConformanceSummary conformance = summarize_conformance(run.files);

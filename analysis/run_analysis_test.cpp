@@ -1,7 +1,7 @@
 // Tests of `renderaudit analyze`: the whole analysis in process on synthetic runs (files written,
 // no NaN anywhere, empty and constant samples, options), located errors for bad input, and end to
 // end through the binary on a directory written by `renderaudit run`.
-#include "analysis/analyze_command.h"
+#include "analysis/run_analysis.h"
 
 #include <gtest/gtest.h>
 
@@ -131,7 +131,7 @@ TEST(AnalyzeCommand, WritesEveryFileWithoutNaN) {
       EXPECT_EQ(c["a"]["views"], nlohmann::json::array({1}));
       // The figure's test is the view-equivalence analysis' test of the same pair: same p-values,
       // same verdict (the Q-Q page states it)
-      const CsvTable eq = CsvTable::read_file((dir / "analysis" / "view_equivalence.csv").string());
+      const stats::CsvTable eq = stats::CsvTable::read_file((dir / "analysis" / "view_equivalence.csv").string());
       bool found = false;
       for (std::size_t r = 0; r < eq.row_count(); ++r) {
         if (eq.cell(r, eq.column("platform")) != c["a"]["platform"].get<std::string>() ||

@@ -1,5 +1,5 @@
-// Camera geometry of the rendering-time study (timing_geometry.h; Wimmer & Wonka 2003, 5.2).
-#include "timing/timing_geometry.h"
+// The study camera (camera.h; Wimmer & Wonka 2003, 5.2).
+#include "scenes/camera.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "geometry/view.h"
 
-namespace ra::timing {
+namespace ra {
 namespace {
 
 Vec3 cross3(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
@@ -111,4 +111,4 @@ Viewpoint viewpoint_for(const BoundingSphere& s, const CameraSettings& cam, doub
   return vp;
 }
 
-}  // namespace ra::timing
+}  // namespace ra

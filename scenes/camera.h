@@ -1,5 +1,5 @@
-// Camera geometry of the rendering-time study: the perspective camera of a viewpoint, view-frustum
-// culling of bounding spheres, and the angles that parameterise per-object sampling (Wimmer &
+// The camera the studies share (timing/, terrain_lod/, regulation/): the perspective camera of a
+// viewpoint, view-frustum culling of bounding spheres, and the angles that parameterise per-object sampling (Wimmer &
 // Wonka 2003, section 5.2, Figure 5): alpha (the angle between the two supporting lines of the
 // bounding sphere seen from the eye, clipped to the view frustum), gamma and phi (the direction
 // the object is seen from).
@@ -9,7 +9,7 @@
 #include "geometry/vector_math.h"
 #include "scenes/scene.h"
 
-namespace ra::timing {
+namespace ra {
 
 struct CameraSettings {
   int width = 640, height = 480;  // window, pixels
@@ -55,4 +55,4 @@ double max_clipped_alpha(const CameraSettings& cam);
 Viewpoint viewpoint_for(const BoundingSphere& s, const CameraSettings& cam, double alpha,
                         double gamma, double phi);
 
-}  // namespace ra::timing
+}  // namespace ra

@@ -1,0 +1,143 @@
+// The distributions of a primitive kind's metrics: box plots and histograms per platform and view group (figure_planner.h).
+#include "plots/figure_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "analysis/paper_tables.h"
+#include "plots/figure_builders.h"
+#include "metrics/records.h"
+
+namespace ra::plots {
+namespace {
+
+using nlohmann::json;
+
+struct DistributionFigures : FigurePlanner {
+  void box_plots(an::PrimitiveKind kind) {
+    const std::string section = section_of(kind);
+    for (const json& bp : doc.value("box_plots", json::array())) {
+      if (bp.value("kind", "") != an::kind_name(kind)) continue;
+      const std::string column = bp.value("metric", ""), symbol = bp.value("symbol", column),
+                        units = bp.value("units", "");
+      const json& boxes = bp.at("boxes");
+      if (boxes.empty()) {
+        skip(section, "box plot of " + symbol, "no true-visible " + section + " with a value");
+        continue;
+      }
+      BoxPlotContent c;
+      double max_abs = 0;
+      for (const json& b : boxes) max_abs = std::max({max_abs, std::fabs(b.at("q1").get<double>()),
+                                                      std::fabs(b.at("q3").get<double>())});
+      int e = table_exponent(column);
+      if (e < 0) e = display_exponent(max_abs);
+      const double scale = std::pow(10.0, e);
+      std::vector<std::string> group_labels;
+      for (const std::string& p : doc.value("platforms", std::vector<std::string>{}))
+        for (const json& b : boxes)
+          if (b.value("platform", "") == p &&
+              std::find(c.series.begin(), c.series.end(), p) == c.series.end())
+            c.series.push_back(p);
+      std::map<std::string, std::string> category_of;
+      for (const json& b : boxes) {
+        const std::string g = b.value("view_group", "?");
+        if (!category_of.count(g))
+          category_of[g] = g + ": " + fmt(b.value("fov_deg", 0.0)) + " deg, " +
+                           std::to_string(b.value("width", 0)) + "x" +
+                           std::to_string(b.value("height", 0));
+      }
+      for (const auto& [g, label] : category_of) {
+        c.categories.push_back(label);
+        group_labels.push_back(g);
+      }
+      for (const json& b : boxes) {
+        Box x;
+        x.category = category_of[b.value("view_group", "?")];
+        x.series = b.value("platform", "");
+        x.n = b.value("n", std::size_t(0));
+        x.q1 = b.at("q1").get<double>() * scale;
+        x.median = b.at("median").get<double>() * scale;
+        x.q3 = b.at("q3").get<double>() * scale;
+        x.lower_whisker = b.at("lower_whisker").get<double>() * scale;
+        x.upper_whisker = b.at("upper_whisker").get<double>() * scale;
+        x.min = x.lower_whisker, x.max = x.upper_whisker;
+        for (const json& o : b.value("outliers", json::array())) {
+          x.min = std::min(x.min, o.get<double>() * scale);
+          x.max = std::max(x.max, o.get<double>() * scale);
+        }
+        x.n_outliers_low = b.value("n_outliers_low", std::size_t(0));
+        x.n_outliers_high = b.value("n_outliers_high", std::size_t(0));
+        c.boxes.push_back(x);
+      }
+      Figure f;
+      f.id = "boxplot." + std::string(an::kind_name(kind)) + "." + column;
+      f.title = "Box plots of " + symbol + " by view group and platform: " + join(c.series, ", ") +
+                ", view groups " + groups_text(group_labels);
+      f.x_label = "view group (field of view, window)";
+      f.y_label = axis_label(symbol, units, e);
+      f.caption = "Box plots of " + symbol + " for each view group and platform (quartiles " +
+                  doc.value("quantile_definition", std::string("hyndman_fan_6")) +
+                  "; whiskers to the most extreme values within 1.5 IQR); box widths proportional "
+                  "to the number of measurements; the y range is restricted to the box bodies as "
+                  "in the paper's Figs. 6, 8, 10 and 12.";
+      f.section = section;
+      f.content = std::move(c);
+      add(std::move(f));
+    }
+  }
+
+  void histograms(an::PrimitiveKind kind) {
+    const std::string section = section_of(kind);
+    const auto& metrics = an::kind_metrics(kind);
+    for (std::size_t p = 0; p < run.platforms.size(); ++p) {
+      const auto groups = run.groups_of(p, kind);
+      if (groups.empty()) continue;
+      for (std::size_t m = 0; m < metrics.size(); ++m) {
+        std::vector<NamedSample> samples;
+        std::vector<std::string> labels;
+        double max_abs = 0;
+        for (const an::ViewGroup* g : groups) {
+          NamedSample s{group_label(*g), g->pooled(m)};
+          if (s.values.empty()) continue;
+          for (double v : s.values) max_abs = std::max(max_abs, std::fabs(v));
+          labels.push_back(g->label);
+          samples.push_back(std::move(s));
+        }
+        const std::string what = "histogram of " + std::string(metrics[m].symbol) + " on " +
+                                 run.platforms[p];
+        if (samples.empty()) {
+          skip(section, what, "no true-visible " + section + " with a value");
+          continue;
+        }
+        int e = table_exponent(metrics[m].column);
+        if (e < 0) e = display_exponent(max_abs);
+        Figure f = histogram_figure(
+            "histogram." + std::string(an::kind_name(kind)) + "." + metrics[m].column + "." +
+                run.platforms[p],
+            "Histogram of " + std::string(metrics[m].symbol) + ": " + run.platforms[p] +
+                ", view groups " + groups_text(labels),
+            axis_label(metrics[m].symbol, an::unit_name(metrics[m].unit), e), samples,
+            std::pow(10.0, e));
+        f.caption = "Histogram of " + std::string(metrics[m].symbol) + " (" +
+                    metrics[m].description + ") on " + run.platforms[p] +
+                    ", each view group normalised to area 1, on common bins.";
+        f.section = section;
+        add(std::move(f));
+      }
+    }
+  }
+};
+
+}  // namespace
+
+void plan_distribution_figures(FigurePlanner& planner, an::PrimitiveKind kind) {
+  DistributionFigures f{planner};
+  f.box_plots(kind);
+  f.histograms(kind);
+}
+
+}  // namespace ra::plots

@@ -1,0 +1,52 @@
+// What the figure families of plan_figures (plot_run.h) share: the run's records, the analysis'
+// figures.json, the record scan and the plan being built, with the helpers that word their
+// titles and axes. Each family adds the figures of one primitive kind to the plan, in the order
+// plan_figures calls them: tallies (visibility, conformance, conformance classes), distributions
+// (box plots, histograms), comparisons of views and platforms, speed against error.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "analysis/run_records.h"
+#include "plots/figure.h"
+#include "plots/plot_run.h"
+#include "plots/record_scan.h"
+
+namespace ra::plots {
+
+namespace an = ra::analysis;
+
+struct FigurePlanner {
+  const std::string& run_dir;
+  const nlohmann::json& doc;  // DIR/analysis/figures.json
+  const an::RunRecords& run;
+  const RecordScan& scan;
+  FigurePlan& plan;
+  std::set<std::string>& ids;  // of the figures planned: a repeated id gets "_2", "_3", ...
+
+  void add(Figure f);
+  void skip(const std::string& section, const std::string& what, const std::string& reason);
+  std::string group_label(const an::ViewGroup& g) const;  // "A: 30 deg, 128x128"
+};
+
+void plan_tally_figures(FigurePlanner& planner, an::PrimitiveKind kind);
+void plan_distribution_figures(FigurePlanner& planner, an::PrimitiveKind kind);
+void plan_comparison_figures(FigurePlanner& planner, an::PrimitiveKind kind);
+void plan_speed_error_figures(FigurePlanner& planner, an::PrimitiveKind kind);
+
+// Wording helpers of the families.
+std::string sanitize_id(const std::string& s);  // [a-z0-9._-], others '_'
+// The x 10^k the paper's tables use for a metric column; -1 when no table shows it.
+int table_exponent(const std::string& column);
+// "PEnorm x 10^3 (sqrt(W*H) units)": the numbers on the axis are the metric times 10^k.
+std::string axis_label(const std::string& symbol, const std::string& units, int exponent);
+std::string fmt(double v, const char* f = "%g");
+std::string views_text(const nlohmann::json& views);
+std::string join(const std::vector<std::string>& v, const std::string& sep);
+std::string groups_text(const std::vector<std::string>& labels);  // "A-D" or "A" or "A, C"
+const char* section_of(an::PrimitiveKind kind);
+
+}  // namespace ra::plots

@@ -1,0 +1,4 @@
+#pragma once
+namespace ra::low {
+int upward();
+}  // namespace ra::low
