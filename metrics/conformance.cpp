@@ -430,8 +430,19 @@ ConformanceVerdict judge_polygon(const ClippedPolygon& polygon, double magnitude
 }
 
 ConformanceVerdict judge_primitive(const View& view, const Primitive& prim, const PixelSet& lit,
-                                   SubpixelGrid effective, PixelSet* violating) {
+                                   SubpixelGrid effective, PixelSet* violating,
+                                   bool rectangle_lines) {
   const int w = view.width, h = view.height;
+  if (rectangle_lines && prim.kind == Kind::kLine) {
+    const ClippedSegment segment = clip_segment(view, prim.v[0], prim.v[1]);
+    const std::vector<AllowedVertex> ends = near_clipped_vertices(view, prim);
+    PixelSet exact;
+    if (segment.status == ClipStatus::kVisible) {
+      const auto [a, b] = rectangle_ends(segment, ends);
+      exact = rasterize_rectangle_segment(a, b, w, h);
+    }
+    return judge_rectangle_segment(segment, ends, w, h, lit, exact, effective, violating);
+  }
   const PixelSet exact = rasterize_reference(view, prim);
   switch (prim.kind) {
     case Kind::kPoint:

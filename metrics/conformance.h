@@ -123,7 +123,9 @@ ConformanceVerdict judge_polygon(const ClippedPolygon& polygon, double magnitude
 
 // The same for primitive `prim` under `view`, clipping it and rasterizing its exact reference here
 // (for one primitive at a time, as `renderaudit show` needs; the runner reuses its own).
+// `rectangle_lines`: segments by Vulkan's strict-line rule (judge_rectangle_segment).
 ConformanceVerdict judge_primitive(const View& view, const Primitive& prim, const PixelSet& lit,
-                                   SubpixelGrid effective, PixelSet* violating = nullptr);
+                                   SubpixelGrid effective, PixelSet* violating = nullptr,
+                                   bool rectangle_lines = false);
 
 }  // namespace ra
