@@ -84,7 +84,7 @@ PlatformProbe probe_platform(const PlatformSpec& spec) {
     out.driver.line_mode = j.value("line_mode", "");
   } catch (const ChildProcessError& e) {
     out.reason = e.what();
-    for (const std::string prefix : {spec.name + ": ", "platform " + spec.name + ": "})
+    for (const std::string& prefix : {spec.name + ": ", "platform " + spec.name + ": "})
       if (out.reason.compare(0, prefix.size(), prefix) == 0)  // the caller names the platform
         out.reason.erase(0, prefix.size());
   }
