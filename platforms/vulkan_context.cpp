@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "platforms/driver_build.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -83,6 +84,9 @@ VkInstance process_instance(const PlatformSpec* spec) {
     return instance;
   }
   if (spec && !spec->build.empty()) use_driver_build(*spec);
+  // The build's lavapipe and the libraries it needs by path, before the loader asks for them
+  // (platforms/driver_build.h); for the installed driver, remember that this process uses it.
+  if (spec) load_driver_build(*spec);
   // one-primitive frames: llvmpipe's thread hand-off costs more than the drawing (lavapipe too)
   setenv("LP_NUM_THREADS", "0", 0);
   // The loader: RENDERAUDIT_LIBVULKAN when set (another loader, or none, for the tests), else
