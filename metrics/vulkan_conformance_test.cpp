@@ -73,8 +73,7 @@ TEST(VulkanRectangleLines, VerdictsOnHandMadeRenderings) {
   }
   // the rectangle moved by 0.05 px across: only centres within the allowance of a side change
   const Vec2 n{-(b.y - a.y) / length(b - a), (b.x - a.x) / length(b - a)};
-  const PixelSet nudged =
-      rasterize_rectangle_segment(a + 0.05 * n, b + 0.05 * n, kW, kH);
+  const PixelSet nudged = rasterize_rectangle_segment(a + 0.05 * n, b + 0.05 * n, kW, kH);
   ASSERT_NE(nudged, exact);
   EXPECT_EQ(judge_rectangle_segment(s, ends, kW, kH, nudged, exact, {}).conformance,
             Conformance::kWithinSpec);

@@ -6,9 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <stdexcept>
-
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "platforms/driver_build.h"
 #include "util/atomic_file.h"
@@ -35,11 +34,16 @@ std::string driver_version_text(uint32_t vendor, uint32_t v) {
 
 std::string type_text(VkPhysicalDeviceType t) {
   switch (t) {
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
-    default: return "other";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return "cpu";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return "virtual GPU";
+    default:
+      return "other";
   }
 }
 
@@ -94,9 +98,9 @@ VkInstance process_instance(const PlatformSpec* spec) {
   const char* named = std::getenv("RENDERAUDIT_LIBVULKAN");
   const std::string library = named && *named ? named : "libvulkan.so.1";
   void* loader = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
-  const auto get_proc = loader ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(
-                                     dlsym(loader, "vkGetInstanceProcAddr"))
-                               : nullptr;
+  const auto get_proc =
+      loader ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(loader, "vkGetInstanceProcAddr"))
+             : nullptr;
   if (!get_proc)
     throw UserError("no Vulkan loader: " + library + " cannot be loaded" +
                     (named && *named ? " (the library RENDERAUDIT_LIBVULKAN names)"
@@ -114,8 +118,9 @@ VkInstance process_instance(const PlatformSpec* spec) {
   info.pApplicationInfo = &app;
   const VkResult r = vkCreateInstance(&info, nullptr, &instance);
   if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
-    throw UserError("the Vulkan loader finds no driver (VK_ERROR_INCOMPATIBLE_DRIVER; apt-get "
-                    "install mesa-vulkan-drivers for lavapipe, or the GPU vendor's driver)");
+    throw UserError(
+        "the Vulkan loader finds no driver (VK_ERROR_INCOMPATIBLE_DRIVER; apt-get "
+        "install mesa-vulkan-drivers for lavapipe, or the GPU vendor's driver)");
   vk_check(r, "vkCreateInstance");
   volkLoadInstance(instance);
   made_for_build = build;
@@ -207,7 +212,8 @@ std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
 std::string device_list(const std::vector<VulkanDeviceInfo>& devices) {
   std::string out;
   for (const VulkanDeviceInfo& d : devices)
-    out += (out.empty() ? "" : ", ") + std::to_string(d.index) + ": " + d.name + " (" + d.type + ")";
+    out +=
+        (out.empty() ? "" : ", ") + std::to_string(d.index) + ": " + d.name + " (" + d.type + ")";
   return out.empty() ? "none" : out;
 }
 
@@ -241,8 +247,8 @@ const VulkanDeviceInfo& choose_vulkan_device(const PlatformSpec& spec,
   if (spec.device >= 0) {
     if (size_t(spec.device) >= devices.size())
       throw UserError("platform " + spec.name + ": there is no Vulkan device " +
-                      std::to_string(spec.device) + " on this machine (devices: " +
-                      device_list(devices) + ")");
+                      std::to_string(spec.device) +
+                      " on this machine (devices: " + device_list(devices) + ")");
     chosen = &devices[spec.device];
   } else {
     for (const VulkanDeviceInfo& d : devices)
@@ -258,14 +264,14 @@ const VulkanDeviceInfo& choose_vulkan_device(const PlatformSpec& spec,
                            : "no Vulkan device here is a GPU (name one as vk-device:N)") +
                       "; devices: " + device_list(devices));
   }
-  const std::string which = "Vulkan device " + std::to_string(chosen->index) + " (" +
-                            chosen->name + ")";
+  const std::string which =
+      "Vulkan device " + std::to_string(chosen->index) + " (" + chosen->name + ")";
   if (spec.line_mode == PlatformSpec::LineMode::kBresenham && !chosen->bresenham_lines)
-    throw UserError("platform " + spec.name + " draws Bresenham lines, but " + which +
-                    (chosen->line_rasterization
-                         ? " offers only these modes of VK_EXT_line_rasterization: " +
-                               chosen->line_modes()
-                         : " lacks VK_EXT_line_rasterization"));
+    throw UserError(
+        "platform " + spec.name + " draws Bresenham lines, but " + which +
+        (chosen->line_rasterization
+             ? " offers only these modes of VK_EXT_line_rasterization: " + chosen->line_modes()
+             : " lacks VK_EXT_line_rasterization"));
   if (spec.samples > chosen->max_samples)
     throw UserError("platform " + spec.name + " needs " + std::to_string(spec.samples) +
                     " samples per pixel, but " + which + " offers at most " +

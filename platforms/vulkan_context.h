@@ -23,22 +23,22 @@ namespace ra {
 
 // What a Vulkan physical device says about itself.
 struct VulkanDeviceInfo {
-  int index = 0;              // in vkEnumeratePhysicalDevices' order
-  std::string name;           // deviceName, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
-  std::string type;           // "cpu", "discrete GPU", "integrated GPU", "virtual GPU", "other"
-  std::string driver;         // driverName + driverInfo, e.g. "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)"
-  std::string driver_version; // driverVersion decoded (NVIDIA's 10.8.8.6 bits, else major.minor.patch)
-  std::string api_version;    // apiVersion, e.g. "1.3.230"
+  int index = 0;               // in vkEnumeratePhysicalDevices' order
+  std::string name;            // deviceName, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string type;            // "cpu", "discrete GPU", "integrated GPU", "virtual GPU", "other"
+  std::string driver;          // driverName + driverInfo: "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)"
+  std::string driver_version;  // driverVersion decoded (NVIDIA's own bit layout, else a.b.c)
+  std::string api_version;     // apiVersion, e.g. "1.3.230"
   uint32_t vendor_id = 0;
-  bool llvmpipe = false;      // driverID VK_DRIVER_ID_MESA_LLVMPIPE: Mesa's lavapipe
-  int subpixel_bits = 0;      // limits.subPixelPrecisionBits
-  int line_subpixel_bits = 0; // VK_EXT_line_rasterization's lineSubPixelPrecisionBits (0: none)
-  bool strict_lines = false;  // limits.strictLines: default lines are rectangles
+  bool llvmpipe = false;       // driverID VK_DRIVER_ID_MESA_LLVMPIPE: Mesa's lavapipe
+  int subpixel_bits = 0;       // limits.subPixelPrecisionBits
+  int line_subpixel_bits = 0;  // VK_EXT_line_rasterization's lineSubPixelPrecisionBits (0: none)
+  bool strict_lines = false;   // limits.strictLines: default lines are rectangles
   bool line_rasterization = false;  // VK_EXT_line_rasterization
   bool rectangular_lines = false, bresenham_lines = false, smooth_lines = false;
-  bool timestamps = false;    // the graphics queue has timestampValidBits > 0
+  bool timestamps = false;         // the graphics queue has timestampValidBits > 0
   double timestamp_period_ns = 0;  // limits.timestampPeriod
-  int max_samples = 1;        // the largest of limits.framebufferColorSampleCounts
+  int max_samples = 1;             // the largest of limits.framebufferColorSampleCounts
   bool precise_occlusion = false;  // features.occlusionQueryPrecise
 
   // "rectangular, bresenham, smooth" (the modes VK_EXT_line_rasterization offers), or "default".

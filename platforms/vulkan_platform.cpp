@@ -45,7 +45,8 @@ namespace {
 
 constexpr uint32_t kAnyColour = 0xffffffffu;
 constexpr uint32_t kLastColour = 0x00ffffffu;
-constexpr size_t kMaxVertices = 3 * 256;  // a batch of the runner's at most 64 primitives, with room
+constexpr size_t kMaxVertices =
+    3 * 256;  // a batch of the runner's at most 64 primitives, with room
 
 using Clock = std::chrono::steady_clock;
 double micros_since(Clock::time_point t0) {
@@ -66,20 +67,23 @@ Mat4 vulkan_clip(const Mat4& gl_clip_from_object) {
 struct DrawItem {
   uint32_t first = 0, count = 0;
   Kind kind = Kind::kPoint;
-  uint32_t colour = 0;   // 0xBBGGRR
-  bool identity = false; // vertices already in Vulkan clip coordinates (the test's wild pixel)
+  uint32_t colour = 0;    // 0xBBGGRR
+  bool identity = false;  // vertices already in Vulkan clip coordinates (the test's wild pixel)
 };
 
 class VulkanPlatform : public Platform {
  public:
   VulkanPlatform(const PlatformSpec& spec, ReadbackMethod method, std::vector<uint64_t> wild)
-      : method_(method), wild_pixel_indices_(std::move(wild)), name_(spec.name),
+      : method_(method),
+        wild_pixel_indices_(std::move(wild)),
+        name_(spec.name),
         samples_(spec.samples) {
     ctx_ = std::make_unique<VulkanContext>(spec);
     const VulkanDeviceInfo& d = ctx_->info();
     info_.renderer = d.name;
     info_.version = "Vulkan " + d.api_version + ", " + d.driver;
-    info_.vendor = d.driver.substr(0, d.driver.find(' ')) + " (vendor id 0x" + hex(d.vendor_id) + ")";
+    info_.vendor =
+        d.driver.substr(0, d.driver.find(' ')) + " (vendor id 0x" + hex(d.vendor_id) + ")";
     info_.subpixel_bits = d.subpixel_bits;
     info_.timer_query = d.timestamps;
     info_.max_samples = d.max_samples;
@@ -87,7 +91,8 @@ class VulkanPlatform : public Platform {
     info_.line_subpixel_bits = d.line_subpixel_bits;
     info_.strict_lines = d.strict_lines;
     info_.line_modes = d.line_modes();
-    info_.line_mode = spec.line_mode == PlatformSpec::LineMode::kBresenham ? "bresenham" : "default";
+    info_.line_mode =
+        spec.line_mode == PlatformSpec::LineMode::kBresenham ? "bresenham" : "default";
     if (samples_ > 0) decode_ = samples_from_resolved(samples_);
     pipelines_ = create_pipelines(*ctx_, std::max(samples_, 1), spec.line_mode);
     VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -194,7 +199,8 @@ class VulkanPlatform : public Platform {
     if (method_ == ReadbackMethod::kDrawOnly && samples_ == 0 && !prims.empty()) {
       std::vector<RenderResult> out(prims.size());
       const double us = draw(prims, std::vector<uint32_t>(prims.size(), 1), false, nullptr);
-      for (RenderResult& r : out) r.render_us = us / double(prims.size()), r.batch_size = int(prims.size());
+      for (RenderResult& r : out)
+        r.render_us = us / double(prims.size()), r.batch_size = int(prims.size());
       return out;
     }
     if (method_ != ReadbackMethod::kRegionWithProof || prims.size() < 2 || samples_ > 0 ||
@@ -292,10 +298,9 @@ class VulkanPlatform : public Platform {
     VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     b.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
     b.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-    vkCmdPipelineBarrier(cb_,
-                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
-                             VK_PIPELINE_STAGE_TRANSFER_BIT,
-                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+    vkCmdPipelineBarrier(
+        cb_, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
   }
 
   // Draws `prims` (colour i for the i-th), under the occlusion query with `counted`, plus the
@@ -541,9 +546,9 @@ class VulkanPlatform : public Platform {
           if (v == 0) continue;
           const uint8_t k = decode_[v];
           if (k == 255)
-            throw std::runtime_error("platform " + name_ + ": resolved value " +
-                                     std::to_string(v) + " at pixel (" + std::to_string(r.x0 + x) +
-                                     ", " + std::to_string(r.y0 + y) + ") is no multiple of 255/" +
+            throw std::runtime_error("platform " + name_ + ": resolved value " + std::to_string(v) +
+                                     " at pixel (" + std::to_string(r.x0 + x) + ", " +
+                                     std::to_string(r.y0 + y) + ") is no multiple of 255/" +
                                      std::to_string(samples_));
           covered.push_back({r.y0 + y, r.x0 + x, k});
         }
@@ -577,8 +582,7 @@ class VulkanPlatform : public Platform {
     const VkClearColorValue black{{0, 0, 0, 0}};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     for (VkImage image : {target_.image, resolved_.image})
-      if (image)
-        vkCmdClearColorImage(cb_, image, VK_IMAGE_LAYOUT_GENERAL, &black, 1, &range);
+      if (image) vkCmdClearColorImage(cb_, image, VK_IMAGE_LAYOUT_GENERAL, &black, 1, &range);
     submit_and_wait();
     colour_ = 0;
   }
@@ -621,10 +625,10 @@ class VulkanPlatform : public Platform {
     for (int round = 0; round < 8; ++round) {
       const double cpu_us = draw(quads, white, true, nullptr);
       uint64_t ticks[2] = {0, 0};
-      vk_check(vkGetQueryPoolResults(dev(), timestamps_, 0, 2, sizeof ticks, ticks,
-                                     sizeof(uint64_t),
-                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-               "vkGetQueryPoolResults");
+      vk_check(
+          vkGetQueryPoolResults(dev(), timestamps_, 0, 2, sizeof ticks, ticks, sizeof(uint64_t),
+                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+          "vkGetQueryPoolResults");
       const double device_us = double(ticks[1] - ticks[0]) * ctx_->info().timestamp_period_ns / 1e3;
       if (cpu_us > 0 && ticks[1] >= ticks[0]) ratios.push_back(device_us / cpu_us);
     }

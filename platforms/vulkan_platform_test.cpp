@@ -41,13 +41,13 @@ Primitive make(Kind kind, std::initializer_list<Vec3> vs, uint64_t index = 0) {
 PixelRegion whole(const View& v) { return PixelRegion(PixelRect{0, 0, v.width, v.height}); }
 
 // Skips the calling test (with the reason) where lavapipe cannot be brought up.
-#define REQUIRE_LAVAPIPE()                                                              \
-  do {                                                                                  \
-    try {                                                                               \
-      choose_vulkan_device(*find_platform("vk-lavapipe"), list_vulkan_devices());       \
-    } catch (const UserError& e) {                                                      \
-      GTEST_SKIP() << "no lavapipe here: " << e.what();                                 \
-    }                                                                                   \
+#define REQUIRE_LAVAPIPE()                                                        \
+  do {                                                                            \
+    try {                                                                         \
+      choose_vulkan_device(*find_platform("vk-lavapipe"), list_vulkan_devices()); \
+    } catch (const UserError& e) {                                                \
+      GTEST_SKIP() << "no lavapipe here: " << e.what();                           \
+    }                                                                             \
   } while (0)
 
 TEST(VulkanPlatformNames, FixedNamesAndDeviceIndices) {
@@ -188,8 +188,9 @@ TEST(VulkanLavapipe, BresenhamLinesAreDiamondExit) {
   const auto p = create_vulkan_platform(*find_platform("vk-lavapipe-bresenham"));
   const View view = window_view(64, 64);
   p->set_view(view);
-  for (const auto& [a, b] : {std::pair<Vec2, Vec2>{{5.37109375, 7.12890625}, {50.62890625, 30.26171875}},
-                             {{40.12890625, 60.51171875}, {33.87109375, 2.26171875}}}) {
+  for (const auto& [a, b] :
+       {std::pair<Vec2, Vec2>{{5.37109375, 7.12890625}, {50.62890625, 30.26171875}},
+        {{40.12890625, 60.51171875}, {33.87109375, 2.26171875}}}) {
     const RenderResult r =
         p->render(make(Kind::kLine, {{a.x, a.y, 0}, {b.x, b.y, 0}}), whole(view));
     EXPECT_EQ(r.lit, rasterize_segment(a, b, 64, 64));
@@ -205,7 +206,8 @@ TEST(VulkanLavapipe, TrianglesSharingAnEdgeLightEachPixelOnce) {
   p->set_view(view);
   const Vec3 a{3.12890625, 4.26171875, 0}, b{58.87109375, 9.51171875, 0},
       c{52.37109375, 60.12890625, 0}, d{6.62890625, 55.87109375, 0};
-  const Primitive t1 = make(Kind::kTriangle, {a, b, c}, 1), t2 = make(Kind::kTriangle, {a, c, d}, 2);
+  const Primitive t1 = make(Kind::kTriangle, {a, b, c}, 1),
+                  t2 = make(Kind::kTriangle, {a, c, d}, 2);
   const PixelSet p1 = p->render(t1, whole(view)).lit, p2 = p->render(t2, whole(view)).lit;
   EXPECT_EQ(p1, rasterize_reference(view, t1));
   EXPECT_EQ(p2, rasterize_reference(view, t2));
@@ -222,8 +224,8 @@ TEST(VulkanLavapipe, TrianglesSharingAnEdgeLightEachPixelOnce) {
 TEST(VulkanLavapipe, APixelOutsideTheRegionIsFound) {
   REQUIRE_LAVAPIPE();
   const View view = window_view(128, 128);
-  const auto p = create_vulkan_platform(*find_platform("vk-lavapipe"),
-                                        ReadbackMethod::kRegionWithProof, {5});
+  const auto p =
+      create_vulkan_platform(*find_platform("vk-lavapipe"), ReadbackMethod::kRegionWithProof, {5});
   p->set_view(view);
   const Primitive tri =
       make(Kind::kTriangle, {{10.25, 10.25, 0}, {20.75, 10.5, 0}, {12.5, 22.75, 0}}, 5);
@@ -238,7 +240,8 @@ TEST(VulkanLavapipe, APixelOutsideTheRegionIsFound) {
   std::vector<PixelRegion> regions;
   for (int i = 0; i < 4; ++i) {
     const double x = 10 + 25 * i;
-    prims.push_back(make(Kind::kTriangle, {{x + 0.25, 40.25, 0}, {x + 12.75, 41.5, 0}, {x + 3.5, 55.75, 0}}, i));
+    prims.push_back(make(Kind::kTriangle,
+                         {{x + 0.25, 40.25, 0}, {x + 12.75, 41.5, 0}, {x + 3.5, 55.75, 0}}, i));
     regions.push_back(PixelRegion(PixelRect{int(x) - 2, 38, int(x) + 16, 58}));
   }
   const std::vector<RenderResult> batch = clean->render_batch(prims, regions);
@@ -256,8 +259,7 @@ TEST(VulkanLavapipe, MultisampleCoverage) {
   const View view = window_view(64, 64);
   const auto p = create_vulkan_platform(*find_platform("vk-lavapipe-msaa4"));
   p->set_view(view);
-  const Primitive tri =
-      make(Kind::kTriangle, {{4.1, 4.3, 0}, {60.2, 8.7, 0}, {20.9, 58.4, 0}});
+  const Primitive tri = make(Kind::kTriangle, {{4.1, 4.3, 0}, {60.2, 8.7, 0}, {20.9, 58.4, 0}});
   const RenderResult r = p->render(tri, whole(view));
   ASSERT_EQ(r.samples, 4);
   ASSERT_EQ(r.samples_lit.size(), size_t(r.lit.size()));

@@ -209,9 +209,9 @@ VulkanPipelines create_pipelines(const VulkanContext& ctx, int samples,
     info.pDynamicState = &dynamic;
     info.layout = p.layout;
     info.renderPass = p.render_pass;
-    vk_check(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr,
-                                       &p.by_kind[k]),
-             "vkCreateGraphicsPipelines");
+    vk_check(
+        vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.by_kind[k]),
+        "vkCreateGraphicsPipelines");
   }
   vkDestroyShaderModule(ctx.device(), vert, nullptr);
   vkDestroyShaderModule(ctx.device(), frag, nullptr);

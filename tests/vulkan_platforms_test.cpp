@@ -5,9 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "tests/cli_harness.h"
 #include "util/atomic_file.h"
@@ -22,8 +21,8 @@ std::string experiment(const std::string& platforms, int count) {
   const std::string n = std::to_string(count);
   return "seed = 2008\nplatforms = [" + platforms +
          "]\n[views]\norientations = 2\nfov_deg = [30, 150]\nwindows = [128, 907]\n"
-         "near = 0.01\nfar = 10.0\n[primitives]\npoints = " + n + "\nlines = " + n +
-         "\ntriangles = " + n + "\n[run]\nshard_size = 250\n";
+         "near = 0.01\nfar = 10.0\n[primitives]\npoints = " +
+         n + "\nlines = " + n + "\ntriangles = " + n + "\n[run]\nshard_size = 250\n";
 }
 
 // "" when vk-lavapipe draws here, else why not.
@@ -62,8 +61,9 @@ TEST(VulkanPlatforms, NoVulkanLoaderIsRefusedWithThePackages) {
 
 TEST(VulkanPlatforms, AnUnknownDeviceIndexIsRefusedWithTheDevicesThereAre) {
   if (const std::string why = lavapipe_missing(); !why.empty()) GTEST_SKIP() << why;
-  expect_refused("vk-device:9", {}, "vk-device:9: there is no Vulkan device 9 on this machine "
-                                    "(devices: 0: llvmpipe");
+  expect_refused("vk-device:9", {},
+                 "vk-device:9: there is no Vulkan device 9 on this machine "
+                 "(devices: 0: llvmpipe");
 }
 
 TEST(VulkanPlatforms, ALineModeTheDriverLacksIsRefused) {
@@ -111,8 +111,8 @@ TEST(VulkanPlatforms, ADriverBuildsLavapipeIsTheOneLoaded) {
   fs::create_directories(build + fs::path(library).parent_path().string());
   fs::copy_file(icd, build + "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json");
   fs::copy_file(library, build + library);
-  write_text(dir + "/e.toml", experiment("\"vk-lavapipe@copy\"", 20) + "[builds.copy]\ndir = \"" +
-                                  build + "\"\n");
+  write_text(dir + "/e.toml",
+             experiment("\"vk-lavapipe@copy\"", 20) + "[builds.copy]\ndir = \"" + build + "\"\n");
   const ra::ProgramResult r = run_with_env("run " + dir + "/e.toml --out " + dir + "/run --quiet",
                                            {"RENDERAUDIT_BUILD_CACHE=" + dir + "/cache"});
   ASSERT_EQ(r.exit_code(), 0) << r.output;
@@ -121,8 +121,8 @@ TEST(VulkanPlatforms, ADriverBuildsLavapipeIsTheOneLoaded) {
   fs::create_directories(dir + "/cache/empty");
   write_text(dir + "/e2.toml", experiment("\"vk-lavapipe@empty\"", 5) + "[builds.empty]\ndir = \"" +
                                    dir + "/cache/empty\"\n");
-  const ra::ProgramResult refused = run_with_env(
-      "run " + dir + "/e2.toml --out " + dir + "/run2", {"RENDERAUDIT_BUILD_CACHE=" + dir + "/cache"});
+  const ra::ProgramResult refused = run_with_env("run " + dir + "/e2.toml --out " + dir + "/run2",
+                                                 {"RENDERAUDIT_BUILD_CACHE=" + dir + "/cache"});
   EXPECT_EQ(refused.exit_code(), 2) << refused.output;
   EXPECT_NE(refused.output.find("holds no lavapipe"), std::string::npos) << refused.output;
   EXPECT_FALSE(fs::exists(dir + "/run2"));
