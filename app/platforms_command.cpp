@@ -8,7 +8,6 @@
 #include "app/commands.h"
 #include "platforms/gl_context.h"
 #include "platforms/platform_probe.h"
-#include "platforms/vulkan_context.h"
 #include "util/errors.h"
 
 namespace ra::app {
@@ -32,7 +31,8 @@ std::vector<PlatformSpec> platforms_to_probe(std::string* device_note, std::stri
     *device_note = e.what();
   }
   try {
-    for (const VulkanDeviceInfo& d : list_vulkan_devices()) {
+    // in a child: this process forks for every probe after this (platform_probe.h)
+    for (const VulkanDeviceInfo& d : list_vulkan_devices_in_child()) {
       PlatformSpec s = *find_platform("vk-device:" + std::to_string(d.index));
       s.description = "Vulkan device " + std::to_string(d.index) + " (" + d.type + ")";
       specs.push_back(s);

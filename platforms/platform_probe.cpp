@@ -91,6 +91,31 @@ PlatformProbe probe_platform(const PlatformSpec& spec) {
   return out;
 }
 
+std::vector<VulkanDeviceInfo> list_vulkan_devices_in_child() {
+  const std::string scratch = std::filesystem::temp_directory_path().string();
+  const std::string name = "renderaudit-vulkan-devices-" + std::to_string(::getpid());
+  nlohmann::json j;
+  try {
+    j = run_in_child(scratch, name, []() {
+      nlohmann::json list = nlohmann::json::array();
+      for (const VulkanDeviceInfo& d : list_vulkan_devices())
+        list.push_back({{"index", d.index}, {"name", d.name}, {"type", d.type}});
+      return list;
+    });
+  } catch (const ChildProcessError& e) {
+    throw UserError(e.what());
+  }
+  std::vector<VulkanDeviceInfo> out;
+  for (const nlohmann::json& d : j) {
+    VulkanDeviceInfo info;
+    info.index = d.value("index", 0);
+    info.name = d.value("name", "");
+    info.type = d.value("type", "");
+    out.push_back(info);
+  }
+  return out;
+}
+
 void require_platforms_draw(const std::vector<std::string>& names, const std::string& context) {
   std::vector<PlatformSpec> specs;
   for (const std::string& name : names)
