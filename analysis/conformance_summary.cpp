@@ -66,6 +66,15 @@ stats::Table conformance_table(const ConformanceSummary& s) {
       "violating px: the sum of violating_pixels; rules: how many records broke each rule "
       "(metrics/conformance.h names them). Records of the reference platform and records "
       "written before schema version 3 carry no verdict and are not counted."};
+  for (const auto& [key, n] : s.groups)
+    if (std::get<0>(key).rfind("vk-", 0) == 0) {
+      t.notes.push_back(
+          "Vulkan platforms (vk-*) are judged by the Vulkan rules: points and polygons as GL's; "
+          "default lines on a device with strictLines as 1 px wide rectangles (reference and "
+          "allowance of the rectangle, rule line-rectangle); Bresenham lines by GL's line rules "
+          "(docs/vulkan.md).");
+      break;
+    }
   t.columns = {{"platform", stats::Align::kLeft}, {"kind", stats::Align::kLeft}, {"group", stats::Align::kLeft},
                {"records"}, {"exact %"}, {"snapped %"}, {"within-spec %"}, {"violation %"},
                {"violating px"}, {"rules broken", stats::Align::kLeft}};

@@ -13,8 +13,9 @@
 namespace ra::app {
 namespace {
 
-// The fixed-name platforms, then egl-device:N for every EGL device (when EGL can list them).
-std::vector<PlatformSpec> platforms_to_probe(std::string* device_note) {
+// The fixed-name platforms, then egl-device:N for every EGL device (when EGL can list them) and
+// vk-device:N for every Vulkan device (when the Vulkan loader can list them).
+std::vector<PlatformSpec> platforms_to_probe(std::string* device_note, std::string* vulkan_note) {
   std::vector<PlatformSpec> specs;
   for (const PlatformSpec& s : platform_specs())
     if (s.backend != Backend::kFaulty) specs.push_back(s);
@@ -29,6 +30,16 @@ std::vector<PlatformSpec> platforms_to_probe(std::string* device_note) {
   } catch (const UserError& e) {
     *device_note = e.what();
   }
+  try {
+    // in a child: this process forks for every probe after this (platform_probe.h)
+    for (const VulkanDeviceInfo& d : list_vulkan_devices_in_child()) {
+      PlatformSpec s = *find_platform("vk-device:" + std::to_string(d.index));
+      s.description = "Vulkan device " + std::to_string(d.index) + " (" + d.type + ")";
+      specs.push_back(s);
+    }
+  } catch (const UserError& e) {
+    *vulkan_note = e.what();
+  }
   return specs;
 }
 
@@ -38,8 +49,10 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "platforms",
       "List the platforms this machine can draw through (GL_RENDERER, GL_VERSION, GL_VENDOR,\n"
-      "GL_SUBPIXEL_BITS, GL_MAX_SAMPLES, timer queries) and, for each one it cannot, why and\n"
-      "which packages would provide it. Each GL platform is brought up in a child process.");
+      "GL_SUBPIXEL_BITS, GL_MAX_SAMPLES, timer queries; for Vulkan the device, API and driver\n"
+      "version, subPixelPrecisionBits, lineSubPixelPrecisionBits, strictLines, line modes,\n"
+      "timestamps) and, for each one it cannot, why and which packages would provide it. Each\n"
+      "driver platform is brought up in a child process.");
   static bool as_json = false, embedded_default = false;
   static std::vector<std::string> names;
   cmd->add_option("names", names,
@@ -64,10 +77,10 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
       }
       throw UserError("neither embedded platform can draw on this machine:" + reasons);
     }
-    std::string device_note;
+    std::string device_note, vulkan_note;
     std::vector<PlatformSpec> specs;
     if (names.empty()) {
-      specs = platforms_to_probe(&device_note);
+      specs = platforms_to_probe(&device_note, &vulkan_note);
     } else {
       for (const std::string& n : names) {
         const std::optional<PlatformSpec> s = find_platform(n);
@@ -89,6 +102,12 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
         j["max_samples"] = p.driver.max_samples;
         j["timer_query"] = p.driver.timer_query;
         j["backend"] = p.driver.backend;
+        if (spec.draws_with_vulkan()) {
+          j["line_subpixel_bits"] = p.driver.line_subpixel_bits;
+          j["strict_lines"] = p.driver.strict_lines;
+          j["line_modes"] = p.driver.line_modes;
+          j["line_mode"] = p.driver.line_mode;
+        }
       } else {
         j["reason"] = p.reason;
         j["packages"] = packages_for(spec);
@@ -98,12 +117,24 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
     if (as_json) {
       nlohmann::json doc = {{"platforms", list}};
       if (!device_note.empty()) doc["egl_devices"] = device_note;
+      if (!vulkan_note.empty()) doc["vulkan_devices"] = vulkan_note;
       std::printf("%s\n", doc.dump(2).c_str());
     } else {
       for (const nlohmann::json& j : list) {
         const std::string name = j["name"];
         if (j["available"] && j["backend"] == "none") {
           std::printf("%-22s %s\n", name.c_str(), j["description"].get<std::string>().c_str());
+        } else if (j["available"] && j.contains("line_modes")) {
+          std::printf("%-22s %s | %s | subPixelPrecisionBits %d | lineSubPixelPrecisionBits %d | "
+                      "strictLines %d | line modes: %s (draws %s) | max samples %d | timestamps "
+                      "%s | %s\n",
+                      name.c_str(), j["renderer"].get<std::string>().c_str(),
+                      j["version"].get<std::string>().c_str(), j["subpixel_bits"].get<int>(),
+                      j["line_subpixel_bits"].get<int>(), j["strict_lines"].get<bool>() ? 1 : 0,
+                      j["line_modes"].get<std::string>().c_str(),
+                      j["line_mode"].get<std::string>().c_str(), j["max_samples"].get<int>(),
+                      j["timer_query"].get<bool>() ? "yes" : "no",
+                      j["backend"].get<std::string>().c_str());
         } else if (j["available"]) {
           std::printf("%-22s %s | %s | %s | subpixel bits %d | max samples %d | timer query %s | %s\n",
                       name.c_str(), j["renderer"].get<std::string>().c_str(),
@@ -121,6 +152,7 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
         }
       }
       if (!device_note.empty()) std::printf("EGL devices: %s\n", device_note.c_str());
+      if (!vulkan_note.empty()) std::printf("Vulkan devices: %s\n", vulkan_note.c_str());
     }
     exit_code = kExitOk;
   });

@@ -164,11 +164,22 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
       is_reference ? SubpixelGrid{} : measure_effective_subpixel(*platform).grid;
   RecordingPlatform recorder(*platform);
   recorder.set_view(view);
-  out.record = measure_case(q.platform, recorder, view, prim, CaseComparison(!is_reference, effective));
+  CaseComparison comparison(!is_reference, effective);
+  comparison.line_rule = line_rule_for(platform_spec, platform->driver_info());
+  const bool rectangles = comparison.line_rule == CaseComparison::LineRule::kRectangle;
+  out.record = measure_case(q.platform, recorder, view, prim, comparison);
   const PixelSet& lit = recorder.last.lit;
-  const PixelSet reference = rasterize_reference(view, prim);
+  PixelSet reference = rasterize_reference(view, prim);
+  if (rectangles && kind == Kind::kLine) {  // Vulkan's strict lines: the rectangle's pixels
+    const ClippedSegment segment = clip_segment(view, prim.v[0], prim.v[1]);
+    reference.clear();
+    if (segment.status == ClipStatus::kVisible) {
+      const auto [a, b] = rectangle_ends(segment, near_clipped_vertices(view, prim));
+      reference = rasterize_rectangle_segment(a, b, view.width, view.height);
+    }
+  }
   PixelSet violating;
-  if (!is_reference) judge_primitive(view, prim, lit, effective, &violating);
+  if (!is_reference) judge_primitive(view, prim, lit, effective, &violating, rectangles);
   out.violating = violating.size();
   for (const Pixel& p : lit) (reference.contains(p) ? out.both : out.platform_only) += 1;
   for (const Pixel& p : reference)

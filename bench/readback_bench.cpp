@@ -1,6 +1,7 @@
 // `make bench`: the cost of finding every lit pixel, side by side in one run, per platform, kind,
 // window and field of view (median microseconds per primitive over interleaved rounds):
-//   floor    draw + glFinish only: what the renderer itself must spend for one primitive alone;
+//   floor    draw + glFinish only: what the renderer itself must spend for one primitive alone
+//            (Vulkan: record + submit + fence wait, the same measure as its render_us);
 //   batched  64 primitives drawn under one glFinish, nothing read back: the same floor when the
 //            flush is shared, as `run` shares it among small primitives;
 //   naive    full-window clear + draw + glFinish + full-window glReadPixels (the paper's method);
@@ -48,8 +49,9 @@ struct Options {
   int primitives = 1000;  // per configuration and round
   int rounds = 3;
   // OSMesa and EGL on the same drivers, so that the back ends' costs are compared side by side
+  // and lavapipe through Vulkan beside llvmpipe through EGL: the same rasterizer core
   std::vector<std::string> platforms = {"osmesa-llvmpipe", "egl-llvmpipe", "osmesa-softpipe",
-                                        "egl-softpipe"};
+                                        "egl-softpipe", "vk-lavapipe"};
 };
 
 // The analysis stage's median (stats/descriptive.h); 0 for no timings.
@@ -83,19 +85,31 @@ nlohmann::json summary_row(const std::string& platform, Kind kind, int window, d
   return row;
 }
 
+// The aliased GL and Vulkan platforms: the readback this benchmark compares.
+bool benchable(const std::string& name) {
+  const std::optional<PlatformSpec> spec = find_platform(name);
+  return spec && spec->draws_with_driver() && spec->samples == 0;
+}
+
+std::unique_ptr<Platform> create_bench_platform(const PlatformSpec& spec, ReadbackMethod method) {
+  return spec.draws_with_vulkan() ? create_vulkan_platform(spec, method)
+                                  : create_gl_platform(spec, method);
+}
+
 // One platform, in this process: prints one JSON object per configuration on stdout, and per
 // kind and window one pooled over both fields of view (fov_deg 0).
 int measure_platform(const Options& opt) {
   const std::optional<PlatformSpec> spec = find_platform(opt.platform);
-  if (!spec || !spec->draws_with_gl() || spec->samples > 0) {  // the aliased readback only
-    std::fprintf(stderr, "readback_bench: not an aliased GL platform: %s\n", opt.platform.c_str());
+  if (!benchable(opt.platform)) {  // the aliased readback only
+    std::fprintf(stderr, "readback_bench: not an aliased GL or Vulkan platform: %s\n",
+                 opt.platform.c_str());
     return 2;
   }
   const char* methods[] = {"floor", "naive", "region", "project", "batched"};
   // The grid `run`'s workers would measure (metrics/effective_subpixel.h).
   SubpixelGrid effective;
   {
-    auto probe = create_gl_platform(*spec, ReadbackMethod::kRegionWithProof);
+    auto probe = create_bench_platform(*spec, ReadbackMethod::kRegionWithProof);
     probe->set_view(bench_view(30, 128));  // context made and shaders compiled: not timed below
     const auto t0 = Clock::now();
     effective = measure_effective_subpixel(*probe).grid;
@@ -118,7 +132,7 @@ int measure_platform(const Options& opt) {
             const ReadbackMethod rm = m == 0 || m == 4 ? ReadbackMethod::kDrawOnly
                                       : m == 1 ? ReadbackMethod::kFullWindow
                                                : ReadbackMethod::kRegionWithProof;
-            auto platform = create_gl_platform(*spec, rm);
+            auto platform = create_bench_platform(*spec, rm);
             platform->set_view(view);
             // Mesa compiles its shaders on the first draws, single and batched (the first batch
             // cost 8 ms on llvmpipe): keep that out of the timings.
@@ -144,6 +158,8 @@ int measure_platform(const Options& opt) {
               // the two are compared side by side, not across rounds.
               CaseComparison judged(true, effective), unjudged(true, effective);
               unjudged.conformance = false;
+              judged.line_rule = unjudged.line_rule =
+                  line_rule_for(*spec, platform->driver_info());
               for (size_t i = 0; i < prims.size(); i += kChunk) {
                 const std::vector<Primitive> chunk(
                     prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
@@ -188,9 +204,10 @@ int measure_platform(const Options& opt) {
 int run_children(const Options& opt, const char* self) {
   std::vector<nlohmann::json> rows;
   for (const auto& p : opt.platforms) {
-    if (!is_aliased_gl_platform(p)) {  // checked before anything runs
-      std::fprintf(stderr, "readback_bench: --platforms: '%s' is not an aliased GL platform "
-                   "(allowed: %s)\n", p.c_str(), aliased_gl_platform_names().c_str());
+    if (!benchable(p)) {  // checked before anything runs
+      std::fprintf(stderr, "readback_bench: --platforms: '%s' is not an aliased GL or Vulkan "
+                   "platform (allowed: %s, vk-lavapipe, vk-lavapipe-bresenham, vk-device:N)\n",
+                   p.c_str(), aliased_gl_platform_names().c_str());
       return 2;
     }
   }

@@ -177,6 +177,22 @@ PixelSet rasterize_segment(const ClippedSegment& s, int width, int height, Subpi
   return rasterize_segment(s.p0, s.p1, width, height, grid);
 }
 
+std::vector<Vec2> segment_rectangle(Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double len = length(d);
+  if (!(len > 0) || !std::isfinite(len)) return {};
+  const Vec2 n{-0.5 * d.y / len, 0.5 * d.x / len};  // half the unit normal, to the left of a -> b
+  return {a - n, b - n, b + n, a + n};
+}
+
+PixelSet rasterize_rectangle_segment(Vec2 a, Vec2 b, int width, int height, SubpixelGrid grid) {
+  a = {snap_to_subpixel(a.x, grid), snap_to_subpixel(a.y, grid)};
+  b = {snap_to_subpixel(b.x, grid), snap_to_subpixel(b.y, grid)};
+  const std::vector<Vec2> rectangle = segment_rectangle(a, b);
+  if (rectangle.empty()) return {};
+  return rasterize_convex_polygon(rectangle, width, height);
+}
+
 bool polygon_covers_sample(const std::vector<Vec2>& ccw_polygon, Vec2 q) {
   return covers(ccw_polygon, q);
 }

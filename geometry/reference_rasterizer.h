@@ -79,6 +79,16 @@ PixelSet rasterize_segment(Vec2 a, Vec2 b, int width, int height, SubpixelGrid g
 // The clipped segment's pixels; empty unless it is visible.
 PixelSet rasterize_segment(const ClippedSegment& s, int width, int height, SubpixelGrid grid = {});
 
+// Vulkan's strict lines (Vulkan 1.3, "Basic Line Segment Rasterization", strictLines true): the
+// segment a -> b (window coordinates, px; snapped to `grid` first) covers the rectangle of width 1
+// centred on it, from a to b; a pixel is lit when its centre lies inside that rectangle, decided
+// as for a polygon (rasterize_convex_polygon, its tie rule). Zero length: empty.
+PixelSet rasterize_rectangle_segment(Vec2 a, Vec2 b, int width, int height,
+                                     SubpixelGrid grid = {});
+// The rectangle's corners, counter-clockwise (a - n, b - n, b + n, a + n with n half the unit
+// normal); empty for a zero-length or non-finite segment.
+std::vector<Vec2> segment_rectangle(Vec2 a, Vec2 b);
+
 // Whether the sample point q (window coordinates) is covered by the convex counter-clockwise
 // polygon under the top-left rule above. Exact.
 bool polygon_covers_sample(const std::vector<Vec2>& ccw_polygon, Vec2 q);

@@ -78,6 +78,15 @@ PreparedCase prepare_case(const std::string& platform_name, const View& view,
   return c;
 }
 
+// Vulkan's strict line (conformance.h judge_rectangle_segment): the rectangle between the ends the
+// near and far planes leave; nothing when the segment is not visible.
+PixelSet rectangle_reference(const ClippedSegment& segment, const View& view,
+                             const Primitive& prim) {
+  if (segment.status != ClipStatus::kVisible) return {};
+  const auto [a, b] = rectangle_ends(segment, near_clipped_vertices(view, prim));
+  return rasterize_rectangle_segment(a, b, view.width, view.height);
+}
+
 Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
                    const RenderResult& rendered, const CaseComparison& comparison) {
   Record& rec = c.rec;
@@ -104,10 +113,14 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
   }
   // The reference rasterizer, from the geometry prepare_case already clipped.
   const int w = view.width, h = view.height;
+  const bool rectangle_lines = comparison.line_rule == CaseComparison::LineRule::kRectangle;
   PixelSet reference;
   switch (prim.kind) {
     case Kind::kPoint: reference = rasterize_reference(view, prim); break;
-    case Kind::kLine: reference = rasterize_segment(c.segment, w, h); break;
+    case Kind::kLine:
+      reference = rectangle_lines ? rectangle_reference(c.segment, view, prim)
+                                  : rasterize_segment(c.segment, w, h);
+      break;
     case Kind::kTriangle: reference = rasterize_polygon(c.polygon, w, h); break;
   }
   rec.ref_diff = symmetric_difference_size(rendered.lit, reference);
@@ -125,8 +138,11 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
                       comparison.effective);
       break;
     case Kind::kLine:
-      v = judge_segment(c.segment, near_clipped_vertices(view, prim), w, h, rendered.lit,
-                        reference, comparison.effective);
+      v = rectangle_lines
+              ? judge_rectangle_segment(c.segment, near_clipped_vertices(view, prim), w, h,
+                                        rendered.lit, reference, comparison.effective)
+              : judge_segment(c.segment, near_clipped_vertices(view, prim), w, h, rendered.lit,
+                              reference, comparison.effective);
       break;
     case Kind::kTriangle:
       v = judge_polygon(c.polygon, near_clipped_vertices(view, prim), w, h, rendered.lit,
@@ -140,6 +156,13 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
 }
 
 }  // namespace
+
+CaseComparison::LineRule line_rule_for(const PlatformSpec& spec, const DriverInfo& driver) {
+  return spec.draws_with_vulkan() && spec.line_mode == PlatformSpec::LineMode::kDefault &&
+                 driver.strict_lines
+             ? CaseComparison::LineRule::kRectangle
+             : CaseComparison::LineRule::kDiamondExit;
+}
 
 std::vector<Record> measure_cases(const std::string& platform_name, Platform& platform,
                                   const View& view, const std::vector<Primitive>& prims,

@@ -38,10 +38,19 @@ struct CaseComparison {
   // The grid the platform effectively snaps to (metrics/effective_subpixel.h): "snapped" means
   // equal to the reference on this grid. Exact: the platform does not snap.
   SubpixelGrid effective;
+  // How the platform draws lines, hence which reference and rules judge them: GL's diamond-exit
+  // (GL platforms, Vulkan's Bresenham mode and default lines without strictLines), or Vulkan's
+  // strict rectangles (metrics/conformance.h judge_rectangle_segment).
+  enum class LineRule { kDiamondExit, kRectangle };
+  LineRule line_rule = LineRule::kDiamondExit;
   // Implicit from a bool (with_reference), as most callers only say whether to compare.
   CaseComparison(bool with_reference_ = true, SubpixelGrid effective_ = {})
       : with_reference(with_reference_), effective(effective_) {}
 };
+
+// The line rule of a platform that loaded driver `driver`: kRectangle for a Vulkan platform
+// drawing default lines on a device with strictLines, else kDiamondExit.
+CaseComparison::LineRule line_rule_for(const PlatformSpec& spec, const DriverInfo& driver);
 
 // Renders each of `prims` on `platform` and fills their records, in order: visibility, the kind's
 // metrics, pixel hash, render time, and the comparison with the reference (ref_diff and the

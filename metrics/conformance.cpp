@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -311,6 +312,56 @@ ConformanceVerdict judge_segment(const ClippedSegment& segment, double magnitude
                        effective, violating);
 }
 
+std::pair<Vec2, Vec2> rectangle_ends(const ClippedSegment& segment,
+                                     const std::vector<AllowedVertex>& near_clipped) {
+  auto side = [](int plane) { return plane >= kPlaneLeft && plane <= kPlaneTop; };
+  const bool guard = near_clipped.size() == 2;
+  return {guard && side(segment.plane0) ? near_clipped[0].p : segment.p0,
+          guard && side(segment.plane1) ? near_clipped[1].p : segment.p1};
+}
+
+ConformanceVerdict judge_rectangle_segment(const ClippedSegment& segment,
+                                           const std::vector<AllowedVertex>& near_clipped,
+                                           int width, int height, const PixelSet& lit,
+                                           const PixelSet& exact, SubpixelGrid effective,
+                                           PixelSet* violating) {
+  if (violating) violating->clear();
+  if (lit == exact) return verdict(Conformance::kExact);
+  const auto [a, b] = rectangle_ends(segment, near_clipped);
+  if (!effective.exact() && lit == rasterize_rectangle_segment(a, b, width, height, effective))
+    return verdict(Conformance::kSnapped);
+  const double ra = near_clipped.size() == 2 ? near_clipped[0].allowance
+                                             : conformance_allowance(0, width, height);
+  const double rb = near_clipped.size() == 2 ? near_clipped[1].allowance : ra;
+  // Moving the ends turns the segment: the half-width normal swings by up to (ra + rb) / length.
+  const double len = length(b - a);
+  const double turn = len > 0 ? 0.5 * (ra + rb) / len : std::numeric_limits<double>::infinity();
+  const std::vector<Vec2> corners = segment_rectangle(a, b);
+  // The rectangle of the window-cut ends, allowed where a side cut an end (a clipping rasterizer).
+  PixelSet cut_rectangle;
+  const auto moved = [](Vec2 p, Vec2 q) { return p.x != q.x || p.y != q.y; };
+  if (moved(a, segment.p0) || moved(b, segment.p1))
+    cut_rectangle = rasterize_rectangle_segment(segment.p0, segment.p1, width, height);
+  auto allowed = [&](Pixel px, bool lit_here) {
+    if (!cut_rectangle.empty() && cut_rectangle.contains(px) == lit_here) return true;
+    if (corners.empty()) return false;
+    const Vec2 c{px.x + 0.5, px.y + 0.5};
+    const double r[4] = {std::sqrt(2.0) * ra + turn, std::sqrt(2.0) * rb + turn,
+                         std::sqrt(2.0) * rb + turn, std::sqrt(2.0) * ra + turn};
+    for (int i = 0; i < 4; ++i)
+      if (in_tapered_capsule(c, corners[i], r[i], corners[(i + 1) % 4], r[(i + 1) % 4]))
+        return true;
+    return false;
+  };
+  Violations v;
+  for (const Pixel& px : set_difference(lit, exact))
+    if (!allowed(px, true)) v.where.push_back(px);
+  for (const Pixel& px : set_difference(exact, lit))
+    if (!allowed(px, false)) v.where.push_back(px);
+  v.add(lit.empty() ? "line-missing" : "line-rectangle", int64_t(v.where.size()));
+  return finish(v, violating);
+}
+
 ConformanceVerdict judge_polygon(const ClippedPolygon& polygon,
                                  const std::vector<AllowedVertex>& near_clipped, int width,
                                  int height, const PixelSet& lit, const PixelSet& exact,
@@ -379,8 +430,19 @@ ConformanceVerdict judge_polygon(const ClippedPolygon& polygon, double magnitude
 }
 
 ConformanceVerdict judge_primitive(const View& view, const Primitive& prim, const PixelSet& lit,
-                                   SubpixelGrid effective, PixelSet* violating) {
+                                   SubpixelGrid effective, PixelSet* violating,
+                                   bool rectangle_lines) {
   const int w = view.width, h = view.height;
+  if (rectangle_lines && prim.kind == Kind::kLine) {
+    const ClippedSegment segment = clip_segment(view, prim.v[0], prim.v[1]);
+    const std::vector<AllowedVertex> ends = near_clipped_vertices(view, prim);
+    PixelSet exact;
+    if (segment.status == ClipStatus::kVisible) {
+      const auto [a, b] = rectangle_ends(segment, ends);
+      exact = rasterize_rectangle_segment(a, b, w, h);
+    }
+    return judge_rectangle_segment(segment, ends, w, h, lit, exact, effective, violating);
+  }
   const PixelSet exact = rasterize_reference(view, prim);
   switch (prim.kind) {
     case Kind::kPoint:

@@ -47,6 +47,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/clipping.h"
@@ -88,6 +89,26 @@ ConformanceVerdict judge_polygon(const ClippedPolygon& polygon,
                                  int height, const PixelSet& lit, const PixelSet& exact,
                                  SubpixelGrid effective, PixelSet* violating = nullptr);
 
+// Vulkan's strict lines (the default line mode where the device reports strictLines; Vulkan 1.3,
+// "Basic Line Segment Rasterization"): the segment covers a rectangle of width 1 from end to end,
+// and a pixel is lit when its centre lies inside (geometry/reference_rasterizer.h
+// rasterize_rectangle_segment). `exact` is that rectangle's pixels for the segment's ends as the
+// near and far planes leave them (a window side does not cut the rectangle: its far end stays
+// where the vertex is). As for polygons, a pixel may differ from `exact` when its centre lies
+// within the allowance of a side of the rectangle, each corner taking the allowance of its end
+// plus the turn the two ends' allowances can give the segment (half of their sum over its length);
+// where a window side cut an end, the rectangle of the cut end is allowed too. Broken:
+// "line-rectangle"; nothing drawn where a pixel had to be: "line-missing".
+ConformanceVerdict judge_rectangle_segment(const ClippedSegment& segment,
+                                           const std::vector<AllowedVertex>& near_clipped,
+                                           int width, int height, const PixelSet& lit,
+                                           const PixelSet& exact, SubpixelGrid effective,
+                                           PixelSet* violating = nullptr);
+// The ends judge_rectangle_segment draws the rectangle between: the segment's ends, but where a
+// window side cut an end, the near-clipped vertex of that end (window coordinates, px).
+std::pair<Vec2, Vec2> rectangle_ends(const ClippedSegment& segment,
+                                     const std::vector<AllowedVertex>& near_clipped);
+
 // Hand-made cases with no view: a point exactly at `clip` (no transform error), a segment or
 // polygon whose clipped vertices all have the uniform allowance conformance_allowance(magnitude).
 ConformanceVerdict judge_point(Vec4 clip, int width, int height, const PixelSet& lit,
@@ -102,7 +123,9 @@ ConformanceVerdict judge_polygon(const ClippedPolygon& polygon, double magnitude
 
 // The same for primitive `prim` under `view`, clipping it and rasterizing its exact reference here
 // (for one primitive at a time, as `renderaudit show` needs; the runner reuses its own).
+// `rectangle_lines`: segments by Vulkan's strict-line rule (judge_rectangle_segment).
 ConformanceVerdict judge_primitive(const View& view, const Primitive& prim, const PixelSet& lit,
-                                   SubpixelGrid effective, PixelSet* violating = nullptr);
+                                   SubpixelGrid effective, PixelSet* violating = nullptr,
+                                   bool rectangle_lines = false);
 
 }  // namespace ra

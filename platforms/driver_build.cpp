@@ -28,6 +28,7 @@ namespace {
 
 // The library a back end asks for by soname; the build must hold it.
 std::string root_soname(const PlatformSpec& spec) {
+  if (spec.backend == Backend::kVulkan) return "libvulkan_lvp.so";  // lavapipe
   return spec.backend == Backend::kOsmesa ? "libOSMesa.so.8" : "libEGL_mesa.so.0";
 }
 
@@ -117,7 +118,9 @@ std::string build_library_dir(const std::string& dir) {
                                                dir + "/lib", dir};
   std::error_code ec;
   for (const std::string& c : candidates)
-    if (fs::exists(c + "/libOSMesa.so.8", ec) || fs::exists(c + "/libEGL_mesa.so.0", ec)) return c;
+    if (fs::exists(c + "/libOSMesa.so.8", ec) || fs::exists(c + "/libEGL_mesa.so.0", ec) ||
+        fs::exists(c + "/libvulkan_lvp.so", ec))
+      return c;
   return candidates.front();
 }
 

@@ -24,7 +24,7 @@ std::string build_cache_dir();
 std::string cached_build_of_suite(const std::string& suite);
 
 // Where a build folder keeps its shared libraries: DIR/usr/lib/<multiarch>, DIR/usr/lib, DIR/lib
-// or DIR itself, the first that holds libOSMesa.so.8 or libEGL_mesa.so.0; DIR/usr/lib/<multiarch>
+// or DIR itself, the first that holds libOSMesa.so.8, libEGL_mesa.so.0 or libvulkan_lvp.so; DIR/usr/lib/<multiarch>
 // when none does (the message then names the library missing there).
 std::string build_library_dir(const std::string& dir);
 
@@ -40,10 +40,11 @@ struct LoadedLibrary {
 std::vector<LoadedLibrary> loaded_driver_libraries();
 
 // Loads `spec`'s build (spec.build non-empty) for its back end: the back end's library
-// (libOSMesa.so.8, libEGL_mesa.so.0) and the build's libraries it needs, dependencies first.
-// Does nothing for the installed driver (spec.build empty) except remember that this process uses
-// it. Throws UserError when the build folder lacks the library (naming the folder and how to fetch
-// a build), or when this process already loaded another build or the installed driver.
+// (libOSMesa.so.8, libEGL_mesa.so.0, lavapipe's libvulkan_lvp.so) and the build's libraries it
+// needs, dependencies first. Does nothing for the installed driver (spec.build empty) except
+// remember that this process uses it. Throws UserError when the build folder lacks the library
+// (naming the folder and how to fetch a build), or when this process already loaded another
+// build or the installed driver.
 void load_driver_build(const PlatformSpec& spec);
 
 // The soname and needed sonames of an ELF shared library (tests and the loader); empty soname

@@ -239,10 +239,7 @@ class GlPlatform : public Platform {
                                ") has GL_MAX_SAMPLES " + std::to_string(max_samples));
     gl().GenFramebuffers(1, &resolve_framebuffer_);
     // k samples lit <-> resolved value 255 k / samples rounded either way; anything else is 255.
-    for (int v = 0; v < 256; ++v) {
-      const int k = int(std::lround(v * samples_ / 255.0));
-      decode_[v] = std::fabs(v - 255.0 * k / samples_) <= 1.0 ? uint8_t(k) : uint8_t(255);
-    }
+    decode_ = samples_from_resolved(samples_);
   }
 
   // Multisample rendering (the antialiasing condition; see the top of this file).
@@ -590,12 +587,7 @@ class GlPlatform : public Platform {
     }
     // A line's strip has rectangles side by side (rows interleave); a triangle's bands come in
     // row order already.
-    const auto before = [](const PixelRun& a, const PixelRun& b) {
-      return a.y != b.y ? a.y < b.y : a.x_begin < b.x_begin;
-    };
-    if (!std::is_sorted(runs_.begin(), runs_.end(), before))
-      std::sort(runs_.begin(), runs_.end(), before);
-    for (const PixelRun& run : runs_) lit.append_run(run.y, run.x_begin, run.x_end);
+    append_in_order(runs_, lit);
   }
 
   // Reads one rectangle back (rows bottom-up, as GL window coordinates) and appends its pixels of
@@ -611,17 +603,7 @@ class GlPlatform : public Platform {
   // Appends the runs of lit pixels of the read-back rectangle, row by row. A pixel is lit when
   // its RGB is not black (any_colour) or equals `colour`.
   void scan(const PixelRect& r, bool any_colour, uint32_t colour, PixelSet& lit) const {
-    const int w = r.x1 - r.x0, h = r.y1 - r.y0;
-    for (int y = 0; y < h; ++y) {
-      const uint32_t* row = readback_.data() + size_t(y) * w;
-      int x = 0;
-      while (x < w) {
-        const int begin = next_change(row, x, w, any_colour, colour, false);
-        if (begin == w) break;
-        x = next_change(row, begin, w, any_colour, colour, true);
-        lit.append_run(r.y0 + y, r.x0 + begin, r.x0 + x);
-      }
-    }
+    scan_rect(readback_.data(), size_t(r.x1 - r.x0), false, r, any_colour, colour, lit);
   }
 
   ReadbackMethod method_;
@@ -630,7 +612,7 @@ class GlPlatform : public Platform {
   int samples_ = 0;   // PlatformSpec::samples; 0 = aliased
   // Multisample platforms: the resolve target, and resolved red value -> samples lit (255: invalid).
   GLuint resolve_framebuffer_ = 0, resolve_renderbuffer_ = 0;
-  uint8_t decode_[256] = {};
+  std::array<uint8_t, 256> decode_{};
   struct Covered {
     int32_t y, x;
     uint8_t k;

@@ -2,6 +2,9 @@
 // llvmpipe triangle's time with one pixel a step, 6-7% with SSE2's 16.
 #include "platforms/pixel_scan.h"
 
+#include <algorithm>
+#include <cmath>
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #define RA_SCAN_X86 1
@@ -93,6 +96,39 @@ int next_change(const uint32_t* row, int x, int w, bool any_colour, uint32_t col
                 bool lit_now) {
   static const auto best = scan_has_avx2() ? next_change_avx2 : next_change_sse2;
   return best(row, x, w, any_colour, colour, lit_now);
+}
+
+void scan_rect(const uint32_t* pixels, size_t stride, bool top_down, const PixelRect& r,
+               bool any_colour, uint32_t colour, PixelSet& lit) {
+  const int w = r.x1 - r.x0, h = r.y1 - r.y0;
+  for (int y = 0; y < h; ++y) {
+    const uint32_t* row = pixels + size_t(top_down ? h - 1 - y : y) * stride;
+    int x = 0;
+    while (x < w) {
+      const int begin = next_change(row, x, w, any_colour, colour, false);
+      if (begin == w) break;
+      x = next_change(row, begin, w, any_colour, colour, true);
+      lit.append_run(r.y0 + y, r.x0 + begin, r.x0 + x);
+    }
+  }
+}
+
+void append_in_order(std::vector<PixelRun>& runs, PixelSet& lit) {
+  const auto before = [](const PixelRun& a, const PixelRun& b) {
+    return a.y != b.y ? a.y < b.y : a.x_begin < b.x_begin;
+  };
+  if (!std::is_sorted(runs.begin(), runs.end(), before))
+    std::sort(runs.begin(), runs.end(), before);
+  for (const PixelRun& run : runs) lit.append_run(run.y, run.x_begin, run.x_end);
+}
+
+std::array<uint8_t, 256> samples_from_resolved(int samples) {
+  std::array<uint8_t, 256> decode{};
+  for (int v = 0; v < 256; ++v) {
+    const int k = int(std::lround(v * samples / 255.0));
+    decode[v] = std::fabs(v - 255.0 * k / samples) <= 1.0 ? uint8_t(k) : uint8_t(255);
+  }
+  return decode;
 }
 
 }  // namespace ra

@@ -6,6 +6,7 @@ namespace ra {
 
 std::unique_ptr<Platform> create_platform(const PlatformSpec& spec, const FaultPlan& faults) {
   if (spec.draws_with_gl()) return create_gl_platform(spec);
+  if (spec.draws_with_vulkan()) return create_vulkan_platform(spec);
   if (spec.backend == Backend::kReference) return create_reference_platform();
   return create_faulty_platform(faults);
 }

@@ -26,6 +26,12 @@ struct DriverInfo {
   // GL_TIME_ELAPSED / CPU wall time over the same draws (gl_platform.cpp): near 1 where the
   // driver's timer measures what the CPU waits for; NaN without a timer query.
   double timer_over_cpu = std::numeric_limits<double>::quiet_NaN();
+  // Vulkan platforms only (platforms/vulkan_context.h): lineSubPixelPrecisionBits, strictLines,
+  // the modes of VK_EXT_line_rasterization ("rectangular, bresenham, smooth"; "default" without
+  // it), the line mode the platform draws with ("default", "bresenham"). Empty line_modes: GL.
+  int line_subpixel_bits = 0;
+  bool strict_lines = false;
+  std::string line_modes = "", line_mode = "";
 };
 
 // One primitive as rendered.
@@ -79,7 +85,7 @@ class Platform {
 // declares.
 std::unique_ptr<Platform> create_platform(const PlatformSpec& spec, const FaultPlan& faults);
 
-// How a GL platform finds the lit pixels. Only kRegionWithProof is used by `run`; the others
+// How a GL or Vulkan platform finds the lit pixels. Only kRegionWithProof is used by `run`; the others
 // exist for the benchmark (`make bench`), which compares them side by side.
 enum class ReadbackMethod {
   kRegionWithProof,  // read the expected region; an occlusion query proves nothing lit elsewhere
@@ -89,6 +95,11 @@ enum class ReadbackMethod {
 // `wild_pixel_indices` (tests only): for these primitive indices GL also lights one pixel far from
 // the primitive, inside the same occlusion query, as a driver bug would; the readback must find it.
 std::unique_ptr<Platform> create_gl_platform(
+    const PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
+    std::vector<uint64_t> wild_pixel_indices = {});
+// A Vulkan platform (spec.draws_with_vulkan(); vulkan_platform.cpp): the same readback methods
+// and test faults as create_gl_platform.
+std::unique_ptr<Platform> create_vulkan_platform(
     const PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
     std::vector<uint64_t> wild_pixel_indices = {});
 std::unique_ptr<Platform> create_reference_platform();

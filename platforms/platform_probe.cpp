@@ -10,11 +10,31 @@
 #include "util/gl_child_process.h"
 
 namespace ra {
+namespace {
+
+// A Vulkan platform's device, brought up as for drawing (vulkan_context.h), as JSON.
+nlohmann::json vulkan_probe(const PlatformSpec& spec) {
+  const std::unique_ptr<Platform> platform = create_vulkan_platform(spec);
+  const DriverInfo d = platform->driver_info();
+  return nlohmann::json{{"renderer", d.renderer},
+                        {"version", d.version},
+                        {"vendor", d.vendor},
+                        {"subpixel_bits", d.subpixel_bits},
+                        {"max_samples", d.max_samples},
+                        {"timer_query", d.timer_query},
+                        {"backend", d.backend},
+                        {"line_subpixel_bits", d.line_subpixel_bits},
+                        {"strict_lines", d.strict_lines},
+                        {"line_modes", d.line_modes},
+                        {"line_mode", d.line_mode}};
+}
+
+}  // namespace
 
 PlatformProbe probe_platform(const PlatformSpec& spec) {
   PlatformProbe out;
   out.name = spec.name;
-  if (!spec.draws_with_gl()) {
+  if (!spec.draws_with_driver()) {
     out.available = true;
     out.driver.renderer = spec.backend == Backend::kReference ? "renderaudit reference rasterizer"
                                                               : "renderaudit faulty test platform";
@@ -25,6 +45,7 @@ PlatformProbe probe_platform(const PlatformSpec& spec) {
   const std::string name = "renderaudit-probe-" + std::to_string(::getpid()) + "-" + spec.name;
   try {
     const nlohmann::json j = run_in_child(scratch, name, [&spec]() {
+      if (spec.draws_with_vulkan()) return vulkan_probe(spec);
       const std::unique_ptr<GlContext> context = create_gl_context(spec);
       const GlApi& gl = context->gl();
       const auto text = [&gl](GLenum what) {
@@ -57,10 +78,40 @@ PlatformProbe probe_platform(const PlatformSpec& spec) {
     out.driver.max_samples = j.value("max_samples", 0);
     out.driver.timer_query = j.value("timer_query", false);
     out.driver.backend = j.value("backend", "");
+    out.driver.line_subpixel_bits = j.value("line_subpixel_bits", 0);
+    out.driver.strict_lines = j.value("strict_lines", false);
+    out.driver.line_modes = j.value("line_modes", "");
+    out.driver.line_mode = j.value("line_mode", "");
   } catch (const ChildProcessError& e) {
     out.reason = e.what();
-    const std::string prefix = spec.name + ": ";  // the platform is named by the caller
-    if (out.reason.compare(0, prefix.size(), prefix) == 0) out.reason.erase(0, prefix.size());
+    for (const std::string& prefix : {spec.name + ": ", "platform " + spec.name + ": "})
+      if (out.reason.compare(0, prefix.size(), prefix) == 0)  // the caller names the platform
+        out.reason.erase(0, prefix.size());
+  }
+  return out;
+}
+
+std::vector<VulkanDeviceInfo> list_vulkan_devices_in_child() {
+  const std::string scratch = std::filesystem::temp_directory_path().string();
+  const std::string name = "renderaudit-vulkan-devices-" + std::to_string(::getpid());
+  nlohmann::json j;
+  try {
+    j = run_in_child(scratch, name, []() {
+      nlohmann::json list = nlohmann::json::array();
+      for (const VulkanDeviceInfo& d : list_vulkan_devices())
+        list.push_back({{"index", d.index}, {"name", d.name}, {"type", d.type}});
+      return list;
+    });
+  } catch (const ChildProcessError& e) {
+    throw UserError(e.what());
+  }
+  std::vector<VulkanDeviceInfo> out;
+  for (const nlohmann::json& d : j) {
+    VulkanDeviceInfo info;
+    info.index = d.value("index", 0);
+    info.name = d.value("name", "");
+    info.type = d.value("type", "");
+    out.push_back(info);
   }
   return out;
 }
@@ -75,7 +126,7 @@ void require_platforms_draw(const std::vector<std::string>& names, const std::st
 void require_platforms_draw(const std::vector<PlatformSpec>& specs, const std::string& context) {
   std::string problems;
   for (const PlatformSpec& spec : specs) {
-    if (!spec.draws_with_gl()) continue;
+    if (!spec.draws_with_driver()) continue;
     const PlatformProbe p = probe_platform(spec);
     if (!p.available) problems += "\n  " + spec.name + ": " + p.reason;
   }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "platforms/platform.h"
+#include "platforms/vulkan_context.h"
 
 namespace ra {
 
@@ -21,6 +22,12 @@ struct PlatformProbe {
 // Probes one platform (the non-GL ones are always available). Never throws for a platform that
 // cannot draw: that is the result.
 PlatformProbe probe_platform(const PlatformSpec& spec);
+
+// The Vulkan devices (index, name, type; platforms/vulkan_context.h), listed in a forked child:
+// a process that has brought up a Vulkan driver must not fork later (NVIDIA's driver deadlocks
+// in the child), and every probe forks. Throws ra::UserError with the child's reason when it
+// cannot list them (no loader, no driver).
+std::vector<VulkanDeviceInfo> list_vulkan_devices_in_child();
 
 // Throws ra::UserError listing every GL platform of `names` that cannot draw here, with each one's
 // reason (the run then stops before its directory is written). Unknown names are the experiment

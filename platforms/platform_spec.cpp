@@ -35,6 +35,21 @@ const std::vector<PlatformSpec>& platform_specs() {
        B::kEglDevice},
       {"egl-device-msaa4", "the first hardware EGL device, antialiased: 4x multisampling",
        B::kEglDevice, "", 4},
+      // Vulkan (platforms/vulkan_platform.cpp): Mesa's lavapipe, and any Vulkan device.
+      {"vk-lavapipe",
+       "Mesa's lavapipe (Vulkan on llvmpipe), default lines: rectangles under strictLines",
+       B::kVulkan, "lavapipe"},
+      {"vk-lavapipe-bresenham",
+       "Mesa's lavapipe, Bresenham lines (VK_EXT_line_rasterization: diamond-exit, as GL)",
+       B::kVulkan, "lavapipe", 0, -1, "", "", PlatformSpec::LineMode::kBresenham},
+      {"vk-lavapipe-msaa4", "Mesa's lavapipe, antialiased: 4x multisampling", B::kVulkan,
+       "lavapipe", 4},
+      {"vk-device", "the first Vulkan device that is not a CPU: a GPU's own Vulkan driver",
+       B::kVulkan, ""},
+      {"vk-device-bresenham", "the first Vulkan GPU, Bresenham lines (VK_EXT_line_rasterization)",
+       B::kVulkan, "", 0, -1, "", "", PlatformSpec::LineMode::kBresenham},
+      {"vk-device-msaa4", "the first Vulkan GPU, antialiased: 4x multisampling", B::kVulkan, "",
+       4},
   };
   return specs;
 }
@@ -57,7 +72,8 @@ std::optional<PlatformSpec> find_platform(const std::string& name) {
   if (const auto [base, build] = split_build(name); name.find('@') != std::string::npos) {
     std::optional<PlatformSpec> s = find_platform(base);
     if (!s || !is_build_name(build) ||
-        (s->backend != Backend::kOsmesa && s->backend != Backend::kEglSurfaceless))
+        (s->backend != Backend::kOsmesa && s->backend != Backend::kEglSurfaceless &&
+         s->mesa_driver != "lavapipe"))
       return std::nullopt;
     s->name = name;
     s->description += ", driver build " + build;
@@ -67,13 +83,19 @@ std::optional<PlatformSpec> find_platform(const std::string& name) {
   }
   for (const PlatformSpec& s : platform_specs())
     if (name == s.name) return s;
-  // egl-device:N and egl-device:N-msaa4
-  const std::string prefix = "egl-device:", msaa = "-msaa4";
+  // egl-device:N[-msaa4] and vk-device:N[-bresenham|-msaa4]
+  const bool vulkan = name.compare(0, 10, "vk-device:") == 0;
+  const std::string prefix = vulkan ? "vk-device:" : "egl-device:";
   if (name.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
   std::string digits = name.substr(prefix.size());
-  const bool antialiased =
-      digits.size() > msaa.size() && digits.compare(digits.size() - msaa.size(), msaa.size(), msaa) == 0;
-  if (antialiased) digits.resize(digits.size() - msaa.size());
+  const auto strip = [&digits](const std::string& suffix) {
+    const bool has = digits.size() > suffix.size() &&
+                     digits.compare(digits.size() - suffix.size(), suffix.size(), suffix) == 0;
+    if (has) digits.resize(digits.size() - suffix.size());
+    return has;
+  };
+  const bool antialiased = strip("-msaa4");
+  const bool bresenham = vulkan && !antialiased && strip("-bresenham");
   int index = -1;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
   if (digits.empty() || ec != std::errc() || end != digits.data() + digits.size() || index < 0 ||
@@ -81,18 +103,22 @@ std::optional<PlatformSpec> find_platform(const std::string& name) {
     return std::nullopt;
   PlatformSpec s;
   s.name = name;
-  s.description = "EGL device " + std::to_string(index) + " (EGL_EXT_platform_device)" +
-                  (antialiased ? ", antialiased: 4x multisampling" : "");
-  s.backend = Backend::kEglDevice;
+  s.description = vulkan ? "Vulkan device " + std::to_string(index) + " (as `renderaudit platforms` lists it)"
+                         : "EGL device " + std::to_string(index) + " (EGL_EXT_platform_device)";
+  s.description += antialiased ? ", antialiased: 4x multisampling"
+                   : bresenham ? ", Bresenham lines (VK_EXT_line_rasterization)"
+                               : "";
+  s.backend = vulkan ? Backend::kVulkan : Backend::kEglDevice;
   s.device = index;
   s.samples = antialiased ? 4 : 0;
+  if (bresenham) s.line_mode = PlatformSpec::LineMode::kBresenham;
   return s;
 }
 
 std::string platform_names() {
   std::string out;
   for (const auto& s : platform_specs()) out += (out.empty() ? "" : ", ") + s.name;
-  return out + ", egl-device:N, and PLATFORM@BUILD for a driver build";
+  return out + ", egl-device:N, vk-device:N, and PLATFORM@BUILD for a driver build";
 }
 
 std::string aliased_gl_platform_names() {
@@ -117,6 +143,11 @@ std::string packages_for(const PlatformSpec& spec) {
                  : "libegl1 libegl-mesa0 libgl1-mesa-dri";
     case Backend::kEglDevice:
       return "libegl1 and the GPU vendor's EGL driver (e.g. libnvidia-egl or libegl-mesa0)";
+    case Backend::kVulkan:
+      return spec.mesa_driver == "lavapipe"
+                 ? "libvulkan1 mesa-vulkan-drivers"
+                 : "libvulkan1 and the GPU vendor's Vulkan driver (e.g. libnvidia-gl or "
+                   "mesa-vulkan-drivers)";
     case Backend::kReference:
     case Backend::kFaulty:
       return "";

@@ -14,6 +14,7 @@ enum class Backend {
   kOsmesa,          // Mesa's OSMesa (libOSMesa.so.8); the driver picked by GALLIUM_DRIVER
   kEglSurfaceless,  // Mesa's EGL_MESA_platform_surfaceless; the driver picked by the environment
   kEglDevice,       // a device of EGL_EXT_platform_device: a GPU through its vendor's driver
+  kVulkan,          // a Vulkan physical device through the loader (libvulkan.so.1)
   kReference,       // the project's exact rasterizer (no driver)
   kFaulty,          // test platform: the reference plus injected faults
 };
@@ -37,17 +38,28 @@ struct PlatformSpec {
   std::string build = "";
   std::string build_dir = "";
 
+  // kVulkan: how lines are rasterized. kDefault is the pipeline's default (rectangles where the
+  // device has strictLines, else parallelograms or Bresenham); kBresenham asks for
+  // VK_EXT_line_rasterization's Bresenham mode (diamond-exit, as GL).
+  enum class LineMode { kDefault, kBresenham };
+  LineMode line_mode = LineMode::kDefault;
+
   bool draws_with_gl() const {
     return backend == Backend::kOsmesa || backend == Backend::kEglSurfaceless ||
            backend == Backend::kEglDevice;
   }
+  bool draws_with_vulkan() const { return backend == Backend::kVulkan; }
+  // A driver draws (GL or Vulkan), not the project's own rasterizer: what is probed, whose
+  // identity goes into the run's driver file and is checked by every process that draws.
+  bool draws_with_driver() const { return draws_with_gl() || draws_with_vulkan(); }
 };
 
-// The platforms with a fixed name, in the order messages list them (`egl-device:N` and
-// `egl-device:N-msaa4` are parsed by find_platform).
+// The platforms with a fixed name, in the order messages list them (`egl-device:N`,
+// `egl-device:N-msaa4`, `vk-device:N`, `vk-device:N-bresenham` and `vk-device:N-msaa4` are parsed
+// by find_platform).
 const std::vector<PlatformSpec>& platform_specs();
 // The platform called `name`, or nullopt. `PLATFORM@BUILD` (an OSMesa or surfaceless EGL
-// platform, BUILD of letters, digits and `._-`) is PLATFORM drawn with driver build BUILD, whose
+// platform, or vk-lavapipe and its variants, BUILD of letters, digits and `._-`) is PLATFORM drawn with driver build BUILD, whose
 // folder defaults to BUILD in the build cache (build_cache_dir()); an experiment's [builds] table
 // may name another (runner/experiment.h).
 std::optional<PlatformSpec> find_platform(const std::string& name);

@@ -26,7 +26,7 @@ RendererCheck::RendererCheck(std::string run_dir, const std::string& pattern)
 void require_run_driver(const std::string& run_dir, const std::string& platform,
                         const DriverInfo& loaded) {
   const std::optional<PlatformSpec> spec = find_platform(platform);
-  if (!spec || !spec->draws_with_gl()) return;
+  if (!spec || !spec->draws_with_driver()) return;
   const std::string path = run_dir + "/drivers/" + platform + ".json";
   std::error_code ec;
   if (!fs::exists(path, ec)) return;
@@ -57,7 +57,7 @@ std::string RendererCheck::mismatch() {
     if (entry.path().extension() != ".json") continue;
     const std::string name = entry.path().stem().string();
     const std::optional<PlatformSpec> spec = find_platform(name);
-    if (!spec || !spec->draws_with_gl() || checked_.count(name)) continue;
+    if (!spec || !spec->draws_with_driver() || checked_.count(name)) continue;
     checked_.insert(name);
     std::string renderer;
     try {

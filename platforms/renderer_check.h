@@ -1,6 +1,7 @@
 // `run --expect-renderer REGEX`: stop a run as soon as a driver platform reports a GL_RENDERER
 // that does not match (deqp-runner's --renderer-check), rather than audit the wrong driver for
-// hours. Driver platforms are those drawn with GL (PlatformSpec::draws_with_gl); the project's own
+// hours. Driver platforms are those drawn with GL or Vulkan (PlatformSpec::draws_with_driver;
+// for Vulkan GL_RENDERER is the device name and GL_VERSION the API and driver); the project's own
 // reference and test platforms are not checked.
 #pragma once
 

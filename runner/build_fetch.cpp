@@ -170,7 +170,8 @@ const std::vector<std::string>& required_build_packages() {
 }
 
 const std::vector<std::string>& optional_build_packages() {
-  static const std::vector<std::string> p = {"mesa-libgallium", "libglapi-mesa", "libgl1-mesa-dri"};
+  static const std::vector<std::string> p = {"mesa-libgallium", "libglapi-mesa", "libgl1-mesa-dri",
+                                             "mesa-vulkan-drivers"};  // lavapipe: vk-lavapipe@BUILD
   return p;
 }
 

@@ -60,9 +60,15 @@ static void write_driver_info(const std::string& run_dir, const PlatformSpec& sp
                                              ? nlohmann::json()
                                              : nlohmann::json(info.timer_over_cpu)}};
   j["effective_subpixel"] = effective_subpixel_json(effective);
+  if (spec.draws_with_vulkan()) {  // the Vulkan rules depend on these (metrics/conformance.h)
+    j["line_subpixel_bits"] = info.line_subpixel_bits;
+    j["strict_lines"] = info.strict_lines;
+    j["line_modes"] = info.line_modes;
+    j["line_mode"] = info.line_mode;
+  }
   // The build that drew (none: the installed driver) and every driver library this process
   // loaded, by path and content fingerprint: what a re-render must load to draw the same.
-  if (spec.draws_with_gl()) {
+  if (spec.draws_with_driver()) {
     nlohmann::json libs = nlohmann::json::array();
     for (const LoadedLibrary& l : loaded_driver_libraries())
       libs.push_back({{"path", l.path}, {"fnv1a64", l.fnv1a64}});
@@ -101,7 +107,9 @@ void ShardSession::run(const Shard& shard, const std::string& records_dir) {
     write_driver_info(run_dir_, spec, *platform_, effective_);
   }
   platform_->set_view(*view);
-  const CaseComparison comparison(!exact, effective_.grid);
+  CaseComparison comparison(!exact, effective_.grid);
+  comparison.line_rule =
+      line_rule_for(experiment_platform(exp_, shard.platform), platform_->driver_info());
 
   const std::string path = records_dir.empty() ? shard.records_path(run_dir_)
                                                : records_dir + "/" + shard.id() + ".csv";

@@ -24,8 +24,11 @@ const DriverCost& driver_cost(const std::string& platform) {
   static const DriverCost llvmpipe = {{{35, 0}, {30, 0.17}, {34, 0.025}}};
   static const DriverCost softpipe = {{{20, 0}, {20, 0.73}, {100, 0.31}}};
   static const DriverCost zink = {{{300, 0}, {250, 1.5}, {300, 0.2}}};  // ~8-12x llvmpipe
+  // llvmpipe's core plus a queue submission and a fence wait per draw (docs/vulkan.md)
+  static const DriverCost lavapipe = {{{40, 0}, {40, 0.2}, {50, 0.03}}};
   static const DriverCost reference = {{{1, 0}, {2, 0.04}, {6, 0.003}}};
   const std::optional<PlatformSpec> spec = find_platform(platform);
+  if (spec && spec->draws_with_vulkan()) return lavapipe;
   if (!spec || !spec->draws_with_gl()) return reference;
   if (spec->mesa_driver == "softpipe") return softpipe;
   if (spec->mesa_driver == "zink") return zink;

@@ -10,7 +10,12 @@ packages=(
   libegl-dev            # EGL headers and libEGL (glvnd), loaded at run time: the egl-* platforms
   libopengl-dev         # libOpenGL (glvnd): the C reproducers of `renderaudit reproduce` link it
   libegl-mesa0          # Mesa's EGL: surfaceless egl-llvmpipe, egl-softpipe (and egl-zink with
-                        #   mesa-vulkan-drivers libvulkan1, not installed by default)
+                        #   the Vulkan packages below)
+  libvulkan1            # the Vulkan loader, opened at run time: the vk-* platforms (and egl-zink)
+  mesa-vulkan-drivers   # lavapipe, Mesa's Vulkan driver on llvmpipe: vk-lavapipe (and egl-zink)
+  libvulkan-dev         # Vulkan headers (the loader's functions are fetched at run time)
+  libvulkan-volk-dev    # volk: fetches the Vulkan functions from the loader it opens
+  glslang-tools         # glslangValidator: the shaders compiled to SPIR-V at build time, embedded
   libvtk9-dev           # VTK: figures (charts to PNG and PDF)
   libopenimageio-dev    # OpenImageIO: PNG of single primitives (renderaudit show)
   libboost-math-dev     # Boost.Math: t, F, normal distributions for the statistics

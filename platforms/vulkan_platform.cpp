@@ -1,0 +1,684 @@
+// A Vulkan driver as a platform: the GL platforms' measurement (gl_platform.cpp) on a Vulkan
+// device. One primitive per submission (or a batch under one submission where the GL path
+// batches), each in its own colour (a 24-bit counter) into an RGBA8 image that is never cleared
+// between primitives; a precise occlusion query counts the fragments, and only the expected
+// region is copied to a host buffer and scanned (platforms/pixel_scan.h); when the count and the
+// pixels found differ, the whole window is read, and then the primitive is drawn white on a
+// cleared window, as in gl_platform.cpp. render_us is the CPU time of recording the command
+// buffer, submitting it and waiting for its fence; the readback is a second submission, outside
+// render_us, as glReadPixels is outside GL's.
+//
+// Coordinates. The records must mean what GL's mean: GL window coordinates, y up, pixel (i, j)
+// covering [i, i+1] x [j, j+1]. Vulkan's framebuffer y points down and its clip volume is
+// 0 <= z <= w (GL: -w <= z <= w). The matrix handed to the shader is the view's projection x
+// modelview with row y negated and row z replaced by (z + w) / 2, formed in double: clipping then
+// cuts at GL's planes (z' >= 0 is z >= -w, z' <= w is z <= w), and the viewport (0, 0, W, H)
+// puts a vertex at framebuffer y = H - y_GL. Framebuffer row r is GL row H - 1 - r, with the same
+// pixel centres, and a subpixel grid of 2^-n px in framebuffer y is the same grid in GL's y (H is
+// an integer). Only the side of a tie rule flips: a pixel centre exactly on an edge may go to the
+// other primitive (Vulkan mandates no tie rule; GL's polygons have none either).
+//
+// Multisample platforms (samples 4): drawn white into a 4-sample image, the expected region
+// resolved (vkCmdResolveImage, inside render_us as GL's glBlitFramebuffer is) and decoded as in
+// gl_platform.cpp (samples lit = resolved red x 4 / 255); the occlusion query then counts
+// samples. After the readback the primitive is drawn again in black, which clears exactly its
+// samples.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "platforms/pixel_scan.h"
+#include "platforms/platform.h"
+#include "platforms/vulkan_context.h"
+#include "platforms/vulkan_resources.h"
+
+namespace ra {
+namespace {
+
+constexpr uint32_t kAnyColour = 0xffffffffu;
+constexpr uint32_t kLastColour = 0x00ffffffu;
+constexpr size_t kMaxVertices =
+    3 * 256;  // a batch of the runner's at most 64 primitives, with room
+
+using Clock = std::chrono::steady_clock;
+double micros_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+}
+
+// GL clip coordinates -> Vulkan's (see the top of this file): y negated, z' = (z + w) / 2.
+Mat4 vulkan_clip(const Mat4& gl_clip_from_object) {
+  Mat4 m = gl_clip_from_object;
+  for (int c = 0; c < 4; ++c) {
+    m.at(1, c) = -gl_clip_from_object.at(1, c);
+    m.at(2, c) = 0.5 * (gl_clip_from_object.at(2, c) + gl_clip_from_object.at(3, c));
+  }
+  return m;
+}
+
+// What one draw of a batch needs: its primitive's first vertex, count, kind and colour.
+struct DrawItem {
+  uint32_t first = 0, count = 0;
+  Kind kind = Kind::kPoint;
+  uint32_t colour = 0;    // 0xBBGGRR
+  bool identity = false;  // vertices already in Vulkan clip coordinates (the test's wild pixel)
+};
+
+class VulkanPlatform : public Platform {
+ public:
+  VulkanPlatform(const PlatformSpec& spec, ReadbackMethod method, std::vector<uint64_t> wild)
+      : method_(method),
+        wild_pixel_indices_(std::move(wild)),
+        name_(spec.name),
+        samples_(spec.samples) {
+    ctx_ = std::make_unique<VulkanContext>(spec);
+    const VulkanDeviceInfo& d = ctx_->info();
+    info_.renderer = d.name;
+    info_.version = "Vulkan " + d.api_version + ", " + d.driver;
+    info_.vendor =
+        d.driver.substr(0, d.driver.find(' ')) + " (vendor id 0x" + hex(d.vendor_id) + ")";
+    info_.subpixel_bits = d.subpixel_bits;
+    info_.timer_query = d.timestamps;
+    info_.max_samples = d.max_samples;
+    info_.backend = ctx_->backend();
+    info_.line_subpixel_bits = d.line_subpixel_bits;
+    info_.strict_lines = d.strict_lines;
+    info_.line_modes = d.line_modes();
+    info_.line_mode =
+        spec.line_mode == PlatformSpec::LineMode::kBresenham ? "bresenham" : "default";
+    if (samples_ > 0) decode_ = samples_from_resolved(samples_);
+    pipelines_ = create_pipelines(*ctx_, std::max(samples_, 1), spec.line_mode);
+    VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pool.queueFamilyIndex = ctx_->queue_family();
+    vk_check(vkCreateCommandPool(dev(), &pool, nullptr, &pool_), "vkCreateCommandPool");
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = pool_;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    vk_check(vkAllocateCommandBuffers(dev(), &alloc, &cb_), "vkAllocateCommandBuffers");
+    VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    vk_check(vkCreateFence(dev(), &fence, nullptr, &fence_), "vkCreateFence");
+    VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    q.queryType = VK_QUERY_TYPE_OCCLUSION;
+    q.queryCount = 1;
+    vk_check(vkCreateQueryPool(dev(), &q, nullptr, &occlusion_), "vkCreateQueryPool");
+    if (d.timestamps) {
+      q.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      q.queryCount = 2;
+      vk_check(vkCreateQueryPool(dev(), &q, nullptr, &timestamps_), "vkCreateQueryPool");
+    }
+    vertices_ = create_host_buffer(*ctx_, kMaxVertices * 4 * sizeof(float),
+                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, false);
+  }
+
+  ~VulkanPlatform() override {
+    vkDeviceWaitIdle(dev());
+    destroy_targets();
+    destroy_buffer(*ctx_, vertices_);
+    destroy_buffer(*ctx_, readback_);
+    if (timestamps_) vkDestroyQueryPool(dev(), timestamps_, nullptr);
+    vkDestroyQueryPool(dev(), occlusion_, nullptr);
+    vkDestroyFence(dev(), fence_, nullptr);
+    vkDestroyCommandPool(dev(), pool_, nullptr);
+    destroy_pipelines(*ctx_, pipelines_);
+  }
+
+  DriverInfo driver_info() const override { return info_; }
+
+  double measure_timer_over_cpu() override {
+    if (!timestamps_) return info_.timer_over_cpu;
+    return info_.timer_over_cpu = timer_over_cpu();
+  }
+
+  void set_view(const View& view) override {
+    if (view.width != width_ || view.height != height_) resize(view.width, view.height);
+    const Mat4 m = vulkan_clip(view.view_projection);
+    for (int i = 0; i < 16; ++i) clip_from_object_[i] = float(m.m[i]);
+    if (!warmed_up_) warm_up();
+    clear_all();
+  }
+
+  RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
+    if (samples_ > 0) return render_multisample(prim, expected);
+    RenderResult out;
+    switch (method_) {
+      case ReadbackMethod::kDrawOnly:
+        out.render_us = draw({prim}, {1}, false, nullptr);
+        return out;
+      case ReadbackMethod::kFullWindow:
+        clear_all();
+        out.render_us = draw({prim}, {1}, false, nullptr);
+        read_colour(window(), kAnyColour, out.lit);
+        out.full_scan = true;
+        return out;
+      case ReadbackMethod::kRegionWithProof:
+        break;
+    }
+    reserve_colours(1);
+    const uint32_t colour = ++colour_;
+    const Pixel* wild = wild_pixel_for(prim, expected);
+    out.render_us = draw({prim}, {colour}, true, wild);
+    const uint64_t fragments = occlusion_count();
+    read_colour(expected, colour, out.lit);
+    if (uint64_t(out.lit.size()) == fragments) return out;
+    out.full_scan = true;
+    out.lit.clear();
+    read_colour(window(), colour, out.lit);
+    if (uint64_t(out.lit.size()) == fragments) return out;
+    // The colour did not come back exactly, or a pixel got two fragments: white on a cleared
+    // window, every non-black pixel of it (gl_platform.cpp does the same).
+    clear_all();
+    out.render_us = draw({prim}, {kLastColour}, true, wild);
+    const uint64_t again = occlusion_count();
+    out.lit.clear();
+    read_colour(window(), kAnyColour, out.lit);
+    clear_all();
+    if (uint64_t(out.lit.size()) > again)
+      throw std::runtime_error("the driver lit " + std::to_string(out.lit.size()) +
+                               " pixels with " + std::to_string(again) +
+                               " fragments for primitive " + std::to_string(prim.index));
+    if (uint64_t(out.lit.size()) < again)
+      std::fprintf(stderr, "primitive %llu: %llu fragments for %lld pixels (pixels lit twice)\n",
+                   static_cast<unsigned long long>(prim.index),
+                   static_cast<unsigned long long>(again), static_cast<long long>(out.lit.size()));
+    return out;
+  }
+
+  // A batch under one submission and one occlusion query, each primitive in its own colour; the
+  // proof as in gl_platform.cpp (any other outcome draws the batch one by one).
+  std::vector<RenderResult> render_batch(const std::vector<Primitive>& prims,
+                                         const std::vector<PixelRegion>& expected) override {
+    if (method_ == ReadbackMethod::kDrawOnly && samples_ == 0 && !prims.empty()) {
+      std::vector<RenderResult> out(prims.size());
+      const double us = draw(prims, std::vector<uint32_t>(prims.size(), 1), false, nullptr);
+      for (RenderResult& r : out)
+        r.render_us = us / double(prims.size()), r.batch_size = int(prims.size());
+      return out;
+    }
+    if (method_ != ReadbackMethod::kRegionWithProof || prims.size() < 2 || samples_ > 0 ||
+        prims.size() * 3 > kMaxVertices)
+      return Platform::render_batch(prims, expected);
+    for (const Primitive& p : prims)  // the test fault is drawn one primitive at a time
+      if (wild_pixel_for(p, expected[0])) return Platform::render_batch(prims, expected);
+    reserve_colours(prims.size());
+    std::vector<uint32_t> colours(prims.size());
+    for (uint32_t& c : colours) c = ++colour_;
+    const double share_us = draw(prims, colours, true, nullptr) / double(prims.size());
+    const uint64_t fragments = occlusion_count();
+    std::vector<RenderResult> out(prims.size());
+    uint64_t found = 0;
+    copy_regions(expected);
+    for (size_t i = 0; i < prims.size(); ++i) {
+      out[i].render_us = share_us;
+      out[i].batch_size = int(prims.size());
+      scan_copied(i, colours[i], out[i].lit);
+      found += out[i].lit.size();
+    }
+    if (found == fragments) return out;
+    return Platform::render_batch(prims, expected);
+  }
+
+ private:
+  VkDevice dev() const { return ctx_->device(); }
+  PixelRegion window() const { return PixelRegion(PixelRect{0, 0, width_, height_}); }
+  static std::string hex(uint32_t v) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%04x", v);
+    return buf;
+  }
+
+  // The image drawn into (4 samples on the multisample platforms) and, there, the resolve target.
+  const VulkanImage& read_image() const { return samples_ > 0 ? resolved_ : target_; }
+
+  void resize(int w, int h) {
+    destroy_targets();
+    target_ = create_colour_image(*ctx_, w, h, std::max(samples_, 1));
+    if (samples_ > 0) resolved_ = create_colour_image(*ctx_, w, h, 1);
+    VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fb.renderPass = pipelines_.render_pass;
+    fb.attachmentCount = 1;
+    fb.pAttachments = &target_.view;
+    fb.width = uint32_t(w);
+    fb.height = uint32_t(h);
+    fb.layers = 1;
+    vk_check(vkCreateFramebuffer(dev(), &fb, nullptr, &framebuffer_), "vkCreateFramebuffer");
+    width_ = w;
+    height_ = h;
+    // The images start undefined: into GENERAL, where they stay (vulkan_resources.h).
+    begin();
+    for (VkImage image : {target_.image, resolved_.image}) {
+      if (!image) continue;
+      VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+      b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+      b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+      b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      b.image = image;
+      b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vkCmdPipelineBarrier(cb_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           0, 0, nullptr, 0, nullptr, 1, &b);
+    }
+    submit_and_wait();
+  }
+
+  void destroy_targets() {
+    if (framebuffer_) vkDestroyFramebuffer(dev(), framebuffer_, nullptr);
+    framebuffer_ = VK_NULL_HANDLE;
+    destroy_image(*ctx_, target_);
+    destroy_image(*ctx_, resolved_);
+  }
+
+  void begin() {
+    vk_check(vkResetCommandBuffer(cb_, 0), "vkResetCommandBuffer");
+    VkCommandBufferBeginInfo b{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    b.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vk_check(vkBeginCommandBuffer(cb_, &b), "vkBeginCommandBuffer");
+  }
+
+  void submit_and_wait() {
+    vk_check(vkEndCommandBuffer(cb_), "vkEndCommandBuffer");
+    VkSubmitInfo s{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    s.commandBufferCount = 1;
+    s.pCommandBuffers = &cb_;
+    vk_check(vkQueueSubmit(ctx_->queue(), 1, &s, fence_), "vkQueueSubmit");
+    vk_check(vkWaitForFences(dev(), 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    vk_check(vkResetFences(dev(), 1, &fence_), "vkResetFences");
+  }
+
+  // Earlier submissions' transfers and draws before what follows (a copy, a clear, a resolve).
+  void transfer_barrier() {
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    b.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    vkCmdPipelineBarrier(
+        cb_, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+  }
+
+  // Draws `prims` (colour i for the i-th), under the occlusion query with `counted`, plus the
+  // test's wild pixel; on the multisample platforms resolves `resolve` afterwards. Returns the CPU
+  // time of recording, submission and the wait, microseconds.
+  double draw(const std::vector<Primitive>& prims, const std::vector<uint32_t>& colours,
+              bool counted, const Pixel* wild, const PixelRegion* resolve = nullptr) {
+    std::vector<DrawItem> items;
+    float* v = static_cast<float*>(vertices_.mapped);
+    uint32_t next = 0;
+    for (size_t i = 0; i < prims.size(); ++i) {
+      const Primitive& p = prims[i];
+      DrawItem item{next, uint32_t(vertex_count(p.kind)), p.kind, colours[i], false};
+      for (uint32_t k = 0; k < item.count; ++k, ++next) {
+        v[4 * next] = float(p.v[k].x);
+        v[4 * next + 1] = float(p.v[k].y);
+        v[4 * next + 2] = float(p.v[k].z);
+        v[4 * next + 3] = 1;
+      }
+      items.push_back(item);
+    }
+    if (wild) {  // a point at the pixel's centre, in Vulkan clip coordinates
+      v[4 * next] = float(2.0 * (wild->x + 0.5) / width_ - 1.0);
+      v[4 * next + 1] = float(1.0 - 2.0 * (wild->y + 0.5) / height_);
+      v[4 * next + 2] = 0.5f;
+      v[4 * next + 3] = 1;
+      items.push_back({next, 1, Kind::kPoint, colours.front(), true});
+    }
+    const auto t0 = Clock::now();
+    record_draws(items, counted);
+    if (resolve) resolve_region(*resolve);
+    submit_and_wait();
+    return micros_since(t0);
+  }
+
+  void record_draws(const std::vector<DrawItem>& items, bool counted) {
+    begin();
+    if (counted) vkCmdResetQueryPool(cb_, occlusion_, 0, 1);
+    if (counted && timestamps_) {
+      vkCmdResetQueryPool(cb_, timestamps_, 0, 2);
+      vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_, 0);
+    }
+    if (counted)
+      vkCmdBeginQuery(cb_, occlusion_, 0,
+                      ctx_->info().precise_occlusion ? VK_QUERY_CONTROL_PRECISE_BIT : 0);
+    VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    rp.renderPass = pipelines_.render_pass;
+    rp.framebuffer = framebuffer_;
+    rp.renderArea = {{0, 0}, {uint32_t(width_), uint32_t(height_)}};
+    vkCmdBeginRenderPass(cb_, &rp, VK_SUBPASS_CONTENTS_INLINE);
+    const VkViewport viewport{0, 0, float(width_), float(height_), 0, 1};
+    const VkRect2D scissor{{0, 0}, {uint32_t(width_), uint32_t(height_)}};
+    vkCmdSetViewport(cb_, 0, 1, &viewport);
+    vkCmdSetScissor(cb_, 0, 1, &scissor);
+    const VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cb_, 0, 1, &vertices_.buffer, &offset);
+    int bound = -1;
+    DrawConstants c{};
+    for (const DrawItem& item : items) {
+      if (int(item.kind) != bound) {
+        bound = int(item.kind);
+        vkCmdBindPipeline(cb_, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.by_kind[bound]);
+      }
+      for (int i = 0; i < 16; ++i)
+        c.clip_from_object[i] = item.identity ? (i % 5 == 0 ? 1.0f : 0.0f) : clip_from_object_[i];
+      c.colour[0] = float(item.colour & 0xff) / 255.0f;
+      c.colour[1] = float((item.colour >> 8) & 0xff) / 255.0f;
+      c.colour[2] = float((item.colour >> 16) & 0xff) / 255.0f;
+      c.colour[3] = 1;
+      vkCmdPushConstants(cb_, pipelines_.layout,
+                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof c,
+                         &c);
+      vkCmdDraw(cb_, item.count, 1, item.first, 0);
+    }
+    vkCmdEndRenderPass(cb_);
+    if (counted) vkCmdEndQuery(cb_, occlusion_, 0);
+    if (counted && timestamps_)
+      vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps_, 1);
+  }
+
+  // Fragments (samples, on the multisample platforms) of the last counted draw.
+  uint64_t occlusion_count() {
+    uint64_t n = 0;
+    vk_check(vkGetQueryPoolResults(dev(), occlusion_, 0, 1, sizeof n, &n, sizeof n,
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+             "vkGetQueryPoolResults");
+    return n;
+  }
+
+  PixelRect clamp(PixelRect r) const {
+    r.x0 = std::max(r.x0, 0);
+    r.y0 = std::max(r.y0, 0);
+    r.x1 = std::min(r.x1, width_);
+    r.y1 = std::min(r.y1, height_);
+    return r;
+  }
+
+  // Copies the rectangles of every region (clamped to the window) into the readback buffer, one
+  // submission; copied_[i] lists region i's rectangles with their buffer offsets (pixels).
+  void copy_regions(const std::vector<PixelRegion>& regions) {
+    copied_.assign(regions.size(), {});
+    std::vector<VkBufferImageCopy> copies;
+    size_t offset = 0;
+    for (size_t i = 0; i < regions.size(); ++i)
+      for (const PixelRect& r0 : regions[i].rects) {
+        const PixelRect r = clamp(r0);
+        if (r.empty()) continue;
+        copied_[i].push_back({r, offset});
+        VkBufferImageCopy c{};
+        c.bufferOffset = offset * 4;
+        c.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        c.imageOffset = {r.x0, height_ - r.y1, 0};  // framebuffer y points down
+        c.imageExtent = {uint32_t(r.x1 - r.x0), uint32_t(r.y1 - r.y0), 1};
+        copies.push_back(c);
+        offset += size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
+      }
+    if (copies.empty()) return;
+    if (offset * 4 > readback_.size) {
+      destroy_buffer(*ctx_, readback_);
+      readback_ = create_host_buffer(*ctx_, std::max<VkDeviceSize>(offset * 4, 1 << 20),
+                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    }
+    begin();
+    transfer_barrier();
+    vkCmdCopyImageToBuffer(cb_, read_image().image, VK_IMAGE_LAYOUT_GENERAL, readback_.buffer,
+                           uint32_t(copies.size()), copies.data());
+    VkMemoryBarrier host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cb_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                         &host, 0, nullptr, 0, nullptr);
+    submit_and_wait();
+  }
+
+  // Appends the copied pixels of region i in `colour` (kAnyColour: any not black) to `lit`.
+  void scan_copied(size_t i, uint32_t colour, PixelSet& lit) {
+    const uint32_t* base = static_cast<const uint32_t*>(readback_.mapped);
+    const bool any = colour == kAnyColour;
+    if (copied_[i].size() == 1) {
+      const auto& [r, offset] = copied_[i].front();
+      return scan_rect(base + offset, size_t(r.x1 - r.x0), true, r, any, colour, lit);
+    }
+    runs_.clear();
+    PixelSet part;
+    for (const auto& [r, offset] : copied_[i]) {
+      part.clear();
+      scan_rect(base + offset, size_t(r.x1 - r.x0), true, r, any, colour, part);
+      runs_.insert(runs_.end(), part.runs().begin(), part.runs().end());
+    }
+    append_in_order(runs_, lit);
+  }
+
+  void read_colour(const PixelRegion& region, uint32_t colour, PixelSet& lit) {
+    copy_regions({region});
+    scan_copied(0, colour, lit);
+  }
+
+  // --- multisample platforms -------------------------------------------------------------------
+
+  RenderResult render_multisample(const Primitive& prim, const PixelRegion& expected) {
+    RenderResult out;
+    out.samples = samples_;
+    const PixelRegion whole = window();
+    switch (method_) {
+      case ReadbackMethod::kDrawOnly:
+        out.render_us = draw({prim}, {kLastColour}, false, nullptr);
+        draw({prim}, {0}, false, nullptr);
+        return out;
+      case ReadbackMethod::kFullWindow:
+        clear_all();
+        out.render_us = draw({prim}, {kLastColour}, false, nullptr, &whole);
+        read_coverage(whole, out);
+        out.full_scan = true;
+        clear_all();
+        return out;
+      case ReadbackMethod::kRegionWithProof:
+        break;
+    }
+    const Pixel* wild = wild_pixel_for(prim, expected);
+    out.render_us = draw({prim}, {kLastColour}, true, wild, &expected);
+    uint64_t passed = occlusion_count();
+    if (read_coverage(expected, out) == passed) {
+      draw({prim}, {0}, false, wild);  // black: exactly its samples go back to the clear colour
+      return out;
+    }
+    out.full_scan = true;
+    resolve_window();
+    uint64_t found = read_coverage(whole, out);
+    clear_all();
+    if (found == passed) return out;
+    // Samples left lit by an earlier primitive, or covered twice: again on a cleared window.
+    out.render_us = draw({prim}, {kLastColour}, true, wild, &whole);
+    passed = occlusion_count();
+    found = read_coverage(whole, out);
+    clear_all();
+    if (found > passed)
+      throw std::runtime_error("the driver lit " + std::to_string(found) + " samples with " +
+                               std::to_string(passed) + " samples passed for primitive " +
+                               std::to_string(prim.index));
+    return out;
+  }
+
+  void resolve_window() {
+    begin();
+    resolve_region(window());
+    submit_and_wait();
+  }
+
+  // Records the resolve of the region's rectangles (same place in both images).
+  void resolve_region(const PixelRegion& region) {
+    std::vector<VkImageResolve> resolves;
+    for (const PixelRect& r0 : region.rects) {
+      const PixelRect r = clamp(r0);
+      if (r.empty()) continue;
+      VkImageResolve c{};
+      c.srcSubresource = c.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      c.srcOffset = c.dstOffset = {r.x0, height_ - r.y1, 0};
+      c.extent = {uint32_t(r.x1 - r.x0), uint32_t(r.y1 - r.y0), 1};
+      resolves.push_back(c);
+    }
+    if (resolves.empty()) return;
+    transfer_barrier();
+    vkCmdResolveImage(cb_, target_.image, VK_IMAGE_LAYOUT_GENERAL, resolved_.image,
+                      VK_IMAGE_LAYOUT_GENERAL, uint32_t(resolves.size()), resolves.data());
+  }
+
+  // Reads the region's resolved pixels into out.lit / out.samples_lit (those with any coverage,
+  // in (y, x) order); returns the sum of their samples lit.
+  uint64_t read_coverage(const PixelRegion& region, RenderResult& out) {
+    copy_regions({region});
+    struct Covered {
+      int32_t y, x;
+      uint8_t k;
+    };
+    std::vector<Covered> covered;
+    const uint32_t* base = static_cast<const uint32_t*>(readback_.mapped);
+    for (const auto& [r, offset] : copied_[0]) {
+      const int w = r.x1 - r.x0, h = r.y1 - r.y0;
+      for (int y = 0; y < h; ++y) {
+        const uint32_t* row = base + offset + size_t(h - 1 - y) * w;  // rows top-down
+        for (int x = 0; x < w; ++x) {
+          const uint8_t v = uint8_t(row[x]);  // red
+          if (v == 0) continue;
+          const uint8_t k = decode_[v];
+          if (k == 255)
+            throw std::runtime_error("platform " + name_ + ": resolved value " + std::to_string(v) +
+                                     " at pixel (" + std::to_string(r.x0 + x) + ", " +
+                                     std::to_string(r.y0 + y) + ") is no multiple of 255/" +
+                                     std::to_string(samples_));
+          covered.push_back({r.y0 + y, r.x0 + x, k});
+        }
+      }
+    }
+    if (copied_[0].size() > 1)
+      std::sort(covered.begin(), covered.end(), [](const Covered& a, const Covered& b) {
+        return a.y != b.y ? a.y < b.y : a.x < b.x;
+      });
+    out.lit.clear();
+    out.samples_lit.clear();
+    uint64_t sum = 0;
+    for (const Covered& c : covered) {
+      out.lit.append_run(c.y, c.x, c.x + 1);
+      out.samples_lit.push_back(c.k);
+      sum += c.k;
+    }
+    return sum;
+  }
+
+  // --- shared upkeep ---------------------------------------------------------------------------
+
+  void reserve_colours(size_t n) {
+    if (colour_ + n > kLastColour - 1) clear_all();  // kLastColour is the redraw's white
+  }
+
+  // Clears the whole window (both images) and restarts the colours.
+  void clear_all() {
+    begin();
+    transfer_barrier();
+    const VkClearColorValue black{{0, 0, 0, 0}};
+    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    for (VkImage image : {target_.image, resolved_.image})
+      if (image) vkCmdClearColorImage(cb_, image, VK_IMAGE_LAYOUT_GENERAL, &black, 1, &range);
+    submit_and_wait();
+    colour_ = 0;
+  }
+
+  // One point, segment and triangle drawn untimed before the first primitive (first-use costs of
+  // the driver would otherwise land in the first primitive's render_us); cleared by set_view().
+  void warm_up() {
+    Primitive p, l, t;
+    p.kind = Kind::kPoint;
+    l.kind = Kind::kLine;
+    t.kind = Kind::kTriangle;
+    p.v[0] = {0, 0, -0.5};
+    l.v[0] = {-0.01, 0, -0.5};
+    l.v[1] = {0.01, 0.005, -0.5};
+    t.v = {Vec3{-0.01, -0.01, -0.5}, Vec3{0.01, -0.01, -0.5}, Vec3{0, 0.01, -0.5}};
+    const PixelRegion all = window();
+    draw({p, l, t}, {1, 1, 1}, true, nullptr, samples_ > 0 ? &all : nullptr);
+    PixelSet ignored;
+    read_colour(PixelRegion(PixelRect{0, 0, 1, 1}), 1, ignored);
+    warmed_up_ = true;
+  }
+
+  // Device timestamps against the CPU clock over the same draws: 8 rounds of 16 window-filling
+  // quads at 256 x 256, each one submission; the median of the rounds' ratios (as GL's
+  // GL_TIME_ELAPSED in gl_platform.cpp). Leaves the window at 256 x 256: set_view() sets it again.
+  double timer_over_cpu() {
+    resize(256, 256);
+    for (int i = 0; i < 16; ++i) clip_from_object_[i] = i % 5 == 0 ? 1.0f : 0.0f;
+    std::vector<Primitive> quads;
+    for (int i = 0; i < 16; ++i)
+      for (int half = 0; half < 2; ++half) {
+        Primitive t;
+        t.kind = Kind::kTriangle;
+        t.v = half == 0 ? std::array<Vec3, 3>{Vec3{-1, -1, 0.5}, Vec3{1, -1, 0.5}, Vec3{1, 1, 0.5}}
+                        : std::array<Vec3, 3>{Vec3{-1, -1, 0.5}, Vec3{1, 1, 0.5}, Vec3{-1, 1, 0.5}};
+        quads.push_back(t);
+      }
+    const std::vector<uint32_t> white(quads.size(), kLastColour);
+    std::vector<double> ratios;
+    for (int round = 0; round < 8; ++round) {
+      const double cpu_us = draw(quads, white, true, nullptr);
+      uint64_t ticks[2] = {0, 0};
+      vk_check(
+          vkGetQueryPoolResults(dev(), timestamps_, 0, 2, sizeof ticks, ticks, sizeof(uint64_t),
+                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+          "vkGetQueryPoolResults");
+      const double device_us = double(ticks[1] - ticks[0]) * ctx_->info().timestamp_period_ns / 1e3;
+      if (cpu_us > 0 && ticks[1] >= ticks[0]) ratios.push_back(device_us / cpu_us);
+    }
+    clear_all();
+    if (ratios.empty()) return std::numeric_limits<double>::quiet_NaN();
+    std::sort(ratios.begin(), ratios.end());
+    return 0.5 * (ratios[(ratios.size() - 1) / 2] + ratios[ratios.size() / 2]);
+  }
+
+  // Test-only fault: where the extra pixel goes (as gl_platform.cpp), or nullptr.
+  const Pixel* wild_pixel_for(const Primitive& prim, const PixelRegion& region) {
+    if (std::find(wild_pixel_indices_.begin(), wild_pixel_indices_.end(), prim.index) ==
+        wild_pixel_indices_.end())
+      return nullptr;
+    const PixelRect expected = region.bounds();
+    const int cx = expected.empty() ? 0 : (expected.x0 + expected.x1) / 2;
+    const int cy = expected.empty() ? 0 : (expected.y0 + expected.y1) / 2;
+    wild_ = {(cx + width_ / 2) % width_, (cy + height_ / 2) % height_};
+    return &wild_;
+  }
+
+  ReadbackMethod method_;
+  std::vector<uint64_t> wild_pixel_indices_;
+  std::string name_;
+  int samples_ = 0;
+  std::unique_ptr<VulkanContext> ctx_;
+  DriverInfo info_;
+  VulkanPipelines pipelines_;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer cb_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkQueryPool occlusion_ = VK_NULL_HANDLE, timestamps_ = VK_NULL_HANDLE;
+  VulkanBuffer vertices_, readback_;
+  VulkanImage target_, resolved_;
+  VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
+  int width_ = 0, height_ = 0;
+  float clip_from_object_[16] = {};
+  bool warmed_up_ = false;
+  uint32_t colour_ = 0;
+  std::array<uint8_t, 256> decode_{};
+  std::vector<std::vector<std::pair<PixelRect, size_t>>> copied_;
+  std::vector<PixelRun> runs_;
+  Pixel wild_;
+};
+
+}  // namespace
+
+std::unique_ptr<Platform> create_vulkan_platform(const PlatformSpec& spec, ReadbackMethod method,
+                                                 std::vector<uint64_t> wild_pixel_indices) {
+  return std::make_unique<VulkanPlatform>(spec, method, std::move(wild_pixel_indices));
+}
+
+}  // namespace ra
