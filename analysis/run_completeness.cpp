@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
 #include "metrics/records.h"
+#include "metrics/records_format.h"
+#include "metrics/records_reader.h"
 #include "runner/experiment.h"
 #include "runner/shard.h"
 #include "runner/shard_file.h"
@@ -29,38 +29,26 @@ std::string range(const Shard& s) {
 // file was written sealed: one of version 3 without its seal is damaged (cut short, or edited), as
 // `run` judges it. A version 2 file may predate the seal: it is checked row by row instead. Empty when it holds each of the shard's primitives exactly once and nothing else.
 std::string check_unsealed(const std::string& path, const Shard& s, const std::string& no_seal) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  if (!std::getline(in, line)) return "empty file";
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  if (line == records_header())
+  const int version = records_schema_version(path);
+  if (version == kRecordsSchemaVersion)
     return no_seal + "; records of schema version " + std::to_string(kRecordsSchemaVersion) +
            " are always written sealed, so this file is damaged";
-  if (line != records_header_v2()) return "unexpected header";
-  size_t index_column = 0;
-  {
-    std::stringstream header(line);
-    for (std::string name; std::getline(header, name, ',') && name != "index";) ++index_column;
-  }
+  if (version != 2) return "unexpected header";
   std::vector<bool> seen(s.size(), false);
-  uint64_t rows = 0, line_no = 1;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.empty() || line[0] == '#') continue;
-    size_t start = 0;
-    for (size_t c = 0; c < index_column && start != std::string::npos; ++c) {
-      start = line.find(',', start);
-      if (start != std::string::npos) ++start;
-    }
-    if (start == std::string::npos) return "line " + std::to_string(line_no) + ": too few fields";
-    const uint64_t index = std::strtoull(line.c_str() + start, nullptr, 10);
-    if (index < s.begin || index >= s.end)
-      return "line " + std::to_string(line_no) + ": primitive " + std::to_string(index) +
-             " lies outside the shard (" + range(s) + ")";
-    if (seen[index - s.begin])
-      return "line " + std::to_string(line_no) + ": primitive " + std::to_string(index) + " twice";
-    seen[index - s.begin] = true;
-    ++rows;
+  uint64_t rows = 0;
+  try {
+    for_each_record_row(path, [&](const RecordRow& row) {
+      const uint64_t index = row.integer<uint64_t>(RecordColumn::kIndex);
+      if (index < s.begin || index >= s.end)
+        row.fail("primitive " + std::to_string(index) + " lies outside the shard (" + range(s) + ")");
+      if (seen[index - s.begin]) row.fail("primitive " + std::to_string(index) + " twice");
+      seen[index - s.begin] = true;
+      ++rows;
+    });
+  } catch (const UserError& e) {
+    // "PATH:LINE: why" -> "line LINE: why" (the caller names the shard)
+    const std::string what = e.what();
+    return what.rfind(path + ":", 0) == 0 ? "line " + what.substr(path.size() + 1) : what;
   }
   if (rows != s.size())
     return std::to_string(rows) + " of the shard's " + std::to_string(s.size()) + " primitives";
@@ -175,7 +163,8 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
   std::error_code ec;
   std::vector<std::string> stray;
   for (const auto& e : fs::directory_iterator(run_dir + "/records", ec))
-    if (e.path().extension() == ".csv" && !planned_files.count(e.path().filename().string()))
+    if (is_records_file_name(e.path().filename().string()) &&
+        !planned_files.count(e.path().filename().string()))
       stray.push_back(e.path().filename().string());
   std::sort(stray.begin(), stray.end());
   for (const std::string& f : stray)

@@ -406,7 +406,8 @@ RunResult run_experiment(const RunOptions& options) {
     if (r.command_fd >= 0) ::close(r.command_fd);
     if (!r.busy) return;
     const double item_s = std::chrono::duration<double>(now - r.started).count();
-    const std::string written = recovery.records_dir(r.item) + "/" + r.item.shard.id() + ".csv";
+    const std::string written = recovery.records_dir(r.item) + "/" + r.item.shard.id() +
+                                records_extension(exp.records_format);
     const std::string log = "; log: " + log_path(dir, r.item);
     if (replied || (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(written))) {
       succeeded(r, item_s);
@@ -515,7 +516,8 @@ RunResult run_experiment(const RunOptions& options) {
         char limit[32];
         std::snprintf(limit, sizeof limit, "%g", timed_out.item.timeout_s);
         const std::string written =
-            recovery.records_dir(timed_out.item) + "/" + timed_out.item.shard.id() + ".csv";
+            recovery.records_dir(timed_out.item) + "/" + timed_out.item.shard.id() +
+            records_extension(exp.records_format);
         if (replied || fs::exists(written)) {  // it hung after committing its records: teardown
           std::fprintf(stderr, "%srenderaudit: shard %s: its worker hung after writing every "
                        "record (killed after %s s; the shard is complete; log: %s)\n",

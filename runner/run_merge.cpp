@@ -131,7 +131,7 @@ MergeResult merge_runs(const MergeOptions& options) {
       const std::string source = s.records_path(in);
       if (!fs::exists(source) || !check_shard_file(source, s.size()).empty()) continue;
       if (++holders == 1) {
-        copy_atomically(source, target);
+        copy_atomically(source, out + "/records/" + fs::path(source).filename().string());
         ++result.shards_copied;
         ++result.shards_present;
         taken_from[in] = taken_from.value(in, 0) + 1;
