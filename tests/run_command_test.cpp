@@ -203,7 +203,7 @@ TEST(RunCommand, ServedShardsEqualOneProcessPerShardAndACrashStaysWithItsShard) 
   EXPECT_EQ(invocation("per-shard").at("worker_processes"), 4 * 8);  // views x shards
   EXPECT_EQ(invocation("per-shard").at("workers"), "per-shard");
   for (const auto& e : fs::directory_iterator(dir + "/served/records"))
-    EXPECT_TRUE(fs::exists(dir + "/served/logs/" + e.path().stem().string() + ".log")) << e.path();
+    EXPECT_TRUE(fs::exists(dir + "/served/logs/" + ra::records_file_stem(e.path().filename().string()) + ".log")) << e.path();
 
   const std::string faulty =
       "seed = 3\nplatforms = [\"faulty\"]\n[views]\norientations = 1\nfov_deg = [150]\n"

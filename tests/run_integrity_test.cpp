@@ -303,7 +303,7 @@ TEST(RunIntegrity, AnUnwritableOutputDirectoryIsBadInput) {
       << o.output;
 }
 
-// A 1.5 MiB file system fills during the run: workers and the coordinator name the file and the
+// A 1.5 MiB file system fills during the run (plain CSV records): workers and the coordinator name the file and the
 // free space, the manifest says "failed", nothing half-written stays; with more room the same
 // command completes, identical to a run elsewhere.
 TEST(RunIntegrity, AFullDiskFailsCleanlyAndTheRerunCompletesIdentically) {
@@ -312,7 +312,9 @@ TEST(RunIntegrity, AFullDiskFailsCleanlyAndTheRerunCompletesIdentically) {
   fs::create_directories(mnt);
   if (::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=1536k") != 0)
     GTEST_SKIP() << "cannot mount a tmpfs here (not root?): " << std::strerror(errno);
-  write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 3000\nlines = 2000\n"));
+  // Plain CSV: compressed, these records would fit in the 1.5 MiB.
+  write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 3000\nlines = 2000\n",
+                                         "records_format = \"csv\"\n"));
   const Outcome full = run_renderaudit("run " + dir + "/e.toml --out " + mnt + "/run --jobs 2");
   EXPECT_EQ(full.exit_code, 1) << full.output;
   EXPECT_NE(full.output.find("No space left on device"), std::string::npos) << full.output;

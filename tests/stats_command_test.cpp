@@ -513,7 +513,7 @@ TEST_F(StatsCommand, DescribeReadsARunsRecordsAndSelectsRowsWithWhere) {
   {  // a compressed one beside it (records/*.csv.zst, the default format)
     std::ofstream b(dir + "/records/b.csv.zst", std::ios::binary);
     ZstdFrameWriter z(b);
-    z.write("platform,kind,pe\np,point,3\n# complete rows=1 fnv1a64=2\n");
+    z.write("platform,kind,pe\np,point,3\nq,point,7\n# complete rows=2 fnv1a64=2\n");
     z.end_frame();
   }
   json d = json::parse(run_stats({"describe", dir, "--column", "pe", "--where", "platform=p",
@@ -522,15 +522,15 @@ TEST_F(StatsCommand, DescribeReadsARunsRecordsAndSelectsRowsWithWhere) {
   EXPECT_EQ(d["n_missing"], 1);
   EXPECT_DOUBLE_EQ(d["description"]["mean"].get<double>(), 2.0);
   d = json::parse(run_stats({"describe", dir, "--column", "pe", "--json"}));
-  EXPECT_EQ(d["description"]["n"], 3);  // every row of both files: 1, 5, 3
-  EXPECT_DOUBLE_EQ(d["description"]["mean"].get<double>(), 3.0);
+  EXPECT_EQ(d["description"]["n"], 4);  // every row of both files: 1, 5, 3, 7
+  EXPECT_DOUBLE_EQ(d["description"]["mean"].get<double>(), 4.0);
   // one records file alone, seal line and all
   d = json::parse(run_stats({"describe", dir + "/records/a.csv", "--column", "pe", "--json"}));
   EXPECT_EQ(d["description"]["n"], 2);
   EXPECT_DOUBLE_EQ(d["description"]["median"].get<double>(), 3.0);
   d = json::parse(run_stats({"describe", dir + "/records/b.csv.zst", "--column", "pe", "--json"}));
-  EXPECT_EQ(d["description"]["n"], 1);
-  EXPECT_DOUBLE_EQ(d["description"]["mean"].get<double>(), 3.0);
+  EXPECT_EQ(d["description"]["n"], 2);  // the compressed file alone: 3, 7
+  EXPECT_DOUBLE_EQ(d["description"]["mean"].get<double>(), 5.0);
 }
 
 }  // namespace ra::stats
