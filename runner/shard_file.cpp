@@ -59,22 +59,25 @@ std::string trailer_of(const BodyDigest& d) {
 class HeldBackDigest {
  public:
   void add(std::string_view piece) {
-    held_.append(piece);
-    const size_t last = held_.rfind('\n');
-    if (last == std::string::npos || last == 0) return;
-    const size_t before = held_.rfind('\n', last - 1);
-    if (before == std::string::npos) return;
-    hash_.add(held_.data(), before + 1);
-    lines_ += uint64_t(std::count(held_.begin(), held_.begin() + std::ptrdiff_t(before + 1), '\n'));
-    held_.erase(0, before + 1);
+    const size_t last = piece.rfind('\n');
+    const size_t before = last == 0 || last == std::string_view::npos
+                              ? std::string_view::npos
+                              : piece.rfind('\n', last - 1);
+    if (before == std::string_view::npos) {  // at most one line ends here: keep it all for now
+      held_.append(piece);
+      return;
+    }
+    // Everything up to the piece's second-to-last line end is known not to be the trailer.
+    take(held_);
+    take(piece.substr(0, before + 1));
+    held_.assign(piece.substr(before + 1));
   }
   // The last line (with its '\n', or without one when the stream ends mid-line) and the digest of
   // everything before it.
   BodyDigest finish(std::string* last_line) {
     const size_t last = held_.rfind('\n', held_.size() >= 2 ? held_.size() - 2 : 0);
     const size_t cut = held_.size() >= 2 && last != std::string::npos ? last + 1 : 0;
-    hash_.add(held_.data(), cut);
-    lines_ += uint64_t(std::count(held_.begin(), held_.begin() + std::ptrdiff_t(cut), '\n'));
+    take(std::string_view(held_).substr(0, cut));
     *last_line = held_.substr(cut);
     BodyDigest d;
     d.hash = hash_.value;
@@ -83,9 +86,13 @@ class HeldBackDigest {
   }
 
  private:
+  void take(std::string_view bytes) {
+    hash_.add(bytes);
+    lines_ += uint64_t(std::count(bytes.begin(), bytes.end(), '\n'));
+  }
   Fnv1a64 hash_;
   uint64_t lines_ = 0;
-  std::string held_;
+  std::string held_;  // the last line or two seen, not yet hashed
 };
 
 std::string check_compressed(const std::string& path, uint64_t expected_rows) {

@@ -33,13 +33,40 @@ void ZstdFrameWriter::end_frame() {
   pending_.clear();
 }
 
+namespace {
+struct DecompressionState {
+  std::unique_ptr<ZSTD_DCtx, size_t (*)(ZSTD_DCtx*)> dctx{ZSTD_createDCtx(), ZSTD_freeDCtx};
+  std::vector<char> src = std::vector<char>(std::size_t{1} << 20);
+  std::vector<char> dst = std::vector<char>(std::size_t{1} << 20);
+};
+}  // namespace
+
 void for_each_zstd_chunk(const std::string& path,
                          const std::function<void(std::string_view)>& chunk) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path + ": cannot read it");
-  std::unique_ptr<ZSTD_DCtx, size_t (*)(ZSTD_DCtx*)> dctx(ZSTD_createDCtx(), ZSTD_freeDCtx);
-  if (!dctx) throw std::runtime_error("zstd: cannot create a decompression context");
-  std::vector<char> src(ZSTD_DStreamInSize() * 8), dst(std::size_t{1} << 20);
+  // One context and one pair of buffers per thread, kept: a run's hundreds of files would
+  // otherwise map and fault in fresh megabytes each. A callback that reads another file meanwhile
+  // gets fresh ones.
+  thread_local DecompressionState cached;
+  thread_local bool cached_in_use = false;
+  std::unique_ptr<DecompressionState> fresh;
+  DecompressionState* state = &cached;
+  if (cached_in_use) {
+    fresh = std::make_unique<DecompressionState>();
+    state = fresh.get();
+  }
+  struct InUse {
+    bool* flag;
+    bool was;
+    ~InUse() { *flag = was; }
+  } in_use{&cached_in_use, cached_in_use};
+  cached_in_use = true;
+  if (!state->dctx) throw std::runtime_error("zstd: cannot create a decompression context");
+  ZSTD_DCtx_reset(state->dctx.get(), ZSTD_reset_session_only);
+  ZSTD_DCtx* const dctx = state->dctx.get();
+  std::vector<char>& src = state->src;
+  std::vector<char>& dst = state->dst;
   size_t last = 0;  // 0 once a frame is complete: a file may end there and only there
   bool any = false;
   while (in) {
@@ -50,7 +77,7 @@ void for_each_zstd_chunk(const std::string& path,
     ZSTD_inBuffer input{src.data(), got, 0};
     while (input.pos < input.size) {
       ZSTD_outBuffer output{dst.data(), dst.size(), 0};
-      last = ZSTD_decompressStream(dctx.get(), &output, &input);
+      last = ZSTD_decompressStream(dctx, &output, &input);
       if (ZSTD_isError(last))
         throw std::runtime_error(path + ": not a valid zstd file (" +
                                  ZSTD_getErrorName(last) + ")");
@@ -61,7 +88,7 @@ void for_each_zstd_chunk(const std::string& path,
       ZSTD_outBuffer output{dst.data(), dst.size(), 0};
       ZSTD_inBuffer none{nullptr, 0, 0};
       if (last == 0) break;
-      last = ZSTD_decompressStream(dctx.get(), &output, &none);
+      last = ZSTD_decompressStream(dctx, &output, &none);
       if (ZSTD_isError(last))
         throw std::runtime_error(path + ": not a valid zstd file (" +
                                  ZSTD_getErrorName(last) + ")");
