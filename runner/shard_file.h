@@ -25,7 +25,7 @@
 
 namespace ra {
 
-// Rows per zstd frame: about 1.4 MB of text, 0.25 MB compressed; a 5,000-primitive shard is one
+// Rows per zstd frame: about 1.3 MB of text, 0.2 MB compressed; a 5,000-primitive shard is one
 // frame, so a reader splits work by file first and by frame within a large file.
 constexpr uint64_t kRowsPerFrame = 8192;
 
