@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
 #include "metrics/records.h"
+#include "metrics/records_format.h"
+#include "metrics/records_reader.h"
 #include "runner/experiment.h"
 #include "runner/manifest.h"
 #include "runner/shard.h"
@@ -16,6 +16,8 @@
 #include "runner/slicing.h"
 #include "util/atomic_file.h"
 #include "util/dir_lock.h"
+#include "util/parallel.h"
+#include "util/zstd_stream.h"
 
 namespace fs = std::filesystem;
 
@@ -30,38 +32,29 @@ std::string range(const Shard& s) {
 // file was written sealed: one of version 3 without its seal is damaged (cut short, or edited), as
 // `run` judges it. A version 2 file may predate the seal: it is checked row by row instead. Empty when it holds each of the shard's primitives exactly once and nothing else.
 std::string check_unsealed(const std::string& path, const Shard& s, const std::string& no_seal) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  if (!std::getline(in, line)) return "empty file";
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  if (line == records_header())
+  const int version = records_schema_version(path);
+  // A compressed file cut inside its first frame shows no header at all; compression came after
+  // the seal, so such a file was written sealed and is simply cut short.
+  if (version == 0 && has_zstd_extension(path)) return no_seal;
+  if (version == kRecordsSchemaVersion)
     return no_seal + "; records of schema version " + std::to_string(kRecordsSchemaVersion) +
            " are always written sealed, so this file is damaged";
-  if (line != records_header_v2()) return "unexpected header";
-  size_t index_column = 0;
-  {
-    std::stringstream header(line);
-    for (std::string name; std::getline(header, name, ',') && name != "index";) ++index_column;
-  }
+  if (version != 2) return "unexpected header";
   std::vector<bool> seen(s.size(), false);
-  uint64_t rows = 0, line_no = 1;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.empty() || line[0] == '#') continue;
-    size_t start = 0;
-    for (size_t c = 0; c < index_column && start != std::string::npos; ++c) {
-      start = line.find(',', start);
-      if (start != std::string::npos) ++start;
-    }
-    if (start == std::string::npos) return "line " + std::to_string(line_no) + ": too few fields";
-    const uint64_t index = std::strtoull(line.c_str() + start, nullptr, 10);
-    if (index < s.begin || index >= s.end)
-      return "line " + std::to_string(line_no) + ": primitive " + std::to_string(index) +
-             " lies outside the shard (" + range(s) + ")";
-    if (seen[index - s.begin])
-      return "line " + std::to_string(line_no) + ": primitive " + std::to_string(index) + " twice";
-    seen[index - s.begin] = true;
-    ++rows;
+  uint64_t rows = 0;
+  try {
+    for_each_record_row(path, [&](const RecordRow& row) {
+      const uint64_t index = row.integer<uint64_t>(RecordColumn::kIndex);
+      if (index < s.begin || index >= s.end)
+        row.fail("primitive " + std::to_string(index) + " lies outside the shard (" + range(s) + ")");
+      if (seen[index - s.begin]) row.fail("primitive " + std::to_string(index) + " twice");
+      seen[index - s.begin] = true;
+      ++rows;
+    });
+  } catch (const UserError& e) {
+    // "PATH:LINE: why" -> "line LINE: why" (the caller names the shard)
+    const std::string what = e.what();
+    return what.rfind(path + ":", 0) == 0 ? "line " + what.substr(path.size() + 1) : what;
   }
   if (rows != s.size())
     return std::to_string(rows) + " of the shard's " + std::to_string(s.size()) + " primitives";
@@ -146,22 +139,33 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
   if (c.is_slice())
     for (const Shard& s : shards_of_slice(plan, exp, Slice{c.slice_index, c.slice_count}))
       own.insert(s.id());
-  for (const Shard& s : plan) {
+  // Each shard file is read whole (its seal's hash; decompressed when compressed): the files are
+  // checked on every core, then counted in plan order.
+  std::vector<std::string> verdicts(plan.size());
+  std::vector<char> present(plan.size(), 0);
+  run_in_parallel(plan.size(), 0, [&](std::size_t i) {
+    const Shard& s = plan[i];
+    const std::string path = s.records_path(run_dir);
+    if (!fs::exists(path)) return;
+    present[i] = 1;
+    std::string why = check_shard_file(path, s.size());
+    if (why.rfind("no trailer", 0) == 0) why = check_unsealed(path, s, why);  // an older run?
+    verdicts[i] = why;
+  });
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    const Shard& s = plan[i];
     ++c.shards_planned;
     c.primitives_planned += s.size();
-    const std::string path = s.records_path(run_dir);
-    if (c.is_slice() && !own.count(s.id()) && !fs::exists(path)) {
+    if (c.is_slice() && !own.count(s.id()) && !present[i]) {
       ++c.shards_of_other_slices;
       continue;
     }
-    if (!fs::exists(path)) {
+    if (!present[i]) {
       c.problems.push_back("missing shard " + s.id() + " (" + range(s) + ")");
       continue;
     }
-    std::string why = check_shard_file(path, s.size());
-    if (why.rfind("no trailer", 0) == 0) why = check_unsealed(path, s, why);  // an older run?
-    if (!why.empty()) {
-      c.problems.push_back("damaged shard " + s.id() + ": " + why);
+    if (!verdicts[i].empty()) {
+      c.problems.push_back("damaged shard " + s.id() + ": " + verdicts[i]);
       continue;
     }
     ++c.shards_whole;
@@ -170,7 +174,8 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
   std::error_code ec;
   std::vector<std::string> stray;
   for (const auto& e : fs::directory_iterator(run_dir + "/records", ec))
-    if (e.path().extension() == ".csv" && !planned_files.count(e.path().filename().string()))
+    if (is_records_file_name(e.path().filename().string()) &&
+        !planned_files.count(e.path().filename().string()))
       stray.push_back(e.path().filename().string());
   std::sort(stray.begin(), stray.end());
   for (const std::string& f : stray)

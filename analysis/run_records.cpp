@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "metrics/records_format.h"
 #include "util/errors.h"
 #include "metrics/records.h"
 #include "metrics/records_reader.h"
@@ -487,13 +488,13 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   run.run_dir = run_dir;
   run.point_margin_px = options.point_margin_px;
   for (const auto& e : fs::directory_iterator(records_dir)) {
-    if (e.path().extension() == ".csv" && e.is_regular_file())
+    if (ra::is_records_file_name(e.path().filename().string()) && e.is_regular_file())
       run.files.push_back(e.path().string());
   }
   std::sort(run.files.begin(), run.files.end());
   if (run.files.empty()) {
     throw UserError(records_dir.string() +
-                    ": no records files (*.csv); the run has not finished a shard yet");
+                    ": no records files (*.csv.zst, *.csv); the run has not finished a shard yet");
   }
 
   // parse in parallel; keep each file's result so that merging follows the file order

@@ -1,5 +1,5 @@
-// The records of a run directory (DIR/records/*.csv, schema in docs/records.md and metrics/records.h),
-// loaded as the samples the analysis stage needs and nothing more: per platform, kind and view the
+// The records of a run directory (DIR/records/*.csv.zst or *.csv, schema in docs/records.md and
+// metrics/records.h), loaded as the samples the analysis stage needs and nothing more: per platform, kind and view the
 // visibility-class counts, the values of each error metric over the true-visible cases with status
 // `ok` (float64, in record units), and the render times. Views that differ only by camera
 // orientation (the same `view_group`) are gathered into view groups A, B, C, ... (paper, section 4:

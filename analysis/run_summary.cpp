@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "metrics/records_format.h"
 #include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "metrics/records.h"
@@ -82,7 +83,7 @@ std::string write_run_summary(const std::string& run_dir) {
   std::map<Key, Cell> cells;
   std::vector<std::string> files;
   for (const auto& e : fs::directory_iterator(run_dir + "/records"))
-    if (e.path().extension() == ".csv") files.push_back(e.path().string());
+    if (ra::is_records_file_name(e.path().filename().string())) files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
   for (const auto& f : files) {
     read_records(f, [&](const Record& r) {

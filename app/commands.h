@@ -30,6 +30,7 @@ void register_timing_command(CLI::App& app, int& exit_code);   // rendering-time
 void register_platforms_command(CLI::App& app, int& exit_code);  // what this machine can draw with
 void register_merge_command(CLI::App& app, int& exit_code);      // slices of a run gathered
 void register_status_command(CLI::App& app, int& exit_code);
+void register_records_command(CLI::App& app, int& exit_code);  // a run's records as one stream
 void register_builds_command(CLI::App& app, int& exit_code);
 void register_reproduce_command(CLI::App& app, int& exit_code);   // one record as a C program      // driver builds: fetch, list     // where a run stands
 

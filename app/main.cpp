@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   ra::app::register_platforms_command(app, exit_code);
   ra::app::register_merge_command(app, exit_code);
   ra::app::register_status_command(app, exit_code);
+  ra::app::register_records_command(app, exit_code);
   ra::app::register_builds_command(app, exit_code);
   ra::app::register_reproduce_command(app, exit_code);
   try {

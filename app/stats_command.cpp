@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "metrics/records_format.h"
 #include "stats/box_cox.h"
 #include "stats/csv_table.h"
 #include "stats/descriptive.h"
@@ -129,11 +130,11 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
   if (fs::is_directory(path)) {
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(fs::path(path) / "records", ec))
-      if (e.path().extension() == ".csv") files.push_back(e.path().string());
+      if (ra::is_records_file_name(e.path().filename().string())) files.push_back(e.path().string());
     std::sort(files.begin(), files.end());
     if (files.empty())
-      throw UserError(path + ": a directory without records/*.csv (give a CSV file or a run "
-                      "directory)");
+      throw UserError(path + ": a directory without records/*.csv or *.csv.zst (give a CSV file or a "
+                      "run directory)");
     name = path + "/records (" + std::to_string(files.size()) + " files)";
   } else {
     files.push_back(path);

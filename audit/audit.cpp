@@ -1,5 +1,6 @@
 #include "audit/audit.h"
 
+#include "metrics/records_format.h"
 #include "util/dir_lock.h"
 
 #include <algorithm>
@@ -17,7 +18,7 @@ namespace {
 bool has_records(const std::string& dir) {
   if (!fs::is_directory(dir + "/records")) return false;
   for (const auto& e : fs::directory_iterator(dir + "/records"))
-    if (e.path().extension() == ".csv") return true;
+    if (ra::is_records_file_name(e.path().filename().string())) return true;
   return false;
 }
 

@@ -86,7 +86,7 @@ inline void write_points(const std::string& dir, const Experiment& exp, const st
     bool skipped = false;
     for (const auto& id : skip) skipped = skipped || id == s.id();
     if (skipped) continue;
-    std::ofstream out(s.records_path(dir));
+    std::ofstream out(s.records_path(dir, RecordsFormat::kCsv));
     out << records_header() << '\n';
     for (uint64_t i = s.begin; i < s.end; ++i) write_record(out, make(s.view, i));
   }

@@ -4,7 +4,9 @@
 // write), and for comparison ra::read_records (the runner's reference reader) over the same files
 // and one Box-Cox lambda fit on a pooled group with and without the subsample.
 //
-//   analysis_bench [--records N] [--platforms P] [--dir DIR] [--jobs J] [--keep]
+//   analysis_bench [--records N] [--platforms P] [--dir DIR] [--jobs J] [--format F] [--keep]
+//
+// --format csv.zst (default) or csv: the records files' format (metrics/records_format.h).
 //
 // The values are random but shaped like the paper's: visibility proportions of its Tables 2, 5, 8;
 // PE the distance to a pixel centre with uniform offsets; LSEs small and positive, LSEu near 0.24
@@ -19,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -27,6 +30,8 @@
 #include "analysis/view_equivalence.h"
 #include "util/errors.h"
 #include "metrics/records.h"
+#include "metrics/records_format.h"
+#include "runner/shard_file.h"
 
 namespace fs = std::filesystem;
 
@@ -60,6 +65,7 @@ struct Params {
   std::string dir = "/tmp/ra_analysis_bench";
   unsigned jobs = 0;
   bool keep = false;
+  ra::RecordsFormat format = ra::RecordsFormat::kCsvZst;
 };
 
 // One synthetic record of a view; the shapes follow the paper's tables.
@@ -124,7 +130,8 @@ ra::Record synth(Rng& rng, const std::string& platform, int p, const char* kind,
 }
 
 void synthesise(const Params& prm) {
-  const std::string stamp = std::to_string(prm.records) + " " + std::to_string(prm.platforms);
+  const std::string stamp = std::to_string(prm.records) + " " + std::to_string(prm.platforms) +
+                            " " + ra::records_format_name(prm.format);
   std::ifstream old(prm.dir + "/bench.txt");
   std::string line;
   if (old && std::getline(old, line) && line == stamp) {
@@ -145,15 +152,14 @@ void synthesise(const Params& prm) {
         Rng rng(0x5EEDull * 1000003u + static_cast<std::uint64_t>(p * 100 + k * 10 + view));
         for (std::uint64_t first = 0; first < per_view; first += shard) {
           const std::uint64_t last = std::min(per_view, first + shard);
-          std::ostringstream out;
-          out << ra::records_header() << '\n';
-          for (std::uint64_t i = first; i < last; ++i) {
-            ra::write_record(out, synth(rng, platform, p, kinds[k], view, i));
-          }
-          std::ofstream(prm.dir + "/records/" + platform + "." + kinds[k] + ".v" +
-                        std::to_string(view) + "." + std::to_string(first) + "-" +
-                        std::to_string(last) + ".csv")
-              << out.str();
+          // sealed, as a run writes it (runner/shard_file.h)
+          ra::RecordsFileWriter out(prm.dir + "/records/" + platform + "." + kinds[k] + ".v" +
+                                        std::to_string(view) + "." + std::to_string(first) + "-" +
+                                        std::to_string(last) + ra::records_extension(prm.format),
+                                    prm.format);
+          for (std::uint64_t i = first; i < last; ++i)
+            out.write(synth(rng, platform, p, kinds[k], view, i));
+          out.finish();
           written += last - first;
         }
       }
@@ -185,12 +191,19 @@ int main(int argc, char** argv) {
       prm.dir = value();
     } else if (a == "--jobs") {
       prm.jobs = static_cast<unsigned>(std::stoul(value()));
+    } else if (a == "--format") {
+      const std::optional<ra::RecordsFormat> f = ra::parse_records_format(value());
+      if (!f) {
+        std::fprintf(stderr, "analysis_bench: --format csv or csv.zst\n");
+        return 2;
+      }
+      prm.format = *f;
     } else if (a == "--keep") {
       prm.keep = true;
     } else {
       std::fprintf(stderr,
                    "usage: analysis_bench [--records N] [--platforms P] [--dir DIR] [--jobs J] "
-                   "[--keep]\n");
+                   "[--format csv|csv.zst] [--keep]\n");
       return 2;
     }
   }
@@ -206,7 +219,7 @@ int main(int argc, char** argv) {
       const auto t0 = std::chrono::steady_clock::now();
       std::uint64_t n = 0;
       for (const auto& e : fs::directory_iterator(prm.dir + "/records")) {
-        if (e.path().extension() == ".csv")
+        if (ra::is_records_file_name(e.path().filename().string()))
           ra::read_records(e.path().string(), [&](const ra::Record&) { ++n; });
       }
       std::printf("ra::read_records (metrics/records.h, one thread): %llu records in %.2f s\n",

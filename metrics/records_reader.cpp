@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "util/errors.h"
+#include "util/zstd_stream.h"
 
 namespace ra {
 
@@ -71,37 +72,51 @@ class RecordsFileReader {
   }
 
   void read() {
-    std::ifstream in(path_, std::ios::binary);
-    if (!in) throw UserError(path_ + ": cannot read records file");
-    std::vector<char> block(std::size_t{4} << 20);
-    std::string carry;  // an incomplete line from the previous block
-    while (in) {
-      in.read(block.data(), static_cast<std::streamsize>(block.size()));
-      const std::size_t n = static_cast<std::size_t>(in.gcount());
-      if (n == 0) break;
-      std::size_t start = 0;
-      for (;;) {
-        const void* found = std::memchr(block.data() + start, '\n', n - start);
-        if (!found) break;
-        const std::size_t end =
-            static_cast<std::size_t>(static_cast<const char*>(found) - block.data());
-        if (carry.empty()) {
-          line(std::string_view(block.data() + start, end - start));
-        } else {
-          carry.append(block.data() + start, end - start);
-          line(carry);
-          carry.clear();
-        }
-        start = end + 1;
+    if (has_zstd_extension(path_)) {
+      try {
+        for_each_zstd_chunk(path_, [this](std::string_view c) { feed(c); });
+      } catch (const std::runtime_error& e) {
+        if (dynamic_cast<const UserError*>(&e)) throw;
+        throw UserError(e.what());
       }
-      carry.append(block.data() + start, n - start);
+    } else {
+      std::ifstream in(path_, std::ios::binary);
+      if (!in) throw UserError(path_ + ": cannot read records file");
+      std::vector<char> block(std::size_t{4} << 20);
+      while (in) {
+        in.read(block.data(), static_cast<std::streamsize>(block.size()));
+        const std::size_t n = static_cast<std::size_t>(in.gcount());
+        if (n == 0) break;
+        feed(std::string_view(block.data(), n));
+      }
+      if (in.bad()) throw UserError(path_ + ": read error");
     }
-    if (in.bad()) throw UserError(path_ + ": read error");
-    if (!carry.empty()) line(carry);
+    if (!carry_.empty()) line(carry_);
     if (row_.line_ == 0) bad_header();
   }
 
  private:
+  // Splits a piece of the file's text into lines; a line cut by the piece's end waits in carry_.
+  void feed(std::string_view block) {
+    std::size_t start = 0;
+    const std::size_t n = block.size();
+    for (;;) {
+      const void* found = std::memchr(block.data() + start, '\n', n - start);
+      if (!found) break;
+      const std::size_t end =
+          static_cast<std::size_t>(static_cast<const char*>(found) - block.data());
+      if (carry_.empty()) {
+        line(block.substr(start, end - start));
+      } else {
+        carry_.append(block.data() + start, end - start);
+        line(carry_);
+        carry_.clear();
+      }
+      start = end + 1;
+    }
+    carry_.append(block.data() + start, n - start);
+  }
+
   [[noreturn]] void bad_header() const {
     throw UserError(path_ + ":1: unexpected records header (schema version " +
                     std::to_string(kRecordsSchemaVersion) + " expects: " + header_ + ")");
@@ -141,8 +156,39 @@ class RecordsFileReader {
   const std::function<void(const RecordRow&)>& callback_;
   const std::string header_, header_v2_;
   std::size_t columns_ = kRecordColumnCount;
+  std::string carry_;  // an incomplete line from the previous piece
   RecordRow row_;
 };
+
+int records_schema_version(const std::string& path) {
+  std::string first;
+  bool done = false;
+  const auto take = [&](std::string_view c) {
+    if (done) return;
+    const std::size_t nl = c.find('\n');
+    first.append(c.substr(0, nl));
+    done = nl != std::string_view::npos;
+  };
+  if (has_zstd_extension(path)) {
+    struct HeaderRead {};  // stops decompressing once the first line is in
+    try {
+      for_each_zstd_chunk(path, [&](std::string_view c) {
+        take(c);
+        if (done) throw HeaderRead{};
+      });
+    } catch (const HeaderRead&) {
+    } catch (const std::runtime_error&) {
+      if (!done) return 0;
+    }
+  } else {
+    std::ifstream in(path, std::ios::binary);
+    std::getline(in, first);
+  }
+  if (!first.empty() && first.back() == '\r') first.pop_back();
+  if (first == records_header()) return kRecordsSchemaVersion;
+  if (first == records_header_v2()) return 2;
+  return 0;
+}
 
 void for_each_record_row(const std::string& path,
                          const std::function<void(const RecordRow&)>& row) {

@@ -1,5 +1,7 @@
-// The one reader of records CSV files (schema: metrics/records.h, docs/records.md). Every
-// stage that reads records goes through it: the file is read in blocks of 4 MiB, each row is split
+// The one reader of records files (schema: metrics/records.h, docs/records.md), plain CSV or
+// zstd-compressed CSV (metrics/records_format.h: chosen by the ".zst" ending). Every
+// stage that reads records goes through it: the file is read in blocks of 4 MiB (decompressed in
+// pieces of 1 MiB), each row is split
 // in place (cells are views into the buffer, nothing is copied), and only the cells a caller asks
 // for are converted, with std::from_chars (locale-independent, exact). The header must equal
 // records_header() or, for a schema version 2 file, records_header_v2() (its missing cells read as
@@ -64,6 +66,10 @@ class RecordRow {
 // file cannot be read, its header is not the records header, or a row has the wrong number of
 // cells; `row` may throw too (RecordRow::fail names file and line).
 void for_each_record_row(const std::string& path, const std::function<void(const RecordRow&)>& row);
+
+// The schema version of the file's header line (3, or 2 for records_header_v2()); 0 when the
+// file is unreadable or its first line is not a records header.
+int records_schema_version(const std::string& path);
 
 // The whole record of a row (every column converted and checked).
 Record parse_record(const RecordRow& row);

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "metrics/records_format.h"
 #include "util/errors.h"
 #include "util/parallel.h"
 #include "metrics/records.h"
@@ -69,7 +70,7 @@ RecordScan scan_records(const std::string& run_dir, std::size_t max_examples, un
   if (!fs::is_directory(dir)) throw UserError(run_dir + ": no records directory (" + dir.string() + ")");
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(dir))
-    if (e.is_regular_file() && e.path().extension() == ".csv") files.push_back(e.path());
+    if (e.is_regular_file() && ra::is_records_file_name(e.path().filename().string())) files.push_back(e.path());
   std::sort(files.begin(), files.end());
   if (files.empty()) throw UserError(dir.string() + ": no records files (*.csv)");
 

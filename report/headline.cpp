@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "metrics/records_format.h"
 #include "analysis/conformance_summary.h"
 #include "stats/csv_table.h"
 #include "util/atomic_file.h"
@@ -65,7 +66,7 @@ std::vector<std::string> records_files(const std::string& run_dir) {
   std::vector<std::string> files;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(run_dir + "/records", ec))
-    if (e.path().extension() == ".csv") files.push_back(e.path().string());
+    if (ra::is_records_file_name(e.path().filename().string())) files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
   return files;
 }

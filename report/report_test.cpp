@@ -114,15 +114,16 @@ TEST(ReportCommand, HeadlessReportHasEveryTableAndOnePagePerFigure) {
   // changed inputs make the analysis stale, so the report runs it again.
   std::string records_file;
   for (const auto& e : fs::directory_iterator(run + "/records"))
-    if (e.path().extension() == ".csv" && (records_file.empty() || e.path().string() < records_file))
+    if (ra::is_records_file_name(e.path().filename().string()) &&
+        (records_file.empty() || e.path().string() < records_file))
       records_file = e.path().string();
   {
-    std::string text = read(records_file);
+    std::string text = ra::testing_cli::read_records_text(records_file);
     const auto line2 = text.find('\n') + 1;
     const auto ok = text.find(",ok,", line2);
     ASSERT_LT(ok, text.find('\n', line2));
     text.replace(ok, 4, ",invalid,");
-    write_text(records_file, text);
+    ra::testing_cli::write_records_text(records_file, text);
     reseal_records_file(records_file);  // as a run that recorded it so would have
     auto manifest = nlohmann::json::parse(read(run + "/manifest.json"));
     manifest["failures"].push_back({{"shard", "osmesa-llvmpipe.point.v9.0-100"},

@@ -304,7 +304,8 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
   if (const toml::node* run = root.get("run")) {
     if (!run->is_table()) loc.fail(run, "'run' must be a table");
     loc.reject_unknown_keys(*run->as_table(), "run.",
-                            {"shard_size", "shard_timeout_s", "max_renders", "max_shards"});
+                            {"shard_size", "shard_timeout_s", "max_renders", "max_shards",
+                             "records_format"});
     if (const toml::node* n = run->as_table()->get("shard_size"))
       exp.shard_size = uint64_t(loc.integer(*n, "run.shard_size", 1, int64_t(kMaxPrimitives)));
     if (const toml::node* n = run->as_table()->get("shard_timeout_s")) {
@@ -316,6 +317,13 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
       exp.max_renders = uint64_t(loc.integer(*n, "run.max_renders", 1, INT64_MAX));
     if (const toml::node* n = run->as_table()->get("max_shards"))
       exp.max_shards = uint64_t(loc.integer(*n, "run.max_shards", 1, int64_t(kMaxShardsCeiling)));
+    if (const toml::node* n = run->as_table()->get("records_format")) {
+      const auto* name = n->as_string();
+      const std::optional<RecordsFormat> f =
+          name ? parse_records_format(name->get()) : std::nullopt;
+      if (!f) loc.fail(n, "'run.records_format' must be \"csv.zst\" or \"csv\"");
+      exp.records_format = *f;
+    }
   }
   check_plan_size(loc, root, exp);
 

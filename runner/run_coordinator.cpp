@@ -288,7 +288,8 @@ RunResult run_experiment(const RunOptions& options) {
   ItemEnds on_event{result, tally, recovery, todo, shard_seconds, show};
   const std::string program =
       options.worker_program.empty() ? worker_program() : options.worker_program;
-  WorkerPool pool({program, dir, jobs, options.serve_shards, show},
+  WorkerPool pool({program, dir, jobs, options.serve_shards, show,
+                   records_extension(exp.records_format)},
                   [&](const WorkItem& w) { return recovery.records_dir(w); }, std::ref(on_event));
   const std::string this_host = manifest.host.value("hostname", "");
   while (!todo.empty() || !pool.empty()) {

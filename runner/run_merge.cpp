@@ -133,7 +133,7 @@ std::map<std::string, uint64_t> copy_shards(const MergeOptions& options,
       const std::string source = s.records_path(in);
       if (!fs::exists(source) || !check_shard_file(source, s.size()).empty()) continue;
       if (++holders == 1) {
-        copy_atomically(source, target);
+        copy_atomically(source, options.out_dir + "/records/" + fs::path(source).filename().string());
         ++result->shards_copied;
         ++result->shards_present;
         ++taken_from[in];

@@ -28,8 +28,15 @@ std::string Shard::id() const {
          std::to_string(begin) + "-" + std::to_string(end);
 }
 
+std::string Shard::records_path(const std::string& run_dir, RecordsFormat format) const {
+  return run_dir + "/records/" + id() + records_extension(format);
+}
+
 std::string Shard::records_path(const std::string& run_dir) const {
-  return run_dir + "/records/" + id() + ".csv";
+  const std::string compressed = records_path(run_dir, RecordsFormat::kCsvZst);
+  if (::access(compressed.c_str(), F_OK) == 0) return compressed;
+  const std::string plain = records_path(run_dir, RecordsFormat::kCsv);
+  return ::access(plain.c_str(), F_OK) == 0 ? plain : compressed;
 }
 
 std::vector<Shard> plan_shards(const Experiment& exp) {
@@ -111,31 +118,24 @@ void ShardSession::run(const Shard& shard, const std::string& records_dir) {
   comparison.line_rule =
       line_rule_for(experiment_platform(exp_, shard.platform), platform_->driver_info());
 
-  const std::string path = records_dir.empty() ? shard.records_path(run_dir_)
-                                               : records_dir + "/" + shard.id() + ".csv";
+  const std::string path =
+      records_dir.empty() ? shard.records_path(run_dir_, exp_.records_format)
+                          : records_dir + "/" + shard.id() + records_extension(exp_.records_format);
   // A temporary of this writer alone: a second writer (a run that ignored the lock) cannot
   // interleave its rows with ours, and a killed one leaves only its own temporary behind.
   const std::string tmp = create_unique_temp(path);
-  std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-  if (!out) throw std::runtime_error(io_error_message("cannot open", tmp));
-  out << records_header() << '\n';
-  constexpr uint64_t kChunk = 1024;  // primitives measured together (and batched inside)
-  std::vector<Primitive> prims;
-  for (uint64_t first = shard.begin; first < shard.end; first += kChunk) {
-    prims.clear();
-    for (uint64_t i = first; i < std::min(shard.end, first + kChunk); ++i)
-      prims.push_back(make_primitive(exp_.seed, shard.kind, i));
-    for (const Record& r : measure_cases(shard.platform, *platform_, *view, prims, comparison))
-      write_record(out, r);
-  }
-  out.close();
-  if (!out) {
-    const std::string why = io_error_message("cannot write", tmp);
-    std::remove(tmp.c_str());
-    throw std::runtime_error(why);
-  }
   try {
-    seal_shard_file(tmp);
+    RecordsFileWriter out(tmp, exp_.records_format);
+    constexpr uint64_t kChunk = 1024;  // primitives measured together (and batched inside)
+    std::vector<Primitive> prims;
+    for (uint64_t first = shard.begin; first < shard.end; first += kChunk) {
+      prims.clear();
+      for (uint64_t i = first; i < std::min(shard.end, first + kChunk); ++i)
+        prims.push_back(make_primitive(exp_.seed, shard.kind, i));
+      for (const Record& r : measure_cases(shard.platform, *platform_, *view, prims, comparison))
+        out.write(r);
+    }
+    out.finish();
   } catch (...) {
     std::remove(tmp.c_str());
     throw;

@@ -10,6 +10,7 @@
 
 #include "geometry/primitive.h"
 #include "metrics/effective_subpixel.h"
+#include "metrics/records_format.h"
 
 namespace ra {
 
@@ -22,7 +23,11 @@ struct Shard {
   uint64_t begin = 0, end = 0;  // primitive indices [begin, end)
 
   std::string id() const;  // e.g. "osmesa-llvmpipe.point.v1.0-5000"; also the records file stem
-  std::string records_path(const std::string& run_dir) const;  // DIR/records/<id>.csv
+  // The shard's records file in DIR/records: <id>.csv.zst or <id>.csv, whichever exists (a run may
+  // hold both formats when it was resumed with another run.records_format); <id>.csv.zst if none.
+  std::string records_path(const std::string& run_dir) const;
+  // DIR/records/<id> with the extension of `format`.
+  std::string records_path(const std::string& run_dir, RecordsFormat format) const;
   uint64_t size() const { return end - begin; }
 };
 
@@ -39,7 +44,8 @@ class ShardSession {
   ShardSession(std::string run_dir, const Experiment& exp, std::string platform);
   ~ShardSession();
   // Renders and measures every primitive of `shard` (of this session's platform), then writes
-  // its records file atomically: <records_dir>/<id>.csv, records_dir defaulting to DIR/records.
+  // its records file atomically: <records_dir>/<id>.csv.zst (or .csv, as the experiment's
+  // run.records_format says), records_dir defaulting to DIR/records.
   // Throws on I/O failure (the coordinator reports it) and lets a crashing driver crash the
   // process (the coordinator reports that too).
   void run(const Shard& shard, const std::string& records_dir = "");

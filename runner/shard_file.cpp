@@ -54,7 +54,110 @@ std::string trailer_of(const BodyDigest& d) {
   return std::string(kTrailerPrefix) + std::to_string(d.rows) + " fnv1a64=" + hex64(d.hash) + "\n";
 }
 
+// The digest of a decompressed stream whose last line is the trailer: every line but the most
+// recent one is hashed as it arrives, so the trailer is known (and left out) at the end.
+class HeldBackDigest {
+ public:
+  void add(std::string_view piece) {
+    const size_t last = piece.rfind('\n');
+    const size_t before = last == 0 || last == std::string_view::npos
+                              ? std::string_view::npos
+                              : piece.rfind('\n', last - 1);
+    if (before == std::string_view::npos) {  // at most one line ends here: keep it all for now
+      held_.append(piece);
+      return;
+    }
+    // Everything up to the piece's second-to-last line end is known not to be the trailer.
+    take(held_);
+    take(piece.substr(0, before + 1));
+    held_.assign(piece.substr(before + 1));
+  }
+  // The last line (with its '\n', or without one when the stream ends mid-line) and the digest of
+  // everything before it.
+  BodyDigest finish(std::string* last_line) {
+    const size_t last = held_.rfind('\n', held_.size() >= 2 ? held_.size() - 2 : 0);
+    const size_t cut = held_.size() >= 2 && last != std::string::npos ? last + 1 : 0;
+    take(std::string_view(held_).substr(0, cut));
+    *last_line = held_.substr(cut);
+    BodyDigest d;
+    d.hash = hash_.value;
+    d.rows = lines_ > 0 ? lines_ - 1 : 0;
+    return d;
+  }
+
+ private:
+  void take(std::string_view bytes) {
+    hash_.add(bytes);
+    lines_ += uint64_t(std::count(bytes.begin(), bytes.end(), '\n'));
+  }
+  Fnv1a64 hash_;
+  uint64_t lines_ = 0;
+  std::string held_;  // the last line or two seen, not yet hashed
+};
+
+std::string check_compressed(const std::string& path, uint64_t expected_rows) {
+  HeldBackDigest digest;
+  try {
+    for_each_zstd_chunk(path, [&](std::string_view c) { digest.add(c); });
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    if (what.find("cut short") != std::string::npos) return "no trailer (the file was cut short)";
+    return "damaged: " + what.substr(std::min(what.size(), path.size() + 2));
+  }
+  std::string trailer;
+  const BodyDigest d = digest.finish(&trailer);
+  if (trailer.empty() || trailer.back() != '\n') return "no trailer (the file was cut short)";
+  if (trailer.compare(0, kTrailerPrefix.size(), kTrailerPrefix) != 0)
+    return "no trailer (the file was cut short)";
+  if (trailer != trailer_of(d))
+    return "its trailer does not match its contents (" + std::to_string(d.rows) +
+           " rows: damaged, or written by two processes at once)";
+  if (d.rows != expected_rows)
+    return "it holds " + std::to_string(d.rows) + " rows where the shard has " +
+           std::to_string(expected_rows) + " primitives";
+  return "";
+}
+
 }  // namespace
+
+RecordsFileWriter::RecordsFileWriter(const std::string& path, RecordsFormat format)
+    : path_(path), out_(path, std::ios::binary | std::ios::trunc) {
+  if (!out_) throw std::runtime_error(io_error_message("cannot open", path));
+  if (format == RecordsFormat::kCsvZst) zstd_ = std::make_unique<ZstdFrameWriter>(out_);
+  put(records_header() + "\n");
+}
+
+void RecordsFileWriter::put(std::string_view bytes) {
+  hash_.add(bytes);
+  if (zstd_)
+    zstd_->write(bytes);
+  else
+    out_.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+void RecordsFileWriter::write(const Record& r) {
+  line_.clear();
+  append_record(line_, r);
+  put(line_);
+  if (++rows_ % kRowsPerFrame == 0 && zstd_) zstd_->end_frame();
+}
+
+uint64_t RecordsFileWriter::finish() {
+  BodyDigest d;
+  d.hash = hash_.value;
+  d.rows = rows_;
+  const std::string trailer = trailer_of(d);
+  if (zstd_) {
+    zstd_->end_frame();
+    zstd_->write(trailer);
+    zstd_->end_frame();
+  } else {
+    out_ << trailer;
+  }
+  out_.close();
+  if (!out_) throw std::runtime_error(io_error_message("cannot write", path_));
+  return rows_;
+}
 
 std::string shard_trailer(std::string_view body, uint64_t rows) {
   Fnv1a64 h;
@@ -82,6 +185,7 @@ uint64_t seal_shard_file(const std::string& path) {
 }
 
 std::string check_shard_file(const std::string& path, uint64_t expected_rows) {
+  if (has_zstd_extension(path)) return check_compressed(path, expected_rows);
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) return "cannot read it";
   const uint64_t size = uint64_t(in.tellg());

@@ -4,18 +4,55 @@
 // trailer. A file cut short, concatenated, interleaved by two writers or edited by hand fails the
 // check, and `run` redoes its shard instead of counting it. Readers of records skip lines that
 // start with '#', so readers that skip comment lines read sealed files unchanged.
+//
+// A compressed shard file (<id>.csv.zst, util/zstd_stream.h) holds the very same bytes once
+// decompressed: the header and the rows in frames of kRowsPerFrame rows each, then the trailer in
+// a last frame of its own; the hash covers the decompressed bytes before the trailer. A cut file
+// ends inside a frame or lacks the trailer's frame; a changed byte fails its frame's checksum or
+// the hash.
 #pragma once
 
 #include <cstdint>
+#include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
 
+#include "metrics/records.h"
+#include "metrics/records_format.h"
+#include "util/fnv1a.h"
+#include "util/zstd_stream.h"
+
 namespace ra {
+
+// Rows per zstd frame: about 1.3 MB of text, 0.2 MB compressed; a 5,000-primitive shard is one
+// frame, so a reader splits work by file first and by frame within a large file.
+constexpr uint64_t kRowsPerFrame = 8192;
+
+// Writes a sealed records file at `path` (normally a temporary, committed by the caller) in
+// `format`: the header, then write() for each row, then finish() for the seal.
+class RecordsFileWriter {
+ public:
+  RecordsFileWriter(const std::string& path, RecordsFormat format);  // throws std::runtime_error
+  void write(const Record& r);
+  // Writes the trailer and closes the file; returns the number of rows. Throws std::runtime_error
+  // on I/O failure (the file is then incomplete: the caller removes it).
+  uint64_t finish();
+
+ private:
+  void put(std::string_view bytes);
+  std::string path_;
+  std::ofstream out_;
+  std::unique_ptr<ZstdFrameWriter> zstd_;  // null for plain CSV
+  Fnv1a64 hash_;
+  uint64_t rows_ = 0;
+  std::string line_;
+};
 
 // The trailer line (with its '\n') for `body`, the file's bytes before it, holding `rows` rows.
 std::string shard_trailer(std::string_view body, uint64_t rows);
 
-// Appends the trailer to the finished file at `path` (a temporary, before it is committed);
+// Appends the trailer to the finished plain CSV file at `path` (a temporary, before it is committed);
 // returns the number of rows. Throws std::runtime_error on I/O failure.
 uint64_t seal_shard_file(const std::string& path);
 

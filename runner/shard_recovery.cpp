@@ -2,6 +2,7 @@
 #include "runner/shard_recovery.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
@@ -61,7 +62,8 @@ std::vector<WorkItem> ShardRecovery::on_finished(const WorkItem& item, WorkOutco
   Bisection& b = bisections_.at(item.parent);
   std::vector<WorkItem> next;
   if (outcome == WorkOutcome::kOk) {
-    b.parts.push_back(records_dir(item) + "/" + item.shard.id() + ".csv");
+    b.parts.push_back(records_dir(item) + "/" + item.shard.id() +
+                      records_extension(exp_.records_format));
     --b.pending;
   } else if (item.shard.size() == 1) {
     b.failed.push_back({item.parent, item.shard.begin,
@@ -102,12 +104,18 @@ void ShardRecovery::assemble(Bisection& b) {
     throw std::runtime_error("shard " + b.shard.id() + ": bisection assembled " +
                              std::to_string(records.size()) + " records, expected " +
                              std::to_string(b.shard.size()));
-  std::ostringstream out;
-  out << records_header() << '\n';
-  for (const Record& r : records) write_record(out, r);
-  std::string body = out.str();
-  body += shard_trailer(body, records.size());
-  write_file_atomic(b.shard.records_path(run_dir_), body);
+  // Written whole under a temporary name, then renamed: never half a shard in the records folder.
+  const std::string path = b.shard.records_path(run_dir_, exp_.records_format);
+  const std::string tmp = create_unique_temp(path);
+  try {
+    RecordsFileWriter out(tmp, exp_.records_format);
+    for (const Record& r : records) out.write(r);
+    out.finish();
+  } catch (...) {
+    std::remove(tmp.c_str());
+    throw;
+  }
+  commit_file(tmp, path);
   for (const std::string& part : b.parts) fs::remove(part);
 }
 

@@ -228,7 +228,7 @@ void WorkerPool::reaped(pid_t pid, int status) {
   WorkerEvent e = event(WorkerEvent::Kind::kSucceeded, r.item);
   e.item_s = seconds_between(r.started, now);
   e.log = "; log: " + log_path(r.item);
-  const std::string written = records_dir_(r.item) + "/" + r.item.shard.id() + ".csv";
+  const std::string written = records_dir_(r.item) + "/" + r.item.shard.id() + settings_.records_extension;
   if (replied || (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(written))) {
     e.kind = WorkerEvent::Kind::kSucceeded;
   } else if (WIFSIGNALED(status)) {  // the driver crashed: re-run, then bisect
@@ -280,7 +280,7 @@ void WorkerPool::timed_out(pid_t pid, Clock::time_point now) {
   if (r.command_fd >= 0) ::close(r.command_fd);
   char limit[32];
   std::snprintf(limit, sizeof limit, "%g", r.item.timeout_s);
-  const std::string written = records_dir_(r.item) + "/" + r.item.shard.id() + ".csv";
+  const std::string written = records_dir_(r.item) + "/" + r.item.shard.id() + settings_.records_extension;
   WorkerEvent e = event(WorkerEvent::Kind::kTimedOut, r.item);
   e.item_s = seconds_between(r.started, now);
   e.log = "; log: " + log_path(r.item);

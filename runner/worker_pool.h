@@ -42,6 +42,7 @@ class WorkerPool {
     int jobs = 1;               // processes at once
     bool serve_shards = true;   // whole first-attempt shards go to servers
     bool progress_line = false; // a progress line is on stderr: messages start on a new line
+    std::string records_extension = ".csv.zst";  // of a finished shard's file (".csv" plain)
   };
   using RecordsDirOf = std::function<std::string(const WorkItem&)>;
   using OnEvent = std::function<void(const WorkerEvent&)>;

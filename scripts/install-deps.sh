@@ -25,6 +25,7 @@ packages=(
   libmeshoptimizer-dev  # meshoptimizer: vertex-cache analysis and simplification
   libeigen3-dev         # Eigen: QR / SVD least squares (stats regress, timing models)
   libsqlite3-dev        # SQLite: audit history database
+  libzstd-dev           # zstd: compressed records files (records/*.csv.zst)
   libgtest-dev          # GoogleTest: the test suite
   xvfb                  # a private X server for VTK on machines with no display
   libgl1-mesa-dri       # Mesa's GLX driver inside Xvfb (VTK's OpenGL context for figures)
@@ -34,6 +35,8 @@ packages=(
   fonts-urw-base35      # Nimbus Sans: Helvetica metrics, so poppler shows the figure PDFs' text right
   poppler-utils         # pdfunite / pdftotext: assembling and checking the PDF report
   python3-scipy         # independent reference values in tests (/usr/bin/python3)
+  python3-pandas        # tests: pandas reads a compressed records file (/usr/bin/python3)
+  python3-zstandard     #   ... through python3-zstandard, as a user's notebook would
   libopenmpi-dev        # Debian's VTK CMake config requires MPI's C bindings to resolve
 )
 

@@ -34,9 +34,10 @@ trap '"$repo/scripts/slurm-local.sh" stop "$state" >/dev/null 2>&1' EXIT
 rm -rf "$work"
 mkdir -p "$work"
 
-# The records of a run with their timing column (render_us, the 33rd) left out, sorted.
+# The records of a run (either file format, `renderaudit records`) with their timing column
+# (render_us, the 33rd) left out, sorted.
 records_without_timing() {
-  for f in "$1"/records/*.csv; do grep -v '^#' "$f" | tail -n +2; done | cut -d, -f1-32,34- | sort
+  "$ra" records "$1" | tail -n +2 | cut -d, -f1-32,34- | sort
 }
 same_records() {  # LOCAL SLURM
   records_without_timing "$1" >"$work/a.csv"

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The driver-upgrade report (scripts/driver-upgrade.sh): what changed between each platform and
-its build PLATFORM@BUILD in one run, read from the run's records (plain CSV, columns by header
-name) and the audits' audit.json, with pictures (`renderaudit show`) and C reproducers
+its build PLATFORM@BUILD in one run, read from the run's records (`renderaudit records`, columns by
+header name) and the audits' audit.json, with pictures (`renderaudit show`) and C reproducers
 (`renderaudit reproduce`) of the worst primitives.
 
 Usage: upgrade_report.py RENDERAUDIT RUN_DIR BUILD PLATFORM... > report.md
@@ -9,7 +9,7 @@ A primitive is changed when its lit pixels (pixel_hash), status or visibility di
 the largest change in the number of lit pixels."""
 import collections
 import csv
-import glob
+import io
 import json
 import os
 import subprocess
@@ -18,19 +18,18 @@ import sys
 GROUPS = "ABCD"
 
 
-def records(run_dir, platforms):
-    """(platform, kind, view, index) -> the columns the report reads."""
+def records(ra, run_dir, platforms):
+    """(platform, kind, view, index) -> the columns the report reads (`renderaudit records`: one
+    stream of the run's records, whichever format its files have)."""
     out = {}
-    for path in sorted(glob.glob(os.path.join(run_dir, "records", "*.csv"))):
-        base = os.path.basename(path)  # PLATFORM.KIND.vV.B-E.csv; a build name may hold dots
-        if not any(base.startswith(p + "." + k + ".") for p in platforms
-                   for k in ("point", "line", "triangle")):
+    text = subprocess.run([ra, "records", run_dir], check=True, capture_output=True,
+                          text=True).stdout
+    for r in csv.DictReader(io.StringIO(text)):
+        if r["platform"] not in platforms:
             continue
-        with open(path, newline="") as f:
-            for r in csv.DictReader(line for line in f if not line.startswith("#")):
-                out[(r["platform"], r["kind"], int(r["view"]), int(r["index"]))] = (
-                    r["status"], r["visibility"], int(r["pixels"]), r["pixel_hash"],
-                    r.get("conformance", ""), int(r["view_group"]))
+        out[(r["platform"], r["kind"], int(r["view"]), int(r["index"]))] = (
+            r["status"], r["visibility"], int(r["pixels"]), r["pixel_hash"],
+            r.get("conformance", ""), int(r["view_group"]))
     return out
 
 
@@ -38,7 +37,7 @@ def main():
     ra, run_dir, build = sys.argv[1:4]
     platforms = sys.argv[4:]
     names = set(platforms) | {p + "@" + build for p in platforms}
-    recs = records(run_dir, names)
+    recs = records(ra, run_dir, names)
     driver = lambda p: json.load(open(os.path.join(run_dir, "drivers", p + ".json")))
     print(f"# Driver upgrade: what changed\n\nRun `{run_dir}`; each platform P (the installed "
           f"Mesa) against P@{build}.\n")

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "util/errors.h"
+#include "util/zstd_stream.h"
 
 namespace ra::stats {
 namespace {
@@ -147,6 +148,15 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& source) {
 }
 
 CsvTable CsvTable::read_file(const std::string& path) {
+  if (has_zstd_extension(path)) {  // a compressed records file (metrics/records_format.h)
+    try {
+      return parse(read_zstd_file(path), path);
+    } catch (const UserError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw UserError(e.what());
+    }
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw UserError(path + ": cannot open the file for reading");
   std::ostringstream content;

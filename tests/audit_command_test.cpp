@@ -50,8 +50,8 @@ std::vector<std::string> split(const std::string& line) {
 std::map<Key, std::string> records_of(const std::string& run_dir, const std::string& platform) {
   std::map<Key, std::string> out;
   for (const auto& e : fs::directory_iterator(run_dir + "/records")) {
-    if (e.path().extension() != ".csv") continue;
-    std::ifstream in(e.path());
+    if (!ra::is_records_file_name(e.path().filename().string())) continue;
+    std::istringstream in(read_records_text(e.path().string()));
     std::string line;
     std::getline(in, line);
     const std::vector<std::string> header = split(line);
@@ -238,6 +238,27 @@ TEST(AuditCommand, FlakesAreReportedApartAndLeaveTheVerdictUnchanged) {
   std::printf("[ flakes ] %zu flaky primitives of 200\n", flaky.size());
 }
 
+// Why: runs written as plain CSV (run.records_format = "csv", or before records were compressed)
+// stay auditable against compressed ones, both ways round, and analysable.
+TEST(AuditCommand, APlainCsvRunAndACompressedRunAuditAsUnchanged) {
+  const std::string dir = fresh_dir("audit_formats");
+  write_text(dir + "/plain.toml", experiment("\"reference\"", kOneView, "points = 30\nlines = 30\n",
+                                             "records_format = \"csv\"\n"));
+  write_text(dir + "/zst.toml", experiment("\"reference\"", kOneView, "points = 30\nlines = 30\n"));
+  ASSERT_EQ(run_experiment(dir + "/plain.toml", dir + "/plain").exit_code, 0);
+  ASSERT_EQ(run_experiment(dir + "/zst.toml", dir + "/zst").exit_code, 0);
+  EXPECT_TRUE(fs::exists(dir + "/plain/records/reference.point.v1.0-30.csv"));
+  EXPECT_TRUE(fs::exists(dir + "/zst/records/reference.point.v1.0-30.csv.zst"));
+  EXPECT_EQ(records_of(dir + "/plain", "reference"), records_of(dir + "/zst", "reference"));
+  for (const auto& [base, cur] : {std::pair{"plain", "zst"}, std::pair{"zst", "plain"}}) {
+    const Outcome o = run_renderaudit("audit " + dir + "/" + base + " " + dir + "/" + cur +
+                                      " --no-history");
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+    EXPECT_EQ(read_json(dir + "/" + cur + "/audit/audit.json")["counts"]["compared"], 60);
+  }
+  EXPECT_EQ(run_renderaudit("analyze " + dir + "/plain").exit_code, 0);
+}
+
 // 5a. Crash / timeout records and missing shards (hand-edited copies of a clean run): failed,
 // exit 2, the primitives and shards named.
 TEST(AuditCommand, CrashRecordsAndMissingShardsFail) {
@@ -250,8 +271,8 @@ TEST(AuditCommand, CrashRecordsAndMissingShardsFail) {
   fs::copy(dir + "/base", dir + "/missing", fs::copy_options::recursive);
 
   // Index 4 becomes a crash record.
-  const std::string shard = dir + "/crash/records/reference.point.v1.0-10.csv";
-  std::stringstream in(read_text(shard));
+  const std::string shard = dir + "/crash/records/reference.point.v1.0-10.csv.zst";
+  std::stringstream in(read_records_text(shard));
   std::string line, edited;
   std::getline(in, line);
   edited = line + "\n";
@@ -266,7 +287,7 @@ TEST(AuditCommand, CrashRecordsAndMissingShardsFail) {
     for (std::size_t i = 0; i < f.size(); ++i) edited += (i ? "," : "") + f[i];
     edited += "\n";
   }
-  write_text(shard, edited);
+  write_records_text(shard, edited);
   reseal_records_file(shard);
   const Outcome crash = run_renderaudit("audit " + dir + "/base " + dir + "/crash --no-history");
   EXPECT_EQ(crash.exit_code, 2) << crash.output;
@@ -280,7 +301,7 @@ TEST(AuditCommand, CrashRecordsAndMissingShardsFail) {
             std::string::npos);
 
   // The second shard is gone, and the manifest says why.
-  fs::remove(dir + "/missing/records/reference.point.v1.10-20.csv");
+  fs::remove(dir + "/missing/records/reference.point.v1.10-20.csv.zst");
   nlohmann::json manifest = read_json(dir + "/missing/manifest.json");
   manifest["failures"] = {
       {{"shard", "reference.point.v1.10-20"}, {"reason", "timed out after 3 s (killed)"}}};

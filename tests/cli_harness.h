@@ -9,11 +9,14 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "metrics/records.h"
+#include "metrics/records_format.h"
 #include "runner/shard_file.h"
+#include "util/zstd_stream.h"
 #include "util/child_process.h"
 
 namespace ra::testing_cli {
@@ -113,12 +116,29 @@ inline void write_text(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
+// The text of a records file, decompressed when it is a .csv.zst one.
+inline std::string read_records_text(const std::string& path) {
+  if (ra::has_zstd_extension(path)) return ra::read_zstd_file(path);
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Replaces a records file's text, compressed (as one zstd frame) when it is a .csv.zst one.
+inline void write_records_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!ra::has_zstd_extension(path)) {
+    out << text;
+    return;
+  }
+  ra::ZstdFrameWriter z(out);
+  z.write(text);
+  z.end_frame();
+}
+
 // Seals a records file again after a test edited it (runner/shard_file.h), as if a run had written
 // those records: drops its old trailer, appends the one its content now has.
 inline void reseal_records_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  in.close();
+  const std::string text = read_records_text(path);
   std::string body;
   std::size_t rows = 0, start = 0;
   for (bool header = true; start < text.size(); header = false) {
@@ -130,7 +150,7 @@ inline void reseal_records_file(const std::string& path) {
     }
     start = end;
   }
-  std::ofstream(path, std::ios::binary | std::ios::trunc) << body << ra::shard_trailer(body, rows);
+  write_records_text(path, body + ra::shard_trailer(body, rows));
 }
 
 // Every record line of a run directory, with the timing columns (the last two) removed, as a set
@@ -138,8 +158,8 @@ inline void reseal_records_file(const std::string& path) {
 inline std::multiset<std::string> records_without_timing(const std::string& run_dir) {
   std::multiset<std::string> rows;
   for (const auto& e : std::filesystem::directory_iterator(run_dir + "/records")) {
-    if (e.path().extension() != ".csv") continue;
-    std::ifstream in(e.path());
+    if (!ra::is_records_file_name(e.path().filename().string())) continue;
+    std::istringstream in(read_records_text(e.path().string()));
     std::string line;
     std::getline(in, line);  // header
     // The columns render_us and batch_size depend on timing and on how the primitives fell

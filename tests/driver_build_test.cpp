@@ -55,7 +55,7 @@ std::string simulate_other_build(const std::string& dir) {
   write_json(dir + "/cur/manifest.json", m);
   for (const auto& e : fs::directory_iterator(dir + "/cur/records")) {
     if (e.path().filename().string().find(".line.") == std::string::npos) continue;
-    std::ifstream in(e.path());
+    std::istringstream in(read_records_text(e.path().string()));
     std::string line, out;
     std::getline(in, line);
     out = line + "\n";
@@ -73,8 +73,7 @@ std::string simulate_other_build(const std::string& dir) {
       }
       out += line + "\n";
     }
-    in.close();
-    std::ofstream(e.path(), std::ios::trunc) << out;
+    write_records_text(e.path().string(), out);
     reseal_records_file(e.path().string());
   }
   return installed;

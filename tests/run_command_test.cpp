@@ -91,8 +91,9 @@ TEST(RunCommand, AResumedRunEqualsAnUninterruptedOne) {
   // Simulate a run killed mid-way: some shards missing, one half-written temporary file.
   int removed = 0;
   for (const auto& e : fs::directory_iterator(dir + "/resumed/records"))
-    if (removed < 5 && e.path().extension() == ".csv") fs::remove(e.path()), ++removed;
-  write_text(dir + "/resumed/records/osmesa-llvmpipe.point.v1.0-50.csv.tmp", "platform,vi");
+    if (removed < 5 && ra::is_records_file_name(e.path().filename().string()))
+      fs::remove(e.path()), ++removed;
+  write_text(dir + "/resumed/records/osmesa-llvmpipe.point.v1.0-50.csv.zst.tmp", "platform,vi");
   const Outcome again = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/resumed");
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_NE(again.output.find("(19 finished earlier, 5 run now, 0 incomplete)"), std::string::npos)
@@ -202,7 +203,7 @@ TEST(RunCommand, ServedShardsEqualOneProcessPerShardAndACrashStaysWithItsShard) 
   EXPECT_EQ(invocation("per-shard").at("worker_processes"), 4 * 8);  // views x shards
   EXPECT_EQ(invocation("per-shard").at("workers"), "per-shard");
   for (const auto& e : fs::directory_iterator(dir + "/served/records"))
-    EXPECT_TRUE(fs::exists(dir + "/served/logs/" + e.path().stem().string() + ".log")) << e.path();
+    EXPECT_TRUE(fs::exists(dir + "/served/logs/" + ra::records_file_stem(e.path().filename().string()) + ".log")) << e.path();
 
   const std::string faulty =
       "seed = 3\nplatforms = [\"faulty\"]\n[views]\norientations = 1\nfov_deg = [150]\n"
@@ -327,7 +328,8 @@ TEST(RunCommand, AnotherShardSizeIntoTheSameDirectoryIsRefused) {
       << o.output;
   EXPECT_TRUE(records_without_timing(dir + "/run") == before);  // nothing rendered twice
   std::size_t files = 0;
-  for (const auto& e : fs::directory_iterator(dir + "/run/records")) files += e.path().extension() == ".csv";
+  for (const auto& e : fs::directory_iterator(dir + "/run/records"))
+    files += ra::is_records_file_name(e.path().filename().string());
   EXPECT_EQ(files, 4u * 3);  // views x shards of 10
   EXPECT_EQ(run_renderaudit("analyze " + dir + "/run").exit_code, 0);
 }

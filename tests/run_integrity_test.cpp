@@ -126,11 +126,11 @@ TEST(RunIntegrity, ADamagedShardIsSetAsideAndRedoneToIdenticalRecords) {
   write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 300\nlines = 100\n"));
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2").exit_code, 0);
   const auto before = records_without_timing(dir + "/run");
-  const std::string shard = dir + "/run/records/reference.point.v1.100-200.csv";
-  std::string text = read_text(shard);
+  const std::string shard = dir + "/run/records/reference.point.v1.100-200.csv.zst";
+  std::string text = read_records_text(shard);
   const auto second_row = text.find('\n', text.find('\n') + 1) + 1;
   text.erase(second_row, text.find('\n', second_row) + 1 - second_row);  // drop one record
-  write_text(shard, text);
+  write_records_text(shard, text);  // compressed again: valid zstd, but the seal's hash fails
   const Outcome again = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2");
   EXPECT_EQ(again.exit_code, 0) << again.output;
   EXPECT_NE(again.output.find("not a complete shard file: its trailer does not match"),
@@ -143,11 +143,32 @@ TEST(RunIntegrity, ADamagedShardIsSetAsideAndRedoneToIdenticalRecords) {
   EXPECT_EQ(manifest["damaged_shards_redone"][0]["shard"], "reference.point.v1.100-200");
 }
 
+// A compressed shard file cut short (a full disk, a killed copy) is damaged for analyze and redone
+// by run, whether the cut falls inside a frame or just before the seal's frame.
+TEST(RunIntegrity, ACutCompressedShardIsRefusedThenRedone) {
+  const std::string dir = fresh_dir("integrity_cut");
+  write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 200\n"));
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2").exit_code, 0);
+  const auto before = records_without_timing(dir + "/run");
+  const std::string shard = dir + "/run/records/reference.point.v2.0-100.csv.zst";
+  const std::string bytes = read_text(shard);
+  write_text(shard, bytes.substr(0, bytes.size() / 2));
+  const Outcome a = run_renderaudit("analyze " + dir + "/run");
+  EXPECT_EQ(a.exit_code, 3) << a.output;
+  EXPECT_NE(a.output.find("damaged shard reference.point.v2.0-100: no trailer (the file was cut "
+                          "short)"), std::string::npos) << a.output;
+  const Outcome r = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("not a complete shard file: no trailer"), std::string::npos) << r.output;
+  EXPECT_EQ(records_without_timing(dir + "/run"), before);
+  EXPECT_EQ(run_renderaudit("analyze " + dir + "/run").exit_code, 0);
+}
+
 TEST(RunIntegrity, AnalyzeAndReportRefuseAnIncompleteRunAndSayWhatIsMissing) {
   const std::string dir = fresh_dir("integrity_incomplete");
   write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 200\n"));
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2").exit_code, 0);
-  fs::remove(dir + "/run/records/reference.point.v2.100-200.csv");
+  fs::remove(dir + "/run/records/reference.point.v2.100-200.csv.zst");
   const Outcome a = run_renderaudit("analyze " + dir + "/run");
   EXPECT_EQ(a.exit_code, 3) << a.output;
   EXPECT_NE(a.output.find("INCOMPLETE: 3 of 4 shards, 300 of 400 primitives"), std::string::npos)
@@ -189,8 +210,11 @@ TEST(RunIntegrity, AnUnsealedRecordOutsideItsShardIsReported) {
   const std::string dir = fresh_dir("integrity_unsealed");
   write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 200\n"));
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2").exit_code, 0);
-  for (const auto& e : fs::directory_iterator(dir + "/run/records"))  // as an older version wrote
-    write_text(e.path(), as_unsealed_version_2(read_text(e.path())));
+  for (const auto& e : fs::directory_iterator(dir + "/run/records")) {  // as an older version wrote
+    const std::string path = e.path().string();
+    write_text(ra::records_file_stem(path) + ".csv", as_unsealed_version_2(read_records_text(path)));
+    fs::remove(path);
+  }
   EXPECT_EQ(run_renderaudit("analyze " + dir + "/run").exit_code, 0);  // old runs stay readable
   const std::string shard = dir + "/run/records/reference.point.v1.0-100.csv";
   std::string text = read_text(shard);
@@ -211,10 +235,10 @@ TEST(RunIntegrity, AnUnsealedVersion3FileIsDamagedForAnalyzeAsForRun) {
   const std::string dir = fresh_dir("integrity_unsealed_v3");
   write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 200\n"));
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2").exit_code, 0);
-  const std::string shard = dir + "/run/records/reference.point.v1.0-100.csv";
-  std::string text = read_text(shard);
+  const std::string shard = dir + "/run/records/reference.point.v1.0-100.csv.zst";
+  std::string text = read_records_text(shard);
   text.erase(text.rfind("# complete"));
-  write_text(shard, text);
+  write_records_text(shard, text);
   const Outcome a = run_renderaudit("analyze " + dir + "/run");
   EXPECT_EQ(a.exit_code, 3) << a.output;
   EXPECT_NE(a.output.find("damaged shard reference.point.v1.0-100: no trailer"), std::string::npos)
@@ -279,7 +303,7 @@ TEST(RunIntegrity, AnUnwritableOutputDirectoryIsBadInput) {
       << o.output;
 }
 
-// A 1.5 MiB file system fills during the run: workers and the coordinator name the file and the
+// A 1.5 MiB file system fills during the run (plain CSV records): workers and the coordinator name the file and the
 // free space, the manifest says "failed", nothing half-written stays; with more room the same
 // command completes, identical to a run elsewhere.
 TEST(RunIntegrity, AFullDiskFailsCleanlyAndTheRerunCompletesIdentically) {
@@ -288,7 +312,9 @@ TEST(RunIntegrity, AFullDiskFailsCleanlyAndTheRerunCompletesIdentically) {
   fs::create_directories(mnt);
   if (::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=1536k") != 0)
     GTEST_SKIP() << "cannot mount a tmpfs here (not root?): " << std::strerror(errno);
-  write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 3000\nlines = 2000\n"));
+  // Plain CSV: compressed, these records would fit in the 1.5 MiB.
+  write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 3000\nlines = 2000\n",
+                                         "records_format = \"csv\"\n"));
   const Outcome full = run_renderaudit("run " + dir + "/e.toml --out " + mnt + "/run --jobs 2");
   EXPECT_EQ(full.exit_code, 1) << full.output;
   EXPECT_NE(full.output.find("No space left on device"), std::string::npos) << full.output;

@@ -97,7 +97,7 @@ const std::string& reference_run() {
 ra::Record largest_triangle(const std::string& run) {
   ra::Record best;
   for (const auto& e : fs::directory_iterator(run + "/records"))
-    if (e.path().extension() == ".csv")
+    if (ra::is_records_file_name(e.path().filename().string()))
       ra::read_records(e.path().string(), [&](const ra::Record& r) {
         if (r.kind == "triangle" && r.visibility == ra::Visibility::kTrueVisible &&
             r.pixels > best.pixels)

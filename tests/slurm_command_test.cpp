@@ -295,9 +295,9 @@ TEST(SlurmCommand, StatusSaysWhatIsDoneRunningAndLeftWhileAWriterIsAtWork) {
   EXPECT_EQ(s.exit_code, 3) << s.output;
   EXPECT_NE(s.output.find(": experiment e: running\n"), std::string::npos) << s.output;
   // the two running shards are slice 2's only if slice 1 lacks them
-  const bool in_slice_1 = fs::exists(dir + "/run/slices/1/records/reference.point.v1.0-50.csv");
+  const bool in_slice_1 = fs::exists(dir + "/run/slices/1/records/reference.point.v1.0-50.csv.zst");
   const int running = (in_slice_1 ? 0 : 1) +
-                      (fs::exists(dir + "/run/slices/1/records/reference.point.v1.50-100.csv")
+                      (fs::exists(dir + "/run/slices/1/records/reference.point.v1.50-100.csv.zst")
                            ? 0 : 1);
   EXPECT_NE(s.output.find("64 planned, 32 done (50%), " + std::to_string(running) + " running, 0 "
                           "failed, " + std::to_string(32 - running) + " waiting"),

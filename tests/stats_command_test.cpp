@@ -23,6 +23,7 @@
 #include "app/commands.h"
 #include "util/child_process.h"
 #include "util/errors.h"
+#include "util/zstd_stream.h"
 
 namespace ra::stats {
 namespace {
@@ -509,19 +510,27 @@ TEST_F(StatsCommand, DescribeReadsARunsRecordsAndSelectsRowsWithWhere) {
   std::filesystem::create_directories(dir + "/records");
   std::ofstream(dir + "/records/a.csv")
       << "platform,kind,pe\np,point,1\nq,point,5\np,line,\n# complete rows=3 fnv1a64=1\n";
-  std::ofstream(dir + "/records/b.csv") << "platform,kind,pe\np,point,3\n# complete rows=1 fnv1a64=2\n";
+  {  // a compressed one beside it (records/*.csv.zst, the default format)
+    std::ofstream b(dir + "/records/b.csv.zst", std::ios::binary);
+    ZstdFrameWriter z(b);
+    z.write("platform,kind,pe\np,point,3\nq,point,7\n# complete rows=2 fnv1a64=2\n");
+    z.end_frame();
+  }
   json d = json::parse(run_stats({"describe", dir, "--column", "pe", "--where", "platform=p",
                                   "--json"}));
   EXPECT_EQ(d["description"]["n"], 2);  // 1 and 3; p's line has no pe
   EXPECT_EQ(d["n_missing"], 1);
   EXPECT_DOUBLE_EQ(d["description"]["mean"].get<double>(), 2.0);
   d = json::parse(run_stats({"describe", dir, "--column", "pe", "--json"}));
-  EXPECT_EQ(d["description"]["n"], 3);  // every row of both files: 1, 5, 3
-  EXPECT_DOUBLE_EQ(d["description"]["mean"].get<double>(), 3.0);
+  EXPECT_EQ(d["description"]["n"], 4);  // every row of both files: 1, 5, 3, 7
+  EXPECT_DOUBLE_EQ(d["description"]["mean"].get<double>(), 4.0);
   // one records file alone, seal line and all
   d = json::parse(run_stats({"describe", dir + "/records/a.csv", "--column", "pe", "--json"}));
   EXPECT_EQ(d["description"]["n"], 2);
   EXPECT_DOUBLE_EQ(d["description"]["median"].get<double>(), 3.0);
+  d = json::parse(run_stats({"describe", dir + "/records/b.csv.zst", "--column", "pe", "--json"}));
+  EXPECT_EQ(d["description"]["n"], 2);  // the compressed file alone: 3, 7
+  EXPECT_DOUBLE_EQ(d["description"]["mean"].get<double>(), 5.0);
 }
 
 }  // namespace ra::stats

@@ -1,0 +1,152 @@
+// `renderaudit records RUN [--platform P] [--kind K] [--view V] [--columns C,...] [--format F]`:
+// one stream of a run's records on stdout, filtered, for a notebook or a shell pipe (no globbing,
+// no decompressing shard files by hand). Shards are taken in the plan's order (platform, view,
+// kind, first primitive), from either file format; the cells are copied as the files hold them,
+// so every number is the recorded text. The seal lines are not repeated: the stream is not a
+// shard file.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/commands.h"
+#include "metrics/records.h"
+#include "metrics/records_format.h"
+#include "metrics/records_reader.h"
+#include "runner/experiment.h"
+#include "runner/shard.h"
+#include "runner/shard_file.h"
+#include "util/errors.h"
+#include "util/zstd_stream.h"
+
+namespace ra::app {
+namespace {
+
+struct RecordsOptions {
+  std::string dir;
+  std::vector<std::string> platforms, kinds, columns;
+  std::vector<int> views;
+  std::string format = "csv";
+};
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// Each name must be one of `allowed`; the error names the option and what is allowed.
+void check_names(const std::vector<std::string>& names, const std::vector<std::string>& allowed,
+                 const std::string& option, const std::string& dir) {
+  for (const std::string& n : names)
+    if (std::find(allowed.begin(), allowed.end(), n) == allowed.end())
+      throw UserError(option + " " + n + ": not in run " + dir + " (allowed: " + joined(allowed) + ")");
+}
+
+template <typename T>
+bool wanted(const std::vector<T>& filter, const T& value) {
+  return filter.empty() || std::find(filter.begin(), filter.end(), value) != filter.end();
+}
+
+void stream_records(const RecordsOptions& o) {
+  const std::string toml = o.dir + "/experiment.toml";
+  if (!std::filesystem::exists(toml))
+    throw UserError(o.dir + ": no experiment.toml (expected a run directory written by "
+                    "`renderaudit run`)");
+  const Experiment exp = load_experiment(toml);
+  const std::optional<RecordsFormat> format = parse_records_format(o.format);
+  if (!format) throw UserError("--format " + o.format + ": unknown (allowed: csv, csv.zst)");
+  if (*format == RecordsFormat::kCsvZst && ::isatty(STDOUT_FILENO))
+    throw UserError("--format csv.zst writes compressed bytes: redirect or pipe stdout");
+
+  check_names(o.platforms, exp.platforms, "--platform", o.dir);
+  check_names(o.kinds, {"point", "line", "triangle"}, "--kind", o.dir);
+  std::vector<std::string> view_ids;
+  for (const View& v : exp.views) view_ids.push_back(std::to_string(v.id));
+  std::vector<std::string> asked_views;
+  for (int v : o.views) asked_views.push_back(std::to_string(v));
+  check_names(asked_views, view_ids, "--view", o.dir);
+  std::vector<RecordColumn> columns;
+  std::vector<std::string> all_columns;
+  for (std::size_t c = 0; c < kRecordColumnCount; ++c)
+    all_columns.push_back(record_column_name(static_cast<RecordColumn>(c)));
+  for (const std::string& name : o.columns) {
+    const std::optional<RecordColumn> c = find_record_column(name);
+    if (!c) throw UserError("--columns " + name + ": no such records column (allowed: " +
+                            joined(all_columns) + ")");
+    columns.push_back(*c);
+  }
+  if (columns.empty())
+    for (std::size_t c = 0; c < kRecordColumnCount; ++c) columns.push_back(static_cast<RecordColumn>(c));
+
+  std::ios::sync_with_stdio(false);
+  std::unique_ptr<ZstdFrameWriter> zstd;
+  if (*format == RecordsFormat::kCsvZst) zstd = std::make_unique<ZstdFrameWriter>(std::cout);
+  std::string text;  // written out every few MiB (one zstd frame each)
+  const auto flush = [&] {
+    if (zstd) {
+      zstd->write(text);
+      zstd->end_frame();
+    } else {
+      std::cout.write(text.data(), std::streamsize(text.size()));
+    }
+    text.clear();
+  };
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    text += (i ? "," : "") + std::string(record_column_name(columns[i]));
+  text += '\n';
+  std::size_t missing = 0;
+  for (const Shard& s : plan_shards(exp)) {
+    if (!wanted(o.platforms, s.platform) || !wanted(o.kinds, std::string(kind_name(s.kind))) ||
+        !wanted(o.views, s.view))
+      continue;
+    const std::string path = s.records_path(o.dir);
+    if (!std::filesystem::exists(path)) {
+      ++missing;
+      continue;
+    }
+    for_each_record_row(path, [&](const RecordRow& row) {
+      for (std::size_t i = 0; i < columns.size(); ++i) {
+        if (i) text += ',';
+        text += row.cell(columns[i]);
+      }
+      text += '\n';
+      if (text.size() >= (std::size_t{4} << 20)) flush();
+    });
+  }
+  flush();
+  std::cout.flush();
+  if (!std::cout) throw std::runtime_error("cannot write the records to stdout");
+  if (missing > 0)
+    std::fprintf(stderr, "renderaudit: records: %zu planned shards of the selection have no "
+                 "records file yet (`renderaudit status %s` says why)\n", missing, o.dir.c_str());
+}
+
+}  // namespace
+
+void register_records_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "records",
+      "A run's records as one CSV stream on stdout (header first), filtered by platform, kind\n"
+      "and view, with the columns asked for; plain or zstd-compressed (docs/records.md).");
+  static RecordsOptions o;
+  cmd->add_option("dir", o.dir, "run directory")->required()->check(CLI::ExistingDirectory);
+  cmd->add_option("--platform", o.platforms, "only this platform (repeatable)");
+  cmd->add_option("--kind", o.kinds, "only this kind: point, line, triangle (repeatable)");
+  cmd->add_option("--view", o.views, "only this view id (repeatable)");
+  cmd->add_option("--columns", o.columns, "these columns, in this order (comma-separated)")
+      ->delimiter(',');
+  cmd->add_option("--format", o.format, "csv (default) or csv.zst");
+  cmd->callback([&exit_code] {
+    stream_records(o);
+    exit_code = kExitOk;
+  });
+}
+
+}  // namespace ra::app

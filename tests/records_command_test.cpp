@@ -1,0 +1,145 @@
+// End-to-end tests of `renderaudit records`: one filtered stream of a run's records, from either
+// file format, with the cells as recorded, and clear errors for names the run does not have.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/cli_harness.h"
+#include "util/zstd_stream.h"
+
+namespace fs = std::filesystem;
+using namespace ra::testing_cli;
+
+namespace {
+
+std::string experiment(const std::string& extra = "") {
+  return "seed = 5\nplatforms = [\"reference\"]\n[views]\norientations = 1\nfov_deg = [30, 150]\n"
+         "windows = [32]\nnear = 0.01\nfar = 10.0\n[primitives]\npoints = 40\nlines = 30\n"
+         "[run]\nshard_size = 25\n" + extra;
+}
+
+// The rows of every records file of the run, without header or seal, keyed by "kind,view,index"
+// (read independently of the command: decompressed and split here).
+std::map<std::string, std::string> rows_by_key(const std::string& run) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::directory_iterator(run + "/records")) {
+    std::istringstream in(read_records_text(e.path().string()));
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      std::vector<std::string> f;
+      std::stringstream cells(line);
+      for (std::string c; std::getline(cells, c, ',');) f.push_back(c);
+      out[f.at(9) + "," + f.at(1) + "," + f.at(10)] = line;  // kind, view, index
+    }
+  }
+  return out;
+}
+
+class RecordsCommand : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new std::string(fresh_dir("records_command"));
+    write_text(*dir_ + "/e.toml", experiment());
+    write_text(*dir_ + "/plain.toml", experiment("records_format = \"csv\"\n"));
+    ASSERT_EQ(run_renderaudit("run " + *dir_ + "/e.toml --out " + *dir_ + "/run --jobs 2 --quiet")
+                  .exit_code, 0);
+    ASSERT_EQ(run_renderaudit("run " + *dir_ + "/plain.toml --out " + *dir_ +
+                              "/plain --jobs 2 --quiet").exit_code, 0);
+  }
+  static std::string* dir_;
+};
+std::string* RecordsCommand::dir_ = nullptr;
+
+TEST_F(RecordsCommand, TheWholeRunIsOneStreamOfTheRecordedRows) {
+  const Outcome o = run_renderaudit("records " + *dir_ + "/run");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::map<std::string, std::string> rows = rows_by_key(*dir_ + "/run");
+  ASSERT_EQ(rows.size(), 2u * (40 + 30));
+  std::istringstream in(o.output);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, ra::records_header());
+  std::size_t n = 0;
+  std::string first_kinds;
+  while (std::getline(in, line)) {
+    ++n;
+    std::vector<std::string> f;
+    std::stringstream cells(line);
+    for (std::string c; std::getline(cells, c, ',');) f.push_back(c);
+    ASSERT_GT(f.size(), 10u) << line;
+    EXPECT_EQ(rows.at(f[9] + "," + f[1] + "," + f[10]), line);  // the cells as recorded
+    if (n == 1 || n == 41) first_kinds += f[9] + "/" + f[1] + "/" + f[10] + " ";
+  }
+  EXPECT_EQ(n, rows.size());
+  // The plan's order: view 1's points 0..39 come first, then view 1's lines.
+  EXPECT_EQ(first_kinds, "point/1/0 line/1/0 ");
+  // A plain-CSV run of the same experiment streams the same rows (its own render times aside).
+  const std::string columns = "--columns platform,kind,view,index,status,visibility,pixels,pe,"
+                              "lse_s,lse_u,te_s,te_u,ref_diff,pixel_hash,conformance";
+  const Outcome plain = run_renderaudit("records " + *dir_ + "/plain " + columns);
+  const Outcome zst = run_renderaudit("records " + *dir_ + "/run " + columns);
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_EQ(plain.output, zst.output);
+  EXPECT_GT(plain.output.size(), 140u * 20);
+}
+
+TEST_F(RecordsCommand, FiltersAndColumnsSelectRowsAndCells) {
+  const Outcome o = run_renderaudit("records " + *dir_ + "/run --kind line --view 2 --columns "
+                                    "index,kind,view,lse_u");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::map<std::string, std::string> rows = rows_by_key(*dir_ + "/run");
+  std::istringstream in(o.output);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "index,kind,view,lse_u");
+  std::size_t n = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream cells(line);
+    for (std::string c; std::getline(cells, c, ',');) f.push_back(c);
+    if (line.back() == ',') f.push_back("");
+    ASSERT_EQ(f.size(), 4u) << line;
+    EXPECT_EQ(f[0], std::to_string(n));
+    EXPECT_EQ(f[1], "line");
+    EXPECT_EQ(f[2], "2");
+    std::vector<std::string> full;
+    std::stringstream all(rows.at("line,2," + f[0]));
+    for (std::string c; std::getline(all, c, ',');) full.push_back(c);
+    EXPECT_EQ(f[3], full.at(17));  // lse_u
+    ++n;
+  }
+  EXPECT_EQ(n, 30u);
+}
+
+TEST_F(RecordsCommand, TheCompressedStreamDecompressesToThePlainOne) {
+  const Outcome plain = run_renderaudit("records " + *dir_ + "/run --kind point");
+  const Outcome zst = run_renderaudit("records " + *dir_ + "/run --kind point --format csv.zst");
+  ASSERT_EQ(zst.exit_code, 0) << zst.output;
+  write_text(*dir_ + "/points.csv.zst", zst.output);
+  EXPECT_EQ(ra::read_zstd_file(*dir_ + "/points.csv.zst"), plain.output);
+}
+
+TEST_F(RecordsCommand, UnknownNamesAreErrorsThatListWhatTheRunHas) {
+  const struct {
+    std::string args, message;
+  } cases[] = {
+      {"--platform softpipe", "--platform softpipe: not in run " + *dir_ + "/run (allowed: reference)"},
+      {"--kind quad", "--kind quad: not in run " + *dir_ + "/run (allowed: point, line, triangle)"},
+      {"--view 9", "--view 9: not in run " + *dir_ + "/run (allowed: 1, 2)"},
+      {"--columns index,pee", "--columns pee: no such records column (allowed: platform, view,"},
+      {"--format parquet", "--format parquet: unknown (allowed: csv, csv.zst)"},
+  };
+  for (const auto& c : cases) {
+    const Outcome o = run_renderaudit("records " + *dir_ + "/run " + c.args);
+    EXPECT_EQ(o.exit_code, 2) << c.args << ": " << o.output;
+    EXPECT_NE(o.output.find(c.message), std::string::npos) << o.output;
+  }
+}
+
+}  // namespace
