@@ -20,7 +20,7 @@ std::vector<PlatformSpec> platforms_to_probe(std::string* device_note, std::stri
   for (const PlatformSpec& s : platform_specs())
     if (s.backend != Backend::kFaulty) specs.push_back(s);
   try {
-    for (const EglDevice& d : list_egl_devices()) {
+    for (const EglDevice& d : list_egl_devices_in_child()) {
       PlatformSpec s = *find_platform("egl-device:" + std::to_string(d.index));
       s.description = "EGL device " + std::to_string(d.index) +
                       (d.software ? ": Mesa's software device (EGL_MESA_device_software)"

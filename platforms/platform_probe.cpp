@@ -116,6 +116,33 @@ std::vector<VulkanDeviceInfo> list_vulkan_devices_in_child() {
   return out;
 }
 
+std::vector<EglDevice> list_egl_devices_in_child() {
+  const std::string scratch = std::filesystem::temp_directory_path().string();
+  const std::string name = "renderaudit-egl-devices-" + std::to_string(::getpid());
+  nlohmann::json j;
+  try {
+    j = run_in_child(scratch, name, []() {
+      nlohmann::json list = nlohmann::json::array();
+      for (const EglDevice& d : list_egl_devices())
+        list.push_back({{"index", d.index}, {"extensions", d.extensions},
+                        {"drm_node", d.drm_node}, {"software", d.software}});
+      return list;
+    });
+  } catch (const ChildProcessError& e) {
+    throw UserError(e.what());
+  }
+  std::vector<EglDevice> out;
+  for (const nlohmann::json& d : j) {
+    EglDevice device;
+    device.index = d.value("index", 0);
+    device.extensions = d.value("extensions", "");
+    device.drm_node = d.value("drm_node", "");
+    device.software = d.value("software", false);
+    out.push_back(device);
+  }
+  return out;
+}
+
 void require_platforms_draw(const std::vector<std::string>& names, const std::string& context) {
   std::vector<PlatformSpec> specs;
   for (const std::string& name : names)
