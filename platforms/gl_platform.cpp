@@ -409,10 +409,7 @@ class GlPlatform : public Platform {
     if (std::find(wild_pixel_indices_.begin(), wild_pixel_indices_.end(), prim.index) ==
         wild_pixel_indices_.end())
       return nullptr;
-    const PixelRect expected = region.bounds();
-    const int cx = expected.empty() ? 0 : (expected.x0 + expected.x1) / 2;
-    const int cy = expected.empty() ? 0 : (expected.y0 + expected.y1) / 2;
-    wild_ = {(cx + width_ / 2) % width_, (cy + height_ / 2) % height_};
+    wild_ = opposite_quadrant_pixel(region, width_, height_);
     return &wild_;
   }
 

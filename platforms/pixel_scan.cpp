@@ -131,4 +131,11 @@ std::array<uint8_t, 256> samples_from_resolved(int samples) {
   return decode;
 }
 
+Pixel opposite_quadrant_pixel(const PixelRegion& region, int width, int height) {
+  const PixelRect expected = region.bounds();
+  const int cx = expected.empty() ? 0 : (expected.x0 + expected.x1) / 2;
+  const int cy = expected.empty() ? 0 : (expected.y0 + expected.y1) / 2;
+  return {(cx + width / 2) % width, (cy + height / 2) % height};
+}
+
 }  // namespace ra

@@ -45,4 +45,9 @@ void append_in_order(std::vector<PixelRun>& runs, PixelSet& lit);
 // (no such k: the caller stops with the value).
 std::array<uint8_t, 256> samples_from_resolved(int samples);
 
+// Test-only fault of the GL and Vulkan platforms: the pixel a faulty driver lights outside the
+// primitive's region, in the quadrant opposite the region's centre (window pixels, origin at the
+// window's bottom left).
+Pixel opposite_quadrant_pixel(const PixelRegion& region, int width, int height);
+
 }  // namespace ra

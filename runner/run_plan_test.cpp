@@ -70,14 +70,15 @@ class RunQueueTest : public ::testing::Test {
     fs::create_directories(dir_ + "/records");
   }
   void TearDown() override { fs::remove_all(dir_); }
-  // A sealed records file of `s` with its size in rows: what check_shard_file accepts.
+  // A sealed plain-CSV records file of `s` with its size in rows: what check_shard_file accepts.
   void write_whole(const Shard& s) {
+    const std::string path = s.records_path(dir_, RecordsFormat::kCsv);
     {
-      std::ofstream out(s.records_path(dir_), std::ios::binary);
+      std::ofstream out(path, std::ios::binary);
       out << "header\n";
       for (uint64_t i = s.begin; i < s.end; ++i) out << i << "\n";
     }
-    seal_shard_file(s.records_path(dir_));
+    seal_shard_file(path);
   }
   std::string dir_;
 };
@@ -88,15 +89,16 @@ TEST_F(RunQueueTest, ResumesKeepsWholeFilesRedoesDamagedOnesAndStartsTheCostlies
   const Shard& whole = shards[0];    // reference point v1 0-1000: kept
   const Shard& damaged = shards[1];  // reference point v1 1000-2000: cut short
   write_whole(whole);
-  std::ofstream(damaged.records_path(dir_)) << "header\n1\n";
+  const std::string damaged_path = damaged.records_path(dir_, RecordsFormat::kCsv);
+  std::ofstream(damaged_path) << "header\n1\n";
 
   const RunQueue q = queue_shards(shards, exp, dir_, true, 7.5);
   EXPECT_EQ(q.done_before, 1u);
   ASSERT_EQ(q.damaged.size(), 1u);
   EXPECT_EQ(q.damaged[0].shard, damaged.id());
   EXPECT_FALSE(q.damaged[0].reason.empty());
-  EXPECT_FALSE(fs::exists(damaged.records_path(dir_)));
-  EXPECT_TRUE(fs::exists(damaged.records_path(dir_) + ".damaged"));  // kept as evidence
+  EXPECT_FALSE(fs::exists(damaged_path));
+  EXPECT_TRUE(fs::exists(damaged_path + ".damaged"));  // kept as evidence
   ASSERT_EQ(q.todo.size(), 23u);
   // softpipe triangles in the large view first, the two of them in plan order; reference last
   EXPECT_EQ(q.todo[0].shard.id(), "osmesa-softpipe.triangle.v2.0-1000");

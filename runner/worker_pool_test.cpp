@@ -38,7 +38,7 @@ class WorkerPoolTest : public ::testing::Test {
   // Runs `items` to their end, one process each, and returns the events in order.
   std::vector<WorkerEvent> run(std::deque<WorkItem> todo, int jobs) {
     std::vector<WorkerEvent> events;
-    WorkerPool pool({program_, dir_, jobs, false, false},
+    WorkerPool pool({program_, dir_, jobs, false, false, ".csv"},
                     [&](const WorkItem&) { return dir_ + "/records"; },
                     [&](const WorkerEvent& e) { events.push_back(e); });
     const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
@@ -87,7 +87,7 @@ TEST_F(WorkerPoolTest, ACrashAndASuccessAreToldApart) {
 
 TEST_F(WorkerPoolTest, NoMoreThanJobsRunAtOnce) {
   std::vector<WorkerEvent> events;
-  WorkerPool pool({program_, dir_, 2, false, false},
+  WorkerPool pool({program_, dir_, 2, false, false, ".csv"},
                   [&](const WorkItem&) { return dir_ + "/records"; },
                   [&](const WorkerEvent& e) { events.push_back(e); });
   std::deque<WorkItem> todo = {item("hang", 60), item("hang", 60), item("hang", 60)};

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "platforms/gl_context.h"
+#include "platforms/platform_probe.h"
 #include "tests/cli_harness.h"
 #include "util/atomic_file.h"
 
@@ -107,6 +109,21 @@ void expect_refused(const std::string& platform, const std::vector<std::string>&
 
 TEST(EglPlatforms, AnUnknownDeviceIndexIsRefusedWithTheDevicesThereAre) {
   expect_refused("egl-device:7", {}, "egl-device:7: no EGL device 7 (this machine's EGL devices: 0:");
+}
+
+// `platforms` lists the EGL devices in a child (a parent holding NVIDIA's driver cannot fork
+// probes): the child's list is the one this process finds itself.
+TEST(EglPlatforms, TheDevicesListedInAChildAreTheOnesListedHere) {
+  const std::vector<ra::EglDevice> child = ra::list_egl_devices_in_child();
+  const std::vector<ra::EglDevice> here = ra::list_egl_devices();
+  ASSERT_EQ(child.size(), here.size());
+  ASSERT_FALSE(here.empty());
+  for (std::size_t i = 0; i < here.size(); ++i) {
+    EXPECT_EQ(child[i].index, here[i].index);
+    EXPECT_EQ(child[i].extensions, here[i].extensions);
+    EXPECT_EQ(child[i].drm_node, here[i].drm_node);
+    EXPECT_EQ(child[i].software, here[i].software);
+  }
 }
 
 TEST(EglPlatforms, AMachineWithoutLibEglIsRefusedWithThePackage) {
