@@ -14,6 +14,7 @@
 
 #include "analysis/figure_data.h"
 #include "analysis/conformance_summary.h"
+#include "analysis/run_tally.h"
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
 #include "analysis/view_equivalence.h"
@@ -270,14 +271,15 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   const std::vector<stats::Table> tables = paper_tables(run, table_options(o, eq));
   result.timings.push_back({"tables", watch.lap()});
 
-  const ConformanceSummary conformance = summarize_conformance(run.files);
+  const ConformanceSummary conformance = summarize_conformance(run.files, run.run_dir);
   result.timings.push_back({"conformance", watch.lap()});
 
   FigureOptions fo;
   fo.quantiles = o.quantiles;
   fo.jobs = o.jobs;
   fo.alpha = o.alpha;
-  const nlohmann::json figures = figure_data(run, fo);
+  nlohmann::json figures = figure_data(run, fo);
+  figures["tally"] = tally_json(tally_run(run, conformance));
   result.timings.push_back({"figures", watch.lap()});
 
   // render everything, then write

@@ -21,7 +21,6 @@
 #include "plots/figure_planner.h"
 #include "plots/figure_renderer.h"
 #include "plots/headless_display.h"
-#include "plots/record_scan.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "metrics/records.h"
@@ -50,26 +49,16 @@ json figure_json(const IndexedFigure& f, const FigureLayout* layout) {
 
 FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
   const std::string path = run_dir + "/analysis/figures.json";
-  if (!fs::exists(path))
-    throw UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
-  json doc;
-  try {
-    doc = json::parse(read_file(path));
-  } catch (const json::exception& e) {
-    throw UserError(path + ": not valid JSON: " + e.what());
-  }
-  if (doc.value("schema", "") != "renderaudit-figures" || doc.value("schema_version", 0) != 1)
-    throw UserError(path + ": expected schema renderaudit-figures version 1 (run `renderaudit "
-                    "analyze " + run_dir + "` again)");
+  const json doc = an::read_figures_json(run_dir);
+  const an::RunTally tally = an::read_tally(doc, path);
 
   an::LoadOptions lo;
   lo.jobs = jobs;
   const an::RunRecords run = an::load_run_records(run_dir, lo);
-  const RecordScan scan = scan_records(run_dir, 0, jobs);
 
   FigurePlan plan;
   std::set<std::string> ids;
-  FigurePlanner p{run_dir, doc, run, scan, plan, ids};
+  FigurePlanner p{run_dir, doc, run, tally, plan, ids};
   try {
     for (an::PrimitiveKind kind : an::kAllKinds) {
       const auto kinds = run.kinds();

@@ -1,5 +1,6 @@
 // `renderaudit plot DIR`: every figure of a run, from DIR/analysis/figures.json (written by
-// `renderaudit analyze`) and the records, drawn with VTK into DIR/figures/:
+// `renderaudit analyze`; its "tally" for the conformance figures) and the records (visibility,
+// histograms), drawn with VTK into DIR/figures/:
 //
 //   ID.png    raster (VTK: vtkWindowToImageFilter -> vtkPNGWriter), 1123 x 794 px
 //   ID.pdf    vector (vtkPDFExporter), 1123 x 794 pt

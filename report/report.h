@@ -22,7 +22,7 @@
 //
 // Stages: the report reads only files, and only what the stages before it wrote. When
 // DIR/analysis/figures.json or DIR/figures/index.json is missing, or older than what it was made
-// from (records, manifest), it stops and names the command to run (missing_steps); the command
+// from (records, manifest), or figures.json is of another schema version, it stops and names the command to run (missing_steps); the command
 // `renderaudit report` (app/report_command.cpp) runs those stages first unless told not to.
 // A run that is not whole (analysis/run_completeness.h) is refused unless allow_incomplete; then
 // its first page says what is missing.
@@ -45,7 +45,8 @@ struct Step {
   std::string reason;   // e.g. "outputs/quick/analysis/figures.json is missing"
 };
 
-// The stages whose output is missing or older than their input, in order.
+// The stages whose output is missing, older than their input or of another schema version, in
+// order.
 std::vector<Step> missing_steps(const std::string& run_dir);
 
 struct ReportResult {
