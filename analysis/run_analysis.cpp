@@ -209,7 +209,8 @@ std::vector<Output> render_outputs(const RunRecords& run, const AnalyzeOptions& 
   }
   outputs.push_back({"figures.json",
                      "figure data for the plots stage: box plots, Q-Q plots, relative "
-                     "bihistograms, speed against error (schema renderaudit-figures v" +
+                     "bihistograms, speed against error; the tally plot and report show "
+                     "(schema renderaudit-figures v" +
                          std::to_string(kFiguresSchemaVersion) + ", analysis/figure_data.h)",
                      figures.dump() + "\n"});
 
