@@ -3,9 +3,9 @@
 // plots (Fig. 4) and relative bihistograms (Figs. 5, 7, 9, 11, 13) come from
 // stats/distribution_plots.h; NIST e-Handbook 1.3.3.7, 1.3.3.24, 1.3.3.2.
 //
-// figures.json, schema "renderaudit-figures", schema_version 2 (version 1 had no "tally"):
+// figures.json, schema "renderaudit-figures", schema_version 1:
 // {
-//   "schema": "renderaudit-figures", "schema_version": 2,
+//   "schema": "renderaudit-figures", "schema_version": 1,
 //   "run_dir": "...", "platforms": ["..."],            // platforms in name order (I, II, ...)
 //   "quantile_definition": "hyndman_fan_6",            // box quartiles (--quantiles); Q-Q: HF6
 //   "limits": {"qq_points_max": 2000, "box_plot_outliers_max": 500, "bihistogram_bins_max": 200,
@@ -47,23 +47,7 @@
 //         "n_time": 4000,               // status ok records with a render time (any visibility)
 //         "median_us": .., "q1_us": .., "q3_us": ..,          // render_us of those; null if none
 //         "n_error": 3850,              // true-visible ok records with a value of the metric
-//         "metric": "lse_u_norm", "median_error": .., "q1_error": .., "q3_error": ..}]}],
-//   "tally": {                          // what plot and report count (run_tally.h); analyze adds it
-//     "records": 52000, "files": 12,
-//     "groups": [                       // every platform, kind and view group with a record
-//       {"platform": "...", "kind": "line", "view_group": "A", "view_group_index": 0,
-//        "label": "30 deg, 128x128",    // fov_deg, width, height as the records spell them
-//        "reference": {"compared": .., "identical": .., "drawn": .., "drawn_identical": ..},
-//                                       // ok records with a ref_diff; absent if none
-//        "verdicts": {"judged": .., "exact": .., "snapped": .., "within_spec": ..,
-//                     "violation": .., "violating_pixels": ..}}],  // absent if no verdict
-//     "non_ok": [{"platform": "...", "kind": "...", "status": "crash", "records": 3}],
-//     "non_ok_examples": [              // the first 30 by file, then line
-//       {"platform": "...", "kind": "...", "status": "...", "view": 1, "index": 17,
-//        "file": "records/NAME.csv", "line": 18}],
-//     "render_time": [                  // ok records with a time, per platform and kind (us)
-//       {"platform": "...", "kind": "...", "cases": .., "median_us": .., "iqr_us": ..,  // HF6
-//        "true_visible": .., "median_us_true_visible": ..}]}  // null when none
+//         "metric": "lse_u_norm", "median_error": .., "q1_error": .., "q3_error": ..}]}]
 // }
 // Q-Q: with m = min(n_a, n_b) <= 2000 the Dataplot convention of distribution_plots.h (x = a, y =
 // b); above that, the Hyndman-Fan 6 quantiles of both samples at p_i = i / 2001, i = 1..2000 (the
@@ -96,7 +80,7 @@
 
 namespace ra::analysis {
 
-constexpr int kFiguresSchemaVersion = 2;
+constexpr int kFiguresSchemaVersion = 1;
 
 struct FigureOptions {
   stats::QuantileDefinition quantiles = stats::QuantileDefinition::kHyndmanFan6;

@@ -71,7 +71,7 @@ struct Output {
 // Files of an earlier analysis that this one may not rewrite (a kind absent now, one platform).
 bool generated_name(const std::string& name) {
   static const std::regex pattern(
-      R"((table\d\d[a-z]?_[a-z_]+|speed|cross_platform|view_equivalence|conformance|uncertainty|paper_comparison|paper_differences)\.(csv|md|tex)|figures\.json|report\.md|violations\.md|README\.md)");
+      R"((table\d\d[a-z]?_[a-z_]+|speed|cross_platform|view_equivalence|conformance|uncertainty|paper_comparison|paper_differences)\.(csv|md|tex)|figures\.json|tally\.json|report\.md|violations\.md|README\.md)");
   return std::regex_match(name, pattern);
 }
 
@@ -207,10 +207,14 @@ std::vector<Output> render_outputs(const RunRecords& run, const AnalyzeOptions& 
     outputs.push_back({t.file_stem + ".md", what + " (Markdown)", md});
     outputs.push_back({t.file_stem + ".tex", what + " (LaTeX)", stats::render_latex(t)});
   }
+  outputs.push_back({"tally.json",
+                     "what plot and report count: records, conformance with the reference and GL "
+                     "verdicts per view group, records not ok, render time (schema renderaudit-tally v" +
+                         std::to_string(kTallySchemaVersion) + ", analysis/run_tally.h)",
+                     tally_json(tally_run(run, conformance)).dump(2) + "\n"});
   outputs.push_back({"figures.json",
                      "figure data for the plots stage: box plots, Q-Q plots, relative "
-                     "bihistograms, speed against error; the tally plot and report show "
-                     "(schema renderaudit-figures v" +
+                     "bihistograms, speed against error (schema renderaudit-figures v" +
                          std::to_string(kFiguresSchemaVersion) + ", analysis/figure_data.h)",
                      figures.dump() + "\n"});
 
@@ -279,8 +283,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   fo.quantiles = o.quantiles;
   fo.jobs = o.jobs;
   fo.alpha = o.alpha;
-  nlohmann::json figures = figure_data(run, fo);
-  figures["tally"] = tally_json(tally_run(run, conformance));
+  const nlohmann::json figures = figure_data(run, fo);
   result.timings.push_back({"figures", watch.lap()});
 
   // render everything, then write

@@ -114,7 +114,7 @@ TEST(AnalyzeCommand, WritesEveryFileWithoutNaN) {
   // figures.json: schema, box plots with widths proportional to n, Q-Q of the orientation views
   const nlohmann::json fig = nlohmann::json::parse(read_text(dir / "analysis" / "figures.json"));
   EXPECT_EQ(fig["schema"], "renderaudit-figures");
-  EXPECT_EQ(fig["schema_version"], 2);
+  EXPECT_EQ(fig["schema_version"], 1);
   const auto& pe_boxes = fig["box_plots"][0];
   EXPECT_EQ(pe_boxes["metric"], "pe");
   ASSERT_EQ(pe_boxes["boxes"].size(), 2u);

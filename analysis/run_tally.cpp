@@ -3,9 +3,9 @@
 
 #include <filesystem>
 
-#include "analysis/figure_data.h"
 #include "stats/descriptive.h"
 #include "util/atomic_file.h"
+#include "runner/manifest.h"
 #include "util/errors.h"
 
 namespace ra::analysis {
@@ -94,14 +94,29 @@ json tally_json(const RunTally& t) {
                      {"true_visible", r.true_visible},
                      {"median_us_true_visible",
                       r.median_us_true_visible ? json(*r.median_us_true_visible) : json()}});
-  return {{"records", t.records}, {"files", t.files}, {"groups", groups}, {"non_ok", non_ok},
-          {"non_ok_examples", examples}, {"render_time", times}};
+  json doc = document_header("tally", kTallySchemaVersion, false);
+  doc.update({{"records", t.records}, {"files", t.files}, {"groups", groups}, {"non_ok", non_ok},
+              {"non_ok_examples", examples}, {"render_time", times}});
+  return doc;
 }
 
-RunTally read_tally(const json& figures, const std::string& path) {
+RunTally read_tally(const std::string& run_dir) {
+  const std::string path = run_dir + "/analysis/tally.json";
+  if (!std::filesystem::exists(path))
+    throw UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
+  json j;
+  try {
+    j = json::parse(read_file(path));
+  } catch (const json::exception& e) {
+    throw UserError(path + ": not valid JSON: " + e.what() + " (run `renderaudit analyze " +
+                    run_dir + "` again)");
+  }
+  if (j.value("schema", "") != "renderaudit-tally" || j.value("schema_version", 0) != kTallySchemaVersion)
+    throw UserError(path + ": expected schema renderaudit-tally version " +
+                    std::to_string(kTallySchemaVersion) + " (run `renderaudit analyze " + run_dir +
+                    "` again)");
   RunTally t;
   try {
-    const json& j = figures.at("tally");
     t.records = j.at("records").get<std::uint64_t>();
     t.files = j.at("files").get<std::uint64_t>();
     for (const json& g : j.at("groups")) {
@@ -141,28 +156,10 @@ RunTally read_tally(const json& figures, const std::string& path) {
         rt.median_us_true_visible = r["median_us_true_visible"].get<double>();
     }
   } catch (const json::exception& e) {
-    throw UserError(path + ": \"tally\": unexpected content: " + e.what() +
-                    " (run `renderaudit analyze` again)");
+    throw UserError(path + ": unexpected content: " + e.what() + " (run `renderaudit analyze " +
+                    run_dir + "` again)");
   }
   return t;
-}
-
-json read_figures_json(const std::string& run_dir) {
-  const std::string path = run_dir + "/analysis/figures.json";
-  if (!std::filesystem::exists(path))
-    throw UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
-  json doc;
-  try {
-    doc = json::parse(read_file(path));
-  } catch (const json::exception& e) {
-    throw UserError(path + ": not valid JSON: " + e.what());
-  }
-  if (doc.value("schema", "") != "renderaudit-figures" ||
-      doc.value("schema_version", 0) != kFiguresSchemaVersion)
-    throw UserError(path + ": expected schema renderaudit-figures version " +
-                    std::to_string(kFiguresSchemaVersion) + " (run `renderaudit analyze " + run_dir +
-                    "` again)");
-  return doc;
 }
 
 }  // namespace ra::analysis

@@ -2,8 +2,29 @@
 // platform, kind and view group the GL verdicts, the agreement with the reference rasterizer and
 // the camera label, the records whose status is not `ok`, and per platform and kind the render time
 // (microseconds of CPU time, draw + glFinish). `analyze` computes it (from load_run_records and the
-// conformance pass, so no later stage reads the records again) and writes it into figures.json as
-// "tally" (analysis/figure_data.h documents the keys); plot and report read it back.
+// conformance pass, so no later stage tallies the records again) and writes DIR/analysis/tally.json;
+// plot and report read it back.
+//
+// tally.json, schema "renderaudit-tally", schema_version 1 (runner/manifest.h document_header):
+// {
+//   "schema": "renderaudit-tally", "schema_version": 1,
+//   "records": 64000, "files": 32,
+//   "groups": [                       // every platform, kind and view group with a record
+//     {"platform": "...", "kind": "line", "view_group": "A", "view_group_index": 0,
+//      "label": "30 deg, 128x128",    // fov_deg, width, height as the records spell them
+//      "reference": {"compared": .., "identical": .., "drawn": .., "drawn_identical": ..},
+//                                     // ok records with a ref_diff (ReferenceAgreement); absent
+//                                     // when none
+//      "verdicts": {"judged": .., "exact": .., "snapped": .., "within_spec": .., "violation": ..,
+//                   "violating_pixels": ..}}],  // ok records with a verdict; absent when none
+//   "non_ok": [{"platform": "...", "kind": "...", "status": "crash", "records": 3}],
+//   "non_ok_examples": [              // the first 30, by file then line
+//     {"platform": "...", "kind": "...", "status": "...", "view": 1, "index": 17,
+//      "file": "records/NAME.csv", "line": 18}],
+//   "render_time": [                  // ok records with a time, per platform and kind
+//     {"platform": "...", "kind": "...", "cases": .., "median_us": .., "iqr_us": ..,  // HF6
+//      "true_visible": .., "median_us_true_visible": ..}]   // null when none
+// }
 #pragma once
 
 #include <cstdint>
@@ -39,13 +60,12 @@ struct RunTally {
 
 RunTally tally_run(const RunRecords& run, const ConformanceSummary& conformance);
 
-nlohmann::json tally_json(const RunTally& tally);
-// The "tally" of a figures.json document read from `path`; ra::UserError naming the file and the key
-// when it is missing or of the wrong type.
-RunTally read_tally(const nlohmann::json& figures, const std::string& path);
+constexpr int kTallySchemaVersion = 1;
 
-// DIR/analysis/figures.json, parsed and checked for its schema and version. ra::UserError saying to
-// run `renderaudit analyze DIR` (first, or again) when it is missing, not JSON or of another version.
-nlohmann::json read_figures_json(const std::string& run_dir);
+// The document tally.json holds.
+nlohmann::json tally_json(const RunTally& tally);
+// DIR/analysis/tally.json. ra::UserError saying to run `renderaudit analyze DIR` (first, or again)
+// when it is missing, not JSON, of another schema version, or lacks a key.
+RunTally read_tally(const std::string& run_dir);
 
 }  // namespace ra::analysis

@@ -130,7 +130,7 @@ TEST(SpeedError, PointsAreTheMediansOfTheRecords) {
     FigureOptions o;
     o.quantiles = q;
     const json doc = figure_data(run, o);
-    EXPECT_EQ(doc["schema_version"], 2);
+    EXPECT_EQ(doc["schema_version"], 1);
     expect_speed_error(doc, rs, q);
   }
 }

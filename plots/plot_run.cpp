@@ -49,8 +49,18 @@ json figure_json(const IndexedFigure& f, const FigureLayout* layout) {
 
 FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
   const std::string path = run_dir + "/analysis/figures.json";
-  const json doc = an::read_figures_json(run_dir);
-  const an::RunTally tally = an::read_tally(doc, path);
+  if (!fs::exists(path))
+    throw UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
+  json doc;
+  try {
+    doc = json::parse(read_file(path));
+  } catch (const json::exception& e) {
+    throw UserError(path + ": not valid JSON: " + e.what());
+  }
+  if (doc.value("schema", "") != "renderaudit-figures" || doc.value("schema_version", 0) != 1)
+    throw UserError(path + ": expected schema renderaudit-figures version 1 (run `renderaudit "
+                    "analyze " + run_dir + "` again)");
+  const an::RunTally tally = an::read_tally(run_dir);
 
   an::LoadOptions lo;
   lo.jobs = jobs;

@@ -24,8 +24,8 @@ std::string plan_error(const std::string& dir) {
   return "no error";
 }
 
-// Why: the figures come from analysis/figures.json and its tally, never from the records; a run
-// not analysed, or analysed by a version whose figures.json has no tally, must say what to run.
+// Why: the figures come from analysis/figures.json and tally.json; a run not analysed, or analysed
+// by a version that wrote no tally.json or another version of it, must say what to run.
 TEST(PlotRun, WithoutAnAnalysisNamesTheCommandToRun) {
   const an::testing::ScopedTempDir scoped("plot_unanalysed");
   const std::string dir = scoped.path.string();
@@ -36,8 +36,16 @@ TEST(PlotRun, WithoutAnAnalysisNamesTheCommandToRun) {
   std::filesystem::create_directories(scoped.path / "analysis");
   std::ofstream(scoped.path / "analysis" / "figures.json")
       << R"({"schema": "renderaudit-figures", "schema_version": 1})";
-  EXPECT_EQ(plan_error(dir), dir + "/analysis/figures.json: expected schema renderaudit-figures "
-                                   "version 2 (run `renderaudit analyze " + dir + "` again)");
+  EXPECT_EQ(plan_error(dir),
+            dir + "/analysis/tally.json not found: run `renderaudit analyze " + dir + "` first");
+  std::ofstream(scoped.path / "analysis" / "tally.json")
+      << R"({"schema": "renderaudit-tally", "schema_version": 0})";
+  EXPECT_EQ(plan_error(dir), dir + "/analysis/tally.json: expected schema renderaudit-tally "
+                                   "version 1 (run `renderaudit analyze " + dir + "` again)");
+  std::ofstream(scoped.path / "analysis" / "tally.json")
+      << R"({"schema": "renderaudit-tally", "schema_version": 1, "records": 9})";
+  EXPECT_NE(plan_error(dir).find(dir + "/analysis/tally.json: unexpected content: "),
+            std::string::npos) << plan_error(dir);
   EXPECT_FALSE(std::filesystem::exists(scoped.path / "figures"));
 }
 

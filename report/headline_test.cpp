@@ -1,5 +1,5 @@
 // The report's conclusion counts what `analyze` counted: on a small synthetic run analysed by
-// analyze_run, the "tally" of figures.json equals the counts the records were built with, and the
+// analyze_run, analysis/tally.json equals the counts the records were built with, and the
 // headline's sentence and findings row carry exactly those numbers (read back from the file).
 #include "report/headline.h"
 
@@ -71,7 +71,7 @@ TEST(Headline, NumbersAreTheAnalysisTallyOfTheRecords) {
   o.run_dir = dir;
   an::analyze_run(o);
 
-  const an::RunTally t = an::read_tally(an::read_figures_json(dir), dir + "/analysis/figures.json");
+  const an::RunTally t = an::read_tally(dir);
   EXPECT_EQ(t.records, 22u);
   EXPECT_EQ(t.files, 1u);
   const an::GroupKey soft{"soft", "point", 0}, ref{"ref", "point", 0};

@@ -14,8 +14,9 @@ namespace {
 namespace an = ra::analysis;
 namespace fs = std::filesystem;
 
-// Why: figures.json of another schema version has no tally for the report to read; the report
-// must run analyze (and plot after it) again, as for a missing or stale analysis.
+// Why: the report reads its counts from analysis/tally.json; when an analysis has none (written by
+// a version before it) or another version of it, the report must run analyze (and plot after it)
+// again, as for a missing or stale analysis.
 TEST(MissingSteps, AnalysisOfAnotherSchemaVersionIsRunAgain) {
   const an::testing::ScopedTempDir scoped("missing_steps");
   const std::string dir = scoped.path.string();
@@ -30,13 +31,18 @@ TEST(MissingSteps, AnalysisOfAnotherSchemaVersionIsRunAgain) {
   std::ofstream(scoped.path / "figures" / "index.json") << "{}";
   EXPECT_TRUE(missing_steps(dir).empty());
 
-  const fs::path figures = scoped.path / "analysis" / "figures.json";
-  std::ofstream(figures) << R"({"schema": "renderaudit-figures", "schema_version": 1})";
-  fs::last_write_time(scoped.path / "figures" / "index.json", fs::last_write_time(figures));
-  const std::vector<Step> steps = missing_steps(dir);
+  const fs::path tally = scoped.path / "analysis" / "tally.json";
+  fs::remove(tally);
+  std::vector<Step> steps = missing_steps(dir);
   ASSERT_EQ(steps.size(), 2u);
   EXPECT_EQ(steps[0].command, "renderaudit analyze " + dir);
-  EXPECT_EQ(steps[0].reason, figures.string() + " is of another schema version");
+  EXPECT_EQ(steps[0].reason, tally.string() + " is missing");
+  EXPECT_EQ(steps[1].command, "renderaudit plot " + dir);
+
+  std::ofstream(tally) << R"({"schema": "renderaudit-tally", "schema_version": 2})";
+  steps = missing_steps(dir);
+  ASSERT_EQ(steps.size(), 2u);
+  EXPECT_EQ(steps[0].reason, tally.string() + ": expected schema renderaudit-tally version 1");
   EXPECT_EQ(steps[1].command, "renderaudit plot " + dir);
 }
 

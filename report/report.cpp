@@ -68,13 +68,13 @@ json read_json(const std::string& path) {
   }
 }
 
-// Whether DIR/analysis/figures.json is one this version reads (its schema and version).
-bool current_figures_json(const std::string& run_dir) {
+// Why DIR/analysis/tally.json cannot be read (missing, another schema version), or "".
+std::string tally_problem(const std::string& run_dir) {
   try {
-    analysis::read_figures_json(run_dir);
-    return true;
-  } catch (const UserError&) {
-    return false;
+    analysis::read_tally(run_dir);
+    return "";
+  } catch (const UserError& e) {
+    return e.what();
   }
 }
 
@@ -716,9 +716,13 @@ std::vector<Step> missing_steps(const std::string& run_dir) {
     steps.push_back({"analyze", "renderaudit analyze " + run_dir,
                      figures_json.string() + " is older than the records"});
     analyze = true;
-  } else if (!current_figures_json(run_dir)) {
+  } else if (const fs::path tally = dir / "analysis" / "tally.json"; !fs::exists(tally)) {
+    steps.push_back({"analyze", "renderaudit analyze " + run_dir, tally.string() + " is missing"});
+    analyze = true;
+  } else if (const std::string problem = tally_problem(run_dir); !problem.empty()) {
+    // "PATH: expected schema ... version 1 (run `renderaudit analyze DIR` again)": the reason only
     steps.push_back({"analyze", "renderaudit analyze " + run_dir,
-                     figures_json.string() + " is of another schema version"});
+                     problem.substr(0, problem.find(" (run `"))});
     analyze = true;
   }
   if (analyze || !fs::exists(index)) {
@@ -769,8 +773,7 @@ ReportResult write_report(const ReportOptions& options) {
   result.completeness = completeness.headline();
 
   const plots::PlotResult figures = plots::read_figure_index(run_dir);
-  const analysis::RunTally tally =
-      analysis::read_tally(analysis::read_figures_json(run_dir), run_dir + "/analysis/figures.json");
+  const analysis::RunTally tally = analysis::read_tally(run_dir);
   Content content = build_document(run_dir, figures, tally, completeness);
   Document& doc = content.doc;
   for (const auto& f : doc.figures)

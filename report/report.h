@@ -20,11 +20,11 @@
 // vtkPDFExporter wrote in `renderaudit plot`; `pdfunite` (poppler-utils) joins them. All pages
 // are 1123 x 794 pt (pdf_writer.h).
 //
-// Sections 0-4 show what analyze counted (figures.json "tally", analysis/run_tally.h); the report
-// does not tally the records itself. Stages: the report reads only files, and only what the stages
-// before it wrote. When DIR/analysis/figures.json or DIR/figures/index.json is missing, or older
-// than what it was made from (records, manifest), or figures.json is of another schema version, it
-// stops and names the command to run (missing_steps); the command
+// Sections 0-4 show what analyze counted (DIR/analysis/tally.json, analysis/run_tally.h); the
+// report does not tally the records itself. Stages: the report reads only files, and only what the
+// stages before it wrote. When DIR/analysis/figures.json or DIR/figures/index.json is missing, or
+// older than what it was made from (records, manifest), or tally.json is missing or of another
+// schema version, it stops and names the command to run (missing_steps); the command
 // `renderaudit report` (app/report_command.cpp) runs those stages first unless told not to.
 // A run that is not whole (analysis/run_completeness.h) is refused unless allow_incomplete; then
 // its first page says what is missing.
