@@ -21,12 +21,14 @@ ConformanceSummary summarize_conformance(const std::vector<std::string>& records
       const GroupKey key{platform, kind, group};
       if (!s.group_labels.count(key))
         s.group_labels[key] = std::string(row.cell(C::kFovDeg)) + " deg, " +
-                              std::string(row.cell(C::kWidth)) + "x" + std::string(row.cell(C::kHeight));
+                              std::string(row.cell(C::kWidth)) + "x" +
+                              std::string(row.cell(C::kHeight));
       const CaseStatus status = row.status();
       if (status != CaseStatus::kOk) {
         ++s.non_ok_counts[{platform, kind, status_name(status)}];
         if (s.non_ok_examples.size() < kNonOkExamples)
-          s.non_ok_examples.push_back({platform, kind, status_name(status), row.integer<int>(C::kView),
+          s.non_ok_examples.push_back({platform, kind, status_name(status),
+                                       row.integer<int>(C::kView),
                                        row.integer<std::uint64_t>(C::kIndex), rel,
                                        static_cast<std::uint64_t>(row.line())});
         return;

@@ -209,7 +209,8 @@ std::vector<Output> render_outputs(const RunRecords& run, const AnalyzeOptions& 
   }
   outputs.push_back({"tally.json",
                      "what plot and report count: records, conformance with the reference and GL "
-                     "verdicts per view group, records not ok, render time (schema renderaudit-tally v" +
+                     "verdicts per view group, records not ok, render time (schema "
+                     "renderaudit-tally v" +
                          std::to_string(kTallySchemaVersion) + ", analysis/run_tally.h)",
                      tally_json(tally_run(run, conformance)).dump(2) + "\n"});
   outputs.push_back({"figures.json",

@@ -3,9 +3,9 @@
 
 #include <filesystem>
 
+#include "runner/manifest.h"
 #include "stats/descriptive.h"
 #include "util/atomic_file.h"
-#include "runner/manifest.h"
 #include "util/errors.h"
 
 namespace ra::analysis {
@@ -15,8 +15,10 @@ using nlohmann::json;
 namespace {
 
 json group_json(const GroupKey& key) {
-  return {{"platform", std::get<0>(key)}, {"kind", std::get<1>(key)},
-          {"view_group", view_group_label(std::get<2>(key))}, {"view_group_index", std::get<2>(key)}};
+  return {{"platform", std::get<0>(key)},
+          {"kind", std::get<1>(key)},
+          {"view_group", view_group_label(std::get<2>(key))},
+          {"view_group_index", std::get<2>(key)}};
 }
 
 GroupKey group_key(const json& j) {
@@ -26,7 +28,8 @@ GroupKey group_key(const json& j) {
 
 // Render times per platform and kind: every view's ok records with a time, true-visible or not.
 std::map<std::pair<std::string, std::string>, RenderTime> render_times(const RunRecords& run) {
-  std::map<std::pair<std::string, std::string>, std::pair<std::vector<double>, std::vector<double>>> us;
+  std::map<std::pair<std::string, std::string>, std::pair<std::vector<double>, std::vector<double>>>
+      us;
   for (const auto& [key, view] : run.views) {
     auto& [all, visible] = us[{run.platforms[key.platform], kind_name(key.kind)}];
     all.insert(all.end(), view.render_us_visible.begin(), view.render_us_visible.end());
@@ -70,33 +73,49 @@ json tally_json(const RunTally& t) {
     json g = group_json(key);
     g["label"] = label;
     if (const auto r = t.reference.find(key); r != t.reference.end())
-      g["reference"] = {{"compared", r->second.compared}, {"identical", r->second.identical},
-                        {"drawn", r->second.drawn}, {"drawn_identical", r->second.drawn_identical}};
+      g["reference"] = {{"compared", r->second.compared},
+                        {"identical", r->second.identical},
+                        {"drawn", r->second.drawn},
+                        {"drawn_identical", r->second.drawn_identical}};
     if (const auto v = t.verdicts.find(key); v != t.verdicts.end())
-      g["verdicts"] = {{"judged", v->second.compared}, {"exact", v->second.exact},
-                       {"snapped", v->second.snapped}, {"within_spec", v->second.within_spec},
-                       {"violation", v->second.violation},
-                       {"violating_pixels", v->second.violating_pixels}};
+      g["verdicts"] = {
+          {"judged", v->second.compared},     {"exact", v->second.exact},
+          {"snapped", v->second.snapped},     {"within_spec", v->second.within_spec},
+          {"violation", v->second.violation}, {"violating_pixels", v->second.violating_pixels}};
     groups.push_back(std::move(g));
   }
   json non_ok = json::array();
   for (const auto& [key, n] : t.non_ok_counts)
-    non_ok.push_back({{"platform", std::get<0>(key)}, {"kind", std::get<1>(key)},
-                      {"status", std::get<2>(key)}, {"records", n}});
+    non_ok.push_back({{"platform", std::get<0>(key)},
+                      {"kind", std::get<1>(key)},
+                      {"status", std::get<2>(key)},
+                      {"records", n}});
   json examples = json::array();
   for (const NonOkCase& x : t.non_ok_examples)
-    examples.push_back({{"platform", x.platform}, {"kind", x.kind}, {"status", x.status},
-                        {"view", x.view}, {"index", x.index}, {"file", x.file}, {"line", x.line}});
+    examples.push_back({{"platform", x.platform},
+                        {"kind", x.kind},
+                        {"status", x.status},
+                        {"view", x.view},
+                        {"index", x.index},
+                        {"file", x.file},
+                        {"line", x.line}});
   json times = json::array();
   for (const auto& [key, r] : t.render_time)
-    times.push_back({{"platform", key.first}, {"kind", key.second}, {"cases", r.cases},
-                     {"median_us", r.median_us}, {"iqr_us", r.iqr_us},
+    times.push_back({{"platform", key.first},
+                     {"kind", key.second},
+                     {"cases", r.cases},
+                     {"median_us", r.median_us},
+                     {"iqr_us", r.iqr_us},
                      {"true_visible", r.true_visible},
                      {"median_us_true_visible",
                       r.median_us_true_visible ? json(*r.median_us_true_visible) : json()}});
   json doc = document_header("tally", kTallySchemaVersion, false);
-  doc.update({{"records", t.records}, {"files", t.files}, {"groups", groups}, {"non_ok", non_ok},
-              {"non_ok_examples", examples}, {"render_time", times}});
+  doc.update({{"records", t.records},
+              {"files", t.files},
+              {"groups", groups},
+              {"non_ok", non_ok},
+              {"non_ok_examples", examples},
+              {"render_time", times}});
   return doc;
 }
 
@@ -111,7 +130,8 @@ RunTally read_tally(const std::string& run_dir) {
     throw UserError(path + ": not valid JSON: " + e.what() + " (run `renderaudit analyze " +
                     run_dir + "` again)");
   }
-  if (j.value("schema", "") != "renderaudit-tally" || j.value("schema_version", 0) != kTallySchemaVersion)
+  if (j.value("schema", "") != "renderaudit-tally" ||
+      j.value("schema_version", 0) != kTallySchemaVersion)
     throw UserError(path + ": expected schema renderaudit-tally version " +
                     std::to_string(kTallySchemaVersion) + " (run `renderaudit analyze " + run_dir +
                     "` again)");
@@ -124,8 +144,9 @@ RunTally read_tally(const std::string& run_dir) {
       t.group_labels[key] = g.at("label").get<std::string>();
       if (g.contains("reference")) {
         const json& r = g["reference"];
-        t.reference[key] = {r.at("compared").get<std::uint64_t>(), r.at("identical").get<std::uint64_t>(),
-                            r.at("drawn").get<std::uint64_t>(), r.at("drawn_identical").get<std::uint64_t>()};
+        t.reference[key] = {
+            r.at("compared").get<std::uint64_t>(), r.at("identical").get<std::uint64_t>(),
+            r.at("drawn").get<std::uint64_t>(), r.at("drawn_identical").get<std::uint64_t>()};
       }
       if (g.contains("verdicts")) {
         const json& v = g["verdicts"];
@@ -142,12 +163,14 @@ RunTally read_tally(const std::string& run_dir) {
       t.non_ok_counts[{n.at("platform").get<std::string>(), n.at("kind").get<std::string>(),
                        n.at("status").get<std::string>()}] = n.at("records").get<std::uint64_t>();
     for (const json& x : j.at("non_ok_examples"))
-      t.non_ok_examples.push_back({x.at("platform").get<std::string>(), x.at("kind").get<std::string>(),
-                                   x.at("status").get<std::string>(), x.at("view").get<int>(),
-                                   x.at("index").get<std::uint64_t>(), x.at("file").get<std::string>(),
-                                   x.at("line").get<std::uint64_t>()});
+      t.non_ok_examples.push_back(
+          {x.at("platform").get<std::string>(), x.at("kind").get<std::string>(),
+           x.at("status").get<std::string>(), x.at("view").get<int>(),
+           x.at("index").get<std::uint64_t>(), x.at("file").get<std::string>(),
+           x.at("line").get<std::uint64_t>()});
     for (const json& r : j.at("render_time")) {
-      RenderTime& rt = t.render_time[{r.at("platform").get<std::string>(), r.at("kind").get<std::string>()}];
+      RenderTime& rt =
+          t.render_time[{r.at("platform").get<std::string>(), r.at("kind").get<std::string>()}];
       rt.cases = r.at("cases").get<std::uint64_t>();
       rt.median_us = r.at("median_us").get<double>();
       rt.iqr_us = r.at("iqr_us").get<double>();

@@ -2,8 +2,8 @@
 // platform, kind and view group the GL verdicts, the agreement with the reference rasterizer and
 // the camera label, the records whose status is not `ok`, and per platform and kind the render time
 // (microseconds of CPU time, draw + glFinish). `analyze` computes it (from load_run_records and the
-// conformance pass, so no later stage tallies the records again) and writes DIR/analysis/tally.json;
-// plot and report read it back.
+// conformance pass, so no later stage tallies the records again) and writes
+// DIR/analysis/tally.json; plot and report read it back.
 //
 // tally.json, schema "renderaudit-tally", schema_version 1 (runner/manifest.h document_header):
 // {
@@ -42,9 +42,9 @@ namespace ra::analysis {
 
 // Render time of one platform and kind over the `ok` records with a time.
 struct RenderTime {
-  std::uint64_t cases = 0;         // records with a time
-  double median_us = 0, iqr_us = 0;  // Hyndman-Fan 6 quartiles
-  std::uint64_t true_visible = 0;  // of them, true-visible
+  std::uint64_t cases = 0;                       // records with a time
+  double median_us = 0, iqr_us = 0;              // Hyndman-Fan 6 quartiles
+  std::uint64_t true_visible = 0;                // of them, true-visible
   std::optional<double> median_us_true_visible;  // none when no true-visible record has a time
 };
 

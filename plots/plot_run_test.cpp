@@ -40,12 +40,15 @@ TEST(PlotRun, WithoutAnAnalysisNamesTheCommandToRun) {
             dir + "/analysis/tally.json not found: run `renderaudit analyze " + dir + "` first");
   std::ofstream(scoped.path / "analysis" / "tally.json")
       << R"({"schema": "renderaudit-tally", "schema_version": 0})";
-  EXPECT_EQ(plan_error(dir), dir + "/analysis/tally.json: expected schema renderaudit-tally "
-                                   "version 1 (run `renderaudit analyze " + dir + "` again)");
+  EXPECT_EQ(plan_error(dir), dir +
+                                 "/analysis/tally.json: expected schema renderaudit-tally "
+                                 "version 1 (run `renderaudit analyze " +
+                                 dir + "` again)");
   std::ofstream(scoped.path / "analysis" / "tally.json")
       << R"({"schema": "renderaudit-tally", "schema_version": 1, "records": 9})";
   EXPECT_NE(plan_error(dir).find(dir + "/analysis/tally.json: unexpected content: "),
-            std::string::npos) << plan_error(dir);
+            std::string::npos)
+      << plan_error(dir);
   EXPECT_FALSE(std::filesystem::exists(scoped.path / "figures"));
 }
 

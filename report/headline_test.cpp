@@ -25,9 +25,12 @@ std::vector<Record> verdict_run() {
   std::vector<Record> rs;
   for (std::uint64_t i = 0; i < 18; ++i) {
     const bool visible = i < 14;
-    const CaseStatus status = i == 16 ? CaseStatus::kInvalid : i == 17 ? CaseStatus::kCrash : CaseStatus::kOk;
-    Record r = an::testing::point("soft", 1 + int(i % 2), i, 0.25,
-                                  visible ? Visibility::kTrueVisible : Visibility::kTrueInvisible, status);
+    const CaseStatus status = i == 16   ? CaseStatus::kInvalid
+                              : i == 17 ? CaseStatus::kCrash
+                                        : CaseStatus::kOk;
+    Record r =
+        an::testing::point("soft", 1 + int(i % 2), i, 0.25,
+                           visible ? Visibility::kTrueVisible : Visibility::kTrueInvisible, status);
     if (status != CaseStatus::kOk) {
       rs.push_back(r);
       continue;

@@ -395,7 +395,8 @@ void add_failures(Document& d, const RunManifest& m, const analysis::RunTally& t
       }
       d.blocks.push_back(table_block(std::move(t)));
       Table e;
-      e.title = "The first " + std::to_string(std::min<std::size_t>(30, tally.non_ok_examples.size())) +
+      e.title = "The first " +
+                std::to_string(std::min<std::size_t>(30, tally.non_ok_examples.size())) +
                 " of them";
       e.header = {"platform", "kind", "view", "primitive index", "status", "records file:line"};
       e.right = {false, false, true, true, false, false};
@@ -440,7 +441,8 @@ void add_timing(Document& d, const analysis::RunTally& tally) {
       const double med = r.median_us;
       t.rows.push_back({k.first, k.second, std::to_string(r.cases), fmt(med, "%.2f"),
                         fmt(r.iqr_us, "%.2f"), std::to_string(r.true_visible),
-                        r.median_us_true_visible ? fmt(*r.median_us_true_visible, "%.2f") : "no data",
+                        r.median_us_true_visible ? fmt(*r.median_us_true_visible, "%.2f")
+                                                 : "no data",
                         med > 0 ? fmt(1e6 / med, "%.0f") : "n/a"});
     }
     if (t.rows.empty()) t.notes.push_back("No record has a render time.");
