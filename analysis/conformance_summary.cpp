@@ -1,26 +1,55 @@
 #include "analysis/conformance_summary.h"
 
 #include <algorithm>
+#include <filesystem>
 
 #include "analysis/run_records.h"
 #include "metrics/records_reader.h"
 
 namespace ra::analysis {
 
-ConformanceSummary summarize_conformance(const std::vector<std::string>& records_files) {
+ConformanceSummary summarize_conformance(const std::vector<std::string>& records_files,
+                                         const std::string& run_dir) {
   using C = RecordColumn;
   ConformanceSummary s;
   for (const std::string& path : records_files) {
+    const std::string rel =
+        run_dir.empty() ? path : std::filesystem::path(path).lexically_relative(run_dir).string();
     for_each_record_row(path, [&](const RecordRow& row) {
-      if (row.status() != CaseStatus::kOk) return;
+      const std::string platform(row.cell(C::kPlatform)), kind(row.cell(C::kKind));
+      const int group = row.integer<int>(C::kViewGroup);
+      const GroupKey key{platform, kind, group};
+      if (!s.group_labels.count(key))
+        s.group_labels[key] = std::string(row.cell(C::kFovDeg)) + " deg, " +
+                              std::string(row.cell(C::kWidth)) + "x" +
+                              std::string(row.cell(C::kHeight));
+      const CaseStatus status = row.status();
+      if (status != CaseStatus::kOk) {
+        ++s.non_ok_counts[{platform, kind, status_name(status)}];
+        if (s.non_ok_examples.size() < kNonOkExamples)
+          s.non_ok_examples.push_back({platform, kind, status_name(status),
+                                       row.integer<int>(C::kView),
+                                       row.integer<std::uint64_t>(C::kIndex), rel,
+                                       static_cast<std::uint64_t>(row.line())});
+        return;
+      }
+      if (!row.cell(C::kRefDiff).empty()) {
+        const auto diff = row.integer<long long>(C::kRefDiff);
+        const auto pixels = row.optional_integer<long long>(C::kPixels, 0);
+        ReferenceAgreement& r = s.reference[key];
+        ++r.compared;
+        r.identical += diff == 0;
+        if (pixels > 0 || diff > 0) {
+          ++r.drawn;
+          r.drawn_identical += diff == 0;
+        }
+      }
       const Conformance c = row.conformance();
       if (c == Conformance::kNotCompared) {
         ++s.not_compared;
         return;
       }
-      const std::string platform(row.cell(C::kPlatform)), kind(row.cell(C::kKind));
-      const int group = row.integer<int>(C::kViewGroup);
-      ConformanceCounts& n = s.groups[{platform, kind, group}];
+      ConformanceCounts& n = s.groups[key];
       ++n.compared;
       switch (c) {
         case Conformance::kExact: ++n.exact; break;

@@ -1,10 +1,13 @@
 // Conformance verdicts of a run (records columns conformance, violating_pixels, violated_rules;
 // metrics/conformance.h), summarised per platform x kind x view group: the shares of exact,
 // snapped, within-spec and violation with Clopper-Pearson 95% intervals, and every violation,
-// worst first, with the `renderaudit show` command that draws it. Read from the records files
-// directly (only these columns), so analyze pays one pass over them.
+// worst first, with the `renderaudit show` command that draws it. The same pass also tallies what
+// plot and report show beside the verdicts: agreement with the reference rasterizer (ref_diff),
+// each view group's camera label and the records whose status is not `ok`. Read from the records
+// files directly (only these columns), so analyze pays one pass over them.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -30,14 +33,50 @@ struct Violation {
   std::string rules;
 };
 
+// Agreement with the reference rasterizer of one platform, kind and view group: records with status
+// `ok` and a reference comparison (`ref_diff` not empty).
+struct ReferenceAgreement {
+  std::uint64_t compared = 0;   // ok records with a ref_diff
+  std::uint64_t identical = 0;  // of them, ref_diff == 0: the pixel set equals the reference's
+  std::uint64_t drawn = 0;      // of the compared, those where either rasterizer lit a pixel
+                                // (pixels > 0 or ref_diff > 0)
+  std::uint64_t drawn_identical = 0;
+  // Share identical, in [0, 1]; 0 when nothing was compared.
+  double rate() const { return compared ? double(identical) / double(compared) : 0; }
+  double drawn_rate() const { return drawn ? double(drawn_identical) / double(drawn) : 0; }
+};
+
+// A record whose status is not `ok` (invalid, crash, timeout).
+struct NonOkCase {
+  std::string platform, kind, status;
+  int view = 0;
+  std::uint64_t index = 0;  // primitive index under the seed
+  std::string file;         // records file, relative to the run directory
+  std::uint64_t line = 0;   // 1-based line in it
+};
+
+using GroupKey = std::tuple<std::string, std::string, int>;  // platform, kind, view group (0 = A)
+
 struct ConformanceSummary {
   // (platform, kind, view group) -> counts; kind "point", "line", "triangle".
   std::map<std::tuple<std::string, std::string, int>, ConformanceCounts> groups;
   std::vector<Violation> violations;  // worst first (most pixels), then platform, kind, view, index
   std::uint64_t not_compared = 0;     // ok records without a verdict (reference, schema 2)
+  std::map<GroupKey, ReferenceAgreement> reference;
+  // Every group's views' field of view and window as the records spell them, "60 deg, 128x128",
+  // from the group's first record (files in the given order).
+  std::map<GroupKey, std::string> group_labels;
+  // (platform, kind, status) -> number of records with that status (not `ok`)
+  std::map<std::tuple<std::string, std::string, std::string>, std::uint64_t> non_ok_counts;
+  std::vector<NonOkCase> non_ok_examples;  // the first kNonOkExamples, by file then line
 };
 
-ConformanceSummary summarize_conformance(const std::vector<std::string>& records_files);
+constexpr std::size_t kNonOkExamples = 30;
+
+// `records_files` in the order their records count (sorted, as load_run_records lists them);
+// NonOkCase::file is relative to `run_dir` when that is given.
+ConformanceSummary summarize_conformance(const std::vector<std::string>& records_files,
+                                         const std::string& run_dir = "");
 
 // The table "conformance": one row per platform x kind x view group with a verdict.
 stats::Table conformance_table(const ConformanceSummary& s);

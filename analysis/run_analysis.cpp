@@ -14,6 +14,7 @@
 
 #include "analysis/figure_data.h"
 #include "analysis/conformance_summary.h"
+#include "analysis/run_tally.h"
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
 #include "analysis/view_equivalence.h"
@@ -70,7 +71,7 @@ struct Output {
 // Files of an earlier analysis that this one may not rewrite (a kind absent now, one platform).
 bool generated_name(const std::string& name) {
   static const std::regex pattern(
-      R"((table\d\d[a-z]?_[a-z_]+|speed|cross_platform|view_equivalence|conformance|uncertainty|paper_comparison|paper_differences)\.(csv|md|tex)|figures\.json|report\.md|violations\.md|README\.md)");
+      R"((table\d\d[a-z]?_[a-z_]+|speed|cross_platform|view_equivalence|conformance|uncertainty|paper_comparison|paper_differences)\.(csv|md|tex)|figures\.json|tally\.json|report\.md|violations\.md|README\.md)");
   return std::regex_match(name, pattern);
 }
 
@@ -206,6 +207,12 @@ std::vector<Output> render_outputs(const RunRecords& run, const AnalyzeOptions& 
     outputs.push_back({t.file_stem + ".md", what + " (Markdown)", md});
     outputs.push_back({t.file_stem + ".tex", what + " (LaTeX)", stats::render_latex(t)});
   }
+  outputs.push_back({"tally.json",
+                     "what plot and report count: records, conformance with the reference and GL "
+                     "verdicts per view group, records not ok, render time (schema "
+                     "renderaudit-tally v" +
+                         std::to_string(kTallySchemaVersion) + ", analysis/run_tally.h)",
+                     tally_json(tally_run(run, conformance)).dump(2) + "\n"});
   outputs.push_back({"figures.json",
                      "figure data for the plots stage: box plots, Q-Q plots, relative "
                      "bihistograms, speed against error (schema renderaudit-figures v" +
@@ -270,7 +277,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   const std::vector<stats::Table> tables = paper_tables(run, table_options(o, eq));
   result.timings.push_back({"tables", watch.lap()});
 
-  const ConformanceSummary conformance = summarize_conformance(run.files);
+  const ConformanceSummary conformance = summarize_conformance(run.files, run.run_dir);
   result.timings.push_back({"conformance", watch.lap()});
 
   FigureOptions fo;

@@ -72,8 +72,8 @@ TEST(AnalyzeCommand, WritesEveryFileWithoutNaN) {
   EXPECT_EQ(r.out_dir, (dir / "analysis").string());
   EXPECT_EQ(r.records, 614u);
   for (const char* name :
-       {"README.md", "report.md", "figures.json", "view_equivalence.csv", "view_equivalence.md",
-        "table02_point_visibility.csv", "table02_point_visibility.md",
+       {"README.md", "report.md", "figures.json", "tally.json", "view_equivalence.csv",
+        "view_equivalence.md", "table02_point_visibility.csv", "table02_point_visibility.md",
         "table02_point_visibility.tex", "table03_pe.csv", "table04_pe_norm.tex",
         "table05_line_visibility.md", "table06_lse_s_norm.md", "table07_lse_u_norm.csv",
         "table06s_lse_s.md", "table11_physical_units.md", "speed.md"}) {

@@ -1,5 +1,5 @@
 // What the figure families of plan_figures (plot_run.h) share: the run's records, the analysis'
-// figures.json, the record scan and the plan being built, with the helpers that word their
+// figures.json, its tally.json (analysis/run_tally.h) and the plan being built, with the helpers that word their
 // titles and axes. Each family adds the figures of one primitive kind to the plan, in the order
 // plan_figures calls them: tallies (visibility, conformance, conformance classes), distributions
 // (box plots, histograms), comparisons of views and platforms, speed against error.
@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "analysis/run_records.h"
+#include "analysis/run_tally.h"
 #include "plots/figure.h"
 #include "plots/plot_run.h"
-#include "plots/record_scan.h"
 
 namespace ra::plots {
 
@@ -23,7 +23,7 @@ struct FigurePlanner {
   const std::string& run_dir;
   const nlohmann::json& doc;  // DIR/analysis/figures.json
   const an::RunRecords& run;
-  const RecordScan& scan;
+  const an::RunTally& tally;  // DIR/analysis/tally.json
   FigurePlan& plan;
   std::set<std::string>& ids;  // of the figures planned: a repeated id gets "_2", "_3", ...
 

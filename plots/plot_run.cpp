@@ -21,7 +21,6 @@
 #include "plots/figure_planner.h"
 #include "plots/figure_renderer.h"
 #include "plots/headless_display.h"
-#include "plots/record_scan.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "metrics/records.h"
@@ -61,15 +60,15 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
   if (doc.value("schema", "") != "renderaudit-figures" || doc.value("schema_version", 0) != 1)
     throw UserError(path + ": expected schema renderaudit-figures version 1 (run `renderaudit "
                     "analyze " + run_dir + "` again)");
+  const an::RunTally tally = an::read_tally(run_dir);
 
   an::LoadOptions lo;
   lo.jobs = jobs;
   const an::RunRecords run = an::load_run_records(run_dir, lo);
-  const RecordScan scan = scan_records(run_dir, 0, jobs);
 
   FigurePlan plan;
   std::set<std::string> ids;
-  FigurePlanner p{run_dir, doc, run, scan, plan, ids};
+  FigurePlanner p{run_dir, doc, run, tally, plan, ids};
   try {
     for (an::PrimitiveKind kind : an::kAllKinds) {
       const auto kinds = run.kinds();

@@ -1,5 +1,6 @@
 // `renderaudit plot DIR`: every figure of a run, from DIR/analysis/figures.json (written by
-// `renderaudit analyze`) and the records, drawn with VTK into DIR/figures/:
+// `renderaudit analyze`), DIR/analysis/tally.json (its counts, for the conformance figures) and the
+// records (visibility, histograms), drawn with VTK into DIR/figures/:
 //
 //   ID.png    raster (VTK: vtkWindowToImageFilter -> vtkPNGWriter), 1123 x 794 px
 //   ID.pdf    vector (vtkPDFExporter), 1123 x 794 pt
@@ -61,7 +62,8 @@ struct PlotResult {
 };
 
 // The Figures of a run (no drawing): what plot_run() draws. Throws ra::UserError when
-// DIR/analysis/figures.json is missing ("run `renderaudit analyze DIR` first") or malformed.
+// DIR/analysis/figures.json or tally.json is missing ("run `renderaudit analyze DIR` first"),
+// malformed or of another schema version ("... again").
 struct FigurePlan {
   std::vector<Figure> figures;
   std::vector<SkippedFigure> skipped;

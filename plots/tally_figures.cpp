@@ -77,8 +77,8 @@ struct TallyFigures : FigurePlanner {
       std::string label = an::view_group_label(g);
       labels.push_back(label);
       for (const auto& p : run.platforms) {
-        auto it = scan.group_labels.find({p, kname, g});
-        if (it != scan.group_labels.end()) {
+        auto it = tally.group_labels.find({p, kname, g});
+        if (it != tally.group_labels.end()) {
           label += ": " + it->second;
           break;
         }
@@ -92,14 +92,14 @@ struct TallyFigures : FigurePlanner {
       drawn.name = p + ", cases with lit pixels";
       bool has = false;
       for (int g : groups) {
-        const auto it = scan.conformance.find({p, kname, g});
-        if (it == scan.conformance.end() || it->second.compared == 0) {
+        const auto it = tally.reference.find({p, kname, g});
+        if (it == tally.reference.end() || it->second.compared == 0) {
           all.values.push_back(0), all.labels.push_back("n/a");
           drawn.values.push_back(0), drawn.labels.push_back("n/a");
           continue;
         }
         has = true;
-        const Conformance& cf = it->second;
+        const an::ReferenceAgreement& cf = it->second;
         all.values.push_back(100 * cf.rate());
         all.labels.push_back(fmt(100 * cf.rate(), "%.2f"));
         drawn.values.push_back(100 * cf.drawn_rate());
@@ -146,13 +146,18 @@ struct TallyFigures : FigurePlanner {
       bool has = false;
       for (int g : groups) {
         c.categories.push_back(an::view_group_label(g));
-        const auto it = scan.conformance.find({p, kname, g});
-        std::uint64_t judged = 0;
-        if (it != scan.conformance.end())
-          for (int k = 1; k < 5; ++k) judged += it->second.classes[k];
+        const auto it = tally.verdicts.find({p, kname, g});
+        std::uint64_t classes[5] = {};  // indexed by ra::Conformance
+        if (it != tally.verdicts.end()) {
+          classes[int(Conformance::kExact)] = it->second.exact;
+          classes[int(Conformance::kSnapped)] = it->second.snapped;
+          classes[int(Conformance::kWithinSpec)] = it->second.within_spec;
+          classes[int(Conformance::kViolation)] = it->second.violation;
+        }
+        const std::uint64_t judged = classes[1] + classes[2] + classes[3] + classes[4];
         has = has || judged > 0;
         for (int k = 1; k < 5; ++k) {
-          const double share = judged ? 100.0 * double(it->second.classes[k]) / double(judged) : 0;
+          const double share = judged ? 100.0 * double(classes[k]) / double(judged) : 0;
           series[k].values.push_back(share);
           series[k].labels.push_back(judged ? fmt(share, "%.2f") : "n/a");
         }

@@ -8,8 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "metrics/records_format.h"
-#include "analysis/conformance_summary.h"
+#include "analysis/run_tally.h"
 #include "stats/csv_table.h"
 #include "util/atomic_file.h"
 
@@ -62,15 +61,6 @@ std::map<std::string, PaperAgreement> paper_agreement(const std::string& analysi
   return out;
 }
 
-std::vector<std::string> records_files(const std::string& run_dir) {
-  std::vector<std::string> files;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(run_dir + "/records", ec))
-    if (ra::is_records_file_name(e.path().filename().string())) files.push_back(e.path().string());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
 // One sentence per platform: the conclusion in words, before the table that holds its numbers.
 std::string finding_sentence(const std::string& platform, const analysis::ConformanceCounts& n,
                              const PaperAgreement& a) {
@@ -97,10 +87,10 @@ std::string finding_sentence(const std::string& platform, const analysis::Confor
 
 // The findings table: one row per platform with a verdict or a paper comparison; `sentences`
 // receives the same per platform in words.
-Table findings_table(const std::string& run_dir, std::vector<std::string>& sentences) {
-  const analysis::ConformanceSummary s = analysis::summarize_conformance(records_files(run_dir));
+Table findings_table(const std::string& run_dir, const analysis::RunTally& tally,
+                     std::vector<std::string>& sentences) {
   std::map<std::string, analysis::ConformanceCounts> per;
-  for (const auto& [key, n] : s.groups) {
+  for (const auto& [key, n] : tally.verdicts) {
     analysis::ConformanceCounts& p = per[std::get<0>(key)];
     p.compared += n.compared, p.exact += n.exact, p.snapped += n.snapped;
     p.within_spec += n.within_spec, p.violation += n.violation;
@@ -212,7 +202,7 @@ std::vector<Block> audit_blocks(const std::string& run_dir) {
 
 }  // namespace
 
-std::vector<Block> headline_blocks(const std::string& run_dir) {
+std::vector<Block> headline_blocks(const std::string& run_dir, const analysis::RunTally& tally) {
   std::vector<Block> out;
   Block h = make_block(Block::Kind::kHeading, "Conclusion");
   h.level = 2;  // on the title page (a level-1 heading would start a page)
@@ -221,7 +211,7 @@ std::vector<Block> headline_blocks(const std::string& run_dir) {
   for (Block& b : audit_blocks(run_dir)) out.push_back(std::move(b));
   std::vector<std::string> sentences;
   Block t = make_block(Block::Kind::kTable);
-  t.table = findings_table(run_dir, sentences);
+  t.table = findings_table(run_dir, tally, sentences);
   Block list = make_block(Block::Kind::kBullets);
   list.items = std::move(sentences);
   out.push_back(std::move(list));

@@ -21,13 +21,12 @@
 #include "metrics/records_format.h"
 #include "plots/headless_display.h"
 #include "plots/plot_run.h"
-#include "plots/record_scan.h"
 #include "report/document.h"
 #include "report/headline.h"
 #include "report/html_writer.h"
 #include "report/pdf_writer.h"
 #include "analysis/run_completeness.h"
-#include "stats/descriptive.h"
+#include "analysis/run_tally.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/errors.h"
@@ -70,10 +69,14 @@ json read_json(const std::string& path) {
   }
 }
 
-// Medians and quartiles as the analysis stage computes them (stats/descriptive.h), NaN for no data.
-double median(const std::vector<double>& v) { return v.empty() ? NAN : stats::median(v); }
-double quantile_hf6(const std::vector<double>& v, double p) {
-  return v.empty() ? NAN : stats::quantile(v, p, stats::QuantileDefinition::kHyndmanFan6);
+// Why DIR/analysis/tally.json cannot be read (missing, another schema version), or "".
+std::string tally_problem(const std::string& run_dir) {
+  try {
+    analysis::read_tally(run_dir);
+    return "";
+  } catch (const UserError& e) {
+    return e.what();
+  }
 }
 
 // Kinds in the paper's order: points, lines, triangles, then anything else.
@@ -257,7 +260,8 @@ std::string run_name(const std::string& run_dir, const ManifestExperiment& exp) 
 std::string or_unknown(const std::string& text) { return text.empty() ? "?" : text; }
 
 // The title page: what was run, by which renderaudit, and the headline; then the contents.
-void add_title_page(Document& d, const std::string& run_dir, const RunManifest& m) {
+void add_title_page(Document& d, const std::string& run_dir, const RunManifest& m,
+                    const analysis::RunTally& tally) {
   const ManifestExperiment exp = m.experiment.value_or(ManifestExperiment{});
   const std::string name = run_name(run_dir, exp);
   d.title = "renderaudit report: " + name;
@@ -271,7 +275,7 @@ void add_title_page(Document& d, const std::string& run_dir, const RunManifest& 
           (exp.seed ? std::to_string(*exp.seed) : "") + ".",
       version_line(m.tool.is_object() ? m.tool : json::object())};
   // The conclusion first, on the title page; the contents and the detail after it.
-  for (Block& b : headline_blocks(run_dir)) d.blocks.push_back(std::move(b));
+  for (Block& b : headline_blocks(run_dir, tally)) d.blocks.push_back(std::move(b));
   Block contents;
   contents.kind = Block::Kind::kContents;
   d.blocks.push_back(contents);
@@ -279,7 +283,7 @@ void add_title_page(Document& d, const std::string& run_dir, const RunManifest& 
 
 // 1. The run's provenance: experiment, completeness, times, tool, host; the drivers; the file.
 void add_provenance(Document& d, const std::string& run_dir, const RunManifest& m,
-                    const plots::RecordScan& scan,
+                    const analysis::RunTally& tally,
                     const analysis::RunCompleteness& completeness) {
   const ManifestExperiment exp = m.experiment.value_or(ManifestExperiment{});
   const std::string name = run_name(run_dir, exp);
@@ -309,7 +313,7 @@ void add_provenance(Document& d, const std::string& run_dir, const RunManifest& 
       row(i == 0 ? "what is missing" : "", completeness.problems[i]);
     if (completeness.problems.size() > 10)
       row("", "... and " + std::to_string(completeness.problems.size() - 10) + " more");
-    row("records", std::to_string(scan.records) + " in " + std::to_string(scan.files) + " files");
+    row("records", std::to_string(tally.records) + " in " + std::to_string(tally.files) + " files");
     row("started / finished (UTC)", or_unknown(m.started) + " / " + or_unknown(m.finished));
     row("run time", fmt(elapsed, "%.1f") + " s over " + std::to_string(invocations.size()) +
                         " invocation(s)");
@@ -358,7 +362,7 @@ void add_provenance(Document& d, const std::string& run_dir, const RunManifest& 
 }
 
 // 2. Shards that failed, records that are not ok, figures not drawn.
-void add_failures(Document& d, const RunManifest& m, const plots::RecordScan& scan,
+void add_failures(Document& d, const RunManifest& m, const analysis::RunTally& tally,
                   const plots::PlotResult& figures) {
   // 2. Failures.
   d.blocks.push_back(heading("2. Failures and invalid cases", 1, "failures"));
@@ -378,7 +382,7 @@ void add_failures(Document& d, const RunManifest& m, const plots::RecordScan& sc
                         "run` command again to retry them (finished shards are kept).");
       d.blocks.push_back(table_block(std::move(t)));
     }
-    if (scan.non_ok_counts.empty()) {
+    if (tally.non_ok_counts.empty()) {
       d.blocks.push_back(paragraph("Every record has status ok: no invalid (non-finite) input, "
                                    "no per-primitive crash or timeout."));
     } else {
@@ -386,18 +390,19 @@ void add_failures(Document& d, const RunManifest& m, const plots::RecordScan& sc
       t.title = "Records whose status is not ok (excluded from every metric)";
       t.header = {"platform", "kind", "status", "records"};
       t.right = {false, false, false, true};
-      for (const auto& k : paper_order(scan.non_ok_counts)) {
-        const auto n = scan.non_ok_counts.at(k);
+      for (const auto& k : paper_order(tally.non_ok_counts)) {
+        const auto n = tally.non_ok_counts.at(k);
         t.rows.push_back({std::get<0>(k), std::get<1>(k), std::get<2>(k), std::to_string(n)});
       }
       d.blocks.push_back(table_block(std::move(t)));
       Table e;
-      e.title = "The first " + std::to_string(std::min<std::size_t>(30, scan.non_ok_examples.size())) +
+      e.title = "The first " +
+                std::to_string(std::min<std::size_t>(30, tally.non_ok_examples.size())) +
                 " of them";
       e.header = {"platform", "kind", "view", "primitive index", "status", "records file:line"};
       e.right = {false, false, true, true, false, false};
-      for (std::size_t i = 0; i < scan.non_ok_examples.size() && i < 30; ++i) {
-        const auto& x = scan.non_ok_examples[i];
+      for (std::size_t i = 0; i < tally.non_ok_examples.size() && i < 30; ++i) {
+        const auto& x = tally.non_ok_examples[i];
         e.rows.push_back({x.platform, x.kind, std::to_string(x.view), std::to_string(x.index),
                           x.status, x.file + ":" + std::to_string(x.line)});
       }
@@ -416,7 +421,7 @@ void add_failures(Document& d, const RunManifest& m, const plots::RecordScan& sc
 }
 
 // 3. Render time per primitive.
-void add_timing(Document& d, const plots::RecordScan& scan) {
+void add_timing(Document& d, const analysis::RunTally& tally) {
   // 3. Time per primitive.
   d.blocks.push_back(heading("3. Time per primitive", 1, "timing"));
   d.blocks.push_back(paragraph(
@@ -432,13 +437,13 @@ void add_timing(Document& d, const plots::RecordScan& scan) {
     t.header = {"platform", "kind", "cases", "median us", "IQR us", "true-visible",
                 "median us (true-visible)", "primitives per second (1 / median)"};
     t.right = {false, false, true, true, true, true, true, true};
-    for (const auto& k : paper_order(scan.render_us)) {
-      const std::vector<double>& v = scan.render_us.at(k);
-      const auto vis = scan.render_us_visible.count(k) ? scan.render_us_visible.at(k) : std::vector<double>{};
-      const double med = median(v);
-      t.rows.push_back({k.first, k.second, std::to_string(v.size()), fmt(med, "%.2f"),
-                        fmt(quantile_hf6(v, 0.75) - quantile_hf6(v, 0.25), "%.2f"),
-                        std::to_string(vis.size()), vis.empty() ? "no data" : fmt(median(vis), "%.2f"),
+    for (const auto& k : paper_order(tally.render_time)) {
+      const analysis::RenderTime& r = tally.render_time.at(k);
+      const double med = r.median_us;
+      t.rows.push_back({k.first, k.second, std::to_string(r.cases), fmt(med, "%.2f"),
+                        fmt(r.iqr_us, "%.2f"), std::to_string(r.true_visible),
+                        r.median_us_true_visible ? fmt(*r.median_us_true_visible, "%.2f")
+                                                 : "no data",
                         med > 0 ? fmt(1e6 / med, "%.0f") : "n/a"});
     }
     if (t.rows.empty()) t.notes.push_back("No record has a render time.");
@@ -448,7 +453,7 @@ void add_timing(Document& d, const plots::RecordScan& scan) {
 }
 
 // 4. Conformance: the analysis' conformance and violations pages, the reference comparison.
-void add_conformance(Content& c, const std::string& run_dir, const plots::RecordScan& scan) {
+void add_conformance(Content& c, const std::string& run_dir, const analysis::RunTally& tally) {
   Document& d = c.doc;
   // 4. Conformance.
   d.blocks.push_back(heading("4. Does each driver rasterize as GL allows?", 1, "conformance"));
@@ -487,11 +492,11 @@ void add_conformance(Content& c, const std::string& run_dir, const plots::Record
     t.header = {"platform", "kind", "view group", "compared", "identical", "rate %",
                 "lit by either", "identical", "rate % (lit)"};
     t.right = {false, false, false, true, true, true, true, true, true};
-    for (const auto& k : paper_order(scan.conformance)) {
-      const plots::Conformance& cf = scan.conformance.at(k);
+    for (const auto& k : paper_order(tally.reference)) {
+      const analysis::ReferenceAgreement& cf = tally.reference.at(k);
       std::string group(1, char('A' + std::get<2>(k)));
-      const auto label = scan.group_labels.find(k);
-      if (label != scan.group_labels.end()) group += " (" + label->second + ")";
+      const auto label = tally.group_labels.find(k);
+      if (label != tally.group_labels.end()) group += " (" + label->second + ")";
       t.rows.push_back({std::get<0>(k), std::get<1>(k), group, std::to_string(cf.compared),
                         std::to_string(cf.identical), fmt(100 * cf.rate(), "%.2f"),
                         std::to_string(cf.drawn), std::to_string(cf.drawn_identical),
@@ -592,17 +597,17 @@ void add_figure_section(Content& c, const plots::PlotResult& figures,
 }
 
 Content build_document(const std::string& run_dir, const plots::PlotResult& figures,
-                       const plots::RecordScan& scan,
+                       const analysis::RunTally& tally,
                        const analysis::RunCompleteness& completeness) {
   const std::string manifest_path = run_dir + "/manifest.json";
   const RunManifest m =
       fs::exists(manifest_path) ? read_manifest(read_json(manifest_path), manifest_path) : RunManifest{};
   Content c;
-  add_title_page(c.doc, run_dir, m);
-  add_provenance(c.doc, run_dir, m, scan, completeness);
-  add_failures(c.doc, m, scan, figures);
-  add_timing(c.doc, scan);
-  add_conformance(c, run_dir, scan);
+  add_title_page(c.doc, run_dir, m, tally);
+  add_provenance(c.doc, run_dir, m, tally, completeness);
+  add_failures(c.doc, m, tally, figures);
+  add_timing(c.doc, tally);
+  add_conformance(c, run_dir, tally);
   add_analysis_tables(c, run_dir);
   add_figure_section(c, figures, m.experiment.value_or(ManifestExperiment{}).platforms);
   return c;
@@ -714,6 +719,14 @@ std::vector<Step> missing_steps(const std::string& run_dir) {
     steps.push_back({"analyze", "renderaudit analyze " + run_dir,
                      figures_json.string() + " is older than the records"});
     analyze = true;
+  } else if (const fs::path tally = dir / "analysis" / "tally.json"; !fs::exists(tally)) {
+    steps.push_back({"analyze", "renderaudit analyze " + run_dir, tally.string() + " is missing"});
+    analyze = true;
+  } else if (const std::string problem = tally_problem(run_dir); !problem.empty()) {
+    // "PATH: expected schema ... version 1 (run `renderaudit analyze DIR` again)": the reason only
+    steps.push_back({"analyze", "renderaudit analyze " + run_dir,
+                     problem.substr(0, problem.find(" (run `"))});
+    analyze = true;
   }
   if (analyze || !fs::exists(index)) {
     steps.push_back({"plot", "renderaudit plot " + run_dir,
@@ -763,8 +776,8 @@ ReportResult write_report(const ReportOptions& options) {
   result.completeness = completeness.headline();
 
   const plots::PlotResult figures = plots::read_figure_index(run_dir);
-  const plots::RecordScan scan = plots::scan_records(run_dir, 200);
-  Content content = build_document(run_dir, figures, scan, completeness);
+  const analysis::RunTally tally = analysis::read_tally(run_dir);
+  Content content = build_document(run_dir, figures, tally, completeness);
   Document& doc = content.doc;
   for (const auto& f : doc.figures)
     if (!fs::exists(f.pdf_path))

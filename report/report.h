@@ -8,7 +8,7 @@
 //      experiment file itself);
 //   2. failures: crashed or timed-out shards (manifest.json "failures"), records whose status is
 //      not ok (counts and the first cases), figures skipped for lack of data;
-//   3. time per primitive: median render_us per platform and kind (from the records);
+//   3. time per primitive: median render_us per platform and kind;
 //   4. conformance with the reference rasterizer per platform, kind and view group (ref_diff);
 //   5. the equivalence tests behind pooling views into view groups (analysis/view_equivalence.md);
 //   6. beside the paper: analysis/paper_comparison.md and paper_differences.md;
@@ -20,9 +20,11 @@
 // vtkPDFExporter wrote in `renderaudit plot`; `pdfunite` (poppler-utils) joins them. All pages
 // are 1123 x 794 pt (pdf_writer.h).
 //
-// Stages: the report reads only files, and only what the stages before it wrote. When
-// DIR/analysis/figures.json or DIR/figures/index.json is missing, or older than what it was made
-// from (records, manifest), it stops and names the command to run (missing_steps); the command
+// Sections 0-4 show what analyze counted (DIR/analysis/tally.json, analysis/run_tally.h); the
+// report does not tally the records itself. Stages: the report reads only files, and only what the
+// stages before it wrote. When DIR/analysis/figures.json or DIR/figures/index.json is missing, or
+// older than what it was made from (records, manifest), or tally.json is missing or of another
+// schema version, it stops and names the command to run (missing_steps); the command
 // `renderaudit report` (app/report_command.cpp) runs those stages first unless told not to.
 // A run that is not whole (analysis/run_completeness.h) is refused unless allow_incomplete; then
 // its first page says what is missing.
@@ -45,7 +47,8 @@ struct Step {
   std::string reason;   // e.g. "outputs/quick/analysis/figures.json is missing"
 };
 
-// The stages whose output is missing or older than their input, in order.
+// The stages whose output is missing, older than their input or of another schema version, in
+// order.
 std::vector<Step> missing_steps(const std::string& run_dir);
 
 struct ReportResult {
