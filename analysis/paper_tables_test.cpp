@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <regex>
 
 #include "analysis/records_testing.h"
@@ -204,6 +206,21 @@ TEST_F(PaperTables, NoNaNAnywhere) {
     }
   }
   EXPECT_GT(cells, 100u);  // the check above read real tables, not empty ones
+}
+
+// The speed table says what render_us measures on a Vulkan platform only where the run has one.
+TEST(PaperTablesSpeed, TheVulkanMeaningOfRenderTimeIsNotedWhereAVulkanPlatformRan) {
+  testing::ScopedTempDir gl{"speed_gl"}, vk{"speed_vk"};
+  write_records(gl.path, {point("egl-llvmpipe", 1, 0, 0.3), point("egl-llvmpipe", 1, 1, 0.2)});
+  write_records(vk.path, {point("egl-llvmpipe", 1, 0, 0.3), point("vk-lavapipe", 1, 0, 0.2)});
+  const auto has_note = [](const stats::Table& t) {
+    return std::find(t.notes.begin(), t.notes.end(), std::string(kVulkanRenderTimeNote)) !=
+           t.notes.end();
+  };
+  EXPECT_FALSE(has_note(speed_table(load_run_records(gl.path.string()), TableOptions{})));
+  EXPECT_TRUE(has_note(speed_table(load_run_records(vk.path.string()), TableOptions{})));
+  EXPECT_TRUE(is_vulkan_platform("vk-device:1-msaa4"));
+  EXPECT_FALSE(is_vulkan_platform("egl-zink"));
 }
 
 TEST(PaperTablesScales, TheScalesOfThePaper) {

@@ -617,4 +617,11 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   return run;
 }
 
+const char* const kVulkanRenderTimeNote =
+    "On a Vulkan platform (vk-*) render_us is the CPU time of recording the primitive's commands, "
+    "submitting them and waiting for their fence (batches share one submission as GL's share one "
+    "glFinish); copying the pixels back is a submission of its own, outside it.";
+
+bool is_vulkan_platform(const std::string& platform) { return platform.rfind("vk-", 0) == 0; }
+
 }  // namespace ra::analysis

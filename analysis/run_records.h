@@ -15,7 +15,7 @@
 //
 // Units: PE, LSEs, LSEu and TEu-edge-norm in pixels; TEs, TEu in pixels^2; *_norm divide lengths by
 // sqrt(W*H) and areas by W*H (normalised window coordinates, paper section 3.2); render_us in
-// microseconds of CPU time (draw + glFinish).
+// microseconds of CPU time (GL: draw + glFinish; Vulkan: record + submit + fence wait).
 #pragma once
 
 #include <array>
@@ -177,5 +177,10 @@ stats::Description describe_sorted(const std::vector<double>& ascending,
 
 // The ascending vectors `parts` merged into one ascending vector.
 std::vector<double> merge_sorted(const std::vector<const std::vector<double>*>& parts);
+
+// What render_us means on a Vulkan platform (vk-*), for the notes of the tables and report
+// sections that show it when a run has one.
+extern const char* const kVulkanRenderTimeNote;
+bool is_vulkan_platform(const std::string& platform);
 
 }  // namespace ra::analysis

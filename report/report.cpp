@@ -26,6 +26,7 @@
 #include "report/html_writer.h"
 #include "report/pdf_writer.h"
 #include "analysis/run_completeness.h"
+#include "analysis/run_records.h"
 #include "analysis/run_tally.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
@@ -422,7 +423,6 @@ void add_failures(Document& d, const RunManifest& m, const analysis::RunTally& t
 
 // 3. Render time per primitive.
 void add_timing(Document& d, const analysis::RunTally& tally) {
-  // 3. Time per primitive.
   d.blocks.push_back(heading("3. Time per primitive", 1, "timing"));
   d.blocks.push_back(paragraph(
       "render_us is the CPU time of a primitive's draw call and glFinish, measured by the "
@@ -431,6 +431,11 @@ void add_timing(Document& d, const analysis::RunTally& tally) {
       "time (records column batch_size). Medians and IQRs (Hyndman-Fan 6) over the "
       "records with status ok; the analysis table 'Render time beside error' breaks them down by "
       "view group. Times depend on the machine and its load, unlike the errors."));
+  for (const auto& [key, time] : tally.render_time)
+    if (analysis::is_vulkan_platform(key.first)) {
+      d.blocks.push_back(paragraph(analysis::kVulkanRenderTimeNote));
+      break;
+    }
   {
     Table t;
     t.title = "Median render time per primitive, by platform and kind";
