@@ -64,8 +64,8 @@ CostModel cost_model_from_timing_json(const std::string& path, const std::string
                   platform);
 }
 
-Footprint footprint_of(const BoundingSphere& s, const Mat4& view, const Frustum& frustum,
-                       const CameraSettings& cam) {
+Footprint footprint_of(const scenes::BoundingSphere& s, const Mat4& view,
+                       const scenes::Frustum& frustum, const scenes::CameraSettings& cam) {
   Footprint f;
   const double W = cam.width, H = cam.height;
   f.focal_px = 0.5 * H / std::tan(cam.half_fov_y());

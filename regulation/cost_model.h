@@ -68,8 +68,8 @@ struct Footprint {
                             //   area (estimated in both #pix modes, so that the modes differ in
                             //   time only)
 };
-Footprint footprint_of(const BoundingSphere& s, const Mat4& view, const Frustum& frustum,
-                       const CameraSettings& cam);
+Footprint footprint_of(const scenes::BoundingSphere& s, const Mat4& view,
+                       const scenes::Frustum& frustum, const scenes::CameraSettings& cam);
 
 // The perceptual cost above for one object at one level.
 double perceptual_cost(double area_fraction, double error_m, double distance_m, double focal_px,

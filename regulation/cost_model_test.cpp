@@ -27,14 +27,14 @@ TEST(CostModel, H4ByHand) {
 }
 
 TEST(CostModel, FootprintOfASphereOnTheAxis) {
-  CameraSettings cam;
+  scenes::CameraSettings cam;
   cam.width = 640;
   cam.height = 480;
   cam.fov_y_deg = 90;  // focal = 240 px
-  const Viewpoint vp{{0, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  const Mat4 view = look_at(vp);
-  const Frustum fr = frustum_of(projection_of(cam) * view);
-  const BoundingSphere s{{0, 100, 0}, 5};
+  const scenes::Viewpoint vp{{0, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const Mat4 view = scenes::look_at(vp);
+  const scenes::Frustum fr = scenes::frustum_of(scenes::projection_of(cam) * view);
+  const scenes::BoundingSphere s{{0, 100, 0}, 5};
   const Footprint f = footprint_of(s, view, fr, cam);
   ASSERT_TRUE(f.visible);
   EXPECT_NEAR(f.focal_px, 240.0, 1e-9);

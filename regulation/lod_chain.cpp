@@ -16,9 +16,9 @@ namespace {
 constexpr unsigned kNoRestart = 0xFFFFFFFFu;  // never an index: unstripify sees plain strips
 
 // The object's triangles per texture, degenerate ones dropped.
-std::map<int, std::vector<unsigned>> triangle_lists(const StripMesh& mesh) {
+std::map<int, std::vector<unsigned>> triangle_lists(const scenes::StripMesh& mesh) {
   std::map<int, std::vector<unsigned>> out;
-  for (const TriangleStrip& s : mesh.strips) {
+  for (const scenes::TriangleStrip& s : mesh.strips) {
     if (s.indices.size() < 3) continue;
     std::vector<unsigned> tri(meshopt_unstripifyBound(s.indices.size()));
     tri.resize(meshopt_unstripify(tri.data(), s.indices.data(), s.indices.size(), kNoRestart));
@@ -29,11 +29,12 @@ std::map<int, std::vector<unsigned>> triangle_lists(const StripMesh& mesh) {
 }
 
 // A mesh of `strips` over the vertices they reference only (renumbered in first-use order).
-StripMesh compacted(const StripMesh& src, const std::vector<TriangleStrip>& strips) {
-  StripMesh out;
+scenes::StripMesh compacted(const scenes::StripMesh& src,
+                            const std::vector<scenes::TriangleStrip>& strips) {
+  scenes::StripMesh out;
   std::unordered_map<uint32_t, uint32_t> remap;
-  for (const TriangleStrip& s : strips) {
-    TriangleStrip t;
+  for (const scenes::TriangleStrip& s : strips) {
+    scenes::TriangleStrip t;
     t.texture = s.texture;
     for (uint32_t i : s.indices) {
       auto [it, fresh] = remap.emplace(i, uint32_t(remap.size()));
@@ -48,10 +49,10 @@ StripMesh compacted(const StripMesh& src, const std::vector<TriangleStrip>& stri
   return out;
 }
 
-int64_t referenced_vertices(const StripMesh& m) {
+int64_t referenced_vertices(const scenes::StripMesh& m) {
   std::vector<bool> used(m.vertex_count(), false);
   int64_t n = 0;
-  for (const TriangleStrip& s : m.strips)
+  for (const scenes::TriangleStrip& s : m.strips)
     for (uint32_t i : s.indices)
       if (!used[i]) used[i] = true, ++n;
   return n;
@@ -59,14 +60,14 @@ int64_t referenced_vertices(const StripMesh& m) {
 
 }  // namespace
 
-LodChain build_lod_chain(const SceneObject& object, const std::vector<double>& ratios,
+LodChain build_lod_chain(const scenes::SceneObject& object, const std::vector<double>& ratios,
                          unsigned cache_size) {
   if (ratios.empty() || ratios.front() != 1.0)
     throw std::invalid_argument("LOD ratios must start with 1");
   for (std::size_t k = 1; k < ratios.size(); ++k)
     if (!(ratios[k] > 0 && ratios[k] < ratios[k - 1]))
       throw std::invalid_argument("LOD ratios must decrease and stay above 0");
-  const StripMesh& mesh = object.mesh;
+  const scenes::StripMesh& mesh = object.mesh;
   LodChain chain;
   chain.name = object.name;
   chain.bounds = object.bounds;
@@ -78,13 +79,13 @@ LodChain build_lod_chain(const SceneObject& object, const std::vector<double>& r
   l0.mesh = mesh;
   l0.triangles = triangles0;
   l0.vertices = referenced_vertices(mesh);
-  l0.transformed = transformed_vertices(mesh, cache_size);
+  l0.transformed = scenes::transformed_vertices(mesh, cache_size);
   chain.levels.push_back(std::move(l0));
 
   const std::size_t nv = mesh.vertex_count();
   const float scale = nv ? meshopt_simplifyScale(mesh.positions.data(), nv, 3 * sizeof(float)) : 0.f;
   for (std::size_t k = 1; k < ratios.size(); ++k) {
-    std::vector<TriangleStrip> strips;
+    std::vector<scenes::TriangleStrip> strips;
     int64_t triangles = 0;
     double rel_error = 0;
     for (const auto& [tex, idx] : lists) {
@@ -107,7 +108,7 @@ LodChain build_lod_chain(const SceneObject& object, const std::vector<double>& r
     l.mesh = compacted(mesh, strips);
     l.triangles = triangles;
     l.vertices = int64_t(l.mesh.vertex_count());
-    l.transformed = transformed_vertices(l.mesh, cache_size);
+    l.transformed = scenes::transformed_vertices(l.mesh, cache_size);
     l.simplifier_error_m = rel_error * double(scale);
     l.error_m = std::max(l.simplifier_error_m, chain.levels.back().error_m);
     chain.levels.push_back(std::move(l));

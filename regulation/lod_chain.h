@@ -30,7 +30,7 @@ namespace ra::regulation {
 
 struct LodLevel {
   double target_ratio = 1;     // the ratio asked for (triangles of level 0 x ratio)
-  StripMesh mesh;              // the level's strips and (compacted) vertices, world coordinates
+  scenes::StripMesh mesh;      // the level's strips and (compacted) vertices, world coordinates
   int64_t triangles = 0;       // non-degenerate triangles
   int64_t vertices = 0;        // vertices the strips reference
   int64_t transformed = 0;     // #tv, FIFO post-transform cache of `cache_size` entries
@@ -40,13 +40,14 @@ struct LodLevel {
 
 struct LodChain {
   std::string name;       // the scene object's
-  BoundingSphere bounds;  // of level 0 (every level lies within it: simplification keeps vertices)
+  // Of level 0 (every level lies within it: simplification keeps vertices).
+  scenes::BoundingSphere bounds;
   std::vector<LodLevel> levels;  // level 0 first; triangles decreasing, error non-decreasing
 };
 
 // `ratios`: 1 first, then decreasing values in (0, 1). `cache_size` >= 3.
 // Throws std::invalid_argument on bad ratios.
-LodChain build_lod_chain(const SceneObject& object, const std::vector<double>& ratios,
+LodChain build_lod_chain(const scenes::SceneObject& object, const std::vector<double>& ratios,
                          unsigned cache_size);
 
 }  // namespace ra::regulation

@@ -10,7 +10,7 @@ namespace ra::regulation {
 namespace {
 
 // The most detailed tree of a small forest: many triangles to simplify.
-const SceneObject& big_tree(const Scene& s) {
+const scenes::SceneObject& big_tree(const scenes::Scene& s) {
   std::size_t best = 1;
   for (std::size_t i = 1; i < s.objects.size(); ++i)
     if (s.objects[i].mesh.triangle_count() > s.objects[best].mesh.triangle_count()) best = i;
@@ -18,16 +18,16 @@ const SceneObject& big_tree(const Scene& s) {
 }
 
 TEST(LodChain, MonotoneOnARealTree) {
-  ForestParams p;
+  scenes::ForestParams p;
   p.trees = 6;
   p.slices_min = 40;
   p.slices_max = 64;
-  const Scene scene = generate_forest(p);
-  const SceneObject& tree = big_tree(scene);
+  const scenes::Scene scene = scenes::generate_forest(p);
+  const scenes::SceneObject& tree = big_tree(scene);
   const LodChain c = build_lod_chain(tree, {1, 0.5, 0.25, 0.125}, 16);
   ASSERT_GE(c.levels.size(), 3u) << "the simplifier should reduce a 40+-slice tree at least twice";
   EXPECT_EQ(c.levels[0].error_m, 0.0);
-  EXPECT_EQ(c.levels[0].transformed, transformed_vertices(tree.mesh, 16));
+  EXPECT_EQ(c.levels[0].transformed, scenes::transformed_vertices(tree.mesh, 16));
   for (std::size_t k = 1; k < c.levels.size(); ++k) {
     EXPECT_LT(c.levels[k].triangles, c.levels[k - 1].triangles) << "level " << k;
     EXPECT_GE(c.levels[k].error_m, c.levels[k - 1].error_m) << "level " << k;
@@ -45,9 +45,9 @@ TEST(LodChain, MonotoneOnARealTree) {
 }
 
 TEST(LodChain, RejectsBadRatios) {
-  ForestParams p;
+  scenes::ForestParams p;
   p.trees = 1;
-  const Scene scene = generate_forest(p);
+  const scenes::Scene scene = scenes::generate_forest(p);
   EXPECT_THROW(build_lod_chain(scene.objects[1], {0.5, 0.25}, 16), std::invalid_argument);
   EXPECT_THROW(build_lod_chain(scene.objects[1], {1, 0.5, 0.5}, 16), std::invalid_argument);
 }

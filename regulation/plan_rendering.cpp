@@ -24,7 +24,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 using Clock = std::chrono::steady_clock;
 
-std::vector<int> frames_of(const std::vector<Viewpoint>& path, int stride) {
+std::vector<int> frames_of(const std::vector<scenes::Viewpoint>& path, int stride) {
   std::vector<int> f;
   for (int i = 0; i < int(path.size()); i += stride) f.push_back(i);
   return f;
@@ -32,9 +32,11 @@ std::vector<int> frames_of(const std::vector<Viewpoint>& path, int stride) {
 
 // All frames x budgets x policies planned with `base_us` taken off each budget; `pixels`
 // (optional): measured #pix per planned frame (in frames_of order).
-std::vector<FrameRecord> plan_all(const std::vector<LodChain>& chains, const std::vector<double>& weights,
-                                  const std::vector<Viewpoint>& path, const RegulationSettings& s,
-                                  double base_us, const std::vector<int>& level_offset,
+std::vector<FrameRecord> plan_all(const std::vector<LodChain>& chains,
+                                  const std::vector<double>& weights,
+                                  const std::vector<scenes::Viewpoint>& path,
+                                  const RegulationSettings& s, double base_us,
+                                  const std::vector<int>& level_offset,
                                   const std::vector<FramePixels>* pixels = nullptr) {
   std::vector<FrameRecord> out;
   const std::vector<int> frames = frames_of(path, s.frame_stride);
@@ -99,10 +101,10 @@ nlohmann::json record_json(const FrameRecord& r) {
 
 }  // namespace
 
-std::vector<int> visible_chains(const std::vector<LodChain>& chains, const Viewpoint& vp,
-                                const CameraSettings& cam) {
-  const Mat4 view = look_at(vp);
-  const Frustum frustum = frustum_of(projection_of(cam) * view);
+std::vector<int> visible_chains(const std::vector<LodChain>& chains, const scenes::Viewpoint& vp,
+                                const scenes::CameraSettings& cam) {
+  const Mat4 view = scenes::look_at(vp);
+  const scenes::Frustum frustum = scenes::frustum_of(scenes::projection_of(cam) * view);
   std::vector<int> v;
   for (int j = 0; j < int(chains.size()); ++j)
     if (footprint_of(chains[j].bounds, view, frustum, cam).visible) v.push_back(j);
@@ -110,10 +112,10 @@ std::vector<int> visible_chains(const std::vector<LodChain>& chains, const Viewp
 }
 
 Instance frame_instance(const std::vector<LodChain>& chains, const std::vector<double>& weights,
-                        const Viewpoint& vp, const RegulationSettings& s, double budget_us,
+                        const scenes::Viewpoint& vp, const RegulationSettings& s, double budget_us,
                         std::vector<FrameObject>* objects, const FramePixels* measured) {
-  const Mat4 view = look_at(vp);
-  const Frustum frustum = frustum_of(projection_of(s.camera) * view);
+  const Mat4 view = scenes::look_at(vp);
+  const scenes::Frustum frustum = scenes::frustum_of(scenes::projection_of(s.camera) * view);
   Instance inst;
   objects->clear();
   for (int j = 0; j < int(chains.size()); ++j) {
@@ -149,10 +151,11 @@ Instance frame_instance(const std::vector<LodChain>& chains, const std::vector<d
   return inst;
 }
 
-RenderOutcome plan_and_render(const Scene& scene, const std::vector<LodChain>& chains,
+RenderOutcome plan_and_render(const scenes::Scene& scene, const std::vector<LodChain>& chains,
                               const std::vector<double>& weights,
-                              const std::vector<Viewpoint>& path, const RegulationSettings& s,
-                              const std::string& scratch_dir, bool progress) {
+                              const std::vector<scenes::Viewpoint>& path,
+                              const RegulationSettings& s, const std::string& scratch_dir,
+                              bool progress) {
   const auto t0 = Clock::now();
   std::vector<int> level_offset;
   int n = 0;
@@ -167,7 +170,7 @@ RenderOutcome plan_and_render(const Scene& scene, const std::vector<LodChain>& c
     return out;
   }
   // The scene the renderer draws: every level of every object, object index offset + level.
-  Scene lod;
+  scenes::Scene lod;
   lod.kind = scene.kind;
   lod.textures = scene.textures;
   lod.layout = scene.layout;
@@ -245,9 +248,10 @@ RenderOutcome plan_and_render(const Scene& scene, const std::vector<LodChain>& c
         const std::vector<int> frames = frames_of(path, s.frame_stride);
         if (pixels.size() != frames.size()) throw std::runtime_error("pixel frame count differs");
         for (std::size_t slot = 0; slot < frames.size(); ++slot) {
-          const Viewpoint& vp = path[frames[slot]];
-          const Mat4 view = look_at(vp);
-          const Frustum frustum = frustum_of(projection_of(s.camera) * view);
+          const scenes::Viewpoint& vp = path[frames[slot]];
+          const Mat4 view = scenes::look_at(vp);
+          const scenes::Frustum frustum =
+              scenes::frustum_of(scenes::projection_of(s.camera) * view);
           for (int c = 0; c < int(pixels[slot].size()); ++c) {
             if (pixels[slot][c].empty()) continue;
             PixelSample ps;

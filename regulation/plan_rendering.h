@@ -49,14 +49,14 @@ struct FrameObject {
 using FramePixels = std::vector<std::vector<double>>;
 
 // The chains whose bounding spheres meet the view frustum of `vp` (the items of its instance).
-std::vector<int> visible_chains(const std::vector<LodChain>& chains, const Viewpoint& vp,
-                                const CameraSettings& cam);
+std::vector<int> visible_chains(const std::vector<LodChain>& chains, const scenes::Viewpoint& vp,
+                                const scenes::CameraSettings& cam);
 
 // The knapsack instance of viewpoint `vp`; `objects` receives the visible objects (the items, in
 // order). `budget_us` is what the objects may spend. `measured` (optional): #pix of this frame
 // (FramePixels), used for the objects it holds.
 Instance frame_instance(const std::vector<LodChain>& chains, const std::vector<double>& weights,
-                        const Viewpoint& vp, const RegulationSettings& s, double budget_us,
+                        const scenes::Viewpoint& vp, const RegulationSettings& s, double budget_us,
                         std::vector<FrameObject>* objects, const FramePixels* measured = nullptr);
 
 // One planned (and possibly rendered) frame.
@@ -105,9 +105,10 @@ struct RenderOutcome {
 
 // Plans every frame x budget x policy (policies.h, kAllPolicies); renders them when s.render
 // (in a child process; the planning then happens there too, after the empty frame is measured).
-RenderOutcome plan_and_render(const Scene& scene, const std::vector<LodChain>& chains,
+RenderOutcome plan_and_render(const scenes::Scene& scene, const std::vector<LodChain>& chains,
                               const std::vector<double>& weights,
-                              const std::vector<Viewpoint>& path, const RegulationSettings& s,
-                              const std::string& scratch_dir, bool progress);
+                              const std::vector<scenes::Viewpoint>& path,
+                              const RegulationSettings& s, const std::string& scratch_dir,
+                              bool progress);
 
 }  // namespace ra::regulation

@@ -196,15 +196,17 @@ RegulationSettings read_regulation_experiment(const std::string& path) {
 RegulationSettings parse_regulation_experiment(const std::string& text, const std::string& path) {
   Locator loc(path);
   RegulationSettings s;
-  const StudyFile file = read_study_file(loc, text, "regulation", {"scene"}, true, &s);
+  const scenes::StudyFile file =
+      scenes::read_study_file(loc, text, "regulation", {"scene"}, true, &s);
   const toml::table& root = file.root;
   const toml::table& t = file.table();
   loc.reject_unknown_keys(t, "regulation.",
                           {"platform", "window", "fov_deg", "near", "far", "lod_ratios", "cache_size",
                            "seed", "budgets_ms", "frame_stride", "repetitions", "render",
                            "error_exponent", "dp_max_cells", "cost_model", "attention", "random"});
-  if (const auto* n = t.get("platform")) s.platform = read_study_platform(loc, *n, "regulation.platform");
-  read_camera_block(loc, t, "regulation", &s.camera);
+  if (const auto* n = t.get("platform"))
+    s.platform = scenes::read_study_platform(loc, *n, "regulation.platform");
+  scenes::read_camera_block(loc, t, "regulation", &s.camera);
   if (const auto* n = t.get("lod_ratios")) {
     const auto& a = loc.array(*n, "regulation.lod_ratios", 2, 16, "an array of 2 to 16 ratios");
     s.lod_ratios.clear();
@@ -241,7 +243,7 @@ RegulationSettings parse_regulation_experiment(const std::string& text, const st
   parse_attention(loc, t, s);
   parse_random(loc, t, s);
 
-  std::vector<SceneSpec> scenes = parse_scene_specs(root, path);
+  std::vector<scenes::SceneSpec> scenes = scenes::parse_scene_specs(root, path);
   if (scenes.size() != 1) {
     const toml::node* n = root.get("scene");
     loc.fail(n, "the regulation study needs exactly one [[scene]] (found " + std::to_string(scenes.size()) + ")");

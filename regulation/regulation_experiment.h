@@ -63,7 +63,7 @@
 
 namespace ra::regulation {
 
-struct RegulationSettings : StudySettings {  // file, name, camera
+struct RegulationSettings : scenes::StudySettings {  // file, name, camera
   std::string platform = "osmesa-llvmpipe";
   std::vector<double> lod_ratios{1, 0.5, 0.25, 0.125, 0.0625};
   unsigned cache_size = 16;
@@ -80,7 +80,7 @@ struct RegulationSettings : StudySettings {  // file, name, camera
   bool timing_intercept = false;
   AttentionModel attention;
   RandomInstanceSettings random;
-  SceneSpec scene;
+  scenes::SceneSpec scene;
 };
 
 // Throws UserError "'regulation.platform' = "NAME" is out of range (allowed: ...)"

@@ -114,8 +114,8 @@ std::size_t random_instances_stage(const RegulationSettings& s, const std::strin
 // The scene, its LOD chains (lod_levels.csv) and attention tags; fills j["lod"], j["scene"],
 // j["cost_model"] and j["attention"].
 struct StudyScene {
-  Scene scene;
-  std::vector<Viewpoint> path;
+  scenes::Scene scene;
+  std::vector<scenes::Viewpoint> path;
   std::vector<LodChain> chains;
   std::vector<double> weights;  // attention weight of each object
 };
@@ -123,13 +123,13 @@ struct StudyScene {
 StudyScene scene_stage(const RegulationSettings& s, const std::string& dir, json& j) {
   const auto t = Clock::now();
   StudyScene out;
-  out.scene = build_scene(s.scene);
-  out.path = build_camera_path(s.scene, out.scene);
+  out.scene = scenes::build_scene(s.scene);
+  out.path = scenes::build_camera_path(s.scene, out.scene);
   std::vector<LodChain>& chains = out.chains;
-  const Scene& scene = out.scene;
-  const std::vector<Viewpoint>& path = out.path;
+  const scenes::Scene& scene = out.scene;
+  const std::vector<scenes::Viewpoint>& path = out.path;
   std::vector<std::string> names;
-  for (const SceneObject& o : scene.objects) {
+  for (const scenes::SceneObject& o : scene.objects) {
     chains.push_back(build_lod_chain(o, s.lod_ratios, s.cache_size));
     names.push_back(o.name);
   }

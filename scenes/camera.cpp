@@ -7,7 +7,7 @@
 
 #include "geometry/view.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 Vec3 cross3(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
@@ -111,4 +111,4 @@ Viewpoint viewpoint_for(const BoundingSphere& s, const CameraSettings& cam, doub
   return vp;
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

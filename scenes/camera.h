@@ -9,7 +9,7 @@
 #include "geometry/vector_math.h"
 #include "scenes/scene.h"
 
-namespace ra {
+namespace ra::scenes {
 
 struct CameraSettings {
   int width = 640, height = 480;  // window, pixels
@@ -55,4 +55,4 @@ double max_clipped_alpha(const CameraSettings& cam);
 Viewpoint viewpoint_for(const BoundingSphere& s, const CameraSettings& cam, double alpha,
                         double gamma, double phi);
 
-}  // namespace ra
+}  // namespace ra::scenes

@@ -14,7 +14,7 @@
 #include "util/cell_text.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -302,4 +302,4 @@ void write_camera_path_csv(const std::vector<Viewpoint>& path, const std::string
   write_file_atomic(file, text);  // complete or absent
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

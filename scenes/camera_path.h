@@ -10,7 +10,7 @@
 
 #include "scenes/scene.h"
 
-namespace ra {
+namespace ra::scenes {
 
 struct CameraPathParams {
   uint64_t seed = 1;
@@ -53,4 +53,4 @@ std::vector<Viewpoint> parse_camera_path_csv(const std::string& text, const std:
 // std::runtime_error naming the file when it cannot be written.
 void write_camera_path_csv(const std::vector<Viewpoint>& path, const std::string& file);
 
-}  // namespace ra
+}  // namespace ra::scenes

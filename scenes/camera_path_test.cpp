@@ -13,7 +13,7 @@
 #include "scenes/forest_scene.h"
 #include "scenes/terrain_scene.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 double horizontal(Vec3 a) { return std::hypot(a.x, a.y); }
@@ -238,4 +238,4 @@ TEST(CameraPath, CsvErrorsNameFileAndLine) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::scenes

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 // A sphere straight ahead, wholly in view: the clipped alpha is the unclipped 2 asin(r / d).
@@ -64,4 +64,4 @@ TEST(Camera, FrustumCulling) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::scenes

@@ -10,7 +10,7 @@
 #include "scenes/scene_rng.h"
 #include "scenes/strip_builder.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 void check_int(const char* key, int v, int lo, int hi) {
@@ -220,4 +220,4 @@ Scene generate_city(const CityParams& p) {
   return scene;
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

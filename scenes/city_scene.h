@@ -11,7 +11,7 @@
 
 #include "scenes/scene.h"
 
-namespace ra {
+namespace ra::scenes {
 
 struct CityParams {
   uint64_t seed = 1;
@@ -61,4 +61,4 @@ Scene generate_city(const CityParams& params);
 // Throws std::invalid_argument naming the first parameter outside its range.
 void validate(const CityParams& params);
 
-}  // namespace ra
+}  // namespace ra::scenes

@@ -10,7 +10,7 @@
 #include "scenes/scene_statistics.h"
 #include "scenes/scene_validation.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 CityParams tiny() {
@@ -182,4 +182,4 @@ TEST(CityScene, SmallestCity) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::scenes

@@ -11,7 +11,7 @@
 #include "scenes/scene_rng.h"
 #include "scenes/strip_builder.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -162,4 +162,4 @@ Scene generate_forest(const ForestParams& p) {
   return scene;
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

@@ -10,7 +10,7 @@
 
 #include "scenes/scene.h"
 
-namespace ra {
+namespace ra::scenes {
 
 struct ForestParams {
   uint64_t seed = 1;
@@ -57,4 +57,4 @@ Scene generate_forest(const ForestParams& params);
 // Throws std::invalid_argument naming the first parameter outside its range.
 void validate(const ForestParams& params);
 
-}  // namespace ra
+}  // namespace ra::scenes

@@ -10,7 +10,7 @@
 #include "scenes/scene_test_util.h"
 #include "scenes/scene_validation.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 using scene_test::cross3;
@@ -144,4 +144,4 @@ TEST(ForestScene, CoarsestTree) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::scenes

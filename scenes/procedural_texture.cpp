@@ -6,7 +6,7 @@
 
 #include "scenes/scene_rng.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 struct Rgb {
@@ -61,4 +61,4 @@ Texture make_texture(TexturePattern pattern, uint64_t seed, int index, int size)
   return t;
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

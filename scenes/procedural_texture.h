@@ -6,7 +6,7 @@
 
 #include "scenes/scene.h"
 
-namespace ra {
+namespace ra::scenes {
 
 enum class TexturePattern {
   kFacade,  // window grid over a wall colour
@@ -20,4 +20,4 @@ enum class TexturePattern {
 // A size x size texture (size 1..4096) whose colours derive from (seed, index); rows bottom-up.
 Texture make_texture(TexturePattern pattern, uint64_t seed, int index, int size);
 
-}  // namespace ra
+}  // namespace ra::scenes

@@ -9,7 +9,7 @@
 
 #include "geometry/vector_math.h"
 
-namespace ra {
+namespace ra::scenes {
 
 // One indexed triangle strip; triangle k is (i[k], i[k+1], i[k+2]) with the winding of odd k
 // reversed, as GL_TRIANGLE_STRIP draws it.
@@ -93,4 +93,4 @@ struct Viewpoint {
   Vec3 up = {0, 0, 1};     // world up
 };
 
-}  // namespace ra
+}  // namespace ra::scenes

@@ -7,7 +7,7 @@
 
 #include "util/counter_rng.h"
 
-namespace ra {
+namespace ra::scenes {
 
 // Purposes keep the draws of different parts of a generator independent: adding a draw to the
 // buildings does not shift the trees.
@@ -26,4 +26,4 @@ class SceneRng : public CounterRng {
       : CounterRng(seed, static_cast<uint64_t>(purpose), item) {}
 };
 
-}  // namespace ra
+}  // namespace ra::scenes

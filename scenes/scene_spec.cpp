@@ -12,7 +12,7 @@
 #include "util/errors.h"
 #include "util/toml_locator.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 // A table of the file: errors at its nodes (util/toml_locator.h), keys named "scene[i].key".
@@ -253,4 +253,4 @@ std::vector<Viewpoint> build_camera_path(const SceneSpec& spec, const Scene& sce
   return generate_camera_path(scene, spec.path);
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

@@ -28,7 +28,7 @@
 #include "scenes/scene.h"
 #include "scenes/terrain_scene.h"
 
-namespace ra {
+namespace ra::scenes {
 
 struct SceneSpec {
   std::string name;  // unique within the file
@@ -57,4 +57,4 @@ Scene build_scene(const SceneSpec& spec);
 // Its camera path: read from path_file when set, otherwise generated through `scene`.
 std::vector<Viewpoint> build_camera_path(const SceneSpec& spec, const Scene& scene);
 
-}  // namespace ra
+}  // namespace ra::scenes

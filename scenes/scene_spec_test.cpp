@@ -8,7 +8,7 @@
 
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 std::vector<SceneSpec> parse(const std::string& text, const std::string& file = "timing.toml") {
@@ -172,4 +172,4 @@ TEST(SceneSpec, RecordedPathFile) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::scenes

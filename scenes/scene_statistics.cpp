@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 // Binds drawing `mesh` after a strip with texture `bound` (-1: nothing bound yet).
@@ -68,4 +68,4 @@ std::string format_statistics(const std::string& scene_name, const SceneStatisti
   return out.str();
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

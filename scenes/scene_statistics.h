@@ -9,7 +9,7 @@
 #include "scenes/scene.h"
 #include "scenes/vertex_cache.h"
 
-namespace ra {
+namespace ra::scenes {
 
 struct SceneStatistics {
   unsigned cache_size = 0;           // FIFO entries the #tv count assumed
@@ -38,4 +38,4 @@ int64_t scene_texture_binds(const Scene& scene);
 // One row per value, as Table 5 ("#objects  5609"), for logs and reports.
 std::string format_statistics(const std::string& scene_name, const SceneStatistics& stats);
 
-}  // namespace ra
+}  // namespace ra::scenes

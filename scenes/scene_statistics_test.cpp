@@ -6,7 +6,7 @@
 #include "scenes/forest_scene.h"
 #include "scenes/strip_builder.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 // Two objects:
@@ -86,4 +86,4 @@ TEST(SceneStatistics, ForestCacheSizes) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::scenes

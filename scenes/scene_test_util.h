@@ -7,7 +7,7 @@
 
 #include "scenes/scene.h"
 
-namespace ra::scene_test {
+namespace ra::scenes::scene_test {
 
 inline Vec3 cross3(Vec3 a, Vec3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
@@ -29,4 +29,4 @@ inline void for_each_triangle(const StripMesh& m,
   }
 }
 
-}  // namespace ra::scene_test
+}  // namespace ra::scenes::scene_test

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-namespace ra {
+namespace ra::scenes {
 
 std::vector<std::string> scene_problems(const Scene& scene, size_t max_problems) {
   std::vector<std::string> out;
@@ -75,4 +75,4 @@ std::vector<std::string> scene_problems(const Scene& scene, size_t max_problems)
   return out;
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

@@ -7,7 +7,7 @@
 
 #include "scenes/scene.h"
 
-namespace ra {
+namespace ra::scenes {
 
 // What is wrong with `scene`, one line per problem, empty when nothing is: positions and texture
 // coordinates finite and of the right count, every strip index in range, every texture index in
@@ -16,4 +16,4 @@ namespace ra {
 // every vertex. Reports at most `max_problems` lines.
 std::vector<std::string> scene_problems(const Scene& scene, size_t max_problems = 20);
 
-}  // namespace ra
+}  // namespace ra::scenes

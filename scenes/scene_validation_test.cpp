@@ -8,7 +8,7 @@
 #include "scenes/procedural_texture.h"
 #include "scenes/strip_builder.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 Scene good() {
@@ -67,4 +67,4 @@ TEST(SceneValidation, TexturesAreSeededAndDistinct) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::scenes

@@ -2,7 +2,7 @@
 
 #include <cassert>
 
-namespace ra {
+namespace ra::scenes {
 
 uint32_t add_vertex(StripMesh& mesh, Vec3 p, double s, double t) {
   const auto n = static_cast<uint32_t>(mesh.vertex_count());
@@ -52,4 +52,4 @@ void add_polygon_strip(StripMesh& mesh, const uint32_t* ring, int n, int texture
   mesh.strips.push_back(std::move(strip));
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

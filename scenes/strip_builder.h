@@ -7,7 +7,7 @@
 #include "geometry/vector_math.h"
 #include "scenes/scene.h"
 
-namespace ra {
+namespace ra::scenes {
 
 // Appends a vertex; returns its number.
 uint32_t add_vertex(StripMesh& mesh, Vec3 p, double s, double t);
@@ -27,4 +27,4 @@ uint32_t add_grid(StripMesh& mesh, Vec3 origin, Vec3 du, Vec3 dv, int cols, int 
 // ring[n-1], ring[1], ...), flipping which side is front.
 void add_polygon_strip(StripMesh& mesh, const uint32_t* ring, int n, int texture, bool reverse);
 
-}  // namespace ra
+}  // namespace ra::scenes

@@ -6,7 +6,7 @@
 #include "scenes/scene.h"
 #include "scenes/scene_test_util.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 using scene_test::cross3;
@@ -127,4 +127,4 @@ TEST(SceneStripBuilder, SceneHashSeesEveryPart) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::scenes

@@ -6,7 +6,7 @@
 #include "geometry/vector_math.h"
 #include "scenes/scene.h"
 
-namespace ra {
+namespace ra::scenes {
 
 size_t StripMesh::triangle_count() const {
   size_t n = 0;
@@ -109,4 +109,4 @@ uint64_t scene_hash(const Scene& scene) {
   return f.h;
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

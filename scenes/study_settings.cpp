@@ -5,7 +5,7 @@
 
 #include "platforms/platform.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 std::string show(double v) {
@@ -65,4 +65,4 @@ std::string read_study_platform(const TomlLocator& loc, const toml::node& node,
   return name;
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

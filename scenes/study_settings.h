@@ -12,7 +12,7 @@
 #include "scenes/camera.h"
 #include "util/toml_locator.h"
 
-namespace ra {
+namespace ra::scenes {
 
 struct StudySettings {
   std::string file;  // the experiment file, as given
@@ -50,4 +50,4 @@ void read_camera_block(const TomlLocator& loc, const toml::table& table, const s
 std::string read_study_platform(const TomlLocator& loc, const toml::node& node,
                                 const std::string& key);
 
-}  // namespace ra
+}  // namespace ra::scenes

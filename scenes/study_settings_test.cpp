@@ -6,7 +6,7 @@
 
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 // The error of reading `text` as study `where`'s file, "" when it reads.
@@ -60,4 +60,4 @@ TEST(StudySettings, OneWordingOfErrors) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::scenes

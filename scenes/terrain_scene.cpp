@@ -10,7 +10,7 @@
 #include "scenes/scene_rng.h"
 #include "scenes/strip_builder.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 [[noreturn]] void out_of_range(const char* key, const std::string& value, const std::string& allowed) {
@@ -105,4 +105,4 @@ Scene generate_terrain(const TerrainParams& p) {
   return scene;
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

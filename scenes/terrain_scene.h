@@ -8,7 +8,7 @@
 
 #include "scenes/scene.h"
 
-namespace ra {
+namespace ra::scenes {
 
 struct TerrainParams {
   uint64_t seed = 1;
@@ -37,4 +37,4 @@ Scene generate_terrain(const TerrainParams& params);
 // Throws std::invalid_argument naming the first parameter outside its range.
 void validate(const TerrainParams& params);
 
-}  // namespace ra
+}  // namespace ra::scenes

@@ -10,7 +10,7 @@
 #include "scenes/scene_test_util.h"
 #include "scenes/scene_validation.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 TerrainParams tiny() {
@@ -139,4 +139,4 @@ TEST(TerrainScene, RejectsParametersOutOfRange) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::scenes

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 void check_cache(unsigned cache_size) {
@@ -75,4 +75,4 @@ int64_t transformed_vertices_as_triangle_list(const StripMesh& mesh, unsigned ca
   return static_cast<int64_t>(st.vertices_transformed);
 }
 
-}  // namespace ra
+}  // namespace ra::scenes

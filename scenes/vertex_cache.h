@@ -21,7 +21,7 @@
 
 #include "scenes/scene.h"
 
-namespace ra {
+namespace ra::scenes {
 
 enum class CacheReset {
   kPerMesh,   // empty at the start of the mesh (object), kept across its strips (the default)
@@ -39,4 +39,4 @@ int64_t transformed_vertices(const StripMesh& mesh, unsigned cache_size,
 // drawing GL_TRIANGLES would transform. For comparison only; not the strip model.
 int64_t transformed_vertices_as_triangle_list(const StripMesh& mesh, unsigned cache_size);
 
-}  // namespace ra
+}  // namespace ra::scenes

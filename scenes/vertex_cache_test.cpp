@@ -10,7 +10,7 @@
 #include "scenes/scene_rng.h"
 #include "scenes/strip_builder.h"
 
-namespace ra {
+namespace ra::scenes {
 namespace {
 
 StripMesh mesh_with(size_t vertices, std::vector<std::vector<uint32_t>> strips) {
@@ -154,4 +154,4 @@ TEST(VertexCache, MeshoptimizerAgreesWithBruteForceFifo) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::scenes

@@ -10,17 +10,19 @@
 
 namespace ra::lod {
 
-HeightField generate_height_field(const TerrainParams& params, int nx, int ny) {
-  TerrainParams p = params;
+HeightField generate_height_field(const scenes::TerrainParams& params, int nx, int ny) {
+  scenes::TerrainParams p = params;
   p.size = 2;  // validate() checks size; ours is nx, ny
-  validate(p);
+  scenes::validate(p);
   HeightField f;
   f.nx = nx;
   f.ny = ny;
   f.spacing = p.spacing;
   f.z.resize(static_cast<size_t>(nx) * ny);
   for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) f.z[static_cast<size_t>(j) * nx + i] = terrain_height(p, i * p.spacing, j * p.spacing);
+    for (int i = 0; i < nx; ++i)
+      f.z[static_cast<size_t>(j) * nx + i] =
+          scenes::terrain_height(p, i * p.spacing, j * p.spacing);
   f.source = "generated terrain (seed " + std::to_string(p.seed) + ")";
   return f;
 }

@@ -21,7 +21,7 @@ struct HeightField {
 
 // Samples terrain_height(params, ...) at nx x ny vertices spaced params.spacing apart
 // (params.size is ignored). Throws std::invalid_argument for parameters out of range.
-HeightField generate_height_field(const TerrainParams& params, int nx, int ny);
+HeightField generate_height_field(const scenes::TerrainParams& params, int nx, int ny);
 
 // Reads a single-channel elevation image (e.g. a GeoTIFF, 16-bit PNG or float TIFF) through
 // OpenImageIO: height = value * height_scale metres, where value is the stored number for float

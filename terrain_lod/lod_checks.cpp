@@ -158,9 +158,10 @@ std::vector<double> lod_surface_heights(const LodMesh& mesh, const HeightField& 
 }
 
 ScreenErrorResult measure_screen_error(const std::vector<double>& z_lod, const HeightField& f,
-                                       const CameraSettings& cam, const Viewpoint& vp) {
+                                       const scenes::CameraSettings& cam,
+                                       const scenes::Viewpoint& vp) {
   ScreenErrorResult r;
-  const Mat4 m = projection_of(cam) * look_at(vp);
+  const Mat4 m = scenes::projection_of(cam) * scenes::look_at(vp);
   auto window = [&](const Vec4& c, double* px, double* py) {
     *px = (c.x / c.w + 1) * 0.5 * cam.width;
     *py = (c.y / c.w + 1) * 0.5 * cam.height;

@@ -66,7 +66,8 @@ struct ScreenErrorResult {
 // frustum are excluded (no pixel shows them). A vertex without LOD surface (a hole) is counted in
 // `holes` and makes max_px infinite.
 ScreenErrorResult measure_screen_error(const std::vector<double>& z_lod, const HeightField& field,
-                                       const CameraSettings& cam, const Viewpoint& vp);
+                                       const scenes::CameraSettings& cam,
+                                       const scenes::Viewpoint& vp);
 
 // Liang-Barsky clipping of the clip-space segment a + t (b - a), t in [0, 1], against
 // -w <= x, y, z <= w: the visible part is [*t0, *t1]; false when no part is inside.

@@ -22,8 +22,9 @@ struct FrameCheck {
   size_t triangles = 0;
 };
 
-FrameCheck check_frame(const TerrainHierarchy& h, LambdaKind kind, double tau, const Viewpoint& vp) {
-  const CameraSettings cam = test_camera();
+FrameCheck check_frame(const TerrainHierarchy& h, LambdaKind kind, double tau,
+                       const scenes::Viewpoint& vp) {
+  const scenes::CameraSettings cam = test_camera();
   const LodMesh mesh = refine(h, make_metric(kind, cam, tau, vp.eye));
   FrameCheck c;
   c.conforming = check_conformity(all_triangles(mesh), h.field().nx, h.field().ny).conforming;
@@ -34,7 +35,7 @@ FrameCheck check_frame(const TerrainHierarchy& h, LambdaKind kind, double tau, c
 }
 
 TEST(LambdaFor, AnalyticValues) {
-  CameraSettings cam;
+  scenes::CameraSettings cam;
   cam.width = 1024;
   cam.height = 768;
   cam.fov_y_deg = 60;
@@ -141,7 +142,7 @@ TEST(Checks, PassOnTheRealLodForManyViewpointsAndTau) {
   const size_t full = size_t(f.nx - 1) * (f.ny - 1) * 2;
   size_t reduced = 0;
   double worst_ratio = 0;
-  for (const Viewpoint& vp : random_viewpoints(f, 40, 11))
+  for (const scenes::Viewpoint& vp : random_viewpoints(f, 40, 11))
     for (double tau : {0.5, 1.0, 3.0}) {
       const FrameCheck c = check_frame(h, LambdaKind::kWindow, tau, vp);
       EXPECT_TRUE(c.conforming);
@@ -158,7 +159,7 @@ TEST(Checks, ViewpointVeryCloseToTheSurfacePasses) {
   const HeightField f = test_field(33, 2, 2);
   TerrainHierarchy h(f, 33, ErrorPropagation::kNested);
   const int gi = 20, gj = 37;
-  Viewpoint vp;
+  scenes::Viewpoint vp;
   vp.eye = {gi * f.spacing, gj * f.spacing, f.at(gi, gj) + 0.5};  // half a metre above a vertex
   vp.target = {vp.eye.x + 200, vp.eye.y + 50, vp.eye.z - 20};
   const FrameCheck c = check_frame(h, LambdaKind::kWindow, 1.0, vp);
@@ -171,7 +172,7 @@ TEST(Checks, FailOnUnnestedErrors) {
   const HeightField f = test_field(33, 2, 2);
   TerrainHierarchy h(f, 33, ErrorPropagation::kUnnested);
   int not_conforming = 0, over_tau = 0;
-  for (const Viewpoint& vp : random_viewpoints(f, 20, 5)) {
+  for (const scenes::Viewpoint& vp : random_viewpoints(f, 20, 5)) {
     const FrameCheck c = check_frame(h, LambdaKind::kWindow, 1.0, vp);
     not_conforming += !c.conforming;
     over_tau += c.max_px > 1.0;
@@ -186,7 +187,7 @@ TEST(Checks, SeamCheckFailsWithoutEqualisedSeams) {
   HeightField f = test_field(33, 2, 1);
   for (int j = 0; j < f.ny; ++j)
     for (int i = 0; i <= 32; ++i) f.z[size_t(j * f.nx + i)] = 0;
-  Viewpoint vp;
+  scenes::Viewpoint vp;
   vp.eye = {320, 160, 300};
   vp.target = {330, 170, 0};
   TerrainHierarchy raw(f, 33, ErrorPropagation::kNested, false);
@@ -200,7 +201,7 @@ TEST(Checks, SeamCheckFailsWithoutEqualisedSeams) {
   EXPECT_LE(fixed.max_px, 1.0);
   // random viewpoints over the same terrain: the broken variant cracks, the real one never
   int bad = 0;
-  for (const Viewpoint& v : random_viewpoints(f, 12, 9)) {
+  for (const scenes::Viewpoint& v : random_viewpoints(f, 12, 9)) {
     bad += !check_frame(raw, LambdaKind::kWindow, 1.0, v).seams_ok;
     const FrameCheck c = check_frame(h, LambdaKind::kWindow, 1.0, v);
     EXPECT_TRUE(c.seams_ok && c.conforming);
@@ -211,7 +212,7 @@ TEST(Checks, SeamCheckFailsWithoutEqualisedSeams) {
 TEST(ScreenError, ExcludesVerticesBehindTheNearPlane) {
   const HeightField f = test_field(33, 1, 1);
   TerrainHierarchy h(f, 33, ErrorPropagation::kNested);
-  Viewpoint vp;
+  scenes::Viewpoint vp;
   vp.eye = {160, 160, 400};
   vp.target = {160, 400, 400};  // looking north, level: the southern half is behind the camera
   const LodMesh mesh = refine(h, make_metric(LambdaKind::kWindow, test_camera(), 1, vp.eye));
@@ -230,12 +231,12 @@ TEST(ScreenError, MeasuresTheVisiblePartOfASegmentCrossingTheWindowEdge) {
   f.spacing = 10;
   f.z = {0, 150, 0};
   std::vector<double> z_lod = {200, 200, std::nan("")};
-  CameraSettings cam;
+  scenes::CameraSettings cam;
   cam.width = cam.height = 100;
   cam.fov_y_deg = 90;
   cam.near = 1;
   cam.far = 1000;
-  Viewpoint vp;
+  scenes::Viewpoint vp;
   vp.eye = {0, -100, 0};
   vp.target = {0, 0, 0};
   // vertex 0: z 0..200 crosses the top edge: the visible part z 0..100 is 50 px long
@@ -275,12 +276,12 @@ TEST(Checks, ThreeByThreeTilesConformAndSeamsAgree) {
   TerrainHierarchy h(f, 17, ErrorPropagation::kNested);
   TerrainHierarchy raw(f, 17, ErrorPropagation::kNested, false);
   int raw_bad = 0;
-  std::vector<Viewpoint> views = random_viewpoints(f, 16, 21);
-  Viewpoint centre;
+  std::vector<scenes::Viewpoint> views = random_viewpoints(f, 16, 21);
+  scenes::Viewpoint centre;
   centre.eye = {240, 240, 300};
   centre.target = {245, 250, 0};
   views.push_back(centre);
-  for (const Viewpoint& vp : views) {
+  for (const scenes::Viewpoint& vp : views) {
     const FrameCheck c = check_frame(h, LambdaKind::kWindow, 1.0, vp);
     EXPECT_TRUE(c.conforming);
     EXPECT_TRUE(c.seams_ok);

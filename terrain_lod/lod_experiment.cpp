@@ -35,7 +35,7 @@ LodSettings read_lod_experiment(const std::string& path) {
 LodSettings parse_lod_experiment(const std::string& text, const std::string& path) {
   TomlLocator loc(path);
   LodSettings s;
-  const StudyFile file = read_study_file(loc, text, "lod", {"title"}, true, &s);
+  const scenes::StudyFile file = scenes::read_study_file(loc, text, "lod", {"title"}, true, &s);
   if (const auto* n = file.root.get("title")) s.title = loc.string(*n, "title", {});
   const toml::table& t = file.table();
   loc.reject_unknown_keys(t, "lod.",
@@ -43,8 +43,9 @@ LodSettings parse_lod_experiment(const std::string& text, const std::string& pat
                            "error_propagation", "seams", "tile_size", "tiles", "spacing", "height_scale", "seed",
                            "feature_size", "octaves", "persistence", "height_file", "frames", "path_seed",
                            "flight_height", "look_ahead", "repetitions"});
-  if (const auto* n = t.get("platform")) s.platform = read_study_platform(loc, *n, "lod.platform");
-  read_camera_block(loc, t, "lod", &s.camera);
+  if (const auto* n = t.get("platform"))
+    s.platform = scenes::read_study_platform(loc, *n, "lod.platform");
+  scenes::read_camera_block(loc, t, "lod", &s.camera);
   if (const auto* n = t.get("tau")) {
     const auto& a = loc.array(*n, "lod.tau", 1, SIZE_MAX, "a non-empty array of pixel thresholds");
     s.tau.clear();

@@ -46,7 +46,7 @@
 
 namespace ra::lod {
 
-struct LodSettings : StudySettings {  // file, name, camera
+struct LodSettings : scenes::StudySettings {  // file, name, camera
   std::string title = "Terrain level of detail";
   std::string platform = "osmesa-llvmpipe";
   std::vector<double> tau{0.5, 1, 2, 4, 8};
@@ -56,7 +56,7 @@ struct LodSettings : StudySettings {  // file, name, camera
   bool equalise_seams = true;
   int tile_size = 257;
   int tiles_x = 2, tiles_y = 2;
-  TerrainParams terrain;  // seed, spacing, height_scale, feature_size, octaves, persistence
+  scenes::TerrainParams terrain;  // seed, spacing, height_scale, feature_size, octaves, persistence
   std::string height_file;  // resolved against the experiment file's folder; empty: generated
   int frames = 80;
   uint64_t path_seed = 1;

@@ -54,7 +54,7 @@ ImageDifference image_difference(const std::vector<uint8_t>& a, const std::vecto
 }
 
 struct LodRenderer::Impl {
-  CameraSettings cam;
+  scenes::CameraSettings cam;
   std::unique_ptr<GlContext> context;
   const GlApi* gl = nullptr;  // context->gl()
   ColourDepthFramebuffer target;
@@ -64,7 +64,8 @@ struct LodRenderer::Impl {
   std::vector<std::pair<GLsizei, size_t>> draws;  // per tile: index count, byte offset
 };
 
-LodRenderer::LodRenderer(const std::string& platform, const CameraSettings& cam, const HeightField& f)
+LodRenderer::LodRenderer(const std::string& platform, const scenes::CameraSettings& cam,
+                         const HeightField& f)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   const std::optional<PlatformSpec> spec = find_platform(platform);
@@ -117,7 +118,7 @@ LodRenderer::LodRenderer(const std::string& platform, const CameraSettings& cam,
   gl->ShadeModel(GL_SMOOTH);
   gl->ClearColor(0.55f, 0.70f, 0.90f, 1.0f);  // sky
   gl->MatrixMode(GL_PROJECTION);
-  gl->LoadMatrixd(projection_of(cam).m.data());
+  gl->LoadMatrixd(scenes::projection_of(cam).m.data());
   gl->MatrixMode(GL_MODELVIEW);
   if (gl->GetError() != GL_NO_ERROR) throw std::runtime_error("GL error while setting up the terrain renderer");
 }
@@ -137,10 +138,10 @@ std::string LodRenderer::gl_version() const {
   return reinterpret_cast<const char*>(impl_->gl->GetString(GL_VERSION));
 }
 
-void LodRenderer::set_viewpoint(const Viewpoint& vp) {
+void LodRenderer::set_viewpoint(const scenes::Viewpoint& vp) {
   const GlApi* gl = impl_->gl;
   gl->MatrixMode(GL_MODELVIEW);
-  gl->LoadMatrixd(look_at(vp).m.data());
+  gl->LoadMatrixd(scenes::look_at(vp).m.data());
 }
 
 void LodRenderer::upload(const LodMesh& mesh) {

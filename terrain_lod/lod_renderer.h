@@ -38,7 +38,8 @@ ImageDifference image_difference(const std::vector<uint8_t>& a, const std::vecto
 class LodRenderer {
  public:
   // Throws UserError for a platform without a Mesa driver, std::runtime_error when GL fails.
-  LodRenderer(const std::string& platform, const CameraSettings& cam, const HeightField& field);
+  LodRenderer(const std::string& platform, const scenes::CameraSettings& cam,
+              const HeightField& field);
   ~LodRenderer();
   LodRenderer(const LodRenderer&) = delete;
   LodRenderer& operator=(const LodRenderer&) = delete;
@@ -46,7 +47,7 @@ class LodRenderer {
   std::string gl_renderer() const;  // GL_RENDERER
   std::string gl_version() const;   // GL_VERSION
 
-  void set_viewpoint(const Viewpoint& vp);
+  void set_viewpoint(const scenes::Viewpoint& vp);
   // Uploads the mesh's strips (untimed).
   void upload(const LodMesh& mesh);
   // One timed frame of the uploaded mesh; returns microseconds (CPU, clear + draw + glFinish).

@@ -44,10 +44,10 @@ std::string fmt(double v, const char* f) {
   return b;
 }
 
-Scene layout_scene(const HeightField& f) {
-  Scene s;
+scenes::Scene layout_scene(const HeightField& f) {
+  scenes::Scene s;
   s.kind = "terrain";
-  SceneLayout& l = s.layout;
+  scenes::SceneLayout& l = s.layout;
   l.ground_nx = f.nx;
   l.ground_ny = f.ny;
   l.ground_spacing = f.spacing;
@@ -135,11 +135,11 @@ std::vector<TableRow> read_table(const std::string& dir) {
 //    "frames": [{"full_us": [..], "lod": [per tau {"triangles", "us": [..], "image_mean_abs",
 //                                                  "image_differing"}]}]}
 json draw_frames(const LodSettings& s, const HeightField& field, const TerrainHierarchy& hierarchy,
-                 const std::vector<Viewpoint>& path, const LodMesh& full, bool progress) {
+                 const std::vector<scenes::Viewpoint>& path, const LodMesh& full, bool progress) {
   LodRenderer renderer(s.platform, s.camera, field);
   json frames = json::array();
   for (size_t fi = 0; fi < path.size(); ++fi) {
-    const Viewpoint& vp = path[fi];
+    const scenes::Viewpoint& vp = path[fi];
     renderer.set_viewpoint(vp);
     renderer.upload(full);
     std::vector<double> full_us;
@@ -206,9 +206,9 @@ struct FrameChecks {
 // tau); the experiment's lambda with the drawing times and image differences the measuring process
 // gave. Writes DIR/frames.csv.
 FrameChecks check_frames(const LodSettings& s, const HeightField& field,
-                         const TerrainHierarchy& hierarchy, const std::vector<Viewpoint>& path,
-                         const LodMesh& full, const json& drawn_frames, const std::string& dir,
-                         bool progress) {
+                         const TerrainHierarchy& hierarchy,
+                         const std::vector<scenes::Viewpoint>& path, const LodMesh& full,
+                         const json& drawn_frames, const std::string& dir, bool progress) {
   std::vector<LambdaKind> lambdas = {s.lambda};
   lambdas.insert(lambdas.end(), s.check_lambdas.begin(), s.check_lambdas.end());
 
@@ -219,7 +219,7 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
   int& main_failures = out.main_failures;
   std::string& first_failure = out.first_failure;
   for (size_t fi = 0; fi < path.size(); ++fi) {
-    const Viewpoint& vp = path[fi];
+    const scenes::Viewpoint& vp = path[fi];
     const json& drawn_frame = drawn_frames.at(fi);
     const double full_median =
         stats::median_or_nan(drawn_frame.at("full_us").get<std::vector<double>>());
@@ -289,12 +289,12 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
   const TerrainHierarchy hierarchy(field, s.tile_size, s.propagation, s.equalise_seams);
   const double hierarchy_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - h0).count();
 
-  CameraPathParams pp;
+  scenes::CameraPathParams pp;
   pp.seed = s.path_seed;
   pp.frames = s.frames;
   pp.flight_height = s.flight_height;
   pp.look_ahead = s.look_ahead;
-  const std::vector<Viewpoint> path = generate_camera_path(layout_scene(field), pp);
+  const std::vector<scenes::Viewpoint> path = scenes::generate_camera_path(layout_scene(field), pp);
 
   const LodMesh full = full_resolution(hierarchy);
   json drawn;

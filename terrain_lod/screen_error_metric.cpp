@@ -23,7 +23,7 @@ LambdaKind parse_lambda_kind(const std::string& name) {
   throw std::invalid_argument("unknown lambda '" + name + "' (allowed: window, planar, spherical)");
 }
 
-double lambda_for(LambdaKind kind, const CameraSettings& cam) {
+double lambda_for(LambdaKind kind, const scenes::CameraSettings& cam) {
   const double w = cam.width, h = cam.height;
   const double f = 0.5 * h / std::tan(cam.half_fov_y());  // focal length, pixels
   const double phi_x = 2 * std::atan(0.5 * w / f);          // horizontal field of view, radians
@@ -49,7 +49,8 @@ double ScreenErrorMetric::rho(double eps, double radius, Vec3 p) const {
   return lambda * eps / (d - radius);
 }
 
-ScreenErrorMetric make_metric(LambdaKind kind, const CameraSettings& cam, double tau, Vec3 eye) {
+ScreenErrorMetric make_metric(LambdaKind kind, const scenes::CameraSettings& cam, double tau,
+                              Vec3 eye) {
   ScreenErrorMetric m;
   m.kind = kind;
   m.lambda = lambda_for(kind, cam);

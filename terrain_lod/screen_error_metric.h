@@ -38,7 +38,7 @@ const char* lambda_kind_name(LambdaKind kind);  // "planar", "spherical", "windo
 LambdaKind parse_lambda_kind(const std::string& name);
 
 // Pixels per radian of `kind` for the camera (vertical fov cam.fov_y_deg, window width x height).
-double lambda_for(LambdaKind kind, const CameraSettings& cam);
+double lambda_for(LambdaKind kind, const scenes::CameraSettings& cam);
 
 struct ScreenErrorMetric {
   LambdaKind kind = LambdaKind::kWindow;
@@ -52,6 +52,7 @@ struct ScreenErrorMetric {
   bool active(double eps, double radius, Vec3 p) const { return rho(eps, radius, p) > tau; }
 };
 
-ScreenErrorMetric make_metric(LambdaKind kind, const CameraSettings& cam, double tau, Vec3 eye);
+ScreenErrorMetric make_metric(LambdaKind kind, const scenes::CameraSettings& cam, double tau,
+                              Vec3 eye);
 
 }  // namespace ra::lod

@@ -36,7 +36,7 @@ struct ObjectBuffers {
 
 struct SceneRenderer::Impl {
   RendererInfo info;
-  CameraSettings cam;
+  scenes::CameraSettings cam;
   bool gpu = false;
   std::unique_ptr<GlContext> context;
   const GlApi* gl = nullptr;  // context->gl()
@@ -85,7 +85,7 @@ struct SceneRenderer::Impl {
   }
 };
 
-SceneRenderer::SceneRenderer(const std::string& platform, const CameraSettings& cam,
+SceneRenderer::SceneRenderer(const std::string& platform, const scenes::CameraSettings& cam,
                              bool gpu_timer)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
@@ -135,7 +135,7 @@ SceneRenderer::SceneRenderer(const std::string& platform, const CameraSettings& 
   gl->EnableClientState(GL_VERTEX_ARRAY);
   gl->EnableClientState(GL_TEXTURE_COORD_ARRAY);
   gl->MatrixMode(GL_PROJECTION);
-  gl->LoadMatrixd(projection_of(cam).m.data());
+  gl->LoadMatrixd(scenes::projection_of(cam).m.data());
   gl->MatrixMode(GL_MODELVIEW);
   gl->LoadIdentity();
   if (gl->GetError() != GL_NO_ERROR) throw std::runtime_error("GL error setting up " + platform);
@@ -149,18 +149,18 @@ SceneRenderer::~SceneRenderer() {
 }
 
 const RendererInfo& SceneRenderer::info() const { return impl_->info; }
-const CameraSettings& SceneRenderer::camera() const { return impl_->cam; }
+const scenes::CameraSettings& SceneRenderer::camera() const { return impl_->cam; }
 bool SceneRenderer::measuring_gpu() const { return impl_->gpu; }
 std::size_t SceneRenderer::object_count() const { return impl_->objects.size(); }
 
-void SceneRenderer::upload(const Scene& scene) {
+void SceneRenderer::upload(const scenes::Scene& scene) {
   const GlApi* gl = impl_->gl;
   Impl& m = *impl_;
   m.release_scene();
   m.textures.resize(scene.textures.size());
   if (!m.textures.empty()) gl->GenTextures(GLsizei(m.textures.size()), m.textures.data());
   for (std::size_t t = 0; t < scene.textures.size(); ++t) {
-    const Texture& tex = scene.textures[t];
+    const scenes::Texture& tex = scene.textures[t];
     if (tex.rgba.size() != std::size_t(tex.width) * tex.height * 4)
       throw std::runtime_error("texture " + std::to_string(t) + " has the wrong size");
     gl->BindTexture(GL_TEXTURE_2D, m.textures[t]);
@@ -176,7 +176,7 @@ void SceneRenderer::upload(const Scene& scene) {
   std::vector<float> interleaved;
   std::vector<uint32_t> indices;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    const StripMesh& mesh = scene.objects[i].mesh;
+    const scenes::StripMesh& mesh = scene.objects[i].mesh;
     ObjectBuffers& o = m.objects[i];
     const std::size_t nv = mesh.vertex_count();
     interleaved.assign(nv * 5, 0.0f);
@@ -186,7 +186,7 @@ void SceneRenderer::upload(const Scene& scene) {
         for (int c = 0; c < 2; ++c) interleaved[v * 5 + 3 + c] = mesh.texcoords[v * 2 + c];
     }
     indices.clear();
-    for (const TriangleStrip& s : mesh.strips) {
+    for (const scenes::TriangleStrip& s : mesh.strips) {
       if (s.indices.size() < 3) continue;  // draws nothing
       StripDraw d;
       d.count = GLsizei(s.indices.size());
@@ -216,10 +216,10 @@ void SceneRenderer::upload(const Scene& scene) {
   if (gl->GetError() != GL_NO_ERROR) throw std::runtime_error("GL error uploading the scene");
 }
 
-void SceneRenderer::set_viewpoint(const Viewpoint& vp) {
+void SceneRenderer::set_viewpoint(const scenes::Viewpoint& vp) {
   const GlApi* gl = impl_->gl;
   gl->MatrixMode(GL_MODELVIEW);
-  gl->LoadMatrixd(look_at(vp).m.data());
+  gl->LoadMatrixd(scenes::look_at(vp).m.data());
 }
 
 DrawTime SceneRenderer::time_draw(const std::vector<int>& objects, bool with_clear,

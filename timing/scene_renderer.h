@@ -57,22 +57,23 @@ class SceneRenderer {
   // and LP_NUM_THREADS=0 unless already set), a framebuffer object of cam.width x cam.height with
   // RGBA8 colour and 24-bit depth. `gpu_timer`: use GL_TIME_ELAPSED when supported.
   // Throws ra::UserError for a platform without a Mesa driver, std::runtime_error when GL fails.
-  SceneRenderer(const std::string& platform, const CameraSettings& cam, bool gpu_timer = true);
+  SceneRenderer(const std::string& platform, const scenes::CameraSettings& cam,
+                bool gpu_timer = true);
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
 
   const RendererInfo& info() const;
-  const CameraSettings& camera() const;
+  const scenes::CameraSettings& camera() const;
   bool measuring_gpu() const;  // GL_TIME_ELAPSED queries are issued
 
   // Uploads `scene` (replacing the previous one): per object a vertex buffer (x y z s t floats)
   // and an index buffer holding its strips; every texture. Keeps no pointer into `scene`.
-  void upload(const Scene& scene);
+  void upload(const scenes::Scene& scene);
   std::size_t object_count() const;
 
   // Sets the modelview matrix of `vp` (the projection is the camera's).
-  void set_viewpoint(const Viewpoint& vp);
+  void set_viewpoint(const scenes::Viewpoint& vp);
 
   // One timed repetition. `with_clear`: the colour and depth clear is part of the timed commands
   // (a whole frame); otherwise it is done and finished before the clock starts (one object

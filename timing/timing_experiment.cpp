@@ -43,7 +43,7 @@ TimingSettings read_timing_experiment(const std::string& path) {
 TimingSettings parse_timing_experiment(const std::string& text, const std::string& path) {
   Locator loc(path);
   TimingSettings s;
-  const StudyFile file = read_study_file(loc, text, "timing", {"scene"}, false, &s);
+  const scenes::StudyFile file = scenes::read_study_file(loc, text, "timing", {"scene"}, false, &s);
   const toml::table& root = file.root;
   const toml::table& t = file.table();
   loc.reject_unknown_keys(
@@ -69,7 +69,7 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
       s.platforms.push_back(str->get());
     }
   }
-  read_camera_block(loc, t, "timing", &s.camera);
+  scenes::read_camera_block(loc, t, "timing", &s.camera);
   parse_work(loc, t, "timing.", s.work);
   if (const auto* n = t.get("study_runs"))
     s.study_runs = int(loc.integer(*n, "timing.study_runs", 1, 100));
@@ -111,7 +111,7 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
   }
   const double deg = M_PI / 180.0;
   s.pos_grid.alpha_min = s.alpha_min_deg * deg;
-  s.pos_grid.alpha_max = max_clipped_alpha(s.camera);
+  s.pos_grid.alpha_max = scenes::max_clipped_alpha(s.camera);
   if (s.pos_grid.alpha_max <= s.pos_grid.alpha_min)
     loc.fail(t.get("alpha_min_deg"), "'timing.alpha_min_deg' must be below the largest clipped "
                                      "alpha of the window (" +
@@ -138,16 +138,16 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
     }
   }
 
-  s.scenes = parse_scene_specs(root, path);
+  s.scenes = scenes::parse_scene_specs(root, path);
   if (s.scenes.empty())
     loc.fail(nullptr, "no [[scene]] table: the study needs at least one scene (kind = \"city\", "
                       "\"terrain\" or \"forest\")");
-  const SceneSpec* system_scene = &s.scenes.front();
+  const scenes::SceneSpec* system_scene = &s.scenes.front();
   if (const auto* n = t.get("system_task_scene")) {
     const auto* str = n->as_string();
     std::string names;
     system_scene = nullptr;
-    for (const SceneSpec& spec : s.scenes) {
+    for (const scenes::SceneSpec& spec : s.scenes) {
       names += (names.empty() ? "" : ", ") + spec.name;
       if (str && spec.name == str->get()) system_scene = &spec;
     }

@@ -52,7 +52,7 @@ struct WorkSettings {
   int pos_repetitions = 3;  // timed draws per per-object sampling table point (median)
 };
 
-struct TimingSettings : StudySettings {  // file, name, camera
+struct TimingSettings : scenes::StudySettings {  // file, name, camera
   std::vector<std::string> platforms{"osmesa-llvmpipe"};
   WorkSettings work;
   std::map<std::string, WorkSettings> platform_work;  // resolved per platform (defaults filled in)
@@ -64,7 +64,7 @@ struct TimingSettings : StudySettings {  // file, name, camera
   PosGrid pos_grid;  // alpha range filled from alpha_min_deg and the camera
   double pos_prune_alpha_deg = 3;
   PosLookup pos_lookup = PosLookup::kInterpolate;
-  std::vector<SceneSpec> scenes;
+  std::vector<scenes::SceneSpec> scenes;
   std::string system_task_scene;  // a scene's name; empty: the first scene
   int system_task_frame = -1;     // a frame of that scene's camera path; -1: the middle one
   // Independent runs of the whole measurement (every platform measured afresh each time), to see

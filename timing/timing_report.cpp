@@ -211,7 +211,8 @@ nlohmann::json timing_json(const StudyResults& r) {
   nlohmann::json j = document_header("timing", 1);
   j["wall_s"] = r.wall_s;
   nlohmann::json scenes = nlohmann::json::array();
-  for (const SceneSpec& sc : s.scenes) scenes.push_back({{"name", sc.name}, {"kind", sc.kind}});
+  for (const scenes::SceneSpec& sc : s.scenes)
+    scenes.push_back({{"name", sc.name}, {"kind", sc.kind}});
   nlohmann::json work = nlohmann::json::object();
   for (const auto& [p, w] : s.platform_work)
     work[p] = {{"repetitions", w.repetitions},

@@ -105,12 +105,12 @@ StudyRunResult run_timing_study(const StudyRunOptions& options, bool figures) {
                                              : Progress();
 
   // Scenes and paths are built once, before any GL (the children inherit them).
-  std::vector<Scene> scenes;
-  std::vector<std::vector<Viewpoint>> paths;
-  for (const SceneSpec& spec : r.settings.scenes) {
+  std::vector<scenes::Scene> scenes;
+  std::vector<std::vector<scenes::Viewpoint>> paths;
+  for (const scenes::SceneSpec& spec : r.settings.scenes) {
     if (progress) progress("building scene " + spec.name + " (" + spec.kind + ")");
-    scenes.push_back(build_scene(spec));
-    paths.push_back(build_camera_path(spec, scenes.back()));
+    scenes.push_back(scenes::build_scene(spec));
+    paths.push_back(scenes::build_camera_path(spec, scenes.back()));
   }
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const bool system_scene = r.settings.system_task_scene.empty()

@@ -95,19 +95,19 @@ void measure_object(SceneRenderer& r, int object, int reps, ObjectSample& s) {
 // 3. The camera path: every frame_stride-th frame drawn whole `repetitions` times, and the
 // sample of each object in its view. Returns the objects the path sees.
 std::set<int> measure_camera_path(SceneRenderer& r, const TimingSettings& settings,
-                                  const WorkSettings& work, const Scene& scene,
-                                  const std::vector<Viewpoint>& path,
+                                  const WorkSettings& work, const scenes::Scene& scene,
+                                  const std::vector<scenes::Viewpoint>& path,
                                   const std::vector<ObjectStatic>& stat, Reporter& rep,
                                   const std::string& tag, SceneMeasurements& sm) {
-  const CameraSettings& cam = settings.camera;
-  const Mat4 projection = projection_of(cam);
+  const scenes::CameraSettings& cam = settings.camera;
+  const Mat4 projection = scenes::projection_of(cam);
   std::set<int> seen;
   int measured_frames = 0;
   const int total_frames = (int(path.size()) + work.frame_stride - 1) / work.frame_stride;
   for (std::size_t f = 0; f < path.size(); f += std::size_t(work.frame_stride)) {
-    const Viewpoint& vp = path[f];
-    const Mat4 view = look_at(vp);
-    const Frustum fr = frustum_of(projection * view);
+    const scenes::Viewpoint& vp = path[f];
+    const Mat4 view = scenes::look_at(vp);
+    const scenes::Frustum fr = scenes::frustum_of(projection * view);
     FrameSample fs;
     fs.frame = int(f);
     std::vector<int> visible;
@@ -124,9 +124,9 @@ std::set<int> measure_camera_path(SceneRenderer& r, const TimingSettings& settin
       const int o = visible[i];
       ObjectSample s;
       s.object = o;
-      const BoundingSphere& b = scene.objects[std::size_t(o)].bounds;
-      s.alpha = clipped_alpha(view, cam, b);
-      view_direction_angles(vp.eye, b.centre, &s.gamma, &s.phi);
+      const scenes::BoundingSphere& b = scene.objects[std::size_t(o)].bounds;
+      s.alpha = scenes::clipped_alpha(view, cam, b);
+      scenes::view_direction_angles(vp.eye, b.centre, &s.gamma, &s.phi);
       s.triangles = stat[std::size_t(o)].triangles;
       s.vertices = stat[std::size_t(o)].vertices;
       s.transformed = stat[std::size_t(o)].transformed;
@@ -145,20 +145,20 @@ std::set<int> measure_camera_path(SceneRenderer& r, const TimingSettings& settin
 
 // 4. The per-object sampling tables of the objects the path sees (medians of pos_repetitions).
 void measure_pos_tables(SceneRenderer& r, const TimingSettings& settings, const WorkSettings& work,
-                        const Scene& scene, const std::set<int>& seen, Reporter& rep,
+                        const scenes::Scene& scene, const std::set<int>& seen, Reporter& rep,
                         const std::string& tag, SceneMeasurements& sm) {
-  const CameraSettings& cam = settings.camera;
+  const scenes::CameraSettings& cam = settings.camera;
   const double deg = M_PI / 180.0;
   int done = 0;
   for (int o : seen) {
     MeasuredPosTable mt;
     mt.object = o;
     mt.table = PosTable(settings.pos_grid, settings.pos_prune_alpha_deg * deg);
-    const BoundingSphere& b = scene.objects[std::size_t(o)].bounds;
+    const scenes::BoundingSphere& b = scene.objects[std::size_t(o)].bounds;
     for (const auto& p : mt.table.points_to_measure()) {
-      const Viewpoint vp =
-          viewpoint_for(b, cam, settings.pos_grid.alpha_at(p[0]), settings.pos_grid.gamma_at(p[1]),
-                        settings.pos_grid.phi_at(p[2]));
+      const scenes::Viewpoint vp =
+          scenes::viewpoint_for(b, cam, settings.pos_grid.alpha_at(p[0]),
+                                settings.pos_grid.gamma_at(p[1]), settings.pos_grid.phi_at(p[2]));
       r.set_viewpoint(vp);
       std::vector<double> cpu;
       for (int k = 0; k < work.pos_repetitions; ++k) cpu.push_back(r.time_draw({o}, false).cpu_us);
@@ -173,8 +173,8 @@ void measure_pos_tables(SceneRenderer& r, const TimingSettings& settings, const 
 }  // namespace
 
 PlatformMeasurements measure_platform(const TimingSettings& settings, const std::string& platform,
-                                      const std::vector<Scene>& scenes,
-                                      const std::vector<std::vector<Viewpoint>>& paths,
+                                      const std::vector<scenes::Scene>& scenes,
+                                      const std::vector<std::vector<scenes::Viewpoint>>& paths,
                                       const Progress& progress) {
   const auto t_start = Clock::now();
   const WorkSettings& work = settings.work_for(platform);
@@ -185,15 +185,15 @@ PlatformMeasurements measure_platform(const TimingSettings& settings, const std:
   rep.line(r.info().renderer + " (" + r.info().version + "), GL_TIME_ELAPSED " +
                (r.info().timer_query ? "supported" : "not supported"),
            true);
-  const CameraSettings& cam = settings.camera;
-  const Mat4 projection = projection_of(cam);
+  const scenes::CameraSettings& cam = settings.camera;
+  const Mat4 projection = scenes::projection_of(cam);
   const double deg = M_PI / 180.0;
-  const double alpha_lo = settings.alpha_min_deg * deg, alpha_hi = max_clipped_alpha(cam);
+  const double alpha_lo = settings.alpha_min_deg * deg, alpha_hi = scenes::max_clipped_alpha(cam);
 
   for (std::size_t si = 0; si < scenes.size(); ++si) {
     const auto t_scene = Clock::now();
-    const Scene& scene = scenes[si];
-    const std::vector<Viewpoint>& path = paths[si];
+    const scenes::Scene& scene = scenes[si];
+    const std::vector<scenes::Viewpoint>& path = paths[si];
     SceneMeasurements sm;
     sm.name = settings.scenes[si].name;
     sm.kind = scene.kind;
@@ -204,21 +204,21 @@ PlatformMeasurements measure_platform(const TimingSettings& settings, const std:
 
     std::vector<ObjectStatic> stat(scene.objects.size());
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-      const StripMesh& mesh = scene.objects[o].mesh;
+      const scenes::StripMesh& mesh = scene.objects[o].mesh;
       stat[o].triangles = int64_t(mesh.triangle_count());
       stat[o].vertices = int64_t(mesh.vertex_count());
-      stat[o].transformed = transformed_vertices(mesh, settings.cache_size);
+      stat[o].transformed = scenes::transformed_vertices(mesh, settings.cache_size);
       sm.triangles += stat[o].triangles;
       sm.vertices += stat[o].vertices;
       sm.transformed += stat[o].transformed;
     }
     sm.objects = int64_t(scene.objects.size());
     sm.textures = int64_t(scene.textures.size());
-    sm.state_switches = scene_texture_binds(scene);
+    sm.state_switches = scenes::scene_texture_binds(scene);
 
     // 1. frame base: clear + glFinish
     {
-      r.set_viewpoint(path.empty() ? Viewpoint{} : path.front());
+      r.set_viewpoint(path.empty() ? scenes::Viewpoint{} : path.front());
       const int n = std::max(10, work.repetitions * 10);
       for (int k = 0; k < n; ++k) sm.frame_base_us.push_back(r.time_draw({}, true).cpu_us);
     }
@@ -230,12 +230,12 @@ PlatformMeasurements measure_platform(const TimingSettings& settings, const std:
     for (int k = 0; k < share; ++k) {
       ObjectSample s;
       s.object = int(rng.integer(0, int64_t(scene.objects.size()) - 1));
-      const BoundingSphere& b = scene.objects[std::size_t(s.object)].bounds;
+      const scenes::BoundingSphere& b = scene.objects[std::size_t(s.object)].bounds;
       const double alpha = alpha_lo * std::pow(alpha_hi / alpha_lo, rng.uniform01());
       s.gamma = rng.uniform(0, 2 * M_PI);
       s.phi = rng.uniform(settings.phi_min_deg * deg, settings.phi_max_deg * deg);
-      const Viewpoint vp = viewpoint_for(b, cam, alpha, s.gamma, s.phi);
-      s.alpha = clipped_alpha(look_at(vp), cam, b);
+      const scenes::Viewpoint vp = scenes::viewpoint_for(b, cam, alpha, s.gamma, s.phi);
+      s.alpha = scenes::clipped_alpha(scenes::look_at(vp), cam, b);
       r.set_viewpoint(vp);
       s.triangles = stat[std::size_t(s.object)].triangles;
       s.vertices = stat[std::size_t(s.object)].vertices;
@@ -260,7 +260,7 @@ PlatformMeasurements measure_platform(const TimingSettings& settings, const std:
                         std::to_string(path.size() - 1) + ", the frames of scene " + sm.name + ")");
       const std::size_t f = settings.system_task_frame >= 0 ? std::size_t(settings.system_task_frame)
                                                             : path.size() / 2;
-      const Frustum fr = frustum_of(projection * look_at(path[f]));
+      const scenes::Frustum fr = scenes::frustum_of(projection * scenes::look_at(path[f]));
       std::vector<int> visible;
       for (std::size_t o = 0; o < scene.objects.size(); ++o)
         if (fr.intersects(scene.objects[o].bounds)) visible.push_back(int(o));
@@ -284,12 +284,11 @@ PlatformMeasurements measure_platform(const TimingSettings& settings, const std:
   return out;
 }
 
-PlatformMeasurements measure_platform_in_child(const TimingSettings& settings,
-                                               const std::string& platform,
-                                               const std::vector<Scene>& scenes,
-                                               const std::vector<std::vector<Viewpoint>>& paths,
-                                               const std::string& scratch_dir,
-                                               const Progress& progress) {
+PlatformMeasurements measure_platform_in_child(
+    const TimingSettings& settings, const std::string& platform,
+    const std::vector<scenes::Scene>& scenes,
+    const std::vector<std::vector<scenes::Viewpoint>>& paths, const std::string& scratch_dir,
+    const Progress& progress) {
   auto failed = [&](const std::string& error) {
     PlatformMeasurements m;
     m.renderer.platform = platform;

@@ -81,18 +81,17 @@ using Progress = std::function<void(const std::string& line)>;
 // Measures one platform in this process (makes its GL context: must be the process's first).
 // `scenes` and `paths` are built from settings.scenes, in order.
 PlatformMeasurements measure_platform(const TimingSettings& settings, const std::string& platform,
-                                      const std::vector<Scene>& scenes,
-                                      const std::vector<std::vector<Viewpoint>>& paths,
+                                      const std::vector<scenes::Scene>& scenes,
+                                      const std::vector<std::vector<scenes::Viewpoint>>& paths,
                                       const Progress& progress);
 
 // Measures `platform` in a forked child process and returns what it measured; a child that fails
 // or dies is reported in PlatformMeasurements::error. `scratch_dir` holds the child's result file.
-PlatformMeasurements measure_platform_in_child(const TimingSettings& settings,
-                                               const std::string& platform,
-                                               const std::vector<Scene>& scenes,
-                                               const std::vector<std::vector<Viewpoint>>& paths,
-                                               const std::string& scratch_dir,
-                                               const Progress& progress);
+PlatformMeasurements measure_platform_in_child(
+    const TimingSettings& settings, const std::string& platform,
+    const std::vector<scenes::Scene>& scenes,
+    const std::vector<std::vector<scenes::Viewpoint>>& paths, const std::string& scratch_dir,
+    const Progress& progress);
 
 nlohmann::json to_json(const PlatformMeasurements& m);
 PlatformMeasurements platform_measurements_from_json(const nlohmann::json& j);
