@@ -38,7 +38,7 @@ TEST(PaperConventions, PointsWithinHalfAPixelOutsideTheWindowBecomeFalseInvisibl
   std::vector<Record> rs;
   int in_window = 0, in_band = 0;
   for (std::uint64_t i = 0; i < 4000; ++i) {
-    const Vec3 p = make_primitive(7, Kind::kPoint, i).v[0];
+    const geometry::Vec3 p = make_primitive(7, geometry::Kind::kPoint, i).v[0];
     // By hand: in front between the planes, then the window coordinates.
     const bool depth_ok = p.z < -0.01 && p.z > -10;
     const double wx = (p.x / -p.z + 1) * 4, wy = (p.y / -p.z + 1) * 4;

@@ -208,7 +208,7 @@ std::vector<int> RunRecords::view_groups(PrimitiveKind kind) const {
 }
 
 std::string view_group_label(int view_group) {
-  View v;
+  geometry::View v;
   v.group = view_group;
   return v.group_name();
 }
@@ -377,7 +377,7 @@ class FileParser {
     if (view > int(e.views.size()))
       throw UserError(path_ + ": view " + std::to_string(view) + " is not in the run's experiment (" +
                       std::to_string(e.views.size()) + " views)");
-    const Primitive point = make_primitive(e.seed, Kind::kPoint, index);
+    const geometry::Primitive point = make_primitive(e.seed, geometry::Kind::kPoint, index);
     if (!inside_window_margin(e.views[std::size_t(view - 1)], point.v[0], options_.point_margin_px))
       return visibility;
     ++chunk_.points_within_margin;

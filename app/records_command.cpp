@@ -68,7 +68,7 @@ void stream_records(const RecordsOptions& o) {
   check_names(o.platforms, exp.platforms, "--platform", o.dir);
   check_names(o.kinds, {"point", "line", "triangle"}, "--kind", o.dir);
   std::vector<std::string> view_ids;
-  for (const View& v : exp.views) view_ids.push_back(std::to_string(v.id));
+  for (const geometry::View& v : exp.views) view_ids.push_back(std::to_string(v.id));
   std::vector<std::string> asked_views;
   for (int v : o.views) asked_views.push_back(std::to_string(v));
   check_names(asked_views, view_ids, "--view", o.dir);
@@ -103,8 +103,8 @@ void stream_records(const RecordsOptions& o) {
   text += '\n';
   std::size_t missing = 0;
   for (const Shard& s : plan_shards(exp)) {
-    if (!wanted(o.platforms, s.platform) || !wanted(o.kinds, std::string(kind_name(s.kind))) ||
-        !wanted(o.views, s.view))
+    if (!wanted(o.platforms, s.platform) ||
+        !wanted(o.kinds, std::string(geometry::kind_name(s.kind))) || !wanted(o.views, s.view))
       continue;
     const std::string path = s.records_path(o.dir);
     if (!std::filesystem::exists(path)) {

@@ -84,7 +84,7 @@ void register_show_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, audit::kMaxImageScale));
   cmd->callback([&exit_code] {
     const audit::PrimitiveImage im = audit::show_primitive(q);
-    const View& v = im.view;
+    const geometry::View& v = im.view;
     std::printf("wrote %s (%d x %d px: window pixels x %d-%d, y %d-%d of %d x %d, %d px each)\n",
                 im.path.c_str(), im.width, im.height, im.shown.x0, im.shown.x1 - 1, im.shown.y0,
                 im.shown.y1 - 1, v.width, v.height, im.scale);

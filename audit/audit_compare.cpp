@@ -19,13 +19,13 @@ struct Row {
   PrimitiveState state;
 };
 
-double headline_value(const Record& r, Kind kind) {
+double headline_value(const Record& r, geometry::Kind kind) {
   switch (kind) {
-    case Kind::kPoint:
+    case geometry::Kind::kPoint:
       return r.pe;
-    case Kind::kLine:
+    case geometry::Kind::kLine:
       return r.lse_u;
-    case Kind::kTriangle:
+    case geometry::Kind::kTriangle:
       return r.te_u;
   }
   return kNA;
@@ -33,14 +33,14 @@ double headline_value(const Record& r, Kind kind) {
 
 // The records of one platform, kind and view of a run, ascending by index.
 std::vector<Row> read_view(const std::string& dir, const std::vector<Shard>& plan,
-                           const std::string& platform, Kind kind, int view) {
+                           const std::string& platform, geometry::Kind kind, int view) {
   std::vector<Row> rows;
   for (const Shard& s : plan) {
     if (s.platform != platform || s.kind != kind || s.view != view) continue;
     const std::string path = s.records_path(dir);
     if (!fs::exists(path)) continue;  // a missing shard: reported by missing_shards()
     read_records(path, [&](const Record& r) {
-      if (r.platform != platform || r.kind != kind_name(kind) || r.view != view ||
+      if (r.platform != platform || r.kind != geometry::kind_name(kind) || r.view != view ||
           r.index < s.begin || r.index >= s.end)
         throw UserError(path + ": holds a record of " + r.platform + " " + r.kind + " view " +
                         std::to_string(r.view) + " index " + std::to_string(r.index) +
@@ -59,7 +59,7 @@ bool failed_status(CaseStatus s) { return s == CaseStatus::kCrash || s == CaseSt
 
 struct Task {
   std::size_t pair;
-  Kind kind;
+  geometry::Kind kind;
   int view, view_group;
 };
 
@@ -119,13 +119,13 @@ std::string PlatformPair::label() const {
   return baseline == current ? current : baseline + " vs " + current;
 }
 
-const char* headline_metric(Kind kind) {
+const char* headline_metric(geometry::Kind kind) {
   switch (kind) {
-    case Kind::kPoint:
+    case geometry::Kind::kPoint:
       return "pe";
-    case Kind::kLine:
+    case geometry::Kind::kLine:
       return "lse_u";
-    case Kind::kTriangle:
+    case geometry::Kind::kTriangle:
       return "te_u";
   }
   return "";
@@ -169,8 +169,9 @@ PrimitiveComparison compare_primitives(const std::string& baseline_dir,
   // One task per pair, kind and view (the experiments agree on views and counts: same hash).
   std::vector<Task> tasks;
   for (std::size_t p = 0; p < pairs.size(); ++p)
-    for (Kind k : {Kind::kPoint, Kind::kLine, Kind::kTriangle})
-      for (const View& v : current_exp.views)
+    for (geometry::Kind k :
+         {geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle})
+      for (const geometry::View& v : current_exp.views)
         if (current_exp.counts[int(k)] > 0) tasks.push_back({p, k, v.id, v.group});
 
   std::vector<TaskResult> results(tasks.size());

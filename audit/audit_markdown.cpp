@@ -60,8 +60,8 @@ void new_violations(std::ostream& md, const AuditResult& r) {
   for (const ChangedPrimitive& c : r.primitives.changed) {
     if (c.recheck == Recheck::kFlake || !new_violation(c)) continue;
     if (++total > kMarkdownListed) continue;
-    md << "- " << r.pairs[c.pair].label() << " " << kind_name(c.kind) << ", view " << c.view
-       << " (group " << analysis::view_group_label(c.view_group) << "), index " << c.index
+    md << "- " << r.pairs[c.pair].label() << " " << geometry::kind_name(c.kind) << ", view "
+       << c.view << " (group " << analysis::view_group_label(c.view_group) << "), index " << c.index
        << ": " << verdict_text(c.before) << " -> " << verdict_text(c.after) << "  \n  `"
        << show_command(r, c) << "`\n";
   }
@@ -80,9 +80,9 @@ void list_primitives(std::ostream& md, const AuditResult& r, bool flakes) {
     if ((c.recheck == Recheck::kFlake) != flakes) continue;
     if (++total > kMarkdownListed) continue;
     ++shown;
-    md << "- " << r.pairs[c.pair].label() << " " << kind_name(c.kind) << ", view " << c.view
-       << " (group " << analysis::view_group_label(c.view_group) << "), index " << c.index << ": "
-       << state_line(c) << "; re-render: " << recheck_name(c.recheck) << "  \n  `"
+    md << "- " << r.pairs[c.pair].label() << " " << geometry::kind_name(c.kind) << ", view "
+       << c.view << " (group " << analysis::view_group_label(c.view_group) << "), index " << c.index
+       << ": " << state_line(c) << "; re-render: " << recheck_name(c.recheck) << "  \n  `"
        << show_command(r, c) << "`\n";
   }
   if (total == 0)
@@ -128,10 +128,10 @@ void counts(std::ostream& md, const AuditResult& r) {
         "shards | significant tests | outcome |\n"
         "| :--- | :--- | :---: | :--- | ---: | ---: | ---: | ---: | ---: | ---: | :--- |\n";
   for (const GroupOutcome& g : group_outcomes(r))
-    md << "| " << cell(r.pairs[g.pair].label()) << " | " << kind_name(g.kind) << " | " << g.label
-       << " | " << views_text(g.views) << " | " << g.compared << " | " << g.changed << " | "
-       << g.flakes << " | " << g.failed << " | " << g.missing_shards << " | " << g.significant_tests
-       << " | " << verdict_name(g.verdict()) << " |\n";
+    md << "| " << cell(r.pairs[g.pair].label()) << " | " << geometry::kind_name(g.kind) << " | "
+       << g.label << " | " << views_text(g.views) << " | " << g.compared << " | " << g.changed
+       << " | " << g.flakes << " | " << g.failed << " | " << g.missing_shards << " | "
+       << g.significant_tests << " | " << verdict_name(g.verdict()) << " |\n";
   md << "\nPer view: `audit.json` key `views`. A primitive is changed when its lit pixels "
         "(records' "
         "`pixel_hash`), its status or its visibility class differ.\n\n";
@@ -243,19 +243,20 @@ void failures(std::ostream& md, const AuditResult& r) {
   for (const FailedPrimitive& f : r.primitives.failed)
     if (shown++ < kMarkdownListed)
       md << "- " << status_name(f.status) << ": " << f.side << " " << f.platform << " "
-         << kind_name(f.kind) << ", view " << f.view << ", index " << f.index << "\n";
+         << geometry::kind_name(f.kind) << ", view " << f.view << ", index " << f.index << "\n";
   if (shown > kMarkdownListed)
     md << "- ... " << shown - kMarkdownListed << " more crash/timeout records (`audit.json`)\n";
   for (const MissingShard& m : r.missing)
-    md << "- missing shard: " << m.side << " " << m.id << " (" << kind_name(m.kind) << ", view "
-       << m.view << ", indices " << m.begin << " to " << m.end - 1 << "): " << m.reason << "\n";
+    md << "- missing shard: " << m.side << " " << m.id << " (" << geometry::kind_name(m.kind)
+       << ", view " << m.view << ", indices " << m.begin << " to " << m.end - 1 << "): " << m.reason
+       << "\n";
   for (const ManifestFailure& m : r.manifest_failures)
     if (m.outcome == FailureOutcome::kUnknown)
       md << "- manifest: " << m.side << " " << m.shard
          << " (not a shard of the experiment): " << m.reason << "\n";
   for (const RerenderBatch& b : r.flakes.failed_batches)
-    md << "- re-render of " << b.platform << " " << kind_name(b.kind) << ", view " << b.view
-       << ", indices " << b.begin << " to " << b.end - 1 << ": " << b.error << "\n";
+    md << "- re-render of " << b.platform << " " << geometry::kind_name(b.kind) << ", view "
+       << b.view << ", indices " << b.begin << " to " << b.end - 1 << ": " << b.error << "\n";
 }
 
 }  // namespace

@@ -17,12 +17,12 @@ AuditResult result_with(std::vector<Recheck> changes) {
   r.pairs = {{"osmesa-llvmpipe", "osmesa-llvmpipe"}};
   r.baseline_drivers = {{"osmesa-llvmpipe", "llvmpipe (LLVM 15)", "Mesa 22.3.6"}};
   r.current_drivers = {{"osmesa-llvmpipe", "llvmpipe (LLVM 16)", "Mesa 23.0.0"}};
-  r.primitives.views = {{0, Kind::kLine, 1, 0, 100, uint64_t(changes.size()), 0, 0},
-                        {0, Kind::kLine, 2, 0, 100, 0, 0, 0}};
+  r.primitives.views = {{0, geometry::Kind::kLine, 1, 0, 100, uint64_t(changes.size()), 0, 0},
+                        {0, geometry::Kind::kLine, 2, 0, 100, 0, 0, 0}};
   uint64_t index = 10;
   for (Recheck c : changes) {
     ChangedPrimitive p;
-    p.kind = Kind::kLine, p.view = 1, p.index = index++;
+    p.kind = geometry::Kind::kLine, p.view = 1, p.index = index++;
     p.before.pixel_hash = 1, p.after.pixel_hash = 2, p.before.pixels = 5, p.after.pixels = 6;
     p.before.metric = 0.25, p.after.metric = 0.5;
     p.recheck = c;
@@ -63,11 +63,11 @@ TEST(AuditVerdict, PersistingOrUncheckedDifferencesAreChanges) {
 TEST(AuditVerdict, FailuresWin) {
   AuditResult crash = result_with({Recheck::kStillDifferent});
   crash.primitives.failed.push_back(
-      {0, "current", "osmesa-llvmpipe", Kind::kLine, 2, 0, 7, CaseStatus::kCrash});
+      {0, "current", "osmesa-llvmpipe", geometry::Kind::kLine, 2, 0, 7, CaseStatus::kCrash});
   decide_verdict(crash);
   EXPECT_EQ(crash.verdict, Verdict::kFailed);
   AuditResult missing = result_with({});
-  missing.missing.push_back({"current", "osmesa-llvmpipe", Kind::kLine, 1, 0, 0, 10,
+  missing.missing.push_back({"current", "osmesa-llvmpipe", geometry::Kind::kLine, 1, 0, 0, 10,
                              "osmesa-llvmpipe.line.v1.0-10", "no records file"});
   decide_verdict(missing);
   EXPECT_EQ(missing.verdict, Verdict::kFailed);

@@ -59,7 +59,7 @@ inline Experiment write_run(const std::string& dir, const std::string& text,
 // A true-visible point record of view `view` of `exp` with lit-pixel hash `hash` and PE `pe`.
 inline Record point_record(const Experiment& exp, const std::string& platform, int view,
                            uint64_t index, uint64_t hash, double pe) {
-  const View& v = exp.views.at(std::size_t(view - 1));
+  const geometry::View& v = exp.views.at(std::size_t(view - 1));
   Record r;
   r.platform = platform;
   r.view = v.id, r.view_group = v.group, r.orientation = v.orientation;
@@ -82,7 +82,7 @@ inline void write_points(const std::string& dir, const Experiment& exp, const st
                          const std::function<Record(int view, uint64_t index)>& make,
                          const std::vector<std::string>& skip = {}) {
   for (const Shard& s : plan_shards(exp)) {
-    if (s.platform != platform || s.kind != Kind::kPoint) continue;
+    if (s.platform != platform || s.kind != geometry::Kind::kPoint) continue;
     bool skipped = false;
     for (const auto& id : skip) skipped = skipped || id == s.id();
     if (skipped) continue;

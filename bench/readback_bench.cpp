@@ -57,8 +57,9 @@ struct Options {
 // The analysis stage's median (stats/descriptive.h); 0 for no timings.
 double median(const std::vector<double>& v) { return v.empty() ? 0 : stats::median(v); }
 
-View bench_view(double fov, int window) {
-  return make_view(fov, window, window, 0.01, 10.0, random_rotation(2008, 1));
+ra::geometry::View bench_view(double fov, int window) {
+  return ra::geometry::make_view(fov, window, window, 0.01, 10.0,
+                                 ra::geometry::random_rotation(2008, 1));
 }
 
 // Primitives per call of measure_cases, as `renderaudit run` calls it (in chunks of its own).
@@ -74,10 +75,13 @@ struct Timings {
   std::map<std::string, std::vector<double>> per_primitive;  // floor, naive, region, project
 };
 
-nlohmann::json summary_row(const std::string& platform, Kind kind, int window, double fov,
-                           int primitives, const Timings& t) {
-  nlohmann::json row = {{"platform", platform}, {"kind", kind_name(kind)}, {"window", window},
-                        {"fov_deg", fov},       {"primitives", primitives}};
+nlohmann::json summary_row(const std::string& platform, ra::geometry::Kind kind, int window,
+                           double fov, int primitives, const Timings& t) {
+  nlohmann::json row = {{"platform", platform},
+                        {"kind", ra::geometry::kind_name(kind)},
+                        {"window", window},
+                        {"fov_deg", fov},
+                        {"primitives", primitives}};
   for (const char* m : {"floor", "batched", "naive", "region", "project", "unjudged"}) {
     row[std::string(m) + "_us"] = median(t.per_primitive.at(m));
     row[std::string(m) + "_mean_us"] = mean(t.per_primitive.at(m));
@@ -107,27 +111,30 @@ int measure_platform(const Options& opt) {
   }
   const char* methods[] = {"floor", "naive", "region", "project", "batched"};
   // The grid `run`'s workers would measure (metrics/effective_subpixel.h).
-  SubpixelGrid effective;
+  ra::geometry::SubpixelGrid effective;
   {
     auto probe = create_bench_platform(*spec, ReadbackMethod::kRegionWithProof);
     probe->set_view(bench_view(30, 128));  // context made and shaders compiled: not timed below
     const auto t0 = Clock::now();
     effective = measure_effective_subpixel(*probe).grid;
-    std::printf("%s: effective subpixel grid %s, measured in %.1f ms (every worker of `run` "
-                "pays this once)\n",
-                opt.platform.c_str(), subpixel_grid_text(effective).c_str(),
-                std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    std::printf(
+        "%s: effective subpixel grid %s, measured in %.1f ms (every worker of `run` "
+        "pays this once)\n",
+        opt.platform.c_str(), ra::geometry::subpixel_grid_text(effective).c_str(),
+        std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
   }
-  for (Kind kind : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
+  for (ra::geometry::Kind kind :
+       {ra::geometry::Kind::kPoint, ra::geometry::Kind::kLine, ra::geometry::Kind::kTriangle}) {
     for (int window : {128, 907}) {
       Timings pooled;
       for (double fov : {30.0, 150.0}) {
-        const View view = bench_view(fov, window);
+        const ra::geometry::View view = bench_view(fov, window);
         Timings t;
         for (int round = 0; round < opt.rounds; ++round) {
-          std::vector<Primitive> prims;
+          std::vector<ra::geometry::Primitive> prims;
           for (int i = 0; i < opt.primitives; ++i)
-            prims.push_back(make_primitive(2008, kind, uint64_t(round) * opt.primitives + i));
+            prims.push_back(
+                ra::geometry::make_primitive(2008, kind, uint64_t(round) * opt.primitives + i));
           for (int m = 0; m < 5; ++m) {  // interleaved: every method in every round
             const ReadbackMethod rm = m == 0 || m == 4 ? ReadbackMethod::kDrawOnly
                                       : m == 1 ? ReadbackMethod::kFullWindow
@@ -136,18 +143,19 @@ int measure_platform(const Options& opt) {
             platform->set_view(view);
             // Mesa compiles its shaders on the first draws, single and batched (the first batch
             // cost 8 ms on llvmpipe): keep that out of the timings.
-            std::vector<Primitive> warm;
-            for (uint64_t w = 0; w < kChunk; ++w) warm.push_back(make_primitive(7, kind, w));
+            std::vector<ra::geometry::Primitive> warm;
+            for (uint64_t w = 0; w < kChunk; ++w)
+              warm.push_back(ra::geometry::make_primitive(7, kind, w));
             for (uint64_t w = 0; w < 16; ++w)
-              platform->render(warm[w], PixelRect{0, 0, window, window});
+              platform->render(warm[w], ra::geometry::PixelRect{0, 0, window, window});
             measure_cases(opt.platform, *platform, view, warm, true);
             if (m == 4) {  // the floor with the flush shared by kChunk primitives
               std::vector<double>& us = t.per_primitive["batched"];
               for (size_t i = 0; i < prims.size(); i += kChunk) {
-                const std::vector<Primitive> chunk(
+                const std::vector<ra::geometry::Primitive> chunk(
                     prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
-                for (const RenderResult& r :
-                     platform->render_batch(chunk, std::vector<PixelRegion>(chunk.size())))
+                for (const RenderResult& r : platform->render_batch(
+                         chunk, std::vector<ra::geometry::PixelRegion>(chunk.size())))
                   us.push_back(r.render_us);
               }
               continue;
@@ -161,7 +169,7 @@ int measure_platform(const Options& opt) {
               judged.line_rule = unjudged.line_rule =
                   line_rule_for(*spec, platform->driver_info());
               for (size_t i = 0; i < prims.size(); i += kChunk) {
-                const std::vector<Primitive> chunk(
+                const std::vector<ra::geometry::Primitive> chunk(
                     prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
                 for (int k = 0; k < 2; ++k) {
                   const bool judge = (k == 0) == ((i / kChunk) % 2 == 0);
@@ -175,7 +183,7 @@ int measure_platform(const Options& opt) {
               continue;
             }
             std::vector<double>& us = t.per_primitive[methods[m]];
-            for (const Primitive& prim : prims) {
+            for (const ra::geometry::Primitive& prim : prims) {
               const auto t0 = Clock::now();
               if (m == 2) {
                 // One primitive at a time with its own proof: the readback without batching.

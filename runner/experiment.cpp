@@ -60,12 +60,12 @@ void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& ex
   loc.reject_unknown_keys(t, "views.", {"orientations", "fov_deg", "windows", "near", "far"});
 
   // Orientations: a count drawn from the seed, or explicit [yaw, pitch, roll] in degrees.
-  std::vector<Mat4> rotations;
+  std::vector<geometry::Mat4> rotations;
   const toml::node* o = t.get("orientations");
   if (!o) loc.fail(views_node, "missing key 'views.orientations' (a count, or [[yaw, pitch, roll], ...])");
   if (o->is_integer()) {
     const int64_t n = loc.integer(*o, "views.orientations", 1, kMaxOrientations);
-    for (int i = 1; i <= n; ++i) rotations.push_back(random_rotation(exp.seed, i));
+    for (int i = 1; i <= n; ++i) rotations.push_back(geometry::random_rotation(exp.seed, i));
   } else if (const auto* arr = o->as_array(); arr && !arr->empty()) {
     for (const auto& e : *arr) {
       const auto* triple = e.as_array();
@@ -77,7 +77,7 @@ void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& ex
         if (!std::isfinite(a[k]) || std::fabs(a[k]) > 360)
           loc.fail(triple->get(k), "orientation angle out of range (allowed: -360 to 360 degrees)");
       }
-      rotations.push_back(rotation_from_euler_deg(a[0], a[1], a[2]));
+      rotations.push_back(geometry::rotation_from_euler_deg(a[0], a[1], a[2]));
     }
   } else {
     loc.fail(o, "'views.orientations' must be a count (1 to " + std::to_string(kMaxOrientations) +
@@ -132,7 +132,7 @@ void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& ex
     for (double f : fovs)
       for (auto [nv, fv] : planes) {
         for (size_t r = 0; r < rotations.size(); ++r) {
-          View v;
+          geometry::View v;
           v.id = id++;
           v.group = group;
           v.orientation = int(r) + 1;
@@ -142,7 +142,7 @@ void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& ex
           v.near = nv;
           v.far = fv;
           v.rotation = rotations[r];
-          finish_view(v);
+          geometry::finish_view(v);
           exp.views.push_back(v);
         }
         ++group;
@@ -292,10 +292,11 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
     loc.fail(prims, "missing table [primitives] (keys: points, lines, triangles)");
   loc.reject_unknown_keys(*prims->as_table(), "primitives.", {"points", "lines", "triangles"});
   uint64_t total = 0;
-  for (Kind k : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
-    if (const toml::node* n = prims->as_table()->get(kind_plural(k))) {
-      exp.counts[int(k)] = uint64_t(
-          loc.integer(*n, std::string("primitives.") + kind_plural(k), 0, int64_t(kMaxPrimitives)));
+  for (geometry::Kind k :
+       {geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle}) {
+    if (const toml::node* n = prims->as_table()->get(geometry::kind_plural(k))) {
+      exp.counts[int(k)] = uint64_t(loc.integer(
+          *n, std::string("primitives.") + geometry::kind_plural(k), 0, int64_t(kMaxPrimitives)));
       total += exp.counts[int(k)];
     }
   }

@@ -34,7 +34,7 @@ struct Experiment {
   std::string hash;        // hex FNV-1a 64 of the canonical TOML, [run] excluded
   uint64_t seed = 0;
   std::vector<std::string> platforms;
-  std::vector<View> views;             // cartesian product, numbered as in the paper's Table 1
+  std::vector<geometry::View> views;   // cartesian product, numbered as in the paper's Table 1
   std::array<uint64_t, 3> counts{};    // primitives per view, indexed by Kind
   uint64_t shard_size = 5000;          // primitives per shard
   double shard_timeout_s = 600;        // a shard still running after this is killed

@@ -79,8 +79,8 @@ constexpr double kLargeWorkerBytes = 256.0 * 1024 * 1024;
 
 void note_large_views(const std::vector<Shard>& shards, const Experiment& exp, int jobs) {
   double largest = 0;
-  const View* at = nullptr;
-  for (const View& v : exp.views) {
+  const geometry::View* at = nullptr;
+  for (const geometry::View& v : exp.views) {
     const bool used = std::any_of(shards.begin(), shards.end(),
                                   [&](const Shard& s) { return s.view == v.id; });
     const double bytes = double(v.width) * v.height * 4;

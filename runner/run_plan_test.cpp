@@ -19,7 +19,7 @@ namespace {
 
 Experiment two_platforms() {
   Experiment exp;
-  View small, big;
+  geometry::View small, big;
   small.id = 1, small.width = small.height = 128, small.fov_deg = 30;
   big.id = 2, big.width = big.height = 907, big.fov_deg = 150;
   exp.views = {small, big};

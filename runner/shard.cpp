@@ -24,7 +24,7 @@
 namespace ra {
 
 std::string Shard::id() const {
-  return platform + "." + kind_name(kind) + ".v" + std::to_string(view) + "." +
+  return platform + "." + geometry::kind_name(kind) + ".v" + std::to_string(view) + "." +
          std::to_string(begin) + "-" + std::to_string(end);
 }
 
@@ -42,8 +42,9 @@ std::string Shard::records_path(const std::string& run_dir) const {
 std::vector<Shard> plan_shards(const Experiment& exp) {
   std::vector<Shard> out;
   for (const auto& platform : exp.platforms)
-    for (const View& v : exp.views)
-      for (Kind k : {Kind::kPoint, Kind::kLine, Kind::kTriangle})
+    for (const geometry::View& v : exp.views)
+      for (geometry::Kind k :
+           {geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle})
         for (uint64_t b = 0; b < exp.counts[int(k)]; b += exp.shard_size)
           out.push_back({platform, k, v.id, b, std::min(b + exp.shard_size, exp.counts[int(k)])});
   return out;
@@ -96,8 +97,8 @@ ShardSession::~ShardSession() = default;
 void ShardSession::run(const Shard& shard, const std::string& records_dir) {
   if (shard.platform != platform_name_)
     throw std::logic_error("shard " + shard.id() + " sent to a session of " + platform_name_);
-  const View* view = nullptr;
-  for (const View& v : exp_.views)
+  const geometry::View* view = nullptr;
+  for (const geometry::View& v : exp_.views)
     if (v.id == shard.view) view = &v;
   if (!view) throw std::runtime_error("shard " + shard.id() + ": no such view");
 
@@ -127,11 +128,11 @@ void ShardSession::run(const Shard& shard, const std::string& records_dir) {
   try {
     RecordsFileWriter out(tmp, exp_.records_format);
     constexpr uint64_t kChunk = 1024;  // primitives measured together (and batched inside)
-    std::vector<Primitive> prims;
+    std::vector<geometry::Primitive> prims;
     for (uint64_t first = shard.begin; first < shard.end; first += kChunk) {
       prims.clear();
       for (uint64_t i = first; i < std::min(shard.end, first + kChunk); ++i)
-        prims.push_back(make_primitive(exp_.seed, shard.kind, i));
+        prims.push_back(geometry::make_primitive(exp_.seed, shard.kind, i));
       for (const Record& r : measure_cases(shard.platform, *platform_, *view, prims, comparison))
         out.write(r);
     }

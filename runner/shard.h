@@ -18,7 +18,7 @@ struct Experiment;
 
 struct Shard {
   std::string platform;
-  Kind kind = Kind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view = 1;                // View::id
   uint64_t begin = 0, end = 0;  // primitive indices [begin, end)
 

@@ -35,13 +35,13 @@ const DriverCost& driver_cost(const std::string& platform) {
   return llvmpipe;
 }
 
-double mean_pixels(Kind kind, const View& v) {
+double mean_pixels(geometry::Kind kind, const geometry::View& v) {
   switch (kind) {
-    case Kind::kPoint:
+    case geometry::Kind::kPoint:
       return 1;
-    case Kind::kLine:
+    case geometry::Kind::kLine:
       return 0.3 * std::max(v.width, v.height);
-    case Kind::kTriangle:
+    case geometry::Kind::kTriangle:
       return 0.02 * double(v.width) * double(v.height);
   }
   return 1;
@@ -49,7 +49,7 @@ double mean_pixels(Kind kind, const View& v) {
 
 }  // namespace
 
-double expected_shard_cost_us(const Shard& shard, const View& view) {
+double expected_shard_cost_us(const Shard& shard, const geometry::View& view) {
   const KindCost& c = driver_cost(shard.platform)[static_cast<std::size_t>(shard.kind)];
   double per_primitive = c.fixed_us + c.per_pixel_us * mean_pixels(shard.kind, view);
   // antialiased platforms draw and resolve 4 samples a pixel
@@ -59,8 +59,8 @@ double expected_shard_cost_us(const Shard& shard, const View& view) {
 }
 
 std::vector<Shard> largest_expected_cost_first(std::vector<Shard> shards, const Experiment& exp) {
-  std::map<int, const View*> views;
-  for (const View& v : exp.views) views[v.id] = &v;
+  std::map<int, const geometry::View*> views;
+  for (const geometry::View& v : exp.views) views[v.id] = &v;
   std::vector<std::pair<double, std::size_t>> keyed;
   for (std::size_t i = 0; i < shards.size(); ++i) {
     const auto it = views.find(shards[i].view);

@@ -84,8 +84,8 @@ std::vector<WorkItem> ShardRecovery::on_finished(const WorkItem& item, WorkOutco
 }
 
 void ShardRecovery::assemble(Bisection& b) {
-  const View* view = nullptr;
-  for (const View& v : exp_.views)
+  const geometry::View* view = nullptr;
+  for (const geometry::View& v : exp_.views)
     if (v.id == b.shard.view) view = &v;
   if (!view) throw std::runtime_error("shard " + b.shard.id() + ": no such view");
 
@@ -94,7 +94,8 @@ void ShardRecovery::assemble(Bisection& b) {
   for (const std::string& part : b.parts)
     read_records(part, [&](const Record& r) { records.push_back(r); });
   for (const FailedPrimitive& f : b.failed) {
-    Record r = case_identity(b.shard.platform, *view, make_primitive(exp_.seed, b.shard.kind, f.index));
+    Record r = case_identity(b.shard.platform, *view,
+                             geometry::make_primitive(exp_.seed, b.shard.kind, f.index));
     r.status = f.status;
     records.push_back(r);
   }

@@ -184,9 +184,16 @@ void WorkerPool::start_workers(std::deque<WorkItem>& todo) {
       }
       running_[child.pid] = r;
     } else {
-      spec.argv = {settings_.program, "worker", settings_.dir, s.platform, kind_name(s.kind),
-                   std::to_string(s.view), std::to_string(s.begin), std::to_string(s.end),
-                   "--records-dir", records_dir_(w)};
+      spec.argv = {settings_.program,
+                   "worker",
+                   settings_.dir,
+                   s.platform,
+                   geometry::kind_name(s.kind),
+                   std::to_string(s.view),
+                   std::to_string(s.begin),
+                   std::to_string(s.end),
+                   "--records-dir",
+                   records_dir_(w)};
       spec.set_env = {"RA_RENDER_ATTEMPT=" + std::to_string(w.attempt)};
       spec.stdin_null = true;
       const Child child = start_child(spec);

@@ -153,13 +153,13 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
              experiment("\"faulty\"", "[faults]\nshift_fraction = 1.0\n"));
   // A triangle of some size away from the window's right edge, so no shifted pixel falls off.
   const ra::Experiment exp = ra::load_experiment(dir + "/run/experiment.toml");
-  ra::PixelSet ref;
+  ra::geometry::PixelSet ref;
   uint64_t index = 0;
   for (; index < 20; ++index) {
-    ref = ra::rasterize_reference(exp.views[0],
-                                  ra::make_primitive(exp.seed, ra::Kind::kTriangle, index));
+    ref = ra::geometry::rasterize_reference(
+        exp.views[0], ra::geometry::make_primitive(exp.seed, ra::geometry::Kind::kTriangle, index));
     bool inside = ref.size() >= 20;
-    for (const ra::PixelRun& r : ref.runs()) inside = inside && r.x_end < 64;
+    for (const ra::geometry::PixelRun& r : ref.runs()) inside = inside && r.x_end < 64;
     if (inside) break;
   }
   ASSERT_LT(index, 20u) << "no suitable triangle under this seed";
