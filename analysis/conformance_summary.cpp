@@ -10,12 +10,12 @@ namespace ra::analysis {
 
 ConformanceSummary summarize_conformance(const std::vector<std::string>& records_files,
                                          const std::string& run_dir) {
-  using C = RecordColumn;
+  using C = metrics::RecordColumn;
   ConformanceSummary s;
   for (const std::string& path : records_files) {
     const std::string rel =
         run_dir.empty() ? path : std::filesystem::path(path).lexically_relative(run_dir).string();
-    for_each_record_row(path, [&](const RecordRow& row) {
+    metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) {
       const std::string platform(row.cell(C::kPlatform)), kind(row.cell(C::kKind));
       const int group = row.integer<int>(C::kViewGroup);
       const GroupKey key{platform, kind, group};
@@ -23,8 +23,8 @@ ConformanceSummary summarize_conformance(const std::vector<std::string>& records
         s.group_labels[key] = std::string(row.cell(C::kFovDeg)) + " deg, " +
                               std::string(row.cell(C::kWidth)) + "x" +
                               std::string(row.cell(C::kHeight));
-      const CaseStatus status = row.status();
-      if (status != CaseStatus::kOk) {
+      const metrics::CaseStatus status = row.status();
+      if (status != metrics::CaseStatus::kOk) {
         ++s.non_ok_counts[{platform, kind, status_name(status)}];
         if (s.non_ok_examples.size() < kNonOkExamples)
           s.non_ok_examples.push_back({platform, kind, status_name(status),
@@ -44,21 +44,21 @@ ConformanceSummary summarize_conformance(const std::vector<std::string>& records
           r.drawn_identical += diff == 0;
         }
       }
-      const Conformance c = row.conformance();
-      if (c == Conformance::kNotCompared) {
+      const metrics::Conformance c = row.conformance();
+      if (c == metrics::Conformance::kNotCompared) {
         ++s.not_compared;
         return;
       }
       ConformanceCounts& n = s.groups[key];
       ++n.compared;
       switch (c) {
-        case Conformance::kExact: ++n.exact; break;
-        case Conformance::kSnapped: ++n.snapped; break;
-        case Conformance::kWithinSpec: ++n.within_spec; break;
-        case Conformance::kViolation: ++n.violation; break;
-        case Conformance::kNotCompared: break;
+        case metrics::Conformance::kExact: ++n.exact; break;
+        case metrics::Conformance::kSnapped: ++n.snapped; break;
+        case metrics::Conformance::kWithinSpec: ++n.within_spec; break;
+        case metrics::Conformance::kViolation: ++n.violation; break;
+        case metrics::Conformance::kNotCompared: break;
       }
-      if (c != Conformance::kViolation) return;
+      if (c != metrics::Conformance::kViolation) return;
       Violation v{platform, kind, row.integer<int>(C::kView), group,
                   row.integer<std::uint64_t>(C::kIndex),
                   row.optional_integer<std::int64_t>(C::kViolatingPixels, 0),

@@ -25,17 +25,17 @@ std::string user_error(F f) {
 TEST(RunRecords, CountsSamplesAndGroups) {
   const testing::ScopedTempDir scoped("records_counts");
   const std::filesystem::path& dir = scoped.path;
-  std::vector<Record> rs = {
+  std::vector<metrics::Record> rs = {
       point("p1", 1, 0, 0.30),
       point("p1", 1, 1, 0.10),
-      point("p1", 1, 2, 0, Visibility::kTrueInvisible),
-      point("p1", 1, 3, 0, Visibility::kFalseVisible),
-      point("p1", 1, 4, 0, Visibility::kFalseInvisible),
-      point("p1", 1, 5, 0, Visibility::kMultipleVisible),
-      point("p1", 1, 6, 0.7, Visibility::kTrueVisible, CaseStatus::kInvalid),
-      point("p1", 1, 7, 0.7, Visibility::kTrueVisible, CaseStatus::kCrash),
+      point("p1", 1, 2, 0, metrics::Visibility::kTrueInvisible),
+      point("p1", 1, 3, 0, metrics::Visibility::kFalseVisible),
+      point("p1", 1, 4, 0, metrics::Visibility::kFalseInvisible),
+      point("p1", 1, 5, 0, metrics::Visibility::kMultipleVisible),
+      point("p1", 1, 6, 0.7, metrics::Visibility::kTrueVisible, metrics::CaseStatus::kInvalid),
+      point("p1", 1, 7, 0.7, metrics::Visibility::kTrueVisible, metrics::CaseStatus::kCrash),
       point("p1", 2, 0, 0.25),
-      point("p1", 3, 0, 0, Visibility::kTrueInvisible),
+      point("p1", 3, 0, 0, metrics::Visibility::kTrueInvisible),
   };
   write_records(dir, rs, "a.csv");
   write_records(dir, {point("p0", 2, 0, 0.5), testing::unmeasured_line("p1", 1, 0)}, "b.csv");
@@ -136,7 +136,7 @@ TEST(RunRecords, MalformedRecordsNameFileAndLine) {
 TEST(RunRecords, InconsistentViewsAndDuplicatesAreRefused) {
   const testing::ScopedTempDir scoped("records_inconsistent");
   const std::filesystem::path& dir = scoped.path;
-  Record changed = point("p", 1, 1, 0.2);
+  metrics::Record changed = point("p", 1, 1, 0.2);
   changed.fov_deg = 45;
   const std::string path = write_records(dir, {point("p", 1, 0, 0.3), changed});
   std::string e = user_error([&] { load_run_records(dir.string()); });

@@ -60,9 +60,9 @@ void stream_records(const RecordsOptions& o) {
     throw UserError(o.dir + ": no experiment.toml (expected a run directory written by "
                     "`renderaudit run`)");
   const Experiment exp = load_experiment(toml);
-  const std::optional<RecordsFormat> format = parse_records_format(o.format);
+  const std::optional<metrics::RecordsFormat> format = metrics::parse_records_format(o.format);
   if (!format) throw UserError("--format " + o.format + ": unknown (allowed: csv, csv.zst)");
-  if (*format == RecordsFormat::kCsvZst && ::isatty(STDOUT_FILENO))
+  if (*format == metrics::RecordsFormat::kCsvZst && ::isatty(STDOUT_FILENO))
     throw UserError("--format csv.zst writes compressed bytes: redirect or pipe stdout");
 
   check_names(o.platforms, exp.platforms, "--platform", o.dir);
@@ -72,22 +72,24 @@ void stream_records(const RecordsOptions& o) {
   std::vector<std::string> asked_views;
   for (int v : o.views) asked_views.push_back(std::to_string(v));
   check_names(asked_views, view_ids, "--view", o.dir);
-  std::vector<RecordColumn> columns;
+  std::vector<metrics::RecordColumn> columns;
   std::vector<std::string> all_columns;
-  for (std::size_t c = 0; c < kRecordColumnCount; ++c)
-    all_columns.push_back(record_column_name(static_cast<RecordColumn>(c)));
+  for (std::size_t c = 0; c < metrics::kRecordColumnCount; ++c)
+    all_columns.push_back(metrics::record_column_name(static_cast<metrics::RecordColumn>(c)));
   for (const std::string& name : o.columns) {
-    const std::optional<RecordColumn> c = find_record_column(name);
+    const std::optional<metrics::RecordColumn> c = metrics::find_record_column(name);
     if (!c) throw UserError("--columns " + name + ": no such records column (allowed: " +
                             joined(all_columns) + ")");
     columns.push_back(*c);
   }
   if (columns.empty())
-    for (std::size_t c = 0; c < kRecordColumnCount; ++c) columns.push_back(static_cast<RecordColumn>(c));
+    for (std::size_t c = 0; c < metrics::kRecordColumnCount; ++c)
+      columns.push_back(static_cast<metrics::RecordColumn>(c));
 
   std::ios::sync_with_stdio(false);
   std::unique_ptr<ZstdFrameWriter> zstd;
-  if (*format == RecordsFormat::kCsvZst) zstd = std::make_unique<ZstdFrameWriter>(std::cout);
+  if (*format == metrics::RecordsFormat::kCsvZst)
+    zstd = std::make_unique<ZstdFrameWriter>(std::cout);
   std::string text;  // written out every few MiB (one zstd frame each)
   const auto flush = [&] {
     if (zstd) {
@@ -99,7 +101,7 @@ void stream_records(const RecordsOptions& o) {
     text.clear();
   };
   for (std::size_t i = 0; i < columns.size(); ++i)
-    text += (i ? "," : "") + std::string(record_column_name(columns[i]));
+    text += (i ? "," : "") + std::string(metrics::record_column_name(columns[i]));
   text += '\n';
   std::size_t missing = 0;
   for (const Shard& s : plan_shards(exp)) {
@@ -111,7 +113,7 @@ void stream_records(const RecordsOptions& o) {
       ++missing;
       continue;
     }
-    for_each_record_row(path, [&](const RecordRow& row) {
+    metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) {
       for (std::size_t i = 0; i < columns.size(); ++i) {
         if (i) text += ',';
         text += row.cell(columns[i]);

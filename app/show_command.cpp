@@ -26,12 +26,12 @@ std::vector<std::string> split_csv_line(const std::string& line) {
 
 // The measured columns of the record (status onwards), as the records file would hold them;
 // columns that do not apply (empty cells) are left out.
-std::string measured_fields(const Record& r) {
+std::string measured_fields(const metrics::Record& r) {
   std::ostringstream row;
-  write_record(row, r);
+  metrics::write_record(row, r);
   std::string line = row.str();
   if (!line.empty() && line.back() == '\n') line.pop_back();
-  const std::vector<std::string> names = split_csv_line(records_header());
+  const std::vector<std::string> names = split_csv_line(metrics::records_header());
   const std::vector<std::string> values = split_csv_line(line);
   std::string out;
   bool measured = false;

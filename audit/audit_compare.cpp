@@ -19,7 +19,7 @@ struct Row {
   PrimitiveState state;
 };
 
-double headline_value(const Record& r, geometry::Kind kind) {
+double headline_value(const metrics::Record& r, geometry::Kind kind) {
   switch (kind) {
     case geometry::Kind::kPoint:
       return r.pe;
@@ -28,7 +28,7 @@ double headline_value(const Record& r, geometry::Kind kind) {
     case geometry::Kind::kTriangle:
       return r.te_u;
   }
-  return kNA;
+  return metrics::kNA;
 }
 
 // The records of one platform, kind and view of a run, ascending by index.
@@ -39,7 +39,7 @@ std::vector<Row> read_view(const std::string& dir, const std::vector<Shard>& pla
     if (s.platform != platform || s.kind != kind || s.view != view) continue;
     const std::string path = s.records_path(dir);
     if (!fs::exists(path)) continue;  // a missing shard: reported by missing_shards()
-    read_records(path, [&](const Record& r) {
+    metrics::read_records(path, [&](const metrics::Record& r) {
       if (r.platform != platform || r.kind != geometry::kind_name(kind) || r.view != view ||
           r.index < s.begin || r.index >= s.end)
         throw UserError(path + ": holds a record of " + r.platform + " " + r.kind + " view " +
@@ -55,7 +55,9 @@ std::vector<Row> read_view(const std::string& dir, const std::vector<Shard>& pla
   return rows;
 }
 
-bool failed_status(CaseStatus s) { return s == CaseStatus::kCrash || s == CaseStatus::kTimeout; }
+bool failed_status(metrics::CaseStatus s) {
+  return s == metrics::CaseStatus::kCrash || s == metrics::CaseStatus::kTimeout;
+}
 
 struct Task {
   std::size_t pair;
@@ -76,7 +78,7 @@ TaskResult compare_view(const std::string& baseline_dir, const std::vector<Shard
   out.counts = {t.pair, t.kind, t.view, t.view_group, 0, 0, 0, 0};
   std::vector<Row> before = read_view(baseline_dir, baseline_plan, pair.baseline, t.kind, t.view);
   if (!compare_verdicts)  // judged by other rules: only pixels, visibility and status compare
-    for (Row& r : before) r.state.conformance = Conformance::kNotCompared;
+    for (Row& r : before) r.state.conformance = metrics::Conformance::kNotCompared;
   const std::vector<Row> after = read_view(current_dir, current_plan, pair.current, t.kind, t.view);
   auto note_failure = [&](const Row& r, const char* side, const std::string& platform) {
     if (failed_status(r.state.status))
@@ -146,15 +148,15 @@ const char* recheck_name(Recheck r) {
 }
 
 bool states_differ(const PrimitiveState& a, const PrimitiveState& b) {
-  const bool both_judged =
-      a.conformance != Conformance::kNotCompared && b.conformance != Conformance::kNotCompared;
+  const bool both_judged = a.conformance != metrics::Conformance::kNotCompared &&
+                           b.conformance != metrics::Conformance::kNotCompared;
   return a.status != b.status || a.visibility != b.visibility || a.pixel_hash != b.pixel_hash ||
          (both_judged && a.conformance != b.conformance);
 }
 
 bool new_violation(const ChangedPrimitive& c) {
-  return c.after.conformance == Conformance::kViolation &&
-         c.before.conformance != Conformance::kViolation;
+  return c.after.conformance == metrics::Conformance::kViolation &&
+         c.before.conformance != metrics::Conformance::kViolation;
 }
 
 PrimitiveComparison compare_primitives(const std::string& baseline_dir,

@@ -33,13 +33,14 @@ const char* headline_metric(geometry::Kind kind);
 
 // What one side's record says about a primitive (units as in the records).
 struct PrimitiveState {
-  CaseStatus status = CaseStatus::kOk;
-  Visibility visibility = Visibility::kTrueInvisible;
+  metrics::CaseStatus status = metrics::CaseStatus::kOk;
+  metrics::Visibility visibility = metrics::Visibility::kTrueInvisible;
   int64_t pixels = 0;       // lit pixels
   uint64_t pixel_hash = 0;  // FNV-1a 64 of the sorted lit pixels
-  double metric = kNA;      // headline_metric(kind); NaN when not applicable
+  double metric = metrics::kNA;  // headline_metric(kind); NaN when not applicable
   int64_t ref_diff = -1;    // pixels differing from the reference rasterizer; -1: not measured
-  Conformance conformance = Conformance::kNotCompared;  // the GL verdict (metrics/conformance.h)
+  metrics::Conformance conformance =
+      metrics::Conformance::kNotCompared;  // the GL verdict (metrics/conformance.h)
   int64_t violating_pixels = -1;
 };
 
@@ -74,7 +75,7 @@ struct FailedPrimitive {
   geometry::Kind kind = geometry::Kind::kPoint;
   int view = 0, view_group = 0;
   uint64_t index = 0;
-  CaseStatus status = CaseStatus::kCrash;
+  metrics::CaseStatus status = metrics::CaseStatus::kCrash;
 };
 
 // Counts of one pair, kind and view.

@@ -16,16 +16,16 @@ using nlohmann::json;
 json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json state_json(const PrimitiveState& s, geometry::Kind kind) {
-  return {{"status", status_name(s.status)},
-          {"visibility", visibility_name(s.visibility)},
+  return {{"status", metrics::status_name(s.status)},
+          {"visibility", metrics::visibility_name(s.visibility)},
           {"pixels", s.pixels},
           {"pixel_hash", std::to_string(s.pixel_hash)},  // a string: JSON readers lose 64-bit ints
           {"metric", headline_metric(kind)},
           {"value", number_or_null(s.metric)},
           {"ref_diff", s.ref_diff >= 0 ? json(s.ref_diff) : json(nullptr)},
-          {"conformance", s.conformance == Conformance::kNotCompared
+          {"conformance", s.conformance == metrics::Conformance::kNotCompared
                               ? json(nullptr)
-                              : json(conformance_name(s.conformance))},
+                              : json(metrics::conformance_name(s.conformance))},
           {"violating_pixels", s.violating_pixels >= 0 ? json(s.violating_pixels) : json(nullptr)}};
 }
 
@@ -191,7 +191,7 @@ json audit_json(const AuditResult& r) {
                       {"view", f.view},
                       {"view_group", f.view_group},
                       {"index", f.index},
-                      {"status", status_name(f.status)}});
+                      {"status", metrics::status_name(f.status)}});
   for (const MissingShard& m : r.missing)
     missing.push_back({{"side", m.side},
                        {"platform", m.platform},

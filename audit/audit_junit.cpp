@@ -109,8 +109,8 @@ Case group_case(const AuditResult& r, const GroupOutcome& g) {
   }
   for (const FailedPrimitive& f : r.primitives.failed)
     if (in_group(f.pair, f.kind, f.view_group))
-      text << status_name(f.status) << ": " << f.side << " " << f.platform << " view " << f.view
-           << " index " << f.index << "\n";
+      text << metrics::status_name(f.status) << ": " << f.side << " " << f.platform << " view "
+           << f.view << " index " << f.index << "\n";
   for (const MissingShard& m : r.missing)
     if (m.kind == g.kind && m.view_group == g.view_group &&
         m.platform == (m.side == "baseline" ? r.pairs[g.pair].baseline : r.pairs[g.pair].current))

@@ -33,9 +33,9 @@ std::string arrow(const std::string& a, const std::string& b) {
 
 // "violation (3 px: polygon-edge)", "within-spec", "n/a" (no verdict).
 std::string verdict_text(const PrimitiveState& s) {
-  if (s.conformance == Conformance::kNotCompared) return "n/a";
-  std::string t = conformance_name(s.conformance);
-  if (s.conformance == Conformance::kViolation)
+  if (s.conformance == metrics::Conformance::kNotCompared) return "n/a";
+  std::string t = metrics::conformance_name(s.conformance);
+  if (s.conformance == metrics::Conformance::kViolation)
     t += " (" + std::to_string(s.violating_pixels) + " px)";
   return t;
 }
@@ -43,14 +43,16 @@ std::string verdict_text(const PrimitiveState& s) {
 std::string state_line(const ChangedPrimitive& c) {
   const std::string metric = headline_metric(c.kind);
   auto diff = [](int64_t d) { return d >= 0 ? std::to_string(d) : std::string("n/a"); };
-  return "status " + arrow(status_name(c.before.status), status_name(c.after.status)) +
+  return "status " +
+         arrow(metrics::status_name(c.before.status), metrics::status_name(c.after.status)) +
          ", visibility " +
-         arrow(visibility_name(c.before.visibility), visibility_name(c.after.visibility)) +
+         arrow(metrics::visibility_name(c.before.visibility),
+               metrics::visibility_name(c.after.visibility)) +
          ", pixels " + arrow(std::to_string(c.before.pixels), std::to_string(c.after.pixels)) +
          ", " + metric + " " +
          arrow(format_number(c.before.metric, 6), format_number(c.after.metric, 6)) +
-         ", ref_diff " + arrow(diff(c.before.ref_diff), diff(c.after.ref_diff)) +
-         ", conformance " + arrow(verdict_text(c.before), verdict_text(c.after));
+         ", ref_diff " + arrow(diff(c.before.ref_diff), diff(c.after.ref_diff)) + ", conformance " +
+         arrow(verdict_text(c.before), verdict_text(c.after));
 }
 
 // New GL violations first: the one thing a driver team must not miss.
@@ -242,7 +244,7 @@ void failures(std::ostream& md, const AuditResult& r) {
   std::size_t shown = 0;
   for (const FailedPrimitive& f : r.primitives.failed)
     if (shown++ < kMarkdownListed)
-      md << "- " << status_name(f.status) << ": " << f.side << " " << f.platform << " "
+      md << "- " << metrics::status_name(f.status) << ": " << f.side << " " << f.platform << " "
          << geometry::kind_name(f.kind) << ", view " << f.view << ", index " << f.index << "\n";
   if (shown > kMarkdownListed)
     md << "- ... " << shown - kMarkdownListed << " more crash/timeout records (`audit.json`)\n";

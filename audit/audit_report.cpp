@@ -95,10 +95,11 @@ std::string changed_primitives_csv(const AuditResult& r) {
     const bool rerendered = c.recheck == Recheck::kStillDifferent || c.recheck == Recheck::kFlake;
     out << r.pairs[c.pair].baseline << ',' << r.pairs[c.pair].current << ','
         << geometry::kind_name(c.kind) << ',' << c.view << ',' << c.view_group << ',' << c.index
-        << ',' << recheck_name(c.recheck) << ',' << status_name(c.before.status) << ','
-        << status_name(c.after.status) << ',' << visibility_name(c.before.visibility) << ','
-        << visibility_name(c.after.visibility) << ',' << c.before.pixels << ',' << c.after.pixels
-        << ',' << headline_metric(c.kind) << ',' << value(c.before.metric) << ','
+        << ',' << recheck_name(c.recheck) << ',' << metrics::status_name(c.before.status) << ','
+        << metrics::status_name(c.after.status) << ','
+        << metrics::visibility_name(c.before.visibility) << ','
+        << metrics::visibility_name(c.after.visibility) << ',' << c.before.pixels << ','
+        << c.after.pixels << ',' << headline_metric(c.kind) << ',' << value(c.before.metric) << ','
         << value(c.after.metric) << ',' << diff(c.before.ref_diff) << ',' << diff(c.after.ref_diff)
         << ',' << c.before.pixel_hash << ',' << c.after.pixel_hash << ','
         << (rerendered ? std::to_string(c.rerender_hash) : "") << '\n';

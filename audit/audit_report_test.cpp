@@ -62,8 +62,8 @@ TEST(AuditVerdict, PersistingOrUncheckedDifferencesAreChanges) {
 // Failures win over changes: crash records, missing shards, renderer mismatches.
 TEST(AuditVerdict, FailuresWin) {
   AuditResult crash = result_with({Recheck::kStillDifferent});
-  crash.primitives.failed.push_back(
-      {0, "current", "osmesa-llvmpipe", geometry::Kind::kLine, 2, 0, 7, CaseStatus::kCrash});
+  crash.primitives.failed.push_back({0, "current", "osmesa-llvmpipe", geometry::Kind::kLine, 2, 0,
+                                     7, metrics::CaseStatus::kCrash});
   decide_verdict(crash);
   EXPECT_EQ(crash.verdict, Verdict::kFailed);
   AuditResult missing = result_with({});
@@ -117,11 +117,11 @@ TEST(AuditReport, JunitHasOneCasePerGroup) {
 // fails the group's conformance testcase; one that already broke it in the baseline does not.
 TEST(AuditReport, NewViolationsComeFirstAndFailTheirConformanceCase) {
   AuditResult r = result_with({Recheck::kStillDifferent, Recheck::kStillDifferent});
-  r.primitives.changed[0].before.conformance = Conformance::kWithinSpec;
-  r.primitives.changed[0].after.conformance = Conformance::kViolation;
+  r.primitives.changed[0].before.conformance = metrics::Conformance::kWithinSpec;
+  r.primitives.changed[0].after.conformance = metrics::Conformance::kViolation;
   r.primitives.changed[0].after.violating_pixels = 3;
-  r.primitives.changed[1].before.conformance = Conformance::kViolation;
-  r.primitives.changed[1].after.conformance = Conformance::kViolation;
+  r.primitives.changed[1].before.conformance = metrics::Conformance::kViolation;
+  r.primitives.changed[1].after.conformance = metrics::Conformance::kViolation;
   decide_verdict(r);
   const std::vector<GroupOutcome> g = group_outcomes(r);
   ASSERT_EQ(g.size(), 1u);
@@ -148,10 +148,10 @@ TEST(AuditReport, NewViolationsComeFirstAndFailTheirConformanceCase) {
 TEST(AuditCompare, AChangeOfClassIsAChangeWhenBothSidesHaveOne) {
   PrimitiveState a, b;
   a.pixel_hash = b.pixel_hash = 7;
-  a.conformance = Conformance::kExact;
-  b.conformance = Conformance::kSnapped;
+  a.conformance = metrics::Conformance::kExact;
+  b.conformance = metrics::Conformance::kSnapped;
   EXPECT_TRUE(states_differ(a, b));
-  a.conformance = Conformance::kNotCompared;
+  a.conformance = metrics::Conformance::kNotCompared;
   EXPECT_FALSE(states_differ(a, b));
 }
 

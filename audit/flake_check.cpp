@@ -145,7 +145,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
       if (batch.error.empty()) batch.error = "wrote no records";
       return;
     }
-    read_records(s.records_path(dir), [&](const Record& r) {
+    metrics::read_records(s.records_path(dir), [&](const metrics::Record& r) {
       result.hashes[{batch.platform, int(batch.kind), batch.view, r.index}] = r.pixel_hash;
     });
   };

@@ -60,9 +60,9 @@ IdealShape ideal_shape(const geometry::View& view, const geometry::Primitive& pr
   IdealShape s;
   switch (prim.kind) {
     case geometry::Kind::kPoint: {
-      const IdealPoint p = project_point(view, prim.v[0]);
+      const metrics::IdealPoint p = metrics::project_point(view, prim.v[0]);
       if (p.visible) s.points = {p.window};
-      s.rect = point_region(view, p, kImageMargin);
+      s.rect = metrics::point_region(view, p, kImageMargin);
       break;
     }
     case geometry::Kind::kLine: {
@@ -165,13 +165,13 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   const bool is_reference = q.platform == "reference";
   // The grid the runner's workers measured (the same calibration: deterministic platforms agree).
   const geometry::SubpixelGrid effective =
-      is_reference ? geometry::SubpixelGrid{} : measure_effective_subpixel(*platform).grid;
+      is_reference ? geometry::SubpixelGrid{} : metrics::measure_effective_subpixel(*platform).grid;
   RecordingPlatform recorder(*platform);
   recorder.set_view(view);
-  CaseComparison comparison(!is_reference, effective);
-  comparison.line_rule = line_rule_for(platform_spec, platform->driver_info());
-  const bool rectangles = comparison.line_rule == CaseComparison::LineRule::kRectangle;
-  out.record = measure_case(q.platform, recorder, view, prim, comparison);
+  metrics::CaseComparison comparison(!is_reference, effective);
+  comparison.line_rule = metrics::line_rule_for(platform_spec, platform->driver_info());
+  const bool rectangles = comparison.line_rule == metrics::CaseComparison::LineRule::kRectangle;
+  out.record = metrics::measure_case(q.platform, recorder, view, prim, comparison);
   const geometry::PixelSet& lit = recorder.last.lit;
   geometry::PixelSet reference = geometry::rasterize_reference(view, prim);
   if (rectangles &&
@@ -179,12 +179,12 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
     const geometry::ClippedSegment segment = geometry::clip_segment(view, prim.v[0], prim.v[1]);
     reference.clear();
     if (segment.status == geometry::ClipStatus::kVisible) {
-      const auto [a, b] = rectangle_ends(segment, near_clipped_vertices(view, prim));
+      const auto [a, b] = rectangle_ends(segment, metrics::near_clipped_vertices(view, prim));
       reference = geometry::rasterize_rectangle_segment(a, b, view.width, view.height);
     }
   }
   geometry::PixelSet violating;
-  if (!is_reference) judge_primitive(view, prim, lit, effective, &violating, rectangles);
+  if (!is_reference) metrics::judge_primitive(view, prim, lit, effective, &violating, rectangles);
   out.violating = violating.size();
   for (const geometry::Pixel& p : lit) (reference.contains(p) ? out.both : out.platform_only) += 1;
   for (const geometry::Pixel& p : reference)

@@ -59,7 +59,7 @@ struct PrimitiveImage {
   int scale = 0;              // image pixels per window pixel
   geometry::PixelRect shown;  // window pixels shown, GL coordinates
   geometry::View view;
-  Record record;                                            // measure_case() of this rendering
+  metrics::Record record;                                   // measure_case() of this rendering
   int64_t both = 0, platform_only = 0, reference_only = 0;  // lit pixels, whole window
   int64_t violating = 0;  // pixels of platform_only + reference_only that GL forbids
 };

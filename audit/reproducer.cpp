@@ -168,14 +168,14 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
     if (v.id == q.view) view = &v;
   if (!view) throw UserError("the run has no view " + std::to_string(q.view));
   // The worker's record of it.
-  std::optional<Record> record;
+  std::optional<metrics::Record> record;
   for (const Shard& s : plan_shards(exp)) {
     if (s.platform != q.platform || s.kind != kind || s.view != q.view || q.index < s.begin ||
         q.index >= s.end)
       continue;
     const std::string path = s.records_path(q.run_dir);
     if (!fs::exists(path)) throw UserError(path + ": missing: the run has no record of this primitive");
-    read_records(path, [&](const Record& r) {
+    metrics::read_records(path, [&](const metrics::Record& r) {
       if (r.index == q.index) record = r;
     });
   }

@@ -51,10 +51,10 @@ RunIdentity load_run_identity(const std::string& dir) {
   run.status = manifest.status.empty() ? "unknown" : manifest.status;
   if (manifest.conformance_rules) {
     const int rules = *manifest.conformance_rules;
-    if (rules > kConformanceRulesVersion)
+    if (rules > metrics::kConformanceRulesVersion)
       throw UserError(manifest_path + ": 'conformance_rules' must be an integer from 1 to " +
-                      std::to_string(kConformanceRulesVersion) + ", this renderaudit's (found " +
-                      std::to_string(rules) + ")");
+                      std::to_string(metrics::kConformanceRulesVersion) +
+                      ", this renderaudit's (found " + std::to_string(rules) + ")");
     run.conformance_rules = rules;
   }
 

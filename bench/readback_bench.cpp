@@ -116,7 +116,7 @@ int measure_platform(const Options& opt) {
     auto probe = create_bench_platform(*spec, ReadbackMethod::kRegionWithProof);
     probe->set_view(bench_view(30, 128));  // context made and shaders compiled: not timed below
     const auto t0 = Clock::now();
-    effective = measure_effective_subpixel(*probe).grid;
+    effective = ra::metrics::measure_effective_subpixel(*probe).grid;
     std::printf(
         "%s: effective subpixel grid %s, measured in %.1f ms (every worker of `run` "
         "pays this once)\n",
@@ -148,7 +148,7 @@ int measure_platform(const Options& opt) {
               warm.push_back(ra::geometry::make_primitive(7, kind, w));
             for (uint64_t w = 0; w < 16; ++w)
               platform->render(warm[w], ra::geometry::PixelRect{0, 0, window, window});
-            measure_cases(opt.platform, *platform, view, warm, true);
+            ra::metrics::measure_cases(opt.platform, *platform, view, warm, true);
             if (m == 4) {  // the floor with the flush shared by kChunk primitives
               std::vector<double>& us = t.per_primitive["batched"];
               for (size_t i = 0; i < prims.size(); i += kChunk) {
@@ -164,18 +164,18 @@ int measure_platform(const Options& opt) {
               // Exactly what `renderaudit run` does, chunk by chunk, with and without the
               // conformance verdict on the same platform, chunk by chunk, the order alternating:
               // the two are compared side by side, not across rounds.
-              CaseComparison judged(true, effective), unjudged(true, effective);
+              ra::metrics::CaseComparison judged(true, effective), unjudged(true, effective);
               unjudged.conformance = false;
               judged.line_rule = unjudged.line_rule =
-                  line_rule_for(*spec, platform->driver_info());
+                  ra::metrics::line_rule_for(*spec, platform->driver_info());
               for (size_t i = 0; i < prims.size(); i += kChunk) {
                 const std::vector<ra::geometry::Primitive> chunk(
                     prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
                 for (int k = 0; k < 2; ++k) {
                   const bool judge = (k == 0) == ((i / kChunk) % 2 == 0);
                   std::vector<double> cost;
-                  measure_cases(opt.platform, *platform, view, chunk, judge ? judged : unjudged,
-                                &cost);
+                  ra::metrics::measure_cases(opt.platform, *platform, view, chunk,
+                                             judge ? judged : unjudged, &cost);
                   std::vector<double>& us = t.per_primitive[judge ? "project" : "unjudged"];
                   us.insert(us.end(), cost.begin(), cost.end());
                 }
@@ -187,7 +187,7 @@ int measure_platform(const Options& opt) {
               const auto t0 = Clock::now();
               if (m == 2) {
                 // One primitive at a time with its own proof: the readback without batching.
-                measure_case(opt.platform, *platform, view, prim, false);
+                ra::metrics::measure_case(opt.platform, *platform, view, prim, false);
               } else {
                 platform->render(prim, {});
               }

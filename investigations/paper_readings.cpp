@@ -116,7 +116,8 @@ GroupSamples measure(const Experiment& e, geometry::Kind kind, const Reading& r,
               geometry::rasterize_polygon(proj, view.width, view.height, r.grid);
           if (lit.size() == 0) continue;  // false-invisible
           if (r.drop_near_clipped && crosses_near_plane(view, p)) continue;
-          const TriangleMetrics m = measure_triangle(proj, lit, view.width, view.height);
+          const metrics::TriangleMetrics m =
+              metrics::measure_triangle(proj, lit, view.width, view.height);
           if (r.drop_full_window && m.full_window) continue;
           a.push_back(m.te_unsigned_norm);
           b.push_back(m.te_signed_norm);
@@ -127,7 +128,7 @@ GroupSamples measure(const Experiment& e, geometry::Kind kind, const Reading& r,
           const geometry::PixelSet lit =
               geometry::rasterize_segment(seg, view.width, view.height, r.grid);
           if (lit.size() == 0) continue;
-          const LineMetrics m = measure_line(seg, lit, view.width, view.height);
+          const metrics::LineMetrics m = metrics::measure_line(seg, lit, view.width, view.height);
           a.push_back(m.lse_unsigned_norm);
           b.push_back(m.lse_signed_norm);
         }
@@ -241,7 +242,8 @@ void print_point_margins(const Experiment& e, const Options& o) {
         for (uint64_t i = chunk; i < o.per_view; i += 64) {
           const geometry::Vec3 p = geometry::make_primitive(e.seed, geometry::Kind::kPoint, i).v[0];
           ++t;
-          n += !project_point(view, p).visible && inside_window_margin(view, p, margin);
+          n += !metrics::project_point(view, p).visible &&
+               metrics::inside_window_margin(view, p, margin);
         }
         std::lock_guard<std::mutex> lock(mu);
         within[g] += n;

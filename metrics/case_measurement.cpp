@@ -10,7 +10,7 @@
 #include "geometry/reference_rasterizer.h"
 #include "metrics/triangle_metrics.h"
 
-namespace ra {
+namespace ra::metrics {
 
 Record case_identity(const std::string& platform_name, const geometry::View& view,
                      const geometry::Primitive& prim) {
@@ -299,4 +299,4 @@ Visibility classify_extended(bool ideal_visible, size_t lit_pixels) {
   return ideal_visible ? Visibility::kFalseInvisible : Visibility::kTrueInvisible;
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

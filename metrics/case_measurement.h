@@ -12,7 +12,7 @@
 #include "metrics/records.h"
 #include "geometry/reference_rasterizer.h"
 
-namespace ra {
+namespace ra::metrics {
 
 // Pixels of margin around the ideal primitive's window bounding box in which a platform's pixels are
 // looked for first (the occlusion-query proof, or a full scan, covers the rest of the window).
@@ -92,4 +92,4 @@ uint64_t rendered_pixel_hash(const RenderResult& rendered);
 Record case_identity(const std::string& platform_name, const geometry::View& view,
                      const geometry::Primitive& prim);
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -11,7 +11,7 @@
 
 #include "platforms/platform.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 TEST(CaseMeasurement, NonFiniteVerticesAreInvalidCases) {
@@ -64,9 +64,9 @@ TEST(CaseMeasurement, VisibleTriangleAndSegmentGetTheirMetrics) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 // Small primitives are drawn in batches under one occlusion query (measure_cases); the pixel sets
@@ -121,4 +121,4 @@ TEST(CaseMeasurementBatches, AWildPixelInABatchIsChargedToItsPrimitive) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-namespace ra {
+namespace ra::metrics {
 
 namespace {
 
@@ -476,4 +476,4 @@ ConformanceVerdict judge_primitive(const geometry::View& view, const geometry::P
   return {};
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -57,7 +57,7 @@
 #include "metrics/records.h"
 #include "metrics/window_error.h"
 
-namespace ra {
+namespace ra::metrics {
 
 // The version of the rules above, in the run manifest ("conformance_rules"; a manifest without it
 // was judged by version 1): an audit compares two runs' classes only when both were judged by the
@@ -136,4 +136,4 @@ ConformanceVerdict judge_primitive(const geometry::View& view, const geometry::P
                                    geometry::PixelSet* violating = nullptr,
                                    bool rectangle_lines = false);
 
-}  // namespace ra
+}  // namespace ra::metrics

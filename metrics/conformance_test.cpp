@@ -12,7 +12,7 @@
 #include "metrics/effective_subpixel.h"
 #include "platforms/platform.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 constexpr int kW = 64, kH = 64;
@@ -351,4 +351,4 @@ TEST(Conformance, FaultyPlatformDroppingLineEndsIsWithinSpecShiftedPointsAreCoun
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

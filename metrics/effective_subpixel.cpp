@@ -5,7 +5,7 @@
 #include "geometry/clipping.h"
 #include "util/counter_rng.h"
 
-namespace ra {
+namespace ra::metrics {
 
 namespace {
 
@@ -85,4 +85,4 @@ nlohmann::json effective_subpixel_json(const EffectiveSubpixel& e) {
           {"candidates", candidates}};
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

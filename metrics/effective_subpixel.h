@@ -16,7 +16,7 @@
 #include "geometry/reference_rasterizer.h"
 #include "platforms/platform.h"
 
-namespace ra {
+namespace ra::metrics {
 
 constexpr int kCalibrationTriangles = 96;
 constexpr int kMaxCandidateSubpixelBits = 12;
@@ -46,4 +46,4 @@ EffectiveSubpixel measure_effective_subpixel(Platform& platform);
 // what the run's driver file (drivers/P.json) says under "effective_subpixel".
 nlohmann::json effective_subpixel_json(const EffectiveSubpixel& e);
 
-}  // namespace ra
+}  // namespace ra::metrics

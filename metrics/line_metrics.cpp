@@ -8,7 +8,7 @@
 
 #include "geometry/pixel_topology.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -118,4 +118,4 @@ LineMetrics measure_line(const geometry::View& view, const geometry::Primitive& 
                       view.height);
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

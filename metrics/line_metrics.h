@@ -29,7 +29,7 @@
 #include "geometry/clipping.h"
 #include "geometry/pixel_set.h"
 
-namespace ra {
+namespace ra::metrics {
 
 struct LineMetrics {
   bool valid = false;           // false for an invalid (NaN/inf) or invisible segment
@@ -74,4 +74,4 @@ LineMetrics measure_line(const geometry::ClippedSegment& seg, const geometry::Pi
 LineMetrics measure_line(const geometry::View& view, const geometry::Primitive& prim,
                          const geometry::PixelSet& lit);
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -10,7 +10,7 @@
 
 #include "geometry/reference_rasterizer.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 // A visible segment between two window points (as clip_segment would give it).
@@ -199,4 +199,4 @@ TEST(LineMetrics, PrimitiveEntryPoint) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

@@ -18,7 +18,7 @@
 #include "platforms/platform.h"
 #include "metrics/triangle_metrics.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 PlatformSpec msaa4() { return *find_platform("osmesa-llvmpipe-msaa4"); }
@@ -275,9 +275,9 @@ TEST(OsmesaMsaa, MultisamplingLowersTheMedianTriangleError) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 // (3) A hand-made coverage pattern, no GL. proj(T) = (0,0), (2,0), (0,2) in a 4 x 4 window: pixel
@@ -341,4 +341,4 @@ TEST(TriangleCoverage, FullCoverageEqualsTheAliasedMetric) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace ra {
+namespace ra::metrics {
 
 IdealPoint project_point(const geometry::View& view, geometry::Vec3 p) {
   IdealPoint out;
@@ -51,4 +51,4 @@ void measure_point(const geometry::View& view, const IdealPoint& ideal,
   }
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -6,7 +6,7 @@
 #include "metrics/records.h"
 #include "geometry/view.h"
 
-namespace ra {
+namespace ra::metrics {
 
 struct IdealPoint {
   bool visible = false;  // strictly inside the clip volume (GL discards points outside it)
@@ -38,4 +38,4 @@ double point_error(geometry::Vec2 projected, geometry::Pixel rendered);
 void measure_point(const geometry::View& view, const IdealPoint& ideal,
                    const geometry::PixelSet& lit, Record& rec);
 
-}  // namespace ra
+}  // namespace ra::metrics

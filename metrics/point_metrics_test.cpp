@@ -7,7 +7,7 @@
 
 #include "geometry/reference_rasterizer.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 // Camera looking down -Z, 90-degree FOV, 128x128: a point (x, y, -1) projects to
@@ -103,4 +103,4 @@ TEST(PointMetrics, RegionHoldsThePixelAndIsClampedToTheWindow) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

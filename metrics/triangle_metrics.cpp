@@ -11,7 +11,7 @@
 
 #include "geometry/pixel_topology.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -221,4 +221,4 @@ TriangleMetrics measure_triangle_coverage(const geometry::ClippedPolygon& proj,
   return m;
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

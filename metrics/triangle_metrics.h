@@ -36,7 +36,7 @@
 #include "geometry/pixel_coverage.h"
 #include "geometry/pixel_set.h"
 
-namespace ra {
+namespace ra::metrics {
 
 struct TriangleMetrics {
   bool valid = false;                // false when the clipped triangle is invalid (NaN/inf input)
@@ -92,4 +92,4 @@ TriangleMetrics measure_triangle_coverage(const geometry::ClippedPolygon& proj,
                                           const std::vector<uint8_t>& samples_lit, int samples,
                                           int width, int height);
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -10,7 +10,7 @@
 
 #include "geometry/reference_rasterizer.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 // Clip coordinates (w = 1) of a window point in a W x H window.
@@ -191,4 +191,4 @@ TEST(TriangleMetrics, PrimitiveEntryPoint) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

@@ -9,7 +9,7 @@
 #include "geometry/reference_rasterizer.h"
 #include "metrics/conformance.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 constexpr int kW = 64, kH = 64;
@@ -129,4 +129,4 @@ TEST(VulkanRectangleLines, AWindowSideCutMayEndTheRectangleAtTheCut) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

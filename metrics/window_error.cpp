@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-namespace ra {
+namespace ra::metrics {
 
 namespace {
 
@@ -141,4 +141,4 @@ std::vector<AllowedVertex> uniform_allowance(const std::vector<geometry::Vec2>& 
   return out;
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

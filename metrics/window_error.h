@@ -44,7 +44,7 @@
 #include "geometry/vector_math.h"
 #include "geometry/view.h"
 
-namespace ra {
+namespace ra::metrics {
 
 // The least subpixel grid GL allows, 4 bits: a truncating snap moves a coordinate by < 2^-4 px.
 constexpr int kLeastSubpixelBits = 4;
@@ -88,4 +88,4 @@ double conformance_allowance(double magnitude, int width, int height);
 std::vector<AllowedVertex> uniform_allowance(const std::vector<geometry::Vec2>& points, int width,
                                              int height);
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -13,7 +13,7 @@
 #include "geometry/clipping.h"
 #include "stats/stats_testing.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 // The pipeline in rationals. Each rounding is one named perturbation: a result r of an operation
@@ -181,4 +181,4 @@ TEST(WindowError, NothingInFrontOfTheNearPlaneGivesNoVertexAndNonFiniteInputNone
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

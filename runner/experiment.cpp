@@ -320,8 +320,8 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
       exp.max_shards = uint64_t(loc.integer(*n, "run.max_shards", 1, int64_t(kMaxShardsCeiling)));
     if (const toml::node* n = run->as_table()->get("records_format")) {
       const auto* name = n->as_string();
-      const std::optional<RecordsFormat> f =
-          name ? parse_records_format(name->get()) : std::nullopt;
+      const std::optional<metrics::RecordsFormat> f =
+          name ? metrics::parse_records_format(name->get()) : std::nullopt;
       if (!f) loc.fail(n, "'run.records_format' must be \"csv.zst\" or \"csv\"");
       exp.records_format = *f;
     }

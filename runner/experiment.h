@@ -45,7 +45,7 @@ struct Experiment {
   uint64_t max_shards = 1000000;
   // [run] records_format: "csv.zst" (default: a fifth of the size, read faster; every reader of the
   // project, pandas, R and DuckDB open it) or "csv" (plain text for tools that read no zstd).
-  RecordsFormat records_format = RecordsFormat::kCsvZst;
+  metrics::RecordsFormat records_format = metrics::RecordsFormat::kCsvZst;
   FaultPlan faults;
   std::map<std::string, DriverBuildDecl> builds;  // [builds.NAME], by NAME
 };

@@ -171,12 +171,12 @@ RunManifest starting_manifest(const RunOptions& options, const Experiment& exp, 
   m.tool = {{"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
   // A directory's records are judged by one version of the conformance rules.
   const int rules = m.rules_judged_by();
-  if (rules != 0 && rules != kConformanceRulesVersion)
+  if (rules != 0 && rules != metrics::kConformanceRulesVersion)
     throw UserError(path + ": its records were judged by conformance rules " +
                     std::to_string(rules) + ", this renderaudit judges by " +
-                    std::to_string(kConformanceRulesVersion) +
+                    std::to_string(metrics::kConformanceRulesVersion) +
                     "; resuming would mix them: run into a new directory");
-  m.conformance_rules = kConformanceRulesVersion;
+  m.conformance_rules = metrics::kConformanceRulesVersion;
   m.experiment = ManifestExperiment{exp.name, options.experiment_path, exp.hash, exp.seed,
                                     exp.platforms};
   m.host = host_description();
@@ -229,7 +229,7 @@ void finish_manifest(RunManifest& m, const RunOptions& options, const std::strin
   result.failed_primitives_held = failed_primitives_in_records(dir, shards, reasons);
   m.failed_primitives.emplace();
   for (const FailedPrimitive& f : result.failed_primitives_held)
-    m.failed_primitives->push_back({f.shard, f.index, status_name(f.status), f.reason});
+    m.failed_primitives->push_back({f.shard, f.index, metrics::status_name(f.status), f.reason});
   result.shards_complete = complete;
   if (!result.wrong_renderer.empty()) m.wrong_renderer = result.wrong_renderer;
   m.status = result.interrupted                    ? "interrupted"
@@ -288,9 +288,10 @@ RunResult run_experiment(const RunOptions& options) {
   ItemEnds on_event{result, tally, recovery, todo, shard_seconds, show};
   const std::string program =
       options.worker_program.empty() ? worker_program() : options.worker_program;
-  WorkerPool pool({program, dir, jobs, options.serve_shards, show,
-                   records_extension(exp.records_format)},
-                  [&](const WorkItem& w) { return recovery.records_dir(w); }, std::ref(on_event));
+  WorkerPool pool(
+      {program, dir, jobs, options.serve_shards, show,
+       metrics::records_extension(exp.records_format)},
+      [&](const WorkItem& w) { return recovery.records_dir(w); }, std::ref(on_event));
   const std::string this_host = manifest.host.value("hostname", "");
   while (!todo.empty() || !pool.empty()) {
     if (g_interrupted) {

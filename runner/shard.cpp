@@ -28,14 +28,14 @@ std::string Shard::id() const {
          std::to_string(begin) + "-" + std::to_string(end);
 }
 
-std::string Shard::records_path(const std::string& run_dir, RecordsFormat format) const {
-  return run_dir + "/records/" + id() + records_extension(format);
+std::string Shard::records_path(const std::string& run_dir, metrics::RecordsFormat format) const {
+  return run_dir + "/records/" + id() + metrics::records_extension(format);
 }
 
 std::string Shard::records_path(const std::string& run_dir) const {
-  const std::string compressed = records_path(run_dir, RecordsFormat::kCsvZst);
+  const std::string compressed = records_path(run_dir, metrics::RecordsFormat::kCsvZst);
   if (::access(compressed.c_str(), F_OK) == 0) return compressed;
-  const std::string plain = records_path(run_dir, RecordsFormat::kCsv);
+  const std::string plain = records_path(run_dir, metrics::RecordsFormat::kCsv);
   return ::access(plain.c_str(), F_OK) == 0 ? plain : compressed;
 }
 
@@ -54,7 +54,7 @@ std::vector<Shard> plan_shards(const Experiment& exp) {
 // for measuring the timer (hundreds of milliseconds on softpipe: it was a third of a softpipe
 // point shard's time when every worker measured it).
 static void write_driver_info(const std::string& run_dir, const PlatformSpec& spec,
-                              Platform& platform, const EffectiveSubpixel& effective) {
+                              Platform& platform, const metrics::EffectiveSubpixel& effective) {
   const std::string path = run_dir + "/drivers/" + spec.name + ".json";
   struct stat st;
   if (::stat(path.c_str(), &st) == 0) return;
@@ -67,7 +67,7 @@ static void write_driver_info(const std::string& run_dir, const PlatformSpec& sp
                       {"timer_over_cpu", std::isnan(info.timer_over_cpu)
                                              ? nlohmann::json()
                                              : nlohmann::json(info.timer_over_cpu)}};
-  j["effective_subpixel"] = effective_subpixel_json(effective);
+  j["effective_subpixel"] = metrics::effective_subpixel_json(effective);
   if (spec.draws_with_vulkan()) {  // the Vulkan rules depend on these (metrics/conformance.h)
     j["line_subpixel_bits"] = info.line_subpixel_bits;
     j["strict_lines"] = info.strict_lines;
@@ -111,17 +111,19 @@ void ShardSession::run(const Shard& shard, const std::string& records_dir) {
     require_run_driver(run_dir_, shard.platform, platform_->driver_info());
     // Every process measures the grid itself (about 96 small triangles: tens of milliseconds),
     // so that its verdicts never depend on which process wrote the driver file first.
-    effective_ = exact ? EffectiveSubpixel{} : measure_effective_subpixel(*platform_);
+    effective_ =
+        exact ? metrics::EffectiveSubpixel{} : metrics::measure_effective_subpixel(*platform_);
     write_driver_info(run_dir_, spec, *platform_, effective_);
   }
   platform_->set_view(*view);
-  CaseComparison comparison(!exact, effective_.grid);
+  metrics::CaseComparison comparison(!exact, effective_.grid);
   comparison.line_rule =
-      line_rule_for(experiment_platform(exp_, shard.platform), platform_->driver_info());
+      metrics::line_rule_for(experiment_platform(exp_, shard.platform), platform_->driver_info());
 
   const std::string path =
-      records_dir.empty() ? shard.records_path(run_dir_, exp_.records_format)
-                          : records_dir + "/" + shard.id() + records_extension(exp_.records_format);
+      records_dir.empty()
+          ? shard.records_path(run_dir_, exp_.records_format)
+          : records_dir + "/" + shard.id() + metrics::records_extension(exp_.records_format);
   // A temporary of this writer alone: a second writer (a run that ignored the lock) cannot
   // interleave its rows with ours, and a killed one leaves only its own temporary behind.
   const std::string tmp = create_unique_temp(path);
@@ -133,7 +135,8 @@ void ShardSession::run(const Shard& shard, const std::string& records_dir) {
       prims.clear();
       for (uint64_t i = first; i < std::min(shard.end, first + kChunk); ++i)
         prims.push_back(geometry::make_primitive(exp_.seed, shard.kind, i));
-      for (const Record& r : measure_cases(shard.platform, *platform_, *view, prims, comparison))
+      for (const metrics::Record& r :
+           metrics::measure_cases(shard.platform, *platform_, *view, prims, comparison))
         out.write(r);
     }
     out.finish();

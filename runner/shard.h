@@ -27,7 +27,7 @@ struct Shard {
   // hold both formats when it was resumed with another run.records_format); <id>.csv.zst if none.
   std::string records_path(const std::string& run_dir) const;
   // DIR/records/<id> with the extension of `format`.
-  std::string records_path(const std::string& run_dir, RecordsFormat format) const;
+  std::string records_path(const std::string& run_dir, metrics::RecordsFormat format) const;
   uint64_t size() const { return end - begin; }
 };
 
@@ -55,7 +55,7 @@ class ShardSession {
   const Experiment& exp_;
   std::string platform_name_;
   std::unique_ptr<Platform> platform_;  // null until the first shard
-  EffectiveSubpixel effective_;
+  metrics::EffectiveSubpixel effective_;
 };
 
 // One shard in a session of its own (the `worker` subcommand).
