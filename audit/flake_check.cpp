@@ -209,10 +209,12 @@ FlakeCheckSummary apply_flake_check(PrimitiveComparison& comparison,
   s.seconds = r.seconds;
   for (const RerenderBatch& b : r.batches) {
     // A re-render on another driver than the run's is no evidence either way: stop the audit.
-    if (b.error.find(kDriverMismatch) != std::string::npos)
-      throw UserError("the flake check cannot re-render " + b.platform + " with the driver that "
-                      "made " + options.run_dir + ": " +
-                      b.error.substr(b.error.find(kDriverMismatch)));
+    if (b.error.find(platforms::kDriverMismatch) != std::string::npos)
+      throw UserError("the flake check cannot re-render " + b.platform +
+                      " with the driver that "
+                      "made " +
+                      options.run_dir + ": " +
+                      b.error.substr(b.error.find(platforms::kDriverMismatch)));
     if (!b.error.empty()) s.failed_batches.push_back(b);
   }
 

@@ -32,21 +32,21 @@ namespace {
 
 // Passes everything to the real platform and keeps the last rendering, so that the image shows
 // the very pixels measure_case() measured.
-class RecordingPlatform : public Platform {
+class RecordingPlatform : public platforms::Platform {
  public:
-  explicit RecordingPlatform(Platform& inner) : inner_(inner) {}
-  DriverInfo driver_info() const override { return inner_.driver_info(); }
+  explicit RecordingPlatform(platforms::Platform& inner) : inner_(inner) {}
+  platforms::DriverInfo driver_info() const override { return inner_.driver_info(); }
   double measure_timer_over_cpu() override { return inner_.measure_timer_over_cpu(); }
   void set_view(const geometry::View& view) override { inner_.set_view(view); }
-  RenderResult render(const geometry::Primitive& prim,
-                      const geometry::PixelRegion& expected) override {
+  platforms::RenderResult render(const geometry::Primitive& prim,
+                                 const geometry::PixelRegion& expected) override {
     last = inner_.render(prim, expected);
     return last;
   }
-  RenderResult last;
+  platforms::RenderResult last;
 
  private:
-  Platform& inner_;
+  platforms::Platform& inner_;
 };
 
 // The ideal projection to outline, GL window coordinates (pixels), and the window pixels it
@@ -146,7 +146,7 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   if (!fs::is_regular_file(toml))
     throw UserError(q.run_dir + ": not a run directory (no experiment.toml)");
   const Experiment exp = load_experiment(toml);
-  const PlatformSpec platform_spec = experiment_platform(exp, q.platform);
+  const platforms::PlatformSpec platform_spec = experiment_platform(exp, q.platform);
   geometry::Kind kind;
   if (!geometry::parse_kind(q.kind, &kind))
     throw UserError("unknown kind '" + q.kind + "' (allowed: point, line, triangle)");
@@ -159,9 +159,9 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   const geometry::Primitive prim = geometry::make_primitive(exp.seed, kind, q.index);
 
   // Render once, measure that rendering, and rasterize the reference for comparison.
-  const std::unique_ptr<Platform> platform = create_platform(platform_spec, exp.faults);
+  const std::unique_ptr<platforms::Platform> platform = create_platform(platform_spec, exp.faults);
   // The driver that made the run's records, or a clear stop (renderer_check.h).
-  require_run_driver(q.run_dir, q.platform, platform->driver_info());
+  platforms::require_run_driver(q.run_dir, q.platform, platform->driver_info());
   const bool is_reference = q.platform == "reference";
   // The grid the runner's workers measured (the same calibration: deterministic platforms agree).
   const geometry::SubpixelGrid effective =

@@ -155,8 +155,8 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   const std::string toml = q.run_dir + "/experiment.toml";
   if (!fs::is_regular_file(toml)) throw UserError(q.run_dir + ": not a run directory (no experiment.toml)");
   const Experiment exp = load_experiment(toml);
-  const PlatformSpec spec = experiment_platform(exp, q.platform);
-  if (!spec.draws_with_gl() || spec.samples > 0 || spec.backend == Backend::kEglDevice)
+  const platforms::PlatformSpec spec = experiment_platform(exp, q.platform);
+  if (!spec.draws_with_gl() || spec.samples > 0 || spec.backend == platforms::Backend::kEglDevice)
     throw UserError("reproduce draws through Mesa's surfaceless EGL: --platform must be one of "
                     "osmesa-llvmpipe, osmesa-softpipe, egl-llvmpipe, egl-softpipe (or one of "
                     "their builds), not '" + q.platform + "'");
@@ -193,7 +193,8 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   const std::string exe = fs::path(c_file_name).stem().string();
   out.build_line = "cc " + c_file_name + " -o " + exe + " -lEGL -lOpenGL";
   std::string env = "LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=" + spec.mesa_driver + " LP_NUM_THREADS=0";
-  if (!spec.build.empty()) env = "LD_LIBRARY_PATH=" + build_library_dir(spec.build_dir) + " " + env;
+  if (!spec.build.empty())
+    env = "LD_LIBRARY_PATH=" + platforms::build_library_dir(spec.build_dir) + " " + env;
   out.run_line = env + " ./" + exe;
 
   std::string s = kTemplate;

@@ -91,19 +91,21 @@ nlohmann::json summary_row(const std::string& platform, ra::geometry::Kind kind,
 
 // The aliased GL and Vulkan platforms: the readback this benchmark compares.
 bool benchable(const std::string& name) {
-  const std::optional<PlatformSpec> spec = find_platform(name);
+  const std::optional<ra::platforms::PlatformSpec> spec = ra::platforms::find_platform(name);
   return spec && spec->draws_with_driver() && spec->samples == 0;
 }
 
-std::unique_ptr<Platform> create_bench_platform(const PlatformSpec& spec, ReadbackMethod method) {
-  return spec.draws_with_vulkan() ? create_vulkan_platform(spec, method)
-                                  : create_gl_platform(spec, method);
+std::unique_ptr<ra::platforms::Platform> create_bench_platform(
+    const ra::platforms::PlatformSpec& spec, ra::platforms::ReadbackMethod method) {
+  return spec.draws_with_vulkan() ? ra::platforms::create_vulkan_platform(spec, method)
+                                  : ra::platforms::create_gl_platform(spec, method);
 }
 
 // One platform, in this process: prints one JSON object per configuration on stdout, and per
 // kind and window one pooled over both fields of view (fov_deg 0).
 int measure_platform(const Options& opt) {
-  const std::optional<PlatformSpec> spec = find_platform(opt.platform);
+  const std::optional<ra::platforms::PlatformSpec> spec =
+      ra::platforms::find_platform(opt.platform);
   if (!benchable(opt.platform)) {  // the aliased readback only
     std::fprintf(stderr, "readback_bench: not an aliased GL or Vulkan platform: %s\n",
                  opt.platform.c_str());
@@ -113,7 +115,7 @@ int measure_platform(const Options& opt) {
   // The grid `run`'s workers would measure (metrics/effective_subpixel.h).
   ra::geometry::SubpixelGrid effective;
   {
-    auto probe = create_bench_platform(*spec, ReadbackMethod::kRegionWithProof);
+    auto probe = create_bench_platform(*spec, ra::platforms::ReadbackMethod::kRegionWithProof);
     probe->set_view(bench_view(30, 128));  // context made and shaders compiled: not timed below
     const auto t0 = Clock::now();
     effective = ra::metrics::measure_effective_subpixel(*probe).grid;
@@ -136,9 +138,10 @@ int measure_platform(const Options& opt) {
             prims.push_back(
                 ra::geometry::make_primitive(2008, kind, uint64_t(round) * opt.primitives + i));
           for (int m = 0; m < 5; ++m) {  // interleaved: every method in every round
-            const ReadbackMethod rm = m == 0 || m == 4 ? ReadbackMethod::kDrawOnly
-                                      : m == 1 ? ReadbackMethod::kFullWindow
-                                               : ReadbackMethod::kRegionWithProof;
+            const ra::platforms::ReadbackMethod rm =
+                m == 0 || m == 4 ? ra::platforms::ReadbackMethod::kDrawOnly
+                : m == 1         ? ra::platforms::ReadbackMethod::kFullWindow
+                                 : ra::platforms::ReadbackMethod::kRegionWithProof;
             auto platform = create_bench_platform(*spec, rm);
             platform->set_view(view);
             // Mesa compiles its shaders on the first draws, single and batched (the first batch
@@ -154,7 +157,7 @@ int measure_platform(const Options& opt) {
               for (size_t i = 0; i < prims.size(); i += kChunk) {
                 const std::vector<ra::geometry::Primitive> chunk(
                     prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
-                for (const RenderResult& r : platform->render_batch(
+                for (const ra::platforms::RenderResult& r : platform->render_batch(
                          chunk, std::vector<ra::geometry::PixelRegion>(chunk.size())))
                   us.push_back(r.render_us);
               }
@@ -213,9 +216,10 @@ int run_children(const Options& opt, const char* self) {
   std::vector<nlohmann::json> rows;
   for (const auto& p : opt.platforms) {
     if (!benchable(p)) {  // checked before anything runs
-      std::fprintf(stderr, "readback_bench: --platforms: '%s' is not an aliased GL or Vulkan "
+      std::fprintf(stderr,
+                   "readback_bench: --platforms: '%s' is not an aliased GL or Vulkan "
                    "platform (allowed: %s, vk-lavapipe, vk-lavapipe-bresenham, vk-device:N)\n",
-                   p.c_str(), aliased_gl_platform_names().c_str());
+                   p.c_str(), ra::platforms::aliased_gl_platform_names().c_str());
       return 2;
     }
   }

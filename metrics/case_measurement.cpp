@@ -91,7 +91,7 @@ geometry::PixelSet rectangle_reference(const geometry::ClippedSegment& segment,
 }
 
 Record finish_case(PreparedCase& c, const geometry::View& view, const geometry::Primitive& prim,
-                   const RenderResult& rendered, const CaseComparison& comparison) {
+                   const platforms::RenderResult& rendered, const CaseComparison& comparison) {
   Record& rec = c.rec;
   switch (prim.kind) {
     case geometry::Kind::kPoint:
@@ -168,14 +168,16 @@ Record finish_case(PreparedCase& c, const geometry::View& view, const geometry::
 
 }  // namespace
 
-CaseComparison::LineRule line_rule_for(const PlatformSpec& spec, const DriverInfo& driver) {
-  return spec.draws_with_vulkan() && spec.line_mode == PlatformSpec::LineMode::kDefault &&
+CaseComparison::LineRule line_rule_for(const platforms::PlatformSpec& spec,
+                                       const platforms::DriverInfo& driver) {
+  return spec.draws_with_vulkan() &&
+                 spec.line_mode == platforms::PlatformSpec::LineMode::kDefault &&
                  driver.strict_lines
              ? CaseComparison::LineRule::kRectangle
              : CaseComparison::LineRule::kDiamondExit;
 }
 
-std::vector<Record> measure_cases(const std::string& platform_name, Platform& platform,
+std::vector<Record> measure_cases(const std::string& platform_name, platforms::Platform& platform,
                                   const geometry::View& view,
                                   const std::vector<geometry::Primitive>& prims,
                                   const CaseComparison& comparison, std::vector<double>* cost_us) {
@@ -199,7 +201,8 @@ std::vector<Record> measure_cases(const std::string& platform_name, Platform& pl
   auto flush = [&] {
     if (batch.empty()) return;
     auto t0 = Clock::now();
-    const std::vector<RenderResult> results = platform.render_batch(batch_prims, batch_regions);
+    const std::vector<platforms::RenderResult> results =
+        platform.render_batch(batch_prims, batch_regions);
     const double shared = since(t0) / double(batch.size());  // the batch shares its proof
     for (size_t k = 0; k < batch.size(); ++k) {
       t0 = Clock::now();
@@ -229,7 +232,7 @@ std::vector<Record> measure_cases(const std::string& platform_name, Platform& pl
   return records;
 }
 
-Record measure_case(const std::string& platform_name, Platform& platform,
+Record measure_case(const std::string& platform_name, platforms::Platform& platform,
                     const geometry::View& view, const geometry::Primitive& prim,
                     const CaseComparison& comparison) {
   return measure_cases(platform_name, platform, view, {prim}, comparison).front();
@@ -274,8 +277,8 @@ void measure_triangle_case(const geometry::ClippedPolygon& poly, const geometry:
 }
 
 void measure_triangle_coverage_case(const geometry::ClippedPolygon& poly,
-                                    const geometry::View& view, const RenderResult& rendered,
-                                    Record& rec) {
+                                    const geometry::View& view,
+                                    const platforms::RenderResult& rendered, Record& rec) {
   rec.pixels = int64_t(rendered.lit.size());
   rec.visibility = classify_extended(geometry::ideally_visible(poly), rendered.lit.size());
   if (rec.visibility != Visibility::kTrueVisible) return;
@@ -284,7 +287,7 @@ void measure_triangle_coverage_case(const geometry::ClippedPolygon& poly,
                        rec);
 }
 
-uint64_t rendered_pixel_hash(const RenderResult& rendered) {
+uint64_t rendered_pixel_hash(const platforms::RenderResult& rendered) {
   uint64_t h = geometry::pixel_set_hash(rendered.lit);
   if (rendered.samples <= 0) return h;
   for (uint8_t k : rendered.samples_lit) {  // FNV-1a, continued

@@ -50,7 +50,8 @@ struct CaseComparison {
 
 // The line rule of a platform that loaded driver `driver`: kRectangle for a Vulkan platform
 // drawing default lines on a device with strictLines, else kDiamondExit.
-CaseComparison::LineRule line_rule_for(const PlatformSpec& spec, const DriverInfo& driver);
+CaseComparison::LineRule line_rule_for(const platforms::PlatformSpec& spec,
+                                       const platforms::DriverInfo& driver);
 
 // Renders each of `prims` on `platform` and fills their records, in order: visibility, the kind's
 // metrics, pixel hash, render time, and the comparison with the reference (ref_diff and the
@@ -58,13 +59,13 @@ CaseComparison::LineRule line_rule_for(const PlatformSpec& spec, const DriverInf
 // status invalid. `cost_us` (for benchmarks), when given, receives each primitive's share of the
 // wall time in microseconds: its own geometry and measurement, plus an equal share of its batch's
 // drawing and proof.
-std::vector<Record> measure_cases(const std::string& platform_name, Platform& platform,
+std::vector<Record> measure_cases(const std::string& platform_name, platforms::Platform& platform,
                                   const geometry::View& view,
                                   const std::vector<geometry::Primitive>& prims,
                                   const CaseComparison& comparison,
                                   std::vector<double>* cost_us = nullptr);
 // The same for one primitive.
-Record measure_case(const std::string& platform_name, Platform& platform,
+Record measure_case(const std::string& platform_name, platforms::Platform& platform,
                     const geometry::View& view, const geometry::Primitive& prim,
                     const CaseComparison& comparison);
 
@@ -80,13 +81,13 @@ void measure_triangle_case(const geometry::ClippedPolygon& poly, const geometry:
 // coverage form of the metrics (TEs_cov, TEu_cov, triangle_metrics.h); visibility and `pixels`
 // count the pixels with any coverage.
 void measure_triangle_coverage_case(const geometry::ClippedPolygon& poly,
-                                    const geometry::View& view, const RenderResult& rendered,
-                                    Record& rec);
+                                    const geometry::View& view,
+                                    const platforms::RenderResult& rendered, Record& rec);
 
 // The record's pixel_hash: pixel_set_hash(lit) for an aliased rendering; for an antialiased one
 // the same FNV-1a 64 continued over the samples-lit byte of each lit pixel in (y, x) order, so a
 // change of coverage alone changes the hash.
-uint64_t rendered_pixel_hash(const RenderResult& rendered);
+uint64_t rendered_pixel_hash(const platforms::RenderResult& rendered);
 
 // The record fields that describe the case itself (platform, view, kind, index).
 Record case_identity(const std::string& platform_name, const geometry::View& view,

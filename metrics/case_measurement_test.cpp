@@ -15,7 +15,7 @@ namespace ra::metrics {
 namespace {
 
 TEST(CaseMeasurement, NonFiniteVerticesAreInvalidCases) {
-  auto platform = create_reference_platform();
+  auto platform = platforms::create_reference_platform();
   const geometry::View view = geometry::make_view(90, 64, 64);
   platform->set_view(view);
   for (geometry::Kind kind :
@@ -35,7 +35,7 @@ TEST(CaseMeasurement, NonFiniteVerticesAreInvalidCases) {
 // A triangle in front of the camera, filling a known part of the window: true-visible, TE metrics
 // present, and on the reference itself no difference from the reference.
 TEST(CaseMeasurement, VisibleTriangleAndSegmentGetTheirMetrics) {
-  auto platform = create_reference_platform();
+  auto platform = platforms::create_reference_platform();
   const geometry::View view = geometry::make_view(90, 64, 64);
   platform->set_view(view);
   geometry::Primitive tri;
@@ -72,7 +72,7 @@ namespace {
 // Small primitives are drawn in batches under one occlusion query (measure_cases); the pixel sets
 // must be exactly those found one primitive at a time, each with its own proof.
 TEST(CaseMeasurementBatches, FindTheSamePixelsAsSinglePrimitives) {
-  auto platform = create_gl_platform(*find_platform("osmesa-llvmpipe"));
+  auto platform = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
   for (double fov : {30.0, 150.0}) {
     const geometry::View view =
         geometry::make_view(fov, 128, 128, 0.01, 10.0, geometry::random_rotation(2008, 1));
@@ -103,9 +103,9 @@ TEST(CaseMeasurementBatches, FindTheSamePixelsAsSinglePrimitives) {
 TEST(CaseMeasurementBatches, AWildPixelInABatchIsChargedToItsPrimitive) {
   const geometry::View view =
       geometry::make_view(30, 128, 128, 0.01, 10.0, geometry::random_rotation(2008, 1));
-  auto clean = create_gl_platform(*find_platform("osmesa-llvmpipe"));
-  auto wild = create_gl_platform(*find_platform("osmesa-llvmpipe"),
-                                     ReadbackMethod::kRegionWithProof, {5, 40});
+  auto clean = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
+  auto wild = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"),
+                                            platforms::ReadbackMethod::kRegionWithProof, {5, 40});
   clean->set_view(view);
   wild->set_view(view);
   std::vector<geometry::Primitive> prims;

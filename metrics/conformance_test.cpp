@@ -277,9 +277,9 @@ TEST(Conformance, APointMissingFarFromEveryBoundaryIsAViolation) {
 // primitives are visible.
 geometry::View faulty_view() { return geometry::make_view(150, 128, 128); }
 
-std::vector<Record> faulty_records(const FaultPlan& plan, geometry::Kind kind,
+std::vector<Record> faulty_records(const platforms::FaultPlan& plan, geometry::Kind kind,
                                    geometry::SubpixelGrid* measured) {
-  auto platform = create_faulty_platform(plan);
+  auto platform = platforms::create_faulty_platform(plan);
   *measured = measure_effective_subpixel(*platform).grid;
   const geometry::View view = faulty_view();
   platform->set_view(view);
@@ -289,7 +289,7 @@ std::vector<Record> faulty_records(const FaultPlan& plan, geometry::Kind kind,
 }
 
 TEST(Conformance, FaultyPlatformSnappingToSixBitsIsMeasuredAndNeverAViolation) {
-  FaultPlan plan;
+  platforms::FaultPlan plan;
   plan.snap_bits = 6;
   plan.snap_truncate = true;
   for (geometry::Kind kind :
@@ -311,12 +311,12 @@ TEST(Conformance, FaultyPlatformSnappingToSixBitsIsMeasuredAndNeverAViolation) {
       EXPECT_GT(snapped, 0) << geometry::kind_name(kind);
   }
   geometry::SubpixelGrid grid;
-  faulty_records(FaultPlan{}, geometry::Kind::kPoint, &grid);
+  faulty_records(platforms::FaultPlan{}, geometry::Kind::kPoint, &grid);
   EXPECT_TRUE(grid.exact());
 }
 
 TEST(Conformance, FaultyPlatformDroppingLineEndsIsWithinSpecShiftedPointsAreCountedExactly) {
-  FaultPlan drop;
+  platforms::FaultPlan drop;
   drop.drop_line_end_fraction = 1;
   geometry::SubpixelGrid grid;
   int within = 0;
@@ -330,7 +330,7 @@ TEST(Conformance, FaultyPlatformDroppingLineEndsIsWithinSpecShiftedPointsAreCoun
 
   // Points one pixel to the right: a violation of one pixel unless the position lies within the
   // allowance of the pixel's right border (then the shifted pixel is one a snap could give).
-  FaultPlan shift;
+  platforms::FaultPlan shift;
   shift.shift_fraction = 1;
   const geometry::View view = faulty_view();
   int violations = 0;

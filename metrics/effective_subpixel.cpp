@@ -48,7 +48,7 @@ std::vector<geometry::Primitive> calibration_triangles() {
   return out;
 }
 
-EffectiveSubpixel measure_effective_subpixel(Platform& platform) {
+EffectiveSubpixel measure_effective_subpixel(platforms::Platform& platform) {
   EffectiveSubpixel out;
   out.candidates.push_back({geometry::SubpixelGrid(0), 0});
   for (int bits = kMaxCandidateSubpixelBits; bits >= 1; --bits) {

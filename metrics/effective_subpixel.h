@@ -40,7 +40,7 @@ geometry::View calibration_view();
 
 // Draws the calibration triangles on `platform` (its current view is replaced by
 // calibration_view(): set the view again afterwards) and scores every candidate grid.
-EffectiveSubpixel measure_effective_subpixel(Platform& platform);
+EffectiveSubpixel measure_effective_subpixel(platforms::Platform& platform);
 
 // {"bits", "rounding", "text", "matches", "triangles", "candidates": [{"grid", "matches"}, ...]}:
 // what the run's driver file (drivers/P.json) says under "effective_subpixel".

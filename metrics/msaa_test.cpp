@@ -21,10 +21,10 @@
 namespace ra::metrics {
 namespace {
 
-PlatformSpec msaa4() { return *find_platform("osmesa-llvmpipe-msaa4"); }
+platforms::PlatformSpec msaa4() { return *platforms::find_platform("osmesa-llvmpipe-msaa4"); }
 
 // Coverage of each lit pixel of a rendering, by pixel.
-std::map<geometry::Pixel, double> coverage_of(const RenderResult& r) {
+std::map<geometry::Pixel, double> coverage_of(const platforms::RenderResult& r) {
   std::map<geometry::Pixel, double> out;
   size_t i = 0;
   for (geometry::Pixel p : r.lit) out[p] = double(r.samples_lit.at(i++)) / r.samples;
@@ -56,18 +56,19 @@ using stats::median;
 TEST(OsmesaMsaa, PlatformIsInTheTableAndSoftpipeHasNone) {
   EXPECT_EQ(msaa4().samples, 4);
   EXPECT_EQ(msaa4().mesa_driver, "llvmpipe");
-  EXPECT_EQ(msaa4().backend, Backend::kOsmesa);
-  EXPECT_EQ(find_platform("osmesa-llvmpipe")->samples, 0);
-  EXPECT_FALSE(find_platform("osmesa-softpipe-msaa4"));  // softpipe: GL_MAX_SAMPLES 1
-  EXPECT_FALSE(find_platform("egl-softpipe-msaa4"));
+  EXPECT_EQ(msaa4().backend, platforms::Backend::kOsmesa);
+  EXPECT_EQ(platforms::find_platform("osmesa-llvmpipe")->samples, 0);
+  EXPECT_FALSE(platforms::find_platform("osmesa-softpipe-msaa4"));  // softpipe: GL_MAX_SAMPLES 1
+  EXPECT_FALSE(platforms::find_platform("egl-softpipe-msaa4"));
 }
 
 // Asking for more samples than the driver has fails at creation, naming the platform and the
 // driver's GL_MAX_SAMPLES (llvmpipe has 4).
 TEST(OsmesaMsaa, TooManySamplesFailsWithAClearError) {
-  const PlatformSpec sixteen{"osmesa-llvmpipe-msaa16", "test", Backend::kOsmesa, "llvmpipe", 16};
+  const platforms::PlatformSpec sixteen{"osmesa-llvmpipe-msaa16", "test",
+                                        platforms::Backend::kOsmesa, "llvmpipe", 16};
   try {
-    create_gl_platform(sixteen);
+    platforms::create_gl_platform(sixteen);
     FAIL() << "created a 16-sample platform";
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
@@ -88,9 +89,9 @@ TEST(OsmesaMsaa, PixelCornerTriangleIsCoveredExactly) {
   ASSERT_EQ(poly.status, geometry::ClipStatus::kVisible);
   ASSERT_NEAR(poly.area, 48.0 * 48.0 / 2, 1e-9);
 
-  auto platform = create_gl_platform(msaa4());
+  auto platform = platforms::create_gl_platform(msaa4());
   platform->set_view(view);
-  const RenderResult r = platform->render(tri, geometry::PixelRect{0, 0, 64, 64});
+  const platforms::RenderResult r = platform->render(tri, geometry::PixelRect{0, 0, 64, 64});
   ASSERT_EQ(r.samples, 4);
   ASSERT_EQ(r.samples_lit.size(), size_t(r.lit.size()));
   const std::map<geometry::Pixel, double> cov = coverage_of(r);
@@ -114,9 +115,9 @@ TEST(OsmesaMsaa, PixelCornerTriangleIsCoveredExactly) {
   EXPECT_NEAR(m.te_signed, 0.0, 1e-9);
   EXPECT_EQ(m.rendered, interior + diagonal);
 
-  auto aliased = create_gl_platform(*find_platform("osmesa-llvmpipe"));
+  auto aliased = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
   aliased->set_view(view);
-  const RenderResult ra = aliased->render(tri, geometry::PixelRect{0, 0, 64, 64});
+  const platforms::RenderResult ra = aliased->render(tri, geometry::PixelRect{0, 0, 64, 64});
   EXPECT_EQ(ra.samples, 0);
   EXPECT_TRUE(ra.samples_lit.empty());
   EXPECT_NEAR(measure_triangle(poly, ra.lit, 64, 64).te_unsigned, 24.0, 1e-9);
@@ -127,7 +128,7 @@ TEST(OsmesaMsaa, PixelCornerTriangleIsCoveredExactly) {
 // polygon to each pixel square: independent of the row walk of compute_coverage); and the record
 // measure_cases writes carries the same numbers.
 TEST(OsmesaMsaa, CoverageMetricMatchesBruteForceOnRandomTriangles) {
-  auto platform = create_gl_platform(msaa4());
+  auto platform = platforms::create_gl_platform(msaa4());
   int checked = 0, partial_pixels = 0;
   for (double fov : {30.0, 150.0}) {
     const geometry::View view =
@@ -138,7 +139,7 @@ TEST(OsmesaMsaa, CoverageMetricMatchesBruteForceOnRandomTriangles) {
       const geometry::ClippedPolygon poly =
           geometry::clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
       if (poly.status != geometry::ClipStatus::kVisible) continue;
-      const RenderResult r =
+      const platforms::RenderResult r =
           platform->render(prim, geometry::bounding_rect(poly, 64, 64, kRegionMargin));
       if (r.lit.empty()) continue;
       // The region's count proves completeness: nothing was left lit by the previous triangle
@@ -180,8 +181,9 @@ TEST(OsmesaMsaa, CoverageMetricMatchesBruteForceOnRandomTriangles) {
 TEST(CompletenessMsaa, AWildPixelIsFoundUnderMultisampling) {
   const geometry::View view =
       geometry::make_view(30, 128, 128, 0.01, 10.0, geometry::random_rotation(2008, 1));
-  auto clean = create_gl_platform(msaa4());
-  auto wild = create_gl_platform(msaa4(), ReadbackMethod::kRegionWithProof, {5, 40});
+  auto clean = platforms::create_gl_platform(msaa4());
+  auto wild =
+      platforms::create_gl_platform(msaa4(), platforms::ReadbackMethod::kRegionWithProof, {5, 40});
   clean->set_view(view);
   wild->set_view(view);
   for (geometry::Kind kind : {geometry::Kind::kPoint, geometry::Kind::kLine}) {
@@ -207,7 +209,7 @@ TEST(CompletenessMsaa, AWildPixelIsFoundUnderMultisampling) {
   geometry::Primitive tri = window_triangle(corner, {4.3, 5.1}, {17.7, 6.2}, {6.1, 15.9});
   tri.index = 5;
   const geometry::PixelRegion region = geometry::PixelRect{2, 3, 20, 18};
-  const RenderResult rc = clean->render(tri, region), rw = wild->render(tri, region);
+  const platforms::RenderResult rc = clean->render(tri, region), rw = wild->render(tri, region);
   EXPECT_FALSE(rc.full_scan);
   EXPECT_TRUE(rw.full_scan);
   ASSERT_EQ(rw.lit.size(), rc.lit.size() + 1);
@@ -225,18 +227,18 @@ TEST(CompletenessMsaa, AWildPixelIsFoundUnderMultisampling) {
   }
   EXPECT_EQ(extra, 1);
   // Drawn again on the clean platform after the wild one: the erase left nothing behind.
-  const RenderResult again = wild->render(geometry::make_primitive(1, geometry::Kind::kPoint, 0),
-                                          geometry::PixelRect{0, 0, 64, 64});
+  const platforms::RenderResult again = wild->render(
+      geometry::make_primitive(1, geometry::Kind::kPoint, 0), geometry::PixelRect{0, 0, 64, 64});
   EXPECT_FALSE(again.full_scan);
 
-  RenderResult a;
+  platforms::RenderResult a;
   a.samples = 4;
   a.lit = geometry::PixelSet{{1, 1}, {2, 1}};
   a.samples_lit = {4, 2};
-  RenderResult b = a;
+  platforms::RenderResult b = a;
   b.samples_lit = {4, 3};
   EXPECT_NE(rendered_pixel_hash(a), rendered_pixel_hash(b));
-  RenderResult aliased = a;
+  platforms::RenderResult aliased = a;
   aliased.samples = 0;
   aliased.samples_lit.clear();
   EXPECT_EQ(rendered_pixel_hash(aliased), geometry::pixel_set_hash(a.lit));
@@ -246,8 +248,8 @@ TEST(CompletenessMsaa, AWildPixelIsFoundUnderMultisampling) {
 // 150, 128 x 128), the median TEu_cov-norm of the 4x platform is strictly below the median
 // aliased TEu-norm.
 TEST(OsmesaMsaa, MultisamplingLowersTheMedianTriangleError) {
-  auto aliased = create_gl_platform(*find_platform("osmesa-llvmpipe"));
-  auto msaa = create_gl_platform(msaa4());
+  auto aliased = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
+  auto msaa = platforms::create_gl_platform(msaa4());
   for (double fov : {30.0, 150.0}) {
     const geometry::View view =
         geometry::make_view(fov, 128, 128, 0.01, 10.0, geometry::random_rotation(2008, 1));
@@ -319,7 +321,7 @@ TEST(TriangleCoverage, HandMadePatternGivesHandComputedErrors) {
 // With every lit pixel fully covered the coverage form is the aliased metric (eqs. 9-10).
 TEST(TriangleCoverage, FullCoverageEqualsTheAliasedMetric) {
   const geometry::View view = geometry::make_view(150, 96, 96, 0.01, 10.0, geometry::random_rotation(5, 2));
-  auto platform = create_gl_platform(*find_platform("osmesa-llvmpipe"));
+  auto platform = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
   platform->set_view(view);
   int checked = 0;
   for (uint64_t i = 0; i < 60; ++i) {
@@ -327,7 +329,7 @@ TEST(TriangleCoverage, FullCoverageEqualsTheAliasedMetric) {
     const geometry::ClippedPolygon poly =
         geometry::clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
     if (poly.status != geometry::ClipStatus::kVisible) continue;
-    const RenderResult r =
+    const platforms::RenderResult r =
         platform->render(prim, geometry::bounding_rect(poly, 96, 96, kRegionMargin));
     const std::vector<uint8_t> full(size_t(r.lit.size()), 4);
     const TriangleMetrics a = measure_triangle(poly, r.lit, 96, 96);

@@ -13,7 +13,7 @@
 #include "geometry/clipping.h"
 #include "geometry/reference_rasterizer.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 bool listed(const std::vector<uint64_t>& v, uint64_t i) {
@@ -118,4 +118,4 @@ std::unique_ptr<Platform> create_faulty_platform(const FaultPlan& faults) {
   return std::make_unique<FaultyPlatform>(faults);
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -58,7 +58,7 @@
 #include "platforms/pixel_scan.h"
 #include "platforms/platform.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 constexpr uint32_t kRgb = kRgbMask;  // RGB bytes of a little-endian RGBA8 pixel
@@ -643,4 +643,4 @@ std::unique_ptr<Platform> create_gl_platform(const PlatformSpec& spec, ReadbackM
   return std::make_unique<GlPlatform>(spec, method, std::move(wild_pixel_indices));
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

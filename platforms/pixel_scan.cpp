@@ -10,7 +10,7 @@
 #define RA_SCAN_X86 1
 #endif
 
-namespace ra {
+namespace ra::platforms {
 
 int next_change_portable(const uint32_t* row, int x, int w, bool any_colour, uint32_t colour,
                          bool lit_now) {
@@ -139,4 +139,4 @@ geometry::Pixel opposite_quadrant_pixel(const geometry::PixelRegion& region, int
   return {(cx + width / 2) % width, (cy + height / 2) % height};
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -11,7 +11,7 @@
 #include "geometry/pixel_region.h"
 #include "geometry/pixel_set.h"
 
-namespace ra {
+namespace ra::platforms {
 
 constexpr uint32_t kRgbMask = 0x00ffffffu;  // the RGB bytes of a pixel
 
@@ -50,4 +50,4 @@ std::array<uint8_t, 256> samples_from_resolved(int samples);
 // window's bottom left).
 geometry::Pixel opposite_quadrant_pixel(const geometry::PixelRegion& region, int width, int height);
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -14,7 +14,7 @@
 #include "platforms/fault_plan.h"
 #include "platforms/platform_spec.h"
 
-namespace ra {
+namespace ra::platforms {
 
 // What a driver says about itself (glGetString and a few capabilities).
 struct DriverInfo {
@@ -107,4 +107,4 @@ std::unique_ptr<Platform> create_vulkan_platform(
 std::unique_ptr<Platform> create_reference_platform();
 std::unique_ptr<Platform> create_faulty_platform(const FaultPlan& faults);
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -5,7 +5,7 @@
 #include "platforms/platform.h"
 #include "geometry/reference_rasterizer.h"
 
-namespace ra {
+namespace ra::platforms {
 
 namespace {
 
@@ -36,4 +36,4 @@ std::unique_ptr<Platform> create_reference_platform() {
   return std::make_unique<ReferencePlatform>();
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -40,7 +40,7 @@
 #include "platforms/vulkan_context.h"
 #include "platforms/vulkan_resources.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 constexpr uint32_t kAnyColour = 0xffffffffu;
@@ -690,4 +690,4 @@ std::unique_ptr<Platform> create_vulkan_platform(const PlatformSpec& spec, Readb
   return std::make_unique<VulkanPlatform>(spec, method, std::move(wild_pixel_indices));
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

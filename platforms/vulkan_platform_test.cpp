@@ -10,7 +10,7 @@
 #include "platforms/vulkan_context.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 // A view whose clip coordinates are GL window coordinates scaled to [-1, 1]: object (x, y) in
@@ -287,4 +287,4 @@ TEST(VulkanLavapipe, MultisampleCoverage) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::platforms

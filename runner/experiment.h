@@ -46,13 +46,13 @@ struct Experiment {
   // [run] records_format: "csv.zst" (default: a fifth of the size, read faster; every reader of the
   // project, pandas, R and DuckDB open it) or "csv" (plain text for tools that read no zstd).
   metrics::RecordsFormat records_format = metrics::RecordsFormat::kCsvZst;
-  FaultPlan faults;
+  platforms::FaultPlan faults;
   std::map<std::string, DriverBuildDecl> builds;  // [builds.NAME], by NAME
 };
 
 // The platform `name` of `exp`, its build's folder resolved as DriverBuildDecl says. Throws
 // UserError for a name the experiment cannot draw with (unknown, or a build it does not declare).
-PlatformSpec experiment_platform(const Experiment& exp, const std::string& name);
+platforms::PlatformSpec experiment_platform(const Experiment& exp, const std::string& name);
 
 // Limits checked by validation (also quoted in error messages).
 constexpr int kMaxWindow = 16384;

@@ -149,11 +149,11 @@ TEST(Experiment, QualifiedPlatformsDrawWithTheirDeclaredBuild) {
   unsetenv("RENDERAUDIT_BUILD_CACHE");
   EXPECT_EQ(cached, "/var/cache/builds/cached");
   ASSERT_EQ(e.platforms.size(), 3u);
-  const PlatformSpec installed = experiment_platform(e, "osmesa-llvmpipe");
+  const platforms::PlatformSpec installed = experiment_platform(e, "osmesa-llvmpipe");
   EXPECT_EQ(installed.build, "");
   EXPECT_EQ(installed.build_dir, "");
-  const PlatformSpec egl = experiment_platform(e, "egl-softpipe@new");
-  EXPECT_EQ(egl.backend, Backend::kEglSurfaceless);
+  const platforms::PlatformSpec egl = experiment_platform(e, "egl-softpipe@new");
+  EXPECT_EQ(egl.backend, platforms::Backend::kEglSurfaceless);
   EXPECT_EQ(egl.mesa_driver, "softpipe");
   EXPECT_EQ(egl.build, "new");
   EXPECT_EQ(egl.build_dir, "/opt/mesa-new");

@@ -253,10 +253,10 @@ RunResult run_experiment(const RunOptions& options) {
   // stops the run before its directory is touched, rather than filling it with failed shards.
   require_experiment_platforms(exp, options.experiment_path, options.only_platforms);
   {
-    std::vector<PlatformSpec> specs;
+    std::vector<platforms::PlatformSpec> specs;
     for (const std::string& p : options.only_platforms.empty() ? exp.platforms : options.only_platforms)
       specs.push_back(experiment_platform(exp, p));
-    require_platforms_draw(specs, options.experiment_path);
+    platforms::require_platforms_draw(specs, options.experiment_path);
   }
   const std::vector<Shard> shards = shards_of_run(exp, options.only_platforms, options.slice);
   const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, dir);
@@ -280,7 +280,7 @@ RunResult run_experiment(const RunOptions& options) {
   const bool show = options.progress && ::isatty(2);
   RunTally tally(exp, todo);
   ShardRecovery recovery(dir, exp, timeout_s);
-  RendererCheck renderer_check(dir, options.expect_renderer);
+  platforms::RendererCheck renderer_check(dir, options.expect_renderer);
   // wall seconds of each shard's worker (whole shards run at the first attempt), kept across
   // invocations: what a cost model or a simulation of more machines can learn from
   std::map<std::string, double> shard_seconds = manifest.shard_seconds.value_or(

@@ -53,13 +53,14 @@ std::vector<Shard> plan_shards(const Experiment& exp) {
 // The run's driver file, written by the first worker of each platform: only that worker pays
 // for measuring the timer (hundreds of milliseconds on softpipe: it was a third of a softpipe
 // point shard's time when every worker measured it).
-static void write_driver_info(const std::string& run_dir, const PlatformSpec& spec,
-                              Platform& platform, const metrics::EffectiveSubpixel& effective) {
+static void write_driver_info(const std::string& run_dir, const platforms::PlatformSpec& spec,
+                              platforms::Platform& platform,
+                              const metrics::EffectiveSubpixel& effective) {
   const std::string path = run_dir + "/drivers/" + spec.name + ".json";
   struct stat st;
   if (::stat(path.c_str(), &st) == 0) return;
   platform.measure_timer_over_cpu();
-  const DriverInfo info = platform.driver_info();
+  const platforms::DriverInfo info = platform.driver_info();
   nlohmann::json j = {{"renderer", info.renderer},           {"version", info.version},
                       {"vendor", info.vendor},               {"subpixel_bits", info.subpixel_bits},
                       {"timer_query", info.timer_query},     {"max_samples", info.max_samples},
@@ -78,7 +79,7 @@ static void write_driver_info(const std::string& run_dir, const PlatformSpec& sp
   // loaded, by path and content fingerprint: what a re-render must load to draw the same.
   if (spec.draws_with_driver()) {
     nlohmann::json libs = nlohmann::json::array();
-    for (const LoadedLibrary& l : loaded_driver_libraries())
+    for (const platforms::LoadedLibrary& l : platforms::loaded_driver_libraries())
       libs.push_back({{"path", l.path}, {"fnv1a64", l.fnv1a64}});
     j["build"] = {{"name", spec.build.empty() ? nlohmann::json() : nlohmann::json(spec.build)},
                   {"folder", spec.build.empty() ? nlohmann::json() : nlohmann::json(spec.build_dir)},
@@ -104,11 +105,11 @@ void ShardSession::run(const Shard& shard, const std::string& records_dir) {
 
   const bool exact = shard.platform == "reference";
   if (!platform_) {
-    const PlatformSpec spec = experiment_platform(exp_, shard.platform);
-    platform_ = create_platform(spec, exp_.faults);
+    const platforms::PlatformSpec spec = experiment_platform(exp_, shard.platform);
+    platform_ = platforms::create_platform(spec, exp_.faults);
     // One driver per record: a process that loaded another driver than the one that made the
     // run's records stops here, before drawing anything (exit status 2).
-    require_run_driver(run_dir_, shard.platform, platform_->driver_info());
+    platforms::require_run_driver(run_dir_, shard.platform, platform_->driver_info());
     // Every process measures the grid itself (about 96 small triangles: tens of milliseconds),
     // so that its verdicts never depend on which process wrote the driver file first.
     effective_ =

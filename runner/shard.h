@@ -34,7 +34,7 @@ struct Shard {
 // Every shard of the experiment, in a stable order (platform, view, kind, begin).
 std::vector<Shard> plan_shards(const Experiment& exp);
 
-class Platform;
+class platforms::Platform;
 
 // What the shards of one platform share in one process: the platform (its GL context, shaders
 // compiled), the effective subpixel grid it measured, the driver file written once. Made at the
@@ -54,7 +54,7 @@ class ShardSession {
   std::string run_dir_;
   const Experiment& exp_;
   std::string platform_name_;
-  std::unique_ptr<Platform> platform_;  // null until the first shard
+  std::unique_ptr<platforms::Platform> platform_;  // null until the first shard
   metrics::EffectiveSubpixel effective_;
 };
 

@@ -243,8 +243,9 @@ void WorkerPool::reaped(pid_t pid, int status) {
     e.reason = describe_exit_status(status) + e.log;
   } else {
     // A worker that loaded another driver than the run's: nothing of this run may be drawn here.
-    e.kind = words.find(kDriverMismatch) != std::string::npos ? WorkerEvent::Kind::kDriverMismatch
-                                                               : WorkerEvent::Kind::kFailed;
+    e.kind = words.find(platforms::kDriverMismatch) != std::string::npos
+                 ? WorkerEvent::Kind::kDriverMismatch
+                 : WorkerEvent::Kind::kFailed;
     e.reason = describe_exit_status(status);
     e.words = words;
   }
