@@ -95,13 +95,14 @@ std::string files_readme(const std::vector<Output>& outputs, const RunRecords& r
 RunRecords load_records(const AnalyzeOptions& o) {
   LoadOptions load;
   load.jobs = o.jobs;
-  std::optional<Experiment> experiment;  // the views and seed that generate each point again
+  std::optional<runner::Experiment>
+      experiment;  // the views and seed that generate each point again
   if (o.point_margin_px > 0) {
     const std::string path = o.run_dir + "/experiment.toml";
     if (!std::filesystem::exists(path))
       throw UserError(o.run_dir + ": --point-margin-px needs the run's experiment.toml (" + path +
                       " is missing)");
-    experiment = load_experiment(path);
+    experiment = runner::load_experiment(path);
     load.point_margin_px = o.point_margin_px;
     load.experiment = &*experiment;
   }

@@ -374,7 +374,7 @@ class FileParser {
     if (options_.point_margin_px <= 0 || kind != PrimitiveKind::kPoint ||
         visibility != metrics::Visibility::kTrueInvisible)
       return visibility;
-    const Experiment& e = *options_.experiment;
+    const runner::Experiment& e = *options_.experiment;
     if (view > int(e.views.size()))
       throw UserError(path_ + ": view " + std::to_string(view) + " is not in the run's experiment (" +
                       std::to_string(e.views.size()) + " views)");

@@ -159,7 +159,7 @@ struct LoadOptions {
   // counted false-invisible instead. 0: the records' own classes. Needs `experiment` (the run's
   // views and seed, from which each point is generated again by its index).
   double point_margin_px = 0;
-  const Experiment* experiment = nullptr;
+  const runner::Experiment* experiment = nullptr;
 };
 
 // Loads DIR/records/*.csv (*.csv.tmp, unfinished shards, are ignored). Throws ra::UserError when

@@ -10,7 +10,7 @@
 #include "util/atomic_file.h"
 #include "util/fnv1a.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 constexpr std::string_view kTrailerPrefix = "# complete rows=";
@@ -213,4 +213,4 @@ std::string check_shard_file(const std::string& path, uint64_t expected_rows) {
   return "";
 }
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -23,7 +23,7 @@
 #include "util/fnv1a.h"
 #include "util/zstd_stream.h"
 
-namespace ra {
+namespace ra::runner {
 
 // Rows per zstd frame: about 1.3 MB of text, 0.2 MB compressed; a 5,000-primitive shard is one
 // frame, so a reader splits work by file first and by frame within a large file.
@@ -62,4 +62,4 @@ uint64_t seal_shard_file(const std::string& path);
 // "hash mismatch", ...).
 std::string check_shard_file(const std::string& path, uint64_t expected_rows);
 
-}  // namespace ra
+}  // namespace ra::runner
