@@ -349,7 +349,7 @@ json figure_data(const RunRecords& run, const FigureOptions& options) {
   }
   std::vector<Comparison> plan = plan_comparisons(run);
 
-  run_in_parallel(boxes.size() + plan.size(), options.jobs, [&](std::size_t i) {
+  util::run_in_parallel(boxes.size() + plan.size(), options.jobs, [&](std::size_t i) {
     if (i < boxes.size()) {
       BoxFigure& f = boxes[i];
       const MetricSpec& spec = kind_metrics(f.kind)[f.metric];

@@ -159,7 +159,7 @@ TEST(PaperDifferences, ABadDifferenceEntryIsRefusedWithItsLine) {
   try {
     load_paper_values(path);
     FAIL() << "accepted";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find(path + ":13:"), std::string::npos) << what;
     EXPECT_NE(what.find("difference.statistics: a string (allowed: median, IQR)"),

@@ -178,7 +178,7 @@ GroupSummaries::GroupSummaries(const RunRecords& run, QuantileDefinition quantil
   }
   std::vector<std::optional<Description>> out(tasks.size());
   std::vector<std::optional<stats::MedianIqrBootstrap>> boot(tasks.size());
-  run_in_parallel(tasks.size(), jobs, [&](std::size_t i) {
+  util::run_in_parallel(tasks.size(), jobs, [&](std::size_t i) {
     const std::vector<double> sample = tasks[i].group->pooled(tasks[i].metric);  // ascending
     out[i] = describe_if_any(sample, quantiles);
     if (out[i] && bootstrap.resamples > 0) boot[i] = stats::bootstrap_median_iqr(sample, bootstrap);
@@ -685,7 +685,7 @@ stats::Table physical_units_table(const RunRecords& run, const GroupSummaries& s
   // all view groups pooled, per platform and column (the paper's overall 0.396 px)
   std::vector<std::vector<std::optional<Description>>> all(
       run.platforms.size(), std::vector<std::optional<Description>>(columns.size()));
-  run_in_parallel(run.platforms.size() * columns.size(), options.jobs, [&](std::size_t i) {
+  util::run_in_parallel(run.platforms.size() * columns.size(), options.jobs, [&](std::size_t i) {
     const std::size_t p = i / columns.size();
     const Column& c = columns[i % columns.size()];
     all[p][i % columns.size()] = describe_if_any(
@@ -784,7 +784,7 @@ stats::Table speed_table(const RunRecords& run, const TableOptions& options) {
     std::optional<Description> all, visible, error;
   };
   std::vector<Computed> computed(rows.size());
-  run_in_parallel(rows.size(), options.jobs, [&](std::size_t i) {
+  util::run_in_parallel(rows.size(), options.jobs, [&](std::size_t i) {
     const Row& r = rows[i];
     const std::size_t metric = metric_index(r.kind, headline_column(r.kind));
     std::vector<const std::vector<double>*> all, visible, error;
@@ -877,7 +877,7 @@ std::vector<PlatformComparison> compare_platforms(const RunRecords& run,
       }
     }
   }
-  run_in_parallel(out.size(), options.jobs, [&](std::size_t i) {
+  util::run_in_parallel(out.size(), options.jobs, [&](std::size_t i) {
     PlatformComparison& c = out[i];
     std::vector<std::vector<double>> samples = {
         run.find_group(c.platform_a, c.kind, c.view_group)->pooled(c.metric),

@@ -25,7 +25,8 @@ namespace {
 constexpr double kLargestPaperValue = 1e15;
 
 // [[difference]] entries: lists of strings checked against what they may hold.
-std::vector<PaperDifference> read_differences(const TomlLocator& loc, const toml::table& root) {
+std::vector<PaperDifference> read_differences(const util::TomlLocator& loc,
+                                              const toml::table& root) {
   std::vector<PaperDifference> out;
   const toml::node* node = root.get("difference");
   if (!node) return out;
@@ -73,8 +74,9 @@ std::vector<PaperDifference> read_differences(const TomlLocator& loc, const toml
 }  // namespace
 
 PaperValues load_paper_values(const std::string& path) {
-  const TomlLocator loc(path);
-  const toml::table root = loc.parse(TomlLocator::read_text(path, "the paper's values (--paper)"));
+  const util::TomlLocator loc(path);
+  const toml::table root =
+      loc.parse(util::TomlLocator::read_text(path, "the paper's values (--paper)"));
   loc.reject_unknown_keys(root, "", {"table", "difference", "primitives_per_view_group"});
   PaperValues values;
   if (const toml::node* n = root.get("primitives_per_view_group"))

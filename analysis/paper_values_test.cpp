@@ -76,7 +76,7 @@ TEST(PaperValues, BadFilesAreRefusedWithTheirLine) {
   try {
     load_paper_values(path);
     FAIL() << "accepted";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_NE(std::string(e.what()).find("table.fov_deg: four numbers, groups A-D"),
               std::string::npos)
         << e.what();
@@ -103,7 +103,7 @@ TEST(PaperValues, NonFiniteOrHugeValuesAreRefusedAtTheirLine) {
     try {
       load_paper_values(path);
       ADD_FAILURE() << value << " accepted";
-    } catch (const UserError& e) {
+    } catch (const util::UserError& e) {
       const std::string what = e.what();
       EXPECT_NE(what.find(path + ":" + std::to_string(line) + ":22: table.platform_1_median: "
                           "value 1 of 4 is not a table value (allowed: -1e15 to 1e15, or nan "
@@ -120,7 +120,7 @@ TEST(PaperValues, NonFiniteOrHugeValuesAreRefusedAtTheirLine) {
   try {
     load_paper_values(missing);
     ADD_FAILURE() << "a missing file accepted";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()),
               missing + ": cannot read the paper's values (--paper) (No such file or directory)");
   }

@@ -41,22 +41,24 @@ class Stopwatch {
 
 void check_options(const AnalyzeOptions& o) {
   if (!(o.alpha > 0 && o.alpha < 1)) {
-    throw UserError("--alpha " + stats::format_significant(std::isfinite(o.alpha) ? o.alpha : -1, 6) +
-                    ": the significance level must lie strictly between 0 and 1");
+    throw util::UserError("--alpha " +
+                          stats::format_significant(std::isfinite(o.alpha) ? o.alpha : -1, 6) +
+                          ": the significance level must lie strictly between 0 and 1");
   }
-  if (o.pixel_pitches_mm.empty()) throw UserError("--pixel-pitch-mm: give at least one pitch");
+  if (o.pixel_pitches_mm.empty())
+    throw util::UserError("--pixel-pitch-mm: give at least one pitch");
   for (double p : o.pixel_pitches_mm) {
     if (!(p > 0) || !std::isfinite(p)) {
-      throw UserError("--pixel-pitch-mm: " + std::to_string(p) +
+      throw util::UserError("--pixel-pitch-mm: " + std::to_string(p) +
                       " is not a pixel pitch (a positive number of millimetres, e.g. 0.255)");
     }
   }
   if (!(o.point_margin_px >= 0 && o.point_margin_px <= 16)) {
-    throw UserError("--point-margin-px " + stats::format_significant(o.point_margin_px, 6) +
+    throw util::UserError("--point-margin-px " + stats::format_significant(o.point_margin_px, 6) +
                     ": a margin in pixels from 0 to 16 (0.5 is the paper's convention)");
   }
   if (o.box_cox_subsample < 3) {
-    throw UserError("--box-cox-subsample " + std::to_string(o.box_cox_subsample) +
+    throw util::UserError("--box-cox-subsample " + std::to_string(o.box_cox_subsample) +
                     ": at least 3 values are needed to choose lambda");
   }
 }
@@ -100,8 +102,8 @@ RunRecords load_records(const AnalyzeOptions& o) {
   if (o.point_margin_px > 0) {
     const std::string path = o.run_dir + "/experiment.toml";
     if (!std::filesystem::exists(path))
-      throw UserError(o.run_dir + ": --point-margin-px needs the run's experiment.toml (" + path +
-                      " is missing)");
+      throw util::UserError(o.run_dir + ": --point-margin-px needs the run's experiment.toml (" +
+                            path + " is missing)");
     experiment = runner::load_experiment(path);
     load.point_margin_px = o.point_margin_px;
     load.experiment = &*experiment;
@@ -232,7 +234,8 @@ void write_outputs(const AnalyzeOptions& o, const std::vector<Output>& outputs,
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec)
-    throw UserError(out_dir.string() + ": cannot create the directory (" + ec.message() + ")");
+    throw util::UserError(out_dir.string() + ": cannot create the directory (" + ec.message() +
+                          ")");
   for (const auto& e : fs::directory_iterator(out_dir)) {
     const std::string name = e.path().filename().string();
     bool current = false;
@@ -240,10 +243,11 @@ void write_outputs(const AnalyzeOptions& o, const std::vector<Output>& outputs,
     if (!current && e.is_regular_file() && generated_name(name)) fs::remove(e.path(), ec);
   }
   for (const Output& out : outputs) {
-    write_file_atomic((out_dir / out.name).string(), out.content);
+    util::write_file_atomic((out_dir / out.name).string(), out.content);
     result.files.push_back(out.name);
   }
-  write_file_atomic((out_dir / "README.md").string(), files_readme(outputs, run, o, completeness));
+  util::write_file_atomic((out_dir / "README.md").string(),
+                          files_readme(outputs, run, o, completeness));
   result.files.push_back("README.md");
   result.out_dir = out_dir.string();
 }

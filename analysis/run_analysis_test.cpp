@@ -38,7 +38,7 @@ template <typename F>
 std::string user_error(F f) {
   try {
     f();
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
   return "";

@@ -36,7 +36,7 @@ std::string check_unsealed(const std::string& path, const runner::Shard& s,
   const int version = metrics::records_schema_version(path);
   // A compressed file cut inside its first frame shows no header at all; compression came after
   // the seal, so such a file was written sealed and is simply cut short.
-  if (version == 0 && has_zstd_extension(path)) return no_seal;
+  if (version == 0 && util::has_zstd_extension(path)) return no_seal;
   if (version == metrics::kRecordsSchemaVersion)
     return no_seal + "; records of schema version " +
            std::to_string(metrics::kRecordsSchemaVersion) +
@@ -53,7 +53,7 @@ std::string check_unsealed(const std::string& path, const runner::Shard& s,
       seen[index - s.begin] = true;
       ++rows;
     });
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     // "PATH:LINE: why" -> "line LINE: why" (the caller names the shard)
     const std::string what = e.what();
     return what.rfind(path + ":", 0) == 0 ? "line " + what.substr(path.size() + 1) : what;
@@ -114,7 +114,7 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
   if (!fs::exists(toml)) return c;
   c.has_plan = true;
   const runner::Experiment exp = runner::load_experiment(toml);
-  c.writer = DirLock::current_holder(run_dir);
+  c.writer = util::DirLock::current_holder(run_dir);
   try {
     const runner::RunManifest m = runner::read_manifest_file(run_dir + "/manifest.json");
     c.manifest_status = m.status;
@@ -147,7 +147,7 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
   // checked on every core, then counted in plan order.
   std::vector<std::string> verdicts(plan.size());
   std::vector<char> present(plan.size(), 0);
-  run_in_parallel(plan.size(), 0, [&](std::size_t i) {
+  util::run_in_parallel(plan.size(), 0, [&](std::size_t i) {
     const runner::Shard& s = plan[i];
     const std::string path = s.records_path(run_dir);
     if (!fs::exists(path)) return;

@@ -52,9 +52,9 @@ struct RunCompleteness {
 RunCompleteness check_run_completeness(const std::string& run_dir);
 
 // What analyze and report throw when the run is incomplete and going on was not allowed.
-class IncompleteRunError : public UserError {
+class IncompleteRunError : public util::UserError {
  public:
-  explicit IncompleteRunError(const std::string& what) : UserError(what) {}
+  explicit IncompleteRunError(const std::string& what) : util::UserError(what) {}
 };
 
 }  // namespace ra::analysis

@@ -257,7 +257,7 @@ struct FileChunk {
 
 // Difference between two views' parameters, "" when equal.
 std::string meta_difference(const ViewMeta& here, const ViewMeta& there) {
-  const auto num = [](double v) { return full_precision(v); };
+  const auto num = [](double v) { return util::full_precision(v); };
   if (here.view_group != there.view_group)
     return "view_group " + std::to_string(here.view_group) + " here but " +
            std::to_string(there.view_group);
@@ -376,8 +376,9 @@ class FileParser {
       return visibility;
     const runner::Experiment& e = *options_.experiment;
     if (view > int(e.views.size()))
-      throw UserError(path_ + ": view " + std::to_string(view) + " is not in the run's experiment (" +
-                      std::to_string(e.views.size()) + " views)");
+      throw util::UserError(path_ + ": view " + std::to_string(view) +
+                            " is not in the run's experiment (" + std::to_string(e.views.size()) +
+                            " views)");
     const geometry::Primitive point = make_primitive(e.seed, geometry::Kind::kPoint, index);
     if (!metrics::inside_window_margin(e.views[std::size_t(view - 1)], point.v[0],
                                        options_.point_margin_px))
@@ -475,13 +476,13 @@ std::optional<std::uint64_t> first_duplicate(std::vector<std::uint64_t>& indices
 RunRecords load_run_records(const std::string& run_dir, const LoadOptions& options) {
   std::error_code ec;
   if (!fs::is_directory(run_dir, ec)) {
-    throw UserError(run_dir +
+    throw util::UserError(run_dir +
                     ": no such directory (expected a run directory written by "
                     "`renderaudit run`)");
   }
   const fs::path records_dir = fs::path(run_dir) / "records";
   if (!fs::is_directory(records_dir, ec)) {
-    throw UserError(run_dir + ": no records directory (" + records_dir.string() +
+    throw util::UserError(run_dir + ": no records directory (" + records_dir.string() +
                     "); is this a run directory written by `renderaudit run`?");
   }
   if (options.point_margin_px > 0 && options.experiment == nullptr)
@@ -495,7 +496,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   }
   std::sort(run.files.begin(), run.files.end());
   if (run.files.empty()) {
-    throw UserError(records_dir.string() +
+    throw util::UserError(records_dir.string() +
                     ": no records files (*.csv.zst, *.csv); the run has not finished a shard yet");
   }
 
@@ -503,7 +504,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   const MetricColumns& metric_cols = metric_columns();
   const std::size_t n_files = run.files.size();
   std::vector<FileChunk> chunks(n_files);
-  run_in_parallel(n_files, options.jobs,
+  util::run_in_parallel(n_files, options.jobs,
                   [&](std::size_t f) { chunks[f] = FileParser(run.files[f], metric_cols, options).parse(); });
 
   // merge, checking that a view has the same parameters everywhere
@@ -518,7 +519,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
       if (!first) {
         const std::string diff = meta_difference(meta, vm->second.first);
         if (!diff.empty()) {
-          throw UserError(run.files[f] + ":" + std::to_string(part.meta_line) + ": view " +
+          throw util::UserError(run.files[f] + ":" + std::to_string(part.meta_line) + ": view " +
                           std::to_string(meta.view) + " has " + diff + " in " +
                           run.files[vm->second.second]);
         }
@@ -556,7 +557,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
         if (r.min <= *dup && *dup <= r.max)
           where += (where.empty() ? "" : ", ") + run.files[r.file];
       }
-      throw UserError("records of platform " + std::get<0>(key) + ", kind " +
+      throw util::UserError("records of platform " + std::get<0>(key) + ", kind " +
                       kind_name(static_cast<PrimitiveKind>(std::get<1>(key))) + ", view " +
                       std::to_string(std::get<2>(key)) + ", index " + std::to_string(*dup) +
                       " appear more than once (in " + where +
@@ -583,7 +584,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
     samples.push_back(&data.render_us_visible);
     samples.push_back(&data.render_us_other);
   }
-  run_in_parallel(samples.size(), options.jobs,
+  util::run_in_parallel(samples.size(), options.jobs,
                   [&](std::size_t i) { std::sort(samples[i]->begin(), samples[i]->end()); });
 
   // view groups: the views of a platform and kind with the same view_group
@@ -608,7 +609,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
       same.orientation = g.meta().orientation;
       const std::string diff = meta_difference(same, g.meta());
       if (!diff.empty()) {
-        throw UserError(records_dir.string() + ": views " + std::to_string(g.meta().view) +
+        throw util::UserError(records_dir.string() + ": views " + std::to_string(g.meta().view) +
                         " and " + std::to_string(v->meta.view) + " are both in view group " +
                         g.label + " but differ in more than orientation (view " +
                         std::to_string(v->meta.view) + " has " + diff + ")");

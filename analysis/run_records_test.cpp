@@ -19,7 +19,7 @@ using testing::write_records;
 // The message of the UserError that `f` throws ("" when it throws none).
 template <typename F>
 std::string user_error(F f) {
-  return ra::testing_cli::error_message<UserError>(f);
+  return ra::testing_cli::error_message<util::UserError>(f);
 }
 
 TEST(RunRecords, CountsSamplesAndGroups) {

@@ -130,7 +130,7 @@ std::string write_run_summary(const std::string& run_dir) {
        << " |\n";
   }
   md << cost_paragraph(run_dir, cells);
-  write_file_atomic(run_dir + "/summary.md", md.str());
+  util::write_file_atomic(run_dir + "/summary.md", md.str());
   return md.str();
 }
 

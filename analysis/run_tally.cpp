@@ -122,17 +122,17 @@ json tally_json(const RunTally& t) {
 RunTally read_tally(const std::string& run_dir) {
   const std::string path = run_dir + "/analysis/tally.json";
   if (!std::filesystem::exists(path))
-    throw UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
+    throw util::UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
   json j;
   try {
-    j = json::parse(read_file(path));
+    j = json::parse(util::read_file(path));
   } catch (const json::exception& e) {
-    throw UserError(path + ": not valid JSON: " + e.what() + " (run `renderaudit analyze " +
+    throw util::UserError(path + ": not valid JSON: " + e.what() + " (run `renderaudit analyze " +
                     run_dir + "` again)");
   }
   if (j.value("schema", "") != "renderaudit-tally" ||
       j.value("schema_version", 0) != kTallySchemaVersion)
-    throw UserError(path + ": expected schema renderaudit-tally version " +
+    throw util::UserError(path + ": expected schema renderaudit-tally version " +
                     std::to_string(kTallySchemaVersion) + " (run `renderaudit analyze " + run_dir +
                     "` again)");
   RunTally t;
@@ -179,8 +179,8 @@ RunTally read_tally(const std::string& run_dir) {
         rt.median_us_true_visible = r["median_us_true_visible"].get<double>();
     }
   } catch (const json::exception& e) {
-    throw UserError(path + ": unexpected content: " + e.what() + " (run `renderaudit analyze " +
-                    run_dir + "` again)");
+    throw util::UserError(path + ": unexpected content: " + e.what() +
+                          " (run `renderaudit analyze " + run_dir + "` again)");
   }
   return t;
 }

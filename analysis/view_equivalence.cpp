@@ -253,7 +253,7 @@ std::vector<ViewEquivalence> assess_view_equivalence(const RunRecords& run,
     }
   }
   std::vector<ViewEquivalence> results(tasks.size());
-  run_in_parallel(tasks.size(), options.jobs, [&](std::size_t i) {
+  util::run_in_parallel(tasks.size(), options.jobs, [&](std::size_t i) {
     const ViewGroup& g = *tasks[i].group;
     const std::size_t m = tasks[i].metric;
     ViewEquivalence& r = results[i];

@@ -81,7 +81,8 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
     options.jobs = o->jobs;
     options.box_cox_subsample = o->box_cox_subsample;
     options.allow_incomplete = o->allow_incomplete;
-    if (o->bootstrap == 1) throw UserError("--bootstrap 1: use 0 (none) or at least 2 resamples");
+    if (o->bootstrap == 1)
+      throw util::UserError("--bootstrap 1: use 0 (none) or at least 2 resamples");
     options.bootstrap_resamples = o->bootstrap;
     options.bootstrap_seed = o->seed;
     options.paper_values = o->paper;

@@ -94,9 +94,9 @@ void register_audit_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 1024));
   cmd->callback([&exit_code] {
     if (cli.options.between.empty() && cli.dirs.size() != 2)
-      throw UserError("audit needs BASELINE_DIR CURRENT_DIR, or RUN_DIR --between P1 P2");
+      throw util::UserError("audit needs BASELINE_DIR CURRENT_DIR, or RUN_DIR --between P1 P2");
     if (!cli.options.between.empty() && cli.dirs.size() != 1)
-      throw UserError("audit --between compares two platforms of one run: give one RUN_DIR");
+      throw util::UserError("audit --between compares two platforms of one run: give one RUN_DIR");
     cli.options.current_dir = cli.dirs.back();
     if (cli.dirs.size() == 2) cli.options.baseline_dir = cli.dirs.front();
 
@@ -107,10 +107,10 @@ void register_audit_command(CLI::App& app, int& exit_code) {
     try {
       r = audit::run_audit(cli.options);
       files = audit::write_audit_outputs(r);
-    } catch (const UserError&) {
+    } catch (const util::UserError&) {
       throw;
     } catch (const std::exception& e) {
-      throw UserError(std::string("audit failed: ") + e.what());
+      throw util::UserError(std::string("audit failed: ") + e.what());
     }
     print_result(r, files);
     exit_code = int(r.verdict);

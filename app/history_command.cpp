@@ -159,8 +159,9 @@ void run_history(const HistoryOptions& o, int& exit_code) {
     if (std::find(present.begin(), present.end(), m) == present.end()) {
       std::string list;
       for (const std::string& p : present) list += (list.empty() ? "" : ", ") + p;
-      throw UserError("no metric '" + m + "' in the last " + std::to_string(h.size()) +
-                      " audits of " + o.db + " (present: " + (list.empty() ? "none" : list) + ")");
+      throw util::UserError("no metric '" + m + "' in the last " + std::to_string(h.size()) +
+                            " audits of " + o.db + " (present: " + (list.empty() ? "none" : list) +
+                            ")");
     }
   if (metrics.empty()) {
     std::printf("\nno metric summaries in these audits: no trend figures\n");

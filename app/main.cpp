@@ -35,12 +35,12 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : ra::app::kExitUsage;
-  } catch (const ra::UserError& e) {
-    ra::send_message_to_parent(e.what());
+  } catch (const ra::util::UserError& e) {
+    ra::util::send_message_to_parent(e.what());
     std::fprintf(stderr, "renderaudit: %s\n", e.what());
     return ra::app::kExitUsage;
   } catch (const std::exception& e) {
-    ra::send_message_to_parent(e.what());
+    ra::util::send_message_to_parent(e.what());
     std::fprintf(stderr, "renderaudit: error: %s\n", e.what());
     return ra::app::kExitFindings;
   }

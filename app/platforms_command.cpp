@@ -29,7 +29,7 @@ std::vector<platforms::PlatformSpec> platforms_to_probe(std::string* device_note
                                   : d.drm_node.empty() ? "" : " (" + d.drm_node + ")");
       specs.push_back(s);
     }
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     *device_note = e.what();
   }
   try {
@@ -39,7 +39,7 @@ std::vector<platforms::PlatformSpec> platforms_to_probe(std::string* device_note
       s.description = "Vulkan device " + std::to_string(d.index) + " (" + d.type + ")";
       specs.push_back(s);
     }
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     *vulkan_note = e.what();
   }
   return specs;
@@ -78,7 +78,7 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
         }
         reasons += std::string("\n  ") + name + ": " + p.reason;
       }
-      throw UserError("neither embedded platform can draw on this machine:" + reasons);
+      throw util::UserError("neither embedded platform can draw on this machine:" + reasons);
     }
     std::string device_note, vulkan_note;
     std::vector<platforms::PlatformSpec> specs;
@@ -88,8 +88,8 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
       for (const std::string& n : names) {
         const std::optional<platforms::PlatformSpec> s = platforms::find_platform(n);
         if (!s)
-          throw UserError("unknown platform '" + n + "' (allowed: " + platforms::platform_names() +
-                          ")");
+          throw util::UserError("unknown platform '" + n +
+                                "' (allowed: " + platforms::platform_names() + ")");
         specs.push_back(*s);
       }
     }

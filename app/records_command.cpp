@@ -46,7 +46,8 @@ void check_names(const std::vector<std::string>& names, const std::vector<std::s
                  const std::string& option, const std::string& dir) {
   for (const std::string& n : names)
     if (std::find(allowed.begin(), allowed.end(), n) == allowed.end())
-      throw UserError(option + " " + n + ": not in run " + dir + " (allowed: " + joined(allowed) + ")");
+      throw util::UserError(option + " " + n + ": not in run " + dir +
+                            " (allowed: " + joined(allowed) + ")");
 }
 
 template <typename T>
@@ -57,13 +58,14 @@ bool wanted(const std::vector<T>& filter, const T& value) {
 void stream_records(const RecordsOptions& o) {
   const std::string toml = o.dir + "/experiment.toml";
   if (!std::filesystem::exists(toml))
-    throw UserError(o.dir + ": no experiment.toml (expected a run directory written by "
-                    "`renderaudit run`)");
+    throw util::UserError(o.dir +
+                          ": no experiment.toml (expected a run directory written by "
+                          "`renderaudit run`)");
   const runner::Experiment exp = runner::load_experiment(toml);
   const std::optional<metrics::RecordsFormat> format = metrics::parse_records_format(o.format);
-  if (!format) throw UserError("--format " + o.format + ": unknown (allowed: csv, csv.zst)");
+  if (!format) throw util::UserError("--format " + o.format + ": unknown (allowed: csv, csv.zst)");
   if (*format == metrics::RecordsFormat::kCsvZst && ::isatty(STDOUT_FILENO))
-    throw UserError("--format csv.zst writes compressed bytes: redirect or pipe stdout");
+    throw util::UserError("--format csv.zst writes compressed bytes: redirect or pipe stdout");
 
   check_names(o.platforms, exp.platforms, "--platform", o.dir);
   check_names(o.kinds, {"point", "line", "triangle"}, "--kind", o.dir);
@@ -78,8 +80,9 @@ void stream_records(const RecordsOptions& o) {
     all_columns.push_back(metrics::record_column_name(static_cast<metrics::RecordColumn>(c)));
   for (const std::string& name : o.columns) {
     const std::optional<metrics::RecordColumn> c = metrics::find_record_column(name);
-    if (!c) throw UserError("--columns " + name + ": no such records column (allowed: " +
-                            joined(all_columns) + ")");
+    if (!c)
+      throw util::UserError("--columns " + name +
+                            ": no such records column (allowed: " + joined(all_columns) + ")");
     columns.push_back(*c);
   }
   if (columns.empty())
@@ -87,9 +90,9 @@ void stream_records(const RecordsOptions& o) {
       columns.push_back(static_cast<metrics::RecordColumn>(c));
 
   std::ios::sync_with_stdio(false);
-  std::unique_ptr<ZstdFrameWriter> zstd;
+  std::unique_ptr<util::ZstdFrameWriter> zstd;
   if (*format == metrics::RecordsFormat::kCsvZst)
-    zstd = std::make_unique<ZstdFrameWriter>(std::cout);
+    zstd = std::make_unique<util::ZstdFrameWriter>(std::cout);
   std::string text;  // written out every few MiB (one zstd frame each)
   const auto flush = [&] {
     if (zstd) {

@@ -34,7 +34,7 @@ void register_reproduce_command(CLI::App& app, int& exit_code) {
     std::filesystem::create_directories(std::filesystem::path(path).parent_path().empty()
                                             ? "."
                                             : std::filesystem::path(path).parent_path());
-    write_file_atomic(path, r.source);
+    util::write_file_atomic(path, r.source);
     std::printf("wrote %s\nbuild: %s\nrun:   %s\nworker: %llu pixels (hash %llu); reference: %llu "
                 "pixels (hash %llu)\n",
                 path.c_str(), r.build_line.c_str(), r.run_line.c_str(),

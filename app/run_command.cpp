@@ -86,9 +86,10 @@ void register_run_command(CLI::App& app, int& exit_code) {
     study.progress = !quiet;
     if (slurm) {
       if (runner::experiment_study_kind(opt.experiment_path) != runner::StudyKind::kAudit)
-        throw UserError(opt.experiment_path + ": --slurm runs sharded experiments; a study "
-                        "([timing], [lod], [regulation]) runs on one machine");
-      if (opt.slice) throw UserError("--slurm cuts the run into slices itself; drop --slice");
+        throw util::UserError(opt.experiment_path +
+                              ": --slurm runs sharded experiments; a study "
+                              "([timing], [lod], [regulation]) runs on one machine");
+      if (opt.slice) throw util::UserError("--slurm cuts the run into slices itself; drop --slice");
       const char* sbatch = std::getenv("RENDERAUDIT_SBATCH");  // tests substitute a fake
       if (sbatch && *sbatch) slurm_opt.sbatch = sbatch;
       const runner::SlurmSubmission sub = runner::submit_slurm_run(opt, slurm_opt);

@@ -106,9 +106,9 @@ Sample read_sample(const std::string& file, const std::string& column) {
   const stats::CsvTable table = stats::CsvTable::read_file(file);
   stats::NumericColumn c = table.numeric_column(column);
   if (c.values.size() < 2) {
-    throw UserError(file + ": column '" + column + "' has " + std::to_string(c.values.size()) +
-                    " value(s) (" + std::to_string(c.n_missing) +
-                    " empty cells skipped); at least 2 are needed");
+    throw util::UserError(
+        file + ": column '" + column + "' has " + std::to_string(c.values.size()) + " value(s) (" +
+        std::to_string(c.n_missing) + " empty cells skipped); at least 2 are needed");
   }
   return Sample{file, column, std::move(c.values), c.n_missing};
 }
@@ -122,7 +122,8 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
   for (const std::string& w : where) {
     const std::size_t eq = w.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw UserError("--where '" + w + "': expected COLUMN=VALUE, e.g. platform=osmesa-llvmpipe");
+      throw util::UserError("--where '" + w +
+                            "': expected COLUMN=VALUE, e.g. platform=osmesa-llvmpipe");
     conditions.emplace_back(w.substr(0, eq), w.substr(eq + 1));
   }
   std::vector<std::string> files;
@@ -134,8 +135,10 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
         files.push_back(e.path().string());
     std::sort(files.begin(), files.end());
     if (files.empty())
-      throw UserError(path + ": a directory without records/*.csv or *.csv.zst (give a CSV file or a "
-                      "run directory)");
+      throw util::UserError(
+          path +
+          ": a directory without records/*.csv or *.csv.zst (give a CSV file or a "
+          "run directory)");
     name = path + "/records (" + std::to_string(files.size()) + " files)";
   } else {
     files.push_back(path);
@@ -155,9 +158,10 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
     }
   }
   if (s.values.size() < 2)
-    throw UserError(name + ": column '" + column + "' has " + std::to_string(s.values.size()) +
-                    " value(s) in the rows selected (" + std::to_string(s.n_missing) +
-                    " empty cells skipped); at least 2 are needed");
+    throw util::UserError(name + ": column '" + column + "' has " +
+                          std::to_string(s.values.size()) + " value(s) in the rows selected (" +
+                          std::to_string(s.n_missing) +
+                          " empty cells skipped); at least 2 are needed");
   return s;
 }
 
@@ -392,9 +396,10 @@ void run_anova(const StatsOptions& o) {
   std::size_t n = 0;
   for (const auto& g : groups) n += g.size();
   if (groups.size() < 2 || n <= groups.size()) {
-    throw UserError(file + ": column '" + o.group + "' gives " + std::to_string(groups.size()) +
-                    " group(s) with " + std::to_string(n) + " value(s) of '" + o.value +
-                    "'; ANOVA needs at least 2 groups and more values than groups");
+    throw util::UserError(file + ": column '" + o.group + "' gives " +
+                          std::to_string(groups.size()) + " group(s) with " + std::to_string(n) +
+                          " value(s) of '" + o.value +
+                          "'; ANOVA needs at least 2 groups and more values than groups");
   }
 
   const Reported anova = report_test(
@@ -483,9 +488,11 @@ std::pair<std::string, int> parse_poly(const std::string& file, const std::strin
   }
   if (column.empty() || used == 0 || used != degree.size() || d < 1 ||
       d > kMaxPolynomialDegree) {
-    throw UserError(file + ": --poly '" + spec + "' is not COLUMN:DEGREE with a column name and "
-                    "a degree from 1 to " + std::to_string(kMaxPolynomialDegree) +
-                    " (e.g. --poly x:10 fits x, x^2, ..., x^10)");
+    throw util::UserError(file + ": --poly '" + spec +
+                          "' is not COLUMN:DEGREE with a column name and "
+                          "a degree from 1 to " +
+                          std::to_string(kMaxPolynomialDegree) +
+                          " (e.g. --poly x:10 fits x, x^2, ..., x^10)");
   }
   return {column, d};
 }
@@ -496,8 +503,9 @@ std::pair<std::string, int> parse_poly(const std::string& file, const std::strin
 void run_regress(const StatsOptions& o) {
   const std::string& file = o.files.at(0);
   if (o.x.empty() && o.poly.empty()) {
-    throw UserError(file + ": name the predictors with --x COLUMN[,COLUMN...] or a polynomial "
-                    "with --poly COLUMN:DEGREE");
+    throw util::UserError(file +
+                          ": name the predictors with --x COLUMN[,COLUMN...] or a polynomial "
+                          "with --poly COLUMN:DEGREE");
   }
   int degree = 0;
   std::vector<std::string> columns = o.x;
@@ -508,14 +516,14 @@ void run_regress(const StatsOptions& o) {
   }
   std::set<std::string> seen;
   for (const auto& name : columns) {
-    if (name.empty()) throw UserError(file + ": --x has an empty column name");
+    if (name.empty()) throw util::UserError(file + ": --x has an empty column name");
     if (!seen.insert(name).second) {
-      throw UserError(file + ": --x names column '" + name +
-                      "' twice; each predictor may appear once");
+      throw util::UserError(file + ": --x names column '" + name +
+                            "' twice; each predictor may appear once");
     }
     if (name == o.y) {
-      throw UserError(file + ": column '" + name +
-                      "' is both the response (--y) and a predictor (--x or --poly)");
+      throw util::UserError(file + ": column '" + name +
+                            "' is both the response (--y) and a predictor (--x or --poly)");
     }
   }
   const stats::CsvTable table = stats::CsvTable::read_file(file);
@@ -551,10 +559,11 @@ void run_regress(const StatsOptions& o) {
     fit = degree > 0
               ? stats::fit_polynomial(predictors[0], y, degree, !o.no_intercept, columns[0])
               : stats::fit_least_squares(predictors, y, !o.no_intercept, columns);
-  } catch (const UserError& e) {
-    throw UserError(file + ": '" + o.y + "' on " + (o.no_intercept ? "" : "an intercept and ") +
-                    design + ", " + std::to_string(y.size()) + " complete row(s) (" +
-                    std::to_string(n_missing) + " skipped for empty cells): " + e.what());
+  } catch (const util::UserError& e) {
+    throw util::UserError(file + ": '" + o.y + "' on " +
+                          (o.no_intercept ? "" : "an intercept and ") + design + ", " +
+                          std::to_string(y.size()) + " complete row(s) (" +
+                          std::to_string(n_missing) + " skipped for empty cells): " + e.what());
   }
   std::vector<Reported> tests;
   for (std::size_t j = 0; j < fit.coefficients.size(); ++j) {

@@ -28,7 +28,8 @@ void register_worker_command(CLI::App& app, int& exit_code) {
   cmd->callback([&exit_code] {
     const runner::Experiment exp = runner::load_experiment(dir + "/experiment.toml");
     runner::Shard shard{platform, geometry::Kind::kPoint, view, begin, end};
-    if (!geometry::parse_kind(kind, &shard.kind)) throw UserError("unknown kind '" + kind + "'");
+    if (!geometry::parse_kind(kind, &shard.kind))
+      throw util::UserError("unknown kind '" + kind + "'");
     runner::run_shard(dir, exp, shard, records_dir);
     exit_code = kExitOk;
   });

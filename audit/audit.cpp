@@ -32,14 +32,14 @@ analysis::RunRecords load_records(const std::string& dir, unsigned jobs) {
 void require_platform(const RunIdentity& run, const std::string& platform) {
   const auto& p = run.experiment.platforms;
   if (std::find(p.begin(), p.end(), platform) == p.end())
-    throw UserError("--between " + platform + ": not a platform of the run " + run.dir +
-                    " (its platforms: " +
-                    [&] {
-                      std::string s;
-                      for (const auto& x : p) s += (s.empty() ? "" : ", ") + x;
-                      return s;
-                    }() +
-                    ")");
+    throw util::UserError("--between " + platform + ": not a platform of the run " + run.dir +
+                          " (its platforms: " +
+                          [&] {
+                            std::string s;
+                            for (const auto& x : p) s += (s.empty() ? "" : ", ") + x;
+                            return s;
+                          }() +
+                          ")");
 }
 
 void check_renderers(AuditResult& r) {
@@ -48,8 +48,8 @@ void check_renderers(AuditResult& r) {
   try {
     re = std::regex(r.expect_renderer, std::regex::ECMAScript);
   } catch (const std::regex_error& e) {
-    throw UserError("--expect-renderer '" + r.expect_renderer +
-                    "': not a valid regular expression (" + e.what() + ")");
+    throw util::UserError("--expect-renderer '" + r.expect_renderer +
+                          "': not a valid regular expression (" + e.what() + ")");
   }
   for (const DriverIdentity& d : r.current_drivers)
     if (!std::regex_search(d.renderer, re))
@@ -81,7 +81,7 @@ AuditResult run_audit(const AuditOptions& o) {
   // 1. Identity.
   if (!o.between.empty()) {
     if (o.between.size() != 2 || o.between[0] == o.between[1])
-      throw UserError("--between needs two different platforms of the run");
+      throw util::UserError("--between needs two different platforms of the run");
     r.mode = "between";
     r.current = load_run_identity(o.current_dir);
     r.baseline = r.current;
@@ -98,7 +98,7 @@ AuditResult run_audit(const AuditOptions& o) {
     r.out_dir = o.out_dir.empty() ? o.current_dir + "/audit" : o.out_dir;
   }
   // The audited run must not change under us, and its audit/ has one writer (util/dir_lock.h).
-  const DirLock lock(o.current_dir, "audit");
+  const util::DirLock lock(o.current_dir, "audit");
   for (const PlatformPair& p : r.pairs) {
     r.baseline_drivers.push_back(driver_of(r.baseline, p.baseline));
     r.current_drivers.push_back(driver_of(r.current, p.current));

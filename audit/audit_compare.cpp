@@ -42,9 +42,9 @@ std::vector<Row> read_view(const std::string& dir, const std::vector<runner::Sha
     metrics::read_records(path, [&](const metrics::Record& r) {
       if (r.platform != platform || r.kind != geometry::kind_name(kind) || r.view != view ||
           r.index < s.begin || r.index >= s.end)
-        throw UserError(path + ": holds a record of " + r.platform + " " + r.kind + " view " +
-                        std::to_string(r.view) + " index " + std::to_string(r.index) +
-                        ", outside its shard");
+        throw util::UserError(path + ": holds a record of " + r.platform + " " + r.kind + " view " +
+                              std::to_string(r.view) + " index " + std::to_string(r.index) +
+                              ", outside its shard");
       rows.push_back(
           {r.index,
            {r.status, r.visibility, r.pixels, r.pixel_hash, headline_value(r, kind), r.ref_diff,
@@ -180,7 +180,7 @@ PrimitiveComparison compare_primitives(const std::string& baseline_dir,
         if (current_exp.counts[int(k)] > 0) tasks.push_back({p, k, v.id, v.group});
 
   std::vector<TaskResult> results(tasks.size());
-  run_in_parallel(tasks.size(), jobs, [&](std::size_t i) {
+  util::run_in_parallel(tasks.size(), jobs, [&](std::size_t i) {
     results[i] = compare_view(baseline_dir, baseline_plan, current_dir, current_plan,
                               pairs[tasks[i].pair], tasks[i], compare_verdicts);
   });

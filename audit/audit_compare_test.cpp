@@ -96,7 +96,7 @@ TEST(RunIdentity, ReadsTheConformanceRulesOfAManifestAndRefusesNonsense) {
   try {
     load_run_identity(a);
     FAIL() << "a non-integer conformance_rules was accepted";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()), a + "/manifest.json: 'conformance_rules' must be an integer "
                                          "from 1 to 1000 (found \"two\")");
   }
@@ -188,7 +188,7 @@ TEST(RunIdentity, RefusesDifferentExperimentsNamingBothHashes) {
   std::string message;
   try {
     require_same_experiment(ra, rb);
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     message = e.what();
   }
   EXPECT_NE(message.find(ea.hash), std::string::npos) << message;
@@ -196,7 +196,7 @@ TEST(RunIdentity, RefusesDifferentExperimentsNamingBothHashes) {
   EXPECT_NE(message.find("seed 1"), std::string::npos) << message;
   EXPECT_NE(message.find("seed 2"), std::string::npos) << message;
   EXPECT_NO_THROW(require_same_experiment(ra, ra));
-  EXPECT_THROW(load_run_identity(a + "/records"), UserError);  // not a run directory
+  EXPECT_THROW(load_run_identity(a + "/records"), util::UserError);  // not a run directory
 }
 
 }  // namespace

@@ -89,7 +89,7 @@ std::string changed_primitives_csv(const AuditResult& r) {
          "visibility_before,visibility_after,pixels_before,pixels_after,metric,value_before,"
          "value_after,ref_diff_before,ref_diff_after,pixel_hash_before,pixel_hash_after,"
          "pixel_hash_rerender\n";
-  auto value = [](double v) { return std::isfinite(v) ? full_precision(v) : std::string(); };
+  auto value = [](double v) { return std::isfinite(v) ? util::full_precision(v) : std::string(); };
   auto diff = [](int64_t d) { return d >= 0 ? std::to_string(d) : std::string(); };
   for (const ChangedPrimitive& c : r.primitives.changed) {
     const bool rerendered = c.recheck == Recheck::kStillDifferent || c.recheck == Recheck::kFlake;
@@ -117,7 +117,7 @@ std::vector<std::string> write_audit_outputs(const AuditResult& r) {
   std::vector<std::string> paths;
   for (const auto& [name, content] : files) {
     paths.push_back(r.out_dir + "/" + name);
-    write_file_atomic(paths.back(), content);
+    util::write_file_atomic(paths.back(), content);
   }
   return paths;
 }

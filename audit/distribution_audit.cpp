@@ -130,7 +130,7 @@ DistributionAudit audit_distributions(const analysis::RunRecords& baseline,
           labels.push_back(label);
         }
   std::vector<DistributionComparison> results(tasks.size());
-  run_in_parallel(tasks.size(), jobs, [&](std::size_t i) {
+  util::run_in_parallel(tasks.size(), jobs, [&](std::size_t i) {
     results[i] = compare(baseline, current, pairs[tasks[i].pair], tasks[i], labels[i]);
   });
   for (auto& r : results)

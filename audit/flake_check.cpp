@@ -37,7 +37,7 @@ runner::Shard shard_of(const RerenderBatch& b) {
 // output in its log, RA_RENDER_ATTEMPT set to `attempt`.
 pid_t spawn(const std::string& program, const std::string& dir, const RerenderBatch& b,
             int attempt) {
-  ChildSpec spec;
+  util::ChildSpec spec;
   spec.argv = {program,
                "worker",
                dir,
@@ -50,7 +50,7 @@ pid_t spawn(const std::string& program, const std::string& dir, const RerenderBa
   spec.log_to(dir + "/logs/" + shard_of(b).id() + ".log");
   spec.stdin_null = true;
   spec.own_process_group = true;
-  return start_child(spec).pid;
+  return util::start_child(spec).pid;
 }
 
 // The last non-empty line of a child's log, for the error message (the directory is removed).
@@ -122,7 +122,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
                              std::string(std::strerror(errno)));
   const std::string dir = templ;
   for (const char* sub : {"/records", "/drivers", "/logs"}) fs::create_directories(dir + sub);
-  write_file_atomic(dir + "/experiment.toml", exp.text);
+  util::write_file_atomic(dir + "/experiment.toml", exp.text);
   // The run's driver files: each re-render worker checks the driver it loaded against them
   // (platforms/renderer_check.h) and stops rather than draw with another.
   std::error_code copy_ec;
@@ -162,7 +162,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
         int status = 0;
         if (::waitpid(pid, &status, WNOHANG) == pid) {
           const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-          finish(r.batch, ok ? "" : describe_exit_status(status));
+          finish(r.batch, ok ? "" : util::describe_exit_status(status));
         } else if (std::chrono::duration<double>(Clock::now() - r.started).count() > timeout_s) {
           ::kill(-pid, SIGKILL);
           ::waitpid(pid, nullptr, 0);
@@ -211,11 +211,11 @@ FlakeCheckSummary apply_flake_check(PrimitiveComparison& comparison,
   for (const RerenderBatch& b : r.batches) {
     // A re-render on another driver than the run's is no evidence either way: stop the audit.
     if (b.error.find(platforms::kDriverMismatch) != std::string::npos)
-      throw UserError("the flake check cannot re-render " + b.platform +
-                      " with the driver that "
-                      "made " +
-                      options.run_dir + ": " +
-                      b.error.substr(b.error.find(platforms::kDriverMismatch)));
+      throw util::UserError("the flake check cannot re-render " + b.platform +
+                            " with the driver that "
+                            "made " +
+                            options.run_dir + ": " +
+                            b.error.substr(b.error.find(platforms::kDriverMismatch)));
     if (!b.error.empty()) s.failed_batches.push_back(b);
   }
 

@@ -76,7 +76,7 @@ class Connection {
       const std::string msg = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
       sqlite3_close_v2(db_);
       db_ = nullptr;
-      throw UserError(path + ": cannot open the history database: " + msg);
+      throw util::UserError(path + ": cannot open the history database: " + msg);
     }
     sqlite3_extended_result_codes(db_, 1);
     sqlite3_busy_timeout(db_, busy_timeout_ms);
@@ -95,14 +95,14 @@ class Connection {
   const std::string& path() const { return path_; }
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw UserError(path_ + ": " + what + ": " + sqlite3_errmsg(db_));
+    throw util::UserError(path_ + ": " + what + ": " + sqlite3_errmsg(db_));
   }
   void exec(const std::string& sql, const char* what = "cannot read or write the history") {
     char* err = nullptr;
     if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
       const std::string msg = err ? err : sqlite3_errmsg(db_);
       sqlite3_free(err);
-      throw UserError(path_ + ": " + what + ": " + msg);
+      throw util::UserError(path_ + ": " + what + ": " + msg);
     }
   }
   int64_t pragma_int(const char* name);
@@ -189,20 +189,20 @@ SchemaState check_schema(Connection& c) {
   const int64_t version = c.pragma_int("user_version");
   if (version == 0) {
     if (count_tables(c) != 0)
-      throw UserError(c.path() +
-                      ": not a renderaudit history database (it has tables, but no "
-                      "history schema version)");
+      throw util::UserError(c.path() +
+                            ": not a renderaudit history database (it has tables, but no "
+                            "history schema version)");
     return SchemaState::kEmpty;
   }
   if (c.pragma_int("application_id") != kApplicationId)
-    throw UserError(c.path() + ": not a renderaudit history database (application_id " +
-                    std::to_string(c.pragma_int("application_id")) + ")");
+    throw util::UserError(c.path() + ": not a renderaudit history database (application_id " +
+                          std::to_string(c.pragma_int("application_id")) + ")");
   if (version > kHistorySchemaVersion)
-    throw UserError(c.path() + ": history schema version " + std::to_string(version) +
-                    " is newer than this renderaudit reads (" +
-                    std::to_string(kHistorySchemaVersion) + "): use a newer renderaudit");
+    throw util::UserError(c.path() + ": history schema version " + std::to_string(version) +
+                          " is newer than this renderaudit reads (" +
+                          std::to_string(kHistorySchemaVersion) + "): use a newer renderaudit");
   if (version < kHistorySchemaVersion)  // no older versions exist yet
-    throw UserError(c.path() + ": unknown history schema version " + std::to_string(version));
+    throw util::UserError(c.path() + ": unknown history schema version " + std::to_string(version));
   return SchemaState::kCurrent;
 }
 
@@ -211,8 +211,8 @@ SchemaState check_schema(Connection& c) {
 Connection open_existing(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
-    throw UserError("no history database at " + path +
-                    " (`renderaudit audit` creates it; --db FILE chooses another)");
+    throw util::UserError("no history database at " + path +
+                          " (`renderaudit audit` creates it; --db FILE chooses another)");
   return Connection(path, SQLITE_OPEN_READWRITE, kHistoryBusyTimeoutMs);
 }
 
@@ -234,8 +234,8 @@ int64_t append_history(const std::string& db_path, const AuditSummary& s,
     std::error_code ec;
     fs::create_directories(parent, ec);  // a concurrent appender may create it first: not an error
     if (!fs::is_directory(parent))
-      throw UserError(db_path + ": cannot create the directory " + parent.string() + ": " +
-                      ec.message());
+      throw util::UserError(db_path + ": cannot create the directory " + parent.string() + ": " +
+                            ec.message());
   }
   Connection c(db_path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, options.busy_timeout_ms);
   if (options.cache_pages > 0) c.exec("PRAGMA cache_size = " + std::to_string(options.cache_pages));
@@ -331,8 +331,8 @@ std::vector<HistoryEntry> read_history(const std::string& db_path, std::size_t l
       s.baseline_run = a.text(5);
       s.current_run = a.text(6);
       if (!parse_verdict(a.text(7), &s.verdict))
-        throw UserError(db_path + ": audit " + std::to_string(e.id) + " has an unknown verdict '" +
-                        a.text(7) + "'");
+        throw util::UserError(db_path + ": audit " + std::to_string(e.id) +
+                              " has an unknown verdict '" + a.text(7) + "'");
       s.changed_primitives = a.integer(8);
       s.flaky_primitives = a.integer(9);
       s.failed_primitives = a.integer(10);

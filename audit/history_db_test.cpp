@@ -145,7 +145,7 @@ TEST(HistoryDb, ADuplicatedMetricRowRejectsTheWholeAudit) {
   append_history(db, make_summary(1));
   AuditSummary bad = make_summary(2);
   bad.metrics.push_back(bad.metrics.front());
-  const std::string msg = error_message<UserError>([&] { append_history(db, bad); });
+  const std::string msg = error_message<util::UserError>([&] { append_history(db, bad); });
   EXPECT_NE(msg.find(db + ": "), std::string::npos) << msg;
   EXPECT_NE(msg.find("UNIQUE constraint failed"), std::string::npos) << msg;
   EXPECT_EQ(history_audit_count(db), 1);  // the audit row of the failed append was rolled back
@@ -154,24 +154,25 @@ TEST(HistoryDb, ADuplicatedMetricRowRejectsTheWholeAudit) {
 
 TEST(HistoryDb, ErrorsNameTheFile) {
   const std::string dir = fresh_dir("history_errors");
-  std::string msg = error_message<UserError>([&] { read_history(dir + "/none.sqlite"); });
+  std::string msg = error_message<util::UserError>([&] { read_history(dir + "/none.sqlite"); });
   EXPECT_EQ(msg, "no history database at " + dir +
                      "/none.sqlite (`renderaudit audit` creates it; --db FILE chooses another)");
 
   std::ofstream(dir + "/text.sqlite") << "this is not a database, just text padding it out\n"
                                       << std::string(200, 'x');
-  msg = error_message<UserError>([&] { read_history(dir + "/text.sqlite"); });
+  msg = error_message<util::UserError>([&] { read_history(dir + "/text.sqlite"); });
   EXPECT_NE(msg.find(dir + "/text.sqlite: "), std::string::npos) << msg;
   EXPECT_NE(msg.find("not a database"), std::string::npos) << msg;
 
   set_pragma(dir + "/other.sqlite", "CREATE TABLE t (x)");
-  msg = error_message<UserError>([&] { append_history(dir + "/other.sqlite", make_summary(1)); });
+  msg = error_message<util::UserError>(
+      [&] { append_history(dir + "/other.sqlite", make_summary(1)); });
   EXPECT_EQ(msg, dir +
                      "/other.sqlite: not a renderaudit history database (it has tables, but no "
                      "history schema version)");
 
-  msg =
-      error_message<UserError>([&] { append_history("/proc/no/such/h.sqlite", make_summary(1)); });
+  msg = error_message<util::UserError>(
+      [&] { append_history("/proc/no/such/h.sqlite", make_summary(1)); });
   EXPECT_NE(msg.find("/proc/no/such/h.sqlite: cannot create the directory /proc/no/such"),
             std::string::npos)
       << msg;
@@ -184,8 +185,8 @@ TEST(HistoryDb, ANewerSchemaVersionIsRefused) {
   const std::string expected = db +
                                ": history schema version 2 is newer than this renderaudit "
                                "reads (1): use a newer renderaudit";
-  EXPECT_EQ(error_message<UserError>([&] { append_history(db, make_summary(2)); }), expected);
-  EXPECT_EQ(error_message<UserError>([&] { read_history(db); }), expected);
+  EXPECT_EQ(error_message<util::UserError>([&] { append_history(db, make_summary(2)); }), expected);
+  EXPECT_EQ(error_message<util::UserError>([&] { read_history(db); }), expected);
 }
 
 TEST(HistoryDb, AnAppendKilledMidTransactionLeavesTheWholeAuditOrNone) {

@@ -106,29 +106,30 @@ Rgb8 darker(Rgb8 c) { return {uint8_t(c.r * 4 / 5), uint8_t(c.g * 4 / 5), uint8_
 
 void check_request(const ShowRequest& q, const runner::Experiment& exp, geometry::Kind kind) {
   if (q.view < 1 || q.view > int(exp.views.size()))
-    throw UserError("view " + std::to_string(q.view) + " out of range (allowed: 1 to " +
-                    std::to_string(exp.views.size()) + ": " + exp.path + " has " +
-                    std::to_string(exp.views.size()) +
-                    (exp.views.size() == 1 ? " view)" : " views)"));
+    throw util::UserError("view " + std::to_string(q.view) + " out of range (allowed: 1 to " +
+                          std::to_string(exp.views.size()) + ": " + exp.path + " has " +
+                          std::to_string(exp.views.size()) +
+                          (exp.views.size() == 1 ? " view)" : " views)"));
   const uint64_t count = exp.counts[int(kind)];
   if (count == 0)
-    throw UserError("index " + std::to_string(q.index) + " out of range: " + exp.path + " has no " +
-                    geometry::kind_plural(kind) + " (primitives." + geometry::kind_plural(kind) +
-                    " = 0)");
+    throw util::UserError("index " + std::to_string(q.index) + " out of range: " + exp.path +
+                          " has no " + geometry::kind_plural(kind) + " (primitives." +
+                          geometry::kind_plural(kind) + " = 0)");
   if (q.index >= count)
-    throw UserError("index " + std::to_string(q.index) + " out of range (allowed: 0 to " +
-                    std::to_string(count - 1) + ": " + exp.path + " has " + std::to_string(count) +
-                    " " + geometry::kind_plural(kind) + " per view)");
+    throw util::UserError("index " + std::to_string(q.index) + " out of range (allowed: 0 to " +
+                          std::to_string(count - 1) + ": " + exp.path + " has " +
+                          std::to_string(count) + " " + geometry::kind_plural(kind) + " per view)");
   if (q.scale < 0 || q.scale > kMaxImageScale)
-    throw UserError("scale " + std::to_string(q.scale) + " out of range (allowed: 1 to " +
-                    std::to_string(kMaxImageScale) + ")");
+    throw util::UserError("scale " + std::to_string(q.scale) + " out of range (allowed: 1 to " +
+                          std::to_string(kMaxImageScale) + ")");
   if (q.platform == "faulty") {
     // The faulty platform aborts or sleeps forever on these by design: say so instead.
     for (const auto& [list, what] :
          {std::pair{&exp.faults.crash, "crash"}, std::pair{&exp.faults.hang, "hang"}})
       if (std::find(list->begin(), list->end(), q.index) != list->end())
-        throw UserError("primitive " + std::to_string(q.index) + " is a planned " + what +
-                        " of the faulty platform ([faults] " + what + " in " + exp.path + ")");
+        throw util::UserError("primitive " + std::to_string(q.index) + " is a planned " + what +
+                              " of the faulty platform ([faults] " + what + " in " + exp.path +
+                              ")");
   }
 }
 
@@ -144,12 +145,12 @@ std::string forbidden_pixels_text(int64_t violating_pixels, int64_t marked) {
 PrimitiveImage show_primitive(const ShowRequest& q) {
   const std::string toml = (fs::path(q.run_dir) / "experiment.toml").string();
   if (!fs::is_regular_file(toml))
-    throw UserError(q.run_dir + ": not a run directory (no experiment.toml)");
+    throw util::UserError(q.run_dir + ": not a run directory (no experiment.toml)");
   const runner::Experiment exp = runner::load_experiment(toml);
   const platforms::PlatformSpec platform_spec = runner::experiment_platform(exp, q.platform);
   geometry::Kind kind;
   if (!geometry::parse_kind(q.kind, &kind))
-    throw UserError("unknown kind '" + q.kind + "' (allowed: point, line, triangle)");
+    throw util::UserError("unknown kind '" + q.kind + "' (allowed: point, line, triangle)");
   check_request(q, exp, kind);
 
   PrimitiveImage out;
@@ -201,9 +202,9 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   const int cols = shown.x1 - shown.x0, rows = shown.y1 - shown.y0;
   const int S = q.scale > 0 ? q.scale : std::max(1, kTargetImageSize / std::max(cols, rows));
   if (int64_t(cols) * S > kMaxImageSide || int64_t(rows) * S > kMaxImageSide)
-    throw UserError("the image would be " + std::to_string(int64_t(cols) * S) + " x " +
-                    std::to_string(int64_t(rows) * S) + " px (at most " +
-                    std::to_string(kMaxImageSide) + " per side): choose a smaller --scale");
+    throw util::UserError("the image would be " + std::to_string(int64_t(cols) * S) + " x " +
+                          std::to_string(int64_t(rows) * S) + " px (at most " +
+                          std::to_string(kMaxImageSide) + " per side): choose a smaller --scale");
   out.scale = S;
   out.width = cols * S;
   out.height = rows * S;
@@ -281,14 +282,14 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   std::string ext = fs::path(out.path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".png") throw UserError(out.path + ": the image is a PNG: name a .png file");
+  if (ext != ".png") throw util::UserError(out.path + ": the image is a PNG: name a .png file");
   const fs::path parent = fs::path(out.path).parent_path();
   if (!parent.empty()) {
     std::error_code ec;
     fs::create_directories(parent, ec);
   }
   if (!buf.write(out.path))
-    throw UserError(out.path + ": cannot write the image: " + buf.geterror());
+    throw util::UserError(out.path + ": cannot write the image: " + buf.geterror());
   return out;
 }
 

@@ -153,20 +153,23 @@ void fill(std::string& s, const std::string& key, const std::string& value) {
 
 Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_name) {
   const std::string toml = q.run_dir + "/experiment.toml";
-  if (!fs::is_regular_file(toml)) throw UserError(q.run_dir + ": not a run directory (no experiment.toml)");
+  if (!fs::is_regular_file(toml))
+    throw util::UserError(q.run_dir + ": not a run directory (no experiment.toml)");
   const runner::Experiment exp = runner::load_experiment(toml);
   const platforms::PlatformSpec spec = runner::experiment_platform(exp, q.platform);
   if (!spec.draws_with_gl() || spec.samples > 0 || spec.backend == platforms::Backend::kEglDevice)
-    throw UserError("reproduce draws through Mesa's surfaceless EGL: --platform must be one of "
-                    "osmesa-llvmpipe, osmesa-softpipe, egl-llvmpipe, egl-softpipe (or one of "
-                    "their builds), not '" + q.platform + "'");
+    throw util::UserError(
+        "reproduce draws through Mesa's surfaceless EGL: --platform must be one of "
+        "osmesa-llvmpipe, osmesa-softpipe, egl-llvmpipe, egl-softpipe (or one of "
+        "their builds), not '" +
+        q.platform + "'");
   geometry::Kind kind;
   if (!geometry::parse_kind(q.kind, &kind))
-    throw UserError("unknown kind '" + q.kind + "' (allowed: point, line, triangle)");
+    throw util::UserError("unknown kind '" + q.kind + "' (allowed: point, line, triangle)");
   const geometry::View* view = nullptr;
   for (const geometry::View& v : exp.views)
     if (v.id == q.view) view = &v;
-  if (!view) throw UserError("the run has no view " + std::to_string(q.view));
+  if (!view) throw util::UserError("the run has no view " + std::to_string(q.view));
   // The worker's record of it.
   std::optional<metrics::Record> record;
   for (const runner::Shard& s : runner::plan_shards(exp)) {
@@ -174,14 +177,15 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
         q.index >= s.end)
       continue;
     const std::string path = s.records_path(q.run_dir);
-    if (!fs::exists(path)) throw UserError(path + ": missing: the run has no record of this primitive");
+    if (!fs::exists(path))
+      throw util::UserError(path + ": missing: the run has no record of this primitive");
     metrics::read_records(path, [&](const metrics::Record& r) {
       if (r.index == q.index) record = r;
     });
   }
   if (!record)
-    throw UserError("the run has no record of " + q.platform + " " + q.kind + " " +
-                    std::to_string(q.index) + " in view " + std::to_string(q.view));
+    throw util::UserError("the run has no record of " + q.platform + " " + q.kind + " " +
+                          std::to_string(q.index) + " in view " + std::to_string(q.view));
 
   const geometry::Primitive prim = geometry::make_primitive(exp.seed, kind, q.index);
   const geometry::PixelSet reference = geometry::rasterize_reference(*view, prim);

@@ -15,11 +15,11 @@ namespace ra::audit {
 namespace {
 
 nlohmann::json read_json(const std::string& path) {
-  if (!fs::exists(path)) throw UserError(path + ": missing (not a run directory?)");
+  if (!fs::exists(path)) throw util::UserError(path + ": missing (not a run directory?)");
   try {
-    return nlohmann::json::parse(read_file(path));
+    return nlohmann::json::parse(util::read_file(path));
   } catch (const nlohmann::json::exception& e) {
-    throw UserError(path + ": not valid JSON (" + e.what() + ")");
+    throw util::UserError(path + ": not valid JSON (" + e.what() + ")");
   }
 }
 
@@ -33,29 +33,29 @@ std::string string_or(const nlohmann::json& j, const char* key, const std::strin
 RunIdentity load_run_identity(const std::string& dir) {
   RunIdentity run;
   run.dir = dir;
-  if (!fs::is_directory(dir)) throw UserError(dir + ": no such run directory");
+  if (!fs::is_directory(dir)) throw util::UserError(dir + ": no such run directory");
   const std::string manifest_path = dir + "/manifest.json";
   const runner::RunManifest manifest =
       runner::read_manifest(read_json(manifest_path), manifest_path);
   const std::string toml = dir + "/experiment.toml";
-  if (!fs::exists(toml)) throw UserError(toml + ": missing (not a run directory?)");
+  if (!fs::exists(toml)) throw util::UserError(toml + ": missing (not a run directory?)");
   run.experiment = runner::load_experiment(toml);
 
   const runner::ManifestExperiment exp = manifest.experiment.value_or(runner::ManifestExperiment{});
   run.name = exp.name.empty() ? run.experiment.name : exp.name;
   run.hash = exp.hash;
   if (run.hash.empty())
-    throw UserError(manifest_path + ": no experiment hash (not a renderaudit run manifest)");
+    throw util::UserError(manifest_path + ": no experiment hash (not a renderaudit run manifest)");
   if (!exp.seed)
-    throw UserError(manifest_path + ": no experiment seed (not a renderaudit run manifest)");
+    throw util::UserError(manifest_path + ": no experiment seed (not a renderaudit run manifest)");
   run.seed = *exp.seed;
   run.status = manifest.status.empty() ? "unknown" : manifest.status;
   if (manifest.conformance_rules) {
     const int rules = *manifest.conformance_rules;
     if (rules > metrics::kConformanceRulesVersion)
-      throw UserError(manifest_path + ": 'conformance_rules' must be an integer from 1 to " +
-                      std::to_string(metrics::kConformanceRulesVersion) +
-                      ", this renderaudit's (found " + std::to_string(rules) + ")");
+      throw util::UserError(manifest_path + ": 'conformance_rules' must be an integer from 1 to " +
+                            std::to_string(metrics::kConformanceRulesVersion) +
+                            ", this renderaudit's (found " + std::to_string(rules) + ")");
     run.conformance_rules = rules;
   }
 
@@ -67,7 +67,7 @@ RunIdentity load_run_identity(const std::string& dir) {
       const std::string platform = e.path().stem().string();
       if (e.path().extension() != ".json" || drivers.contains(platform)) continue;
       try {
-        drivers[platform] = nlohmann::json::parse(read_file(e.path().string()));
+        drivers[platform] = nlohmann::json::parse(util::read_file(e.path().string()));
       } catch (const std::exception&) {
       }
     }
@@ -82,12 +82,12 @@ RunIdentity load_run_identity(const std::string& dir) {
 
 void require_same_experiment(const RunIdentity& baseline, const RunIdentity& current) {
   if (baseline.hash == current.hash && baseline.seed == current.seed) return;
-  throw UserError("not runs of the same experiment: baseline " + baseline.dir +
-                  " has experiment hash " + baseline.hash + " (seed " +
-                  std::to_string(baseline.seed) + "), current " + current.dir +
-                  " has experiment hash " + current.hash + " (seed " +
-                  std::to_string(current.seed) + "); an audit compares the same primitives, so " +
-                  "both runs must come from the same experiment file");
+  throw util::UserError(
+      "not runs of the same experiment: baseline " + baseline.dir + " has experiment hash " +
+      baseline.hash + " (seed " + std::to_string(baseline.seed) + "), current " + current.dir +
+      " has experiment hash " + current.hash + " (seed " + std::to_string(current.seed) +
+      "); an audit compares the same primitives, so " +
+      "both runs must come from the same experiment file");
 }
 
 DriverIdentity driver_of(const RunIdentity& run, const std::string& platform) {

@@ -233,15 +233,17 @@ int run_children(const Options& opt, const char* self) {
   for (int round = 0; round < opt.rounds; ++round) {
     for (const auto& p : opt.platforms) {
       if (unavailable.count(p)) continue;
-      ChildSpec spec;
+      ra::util::ChildSpec spec;
       spec.argv = {self, "--platform", p, "--primitives", std::to_string(opt.primitives),
                    "--rounds", "1"};
       spec.stdin_null = true;
-      const ProgramResult measured = run_program(spec);  // stdout and stderr, interleaved
+      const ra::util::ProgramResult measured =
+          ra::util::run_program(spec);  // stdout and stderr, interleaved
       const int status = measured.status;
       if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
         std::fprintf(stderr, "readback_bench: %s left out: measuring it failed (%s): %s\n",
-                     p.c_str(), describe_exit_status(status).c_str(), measured.output.c_str());
+                     p.c_str(), ra::util::describe_exit_status(status).c_str(),
+                     measured.output.c_str());
         unavailable.insert(p);
         continue;
       }

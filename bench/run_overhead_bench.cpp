@@ -83,18 +83,18 @@ int main(int argc, char** argv) {
     Round round;
     if (from.empty()) {
       fs::remove_all(dir);
-      ChildSpec spec;
+      ra::util::ChildSpec spec;
       spec.argv = {program, "run",    experiment,           "--out",
                    dir,     "--jobs", std::to_string(jobs), "--quiet"};
       if (!served) spec.argv.push_back("--worker-per-shard");
       spec.capture_output = true;
       spec.stdin_null = true;
       const auto t0 = std::chrono::steady_clock::now();
-      const ProgramResult res = run_program(spec);
+      const ra::util::ProgramResult res = ra::util::run_program(spec);
       round.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (!res.exited_ok()) {
         std::fprintf(stderr, "run_overhead_bench: %s run failed (%s):\n%s\n", experiment.c_str(),
-                     describe_exit_status(res.status).c_str(), res.output.c_str());
+                     ra::util::describe_exit_status(res.status).c_str(), res.output.c_str());
         return 1;
       }
     }
@@ -183,7 +183,7 @@ int main(int argc, char** argv) {
   }
   if (!json_out.empty()) {
     fs::create_directories(fs::path(json_out).parent_path());
-    write_file_atomic(json_out, out.dump(1) + "\n");
+    ra::util::write_file_atomic(json_out, out.dump(1) + "\n");
   }
   return 0;
 }

@@ -32,20 +32,23 @@ bool parse_kind(const std::string& s, Kind* out) {
   return false;
 }
 
-static RngStream stream_of(Kind k) {
+static util::RngStream stream_of(Kind k) {
   switch (k) {
-    case Kind::kPoint: return RngStream::kPoint;
-    case Kind::kLine: return RngStream::kLine;
-    case Kind::kTriangle: return RngStream::kTriangle;
+    case Kind::kPoint:
+      return util::RngStream::kPoint;
+    case Kind::kLine:
+      return util::RngStream::kLine;
+    case Kind::kTriangle:
+      return util::RngStream::kTriangle;
   }
-  return RngStream::kPoint;
+  return util::RngStream::kPoint;
 }
 
 Primitive make_primitive(uint64_t seed, Kind kind, uint64_t index) {
   Primitive prim;
   prim.kind = kind;
   prim.index = index;
-  CounterRng rng(seed, stream_of(kind), index);
+  util::CounterRng rng(seed, stream_of(kind), index);
   for (int i = 0; i < vertex_count(kind); ++i) {
     // Rejection from the cube [-1, 1]^3 keeps the points uniform in the ball (paper, 3.3).
     Vec3 p;

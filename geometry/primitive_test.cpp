@@ -25,8 +25,8 @@ TEST(Primitive, SameBytesWhateverTheOrder) {
 // Portability: SplitMix64 is integer-only, so its values are fixed forever. Reference values from
 // the published algorithm (state 0 -> first output), computed independently with Python's ints.
 TEST(Primitive, SplitMixIsTheStandardFunction) {
-  EXPECT_EQ(splitmix64(0), 0xE220A8397B1DCDAFull);
-  EXPECT_EQ(splitmix64(0x9E3779B97F4A7C15ull), 0x6E789E6AA1B965F4ull);
+  EXPECT_EQ(util::splitmix64(0), 0xE220A8397B1DCDAFull);
+  EXPECT_EQ(util::splitmix64(0x9E3779B97F4A7C15ull), 0x6E789E6AA1B965F4ull);
 }
 
 TEST(Primitive, KindsAndSeedsAreIndependentStreams) {

@@ -47,7 +47,8 @@ Mat4 rotation_from_euler_deg(double yaw, double pitch, double roll) {
 Mat4 random_rotation(uint64_t seed, int orientation_number) {
   // Shoemake, "Uniform random rotations", Graphics Gems III (1992): a unit quaternion from three
   // uniforms is uniform on S^3, hence the rotation is uniform (Haar) on SO(3).
-  CounterRng rng(seed, RngStream::kOrientation, static_cast<uint64_t>(orientation_number));
+  util::CounterRng rng(seed, util::RngStream::kOrientation,
+                       static_cast<uint64_t>(orientation_number));
   const double u1 = rng.uniform01(), u2 = rng.uniform01(), u3 = rng.uniform01();
   const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
   const double x = a * std::sin(2 * M_PI * u2), y = a * std::cos(2 * M_PI * u2);

@@ -78,7 +78,7 @@ geometry::Primitive make(const runner::Experiment& e, geometry::Kind kind, uint6
   geometry::Primitive p;
   p.kind = kind;
   p.index = i;
-  CounterRng rng(e.seed, RngStream::kTriangle, i);
+  util::CounterRng rng(e.seed, util::RngStream::kTriangle, i);
   for (int k = 0; k < geometry::vertex_count(kind); ++k)
     p.v[k] = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
   return p;
@@ -102,7 +102,7 @@ GroupSamples measure(const runner::Experiment& e, geometry::Kind kind, const Rea
     const int g = view.group;
     if (g < 0 || g > 3) continue;
     constexpr size_t kChunks = 64;
-    run_in_parallel(kChunks, o.jobs, [&](size_t chunk) {
+    util::run_in_parallel(kChunks, o.jobs, [&](size_t chunk) {
       std::vector<double> a, b;
       uint64_t visible = 0, total = 0;
       for (uint64_t i = chunk; i < o.per_view; i += kChunks) {
@@ -148,7 +148,7 @@ const analysis::PaperTableValues& paper_table(const analysis::PaperValues& paper
                                               const std::string& number) {
   for (const auto& t : paper.tables)
     if (t.number == number) return t;
-  throw UserError("the paper values have no Table " + number);
+  throw util::UserError("the paper values have no Table " + number);
 }
 
 // "1.646 +- 0.010 (z +4.1 / +2.0)": value and SE at the paper's scale, z against Platform I and II
@@ -238,7 +238,7 @@ void print_point_margins(const runner::Experiment& e, const Options& o) {
     for (const geometry::View& view : e.views) {
       const int g = view.group;
       if (g < 0 || g > 3) continue;
-      run_in_parallel(64, o.jobs, [&](size_t chunk) {
+      util::run_in_parallel(64, o.jobs, [&](size_t chunk) {
         uint64_t n = 0, t = 0;
         for (uint64_t i = chunk; i < o.per_view; i += 64) {
           const geometry::Vec3 p = geometry::make_primitive(e.seed, geometry::Kind::kPoint, i).v[0];

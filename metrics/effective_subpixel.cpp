@@ -18,7 +18,7 @@ constexpr uint64_t kCalibrationIndexBase = uint64_t(1) << 62;
 
 // A window coordinate in [8, 120] on the odd multiples of 2^-15 px: never a tie (a midpoint) of
 // any candidate grid of 13 bits or fewer, and exact in float as the world coordinate below.
-double calibration_coordinate(CounterRng& rng) {
+double calibration_coordinate(util::CounterRng& rng) {
   const int64_t k = rng.integer(8 << 14, 120 << 14);  // units of 2^-14 px
   return std::ldexp(double(2 * k + 1), -15);
 }
@@ -34,7 +34,7 @@ geometry::View calibration_view() {
 std::vector<geometry::Primitive> calibration_triangles() {
   std::vector<geometry::Primitive> out;
   for (int i = 0; i < kCalibrationTriangles; ++i) {
-    CounterRng rng(kCalibrationSeed, kCalibrationStream, uint64_t(i));
+    util::CounterRng rng(kCalibrationSeed, kCalibrationStream, uint64_t(i));
     geometry::Primitive p;
     p.kind = geometry::Kind::kTriangle;
     p.index = kCalibrationIndexBase + uint64_t(i);

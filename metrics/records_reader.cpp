@@ -55,7 +55,7 @@ Conformance RecordRow::conformance() const {
 }
 
 void RecordRow::fail(const std::string& why) const {
-  throw UserError(*file_ + ":" + std::to_string(line_) + ": " + why);
+  throw util::UserError(*file_ + ":" + std::to_string(line_) + ": " + why);
 }
 
 void RecordRow::not_an_integer(RecordColumn c) const {
@@ -72,16 +72,16 @@ class RecordsFileReader {
   }
 
   void read() {
-    if (has_zstd_extension(path_)) {
+    if (util::has_zstd_extension(path_)) {
       try {
-        for_each_zstd_chunk(path_, [this](std::string_view c) { feed(c); });
+        util::for_each_zstd_chunk(path_, [this](std::string_view c) { feed(c); });
       } catch (const std::runtime_error& e) {
-        if (dynamic_cast<const UserError*>(&e)) throw;
-        throw UserError(e.what());
+        if (dynamic_cast<const util::UserError*>(&e)) throw;
+        throw util::UserError(e.what());
       }
     } else {
       std::ifstream in(path_, std::ios::binary);
-      if (!in) throw UserError(path_ + ": cannot read records file");
+      if (!in) throw util::UserError(path_ + ": cannot read records file");
       std::vector<char> block(std::size_t{4} << 20);
       while (in) {
         in.read(block.data(), static_cast<std::streamsize>(block.size()));
@@ -89,7 +89,7 @@ class RecordsFileReader {
         if (n == 0) break;
         feed(std::string_view(block.data(), n));
       }
-      if (in.bad()) throw UserError(path_ + ": read error");
+      if (in.bad()) throw util::UserError(path_ + ": read error");
     }
     if (!carry_.empty()) line(carry_);
     if (row_.line_ == 0) bad_header();
@@ -118,8 +118,8 @@ class RecordsFileReader {
   }
 
   [[noreturn]] void bad_header() const {
-    throw UserError(path_ + ":1: unexpected records header (schema version " +
-                    std::to_string(kRecordsSchemaVersion) + " expects: " + header_ + ")");
+    throw util::UserError(path_ + ":1: unexpected records header (schema version " +
+                          std::to_string(kRecordsSchemaVersion) + " expects: " + header_ + ")");
   }
 
   void line(std::string_view text) {
@@ -169,10 +169,10 @@ int records_schema_version(const std::string& path) {
     first.append(c.substr(0, nl));
     done = nl != std::string_view::npos;
   };
-  if (has_zstd_extension(path)) {
+  if (util::has_zstd_extension(path)) {
     struct HeaderRead {};  // stops decompressing once the first line is in
     try {
-      for_each_zstd_chunk(path, [&](std::string_view c) {
+      util::for_each_zstd_chunk(path, [&](std::string_view c) {
         take(c);
         if (done) throw HeaderRead{};
       });

@@ -62,7 +62,7 @@ TEST_F(RecordsReader, ABadNumberNamesItsColumnAndLine) {
   try {
     read(bad);
     FAIL() << "a bad index was accepted";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()), path_ + ":3: column 'index': 'x5' is not an integer");
   }
 }
@@ -136,7 +136,7 @@ TEST_F(RecordsReader, SchemaVersion2FilesReadWithoutAVerdict) {
   EXPECT_EQ(rows[0].batch_size, 1);
   EXPECT_EQ(rows[0].conformance, Conformance::kNotCompared);
   EXPECT_EQ(rows[0].violating_pixels, -1);
-  EXPECT_THROW(read(records_header_v2() + "\n" + row.str()), UserError);
+  EXPECT_THROW(read(records_header_v2() + "\n" + row.str()), util::UserError);
   EXPECT_EQ(records_header().rfind(records_header_v2() + ",conformance,", 0), 0u);
 }
 
@@ -166,14 +166,14 @@ TEST_F(RecordsReader, AWrongHeaderAndAShortRowAreErrorsWithTheirLine) {
   try {
     read("platform,view\n");
     FAIL() << "a wrong header was accepted";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_NE(std::string(e.what()).find(path_ + ":1: unexpected records header"),
               std::string::npos);
   }
   try {
     read(text_ + "reference,1,0\n");
     FAIL() << "a short row was accepted";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()), path_ + ":4: expected 37 fields, found 3");
   }
 }

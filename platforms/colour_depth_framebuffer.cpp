@@ -11,9 +11,9 @@ ColourDepthFramebuffer create_colour_depth_framebuffer(const GlApi& gl, int widt
   GLint max_size = 0;
   gl.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
   if (width > max_size || height > max_size)
-    throw UserError("window " + std::to_string(width) + "x" + std::to_string(height) +
-                    " exceeds " + platform + "'s GL_MAX_RENDERBUFFER_SIZE " +
-                    std::to_string(max_size));
+    throw util::UserError("window " + std::to_string(width) + "x" + std::to_string(height) +
+                          " exceeds " + platform + "'s GL_MAX_RENDERBUFFER_SIZE " +
+                          std::to_string(max_size));
   ColourDepthFramebuffer f;
   gl.GenFramebuffers(1, &f.framebuffer);
   gl.BindFramebuffer(GL_FRAMEBUFFER, f.framebuffer);

@@ -75,7 +75,7 @@ bool is_driver_library(const std::string& path) {
 std::string fingerprint_file(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return "";
-  Fnv1a64 h;
+  util::Fnv1a64 h;
   std::vector<char> buf(1 << 20);
   for (ssize_t n; (n = ::read(fd, buf.data(), buf.size())) > 0;) h.add(buf.data(), size_t(n));
   ::close(fd);
@@ -102,7 +102,7 @@ std::string cached_build_of_suite(const std::string& suite) {
     const std::string info = e.path().string() + "/build.json";
     if (e.path().filename().string().rfind(".", 0) == 0 || !fs::exists(info, ec)) continue;
     try {
-      const nlohmann::json j = nlohmann::json::parse(read_file(info));
+      const nlohmann::json j = nlohmann::json::parse(util::read_file(info));
       if (j.value("suite", "") != suite) continue;
     } catch (const std::exception&) {
       continue;
@@ -185,23 +185,26 @@ void load_driver_build(const PlatformSpec& spec) {
     const auto what = [](const std::string& d) {
       return d.empty() ? std::string("the installed driver") : "the build in " + d;
     };
-    throw UserError(spec.name + ": this process already draws with " + what(current.lib_dir) +
-                    " (for " + current.who + "), and Mesa cannot be unloaded: one driver build "
-                    "per process, so " + what(wanted) + " needs a process of its own");
+    throw util::UserError(spec.name + ": this process already draws with " + what(current.lib_dir) +
+                          " (for " + current.who +
+                          "), and Mesa cannot be unloaded: one driver build "
+                          "per process, so " +
+                          what(wanted) + " needs a process of its own");
   }
   if (spec.build.empty()) {
     current = {true, "", spec.name};
     return;
   }
   if (spec.build_dir.empty())
-    throw UserError(spec.name + ": driver build '" + spec.build + "' has no folder");
+    throw util::UserError(spec.name + ": driver build '" + spec.build + "' has no folder");
   const std::string root = root_soname(spec);
   const auto index = index_libraries(wanted);
   if (!index.count(root)) {
-    throw UserError(spec.name + ": driver build '" + spec.build + "' (" + spec.build_dir +
-                    ") holds no " + root + " in " + wanted +
-                    "; fetch a build with `renderaudit builds fetch SUITE`, or name the folder "
-                    "where its packages were unpacked (dpkg-deb -x)");
+    throw util::UserError(
+        spec.name + ": driver build '" + spec.build + "' (" + spec.build_dir + ") holds no " +
+        root + " in " + wanted +
+        "; fetch a build with `renderaudit builds fetch SUITE`, or name the folder "
+        "where its packages were unpacked (dpkg-deb -x)");
   }
   // Refuse a process where the soname is already someone else's: our load would be ignored.
   if (void* h = dlopen(root.c_str(), RTLD_LAZY | RTLD_NOLOAD)) {
@@ -209,8 +212,8 @@ void load_driver_build(const PlatformSpec& spec) {
     dlinfo(h, RTLD_DI_LINKMAP, &map);
     const std::string loaded = map && map->l_name ? map->l_name : "?";
     dlclose(h);
-    throw UserError(spec.name + ": this process already loaded " + root + " from " + loaded +
-                    ", so it cannot draw with driver build '" + spec.build + "'");
+    throw util::UserError(spec.name + ": this process already loaded " + root + " from " + loaded +
+                          ", so it cannot draw with driver build '" + spec.build + "'");
   }
   // Dependencies first: a library's needed soname must be loaded before it, or glibc would take
   // the system's. RTLD_LAZY: a symbol of a library the build lacks (libdrm_amdgpu of another
@@ -223,8 +226,8 @@ void load_driver_build(const PlatformSpec& spec) {
     for (const std::string& n : it->second.second.needed) load(n);
     if (!dlopen(it->second.first.c_str(), RTLD_LAZY | RTLD_LOCAL)) {
       const char* why = dlerror();
-      throw UserError(spec.name + ": driver build '" + spec.build + "': cannot load " +
-                      it->second.first + " (" + (why ? why : "?") + ")");
+      throw util::UserError(spec.name + ": driver build '" + spec.build + "': cannot load " +
+                            it->second.first + " (" + (why ? why : "?") + ")");
     }
   };
   load(root);

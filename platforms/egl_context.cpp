@@ -49,9 +49,11 @@ bool hidden_by_override(const char* name) {
   std::istringstream entries(o);
   for (std::string entry; entries >> entry;)
     if (entry.size() < 2 || entry[0] != '-')
-      throw UserError("RENDERAUDIT_EGL_EXTENSION_OVERRIDE: entry '" + entry + "' does not hide "
-                      "an extension (allowed: -EXTENSION_NAME entries separated by spaces; an "
-                      "extension the library lacks cannot be added)");
+      throw util::UserError(
+          "RENDERAUDIT_EGL_EXTENSION_OVERRIDE: entry '" + entry +
+          "' does not hide "
+          "an extension (allowed: -EXTENSION_NAME entries separated by spaces; an "
+          "extension the library lacks cannot be added)");
   const std::string list = std::string(" ") + o + " ";
   return list.find(std::string(" -") + name + " ") != std::string::npos;
 }
@@ -100,15 +102,17 @@ const EglLibrary& egl_library(const std::string& who, const std::string& package
   if (!handle) {
     const std::string error = dlerror();
     if (named)  // the variable chose it: say so, not only which package has the default
-      throw UserError(who + ": cannot load " + name + " (" + error + "), the library "
-                      "RENDERAUDIT_LIBEGL names; point it at an EGL library or unset it (the "
-                      "default libEGL.so.1 comes with: apt-get install " + packages + ")");
-    throw UserError(who + ": cannot load " + name + " (" + error +
-                    "); install it with: apt-get install " + packages);
+      throw util::UserError(who + ": cannot load " + name + " (" + error +
+                            "), the library "
+                            "RENDERAUDIT_LIBEGL names; point it at an EGL library or unset it (the "
+                            "default libEGL.so.1 comes with: apt-get install " +
+                            packages + ")");
+    throw util::UserError(who + ": cannot load " + name + " (" + error +
+                          "); install it with: apt-get install " + packages);
   }
   const auto symbol = [&](const char* fn) {
     void* p = dlsym(handle, fn);
-    if (!p) throw UserError(who + ": " + name + " lacks " + fn + ": not an EGL 1.4 library");
+    if (!p) throw util::UserError(who + ": " + name + " lacks " + fn + ": not an EGL 1.4 library");
     return p;
   };
   EglLibrary l;
@@ -145,16 +149,16 @@ const EglLibrary& egl_library(const std::string& who, const std::string& package
 
 std::vector<EGLDeviceEXT> query_devices(const EglLibrary& egl, const std::string& who) {
   if (!egl.query_devices || !egl.query_device_string) {
-    throw UserError(who + ": " + egl.name +
-                    " lacks EGL_EXT_device_enumeration / EGL_EXT_device_query (client "
-                    "extensions), so no EGL device can be picked");
+    throw util::UserError(who + ": " + egl.name +
+                          " lacks EGL_EXT_device_enumeration / EGL_EXT_device_query (client "
+                          "extensions), so no EGL device can be picked");
   }
   EGLint count = 0;
   if (!egl.query_devices(0, nullptr, &count))
-    throw UserError(who + ": eglQueryDevicesEXT failed with " + egl.error());
+    throw util::UserError(who + ": eglQueryDevicesEXT failed with " + egl.error());
   std::vector<EGLDeviceEXT> devices(static_cast<std::size_t>(count));
   if (count > 0 && !egl.query_devices(count, devices.data(), &count))
-    throw UserError(who + ": eglQueryDevicesEXT failed with " + egl.error());
+    throw util::UserError(who + ": eglQueryDevicesEXT failed with " + egl.error());
   devices.resize(static_cast<std::size_t>(count));
   return devices;
 }
@@ -188,15 +192,17 @@ class EglContext : public GlContext {
   explicit EglContext(const PlatformSpec& spec) : egl_(egl_library(spec.name, packages_for(spec))) {
     const std::string& who = spec.name;
     if (!egl_.get_platform_display) {
-      throw UserError(who + ": " + egl_.name +
-                      " lacks EGL_EXT_platform_base (client extension), which headless EGL needs");
+      throw util::UserError(
+          who + ": " + egl_.name +
+          " lacks EGL_EXT_platform_base (client extension), which headless EGL needs");
     }
     if (spec.backend == Backend::kEglSurfaceless) {
       const char* client = egl_.query_string(EGL_NO_DISPLAY, EGL_EXTENSIONS);
       if (!has_extension(client, "EGL_MESA_platform_surfaceless")) {
-        throw UserError(who + ": " + egl_.name +
-                        " lacks EGL_MESA_platform_surfaceless: Mesa's EGL is not installed "
-                        "(apt-get install " + packages_for(spec) + ")");
+        throw util::UserError(who + ": " + egl_.name +
+                              " lacks EGL_MESA_platform_surfaceless: Mesa's EGL is not installed "
+                              "(apt-get install " +
+                              packages_for(spec) + ")");
       }
       display_ = egl_.get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
                                            nullptr);
@@ -214,14 +220,14 @@ class EglContext : public GlContext {
             break;
           }
         if (index < 0) {
-          throw UserError(who + ": no hardware EGL device (" + device_list_text(described) +
-                          "); name one with egl-device:N, or use egl-llvmpipe for Mesa's "
-                          "software renderer");
+          throw util::UserError(who + ": no hardware EGL device (" + device_list_text(described) +
+                                "); name one with egl-device:N, or use egl-llvmpipe for Mesa's "
+                                "software renderer");
         }
       }
       if (index >= static_cast<int>(devices.size())) {
-        throw UserError(who + ": no EGL device " + std::to_string(index) + " (" +
-                        device_list_text(described) + ")");
+        throw util::UserError(who + ": no EGL device " + std::to_string(index) + " (" +
+                              device_list_text(described) + ")");
       }
       display_ = egl_.get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[index], nullptr);
       const EglDevice& d = described[static_cast<std::size_t>(index)];
@@ -229,31 +235,34 @@ class EglContext : public GlContext {
                  (d.software ? " (Mesa software)" : d.drm_node.empty() ? "" : " (" + d.drm_node + ")");
     }
     if (display_ == EGL_NO_DISPLAY)
-      throw UserError(who + ": eglGetPlatformDisplayEXT failed with " + egl_.error());
+      throw util::UserError(who + ": eglGetPlatformDisplayEXT failed with " + egl_.error());
     EGLint major = 0, minor = 0;
     if (!egl_.initialize(display_, &major, &minor))
-      throw UserError(who + ": eglInitialize failed with " + egl_.error() +
-                      " (is the driver installed? apt-get install " + packages_for(spec) + ")");
+      throw util::UserError(who + ": eglInitialize failed with " + egl_.error() +
+                            " (is the driver installed? apt-get install " + packages_for(spec) +
+                            ")");
     const char* ext = egl_.query_string(display_, EGL_EXTENSIONS);
     if (!has_extension(ext, "EGL_KHR_surfaceless_context")) {
-      throw UserError(who + ": the display lacks EGL_KHR_surfaceless_context, which drawing "
-                      "without a window needs");
+      throw util::UserError(who +
+                            ": the display lacks EGL_KHR_surfaceless_context, which drawing "
+                            "without a window needs");
     }
     if (!egl_.bind_api(EGL_OPENGL_API))
-      throw UserError(who + ": eglBindAPI(EGL_OPENGL_API) failed with " + egl_.error() +
-                      ": the driver offers no desktop OpenGL");
+      throw util::UserError(who + ": eglBindAPI(EGL_OPENGL_API) failed with " + egl_.error() +
+                            ": the driver offers no desktop OpenGL");
     EGLConfig config = EGL_NO_CONFIG_KHR;
     if (!has_extension(ext, "EGL_KHR_no_config_context") &&
         !has_extension(ext, "EGL_MESA_configless_context")) {
       const EGLint want[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
       EGLint n = 0;
       if (!egl_.choose_config(display_, want, &config, 1, &n) || n < 1)
-        throw UserError(who + ": no EGL config renders desktop OpenGL (" + egl_.error() + ")");
+        throw util::UserError(who + ": no EGL config renders desktop OpenGL (" + egl_.error() +
+                              ")");
     }
     // No version asked: the highest compatibility-profile version the driver has.
     context_ = egl_.create_context(display_, config, EGL_NO_CONTEXT, nullptr);
     if (context_ == EGL_NO_CONTEXT)
-      throw UserError(who + ": eglCreateContext failed with " + egl_.error());
+      throw util::UserError(who + ": eglCreateContext failed with " + egl_.error());
     make_current();
     const PFNEGLGETPROCADDRESSPROC get_proc = egl_.get_proc;
     gl_.load([get_proc](const char* name) { return reinterpret_cast<void*>(get_proc(name)); });

@@ -27,7 +27,9 @@ int render_attempt() {
 
 // A deterministic per-primitive draw in [0, 1), independent of shard and process.
 double fault_draw(const geometry::Primitive& prim, uint64_t salt) {
-  return double(splitmix64(splitmix64(prim.index * 3 + uint64_t(prim.kind)) ^ salt) >> 11) * 0x1.0p-53;
+  return double(util::splitmix64(util::splitmix64(prim.index * 3 + uint64_t(prim.kind)) ^ salt) >>
+                11) *
+         0x1.0p-53;
 }
 
 class FaultyPlatform : public Platform {

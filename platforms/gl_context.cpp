@@ -50,9 +50,9 @@ std::unique_ptr<GlContext> create_gl_context(const PlatformSpec& spec) {
       std::string hint = "Mesa chose another driver before, or this one is not installed";
       if (spec.mesa_driver == "zink")
         hint = "zink needs a Vulkan driver: apt-get install mesa-vulkan-drivers libvulkan1";
-      throw UserError("platform " + spec.name + " expects the Mesa driver '" + spec.mesa_driver +
-                      "', but " + context->backend() + " draws with GL_RENDERER '" + renderer +
-                      "' (" + hint + ")");
+      throw util::UserError("platform " + spec.name + " expects the Mesa driver '" +
+                            spec.mesa_driver + "', but " + context->backend() +
+                            " draws with GL_RENDERER '" + renderer + "' (" + hint + ")");
     }
   }
   return context;

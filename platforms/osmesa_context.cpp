@@ -38,18 +38,19 @@ class OsmesaContext : public GlContext {
     library_ = dlopen(library, RTLD_NOW | RTLD_LOCAL);
     if (!library_) {
       // when the variable chose the library, it is named: the package alone would mislead
-      throw UserError("platform " + spec.name + ": cannot load " + library + " (" + dlerror() +
-                      (named ? "), the library RENDERAUDIT_LIBOSMESA names; point it at an "
-                               "OSMesa library or unset it (the default libOSMesa.so.8 comes "
-                               "with: apt-get install "
-                             : "); install it with: apt-get install ") +
-                      packages_for(spec) + (named ? ")" : "") +
-                      " (OSMesa was removed from Mesa 25.1; egl-" + spec.mesa_driver +
-                      " draws with the same driver through EGL)");
+      throw util::UserError(
+          "platform " + spec.name + ": cannot load " + library + " (" + dlerror() +
+          (named ? "), the library RENDERAUDIT_LIBOSMESA names; point it at an "
+                   "OSMesa library or unset it (the default libOSMesa.so.8 comes "
+                   "with: apt-get install "
+                 : "); install it with: apt-get install ") +
+          packages_for(spec) + (named ? ")" : "") + " (OSMesa was removed from Mesa 25.1; egl-" +
+          spec.mesa_driver + " draws with the same driver through EGL)");
     }
     const auto symbol = [&](const char* name) {
       void* p = dlsym(library_, name);
-      if (!p) throw UserError(std::string(library) + " lacks " + name + ": not an OSMesa library");
+      if (!p)
+        throw util::UserError(std::string(library) + " lacks " + name + ": not an OSMesa library");
       return p;
     };
     create_ = reinterpret_cast<CreateContextExt>(symbol("OSMesaCreateContextExt"));

@@ -44,7 +44,7 @@ PlatformProbe probe_platform(const PlatformSpec& spec) {
   const std::string scratch = std::filesystem::temp_directory_path().string();
   const std::string name = "renderaudit-probe-" + std::to_string(::getpid()) + "-" + spec.name;
   try {
-    const nlohmann::json j = run_in_child(scratch, name, [&spec]() {
+    const nlohmann::json j = util::run_in_child(scratch, name, [&spec]() {
       if (spec.draws_with_vulkan()) return vulkan_probe(spec);
       const std::unique_ptr<GlContext> context = create_gl_context(spec);
       const GlApi& gl = context->gl();
@@ -57,9 +57,9 @@ PlatformProbe probe_platform(const PlatformSpec& spec) {
       gl.GetIntegerv(GL_MAX_SAMPLES, &max_samples);
       const std::string extensions = text(GL_EXTENSIONS);
       if (spec.samples > max_samples) {
-        throw UserError(spec.name + " needs " + std::to_string(spec.samples) +
-                        " samples per pixel, but " + text(GL_RENDERER) + " has GL_MAX_SAMPLES " +
-                        std::to_string(max_samples));
+        throw util::UserError(spec.name + " needs " + std::to_string(spec.samples) +
+                              " samples per pixel, but " + text(GL_RENDERER) +
+                              " has GL_MAX_SAMPLES " + std::to_string(max_samples));
       }
       return nlohmann::json{
           {"renderer", text(GL_RENDERER)},
@@ -82,7 +82,7 @@ PlatformProbe probe_platform(const PlatformSpec& spec) {
     out.driver.strict_lines = j.value("strict_lines", false);
     out.driver.line_modes = j.value("line_modes", "");
     out.driver.line_mode = j.value("line_mode", "");
-  } catch (const ChildProcessError& e) {
+  } catch (const util::ChildProcessError& e) {
     out.reason = e.what();
     for (const std::string& prefix : {spec.name + ": ", "platform " + spec.name + ": "})
       if (out.reason.compare(0, prefix.size(), prefix) == 0)  // the caller names the platform
@@ -96,14 +96,14 @@ std::vector<VulkanDeviceInfo> list_vulkan_devices_in_child() {
   const std::string name = "renderaudit-vulkan-devices-" + std::to_string(::getpid());
   nlohmann::json j;
   try {
-    j = run_in_child(scratch, name, []() {
+    j = util::run_in_child(scratch, name, []() {
       nlohmann::json list = nlohmann::json::array();
       for (const VulkanDeviceInfo& d : list_vulkan_devices())
         list.push_back({{"index", d.index}, {"name", d.name}, {"type", d.type}});
       return list;
     });
-  } catch (const ChildProcessError& e) {
-    throw UserError(e.what());
+  } catch (const util::ChildProcessError& e) {
+    throw util::UserError(e.what());
   }
   std::vector<VulkanDeviceInfo> out;
   for (const nlohmann::json& d : j) {
@@ -121,15 +121,15 @@ std::vector<EglDevice> list_egl_devices_in_child() {
   const std::string name = "renderaudit-egl-devices-" + std::to_string(::getpid());
   nlohmann::json j;
   try {
-    j = run_in_child(scratch, name, []() {
+    j = util::run_in_child(scratch, name, []() {
       nlohmann::json list = nlohmann::json::array();
       for (const EglDevice& d : list_egl_devices())
         list.push_back({{"index", d.index}, {"extensions", d.extensions},
                         {"drm_node", d.drm_node}, {"software", d.software}});
       return list;
     });
-  } catch (const ChildProcessError& e) {
-    throw UserError(e.what());
+  } catch (const util::ChildProcessError& e) {
+    throw util::UserError(e.what());
   }
   std::vector<EglDevice> out;
   for (const nlohmann::json& d : j) {
@@ -158,8 +158,10 @@ void require_platforms_draw(const std::vector<PlatformSpec>& specs, const std::s
     if (!p.available) problems += "\n  " + spec.name + ": " + p.reason;
   }
   if (!problems.empty()) {
-    throw UserError(context + ": platform(s) that cannot draw on this machine (nothing was "
-                    "written; `renderaudit platforms` lists what can):" + problems);
+    throw util::UserError(context +
+                          ": platform(s) that cannot draw on this machine (nothing was "
+                          "written; `renderaudit platforms` lists what can):" +
+                          problems);
   }
 }
 

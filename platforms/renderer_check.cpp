@@ -18,8 +18,8 @@ RendererCheck::RendererCheck(std::string run_dir, const std::string& pattern)
   try {
     regex_ = std::regex(pattern_, std::regex::ECMAScript);
   } catch (const std::regex_error& e) {
-    throw UserError("--expect-renderer '" + pattern_ + "': not a valid regular expression (" +
-                    e.what() + ")");
+    throw util::UserError("--expect-renderer '" + pattern_ + "': not a valid regular expression (" +
+                          e.what() + ")");
   }
 }
 
@@ -32,9 +32,9 @@ void require_run_driver(const std::string& run_dir, const std::string& platform,
   if (!fs::exists(path, ec)) return;
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(read_file(path));
+    j = nlohmann::json::parse(util::read_file(path));
   } catch (const std::exception& e) {
-    throw UserError(path + ": not a readable driver file (" + e.what() + ")");
+    throw util::UserError(path + ": not a readable driver file (" + e.what() + ")");
   }
   const std::string renderer = j.value("renderer", ""), version = j.value("version", "");
   if (renderer == loaded.renderer && version == loaded.version) return;
@@ -42,12 +42,13 @@ void require_run_driver(const std::string& run_dir, const std::string& platform,
   if (const auto b = j.find("build"); b != j.end() && b->is_object())
     if (const auto f = b->find("folder"); f != b->end() && f->is_string())
       where = ", build folder " + f->get<std::string>();
-  throw UserError(std::string(kDriverMismatch) + ": " + platform + ": this process loaded GL_RENDERER '" +
-                  loaded.renderer + "' GL_VERSION '" + loaded.version + "' (" + loaded.backend +
-                  "), but the run's records were made with GL_RENDERER '" + renderer +
-                  "' GL_VERSION '" + version + "' (" + path + where +
-                  "); nothing was drawn. Draw with the driver that made the run: name its build "
-                  "(PLATFORM@BUILD) or run in the environment the run was made in");
+  throw util::UserError(
+      std::string(kDriverMismatch) + ": " + platform + ": this process loaded GL_RENDERER '" +
+      loaded.renderer + "' GL_VERSION '" + loaded.version + "' (" + loaded.backend +
+      "), but the run's records were made with GL_RENDERER '" + renderer + "' GL_VERSION '" +
+      version + "' (" + path + where +
+      "); nothing was drawn. Draw with the driver that made the run: name its build "
+      "(PLATFORM@BUILD) or run in the environment the run was made in");
 }
 
 std::string RendererCheck::mismatch() {
@@ -61,7 +62,8 @@ std::string RendererCheck::mismatch() {
     checked_.insert(name);
     std::string renderer;
     try {
-      renderer = nlohmann::json::parse(read_file(entry.path().string())).value("renderer", "");
+      renderer =
+          nlohmann::json::parse(util::read_file(entry.path().string())).value("renderer", "");
     } catch (const std::exception&) {
       checked_.erase(name);  // being written: look again next time
       continue;

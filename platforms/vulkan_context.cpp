@@ -56,21 +56,22 @@ void use_driver_build(const PlatformSpec& spec) {
   for (const auto& e : fs::directory_iterator(icd_dir, ec))
     if (e.path().filename().string().rfind("lvp_icd", 0) == 0) icd = e.path();
   if (icd.empty())
-    throw UserError("platform " + spec.name + ": the driver build folder " + spec.build_dir +
-                    " holds no lavapipe (" + icd_dir.string() +
-                    "/lvp_icd.*.json); unpack the build's mesa-vulkan-drivers package into it");
+    throw util::UserError(
+        "platform " + spec.name + ": the driver build folder " + spec.build_dir +
+        " holds no lavapipe (" + icd_dir.string() +
+        "/lvp_icd.*.json); unpack the build's mesa-vulkan-drivers package into it");
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(read_file(icd.string()));
+    j = nlohmann::json::parse(util::read_file(icd.string()));
   } catch (const std::exception& e) {
-    throw UserError(icd.string() + ": not a readable Vulkan driver file (" + e.what() + ")");
+    throw util::UserError(icd.string() + ": not a readable Vulkan driver file (" + e.what() + ")");
   }
   std::string library = j["ICD"].value("library_path", "");
   if (library.empty() || library[0] != '/')
-    throw UserError(icd.string() + ": 'ICD.library_path' must be an absolute path");
+    throw util::UserError(icd.string() + ": 'ICD.library_path' must be an absolute path");
   j["ICD"]["library_path"] = spec.build_dir + library;
   const std::string local = spec.build_dir + "/renderaudit_lvp_icd.json";
-  write_file_atomic(local, j.dump(2) + "\n");
+  util::write_file_atomic(local, j.dump(2) + "\n");
   setenv("VK_DRIVER_FILES", local.c_str(), 1);
   setenv("VK_ICD_FILENAMES", local.c_str(), 1);  // loaders before 1.3.207
 }
@@ -82,9 +83,9 @@ VkInstance process_instance(const PlatformSpec* spec) {
   const std::string build = spec ? spec->build_dir : "";
   if (instance != VK_NULL_HANDLE) {
     if (spec && build != made_for_build)
-      throw UserError("platform " + spec->name +
-                      ": this process already loaded another Vulkan driver (one driver build "
-                      "per process)");
+      throw util::UserError("platform " + spec->name +
+                            ": this process already loaded another Vulkan driver (one driver build "
+                            "per process)");
     return instance;
   }
   if (spec && !spec->build.empty()) use_driver_build(*spec);
@@ -102,15 +103,15 @@ VkInstance process_instance(const PlatformSpec* spec) {
       loader ? reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(loader, "vkGetInstanceProcAddr"))
              : nullptr;
   if (!get_proc)
-    throw UserError("no Vulkan loader: " + library + " cannot be loaded" +
-                    (named && *named ? " (the library RENDERAUDIT_LIBVULKAN names)"
-                                     : " (apt-get install libvulkan1 mesa-vulkan-drivers)"));
+    throw util::UserError("no Vulkan loader: " + library + " cannot be loaded" +
+                          (named && *named ? " (the library RENDERAUDIT_LIBVULKAN names)"
+                                           : " (apt-get install libvulkan1 mesa-vulkan-drivers)"));
   volkInitializeCustom(get_proc);
   uint32_t loader_version = VK_API_VERSION_1_0;
   if (vkEnumerateInstanceVersion) vkEnumerateInstanceVersion(&loader_version);
   if (loader_version < VK_API_VERSION_1_1)
-    throw UserError("the Vulkan loader is version " + version_text(loader_version) +
-                    "; renderaudit needs 1.1 or newer (apt-get install libvulkan1)");
+    throw util::UserError("the Vulkan loader is version " + version_text(loader_version) +
+                          "; renderaudit needs 1.1 or newer (apt-get install libvulkan1)");
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "renderaudit";
   app.apiVersion = loader_version < VK_API_VERSION_1_3 ? loader_version : VK_API_VERSION_1_3;
@@ -118,7 +119,7 @@ VkInstance process_instance(const PlatformSpec* spec) {
   info.pApplicationInfo = &app;
   const VkResult r = vkCreateInstance(&info, nullptr, &instance);
   if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
-    throw UserError(
+    throw util::UserError(
         "the Vulkan loader finds no driver (VK_ERROR_INCOMPATIBLE_DRIVER; apt-get "
         "install mesa-vulkan-drivers for lavapipe, or the GPU vendor's driver)");
   vk_check(r, "vkCreateInstance");
@@ -246,9 +247,9 @@ const VulkanDeviceInfo& choose_vulkan_device(const PlatformSpec& spec,
   const VulkanDeviceInfo* chosen = nullptr;
   if (spec.device >= 0) {
     if (size_t(spec.device) >= devices.size())
-      throw UserError("platform " + spec.name + ": there is no Vulkan device " +
-                      std::to_string(spec.device) +
-                      " on this machine (devices: " + device_list(devices) + ")");
+      throw util::UserError("platform " + spec.name + ": there is no Vulkan device " +
+                            std::to_string(spec.device) +
+                            " on this machine (devices: " + device_list(devices) + ")");
     chosen = &devices[spec.device];
   } else {
     for (const VulkanDeviceInfo& d : devices)
@@ -257,25 +258,25 @@ const VulkanDeviceInfo& choose_vulkan_device(const PlatformSpec& spec,
         break;
       }
     if (!chosen)
-      throw UserError("platform " + spec.name + ": " +
-                      (spec.mesa_driver == "lavapipe"
-                           ? "the Vulkan loader finds no lavapipe (apt-get install "
-                             "mesa-vulkan-drivers)"
-                           : "no Vulkan device here is a GPU (name one as vk-device:N)") +
-                      "; devices: " + device_list(devices));
+      throw util::UserError("platform " + spec.name + ": " +
+                            (spec.mesa_driver == "lavapipe"
+                                 ? "the Vulkan loader finds no lavapipe (apt-get install "
+                                   "mesa-vulkan-drivers)"
+                                 : "no Vulkan device here is a GPU (name one as vk-device:N)") +
+                            "; devices: " + device_list(devices));
   }
   const std::string which =
       "Vulkan device " + std::to_string(chosen->index) + " (" + chosen->name + ")";
   if (spec.line_mode == PlatformSpec::LineMode::kBresenham && !chosen->bresenham_lines)
-    throw UserError(
+    throw util::UserError(
         "platform " + spec.name + " draws Bresenham lines, but " + which +
         (chosen->line_rasterization
              ? " offers only these modes of VK_EXT_line_rasterization: " + chosen->line_modes()
              : " lacks VK_EXT_line_rasterization"));
   if (spec.samples > chosen->max_samples)
-    throw UserError("platform " + spec.name + " needs " + std::to_string(spec.samples) +
-                    " samples per pixel, but " + which + " offers at most " +
-                    std::to_string(chosen->max_samples));
+    throw util::UserError("platform " + spec.name + " needs " + std::to_string(spec.samples) +
+                          " samples per pixel, but " + which + " offers at most " +
+                          std::to_string(chosen->max_samples));
   return *chosen;
 }
 
@@ -284,8 +285,8 @@ VulkanContext::VulkanContext(const PlatformSpec& spec) {
     throw std::logic_error("VulkanContext: " + spec.name + " does not draw with Vulkan");
   try {
     instance_ = process_instance(&spec);
-  } catch (const UserError& e) {
-    throw UserError("platform " + spec.name + ": " + e.what());
+  } catch (const util::UserError& e) {
+    throw util::UserError("platform " + spec.name + ": " + e.what());
   }
   const std::vector<VkPhysicalDevice> pds = physical_devices(instance_);
   std::vector<VulkanDeviceInfo> devices;
@@ -295,8 +296,9 @@ VulkanContext::VulkanContext(const PlatformSpec& spec) {
   physical_ = pds[info_.index];
   queue_family_ = families[info_.index];
   if (queue_family_ == UINT32_MAX)
-    throw UserError("platform " + spec.name + ": Vulkan device " + std::to_string(info_.index) +
-                    " (" + info_.name + ") has no graphics queue");
+    throw util::UserError("platform " + spec.name + ": Vulkan device " +
+                          std::to_string(info_.index) + " (" + info_.name +
+                          ") has no graphics queue");
 
   const float priority = 1;
   VkDeviceQueueCreateInfo queue{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -48,7 +48,7 @@ geometry::PixelRegion whole(const geometry::View& v) {
   do {                                                                            \
     try {                                                                         \
       choose_vulkan_device(*find_platform("vk-lavapipe"), list_vulkan_devices()); \
-    } catch (const UserError& e) {                                                \
+    } catch (const util::UserError& e) {                                          \
       GTEST_SKIP() << "no lavapipe here: " << e.what();                           \
     }                                                                             \
   } while (0)
@@ -94,7 +94,7 @@ VulkanDeviceInfo device(int index, const std::string& type, bool llvmpipe, bool 
 std::string error_of(const std::string& platform, const std::vector<VulkanDeviceInfo>& devices) {
   try {
     choose_vulkan_device(*find_platform(platform), devices);
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
   return "";

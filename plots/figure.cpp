@@ -96,57 +96,62 @@ void write_figure_data(const Figure& figure, const std::string& path) {
   if (auto* q = std::get_if<QQContent>(&figure.content)) {
     o << "p,x,y\n";
     for (std::size_t i = 0; i < q->x.size(); ++i)
-      o << (i < q->p.size() ? full_precision_or_empty(q->p[i]) : "") << ','
-        << full_precision_or_empty(q->x[i]) << ',' << full_precision_or_empty(q->y[i]) << '\n';
+      o << (i < q->p.size() ? util::full_precision_or_empty(q->p[i]) : "") << ','
+        << util::full_precision_or_empty(q->x[i]) << ',' << util::full_precision_or_empty(q->y[i])
+        << '\n';
   } else if (auto* b = std::get_if<BihistogramContent>(&figure.content)) {
     o << "bin_lo,bin_hi,upper_count,lower_count,upper_height,lower_height\n";
     for (std::size_t i = 0; i + 1 < b->edges.size(); ++i)
-      o << full_precision_or_empty(b->edges[i]) << ',' << full_precision_or_empty(b->edges[i + 1])
-        << ',' << b->upper_count.at(i) << ',' << b->lower_count.at(i) << ','
-        << full_precision_or_empty(b->upper_height.at(i)) << ','
-        << full_precision_or_empty(b->lower_height.at(i)) << '\n';
+      o << util::full_precision_or_empty(b->edges[i]) << ','
+        << util::full_precision_or_empty(b->edges[i + 1]) << ',' << b->upper_count.at(i) << ','
+        << b->lower_count.at(i) << ',' << util::full_precision_or_empty(b->upper_height.at(i))
+        << ',' << util::full_precision_or_empty(b->lower_height.at(i)) << '\n';
   } else if (auto* bp = std::get_if<BoxPlotContent>(&figure.content)) {
     std::size_t max_n = 1;
     for (const Box& x : bp->boxes) max_n = std::max(max_n, x.n);
     o << "category,series,n,min,lower_whisker,q1,median,q3,upper_whisker,max,n_outliers_low,"
          "n_outliers_high,relative_width\n";
     for (const Box& x : bp->boxes)
-      o << csv_escape(x.category) << ',' << csv_escape(x.series) << ',' << x.n << ','
-        << full_precision_or_empty(x.min) << ',' << full_precision_or_empty(x.lower_whisker) << ','
-        << full_precision_or_empty(x.q1) << ',' << full_precision_or_empty(x.median) << ','
-        << full_precision_or_empty(x.q3) << ',' << full_precision_or_empty(x.upper_whisker) << ','
-        << full_precision_or_empty(x.max) << ',' << x.n_outliers_low << ',' << x.n_outliers_high
-        << ',' << full_precision_or_empty(double(x.n) / double(max_n)) << '\n';
+      o << util::csv_escape(x.category) << ',' << util::csv_escape(x.series) << ',' << x.n << ','
+        << util::full_precision_or_empty(x.min) << ','
+        << util::full_precision_or_empty(x.lower_whisker) << ','
+        << util::full_precision_or_empty(x.q1) << ',' << util::full_precision_or_empty(x.median)
+        << ',' << util::full_precision_or_empty(x.q3) << ','
+        << util::full_precision_or_empty(x.upper_whisker) << ','
+        << util::full_precision_or_empty(x.max) << ',' << x.n_outliers_low << ','
+        << x.n_outliers_high << ',' << util::full_precision_or_empty(double(x.n) / double(max_n))
+        << '\n';
   } else if (auto* h = std::get_if<HistogramContent>(&figure.content)) {
     o << "series,bin_lo,bin_hi,count,height\n";
     for (const auto& s : h->series)
       for (std::size_t i = 0; i + 1 < s.edges.size(); ++i)
-        o << csv_escape(s.name) << ',' << full_precision_or_empty(s.edges[i]) << ','
-          << full_precision_or_empty(s.edges[i + 1]) << ',' << s.counts.at(i) << ','
-          << full_precision_or_empty(s.heights.at(i)) << '\n';
+        o << util::csv_escape(s.name) << ',' << util::full_precision_or_empty(s.edges[i]) << ','
+          << util::full_precision_or_empty(s.edges[i + 1]) << ',' << s.counts.at(i) << ','
+          << util::full_precision_or_empty(s.heights.at(i)) << '\n';
   } else if (auto* sc = std::get_if<ScatterContent>(&figure.content)) {
     o << "series,label,x,y,x_lo,x_hi,y_lo,y_hi\n";
     const auto at = [](const std::vector<double>& v, std::size_t i) {
-      return i < v.size() ? full_precision_or_empty(v[i]) : std::string();
+      return i < v.size() ? util::full_precision_or_empty(v[i]) : std::string();
     };
     for (const ScatterSeries& s : sc->series)
       for (std::size_t i = 0; i < s.x.size(); ++i)
-        o << csv_escape(s.name) << ',' << csv_escape(i < s.labels.size() ? s.labels[i] : "") << ','
-          << full_precision_or_empty(s.x[i]) << ',' << full_precision_or_empty(s.y.at(i)) << ','
-          << at(s.x_lo, i) << ',' << at(s.x_hi, i) << ',' << at(s.y_lo, i) << ',' << at(s.y_hi, i)
-          << '\n';
+        o << util::csv_escape(s.name) << ','
+          << util::csv_escape(i < s.labels.size() ? s.labels[i] : "") << ','
+          << util::full_precision_or_empty(s.x[i]) << ','
+          << util::full_precision_or_empty(s.y.at(i)) << ',' << at(s.x_lo, i) << ','
+          << at(s.x_hi, i) << ',' << at(s.y_lo, i) << ',' << at(s.y_hi, i) << '\n';
   } else {
     const auto& c = std::get<BarChartContent>(figure.content);
     o << "category,series,value,label\n";
     for (const auto& s : c.series)
       for (std::size_t i = 0; i < c.categories.size(); ++i)
-        o << csv_escape(c.categories[i]) << ',' << csv_escape(s.name) << ','
-          << full_precision_or_empty(s.values.at(i)) << ','
-          << csv_escape(i < s.labels.size() ? s.labels[i] : "") << '\n';
+        o << util::csv_escape(c.categories[i]) << ',' << util::csv_escape(s.name) << ','
+          << util::full_precision_or_empty(s.values.at(i)) << ','
+          << util::csv_escape(i < s.labels.size() ? s.labels[i] : "") << '\n';
   }
   std::ofstream f(path, std::ios::binary);
   f << o.str();
-  if (!f) throw UserError("cannot write " + path);
+  if (!f) throw util::UserError("cannot write " + path);
 }
 
 int display_exponent(double max_abs) {

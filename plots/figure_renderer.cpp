@@ -888,7 +888,7 @@ void write_figure_files(vtkRenderWindow* win, const Figure& figure, const std::s
 
   write_figure_data(figure, out->csv);
   if (!std::filesystem::exists(out->png) || !std::filesystem::exists(out->pdf))
-    throw UserError("VTK did not write " + out->png + " / " + out->pdf);
+    throw util::UserError("VTK did not write " + out->png + " / " + out->pdf);
 }
 
 }  // namespace
@@ -904,7 +904,7 @@ FigureRenderer::FigureRenderer(int width, int height) : impl_(new Impl) {
   win->SetMultiSamples(0);
   impl_->view->GetRenderer()->SetBackground(1, 1, 1);
   if (!win->SupportsOpenGL())
-    throw UserError(
+    throw util::UserError(
         "VTK cannot create an OpenGL context on display " +
         std::string(std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "(none)") +
         ": install Mesa's GLX (apt-get install libgl1-mesa-dri libglx-mesa0) or use another "
@@ -1025,7 +1025,7 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
 }
 
 RgbImage read_png(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw UserError("no such PNG: " + path);
+  if (!std::filesystem::exists(path)) throw util::UserError("no such PNG: " + path);
   vtkNew<vtkPNGReader> reader;
   reader->SetFileName(path.c_str());
   reader->Update();

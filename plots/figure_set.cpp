@@ -19,7 +19,7 @@ std::vector<std::string> write_figure_set(const std::vector<Figure>& figures, co
   std::error_code ec;
   std::filesystem::create_directories(fig_dir, ec);
   if (!std::filesystem::is_directory(fig_dir))
-    throw UserError("cannot create the figure directory " + fig_dir + ": " + ec.message());
+    throw util::UserError("cannot create the figure directory " + fig_dir + ": " + ec.message());
   HeadlessDisplay display;
   {
     FigureRenderer renderer;
@@ -28,7 +28,7 @@ std::vector<std::string> write_figure_set(const std::vector<Figure>& figures, co
       const RenderedFigure rf = renderer.render(f, tmp);
       for (const std::string& p : {rf.png, rf.pdf, rf.csv}) {
         const std::string final_path = fig_dir + "/" + f.id + p.substr(p.rfind('.'));
-        commit_file(p, final_path);
+        util::commit_file(p, final_path);
         written.push_back(final_path);
       }
     }
@@ -43,7 +43,7 @@ std::vector<std::string> write_figure_set(const std::vector<Figure>& figures, co
                                 {"caption", f.caption}, {"note", f.note},
                                 {"png", f.id + ".png"}, {"pdf", f.id + ".pdf"},
                                 {"csv", f.id + ".csv"}});
-  write_file_atomic(fig_dir + "/index.json", index.dump(2) + "\n");
+  util::write_file_atomic(fig_dir + "/index.json", index.dump(2) + "\n");
   written.push_back(fig_dir + "/index.json");
   return written;
 }

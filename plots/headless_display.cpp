@@ -133,7 +133,7 @@ HeadlessDisplay::HeadlessDisplay(const std::string& log_path) {
   }
 
   const std::string xvfb = find_on_path("Xvfb");
-  if (xvfb.empty()) throw UserError(std::string(kInstallHint) + " (Xvfb is not installed).");
+  if (xvfb.empty()) throw util::UserError(std::string(kInstallHint) + " (Xvfb is not installed).");
 
   if (log_path.empty()) {
     char tmpl[] = "/tmp/renderaudit-xvfb-XXXXXX";
@@ -147,12 +147,12 @@ HeadlessDisplay::HeadlessDisplay(const std::string& log_path) {
 
   int pipefd[2];
   if (::pipe2(pipefd, O_CLOEXEC) != 0)
-    throw UserError(std::string("cannot create a pipe for Xvfb: ") + std::strerror(errno));
+    throw util::UserError(std::string("cannot create a pipe for Xvfb: ") + std::strerror(errno));
   install_handlers_once();
 
   // Only holders of a fresh cookie may connect: another local user cannot reach the server.
   write_authority();
-  ChildSpec spec;
+  util::ChildSpec spec;
   spec.argv = {xvfb, "-displayfd", std::to_string(pipefd[1]), "-nolisten", "tcp", "-auth",
                authority_path_, "-screen", "0", "1600x1200x24", "-noreset", "+extension", "GLX"};
   spec.log_to(log_path_);
@@ -162,12 +162,12 @@ HeadlessDisplay::HeadlessDisplay(const std::string& log_path) {
   spec.inherit_fds = {pipefd[1]};
   pid_t pid = -1;
   try {
-    pid = start_child(spec).pid;
+    pid = util::start_child(spec).pid;
   } catch (const std::exception& e) {
     ::close(pipefd[0]);
     ::close(pipefd[1]);
     remove_authority();
-    throw UserError(std::string("cannot start Xvfb: ") + e.what());
+    throw util::UserError(std::string("cannot start Xvfb: ") + e.what());
   }
   ::close(pipefd[1]);
   pid_ = pid;
@@ -219,8 +219,8 @@ HeadlessDisplay::HeadlessDisplay(const std::string& log_path) {
 
   const std::string log = read_tail(log_path_);
   stop();
-  throw UserError(std::string(kInstallHint) + ". A private Xvfb (" + xvfb +
-                  ") did not start" + (log.empty() ? "." : ":\n" + log));
+  throw util::UserError(std::string(kInstallHint) + ". A private Xvfb (" + xvfb +
+                        ") did not start" + (log.empty() ? "." : ":\n" + log));
 }
 
 void HeadlessDisplay::stop() {
@@ -257,8 +257,9 @@ HeadlessDisplay::~HeadlessDisplay() { stop(); }
 void HeadlessDisplay::write_authority() {
   char dir_template[] = "/tmp/renderaudit-xauth-XXXXXX";
   if (!::mkdtemp(dir_template))
-    throw UserError(std::string("cannot create a private directory for Xvfb's authority file: ") +
-                    std::strerror(errno));
+    throw util::UserError(
+        std::string("cannot create a private directory for Xvfb's authority file: ") +
+        std::strerror(errno));
   authority_dir_ = dir_template;
   authority_path_ = authority_dir_ + "/Xauthority";
   unsigned char cookie[16];
@@ -266,7 +267,7 @@ void HeadlessDisplay::write_authority() {
   random.read(reinterpret_cast<char*>(cookie), sizeof cookie);
   if (random.gcount() != std::streamsize(sizeof cookie)) {
     remove_authority();
-    throw UserError("cannot read /dev/urandom for Xvfb's authority cookie");
+    throw util::UserError("cannot read /dev/urandom for Xvfb's authority cookie");
   }
   std::string entry;
   auto put16 = [&](unsigned v) { entry += char((v >> 8) & 0xff), entry += char(v & 0xff); };
@@ -281,7 +282,7 @@ void HeadlessDisplay::write_authority() {
   if (fd >= 0) ::close(fd);
   if (!ok) {
     remove_authority();
-    throw UserError("cannot write Xvfb's authority file in " + authority_dir_);
+    throw util::UserError("cannot write Xvfb's authority file in " + authority_dir_);
   }
   const char* previous = std::getenv("XAUTHORITY");
   had_authority_ = previous != nullptr;

@@ -112,7 +112,7 @@ TEST(HeadlessDisplay, WithoutXvfbSaysWhatToInstall) {
   try {
     HeadlessDisplay d;
     FAIL() << "a display was made without Xvfb: " << d.display();
-  } catch (const ra::UserError& e) {
+  } catch (const ra::util::UserError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("apt-get install xvfb"), std::string::npos) << what;
   }

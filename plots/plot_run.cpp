@@ -50,16 +50,18 @@ json figure_json(const IndexedFigure& f, const FigureLayout* layout) {
 FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
   const std::string path = run_dir + "/analysis/figures.json";
   if (!fs::exists(path))
-    throw UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
+    throw util::UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
   json doc;
   try {
-    doc = json::parse(read_file(path));
+    doc = json::parse(util::read_file(path));
   } catch (const json::exception& e) {
-    throw UserError(path + ": not valid JSON: " + e.what());
+    throw util::UserError(path + ": not valid JSON: " + e.what());
   }
   if (doc.value("schema", "") != "renderaudit-figures" || doc.value("schema_version", 0) != 1)
-    throw UserError(path + ": expected schema renderaudit-figures version 1 (run `renderaudit "
-                    "analyze " + run_dir + "` again)");
+    throw util::UserError(path +
+                          ": expected schema renderaudit-figures version 1 (run `renderaudit "
+                          "analyze " +
+                          run_dir + "` again)");
   const an::RunTally tally = an::read_tally(run_dir);
 
   an::LoadOptions lo;
@@ -83,8 +85,8 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
       plan_speed_error_figures(p, kind);
     }
   } catch (const json::exception& e) {
-    throw UserError(path + ": unexpected content: " + e.what() + " (run `renderaudit analyze " +
-                    run_dir + "` again)");
+    throw util::UserError(path + ": unexpected content: " + e.what() +
+                          " (run `renderaudit analyze " + run_dir + "` again)");
   }
   return plan;
 }
@@ -92,7 +94,7 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
 PlotResult plot_run(const PlotOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   if (!fs::is_directory(options.run_dir))
-    throw UserError(options.run_dir + ": no such run directory");
+    throw util::UserError(options.run_dir + ": no such run directory");
   FigurePlan plan = plan_figures(options.run_dir, options.jobs);
 
   PlotResult result;
@@ -141,21 +143,22 @@ PlotResult plot_run(const PlotOptions& options) {
              {"figures", figures},
              {"skipped", skipped},
              {"seconds", result.seconds}};
-  write_file_atomic(result.index_path, index.dump(2) + "\n");
+  util::write_file_atomic(result.index_path, index.dump(2) + "\n");
   return result;
 }
 
 PlotResult read_figure_index(const std::string& run_dir) {
   const std::string path = run_dir + "/figures/index.json";
   if (!fs::exists(path))
-    throw UserError(path + " not found: run `renderaudit plot " + run_dir + "` first");
+    throw util::UserError(path + " not found: run `renderaudit plot " + run_dir + "` first");
   PlotResult r;
   r.figures_dir = run_dir + "/figures";
   r.index_path = path;
   try {
-    const json doc = json::parse(read_file(path));
+    const json doc = json::parse(util::read_file(path));
     if (doc.value("schema", "") != "renderaudit-figure-index")
-      throw UserError(path + ": not a figure index (run `renderaudit plot " + run_dir + "` again)");
+      throw util::UserError(path + ": not a figure index (run `renderaudit plot " + run_dir +
+                            "` again)");
     for (const json& f : doc.at("figures"))
       r.figures.push_back({f.at("id"), f.at("kind"), f.value("section", ""), f.value("title", ""),
                            f.value("caption", ""), f.value("note", ""), f.at("png"), f.at("pdf"),
@@ -165,8 +168,8 @@ PlotResult read_figure_index(const std::string& run_dir) {
     r.display = doc.value("display", "");
     r.seconds = doc.value("seconds", 0.0);
   } catch (const json::exception& e) {
-    throw UserError(path + ": malformed (" + std::string(e.what()) + "); run `renderaudit plot " +
-                    run_dir + "` again");
+    throw util::UserError(path + ": malformed (" + std::string(e.what()) +
+                          "); run `renderaudit plot " + run_dir + "` again");
   }
   return r;
 }

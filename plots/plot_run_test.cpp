@@ -18,7 +18,7 @@ namespace an = ra::analysis;
 std::string plan_error(const std::string& dir) {
   try {
     plan_figures(dir);
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
   return "no error";

@@ -21,7 +21,7 @@ namespace an = ra::analysis;
 
 // Not-finite values as empty cells.
 std::string finite_or_empty(double v) {
-  return std::isfinite(v) ? full_precision(v) : std::string();
+  return std::isfinite(v) ? util::full_precision(v) : std::string();
 }
 
 // The trend's own numbers, in record units (the box plot's CSV would show the bands as quartiles).
@@ -30,12 +30,12 @@ void write_trend_csv(const TrendData& data, const std::string& path) {
   out << "audit,date_utc,series,n,median,iqr\n";
   for (const TrendSeries& s : data.series)
     for (const TrendPoint& p : s.points)
-      out << csv_escape(data.audits.at(p.audit)) << ','
-          << csv_escape(p.audit < data.dates.size() ? data.dates[p.audit] : "") << ','
-          << csv_escape(s.name) << ',' << p.n << ',' << finite_or_empty(p.median) << ','
+      out << util::csv_escape(data.audits.at(p.audit)) << ','
+          << util::csv_escape(p.audit < data.dates.size() ? data.dates[p.audit] : "") << ','
+          << util::csv_escape(s.name) << ',' << p.n << ',' << finite_or_empty(p.median) << ','
           << finite_or_empty(p.iqr) << '\n';
   out.close();
-  if (!out) throw UserError("cannot write " + path);
+  if (!out) throw util::UserError("cannot write " + path);
 }
 
 }  // namespace
@@ -111,7 +111,7 @@ std::vector<RenderedFigure> draw_trend_figures(const std::vector<TrendData>& tre
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (!std::filesystem::is_directory(out_dir))
-    throw UserError("cannot create the directory " + out_dir + ": " + ec.message());
+    throw util::UserError("cannot create the directory " + out_dir + ": " + ec.message());
   std::vector<RenderedFigure> out;
   if (trends.empty()) return out;
   HeadlessDisplay display;

@@ -66,7 +66,7 @@ std::vector<Category> tag_objects(const std::vector<std::string>& names, const A
       out.push_back(it->second);
       continue;
     }
-    CounterRng rng(seed, 0xA77E47ull, i);
+    util::CounterRng rng(seed, 0xA77E47ull, i);
     const double u = rng.uniform01();
     double cum = 0;
     Category c = Category::kBackground;

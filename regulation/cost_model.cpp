@@ -22,9 +22,9 @@ CostModel cost_model_from_timing_json(const std::string& path, const std::string
                                       bool intercept, const CostModel& base) {
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(read_file(path));
+    j = nlohmann::json::parse(util::read_file(path));
   } catch (const std::exception& e) {
-    throw UserError(path + ": cannot read the timing study's output (" + e.what() + ")");
+    throw util::UserError(path + ": cannot read the timing study's output (" + e.what() + ")");
   }
   for (const auto& p : j.value("platforms", nlohmann::json::array())) {
     if (p.value("name", "") != platform) continue;
@@ -34,7 +34,7 @@ CostModel cost_model_from_timing_json(const std::string& path, const std::string
       m.intercept_us = 0;
       const std::string fit = std::string("h4") + (intercept ? "+b" : "");
       auto bad = [&](const std::string& what) {
-        return UserError(path + ": the " + fit + " fit of platform " + platform + " " + what);
+        return util::UserError(path + ": the " + fit + " fit of platform " + platform + " " + what);
       };
       bool have_c1 = false, have_c2 = false, have_b0 = false;
       const auto params = f.value("parameters", nlohmann::json::array());
@@ -60,8 +60,8 @@ CostModel cost_model_from_timing_json(const std::string& path, const std::string
       return m;
     }
   }
-  throw UserError(path + ": no h4" + std::string(intercept ? "+b" : "") + " fit for platform " +
-                  platform);
+  throw util::UserError(path + ": no h4" + std::string(intercept ? "+b" : "") +
+                        " fit for platform " + platform);
 }
 
 Footprint footprint_of(const scenes::BoundingSphere& s, const geometry::Mat4& view,

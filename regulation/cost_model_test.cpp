@@ -71,7 +71,7 @@ TEST(CostModel, ReadsTheH4FitOfATimingStudy) {
   const CostModel b = cost_model_from_timing_json(path, "osmesa-llvmpipe", true, base);
   EXPECT_DOUBLE_EQ(b.intercept_us, 30);
   EXPECT_DOUBLE_EQ(b.c1_us_per_tv, 0.5);
-  EXPECT_THROW(cost_model_from_timing_json(path, "osmesa-softpipe", false, base), UserError);
+  EXPECT_THROW(cost_model_from_timing_json(path, "osmesa-softpipe", false, base), util::UserError);
   std::filesystem::remove(path);
 }
 
@@ -85,7 +85,7 @@ TEST(CostModel, RejectsAFitMissingOrWithInvalidParameters) {
     try {
       cost_model_from_timing_json(path, "osmesa-llvmpipe", intercept, CostModel{});
       ADD_FAILURE() << "accepted " << params;
-    } catch (const UserError& e) {
+    } catch (const util::UserError& e) {
       const std::string what = e.what();
       EXPECT_NE(what.find(path), std::string::npos) << what;
       EXPECT_NE(what.find("osmesa-llvmpipe"), std::string::npos) << what;

@@ -180,7 +180,7 @@ RenderOutcome plan_and_render(const scenes::Scene& scene, const std::vector<LodC
 
   nlohmann::json measured;
   try {
-    measured = run_in_child(scratch_dir, "regulation-render", [&] {
+    measured = util::run_in_child(scratch_dir, "regulation-render", [&] {
       nlohmann::json j;
       timing::SceneRenderer r(s.platform, s.camera, /*gpu_timer=*/false);
       r.upload(lod);
@@ -189,7 +189,8 @@ RenderOutcome plan_and_render(const scenes::Scene& scene, const std::vector<LodC
       r.set_viewpoint(path.front());
       r.time_draw(all, true);  // warm-up: first use of every buffer and texture, untimed
       std::vector<double> base;
-      for (int i = 0; i < std::max(20, s.repetitions); ++i) base.push_back(r.time_draw({}, true).cpu_us);
+      for (int i = 0; i < std::max(20, s.repetitions); ++i)
+        base.push_back(r.time_draw({}, true).cpu_us);
       const double base_us = stats::median(base);
       // #pix of every level of every visible object of every planned frame (untimed)
       std::vector<FramePixels> pixels;
@@ -230,7 +231,7 @@ RenderOutcome plan_and_render(const scenes::Scene& scene, const std::vector<LodC
       for (const FrameRecord& fr : recs) j["records"].push_back(record_json(fr));
       return j;
     });
-  } catch (const ChildProcessError& e) {
+  } catch (const util::ChildProcessError& e) {
     out.error = e.what();
   }
   if (out.error.empty()) {

@@ -49,7 +49,7 @@ static Instance tight_instance(int64_t w) {
 }
 
 Instance random_instance(const RandomInstanceSettings& s, uint64_t index) {
-  CounterRng rng(s.seed, kInstanceStream, index);
+  util::CounterRng rng(s.seed, kInstanceStream, index);
   if (s.adversarial_every > 0 && index % uint64_t(s.adversarial_every) == uint64_t(s.adversarial_every - 1)) {
     const uint64_t which = index / uint64_t(s.adversarial_every);
     const int64_t big = std::max<int64_t>(4, rng.integer(std::max<int64_t>(4, s.max_cost / 2), std::max<int64_t>(4, s.max_cost * 4)));
@@ -169,15 +169,17 @@ std::string instances_csv(const std::vector<InstanceComparison>& rows) {
        "dp_matches_brute_force,within_budget,optimum_computed\n";
   for (const InstanceComparison& c : rows)
     o << c.index << ',' << int(c.adversarial) << ',' << c.items << ',' << c.options << ','
-      << c.budget << ',' << c.residual << ',' << full_precision(c.base_loss) << ','
-      << full_precision(c.value_optimal) << ',' << full_precision(c.value_greedy) << ','
-      << full_precision(c.value_ratio_only) << ',' << full_precision(c.value_single) << ','
-      << full_precision(c.value_uniform) << ',' << full_precision(c.value_distance) << ','
-      << full_precision(c.loss_optimal) << ',' << full_precision(c.loss_greedy) << ','
-      << full_precision(c.loss_ratio_only) << ',' << full_precision(c.value_ratio) << ','
-      << full_precision(c.value_ratio_ratio_only) << ',' << full_precision(c.loss_ratio) << ','
-      << int(c.brute_forced) << ',' << int(c.dp_matches_brute_force) << ',' << int(c.within_budget)
-      << ',' << int(c.optimum_computed) << '\n';
+      << c.budget << ',' << c.residual << ',' << util::full_precision(c.base_loss) << ','
+      << util::full_precision(c.value_optimal) << ',' << util::full_precision(c.value_greedy) << ','
+      << util::full_precision(c.value_ratio_only) << ',' << util::full_precision(c.value_single)
+      << ',' << util::full_precision(c.value_uniform) << ','
+      << util::full_precision(c.value_distance) << ',' << util::full_precision(c.loss_optimal)
+      << ',' << util::full_precision(c.loss_greedy) << ','
+      << util::full_precision(c.loss_ratio_only) << ',' << util::full_precision(c.value_ratio)
+      << ',' << util::full_precision(c.value_ratio_ratio_only) << ','
+      << util::full_precision(c.loss_ratio) << ',' << int(c.brute_forced) << ','
+      << int(c.dp_matches_brute_force) << ',' << int(c.within_budget) << ','
+      << int(c.optimum_computed) << '\n';
   return o.str();
 }
 

@@ -13,7 +13,7 @@
 namespace ra::regulation {
 namespace {
 
-using Locator = TomlLocator;
+using Locator = util::TomlLocator;
 
 std::string fmt(double v) {
   std::ostringstream s;
@@ -126,7 +126,7 @@ void parse_cost_model(const Locator& loc, const toml::table& t, const std::strin
       if (cm.get(k)) loc.fail(cm.get(k), std::string("'regulation.cost_model.") + k + "' and timing_json exclude each other");
     try {
       s.cost = cost_model_from_timing_json(s.timing_json, s.timing_platform, s.timing_intercept, s.cost);
-    } catch (const UserError& e) {
+    } catch (const util::UserError& e) {
       loc.fail(n, e.what());
     }
   }
@@ -185,12 +185,12 @@ void parse_random(const Locator& loc, const toml::table& t, RegulationSettings& 
 
 void validate_platform(const std::string& name) {
   if (!platforms::is_aliased_gl_platform(name))
-    throw UserError("'regulation.platform' = \"" + name +
-                    "\" is out of range (allowed: " + platforms::aliased_gl_platform_names() + ")");
+    throw util::UserError("'regulation.platform' = \"" + name + "\" is out of range (allowed: " +
+                          platforms::aliased_gl_platform_names() + ")");
 }
 
 RegulationSettings read_regulation_experiment(const std::string& path) {
-  return parse_regulation_experiment(TomlLocator::read_text(path), path);
+  return parse_regulation_experiment(util::TomlLocator::read_text(path), path);
 }
 
 RegulationSettings parse_regulation_experiment(const std::string& text, const std::string& path) {

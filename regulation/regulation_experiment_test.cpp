@@ -14,7 +14,7 @@ const char* kScene = "\n[[scene]]\nkind = \"forest\"\ntrees = 3\n";
 std::string error_of(const std::string& text) {
   try {
     parse_regulation_experiment(text, "reg.toml");
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
   return "no error";
@@ -95,12 +95,13 @@ TEST(RegulationExperiment, ValidatePlatformNamesTheAllowedOnes) {
   EXPECT_NO_THROW(validate_platform("osmesa-softpipe"));
   EXPECT_NO_THROW(validate_platform("egl-llvmpipe"));
   EXPECT_NO_THROW(validate_platform("egl-device:1"));
-  EXPECT_THROW(validate_platform("egl-llvmpipe-msaa4"), UserError);  // the study draws aliased
-  EXPECT_THROW(validate_platform("reference"), UserError);           // no GL to time
+  EXPECT_THROW(validate_platform("egl-llvmpipe-msaa4"),
+               util::UserError);                                  // the study draws aliased
+  EXPECT_THROW(validate_platform("reference"), util::UserError);  // no GL to time
   try {
     validate_platform("a\"b");
     ADD_FAILURE();
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_NE(std::string(e.what()).find(
                   "(allowed: osmesa-llvmpipe, osmesa-softpipe, egl-llvmpipe, egl-softpipe, "
                   "egl-zink, egl-device, egl-device:N)"), std::string::npos);

@@ -70,7 +70,7 @@ std::size_t random_instances_stage(const RegulationSettings& s, const std::strin
                                    std::vector<std::string>& findings) {
   const auto t = Clock::now();
   const std::vector<InstanceComparison> inst = run_random_instances(s.random);
-  write_file_atomic(dir + "/instances.csv", instances_csv(inst));
+  util::write_file_atomic(dir + "/instances.csv", instances_csv(inst));
   std::vector<double> ratio, ratio_only, loss_ratio;
   int over2 = 0, over2_only = 0, brute = 0, mismatch = 0, over_budget = 0, adversarial = 0, no_opt = 0;
   for (const InstanceComparison& c : inst) {
@@ -147,12 +147,13 @@ StudyScene scene_stage(const RegulationSettings& s, const std::string& dir, json
     for (std::size_t i = 0; i < chains.size(); ++i)
       for (std::size_t k = 0; k < chains[i].levels.size(); ++k) {
         const LodLevel& l = chains[i].levels[k];
-        o << i << ',' << csv_escape(chains[i].name) << ',' << category_name(tags[i]) << ','
-          << full_precision(weights[i]) << ',' << k << ',' << full_precision(l.target_ratio) << ','
-          << l.triangles << ',' << l.vertices << ',' << l.transformed << ','
-          << full_precision(l.error_m) << ',' << full_precision(l.simplifier_error_m) << '\n';
+        o << i << ',' << util::csv_escape(chains[i].name) << ',' << category_name(tags[i]) << ','
+          << util::full_precision(weights[i]) << ',' << k << ','
+          << util::full_precision(l.target_ratio) << ',' << l.triangles << ',' << l.vertices << ','
+          << l.transformed << ',' << util::full_precision(l.error_m) << ','
+          << util::full_precision(l.simplifier_error_m) << '\n';
       }
-    write_file_atomic(dir + "/lod_levels.csv", o.str());
+    util::write_file_atomic(dir + "/lod_levels.csv", o.str());
     json lod = json::array();
     for (std::size_t k = 0; k < s.lod_ratios.size(); ++k) {
       int64_t objects = 0, tris = 0, tv = 0;
@@ -201,34 +202,35 @@ void write_plan_tables(const RenderOutcome& ro, const std::vector<LodChain>& cha
   fr << "frame,budget_ms,policy,predicted_us,measured_median_us,skipped,repetitions,measured_us,"
         "predicted_estimated_us\n";
   for (const FrameRecord& r : ro.records) {
-    sw << r.frame << ',' << full_precision(r.budget_ms) << ',' << r.policy << ',' << r.visible
+    sw << r.frame << ',' << util::full_precision(r.budget_ms) << ',' << r.policy << ',' << r.visible
        << ',' << r.budget_units << ',' << r.plan_units << ',' << int(r.fits) << ','
-       << full_precision(r.expected_cost) << ',' << full_precision(r.value) << ','
-       << full_precision(r.value_ratio_to_optimal) << ',' << full_precision(r.predicted_us) << ','
-       << r.triangles << ',' << full_precision(r.pixels) << ','
-       << full_precision(r.predicted_estimated_us) << ',' << r.transformed << '\n';
+       << util::full_precision(r.expected_cost) << ',' << util::full_precision(r.value) << ','
+       << util::full_precision(r.value_ratio_to_optimal) << ','
+       << util::full_precision(r.predicted_us) << ',' << r.triangles << ','
+       << util::full_precision(r.pixels) << ',' << util::full_precision(r.predicted_estimated_us)
+       << ',' << r.transformed << '\n';
     std::string reps;
-    for (double v : r.measured_us) reps += (reps.empty() ? "" : ";") + full_precision(v);
-    fr << r.frame << ',' << full_precision(r.budget_ms) << ',' << r.policy << ','
-       << full_precision(r.predicted_us) << ',' << full_precision(r.measured_median_us) << ','
-       << int(r.skipped) << ',' << r.measured_us.size() << ',' << reps << ','
-       << full_precision(r.predicted_estimated_us) << '\n';
+    for (double v : r.measured_us) reps += (reps.empty() ? "" : ";") + util::full_precision(v);
+    fr << r.frame << ',' << util::full_precision(r.budget_ms) << ',' << r.policy << ','
+       << util::full_precision(r.predicted_us) << ',' << util::full_precision(r.measured_median_us)
+       << ',' << int(r.skipped) << ',' << r.measured_us.size() << ',' << reps << ','
+       << util::full_precision(r.predicted_estimated_us) << '\n';
   }
-  write_file_atomic(dir + "/budget_sweep.csv", sw.str());
-  write_file_atomic(dir + "/frames.csv", fr.str());
+  util::write_file_atomic(dir + "/budget_sweep.csv", sw.str());
+  util::write_file_atomic(dir + "/frames.csv", fr.str());
   if (ro.pixels_measured) {
     std::ostringstream px;
     px << "frame,object,name,distance_m,radius_m,estimated_pixels,level,measured_pixels\n";
     std::vector<double> ratio;  // measured level 0 / estimated, objects seen whole and far
     for (const PixelSample& p : ro.pixels) {
       for (std::size_t k = 0; k < p.measured.size(); ++k)
-        px << p.frame << ',' << p.object << ',' << csv_escape(chains[p.object].name) << ','
-           << full_precision(p.distance_m) << ',' << full_precision(p.radius_m) << ','
-           << full_precision(p.estimated) << ',' << k << ',' << full_precision(p.measured[k])
-           << '\n';
+        px << p.frame << ',' << p.object << ',' << util::csv_escape(chains[p.object].name) << ','
+           << util::full_precision(p.distance_m) << ',' << util::full_precision(p.radius_m) << ','
+           << util::full_precision(p.estimated) << ',' << k << ','
+           << util::full_precision(p.measured[k]) << '\n';
       if (p.estimated > 0 && !p.measured.empty()) ratio.push_back(p.measured[0] / p.estimated);
     }
-    write_file_atomic(dir + "/pixels.csv", px.str());
+    util::write_file_atomic(dir + "/pixels.csv", px.str());
     j["cost_model"]["measured_over_estimated_pixels"] = quantiles(ratio);
   }
 }
@@ -323,11 +325,12 @@ runner::StudyRunResult run_regulation_study(const runner::StudyRunOptions& optio
   RegulationSettings s = read_regulation_experiment(options.experiment);
   if (!options.platforms.empty()) {
     if (options.platforms.size() != 1)
-      throw UserError("the regulation study renders on one platform: give at most one --platform");
+      throw util::UserError(
+          "the regulation study renders on one platform: give at most one --platform");
     try {
       validate_platform(options.platforms.front());  // names the allowed platforms
-    } catch (const UserError& e) {
-      throw UserError(std::string("--platform: ") + e.what());
+    } catch (const util::UserError& e) {
+      throw util::UserError(std::string("--platform: ") + e.what());
     }
     s.platform = options.platforms.front();
   }
@@ -337,7 +340,7 @@ runner::StudyRunResult run_regulation_study(const runner::StudyRunOptions& optio
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (!std::filesystem::is_directory(dir))
-    throw UserError("cannot create the output directory " + dir + ": " + ec.message());
+    throw util::UserError("cannot create the output directory " + dir + ": " + ec.message());
   std::filesystem::remove(dir + "/study.json");  // a folder is complete only when it is rewritten
   // derived outputs of an earlier run (analyze, plot) would describe the old numbers
   std::filesystem::remove(dir + "/regulation.md", ec);
@@ -373,7 +376,7 @@ runner::StudyRunResult run_regulation_study(const runner::StudyRunOptions& optio
   sweep_stage(s, ro, j, findings);
   j["findings"] = findings;
   j["wall_s"] = seconds_since(t_start);
-  write_file_atomic(dir + "/regulation.json", j.dump(1) + "\n");
+  util::write_file_atomic(dir + "/regulation.json", j.dump(1) + "\n");
 
   runner::StudyInfo info;
   info.kind = runner::StudyKind::kRegulation;
@@ -396,12 +399,13 @@ namespace {
 json load_complete(const std::string& dir) {
   const auto info = runner::read_study_info(dir);
   if (!info || info->kind != runner::StudyKind::kRegulation)
-    throw UserError(dir + " is not a complete regulation study (no study.json of kind regulation: "
+    throw util::UserError(dir +
+                          " is not a complete regulation study (no study.json of kind regulation: "
                           "run `renderaudit run` on a regulation experiment first)");
   try {
-    return json::parse(read_file(dir + "/regulation.json"));
+    return json::parse(util::read_file(dir + "/regulation.json"));
   } catch (const std::exception& e) {
-    throw UserError(dir + "/regulation.json cannot be read: " + e.what());
+    throw util::UserError(dir + "/regulation.json cannot be read: " + e.what());
   }
 }
 
@@ -554,7 +558,7 @@ std::string regulation_markdown(const json& j) {
 
 void analyze_regulation_study(const std::string& dir) {
   const json j = load_complete(dir);
-  write_file_atomic(dir + "/regulation.md", regulation_markdown(j));
+  util::write_file_atomic(dir + "/regulation.md", regulation_markdown(j));
   runner::StudyInfo info = *runner::read_study_info(dir);
   info.document = "regulation.md";
   info.analysed = true;
@@ -564,7 +568,8 @@ void analyze_regulation_study(const std::string& dir) {
 void plot_regulation_study(const std::string& dir) {
   const json j = load_complete(dir);
   if (!runner::read_study_info(dir)->analysed)
-    throw UserError(dir + " has not been analysed: run `renderaudit analyze " + dir + "` first");
+    throw util::UserError(dir + " has not been analysed: run `renderaudit analyze " + dir +
+                          "` first");
   plots::StudyFigures figs("regulation");
   // 1. distribution of value(OPT) / value(greedy)
   {

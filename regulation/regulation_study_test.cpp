@@ -22,7 +22,7 @@ namespace {
 TEST(RegulationStudy, SmokeExperimentRunsAnalysesAndPlots) {
   const std::string dir = (std::filesystem::temp_directory_path() / "regulation_smoke_test").string();
   std::filesystem::remove_all(dir);
-  EXPECT_THROW(analyze_regulation_study(dir), UserError);  // nothing there yet
+  EXPECT_THROW(analyze_regulation_study(dir), util::UserError);  // nothing there yet
 
   runner::StudyRunOptions o;
   o.experiment = std::string(RA_SOURCE_DIR) + "/experiments/regulation_smoke.toml";
@@ -35,7 +35,7 @@ TEST(RegulationStudy, SmokeExperimentRunsAnalysesAndPlots) {
   EXPECT_EQ(info->kind, runner::StudyKind::kRegulation);
   EXPECT_FALSE(info->analysed);
 
-  const auto j = nlohmann::json::parse(read_file(dir + "/regulation.json"));
+  const auto j = nlohmann::json::parse(util::read_file(dir + "/regulation.json"));
   EXPECT_EQ(j["random"]["instances"], 300);
   EXPECT_LE(j["random"]["value_ratio"]["max"].get<double>(), 2.0);
   EXPECT_GE(j["random"]["value_ratio"]["max"].get<double>(), 1.0);
@@ -69,12 +69,12 @@ TEST(RegulationStudy, SmokeExperimentRunsAnalysesAndPlots) {
   const auto info2 = runner::read_study_info(dir);
   EXPECT_TRUE(info2->analysed);
   EXPECT_EQ(info2->document, "regulation.md");
-  const std::string md = read_file(dir + "/regulation.md");
+  const std::string md = util::read_file(dir + "/regulation.md");
   EXPECT_NE(md.find("value(OPT) / value(greedy)"), std::string::npos);
   EXPECT_NE(md.find("frame skips on osmesa-llvmpipe"), std::string::npos);
 
   plot_regulation_study(dir);
-  const auto index = nlohmann::json::parse(read_file(dir + "/figures/index.json"));
+  const auto index = nlohmann::json::parse(util::read_file(dir + "/figures/index.json"));
   EXPECT_NE(index.dump().find("regulation_ratio_histogram"), std::string::npos);
   plots::testing::expect_drawn_png(dir + "/figures/regulation_cost_vs_budget.png");
   plots::testing::expect_drawn_png(dir + "/figures/regulation_frame_skips.png");
@@ -85,7 +85,8 @@ TEST(RegulationStudy, SmokeExperimentRunsAnalysesAndPlots) {
 // A smoke experiment with nothing rendered and few instances (fast), written to a temporary file.
 std::string quick_experiment(const std::string& name) {
   const std::string toml = (std::filesystem::temp_directory_path() / (name + ".toml")).string();
-  std::string text = read_file(std::string(RA_SOURCE_DIR) + "/experiments/regulation_smoke.toml");
+  std::string text =
+      util::read_file(std::string(RA_SOURCE_DIR) + "/experiments/regulation_smoke.toml");
   auto replace = [&](const std::string& a, const std::string& b) {
     const auto at = text.find(a);
     if (at == std::string::npos) throw std::runtime_error("regulation_smoke.toml lacks " + a);
@@ -111,7 +112,7 @@ TEST(RegulationStudy, RerunRemovesDerivedOutputsAndPlotNeedsAnalysis) {
   try {
     plot_regulation_study(dir);
     ADD_FAILURE() << "plotted a run that was not analysed";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()), dir + " has not been analysed: run `renderaudit analyze " + dir + "` first");
   }
   EXPECT_FALSE(std::filesystem::exists(dir + "/figures"));
@@ -124,7 +125,7 @@ TEST(RegulationStudy, RerunRemovesDerivedOutputsAndPlotNeedsAnalysis) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/figures"));
   EXPECT_FALSE(runner::read_study_info(dir)->analysed);
   EXPECT_TRUE(std::filesystem::exists(dir + "/regulation.json"));
-  EXPECT_THROW(plot_regulation_study(dir), UserError);
+  EXPECT_THROW(plot_regulation_study(dir), util::UserError);
   std::filesystem::remove_all(dir);
   std::filesystem::remove(toml);
 }
@@ -143,7 +144,7 @@ TEST(RegulationStudy, PlatformOverrideIsValidatedDirectly) {
     try {
       run_regulation_study(o);
       ADD_FAILURE() << "accepted --platform " << bad;
-    } catch (const UserError& e) {
+    } catch (const util::UserError& e) {
       const std::string what = e.what();
       EXPECT_NE(what.find("--platform"), std::string::npos) << what;
       EXPECT_NE(what.find("allowed: osmesa-llvmpipe, osmesa-softpipe"), std::string::npos) << what;
@@ -176,11 +177,11 @@ TEST(RegulationStudy, MeasuredPixelsAgainstTheEstimatedDisc) {
   o.progress = false;
   const runner::StudyRunResult r = run_regulation_study(o);
   EXPECT_FALSE(r.findings) << r.summary;
-  const auto j = nlohmann::json::parse(read_file(dir + "/regulation.json"));
+  const auto j = nlohmann::json::parse(util::read_file(dir + "/regulation.json"));
   ASSERT_TRUE(j["cost_model"]["pixels_measured"].get<bool>());
   const double window = 160.0 * 120.0;  // regulation_smoke.toml
   const double focal = 60.0 / std::tan(M_PI / 6);  // (height / 2) / tan(30 deg), fov 60
-  std::istringstream in(read_file(dir + "/pixels.csv"));
+  std::istringstream in(util::read_file(dir + "/pixels.csv"));
   std::string line;
   std::getline(in, line);
   ASSERT_EQ(line, "frame,object,name,distance_m,radius_m,estimated_pixels,level,measured_pixels");
@@ -221,7 +222,8 @@ TEST(RegulationStudy, MeasuredPixelsAgainstTheEstimatedDisc) {
 TEST(RegulationStudy, MeasuredPixelsPredictFrameTimesBetter) {
   const auto tmp = std::filesystem::temp_directory_path();
   const std::string toml = (tmp / "regulation_smoke_estimated.toml").string();
-  std::ofstream(toml) << read_file(std::string(RA_SOURCE_DIR) + "/experiments/regulation_smoke.toml")
+  std::ofstream(toml) << util::read_file(std::string(RA_SOURCE_DIR) +
+                                         "/experiments/regulation_smoke.toml")
                       << "\n[regulation.cost_model]\npixels = \"estimated\"\n";
   double median[2];
   for (int measured = 0; measured < 2; ++measured) {
@@ -233,7 +235,7 @@ TEST(RegulationStudy, MeasuredPixelsPredictFrameTimesBetter) {
     o.progress = false;
     const runner::StudyRunResult r = run_regulation_study(o);
     EXPECT_FALSE(r.findings) << r.summary;
-    const auto j = nlohmann::json::parse(read_file(dir + "/regulation.json"));
+    const auto j = nlohmann::json::parse(util::read_file(dir + "/regulation.json"));
     EXPECT_EQ(j["cost_model"]["pixels_measured"].get<bool>(), measured == 1);
     EXPECT_EQ(std::filesystem::exists(dir + "/pixels.csv"), measured == 1);
     const auto& e = j["render"]["abs_relative_error"];

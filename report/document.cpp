@@ -170,9 +170,9 @@ std::vector<Block> parse_markdown(const std::string& markdown, int heading_offse
 Table read_csv_table(const std::string& path) {
   std::string text;
   try {
-    text = read_file(path);
+    text = util::read_file(path);
   } catch (const std::exception& e) {
-    throw UserError(std::string("cannot read ") + path + ": " + e.what());
+    throw util::UserError(std::string("cannot read ") + path + ": " + e.what());
   }
   Table t;
   std::stringstream ss(text);

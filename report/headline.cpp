@@ -143,7 +143,7 @@ std::vector<Block> audit_blocks(const std::string& run_dir) {
   std::vector<Block> out;
   const std::string path = run_dir + "/audit/audit.json";
   if (!fs::exists(path)) return out;
-  const json j = json::parse(read_file(path));
+  const json j = json::parse(util::read_file(path));
   const std::string verdict = j.value("verdict", "?");
   const json baseline = j.value("baseline", json::object());
   std::string baseline_dir = baseline.value("run_dir", "?");

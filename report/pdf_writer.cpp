@@ -30,8 +30,8 @@ class Writer {
                    ? cairo_pdf_surface_create_for_stream(discard, nullptr, kPageWidth, kPageHeight)
                    : cairo_pdf_surface_create(path.c_str(), kPageWidth, kPageHeight);
     if (cairo_surface_status(surface_) != CAIRO_STATUS_SUCCESS)
-      throw UserError("cannot create " + path + ": " +
-                      cairo_status_to_string(cairo_surface_status(surface_)));
+      throw util::UserError("cannot create " + path + ": " +
+                            cairo_status_to_string(cairo_surface_status(surface_)));
     cairo_pdf_surface_set_metadata(surface_, CAIRO_PDF_METADATA_TITLE, doc.title.c_str());
     cairo_pdf_surface_set_metadata(surface_, CAIRO_PDF_METADATA_CREATOR, "renderaudit report");
     cr_ = cairo_create(surface_);
@@ -49,8 +49,8 @@ class Writer {
     finish_page();
     cairo_surface_finish(surface_);
     if (cairo_surface_status(surface_) != CAIRO_STATUS_SUCCESS)
-      throw UserError("cannot write " + path_ + ": " +
-                      cairo_status_to_string(cairo_surface_status(surface_)));
+      throw util::UserError("cannot write " + path_ + ": " +
+                            cairo_status_to_string(cairo_surface_status(surface_)));
     return {page_, heading_pages_};
   }
 

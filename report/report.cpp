@@ -65,9 +65,9 @@ fs::file_time_type newest_input(const std::string& run_dir) {
 
 json read_json(const std::string& path) {
   try {
-    return json::parse(read_file(path));
+    return json::parse(util::read_file(path));
   } catch (const std::exception& e) {
-    throw UserError(path + ": cannot read as JSON: " + e.what());
+    throw util::UserError(path + ": cannot read as JSON: " + e.what());
   }
 }
 
@@ -76,7 +76,7 @@ std::string tally_problem(const std::string& run_dir) {
   try {
     analysis::read_tally(run_dir);
     return "";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
 }
@@ -143,7 +143,7 @@ std::vector<std::string> table_files(const std::string& analysis_dir) {
   std::set<std::string> seen;
   const std::string readme = analysis_dir + "/README.md";
   if (fs::exists(readme)) {
-    std::stringstream ss(read_file(readme));
+    std::stringstream ss(util::read_file(readme));
     std::string line;
     while (std::getline(ss, line)) {
       if (line.rfind("| ", 0) != 0) continue;
@@ -176,7 +176,7 @@ void add_markdown_files(const std::string& analysis_dir, const std::vector<std::
                         Document& d, std::vector<std::string>& table_titles) {
   for (const std::string& n : names) {
     if (!fs::exists(analysis_dir + "/" + n)) continue;
-    for (Block& b : parse_markdown(read_file(analysis_dir + "/" + n), 1)) {
+    for (Block& b : parse_markdown(util::read_file(analysis_dir + "/" + n), 1)) {
       if (b.kind == Block::Kind::kTable && !b.table.title.empty())
         table_titles.push_back(plain_text(b.table.title));
       d.blocks.push_back(std::move(b));
@@ -359,7 +359,7 @@ void add_provenance(Document& d, const std::string& run_dir, const runner::RunMa
     d.blocks.push_back(heading("The experiment file (experiment.toml, copied into the run)", 2));
     Block b;
     b.kind = Block::Kind::kPreformatted;
-    b.text = read_file(toml);
+    b.text = util::read_file(toml);
     d.blocks.push_back(b);
   }
 }
@@ -467,7 +467,7 @@ void add_conformance(Content& c, const std::string& run_dir, const analysis::Run
   {
     const std::string dir = run_dir + "/analysis";
     if (fs::exists(dir + "/conformance.md")) {
-      for (Block& b : parse_markdown(read_file(dir + "/conformance.md"), 1)) {
+      for (Block& b : parse_markdown(util::read_file(dir + "/conformance.md"), 1)) {
         if (b.kind == Block::Kind::kTable && !b.table.title.empty())
           c.table_titles.push_back(plain_text(b.table.title));
         d.blocks.push_back(std::move(b));
@@ -478,7 +478,7 @@ void add_conformance(Content& c, const std::string& run_dir, const analysis::Run
     }
     if (fs::exists(dir + "/violations.md")) {
       // The first violations, worst first; the whole list is analysis/violations.md.
-      std::string text = read_file(dir + "/violations.md");
+      std::string text = util::read_file(dir + "/violations.md");
       std::size_t cut = 0;
       for (int rows = 0; rows < 22 && cut != std::string::npos; ++rows)
         cut = text.find("\n| ", cut + 1);
@@ -530,7 +530,7 @@ void add_analysis_tables(Content& c, const std::string& run_dir) {
                                    full.title + "."));
     }
     if (fs::exists(md)) {
-      std::vector<Block> blocks = parse_markdown(read_file(md), 1);
+      std::vector<Block> blocks = parse_markdown(util::read_file(md), 1);
       // The file's own title repeats this section's heading.
       if (!blocks.empty() && blocks.front().kind == Block::Kind::kHeading) blocks.erase(blocks.begin());
       for (Block& b : blocks) {
@@ -562,7 +562,7 @@ void add_analysis_tables(Content& c, const std::string& run_dir) {
       "mirror the paper's; 's' and 'e' tables supplement them with the non-normalized metrics."));
   if (fs::is_directory(analysis)) {
     for (const std::string& file : table_files(analysis)) {
-      std::vector<Block> blocks = parse_markdown(read_file(analysis + "/" + file), 1);
+      std::vector<Block> blocks = parse_markdown(util::read_file(analysis + "/" + file), 1);
       for (Block& b : blocks) {
         if (b.kind == Block::Kind::kTable && !b.table.title.empty())
           c.table_titles.push_back(plain_text(b.table.title));
@@ -651,26 +651,26 @@ void assemble(const Document& doc, const Document& html_doc, const std::string& 
   const std::string tmp = result.pdf + ".tmp";
   args.push_back(tmp);
   const std::string log = (out_dir / "pdfunite.log").string();
-  ChildSpec pdfunite_run;
+  util::ChildSpec pdfunite_run;
   pdfunite_run.argv = args;
   pdfunite_run.log_to(log);
   pdfunite_run.stdin_null = true;
-  const ProgramResult done{wait_child(start_child(pdfunite_run).pid), ""};
+  const util::ProgramResult done{util::wait_child(util::start_child(pdfunite_run).pid), ""};
   const int rc = done.exit_code();
   fs::remove(text_pdf);
   if (rc != 0) {
     std::string why;
     try {
-      why = read_file(log);
+      why = util::read_file(log);
     } catch (...) {
     }
     fs::remove(tmp);
-    throw UserError("pdfunite failed (exit " + std::to_string(rc) + ") assembling " + result.pdf +
-                    (why.empty() ? "" : ": " + why));
+    throw util::UserError("pdfunite failed (exit " + std::to_string(rc) + ") assembling " +
+                          result.pdf + (why.empty() ? "" : ": " + why));
   }
   fs::remove(log);
   fs::rename(tmp, result.pdf);
-  write_file_atomic(result.html, render_html(html_doc));
+  util::write_file_atomic(result.html, render_html(html_doc));
 
   result.text_pages = layout.pages;
   result.figure_pages = int(doc.figures.size());
@@ -684,7 +684,8 @@ Document study_document(const std::string& dir, const runner::StudyInfo& info) {
   d.title = info.title;
   d.footer = info.title + " (" + dir + ")";
   if (!info.subtitle.empty()) d.subtitle = {info.subtitle};
-  for (Block& b : parse_markdown(read_file(dir + "/" + info.document))) d.blocks.push_back(std::move(b));
+  for (Block& b : parse_markdown(util::read_file(dir + "/" + info.document)))
+    d.blocks.push_back(std::move(b));
   if (!fs::exists(dir + "/figures/index.json")) return d;
   const plots::PlotResult figures = plots::read_figure_index(dir);
   Block heading_block;
@@ -748,25 +749,28 @@ std::vector<Step> missing_steps(const std::string& run_dir) {
 ReportResult write_report(const ReportOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string& run_dir = options.run_dir;
-  if (!fs::is_directory(run_dir)) throw UserError(run_dir + ": no such run directory");
+  if (!fs::is_directory(run_dir)) throw util::UserError(run_dir + ": no such run directory");
   const std::optional<runner::StudyInfo> study = study_of(run_dir);
   if (!study && !fs::is_directory(fs::path(run_dir) / "records"))
-    throw UserError(run_dir + " is not a run directory (no records/ and no study.json): run "
-                    "`renderaudit run EXPERIMENT.toml --out " + run_dir + "` first");
+    throw util::UserError(run_dir +
+                          " is not a run directory (no records/ and no study.json): run "
+                          "`renderaudit run EXPERIMENT.toml --out " +
+                          run_dir + "` first");
   const std::string pdfunite = plots::find_on_path("pdfunite");
   if (pdfunite.empty())
-    throw UserError("pdfunite not found: install poppler-utils (apt-get install poppler-utils)");
+    throw util::UserError(
+        "pdfunite not found: install poppler-utils (apt-get install poppler-utils)");
 
   ReportResult result;
   if (study) {
     if (!study->analysed || study->document.empty() || !fs::exists(fs::path(run_dir) / study->document))
-      throw UserError(run_dir + " has not been analysed yet: run `renderaudit analyze " + run_dir +
-                      "` and `renderaudit plot " + run_dir + "` first");
+      throw util::UserError(run_dir + " has not been analysed yet: run `renderaudit analyze " +
+                            run_dir + "` and `renderaudit plot " + run_dir + "` first");
     // (a timing study run with --no-figures has none, and says so in its text)
     if (study->kind != runner::StudyKind::kTiming &&
         !fs::exists(fs::path(run_dir) / "figures" / "index.json"))
-      throw UserError(run_dir + "/figures/index.json is missing: run `renderaudit plot " + run_dir +
-                      "` first");
+      throw util::UserError(run_dir + "/figures/index.json is missing: run `renderaudit plot " +
+                            run_dir + "` first");
     const Document doc = study_document(run_dir, *study);
     assemble(doc, doc, run_dir, pdfunite, result);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -776,7 +780,7 @@ ReportResult write_report(const ReportOptions& options) {
   if (!steps.empty()) {
     std::string msg = "the report needs what these commands write; run them first:";
     for (const auto& s : steps) msg += "\n  " + s.command + "    (" + s.reason + ")";
-    throw UserError(msg);
+    throw util::UserError(msg);
   }
   const analysis::RunCompleteness completeness = analysis::check_run_completeness(run_dir);
   if (completeness.has_plan && !completeness.complete() && !options.allow_incomplete)
@@ -790,7 +794,8 @@ ReportResult write_report(const ReportOptions& options) {
   Document& doc = content.doc;
   for (const auto& f : doc.figures)
     if (!fs::exists(f.pdf_path))
-      throw UserError(f.pdf_path + " is missing: run `renderaudit plot " + run_dir + "` again");
+      throw util::UserError(f.pdf_path + " is missing: run `renderaudit plot " + run_dir +
+                            "` again");
 
   assemble(pdf_document(doc, content.html_only, content.pdf_pairs_with), doc, run_dir, pdfunite,
            result);

@@ -28,18 +28,19 @@ namespace {
 // Runs a program to its end; UserError with its last lines when it fails.
 std::string run_tool(const std::vector<std::string>& argv, const std::string& what,
                      const std::string& working_dir = "") {
-  ChildSpec spec;
+  util::ChildSpec spec;
   spec.argv = argv;
   spec.stdin_null = true;
   spec.capture_output = true;
   spec.working_dir = working_dir;
-  const ProgramResult r = run_program(spec);
+  const util::ProgramResult r = util::run_program(spec);
   if (r.exit_code() == 127)
-    throw UserError(what + ": cannot run " + argv[0] + " (apt-get install apt dpkg)");
+    throw util::UserError(what + ": cannot run " + argv[0] + " (apt-get install apt dpkg)");
   if (!r.exited_ok()) {
     std::string tail = r.output;
     if (tail.size() > 1500) tail = "..." + tail.substr(tail.size() - 1500);
-    throw UserError(what + " failed (" + describe_exit_status(r.status) + "):\n" + tail);
+    throw util::UserError(what + " failed (" + util::describe_exit_status(r.status) + "):\n" +
+                          tail);
   }
   return r.output;
 }
@@ -60,7 +61,7 @@ std::string utc_now() {
 }
 
 BuildSummary summary_of(const std::string& dir) {
-  const nlohmann::json j = nlohmann::json::parse(read_file(dir + "/build.json"));
+  const nlohmann::json j = nlohmann::json::parse(util::read_file(dir + "/build.json"));
   BuildSummary s;
   s.dir = dir;
   s.name = j.value("name", "");
@@ -96,11 +97,12 @@ std::map<std::string, std::string> offered_versions(const std::vector<std::strin
   argv.insert(argv.end(), apt.begin(), apt.end());
   argv.push_back("madison");
   argv.insert(argv.end(), packages.begin(), packages.end());
-  ChildSpec spec;
+  util::ChildSpec spec;
   spec.argv = argv;
   spec.stdin_null = true;
   spec.capture_output = true;
-  const ProgramResult r = run_program(spec);  // exits non-zero when one package is unknown
+  const util::ProgramResult r =
+      util::run_program(spec);  // exits non-zero when one package is unknown
   std::map<std::string, std::string> out;
   std::istringstream in(r.output);
   for (std::string line; std::getline(in, line);) {
@@ -125,31 +127,35 @@ std::map<std::string, std::string> download_and_unpack(const FetchOptions& o, co
   for (const char* d : {"/lists/partial", "/cache/archives/partial", "/debs"})
     fs::create_directories((d[1] == 'd' ? work : apt) + d);
   const std::string keyring = "/usr/share/keyrings/debian-archive-keyring.gpg";
-  write_file_atomic(apt + "/sources.list",
-                    "deb " + (fs::exists(keyring) ? "[signed-by=" + keyring + "] " : std::string()) +
-                        o.mirror + " " + o.suite + " main\n");
+  util::write_file_atomic(
+      apt + "/sources.list",
+      "deb " + (fs::exists(keyring) ? "[signed-by=" + keyring + "] " : std::string()) + o.mirror +
+          " " + o.suite + " main\n");
   const std::vector<std::string> opts = apt_options(apt);
   std::vector<std::string> update = {"apt-get"};
   update.insert(update.end(), opts.begin(), opts.end());
   update.insert(update.end(), {"--error-on=any", "-q", "update"});
   try {
     run_tool(update, "apt-get update of " + o.suite);
-  } catch (const UserError& e) {
-    throw UserError("suite '" + o.suite + "' of " + o.mirror +
-                    " is unreachable or does not exist (nothing was written to the cache): " +
-                    e.what());
+  } catch (const util::UserError& e) {
+    throw util::UserError(
+        "suite '" + o.suite + "' of " + o.mirror +
+        " is unreachable or does not exist (nothing was written to the cache): " + e.what());
   }
   std::vector<std::string> all = required_build_packages();
   all.insert(all.end(), optional_build_packages().begin(), optional_build_packages().end());
   const std::map<std::string, std::string> versions = offered_versions(opts, all);
   for (const std::string& p : required_build_packages())
     if (!versions.count(p))
-      throw UserError("suite '" + o.suite + "' of " + o.mirror + " has no package '" + p +
-                      "' (a Mesa build needs " + [] {
-                        std::string s;
-                        for (const auto& r : required_build_packages()) s += (s.empty() ? "" : " ") + r;
-                        return s;
-                      }() + "); nothing was written to the cache");
+      throw util::UserError("suite '" + o.suite + "' of " + o.mirror + " has no package '" + p +
+                            "' (a Mesa build needs " +
+                            [] {
+                              std::string s;
+                              for (const auto& r : required_build_packages())
+                                s += (s.empty() ? "" : " ") + r;
+                              return s;
+                            }() +
+                            "); nothing was written to the cache");
   std::vector<std::string> download = {"apt-get"};
   download.insert(download.end(), opts.begin(), opts.end());
   download.insert(download.end(), {"-q", "download"});
@@ -177,12 +183,13 @@ const std::vector<std::string>& optional_build_packages() {
 
 BuildSummary fetch_build(const FetchOptions& options) {
   if (!platforms::is_build_name(options.suite))
-    throw UserError("'" + options.suite + "' is not a Debian suite name (letters, digits, ._-)");
+    throw util::UserError("'" + options.suite +
+                          "' is not a Debian suite name (letters, digits, ._-)");
   const std::string cache = options.cache.empty() ? platforms::build_cache_dir() : options.cache;
   fs::create_directories(cache);
   std::string work = cache + "/.fetch-" + options.suite + "-XXXXXX";
   if (!::mkdtemp(work.data()))
-    throw UserError(io_error_message("cannot create a folder in", cache));
+    throw util::UserError(util::io_error_message("cannot create a folder in", cache));
   const std::string root = work + "/build";
   try {
     const std::map<std::string, std::string> versions = download_and_unpack(options, work, root);
@@ -205,7 +212,8 @@ BuildSummary fetch_build(const FetchOptions& options) {
       (std::string(key) == "osmesa" ? s.osmesa_version : s.egl_version) = p.driver.version;
     }
     if (s.osmesa_version.empty() && s.egl_version.empty())
-      throw UserError("the Mesa of suite '" + options.suite + "' cannot draw here: " + gl.dump());
+      throw util::UserError("the Mesa of suite '" + options.suite +
+                            "' cannot draw here: " + gl.dump());
     const std::string lib_dir = platforms::build_library_dir(root);
     for (const auto& e : fs::recursive_directory_iterator(lib_dir))
       if (e.is_regular_file() && e.path().string().find(".so") != std::string::npos)
@@ -219,7 +227,7 @@ BuildSummary fetch_build(const FetchOptions& options) {
                         {"fetched_utc", s.fetched_utc}, {"packages", packages},
                         {"gl", gl},                {"files", s.files}};
     j.update(document_header("driver-build", 1, false));
-    write_file_atomic(root + "/build.json", j.dump(2) + "\n");
+    util::write_file_atomic(root + "/build.json", j.dump(2) + "\n");
     // Into place: a build of the same name is moved aside first, then removed.
     s.dir = cache + "/" + s.name;
     const std::string old = work + "/replaced";

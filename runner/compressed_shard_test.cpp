@@ -184,7 +184,7 @@ TEST_F(CompressedShard, EveryColumnReadsBackBitIdenticalInBothFormats) {
     for (size_t i = 0; i < rs.size(); ++i) expect_same(rs[i], back[i]);
   }
   // The compressed file decompresses to the plain file's bytes exactly (seal included).
-  EXPECT_EQ(read_zstd_file(zst_), bytes(csv_));
+  EXPECT_EQ(util::read_zstd_file(zst_), bytes(csv_));
 }
 
 TEST_F(CompressedShard, NumbersAreWrittenShortestRoundTrip) {
@@ -208,7 +208,7 @@ TEST_F(CompressedShard, AnInfinityIsRefusedOnRead) {
   try {
     read(zst_);
     FAIL() << "an infinite pe was accepted";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_NE(std::string(e.what()).find("column 'pe': 'inf' is not a finite number"),
               std::string::npos) << e.what();
   }
@@ -255,7 +255,7 @@ TEST_F(CompressedShard, ACutFileFailsWhereverItIsCut) {
   }
   // The reader refuses a file cut inside a frame, naming it.
   put(zst_, b.substr(0, first + 10));
-  EXPECT_THROW(read(zst_), UserError);
+  EXPECT_THROW(read(zst_), util::UserError);
 }
 
 TEST_F(CompressedShard, AnEditedFileFails) {
@@ -269,11 +269,11 @@ TEST_F(CompressedShard, AnEditedFileFails) {
   EXPECT_NE(check_shard_file(zst_, 100), "");
   // The text edited and compressed again as valid zstd: the seal's hash fails.
   put(zst_, b);
-  std::string text = read_zstd_file(zst_);
+  std::string text = util::read_zstd_file(zst_);
   text[text.find(",5,") + 1] = '6';
   {
     std::ofstream out(zst_, std::ios::binary | std::ios::trunc);
-    ZstdFrameWriter z(out);
+    util::ZstdFrameWriter z(out);
     z.write(text);
     z.end_frame();
   }

@@ -43,7 +43,8 @@ std::string canonical_hash(toml::table root) {
   return buf;
 }
 
-std::vector<uint64_t> index_list(const TomlLocator& loc, const toml::node& node, const std::string& key) {
+std::vector<uint64_t> index_list(const util::TomlLocator& loc, const toml::node& node,
+                                 const std::string& key) {
   std::vector<uint64_t> out;
   const auto* arr = node.as_array();
   if (!arr) loc.fail(&node, "'" + key + "' must be an array of primitive indices");
@@ -52,7 +53,7 @@ std::vector<uint64_t> index_list(const TomlLocator& loc, const toml::node& node,
   return out;
 }
 
-void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& exp) {
+void parse_views(const util::TomlLocator& loc, const toml::table& root, Experiment& exp) {
   const toml::node* views_node = root.get("views");
   if (!views_node || !views_node->is_table())
     loc.fail(views_node, "missing table [views] (keys: orientations, fov_deg, windows, near, far)");
@@ -152,7 +153,7 @@ void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& ex
 // The plan's size, before anything is planned or written: renders = platforms x views x primitives,
 // shards = platforms x views x sum over kinds of ceil(count / shard_size). Computed in 128 bits
 // (1,000 orientations x 10^8 primitives overflow nothing there).
-void check_plan_size(const TomlLocator& loc, const toml::table& root, const Experiment& exp) {
+void check_plan_size(const util::TomlLocator& loc, const toml::table& root, const Experiment& exp) {
   using u128 = unsigned __int128;
   const u128 cases = u128(exp.platforms.size()) * exp.views.size();
   u128 primitives = 0, shards_per_case = 0;
@@ -183,7 +184,7 @@ void check_plan_size(const TomlLocator& loc, const toml::table& root, const Expe
 }
 
 // [builds.NAME] tables: dir (absolute or ~/...), suite, origin.
-void parse_builds(const TomlLocator& loc, const toml::table& root, Experiment& exp) {
+void parse_builds(const util::TomlLocator& loc, const toml::table& root, Experiment& exp) {
   const toml::node* b = root.get("builds");
   if (!b) return;
   if (!b->is_table()) loc.fail(b, "'builds' must hold tables [builds.NAME] (keys: dir, suite, origin)");
@@ -224,31 +225,33 @@ void parse_builds(const TomlLocator& loc, const toml::table& root, Experiment& e
 platforms::PlatformSpec experiment_platform(const Experiment& exp, const std::string& name) {
   std::optional<platforms::PlatformSpec> spec = platforms::find_platform(name);
   if (!spec)
-    throw UserError("unknown platform '" + name + "' (allowed: " + platforms::platform_names() +
-                    ")");
+    throw util::UserError("unknown platform '" + name +
+                          "' (allowed: " + platforms::platform_names() + ")");
   if (spec->build.empty()) return *spec;
   const auto it = exp.builds.find(spec->build);
   if (it == exp.builds.end())
-    throw UserError(exp.path + ": platform '" + name + "' names driver build '" + spec->build +
-                    "', which the experiment does not declare ([builds." + spec->build + "])");
+    throw util::UserError(exp.path + ": platform '" + name + "' names driver build '" +
+                          spec->build + "', which the experiment does not declare ([builds." +
+                          spec->build + "])");
   const DriverBuildDecl& d = it->second;
   if (!d.dir.empty()) {
     spec->build_dir = d.dir;
   } else if (!d.suite.empty()) {
     const std::string found = platforms::cached_build_of_suite(d.suite);
     if (found.empty())
-      throw UserError(exp.path + ": driver build '" + d.name + "' is the cached build of suite '" +
-                      d.suite + "', and " + platforms::build_cache_dir() +
-                      " holds none: fetch it with "
-                      "`renderaudit builds fetch " +
-                      d.suite + "`");
+      throw util::UserError(exp.path + ": driver build '" + d.name +
+                            "' is the cached build of suite '" + d.suite + "', and " +
+                            platforms::build_cache_dir() +
+                            " holds none: fetch it with "
+                            "`renderaudit builds fetch " +
+                            d.suite + "`");
     spec->build_dir = found;
   }
   return *spec;
 }
 
 Experiment parse_experiment(const std::string& text, const std::string& path) {
-  TomlLocator loc(path);
+  util::TomlLocator loc(path);
   const toml::table root = loc.parse(text);
 
   Experiment exp;
@@ -382,7 +385,7 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
 }
 
 Experiment load_experiment(const std::string& path) {
-  return parse_experiment(TomlLocator::read_text(path), path);
+  return parse_experiment(util::TomlLocator::read_text(path), path);
 }
 
 }  // namespace ra::runner

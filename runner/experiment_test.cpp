@@ -32,7 +32,7 @@ std::string with(const std::string& from, const std::string& to) {
 std::string error_of(const std::string& text) {
   try {
     parse_experiment(text, "exp.toml");
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
   return "";

@@ -67,7 +67,7 @@ using json = nlohmann::json;
                             const std::string& rule, const json& found) {
   std::string text = found.dump();
   if (text.size() > 60) text = text.substr(0, 57) + "...";
-  throw UserError(path + ": '" + key + "' must be " + rule + " (found " + text + ")");
+  throw util::UserError(path + ": '" + key + "' must be " + rule + " (found " + text + ")");
 }
 
 // Reads the fields of one JSON object of a manifest, each named in errors by its path from the
@@ -311,18 +311,18 @@ RunManifest read_manifest(const json& m, const std::string& path) {
 RunManifest read_manifest_file(const std::string& path) {
   json m;
   try {
-    m = json::parse(read_file(path));
+    m = json::parse(util::read_file(path));
   } catch (const json::exception& e) {
-    throw UserError(path + ": not a JSON document (" + e.what() + ")");
+    throw util::UserError(path + ": not a JSON document (" + e.what() + ")");
   } catch (const std::runtime_error& e) {
-    throw UserError(e.what());
+    throw util::UserError(e.what());
   }
   if (!m.is_object()) bad_field(path, "(the document)", "a JSON object", m);
   return read_manifest(m, path);
 }
 
 RunManifest read_manifest_file_or_empty(const std::string& path) {
-  return read_manifest(read_json_or_null(path), path);
+  return read_manifest(util::read_json_or_null(path), path);
 }
 
 json manifest_json(const RunManifest& m) {
@@ -414,7 +414,7 @@ bool overwrite_in_place(const std::string& path, std::string text) {
 
 void write_manifest_json(const std::string& path, const nlohmann::json& manifest) {
   try {
-    write_file_atomic(path, manifest.dump(2) + "\n");
+    util::write_file_atomic(path, manifest.dump(2) + "\n");
     return;
   } catch (const std::runtime_error& e) {
     const std::string reason = std::string("cannot write the manifest: ") + e.what();

@@ -47,7 +47,7 @@ TEST(Manifest, OnAFullDiskTheManifestSaysFailedInPlace) {
     EXPECT_NE(msg.find("bytes free on the file system of " + dir.string()), std::string::npos) << msg;
     EXPECT_NE(msg.find("now says \"failed\""), std::string::npos) << msg;
   }
-  const nlohmann::json on_disk = nlohmann::json::parse(read_file(path));
+  const nlohmann::json on_disk = nlohmann::json::parse(util::read_file(path));
   EXPECT_EQ(on_disk["status"], "failed");
   // What fits of the reason is kept (here the whole manifest was small: its start).
   EXPECT_EQ(on_disk.value("reason", "").rfind("cannot write the manifest: cannot write", 0), 0u)
@@ -198,7 +198,7 @@ TEST(Manifest, AWrongTypeNamesTheFileTheKeyAndWhatItMustBe) {
     try {
       read_manifest(nlohmann::json::parse(text), "m.json");
       ADD_FAILURE() << text << " was accepted";
-    } catch (const UserError& e) {
+    } catch (const util::UserError& e) {
       EXPECT_EQ(std::string(e.what()), message);
     }
   }

@@ -42,7 +42,7 @@ std::vector<FailedPrimitive> failed_primitives_in_records(
                                        : "recorded as " + std::string(status) + " in " + path;
         out.push_back(std::move(f));
       });
-    } catch (const UserError&) {
+    } catch (const util::UserError&) {
       // a damaged file: the completeness check reports it; its failures are not listed here
     }
   }

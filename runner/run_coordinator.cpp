@@ -100,7 +100,7 @@ nlohmann::json drivers_json(const std::string& dir) {
   for (const auto& e : fs::directory_iterator(dir + "/drivers")) {
     if (e.path().extension() != ".json") continue;
     try {
-      out[e.path().stem().string()] = nlohmann::json::parse(read_file(e.path().string()));
+      out[e.path().stem().string()] = nlohmann::json::parse(util::read_file(e.path().string()));
     } catch (const std::exception&) {
     }
   }
@@ -172,10 +172,10 @@ RunManifest starting_manifest(const RunOptions& options, const Experiment& exp, 
   // A directory's records are judged by one version of the conformance rules.
   const int rules = m.rules_judged_by();
   if (rules != 0 && rules != metrics::kConformanceRulesVersion)
-    throw UserError(path + ": its records were judged by conformance rules " +
-                    std::to_string(rules) + ", this renderaudit judges by " +
-                    std::to_string(metrics::kConformanceRulesVersion) +
-                    "; resuming would mix them: run into a new directory");
+    throw util::UserError(path + ": its records were judged by conformance rules " +
+                          std::to_string(rules) + ", this renderaudit judges by " +
+                          std::to_string(metrics::kConformanceRulesVersion) +
+                          "; resuming would mix them: run into a new directory");
   m.conformance_rules = metrics::kConformanceRulesVersion;
   m.experiment = ManifestExperiment{exp.name, options.experiment_path, exp.hash, exp.seed,
                                     exp.platforms};
@@ -259,7 +259,7 @@ RunResult run_experiment(const RunOptions& options) {
     platforms::require_platforms_draw(specs, options.experiment_path);
   }
   const std::vector<Shard> shards = shards_of_run(exp, options.only_platforms, options.slice);
-  const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, dir);
+  const std::unique_ptr<util::DirLock> lock = prepare_run_dir(exp, dir);
   note_large_views(shards, exp, jobs);
   RunQueue queue = queue_shards(shards, exp, dir,
                                 options.shard_order == RunOptions::ShardOrder::kLargestCostFirst,

@@ -20,18 +20,19 @@ void remove_temporaries(const std::string& dir) {
       if (e.path().extension() == ".tmp") fs::remove(e.path(), ec);
 }
 
-std::unique_ptr<DirLock> prepare_run_dir(const Experiment& exp, const std::string& dir,
-                                         const std::string& who) {
+std::unique_ptr<util::DirLock> prepare_run_dir(const Experiment& exp, const std::string& dir,
+                                               const std::string& who) {
   std::error_code ec;
   // A folder of something else is refused before anything is written into it (a run's folder
   // has experiment.toml, or at least the .lock of a run that is making it).
-  if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) && !fs::exists(dir + "/experiment.toml") &&
-      !fs::exists(DirLock::lock_path(dir)))
-    throw UserError(dir + ": exists and is not a run directory (no experiment.toml); choose "
+  if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) &&
+      !fs::exists(dir + "/experiment.toml") && !fs::exists(util::DirLock::lock_path(dir)))
+    throw util::UserError(dir +
+                          ": exists and is not a run directory (no experiment.toml); choose "
                           "another --out");
   fs::create_directories(dir, ec);
-  if (ec) throw UserError(dir + ": cannot create the run directory (" + ec.message() + ")");
-  auto lock = std::make_unique<DirLock>(dir, who);
+  if (ec) throw util::UserError(dir + ": cannot create the run directory (" + ec.message() + ")");
+  auto lock = std::make_unique<util::DirLock>(dir, who);
   const std::string copy = dir + "/experiment.toml";
   bool empty = true;
   for (const auto& e : fs::directory_iterator(dir))
@@ -39,27 +40,30 @@ std::unique_ptr<DirLock> prepare_run_dir(const Experiment& exp, const std::strin
   if (fs::exists(copy)) {
     const Experiment previous = load_experiment(copy);
     if (previous.hash != exp.hash)
-      throw UserError(dir + ": holds a run of a different experiment (hash " + previous.hash +
-                      ", this one " + exp.hash + "); choose another --out or remove the directory");
+      throw util::UserError(dir + ": holds a run of a different experiment (hash " + previous.hash +
+                            ", this one " + exp.hash +
+                            "); choose another --out or remove the directory");
     // [run] is outside the hash, but shard_size names the records files: another size would
     // write every shard again under new names beside the old ones, and count each twice.
     if (previous.shard_size != exp.shard_size)
-      throw UserError(dir + ": holds a run cut into shards of " +
-                      std::to_string(previous.shard_size) + " primitives ([run] shard_size), " +
-                      exp.path + " asks for " + std::to_string(exp.shard_size) +
-                      ": shard_size names the records files, so the two cannot share a "
-                      "directory; set shard_size = " + std::to_string(previous.shard_size) +
-                      " again, or choose another --out");
+      throw util::UserError(
+          dir + ": holds a run cut into shards of " + std::to_string(previous.shard_size) +
+          " primitives ([run] shard_size), " + exp.path + " asks for " +
+          std::to_string(exp.shard_size) +
+          ": shard_size names the records files, so the two cannot share a "
+          "directory; set shard_size = " +
+          std::to_string(previous.shard_size) + " again, or choose another --out");
   } else if (!empty) {
-    throw UserError(dir + ": exists and is not a run directory (no experiment.toml); choose "
+    throw util::UserError(dir +
+                          ": exists and is not a run directory (no experiment.toml); choose "
                           "another --out");
   }
   for (const char* sub : {"/records", "/drivers", "/logs"}) {
     fs::create_directories(dir + sub, ec);
-    if (ec) throw UserError(dir + sub + ": cannot create (" + ec.message() + ")");
+    if (ec) throw util::UserError(dir + sub + ": cannot create (" + ec.message() + ")");
   }
   fs::remove_all(ShardRecovery::parts_dir(dir));  // a bisection cut short restarts from scratch
-  if (!fs::exists(copy)) write_file_atomic(copy, exp.text);
+  if (!fs::exists(copy)) util::write_file_atomic(copy, exp.text);
   remove_temporaries(dir);  // what a killed run left behind: their shards are redone
   return lock;
 }

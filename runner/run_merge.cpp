@@ -29,7 +29,7 @@ std::map<std::string, nlohmann::json> drivers_of(const std::string& dir) {
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir + "/drivers", ec))
     if (e.path().extension() == ".json")
-      out[e.path().stem().string()] = read_json_or_null(e.path().string());
+      out[e.path().stem().string()] = util::read_json_or_null(e.path().string());
   return out;
 }
 
@@ -46,14 +46,14 @@ void copy_atomically(const std::string& from, const std::string& to) {
     if (!ec) return;
     fs::remove(link_tmp, ec);
   }
-  const std::string tmp = create_unique_temp(to);
+  const std::string tmp = util::create_unique_temp(to);
   fs::copy_file(from, tmp, fs::copy_options::overwrite_existing, ec);
   if (ec) {
     fs::remove(tmp);
     throw std::runtime_error("cannot copy " + from + " to " + tmp + ": " + ec.message() +
-                             free_space_note(to));
+                             util::free_space_note(to));
   }
-  commit_file(tmp, to);
+  util::commit_file(tmp, to);
 }
 
 // The inputs' experiment, after checking they hold one experiment cut into one shard size.
@@ -62,15 +62,16 @@ Experiment common_experiment(const MergeOptions& options) {
   for (const std::string& in : options.inputs) {
     std::error_code ec;
     if (in == options.out_dir || fs::equivalent(in, options.out_dir, ec))
-      throw UserError("merge: " + in + " is both an input and --out");
+      throw util::UserError("merge: " + in + " is both an input and --out");
     if (!fs::exists(in + "/experiment.toml"))
-      throw UserError("merge: " + in + ": not a run directory (no experiment.toml)");
+      throw util::UserError("merge: " + in + ": not a run directory (no experiment.toml)");
     experiments.push_back(load_experiment(in + "/experiment.toml"));
     if (experiments.back().hash != experiments.front().hash) {
-      throw UserError("merge: " + in + " holds experiment " + experiments.back().name + " (hash " +
-                      experiments.back().hash + "), " + options.inputs.front() + " holds " +
-                      experiments.front().name + " (hash " + experiments.front().hash +
-                      "): only slices of one experiment can be merged");
+      throw util::UserError("merge: " + in + " holds experiment " + experiments.back().name +
+                            " (hash " + experiments.back().hash + "), " + options.inputs.front() +
+                            " holds " + experiments.front().name + " (hash " +
+                            experiments.front().hash +
+                            "): only slices of one experiment can be merged");
     }
   }
   const Experiment& exp = experiments.front();
@@ -78,11 +79,12 @@ Experiment common_experiment(const MergeOptions& options) {
   // size hold none of this plan's shards.
   for (std::size_t i = 1; i < experiments.size(); ++i)
     if (experiments[i].shard_size != exp.shard_size)
-      throw UserError("merge: " + options.inputs[i] + " was cut into shards of " +
-                      std::to_string(experiments[i].shard_size) + " primitives ([run] shard_size), " +
-                      options.inputs.front() + " into shards of " + std::to_string(exp.shard_size) +
-                      ": their records files name other shards; run the slices with one "
-                      "shard_size");
+      throw util::UserError("merge: " + options.inputs[i] + " was cut into shards of " +
+                            std::to_string(experiments[i].shard_size) +
+                            " primitives ([run] shard_size), " + options.inputs.front() +
+                            " into shards of " + std::to_string(exp.shard_size) +
+                            ": their records files name other shards; run the slices with one "
+                            "shard_size");
   return exp;
 }
 
@@ -97,9 +99,10 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
           platforms.insert(s.platform);
       for (const std::string& platform : platforms)
         if (!fs::exists(in + "/drivers/" + platform + ".json"))
-          throw UserError("merge: " + in + " holds records of " + platform + " but no drivers/" +
-                          platform + ".json, so the driver that drew them cannot be compared "
-                          "with the other inputs' (--allow-driver-mismatch merges it anyway)");
+          throw util::UserError(
+              "merge: " + in + " holds records of " + platform + " but no drivers/" + platform +
+              ".json, so the driver that drew them cannot be compared "
+              "with the other inputs' (--allow-driver-mismatch merges it anyway)");
     }
   }
   std::map<std::string, std::pair<std::string, std::string>> driver_seen;  // platform -> text, dir
@@ -109,9 +112,9 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
       const std::string text = j.value("renderer", "") + " | " + j.value("version", "");
       const auto [it, first] = driver_seen.try_emplace(platform, text, in);
       if (!first && it->second.first != text && !options.allow_driver_mismatch) {
-        throw UserError("merge: platform " + platform + " drew with '" + text + "' in " + in +
-                        " but with '" + it->second.first + "' in " + it->second.second +
-                        " (--allow-driver-mismatch merges them anyway)");
+        throw util::UserError("merge: platform " + platform + " drew with '" + text + "' in " + in +
+                              " but with '" + it->second.first + "' in " + it->second.second +
+                              " (--allow-driver-mismatch merges them anyway)");
       }
     }
   }
@@ -155,8 +158,9 @@ int common_conformance_rules(const std::vector<RunManifest>& inputs, const Merge
     const int r = inputs[i].rules_judged_by();
     if (r == 0) continue;
     if (rules != 0 && r != rules)
-      throw UserError(rules_from + " was judged by conformance rules " + std::to_string(rules) +
-                      ", " + path + " by " + std::to_string(r) + ": their records cannot be merged");
+      throw util::UserError(rules_from + " was judged by conformance rules " +
+                            std::to_string(rules) + ", " + path + " by " + std::to_string(r) +
+                            ": their records cannot be merged");
     rules = r, rules_from = path;
   }
   return rules != 0 ? rules : metrics::kConformanceRulesVersion;
@@ -189,7 +193,7 @@ RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
   std::vector<RunManifest> inputs;
   std::vector<nlohmann::json> input_json;
   for (const std::string& in : options.inputs) {
-    input_json.push_back(read_json_or_null(in + "/manifest.json"));
+    input_json.push_back(util::read_json_or_null(in + "/manifest.json"));
     inputs.push_back(read_manifest(input_json.back(), in + "/manifest.json"));
   }
   RunManifest m;
@@ -226,7 +230,7 @@ RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
   }
   m.drivers = nlohmann::json::object();
   for (const auto& [platform, path] : driver_file)
-    m.drivers[platform] = read_json_or_null(out + "/drivers/" + platform + ".json");
+    m.drivers[platform] = util::read_json_or_null(out + "/drivers/" + platform + ".json");
   m.shards = ManifestShardCounts{result->shards_total, result->shards_present,
                                  result->shards_in_several_inputs};
   // the crash and timeout records DIR holds now, whichever merge or run put them there
@@ -244,12 +248,12 @@ RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
 }  // namespace
 
 MergeResult merge_runs(const MergeOptions& options) {
-  if (options.inputs.empty()) throw UserError("merge: name at least one run directory");
+  if (options.inputs.empty()) throw util::UserError("merge: name at least one run directory");
   const Experiment exp = common_experiment(options);
   const std::vector<Shard> plan = plan_shards(exp);
   require_one_driver_per_platform(options, plan);
 
-  const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, options.out_dir, "merge");
+  const std::unique_ptr<util::DirLock> lock = prepare_run_dir(exp, options.out_dir, "merge");
   MergeResult result;
   result.shards_total = plan.size();
   const std::map<std::string, uint64_t> taken_from = copy_shards(options, plan, &result);

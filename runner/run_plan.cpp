@@ -17,8 +17,8 @@ void require_experiment_platforms(const Experiment& exp, const std::string& expe
                                   const std::vector<std::string>& only_platforms) {
   for (const auto& p : only_platforms)
     if (std::find(exp.platforms.begin(), exp.platforms.end(), p) == exp.platforms.end())
-      throw UserError(experiment_path + ": --platform " + p +
-                      " is not one of the experiment's platforms");
+      throw util::UserError(experiment_path + ": --platform " + p +
+                            " is not one of the experiment's platforms");
 }
 
 std::vector<Shard> shards_of_run(const Experiment& exp,
@@ -33,10 +33,10 @@ std::vector<Shard> shards_of_run(const Experiment& exp,
               all.end());
   }
   if (slice && size_t(slice->count) > all.size())
-    throw UserError("--slice " + std::to_string(slice->index) + "/" +
-                    std::to_string(slice->count) + ": the run has only " +
-                    std::to_string(all.size()) + " shards (allowed: N from 1 to " +
-                    std::to_string(all.size()) + ")");
+    throw util::UserError("--slice " + std::to_string(slice->index) + "/" +
+                          std::to_string(slice->count) + ": the run has only " +
+                          std::to_string(all.size()) + " shards (allowed: N from 1 to " +
+                          std::to_string(all.size()) + ")");
   if (slice) all = shards_of_slice(all, exp, *slice);
   return all;
 }

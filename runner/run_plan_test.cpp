@@ -44,7 +44,7 @@ TEST(RunPlan, ThePlatformFilterKeepsPlanOrder) {
   for (const Shard& s : plan_shards(exp))
     if (s.platform == "osmesa-softpipe") expected.push_back(s);
   EXPECT_EQ(ids(soft), ids(expected));
-  EXPECT_THROW(require_experiment_platforms(exp, "e.toml", {"egl-zink"}), UserError);
+  EXPECT_THROW(require_experiment_platforms(exp, "e.toml", {"egl-zink"}), util::UserError);
   EXPECT_NO_THROW(require_experiment_platforms(exp, "e.toml", {"reference"}));
 }
 
@@ -56,7 +56,7 @@ TEST(RunPlan, SlicesPartitionTheRunAndNoSliceIsEmpty) {
   try {
     shards_of_run(exp, {"reference"}, Slice{1, 13});
     ADD_FAILURE() << "13 slices of 12 shards were accepted";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()),
               "--slice 1/13: the run has only 12 shards (allowed: N from 1 to 12)");
   }

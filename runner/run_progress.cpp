@@ -44,14 +44,14 @@ std::string progress_path(const std::string& run_dir) { return run_dir + "/progr
 
 void write_run_progress(const std::string& run_dir, const RunProgress& p) {
   try {
-    write_file_atomic(progress_path(run_dir), to_json(p).dump(1) + "\n");
+    util::write_file_atomic(progress_path(run_dir), to_json(p).dump(1) + "\n");
   } catch (const std::exception&) {
   }
 }
 
 RunProgress read_run_progress(const std::string& run_dir) {
   try {
-    return run_progress_from_json(nlohmann::json::parse(read_file(progress_path(run_dir))));
+    return run_progress_from_json(nlohmann::json::parse(util::read_file(progress_path(run_dir))));
   } catch (const std::exception&) {
     return {};
   }

@@ -30,11 +30,11 @@ bool is_pending(const std::string& state) {
 
 // The Slurm jobs of DIR/slurm/jobs.json that squeue still lists (array tasks one by one).
 void ask_squeue(RunStatus& s, const std::string& squeue) {
-  ChildSpec spec;
+  util::ChildSpec spec;
   spec.argv = {squeue, "-h", "-r", "-j", s.array_job + "," + s.gather_job, "-o", "%i|%T|%r"};
   spec.capture_output = true;
   spec.stdin_null = true;
-  const ProgramResult r = run_program(spec);
+  const util::ProgramResult r = util::run_program(spec);
   if (!r.exited_ok()) {
     // jobs Slurm has forgotten (they ended long ago) are not an error
     if (r.output.find("Invalid job id") == std::string::npos)
@@ -71,7 +71,7 @@ std::string RunStatus::state() const {
 
 RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
   if (!fs::exists(dir + "/experiment.toml"))
-    throw UserError(dir + ": not a run directory (no experiment.toml)");
+    throw util::UserError(dir + ": not a run directory (no experiment.toml)");
   RunStatus s;
   s.dir = dir;
   const Experiment exp = load_experiment(dir + "/experiment.toml");
@@ -114,7 +114,7 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
 
   std::set<std::string> running, failed;
   for (const std::string& src : sources) {
-    const std::string holder = DirLock::current_holder(src);
+    const std::string holder = util::DirLock::current_holder(src);
     if (!holder.empty()) {
       WriterStatus w{src, holder, read_run_progress(src)};
       running.insert(w.progress.running.begin(), w.progress.running.end());
@@ -142,7 +142,7 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
   for (const auto& w : s.writers)
     if (w.progress.left_s >= 0) s.left_s = std::max(s.left_s, w.progress.left_s);
 
-  const nlohmann::json jobs = read_json_or_null(dir + "/slurm/jobs.json");
+  const nlohmann::json jobs = util::read_json_or_null(dir + "/slurm/jobs.json");
   if (jobs.is_object()) {
     s.slurm = true;
     s.array_job = jobs.value("array_job", "");
@@ -152,7 +152,7 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
     for (const auto& j : s.jobs)
       if (j.id.rfind(s.array_job + "_", 0) == 0 && is_pending(j.state)) ++s.slices_not_started;
     try {
-      s.gather_exit = std::stoi(read_file(dir + "/slurm/gather.exit"));
+      s.gather_exit = std::stoi(util::read_file(dir + "/slurm/gather.exit"));
     } catch (const std::exception&) {
     }
   }
@@ -175,7 +175,7 @@ std::string format_run_status(const RunStatus& s) {
     o << "  writer " << w.dir << ": " << w.holder;
     if (!w.progress.host.empty())
       o << "; " << w.progress.shards_finished << " of " << w.progress.shards_to_run
-        << " shards, left " << duration_text(w.progress.left_s, "unknown");
+        << " shards, left " << util::duration_text(w.progress.left_s, "unknown");
     o << "\n";
   }
   if (s.slurm) {
@@ -201,7 +201,7 @@ std::string format_run_status(const RunStatus& s) {
   if (s.state() == "running" || s.state() == "queued") {
     o << "  time left: ";
     if (s.left_s >= 0)
-      o << "about " << duration_text(s.left_s, "unknown") << " for the running writers";
+      o << "about " << util::duration_text(s.left_s, "unknown") << " for the running writers";
     else
       o << "not known yet";
     if (s.slices_not_started) o << ", then " << s.slices_not_started << " slices not started";

@@ -64,7 +64,7 @@ void RunTally::show_line(std::size_t failed) {
   const double rate = primitives_done_ / std::max(elapsed, 1e-9);
   std::fprintf(stderr, "\r[%zu/%zu shards] %llu primitives, %.0f/s, %zu failed, left %s   ",
                finished_, shards_to_run_, primitives_done_, rate, failed,
-               duration_text(cost_done_ > 0 ? seconds_left(elapsed) : NAN).c_str());
+               util::duration_text(cost_done_ > 0 ? seconds_left(elapsed) : NAN).c_str());
 }
 
 }  // namespace ra::runner

@@ -87,7 +87,7 @@ static void write_driver_info(const std::string& run_dir, const platforms::Platf
   }
   j.update(document_header("driver", 1, false));
   // Several shards may race here; each writes a complete file under its own temporary name.
-  write_file_atomic(path, j.dump(2) + "\n");
+  util::write_file_atomic(path, j.dump(2) + "\n");
 }
 
 ShardSession::ShardSession(std::string run_dir, const Experiment& exp, std::string platform)
@@ -127,7 +127,7 @@ void ShardSession::run(const Shard& shard, const std::string& records_dir) {
           : records_dir + "/" + shard.id() + metrics::records_extension(exp_.records_format);
   // A temporary of this writer alone: a second writer (a run that ignored the lock) cannot
   // interleave its rows with ours, and a killed one leaves only its own temporary behind.
-  const std::string tmp = create_unique_temp(path);
+  const std::string tmp = util::create_unique_temp(path);
   try {
     RecordsFileWriter out(tmp, exp_.records_format);
     constexpr uint64_t kChunk = 1024;  // primitives measured together (and batched inside)
@@ -145,7 +145,7 @@ void ShardSession::run(const Shard& shard, const std::string& records_dir) {
     std::remove(tmp.c_str());
     throw;
   }
-  commit_file(tmp, path);
+  util::commit_file(tmp, path);
 }
 
 void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& shard,

@@ -24,11 +24,11 @@ std::string hex64(uint64_t v) {
 // Hash and row count of the first `length` bytes of `in` (the header line excluded from rows),
 // read in blocks: memory does not depend on the file's size.
 struct BodyDigest {
-  uint64_t hash = Fnv1a64::kOffsetBasis, rows = 0;
+  uint64_t hash = util::Fnv1a64::kOffsetBasis, rows = 0;
   bool ends_with_newline = true;
 };
 BodyDigest digest(std::istream& in, uint64_t length) {
-  Fnv1a64 h;
+  util::Fnv1a64 h;
   uint64_t lines = 0;
   char last = '\n';
   std::string block(1 << 20, '\0');
@@ -90,7 +90,7 @@ class HeldBackDigest {
     hash_.add(bytes);
     lines_ += uint64_t(std::count(bytes.begin(), bytes.end(), '\n'));
   }
-  Fnv1a64 hash_;
+  util::Fnv1a64 hash_;
   uint64_t lines_ = 0;
   std::string held_;  // the last line or two seen, not yet hashed
 };
@@ -98,7 +98,7 @@ class HeldBackDigest {
 std::string check_compressed(const std::string& path, uint64_t expected_rows) {
   HeldBackDigest digest;
   try {
-    for_each_zstd_chunk(path, [&](std::string_view c) { digest.add(c); });
+    util::for_each_zstd_chunk(path, [&](std::string_view c) { digest.add(c); });
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
     if (what.find("cut short") != std::string::npos) return "no trailer (the file was cut short)";
@@ -122,8 +122,9 @@ std::string check_compressed(const std::string& path, uint64_t expected_rows) {
 
 RecordsFileWriter::RecordsFileWriter(const std::string& path, metrics::RecordsFormat format)
     : path_(path), out_(path, std::ios::binary | std::ios::trunc) {
-  if (!out_) throw std::runtime_error(io_error_message("cannot open", path));
-  if (format == metrics::RecordsFormat::kCsvZst) zstd_ = std::make_unique<ZstdFrameWriter>(out_);
+  if (!out_) throw std::runtime_error(util::io_error_message("cannot open", path));
+  if (format == metrics::RecordsFormat::kCsvZst)
+    zstd_ = std::make_unique<util::ZstdFrameWriter>(out_);
   put(metrics::records_header() + "\n");
 }
 
@@ -155,12 +156,12 @@ uint64_t RecordsFileWriter::finish() {
     out_ << trailer;
   }
   out_.close();
-  if (!out_) throw std::runtime_error(io_error_message("cannot write", path_));
+  if (!out_) throw std::runtime_error(util::io_error_message("cannot write", path_));
   return rows_;
 }
 
 std::string shard_trailer(std::string_view body, uint64_t rows) {
-  Fnv1a64 h;
+  util::Fnv1a64 h;
   h.add(body);
   BodyDigest d;
   d.hash = h.value;
@@ -180,12 +181,12 @@ uint64_t seal_shard_file(const std::string& path) {
   if (!d.ends_with_newline) out << '\n';  // never: records end their lines; kept exact anyway
   out << trailer_of(d);
   out.close();
-  if (!out) throw std::runtime_error(io_error_message("cannot write", path));
+  if (!out) throw std::runtime_error(util::io_error_message("cannot write", path));
   return d.rows;
 }
 
 std::string check_shard_file(const std::string& path, uint64_t expected_rows) {
-  if (has_zstd_extension(path)) return check_compressed(path, expected_rows);
+  if (util::has_zstd_extension(path)) return check_compressed(path, expected_rows);
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) return "cannot read it";
   const uint64_t size = uint64_t(in.tellg());

@@ -44,8 +44,8 @@ class RecordsFileWriter {
   void put(std::string_view bytes);
   std::string path_;
   std::ofstream out_;
-  std::unique_ptr<ZstdFrameWriter> zstd_;  // null for plain CSV
-  Fnv1a64 hash_;
+  std::unique_ptr<util::ZstdFrameWriter> zstd_;  // null for plain CSV
+  util::Fnv1a64 hash_;
   uint64_t rows_ = 0;
   std::string line_;
 };

@@ -108,7 +108,7 @@ void ShardRecovery::assemble(Bisection& b) {
                              std::to_string(b.shard.size()));
   // Written whole under a temporary name, then renamed: never half a shard in the records folder.
   const std::string path = b.shard.records_path(run_dir_, exp_.records_format);
-  const std::string tmp = create_unique_temp(path);
+  const std::string tmp = util::create_unique_temp(path);
   try {
     RecordsFileWriter out(tmp, exp_.records_format);
     for (const metrics::Record& r : records) out.write(r);
@@ -117,7 +117,7 @@ void ShardRecovery::assemble(Bisection& b) {
     std::remove(tmp.c_str());
     throw;
   }
-  commit_file(tmp, path);
+  util::commit_file(tmp, path);
   for (const std::string& part : b.parts) fs::remove(part);
 }
 

@@ -79,7 +79,7 @@ void serve_shards(const std::string& run_dir, const Experiment& exp, const std::
     session.run(c.shard, c.records_dir);
     std::fflush(stdout);
     std::fflush(stderr);
-    send_message_to_parent(shard_done_line(c.shard) + "\n");
+    util::send_message_to_parent(shard_done_line(c.shard) + "\n");
   }
 }
 

@@ -46,8 +46,8 @@ Slice parse_slice(const std::string& text) {
   if (slash == std::string::npos || !number(0, slash, &s.index) ||
       !number(slash + 1, text.size(), &s.count) || s.count < 1 || s.count > 100000 ||
       s.index < 1 || s.index > s.count) {
-    throw UserError("--slice '" + text +
-                    "': expected K/N with 1 <= K <= N <= 100000, e.g. 2/8 (the second of 8)");
+    throw util::UserError("--slice '" + text +
+                          "': expected K/N with 1 <= K <= N <= 100000, e.g. 2/8 (the second of 8)");
   }
   return s;
 }

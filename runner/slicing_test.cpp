@@ -96,7 +96,7 @@ TEST(Slicing, BadSlicesAreRefusedWithTheAllowedRange) {
     try {
       parse_slice(bad);
       ADD_FAILURE() << bad;
-    } catch (const UserError& e) {
+    } catch (const util::UserError& e) {
       EXPECT_NE(std::string(e.what()).find("1 <= K <= N <= 100000"), std::string::npos) << bad;
     }
   }

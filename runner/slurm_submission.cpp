@@ -62,8 +62,9 @@ std::string sbatch_value_problem(const std::string& value) {
 
 void require_sbatch_value(const std::string& what, const std::string& value) {
   if (const std::string why = sbatch_value_problem(value); !why.empty())
-    throw UserError("--slurm: " + what + " '" + value + "' cannot go into an sbatch script: " +
-                    why + " (allowed: no white space, quotes, backslash, '#' or '%')");
+    throw util::UserError("--slurm: " + what + " '" + value +
+                          "' cannot go into an sbatch script: " + why +
+                          " (allowed: no white space, quotes, backslash, '#' or '%')");
 }
 
 // The values that reach #SBATCH lines: partition names as Slurm spells them (letters, digits, '_',
@@ -71,14 +72,16 @@ void require_sbatch_value(const std::string& what, const std::string& value) {
 void validate_slurm_options(const SlurmOptions& slurm) {
   static const std::regex partition("[A-Za-z0-9_.-]+(,[A-Za-z0-9_.-]+)*");
   if (!slurm.partition.empty() && !std::regex_match(slurm.partition, partition))
-    throw UserError("--partition '" + slurm.partition + "': not a Slurm partition name (allowed: "
-                    "letters, digits, '_', '-', '.', and ',' between several partitions)");
+    throw util::UserError("--partition '" + slurm.partition +
+                          "': not a Slurm partition name (allowed: "
+                          "letters, digits, '_', '-', '.', and ',' between several partitions)");
   static const std::regex time(
       "[0-9]+(:[0-9]+){0,2}|[0-9]+-[0-9]+(:[0-9]+){0,2}|UNLIMITED|INFINITE|unlimited|infinite");
   if (!slurm.time_limit.empty() && !std::regex_match(slurm.time_limit, time))
-    throw UserError("--time-limit '" + slurm.time_limit + "': not in sbatch --time syntax "
-                    "(allowed: MINUTES, MINUTES:SECONDS, HOURS:MINUTES:SECONDS, DAYS-HOURS, "
-                    "DAYS-HOURS:MINUTES, DAYS-HOURS:MINUTES:SECONDS, UNLIMITED)");
+    throw util::UserError("--time-limit '" + slurm.time_limit +
+                          "': not in sbatch --time syntax "
+                          "(allowed: MINUTES, MINUTES:SECONDS, HOURS:MINUTES:SECONDS, DAYS-HOURS, "
+                          "DAYS-HOURS:MINUTES, DAYS-HOURS:MINUTES:SECONDS, UNLIMITED)");
 }
 
 std::string header(const std::string& job_name, int jobs, const SlurmOptions& slurm,
@@ -96,27 +99,27 @@ std::string header(const std::string& job_name, int jobs, const SlurmOptions& sl
 
 std::string submit(const SlurmOptions& slurm, const std::vector<std::string>& args,
                    const std::string& script_path) {
-  ChildSpec spec;
+  util::ChildSpec spec;
   spec.argv = {slurm.sbatch, "--parsable"};
   spec.argv.insert(spec.argv.end(), args.begin(), args.end());
   spec.argv.push_back(script_path);
   spec.capture_output = true;
   spec.stdin_null = true;
-  const ProgramResult r = run_program(spec);
+  const util::ProgramResult r = util::run_program(spec);
   if (r.exit_code() == 127)
-    throw UserError("--slurm: cannot run '" + slurm.sbatch +
-                    "' (is this a Slurm login node? Debian: apt-get install slurm-client)");
+    throw util::UserError("--slurm: cannot run '" + slurm.sbatch +
+                          "' (is this a Slurm login node? Debian: apt-get install slurm-client)");
   std::string out = r.output;
   while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
   if (!r.exited_ok())
-    throw UserError("--slurm: sbatch refused " + script_path + " (" +
-                    describe_exit_status(r.status) + "): " + out);
+    throw util::UserError("--slurm: sbatch refused " + script_path + " (" +
+                          util::describe_exit_status(r.status) + "): " + out);
   // --parsable prints "JOBID" or "JOBID;CLUSTER" as its last line
   std::string id = out.substr(out.find_last_of('\n') == std::string::npos ? 0
                                                                           : out.find_last_of('\n') + 1);
   id = id.substr(0, id.find(';'));
   if (id.empty() || !std::all_of(id.begin(), id.end(), ::isdigit))
-    throw UserError("--slurm: sbatch answered '" + out + "', not a job id");
+    throw util::UserError("--slurm: sbatch answered '" + out + "', not a job id");
   return id;
 }
 
@@ -151,10 +154,11 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
   require_sbatch_value(run.experiment_path + ": the experiment's name", exp.name);  // --job-name
   if (!slurm.allow_node_local) {
     if (const std::string why = node_local_reason(dir); !why.empty())
-      throw UserError("--slurm: --out " + dir + " " + why +
-                      "; the tasks on other nodes could not write it nor the gather read it. "
-                      "Choose a directory on a shared file system (or --allow-node-local on a "
-                      "one-node cluster)");
+      throw util::UserError(
+          "--slurm: --out " + dir + " " + why +
+          "; the tasks on other nodes could not write it nor the gather read it. "
+          "Choose a directory on a shared file system (or --allow-node-local on a "
+          "one-node cluster)");
   }
   std::vector<Shard> shards = plan_shards(exp);
   if (!run.only_platforms.empty())
@@ -165,13 +169,13 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
                                                    s.platform) == run.only_platforms.end();
                                 }),
                  shards.end());
-  if (shards.empty()) throw UserError("--slurm: " + run.experiment_path + " plans no shards");
+  if (shards.empty()) throw util::UserError("--slurm: " + run.experiment_path + " plans no shards");
   const int jobs = run.jobs > 0 ? run.jobs : 2;
   sub.slices = slurm.slices > 0 ? slurm.slices : int(std::min<size_t>(shards.size(), 16));
   if (size_t(sub.slices) > shards.size())
-    throw UserError("--slices " + std::to_string(sub.slices) + ": the run has only " +
-                    std::to_string(shards.size()) + " shards (allowed: 1 to " +
-                    std::to_string(shards.size()) + ")");
+    throw util::UserError("--slices " + std::to_string(sub.slices) + ": the run has only " +
+                          std::to_string(shards.size()) + " shards (allowed: 1 to " +
+                          std::to_string(shards.size()) + ")");
 
   const std::string program = fs::read_symlink("/proc/self/exe").string();
   // The experiment file as given, where every node can read it (its name stays the run's name);
@@ -225,17 +229,17 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
   std::error_code ec;
   fs::create_directories(dir + "/slurm", ec);
   fs::create_directories(dir + "/slices", ec);
-  if (ec) throw UserError(dir + "/slices: cannot create (" + ec.message() + ")");
+  if (ec) throw util::UserError(dir + "/slices: cannot create (" + ec.message() + ")");
   fs::remove(dir + "/slurm/gather.exit", ec);
-  write_file_atomic(dir + "/slurm/array.sbatch", sub.array_script);
-  write_file_atomic(dir + "/slurm/gather.sbatch", sub.gather_script);
+  util::write_file_atomic(dir + "/slurm/array.sbatch", sub.array_script);
+  util::write_file_atomic(dir + "/slurm/gather.sbatch", sub.gather_script);
   sub.array_job = submit(slurm, {}, dir + "/slurm/array.sbatch");
   sub.gather_job = submit(slurm, {"--dependency=afterany:" + sub.array_job},
                           dir + "/slurm/gather.sbatch");
   nlohmann::json jobs_json = {{"array_job", sub.array_job},  {"gather_job", sub.gather_job},
                               {"slices", sub.slices},        {"submitted", utc_now_iso8601()},
                               {"max_parallel", slurm.max_parallel}, {"cpus_per_task", jobs}};
-  write_file_atomic(dir + "/slurm/jobs.json", jobs_json.dump(1) + "\n");
+  util::write_file_atomic(dir + "/slurm/jobs.json", jobs_json.dump(1) + "\n");
   return sub;
 }
 

@@ -24,8 +24,8 @@ const char* study_kind_name(StudyKind kind) {
 }
 
 StudyKind experiment_study_kind(const std::string& experiment_path) {
-  const TomlLocator loc(experiment_path);
-  const toml::table root = loc.parse(TomlLocator::read_text(experiment_path));
+  const util::TomlLocator loc(experiment_path);
+  const toml::table root = loc.parse(util::TomlLocator::read_text(experiment_path));
   StudyKind kind = StudyKind::kAudit;
   const toml::node* first = nullptr;
   for (const auto& [key, k] : {std::pair<const char*, StudyKind>{"timing", StudyKind::kTiming},
@@ -51,7 +51,7 @@ void write_study_info(const std::string& dir, const StudyInfo& info) {
                             {"document", info.document},
                             {"analysed", info.analysed}};
   j.update(document_header("study", 1, false));
-  write_file_atomic(dir + "/study.json", j.dump(2) + "\n");
+  util::write_file_atomic(dir + "/study.json", j.dump(2) + "\n");
 }
 
 std::optional<StudyInfo> read_study_info(const std::string& dir) {
@@ -68,14 +68,14 @@ std::optional<StudyInfo> read_study_info(const std::string& dir) {
         info.kind = k;
         known = true;
       }
-    if (!known) throw UserError(path + ": unknown study kind '" + kind + "'");
+    if (!known) throw util::UserError(path + ": unknown study kind '" + kind + "'");
     info.name = j.at("name").get<std::string>();
     info.title = j.at("title").get<std::string>();
     info.subtitle = j.value("subtitle", "");
     info.document = j.value("document", "");
     info.analysed = j.value("analysed", false);
   } catch (const nlohmann::json::exception& e) {
-    throw UserError(path + ": not a study description (" + e.what() + ")");
+    throw util::UserError(path + ": not a study description (" + e.what() + ")");
   }
   return info;
 }

@@ -44,7 +44,7 @@ TEST(StudyDir, TwoStudiesInOneFileAreLocated) {
   try {
     experiment_study_kind(path);
     FAIL() << "no error";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     const std::string what = e.what();
     EXPECT_EQ(what.rfind(path + ":3:1: a file declares one study; this one has [lod] and [regulation]", 0),
               0u)
@@ -54,10 +54,10 @@ TEST(StudyDir, TwoStudiesInOneFileAreLocated) {
   try {
     experiment_study_kind(broken);
     FAIL() << "no error";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()).rfind(broken + ":1:", 0), 0u) << e.what();
   }
-  EXPECT_THROW(experiment_study_kind((t.path / "missing.toml").string()), UserError);
+  EXPECT_THROW(experiment_study_kind((t.path / "missing.toml").string()), util::UserError);
 }
 
 TEST(StudyDir, InfoRoundTripsAndBadFilesAreNamed) {
@@ -84,11 +84,11 @@ TEST(StudyDir, InfoRoundTripsAndBadFilesAreNamed) {
   try {
     read_study_info(t.path.string());
     FAIL() << "no error";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_NE(std::string(e.what()).find("unknown study kind 'castle'"), std::string::npos) << e.what();
   }
   t.write("study.json", "{\"kind\": \"lod\"");
-  EXPECT_THROW(read_study_info(t.path.string()), UserError);
+  EXPECT_THROW(read_study_info(t.path.string()), util::UserError);
 }
 
 }  // namespace

@@ -24,7 +24,7 @@ namespace {
 // replies), in order; anything else is kept as its last words.
 template <typename Running>
 std::vector<std::string> read_replies(Running& r) {
-  r.unread += drain_fd(r.message_fd);
+  r.unread += util::drain_fd(r.message_fd);
   std::vector<std::string> done;
   size_t start = 0;
   for (size_t nl; (nl = r.unread.find('\n', start)) != std::string::npos; start = nl + 1) {
@@ -72,7 +72,7 @@ WorkerPool::~WorkerPool() { stop_all(); }
 void WorkerPool::stop_all() {
   for (auto& [pid, r] : running_) ::kill(-pid, SIGKILL);
   for (auto& [pid, r] : running_) {
-    wait_child(pid);
+    util::wait_child(pid);
     if (r.message_fd >= 0) ::close(r.message_fd);
     if (r.command_fd >= 0) ::close(r.command_fd);
   }
@@ -167,7 +167,7 @@ void WorkerPool::start_workers(std::deque<WorkItem>& todo) {
     Running r;
     r.item = w;
     r.started = r.spawned = Clock::now();
-    ChildSpec spec;
+    util::ChildSpec spec;
     const Shard& s = w.shard;
     spec.own_process_group = true;
     spec.message_pipe = true;
@@ -176,7 +176,7 @@ void WorkerPool::start_workers(std::deque<WorkItem>& todo) {
       spec.argv = {settings_.program, "serve-shards", settings_.dir, s.platform};
       spec.set_env = {"RA_RENDER_ATTEMPT=1"};
       spec.command_pipe = true;
-      const Child child = start_child(spec);
+      const util::Child child = util::start_child(spec);
       r.server = true, r.message_fd = child.message_fd, r.command_fd = child.command_fd;
       if (!send_command(r, w)) {
         ::close(r.command_fd);
@@ -196,7 +196,7 @@ void WorkerPool::start_workers(std::deque<WorkItem>& todo) {
                    records_dir_(w)};
       spec.set_env = {"RA_RENDER_ATTEMPT=" + std::to_string(w.attempt)};
       spec.stdin_null = true;
-      const Child child = start_child(spec);
+      const util::Child child = util::start_child(spec);
       r.message_fd = child.message_fd;
       running_[child.pid] = r;
     }
@@ -240,13 +240,13 @@ void WorkerPool::reaped(pid_t pid, int status) {
     e.kind = WorkerEvent::Kind::kSucceeded;
   } else if (WIFSIGNALED(status)) {  // the driver crashed: re-run, then bisect
     e.kind = WorkerEvent::Kind::kCrashed;
-    e.reason = describe_exit_status(status) + e.log;
+    e.reason = util::describe_exit_status(status) + e.log;
   } else {
     // A worker that loaded another driver than the run's: nothing of this run may be drawn here.
     e.kind = words.find(platforms::kDriverMismatch) != std::string::npos
                  ? WorkerEvent::Kind::kDriverMismatch
                  : WorkerEvent::Kind::kFailed;
-    e.reason = describe_exit_status(status);
+    e.reason = util::describe_exit_status(status);
     e.words = words;
   }
   on_event_(e);
@@ -262,7 +262,7 @@ void WorkerPool::enforce_time_limits() {
     const double grace_s = std::min(kServerExitGraceS, r.item.timeout_s);
     if (r.server && !r.busy && r.command_fd < 0 && seconds_between(r.told_to_end, now) > grace_s) {
       ::kill(-p, SIGKILL);  // every shard it ran is committed: nothing is lost
-      wait_child(p);
+      util::wait_child(p);
       busy_s_ += seconds_between(r.spawned, now);
       std::fprintf(stderr, "%srenderaudit: a %s worker did not exit within %g s of its last "
                    "shard (killed; its shards are complete; log: %s)\n", line_break(),
@@ -278,7 +278,7 @@ void WorkerPool::enforce_time_limits() {
 // records were committed before it hung (in its driver's teardown, typically).
 void WorkerPool::timed_out(pid_t pid, Clock::time_point now) {
   ::kill(-pid, SIGKILL);
-  wait_child(pid);
+  util::wait_child(pid);
   Running r = running_[pid];
   running_.erase(pid);
   busy_s_ += seconds_between(r.spawned, now);

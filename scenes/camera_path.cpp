@@ -237,7 +237,7 @@ std::vector<Viewpoint> parse_camera_path_csv(const std::string& text, const std:
   static const char* kHeader = "frame,eye_x,eye_y,eye_z,target_x,target_y,target_z";
   static const char* kNames[7] = {"frame", "eye_x", "eye_y", "eye_z", "target_x", "target_y", "target_z"};
   auto fail = [&](int line, const std::string& what) -> void {
-    throw UserError(file_name + ":" + std::to_string(line) + ": " + what);
+    throw util::UserError(file_name + ":" + std::to_string(line) + ": " + what);
   };
   std::vector<Viewpoint> out;
   std::istringstream in(text);
@@ -292,7 +292,7 @@ std::vector<Viewpoint> parse_camera_path_csv(const std::string& text, const std:
 
 std::vector<Viewpoint> read_camera_path_csv(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path + ":1: cannot open the camera path file");
+  if (!in) throw util::UserError(path + ":1: cannot open the camera path file");
   std::stringstream buf;
   buf << in.rdbuf();
   return parse_camera_path_csv(buf.str(), path);
@@ -304,10 +304,10 @@ void write_camera_path_csv(const std::vector<Viewpoint>& path, const std::string
     const Viewpoint& v = path[k];
     text += std::to_string(k);
     for (double x : {v.eye.x, v.eye.y, v.eye.z, v.target.x, v.target.y, v.target.z})
-      text += "," + full_precision(x);
+      text += "," + util::full_precision(x);
     text += "\n";
   }
-  write_file_atomic(file, text);  // complete or absent
+  util::write_file_atomic(file, text);  // complete or absent
 }
 
 }  // namespace ra::scenes

@@ -199,7 +199,7 @@ void expect_error(const std::string& text, const std::string& message) {
   try {
     parse_camera_path_csv(text, "walk.csv");
     ADD_FAILURE() << "no error for: " << text;
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()), message);
   }
 }
@@ -224,14 +224,14 @@ TEST(CameraPath, CsvErrorsNameFileAndLine) {
   try {
     read_camera_path_csv("/nonexistent/dir/walk.csv");
     ADD_FAILURE();
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()), "/nonexistent/dir/walk.csv:1: cannot open the camera path file");
   }
   const std::string f = temp_file("scenes_bad_path.csv", std::string(kHeader) + "0,0,0,0,1,0,0\n1,x,0,0,1,0,0\n");
   try {
     read_camera_path_csv(f);
     ADD_FAILURE();
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()), f + ":3: eye_x = 'x' is not a number");
   }
   std::remove(f.c_str());

@@ -20,10 +20,10 @@ enum class ScenePurpose : uint64_t {
 };
 
 // The draws of one item of one purpose: runner's counter-based generator under a scene tag.
-class SceneRng : public CounterRng {
+class SceneRng : public util::CounterRng {
  public:
   SceneRng(uint64_t seed, ScenePurpose purpose, uint64_t item)
-      : CounterRng(seed, static_cast<uint64_t>(purpose), item) {}
+      : util::CounterRng(seed, static_cast<uint64_t>(purpose), item) {}
 };
 
 }  // namespace ra::scenes

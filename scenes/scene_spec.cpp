@@ -29,7 +29,7 @@ class Located {
   std::string key(const std::string& k) const { return where_ + "." + k; }
 
  private:
-  TomlLocator at_;
+  util::TomlLocator at_;
   std::string where_;
 };
 

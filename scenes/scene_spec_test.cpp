@@ -19,7 +19,7 @@ std::vector<SceneSpec> parse(const std::string& text, const std::string& file = 
 std::string error_of(const std::string& text) {
   try {
     parse(text);
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
   return "(no error)";

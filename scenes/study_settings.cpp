@@ -16,9 +16,9 @@ std::string show(double v) {
 
 }  // namespace
 
-StudyFile read_study_file(const TomlLocator& loc, const std::string& text, const std::string& where,
-                          const std::set<std::string>& other_keys, bool required,
-                          StudySettings* s) {
+StudyFile read_study_file(const util::TomlLocator& loc, const std::string& text,
+                          const std::string& where, const std::set<std::string>& other_keys,
+                          bool required, StudySettings* s) {
   StudyFile f{loc.parse(text), nullptr, {}};
   std::set<std::string> keys = other_keys;
   keys.insert({"name", where});
@@ -34,7 +34,7 @@ StudyFile read_study_file(const TomlLocator& loc, const std::string& text, const
 
 const char* const kCameraKeys[4] = {"window", "fov_deg", "near", "far"};
 
-void read_camera_block(const TomlLocator& loc, const toml::table& t, const std::string& where,
+void read_camera_block(const util::TomlLocator& loc, const toml::table& t, const std::string& where,
                        CameraSettings* cam) {
   const std::string p = where + ".";
   if (const auto* n = t.get("window")) {
@@ -56,7 +56,7 @@ void read_camera_block(const TomlLocator& loc, const toml::table& t, const std::
                                 " is out of range (allowed: near < far = " + show(cam->far) + ")");
 }
 
-std::string read_study_platform(const TomlLocator& loc, const toml::node& node,
+std::string read_study_platform(const util::TomlLocator& loc, const toml::node& node,
                                 const std::string& key) {
   const std::string name = loc.string(node, key, {}, platforms::aliased_gl_platform_names());
   if (!platforms::is_aliased_gl_platform(name))

@@ -31,9 +31,9 @@ struct StudyFile {
   const toml::table* table_ = nullptr;  // a node of root (nodes stay put when root moves)
   toml::table empty_;
 };
-StudyFile read_study_file(const TomlLocator& loc, const std::string& text, const std::string& where,
-                          const std::set<std::string>& other_keys, bool required,
-                          StudySettings* settings);
+StudyFile read_study_file(const util::TomlLocator& loc, const std::string& text,
+                          const std::string& where, const std::set<std::string>& other_keys,
+                          bool required, StudySettings* settings);
 
 // The keys of the camera block: window = [width, height] (pixels, 16..4096 each), fov_deg
 // (vertical, degrees, 0 < fov_deg < 180), near (> 0) and far (> near), clip planes in metres.
@@ -41,13 +41,13 @@ extern const char* const kCameraKeys[4];
 
 // Reads the camera keys present in `table` (the table `where`) into `camera`, keeping its values
 // for the absent ones; UserError "file:line:column: 'where.key' ..." naming the allowed range.
-void read_camera_block(const TomlLocator& loc, const toml::table& table, const std::string& where,
-                       CameraSettings* camera);
+void read_camera_block(const util::TomlLocator& loc, const toml::table& table,
+                       const std::string& where, CameraSettings* camera);
 
 // A platform the studies can time: a GL platform that draws aliased frames (a multisample
 // platform would be measured as aliased; the reference has no GL to time). UserError "'key' =
 // "NAME" is out of range (allowed: ...)" otherwise.
-std::string read_study_platform(const TomlLocator& loc, const toml::node& node,
+std::string read_study_platform(const util::TomlLocator& loc, const toml::node& node,
                                 const std::string& key);
 
 }  // namespace ra::scenes

@@ -12,19 +12,19 @@ namespace {
 // The error of reading `text` as study `where`'s file, "" when it reads.
 std::string error_of(const std::string& text, const std::string& where = "lod") {
   try {
-    const TomlLocator loc("s.toml");
+    const util::TomlLocator loc("s.toml");
     StudySettings s;
     const StudyFile f = read_study_file(loc, text, where, {}, true, &s);
     read_camera_block(loc, f.table(), where, &s.camera);
     if (const auto* n = f.table().get("platform")) read_study_platform(loc, *n, where + ".platform");
     return "";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
 }
 
 TEST(StudySettings, ReadsTheCameraBlock) {
-  const TomlLocator loc("s.toml");
+  const util::TomlLocator loc("s.toml");
   StudySettings s;
   const StudyFile f = read_study_file(
       loc, "name = \"n1\"\n[timing]\nwindow = [320, 200]\nfov_deg = 45\nnear = 2\nfar = 900\n", "timing", {},

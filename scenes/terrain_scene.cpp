@@ -20,8 +20,9 @@ namespace {
 
 // The seeded value of lattice point (i, j) of octave o, uniform on [0, 1).
 double lattice(uint64_t seed, int o, int64_t i, int64_t j) {
-  const uint64_t key = splitmix64(splitmix64(static_cast<uint64_t>(o)) ^ static_cast<uint64_t>(i)) ^
-                       (static_cast<uint64_t>(j) * 0x9E3779B97F4A7C15ull);
+  const uint64_t key =
+      util::splitmix64(util::splitmix64(static_cast<uint64_t>(o)) ^ static_cast<uint64_t>(i)) ^
+      (static_cast<uint64_t>(j) * 0x9E3779B97F4A7C15ull);
   return SceneRng(seed, ScenePurpose::kTerrainNoise, key).uniform01();
 }
 

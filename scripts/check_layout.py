@@ -28,9 +28,6 @@ WHOLE_MARK = "// Reads better whole:"
 NAMESPACE_OF_FOLDER = {
     "terrain_lod": "ra::lod",  # the study's name in its files, commands and documents
 }
-# Folders still in the flat namespace `ra` (a cross-tree rename not yet made): their files may
-# use `ra` itself. Remove a folder here once its files are in ra::<folder>.
-FLAT_RA_FOLDERS = {"util"}
 # Functions over the limit not yet split, as (file, function name) pairs. An entry
 # whose function is now short is reported as stale (not an error) so that it can be removed.
 KNOWN_LONG_FUNCTIONS = set()
@@ -205,8 +202,7 @@ def check_code(root, layers, findings, notes):
                         full = "::".join(n for n in names if n)
                         # anonymous namespaces and extern "C" add nothing; check named ones only
                         if block.name and not is_test_file(f):
-                            ok = (full == expected or full.startswith(expected + "::") or
-                                  (folder in FLAT_RA_FOLDERS and full == "ra"))
+                            ok = full == expected or full.startswith(expected + "::")
                             if not ok:
                                 findings.append("%s:%d: namespace %s in %s/ (expected %s)"
                                                 % (f, block.start_line, full, folder, expected))

@@ -80,21 +80,23 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& source) {
           }
         }
         if (!closed) {
-          throw UserError(located(source, open_line, "a quoted cell is never closed"));
+          throw util::UserError(located(source, open_line, "a quoted cell is never closed"));
         }
         while (i < size && is_blank(text[i])) ++i;
         if (i < size && text[i] != ',' && text[i] != '\n' && text[i] != '\r') {
-          throw UserError(located(source, line,
-                                  "unexpected text after a quoted cell (a quote inside a quoted "
-                                  "cell is written \"\")"));
+          throw util::UserError(
+              located(source, line,
+                      "unexpected text after a quoted cell (a quote inside a quoted "
+                      "cell is written \"\")"));
         }
       } else {
         const std::size_t start = i;
         while (i < size && text[i] != ',' && text[i] != '\n' && text[i] != '\r') {
           if (text[i] == '"') {
-            throw UserError(located(source, line,
-                                    "a double quote inside an unquoted cell (quote the whole cell "
-                                    "and write the quote as \"\")"));
+            throw util::UserError(
+                located(source, line,
+                        "a double quote inside an unquoted cell (quote the whole cell "
+                        "and write the quote as \"\")"));
           }
           ++i;
         }
@@ -113,7 +115,8 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& source) {
           ++i;
           ++line;
         } else if (i < size) {
-          throw UserError(located(source, line, "a carriage return not followed by a line feed"));
+          throw util::UserError(
+              located(source, line, "a carriage return not followed by a line feed"));
         }
         end_of_record = true;
       }
@@ -125,8 +128,9 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& source) {
       for (std::size_t c = 0; c < record.size(); ++c) {
         for (std::size_t d = 0; d < c; ++d) {
           if (record[c] == record[d]) {
-            throw UserError(located(source, record_line,
-                                    "column name '" + record[c] + "' appears twice in the header"));
+            throw util::UserError(
+                located(source, record_line,
+                        "column name '" + record[c] + "' appears twice in the header"));
           }
         }
       }
@@ -135,33 +139,33 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& source) {
       continue;
     }
     if (record.size() != t.header_.size()) {
-      throw UserError(located(source, record_line,
-                              std::to_string(record.size()) + " cells, but the header has " +
-                                  std::to_string(t.header_.size()) + " columns"));
+      throw util::UserError(located(source, record_line,
+                                    std::to_string(record.size()) + " cells, but the header has " +
+                                        std::to_string(t.header_.size()) + " columns"));
     }
     for (auto& cell : record) t.cells_.push_back(std::move(cell));
     t.lines_.push_back(record_line);
   }
   if (!have_header)
-    throw UserError(source + ": empty file (a header row of column names is needed)");
+    throw util::UserError(source + ": empty file (a header row of column names is needed)");
   return t;
 }
 
 CsvTable CsvTable::read_file(const std::string& path) {
-  if (has_zstd_extension(path)) {  // a compressed records file (metrics/records_format.h)
+  if (util::has_zstd_extension(path)) {  // a compressed records file (metrics/records_format.h)
     try {
-      return parse(read_zstd_file(path), path);
-    } catch (const UserError&) {
+      return parse(util::read_zstd_file(path), path);
+    } catch (const util::UserError&) {
       throw;
     } catch (const std::runtime_error& e) {
-      throw UserError(e.what());
+      throw util::UserError(e.what());
     }
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path + ": cannot open the file for reading");
+  if (!in) throw util::UserError(path + ": cannot open the file for reading");
   std::ostringstream content;
   content << in.rdbuf();
-  if (in.bad()) throw UserError(path + ": error while reading the file");
+  if (in.bad()) throw util::UserError(path + ": error while reading the file");
   return parse(content.str(), path);
 }
 
@@ -176,8 +180,8 @@ std::size_t CsvTable::column(std::string_view name) const {
   if (const auto c = find_column(name)) return *c;
   std::string available;
   for (const auto& h : header_) available += (available.empty() ? "" : ", ") + h;
-  throw UserError(source_ + ":1: no column named '" + std::string(name) +
-                  "' (available: " + available + ")");
+  throw util::UserError(source_ + ":1: no column named '" + std::string(name) +
+                        "' (available: " + available + ")");
 }
 
 const std::string& CsvTable::cell(std::size_t row, std::size_t column) const {
@@ -188,7 +192,7 @@ std::optional<double> CsvTable::number(std::size_t row, std::size_t column) cons
   const std::string& text = cell(row, column);
   if (text.empty()) return std::nullopt;
   if (auto value = parse_number(text)) return value;
-  throw UserError(
+  throw util::UserError(
       located(source_, line(row),
               "column '" + header_.at(column) + "': '" + text + "' is not a finite number"));
 }

@@ -16,7 +16,7 @@ namespace {
 // The message of the UserError that `f` throws ("" when it throws none).
 template <typename F>
 std::string user_error(F f) {
-  return ra::testing_cli::error_message<UserError>(f);
+  return ra::testing_cli::error_message<util::UserError>(f);
 }
 
 TEST(CsvTable, QuotedCellsAndMissingValues) {

@@ -106,13 +106,13 @@ LinearFit checked_start(const std::vector<std::string>& columns, const std::vect
   const std::size_t p = fit.names.size();
   const std::size_t n = y.size();
   if (p == 0) {
-    throw UserError("least squares: no parameters to fit (no predictors and no intercept)");
+    throw util::UserError("least squares: no parameters to fit (no predictors and no intercept)");
   }
   if (n <= p) {
-    throw UserError("least squares: " + std::to_string(n) + " observation(s) for " +
-                    std::to_string(p) + " parameter(s) (" + quoted_list(fit.names) +
-                    "); at least " + std::to_string(p + 1) +
-                    " are needed, so that the residual standard deviation is defined");
+    throw util::UserError("least squares: " + std::to_string(n) + " observation(s) for " +
+                          std::to_string(p) + " parameter(s) (" + quoted_list(fit.names) +
+                          "); at least " + std::to_string(p + 1) +
+                          " are needed, so that the residual standard deviation is defined");
   }
   fit.n = n;
   fit.df = n - p;
@@ -123,9 +123,9 @@ LinearFit checked_start(const std::vector<std::string>& columns, const std::vect
 void require_finite_column(const std::vector<double>& v, const std::string& what) {
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (!std::isfinite(v[i])) {
-      throw UserError("least squares: " + what + ", observation " + std::to_string(i + 1) + " of " +
-                      std::to_string(v.size()) + ", is " + std::to_string(v[i]) +
-                      "; only finite numbers can be fitted");
+      throw util::UserError("least squares: " + what + ", observation " + std::to_string(i + 1) +
+                            " of " + std::to_string(v.size()) + ", is " + std::to_string(v[i]) +
+                            "; only finite numbers can be fitted");
     }
   }
 }
@@ -143,12 +143,14 @@ std::string condition_text(double kappa) {
                                       const std::vector<std::string>& dependent,
                                       const std::vector<std::string>& others, double kappa) {
   const std::size_t p = fit.names.size();
-  throw UserError(
+  throw util::UserError(
       "least squares: the design has rank " + std::to_string(p - dependent.size()) + " for " +
       std::to_string(p) + " parameters: " + quoted_list(dependent) +
-      (dependent.size() == 1 ? " is" : " are") + " a linear combination of " +
-      quoted_list(others) + " to within the data's own rounding (condition number of the "
-      "column-scaled design " + condition_text(kappa) + ", above 2^52 = 4.5e15), so the "
+      (dependent.size() == 1 ? " is" : " are") + " a linear combination of " + quoted_list(others) +
+      " to within the data's own rounding (condition number of the "
+      "column-scaled design " +
+      condition_text(kappa) +
+      ", above 2^52 = 4.5e15), so the "
       "coefficients are not determined; drop a column (typical causes: a constant predictor "
       "beside the intercept, two proportional columns such as #vertices = 3 #polygons)");
 }
@@ -200,9 +202,9 @@ LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& 
   const std::size_t n = y.size();
   for (std::size_t j = 0; j < k; ++j) {
     if (predictors[j].size() != n) {
-      throw UserError("least squares: predictor '" + columns[j] + "' has " +
-                      std::to_string(predictors[j].size()) + " values but y has " +
-                      std::to_string(n) + "; each observation needs a value of every column");
+      throw util::UserError("least squares: predictor '" + columns[j] + "' has " +
+                            std::to_string(predictors[j].size()) + " values but y has " +
+                            std::to_string(n) + "; each observation needs a value of every column");
     }
   }
   LinearFit fit = checked_start(columns, y, intercept);
@@ -224,8 +226,8 @@ LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& 
   for (std::size_t j = 0; j < p; ++j) {
     scale(j) = x.col(j).stableNorm();
     if (scale(j) == 0) {
-      throw UserError("least squares: predictor '" + fit.names[j] +
-                      "' is 0 in every observation; its coefficient cannot be determined");
+      throw util::UserError("least squares: predictor '" + fit.names[j] +
+                            "' is 0 in every observation; its coefficient cannot be determined");
     }
   }
   const Eigen::MatrixXd xs = x * scale.cwiseInverse().asDiagonal();
@@ -293,13 +295,14 @@ LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& 
 LinearFit fit_polynomial_of_scaled_y(const std::vector<double>& x, const std::vector<double>& y,
                                      int degree, bool intercept, const std::string& x_name) {
   if (degree < 1) {
-    throw UserError("least squares: polynomial degree " + std::to_string(degree) + " of '" +
-                    x_name + "'; it must be 1 or more");
+    throw util::UserError("least squares: polynomial degree " + std::to_string(degree) + " of '" +
+                          x_name + "'; it must be 1 or more");
   }
   if (x.size() != y.size()) {
-    throw UserError("least squares: predictor '" + x_name + "' has " + std::to_string(x.size()) +
-                    " values but y has " + std::to_string(y.size()) +
-                    "; each observation needs a value of every column");
+    throw util::UserError("least squares: predictor '" + x_name + "' has " +
+                          std::to_string(x.size()) + " values but y has " +
+                          std::to_string(y.size()) +
+                          "; each observation needs a value of every column");
   }
   std::vector<std::string> columns{x_name};
   for (int d = 2; d <= degree; ++d) columns.push_back(x_name + "^" + std::to_string(d));
@@ -313,11 +316,12 @@ LinearFit fit_polynomial_of_scaled_y(const std::vector<double>& x, const std::ve
     if (intercept || v != 0) distinct.insert(v);
   }
   if (distinct.size() < static_cast<std::size_t>(degree) + intercept) {
-    throw UserError("least squares: a polynomial of degree " + std::to_string(degree) + " in '" +
-                    x_name + "'" + (intercept ? " with" : " without") + " an intercept needs " +
-                    std::to_string(degree + intercept) + " distinct " +
-                    (intercept ? "" : "nonzero ") + "values of '" + x_name + "', the data have " +
-                    std::to_string(distinct.size()) + "; the coefficients are not determined");
+    throw util::UserError("least squares: a polynomial of degree " + std::to_string(degree) +
+                          " in '" + x_name + "'" + (intercept ? " with" : " without") +
+                          " an intercept needs " + std::to_string(degree + intercept) +
+                          " distinct " + (intercept ? "" : "nonzero ") + "values of '" + x_name +
+                          "', the data have " + std::to_string(distinct.size()) +
+                          "; the coefficients are not determined");
   }
   const auto n = static_cast<Eigen::Index>(y.size());
   const auto p = static_cast<Eigen::Index>(fit.names.size());

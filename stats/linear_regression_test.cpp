@@ -408,7 +408,7 @@ std::string user_error(const std::vector<std::vector<double>>& predictors,
                        const std::vector<std::string>& names = {}) {
   try {
     fit_least_squares(predictors, y, intercept, names);
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
   return "(no UserError)";
@@ -471,7 +471,7 @@ TEST(LinearRegression, PolynomialInputIsChecked) {
   const auto message = [&](const std::vector<double>& xs, int degree, bool intercept) {
     try {
       fit_polynomial(xs, y, degree, intercept, "tris");
-    } catch (const UserError& e) {
+    } catch (const util::UserError& e) {
       return std::string(e.what());
     }
     return std::string("(no UserError)");

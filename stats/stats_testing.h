@@ -266,11 +266,11 @@ inline nlohmann::json run_scipy(const std::string& body, const nlohmann::json& i
     std::ofstream i(in_path);
     i << input.dump();
   }
-  ChildSpec spec;  // an argument list: no shell between us and the script
+  util::ChildSpec spec;  // an argument list: no shell between us and the script
   spec.argv = {python, script.string(), in_path.string(), out_path.string()};
   spec.stderr_path = err_path.string();
   spec.stdin_null = true;
-  const int status = wait_child(start_child(spec).pid);
+  const int status = util::wait_child(util::start_child(spec).pid);
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   std::ifstream err_in(err_path);
   const std::string err((std::istreambuf_iterator<char>(err_in)), std::istreambuf_iterator<char>());

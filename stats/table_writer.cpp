@@ -152,11 +152,12 @@ std::string render_csv(const Table& t) {
   std::string out = "# " + t.title + "\n";
   for (const std::string& note : t.notes) out += "# " + note + "\n";
   const std::vector<std::string> header = flat_header(t);
-  for (std::size_t c = 0; c < header.size(); ++c) out += (c ? "," : "") + csv_escape(header[c]);
+  for (std::size_t c = 0; c < header.size(); ++c)
+    out += (c ? "," : "") + util::csv_escape(header[c]);
   out += "\n";
   for (const auto& row : t.rows) {
     for (std::size_t c = 0; c < row.size(); ++c) {
-      out += (c ? "," : "") + csv_escape(row[c].csv.empty() ? row[c].text : row[c].csv);
+      out += (c ? "," : "") + util::csv_escape(row[c].csv.empty() ? row[c].text : row[c].csv);
     }
     out += "\n";
   }

@@ -29,18 +29,18 @@ HeightField generate_height_field(const scenes::TerrainParams& params, int nx, i
 
 HeightField read_height_file(const std::string& path, double spacing, double height_scale) {
   auto in = OIIO::ImageInput::open(path);
-  if (!in) throw UserError(path + ": cannot read the height file (" + OIIO::geterror() + ")");
+  if (!in) throw util::UserError(path + ": cannot read the height file (" + OIIO::geterror() + ")");
   const OIIO::ImageSpec spec = in->spec();
   if (spec.nchannels != 1)
-    throw UserError(path + ": a height file needs exactly one channel, this one has " +
-                    std::to_string(spec.nchannels));
+    throw util::UserError(path + ": a height file needs exactly one channel, this one has " +
+                          std::to_string(spec.nchannels));
   const bool is_float = spec.format.basetype == OIIO::TypeDesc::FLOAT ||
                         spec.format.basetype == OIIO::TypeDesc::DOUBLE ||
                         spec.format.basetype == OIIO::TypeDesc::HALF;
   std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height);
   // integer formats arrive normalised to [0, 1] (OIIO's convention), floats as stored
   if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, pixels.data()))
-    throw UserError(path + ": cannot read the height file (" + in->geterror() + ")");
+    throw util::UserError(path + ": cannot read the height file (" + in->geterror() + ")");
   HeightField f;
   f.nx = spec.width;
   f.ny = spec.height;
@@ -50,8 +50,9 @@ HeightField read_height_file(const std::string& path, double spacing, double hei
     for (int c = 0; c < spec.width; ++c) {
       const float v = pixels[static_cast<size_t>(r) * spec.width + c];
       if (!std::isfinite(v))
-        throw UserError(path + ": pixel (" + std::to_string(c) + ", " + std::to_string(r) + ") is " +
-                        (std::isnan(v) ? "nan" : "infinite") + ": heights must be finite numbers");
+        throw util::UserError(path + ": pixel (" + std::to_string(c) + ", " + std::to_string(r) +
+                              ") is " + (std::isnan(v) ? "nan" : "infinite") +
+                              ": heights must be finite numbers");
       f.z[static_cast<size_t>(spec.height - 1 - r) * f.nx + c] = double(v) * height_scale;
     }
   f.source = path + (is_float ? " (float heights" : " (integer heights, normalised") + ", x " +
@@ -65,8 +66,9 @@ HeightField crop_to_tiles(const HeightField& field, int tile_size, int max_tiles
   if (max_tiles_x > 0 && tx > max_tiles_x) tx = max_tiles_x;
   if (max_tiles_y > 0 && ty > max_tiles_y) ty = max_tiles_y;
   if (tx < 1 || ty < 1)
-    throw UserError(field.source + " is " + std::to_string(field.nx) + " x " + std::to_string(field.ny) +
-                    " vertices: a tile needs " + std::to_string(tile_size) + " x " + std::to_string(tile_size));
+    throw util::UserError(field.source + " is " + std::to_string(field.nx) + " x " +
+                          std::to_string(field.ny) + " vertices: a tile needs " +
+                          std::to_string(tile_size) + " x " + std::to_string(tile_size));
   const int nx = tx * cells + 1, ny = ty * cells + 1;
   if (nx == field.nx && ny == field.ny) return field;
   HeightField out;

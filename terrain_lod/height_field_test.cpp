@@ -40,7 +40,7 @@ void write_image(const std::string& path, int width, int height, int channels, O
 std::string error_of(const std::string& path) {
   try {
     read_height_file(path, 10, 1);
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
   return "";
@@ -110,7 +110,7 @@ TEST(HeightFile, CropKeepsWholeTilesFromTheSouthWest) {
   try {
     crop_to_tiles(f, 257, 0, 0);
     FAIL() << "no error";
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()), "grid is 40 x 20 vertices: a tile needs 257 x 257");
   }
 }

@@ -29,11 +29,11 @@ LodSettings::LodSettings() {
 }
 
 LodSettings read_lod_experiment(const std::string& path) {
-  return parse_lod_experiment(TomlLocator::read_text(path), path);
+  return parse_lod_experiment(util::TomlLocator::read_text(path), path);
 }
 
 LodSettings parse_lod_experiment(const std::string& text, const std::string& path) {
-  TomlLocator loc(path);
+  util::TomlLocator loc(path);
   LodSettings s;
   const scenes::StudyFile file = scenes::read_study_file(loc, text, "lod", {"title"}, true, &s);
   if (const auto* n = file.root.get("title")) s.title = loc.string(*n, "title", {});

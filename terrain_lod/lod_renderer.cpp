@@ -70,8 +70,8 @@ LodRenderer::LodRenderer(const std::string& platform, const scenes::CameraSettin
   Impl& m = *impl_;
   const std::optional<platforms::PlatformSpec> spec = platforms::find_platform(platform);
   if (!spec || !spec->draws_with_gl())
-    throw UserError("platform '" + platform +
-                    "' has no GL driver (allowed: " + platforms::aliased_gl_platform_names() + ")");
+    throw util::UserError("platform '" + platform + "' has no GL driver (allowed: " +
+                          platforms::aliased_gl_platform_names() + ")");
   m.cam = cam;
   m.context = platforms::create_gl_context(*spec);  // sets Mesa's environment and checks the driver
   m.gl = &m.context->gl();

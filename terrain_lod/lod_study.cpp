@@ -94,16 +94,19 @@ const char* kTableHeader =
 std::vector<TableRow> read_table(const std::string& dir) {
   const std::string path = dir + "/lod_table.csv";
   if (!std::filesystem::exists(path))
-    throw UserError(dir + " has no lod_table.csv: run `renderaudit analyze " + dir + "` first");
-  std::istringstream in(read_file(path));
+    throw util::UserError(dir + " has no lod_table.csv: run `renderaudit analyze " + dir +
+                          "` first");
+  std::istringstream in(util::read_file(path));
   std::string line;
   std::getline(in, line);
-  if (line != kTableHeader) throw UserError(path + ": unexpected header (not written by this version)");
+  if (line != kTableHeader)
+    throw util::UserError(path + ": unexpected header (not written by this version)");
   std::vector<TableRow> rows;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
     const auto c = split(line, ',');
-    if (c.size() != 17) throw UserError(path + ": a row has " + std::to_string(c.size()) + " fields, not 17");
+    if (c.size() != 17)
+      throw util::UserError(path + ": a row has " + std::to_string(c.size()) + " fields, not 17");
     TableRow r;
     r.lambda = c[0];
     r.tau = cell_number(c[1]);
@@ -170,7 +173,7 @@ void prepare_output_dir(const std::string& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (!std::filesystem::is_directory(dir))
-    throw UserError("cannot create the output directory " + dir + ": " + ec.message());
+    throw util::UserError("cannot create the output directory " + dir + ": " + ec.message());
   std::filesystem::remove(dir + "/study.json", ec);  // a rerun is incomplete until it ends
   // and what analyze / plot derived from an earlier run no longer describes this one
   std::filesystem::remove(dir + "/lod_table.csv", ec);
@@ -178,8 +181,7 @@ void prepare_output_dir(const std::string& dir) {
   std::filesystem::remove_all(dir + "/figures", ec);
   for (const char* f : {"/lod_table.csv", "/lod.md", "/figures"})
     if (std::filesystem::exists(dir + f))
-      throw UserError("cannot remove the stale " + dir + f + " of an earlier run");
-
+      throw util::UserError("cannot remove the stale " + dir + f + " of an earlier run");
 }
 
 // The height field of the experiment: generated, or read from its file and cropped to whole tiles.
@@ -189,9 +191,10 @@ HeightField load_terrain(const LodSettings& s) {
                           : crop_to_tiles(read_height_file(s.height_file, s.terrain.spacing, s.terrain.height_scale),
                                           s.tile_size, s.tiles_x, s.tiles_y);
   if (int64_t(field.nx) * field.ny > kMaxTerrainVertices)  // crop_to_tiles caps the tiles; kept as a guard
-    throw UserError(s.height_file + ": cropped to " + std::to_string(field.nx) + " x " + std::to_string(field.ny) +
-                    " vertices, more than the allowed maximum of " + std::to_string(kMaxTerrainVertices) +
-                    " (2^24): lower 'lod.tiles' or 'lod.tile_size'");
+    throw util::UserError(
+        s.height_file + ": cropped to " + std::to_string(field.nx) + " x " +
+        std::to_string(field.ny) + " vertices, more than the allowed maximum of " +
+        std::to_string(kMaxTerrainVertices) + " (2^24): lower 'lod.tiles' or 'lod.tile_size'");
   return field;
 }
 
@@ -255,19 +258,19 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
           mean_abs = drawn_lod.at("image_mean_abs").get<double>();
           differing = drawn_lod.at("image_differing").get<double>();
         }
-        csv << lambda_kind_name(kind) << ',' << full_precision_or_empty(tau) << ',' << fi << ','
-            << mesh.triangle_count() << ',' << mesh.vertex_count() << ','
+        csv << lambda_kind_name(kind) << ',' << util::full_precision_or_empty(tau) << ',' << fi
+            << ',' << mesh.triangle_count() << ',' << mesh.vertex_count() << ','
             << mesh.strip_index_count() << ',' << int(conf.conforming) << ',' << int(seams.ok)
-            << ',' << full_precision_or_empty(se.max_px) << ',' << se.checked << ',' << se.excluded
-            << ',' << fmt(se.worst_x, "%.1f") << ',' << fmt(se.worst_y, "%.1f") << ','
-            << fmt(med, "%.1f") << ',' << reps << ',' << full.triangle_count() << ','
+            << ',' << util::full_precision_or_empty(se.max_px) << ',' << se.checked << ','
+            << se.excluded << ',' << fmt(se.worst_x, "%.1f") << ',' << fmt(se.worst_y, "%.1f")
+            << ',' << fmt(med, "%.1f") << ',' << reps << ',' << full.triangle_count() << ','
             << fmt(full_median, "%.1f") << ',' << fmt(mean_abs, "%.6g") << ','
             << fmt(differing, "%.6g") << ',' << se.partially_visible << ',' << se.holes << "\n";
       }
     if (progress && (fi % 10 == 0 || fi + 1 == path.size()))
       std::cerr << "lod: frame " << fi + 1 << "/" << path.size() << "\n";
   }
-  write_file_atomic(dir + "/frames.csv", csv.str());
+  util::write_file_atomic(dir + "/frames.csv", csv.str());
   return out;
 }
 
@@ -278,7 +281,8 @@ runner::StudyRunResult run_lod_study(const runner::StudyRunOptions& options) {
   const LodSettings s = read_lod_experiment(options.experiment);
   if (!options.platforms.empty() &&
       std::find(options.platforms.begin(), options.platforms.end(), s.platform) == options.platforms.end())
-    throw UserError(options.experiment + ": the LOD study draws on " + s.platform + ", which --platform leaves out");
+    throw util::UserError(options.experiment + ": the LOD study draws on " + s.platform +
+                          ", which --platform leaves out");
   platforms::require_platforms_draw({s.platform},
                                     options.experiment);  // before anything is written
   runner::StudyRunResult result;
@@ -300,10 +304,11 @@ runner::StudyRunResult run_lod_study(const runner::StudyRunOptions& options) {
   const LodMesh full = full_resolution(hierarchy);
   json drawn;
   try {
-    drawn = run_in_child(result.dir, "lod-render",
-                         [&] { return draw_frames(s, field, hierarchy, path, full, options.progress); });
-  } catch (const ChildProcessError& e) {
-    if (e.user_error()) throw UserError(e.what());
+    drawn = util::run_in_child(result.dir, "lod-render", [&] {
+      return draw_frames(s, field, hierarchy, path, full, options.progress);
+    });
+  } catch (const util::ChildProcessError& e) {
+    if (e.user_error()) throw util::UserError(e.what());
     throw std::runtime_error(std::string("lod: ") + e.what());
   }
   const json& drawn_frames = drawn.at("frames");
@@ -343,7 +348,7 @@ runner::StudyRunResult run_lod_study(const runner::StudyRunOptions& options) {
       {"first_failure", first_failure},
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count()}};
   summary.update(runner::document_header("lod", 1));
-  write_file_atomic(result.dir + "/lod_summary.json", summary.dump(2) + "\n");
+  util::write_file_atomic(result.dir + "/lod_summary.json", summary.dump(2) + "\n");
 
   runner::StudyInfo info;
   info.kind = runner::StudyKind::kLod;
@@ -370,10 +375,11 @@ runner::StudyRunResult run_lod_study(const runner::StudyRunOptions& options) {
 // frames.csv of the run in `dir`, one row per (lambda, tau) in the order of the file: medians over
 // the frames, the q90 and maximum of the measured screen error, the checks' counts.
 std::vector<TableRow> rows_of_frames(const std::string& dir) {
-  std::istringstream in(read_file(dir + "/frames.csv"));
+  std::istringstream in(util::read_file(dir + "/frames.csv"));
   std::string line;
   std::getline(in, line);
-  if (line != kFramesHeader) throw UserError(dir + "/frames.csv: unexpected header (not written by this version)");
+  if (line != kFramesHeader)
+    throw util::UserError(dir + "/frames.csv: unexpected header (not written by this version)");
   struct Acc {
     std::vector<double> tri, vert, idx_per_tri, ms, full_ms, mean_abs, differing, err;
     double full_tri = 0;
@@ -386,7 +392,9 @@ std::vector<TableRow> rows_of_frames(const std::string& dir) {
     ++line_no;
     if (line.empty()) continue;
     const auto c = split(line, ',');
-    if (c.size() != 21) throw UserError(dir + "/frames.csv:" + std::to_string(line_no) + ": " + std::to_string(c.size()) + " fields, not 21");
+    if (c.size() != 21)
+      throw util::UserError(dir + "/frames.csv:" + std::to_string(line_no) + ": " +
+                            std::to_string(c.size()) + " fields, not 21");
     const auto key = std::make_pair(c[0], cell_number(c[1]));
     if (!groups.count(key)) order.push_back(key);
     Acc& a = groups[key];
@@ -407,7 +415,8 @@ std::vector<TableRow> rows_of_frames(const std::string& dir) {
     a.full_tri = cell_number(c[15]);
     a.full_ms.push_back(cell_number(c[16]) / 1000);
   }
-  if (groups.empty()) throw UserError(dir + "/frames.csv has no rows: the run did not complete");
+  if (groups.empty())
+    throw util::UserError(dir + "/frames.csv has no rows: the run did not complete");
   std::vector<TableRow> rows;
   for (const auto& key : order) {
     const Acc& a = groups[key];
@@ -523,36 +532,38 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
 void analyze_lod_study(const std::string& dir) {
   const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
   if (!info || info->kind != runner::StudyKind::kLod)
-    throw UserError(dir +
-                    " is not a complete LOD run (no study.json of kind lod: run `renderaudit run` "
-                    "on a [lod] experiment)");
+    throw util::UserError(
+        dir +
+        " is not a complete LOD run (no study.json of kind lod: run `renderaudit run` "
+        "on a [lod] experiment)");
   for (const char* f : {"frames.csv", "lod_summary.json"})
     if (!std::filesystem::exists(dir + "/" + f))
-      throw UserError(dir + " is not a complete LOD run: " + f + " is missing");
+      throw util::UserError(dir + " is not a complete LOD run: " + f + " is missing");
   json sj;
   try {
-    sj = json::parse(read_file(dir + "/lod_summary.json"));
+    sj = json::parse(util::read_file(dir + "/lod_summary.json"));
   } catch (const json::exception& e) {
-    throw UserError(dir + "/lod_summary.json: " + e.what());
+    throw util::UserError(dir + "/lod_summary.json: " + e.what());
   }
   const std::vector<TableRow> rows = rows_of_frames(dir);
   std::ostringstream table;
   table << kTableHeader << "\n";
   for (const TableRow& r : rows)
-    table << r.lambda << ',' << full_precision_or_empty(r.tau) << ',' << r.frames << ','
-          << full_precision_or_empty(r.triangles_median) << ','
-          << full_precision_or_empty(r.triangles_max) << ','
-          << full_precision_or_empty(r.vertices_median) << ','
-          << full_precision_or_empty(r.indices_per_triangle) << ','
-          << full_precision_or_empty(r.frame_ms) << ',' << full_precision_or_empty(r.full_ms) << ','
-          << full_precision_or_empty(r.full_triangles) << ','
-          << full_precision_or_empty(r.image_mean_abs) << ','
-          << full_precision_or_empty(r.image_differing) << ','
-          << full_precision_or_empty(r.max_screen_error) << ','
-          << full_precision_or_empty(r.screen_error_q90) << ',' << r.conforming << ',' << r.seams_ok
-          << ',' << r.over_tau << "\n";
-  write_file_atomic(dir + "/lod_table.csv", table.str());
-  write_file_atomic(dir + "/lod.md", lod_document(sj, rows));
+    table << r.lambda << ',' << util::full_precision_or_empty(r.tau) << ',' << r.frames << ','
+          << util::full_precision_or_empty(r.triangles_median) << ','
+          << util::full_precision_or_empty(r.triangles_max) << ','
+          << util::full_precision_or_empty(r.vertices_median) << ','
+          << util::full_precision_or_empty(r.indices_per_triangle) << ','
+          << util::full_precision_or_empty(r.frame_ms) << ','
+          << util::full_precision_or_empty(r.full_ms) << ','
+          << util::full_precision_or_empty(r.full_triangles) << ','
+          << util::full_precision_or_empty(r.image_mean_abs) << ','
+          << util::full_precision_or_empty(r.image_differing) << ','
+          << util::full_precision_or_empty(r.max_screen_error) << ','
+          << util::full_precision_or_empty(r.screen_error_q90) << ',' << r.conforming << ','
+          << r.seams_ok << ',' << r.over_tau << "\n";
+  util::write_file_atomic(dir + "/lod_table.csv", table.str());
+  util::write_file_atomic(dir + "/lod.md", lod_document(sj, rows));
   runner::StudyInfo updated = *info;
   updated.document = "lod.md";
   updated.analysed = true;
@@ -562,7 +573,8 @@ void analyze_lod_study(const std::string& dir) {
 void plot_lod_study(const std::string& dir) {
   const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
   if (!info || info->kind != runner::StudyKind::kLod || !info->analysed)
-    throw UserError(dir + " has not been analysed: run `renderaudit analyze " + dir + "` first");
+    throw util::UserError(dir + " has not been analysed: run `renderaudit analyze " + dir +
+                          "` first");
   const std::vector<TableRow> rows = read_table(dir);
   auto label = [](double tau) { return "tau " + fmt(tau, "%g"); };
   plots::StudyFigures figures("lod");

@@ -22,7 +22,7 @@ namespace {
 std::string error_of(const std::string& text) {
   try {
     parse_lod_experiment(text, "x.toml");
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
   return "";
@@ -44,7 +44,8 @@ TEST(LodExperiment, ErrorsAreLocated) {
             std::string::npos);
   EXPECT_NO_THROW(parse_lod_experiment("[lod]\ntile_size = 1025\ntiles = [3, 3]\n", "x.toml"));  // 3073^2
   EXPECT_NO_THROW(parse_lod_experiment("[lod]\ntile_size = 257\ntiles = [16, 15]\n", "x.toml"));   // 4097 x 3841
-  EXPECT_THROW(parse_lod_experiment("[lod]\ntile_size = 257\ntiles = [16, 16]\n", "x.toml"), UserError);  // 4097^2
+  EXPECT_THROW(parse_lod_experiment("[lod]\ntile_size = 257\ntiles = [16, 16]\n", "x.toml"),
+               util::UserError);  // 4097^2
   const LodSettings s = parse_lod_experiment("[lod]\ntau = [2]\nlambda = \"planar\"\ntiles = [3, 1]\n", "dir/e.toml");
   EXPECT_EQ(s.name, "e");
   EXPECT_EQ(s.lambda, LambdaKind::kPlanar);
@@ -61,12 +62,12 @@ TEST(HeightFile, NonFiniteHeightsAndSmallFilesAreRejected) {
   f.spacing = 1;
   f.z.assign(25, 1.0);
   f.source = "small.tif";
-  EXPECT_THROW(crop_to_tiles(f, 9, 0, 0), UserError);
+  EXPECT_THROW(crop_to_tiles(f, 9, 0, 0), util::UserError);
   const HeightField c = crop_to_tiles(f, 3, 1, 0);
   EXPECT_EQ(c.nx, 3);
   EXPECT_EQ(c.ny, 5);
   EXPECT_NE(c.source.find("cropped from 5 x 5 to 3 x 5"), std::string::npos);
-  EXPECT_THROW(read_height_file(dir + "/missing.tif", 1, 1), UserError);
+  EXPECT_THROW(read_height_file(dir + "/missing.tif", 1, 1), util::UserError);
 }
 
 TEST(LodStudy, SmokeExperimentRunsAnalysesAndPlots) {
@@ -79,7 +80,7 @@ TEST(LodStudy, SmokeExperimentRunsAnalysesAndPlots) {
   const runner::StudyRunResult r = run_lod_study(o);
   EXPECT_FALSE(r.findings) << r.summary;
   EXPECT_NE(r.summary.find("every check passed"), std::string::npos) << r.summary;
-  EXPECT_THROW(plot_lod_study(dir), UserError);  // not analysed yet
+  EXPECT_THROW(plot_lod_study(dir), util::UserError);  // not analysed yet
   analyze_lod_study(dir);
   const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
   ASSERT_TRUE(info);
@@ -87,7 +88,7 @@ TEST(LodStudy, SmokeExperimentRunsAnalysesAndPlots) {
   EXPECT_TRUE(info->analysed);
   EXPECT_EQ(info->document, "lod.md");
   // the table: window lambda at tau 4 is below full resolution, every check passed
-  const std::string table_text = read_file(dir + "/lod_table.csv");
+  const std::string table_text = util::read_file(dir + "/lod_table.csv");
   std::istringstream table(table_text);
   std::string line;
   std::getline(table, line);
@@ -110,7 +111,7 @@ TEST(LodStudy, SmokeExperimentRunsAnalysesAndPlots) {
     }
   }
   EXPECT_EQ(window_rows, 2);
-  const std::string md = read_file(dir + "/lod.md");
+  const std::string md = util::read_file(dir + "/lod.md");
   EXPECT_NE(md.find("# Terrain level of detail"), std::string::npos);
   EXPECT_NE(md.find("### At tau = 1 pixel"), std::string::npos);
   plot_lod_study(dir);
@@ -135,28 +136,28 @@ TEST(LodStudy, SmokeExperimentRunsAnalysesAndPlots) {
     ASSERT_TRUE(rerun);
     EXPECT_FALSE(rerun->analysed);
     // even with a (stale) table present, plot checks study.json's flag
-    write_file_atomic(dir + "/lod_table.csv", table_text);
+    util::write_file_atomic(dir + "/lod_table.csv", table_text);
     try {
       plot_lod_study(dir);
       ADD_FAILURE() << "plot_lod_study accepted a folder that was not analysed";
-    } catch (const UserError& e) {
+    } catch (const util::UserError& e) {
       EXPECT_NE(std::string(e.what()).find("has not been analysed"), std::string::npos) << e.what();
     }
   }
   // an incomplete folder is refused
   std::filesystem::remove(dir + "/frames.csv");
-  EXPECT_THROW(analyze_lod_study(dir), UserError);
-  EXPECT_THROW(analyze_lod_study(dir + "/nonexistent"), UserError);
+  EXPECT_THROW(analyze_lod_study(dir), util::UserError);
+  EXPECT_THROW(analyze_lod_study(dir + "/nonexistent"), util::UserError);
 }
 
 TEST(LodStudy, BrokenErrorPropagationIsAFinding) {
   const std::string dir = ::testing::TempDir() + "lod_broken_study";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  std::string text = read_file(std::string(RA_SOURCE_DIR) + "/experiments/lod_smoke.toml");
+  std::string text = util::read_file(std::string(RA_SOURCE_DIR) + "/experiments/lod_smoke.toml");
   // the same experiment with the broken LOD
   text.replace(text.find("[lod]"), 5, "[lod]\nerror_propagation = \"unnested\"");
-  write_file_atomic(dir + "/broken.toml", text);
+  util::write_file_atomic(dir + "/broken.toml", text);
   runner::StudyRunOptions o;
   o.experiment = dir + "/broken.toml";
   o.out_dir = dir + "/out";

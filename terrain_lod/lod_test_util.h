@@ -38,7 +38,7 @@ inline scenes::CameraSettings test_camera() {
 inline std::vector<scenes::Viewpoint> random_viewpoints(const HeightField& f, int count,
                                                         uint64_t seed) {
   // CounterRng: the same viewpoints with every standard library (std distributions are not)
-  CounterRng rng(seed, uint64_t(0x4c4f44), 0);  // stream tag "LOD"
+  util::CounterRng rng(seed, uint64_t(0x4c4f44), 0);  // stream tag "LOD"
   const double ex = (f.nx - 1) * f.spacing, ey = (f.ny - 1) * f.spacing;
   double top = 0;
   for (double z : f.z) top = std::max(top, z);

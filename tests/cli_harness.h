@@ -53,11 +53,11 @@ inline std::vector<std::string> split_words(const std::string& line) {
 
 // Output (stdout and stderr) of a command line split by split_words ("" when it cannot start).
 inline std::string shell_output(const std::string& cmd) {
-  ra::ChildSpec spec;
+  ra::util::ChildSpec spec;
   spec.argv = split_words(cmd);
   spec.stdin_null = true;
   try {
-    return ra::run_program(spec).output;
+    return ra::util::run_program(spec).output;
   } catch (const std::exception&) {
     return "";
   }
@@ -90,10 +90,10 @@ std::string error_message(F f) {
 
 // Runs a command line (split_words) and returns its exit code and output (stderr included).
 inline Outcome run_command(const std::string& command_line) {
-  ra::ChildSpec spec;
+  ra::util::ChildSpec spec;
   spec.argv = split_words(command_line);
   spec.stdin_null = true;
-  const ra::ProgramResult r = ra::run_program(spec);
+  const ra::util::ProgramResult r = ra::util::run_program(spec);
   return Outcome{r.exit_code(), r.output};
 }
 
@@ -118,7 +118,7 @@ inline void write_text(const std::string& path, const std::string& text) {
 
 // The text of a records file, decompressed when it is a .csv.zst one.
 inline std::string read_records_text(const std::string& path) {
-  if (ra::has_zstd_extension(path)) return ra::read_zstd_file(path);
+  if (ra::util::has_zstd_extension(path)) return ra::util::read_zstd_file(path);
   std::ifstream in(path, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
@@ -126,11 +126,11 @@ inline std::string read_records_text(const std::string& path) {
 // Replaces a records file's text, compressed (as one zstd frame) when it is a .csv.zst one.
 inline void write_records_text(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!ra::has_zstd_extension(path)) {
+  if (!ra::util::has_zstd_extension(path)) {
     out << text;
     return;
   }
-  ra::ZstdFrameWriter z(out);
+  ra::util::ZstdFrameWriter z(out);
   z.write(text);
   z.end_frame();
 }

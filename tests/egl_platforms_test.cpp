@@ -72,14 +72,14 @@ TEST(EglPlatforms, TheSameDriverThroughEglDrawsWhatItDrawsThroughOsmesa) {
     EXPECT_EQ(differing, 0u) << osmesa << " vs " << egl;
   }
   // the driver file says how the context was made
-  const std::string driver = ra::read_file(dir + "/run/drivers/egl-llvmpipe.json");
+  const std::string driver = ra::util::read_file(dir + "/run/drivers/egl-llvmpipe.json");
   EXPECT_NE(driver.find("EGL surfaceless (Mesa, llvmpipe)"), std::string::npos) << driver;
   EXPECT_NE(driver.find("\"renderer\": \"llvmpipe"), std::string::npos) << driver;
   // GL_TIME_ELAPSED against the CPU clock: softpipe's timer measures what the CPU waits for;
   // llvmpipe's a part of it (0.07 here), but never more than the wall time
   for (const char* p : {"osmesa-softpipe", "egl-softpipe", "osmesa-llvmpipe", "egl-llvmpipe"}) {
     const nlohmann::json j =
-        nlohmann::json::parse(ra::read_file(dir + "/run/drivers/" + p + ".json"));
+        nlohmann::json::parse(ra::util::read_file(dir + "/run/drivers/" + p + ".json"));
     ASSERT_TRUE(j.at("timer_over_cpu").is_number()) << p << ": " << j.dump();
     const double ratio = j["timer_over_cpu"];
     EXPECT_GT(ratio, 0) << p;
@@ -94,11 +94,11 @@ void expect_refused(const std::string& platform, const std::vector<std::string>&
                     const std::string& message) {
   const std::string dir = fresh_dir("egl_refused");
   write_text(dir + "/e.toml", experiment("\"" + platform + "\"", 5));
-  ra::ChildSpec spec;
+  ra::util::ChildSpec spec;
   spec.argv = split_words(std::string(RA_BINARY) + " run " + dir + "/e.toml --out " + dir + "/run");
   spec.set_env = env;
   spec.stdin_null = true;
-  const ra::ProgramResult r = ra::run_program(spec);
+  const ra::util::ProgramResult r = ra::util::run_program(spec);
   EXPECT_EQ(r.exit_code(), 2) << r.output;
   EXPECT_NE(r.output.find("platform(s) that cannot draw on this machine (nothing was written"),
             std::string::npos)
@@ -154,11 +154,11 @@ TEST(EglPlatforms, AMachineWithoutOsmesaIsToldToUseEgl) {
   const std::vector<std::string> no_osmesa = {"RENDERAUDIT_LIBOSMESA=/nonexistent/libOSMesa.so.8"};
   expect_refused("osmesa-llvmpipe", no_osmesa,
                  "egl-llvmpipe draws with the same driver through EGL");
-  ra::ChildSpec spec;
+  ra::util::ChildSpec spec;
   spec.argv = {RA_BINARY, "platforms", "--embedded-default"};
   spec.set_env = no_osmesa;
   spec.stdin_null = true;
-  const ra::ProgramResult r = ra::run_program(spec);
+  const ra::util::ProgramResult r = ra::util::run_program(spec);
   EXPECT_EQ(r.exit_code(), 0) << r.output;
   EXPECT_NE(r.output.find("egl-llvmpipe"), std::string::npos) << r.output;
   EXPECT_EQ(run_renderaudit("platforms --embedded-default").output.find("osmesa-llvmpipe"), 0u);
@@ -184,7 +184,8 @@ TEST(EglPlatforms, ZinkNeedsAVulkanDriver) {
   write_text(dir + "/e.toml", experiment("\"egl-zink\"", 5));
   const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet");
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  EXPECT_NE(ra::read_file(dir + "/run/drivers/egl-zink.json").find("zink"), std::string::npos);
+  EXPECT_NE(ra::util::read_file(dir + "/run/drivers/egl-zink.json").find("zink"),
+            std::string::npos);
 }
 
 // The timing, LOD and regulation studies draw through the same layer: their smoke experiments,
@@ -198,28 +199,30 @@ TEST(EglPlatforms, TheStudiesDrawThroughEglFromTheirExperimentFiles) {
     return at == std::string::npos ? text : text.replace(at, from.size(), to);
   };
   write_text(dir + "/timing.toml",
-             replaced(ra::read_file(src + "timing_smoke.toml"),
+             replaced(ra::util::read_file(src + "timing_smoke.toml"),
                       "platforms = [\"osmesa-llvmpipe\", \"osmesa-softpipe\"]",
                       "platforms = [\"egl-llvmpipe\"]"));
   write_text(dir + "/regulation.toml",
-             replaced(ra::read_file(src + "regulation_smoke.toml"), "platform = \"osmesa-llvmpipe\"",
-                      "platform = \"egl-softpipe\""));
-  write_text(dir + "/lod.toml", replaced(ra::read_file(src + "lod_smoke.toml"), "[lod]\n",
+             replaced(ra::util::read_file(src + "regulation_smoke.toml"),
+                      "platform = \"osmesa-llvmpipe\"", "platform = \"egl-softpipe\""));
+  write_text(dir + "/lod.toml", replaced(ra::util::read_file(src + "lod_smoke.toml"), "[lod]\n",
                                          "[lod]\nplatform = \"egl-llvmpipe\"\n"));
   for (const char* study : {"timing", "regulation", "lod"}) {
     const Outcome o = run_renderaudit("run " + dir + "/" + study + ".toml --out " + dir + "/" +
                                       study + " --quiet");
     ASSERT_EQ(o.exit_code, 0) << study << ": " << o.output;
   }
-  const nlohmann::json timing = nlohmann::json::parse(ra::read_file(dir + "/timing/timing.json"));
+  const nlohmann::json timing =
+      nlohmann::json::parse(ra::util::read_file(dir + "/timing/timing.json"));
   ASSERT_EQ(timing.at("platforms").size(), 1u);
   EXPECT_EQ(timing["platforms"][0]["name"], "egl-llvmpipe");
   EXPECT_EQ(timing["platforms"][0]["renderer"]["backend"], "EGL surfaceless (Mesa, llvmpipe)");
   const nlohmann::json regulation =
-      nlohmann::json::parse(ra::read_file(dir + "/regulation/regulation.json"));
+      nlohmann::json::parse(ra::util::read_file(dir + "/regulation/regulation.json"));
   EXPECT_EQ(regulation.at("platform"), "egl-softpipe");
   EXPECT_EQ(regulation.at("render").at("renderer"), "softpipe");
-  const nlohmann::json lod = nlohmann::json::parse(ra::read_file(dir + "/lod/lod_summary.json"));
+  const nlohmann::json lod =
+      nlohmann::json::parse(ra::util::read_file(dir + "/lod/lod_summary.json"));
   EXPECT_EQ(lod.at("platform"), "egl-llvmpipe");
   EXPECT_EQ(lod.at("gl_renderer").get<std::string>().rfind("llvmpipe", 0), 0u) << lod.dump();
 }

@@ -40,7 +40,7 @@ TEST(MergeCommand, SlicesMergedEqualAOneMachineRunForOneTwoThreeAndSevenSlices) 
       const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + out + " --quiet --slice " +
                                         std::to_string(k) + "/" + std::to_string(n));
       ASSERT_EQ(o.exit_code, 0) << o.output;
-      const nlohmann::json m = nlohmann::json::parse(ra::read_file(out + "/manifest.json"));
+      const nlohmann::json m = nlohmann::json::parse(ra::util::read_file(out + "/manifest.json"));
       EXPECT_EQ(m.at("slice").at("index"), k);
       EXPECT_EQ(m.at("slice").at("count"), n);
       EXPECT_EQ(m.at("status"), "complete");  // its slice is whole
@@ -54,7 +54,7 @@ TEST(MergeCommand, SlicesMergedEqualAOneMachineRunForOneTwoThreeAndSevenSlices) 
         << merged.output;
     const std::string m_dir = dir + "/merged" + std::to_string(n);
     EXPECT_TRUE(records_without_timing(m_dir) == expected) << n;
-    const nlohmann::json m = nlohmann::json::parse(ra::read_file(m_dir + "/manifest.json"));
+    const nlohmann::json m = nlohmann::json::parse(ra::util::read_file(m_dir + "/manifest.json"));
     EXPECT_EQ(m.at("status"), "complete");
     EXPECT_EQ(m.at("inputs").size(), std::size_t(n));
     EXPECT_TRUE(m.at("inputs")[0].contains("host"));
@@ -95,8 +95,10 @@ TEST(MergeCommand, AMissingSliceADifferentExperimentAndAnotherDriverAreSaid) {
       run_renderaudit("merge " + dir + "/s2_1 " + dir + "/half --out " + dir + "/twice");
   EXPECT_EQ(twice.exit_code, 0) << twice.output;
   EXPECT_TRUE(records_without_timing(dir + "/twice") == records_without_timing(dir + "/half"));
-  const nlohmann::json slice1 = nlohmann::json::parse(ra::read_file(dir + "/s2_1/manifest.json"));
-  const nlohmann::json both = nlohmann::json::parse(ra::read_file(dir + "/twice/manifest.json"));
+  const nlohmann::json slice1 =
+      nlohmann::json::parse(ra::util::read_file(dir + "/s2_1/manifest.json"));
+  const nlohmann::json both =
+      nlohmann::json::parse(ra::util::read_file(dir + "/twice/manifest.json"));
   EXPECT_EQ(both.at("shards").at("in_several_inputs"), slice1.at("slice").at("shards"));
   EXPECT_EQ(both.at("shards").at("complete"), 64);
 
@@ -114,9 +116,9 @@ TEST(MergeCommand, AMissingSliceADifferentExperimentAndAnotherDriverAreSaid) {
 
   // another driver build
   const std::string driver = dir + "/s2_2/drivers/osmesa-llvmpipe.json";
-  nlohmann::json j = nlohmann::json::parse(ra::read_file(driver));
+  nlohmann::json j = nlohmann::json::parse(ra::util::read_file(driver));
   j["version"] = "4.5 (Compatibility Profile) Mesa 99.0";
-  ra::write_file_atomic(driver, j.dump());
+  ra::util::write_file_atomic(driver, j.dump());
   const Outcome drift =
       run_renderaudit("merge " + dir + "/s2_1 " + dir + "/s2_2 --out " + dir + "/drift");
   EXPECT_EQ(drift.exit_code, 2) << drift.output;
@@ -160,7 +162,9 @@ TEST(MergeCommand, SlicesMergedOneAtATimeKeepEveryFactAndTheExitCodeFollowsTheRe
     const Outcome o = run_renderaudit("run " + dir + "/e.toml --out " + out +
                                       " --quiet --timeout 20 --slice " + std::to_string(k) + "/2");
     ASSERT_LE(o.exit_code, 1) << o.output;  // 1 where its slice holds a crash record
-    seconds += nlohmann::json::parse(ra::read_file(out + "/manifest.json")).at("shard_seconds").size();
+    seconds += nlohmann::json::parse(ra::util::read_file(out + "/manifest.json"))
+                   .at("shard_seconds")
+                   .size();
   }
   ASSERT_EQ(crash_records(dir + "/s1") + crash_records(dir + "/s2"), 2u);  // one per view
   EXPECT_EQ(run_renderaudit("merge " + dir + "/s1 --out " + dir + "/m").exit_code, 1);
@@ -168,7 +172,7 @@ TEST(MergeCommand, SlicesMergedOneAtATimeKeepEveryFactAndTheExitCodeFollowsTheRe
   EXPECT_EQ(second.exit_code, 1) << "complete, but the records hold crashes\n" << second.output;
   EXPECT_NE(second.output.find("2 primitives recorded as crash or timeout"), std::string::npos)
       << second.output;
-  const nlohmann::json m = nlohmann::json::parse(ra::read_file(dir + "/m/manifest.json"));
+  const nlohmann::json m = nlohmann::json::parse(ra::util::read_file(dir + "/m/manifest.json"));
   EXPECT_EQ(m.at("status"), "complete-with-failed-primitives");
   ASSERT_EQ(m.at("failed_primitives").size(), 2u);
   for (const auto& f : m.at("failed_primitives")) {
@@ -191,7 +195,7 @@ TEST(MergeCommand, SlicesMergedOneAtATimeKeepEveryFactAndTheExitCodeFollowsTheRe
   EXPECT_EQ(first.exit_code, 1) << first.output;
   const Outcome again = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/whole --quiet");
   EXPECT_EQ(again.exit_code, 1) << again.output;
-  const nlohmann::json w = nlohmann::json::parse(ra::read_file(dir + "/whole/manifest.json"));
+  const nlohmann::json w = nlohmann::json::parse(ra::util::read_file(dir + "/whole/manifest.json"));
   EXPECT_EQ(w.at("failed_primitives").size(), 2u) << "listed once, not once per invocation";
   EXPECT_EQ(w.at("status"), "complete-with-failed-primitives");
 }

@@ -122,7 +122,7 @@ TEST_F(RecordsCommand, TheCompressedStreamDecompressesToThePlainOne) {
   const Outcome zst = run_renderaudit("records " + *dir_ + "/run --kind point --format csv.zst");
   ASSERT_EQ(zst.exit_code, 0) << zst.output;
   write_text(*dir_ + "/points.csv.zst", zst.output);
-  EXPECT_EQ(ra::read_zstd_file(*dir_ + "/points.csv.zst"), plain.output);
+  EXPECT_EQ(ra::util::read_zstd_file(*dir_ + "/points.csv.zst"), plain.output);
 }
 
 TEST_F(RecordsCommand, UnknownNamesAreErrorsThatListWhatTheRunHas) {

@@ -55,7 +55,7 @@ TEST(RunCommand, TheShardOrderChangesNoRecordAndTheManifestSaysHowTheCoresWereUs
   EXPECT_TRUE(records_without_timing(dir + "/cost") == records_without_timing(dir + "/plan"));
   for (const char* order : {"cost", "plan"}) {
     const nlohmann::json m =
-        nlohmann::json::parse(ra::read_file(dir + "/" + order + "/manifest.json"));
+        nlohmann::json::parse(ra::util::read_file(dir + "/" + order + "/manifest.json"));
     const nlohmann::json& inv = m.at("invocations").back();
     EXPECT_EQ(inv.at("shard_order"),
               std::string(order) == "plan" ? "plan" : "largest-expected-cost-first");
@@ -72,7 +72,7 @@ TEST(RunCommand, TheShardOrderChangesNoRecordAndTheManifestSaysHowTheCoresWereUs
     EXPECT_LE(sum, busy + 1e-6) << order;
     EXPECT_GT(sum, 0.5 * busy) << order;
     // the summary sets the run against the drivers' own drawing
-    const std::string summary = ra::read_file(dir + "/" + order + "/summary.md");
+    const std::string summary = ra::util::read_file(dir + "/" + order + "/summary.md");
     EXPECT_NE(summary.find("on 2 jobs: wall x jobs / drawing = "), std::string::npos) << summary;
     EXPECT_NE(summary.find("(shard order: " + inv.at("shard_order").get<std::string>() + ")"),
               std::string::npos)
@@ -109,7 +109,7 @@ TEST(RunCommand, AResumeUnderOtherConformanceRulesIsRefused) {
   const std::string dir = fresh_dir("rules");
   write_text(dir + "/e.toml", experiment("\"reference\"", 40, 20));
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/r").exit_code, 0);
-  nlohmann::json m = nlohmann::json::parse(ra::read_file(dir + "/r/manifest.json"));
+  nlohmann::json m = nlohmann::json::parse(ra::util::read_file(dir + "/r/manifest.json"));
   EXPECT_EQ(m.at("conformance_rules"), ra::metrics::kConformanceRulesVersion);
   m.erase("conformance_rules");  // as an earlier renderaudit wrote it
   write_text(dir + "/r/manifest.json", m.dump(2));
@@ -195,7 +195,7 @@ TEST(RunCommand, ServedShardsEqualOneProcessPerShardAndACrashStaysWithItsShard) 
   EXPECT_EQ(served.size(), 4u * 400);  // views x primitives
   EXPECT_TRUE(served == records_without_timing(dir + "/per-shard"));
   auto invocation = [&](const std::string& run) {
-    return nlohmann::json::parse(ra::read_file(dir + "/" + run + "/manifest.json"))
+    return nlohmann::json::parse(ra::util::read_file(dir + "/" + run + "/manifest.json"))
         .at("invocations")
         .back();
   };
@@ -252,7 +252,8 @@ TEST(RunCommand, AWorkerHangingInTeardownLosesNothing) {
     EXPECT_EQ(o.exit_code, 0) << mode << ": " << o.output;
     const auto records = records_without_timing(dir + "/" + mode);
     EXPECT_EQ(records.size(), 30u) << mode;
-    const auto manifest = nlohmann::json::parse(ra::read_file(dir + "/" + mode + "/manifest.json"));
+    const auto manifest =
+        nlohmann::json::parse(ra::util::read_file(dir + "/" + mode + "/manifest.json"));
     EXPECT_EQ(manifest.at("status"), "complete") << mode;
     if (mode == "served") {
       // One process served all three shards, then hung and was killed.

@@ -57,14 +57,14 @@ int processes_mentioning(const std::string& needle) {
 }
 
 // A run whose workers hang (the faulty platform), started in the background.
-ra::Child start_hanging_run(const std::string& dir) {
+ra::util::Child start_hanging_run(const std::string& dir) {
   write_text(dir + "/hang.toml",
              experiment("", "\"faulty\"", "points = 200\n",
                         "shard_timeout_s = 60\n[faults]\nhang = [5, 105]\n"));
-  ra::ChildSpec spec;
+  ra::util::ChildSpec spec;
   spec.argv = {RA_BINARY, "run", dir + "/hang.toml", "--out", dir + "/run", "--jobs", "2"};
   spec.stdout_path = spec.stderr_path = dir + "/coordinator.log";
-  return ra::start_child(spec);
+  return ra::util::start_child(spec);
 }
 
 bool wait_for(const std::function<bool()>& condition, double seconds) {
@@ -78,7 +78,7 @@ bool wait_for(const std::function<bool()>& condition, double seconds) {
 
 TEST(RunIntegrity, ASecondRunOnTheSameDirectoryIsRefusedAndNamesTheFirst) {
   const std::string dir = fresh_dir("integrity_lock");
-  const ra::Child first = start_hanging_run(dir);
+  const ra::util::Child first = start_hanging_run(dir);
   ASSERT_TRUE(wait_for([&] { return processes_mentioning(dir + "/run") >= 2; }, 20));
   const Outcome second = run_renderaudit("run " + dir + "/hang.toml --out " + dir + "/run");
   EXPECT_EQ(second.exit_code, 2) << second.output;
@@ -87,17 +87,17 @@ TEST(RunIntegrity, ASecondRunOnTheSameDirectoryIsRefusedAndNamesTheFirst) {
             std::string::npos)
       << second.output;
   ::kill(first.pid, SIGINT);
-  ra::wait_child(first.pid);
+  ra::util::wait_child(first.pid);
 }
 
 // A closed terminal (SIGHUP) stops a run as Ctrl-C does: the manifest says "interrupted", no
 // worker and no temporary file is left behind.
 TEST(RunIntegrity, AHangupLeavesAnInterruptedManifestAndNoTemporaries) {
   const std::string dir = fresh_dir("integrity_hup");
-  const ra::Child coordinator = start_hanging_run(dir);
+  const ra::util::Child coordinator = start_hanging_run(dir);
   ASSERT_TRUE(wait_for([&] { return processes_mentioning(dir + "/run") >= 2; }, 20));
   ::kill(coordinator.pid, SIGHUP);
-  const int status = ra::wait_child(coordinator.pid);
+  const int status = ra::util::wait_child(coordinator.pid);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << status;
   EXPECT_EQ(processes_mentioning(dir + "/run"), 0);
   const nlohmann::json m = nlohmann::json::parse(read_text(dir + "/run/manifest.json"));
@@ -110,10 +110,10 @@ TEST(RunIntegrity, AHangupLeavesAnInterruptedManifestAndNoTemporaries) {
 
 TEST(RunIntegrity, WorkersDieWithAKilledCoordinatorAndAnalyzeSaysTheRunWasKilled) {
   const std::string dir = fresh_dir("integrity_kill");
-  const ra::Child coordinator = start_hanging_run(dir);
+  const ra::util::Child coordinator = start_hanging_run(dir);
   ASSERT_TRUE(wait_for([&] { return processes_mentioning(dir + "/run") >= 2; }, 20));
   ::kill(coordinator.pid, SIGKILL);
-  ra::wait_child(coordinator.pid);
+  ra::util::wait_child(coordinator.pid);
   EXPECT_TRUE(wait_for([&] { return processes_mentioning(dir + "/run") == 0; }, 3))
       << processes_mentioning(dir + "/run") << " workers outlived their coordinator";
   const Outcome a = run_renderaudit("analyze " + dir + "/run");
@@ -273,9 +273,9 @@ TEST(RunIntegrity, NamesThatAreNotPlainFileNamesAreRefused) {
   const std::string dir = fresh_dir("integrity_names");
   for (const std::string name : {"..", ".", "a/b", ".hidden", "tab\there"}) {
     write_text(dir + "/e.toml", experiment("name = \"" + name + "\"\n", "\"reference\"", "points = 1\n"));
-    ra::ChildSpec spec;
+    ra::util::ChildSpec spec;
     spec.argv = {RA_BINARY, "run", dir + "/e.toml"};
-    const ra::ProgramResult r = ra::run_program(spec);
+    const ra::util::ProgramResult r = ra::util::run_program(spec);
     EXPECT_EQ(r.exit_code(), 2) << name << ": " << r.output;
     EXPECT_NE(r.output.find(dir + "/e.toml:1:8: 'name' must be a plain file name"), std::string::npos)
         << name << ": " << r.output;

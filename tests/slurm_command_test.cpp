@@ -150,7 +150,7 @@ TEST(SlurmCommand, StatusNamesTheFileAndKeyOfABadManifestField) {
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet --slice 1/2")
                 .exit_code, 0);
   const std::string path = dir + "/run/manifest.json";
-  const nlohmann::json good = nlohmann::json::parse(ra::read_file(path));
+  const nlohmann::json good = nlohmann::json::parse(ra::util::read_file(path));
   ASSERT_EQ(run_renderaudit("status " + dir + "/run").exit_code, 0);
   const std::vector<std::pair<std::function<void(nlohmann::json&)>, std::string>> edits = {
       {[](nlohmann::json& m) { m["slice"] = {{"index", 0}, {"count", 0}}; },
@@ -172,7 +172,7 @@ TEST(SlurmCommand, StatusNamesTheFileAndKeyOfABadManifestField) {
   for (const auto& [edit, message] : edits) {
     nlohmann::json m = good;
     edit(m);
-    ra::write_file_atomic(path, m.dump());
+    ra::util::write_file_atomic(path, m.dump());
     const Outcome o = run_renderaudit("status " + dir + "/run");
     EXPECT_EQ(o.exit_code, 2) << message << "\n" << o.output;
     EXPECT_NE(o.output.find(path + ": " + message), std::string::npos) << o.output;
@@ -232,24 +232,24 @@ TEST(SlurmCommand, TheScriptsRunAsSlurmWouldGiveTheOneMachineRun) {
   const Outcome o =
       run_command("env RENDERAUDIT_SBATCH=" + sbatch + " " + RA_BINARY + " run " + dir +
                   "/e.toml --out " + run + " --slurm --allow-node-local --slices 5 --jobs 1");
-  ASSERT_EQ(o.exit_code, 0) << o.output << ra::read_file(dir + "/tasks.log");
+  ASSERT_EQ(o.exit_code, 0) << o.output << ra::util::read_file(dir + "/tasks.log");
   EXPECT_NE(o.output.find("submitted 5 slices as Slurm array job 101, gather job 102"),
             std::string::npos)
       << o.output;
-  const std::string calls = ra::read_file(dir + "/sbatch.calls");
+  const std::string calls = ra::util::read_file(dir + "/sbatch.calls");
   EXPECT_NE(calls.find("--parsable " + run + "/slurm/array.sbatch\n"), std::string::npos) << calls;
   EXPECT_NE(calls.find("--parsable --dependency=afterany:101 " + run + "/slurm/gather.sbatch\n"),
             std::string::npos)
       << calls;
-  const nlohmann::json jobs = nlohmann::json::parse(ra::read_file(run + "/slurm/jobs.json"));
+  const nlohmann::json jobs = nlohmann::json::parse(ra::util::read_file(run + "/slurm/jobs.json"));
   EXPECT_EQ(jobs.at("array_job"), "101");
   EXPECT_EQ(jobs.at("gather_job"), "102");
   EXPECT_EQ(jobs.at("slices"), 5);
-  EXPECT_EQ(ra::read_file(run + "/slurm/gather.exit"), "0\n");
+  EXPECT_EQ(ra::util::read_file(run + "/slurm/gather.exit"), "0\n");
   for (int k = 1; k <= 5; ++k)
     EXPECT_TRUE(fs::exists(run + "/slices/" + std::to_string(k) + "/manifest.json")) << k;
   EXPECT_TRUE(records_without_timing(run) == records_without_timing(dir + "/whole"));
-  const nlohmann::json m = nlohmann::json::parse(ra::read_file(run + "/manifest.json"));
+  const nlohmann::json m = nlohmann::json::parse(ra::util::read_file(run + "/manifest.json"));
   EXPECT_EQ(m.at("status"), "complete");
   EXPECT_EQ(m.at("inputs").size(), 5u);
   EXPECT_EQ(m.at("shard_seconds").size(), 64u) << "every shard's time, from its slice";
@@ -282,7 +282,7 @@ TEST(SlurmCommand, StatusSaysWhatIsDoneRunningAndLeftWhileAWriterIsAtWork) {
   for (const auto& e : fs::directory_iterator(dir + "/run/records")) fs::remove(e.path());
   fs::remove(dir + "/run/manifest.json");
   // ... and a writer at work in DIR, with two shards running and 100 s left
-  ra::DirLock lock(dir + "/run", "run");
+  ra::util::DirLock lock(dir + "/run", "run");
   ra::runner::RunProgress p;
   p.host = "node7";
   p.pid = 4242;

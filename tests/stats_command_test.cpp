@@ -221,7 +221,7 @@ TEST_F(StatsCommand, BadInputIsALocatedUserError) {
   auto message = [](std::vector<std::string> args) -> std::string {
     try {
       run_stats(std::move(args));
-    } catch (const UserError& e) {
+    } catch (const util::UserError& e) {
       return e.what();
     }
     return "(no UserError)";
@@ -436,7 +436,7 @@ TEST_F(StatsCommand, RegressBadInputIsALocatedUserError) {
   auto message = [](std::vector<std::string> args) -> std::string {
     try {
       run_stats(std::move(args));
-    } catch (const UserError& e) {
+    } catch (const util::UserError& e) {
       return e.what();
     }
     return "(no UserError)";
@@ -477,12 +477,12 @@ TEST_F(StatsCommand, EndToEndThroughTheBinary) {
   const std::string err_path = (dir_ / "err.txt").string();
   const std::string binary = RA_BINARY;
   auto run = [&](const std::string& column) {  // stdout to out.json, stderr to err.txt
-    ChildSpec spec;
+    util::ChildSpec spec;
     spec.argv = {binary, "stats", "describe", file, "--column", column, "--json"};
     spec.stdout_path = out_path;
     spec.stderr_path = err_path;
     spec.stdin_null = true;
-    return wait_child(start_child(spec).pid);
+    return util::wait_child(util::start_child(spec).pid);
   };
   const int status = run("error_px");
   std::ifstream err_in(err_path);
@@ -512,7 +512,7 @@ TEST_F(StatsCommand, DescribeReadsARunsRecordsAndSelectsRowsWithWhere) {
       << "platform,kind,pe\np,point,1\nq,point,5\np,line,\n# complete rows=3 fnv1a64=1\n";
   {  // a compressed one beside it (records/*.csv.zst, the default format)
     std::ofstream b(dir + "/records/b.csv.zst", std::ios::binary);
-    ZstdFrameWriter z(b);
+    util::ZstdFrameWriter z(b);
     z.write("platform,kind,pe\np,point,3\nq,point,7\n# complete rows=2 fnv1a64=2\n");
     z.end_frame();
   }

@@ -32,19 +32,20 @@ std::string lavapipe_missing() {
   return o.output;
 }
 
-ra::ProgramResult run_with_env(const std::string& args, const std::vector<std::string>& env) {
-  ra::ChildSpec spec;
+ra::util::ProgramResult run_with_env(const std::string& args, const std::vector<std::string>& env) {
+  ra::util::ChildSpec spec;
   spec.argv = split_words(std::string(RA_BINARY) + " " + args);
   spec.set_env = env;
   spec.stdin_null = true;
-  return ra::run_program(spec);
+  return ra::util::run_program(spec);
 }
 
 void expect_refused(const std::string& platform, const std::vector<std::string>& env,
                     const std::string& message) {
   const std::string dir = fresh_dir("vk_refused");
   write_text(dir + "/e.toml", experiment("\"" + platform + "\"", 5));
-  const ra::ProgramResult r = run_with_env("run " + dir + "/e.toml --out " + dir + "/run", env);
+  const ra::util::ProgramResult r =
+      run_with_env("run " + dir + "/e.toml --out " + dir + "/run", env);
   EXPECT_EQ(r.exit_code(), 2) << r.output;
   EXPECT_NE(r.output.find("platform(s) that cannot draw on this machine (nothing was written"),
             std::string::npos)
@@ -90,7 +91,7 @@ TEST(VulkanPlatforms, LavapipeByNameAndByIndexDrawTheSame) {
   EXPECT_EQ(a.size(), 3u * 8 * 200);
   EXPECT_EQ(a, b);
   const nlohmann::json d =
-      nlohmann::json::parse(ra::read_file(dir + "/run/drivers/vk-lavapipe.json"));
+      nlohmann::json::parse(ra::util::read_file(dir + "/run/drivers/vk-lavapipe.json"));
   EXPECT_EQ(d["strict_lines"], true);
   EXPECT_EQ(d["line_mode"], "default");
   EXPECT_GE(d["subpixel_bits"].get<int>(), 4);
@@ -103,7 +104,7 @@ TEST(VulkanPlatforms, ADriverBuildsLavapipeIsTheOneLoaded) {
   if (const std::string why = lavapipe_missing(); !why.empty()) GTEST_SKIP() << why;
   const std::string icd = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
   if (!fs::exists(icd)) GTEST_SKIP() << "no " << icd;
-  const nlohmann::json j = nlohmann::json::parse(ra::read_file(icd));
+  const nlohmann::json j = nlohmann::json::parse(ra::util::read_file(icd));
   const std::string library = j["ICD"]["library_path"];
   const std::string dir = fresh_dir("vk_build");
   const std::string build = dir + "/cache/copy";
@@ -113,16 +114,18 @@ TEST(VulkanPlatforms, ADriverBuildsLavapipeIsTheOneLoaded) {
   fs::copy_file(library, build + library);
   write_text(dir + "/e.toml",
              experiment("\"vk-lavapipe@copy\"", 20) + "[builds.copy]\ndir = \"" + build + "\"\n");
-  const ra::ProgramResult r = run_with_env("run " + dir + "/e.toml --out " + dir + "/run --quiet",
-                                           {"RENDERAUDIT_BUILD_CACHE=" + dir + "/cache"});
+  const ra::util::ProgramResult r =
+      run_with_env("run " + dir + "/e.toml --out " + dir + "/run --quiet",
+                   {"RENDERAUDIT_BUILD_CACHE=" + dir + "/cache"});
   ASSERT_EQ(r.exit_code(), 0) << r.output;
-  const std::string driver = ra::read_file(dir + "/run/drivers/vk-lavapipe@copy.json");
+  const std::string driver = ra::util::read_file(dir + "/run/drivers/vk-lavapipe@copy.json");
   EXPECT_NE(driver.find(build + library), std::string::npos) << driver;
   fs::create_directories(dir + "/cache/empty");
   write_text(dir + "/e2.toml", experiment("\"vk-lavapipe@empty\"", 5) + "[builds.empty]\ndir = \"" +
                                    dir + "/cache/empty\"\n");
-  const ra::ProgramResult refused = run_with_env("run " + dir + "/e2.toml --out " + dir + "/run2",
-                                                 {"RENDERAUDIT_BUILD_CACHE=" + dir + "/cache"});
+  const ra::util::ProgramResult refused =
+      run_with_env("run " + dir + "/e2.toml --out " + dir + "/run2",
+                   {"RENDERAUDIT_BUILD_CACHE=" + dir + "/cache"});
   EXPECT_EQ(refused.exit_code(), 2) << refused.output;
   EXPECT_NE(refused.output.find("holds no lavapipe"), std::string::npos) << refused.output;
   EXPECT_FALSE(fs::exists(dir + "/run2"));

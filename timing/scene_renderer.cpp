@@ -91,8 +91,8 @@ SceneRenderer::SceneRenderer(const std::string& platform, const scenes::CameraSe
   Impl& m = *impl_;
   const std::optional<platforms::PlatformSpec> spec = platforms::find_platform(platform);
   if (!spec || !spec->draws_with_gl())
-    throw UserError("platform '" + platform + "' has no GL driver to time (allowed: " +
-                    platforms::aliased_gl_platform_names() + ")");
+    throw util::UserError("platform '" + platform + "' has no GL driver to time (allowed: " +
+                          platforms::aliased_gl_platform_names() + ")");
   m.cam = cam;
   m.info.platform = platform;
   m.info.gallium_driver = spec->mesa_driver;

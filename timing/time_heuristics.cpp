@@ -102,7 +102,7 @@ bool fit_branch(const std::vector<std::vector<double>>& cols, const std::vector<
     out.coef = f.coefficients;
     out.se = f.standard_deviations;
     return true;
-  } catch (const UserError&) {
+  } catch (const util::UserError&) {
     return false;
   }
 }
@@ -158,9 +158,9 @@ HeuristicFit fit_heuristic(Heuristic h, const std::vector<ObjectCounts>& x,
   const Columns c = columns(x, h);
   const std::size_t p = c.x.size() + intercept;
   if (y_us.size() < p + 2)
-    throw UserError(std::string("cannot fit ") + heuristic_name(h) + ": " +
-                    std::to_string(y_us.size()) + " object measurement(s), at least " +
-                    std::to_string(p + 2) + " needed");
+    throw util::UserError(std::string("cannot fit ") + heuristic_name(h) + ": " +
+                          std::to_string(y_us.size()) + " object measurement(s), at least " +
+                          std::to_string(p + 2) + " needed");
   const stats::LinearFit f = stats::fit_least_squares(c.x, y_us, intercept, c.names);
   HeuristicFit out;
   out.heuristic = h;
@@ -181,8 +181,9 @@ HeuristicFit fit_h3(const std::vector<ObjectCounts>& x, const std::vector<double
   const Columns g = columns(x, Heuristic::kH3, 0), r = columns(x, Heuristic::kH3, 1);
   const std::size_t pg = g.x.size() + intercept, pr = r.x.size() + intercept;
   if (n < pg + pr + 2)
-    throw UserError("cannot fit h3: " + std::to_string(n) + " object measurement(s), at least " +
-                    std::to_string(pg + pr + 2) + " needed");
+    throw util::UserError("cannot fit h3: " + std::to_string(n) +
+                          " object measurement(s), at least " + std::to_string(pg + pr + 2) +
+                          " needed");
 
   auto sse_of = [&](const Branch& bg, const Branch& br) {
     double s = 0;
@@ -227,7 +228,8 @@ HeuristicFit fit_h3(const std::vector<ObjectCounts>& x, const std::vector<double
   // (a) the two separate fits on all samples
   Branch bg0, br0;
   if (!fit_branch(g.x, y, all, intercept, bg0) || !fit_branch(r.x, y, all, intercept, br0))
-    throw UserError("cannot fit h3: the design is degenerate (e.g. all #pix or all #tris equal)");
+    throw util::UserError(
+        "cannot fit h3: the design is degenerate (e.g. all #pix or all #tris equal)");
   run(bg0, br0, "separate fits");
   // (b) splits by #pix / #tris
   std::vector<double> ratio(n);

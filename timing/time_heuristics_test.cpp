@@ -144,8 +144,8 @@ TEST(TimeHeuristics, H3OnGeometryOnlyData) {
 
 TEST(TimeHeuristics, TooFewSamplesIsAUserError) {
   std::vector<ObjectCounts> x(2, ObjectCounts{10, 10, 10, 10});
-  EXPECT_THROW(fit_heuristic(Heuristic::kH4, x, {1, 2}, true), UserError);
-  EXPECT_THROW(fit_heuristic(Heuristic::kH3, x, {1, 2}, false), UserError);
+  EXPECT_THROW(fit_heuristic(Heuristic::kH4, x, {1, 2}, true), util::UserError);
+  EXPECT_THROW(fit_heuristic(Heuristic::kH3, x, {1, 2}, false), util::UserError);
 }
 
 // c = q_0.99 - min. On the evenly spaced sample 0, 1, ..., 10000 the HF6 quantile at 0.99 sits

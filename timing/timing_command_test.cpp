@@ -189,7 +189,7 @@ TEST(TimingCommand, SmokeStudyOnLlvmpipe) {
 // runs, each run's ranking, and how often each method won (once per scene and run).
 TEST(TimingCommand, RepeatedRunsGiveSpreadAndWins) {
   const std::string dir = fresh_dir("timing_runs");
-  std::string text = read_file(RA_SOURCE_DIR "/experiments/timing_smoke.toml");
+  std::string text = util::read_file(RA_SOURCE_DIR "/experiments/timing_smoke.toml");
   const std::size_t at = text.find("[timing]\n");
   ASSERT_NE(at, std::string::npos);
   text.insert(at + 9, "study_runs = 2\n");
@@ -199,7 +199,7 @@ TEST(TimingCommand, RepeatedRunsGiveSpreadAndWins) {
   ASSERT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(o.output.find("osmesa-llvmpipe over 2 runs (0 failed"), std::string::npos) << o.output;
   const std::string out = dir + "/out";
-  const nlohmann::json j = nlohmann::json::parse(read_file(out + "/timing.json"));
+  const nlohmann::json j = nlohmann::json::parse(util::read_file(out + "/timing.json"));
   EXPECT_EQ(j.at("experiment").at("settings").at("study_runs"), 2);
   const nlohmann::json& rep = j.at("repeated");
   EXPECT_EQ(rep.at("runs"), 2);
@@ -276,7 +276,7 @@ TEST(TimingCommand, RepeatedRunsGiveSpreadAndWins) {
   EXPECT_TRUE(std::filesystem::exists(out + "/system_task_c_repeated.csv"));
 
   // timing.md and the report made from it show the repeated Table 6 and the wins
-  const std::string md = read_file(out + "/timing.md");
+  const std::string md = util::read_file(out + "/timing.md");
   EXPECT_NE(md.find("### Table 6 over 2 runs, osmesa-llvmpipe"), std::string::npos);
   EXPECT_NE(md.find("### Which method was best, osmesa-llvmpipe: runs won out of 2"), std::string::npos);
   EXPECT_NE(md.find("### System task c (99%) over 2 runs"), std::string::npos);

@@ -13,7 +13,7 @@
 namespace ra::timing {
 namespace {
 
-using Locator = TomlLocator;  // file:line:column errors, as every experiment reader
+using Locator = util::TomlLocator;  // file:line:column errors, as every experiment reader
 
 void parse_work(const Locator& loc, const toml::table& t, const std::string& where,
                 WorkSettings& w) {
@@ -37,7 +37,7 @@ const WorkSettings& TimingSettings::work_for(const std::string& platform) const 
 }
 
 TimingSettings read_timing_experiment(const std::string& path) {
-  return parse_timing_experiment(TomlLocator::read_text(path), path);
+  return parse_timing_experiment(util::TomlLocator::read_text(path), path);
 }
 
 TimingSettings parse_timing_experiment(const std::string& text, const std::string& path) {

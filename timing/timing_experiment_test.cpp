@@ -50,7 +50,7 @@ TEST(TimingExperiment, DefaultsAndValues) {
 std::string error_of(const std::string& text) {
   try {
     parse_timing_experiment(text, "bad.toml");
-  } catch (const UserError& e) {
+  } catch (const util::UserError& e) {
     return e.what();
   }
   return "";

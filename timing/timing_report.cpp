@@ -20,7 +20,7 @@ namespace ra::timing {
 namespace {
 
 // Not-finite values as empty cells.
-std::string num(double v) { return std::isfinite(v) ? full_precision(v) : std::string(); }
+std::string num(double v) { return std::isfinite(v) ? util::full_precision(v) : std::string(); }
 
 // A setting such as a confidence level, as written ("0.95", not "0.94999999999999996").
 std::string short_num(double v) {
@@ -329,10 +329,10 @@ std::string object_samples_csv(const StudyResults& r) {
   for (const PlatformMeasurements& m : r.measured)
     for (const SceneMeasurements& s : m.scenes)
       for (const ObjectSample& x : s.object_samples)
-        o << csv_escape(m.renderer.platform) << ',' << csv_escape(s.name) << ',' << x.object << ','
-          << num(x.alpha) << ',' << num(x.gamma) << ',' << num(x.phi) << ',' << x.triangles << ','
-          << x.vertices << ',' << x.transformed << ',' << x.pixels << ',' << x.state_changes << ','
-          << x.cpu_us.size() << ',' << num(stats::median(x.cpu_us)) << ','
+        o << util::csv_escape(m.renderer.platform) << ',' << util::csv_escape(s.name) << ','
+          << x.object << ',' << num(x.alpha) << ',' << num(x.gamma) << ',' << num(x.phi) << ','
+          << x.triangles << ',' << x.vertices << ',' << x.transformed << ',' << x.pixels << ','
+          << x.state_changes << ',' << x.cpu_us.size() << ',' << num(stats::median(x.cpu_us)) << ','
           << num(stats::median_or_nan(x.gpu_us)) << ',' << list(x.cpu_us) << ',' << list(x.gpu_us)
           << '\n';
   return o.str();
@@ -362,9 +362,9 @@ std::string frames_csv(const StudyResults& r) {
         for (const ObjectSample& x : fs.objects)
           tris += x.triangles, verts += x.vertices, tv += x.transformed, pix += x.pixels,
               sw += x.state_changes;
-        o << csv_escape(m.renderer.platform) << ',' << csv_escape(s.name) << ',' << fs.frame << ','
-          << fs.objects.size() << ',' << tris << ',' << verts << ',' << tv << ',' << pix << ','
-          << sw << ',' << fs.cpu_us.size() << ',' << num(preds[f].measured_us) << ','
+        o << util::csv_escape(m.renderer.platform) << ',' << util::csv_escape(s.name) << ','
+          << fs.frame << ',' << fs.objects.size() << ',' << tris << ',' << verts << ',' << tv << ','
+          << pix << ',' << sw << ',' << fs.cpu_us.size() << ',' << num(preds[f].measured_us) << ','
           << num(preds[f].measured_gpu_us);
         for (const std::string& meth : methods) o << ',' << num(preds[f].predicted_us.at(meth));
         o << ',' << list(fs.cpu_us) << ',' << list(fs.gpu_us) << '\n';
@@ -384,8 +384,8 @@ std::string pos_tables_csv(const StudyResults& r) {
         for (int i = 0; i < g.n_alpha; ++i)
           for (int k = 0; k < g.n_gamma; ++k)
             for (int j = 0; j < g.n_phi; ++j)
-              o << csv_escape(m.renderer.platform) << ',' << csv_escape(s.name) << ',' << t.object
-                << ',' << i << ',' << k << ',' << j << ',' << num(g.alpha_at(i)) << ','
+              o << util::csv_escape(m.renderer.platform) << ',' << util::csv_escape(s.name) << ','
+                << t.object << ',' << i << ',' << k << ',' << j << ',' << num(g.alpha_at(i)) << ','
                 << num(g.gamma_at(k)) << ',' << num(g.phi_at(j)) << ','
                 << (t.table.pruned_row(i) ? 1 : 0) << ',' << num(t.table.at(i, k, j)) << '\n';
       }
@@ -407,10 +407,10 @@ std::string table6_repeated_csv(const StudyResults& r) {
           const auto at = std::find(order.begin(), order.end(), method);
           ranks += (k ? ";" : "") + std::to_string(at - order.begin() + 1);
         }
-        o << csv_escape(p.platform) << ',' << csv_escape(scene) << ',' << csv_escape(method) << ','
-          << s.n << ',' << num(s.mean) << ',' << num(s.sd) << ',' << num(s.min) << ',' << num(s.max)
-          << ',' << num(s.ci_low) << ',' << num(s.ci_high) << ',' << short_num(s.confidence) << ','
-          << rk.wins.at(method) << ','
+        o << util::csv_escape(p.platform) << ',' << util::csv_escape(scene) << ','
+          << util::csv_escape(method) << ',' << s.n << ',' << num(s.mean) << ',' << num(s.sd) << ','
+          << num(s.min) << ',' << num(s.max) << ',' << num(s.ci_low) << ',' << num(s.ci_high) << ','
+          << short_num(s.confidence) << ',' << rk.wins.at(method) << ','
           << (is_paper_method(method) ? std::to_string(rk.paper_wins.at(method)) : "") << ','
           << ranks << ',' << list(s.values) << '\n';
       }
@@ -427,8 +427,8 @@ std::string system_task_c_repeated_csv(const StudyResults& r) {
     const RunSpread& c = p.c_us;
     std::vector<double> per_run;
     for (double v : c.values) per_run.push_back(v / 1000.0);
-    o << csv_escape(p.platform) << ',' << p.runs << ',' << p.failed << ',' << ms(c.mean) << ','
-      << ms(c.sd) << ',' << ms(c.min) << ',' << ms(c.max) << ',' << ms(c.ci_low) << ','
+    o << util::csv_escape(p.platform) << ',' << p.runs << ',' << p.failed << ',' << ms(c.mean)
+      << ',' << ms(c.sd) << ',' << ms(c.min) << ',' << ms(c.max) << ',' << ms(c.ci_low) << ','
       << ms(c.ci_high) << ',' << short_num(c.confidence) << ',' << list(per_run) << '\n';
   }
   return o.str();
@@ -458,10 +458,10 @@ std::vector<std::string> write_timing_outputs(const StudyResults& r, const std::
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (!std::filesystem::is_directory(dir))
-    throw UserError("cannot create the output directory " + dir + ": " + ec.message());
+    throw util::UserError("cannot create the output directory " + dir + ": " + ec.message());
   std::vector<std::string> written;
   auto put = [&](const std::string& name, const std::string& text) {
-    write_file_atomic(dir + "/" + name, text);
+    util::write_file_atomic(dir + "/" + name, text);
     written.push_back(dir + "/" + name);
   };
   put("object_samples.csv", object_samples_csv(r));

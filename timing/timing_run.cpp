@@ -92,8 +92,8 @@ runner::StudyRunResult run_timing_study(const runner::StudyRunOptions& options, 
       bool listed = false;
       for (const std::string& e : r.settings.platforms) listed = listed || e == p;
       if (!listed)
-        throw UserError("--platform " + p + ": not a platform of " + options.experiment +
-                        " (allowed: " + allowed + ")");
+        throw util::UserError("--platform " + p + ": not a platform of " + options.experiment +
+                              " (allowed: " + allowed + ")");
     }
     platforms = options.platforms;
   }
@@ -117,10 +117,11 @@ runner::StudyRunResult run_timing_study(const runner::StudyRunOptions& options, 
                                   ? i == 0
                                   : r.settings.scenes[i].name == r.settings.system_task_scene;
     if (system_scene && r.settings.system_task_frame >= int(paths[i].size()))
-      throw UserError(options.experiment + ": timing.system_task_frame = " +
-                      std::to_string(r.settings.system_task_frame) + " is out of range (allowed: 0 to " +
-                      std::to_string(int(paths[i].size()) - 1) + ", the frames of scene " +
-                      r.settings.scenes[i].name + ")");
+      throw util::UserError(
+          options.experiment +
+          ": timing.system_task_frame = " + std::to_string(r.settings.system_task_frame) +
+          " is out of range (allowed: 0 to " + std::to_string(int(paths[i].size()) - 1) +
+          ", the frames of scene " + r.settings.scenes[i].name + ")");
   }
   std::filesystem::create_directories(dir);
   runner::StudyRunResult result;

@@ -44,11 +44,15 @@ double seconds_since(Clock::time_point t0) {
 // Counter-based uniform numbers: the viewpoints of scene s are the same on every platform.
 class Rng {
  public:
-  Rng(uint64_t seed, uint64_t stream) : key_(splitmix64(splitmix64(seed) ^ (stream * 0x9E37u))) {}
-  double uniform01() { return double(splitmix64(key_ + 0x632BE59BD9B4E019ull * ++n_) >> 11) * 0x1.0p-53; }
+  Rng(uint64_t seed, uint64_t stream)
+      : key_(util::splitmix64(util::splitmix64(seed) ^ (stream * 0x9E37u))) {}
+  double uniform01() {
+    return double(util::splitmix64(key_ + 0x632BE59BD9B4E019ull * ++n_) >> 11) * 0x1.0p-53;
+  }
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform01(); }
   int64_t integer(int64_t lo, int64_t hi) {
-    return lo + int64_t(splitmix64(key_ + 0x632BE59BD9B4E019ull * ++n_) % uint64_t(hi - lo + 1));
+    return lo +
+           int64_t(util::splitmix64(key_ + 0x632BE59BD9B4E019ull * ++n_) % uint64_t(hi - lo + 1));
   }
 
  private:
@@ -255,9 +259,10 @@ PlatformMeasurements measure_platform(const TimingSettings& settings, const std:
                                                                 : sm.name == settings.system_task_scene;
     if (system_here && !path.empty()) {
       if (settings.system_task_frame >= int(path.size()))
-        throw UserError(settings.file + ": timing.system_task_frame = " +
-                        std::to_string(settings.system_task_frame) + " is out of range (allowed: 0 to " +
-                        std::to_string(path.size() - 1) + ", the frames of scene " + sm.name + ")");
+        throw util::UserError(settings.file + ": timing.system_task_frame = " +
+                              std::to_string(settings.system_task_frame) +
+                              " is out of range (allowed: 0 to " + std::to_string(path.size() - 1) +
+                              ", the frames of scene " + sm.name + ")");
       const std::size_t f = settings.system_task_frame >= 0 ? std::size_t(settings.system_task_frame)
                                                             : path.size() / 2;
       const scenes::Frustum fr = scenes::frustum_of(projection * scenes::look_at(path[f]));
@@ -297,10 +302,10 @@ PlatformMeasurements measure_platform_in_child(
   };
   nlohmann::json j;
   try {
-    j = run_in_child(scratch_dir, "timing-" + platform, [&] {
+    j = util::run_in_child(scratch_dir, "timing-" + platform, [&] {
       return to_json(measure_platform(settings, platform, scenes, paths, progress));
     });
-  } catch (const ChildProcessError& e) {
+  } catch (const util::ChildProcessError& e) {
     return failed(e.what());
   }
   try {

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace ra {
+namespace ra::util {
 
 std::string free_space_note(const std::string& path) {
   std::string dir = std::filesystem::path(path).parent_path().string();
@@ -93,4 +93,4 @@ std::string read_file(const std::string& path) {
   return buf.str();
 }
 
-}  // namespace ra
+}  // namespace ra::util

@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace ra {
+namespace ra::util {
 
 // Writes `content` to `path` atomically; throws std::runtime_error naming the path and the system
 // error (e.g. "No space left on device", with the free space) on failure, removing the temporary.
@@ -27,4 +27,4 @@ std::string free_space_note(const std::string& path);
 // errno says the disk is full.
 std::string io_error_message(const std::string& what, const std::string& path);
 
-}  // namespace ra
+}  // namespace ra::util

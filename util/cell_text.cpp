@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace ra {
+namespace ra::util {
 
 std::string full_precision(double v) {
   char buf[32];  // "-1.2345678901234567e-308": 24 characters at most
@@ -26,4 +26,4 @@ std::string csv_escape(const std::string& text) {
   return s + "\"";
 }
 
-}  // namespace ra
+}  // namespace ra::util

@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace ra {
+namespace ra::util {
 
 // `v` with 17 significant digits ("%.17g"): parsing the text gives back the same double.
 // NaN and the infinities as printf spells them: "nan", "inf", "-inf".
@@ -18,4 +18,4 @@ std::string full_precision_or_empty(double v);
 // then in double quotes with every quote doubled.
 std::string csv_escape(const std::string& text);
 
-}  // namespace ra
+}  // namespace ra::util

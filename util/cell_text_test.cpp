@@ -10,7 +10,7 @@
 #include <limits>
 #include <random>
 
-namespace ra {
+namespace ra::util {
 namespace {
 
 TEST(CellText, FullPrecisionMatchesPython) {
@@ -54,4 +54,4 @@ TEST(CellText, CsvEscapeMatchesPythonCsv) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::util

@@ -13,7 +13,7 @@
 
 extern char** environ;
 
-namespace ra {
+namespace ra::util {
 
 void die_with_parent(pid_t parent, int sig) {
   ::prctl(PR_SET_PDEATHSIG, sig);
@@ -203,4 +203,4 @@ void send_message_to_parent(const std::string& message) {
   }
 }
 
-}  // namespace ra
+}  // namespace ra::util

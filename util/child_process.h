@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace ra {
+namespace ra::util {
 
 struct ChildSpec {
   std::vector<std::string> argv;     // argv[0]: a path, or a program name looked up in PATH
@@ -77,4 +77,4 @@ ProgramResult run_program(const ChildSpec& spec);
 // The child side of ChildSpec::message_pipe: writes `message` to RA_MESSAGE_FD if it is set.
 void send_message_to_parent(const std::string& message);
 
-}  // namespace ra
+}  // namespace ra::util

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <thread>
 
-namespace ra {
+namespace ra::util {
 namespace {
 
 // True while `pid` exists and is not a zombie.
@@ -118,4 +118,4 @@ TEST(ChildProcess, OutputToFilesSeparately) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::util

@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-namespace ra {
+namespace ra::util {
 
 // SplitMix64 finaliser: a bijection on 64-bit integers with good avalanche.
 constexpr uint64_t splitmix64(uint64_t x) {
@@ -45,4 +45,4 @@ class CounterRng {
   uint64_t counter_ = 0;
 };
 
-}  // namespace ra
+}  // namespace ra::util

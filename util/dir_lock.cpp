@@ -11,7 +11,7 @@
 
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::util {
 
 std::string DirLock::lock_path(const std::string& dir) { return dir + "/.lock"; }
 
@@ -71,4 +71,4 @@ DirLock::~DirLock() {
   if (fd_ >= 0) ::close(fd_);  // closing releases the flock
 }
 
-}  // namespace ra
+}  // namespace ra::util

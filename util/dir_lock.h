@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace ra {
+namespace ra::util {
 
 class DirLock {
  public:
@@ -27,4 +27,4 @@ class DirLock {
   int fd_ = -1;
 };
 
-}  // namespace ra
+}  // namespace ra::util

@@ -12,7 +12,7 @@
 #include "util/child_process.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::util {
 namespace {
 
 std::string fresh(const std::string& tag) {
@@ -70,4 +70,4 @@ TEST(DirLock, ReleasedWhenTheObjectDies) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::util

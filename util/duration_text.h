@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-namespace ra {
+namespace ra::util {
 
 inline std::string duration_text(double seconds, const char* unknown = "--:--") {
   if (!std::isfinite(seconds) || seconds < 0) return unknown;
@@ -16,4 +16,4 @@ inline std::string duration_text(double seconds, const char* unknown = "--:--") 
   return buf;
 }
 
-}  // namespace ra
+}  // namespace ra::util

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace ra {
+namespace ra::util {
 
 // Bad input from a person: an experiment file, a command-line value, a data file. The message is
 // complete ("file:line:column: what is wrong (allowed: ...)") and is printed as is.
@@ -14,4 +14,4 @@ class UserError : public std::runtime_error {
   explicit UserError(const std::string& what) : std::runtime_error(what) {}
 };
 
-}  // namespace ra
+}  // namespace ra::util

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
-namespace ra {
+namespace ra::util {
 
 struct Fnv1a64 {
   static constexpr uint64_t kOffsetBasis = 0xcbf29ce484222325ull;
@@ -20,4 +20,4 @@ struct Fnv1a64 {
   void add(std::string_view s) { add(s.data(), s.size()); }
 };
 
-}  // namespace ra
+}  // namespace ra::util

@@ -14,7 +14,7 @@
 #include "util/child_process.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::util {
 namespace {
 
 // The file's envelope: {"result": JSON} or {"error": message, "user_error": bool}.
@@ -90,4 +90,4 @@ nlohmann::json run_in_child(const std::string& scratch_dir, const std::string& n
   throw ChildProcessError(error, false);
 }
 
-}  // namespace ra
+}  // namespace ra::util

@@ -18,7 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace ra {
+namespace ra::util {
 
 // The child gave no result. what(): the message of the exception `work` threw, as it was; or,
 // when the child left without a result (a crash, an _exit of its own),
@@ -41,4 +41,4 @@ class ChildProcessError : public std::runtime_error {
 nlohmann::json run_in_child(const std::string& scratch_dir, const std::string& name,
                             const std::function<nlohmann::json()>& work);
 
-}  // namespace ra
+}  // namespace ra::util

@@ -12,7 +12,7 @@
 
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::util {
 namespace {
 
 class RunInChild : public ::testing::Test {
@@ -120,4 +120,4 @@ TEST_F(RunInChild, AnUnwritableScratchFolderIsReported) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::util

@@ -2,7 +2,7 @@
 
 #include "util/atomic_file.h"
 
-namespace ra {
+namespace ra::util {
 
 nlohmann::json read_json_or_null(const std::string& path) {
   try {
@@ -12,4 +12,4 @@ nlohmann::json read_json_or_null(const std::string& path) {
   }
 }
 
-}  // namespace ra
+}  // namespace ra::util

@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace ra {
+namespace ra::util {
 
 // The parsed file, or null when it is missing, unreadable or not JSON.
 nlohmann::json read_json_or_null(const std::string& path);
 
-}  // namespace ra
+}  // namespace ra::util

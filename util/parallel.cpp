@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-namespace ra {
+namespace ra::util {
 
 void run_in_parallel(std::size_t count, unsigned jobs,
                      const std::function<void(std::size_t)>& task) {
@@ -33,4 +33,4 @@ void run_in_parallel(std::size_t count, unsigned jobs,
   }
 }
 
-}  // namespace ra
+}  // namespace ra::util

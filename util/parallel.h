@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <functional>
 
-namespace ra {
+namespace ra::util {
 
 // Runs task(0) ... task(count - 1) on up to `jobs` threads (0: the number of cores; the calling
 // thread is one of them). Each task must write only its own results. The first exception (by task
@@ -12,4 +12,4 @@ namespace ra {
 void run_in_parallel(std::size_t count, unsigned jobs,
                      const std::function<void(std::size_t)>& task);
 
-}  // namespace ra
+}  // namespace ra::util

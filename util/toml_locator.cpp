@@ -10,7 +10,7 @@
 
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::util {
 
 void TomlLocator::fail(const toml::node* node, const std::string& message) const {
   fail_at(node ? node->source().begin : toml::source_position{}, message);
@@ -143,4 +143,4 @@ std::string TomlLocator::string(const toml::node& node, const std::string& key,
   return s->get();
 }
 
-}  // namespace ra
+}  // namespace ra::util

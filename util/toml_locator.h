@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace ra {
+namespace ra::util {
 
 constexpr size_t kMaxRunNameLength = 100;  // characters of an experiment's `name`
 
@@ -61,4 +61,4 @@ class TomlLocator {
   std::string path_;
 };
 
-}  // namespace ra
+}  // namespace ra::util

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace ra {
+namespace ra::util {
 
 bool has_zstd_extension(std::string_view path) {
   return path.size() >= 4 && path.substr(path.size() - 4) == ".zst";
@@ -107,4 +107,4 @@ std::string read_zstd_file(const std::string& path) {
   return out;
 }
 
-}  // namespace ra
+}  // namespace ra::util

@@ -11,7 +11,7 @@
 #include <string>
 #include <string_view>
 
-namespace ra {
+namespace ra::util {
 
 // True when `path` ends with ".zst".
 bool has_zstd_extension(std::string_view path);
@@ -46,4 +46,4 @@ void for_each_zstd_chunk(const std::string& path,
 // The whole decompressed content of the file at `path` (errors as for_each_zstd_chunk).
 std::string read_zstd_file(const std::string& path);
 
-}  // namespace ra
+}  // namespace ra::util
