@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -33,6 +34,48 @@ class CompensatedSum {
 
 void require_non_empty(const std::vector<double>& values, const char* what) {
   if (values.empty()) throw std::invalid_argument(std::string(what) + ": no values");
+}
+
+// 2^e when it is a normal double (|e| <= 1022): multiplying by it is then exact whenever the
+// product is normal and rounds once otherwise, exactly as std::ldexp; nullopt outside that range.
+std::optional<double> exact_power_of_two(int e) {
+  if (e < std::numeric_limits<double>::min_exponent - 1 ||
+      e > std::numeric_limits<double>::max_exponent - 2)
+    return std::nullopt;
+  return std::ldexp(1.0, e);
+}
+
+// Mean and sample variance of scale(x) over the values, scaled back by 2^e: Chan, Golub and
+// LeVeque's corrected two-pass formula (see mean_and_variance()).
+template <typename Scale>
+MeanVariance corrected_two_pass(const std::vector<double>& values, Scale scale, int e) {
+  const double n = static_cast<double>(values.size());
+  // first pass: provisional mean of the values shifted by the first one, so that constant leading
+  // digits cancel exactly before anything is summed
+  const double shift = scale(values.front());
+  CompensatedSum shifted;
+  for (double x : values) shifted.add(scale(x) - shift);
+  const double provisional = shift + shifted.value() / n;
+
+  // second pass: residuals from the provisional mean; their sum corrects the mean, and subtracting
+  // (sum)^2 / n corrects the sum of squares
+  CompensatedSum residuals;
+  CompensatedSum squares;
+  for (double x : values) {
+    const double r = scale(x) - provisional;
+    residuals.add(r);
+    squares.add(r * r);
+  }
+  MeanVariance result;
+  result.scale_exponent = e;
+  result.mean = std::ldexp(provisional + residuals.value() / n, e);
+  if (values.size() >= 2) {
+    const double ss = squares.value() - residuals.value() * residuals.value() / n;
+    result.scaled_variance = std::max(0.0, ss) / (n - 1);
+    result.sd = std::ldexp(std::sqrt(result.scaled_variance), e);
+    result.variance = std::ldexp(result.scaled_variance, 2 * e);
+  }
+  return result;
 }
 
 }  // namespace
@@ -76,8 +119,13 @@ int scale_exponent(const std::vector<std::vector<double>>& groups) {
 
 std::vector<double> scaled(const std::vector<double>& values, int e) {
   std::vector<double> out(values.size());
-  std::transform(values.begin(), values.end(), out.begin(),
-                 [e](double x) { return std::ldexp(x, -e); });
+  if (const std::optional<double> factor = exact_power_of_two(-e)) {
+    const double f = *factor;
+    std::transform(values.begin(), values.end(), out.begin(), [f](double x) { return x * f; });
+  } else {
+    std::transform(values.begin(), values.end(), out.begin(),
+                   [e](double x) { return std::ldexp(x, -e); });
+  }
   return out;
 }
 
@@ -85,35 +133,13 @@ MeanVariance mean_and_variance(const std::vector<double>& unscaled) {
   require_non_empty(unscaled, "mean_and_variance");
   require_finite(unscaled, "mean_and_variance");
   const int e = scale_exponent(unscaled);
-  const std::vector<double> values = scaled(unscaled, e);  // every |x| < 1
-  const double n = static_cast<double>(values.size());
-
-  // first pass: provisional mean of the values shifted by the first one, so that constant leading
-  // digits cancel exactly before anything is summed
-  const double shift = values.front();
-  CompensatedSum shifted;
-  for (double x : values) shifted.add(x - shift);
-  const double provisional = shift + shifted.value() / n;
-
-  // second pass: residuals from the provisional mean; their sum corrects the mean, and subtracting
-  // (sum)^2 / n corrects the sum of squares (Chan, Golub and LeVeque's corrected two-pass formula)
-  CompensatedSum residuals;
-  CompensatedSum squares;
-  for (double x : values) {
-    const double r = x - provisional;
-    residuals.add(r);
-    squares.add(r * r);
+  // every scaled |x| < 1; the scaling is applied on the fly where 2^-e is a normal double (one
+  // multiplication, the same rounding as ldexp), so the data are not copied
+  if (const std::optional<double> factor = exact_power_of_two(-e)) {
+    const double f = *factor;
+    return corrected_two_pass(unscaled, [f](double x) { return x * f; }, e);
   }
-  MeanVariance result;
-  result.scale_exponent = e;
-  result.mean = std::ldexp(provisional + residuals.value() / n, e);
-  if (values.size() >= 2) {
-    const double ss = squares.value() - residuals.value() * residuals.value() / n;
-    result.scaled_variance = std::max(0.0, ss) / (n - 1);
-    result.sd = std::ldexp(std::sqrt(result.scaled_variance), e);
-    result.variance = std::ldexp(result.scaled_variance, 2 * e);
-  }
-  return result;
+  return corrected_two_pass(scaled(unscaled, e), [](double x) { return x; }, e);
 }
 
 double mean(const std::vector<double>& values) { return mean_and_variance(values).mean; }
