@@ -253,6 +253,7 @@ struct FileChunk {
   std::map<PartialKey, PartialView> views;
   std::uint64_t records = 0;
   std::uint64_t points_within_margin = 0;  // LoadOptions::point_margin_px reclassifications
+  ConformanceSummary conformance;
 };
 
 // Difference between two views' parameters, "" when equal.
@@ -282,17 +283,21 @@ constexpr std::array<RecordColumn, 7> kMetaColumns = {
 
 class FileParser {
  public:
-  FileParser(const std::string& path, const MetricColumns& metrics, const LoadOptions& options)
-      : path_(path), metrics_(metrics), options_(options) {}
+  // `name`: the file as the conformance summary names it (relative to the run directory).
+  FileParser(const std::string& path, const std::string& name, const MetricColumns& metrics,
+             const LoadOptions& options)
+      : path_(path), metrics_(metrics), options_(options), conformance_(name) {}
 
   FileChunk parse() {
     for_each_record_row(path_, [this](const RecordRow& row) { record(row); });
+    chunk_.conformance = conformance_.take();
     return std::move(chunk_);
   }
 
  private:
   void record(const RecordRow& row) {
     ++chunk_.records;
+    conformance_.add(row);
     const std::string_view platform = row.cell(RecordColumn::kPlatform);
     if (platform.empty()) row.fail("column 'platform' is empty");
     const std::optional<PrimitiveKind> kind = parse_kind(row.cell(RecordColumn::kKind));
@@ -421,6 +426,7 @@ class FileParser {
   const MetricColumns& metrics_;
   const LoadOptions& options_;
   FileChunk chunk_;
+  ConformanceTally conformance_;
   PartialView* current_ = nullptr;
   std::string current_platform_;
   PrimitiveKind current_kind_ = PrimitiveKind::kPoint;
@@ -502,7 +508,11 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   const std::size_t n_files = run.files.size();
   std::vector<FileChunk> chunks(n_files);
   run_in_parallel(n_files, options.jobs,
-                  [&](std::size_t f) { chunks[f] = FileParser(run.files[f], metric_cols, options).parse(); });
+                  [&](std::size_t f) {
+                    const std::string name =
+                        fs::path(run.files[f]).lexically_relative(run_dir).string();
+                    chunks[f] = FileParser(run.files[f], name, metric_cols, options).parse();
+                  });
 
   // merge, checking that a view has the same parameters everywhere
   std::map<PartialKey, MergedView> merged;
@@ -510,6 +520,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   for (std::size_t f = 0; f < n_files; ++f) {
     run.record_count += chunks[f].records;
     run.points_within_margin += chunks[f].points_within_margin;
+    append_conformance(run.conformance, std::move(chunks[f].conformance));
     for (auto& [key, part] : chunks[f].views) {
       const ViewMeta& meta = part.data.meta;
       auto [vm, first] = view_meta.try_emplace(meta.view, meta, f);
@@ -544,6 +555,8 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
     }
     chunks[f] = FileChunk();
   }
+
+  finish_conformance(run.conformance);
 
   // no record counted twice
   for (auto& [key, m] : merged) {

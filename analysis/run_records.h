@@ -28,6 +28,7 @@
 #include <string_view>
 #include <vector>
 
+#include "analysis/conformance_summary.h"
 #include "geometry/primitive.h"
 #include "runner/experiment.h"
 #include "stats/descriptive.h"
@@ -141,6 +142,9 @@ struct RunRecords {
   std::vector<ViewGroup> groups;  // by platform, kind, view_group
   double point_margin_px = 0;             // LoadOptions::point_margin_px applied
   std::uint64_t points_within_margin = 0;  // true-invisible points counted false-invisible by it
+  // The conformance verdicts and what is tallied beside them (every record, any status), from the
+  // same pass over the files; NonOkCase::file relative to run_dir.
+  ConformanceSummary conformance;
 
   // The kinds that have at least one record, in kAllKinds order.
   std::vector<PrimitiveKind> kinds() const;

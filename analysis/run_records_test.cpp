@@ -165,5 +165,66 @@ TEST(RunRecords, MergeAndDescribeSorted) {
   EXPECT_THROW(describe_sorted({2, 1}, stats::QuantileDefinition::kHyndmanFan6), std::logic_error);
 }
 
+// The conformance verdicts are tallied in the pass that loads the records, file by file and joined
+// in file order: counts summed over files, each group's label from its first record, the first 30
+// records that are not `ok` by file then line, violations worst first across files. Counted here
+// by hand.
+TEST(RunRecords, TalliesTheVerdictsOfEveryFileInFileOrder) {
+  const testing::ScopedTempDir scoped("records_verdicts");
+  const std::filesystem::path& dir = scoped.path;
+  auto judged = [](int view, std::uint64_t index, Conformance c, std::int64_t pixels,
+                   const char* rules) {
+    Record r = point("p1", view, index, 0.2);
+    r.conformance = c;
+    r.violating_pixels = pixels;
+    r.violated_rules = rules;
+    r.ref_diff = c == Conformance::kExact ? 0 : 1;
+    return r;
+  };
+  std::vector<Record> a, b;
+  for (std::uint64_t i = 0; i < 20; ++i)
+    a.push_back(point("p1", 1, 100 + i, 0, Visibility::kTrueVisible, CaseStatus::kCrash));
+  a.push_back(judged(1, 0, Conformance::kExact, 0, ""));
+  a.push_back(judged(1, 1, Conformance::kViolation, 2, "point-pixel"));
+  for (std::uint64_t i = 0; i < 20; ++i)
+    b.push_back(point("p1", 2, 100 + i, 0, Visibility::kTrueVisible, CaseStatus::kTimeout));
+  b.push_back(judged(2, 0, Conformance::kViolation, 9, "point-pixel"));
+  b.push_back(judged(2, 1, Conformance::kWithinSpec, 0, ""));
+  write_records(dir, a, "a.csv");
+  write_records(dir, b, "b.csv");
+
+  const ConformanceSummary& s = load_run_records(dir.string()).conformance;
+  const GroupKey group{"p1", "point", 0};
+  ASSERT_EQ(s.groups.size(), 1u);
+  const ConformanceCounts& n = s.groups.at(group);
+  EXPECT_EQ(n.compared, 4u);
+  EXPECT_EQ(n.exact, 1u);
+  EXPECT_EQ(n.within_spec, 1u);
+  EXPECT_EQ(n.violation, 2u);
+  EXPECT_EQ(n.violating_pixels, 11u);
+  EXPECT_EQ(n.rules.at("point-pixel"), 2u);
+  ASSERT_EQ(s.violations.size(), 2u);  // the worse one (9 px, second file) first
+  EXPECT_EQ(s.violations[0].view, 2);
+  EXPECT_EQ(s.violations[1].view, 1);
+  EXPECT_EQ(s.reference.at(group).compared, 4u);
+  EXPECT_EQ(s.reference.at(group).identical, 1u);
+  EXPECT_EQ(s.group_labels.at(group), "30 deg, 128x128");
+  EXPECT_EQ(s.non_ok_counts.at({"p1", "point", "crash"}), 20u);
+  EXPECT_EQ(s.non_ok_counts.at({"p1", "point", "timeout"}), 20u);
+  ASSERT_EQ(s.non_ok_examples.size(), kNonOkExamples);  // 30 of the 40
+  EXPECT_EQ(s.non_ok_examples[0].file, "records/a.csv");
+  EXPECT_EQ(s.non_ok_examples[0].line, 2u);
+  EXPECT_EQ(s.non_ok_examples[19].index, 119u);
+  EXPECT_EQ(s.non_ok_examples[20].file, "records/b.csv");
+  EXPECT_EQ(s.non_ok_examples[20].status, "timeout");
+  EXPECT_EQ(s.non_ok_examples[29].index, 109u);
+  // the same as the summary read straight from the files
+  const ConformanceSummary direct = summarize_conformance(
+      {(dir / "records" / "a.csv").string(), (dir / "records" / "b.csv").string()}, dir.string());
+  EXPECT_EQ(direct.non_ok_examples.size(), s.non_ok_examples.size());
+  EXPECT_EQ(direct.non_ok_examples.back().file, s.non_ok_examples.back().file);
+  EXPECT_EQ(direct.violations[0].index, s.violations[0].index);
+}
+
 }  // namespace
 }  // namespace ra::analysis
