@@ -140,12 +140,32 @@ stats::Description describe_sorted(const std::vector<double>& ascending,
 std::vector<double> merge_sorted(const std::vector<const std::vector<double>*>& parts) {
   std::size_t n = 0;
   for (const auto* p : parts) n += p->size();
+  // the parts side by side, then neighbouring runs merged pairwise, pass by pass: log2(k) passes
+  // over the data instead of k
   std::vector<double> all;
   all.reserve(n);
+  std::vector<std::size_t> ends;  // where each run ends
   for (const auto* p : parts) {
-    const auto middle = static_cast<std::ptrdiff_t>(all.size());
+    if (p->empty()) continue;
     all.insert(all.end(), p->begin(), p->end());
-    std::inplace_merge(all.begin(), all.begin() + middle, all.end());
+    ends.push_back(all.size());
+  }
+  std::vector<double> merged;
+  if (ends.size() > 1) merged.resize(all.size());
+  while (ends.size() > 1) {
+    std::vector<std::size_t> merged_ends;
+    std::size_t begin = 0;
+    for (std::size_t r = 0; r < ends.size(); r += 2) {
+      const std::size_t middle = ends[r];
+      const std::size_t end = r + 1 < ends.size() ? ends[r + 1] : middle;
+      std::merge(all.begin() + std::ptrdiff_t(begin), all.begin() + std::ptrdiff_t(middle),
+                 all.begin() + std::ptrdiff_t(middle), all.begin() + std::ptrdiff_t(end),
+                 merged.begin() + std::ptrdiff_t(begin));
+      merged_ends.push_back(end);
+      begin = end;
+    }
+    all.swap(merged);
+    ends = std::move(merged_ends);
   }
   return all;
 }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "analysis/records_testing.h"
@@ -224,6 +225,30 @@ TEST(RunRecords, TalliesTheVerdictsOfEveryFileInFileOrder) {
   EXPECT_EQ(direct.non_ok_examples.size(), s.non_ok_examples.size());
   EXPECT_EQ(direct.non_ok_examples.back().file, s.non_ok_examples.back().file);
   EXPECT_EQ(direct.violations[0].index, s.violations[0].index);
+}
+
+// merge_sorted against sorting the concatenation, for 0 to 9 parts (empty ones among them) of
+// random lengths and values with ties.
+TEST(RunRecords, MergeSortedEqualsSortingEveryPart) {
+  std::uint64_t state = 7;
+  const auto next = [&state] {  // a 64-bit LCG (Knuth's MMIX constants), upper bits
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return state >> 33;
+  };
+  for (std::size_t k = 0; k <= 9; ++k) {
+    std::vector<std::vector<double>> parts(k);
+    std::vector<const std::vector<double>*> pointers;
+    std::vector<double> want;
+    for (auto& p : parts) {
+      p.resize(next() % 50 * (next() % 4 != 0));  // a quarter of them empty
+      for (double& x : p) x = double(next() % 40) / 4;
+      std::sort(p.begin(), p.end());
+      want.insert(want.end(), p.begin(), p.end());
+      pointers.push_back(&p);
+    }
+    std::sort(want.begin(), want.end());
+    EXPECT_EQ(merge_sorted(pointers), want) << k << " parts";
+  }
 }
 
 }  // namespace

@@ -34,7 +34,7 @@ ScaledSample scale(std::vector<double> values) {
                                   " is not positive (shift the data first)");
     }
   }
-  std::sort(values.begin(), values.end());
+  sort_ascending(values);
   const double c = quantile_sorted(values, 0.5);
   ScaledSample s;
   s.log_c = std::log(c);

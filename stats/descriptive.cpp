@@ -175,9 +175,24 @@ double quantile_sorted(const std::vector<double>& sorted, double p, QuantileDefi
   return 2 * (lo / 2 + fraction * (hi / 2 - lo / 2));
 }
 
+void sort_ascending(std::vector<double>& values) {
+  if (!std::is_sorted(values.begin(), values.end())) std::sort(values.begin(), values.end());
+}
+
+std::vector<double> merged_ascending(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> out(a.size() + b.size());
+  if (std::is_sorted(a.begin(), a.end()) && std::is_sorted(b.begin(), b.end())) {
+    std::merge(a.begin(), a.end(), b.begin(), b.end(), out.begin());
+  } else {
+    std::copy(b.begin(), b.end(), std::copy(a.begin(), a.end(), out.begin()));
+    std::sort(out.begin(), out.end());
+  }
+  return out;
+}
+
 double quantile(std::vector<double> values, double p, QuantileDefinition definition) {
   require_non_empty(values, "quantile");
-  std::sort(values.begin(), values.end());
+  sort_ascending(values);
   return quantile_sorted(values, p, definition);
 }
 
@@ -191,7 +206,7 @@ Description describe(std::vector<double> values, QuantileDefinition definition) 
   require_non_empty(values, "describe");
   require_finite(values, "describe");
   const MeanVariance mv = mean_and_variance(values);
-  std::sort(values.begin(), values.end());
+  sort_ascending(values);
   Description d;
   d.n = values.size();
   d.mean = mv.mean;
@@ -217,7 +232,7 @@ double trimmed_mean(std::vector<double> values, double proportion) {
     throw std::invalid_argument("trimmed_mean: proportion " + std::to_string(proportion) +
                                 " is outside [0, 0.5)");
   }
-  std::sort(values.begin(), values.end());
+  sort_ascending(values);
   const std::size_t cut = trimmed_count(values.size(), proportion);
   // cut < n / 2 because proportion < 0.5, so at least one value is left
   std::vector<double> kept(values.begin() + static_cast<std::ptrdiff_t>(cut),
@@ -229,7 +244,7 @@ BoxPlotData box_plot(std::vector<double> values, QuantileDefinition definition,
                      std::size_t max_outliers) {
   require_non_empty(values, "box_plot");
   require_finite(values, "box_plot");
-  std::sort(values.begin(), values.end());
+  sort_ascending(values);
   BoxPlotData b;
   b.n = values.size();
   b.q1 = quantile_sorted(values, 0.25, definition);

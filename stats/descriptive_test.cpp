@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "stats/stats_testing.h"
@@ -260,6 +262,23 @@ TEST(DescriptiveScaling, SubnormalDataKeepTheirMeanAndSd) {
   const MeanVariance m = mean_and_variance({2 * u, 4 * u, 6 * u});
   EXPECT_EQ(m.mean, 4 * u);
   EXPECT_EQ(m.sd, 2 * u);  // sqrt(((2u)^2 + 0 + (2u)^2) / 2), computed on the scaled values
+}
+
+// Two ascending samples are merged, others sorted: either way the values of both, ascending, as a
+// sort of their concatenation gives them.
+TEST(DescriptiveSorting, MergedAscendingEqualsSortingTheConcatenation) {
+  const std::vector<double> a = {-2, 0, 0.5, 0.5, 7}, b = {-3, 0.5, 1, 9, 10, 11};
+  const std::vector<double> unsorted = {3, -1, 2};
+  for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}, std::pair{a, unsorted},
+                             std::pair{unsorted, b}, std::pair{std::vector<double>{}, a}}) {
+    std::vector<double> want = x;
+    want.insert(want.end(), y.begin(), y.end());
+    std::sort(want.begin(), want.end());
+    EXPECT_EQ(merged_ascending(x, y), want);
+  }
+  std::vector<double> v = {5, 1, 3};
+  sort_ascending(v);
+  EXPECT_EQ(v, (std::vector<double>{1, 3, 5}));
 }
 
 }  // namespace
