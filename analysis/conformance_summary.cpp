@@ -96,7 +96,8 @@ void append_conformance(ConformanceSummary& into, ConformanceSummary&& later) {
     to.drawn += r.drawn;
     to.drawn_identical += r.drawn_identical;
   }
-  for (auto& [key, label] : later.group_labels) into.group_labels.try_emplace(key, std::move(label));
+  for (auto& [key, label] : later.group_labels)
+    into.group_labels.try_emplace(key, std::move(label));  // the first file's label stays
   for (const auto& [key, count] : later.non_ok_counts) into.non_ok_counts[key] += count;
   for (auto& e : later.non_ok_examples) {
     if (into.non_ok_examples.size() >= kNonOkExamples) break;

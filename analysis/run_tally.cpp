@@ -29,9 +29,8 @@ GroupKey group_key(const json& j) {
 // Render times per platform and kind: every view's ok records with a time, true-visible or not.
 std::map<std::pair<std::string, std::string>, RenderTime> render_times(const RunRecords& run) {
   // each view's samples are ascending (ViewData), so the pooled ones are merged, not sorted
-  std::map<std::pair<std::string, std::string>,
-           std::pair<std::vector<const std::vector<double>*>, std::vector<const std::vector<double>*>>>
-      us;
+  using Samples = std::vector<const std::vector<double>*>;
+  std::map<std::pair<std::string, std::string>, std::pair<Samples, Samples>> us;  // all, visible
   for (const auto& [key, view] : run.views) {
     auto& [all, visible] = us[{run.platforms[key.platform], kind_name(key.kind)}];
     all.push_back(&view.render_us_visible);
