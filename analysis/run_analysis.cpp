@@ -92,10 +92,20 @@ std::string files_readme(const std::vector<Output>& outputs, const RunRecords& r
   return md;
 }
 
-// The run's records, with what --point-margin-px needs to generate each point again.
+// Throws IncompleteRunError naming what is missing or damaged, unless the run is whole (or has no
+// plan to compare with) or --allow-incomplete.
+void refuse_if_incomplete(const RunCompleteness& completeness, const AnalyzeOptions& o) {
+  if (completeness.has_plan && !completeness.complete() && !o.allow_incomplete)
+    throw IncompleteRunError(o.run_dir + ": " + completeness.markdown() +
+                             completeness.remedy("analyze"));
+}
+
+// The run's records (and, when the run has a plan to check them against, their seals), with what
+// --point-margin-px needs to generate each point again.
 RunRecords load_records(const AnalyzeOptions& o) {
   LoadOptions load;
   load.jobs = o.jobs;
+  load.read_seals = std::filesystem::exists(o.run_dir + "/experiment.toml");
   std::optional<Experiment> experiment;  // the views and seed that generate each point again
   if (o.point_margin_px > 0) {
     const std::string path = o.run_dir + "/experiment.toml";
@@ -272,13 +282,19 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   check_options(o);
   AnalyzeResult result;
   Stopwatch watch;
-  const RunCompleteness completeness = check_run_completeness(o.run_dir);
-  if (completeness.has_plan && !completeness.complete() && !o.allow_incomplete)
-    throw IncompleteRunError(o.run_dir + ": " + completeness.markdown() +
-                             completeness.remedy("analyze"));
+  // The records are loaded first, their seals read in the same pass; the completeness check then
+  // judges the run from those seals instead of reading every file again. A run that is not whole
+  // is refused as if it had been checked first: also when one of its files does not even parse.
+  RunRecords run;
+  try {
+    run = load_records(o);
+  } catch (const std::exception&) {
+    refuse_if_incomplete(check_run_completeness(o.run_dir), o);
+    throw;
+  }
+  const RunCompleteness completeness = check_run_completeness(o.run_dir, &run.seals);
+  refuse_if_incomplete(completeness, o);
   result.completeness = completeness.headline();
-
-  const RunRecords run = load_records(o);
   result.records = run.record_count;
   result.timings.push_back({"load", watch.lap()});
 

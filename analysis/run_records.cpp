@@ -274,6 +274,7 @@ struct FileChunk {
   std::uint64_t records = 0;
   std::uint64_t points_within_margin = 0;  // LoadOptions::point_margin_px reclassifications
   ConformanceSummary conformance;
+  std::optional<ShardSeal> seal;  // LoadOptions::read_seals
 };
 
 // Difference between two views' parameters, "" when equal.
@@ -309,7 +310,14 @@ class FileParser {
       : path_(path), metrics_(metrics), options_(options), conformance_(name) {}
 
   FileChunk parse() {
-    for_each_record_row(path_, [this](const RecordRow& row) { record(row); });
+    const auto row = [this](const RecordRow& r) { record(r); };
+    if (options_.read_seals) {
+      ShardSealReader seal;
+      for_each_record_row(path_, row, [&seal](std::string_view text) { seal.add(text); });
+      chunk_.seal = seal.finish();
+    } else {
+      for_each_record_row(path_, row);
+    }
     chunk_.conformance = conformance_.take();
     return std::move(chunk_);
   }
@@ -541,6 +549,8 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
     run.record_count += chunks[f].records;
     run.points_within_margin += chunks[f].points_within_margin;
     append_conformance(run.conformance, std::move(chunks[f].conformance));
+    if (chunks[f].seal)
+      run.seals.emplace(fs::path(run.files[f]).filename().string(), std::move(*chunks[f].seal));
     for (auto& [key, part] : chunks[f].views) {
       const ViewMeta& meta = part.data.meta;
       auto [vm, first] = view_meta.try_emplace(meta.view, meta, f);
