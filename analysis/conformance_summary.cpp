@@ -16,8 +16,8 @@ void ConformanceTally::select_group(std::string_view platform, std::string_view 
   reference_ = nullptr;
 }
 
-void ConformanceTally::add(const RecordRow& row) {
-  using C = RecordColumn;
+void ConformanceTally::add(const metrics::RecordRow& row) {
+  using C = metrics::RecordColumn;
   ConformanceSummary& s = summary_;
   select_group(row.cell(C::kPlatform), row.cell(C::kKind), row.integer<int>(C::kViewGroup));
   const auto& [platform, kind, group] = key_;
@@ -25,11 +25,12 @@ void ConformanceTally::add(const RecordRow& row) {
     s.group_labels[key_] = std::string(row.cell(C::kFovDeg)) + " deg, " +
                            std::string(row.cell(C::kWidth)) + "x" +
                            std::string(row.cell(C::kHeight));
-  const CaseStatus status = row.status();
-  if (status != CaseStatus::kOk) {
-    ++s.non_ok_counts[{platform, kind, status_name(status)}];
+  const metrics::CaseStatus status = row.status();
+  if (status != metrics::CaseStatus::kOk) {
+    ++s.non_ok_counts[{platform, kind, metrics::status_name(status)}];
     if (s.non_ok_examples.size() < kNonOkExamples)
-      s.non_ok_examples.push_back({platform, kind, status_name(status), row.integer<int>(C::kView),
+      s.non_ok_examples.push_back({platform, kind, metrics::status_name(status),
+                                   row.integer<int>(C::kView),
                                    row.integer<std::uint64_t>(C::kIndex), file_,
                                    static_cast<std::uint64_t>(row.line())});
     return;
@@ -46,8 +47,8 @@ void ConformanceTally::add(const RecordRow& row) {
       r.drawn_identical += diff == 0;
     }
   }
-  const Conformance c = row.conformance();
-  if (c == Conformance::kNotCompared) {
+  const metrics::Conformance c = row.conformance();
+  if (c == metrics::Conformance::kNotCompared) {
     ++s.not_compared;
     return;
   }
@@ -55,13 +56,13 @@ void ConformanceTally::add(const RecordRow& row) {
   ConformanceCounts& n = *counts_;
   ++n.compared;
   switch (c) {
-    case Conformance::kExact: ++n.exact; break;
-    case Conformance::kSnapped: ++n.snapped; break;
-    case Conformance::kWithinSpec: ++n.within_spec; break;
-    case Conformance::kViolation: ++n.violation; break;
-    case Conformance::kNotCompared: break;
+    case metrics::Conformance::kExact: ++n.exact; break;
+    case metrics::Conformance::kSnapped: ++n.snapped; break;
+    case metrics::Conformance::kWithinSpec: ++n.within_spec; break;
+    case metrics::Conformance::kViolation: ++n.violation; break;
+    case metrics::Conformance::kNotCompared: break;
   }
-  if (c != Conformance::kViolation) return;
+  if (c != metrics::Conformance::kViolation) return;
   Violation v{platform, kind, row.integer<int>(C::kView), group,
               row.integer<std::uint64_t>(C::kIndex),
               row.optional_integer<std::int64_t>(C::kViolatingPixels, 0),
@@ -119,7 +120,7 @@ ConformanceSummary summarize_conformance(const std::vector<std::string>& records
     ConformanceTally file(run_dir.empty()
                               ? path
                               : std::filesystem::path(path).lexically_relative(run_dir).string());
-    for_each_record_row(path, [&](const RecordRow& row) { file.add(row); });
+    metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) { file.add(row); });
     append_conformance(s, file.take());
   }
   finish_conformance(s);

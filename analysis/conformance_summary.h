@@ -86,7 +86,7 @@ ConformanceSummary summarize_conformance(const std::vector<std::string>& records
 class ConformanceTally {
  public:
   explicit ConformanceTally(std::string file) : file_(std::move(file)) {}
-  void add(const RecordRow& row);
+  void add(const metrics::RecordRow& row);
   ConformanceSummary take() { return std::move(summary_); }
 
  private:

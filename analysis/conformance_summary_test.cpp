@@ -19,23 +19,25 @@ TEST(ConformanceSummary, CountsSharesAndTheWorstViolationsFirst) {
                             ("ra_conformance_" + std::to_string(::getpid()) + ".csv")).string();
   {
     std::ofstream out(path);
-    out << records_header() << '\n';
+    out << metrics::records_header() << '\n';
     auto row = [&](const char* platform, const char* kind, int view, int group, uint64_t index,
-                   Conformance c, int64_t pixels, const char* rules) {
-      Record r;
+                   metrics::Conformance c, int64_t pixels, const char* rules) {
+      metrics::Record r;
       r.platform = platform, r.kind = kind, r.view = view, r.view_group = group, r.index = index;
       r.conformance = c;
-      r.violating_pixels = c == Conformance::kNotCompared ? -1 : pixels;
+      r.violating_pixels = c == metrics::Conformance::kNotCompared ? -1 : pixels;
       r.violated_rules = rules;
       write_record(out, r);
     };
-    for (uint64_t i = 0; i < 90; ++i) row("soft", "line", 1, 0, i, Conformance::kExact, 0, "");
-    for (uint64_t i = 90; i < 97; ++i) row("soft", "line", 1, 0, i, Conformance::kWithinSpec, 0, "");
-    row("soft", "line", 2, 0, 97, Conformance::kViolation, 1, "line-column");
-    row("soft", "line", 2, 0, 98, Conformance::kViolation, 3, "line-deviation+line-count");
-    row("soft", "line", 2, 0, 99, Conformance::kSnapped, 0, "");
-    row("soft", "triangle", 5, 2, 7, Conformance::kViolation, 301, "polygon-edge");
-    row("reference", "line", 1, 0, 0, Conformance::kNotCompared, 0, "");
+    for (uint64_t i = 0; i < 90; ++i)
+      row("soft", "line", 1, 0, i, metrics::Conformance::kExact, 0, "");
+    for (uint64_t i = 90; i < 97; ++i)
+      row("soft", "line", 1, 0, i, metrics::Conformance::kWithinSpec, 0, "");
+    row("soft", "line", 2, 0, 97, metrics::Conformance::kViolation, 1, "line-column");
+    row("soft", "line", 2, 0, 98, metrics::Conformance::kViolation, 3, "line-deviation+line-count");
+    row("soft", "line", 2, 0, 99, metrics::Conformance::kSnapped, 0, "");
+    row("soft", "triangle", 5, 2, 7, metrics::Conformance::kViolation, 301, "polygon-edge");
+    row("reference", "line", 1, 0, 0, metrics::Conformance::kNotCompared, 0, "");
   }
   const ConformanceSummary s = summarize_conformance({path});
   std::filesystem::remove(path);

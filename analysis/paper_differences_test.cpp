@@ -35,10 +35,10 @@ TEST(PaperConventions, PointsWithinHalfAPixelOutsideTheWindowBecomeFalseInvisibl
   testing::ScopedTempDir dir{"point_margin"};
   std::ofstream(dir.path / "experiment.toml") << kExperiment;
   const Experiment e = load_experiment((dir.path / "experiment.toml").string());
-  std::vector<Record> rs;
+  std::vector<metrics::Record> rs;
   int in_window = 0, in_band = 0;
   for (std::uint64_t i = 0; i < 4000; ++i) {
-    const Vec3 p = make_primitive(7, Kind::kPoint, i).v[0];
+    const geometry::Vec3 p = make_primitive(7, geometry::Kind::kPoint, i).v[0];
     // By hand: in front between the planes, then the window coordinates.
     const bool depth_ok = p.z < -0.01 && p.z > -10;
     const double wx = (p.x / -p.z + 1) * 4, wy = (p.y / -p.z + 1) * 4;
@@ -46,8 +46,9 @@ TEST(PaperConventions, PointsWithinHalfAPixelOutsideTheWindowBecomeFalseInvisibl
     const bool band = depth_ok && !inside && wx > -0.5 && wx < 8.5 && wy > -0.5 && wy < 8.5;
     in_window += inside;
     in_band += band;
-    Record r = testing::point("reference", 1, i, 0.3,
-                              inside ? Visibility::kTrueVisible : Visibility::kTrueInvisible);
+    metrics::Record r = testing::point(
+        "reference", 1, i, 0.3,
+        inside ? metrics::Visibility::kTrueVisible : metrics::Visibility::kTrueInvisible);
     r.fov_deg = 90;
     r.width = r.height = 8;
     r.view_group = 0;
@@ -58,16 +59,17 @@ TEST(PaperConventions, PointsWithinHalfAPixelOutsideTheWindowBecomeFalseInvisibl
   testing::write_records(dir.path, rs);
 
   const RunRecords plain = load_run_records(dir.path.string());
-  EXPECT_EQ(plain.groups[0].counts().by_class[int(Visibility::kFalseInvisible)], 0u);
+  EXPECT_EQ(plain.groups[0].counts().by_class[int(metrics::Visibility::kFalseInvisible)], 0u);
 
   LoadOptions o;
   o.point_margin_px = 0.5;
   o.experiment = &e;
   const RunRecords paper = load_run_records(dir.path.string(), o);
   const VisibilityCounts c = paper.groups[0].counts();
-  EXPECT_EQ(c.by_class[int(Visibility::kFalseInvisible)], std::uint64_t(in_band));
-  EXPECT_EQ(c.by_class[int(Visibility::kTrueInvisible)], std::uint64_t(4000 - in_window - in_band));
-  EXPECT_EQ(c.by_class[int(Visibility::kTrueVisible)], std::uint64_t(in_window));
+  EXPECT_EQ(c.by_class[int(metrics::Visibility::kFalseInvisible)], std::uint64_t(in_band));
+  EXPECT_EQ(c.by_class[int(metrics::Visibility::kTrueInvisible)],
+            std::uint64_t(4000 - in_window - in_band));
+  EXPECT_EQ(c.by_class[int(metrics::Visibility::kTrueVisible)], std::uint64_t(in_window));
   EXPECT_EQ(paper.points_within_margin, std::uint64_t(in_band));
   const stats::Table t2 = visibility_table(paper, PrimitiveKind::kPoint);
   bool noted = false;

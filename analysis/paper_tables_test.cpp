@@ -23,19 +23,20 @@ using testing::write_records;
 // Q1 at 2.5: 0.15, Q3 at 7.5: 0.475, IQR 0.325; HF7: median 0.30, Q1 x(3) = 0.20, Q3 x(7) = 0.45,
 // IQR 0.25). Group B (views 3, 4): nothing true-visible. Group C (views 5, 6): constant 0.2.
 // Visibility extras in view 1; platform p2: group A only, {0.2, 0.4}.
-std::vector<Record> tiny_run() {
-  std::vector<Record> rs;
+std::vector<metrics::Record> tiny_run() {
+  std::vector<metrics::Record> rs;
   std::uint64_t i = 0;
   for (double x : {0.30, 0.10, 0.45, 0.20}) rs.push_back(point("p1", 1, i++, x));
   for (double x : {0.25, 0.60, 0.05, 0.50, 0.40}) rs.push_back(point("p1", 2, i++, x));
-  rs.push_back(point("p1", 1, i++, 0, Visibility::kTrueInvisible));
-  rs.push_back(point("p1", 1, i++, 0, Visibility::kTrueInvisible));
-  rs.push_back(point("p1", 1, i++, 0, Visibility::kFalseVisible));
-  rs.push_back(point("p1", 1, i++, 0, Visibility::kFalseInvisible));
-  rs.push_back(point("p1", 2, i++, 0, Visibility::kMultipleVisible));
-  rs.push_back(point("p1", 2, i++, 0.1, Visibility::kTrueVisible, CaseStatus::kTimeout));
-  rs.push_back(point("p1", 3, i++, 0, Visibility::kTrueInvisible));
-  rs.push_back(point("p1", 4, i++, 0, Visibility::kTrueInvisible));
+  rs.push_back(point("p1", 1, i++, 0, metrics::Visibility::kTrueInvisible));
+  rs.push_back(point("p1", 1, i++, 0, metrics::Visibility::kTrueInvisible));
+  rs.push_back(point("p1", 1, i++, 0, metrics::Visibility::kFalseVisible));
+  rs.push_back(point("p1", 1, i++, 0, metrics::Visibility::kFalseInvisible));
+  rs.push_back(point("p1", 2, i++, 0, metrics::Visibility::kMultipleVisible));
+  rs.push_back(
+      point("p1", 2, i++, 0.1, metrics::Visibility::kTrueVisible, metrics::CaseStatus::kTimeout));
+  rs.push_back(point("p1", 3, i++, 0, metrics::Visibility::kTrueInvisible));
+  rs.push_back(point("p1", 4, i++, 0, metrics::Visibility::kTrueInvisible));
   for (int k = 0; k < 3; ++k) rs.push_back(point("p1", 5, i++, 0.2));
   for (int k = 0; k < 2; ++k) rs.push_back(point("p1", 6, i++, 0.2));
   rs.push_back(point("p2", 1, 0, 0.2));

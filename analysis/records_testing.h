@@ -29,7 +29,7 @@ struct ScopedTempDir {
 
 // The paper's Table 1: views 1-8, orientation innermost, then FOV (30, 150), then window (128,
 // 907).
-inline void set_view(Record& r, int view) {
+inline void set_view(metrics::Record& r, int view) {
   const int v = view - 1;
   r.view = view;
   r.orientation = v % 2 + 1;
@@ -41,18 +41,18 @@ inline void set_view(Record& r, int view) {
 }
 
 // A point record; true-visible ones carry pe (pixels) and pe_norm = pe / sqrt(W*H).
-inline Record point(const std::string& platform, int view, std::uint64_t index, double pe,
-                    Visibility visibility = Visibility::kTrueVisible,
-                    CaseStatus status = CaseStatus::kOk) {
-  Record r;
+inline metrics::Record point(const std::string& platform, int view, std::uint64_t index, double pe,
+                    metrics::Visibility visibility = metrics::Visibility::kTrueVisible,
+                    metrics::CaseStatus status = metrics::CaseStatus::kOk) {
+  metrics::Record r;
   r.platform = platform;
   set_view(r, view);
   r.kind = "point";
   r.index = index;
   r.status = status;
   r.visibility = visibility;
-  r.pixels = visibility == Visibility::kTrueVisible ? 1 : 0;
-  if (visibility == Visibility::kTrueVisible && status == CaseStatus::kOk) {
+  r.pixels = visibility == metrics::Visibility::kTrueVisible ? 1 : 0;
+  if (visibility == metrics::Visibility::kTrueVisible && status == metrics::CaseStatus::kOk) {
     r.pe = pe;
     r.pe_norm = pe / r.width;
   }
@@ -61,13 +61,13 @@ inline Record point(const std::string& platform, int view, std::uint64_t index, 
 }
 
 // A line record whose metric cells are empty (a runner that does not measure lines yet).
-inline Record unmeasured_line(const std::string& platform, int view, std::uint64_t index) {
-  Record r;
+inline metrics::Record unmeasured_line(const std::string& platform, int view, std::uint64_t index) {
+  metrics::Record r;
   r.platform = platform;
   set_view(r, view);
   r.kind = "line";
   r.index = index;
-  r.visibility = Visibility::kTrueVisible;
+  r.visibility = metrics::Visibility::kTrueVisible;
   r.pixels = 10;
   r.render_us = 5;
   return r;
@@ -75,20 +75,20 @@ inline Record unmeasured_line(const std::string& platform, int view, std::uint64
 
 // Writes `records` as RUN/records/NAME with the records header; returns the file's path.
 inline std::string write_records(const std::filesystem::path& run,
-                                 const std::vector<Record>& records,
+                                 const std::vector<metrics::Record>& records,
                                  const std::string& name = "x.csv") {
   std::filesystem::create_directories(run / "records");
   const auto path = run / "records" / name;
   std::ofstream out(path);
-  out << records_header() << "\n";
-  for (const Record& r : records) write_record(out, r);
+  out << metrics::records_header() << "\n";
+  for (const metrics::Record& r : records) write_record(out, r);
   return path.string();
 }
 
 // The run of the paper-comparison tests: group A of platform "p1" with PE {0.30, 0.10, 0.45, 0.20}
 // (view 1) and {0.25, 0.60, 0.05, 0.50, 0.40} (view 2): HF6 median 0.30, IQR 0.325.
 inline void write_nine_point_run(const std::filesystem::path& run) {
-  std::vector<Record> rs;
+  std::vector<metrics::Record> rs;
   std::uint64_t i = 0;
   for (double x : {0.30, 0.10, 0.45, 0.20}) rs.push_back(point("p1", 1, i++, x));
   for (double x : {0.25, 0.60, 0.05, 0.50, 0.40}) rs.push_back(point("p1", 2, i++, x));

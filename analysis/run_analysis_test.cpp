@@ -45,8 +45,8 @@ std::string user_error(F f) {
 }
 
 // Points in views 1-4 (group A normal-ish, group B constant) and lines with no metric values.
-std::vector<Record> small_run() {
-  std::vector<Record> rs;
+std::vector<metrics::Record> small_run() {
+  std::vector<metrics::Record> rs;
   stats::testing::Generator g(5);
   std::uint64_t i = 0;
   for (int view = 1; view <= 2; ++view) {
@@ -169,7 +169,7 @@ TEST(AnalyzeCommand, RemovesStaleFilesOfAnEarlierAnalysis) {
 TEST(AnalyzeCommand, QQPointsAreCappedForLargeSamples) {
   const testing::ScopedTempDir scoped("analyze_qq");
   const std::filesystem::path& dir = scoped.path;
-  std::vector<Record> rs;
+  std::vector<metrics::Record> rs;
   stats::testing::Generator g(9);
   for (int view = 1; view <= 2; ++view) {
     for (std::uint64_t k = 0; k < 2500; ++k) rs.push_back(point("ref", view, k, g.uniform()));

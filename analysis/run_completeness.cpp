@@ -32,19 +32,20 @@ std::string range(const Shard& s) {
 // file was written sealed: one of version 3 without its seal is damaged (cut short, or edited), as
 // `run` judges it. A version 2 file may predate the seal: it is checked row by row instead. Empty when it holds each of the shard's primitives exactly once and nothing else.
 std::string check_unsealed(const std::string& path, const Shard& s, const std::string& no_seal) {
-  const int version = records_schema_version(path);
+  const int version = metrics::records_schema_version(path);
   // A compressed file cut inside its first frame shows no header at all; compression came after
   // the seal, so such a file was written sealed and is simply cut short.
   if (version == 0 && has_zstd_extension(path)) return no_seal;
-  if (version == kRecordsSchemaVersion)
-    return no_seal + "; records of schema version " + std::to_string(kRecordsSchemaVersion) +
+  if (version == metrics::kRecordsSchemaVersion)
+    return no_seal + "; records of schema version " +
+           std::to_string(metrics::kRecordsSchemaVersion) +
            " are always written sealed, so this file is damaged";
   if (version != 2) return "unexpected header";
   std::vector<bool> seen(s.size(), false);
   uint64_t rows = 0;
   try {
-    for_each_record_row(path, [&](const RecordRow& row) {
-      const uint64_t index = row.integer<uint64_t>(RecordColumn::kIndex);
+    metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) {
+      const uint64_t index = row.integer<uint64_t>(metrics::RecordColumn::kIndex);
       if (index < s.begin || index >= s.end)
         row.fail("primitive " + std::to_string(index) + " lies outside the shard (" + range(s) + ")");
       if (seen[index - s.begin]) row.fail("primitive " + std::to_string(index) + " twice");
@@ -181,7 +182,7 @@ RunCompleteness check_run_completeness(const std::string& run_dir,
   std::error_code ec;
   std::vector<std::string> stray;
   for (const auto& e : fs::directory_iterator(run_dir + "/records", ec))
-    if (is_records_file_name(e.path().filename().string()) &&
+    if (metrics::is_records_file_name(e.path().filename().string()) &&
         !planned_files.count(e.path().filename().string()))
       stray.push_back(e.path().filename().string());
   std::sort(stray.begin(), stray.end());

@@ -228,7 +228,7 @@ std::vector<int> RunRecords::view_groups(PrimitiveKind kind) const {
 }
 
 std::string view_group_label(int view_group) {
-  View v;
+  geometry::View v;
   v.group = view_group;
   return v.group_name();
 }
@@ -236,13 +236,13 @@ std::string view_group_label(int view_group) {
 namespace {
 
 // The records column of each metric of each kind (kind_metrics names them).
-using MetricColumns = std::array<std::vector<RecordColumn>, kKindCount>;
+using MetricColumns = std::array<std::vector<metrics::RecordColumn>, kKindCount>;
 
 MetricColumns make_metric_columns() {
   MetricColumns columns;
   for (PrimitiveKind k : kAllKinds) {
     for (const MetricSpec& m : kind_metrics(k)) {
-      const std::optional<RecordColumn> c = find_record_column(m.column);
+      const std::optional<metrics::RecordColumn> c = metrics::find_record_column(m.column);
       if (!c) {
         throw std::logic_error("metrics/records.h has no column '" + std::string(m.column) +
                                "': the analysis stage must follow the schema change");
@@ -297,10 +297,11 @@ std::string meta_difference(const ViewMeta& here, const ViewMeta& there) {
 }
 
 // A view's parameters: the cells compared between its records.
-constexpr std::array<RecordColumn, 7> kMetaColumns = {
-    RecordColumn::kViewGroup, RecordColumn::kOrientation, RecordColumn::kFovDeg,
-    RecordColumn::kWidth,     RecordColumn::kHeight,      RecordColumn::kNear,
-    RecordColumn::kFar};
+constexpr std::array<metrics::RecordColumn, 7> kMetaColumns = {
+    metrics::RecordColumn::kViewGroup, metrics::RecordColumn::kOrientation,
+    metrics::RecordColumn::kFovDeg,    metrics::RecordColumn::kWidth,
+    metrics::RecordColumn::kHeight,    metrics::RecordColumn::kNear,
+    metrics::RecordColumn::kFar};
 
 class FileParser {
  public:
@@ -310,30 +311,31 @@ class FileParser {
       : path_(path), metrics_(metrics), options_(options), conformance_(name) {}
 
   FileChunk parse() {
-    const auto row = [this](const RecordRow& r) { record(r); };
+    const auto row = [this](const metrics::RecordRow& r) { record(r); };
     if (options_.read_seals) {
       ShardSealReader seal;
-      for_each_record_row(path_, row, [&seal](std::string_view text) { seal.add(text); });
+      metrics::for_each_record_row(path_, row,
+                                   [&seal](std::string_view text) { seal.add(text); });
       chunk_.seal = seal.finish();
     } else {
-      for_each_record_row(path_, row);
+      metrics::for_each_record_row(path_, row);
     }
     chunk_.conformance = conformance_.take();
     return std::move(chunk_);
   }
 
  private:
-  void record(const RecordRow& row) {
+  void record(const metrics::RecordRow& row) {
     ++chunk_.records;
     conformance_.add(row);
-    const std::string_view platform = row.cell(RecordColumn::kPlatform);
+    const std::string_view platform = row.cell(metrics::RecordColumn::kPlatform);
     if (platform.empty()) row.fail("column 'platform' is empty");
-    const std::optional<PrimitiveKind> kind = parse_kind(row.cell(RecordColumn::kKind));
+    const std::optional<PrimitiveKind> kind = parse_kind(row.cell(metrics::RecordColumn::kKind));
     if (!kind) {
-      row.fail("unknown kind '" + std::string(row.cell(RecordColumn::kKind)) +
+      row.fail("unknown kind '" + std::string(row.cell(metrics::RecordColumn::kKind)) +
                "' (allowed: point, line, triangle)");
     }
-    const int view = row.integer<int>(RecordColumn::kView);
+    const int view = row.integer<int>(metrics::RecordColumn::kView);
     if (view < 1) {
       row.fail("column 'view': " + std::to_string(view) + " is not a view number (>= 1)");
     }
@@ -352,7 +354,7 @@ class FileParser {
         current_->data.missing.assign(metrics, 0);
         current_->data.meta = read_meta(row, view);
         current_->meta_line = row.line();
-        for (RecordColumn c : kMetaColumns) current_->meta_text.emplace_back(row.cell(c));
+        for (metrics::RecordColumn c : kMetaColumns) current_->meta_text.emplace_back(row.cell(c));
       } else {
         check_meta(row, view);
       }
@@ -361,35 +363,35 @@ class FileParser {
     }
     PartialView& pv = *current_;
 
-    const std::uint64_t index = row.integer<std::uint64_t>(RecordColumn::kIndex);
+    const std::uint64_t index = row.integer<std::uint64_t>(metrics::RecordColumn::kIndex);
     pv.indices.push_back(index);
     pv.min_index = std::min(pv.min_index, index);
     pv.max_index = std::max(pv.max_index, index);
 
-    const CaseStatus status = row.status();
-    const Visibility visibility = row.visibility();
+    const metrics::CaseStatus status = row.status();
+    const metrics::Visibility visibility = row.visibility();
     VisibilityCounts& counts = pv.data.counts;
     switch (status) {
-      case CaseStatus::kOk:
+      case metrics::CaseStatus::kOk:
         break;
-      case CaseStatus::kInvalid:
+      case metrics::CaseStatus::kInvalid:
         ++counts.invalid;
         return;
-      case CaseStatus::kCrash:
+      case metrics::CaseStatus::kCrash:
         ++counts.crash;
         return;
-      case CaseStatus::kTimeout:
+      case metrics::CaseStatus::kTimeout:
         ++counts.timeout;
         return;
     }
-    const Visibility counted = paper_point_class(*kind, view, index, visibility);
+    const metrics::Visibility counted = paper_point_class(*kind, view, index, visibility);
     ++counts.by_class[static_cast<std::size_t>(counted)];
-    const bool visible = visibility == Visibility::kTrueVisible;
-    if (const std::optional<double> t = row.number(RecordColumn::kRenderUs)) {
+    const bool visible = visibility == metrics::Visibility::kTrueVisible;
+    if (const std::optional<double> t = row.number(metrics::RecordColumn::kRenderUs)) {
       (visible ? pv.data.render_us_visible : pv.data.render_us_other).push_back(*t);
     }
     if (!visible) return;
-    const std::vector<RecordColumn>& columns = metrics_[static_cast<std::size_t>(*kind)];
+    const std::vector<metrics::RecordColumn>& columns = metrics_[static_cast<std::size_t>(*kind)];
     for (std::size_t m = 0; m < columns.size(); ++m) {
       if (const std::optional<double> x = row.number(columns[m])) {
         pv.data.values[m].push_back(*x);
@@ -401,32 +403,33 @@ class FileParser {
 
   // The class under LoadOptions::point_margin_px: a true-invisible point within the margin outside
   // the window is false-invisible (nothing is drawn outside a window, so it is never lit).
-  Visibility paper_point_class(PrimitiveKind kind, int view, std::uint64_t index,
-                               Visibility visibility) {
+  metrics::Visibility paper_point_class(PrimitiveKind kind, int view, std::uint64_t index,
+                               metrics::Visibility visibility) {
     if (options_.point_margin_px <= 0 || kind != PrimitiveKind::kPoint ||
-        visibility != Visibility::kTrueInvisible)
+        visibility != metrics::Visibility::kTrueInvisible)
       return visibility;
     const Experiment& e = *options_.experiment;
     if (view > int(e.views.size()))
       throw UserError(path_ + ": view " + std::to_string(view) + " is not in the run's experiment (" +
                       std::to_string(e.views.size()) + " views)");
-    const Primitive point = make_primitive(e.seed, Kind::kPoint, index);
-    if (!inside_window_margin(e.views[std::size_t(view - 1)], point.v[0], options_.point_margin_px))
+    const geometry::Primitive point = make_primitive(e.seed, geometry::Kind::kPoint, index);
+    if (!metrics::inside_window_margin(e.views[std::size_t(view - 1)], point.v[0],
+                                       options_.point_margin_px))
       return visibility;
     ++chunk_.points_within_margin;
-    return Visibility::kFalseInvisible;
+    return metrics::Visibility::kFalseInvisible;
   }
 
-  static ViewMeta read_meta(const RecordRow& row, int view) {
+  static ViewMeta read_meta(const metrics::RecordRow& row, int view) {
     ViewMeta m;
     m.view = view;
-    m.view_group = row.integer<int>(RecordColumn::kViewGroup);
-    m.orientation = row.integer<int>(RecordColumn::kOrientation);
-    m.fov_deg = row.required_number(RecordColumn::kFovDeg);
-    m.width = row.integer<int>(RecordColumn::kWidth);
-    m.height = row.integer<int>(RecordColumn::kHeight);
-    m.near = row.required_number(RecordColumn::kNear);
-    m.far = row.required_number(RecordColumn::kFar);
+    m.view_group = row.integer<int>(metrics::RecordColumn::kViewGroup);
+    m.orientation = row.integer<int>(metrics::RecordColumn::kOrientation);
+    m.fov_deg = row.required_number(metrics::RecordColumn::kFovDeg);
+    m.width = row.integer<int>(metrics::RecordColumn::kWidth);
+    m.height = row.integer<int>(metrics::RecordColumn::kHeight);
+    m.near = row.required_number(metrics::RecordColumn::kNear);
+    m.far = row.required_number(metrics::RecordColumn::kFar);
     if (m.view_group < 0) {
       row.fail("column 'view_group': " + std::to_string(m.view_group) + " < 0");
     }
@@ -434,7 +437,7 @@ class FileParser {
     return m;
   }
 
-  void check_meta(const RecordRow& row, int view) const {
+  void check_meta(const metrics::RecordRow& row, int view) const {
     // the same text as the first record of the view: the same parameters (the usual case, and
     // cheaper than converting 7 numbers per record); otherwise compare the numbers
     bool same_text = true;
@@ -502,6 +505,43 @@ std::optional<std::uint64_t> first_duplicate(std::vector<std::uint64_t>& indices
   return *it;
 }
 
+// The view groups: the views of a platform and kind with the same view_group, by orientation; they
+// must differ in nothing else.
+std::vector<ViewGroup> view_groups_of(const std::map<ViewKey, ViewData>& views,
+                                      const std::string& records_dir) {
+  std::vector<ViewGroup> groups;
+  std::map<std::tuple<std::size_t, int, int>, std::vector<const ViewData*>> grouped;
+  for (const auto& [key, data] : views) {
+    grouped[{key.platform, static_cast<int>(key.kind), data.meta.view_group}].push_back(&data);
+  }
+  for (auto& [key, members] : grouped) {
+    std::sort(members.begin(), members.end(), [](const ViewData* a, const ViewData* b) {
+      return std::tie(a->meta.orientation, a->meta.view) <
+             std::tie(b->meta.orientation, b->meta.view);
+    });
+    ViewGroup g;
+    g.platform = std::get<0>(key);
+    g.kind = static_cast<PrimitiveKind>(std::get<1>(key));
+    g.view_group = std::get<2>(key);
+    g.label = view_group_label(g.view_group);
+    g.views = members;
+    for (const ViewData* v : members) {
+      ViewMeta same = v->meta;
+      same.view = g.meta().view;
+      same.orientation = g.meta().orientation;
+      const std::string diff = meta_difference(same, g.meta());
+      if (!diff.empty()) {
+        throw UserError(records_dir + ": views " + std::to_string(g.meta().view) +
+                        " and " + std::to_string(v->meta.view) + " are both in view group " +
+                        g.label + " but differ in more than orientation (view " +
+                        std::to_string(v->meta.view) + " has " + diff + ")");
+      }
+    }
+    groups.push_back(std::move(g));
+  }
+  return groups;
+}
+
 }  // namespace
 
 RunRecords load_run_records(const std::string& run_dir, const LoadOptions& options) {
@@ -522,7 +562,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   run.run_dir = run_dir;
   run.point_margin_px = options.point_margin_px;
   for (const auto& e : fs::directory_iterator(records_dir)) {
-    if (ra::is_records_file_name(e.path().filename().string()) && e.is_regular_file())
+    if (ra::metrics::is_records_file_name(e.path().filename().string()) && e.is_regular_file())
       run.files.push_back(e.path().string());
   }
   std::sort(run.files.begin(), run.files.end());
@@ -627,36 +667,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   run_in_parallel(samples.size(), options.jobs,
                   [&](std::size_t i) { std::sort(samples[i]->begin(), samples[i]->end()); });
 
-  // view groups: the views of a platform and kind with the same view_group
-  std::map<std::tuple<std::size_t, int, int>, std::vector<const ViewData*>> grouped;
-  for (const auto& [key, data] : run.views) {
-    grouped[{key.platform, static_cast<int>(key.kind), data.meta.view_group}].push_back(&data);
-  }
-  for (auto& [key, views] : grouped) {
-    std::sort(views.begin(), views.end(), [](const ViewData* a, const ViewData* b) {
-      return std::tie(a->meta.orientation, a->meta.view) <
-             std::tie(b->meta.orientation, b->meta.view);
-    });
-    ViewGroup g;
-    g.platform = std::get<0>(key);
-    g.kind = static_cast<PrimitiveKind>(std::get<1>(key));
-    g.view_group = std::get<2>(key);
-    g.label = view_group_label(g.view_group);
-    g.views = views;
-    for (const ViewData* v : views) {
-      ViewMeta same = v->meta;
-      same.view = g.meta().view;
-      same.orientation = g.meta().orientation;
-      const std::string diff = meta_difference(same, g.meta());
-      if (!diff.empty()) {
-        throw UserError(records_dir.string() + ": views " + std::to_string(g.meta().view) +
-                        " and " + std::to_string(v->meta.view) + " are both in view group " +
-                        g.label + " but differ in more than orientation (view " +
-                        std::to_string(v->meta.view) + " has " + diff + ")");
-      }
-    }
-    run.groups.push_back(std::move(g));
-  }
+  run.groups = view_groups_of(run.views, records_dir.string());
   return run;
 }
 

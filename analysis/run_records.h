@@ -39,11 +39,11 @@ namespace ra::analysis {
 
 // The kind of a record is the project's one primitive kind (geometry/primitive.h); records spell
 // it with kind_name: "point", "line", "triangle".
-using PrimitiveKind = Kind;
+using PrimitiveKind = geometry::Kind;
 constexpr std::size_t kKindCount = 3;
 constexpr std::array<PrimitiveKind, kKindCount> kAllKinds = {
     PrimitiveKind::kPoint, PrimitiveKind::kLine, PrimitiveKind::kTriangle};
-using ra::kind_name;
+using ra::geometry::kind_name;
 
 // "points", "line segments", "triangles": the words of the paper's captions, for table titles.
 const char* kind_label_plural(PrimitiveKind kind);

@@ -26,17 +26,17 @@ std::string user_error(F f) {
 TEST(RunRecords, CountsSamplesAndGroups) {
   const testing::ScopedTempDir scoped("records_counts");
   const std::filesystem::path& dir = scoped.path;
-  std::vector<Record> rs = {
+  std::vector<metrics::Record> rs = {
       point("p1", 1, 0, 0.30),
       point("p1", 1, 1, 0.10),
-      point("p1", 1, 2, 0, Visibility::kTrueInvisible),
-      point("p1", 1, 3, 0, Visibility::kFalseVisible),
-      point("p1", 1, 4, 0, Visibility::kFalseInvisible),
-      point("p1", 1, 5, 0, Visibility::kMultipleVisible),
-      point("p1", 1, 6, 0.7, Visibility::kTrueVisible, CaseStatus::kInvalid),
-      point("p1", 1, 7, 0.7, Visibility::kTrueVisible, CaseStatus::kCrash),
+      point("p1", 1, 2, 0, metrics::Visibility::kTrueInvisible),
+      point("p1", 1, 3, 0, metrics::Visibility::kFalseVisible),
+      point("p1", 1, 4, 0, metrics::Visibility::kFalseInvisible),
+      point("p1", 1, 5, 0, metrics::Visibility::kMultipleVisible),
+      point("p1", 1, 6, 0.7, metrics::Visibility::kTrueVisible, metrics::CaseStatus::kInvalid),
+      point("p1", 1, 7, 0.7, metrics::Visibility::kTrueVisible, metrics::CaseStatus::kCrash),
       point("p1", 2, 0, 0.25),
-      point("p1", 3, 0, 0, Visibility::kTrueInvisible),
+      point("p1", 3, 0, 0, metrics::Visibility::kTrueInvisible),
   };
   write_records(dir, rs, "a.csv");
   write_records(dir, {point("p0", 2, 0, 0.5), testing::unmeasured_line("p1", 1, 0)}, "b.csv");
@@ -137,7 +137,7 @@ TEST(RunRecords, MalformedRecordsNameFileAndLine) {
 TEST(RunRecords, InconsistentViewsAndDuplicatesAreRefused) {
   const testing::ScopedTempDir scoped("records_inconsistent");
   const std::filesystem::path& dir = scoped.path;
-  Record changed = point("p", 1, 1, 0.2);
+  metrics::Record changed = point("p", 1, 1, 0.2);
   changed.fov_deg = 45;
   const std::string path = write_records(dir, {point("p", 1, 0, 0.3), changed});
   std::string e = user_error([&] { load_run_records(dir.string()); });
@@ -173,24 +173,24 @@ TEST(RunRecords, MergeAndDescribeSorted) {
 TEST(RunRecords, TalliesTheVerdictsOfEveryFileInFileOrder) {
   const testing::ScopedTempDir scoped("records_verdicts");
   const std::filesystem::path& dir = scoped.path;
-  auto judged = [](int view, std::uint64_t index, Conformance c, std::int64_t pixels,
+  auto judged = [](int view, std::uint64_t index, metrics::Conformance c, std::int64_t pixels,
                    const char* rules) {
-    Record r = point("p1", view, index, 0.2);
+    metrics::Record r = point("p1", view, index, 0.2);
     r.conformance = c;
     r.violating_pixels = pixels;
     r.violated_rules = rules;
-    r.ref_diff = c == Conformance::kExact ? 0 : 1;
+    r.ref_diff = c == metrics::Conformance::kExact ? 0 : 1;
     return r;
   };
-  std::vector<Record> a, b;
+  std::vector<metrics::Record> a, b;
   for (std::uint64_t i = 0; i < 20; ++i)
-    a.push_back(point("p1", 1, 100 + i, 0, Visibility::kTrueVisible, CaseStatus::kCrash));
-  a.push_back(judged(1, 0, Conformance::kExact, 0, ""));
-  a.push_back(judged(1, 1, Conformance::kViolation, 2, "point-pixel"));
+    a.push_back(point("p1", 1, 100 + i, 0, metrics::Visibility::kTrueVisible, metrics::CaseStatus::kCrash));
+  a.push_back(judged(1, 0, metrics::Conformance::kExact, 0, ""));
+  a.push_back(judged(1, 1, metrics::Conformance::kViolation, 2, "point-pixel"));
   for (std::uint64_t i = 0; i < 20; ++i)
-    b.push_back(point("p1", 2, 100 + i, 0, Visibility::kTrueVisible, CaseStatus::kTimeout));
-  b.push_back(judged(2, 0, Conformance::kViolation, 9, "point-pixel"));
-  b.push_back(judged(2, 1, Conformance::kWithinSpec, 0, ""));
+    b.push_back(point("p1", 2, 100 + i, 0, metrics::Visibility::kTrueVisible, metrics::CaseStatus::kTimeout));
+  b.push_back(judged(2, 0, metrics::Conformance::kViolation, 9, "point-pixel"));
+  b.push_back(judged(2, 1, metrics::Conformance::kWithinSpec, 0, ""));
   write_records(dir, a, "a.csv");
   write_records(dir, b, "b.csv");
 

@@ -29,7 +29,7 @@ struct Cell {
 };
 
 // The metric the summary shows for each kind (the paper's headline metric).
-double headline_metric(const Record& r) {
+double headline_metric(const metrics::Record& r) {
   if (r.kind == "point") return r.pe;
   if (r.kind == "line") return r.lse_u_norm;
   return r.te_u_norm;
@@ -83,19 +83,20 @@ std::string write_run_summary(const std::string& run_dir) {
   std::map<Key, Cell> cells;
   std::vector<std::string> files;
   for (const auto& e : fs::directory_iterator(run_dir + "/records"))
-    if (ra::is_records_file_name(e.path().filename().string())) files.push_back(e.path().string());
+    if (ra::metrics::is_records_file_name(e.path().filename().string()))
+      files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
   for (const auto& f : files) {
-    read_records(f, [&](const Record& r) {
+    metrics::read_records(f, [&](const metrics::Record& r) {
       Cell& c = cells[{r.platform, r.kind, r.view}];
       c.fov = fmt(r.fov_deg, "%g");
       c.window = std::to_string(r.width) + "x" + std::to_string(r.height);
-      if (r.status != CaseStatus::kOk) {
+      if (r.status != metrics::CaseStatus::kOk) {
         ++c.not_ok;
         return;
       }
       ++c.visibility[int(r.visibility)];
-      if (r.visibility == Visibility::kTrueVisible && !std::isnan(headline_metric(r)))
+      if (r.visibility == metrics::Visibility::kTrueVisible && !std::isnan(headline_metric(r)))
         c.metric.push_back(headline_metric(r));
       if (!std::isnan(r.render_us)) c.render_us.push_back(r.render_us);
       if (r.ref_diff >= 0) {

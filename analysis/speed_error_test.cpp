@@ -19,14 +19,14 @@ using testing::point;
 using testing::write_records;
 
 // A line record with an unsigned error; lse_u_norm = lse_u / sqrt(W*H) = lse_u / width.
-Record line(const std::string& platform, int view, std::uint64_t index, double lse_u,
+metrics::Record line(const std::string& platform, int view, std::uint64_t index, double lse_u,
             double render_us) {
-  Record r;
+  metrics::Record r;
   r.platform = platform;
   testing::set_view(r, view);
   r.kind = "line";
   r.index = index;
-  r.visibility = Visibility::kTrueVisible;
+  r.visibility = metrics::Visibility::kTrueVisible;
   r.pixels = 10;
   r.lse_s = r.lse_u = lse_u;
   r.lse_s_norm = r.lse_u_norm = lse_u / r.width;
@@ -39,23 +39,24 @@ Record line(const std::string& platform, int view, std::uint64_t index, double l
 // Two platforms (the second an antialiasing condition, as it will appear: its own platform name),
 // points in views 1-4 (groups A, B) with times and errors that differ by platform and group, some
 // records that are not true-visible (a time but no error), and an invalid one (neither counts).
-std::vector<Record> speed_run() {
-  std::vector<Record> rs;
+std::vector<metrics::Record> speed_run() {
+  std::vector<metrics::Record> rs;
   stats::testing::Generator g(11);
   std::uint64_t i = 0;
   for (const std::string platform : {"osmesa-llvmpipe", "osmesa-llvmpipe-msaa4"}) {
     const double slow = platform == "osmesa-llvmpipe" ? 1 : 3;
     for (int view = 1; view <= 4; ++view) {
       for (int k = 0; k < 41; ++k) {
-        Record r = point(platform, view, i++, 0.1 + 0.6 * g.uniform());
+        metrics::Record r = point(platform, view, i++, 0.1 + 0.6 * g.uniform());
         r.render_us = slow * (5 + 20 * g.uniform()) * (view >= 3 ? 2 : 1);
         r.batch_size = 8;
         rs.push_back(r);
       }
-      Record out = point(platform, view, i++, 0, Visibility::kTrueInvisible);
+      metrics::Record out = point(platform, view, i++, 0, metrics::Visibility::kTrueInvisible);
       out.render_us = 1000;  // a time without an error: in n_time only
       rs.push_back(out);
-      Record bad = point(platform, view, i++, 0.3, Visibility::kTrueVisible, CaseStatus::kInvalid);
+      metrics::Record bad = point(platform, view, i++, 0.3, metrics::Visibility::kTrueVisible,
+                                  metrics::CaseStatus::kInvalid);
       bad.render_us = 1e6;  // not ok: counted nowhere
       rs.push_back(bad);
     }
@@ -72,13 +73,13 @@ struct Expected {
 
 // The samples of each (kind, platform, group), straight from the records.
 std::map<std::tuple<std::string, std::string, std::string>, Expected> expected_samples(
-    const std::vector<Record>& rs) {
+    const std::vector<metrics::Record>& rs) {
   std::map<std::tuple<std::string, std::string, std::string>, Expected> out;
-  for (const Record& r : rs) {
-    if (r.status != CaseStatus::kOk) continue;
+  for (const metrics::Record& r : rs) {
+    if (r.status != metrics::CaseStatus::kOk) continue;
     Expected& e = out[{r.kind, r.platform, view_group_label(r.view_group)}];
     if (!std::isnan(r.render_us)) e.time.push_back(r.render_us);
-    if (r.visibility != Visibility::kTrueVisible) continue;
+    if (r.visibility != metrics::Visibility::kTrueVisible) continue;
     const double v = r.kind == "point" ? r.pe_norm : r.lse_u_norm;
     if (!std::isnan(v)) e.error.push_back(v);
   }
@@ -89,7 +90,7 @@ std::map<std::tuple<std::string, std::string, std::string>, Expected> expected_s
   return out;
 }
 
-void expect_speed_error(const json& doc, const std::vector<Record>& rs,
+void expect_speed_error(const json& doc, const std::vector<metrics::Record>& rs,
                         stats::QuantileDefinition q) {
   const auto expected = expected_samples(rs);
   ASSERT_TRUE(doc.contains("speed_error"));
@@ -123,7 +124,7 @@ void expect_speed_error(const json& doc, const std::vector<Record>& rs,
 // run's quantile option (as the box plots), for every platform (conditions included).
 TEST(SpeedError, PointsAreTheMediansOfTheRecords) {
   const testing::ScopedTempDir scoped("speed_error");
-  const std::vector<Record> rs = speed_run();
+  const std::vector<metrics::Record> rs = speed_run();
   write_records(scoped.path, rs);
   const RunRecords run = load_run_records(scoped.path.string());
   for (auto q : {stats::QuantileDefinition::kHyndmanFan6, stats::QuantileDefinition::kHyndmanFan7}) {
@@ -164,10 +165,10 @@ TEST(SpeedError, HandComputedLineGroup) {
 // still has its error; the missing side is null, never a made-up number.
 TEST(SpeedError, AGroupWithoutTimesHasNullTimeStatistics) {
   const testing::ScopedTempDir scoped("speed_error_null");
-  std::vector<Record> rs;
+  std::vector<metrics::Record> rs;
   for (std::uint64_t k = 0; k < 5; ++k) {
-    Record r = point("p", 1, k, 0.1 * double(k + 1));
-    r.render_us = kNA;
+    metrics::Record r = point("p", 1, k, 0.1 * double(k + 1));
+    r.render_us = metrics::kNA;
     rs.push_back(r);
   }
   write_records(scoped.path, rs);

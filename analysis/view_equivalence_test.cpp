@@ -136,7 +136,7 @@ TEST(ViewEquivalence, DegenerateSamplesGiveReasonsNotNaN) {
 TEST(ViewEquivalence, RunReportSaysWhichPairIsNotEquivalentAndPools) {
   const testing::ScopedTempDir scoped("equivalence_run");
   const std::filesystem::path& dir = scoped.path;
-  std::vector<Record> rs;
+  std::vector<metrics::Record> rs;
   std::uint64_t i = 0;
   for (double x : uniform_sample(2000, 0, 0.7, 20)) rs.push_back(point("p", 1, i++, x));
   for (double x : uniform_sample(2000, 0, 0.7, 21)) rs.push_back(point("p", 2, i++, x));

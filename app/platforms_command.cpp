@@ -15,13 +15,15 @@ namespace {
 
 // The fixed-name platforms, then egl-device:N for every EGL device (when EGL can list them) and
 // vk-device:N for every Vulkan device (when the Vulkan loader can list them).
-std::vector<PlatformSpec> platforms_to_probe(std::string* device_note, std::string* vulkan_note) {
-  std::vector<PlatformSpec> specs;
-  for (const PlatformSpec& s : platform_specs())
-    if (s.backend != Backend::kFaulty) specs.push_back(s);
+std::vector<platforms::PlatformSpec> platforms_to_probe(std::string* device_note,
+                                                        std::string* vulkan_note) {
+  std::vector<platforms::PlatformSpec> specs;
+  for (const platforms::PlatformSpec& s : platforms::platform_specs())
+    if (s.backend != platforms::Backend::kFaulty) specs.push_back(s);
   try {
-    for (const EglDevice& d : list_egl_devices_in_child()) {
-      PlatformSpec s = *find_platform("egl-device:" + std::to_string(d.index));
+    for (const platforms::EglDevice& d : platforms::list_egl_devices_in_child()) {
+      platforms::PlatformSpec s =
+          *platforms::find_platform("egl-device:" + std::to_string(d.index));
       s.description = "EGL device " + std::to_string(d.index) +
                       (d.software ? ": Mesa's software device (EGL_MESA_device_software)"
                                   : d.drm_node.empty() ? "" : " (" + d.drm_node + ")");
@@ -32,8 +34,8 @@ std::vector<PlatformSpec> platforms_to_probe(std::string* device_note, std::stri
   }
   try {
     // in a child: this process forks for every probe after this (platform_probe.h)
-    for (const VulkanDeviceInfo& d : list_vulkan_devices_in_child()) {
-      PlatformSpec s = *find_platform("vk-device:" + std::to_string(d.index));
+    for (const platforms::VulkanDeviceInfo& d : platforms::list_vulkan_devices_in_child()) {
+      platforms::PlatformSpec s = *platforms::find_platform("vk-device:" + std::to_string(d.index));
       s.description = "Vulkan device " + std::to_string(d.index) + " (" + d.type + ")";
       specs.push_back(s);
     }
@@ -67,7 +69,8 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
     if (embedded_default) {
       std::string reasons;
       for (const char* name : {"osmesa-llvmpipe", "egl-llvmpipe"}) {
-        const PlatformProbe p = probe_platform(*find_platform(name));
+        const platforms::PlatformProbe p =
+            platforms::probe_platform(*platforms::find_platform(name));
         if (p.available) {
           std::printf("%s\n", name);
           exit_code = kExitOk;
@@ -78,19 +81,21 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
       throw UserError("neither embedded platform can draw on this machine:" + reasons);
     }
     std::string device_note, vulkan_note;
-    std::vector<PlatformSpec> specs;
+    std::vector<platforms::PlatformSpec> specs;
     if (names.empty()) {
       specs = platforms_to_probe(&device_note, &vulkan_note);
     } else {
       for (const std::string& n : names) {
-        const std::optional<PlatformSpec> s = find_platform(n);
-        if (!s) throw UserError("unknown platform '" + n + "' (allowed: " + platform_names() + ")");
+        const std::optional<platforms::PlatformSpec> s = platforms::find_platform(n);
+        if (!s)
+          throw UserError("unknown platform '" + n + "' (allowed: " + platforms::platform_names() +
+                          ")");
         specs.push_back(*s);
       }
     }
     nlohmann::json list = nlohmann::json::array();
-    for (const PlatformSpec& spec : specs) {
-      const PlatformProbe p = probe_platform(spec);
+    for (const platforms::PlatformSpec& spec : specs) {
+      const platforms::PlatformProbe p = platforms::probe_platform(spec);
       nlohmann::json j = {{"name", spec.name},
                           {"description", spec.description},
                           {"available", p.available}};
@@ -110,7 +115,7 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
         }
       } else {
         j["reason"] = p.reason;
-        j["packages"] = packages_for(spec);
+        j["packages"] = platforms::packages_for(spec);
       }
       list.push_back(j);
     }

@@ -60,34 +60,36 @@ void stream_records(const RecordsOptions& o) {
     throw UserError(o.dir + ": no experiment.toml (expected a run directory written by "
                     "`renderaudit run`)");
   const Experiment exp = load_experiment(toml);
-  const std::optional<RecordsFormat> format = parse_records_format(o.format);
+  const std::optional<metrics::RecordsFormat> format = metrics::parse_records_format(o.format);
   if (!format) throw UserError("--format " + o.format + ": unknown (allowed: csv, csv.zst)");
-  if (*format == RecordsFormat::kCsvZst && ::isatty(STDOUT_FILENO))
+  if (*format == metrics::RecordsFormat::kCsvZst && ::isatty(STDOUT_FILENO))
     throw UserError("--format csv.zst writes compressed bytes: redirect or pipe stdout");
 
   check_names(o.platforms, exp.platforms, "--platform", o.dir);
   check_names(o.kinds, {"point", "line", "triangle"}, "--kind", o.dir);
   std::vector<std::string> view_ids;
-  for (const View& v : exp.views) view_ids.push_back(std::to_string(v.id));
+  for (const geometry::View& v : exp.views) view_ids.push_back(std::to_string(v.id));
   std::vector<std::string> asked_views;
   for (int v : o.views) asked_views.push_back(std::to_string(v));
   check_names(asked_views, view_ids, "--view", o.dir);
-  std::vector<RecordColumn> columns;
+  std::vector<metrics::RecordColumn> columns;
   std::vector<std::string> all_columns;
-  for (std::size_t c = 0; c < kRecordColumnCount; ++c)
-    all_columns.push_back(record_column_name(static_cast<RecordColumn>(c)));
+  for (std::size_t c = 0; c < metrics::kRecordColumnCount; ++c)
+    all_columns.push_back(metrics::record_column_name(static_cast<metrics::RecordColumn>(c)));
   for (const std::string& name : o.columns) {
-    const std::optional<RecordColumn> c = find_record_column(name);
+    const std::optional<metrics::RecordColumn> c = metrics::find_record_column(name);
     if (!c) throw UserError("--columns " + name + ": no such records column (allowed: " +
                             joined(all_columns) + ")");
     columns.push_back(*c);
   }
   if (columns.empty())
-    for (std::size_t c = 0; c < kRecordColumnCount; ++c) columns.push_back(static_cast<RecordColumn>(c));
+    for (std::size_t c = 0; c < metrics::kRecordColumnCount; ++c)
+      columns.push_back(static_cast<metrics::RecordColumn>(c));
 
   std::ios::sync_with_stdio(false);
   std::unique_ptr<ZstdFrameWriter> zstd;
-  if (*format == RecordsFormat::kCsvZst) zstd = std::make_unique<ZstdFrameWriter>(std::cout);
+  if (*format == metrics::RecordsFormat::kCsvZst)
+    zstd = std::make_unique<ZstdFrameWriter>(std::cout);
   std::string text;  // written out every few MiB (one zstd frame each)
   const auto flush = [&] {
     if (zstd) {
@@ -99,19 +101,19 @@ void stream_records(const RecordsOptions& o) {
     text.clear();
   };
   for (std::size_t i = 0; i < columns.size(); ++i)
-    text += (i ? "," : "") + std::string(record_column_name(columns[i]));
+    text += (i ? "," : "") + std::string(metrics::record_column_name(columns[i]));
   text += '\n';
   std::size_t missing = 0;
   for (const Shard& s : plan_shards(exp)) {
-    if (!wanted(o.platforms, s.platform) || !wanted(o.kinds, std::string(kind_name(s.kind))) ||
-        !wanted(o.views, s.view))
+    if (!wanted(o.platforms, s.platform) ||
+        !wanted(o.kinds, std::string(geometry::kind_name(s.kind))) || !wanted(o.views, s.view))
       continue;
     const std::string path = s.records_path(o.dir);
     if (!std::filesystem::exists(path)) {
       ++missing;
       continue;
     }
-    for_each_record_row(path, [&](const RecordRow& row) {
+    metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) {
       for (std::size_t i = 0; i < columns.size(); ++i) {
         if (i) text += ',';
         text += row.cell(columns[i]);

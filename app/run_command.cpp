@@ -114,8 +114,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
     for (const auto& f : r.failures) std::printf("  worker failed: %s: %s\n", f.shard.c_str(), f.reason.c_str());
     for (const auto& f : r.failed_primitives)
       std::printf("  primitive %llu of %s recorded as %s: %s\n",
-                  static_cast<unsigned long long>(f.index), f.shard.c_str(), status_name(f.status),
-                  f.reason.c_str());
+                  static_cast<unsigned long long>(f.index), f.shard.c_str(),
+                  metrics::status_name(f.status), f.reason.c_str());
     if (!r.wrong_renderer.empty()) {
       std::printf("stopped: %s\n", r.wrong_renderer.c_str());
       exit_code = kExitUsage;

@@ -26,12 +26,12 @@ std::vector<std::string> split_csv_line(const std::string& line) {
 
 // The measured columns of the record (status onwards), as the records file would hold them;
 // columns that do not apply (empty cells) are left out.
-std::string measured_fields(const Record& r) {
+std::string measured_fields(const metrics::Record& r) {
   std::ostringstream row;
-  write_record(row, r);
+  metrics::write_record(row, r);
   std::string line = row.str();
   if (!line.empty() && line.back() == '\n') line.pop_back();
-  const std::vector<std::string> names = split_csv_line(records_header());
+  const std::vector<std::string> names = split_csv_line(metrics::records_header());
   const std::vector<std::string> values = split_csv_line(line);
   std::string out;
   bool measured = false;
@@ -84,7 +84,7 @@ void register_show_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, audit::kMaxImageScale));
   cmd->callback([&exit_code] {
     const audit::PrimitiveImage im = audit::show_primitive(q);
-    const View& v = im.view;
+    const geometry::View& v = im.view;
     std::printf("wrote %s (%d x %d px: window pixels x %d-%d, y %d-%d of %d x %d, %d px each)\n",
                 im.path.c_str(), im.width, im.height, im.shown.x0, im.shown.x1 - 1, im.shown.y0,
                 im.shown.y1 - 1, v.width, v.height, im.scale);

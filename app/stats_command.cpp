@@ -130,7 +130,8 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
   if (fs::is_directory(path)) {
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(fs::path(path) / "records", ec))
-      if (ra::is_records_file_name(e.path().filename().string())) files.push_back(e.path().string());
+      if (ra::metrics::is_records_file_name(e.path().filename().string()))
+        files.push_back(e.path().string());
     std::sort(files.begin(), files.end());
     if (files.empty())
       throw UserError(path + ": a directory without records/*.csv or *.csv.zst (give a CSV file or a "

@@ -27,8 +27,8 @@ void register_worker_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--records-dir", records_dir, "where the records file goes (default DIR/records)");
   cmd->callback([&exit_code] {
     const Experiment exp = load_experiment(dir + "/experiment.toml");
-    Shard shard{platform, Kind::kPoint, view, begin, end};
-    if (!parse_kind(kind, &shard.kind)) throw UserError("unknown kind '" + kind + "'");
+    Shard shard{platform, geometry::Kind::kPoint, view, begin, end};
+    if (!geometry::parse_kind(kind, &shard.kind)) throw UserError("unknown kind '" + kind + "'");
     run_shard(dir, exp, shard, records_dir);
     exit_code = kExitOk;
   });

@@ -18,7 +18,7 @@ namespace {
 bool has_records(const std::string& dir) {
   if (!fs::is_directory(dir + "/records")) return false;
   for (const auto& e : fs::directory_iterator(dir + "/records"))
-    if (ra::is_records_file_name(e.path().filename().string())) return true;
+    if (ra::metrics::is_records_file_name(e.path().filename().string())) return true;
   return false;
 }
 
@@ -227,9 +227,13 @@ AuditSummary make_summary(const AuditResult& r, const analysis::RunRecords& curr
       for (const analysis::ViewGroup* g : current.groups_of(p, kind)) {
         const auto& metrics = analysis::kind_metrics(kind);
         for (std::size_t m = 0; m < metrics.size(); ++m) {
-          MetricSummary ms{
-              pair.current, analysis::kind_name(kind), metrics[m].column, g->view_group + 1, 0, kNA,
-              kNA};
+          MetricSummary ms{pair.current,
+                           analysis::kind_name(kind),
+                           metrics[m].column,
+                           g->view_group + 1,
+                           0,
+                           metrics::kNA,
+                           metrics::kNA};
           const std::vector<double> v = g->pooled(m);
           ms.n = int64_t(v.size());
           if (!v.empty()) {

@@ -19,28 +19,28 @@ struct Row {
   PrimitiveState state;
 };
 
-double headline_value(const Record& r, Kind kind) {
+double headline_value(const metrics::Record& r, geometry::Kind kind) {
   switch (kind) {
-    case Kind::kPoint:
+    case geometry::Kind::kPoint:
       return r.pe;
-    case Kind::kLine:
+    case geometry::Kind::kLine:
       return r.lse_u;
-    case Kind::kTriangle:
+    case geometry::Kind::kTriangle:
       return r.te_u;
   }
-  return kNA;
+  return metrics::kNA;
 }
 
 // The records of one platform, kind and view of a run, ascending by index.
 std::vector<Row> read_view(const std::string& dir, const std::vector<Shard>& plan,
-                           const std::string& platform, Kind kind, int view) {
+                           const std::string& platform, geometry::Kind kind, int view) {
   std::vector<Row> rows;
   for (const Shard& s : plan) {
     if (s.platform != platform || s.kind != kind || s.view != view) continue;
     const std::string path = s.records_path(dir);
     if (!fs::exists(path)) continue;  // a missing shard: reported by missing_shards()
-    read_records(path, [&](const Record& r) {
-      if (r.platform != platform || r.kind != kind_name(kind) || r.view != view ||
+    metrics::read_records(path, [&](const metrics::Record& r) {
+      if (r.platform != platform || r.kind != geometry::kind_name(kind) || r.view != view ||
           r.index < s.begin || r.index >= s.end)
         throw UserError(path + ": holds a record of " + r.platform + " " + r.kind + " view " +
                         std::to_string(r.view) + " index " + std::to_string(r.index) +
@@ -55,11 +55,13 @@ std::vector<Row> read_view(const std::string& dir, const std::vector<Shard>& pla
   return rows;
 }
 
-bool failed_status(CaseStatus s) { return s == CaseStatus::kCrash || s == CaseStatus::kTimeout; }
+bool failed_status(metrics::CaseStatus s) {
+  return s == metrics::CaseStatus::kCrash || s == metrics::CaseStatus::kTimeout;
+}
 
 struct Task {
   std::size_t pair;
-  Kind kind;
+  geometry::Kind kind;
   int view, view_group;
 };
 
@@ -76,7 +78,7 @@ TaskResult compare_view(const std::string& baseline_dir, const std::vector<Shard
   out.counts = {t.pair, t.kind, t.view, t.view_group, 0, 0, 0, 0};
   std::vector<Row> before = read_view(baseline_dir, baseline_plan, pair.baseline, t.kind, t.view);
   if (!compare_verdicts)  // judged by other rules: only pixels, visibility and status compare
-    for (Row& r : before) r.state.conformance = Conformance::kNotCompared;
+    for (Row& r : before) r.state.conformance = metrics::Conformance::kNotCompared;
   const std::vector<Row> after = read_view(current_dir, current_plan, pair.current, t.kind, t.view);
   auto note_failure = [&](const Row& r, const char* side, const std::string& platform) {
     if (failed_status(r.state.status))
@@ -119,13 +121,13 @@ std::string PlatformPair::label() const {
   return baseline == current ? current : baseline + " vs " + current;
 }
 
-const char* headline_metric(Kind kind) {
+const char* headline_metric(geometry::Kind kind) {
   switch (kind) {
-    case Kind::kPoint:
+    case geometry::Kind::kPoint:
       return "pe";
-    case Kind::kLine:
+    case geometry::Kind::kLine:
       return "lse_u";
-    case Kind::kTriangle:
+    case geometry::Kind::kTriangle:
       return "te_u";
   }
   return "";
@@ -146,15 +148,15 @@ const char* recheck_name(Recheck r) {
 }
 
 bool states_differ(const PrimitiveState& a, const PrimitiveState& b) {
-  const bool both_judged =
-      a.conformance != Conformance::kNotCompared && b.conformance != Conformance::kNotCompared;
+  const bool both_judged = a.conformance != metrics::Conformance::kNotCompared &&
+                           b.conformance != metrics::Conformance::kNotCompared;
   return a.status != b.status || a.visibility != b.visibility || a.pixel_hash != b.pixel_hash ||
          (both_judged && a.conformance != b.conformance);
 }
 
 bool new_violation(const ChangedPrimitive& c) {
-  return c.after.conformance == Conformance::kViolation &&
-         c.before.conformance != Conformance::kViolation;
+  return c.after.conformance == metrics::Conformance::kViolation &&
+         c.before.conformance != metrics::Conformance::kViolation;
 }
 
 PrimitiveComparison compare_primitives(const std::string& baseline_dir,
@@ -169,8 +171,9 @@ PrimitiveComparison compare_primitives(const std::string& baseline_dir,
   // One task per pair, kind and view (the experiments agree on views and counts: same hash).
   std::vector<Task> tasks;
   for (std::size_t p = 0; p < pairs.size(); ++p)
-    for (Kind k : {Kind::kPoint, Kind::kLine, Kind::kTriangle})
-      for (const View& v : current_exp.views)
+    for (geometry::Kind k :
+         {geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle})
+      for (const geometry::View& v : current_exp.views)
         if (current_exp.counts[int(k)] > 0) tasks.push_back({p, k, v.id, v.group});
 
   std::vector<TaskResult> results(tasks.size());

@@ -29,17 +29,18 @@ struct PlatformPair {
 
 // The metric shown beside each changed primitive: pe (points, px), lse_u (lines, px), te_u
 // (triangles, px^2): the paper's unsigned error of the kind, in pixel units.
-const char* headline_metric(Kind kind);
+const char* headline_metric(geometry::Kind kind);
 
 // What one side's record says about a primitive (units as in the records).
 struct PrimitiveState {
-  CaseStatus status = CaseStatus::kOk;
-  Visibility visibility = Visibility::kTrueInvisible;
+  metrics::CaseStatus status = metrics::CaseStatus::kOk;
+  metrics::Visibility visibility = metrics::Visibility::kTrueInvisible;
   int64_t pixels = 0;       // lit pixels
   uint64_t pixel_hash = 0;  // FNV-1a 64 of the sorted lit pixels
-  double metric = kNA;      // headline_metric(kind); NaN when not applicable
+  double metric = metrics::kNA;  // headline_metric(kind); NaN when not applicable
   int64_t ref_diff = -1;    // pixels differing from the reference rasterizer; -1: not measured
-  Conformance conformance = Conformance::kNotCompared;  // the GL verdict (metrics/conformance.h)
+  metrics::Conformance conformance =
+      metrics::Conformance::kNotCompared;  // the GL verdict (metrics/conformance.h)
   int64_t violating_pixels = -1;
 };
 
@@ -58,7 +59,7 @@ const char* recheck_name(Recheck r);  // "not re-rendered", "still different", "
 
 struct ChangedPrimitive {
   std::size_t pair = 0;  // index into the audit's PlatformPair list
-  Kind kind = Kind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view = 0, view_group = 0;  // view 1-based; view_group 0 = A
   uint64_t index = 0;
   PrimitiveState before, after;  // baseline side, current side
@@ -71,16 +72,16 @@ struct FailedPrimitive {
   std::size_t pair = 0;
   std::string side;      // "baseline" or "current"
   std::string platform;  // the side's platform
-  Kind kind = Kind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view = 0, view_group = 0;
   uint64_t index = 0;
-  CaseStatus status = CaseStatus::kCrash;
+  metrics::CaseStatus status = metrics::CaseStatus::kCrash;
 };
 
 // Counts of one pair, kind and view.
 struct ViewCounts {
   std::size_t pair = 0;
-  Kind kind = Kind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view = 0, view_group = 0;
   uint64_t compared = 0;   // primitives with a record on both sides
   uint64_t changed = 0;    // compared, pixels / status / visibility differ (flakes included)

@@ -37,9 +37,10 @@ TEST(AuditCompare, FindsExactlyThePrimitivesWhosePixelsOrClassDiffer) {
     return point_record(exp, "reference", view, i, 1000 + i, 0.25);
   });
   write_points(b, exp, "reference", [&](int view, uint64_t i) {
-    Record r = point_record(exp, "reference", view, i, 1000 + i, 0.25);
+    metrics::Record r = point_record(exp, "reference", view, i, 1000 + i, 0.25);
     if (i == 3 || i == 15) r.pixel_hash = 7, r.pe = 0.5;                 // other pixels
-    if (i == 9) r.visibility = Visibility::kFalseInvisible, r.pe = kNA;  // other class
+    if (i == 9)
+      r.visibility = metrics::Visibility::kFalseInvisible, r.pe = metrics::kNA;  // other class
     return r;
   });
   const PrimitiveComparison c = compare_primitives(a, b, {{"reference", "reference"}}, 1);
@@ -61,17 +62,19 @@ TEST(AuditCompare, ClassesJudgedByOtherRulesAreNotCompared) {
   const std::string text = experiment_text("\"reference\"", 10, 10);
   const Experiment exp = write_run(a, text);
   write_run(b, text);
-  auto judged = [&](int view, uint64_t i, Conformance c) {
-    Record r = point_record(exp, "reference", view, i, 1000 + i, 0.25);
+  auto judged = [&](int view, uint64_t i, metrics::Conformance c) {
+    metrics::Record r = point_record(exp, "reference", view, i, 1000 + i, 0.25);
     r.conformance = c;
-    r.violating_pixels = c == Conformance::kViolation ? 1 : 0;
-    if (c == Conformance::kViolation) r.violated_rules = "point-missing";
+    r.violating_pixels = c == metrics::Conformance::kViolation ? 1 : 0;
+    if (c == metrics::Conformance::kViolation) r.violated_rules = "point-missing";
     return r;
   };
-  write_points(a, exp, "reference",
-               [&](int view, uint64_t i) { return judged(view, i, Conformance::kWithinSpec); });
+  write_points(a, exp, "reference", [&](int view, uint64_t i) {
+    return judged(view, i, metrics::Conformance::kWithinSpec);
+  });
   write_points(b, exp, "reference", [&](int view, uint64_t i) {
-    Record r = judged(view, i, i == 4 ? Conformance::kViolation : Conformance::kWithinSpec);
+    metrics::Record r = judged(
+        view, i, i == 4 ? metrics::Conformance::kViolation : metrics::Conformance::kWithinSpec);
     if (i == 7) r.pixel_hash = 3;
     return r;
   });
@@ -85,9 +88,9 @@ TEST(RunIdentity, ReadsTheConformanceRulesOfAManifestAndRefusesNonsense) {
   write_run(a, experiment_text("\"reference\"", 10, 10));
   EXPECT_EQ(load_run_identity(a).conformance_rules, 1);  // a manifest without the key
   nlohmann::json m = nlohmann::json::parse(std::ifstream(a + "/manifest.json"));
-  m["conformance_rules"] = kConformanceRulesVersion;
+  m["conformance_rules"] = metrics::kConformanceRulesVersion;
   std::ofstream(a + "/manifest.json") << m.dump();
-  EXPECT_EQ(load_run_identity(a).conformance_rules, kConformanceRulesVersion);
+  EXPECT_EQ(load_run_identity(a).conformance_rules, metrics::kConformanceRulesVersion);
   m["conformance_rules"] = "two";
   std::ofstream(a + "/manifest.json") << m.dump();
   try {
@@ -128,9 +131,9 @@ TEST(AuditCompare, CrashTimeoutAndMissingShardsAreFailures) {
   });
   write_points(b, exp, "reference",
                [&](int view, uint64_t i) {
-                 Record r = point_record(exp, "reference", view, i, i, 0.1);
-                 if (i == 4) r.status = CaseStatus::kCrash, r.pixel_hash = 0;
-                 if (i == 11) r.status = CaseStatus::kTimeout, r.pixel_hash = 0;
+                 metrics::Record r = point_record(exp, "reference", view, i, i, 0.1);
+                 if (i == 4) r.status = metrics::CaseStatus::kCrash, r.pixel_hash = 0;
+                 if (i == 11) r.status = metrics::CaseStatus::kTimeout, r.pixel_hash = 0;
                  return r;
                },
                {"reference.point.v1.15-20"});
@@ -138,10 +141,10 @@ TEST(AuditCompare, CrashTimeoutAndMissingShardsAreFailures) {
   EXPECT_TRUE(c.changed.empty());
   ASSERT_EQ(c.failed.size(), 2u);
   EXPECT_EQ(c.failed[0].index, 4u);
-  EXPECT_EQ(c.failed[0].status, CaseStatus::kCrash);
+  EXPECT_EQ(c.failed[0].status, metrics::CaseStatus::kCrash);
   EXPECT_EQ(c.failed[0].side, "current");
   EXPECT_EQ(c.failed[1].index, 11u);
-  EXPECT_EQ(c.failed[1].status, CaseStatus::kTimeout);
+  EXPECT_EQ(c.failed[1].status, metrics::CaseStatus::kTimeout);
   EXPECT_EQ(c.views.at(0).unmatched, 5u);
 
   const RunIdentity run = load_run_identity(b);

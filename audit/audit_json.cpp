@@ -15,32 +15,27 @@ using nlohmann::json;
 
 json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-json state_json(const PrimitiveState& s, Kind kind) {
-  return {{"status", status_name(s.status)},
-          {"visibility", visibility_name(s.visibility)},
+json state_json(const PrimitiveState& s, geometry::Kind kind) {
+  return {{"status", metrics::status_name(s.status)},
+          {"visibility", metrics::visibility_name(s.visibility)},
           {"pixels", s.pixels},
           {"pixel_hash", std::to_string(s.pixel_hash)},  // a string: JSON readers lose 64-bit ints
           {"metric", headline_metric(kind)},
           {"value", number_or_null(s.metric)},
           {"ref_diff", s.ref_diff >= 0 ? json(s.ref_diff) : json(nullptr)},
-          {"conformance", s.conformance == Conformance::kNotCompared
+          {"conformance", s.conformance == metrics::Conformance::kNotCompared
                               ? json(nullptr)
-                              : json(conformance_name(s.conformance))},
+                              : json(metrics::conformance_name(s.conformance))},
           {"violating_pixels", s.violating_pixels >= 0 ? json(s.violating_pixels) : json(nullptr)}};
 }
 
 json changed_json(const AuditResult& r, const ChangedPrimitive& c) {
   const PlatformPair& p = r.pairs[c.pair];
-  json j = {{"baseline_platform", p.baseline},
-            {"platform", p.current},
-            {"kind", kind_name(c.kind)},
-            {"view", c.view},
-            {"view_group", c.view_group},
-            {"index", c.index},
-            {"recheck", recheck_name(c.recheck)},
-            {"before", state_json(c.before, c.kind)},
-            {"after", state_json(c.after, c.kind)},
-            {"show", show_command(r, c)}};
+  json j = {{"baseline_platform", p.baseline},      {"platform", p.current},
+            {"kind", geometry::kind_name(c.kind)},  {"view", c.view},
+            {"view_group", c.view_group},           {"index", c.index},
+            {"recheck", recheck_name(c.recheck)},   {"before", state_json(c.before, c.kind)},
+            {"after", state_json(c.after, c.kind)}, {"show", show_command(r, c)}};
   j["rerender_pixel_hash"] = c.recheck == Recheck::kStillDifferent || c.recheck == Recheck::kFlake
                                  ? json(std::to_string(c.rerender_hash))
                                  : json(nullptr);
@@ -147,7 +142,7 @@ json audit_json(const AuditResult& r) {
     const uint64_t f = flakes[{v.pair, int(v.kind), v.view}];
     views.push_back({{"baseline_platform", r.pairs[v.pair].baseline},
                      {"platform", r.pairs[v.pair].current},
-                     {"kind", kind_name(v.kind)},
+                     {"kind", geometry::kind_name(v.kind)},
                      {"view", v.view},
                      {"view_group", v.view_group},
                      {"group", analysis::view_group_label(v.view_group)},
@@ -171,7 +166,7 @@ json audit_json(const AuditResult& r) {
   json batches = json::array();
   for (const RerenderBatch& b : r.flakes.failed_batches)
     batches.push_back({{"platform", b.platform},
-                       {"kind", kind_name(b.kind)},
+                       {"kind", geometry::kind_name(b.kind)},
                        {"view", b.view},
                        {"begin", b.begin},
                        {"end", b.end},
@@ -192,15 +187,15 @@ json audit_json(const AuditResult& r) {
   for (const FailedPrimitive& f : r.primitives.failed)
     failed.push_back({{"side", f.side},
                       {"platform", f.platform},
-                      {"kind", kind_name(f.kind)},
+                      {"kind", geometry::kind_name(f.kind)},
                       {"view", f.view},
                       {"view_group", f.view_group},
                       {"index", f.index},
-                      {"status", status_name(f.status)}});
+                      {"status", metrics::status_name(f.status)}});
   for (const MissingShard& m : r.missing)
     missing.push_back({{"side", m.side},
                        {"platform", m.platform},
-                       {"kind", kind_name(m.kind)},
+                       {"kind", geometry::kind_name(m.kind)},
                        {"view", m.view},
                        {"view_group", m.view_group},
                        {"begin", m.begin},

@@ -85,7 +85,7 @@ std::string group_name(const GroupOutcome& g) {
 
 Case group_case(const AuditResult& r, const GroupOutcome& g) {
   Case c;
-  c.classname = class_prefix(r.pairs[g.pair]) + "." + kind_name(g.kind);
+  c.classname = class_prefix(r.pairs[g.pair]) + "." + geometry::kind_name(g.kind);
   c.name = group_name(g);
   c.properties = {{"compared", std::to_string(g.compared)},
                   {"changed", std::to_string(g.changed)},
@@ -94,13 +94,13 @@ Case group_case(const AuditResult& r, const GroupOutcome& g) {
                   {"missing_shards", std::to_string(g.missing_shards)},
                   {"significant_tests", std::to_string(g.significant_tests)}};
   std::ostringstream text, sysout;
-  auto in_group = [&](std::size_t pair, Kind kind, int group) {
+  auto in_group = [&](std::size_t pair, geometry::Kind kind, int group) {
     return pair == g.pair && kind == g.kind && group == g.view_group;
   };
   for (const ChangedPrimitive& p : r.primitives.changed) {
     if (!in_group(p.pair, p.kind, p.view_group)) continue;
     std::ostringstream line;
-    line << kind_name(p.kind) << " view " << p.view << " index " << p.index << ": pixels "
+    line << geometry::kind_name(p.kind) << " view " << p.view << " index " << p.index << ": pixels "
          << p.before.pixels << " -> " << p.after.pixels << ", " << headline_metric(p.kind) << " "
          << format_number(p.before.metric, 6) << " -> " << format_number(p.after.metric, 6) << " ("
          << recheck_name(p.recheck) << "); " << show_command(r, p) << "\n";
@@ -109,15 +109,15 @@ Case group_case(const AuditResult& r, const GroupOutcome& g) {
   }
   for (const FailedPrimitive& f : r.primitives.failed)
     if (in_group(f.pair, f.kind, f.view_group))
-      text << status_name(f.status) << ": " << f.side << " " << f.platform << " view " << f.view
-           << " index " << f.index << "\n";
+      text << metrics::status_name(f.status) << ": " << f.side << " " << f.platform << " view "
+           << f.view << " index " << f.index << "\n";
   for (const MissingShard& m : r.missing)
     if (m.kind == g.kind && m.view_group == g.view_group &&
         m.platform == (m.side == "baseline" ? r.pairs[g.pair].baseline : r.pairs[g.pair].current))
       text << "missing shard: " << m.side << " " << m.id << ": " << m.reason << "\n";
   for (const DistributionComparison& d : r.distributions.comparisons)
     for (const DistributionTest& t : d.tests)
-      if (t.significant && in_group(d.pair, Kind(int(d.kind)), d.view_group))
+      if (t.significant && in_group(d.pair, geometry::Kind(int(d.kind)), d.view_group))
         sysout << "significant: " << analysis::kind_metrics(d.kind)[d.metric].column << " "
                << t.test << " (" << t.data << ") p = " << format_number(t.outcome.p_value, 3)
                << ", Holm p = " << format_number(t.p_adjusted, 3) << "; median "
@@ -143,7 +143,7 @@ Case group_case(const AuditResult& r, const GroupOutcome& g) {
 // baseline records did not break (metrics/conformance.h).
 Case conformance_case(const AuditResult& r, const GroupOutcome& g) {
   Case c;
-  c.classname = class_prefix(r.pairs[g.pair]) + "." + kind_name(g.kind);
+  c.classname = class_prefix(r.pairs[g.pair]) + "." + geometry::kind_name(g.kind);
   c.name = "conformance, " + group_name(g);
   c.properties = {{"new_violations", std::to_string(g.new_violations)}};
   if (g.new_violations == 0) return c;
@@ -151,7 +151,7 @@ Case conformance_case(const AuditResult& r, const GroupOutcome& g) {
   for (const ChangedPrimitive& p : r.primitives.changed)
     if (p.pair == g.pair && p.kind == g.kind && p.view_group == g.view_group &&
         p.recheck != Recheck::kFlake && new_violation(p))
-      text << kind_name(p.kind) << " view " << p.view << " index " << p.index << ": "
+      text << geometry::kind_name(p.kind) << " view " << p.view << " index " << p.index << ": "
            << p.after.violating_pixels << " violating pixel(s); " << show_command(r, p) << "\n";
   c.failure_type = "violation";
   c.failure_message = std::to_string(g.new_violations) +

@@ -33,9 +33,9 @@ std::string arrow(const std::string& a, const std::string& b) {
 
 // "violation (3 px: polygon-edge)", "within-spec", "n/a" (no verdict).
 std::string verdict_text(const PrimitiveState& s) {
-  if (s.conformance == Conformance::kNotCompared) return "n/a";
-  std::string t = conformance_name(s.conformance);
-  if (s.conformance == Conformance::kViolation)
+  if (s.conformance == metrics::Conformance::kNotCompared) return "n/a";
+  std::string t = metrics::conformance_name(s.conformance);
+  if (s.conformance == metrics::Conformance::kViolation)
     t += " (" + std::to_string(s.violating_pixels) + " px)";
   return t;
 }
@@ -43,14 +43,16 @@ std::string verdict_text(const PrimitiveState& s) {
 std::string state_line(const ChangedPrimitive& c) {
   const std::string metric = headline_metric(c.kind);
   auto diff = [](int64_t d) { return d >= 0 ? std::to_string(d) : std::string("n/a"); };
-  return "status " + arrow(status_name(c.before.status), status_name(c.after.status)) +
+  return "status " +
+         arrow(metrics::status_name(c.before.status), metrics::status_name(c.after.status)) +
          ", visibility " +
-         arrow(visibility_name(c.before.visibility), visibility_name(c.after.visibility)) +
+         arrow(metrics::visibility_name(c.before.visibility),
+               metrics::visibility_name(c.after.visibility)) +
          ", pixels " + arrow(std::to_string(c.before.pixels), std::to_string(c.after.pixels)) +
          ", " + metric + " " +
          arrow(format_number(c.before.metric, 6), format_number(c.after.metric, 6)) +
-         ", ref_diff " + arrow(diff(c.before.ref_diff), diff(c.after.ref_diff)) +
-         ", conformance " + arrow(verdict_text(c.before), verdict_text(c.after));
+         ", ref_diff " + arrow(diff(c.before.ref_diff), diff(c.after.ref_diff)) + ", conformance " +
+         arrow(verdict_text(c.before), verdict_text(c.after));
 }
 
 // New GL violations first: the one thing a driver team must not miss.
@@ -60,8 +62,8 @@ void new_violations(std::ostream& md, const AuditResult& r) {
   for (const ChangedPrimitive& c : r.primitives.changed) {
     if (c.recheck == Recheck::kFlake || !new_violation(c)) continue;
     if (++total > kMarkdownListed) continue;
-    md << "- " << r.pairs[c.pair].label() << " " << kind_name(c.kind) << ", view " << c.view
-       << " (group " << analysis::view_group_label(c.view_group) << "), index " << c.index
+    md << "- " << r.pairs[c.pair].label() << " " << geometry::kind_name(c.kind) << ", view "
+       << c.view << " (group " << analysis::view_group_label(c.view_group) << "), index " << c.index
        << ": " << verdict_text(c.before) << " -> " << verdict_text(c.after) << "  \n  `"
        << show_command(r, c) << "`\n";
   }
@@ -80,9 +82,9 @@ void list_primitives(std::ostream& md, const AuditResult& r, bool flakes) {
     if ((c.recheck == Recheck::kFlake) != flakes) continue;
     if (++total > kMarkdownListed) continue;
     ++shown;
-    md << "- " << r.pairs[c.pair].label() << " " << kind_name(c.kind) << ", view " << c.view
-       << " (group " << analysis::view_group_label(c.view_group) << "), index " << c.index << ": "
-       << state_line(c) << "; re-render: " << recheck_name(c.recheck) << "  \n  `"
+    md << "- " << r.pairs[c.pair].label() << " " << geometry::kind_name(c.kind) << ", view "
+       << c.view << " (group " << analysis::view_group_label(c.view_group) << "), index " << c.index
+       << ": " << state_line(c) << "; re-render: " << recheck_name(c.recheck) << "  \n  `"
        << show_command(r, c) << "`\n";
   }
   if (total == 0)
@@ -128,10 +130,10 @@ void counts(std::ostream& md, const AuditResult& r) {
         "shards | significant tests | outcome |\n"
         "| :--- | :--- | :---: | :--- | ---: | ---: | ---: | ---: | ---: | ---: | :--- |\n";
   for (const GroupOutcome& g : group_outcomes(r))
-    md << "| " << cell(r.pairs[g.pair].label()) << " | " << kind_name(g.kind) << " | " << g.label
-       << " | " << views_text(g.views) << " | " << g.compared << " | " << g.changed << " | "
-       << g.flakes << " | " << g.failed << " | " << g.missing_shards << " | " << g.significant_tests
-       << " | " << verdict_name(g.verdict()) << " |\n";
+    md << "| " << cell(r.pairs[g.pair].label()) << " | " << geometry::kind_name(g.kind) << " | "
+       << g.label << " | " << views_text(g.views) << " | " << g.compared << " | " << g.changed
+       << " | " << g.flakes << " | " << g.failed << " | " << g.missing_shards << " | "
+       << g.significant_tests << " | " << verdict_name(g.verdict()) << " |\n";
   md << "\nPer view: `audit.json` key `views`. A primitive is changed when its lit pixels "
         "(records' "
         "`pixel_hash`), its status or its visibility class differ.\n\n";
@@ -242,20 +244,21 @@ void failures(std::ostream& md, const AuditResult& r) {
   std::size_t shown = 0;
   for (const FailedPrimitive& f : r.primitives.failed)
     if (shown++ < kMarkdownListed)
-      md << "- " << status_name(f.status) << ": " << f.side << " " << f.platform << " "
-         << kind_name(f.kind) << ", view " << f.view << ", index " << f.index << "\n";
+      md << "- " << metrics::status_name(f.status) << ": " << f.side << " " << f.platform << " "
+         << geometry::kind_name(f.kind) << ", view " << f.view << ", index " << f.index << "\n";
   if (shown > kMarkdownListed)
     md << "- ... " << shown - kMarkdownListed << " more crash/timeout records (`audit.json`)\n";
   for (const MissingShard& m : r.missing)
-    md << "- missing shard: " << m.side << " " << m.id << " (" << kind_name(m.kind) << ", view "
-       << m.view << ", indices " << m.begin << " to " << m.end - 1 << "): " << m.reason << "\n";
+    md << "- missing shard: " << m.side << " " << m.id << " (" << geometry::kind_name(m.kind)
+       << ", view " << m.view << ", indices " << m.begin << " to " << m.end - 1 << "): " << m.reason
+       << "\n";
   for (const ManifestFailure& m : r.manifest_failures)
     if (m.outcome == FailureOutcome::kUnknown)
       md << "- manifest: " << m.side << " " << m.shard
          << " (not a shard of the experiment): " << m.reason << "\n";
   for (const RerenderBatch& b : r.flakes.failed_batches)
-    md << "- re-render of " << b.platform << " " << kind_name(b.kind) << ", view " << b.view
-       << ", indices " << b.begin << " to " << b.end - 1 << ": " << b.error << "\n";
+    md << "- re-render of " << b.platform << " " << geometry::kind_name(b.kind) << ", view "
+       << b.view << ", indices " << b.begin << " to " << b.end - 1 << ": " << b.error << "\n";
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ Verdict GroupOutcome::verdict() const {
 
 std::vector<GroupOutcome> group_outcomes(const AuditResult& r) {
   std::map<std::tuple<std::size_t, int, int>, GroupOutcome> groups;
-  auto at = [&](std::size_t pair, Kind kind, int group) -> GroupOutcome& {
+  auto at = [&](std::size_t pair, geometry::Kind kind, int group) -> GroupOutcome& {
     GroupOutcome& g = groups[{pair, int(kind), group}];
     g.pair = pair, g.kind = kind, g.view_group = group;
     g.label = analysis::view_group_label(group);
@@ -52,7 +52,7 @@ std::vector<GroupOutcome> group_outcomes(const AuditResult& r) {
       }
   for (const DistributionComparison& c : r.distributions.comparisons)
     for (const DistributionTest& t : c.tests)
-      at(c.pair, Kind(int(c.kind)), c.view_group).significant_tests += t.significant;
+      at(c.pair, geometry::Kind(int(c.kind)), c.view_group).significant_tests += t.significant;
   std::vector<GroupOutcome> out;
   for (auto& [k, g] : groups) {
     std::sort(g.views.begin(), g.views.end());
@@ -72,8 +72,8 @@ std::string shell_quote(const std::string& s) {
 
 std::string show_command(const AuditResult& r, const ChangedPrimitive& c) {
   return "renderaudit show " + shell_quote(r.current.dir) + " --platform " +
-         shell_quote(r.pairs[c.pair].current) + " --kind " + kind_name(c.kind) + " --view " +
-         std::to_string(c.view) + " --index " + std::to_string(c.index);
+         shell_quote(r.pairs[c.pair].current) + " --kind " + geometry::kind_name(c.kind) +
+         " --view " + std::to_string(c.view) + " --index " + std::to_string(c.index);
 }
 
 std::string format_number(double v, int significant) {
@@ -93,14 +93,16 @@ std::string changed_primitives_csv(const AuditResult& r) {
   auto diff = [](int64_t d) { return d >= 0 ? std::to_string(d) : std::string(); };
   for (const ChangedPrimitive& c : r.primitives.changed) {
     const bool rerendered = c.recheck == Recheck::kStillDifferent || c.recheck == Recheck::kFlake;
-    out << r.pairs[c.pair].baseline << ',' << r.pairs[c.pair].current << ',' << kind_name(c.kind)
-        << ',' << c.view << ',' << c.view_group << ',' << c.index << ',' << recheck_name(c.recheck)
-        << ',' << status_name(c.before.status) << ',' << status_name(c.after.status) << ','
-        << visibility_name(c.before.visibility) << ',' << visibility_name(c.after.visibility) << ','
-        << c.before.pixels << ',' << c.after.pixels << ',' << headline_metric(c.kind) << ','
-        << value(c.before.metric) << ',' << value(c.after.metric) << ',' << diff(c.before.ref_diff)
-        << ',' << diff(c.after.ref_diff) << ',' << c.before.pixel_hash << ',' << c.after.pixel_hash
-        << ',' << (rerendered ? std::to_string(c.rerender_hash) : "") << '\n';
+    out << r.pairs[c.pair].baseline << ',' << r.pairs[c.pair].current << ','
+        << geometry::kind_name(c.kind) << ',' << c.view << ',' << c.view_group << ',' << c.index
+        << ',' << recheck_name(c.recheck) << ',' << metrics::status_name(c.before.status) << ','
+        << metrics::status_name(c.after.status) << ','
+        << metrics::visibility_name(c.before.visibility) << ','
+        << metrics::visibility_name(c.after.visibility) << ',' << c.before.pixels << ','
+        << c.after.pixels << ',' << headline_metric(c.kind) << ',' << value(c.before.metric) << ','
+        << value(c.after.metric) << ',' << diff(c.before.ref_diff) << ',' << diff(c.after.ref_diff)
+        << ',' << c.before.pixel_hash << ',' << c.after.pixel_hash << ','
+        << (rerendered ? std::to_string(c.rerender_hash) : "") << '\n';
   }
   return out.str();
 }

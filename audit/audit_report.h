@@ -29,7 +29,7 @@ constexpr std::size_t kJsonListed = 10000;   // ... in audit.json (all in change
 // The outcome of one pair x kind x view group: what its JUnit testcase and counts row say.
 struct GroupOutcome {
   std::size_t pair = 0;
-  Kind kind = Kind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view_group = 0;
   std::string label;       // "A", ...
   std::vector<int> views;  // view numbers of the group, ascending

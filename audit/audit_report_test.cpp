@@ -17,12 +17,12 @@ AuditResult result_with(std::vector<Recheck> changes) {
   r.pairs = {{"osmesa-llvmpipe", "osmesa-llvmpipe"}};
   r.baseline_drivers = {{"osmesa-llvmpipe", "llvmpipe (LLVM 15)", "Mesa 22.3.6"}};
   r.current_drivers = {{"osmesa-llvmpipe", "llvmpipe (LLVM 16)", "Mesa 23.0.0"}};
-  r.primitives.views = {{0, Kind::kLine, 1, 0, 100, uint64_t(changes.size()), 0, 0},
-                        {0, Kind::kLine, 2, 0, 100, 0, 0, 0}};
+  r.primitives.views = {{0, geometry::Kind::kLine, 1, 0, 100, uint64_t(changes.size()), 0, 0},
+                        {0, geometry::Kind::kLine, 2, 0, 100, 0, 0, 0}};
   uint64_t index = 10;
   for (Recheck c : changes) {
     ChangedPrimitive p;
-    p.kind = Kind::kLine, p.view = 1, p.index = index++;
+    p.kind = geometry::Kind::kLine, p.view = 1, p.index = index++;
     p.before.pixel_hash = 1, p.after.pixel_hash = 2, p.before.pixels = 5, p.after.pixels = 6;
     p.before.metric = 0.25, p.after.metric = 0.5;
     p.recheck = c;
@@ -62,12 +62,12 @@ TEST(AuditVerdict, PersistingOrUncheckedDifferencesAreChanges) {
 // Failures win over changes: crash records, missing shards, renderer mismatches.
 TEST(AuditVerdict, FailuresWin) {
   AuditResult crash = result_with({Recheck::kStillDifferent});
-  crash.primitives.failed.push_back(
-      {0, "current", "osmesa-llvmpipe", Kind::kLine, 2, 0, 7, CaseStatus::kCrash});
+  crash.primitives.failed.push_back({0, "current", "osmesa-llvmpipe", geometry::Kind::kLine, 2, 0,
+                                     7, metrics::CaseStatus::kCrash});
   decide_verdict(crash);
   EXPECT_EQ(crash.verdict, Verdict::kFailed);
   AuditResult missing = result_with({});
-  missing.missing.push_back({"current", "osmesa-llvmpipe", Kind::kLine, 1, 0, 0, 10,
+  missing.missing.push_back({"current", "osmesa-llvmpipe", geometry::Kind::kLine, 1, 0, 0, 10,
                              "osmesa-llvmpipe.line.v1.0-10", "no records file"});
   decide_verdict(missing);
   EXPECT_EQ(missing.verdict, Verdict::kFailed);
@@ -117,11 +117,11 @@ TEST(AuditReport, JunitHasOneCasePerGroup) {
 // fails the group's conformance testcase; one that already broke it in the baseline does not.
 TEST(AuditReport, NewViolationsComeFirstAndFailTheirConformanceCase) {
   AuditResult r = result_with({Recheck::kStillDifferent, Recheck::kStillDifferent});
-  r.primitives.changed[0].before.conformance = Conformance::kWithinSpec;
-  r.primitives.changed[0].after.conformance = Conformance::kViolation;
+  r.primitives.changed[0].before.conformance = metrics::Conformance::kWithinSpec;
+  r.primitives.changed[0].after.conformance = metrics::Conformance::kViolation;
   r.primitives.changed[0].after.violating_pixels = 3;
-  r.primitives.changed[1].before.conformance = Conformance::kViolation;
-  r.primitives.changed[1].after.conformance = Conformance::kViolation;
+  r.primitives.changed[1].before.conformance = metrics::Conformance::kViolation;
+  r.primitives.changed[1].after.conformance = metrics::Conformance::kViolation;
   decide_verdict(r);
   const std::vector<GroupOutcome> g = group_outcomes(r);
   ASSERT_EQ(g.size(), 1u);
@@ -148,10 +148,10 @@ TEST(AuditReport, NewViolationsComeFirstAndFailTheirConformanceCase) {
 TEST(AuditCompare, AChangeOfClassIsAChangeWhenBothSidesHaveOne) {
   PrimitiveState a, b;
   a.pixel_hash = b.pixel_hash = 7;
-  a.conformance = Conformance::kExact;
-  b.conformance = Conformance::kSnapped;
+  a.conformance = metrics::Conformance::kExact;
+  b.conformance = metrics::Conformance::kSnapped;
   EXPECT_TRUE(states_differ(a, b));
-  a.conformance = Conformance::kNotCompared;
+  a.conformance = metrics::Conformance::kNotCompared;
   EXPECT_FALSE(states_differ(a, b));
 }
 

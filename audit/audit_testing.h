@@ -57,16 +57,16 @@ inline Experiment write_run(const std::string& dir, const std::string& text,
 }
 
 // A true-visible point record of view `view` of `exp` with lit-pixel hash `hash` and PE `pe`.
-inline Record point_record(const Experiment& exp, const std::string& platform, int view,
-                           uint64_t index, uint64_t hash, double pe) {
-  const View& v = exp.views.at(std::size_t(view - 1));
-  Record r;
+inline metrics::Record point_record(const Experiment& exp, const std::string& platform, int view,
+                                    uint64_t index, uint64_t hash, double pe) {
+  const geometry::View& v = exp.views.at(std::size_t(view - 1));
+  metrics::Record r;
   r.platform = platform;
   r.view = v.id, r.view_group = v.group, r.orientation = v.orientation;
   r.fov_deg = v.fov_deg, r.width = v.width, r.height = v.height, r.near = v.near, r.far = v.far;
   r.kind = "point";
   r.index = index;
-  r.visibility = Visibility::kTrueVisible;
+  r.visibility = metrics::Visibility::kTrueVisible;
   r.pixels = 1;
   r.pe = pe;
   r.pe_norm = pe / 32;
@@ -79,16 +79,16 @@ inline Record point_record(const Experiment& exp, const std::string& platform, i
 // Writes every planned point shard of `platform` in DIR, one record per index made by `make`
 // (index -> record); shards listed in `skip` (by id) are left out.
 inline void write_points(const std::string& dir, const Experiment& exp, const std::string& platform,
-                         const std::function<Record(int view, uint64_t index)>& make,
+                         const std::function<metrics::Record(int view, uint64_t index)>& make,
                          const std::vector<std::string>& skip = {}) {
   for (const Shard& s : plan_shards(exp)) {
-    if (s.platform != platform || s.kind != Kind::kPoint) continue;
+    if (s.platform != platform || s.kind != geometry::Kind::kPoint) continue;
     bool skipped = false;
     for (const auto& id : skip) skipped = skipped || id == s.id();
     if (skipped) continue;
-    std::ofstream out(s.records_path(dir, RecordsFormat::kCsv));
-    out << records_header() << '\n';
-    for (uint64_t i = s.begin; i < s.end; ++i) write_record(out, make(s.view, i));
+    std::ofstream out(s.records_path(dir, metrics::RecordsFormat::kCsv));
+    out << metrics::records_header() << '\n';
+    for (uint64_t i = s.begin; i < s.end; ++i) metrics::write_record(out, make(s.view, i));
   }
 }
 

@@ -155,7 +155,7 @@ DistributionAudit audit_distributions(const analysis::RunRecords& baseline,
 std::vector<std::pair<std::string, uint64_t>> class_counts(const analysis::VisibilityCounts& c) {
   std::vector<std::pair<std::string, uint64_t>> out;
   for (int v = 0; v < int(c.by_class.size()); ++v)
-    out.push_back({visibility_name(Visibility(v)), c.by_class[std::size_t(v)]});
+    out.push_back({metrics::visibility_name(metrics::Visibility(v)), c.by_class[std::size_t(v)]});
   out.push_back({"invalid", c.invalid});
   out.push_back({"crash", c.crash});
   out.push_back({"timeout", c.timeout});

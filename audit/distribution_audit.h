@@ -53,7 +53,8 @@ struct DistributionComparison {
   std::size_t metric = 0;  // index into analysis::kind_metrics(kind)
   std::size_t n_before = 0, n_after = 0;
   // HF6 median and IQR, metric units; NaN when the sample is empty.
-  double median_before = kNA, median_after = kNA, iqr_before = kNA, iqr_after = kNA;
+  double median_before = metrics::kNA, median_after = metrics::kNA, iqr_before = metrics::kNA,
+         iqr_after = metrics::kNA;
   double median_difference() const { return median_after - median_before; }
   double iqr_difference() const { return iqr_after - iqr_before; }
   analysis::BoxCoxFit box_cox;  // lambda of the pooled data; applicable only when all values > 0

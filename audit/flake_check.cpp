@@ -36,8 +36,14 @@ Shard shard_of(const RerenderBatch& b) { return {b.platform, b.kind, b.view, b.b
 pid_t spawn(const std::string& program, const std::string& dir, const RerenderBatch& b,
             int attempt) {
   ChildSpec spec;
-  spec.argv = {program, "worker", dir, b.platform, kind_name(b.kind), std::to_string(b.view),
-               std::to_string(b.begin), std::to_string(b.end)};
+  spec.argv = {program,
+               "worker",
+               dir,
+               b.platform,
+               geometry::kind_name(b.kind),
+               std::to_string(b.view),
+               std::to_string(b.begin),
+               std::to_string(b.end)};
   spec.set_env = {"RA_RENDER_ATTEMPT=" + std::to_string(attempt)};
   spec.log_to(dir + "/logs/" + shard_of(b).id() + ".log");
   spec.stdin_null = true;
@@ -56,12 +62,12 @@ std::string last_log_line(const std::string& path) {
 
 }  // namespace
 
-void KnownFailures::add(const std::string& platform, Kind kind, int view, uint64_t begin,
+void KnownFailures::add(const std::string& platform, geometry::Kind kind, int view, uint64_t begin,
                         uint64_t end) {
   ranges[{platform, int(kind), view}].push_back({begin, end});
 }
 
-bool KnownFailures::hits(const std::string& platform, Kind kind, int view, uint64_t begin,
+bool KnownFailures::hits(const std::string& platform, geometry::Kind kind, int view, uint64_t begin,
                          uint64_t end) const {
   const auto it = ranges.find({platform, int(kind), view});
   if (it == ranges.end()) return false;
@@ -139,7 +145,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
       if (batch.error.empty()) batch.error = "wrote no records";
       return;
     }
-    read_records(s.records_path(dir), [&](const Record& r) {
+    metrics::read_records(s.records_path(dir), [&](const metrics::Record& r) {
       result.hashes[{batch.platform, int(batch.kind), batch.view, r.index}] = r.pixel_hash;
     });
   };
@@ -203,10 +209,12 @@ FlakeCheckSummary apply_flake_check(PrimitiveComparison& comparison,
   s.seconds = r.seconds;
   for (const RerenderBatch& b : r.batches) {
     // A re-render on another driver than the run's is no evidence either way: stop the audit.
-    if (b.error.find(kDriverMismatch) != std::string::npos)
-      throw UserError("the flake check cannot re-render " + b.platform + " with the driver that "
-                      "made " + options.run_dir + ": " +
-                      b.error.substr(b.error.find(kDriverMismatch)));
+    if (b.error.find(platforms::kDriverMismatch) != std::string::npos)
+      throw UserError("the flake check cannot re-render " + b.platform +
+                      " with the driver that "
+                      "made " +
+                      options.run_dir + ": " +
+                      b.error.substr(b.error.find(platforms::kDriverMismatch)));
     if (!b.error.empty()) s.failed_batches.push_back(b);
   }
 

@@ -42,7 +42,7 @@ namespace ra::audit {
 // One primitive to render again.
 struct RerenderRequest {
   std::string platform;
-  Kind kind = Kind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view = 0;
   uint64_t index = 0;
 };
@@ -51,8 +51,10 @@ struct RerenderRequest {
 // [begin, end) ranges known to crash or hang.
 struct KnownFailures {
   std::map<std::tuple<std::string, int, int>, std::vector<std::pair<uint64_t, uint64_t>>> ranges;
-  void add(const std::string& platform, Kind kind, int view, uint64_t begin, uint64_t end);
-  bool hits(const std::string& platform, Kind kind, int view, uint64_t begin, uint64_t end) const;
+  void add(const std::string& platform, geometry::Kind kind, int view, uint64_t begin,
+           uint64_t end);
+  bool hits(const std::string& platform, geometry::Kind kind, int view, uint64_t begin,
+            uint64_t end) const;
 };
 
 struct RerenderOptions {
@@ -67,7 +69,7 @@ struct RerenderOptions {
 // A range rendered by one child.
 struct RerenderBatch {
   std::string platform;
-  Kind kind = Kind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view = 0;
   uint64_t begin = 0, end = 0;  // [begin, end)
   std::string error;            // empty when it succeeded; "crashed (signal 11)", "timed out ..."

@@ -32,68 +32,71 @@ namespace {
 
 // Passes everything to the real platform and keeps the last rendering, so that the image shows
 // the very pixels measure_case() measured.
-class RecordingPlatform : public Platform {
+class RecordingPlatform : public platforms::Platform {
  public:
-  explicit RecordingPlatform(Platform& inner) : inner_(inner) {}
-  DriverInfo driver_info() const override { return inner_.driver_info(); }
+  explicit RecordingPlatform(platforms::Platform& inner) : inner_(inner) {}
+  platforms::DriverInfo driver_info() const override { return inner_.driver_info(); }
   double measure_timer_over_cpu() override { return inner_.measure_timer_over_cpu(); }
-  void set_view(const View& view) override { inner_.set_view(view); }
-  RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
+  void set_view(const geometry::View& view) override { inner_.set_view(view); }
+  platforms::RenderResult render(const geometry::Primitive& prim,
+                                 const geometry::PixelRegion& expected) override {
     last = inner_.render(prim, expected);
     return last;
   }
-  RenderResult last;
+  platforms::RenderResult last;
 
  private:
-  Platform& inner_;
+  platforms::Platform& inner_;
 };
 
 // The ideal projection to outline, GL window coordinates (pixels), and the window pixels it
 // touches plus the margin.
 struct IdealShape {
-  std::vector<Vec2> points;  // 1: a point (cross); 2: a segment; >= 3: a closed polygon
-  PixelRect rect;
+  std::vector<geometry::Vec2> points;  // 1: a point (cross); 2: a segment; >= 3: a closed polygon
+  geometry::PixelRect rect;
 };
 
-IdealShape ideal_shape(const View& view, const Primitive& prim) {
+IdealShape ideal_shape(const geometry::View& view, const geometry::Primitive& prim) {
   IdealShape s;
   switch (prim.kind) {
-    case Kind::kPoint: {
-      const IdealPoint p = project_point(view, prim.v[0]);
+    case geometry::Kind::kPoint: {
+      const metrics::IdealPoint p = metrics::project_point(view, prim.v[0]);
       if (p.visible) s.points = {p.window};
-      s.rect = point_region(view, p, kImageMargin);
+      s.rect = metrics::point_region(view, p, kImageMargin);
       break;
     }
-    case Kind::kLine: {
-      const ClippedSegment c = clip_segment(view, prim.v[0], prim.v[1]);
-      if (ideally_visible(c))
-        s.points = c.status == ClipStatus::kDegenerate ? std::vector<Vec2>{c.p0}
-                                                       : std::vector<Vec2>{c.p0, c.p1};
-      s.rect = bounding_rect(c, view.width, view.height, kImageMargin);
+    case geometry::Kind::kLine: {
+      const geometry::ClippedSegment c = geometry::clip_segment(view, prim.v[0], prim.v[1]);
+      if (geometry::ideally_visible(c))
+        s.points = c.status == geometry::ClipStatus::kDegenerate
+                       ? std::vector<geometry::Vec2>{c.p0}
+                       : std::vector<geometry::Vec2>{c.p0, c.p1};
+      s.rect = geometry::bounding_rect(c, view.width, view.height, kImageMargin);
       break;
     }
-    case Kind::kTriangle: {
-      const ClippedPolygon c = clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
+    case geometry::Kind::kTriangle: {
+      const geometry::ClippedPolygon c =
+          geometry::clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
       s.points = c.vertices;  // visible: the polygon; degenerate: its point or segment
-      s.rect = bounding_rect(c, view.width, view.height, kImageMargin);
+      s.rect = geometry::bounding_rect(c, view.width, view.height, kImageMargin);
       break;
     }
   }
   return s;
 }
 
-PixelRect unite(const PixelRect& a, const PixelRect& b) {
+geometry::PixelRect unite(const geometry::PixelRect& a, const geometry::PixelRect& b) {
   if (a.empty()) return b;
   if (b.empty()) return a;
   return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
 }
 
 // The pixels of `s` grown by `margin`, clamped to the window.
-PixelRect around(const PixelSet& s, int margin, int width, int height) {
+geometry::PixelRect around(const geometry::PixelSet& s, int margin, int width, int height) {
   if (s.empty()) return {};
-  PixelRect r{s.runs().front().x_begin, s.runs().front().y, s.runs().front().x_end,
-              s.runs().back().y + 1};
-  for (const PixelRun& run : s.runs())
+  geometry::PixelRect r{s.runs().front().x_begin, s.runs().front().y, s.runs().front().x_end,
+                        s.runs().back().y + 1};
+  for (const geometry::PixelRun& run : s.runs())
     r.x0 = std::min(r.x0, run.x_begin), r.x1 = std::max(r.x1, run.x_end);
   return {std::max(0, r.x0 - margin), std::max(0, r.y0 - margin), std::min(width, r.x1 + margin),
           std::min(height, r.y1 + margin)};
@@ -101,7 +104,7 @@ PixelRect around(const PixelSet& s, int margin, int width, int height) {
 
 Rgb8 darker(Rgb8 c) { return {uint8_t(c.r * 4 / 5), uint8_t(c.g * 4 / 5), uint8_t(c.b * 4 / 5)}; }
 
-void check_request(const ShowRequest& q, const Experiment& exp, Kind kind) {
+void check_request(const ShowRequest& q, const Experiment& exp, geometry::Kind kind) {
   if (q.view < 1 || q.view > int(exp.views.size()))
     throw UserError("view " + std::to_string(q.view) + " out of range (allowed: 1 to " +
                     std::to_string(exp.views.size()) + ": " + exp.path + " has " +
@@ -110,11 +113,12 @@ void check_request(const ShowRequest& q, const Experiment& exp, Kind kind) {
   const uint64_t count = exp.counts[int(kind)];
   if (count == 0)
     throw UserError("index " + std::to_string(q.index) + " out of range: " + exp.path + " has no " +
-                    kind_plural(kind) + " (primitives." + kind_plural(kind) + " = 0)");
+                    geometry::kind_plural(kind) + " (primitives." + geometry::kind_plural(kind) +
+                    " = 0)");
   if (q.index >= count)
     throw UserError("index " + std::to_string(q.index) + " out of range (allowed: 0 to " +
                     std::to_string(count - 1) + ": " + exp.path + " has " + std::to_string(count) +
-                    " " + kind_plural(kind) + " per view)");
+                    " " + geometry::kind_plural(kind) + " per view)");
   if (q.scale < 0 || q.scale > kMaxImageScale)
     throw UserError("scale " + std::to_string(q.scale) + " out of range (allowed: 1 to " +
                     std::to_string(kMaxImageScale) + ")");
@@ -142,52 +146,53 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   if (!fs::is_regular_file(toml))
     throw UserError(q.run_dir + ": not a run directory (no experiment.toml)");
   const Experiment exp = load_experiment(toml);
-  const PlatformSpec platform_spec = experiment_platform(exp, q.platform);
-  Kind kind;
-  if (!parse_kind(q.kind, &kind))
+  const platforms::PlatformSpec platform_spec = experiment_platform(exp, q.platform);
+  geometry::Kind kind;
+  if (!geometry::parse_kind(q.kind, &kind))
     throw UserError("unknown kind '" + q.kind + "' (allowed: point, line, triangle)");
   check_request(q, exp, kind);
 
   PrimitiveImage out;
-  for (const View& v : exp.views)
+  for (const geometry::View& v : exp.views)
     if (v.id == q.view) out.view = v;
-  const View& view = out.view;
-  const Primitive prim = make_primitive(exp.seed, kind, q.index);
+  const geometry::View& view = out.view;
+  const geometry::Primitive prim = geometry::make_primitive(exp.seed, kind, q.index);
 
   // Render once, measure that rendering, and rasterize the reference for comparison.
-  const std::unique_ptr<Platform> platform = create_platform(platform_spec, exp.faults);
+  const std::unique_ptr<platforms::Platform> platform = create_platform(platform_spec, exp.faults);
   // The driver that made the run's records, or a clear stop (renderer_check.h).
-  require_run_driver(q.run_dir, q.platform, platform->driver_info());
+  platforms::require_run_driver(q.run_dir, q.platform, platform->driver_info());
   const bool is_reference = q.platform == "reference";
   // The grid the runner's workers measured (the same calibration: deterministic platforms agree).
-  const SubpixelGrid effective =
-      is_reference ? SubpixelGrid{} : measure_effective_subpixel(*platform).grid;
+  const geometry::SubpixelGrid effective =
+      is_reference ? geometry::SubpixelGrid{} : metrics::measure_effective_subpixel(*platform).grid;
   RecordingPlatform recorder(*platform);
   recorder.set_view(view);
-  CaseComparison comparison(!is_reference, effective);
-  comparison.line_rule = line_rule_for(platform_spec, platform->driver_info());
-  const bool rectangles = comparison.line_rule == CaseComparison::LineRule::kRectangle;
-  out.record = measure_case(q.platform, recorder, view, prim, comparison);
-  const PixelSet& lit = recorder.last.lit;
-  PixelSet reference = rasterize_reference(view, prim);
-  if (rectangles && kind == Kind::kLine) {  // Vulkan's strict lines: the rectangle's pixels
-    const ClippedSegment segment = clip_segment(view, prim.v[0], prim.v[1]);
+  metrics::CaseComparison comparison(!is_reference, effective);
+  comparison.line_rule = metrics::line_rule_for(platform_spec, platform->driver_info());
+  const bool rectangles = comparison.line_rule == metrics::CaseComparison::LineRule::kRectangle;
+  out.record = metrics::measure_case(q.platform, recorder, view, prim, comparison);
+  const geometry::PixelSet& lit = recorder.last.lit;
+  geometry::PixelSet reference = geometry::rasterize_reference(view, prim);
+  if (rectangles &&
+      kind == geometry::Kind::kLine) {  // Vulkan's strict lines: the rectangle's pixels
+    const geometry::ClippedSegment segment = geometry::clip_segment(view, prim.v[0], prim.v[1]);
     reference.clear();
-    if (segment.status == ClipStatus::kVisible) {
-      const auto [a, b] = rectangle_ends(segment, near_clipped_vertices(view, prim));
-      reference = rasterize_rectangle_segment(a, b, view.width, view.height);
+    if (segment.status == geometry::ClipStatus::kVisible) {
+      const auto [a, b] = rectangle_ends(segment, metrics::near_clipped_vertices(view, prim));
+      reference = geometry::rasterize_rectangle_segment(a, b, view.width, view.height);
     }
   }
-  PixelSet violating;
-  if (!is_reference) judge_primitive(view, prim, lit, effective, &violating, rectangles);
+  geometry::PixelSet violating;
+  if (!is_reference) metrics::judge_primitive(view, prim, lit, effective, &violating, rectangles);
   out.violating = violating.size();
-  for (const Pixel& p : lit) (reference.contains(p) ? out.both : out.platform_only) += 1;
-  for (const Pixel& p : reference)
+  for (const geometry::Pixel& p : lit) (reference.contains(p) ? out.both : out.platform_only) += 1;
+  for (const geometry::Pixel& p : reference)
     if (!lit.contains(p)) ++out.reference_only;
 
   // The window pixels shown.
   const IdealShape ideal = ideal_shape(view, prim);
-  PixelRect shown =
+  geometry::PixelRect shown =
       unite(ideal.rect, unite(around(lit, kImageMargin, view.width, view.height),
                               around(reference, kImageMargin, view.width, view.height)));
   if (shown.empty() || (view.width <= kWholeWindowMax && view.height <= kWholeWindowMax))
@@ -205,8 +210,8 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
 
   // Which rasterizer lit each shown pixel: bit 0 platform, bit 1 reference.
   std::vector<uint8_t> who(std::size_t(cols) * rows, 0);
-  auto mark = [&](const PixelSet& s, uint8_t bit) {
-    for (const Pixel& p : s)
+  auto mark = [&](const geometry::PixelSet& s, uint8_t bit) {
+    for (const geometry::Pixel& p : s)
       if (p.x >= shown.x0 && p.x < shown.x1 && p.y >= shown.y0 && p.y < shown.y1)
         who[std::size_t(p.y - shown.y0) * cols + (p.x - shown.x0)] |= bit;
   };
@@ -233,7 +238,7 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
 
   OIIO::ImageSpec spec(out.width, out.height, 3, OIIO::TypeDesc::UINT8);
   spec.attribute("Software", "renderaudit show");
-  spec.attribute("ImageDescription", q.platform + " " + kind_name(kind) + " " +
+  spec.attribute("ImageDescription", q.platform + " " + geometry::kind_name(kind) + " " +
                                          std::to_string(q.index) + ", view " +
                                          std::to_string(q.view) + " of " + q.run_dir +
                                          ": grey both, orange platform "
@@ -243,7 +248,7 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
 
   // The ideal projection, 1 px wide, on top. Window (x, y) -> image (column, row), clamped so
   // that ends on the window's far edges land on the last pixel.
-  auto to_image = [&](Vec2 p) {
+  auto to_image = [&](geometry::Vec2 p) {
     const int ix = int(std::floor((p.x - shown.x0) * S));
     const int iy = int(std::floor((shown.y1 - p.y) * S));
     return std::pair<int, int>{std::clamp(ix, 0, out.width - 1), std::clamp(iy, 0, out.height - 1)};
@@ -252,7 +257,7 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   auto line = [&](std::pair<int, int> a, std::pair<int, int> b) {
     OIIO::ImageBufAlgo::render_line(buf, a.first, a.second, b.first, b.second, red);
   };
-  const std::vector<Vec2>& pts = ideal.points;
+  const std::vector<geometry::Vec2>& pts = ideal.points;
   if (pts.size() == 1) {
     const auto c = to_image(pts[0]);
     const int arm = std::max(3, S / 3);
@@ -269,8 +274,8 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
 
   out.path = q.out_path.empty()
                  ? (fs::path(q.run_dir) / "show" /
-                    (q.platform + "." + kind_name(kind) + ".v" + std::to_string(q.view) + "." +
-                     std::to_string(q.index) + ".png"))
+                    (q.platform + "." + geometry::kind_name(kind) + ".v" + std::to_string(q.view) +
+                     "." + std::to_string(q.index) + ".png"))
                        .string()
                  : q.out_path;
   std::string ext = fs::path(out.path).extension().string();

@@ -57,9 +57,9 @@ struct PrimitiveImage {
   std::string path;           // PNG written
   int width = 0, height = 0;  // image, pixels
   int scale = 0;              // image pixels per window pixel
-  PixelRect shown;            // window pixels shown, GL coordinates
-  View view;
-  Record record;                                            // measure_case() of this rendering
+  geometry::PixelRect shown;  // window pixels shown, GL coordinates
+  geometry::View view;
+  metrics::Record record;                                   // measure_case() of this rendering
   int64_t both = 0, platform_only = 0, reference_only = 0;  // lit pixels, whole window
   int64_t violating = 0;  // pixels of platform_only + reference_only that GL forbids
 };

@@ -25,7 +25,7 @@ std::string hex(double v) {
   return buf;
 }
 
-std::string matrix(const Mat4& m) {
+std::string matrix(const geometry::Mat4& m) {
   std::string s;
   for (int i = 0; i < 16; ++i) s += (i ? (i % 4 ? ", " : ",\n    ") : "") + hex(m.m[i]);
   return s;
@@ -155,27 +155,27 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   const std::string toml = q.run_dir + "/experiment.toml";
   if (!fs::is_regular_file(toml)) throw UserError(q.run_dir + ": not a run directory (no experiment.toml)");
   const Experiment exp = load_experiment(toml);
-  const PlatformSpec spec = experiment_platform(exp, q.platform);
-  if (!spec.draws_with_gl() || spec.samples > 0 || spec.backend == Backend::kEglDevice)
+  const platforms::PlatformSpec spec = experiment_platform(exp, q.platform);
+  if (!spec.draws_with_gl() || spec.samples > 0 || spec.backend == platforms::Backend::kEglDevice)
     throw UserError("reproduce draws through Mesa's surfaceless EGL: --platform must be one of "
                     "osmesa-llvmpipe, osmesa-softpipe, egl-llvmpipe, egl-softpipe (or one of "
                     "their builds), not '" + q.platform + "'");
-  Kind kind;
-  if (!parse_kind(q.kind, &kind))
+  geometry::Kind kind;
+  if (!geometry::parse_kind(q.kind, &kind))
     throw UserError("unknown kind '" + q.kind + "' (allowed: point, line, triangle)");
-  const View* view = nullptr;
-  for (const View& v : exp.views)
+  const geometry::View* view = nullptr;
+  for (const geometry::View& v : exp.views)
     if (v.id == q.view) view = &v;
   if (!view) throw UserError("the run has no view " + std::to_string(q.view));
   // The worker's record of it.
-  std::optional<Record> record;
+  std::optional<metrics::Record> record;
   for (const Shard& s : plan_shards(exp)) {
     if (s.platform != q.platform || s.kind != kind || s.view != q.view || q.index < s.begin ||
         q.index >= s.end)
       continue;
     const std::string path = s.records_path(q.run_dir);
     if (!fs::exists(path)) throw UserError(path + ": missing: the run has no record of this primitive");
-    read_records(path, [&](const Record& r) {
+    metrics::read_records(path, [&](const metrics::Record& r) {
       if (r.index == q.index) record = r;
     });
   }
@@ -183,22 +183,23 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
     throw UserError("the run has no record of " + q.platform + " " + q.kind + " " +
                     std::to_string(q.index) + " in view " + std::to_string(q.view));
 
-  const Primitive prim = make_primitive(exp.seed, kind, q.index);
-  const PixelSet reference = rasterize_reference(*view, prim);
+  const geometry::Primitive prim = geometry::make_primitive(exp.seed, kind, q.index);
+  const geometry::PixelSet reference = geometry::rasterize_reference(*view, prim);
   Reproducer out;
   out.record_pixels = record->pixels;
   out.record_hash = record->pixel_hash;
   out.reference_pixels = reference.size();
-  out.reference_hash = pixel_set_hash(reference);
+  out.reference_hash = geometry::pixel_set_hash(reference);
   const std::string exe = fs::path(c_file_name).stem().string();
   out.build_line = "cc " + c_file_name + " -o " + exe + " -lEGL -lOpenGL";
   std::string env = "LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=" + spec.mesa_driver + " LP_NUM_THREADS=0";
-  if (!spec.build.empty()) env = "LD_LIBRARY_PATH=" + build_library_dir(spec.build_dir) + " " + env;
+  if (!spec.build.empty())
+    env = "LD_LIBRARY_PATH=" + platforms::build_library_dir(spec.build_dir) + " " + env;
   out.run_line = env + " ./" + exe;
 
   std::string s = kTemplate;
   std::string vertices;
-  for (int i = 0; i < vertex_count(kind); ++i)
+  for (int i = 0; i < geometry::vertex_count(kind); ++i)
     vertices += std::string(i ? ", " : "") + "{" + hex(prim.v[i].x) + ", " + hex(prim.v[i].y) +
                 ", " + hex(prim.v[i].z) + "}";
   static const char* modes[] = {"GL_POINTS", "GL_LINES", "GL_TRIANGLES"};
@@ -214,7 +215,7 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   fill(s, "PROJECTION", matrix(view->projection));
   fill(s, "MODELVIEW", matrix(view->view_matrix));
   fill(s, "MODE", modes[int(kind)]);
-  fill(s, "COUNT", std::to_string(vertex_count(kind)));
+  fill(s, "COUNT", std::to_string(geometry::vertex_count(kind)));
   fill(s, "VERTICES", vertices);
   fill(s, "RECORD_PIXELS", std::to_string(out.record_pixels));
   fill(s, "RECORD_HASH", std::to_string(out.record_hash));

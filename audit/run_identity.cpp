@@ -51,10 +51,10 @@ RunIdentity load_run_identity(const std::string& dir) {
   run.status = manifest.status.empty() ? "unknown" : manifest.status;
   if (manifest.conformance_rules) {
     const int rules = *manifest.conformance_rules;
-    if (rules > kConformanceRulesVersion)
+    if (rules > metrics::kConformanceRulesVersion)
       throw UserError(manifest_path + ": 'conformance_rules' must be an integer from 1 to " +
-                      std::to_string(kConformanceRulesVersion) + ", this renderaudit's (found " +
-                      std::to_string(rules) + ")");
+                      std::to_string(metrics::kConformanceRulesVersion) +
+                      ", this renderaudit's (found " + std::to_string(rules) + ")");
     run.conformance_rules = rules;
   }
 
@@ -100,7 +100,7 @@ std::vector<MissingShard> missing_shards(const RunIdentity& run, const std::stri
   for (const Shard& s : plan_shards(run.experiment)) {
     if (s.platform != platform || fs::exists(s.records_path(run.dir))) continue;
     MissingShard m{side, s.platform, s.kind, s.view, 0, s.begin, s.end, s.id(), "no records file"};
-    for (const View& v : run.experiment.views)
+    for (const geometry::View& v : run.experiment.views)
       if (v.id == s.view) m.view_group = v.group;
     for (const ShardFailureNote& f : run.manifest_failures)
       if (f.shard == m.id) m.reason = f.reason;  // the last word on it
@@ -134,7 +134,7 @@ std::vector<ManifestFailure> manifest_failures_of(const RunIdentity& run,
     for (const Shard& s : plan) {
       if (s.id() != f.shard) continue;
       m.kind = s.kind, m.view = s.view, m.begin = s.begin, m.end = s.end;
-      for (const View& v : run.experiment.views)
+      for (const geometry::View& v : run.experiment.views)
         if (v.id == s.view) m.view_group = v.group;
       m.outcome = fs::exists(s.records_path(run.dir)) ? FailureOutcome::kRecovered
                                                       : FailureOutcome::kMissing;

@@ -49,7 +49,7 @@ DriverIdentity driver_of(const RunIdentity& run, const std::string& platform);
 struct MissingShard {
   std::string side;  // "baseline" or "current"
   std::string platform;
-  Kind kind = Kind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view = 0, view_group = 0;  // view 1-based; view_group 0 = A
   uint64_t begin = 0, end = 0;   // primitive indices [begin, end)
   std::string id;                // the shard id, e.g. "faulty.point.v1.10-20"
@@ -73,7 +73,7 @@ const char* failure_outcome_name(FailureOutcome o);  // "missing", "primitives f
 struct ManifestFailure {
   std::string side;  // "baseline" or "current"
   std::string platform, shard, reason;
-  Kind kind = Kind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view = 0, view_group = 0;
   uint64_t begin = 0, end = 0;
   FailureOutcome outcome = FailureOutcome::kUnknown;

@@ -65,13 +65,13 @@ struct Params {
   std::string dir = "/tmp/ra_analysis_bench";
   unsigned jobs = 0;
   bool keep = false;
-  ra::RecordsFormat format = ra::RecordsFormat::kCsvZst;
+  ra::metrics::RecordsFormat format = ra::metrics::RecordsFormat::kCsvZst;
 };
 
 // One synthetic record of a view; the shapes follow the paper's tables.
-ra::Record synth(Rng& rng, const std::string& platform, int p, const char* kind, int view,
-                 std::uint64_t index) {
-  ra::Record r;
+ra::metrics::Record synth(Rng& rng, const std::string& platform, int p, const char* kind, int view,
+                          std::uint64_t index) {
+  ra::metrics::Record r;
   r.platform = platform;
   r.view = view;
   const int v0 = view - 1;  // window outermost, orientation innermost (docs/experiments.md)
@@ -90,13 +90,13 @@ ra::Record synth(Rng& rng, const std::string& platform, int p, const char* kind,
                            : k == "line" ? (wide ? 0.6263 : 0.1027)
                                          : (wide ? 0.7755 : 0.2629);
   const double u = rng.uniform();
-  r.visibility = u < p_visible            ? ra::Visibility::kTrueVisible
-                 : u < p_visible + 0.0005 ? ra::Visibility::kFalseInvisible
-                                          : ra::Visibility::kTrueInvisible;
+  r.visibility = u < p_visible            ? ra::metrics::Visibility::kTrueVisible
+                 : u < p_visible + 0.0005 ? ra::metrics::Visibility::kFalseInvisible
+                                          : ra::metrics::Visibility::kTrueInvisible;
   r.render_us = std::exp(std::log(wide ? 3.0 : 2.0) + 0.7 * rng.normal());
   r.pixel_hash = rng.next();
   r.ref_diff = 0;
-  if (r.visibility != ra::Visibility::kTrueVisible) return r;
+  if (r.visibility != ra::metrics::Visibility::kTrueVisible) return r;
   if (k == "point") {
     r.pixels = 1;
     r.pe = std::hypot(rng.uniform() - 0.5, rng.uniform() - 0.5);
@@ -131,7 +131,7 @@ ra::Record synth(Rng& rng, const std::string& platform, int p, const char* kind,
 
 void synthesise(const Params& prm) {
   const std::string stamp = std::to_string(prm.records) + " " + std::to_string(prm.platforms) +
-                            " " + ra::records_format_name(prm.format);
+                            " " + ra::metrics::records_format_name(prm.format);
   std::ifstream old(prm.dir + "/bench.txt");
   std::string line;
   if (old && std::getline(old, line) && line == stamp) {
@@ -155,7 +155,8 @@ void synthesise(const Params& prm) {
           // sealed, as a run writes it (runner/shard_file.h)
           ra::RecordsFileWriter out(prm.dir + "/records/" + platform + "." + kinds[k] + ".v" +
                                         std::to_string(view) + "." + std::to_string(first) + "-" +
-                                        std::to_string(last) + ra::records_extension(prm.format),
+                                        std::to_string(last) +
+                                        ra::metrics::records_extension(prm.format),
                                     prm.format);
           for (std::uint64_t i = first; i < last; ++i)
             out.write(synth(rng, platform, p, kinds[k], view, i));
@@ -192,7 +193,8 @@ int main(int argc, char** argv) {
     } else if (a == "--jobs") {
       prm.jobs = static_cast<unsigned>(std::stoul(value()));
     } else if (a == "--format") {
-      const std::optional<ra::RecordsFormat> f = ra::parse_records_format(value());
+      const std::optional<ra::metrics::RecordsFormat> f =
+          ra::metrics::parse_records_format(value());
       if (!f) {
         std::fprintf(stderr, "analysis_bench: --format csv or csv.zst\n");
         return 2;
@@ -219,8 +221,8 @@ int main(int argc, char** argv) {
       const auto t0 = std::chrono::steady_clock::now();
       std::uint64_t n = 0;
       for (const auto& e : fs::directory_iterator(prm.dir + "/records")) {
-        if (ra::is_records_file_name(e.path().filename().string()))
-          ra::read_records(e.path().string(), [&](const ra::Record&) { ++n; });
+        if (ra::metrics::is_records_file_name(e.path().filename().string()))
+          ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record&) { ++n; });
       }
       std::printf("ra::read_records (metrics/records.h, one thread): %llu records in %.2f s\n",
                   static_cast<unsigned long long>(n), seconds_since(t0));

@@ -57,8 +57,9 @@ struct Options {
 // The analysis stage's median (stats/descriptive.h); 0 for no timings.
 double median(const std::vector<double>& v) { return v.empty() ? 0 : stats::median(v); }
 
-View bench_view(double fov, int window) {
-  return make_view(fov, window, window, 0.01, 10.0, random_rotation(2008, 1));
+ra::geometry::View bench_view(double fov, int window) {
+  return ra::geometry::make_view(fov, window, window, 0.01, 10.0,
+                                 ra::geometry::random_rotation(2008, 1));
 }
 
 // Primitives per call of measure_cases, as `renderaudit run` calls it (in chunks of its own).
@@ -74,10 +75,13 @@ struct Timings {
   std::map<std::string, std::vector<double>> per_primitive;  // floor, naive, region, project
 };
 
-nlohmann::json summary_row(const std::string& platform, Kind kind, int window, double fov,
-                           int primitives, const Timings& t) {
-  nlohmann::json row = {{"platform", platform}, {"kind", kind_name(kind)}, {"window", window},
-                        {"fov_deg", fov},       {"primitives", primitives}};
+nlohmann::json summary_row(const std::string& platform, ra::geometry::Kind kind, int window,
+                           double fov, int primitives, const Timings& t) {
+  nlohmann::json row = {{"platform", platform},
+                        {"kind", ra::geometry::kind_name(kind)},
+                        {"window", window},
+                        {"fov_deg", fov},
+                        {"primitives", primitives}};
   for (const char* m : {"floor", "batched", "naive", "region", "project", "unjudged"}) {
     row[std::string(m) + "_us"] = median(t.per_primitive.at(m));
     row[std::string(m) + "_mean_us"] = mean(t.per_primitive.at(m));
@@ -87,19 +91,21 @@ nlohmann::json summary_row(const std::string& platform, Kind kind, int window, d
 
 // The aliased GL and Vulkan platforms: the readback this benchmark compares.
 bool benchable(const std::string& name) {
-  const std::optional<PlatformSpec> spec = find_platform(name);
+  const std::optional<ra::platforms::PlatformSpec> spec = ra::platforms::find_platform(name);
   return spec && spec->draws_with_driver() && spec->samples == 0;
 }
 
-std::unique_ptr<Platform> create_bench_platform(const PlatformSpec& spec, ReadbackMethod method) {
-  return spec.draws_with_vulkan() ? create_vulkan_platform(spec, method)
-                                  : create_gl_platform(spec, method);
+std::unique_ptr<ra::platforms::Platform> create_bench_platform(
+    const ra::platforms::PlatformSpec& spec, ra::platforms::ReadbackMethod method) {
+  return spec.draws_with_vulkan() ? ra::platforms::create_vulkan_platform(spec, method)
+                                  : ra::platforms::create_gl_platform(spec, method);
 }
 
 // One platform, in this process: prints one JSON object per configuration on stdout, and per
 // kind and window one pooled over both fields of view (fov_deg 0).
 int measure_platform(const Options& opt) {
-  const std::optional<PlatformSpec> spec = find_platform(opt.platform);
+  const std::optional<ra::platforms::PlatformSpec> spec =
+      ra::platforms::find_platform(opt.platform);
   if (!benchable(opt.platform)) {  // the aliased readback only
     std::fprintf(stderr, "readback_bench: not an aliased GL or Vulkan platform: %s\n",
                  opt.platform.c_str());
@@ -107,47 +113,52 @@ int measure_platform(const Options& opt) {
   }
   const char* methods[] = {"floor", "naive", "region", "project", "batched"};
   // The grid `run`'s workers would measure (metrics/effective_subpixel.h).
-  SubpixelGrid effective;
+  ra::geometry::SubpixelGrid effective;
   {
-    auto probe = create_bench_platform(*spec, ReadbackMethod::kRegionWithProof);
+    auto probe = create_bench_platform(*spec, ra::platforms::ReadbackMethod::kRegionWithProof);
     probe->set_view(bench_view(30, 128));  // context made and shaders compiled: not timed below
     const auto t0 = Clock::now();
-    effective = measure_effective_subpixel(*probe).grid;
-    std::printf("%s: effective subpixel grid %s, measured in %.1f ms (every worker of `run` "
-                "pays this once)\n",
-                opt.platform.c_str(), subpixel_grid_text(effective).c_str(),
-                std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    effective = ra::metrics::measure_effective_subpixel(*probe).grid;
+    std::printf(
+        "%s: effective subpixel grid %s, measured in %.1f ms (every worker of `run` "
+        "pays this once)\n",
+        opt.platform.c_str(), ra::geometry::subpixel_grid_text(effective).c_str(),
+        std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
   }
-  for (Kind kind : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
+  for (ra::geometry::Kind kind :
+       {ra::geometry::Kind::kPoint, ra::geometry::Kind::kLine, ra::geometry::Kind::kTriangle}) {
     for (int window : {128, 907}) {
       Timings pooled;
       for (double fov : {30.0, 150.0}) {
-        const View view = bench_view(fov, window);
+        const ra::geometry::View view = bench_view(fov, window);
         Timings t;
         for (int round = 0; round < opt.rounds; ++round) {
-          std::vector<Primitive> prims;
+          std::vector<ra::geometry::Primitive> prims;
           for (int i = 0; i < opt.primitives; ++i)
-            prims.push_back(make_primitive(2008, kind, uint64_t(round) * opt.primitives + i));
+            prims.push_back(
+                ra::geometry::make_primitive(2008, kind, uint64_t(round) * opt.primitives + i));
           for (int m = 0; m < 5; ++m) {  // interleaved: every method in every round
-            const ReadbackMethod rm = m == 0 || m == 4 ? ReadbackMethod::kDrawOnly
-                                      : m == 1 ? ReadbackMethod::kFullWindow
-                                               : ReadbackMethod::kRegionWithProof;
+            const ra::platforms::ReadbackMethod rm =
+                m == 0 || m == 4 ? ra::platforms::ReadbackMethod::kDrawOnly
+                : m == 1         ? ra::platforms::ReadbackMethod::kFullWindow
+                                 : ra::platforms::ReadbackMethod::kRegionWithProof;
             auto platform = create_bench_platform(*spec, rm);
             platform->set_view(view);
             // Mesa compiles its shaders on the first draws, single and batched (the first batch
             // cost 8 ms on llvmpipe): keep that out of the timings.
-            std::vector<Primitive> warm;
-            for (uint64_t w = 0; w < kChunk; ++w) warm.push_back(make_primitive(7, kind, w));
+            std::vector<ra::geometry::Primitive> warm;
+            for (uint64_t w = 0; w < kChunk; ++w)
+              warm.push_back(ra::geometry::make_primitive(7, kind, w));
             for (uint64_t w = 0; w < 16; ++w)
-              platform->render(warm[w], PixelRect{0, 0, window, window});
-            measure_cases(opt.platform, *platform, view, warm, true);
+              platform->render(warm[w], ra::geometry::PixelRect{0, 0, window, window});
+            ra::metrics::measure_cases(opt.platform, *platform, view, warm, true);
             if (m == 4) {  // the floor with the flush shared by kChunk primitives
               std::vector<double>& us = t.per_primitive["batched"];
               for (size_t i = 0; i < prims.size(); i += kChunk) {
-                const std::vector<Primitive> chunk(
+                const std::vector<ra::geometry::Primitive> chunk(
                     prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
-                for (const RenderResult& r :
-                     platform->render_batch(chunk, std::vector<PixelRegion>(chunk.size())))
+                for (const ra::platforms::RenderResult& r : platform->render_batch(
+                         chunk, std::vector<ra::geometry::PixelRegion>(chunk.size())))
                   us.push_back(r.render_us);
               }
               continue;
@@ -156,18 +167,18 @@ int measure_platform(const Options& opt) {
               // Exactly what `renderaudit run` does, chunk by chunk, with and without the
               // conformance verdict on the same platform, chunk by chunk, the order alternating:
               // the two are compared side by side, not across rounds.
-              CaseComparison judged(true, effective), unjudged(true, effective);
+              ra::metrics::CaseComparison judged(true, effective), unjudged(true, effective);
               unjudged.conformance = false;
               judged.line_rule = unjudged.line_rule =
-                  line_rule_for(*spec, platform->driver_info());
+                  ra::metrics::line_rule_for(*spec, platform->driver_info());
               for (size_t i = 0; i < prims.size(); i += kChunk) {
-                const std::vector<Primitive> chunk(
+                const std::vector<ra::geometry::Primitive> chunk(
                     prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
                 for (int k = 0; k < 2; ++k) {
                   const bool judge = (k == 0) == ((i / kChunk) % 2 == 0);
                   std::vector<double> cost;
-                  measure_cases(opt.platform, *platform, view, chunk, judge ? judged : unjudged,
-                                &cost);
+                  ra::metrics::measure_cases(opt.platform, *platform, view, chunk,
+                                             judge ? judged : unjudged, &cost);
                   std::vector<double>& us = t.per_primitive[judge ? "project" : "unjudged"];
                   us.insert(us.end(), cost.begin(), cost.end());
                 }
@@ -175,11 +186,11 @@ int measure_platform(const Options& opt) {
               continue;
             }
             std::vector<double>& us = t.per_primitive[methods[m]];
-            for (const Primitive& prim : prims) {
+            for (const ra::geometry::Primitive& prim : prims) {
               const auto t0 = Clock::now();
               if (m == 2) {
                 // One primitive at a time with its own proof: the readback without batching.
-                measure_case(opt.platform, *platform, view, prim, false);
+                ra::metrics::measure_case(opt.platform, *platform, view, prim, false);
               } else {
                 platform->render(prim, {});
               }
@@ -205,9 +216,10 @@ int run_children(const Options& opt, const char* self) {
   std::vector<nlohmann::json> rows;
   for (const auto& p : opt.platforms) {
     if (!benchable(p)) {  // checked before anything runs
-      std::fprintf(stderr, "readback_bench: --platforms: '%s' is not an aliased GL or Vulkan "
+      std::fprintf(stderr,
+                   "readback_bench: --platforms: '%s' is not an aliased GL or Vulkan "
                    "platform (allowed: %s, vk-lavapipe, vk-lavapipe-bresenham, vk-device:N)\n",
-                   p.c_str(), aliased_gl_platform_names().c_str());
+                   p.c_str(), ra::platforms::aliased_gl_platform_names().c_str());
       return 2;
     }
   }

@@ -117,10 +117,10 @@ int main(int argc, char** argv) {
       k.worker_s += seconds;
     }
     for (const auto& e : fs::directory_iterator(dir + "/records")) {
-      for_each_record_row(e.path().string(), [&](const RecordRow& row) {
-        const double us = row.number(RecordColumn::kRenderUs).value_or(0);
-        KindCost& k = round.kinds[std::string(row.cell(RecordColumn::kPlatform)) + " " +
-                                  std::string(row.cell(RecordColumn::kKind))];
+      ra::metrics::for_each_record_row(e.path().string(), [&](const ra::metrics::RecordRow& row) {
+        const double us = row.number(ra::metrics::RecordColumn::kRenderUs).value_or(0);
+        KindCost& k = round.kinds[std::string(row.cell(ra::metrics::RecordColumn::kPlatform)) +
+                                  " " + std::string(row.cell(ra::metrics::RecordColumn::kKind))];
         k.drawing_s += us * 1e-6;
         ++k.primitives;
         round.drawing_s += us * 1e-6;

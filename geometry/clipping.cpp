@@ -8,7 +8,7 @@
 
 #include "geometry/exact_predicates.h"
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 bool is_finite(Vec4 c) {
@@ -291,4 +291,4 @@ std::vector<Vec2> convex_hull(std::vector<Vec2> pts) {
   return hull;
 }
 
-}  // namespace ra
+}  // namespace ra::geometry

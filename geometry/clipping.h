@@ -24,7 +24,7 @@
 #include "geometry/vector_math.h"
 #include "geometry/view.h"
 
-namespace ra {
+namespace ra::geometry {
 
 enum class ClipStatus {
   kVisible,     // meets the clip volume with a positive window length (segment) or area (polygon)
@@ -112,4 +112,4 @@ double polygon_signed_area(const std::vector<Vec2>& poly);
 // orientation tests. 0, 1 or 2 points when the input is empty, one point, or collinear.
 std::vector<Vec2> convex_hull(std::vector<Vec2> points);
 
-}  // namespace ra
+}  // namespace ra::geometry

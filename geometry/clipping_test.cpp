@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 
@@ -314,4 +314,4 @@ TEST(ConvexHull, DropsRepeatsAndCollinear) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::geometry

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 constexpr double kEps = 0x1.0p-53;  // unit roundoff of double
@@ -105,4 +105,4 @@ int orient2d(Vec2 a, Vec2 b, Vec2 c) {
   return exact_sign_of_dot_plus(pa, pb, 6, nullptr, 0);
 }
 
-}  // namespace ra
+}  // namespace ra::geometry

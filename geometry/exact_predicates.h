@@ -10,7 +10,7 @@
 
 #include "geometry/vector_math.h"
 
-namespace ra {
+namespace ra::geometry {
 
 // Exact sign (-1, 0, +1) of terms[0] + ... + terms[n-1].
 int exact_sign_of_sum(const double* terms, int n);
@@ -24,4 +24,4 @@ int exact_sign_of_dot_plus(const double* a, const double* b, int n_products, con
 // right, 0 exactly collinear. Exact.
 int orient2d(Vec2 a, Vec2 b, Vec2 c);
 
-}  // namespace ra
+}  // namespace ra::geometry

@@ -7,7 +7,7 @@
 
 #include "geometry/exact_predicates.h"
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 // Part of one chain edge inside a pixel strip: from (x0, y0) to (x1, y1), y0 < y1, with the
@@ -299,4 +299,4 @@ double pixel_area_in_convex_polygon(const std::vector<Vec2>& polygon, Pixel px) 
   return std::fabs(0.5 * twice);
 }
 
-}  // namespace ra
+}  // namespace ra::geometry

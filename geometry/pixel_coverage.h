@@ -22,7 +22,7 @@
 #include "geometry/pixel_set.h"
 #include "geometry/vector_math.h"
 
-namespace ra {
+namespace ra::geometry {
 
 struct PixelArea {
   int32_t x = 0;    // pixel column
@@ -62,4 +62,4 @@ bool compute_coverage(const std::vector<Vec2>& polygon, PolygonCoverage* out);
 // the pixel square: O(vertices) per pixel. For spot checks; compute_coverage is the fast path.
 double pixel_area_in_convex_polygon(const std::vector<Vec2>& polygon, Pixel p);
 
-}  // namespace ra
+}  // namespace ra::geometry

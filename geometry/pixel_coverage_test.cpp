@@ -11,7 +11,7 @@
 #include "geometry/clipping.h"
 #include "geometry/rational_oracle_test.h"
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 constexpr double kAreaTol = 1e-12;  // px^2, absolute; the requirement is 1e-9
@@ -225,4 +225,4 @@ TEST(PixelCoverage, DegenerateIsEmpty) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::geometry

@@ -5,7 +5,7 @@
 #include <limits>
 #include <utility>
 
-namespace ra {
+namespace ra::geometry {
 
 int64_t PixelRegion::area() const {
   int64_t a = 0;
@@ -115,4 +115,4 @@ PixelRegion band_region(const ClippedPolygon& p, int width, int height, int marg
   return region;
 }
 
-}  // namespace ra
+}  // namespace ra::geometry

@@ -12,7 +12,7 @@
 #include "geometry/clipping.h"
 #include "geometry/pixel_set.h"
 
-namespace ra {
+namespace ra::geometry {
 
 struct PixelRegion {
   std::vector<PixelRect> rects;  // pairwise disjoint, none empty
@@ -46,4 +46,4 @@ PixelRegion strip_region(const ClippedSegment& s, int width, int height, int mar
 // degenerate. band_rows >= 1.
 PixelRegion band_region(const ClippedPolygon& p, int width, int height, int margin, int band_rows);
 
-}  // namespace ra
+}  // namespace ra::geometry

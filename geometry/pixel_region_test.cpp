@@ -7,7 +7,7 @@
 
 #include "geometry/reference_rasterizer.h"
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 // A segment given in window coordinates: clip coordinates with w = 1 that map onto them.
@@ -188,4 +188,4 @@ TEST(PixelRegion, OverlapAndContainment) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::geometry

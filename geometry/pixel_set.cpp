@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 bool run_before(const PixelRun& a, const PixelRun& b) {
@@ -130,4 +130,4 @@ uint64_t pixel_set_hash(const PixelSet& s) {
   return h;
 }
 
-}  // namespace ra
+}  // namespace ra::geometry

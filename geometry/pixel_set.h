@@ -10,7 +10,7 @@
 #include <iterator>
 #include <vector>
 
-namespace ra {
+namespace ra::geometry {
 
 struct Pixel {
   int32_t x = 0, y = 0;
@@ -128,4 +128,4 @@ PixelSet set_difference(const PixelSet& a, const PixelSet& b);
 // audit compare pixel sets exactly from their records alone.
 uint64_t pixel_set_hash(const PixelSet& s);
 
-}  // namespace ra
+}  // namespace ra::geometry

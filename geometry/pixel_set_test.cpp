@@ -7,7 +7,7 @@
 #include <random>
 #include <set>
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 std::set<Pixel> random_pixels(std::mt19937_64& rng, int w, int h, double density) {
@@ -117,9 +117,9 @@ TEST(PixelSet, Hash) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::geometry
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 // set_difference against a brute-force difference of random sets (runs that touch, overlap,
@@ -145,4 +145,4 @@ TEST(PixelSet, SetDifferenceEqualsTheBruteForceOne) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::geometry

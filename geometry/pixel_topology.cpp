@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <numeric>
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 class UnionFind {
@@ -157,4 +157,4 @@ bool is_simple_chain8(const PixelSet& s) {
   return ends == 2;
 }
 
-}  // namespace ra
+}  // namespace ra::geometry

@@ -17,7 +17,7 @@
 
 #include "geometry/pixel_set.h"
 
-namespace ra {
+namespace ra::geometry {
 
 struct PixelTopology {
   int64_t components = 0;  // 8-connected components of the lit pixels (0 for an empty set)
@@ -38,4 +38,4 @@ int64_t count_components8(const PixelSet& s);
 // diamond-exit line is such a chain; an empty set is not.
 bool is_simple_chain8(const PixelSet& s);
 
-}  // namespace ra
+}  // namespace ra::geometry

@@ -6,7 +6,7 @@
 #include <queue>
 #include <random>
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 PixelSet from_rows(const std::vector<std::string>& rows) {  // rows[0] is the top row; '#' = lit
@@ -123,4 +123,4 @@ TEST(PixelTopology, MatchesFloodFill) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::geometry

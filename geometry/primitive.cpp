@@ -2,7 +2,7 @@
 
 #include "util/counter_rng.h"
 
-namespace ra {
+namespace ra::geometry {
 
 const char* kind_name(Kind k) {
   switch (k) {
@@ -57,4 +57,4 @@ Primitive make_primitive(uint64_t seed, Kind kind, uint64_t index) {
   return prim;
 }
 
-}  // namespace ra
+}  // namespace ra::geometry

@@ -8,7 +8,7 @@
 
 #include "geometry/vector_math.h"
 
-namespace ra {
+namespace ra::geometry {
 
 enum class Kind { kPoint = 0, kLine = 1, kTriangle = 2 };
 
@@ -26,4 +26,4 @@ struct Primitive {
 // Primitive `index` of `kind` under `seed`: a pure function of its arguments.
 Primitive make_primitive(uint64_t seed, Kind kind, uint64_t index);
 
-}  // namespace ra
+}  // namespace ra::geometry

@@ -7,7 +7,7 @@
 
 #include "util/counter_rng.h"
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 // The generator is a pure function of (seed, kind, index): asking in any order gives the same bytes.
@@ -51,4 +51,4 @@ TEST(Primitive, UniformInTheUnitSphere) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::geometry

@@ -16,7 +16,7 @@
 #include "geometry/pixel_set.h"
 #include "geometry/vector_math.h"
 
-namespace ra {
+namespace ra::geometry {
 namespace oracle {
 
 using Q = boost::multiprecision::cpp_rational;
@@ -130,4 +130,4 @@ inline bool diamond_fragment(const Vec2& a_in, const Vec2& b_in, Pixel f, const 
 }
 
 }  // namespace oracle
-}  // namespace ra
+}  // namespace ra::geometry

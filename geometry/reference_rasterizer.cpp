@@ -7,7 +7,7 @@
 
 #include "geometry/exact_predicates.h"
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
 inline int sign_of_difference(double b, double a) { return (b > a) - (b < a); }
@@ -298,4 +298,4 @@ PixelSet rasterize_reference(const View& view, const Primitive& prim, SubpixelGr
   return {};
 }
 
-}  // namespace ra
+}  // namespace ra::geometry

@@ -44,7 +44,7 @@
 #include "geometry/vector_math.h"
 #include "geometry/view.h"
 
-namespace ra {
+namespace ra::geometry {
 
 // How window coordinates are snapped before sampling: to the grid of 2^-bits px (bits <= 0: not
 // at all, the exact reference), rounding to the nearest grid point (ties to even) or truncating
@@ -104,4 +104,4 @@ PixelSet rasterize_polygon(const ClippedPolygon& p, int width, int height, Subpi
 // The pixels the reference lights for `prim` under `view` (clip, project, rasterize as above).
 PixelSet rasterize_reference(const View& view, const Primitive& prim, SubpixelGrid grid = {});
 
-}  // namespace ra
+}  // namespace ra::geometry

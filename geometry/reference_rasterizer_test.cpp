@@ -11,10 +11,10 @@
 
 #include "geometry/rational_oracle_test.h"
 
-namespace ra {
+namespace ra::geometry {
 namespace {
 
-View make_view(double fov, int size) { return ra::make_view(fov, size, size); }
+View make_view(double fov, int size) { return ra::geometry::make_view(fov, size, size); }
 
 // ---- Points ----
 
@@ -370,4 +370,4 @@ TEST(ReferencePrimitive, DispatchesByKind) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::geometry

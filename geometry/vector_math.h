@@ -6,7 +6,7 @@
 #include <array>
 #include <cmath>
 
-namespace ra {
+namespace ra::geometry {
 
 struct Vec2 {
   double x = 0, y = 0;
@@ -69,4 +69,4 @@ inline Vec4 operator*(const Mat4& a, Vec4 v) {
           a.at(3, 0) * v.x + a.at(3, 1) * v.y + a.at(3, 2) * v.z + a.at(3, 3) * v.w};
 }
 
-}  // namespace ra
+}  // namespace ra::geometry

@@ -4,7 +4,7 @@
 
 #include "util/counter_rng.h"
 
-namespace ra {
+namespace ra::geometry {
 
 double View::norm_length() const { return std::sqrt(double(width) * double(height)); }
 
@@ -87,4 +87,4 @@ View make_view(double fov_deg, int width, int height, double near, double far,
   return v;
 }
 
-}  // namespace ra
+}  // namespace ra::geometry

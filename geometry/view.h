@@ -10,7 +10,7 @@
 
 #include "geometry/vector_math.h"
 
-namespace ra {
+namespace ra::geometry {
 
 struct View {
   int id = 1;              // 1-based, in the order of the paper's Table 1
@@ -65,4 +65,4 @@ void finish_view(View& v);
 View make_view(double fov_deg, int width, int height, double near = 0.01, double far = 10.0,
                const Mat4& rotation = Mat4::identity());
 
-}  // namespace ra
+}  // namespace ra::geometry

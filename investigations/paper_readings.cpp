@@ -62,7 +62,7 @@ struct Reading {
   std::string name;
   double near = 0.01;             // world units
   bool cube_vertices = false;     // uniform in [-1, 1]^3 instead of the unit ball
-  SubpixelGrid grid;              // of the reference rasterizer
+  geometry::SubpixelGrid grid;    // of the reference rasterizer
   bool drop_near_clipped = false;
   bool drop_full_window = false;
 };
@@ -73,31 +73,31 @@ struct GroupSamples {
   std::array<uint64_t, 4> ideally_visible{}, total{};
 };
 
-Primitive make(const Experiment& e, Kind kind, uint64_t i, bool cube) {
-  if (!cube) return make_primitive(e.seed, kind, i);
-  Primitive p;
+geometry::Primitive make(const Experiment& e, geometry::Kind kind, uint64_t i, bool cube) {
+  if (!cube) return geometry::make_primitive(e.seed, kind, i);
+  geometry::Primitive p;
   p.kind = kind;
   p.index = i;
   CounterRng rng(e.seed, RngStream::kTriangle, i);
-  for (int k = 0; k < vertex_count(kind); ++k)
+  for (int k = 0; k < geometry::vertex_count(kind); ++k)
     p.v[k] = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
   return p;
 }
 
-bool crosses_near_plane(const View& v, const Primitive& p) {
-  for (int k = 0; k < vertex_count(p.kind); ++k) {
-    const Vec4 c = v.to_clip(p.v[k]);
+bool crosses_near_plane(const geometry::View& v, const geometry::Primitive& p) {
+  for (int k = 0; k < geometry::vertex_count(p.kind); ++k) {
+    const geometry::Vec4 c = v.to_clip(p.v[k]);
     if (c.z < -c.w) return true;
   }
   return false;
 }
 
-GroupSamples measure(const Experiment& e, Kind kind, const Reading& r, const Options& o) {
+GroupSamples measure(const Experiment& e, geometry::Kind kind, const Reading& r, const Options& o) {
   GroupSamples out;
   std::mutex mu;
-  for (View view : e.views) {
+  for (geometry::View view : e.views) {
     view.near = r.near;
-    finish_view(view);
+    geometry::finish_view(view);
     const int g = view.group;
     if (g < 0 || g > 3) continue;
     constexpr size_t kChunks = 64;
@@ -105,26 +105,30 @@ GroupSamples measure(const Experiment& e, Kind kind, const Reading& r, const Opt
       std::vector<double> a, b;
       uint64_t visible = 0, total = 0;
       for (uint64_t i = chunk; i < o.per_view; i += kChunks) {
-        const Primitive p = make(e, kind, i, r.cube_vertices);
+        const geometry::Primitive p = make(e, kind, i, r.cube_vertices);
         ++total;
-        if (kind == Kind::kTriangle) {
-          const ClippedPolygon proj = clip_triangle(view, p.v[0], p.v[1], p.v[2]);
+        if (kind == geometry::Kind::kTriangle) {
+          const geometry::ClippedPolygon proj =
+              geometry::clip_triangle(view, p.v[0], p.v[1], p.v[2]);
           if (!ideally_visible(proj)) continue;
           ++visible;
-          const PixelSet lit = rasterize_polygon(proj, view.width, view.height, r.grid);
+          const geometry::PixelSet lit =
+              geometry::rasterize_polygon(proj, view.width, view.height, r.grid);
           if (lit.size() == 0) continue;  // false-invisible
           if (r.drop_near_clipped && crosses_near_plane(view, p)) continue;
-          const TriangleMetrics m = measure_triangle(proj, lit, view.width, view.height);
+          const metrics::TriangleMetrics m =
+              metrics::measure_triangle(proj, lit, view.width, view.height);
           if (r.drop_full_window && m.full_window) continue;
           a.push_back(m.te_unsigned_norm);
           b.push_back(m.te_signed_norm);
         } else {
-          const ClippedSegment seg = clip_segment(view, p.v[0], p.v[1]);
+          const geometry::ClippedSegment seg = geometry::clip_segment(view, p.v[0], p.v[1]);
           if (!ideally_visible(seg)) continue;
           ++visible;
-          const PixelSet lit = rasterize_segment(seg, view.width, view.height, r.grid);
+          const geometry::PixelSet lit =
+              geometry::rasterize_segment(seg, view.width, view.height, r.grid);
           if (lit.size() == 0) continue;
-          const LineMetrics m = measure_line(seg, lit, view.width, view.height);
+          const metrics::LineMetrics m = metrics::measure_line(seg, lit, view.width, view.height);
           a.push_back(m.lse_unsigned_norm);
           b.push_back(m.lse_signed_norm);
         }
@@ -230,15 +234,16 @@ void print_point_margins(const Experiment& e, const Options& o) {
   for (double margin : {0.0, 0.25, 0.5, 1.0}) {
     std::array<uint64_t, 4> within{}, total{};
     std::mutex mu;
-    for (const View& view : e.views) {
+    for (const geometry::View& view : e.views) {
       const int g = view.group;
       if (g < 0 || g > 3) continue;
       run_in_parallel(64, o.jobs, [&](size_t chunk) {
         uint64_t n = 0, t = 0;
         for (uint64_t i = chunk; i < o.per_view; i += 64) {
-          const Vec3 p = make_primitive(e.seed, Kind::kPoint, i).v[0];
+          const geometry::Vec3 p = geometry::make_primitive(e.seed, geometry::Kind::kPoint, i).v[0];
           ++t;
-          n += !project_point(view, p).visible && inside_window_margin(view, p, margin);
+          n += !metrics::project_point(view, p).visible &&
+               metrics::inside_window_margin(view, p, margin);
         }
         std::lock_guard<std::mutex> lock(mu);
         within[g] += n;
@@ -282,18 +287,19 @@ int run(const Options& o) {
   triangle_readings.push_back(r);
   r = near_readings[0];
   r.name = "near 0.01, 4 subpixel bits";
-  r.grid = SubpixelGrid(4);
+  r.grid = geometry::SubpixelGrid(4);
   triangle_readings.push_back(r);
   r.name = "near 0.01, 8 subpixel bits (llvmpipe's grid)";
-  r.grid = SubpixelGrid(8);
+  r.grid = geometry::SubpixelGrid(8);
   triangle_readings.push_back(r);
   std::vector<Reading> line_readings = near_readings;
   line_readings.push_back(r);
 
   std::vector<GroupSamples> triangles, lines;
   for (const Reading& reading : triangle_readings)
-    triangles.push_back(measure(e, Kind::kTriangle, reading, o));
-  for (const Reading& reading : line_readings) lines.push_back(measure(e, Kind::kLine, reading, o));
+    triangles.push_back(measure(e, geometry::Kind::kTriangle, reading, o));
+  for (const Reading& reading : line_readings)
+    lines.push_back(measure(e, geometry::Kind::kLine, reading, o));
 
   print_header("Table 10, TEu-norm x10^3", paper_table(paper, "10"));
   for (size_t i = 0; i < triangles.size(); ++i)

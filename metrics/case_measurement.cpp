@@ -10,9 +10,10 @@
 #include "geometry/reference_rasterizer.h"
 #include "metrics/triangle_metrics.h"
 
-namespace ra {
+namespace ra::metrics {
 
-Record case_identity(const std::string& platform_name, const View& view, const Primitive& prim) {
+Record case_identity(const std::string& platform_name, const geometry::View& view,
+                     const geometry::Primitive& prim) {
   Record r;
   r.platform = platform_name;
   r.view = view.id;
@@ -23,7 +24,7 @@ Record case_identity(const std::string& platform_name, const View& view, const P
   r.height = view.height;
   r.near = view.near;
   r.far = view.far;
-  r.kind = kind_name(prim.kind);
+  r.kind = geometry::kind_name(prim.kind);
   r.index = prim.index;
   return r;
 }
@@ -34,44 +35,45 @@ namespace {
 struct PreparedCase {
   Record rec;              // identity; status kInvalid when nothing may be drawn
   IdealPoint point;        // Kind::kPoint
-  ClippedSegment segment;  // Kind::kLine
-  ClippedPolygon polygon;  // Kind::kTriangle
-  PixelRegion expected;    // where the ideal primitive lies, plus kRegionMargin
+  geometry::ClippedSegment segment;  // Kind::kLine
+  geometry::ClippedPolygon polygon;  // Kind::kTriangle
+  geometry::PixelRegion expected;    // where the ideal primitive lies, plus kRegionMargin
 };
 
 // A small triangle's box is read back whole (one call, and it can share a batch); a large one's in
 // bands of 32 rows that follow its sides: it fills at most half its box, and the readback copy and
 // scan were a fifth of a 907 x 907 llvmpipe triangle's time (docs/benchmarks.md).
-PixelRegion triangle_region(const ClippedPolygon& polygon, int width, int height) {
-  const PixelRect box = bounding_rect(polygon, width, height, kRegionMargin);
+geometry::PixelRegion triangle_region(const geometry::ClippedPolygon& polygon, int width,
+                                      int height) {
+  const geometry::PixelRect box = geometry::bounding_rect(polygon, width, height, kRegionMargin);
   if (box.area() <= kTriangleBandMinArea) return box;
-  return band_region(polygon, width, height, kRegionMargin, kTriangleBandRows);
+  return geometry::band_region(polygon, width, height, kRegionMargin, kTriangleBandRows);
 }
 
-PreparedCase prepare_case(const std::string& platform_name, const View& view,
-                          const Primitive& prim) {
+PreparedCase prepare_case(const std::string& platform_name, const geometry::View& view,
+                          const geometry::Primitive& prim) {
   PreparedCase c;
   c.rec = case_identity(platform_name, view, prim);
-  for (int i = 0; i < vertex_count(prim.kind); ++i) {
-    if (!is_finite(prim.v[i])) {  // never hand a driver NaN or inf, never a silent number
+  for (int i = 0; i < geometry::vertex_count(prim.kind); ++i) {
+    if (!geometry::is_finite(prim.v[i])) {  // never hand a driver NaN or inf, never a silent number
       c.rec.status = CaseStatus::kInvalid;
       return c;
     }
   }
   switch (prim.kind) {
-    case Kind::kPoint:
+    case geometry::Kind::kPoint:
       c.point = project_point(view, prim.v[0]);
       c.expected = point_region(view, c.point, kRegionMargin);
       break;
-    case Kind::kLine:
-      c.segment = clip_segment(view, prim.v[0], prim.v[1]);
+    case geometry::Kind::kLine:
+      c.segment = geometry::clip_segment(view, prim.v[0], prim.v[1]);
       // No projection (e.g. w = 0 at a vertex): status invalid, nothing drawn.
-      if (c.segment.status == ClipStatus::kInvalid) c.rec.status = CaseStatus::kInvalid;
-      c.expected = strip_region(c.segment, view.width, view.height, kRegionMargin);
+      if (c.segment.status == geometry::ClipStatus::kInvalid) c.rec.status = CaseStatus::kInvalid;
+      c.expected = geometry::strip_region(c.segment, view.width, view.height, kRegionMargin);
       break;
-    case Kind::kTriangle:
-      c.polygon = clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
-      if (c.polygon.status == ClipStatus::kInvalid) c.rec.status = CaseStatus::kInvalid;
+    case geometry::Kind::kTriangle:
+      c.polygon = geometry::clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
+      if (c.polygon.status == geometry::ClipStatus::kInvalid) c.rec.status = CaseStatus::kInvalid;
       c.expected = triangle_region(c.polygon, view.width, view.height);
       break;
   }
@@ -80,20 +82,25 @@ PreparedCase prepare_case(const std::string& platform_name, const View& view,
 
 // Vulkan's strict line (conformance.h judge_rectangle_segment): the rectangle between the ends the
 // near and far planes leave; nothing when the segment is not visible.
-PixelSet rectangle_reference(const ClippedSegment& segment, const View& view,
-                             const Primitive& prim) {
-  if (segment.status != ClipStatus::kVisible) return {};
+geometry::PixelSet rectangle_reference(const geometry::ClippedSegment& segment,
+                                       const geometry::View& view,
+                                       const geometry::Primitive& prim) {
+  if (segment.status != geometry::ClipStatus::kVisible) return {};
   const auto [a, b] = rectangle_ends(segment, near_clipped_vertices(view, prim));
-  return rasterize_rectangle_segment(a, b, view.width, view.height);
+  return geometry::rasterize_rectangle_segment(a, b, view.width, view.height);
 }
 
-Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
-                   const RenderResult& rendered, const CaseComparison& comparison) {
+Record finish_case(PreparedCase& c, const geometry::View& view, const geometry::Primitive& prim,
+                   const platforms::RenderResult& rendered, const CaseComparison& comparison) {
   Record& rec = c.rec;
   switch (prim.kind) {
-    case Kind::kPoint: measure_point(view, c.point, rendered.lit, rec); break;
-    case Kind::kLine: measure_segment_case(c.segment, view, rendered.lit, rec); break;
-    case Kind::kTriangle:
+    case geometry::Kind::kPoint:
+      measure_point(view, c.point, rendered.lit, rec);
+      break;
+    case geometry::Kind::kLine:
+      measure_segment_case(c.segment, view, rendered.lit, rec);
+      break;
+    case geometry::Kind::kTriangle:
       // Points and lines of an antialiased rendering are measured on the pixels with any
       // coverage, as lit pixels; triangles compare coverage with area.
       if (rendered.samples > 0)
@@ -114,16 +121,20 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
   // The reference rasterizer, from the geometry prepare_case already clipped.
   const int w = view.width, h = view.height;
   const bool rectangle_lines = comparison.line_rule == CaseComparison::LineRule::kRectangle;
-  PixelSet reference;
+  geometry::PixelSet reference;
   switch (prim.kind) {
-    case Kind::kPoint: reference = rasterize_reference(view, prim); break;
-    case Kind::kLine:
-      reference = rectangle_lines ? rectangle_reference(c.segment, view, prim)
-                                  : rasterize_segment(c.segment, w, h);
+    case geometry::Kind::kPoint:
+      reference = geometry::rasterize_reference(view, prim);
       break;
-    case Kind::kTriangle: reference = rasterize_polygon(c.polygon, w, h); break;
+    case geometry::Kind::kLine:
+      reference = rectangle_lines ? rectangle_reference(c.segment, view, prim)
+                                  : geometry::rasterize_segment(c.segment, w, h);
+      break;
+    case geometry::Kind::kTriangle:
+      reference = geometry::rasterize_polygon(c.polygon, w, h);
+      break;
   }
-  rec.ref_diff = symmetric_difference_size(rendered.lit, reference);
+  rec.ref_diff = geometry::symmetric_difference_size(rendered.lit, reference);
   // Coverage (multisample) renderings are not judged: GL's multisample rules are another test.
   if (!comparison.conformance || rendered.samples > 0) return rec;
   if (rec.ref_diff == 0) {  // the usual case, settled without the judge
@@ -133,18 +144,18 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
   }
   ConformanceVerdict v;
   switch (prim.kind) {
-    case Kind::kPoint:
+    case geometry::Kind::kPoint:
       v = judge_point(clip_with_error(view, prim.v[0]), w, h, rendered.lit, reference,
                       comparison.effective);
       break;
-    case Kind::kLine:
+    case geometry::Kind::kLine:
       v = rectangle_lines
               ? judge_rectangle_segment(c.segment, near_clipped_vertices(view, prim), w, h,
                                         rendered.lit, reference, comparison.effective)
               : judge_segment(c.segment, near_clipped_vertices(view, prim), w, h, rendered.lit,
                               reference, comparison.effective);
       break;
-    case Kind::kTriangle:
+    case geometry::Kind::kTriangle:
       v = judge_polygon(c.polygon, near_clipped_vertices(view, prim), w, h, rendered.lit,
                         reference, comparison.effective);
       break;
@@ -157,15 +168,18 @@ Record finish_case(PreparedCase& c, const View& view, const Primitive& prim,
 
 }  // namespace
 
-CaseComparison::LineRule line_rule_for(const PlatformSpec& spec, const DriverInfo& driver) {
-  return spec.draws_with_vulkan() && spec.line_mode == PlatformSpec::LineMode::kDefault &&
+CaseComparison::LineRule line_rule_for(const platforms::PlatformSpec& spec,
+                                       const platforms::DriverInfo& driver) {
+  return spec.draws_with_vulkan() &&
+                 spec.line_mode == platforms::PlatformSpec::LineMode::kDefault &&
                  driver.strict_lines
              ? CaseComparison::LineRule::kRectangle
              : CaseComparison::LineRule::kDiamondExit;
 }
 
-std::vector<Record> measure_cases(const std::string& platform_name, Platform& platform,
-                                  const View& view, const std::vector<Primitive>& prims,
+std::vector<Record> measure_cases(const std::string& platform_name, platforms::Platform& platform,
+                                  const geometry::View& view,
+                                  const std::vector<geometry::Primitive>& prims,
                                   const CaseComparison& comparison, std::vector<double>* cost_us) {
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t0) {
@@ -182,12 +196,13 @@ std::vector<Record> measure_cases(const std::string& platform_name, Platform& pl
 
   std::vector<Record> records(prims.size());
   std::vector<size_t> batch;  // indices into prims
-  std::vector<Primitive> batch_prims;
-  std::vector<PixelRegion> batch_regions;
+  std::vector<geometry::Primitive> batch_prims;
+  std::vector<geometry::PixelRegion> batch_regions;
   auto flush = [&] {
     if (batch.empty()) return;
     auto t0 = Clock::now();
-    const std::vector<RenderResult> results = platform.render_batch(batch_prims, batch_regions);
+    const std::vector<platforms::RenderResult> results =
+        platform.render_batch(batch_prims, batch_regions);
     const double shared = since(t0) / double(batch.size());  // the batch shares its proof
     for (size_t k = 0; k < batch.size(); ++k) {
       t0 = Clock::now();
@@ -204,7 +219,7 @@ std::vector<Record> measure_cases(const std::string& platform_name, Platform& pl
     }
     // Batch small primitives with disjoint regions (the usual case for all but large triangles
     // and lines), so that one completeness proof covers the batch; a large one goes alone.
-    const PixelRegion& r = cases[i].expected;
+    const geometry::PixelRegion& r = cases[i].expected;
     const bool large = r.area() > kBatchMaxRegionArea;
     bool clash = batch.size() >= kMaxBatch || large;
     for (size_t k = 0; k < batch_regions.size() && !clash; ++k) clash = batch_regions[k].overlaps(r);
@@ -217,15 +232,16 @@ std::vector<Record> measure_cases(const std::string& platform_name, Platform& pl
   return records;
 }
 
-Record measure_case(const std::string& platform_name, Platform& platform, const View& view,
-                    const Primitive& prim, const CaseComparison& comparison) {
+Record measure_case(const std::string& platform_name, platforms::Platform& platform,
+                    const geometry::View& view, const geometry::Primitive& prim,
+                    const CaseComparison& comparison) {
   return measure_cases(platform_name, platform, view, {prim}, comparison).front();
 }
 
-void measure_segment_case(const ClippedSegment& seg, const View& view, const PixelSet& lit,
-                          Record& rec) {
+void measure_segment_case(const geometry::ClippedSegment& seg, const geometry::View& view,
+                          const geometry::PixelSet& lit, Record& rec) {
   rec.pixels = int64_t(lit.size());
-  rec.visibility = classify_extended(ideally_visible(seg), lit.size());
+  rec.visibility = classify_extended(geometry::ideally_visible(seg), lit.size());
   if (rec.visibility != Visibility::kTrueVisible) return;
   const LineMetrics m = measure_line(seg, lit, view.width, view.height);
   rec.lse_s = m.lse_signed;
@@ -252,26 +268,27 @@ void set_triangle_columns(const TriangleMetrics& m, Record& rec) {
 
 }  // namespace
 
-void measure_triangle_case(const ClippedPolygon& poly, const View& view, const PixelSet& lit,
-                           Record& rec) {
+void measure_triangle_case(const geometry::ClippedPolygon& poly, const geometry::View& view,
+                           const geometry::PixelSet& lit, Record& rec) {
   rec.pixels = int64_t(lit.size());
-  rec.visibility = classify_extended(ideally_visible(poly), lit.size());
+  rec.visibility = classify_extended(geometry::ideally_visible(poly), lit.size());
   if (rec.visibility != Visibility::kTrueVisible) return;
   set_triangle_columns(measure_triangle(poly, lit, view.width, view.height), rec);
 }
 
-void measure_triangle_coverage_case(const ClippedPolygon& poly, const View& view,
-                                    const RenderResult& rendered, Record& rec) {
+void measure_triangle_coverage_case(const geometry::ClippedPolygon& poly,
+                                    const geometry::View& view,
+                                    const platforms::RenderResult& rendered, Record& rec) {
   rec.pixels = int64_t(rendered.lit.size());
-  rec.visibility = classify_extended(ideally_visible(poly), rendered.lit.size());
+  rec.visibility = classify_extended(geometry::ideally_visible(poly), rendered.lit.size());
   if (rec.visibility != Visibility::kTrueVisible) return;
   set_triangle_columns(measure_triangle_coverage(poly, rendered.lit, rendered.samples_lit,
                                                  rendered.samples, view.width, view.height),
                        rec);
 }
 
-uint64_t rendered_pixel_hash(const RenderResult& rendered) {
-  uint64_t h = pixel_set_hash(rendered.lit);
+uint64_t rendered_pixel_hash(const platforms::RenderResult& rendered) {
+  uint64_t h = geometry::pixel_set_hash(rendered.lit);
   if (rendered.samples <= 0) return h;
   for (uint8_t k : rendered.samples_lit) {  // FNV-1a, continued
     h ^= k;
@@ -285,4 +302,4 @@ Visibility classify_extended(bool ideal_visible, size_t lit_pixels) {
   return ideal_visible ? Visibility::kFalseInvisible : Visibility::kTrueInvisible;
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

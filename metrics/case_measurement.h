@@ -12,7 +12,7 @@
 #include "metrics/records.h"
 #include "geometry/reference_rasterizer.h"
 
-namespace ra {
+namespace ra::metrics {
 
 // Pixels of margin around the ideal primitive's window bounding box in which a platform's pixels are
 // looked for first (the occlusion-query proof, or a full scan, covers the rest of the window).
@@ -37,20 +37,21 @@ struct CaseComparison {
   bool conformance = true;
   // The grid the platform effectively snaps to (metrics/effective_subpixel.h): "snapped" means
   // equal to the reference on this grid. Exact: the platform does not snap.
-  SubpixelGrid effective;
+  geometry::SubpixelGrid effective;
   // How the platform draws lines, hence which reference and rules judge them: GL's diamond-exit
   // (GL platforms, Vulkan's Bresenham mode and default lines without strictLines), or Vulkan's
   // strict rectangles (metrics/conformance.h judge_rectangle_segment).
   enum class LineRule { kDiamondExit, kRectangle };
   LineRule line_rule = LineRule::kDiamondExit;
   // Implicit from a bool (with_reference), as most callers only say whether to compare.
-  CaseComparison(bool with_reference_ = true, SubpixelGrid effective_ = {})
+  CaseComparison(bool with_reference_ = true, geometry::SubpixelGrid effective_ = {})
       : with_reference(with_reference_), effective(effective_) {}
 };
 
 // The line rule of a platform that loaded driver `driver`: kRectangle for a Vulkan platform
 // drawing default lines on a device with strictLines, else kDiamondExit.
-CaseComparison::LineRule line_rule_for(const PlatformSpec& spec, const DriverInfo& driver);
+CaseComparison::LineRule line_rule_for(const platforms::PlatformSpec& spec,
+                                       const platforms::DriverInfo& driver);
 
 // Renders each of `prims` on `platform` and fills their records, in order: visibility, the kind's
 // metrics, pixel hash, render time, and the comparison with the reference (ref_diff and the
@@ -58,34 +59,38 @@ CaseComparison::LineRule line_rule_for(const PlatformSpec& spec, const DriverInf
 // status invalid. `cost_us` (for benchmarks), when given, receives each primitive's share of the
 // wall time in microseconds: its own geometry and measurement, plus an equal share of its batch's
 // drawing and proof.
-std::vector<Record> measure_cases(const std::string& platform_name, Platform& platform,
-                                  const View& view, const std::vector<Primitive>& prims,
+std::vector<Record> measure_cases(const std::string& platform_name, platforms::Platform& platform,
+                                  const geometry::View& view,
+                                  const std::vector<geometry::Primitive>& prims,
                                   const CaseComparison& comparison,
                                   std::vector<double>* cost_us = nullptr);
 // The same for one primitive.
-Record measure_case(const std::string& platform_name, Platform& platform, const View& view,
-                    const Primitive& prim, const CaseComparison& comparison);
+Record measure_case(const std::string& platform_name, platforms::Platform& platform,
+                    const geometry::View& view, const geometry::Primitive& prim,
+                    const CaseComparison& comparison);
 
 // Visibility of a segment or triangle (no multiple-visible class for them, paper 3.5-3.6).
 Visibility classify_extended(bool ideal_visible, size_t lit_pixels);
 
 // Fill pixels, visibility and, for true-visible cases, the metrics (paper 3.5 and 3.6).
-void measure_segment_case(const ClippedSegment& seg, const View& view, const PixelSet& lit,
-                          Record& rec);
-void measure_triangle_case(const ClippedPolygon& poly, const View& view, const PixelSet& lit,
-                           Record& rec);
+void measure_segment_case(const geometry::ClippedSegment& seg, const geometry::View& view,
+                          const geometry::PixelSet& lit, Record& rec);
+void measure_triangle_case(const geometry::ClippedPolygon& poly, const geometry::View& view,
+                           const geometry::PixelSet& lit, Record& rec);
 // The same for an antialiased rendering (RenderResult::samples > 0): the te_* columns get the
 // coverage form of the metrics (TEs_cov, TEu_cov, triangle_metrics.h); visibility and `pixels`
 // count the pixels with any coverage.
-void measure_triangle_coverage_case(const ClippedPolygon& poly, const View& view,
-                                    const RenderResult& rendered, Record& rec);
+void measure_triangle_coverage_case(const geometry::ClippedPolygon& poly,
+                                    const geometry::View& view,
+                                    const platforms::RenderResult& rendered, Record& rec);
 
 // The record's pixel_hash: pixel_set_hash(lit) for an aliased rendering; for an antialiased one
 // the same FNV-1a 64 continued over the samples-lit byte of each lit pixel in (y, x) order, so a
 // change of coverage alone changes the hash.
-uint64_t rendered_pixel_hash(const RenderResult& rendered);
+uint64_t rendered_pixel_hash(const platforms::RenderResult& rendered);
 
 // The record fields that describe the case itself (platform, view, kind, index).
-Record case_identity(const std::string& platform_name, const View& view, const Primitive& prim);
+Record case_identity(const std::string& platform_name, const geometry::View& view,
+                     const geometry::Primitive& prim);
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -11,20 +11,21 @@
 
 #include "platforms/platform.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 TEST(CaseMeasurement, NonFiniteVerticesAreInvalidCases) {
-  auto platform = create_reference_platform();
-  const View view = make_view(90, 64, 64);
+  auto platform = platforms::create_reference_platform();
+  const geometry::View view = geometry::make_view(90, 64, 64);
   platform->set_view(view);
-  for (Kind kind : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
+  for (geometry::Kind kind :
+       {geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle}) {
     for (double bad : {std::numeric_limits<double>::quiet_NaN(),
                        std::numeric_limits<double>::infinity()}) {
-      Primitive prim = make_primitive(1, kind, 0);
-      prim.v[vertex_count(kind) - 1].y = bad;
+      geometry::Primitive prim = geometry::make_primitive(1, kind, 0);
+      prim.v[geometry::vertex_count(kind) - 1].y = bad;
       const Record r = measure_case("reference", *platform, view, prim, true);
-      EXPECT_EQ(r.status, CaseStatus::kInvalid) << kind_name(kind);
+      EXPECT_EQ(r.status, CaseStatus::kInvalid) << geometry::kind_name(kind);
       EXPECT_EQ(r.pixels, 0);
       EXPECT_TRUE(std::isnan(r.pe) && std::isnan(r.lse_u) && std::isnan(r.te_u));
     }
@@ -34,12 +35,13 @@ TEST(CaseMeasurement, NonFiniteVerticesAreInvalidCases) {
 // A triangle in front of the camera, filling a known part of the window: true-visible, TE metrics
 // present, and on the reference itself no difference from the reference.
 TEST(CaseMeasurement, VisibleTriangleAndSegmentGetTheirMetrics) {
-  auto platform = create_reference_platform();
-  const View view = make_view(90, 64, 64);
+  auto platform = platforms::create_reference_platform();
+  const geometry::View view = geometry::make_view(90, 64, 64);
   platform->set_view(view);
-  Primitive tri;
-  tri.kind = Kind::kTriangle;
-  tri.v = {Vec3{-0.5, -0.5, -1}, Vec3{0.5, -0.5, -1}, Vec3{0, 0.5, -1}};
+  geometry::Primitive tri;
+  tri.kind = geometry::Kind::kTriangle;
+  tri.v = {geometry::Vec3{-0.5, -0.5, -1}, geometry::Vec3{0.5, -0.5, -1},
+           geometry::Vec3{0, 0.5, -1}};
   const Record t = measure_case("reference", *platform, view, tri, true);
   EXPECT_EQ(t.status, CaseStatus::kOk);
   EXPECT_EQ(t.visibility, Visibility::kTrueVisible);
@@ -50,9 +52,9 @@ TEST(CaseMeasurement, VisibleTriangleAndSegmentGetTheirMetrics) {
   EXPECT_EQ(t.simply_connected, 1);
   EXPECT_EQ(t.full_window, 0);
 
-  Primitive seg;
-  seg.kind = Kind::kLine;
-  seg.v = {Vec3{-0.5, -0.25, -1}, Vec3{0.5, 0.25, -1}, Vec3{}};
+  geometry::Primitive seg;
+  seg.kind = geometry::Kind::kLine;
+  seg.v = {geometry::Vec3{-0.5, -0.25, -1}, geometry::Vec3{0.5, 0.25, -1}, geometry::Vec3{}};
   const Record l = measure_case("reference", *platform, view, seg, true);
   EXPECT_EQ(l.visibility, Visibility::kTrueVisible);
   EXPECT_EQ(l.chain_8connected, 1);
@@ -62,33 +64,36 @@ TEST(CaseMeasurement, VisibleTriangleAndSegmentGetTheirMetrics) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 // Small primitives are drawn in batches under one occlusion query (measure_cases); the pixel sets
 // must be exactly those found one primitive at a time, each with its own proof.
 TEST(CaseMeasurementBatches, FindTheSamePixelsAsSinglePrimitives) {
-  auto platform = create_gl_platform(*find_platform("osmesa-llvmpipe"));
+  auto platform = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
   for (double fov : {30.0, 150.0}) {
-    const View view = make_view(fov, 128, 128, 0.01, 10.0, random_rotation(2008, 1));
+    const geometry::View view =
+        geometry::make_view(fov, 128, 128, 0.01, 10.0, geometry::random_rotation(2008, 1));
     platform->set_view(view);
-    for (Kind kind : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
-      std::vector<Primitive> prims;
-      for (uint64_t i = 0; i < 300; ++i) prims.push_back(make_primitive(2008, kind, i));
+    for (geometry::Kind kind :
+         {geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle}) {
+      std::vector<geometry::Primitive> prims;
+      for (uint64_t i = 0; i < 300; ++i) prims.push_back(geometry::make_primitive(2008, kind, i));
       const std::vector<Record> batched = measure_cases("llvmpipe", *platform, view, prims, true);
       ASSERT_EQ(batched.size(), prims.size());
       int64_t lit = 0;
       for (size_t i = 0; i < prims.size(); ++i) {
         const Record single = measure_case("llvmpipe", *platform, view, prims[i], true);
         ASSERT_EQ(batched[i].index, prims[i].index);
-        ASSERT_EQ(batched[i].pixels, single.pixels) << kind_name(kind) << " " << i;
-        ASSERT_EQ(batched[i].pixel_hash, single.pixel_hash) << kind_name(kind) << " " << i;
+        ASSERT_EQ(batched[i].pixels, single.pixels) << geometry::kind_name(kind) << " " << i;
+        ASSERT_EQ(batched[i].pixel_hash, single.pixel_hash)
+            << geometry::kind_name(kind) << " " << i;
         ASSERT_EQ(batched[i].visibility, single.visibility);
         lit += batched[i].pixels;
       }
-      EXPECT_GT(lit, 0) << kind_name(kind) << " at FOV " << fov;  // something was drawn
+      EXPECT_GT(lit, 0) << geometry::kind_name(kind) << " at FOV " << fov;  // something was drawn
     }
   }
 }
@@ -96,14 +101,16 @@ TEST(CaseMeasurementBatches, FindTheSamePixelsAsSinglePrimitives) {
 // A pixel lit far from one primitive of a batch (by GL, inside the batch's query) is found and
 // charged to that primitive only: the batch's count disagrees, so each is drawn again alone.
 TEST(CaseMeasurementBatches, AWildPixelInABatchIsChargedToItsPrimitive) {
-  const View view = make_view(30, 128, 128, 0.01, 10.0, random_rotation(2008, 1));
-  auto clean = create_gl_platform(*find_platform("osmesa-llvmpipe"));
-  auto wild = create_gl_platform(*find_platform("osmesa-llvmpipe"),
-                                     ReadbackMethod::kRegionWithProof, {5, 40});
+  const geometry::View view =
+      geometry::make_view(30, 128, 128, 0.01, 10.0, geometry::random_rotation(2008, 1));
+  auto clean = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
+  auto wild = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"),
+                                            platforms::ReadbackMethod::kRegionWithProof, {5, 40});
   clean->set_view(view);
   wild->set_view(view);
-  std::vector<Primitive> prims;
-  for (uint64_t i = 0; i < 64; ++i) prims.push_back(make_primitive(2008, Kind::kPoint, i));
+  std::vector<geometry::Primitive> prims;
+  for (uint64_t i = 0; i < 64; ++i)
+    prims.push_back(geometry::make_primitive(2008, geometry::Kind::kPoint, i));
   const std::vector<Record> c = measure_cases("llvmpipe", *clean, view, prims, true);
   const std::vector<Record> w = measure_cases("llvmpipe", *wild, view, prims, true);
   for (size_t i = 0; i < prims.size(); ++i) {
@@ -114,4 +121,4 @@ TEST(CaseMeasurementBatches, AWildPixelInABatchIsChargedToItsPrimitive) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

@@ -57,7 +57,7 @@
 #include "metrics/records.h"
 #include "metrics/window_error.h"
 
-namespace ra {
+namespace ra::metrics {
 
 // The version of the rules above, in the run manifest ("conformance_rules"; a manifest without it
 // was judged by version 1): an audit compares two runs' classes only when both were judged by the
@@ -78,16 +78,19 @@ struct ConformanceVerdict {
 // vertices). `violating`, when given, receives the pixels that break a rule (lit or left dark; a
 // count rule names the reference's pixels it misses).
 ConformanceVerdict judge_point(const ClipWithError& clip, int width, int height,
-                               const PixelSet& lit, const PixelSet& exact, SubpixelGrid effective,
-                               PixelSet* violating = nullptr);
-ConformanceVerdict judge_segment(const ClippedSegment& segment,
+                               const geometry::PixelSet& lit, const geometry::PixelSet& exact,
+                               geometry::SubpixelGrid effective,
+                               geometry::PixelSet* violating = nullptr);
+ConformanceVerdict judge_segment(const geometry::ClippedSegment& segment,
                                  const std::vector<AllowedVertex>& near_clipped, int width,
-                                 int height, const PixelSet& lit, const PixelSet& exact,
-                                 SubpixelGrid effective, PixelSet* violating = nullptr);
-ConformanceVerdict judge_polygon(const ClippedPolygon& polygon,
+                                 int height, const geometry::PixelSet& lit,
+                                 const geometry::PixelSet& exact, geometry::SubpixelGrid effective,
+                                 geometry::PixelSet* violating = nullptr);
+ConformanceVerdict judge_polygon(const geometry::ClippedPolygon& polygon,
                                  const std::vector<AllowedVertex>& near_clipped, int width,
-                                 int height, const PixelSet& lit, const PixelSet& exact,
-                                 SubpixelGrid effective, PixelSet* violating = nullptr);
+                                 int height, const geometry::PixelSet& lit,
+                                 const geometry::PixelSet& exact, geometry::SubpixelGrid effective,
+                                 geometry::PixelSet* violating = nullptr);
 
 // Vulkan's strict lines (the default line mode where the device reports strictLines; Vulkan 1.3,
 // "Basic Line Segment Rasterization"): the segment covers a rectangle of width 1 from end to end,
@@ -99,33 +102,38 @@ ConformanceVerdict judge_polygon(const ClippedPolygon& polygon,
 // plus the turn the two ends' allowances can give the segment (half of their sum over its length);
 // where a window side cut an end, the rectangle of the cut end is allowed too. Broken:
 // "line-rectangle"; nothing drawn where a pixel had to be: "line-missing".
-ConformanceVerdict judge_rectangle_segment(const ClippedSegment& segment,
+ConformanceVerdict judge_rectangle_segment(const geometry::ClippedSegment& segment,
                                            const std::vector<AllowedVertex>& near_clipped,
-                                           int width, int height, const PixelSet& lit,
-                                           const PixelSet& exact, SubpixelGrid effective,
-                                           PixelSet* violating = nullptr);
+                                           int width, int height, const geometry::PixelSet& lit,
+                                           const geometry::PixelSet& exact,
+                                           geometry::SubpixelGrid effective,
+                                           geometry::PixelSet* violating = nullptr);
 // The ends judge_rectangle_segment draws the rectangle between: the segment's ends, but where a
 // window side cut an end, the near-clipped vertex of that end (window coordinates, px).
-std::pair<Vec2, Vec2> rectangle_ends(const ClippedSegment& segment,
-                                     const std::vector<AllowedVertex>& near_clipped);
+std::pair<geometry::Vec2, geometry::Vec2> rectangle_ends(
+    const geometry::ClippedSegment& segment, const std::vector<AllowedVertex>& near_clipped);
 
 // Hand-made cases with no view: a point exactly at `clip` (no transform error), a segment or
 // polygon whose clipped vertices all have the uniform allowance conformance_allowance(magnitude).
-ConformanceVerdict judge_point(Vec4 clip, int width, int height, const PixelSet& lit,
-                               const PixelSet& exact, SubpixelGrid effective,
-                               PixelSet* violating = nullptr);
-ConformanceVerdict judge_segment(const ClippedSegment& segment, double magnitude, int width,
-                                 int height, const PixelSet& lit, const PixelSet& exact,
-                                 SubpixelGrid effective, PixelSet* violating = nullptr);
-ConformanceVerdict judge_polygon(const ClippedPolygon& polygon, double magnitude, int width,
-                                 int height, const PixelSet& lit, const PixelSet& exact,
-                                 SubpixelGrid effective, PixelSet* violating = nullptr);
+ConformanceVerdict judge_point(geometry::Vec4 clip, int width, int height,
+                               const geometry::PixelSet& lit, const geometry::PixelSet& exact,
+                               geometry::SubpixelGrid effective,
+                               geometry::PixelSet* violating = nullptr);
+ConformanceVerdict judge_segment(const geometry::ClippedSegment& segment, double magnitude,
+                                 int width, int height, const geometry::PixelSet& lit,
+                                 const geometry::PixelSet& exact, geometry::SubpixelGrid effective,
+                                 geometry::PixelSet* violating = nullptr);
+ConformanceVerdict judge_polygon(const geometry::ClippedPolygon& polygon, double magnitude,
+                                 int width, int height, const geometry::PixelSet& lit,
+                                 const geometry::PixelSet& exact, geometry::SubpixelGrid effective,
+                                 geometry::PixelSet* violating = nullptr);
 
 // The same for primitive `prim` under `view`, clipping it and rasterizing its exact reference here
 // (for one primitive at a time, as `renderaudit show` needs; the runner reuses its own).
 // `rectangle_lines`: segments by Vulkan's strict-line rule (judge_rectangle_segment).
-ConformanceVerdict judge_primitive(const View& view, const Primitive& prim, const PixelSet& lit,
-                                   SubpixelGrid effective, PixelSet* violating = nullptr,
+ConformanceVerdict judge_primitive(const geometry::View& view, const geometry::Primitive& prim,
+                                   const geometry::PixelSet& lit, geometry::SubpixelGrid effective,
+                                   geometry::PixelSet* violating = nullptr,
                                    bool rectangle_lines = false);
 
-}  // namespace ra
+}  // namespace ra::metrics

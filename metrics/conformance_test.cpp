@@ -12,14 +12,14 @@
 #include "metrics/effective_subpixel.h"
 #include "platforms/platform.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 constexpr int kW = 64, kH = 64;
 
-ClippedPolygon polygon(std::vector<Vec2> ccw) {
-  ClippedPolygon p;
-  p.status = ClipStatus::kVisible;
+geometry::ClippedPolygon polygon(std::vector<geometry::Vec2> ccw) {
+  geometry::ClippedPolygon p;
+  p.status = geometry::ClipStatus::kVisible;
   p.vertices = std::move(ccw);
   p.area = 1;
   p.orientation = 1;
@@ -27,27 +27,27 @@ ClippedPolygon polygon(std::vector<Vec2> ccw) {
   return p;
 }
 
-ClippedSegment segment(Vec2 a, Vec2 b) {
-  ClippedSegment s;
-  s.status = ClipStatus::kVisible;
+geometry::ClippedSegment segment(geometry::Vec2 a, geometry::Vec2 b) {
+  geometry::ClippedSegment s;
+  s.status = geometry::ClipStatus::kVisible;
   s.p0 = a, s.p1 = b;
   return s;
 }
 
 // Window position (x, y) at depth 0 as clip coordinates (w = 1).
-Vec4 clip_of(double x, double y) { return {2 * x / kW - 1, 2 * y / kH - 1, 0, 1}; }
+geometry::Vec4 clip_of(double x, double y) { return {2 * x / kW - 1, 2 * y / kH - 1, 0, 1}; }
 
-const SubpixelGrid kExact{}, kFour{4, SnapRounding::kNearest};
+const geometry::SubpixelGrid kExact{}, kFour{4, geometry::SnapRounding::kNearest};
 
 TEST(Conformance, ASliverThatFourBitSnappingLightsIsWithinSpecOrSnapped) {
   // Exact: no centre inside (x = 10.5 lies left of the edge x = 10.51). Snapped to 1/16 px the
   // left edge moves to x = 10.5, a left edge, so the centres of column 10 on it are inside.
-  const ClippedPolygon sliver = polygon({{10.51, 2}, {10.6, 2}, {10.51, 40}});
-  const PixelSet exact = rasterize_polygon(sliver, kW, kH);
-  const PixelSet snapped = rasterize_polygon(sliver, kW, kH, kFour);
+  const geometry::ClippedPolygon sliver = polygon({{10.51, 2}, {10.6, 2}, {10.51, 40}});
+  const geometry::PixelSet exact = geometry::rasterize_polygon(sliver, kW, kH);
+  const geometry::PixelSet snapped = geometry::rasterize_polygon(sliver, kW, kH, kFour);
   ASSERT_TRUE(exact.empty());
   ASSERT_EQ(snapped.size(), 38);  // rows 2..39 of column 10
-  for (const Pixel& p : snapped) EXPECT_EQ(p.x, 10);
+  for (const geometry::Pixel& p : snapped) EXPECT_EQ(p.x, 10);
   const ConformanceVerdict v = judge_polygon(sliver, kW, kW, kH, snapped, exact, kExact);
   EXPECT_EQ(v.conformance, Conformance::kWithinSpec);
   EXPECT_EQ(v.violating_pixels, 0);
@@ -58,28 +58,28 @@ TEST(Conformance, ASliverThatFourBitSnappingLightsIsWithinSpecOrSnapped) {
 }
 
 TEST(Conformance, AHoleInATriangleIsAViolationOfOnePixel) {
-  const ClippedPolygon t = polygon({{2, 2}, {40, 2}, {2, 40}});
-  const PixelSet exact = rasterize_polygon(t, kW, kH);
-  PixelSet lit = exact;
+  const geometry::ClippedPolygon t = polygon({{2, 2}, {40, 2}, {2, 40}});
+  const geometry::PixelSet exact = geometry::rasterize_polygon(t, kW, kH);
+  geometry::PixelSet lit = exact;
   lit.erase({12, 10});
-  PixelSet where;
+  geometry::PixelSet where;
   const ConformanceVerdict v = judge_polygon(t, kW, kW, kH, lit, exact, kFour, &where);
   EXPECT_EQ(v.conformance, Conformance::kViolation);
   EXPECT_EQ(v.violating_pixels, 1);
   EXPECT_EQ(v.violated_rules, "polygon-edge");
-  EXPECT_EQ(where, (PixelSet{{12, 10}}));
+  EXPECT_EQ(where, (geometry::PixelSet{{12, 10}}));
 }
 
 TEST(Conformance, ATriangleShiftedByOnePixelViolatesWhereCentresLieBeyondTheAllowance) {
-  const Vec2 a{3.3, 4.1}, b{41.7, 6.2}, c{9.4, 37.9};
-  const ClippedPolygon t = polygon({a, b, c});
-  const PixelSet exact = rasterize_polygon(t, kW, kH);
-  PixelSet lit = exact;
+  const geometry::Vec2 a{3.3, 4.1}, b{41.7, 6.2}, c{9.4, 37.9};
+  const geometry::ClippedPolygon t = polygon({a, b, c});
+  const geometry::PixelSet exact = geometry::rasterize_polygon(t, kW, kH);
+  geometry::PixelSet lit = exact;
   lit.translate(1, 0);
   // Brute force: a differing pixel is allowed when its centre lies within sqrt(2) x the allowance
   // of one of the three edge lines' segments (distance by the area formula and the ends).
   const double allow = std::sqrt(2.0) * (0.0625 + 1e-5 * kW);
-  auto dist = [](Vec2 q, Vec2 p0, Vec2 p1) {
+  auto dist = [](geometry::Vec2 q, geometry::Vec2 p0, geometry::Vec2 p1) {
     const double len = std::hypot(p1.x - p0.x, p1.y - p0.y);
     const double t = ((q.x - p0.x) * (p1.x - p0.x) + (q.y - p0.y) * (p1.y - p0.y)) / (len * len);
     if (t <= 0) return std::hypot(q.x - p0.x, q.y - p0.y);
@@ -91,7 +91,7 @@ TEST(Conformance, ATriangleShiftedByOnePixelViolatesWhereCentresLieBeyondTheAllo
     for (int x = 0; x < kW; ++x) {
       if (exact.contains({x, y}) == lit.contains({x, y})) continue;
       ++differing;
-      const Vec2 q{x + 0.5, y + 0.5};
+      const geometry::Vec2 q{x + 0.5, y + 0.5};
       if (std::min({dist(q, a, b), dist(q, b, c), dist(q, c, a)}) > allow) ++expected;
     }
   ASSERT_GT(expected, 20);  // the left side's column, at least
@@ -102,19 +102,19 @@ TEST(Conformance, ATriangleShiftedByOnePixelViolatesWhereCentresLieBeyondTheAllo
 }
 
 TEST(Conformance, ABresenhamThatDropsItsLastPixelIsWithinSpecTwoAreNot) {
-  const ClippedSegment s = segment({2.3, 3.2}, {20.7, 9.9});  // x-major
-  const PixelSet exact = rasterize_segment(s, kW, kH);
+  const geometry::ClippedSegment s = segment({2.3, 3.2}, {20.7, 9.9});  // x-major
+  const geometry::PixelSet exact = geometry::rasterize_segment(s, kW, kH);
   ASSERT_EQ(exact.size(), 19);  // one fragment per column 2..20 (the end's diamond holds 20.5?)
-  Pixel last = exact.front();
-  for (const Pixel& p : exact)
+  geometry::Pixel last = exact.front();
+  for (const geometry::Pixel& p : exact)
     if (p.x > last.x) last = p;
-  PixelSet lit = exact;
+  geometry::PixelSet lit = exact;
   lit.erase(last);
   ConformanceVerdict v = judge_segment(s, 21, kW, kH, lit, exact, kExact);
   EXPECT_EQ(v.conformance, Conformance::kWithinSpec);
   EXPECT_EQ(v.violating_pixels, 0);
-  Pixel second = lit.front();
-  for (const Pixel& p : lit)
+  geometry::Pixel second = lit.front();
+  for (const geometry::Pixel& p : lit)
     if (p.x > second.x) second = p;
   lit.erase(second);
   v = judge_segment(s, 21, kW, kH, lit, exact, kExact);
@@ -124,12 +124,12 @@ TEST(Conformance, ABresenhamThatDropsItsLastPixelIsWithinSpecTwoAreNot) {
 }
 
 TEST(Conformance, TwoFragmentsInAColumnOrOneTwoRowsOffAreViolations) {
-  const ClippedSegment s = segment({2.3, 3.2}, {20.7, 9.9});
-  const PixelSet exact = rasterize_segment(s, kW, kH);
-  PixelSet lit = exact;
-  const Pixel first = exact.front();
+  const geometry::ClippedSegment s = segment({2.3, 3.2}, {20.7, 9.9});
+  const geometry::PixelSet exact = geometry::rasterize_segment(s, kW, kH);
+  geometry::PixelSet lit = exact;
+  const geometry::Pixel first = exact.front();
   lit.insert({first.x, first.y + 1});  // rule 1 holds (one row off), rule 2 too (one more)
-  PixelSet where;
+  geometry::PixelSet where;
   ConformanceVerdict v = judge_segment(s, 21, kW, kH, lit, exact, kExact, &where);
   EXPECT_EQ(v.conformance, Conformance::kViolation);
   EXPECT_EQ(v.violating_pixels, 1);
@@ -137,14 +137,14 @@ TEST(Conformance, TwoFragmentsInAColumnOrOneTwoRowsOffAreViolations) {
   EXPECT_EQ(where.size(), 2);  // both fragments of that column
   // A middle fragment moved two rows up: rule 1 (and rule 3 does not see it: still one a column).
   lit = exact;
-  const Pixel mid = exact.pixels()[9];
+  const geometry::Pixel mid = exact.pixels()[9];
   lit.erase(mid);
   lit.insert({mid.x, mid.y + 2});
   v = judge_segment(s, 21, kW, kH, lit, exact, kExact, &where);
   EXPECT_EQ(v.conformance, Conformance::kViolation);
   EXPECT_EQ(v.violating_pixels, 1);
   EXPECT_EQ(v.violated_rules, "line-deviation");
-  EXPECT_EQ(where, (PixelSet{{mid.x, mid.y + 2}}));
+  EXPECT_EQ(where, (geometry::PixelSet{{mid.x, mid.y + 2}}));
   // The same segment one pixel to the right: rule 1 allows it.
   lit = exact;
   lit.translate(1, 0);
@@ -154,54 +154,57 @@ TEST(Conformance, TwoFragmentsInAColumnOrOneTwoRowsOffAreViolations) {
 
 TEST(Conformance, PointsSnappedAcrossAPixelBorderShiftedOrMissing) {
   // x = 10.99: exact pixel 10; a 4-bit nearest snap gives 11.0, pixel 11.
-  Vec4 c = clip_of(10.99, 5.3);
-  const PixelSet exact = rasterize_point(c, kW, kH);
-  ASSERT_EQ(exact, (PixelSet{{10, 5}}));
-  const PixelSet eleven{{11, 5}};
+  geometry::Vec4 c = clip_of(10.99, 5.3);
+  const geometry::PixelSet exact = geometry::rasterize_point(c, kW, kH);
+  ASSERT_EQ(exact, (geometry::PixelSet{{10, 5}}));
+  const geometry::PixelSet eleven{{11, 5}};
   EXPECT_EQ(judge_point(c, kW, kH, eleven, exact, kFour).conformance, Conformance::kSnapped);
   EXPECT_EQ(judge_point(c, kW, kH, eleven, exact, kExact).conformance, Conformance::kWithinSpec);
-  ConformanceVerdict v = judge_point(c, kW, kH, PixelSet{{10, 5}, {11, 5}}, exact, kExact);
+  ConformanceVerdict v =
+      judge_point(c, kW, kH, geometry::PixelSet{{10, 5}, {11, 5}}, exact, kExact);
   EXPECT_EQ(v.conformance, Conformance::kViolation);
   EXPECT_EQ(v.violated_rules, "point-count");
   // x = 10.5: pixel 11 is beyond any snap; nothing at all is not allowed either.
   c = clip_of(10.5, 5.5);
-  v = judge_point(c, kW, kH, eleven, rasterize_point(c, kW, kH), kFour);
+  v = judge_point(c, kW, kH, eleven, geometry::rasterize_point(c, kW, kH), kFour);
   EXPECT_EQ(v.conformance, Conformance::kViolation);
   EXPECT_EQ(v.violating_pixels, 1);
   EXPECT_EQ(v.violated_rules, "point-pixel");
-  v = judge_point(c, kW, kH, PixelSet{}, rasterize_point(c, kW, kH), kFour);
+  v = judge_point(c, kW, kH, geometry::PixelSet{}, geometry::rasterize_point(c, kW, kH), kFour);
   EXPECT_EQ(v.violated_rules, "point-missing");
   // Within the allowance of the window's left side, a point may be culled.
   c = clip_of(0.01, 20.5);
-  EXPECT_EQ(judge_point(c, kW, kH, PixelSet{}, rasterize_point(c, kW, kH), kExact).conformance,
-            Conformance::kWithinSpec);
+  EXPECT_EQ(
+      judge_point(c, kW, kH, geometry::PixelSet{}, geometry::rasterize_point(c, kW, kH), kExact)
+          .conformance,
+      Conformance::kWithinSpec);
 }
 
 // Drawn as nothing, or as half of itself: a primitive the reference lights across the window is
 // a violation when no placement of its vertices within their allowances lets it vanish. Built
 // through judge_primitive, as `run` and `show` judge a record.
-Primitive line_of(Vec3 a, Vec3 b) {
-  Primitive p;
-  p.kind = Kind::kLine;
-  p.v = {a, b, Vec3{}};
+geometry::Primitive line_of(geometry::Vec3 a, geometry::Vec3 b) {
+  geometry::Primitive p;
+  p.kind = geometry::Kind::kLine;
+  p.v = {a, b, geometry::Vec3{}};
   return p;
 }
 
-PixelSet columns_below(const PixelSet& s, int32_t x_end) {
-  std::vector<Pixel> kept;
-  for (const Pixel& p : s)
+geometry::PixelSet columns_below(const geometry::PixelSet& s, int32_t x_end) {
+  std::vector<geometry::Pixel> kept;
+  for (const geometry::Pixel& p : s)
     if (p.x < x_end) kept.push_back(p);
-  return PixelSet::from_pixels(kept);
+  return geometry::PixelSet::from_pixels(kept);
 }
 
 TEST(Conformance, ASegmentCutByTwoWindowSidesDrawnAsNothingIsMissing) {
   // Both ends beyond the window's sides: rule 2 cannot count the fragments the window discards,
   // and rules 1 and 3 hold for an empty set. The count inside the window must still be there.
-  const View view = make_view(30, 907, 907);
-  const Primitive line = line_of({-5, 0.1, -3}, {5, 0.13, -3});
-  const PixelSet exact = rasterize_reference(view, line);
+  const geometry::View view = geometry::make_view(30, 907, 907);
+  const geometry::Primitive line = line_of({-5, 0.1, -3}, {5, 0.13, -3});
+  const geometry::PixelSet exact = geometry::rasterize_reference(view, line);
   ASSERT_EQ(exact.size(), 907);  // one pixel per column, across the whole window
-  const ConformanceVerdict v = judge_primitive(view, line, PixelSet{}, kExact);
+  const ConformanceVerdict v = judge_primitive(view, line, geometry::PixelSet{}, kExact);
   EXPECT_EQ(v.conformance, Conformance::kViolation);
   EXPECT_EQ(v.violated_rules, "line-missing");
   EXPECT_GE(v.violating_pixels, 890);  // all but the columns near the window's sides
@@ -209,10 +212,10 @@ TEST(Conformance, ASegmentCutByTwoWindowSidesDrawnAsNothingIsMissing) {
 }
 
 TEST(Conformance, ASegmentCutByTwoWindowSidesDrawnAsHalfOfItselfIsAViolation) {
-  const View view = make_view(30, 907, 907);
-  const Primitive line = line_of({-5, 0.1, -3}, {5, 0.13, -3});
-  const PixelSet exact = rasterize_reference(view, line);
-  PixelSet where;
+  const geometry::View view = geometry::make_view(30, 907, 907);
+  const geometry::Primitive line = line_of({-5, 0.1, -3}, {5, 0.13, -3});
+  const geometry::PixelSet exact = geometry::rasterize_reference(view, line);
+  geometry::PixelSet where;
   const ConformanceVerdict v =
       judge_primitive(view, line, columns_below(exact, 453), kExact, &where);
   EXPECT_EQ(v.conformance, Conformance::kViolation);
@@ -221,99 +224,103 @@ TEST(Conformance, ASegmentCutByTwoWindowSidesDrawnAsHalfOfItselfIsAViolation) {
   EXPECT_LE(v.violating_pixels, 454);
   // The missing reference pixels are named, all in the right half.
   EXPECT_GE(where.size(), 440);
-  for (const Pixel& p : where) EXPECT_GE(p.x, 453);
+  for (const geometry::Pixel& p : where) EXPECT_GE(p.x, 453);
 }
 
 TEST(Conformance, ASegmentCutByTwoWindowSidesKeepsItsFreedom) {
   // What GL allows stays within spec: one row up (rule 1), two fragments fewer at the sides (the
   // window discards a fragment that a shifted end moves out).
-  const View view = make_view(30, 907, 907);
-  const Primitive line = line_of({-5, 0.1, -3}, {5, 0.13, -3});
-  const PixelSet exact = rasterize_reference(view, line);
-  std::vector<Pixel> up, trimmed;
-  for (const Pixel& p : exact) {
+  const geometry::View view = geometry::make_view(30, 907, 907);
+  const geometry::Primitive line = line_of({-5, 0.1, -3}, {5, 0.13, -3});
+  const geometry::PixelSet exact = geometry::rasterize_reference(view, line);
+  std::vector<geometry::Pixel> up, trimmed;
+  for (const geometry::Pixel& p : exact) {
     up.push_back({p.x, p.y + 1});
     if (p.x > 0 && p.x < 906) trimmed.push_back(p);
   }
-  EXPECT_EQ(judge_primitive(view, line, PixelSet::from_pixels(up), kExact).conformance,
+  EXPECT_EQ(judge_primitive(view, line, geometry::PixelSet::from_pixels(up), kExact).conformance,
             Conformance::kWithinSpec);
-  EXPECT_EQ(judge_primitive(view, line, PixelSet::from_pixels(trimmed), kExact).conformance,
-            Conformance::kWithinSpec);
+  EXPECT_EQ(
+      judge_primitive(view, line, geometry::PixelSet::from_pixels(trimmed), kExact).conformance,
+      Conformance::kWithinSpec);
 }
 
 TEST(Conformance, ATriangleMissingFarFromEveryBoundaryIsAViolationWhateverItsFarVertex) {
   // A near plane at 10^-5 and a vertex just in front of it, ~4e7 px to the right. An allowance of
   // eps times that for every edge (400 px) let the whole triangle vanish; the edges near the
   // window keep their own small allowance, widening only towards the far vertex.
-  const View view = make_view(30, 907, 907, 1e-5, 10.0);
-  Primitive t;
-  t.kind = Kind::kTriangle;
-  t.v = {Vec3{-0.02, -0.02, -0.5}, Vec3{0.02, -0.02, -0.5}, Vec3{0.5, 0.3, -2e-5}};
-  const PixelSet exact = rasterize_reference(view, t);
+  const geometry::View view = geometry::make_view(30, 907, 907, 1e-5, 10.0);
+  geometry::Primitive t;
+  t.kind = geometry::Kind::kTriangle;
+  t.v = {geometry::Vec3{-0.02, -0.02, -0.5}, geometry::Vec3{0.02, -0.02, -0.5},
+         geometry::Vec3{0.5, 0.3, -2e-5}};
+  const geometry::PixelSet exact = geometry::rasterize_reference(view, t);
   ASSERT_GT(exact.size(), 30000);
-  const ConformanceVerdict v = judge_primitive(view, t, PixelSet{}, kExact);
+  const ConformanceVerdict v = judge_primitive(view, t, geometry::PixelSet{}, kExact);
   EXPECT_EQ(v.conformance, Conformance::kViolation);
   EXPECT_EQ(v.violated_rules, "polygon-missing");
   EXPECT_GT(v.violating_pixels, exact.size() * 9 / 10);
 }
 
 TEST(Conformance, APointMissingFarFromEveryBoundaryIsAViolation) {
-  const View view = make_view(30, 128, 128);
-  Primitive p;
-  p.kind = Kind::kPoint;
-  p.v = {Vec3{0.01, 0.02, -2.0}, Vec3{}, Vec3{}};
-  ASSERT_EQ(rasterize_reference(view, p).size(), 1);
-  const ConformanceVerdict v = judge_primitive(view, p, PixelSet{}, kExact);
+  const geometry::View view = geometry::make_view(30, 128, 128);
+  geometry::Primitive p;
+  p.kind = geometry::Kind::kPoint;
+  p.v = {geometry::Vec3{0.01, 0.02, -2.0}, geometry::Vec3{}, geometry::Vec3{}};
+  ASSERT_EQ(geometry::rasterize_reference(view, p).size(), 1);
+  const ConformanceVerdict v = judge_primitive(view, p, geometry::PixelSet{}, kExact);
   EXPECT_EQ(v.conformance, Conformance::kViolation);
   EXPECT_EQ(v.violated_rules, "point-missing");
 }
 
 // The faulty platform's conformance variants, each measured as `run` measures it. FOV 150: most
 // primitives are visible.
-View faulty_view() { return make_view(150, 128, 128); }
+geometry::View faulty_view() { return geometry::make_view(150, 128, 128); }
 
-std::vector<Record> faulty_records(const FaultPlan& plan, Kind kind, SubpixelGrid* measured) {
-  auto platform = create_faulty_platform(plan);
+std::vector<Record> faulty_records(const platforms::FaultPlan& plan, geometry::Kind kind,
+                                   geometry::SubpixelGrid* measured) {
+  auto platform = platforms::create_faulty_platform(plan);
   *measured = measure_effective_subpixel(*platform).grid;
-  const View view = faulty_view();
+  const geometry::View view = faulty_view();
   platform->set_view(view);
-  std::vector<Primitive> prims;
-  for (uint64_t i = 0; i < 1500; ++i) prims.push_back(make_primitive(7, kind, i));
+  std::vector<geometry::Primitive> prims;
+  for (uint64_t i = 0; i < 1500; ++i) prims.push_back(geometry::make_primitive(7, kind, i));
   return measure_cases("faulty", *platform, view, prims, CaseComparison(true, *measured));
 }
 
 TEST(Conformance, FaultyPlatformSnappingToSixBitsIsMeasuredAndNeverAViolation) {
-  FaultPlan plan;
+  platforms::FaultPlan plan;
   plan.snap_bits = 6;
   plan.snap_truncate = true;
-  for (Kind kind : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
-    SubpixelGrid grid;
+  for (geometry::Kind kind :
+       {geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle}) {
+    geometry::SubpixelGrid grid;
     int snapped = 0;
     for (const Record& r : faulty_records(plan, kind, &grid)) {
       if (r.status != CaseStatus::kOk) continue;
       EXPECT_TRUE(r.conformance == Conformance::kExact || r.conformance == Conformance::kSnapped)
-          << kind_name(kind) << " " << r.index << " " << conformance_name(r.conformance);
+          << geometry::kind_name(kind) << " " << r.index << " " << conformance_name(r.conformance);
       snapped += r.conformance == Conformance::kSnapped;
     }
-    EXPECT_EQ(grid, SubpixelGrid(6, SnapRounding::kTruncate));
+    EXPECT_EQ(grid, geometry::SubpixelGrid(6, geometry::SnapRounding::kTruncate));
     // Truncating to a grid never moves a point across a pixel border (floor of the snapped value
     // is the floor of the value): points stay exact; lines and triangles do change.
-    if (kind == Kind::kPoint)
+    if (kind == geometry::Kind::kPoint)
       EXPECT_EQ(snapped, 0);
     else
-      EXPECT_GT(snapped, 0) << kind_name(kind);
+      EXPECT_GT(snapped, 0) << geometry::kind_name(kind);
   }
-  SubpixelGrid grid;
-  faulty_records(FaultPlan{}, Kind::kPoint, &grid);
+  geometry::SubpixelGrid grid;
+  faulty_records(platforms::FaultPlan{}, geometry::Kind::kPoint, &grid);
   EXPECT_TRUE(grid.exact());
 }
 
 TEST(Conformance, FaultyPlatformDroppingLineEndsIsWithinSpecShiftedPointsAreCountedExactly) {
-  FaultPlan drop;
+  platforms::FaultPlan drop;
   drop.drop_line_end_fraction = 1;
-  SubpixelGrid grid;
+  geometry::SubpixelGrid grid;
   int within = 0;
-  for (const Record& r : faulty_records(drop, Kind::kLine, &grid)) {
+  for (const Record& r : faulty_records(drop, geometry::Kind::kLine, &grid)) {
     if (r.status != CaseStatus::kOk || r.pixels + r.ref_diff == 0) continue;
     EXPECT_EQ(r.conformance, Conformance::kWithinSpec) << r.index;
     EXPECT_EQ(r.ref_diff, 1) << r.index;
@@ -323,13 +330,14 @@ TEST(Conformance, FaultyPlatformDroppingLineEndsIsWithinSpecShiftedPointsAreCoun
 
   // Points one pixel to the right: a violation of one pixel unless the position lies within the
   // allowance of the pixel's right border (then the shifted pixel is one a snap could give).
-  FaultPlan shift;
+  platforms::FaultPlan shift;
   shift.shift_fraction = 1;
-  const View view = faulty_view();
+  const geometry::View view = faulty_view();
   int violations = 0;
-  for (const Record& r : faulty_records(shift, Kind::kPoint, &grid)) {
+  for (const Record& r : faulty_records(shift, geometry::Kind::kPoint, &grid)) {
     if (r.visibility != Visibility::kTrueVisible) continue;
-    const Vec4 c = view.to_clip(make_primitive(7, Kind::kPoint, r.index).v[0]);
+    const geometry::Vec4 c =
+        view.to_clip(geometry::make_primitive(7, geometry::Kind::kPoint, r.index).v[0]);
     const double x = view.clip_to_window(c).x;
     const bool near_border = x - std::floor(x) > 1 - (0.0625 + 1e-5 * 128);
     const bool off_window = std::floor(x) + 1 >= 128;  // shifted out: nothing lit
@@ -343,4 +351,4 @@ TEST(Conformance, FaultyPlatformDroppingLineEndsIsWithinSpecShiftedPointsAreCoun
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

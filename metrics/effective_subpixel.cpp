@@ -5,7 +5,7 @@
 #include "geometry/clipping.h"
 #include "util/counter_rng.h"
 
-namespace ra {
+namespace ra::metrics {
 
 namespace {
 
@@ -25,18 +25,18 @@ double calibration_coordinate(CounterRng& rng) {
 
 }  // namespace
 
-View calibration_view() {
-  View v = make_view(90, kWindow, kWindow, 0.01, 10.0);
+geometry::View calibration_view() {
+  geometry::View v = geometry::make_view(90, kWindow, kWindow, 0.01, 10.0);
   v.id = 0;
   return v;
 }
 
-std::vector<Primitive> calibration_triangles() {
-  std::vector<Primitive> out;
+std::vector<geometry::Primitive> calibration_triangles() {
+  std::vector<geometry::Primitive> out;
   for (int i = 0; i < kCalibrationTriangles; ++i) {
     CounterRng rng(kCalibrationSeed, kCalibrationStream, uint64_t(i));
-    Primitive p;
-    p.kind = Kind::kTriangle;
+    geometry::Primitive p;
+    p.kind = geometry::Kind::kTriangle;
     p.index = kCalibrationIndexBase + uint64_t(i);
     for (int k = 0; k < 3; ++k) {
       // Window x = (X + 1) * 64 at depth 1 under a 90-degree camera (tan 45 = 1): X = x / 64 - 1.
@@ -48,21 +48,23 @@ std::vector<Primitive> calibration_triangles() {
   return out;
 }
 
-EffectiveSubpixel measure_effective_subpixel(Platform& platform) {
+EffectiveSubpixel measure_effective_subpixel(platforms::Platform& platform) {
   EffectiveSubpixel out;
-  out.candidates.push_back({SubpixelGrid(0), 0});
+  out.candidates.push_back({geometry::SubpixelGrid(0), 0});
   for (int bits = kMaxCandidateSubpixelBits; bits >= 1; --bits) {
-    out.candidates.push_back({SubpixelGrid(bits, SnapRounding::kNearest), 0});
-    out.candidates.push_back({SubpixelGrid(bits, SnapRounding::kTruncate), 0});
+    out.candidates.push_back({geometry::SubpixelGrid(bits, geometry::SnapRounding::kNearest), 0});
+    out.candidates.push_back({geometry::SubpixelGrid(bits, geometry::SnapRounding::kTruncate), 0});
   }
-  const View view = calibration_view();
+  const geometry::View view = calibration_view();
   platform.set_view(view);
-  for (const Primitive& prim : calibration_triangles()) {
-    const ClippedPolygon poly = clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
-    const PixelSet lit = platform.render(prim, bounding_rect(poly, view.width, view.height, 2)).lit;
+  for (const geometry::Primitive& prim : calibration_triangles()) {
+    const geometry::ClippedPolygon poly =
+        geometry::clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
+    const geometry::PixelSet lit =
+        platform.render(prim, geometry::bounding_rect(poly, view.width, view.height, 2)).lit;
     ++out.triangles;
     for (SubpixelCandidate& c : out.candidates)
-      if (rasterize_polygon(poly, view.width, view.height, c.grid) == lit) ++c.matches;
+      if (geometry::rasterize_polygon(poly, view.width, view.height, c.grid) == lit) ++c.matches;
   }
   out.grid = out.candidates.front().grid;
   out.matches = out.candidates.front().matches;
@@ -74,13 +76,13 @@ EffectiveSubpixel measure_effective_subpixel(Platform& platform) {
 nlohmann::json effective_subpixel_json(const EffectiveSubpixel& e) {
   nlohmann::json candidates = nlohmann::json::array();
   for (const SubpixelCandidate& c : e.candidates)
-    candidates.push_back({{"grid", subpixel_grid_text(c.grid)}, {"matches", c.matches}});
+    candidates.push_back({{"grid", geometry::subpixel_grid_text(c.grid)}, {"matches", c.matches}});
   return {{"bits", e.grid.exact() ? 0 : e.grid.bits},
-          {"rounding", e.grid.exact() ? "none" : snap_rounding_name(e.grid.rounding)},
-          {"text", subpixel_grid_text(e.grid)},
+          {"rounding", e.grid.exact() ? "none" : geometry::snap_rounding_name(e.grid.rounding)},
+          {"text", geometry::subpixel_grid_text(e.grid)},
           {"matches", e.matches},
           {"triangles", e.triangles},
           {"candidates", candidates}};
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -16,33 +16,34 @@
 #include "geometry/reference_rasterizer.h"
 #include "platforms/platform.h"
 
-namespace ra {
+namespace ra::metrics {
 
 constexpr int kCalibrationTriangles = 96;
 constexpr int kMaxCandidateSubpixelBits = 12;
 
 struct SubpixelCandidate {
-  SubpixelGrid grid;
+  geometry::SubpixelGrid grid;
   int matches = 0;  // calibration triangles whose pixels equal the reference on this grid
 };
 
 struct EffectiveSubpixel {
-  SubpixelGrid grid;  // the best candidate (ties: exact first, then the finer grid, nearest first)
+  geometry::SubpixelGrid
+      grid;           // the best candidate (ties: exact first, then the finer grid, nearest first)
   int matches = 0;    // its matches, of `triangles`
   int triangles = 0;
   std::vector<SubpixelCandidate> candidates;  // every grid tried, in the order of the tie rule
 };
 
 // The calibration triangles (world coordinates of calibration_view()).
-std::vector<Primitive> calibration_triangles();
-View calibration_view();
+std::vector<geometry::Primitive> calibration_triangles();
+geometry::View calibration_view();
 
 // Draws the calibration triangles on `platform` (its current view is replaced by
 // calibration_view(): set the view again afterwards) and scores every candidate grid.
-EffectiveSubpixel measure_effective_subpixel(Platform& platform);
+EffectiveSubpixel measure_effective_subpixel(platforms::Platform& platform);
 
 // {"bits", "rounding", "text", "matches", "triangles", "candidates": [{"grid", "matches"}, ...]}:
 // what the run's driver file (drivers/P.json) says under "effective_subpixel".
 nlohmann::json effective_subpixel_json(const EffectiveSubpixel& e);
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -29,7 +29,7 @@
 #include "geometry/clipping.h"
 #include "geometry/pixel_set.h"
 
-namespace ra {
+namespace ra::metrics {
 
 struct LineMetrics {
   bool valid = false;           // false for an invalid (NaN/inf) or invisible segment
@@ -47,7 +47,7 @@ struct LineMetrics {
   double lse_unsigned = 0;       // LSEu, eq. 5, px
   double lse_signed_norm = 0;    // eq. 7, normalised window units
   double lse_unsigned_norm = 0;  // eq. 6
-  Pixel first, last;             // the ends of the ordering along the line
+  geometry::Pixel first, last;   // the ends of the ordering along the line
   // Shape of the lit set (pixel_topology.h): components are 8-connected; gaps = components - 1
   // (the number of breaks in the drawn line, whatever their direction); chain: the set is one
   // simple 8-connected path.
@@ -58,17 +58,20 @@ struct LineMetrics {
 
 // Signed distance from point q to the infinite line through a and b (window coordinates), px:
 // > 0 when q is left of a -> b. Precondition: a != b (returns NaN otherwise).
-double signed_distance_to_line(Vec2 q, Vec2 a, Vec2 b);
+double signed_distance_to_line(geometry::Vec2 q, geometry::Vec2 a, geometry::Vec2 b);
 
 // The rendered pixels ordered along the line from e1 to e2 (by the projection of their centres;
 // ties by (y, x)); for e1 == e2, by distance from e1.
-std::vector<Pixel> order_along_line(const PixelSet& lit, Vec2 e1, Vec2 e2);
+std::vector<geometry::Pixel> order_along_line(const geometry::PixelSet& lit, geometry::Vec2 e1,
+                                              geometry::Vec2 e2);
 
 // The line metrics of `lit` (pixels rendered for the segment, sorted, GL window coordinates)
 // against the visible segment `seg` in a width x height window. Requires ideally_visible(seg);
 // otherwise valid = false and the metrics are NaN.
-LineMetrics measure_line(const ClippedSegment& seg, const PixelSet& lit, int width, int height);
+LineMetrics measure_line(const geometry::ClippedSegment& seg, const geometry::PixelSet& lit,
+                         int width, int height);
 // The same for segment `prim` (Kind::kLine, e1 = v[0], e2 = v[1]) under `view`.
-LineMetrics measure_line(const View& view, const Primitive& prim, const PixelSet& lit);
+LineMetrics measure_line(const geometry::View& view, const geometry::Primitive& prim,
+                         const geometry::PixelSet& lit);
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -18,32 +18,35 @@
 #include "platforms/platform.h"
 #include "metrics/triangle_metrics.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
-PlatformSpec msaa4() { return *find_platform("osmesa-llvmpipe-msaa4"); }
+platforms::PlatformSpec msaa4() { return *platforms::find_platform("osmesa-llvmpipe-msaa4"); }
 
 // Coverage of each lit pixel of a rendering, by pixel.
-std::map<Pixel, double> coverage_of(const RenderResult& r) {
-  std::map<Pixel, double> out;
+std::map<geometry::Pixel, double> coverage_of(const platforms::RenderResult& r) {
+  std::map<geometry::Pixel, double> out;
   size_t i = 0;
-  for (Pixel p : r.lit) out[p] = double(r.samples_lit.at(i++)) / r.samples;
+  for (geometry::Pixel p : r.lit) out[p] = double(r.samples_lit.at(i++)) / r.samples;
   EXPECT_EQ(i, r.samples_lit.size());
   return out;
 }
 
 // A view whose matrices are the identity: NDC (x, y) in [-1, 1] -> window ((x+1) W/2, (y+1) H/2),
 // so window positions on pixel corners are exact.
-View identity_view(int size) {
-  View v = make_view(90, size, size);
-  v.view_matrix = v.projection = v.view_projection = Mat4::identity();
+geometry::View identity_view(int size) {
+  geometry::View v = geometry::make_view(90, size, size);
+  v.view_matrix = v.projection = v.view_projection = geometry::Mat4::identity();
   return v;
 }
 
-Primitive window_triangle(const View& v, Vec2 a, Vec2 b, Vec2 c) {
-  Primitive p;
-  p.kind = Kind::kTriangle;
-  auto ndc = [&](Vec2 w) { return Vec3{2.0 * w.x / v.width - 1.0, 2.0 * w.y / v.height - 1.0, 0}; };
+geometry::Primitive window_triangle(const geometry::View& v, geometry::Vec2 a, geometry::Vec2 b,
+                                    geometry::Vec2 c) {
+  geometry::Primitive p;
+  p.kind = geometry::Kind::kTriangle;
+  auto ndc = [&](geometry::Vec2 w) {
+    return geometry::Vec3{2.0 * w.x / v.width - 1.0, 2.0 * w.y / v.height - 1.0, 0};
+  };
   p.v = {ndc(a), ndc(b), ndc(c)};
   return p;
 }
@@ -53,18 +56,19 @@ using stats::median;
 TEST(OsmesaMsaa, PlatformIsInTheTableAndSoftpipeHasNone) {
   EXPECT_EQ(msaa4().samples, 4);
   EXPECT_EQ(msaa4().mesa_driver, "llvmpipe");
-  EXPECT_EQ(msaa4().backend, Backend::kOsmesa);
-  EXPECT_EQ(find_platform("osmesa-llvmpipe")->samples, 0);
-  EXPECT_FALSE(find_platform("osmesa-softpipe-msaa4"));  // softpipe: GL_MAX_SAMPLES 1
-  EXPECT_FALSE(find_platform("egl-softpipe-msaa4"));
+  EXPECT_EQ(msaa4().backend, platforms::Backend::kOsmesa);
+  EXPECT_EQ(platforms::find_platform("osmesa-llvmpipe")->samples, 0);
+  EXPECT_FALSE(platforms::find_platform("osmesa-softpipe-msaa4"));  // softpipe: GL_MAX_SAMPLES 1
+  EXPECT_FALSE(platforms::find_platform("egl-softpipe-msaa4"));
 }
 
 // Asking for more samples than the driver has fails at creation, naming the platform and the
 // driver's GL_MAX_SAMPLES (llvmpipe has 4).
 TEST(OsmesaMsaa, TooManySamplesFailsWithAClearError) {
-  const PlatformSpec sixteen{"osmesa-llvmpipe-msaa16", "test", Backend::kOsmesa, "llvmpipe", 16};
+  const platforms::PlatformSpec sixteen{"osmesa-llvmpipe-msaa16", "test",
+                                        platforms::Backend::kOsmesa, "llvmpipe", 16};
   try {
-    create_gl_platform(sixteen);
+    platforms::create_gl_platform(sixteen);
     FAIL() << "created a 16-sample platform";
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
@@ -79,24 +83,24 @@ TEST(OsmesaMsaa, TooManySamplesFailsWithAClearError) {
 // above it), exactly their area: TEu_cov = 0, where the aliased rendering is off by half a pixel
 // on each of the 48 diagonal pixels (TEu = 24 px^2).
 TEST(OsmesaMsaa, PixelCornerTriangleIsCoveredExactly) {
-  const View view = identity_view(64);
-  const Primitive tri = window_triangle(view, {8, 8}, {56, 8}, {8, 56});
-  const ClippedPolygon poly = clip_triangle(view, tri.v[0], tri.v[1], tri.v[2]);
-  ASSERT_EQ(poly.status, ClipStatus::kVisible);
+  const geometry::View view = identity_view(64);
+  const geometry::Primitive tri = window_triangle(view, {8, 8}, {56, 8}, {8, 56});
+  const geometry::ClippedPolygon poly = geometry::clip_triangle(view, tri.v[0], tri.v[1], tri.v[2]);
+  ASSERT_EQ(poly.status, geometry::ClipStatus::kVisible);
   ASSERT_NEAR(poly.area, 48.0 * 48.0 / 2, 1e-9);
 
-  auto platform = create_gl_platform(msaa4());
+  auto platform = platforms::create_gl_platform(msaa4());
   platform->set_view(view);
-  const RenderResult r = platform->render(tri, PixelRect{0, 0, 64, 64});
+  const platforms::RenderResult r = platform->render(tri, geometry::PixelRect{0, 0, 64, 64});
   ASSERT_EQ(r.samples, 4);
   ASSERT_EQ(r.samples_lit.size(), size_t(r.lit.size()));
-  const std::map<Pixel, double> cov = coverage_of(r);
+  const std::map<geometry::Pixel, double> cov = coverage_of(r);
   int interior = 0, diagonal = 0;
   for (int y = 0; y < 64; ++y) {
     for (int x = 0; x < 64; ++x) {
       const auto it = cov.find({x, y});
       const double c = it == cov.end() ? 0.0 : it->second;
-      const double a = pixel_area_in_convex_polygon(poly.vertices, {x, y});
+      const double a = geometry::pixel_area_in_convex_polygon(poly.vertices, {x, y});
       if (a == 1.0) ++interior;
       if (a == 0.5) ++diagonal;
       ASSERT_EQ(c, a) << "pixel " << x << ", " << y;
@@ -111,9 +115,9 @@ TEST(OsmesaMsaa, PixelCornerTriangleIsCoveredExactly) {
   EXPECT_NEAR(m.te_signed, 0.0, 1e-9);
   EXPECT_EQ(m.rendered, interior + diagonal);
 
-  auto aliased = create_gl_platform(*find_platform("osmesa-llvmpipe"));
+  auto aliased = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
   aliased->set_view(view);
-  const RenderResult ra = aliased->render(tri, PixelRect{0, 0, 64, 64});
+  const platforms::RenderResult ra = aliased->render(tri, geometry::PixelRect{0, 0, 64, 64});
   EXPECT_EQ(ra.samples, 0);
   EXPECT_TRUE(ra.samples_lit.empty());
   EXPECT_NEAR(measure_triangle(poly, ra.lit, 64, 64).te_unsigned, 24.0, 1e-9);
@@ -124,28 +128,31 @@ TEST(OsmesaMsaa, PixelCornerTriangleIsCoveredExactly) {
 // polygon to each pixel square: independent of the row walk of compute_coverage); and the record
 // measure_cases writes carries the same numbers.
 TEST(OsmesaMsaa, CoverageMetricMatchesBruteForceOnRandomTriangles) {
-  auto platform = create_gl_platform(msaa4());
+  auto platform = platforms::create_gl_platform(msaa4());
   int checked = 0, partial_pixels = 0;
   for (double fov : {30.0, 150.0}) {
-    const View view = make_view(fov, 64, 64, 0.01, 10.0, random_rotation(77, 1));
+    const geometry::View view =
+        geometry::make_view(fov, 64, 64, 0.01, 10.0, geometry::random_rotation(77, 1));
     platform->set_view(view);
     for (uint64_t i = 0; i < 80; ++i) {
-      const Primitive prim = make_primitive(77, Kind::kTriangle, i);
-      const ClippedPolygon poly = clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
-      if (poly.status != ClipStatus::kVisible) continue;
-      const RenderResult r = platform->render(prim, bounding_rect(poly, 64, 64, kRegionMargin));
+      const geometry::Primitive prim = geometry::make_primitive(77, geometry::Kind::kTriangle, i);
+      const geometry::ClippedPolygon poly =
+          geometry::clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
+      if (poly.status != geometry::ClipStatus::kVisible) continue;
+      const platforms::RenderResult r =
+          platform->render(prim, geometry::bounding_rect(poly, 64, 64, kRegionMargin));
       if (r.lit.empty()) continue;
       // The region's count proves completeness: nothing was left lit by the previous triangle
       // (the erase by redrawing in black) and nothing lies outside.
       ASSERT_FALSE(r.full_scan) << "triangle " << i << " at FOV " << fov;
-      const std::map<Pixel, double> cov = coverage_of(r);
+      const std::map<geometry::Pixel, double> cov = coverage_of(r);
       double te_u = 0, te_s = 0;
       for (int y = 0; y < 64; ++y) {
         for (int x = 0; x < 64; ++x) {
           const auto it = cov.find({x, y});
           const double c = it == cov.end() ? 0.0 : it->second;
           if (c > 0 && c < 1) ++partial_pixels;
-          const double a = pixel_area_in_convex_polygon(poly.vertices, {x, y});
+          const double a = geometry::pixel_area_in_convex_polygon(poly.vertices, {x, y});
           te_u += std::fabs(c - a);
           te_s += c - a;
         }
@@ -172,37 +179,41 @@ TEST(OsmesaMsaa, CoverageMetricMatchesBruteForceOnRandomTriangles) {
 // 4x platform too: the samples it adds make the count disagree with the region's, and the whole
 // window is read. Also: a coverage change alone changes the pixel hash.
 TEST(CompletenessMsaa, AWildPixelIsFoundUnderMultisampling) {
-  const View view = make_view(30, 128, 128, 0.01, 10.0, random_rotation(2008, 1));
-  auto clean = create_gl_platform(msaa4());
-  auto wild = create_gl_platform(msaa4(), ReadbackMethod::kRegionWithProof, {5, 40});
+  const geometry::View view =
+      geometry::make_view(30, 128, 128, 0.01, 10.0, geometry::random_rotation(2008, 1));
+  auto clean = platforms::create_gl_platform(msaa4());
+  auto wild =
+      platforms::create_gl_platform(msaa4(), platforms::ReadbackMethod::kRegionWithProof, {5, 40});
   clean->set_view(view);
   wild->set_view(view);
-  for (Kind kind : {Kind::kPoint, Kind::kLine}) {
-    std::vector<Primitive> prims;
-    for (uint64_t i = 0; i < 64; ++i) prims.push_back(make_primitive(2008, kind, i));
+  for (geometry::Kind kind : {geometry::Kind::kPoint, geometry::Kind::kLine}) {
+    std::vector<geometry::Primitive> prims;
+    for (uint64_t i = 0; i < 64; ++i) prims.push_back(geometry::make_primitive(2008, kind, i));
     const std::vector<Record> c = measure_cases("msaa4", *clean, view, prims, true);
     const std::vector<Record> w = measure_cases("msaa4", *wild, view, prims, true);
     for (size_t i = 0; i < prims.size(); ++i) {
       const bool planted = i == 5 || i == 40;
       if (planted && c[i].pixels == 128 * 128) continue;  // no room for a wild pixel
-      EXPECT_EQ(w[i].pixels, c[i].pixels + (planted ? 1 : 0)) << kind_name(kind) << " " << i;
-      EXPECT_EQ(w[i].pixel_hash == c[i].pixel_hash, !planted) << kind_name(kind) << " " << i;
+      EXPECT_EQ(w[i].pixels, c[i].pixels + (planted ? 1 : 0))
+          << geometry::kind_name(kind) << " " << i;
+      EXPECT_EQ(w[i].pixel_hash == c[i].pixel_hash, !planted)
+          << geometry::kind_name(kind) << " " << i;
       EXPECT_EQ(w[i].batch_size, 1);  // no batching under multisampling
     }
   }
   // A small triangle in a corner (primitive index 5: planted), the wild pixel in the opposite
   // quadrant: exactly one more pixel, wholly covered, found by the whole-window read.
-  const View corner = identity_view(64);
+  const geometry::View corner = identity_view(64);
   clean->set_view(corner);
   wild->set_view(corner);
-  Primitive tri = window_triangle(corner, {4.3, 5.1}, {17.7, 6.2}, {6.1, 15.9});
+  geometry::Primitive tri = window_triangle(corner, {4.3, 5.1}, {17.7, 6.2}, {6.1, 15.9});
   tri.index = 5;
-  const PixelRegion region = PixelRect{2, 3, 20, 18};
-  const RenderResult rc = clean->render(tri, region), rw = wild->render(tri, region);
+  const geometry::PixelRegion region = geometry::PixelRect{2, 3, 20, 18};
+  const platforms::RenderResult rc = clean->render(tri, region), rw = wild->render(tri, region);
   EXPECT_FALSE(rc.full_scan);
   EXPECT_TRUE(rw.full_scan);
   ASSERT_EQ(rw.lit.size(), rc.lit.size() + 1);
-  const std::map<Pixel, double> cc = coverage_of(rc), cw = coverage_of(rw);
+  const std::map<geometry::Pixel, double> cc = coverage_of(rc), cw = coverage_of(rw);
   int extra = 0;
   for (const auto& [p, c] : cw) {
     if (cc.count(p)) {
@@ -216,34 +227,37 @@ TEST(CompletenessMsaa, AWildPixelIsFoundUnderMultisampling) {
   }
   EXPECT_EQ(extra, 1);
   // Drawn again on the clean platform after the wild one: the erase left nothing behind.
-  const RenderResult again = wild->render(make_primitive(1, Kind::kPoint, 0), PixelRect{0, 0, 64, 64});
+  const platforms::RenderResult again = wild->render(
+      geometry::make_primitive(1, geometry::Kind::kPoint, 0), geometry::PixelRect{0, 0, 64, 64});
   EXPECT_FALSE(again.full_scan);
 
-  RenderResult a;
+  platforms::RenderResult a;
   a.samples = 4;
-  a.lit = PixelSet{{1, 1}, {2, 1}};
+  a.lit = geometry::PixelSet{{1, 1}, {2, 1}};
   a.samples_lit = {4, 2};
-  RenderResult b = a;
+  platforms::RenderResult b = a;
   b.samples_lit = {4, 3};
   EXPECT_NE(rendered_pixel_hash(a), rendered_pixel_hash(b));
-  RenderResult aliased = a;
+  platforms::RenderResult aliased = a;
   aliased.samples = 0;
   aliased.samples_lit.clear();
-  EXPECT_EQ(rendered_pixel_hash(aliased), pixel_set_hash(a.lit));
+  EXPECT_EQ(rendered_pixel_hash(aliased), geometry::pixel_set_hash(a.lit));
 }
 
 // (5) What antialiasing buys: on the same 300 random triangles of a nist-like view (FOV 30 and
 // 150, 128 x 128), the median TEu_cov-norm of the 4x platform is strictly below the median
 // aliased TEu-norm.
 TEST(OsmesaMsaa, MultisamplingLowersTheMedianTriangleError) {
-  auto aliased = create_gl_platform(*find_platform("osmesa-llvmpipe"));
-  auto msaa = create_gl_platform(msaa4());
+  auto aliased = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
+  auto msaa = platforms::create_gl_platform(msaa4());
   for (double fov : {30.0, 150.0}) {
-    const View view = make_view(fov, 128, 128, 0.01, 10.0, random_rotation(2008, 1));
+    const geometry::View view =
+        geometry::make_view(fov, 128, 128, 0.01, 10.0, geometry::random_rotation(2008, 1));
     aliased->set_view(view);
     msaa->set_view(view);
-    std::vector<Primitive> prims;
-    for (uint64_t i = 0; i < 300; ++i) prims.push_back(make_primitive(2008, Kind::kTriangle, i));
+    std::vector<geometry::Primitive> prims;
+    for (uint64_t i = 0; i < 300; ++i)
+      prims.push_back(geometry::make_primitive(2008, geometry::Kind::kTriangle, i));
     const std::vector<Record> a = measure_cases("osmesa-llvmpipe", *aliased, view, prims, true);
     const std::vector<Record> m = measure_cases("osmesa-llvmpipe-msaa4", *msaa, view, prims, true);
     std::vector<double> te_a, te_m;
@@ -263,9 +277,9 @@ TEST(OsmesaMsaa, MultisamplingLowersTheMedianTriangleError) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 // (3) A hand-made coverage pattern, no GL. proj(T) = (0,0), (2,0), (0,2) in a 4 x 4 window: pixel
@@ -274,13 +288,13 @@ namespace {
 //   TEs_cov = (1 + .25 + .75 + .5 + 1) - 2 = 1.5
 //   TEu_cov = 0 + .25 + .25 + .5 + 1 = 2; coverage over area .25 + .5 + 1, area over coverage .25.
 TEST(TriangleCoverage, HandMadePatternGivesHandComputedErrors) {
-  ClippedPolygon poly;
-  poly.status = ClipStatus::kVisible;
+  geometry::ClippedPolygon poly;
+  poly.status = geometry::ClipStatus::kVisible;
   poly.vertices = {{0, 0}, {2, 0}, {0, 2}};
   poly.area = 2;
   poly.orientation = 1;
   poly.on_window_border = {true, false, true};
-  const PixelSet lit{{0, 0}, {1, 0}, {0, 1}, {1, 1}, {3, 3}};
+  const geometry::PixelSet lit{{0, 0}, {1, 0}, {0, 1}, {1, 1}, {3, 3}};
   const std::vector<uint8_t> samples_lit = {4, 1, 3, 2, 4};  // (y, x) order
   const TriangleMetrics m = measure_triangle_coverage(poly, lit, samples_lit, 4, 4, 4);
   EXPECT_TRUE(m.valid);
@@ -296,7 +310,7 @@ TEST(TriangleCoverage, HandMadePatternGivesHandComputedErrors) {
   EXPECT_FALSE(m.simply_connected);
 
   // An inside pixel left uncovered counts its area: drop (0,1).
-  const PixelSet lit2{{0, 0}, {1, 0}, {1, 1}, {3, 3}};
+  const geometry::PixelSet lit2{{0, 0}, {1, 0}, {1, 1}, {3, 3}};
   const TriangleMetrics m2 = measure_triangle_coverage(poly, lit2, {4, 1, 2, 4}, 4, 4, 4);
   EXPECT_DOUBLE_EQ(m2.te_unsigned, 0 + .25 + .5 + .5 + 1);
   EXPECT_DOUBLE_EQ(m2.te_signed, (1 + .25 + .5 + 1) - 2);
@@ -306,15 +320,17 @@ TEST(TriangleCoverage, HandMadePatternGivesHandComputedErrors) {
 
 // With every lit pixel fully covered the coverage form is the aliased metric (eqs. 9-10).
 TEST(TriangleCoverage, FullCoverageEqualsTheAliasedMetric) {
-  const View view = make_view(150, 96, 96, 0.01, 10.0, random_rotation(5, 2));
-  auto platform = create_gl_platform(*find_platform("osmesa-llvmpipe"));
+  const geometry::View view = geometry::make_view(150, 96, 96, 0.01, 10.0, geometry::random_rotation(5, 2));
+  auto platform = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
   platform->set_view(view);
   int checked = 0;
   for (uint64_t i = 0; i < 60; ++i) {
-    const Primitive prim = make_primitive(5, Kind::kTriangle, i);
-    const ClippedPolygon poly = clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
-    if (poly.status != ClipStatus::kVisible) continue;
-    const RenderResult r = platform->render(prim, bounding_rect(poly, 96, 96, kRegionMargin));
+    const geometry::Primitive prim = geometry::make_primitive(5, geometry::Kind::kTriangle, i);
+    const geometry::ClippedPolygon poly =
+        geometry::clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
+    if (poly.status != geometry::ClipStatus::kVisible) continue;
+    const platforms::RenderResult r =
+        platform->render(prim, geometry::bounding_rect(poly, 96, 96, kRegionMargin));
     const std::vector<uint8_t> full(size_t(r.lit.size()), 4);
     const TriangleMetrics a = measure_triangle(poly, r.lit, 96, 96);
     const TriangleMetrics c = measure_triangle_coverage(poly, r.lit, full, 4, 96, 96);
@@ -327,4 +343,4 @@ TEST(TriangleCoverage, FullCoverageEqualsTheAliasedMetric) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

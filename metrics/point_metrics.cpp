@@ -2,28 +2,28 @@
 
 #include <cmath>
 
-namespace ra {
+namespace ra::metrics {
 
-IdealPoint project_point(const View& view, Vec3 p) {
+IdealPoint project_point(const geometry::View& view, geometry::Vec3 p) {
   IdealPoint out;
   out.visible = view.point_inside(p);  // depth in eye space: right for every near / far ratio
   if (out.visible) out.window = view.clip_to_window(view.to_clip(p));
   return out;
 }
 
-bool inside_window_margin(const View& view, Vec3 p, double margin_px) {
-  const Vec4 c = view.to_clip(p);
-  const double z_eye = (view.view_matrix * Vec4{p.x, p.y, p.z, 1.0}).z;
+bool inside_window_margin(const geometry::View& view, geometry::Vec3 p, double margin_px) {
+  const geometry::Vec4 c = view.to_clip(p);
+  const double z_eye = (view.view_matrix * geometry::Vec4{p.x, p.y, p.z, 1.0}).z;
   if (!(c.w > 0 && -view.far < z_eye && z_eye < -view.near)) return false;  // behind, nearer, farther
-  const Vec2 w = view.clip_to_window(c);
+  const geometry::Vec2 w = view.clip_to_window(c);
   return -margin_px < w.x && w.x < view.width + margin_px && -margin_px < w.y &&
          w.y < view.height + margin_px;
 }
 
-PixelRect point_region(const View& view, const IdealPoint& ideal, int margin) {
+geometry::PixelRect point_region(const geometry::View& view, const IdealPoint& ideal, int margin) {
   if (!ideal.visible) return {};
   const int x = int(std::floor(ideal.window.x)), y = int(std::floor(ideal.window.y));
-  PixelRect r{x - margin, y - margin, x + margin + 1, y + margin + 1};
+  geometry::PixelRect r{x - margin, y - margin, x + margin + 1, y + margin + 1};
   r.x0 = std::max(r.x0, 0);
   r.y0 = std::max(r.y0, 0);
   r.x1 = std::min(r.x1, view.width);
@@ -37,11 +37,12 @@ Visibility classify_point(bool ideal_visible, size_t lit_pixels) {
   return ideal_visible ? Visibility::kFalseInvisible : Visibility::kTrueInvisible;
 }
 
-double point_error(Vec2 projected, Pixel rendered) {
+double point_error(geometry::Vec2 projected, geometry::Pixel rendered) {
   return std::hypot(projected.x - (rendered.x + 0.5), projected.y - (rendered.y + 0.5));
 }
 
-void measure_point(const View& view, const IdealPoint& ideal, const PixelSet& lit, Record& rec) {
+void measure_point(const geometry::View& view, const IdealPoint& ideal,
+                   const geometry::PixelSet& lit, Record& rec) {
   rec.pixels = int64_t(lit.size());
   rec.visibility = classify_point(ideal.visible, lit.size());
   if (rec.visibility == Visibility::kTrueVisible) {
@@ -50,4 +51,4 @@ void measure_point(const View& view, const IdealPoint& ideal, const PixelSet& li
   }
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -7,12 +7,12 @@
 
 #include "geometry/reference_rasterizer.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 // Camera looking down -Z, 90-degree FOV, 128x128: a point (x, y, -1) projects to
 // ((x + 1) * 64, (y + 1) * 64) exactly, since tan(45 deg) = 1.
-View simple_view(int size = 128, double fov = 90) { return make_view(fov, size, size); }
+geometry::View simple_view(int size = 128, double fov = 90) { return geometry::make_view(fov, size, size); }
 
 TEST(PointMetrics, ProjectionMatchesTheAnalyticPosition) {
   const IdealPoint p = project_point(simple_view(), {0.1, 0.2, -1.0});
@@ -22,7 +22,7 @@ TEST(PointMetrics, ProjectionMatchesTheAnalyticPosition) {
 }
 
 TEST(PointMetrics, PeOfAHandPlacedPointIsTheAnalyticDistance) {
-  const View v = simple_view();
+  const geometry::View v = simple_view();
   const IdealPoint p = project_point(v, {0.1, 0.2, -1.0});
   Record rec;
   measure_point(v, p, {{70, 76}}, rec);
@@ -42,7 +42,7 @@ TEST(PointMetrics, VisibilityClasses) {
 }
 
 TEST(PointMetrics, PointsBehindTheCameraOrOutsideThePlanesAreInvisible) {
-  const View v = simple_view();
+  const geometry::View v = simple_view();
   EXPECT_FALSE(project_point(v, {0, 0, 1}).visible);        // behind the camera
   EXPECT_FALSE(project_point(v, {0, 0, -0.005}).visible);   // nearer than the near plane
   EXPECT_FALSE(project_point(v, {0, 0, -11}).visible);      // beyond the far plane
@@ -53,8 +53,8 @@ TEST(PointMetrics, PointsBehindTheCameraOrOutsideThePlanesAreInvisible) {
 // The paper's margin convention on hand-placed points: in simple_view a point (x, y, -1) projects
 // to ((x + 1) * 64, (y + 1) * 64), so x = 1 + d / 64 lies d pixels right of the window.
 TEST(PointMetrics, WindowMarginCountsPointsJustOutsideTheWindow) {
-  const View v = simple_view();
-  auto right_of_window = [](double d_px) { return Vec3{1 + d_px / 64, 0, -1}; };
+  const geometry::View v = simple_view();
+  auto right_of_window = [](double d_px) { return geometry::Vec3{1 + d_px / 64, 0, -1}; };
   EXPECT_TRUE(inside_window_margin(v, {0, 0, -1}, 0));
   EXPECT_FALSE(inside_window_margin(v, right_of_window(0.49), 0));
   EXPECT_TRUE(inside_window_margin(v, right_of_window(0.49), 0.5));
@@ -68,8 +68,8 @@ TEST(PointMetrics, WindowMarginCountsPointsJustOutsideTheWindow) {
   EXPECT_FALSE(inside_window_margin(v, {0, 0, -0.005}, 0.5));
   EXPECT_FALSE(inside_window_margin(v, {0, 0, -11}, 0.5));
   for (int i = 0; i < 5000; ++i) {  // margin 0 agrees with project_point everywhere
-    const Vec3 q = make_primitive(5, Kind::kPoint, i).v[0];
-    const View w = simple_view(128, 150);
+    const geometry::Vec3 q = geometry::make_primitive(5, geometry::Kind::kPoint, i).v[0];
+    const geometry::View w = simple_view(128, 150);
     EXPECT_EQ(inside_window_margin(w, q, 0), project_point(w, q).visible) << i;
   }
 }
@@ -77,12 +77,12 @@ TEST(PointMetrics, WindowMarginCountsPointsJustOutsideTheWindow) {
 // The reference rasterizer lights the pixel containing the projection, so its PE is at most
 // sqrt(2)/2 and it is the distance to the nearest pixel centre.
 TEST(PointMetrics, ReferencePeIsAtMostHalfADiagonal) {
-  const View v = simple_view(907, 150);
+  const geometry::View v = simple_view(907, 150);
   for (int i = 0; i < 2000; ++i) {
-    const Primitive prim = make_primitive(11, Kind::kPoint, i);
+    const geometry::Primitive prim = geometry::make_primitive(11, geometry::Kind::kPoint, i);
     const IdealPoint p = project_point(v, prim.v[0]);
     Record rec;
-    measure_point(v, p, rasterize_reference(v, prim), rec);
+    measure_point(v, p, geometry::rasterize_reference(v, prim), rec);
     if (rec.visibility == Visibility::kTrueVisible) {
       EXPECT_LE(rec.pe, std::sqrt(0.5) + 1e-12);
     } else {
@@ -92,15 +92,15 @@ TEST(PointMetrics, ReferencePeIsAtMostHalfADiagonal) {
 }
 
 TEST(PointMetrics, RegionHoldsThePixelAndIsClampedToTheWindow) {
-  const View v = simple_view();
-  const PixelRect r = point_region(v, project_point(v, {0.1, 0.2, -1.0}));
+  const geometry::View v = simple_view();
+  const geometry::PixelRect r = point_region(v, project_point(v, {0.1, 0.2, -1.0}));
   EXPECT_EQ(r.x0, 68);
   EXPECT_EQ(r.x1, 73);
-  const PixelRect corner = point_region(v, project_point(v, {-0.999, -0.999, -1.0}));
+  const geometry::PixelRect corner = point_region(v, project_point(v, {-0.999, -0.999, -1.0}));
   EXPECT_EQ(corner.x0, 0);
   EXPECT_EQ(corner.y0, 0);
   EXPECT_TRUE(point_region(v, project_point(v, {0, 0, 1})).empty());
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

@@ -12,7 +12,7 @@
 #include "metrics/records_reader.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::metrics {
 
 namespace {
 const char* const kVisibilityNames[] = {"true-visible", "true-invisible", "false-visible",
@@ -164,4 +164,4 @@ void read_records(const std::string& path, const std::function<void(const Record
   for_each_record_row(path, [&](const RecordRow& cells) { row(parse_record(cells)); });
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

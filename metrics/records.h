@@ -12,7 +12,7 @@
 #include <string>
 #include <string_view>
 
-namespace ra {
+namespace ra::metrics {
 
 // 2: batch_size after render_us; 3: conformance, violating_pixels, violated_rules at the end
 // (version 2 files are still read: those cells are empty, "not compared").
@@ -104,4 +104,4 @@ void append_record(std::string& out, const Record& r);  // the same line, append
 // convenience over metrics/records_reader.h, which converts only the cells a caller needs.
 void read_records(const std::string& path, const std::function<void(const Record&)>& row);
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -1,6 +1,6 @@
 #include "metrics/records_format.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 bool ends_with(std::string_view s, std::string_view tail) {
   return s.size() >= tail.size() && s.substr(s.size() - tail.size()) == tail;
@@ -31,4 +31,4 @@ std::string records_file_stem(std::string_view file_name) {
   return std::string(file_name);
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

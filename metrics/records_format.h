@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace ra {
+namespace ra::metrics {
 
 enum class RecordsFormat { kCsv, kCsvZst };
 
@@ -20,4 +20,4 @@ bool is_records_file_name(std::string_view path);
 // The file name without ".csv" or ".csv.zst" (the shard id for a shard's records file).
 std::string records_file_stem(std::string_view file_name);
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -9,7 +9,7 @@
 #include "util/errors.h"
 #include "util/zstd_stream.h"
 
-namespace ra {
+namespace ra::metrics {
 
 std::optional<double> RecordRow::number(RecordColumn c) const {
   const std::string_view f = cell(c);
@@ -251,4 +251,4 @@ Record parse_record(const RecordRow& row) {
   return r;
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -20,7 +20,7 @@
 
 #include "metrics/records.h"
 
-namespace ra {
+namespace ra::metrics {
 
 // One row of a records file while its callback runs (the cells do not outlive the call).
 class RecordRow {
@@ -78,4 +78,4 @@ int records_schema_version(const std::string& path);
 // The whole record of a row (every column converted and checked).
 Record parse_record(const RecordRow& row);
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -13,7 +13,7 @@
 
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 class RecordsReader : public ::testing::Test {
@@ -179,4 +179,4 @@ TEST_F(RecordsReader, AWrongHeaderAndAShortRowAreErrorsWithTheirLine) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

@@ -11,14 +11,14 @@
 
 #include "geometry/pixel_topology.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The fields that follow from rendered_outside and unrendered_inside, and the connectivity of lit.
-void finish_metrics(TriangleMetrics& m, const ClippedPolygon& proj, const PixelSet& lit, int width,
-                    int height) {
+void finish_metrics(TriangleMetrics& m, const geometry::ClippedPolygon& proj,
+                    const geometry::PixelSet& lit, int width, int height) {
   m.te_signed = m.rendered_outside - m.unrendered_inside;    // eq. 9
   m.te_unsigned = m.rendered_outside + m.unrendered_inside;  // eq. 10
   const double window_area = double(width) * double(height);
@@ -32,11 +32,11 @@ void finish_metrics(TriangleMetrics& m, const ClippedPolygon& proj, const PixelS
   // Full window: as many in-window lit pixels as window pixels (the set has no duplicates).
   const int64_t window_pixels = int64_t(width) * int64_t(height);
   if (m.rendered >= window_pixels && window_pixels > 0) {
-    PixelSet inside = lit;
+    geometry::PixelSet inside = lit;
     inside.clip_to({0, 0, width, height});
     m.full_window = inside.size() == window_pixels;
   }
-  const PixelTopology topo = pixel_topology(lit);
+  const geometry::PixelTopology topo = geometry::pixel_topology(lit);
   m.components = topo.components;
   m.holes = topo.holes;
   m.simply_connected = topo.simply_connected();
@@ -54,53 +54,58 @@ TriangleMetrics invalid_metrics(int64_t rendered) {
 
 }  // namespace
 
-double visible_edge_length(const ClippedPolygon& proj) {
-  if (proj.status != ClipStatus::kVisible && proj.status != ClipStatus::kDegenerate) return 0;
+double visible_edge_length(const geometry::ClippedPolygon& proj) {
+  if (proj.status != geometry::ClipStatus::kVisible &&
+      proj.status != geometry::ClipStatus::kDegenerate)
+    return 0;
   const size_t n = proj.vertices.size();
   if (n < 2) return 0;
   double len = 0;
   for (size_t i = 0; i < n; ++i) {
     if (i < proj.on_window_border.size() && proj.on_window_border[i]) continue;
-    len += length(proj.vertices[(i + 1) % n] - proj.vertices[i]);
+    len += geometry::length(proj.vertices[(i + 1) % n] - proj.vertices[i]);
   }
   return len;
 }
 
-TriangleMetrics measure_triangle(const ClippedPolygon& proj, const PixelSet& lit, int width,
-                                 int height) {
-  thread_local PolygonCoverage coverage;  // reused: no allocation per triangle
+TriangleMetrics measure_triangle(const geometry::ClippedPolygon& proj,
+                                 const geometry::PixelSet& lit, int width, int height) {
+  thread_local geometry::PolygonCoverage coverage;  // reused: no allocation per triangle
   coverage.rows.clear();
   coverage.partial.clear();
-  if (proj.status == ClipStatus::kVisible && !compute_coverage(proj.vertices, &coverage)) {
+  if (proj.status == geometry::ClipStatus::kVisible &&
+      !geometry::compute_coverage(proj.vertices, &coverage)) {
     // Cannot happen for clip_triangle's output (a finite convex hull inside the window); if it
     // does, say so rather than measure against an empty polygon.
-    ClippedPolygon invalid;
-    invalid.status = ClipStatus::kInvalid;
+    geometry::ClippedPolygon invalid;
+    invalid.status = geometry::ClipStatus::kInvalid;
     return measure_triangle(invalid, coverage, lit, width, height);
   }
   return measure_triangle(proj, coverage, lit, width, height);
 }
 
-TriangleMetrics measure_triangle(const View& view, const Primitive& prim, const PixelSet& lit) {
-  return measure_triangle(clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]), lit, view.width,
-                          view.height);
+TriangleMetrics measure_triangle(const geometry::View& view, const geometry::Primitive& prim,
+                                 const geometry::PixelSet& lit) {
+  return measure_triangle(geometry::clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]), lit,
+                          view.width, view.height);
 }
 
-TriangleMetrics measure_triangle(const ClippedPolygon& proj, const PolygonCoverage& cov,
-                                 const PixelSet& lit, int width, int height) {
-  if (proj.status == ClipStatus::kInvalid) return invalid_metrics(lit.size());
+TriangleMetrics measure_triangle(const geometry::ClippedPolygon& proj,
+                                 const geometry::PolygonCoverage& cov,
+                                 const geometry::PixelSet& lit, int width, int height) {
+  if (proj.status == geometry::ClipStatus::kInvalid) return invalid_metrics(lit.size());
   TriangleMetrics m;
   m.rendered = lit.size();
   m.valid = true;
-  m.projected_area = proj.status == ClipStatus::kVisible ? proj.area : 0.0;
+  m.projected_area = proj.status == geometry::ClipStatus::kVisible ? proj.area : 0.0;
 
   // Walk the coverage rows and the lit runs together. Lit pixels in no coverage row, or in a row
   // but neither in its run nor among its partial pixels, are wholly outside (outside = 1).
-  const std::vector<PixelRun>& runs = lit.runs();
+  const std::vector<geometry::PixelRun>& runs = lit.runs();
   int64_t lit_covered = 0;  // lit pixels with positive area inside proj(T)
   double lit_partly_outside = 0, unlit_inside = 0;
   size_t j = 0;
-  for (const CoverageRow& row : cov.rows) {
+  for (const geometry::CoverageRow& row : cov.rows) {
     while (j < runs.size() && runs[j].y < row.y) ++j;
     size_t row_end = j;
     while (row_end < runs.size() && runs[row_end].y == row.y) ++row_end;
@@ -116,7 +121,7 @@ TriangleMetrics measure_triangle(const ClippedPolygon& proj, const PolygonCovera
     int64_t partial_lit = 0;
     size_t q = j;
     for (uint32_t i = row.partial_begin; i < row.partial_end; ++i) {
-      const PixelArea& pa = cov.partial[i];
+      const geometry::PixelArea& pa = cov.partial[i];
       while (q < row_end && runs[q].x_end <= pa.x) ++q;
       if (q < row_end && runs[q].x_begin <= pa.x) {
         lit_partly_outside += 1.0 - pa.area;
@@ -136,33 +141,36 @@ TriangleMetrics measure_triangle(const ClippedPolygon& proj, const PolygonCovera
   return m;
 }
 
-TriangleMetrics measure_triangle_coverage(const ClippedPolygon& proj, const PixelSet& lit,
+TriangleMetrics measure_triangle_coverage(const geometry::ClippedPolygon& proj,
+                                          const geometry::PixelSet& lit,
                                           const std::vector<uint8_t>& samples_lit, int samples,
                                           int width, int height) {
-  thread_local PolygonCoverage coverage;
+  thread_local geometry::PolygonCoverage coverage;
   coverage.rows.clear();
   coverage.partial.clear();
-  if (proj.status == ClipStatus::kVisible && !compute_coverage(proj.vertices, &coverage))
+  if (proj.status == geometry::ClipStatus::kVisible &&
+      !geometry::compute_coverage(proj.vertices, &coverage))
     return invalid_metrics(lit.size());  // as measure_triangle: cannot happen for clip_triangle's
   return measure_triangle_coverage(proj, coverage, lit, samples_lit, samples, width, height);
 }
 
-TriangleMetrics measure_triangle_coverage(const ClippedPolygon& proj, const PolygonCoverage& cov,
-                                          const PixelSet& lit,
+TriangleMetrics measure_triangle_coverage(const geometry::ClippedPolygon& proj,
+                                          const geometry::PolygonCoverage& cov,
+                                          const geometry::PixelSet& lit,
                                           const std::vector<uint8_t>& samples_lit, int samples,
                                           int width, int height) {
   if (samples < 1 || samples_lit.size() != size_t(lit.size()))
     throw std::invalid_argument("measure_triangle_coverage: " + std::to_string(samples_lit.size()) +
                                 " coverage values for " + std::to_string(lit.size()) +
                                 " pixels, " + std::to_string(samples) + " samples per pixel");
-  if (proj.status == ClipStatus::kInvalid) return invalid_metrics(lit.size());
+  if (proj.status == geometry::ClipStatus::kInvalid) return invalid_metrics(lit.size());
   TriangleMetrics m;
   m.rendered = lit.size();
   m.valid = true;
-  m.projected_area = proj.status == ClipStatus::kVisible ? proj.area : 0.0;
+  m.projected_area = proj.status == geometry::ClipStatus::kVisible ? proj.area : 0.0;
 
   // Where each lit run's coverage values start in samples_lit.
-  const std::vector<PixelRun>& runs = lit.runs();
+  const std::vector<geometry::PixelRun>& runs = lit.runs();
   thread_local std::vector<size_t> first;
   first.resize(runs.size());
   size_t offset = 0;
@@ -182,7 +190,7 @@ TriangleMetrics measure_triangle_coverage(const ClippedPolygon& proj, const Poly
     if (d > 0) excess += d; else missing -= d;
   };
   size_t j = 0;
-  for (const CoverageRow& row : cov.rows) {
+  for (const geometry::CoverageRow& row : cov.rows) {
     while (j < runs.size() && runs[j].y < row.y) ++j;
     size_t row_end = j;
     while (row_end < runs.size() && runs[row_end].y == row.y) ++row_end;
@@ -196,7 +204,7 @@ TriangleMetrics measure_triangle_coverage(const ClippedPolygon& proj, const Poly
     missing += double(std::max(0, row.run_end - row.run_begin) - run_lit) * row.run_area;
     size_t q = j;
     for (uint32_t i = row.partial_begin; i < row.partial_end; ++i) {
-      const PixelArea& pa = cov.partial[i];
+      const geometry::PixelArea& pa = cov.partial[i];
       while (q < row_end && runs[q].x_end <= pa.x) ++q;
       if (q < row_end && runs[q].x_begin <= pa.x)
         add(samples_lit[first[q] + size_t(pa.x - runs[q].x_begin)], pa.area);
@@ -213,4 +221,4 @@ TriangleMetrics measure_triangle_coverage(const ClippedPolygon& proj, const Poly
   return m;
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -36,7 +36,7 @@
 #include "geometry/pixel_coverage.h"
 #include "geometry/pixel_set.h"
 
-namespace ra {
+namespace ra::metrics {
 
 struct TriangleMetrics {
   bool valid = false;                // false when the clipped triangle is invalid (NaN/inf input)
@@ -60,32 +60,36 @@ struct TriangleMetrics {
 // Length of the visible edges of a clipped triangle, px: the polygon's perimeter without the
 // edges on the window border (ClippedPolygon::on_window_border). A zero-area polygon (a segment)
 // counts both of its sides; invisible or invalid: 0.
-double visible_edge_length(const ClippedPolygon& proj);
+double visible_edge_length(const geometry::ClippedPolygon& proj);
 
 // The triangle metrics of `lit` (the pixels rendered for the triangle, sorted, GL window
 // coordinates; pixels outside the window count as wholly outside proj(T)) against `proj`, in a
 // width x height window (W * H up to 2^62). An invisible or zero-area proj(T) has inside = 0
 // everywhere, so every lit pixel is error. Status kInvalid: valid = false, metrics NaN.
-TriangleMetrics measure_triangle(const ClippedPolygon& proj, const PixelSet& lit, int width,
-                                 int height);
+TriangleMetrics measure_triangle(const geometry::ClippedPolygon& proj,
+                                 const geometry::PixelSet& lit, int width, int height);
 // The same for triangle `prim` (Kind::kTriangle) under `view`: clip_triangle, then the above.
-TriangleMetrics measure_triangle(const View& view, const Primitive& prim, const PixelSet& lit);
+TriangleMetrics measure_triangle(const geometry::View& view, const geometry::Primitive& prim,
+                                 const geometry::PixelSet& lit);
 // The same with the coverage of proj.vertices already computed (compute_coverage), e.g. once per
 // triangle when several renderers are compared.
-TriangleMetrics measure_triangle(const ClippedPolygon& proj, const PolygonCoverage& coverage,
-                                 const PixelSet& lit, int width, int height);
+TriangleMetrics measure_triangle(const geometry::ClippedPolygon& proj,
+                                 const geometry::PolygonCoverage& coverage,
+                                 const geometry::PixelSet& lit, int width, int height);
 
 // The coverage form of the metrics (TEs_cov, TEu_cov, see the top of this file) for an antialiased
 // rendering: `lit` the pixels with any coverage (sorted, GL window coordinates), `samples_lit[i]`
 // the samples lit of the i-th pixel of `lit` in its (y, x) order, 1..samples, `samples` (>= 1) the
 // samples per pixel. Cost: O(rows + boundary pixels + lit runs + |lit|), the last a pass over the
 // bytes of samples_lit (the readback of those pixels already cost as much). `rendered` = |lit|.
-TriangleMetrics measure_triangle_coverage(const ClippedPolygon& proj, const PixelSet& lit,
+TriangleMetrics measure_triangle_coverage(const geometry::ClippedPolygon& proj,
+                                          const geometry::PixelSet& lit,
                                           const std::vector<uint8_t>& samples_lit, int samples,
                                           int width, int height);
-TriangleMetrics measure_triangle_coverage(const ClippedPolygon& proj,
-                                          const PolygonCoverage& coverage, const PixelSet& lit,
+TriangleMetrics measure_triangle_coverage(const geometry::ClippedPolygon& proj,
+                                          const geometry::PolygonCoverage& coverage,
+                                          const geometry::PixelSet& lit,
                                           const std::vector<uint8_t>& samples_lit, int samples,
                                           int width, int height);
 
-}  // namespace ra
+}  // namespace ra::metrics

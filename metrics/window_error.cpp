@@ -5,19 +5,21 @@
 #include <cmath>
 #include <limits>
 
-namespace ra {
+namespace ra::metrics {
 
 namespace {
 
 constexpr double kEps = kFloatRelativeError;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double component(Vec4 v, int k) { return k == 0 ? v.x : k == 1 ? v.y : k == 2 ? v.z : v.w; }
-void set_component(Vec4& v, int k, double x) {
+double component(geometry::Vec4 v, int k) {
+  return k == 0 ? v.x : k == 1 ? v.y : k == 2 ? v.z : v.w;
+}
+void set_component(geometry::Vec4& v, int k, double x) {
   (k == 0 ? v.x : k == 1 ? v.y : k == 2 ? v.z : v.w) = x;
 }
 
-bool finite(Vec4 v) {
+bool finite(geometry::Vec4 v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
 }
 
@@ -37,7 +39,7 @@ double window_axis_error(double qk, double ek, double qw, double ew, int size) {
 
 }  // namespace
 
-ClipWithError clip_with_error(const View& view, Vec3 p) {
+ClipWithError clip_with_error(const geometry::View& view, geometry::Vec3 p) {
   ClipWithError out;
   out.c = view.to_clip(p);
   const double v[4] = {std::fabs(p.x), std::fabs(p.y), std::fabs(p.z), 1.0};
@@ -97,8 +99,9 @@ AllowedVertex window_vertex(const ClipWithError& q, int width, int height) {
   return v;
 }
 
-std::vector<AllowedVertex> near_clipped_vertices(const View& view, const Primitive& prim) {
-  const int n = vertex_count(prim.kind);
+std::vector<AllowedVertex> near_clipped_vertices(const geometry::View& view,
+                                                 const geometry::Primitive& prim) {
+  const int n = geometry::vertex_count(prim.kind);
   ClipWithError c[3];
   for (int i = 0; i < n; ++i) {
     c[i] = clip_with_error(view, prim.v[i]);
@@ -130,11 +133,12 @@ double conformance_allowance(double magnitude, int width, int height) {
   return kSnapAllowancePx + kEps * std::max({magnitude, double(width), double(height)});
 }
 
-std::vector<AllowedVertex> uniform_allowance(const std::vector<Vec2>& points, int width,
+std::vector<AllowedVertex> uniform_allowance(const std::vector<geometry::Vec2>& points, int width,
                                              int height) {
   std::vector<AllowedVertex> out;
-  for (const Vec2& p : points) out.push_back({p, conformance_allowance(0, width, height)});
+  for (const geometry::Vec2& p : points)
+    out.push_back({p, conformance_allowance(0, width, height)});
   return out;
 }
 
-}  // namespace ra
+}  // namespace ra::metrics

@@ -44,7 +44,7 @@
 #include "geometry/vector_math.h"
 #include "geometry/view.h"
 
-namespace ra {
+namespace ra::metrics {
 
 // The least subpixel grid GL allows, 4 bits: a truncating snap moves a coordinate by < 2^-4 px.
 constexpr int kLeastSubpixelBits = 4;
@@ -55,18 +55,18 @@ constexpr double kFloatRelativeError = 1e-5;
 // A vertex as GL may place it: its exact window position and how far (px, in x and in y each)
 // a conforming implementation's position may lie from it.
 struct AllowedVertex {
-  Vec2 p;                  // exact GL window position, px
+  geometry::Vec2 p;        // exact GL window position, px
   double allowance = 0;    // px per axis: snap + floating-point error (may be +infinity)
 };
 
 // A clip-space point with a bound on the floating-point error of each of its components.
 struct ClipWithError {
-  Vec4 c;    // exact clip coordinates
-  Vec4 err;  // |error| bound of each component, clip units
+  geometry::Vec4 c;    // exact clip coordinates
+  geometry::Vec4 err;  // |error| bound of each component, clip units
 };
 
 // Stage 1: the clip coordinates of world point p under `view` and their error bound.
-ClipWithError clip_with_error(const View& view, Vec3 p);
+ClipWithError clip_with_error(const geometry::View& view, geometry::Vec3 p);
 // Stage 2: the near clip of the edge from a (z + w > 0) to b (z + w < 0).
 ClipWithError near_intersection_with_error(const ClipWithError& a, const ClipWithError& b);
 // Stages 3 and 4 plus the snap: the vertex's window position and allowance (q.c.w > 0).
@@ -76,7 +76,8 @@ AllowedVertex window_vertex(const ClipWithError& q, int width, int height);
 // order; 0 to 4 vertices), each with its allowance; a point gives its one vertex when it lies in
 // front of the near plane. Empty when nothing of it lies in front of the near plane or a
 // coordinate is not finite.
-std::vector<AllowedVertex> near_clipped_vertices(const View& view, const Primitive& prim);
+std::vector<AllowedVertex> near_clipped_vertices(const geometry::View& view,
+                                                 const geometry::Primitive& prim);
 
 // The uniform allowance of a vertex whose window coordinates have magnitude up to `magnitude` in a
 // width x height window: the snap plus eps times the larger of the magnitude and the window's
@@ -84,7 +85,7 @@ std::vector<AllowedVertex> near_clipped_vertices(const View& view, const Primiti
 double conformance_allowance(double magnitude, int width, int height);
 
 // Each window position with the uniform allowance conformance_allowance(0, width, height).
-std::vector<AllowedVertex> uniform_allowance(const std::vector<Vec2>& points, int width,
+std::vector<AllowedVertex> uniform_allowance(const std::vector<geometry::Vec2>& points, int width,
                                              int height);
 
-}  // namespace ra
+}  // namespace ra::metrics

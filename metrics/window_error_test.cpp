@@ -13,7 +13,7 @@
 #include "geometry/clipping.h"
 #include "stats/stats_testing.h"
 
-namespace ra {
+namespace ra::metrics {
 namespace {
 
 // The pipeline in rationals. Each rounding is one named perturbation: a result r of an operation
@@ -70,12 +70,12 @@ for name, case in inp['cases'].items():
     out[name] = {o: worst(o, case['a'], case.get('b')) for o in ('two-stage', 'premultiplied')}
 )PY";
 
-std::vector<double> column_major(const Mat4& m) { return {m.m.begin(), m.m.end()}; }
+std::vector<double> column_major(const geometry::Mat4& m) { return {m.m.begin(), m.m.end()}; }
 
 struct Case {
   const char* name;
-  const View* view;
-  Vec3 a, b;
+  const geometry::View* view;
+  geometry::Vec3 a, b;
   bool clipped;  // b behind the near plane: the vertex is a's edge's near intersection
 };
 
@@ -83,9 +83,10 @@ TEST(WindowError, TheDerivedBoundHoldsTheWorstCaseOfARationalPipelineAndIsTight)
   // Near planes at 10^-3 and at the paper's 0.01; edges crossing them near the axis (a cut vertex
   // inside the window) and far from it (a cut vertex far outside); unclipped vertices, one just in
   // front of a near plane at 10^-5 (window x ~ 4e7 px).
-  const View close = make_view(30, 907, 907, 1e-3, 10.0);
-  const View paper = make_view(150, 128, 128, 0.01, 10.0, rotation_from_euler_deg(20, -10, 5));
-  const View tiny = make_view(30, 907, 907, 1e-5, 10.0);
+  const geometry::View close = geometry::make_view(30, 907, 907, 1e-3, 10.0);
+  const geometry::View paper =
+      geometry::make_view(150, 128, 128, 0.01, 10.0, geometry::rotation_from_euler_deg(20, -10, 5));
+  const geometry::View tiny = geometry::make_view(30, 907, 907, 1e-5, 10.0);
   const std::vector<Case> cases = {
       {"axis_close_near", &close, {0.02, -0.01, -2.0}, {-0.01, 0.005, 1.0}, true},
       {"far_close_near", &close, {-0.2, -0.2, -2.0}, {0.5, 0.5, 1.0}, true},
@@ -94,7 +95,7 @@ TEST(WindowError, TheDerivedBoundHoldsTheWorstCaseOfARationalPipelineAndIsTight)
       {"unclipped_in_window", &tiny, {0.3, -0.2, -1.5}, {}, false},
       {"unclipped_far_outside", &tiny, {0.5, 0.3, -2e-5}, {}, false},
   };
-  for (const View* v : {&close, &paper, &tiny}) {
+  for (const geometry::View* v : {&close, &paper, &tiny}) {
     nlohmann::json in;
     in["eps"] = kFloatRelativeError;
     in["W"] = v->width;
@@ -134,7 +135,7 @@ TEST(WindowError, ACutVertexNearTheAxisMovesFarMoreThanEpsTimesItsCoordinate) {
   // The rule this replaces allowed eps * max(|X|, W): 0.009 px here. The near clip of a long
   // edge at 10^-3 computes w from a difference of numbers a thousand times larger: the cut vertex
   // may move by pixels although it lies near the window's centre.
-  const View view = make_view(30, 907, 907, 1e-3, 10.0);
+  const geometry::View view = geometry::make_view(30, 907, 907, 1e-3, 10.0);
   const ClipWithError a = clip_with_error(view, {0.02, -0.01, -2.0});
   const ClipWithError b = clip_with_error(view, {-0.01, 0.005, 1.0});
   const AllowedVertex q = window_vertex(near_intersection_with_error(a, b), 907, 907);
@@ -143,7 +144,7 @@ TEST(WindowError, ACutVertexNearTheAxisMovesFarMoreThanEpsTimesItsCoordinate) {
   EXPECT_GT(q.allowance, 20 * conformance_allowance(0, 907, 907));
   EXPECT_TRUE(std::isfinite(q.allowance));
   // At 10^-5 the error of w at the cut exceeds w itself: nothing bounds the vertex.
-  const View tiny = make_view(30, 907, 907, 1e-5, 10.0);
+  const geometry::View tiny = geometry::make_view(30, 907, 907, 1e-5, 10.0);
   const AllowedVertex t = window_vertex(
       near_intersection_with_error(clip_with_error(tiny, {0.02, -0.01, -2.0}),
                                    clip_with_error(tiny, {-0.01, 0.005, 1.0})),
@@ -154,10 +155,11 @@ TEST(WindowError, ACutVertexNearTheAxisMovesFarMoreThanEpsTimesItsCoordinate) {
 TEST(WindowError, AVertexInsideTheWindowKeepsASmallAllowanceWhateverItsEdgesReach) {
   // The third vertex lies just in front of a near plane at 10^-5, ~4e7 px to the right. The old
   // rule gave every vertex eps * 4e7 = 400 px; the vertices inside the window keep ~0.1 px.
-  const View view = make_view(30, 907, 907, 1e-5, 10.0);
-  Primitive t;
-  t.kind = Kind::kTriangle;
-  t.v = {Vec3{-0.02, -0.02, -0.5}, Vec3{0.02, -0.02, -0.5}, Vec3{0.5, 0.3, -2e-5}};
+  const geometry::View view = geometry::make_view(30, 907, 907, 1e-5, 10.0);
+  geometry::Primitive t;
+  t.kind = geometry::Kind::kTriangle;
+  t.v = {geometry::Vec3{-0.02, -0.02, -0.5}, geometry::Vec3{0.02, -0.02, -0.5},
+         geometry::Vec3{0.5, 0.3, -2e-5}};
   const std::vector<AllowedVertex> v = near_clipped_vertices(view, t);
   ASSERT_EQ(v.size(), 3u);  // nothing crosses the near plane
   EXPECT_LT(v[0].allowance, 0.1);
@@ -168,15 +170,15 @@ TEST(WindowError, AVertexInsideTheWindowKeepsASmallAllowanceWhateverItsEdgesReac
 }
 
 TEST(WindowError, NothingInFrontOfTheNearPlaneGivesNoVertexAndNonFiniteInputNone) {
-  const View view = make_view(60, 64, 64);
-  Primitive behind;
-  behind.kind = Kind::kLine;
-  behind.v = {Vec3{0, 0, 1}, Vec3{0.1, 0, 2}, Vec3{}};
+  const geometry::View view = geometry::make_view(60, 64, 64);
+  geometry::Primitive behind;
+  behind.kind = geometry::Kind::kLine;
+  behind.v = {geometry::Vec3{0, 0, 1}, geometry::Vec3{0.1, 0, 2}, geometry::Vec3{}};
   EXPECT_TRUE(near_clipped_vertices(view, behind).empty());
-  Primitive bad = behind;
+  geometry::Primitive bad = behind;
   bad.v[0] = {NAN, 0, -1};
   EXPECT_TRUE(near_clipped_vertices(view, bad).empty());
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::metrics

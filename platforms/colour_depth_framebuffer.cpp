@@ -4,7 +4,7 @@
 
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::platforms {
 
 ColourDepthFramebuffer create_colour_depth_framebuffer(const GlApi& gl, int width, int height,
                                                        const std::string& platform) {
@@ -30,4 +30,4 @@ ColourDepthFramebuffer create_colour_depth_framebuffer(const GlApi& gl, int widt
   return f;
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -7,7 +7,7 @@
 
 #include "platforms/gl_api.h"
 
-namespace ra {
+namespace ra::platforms {
 
 struct ColourDepthFramebuffer {
   GLuint framebuffer = 0, colour = 0, depth = 0;  // GL names
@@ -19,4 +19,4 @@ struct ColourDepthFramebuffer {
 ColourDepthFramebuffer create_colour_depth_framebuffer(const GlApi& gl, int width, int height,
                                                        const std::string& platform);
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -23,7 +23,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 // The library a back end asks for by soname; the build must hold it.
@@ -234,4 +234,4 @@ void load_driver_build(const PlatformSpec& spec) {
   current = {true, wanted, spec.name};
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

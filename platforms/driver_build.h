@@ -13,7 +13,7 @@
 
 #include "platforms/platform_spec.h"
 
-namespace ra {
+namespace ra::platforms {
 
 // The folder where `renderaudit builds fetch` keeps builds: $RENDERAUDIT_BUILD_CACHE, else
 // $XDG_CACHE_HOME/renderaudit/builds, else ~/.cache/renderaudit/builds.
@@ -55,4 +55,4 @@ struct ElfDependencies {
 };
 ElfDependencies read_elf_dependencies(const std::string& path);
 
-}  // namespace ra
+}  // namespace ra::platforms

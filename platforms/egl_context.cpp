@@ -16,7 +16,7 @@
 #include "platforms/gl_context_backends.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 const char* egl_error_name(EGLint e) {
@@ -304,4 +304,4 @@ std::vector<EglDevice> list_egl_devices() {
   return out;
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace ra {
+namespace ra::platforms {
 
 // Faults injected by the `faulty` test platform (the reference rasterizer plus failures), so the
 // pipeline's own crash, hang and completeness handling can be tested. Indices apply to every kind
@@ -26,4 +26,4 @@ struct FaultPlan {
   double drop_line_end_fraction = 0; // this fraction of lines loses its last pixel (as Bresenham)
 };
 
-}  // namespace ra
+}  // namespace ra::platforms

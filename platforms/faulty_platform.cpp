@@ -13,7 +13,7 @@
 #include "geometry/clipping.h"
 #include "geometry/reference_rasterizer.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 bool listed(const std::vector<uint64_t>& v, uint64_t i) {
@@ -26,7 +26,7 @@ int render_attempt() {
 }
 
 // A deterministic per-primitive draw in [0, 1), independent of shard and process.
-double fault_draw(const Primitive& prim, uint64_t salt) {
+double fault_draw(const geometry::Primitive& prim, uint64_t salt) {
   return double(splitmix64(splitmix64(prim.index * 3 + uint64_t(prim.kind)) ^ salt) >> 11) * 0x1.0p-53;
 }
 
@@ -52,28 +52,30 @@ class FaultyPlatform : public Platform {
   double measure_timer_over_cpu() override {
     return base_ ? base_->measure_timer_over_cpu() : Platform::measure_timer_over_cpu();
   }
-  void set_view(const View& view) override {
+  void set_view(const geometry::View& view) override {
     view_ = view;
     if (base_) base_->set_view(view);
   }
 
-  RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
+  RenderResult render(const geometry::Primitive& prim,
+                      const geometry::PixelRegion& expected) override {
     if (listed(plan_.crash, prim.index)) std::raise(SIGSEGV);  // what a crashing driver does
     if (listed(plan_.hang, prim.index))
       for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
     if (base_) return base_->render(prim, expected);
     RenderResult out;
-    const SubpixelGrid grid(plan_.snap_bits,
-                            plan_.snap_truncate ? SnapRounding::kTruncate : SnapRounding::kNearest);
-    out.lit = rasterize_reference(view_, prim, grid);
-    if (prim.kind == Kind::kLine && fault_draw(prim, 3) < plan_.drop_line_end_fraction)
+    const geometry::SubpixelGrid grid(plan_.snap_bits, plan_.snap_truncate
+                                                           ? geometry::SnapRounding::kTruncate
+                                                           : geometry::SnapRounding::kNearest);
+    out.lit = geometry::rasterize_reference(view_, prim, grid);
+    if (prim.kind == geometry::Kind::kLine && fault_draw(prim, 3) < plan_.drop_line_end_fraction)
       drop_last_pixel(prim, grid, out.lit);
     bool shift = fault_draw(prim, 1) < plan_.shift_fraction;
     if (fault_draw(prim, 2) < plan_.flaky_fraction && first_attempt_) shift = true;
     if (shift) out.lit.translate(1, 0);
     if (listed(plan_.wild_pixel, prim.index)) {
       // One pixel far from everything else: the opposite quadrant of the window.
-      Pixel anchor = out.lit.empty() ? Pixel{0, 0} : out.lit.front();
+      geometry::Pixel anchor = out.lit.empty() ? geometry::Pixel{0, 0} : out.lit.front();
       out.lit.insert({(anchor.x + view_.width / 2) % view_.width,
                       (anchor.y + view_.height / 2) % view_.height});
     }
@@ -86,22 +88,25 @@ class FaultyPlatform : public Platform {
  private:
   // Removes the pixel nearest the segment's second end along its major axis, as a Bresenham
   // loop that stops one step early does.
-  void drop_last_pixel(const Primitive& prim, SubpixelGrid grid, PixelSet& lit) const {
+  void drop_last_pixel(const geometry::Primitive& prim, geometry::SubpixelGrid grid,
+                       geometry::PixelSet& lit) const {
     if (lit.empty()) return;
-    const ClippedSegment s = clip_segment(view_, prim.v[0], prim.v[1]);
-    const Vec2 a{snap_to_subpixel(s.p0.x, grid), snap_to_subpixel(s.p0.y, grid)};
-    const Vec2 b{snap_to_subpixel(s.p1.x, grid), snap_to_subpixel(s.p1.y, grid)};
+    const geometry::ClippedSegment s = geometry::clip_segment(view_, prim.v[0], prim.v[1]);
+    const geometry::Vec2 a{geometry::snap_to_subpixel(s.p0.x, grid),
+                           geometry::snap_to_subpixel(s.p0.y, grid)};
+    const geometry::Vec2 b{geometry::snap_to_subpixel(s.p1.x, grid),
+                           geometry::snap_to_subpixel(s.p1.y, grid)};
     const bool x_major = std::fabs(b.x - a.x) >= std::fabs(b.y - a.y);
     const double dir = x_major ? b.x - a.x : b.y - a.y;
-    Pixel last = lit.front();
-    for (const Pixel& p : lit)
+    geometry::Pixel last = lit.front();
+    for (const geometry::Pixel& p : lit)
       if ((x_major ? p.x - last.x : p.y - last.y) * dir > 0) last = p;
     lit.erase(last);
   }
 
   FaultPlan plan_;
   std::unique_ptr<Platform> base_;  // an OSMesa platform when [faults] base names one
-  View view_;
+  geometry::View view_;
   // Flaky primitives are wrong on the first attempt only: a re-render (the coordinator's retry of
   // a failed shard, the audit's flake check) runs its worker with RA_RENDER_ATTEMPT=2.
   bool first_attempt_ = render_attempt() < 2;
@@ -113,4 +118,4 @@ std::unique_ptr<Platform> create_faulty_platform(const FaultPlan& faults) {
   return std::make_unique<FaultyPlatform>(faults);
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

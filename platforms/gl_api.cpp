@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace ra {
+namespace ra::platforms {
 
 void GlApi::load(const std::function<void*(const char*)>& get_proc) {
 #define RA_GL_LOAD(name)                                                                 \
@@ -14,4 +14,4 @@ void GlApi::load(const std::function<void*(const char*)>& get_proc) {
 #undef RA_GL_LOAD
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

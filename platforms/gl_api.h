@@ -11,7 +11,7 @@
 
 #include <functional>
 
-namespace ra {
+namespace ra::platforms {
 
 // Every function, without its "gl" prefix.
 #define RA_GL_FUNCTIONS(X)                                                                     \
@@ -39,4 +39,4 @@ struct GlApi {
   void load(const std::function<void*(const char*)>& get_proc);
 };
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -9,7 +9,7 @@
 #include "platforms/gl_context_backends.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 // Mesa reads these when the process makes its first context. Only the validated values of
@@ -58,4 +58,4 @@ std::unique_ptr<GlContext> create_gl_context(const PlatformSpec& spec) {
   return context;
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

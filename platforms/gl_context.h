@@ -19,7 +19,7 @@
 #include "platforms/gl_api.h"
 #include "platforms/platform_spec.h"
 
-namespace ra {
+namespace ra::platforms {
 
 class GlContext {
  public:
@@ -53,4 +53,4 @@ struct EglDevice {
 // is missing (with the reason).
 std::vector<EglDevice> list_egl_devices();
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -5,9 +5,9 @@
 
 #include "platforms/gl_context.h"
 
-namespace ra {
+namespace ra::platforms {
 
 std::unique_ptr<GlContext> create_osmesa_context(const PlatformSpec& spec);   // osmesa_context.cpp
 std::unique_ptr<GlContext> create_egl_context(const PlatformSpec& spec);      // egl_context.cpp
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -58,7 +58,7 @@
 #include "platforms/pixel_scan.h"
 #include "platforms/platform.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 constexpr uint32_t kRgb = kRgbMask;  // RGB bytes of a little-endian RGBA8 pixel
@@ -111,7 +111,7 @@ class GlPlatform : public Platform {
     return info_.timer_over_cpu = timer_over_cpu();
   }
 
-  void set_view(const View& view) override {
+  void set_view(const geometry::View& view) override {
     make_current();
     if (view.width != width_ || view.height != height_) resize(view.width, view.height);
     gl().Viewport(0, 0, width_, height_);
@@ -123,7 +123,8 @@ class GlPlatform : public Platform {
     clear_all();
   }
 
-  RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
+  RenderResult render(const geometry::Primitive& prim,
+                      const geometry::PixelRegion& expected) override {
     make_current();
     if (samples_ > 0) return render_multisample(prim, expected);
     RenderResult out;
@@ -143,7 +144,7 @@ class GlPlatform : public Platform {
     }
     reserve_colours(1);
     use_colour(++colour_);
-    const Pixel* wild = wild_pixel_for(prim, expected);
+    const geometry::Pixel* wild = wild_pixel_for(prim, expected);
     gl().BeginQuery(GL_SAMPLES_PASSED, query_);
     out.render_us = draw_and_finish(prim, true, wild);
     GLuint samples = 0;
@@ -185,8 +186,9 @@ class GlPlatform : public Platform {
   // region with its colour equals the fragment count only when every fragment was found where it
   // belongs and none was overwritten by another (each found pixel is a distinct fragment); any
   // other outcome redraws the batch one primitive at a time, each with its own proof and time.
-  std::vector<RenderResult> render_batch(const std::vector<Primitive>& prims,
-                                         const std::vector<PixelRegion>& expected) override {
+  std::vector<RenderResult> render_batch(
+      const std::vector<geometry::Primitive>& prims,
+      const std::vector<geometry::PixelRegion>& expected) override {
     make_current();
     if (method_ == ReadbackMethod::kDrawOnly) return draw_batch_only(prims);
     if (method_ != ReadbackMethod::kRegionWithProof || prims.size() < 2 || samples_ > 0)
@@ -243,10 +245,11 @@ class GlPlatform : public Platform {
   }
 
   // Multisample rendering (the antialiasing condition; see the top of this file).
-  RenderResult render_multisample(const Primitive& prim, const PixelRegion& expected) {
+  RenderResult render_multisample(const geometry::Primitive& prim,
+                                  const geometry::PixelRegion& expected) {
     RenderResult out;
     out.samples = samples_;
-    const PixelRegion window = PixelRect{0, 0, width_, height_};
+    const geometry::PixelRegion window = geometry::PixelRect{0, 0, width_, height_};
     gl().Color4ub(255, 255, 255, 255);
     switch (method_) {
       case ReadbackMethod::kDrawOnly:  // the floor: drawing alone, no resolve
@@ -263,7 +266,7 @@ class GlPlatform : public Platform {
       case ReadbackMethod::kRegionWithProof:
         break;
     }
-    const Pixel* wild = wild_pixel_for(prim, expected);
+    const geometry::Pixel* wild = wild_pixel_for(prim, expected);
     gl().BeginQuery(GL_SAMPLES_PASSED, query_);
     out.render_us = draw_resolve_finish(prim, wild, expected, true);
     GLuint passed = 0;
@@ -298,8 +301,8 @@ class GlPlatform : public Platform {
   }
 
   // Draws, resolves `region` into the single-sample FBO and waits; returns the CPU time, us.
-  double draw_resolve_finish(const Primitive& prim, const Pixel* wild, const PixelRegion& region,
-                             bool end_query = false) {
+  double draw_resolve_finish(const geometry::Primitive& prim, const geometry::Pixel* wild,
+                             const geometry::PixelRegion& region, bool end_query = false) {
     const auto t0 = std::chrono::steady_clock::now();
     draw(prim, wild);
     if (end_query) gl().EndQuery(GL_SAMPLES_PASSED);
@@ -309,11 +312,11 @@ class GlPlatform : public Platform {
   }
 
   // Resolves the region's rectangles from the multisample FBO into the resolve FBO (same place).
-  void resolve(const PixelRegion& region) {
+  void resolve(const geometry::PixelRegion& region) {
     gl().BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
     gl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_framebuffer_);
-    for (const PixelRect& r : region.rects) {
-      const PixelRect c = clamp(r);
+    for (const geometry::PixelRect& r : region.rects) {
+      const geometry::PixelRect c = clamp(r);
       if (!c.empty())
         gl().BlitFramebuffer(c.x0, c.y0, c.x1, c.y1, c.x0, c.y0, c.x1, c.y1, GL_COLOR_BUFFER_BIT,
                           GL_NEAREST);
@@ -324,7 +327,7 @@ class GlPlatform : public Platform {
   }
 
   // Draws the primitive again in the clear colour: exactly its samples go back to black.
-  void erase(const Primitive& prim, const Pixel* wild) {
+  void erase(const geometry::Primitive& prim, const geometry::Pixel* wild) {
     gl().Color4ub(0, 0, 0, 0);
     draw(prim, wild);
     gl().Finish();
@@ -333,11 +336,11 @@ class GlPlatform : public Platform {
 
   // Reads the region's resolved pixels and replaces out.lit / out.samples_lit with those that
   // have any coverage; returns the sum of their samples lit.
-  int64_t read_coverage(const PixelRegion& region, RenderResult& out) {
+  int64_t read_coverage(const geometry::PixelRegion& region, RenderResult& out) {
     covered_.clear();
     size_t rects = 0;
-    for (const PixelRect& r0 : region.rects) {
-      const PixelRect r = clamp(r0);
+    for (const geometry::PixelRect& r0 : region.rects) {
+      const geometry::PixelRect r = clamp(r0);
       if (r.empty()) continue;
       ++rects;
       const int w = r.x1 - r.x0, h = r.y1 - r.y0;
@@ -376,7 +379,8 @@ class GlPlatform : public Platform {
 
   // Draws the primitive and waits for it; returns the CPU time in microseconds. With
   // `end_query`, the running occlusion query is ended right after the draw.
-  double draw_and_finish(const Primitive& prim, bool end_query = false, const Pixel* wild = nullptr) {
+  double draw_and_finish(const geometry::Primitive& prim, bool end_query = false,
+                         const geometry::Pixel* wild = nullptr) {
     const auto t0 = std::chrono::steady_clock::now();
     draw(prim, wild);
     if (end_query) gl().EndQuery(GL_SAMPLES_PASSED);
@@ -384,19 +388,20 @@ class GlPlatform : public Platform {
     return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   }
 
-  void draw(const Primitive& prim, const Pixel* wild) {
+  void draw(const geometry::Primitive& prim, const geometry::Pixel* wild) {
     static const GLenum modes[] = {GL_POINTS, GL_LINES, GL_TRIANGLES};
     gl().Begin(modes[int(prim.kind)]);
-    for (int i = 0; i < vertex_count(prim.kind); ++i) gl().Vertex3d(prim.v[i].x, prim.v[i].y, prim.v[i].z);
+    for (int i = 0; i < geometry::vertex_count(prim.kind); ++i)
+      gl().Vertex3d(prim.v[i].x, prim.v[i].y, prim.v[i].z);
     gl().End();
     if (wild) draw_wild_pixel(*wild);
   }
 
   // The batched floor (benchmark only): the batch drawn under one glFinish, nothing read back.
-  std::vector<RenderResult> draw_batch_only(const std::vector<Primitive>& prims) {
+  std::vector<RenderResult> draw_batch_only(const std::vector<geometry::Primitive>& prims) {
     std::vector<RenderResult> out(prims.size());
     const auto t0 = std::chrono::steady_clock::now();
-    for (const Primitive& prim : prims) draw(prim, nullptr);
+    for (const geometry::Primitive& prim : prims) draw(prim, nullptr);
     gl().Finish();
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     for (RenderResult& r : out) r.render_us = us / double(prims.size()), r.batch_size = int(prims.size());
@@ -405,7 +410,8 @@ class GlPlatform : public Platform {
 
   // Test-only fault: where the extra pixel goes (the quadrant opposite the expected region), or
   // nullptr when this primitive has none.
-  const Pixel* wild_pixel_for(const Primitive& prim, const PixelRegion& region) {
+  const geometry::Pixel* wild_pixel_for(const geometry::Primitive& prim,
+                                        const geometry::PixelRegion& region) {
     if (std::find(wild_pixel_indices_.begin(), wild_pixel_indices_.end(), prim.index) ==
         wild_pixel_indices_.end())
       return nullptr;
@@ -414,7 +420,7 @@ class GlPlatform : public Platform {
   }
 
   // Lights pixel p through GL (so only the readback can find it): a point at its centre in NDC.
-  void draw_wild_pixel(Pixel p) {
+  void draw_wild_pixel(geometry::Pixel p) {
     gl().MatrixMode(GL_PROJECTION);
     gl().PushMatrix();
     gl().LoadIdentity();
@@ -544,7 +550,7 @@ class GlPlatform : public Platform {
     height_ = h;
   }
 
-  PixelRect clamp(PixelRect r) const {
+  geometry::PixelRect clamp(geometry::PixelRect r) const {
     r.x0 = std::max(r.x0, 0);
     r.y0 = std::max(r.y0, 0);
     r.x1 = std::min(r.x1, width_);
@@ -570,14 +576,15 @@ class GlPlatform : public Platform {
   // Reads the region back rectangle by rectangle and adds the pixels of `colour` (0xBBGGRR), or
   // with kAnyColour every pixel that is not black. The runs of several rectangles side by side
   // are put in (y, x) order before they join `lit`.
-  void read_and_scan(const PixelRegion& region, uint32_t colour, PixelSet& lit) {
-    std::vector<PixelRect> rects;
-    for (const PixelRect& r : region.rects)
+  void read_and_scan(const geometry::PixelRegion& region, uint32_t colour,
+                     geometry::PixelSet& lit) {
+    std::vector<geometry::PixelRect> rects;
+    for (const geometry::PixelRect& r : region.rects)
       if (!clamp(r).empty()) rects.push_back(clamp(r));
     if (rects.size() == 1) return read_and_scan(rects.front(), colour, lit);
-    PixelSet part;
+    geometry::PixelSet part;
     runs_.clear();
-    for (const PixelRect& r : rects) {
+    for (const geometry::PixelRect& r : rects) {
       part.clear();
       read_and_scan(r, colour, part);
       runs_.insert(runs_.end(), part.runs().begin(), part.runs().end());
@@ -589,7 +596,7 @@ class GlPlatform : public Platform {
 
   // Reads one rectangle back (rows bottom-up, as GL window coordinates) and appends its pixels of
   // `colour` as runs.
-  void read_and_scan(const PixelRect& r, uint32_t colour, PixelSet& lit) {
+  void read_and_scan(const geometry::PixelRect& r, uint32_t colour, geometry::PixelSet& lit) {
     if (r.empty()) return;
     const int w = r.x1 - r.x0, h = r.y1 - r.y0;
     readback_.resize(size_t(w) * h);
@@ -599,7 +606,8 @@ class GlPlatform : public Platform {
 
   // Appends the runs of lit pixels of the read-back rectangle, row by row. A pixel is lit when
   // its RGB is not black (any_colour) or equals `colour`.
-  void scan(const PixelRect& r, bool any_colour, uint32_t colour, PixelSet& lit) const {
+  void scan(const geometry::PixelRect& r, bool any_colour, uint32_t colour,
+            geometry::PixelSet& lit) const {
     scan_rect(readback_.data(), size_t(r.x1 - r.x0), false, r, any_colour, colour, lit);
   }
 
@@ -615,10 +623,10 @@ class GlPlatform : public Platform {
     uint8_t k;
   };
   std::vector<Covered> covered_;
-  Pixel wild_;
+  geometry::Pixel wild_;
   std::unique_ptr<GlContext> context_;
   std::vector<uint32_t> readback_;
-  std::vector<PixelRun> runs_;
+  std::vector<geometry::PixelRun> runs_;
   GLuint framebuffer_ = 0, renderbuffer_ = 0;
   GLint max_size_ = 0;
   bool warmed_up_ = false;  // warm_up() has run
@@ -635,4 +643,4 @@ std::unique_ptr<Platform> create_gl_platform(const PlatformSpec& spec, ReadbackM
   return std::make_unique<GlPlatform>(spec, method, std::move(wild_pixel_indices));
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -11,7 +11,7 @@
 #include "platforms/gl_context_backends.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 // OSMesa's interface (GL/osmesa.h), declared here so that the build does not need its header.
@@ -92,4 +92,4 @@ std::unique_ptr<GlContext> create_osmesa_context(const PlatformSpec& spec) {
   return std::make_unique<OsmesaContext>(spec);
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

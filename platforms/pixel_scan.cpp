@@ -10,7 +10,7 @@
 #define RA_SCAN_X86 1
 #endif
 
-namespace ra {
+namespace ra::platforms {
 
 int next_change_portable(const uint32_t* row, int x, int w, bool any_colour, uint32_t colour,
                          bool lit_now) {
@@ -98,8 +98,8 @@ int next_change(const uint32_t* row, int x, int w, bool any_colour, uint32_t col
   return best(row, x, w, any_colour, colour, lit_now);
 }
 
-void scan_rect(const uint32_t* pixels, size_t stride, bool top_down, const PixelRect& r,
-               bool any_colour, uint32_t colour, PixelSet& lit) {
+void scan_rect(const uint32_t* pixels, size_t stride, bool top_down, const geometry::PixelRect& r,
+               bool any_colour, uint32_t colour, geometry::PixelSet& lit) {
   const int w = r.x1 - r.x0, h = r.y1 - r.y0;
   for (int y = 0; y < h; ++y) {
     const uint32_t* row = pixels + size_t(top_down ? h - 1 - y : y) * stride;
@@ -113,13 +113,13 @@ void scan_rect(const uint32_t* pixels, size_t stride, bool top_down, const Pixel
   }
 }
 
-void append_in_order(std::vector<PixelRun>& runs, PixelSet& lit) {
-  const auto before = [](const PixelRun& a, const PixelRun& b) {
+void append_in_order(std::vector<geometry::PixelRun>& runs, geometry::PixelSet& lit) {
+  const auto before = [](const geometry::PixelRun& a, const geometry::PixelRun& b) {
     return a.y != b.y ? a.y < b.y : a.x_begin < b.x_begin;
   };
   if (!std::is_sorted(runs.begin(), runs.end(), before))
     std::sort(runs.begin(), runs.end(), before);
-  for (const PixelRun& run : runs) lit.append_run(run.y, run.x_begin, run.x_end);
+  for (const geometry::PixelRun& run : runs) lit.append_run(run.y, run.x_begin, run.x_end);
 }
 
 std::array<uint8_t, 256> samples_from_resolved(int samples) {
@@ -131,11 +131,12 @@ std::array<uint8_t, 256> samples_from_resolved(int samples) {
   return decode;
 }
 
-Pixel opposite_quadrant_pixel(const PixelRegion& region, int width, int height) {
-  const PixelRect expected = region.bounds();
+geometry::Pixel opposite_quadrant_pixel(const geometry::PixelRegion& region, int width,
+                                        int height) {
+  const geometry::PixelRect expected = region.bounds();
   const int cx = expected.empty() ? 0 : (expected.x0 + expected.x1) / 2;
   const int cy = expected.empty() ? 0 : (expected.y0 + expected.y1) / 2;
   return {(cx + width / 2) % width, (cy + height / 2) % height};
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

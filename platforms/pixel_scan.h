@@ -11,7 +11,7 @@
 #include "geometry/pixel_region.h"
 #include "geometry/pixel_set.h"
 
-namespace ra {
+namespace ra::platforms {
 
 constexpr uint32_t kRgbMask = 0x00ffffffu;  // the RGB bytes of a pixel
 
@@ -33,12 +33,12 @@ bool scan_has_avx2();
 // runs, lowest row first. `pixels` holds r's rows `stride` pixels apart: the row of y = r.y0 first
 // (glReadPixels' order), or with `top_down` the row of y = r.y1 - 1 first (a Vulkan framebuffer's
 // order, whose y points down).
-void scan_rect(const uint32_t* pixels, size_t stride, bool top_down, const PixelRect& r,
-               bool any_colour, uint32_t colour, PixelSet& lit);
+void scan_rect(const uint32_t* pixels, size_t stride, bool top_down, const geometry::PixelRect& r,
+               bool any_colour, uint32_t colour, geometry::PixelSet& lit);
 
 // Appends `runs` (of several rectangles side by side, whose rows interleave) to `lit` in (y, x)
 // order; sorts `runs` when they are not in that order already.
-void append_in_order(std::vector<PixelRun>& runs, PixelSet& lit);
+void append_in_order(std::vector<geometry::PixelRun>& runs, geometry::PixelSet& lit);
 
 // Multisample readback: the samples lit of a resolved pixel from its red value v, for white drawn
 // on black with `samples` samples per pixel: k where v is within 1 of 255 k / samples, else 255
@@ -48,6 +48,6 @@ std::array<uint8_t, 256> samples_from_resolved(int samples);
 // Test-only fault of the GL and Vulkan platforms: the pixel a faulty driver lights outside the
 // primitive's region, in the quadrant opposite the region's centre (window pixels, origin at the
 // window's bottom left).
-Pixel opposite_quadrant_pixel(const PixelRegion& region, int width, int height);
+geometry::Pixel opposite_quadrant_pixel(const geometry::PixelRegion& region, int width, int height);
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 TEST(PixelScan, VectorVariantsEqualThePortableLoop) {
@@ -65,4 +65,4 @@ TEST(PixelScan, FindsRunsByHand) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::platforms

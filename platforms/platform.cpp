@@ -2,7 +2,7 @@
 
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::platforms {
 
 std::unique_ptr<Platform> create_platform(const PlatformSpec& spec, const FaultPlan& faults) {
   if (spec.draws_with_gl()) return create_gl_platform(spec);
@@ -11,4 +11,4 @@ std::unique_ptr<Platform> create_platform(const PlatformSpec& spec, const FaultP
   return create_faulty_platform(faults);
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

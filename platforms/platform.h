@@ -14,7 +14,7 @@
 #include "platforms/fault_plan.h"
 #include "platforms/platform_spec.h"
 
-namespace ra {
+namespace ra::platforms {
 
 // What a driver says about itself (glGetString and a few capabilities).
 struct DriverInfo {
@@ -36,7 +36,7 @@ struct DriverInfo {
 
 // One primitive as rendered.
 struct RenderResult {
-  PixelSet lit;             // every lit pixel (any coverage), GL window coordinates
+  geometry::PixelSet lit;  // every lit pixel (any coverage), GL window coordinates
   // Multisample platforms only (`samples` > 0): samples_lit[i] = samples of the i-th pixel of
   // `lit`, in its (y, x) iteration order, that the primitive covered, 1..samples; the pixel's
   // coverage is samples_lit[i] / samples. Aliased platforms: samples = 0, samples_lit empty (each
@@ -60,17 +60,19 @@ class Platform {
   // once per run, by the worker that writes the run's driver file, not by every worker.
   virtual double measure_timer_over_cpu() { return std::numeric_limits<double>::quiet_NaN(); }
   // Makes `view` current: window size, projection and modelview matrices.
-  virtual void set_view(const View& view) = 0;
+  virtual void set_view(const geometry::View& view) = 0;
   // Draws `prim` alone, white on black, width/size 1, no antialiasing (multisampling on the
   // multisample platforms), both faces filled, and returns every pixel it lit. `expected` is the window region where the ideal primitive lies
   // (its clipped bounding box, or a strip along a line, plus a margin; possibly empty): an
   // implementation may read back only that region when it proves that nothing was lit outside it.
-  virtual RenderResult render(const Primitive& prim, const PixelRegion& expected) = 0;
+  virtual RenderResult render(const geometry::Primitive& prim,
+                              const geometry::PixelRegion& expected) = 0;
   // Draws each primitive as render() would, in order, and returns their results. An
   // implementation may share one completeness proof among the batch (gl_platform.cpp); this
   // default draws them one by one.
-  virtual std::vector<RenderResult> render_batch(const std::vector<Primitive>& prims,
-                                                 const std::vector<PixelRegion>& expected) {
+  virtual std::vector<RenderResult> render_batch(
+      const std::vector<geometry::Primitive>& prims,
+      const std::vector<geometry::PixelRegion>& expected) {
     std::vector<RenderResult> out;
     out.reserve(prims.size());
     for (size_t i = 0; i < prims.size(); ++i) out.push_back(render(prims[i], expected[i]));
@@ -105,4 +107,4 @@ std::unique_ptr<Platform> create_vulkan_platform(
 std::unique_ptr<Platform> create_reference_platform();
 std::unique_ptr<Platform> create_faulty_platform(const FaultPlan& faults);
 
-}  // namespace ra
+}  // namespace ra::platforms

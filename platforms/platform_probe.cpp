@@ -9,7 +9,7 @@
 #include "util/errors.h"
 #include "util/gl_child_process.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 // A Vulkan platform's device, brought up as for drawing (vulkan_context.h), as JSON.
@@ -163,4 +163,4 @@ void require_platforms_draw(const std::vector<PlatformSpec>& specs, const std::s
   }
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -11,7 +11,7 @@
 #include "platforms/platform.h"
 #include "platforms/vulkan_context.h"
 
-namespace ra {
+namespace ra::platforms {
 
 struct PlatformProbe {
   std::string name;
@@ -41,4 +41,4 @@ void require_platforms_draw(const std::vector<std::string>& names, const std::st
 // The same for resolved platforms (an experiment's driver builds: runner/experiment.h).
 void require_platforms_draw(const std::vector<PlatformSpec>& specs, const std::string& context);
 
-}  // namespace ra
+}  // namespace ra::platforms

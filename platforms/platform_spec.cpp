@@ -6,7 +6,7 @@
 
 #include "platforms/driver_build.h"
 
-namespace ra {
+namespace ra::platforms {
 
 const std::vector<PlatformSpec>& platform_specs() {
   using B = Backend;
@@ -155,4 +155,4 @@ std::string packages_for(const PlatformSpec& spec) {
   return "";
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

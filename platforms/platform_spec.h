@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-namespace ra {
+namespace ra::platforms {
 
 // How a platform draws.
 enum class Backend {
@@ -77,4 +77,4 @@ bool is_aliased_gl_platform(const std::string& name);
 // Debian packages a back end needs, for messages ("libegl1 libegl-mesa0").
 std::string packages_for(const PlatformSpec& spec);
 
-}  // namespace ra
+}  // namespace ra::platforms

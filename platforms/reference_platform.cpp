@@ -5,7 +5,7 @@
 #include "platforms/platform.h"
 #include "geometry/reference_rasterizer.h"
 
-namespace ra {
+namespace ra::platforms {
 
 namespace {
 
@@ -15,11 +15,11 @@ class ReferencePlatform : public Platform {
     return {"renderaudit reference rasterizer", "exact double precision", "renderaudit", 0, false,
             0, "none"};
   }
-  void set_view(const View& view) override { view_ = view; }
-  RenderResult render(const Primitive& prim, const PixelRegion&) override {
+  void set_view(const geometry::View& view) override { view_ = view; }
+  RenderResult render(const geometry::Primitive& prim, const geometry::PixelRegion&) override {
     RenderResult out;
     const auto t0 = std::chrono::steady_clock::now();
-    out.lit = rasterize_reference(view_, prim);
+    out.lit = geometry::rasterize_reference(view_, prim);
     out.render_us =
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     out.full_scan = true;  // nothing is read back: the set is complete by construction
@@ -27,7 +27,7 @@ class ReferencePlatform : public Platform {
   }
 
  private:
-  View view_;
+  geometry::View view_;
 };
 
 }  // namespace
@@ -36,4 +36,4 @@ std::unique_ptr<Platform> create_reference_platform() {
   return std::make_unique<ReferencePlatform>();
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

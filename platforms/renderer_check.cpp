@@ -10,7 +10,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::platforms {
 
 RendererCheck::RendererCheck(std::string run_dir, const std::string& pattern)
     : run_dir_(std::move(run_dir)), pattern_(pattern) {
@@ -73,4 +73,4 @@ std::string RendererCheck::mismatch() {
   return "";
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

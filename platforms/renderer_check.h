@@ -9,7 +9,7 @@
 #include <set>
 #include <string>
 
-namespace ra {
+namespace ra::platforms {
 
 struct DriverInfo;
 
@@ -38,4 +38,4 @@ class RendererCheck {
   std::set<std::string> checked_;
 };
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -15,7 +15,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 std::string version_text(uint32_t v) {
@@ -344,4 +344,4 @@ std::string VulkanContext::backend() const {
   return "Vulkan device " + std::to_string(info_.index) + " (" + info_.driver + ")";
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

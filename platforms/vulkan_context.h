@@ -19,7 +19,7 @@
 
 #include "platforms/platform_spec.h"
 
-namespace ra {
+namespace ra::platforms {
 
 // What a Vulkan physical device says about itself.
 struct VulkanDeviceInfo {
@@ -86,4 +86,4 @@ class VulkanContext {
 // Throws std::runtime_error naming `what` and the VkResult when `r` is not VK_SUCCESS.
 void vk_check(VkResult r, const char* what);
 
-}  // namespace ra
+}  // namespace ra::platforms

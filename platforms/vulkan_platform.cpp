@@ -40,7 +40,7 @@
 #include "platforms/vulkan_context.h"
 #include "platforms/vulkan_resources.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 constexpr uint32_t kAnyColour = 0xffffffffu;
@@ -54,8 +54,8 @@ double micros_since(Clock::time_point t0) {
 }
 
 // GL clip coordinates -> Vulkan's (see the top of this file): y negated, z' = (z + w) / 2.
-Mat4 vulkan_clip(const Mat4& gl_clip_from_object) {
-  Mat4 m = gl_clip_from_object;
+geometry::Mat4 vulkan_clip(const geometry::Mat4& gl_clip_from_object) {
+  geometry::Mat4 m = gl_clip_from_object;
   for (int c = 0; c < 4; ++c) {
     m.at(1, c) = -gl_clip_from_object.at(1, c);
     m.at(2, c) = 0.5 * (gl_clip_from_object.at(2, c) + gl_clip_from_object.at(3, c));
@@ -66,7 +66,7 @@ Mat4 vulkan_clip(const Mat4& gl_clip_from_object) {
 // What one draw of a batch needs: its primitive's first vertex, count, kind and colour.
 struct DrawItem {
   uint32_t first = 0, count = 0;
-  Kind kind = Kind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   uint32_t colour = 0;    // 0xBBGGRR
   bool identity = false;  // vertices already in Vulkan clip coordinates (the test's wild pixel)
 };
@@ -138,15 +138,16 @@ class VulkanPlatform : public Platform {
     return info_.timer_over_cpu = timer_over_cpu();
   }
 
-  void set_view(const View& view) override {
+  void set_view(const geometry::View& view) override {
     if (view.width != width_ || view.height != height_) resize(view.width, view.height);
-    const Mat4 m = vulkan_clip(view.view_projection);
+    const geometry::Mat4 m = vulkan_clip(view.view_projection);
     for (int i = 0; i < 16; ++i) clip_from_object_[i] = float(m.m[i]);
     if (!warmed_up_) warm_up();
     clear_all();
   }
 
-  RenderResult render(const Primitive& prim, const PixelRegion& expected) override {
+  RenderResult render(const geometry::Primitive& prim,
+                      const geometry::PixelRegion& expected) override {
     if (samples_ > 0) return render_multisample(prim, expected);
     RenderResult out;
     switch (method_) {
@@ -164,7 +165,7 @@ class VulkanPlatform : public Platform {
     }
     reserve_colours(1);
     const uint32_t colour = ++colour_;
-    const Pixel* wild = wild_pixel_for(prim, expected);
+    const geometry::Pixel* wild = wild_pixel_for(prim, expected);
     out.render_us = draw({prim}, {colour}, true, wild);
     const uint64_t fragments = occlusion_count();
     read_colour(expected, colour, out.lit);
@@ -194,8 +195,9 @@ class VulkanPlatform : public Platform {
 
   // A batch under one submission and one occlusion query, each primitive in its own colour; the
   // proof as in gl_platform.cpp (any other outcome draws the batch one by one).
-  std::vector<RenderResult> render_batch(const std::vector<Primitive>& prims,
-                                         const std::vector<PixelRegion>& expected) override {
+  std::vector<RenderResult> render_batch(
+      const std::vector<geometry::Primitive>& prims,
+      const std::vector<geometry::PixelRegion>& expected) override {
     if (method_ == ReadbackMethod::kDrawOnly && samples_ == 0 && !prims.empty()) {
       std::vector<RenderResult> out(prims.size());
       const double us = draw(prims, std::vector<uint32_t>(prims.size(), 1), false, nullptr);
@@ -206,7 +208,7 @@ class VulkanPlatform : public Platform {
     if (method_ != ReadbackMethod::kRegionWithProof || prims.size() < 2 || samples_ > 0 ||
         prims.size() * 3 > kMaxVertices)
       return Platform::render_batch(prims, expected);
-    for (const Primitive& p : prims)  // the test fault is drawn one primitive at a time
+    for (const geometry::Primitive& p : prims)  // the test fault is drawn one primitive at a time
       if (wild_pixel_for(p, expected[0])) return Platform::render_batch(prims, expected);
     reserve_colours(prims.size());
     std::vector<uint32_t> colours(prims.size());
@@ -228,7 +230,9 @@ class VulkanPlatform : public Platform {
 
  private:
   VkDevice dev() const { return ctx_->device(); }
-  PixelRegion window() const { return PixelRegion(PixelRect{0, 0, width_, height_}); }
+  geometry::PixelRegion window() const {
+    return geometry::PixelRegion(geometry::PixelRect{0, 0, width_, height_});
+  }
   static std::string hex(uint32_t v) {
     char buf[16];
     std::snprintf(buf, sizeof buf, "%04x", v);
@@ -306,14 +310,15 @@ class VulkanPlatform : public Platform {
   // Draws `prims` (colour i for the i-th), under the occlusion query with `counted`, plus the
   // test's wild pixel; on the multisample platforms resolves `resolve` afterwards. Returns the CPU
   // time of recording, submission and the wait, microseconds.
-  double draw(const std::vector<Primitive>& prims, const std::vector<uint32_t>& colours,
-              bool counted, const Pixel* wild, const PixelRegion* resolve = nullptr) {
+  double draw(const std::vector<geometry::Primitive>& prims, const std::vector<uint32_t>& colours,
+              bool counted, const geometry::Pixel* wild,
+              const geometry::PixelRegion* resolve = nullptr) {
     std::vector<DrawItem> items;
     float* v = static_cast<float*>(vertices_.mapped);
     uint32_t next = 0;
     for (size_t i = 0; i < prims.size(); ++i) {
-      const Primitive& p = prims[i];
-      DrawItem item{next, uint32_t(vertex_count(p.kind)), p.kind, colours[i], false};
+      const geometry::Primitive& p = prims[i];
+      DrawItem item{next, uint32_t(geometry::vertex_count(p.kind)), p.kind, colours[i], false};
       for (uint32_t k = 0; k < item.count; ++k, ++next) {
         v[4 * next] = float(p.v[k].x);
         v[4 * next + 1] = float(p.v[k].y);
@@ -327,7 +332,7 @@ class VulkanPlatform : public Platform {
       v[4 * next + 1] = float(1.0 - 2.0 * (wild->y + 0.5) / height_);
       v[4 * next + 2] = 0.5f;
       v[4 * next + 3] = 1;
-      items.push_back({next, 1, Kind::kPoint, colours.front(), true});
+      items.push_back({next, 1, geometry::Kind::kPoint, colours.front(), true});
     }
     const auto t0 = Clock::now();
     record_draws(items, counted);
@@ -390,7 +395,7 @@ class VulkanPlatform : public Platform {
     return n;
   }
 
-  PixelRect clamp(PixelRect r) const {
+  geometry::PixelRect clamp(geometry::PixelRect r) const {
     r.x0 = std::max(r.x0, 0);
     r.y0 = std::max(r.y0, 0);
     r.x1 = std::min(r.x1, width_);
@@ -400,13 +405,13 @@ class VulkanPlatform : public Platform {
 
   // Copies the rectangles of every region (clamped to the window) into the readback buffer, one
   // submission; copied_[i] lists region i's rectangles with their buffer offsets (pixels).
-  void copy_regions(const std::vector<PixelRegion>& regions) {
+  void copy_regions(const std::vector<geometry::PixelRegion>& regions) {
     copied_.assign(regions.size(), {});
     std::vector<VkBufferImageCopy> copies;
     size_t offset = 0;
     for (size_t i = 0; i < regions.size(); ++i)
-      for (const PixelRect& r0 : regions[i].rects) {
-        const PixelRect r = clamp(r0);
+      for (const geometry::PixelRect& r0 : regions[i].rects) {
+        const geometry::PixelRect r = clamp(r0);
         if (r.empty()) continue;
         copied_[i].push_back({r, offset});
         VkBufferImageCopy c{};
@@ -436,7 +441,7 @@ class VulkanPlatform : public Platform {
   }
 
   // Appends the copied pixels of region i in `colour` (kAnyColour: any not black) to `lit`.
-  void scan_copied(size_t i, uint32_t colour, PixelSet& lit) {
+  void scan_copied(size_t i, uint32_t colour, geometry::PixelSet& lit) {
     const uint32_t* base = static_cast<const uint32_t*>(readback_.mapped);
     const bool any = colour == kAnyColour;
     if (copied_[i].size() == 1) {
@@ -444,7 +449,7 @@ class VulkanPlatform : public Platform {
       return scan_rect(base + offset, size_t(r.x1 - r.x0), true, r, any, colour, lit);
     }
     runs_.clear();
-    PixelSet part;
+    geometry::PixelSet part;
     for (const auto& [r, offset] : copied_[i]) {
       part.clear();
       scan_rect(base + offset, size_t(r.x1 - r.x0), true, r, any, colour, part);
@@ -453,17 +458,18 @@ class VulkanPlatform : public Platform {
     append_in_order(runs_, lit);
   }
 
-  void read_colour(const PixelRegion& region, uint32_t colour, PixelSet& lit) {
+  void read_colour(const geometry::PixelRegion& region, uint32_t colour, geometry::PixelSet& lit) {
     copy_regions({region});
     scan_copied(0, colour, lit);
   }
 
   // --- multisample platforms -------------------------------------------------------------------
 
-  RenderResult render_multisample(const Primitive& prim, const PixelRegion& expected) {
+  RenderResult render_multisample(const geometry::Primitive& prim,
+                                  const geometry::PixelRegion& expected) {
     RenderResult out;
     out.samples = samples_;
-    const PixelRegion whole = window();
+    const geometry::PixelRegion whole = window();
     switch (method_) {
       case ReadbackMethod::kDrawOnly:
         out.render_us = draw({prim}, {kLastColour}, false, nullptr);
@@ -479,7 +485,7 @@ class VulkanPlatform : public Platform {
       case ReadbackMethod::kRegionWithProof:
         break;
     }
-    const Pixel* wild = wild_pixel_for(prim, expected);
+    const geometry::Pixel* wild = wild_pixel_for(prim, expected);
     out.render_us = draw({prim}, {kLastColour}, true, wild, &expected);
     uint64_t passed = occlusion_count();
     if (read_coverage(expected, out) == passed) {
@@ -510,10 +516,10 @@ class VulkanPlatform : public Platform {
   }
 
   // Records the resolve of the region's rectangles (same place in both images).
-  void resolve_region(const PixelRegion& region) {
+  void resolve_region(const geometry::PixelRegion& region) {
     std::vector<VkImageResolve> resolves;
-    for (const PixelRect& r0 : region.rects) {
-      const PixelRect r = clamp(r0);
+    for (const geometry::PixelRect& r0 : region.rects) {
+      const geometry::PixelRect r = clamp(r0);
       if (r.empty()) continue;
       VkImageResolve c{};
       c.srcSubresource = c.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -529,7 +535,7 @@ class VulkanPlatform : public Platform {
 
   // Reads the region's resolved pixels into out.lit / out.samples_lit (those with any coverage,
   // in (y, x) order); returns the sum of their samples lit.
-  uint64_t read_coverage(const PixelRegion& region, RenderResult& out) {
+  uint64_t read_coverage(const geometry::PixelRegion& region, RenderResult& out) {
     copy_regions({region});
     struct Covered {
       int32_t y, x;
@@ -590,18 +596,19 @@ class VulkanPlatform : public Platform {
   // One point, segment and triangle drawn untimed before the first primitive (first-use costs of
   // the driver would otherwise land in the first primitive's render_us); cleared by set_view().
   void warm_up() {
-    Primitive p, l, t;
-    p.kind = Kind::kPoint;
-    l.kind = Kind::kLine;
-    t.kind = Kind::kTriangle;
+    geometry::Primitive p, l, t;
+    p.kind = geometry::Kind::kPoint;
+    l.kind = geometry::Kind::kLine;
+    t.kind = geometry::Kind::kTriangle;
     p.v[0] = {0, 0, -0.5};
     l.v[0] = {-0.01, 0, -0.5};
     l.v[1] = {0.01, 0.005, -0.5};
-    t.v = {Vec3{-0.01, -0.01, -0.5}, Vec3{0.01, -0.01, -0.5}, Vec3{0, 0.01, -0.5}};
-    const PixelRegion all = window();
+    t.v = {geometry::Vec3{-0.01, -0.01, -0.5}, geometry::Vec3{0.01, -0.01, -0.5},
+           geometry::Vec3{0, 0.01, -0.5}};
+    const geometry::PixelRegion all = window();
     draw({p, l, t}, {1, 1, 1}, true, nullptr, samples_ > 0 ? &all : nullptr);
-    PixelSet ignored;
-    read_colour(PixelRegion(PixelRect{0, 0, 1, 1}), 1, ignored);
+    geometry::PixelSet ignored;
+    read_colour(geometry::PixelRegion(geometry::PixelRect{0, 0, 1, 1}), 1, ignored);
     warmed_up_ = true;
   }
 
@@ -611,13 +618,17 @@ class VulkanPlatform : public Platform {
   double timer_over_cpu() {
     resize(256, 256);
     for (int i = 0; i < 16; ++i) clip_from_object_[i] = i % 5 == 0 ? 1.0f : 0.0f;
-    std::vector<Primitive> quads;
+    std::vector<geometry::Primitive> quads;
     for (int i = 0; i < 16; ++i)
       for (int half = 0; half < 2; ++half) {
-        Primitive t;
-        t.kind = Kind::kTriangle;
-        t.v = half == 0 ? std::array<Vec3, 3>{Vec3{-1, -1, 0.5}, Vec3{1, -1, 0.5}, Vec3{1, 1, 0.5}}
-                        : std::array<Vec3, 3>{Vec3{-1, -1, 0.5}, Vec3{1, 1, 0.5}, Vec3{-1, 1, 0.5}};
+        geometry::Primitive t;
+        t.kind = geometry::Kind::kTriangle;
+        t.v = half == 0 ? std::array<geometry::Vec3, 3>{geometry::Vec3{-1, -1, 0.5},
+                                                        geometry::Vec3{1, -1, 0.5},
+                                                        geometry::Vec3{1, 1, 0.5}}
+                        : std::array<geometry::Vec3, 3>{geometry::Vec3{-1, -1, 0.5},
+                                                        geometry::Vec3{1, 1, 0.5},
+                                                        geometry::Vec3{-1, 1, 0.5}};
         quads.push_back(t);
       }
     const std::vector<uint32_t> white(quads.size(), kLastColour);
@@ -639,7 +650,8 @@ class VulkanPlatform : public Platform {
   }
 
   // Test-only fault: where the extra pixel goes (as gl_platform.cpp), or nullptr.
-  const Pixel* wild_pixel_for(const Primitive& prim, const PixelRegion& region) {
+  const geometry::Pixel* wild_pixel_for(const geometry::Primitive& prim,
+                                        const geometry::PixelRegion& region) {
     if (std::find(wild_pixel_indices_.begin(), wild_pixel_indices_.end(), prim.index) ==
         wild_pixel_indices_.end())
       return nullptr;
@@ -666,9 +678,9 @@ class VulkanPlatform : public Platform {
   bool warmed_up_ = false;
   uint32_t colour_ = 0;
   std::array<uint8_t, 256> decode_{};
-  std::vector<std::vector<std::pair<PixelRect, size_t>>> copied_;
-  std::vector<PixelRun> runs_;
-  Pixel wild_;
+  std::vector<std::vector<std::pair<geometry::PixelRect, size_t>>> copied_;
+  std::vector<geometry::PixelRun> runs_;
+  geometry::Pixel wild_;
 };
 
 }  // namespace
@@ -678,4 +690,4 @@ std::unique_ptr<Platform> create_vulkan_platform(const PlatformSpec& spec, Readb
   return std::make_unique<VulkanPlatform>(spec, method, std::move(wild_pixel_indices));
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

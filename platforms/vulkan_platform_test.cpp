@@ -10,17 +10,17 @@
 #include "platforms/vulkan_context.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::platforms {
 namespace {
 
 // A view whose clip coordinates are GL window coordinates scaled to [-1, 1]: object (x, y) in
 // pixels lands at window (x, y), y up. Asymmetric primitives in it show a flipped y at once.
-View window_view(int w, int h) {
-  View v;
+geometry::View window_view(int w, int h) {
+  geometry::View v;
   v.width = w;
   v.height = h;
-  v.view_matrix = Mat4::identity();
-  v.projection = Mat4::identity();
+  v.view_matrix = geometry::Mat4::identity();
+  v.projection = geometry::Mat4::identity();
   v.projection.at(0, 0) = 2.0 / w;
   v.projection.at(0, 3) = -1;
   v.projection.at(1, 1) = 2.0 / h;
@@ -29,16 +29,19 @@ View window_view(int w, int h) {
   return v;
 }
 
-Primitive make(Kind kind, std::initializer_list<Vec3> vs, uint64_t index = 0) {
-  Primitive p;
+geometry::Primitive make(geometry::Kind kind, std::initializer_list<geometry::Vec3> vs,
+                         uint64_t index = 0) {
+  geometry::Primitive p;
   p.kind = kind;
   p.index = index;
   int i = 0;
-  for (const Vec3& v : vs) p.v[i++] = v;
+  for (const geometry::Vec3& v : vs) p.v[i++] = v;
   return p;
 }
 
-PixelRegion whole(const View& v) { return PixelRegion(PixelRect{0, 0, v.width, v.height}); }
+geometry::PixelRegion whole(const geometry::View& v) {
+  return geometry::PixelRegion(geometry::PixelRect{0, 0, v.width, v.height});
+}
 
 // Skips the calling test (with the reason) where lavapipe cannot be brought up.
 #define REQUIRE_LAVAPIPE()                                                        \
@@ -135,23 +138,24 @@ TEST(VulkanLavapipe, ReportsItsLimits) {
 // the 1/256 px grid lavapipe snaps to, and no pixel centre lies on an edge.
 TEST(VulkanLavapipe, DrawsInGlWindowCoordinates) {
   REQUIRE_LAVAPIPE();
-  const View view = window_view(128, 96);
+  const geometry::View view = window_view(128, 96);
   const auto p = create_vulkan_platform(*find_platform("vk-lavapipe"));
   p->set_view(view);
-  const Primitive tri = make(Kind::kTriangle, {{10.26171875, 5.51171875, 0},
-                                               {100.74609375, 20.12890625, 0},
-                                               {30.50390625, 90.87109375, 0}});
-  const PixelSet expected = rasterize_reference(view, tri);
+  const geometry::Primitive tri = make(geometry::Kind::kTriangle, {{10.26171875, 5.51171875, 0},
+                                                                   {100.74609375, 20.12890625, 0},
+                                                                   {30.50390625, 90.87109375, 0}});
+  const geometry::PixelSet expected = geometry::rasterize_reference(view, tri);
   const RenderResult r = p->render(tri, whole(view));
   EXPECT_GT(expected.size(), 2000);
   EXPECT_EQ(r.lit, expected);
   // the mirror image (y -> 96 - y) is another set: a flipped y could not pass the check above
-  Primitive mirrored = tri;
-  for (Vec3& v : mirrored.v) v.y = 96 - v.y;
-  EXPECT_NE(rasterize_reference(view, mirrored), expected);
+  geometry::Primitive mirrored = tri;
+  for (geometry::Vec3& v : mirrored.v) v.y = 96 - v.y;
+  EXPECT_NE(geometry::rasterize_reference(view, mirrored), expected);
   // a point lights the pixel holding it
-  const Primitive point = make(Kind::kPoint, {{70.30078125, 12.69921875, 0}}, 1);
-  PixelSet one;
+  const geometry::Primitive point =
+      make(geometry::Kind::kPoint, {{70.30078125, 12.69921875, 0}}, 1);
+  geometry::PixelSet one;
   one.append_run(12, 70, 71);
   EXPECT_EQ(p->render(point, whole(view)).lit, one);
   EXPECT_GT(r.render_us, 0);
@@ -163,37 +167,38 @@ TEST(VulkanLavapipe, DefaultLinesAreRectanglesUnderStrictLines) {
   REQUIRE_LAVAPIPE();
   const auto p = create_vulkan_platform(*find_platform("vk-lavapipe"));
   if (!p->driver_info().strict_lines) GTEST_SKIP() << "lavapipe without strictLines";
-  const View view = window_view(64, 64);
+  const geometry::View view = window_view(64, 64);
   p->set_view(view);
-  const Vec2 a{5.37109375, 7.12890625}, b{50.62890625, 30.26171875};
-  const RenderResult r = p->render(make(Kind::kLine, {{a.x, a.y, 0}, {b.x, b.y, 0}}), whole(view));
-  const Vec2 d = b - a;
-  const double len = length(d);
-  const Vec2 u = (1 / len) * d;
-  PixelSet brute;
+  const geometry::Vec2 a{5.37109375, 7.12890625}, b{50.62890625, 30.26171875};
+  const RenderResult r =
+      p->render(make(geometry::Kind::kLine, {{a.x, a.y, 0}, {b.x, b.y, 0}}), whole(view));
+  const geometry::Vec2 d = b - a;
+  const double len = geometry::length(d);
+  const geometry::Vec2 u = (1 / len) * d;
+  geometry::PixelSet brute;
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) {
-      const Vec2 q = Vec2{x + 0.5, y + 0.5} - a;
+      const geometry::Vec2 q = geometry::Vec2{x + 0.5, y + 0.5} - a;
       const double along = q.x * u.x + q.y * u.y, across = q.x * u.y - q.y * u.x;
       if (along > 0 && along < len && std::fabs(across) < 0.5) brute.append_run(y, x, x + 1);
     }
   EXPECT_GT(brute.size(), 45);
   EXPECT_EQ(r.lit, brute);
-  EXPECT_EQ(rasterize_rectangle_segment(a, b, 64, 64), brute);
+  EXPECT_EQ(geometry::rasterize_rectangle_segment(a, b, 64, 64), brute);
 }
 
 // The Bresenham mode is GL's diamond-exit.
 TEST(VulkanLavapipe, BresenhamLinesAreDiamondExit) {
   REQUIRE_LAVAPIPE();
   const auto p = create_vulkan_platform(*find_platform("vk-lavapipe-bresenham"));
-  const View view = window_view(64, 64);
+  const geometry::View view = window_view(64, 64);
   p->set_view(view);
-  for (const auto& [a, b] :
-       {std::pair<Vec2, Vec2>{{5.37109375, 7.12890625}, {50.62890625, 30.26171875}},
-        {{40.12890625, 60.51171875}, {33.87109375, 2.26171875}}}) {
+  for (const auto& [a, b] : {std::pair<geometry::Vec2, geometry::Vec2>{{5.37109375, 7.12890625},
+                                                                       {50.62890625, 30.26171875}},
+                             {{40.12890625, 60.51171875}, {33.87109375, 2.26171875}}}) {
     const RenderResult r =
-        p->render(make(Kind::kLine, {{a.x, a.y, 0}, {b.x, b.y, 0}}), whole(view));
-    EXPECT_EQ(r.lit, rasterize_segment(a, b, 64, 64));
+        p->render(make(geometry::Kind::kLine, {{a.x, a.y, 0}, {b.x, b.y, 0}}), whole(view));
+    EXPECT_EQ(r.lit, geometry::rasterize_segment(a, b, 64, 64));
   }
 }
 
@@ -201,52 +206,52 @@ TEST(VulkanLavapipe, BresenhamLinesAreDiamondExit) {
 // the two triangles, and each triangle lights the reference's pixels.
 TEST(VulkanLavapipe, TrianglesSharingAnEdgeLightEachPixelOnce) {
   REQUIRE_LAVAPIPE();
-  const View view = window_view(64, 64);
+  const geometry::View view = window_view(64, 64);
   const auto p = create_vulkan_platform(*find_platform("vk-lavapipe"));
   p->set_view(view);
-  const Vec3 a{3.12890625, 4.26171875, 0}, b{58.87109375, 9.51171875, 0},
+  const geometry::Vec3 a{3.12890625, 4.26171875, 0}, b{58.87109375, 9.51171875, 0},
       c{52.37109375, 60.12890625, 0}, d{6.62890625, 55.87109375, 0};
-  const Primitive t1 = make(Kind::kTriangle, {a, b, c}, 1),
-                  t2 = make(Kind::kTriangle, {a, c, d}, 2);
-  const PixelSet p1 = p->render(t1, whole(view)).lit, p2 = p->render(t2, whole(view)).lit;
-  EXPECT_EQ(p1, rasterize_reference(view, t1));
-  EXPECT_EQ(p2, rasterize_reference(view, t2));
+  const geometry::Primitive t1 = make(geometry::Kind::kTriangle, {a, b, c}, 1),
+                            t2 = make(geometry::Kind::kTriangle, {a, c, d}, 2);
+  const geometry::PixelSet p1 = p->render(t1, whole(view)).lit, p2 = p->render(t2, whole(view)).lit;
+  EXPECT_EQ(p1, geometry::rasterize_reference(view, t1));
+  EXPECT_EQ(p2, geometry::rasterize_reference(view, t2));
   // disjoint (no pixel of one in the other), and together the quad's pixels
-  EXPECT_EQ(set_difference(p1, p2), p1);
-  const PixelSet quad =
-      rasterize_convex_polygon({{a.x, a.y}, {b.x, b.y}, {c.x, c.y}, {d.x, d.y}}, 64, 64);
+  EXPECT_EQ(geometry::set_difference(p1, p2), p1);
+  const geometry::PixelSet quad =
+      geometry::rasterize_convex_polygon({{a.x, a.y}, {b.x, b.y}, {c.x, c.y}, {d.x, d.y}}, 64, 64);
   EXPECT_EQ(p1.size() + p2.size(), quad.size());
-  EXPECT_TRUE(set_difference(quad, p1) == p2);
+  EXPECT_TRUE(geometry::set_difference(quad, p1) == p2);
 }
 
 // A pixel lit far from the expected region (a driver bug) is found: the occlusion count exceeds
 // what the region holds, and the whole window is read.
 TEST(VulkanLavapipe, APixelOutsideTheRegionIsFound) {
   REQUIRE_LAVAPIPE();
-  const View view = window_view(128, 128);
+  const geometry::View view = window_view(128, 128);
   const auto p =
       create_vulkan_platform(*find_platform("vk-lavapipe"), ReadbackMethod::kRegionWithProof, {5});
   p->set_view(view);
-  const Primitive tri =
-      make(Kind::kTriangle, {{10.25, 10.25, 0}, {20.75, 10.5, 0}, {12.5, 22.75, 0}}, 5);
-  const PixelRegion region(PixelRect{8, 8, 24, 25});
+  const geometry::Primitive tri =
+      make(geometry::Kind::kTriangle, {{10.25, 10.25, 0}, {20.75, 10.5, 0}, {12.5, 22.75, 0}}, 5);
+  const geometry::PixelRegion region(geometry::PixelRect{8, 8, 24, 25});
   const RenderResult r = p->render(tri, region);
   EXPECT_TRUE(r.full_scan);
-  EXPECT_EQ(r.lit.size(), rasterize_reference(view, tri).size() + 1);
+  EXPECT_EQ(r.lit.size(), geometry::rasterize_reference(view, tri).size() + 1);
   // a batch of small primitives shares one proof, and each gets its own pixels
   const auto clean = create_vulkan_platform(*find_platform("vk-lavapipe"));
   clean->set_view(view);
-  std::vector<Primitive> prims;
-  std::vector<PixelRegion> regions;
+  std::vector<geometry::Primitive> prims;
+  std::vector<geometry::PixelRegion> regions;
   for (int i = 0; i < 4; ++i) {
     const double x = 10 + 25 * i;
-    prims.push_back(make(Kind::kTriangle,
+    prims.push_back(make(geometry::Kind::kTriangle,
                          {{x + 0.25, 40.25, 0}, {x + 12.75, 41.5, 0}, {x + 3.5, 55.75, 0}}, i));
-    regions.push_back(PixelRegion(PixelRect{int(x) - 2, 38, int(x) + 16, 58}));
+    regions.push_back(geometry::PixelRegion(geometry::PixelRect{int(x) - 2, 38, int(x) + 16, 58}));
   }
   const std::vector<RenderResult> batch = clean->render_batch(prims, regions);
   for (int i = 0; i < 4; ++i) {
-    EXPECT_EQ(batch[i].lit, rasterize_reference(view, prims[i])) << i;
+    EXPECT_EQ(batch[i].lit, geometry::rasterize_reference(view, prims[i])) << i;
     EXPECT_EQ(batch[i].batch_size, 4);
     EXPECT_FALSE(batch[i].full_scan);
   }
@@ -256,15 +261,16 @@ TEST(VulkanLavapipe, APixelOutsideTheRegionIsFound) {
 // samples lit equals the occlusion count (else the platform would have thrown).
 TEST(VulkanLavapipe, MultisampleCoverage) {
   REQUIRE_LAVAPIPE();
-  const View view = window_view(64, 64);
+  const geometry::View view = window_view(64, 64);
   const auto p = create_vulkan_platform(*find_platform("vk-lavapipe-msaa4"));
   p->set_view(view);
-  const Primitive tri = make(Kind::kTriangle, {{4.1, 4.3, 0}, {60.2, 8.7, 0}, {20.9, 58.4, 0}});
+  const geometry::Primitive tri =
+      make(geometry::Kind::kTriangle, {{4.1, 4.3, 0}, {60.2, 8.7, 0}, {20.9, 58.4, 0}});
   const RenderResult r = p->render(tri, whole(view));
   ASSERT_EQ(r.samples, 4);
   ASSERT_EQ(r.samples_lit.size(), size_t(r.lit.size()));
   size_t i = 0, full = 0;
-  for (const Pixel& px : r.lit) {
+  for (const geometry::Pixel& px : r.lit) {
     if (px.x == 25 && px.y == 25) {
       EXPECT_EQ(r.samples_lit[i], 4);
     }
@@ -281,4 +287,4 @@ TEST(VulkanLavapipe, MultisampleCoverage) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::platforms

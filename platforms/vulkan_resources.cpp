@@ -7,7 +7,7 @@
 #include "primitive_frag.spv.h"  // kPrimitiveFrag: platforms/shaders/primitive.frag, compiled
 #include "primitive_vert.spv.h"  // kPrimitiveVert: platforms/shaders/primitive.vert, compiled
 
-namespace ra {
+namespace ra::platforms {
 
 VulkanBuffer create_host_buffer(const VulkanContext& ctx, VkDeviceSize size,
                                 VkBufferUsageFlags usage, bool cached) {
@@ -226,4 +226,4 @@ void destroy_pipelines(const VulkanContext& ctx, VulkanPipelines& p) {
   p = VulkanPipelines{};
 }
 
-}  // namespace ra
+}  // namespace ra::platforms

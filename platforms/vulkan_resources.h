@@ -11,7 +11,7 @@
 #include "platforms/platform_spec.h"
 #include "platforms/vulkan_context.h"
 
-namespace ra {
+namespace ra::platforms {
 
 // A buffer in host-visible, coherent memory, mapped for its whole life.
 struct VulkanBuffer {
@@ -55,4 +55,4 @@ VulkanPipelines create_pipelines(const VulkanContext& ctx, int samples,
                                  PlatformSpec::LineMode line_mode);
 void destroy_pipelines(const VulkanContext& ctx, VulkanPipelines& p);
 
-}  // namespace ra
+}  // namespace ra::platforms

@@ -77,13 +77,14 @@ TEST(ScatterFigure, NoteNamesPointsALogAxisCannotPlace) {
 }
 
 // Points of two platforms in views 1-4 (groups A, B) with times; the second platform is slower.
-std::vector<Record> small_run() {
-  std::vector<Record> rs;
+std::vector<metrics::Record> small_run() {
+  std::vector<metrics::Record> rs;
   std::uint64_t i = 0;
   for (const std::string platform : {"plat-a", "plat-b"})
     for (int view = 1; view <= 4; ++view)
       for (int k = 0; k < 20; ++k) {
-        Record r = ra::analysis::testing::point(platform, view, i++, 0.05 * (k + 1) * view);
+        metrics::Record r =
+            ra::analysis::testing::point(platform, view, i++, 0.05 * (k + 1) * view);
         r.render_us = (platform == "plat-a" ? 1 : 10) * (k + 1.0);
         r.batch_size = 4;
         rs.push_back(r);

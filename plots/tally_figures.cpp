@@ -25,8 +25,9 @@ struct TallyFigures : FigurePlanner {
       if (groups.empty()) continue;
       BarChartContent c;
       for (int v = 0; v < 5; ++v) {
-        if (kind != an::PrimitiveKind::kPoint && v == int(Visibility::kMultipleVisible)) continue;
-        c.categories.push_back(visibility_name(Visibility(v)));
+        if (kind != an::PrimitiveKind::kPoint && v == int(metrics::Visibility::kMultipleVisible))
+          continue;
+        c.categories.push_back(metrics::visibility_name(metrics::Visibility(v)));
       }
       std::vector<std::string> labels;
       for (const an::ViewGroup* g : groups) {
@@ -36,7 +37,8 @@ struct TallyFigures : FigurePlanner {
         BarSeries s;
         s.name = group_label(*g);
         for (int v = 0; v < 5; ++v) {
-          if (kind != an::PrimitiveKind::kPoint && v == int(Visibility::kMultipleVisible)) continue;
+          if (kind != an::PrimitiveKind::kPoint && v == int(metrics::Visibility::kMultipleVisible))
+            continue;
           const auto n = counts.by_class[std::size_t(v)];
           s.values.push_back(ok ? 100.0 * double(n) / double(ok) : 0);
           s.labels.push_back(std::to_string(n));
@@ -149,10 +151,10 @@ struct TallyFigures : FigurePlanner {
         const auto it = tally.verdicts.find({p, kname, g});
         std::uint64_t classes[5] = {};  // indexed by ra::Conformance
         if (it != tally.verdicts.end()) {
-          classes[int(Conformance::kExact)] = it->second.exact;
-          classes[int(Conformance::kSnapped)] = it->second.snapped;
-          classes[int(Conformance::kWithinSpec)] = it->second.within_spec;
-          classes[int(Conformance::kViolation)] = it->second.violation;
+          classes[int(metrics::Conformance::kExact)] = it->second.exact;
+          classes[int(metrics::Conformance::kSnapped)] = it->second.snapped;
+          classes[int(metrics::Conformance::kWithinSpec)] = it->second.within_spec;
+          classes[int(metrics::Conformance::kViolation)] = it->second.violation;
         }
         const std::uint64_t judged = classes[1] + classes[2] + classes[3] + classes[4];
         has = has || judged > 0;

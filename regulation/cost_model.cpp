@@ -64,12 +64,12 @@ CostModel cost_model_from_timing_json(const std::string& path, const std::string
                   platform);
 }
 
-Footprint footprint_of(const scenes::BoundingSphere& s, const Mat4& view,
+Footprint footprint_of(const scenes::BoundingSphere& s, const geometry::Mat4& view,
                        const scenes::Frustum& frustum, const scenes::CameraSettings& cam) {
   Footprint f;
   const double W = cam.width, H = cam.height;
   f.focal_px = 0.5 * H / std::tan(cam.half_fov_y());
-  const Vec4 c = view * Vec4{s.centre.x, s.centre.y, s.centre.z, 1.0};
+  const geometry::Vec4 c = view * geometry::Vec4{s.centre.x, s.centre.y, s.centre.z, 1.0};
   f.distance_m = std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
   f.visible = frustum.intersects(s);
   if (!f.visible) return f;

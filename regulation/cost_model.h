@@ -68,7 +68,7 @@ struct Footprint {
                             //   area (estimated in both #pix modes, so that the modes differ in
                             //   time only)
 };
-Footprint footprint_of(const scenes::BoundingSphere& s, const Mat4& view,
+Footprint footprint_of(const scenes::BoundingSphere& s, const geometry::Mat4& view,
                        const scenes::Frustum& frustum, const scenes::CameraSettings& cam);
 
 // The perceptual cost above for one object at one level.

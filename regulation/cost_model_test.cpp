@@ -32,7 +32,7 @@ TEST(CostModel, FootprintOfASphereOnTheAxis) {
   cam.height = 480;
   cam.fov_y_deg = 90;  // focal = 240 px
   const scenes::Viewpoint vp{{0, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  const Mat4 view = scenes::look_at(vp);
+  const geometry::Mat4 view = scenes::look_at(vp);
   const scenes::Frustum fr = scenes::frustum_of(scenes::projection_of(cam) * view);
   const scenes::BoundingSphere s{{0, 100, 0}, 5};
   const Footprint f = footprint_of(s, view, fr, cam);

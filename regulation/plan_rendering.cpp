@@ -103,7 +103,7 @@ nlohmann::json record_json(const FrameRecord& r) {
 
 std::vector<int> visible_chains(const std::vector<LodChain>& chains, const scenes::Viewpoint& vp,
                                 const scenes::CameraSettings& cam) {
-  const Mat4 view = scenes::look_at(vp);
+  const geometry::Mat4 view = scenes::look_at(vp);
   const scenes::Frustum frustum = scenes::frustum_of(scenes::projection_of(cam) * view);
   std::vector<int> v;
   for (int j = 0; j < int(chains.size()); ++j)
@@ -114,7 +114,7 @@ std::vector<int> visible_chains(const std::vector<LodChain>& chains, const scene
 Instance frame_instance(const std::vector<LodChain>& chains, const std::vector<double>& weights,
                         const scenes::Viewpoint& vp, const RegulationSettings& s, double budget_us,
                         std::vector<FrameObject>* objects, const FramePixels* measured) {
-  const Mat4 view = scenes::look_at(vp);
+  const geometry::Mat4 view = scenes::look_at(vp);
   const scenes::Frustum frustum = scenes::frustum_of(scenes::projection_of(s.camera) * view);
   Instance inst;
   objects->clear();
@@ -249,7 +249,7 @@ RenderOutcome plan_and_render(const scenes::Scene& scene, const std::vector<LodC
         if (pixels.size() != frames.size()) throw std::runtime_error("pixel frame count differs");
         for (std::size_t slot = 0; slot < frames.size(); ++slot) {
           const scenes::Viewpoint& vp = path[frames[slot]];
-          const Mat4 view = scenes::look_at(vp);
+          const geometry::Mat4 view = scenes::look_at(vp);
           const scenes::Frustum frustum =
               scenes::frustum_of(scenes::projection_of(s.camera) * view);
           for (int c = 0; c < int(pixels[slot].size()); ++c) {

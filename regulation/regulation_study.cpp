@@ -332,7 +332,8 @@ StudyRunResult run_regulation_study(const StudyRunOptions& options) {
     s.platform = options.platforms.front();
   }
   const std::string dir = options.out_dir.empty() ? "outputs/" + s.name : options.out_dir;
-  if (s.render) require_platforms_draw({s.platform}, options.experiment);  // before any write
+  if (s.render)
+    platforms::require_platforms_draw({s.platform}, options.experiment);  // before any write
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (!std::filesystem::is_directory(dir))

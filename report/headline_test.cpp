@@ -21,30 +21,30 @@ namespace an = ra::analysis;
 // indices 0-9 lit and exact (ref_diff 0), 10-12 within-spec (ref_diff 2), 13 a violation of one
 // pixel, 14-15 invisible and exact (nothing lit: compared, not drawn), 16 invalid, 17 crash; then
 // platform "ref" (the reference: ref_diff 0, no verdict), indices 0-3.
-std::vector<Record> verdict_run() {
-  std::vector<Record> rs;
+std::vector<metrics::Record> verdict_run() {
+  std::vector<metrics::Record> rs;
   for (std::uint64_t i = 0; i < 18; ++i) {
     const bool visible = i < 14;
-    const CaseStatus status = i == 16   ? CaseStatus::kInvalid
-                              : i == 17 ? CaseStatus::kCrash
-                                        : CaseStatus::kOk;
-    Record r =
-        an::testing::point("soft", 1 + int(i % 2), i, 0.25,
-                           visible ? Visibility::kTrueVisible : Visibility::kTrueInvisible, status);
-    if (status != CaseStatus::kOk) {
+    const metrics::CaseStatus status = i == 16   ? metrics::CaseStatus::kInvalid
+                                       : i == 17 ? metrics::CaseStatus::kCrash
+                                                 : metrics::CaseStatus::kOk;
+    metrics::Record r = an::testing::point(
+        "soft", 1 + int(i % 2), i, 0.25,
+        visible ? metrics::Visibility::kTrueVisible : metrics::Visibility::kTrueInvisible, status);
+    if (status != metrics::CaseStatus::kOk) {
       rs.push_back(r);
       continue;
     }
     r.ref_diff = i >= 10 && i <= 12 ? 2 : i == 13 ? 1 : 0;
-    r.conformance = i >= 10 && i <= 12 ? Conformance::kWithinSpec
-                    : i == 13          ? Conformance::kViolation
-                                       : Conformance::kExact;
+    r.conformance = i >= 10 && i <= 12 ? metrics::Conformance::kWithinSpec
+                    : i == 13          ? metrics::Conformance::kViolation
+                                       : metrics::Conformance::kExact;
     r.violating_pixels = i == 13 ? 1 : 0;
     r.violated_rules = i == 13 ? "point-position" : "";
     rs.push_back(r);
   }
   for (std::uint64_t i = 0; i < 4; ++i) {
-    Record r = an::testing::point("ref", 1 + int(i % 2), i, 0.0);
+    metrics::Record r = an::testing::point("ref", 1 + int(i % 2), i, 0.0);
     r.ref_diff = 0;
     rs.push_back(r);
   }

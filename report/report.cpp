@@ -56,7 +56,8 @@ fs::file_time_type newest_input(const std::string& run_dir) {
   fs::file_time_type t = fs::file_time_type::min();
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(fs::path(run_dir) / "records", ec))
-    if (ra::is_records_file_name(e.path().filename().string())) t = std::max(t, fs::last_write_time(e.path(), ec));
+    if (ra::metrics::is_records_file_name(e.path().filename().string()))
+      t = std::max(t, fs::last_write_time(e.path(), ec));
   const fs::path manifest = fs::path(run_dir) / "manifest.json";
   if (fs::exists(manifest)) t = std::max(t, fs::last_write_time(manifest, ec));
   return t;

@@ -176,9 +176,9 @@ const std::vector<std::string>& optional_build_packages() {
 }
 
 BuildSummary fetch_build(const FetchOptions& options) {
-  if (!is_build_name(options.suite))
+  if (!platforms::is_build_name(options.suite))
     throw UserError("'" + options.suite + "' is not a Debian suite name (letters, digits, ._-)");
-  const std::string cache = options.cache.empty() ? build_cache_dir() : options.cache;
+  const std::string cache = options.cache.empty() ? platforms::build_cache_dir() : options.cache;
   fs::create_directories(cache);
   std::string work = cache + "/.fetch-" + options.suite + "-XXXXXX";
   if (!::mkdtemp(work.data()))
@@ -195,9 +195,10 @@ BuildSummary fetch_build(const FetchOptions& options) {
     nlohmann::json gl = nlohmann::json::object();
     for (const auto& [key, platform] : {std::pair{"osmesa", "osmesa-llvmpipe"},
                                         std::pair{"egl", "egl-llvmpipe"}}) {
-      PlatformSpec spec = *find_platform(std::string(platform) + "@" + s.name);
+      platforms::PlatformSpec spec =
+          *platforms::find_platform(std::string(platform) + "@" + s.name);
       spec.build_dir = root;
-      const PlatformProbe p = probe_platform(spec);
+      const platforms::PlatformProbe p = platforms::probe_platform(spec);
       gl[key] = p.available ? nlohmann::json{{"renderer", p.driver.renderer},
                                              {"version", p.driver.version}}
                             : nlohmann::json{{"error", p.reason}};
@@ -205,7 +206,7 @@ BuildSummary fetch_build(const FetchOptions& options) {
     }
     if (s.osmesa_version.empty() && s.egl_version.empty())
       throw UserError("the Mesa of suite '" + options.suite + "' cannot draw here: " + gl.dump());
-    const std::string lib_dir = build_library_dir(root);
+    const std::string lib_dir = platforms::build_library_dir(root);
     for (const auto& e : fs::recursive_directory_iterator(lib_dir))
       if (e.is_regular_file() && e.path().string().find(".so") != std::string::npos)
         s.files.push_back(e.path().lexically_relative(root).string());
@@ -236,7 +237,8 @@ BuildSummary fetch_build(const FetchOptions& options) {
 std::vector<BuildSummary> list_builds(const std::string& cache) {
   std::vector<BuildSummary> out;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(cache.empty() ? build_cache_dir() : cache, ec)) {
+  for (const auto& e :
+       fs::directory_iterator(cache.empty() ? platforms::build_cache_dir() : cache, ec)) {
     if (e.path().filename().string()[0] == '.' || !fs::exists(e.path() / "build.json")) continue;
     try {
       out.push_back(summary_of(e.path().string()));

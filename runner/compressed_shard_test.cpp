@@ -51,11 +51,11 @@ const double kHardValues[] = {-0.0,
 
 // Records that put each hard value into each double column, and extreme integers into each
 // integer column.
-std::vector<Record> hard_records() {
-  std::vector<Record> out;
+std::vector<metrics::Record> hard_records() {
+  std::vector<metrics::Record> out;
   const size_t n = sizeof kHardValues / sizeof kHardValues[0];
   for (size_t i = 0; i < n; ++i) {
-    Record r;
+    metrics::Record r;
     r.platform = "osmesa-llvmpipe";
     r.kind = "triangle";
     r.index = i == 0 ? std::numeric_limits<uint64_t>::max() : i;
@@ -68,21 +68,21 @@ std::vector<Record> hard_records() {
     r.height = -1;
     r.near = v(1);
     r.far = v(2);
-    r.status = CaseStatus(i % 4);
-    r.visibility = Visibility(i % 5);
+    r.status = metrics::CaseStatus(i % 4);
+    r.visibility = metrics::Visibility(i % 5);
     r.pixels = std::numeric_limits<int64_t>::min();
     r.pe = v(3), r.pe_norm = v(4), r.lse_s = v(5), r.lse_u = v(6), r.extent_error = v(7);
     r.lse_s_norm = v(8), r.lse_u_norm = v(9);
     r.chain_8connected = i % 2 ? -1 : 1;
     r.gaps = std::numeric_limits<int64_t>::max();
     r.te_s = v(10), r.te_u = v(11), r.te_s_norm = v(12), r.te_u_norm = v(13);
-    r.te_u_edge_norm = i % 3 ? v(14) : kNA;  // an empty cell too
+    r.te_u_edge_norm = i % 3 ? v(14) : metrics::kNA;  // an empty cell too
     r.full_window = 0, r.simply_connected = 1;
     r.ref_diff = int64_t(i);
     r.pixel_hash = std::numeric_limits<uint64_t>::max() - i;
     r.render_us = v(15);
     r.batch_size = int64_t(i);
-    r.conformance = Conformance(i % 5);
+    r.conformance = metrics::Conformance(i % 5);
     r.violating_pixels = int64_t(i) - 1;
     r.violated_rules = i % 2 ? "gl-polygon-rule+gl-line-diamond" : "";
     out.push_back(r);
@@ -90,7 +90,7 @@ std::vector<Record> hard_records() {
   return out;
 }
 
-void expect_same(const Record& a, const Record& b) {
+void expect_same(const metrics::Record& a, const metrics::Record& b) {
   const double da[] = {a.fov_deg, a.near, a.far, a.pe, a.pe_norm, a.lse_s, a.lse_u, a.extent_error,
                        a.lse_s_norm, a.lse_u_norm, a.te_s, a.te_u, a.te_s_norm, a.te_u_norm,
                        a.te_u_edge_norm, a.render_us};
@@ -139,14 +139,15 @@ class CompressedShard : public ::testing::Test {
     std::filesystem::remove(zst_);
     std::filesystem::remove(csv_);
   }
-  static uint64_t write(const std::string& path, const std::vector<Record>& rs, RecordsFormat f) {
+  static uint64_t write(const std::string& path, const std::vector<metrics::Record>& rs,
+                        metrics::RecordsFormat f) {
     RecordsFileWriter w(path, f);
-    for (const Record& r : rs) w.write(r);
+    for (const metrics::Record& r : rs) w.write(r);
     return w.finish();
   }
-  static std::vector<Record> read(const std::string& path) {
-    std::vector<Record> rs;
-    read_records(path, [&](const Record& r) { rs.push_back(r); });
+  static std::vector<metrics::Record> read(const std::string& path) {
+    std::vector<metrics::Record> rs;
+    metrics::read_records(path, [&](const metrics::Record& r) { rs.push_back(r); });
     return rs;
   }
   static std::string bytes(const std::string& path) {
@@ -157,8 +158,8 @@ class CompressedShard : public ::testing::Test {
     std::ofstream(path, std::ios::binary | std::ios::trunc) << b;
   }
   // Many ordinary rows: enough for several frames.
-  static std::vector<Record> many(size_t n) {
-    std::vector<Record> rs(n);
+  static std::vector<metrics::Record> many(size_t n) {
+    std::vector<metrics::Record> rs(n);
     for (size_t i = 0; i < n; ++i) {
       rs[i].platform = "reference";
       rs[i].kind = "point";
@@ -172,13 +173,13 @@ class CompressedShard : public ::testing::Test {
 };
 
 TEST_F(CompressedShard, EveryColumnReadsBackBitIdenticalInBothFormats) {
-  const std::vector<Record> rs = hard_records();
-  for (const auto& [path, format] : {std::pair{zst_, RecordsFormat::kCsvZst},
-                                     std::pair{csv_, RecordsFormat::kCsv}}) {
+  const std::vector<metrics::Record> rs = hard_records();
+  for (const auto& [path, format] : {std::pair{zst_, metrics::RecordsFormat::kCsvZst},
+                                     std::pair{csv_, metrics::RecordsFormat::kCsv}}) {
     SCOPED_TRACE(path);
     EXPECT_EQ(write(path, rs, format), rs.size());
     EXPECT_EQ(check_shard_file(path, rs.size()), "");
-    const std::vector<Record> back = read(path);
+    const std::vector<metrics::Record> back = read(path);
     ASSERT_EQ(back.size(), rs.size());
     for (size_t i = 0; i < rs.size(); ++i) expect_same(rs[i], back[i]);
   }
@@ -187,23 +188,23 @@ TEST_F(CompressedShard, EveryColumnReadsBackBitIdenticalInBothFormats) {
 }
 
 TEST_F(CompressedShard, NumbersAreWrittenShortestRoundTrip) {
-  Record r;
+  metrics::Record r;
   r.platform = "reference";
   r.kind = "point";
   r.pe = 0.1;          // "%.17g" would write 0.10000000000000001
   r.pe_norm = -0.0;    // the sign survives
   r.render_us = 5e-324;
   std::string line;
-  append_record(line, r);
+  metrics::append_record(line, r);
   EXPECT_NE(line.find(",0.1,-0,"), std::string::npos) << line;
   EXPECT_NE(line.find(",5e-324,"), std::string::npos) << line;
 }
 
 TEST_F(CompressedShard, AnInfinityIsRefusedOnRead) {
   // No records column allows an infinity: a written one must not read back as a number.
-  Record r = hard_records()[1];
+  metrics::Record r = hard_records()[1];
   r.pe = std::numeric_limits<double>::infinity();
-  write(zst_, {r}, RecordsFormat::kCsvZst);
+  write(zst_, {r}, metrics::RecordsFormat::kCsvZst);
   try {
     read(zst_);
     FAIL() << "an infinite pe was accepted";
@@ -215,7 +216,7 @@ TEST_F(CompressedShard, AnInfinityIsRefusedOnRead) {
 
 TEST_F(CompressedShard, RowsComeInIndependentFramesAndTheSealInALastOne) {
   const size_t n = 2 * kRowsPerFrame + 5;
-  write(zst_, many(n), RecordsFormat::kCsvZst);
+  write(zst_, many(n), metrics::RecordsFormat::kCsvZst);
   const std::string b = bytes(zst_);
   std::vector<std::string> frames;
   for (size_t pos = 0; pos < b.size();) {
@@ -241,7 +242,7 @@ TEST_F(CompressedShard, RowsComeInIndependentFramesAndTheSealInALastOne) {
 }
 
 TEST_F(CompressedShard, ACutFileFailsWhereverItIsCut) {
-  write(zst_, many(kRowsPerFrame + 10), RecordsFormat::kCsvZst);
+  write(zst_, many(kRowsPerFrame + 10), metrics::RecordsFormat::kCsvZst);
   const std::string b = bytes(zst_);
   // Cut inside a frame, and cut exactly where the seal's frame begins.
   size_t first = ZSTD_findFrameCompressedSize(b.data(), b.size());
@@ -258,8 +259,8 @@ TEST_F(CompressedShard, ACutFileFailsWhereverItIsCut) {
 }
 
 TEST_F(CompressedShard, AnEditedFileFails) {
-  const std::vector<Record> rs = many(100);
-  write(zst_, rs, RecordsFormat::kCsvZst);
+  const std::vector<metrics::Record> rs = many(100);
+  write(zst_, rs, metrics::RecordsFormat::kCsvZst);
   const std::string b = bytes(zst_);
   // A byte changed inside the compressed data: the frame's checksum (or its decoding) fails.
   std::string flipped = b;
@@ -283,7 +284,7 @@ TEST_F(CompressedShard, AnEditedFileFails) {
 TEST_F(CompressedShard, TwoWritersInterleavedFail) {
   // Two whole sealed files one after the other (two writers appending to one name): the last
   // trailer covers the first file's bytes and its own seal line too, so the hash fails.
-  write(zst_, many(10), RecordsFormat::kCsvZst);
+  write(zst_, many(10), metrics::RecordsFormat::kCsvZst);
   const std::string b = bytes(zst_);
   put(zst_, b + b);
   EXPECT_NE(check_shard_file(zst_, 10).find("does not match"), std::string::npos)
@@ -296,8 +297,8 @@ TEST_F(CompressedShard, TwoWritersInterleavedFail) {
 TEST_F(CompressedShard, PandasReadsTheSameValues) {
   if (std::system("/usr/bin/python3 -c 'import pandas, zstandard' >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "/usr/bin/python3 lacks pandas or zstandard";
-  const std::vector<Record> rs = hard_records();
-  write(zst_, rs, RecordsFormat::kCsvZst);
+  const std::vector<metrics::Record> rs = hard_records();
+  write(zst_, rs, metrics::RecordsFormat::kCsvZst);
   const std::string cmd =
       "/usr/bin/python3 -c \"import pandas as pd, sys\n"
       "df = pd.read_csv(sys.argv[1], comment='#', float_precision='round_trip', "
@@ -313,11 +314,11 @@ TEST_F(CompressedShard, PandasReadsTheSameValues) {
   for (size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
   ASSERT_EQ(::pclose(p), 0) << out;
   std::istringstream lines(out);
-  const auto column = [&](double Record::*field) {
+  const auto column = [&](double metrics::Record::*field) {
     std::string line, word;
     std::getline(lines, line);
     std::istringstream words(line);
-    for (const Record& r : rs) {
+    for (const metrics::Record& r : rs) {
       ASSERT_TRUE(words >> word);
       const double v = std::strtod(word.c_str(), nullptr);  // C reads Python's hex form
       if (std::isnan(r.*field))
@@ -326,14 +327,14 @@ TEST_F(CompressedShard, PandasReadsTheSameValues) {
         EXPECT_EQ(bits(v), bits(r.*field)) << word << " vs " << r.*field;
     }
   };
-  column(&Record::pe);
-  column(&Record::te_s);
-  column(&Record::far);
-  column(&Record::render_us);
+  column(&metrics::Record::pe);
+  column(&metrics::Record::te_s);
+  column(&metrics::Record::far);
+  column(&metrics::Record::render_us);
   std::string line, word;
   std::getline(lines, line);
   std::istringstream hashes(line);
-  for (const Record& r : rs) {
+  for (const metrics::Record& r : rs) {
     ASSERT_TRUE(hashes >> word);
     EXPECT_EQ(std::strtoull(word.c_str(), nullptr, 10), r.pixel_hash);
   }

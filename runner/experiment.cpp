@@ -60,12 +60,12 @@ void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& ex
   loc.reject_unknown_keys(t, "views.", {"orientations", "fov_deg", "windows", "near", "far"});
 
   // Orientations: a count drawn from the seed, or explicit [yaw, pitch, roll] in degrees.
-  std::vector<Mat4> rotations;
+  std::vector<geometry::Mat4> rotations;
   const toml::node* o = t.get("orientations");
   if (!o) loc.fail(views_node, "missing key 'views.orientations' (a count, or [[yaw, pitch, roll], ...])");
   if (o->is_integer()) {
     const int64_t n = loc.integer(*o, "views.orientations", 1, kMaxOrientations);
-    for (int i = 1; i <= n; ++i) rotations.push_back(random_rotation(exp.seed, i));
+    for (int i = 1; i <= n; ++i) rotations.push_back(geometry::random_rotation(exp.seed, i));
   } else if (const auto* arr = o->as_array(); arr && !arr->empty()) {
     for (const auto& e : *arr) {
       const auto* triple = e.as_array();
@@ -77,7 +77,7 @@ void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& ex
         if (!std::isfinite(a[k]) || std::fabs(a[k]) > 360)
           loc.fail(triple->get(k), "orientation angle out of range (allowed: -360 to 360 degrees)");
       }
-      rotations.push_back(rotation_from_euler_deg(a[0], a[1], a[2]));
+      rotations.push_back(geometry::rotation_from_euler_deg(a[0], a[1], a[2]));
     }
   } else {
     loc.fail(o, "'views.orientations' must be a count (1 to " + std::to_string(kMaxOrientations) +
@@ -132,7 +132,7 @@ void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& ex
     for (double f : fovs)
       for (auto [nv, fv] : planes) {
         for (size_t r = 0; r < rotations.size(); ++r) {
-          View v;
+          geometry::View v;
           v.id = id++;
           v.group = group;
           v.orientation = int(r) + 1;
@@ -142,7 +142,7 @@ void parse_views(const TomlLocator& loc, const toml::table& root, Experiment& ex
           v.near = nv;
           v.far = fv;
           v.rotation = rotations[r];
-          finish_view(v);
+          geometry::finish_view(v);
           exp.views.push_back(v);
         }
         ++group;
@@ -189,7 +189,7 @@ void parse_builds(const TomlLocator& loc, const toml::table& root, Experiment& e
   if (!b->is_table()) loc.fail(b, "'builds' must hold tables [builds.NAME] (keys: dir, suite, origin)");
   for (const auto& [key, node] : *b->as_table()) {
     const std::string name(key.str());
-    if (!is_build_name(name))
+    if (!platforms::is_build_name(name))
       loc.fail(&node, "driver build name '" + name + "' is not valid (allowed: 1 to 64 letters, "
                       "digits, '.', '_', '-', not starting with '.' or '-')");
     if (!node.is_table()) loc.fail(&node, "'builds." + name + "' must be a table (keys: dir, suite, origin)");
@@ -213,7 +213,7 @@ void parse_builds(const TomlLocator& loc, const toml::table& root, Experiment& e
     if (!d.dir.empty() && d.dir[0] != '/')
       loc.fail(t.get("dir"), "'builds." + name + ".dir' must be an absolute path or start with ~/ "
                              "(the run folder's copy of this file is read from elsewhere)");
-    if (!d.suite.empty() && !is_build_name(d.suite))
+    if (!d.suite.empty() && !platforms::is_build_name(d.suite))
       loc.fail(t.get("suite"), "'builds." + name + ".suite' is not a suite name (letters, digits, ._-)");
     exp.builds[name] = d;
   }
@@ -221,9 +221,11 @@ void parse_builds(const TomlLocator& loc, const toml::table& root, Experiment& e
 
 }  // namespace
 
-PlatformSpec experiment_platform(const Experiment& exp, const std::string& name) {
-  std::optional<PlatformSpec> spec = find_platform(name);
-  if (!spec) throw UserError("unknown platform '" + name + "' (allowed: " + platform_names() + ")");
+platforms::PlatformSpec experiment_platform(const Experiment& exp, const std::string& name) {
+  std::optional<platforms::PlatformSpec> spec = platforms::find_platform(name);
+  if (!spec)
+    throw UserError("unknown platform '" + name + "' (allowed: " + platforms::platform_names() +
+                    ")");
   if (spec->build.empty()) return *spec;
   const auto it = exp.builds.find(spec->build);
   if (it == exp.builds.end())
@@ -233,11 +235,13 @@ PlatformSpec experiment_platform(const Experiment& exp, const std::string& name)
   if (!d.dir.empty()) {
     spec->build_dir = d.dir;
   } else if (!d.suite.empty()) {
-    const std::string found = cached_build_of_suite(d.suite);
+    const std::string found = platforms::cached_build_of_suite(d.suite);
     if (found.empty())
       throw UserError(exp.path + ": driver build '" + d.name + "' is the cached build of suite '" +
-                      d.suite + "', and " + build_cache_dir() + " holds none: fetch it with "
-                      "`renderaudit builds fetch " + d.suite + "`");
+                      d.suite + "', and " + platforms::build_cache_dir() +
+                      " holds none: fetch it with "
+                      "`renderaudit builds fetch " +
+                      d.suite + "`");
     spec->build_dir = found;
   }
   return *spec;
@@ -264,14 +268,16 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
 
   const toml::node* plats = root.get("platforms");
   if (!plats || !plats->is_array() || plats->as_array()->empty())
-    loc.fail(plats, "'platforms' must be a non-empty array (allowed: " + platform_names() + ")");
+    loc.fail(plats, "'platforms' must be a non-empty array (allowed: " +
+                        platforms::platform_names() + ")");
   for (const auto& e : *plats->as_array()) {
     const auto* s = e.as_string();
-    if (!s || !find_platform(s->get()))
+    if (!s || !platforms::find_platform(s->get()))
       loc.fail(&e, "unknown platform '" + (s ? s->get() : std::string("?")) +
-                       "' (allowed: " + platform_names() + "; a build qualifies only the osmesa-* "
+                       "' (allowed: " + platforms::platform_names() +
+                       "; a build qualifies only the osmesa-* "
                        "and surfaceless egl-* platforms, its name of letters, digits and ._-)");
-    if (const std::string build = split_build(s->get()).second;
+    if (const std::string build = platforms::split_build(s->get()).second;
         !build.empty() && !exp.builds.count(build))
       loc.fail(&e, "platform '" + s->get() + "' names driver build '" + build +
                        "', which no [builds." + build + "] table declares (declared: " +
@@ -292,10 +298,11 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
     loc.fail(prims, "missing table [primitives] (keys: points, lines, triangles)");
   loc.reject_unknown_keys(*prims->as_table(), "primitives.", {"points", "lines", "triangles"});
   uint64_t total = 0;
-  for (Kind k : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
-    if (const toml::node* n = prims->as_table()->get(kind_plural(k))) {
-      exp.counts[int(k)] = uint64_t(
-          loc.integer(*n, std::string("primitives.") + kind_plural(k), 0, int64_t(kMaxPrimitives)));
+  for (geometry::Kind k :
+       {geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle}) {
+    if (const toml::node* n = prims->as_table()->get(geometry::kind_plural(k))) {
+      exp.counts[int(k)] = uint64_t(loc.integer(
+          *n, std::string("primitives.") + geometry::kind_plural(k), 0, int64_t(kMaxPrimitives)));
       total += exp.counts[int(k)];
     }
   }
@@ -319,8 +326,8 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
       exp.max_shards = uint64_t(loc.integer(*n, "run.max_shards", 1, int64_t(kMaxShardsCeiling)));
     if (const toml::node* n = run->as_table()->get("records_format")) {
       const auto* name = n->as_string();
-      const std::optional<RecordsFormat> f =
-          name ? parse_records_format(name->get()) : std::nullopt;
+      const std::optional<metrics::RecordsFormat> f =
+          name ? metrics::parse_records_format(name->get()) : std::nullopt;
       if (!f) loc.fail(n, "'run.records_format' must be \"csv.zst\" or \"csv\"");
       exp.records_format = *f;
     }
@@ -335,11 +342,11 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
                              "snap_bits", "snap_rounding", "drop_line_end_fraction"});
     if (const toml::node* n = t.get("base")) {
       const auto* name = n->as_string();
-      const std::optional<PlatformSpec> spec =
-          name ? find_platform(name->get()) : std::optional<PlatformSpec>();
+      const std::optional<platforms::PlatformSpec> spec =
+          name ? platforms::find_platform(name->get()) : std::optional<platforms::PlatformSpec>();
       if (!spec || (!spec->draws_with_gl() && name->get() != "reference"))
         loc.fail(n, "'faults.base' must name the platform that draws (allowed: reference, " +
-                        aliased_gl_platform_names() + ")");
+                        platforms::aliased_gl_platform_names() + ")");
       exp.faults.base = name->get();
     }
     if (const toml::node* n = t.get("crash")) exp.faults.crash = index_list(loc, *n, "faults.crash");

@@ -34,7 +34,7 @@ struct Experiment {
   std::string hash;        // hex FNV-1a 64 of the canonical TOML, [run] excluded
   uint64_t seed = 0;
   std::vector<std::string> platforms;
-  std::vector<View> views;             // cartesian product, numbered as in the paper's Table 1
+  std::vector<geometry::View> views;   // cartesian product, numbered as in the paper's Table 1
   std::array<uint64_t, 3> counts{};    // primitives per view, indexed by Kind
   uint64_t shard_size = 5000;          // primitives per shard
   double shard_timeout_s = 600;        // a shard still running after this is killed
@@ -45,14 +45,14 @@ struct Experiment {
   uint64_t max_shards = 1000000;
   // [run] records_format: "csv.zst" (default: a fifth of the size, read faster; every reader of the
   // project, pandas, R and DuckDB open it) or "csv" (plain text for tools that read no zstd).
-  RecordsFormat records_format = RecordsFormat::kCsvZst;
-  FaultPlan faults;
+  metrics::RecordsFormat records_format = metrics::RecordsFormat::kCsvZst;
+  platforms::FaultPlan faults;
   std::map<std::string, DriverBuildDecl> builds;  // [builds.NAME], by NAME
 };
 
 // The platform `name` of `exp`, its build's folder resolved as DriverBuildDecl says. Throws
 // UserError for a name the experiment cannot draw with (unknown, or a build it does not declare).
-PlatformSpec experiment_platform(const Experiment& exp, const std::string& name);
+platforms::PlatformSpec experiment_platform(const Experiment& exp, const std::string& name);
 
 // Limits checked by validation (also quoted in error messages).
 constexpr int kMaxWindow = 16384;

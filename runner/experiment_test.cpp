@@ -49,7 +49,7 @@ TEST(Experiment, ValidFileGivesTheTable1Views) {
   EXPECT_EQ(e.views[4].width, 907);
   EXPECT_EQ(e.views[7].group, 3);
   EXPECT_EQ(e.views[7].group_name(), "D");
-  EXPECT_EQ(e.counts[int(Kind::kPoint)], 10u);
+  EXPECT_EQ(e.counts[int(geometry::Kind::kPoint)], 10u);
 }
 
 TEST(Experiment, HashIgnoresCommentsAndRunSettings) {
@@ -149,11 +149,11 @@ TEST(Experiment, QualifiedPlatformsDrawWithTheirDeclaredBuild) {
   unsetenv("RENDERAUDIT_BUILD_CACHE");
   EXPECT_EQ(cached, "/var/cache/builds/cached");
   ASSERT_EQ(e.platforms.size(), 3u);
-  const PlatformSpec installed = experiment_platform(e, "osmesa-llvmpipe");
+  const platforms::PlatformSpec installed = experiment_platform(e, "osmesa-llvmpipe");
   EXPECT_EQ(installed.build, "");
   EXPECT_EQ(installed.build_dir, "");
-  const PlatformSpec egl = experiment_platform(e, "egl-softpipe@new");
-  EXPECT_EQ(egl.backend, Backend::kEglSurfaceless);
+  const platforms::PlatformSpec egl = experiment_platform(e, "egl-softpipe@new");
+  EXPECT_EQ(egl.backend, platforms::Backend::kEglSurfaceless);
   EXPECT_EQ(egl.mesa_driver, "softpipe");
   EXPECT_EQ(egl.build, "new");
   EXPECT_EQ(egl.build_dir, "/opt/mesa-new");
@@ -167,7 +167,7 @@ TEST(Experiment, ExplicitOrientationsAreRotations) {
       parse_experiment(with("orientations = 2", "orientations = [[0, 0, 0], [90, 0, 0]]"), "x.toml");
   ASSERT_EQ(e.views.size(), 8u);
   // Yaw 90 about +Y turns the view axis -Z into -X.
-  const Mat4& r = e.views[1].rotation;
+  const geometry::Mat4& r = e.views[1].rotation;
   EXPECT_NEAR(-r.at(0, 2), -1.0, 1e-15);
   EXPECT_NEAR(-r.at(2, 2), 0.0, 1e-15);
 }

@@ -23,20 +23,20 @@ void add_failure_reasons(const RunManifest& manifest, std::map<std::string, std:
 std::vector<FailedPrimitive> failed_primitives_in_records(
     const std::string& dir, const std::vector<Shard>& shards,
     const std::map<std::string, std::string>& reasons) {
-  const std::string crash = status_name(CaseStatus::kCrash);
-  const std::string timeout = status_name(CaseStatus::kTimeout);
+  const std::string crash = metrics::status_name(metrics::CaseStatus::kCrash);
+  const std::string timeout = metrics::status_name(metrics::CaseStatus::kTimeout);
   std::vector<FailedPrimitive> out;
   for (const Shard& s : shards) {
     const std::string path = s.records_path(dir);
     if (!fs::exists(path)) continue;
     try {
-      for_each_record_row(path, [&](const RecordRow& row) {
-        const std::string_view status = row.cell(RecordColumn::kStatus);
+      metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) {
+        const std::string_view status = row.cell(metrics::RecordColumn::kStatus);
         if (status != crash && status != timeout) return;
         FailedPrimitive f;
         f.shard = s.id();
-        f.index = row.integer<uint64_t>(RecordColumn::kIndex);
-        f.status = status == crash ? CaseStatus::kCrash : CaseStatus::kTimeout;
+        f.index = row.integer<uint64_t>(metrics::RecordColumn::kIndex);
+        f.status = status == crash ? metrics::CaseStatus::kCrash : metrics::CaseStatus::kTimeout;
         const auto it = reasons.find(failure_key(f.shard, f.index));
         f.reason = it != reasons.end() ? it->second
                                        : "recorded as " + std::string(status) + " in " + path;

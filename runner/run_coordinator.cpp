@@ -79,8 +79,8 @@ constexpr double kLargeWorkerBytes = 256.0 * 1024 * 1024;
 
 void note_large_views(const std::vector<Shard>& shards, const Experiment& exp, int jobs) {
   double largest = 0;
-  const View* at = nullptr;
-  for (const View& v : exp.views) {
+  const geometry::View* at = nullptr;
+  for (const geometry::View& v : exp.views) {
     const bool used = std::any_of(shards.begin(), shards.end(),
                                   [&](const Shard& s) { return s.view == v.id; });
     const double bytes = double(v.width) * v.height * 4;
@@ -171,12 +171,12 @@ RunManifest starting_manifest(const RunOptions& options, const Experiment& exp, 
   m.tool = {{"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
   // A directory's records are judged by one version of the conformance rules.
   const int rules = m.rules_judged_by();
-  if (rules != 0 && rules != kConformanceRulesVersion)
+  if (rules != 0 && rules != metrics::kConformanceRulesVersion)
     throw UserError(path + ": its records were judged by conformance rules " +
                     std::to_string(rules) + ", this renderaudit judges by " +
-                    std::to_string(kConformanceRulesVersion) +
+                    std::to_string(metrics::kConformanceRulesVersion) +
                     "; resuming would mix them: run into a new directory");
-  m.conformance_rules = kConformanceRulesVersion;
+  m.conformance_rules = metrics::kConformanceRulesVersion;
   m.experiment = ManifestExperiment{exp.name, options.experiment_path, exp.hash, exp.seed,
                                     exp.platforms};
   m.host = host_description();
@@ -229,7 +229,7 @@ void finish_manifest(RunManifest& m, const RunOptions& options, const std::strin
   result.failed_primitives_held = failed_primitives_in_records(dir, shards, reasons);
   m.failed_primitives.emplace();
   for (const FailedPrimitive& f : result.failed_primitives_held)
-    m.failed_primitives->push_back({f.shard, f.index, status_name(f.status), f.reason});
+    m.failed_primitives->push_back({f.shard, f.index, metrics::status_name(f.status), f.reason});
   result.shards_complete = complete;
   if (!result.wrong_renderer.empty()) m.wrong_renderer = result.wrong_renderer;
   m.status = result.interrupted                    ? "interrupted"
@@ -253,10 +253,10 @@ RunResult run_experiment(const RunOptions& options) {
   // stops the run before its directory is touched, rather than filling it with failed shards.
   require_experiment_platforms(exp, options.experiment_path, options.only_platforms);
   {
-    std::vector<PlatformSpec> specs;
+    std::vector<platforms::PlatformSpec> specs;
     for (const std::string& p : options.only_platforms.empty() ? exp.platforms : options.only_platforms)
       specs.push_back(experiment_platform(exp, p));
-    require_platforms_draw(specs, options.experiment_path);
+    platforms::require_platforms_draw(specs, options.experiment_path);
   }
   const std::vector<Shard> shards = shards_of_run(exp, options.only_platforms, options.slice);
   const std::unique_ptr<DirLock> lock = prepare_run_dir(exp, dir);
@@ -280,7 +280,7 @@ RunResult run_experiment(const RunOptions& options) {
   const bool show = options.progress && ::isatty(2);
   RunTally tally(exp, todo);
   ShardRecovery recovery(dir, exp, timeout_s);
-  RendererCheck renderer_check(dir, options.expect_renderer);
+  platforms::RendererCheck renderer_check(dir, options.expect_renderer);
   // wall seconds of each shard's worker (whole shards run at the first attempt), kept across
   // invocations: what a cost model or a simulation of more machines can learn from
   std::map<std::string, double> shard_seconds = manifest.shard_seconds.value_or(
@@ -288,9 +288,10 @@ RunResult run_experiment(const RunOptions& options) {
   ItemEnds on_event{result, tally, recovery, todo, shard_seconds, show};
   const std::string program =
       options.worker_program.empty() ? worker_program() : options.worker_program;
-  WorkerPool pool({program, dir, jobs, options.serve_shards, show,
-                   records_extension(exp.records_format)},
-                  [&](const WorkItem& w) { return recovery.records_dir(w); }, std::ref(on_event));
+  WorkerPool pool(
+      {program, dir, jobs, options.serve_shards, show,
+       metrics::records_extension(exp.records_format)},
+      [&](const WorkItem& w) { return recovery.records_dir(w); }, std::ref(on_event));
   const std::string this_host = manifest.host.value("hostname", "");
   while (!todo.empty() || !pool.empty()) {
     if (g_interrupted) {

@@ -159,7 +159,7 @@ int common_conformance_rules(const std::vector<RunManifest>& inputs, const Merge
                       ", " + path + " by " + std::to_string(r) + ": their records cannot be merged");
     rules = r, rules_from = path;
   }
-  return rules != 0 ? rules : kConformanceRulesVersion;
+  return rules != 0 ? rules : metrics::kConformanceRulesVersion;
 }
 
 // An input as the merged manifest lists it: what was taken, its drivers, its own provenance.
@@ -232,7 +232,7 @@ RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
   // the crash and timeout records DIR holds now, whichever merge or run put them there
   m.failed_primitives.emplace();
   for (const FailedPrimitive& f : failed_primitives_in_records(out, plan, reasons))
-    m.failed_primitives->push_back({f.shard, f.index, status_name(f.status), f.reason});
+    m.failed_primitives->push_back({f.shard, f.index, metrics::status_name(f.status), f.reason});
   result->failed_primitives = m.failed_primitives->size();
   m.status = !result->missing.empty()       ? "failed"
              : !m.failed_primitives->empty() ? "complete-with-failed-primitives"

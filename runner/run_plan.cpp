@@ -67,7 +67,7 @@ RunQueue queue_shards(const std::vector<Shard>& shards, const Experiment& exp,
 }
 
 double expected_cost_of(const Shard& s, const Experiment& exp) {
-  for (const View& v : exp.views)
+  for (const geometry::View& v : exp.views)
     if (v.id == s.view) return expected_shard_cost_us(s, v);
   return double(s.size());
 }

@@ -19,7 +19,7 @@ namespace {
 
 Experiment two_platforms() {
   Experiment exp;
-  View small, big;
+  geometry::View small, big;
   small.id = 1, small.width = small.height = 128, small.fov_deg = 30;
   big.id = 2, big.width = big.height = 907, big.fov_deg = 150;
   exp.views = {small, big};
@@ -72,7 +72,7 @@ class RunQueueTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
   // A sealed plain-CSV records file of `s` with its size in rows: what check_shard_file accepts.
   void write_whole(const Shard& s) {
-    const std::string path = s.records_path(dir_, RecordsFormat::kCsv);
+    const std::string path = s.records_path(dir_, metrics::RecordsFormat::kCsv);
     {
       std::ofstream out(path, std::ios::binary);
       out << "header\n";
@@ -89,7 +89,7 @@ TEST_F(RunQueueTest, ResumesKeepsWholeFilesRedoesDamagedOnesAndStartsTheCostlies
   const Shard& whole = shards[0];    // reference point v1 0-1000: kept
   const Shard& damaged = shards[1];  // reference point v1 1000-2000: cut short
   write_whole(whole);
-  const std::string damaged_path = damaged.records_path(dir_, RecordsFormat::kCsv);
+  const std::string damaged_path = damaged.records_path(dir_, metrics::RecordsFormat::kCsv);
   std::ofstream(damaged_path) << "header\n1\n";
 
   const RunQueue q = queue_shards(shards, exp, dir_, true, 7.5);

@@ -24,26 +24,27 @@
 namespace ra {
 
 std::string Shard::id() const {
-  return platform + "." + kind_name(kind) + ".v" + std::to_string(view) + "." +
+  return platform + "." + geometry::kind_name(kind) + ".v" + std::to_string(view) + "." +
          std::to_string(begin) + "-" + std::to_string(end);
 }
 
-std::string Shard::records_path(const std::string& run_dir, RecordsFormat format) const {
-  return run_dir + "/records/" + id() + records_extension(format);
+std::string Shard::records_path(const std::string& run_dir, metrics::RecordsFormat format) const {
+  return run_dir + "/records/" + id() + metrics::records_extension(format);
 }
 
 std::string Shard::records_path(const std::string& run_dir) const {
-  const std::string compressed = records_path(run_dir, RecordsFormat::kCsvZst);
+  const std::string compressed = records_path(run_dir, metrics::RecordsFormat::kCsvZst);
   if (::access(compressed.c_str(), F_OK) == 0) return compressed;
-  const std::string plain = records_path(run_dir, RecordsFormat::kCsv);
+  const std::string plain = records_path(run_dir, metrics::RecordsFormat::kCsv);
   return ::access(plain.c_str(), F_OK) == 0 ? plain : compressed;
 }
 
 std::vector<Shard> plan_shards(const Experiment& exp) {
   std::vector<Shard> out;
   for (const auto& platform : exp.platforms)
-    for (const View& v : exp.views)
-      for (Kind k : {Kind::kPoint, Kind::kLine, Kind::kTriangle})
+    for (const geometry::View& v : exp.views)
+      for (geometry::Kind k :
+           {geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle})
         for (uint64_t b = 0; b < exp.counts[int(k)]; b += exp.shard_size)
           out.push_back({platform, k, v.id, b, std::min(b + exp.shard_size, exp.counts[int(k)])});
   return out;
@@ -52,13 +53,14 @@ std::vector<Shard> plan_shards(const Experiment& exp) {
 // The run's driver file, written by the first worker of each platform: only that worker pays
 // for measuring the timer (hundreds of milliseconds on softpipe: it was a third of a softpipe
 // point shard's time when every worker measured it).
-static void write_driver_info(const std::string& run_dir, const PlatformSpec& spec,
-                              Platform& platform, const EffectiveSubpixel& effective) {
+static void write_driver_info(const std::string& run_dir, const platforms::PlatformSpec& spec,
+                              platforms::Platform& platform,
+                              const metrics::EffectiveSubpixel& effective) {
   const std::string path = run_dir + "/drivers/" + spec.name + ".json";
   struct stat st;
   if (::stat(path.c_str(), &st) == 0) return;
   platform.measure_timer_over_cpu();
-  const DriverInfo info = platform.driver_info();
+  const platforms::DriverInfo info = platform.driver_info();
   nlohmann::json j = {{"renderer", info.renderer},           {"version", info.version},
                       {"vendor", info.vendor},               {"subpixel_bits", info.subpixel_bits},
                       {"timer_query", info.timer_query},     {"max_samples", info.max_samples},
@@ -66,7 +68,7 @@ static void write_driver_info(const std::string& run_dir, const PlatformSpec& sp
                       {"timer_over_cpu", std::isnan(info.timer_over_cpu)
                                              ? nlohmann::json()
                                              : nlohmann::json(info.timer_over_cpu)}};
-  j["effective_subpixel"] = effective_subpixel_json(effective);
+  j["effective_subpixel"] = metrics::effective_subpixel_json(effective);
   if (spec.draws_with_vulkan()) {  // the Vulkan rules depend on these (metrics/conformance.h)
     j["line_subpixel_bits"] = info.line_subpixel_bits;
     j["strict_lines"] = info.strict_lines;
@@ -77,7 +79,7 @@ static void write_driver_info(const std::string& run_dir, const PlatformSpec& sp
   // loaded, by path and content fingerprint: what a re-render must load to draw the same.
   if (spec.draws_with_driver()) {
     nlohmann::json libs = nlohmann::json::array();
-    for (const LoadedLibrary& l : loaded_driver_libraries())
+    for (const platforms::LoadedLibrary& l : platforms::loaded_driver_libraries())
       libs.push_back({{"path", l.path}, {"fnv1a64", l.fnv1a64}});
     j["build"] = {{"name", spec.build.empty() ? nlohmann::json() : nlohmann::json(spec.build)},
                   {"folder", spec.build.empty() ? nlohmann::json() : nlohmann::json(spec.build_dir)},
@@ -96,43 +98,46 @@ ShardSession::~ShardSession() = default;
 void ShardSession::run(const Shard& shard, const std::string& records_dir) {
   if (shard.platform != platform_name_)
     throw std::logic_error("shard " + shard.id() + " sent to a session of " + platform_name_);
-  const View* view = nullptr;
-  for (const View& v : exp_.views)
+  const geometry::View* view = nullptr;
+  for (const geometry::View& v : exp_.views)
     if (v.id == shard.view) view = &v;
   if (!view) throw std::runtime_error("shard " + shard.id() + ": no such view");
 
   const bool exact = shard.platform == "reference";
   if (!platform_) {
-    const PlatformSpec spec = experiment_platform(exp_, shard.platform);
-    platform_ = create_platform(spec, exp_.faults);
+    const platforms::PlatformSpec spec = experiment_platform(exp_, shard.platform);
+    platform_ = platforms::create_platform(spec, exp_.faults);
     // One driver per record: a process that loaded another driver than the one that made the
     // run's records stops here, before drawing anything (exit status 2).
-    require_run_driver(run_dir_, shard.platform, platform_->driver_info());
+    platforms::require_run_driver(run_dir_, shard.platform, platform_->driver_info());
     // Every process measures the grid itself (about 96 small triangles: tens of milliseconds),
     // so that its verdicts never depend on which process wrote the driver file first.
-    effective_ = exact ? EffectiveSubpixel{} : measure_effective_subpixel(*platform_);
+    effective_ =
+        exact ? metrics::EffectiveSubpixel{} : metrics::measure_effective_subpixel(*platform_);
     write_driver_info(run_dir_, spec, *platform_, effective_);
   }
   platform_->set_view(*view);
-  CaseComparison comparison(!exact, effective_.grid);
+  metrics::CaseComparison comparison(!exact, effective_.grid);
   comparison.line_rule =
-      line_rule_for(experiment_platform(exp_, shard.platform), platform_->driver_info());
+      metrics::line_rule_for(experiment_platform(exp_, shard.platform), platform_->driver_info());
 
   const std::string path =
-      records_dir.empty() ? shard.records_path(run_dir_, exp_.records_format)
-                          : records_dir + "/" + shard.id() + records_extension(exp_.records_format);
+      records_dir.empty()
+          ? shard.records_path(run_dir_, exp_.records_format)
+          : records_dir + "/" + shard.id() + metrics::records_extension(exp_.records_format);
   // A temporary of this writer alone: a second writer (a run that ignored the lock) cannot
   // interleave its rows with ours, and a killed one leaves only its own temporary behind.
   const std::string tmp = create_unique_temp(path);
   try {
     RecordsFileWriter out(tmp, exp_.records_format);
     constexpr uint64_t kChunk = 1024;  // primitives measured together (and batched inside)
-    std::vector<Primitive> prims;
+    std::vector<geometry::Primitive> prims;
     for (uint64_t first = shard.begin; first < shard.end; first += kChunk) {
       prims.clear();
       for (uint64_t i = first; i < std::min(shard.end, first + kChunk); ++i)
-        prims.push_back(make_primitive(exp_.seed, shard.kind, i));
-      for (const Record& r : measure_cases(shard.platform, *platform_, *view, prims, comparison))
+        prims.push_back(geometry::make_primitive(exp_.seed, shard.kind, i));
+      for (const metrics::Record& r :
+           metrics::measure_cases(shard.platform, *platform_, *view, prims, comparison))
         out.write(r);
     }
     out.finish();

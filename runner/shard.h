@@ -18,7 +18,7 @@ struct Experiment;
 
 struct Shard {
   std::string platform;
-  Kind kind = Kind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view = 1;                // View::id
   uint64_t begin = 0, end = 0;  // primitive indices [begin, end)
 
@@ -27,14 +27,14 @@ struct Shard {
   // hold both formats when it was resumed with another run.records_format); <id>.csv.zst if none.
   std::string records_path(const std::string& run_dir) const;
   // DIR/records/<id> with the extension of `format`.
-  std::string records_path(const std::string& run_dir, RecordsFormat format) const;
+  std::string records_path(const std::string& run_dir, metrics::RecordsFormat format) const;
   uint64_t size() const { return end - begin; }
 };
 
 // Every shard of the experiment, in a stable order (platform, view, kind, begin).
 std::vector<Shard> plan_shards(const Experiment& exp);
 
-class Platform;
+class platforms::Platform;
 
 // What the shards of one platform share in one process: the platform (its GL context, shaders
 // compiled), the effective subpixel grid it measured, the driver file written once. Made at the
@@ -54,8 +54,8 @@ class ShardSession {
   std::string run_dir_;
   const Experiment& exp_;
   std::string platform_name_;
-  std::unique_ptr<Platform> platform_;  // null until the first shard
-  EffectiveSubpixel effective_;
+  std::unique_ptr<platforms::Platform> platform_;  // null until the first shard
+  metrics::EffectiveSubpixel effective_;
 };
 
 // One shard in a session of its own (the `worker` subcommand).

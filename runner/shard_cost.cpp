@@ -27,7 +27,7 @@ const DriverCost& driver_cost(const std::string& platform) {
   // llvmpipe's core plus a queue submission and a fence wait per draw (docs/vulkan.md)
   static const DriverCost lavapipe = {{{40, 0}, {40, 0.2}, {50, 0.03}}};
   static const DriverCost reference = {{{1, 0}, {2, 0.04}, {6, 0.003}}};
-  const std::optional<PlatformSpec> spec = find_platform(platform);
+  const std::optional<platforms::PlatformSpec> spec = platforms::find_platform(platform);
   if (spec && spec->draws_with_vulkan()) return lavapipe;
   if (!spec || !spec->draws_with_gl()) return reference;
   if (spec->mesa_driver == "softpipe") return softpipe;
@@ -35,13 +35,13 @@ const DriverCost& driver_cost(const std::string& platform) {
   return llvmpipe;
 }
 
-double mean_pixels(Kind kind, const View& v) {
+double mean_pixels(geometry::Kind kind, const geometry::View& v) {
   switch (kind) {
-    case Kind::kPoint:
+    case geometry::Kind::kPoint:
       return 1;
-    case Kind::kLine:
+    case geometry::Kind::kLine:
       return 0.3 * std::max(v.width, v.height);
-    case Kind::kTriangle:
+    case geometry::Kind::kTriangle:
       return 0.02 * double(v.width) * double(v.height);
   }
   return 1;
@@ -49,18 +49,19 @@ double mean_pixels(Kind kind, const View& v) {
 
 }  // namespace
 
-double expected_shard_cost_us(const Shard& shard, const View& view) {
+double expected_shard_cost_us(const Shard& shard, const geometry::View& view) {
   const KindCost& c = driver_cost(shard.platform)[static_cast<std::size_t>(shard.kind)];
   double per_primitive = c.fixed_us + c.per_pixel_us * mean_pixels(shard.kind, view);
   // antialiased platforms draw and resolve 4 samples a pixel
-  if (const std::optional<PlatformSpec> spec = find_platform(shard.platform); spec && spec->samples)
+  if (const std::optional<platforms::PlatformSpec> spec = platforms::find_platform(shard.platform);
+      spec && spec->samples)
     per_primitive *= 4;
   return per_primitive * double(shard.size());
 }
 
 std::vector<Shard> largest_expected_cost_first(std::vector<Shard> shards, const Experiment& exp) {
-  std::map<int, const View*> views;
-  for (const View& v : exp.views) views[v.id] = &v;
+  std::map<int, const geometry::View*> views;
+  for (const geometry::View& v : exp.views) views[v.id] = &v;
   std::vector<std::pair<double, std::size_t>> keyed;
   for (std::size_t i = 0; i < shards.size(); ++i) {
     const auto it = views.find(shards[i].view);

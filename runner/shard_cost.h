@@ -18,7 +18,7 @@ namespace ra {
 // window). Coefficients fitted to the nist2008 views on this project's 2-core machine
 // (render_us of 48,000 primitives per platform); an unknown driver is costed as
 // llvmpipe.
-double expected_shard_cost_us(const Shard& shard, const View& view);
+double expected_shard_cost_us(const Shard& shard, const geometry::View& view);
 
 // `shards` sorted by expected cost, largest first (ties keep plan order).
 std::vector<Shard> largest_expected_cost_first(std::vector<Shard> shards, const Experiment& exp);

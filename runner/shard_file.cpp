@@ -109,11 +109,11 @@ std::string check_compressed(const std::string& path, uint64_t expected_rows) {
 
 }  // namespace
 
-RecordsFileWriter::RecordsFileWriter(const std::string& path, RecordsFormat format)
+RecordsFileWriter::RecordsFileWriter(const std::string& path, metrics::RecordsFormat format)
     : path_(path), out_(path, std::ios::binary | std::ios::trunc) {
   if (!out_) throw std::runtime_error(io_error_message("cannot open", path));
-  if (format == RecordsFormat::kCsvZst) zstd_ = std::make_unique<ZstdFrameWriter>(out_);
-  put(records_header() + "\n");
+  if (format == metrics::RecordsFormat::kCsvZst) zstd_ = std::make_unique<ZstdFrameWriter>(out_);
+  put(metrics::records_header() + "\n");
 }
 
 void RecordsFileWriter::put(std::string_view bytes) {
@@ -124,9 +124,9 @@ void RecordsFileWriter::put(std::string_view bytes) {
     out_.write(bytes.data(), std::streamsize(bytes.size()));
 }
 
-void RecordsFileWriter::write(const Record& r) {
+void RecordsFileWriter::write(const metrics::Record& r) {
   line_.clear();
-  append_record(line_, r);
+  metrics::append_record(line_, r);
   put(line_);
   if (++rows_ % kRowsPerFrame == 0 && zstd_) zstd_->end_frame();
 }

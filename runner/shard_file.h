@@ -33,8 +33,9 @@ constexpr uint64_t kRowsPerFrame = 8192;
 // `format`: the header, then write() for each row, then finish() for the seal.
 class RecordsFileWriter {
  public:
-  RecordsFileWriter(const std::string& path, RecordsFormat format);  // throws std::runtime_error
-  void write(const Record& r);
+  RecordsFileWriter(const std::string& path,
+                    metrics::RecordsFormat format);  // throws std::runtime_error
+  void write(const metrics::Record& r);
   // Writes the trailer and closes the file; returns the number of rows. Throws std::runtime_error
   // on I/O failure (the file is then incomplete: the caller removes it).
   uint64_t finish();

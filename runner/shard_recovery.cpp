@@ -63,11 +63,12 @@ std::vector<WorkItem> ShardRecovery::on_finished(const WorkItem& item, WorkOutco
   std::vector<WorkItem> next;
   if (outcome == WorkOutcome::kOk) {
     b.parts.push_back(records_dir(item) + "/" + item.shard.id() +
-                      records_extension(exp_.records_format));
+                      metrics::records_extension(exp_.records_format));
     --b.pending;
   } else if (item.shard.size() == 1) {
     b.failed.push_back({item.parent, item.shard.begin,
-                        outcome == WorkOutcome::kCrash ? CaseStatus::kCrash : CaseStatus::kTimeout,
+                        outcome == WorkOutcome::kCrash ? metrics::CaseStatus::kCrash
+                                                       : metrics::CaseStatus::kTimeout,
                         reason});
     --b.pending;
   } else {
@@ -84,22 +85,23 @@ std::vector<WorkItem> ShardRecovery::on_finished(const WorkItem& item, WorkOutco
 }
 
 void ShardRecovery::assemble(Bisection& b) {
-  const View* view = nullptr;
-  for (const View& v : exp_.views)
+  const geometry::View* view = nullptr;
+  for (const geometry::View& v : exp_.views)
     if (v.id == b.shard.view) view = &v;
   if (!view) throw std::runtime_error("shard " + b.shard.id() + ": no such view");
 
-  std::vector<Record> records;
+  std::vector<metrics::Record> records;
   records.reserve(b.shard.size());
   for (const std::string& part : b.parts)
-    read_records(part, [&](const Record& r) { records.push_back(r); });
+    metrics::read_records(part, [&](const metrics::Record& r) { records.push_back(r); });
   for (const FailedPrimitive& f : b.failed) {
-    Record r = case_identity(b.shard.platform, *view, make_primitive(exp_.seed, b.shard.kind, f.index));
+    metrics::Record r = metrics::case_identity(
+        b.shard.platform, *view, geometry::make_primitive(exp_.seed, b.shard.kind, f.index));
     r.status = f.status;
     records.push_back(r);
   }
   std::sort(records.begin(), records.end(),
-            [](const Record& x, const Record& y) { return x.index < y.index; });
+            [](const metrics::Record& x, const metrics::Record& y) { return x.index < y.index; });
   if (records.size() != b.shard.size())
     throw std::runtime_error("shard " + b.shard.id() + ": bisection assembled " +
                              std::to_string(records.size()) + " records, expected " +
@@ -109,7 +111,7 @@ void ShardRecovery::assemble(Bisection& b) {
   const std::string tmp = create_unique_temp(path);
   try {
     RecordsFileWriter out(tmp, exp_.records_format);
-    for (const Record& r : records) out.write(r);
+    for (const metrics::Record& r : records) out.write(r);
     out.finish();
   } catch (...) {
     std::remove(tmp.c_str());

@@ -31,7 +31,7 @@ enum class WorkOutcome { kOk, kCrash, kTimeout };
 struct FailedPrimitive {
   std::string shard;  // id of the whole shard
   uint64_t index = 0;
-  CaseStatus status = CaseStatus::kCrash;  // kCrash or kTimeout
+  metrics::CaseStatus status = metrics::CaseStatus::kCrash;  // kCrash or kTimeout
   std::string reason;                      // e.g. "crashed (signal 11, Segmentation fault)"
 };
 

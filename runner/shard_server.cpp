@@ -31,9 +31,12 @@ void redirect_output(const std::string& path) {
 }  // namespace
 
 std::string shard_command_line(const ShardCommand& c) {
-  const nlohmann::json j = {{"kind", kind_name(c.shard.kind)}, {"view", c.shard.view},
-                            {"begin", c.shard.begin},          {"end", c.shard.end},
-                            {"records_dir", c.records_dir},    {"log", c.log}};
+  const nlohmann::json j = {{"kind", geometry::kind_name(c.shard.kind)},
+                            {"view", c.shard.view},
+                            {"begin", c.shard.begin},
+                            {"end", c.shard.end},
+                            {"records_dir", c.records_dir},
+                            {"log", c.log}};
   return j.dump();  // one line: dump() escapes newlines inside strings
 }
 
@@ -42,7 +45,7 @@ ShardCommand parse_shard_command(const std::string& line, const std::string& pla
   try {
     const nlohmann::json j = nlohmann::json::parse(line);
     c.shard.platform = platform;
-    if (!parse_kind(j.at("kind").get<std::string>(), &c.shard.kind))
+    if (!geometry::parse_kind(j.at("kind").get<std::string>(), &c.shard.kind))
       throw std::runtime_error("unknown kind");
     c.shard.view = j.at("view").get<int>();
     c.shard.begin = j.at("begin").get<uint64_t>();

@@ -10,7 +10,7 @@ namespace {
 
 TEST(ShardServerProtocol, ACommandSurvivesPathsWithSpacesTabsNewlinesAndQuotes) {
   ShardCommand c;
-  c.shard = {"osmesa-softpipe", Kind::kTriangle, 7, 90000, 100000};
+  c.shard = {"osmesa-softpipe", geometry::Kind::kTriangle, 7, 90000, 100000};
   c.records_dir = "/runs/a b\t\"c\"\nd/records";
   c.log = "/runs/a b\t\"c\"\nd/logs/x.log";
   const std::string line = shard_command_line(c);
@@ -39,7 +39,7 @@ TEST(ShardServerProtocol, GarbageIsRefusedWithTheLine) {
 }
 
 TEST(ShardServerProtocol, RepliesNameTheirShardAndNothingElseIsAReply) {
-  const Shard s{"reference", Kind::kLine, 3, 0, 10};
+  const Shard s{"reference", geometry::Kind::kLine, 3, 0, 10};
   std::string id;
   ASSERT_TRUE(parse_shard_done(shard_done_line(s), &id));
   EXPECT_EQ(id, "reference.line.v3.0-10");

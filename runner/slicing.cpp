@@ -18,8 +18,8 @@ struct Assignment {
 };
 
 Assignment assign(const std::vector<Shard>& shards, const Experiment& exp, int count) {
-  std::map<int, const View*> views;
-  for (const View& v : exp.views) views[v.id] = &v;
+  std::map<int, const geometry::View*> views;
+  for (const geometry::View& v : exp.views) views[v.id] = &v;
   Assignment a;
   a.cost.assign(static_cast<std::size_t>(count), 0.0);
   for (const Shard& s : largest_expected_cost_first(shards, exp)) {

@@ -16,7 +16,7 @@ namespace {
 Experiment unequal_experiment() {
   Experiment exp;
   for (int i = 0; i < 4; ++i) {
-    View v;
+    geometry::View v;
     v.id = i + 1;
     v.width = v.height = i < 2 ? 128 : 907;
     v.fov_deg = i % 2 ? 150 : 30;
@@ -59,8 +59,8 @@ TEST(Slicing, SlicesAreDisjointCoverThePlanAndKeepPlanOrder) {
 TEST(Slicing, SlicesAreBalancedByExpectedCostNotByCount) {
   const Experiment exp = unequal_experiment();
   const std::vector<Shard> plan = plan_shards(exp);
-  std::map<int, const View*> views;
-  for (const View& v : exp.views) views[v.id] = &v;
+  std::map<int, const geometry::View*> views;
+  for (const geometry::View& v : exp.views) views[v.id] = &v;
   double total = 0, largest = 0;
   for (const Shard& s : plan) {
     const double c = expected_shard_cost_us(s, *views[s.view]);

@@ -184,9 +184,16 @@ void WorkerPool::start_workers(std::deque<WorkItem>& todo) {
       }
       running_[child.pid] = r;
     } else {
-      spec.argv = {settings_.program, "worker", settings_.dir, s.platform, kind_name(s.kind),
-                   std::to_string(s.view), std::to_string(s.begin), std::to_string(s.end),
-                   "--records-dir", records_dir_(w)};
+      spec.argv = {settings_.program,
+                   "worker",
+                   settings_.dir,
+                   s.platform,
+                   geometry::kind_name(s.kind),
+                   std::to_string(s.view),
+                   std::to_string(s.begin),
+                   std::to_string(s.end),
+                   "--records-dir",
+                   records_dir_(w)};
       spec.set_env = {"RA_RENDER_ATTEMPT=" + std::to_string(w.attempt)};
       spec.stdin_null = true;
       const Child child = start_child(spec);
@@ -236,8 +243,9 @@ void WorkerPool::reaped(pid_t pid, int status) {
     e.reason = describe_exit_status(status) + e.log;
   } else {
     // A worker that loaded another driver than the run's: nothing of this run may be drawn here.
-    e.kind = words.find(kDriverMismatch) != std::string::npos ? WorkerEvent::Kind::kDriverMismatch
-                                                               : WorkerEvent::Kind::kFailed;
+    e.kind = words.find(platforms::kDriverMismatch) != std::string::npos
+                 ? WorkerEvent::Kind::kDriverMismatch
+                 : WorkerEvent::Kind::kFailed;
     e.reason = describe_exit_status(status);
     e.words = words;
   }

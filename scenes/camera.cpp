@@ -10,9 +10,11 @@
 namespace ra::scenes {
 namespace {
 
-Vec3 cross3(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double len3(Vec3 a) { return std::sqrt(dot(a, a)); }
-Vec3 unit(Vec3 a) { return (1.0 / len3(a)) * a; }
+geometry::Vec3 cross3(geometry::Vec3 a, geometry::Vec3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double len3(geometry::Vec3 a) { return std::sqrt(geometry::dot(a, a)); }
+geometry::Vec3 unit(geometry::Vec3 a) { return (1.0 / len3(a)) * a; }
 
 }  // namespace
 
@@ -21,35 +23,35 @@ double CameraSettings::half_fov_x() const {
   return std::atan(std::tan(half_fov_y()) * double(width) / double(height));
 }
 
-Mat4 look_at(const Viewpoint& vp) {
-  const Vec3 f = unit(vp.target - vp.eye);
-  Vec3 up = vp.up;
-  for (Vec3 alt : {Vec3{0, 1, 0}, Vec3{1, 0, 0}}) {
+geometry::Mat4 look_at(const Viewpoint& vp) {
+  const geometry::Vec3 f = unit(vp.target - vp.eye);
+  geometry::Vec3 up = vp.up;
+  for (geometry::Vec3 alt : {geometry::Vec3{0, 1, 0}, geometry::Vec3{1, 0, 0}}) {
     if (len3(cross3(f, up)) > 1e-9 * len3(up)) break;
     up = alt;
   }
-  const Vec3 s = unit(cross3(f, up));
-  const Vec3 u = cross3(s, f);
-  Mat4 m = Mat4::identity();
+  const geometry::Vec3 s = unit(cross3(f, up));
+  const geometry::Vec3 u = cross3(s, f);
+  geometry::Mat4 m = geometry::Mat4::identity();
   m.at(0, 0) = s.x, m.at(0, 1) = s.y, m.at(0, 2) = s.z;
   m.at(1, 0) = u.x, m.at(1, 1) = u.y, m.at(1, 2) = u.z;
   m.at(2, 0) = -f.x, m.at(2, 1) = -f.y, m.at(2, 2) = -f.z;
-  m.at(0, 3) = -dot(s, vp.eye);
-  m.at(1, 3) = -dot(u, vp.eye);
-  m.at(2, 3) = dot(f, vp.eye);
+  m.at(0, 3) = -geometry::dot(s, vp.eye);
+  m.at(1, 3) = -geometry::dot(u, vp.eye);
+  m.at(2, 3) = geometry::dot(f, vp.eye);
   return m;
 }
 
-Mat4 projection_of(const CameraSettings& cam) {
-  return perspective_matrix(cam.fov_y_deg, double(cam.width) / double(cam.height), cam.near,
-                            cam.far);
+geometry::Mat4 projection_of(const CameraSettings& cam) {
+  return geometry::perspective_matrix(cam.fov_y_deg, double(cam.width) / double(cam.height),
+                                      cam.near, cam.far);
 }
 
-Frustum frustum_of(const Mat4& m) {
+Frustum frustum_of(const geometry::Mat4& m) {
   Frustum f;
-  auto row = [&](int r) { return Vec4{m.at(r, 0), m.at(r, 1), m.at(r, 2), m.at(r, 3)}; };
-  const Vec4 r0 = row(0), r1 = row(1), r2 = row(2), r3 = row(3);
-  const Vec4 raw[6] = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r3 + r2, r3 - r2};
+  auto row = [&](int r) { return geometry::Vec4{m.at(r, 0), m.at(r, 1), m.at(r, 2), m.at(r, 3)}; };
+  const geometry::Vec4 r0 = row(0), r1 = row(1), r2 = row(2), r3 = row(3);
+  const geometry::Vec4 raw[6] = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r3 + r2, r3 - r2};
   for (int i = 0; i < 6; ++i) {
     const double n = std::sqrt(raw[i].x * raw[i].x + raw[i].y * raw[i].y + raw[i].z * raw[i].z);
     f.planes[i] = (1.0 / n) * raw[i];
@@ -58,13 +60,13 @@ Frustum frustum_of(const Mat4& m) {
 }
 
 bool Frustum::intersects(const BoundingSphere& s) const {
-  for (const Vec4& p : planes)
+  for (const geometry::Vec4& p : planes)
     if (p.x * s.centre.x + p.y * s.centre.y + p.z * s.centre.z + p.w < -s.radius) return false;
   return true;
 }
 
-void view_direction_angles(Vec3 eye, Vec3 centre, double* gamma, double* phi) {
-  const Vec3 d = eye - centre;
+void view_direction_angles(geometry::Vec3 eye, geometry::Vec3 centre, double* gamma, double* phi) {
+  const geometry::Vec3 d = eye - centre;
   const double l = len3(d);
   if (l == 0) {
     *gamma = 0, *phi = 0;
@@ -81,8 +83,9 @@ double max_clipped_alpha(const CameraSettings& cam) {
   return std::sqrt(4 * cam.half_fov_x() * cam.half_fov_y());
 }
 
-double clipped_alpha(const Mat4& view, const CameraSettings& cam, const BoundingSphere& s) {
-  const Vec4 c = view * Vec4{s.centre.x, s.centre.y, s.centre.z, 1.0};
+double clipped_alpha(const geometry::Mat4& view, const CameraSettings& cam,
+                     const BoundingSphere& s) {
+  const geometry::Vec4 c = view * geometry::Vec4{s.centre.x, s.centre.y, s.centre.z, 1.0};
   const double d = std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
   const double hx = cam.half_fov_x(), hy = cam.half_fov_y();
   if (d <= s.radius) return max_clipped_alpha(cam);
@@ -103,7 +106,8 @@ Viewpoint viewpoint_for(const BoundingSphere& s, const CameraSettings& cam, doub
   double rho = alpha <= 2 * lo ? 0.5 * alpha : alpha * alpha / (4 * lo);
   rho = std::min(rho, hi);
   const double dist = rho >= 0.5 * M_PI - 1e-9 ? s.radius * 1.0001 : s.radius / std::sin(rho);
-  const Vec3 dir{std::cos(phi) * std::cos(gamma), std::cos(phi) * std::sin(gamma), std::sin(phi)};
+  const geometry::Vec3 dir{std::cos(phi) * std::cos(gamma), std::cos(phi) * std::sin(gamma),
+                           std::sin(phi)};
   Viewpoint vp;
   vp.eye = s.centre + dist * dir;
   vp.target = s.centre;

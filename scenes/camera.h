@@ -21,21 +21,21 @@ struct CameraSettings {
 
 // gluLookAt(eye, target, up) as a column-major matrix (world -> camera). When up is parallel to
 // the viewing direction another up (world +Y, then +X) is used.
-Mat4 look_at(const Viewpoint& vp);
-Mat4 projection_of(const CameraSettings& cam);  // gluPerspective
+geometry::Mat4 look_at(const Viewpoint& vp);
+geometry::Mat4 projection_of(const CameraSettings& cam);  // gluPerspective
 
 // The six planes of the frustum of projection * view (Gribb & Hartmann), normalised, inside >= 0.
 struct Frustum {
-  Vec4 planes[6];
+  geometry::Vec4 planes[6];
   // True when the sphere is at least partly inside (conservative: may keep a sphere just outside
   // a frustum corner, never drops a visible one).
   bool intersects(const BoundingSphere& s) const;
 };
-Frustum frustum_of(const Mat4& view_projection);
+Frustum frustum_of(const geometry::Mat4& view_projection);
 
 // Direction the eye sees the object from: gamma = atan2(dy, dx) in [0, 2 pi), phi = asin(dz / |d|)
 // in [-pi/2, pi/2], d = eye - centre. (0, 0) when the eye is at the centre.
-void view_direction_angles(Vec3 eye, Vec3 centre, double* gamma, double* phi);
+void view_direction_angles(geometry::Vec3 eye, geometry::Vec3 centre, double* gamma, double* phi);
 
 // The paper's alpha clipped to the view frustum: with rho the sphere's angular radius seen from
 // the eye (asin(r / d); pi/2 when the eye is inside it) and (tx, ty) the angles of its centre
@@ -44,7 +44,8 @@ void view_direction_angles(Vec3 eye, Vec3 centre, double* gamma, double* phi);
 // (the half fields of view); alpha = sqrt(wx * wy), the geometric mean of the two clipped widths,
 // so a sphere wholly in view gets 2 rho, the unclipped angle, and one filling the window gets
 // sqrt(4 hx hy). 0 when it is not in view. `view` is world -> camera.
-double clipped_alpha(const Mat4& view, const CameraSettings& cam, const BoundingSphere& s);
+double clipped_alpha(const geometry::Mat4& view, const CameraSettings& cam,
+                     const BoundingSphere& s);
 
 // The largest clipped alpha (the sphere covers the whole window): sqrt(4 hx hy).
 double max_clipped_alpha(const CameraSettings& cam);

@@ -19,8 +19,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double len2(Vec2 a) { return length(a); }
-Vec2 lerp(Vec2 a, Vec2 b, double t) { return a + t * (b - a); }
+double len2(geometry::Vec2 a) { return geometry::length(a); }
+geometry::Vec2 lerp(geometry::Vec2 a, geometry::Vec2 b, double t) { return a + t * (b - a); }
 
 void validate(const CameraPathParams& p) {
   auto bad = [](const std::string& key, const std::string& v, const std::string& allowed) {
@@ -38,13 +38,15 @@ void validate(const CameraPathParams& p) {
 // the centre lines joined by quarter circles of radius r <= 0.45 street_width inside the
 // crossings: every point stays within street_width / 2 of a centre line, and the tangent is
 // continuous.
-std::vector<Vec2> street_walk(const SceneLayout& l, const CameraPathParams& p) {
+std::vector<geometry::Vec2> street_walk(const SceneLayout& l, const CameraPathParams& p) {
   SceneRng rng(p.seed, ScenePurpose::kCameraWaypoint, 1);
-  auto node = [&](int i, int j) { return Vec2{l.street_x0 + i * l.street_pitch, l.street_y0 + j * l.street_pitch}; };
+  auto node = [&](int i, int j) {
+    return geometry::Vec2{l.street_x0 + i * l.street_pitch, l.street_y0 + j * l.street_pitch};
+  };
   const int dirs[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
   int i = static_cast<int>(rng.integer(0, l.streets_x - 1)), j = static_cast<int>(rng.integer(0, l.streets_y - 1));
   int d = -1;
-  std::vector<Vec2> corners{node(i, j)};
+  std::vector<geometry::Vec2> corners{node(i, j)};
   std::vector<int> headings;
   for (int step = 1; step < p.waypoints; ++step) {
     int options[4], n = 0;
@@ -64,16 +66,16 @@ std::vector<Vec2> street_walk(const SceneLayout& l, const CameraPathParams& p) {
     corners.push_back(node(i, j));
     headings.push_back(d);
   }
-  std::vector<Vec2> raw{corners.front()};
+  std::vector<geometry::Vec2> raw{corners.front()};
   const double r = std::min(0.45 * l.street_width, 0.25 * l.street_pitch);
   for (size_t k = 1; k + 1 < corners.size(); ++k) {
-    const Vec2 din{double(dirs[headings[k - 1]][0]), double(dirs[headings[k - 1]][1])};
-    const Vec2 dout{double(dirs[headings[k]][0]), double(dirs[headings[k]][1])};
+    const geometry::Vec2 din{double(dirs[headings[k - 1]][0]), double(dirs[headings[k - 1]][1])};
+    const geometry::Vec2 dout{double(dirs[headings[k]][0]), double(dirs[headings[k]][1])};
     if (headings[k] == headings[k - 1]) {
       raw.push_back(corners[k]);
       continue;
     }
-    const Vec2 centre = corners[k] - r * din + r * dout;
+    const geometry::Vec2 centre = corners[k] - r * din + r * dout;
     for (int a = 0; a <= 16; ++a) {
       const double phi = 0.5 * kPi * a / 16;
       raw.push_back(centre + r * (-std::cos(phi) * dout + std::sin(phi) * din));
@@ -89,16 +91,17 @@ std::vector<Vec2> street_walk(const SceneLayout& l, const CameraPathParams& p) {
 // hairpins, continuous tangent) and strays at most ~4R = 10 % of the box beyond the inner part.
 // Each waypoint is drawn at least 4R from where the walker is, outside its turning circles, so
 // it can always be reached.
-std::vector<Vec2> free_flight(const SceneLayout& l, const CameraPathParams& p) {
+std::vector<geometry::Vec2> free_flight(const SceneLayout& l, const CameraPathParams& p) {
   SceneRng rng(p.seed, ScenePurpose::kCameraWaypoint, 2);
   const double w = l.box_max.x - l.box_min.x, h = l.box_max.y - l.box_min.y;
-  const Vec2 lo{l.box_min.x + 0.1 * w, l.box_min.y + 0.1 * h}, hi{l.box_max.x - 0.1 * w, l.box_max.y - 0.1 * h};
+  const geometry::Vec2 lo{l.box_min.x + 0.1 * w, l.box_min.y + 0.1 * h},
+      hi{l.box_max.x - 0.1 * w, l.box_max.y - 0.1 * h};
   const double r = free_flight_turn_radius(l), ds = r / 8;
-  Vec2 at{rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y)};
+  geometry::Vec2 at{rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y)};
   double heading = rng.uniform(0, 2 * kPi);
-  std::vector<Vec2> raw{at};
+  std::vector<geometry::Vec2> raw{at};
   for (int k = 1; k < p.waypoints; ++k) {
-    Vec2 target{}, best{};
+    geometry::Vec2 target{}, best{};
     double best_d = -1;
     for (int attempt = 0; attempt < 16; ++attempt) {
       target = {rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y)};
@@ -113,23 +116,24 @@ std::vector<Vec2> free_flight(const SceneLayout& l, const CameraPathParams& p) {
     // a reachable target is reached within its distance plus a full turn; the cap only guards
     const int max_steps = static_cast<int>((best_d + 2 * kPi * r) / ds) * 4 + 64;
     for (int step = 0; step < max_steps && len2(target - at) > 2 * r; ++step) {
-      const Vec2 d = target - at;
+      const geometry::Vec2 d = target - at;
       double turn = std::remainder(std::atan2(d.y, d.x) - heading, 2 * kPi);
       turn = std::clamp(turn, -ds / r, ds / r);
       heading += turn;
-      at = at + ds * Vec2{std::cos(heading), std::sin(heading)};
+      at = at + ds * geometry::Vec2{std::cos(heading), std::sin(heading)};
       // note: never active by the bound above; keeps a broken layout from leaving the box
       at = {std::clamp(at.x, l.box_min.x, l.box_max.x), std::clamp(at.y, l.box_min.y, l.box_max.y)};
       raw.push_back(at);
     }
   }
-  if (raw.size() == 1) raw.push_back(raw[0] + ds * Vec2{std::cos(heading), std::sin(heading)});
+  if (raw.size() == 1)
+    raw.push_back(raw[0] + ds * geometry::Vec2{std::cos(heading), std::sin(heading)});
   return raw;
 }
 
 // The polyline resampled at steps of at most `step` metres of arc length (every raw point kept).
-std::vector<Vec2> densify(const std::vector<Vec2>& raw, double step) {
-  std::vector<Vec2> out{raw.front()};
+std::vector<geometry::Vec2> densify(const std::vector<geometry::Vec2>& raw, double step) {
+  std::vector<geometry::Vec2> out{raw.front()};
   for (size_t k = 1; k < raw.size(); ++k) {
     const double d = len2(raw[k] - raw[k - 1]);
     const int n = std::max(1, static_cast<int>(std::ceil(d / step)));
@@ -151,11 +155,11 @@ std::vector<Viewpoint> generate_camera_path(const Scene& scene, const CameraPath
     throw std::invalid_argument("camera path: the scene (kind '" + scene.kind + "') has an empty layout box");
   const bool streets = l.streets_x >= 1 && l.streets_y >= 1 && l.street_pitch > 0;
   const bool terrain = !l.ground_z.empty();
-  const std::vector<Vec2> raw = streets ? street_walk(l, p) : free_flight(l, p);
+  const std::vector<geometry::Vec2> raw = streets ? street_walk(l, p) : free_flight(l, p);
 
   // dense samples, closer than a ground cell so that the flight envelope below sees every cell
   const double step = terrain ? 0.5 * l.ground_spacing : 1.0;
-  const std::vector<Vec2> pts = densify(raw, step);
+  const std::vector<geometry::Vec2> pts = densify(raw, step);
   std::vector<double> arc(pts.size(), 0.0);
   for (size_t k = 1; k < pts.size(); ++k) arc[k] = arc[k - 1] + len2(pts[k] - pts[k - 1]);
 
@@ -193,10 +197,14 @@ std::vector<Viewpoint> generate_camera_path(const Scene& scene, const CameraPath
   }
 
   // frames evenly spaced in arc length, linear between dense samples
-  auto at = [&](double s, Vec2& xy, double& zz) {
+  auto at = [&](double s, geometry::Vec2& xy, double& zz) {
     const size_t k = std::min<size_t>(pts.size() - 1,
         static_cast<size_t>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin()));
-    if (k == 0) { xy = pts[0]; zz = z[0]; return; }
+    if (k == 0) {
+      xy = pts[0];
+      zz = z[0];
+      return;
+    }
     const double span = arc[k] - arc[k - 1];
     const double t = span > 0 ? std::clamp((s - arc[k - 1]) / span, 0.0, 1.0) : 1.0;
     xy = lerp(pts[k - 1], pts[k], t);
@@ -205,16 +213,16 @@ std::vector<Viewpoint> generate_camera_path(const Scene& scene, const CameraPath
   const double total = arc.back();
   std::vector<Viewpoint> out;
   out.reserve(p.frames);
-  Vec2 last_dir{1, 0};
+  geometry::Vec2 last_dir{1, 0};
   for (int f = 0; f < p.frames; ++f) {
     const double s = p.frames == 1 ? 0.0 : total * f / (p.frames - 1);
-    Vec2 xy, a, b;
+    geometry::Vec2 xy, a, b;
     double zz, za, zb;
     at(s, xy, zz);
     // heading: the chord over +-2 m of path (one-sided at the ends)
     at(std::max(0.0, s - 2), a, za);
     at(std::min(total, s + 2), b, zb);
-    Vec2 dir = b - a;
+    geometry::Vec2 dir = b - a;
     if (len2(dir) > 1e-9) last_dir = (1 / len2(dir)) * dir;
     Viewpoint v;
     v.eye = {xy.x, xy.y, zz};
@@ -273,8 +281,8 @@ std::vector<Viewpoint> parse_camera_path_csv(const std::string& text, const std:
     Viewpoint vp;
     vp.eye = {v[1], v[2], v[3]};
     vp.target = {v[4], v[5], v[6]};
-    const Vec3 d = vp.target - vp.eye;
-    if (dot(d, d) == 0) fail(line_no, "the target equals the eye: no viewing direction");
+    const geometry::Vec3 d = vp.target - vp.eye;
+    if (geometry::dot(d, d) == 0) fail(line_no, "the target equals the eye: no viewing direction");
     out.push_back(vp);
   }
   if (!header) fail(std::max(1, line_no), "no header line '" + std::string(kHeader) + "'");

@@ -16,11 +16,11 @@
 namespace ra::scenes {
 namespace {
 
-double horizontal(Vec3 a) { return std::hypot(a.x, a.y); }
+double horizontal(geometry::Vec3 a) { return std::hypot(a.x, a.y); }
 
 void expect_inside_box(const Scene& s, const std::vector<Viewpoint>& path) {
   for (const Viewpoint& v : path) {
-    ASSERT_TRUE(is_finite(v.eye) && is_finite(v.target));
+    ASSERT_TRUE(geometry::is_finite(v.eye) && geometry::is_finite(v.target));
     EXPECT_GE(v.eye.x, s.layout.box_min.x);
     EXPECT_LE(v.eye.x, s.layout.box_max.x);
     EXPECT_GE(v.eye.y, s.layout.box_min.y);
@@ -37,7 +37,7 @@ void expect_smooth(const std::vector<Viewpoint>& path, double max_turn_deg) {
   const double mn = *std::min_element(steps.begin(), steps.end());
   EXPECT_GT(mn, 0.9 * mx) << "min step " << mn << " max step " << mx;
   for (size_t k = 1; k < path.size(); ++k) {
-    const Vec3 a = path[k - 1].target - path[k - 1].eye, b = path[k].target - path[k].eye;
+    const geometry::Vec3 a = path[k - 1].target - path[k - 1].eye, b = path[k].target - path[k].eye;
     const double c = (a.x * b.x + a.y * b.y) / (horizontal(a) * horizontal(b));
     EXPECT_LT(std::acos(std::clamp(c, -1.0, 1.0)) * 180 / 3.14159265358979, max_turn_deg) << "frame " << k;
   }

@@ -95,9 +95,9 @@ CityBuilding plan_building(const CityParams& p, int bx, int by, int lot) {
 // Four facades (outward, counter-clockwise from outside; one strip per storey) and a roof.
 void add_tier(StripMesh& mesh, const CityTier& t) {
   const double w = t.x1 - t.x0, d = t.y1 - t.y0, h = t.z1 - t.z0;
-  const Vec3 up{0, 0, h};
+  const geometry::Vec3 up{0, 0, h};
   struct Face {
-    Vec3 origin, du;
+    geometry::Vec3 origin, du;
     int bays;
   };
   const Face faces[4] = {

@@ -109,7 +109,7 @@ TEST(CityScene, BuildingsStayInTheirBlocks) {
   for (const TriangleStrip& st : s.objects[0].mesh.strips) EXPECT_EQ(st.texture, 0);
   for (size_t k = 1; k < s.objects.size(); ++k)
     for (size_t i = 0; i < s.objects[k].mesh.vertex_count(); ++i) {
-      const Vec3 v = s.objects[k].mesh.vertex(i);
+      const geometry::Vec3 v = s.objects[k].mesh.vertex(i);
       EXPECT_GE(v.z, 0);
       EXPECT_LE(v.z, p.floors_max * p.floor_height + 1e-4);
     }

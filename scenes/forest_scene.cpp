@@ -142,14 +142,14 @@ Scene generate_forest(const ForestParams& p) {
            p.area / kForestGroundCells / 5);
   ground.bounds = enclosing_sphere(ground.mesh);
   scene.objects.push_back(std::move(ground));
-  Vec3 lo{0, 0, 0}, hi{p.area, p.area, 0};
+  geometry::Vec3 lo{0, 0, 0}, hi{p.area, p.area, 0};
   for (size_t k = 0; k < plan.size(); ++k) {
     SceneObject o;
     o.name = "tree " + std::to_string(k);
     add_tree(o.mesh, plan[k]);
     o.bounds = enclosing_sphere(o.mesh);
     for (size_t i = 0; i < o.mesh.vertex_count(); ++i) {
-      const Vec3 v = o.mesh.vertex(i);
+      const geometry::Vec3 v = o.mesh.vertex(i);
       lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
       hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
     }

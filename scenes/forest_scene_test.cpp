@@ -92,14 +92,16 @@ TEST(ForestScene, TreesAreClosedOutwardShapes) {
       EXPECT_GE(m.vertex(i).z, 0);
       EXPECT_LE(m.vertex(i).z, t.height + 1e-4);
     }
-    const Vec3 crown_centre{t.x, t.y, (t.trunk_height + t.height) / 2};
-    scene_test::for_each_triangle(m, [&](Vec3 a, Vec3 b, Vec3 c, size_t strip) {
-      const Vec3 n = cross3(b - a, c - a);
-      ASSERT_GT(norm3(n), 1e-7) << "tree " << k << " strip " << strip;
-      const Vec3 g = (1.0 / 3) * (a + b + c);
-      const Vec3 inside = m.strips[strip].texture == 0 ? Vec3{t.x, t.y, g.z} : crown_centre;
-      EXPECT_GT(dot(n, g - inside), 0) << "tree " << k << " strip " << strip;
-    });
+    const geometry::Vec3 crown_centre{t.x, t.y, (t.trunk_height + t.height) / 2};
+    scene_test::for_each_triangle(
+        m, [&](geometry::Vec3 a, geometry::Vec3 b, geometry::Vec3 c, size_t strip) {
+          const geometry::Vec3 n = cross3(b - a, c - a);
+          ASSERT_GT(norm3(n), 1e-7) << "tree " << k << " strip " << strip;
+          const geometry::Vec3 g = (1.0 / 3) * (a + b + c);
+          const geometry::Vec3 inside =
+              m.strips[strip].texture == 0 ? geometry::Vec3{t.x, t.y, g.z} : crown_centre;
+          EXPECT_GT(geometry::dot(n, g - inside), 0) << "tree " << k << " strip " << strip;
+        });
   }
 }
 

@@ -27,13 +27,13 @@ struct StripMesh {
   size_t vertex_count() const { return positions.size() / 3; }
   size_t triangle_count() const;  // sum over strips of max(0, indices - 2), degenerate ones included
   size_t index_count() const;     // sum over strips of their index counts (what glDrawElements reads)
-  Vec3 vertex(size_t i) const {   // metres, world coordinates
+  geometry::Vec3 vertex(size_t i) const {  // metres, world coordinates
     return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
   }
 };
 
 struct BoundingSphere {
-  Vec3 centre;        // metres, world coordinates
+  geometry::Vec3 centre;  // metres, world coordinates
   double radius = 0;  // metres
 };
 
@@ -56,7 +56,7 @@ struct Texture {
 // What a camera path needs to know of a scene's layout; the generators fill it.
 // Units: metres, world coordinates, +Z up.
 struct SceneLayout {
-  Vec3 box_min, box_max;  // axis-aligned box holding every vertex of every object
+  geometry::Vec3 box_min, box_max;  // axis-aligned box holding every vertex of every object
   // City streets: centre lines at x = street_x0 + i * street_pitch (i = 0..streets_x - 1) and at
   // y = street_y0 + j * street_pitch (j = 0..streets_y - 1); street_width is kerb to kerb.
   double street_x0 = 0, street_y0 = 0, street_pitch = 0, street_width = 0;
@@ -88,9 +88,9 @@ uint64_t scene_hash(const Scene& scene);
 
 // One camera position of a path: where the eye is and where it looks.
 struct Viewpoint {
-  Vec3 eye;                // metres, world coordinates
-  Vec3 target;             // a point the camera looks at
-  Vec3 up = {0, 0, 1};     // world up
+  geometry::Vec3 eye;             // metres, world coordinates
+  geometry::Vec3 target;          // a point the camera looks at
+  geometry::Vec3 up = {0, 0, 1};  // world up
 };
 
 }  // namespace ra::scenes

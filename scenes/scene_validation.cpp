@@ -43,13 +43,16 @@ std::vector<std::string> scene_problems(const Scene& scene, size_t max_problems)
         }
     }
     // float positions against a double sphere: allow a relative 1e-4 of the radius and centre
-    const double slack = 1e-4 * (o.bounds.radius + std::sqrt(dot(o.bounds.centre, o.bounds.centre))) + 1e-6;
-    const double box_slack = 1e-4 * (1 + std::sqrt(dot(l.box_max - l.box_min, l.box_max - l.box_min)));
+    const double slack =
+        1e-4 * (o.bounds.radius + std::sqrt(geometry::dot(o.bounds.centre, o.bounds.centre))) +
+        1e-6;
+    const double box_slack =
+        1e-4 * (1 + std::sqrt(geometry::dot(l.box_max - l.box_min, l.box_max - l.box_min)));
     for (size_t i = 0; i < n; ++i) {
-      const Vec3 v = m.vertex(i);
-      if (!is_finite(v)) continue;
-      const Vec3 d = v - o.bounds.centre;
-      if (std::sqrt(dot(d, d)) > o.bounds.radius + slack) {
+      const geometry::Vec3 v = m.vertex(i);
+      if (!geometry::is_finite(v)) continue;
+      const geometry::Vec3 d = v - o.bounds.centre;
+      if (std::sqrt(geometry::dot(d, d)) > o.bounds.radius + slack) {
         std::ostringstream s;
         s << who << "vertex " << i << " at (" << v.x << ", " << v.y << ", " << v.z
           << ") lies outside the bounding sphere (radius " << o.bounds.radius << ")";

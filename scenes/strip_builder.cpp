@@ -4,7 +4,7 @@
 
 namespace ra::scenes {
 
-uint32_t add_vertex(StripMesh& mesh, Vec3 p, double s, double t) {
+uint32_t add_vertex(StripMesh& mesh, geometry::Vec3 p, double s, double t) {
   const auto n = static_cast<uint32_t>(mesh.vertex_count());
   mesh.positions.insert(mesh.positions.end(),
                         {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
@@ -12,8 +12,9 @@ uint32_t add_vertex(StripMesh& mesh, Vec3 p, double s, double t) {
   return n;
 }
 
-uint32_t add_grid(StripMesh& mesh, Vec3 origin, Vec3 du, Vec3 dv, int cols, int rows, int texture,
-                  double s0, double s_step, double t0, double t_step) {
+uint32_t add_grid(StripMesh& mesh, geometry::Vec3 origin, geometry::Vec3 du, geometry::Vec3 dv,
+                  int cols, int rows, int texture, double s0, double s_step, double t0,
+                  double t_step) {
   assert(cols >= 1 && rows >= 1);
   const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
   for (int v = 0; v <= rows; ++v)

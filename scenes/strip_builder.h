@@ -10,7 +10,7 @@
 namespace ra::scenes {
 
 // Appends a vertex; returns its number.
-uint32_t add_vertex(StripMesh& mesh, Vec3 p, double s, double t);
+uint32_t add_vertex(StripMesh& mesh, geometry::Vec3 p, double s, double t);
 
 // Appends (cols + 1) x (rows + 1) vertices p(u, v) = origin + u / cols * du + v / rows * dv
 // (u = 0..cols fastest, v = 0..rows), texture coordinates (s0 + u * s_step, t0 + v * t_step), and
@@ -18,8 +18,9 @@ uint32_t add_vertex(StripMesh& mesh, Vec3 p, double s, double t);
 // triangles each, counter-clockwise seen from the side du x dv points to. Consecutive bands share
 // a vertex row, which a FIFO cache of >= 2 * (cols + 1) + 2 entries turns into hits.
 // Returns the first vertex number.
-uint32_t add_grid(StripMesh& mesh, Vec3 origin, Vec3 du, Vec3 dv, int cols, int rows, int texture,
-                  double s0, double s_step, double t0, double t_step);
+uint32_t add_grid(StripMesh& mesh, geometry::Vec3 origin, geometry::Vec3 du, geometry::Vec3 dv,
+                  int cols, int rows, int texture, double s0, double s_step, double t0,
+                  double t_step);
 
 // One strip over the vertices ring[0..n-1] of a convex polygon (in order around it), zig-zagging
 // ring[0], ring[1], ring[n-1], ring[2], ring[n-2], ...: n - 2 triangles, none degenerate;

@@ -30,7 +30,7 @@ TEST(SceneStripBuilder, GridLayoutAndWinding) {
   EXPECT_EQ(m.texcoords[2 * 11], 3.0f);  // s counts columns, t rows
   EXPECT_EQ(m.texcoords[2 * 11 + 1], 2.0f);
   int n = 0;
-  for_each_triangle(m, [&](Vec3 a, Vec3 b, Vec3 c, size_t) {
+  for_each_triangle(m, [&](geometry::Vec3 a, geometry::Vec3 b, geometry::Vec3 c, size_t) {
     EXPECT_GT(cross3(b - a, c - a).z, 0);
     ++n;
   });
@@ -53,7 +53,7 @@ TEST(SceneStripBuilder, PolygonStripZigZag) {
       EXPECT_EQ(m.strips[0].indices.size(), static_cast<size_t>(n));
       EXPECT_EQ(m.triangle_count(), static_cast<size_t>(n - 2));
       double area = 0;
-      for_each_triangle(m, [&](Vec3 a, Vec3 b, Vec3 c, size_t) {
+      for_each_triangle(m, [&](geometry::Vec3 a, geometry::Vec3 b, geometry::Vec3 c, size_t) {
         const double z = cross3(b - a, c - a).z;
         EXPECT_GT(reverse ? -z : z, 1e-9) << n;
         area += std::fabs(z) / 2;

@@ -24,9 +24,9 @@ size_t StripMesh::index_count() const {
 BoundingSphere enclosing_sphere(const StripMesh& mesh) {
   const size_t n = mesh.vertex_count();
   if (n == 0) return {};
-  Vec3 lo = mesh.vertex(0), hi = lo;
+  geometry::Vec3 lo = mesh.vertex(0), hi = lo;
   for (size_t i = 1; i < n; ++i) {
-    const Vec3 v = mesh.vertex(i);
+    const geometry::Vec3 v = mesh.vertex(i);
     lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
     hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
   }
@@ -34,8 +34,8 @@ BoundingSphere enclosing_sphere(const StripMesh& mesh) {
   s.centre = 0.5 * (lo + hi);
   double r2 = 0;
   for (size_t i = 0; i < n; ++i) {
-    const Vec3 d = mesh.vertex(i) - s.centre;
-    r2 = std::max(r2, dot(d, d));
+    const geometry::Vec3 d = mesh.vertex(i) - s.centre;
+    r2 = std::max(r2, geometry::dot(d, d));
   }
   // note: the vertices are floats and the centre a double; the radius is exact in double.
   s.radius = std::sqrt(r2);

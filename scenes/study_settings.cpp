@@ -58,10 +58,10 @@ void read_camera_block(const TomlLocator& loc, const toml::table& t, const std::
 
 std::string read_study_platform(const TomlLocator& loc, const toml::node& node,
                                 const std::string& key) {
-  const std::string name = loc.string(node, key, {}, aliased_gl_platform_names());
-  if (!is_aliased_gl_platform(name))
-    loc.fail(&node, "'" + key + "' = \"" + name +
-                        "\" is out of range (allowed: " + aliased_gl_platform_names() + ")");
+  const std::string name = loc.string(node, key, {}, platforms::aliased_gl_platform_names());
+  if (!platforms::is_aliased_gl_platform(name))
+    loc.fail(&node, "'" + key + "' = \"" + name + "\" is out of range (allowed: " +
+                        platforms::aliased_gl_platform_names() + ")");
   return name;
 }
 

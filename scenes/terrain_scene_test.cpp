@@ -50,7 +50,7 @@ TEST(TerrainScene, VerticesSampleTheHeightField) {
   const StripMesh& m = s.objects[0].mesh;
   for (int j = 0; j < p.size; ++j)
     for (int i = 0; i < p.size; ++i) {
-      const Vec3 v = m.vertex(static_cast<size_t>(j * p.size + i));
+      const geometry::Vec3 v = m.vertex(static_cast<size_t>(j * p.size + i));
       EXPECT_EQ(v.x, i * p.spacing);
       EXPECT_EQ(v.y, j * p.spacing);
       EXPECT_EQ(v.z, static_cast<float>(terrain_height(p, i * p.spacing, j * p.spacing)));
@@ -90,10 +90,11 @@ TEST(TerrainScene, HeightFieldIsBoundedContinuousAndRough) {
 TEST(TerrainScene, TrianglesFaceUp) {
   const Scene s = generate_terrain(tiny());
   int n = 0;
-  scene_test::for_each_triangle(s.objects[0].mesh, [&](Vec3 a, Vec3 b, Vec3 c, size_t) {
-    EXPECT_GT(scene_test::cross3(b - a, c - a).z, 0);
-    ++n;
-  });
+  scene_test::for_each_triangle(s.objects[0].mesh,
+                                [&](geometry::Vec3 a, geometry::Vec3 b, geometry::Vec3 c, size_t) {
+                                  EXPECT_GT(scene_test::cross3(b - a, c - a).z, 0);
+                                  ++n;
+                                });
   EXPECT_EQ(n, 2 * 16 * 16);
 }
 

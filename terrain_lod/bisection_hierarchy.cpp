@@ -143,11 +143,12 @@ TerrainHierarchy::TerrainHierarchy(const HeightField& field, int tile_size, Erro
   auto saturate = [&](int tx, int ty) {
     TileErrors& e = errors_[size_t(ty * tiles_x_ + tx)];
     for (int v : topo_.fine_to_coarse()) {
-      const Vec3 pv = position(global_vertex(tx, ty, v));
+      const geometry::Vec3 pv = position(global_vertex(tx, ty, v));
       for (int c : topo_.children(v)) {
         e.eps[size_t(v)] = std::max(e.eps[size_t(v)], e.eps[size_t(c)]);
-        const Vec3 d = position(global_vertex(tx, ty, c)) - pv;
-        e.radius[size_t(v)] = std::max(e.radius[size_t(v)], std::sqrt(dot(d, d)) + e.radius[size_t(c)]);
+        const geometry::Vec3 d = position(global_vertex(tx, ty, c)) - pv;
+        e.radius[size_t(v)] =
+            std::max(e.radius[size_t(v)], std::sqrt(geometry::dot(d, d)) + e.radius[size_t(c)]);
       }
     }
   };
@@ -202,7 +203,7 @@ int TerrainHierarchy::global_vertex(int tx, int ty, int v) const {
   return (ty * (n - 1) + v / n) * field_->nx + tx * (n - 1) + v % n;
 }
 
-Vec3 TerrainHierarchy::position(int g) const {
+geometry::Vec3 TerrainHierarchy::position(int g) const {
   const int gi = g % field_->nx, gj = g / field_->nx;
   return {gi * field_->spacing, gj * field_->spacing, field_->z[size_t(g)]};
 }

@@ -95,7 +95,7 @@ class TerrainHierarchy {
   // Global vertex number (gj * field.nx + gi) of local vertex v of tile (tx, ty).
   int global_vertex(int tx, int ty, int v) const;
   // World position of a global vertex, metres.
-  Vec3 position(int global) const;
+  geometry::Vec3 position(int global) const;
   int seam_passes() const { return seam_passes_; }  // saturation passes until the seams agreed
 
  private:

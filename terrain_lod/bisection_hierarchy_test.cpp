@@ -101,8 +101,8 @@ TEST(TerrainHierarchy, ErrorsAndRadiiMatchBruteForceFromTheDefinitions) {
   std::function<double(int)> radius = [&](int v) {
     double r = 0;
     for (int c : kids[v]) {
-      const Vec3 d = h.position(c) - h.position(v);
-      r = std::max(r, std::sqrt(dot(d, d)) + radius(c));
+      const geometry::Vec3 d = h.position(c) - h.position(v);
+      r = std::max(r, std::sqrt(geometry::dot(d, d)) + radius(c));
     }
     return r;
   };
@@ -116,8 +116,8 @@ TEST(TerrainHierarchy, ErrorsAndRadiiMatchBruteForceFromTheDefinitions) {
     EXPECT_NEAR(e.eps[size_t(v)], sat, 1e-9) << "vertex " << v;
     // the ball holds every descendant, and its radius is the recursive definition's
     for (int d : desc) {
-      const Vec3 dv = h.position(d) - h.position(v);
-      EXPECT_LE(std::sqrt(dot(dv, dv)), e.radius[size_t(v)] + 1e-9);
+      const geometry::Vec3 dv = h.position(d) - h.position(v);
+      EXPECT_LE(std::sqrt(geometry::dot(dv, dv)), e.radius[size_t(v)] + 1e-9);
     }
     if (v % 7 == 0) {
       EXPECT_NEAR(e.radius[size_t(v)], radius(v), 1e-9) << "vertex " << v;
@@ -140,8 +140,10 @@ TEST(TerrainHierarchy, NestedOnEveryDagEdgeAndEqualAcrossSeams) {
       for (int v : topo.fine_to_coarse())
         for (int c : topo.children(v)) {
           EXPECT_GE(e.eps[size_t(v)], e.eps[size_t(c)]);
-          const Vec3 d = h.position(h.global_vertex(tx, ty, c)) - h.position(h.global_vertex(tx, ty, v));
-          EXPECT_GE(e.radius[size_t(v)] + 1e-9, std::sqrt(dot(d, d)) + e.radius[size_t(c)]);
+          const geometry::Vec3 d =
+              h.position(h.global_vertex(tx, ty, c)) - h.position(h.global_vertex(tx, ty, v));
+          EXPECT_GE(e.radius[size_t(v)] + 1e-9,
+                    std::sqrt(geometry::dot(d, d)) + e.radius[size_t(c)]);
         }
     }
   for (int j = 0; j < n; ++j) {  // east edge of tile (0, 0) = west edge of tile (1, 0)

@@ -161,8 +161,8 @@ ScreenErrorResult measure_screen_error(const std::vector<double>& z_lod, const H
                                        const scenes::CameraSettings& cam,
                                        const scenes::Viewpoint& vp) {
   ScreenErrorResult r;
-  const Mat4 m = scenes::projection_of(cam) * scenes::look_at(vp);
-  auto window = [&](const Vec4& c, double* px, double* py) {
+  const geometry::Mat4 m = scenes::projection_of(cam) * scenes::look_at(vp);
+  auto window = [&](const geometry::Vec4& c, double* px, double* py) {
     *px = (c.x / c.w + 1) * 0.5 * cam.width;
     *py = (c.y / c.w + 1) * 0.5 * cam.height;
   };
@@ -170,7 +170,7 @@ ScreenErrorResult measure_screen_error(const std::vector<double>& z_lod, const H
     for (int i = 0; i < f.nx; ++i) {
       const size_t g = size_t(j) * f.nx + i;
       const double x = i * f.spacing, y = j * f.spacing;
-      const Vec4 a = m * Vec4{x, y, f.z[g], 1};
+      const geometry::Vec4 a = m * geometry::Vec4{x, y, f.z[g], 1};
       if (!std::isfinite(z_lod[g])) {  // a hole: no LOD triangle covers this vertex
         ++r.holes;
         if (r.holes == 1) {  // the first hole is the worst vertex (infinite error)
@@ -181,7 +181,7 @@ ScreenErrorResult measure_screen_error(const std::vector<double>& z_lod, const H
         }
         continue;
       }
-      const Vec4 b = m * Vec4{x, y, z_lod[g], 1};
+      const geometry::Vec4 b = m * geometry::Vec4{x, y, z_lod[g], 1};
       double t0, t1;
       if (!clip_segment(a, b, &t0, &t1)) {
         ++r.excluded;
@@ -189,7 +189,7 @@ ScreenErrorResult measure_screen_error(const std::vector<double>& z_lod, const H
       }
       ++r.checked;
       if (t0 > 0 || t1 < 1) ++r.partially_visible;
-      const Vec4 ca = a + t0 * (b - a), cb = a + t1 * (b - a);
+      const geometry::Vec4 ca = a + t0 * (b - a), cb = a + t1 * (b - a);
       double ax, ay, bx, by;
       window(ca, &ax, &ay);
       window(cb, &bx, &by);
@@ -204,7 +204,7 @@ ScreenErrorResult measure_screen_error(const std::vector<double>& z_lod, const H
   return r;
 }
 
-bool clip_segment(const Vec4& a, const Vec4& b, double* t0, double* t1) {
+bool clip_segment(const geometry::Vec4& a, const geometry::Vec4& b, double* t0, double* t1) {
   // Liang-Barsky: the inside of plane k is d_k(c) >= 0 with d_k linear in the clip coordinates,
   // so along c(t) = a + t (b - a) each plane cuts [0, 1] at one t.
   const double da[6] = {a.w + a.x, a.w - a.x, a.w + a.y, a.w - a.y, a.w + a.z, a.w - a.z};

@@ -71,6 +71,6 @@ ScreenErrorResult measure_screen_error(const std::vector<double>& z_lod, const H
 
 // Liang-Barsky clipping of the clip-space segment a + t (b - a), t in [0, 1], against
 // -w <= x, y, z <= w: the visible part is [*t0, *t1]; false when no part is inside.
-bool clip_segment(const Vec4& a, const Vec4& b, double* t0, double* t1);
+bool clip_segment(const geometry::Vec4& a, const geometry::Vec4& b, double* t0, double* t1);
 
 }  // namespace ra::lod

@@ -69,7 +69,8 @@ TEST(Refinement, FlatTerrainIsTwoTrianglesPerTileAtAnyTau) {
   f.z.assign(size_t(f.nx) * f.ny, 42.0);
   TerrainHierarchy h(f, 33, ErrorPropagation::kNested);
   for (double tau : {1e-6, 1.0, 8.0})
-    for (const Vec3 eye : {Vec3{160, 160, 42.5}, Vec3{-100, 50, 300}}) {  // also inside every ball
+    for (const geometry::Vec3 eye : {geometry::Vec3{160, 160, 42.5},
+                                     geometry::Vec3{-100, 50, 300}}) {  // also inside every ball
       const LodMesh mesh = refine(h, make_metric(LambdaKind::kWindow, test_camera(), tau, eye));
       EXPECT_EQ(mesh.triangle_count(), 8u);
       EXPECT_TRUE(check_conformity(all_triangles(mesh), f.nx, f.ny).conforming);

@@ -55,9 +55,9 @@ ImageDifference image_difference(const std::vector<uint8_t>& a, const std::vecto
 
 struct LodRenderer::Impl {
   scenes::CameraSettings cam;
-  std::unique_ptr<GlContext> context;
-  const GlApi* gl = nullptr;  // context->gl()
-  ColourDepthFramebuffer target;
+  std::unique_ptr<platforms::GlContext> context;
+  const platforms::GlApi* gl = nullptr;  // context->gl()
+  platforms::ColourDepthFramebuffer target;
   std::vector<uint8_t> colour;  // the last frame, read back when image() asks for it
   bool colour_stale = true;
   GLuint vbo = 0, ibo = 0;
@@ -68,15 +68,15 @@ LodRenderer::LodRenderer(const std::string& platform, const scenes::CameraSettin
                          const HeightField& f)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
-  const std::optional<PlatformSpec> spec = find_platform(platform);
+  const std::optional<platforms::PlatformSpec> spec = platforms::find_platform(platform);
   if (!spec || !spec->draws_with_gl())
-    throw UserError("platform '" + platform + "' has no GL driver (allowed: " +
-                    aliased_gl_platform_names() + ")");
+    throw UserError("platform '" + platform +
+                    "' has no GL driver (allowed: " + platforms::aliased_gl_platform_names() + ")");
   m.cam = cam;
-  m.context = create_gl_context(*spec);  // sets Mesa's environment and checks the driver
+  m.context = platforms::create_gl_context(*spec);  // sets Mesa's environment and checks the driver
   m.gl = &m.context->gl();
-  const GlApi* gl = m.gl;
-  m.target = create_colour_depth_framebuffer(*gl, cam.width, cam.height, platform);
+  const platforms::GlApi* gl = m.gl;
+  m.target = platforms::create_colour_depth_framebuffer(*gl, cam.width, cam.height, platform);
   m.colour.assign(size_t(cam.width) * cam.height * 4, 0);
 
   // vertex colours from the full-resolution surface (see the header)
@@ -139,14 +139,14 @@ std::string LodRenderer::gl_version() const {
 }
 
 void LodRenderer::set_viewpoint(const scenes::Viewpoint& vp) {
-  const GlApi* gl = impl_->gl;
+  const platforms::GlApi* gl = impl_->gl;
   gl->MatrixMode(GL_MODELVIEW);
   gl->LoadMatrixd(scenes::look_at(vp).m.data());
 }
 
 void LodRenderer::upload(const LodMesh& mesh) {
   Impl& m = *impl_;
-  const GlApi* gl = m.gl;
+  const platforms::GlApi* gl = m.gl;
   std::vector<uint32_t> indices;
   indices.reserve(mesh.strip_index_count());
   m.draws.clear();
@@ -161,7 +161,7 @@ void LodRenderer::upload(const LodMesh& mesh) {
 
 double LodRenderer::draw() {
   Impl& m = *impl_;
-  const GlApi* gl = m.gl;
+  const platforms::GlApi* gl = m.gl;
   m.colour_stale = true;
   gl->Finish();
   const auto t0 = std::chrono::steady_clock::now();

@@ -279,7 +279,8 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
   if (!options.platforms.empty() &&
       std::find(options.platforms.begin(), options.platforms.end(), s.platform) == options.platforms.end())
     throw UserError(options.experiment + ": the LOD study draws on " + s.platform + ", which --platform leaves out");
-  require_platforms_draw({s.platform}, options.experiment);  // before anything is written
+  platforms::require_platforms_draw({s.platform},
+                                    options.experiment);  // before anything is written
   StudyRunResult result;
   result.dir = options.out_dir.empty() ? "outputs/" + s.name : options.out_dir;
   prepare_output_dir(result.dir);

@@ -35,9 +35,9 @@ double lambda_for(LambdaKind kind, const scenes::CameraSettings& cam) {
   return f;
 }
 
-double ScreenErrorMetric::rho(double eps, double radius, Vec3 p) const {
-  const Vec3 v = p - eye;
-  const double d = std::sqrt(dot(v, v));
+double ScreenErrorMetric::rho(double eps, double radius, geometry::Vec3 p) const {
+  const geometry::Vec3 v = p - eye;
+  const double d = std::sqrt(geometry::dot(v, v));
   constexpr double kInf = std::numeric_limits<double>::infinity();
   if (eps <= 0) return 0;  // the coarser surface is exact there: never worth a vertex (flat land)
   if (kind == LambdaKind::kWindow) {
@@ -50,7 +50,7 @@ double ScreenErrorMetric::rho(double eps, double radius, Vec3 p) const {
 }
 
 ScreenErrorMetric make_metric(LambdaKind kind, const scenes::CameraSettings& cam, double tau,
-                              Vec3 eye) {
+                              geometry::Vec3 eye) {
   ScreenErrorMetric m;
   m.kind = kind;
   m.lambda = lambda_for(kind, cam);

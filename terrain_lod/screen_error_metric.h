@@ -44,15 +44,17 @@ struct ScreenErrorMetric {
   LambdaKind kind = LambdaKind::kWindow;
   double lambda = 1;  // pixels per radian (lambda_for)
   double tau = 1;     // pixels, > 0
-  Vec3 eye;           // metres
+  geometry::Vec3 eye;  // metres
 
   // rho of a vertex (pixels); 0 when eps = 0; +infinity when the eye is inside the ball (or within eps of it for
   // kWindow).
-  double rho(double eps, double radius, Vec3 p) const;
-  bool active(double eps, double radius, Vec3 p) const { return rho(eps, radius, p) > tau; }
+  double rho(double eps, double radius, geometry::Vec3 p) const;
+  bool active(double eps, double radius, geometry::Vec3 p) const {
+    return rho(eps, radius, p) > tau;
+  }
 };
 
 ScreenErrorMetric make_metric(LambdaKind kind, const scenes::CameraSettings& cam, double tau,
-                              Vec3 eye);
+                              geometry::Vec3 eye);
 
 }  // namespace ra::lod

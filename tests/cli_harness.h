@@ -158,14 +158,14 @@ inline void reseal_records_file(const std::string& path) {
 inline std::multiset<std::string> records_without_timing(const std::string& run_dir) {
   std::multiset<std::string> rows;
   for (const auto& e : std::filesystem::directory_iterator(run_dir + "/records")) {
-    if (!ra::is_records_file_name(e.path().filename().string())) continue;
+    if (!ra::metrics::is_records_file_name(e.path().filename().string())) continue;
     std::istringstream in(read_records_text(e.path().string()));
     std::string line;
     std::getline(in, line);  // header
     // The columns render_us and batch_size depend on timing and on how the primitives fell
     // into batches.
-    const std::size_t timing = static_cast<std::size_t>(RecordColumn::kRenderUs);
-    static_assert(static_cast<std::size_t>(RecordColumn::kBatchSize) == timing + 1);
+    const std::size_t timing = static_cast<std::size_t>(metrics::RecordColumn::kRenderUs);
+    static_assert(static_cast<std::size_t>(metrics::RecordColumn::kBatchSize) == timing + 1);
     while (std::getline(in, line)) {
       if (line.empty() || line[0] == '#') continue;  // the shard file's seal
       std::size_t begin = 0;  // of cell `timing`

@@ -16,11 +16,12 @@ namespace {
 
 using Key = std::tuple<std::string, int, uint64_t>;  // kind, view, index
 
-std::map<Key, ra::Record> load(const std::string& run_dir) {
-  std::map<Key, ra::Record> out;
+std::map<Key, ra::metrics::Record> load(const std::string& run_dir) {
+  std::map<Key, ra::metrics::Record> out;
   for (const auto& e : std::filesystem::directory_iterator(run_dir + "/records"))
-    ra::read_records(e.path().string(),
-                     [&](const ra::Record& r) { out[{r.kind, r.view, r.index}] = r; });
+    ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
+      out[{r.kind, r.view, r.index}] = r;
+    });
   return out;
 }
 
@@ -43,7 +44,7 @@ TEST(Completeness, AWildPixelFarFromThePrimitiveIsFoundAndClassified) {
   const std::set<uint64_t> planted = {3, 7, 11, 19, 23, 42};
   int checked_points = 0;
   for (const auto& [key, c] : clean) {
-    const ra::Record& w = wild.at(key);
+    const ra::metrics::Record& w = wild.at(key);
     const bool is_wild = planted.count(std::get<2>(key));
     if (!is_wild) {
       EXPECT_EQ(w.pixels, c.pixels);
@@ -58,15 +59,15 @@ TEST(Completeness, AWildPixelFarFromThePrimitiveIsFoundAndClassified) {
     if (std::get<0>(key) == "point") {
       ++checked_points;
       // A visible point now lights two pixels; an invisible one lights a pixel it should not.
-      if (c.visibility == ra::Visibility::kTrueVisible) {
-        EXPECT_EQ(w.visibility, ra::Visibility::kMultipleVisible);
+      if (c.visibility == ra::metrics::Visibility::kTrueVisible) {
+        EXPECT_EQ(w.visibility, ra::metrics::Visibility::kMultipleVisible);
       }
-      if (c.visibility == ra::Visibility::kTrueInvisible) {
-        EXPECT_EQ(w.visibility, ra::Visibility::kFalseVisible);
+      if (c.visibility == ra::metrics::Visibility::kTrueInvisible) {
+        EXPECT_EQ(w.visibility, ra::metrics::Visibility::kFalseVisible);
       }
     }
-    if (std::get<0>(key) != "point" && c.visibility == ra::Visibility::kTrueInvisible) {
-      EXPECT_EQ(w.visibility, ra::Visibility::kFalseVisible);
+    if (std::get<0>(key) != "point" && c.visibility == ra::metrics::Visibility::kTrueInvisible) {
+      EXPECT_EQ(w.visibility, ra::metrics::Visibility::kFalseVisible);
     }
   }
   EXPECT_EQ(checked_points, 6);

@@ -114,8 +114,8 @@ TEST(EglPlatforms, AnUnknownDeviceIndexIsRefusedWithTheDevicesThereAre) {
 // `platforms` lists the EGL devices in a child (a parent holding NVIDIA's driver cannot fork
 // probes): the child's list is the one this process finds itself.
 TEST(EglPlatforms, TheDevicesListedInAChildAreTheOnesListedHere) {
-  const std::vector<ra::EglDevice> child = ra::list_egl_devices_in_child();
-  const std::vector<ra::EglDevice> here = ra::list_egl_devices();
+  const std::vector<ra::platforms::EglDevice> child = ra::platforms::list_egl_devices_in_child();
+  const std::vector<ra::platforms::EglDevice> here = ra::platforms::list_egl_devices();
   ASSERT_EQ(child.size(), here.size());
   ASSERT_FALSE(here.empty());
   for (std::size_t i = 0; i < here.size(); ++i) {

@@ -141,9 +141,10 @@ const char* kCrashing =
 std::size_t crash_records(const std::string& run_dir) {
   std::size_t n = 0;
   for (const auto& e : fs::directory_iterator(run_dir + "/records"))
-    if (ra::is_records_file_name(e.path().filename().string()))
-      ra::read_records(e.path().string(),
-                       [&](const ra::Record& r) { n += r.status == ra::CaseStatus::kCrash; });
+    if (ra::metrics::is_records_file_name(e.path().filename().string()))
+      ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
+        n += r.status == ra::metrics::CaseStatus::kCrash;
+      });
   return n;
 }
 

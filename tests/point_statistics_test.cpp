@@ -48,10 +48,10 @@ TEST(PointStatistics, LlvmpipeMatchesUniformErrorAndSolidAngle) {
   std::vector<double> pe;
   std::map<double, std::pair<int, int>> visible;  // fov -> (true-visible, total)
   for (const auto& e : std::filesystem::directory_iterator(dir + "/run/records")) {
-    ra::read_records(e.path().string(), [&](const ra::Record& r) {
+    ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
       auto& v = visible[r.fov_deg];
       ++v.second;
-      if (r.visibility == ra::Visibility::kTrueVisible) {
+      if (r.visibility == ra::metrics::Visibility::kTrueVisible) {
         ++v.first;
         pe.push_back(r.pe);
       }

@@ -64,7 +64,7 @@ TEST_F(RecordsCommand, TheWholeRunIsOneStreamOfTheRecordedRows) {
   std::istringstream in(o.output);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, ra::records_header());
+  EXPECT_EQ(line, ra::metrics::records_header());
   std::size_t n = 0;
   std::string first_kinds;
   while (std::getline(in, line)) {

@@ -91,7 +91,7 @@ TEST(RunCommand, AResumedRunEqualsAnUninterruptedOne) {
   // Simulate a run killed mid-way: some shards missing, one half-written temporary file.
   int removed = 0;
   for (const auto& e : fs::directory_iterator(dir + "/resumed/records"))
-    if (removed < 5 && ra::is_records_file_name(e.path().filename().string()))
+    if (removed < 5 && ra::metrics::is_records_file_name(e.path().filename().string()))
       fs::remove(e.path()), ++removed;
   write_text(dir + "/resumed/records/osmesa-llvmpipe.point.v1.0-50.csv.zst.tmp", "platform,vi");
   const Outcome again = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/resumed");
@@ -110,7 +110,7 @@ TEST(RunCommand, AResumeUnderOtherConformanceRulesIsRefused) {
   write_text(dir + "/e.toml", experiment("\"reference\"", 40, 20));
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/r").exit_code, 0);
   nlohmann::json m = nlohmann::json::parse(ra::read_file(dir + "/r/manifest.json"));
-  EXPECT_EQ(m.at("conformance_rules"), ra::kConformanceRulesVersion);
+  EXPECT_EQ(m.at("conformance_rules"), ra::metrics::kConformanceRulesVersion);
   m.erase("conformance_rules");  // as an earlier renderaudit wrote it
   write_text(dir + "/r/manifest.json", m.dump(2));
   for (const auto& e : fs::directory_iterator(dir + "/r/records")) {
@@ -120,7 +120,7 @@ TEST(RunCommand, AResumeUnderOtherConformanceRulesIsRefused) {
   const Outcome again = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/r");
   EXPECT_EQ(again.exit_code, 2) << again.output;
   EXPECT_NE(again.output.find("judged by conformance rules 1, this renderaudit judges by " +
-                              std::to_string(ra::kConformanceRulesVersion)),
+                              std::to_string(ra::metrics::kConformanceRulesVersion)),
             std::string::npos)
       << again.output;
 }
@@ -151,21 +151,22 @@ TEST(RunCommand, CrashingAndHangingPrimitivesAreBisectedAndRecorded) {
   EXPECT_NE(o.output.find("primitive 13 of faulty.point.v1.10-20 recorded as timeout: timed out"),
             std::string::npos);
 
-  std::map<uint64_t, ra::Record> clean, faulty;
+  std::map<uint64_t, ra::metrics::Record> clean, faulty;
   for (const std::string sub : {"clean", "run"})
     for (const auto& e : fs::directory_iterator(dir + "/" + sub + "/records"))
-      ra::read_records(e.path().string(), [&](const ra::Record& r) {
+      ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
         (sub == "clean" ? clean : faulty)[r.index] = r;
       });
   ASSERT_EQ(faulty.size(), 20u);
   for (const auto& [i, r] : faulty) {
     if (i == 5 || i == 13) {
-      EXPECT_EQ(r.status, i == 5 ? ra::CaseStatus::kCrash : ra::CaseStatus::kTimeout);
+      EXPECT_EQ(r.status,
+                i == 5 ? ra::metrics::CaseStatus::kCrash : ra::metrics::CaseStatus::kTimeout);
       EXPECT_EQ(r.platform, "faulty");
       EXPECT_EQ(r.view, 1);
       continue;
     }
-    EXPECT_EQ(r.status, ra::CaseStatus::kOk) << i;
+    EXPECT_EQ(r.status, ra::metrics::CaseStatus::kOk) << i;
     EXPECT_EQ(r.pixel_hash, clean.at(i).pixel_hash) << i;
     EXPECT_EQ(r.visibility, clean.at(i).visibility) << i;
   }
@@ -203,7 +204,9 @@ TEST(RunCommand, ServedShardsEqualOneProcessPerShardAndACrashStaysWithItsShard) 
   EXPECT_EQ(invocation("per-shard").at("worker_processes"), 4 * 8);  // views x shards
   EXPECT_EQ(invocation("per-shard").at("workers"), "per-shard");
   for (const auto& e : fs::directory_iterator(dir + "/served/records"))
-    EXPECT_TRUE(fs::exists(dir + "/served/logs/" + ra::records_file_stem(e.path().filename().string()) + ".log")) << e.path();
+    EXPECT_TRUE(fs::exists(dir + "/served/logs/" +
+                           ra::metrics::records_file_stem(e.path().filename().string()) + ".log"))
+        << e.path();
 
   const std::string faulty =
       "seed = 3\nplatforms = [\"faulty\"]\n[views]\norientations = 1\nfov_deg = [150]\n"
@@ -329,7 +332,7 @@ TEST(RunCommand, AnotherShardSizeIntoTheSameDirectoryIsRefused) {
   EXPECT_TRUE(records_without_timing(dir + "/run") == before);  // nothing rendered twice
   std::size_t files = 0;
   for (const auto& e : fs::directory_iterator(dir + "/run/records"))
-    files += ra::is_records_file_name(e.path().filename().string());
+    files += ra::metrics::is_records_file_name(e.path().filename().string());
   EXPECT_EQ(files, 4u * 3);  // views x shards of 10
   EXPECT_EQ(run_renderaudit("analyze " + dir + "/run").exit_code, 0);
 }
@@ -351,7 +354,7 @@ TEST(RunCommand, ExtremeNearFarRatiosJudgePointsAsAModerateOneDoes) {
   auto judged = [&](const std::string& name) {
     std::map<std::tuple<std::string, int, uint64_t>, Judgement> out;
     for (const auto& e : fs::directory_iterator(dir + "/" + name + "/records"))
-      ra::read_records(e.path().string(), [&](const ra::Record& r) {
+      ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
         const double pe = std::isnan(r.pe) ? -1.0 : r.pe;  // empty when not true-visible
         out[{r.platform, r.view, r.index}] = {int(r.visibility), r.pixels, pe, r.ref_diff,
                                               r.pixel_hash, int(r.conformance)};
@@ -364,7 +367,8 @@ TEST(RunCommand, ExtremeNearFarRatiosJudgePointsAsAModerateOneDoes) {
   const auto expected = judged("moderate");
   ASSERT_EQ(expected.size(), 2u * 2 * 300);
   std::size_t visible = 0;
-  for (const auto& [key, j] : expected) visible += std::get<0>(j) == int(ra::Visibility::kTrueVisible);
+  for (const auto& [key, j] : expected)
+    visible += std::get<0>(j) == int(ra::metrics::Visibility::kTrueVisible);
   EXPECT_GT(visible, 100u);  // the comparison means something
   for (const std::string near : {"1e-15", "1e-17", "1e-30", "1e-300"}) {
     write_text(dir + "/tiny.toml", toml(near));

@@ -202,7 +202,7 @@ std::string as_unsealed_version_2(const std::string& sealed) {
   for (std::string line; std::getline(lines, line); header = false) {
     if (line.rfind("# complete", 0) == 0) continue;
     if (header) {
-      out += ra::records_header_v2() + "\n";
+      out += ra::metrics::records_header_v2() + "\n";
       continue;
     }
     for (int cells = 0; cells < 3; ++cells) line.erase(line.rfind(','));
@@ -219,7 +219,8 @@ TEST(RunIntegrity, AnUnsealedRecordOutsideItsShardIsReported) {
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2").exit_code, 0);
   for (const auto& e : fs::directory_iterator(dir + "/run/records")) {  // as an older version wrote
     const std::string path = e.path().string();
-    write_text(ra::records_file_stem(path) + ".csv", as_unsealed_version_2(read_records_text(path)));
+    write_text(ra::metrics::records_file_stem(path) + ".csv",
+               as_unsealed_version_2(read_records_text(path)));
     fs::remove(path);
   }
   EXPECT_EQ(run_renderaudit("analyze " + dir + "/run").exit_code, 0);  // old runs stay readable

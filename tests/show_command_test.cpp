@@ -94,12 +94,12 @@ const std::string& reference_run() {
 }
 
 // The largest true-visible triangle of the run, and its record.
-ra::Record largest_triangle(const std::string& run) {
-  ra::Record best;
+ra::metrics::Record largest_triangle(const std::string& run) {
+  ra::metrics::Record best;
   for (const auto& e : fs::directory_iterator(run + "/records"))
-    if (ra::is_records_file_name(e.path().filename().string()))
-      ra::read_records(e.path().string(), [&](const ra::Record& r) {
-        if (r.kind == "triangle" && r.visibility == ra::Visibility::kTrueVisible &&
+    if (ra::metrics::is_records_file_name(e.path().filename().string()))
+      ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
+        if (r.kind == "triangle" && r.visibility == ra::metrics::Visibility::kTrueVisible &&
             r.pixels > best.pixels)
           best = r;
       });
@@ -108,7 +108,7 @@ ra::Record largest_triangle(const std::string& run) {
 
 TEST(ShowCommand, ATriangleOnTheReferenceIsGreyWithARedOutline) {
   const std::string run = reference_run();
-  const ra::Record rec = largest_triangle(run);
+  const ra::metrics::Record rec = largest_triangle(run);
   ASSERT_GT(rec.pixels, 10) << "the experiment should have a triangle with some pixels";
   const std::string png = fs::path(run).parent_path().string() + "/shown/t.png";
   const Outcome o = run_renderaudit("show " + run +
@@ -153,13 +153,13 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
              experiment("\"faulty\"", "[faults]\nshift_fraction = 1.0\n"));
   // A triangle of some size away from the window's right edge, so no shifted pixel falls off.
   const ra::Experiment exp = ra::load_experiment(dir + "/run/experiment.toml");
-  ra::PixelSet ref;
+  ra::geometry::PixelSet ref;
   uint64_t index = 0;
   for (; index < 20; ++index) {
-    ref = ra::rasterize_reference(exp.views[0],
-                                  ra::make_primitive(exp.seed, ra::Kind::kTriangle, index));
+    ref = ra::geometry::rasterize_reference(
+        exp.views[0], ra::geometry::make_primitive(exp.seed, ra::geometry::Kind::kTriangle, index));
     bool inside = ref.size() >= 20;
-    for (const ra::PixelRun& r : ref.runs()) inside = inside && r.x_end < 64;
+    for (const ra::geometry::PixelRun& r : ref.runs()) inside = inside && r.x_end < 64;
     if (inside) break;
   }
   ASSERT_LT(index, 20u) << "no suitable triangle under this seed";

@@ -38,9 +38,9 @@ struct SceneRenderer::Impl {
   RendererInfo info;
   scenes::CameraSettings cam;
   bool gpu = false;
-  std::unique_ptr<GlContext> context;
-  const GlApi* gl = nullptr;  // context->gl()
-  ColourDepthFramebuffer target;
+  std::unique_ptr<platforms::GlContext> context;
+  const platforms::GlApi* gl = nullptr;  // context->gl()
+  platforms::ColourDepthFramebuffer target;
   GLuint occlusion_query = 0, timer_query = 0;
   std::vector<ObjectBuffers> objects;
   std::vector<GLuint> textures;
@@ -89,16 +89,16 @@ SceneRenderer::SceneRenderer(const std::string& platform, const scenes::CameraSe
                              bool gpu_timer)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
-  const std::optional<PlatformSpec> spec = find_platform(platform);
+  const std::optional<platforms::PlatformSpec> spec = platforms::find_platform(platform);
   if (!spec || !spec->draws_with_gl())
     throw UserError("platform '" + platform + "' has no GL driver to time (allowed: " +
-                    aliased_gl_platform_names() + ")");
+                    platforms::aliased_gl_platform_names() + ")");
   m.cam = cam;
   m.info.platform = platform;
   m.info.gallium_driver = spec->mesa_driver;
-  m.context = create_gl_context(*spec);  // sets Mesa's environment and checks the driver
+  m.context = platforms::create_gl_context(*spec);  // sets Mesa's environment and checks the driver
   m.gl = &m.context->gl();
-  const GlApi* gl = m.gl;
+  const platforms::GlApi* gl = m.gl;
   m.info.backend = m.context->backend();
   m.info.lp_num_threads = std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "";
   m.info.renderer = reinterpret_cast<const char*>(gl->GetString(GL_RENDERER));
@@ -114,7 +114,7 @@ SceneRenderer::SceneRenderer(const std::string& platform, const scenes::CameraSe
   m.info.timer_query = m.info.timer_query_listed && m.info.timer_query_bits > 0;
   m.gpu = gpu_timer && m.info.timer_query;
 
-  m.target = create_colour_depth_framebuffer(*gl, cam.width, cam.height, platform);
+  m.target = platforms::create_colour_depth_framebuffer(*gl, cam.width, cam.height, platform);
   GLint depth_bits = 0;
   gl->GetIntegerv(GL_DEPTH_BITS, &depth_bits);
   m.info.depth_bits = depth_bits;
@@ -154,7 +154,7 @@ bool SceneRenderer::measuring_gpu() const { return impl_->gpu; }
 std::size_t SceneRenderer::object_count() const { return impl_->objects.size(); }
 
 void SceneRenderer::upload(const scenes::Scene& scene) {
-  const GlApi* gl = impl_->gl;
+  const platforms::GlApi* gl = impl_->gl;
   Impl& m = *impl_;
   m.release_scene();
   m.textures.resize(scene.textures.size());
@@ -217,14 +217,14 @@ void SceneRenderer::upload(const scenes::Scene& scene) {
 }
 
 void SceneRenderer::set_viewpoint(const scenes::Viewpoint& vp) {
-  const GlApi* gl = impl_->gl;
+  const platforms::GlApi* gl = impl_->gl;
   gl->MatrixMode(GL_MODELVIEW);
   gl->LoadMatrixd(scenes::look_at(vp).m.data());
 }
 
 DrawTime SceneRenderer::time_draw(const std::vector<int>& objects, bool with_clear,
                                   std::vector<int64_t>* state_changes) {
-  const GlApi* gl = impl_->gl;
+  const platforms::GlApi* gl = impl_->gl;
   Impl& m = *impl_;
   if (!with_clear) gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   m.reset_texture_state();
@@ -252,7 +252,7 @@ DrawTime SceneRenderer::time_draw(const std::vector<int>& objects, bool with_cle
 }
 
 int64_t SceneRenderer::pixels_alone(int object) {
-  const GlApi* gl = impl_->gl;
+  const platforms::GlApi* gl = impl_->gl;
   Impl& m = *impl_;
   // Depth test off: every fragment the object generates passes (no clear needed).
   gl->Disable(GL_DEPTH_TEST);

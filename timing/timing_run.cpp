@@ -98,7 +98,7 @@ StudyRunResult run_timing_study(const StudyRunOptions& options, bool figures) {
     platforms = options.platforms;
   }
   const std::string dir = options.out_dir.empty() ? "outputs/" + r.settings.name : options.out_dir;
-  require_platforms_draw(platforms, options.experiment);  // before anything is written
+  platforms::require_platforms_draw(platforms, options.experiment);  // before anything is written
   const Progress progress = options.progress ? Progress([](const std::string& line) {
     std::fprintf(stderr, "timing: %s\n", line.c_str());
   })

@@ -100,13 +100,13 @@ std::set<int> measure_camera_path(SceneRenderer& r, const TimingSettings& settin
                                   const std::vector<ObjectStatic>& stat, Reporter& rep,
                                   const std::string& tag, SceneMeasurements& sm) {
   const scenes::CameraSettings& cam = settings.camera;
-  const Mat4 projection = scenes::projection_of(cam);
+  const geometry::Mat4 projection = scenes::projection_of(cam);
   std::set<int> seen;
   int measured_frames = 0;
   const int total_frames = (int(path.size()) + work.frame_stride - 1) / work.frame_stride;
   for (std::size_t f = 0; f < path.size(); f += std::size_t(work.frame_stride)) {
     const scenes::Viewpoint& vp = path[f];
-    const Mat4 view = scenes::look_at(vp);
+    const geometry::Mat4 view = scenes::look_at(vp);
     const scenes::Frustum fr = scenes::frustum_of(projection * view);
     FrameSample fs;
     fs.frame = int(f);
@@ -186,7 +186,7 @@ PlatformMeasurements measure_platform(const TimingSettings& settings, const std:
                (r.info().timer_query ? "supported" : "not supported"),
            true);
   const scenes::CameraSettings& cam = settings.camera;
-  const Mat4 projection = scenes::projection_of(cam);
+  const geometry::Mat4 projection = scenes::projection_of(cam);
   const double deg = M_PI / 180.0;
   const double alpha_lo = settings.alpha_min_deg * deg, alpha_hi = scenes::max_clipped_alpha(cam);
 
