@@ -3,8 +3,9 @@
 // snapped, within-spec and violation with Clopper-Pearson 95% intervals, and every violation,
 // worst first, with the `renderaudit show` command that draws it. The same pass also tallies what
 // plot and report show beside the verdicts: agreement with the reference rasterizer (ref_diff),
-// each view group's camera label and the records whose status is not `ok`. Read from the records
-// files directly (only these columns), so analyze pays one pass over them.
+// each view group's camera label and the records whose status is not `ok`. Tallied row by row
+// (ConformanceTally) in the pass that loads the records for the statistics (run_records.h), so
+// analyze reads every file once.
 #pragma once
 
 #include <cstddef>
