@@ -34,7 +34,7 @@ points = 4000
 TEST(PaperConventions, PointsWithinHalfAPixelOutsideTheWindowBecomeFalseInvisible) {
   testing::ScopedTempDir dir{"point_margin"};
   std::ofstream(dir.path / "experiment.toml") << kExperiment;
-  const Experiment e = load_experiment((dir.path / "experiment.toml").string());
+  const runner::Experiment e = runner::load_experiment((dir.path / "experiment.toml").string());
   std::vector<metrics::Record> rs;
   int in_window = 0, in_band = 0;
   for (std::uint64_t i = 0; i < 4000; ++i) {

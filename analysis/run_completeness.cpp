@@ -24,14 +24,15 @@ namespace fs = std::filesystem;
 namespace ra::analysis {
 namespace {
 
-std::string range(const Shard& s) {
+std::string range(const runner::Shard& s) {
   return "primitives " + std::to_string(s.begin) + "-" + std::to_string(s.end - 1);
 }
 
 // A records file without a seal. The seal came during records schema version 2, so every version 3
 // file was written sealed: one of version 3 without its seal is damaged (cut short, or edited), as
 // `run` judges it. A version 2 file may predate the seal: it is checked row by row instead. Empty when it holds each of the shard's primitives exactly once and nothing else.
-std::string check_unsealed(const std::string& path, const Shard& s, const std::string& no_seal) {
+std::string check_unsealed(const std::string& path, const runner::Shard& s,
+                           const std::string& no_seal) {
   const int version = metrics::records_schema_version(path);
   // A compressed file cut inside its first frame shows no header at all; compression came after
   // the seal, so such a file was written sealed and is simply cut short.
@@ -107,16 +108,15 @@ std::string RunCompleteness::remedy(const std::string& command) const {
          command + " it as it is.";
 }
 
-RunCompleteness check_run_completeness(const std::string& run_dir,
-                                       const std::map<std::string, ShardSeal>* seals) {
+RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSeals* seals) {
   RunCompleteness c;
   const std::string toml = run_dir + "/experiment.toml";
   if (!fs::exists(toml)) return c;
   c.has_plan = true;
-  const Experiment exp = load_experiment(toml);
+  const runner::Experiment exp = runner::load_experiment(toml);
   c.writer = DirLock::current_holder(run_dir);
   try {
-    const RunManifest m = read_manifest_file(run_dir + "/manifest.json");
+    const runner::RunManifest m = runner::read_manifest_file(run_dir + "/manifest.json");
     c.manifest_status = m.status;
     if (m.slice) c.slice_index = m.slice->index, c.slice_count = m.slice->count;
     if (m.platforms_run) c.platforms_run = *m.platforms_run;
@@ -128,8 +128,9 @@ RunCompleteness check_run_completeness(const std::string& run_dir,
                          "(run the same command again to finish it)");
 
   std::set<std::string> planned_files;
-  std::vector<Shard> plan;  // the platforms run (all without --platform), as `status` plans it
-  for (Shard& s : plan_shards(exp)) {
+  std::vector<runner::Shard>
+      plan;  // the platforms run (all without --platform), as `status` plans it
+  for (runner::Shard& s : plan_shards(exp)) {
     planned_files.insert(fs::path(s.records_path(run_dir)).filename().string());  // any platform's
     if (c.platforms_run.empty() || std::find(c.platforms_run.begin(), c.platforms_run.end(),
                                              s.platform) != c.platforms_run.end())
@@ -139,29 +140,30 @@ RunCompleteness check_run_completeness(const std::string& run_dir,
   }
   std::set<std::string> own;  // a slice's own shards (ids); empty for a whole run
   if (c.is_slice())
-    for (const Shard& s : shards_of_slice(plan, exp, Slice{c.slice_index, c.slice_count}))
+    for (const runner::Shard& s :
+         shards_of_slice(plan, exp, runner::Slice{c.slice_index, c.slice_count}))
       own.insert(s.id());
   // Each shard file is read whole (its seal's hash; decompressed when compressed): the files are
   // checked on every core, then counted in plan order.
   std::vector<std::string> verdicts(plan.size());
   std::vector<char> present(plan.size(), 0);
   run_in_parallel(plan.size(), 0, [&](std::size_t i) {
-    const Shard& s = plan[i];
+    const runner::Shard& s = plan[i];
     const std::string path = s.records_path(run_dir);
     if (!fs::exists(path)) return;
     present[i] = 1;
-    const ShardSeal* known = nullptr;  // read already by the caller?
+    const runner::ShardSeal* known = nullptr;  // read already by the caller?
     if (seals != nullptr) {
       const auto it = seals->find(fs::path(path).filename().string());
       if (it != seals->end()) known = &it->second;
     }
-    std::string why = known ? seal_verdict(*known, s.size(), has_zstd_extension(path))
-                            : check_shard_file(path, s.size());
+    std::string why = known ? runner::seal_verdict(*known, s.size(), has_zstd_extension(path))
+                            : runner::check_shard_file(path, s.size());
     if (why.rfind("no trailer", 0) == 0) why = check_unsealed(path, s, why);  // an older run?
     verdicts[i] = why;
   });
   for (std::size_t i = 0; i < plan.size(); ++i) {
-    const Shard& s = plan[i];
+    const runner::Shard& s = plan[i];
     ++c.shards_planned;
     c.primitives_planned += s.size();
     if (c.is_slice() && !own.count(s.id()) && !present[i]) {

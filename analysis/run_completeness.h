@@ -52,8 +52,9 @@ struct RunCompleteness {
 // blocks: memory does not depend on the run's size). Throws ra::UserError when the experiment file
 // is unreadable. `seals`: the seals of records files already read (by file name, as
 // load_run_records reads them), which are then judged without reading those files again.
+using ShardSeals = std::map<std::string, runner::ShardSeal>;  // by file name
 RunCompleteness check_run_completeness(const std::string& run_dir,
-                                       const std::map<std::string, ShardSeal>* seals = nullptr);
+                                       const ShardSeals* seals = nullptr);
 
 // What analyze and report throw when the run is incomplete and going on was not allowed.
 class IncompleteRunError : public UserError {

@@ -274,7 +274,7 @@ struct FileChunk {
   std::uint64_t records = 0;
   std::uint64_t points_within_margin = 0;  // LoadOptions::point_margin_px reclassifications
   ConformanceSummary conformance;
-  std::optional<ShardSeal> seal;  // LoadOptions::read_seals
+  std::optional<runner::ShardSeal> seal;  // LoadOptions::read_seals
 };
 
 // Difference between two views' parameters, "" when equal.
@@ -313,7 +313,7 @@ class FileParser {
   FileChunk parse() {
     const auto row = [this](const metrics::RecordRow& r) { record(r); };
     if (options_.read_seals) {
-      ShardSealReader seal;
+      runner::ShardSealReader seal;
       metrics::for_each_record_row(path_, row,
                                    [&seal](std::string_view text) { seal.add(text); });
       chunk_.seal = seal.finish();
@@ -408,7 +408,7 @@ class FileParser {
     if (options_.point_margin_px <= 0 || kind != PrimitiveKind::kPoint ||
         visibility != metrics::Visibility::kTrueInvisible)
       return visibility;
-    const Experiment& e = *options_.experiment;
+    const runner::Experiment& e = *options_.experiment;
     if (view > int(e.views.size()))
       throw UserError(path_ + ": view " + std::to_string(view) + " is not in the run's experiment (" +
                       std::to_string(e.views.size()) + " views)");

@@ -147,7 +147,7 @@ struct RunRecords {
   // same pass over the files; NonOkCase::file relative to run_dir.
   ConformanceSummary conformance;
   // Each file's seal by file name, when LoadOptions::read_seals (check_run_completeness takes it).
-  std::map<std::string, ShardSeal> seals;
+  std::map<std::string, runner::ShardSeal> seals;
 
   // The kinds that have at least one record, in kAllKinds order.
   std::vector<PrimitiveKind> kinds() const;
@@ -166,7 +166,7 @@ struct LoadOptions {
   // counted false-invisible instead. 0: the records' own classes. Needs `experiment` (the run's
   // views and seed, from which each point is generated again by its index).
   double point_margin_px = 0;
-  const Experiment* experiment = nullptr;
+  const runner::Experiment* experiment = nullptr;
   // Also read each file's seal (runner/shard_file.h) in the same pass, into RunRecords::seals, so
   // that the completeness check need not read the files again.
   bool read_seals = false;

@@ -54,13 +54,13 @@ std::string cost_paragraph(const std::string& run_dir, const Cells& cells) {
   double drawing_us = 0;
   for (const auto& [key, c] : cells)
     for (double us : c.render_us) drawing_us += us;
-  RunManifest m;
+  runner::RunManifest m;
   try {
-    m = read_manifest_file(run_dir + "/manifest.json");
+    m = runner::read_manifest_file(run_dir + "/manifest.json");
   } catch (const std::exception&) {
     return "";
   }
-  const ManifestInvocation* inv = m.last_invocation();
+  const runner::ManifestInvocation* inv = m.last_invocation();
   std::ostringstream out;
   out << "\nDrawing (the sum of render_us): " << fmt(drawing_us / 1e6, "%.1f") << " s";
   if (inv && inv->elapsed_s && m.shards && inv->shards_to_run == m.shards->total &&

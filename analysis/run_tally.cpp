@@ -112,7 +112,7 @@ json tally_json(const RunTally& t) {
                      {"true_visible", r.true_visible},
                      {"median_us_true_visible",
                       r.median_us_true_visible ? json(*r.median_us_true_visible) : json()}});
-  json doc = document_header("tally", kTallySchemaVersion, false);
+  json doc = runner::document_header("tally", kTallySchemaVersion, false);
   doc.update({{"records", t.records},
               {"files", t.files},
               {"groups", groups},

@@ -10,7 +10,7 @@
 namespace ra::app {
 namespace {
 
-void print_build(const BuildSummary& b, bool files) {
+void print_build(const runner::BuildSummary& b, bool files) {
   std::printf("%s  (Debian %s, suite %s, fetched %s)\n  folder: %s\n", b.name.c_str(),
               b.debian_version.c_str(), b.suite.c_str(), b.fetched_utc.c_str(), b.dir.c_str());
   std::printf("  OSMesa GL_VERSION: %s\n  EGL    GL_VERSION: %s\n",
@@ -29,7 +29,7 @@ void register_builds_command(CLI::App& app, int& exit_code) {
       "builds", "Driver builds other than the installed Mesa: fetch a Debian suite's Mesa into the "
                 "build cache, list the cache");
   cmd->require_subcommand(1);
-  static FetchOptions fetch;
+  static runner::FetchOptions fetch;
   auto* f = cmd->add_subcommand(
       "fetch",
       "Fetch the Mesa packages of a Debian suite (e.g. bookworm-backports) with apt-get download "
@@ -41,7 +41,7 @@ void register_builds_command(CLI::App& app, int& exit_code) {
                 "build cache folder (default $RENDERAUDIT_BUILD_CACHE, else "
                 "~/.cache/renderaudit/builds)");
   f->callback([&exit_code] {
-    const BuildSummary b = fetch_build(fetch);
+    const runner::BuildSummary b = runner::fetch_build(fetch);
     print_build(b, true);
     exit_code = kExitOk;
   });
@@ -50,10 +50,10 @@ void register_builds_command(CLI::App& app, int& exit_code) {
   l->add_option("--cache", list_cache, "build cache folder");
   l->callback([&exit_code] {
     const std::string cache = list_cache.empty() ? platforms::build_cache_dir() : list_cache;
-    const std::vector<BuildSummary> builds = list_builds(cache);
+    const std::vector<runner::BuildSummary> builds = runner::list_builds(cache);
     if (builds.empty())
       std::printf("no builds in %s (renderaudit builds fetch SUITE)\n", cache.c_str());
-    for (const BuildSummary& b : builds) print_build(b, false);
+    for (const runner::BuildSummary& b : builds) print_build(b, false);
     exit_code = kExitOk;
   });
 }

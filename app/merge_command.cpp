@@ -16,14 +16,14 @@ void register_merge_command(CLI::App& app, int& exit_code) {
       "input that holds it whole, one manifest recording every input's slice, host, times and\n"
       "driver strings. Exit 0 when every shard is there, 1 when some are missing (listed) or the\n"
       "records hold primitives that crashed or hung.");
-  static MergeOptions opt;
+  static runner::MergeOptions opt;
   cmd->add_option("inputs", opt.inputs, "run directories (slices)")->required()->check(
       CLI::ExistingDirectory);
   cmd->add_option("--out,-o", opt.out_dir, "the merged run directory")->required();
   cmd->add_flag("--allow-driver-mismatch", opt.allow_driver_mismatch,
                 "merge inputs whose platforms report other GL_RENDERER / GL_VERSION strings");
   cmd->callback([&exit_code] {
-    const MergeResult r = merge_runs(opt);
+    const runner::MergeResult r = runner::merge_runs(opt);
     std::printf("%s: %zu of %zu shards (%zu copied now, %zu found in several inputs and taken "
                 "once)\n",
                 opt.out_dir.c_str(), r.shards_present, r.shards_total, r.shards_copied,

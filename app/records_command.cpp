@@ -59,7 +59,7 @@ void stream_records(const RecordsOptions& o) {
   if (!std::filesystem::exists(toml))
     throw UserError(o.dir + ": no experiment.toml (expected a run directory written by "
                     "`renderaudit run`)");
-  const Experiment exp = load_experiment(toml);
+  const runner::Experiment exp = runner::load_experiment(toml);
   const std::optional<metrics::RecordsFormat> format = metrics::parse_records_format(o.format);
   if (!format) throw UserError("--format " + o.format + ": unknown (allowed: csv, csv.zst)");
   if (*format == metrics::RecordsFormat::kCsvZst && ::isatty(STDOUT_FILENO))
@@ -104,7 +104,7 @@ void stream_records(const RecordsOptions& o) {
     text += (i ? "," : "") + std::string(metrics::record_column_name(columns[i]));
   text += '\n';
   std::size_t missing = 0;
-  for (const Shard& s : plan_shards(exp)) {
+  for (const runner::Shard& s : runner::plan_shards(exp)) {
     if (!wanted(o.platforms, s.platform) ||
         !wanted(o.kinds, std::string(geometry::kind_name(s.kind))) || !wanted(o.views, s.view))
       continue;

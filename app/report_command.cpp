@@ -49,7 +49,7 @@ void register_report_command(CLI::App& app, int& exit_code) {
                 "report a run with missing or damaged shards, saying so on its first page");
   cmd->callback([&exit_code] {
     try {
-      if (read_study_info(options.run_dir))
+      if (runner::read_study_info(options.run_dir))
         prepare_study_report(options.run_dir, !no_run);
       else if (!no_run)
         prepare_run_report(options.run_dir, options.allow_incomplete);

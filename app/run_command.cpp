@@ -19,7 +19,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
       "A file with a [timing], [lod] or [regulation] table runs that study instead (into DIR,\n"
       "with its study.json; --jobs, --timeout, --expect-renderer and --slice do not apply to\n"
       "studies).");
-  static RunOptions opt;
+  static runner::RunOptions opt;
   static bool quiet = false;
   cmd->add_option("experiment", opt.experiment_path, "experiment file (TOML)")
       ->required()
@@ -50,7 +50,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
                 "shards one after another, paying for its start and GL context once)");
   cmd->add_flag("--quiet,-q", quiet, "no progress line");
   static bool slurm = false;
-  static SlurmOptions slurm_opt;
+  static runner::SlurmOptions slurm_opt;
   auto* on_slurm = cmd->add_flag(
       "--slurm", slurm,
       "submit the run to Slurm instead: a job array of --slices tasks (each `run --slice K/N` "
@@ -76,22 +76,22 @@ void register_run_command(CLI::App& app, int& exit_code) {
   cmd->callback([&exit_code] {
     opt.progress = !quiet;
     opt.serve_shards = !worker_per_shard;
-    opt.shard_order = shard_order == "plan" ? RunOptions::ShardOrder::kPlan
-                                            : RunOptions::ShardOrder::kLargestCostFirst;
-    if (!slice.empty()) opt.slice = parse_slice(slice);
-    StudyRunOptions study;
+    opt.shard_order = shard_order == "plan" ? runner::RunOptions::ShardOrder::kPlan
+                                            : runner::RunOptions::ShardOrder::kLargestCostFirst;
+    if (!slice.empty()) opt.slice = runner::parse_slice(slice);
+    runner::StudyRunOptions study;
     study.experiment = opt.experiment_path;
     study.out_dir = opt.out_dir;
     study.platforms = opt.only_platforms;
     study.progress = !quiet;
     if (slurm) {
-      if (experiment_study_kind(opt.experiment_path) != StudyKind::kAudit)
+      if (runner::experiment_study_kind(opt.experiment_path) != runner::StudyKind::kAudit)
         throw UserError(opt.experiment_path + ": --slurm runs sharded experiments; a study "
                         "([timing], [lod], [regulation]) runs on one machine");
       if (opt.slice) throw UserError("--slurm cuts the run into slices itself; drop --slice");
       const char* sbatch = std::getenv("RENDERAUDIT_SBATCH");  // tests substitute a fake
       if (sbatch && *sbatch) slurm_opt.sbatch = sbatch;
-      const SlurmSubmission sub = submit_slurm_run(opt, slurm_opt);
+      const runner::SlurmSubmission sub = runner::submit_slurm_run(opt, slurm_opt);
       if (slurm_opt.dry_run) {
         std::printf("# %s/slurm/array.sbatch, submitted with: sbatch --parsable array.sbatch\n%s\n",
                     sub.run_dir.c_str(), sub.array_script.c_str());
@@ -107,7 +107,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
       return;
     }
     if (run_study_if_declared(study, exit_code)) return;
-    const RunResult r = run_experiment(opt);
+    const runner::RunResult r = runner::run_experiment(opt);
     std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
                 r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
                 r.shards_total - r.shards_complete);

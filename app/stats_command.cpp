@@ -288,7 +288,7 @@ std::string box_cox_text(const stats::BoxCoxResult& b) {
 void print_json(const json& j) { std::cout << j.dump(2) << "\n"; }
 
 json header_json(const char* command) {
-  json j = document_header("stats", kSchemaVersion, false);
+  json j = runner::document_header("stats", kSchemaVersion, false);
   j["command"] = command;
   return j;
 }

@@ -31,13 +31,15 @@ void register_status_command(CLI::App& app, int& exit_code) {
   cmd->callback([&exit_code] {
     const char* env = std::getenv("RENDERAUDIT_SQUEUE");  // tests substitute a fake
     const std::string squeue = env && *env ? env : "squeue";
-    RunStatus s = read_run_status(dir, squeue);
+    runner::RunStatus s = runner::read_run_status(dir, squeue);
     while (wait && (s.state() == "running" || s.state() == "queued")) {
       std::this_thread::sleep_for(std::chrono::duration<double>(every_s));
-      s = read_run_status(dir, squeue);
+      s = runner::read_run_status(dir, squeue);
     }
-    if (json) std::printf("%s\n", to_json(s).dump(1).c_str());
-    else std::printf("%s", format_run_status(s).c_str());
+    if (json)
+      std::printf("%s\n", runner::to_json(s).dump(1).c_str());
+    else
+      std::printf("%s", runner::format_run_status(s).c_str());
     const std::string state = s.state();
     exit_code = state == "complete"                      ? kExitOk
                 : state == "running" || state == "queued" ? kExitIncomplete

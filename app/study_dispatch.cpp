@@ -14,36 +14,48 @@
 
 namespace ra::app {
 
-bool run_study_if_declared(const StudyRunOptions& options, int& exit_code) {
-  const StudyKind kind = experiment_study_kind(options.experiment);
-  StudyRunResult r;
+bool run_study_if_declared(const runner::StudyRunOptions& options, int& exit_code) {
+  const runner::StudyKind kind = runner::experiment_study_kind(options.experiment);
+  runner::StudyRunResult r;
   switch (kind) {
-    case StudyKind::kAudit: return false;
-    case StudyKind::kTiming: r = timing::run_timing_study(options); break;
-    case StudyKind::kLod: r = lod::run_lod_study(options); break;
-    case StudyKind::kRegulation: r = regulation::run_regulation_study(options); break;
+    case runner::StudyKind::kAudit:
+      return false;
+    case runner::StudyKind::kTiming:
+      r = timing::run_timing_study(options);
+      break;
+    case runner::StudyKind::kLod:
+      r = lod::run_lod_study(options);
+      break;
+    case runner::StudyKind::kRegulation:
+      r = regulation::run_regulation_study(options);
+      break;
   }
   std::printf("%s", r.summary.c_str());
   if (!r.summary.empty() && r.summary.back() != '\n') std::printf("\n");
-  if (kind != StudyKind::kTiming)
+  if (kind != runner::StudyKind::kTiming)
     std::printf("next: renderaudit report %s (runs analyze and plot first)\n", r.dir.c_str());
   exit_code = r.findings ? kExitFindings : kExitOk;
   return true;
 }
 
 bool analyze_study_if_present(const std::string& dir, int& exit_code) {
-  const std::optional<StudyInfo> info = read_study_info(dir);
-  if (!info || info->kind == StudyKind::kAudit) return false;
+  const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
+  if (!info || info->kind == runner::StudyKind::kAudit) return false;
   switch (info->kind) {
-    case StudyKind::kTiming:
+    case runner::StudyKind::kTiming:
       std::printf("%s: a timing study is analysed as it runs (%s/timing.md); nothing to do\n",
                   dir.c_str(), dir.c_str());
       break;
-    case StudyKind::kLod: lod::analyze_lod_study(dir); break;
-    case StudyKind::kRegulation: regulation::analyze_regulation_study(dir); break;
-    case StudyKind::kAudit: break;
+    case runner::StudyKind::kLod:
+      lod::analyze_lod_study(dir);
+      break;
+    case runner::StudyKind::kRegulation:
+      regulation::analyze_regulation_study(dir);
+      break;
+    case runner::StudyKind::kAudit:
+      break;
   }
-  const std::optional<StudyInfo> after = read_study_info(dir);
+  const std::optional<runner::StudyInfo> after = runner::read_study_info(dir);
   if (after && !after->document.empty())
     std::printf("analysis: %s/%s\n", dir.c_str(), after->document.c_str());
   exit_code = kExitOk;
@@ -51,16 +63,21 @@ bool analyze_study_if_present(const std::string& dir, int& exit_code) {
 }
 
 bool plot_study_if_present(const std::string& dir, int& exit_code) {
-  const std::optional<StudyInfo> info = read_study_info(dir);
-  if (!info || info->kind == StudyKind::kAudit) return false;
+  const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
+  if (!info || info->kind == runner::StudyKind::kAudit) return false;
   switch (info->kind) {
-    case StudyKind::kTiming:
+    case runner::StudyKind::kTiming:
       std::printf("%s: a timing study draws its figures as it runs (%s/figures/); nothing to do\n",
                   dir.c_str(), dir.c_str());
       break;
-    case StudyKind::kLod: lod::plot_lod_study(dir); break;
-    case StudyKind::kRegulation: regulation::plot_regulation_study(dir); break;
-    case StudyKind::kAudit: break;
+    case runner::StudyKind::kLod:
+      lod::plot_lod_study(dir);
+      break;
+    case runner::StudyKind::kRegulation:
+      regulation::plot_regulation_study(dir);
+      break;
+    case runner::StudyKind::kAudit:
+      break;
   }
   std::printf("figures: %s/figures/index.json\n", dir.c_str());
   exit_code = kExitOk;
@@ -68,8 +85,9 @@ bool plot_study_if_present(const std::string& dir, int& exit_code) {
 }
 
 bool prepare_study_report(const std::string& dir, bool run_missing) {
-  const std::optional<StudyInfo> info = read_study_info(dir);
-  if (!info || info->kind == StudyKind::kAudit || info->kind == StudyKind::kTiming) return false;
+  const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
+  if (!info || info->kind == runner::StudyKind::kAudit || info->kind == runner::StudyKind::kTiming)
+    return false;
   const bool analysed = info->analysed && !info->document.empty();
   const bool plotted = std::filesystem::exists(dir + "/figures/index.json");
   if (analysed && plotted) return false;

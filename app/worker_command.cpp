@@ -26,10 +26,10 @@ void register_worker_command(CLI::App& app, int& exit_code) {
   cmd->add_option("end", end)->required();
   cmd->add_option("--records-dir", records_dir, "where the records file goes (default DIR/records)");
   cmd->callback([&exit_code] {
-    const Experiment exp = load_experiment(dir + "/experiment.toml");
-    Shard shard{platform, geometry::Kind::kPoint, view, begin, end};
+    const runner::Experiment exp = runner::load_experiment(dir + "/experiment.toml");
+    runner::Shard shard{platform, geometry::Kind::kPoint, view, begin, end};
     if (!geometry::parse_kind(kind, &shard.kind)) throw UserError("unknown kind '" + kind + "'");
-    run_shard(dir, exp, shard, records_dir);
+    runner::run_shard(dir, exp, shard, records_dir);
     exit_code = kExitOk;
   });
 
@@ -39,8 +39,8 @@ void register_worker_command(CLI::App& app, int& exit_code) {
   serve->add_option("dir", serve_dir)->required();
   serve->add_option("platform", serve_platform)->required();
   serve->callback([&exit_code] {
-    const Experiment exp = load_experiment(serve_dir + "/experiment.toml");
-    serve_shards(serve_dir, exp, serve_platform, std::cin);
+    const runner::Experiment exp = runner::load_experiment(serve_dir + "/experiment.toml");
+    runner::serve_shards(serve_dir, exp, serve_platform, std::cin);
     exit_code = kExitOk;
   });
 }

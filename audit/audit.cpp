@@ -76,7 +76,7 @@ std::size_t AuditResult::recovered_count() const {
 
 AuditResult run_audit(const AuditOptions& o) {
   AuditResult r;
-  r.date_utc = utc_now_iso8601();
+  r.date_utc = runner::utc_now_iso8601();
   r.expect_renderer = o.expect_renderer;
   // 1. Identity.
   if (!o.between.empty()) {

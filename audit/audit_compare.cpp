@@ -32,10 +32,10 @@ double headline_value(const metrics::Record& r, geometry::Kind kind) {
 }
 
 // The records of one platform, kind and view of a run, ascending by index.
-std::vector<Row> read_view(const std::string& dir, const std::vector<Shard>& plan,
+std::vector<Row> read_view(const std::string& dir, const std::vector<runner::Shard>& plan,
                            const std::string& platform, geometry::Kind kind, int view) {
   std::vector<Row> rows;
-  for (const Shard& s : plan) {
+  for (const runner::Shard& s : plan) {
     if (s.platform != platform || s.kind != kind || s.view != view) continue;
     const std::string path = s.records_path(dir);
     if (!fs::exists(path)) continue;  // a missing shard: reported by missing_shards()
@@ -71,9 +71,11 @@ struct TaskResult {
   std::vector<FailedPrimitive> failed;
 };
 
-TaskResult compare_view(const std::string& baseline_dir, const std::vector<Shard>& baseline_plan,
-                        const std::string& current_dir, const std::vector<Shard>& current_plan,
-                        const PlatformPair& pair, const Task& t, bool compare_verdicts) {
+TaskResult compare_view(const std::string& baseline_dir,
+                        const std::vector<runner::Shard>& baseline_plan,
+                        const std::string& current_dir,
+                        const std::vector<runner::Shard>& current_plan, const PlatformPair& pair,
+                        const Task& t, bool compare_verdicts) {
   TaskResult out;
   out.counts = {t.pair, t.kind, t.view, t.view_group, 0, 0, 0, 0};
   std::vector<Row> before = read_view(baseline_dir, baseline_plan, pair.baseline, t.kind, t.view);
@@ -163,10 +165,11 @@ PrimitiveComparison compare_primitives(const std::string& baseline_dir,
                                        const std::string& current_dir,
                                        const std::vector<PlatformPair>& pairs, unsigned jobs,
                                        bool compare_verdicts) {
-  const Experiment baseline_exp = load_experiment(baseline_dir + "/experiment.toml");
-  const Experiment current_exp = load_experiment(current_dir + "/experiment.toml");
-  const std::vector<Shard> baseline_plan = plan_shards(baseline_exp);
-  const std::vector<Shard> current_plan = plan_shards(current_exp);
+  const runner::Experiment baseline_exp =
+      runner::load_experiment(baseline_dir + "/experiment.toml");
+  const runner::Experiment current_exp = runner::load_experiment(current_dir + "/experiment.toml");
+  const std::vector<runner::Shard> baseline_plan = runner::plan_shards(baseline_exp);
+  const std::vector<runner::Shard> current_plan = runner::plan_shards(current_exp);
 
   // One task per pair, kind and view (the experiments agree on views and counts: same hash).
   std::vector<Task> tasks;

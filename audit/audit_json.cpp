@@ -93,9 +93,10 @@ json comparison_json(const AuditResult& r, const DistributionComparison& c) {
 }  // namespace
 
 json audit_json(const AuditResult& r) {
-  json j = document_header("audit", kAuditSchemaVersion, false);
-  j["tool"] = {
-      {"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
+  json j = runner::document_header("audit", kAuditSchemaVersion, false);
+  j["tool"] = {{"name", "renderaudit"},
+               {"version", runner::project_version()},
+               {"commit", runner::project_commit()}};
   j["date_utc"] = r.date_utc;
   j["mode"] = r.mode;
   j["verdict"] = verdict_name(r.verdict);

@@ -38,10 +38,10 @@ inline std::string experiment_text(const std::string& platforms, int points, int
 // Writes DIR/experiment.toml and DIR/manifest.json (hash and seed as `run` writes them, drivers
 // named "<platform> renderer" / "<platform> 1.0", the given shard failures); returns the
 // experiment.
-inline Experiment write_run(const std::string& dir, const std::string& text,
-                            const nlohmann::json& failures = nlohmann::json::array()) {
+inline runner::Experiment write_run(const std::string& dir, const std::string& text,
+                                    const nlohmann::json& failures = nlohmann::json::array()) {
   std::ofstream(dir + "/experiment.toml") << text;
-  const Experiment exp = parse_experiment(text, dir + "/experiment.toml");
+  const runner::Experiment exp = runner::parse_experiment(text, dir + "/experiment.toml");
   nlohmann::json drivers = nlohmann::json::object();
   for (const auto& p : exp.platforms)
     drivers[p] = {{"renderer", p + " renderer"}, {"version", p + " 1.0"}};
@@ -57,8 +57,8 @@ inline Experiment write_run(const std::string& dir, const std::string& text,
 }
 
 // A true-visible point record of view `view` of `exp` with lit-pixel hash `hash` and PE `pe`.
-inline metrics::Record point_record(const Experiment& exp, const std::string& platform, int view,
-                                    uint64_t index, uint64_t hash, double pe) {
+inline metrics::Record point_record(const runner::Experiment& exp, const std::string& platform,
+                                    int view, uint64_t index, uint64_t hash, double pe) {
   const geometry::View& v = exp.views.at(std::size_t(view - 1));
   metrics::Record r;
   r.platform = platform;
@@ -78,10 +78,11 @@ inline metrics::Record point_record(const Experiment& exp, const std::string& pl
 
 // Writes every planned point shard of `platform` in DIR, one record per index made by `make`
 // (index -> record); shards listed in `skip` (by id) are left out.
-inline void write_points(const std::string& dir, const Experiment& exp, const std::string& platform,
+inline void write_points(const std::string& dir, const runner::Experiment& exp,
+                         const std::string& platform,
                          const std::function<metrics::Record(int view, uint64_t index)>& make,
                          const std::vector<std::string>& skip = {}) {
-  for (const Shard& s : plan_shards(exp)) {
+  for (const runner::Shard& s : runner::plan_shards(exp)) {
     if (s.platform != platform || s.kind != geometry::Kind::kPoint) continue;
     bool skipped = false;
     for (const auto& id : skip) skipped = skipped || id == s.id();

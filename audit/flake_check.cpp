@@ -29,7 +29,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-Shard shard_of(const RerenderBatch& b) { return {b.platform, b.kind, b.view, b.begin, b.end}; }
+runner::Shard shard_of(const RerenderBatch& b) {
+  return {b.platform, b.kind, b.view, b.begin, b.end};
+}
 
 // A re-render worker: its own process group (a timeout kills all it started), dying with us, its
 // output in its log, RA_RENDER_ATTEMPT set to `attempt`.
@@ -107,10 +109,9 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   RerenderResult result;
   result.batches = batches;
   if (batches.empty()) return result;
-  const Experiment exp = load_experiment(options.run_dir + "/experiment.toml");
+  const runner::Experiment exp = runner::load_experiment(options.run_dir + "/experiment.toml");
   const double timeout_s = options.timeout_s > 0 ? options.timeout_s : exp.shard_timeout_s;
-  const std::string program =
-      options.program.empty() ? worker_program() : options.program;
+  const std::string program = options.program.empty() ? runner::worker_program() : options.program;
   const unsigned jobs =
       options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
 
@@ -138,7 +139,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   std::size_t next = 0;
   auto finish = [&](std::size_t b, const std::string& error) {
     RerenderBatch& batch = result.batches[b];
-    const Shard s = shard_of(batch);
+    const runner::Shard s = shard_of(batch);
     const std::string log = last_log_line(dir + "/logs/" + s.id() + ".log");
     batch.error = error.empty() || log.empty() ? error : error + ": " + log;
     if (!batch.error.empty() || !fs::exists(s.records_path(dir))) {

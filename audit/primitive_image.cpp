@@ -104,7 +104,7 @@ geometry::PixelRect around(const geometry::PixelSet& s, int margin, int width, i
 
 Rgb8 darker(Rgb8 c) { return {uint8_t(c.r * 4 / 5), uint8_t(c.g * 4 / 5), uint8_t(c.b * 4 / 5)}; }
 
-void check_request(const ShowRequest& q, const Experiment& exp, geometry::Kind kind) {
+void check_request(const ShowRequest& q, const runner::Experiment& exp, geometry::Kind kind) {
   if (q.view < 1 || q.view > int(exp.views.size()))
     throw UserError("view " + std::to_string(q.view) + " out of range (allowed: 1 to " +
                     std::to_string(exp.views.size()) + ": " + exp.path + " has " +
@@ -145,8 +145,8 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   const std::string toml = (fs::path(q.run_dir) / "experiment.toml").string();
   if (!fs::is_regular_file(toml))
     throw UserError(q.run_dir + ": not a run directory (no experiment.toml)");
-  const Experiment exp = load_experiment(toml);
-  const platforms::PlatformSpec platform_spec = experiment_platform(exp, q.platform);
+  const runner::Experiment exp = runner::load_experiment(toml);
+  const platforms::PlatformSpec platform_spec = runner::experiment_platform(exp, q.platform);
   geometry::Kind kind;
   if (!geometry::parse_kind(q.kind, &kind))
     throw UserError("unknown kind '" + q.kind + "' (allowed: point, line, triangle)");

@@ -154,8 +154,8 @@ void fill(std::string& s, const std::string& key, const std::string& value) {
 Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_name) {
   const std::string toml = q.run_dir + "/experiment.toml";
   if (!fs::is_regular_file(toml)) throw UserError(q.run_dir + ": not a run directory (no experiment.toml)");
-  const Experiment exp = load_experiment(toml);
-  const platforms::PlatformSpec spec = experiment_platform(exp, q.platform);
+  const runner::Experiment exp = runner::load_experiment(toml);
+  const platforms::PlatformSpec spec = runner::experiment_platform(exp, q.platform);
   if (!spec.draws_with_gl() || spec.samples > 0 || spec.backend == platforms::Backend::kEglDevice)
     throw UserError("reproduce draws through Mesa's surfaceless EGL: --platform must be one of "
                     "osmesa-llvmpipe, osmesa-softpipe, egl-llvmpipe, egl-softpipe (or one of "
@@ -169,7 +169,7 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   if (!view) throw UserError("the run has no view " + std::to_string(q.view));
   // The worker's record of it.
   std::optional<metrics::Record> record;
-  for (const Shard& s : plan_shards(exp)) {
+  for (const runner::Shard& s : runner::plan_shards(exp)) {
     if (s.platform != q.platform || s.kind != kind || s.view != q.view || q.index < s.begin ||
         q.index >= s.end)
       continue;

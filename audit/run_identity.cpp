@@ -35,12 +35,13 @@ RunIdentity load_run_identity(const std::string& dir) {
   run.dir = dir;
   if (!fs::is_directory(dir)) throw UserError(dir + ": no such run directory");
   const std::string manifest_path = dir + "/manifest.json";
-  const RunManifest manifest = read_manifest(read_json(manifest_path), manifest_path);
+  const runner::RunManifest manifest =
+      runner::read_manifest(read_json(manifest_path), manifest_path);
   const std::string toml = dir + "/experiment.toml";
   if (!fs::exists(toml)) throw UserError(toml + ": missing (not a run directory?)");
-  run.experiment = load_experiment(toml);
+  run.experiment = runner::load_experiment(toml);
 
-  const ManifestExperiment exp = manifest.experiment.value_or(ManifestExperiment{});
+  const runner::ManifestExperiment exp = manifest.experiment.value_or(runner::ManifestExperiment{});
   run.name = exp.name.empty() ? run.experiment.name : exp.name;
   run.hash = exp.hash;
   if (run.hash.empty())
@@ -74,7 +75,7 @@ RunIdentity load_run_identity(const std::string& dir) {
     run.drivers[platform] = {platform, string_or(d, "renderer", "unknown"),
                              string_or(d, "version", "unknown")};
 
-  for (const ManifestShardNote& f : manifest.failures_or_none())
+  for (const runner::ManifestShardNote& f : manifest.failures_or_none())
     run.manifest_failures.push_back({f.shard, f.reason.empty() ? "failed" : f.reason});
   return run;
 }
@@ -97,7 +98,7 @@ DriverIdentity driver_of(const RunIdentity& run, const std::string& platform) {
 std::vector<MissingShard> missing_shards(const RunIdentity& run, const std::string& platform,
                                          const std::string& side) {
   std::vector<MissingShard> out;
-  for (const Shard& s : plan_shards(run.experiment)) {
+  for (const runner::Shard& s : runner::plan_shards(run.experiment)) {
     if (s.platform != platform || fs::exists(s.records_path(run.dir))) continue;
     MissingShard m{side, s.platform, s.kind, s.view, 0, s.begin, s.end, s.id(), "no records file"};
     for (const geometry::View& v : run.experiment.views)
@@ -127,11 +128,11 @@ std::vector<ManifestFailure> manifest_failures_of(const RunIdentity& run,
                                                   const std::string& platform,
                                                   const std::string& side) {
   std::vector<ManifestFailure> out;
-  const std::vector<Shard> plan = plan_shards(run.experiment);
+  const std::vector<runner::Shard> plan = runner::plan_shards(run.experiment);
   for (const ShardFailureNote& f : run.manifest_failures) {
     if (f.shard.rfind(platform + ".", 0) != 0) continue;
     ManifestFailure m{side, platform, f.shard, f.reason};
-    for (const Shard& s : plan) {
+    for (const runner::Shard& s : plan) {
       if (s.id() != f.shard) continue;
       m.kind = s.kind, m.view = s.view, m.begin = s.begin, m.end = s.end;
       for (const geometry::View& v : run.experiment.views)

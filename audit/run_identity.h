@@ -23,7 +23,7 @@ struct ShardFailureNote {
 
 struct RunIdentity {
   std::string dir;         // as given
-  Experiment experiment;   // DIR/experiment.toml (its own [run] shard size)
+  runner::Experiment experiment;  // DIR/experiment.toml (its own [run] shard size)
   std::string name, hash;  // manifest.json "experiment": name, hash
   uint64_t seed = 0;       // manifest.json "experiment": seed
   std::string status;      // manifest.json "status": "complete", "failed", "running", ...

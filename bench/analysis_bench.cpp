@@ -153,11 +153,11 @@ void synthesise(const Params& prm) {
         for (std::uint64_t first = 0; first < per_view; first += shard) {
           const std::uint64_t last = std::min(per_view, first + shard);
           // sealed, as a run writes it (runner/shard_file.h)
-          ra::RecordsFileWriter out(prm.dir + "/records/" + platform + "." + kinds[k] + ".v" +
-                                        std::to_string(view) + "." + std::to_string(first) + "-" +
-                                        std::to_string(last) +
-                                        ra::metrics::records_extension(prm.format),
-                                    prm.format);
+          ra::runner::RecordsFileWriter out(prm.dir + "/records/" + platform + "." + kinds[k] +
+                                                ".v" + std::to_string(view) + "." +
+                                                std::to_string(first) + "-" + std::to_string(last) +
+                                                ra::metrics::records_extension(prm.format),
+                                            prm.format);
           for (std::uint64_t i = first; i < last; ++i)
             out.write(synth(rng, platform, p, kinds[k], view, i));
           out.finish();

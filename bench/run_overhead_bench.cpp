@@ -98,8 +98,8 @@ int main(int argc, char** argv) {
         return 1;
       }
     }
-    const RunManifest m = read_manifest_file(dir + "/manifest.json");
-    const ManifestInvocation* inv = m.last_invocation();
+    const ra::runner::RunManifest m = ra::runner::read_manifest_file(dir + "/manifest.json");
+    const ra::runner::ManifestInvocation* inv = m.last_invocation();
     if (!inv) {
       std::fprintf(stderr, "run_overhead_bench: %s/manifest.json lists no invocation\n", dir.c_str());
       return 1;

@@ -318,7 +318,7 @@ std::string summary_text(const json& j, const std::string& dir, std::size_t inst
 }
 }  // namespace
 
-StudyRunResult run_regulation_study(const StudyRunOptions& options) {
+runner::StudyRunResult run_regulation_study(const runner::StudyRunOptions& options) {
   const auto t_start = Clock::now();
   RegulationSettings s = read_regulation_experiment(options.experiment);
   if (!options.platforms.empty()) {
@@ -346,7 +346,7 @@ StudyRunResult run_regulation_study(const StudyRunOptions& options) {
     if (options.progress) std::fprintf(stderr, "regulation: %s\n", line.c_str());
   };
 
-  json j = document_header("regulation", 1);
+  json j = runner::document_header("regulation", 1);
   j["experiment"] = {{"file", s.file}, {"name", s.name}};
   std::vector<std::string> findings;
 
@@ -375,16 +375,16 @@ StudyRunResult run_regulation_study(const StudyRunOptions& options) {
   j["wall_s"] = seconds_since(t_start);
   write_file_atomic(dir + "/regulation.json", j.dump(1) + "\n");
 
-  StudyInfo info;
-  info.kind = StudyKind::kRegulation;
+  runner::StudyInfo info;
+  info.kind = runner::StudyKind::kRegulation;
   info.name = s.name;
   info.title = kTitle;
   info.subtitle = "Horvitz & Lengyel (UAI 1997) on " + s.scene.name + ": greedy marginal-value "
                   "regulation against the exact optimum and baselines, and the chosen plans rendered on " +
                   s.platform + ".";
-  write_study_info(dir, info);  // last: the folder is complete
+  runner::write_study_info(dir, info);  // last: the folder is complete
 
-  StudyRunResult res;
+  runner::StudyRunResult res;
   res.dir = dir;
   res.findings = !findings.empty();
   res.summary = summary_text(j, dir, instances, findings);
@@ -394,8 +394,8 @@ StudyRunResult run_regulation_study(const StudyRunOptions& options) {
 namespace {
 
 json load_complete(const std::string& dir) {
-  const auto info = read_study_info(dir);
-  if (!info || info->kind != StudyKind::kRegulation)
+  const auto info = runner::read_study_info(dir);
+  if (!info || info->kind != runner::StudyKind::kRegulation)
     throw UserError(dir + " is not a complete regulation study (no study.json of kind regulation: "
                           "run `renderaudit run` on a regulation experiment first)");
   try {
@@ -555,15 +555,15 @@ std::string regulation_markdown(const json& j) {
 void analyze_regulation_study(const std::string& dir) {
   const json j = load_complete(dir);
   write_file_atomic(dir + "/regulation.md", regulation_markdown(j));
-  StudyInfo info = *read_study_info(dir);
+  runner::StudyInfo info = *runner::read_study_info(dir);
   info.document = "regulation.md";
   info.analysed = true;
-  write_study_info(dir, info);
+  runner::write_study_info(dir, info);
 }
 
 void plot_regulation_study(const std::string& dir) {
   const json j = load_complete(dir);
-  if (!read_study_info(dir)->analysed)
+  if (!runner::read_study_info(dir)->analysed)
     throw UserError(dir + " has not been analysed: run `renderaudit analyze " + dir + "` first");
   plots::StudyFigures figs("regulation");
   // 1. distribution of value(OPT) / value(greedy)

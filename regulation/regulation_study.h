@@ -26,7 +26,7 @@ namespace ra::regulation {
 // Computes and measures; writes study.json last (analysed = false, document empty). findings:
 // a check failed (a greedy / optimal value ratio above 2, the DP differing from brute force, a
 // plan over budget, or the rendering process failing); the summary says which.
-StudyRunResult run_regulation_study(const StudyRunOptions& options);
+runner::StudyRunResult run_regulation_study(const runner::StudyRunOptions& options);
 
 // DIR/regulation.md from DIR/regulation.json; study.json rewritten with document = "regulation.md",
 // analysed = true. Throws UserError when DIR is not a complete regulation run.

@@ -120,13 +120,14 @@ Block table_block(Table t) {
 }
 // Which renderaudit made the run and which the report: once when they are the same build.
 std::string version_line(const json& tool) {
-  const std::string run_version = tool.value("version", project_version()) + " (commit " +
-                                  tool.value("commit", project_commit()) + ")";
-  const std::string this_version = project_version() + " (commit " + project_commit() + ")";
+  const std::string run_version = tool.value("version", runner::project_version()) + " (commit " +
+                                  tool.value("commit", runner::project_commit()) + ")";
+  const std::string this_version =
+      runner::project_version() + " (commit " + runner::project_commit() + ")";
   return (run_version == this_version
               ? "Run and report by renderaudit " + this_version
               : "Run by renderaudit " + run_version + ", report by renderaudit " + this_version) +
-         "; report generated " + utc_now_iso8601() + ".";
+         "; report generated " + runner::utc_now_iso8601() + ".";
 }
 
 Block bullets(std::vector<std::string> items) {
@@ -255,16 +256,16 @@ Document pdf_document(const Document& doc, const std::set<std::string>& html_onl
 }
 
 // The run as its manifest describes it: the experiment's name (the directory's when it has none).
-std::string run_name(const std::string& run_dir, const ManifestExperiment& exp) {
+std::string run_name(const std::string& run_dir, const runner::ManifestExperiment& exp) {
   return exp.name.empty() ? fs::path(run_dir).filename().string() : exp.name;
 }
 
 std::string or_unknown(const std::string& text) { return text.empty() ? "?" : text; }
 
 // The title page: what was run, by which renderaudit, and the headline; then the contents.
-void add_title_page(Document& d, const std::string& run_dir, const RunManifest& m,
+void add_title_page(Document& d, const std::string& run_dir, const runner::RunManifest& m,
                     const analysis::RunTally& tally) {
-  const ManifestExperiment exp = m.experiment.value_or(ManifestExperiment{});
+  const runner::ManifestExperiment exp = m.experiment.value_or(runner::ManifestExperiment{});
   const std::string name = run_name(run_dir, exp);
   d.title = "renderaudit report: " + name;
   d.footer = "renderaudit report: " + name + " (" + run_dir + ")";
@@ -284,10 +285,10 @@ void add_title_page(Document& d, const std::string& run_dir, const RunManifest& 
 }
 
 // 1. The run's provenance: experiment, completeness, times, tool, host; the drivers; the file.
-void add_provenance(Document& d, const std::string& run_dir, const RunManifest& m,
+void add_provenance(Document& d, const std::string& run_dir, const runner::RunManifest& m,
                     const analysis::RunTally& tally,
                     const analysis::RunCompleteness& completeness) {
-  const ManifestExperiment exp = m.experiment.value_or(ManifestExperiment{});
+  const runner::ManifestExperiment exp = m.experiment.value_or(runner::ManifestExperiment{});
   const std::string name = run_name(run_dir, exp);
   const json tool = m.tool.is_object() ? m.tool : json::object();
   const json host = m.host.is_object() ? m.host : json::object();
@@ -300,10 +301,11 @@ void add_provenance(Document& d, const std::string& run_dir, const RunManifest& 
     t.right = {false, false};
     std::string plist;
     for (std::size_t i = 0; i < exp.platforms.size(); ++i) plist += (i ? ", " : "") + exp.platforms[i];
-    const std::vector<ManifestInvocation> invocations =
-        m.invocations.value_or(std::vector<ManifestInvocation>{});
+    const std::vector<runner::ManifestInvocation> invocations =
+        m.invocations.value_or(std::vector<runner::ManifestInvocation>{});
     double elapsed = 0;
-    for (const ManifestInvocation& inv : invocations) elapsed += inv.elapsed_s.value_or(0.0);
+    for (const runner::ManifestInvocation& inv : invocations)
+      elapsed += inv.elapsed_s.value_or(0.0);
     auto row = [&](const std::string& k, const std::string& v) { t.rows.push_back({k, v}); };
     row("experiment", name + " (" + or_unknown(exp.file) + ")");
     row("experiment hash", or_unknown(exp.hash));
@@ -360,16 +362,15 @@ void add_provenance(Document& d, const std::string& run_dir, const RunManifest& 
     b.text = read_file(toml);
     d.blocks.push_back(b);
   }
-
 }
 
 // 2. Shards that failed, records that are not ok, figures not drawn.
-void add_failures(Document& d, const RunManifest& m, const analysis::RunTally& tally,
+void add_failures(Document& d, const runner::RunManifest& m, const analysis::RunTally& tally,
                   const plots::PlotResult& figures) {
   // 2. Failures.
   d.blocks.push_back(heading("2. Failures and invalid cases", 1, "failures"));
   {
-    const std::vector<ManifestShardNote>& failures = m.failures_or_none();
+    const std::vector<runner::ManifestShardNote>& failures = m.failures_or_none();
     if (failures.empty()) {
       d.blocks.push_back(paragraph(
           "No shard crashed or timed out (manifest.json: \"failures\" is empty)."));
@@ -379,7 +380,8 @@ void add_failures(Document& d, const RunManifest& m, const analysis::RunTally& t
                 std::to_string(failures.size());
       t.header = {"shard (platform.kind.view.index range)", "what happened"};
       t.right = {false, false};
-      for (const ManifestShardNote& f : failures) t.rows.push_back({f.shard, or_unknown(f.reason)});
+      for (const runner::ManifestShardNote& f : failures)
+        t.rows.push_back({f.shard, or_unknown(f.reason)});
       t.notes.push_back("Their records are missing from every statistic; run the same `renderaudit "
                         "run` command again to retry them (finished shards are kept).");
       d.blocks.push_back(table_block(std::move(t)));
@@ -419,7 +421,6 @@ void add_failures(Document& d, const RunManifest& m, const analysis::RunTally& t
       d.blocks.push_back(bullets(items));
     }
   }
-
 }
 
 // 3. Render time per primitive.
@@ -606,8 +607,9 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
                        const analysis::RunTally& tally,
                        const analysis::RunCompleteness& completeness) {
   const std::string manifest_path = run_dir + "/manifest.json";
-  const RunManifest m =
-      fs::exists(manifest_path) ? read_manifest(read_json(manifest_path), manifest_path) : RunManifest{};
+  const runner::RunManifest m = fs::exists(manifest_path)
+                                    ? runner::read_manifest(read_json(manifest_path), manifest_path)
+                                    : runner::RunManifest{};
   Content c;
   add_title_page(c.doc, run_dir, m, tally);
   add_provenance(c.doc, run_dir, m, tally, completeness);
@@ -615,7 +617,7 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
   add_timing(c.doc, tally);
   add_conformance(c, run_dir, tally);
   add_analysis_tables(c, run_dir);
-  add_figure_section(c, figures, m.experiment.value_or(ManifestExperiment{}).platforms);
+  add_figure_section(c, figures, m.experiment.value_or(runner::ManifestExperiment{}).platforms);
   return c;
 }
 
@@ -677,7 +679,7 @@ void assemble(const Document& doc, const Document& html_doc, const std::string& 
 
 // The report of a study folder (runner/study_dir.h): its title and subtitle from study.json, its
 // markdown document, then its figures (DIR/figures/index.json).
-Document study_document(const std::string& dir, const StudyInfo& info) {
+Document study_document(const std::string& dir, const runner::StudyInfo& info) {
   Document d;
   d.title = info.title;
   d.footer = info.title + " (" + dir + ")";
@@ -696,12 +698,12 @@ Document study_document(const std::string& dir, const StudyInfo& info) {
 }
 
 // A study folder's description; a timing folder written before study.json existed gets one.
-std::optional<StudyInfo> study_of(const std::string& dir) {
-  std::optional<StudyInfo> info = read_study_info(dir);
+std::optional<runner::StudyInfo> study_of(const std::string& dir) {
+  std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
   if (info || !fs::exists(fs::path(dir) / "timing.json") || fs::is_directory(fs::path(dir) / "records"))
     return info;
-  StudyInfo t;
-  t.kind = StudyKind::kTiming;
+  runner::StudyInfo t;
+  t.kind = runner::StudyKind::kTiming;
   t.name = fs::path(dir).filename().string();
   t.title = "renderaudit timing report: " + t.name;
   t.document = "timing.md";
@@ -747,7 +749,7 @@ ReportResult write_report(const ReportOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string& run_dir = options.run_dir;
   if (!fs::is_directory(run_dir)) throw UserError(run_dir + ": no such run directory");
-  const std::optional<StudyInfo> study = study_of(run_dir);
+  const std::optional<runner::StudyInfo> study = study_of(run_dir);
   if (!study && !fs::is_directory(fs::path(run_dir) / "records"))
     throw UserError(run_dir + " is not a run directory (no records/ and no study.json): run "
                     "`renderaudit run EXPERIMENT.toml --out " + run_dir + "` first");
@@ -761,7 +763,8 @@ ReportResult write_report(const ReportOptions& options) {
       throw UserError(run_dir + " has not been analysed yet: run `renderaudit analyze " + run_dir +
                       "` and `renderaudit plot " + run_dir + "` first");
     // (a timing study run with --no-figures has none, and says so in its text)
-    if (study->kind != StudyKind::kTiming && !fs::exists(fs::path(run_dir) / "figures" / "index.json"))
+    if (study->kind != runner::StudyKind::kTiming &&
+        !fs::exists(fs::path(run_dir) / "figures" / "index.json"))
       throw UserError(run_dir + "/figures/index.json is missing: run `renderaudit plot " + run_dir +
                       "` first");
     const Document doc = study_document(run_dir, *study);

@@ -22,7 +22,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 // Runs a program to its end; UserError with its last lines when it fails.
@@ -251,4 +251,4 @@ std::vector<BuildSummary> list_builds(const std::string& cache) {
   return out;
 }
 
-}  // namespace ra
+}  // namespace ra::runner

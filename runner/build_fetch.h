@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace ra {
+namespace ra::runner {
 
 struct FetchOptions {
   std::string suite;                               // e.g. "bookworm-backports"
@@ -42,4 +42,4 @@ BuildSummary fetch_build(const FetchOptions& options);
 // The builds in the cache (folders with a build.json), by name.
 std::vector<BuildSummary> list_builds(const std::string& cache = "");
 
-}  // namespace ra
+}  // namespace ra::runner

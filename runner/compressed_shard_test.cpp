@@ -21,7 +21,7 @@
 #include "util/errors.h"
 #include "util/zstd_stream.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 uint64_t bits(double v) {
@@ -343,4 +343,4 @@ TEST_F(CompressedShard, PandasReadsTheSameValues) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner

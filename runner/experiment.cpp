@@ -13,7 +13,7 @@
 #include "platforms/platform.h"
 #include "util/toml_locator.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 // A key that may hold one value or an array of values.
@@ -385,4 +385,4 @@ Experiment load_experiment(const std::string& path) {
   return parse_experiment(TomlLocator::read_text(path), path);
 }
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -15,7 +15,7 @@
 #include "platforms/fault_plan.h"
 #include "platforms/platform_spec.h"
 
-namespace ra {
+namespace ra::runner {
 
 // `[builds.NAME]`: a driver build the experiment's `PLATFORM@NAME` platforms draw with
 // (platforms/driver_build.h). Its folder: `dir` (absolute, or under ~/), else the newest build
@@ -64,4 +64,4 @@ constexpr uint64_t kMaxShardsCeiling = 100000000;  // the largest run.max_shards
 Experiment load_experiment(const std::string& path);
 Experiment parse_experiment(const std::string& text, const std::string& path);
 
-}  // namespace ra
+}  // namespace ra::runner

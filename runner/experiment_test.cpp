@@ -5,7 +5,7 @@
 
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 const char* kValid = R"(seed = 1
@@ -173,4 +173,4 @@ TEST(Experiment, ExplicitOrientationsAreRotations) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner

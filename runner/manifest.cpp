@@ -16,7 +16,7 @@
 #include <fstream>
 #include <thread>
 
-namespace ra {
+namespace ra::runner {
 
 std::string project_commit() { return RA_COMMIT; }
 std::string project_version() { return "0.1.0"; }
@@ -450,4 +450,4 @@ void write_manifest(const std::string& path, const RunManifest& manifest) {
   write_manifest_json(path, manifest_json(manifest));
 }
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace ra {
+namespace ra::runner {
 
 constexpr int kManifestSchemaVersion = 1;
 
@@ -23,9 +23,9 @@ std::string utc_now_iso8601();
 // version, commit), "host" (host_description) and "created_utc", as the run manifest has.
 nlohmann::json document_header(const std::string& name, int version, bool provenance = true);
 
-}  // namespace ra
+}  // namespace ra::runner
 
-namespace ra {
+namespace ra::runner {
 
 // DIR/manifest.json as a type. `run` writes it when it starts ("running") and when it ends,
 // `merge` when it has gathered its inputs; `status`, analyze, report and audit read it. Every field
@@ -139,4 +139,4 @@ nlohmann::json manifest_json(const RunManifest& manifest);
 // std::runtime_error naming the file and the free space.
 void write_manifest(const std::string& path, const RunManifest& manifest);
 
-}  // namespace ra
+}  // namespace ra::runner

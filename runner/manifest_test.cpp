@@ -14,7 +14,7 @@
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 TEST(Manifest, OnAFullDiskTheManifestSaysFailedInPlace) {
@@ -59,9 +59,9 @@ TEST(Manifest, OnAFullDiskTheManifestSaysFailedInPlace) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 // A manifest as `run` writes it (a resumed run with a crash recorded), in the file's own layout:
@@ -215,4 +215,4 @@ TEST(Manifest, TheShortestManifestAFullDiskLeavesStillReads) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner

@@ -9,7 +9,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 std::string failure_key(const std::string& shard, uint64_t index) {
   return shard + "#" + std::to_string(index);
 }
@@ -49,4 +49,4 @@ std::vector<FailedPrimitive> failed_primitives_in_records(
   return out;
 }
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -13,7 +13,7 @@
 #include "runner/shard.h"
 #include "runner/shard_recovery.h"
 
-namespace ra {
+namespace ra::runner {
 
 // The crash and timeout records of `shards`' files in DIR/records (shards without a file are
 // skipped), in shard order then index order; `reason` is taken from `reasons` (key: shard id and
@@ -29,4 +29,4 @@ std::string failure_key(const std::string& shard, uint64_t index);
 // Adds the reasons `manifest`'s `failed_primitives` list gives, by failure_key.
 void add_failure_reasons(const RunManifest& manifest, std::map<std::string, std::string>* reasons);
 
-}  // namespace ra
+}  // namespace ra::runner

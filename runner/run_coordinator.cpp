@@ -33,7 +33,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 volatile std::sig_atomic_t g_interrupted = 0;
@@ -328,4 +328,4 @@ RunResult run_experiment(const RunOptions& options) {
   return result;
 }
 
-}  // namespace ra
+}  // namespace ra::runner

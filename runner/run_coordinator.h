@@ -11,7 +11,7 @@
 #include "runner/shard_recovery.h"
 #include "runner/slicing.h"
 
-namespace ra {
+namespace ra::runner {
 
 struct RunOptions {
   std::string experiment_path;
@@ -50,4 +50,4 @@ struct RunResult {
 // Runs the experiment. Bad input throws UserError before anything is written.
 RunResult run_experiment(const RunOptions& options);
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -10,7 +10,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 
 // Temporary files of writers that are gone (we hold the lock, so none is being written).
 void remove_temporaries(const std::string& dir) {
@@ -64,4 +64,4 @@ std::unique_ptr<DirLock> prepare_run_dir(const Experiment& exp, const std::strin
   return lock;
 }
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -9,7 +9,7 @@
 #include "runner/experiment.h"
 #include "util/dir_lock.h"
 
-namespace ra {
+namespace ra::runner {
 
 // Creates DIR (records/, drivers/, logs/, experiment.toml) or reopens a run of the same experiment,
 // holding DIR/.lock for the returned lock's life. `who` names the writer in the lock ("run",
@@ -21,4 +21,4 @@ std::unique_ptr<DirLock> prepare_run_dir(const Experiment& exp, const std::strin
 // Removes the temporary files of writers that are gone (the caller holds the lock).
 void remove_temporaries(const std::string& dir);
 
-}  // namespace ra
+}  // namespace ra::runner

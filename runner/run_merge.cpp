@@ -20,7 +20,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 // platform -> its driver file, from DIR/drivers/*.json
@@ -266,4 +266,4 @@ MergeResult merge_runs(const MergeOptions& options) {
   return result;
 }
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace ra {
+namespace ra::runner {
 
 struct MergeOptions {
   std::vector<std::string> inputs;
@@ -33,4 +33,4 @@ struct MergeResult {
 // Throws ra::UserError naming the input and what differs.
 MergeResult merge_runs(const MergeOptions& options);
 
-}  // namespace ra
+}  // namespace ra::runner

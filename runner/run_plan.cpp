@@ -11,7 +11,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 
 void require_experiment_platforms(const Experiment& exp, const std::string& experiment_path,
                                   const std::vector<std::string>& only_platforms) {
@@ -72,4 +72,4 @@ double expected_cost_of(const Shard& s, const Experiment& exp) {
   return double(s.size());
 }
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -15,7 +15,7 @@
 #include "runner/shard_recovery.h"
 #include "runner/slicing.h"
 
-namespace ra {
+namespace ra::runner {
 
 struct ShardFailure {
   std::string shard, reason;  // reason: "crashed (signal 11)", "timed out after 600 s", ...
@@ -49,4 +49,4 @@ RunQueue queue_shards(const std::vector<Shard>& shards, const Experiment& exp,
 // The expected cost of `s` (runner/shard_cost.h, microseconds); its size for a view `exp` lacks.
 double expected_cost_of(const Shard& s, const Experiment& exp);
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -14,7 +14,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 Experiment two_platforms() {
@@ -129,4 +129,4 @@ TEST_F(RunQueueTest, PlanOrderQueuesWhatIsLeftInPlanOrder) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner

@@ -3,7 +3,7 @@
 
 #include "util/atomic_file.h"
 
-namespace ra {
+namespace ra::runner {
 
 nlohmann::json seconds_or_null(double s) { return s >= 0 ? nlohmann::json(s) : nlohmann::json(); }
 
@@ -57,4 +57,4 @@ RunProgress read_run_progress(const std::string& run_dir) {
   }
 }
 
-}  // namespace ra
+}  // namespace ra::runner

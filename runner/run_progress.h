@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace ra {
+namespace ra::runner {
 
 struct RunProgress {
   std::string host;
@@ -37,4 +37,4 @@ void write_run_progress(const std::string& run_dir, const RunProgress& p);
 // DIR/progress.json, or nullopt-like empty `host` when absent or unreadable.
 RunProgress read_run_progress(const std::string& run_dir);
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -5,7 +5,7 @@
 
 #include "runner/run_status.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 TEST(RunProgress, AnUnknownTimeLeftIsNullAndReadsBackAsUnknown) {
@@ -29,4 +29,4 @@ TEST(RunStatus, JsonSaysNullForAnUnknownTimeLeft) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner

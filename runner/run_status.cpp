@@ -20,7 +20,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 bool is_pending(const std::string& state) {
@@ -233,4 +233,4 @@ nlohmann::json to_json(const RunStatus& s) {
   return j;
 }
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -8,7 +8,7 @@
 
 #include "runner/run_progress.h"
 
-namespace ra {
+namespace ra::runner {
 
 struct WriterStatus {
   std::string dir;          // DIR or DIR/slices/K
@@ -49,4 +49,4 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue = "s
 std::string format_run_status(const RunStatus& s);
 nlohmann::json to_json(const RunStatus& s);
 
-}  // namespace ra
+}  // namespace ra::runner

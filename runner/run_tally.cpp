@@ -11,7 +11,7 @@
 #include "runner/run_progress.h"
 #include "util/duration_text.h"
 
-namespace ra {
+namespace ra::runner {
 
 RunTally::RunTally(const Experiment& exp, const std::deque<WorkItem>& todo) : exp_(exp) {
   shards_to_run_ = todo.size();
@@ -67,4 +67,4 @@ void RunTally::show_line(std::size_t failed) {
                duration_text(cost_done_ > 0 ? seconds_left(elapsed) : NAN).c_str());
 }
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -14,7 +14,7 @@
 #include "runner/shard_recovery.h"
 #include "runner/worker_pool.h"
 
-namespace ra {
+namespace ra::runner {
 
 class RunTally {
  public:
@@ -43,4 +43,4 @@ class RunTally {
   double cost_todo_ = 0, cost_done_ = 0;
 };
 
-}  // namespace ra
+}  // namespace ra::runner

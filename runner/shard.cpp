@@ -21,7 +21,7 @@
 #include "platforms/platform.h"
 #include "platforms/renderer_check.h"
 
-namespace ra {
+namespace ra::runner {
 
 std::string Shard::id() const {
   return platform + "." + geometry::kind_name(kind) + ".v" + std::to_string(view) + "." +
@@ -153,4 +153,4 @@ void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& s
   ShardSession(run_dir, exp, shard.platform).run(shard, records_dir);
 }
 
-}  // namespace ra
+}  // namespace ra::runner

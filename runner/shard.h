@@ -12,7 +12,7 @@
 #include "metrics/effective_subpixel.h"
 #include "metrics/records_format.h"
 
-namespace ra {
+namespace ra::runner {
 
 struct Experiment;
 
@@ -62,4 +62,4 @@ class ShardSession {
 void run_shard(const std::string& run_dir, const Experiment& exp, const Shard& shard,
                const std::string& records_dir = "");
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -9,7 +9,7 @@
 
 #include "platforms/platform_spec.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 struct KindCost {
@@ -75,4 +75,4 @@ std::vector<Shard> largest_expected_cost_first(std::vector<Shard> shards, const 
   return out;
 }
 
-}  // namespace ra
+}  // namespace ra::runner

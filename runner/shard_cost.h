@@ -10,7 +10,7 @@
 #include "runner/experiment.h"
 #include "runner/shard.h"
 
-namespace ra {
+namespace ra::runner {
 
 // Expected microseconds of CPU for the shard: per primitive a fixed part (readback, metrics,
 // reference) plus the driver's cost per pixel times the pixels a primitive of that kind lights on
@@ -23,4 +23,4 @@ double expected_shard_cost_us(const Shard& shard, const geometry::View& view);
 // `shards` sorted by expected cost, largest first (ties keep plan order).
 std::vector<Shard> largest_expected_cost_first(std::vector<Shard> shards, const Experiment& exp);
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -6,7 +6,7 @@
 
 #include <set>
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 geometry::View window(int id, int size, double fov) {
@@ -64,4 +64,4 @@ TEST(ShardCost, LargestFirstIsAPermutationThatKeepsPlanOrderAmongTies) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner

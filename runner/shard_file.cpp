@@ -10,7 +10,7 @@
 #include "util/atomic_file.h"
 #include "util/fnv1a.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 constexpr std::string_view kTrailerPrefix = "# complete rows=";
@@ -228,4 +228,4 @@ std::string seal_verdict(const ShardSeal& seal, uint64_t expected_rows, bool com
   return "";
 }
 
-}  // namespace ra
+}  // namespace ra::runner

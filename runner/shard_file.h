@@ -23,7 +23,7 @@
 #include "util/fnv1a.h"
 #include "util/zstd_stream.h"
 
-namespace ra {
+namespace ra::runner {
 
 // Rows per zstd frame: about 1.3 MB of text, 0.2 MB compressed; a 5,000-primitive shard is one
 // frame, so a reader splits work by file first and by frame within a large file.
@@ -90,4 +90,4 @@ class ShardSealReader {
 // the file is a .csv.zst one.
 std::string seal_verdict(const ShardSeal& seal, uint64_t expected_rows, bool compressed);
 
-}  // namespace ra
+}  // namespace ra::runner

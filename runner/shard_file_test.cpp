@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 class ShardFile : public ::testing::Test {
@@ -84,4 +84,4 @@ TEST_F(ShardFile, AMissingFileSaysSo) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner

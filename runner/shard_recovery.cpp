@@ -13,7 +13,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 
 ShardRecovery::ShardRecovery(std::string run_dir, const Experiment& exp, double timeout_s)
     : run_dir_(std::move(run_dir)), exp_(exp), timeout_s_(timeout_s) {}
@@ -121,4 +121,4 @@ void ShardRecovery::assemble(Bisection& b) {
   for (const std::string& part : b.parts) fs::remove(part);
 }
 
-}  // namespace ra
+}  // namespace ra::runner

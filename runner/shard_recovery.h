@@ -15,7 +15,7 @@
 #include "metrics/records.h"
 #include "runner/shard.h"
 
-namespace ra {
+namespace ra::runner {
 
 // One worker process to start: a whole shard, or a part of one being bisected.
 struct WorkItem {
@@ -71,4 +71,4 @@ class ShardRecovery {
   std::vector<FailedPrimitive> failed_;
 };
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -12,7 +12,7 @@
 #include "runner/experiment.h"
 #include "util/child_process.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 constexpr const char* kDone = "shard-ok ";
@@ -83,4 +83,4 @@ void serve_shards(const std::string& run_dir, const Experiment& exp, const std::
   }
 }
 
-}  // namespace ra
+}  // namespace ra::runner

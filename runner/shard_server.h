@@ -19,7 +19,7 @@
 
 #include "runner/shard.h"
 
-namespace ra {
+namespace ra::runner {
 
 struct ShardCommand {
   Shard shard;
@@ -41,4 +41,4 @@ bool parse_shard_done(const std::string& line, std::string* id);
 void serve_shards(const std::string& run_dir, const Experiment& exp, const std::string& platform,
                   std::istream& commands);
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 TEST(ShardServerProtocol, ACommandSurvivesPathsWithSpacesTabsNewlinesAndQuotes) {
@@ -48,4 +48,4 @@ TEST(ShardServerProtocol, RepliesNameTheirShardAndNothingElseIsAReply) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner

@@ -8,7 +8,7 @@
 #include "runner/shard_cost.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 // Slice of each shard id (0-based), and each slice's expected cost.
@@ -66,4 +66,4 @@ std::vector<double> slice_costs(const std::vector<Shard>& shards, const Experime
   return assign(shards, exp, count).cost;
 }
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -11,7 +11,7 @@
 #include "runner/experiment.h"
 #include "runner/shard.h"
 
-namespace ra {
+namespace ra::runner {
 
 struct Slice {
   int index = 1;  // 1-based
@@ -30,4 +30,4 @@ std::vector<Shard> shards_of_slice(const std::vector<Shard>& shards, const Exper
 // The expected cost of each slice, microseconds (runner/shard_cost.h), for messages and checks.
 std::vector<double> slice_costs(const std::vector<Shard>& shards, const Experiment& exp, int count);
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -10,7 +10,7 @@
 #include "runner/shard_cost.h"
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 Experiment unequal_experiment() {
@@ -103,4 +103,4 @@ TEST(Slicing, BadSlicesAreRefusedWithTheAllowedRange) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner

@@ -20,7 +20,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 constexpr long kTmpfsMagic = 0x01021994, kRamfsMagic = 0x858458f6;
@@ -239,4 +239,4 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
   return sub;
 }
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -13,7 +13,7 @@
 
 #include "runner/run_coordinator.h"
 
-namespace ra {
+namespace ra::runner {
 
 struct SlurmOptions {
   int slices = 0;            // array tasks; 0: min(shards, 16)
@@ -42,4 +42,4 @@ std::string node_local_reason(const std::string& dir);
 // experiment, a node-local DIR, a missing sbatch, or a refused submission (with sbatch's words).
 SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slurm);
 
-}  // namespace ra
+}  // namespace ra::runner

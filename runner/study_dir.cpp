@@ -11,7 +11,7 @@
 #include "util/errors.h"
 #include "util/toml_locator.h"
 
-namespace ra {
+namespace ra::runner {
 
 const char* study_kind_name(StudyKind kind) {
   switch (kind) {
@@ -80,4 +80,4 @@ std::optional<StudyInfo> read_study_info(const std::string& dir) {
   return info;
 }
 
-}  // namespace ra
+}  // namespace ra::runner

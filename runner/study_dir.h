@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-namespace ra {
+namespace ra::runner {
 
 enum class StudyKind { kAudit, kTiming, kLod, kRegulation };
 
@@ -57,4 +57,4 @@ struct StudyRunResult {
   bool findings = false; // a check failed (exit code 1): the summary says which
 };
 
-}  // namespace ra
+}  // namespace ra::runner

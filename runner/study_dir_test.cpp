@@ -9,7 +9,7 @@
 
 #include "util/errors.h"
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 namespace fs = std::filesystem;
@@ -92,4 +92,4 @@ TEST(StudyDir, InfoRoundTripsAndBadFilesAreNamed) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner

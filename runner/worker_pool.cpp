@@ -17,7 +17,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 // Reads what the worker said since last time: the ids of the shards it reports done (a server's
@@ -310,4 +310,4 @@ void WorkerPool::wait(int ms) {
   ::poll(replies.data(), replies.size(), ms);
 }
 
-}  // namespace ra
+}  // namespace ra::runner

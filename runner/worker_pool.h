@@ -16,7 +16,7 @@
 
 #include "runner/shard_recovery.h"
 
-namespace ra {
+namespace ra::runner {
 
 // What became of a worker's item.
 struct WorkerEvent {
@@ -111,4 +111,4 @@ class WorkerPool {
   std::size_t processes_ = 0;
 };
 
-}  // namespace ra
+}  // namespace ra::runner

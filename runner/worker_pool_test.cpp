@@ -13,7 +13,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra {
+namespace ra::runner {
 namespace {
 
 class WorkerPoolTest : public ::testing::Test {
@@ -100,4 +100,4 @@ TEST_F(WorkerPoolTest, NoMoreThanJobsRunAtOnce) {
 }
 
 }  // namespace
-}  // namespace ra
+}  // namespace ra::runner

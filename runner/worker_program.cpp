@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-namespace ra {
+namespace ra::runner {
 
 std::string worker_program() {
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe");
@@ -13,4 +13,4 @@ std::string worker_program() {
   return self.string();
 }
 
-}  // namespace ra
+}  // namespace ra::runner

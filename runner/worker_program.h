@@ -4,8 +4,8 @@
 
 #include <string>
 
-namespace ra {
+namespace ra::runner {
 
 std::string worker_program();
 
-}  // namespace ra
+}  // namespace ra::runner

@@ -30,7 +30,7 @@ NAMESPACE_OF_FOLDER = {
 }
 # Folders still in the flat namespace `ra` (a cross-tree rename not yet made): their files may
 # use `ra` itself. Remove a folder here once its files are in ra::<folder>.
-FLAT_RA_FOLDERS = {"util", "runner"}
+FLAT_RA_FOLDERS = {"util"}
 # Functions over the limit not yet split, as (file, function name) pairs. An entry
 # whose function is now short is reported as stale (not an error) so that it can be removed.
 KNOWN_LONG_FUNCTIONS = set()

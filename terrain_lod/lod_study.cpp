@@ -273,7 +273,7 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
 
 }  // namespace
 
-StudyRunResult run_lod_study(const StudyRunOptions& options) {
+runner::StudyRunResult run_lod_study(const runner::StudyRunOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
   const LodSettings s = read_lod_experiment(options.experiment);
   if (!options.platforms.empty() &&
@@ -281,7 +281,7 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
     throw UserError(options.experiment + ": the LOD study draws on " + s.platform + ", which --platform leaves out");
   platforms::require_platforms_draw({s.platform},
                                     options.experiment);  // before anything is written
-  StudyRunResult result;
+  runner::StudyRunResult result;
   result.dir = options.out_dir.empty() ? "outputs/" + s.name : options.out_dir;
   prepare_output_dir(result.dir);
 
@@ -342,17 +342,17 @@ StudyRunResult run_lod_study(const StudyRunOptions& options) {
       {"failed_frames", failures},
       {"first_failure", first_failure},
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count()}};
-  summary.update(document_header("lod", 1));
+  summary.update(runner::document_header("lod", 1));
   write_file_atomic(result.dir + "/lod_summary.json", summary.dump(2) + "\n");
 
-  StudyInfo info;
-  info.kind = StudyKind::kLod;
+  runner::StudyInfo info;
+  info.kind = runner::StudyKind::kLod;
   info.name = s.name;
   info.title = s.title;
   info.subtitle = "Longest-edge bisection with nested errors and balls on " + field.source + ", " +
                   std::to_string(path.size()) + " frames at " + std::to_string(s.camera.width) + " x " +
                   std::to_string(s.camera.height) + " on " + s.platform + ".";
-  write_study_info(result.dir, info);  // last: a complete run
+  runner::write_study_info(result.dir, info);  // last: a complete run
 
   std::ostringstream sum;
   sum << "lod: " << path.size() << " frames x " << s.tau.size() << " tau, lambda " << lambda_kind_name(s.lambda)
@@ -521,8 +521,8 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
 }
 
 void analyze_lod_study(const std::string& dir) {
-  const std::optional<StudyInfo> info = read_study_info(dir);
-  if (!info || info->kind != StudyKind::kLod)
+  const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
+  if (!info || info->kind != runner::StudyKind::kLod)
     throw UserError(dir +
                     " is not a complete LOD run (no study.json of kind lod: run `renderaudit run` "
                     "on a [lod] experiment)");
@@ -553,15 +553,15 @@ void analyze_lod_study(const std::string& dir) {
           << ',' << r.over_tau << "\n";
   write_file_atomic(dir + "/lod_table.csv", table.str());
   write_file_atomic(dir + "/lod.md", lod_document(sj, rows));
-  StudyInfo updated = *info;
+  runner::StudyInfo updated = *info;
   updated.document = "lod.md";
   updated.analysed = true;
-  write_study_info(dir, updated);
+  runner::write_study_info(dir, updated);
 }
 
 void plot_lod_study(const std::string& dir) {
-  const std::optional<StudyInfo> info = read_study_info(dir);
-  if (!info || info->kind != StudyKind::kLod || !info->analysed)
+  const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
+  if (!info || info->kind != runner::StudyKind::kLod || !info->analysed)
     throw UserError(dir + " has not been analysed: run `renderaudit analyze " + dir + "` first");
   const std::vector<TableRow> rows = read_table(dir);
   auto label = [](double tau) { return "tau " + fmt(tau, "%g"); };

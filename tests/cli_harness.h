@@ -150,7 +150,7 @@ inline void reseal_records_file(const std::string& path) {
     }
     start = end;
   }
-  write_records_text(path, body + ra::shard_trailer(body, rows));
+  write_records_text(path, body + ra::runner::shard_trailer(body, rows));
 }
 
 // Every record line of a run directory, with the timing columns (the last two) removed, as a set

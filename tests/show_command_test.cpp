@@ -152,7 +152,7 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
   write_text(dir + "/run/experiment.toml",
              experiment("\"faulty\"", "[faults]\nshift_fraction = 1.0\n"));
   // A triangle of some size away from the window's right edge, so no shifted pixel falls off.
-  const ra::Experiment exp = ra::load_experiment(dir + "/run/experiment.toml");
+  const ra::runner::Experiment exp = ra::runner::load_experiment(dir + "/run/experiment.toml");
   ra::geometry::PixelSet ref;
   uint64_t index = 0;
   for (; index < 20; ++index) {

@@ -283,14 +283,14 @@ TEST(SlurmCommand, StatusSaysWhatIsDoneRunningAndLeftWhileAWriterIsAtWork) {
   fs::remove(dir + "/run/manifest.json");
   // ... and a writer at work in DIR, with two shards running and 100 s left
   ra::DirLock lock(dir + "/run", "run");
-  ra::RunProgress p;
+  ra::runner::RunProgress p;
   p.host = "node7";
   p.pid = 4242;
   p.shards_to_run = 32;
   p.shards_finished = 3;
   p.running = {"reference.point.v1.0-50", "reference.point.v1.50-100"};
   p.left_s = 100;
-  ra::write_run_progress(dir + "/run", p);
+  ra::runner::write_run_progress(dir + "/run", p);
   Outcome s = run_renderaudit("status " + dir + "/run");
   EXPECT_EQ(s.exit_code, 3) << s.output;
   EXPECT_NE(s.output.find(": experiment e: running\n"), std::string::npos) << s.output;

@@ -10,6 +10,7 @@ namespace ra::timing {
 
 // Throws UserError for bad input (file:line:column) or a --platform not in the file. A platform
 // whose measurement failed is named in the summary and sets findings.
-StudyRunResult run_timing_study(const StudyRunOptions& options, bool figures = true);
+runner::StudyRunResult run_timing_study(const runner::StudyRunOptions& options,
+                                        bool figures = true);
 
 }  // namespace ra::timing
