@@ -8,75 +8,122 @@
 
 namespace ra::analysis {
 
-ConformanceSummary summarize_conformance(const std::vector<std::string>& records_files,
-                                         const std::string& run_dir) {
+void ConformanceTally::select_group(std::string_view platform, std::string_view kind, int group) {
+  if (group == std::get<2>(key_) && platform == std::get<0>(key_) && kind == std::get<1>(key_))
+    return;
+  key_ = GroupKey{std::string(platform), std::string(kind), group};
+  counts_ = nullptr;
+  reference_ = nullptr;
+}
+
+void ConformanceTally::add(const metrics::RecordRow& row) {
   using C = metrics::RecordColumn;
-  ConformanceSummary s;
-  for (const std::string& path : records_files) {
-    const std::string rel =
-        run_dir.empty() ? path : std::filesystem::path(path).lexically_relative(run_dir).string();
-    metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) {
-      const std::string platform(row.cell(C::kPlatform)), kind(row.cell(C::kKind));
-      const int group = row.integer<int>(C::kViewGroup);
-      const GroupKey key{platform, kind, group};
-      if (!s.group_labels.count(key))
-        s.group_labels[key] = std::string(row.cell(C::kFovDeg)) + " deg, " +
-                              std::string(row.cell(C::kWidth)) + "x" +
-                              std::string(row.cell(C::kHeight));
-      const metrics::CaseStatus status = row.status();
-      if (status != metrics::CaseStatus::kOk) {
-        ++s.non_ok_counts[{platform, kind, status_name(status)}];
-        if (s.non_ok_examples.size() < kNonOkExamples)
-          s.non_ok_examples.push_back({platform, kind, status_name(status),
-                                       row.integer<int>(C::kView),
-                                       row.integer<std::uint64_t>(C::kIndex), rel,
-                                       static_cast<std::uint64_t>(row.line())});
-        return;
-      }
-      if (!row.cell(C::kRefDiff).empty()) {
-        const auto diff = row.integer<long long>(C::kRefDiff);
-        const auto pixels = row.optional_integer<long long>(C::kPixels, 0);
-        ReferenceAgreement& r = s.reference[key];
-        ++r.compared;
-        r.identical += diff == 0;
-        if (pixels > 0 || diff > 0) {
-          ++r.drawn;
-          r.drawn_identical += diff == 0;
-        }
-      }
-      const metrics::Conformance c = row.conformance();
-      if (c == metrics::Conformance::kNotCompared) {
-        ++s.not_compared;
-        return;
-      }
-      ConformanceCounts& n = s.groups[key];
-      ++n.compared;
-      switch (c) {
-        case metrics::Conformance::kExact: ++n.exact; break;
-        case metrics::Conformance::kSnapped: ++n.snapped; break;
-        case metrics::Conformance::kWithinSpec: ++n.within_spec; break;
-        case metrics::Conformance::kViolation: ++n.violation; break;
-        case metrics::Conformance::kNotCompared: break;
-      }
-      if (c != metrics::Conformance::kViolation) return;
-      Violation v{platform, kind, row.integer<int>(C::kView), group,
-                  row.integer<std::uint64_t>(C::kIndex),
-                  row.optional_integer<std::int64_t>(C::kViolatingPixels, 0),
-                  std::string(row.cell(C::kViolatedRules))};
-      n.violating_pixels += std::uint64_t(std::max<std::int64_t>(v.violating_pixels, 0));
-      std::string_view rules = v.rules;
-      while (!rules.empty()) {  // '+'-joined
-        const std::size_t plus = rules.find('+');
-        ++n.rules[std::string(rules.substr(0, plus))];
-        rules = plus == std::string_view::npos ? std::string_view() : rules.substr(plus + 1);
-      }
-      s.violations.push_back(std::move(v));
-    });
+  ConformanceSummary& s = summary_;
+  select_group(row.cell(C::kPlatform), row.cell(C::kKind), row.integer<int>(C::kViewGroup));
+  const auto& [platform, kind, group] = key_;
+  if (!s.group_labels.count(key_))
+    s.group_labels[key_] = std::string(row.cell(C::kFovDeg)) + " deg, " +
+                           std::string(row.cell(C::kWidth)) + "x" +
+                           std::string(row.cell(C::kHeight));
+  const metrics::CaseStatus status = row.status();
+  if (status != metrics::CaseStatus::kOk) {
+    ++s.non_ok_counts[{platform, kind, metrics::status_name(status)}];
+    if (s.non_ok_examples.size() < kNonOkExamples)
+      s.non_ok_examples.push_back({platform, kind, metrics::status_name(status),
+                                   row.integer<int>(C::kView),
+                                   row.integer<std::uint64_t>(C::kIndex), file_,
+                                   static_cast<std::uint64_t>(row.line())});
+    return;
   }
+  if (!row.cell(C::kRefDiff).empty()) {
+    const auto diff = row.integer<long long>(C::kRefDiff);
+    const auto pixels = row.optional_integer<long long>(C::kPixels, 0);
+    if (reference_ == nullptr) reference_ = &s.reference[key_];
+    ReferenceAgreement& r = *reference_;
+    ++r.compared;
+    r.identical += diff == 0;
+    if (pixels > 0 || diff > 0) {
+      ++r.drawn;
+      r.drawn_identical += diff == 0;
+    }
+  }
+  const metrics::Conformance c = row.conformance();
+  if (c == metrics::Conformance::kNotCompared) {
+    ++s.not_compared;
+    return;
+  }
+  if (counts_ == nullptr) counts_ = &s.groups[key_];
+  ConformanceCounts& n = *counts_;
+  ++n.compared;
+  switch (c) {
+    case metrics::Conformance::kExact: ++n.exact; break;
+    case metrics::Conformance::kSnapped: ++n.snapped; break;
+    case metrics::Conformance::kWithinSpec: ++n.within_spec; break;
+    case metrics::Conformance::kViolation: ++n.violation; break;
+    case metrics::Conformance::kNotCompared: break;
+  }
+  if (c != metrics::Conformance::kViolation) return;
+  Violation v{platform, kind, row.integer<int>(C::kView), group,
+              row.integer<std::uint64_t>(C::kIndex),
+              row.optional_integer<std::int64_t>(C::kViolatingPixels, 0),
+              std::string(row.cell(C::kViolatedRules))};
+  n.violating_pixels += std::uint64_t(std::max<std::int64_t>(v.violating_pixels, 0));
+  std::string_view rules = v.rules;
+  while (!rules.empty()) {  // '+'-joined
+    const std::size_t plus = rules.find('+');
+    ++n.rules[std::string(rules.substr(0, plus))];
+    rules = plus == std::string_view::npos ? std::string_view() : rules.substr(plus + 1);
+  }
+  s.violations.push_back(std::move(v));
+}
+
+void append_conformance(ConformanceSummary& into, ConformanceSummary&& later) {
+  for (auto& [key, n] : later.groups) {
+    ConformanceCounts& to = into.groups[key];
+    to.compared += n.compared;
+    to.exact += n.exact;
+    to.snapped += n.snapped;
+    to.within_spec += n.within_spec;
+    to.violation += n.violation;
+    to.violating_pixels += n.violating_pixels;
+    for (const auto& [rule, count] : n.rules) to.rules[rule] += count;
+  }
+  for (auto& v : later.violations) into.violations.push_back(std::move(v));
+  into.not_compared += later.not_compared;
+  for (const auto& [key, r] : later.reference) {
+    ReferenceAgreement& to = into.reference[key];
+    to.compared += r.compared;
+    to.identical += r.identical;
+    to.drawn += r.drawn;
+    to.drawn_identical += r.drawn_identical;
+  }
+  for (auto& [key, label] : later.group_labels)
+    into.group_labels.try_emplace(key, std::move(label));  // the first file's label stays
+  for (const auto& [key, count] : later.non_ok_counts) into.non_ok_counts[key] += count;
+  for (auto& e : later.non_ok_examples) {
+    if (into.non_ok_examples.size() >= kNonOkExamples) break;
+    into.non_ok_examples.push_back(std::move(e));
+  }
+}
+
+void finish_conformance(ConformanceSummary& s) {
   std::sort(s.violations.begin(), s.violations.end(), [](const Violation& a, const Violation& b) {
     return std::tie(b.violating_pixels, a.platform, a.kind, a.view, a.index) <
            std::tie(a.violating_pixels, b.platform, b.kind, b.view, b.index);
   });
+}
+
+ConformanceSummary summarize_conformance(const std::vector<std::string>& records_files,
+                                         const std::string& run_dir) {
+  ConformanceSummary s;
+  for (const std::string& path : records_files) {
+    ConformanceTally file(run_dir.empty()
+                              ? path
+                              : std::filesystem::path(path).lexically_relative(run_dir).string());
+    metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) { file.add(row); });
+    append_conformance(s, file.take());
+  }
+  finish_conformance(s);
   return s;
 }
 

@@ -3,17 +3,20 @@
 // snapped, within-spec and violation with Clopper-Pearson 95% intervals, and every violation,
 // worst first, with the `renderaudit show` command that draws it. The same pass also tallies what
 // plot and report show beside the verdicts: agreement with the reference rasterizer (ref_diff),
-// each view group's camera label and the records whose status is not `ok`. Read from the records
-// files directly (only these columns), so analyze pays one pass over them.
+// each view group's camera label and the records whose status is not `ok`. Tallied row by row
+// (ConformanceTally) in the pass that loads the records for the statistics (run_records.h), so
+// analyze reads every file once.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <map>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
+#include "metrics/records_reader.h"
 #include "stats/table_writer.h"
 
 namespace ra::analysis {
@@ -77,6 +80,34 @@ constexpr std::size_t kNonOkExamples = 30;
 // NonOkCase::file is relative to `run_dir` when that is given.
 ConformanceSummary summarize_conformance(const std::vector<std::string>& records_files,
                                          const std::string& run_dir = "");
+
+// The summary of one records file, row by row, so that the pass that loads the records for the
+// statistics (load_run_records) tallies the verdicts too; the files' tallies are then joined in
+// file order with append_conformance. `file` is NonOkCase::file for this file's rows.
+class ConformanceTally {
+ public:
+  explicit ConformanceTally(std::string file) : file_(std::move(file)) {}
+  void add(const metrics::RecordRow& row);
+  ConformanceSummary take() { return std::move(summary_); }
+
+ private:
+  void select_group(std::string_view platform, std::string_view kind, int group);
+
+  std::string file_;
+  ConformanceSummary summary_;
+  // the group of the previous row (rows come in runs of one platform, kind and view) and its
+  // entries, made when first needed so that a group without verdicts gets no row
+  GroupKey key_{"", "", -1};
+  ConformanceCounts* counts_ = nullptr;
+  ReferenceAgreement* reference_ = nullptr;
+};
+
+// Appends a later file's summary: counts added, the first label of each group kept, examples of
+// records that are not `ok` up to kNonOkExamples, violations appended (then ordered by
+// finish_conformance).
+void append_conformance(ConformanceSummary& into, ConformanceSummary&& later);
+// Orders the violations worst first (ConformanceSummary::violations).
+void finish_conformance(ConformanceSummary& s);
 
 // The table "conformance": one row per platform x kind x view group with a verdict.
 stats::Table conformance_table(const ConformanceSummary& s);

@@ -65,8 +65,8 @@ struct Comparison {
 };
 
 json qq_json(std::vector<double> a, std::vector<double> b, const FigureOptions& o) {
-  std::sort(a.begin(), a.end());
-  std::sort(b.begin(), b.end());
+  stats::sort_ascending(a);
+  stats::sort_ascending(b);
   const std::size_t m = std::min(a.size(), b.size());
   json j{{"n_a", a.size()},
          {"n_b", b.size()},

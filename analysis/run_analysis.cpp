@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -93,10 +94,20 @@ std::string files_readme(const std::vector<Output>& outputs, const RunRecords& r
   return md;
 }
 
-// The run's records, with what --point-margin-px needs to generate each point again.
+// Throws IncompleteRunError naming what is missing or damaged, unless the run is whole (or has no
+// plan to compare with) or --allow-incomplete.
+void refuse_if_incomplete(const RunCompleteness& completeness, const AnalyzeOptions& o) {
+  if (completeness.has_plan && !completeness.complete() && !o.allow_incomplete)
+    throw IncompleteRunError(o.run_dir + ": " + completeness.markdown() +
+                             completeness.remedy("analyze"));
+}
+
+// The run's records (and, when the run has a plan to check them against, their seals), with what
+// --point-margin-px needs to generate each point again.
 RunRecords load_records(const AnalyzeOptions& o) {
   LoadOptions load;
   load.jobs = o.jobs;
+  load.read_seals = std::filesystem::exists(o.run_dir + "/experiment.toml");
   std::optional<runner::Experiment>
       experiment;  // the views and seed that generate each point again
   if (o.point_margin_px > 0) {
@@ -109,6 +120,24 @@ RunRecords load_records(const AnalyzeOptions& o) {
     load.experiment = &*experiment;
   }
   return load_run_records(o.run_dir, load);
+}
+
+// A stage started on a thread of its own, with the wall time it took.
+template <typename Work>
+auto timed_task(Work work) {
+  return std::async(std::launch::async, [work = std::move(work)] {
+    Stopwatch watch;
+    auto value = work();
+    return std::make_pair(std::move(value), watch.lap());
+  });
+}
+
+// The stage's result (its exception, if it threw); its time goes to result.timings.
+template <typename Task>
+auto take(Task& task, const char* stage, AnalyzeResult& result) {
+  auto [value, seconds] = task.get();
+  result.timings.push_back({stage, seconds});
+  return std::move(value);
 }
 
 TableOptions table_options(const AnalyzeOptions& o, const EquivalenceOptions& eq) {
@@ -258,13 +287,19 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   check_options(o);
   AnalyzeResult result;
   Stopwatch watch;
-  const RunCompleteness completeness = check_run_completeness(o.run_dir);
-  if (completeness.has_plan && !completeness.complete() && !o.allow_incomplete)
-    throw IncompleteRunError(o.run_dir + ": " + completeness.markdown() +
-                             completeness.remedy("analyze"));
+  // The records are loaded first, their seals read in the same pass; the completeness check then
+  // judges the run from those seals instead of reading every file again. A run that is not whole
+  // is refused as if it had been checked first: also when one of its files does not even parse.
+  RunRecords run;
+  try {
+    run = load_records(o);
+  } catch (const std::exception&) {
+    refuse_if_incomplete(check_run_completeness(o.run_dir), o);
+    throw;
+  }
+  const RunCompleteness completeness = check_run_completeness(o.run_dir, &run.seals);
+  refuse_if_incomplete(completeness, o);
   result.completeness = completeness.headline();
-
-  const RunRecords run = load_records(o);
   result.records = run.record_count;
   result.timings.push_back({"load", watch.lap()});
 
@@ -273,24 +308,25 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   eq.quantiles = o.quantiles;
   eq.comparison.box_cox_subsample = o.box_cox_subsample;
   eq.jobs = o.jobs;
-  const std::vector<ViewEquivalence> equivalence = assess_view_equivalence(run, eq);
-  result.comparisons = equivalence.size();
-  for (const ViewEquivalence& e : equivalence)
-    result.not_equivalent += e.verdict == Verdict::kNotEquivalent;
-  result.timings.push_back({"equivalence", watch.lap()});
-
-  const std::vector<stats::Table> tables = paper_tables(run, table_options(o, eq));
-  result.timings.push_back({"tables", watch.lap()});
-
-  const ConformanceSummary conformance = summarize_conformance(run.files, run.run_dir);
-  result.timings.push_back({"conformance", watch.lap()});
-
   FigureOptions fo;
   fo.quantiles = o.quantiles;
   fo.jobs = o.jobs;
   fo.alpha = o.alpha;
-  const nlohmann::json figures = figure_data(run, fo);
-  result.timings.push_back({"figures", watch.lap()});
+  // The three statistics stages only read the records: they run at once, so that each one's serial
+  // parts overlap the others' parallel ones. Each stage's own wall time is reported.
+  const TableOptions to = table_options(o, eq);
+  auto equivalence_task = timed_task([&] { return assess_view_equivalence(run, eq); });
+  auto tables_task = timed_task([&] { return paper_tables(run, to); });
+  auto figures_task = timed_task([&] { return figure_data(run, fo); });
+  const std::vector<ViewEquivalence> equivalence = take(equivalence_task, "equivalence", result);
+  const std::vector<stats::Table> tables = take(tables_task, "tables", result);
+  const nlohmann::json figures = take(figures_task, "figures", result);
+  result.comparisons = equivalence.size();
+  for (const ViewEquivalence& e : equivalence)
+    result.not_equivalent += e.verdict == Verdict::kNotEquivalent;
+  result.timings.push_back({"statistics", watch.lap()});
+
+  const ConformanceSummary& conformance = run.conformance;  // tallied while loading
 
   // render everything, then write
   std::string all_tables, printed;

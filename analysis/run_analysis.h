@@ -44,6 +44,9 @@ struct AnalyzeOptions {
   double point_margin_px = 0;
 };
 
+// Stages in order: load (completeness check, records and conformance verdicts), equivalence,
+// tables and figures (run at once, each with its own wall time), statistics (the three together),
+// write.
 struct StageTime {
   std::string stage;
   double seconds = 0;  // wall-clock

@@ -108,7 +108,7 @@ std::string RunCompleteness::remedy(const std::string& command) const {
          command + " it as it is.";
 }
 
-RunCompleteness check_run_completeness(const std::string& run_dir) {
+RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSeals* seals) {
   RunCompleteness c;
   const std::string toml = run_dir + "/experiment.toml";
   if (!fs::exists(toml)) return c;
@@ -152,7 +152,13 @@ RunCompleteness check_run_completeness(const std::string& run_dir) {
     const std::string path = s.records_path(run_dir);
     if (!fs::exists(path)) return;
     present[i] = 1;
-    std::string why = runner::check_shard_file(path, s.size());
+    const runner::ShardSeal* known = nullptr;  // read already by the caller?
+    if (seals != nullptr) {
+      const auto it = seals->find(fs::path(path).filename().string());
+      if (it != seals->end()) known = &it->second;
+    }
+    std::string why = known ? runner::seal_verdict(*known, s.size(), util::has_zstd_extension(path))
+                            : runner::check_shard_file(path, s.size());
     if (why.rfind("no trailer", 0) == 0) why = check_unsealed(path, s, why);  // an older run?
     verdicts[i] = why;
   });

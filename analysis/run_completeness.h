@@ -7,10 +7,12 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "runner/shard_file.h"
 #include "util/errors.h"
 
 namespace ra::analysis {
@@ -48,8 +50,11 @@ struct RunCompleteness {
 
 // Reads DIR/experiment.toml, DIR/manifest.json and DIR/records/ (every records file once, in
 // blocks: memory does not depend on the run's size). Throws ra::UserError when the experiment file
-// is unreadable.
-RunCompleteness check_run_completeness(const std::string& run_dir);
+// is unreadable. `seals`: the seals of records files already read (by file name, as
+// load_run_records reads them), which are then judged without reading those files again.
+using ShardSeals = std::map<std::string, runner::ShardSeal>;  // by file name
+RunCompleteness check_run_completeness(const std::string& run_dir,
+                                       const ShardSeals* seals = nullptr);
 
 // What analyze and report throw when the run is incomplete and going on was not allowed.
 class IncompleteRunError : public util::UserError {

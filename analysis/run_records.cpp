@@ -140,12 +140,32 @@ stats::Description describe_sorted(const std::vector<double>& ascending,
 std::vector<double> merge_sorted(const std::vector<const std::vector<double>*>& parts) {
   std::size_t n = 0;
   for (const auto* p : parts) n += p->size();
+  // the parts side by side, then neighbouring runs merged pairwise, pass by pass: log2(k) passes
+  // over the data instead of k
   std::vector<double> all;
   all.reserve(n);
+  std::vector<std::size_t> ends;  // where each run ends
   for (const auto* p : parts) {
-    const auto middle = static_cast<std::ptrdiff_t>(all.size());
+    if (p->empty()) continue;
     all.insert(all.end(), p->begin(), p->end());
-    std::inplace_merge(all.begin(), all.begin() + middle, all.end());
+    ends.push_back(all.size());
+  }
+  std::vector<double> merged;
+  if (ends.size() > 1) merged.resize(all.size());
+  while (ends.size() > 1) {
+    std::vector<std::size_t> merged_ends;
+    std::size_t begin = 0;
+    for (std::size_t r = 0; r < ends.size(); r += 2) {
+      const std::size_t middle = ends[r];
+      const std::size_t end = r + 1 < ends.size() ? ends[r + 1] : middle;
+      std::merge(all.begin() + std::ptrdiff_t(begin), all.begin() + std::ptrdiff_t(middle),
+                 all.begin() + std::ptrdiff_t(middle), all.begin() + std::ptrdiff_t(end),
+                 merged.begin() + std::ptrdiff_t(begin));
+      merged_ends.push_back(end);
+      begin = end;
+    }
+    all.swap(merged);
+    ends = std::move(merged_ends);
   }
   return all;
 }
@@ -253,6 +273,8 @@ struct FileChunk {
   std::map<PartialKey, PartialView> views;
   std::uint64_t records = 0;
   std::uint64_t points_within_margin = 0;  // LoadOptions::point_margin_px reclassifications
+  ConformanceSummary conformance;
+  std::optional<runner::ShardSeal> seal;  // LoadOptions::read_seals
 };
 
 // Difference between two views' parameters, "" when equal.
@@ -283,17 +305,29 @@ constexpr std::array<metrics::RecordColumn, 7> kMetaColumns = {
 
 class FileParser {
  public:
-  FileParser(const std::string& path, const MetricColumns& metrics, const LoadOptions& options)
-      : path_(path), metrics_(metrics), options_(options) {}
+  // `name`: the file as the conformance summary names it (relative to the run directory).
+  FileParser(const std::string& path, const std::string& name, const MetricColumns& metrics,
+             const LoadOptions& options)
+      : path_(path), metrics_(metrics), options_(options), conformance_(name) {}
 
   FileChunk parse() {
-    metrics::for_each_record_row(path_, [this](const metrics::RecordRow& row) { record(row); });
+    const auto row = [this](const metrics::RecordRow& r) { record(r); };
+    if (options_.read_seals) {
+      runner::ShardSealReader seal;
+      metrics::for_each_record_row(path_, row,
+                                   [&seal](std::string_view text) { seal.add(text); });
+      chunk_.seal = seal.finish();
+    } else {
+      metrics::for_each_record_row(path_, row);
+    }
+    chunk_.conformance = conformance_.take();
     return std::move(chunk_);
   }
 
  private:
   void record(const metrics::RecordRow& row) {
     ++chunk_.records;
+    conformance_.add(row);
     const std::string_view platform = row.cell(metrics::RecordColumn::kPlatform);
     if (platform.empty()) row.fail("column 'platform' is empty");
     const std::optional<PrimitiveKind> kind = parse_kind(row.cell(metrics::RecordColumn::kKind));
@@ -424,6 +458,7 @@ class FileParser {
   const MetricColumns& metrics_;
   const LoadOptions& options_;
   FileChunk chunk_;
+  ConformanceTally conformance_;
   PartialView* current_ = nullptr;
   std::string current_platform_;
   PrimitiveKind current_kind_ = PrimitiveKind::kPoint;
@@ -471,6 +506,43 @@ std::optional<std::uint64_t> first_duplicate(std::vector<std::uint64_t>& indices
   return *it;
 }
 
+// The view groups: the views of a platform and kind with the same view_group, by orientation; they
+// must differ in nothing else.
+std::vector<ViewGroup> view_groups_of(const std::map<ViewKey, ViewData>& views,
+                                      const std::string& records_dir) {
+  std::vector<ViewGroup> groups;
+  std::map<std::tuple<std::size_t, int, int>, std::vector<const ViewData*>> grouped;
+  for (const auto& [key, data] : views) {
+    grouped[{key.platform, static_cast<int>(key.kind), data.meta.view_group}].push_back(&data);
+  }
+  for (auto& [key, members] : grouped) {
+    std::sort(members.begin(), members.end(), [](const ViewData* a, const ViewData* b) {
+      return std::tie(a->meta.orientation, a->meta.view) <
+             std::tie(b->meta.orientation, b->meta.view);
+    });
+    ViewGroup g;
+    g.platform = std::get<0>(key);
+    g.kind = static_cast<PrimitiveKind>(std::get<1>(key));
+    g.view_group = std::get<2>(key);
+    g.label = view_group_label(g.view_group);
+    g.views = members;
+    for (const ViewData* v : members) {
+      ViewMeta same = v->meta;
+      same.view = g.meta().view;
+      same.orientation = g.meta().orientation;
+      const std::string diff = meta_difference(same, g.meta());
+      if (!diff.empty()) {
+        throw util::UserError(records_dir + ": views " + std::to_string(g.meta().view) +
+                        " and " + std::to_string(v->meta.view) + " are both in view group " +
+                        g.label + " but differ in more than orientation (view " +
+                        std::to_string(v->meta.view) + " has " + diff + ")");
+      }
+    }
+    groups.push_back(std::move(g));
+  }
+  return groups;
+}
+
 }  // namespace
 
 RunRecords load_run_records(const std::string& run_dir, const LoadOptions& options) {
@@ -505,7 +577,11 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   const std::size_t n_files = run.files.size();
   std::vector<FileChunk> chunks(n_files);
   util::run_in_parallel(n_files, options.jobs,
-                  [&](std::size_t f) { chunks[f] = FileParser(run.files[f], metric_cols, options).parse(); });
+                  [&](std::size_t f) {
+                    const std::string name =
+                        fs::path(run.files[f]).lexically_relative(run_dir).string();
+                    chunks[f] = FileParser(run.files[f], name, metric_cols, options).parse();
+                  });
 
   // merge, checking that a view has the same parameters everywhere
   std::map<PartialKey, MergedView> merged;
@@ -513,6 +589,9 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   for (std::size_t f = 0; f < n_files; ++f) {
     run.record_count += chunks[f].records;
     run.points_within_margin += chunks[f].points_within_margin;
+    append_conformance(run.conformance, std::move(chunks[f].conformance));
+    if (chunks[f].seal)
+      run.seals.emplace(fs::path(run.files[f]).filename().string(), std::move(*chunks[f].seal));
     for (auto& [key, part] : chunks[f].views) {
       const ViewMeta& meta = part.data.meta;
       auto [vm, first] = view_meta.try_emplace(meta.view, meta, f);
@@ -547,6 +626,8 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
     }
     chunks[f] = FileChunk();
   }
+
+  finish_conformance(run.conformance);
 
   // no record counted twice
   for (auto& [key, m] : merged) {
@@ -587,36 +668,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   util::run_in_parallel(samples.size(), options.jobs,
                   [&](std::size_t i) { std::sort(samples[i]->begin(), samples[i]->end()); });
 
-  // view groups: the views of a platform and kind with the same view_group
-  std::map<std::tuple<std::size_t, int, int>, std::vector<const ViewData*>> grouped;
-  for (const auto& [key, data] : run.views) {
-    grouped[{key.platform, static_cast<int>(key.kind), data.meta.view_group}].push_back(&data);
-  }
-  for (auto& [key, views] : grouped) {
-    std::sort(views.begin(), views.end(), [](const ViewData* a, const ViewData* b) {
-      return std::tie(a->meta.orientation, a->meta.view) <
-             std::tie(b->meta.orientation, b->meta.view);
-    });
-    ViewGroup g;
-    g.platform = std::get<0>(key);
-    g.kind = static_cast<PrimitiveKind>(std::get<1>(key));
-    g.view_group = std::get<2>(key);
-    g.label = view_group_label(g.view_group);
-    g.views = views;
-    for (const ViewData* v : views) {
-      ViewMeta same = v->meta;
-      same.view = g.meta().view;
-      same.orientation = g.meta().orientation;
-      const std::string diff = meta_difference(same, g.meta());
-      if (!diff.empty()) {
-        throw util::UserError(records_dir.string() + ": views " + std::to_string(g.meta().view) +
-                        " and " + std::to_string(v->meta.view) + " are both in view group " +
-                        g.label + " but differ in more than orientation (view " +
-                        std::to_string(v->meta.view) + " has " + diff + ")");
-      }
-    }
-    run.groups.push_back(std::move(g));
-  }
+  run.groups = view_groups_of(run.views, records_dir.string());
   return run;
 }
 

@@ -28,8 +28,10 @@
 #include <string_view>
 #include <vector>
 
+#include "analysis/conformance_summary.h"
 #include "geometry/primitive.h"
 #include "runner/experiment.h"
+#include "runner/shard_file.h"
 #include "stats/descriptive.h"
 #include "util/parallel.h"
 
@@ -141,6 +143,11 @@ struct RunRecords {
   std::vector<ViewGroup> groups;  // by platform, kind, view_group
   double point_margin_px = 0;             // LoadOptions::point_margin_px applied
   std::uint64_t points_within_margin = 0;  // true-invisible points counted false-invisible by it
+  // The conformance verdicts and what is tallied beside them (every record, any status), from the
+  // same pass over the files; NonOkCase::file relative to run_dir.
+  ConformanceSummary conformance;
+  // Each file's seal by file name, when LoadOptions::read_seals (check_run_completeness takes it).
+  std::map<std::string, runner::ShardSeal> seals;
 
   // The kinds that have at least one record, in kAllKinds order.
   std::vector<PrimitiveKind> kinds() const;
@@ -160,6 +167,9 @@ struct LoadOptions {
   // views and seed, from which each point is generated again by its index).
   double point_margin_px = 0;
   const runner::Experiment* experiment = nullptr;
+  // Also read each file's seal (runner/shard_file.h) in the same pass, into RunRecords::seals, so
+  // that the completeness check need not read the files again.
+  bool read_seals = false;
 };
 
 // Loads DIR/records/*.csv (*.csv.tmp, unfinished shards, are ignored). Throws ra::UserError when

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "analysis/records_testing.h"
@@ -163,6 +164,91 @@ TEST(RunRecords, MergeAndDescribeSorted) {
   EXPECT_DOUBLE_EQ(d.q1, 0.15);
   EXPECT_DOUBLE_EQ(d.q3, 0.475);
   EXPECT_THROW(describe_sorted({2, 1}, stats::QuantileDefinition::kHyndmanFan6), std::logic_error);
+}
+
+// The conformance verdicts are tallied in the pass that loads the records, file by file and joined
+// in file order: counts summed over files, each group's label from its first record, the first 30
+// records that are not `ok` by file then line, violations worst first across files. Counted here
+// by hand.
+TEST(RunRecords, TalliesTheVerdictsOfEveryFileInFileOrder) {
+  const testing::ScopedTempDir scoped("records_verdicts");
+  const std::filesystem::path& dir = scoped.path;
+  auto judged = [](int view, std::uint64_t index, metrics::Conformance c, std::int64_t pixels,
+                   const char* rules) {
+    metrics::Record r = point("p1", view, index, 0.2);
+    r.conformance = c;
+    r.violating_pixels = pixels;
+    r.violated_rules = rules;
+    r.ref_diff = c == metrics::Conformance::kExact ? 0 : 1;
+    return r;
+  };
+  std::vector<metrics::Record> a, b;
+  for (std::uint64_t i = 0; i < 20; ++i)
+    a.push_back(point("p1", 1, 100 + i, 0, metrics::Visibility::kTrueVisible, metrics::CaseStatus::kCrash));
+  a.push_back(judged(1, 0, metrics::Conformance::kExact, 0, ""));
+  a.push_back(judged(1, 1, metrics::Conformance::kViolation, 2, "point-pixel"));
+  for (std::uint64_t i = 0; i < 20; ++i)
+    b.push_back(point("p1", 2, 100 + i, 0, metrics::Visibility::kTrueVisible, metrics::CaseStatus::kTimeout));
+  b.push_back(judged(2, 0, metrics::Conformance::kViolation, 9, "point-pixel"));
+  b.push_back(judged(2, 1, metrics::Conformance::kWithinSpec, 0, ""));
+  write_records(dir, a, "a.csv");
+  write_records(dir, b, "b.csv");
+
+  const ConformanceSummary& s = load_run_records(dir.string()).conformance;
+  const GroupKey group{"p1", "point", 0};
+  ASSERT_EQ(s.groups.size(), 1u);
+  const ConformanceCounts& n = s.groups.at(group);
+  EXPECT_EQ(n.compared, 4u);
+  EXPECT_EQ(n.exact, 1u);
+  EXPECT_EQ(n.within_spec, 1u);
+  EXPECT_EQ(n.violation, 2u);
+  EXPECT_EQ(n.violating_pixels, 11u);
+  EXPECT_EQ(n.rules.at("point-pixel"), 2u);
+  ASSERT_EQ(s.violations.size(), 2u);  // the worse one (9 px, second file) first
+  EXPECT_EQ(s.violations[0].view, 2);
+  EXPECT_EQ(s.violations[1].view, 1);
+  EXPECT_EQ(s.reference.at(group).compared, 4u);
+  EXPECT_EQ(s.reference.at(group).identical, 1u);
+  EXPECT_EQ(s.group_labels.at(group), "30 deg, 128x128");
+  EXPECT_EQ(s.non_ok_counts.at({"p1", "point", "crash"}), 20u);
+  EXPECT_EQ(s.non_ok_counts.at({"p1", "point", "timeout"}), 20u);
+  ASSERT_EQ(s.non_ok_examples.size(), kNonOkExamples);  // 30 of the 40
+  EXPECT_EQ(s.non_ok_examples[0].file, "records/a.csv");
+  EXPECT_EQ(s.non_ok_examples[0].line, 2u);
+  EXPECT_EQ(s.non_ok_examples[19].index, 119u);
+  EXPECT_EQ(s.non_ok_examples[20].file, "records/b.csv");
+  EXPECT_EQ(s.non_ok_examples[20].status, "timeout");
+  EXPECT_EQ(s.non_ok_examples[29].index, 109u);
+  // the same as the summary read straight from the files
+  const ConformanceSummary direct = summarize_conformance(
+      {(dir / "records" / "a.csv").string(), (dir / "records" / "b.csv").string()}, dir.string());
+  EXPECT_EQ(direct.non_ok_examples.size(), s.non_ok_examples.size());
+  EXPECT_EQ(direct.non_ok_examples.back().file, s.non_ok_examples.back().file);
+  EXPECT_EQ(direct.violations[0].index, s.violations[0].index);
+}
+
+// merge_sorted against sorting the concatenation, for 0 to 9 parts (empty ones among them) of
+// random lengths and values with ties.
+TEST(RunRecords, MergeSortedEqualsSortingEveryPart) {
+  std::uint64_t state = 7;
+  const auto next = [&state] {  // a 64-bit LCG (Knuth's MMIX constants), upper bits
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return state >> 33;
+  };
+  for (std::size_t k = 0; k <= 9; ++k) {
+    std::vector<std::vector<double>> parts(k);
+    std::vector<const std::vector<double>*> pointers;
+    std::vector<double> want;
+    for (auto& p : parts) {
+      p.resize(next() % 50 * (next() % 4 != 0));  // a quarter of them empty
+      for (double& x : p) x = double(next() % 40) / 4;
+      std::sort(p.begin(), p.end());
+      want.insert(want.end(), p.begin(), p.end());
+      pointers.push_back(&p);
+    }
+    std::sort(want.begin(), want.end());
+    EXPECT_EQ(merge_sorted(pointers), want) << k << " parts";
+  }
 }
 
 }  // namespace

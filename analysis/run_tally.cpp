@@ -28,25 +28,28 @@ GroupKey group_key(const json& j) {
 
 // Render times per platform and kind: every view's ok records with a time, true-visible or not.
 std::map<std::pair<std::string, std::string>, RenderTime> render_times(const RunRecords& run) {
-  std::map<std::pair<std::string, std::string>, std::pair<std::vector<double>, std::vector<double>>>
-      us;
+  // each view's samples are ascending (ViewData), so the pooled ones are merged, not sorted
+  using Samples = std::vector<const std::vector<double>*>;
+  std::map<std::pair<std::string, std::string>, std::pair<Samples, Samples>> us;  // all, visible
   for (const auto& [key, view] : run.views) {
     auto& [all, visible] = us[{run.platforms[key.platform], kind_name(key.kind)}];
-    all.insert(all.end(), view.render_us_visible.begin(), view.render_us_visible.end());
-    all.insert(all.end(), view.render_us_other.begin(), view.render_us_other.end());
-    visible.insert(visible.end(), view.render_us_visible.begin(), view.render_us_visible.end());
+    all.push_back(&view.render_us_visible);
+    all.push_back(&view.render_us_other);
+    visible.push_back(&view.render_us_visible);
   }
   std::map<std::pair<std::string, std::string>, RenderTime> out;
+  using stats::QuantileDefinition;
   for (const auto& [key, samples] : us) {
-    const auto& [all, visible] = samples;
+    const std::vector<double> all = merge_sorted(samples.first);
     if (all.empty()) continue;
+    const std::vector<double> visible = merge_sorted(samples.second);
     RenderTime& t = out[key];
     t.cases = all.size();
-    t.median_us = stats::median(all);
-    t.iqr_us = stats::quantile(all, 0.75, stats::QuantileDefinition::kHyndmanFan6) -
-               stats::quantile(all, 0.25, stats::QuantileDefinition::kHyndmanFan6);
+    t.median_us = stats::quantile_sorted(all, 0.5);
+    t.iqr_us = stats::quantile_sorted(all, 0.75, QuantileDefinition::kHyndmanFan6) -
+               stats::quantile_sorted(all, 0.25, QuantileDefinition::kHyndmanFan6);
     t.true_visible = visible.size();
-    if (!visible.empty()) t.median_us_true_visible = stats::median(visible);
+    if (!visible.empty()) t.median_us_true_visible = stats::quantile_sorted(visible, 0.5);
   }
   return out;
 }

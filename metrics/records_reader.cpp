@@ -66,8 +66,13 @@ void RecordRow::not_an_integer(RecordColumn c) const {
 // Feeds lines to a RecordRow and the caller's callback.
 class RecordsFileReader {
  public:
-  RecordsFileReader(const std::string& path, const std::function<void(const RecordRow&)>& row)
-      : path_(path), callback_(row), header_(records_header()), header_v2_(records_header_v2()) {
+  RecordsFileReader(const std::string& path, const std::function<void(const RecordRow&)>& row,
+                    const std::function<void(std::string_view)>* text = nullptr)
+      : path_(path),
+        callback_(row),
+        text_(text),
+        header_(records_header()),
+        header_v2_(records_header_v2()) {
     row_.file_ = &path_;
   }
 
@@ -98,6 +103,7 @@ class RecordsFileReader {
  private:
   // Splits a piece of the file's text into lines; a line cut by the piece's end waits in carry_.
   void feed(std::string_view block) {
+    if (text_ != nullptr) (*text_)(block);
     std::size_t start = 0;
     const std::size_t n = block.size();
     for (;;) {
@@ -154,6 +160,7 @@ class RecordsFileReader {
 
   const std::string path_;
   const std::function<void(const RecordRow&)>& callback_;
+  const std::function<void(std::string_view)>* text_;  // may be null
   const std::string header_, header_v2_;
   std::size_t columns_ = kRecordColumnCount;
   std::string carry_;  // an incomplete line from the previous piece
@@ -193,6 +200,11 @@ int records_schema_version(const std::string& path) {
 void for_each_record_row(const std::string& path,
                          const std::function<void(const RecordRow&)>& row) {
   RecordsFileReader(path, row).read();
+}
+
+void for_each_record_row(const std::string& path, const std::function<void(const RecordRow&)>& row,
+                         const std::function<void(std::string_view)>& text) {
+  RecordsFileReader(path, row, &text).read();
 }
 
 Record parse_record(const RecordRow& row) {

@@ -66,6 +66,10 @@ class RecordRow {
 // file cannot be read, its header is not the records header, or a row has the wrong number of
 // cells; `row` may throw too (RecordRow::fail names file and line).
 void for_each_record_row(const std::string& path, const std::function<void(const RecordRow&)>& row);
+// The same, passing every piece of the file's text (decompressed) to `text` in order, before the
+// rows in it: a check over the whole text (the seal of a shard file) in the same pass.
+void for_each_record_row(const std::string& path, const std::function<void(const RecordRow&)>& row,
+                         const std::function<void(std::string_view)>& text);
 
 // The schema version of the file's header line (3, or 2 for records_header_v2()); 0 when the
 // file is unreadable or its first line is not a records header.

@@ -96,26 +96,15 @@ class HeldBackDigest {
 };
 
 std::string check_compressed(const std::string& path, uint64_t expected_rows) {
-  HeldBackDigest digest;
+  ShardSealReader seal;
   try {
-    util::for_each_zstd_chunk(path, [&](std::string_view c) { digest.add(c); });
+    util::for_each_zstd_chunk(path, [&](std::string_view c) { seal.add(c); });
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
     if (what.find("cut short") != std::string::npos) return "no trailer (the file was cut short)";
     return "damaged: " + what.substr(std::min(what.size(), path.size() + 2));
   }
-  std::string trailer;
-  const BodyDigest d = digest.finish(&trailer);
-  if (trailer.empty() || trailer.back() != '\n') return "no trailer (the file was cut short)";
-  if (trailer.compare(0, kTrailerPrefix.size(), kTrailerPrefix) != 0)
-    return "no trailer (the file was cut short)";
-  if (trailer != trailer_of(d))
-    return "its trailer does not match its contents (" + std::to_string(d.rows) +
-           " rows: damaged, or written by two processes at once)";
-  if (d.rows != expected_rows)
-    return "it holds " + std::to_string(d.rows) + " rows where the shard has " +
-           std::to_string(expected_rows) + " primitives";
-  return "";
+  return seal_verdict(seal.finish(), expected_rows, true);
 }
 
 }  // namespace
@@ -187,24 +176,50 @@ uint64_t seal_shard_file(const std::string& path) {
 
 std::string check_shard_file(const std::string& path, uint64_t expected_rows) {
   if (util::has_zstd_extension(path)) return check_compressed(path, expected_rows);
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  std::ifstream in(path, std::ios::binary);
   if (!in) return "cannot read it";
-  const uint64_t size = uint64_t(in.tellg());
-  // The trailer is the last line: find where it starts in the last few hundred bytes.
-  const uint64_t tail_len = std::min<uint64_t>(size, 256);
-  std::string tail(tail_len, '\0');
-  in.seekg(std::streamoff(size - tail_len));
-  in.read(tail.data(), std::streamsize(tail_len));
-  if (tail.empty() || tail.back() != '\n') return "no trailer (the file was cut short)";
-  const size_t nl = tail.rfind('\n', tail.size() - 2);
-  if (nl == std::string::npos && tail_len == size) return "no trailer (the file was cut short)";
-  const size_t trailer_in_tail = nl == std::string::npos ? 0 : nl + 1;
-  const std::string trailer = tail.substr(trailer_in_tail);
+  ShardSealReader seal;
+  std::string block(1 << 20, '\0');
+  while (in) {
+    in.read(block.data(), std::streamsize(block.size()));
+    if (in.gcount() <= 0) break;
+    seal.add(std::string_view(block.data(), size_t(in.gcount())));
+  }
+  if (in.bad()) return "cannot read it";
+  return seal_verdict(seal.finish(), expected_rows, false);
+}
+
+struct ShardSealReader::Digest {
+  HeldBackDigest held;
+};
+
+ShardSealReader::ShardSealReader() : digest_(std::make_unique<Digest>()) {}
+ShardSealReader::~ShardSealReader() = default;
+
+void ShardSealReader::add(std::string_view piece) { digest_->held.add(piece); }
+
+ShardSeal ShardSealReader::finish() {
+  ShardSeal seal;
+  const BodyDigest d = digest_->held.finish(&seal.last_line);
+  seal.hash = d.hash;
+  seal.rows = d.rows;
+  return seal;
+}
+
+std::string seal_verdict(const ShardSeal& seal, uint64_t expected_rows, bool compressed) {
+  const std::string& trailer = seal.last_line;
+  if (trailer.empty() || trailer.back() != '\n') return "no trailer (the file was cut short)";
+  // a plain file of one short line (the header alone) was cut short; a longer unsealed one may
+  // predate the seal
+  const bool one_short_line =
+      seal.rows == 0 && seal.hash == util::Fnv1a64::kOffsetBasis && trailer.size() <= 256;
   if (trailer.compare(0, kTrailerPrefix.size(), kTrailerPrefix) != 0)
-    return "no trailer (the file was cut short, or written before records were sealed)";
-  in.clear();
-  in.seekg(0);
-  const BodyDigest d = digest(in, size - tail_len + trailer_in_tail);
+    return compressed || one_short_line
+               ? "no trailer (the file was cut short)"
+               : "no trailer (the file was cut short, or written before records were sealed)";
+  BodyDigest d;
+  d.hash = seal.hash;
+  d.rows = seal.rows;
   if (trailer != trailer_of(d))
     return "its trailer does not match its contents (" + std::to_string(d.rows) +
            " rows: damaged, or written by two processes at once)";

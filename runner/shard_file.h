@@ -62,4 +62,32 @@ uint64_t seal_shard_file(const std::string& path);
 // "hash mismatch", ...).
 std::string check_shard_file(const std::string& path, uint64_t expected_rows);
 
+// What the seal check needs of a shard file's text: the hash and row count of everything before
+// its last line, and that line (the trailer, when the file is sealed).
+struct ShardSeal {
+  uint64_t hash = util::Fnv1a64::kOffsetBasis;
+  uint64_t rows = 0;
+  std::string last_line;  // with its '\n'; without one when the text ends mid-line
+};
+
+// The seal of a file's text read piece by piece (decompressed), for a reader that reads the whole
+// file anyway (analyze checks the seals in the pass that loads the records): add() every piece in
+// order, then finish().
+class ShardSealReader {
+ public:
+  ShardSealReader();
+  ~ShardSealReader();
+  void add(std::string_view piece);
+  ShardSeal finish();
+
+ private:
+  struct Digest;
+  std::unique_ptr<Digest> digest_;
+};
+
+// check_shard_file's verdict on a seal read with ShardSealReader: empty when the trailer matches
+// and counts `expected_rows` rows; otherwise why not, in check_shard_file's words. `compressed`:
+// the file is a .csv.zst one.
+std::string seal_verdict(const ShardSeal& seal, uint64_t expected_rows, bool compressed);
+
 }  // namespace ra::runner

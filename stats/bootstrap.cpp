@@ -23,7 +23,7 @@ double beta(std::mt19937_64& rng, double a, double b) {
 BootstrapEstimate summarise(std::vector<double> values) {
   BootstrapEstimate e;
   e.se = mean_and_variance(values).sd;
-  std::sort(values.begin(), values.end());
+  sort_ascending(values);
   e.lo95 = quantile_sorted(values, 0.025, QuantileDefinition::kHyndmanFan7);
   e.hi95 = quantile_sorted(values, 0.975, QuantileDefinition::kHyndmanFan7);
   return e;

@@ -34,7 +34,7 @@ ScaledSample scale(std::vector<double> values) {
                                   " is not positive (shift the data first)");
     }
   }
-  std::sort(values.begin(), values.end());
+  sort_ascending(values);
   const double c = quantile_sorted(values, 0.5);
   ScaledSample s;
   s.log_c = std::log(c);
@@ -63,23 +63,33 @@ bool transform_scaled(const ScaledSample& s, double lambda, std::vector<double>&
   return true;
 }
 
-double ppcc_scaled(const ScaledSample& s, const std::vector<double>& medians, double lambda) {
+// The normal order statistic medians as the PPCC needs them at every lambda: centred on their
+// mean, with their sum of squares (computed once per sample, not at every lambda).
+struct CentredMedians {
+  explicit CentredMedians(const std::vector<double>& medians) : centred(medians.size()) {
+    const double m_mean = mean(medians);
+    for (std::size_t i = 0; i < medians.size(); ++i) {
+      centred[i] = medians[i] - m_mean;
+      sum_of_squares += centred[i] * centred[i];
+    }
+  }
+  std::vector<double> centred;
+  double sum_of_squares = 0;
+};
+
+double ppcc_scaled(const ScaledSample& s, const CentredMedians& medians, double lambda) {
   std::vector<double> t;
   if (!transform_scaled(s, lambda, t)) return kMinusInfinity;
   const double t_mean = mean(t);
-  const double m_mean = mean(medians);
   double sxy = 0;
   double sxx = 0;
-  double syy = 0;
   for (std::size_t i = 0; i < t.size(); ++i) {
     const double dx = t[i] - t_mean;
-    const double dy = medians[i] - m_mean;
-    sxy += dx * dy;
+    sxy += dx * medians.centred[i];
     sxx += dx * dx;
-    syy += dy * dy;
   }
   if (!(sxx > 0) || !std::isfinite(sxx)) return kMinusInfinity;
-  return std::clamp(sxy / std::sqrt(sxx * syy), -1.0, 1.0);
+  return std::clamp(sxy / std::sqrt(sxx * medians.sum_of_squares), -1.0, 1.0);
 }
 
 double log_likelihood_scaled(const ScaledSample& s, double lambda) {
@@ -135,7 +145,8 @@ std::vector<double> normal_order_statistic_medians(std::size_t n) {
 double box_cox_ppcc(const std::vector<double>& values, double lambda) {
   if (values.size() < 3) throw std::invalid_argument("box_cox_ppcc: fewer than 3 values");
   require_finite(values, "box_cox_ppcc");
-  return ppcc_scaled(scale(values), normal_order_statistic_medians(values.size()), lambda);
+  return ppcc_scaled(scale(values), CentredMedians(normal_order_statistic_medians(values.size())),
+                     lambda);
 }
 
 double box_cox_log_likelihood(const std::vector<double>& values, double lambda) {
@@ -179,7 +190,7 @@ BoxCoxResult box_cox_lambda(const std::vector<double>& values, BoxCoxMethod meth
     for (double& y : shifted) y = (y - *lowest) + 1;
   }
   const ScaledSample s = scale(shifted);
-  const std::vector<double> medians = normal_order_statistic_medians(values.size());
+  const CentredMedians medians(normal_order_statistic_medians(values.size()));
   const std::function<double(double)> objective = [&](double lambda) {
     return method == BoxCoxMethod::kPpcc ? ppcc_scaled(s, medians, lambda)
                                          : log_likelihood_scaled(s, lambda);

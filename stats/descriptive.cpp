@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -33,6 +34,48 @@ class CompensatedSum {
 
 void require_non_empty(const std::vector<double>& values, const char* what) {
   if (values.empty()) throw std::invalid_argument(std::string(what) + ": no values");
+}
+
+// 2^e when it is a normal double (|e| <= 1022): multiplying by it is then exact whenever the
+// product is normal and rounds once otherwise, exactly as std::ldexp; nullopt outside that range.
+std::optional<double> exact_power_of_two(int e) {
+  if (e < std::numeric_limits<double>::min_exponent - 1 ||
+      e > std::numeric_limits<double>::max_exponent - 2)
+    return std::nullopt;
+  return std::ldexp(1.0, e);
+}
+
+// Mean and sample variance of scale(x) over the values, scaled back by 2^e: Chan, Golub and
+// LeVeque's corrected two-pass formula (see mean_and_variance()).
+template <typename Scale>
+MeanVariance corrected_two_pass(const std::vector<double>& values, Scale scale, int e) {
+  const double n = static_cast<double>(values.size());
+  // first pass: provisional mean of the values shifted by the first one, so that constant leading
+  // digits cancel exactly before anything is summed
+  const double shift = scale(values.front());
+  CompensatedSum shifted;
+  for (double x : values) shifted.add(scale(x) - shift);
+  const double provisional = shift + shifted.value() / n;
+
+  // second pass: residuals from the provisional mean; their sum corrects the mean, and subtracting
+  // (sum)^2 / n corrects the sum of squares
+  CompensatedSum residuals;
+  CompensatedSum squares;
+  for (double x : values) {
+    const double r = scale(x) - provisional;
+    residuals.add(r);
+    squares.add(r * r);
+  }
+  MeanVariance result;
+  result.scale_exponent = e;
+  result.mean = std::ldexp(provisional + residuals.value() / n, e);
+  if (values.size() >= 2) {
+    const double ss = squares.value() - residuals.value() * residuals.value() / n;
+    result.scaled_variance = std::max(0.0, ss) / (n - 1);
+    result.sd = std::ldexp(std::sqrt(result.scaled_variance), e);
+    result.variance = std::ldexp(result.scaled_variance, 2 * e);
+  }
+  return result;
 }
 
 }  // namespace
@@ -76,8 +119,13 @@ int scale_exponent(const std::vector<std::vector<double>>& groups) {
 
 std::vector<double> scaled(const std::vector<double>& values, int e) {
   std::vector<double> out(values.size());
-  std::transform(values.begin(), values.end(), out.begin(),
-                 [e](double x) { return std::ldexp(x, -e); });
+  if (const std::optional<double> factor = exact_power_of_two(-e)) {
+    const double f = *factor;
+    std::transform(values.begin(), values.end(), out.begin(), [f](double x) { return x * f; });
+  } else {
+    std::transform(values.begin(), values.end(), out.begin(),
+                   [e](double x) { return std::ldexp(x, -e); });
+  }
   return out;
 }
 
@@ -85,35 +133,13 @@ MeanVariance mean_and_variance(const std::vector<double>& unscaled) {
   require_non_empty(unscaled, "mean_and_variance");
   require_finite(unscaled, "mean_and_variance");
   const int e = scale_exponent(unscaled);
-  const std::vector<double> values = scaled(unscaled, e);  // every |x| < 1
-  const double n = static_cast<double>(values.size());
-
-  // first pass: provisional mean of the values shifted by the first one, so that constant leading
-  // digits cancel exactly before anything is summed
-  const double shift = values.front();
-  CompensatedSum shifted;
-  for (double x : values) shifted.add(x - shift);
-  const double provisional = shift + shifted.value() / n;
-
-  // second pass: residuals from the provisional mean; their sum corrects the mean, and subtracting
-  // (sum)^2 / n corrects the sum of squares (Chan, Golub and LeVeque's corrected two-pass formula)
-  CompensatedSum residuals;
-  CompensatedSum squares;
-  for (double x : values) {
-    const double r = x - provisional;
-    residuals.add(r);
-    squares.add(r * r);
+  // every scaled |x| < 1; the scaling is applied on the fly where 2^-e is a normal double (one
+  // multiplication, the same rounding as ldexp), so the data are not copied
+  if (const std::optional<double> factor = exact_power_of_two(-e)) {
+    const double f = *factor;
+    return corrected_two_pass(unscaled, [f](double x) { return x * f; }, e);
   }
-  MeanVariance result;
-  result.scale_exponent = e;
-  result.mean = std::ldexp(provisional + residuals.value() / n, e);
-  if (values.size() >= 2) {
-    const double ss = squares.value() - residuals.value() * residuals.value() / n;
-    result.scaled_variance = std::max(0.0, ss) / (n - 1);
-    result.sd = std::ldexp(std::sqrt(result.scaled_variance), e);
-    result.variance = std::ldexp(result.scaled_variance, 2 * e);
-  }
-  return result;
+  return corrected_two_pass(scaled(unscaled, e), [](double x) { return x; }, e);
 }
 
 double mean(const std::vector<double>& values) { return mean_and_variance(values).mean; }
@@ -149,9 +175,24 @@ double quantile_sorted(const std::vector<double>& sorted, double p, QuantileDefi
   return 2 * (lo / 2 + fraction * (hi / 2 - lo / 2));
 }
 
+void sort_ascending(std::vector<double>& values) {
+  if (!std::is_sorted(values.begin(), values.end())) std::sort(values.begin(), values.end());
+}
+
+std::vector<double> merged_ascending(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> out(a.size() + b.size());
+  if (std::is_sorted(a.begin(), a.end()) && std::is_sorted(b.begin(), b.end())) {
+    std::merge(a.begin(), a.end(), b.begin(), b.end(), out.begin());
+  } else {
+    std::copy(b.begin(), b.end(), std::copy(a.begin(), a.end(), out.begin()));
+    std::sort(out.begin(), out.end());
+  }
+  return out;
+}
+
 double quantile(std::vector<double> values, double p, QuantileDefinition definition) {
   require_non_empty(values, "quantile");
-  std::sort(values.begin(), values.end());
+  sort_ascending(values);
   return quantile_sorted(values, p, definition);
 }
 
@@ -165,7 +206,7 @@ Description describe(std::vector<double> values, QuantileDefinition definition) 
   require_non_empty(values, "describe");
   require_finite(values, "describe");
   const MeanVariance mv = mean_and_variance(values);
-  std::sort(values.begin(), values.end());
+  sort_ascending(values);
   Description d;
   d.n = values.size();
   d.mean = mv.mean;
@@ -191,7 +232,7 @@ double trimmed_mean(std::vector<double> values, double proportion) {
     throw std::invalid_argument("trimmed_mean: proportion " + std::to_string(proportion) +
                                 " is outside [0, 0.5)");
   }
-  std::sort(values.begin(), values.end());
+  sort_ascending(values);
   const std::size_t cut = trimmed_count(values.size(), proportion);
   // cut < n / 2 because proportion < 0.5, so at least one value is left
   std::vector<double> kept(values.begin() + static_cast<std::ptrdiff_t>(cut),
@@ -203,7 +244,7 @@ BoxPlotData box_plot(std::vector<double> values, QuantileDefinition definition,
                      std::size_t max_outliers) {
   require_non_empty(values, "box_plot");
   require_finite(values, "box_plot");
-  std::sort(values.begin(), values.end());
+  sort_ascending(values);
   BoxPlotData b;
   b.n = values.size();
   b.q1 = quantile_sorted(values, 0.25, definition);

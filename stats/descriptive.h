@@ -63,6 +63,12 @@ std::vector<double> scaled(const std::vector<double>& values, int e);
 // themselves. Throws std::invalid_argument when empty or non-finite.
 MeanVariance mean_and_variance(const std::vector<double>& values);
 
+// Sorts the values ascending unless they already are: the analysis keeps its samples sorted, and
+// checking costs one pass where sorting a sorted vector costs many.
+void sort_ascending(std::vector<double>& values);
+// The values of two samples together, ascending: merged when both are ascending, else sorted.
+std::vector<double> merged_ascending(const std::vector<double>& a, const std::vector<double>& b);
+
 // Quantile p (0 <= p <= 1) of `sorted` (ascending, finite, non-empty) by the given definition.
 // Positions outside [1, n] are clamped to the first / last order statistic (as Dataplot and NumPy
 // do). Units of the data. Throws std::invalid_argument on an empty vector or p outside [0, 1].

@@ -4,9 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "stats/stats_testing.h"
 
@@ -222,6 +226,59 @@ TEST(Descriptive, MedianOrNan) {
   EXPECT_THROW(median({}), std::invalid_argument);
   EXPECT_EQ(median_or_nan({4, 1, 3, 2}), 2.5);
   EXPECT_TRUE(std::isnan(median_or_nan({})));
+}
+
+// Scaling by a power of two is a multiplication where 2^-e is a normal double and std::ldexp
+// otherwise: either way every value must equal std::ldexp's, subnormal results (rounded once)
+// and the ends of the exponent range included.
+TEST(DescriptiveScaling, EqualsLdexpBitForBit) {
+  const std::vector<double> values = {1.0,
+                                      -3.0,
+                                      0.1,
+                                      -0.0,
+                                      std::numeric_limits<double>::max(),
+                                      std::numeric_limits<double>::min(),
+                                      std::numeric_limits<double>::denorm_min(),
+                                      0x1.fffffffffffffp-1,
+                                      0x1.0000000000001p-1020,
+                                      0x1.3456789abcdefp+700,
+                                      -0x1.fedcba9876543p-900};
+  for (int e : {0, 1, -1, 60, -60, 1021, 1022, 1023, 1024, 1074, -1021, -1022, -1023, -1074}) {
+    const std::vector<double> got = scaled(values, e);
+    ASSERT_EQ(got.size(), values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const double want = std::ldexp(values[i], -e);
+      EXPECT_EQ(std::signbit(got[i]), std::signbit(want)) << values[i] << " e " << e;
+      EXPECT_TRUE(got[i] == want || (std::isnan(got[i]) && std::isnan(want)))
+          << std::hexfloat << values[i] << " x 2^" << -e << ": " << got[i] << ", ldexp " << want;
+    }
+  }
+}
+
+// The mean and sd of data whose scale exponent lies outside the normal range of 2^-e (values of
+// 1e-310, subnormal) take the ldexp path and still hold.
+TEST(DescriptiveScaling, SubnormalDataKeepTheirMeanAndSd) {
+  const double u = std::numeric_limits<double>::denorm_min();
+  const MeanVariance m = mean_and_variance({2 * u, 4 * u, 6 * u});
+  EXPECT_EQ(m.mean, 4 * u);
+  EXPECT_EQ(m.sd, 2 * u);  // sqrt(((2u)^2 + 0 + (2u)^2) / 2), computed on the scaled values
+}
+
+// Two ascending samples are merged, others sorted: either way the values of both, ascending, as a
+// sort of their concatenation gives them.
+TEST(DescriptiveSorting, MergedAscendingEqualsSortingTheConcatenation) {
+  const std::vector<double> a = {-2, 0, 0.5, 0.5, 7}, b = {-3, 0.5, 1, 9, 10, 11};
+  const std::vector<double> unsorted = {3, -1, 2};
+  for (const auto& [x, y] : {std::pair{a, b}, std::pair{b, a}, std::pair{a, unsorted},
+                             std::pair{unsorted, b}, std::pair{std::vector<double>{}, a}}) {
+    std::vector<double> want = x;
+    want.insert(want.end(), y.begin(), y.end());
+    std::sort(want.begin(), want.end());
+    EXPECT_EQ(merged_ascending(x, y), want);
+  }
+  std::vector<double> v = {5, 1, 3};
+  sort_ascending(v);
+  EXPECT_EQ(v, (std::vector<double>{1, 3, 5}));
 }
 
 }  // namespace

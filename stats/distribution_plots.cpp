@@ -20,8 +20,8 @@ void require_sample(const std::vector<double>& sample, const char* what) {
 QQPlotData qq_plot(std::vector<double> sample1, std::vector<double> sample2) {
   require_sample(sample1, "qq_plot, sample 1");
   require_sample(sample2, "qq_plot, sample 2");
-  std::sort(sample1.begin(), sample1.end());
-  std::sort(sample2.begin(), sample2.end());
+  sort_ascending(sample1);
+  sort_ascending(sample2);
   const bool first_is_smaller = sample1.size() <= sample2.size();
   const std::vector<double>& smaller = first_is_smaller ? sample1 : sample2;
   const std::vector<double>& larger = first_is_smaller ? sample2 : sample1;
@@ -49,9 +49,7 @@ BihistogramData relative_bihistogram(const std::vector<double>& sample1,
                                      const BihistogramOptions& options) {
   require_sample(sample1, "relative_bihistogram, sample 1");
   require_sample(sample2, "relative_bihistogram, sample 2");
-  std::vector<double> combined = sample1;
-  combined.insert(combined.end(), sample2.begin(), sample2.end());
-  std::sort(combined.begin(), combined.end());
+  const std::vector<double> combined = merged_ascending(sample1, sample2);
   const double lo = combined.front();
   const double hi = combined.back();
   const double n = static_cast<double>(combined.size());
