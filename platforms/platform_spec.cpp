@@ -16,8 +16,9 @@ const std::vector<PlatformSpec>& platform_specs() {
       {"osmesa-softpipe", "Mesa OSMesa with the softpipe driver (an independent second platform)",
        B::kOsmesa, "softpipe"},
       {"reference", "the project's exact rasterizer following the GL rules (no driver)",
-       B::kReference},
-      {"faulty", "test platform: the reference rasterizer plus the faults of [faults]", B::kFaulty},
+       B::kReference, ""},
+      {"faulty", "test platform: the reference rasterizer plus the faults of [faults]", B::kFaulty,
+       ""},
       // The antialiasing condition; after the first four, so that those keep their place in
       // messages. softpipe has no multisample variant: its GL_MAX_SAMPLES is 1 (Mesa 22.3.6), and
       // glRenderbufferStorageMultisample(4) fails there.
@@ -32,7 +33,7 @@ const std::vector<PlatformSpec>& platform_specs() {
       {"egl-llvmpipe-msaa4", "Mesa surfaceless EGL with llvmpipe, antialiased: 4x multisampling",
        B::kEglSurfaceless, "llvmpipe", 4},
       {"egl-device", "the first hardware EGL device (EGL_EXT_platform_device): a GPU's own driver",
-       B::kEglDevice},
+       B::kEglDevice, ""},
       {"egl-device-msaa4", "the first hardware EGL device, antialiased: 4x multisampling",
        B::kEglDevice, "", 4},
       // Vulkan (platforms/vulkan_platform.cpp): Mesa's lavapipe, and any Vulkan device.

@@ -109,8 +109,9 @@ TEST_F(RunQueueTest, ResumesKeepsWholeFilesRedoesDamagedOnesAndStartsTheCostlies
     EXPECT_EQ(q.todo[i].attempt, 1);
     EXPECT_FALSE(q.todo[i].is_part());
     EXPECT_EQ(q.todo[i].timeout_s, 7.5);
-    if (i > 0)
+    if (i > 0) {
       EXPECT_GE(expected_cost_of(q.todo[i - 1].shard, exp), expected_cost_of(q.todo[i].shard, exp));
+    }
   }
 }
 

@@ -11,6 +11,7 @@
 #include "geometry/primitive.h"
 #include "metrics/effective_subpixel.h"
 #include "metrics/records_format.h"
+#include "platforms/platform.h"
 
 namespace ra::runner {
 
@@ -33,8 +34,6 @@ struct Shard {
 
 // Every shard of the experiment, in a stable order (platform, view, kind, begin).
 std::vector<Shard> plan_shards(const Experiment& exp);
-
-class platforms::Platform;
 
 // What the shards of one platform share in one process: the platform (its GL context, shaders
 // compiled), the effective subpixel grid it measured, the driver file written once. Made at the
