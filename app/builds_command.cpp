@@ -5,14 +5,21 @@
 #include "app/commands.h"
 #include "platforms/driver_build.h"
 #include "runner/build_fetch.h"
+#include "runner/source_build.h"
 #include "util/errors.h"
 
 namespace ra::app {
 namespace {
 
 void print_build(const runner::BuildSummary& b, bool files) {
-  std::printf("%s  (Debian %s, suite %s, fetched %s)\n  folder: %s\n", b.name.c_str(),
-              b.debian_version.c_str(), b.suite.c_str(), b.fetched_utc.c_str(), b.dir.c_str());
+  if (b.origin == "source")
+    std::printf("%s  (built from source: %s%s, built %s)\n  folder: %s\n", b.name.c_str(),
+                b.version.empty() ? "" : b.version.c_str(),
+                b.commit.empty() ? "" : (" at commit " + b.commit.substr(0, 12)).c_str(),
+                b.fetched_utc.c_str(), b.dir.c_str());
+  else
+    std::printf("%s  (Debian %s, suite %s, fetched %s)\n  folder: %s\n", b.name.c_str(),
+                b.debian_version.c_str(), b.suite.c_str(), b.fetched_utc.c_str(), b.dir.c_str());
   std::printf("  OSMesa GL_VERSION: %s\n  EGL    GL_VERSION: %s\n",
               b.osmesa_version.empty() ? "(cannot draw)" : b.osmesa_version.c_str(),
               b.egl_version.empty() ? "(cannot draw)" : b.egl_version.c_str());
@@ -43,6 +50,39 @@ void register_builds_command(CLI::App& app, int& exit_code) {
   f->callback([&exit_code] {
     const runner::BuildSummary b = runner::fetch_build(fetch);
     print_build(b, true);
+    exit_code = kExitOk;
+  });
+  static runner::SourceBuildOptions build;
+  auto* b = cmd->add_subcommand(
+      "build",
+      "Build a Mesa source tree (a git checkout, at --ref or as it is, or an unpacked source "
+      "package with its patches applied) with meson, software drivers only (llvmpipe, softpipe; "
+      "lavapipe where glslang >= 12.2), into the build cache with its provenance; probe OSMesa "
+      "and EGL. A build of the same commit and options is reused. Needs "
+      "scripts/install-mesa-build-deps.sh once");
+  b->add_option("source", build.source, "Mesa source tree")->required();
+  b->add_option("--ref", build.ref, "git ref to build (checked out for the build, then back)");
+  b->add_option("--name", build.name, "build name (default mesa-<commit 12> or mesa-<VERSION>-src)");
+  b->add_option("--cache", build.cache, "build cache folder");
+  b->add_option("--llvm-config", build.llvm_config, "the LLVM every build uses")
+      ->capture_default_str();
+  b->add_option("--meson-option,-D", build.meson_options,
+                "extra meson option, KEY=VALUE (repeatable), passed after the chosen ones");
+  b->add_option("--build-command", build.build_command,
+                "a shell command that installs a build into $RENDERAUDIT_BUILD_PREFIX instead of "
+                "meson (run in the source tree)");
+  b->add_option("--jobs,-j", build.jobs, "ninja jobs (default: the number of cores)");
+  b->add_flag("--rebuild", [](int64_t) { build.reuse = false; }, "build even when a build of the "
+              "same commit and options is cached");
+  b->callback([&exit_code] {
+    for (std::string& v : build.meson_options)
+      if (v.rfind("-D", 0) != 0) v = "-D" + v;
+    const runner::SourceBuildResult r = runner::build_from_source(
+        build, [](const std::string& line) { std::fprintf(stderr, "builds build: %s\n", line.c_str()); });
+    print_build(r.build, false);
+    std::printf("  %s\n", r.reused ? "reused: same source and options"
+                                    : ("built in " + std::to_string(int(r.seconds)) + " s; log: " +
+                                       r.log).c_str());
     exit_code = kExitOk;
   });
   static std::string list_cache;

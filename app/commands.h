@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "runner/study_dir.h"
 
@@ -16,6 +17,14 @@ constexpr int kExitUsage = 2;     // bad input: nothing was run
 constexpr int kExitIncomplete = 3;  // analyze / report: the run is not whole (missing or damaged
                                     // shards, a writer at work); nothing written
                                     // (--allow-incomplete goes on)
+
+// --index checked as text: a conversion to an unsigned number would turn -1, and any number past
+// the largest, into 18446744073709551615 (app/cli_checks.cpp).
+CLI::Validator primitive_index_check();
+
+// The name of `names` nearest to `typed` (edit distance at most a third of its length, at least
+// 2), or "" when none is that near.
+std::string nearest_name(const std::string& typed, const std::vector<std::string>& names);
 
 void register_run_command(CLI::App& app, int& exit_code);
 void register_worker_command(CLI::App& app, int& exit_code);  // internal: one shard, one process
@@ -32,7 +41,8 @@ void register_merge_command(CLI::App& app, int& exit_code);      // slices of a 
 void register_status_command(CLI::App& app, int& exit_code);
 void register_records_command(CLI::App& app, int& exit_code);  // a run's records as one stream
 void register_builds_command(CLI::App& app, int& exit_code);
-void register_reproduce_command(CLI::App& app, int& exit_code);   // one record as a C program      // driver builds: fetch, list     // where a run stands
+void register_reproduce_command(CLI::App& app, int& exit_code);  // one record as a C program
+void register_bisect_command(CLI::App& app, int& exit_code);     // the driver commit of a change
 
 // The studies (app/study_dispatch.cpp): each returns false when its argument is not a study (an
 // audit experiment or run folder), and otherwise does the study's stage and sets exit_code.

@@ -2,7 +2,10 @@
 // One program, git-style subcommands; see README.md.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <algorithm>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include "app/commands.h"
 #include "util/child_process.h"
@@ -31,6 +34,21 @@ int main(int argc, char** argv) {
   ra::app::register_records_command(app, exit_code);
   ra::app::register_builds_command(app, exit_code);
   ra::app::register_reproduce_command(app, exit_code);
+  ra::app::register_bisect_command(app, exit_code);
+  // A mistyped command ("analyse") is named with the nearest one, before CLI11 would read it as
+  // a missing subcommand (or print the main help for `analyse --help`).
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+      names.push_back(sub->get_name());
+    if (const std::string unknown = argv[1];
+        std::find(names.begin(), names.end(), unknown) == names.end()) {
+      const std::string near = ra::app::nearest_name(unknown, names);
+      std::fprintf(stderr, "renderaudit: unknown command '%s'%s (renderaudit --help lists them)\n",
+                   unknown.c_str(), near.empty() ? "" : ("; did you mean '" + near + "'?").c_str());
+      return ra::app::kExitUsage;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

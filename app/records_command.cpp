@@ -7,7 +7,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -83,6 +85,8 @@ void stream_records(const RecordsOptions& o) {
     if (!c)
       throw util::UserError("--columns " + name +
                             ": no such records column (allowed: " + joined(all_columns) + ")");
+    if (std::find(columns.begin(), columns.end(), *c) != columns.end())
+      throw util::UserError("--columns " + name + ": named twice (each column once)");
     columns.push_back(*c);
   }
   if (columns.empty())
@@ -127,7 +131,10 @@ void stream_records(const RecordsOptions& o) {
   }
   flush();
   std::cout.flush();
-  if (!std::cout) throw std::runtime_error("cannot write the records to stdout");
+  if (!std::cout)
+    throw util::UserError(std::string("cannot write the records to standard output (") +
+                          std::strerror(errno ? errno : EIO) +
+                          "): is the disk it goes to full, or the pipe closed?");
   if (missing > 0)
     std::fprintf(stderr, "renderaudit: records: %zu planned shards of the selection have no "
                  "records file yet (`renderaudit status %s` says why)\n", missing, o.dir.c_str());

@@ -6,6 +6,7 @@
 #include "app/commands.h"
 #include "audit/reproducer.h"
 #include "util/atomic_file.h"
+#include "util/errors.h"
 
 namespace ra::app {
 
@@ -23,17 +24,27 @@ void register_reproduce_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("--kind,-k", q.kind, "point, line or triangle")->required();
   cmd->add_option("--view,-v", q.view, "view number, 1-based (Table 1 order)")->required();
-  cmd->add_option("--index,-i", q.index, "primitive index under the run's seed")->required();
+  cmd->add_option("--index,-i", q.index, "primitive index under the run's seed")
+      ->required()
+      ->check(primitive_index_check());
   cmd->add_option("--out,-o", out, "C file to write (default: RUN/reproduce/PLATFORM.KIND.vV.I.c)");
   cmd->callback([&exit_code] {
     const std::string path = !out.empty() ? out
                                           : q.run_dir + "/reproduce/" + q.platform + "." + q.kind +
                                                 ".v" + std::to_string(q.view) + "." +
                                                 std::to_string(q.index) + ".c";
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::is_directory(path, ec))
+      throw util::UserError("reproduce: --out " + path + " is a folder; name the C file to write "
+                            "(e.g. " + path + "/repro.c)");
+    const fs::path parent = fs::path(path).parent_path();
+    // The default folder RUN/reproduce is made; a folder the user named must exist.
+    if (!out.empty() && !parent.empty() && !fs::is_directory(parent, ec))
+      throw util::UserError("reproduce: --out " + path + ": the folder " + parent.string() +
+                            " does not exist");
     const audit::Reproducer r = audit::make_reproducer(q, path);
-    std::filesystem::create_directories(std::filesystem::path(path).parent_path().empty()
-                                            ? "."
-                                            : std::filesystem::path(path).parent_path());
+    if (out.empty()) fs::create_directories(parent);
     util::write_file_atomic(path, r.source);
     std::printf("wrote %s\nbuild: %s\nrun:   %s\nworker: %llu pixels (hash %llu); reference: %llu "
                 "pixels (hash %llu)\n",

@@ -61,22 +61,9 @@ void register_show_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("--kind,-k", q.kind, "point, line or triangle")->required();
   cmd->add_option("--view,-v", q.view, "view number, 1-based (Table 1 order)")->required();
-  // checked as text: a conversion to an unsigned number would turn -1, and any number past the
-  // largest, into 18446744073709551615
   cmd->add_option("--index,-i", q.index, "primitive index under the run's seed")
       ->required()
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            const bool digits =
-                !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
-            errno = 0;
-            if (digits) std::strtoull(text.c_str(), nullptr, 10);
-            if (!digits || errno == ERANGE)
-              return "--index " + text + ": not a primitive index (allowed: a whole number from "
-                     "0 to 18446744073709551615, below the experiment's count)";
-            return "";
-          },
-          "INDEX"));
+      ->check(primitive_index_check());
   cmd->add_option("--out,-o", q.out_path,
                   "PNG to write (default: RUN/show/PLATFORM.KIND.vVIEW.INDEX.png)");
   cmd->add_option("--scale", q.scale,

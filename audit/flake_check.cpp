@@ -109,7 +109,10 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   RerenderResult result;
   result.batches = batches;
   if (batches.empty()) return result;
-  const runner::Experiment exp = runner::load_experiment(options.run_dir + "/experiment.toml");
+  const runner::Experiment exp =
+      options.experiment_text.empty()
+          ? runner::load_experiment(options.run_dir + "/experiment.toml")
+          : runner::parse_experiment(options.experiment_text, options.run_dir + "/experiment.toml");
   const double timeout_s = options.timeout_s > 0 ? options.timeout_s : exp.shard_timeout_s;
   const std::string program = options.program.empty() ? runner::worker_program() : options.program;
   const unsigned jobs =
@@ -127,7 +130,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   // (platforms/renderer_check.h) and stops rather than draw with another.
   std::error_code copy_ec;
   for (const auto& e : fs::directory_iterator(options.run_dir + "/drivers", copy_ec))
-    if (e.path().extension() == ".json")
+    if (options.copy_driver_files && e.path().extension() == ".json")
       fs::copy_file(e.path(), dir + "/drivers/" + e.path().filename().string(), copy_ec);
 
   struct Running {
@@ -148,6 +151,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
     }
     metrics::read_records(s.records_path(dir), [&](const metrics::Record& r) {
       result.hashes[{batch.platform, int(batch.kind), batch.view, r.index}] = r.pixel_hash;
+      result.pixels[{batch.platform, int(batch.kind), batch.view, r.index}] = r.pixels;
     });
   };
   try {

@@ -64,6 +64,9 @@ struct RerenderOptions {
   double timeout_s = 0;    // per child; 0: the experiment's run.shard_timeout_s
   uint64_t max_gap = 500;  // neighbours less than this far apart share a child
   int attempt = 2;         // RA_RENDER_ATTEMPT given to the children
+  std::string experiment_text;  // non-empty: drawn with this experiment instead of the run's
+                                // (a bisection declares each step's build in it)
+  bool copy_driver_files = true;  // the run's drivers/*.json checked by the children
 };
 
 // A range rendered by one child.
@@ -78,6 +81,7 @@ struct RerenderBatch {
 struct RerenderResult {
   // (platform, kind, view, index) -> pixel_hash of the re-render, for every primitive rendered
   std::map<std::tuple<std::string, int, int, uint64_t>, uint64_t> hashes;
+  std::map<std::tuple<std::string, int, int, uint64_t>, int64_t> pixels;  // lit pixels, same keys
   std::vector<RerenderBatch> batches;
   double seconds = 0;  // wall time of all children
 };

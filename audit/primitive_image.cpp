@@ -160,7 +160,7 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   const geometry::Primitive prim = geometry::make_primitive(exp.seed, kind, q.index);
 
   // Render once, measure that rendering, and rasterize the reference for comparison.
-  const std::unique_ptr<platforms::Platform> platform = create_platform(platform_spec, exp.faults);
+  const std::unique_ptr<platforms::Platform> platform = create_platform(platform_spec, runner::fault_plan_for(exp, platform_spec));
   // The driver that made the run's records, or a clear stop (renderer_check.h).
   platforms::require_run_driver(q.run_dir, q.platform, platform->driver_info());
   const bool is_reference = q.platform == "reference";

@@ -2,10 +2,12 @@
 #include "audit/reproducer.h"
 
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 
+#include "audit/audit_report.h"
 #include "geometry/primitive.h"
 #include "geometry/reference_rasterizer.h"
 #include "metrics/records.h"
@@ -149,6 +151,23 @@ void fill(std::string& s, const std::string& key, const std::string& value) {
     s.replace(at, key.size() + 2, value);
 }
 
+// Text safe inside the generated C file's /* ... */ comment: no comment end, no line break, no
+// other control character (a path or a name from the command line or the run reaches it).
+std::string comment_safe(const std::string& text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == 0x7f) {
+      out += '?';
+    } else if (c == '*' && i + 1 < text.size() && text[i + 1] == '/') {
+      out += "* ";
+    } else {
+      out += char(c);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_name) {
@@ -192,14 +211,17 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   Reproducer out;
   out.record_pixels = record->pixels;
   out.record_hash = record->pixel_hash;
+  out.violated_rules = record->violated_rules;
+  out.view_text = "FOV " + std::to_string(int(std::lround(view->fov_deg))) + " deg, " +
+                  std::to_string(view->width) + " x " + std::to_string(view->height);
   out.reference_pixels = reference.size();
   out.reference_hash = geometry::pixel_set_hash(reference);
   const std::string exe = fs::path(c_file_name).stem().string();
-  out.build_line = "cc " + c_file_name + " -o " + exe + " -lEGL -lOpenGL";
+  out.build_line = "cc " + shell_quote(c_file_name) + " -o " + shell_quote(exe) + " -lEGL -lOpenGL";
   std::string env = "LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=" + spec.mesa_driver + " LP_NUM_THREADS=0";
   if (!spec.build.empty())
-    env = "LD_LIBRARY_PATH=" + platforms::build_library_dir(spec.build_dir) + " " + env;
-  out.run_line = env + " ./" + exe;
+    env = "LD_LIBRARY_PATH=" + shell_quote(platforms::build_library_dir(spec.build_dir)) + " " + env;
+  out.run_line = env + " " + shell_quote("./" + exe);
 
   std::string s = kTemplate;
   std::string vertices;
@@ -207,13 +229,13 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
     vertices += std::string(i ? ", " : "") + "{" + hex(prim.v[i].x) + ", " + hex(prim.v[i].y) +
                 ", " + hex(prim.v[i].z) + "}";
   static const char* modes[] = {"GL_POINTS", "GL_LINES", "GL_TRIANGLES"};
-  fill(s, "TITLE", "renderaudit reproducer: " + q.platform + " " + q.kind + " " +
+  fill(s, "TITLE", comment_safe("renderaudit reproducer: " + q.platform + " " + q.kind + " " +
                        std::to_string(q.index) + ", view " + std::to_string(q.view) + " (" +
                        std::to_string(view->width) + "x" + std::to_string(view->height) + ", FOV " +
                        std::to_string(int(view->fov_deg)) + " degrees) of experiment " + exp.name + ", seed " +
-                       std::to_string(exp.seed));
-  fill(s, "BUILD", out.build_line);
-  fill(s, "RUN", out.run_line);
+                       std::to_string(exp.seed)));
+  fill(s, "BUILD", comment_safe(out.build_line));
+  fill(s, "RUN", comment_safe(out.run_line));
   fill(s, "W", std::to_string(view->width));
   fill(s, "H", std::to_string(view->height));
   fill(s, "PROJECTION", matrix(view->projection));

@@ -25,6 +25,8 @@ struct Reproducer {
   std::string build_line;  // "cc repro.c -o repro -lEGL -lOpenGL"
   std::string run_line;    // the environment and the command that picks the run's driver
   uint64_t record_pixels = 0, record_hash = 0, reference_pixels = 0, reference_hash = 0;
+  std::string violated_rules;  // the record's ('+'-joined rule names; empty when none)
+  std::string view_text;       // "FOV 30 deg, 907 x 907"
 };
 
 // Throws UserError for a run, platform (aliased GL platforms only), kind, view or index the run

@@ -114,8 +114,9 @@ std::string cached_build_of_suite(const std::string& suite) {
 }
 
 std::string build_library_dir(const std::string& dir) {
+  // Debian packages unpacked (usr/lib/<multiarch>), a meson install prefix (lib/<multiarch>), others.
   const std::vector<std::string> candidates = {dir + "/usr/lib/x86_64-linux-gnu", dir + "/usr/lib",
-                                               dir + "/lib", dir};
+                                               dir + "/lib/x86_64-linux-gnu", dir + "/lib", dir};
   std::error_code ec;
   for (const std::string& c : candidates)
     if (fs::exists(c + "/libOSMesa.so.8", ec) || fs::exists(c + "/libEGL_mesa.so.0", ec) ||

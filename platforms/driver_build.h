@@ -23,8 +23,8 @@ std::string build_cache_dir();
 // says so), or "" when the cache holds none.
 std::string cached_build_of_suite(const std::string& suite);
 
-// Where a build folder keeps its shared libraries: DIR/usr/lib/<multiarch>, DIR/usr/lib, DIR/lib
-// or DIR itself, the first that holds libOSMesa.so.8, libEGL_mesa.so.0 or libvulkan_lvp.so; DIR/usr/lib/<multiarch>
+// Where a build folder keeps its shared libraries: DIR/usr/lib/<multiarch>, DIR/usr/lib,
+// DIR/lib/<multiarch> (a meson install prefix), DIR/lib or DIR itself, the first that holds libOSMesa.so.8, libEGL_mesa.so.0 or libvulkan_lvp.so; DIR/usr/lib/<multiarch>
 // when none does (the message then names the library missing there).
 std::string build_library_dir(const std::string& dir);
 

@@ -74,7 +74,7 @@ std::optional<PlatformSpec> find_platform(const std::string& name) {
     std::optional<PlatformSpec> s = find_platform(base);
     if (!s || !is_build_name(build) ||
         (s->backend != Backend::kOsmesa && s->backend != Backend::kEglSurfaceless &&
-         s->mesa_driver != "lavapipe"))
+         s->backend != Backend::kFaulty && s->mesa_driver != "lavapipe"))
       return std::nullopt;
     s->name = name;
     s->description += ", driver build " + build;

@@ -47,19 +47,39 @@ std::string type_text(VkPhysicalDeviceType t) {
   }
 }
 
+}  // namespace
+
+std::string resolve_icd_library(const std::string& build_dir, const std::string& library_path) {
+  std::error_code ec;
+  const std::string in_libs =
+      build_library_dir(build_dir) + "/" + fs::path(library_path).filename().string();
+  if (fs::exists(in_libs, ec)) return in_libs;
+  if (!library_path.empty() && library_path[0] == '/' && fs::exists(build_dir + library_path, ec))
+    return build_dir + library_path;
+  throw util::UserError("driver build " + build_dir + ": its Vulkan driver file names " +
+                        library_path + ", found neither as " + in_libs + " nor under the folder");
+}
+
+namespace {
+
 // A driver build's lavapipe as the loader's only driver: the build's ICD file names the library
-// by its installed path, so a copy naming the library inside the build folder is written there.
+// by its installed path (/usr/lib/... for a Debian package, the meson prefix it was built for, a
+// temporary folder, for a source build), so a copy naming the library inside the build folder
+// is written there. The ICD file is under usr/share (a Debian package) or share (a meson prefix).
 void use_driver_build(const PlatformSpec& spec) {
-  const fs::path icd_dir = fs::path(spec.build_dir) / "usr/share/vulkan/icd.d";
   std::error_code ec;
   fs::path icd;
-  for (const auto& e : fs::directory_iterator(icd_dir, ec))
-    if (e.path().filename().string().rfind("lvp_icd", 0) == 0) icd = e.path();
+  std::vector<fs::path> icd_dirs = {fs::path(spec.build_dir) / "usr/share/vulkan/icd.d",
+                                    fs::path(spec.build_dir) / "share/vulkan/icd.d"};
+  for (const fs::path& icd_dir : icd_dirs)
+    for (const auto& e : fs::directory_iterator(icd_dir, ec))
+      if (icd.empty() && e.path().filename().string().rfind("lvp_icd", 0) == 0) icd = e.path();
   if (icd.empty())
     throw util::UserError(
         "platform " + spec.name + ": the driver build folder " + spec.build_dir +
-        " holds no lavapipe (" + icd_dir.string() +
-        "/lvp_icd.*.json); unpack the build's mesa-vulkan-drivers package into it");
+        " holds no lavapipe (" + icd_dirs[0].string() + "/lvp_icd.*.json, or share/vulkan/icd.d "
+        "of a meson prefix); unpack the build's mesa-vulkan-drivers package into it, or build "
+        "Mesa with -Dvulkan-drivers=swrast");
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(util::read_file(icd.string()));
@@ -67,9 +87,9 @@ void use_driver_build(const PlatformSpec& spec) {
     throw util::UserError(icd.string() + ": not a readable Vulkan driver file (" + e.what() + ")");
   }
   std::string library = j["ICD"].value("library_path", "");
-  if (library.empty() || library[0] != '/')
-    throw util::UserError(icd.string() + ": 'ICD.library_path' must be an absolute path");
-  j["ICD"]["library_path"] = spec.build_dir + library;
+  if (library.empty())
+    throw util::UserError(icd.string() + ": 'ICD.library_path' is missing");
+  j["ICD"]["library_path"] = resolve_icd_library(spec.build_dir, library);
   const std::string local = spec.build_dir + "/renderaudit_lvp_icd.json";
   util::write_file_atomic(local, j.dump(2) + "\n");
   setenv("VK_DRIVER_FILES", local.c_str(), 1);

@@ -49,6 +49,11 @@ struct VulkanDeviceInfo {
 // can be made (naming the packages), std::runtime_error on an unexpected Vulkan error.
 std::vector<VulkanDeviceInfo> list_vulkan_devices();
 
+// The lavapipe library a build's ICD file names by `library_path` (an absolute, installed path):
+// the file of that name in the build's library folder (a Debian package's usr/lib/<multiarch>, a
+// meson prefix's lib/<multiarch>), else build_dir + library_path. Throws UserError naming both.
+std::string resolve_icd_library(const std::string& build_dir, const std::string& library_path);
+
 // The device `spec` draws on, among `devices`. Throws ra::UserError naming the platform when it
 // names no device here (an index beyond the list, no lavapipe, no GPU) or when the device lacks
 // what the platform needs (the Bresenham line mode, 4 samples per pixel), listing the devices.

@@ -60,7 +60,9 @@ std::string utc_now() {
   return buf;
 }
 
-BuildSummary summary_of(const std::string& dir) {
+}  // namespace
+
+BuildSummary read_build(const std::string& dir) {
   const nlohmann::json j = nlohmann::json::parse(util::read_file(dir + "/build.json"));
   BuildSummary s;
   s.dir = dir;
@@ -73,8 +75,15 @@ BuildSummary summary_of(const std::string& dir) {
     s.egl_version = j["gl"].value("egl", nlohmann::json::object()).value("version", "");
   }
   for (const auto& f : j.value("files", nlohmann::json::array())) s.files.push_back(f);
+  s.origin = j.value("origin", "Debian");
+  if (j.contains("source_build")) {
+    s.commit = j["source_build"].value("commit", "");
+    s.version = j["source_build"].value("version", "");
+  }
   return s;
 }
+
+namespace {
 
 // The private apt configuration: every state and cache folder under `apt`.
 std::vector<std::string> apt_options(const std::string& apt) {
@@ -181,12 +190,31 @@ const std::vector<std::string>& optional_build_packages() {
   return p;
 }
 
+bool is_mirror_url(const std::string& url) {
+  for (const unsigned char c : url)
+    if (c <= 0x20 || c >= 0x7f || c == '"' || c == '\'' || c == '[' || c == ']' || c == '\\')
+      return false;
+  for (const char* scheme : {"http://", "https://"}) {
+    const std::size_t n = std::strlen(scheme);
+    if (url.compare(0, n, scheme) == 0) {
+      const std::string host = url.substr(n, url.find('/', n) - n);
+      return !host.empty() && host.find('@') == std::string::npos;
+    }
+  }
+  return url.compare(0, 6, "file:/") == 0 && url.size() > 6;
+}
+
 BuildSummary fetch_build(const FetchOptions& options) {
+  if (!is_mirror_url(options.mirror))
+    throw util::UserError("builds fetch: --mirror '" + options.mirror +
+                          "' is not one Debian archive address (allowed: http://HOST/PATH, "
+                          "https://HOST/PATH or file:/PATH; no spaces, quotes, brackets or control "
+                          "characters)");
   if (!platforms::is_build_name(options.suite))
     throw util::UserError("'" + options.suite +
                           "' is not a Debian suite name (letters, digits, ._-)");
   const std::string cache = options.cache.empty() ? platforms::build_cache_dir() : options.cache;
-  fs::create_directories(cache);
+  require_cache_folder(cache);
   std::string work = cache + "/.fetch-" + options.suite + "-XXXXXX";
   if (!::mkdtemp(work.data()))
     throw util::UserError(util::io_error_message("cannot create a folder in", cache));
@@ -242,14 +270,26 @@ BuildSummary fetch_build(const FetchOptions& options) {
   }
 }
 
-std::vector<BuildSummary> list_builds(const std::string& cache) {
+void require_cache_folder(const std::string& cache) {
+  std::error_code ec;
+  if (fs::exists(cache, ec) && !fs::is_directory(cache, ec))
+    throw util::UserError("the build cache " + cache +
+                          " is not a folder (RENDERAUDIT_BUILD_CACHE, --cache): name a folder");
+  fs::create_directories(cache, ec);
+  if (ec) throw util::UserError(util::io_error_message("cannot create the build cache", cache));
+}
+
+std::vector<BuildSummary> list_builds(const std::string& cache_dir) {
   std::vector<BuildSummary> out;
   std::error_code ec;
-  for (const auto& e :
-       fs::directory_iterator(cache.empty() ? platforms::build_cache_dir() : cache, ec)) {
+  const std::string cache = cache_dir.empty() ? platforms::build_cache_dir() : cache_dir;
+  if (fs::exists(cache, ec) && !fs::is_directory(cache, ec))
+    throw util::UserError("the build cache " + cache +
+                          " is not a folder (RENDERAUDIT_BUILD_CACHE, --cache): name a folder");
+  for (const auto& e : fs::directory_iterator(cache, ec)) {
     if (e.path().filename().string()[0] == '.' || !fs::exists(e.path() / "build.json")) continue;
     try {
-      out.push_back(summary_of(e.path().string()));
+      out.push_back(read_build(e.path().string()));
     } catch (const std::exception&) {
       continue;  // not ours
     }

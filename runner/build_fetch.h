@@ -25,8 +25,11 @@ struct BuildSummary {
   std::string suite;   // where it came from
   std::string debian_version;  // "25.0.7-2~bpo12+1"
   std::string osmesa_version, egl_version;  // GL_VERSION through each back end ("" if it cannot)
-  std::string fetched_utc;                  // when
+  std::string fetched_utc;                  // when (built, for a source build)
   std::vector<std::string> files;           // the shared libraries, relative to dir
+  std::string origin;   // "Debian" (builds fetch) or "source" (builds build)
+  std::string commit;   // a source build's git commit ("" when not from git)
+  std::string version;  // a source build's VERSION ("25.1.0-devel")
 };
 
 // The Mesa packages a build is made of: those every suite must have, and those only some releases
@@ -34,12 +37,24 @@ struct BuildSummary {
 const std::vector<std::string>& required_build_packages();
 const std::vector<std::string>& optional_build_packages();
 
+// Whether `url` is one Debian archive address as apt's sources list takes it: http:// or
+// https:// with a host, or file:/ with a path; printable ASCII without spaces, quotes, brackets or
+// control characters (a newline would add a source line of its own, a '[' options to this one).
+bool is_mirror_url(const std::string& url);
+
 // Fetches, unpacks, probes and moves the build into the cache (replacing a build of the same
 // name). Throws UserError for an unreachable suite, a missing package, a missing tool (apt-get,
 // dpkg-deb) or a build that cannot draw; the cache is then unchanged.
 BuildSummary fetch_build(const FetchOptions& options);
 
-// The builds in the cache (folders with a build.json), by name.
+// What the build folder `dir` holds (its build.json); throws when it has none.
+BuildSummary read_build(const std::string& dir);
+
+// Makes the cache folder; UserError naming it when it is a file or cannot be made.
+void require_cache_folder(const std::string& cache);
+
+// The builds in the cache (folders with a build.json), by name; UserError when the cache path
+// is a file.
 std::vector<BuildSummary> list_builds(const std::string& cache = "");
 
 }  // namespace ra::runner

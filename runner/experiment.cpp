@@ -220,7 +220,64 @@ void parse_builds(const util::TomlLocator& loc, const toml::table& root, Experim
   }
 }
 
+// The keys of a [faults] table (an experiment's, or a faulty@BUILD folder's faults.toml).
+platforms::FaultPlan parse_fault_plan(const util::TomlLocator& loc, const toml::table& t) {
+  platforms::FaultPlan plan;
+  loc.reject_unknown_keys(t, "faults.",
+                          {"base", "crash", "hang", "hang_at_exit", "wild_pixel", "shift_fraction", "flaky_fraction",
+                           "snap_bits", "snap_rounding", "drop_line_end_fraction"});
+  if (const toml::node* n = t.get("base")) {
+    const auto* name = n->as_string();
+    const std::optional<platforms::PlatformSpec> spec =
+        name ? platforms::find_platform(name->get()) : std::optional<platforms::PlatformSpec>();
+    if (!spec || (!spec->draws_with_gl() && name->get() != "reference"))
+      loc.fail(n, "'faults.base' must name the platform that draws (allowed: reference, " +
+                      platforms::aliased_gl_platform_names() + ")");
+    plan.base = name->get();
+  }
+  if (const toml::node* n = t.get("crash")) plan.crash = index_list(loc, *n, "faults.crash");
+  if (const toml::node* n = t.get("hang")) plan.hang = index_list(loc, *n, "faults.hang");
+  if (const toml::node* n = t.get("hang_at_exit")) {
+    const auto* b = n->as_boolean();
+    if (!b) loc.fail(n, "'faults.hang_at_exit' must be true or false");
+    plan.hang_at_exit = b->get();
+  }
+  if (const toml::node* n = t.get("wild_pixel"))
+    plan.wild_pixel = index_list(loc, *n, "faults.wild_pixel");
+  if (const toml::node* n = t.get("snap_bits"))
+    plan.snap_bits = int(loc.integer(*n, "faults.snap_bits", 0, 12));
+  if (const toml::node* n = t.get("snap_rounding")) {
+    const auto* r = n->as_string();
+    if (!r || (r->get() != "nearest" && r->get() != "truncation"))
+      loc.fail(n, "'faults.snap_rounding' must be \"nearest\" or \"truncation\"");
+    plan.snap_truncate = r->get() == "truncation";
+  }
+  for (auto [key, dst] : {std::pair{"shift_fraction", &plan.shift_fraction},
+                          std::pair{"flaky_fraction", &plan.flaky_fraction},
+                          std::pair{"drop_line_end_fraction", &plan.drop_line_end_fraction}}) {
+    if (const toml::node* n = t.get(key)) {
+      *dst = loc.number(*n, std::string("faults.") + key);
+      if (!(*dst >= 0 && *dst <= 1)) loc.fail(n, std::string("'faults.") + key + "' out of range (allowed: 0 to 1)");
+    }
+  }
+  return plan;
+}
+
 }  // namespace
+
+platforms::FaultPlan fault_plan_for(const Experiment& exp, const platforms::PlatformSpec& spec) {
+  if (spec.backend != platforms::Backend::kFaulty || spec.build.empty()) return exp.faults;
+  return load_fault_plan(spec.build_dir + "/faults.toml");
+}
+
+platforms::FaultPlan load_fault_plan(const std::string& path) {
+  util::TomlLocator loc(path);
+  const toml::table root = loc.parse(util::TomlLocator::read_text(path));
+  const toml::node* f = root.get("faults");
+  if (!f || !f->is_table()) loc.fail(f, "a faulty platform's build must hold a [faults] table");
+  loc.reject_unknown_keys(root, "", {"faults"});
+  return parse_fault_plan(loc, *f->as_table());
+}
 
 platforms::PlatformSpec experiment_platform(const Experiment& exp, const std::string& name) {
   std::optional<platforms::PlatformSpec> spec = platforms::find_platform(name);
@@ -339,46 +396,9 @@ Experiment parse_experiment(const std::string& text, const std::string& path) {
 
   if (const toml::node* f = root.get("faults")) {
     if (!f->is_table()) loc.fail(f, "'faults' must be a table");
-    const toml::table& t = *f->as_table();
-    loc.reject_unknown_keys(t, "faults.",
-                            {"base", "crash", "hang", "hang_at_exit", "wild_pixel", "shift_fraction", "flaky_fraction",
-                             "snap_bits", "snap_rounding", "drop_line_end_fraction"});
-    if (const toml::node* n = t.get("base")) {
-      const auto* name = n->as_string();
-      const std::optional<platforms::PlatformSpec> spec =
-          name ? platforms::find_platform(name->get()) : std::optional<platforms::PlatformSpec>();
-      if (!spec || (!spec->draws_with_gl() && name->get() != "reference"))
-        loc.fail(n, "'faults.base' must name the platform that draws (allowed: reference, " +
-                        platforms::aliased_gl_platform_names() + ")");
-      exp.faults.base = name->get();
-    }
-    if (const toml::node* n = t.get("crash")) exp.faults.crash = index_list(loc, *n, "faults.crash");
-    if (const toml::node* n = t.get("hang")) exp.faults.hang = index_list(loc, *n, "faults.hang");
-    if (const toml::node* n = t.get("hang_at_exit")) {
-      const auto* b = n->as_boolean();
-      if (!b) loc.fail(n, "'faults.hang_at_exit' must be true or false");
-      exp.faults.hang_at_exit = b->get();
-    }
-    if (const toml::node* n = t.get("wild_pixel"))
-      exp.faults.wild_pixel = index_list(loc, *n, "faults.wild_pixel");
-    if (const toml::node* n = t.get("snap_bits"))
-      exp.faults.snap_bits = int(loc.integer(*n, "faults.snap_bits", 0, 12));
-    if (const toml::node* n = t.get("snap_rounding")) {
-      const auto* r = n->as_string();
-      if (!r || (r->get() != "nearest" && r->get() != "truncation"))
-        loc.fail(n, "'faults.snap_rounding' must be \"nearest\" or \"truncation\"");
-      exp.faults.snap_truncate = r->get() == "truncation";
-    }
-    for (auto [key, dst] : {std::pair{"shift_fraction", &exp.faults.shift_fraction},
-                            std::pair{"flaky_fraction", &exp.faults.flaky_fraction},
-                            std::pair{"drop_line_end_fraction", &exp.faults.drop_line_end_fraction}}) {
-      if (const toml::node* n = t.get(key)) {
-        *dst = loc.number(*n, std::string("faults.") + key);
-        if (!(*dst >= 0 && *dst <= 1)) loc.fail(n, std::string("'faults.") + key + "' out of range (allowed: 0 to 1)");
-      }
-    }
+    exp.faults = parse_fault_plan(loc, *f->as_table());
     bool faulty = false;
-    for (const auto& p : exp.platforms) faulty |= (p == "faulty");
+    for (const auto& p : exp.platforms) faulty |= (platforms::split_build(p).first == "faulty");
     if (!faulty) loc.fail(f, "[faults] only applies to the 'faulty' test platform, which is not listed");
   }
   return exp;

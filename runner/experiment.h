@@ -54,6 +54,12 @@ struct Experiment {
 // UserError for a name the experiment cannot draw with (unknown, or a build it does not declare).
 platforms::PlatformSpec experiment_platform(const Experiment& exp, const std::string& name);
 
+// The fault plan the `faulty` test platform draws with: for `faulty@BUILD`, the [faults] table of
+// BUILD's folder's faults.toml (so a test can stand in for two driver builds of one platform:
+// renderaudit bisect's tests), else the experiment's. Throws UserError for a bad file.
+platforms::FaultPlan fault_plan_for(const Experiment& exp, const platforms::PlatformSpec& spec);
+platforms::FaultPlan load_fault_plan(const std::string& path);
+
 // Limits checked by validation (also quoted in error messages).
 constexpr int kMaxWindow = 16384;
 constexpr uint64_t kMaxPrimitives = 100000000;  // per kind and view

@@ -106,7 +106,7 @@ void ShardSession::run(const Shard& shard, const std::string& records_dir) {
   const bool exact = shard.platform == "reference";
   if (!platform_) {
     const platforms::PlatformSpec spec = experiment_platform(exp_, shard.platform);
-    platform_ = platforms::create_platform(spec, exp_.faults);
+    platform_ = platforms::create_platform(spec, fault_plan_for(exp_, spec));
     // One driver per record: a process that loaded another driver than the one that made the
     // run's records stops here, before drawing anything (exit status 2).
     platforms::require_run_driver(run_dir_, shard.platform, platform_->driver_info());

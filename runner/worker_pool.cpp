@@ -20,6 +20,13 @@ namespace fs = std::filesystem;
 namespace ra::runner {
 namespace {
 
+// A path as a child's argument: absolute, so that a folder named "-x" is never read as an option.
+std::string as_argument(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path p = std::filesystem::absolute(path, ec);
+  return ec ? path : p.string();
+}
+
 // Reads what the worker said since last time: the ids of the shards it reports done (a server's
 // replies), in order; anything else is kept as its last words.
 template <typename Running>
@@ -173,7 +180,7 @@ void WorkerPool::start_workers(std::deque<WorkItem>& todo) {
     spec.message_pipe = true;
     spec.log_to(log_path(w));  // a server's: until the first command names it again
     if (servable(w)) {
-      spec.argv = {settings_.program, "serve-shards", settings_.dir, s.platform};
+      spec.argv = {settings_.program, "serve-shards", as_argument(settings_.dir), s.platform};
       spec.set_env = {"RA_RENDER_ATTEMPT=1"};
       spec.command_pipe = true;
       const util::Child child = util::start_child(spec);
@@ -186,14 +193,14 @@ void WorkerPool::start_workers(std::deque<WorkItem>& todo) {
     } else {
       spec.argv = {settings_.program,
                    "worker",
-                   settings_.dir,
+                   as_argument(settings_.dir),
                    s.platform,
                    geometry::kind_name(s.kind),
                    std::to_string(s.view),
                    std::to_string(s.begin),
                    std::to_string(s.end),
                    "--records-dir",
-                   records_dir_(w)};
+                   as_argument(records_dir_(w))};
       spec.set_env = {"RA_RENDER_ATTEMPT=" + std::to_string(w.attempt)};
       spec.stdin_null = true;
       const util::Child child = util::start_child(spec);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -134,12 +135,28 @@ TEST_F(RecordsCommand, UnknownNamesAreErrorsThatListWhatTheRunHas) {
       {"--view 9", "--view 9: not in run " + *dir_ + "/run (allowed: 1, 2)"},
       {"--columns index,pee", "--columns pee: no such records column (allowed: platform, view,"},
       {"--format parquet", "--format parquet: unknown (allowed: csv, csv.zst)"},
+      {"--columns index,pixels,index", "--columns index: named twice (each column once)"},
   };
   for (const auto& c : cases) {
     const Outcome o = run_renderaudit("records " + *dir_ + "/run " + c.args);
     EXPECT_EQ(o.exit_code, 2) << c.args << ": " << o.output;
     EXPECT_NE(o.output.find(c.message), std::string::npos) << o.output;
   }
+}
+
+TEST_F(RecordsCommand, AFullDiskIsSaidNotCrashedOn) {
+  ra::util::ChildSpec spec;
+  spec.argv = {RA_BINARY, "records", *dir_ + "/run"};
+  spec.stdout_path = "/dev/full";
+  spec.stderr_path = *dir_ + "/full.err";
+  spec.stdin_null = true;
+  const ra::util::ProgramResult r = ra::util::run_program(spec);
+  EXPECT_EQ(r.exit_code(), 2);
+  std::ifstream in(*dir_ + "/full.err");
+  const std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(err.find("cannot write the records to standard output (No space left on device)"),
+            std::string::npos)
+      << err;
 }
 
 }  // namespace

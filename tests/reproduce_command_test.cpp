@@ -85,3 +85,88 @@ TEST(ReproduceCommand, TheCProgramLightsTheWorkersPixelsExactly) {
               differing);
   EXPECT_GT(drawn, 0);
 }
+
+namespace {
+
+// Runs renderaudit with an argument list as given (no word splitting: paths with newlines).
+ra::util::ProgramResult run_args(std::vector<std::string> args) {
+  args.insert(args.begin(), RA_BINARY);
+  ra::util::ChildSpec spec;
+  spec.argv = args;
+  spec.stdin_null = true;
+  spec.capture_output = true;
+  return ra::util::run_program(spec);
+}
+
+}  // namespace
+
+// No input reaches generated code: an output path that closes the C comment and adds a statement
+// (the folder it names exists) stays inside the comment, and the printed lines quote it.
+TEST(ReproduceCommand, AHostileOutputPathStaysInsideTheCommentAndIsQuoted) {
+  const std::string dir = fresh_dir("reproduce_hostile");
+  write_text(dir + "/e.toml",
+             "seed = 7\nplatforms = [\"osmesa-llvmpipe\"]\n[views]\norientations = 1\n"
+             "fov_deg = [30]\nwindows = [128]\nnear = 0.01\nfar = 10.0\n[primitives]\nlines = 2\n");
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet").exit_code, 0);
+  fs::create_directories(dir + "/a*");
+  // The folder "a*" makes the path hold "*/"; after it a line of C (no further '/').
+  const std::string hostile =
+      dir + "/a*/x\nint injected(void) { return system(\"touch pwned\"); }\n; touch pwned2 #.c";
+  const auto r = run_args({"reproduce", dir + "/run", "--platform", "osmesa-llvmpipe", "--kind",
+                           "line", "--view", "1", "--index", "0", "--out", hostile});
+  ASSERT_EQ(r.exit_code(), 0) << r.output;
+  std::ifstream in(hostile);
+  const std::string c((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::istringstream lines(c);
+  for (std::string l; std::getline(lines, l);) EXPECT_NE(l.rfind("int injected", 0), 0u) << l;
+  // The C file compiles: its comments hold the path, not code.
+  const std::string copy = dir + "/copy.c";
+  fs::copy_file(hostile, copy);
+  const Outcome cc = run_command("cc -std=c99 -Wall -Werror -fsyntax-only " + copy);
+  EXPECT_EQ(cc.exit_code, 0) << cc.output;
+  // The printed build line pastes as one argument: run it through a real shell.
+  const std::size_t b = r.output.find("build: "), e = r.output.find("\nrun:");
+  ASSERT_NE(b, std::string::npos);
+  const std::string build_line = r.output.substr(b + 7, e - b - 7);
+  ra::util::ChildSpec sh;
+  sh.argv = {"/bin/sh", "-c", build_line};
+  sh.working_dir = dir;
+  sh.stdin_null = true;
+  sh.capture_output = true;
+  const auto built = ra::util::run_program(sh);
+  EXPECT_TRUE(built.exited_ok()) << build_line << "\n" << built.output;
+  EXPECT_FALSE(fs::exists(dir + "/pwned"));
+  EXPECT_FALSE(fs::exists(dir + "/pwned2"));  // the `; touch` of the path did not run
+}
+
+TEST(ReproduceCommand, BadIndexAndOutputAreRefusedWithTheirReason) {
+  const std::string dir = fresh_dir("reproduce_bad_input");
+  write_text(dir + "/e.toml",
+             "seed = 7\nplatforms = [\"osmesa-llvmpipe\"]\n[views]\norientations = 1\n"
+             "fov_deg = [30]\nwindows = [128]\nnear = 0.01\nfar = 10.0\n[primitives]\nlines = 2\n");
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet").exit_code, 0);
+  const std::string base = "reproduce " + dir + "/run --platform osmesa-llvmpipe --kind line --view 1 ";
+  for (const char* index : {"-1", "18446744073709551616"}) {
+    const Outcome o = run_renderaudit(base + "--index " + index);
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find("not a primitive index"), std::string::npos) << o.output;
+  }
+  const Outcome folder = run_renderaudit(base + "--index 0 --out " + dir);
+  EXPECT_EQ(folder.exit_code, 2) << folder.output;
+  EXPECT_NE(folder.output.find("is a folder"), std::string::npos) << folder.output;
+  const Outcome missing = run_renderaudit(base + "--index 0 --out " + dir + "/no/such/r.c");
+  EXPECT_EQ(missing.exit_code, 2) << missing.output;
+  EXPECT_NE(missing.output.find("does not exist"), std::string::npos) << missing.output;
+  EXPECT_FALSE(fs::exists(dir + "/no"));
+}
+
+TEST(Commands, AMistypedCommandIsNamedWithTheNearestOne) {
+  for (const char* args : {"analyse /tmp", "analyse --help", "reprodce x"}) {
+    const Outcome o = run_renderaudit(args);
+    EXPECT_EQ(o.exit_code, 2) << args << ": " << o.output;
+    EXPECT_NE(o.output.find("unknown command"), std::string::npos) << o.output;
+  }
+  EXPECT_NE(run_renderaudit("analyse /tmp").output.find("did you mean 'analyze'?"), std::string::npos);
+  EXPECT_NE(run_renderaudit("reprodce x").output.find("did you mean 'reproduce'?"), std::string::npos);
+  EXPECT_EQ(run_renderaudit("zzzzzzzz").output.find("did you mean"), std::string::npos);
+}

@@ -410,3 +410,22 @@ TEST(RunCommand, HelpNamesTheOptions) {
 }
 
 }  // namespace
+
+// A run folder whose name starts with '-' is a path for the workers too, never an option.
+TEST(RunCommand, AnOutputFolderNamedLikeAnOptionRuns) {
+  const std::string dir = fresh_dir("run_dash_out");
+  write_text(dir + "/e.toml",
+             "seed = 3\nplatforms = [\"reference\"]\n[views]\norientations = 1\nfov_deg = [30]\n"
+             "windows = [128]\nnear = 0.01\nfar = 10.0\n[primitives]\nlines = 5\n");
+  ra::util::ChildSpec spec;
+  spec.argv = {RA_BINARY, "run", dir + "/e.toml", "--out", "-dash", "--quiet", "--jobs", "2"};
+  spec.working_dir = dir;
+  spec.stdin_null = true;
+  spec.capture_output = true;
+  const ra::util::ProgramResult r = ra::util::run_program(spec);
+  EXPECT_TRUE(r.exited_ok()) << r.output;
+  EXPECT_EQ(r.output.find("platform is required"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/-dash/manifest.json"));
+  const Outcome s = run_renderaudit("status " + dir + "/-dash");
+  EXPECT_EQ(s.exit_code, 0) << s.output;
+}

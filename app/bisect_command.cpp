@@ -1,0 +1,95 @@
+// `renderaudit bisect RUN --between GOOD_PLATFORM BAD_PLATFORM --source MESA --good REF --bad REF
+// [-- PATHS]`: the commit that made a finding (audit/bisect.h), and the report for the driver's
+// developers (audit/bisect_report.h).
+#include <cstdio>
+
+#include "app/commands.h"
+#include "audit/bisect.h"
+#include "util/errors.h"
+
+namespace ra::app {
+
+void register_bisect_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "bisect",
+      "Find the driver commit that changed a run's pixels: the primitives that differ most between\n"
+      "two platforms of RUN (or those named) are drawn by a build of every commit git bisect\n"
+      "chooses between --good and --bad of a Mesa git tree (built with meson, reused from the build\n"
+      "cache when built before); a commit is good when every selected primitive has the good ref's\n"
+      "pixels, bad when every one has the bad ref's, else skipped (said why). Resumable: the same\n"
+      "command goes on where it stopped. Writes OUT/bisect.json and OUT/bisect.md, the report for\n"
+      "the driver's developers (reproducer, pictures, versions). Exit 0: first bad commit found;\n"
+      "1: only skipped commits are left (the candidates are listed); 2: bad input.");
+  static audit::BisectOptions o;
+  static std::vector<std::string> between;
+  cmd->add_option("run", o.run_dir, "run directory whose records choose the primitives")->required();
+  cmd->add_option("--between", between,
+                  "GOOD_PLATFORM BAD_PLATFORM: two platforms of the run (e.g. egl-llvmpipe "
+                  "egl-llvmpipe@backports)")
+      ->expected(2);
+  cmd->add_option("--source", o.source, "Mesa git checkout (each step checks out a commit in it)")
+      ->required();
+  cmd->add_option("--good", o.good_ref, "a ref that draws as the good platform")->required();
+  cmd->add_option("--bad", o.bad_ref, "a ref that draws as the bad platform")->required();
+  cmd->add_option("--platform", o.platform,
+                  "the platform that draws every build (default: the bad platform without @build; "
+                  "egl-llvmpipe for Mesa >= 25.1, which has no OSMesa)");
+  cmd->add_option("--kind", o.kinds, "select only these kinds (point, line, triangle)")
+      ->check(CLI::IsMember({"point", "line", "triangle"}));
+  cmd->add_option("--view", o.views, "select only these views (1-based)")->check(CLI::Range(1, 1000));
+  cmd->add_option("--primitive", o.primitives,
+                  "KIND:VIEW:INDEX to select (repeatable) instead of the run's largest changes");
+  cmd->add_option("--max-primitives", o.max_primitives,
+                  "the run's changed primitives with the largest pixel change, at most this many")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--out,-o", o.out_dir, "where bisect.json and bisect.md go (default RUN/bisect)");
+  cmd->add_option("--cache", o.build.cache, "build cache folder");
+  cmd->add_option("--llvm-config", o.build.llvm_config, "the LLVM every build uses")
+      ->capture_default_str();
+  cmd->add_option("--meson-option,-D", o.build.meson_options, "extra meson option KEY=VALUE");
+  cmd->add_option("--build-command", o.build.build_command,
+                  "a shell command that installs the checked-out commit's driver into "
+                  "$RENDERAUDIT_BUILD_PREFIX instead of meson");
+  cmd->add_option("--jobs,-j", o.jobs, "drawing children at once, and ninja jobs");
+  cmd->add_flag("--no-pictures", [](int64_t) { o.pictures = false; }, "no `show` pictures in the report");
+  cmd->add_option("paths", o.paths, "-- PATHS: only commits touching these (git bisect -- PATHS)");
+  cmd->positionals_at_end(false);
+  cmd->callback([&exit_code] {
+    if (!between.empty()) o.good_platform = between[0], o.bad_platform = between[1];
+    o.build.jobs = o.jobs;
+    for (std::string& v : o.build.meson_options)
+      if (v.rfind("-D", 0) != 0) v = "-D" + v;
+    // The command as a person would type it again (the report repeats it).
+    o.command_line = "renderaudit bisect " + o.run_dir;
+    if (!between.empty()) o.command_line += " --between " + between[0] + " " + between[1];
+    o.command_line += " --source " + o.source + " --good " + o.good_ref + " --bad " + o.bad_ref;
+    if (!o.platform.empty()) o.command_line += " --platform " + o.platform;
+    for (const std::string& k : o.kinds) o.command_line += " --kind " + k;
+    for (int v : o.views) o.command_line += " --view " + std::to_string(v);
+    for (const std::string& p : o.primitives) o.command_line += " --primitive " + p;
+    if (o.max_primitives != audit::BisectOptions{}.max_primitives)
+      o.command_line += " --max-primitives " + std::to_string(o.max_primitives);
+    if (!o.out_dir.empty()) o.command_line += " --out " + o.out_dir;
+    for (const std::string& m : o.build.meson_options) o.command_line += " " + m;
+    if (!o.build.build_command.empty()) o.command_line += " --build-command '" + o.build.build_command + "'";
+    if (!o.paths.empty()) {
+      o.command_line += " --";
+      for (const std::string& p : o.paths) o.command_line += " " + p;
+    }
+    const audit::BisectResult r = audit::run_bisect(
+        o, [](const std::string& line) { std::fprintf(stderr, "bisect: %s\n", line.c_str()); });
+    if (r.found) {
+      std::printf("first bad commit: %s %s (%s)\nparent: %s\nreport: %s\n", r.first_bad.c_str(),
+                  r.first_bad_subject.c_str(), r.first_bad_date.c_str(), r.parent.c_str(),
+                  r.report_path.c_str());
+      exit_code = kExitOk;
+    } else {
+      std::printf("no single first bad commit: skipped commits leave %zu candidates\nreport: %s\n",
+                  r.candidates.size(), r.report_path.c_str());
+      exit_code = kExitFindings;
+    }
+  });
+}
+
+}  // namespace ra::app

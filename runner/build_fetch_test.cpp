@@ -1,0 +1,67 @@
+// `builds fetch --mirror` takes one archive address: nothing else can reach apt's sources list.
+#include "runner/build_fetch.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "util/errors.h"
+
+namespace ra::runner {
+namespace {
+
+TEST(BuildFetch, MirrorIsOneArchiveAddress) {
+  for (const char* ok : {"http://deb.debian.org/debian", "https://mirror.example.org/debian/",
+                         "http://127.0.0.1:9/debian", "file:/srv/debian"})
+    EXPECT_TRUE(is_mirror_url(ok)) << ok;
+  for (const char* bad :
+       {"", "deb.debian.org/debian", "ftp://deb.debian.org/debian", "http://", "http:///debian",
+        "http://deb.debian.org/debian bookworm main\ndeb [trusted=yes] http://evil.example/x",
+        "http://deb.debian.org/debian\ndeb [trusted=yes] http://evil.example/x",
+        "[trusted=yes] http://evil.example/x", "http://a b/debian", "http://host/de\tbian",
+        "http://user@host/debian", "file:/", "http://host/\"x"})
+    EXPECT_FALSE(is_mirror_url(bad)) << bad;
+}
+
+TEST(BuildFetch, AMirrorWithASecondSourceLineIsRefusedBeforeAnythingIsWritten) {
+  FetchOptions o;
+  o.suite = "bookworm-backports";
+  o.mirror = "http://deb.debian.org/debian\ndeb [trusted=yes] http://127.0.0.1:9/x";
+  o.cache = "/nonexistent/renderaudit-cache-never-created";
+  try {
+    fetch_build(o);
+    FAIL() << "an injected source line was accepted";
+  } catch (const util::UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("is not one Debian archive address"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace ra::runner
+
+namespace ra::runner {
+namespace {
+
+TEST(BuildFetch, ACacheThatIsAFileIsNamed) {
+  const std::string file = ::testing::TempDir() + "renderaudit-cache-file-" + std::to_string(::getpid());
+  { std::FILE* f = std::fopen(file.c_str(), "w"); ASSERT_NE(f, nullptr); std::fclose(f); }
+  for (auto call : {+[](const std::string& c) { list_builds(c); },
+                    +[](const std::string& c) {
+                      FetchOptions o;
+                      o.suite = "bookworm-backports";
+                      o.cache = c;
+                      fetch_build(o);
+                    }}) {
+    try {
+      call(file);
+      ADD_FAILURE() << "a cache that is a file was accepted";
+    } catch (const util::UserError& e) {
+      EXPECT_NE(std::string(e.what()).find("is not a folder"), std::string::npos) << e.what();
+    }
+  }
+  std::remove(file.c_str());
+}
+
+}  // namespace
+}  // namespace ra::runner

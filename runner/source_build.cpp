@@ -1,0 +1,437 @@
+// Building a Mesa source tree into the build cache (see the header).
+#include "runner/source_build.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "platforms/driver_build.h"
+#include "platforms/platform_probe.h"
+#include "platforms/platform_spec.h"
+#include "runner/manifest.h"
+#include "runner/meson_plan.h"
+#include "util/atomic_file.h"
+#include "util/child_process.h"
+#include "util/errors.h"
+#include "util/fnv1a.h"
+
+namespace fs = std::filesystem;
+
+namespace ra::runner {
+namespace {
+
+// The tools meson's Mesa build runs (python3 with mako among them) are Debian's, in /usr/bin:
+// a python3 first on PATH without mako (pyenv's) breaks the configure.
+std::string build_path() {
+  const char* p = std::getenv("PATH");
+  return "PATH=/usr/bin:/bin:" + std::string(p && *p ? p : "/usr/local/bin");
+}
+
+util::ProgramResult run_captured(const std::vector<std::string>& argv, const std::string& cwd = "") {
+  util::ChildSpec spec;
+  spec.argv = argv;
+  spec.stdin_null = true;
+  spec.capture_output = true;
+  spec.working_dir = cwd;
+  spec.set_env = {build_path()};
+  return util::run_program(spec);
+}
+
+// The first line of a program's output, trimmed; "" when it cannot run.
+std::string first_line(const std::vector<std::string>& argv) {
+  const util::ProgramResult r = run_captured(argv);
+  if (!r.exited_ok()) return "";
+  std::string line = r.output.substr(0, r.output.find('\n'));
+  while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
+  return line;
+}
+
+std::string git(const std::string& dir, std::vector<std::string> args, bool* ok = nullptr) {
+  args.insert(args.begin(), {"git", "-C", dir});
+  const util::ProgramResult r = run_captured(args);
+  if (ok) *ok = r.exited_ok();
+  std::string out = r.output;
+  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+  return out;
+}
+
+std::string read_trimmed(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return "";
+  std::string s = util::read_file(path);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+  return s;
+}
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+std::string hex64(uint64_t v) {
+  char b[17];
+  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(v));
+  return b;
+}
+
+// The last `lines` lines of a file ("" when unreadable).
+std::string tail_of(const std::string& path, std::size_t lines) {
+  std::string text;
+  try {
+    text = util::read_file(path);
+  } catch (const std::exception&) {
+    return "";
+  }
+  std::vector<std::string> all;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) all.push_back(l);
+  std::string out;
+  for (std::size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i)
+    out += all[i] + "\n";
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const std::string& x : v) s += (s.empty() ? "" : " ") + x;
+  return s;
+}
+
+// Runs one step with its output in `log`; UserError naming the step, the log's last lines and,
+// for a configure, the package meson says is missing.
+void run_step(const std::string& step, const std::vector<std::string>& argv, const std::string& cwd,
+              const std::vector<std::string>& env, const std::string& log,
+              const std::string& kept_log) {
+  util::ChildSpec spec;
+  spec.argv = argv;
+  spec.stdin_null = true;
+  spec.working_dir = cwd;
+  spec.set_env = env;
+  spec.log_to(log);
+  spec.own_process_group = true;
+  const util::ProgramResult r = util::run_program(spec);
+  if (r.exited_ok()) return;
+  std::error_code ec;
+  fs::copy_file(log, kept_log, fs::copy_options::overwrite_existing, ec);
+  std::string message = "builds build: the " + step + " step failed (" +
+                        (r.exit_code() == 127 ? "cannot run " + argv[0]
+                                              : util::describe_exit_status(r.status)) +
+                        "); the build cache is unchanged.";
+  std::string log_text;
+  try {
+    log_text = util::read_file(log);
+  } catch (const std::exception&) {
+  }
+  if (const std::string pkg = missing_package_hint(log_text); !pkg.empty())
+    message += "\nmissing: " + pkg + " (scripts/install-mesa-build-deps.sh installs what Mesa needs)";
+  message += "\nlast lines of the log:\n" + tail_of(log, 12);
+  if (!ec) message += "\nfull log: " + kept_log;
+  throw util::UserError(message);
+}
+
+// meson setup, ninja, ninja install of `source` into work/install; returns the -D options used.
+std::vector<std::string> run_meson(const SourceBuildOptions& options, const std::string& source,
+                                 const std::string& work, unsigned jobs,
+                                 const std::string& kept_log,
+                                 const std::function<void(const std::string&)>& say,
+                                 std::vector<std::string>& notes) {
+  std::error_code ec;
+  MesonPlanInputs in;
+  std::string opts_file = source + "/meson.options";
+  if (!fs::exists(opts_file, ec)) opts_file = source + "/meson_options.txt";
+  in.options = parse_meson_options(read_trimmed(opts_file));
+  in.source_dir = source;
+  in.build_dir = work + "/build";
+  in.prefix = work + "/install";
+  in.native_file = work + "/native.ini";
+  in.glslang_version = [] {
+    const std::string v = first_line({"glslangValidator", "--version"});  // "Glslang Version: 11:12.0.0"
+    const auto colon = v.rfind(':');
+    return colon == std::string::npos ? v : v.substr(colon + 1);
+  }();
+  in.extra = options.meson_options;
+  util::write_file_atomic(in.native_file, native_file_text(options.llvm_config));
+  MesonPlan plan = plan_meson_build(in);
+  plan.setup[0] = options.meson;
+  plan.compile.insert(plan.compile.end(), {"-j", std::to_string(jobs)});
+  for (const std::string& n : plan.notes) say(n);
+  notes = plan.notes;
+  std::vector<std::string> chosen = plan.chosen;
+  chosen.insert(chosen.end(), options.meson_options.begin(), options.meson_options.end());
+  const std::vector<std::string> env = {build_path()};
+  say("configure: " + joined(plan.setup));
+  run_step("configure (meson setup)", plan.setup, source, env, work + "/configure.log", kept_log);
+  say("compile: " + joined(plan.compile));
+  run_step("compile (ninja)", plan.compile, source, env, work + "/compile.log", kept_log);
+  say("install into the build folder");
+  run_step("install (ninja install)", plan.install, source, env, work + "/install.log", kept_log);
+  return chosen;
+}
+
+// build.json of a source build: where it came from and how it was built.
+nlohmann::json provenance(const SourceBuildOptions& options, const SourceIdentity& id,
+                          const BuildSummary& s, const nlohmann::json& gl,
+                          const std::vector<std::string>& chosen, const std::string& key,
+                          unsigned jobs, const SourceBuildResult& result) {
+  const bool meson = options.build_command.empty();
+  const std::string& name = s.name;
+  const std::string llvm = meson ? first_line({options.llvm_config, "--version"}) : "";
+  nlohmann::json j = {
+      {"name", name},
+      {"origin", "source"},
+      {"suite", ""},
+      {"built_utc", s.fetched_utc},
+      {"fetched_utc", s.fetched_utc},
+      {"source_build",
+       {{"source", id.source},
+        {"git", id.git},
+        {"commit", id.commit},
+        {"subject", id.subject},
+        {"commit_date", id.date},
+        {"dirty", id.dirty},
+        {"version", id.version},
+        {"debian_version", id.debian_version},
+        {"patches", id.patches},
+        {"meson_options", chosen},
+        {"build_command", options.build_command},
+        {"meson", meson ? first_line({options.meson, "--version"}) : ""},
+        {"llvm_config", meson ? options.llvm_config : ""},
+        {"llvm", llvm},
+        {"compiler", first_line({"cc", "--version"})},
+        {"ccache", first_line({"ccache", "--version"})},
+        {"jobs", jobs},
+        {"build_seconds", result.seconds},
+        {"notes", result.notes},
+        {"key", key}}},
+      {"gl", gl},
+      {"files", s.files}};
+  j.update(document_header("driver-build", 1, false));
+  return j;
+}
+
+}  // namespace
+
+std::string missing_package_hint(const std::string& log) {
+  static const std::vector<std::pair<std::string, std::string>> known = {
+      {"\"libdrm\"", "libdrm-dev"},        {"\"libelf\"", "libelf-dev"},
+      {"\"zlib\"", "zlib1g-dev"},          {"\"expat\"", "libexpat1-dev"},
+      {"\"libzstd\"", "libzstd-dev"},      {"\"libudev\"", "libudev-dev"},
+      {"Program 'bison", "bison"},         {"Program 'flex", "flex"},
+      {"Program 'glslangValidator", "glslang-tools"},
+      {"mako", "python3-mako"},            {"yaml", "python3-yaml"},
+      {"packaging", "python3-packaging"},  {"\"LLVM\"", "llvm-15-dev"},
+      {"llvm-config", "llvm-15-dev"},      {"Meson version is", "meson (bookworm-backports)"},
+  };
+  for (const auto& [needle, package] : known) {
+    const std::size_t at = log.find(needle);
+    if (at == std::string::npos) continue;
+    // Only where meson reports it as missing or too old.
+    const std::size_t line_end = log.find('\n', at);
+    const std::size_t line_start = log.rfind('\n', at);
+    const std::string line = log.substr(line_start == std::string::npos ? 0 : line_start + 1,
+                                        line_end == std::string::npos ? std::string::npos
+                                                                      : line_end - line_start);
+    for (const char* word : {"not found", "NO", "ERROR", "required", "No module", "Meson version"})
+      if (line.find(word) != std::string::npos) return package;
+  }
+  return "";
+}
+
+SourceIdentity identify_source(const std::string& source_dir) {
+  SourceIdentity id;
+  id.source = source_dir;
+  bool ok = false;
+  const std::string top = git(source_dir, {"rev-parse", "--show-toplevel"}, &ok);
+  std::error_code ec;
+  if (ok && fs::equivalent(top, source_dir, ec)) {
+    id.git = true;
+    id.commit = git(source_dir, {"rev-parse", "HEAD"});
+    const std::string info = git(source_dir, {"log", "-1", "--format=%cI%n%s", "HEAD"});
+    id.date = info.substr(0, info.find('\n'));
+    id.subject = info.find('\n') == std::string::npos ? "" : info.substr(info.find('\n') + 1);
+    id.dirty = !git(source_dir, {"status", "--porcelain", "--untracked-files=no"}).empty();
+  }
+  id.version = read_trimmed(source_dir + "/VERSION");
+  const std::string changelog = read_trimmed(source_dir + "/debian/changelog");
+  if (const auto open = changelog.find('('); open != std::string::npos)
+    id.debian_version = changelog.substr(open + 1, changelog.find(')', open) - open - 1);
+  id.patches = read_trimmed(source_dir + "/debian/patches/series");
+  return id;
+}
+
+std::string source_build_key(const SourceIdentity& id, const SourceBuildOptions& o) {
+  util::Fnv1a64 h;
+  const auto add = [&](const std::string& s) { h.add(s.data(), s.size()), h.add("\n", 1); };
+  add(id.git ? "git " + id.commit : "tree " + id.version + " " + id.debian_version);
+  add(id.patches);
+  std::vector<std::string> opts = o.meson_options;
+  for (const std::string& x : opts) add(x);
+  add(o.llvm_config);
+  add(o.build_command);
+  return hex64(h.value);
+}
+
+std::string source_build_name(const SourceIdentity& id, const SourceBuildOptions& o) {
+  if (!o.name.empty()) return o.name;
+  std::string name = id.git ? "mesa-" + id.commit.substr(0, 12)
+                            : "mesa-" + (id.version.empty() ? std::string("unknown") : id.version) +
+                                  "-src";
+  if (id.dirty) name += "-dirty";
+  const bool defaults = o.meson_options.empty() && o.build_command.empty() &&
+                        o.llvm_config == SourceBuildOptions{}.llvm_config;
+  if (!defaults) name += "-" + source_build_key(id, o).substr(0, 6);
+  return name;
+}
+
+SourceBuildResult build_from_source(const SourceBuildOptions& options,
+                                    const std::function<void(const std::string&)>& progress) {
+  const auto say = [&](const std::string& s) {
+    if (progress) progress(s);
+  };
+  std::error_code ec;
+  if (options.source.empty() || !fs::is_directory(options.source, ec))
+    throw util::UserError("builds build: '" + options.source + "' is not a folder");
+  const std::string source = fs::canonical(options.source).string();
+  if (options.build_command.empty() && !fs::exists(source + "/meson.build", ec))
+    throw util::UserError("builds build: " + source +
+                          " holds no meson.build: not a Mesa source tree");
+  SourceIdentity id = identify_source(source);
+  std::string restore_ref;
+  if (!options.ref.empty()) {
+    if (!id.git) throw util::UserError("builds build: --ref needs a git checkout; " + source + " is not one");
+    if (id.dirty)
+      throw util::UserError("builds build: " + source +
+                            " has uncommitted changes; commit or stash them before --ref");
+    bool ok = false;
+    const std::string commit = git(source, {"rev-parse", "--verify", "--quiet", options.ref + "^{commit}"}, &ok);
+    if (!ok || commit.empty())
+      throw util::UserError("builds build: '" + options.ref + "' is not a commit of " + source);
+    bool on_branch = false;
+    restore_ref = git(source, {"symbolic-ref", "-q", "--short", "HEAD"}, &on_branch);
+    if (!on_branch) restore_ref = id.commit;
+    if (commit != id.commit) {
+      git(source, {"-c", "advice.detachedHead=false", "checkout", "-q", "--detach", commit}, &ok);
+      if (!ok) throw util::UserError("builds build: cannot check out " + options.ref + " in " + source);
+    }
+    id = identify_source(source);
+  }
+  struct Restore {
+    std::string dir, ref;
+    ~Restore() {
+      if (!ref.empty()) git(dir, {"-c", "advice.detachedHead=false", "checkout", "-q", ref});
+    }
+  } restore{source, restore_ref != id.commit ? restore_ref : ""};
+
+  const std::string cache = options.cache.empty() ? platforms::build_cache_dir() : options.cache;
+  const std::string name = source_build_name(id, options);
+  if (!platforms::is_build_name(name))
+    throw util::UserError("builds build: '" + name +
+                          "' is not a build name (1 to 64 letters, digits, '.', '_', '-')");
+  const std::string key = source_build_key(id, options);
+  SourceBuildResult result;
+  const std::string target = cache + "/" + name;
+  if (options.reuse && !id.dirty && fs::exists(target + "/build.json", ec)) {
+    try {
+      const nlohmann::json j = nlohmann::json::parse(util::read_file(target + "/build.json"));
+      if (j.value("source_build", nlohmann::json::object()).value("key", "") == key) {
+        result.reused = true;
+        result.build = read_build(target);
+        say("reused " + name + " (same source and options)");
+        return result;
+      }
+    } catch (const std::exception&) {
+    }
+  }
+  const bool meson = options.build_command.empty();
+  if (meson) {
+    for (const std::string& tool : {options.meson, std::string("ninja")})
+      if (run_captured({tool, "--version"}).exit_code() == 127)
+        throw util::UserError("builds build: " + tool +
+                              " is not installed: scripts/install-mesa-build-deps.sh installs "
+                              "what a Mesa build needs (meson >= 1.4 from bookworm-backports)");
+    if (!fs::exists(options.llvm_config, ec))
+      throw util::UserError("builds build: " + options.llvm_config +
+                            " is missing (llvm-15-dev; scripts/install-mesa-build-deps.sh)");
+  }
+  require_cache_folder(cache);
+  std::string work = cache + "/.source-" + name + "-XXXXXX";
+  if (!::mkdtemp(work.data()))
+    throw util::UserError(util::io_error_message("cannot create a folder in", cache));
+  const std::string prefix = work + "/install";
+  const std::string kept_log = (fs::temp_directory_path() / ("renderaudit-build-" + name + ".log")).string();
+  try {
+    const auto t0 = std::chrono::steady_clock::now();
+    const unsigned jobs = options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::string> chosen;
+    if (meson) {
+      chosen = run_meson(options, source, work, jobs, kept_log, say, result.notes);
+    } else {
+      fs::create_directories(prefix);
+      say("build command: " + options.build_command);
+      run_step("build command", {"/bin/sh", "-c", options.build_command}, source,
+               {build_path(), "RENDERAUDIT_BUILD_PREFIX=" + prefix,
+                "RENDERAUDIT_SOURCE_COMMIT=" + id.commit},
+               work + "/configure.log", kept_log);
+    }
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::string log;
+    for (const char* part : {"/configure.log", "/compile.log", "/install.log"})
+      if (fs::exists(work + part, ec)) log += util::read_file(work + part);
+    util::write_file_atomic(prefix + "/build.log", log);
+
+    BuildSummary s;
+    s.name = name;
+    s.origin = "source";
+    s.commit = id.commit;
+    s.version = id.version;
+    s.fetched_utc = utc_now();
+    nlohmann::json gl = nlohmann::json::object();
+    if (options.probe) {
+      say("probe: osmesa-llvmpipe and egl-llvmpipe with the build");
+      for (const auto& [k, platform] : {std::pair{"osmesa", "osmesa-llvmpipe"},
+                                        std::pair{"egl", "egl-llvmpipe"}}) {
+        platforms::PlatformSpec spec = *platforms::find_platform(std::string(platform) + "@" + name);
+        spec.build_dir = prefix;
+        const platforms::PlatformProbe p = platforms::probe_platform(spec);
+        gl[k] = p.available ? nlohmann::json{{"renderer", p.driver.renderer},
+                                              {"version", p.driver.version}}
+                            : nlohmann::json{{"error", p.reason}};
+        (std::string(k) == "osmesa" ? s.osmesa_version : s.egl_version) = p.driver.version;
+      }
+      if (s.osmesa_version.empty() && s.egl_version.empty())
+        throw util::UserError("builds build: the build of " + source +
+                              " cannot draw (probe step): " + gl.dump() +
+                              "; the build cache is unchanged");
+    }
+    const std::string lib_dir = platforms::build_library_dir(prefix);
+    if (fs::is_directory(lib_dir, ec))
+      for (const auto& e : fs::recursive_directory_iterator(lib_dir))
+        if (e.is_regular_file() && e.path().string().find(".so") != std::string::npos)
+          s.files.push_back(e.path().lexically_relative(prefix).string());
+    std::sort(s.files.begin(), s.files.end());
+    const nlohmann::json j = provenance(options, id, s, gl, chosen, key, jobs, result);
+    util::write_file_atomic(prefix + "/build.json", j.dump(2) + "\n");
+    s.dir = target;
+    const std::string old = work + "/replaced";
+    if (fs::exists(target, ec)) fs::rename(target, old);
+    fs::rename(prefix, target);
+    fs::remove_all(work, ec);
+    result.build = s;
+    result.log = target + "/build.log";
+    return result;
+  } catch (...) {
+    fs::remove_all(work, ec);
+    throw;
+  }
+}
+
+}  // namespace ra::runner
