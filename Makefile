@@ -77,6 +77,7 @@ slurm-test: build
 # The installed Mesa against the newest Mesa of Debian's bookworm-backports on the nist2008 views
 # (scripts/driver-upgrade.sh): fetch, run, audit, report (outputs/driver-upgrade/upgrade-report.md).
 # Needs the Debian registry for the fetch; says so and stops where it cannot be reached.
+# MESA_SOURCE=DIR [MESA_REF=REF] adds a Mesa built from source (docs/driver-builds.md).
 driver-upgrade: build
 	scripts/driver-upgrade.sh $(BUILD)
 

@@ -6,6 +6,9 @@
 # OUT/upgrade-report.md, that opens with what changed per driver, back end, kind and view group.
 #
 # Usage: scripts/driver-upgrade.sh [BUILD_DIR] [--smoke]   (MIRROR=URL: another Debian archive)
+#   MESA_SOURCE=DIR [MESA_REF=REF]: also a Mesa built from that source tree (renderaudit builds
+#   build; scripts/install-mesa-build-deps.sh first), drawn through EGL as egl-*@source and
+#   audited against the installed Mesa, so the report covers three versions side by side.
 #   --smoke: 40 primitives per kind and view into BUILD_DIR/driver-upgrade-smoke, and a build
 #   already in the cache is used as is (the test suite's run of this script).
 # Exit 0: every audit ran (whatever it found); 2: a step failed; 77: the Debian registry cannot
@@ -52,26 +55,49 @@ else
   echo "$fetched"
 fi
 
+# 1b. A Mesa built from source (optional): its EGL platforms join the experiment.
+if [ -n "${MESA_SOURCE:-}" ]; then
+  say "building Mesa from $MESA_SOURCE${MESA_REF:+ at $MESA_REF} (renderaudit builds build; a cold build takes about 10 minutes on 2 cores)"
+  built=$("$ra" builds build "$MESA_SOURCE" ${MESA_REF:+--ref "$MESA_REF"}) || die "the source build failed (above)"
+  echo "$built"
+  source_dir=$(echo "$built" | sed -n 's/^  folder: //p' | head -1)
+  [ -n "$source_dir" ] || die "the source build did not say its folder"
+  mkdir -p "$out"
+  sed -e 's/^platforms = \[/platforms = ["egl-llvmpipe@source", "egl-softpipe@source",\n             /' \
+      "$experiment" > "$out.with-source.toml"
+  printf '\n[builds.source]     # renderaudit builds build %s\ndir = "%s"\n' \
+    "$MESA_SOURCE${MESA_REF:+ --ref $MESA_REF}" "$source_dir" >> "$out.with-source.toml"
+  experiment=$out.with-source.toml
+fi
+
 # 2. The run.
 say "running $experiment into $out"
 "$ra" run "$experiment" --out "$out" --quiet || die "the run failed (above); run the same command again to resume"
 
-# 3. The audits.
+# 3. The audits: PLATFORM against PLATFORM@BUILD; AUDITED_<BUILD> lists those that ran.
 status=0
+audit_build() {  # BUILD PLATFORM...
+  local build=$1 p dir rc suffix
+  shift
+  suffix=$([ "$build" = backports ] || echo "-$build")
+  for p in "$@"; do
+    dir=$out/audit-$p$suffix
+    "$ra" audit "$out" --between "$p" "$p@$build" --no-history --out "$dir" > "$dir.log" 2>&1
+    rc=$?
+    if [ $rc -gt 1 ]; then
+      cat "$dir.log" >&2
+      say "audit of $p against $p@$build failed (exit $rc)"
+      status=2
+    else
+      say "audit of $p against $p@$build: $(head -1 "$dir.log")"
+      [ "$build" = backports ] && audited+=("$p") || source_audited+=("$p")
+    fi
+  done
+}
 audited=()
-for p in osmesa-llvmpipe osmesa-softpipe egl-llvmpipe egl-softpipe; do
-  dir=$out/audit-$p
-  "$ra" audit "$out" --between "$p" "$p@backports" --no-history --out "$dir" > "$dir.log" 2>&1
-  rc=$?
-  if [ $rc -gt 1 ]; then
-    cat "$dir.log" >&2
-    say "audit of $p failed (exit $rc)"
-    status=2
-  else
-    say "audit of $p: $(head -1 "$dir.log")"
-    audited+=("$p")
-  fi
-done
+source_audited=()
+audit_build backports osmesa-llvmpipe osmesa-softpipe egl-llvmpipe egl-softpipe
+[ -n "${MESA_SOURCE:-}" ] && audit_build source egl-llvmpipe egl-softpipe
 
 # 4. The report: what changed per driver, back end, kind and view group (from the records), the
 # worst primitives with pictures and reproducers, then each audit's own report.
@@ -82,6 +108,12 @@ if [ ${#audited[@]} -gt 0 ]; then
   for p in "${audited[@]}"; do
     { echo; echo "## Audit of $p"; echo; sed -e 's/^# /### /' -e 's/^## /#### /' "$out/audit-$p/audit.md"; } >> "$report"
   done
+  if [ ${#source_audited[@]} -gt 0 ]; then
+    { echo; echo "# The installed Mesa against Mesa built from source ($MESA_SOURCE${MESA_REF:+ at $MESA_REF})"; echo
+      /usr/bin/python3 "$repo/scripts/upgrade_report.py" "$ra" "$out" source "${source_audited[@]}" |
+        sed -e 's/^# /## /'
+    } >> "$report" || die "the report of the source build failed (above)"
+  fi
   say "report: $report"
 fi
 exit $status
