@@ -120,8 +120,9 @@ RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSe
     c.manifest_status = m.status;
     if (m.slice) c.slice_index = m.slice->index, c.slice_count = m.slice->count;
     if (m.platforms_run) c.platforms_run = *m.platforms_run;
-  } catch (const std::exception&) {
-    c.problems.push_back("manifest.json is missing or unreadable");
+  } catch (const std::exception& e) {
+    // The reader's own words: the file and the key that is wrong, as status, audit and merge say.
+    c.problems.push_back(e.what());
   }
   if (c.manifest_status == "running" && c.writer.empty())
     c.problems.push_back("the manifest says \"running\" but nobody is writing: the run was killed "

@@ -7,6 +7,7 @@
 #include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "util/json_file.h"
 
 namespace ra::analysis {
 
@@ -128,7 +129,7 @@ RunTally read_tally(const std::string& run_dir) {
     throw util::UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
   json j;
   try {
-    j = json::parse(util::read_file(path));
+    j = util::parse_json_document(util::read_file(path), path);
   } catch (const json::exception& e) {
     throw util::UserError(path + ": not valid JSON: " + e.what() + " (run `renderaudit analyze " +
                     run_dir + "` again)");

@@ -8,6 +8,7 @@
 #include "util/errors.h"
 #include "runner/manifest.h"
 #include "runner/shard.h"
+#include "util/json_file.h"
 
 namespace fs = std::filesystem;
 
@@ -17,7 +18,7 @@ namespace {
 nlohmann::json read_json(const std::string& path) {
   if (!fs::exists(path)) throw util::UserError(path + ": missing (not a run directory?)");
   try {
-    return nlohmann::json::parse(util::read_file(path));
+    return util::parse_json_document(util::read_file(path), path);
   } catch (const nlohmann::json::exception& e) {
     throw util::UserError(path + ": not valid JSON (" + e.what() + ")");
   }
@@ -67,7 +68,8 @@ RunIdentity load_run_identity(const std::string& dir) {
       const std::string platform = e.path().stem().string();
       if (e.path().extension() != ".json" || drivers.contains(platform)) continue;
       try {
-        drivers[platform] = nlohmann::json::parse(util::read_file(e.path().string()));
+        drivers[platform] =
+            util::parse_json_document(util::read_file(e.path().string()), e.path().string());
       } catch (const std::exception&) {
       }
     }

@@ -311,7 +311,7 @@ RunManifest read_manifest(const json& m, const std::string& path) {
 RunManifest read_manifest_file(const std::string& path) {
   json m;
   try {
-    m = json::parse(util::read_file(path));
+    m = util::parse_json_document(util::read_file(path), path);
   } catch (const json::exception& e) {
     throw util::UserError(path + ": not a JSON document (" + e.what() + ")");
   } catch (const std::runtime_error& e) {

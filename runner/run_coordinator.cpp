@@ -30,6 +30,7 @@
 #include "util/atomic_file.h"
 #include "util/dir_lock.h"
 #include "util/errors.h"
+#include "util/json_file.h"
 
 namespace fs = std::filesystem;
 
@@ -100,7 +101,8 @@ nlohmann::json drivers_json(const std::string& dir) {
   for (const auto& e : fs::directory_iterator(dir + "/drivers")) {
     if (e.path().extension() != ".json") continue;
     try {
-      out[e.path().stem().string()] = nlohmann::json::parse(util::read_file(e.path().string()));
+      out[e.path().stem().string()] =
+          util::parse_json_document(util::read_file(e.path().string()), e.path().string());
     } catch (const std::exception&) {
     }
   }

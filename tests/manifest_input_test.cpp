@@ -1,0 +1,79 @@
+// A manifest that is not what this program writes: every reader names the file and the key
+// (analyze too), and one nested too deep to parse safely is refused, not a crash.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "tests/cli_harness.h"
+#include "util/errors.h"
+#include "util/json_file.h"
+
+namespace fs = std::filesystem;
+using namespace ra::testing_cli;
+
+namespace {
+
+std::string small_run(const std::string& name) {
+  const std::string dir = fresh_dir(name);
+  write_text(dir + "/e.toml",
+             "seed = 3\nplatforms = [\"reference\"]\n[views]\norientations = 1\nfov_deg = [30]\n"
+             "windows = [128]\nnear = 0.01\nfar = 10.0\n[primitives]\nlines = 5\n");
+  EXPECT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet").exit_code, 0);
+  return dir + "/run";
+}
+
+TEST(ManifestInput, AWrongFieldIsNamedByAnalyzeAsByStatus) {
+  const std::string run = small_run("manifest_field");
+  std::ifstream in(run + "/manifest.json");
+  nlohmann::json m = nlohmann::json::parse(in);
+  m["status"] = 5;
+  std::ofstream(run + "/manifest.json", std::ios::trunc) << m.dump(2);
+  const std::string message = run + "/manifest.json: 'status' must be";
+  const Outcome status = run_renderaudit("status " + run);
+  EXPECT_EQ(status.exit_code, 2) << status.output;
+  EXPECT_NE(status.output.find(message), std::string::npos) << status.output;
+  const Outcome analyze = run_renderaudit("analyze " + run + " --quiet");
+  EXPECT_EQ(analyze.exit_code, 3) << analyze.output;
+  EXPECT_NE(analyze.output.find(message), std::string::npos) << analyze.output;
+  EXPECT_EQ(analyze.output.find("missing or unreadable"), std::string::npos) << analyze.output;
+}
+
+TEST(ManifestInput, ADeeplyNestedManifestIsRefusedNotACrash) {
+  const std::string run = small_run("manifest_deep");
+  std::string deep;
+  for (int i = 0; i < 100000; ++i) deep += '[';
+  for (int i = 0; i < 100000; ++i) deep += ']';
+  write_text(run + "/manifest.json", "{\"status\": \"complete\", \"x\": " + deep + "}");
+  // audit and analyze read it strictly: refused with the reason.
+  for (const std::string args : {"audit " + run + " " + run, "analyze " + run}) {
+    const Outcome o = run_renderaudit(args);
+    EXPECT_TRUE(o.exit_code == 2 || o.exit_code == 3) << args << ": " << o.exit_code << " " << o.output;
+    EXPECT_NE(o.output.find("nested deeper than 256 levels"), std::string::npos)
+        << args << ": " << o.output;
+  }
+  // status and merge read it as "not readable" (they tolerate a manifest being rewritten): no
+  // crash (exit 139 before the depth was bounded).
+  for (const std::string args : {"status " + run, "merge " + run + " --out " + run + "-m"}) {
+    const Outcome o = run_renderaudit(args);
+    EXPECT_LT(o.exit_code, 128) << args << ": " << o.output;
+  }
+}
+
+TEST(ManifestInput, NestingIsCountedOutsideStringsOnly) {
+  std::string ok = "{\"a\": \"";
+  for (int i = 0; i < 1000; ++i) ok += "[{";
+  ok += "\\\"\", \"b\": [[1]]}";
+  EXPECT_EQ(ra::util::parse_json_document(ok, "x.json")["b"][0][0], 1);
+  std::string deep;
+  for (int i = 0; i < 257; ++i) deep += '[';
+  for (int i = 0; i < 257; ++i) deep += ']';
+  EXPECT_THROW(ra::util::parse_json_document(deep, "x.json"), ra::util::UserError);
+  std::string limit;
+  for (int i = 0; i < 256; ++i) limit += '[';
+  for (int i = 0; i < 256; ++i) limit += ']';
+  EXPECT_NO_THROW(ra::util::parse_json_document(limit, "x.json"));
+}
+
+}  // namespace
