@@ -10,7 +10,6 @@
 #include <map>
 #include <sstream>
 
-#include "audit/audit_report.h"
 #include "audit/primitive_image.h"
 #include "audit/reproducer.h"
 #include "platforms/driver_build.h"
@@ -30,15 +29,6 @@ std::string short_hash(const std::string& c) { return c.substr(0, 12); }
 std::string pixels_of(const BisectStep& s, const std::string& label) {
   const auto it = s.drawing.pixels.find(label);
   return it == s.drawing.pixels.end() ? "-" : std::to_string(it->second);
-}
-
-// The environment that makes a program of the reproducer draw with a build folder's Mesa.
-std::string run_env(const std::string& build_dir, const std::string& mesa_driver) {
-  const std::string lib = platforms::build_library_dir(build_dir);
-  std::string env = "LD_LIBRARY_PATH=" + shell_quote(lib);
-  std::error_code ec;
-  if (fs::is_directory(lib + "/dri", ec)) env += " LIBGL_DRIVERS_PATH=" + shell_quote(lib + "/dri");
-  return env + " LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=" + mesa_driver + " LP_NUM_THREADS=0";
 }
 
 // `show` of one primitive drawn with a step's build, in a child (one driver per process).
@@ -178,10 +168,10 @@ void write_bisect_report(const BisectOptions& o, const BisectResult& r,
           "floats), also written as `" << c_name << "`:\n\n```sh\n" << repro.build_line << "\n";
     const std::string exe = fs::path(c_name).stem().string();
     if (parent && !parent->build_dir.empty())
-      md << run_env(parent->build_dir, driver) << " ./" << exe << "   # parent: pixels lit "
+      md << reproducer_environment(parent->build_dir, driver) << " ./" << exe << "   # parent: pixels lit "
          << pixels_of(*parent, l) << "\n";
     if (first_bad && !first_bad->build_dir.empty())
-      md << run_env(first_bad->build_dir, driver) << " ./" << exe << "   # first bad: pixels lit "
+      md << reproducer_environment(first_bad->build_dir, driver) << " ./" << exe << "   # first bad: pixels lit "
          << pixels_of(*first_bad, l) << "\n";
     md << "```\n\n```c\n" << repro.source << "```\n";
   } else {

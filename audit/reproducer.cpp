@@ -170,6 +170,17 @@ std::string comment_safe(const std::string& text) {
 
 }  // namespace
 
+std::string reproducer_environment(const std::string& build_dir, const std::string& mesa_driver) {
+  std::string env;
+  if (!build_dir.empty()) {
+    const std::string lib = platforms::build_library_dir(build_dir);
+    env = "LD_LIBRARY_PATH=" + shell_quote(lib) + " ";
+    std::error_code ec;
+    if (fs::is_directory(lib + "/dri", ec)) env += "LIBGL_DRIVERS_PATH=" + shell_quote(lib + "/dri") + " ";
+  }
+  return env + "LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=" + mesa_driver + " LP_NUM_THREADS=0";
+}
+
 Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_name) {
   const std::string toml = q.run_dir + "/experiment.toml";
   if (!fs::is_regular_file(toml))
@@ -218,10 +229,8 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   out.reference_hash = geometry::pixel_set_hash(reference);
   const std::string exe = fs::path(c_file_name).stem().string();
   out.build_line = "cc " + shell_quote(c_file_name) + " -o " + shell_quote(exe) + " -lEGL -lOpenGL";
-  std::string env = "LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=" + spec.mesa_driver + " LP_NUM_THREADS=0";
-  if (!spec.build.empty())
-    env = "LD_LIBRARY_PATH=" + shell_quote(platforms::build_library_dir(spec.build_dir)) + " " + env;
-  out.run_line = env + " " + shell_quote("./" + exe);
+  out.run_line = reproducer_environment(spec.build.empty() ? "" : spec.build_dir, spec.mesa_driver) +
+                 " " + shell_quote("./" + exe);
 
   std::string s = kTemplate;
   std::string vertices;

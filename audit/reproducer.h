@@ -29,6 +29,11 @@ struct Reproducer {
   std::string view_text;       // "FOV 30 deg, 907 x 907"
 };
 
+// The environment that makes a reproducer draw with Mesa driver `mesa_driver` ("llvmpipe") of the
+// build folder `build_dir` ("" for the installed Mesa): LD_LIBRARY_PATH at its library folder,
+// LIBGL_DRIVERS_PATH where it has DRI drivers (Mesa before 24), software rendering, one thread.
+std::string reproducer_environment(const std::string& build_dir, const std::string& mesa_driver);
+
 // Throws UserError for a run, platform (aliased GL platforms only), kind, view or index the run
 // has no record of.
 Reproducer make_reproducer(const ReproduceRequest& request, const std::string& c_file_name);
