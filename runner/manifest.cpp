@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <ctime>
+#include <filesystem>
 #include <stdexcept>
 #include <sys/stat.h>
 #include <fstream>
@@ -321,8 +322,26 @@ RunManifest read_manifest_file(const std::string& path) {
   return read_manifest(m, path);
 }
 
+nlohmann::json read_manifest_json(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return nullptr;
+  std::string text;
+  try {
+    text = util::read_file(path);
+  } catch (const std::exception& e) {
+    throw util::UserError(e.what());
+  }
+  try {
+    return util::parse_json_document(text, path);
+  } catch (const json::exception& e) {
+    throw util::UserError(path + ": not a JSON document (" + e.what() +
+                          "); `run` of the same experiment into this folder keeps it as "
+                          "manifest.json.damaged and starts a new manifest");
+  }
+}
+
 RunManifest read_manifest_file_or_empty(const std::string& path) {
-  return read_manifest(util::read_json_or_null(path), path);
+  return read_manifest(read_manifest_json(path), path);
 }
 
 json manifest_json(const RunManifest& m) {

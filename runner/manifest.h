@@ -126,8 +126,11 @@ RunManifest read_manifest(const nlohmann::json& manifest, const std::string& pat
 // DIR/manifest.json at `path`: throws UserError naming the file when it is missing, not JSON, or a
 // field has the wrong type.
 RunManifest read_manifest_file(const std::string& path);
-// As read_manifest_file, but a missing, unreadable or half-written file (another process may be
-// writing it) reads as the empty manifest; a wrong type still throws.
+// The manifest file's JSON; null when the file is missing. A file that is there but is not a JSON
+// document (empty, cut, NaN, bad UTF-8, nested too deep) throws UserError naming it: manifests are
+// written by an atomic rename, so such a file is damaged, not half-written.
+nlohmann::json read_manifest_json(const std::string& path);
+// As read_manifest_file, but a missing file reads as the empty manifest.
 RunManifest read_manifest_file_or_empty(const std::string& path);
 
 // The manifest as its file holds it.

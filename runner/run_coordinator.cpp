@@ -165,7 +165,24 @@ struct ItemEnds {
 // UserError when the directory's records were judged by other conformance rules.
 RunManifest starting_manifest(const RunOptions& options, const Experiment& exp, int jobs,
                               size_t shards, size_t shards_to_run, const std::string& path) {
-  RunManifest m = read_manifest_file_or_empty(path);
+  // A damaged manifest is kept beside, never overwritten unseen: it holds the start time and the
+  // earlier invocations.
+  nlohmann::json earlier;
+  try {
+    earlier = read_manifest_json(path);
+  } catch (const util::UserError& e) {
+    const std::string kept = path + ".damaged";
+    std::error_code ec;
+    fs::copy_file(path, kept, fs::copy_options::overwrite_existing, ec);
+    if (ec)
+      throw util::UserError(std::string(e.what()) + "; and it cannot be kept as " + kept + " (" +
+                            ec.message() + "): nothing was run");
+    std::fprintf(stderr,
+                 "renderaudit: %s\nrenderaudit: kept it as %s; this run starts a new manifest "
+                 "(the start time and earlier invocations are in the kept file)\n",
+                 e.what(), kept.c_str());
+  }
+  RunManifest m = read_manifest(earlier, path);
   const std::string started = utc_now_iso8601();
   if (m.started.empty()) m.started = started;
   m.schema = "renderaudit-manifest";

@@ -193,7 +193,7 @@ RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
   std::vector<RunManifest> inputs;
   std::vector<nlohmann::json> input_json;
   for (const std::string& in : options.inputs) {
-    input_json.push_back(util::read_json_or_null(in + "/manifest.json"));
+    input_json.push_back(read_manifest_json(in + "/manifest.json"));
     inputs.push_back(read_manifest(input_json.back(), in + "/manifest.json"));
   }
   RunManifest m;

@@ -1,5 +1,6 @@
 // A manifest that is not what this program writes: every reader names the file and the key
-// (analyze too), and one nested too deep to parse safely is refused, not a crash.
+// (analyze too), one nested too deep to parse safely is refused, not a crash, and one that is not
+// JSON at all is named by every reader and kept, not overwritten, by `run`.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -47,17 +48,53 @@ TEST(ManifestInput, ADeeplyNestedManifestIsRefusedNotACrash) {
   for (int i = 0; i < 100000; ++i) deep += ']';
   write_text(run + "/manifest.json", "{\"status\": \"complete\", \"x\": " + deep + "}");
   // audit and analyze read it strictly: refused with the reason.
-  for (const std::string args : {"audit " + run + " " + run, "analyze " + run}) {
+  for (const std::string& args : {"audit " + run + " " + run, "analyze " + run}) {
     const Outcome o = run_renderaudit(args);
     EXPECT_TRUE(o.exit_code == 2 || o.exit_code == 3) << args << ": " << o.exit_code << " " << o.output;
     EXPECT_NE(o.output.find("nested deeper than 256 levels"), std::string::npos)
         << args << ": " << o.output;
   }
-  // status and merge read it as "not readable" (they tolerate a manifest being rewritten): no
-  // crash (exit 139 before the depth was bounded).
-  for (const std::string args : {"status " + run, "merge " + run + " --out " + run + "-m"}) {
+  for (const std::string& args : {"status " + run, "merge " + run + " --out " + run + "-m"}) {
     const Outcome o = run_renderaudit(args);
-    EXPECT_LT(o.exit_code, 128) << args << ": " << o.output;
+    EXPECT_EQ(o.exit_code, 2) << args << ": " << o.output;  // 139 before the depth was bounded
+    EXPECT_NE(o.output.find("nested deeper than 256 levels"), std::string::npos) << o.output;
+  }
+}
+
+// A manifest that is not JSON is damaged (manifests are replaced by an atomic rename): status and
+// merge name it; run keeps it as manifest.json.damaged before writing a new one.
+TEST(ManifestInput, AnUnparseableManifestIsNamedAndKeptNotOverwritten) {
+  const std::string run = small_run("manifest_unparseable");
+  const std::string experiment = fs::path(run).parent_path().string() + "/e.toml";
+  std::ifstream in(run + "/manifest.json");
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const struct {
+    const char* what;
+    std::string bytes;
+  } cases[] = {{"empty", ""},
+               {"cut", good.substr(0, good.size() / 2)},
+               {"NaN", "{\"status\": NaN}"},
+               {"bad UTF-8", "{\"status\": \"complete\", \"reason\": \"\xff\xfe\"}"}};
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.what);
+    write_text(run + "/manifest.json", c.bytes);
+    const Outcome status = run_renderaudit("status " + run);
+    EXPECT_EQ(status.exit_code, 2) << status.output;
+    EXPECT_NE(status.output.find(run + "/manifest.json: not a JSON document"), std::string::npos)
+        << status.output;
+    fs::remove_all(run + "-m");
+    const Outcome merge = run_renderaudit("merge " + run + " --out " + run + "-m");
+    EXPECT_EQ(merge.exit_code, 2) << merge.output;
+    EXPECT_NE(merge.output.find(run + "/manifest.json: not a JSON document"), std::string::npos)
+        << merge.output;
+    const Outcome resume = run_renderaudit("run " + experiment + " --out " + run + " --quiet");
+    EXPECT_EQ(resume.exit_code, 0) << resume.output;
+    EXPECT_NE(resume.output.find("kept it as " + run + "/manifest.json.damaged"), std::string::npos)
+        << resume.output;
+    std::ifstream kept(run + "/manifest.json.damaged");
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(kept)), std::istreambuf_iterator<char>()),
+              c.bytes);
+    EXPECT_EQ(run_renderaudit("status " + run).exit_code, 0);  // the new manifest reads
   }
 }
 
