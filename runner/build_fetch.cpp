@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <ctime>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -51,13 +50,6 @@ std::string upstream_version(std::string v) {
   if (const auto dash = v.rfind('-'); dash != std::string::npos) v.resize(dash);
   if (const auto tilde = v.find('~'); tilde != std::string::npos) v.resize(tilde);
   return v;
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
 }
 
 }  // namespace
@@ -225,7 +217,7 @@ BuildSummary fetch_build(const FetchOptions& options) {
     s.debian_version = versions.at("libosmesa6");
     s.name = "mesa-" + upstream_version(s.debian_version);
     s.suite = options.suite;
-    s.fetched_utc = utc_now();
+    s.fetched_utc = utc_now_iso8601();
     // Probe both back ends in children of their own, from the temporary folder.
     nlohmann::json gl = nlohmann::json::object();
     for (const auto& [key, platform] : {std::pair{"osmesa", "osmesa-llvmpipe"},

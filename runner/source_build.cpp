@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -68,13 +67,6 @@ std::string read_trimmed(const std::string& path) {
   std::string s = util::read_file(path);
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
   return s;
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
 }
 
 std::string hex64(uint64_t v) {
@@ -393,7 +385,7 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
     s.origin = "source";
     s.commit = id.commit;
     s.version = id.version;
-    s.fetched_utc = utc_now();
+    s.fetched_utc = utc_now_iso8601();
     nlohmann::json gl = nlohmann::json::object();
     if (options.probe) {
       say("probe: osmesa-llvmpipe and egl-llvmpipe with the build");

@@ -98,16 +98,21 @@ ra::util::ProgramResult run_args(std::vector<std::string> args) {
   return ra::util::run_program(spec);
 }
 
+// DIR/run: two lines of one view drawn by osmesa-llvmpipe.
+bool two_line_run(const std::string& dir) {
+  write_text(dir + "/e.toml",
+             "seed = 7\nplatforms = [\"osmesa-llvmpipe\"]\n[views]\norientations = 1\n"
+             "fov_deg = [30]\nwindows = [128]\nnear = 0.01\nfar = 10.0\n[primitives]\nlines = 2\n");
+  return run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet").exit_code == 0;
+}
+
 }  // namespace
 
 // No input reaches generated code: an output path that closes the C comment and adds a statement
 // (the folder it names exists) stays inside the comment, and the printed lines quote it.
 TEST(ReproduceCommand, AHostileOutputPathStaysInsideTheCommentAndIsQuoted) {
   const std::string dir = fresh_dir("reproduce_hostile");
-  write_text(dir + "/e.toml",
-             "seed = 7\nplatforms = [\"osmesa-llvmpipe\"]\n[views]\norientations = 1\n"
-             "fov_deg = [30]\nwindows = [128]\nnear = 0.01\nfar = 10.0\n[primitives]\nlines = 2\n");
-  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet").exit_code, 0);
+  ASSERT_TRUE(two_line_run(dir));
   fs::create_directories(dir + "/a*");
   // The folder "a*" makes the path hold "*/"; after it a line of C (no further '/').
   const std::string hostile =
@@ -141,10 +146,7 @@ TEST(ReproduceCommand, AHostileOutputPathStaysInsideTheCommentAndIsQuoted) {
 
 TEST(ReproduceCommand, BadIndexAndOutputAreRefusedWithTheirReason) {
   const std::string dir = fresh_dir("reproduce_bad_input");
-  write_text(dir + "/e.toml",
-             "seed = 7\nplatforms = [\"osmesa-llvmpipe\"]\n[views]\norientations = 1\n"
-             "fov_deg = [30]\nwindows = [128]\nnear = 0.01\nfar = 10.0\n[primitives]\nlines = 2\n");
-  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --quiet").exit_code, 0);
+  ASSERT_TRUE(two_line_run(dir));
   const std::string base = "reproduce " + dir + "/run --platform osmesa-llvmpipe --kind line --view 1 ";
   for (const char* index : {"-1", "18446744073709551616"}) {
     const Outcome o = run_renderaudit(base + "--index " + index);
