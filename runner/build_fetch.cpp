@@ -171,6 +171,33 @@ std::map<std::string, std::string> download_and_unpack(const FetchOptions& o, co
 
 }  // namespace
 
+nlohmann::json probe_build(BuildSummary& s, const std::string& dir) {
+  nlohmann::json gl = nlohmann::json::object();
+  for (const auto& [key, platform] : {std::pair{"osmesa", "osmesa-llvmpipe"},
+                                      std::pair{"egl", "egl-llvmpipe"}}) {
+    platforms::PlatformSpec spec = *platforms::find_platform(std::string(platform) + "@" + s.name);
+    spec.build_dir = dir;
+    const platforms::PlatformProbe p = platforms::probe_platform(spec);
+    gl[key] = p.available ? nlohmann::json{{"renderer", p.driver.renderer},
+                                           {"version", p.driver.version}}
+                          : nlohmann::json{{"error", p.reason}};
+    (std::string(key) == "osmesa" ? s.osmesa_version : s.egl_version) = p.driver.version;
+  }
+  return gl;
+}
+
+std::vector<std::string> build_libraries(const std::string& dir) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  const std::string lib_dir = platforms::build_library_dir(dir);
+  if (fs::is_directory(lib_dir, ec))
+    for (const auto& e : fs::recursive_directory_iterator(lib_dir))
+      if (e.is_regular_file() && e.path().string().find(".so") != std::string::npos)
+        files.push_back(e.path().lexically_relative(dir).string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 const std::vector<std::string>& required_build_packages() {
   static const std::vector<std::string> p = {"libosmesa6", "libegl-mesa0", "libgbm1", "libdrm2"};
   return p;
@@ -219,26 +246,11 @@ BuildSummary fetch_build(const FetchOptions& options) {
     s.suite = options.suite;
     s.fetched_utc = utc_now_iso8601();
     // Probe both back ends in children of their own, from the temporary folder.
-    nlohmann::json gl = nlohmann::json::object();
-    for (const auto& [key, platform] : {std::pair{"osmesa", "osmesa-llvmpipe"},
-                                        std::pair{"egl", "egl-llvmpipe"}}) {
-      platforms::PlatformSpec spec =
-          *platforms::find_platform(std::string(platform) + "@" + s.name);
-      spec.build_dir = root;
-      const platforms::PlatformProbe p = platforms::probe_platform(spec);
-      gl[key] = p.available ? nlohmann::json{{"renderer", p.driver.renderer},
-                                             {"version", p.driver.version}}
-                            : nlohmann::json{{"error", p.reason}};
-      (std::string(key) == "osmesa" ? s.osmesa_version : s.egl_version) = p.driver.version;
-    }
+    const nlohmann::json gl = probe_build(s, root);
     if (s.osmesa_version.empty() && s.egl_version.empty())
       throw util::UserError("the Mesa of suite '" + options.suite +
                             "' cannot draw here: " + gl.dump());
-    const std::string lib_dir = platforms::build_library_dir(root);
-    for (const auto& e : fs::recursive_directory_iterator(lib_dir))
-      if (e.is_regular_file() && e.path().string().find(".so") != std::string::npos)
-        s.files.push_back(e.path().lexically_relative(root).string());
-    std::sort(s.files.begin(), s.files.end());
+    s.files = build_libraries(root);
     nlohmann::json packages = nlohmann::json::object();
     for (const auto& [p, v] : versions) packages[p] = v;
     nlohmann::json j = {{"name", s.name},          {"suite", s.suite},

@@ -7,6 +7,7 @@
 // build that cannot draw) leaves the cache as it was.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,14 @@ struct BuildSummary {
 // split out (libglapi-mesa and libgl1-mesa-dri before Mesa 24, mesa-libgallium after).
 const std::vector<std::string>& required_build_packages();
 const std::vector<std::string>& optional_build_packages();
+
+// Probes osmesa-llvmpipe and egl-llvmpipe with the build folder `dir` (named s.name), each in a
+// child; sets s.osmesa_version and s.egl_version ("" when one cannot draw) and returns the GL
+// strings or errors as build.json keeps them ({"osmesa": {...}, "egl": {...}}).
+nlohmann::json probe_build(BuildSummary& s, const std::string& dir);
+
+// The shared libraries of a build folder, relative to it, sorted.
+std::vector<std::string> build_libraries(const std::string& dir);
 
 // Whether `url` is one Debian archive address as apt's sources list takes it: http:// or
 // https:// with a host, or file:/ with a path; printable ASCII without spaces, quotes, brackets or

@@ -389,27 +389,13 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
     nlohmann::json gl = nlohmann::json::object();
     if (options.probe) {
       say("probe: osmesa-llvmpipe and egl-llvmpipe with the build");
-      for (const auto& [k, platform] : {std::pair{"osmesa", "osmesa-llvmpipe"},
-                                        std::pair{"egl", "egl-llvmpipe"}}) {
-        platforms::PlatformSpec spec = *platforms::find_platform(std::string(platform) + "@" + name);
-        spec.build_dir = prefix;
-        const platforms::PlatformProbe p = platforms::probe_platform(spec);
-        gl[k] = p.available ? nlohmann::json{{"renderer", p.driver.renderer},
-                                              {"version", p.driver.version}}
-                            : nlohmann::json{{"error", p.reason}};
-        (std::string(k) == "osmesa" ? s.osmesa_version : s.egl_version) = p.driver.version;
-      }
+      gl = probe_build(s, prefix);
       if (s.osmesa_version.empty() && s.egl_version.empty())
         throw util::UserError("builds build: the build of " + source +
                               " cannot draw (probe step): " + gl.dump() +
                               "; the build cache is unchanged");
     }
-    const std::string lib_dir = platforms::build_library_dir(prefix);
-    if (fs::is_directory(lib_dir, ec))
-      for (const auto& e : fs::recursive_directory_iterator(lib_dir))
-        if (e.is_regular_file() && e.path().string().find(".so") != std::string::npos)
-          s.files.push_back(e.path().lexically_relative(prefix).string());
-    std::sort(s.files.begin(), s.files.end());
+    s.files = build_libraries(prefix);
     const nlohmann::json j = provenance(options, id, s, gl, chosen, key, jobs, result);
     util::write_file_atomic(prefix + "/build.json", j.dump(2) + "\n");
     s.dir = target;
