@@ -13,6 +13,7 @@
 #include "runner/manifest.h"
 #include "runner/shard.h"
 #include "runner/shard_file.h"
+#include "runner/shard_records.h"
 #include "runner/slicing.h"
 #include "util/atomic_file.h"
 #include "util/dir_lock.h"
@@ -26,41 +27,6 @@ namespace {
 
 std::string range(const runner::Shard& s) {
   return "primitives " + std::to_string(s.begin) + "-" + std::to_string(s.end - 1);
-}
-
-// A records file without a seal. The seal came during records schema version 2, so every version 3
-// file was written sealed: one of version 3 without its seal is damaged (cut short, or edited), as
-// `run` judges it. A version 2 file may predate the seal: it is checked row by row instead. Empty when it holds each of the shard's primitives exactly once and nothing else.
-std::string check_unsealed(const std::string& path, const runner::Shard& s,
-                           const std::string& no_seal) {
-  const int version = metrics::records_schema_version(path);
-  // A compressed file cut inside its first frame shows no header at all; compression came after
-  // the seal, so such a file was written sealed and is simply cut short.
-  if (version == 0 && util::has_zstd_extension(path)) return no_seal;
-  if (version == metrics::kRecordsSchemaVersion)
-    return no_seal + "; records of schema version " +
-           std::to_string(metrics::kRecordsSchemaVersion) +
-           " are always written sealed, so this file is damaged";
-  if (version != 2) return "unexpected header";
-  std::vector<bool> seen(s.size(), false);
-  uint64_t rows = 0;
-  try {
-    metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) {
-      const uint64_t index = row.integer<uint64_t>(metrics::RecordColumn::kIndex);
-      if (index < s.begin || index >= s.end)
-        row.fail("primitive " + std::to_string(index) + " lies outside the shard (" + range(s) + ")");
-      if (seen[index - s.begin]) row.fail("primitive " + std::to_string(index) + " twice");
-      seen[index - s.begin] = true;
-      ++rows;
-    });
-  } catch (const util::UserError& e) {
-    // "PATH:LINE: why" -> "line LINE: why" (the caller names the shard)
-    const std::string what = e.what();
-    return what.rfind(path + ":", 0) == 0 ? "line " + what.substr(path.size() + 1) : what;
-  }
-  if (rows != s.size())
-    return std::to_string(rows) + " of the shard's " + std::to_string(s.size()) + " primitives";
-  return "";
 }
 
 }  // namespace
@@ -132,7 +98,10 @@ RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSe
   std::vector<runner::Shard>
       plan;  // the platforms run (all without --platform), as `status` plans it
   for (runner::Shard& s : plan_shards(exp)) {
-    planned_files.insert(fs::path(s.records_path(run_dir)).filename().string());  // any platform's
+    // any platform's, in both formats (a shard with both files is a damaged shard, not a stray)
+    for (const metrics::RecordsFormat f :
+         {metrics::RecordsFormat::kCsv, metrics::RecordsFormat::kCsvZst})
+      planned_files.insert(s.id() + metrics::records_extension(f));
     if (c.platforms_run.empty() || std::find(c.platforms_run.begin(), c.platforms_run.end(),
                                              s.platform) != c.platforms_run.end())
       plan.push_back(std::move(s));
@@ -150,18 +119,21 @@ RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSe
   std::vector<char> present(plan.size(), 0);
   util::run_in_parallel(plan.size(), 0, [&](std::size_t i) {
     const runner::Shard& s = plan[i];
-    const std::string path = s.records_path(run_dir);
-    if (!fs::exists(path)) return;
-    present[i] = 1;
-    const runner::ShardSeal* known = nullptr;  // read already by the caller?
-    if (seals != nullptr) {
-      const auto it = seals->find(fs::path(path).filename().string());
-      if (it != seals->end()) known = &it->second;
+    runner::ShardRecordsFile file;
+    try {
+      file = runner::find_shard_records(run_dir, s, false);
+    } catch (const util::UserError& e) {  // <id>.csv and <id>.csv.zst both there
+      present[i] = 1;
+      verdicts[i] = e.what();
+      return;
     }
-    std::string why = known ? runner::seal_verdict(*known, s.size(), util::has_zstd_extension(path))
-                            : runner::check_shard_file(path, s.size());
-    if (why.rfind("no trailer", 0) == 0) why = check_unsealed(path, s, why);  // an older run?
-    verdicts[i] = why;
+    if (file.path.empty()) return;
+    present[i] = 1;
+    const auto known = seals ? seals->find(fs::path(file.path).filename().string())
+                             : ShardSeals::const_iterator();
+    verdicts[i] = seals && known != seals->end()
+                      ? runner::shard_records_damage(file.path, s, known->second)
+                      : runner::shard_records_damage(file.path, s);
   });
   for (std::size_t i = 0; i < plan.size(); ++i) {
     const runner::Shard& s = plan[i];

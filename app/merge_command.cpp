@@ -28,6 +28,8 @@ void register_merge_command(CLI::App& app, int& exit_code) {
                 "once)\n",
                 opt.out_dir.c_str(), r.shards_present, r.shards_total, r.shards_copied,
                 r.shards_in_several_inputs);
+    for (const std::string& d : r.damaged)  // the seal rule: never taken, always named
+      std::printf("  damaged, not taken: %s\n", d.c_str());
     for (std::size_t i = 0; i < r.missing.size() && i < 20; ++i)
       std::printf("  missing: %s\n", r.missing[i].c_str());
     if (r.missing.size() > 20) std::printf("  ... and %zu more\n", r.missing.size() - 20);

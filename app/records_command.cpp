@@ -26,6 +26,7 @@
 #include "runner/shard_file.h"
 #include "util/errors.h"
 #include "util/zstd_stream.h"
+#include "runner/shard_records.h"
 
 namespace ra::app {
 namespace {
@@ -115,8 +116,8 @@ void stream_records(const RecordsOptions& o) {
     if (!wanted(o.platforms, s.platform) ||
         !wanted(o.kinds, std::string(geometry::kind_name(s.kind))) || !wanted(o.views, s.view))
       continue;
-    const std::string path = s.records_path(o.dir);
-    if (!std::filesystem::exists(path)) {
+    const std::string path = runner::trusted_records_path(o.dir, s);  // read once to judge it
+    if (path.empty()) {
       ++missing;
       continue;
     }

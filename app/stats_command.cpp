@@ -30,7 +30,10 @@
 #include "stats/hypothesis_tests.h"
 #include "stats/linear_regression.h"
 #include "app/commands.h"
+#include "runner/experiment.h"
 #include "runner/manifest.h"
+#include "runner/shard.h"
+#include "runner/shard_records.h"
 #include "util/errors.h"
 
 namespace ra::app {
@@ -113,6 +116,29 @@ Sample read_sample(const std::string& file, const std::string& column) {
   return Sample{file, column, std::move(c.values), c.n_missing};
 }
 
+// The records files of a run directory, each judged by the seal rule (runner/shard_records.h):
+// a damaged file, or a file that is not one of the plan's shards, stops with its name. A
+// directory without experiment.toml (records gathered by hand) lists records/ as it is.
+std::vector<std::string> run_records_files(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(fs::path(dir) / "records", ec))
+    if (ra::metrics::is_records_file_name(e.path().filename().string()))
+      files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  if (!fs::exists(dir + "/experiment.toml")) return files;
+  std::set<std::string> trusted;
+  for (const runner::Shard& s : runner::plan_shards(runner::load_experiment(dir + "/experiment.toml")))
+    if (const std::string p = runner::trusted_records_path(dir, s); !p.empty()) trusted.insert(p);
+  for (const std::string& f : files)
+    if (!trusted.count(f))
+      throw util::UserError(f + ": not a shard of the run's plan (" + dir +
+                            "/experiment.toml): its rows would be counted with the run's; move it "
+                            "out of records/");
+  return files;
+}
+
 // The rows of `column` where every `where` condition (COLUMN=VALUE, the cell's text) holds, from
 // a CSV file or from a run directory's records (DIR/records/*.csv, all with the records header).
 Sample read_selected_sample(const std::string& path, const std::string& column,
@@ -129,11 +155,7 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
   std::vector<std::string> files;
   std::string name = path;
   if (fs::is_directory(path)) {
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(fs::path(path) / "records", ec))
-      if (ra::metrics::is_records_file_name(e.path().filename().string()))
-        files.push_back(e.path().string());
-    std::sort(files.begin(), files.end());
+    files = run_records_files(path);
     if (files.empty())
       throw util::UserError(
           path +

@@ -16,25 +16,30 @@ constexpr int kExitSchedulerUnknown = 4;
 void register_status_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "status",
-      "Where a run stands: shards done, running, failed and waiting, the time left, and the\n"
-      "Slurm jobs of a `run --slurm`. Exit 0 when the run is complete, 3 while it is at work or\n"
-      "queued, 1 when it stopped incomplete, 4 when the Slurm scheduler could not be asked\n"
-      "(squeue missing or the controller unreachable: the state is not known).");
+      "Where a run stands: shards done, running, failed and waiting, damaged records files, the\n"
+      "time left, and the Slurm jobs of a `run --slurm`. Every records file is read and judged\n"
+      "by its seal, as analyze judges it (--quick: only by its presence). Exit 0 when the run is\n"
+      "complete, 3 while it is at work or queued, 1 when it stopped incomplete or a records file\n"
+      "is damaged, 4 when the Slurm scheduler could not be asked (squeue missing or the\n"
+      "controller unreachable: the state is not known).");
   static std::string dir;
-  static bool json = false, wait = false;
+  static bool json = false, wait = false, quick = false;
   static double every_s = 10;
   cmd->add_option("dir", dir, "run directory")->required()->check(CLI::ExistingDirectory);
   cmd->add_flag("--json", json, "one JSON object instead of lines");
+  cmd->add_flag("--quick", quick,
+                "count a shard done when its records file exists, without reading it (no seal "
+                "check: fast on a large run, and says so)");
   cmd->add_flag("--wait", wait, "wait until the run is no longer at work or queued, then answer");
   cmd->add_option("--every", every_s, "seconds between looks with --wait (default 10)")
       ->check(CLI::Range(0.1, 3600.0));
   cmd->callback([&exit_code] {
     const char* env = std::getenv("RENDERAUDIT_SQUEUE");  // tests substitute a fake
     const std::string squeue = env && *env ? env : "squeue";
-    runner::RunStatus s = runner::read_run_status(dir, squeue);
+    runner::RunStatus s = runner::read_run_status(dir, squeue, !quick);
     while (wait && (s.state() == "running" || s.state() == "queued")) {
       std::this_thread::sleep_for(std::chrono::duration<double>(every_s));
-      s = runner::read_run_status(dir, squeue);
+      s = runner::read_run_status(dir, squeue, !quick);
     }
     if (json)
       std::printf("%s\n", runner::to_json(s).dump(1).c_str());

@@ -8,6 +8,7 @@
 #include "util/errors.h"
 #include "runner/experiment.h"
 #include "runner/shard.h"
+#include "runner/shard_records.h"
 
 namespace fs = std::filesystem;
 
@@ -37,8 +38,10 @@ std::vector<Row> read_view(const std::string& dir, const std::vector<runner::Sha
   std::vector<Row> rows;
   for (const runner::Shard& s : plan) {
     if (s.platform != platform || s.kind != kind || s.view != view) continue;
-    const std::string path = s.records_path(dir);
-    if (!fs::exists(path)) continue;  // a missing shard: reported by missing_shards()
+    // a damaged file stops the audit (the seal rule, runner/shard_records.h); a missing one is
+    // reported by missing_shards()
+    const std::string path = runner::trusted_records_path(dir, s);
+    if (path.empty()) continue;
     metrics::read_records(path, [&](const metrics::Record& r) {
       if (r.platform != platform || r.kind != geometry::kind_name(kind) || r.view != view ||
           r.index < s.begin || r.index >= s.end)

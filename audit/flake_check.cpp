@@ -20,6 +20,7 @@
 #include "runner/shard.h"
 #include "runner/worker_program.h"
 #include "platforms/renderer_check.h"
+#include "runner/shard_records.h"
 #include "util/errors.h"
 
 namespace fs = std::filesystem;
@@ -145,11 +146,20 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
     const runner::Shard s = shard_of(batch);
     const std::string log = last_log_line(dir + "/logs/" + s.id() + ".log");
     batch.error = error.empty() || log.empty() ? error : error + ": " + log;
-    if (!batch.error.empty() || !fs::exists(s.records_path(dir))) {
-      if (batch.error.empty()) batch.error = "wrote no records";
+    if (!batch.error.empty()) return;
+    // the re-render's own file, judged by the seal rule as any reader judges records
+    runner::ShardRecordsFile file;
+    try {
+      file = runner::find_shard_records(dir, s);
+    } catch (const util::UserError& e) {
+      batch.error = e.what();
       return;
     }
-    metrics::read_records(s.records_path(dir), [&](const metrics::Record& r) {
+    if (file.path.empty() || !file.damage.empty()) {
+      batch.error = file.path.empty() ? "wrote no records" : file.path + ": damaged: " + file.damage;
+      return;
+    }
+    metrics::read_records(file.path, [&](const metrics::Record& r) {
       result.hashes[{batch.platform, int(batch.kind), batch.view, r.index}] = r.pixel_hash;
       result.pixels[{batch.platform, int(batch.kind), batch.view, r.index}] = r.pixels;
     });

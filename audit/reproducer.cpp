@@ -15,6 +15,7 @@
 #include "runner/experiment.h"
 #include "runner/shard.h"
 #include "util/errors.h"
+#include "runner/shard_records.h"
 
 namespace fs = std::filesystem;
 
@@ -206,9 +207,10 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
     if (s.platform != q.platform || s.kind != kind || s.view != q.view || q.index < s.begin ||
         q.index >= s.end)
       continue;
-    const std::string path = s.records_path(q.run_dir);
-    if (!fs::exists(path))
-      throw util::UserError(path + ": missing: the run has no record of this primitive");
+    const std::string path = runner::trusted_records_path(q.run_dir, s);
+    if (path.empty())
+      throw util::UserError(s.records_path(q.run_dir) +
+                            ": missing: the run has no record of this primitive");
     metrics::read_records(path, [&](const metrics::Record& r) {
       if (r.index == q.index) record = r;
     });

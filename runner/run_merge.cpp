@@ -14,6 +14,7 @@
 #include "runner/run_dir.h"
 #include "runner/shard.h"
 #include "runner/shard_file.h"
+#include "runner/shard_records.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "util/json_file.h"
@@ -95,7 +96,7 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
     for (const std::string& in : options.inputs) {
       std::set<std::string> platforms;
       for (const Shard& s : plan)
-        if (!platforms.count(s.platform) && fs::exists(s.records_path(in)))
+        if (!platforms.count(s.platform) && !find_shard_records(in, s, false).path.empty())
           platforms.insert(s.platform);
       for (const std::string& platform : platforms)
         if (!fs::exists(in + "/drivers/" + platform + ".json"))
@@ -126,15 +127,17 @@ std::map<std::string, uint64_t> copy_shards(const MergeOptions& options,
                                             const std::vector<Shard>& plan, MergeResult* result) {
   std::map<std::string, uint64_t> taken_from;
   for (const Shard& s : plan) {
-    const std::string target = s.records_path(options.out_dir);
-    if (fs::exists(target) && check_shard_file(target, s.size()).empty()) {
+    const ShardRecordsFile target = find_shard_records(options.out_dir, s);
+    if (!target.path.empty() && target.damage.empty()) {
       ++result->shards_present;  // an earlier merge put it there
       continue;
     }
     int holders = 0;
     for (const std::string& in : options.inputs) {
-      const std::string source = s.records_path(in);
-      if (!fs::exists(source) || !check_shard_file(source, s.size()).empty()) continue;
+      const ShardRecordsFile held = find_shard_records(in, s);  // the seal rule
+      if (!held.damage.empty()) result->damaged.push_back(held.path + ": " + held.damage);
+      if (held.path.empty() || !held.damage.empty()) continue;
+      const std::string& source = held.path;
       if (++holders == 1) {
         copy_atomically(source, options.out_dir + "/records/" + fs::path(source).filename().string());
         ++result->shards_copied;

@@ -27,6 +27,7 @@ struct MergeResult {
   std::size_t shards_copied = 0;                     // by this merge
   std::size_t shards_in_several_inputs = 0;          // taken from the first of them
   std::vector<std::string> missing;                  // planned shards no input holds whole
+  std::vector<std::string> damaged;                  // "FILE: why" of input files not taken
   std::size_t failed_primitives = 0;                 // crash and timeout records DIR holds
 };
 

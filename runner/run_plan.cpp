@@ -7,6 +7,7 @@
 
 #include "runner/shard_cost.h"
 #include "runner/shard_file.h"
+#include "runner/shard_records.h"
 #include "util/errors.h"
 
 namespace fs = std::filesystem;
@@ -46,9 +47,10 @@ RunQueue queue_shards(const std::vector<Shard>& shards, const Experiment& exp,
   RunQueue q;
   std::vector<Shard> queued;
   for (const Shard& s : shards) {
-    const std::string path = s.records_path(dir);
-    if (fs::exists(path)) {
-      const std::string damage = check_shard_file(path, s.size());
+    const ShardRecordsFile file = find_shard_records(dir, s);  // the seal rule, as readers apply it
+    if (!file.path.empty()) {
+      const std::string& path = file.path;
+      const std::string& damage = file.damage;
       if (damage.empty()) {
         ++q.done_before;  // finished by an earlier invocation: kept as is
         continue;

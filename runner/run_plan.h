@@ -40,9 +40,10 @@ struct RunQueue {
   std::vector<ShardFailure> damaged;     // records files found incomplete or damaged, set aside
 };
 
-// The shards of `shards` that DIR still needs. A records file that fails check_shard_file is
-// renamed to FILE.damaged (not deleted: it is evidence), said on stderr, and its shard queued.
-// Each item gets `timeout_s`.
+// The shards of `shards` that DIR still needs. A records file that fails the seal rule
+// (runner/shard_records.h) is renamed to FILE.damaged (not deleted: it is evidence), said on
+// stderr, and its shard queued; both formats of one shard are refused (util::UserError). Each
+// item gets `timeout_s`.
 RunQueue queue_shards(const std::vector<Shard>& shards, const Experiment& exp,
                       const std::string& dir, bool largest_cost_first, double timeout_s);
 

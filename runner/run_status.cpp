@@ -10,6 +10,7 @@
 #include "runner/experiment.h"
 #include "runner/manifest.h"
 #include "runner/shard.h"
+#include "runner/shard_records.h"
 #include "runner/slicing.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
@@ -17,6 +18,7 @@
 #include "util/duration_text.h"
 #include "util/errors.h"
 #include "util/json_file.h"
+#include "util/parallel.h"
 
 namespace fs = std::filesystem;
 
@@ -60,6 +62,7 @@ std::string RunStatus::state() const {
     queued = queued || is_pending(j.state);
   }
   if (queued) return "queued";
+  if (!damaged.empty()) return "damaged";
   if (planned > 0 && done == planned && manifest_status.rfind("complete", 0) == 0)
     return "complete";
   // squeue failed and the gather has not ended: the jobs may be queued, running or gone
@@ -69,7 +72,7 @@ std::string RunStatus::state() const {
   return "incomplete";
 }
 
-RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
+RunStatus read_run_status(const std::string& dir, const std::string& squeue, bool check_seals) {
   if (!fs::exists(dir + "/experiment.toml"))
     throw util::UserError(dir + ": not a run directory (no experiment.toml)");
   RunStatus s;
@@ -126,12 +129,29 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue) {
       for (const ManifestShardNote& f : m.failures_or_none()) failed.insert(f.shard);
     }
   }
-  for (const Shard& sh : shards) {
-    bool have = false;
-    for (const std::string& src : sources) have = have || fs::exists(sh.records_path(src));
+  // Each shard's files judged by the seal rule (read whole, on every core), unless told not to.
+  std::vector<char> have(shards.size(), 0);
+  std::vector<std::vector<std::string>> damaged(shards.size());
+  util::run_in_parallel(shards.size(), 0, [&](std::size_t i) {
+    for (const std::string& src : sources) {
+      try {
+        const ShardRecordsFile f = find_shard_records(src, shards[i], check_seals);
+        if (!f.path.empty() && f.damage.empty()) have[i] = 1;
+        if (!f.damage.empty()) damaged[i].push_back(f.path + ": " + f.damage);
+      } catch (const util::UserError& e) {  // both formats of the shard
+        damaged[i].push_back(e.what());
+      }
+    }
+  });
+  s.seals_checked = check_seals;
+  for (std::size_t i = 0; i < shards.size(); ++i) {
+    const Shard& sh = shards[i];
     const std::string id = sh.id();
-    if (have)
+    if (!have[i]) s.damaged.insert(s.damaged.end(), damaged[i].begin(), damaged[i].end());
+    if (have[i])
       ++s.done;
+    else if (!damaged[i].empty())
+      continue;  // neither done nor waiting: listed as damaged
     else if (running.count(id))
       ++s.running;
     else if (failed.count(id))
@@ -170,7 +190,17 @@ std::string format_run_status(const RunStatus& s) {
       << ": its own shards; `renderaudit merge` joins the slices into one run to analyse)";
   o << "\n";
   o << "  shards: " << s.planned << " planned, " << s.done << " done (" << buf << "), " << s.running
-    << " running, " << s.failed << " failed, " << s.waiting << " waiting\n";
+    << " running, " << s.failed << " failed, " << s.waiting << " waiting"
+    << (s.damaged.empty() ? "" : ", " + std::to_string(s.damaged.size()) + " damaged files") << "\n";
+  if (!s.seals_checked)
+    o << "  seals not checked (--quick): a file counts as done when it exists; without --quick "
+         "every file is read and damaged ones are named\n";
+  for (std::size_t i = 0; i < s.damaged.size() && i < 20; ++i)
+    o << "  damaged: " << s.damaged[i] << "\n";
+  if (s.damaged.size() > 20) o << "  ... and " << s.damaged.size() - 20 << " more damaged\n";
+  if (!s.damaged.empty() && s.writers.empty())
+    o << "  `renderaudit run` of this directory redoes the damaged shards (each file is kept as "
+         ".damaged)\n";
   for (const auto& w : s.writers) {
     o << "  writer " << w.dir << ": " << w.holder;
     if (!w.progress.host.empty())
@@ -220,7 +250,8 @@ nlohmann::json to_json(const RunStatus& s) {
                       {"done", s.done},     {"running", s.running},
                       {"failed", s.failed}, {"waiting", s.waiting},
                       {"writers", writers}, {"manifest_status", s.manifest_status},
-                      {"left_s", seconds_or_null(s.left_s)}};
+                      {"left_s", seconds_or_null(s.left_s)},
+                      {"damaged", s.damaged},  {"seals_checked", s.seals_checked}};
   if (s.slice_count > 0) j["slice"] = {{"index", s.slice_index}, {"count", s.slice_count}};
   if (s.slurm) {
     nlohmann::json jobs = nlohmann::json::array();

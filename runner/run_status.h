@@ -25,6 +25,10 @@ struct SlurmJobStatus {
 struct RunStatus {
   std::string dir, experiment;
   size_t planned = 0, done = 0, running = 0, failed = 0, waiting = 0;
+  // "FILE: why" for each records file the seal rule rejects (runner/shard_records.h); its shard
+  // is counted neither done nor waiting
+  std::vector<std::string> damaged;
+  bool seals_checked = true;  // false: `status --quick`, files counted by their presence
   std::string manifest_status;  // DIR/manifest.json's "status", or "" when none yet
   std::vector<WriterStatus> writers;  // only those whose lock is held
   // Slurm (DIR/slurm/jobs.json present)
@@ -38,13 +42,16 @@ struct RunStatus {
   size_t slices_not_started = 0;      // Slurm tasks still pending
   int slice_index = 0, slice_count = 0;  // a `run --slice K/N` directory (its shards only); 0: not
 
-  // "complete", "running", "queued", "failed", "interrupted", "incomplete", or "unknown" (a
+  // "complete", "running", "queued", "damaged" (a records file fails the seal rule), "failed",
+  // "interrupted", "incomplete", or "unknown" (a
   // Slurm run whose scheduler could not be asked, its gather not ended)
   std::string state() const;
 };
 
-// Throws ra::UserError when DIR is not a run directory.
-RunStatus read_run_status(const std::string& dir, const std::string& squeue = "squeue");
+// Throws ra::UserError when DIR is not a run directory. `check_seals` false: count a shard done
+// when its file exists, without reading it (`status --quick`).
+RunStatus read_run_status(const std::string& dir, const std::string& squeue = "squeue",
+                          bool check_seals = true);
 
 std::string format_run_status(const RunStatus& s);
 nlohmann::json to_json(const RunStatus& s);
