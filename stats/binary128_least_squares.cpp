@@ -47,9 +47,8 @@ Binary128Solution finish(const Design& x, const Response& y, const Matrix128& r,
   s.sd_factors.resize(static_cast<std::size_t>(p));
   // (X'X)^-1 = D^-1 R^-1 R^-T D^-1: row norms of R^-1 over the scales
   for (Eigen::Index j = 0; j < p; ++j) {
-    s.coefficients[static_cast<std::size_t>(j)] = static_cast<double>(b(j));
-    s.sd_factors[static_cast<std::size_t>(j)] =
-        static_cast<double>(sqrt(r_inverse.row(j).squaredNorm()) / scale(j));
+    s.coefficients[static_cast<std::size_t>(j)] = b(j);
+    s.sd_factors[static_cast<std::size_t>(j)] = sqrt(r_inverse.row(j).squaredNorm()) / scale(j);
   }
   return s;
 }

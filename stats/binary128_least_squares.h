@@ -25,10 +25,12 @@ enum class Binary128Factor { kHouseholderQr, kCholesky };
 
 struct Binary128Solution {
   Binary128Factor factor = Binary128Factor::kHouseholderQr;  // the one used
-  std::vector<double> coefficients;  // b, units of y per unit of each column
+  // b, units of y per unit of each column; in binary128, whose range (about 1e+-4932) holds
+  // coefficients that a double cannot (the x^2 of x near 1e300 is about 1e-600)
+  std::vector<float128> coefficients;
   // sqrt([(X'X)^-1]_jj) per column j (units of 1 / column): the standard deviation of b_j is the
   // residual standard deviation times this
-  std::vector<double> sd_factors;
+  std::vector<float128> sd_factors;
   float128 rss = 0;             // sum (y - X b)^2 with b unrounded, units of y squared
   double condition_number = 0;  // of the column-scaled design; +infinity when R is singular
 };

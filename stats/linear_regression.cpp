@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cfloat>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <cstdio>
@@ -58,21 +59,42 @@ long double sum_of_squares(const Eigen::VectorXd& v) {
 namespace {
 LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& predictors,
                                         const std::vector<double>& y, bool intercept,
-                                        const std::vector<std::string>& names);
+                                        const std::vector<std::string>& names, int y_exponent);
 LinearFit fit_polynomial_of_scaled_y(const std::vector<double>& x, const std::vector<double>& y,
-                                     int degree, bool intercept, const std::string& x_name);
+                                     int degree, bool intercept, const std::string& x_name,
+                                     int y_exponent);
+
+// Every coefficient and standard deviation a double can hold, or a refusal naming the first that
+// it cannot: past about 1.8e308 a double is infinite, below 2.2e-308 it loses digits and then
+// becomes 0 (a standard deviation of 0 would call an inexact fit exact).
+void require_double_range(const LinearFit& fit) {
+  for (std::size_t j = 0; j < fit.coefficients.size(); ++j) {
+    const double b = fit.coefficients[j], sd = fit.standard_deviations[j];
+    const bool sd_lost = !std::isfinite(sd) || (sd < DBL_MIN && fit.rss > 0);
+    if (std::isfinite(b) && !sd_lost) continue;
+    throw util::UserError("least squares: the coefficient of '" + fit.names[j] + "' or its "
+                          "standard deviation lies outside the range of double precision "
+                          "(2.2e-308 to 1.8e308 in magnitude), so it cannot be reported; rescale "
+                          "the predictor (divide it by a power of ten near its magnitude) and fit "
+                          "again");
+  }
+}
 
 // y is scaled by a power of two first (exact): the residual sum of squares of y near 1e200 would
 // be near 1e400; t, p and R^2 are scale-free, coefficients and their standard deviations scale
-// with y and are scaled back. (The predictors' columns are scaled to unit norm below.)
+// with y and are scaled back: in binary128 by the binary128 paths (finish_binary128), here for the
+// double one. (The predictors' columns are scaled to unit norm below.)
 template <typename Fit>
 LinearFit with_scaled_y(const std::vector<double>& y, Fit fit_scaled) {
   const int e = scale_exponent(y);
-  LinearFit fit = fit_scaled(scaled(y, e));
-  for (double& b : fit.coefficients) b = std::ldexp(b, e);
-  for (double& sd : fit.standard_deviations) sd = std::ldexp(sd, e);
-  fit.residual_sd = std::ldexp(fit.residual_sd, e);
-  fit.rss = std::ldexp(fit.rss, 2 * e);  // inf when it leaves the double range
+  LinearFit fit = fit_scaled(scaled(y, e), e);
+  if (fit.method == FitMethod::kDoubleQr) {
+    for (double& b : fit.coefficients) b = std::ldexp(b, e);
+    for (double& sd : fit.standard_deviations) sd = std::ldexp(sd, e);
+    fit.residual_sd = std::ldexp(fit.residual_sd, e);
+    fit.rss = std::ldexp(fit.rss, 2 * e);  // inf when it leaves the double range
+  }
+  require_double_range(fit);
   return fit;
 }
 }  // namespace
@@ -80,15 +102,15 @@ LinearFit with_scaled_y(const std::vector<double>& y, Fit fit_scaled) {
 LinearFit fit_least_squares(const std::vector<std::vector<double>>& predictors,
                             const std::vector<double>& y, bool intercept,
                             const std::vector<std::string>& names) {
-  return with_scaled_y(y, [&](const std::vector<double>& ys) {
-    return fit_least_squares_of_scaled_y(predictors, ys, intercept, names);
+  return with_scaled_y(y, [&](const std::vector<double>& ys, int e) {
+    return fit_least_squares_of_scaled_y(predictors, ys, intercept, names, e);
   });
 }
 
 LinearFit fit_polynomial(const std::vector<double>& x, const std::vector<double>& y, int degree,
                          bool intercept, const std::string& x_name) {
-  return with_scaled_y(y, [&](const std::vector<double>& ys) {
-    return fit_polynomial_of_scaled_y(x, ys, degree, intercept, x_name);
+  return with_scaled_y(y, [&](const std::vector<double>& ys, int e) {
+    return fit_polynomial_of_scaled_y(x, ys, degree, intercept, x_name, e);
   });
 }
 
@@ -155,16 +177,22 @@ std::string condition_text(double kappa) {
       "beside the intercept, two proportional columns such as #vertices = 3 #polygons)");
 }
 
-// Residual SD, RSS, R^2 and standard deviations of a binary128 solution. `tss` as in the header.
-void finish_binary128(LinearFit& fit, const Binary128Solution& s, const float128& tss) {
+// Residual SD, RSS, R^2, coefficients and standard deviations of a binary128 solution of y scaled
+// by 2^-y_exponent, scaled back in binary128 before they are rounded to doubles (a coefficient
+// beyond the double range then shows as 0 or infinity: require_double_range refuses it). `tss`
+// as in the header.
+void finish_binary128(LinearFit& fit, const Binary128Solution& s, const float128& tss,
+                      int y_exponent) {
+  const float128 y_scale = ldexp(float128(1), y_exponent);  // exact
   const float128 s2 = s.rss / static_cast<double>(fit.df);
-  fit.rss = static_cast<double>(s.rss);
-  fit.residual_sd = static_cast<double>(sqrt(s2));
+  fit.rss = static_cast<double>(s.rss * y_scale * y_scale);  // inf past the double range
+  fit.residual_sd = static_cast<double>(sqrt(s2) * y_scale);
   if (tss > 0) fit.r_squared = static_cast<double>(1 - s.rss / tss);
-  fit.coefficients = s.coefficients;
+  fit.coefficients.resize(s.coefficients.size());
   fit.standard_deviations.resize(s.sd_factors.size());
   for (std::size_t j = 0; j < s.sd_factors.size(); ++j) {
-    fit.standard_deviations[j] = static_cast<double>(sqrt(s2) * s.sd_factors[j]);
+    fit.coefficients[j] = static_cast<double>(s.coefficients[j] * y_scale);
+    fit.standard_deviations[j] = static_cast<double>(sqrt(s2) * s.sd_factors[j] * y_scale);
   }
   fit.condition_number = s.condition_number;
   fit.method = s.factor == Binary128Factor::kCholesky ? FitMethod::kBinary128NormalEquations
@@ -189,7 +217,7 @@ double condition_of(const Eigen::MatrixXd& r_factor) {
 
 LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& predictors,
                                         const std::vector<double>& y, bool intercept,
-                                        const std::vector<std::string>& names) {
+                                        const std::vector<std::string>& names, int y_exponent) {
   const std::size_t k = predictors.size();
   if (!names.empty() && names.size() != k) {
     throw std::invalid_argument("fit_least_squares: " + std::to_string(names.size()) +
@@ -256,7 +284,7 @@ LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& 
       }
       refuse_undetermined(fit, dependent, others, s.condition_number);
     }
-    finish_binary128(fit, s, total_sum_of_squares(yv.cast<float128>(), intercept));
+    finish_binary128(fit, s, total_sum_of_squares(yv.cast<float128>(), intercept), y_exponent);
     return fit;
   }
 
@@ -293,7 +321,8 @@ LinearFit fit_least_squares_of_scaled_y(const std::vector<std::vector<double>>& 
 }
 
 LinearFit fit_polynomial_of_scaled_y(const std::vector<double>& x, const std::vector<double>& y,
-                                     int degree, bool intercept, const std::string& x_name) {
+                                     int degree, bool intercept, const std::string& x_name,
+                                     int y_exponent) {
   if (degree < 1) {
     throw util::UserError("least squares: polynomial degree " + std::to_string(degree) + " of '" +
                           x_name + "'; it must be 1 or more");
@@ -339,7 +368,7 @@ LinearFit fit_polynomial_of_scaled_y(const std::vector<double>& x, const std::ve
                         std::vector<std::string>(fit.names.begin(), fit.names.end() - 1),
                         s.condition_number);
   }
-  finish_binary128(fit, s, total_sum_of_squares(y128, intercept));
+  finish_binary128(fit, s, total_sum_of_squares(y128, intercept), y_exponent);
   return fit;
 }
 

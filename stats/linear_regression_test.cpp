@@ -519,5 +519,57 @@ TEST(LinearRegression, NonFiniteInputIsRefused) {
   EXPECT_NE(in_y.find("the response y, observation 4 of 4, is -inf"), std::string::npos) << in_y;
 }
 
+
+// Coefficients beyond the double range: x near 1e300 makes the x^2 coefficient about 1e-601, x
+// near 1e-300 makes it about 1e+600. Each is refused with the reason; an inexact fit is never
+// reported with standard deviations of 0 ("exact").
+TEST(LinearRegression, CoefficientsOutsideTheDoubleRangeAreRefused) {
+  const std::vector<double> noise{0.31, -0.42, 0.05, 0.38, -0.27, -0.11, 0.46, -0.35, 0.02, -0.07};
+  for (const double magnitude : {1e300, 1e-300}) {
+    std::vector<double> x, y;
+    for (std::size_t i = 0; i < noise.size(); ++i) {
+      x.push_back(magnitude * (1 + 0.1 * double(i)));
+      y.push_back(1 + double(i) + noise[i]);
+    }
+    std::string message = "(no UserError)";
+    try {
+      const LinearFit fit = fit_polynomial(x, y, 2, true, "x");
+      for (double sd : fit.standard_deviations) EXPECT_GT(sd, 0) << magnitude;
+    } catch (const util::UserError& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find("lies outside the range of double precision"), std::string::npos)
+        << magnitude << ": " << message;
+    EXPECT_NE(message.find("rescale the predictor"), std::string::npos) << message;
+  }
+}
+
+// Inside the range, the binary128 path scales its results back exactly: x near 1e150 (x^2 near
+// 1e300, its coefficient near 1e-300) gives the fit of x / 1e150 with each coefficient divided by
+// 1e150 per power, to binary128's accuracy rounded to doubles.
+TEST(LinearRegression, APolynomialInHugeXScalesLikeTheRescaledFit) {
+  const std::vector<double> noise{0.31, -0.42, 0.05, 0.38, -0.27, -0.11, 0.46, -0.35, 0.02, -0.07};
+  std::vector<double> x, y;
+  for (std::size_t i = 0; i < noise.size(); ++i) {
+    x.push_back((1 + 0.1 * double(i)) * 1e150);
+    y.push_back(1 + double(i) + noise[i]);
+  }
+  const LinearFit huge = fit_polynomial(x, y, 2, true, "x");
+  std::vector<double> back;
+  for (double v : x) back.push_back(v / 1e150);
+  const LinearFit unit = fit_polynomial(back, y, 2, true, "x");
+  ASSERT_EQ(huge.coefficients.size(), 3u);
+  EXPECT_NEAR(huge.coefficients[0], unit.coefficients[0], 1e-9 * std::fabs(unit.coefficients[0]));
+  EXPECT_NEAR(huge.coefficients[1] * 1e150, unit.coefficients[1],
+              1e-9 * std::fabs(unit.coefficients[1]));
+  EXPECT_NEAR(huge.coefficients[2] * 1e150 * 1e150, unit.coefficients[2],
+              1e-9 * std::fabs(unit.coefficients[2]));
+  EXPECT_GT(std::fabs(huge.coefficients[2]), 1e-310);  // a normal double, not rounded to 0
+  EXPECT_LT(std::fabs(huge.coefficients[2]), 1e-290);
+  EXPECT_NEAR(huge.residual_sd, unit.residual_sd, 1e-12 * unit.residual_sd);
+  EXPECT_NEAR(huge.standard_deviations[2] * 1e300, unit.standard_deviations[2],
+              1e-9 * unit.standard_deviations[2]);
+}
+
 }  // namespace
 }  // namespace ra::stats

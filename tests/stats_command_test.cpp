@@ -301,6 +301,29 @@ TEST_F(StatsCommand, RegressNorrisJson) {
   EXPECT_NE(text.find("R-squared = 0.9999937459 (centred)"), std::string::npos) << text;
 }
 
+// `regress --poly x:2` with x near 1e300 (the x^2 coefficient near 1e-601) or near 1e-300 (near
+// 1e+600): refused with the reason, never printed as 0 with "the fit is exact", never a raw
+// message from the t distribution.
+TEST_F(StatsCommand, RegressPolynomialAtTheEndsOfTheDoubleRangeIsRefused) {
+  const double noise[] = {0.31, -0.42, 0.05, 0.38, -0.27, -0.11, 0.46, -0.35, 0.02, -0.07};
+  for (const char* magnitude : {"e300", "e-300"}) {
+    std::vector<std::string> rows;
+    for (int i = 0; i < 10; ++i)
+      rows.push_back("1." + std::to_string(i) + magnitude + "," + format17(1 + i + noise[i]));
+    const std::string file = write_csv(dir_, std::string("x") + magnitude + ".csv", "x,y", rows);
+    std::string message = "(no error)";
+    try {
+      run_stats({"regress", file, "--y", "y", "--poly", "x:2"});
+    } catch (const util::UserError& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find(file + ": 'y' on an intercept and a polynomial of degree 2 in 'x'"),
+              std::string::npos) << message;
+    EXPECT_NE(message.find("outside the range of double precision"), std::string::npos) << message;
+    EXPECT_EQ(message.find("exact"), std::string::npos) << message;
+  }
+}
+
 // StRD Filip (y on a degree-10 polynomial in x, condition number 5e9) through `--poly x:10`:
 // every certified value to LRE >= 13, exactly the library's fit_polynomial(), and the text names
 // the method and the condition number. Bad --poly specifications are refused.
