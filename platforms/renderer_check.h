@@ -16,8 +16,9 @@ struct DriverInfo;
 // One driver per record: every process that draws for a run's platform (a worker, a retry, a part
 // of a bisection, the audit's re-render, `show`) calls this before drawing. When the run's driver
 // file DIR/drivers/PLATFORM.json exists and names another GL_RENDERER or GL_VERSION than the
-// driver this process loaded, throws UserError starting with kDriverMismatch and naming both
-// (callers stop with exit status 2; never a silent re-render on another driver). Does nothing for
+// driver this process loaded, or a library (by file name) whose fingerprint differs from the one
+// this process loaded, throws UserError starting with kDriverMismatch and naming both (callers
+// stop with exit status 2; never a silent re-render on another driver). Does nothing for
 // the non-GL platforms and when no driver file exists yet (the first worker writes it).
 inline constexpr const char* kDriverMismatch = "driver mismatch";
 void require_run_driver(const std::string& run_dir, const std::string& platform,

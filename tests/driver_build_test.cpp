@@ -138,6 +138,42 @@ TEST(DriverBuild, ResumeAndShowWithAnotherDriverStop) {
   EXPECT_FALSE(fs::exists(dir + "/p.png"));
 }
 
+// A build's library changed after the run (64 bytes appended: the GL strings stay the same) stops a
+// resumed run and `show` with exit status 2, naming the library: the driver file's fingerprints are
+// compared, not only GL_RENDERER and GL_VERSION. The unchanged build resumes.
+TEST(DriverBuild, AChangedBuildLibraryWithTheSameGlStringsStops) {
+  const std::string installed = "/usr/lib/x86_64-linux-gnu/libOSMesa.so.8";
+  if (!fs::exists(installed)) GTEST_SKIP() << "libosmesa6 is not installed";
+  const std::string dir = fresh_dir("driver_tampered");
+  fs::create_directories(dir + "/build");
+  const std::string library = dir + "/build/libOSMesa.so.8";
+  fs::copy_file(fs::canonical(installed), library);
+  write_text(dir + "/e.toml", small_experiment("\"osmesa-llvmpipe@mine\"") +
+                                  "[builds.mine]\ndir = \"" + dir + "/build\"\n");
+  const std::string run = "run " + dir + "/e.toml --out " + dir + "/run --jobs 1 --quiet";
+  ASSERT_EQ(run_renderaudit(run).exit_code, 0);
+  std::vector<std::string> shards;
+  for (const auto& e : fs::directory_iterator(dir + "/run/records")) shards.push_back(e.path());
+  ASSERT_EQ(shards.size(), 2u);
+  fs::remove(shards[0]);
+  const Outcome same = run_renderaudit(run);
+  EXPECT_EQ(same.exit_code, 0) << same.output;
+  EXPECT_TRUE(fs::exists(shards[0]));
+
+  std::ofstream(library, std::ios::app | std::ios::binary) << std::string(64, 'x');
+  fs::remove(shards[1]);
+  const Outcome resumed = run_renderaudit(run);
+  EXPECT_EQ(resumed.exit_code, 2) << resumed.output;
+  EXPECT_NE(resumed.output.find("driver mismatch: osmesa-llvmpipe@mine: library " + library +
+                                " has fingerprint"), std::string::npos) << resumed.output;
+  EXPECT_FALSE(fs::exists(shards[1])) << "a shard was drawn with a changed library";
+  const Outcome shown = run_renderaudit("show " + dir + "/run --platform osmesa-llvmpipe@mine "
+                                        "--kind line --view 1 --index 3 --out " + dir + "/p.png");
+  EXPECT_EQ(shown.exit_code, 2) << shown.output;
+  EXPECT_NE(shown.output.find(library), std::string::npos) << shown.output;
+  EXPECT_FALSE(fs::exists(dir + "/p.png"));
+}
+
 // With a real second build: one run draws with the installed Mesa and with the build; its driver
 // files name each one's libraries; the audit between them is the same whether the audit process's
 // environment points at the build or not.
