@@ -60,6 +60,11 @@ void check_renderers(AuditResult& r) {
 
 }  // namespace
 
+bool AuditResult::self_audit() const {
+  std::error_code ec;
+  return mode == "runs" && fs::equivalent(baseline.dir, current.dir, ec);
+}
+
 std::size_t AuditResult::changed_count() const {
   return std::size_t(
       std::count_if(primitives.changed.begin(), primitives.changed.end(),
@@ -173,6 +178,12 @@ void decide_verdict(AuditResult& r) {
   for (const auto& m : r.renderer_mismatches) r.reasons.push_back(m);
   if (!r.reasons.empty()) {
     r.verdict = Verdict::kFailed;
+    return;
+  }
+  if (r.self_audit()) {
+    r.verdict = Verdict::kBaseline;
+    r.reasons.push_back("the baseline and the current run are one directory: this run is the "
+                        "baseline that later runs are audited against");
     return;
   }
   const std::size_t changed = r.changed_count();

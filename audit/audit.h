@@ -19,6 +19,8 @@
 //      difference
 //                    did not disappear on re-render (flakes do not count; changed primitives over
 //                    the re-render cap count as changed);
+//      baseline (0)  otherwise, when the baseline and the current run are one directory (the first
+//                    night of a nightly series): nothing was compared;
 //      unchanged (0) otherwise. Significant distribution tests do not decide on their own: the same
 //      primitives are rendered on both sides, so a distribution can only move through primitives
 //      that changed; they say how much it moved (and, with only flakes, are noted as such).
@@ -68,6 +70,8 @@ struct AuditResult {
   AuditSummary summary;              // what goes into the history database
 
   std::size_t changed_count() const;  // persisting changes (flakes excluded)
+  // A run against itself (mode "runs", one directory on both sides): nothing is compared.
+  bool self_audit() const;
   std::size_t flake_count() const;
   std::size_t recovered_count() const;  // manifest failures that did not recur
 };

@@ -10,6 +10,8 @@
 //         <properties> compared, changed, flakes, crash_timeout, missing_shards, significant_tests
 //         <failure type="changed|failed" message="...">the primitives and tests</failure>
 //         <system-out>flakes and significant tests, one per line</system-out>
+//         (a run audited against itself: <skipped message="baseline established: nothing
+//         compared"/> instead of a verdict)
 //       <testcase classname="renderaudit.audit.PLATFORM.KIND" name="conformance, group A (...)">
 //         <failure type="violation">primitives breaking a GL rule the baseline did not break
 #include <sstream>
@@ -59,6 +61,7 @@ struct Case {
   std::string classname, name;
   std::vector<std::pair<std::string, std::string>> properties;
   std::string failure_type, failure_message, failure_text, system_out;
+  std::string skipped;  // why the case was not judged ("" when it was)
 };
 
 void write_case(std::ostream& out, const Case& c) {
@@ -73,6 +76,7 @@ void write_case(std::ostream& out, const Case& c) {
   if (!c.failure_type.empty())
     out << "      <failure type=\"" << xml(c.failure_type) << "\" message=\""
         << xml(c.failure_message) << "\">" << xml(c.failure_text) << "</failure>\n";
+  if (!c.skipped.empty()) out << "      <skipped message=\"" << xml(c.skipped) << "\"/>\n";
   if (!c.system_out.empty()) out << "      <system-out>" << xml(c.system_out) << "</system-out>\n";
   out << "    </testcase>\n";
 }
@@ -205,6 +209,9 @@ std::string audit_junit(const AuditResult& r) {
   for (const GroupOutcome& g : groups) {
     suites[g.pair].push_back(group_case(r, g));
     suites[g.pair].push_back(conformance_case(r, g));
+    if (r.verdict == Verdict::kBaseline)  // a run against itself: nothing was compared
+      for (Case* c : {&suites[g.pair].end()[-2], &suites[g.pair].end()[-1]})
+        c->skipped = verdict_text(r.verdict);
   }
 
   std::size_t tests = 0, failures = 0;
@@ -215,10 +222,11 @@ std::string audit_junit(const AuditResult& r) {
          "tests=\""
       << tests << "\" failures=\"" << failures << "\" errors=\"0\">\n";
   for (std::size_t p = 0; p < suites.size(); ++p) {
-    std::size_t f = 0;
-    for (const Case& c : suites[p]) f += !c.failure_type.empty();
+    std::size_t f = 0, skipped = 0;
+    for (const Case& c : suites[p]) f += !c.failure_type.empty(), skipped += !c.skipped.empty();
     out << "  <testsuite name=\"" << xml(r.pairs[p].label()) << "\" tests=\"" << suites[p].size()
-        << "\" failures=\"" << f << "\" errors=\"0\" skipped=\"0\" timestamp=\"" << xml(r.date_utc)
+        << "\" failures=\"" << f << "\" errors=\"0\" skipped=\"" << skipped << "\" timestamp=\""
+        << xml(r.date_utc)
         << "\">\n";
     for (const Case& c : suites[p]) write_case(out, c);
     out << "  </testsuite>\n";

@@ -265,8 +265,9 @@ void failures(std::ostream& md, const AuditResult& r) {
 
 std::string audit_markdown(const AuditResult& r) {
   std::ostringstream md;
-  md << "# renderaudit audit: " << upper(verdict_name(r.verdict)) << "\n\n";
-  md << "**Verdict: " << verdict_name(r.verdict) << "** (exit code " << int(r.verdict) << ")";
+  md << "# renderaudit audit: " << upper(verdict_text(r.verdict)) << "\n\n";
+  md << "**Verdict: " << verdict_text(r.verdict) << "** (exit code " << verdict_exit_code(r.verdict)
+     << ")";
   for (std::size_t i = 0; i < r.reasons.size(); ++i) md << (i ? "; " : ": ") << r.reasons[i];
   md << ".\n\n";
   if (r.mode == "between")

@@ -10,9 +10,15 @@
 
 namespace ra::audit {
 
-// Overall outcome of an audit; the process exit code is the enum value (0 / 1 / 2).
-enum class Verdict { kUnchanged = 0, kChanged = 1, kFailed = 2 };
-const char* verdict_name(Verdict v);  // "unchanged", "changed", "failed"
+// Overall outcome of an audit. kBaseline: a run audited against itself (the first night of a
+// nightly series): nothing was compared, and no verdict about the driver is given.
+enum class Verdict { kUnchanged = 0, kChanged = 1, kFailed = 2, kBaseline = 3 };
+const char* verdict_name(Verdict v);  // "unchanged", "changed", "failed", "baseline"
+// In words: the name, or "baseline established: nothing compared".
+std::string verdict_text(Verdict v);
+// The process exit code: 0 unchanged, 1 changed, 2 failed; 0 for a baseline established (nothing
+// failed, and a scheduled job's first night is not an error).
+int verdict_exit_code(Verdict v);
 bool parse_verdict(const std::string& s, Verdict* out);
 
 // One metric's distribution in one platform x kind x view group of the current run. Units are the

@@ -1,6 +1,8 @@
 #include "audit/run_identity.h"
 
 #include <filesystem>
+#include <set>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "metrics/conformance.h"
@@ -82,14 +84,58 @@ RunIdentity load_run_identity(const std::string& dir) {
   return run;
 }
 
+namespace {
+
+// The lines of one run's experiment.toml that the other's lacks, "-" for the baseline's and "+"
+// for the current's, at most `most` of them; "" when a file cannot be read.
+std::string experiment_difference(const std::string& baseline_dir, const std::string& current_dir,
+                                  std::size_t most = 8) {
+  const auto lines = [](const std::string& dir) {
+    std::vector<std::string> out;
+    std::istringstream in(util::read_file(dir + "/experiment.toml"));
+    for (std::string line; std::getline(in, line);)
+      if (line.find_first_not_of(" \t") != std::string::npos) out.push_back(line);
+    return out;
+  };
+  std::vector<std::string> before, after;
+  try {
+    before = lines(baseline_dir), after = lines(current_dir);
+  } catch (const std::exception&) {
+    return "";
+  }
+  const std::multiset<std::string> in_before(before.begin(), before.end()),
+      in_after(after.begin(), after.end());
+  std::string out;
+  std::size_t listed = 0, more = 0;
+  const auto list = [&](const std::vector<std::string>& side, const std::multiset<std::string>& other,
+                        const char* sign) {
+    for (const std::string& l : side) {
+      if (other.count(l)) continue;
+      if (listed++ < most) out += std::string("\n  ") + sign + " " + l;
+      else ++more;
+    }
+  };
+  list(before, in_after, "-");
+  list(after, in_before, "+");
+  if (more) out += "\n  ... and " + std::to_string(more) + " more lines";
+  return out;
+}
+
+}  // namespace
+
 void require_same_experiment(const RunIdentity& baseline, const RunIdentity& current) {
   if (baseline.hash == current.hash && baseline.seed == current.seed) return;
+  const std::string difference = experiment_difference(baseline.dir, current.dir);
   throw util::UserError(
       "not runs of the same experiment: baseline " + baseline.dir + " has experiment hash " +
       baseline.hash + " (seed " + std::to_string(baseline.seed) + "), current " + current.dir +
       " has experiment hash " + current.hash + " (seed " + std::to_string(current.seed) +
-      "); an audit compares the same primitives, so " +
-      "both runs must come from the same experiment file");
+      "); an audit compares the same primitives, so both runs must come from the same "
+      "experiment file." +
+      (difference.empty() ? "" : " Their experiment.toml files differ in (- baseline, + current):" +
+                                     difference) +
+      "\nAn experiment changed on purpose needs a new baseline: a run of the new experiment "
+      "(for the nightly audit: scripts/nightly.sh --promote " + current.dir + ")");
 }
 
 DriverIdentity driver_of(const RunIdentity& run, const std::string& platform) {

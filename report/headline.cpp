@@ -77,7 +77,8 @@ std::string finding_sentence(const std::string& platform, const analysis::Confor
   }
   if (a.compared > 0) {
     s += "; " + std::to_string(a.compared - a.differing) + " of " + std::to_string(a.compared) +
-         " cells of the paper's tables within 3 SE";
+         " cells of the paper's tables agree (within 3 SE of at least one of the paper's "
+         "platforms)";
     if (a.differing > 0)
       s += a.unexplained == 0 ? " (the other " + std::to_string(a.differing) + " explained)"
                               : " (" + std::to_string(a.unexplained) + " beyond and not explained)";
@@ -142,16 +143,33 @@ Table findings_table(const std::string& run_dir, const analysis::RunTally& tally
 std::vector<Block> audit_blocks(const std::string& run_dir) {
   std::vector<Block> out;
   const std::string path = run_dir + "/audit/audit.json";
+  const std::string refused = run_dir + "/audit/refused.txt";  // the nightly audit's refusal
+  if (!fs::exists(path) && fs::exists(refused)) {
+    std::string why = util::read_file(refused);
+    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+    if (why.rfind("renderaudit: ", 0) == 0) why.erase(0, 13);
+    out.push_back(make_block(Block::Kind::kParagraph,
+                             "**Audit: no verdict.** The audit refused to compare this run with "
+                             "its baseline: " + why));
+    return out;
+  }
   if (!fs::exists(path)) return out;
   const json j = json::parse(util::read_file(path));
   const std::string verdict = j.value("verdict", "?");
   const json baseline = j.value("baseline", json::object());
   std::string baseline_dir = baseline.value("run_dir", "?");
-  const bool self = baseline_dir == j.value("current", json::object()).value("run_dir", "");
+  if (verdict == "baseline") {  // the run audited against itself: no verdict about any driver
+    out.push_back(make_block(
+        Block::Kind::kParagraph,
+        "**Audit: baseline established: nothing compared.** This run is the baseline of its "
+        "series (the first run of a nightly audit): later runs are audited against it, and their "
+        "reports give a verdict per driver. Its own crash and timeout records, if any, are in "
+        "audit/audit.md."));
+    return out;
+  }
   out.push_back(make_block(
       Block::Kind::kParagraph,
       "**Audit: " + verdict + "** against the baseline run " + baseline_dir +
-          (self ? " (the run itself: the first run of a nightly series is its own baseline)" : "") +
           ". Per driver, PASS when no primitive changed, no primitive or shard failed and no shard "
           "is missing; the details are in audit/audit.md."));
   struct Driver {

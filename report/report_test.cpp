@@ -173,13 +173,24 @@ TEST(ReportCommand, HeadlessReportHasEveryTableAndOnePagePerFigure) {
   auto manifest = nlohmann::json::parse(read(run + "/manifest.json"));
   manifest["failures"] = nlohmann::json::array();
   write_text(run + "/manifest.json", manifest.dump(2));
+  // audited against itself (a nightly series' first night): a baseline, no verdict, no PASS
   ASSERT_EQ(run_renderaudit("audit " + run + " " + run + " --no-history").exit_code, 0);
   ASSERT_EQ(run_renderaudit("report " + run).exit_code, 0);
   page1 = first_page();
-  EXPECT_NE(page1.find("Audit: unchanged against the baseline run " + run), std::string::npos)
+  EXPECT_NE(page1.find("Audit: baseline established: nothing compared."), std::string::npos)
       << page1;
-  EXPECT_NE(page1.find("osmesa-llvmpipe osmesa-llvmpipe PASS 1200 0 0 0 0"), std::string::npos)
-      << page1;
+  EXPECT_EQ(page1.find("PASS"), std::string::npos) << page1;
+  // against a copy of itself: compared, unchanged, PASS
+  fs::copy(run, run + "-copy", fs::copy_options::recursive);
+  ASSERT_EQ(run_renderaudit("audit " + run + " " + run + "-copy --no-history").exit_code, 0);
+  ASSERT_EQ(run_renderaudit("report " + run + "-copy").exit_code, 0);
+  const std::string copy_page1 =
+      squeeze(shell_output("pdftotext -f 1 -l 1 '" + run + "-copy/report/report.pdf' -"));
+  EXPECT_NE(copy_page1.find("Audit: unchanged against the baseline run " + run), std::string::npos)
+      << copy_page1;
+  EXPECT_NE(copy_page1.find("osmesa-llvmpipe osmesa-llvmpipe PASS 1200 0 0 0 0"),
+            std::string::npos)
+      << copy_page1;
 }
 
 }  // namespace

@@ -38,20 +38,36 @@ if (( status == 2 || status == 130 )); then
   exit 2
 fi
 
-# The first night audits its run against itself (so that audit.md and the report exist), and
-# appends nothing to the history: a run compared with itself says nothing about the driver.
-history=(--db "$db")
+# The first night audits its run against itself: the audit says "baseline established: nothing
+# compared" (exit 0) in audit.md, the report and junit.xml, and appends nothing to the history.
 if [[ ! -e $baseline ]]; then
   ln -sfn "$(realpath "$tonight")" "$baseline"
   echo "nightly: no baseline yet; tonight's run is the baseline: $(realpath "$tonight")"
-  history=(--no-history)
 fi
 
 verdict=0
-"$bin" audit "$(realpath "$baseline")" "$tonight" "${history[@]}" || verdict=$?
+"$bin" audit "$(realpath "$baseline")" "$tonight" --db "$db" 2> "$tonight/audit.stderr" \
+  || verdict=$?
+cat "$tonight/audit.stderr" >&2
+if [[ -f $tonight/audit/audit.json ]]; then
+  rm -f "$tonight/audit.stderr"
+else
+  # The audit refused its input (another experiment, a damaged run): no verdict tonight. The
+  # report says why, from audit/refused.txt.
+  mkdir -p "$tonight/audit"
+  mv "$tonight/audit.stderr" "$tonight/audit/refused.txt"
+  echo "nightly: no verdict tonight: the audit refused to compare $tonight with the baseline" \
+       "$(realpath "$baseline") (above)." >&2
+  echo "nightly: if the experiment ($experiment) was changed on purpose, make tonight's run the" \
+       "new baseline: scripts/nightly.sh --promote $tonight" >&2
+fi
 "$bin" analyze "$tonight" >/dev/null
 "$bin" plot "$tonight" >/dev/null
 "$bin" report "$tonight"
 [[ -f $db ]] && { "$bin" history --db "$db" --last 14 || true; }
-echo "nightly: verdict in $tonight/audit/audit.md; report in $tonight/report/report.pdf"
+if [[ -f $tonight/audit/audit.md ]]; then
+  echo "nightly: verdict in $tonight/audit/audit.md; report in $tonight/report/report.pdf"
+else
+  echo "nightly: no verdict; report in $tonight/report/report.pdf"
+fi
 exit "$verdict"

@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# `scripts/nightly.sh` over four nights of a small experiment (ctest nightly_nights):
+#   night 1: no baseline: "baseline established: nothing compared" (exit 0) in the audit, the
+#            report and junit.xml (every case skipped), nothing in the history; never UNCHANGED
+#            or PASS;
+#   night 2: the same experiment: unchanged (exit 0), PASS;
+#   night 3: the experiment edited: exit 2, the differing lines and the --promote line said, no
+#            "verdict in" a file that was not written, the report says "no verdict" and why;
+#   night 4: after --promote of night 3: unchanged against it.
+# Usage: scripts/nightly-test.sh BUILD_DIR
+set -euo pipefail
+build=$(cd "${1:-build}" && pwd)
+here=$(cd "$(dirname "$0")/.." && pwd)
+t=$(mktemp -d /tmp/renderaudit-nightly-test-XXXXXX)
+trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
+fail() { echo "nightly-test: FAIL: $*" >&2; exit 1; }
+
+experiment() {  # $1: points per view
+  cat > "$t/nightly.toml" <<EOF
+name = "nightly-test"
+seed = 11
+platforms = ["osmesa-llvmpipe"]
+[views]
+orientations = 1
+fov_deg = [30]
+windows = [128]
+near = 0.01
+far = 10.0
+[primitives]
+points = $1
+lines = 40
+EOF
+}
+
+night() {  # runs one night; its exit code in $rc, its output in $t/night.log
+  rc=0
+  (cd "$here" && NIGHTLY_EXPERIMENT="$t/nightly.toml" NIGHTLY_DIR="$t/nightly" BUILD="$build" \
+     JOBS=2 scripts/nightly.sh) > "$t/night.log" 2>&1 || rc=$?
+  sleep 1  # the runs are named by the second
+}
+last_run() { ls -d "$t"/nightly/runs/* | tail -1; }
+has() { grep -qF -- "$2" "$1" || fail "$1 lacks '$2'"; }
+lacks() { ! grep -qF -- "$2" "$1" || fail "$1 says '$2'"; }
+
+experiment 60
+night
+[ "$rc" = 0 ] || { cat "$t/night.log"; fail "night 1 exit $rc, not 0"; }
+run1=$(last_run)
+has "$run1/audit/audit.md" "# renderaudit audit: BASELINE ESTABLISHED: NOTHING COMPARED"
+lacks "$run1/audit/audit.md" "UNCHANGED"
+has "$run1/audit/junit.xml" '<skipped message="baseline established: nothing compared"/>'
+lacks "$run1/audit/junit.xml" "<failure"
+has "$run1/report/report.html" "baseline established: nothing compared"
+lacks "$run1/report/report.html" "PASS"
+has "$t/night.log" "audit: baseline established: nothing compared (exit 0)"
+has "$t/night.log" "history: nothing appended (a baseline established: nothing was compared)"
+
+night
+[ "$rc" = 0 ] || { cat "$t/night.log"; fail "night 2 exit $rc, not 0"; }
+run2=$(last_run)
+has "$run2/audit/audit.md" "# renderaudit audit: UNCHANGED"
+has "$run2/report/report.html" "PASS"
+"$build/renderaudit" history --db "$t/nightly/history.sqlite" > "$t/history.txt"
+has "$t/history.txt" "history.sqlite: 1 audit,"
+has "$t/history.txt" " unchanged "
+
+experiment 70
+night
+[ "$rc" = 2 ] || { cat "$t/night.log"; fail "night 3 (edited experiment) exit $rc, not 2"; }
+run3=$(last_run)
+has "$t/night.log" "not runs of the same experiment"
+has "$t/night.log" "- points = 60"
+has "$t/night.log" "+ points = 70"
+has "$t/night.log" "scripts/nightly.sh --promote $run3"
+lacks "$t/night.log" "verdict in"
+[ ! -e "$run3/audit/audit.md" ] || fail "night 3 wrote an audit.md"
+has "$run3/report/report.html" "no verdict"
+has "$run3/report/report.html" "not runs of the same experiment"
+
+(cd "$here" && NIGHTLY_DIR="$t/nightly" scripts/nightly.sh --promote "$run3") > /dev/null
+night
+[ "$rc" = 0 ] || { cat "$t/night.log"; fail "night 4 (after --promote) exit $rc, not 0"; }
+has "$(last_run)/audit/audit.md" "# renderaudit audit: UNCHANGED"
+echo "nightly-test: four nights as documented"
