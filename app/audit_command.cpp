@@ -25,7 +25,8 @@ struct AuditCli {
 };
 
 void print_result(const audit::AuditResult& r, const std::vector<std::string>& files) {
-  std::printf("audit: %s (exit %d)", audit::verdict_name(r.verdict), int(r.verdict));
+  std::printf("audit: %s (exit %d)", audit::verdict_text(r.verdict).c_str(),
+              audit::verdict_exit_code(r.verdict));
   for (std::size_t i = 0; i < r.reasons.size(); ++i)
     std::printf("%s%s", i ? "; " : ": ", r.reasons[i].c_str());
   std::printf("\n");
@@ -63,10 +64,11 @@ void register_audit_command(CLI::App& app, int& exit_code) {
       "Compare a run with its baseline (same experiment), or two platforms of one run\n"
       "(--between), primitive by primitive and in distribution, and give a verdict:\n"
       "exit 0 unchanged, 1 changed, 2 failed (crash/timeout records, missing or failed shards,\n"
-      "a driver not matching --expect-renderer) or bad input. Changed primitives are rendered\n"
+      "a driver not matching --expect-renderer) or bad input; a run audited against itself\n"
+      "establishes a baseline (exit 0, nothing compared). Changed primitives are rendered\n"
       "once more first: a difference that disappears is reported as a flake, not a change.\n"
       "Writes audit.json, audit.md, junit.xml and changed_primitives.csv into --out and appends\n"
-      "a summary to the history database.");
+      "a summary to the history database (with --between only when --db names one).");
   static AuditCli cli;
   cmd->add_option("runs", cli.dirs, "BASELINE_DIR CURRENT_DIR, or RUN_DIR with --between")
       ->required()
@@ -82,7 +84,8 @@ void register_audit_command(CLI::App& app, int& exit_code) {
                   "output directory (default CURRENT_DIR/audit, or RUN_DIR/audit-P1-vs-P2)");
   cmd->add_option("--db", cli.db,
                   "history database (default: history.sqlite beside CURRENT_DIR, e.g. "
-                  "outputs/history.sqlite for outputs/RUN)");
+                  "outputs/history.sqlite for outputs/RUN; with --between none unless --db names "
+                  "one)");
   cmd->add_flag("--no-history", cli.no_history, "do not append to the history database");
   cmd->add_option("--expect-renderer", cli.options.expect_renderer,
                   "regular expression (ECMAScript, searched) every current GL_RENDERER must "
@@ -113,8 +116,18 @@ void register_audit_command(CLI::App& app, int& exit_code) {
       throw util::UserError(std::string("audit failed: ") + e.what());
     }
     print_result(r, files);
-    exit_code = int(r.verdict);
+    exit_code = audit::verdict_exit_code(r.verdict);
+    // Two platforms of one run are an ad-hoc comparison, not a night of a series: their history
+    // is kept only where asked.
+    if (!cli.options.between.empty() && cli.db.empty() && !cli.no_history) {
+      std::printf("  history: none kept for --between (--db FILE keeps one)\n");
+      return;
+    }
     if (cli.no_history) return;
+    if (r.verdict == audit::Verdict::kBaseline) {  // the history holds verdicts; this is none
+      std::printf("  history: nothing appended (a baseline established: nothing was compared)\n");
+      return;
+    }
     const std::string db = cli.db.empty() ? audit::default_history_path(cli.options.current_dir) : cli.db;
     try {
       audit::append_history(db, r.summary);

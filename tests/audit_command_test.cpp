@@ -150,10 +150,9 @@ TEST(AuditCommand, BetweenLlvmpipeAndSoftpipeListsExactlyTheDifferingPrimitives)
   write_text(dir + "/e.toml", experiment("\"osmesa-llvmpipe\", \"osmesa-softpipe\"", kOneView,
                                          "points = 0\nlines = 40\ntriangles = 40\n"));
   ASSERT_EQ(run_experiment(dir + "/e.toml", dir + "/run").exit_code, 0);
-  // no --db: the history is appended beside the run (DIR/history.sqlite), not under the working
-  // directory, and its row says which two platforms were compared
+  // a history kept where --db names it; its row says which two platforms were compared
   const Outcome o = run_renderaudit("audit " + dir + "/run --between osmesa-llvmpipe " +
-                                    "osmesa-softpipe");
+                                    "osmesa-softpipe --db " + dir + "/history.sqlite");
   ASSERT_EQ(o.exit_code, 1) << o.output;
   EXPECT_NE(o.output.find("history: appended to " + dir + "/history.sqlite"), std::string::npos)
       << o.output;
@@ -173,9 +172,18 @@ TEST(AuditCommand, BetweenLlvmpipeAndSoftpipeListsExactlyTheDifferingPrimitives)
   EXPECT_EQ(j["counts"]["changed"], expected.size());
   EXPECT_EQ(j["counts"]["flakes"], 0);
   EXPECT_EQ(j["flake_check"]["both_sides"], true);
-  EXPECT_NE(read_text(out + "/audit.md")
-                .find("`renderaudit show " + dir + "/run --platform osmesa-softpipe --kind "),
-            std::string::npos);
+  // Each changed primitive's show line pastes as printed: the program as it can be run from any
+  // folder (this build's absolute path; "renderaudit" where that is on PATH).
+  const std::string md = read_text(out + "/audit.md");
+  const std::size_t show = md.find(" show " + dir + "/run --platform osmesa-softpipe --kind ");
+  ASSERT_NE(show, std::string::npos) << md;
+  const std::size_t open = md.rfind('`', show), close = md.find('`', show);
+  const std::string line = md.substr(open + 1, close - open - 1);
+  EXPECT_TRUE(line.rfind(std::string(RA_BINARY) + " show ", 0) == 0 ||
+              line.rfind("renderaudit show ", 0) == 0) << line;
+  const Outcome pasted = run_command(line + " --out " + dir + "/pasted.png");
+  EXPECT_EQ(pasted.exit_code, 0) << line << "\n" << pasted.output;
+  EXPECT_TRUE(fs::exists(dir + "/pasted.png"));
   std::printf("[ llvmpipe vs softpipe ] %zu of %d primitives changed; %d significant tests\n",
               expected.size(), int(j["counts"]["compared"]),
               int(j["distribution_tests"]["significant"]));
@@ -190,9 +198,12 @@ TEST(AuditCommand, InjectedShiftsAreFoundExactly) {
                                          "points = 0\nlines = 600\ntriangles = 600\n",
                                          "[faults]\nshift_fraction = 0.01\n"));
   ASSERT_EQ(run_experiment(dir + "/e.toml", dir + "/run").exit_code, 0);
-  const Outcome o =
-      run_renderaudit("audit " + dir + "/run --between reference faulty --no-history");
+  // an ad-hoc comparison of two platforms keeps no history unless --db names one, and says so
+  const Outcome o = run_renderaudit("audit " + dir + "/run --between reference faulty");
   ASSERT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("history: none kept for --between (--db FILE keeps one)"),
+            std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(dir + "/history.sqlite"));
   const std::string out = dir + "/run/audit-reference-vs-faulty";
   const std::set<Key> expected =
       differing(records_of(dir + "/run", "reference"), records_of(dir + "/run", "faulty"));
