@@ -5,6 +5,7 @@
 
 #include "analysis/run_records.h"
 #include "metrics/records_reader.h"
+#include "util/program_name.h"
 
 namespace ra::analysis {
 
@@ -188,7 +189,7 @@ std::string violations_markdown(const ConformanceSummary& s, const std::string& 
     const Violation& v = s.violations[i];
     md += "| " + v.platform + " | " + v.kind + " | " + std::to_string(v.view) + " | " +
           std::to_string(v.index) + " | " + std::to_string(v.violating_pixels) + " | " + v.rules +
-          " | `renderaudit show " + run_dir + " -p " + v.platform + " -k " + v.kind + " -v " +
+          " | `" + util::program_for_commands() + " show " + run_dir + " -p " + v.platform + " -k " + v.kind + " -v " +
           std::to_string(v.view) + " -i " + std::to_string(v.index) + "` |\n";
   }
   return md;

@@ -138,8 +138,11 @@ std::string default_paper_values_path() {
   if (fs::exists(relative, ec)) return relative;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
-    const fs::path beside = exe.parent_path().parent_path() / relative;
+    const fs::path beside = exe.parent_path().parent_path() / relative;  // build/renderaudit
     if (fs::exists(beside, ec)) return beside.string();
+    const fs::path installed =  // PREFIX/bin/renderaudit (`make install`)
+        exe.parent_path().parent_path() / "share" / "renderaudit" / relative;
+    if (fs::exists(installed, ec)) return installed.string();
   }
   return "";
 }

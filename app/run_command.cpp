@@ -4,9 +4,11 @@
 
 #include "analysis/run_summary.h"
 #include "app/commands.h"
+#include "runner/experiment.h"
 #include "runner/run_coordinator.h"
 #include "runner/slurm_submission.h"
 #include "util/errors.h"
+#include "util/program_name.h"
 
 namespace ra::app {
 
@@ -49,6 +51,9 @@ void register_run_command(CLI::App& app, int& exit_code) {
                 "start a worker process for every shard (default: a worker serves one platform's "
                 "shards one after another, paying for its start and GL context once)");
   cmd->add_flag("--quiet,-q", quiet, "no progress line");
+  static bool brief = false;
+  cmd->add_flag("--brief", brief,
+                "print where the run summary went, not its table (`make` runs with it)");
   static bool slurm = false;
   static runner::SlurmOptions slurm_opt;
   auto* on_slurm = cmd->add_flag(
@@ -102,12 +107,21 @@ void register_run_command(CLI::App& app, int& exit_code) {
         return;
       }
       std::printf("%s: submitted %d slices as Slurm array job %s, gather job %s (afterany)\n"
-                  "follow it with: renderaudit status %s [--wait]\n",
+                  "follow it with: %s status %s [--wait]\n",
                   sub.run_dir.c_str(), sub.slices, sub.array_job.c_str(), sub.gather_job.c_str(),
-                  sub.run_dir.c_str());
+                  util::program_for_commands().c_str(), sub.run_dir.c_str());
       return;
     }
     if (run_study_if_declared(study, exit_code)) return;
+    if (!quiet) {  // what is drawn with, before the progress line
+      const runner::Experiment exp = runner::load_experiment(opt.experiment_path);
+      const std::vector<std::string> platforms =
+          opt.only_platforms.empty() ? exp.platforms : opt.only_platforms;
+      std::string list;
+      for (const std::string& p : platforms) list += (list.empty() ? "" : ", ") + p;
+      std::fprintf(stderr, "renderaudit: %s draws with %s\n", opt.experiment_path.c_str(),
+                   list.c_str());
+    }
     const runner::RunResult r = runner::run_experiment(opt);
     std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
                 r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
@@ -128,7 +142,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
       return;
     }
     const std::string summary = analysis::write_run_summary(r.run_dir);
-    std::printf("%s", summary.c_str());
+    if (!brief) std::printf("%s", summary.c_str());
     std::printf("summary: %s/summary.md\n", r.run_dir.c_str());
     if (r.failed_primitives_held.size() > r.failed_primitives.size())
       std::printf("  %zu primitives recorded as crash or timeout by earlier invocations or "

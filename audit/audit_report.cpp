@@ -9,6 +9,7 @@
 
 #include "util/atomic_file.h"
 #include "util/cell_text.h"
+#include "util/program_name.h"
 
 namespace fs = std::filesystem;
 
@@ -71,7 +72,7 @@ std::string shell_quote(const std::string& s) {
 }
 
 std::string show_command(const AuditResult& r, const ChangedPrimitive& c) {
-  return "renderaudit show " + shell_quote(r.current.dir) + " --platform " +
+  return util::program_for_commands() + " show " + shell_quote(r.current.dir) + " --platform " +
          shell_quote(r.pairs[c.pair].current) + " --kind " + geometry::kind_name(c.kind) +
          " --view " + std::to_string(c.view) + " --index " + std::to_string(c.index);
 }

@@ -102,8 +102,9 @@ TEST(ConformanceCommand, FaultyVariantsAreClassifiedAsPredicted) {
   ASSERT_EQ(run_renderaudit("analyze " + dir + "/shift/run").exit_code, 0);
   const std::string list = read_text(dir + "/shift/run/analysis/violations.md");
   EXPECT_NE(list.find("| faulty | triangle | 1 |"), std::string::npos) << list;
-  EXPECT_NE(list.find("renderaudit show " + dir + "/shift/run -p faulty -k triangle -v 1 -i "),
-            std::string::npos);
+  EXPECT_NE(list.find("`" + std::string(RA_BINARY) + " show " + dir +
+                      "/shift/run -p faulty -k triangle -v 1 -i "),
+            std::string::npos) << list;
 
   const Outcome audit = run_renderaudit("audit " + dir + "/shift/run --between reference faulty " +
                                         "--no-history --max-rerenders 0");
