@@ -6,7 +6,7 @@ BUILD_TYPE ?= Release
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
-.PHONY: all deps build run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly timing lod regulation format clean
+.PHONY: all deps build install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly timing lod regulation format clean
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
@@ -21,26 +21,43 @@ $(BUILD)/CMakeCache.txt: | deps
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
+# Puts the program on PATH, so that the commands the docs and the tool print paste as they are:
+# PREFIX/bin/renderaudit (default ~/.local/bin, which Debian's ~/.profile puts on PATH once it
+# exists) and the paper's table values it reads by default.
+PREFIX ?= $(HOME)/.local
+install: build
+	install -D -m 755 $(BUILD)/renderaudit $(PREFIX)/bin/renderaudit
+	install -D -m 644 experiments/papers/nist2008-tables.toml \
+	  $(PREFIX)/share/renderaudit/experiments/papers/nist2008-tables.toml
+	@case ":$$PATH:" in *":$(PREFIX)/bin:"*) echo "renderaudit: installed $(PREFIX)/bin/renderaudit";; \
+	  *) echo "renderaudit: installed $(PREFIX)/bin/renderaudit; put it on PATH with:" \
+	       "export PATH=\"$(PREFIX)/bin:\$$PATH\"";; esac
+
 # The embedded default is osmesa-llvmpipe; where OSMesa is missing (Mesa >= 25.1) the same driver
-# is drawn through EGL (experiments/quick-egl.toml), and the line below says which.
+# is drawn through EGL (experiments/quick-egl.toml), and the line below says so. `run` names the
+# experiment's own platforms; each stage prints a line or two, the tables stay in their files.
 run: build
 	@platform=$$($(BUILD)/renderaudit platforms --embedded-default) || exit 2; \
 	experiment=$(EXPERIMENT); \
 	if [ "$$platform" = egl-llvmpipe ] && [ "$$experiment" = experiments/quick.toml ]; then \
-	  experiment=experiments/quick-egl.toml; fi; \
-	echo "renderaudit: drawing with $$platform ($$experiment)"; \
-	$(BUILD)/renderaudit run $$experiment --out $(OUT)
+	  experiment=experiments/quick-egl.toml; \
+	  echo "renderaudit: no OSMesa here: the embedded default draws llvmpipe through EGL ($$experiment)"; fi; \
+	$(BUILD)/renderaudit run $$experiment --out $(OUT) --brief || { rc=$$?; \
+	  if [ $$rc = 2 ]; then echo "renderaudit: with make, OUT=DIR names the run folder (now $(OUT))" >&2; fi; \
+	  exit $$rc; }
 
 analyze: run
-	$(BUILD)/renderaudit analyze $(OUT)
+	@$(BUILD)/renderaudit analyze $(OUT) --quiet
 
 # Figures and report need no display: a private Xvfb is started when DISPLAY is unset.
 plot: analyze
-	$(BUILD)/renderaudit plot $(OUT)
+	@$(BUILD)/renderaudit plot $(OUT)
 
 report: plot
-	$(BUILD)/renderaudit report $(OUT)
+	@$(BUILD)/renderaudit report $(OUT)
 	@echo "Report of $(EXPERIMENT): $(OUT)/report/report.pdf (and report.html)"
+	@command -v renderaudit > /dev/null || echo "The program is $(BUILD)/renderaudit;" \
+	  "\`make install\` puts it on PATH as renderaudit (the name the docs use)"
 
 # The NIST paper's experiment on both Mesa drivers, read two ways (docs/reproduce-paper.md): as its
 # text gives it, and with the near plane at 1e-5, which its Table 10 needs. Both are analysed with
