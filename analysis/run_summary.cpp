@@ -67,7 +67,9 @@ std::string cost_paragraph(const std::string& run_dir, const Cells& cells) {
       drawing_us > 0) {
     const double elapsed = *inv->elapsed_s, jobs = double(inv->jobs);
     out << "; this invocation ran every shard in " << fmt(elapsed, "%.1f") << " s on " << jobs
-        << " jobs: wall x jobs / drawing = " << fmt(elapsed * jobs / (drawing_us / 1e6), "%.3f");
+        << " jobs, which is " << fmt(elapsed * jobs / (drawing_us / 1e6), "%.1f")
+        << " times the drivers' own drawing time (wall time x jobs over the drawing: the rest is "
+           "starting workers, measuring and writing records)";
     if (inv->idle_core_s)
       out << ", " << fmt(*inv->idle_core_s, "%.1f") << " core-seconds without a worker (shard order: "
           << (inv->shard_order.empty() ? "?" : inv->shard_order) << ")";

@@ -191,7 +191,10 @@ std::string format_run_status(const RunStatus& s) {
   o << "\n";
   o << "  shards: " << s.planned << " planned, " << s.done << " done (" << buf << "), " << s.running
     << " running, " << s.failed << " failed, " << s.waiting << " waiting"
-    << (s.damaged.empty() ? "" : ", " + std::to_string(s.damaged.size()) + " damaged files") << "\n";
+    << (s.damaged.empty() ? ""
+        : ", " + std::to_string(s.damaged.size()) +
+              (s.damaged.size() == 1 ? " damaged file" : " damaged files"))
+    << "\n";
   if (!s.seals_checked)
     o << "  seals not checked (--quick): a file counts as done when it exists; without --quick "
          "every file is read and damaged ones are named\n";
