@@ -366,7 +366,7 @@ stats::Table paper_comparison_table(const RunRecords& run, const GroupSummaries&
     t.columns.push_back({c, stats::Align::kLeft});
   for (const char* c : {"Ours", "SE", "Paper I", "z I", "Paper II", "z II", "Beyond 3 SE of"})
     t.columns.push_back({c, stats::Align::kRight});
-  std::size_t flagged = 0;
+  std::size_t flagged = 0, differing = 0;  // beyond 3 SE of one paper platform; of every one
   const std::vector<PaperCell> cells = paper_cells(run, summaries, options);
   for (const PaperCell& c : cells) {
     std::vector<stats::TableCell> row = {stats::text_cell(c.table), stats::text_cell(c.statistic), stats::text_cell(c.group),
@@ -387,13 +387,20 @@ stats::Table paper_comparison_table(const RunRecords& run, const GroupSummaries&
         beyond_of += (beyond_of.empty() ? "" : ", ") + std::string(platform ? "II" : "I");
     }
     flagged += !beyond_of.empty();
+    differing += c.differs();
     row.push_back(stats::text_cell(beyond_of));
     t.rows.push_back(std::move(row));
   }
   t.notes.push_back(
-      std::to_string(flagged) + " of " + std::to_string(cells.size()) +
-      " cells lie beyond 3 SE of at least one of the paper's platforms. " +
-      se_difference_note(options) +
+      std::to_string(differing) + " of " + std::to_string(cells.size()) +
+      " cells differ from the paper: beyond 3 SE of every paper platform that gives a value (the "
+      "count the first page and paper_differences.md use); the other " +
+      std::to_string(cells.size() - differing) + " agree with at least one of the paper's "
+      "platforms" +
+      (flagged > differing ? ", " + std::to_string(flagged - differing) +
+                                 " of them beyond 3 SE of the other (column 'Beyond 3 SE of')"
+                           : std::string()) +
+      ". " + se_difference_note(options) +
       " The platforms differ from the paper's (today's drivers), so z says where, not that "
       "either is wrong. The paper's values are rounded as printed: half a unit of their last "
       "digit can be a good part of an SE of our largest samples (0.0005 against 0.0008 for "
@@ -449,9 +456,9 @@ stats::Table paper_differences_table(const RunRecords& run, const GroupSummaries
     t.rows.push_back(std::move(row));
   }
   t.notes.push_back(std::to_string(differing) + " of " + std::to_string(cells.size()) +
-                    " cells lie beyond 3 SE of the paper (of both platforms where both are "
-                    "given); " + std::to_string(unexplained) + " of them not explained. " +
-                    se_difference_note(options));
+                    " cells differ from the paper: beyond 3 SE of every paper platform that gives "
+                    "a value (the count the first page uses); " + std::to_string(unexplained) +
+                    " of them not explained. " + se_difference_note(options));
   for (std::size_t i = 0; i < cited.size(); ++i)
     t.notes.push_back("[" + std::to_string(i + 1) + "] " +
                       options.paper_differences[cited[i]].explanation);

@@ -459,6 +459,15 @@ std::string view_equivalence_markdown(const RunRecords& run,
                                       const std::vector<ViewEquivalence>& results,
                                       const EquivalenceOptions& options) {
   const std::string a = p_text(options.alpha);
+  std::size_t counts[4] = {0, 0, 0, 0};
+  for (const ViewEquivalence& r : results) ++counts[static_cast<int>(r.verdict)];
+  if (counts[static_cast<int>(Verdict::kNoComparison)] == results.size())
+    return "# View equivalence\n\n"
+           "The experiment has one camera orientation per view group (`[views] orientations = 1`), "
+           "or no data where there are more, so no views are pooled and nothing is tested: each "
+           "view group is its one view. The paper compared the orientation views of each group "
+           "with t, F and Levene tests before pooling them (section 4, p. 228); an experiment with "
+           "more orientations gets those tests here.\n";
   std::string md =
       "# View equivalence\n\n"
       "The paper (section 4, p. 228) compared the views that differ only by camera orientation "
@@ -489,13 +498,11 @@ std::string view_equivalence_markdown(const RunRecords& run,
       "informative ones.\n\n"
       "Full statistics (t, F, W, degrees of freedom, lambda, shift): `view_equivalence.csv`.\n\n";
 
-  std::size_t counts[4] = {0, 0, 0, 0};
-  for (const ViewEquivalence& r : results) ++counts[static_cast<int>(r.verdict)];
   md += "## Verdicts\n\n";
   md += "- " + std::to_string(results.size()) + " comparisons: " + std::to_string(counts[0]) +
         " equivalent, " + std::to_string(counts[1]) + " NOT equivalent, " +
         std::to_string(counts[2]) + " undecided, " + std::to_string(counts[3]) +
-        " without comparison (one orientation or no data).\n";
+        " without comparison (one orientation or no data; not listed in the tables below).\n";
   for (const ViewEquivalence& r : results) {
     if (r.verdict != Verdict::kNotEquivalent && r.verdict != Verdict::kUndecided) continue;
     md += std::string("- **") + verdict_name(r.verdict) + "**: " + run.platforms[r.platform] +
@@ -529,7 +536,7 @@ std::string view_equivalence_markdown(const RunRecords& run,
       }
       t.columns.push_back({"verdict", stats::Align::kLeft});
       for (const ViewEquivalence& r : results) {
-        if (r.platform != p || r.kind != kind) continue;
+        if (r.platform != p || r.kind != kind || r.verdict == Verdict::kNoComparison) continue;
         const SampleComparison& c = r.comparison;
         t.rows.push_back(
             {stats::text_cell(kind_metrics(kind)[r.metric].symbol), stats::text_cell(r.label),

@@ -168,5 +168,28 @@ TEST(ViewEquivalence, RunReportSaysWhichPairIsNotEquivalentAndPools) {
   EXPECT_EQ(csv.find("nan"), std::string::npos);
 }
 
+
+// One orientation per view group (views 1 and 3 of Table 1): nothing is pooled or tested, and the
+// file says so in one paragraph, with no table of "undefined" rows and no claim that the views
+// were found equivalent.
+TEST(ViewEquivalence, OneOrientationPerGroupSaysNothingWasTested) {
+  const testing::ScopedTempDir scoped("equivalence_one_orientation");
+  std::vector<metrics::Record> rs;
+  std::uint64_t i = 0;
+  for (double x : uniform_sample(500, 0, 0.7, 30)) rs.push_back(point("p", 1, i++, x));
+  for (double x : uniform_sample(500, 0, 0.7, 31)) rs.push_back(point("p", 3, i++, x));
+  write_records(scoped.path, rs);
+  const RunRecords run = load_run_records(scoped.path.string());
+  EquivalenceOptions o;
+  const auto results = assess_view_equivalence(run, o);
+  ASSERT_FALSE(results.empty());
+  for (const ViewEquivalence& r : results) EXPECT_EQ(r.verdict, Verdict::kNoComparison);
+  const std::string md = view_equivalence_markdown(run, results, o);
+  EXPECT_NE(md.find("one camera orientation per view group"), std::string::npos) << md;
+  EXPECT_EQ(md.find("found the orientation views equivalent"), std::string::npos) << md;
+  EXPECT_EQ(md.find("undefined"), std::string::npos) << md;
+  EXPECT_EQ(md.find('|'), std::string::npos) << md;  // no table
+}
+
 }  // namespace
 }  // namespace ra::analysis
