@@ -52,7 +52,8 @@ void register_show_command(CLI::App& app, int& exit_code) {
       "show",
       "Re-render one primitive of a run on a platform, in this process, and write it as a PNG:\n"
       "each window pixel a block (light grey: lit by the platform and the reference rasterizer;\n"
-      "orange: platform only; blue: reference only) and the ideal projection as a red line.\n"
+      "orange: platform only; blue: reference only; black: pixels GL forbids, lit or left dark\n"
+      "where no conforming implementation could) and the ideal projection as a red line.\n"
       "Prints the image's path and the primitive's record (visibility, pixels, metrics, "
       "ref_diff).");
   static audit::ShowRequest q;

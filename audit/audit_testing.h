@@ -14,6 +14,7 @@
 #include "runner/experiment.h"
 #include "metrics/records.h"
 #include "runner/shard.h"
+#include "runner/shard_file.h"
 
 namespace ra::audit::testing {
 
@@ -77,7 +78,7 @@ inline metrics::Record point_record(const runner::Experiment& exp, const std::st
 }
 
 // Writes every planned point shard of `platform` in DIR, one record per index made by `make`
-// (index -> record); shards listed in `skip` (by id) are left out.
+// (index -> record), sealed as `run` writes them; shards listed in `skip` (by id) are left out.
 inline void write_points(const std::string& dir, const runner::Experiment& exp,
                          const std::string& platform,
                          const std::function<metrics::Record(int view, uint64_t index)>& make,
@@ -87,9 +88,10 @@ inline void write_points(const std::string& dir, const runner::Experiment& exp,
     bool skipped = false;
     for (const auto& id : skip) skipped = skipped || id == s.id();
     if (skipped) continue;
-    std::ofstream out(s.records_path(dir, metrics::RecordsFormat::kCsv));
-    out << metrics::records_header() << '\n';
-    for (uint64_t i = s.begin; i < s.end; ++i) metrics::write_record(out, make(s.view, i));
+    runner::RecordsFileWriter out(s.records_path(dir, metrics::RecordsFormat::kCsv),
+                                  metrics::RecordsFormat::kCsv);
+    for (uint64_t i = s.begin; i < s.end; ++i) out.write(make(s.view, i));
+    out.finish();
   }
 }
 
