@@ -18,76 +18,119 @@ namespace {
 using nlohmann::json;
 
 struct DistributionFigures : FigurePlanner {
+  // A group's box plots need an axis of their own when the view groups' whisker spans differ by
+  // more than this factor: on a shared axis the smaller groups are flat lines (TEs-norm in the
+  // 907 x 907 groups against the 128 x 128 ones).
+  static constexpr double kSharedAxisSpanRatio = 10;
+
   void box_plots(an::PrimitiveKind kind) {
     const std::string section = section_of(kind);
     for (const json& bp : doc.value("box_plots", json::array())) {
       if (bp.value("kind", "") != an::kind_name(kind)) continue;
-      const std::string column = bp.value("metric", ""), symbol = bp.value("symbol", column),
-                        units = bp.value("units", "");
+      const std::string column = bp.value("metric", ""), symbol = bp.value("symbol", column);
       const json& boxes = bp.at("boxes");
       if (boxes.empty()) {
         skip(section, "box plot of " + symbol, "no true-visible " + section + " with a value");
         continue;
       }
-      BoxPlotContent c;
-      double max_abs = 0;
-      for (const json& b : boxes) max_abs = std::max({max_abs, std::fabs(b.at("q1").get<double>()),
-                                                      std::fabs(b.at("q3").get<double>())});
-      int e = table_exponent(column);
-      if (e < 0) e = display_exponent(max_abs);
-      const double scale = std::pow(10.0, e);
-      std::vector<std::string> group_labels;
-      for (const std::string& p : doc.value("platforms", std::vector<std::string>{}))
+      // the whisker span of each view group, in record units
+      std::map<std::string, double> span;
+      for (const json& b : boxes) {
+        double& g = span[b.value("view_group", "?")];
+        g = std::max(g, b.at("upper_whisker").get<double>() - b.at("lower_whisker").get<double>());
+      }
+      double smallest = 0, largest = 0;
+      for (const auto& [g, w] : span)
+        if (w > 0) smallest = smallest > 0 ? std::min(smallest, w) : w, largest = std::max(largest, w);
+      const bool split = span.size() > 1 && smallest > 0 && largest > kSharedAxisSpanRatio * smallest;
+      if (!split) {
+        std::vector<const json*> all;
+        for (const json& b : boxes) all.push_back(&b);
+        add(box_plot(kind, bp, all, ""));
+        continue;
+      }
+      for (const auto& [g, w] : span) {
+        std::vector<const json*> of_group;
         for (const json& b : boxes)
-          if (b.value("platform", "") == p &&
-              std::find(c.series.begin(), c.series.end(), p) == c.series.end())
-            c.series.push_back(p);
-      std::map<std::string, std::string> category_of;
-      for (const json& b : boxes) {
-        const std::string g = b.value("view_group", "?");
-        if (!category_of.count(g))
-          category_of[g] = g + ": " + fmt(b.value("fov_deg", 0.0)) + " deg, " +
-                           std::to_string(b.value("width", 0)) + "x" +
-                           std::to_string(b.value("height", 0));
+          if (b.value("view_group", "?") == g) of_group.push_back(&b);
+        Figure f = box_plot(kind, bp, of_group, g);
+        f.caption += " One figure per view group: their whisker spans differ by a factor of " +
+                     fmt(largest / smallest, "%.0f") + ", so a shared axis would flatten the "
+                     "smaller ones.";
+        add(std::move(f));
       }
-      for (const auto& [g, label] : category_of) {
-        c.categories.push_back(label);
-        group_labels.push_back(g);
-      }
-      for (const json& b : boxes) {
-        Box x;
-        x.category = category_of[b.value("view_group", "?")];
-        x.series = b.value("platform", "");
-        x.n = b.value("n", std::size_t(0));
-        x.q1 = b.at("q1").get<double>() * scale;
-        x.median = b.at("median").get<double>() * scale;
-        x.q3 = b.at("q3").get<double>() * scale;
-        x.lower_whisker = b.at("lower_whisker").get<double>() * scale;
-        x.upper_whisker = b.at("upper_whisker").get<double>() * scale;
-        x.min = x.lower_whisker, x.max = x.upper_whisker;
-        for (const json& o : b.value("outliers", json::array())) {
-          x.min = std::min(x.min, o.get<double>() * scale);
-          x.max = std::max(x.max, o.get<double>() * scale);
-        }
-        x.n_outliers_low = b.value("n_outliers_low", std::size_t(0));
-        x.n_outliers_high = b.value("n_outliers_high", std::size_t(0));
-        c.boxes.push_back(x);
-      }
-      Figure f;
-      f.id = "boxplot." + std::string(an::kind_name(kind)) + "." + column;
-      f.title = "Box plots of " + symbol + " by view group and platform: " + join(c.series, ", ") +
-                ", view groups " + groups_text(group_labels);
-      f.x_label = "view group (field of view, window)";
-      f.y_label = axis_label(symbol, units, e);
-      f.caption = "Box plots of " + symbol + " for each view group and platform (quartiles " +
-                  doc.value("quantile_definition", std::string("hyndman_fan_6")) +
-                  "; whiskers to the most extreme values within 1.5 IQR); box widths proportional "
-                  "to the number of measurements; the y range is restricted to the box bodies as "
-                  "in the paper's Figs. 6, 8, 10 and 12.";
-      f.section = section;
-      f.content = std::move(c);
-      add(std::move(f));
     }
+  }
+
+  // The box plot of `chosen` boxes of one metric (all view groups, or the one named `group`).
+  Figure box_plot(an::PrimitiveKind kind, const json& bp, const std::vector<const json*>& chosen,
+                  const std::string& group) {
+    const std::string column = bp.value("metric", ""), symbol = bp.value("symbol", column),
+                      units = bp.value("units", "");
+    BoxPlotContent c;
+    double max_abs = 0;
+    for (const json* b : chosen)
+      max_abs = std::max({max_abs, std::fabs(b->at("q1").get<double>()),
+                          std::fabs(b->at("q3").get<double>())});
+    // a shared axis keeps the tables' exponent; a group of its own gets the one its values need
+    int e = group.empty() ? table_exponent(column) : -1;
+    if (e < 0) e = display_exponent(max_abs);
+    const double scale = std::pow(10.0, e);
+    std::vector<std::string> group_labels;
+    for (const std::string& p : doc.value("platforms", std::vector<std::string>{}))
+      for (const json* b : chosen)
+        if (b->value("platform", "") == p &&
+            std::find(c.series.begin(), c.series.end(), p) == c.series.end())
+          c.series.push_back(p);
+    std::map<std::string, std::string> category_of;
+    for (const json* b : chosen) {
+      const std::string g = b->value("view_group", "?");
+      if (!category_of.count(g))
+        category_of[g] = g + ": " + fmt(b->value("fov_deg", 0.0)) + " deg, " +
+                         std::to_string(b->value("width", 0)) + "x" +
+                         std::to_string(b->value("height", 0));
+    }
+    for (const auto& [g, label] : category_of) {
+      c.categories.push_back(label);
+      group_labels.push_back(g);
+    }
+    for (const json* b : chosen) {
+      Box x;
+      x.category = category_of[b->value("view_group", "?")];
+      x.series = b->value("platform", "");
+      x.n = b->value("n", std::size_t(0));
+      x.q1 = b->at("q1").get<double>() * scale;
+      x.median = b->at("median").get<double>() * scale;
+      x.q3 = b->at("q3").get<double>() * scale;
+      x.lower_whisker = b->at("lower_whisker").get<double>() * scale;
+      x.upper_whisker = b->at("upper_whisker").get<double>() * scale;
+      x.min = x.lower_whisker, x.max = x.upper_whisker;
+      for (const json& o : b->value("outliers", json::array())) {
+        x.min = std::min(x.min, o.get<double>() * scale);
+        x.max = std::max(x.max, o.get<double>() * scale);
+      }
+      x.n_outliers_low = b->value("n_outliers_low", std::size_t(0));
+      x.n_outliers_high = b->value("n_outliers_high", std::size_t(0));
+      c.boxes.push_back(x);
+    }
+    Figure f;
+    f.id = "boxplot." + std::string(an::kind_name(kind)) + "." + column +
+           (group.empty() ? "" : "." + group);
+    f.title = "Box plots of " + symbol + " by " + (group.empty() ? "view group and " : "") +
+              "platform: " + join(c.series, ", ") + ", view group" +
+              (group.empty() ? "s " + groups_text(group_labels) : " " + group);
+    f.x_label = "view group (field of view, window)";
+    f.y_label = axis_label(symbol, units, e);
+    f.caption = "Box plots of " + symbol + " for " +
+                (group.empty() ? "each view group" : "view group " + group) +
+                " and platform (quartiles " +
+                doc.value("quantile_definition", std::string("hyndman_fan_6")) +
+                "; whiskers to the most extreme values within 1.5 IQR); box widths proportional "
+                "to the number of measurements; the y range is restricted to the box bodies as "
+                "in the paper's Figs. 6, 8, 10 and 12.";
+    f.section = section_of(kind);
+    f.content = std::move(c);
+    return f;
   }
 
   void histograms(an::PrimitiveKind kind) {

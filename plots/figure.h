@@ -109,6 +109,7 @@ struct Figure {
   std::string note;     // printed on the figure under the plot (may be empty; lines split by \n)
   std::string caption;  // a sentence for the report: what is compared and how
   std::string section;  // report grouping, e.g. "points"
+  int height = 0;       // image pixels; 0: a page's (FigureRenderer's default); the width is a page's
   FigureContent content;
 };
 

@@ -33,6 +33,8 @@ struct FigurePlanner {
 };
 
 void plan_tally_figures(FigurePlanner& planner, an::PrimitiveKind kind);
+// Every kind and view group in one bar chart (conformance.overview): the report's first page.
+void plan_conformance_overview(FigurePlanner& planner);
 void plan_distribution_figures(FigurePlanner& planner, an::PrimitiveKind kind);
 void plan_comparison_figures(FigurePlanner& planner, an::PrimitiveKind kind);
 void plan_speed_error_figures(FigurePlanner& planner, an::PrimitiveKind kind);

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -84,6 +85,7 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
       plan_comparison_figures(p, kind);
       plan_speed_error_figures(p, kind);
     }
+    plan_conformance_overview(p);
   } catch (const json::exception& e) {
     throw util::UserError(path + ": unexpected content: " + e.what() +
                           " (run `renderaudit analyze " + run_dir + "` again)");
@@ -112,13 +114,20 @@ PlotResult plot_run(const PlotOptions& options) {
   json figures = json::array();
   {
     FigureRenderer renderer;
+    std::map<int, std::unique_ptr<FigureRenderer>> short_renderers;  // by height: Figure::height
+    const auto renderer_for = [&](const Figure& f) -> FigureRenderer& {
+      if (f.height <= 0) return renderer;
+      auto& r = short_renderers[f.height];
+      if (!r) r = std::make_unique<FigureRenderer>(1123, f.height);
+      return *r;
+    };
     const bool tty = ::isatty(2);
     for (std::size_t i = 0; i < plan.figures.size(); ++i) {
       const Figure& f = plan.figures[i];
       if (options.progress)  // one line rewritten on a terminal, a line per figure in a log
         std::fprintf(stderr, tty ? "\r[%zu/%zu] %s\033[K" : "[%zu/%zu] %s\n", i + 1,
                      plan.figures.size(), f.id.c_str());
-      const RenderedFigure r = renderer.render(f, result.figures_dir + "/" + f.id);
+      const RenderedFigure r = renderer_for(f).render(f, result.figures_dir + "/" + f.id);
       IndexedFigure x{f.id,          figure_kind_name(f), f.section,     f.title,
                       f.caption,     r.note,              f.id + ".png", f.id + ".pdf",
                       f.id + ".csv"};
