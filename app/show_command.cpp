@@ -51,9 +51,10 @@ void register_show_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "show",
       "Re-render one primitive of a run on a platform, in this process, and write it as a PNG:\n"
-      "each window pixel a block (light grey: lit by the platform and the reference rasterizer;\n"
+      "each window pixel a block (grey: lit by the platform and the reference rasterizer;\n"
       "orange: platform only; blue: reference only; black: pixels GL forbids, lit or left dark\n"
-      "where no conforming implementation could) and the ideal projection as a red line.\n"
+      "where no conforming implementation could) and the ideal projection as a red line, with a\n"
+      "legend of the colours and their counts under the picture.\n"
       "Prints the image's path and the primitive's record (visibility, pixels, metrics, "
       "ref_diff).");
   static audit::ShowRequest q;
@@ -73,11 +74,13 @@ void register_show_command(CLI::App& app, int& exit_code) {
   cmd->callback([&exit_code] {
     const audit::PrimitiveImage im = audit::show_primitive(q);
     const geometry::View& v = im.view;
-    std::printf("wrote %s (%d x %d px: window pixels x %d-%d, y %d-%d of %d x %d, %d px each)\n",
-                im.path.c_str(), im.width, im.height, im.shown.x0, im.shown.x1 - 1, im.shown.y0,
-                im.shown.y1 - 1, v.width, v.height, im.scale);
+    std::printf("wrote %s (%d x %d px: window pixels x %d-%d, y %d-%d of %d x %d, %d px each, in "
+                "the top %d x %d; the legend under them)\n",
+                im.path.c_str(), im.image_width, im.image_height, im.shown.x0, im.shown.x1 - 1,
+                im.shown.y0, im.shown.y1 - 1, v.width, v.height, im.scale, im.width, im.height);
+    if (!im.legend_note.empty()) std::fprintf(stderr, "renderaudit: %s\n", im.legend_note.c_str());
     std::printf(
-        "colours: light grey = lit by both (%lld), orange = platform (%s) only (%lld), blue = "
+        "colours: grey = lit by both (%lld), orange = platform (%s) only (%lld), blue = "
         "reference only (%lld), black = pixels GL forbids (%s), red line = ideal projection\n",
         static_cast<long long>(im.both), q.platform.c_str(),
         static_cast<long long>(im.platform_only), static_cast<long long>(im.reference_only),

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "audit/image_legend.h"
 #include "metrics/case_measurement.h"
 #include "metrics/conformance.h"
 #include "metrics/effective_subpixel.h"
@@ -288,8 +289,23 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
     std::error_code ec;
     fs::create_directories(parent, ec);
   }
-  if (!buf.write(out.path))
-    throw util::UserError(out.path + ": cannot write the image: " + buf.geterror());
+  // The legend under the picture: what each colour means and how many window pixels have it.
+  const std::vector<LegendEntry> legend = {
+      {kBothColor, "lit by both (" + std::to_string(out.both) + ")"},
+      {kPlatformOnlyColor, "lit by " + q.platform + " only (" + std::to_string(out.platform_only) + ")"},
+      {kReferenceOnlyColor,
+       "lit by the reference rasterizer only (" + std::to_string(out.reference_only) + ")"},
+      {kViolationColor, "forbidden by GL: " + forbidden_pixels_text(out.record.violating_pixels,
+                                                                   out.violating)},
+      {kIdealColor, "the ideal projection", true}};
+  bool text_drawn = true;
+  const OIIO::ImageBuf image = with_legend(buf, legend, &text_drawn);
+  if (!text_drawn) out.legend_note = "the legend's text needs the DejaVu Sans font (Debian: "
+                                     "fonts-dejavu-core); its colour squares are drawn";
+  out.image_width = image.spec().width;
+  out.image_height = image.spec().height;
+  if (!image.write(out.path))
+    throw util::UserError(out.path + ": cannot write the image: " + image.geterror());
   return out;
 }
 

@@ -37,7 +37,7 @@ struct Rgb8 {
   friend bool operator==(Rgb8 a, Rgb8 b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
 };
 constexpr Rgb8 kUnlitColor{255, 255, 255};
-constexpr Rgb8 kBothColor{200, 200, 200};
+constexpr Rgb8 kBothColor{150, 150, 150};  // mid grey: apart from white, the grid and black
 constexpr Rgb8 kPlatformOnlyColor{230, 159, 0};   // Okabe-Ito orange
 constexpr Rgb8 kReferenceOnlyColor{0, 114, 178};  // Okabe-Ito blue
 constexpr Rgb8 kIdealColor{220, 0, 0};
@@ -55,7 +55,9 @@ struct ShowRequest {
 
 struct PrimitiveImage {
   std::string path;           // PNG written
-  int width = 0, height = 0;  // image, pixels
+  int width = 0, height = 0;  // the picture of the window pixels, image pixels (top left of the PNG)
+  int image_width = 0, image_height = 0;  // the PNG: the picture, the legend under it
+  std::string legend_note;    // why the legend lacks its text, or ""
   int scale = 0;              // image pixels per window pixel
   geometry::PixelRect shown;  // window pixels shown, GL coordinates
   geometry::View view;

@@ -18,6 +18,7 @@ packages=(
   glslang-tools         # glslangValidator: the shaders compiled to SPIR-V at build time, embedded
   libvtk9-dev           # VTK: figures (charts to PNG and PDF)
   libopenimageio-dev    # OpenImageIO: PNG of single primitives (renderaudit show)
+  fonts-dejavu-core     # DejaVu Sans: the legend text of those PNGs
   libboost-math-dev     # Boost.Math: t, F, normal distributions for the statistics
   libtomlplusplus-dev   # toml++: experiment files
   libcli11-dev          # CLI11: the command line

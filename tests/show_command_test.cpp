@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 
+#include "audit/image_legend.h"
 #include "audit/primitive_image.h"
 #include "runner/experiment.h"
 #include "metrics/records.h"
@@ -60,6 +61,26 @@ int blocks_with(const Image& im, int scale, ra::audit::Rgb8 colour) {
       n += found;
     }
   return n;
+}
+
+// The top left `width` x `height` pixels of an image: the picture of the window pixels, without
+// the legend under it.
+Image picture(const Image& whole, int width, int height) {
+  Image im;
+  im.width = width, im.height = height, im.channels = whole.channels;
+  for (int y = 0; y < height; ++y)
+    im.pixels.insert(im.pixels.end(), whole.pixels.begin() + std::ptrdiff_t(y) * whole.width * whole.channels,
+                     whole.pixels.begin() + (std::ptrdiff_t(y) * whole.width + width) * whole.channels);
+  return im;
+}
+
+// The legend under the picture (rows from `top` down).
+Image legend(const Image& whole, int top) {
+  Image im;
+  im.width = whole.width, im.height = whole.height - top, im.channels = whole.channels;
+  im.pixels.assign(whole.pixels.begin() + std::ptrdiff_t(top) * whole.width * whole.channels,
+                   whole.pixels.end());
+  return im;
 }
 
 int pixels_with(const Image& im, ra::audit::Rgb8 colour) {
@@ -117,8 +138,8 @@ TEST(ShowCommand, ATriangleOnTheReferenceIsGreyWithARedOutline) {
                                     std::to_string(rec.index) + " --out " + png);
   ASSERT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(o.output.find("wrote " + png +
-                          " (512 x 512 px: window pixels x 0-63, y 0-63 of "
-                          "64 x 64, 8 px each)"),
+                          " (512 x 638 px: window pixels x 0-63, y 0-63 of "
+                          "64 x 64, 8 px each, in the top 512 x 512; the legend under them)"),
             std::string::npos)
       << o.output;
   // The record of this rendering is the run's record.
@@ -128,10 +149,21 @@ TEST(ShowCommand, ATriangleOnTheReferenceIsGreyWithARedOutline) {
   EXPECT_NE(field(o.output, "te_u"), "") << o.output;
   EXPECT_EQ(field(o.output, "pe"), "") << "point metrics do not apply to a triangle";
 
-  const Image im = read_image(png);
-  ASSERT_EQ(im.width, 512);
-  ASSERT_EQ(im.height, 512);
-  ASSERT_EQ(im.channels, 3);
+  const Image whole = read_image(png);
+  ASSERT_EQ(whole.width, 512);
+  ASSERT_EQ(whole.height, 512 + 2 * 8 + 5 * ra::audit::kLegendRowHeight);  // the legend's 5 rows
+  ASSERT_EQ(whole.channels, 3);
+  const Image im = picture(whole, 512, 512);
+  // The legend shows every class's colour, and text (dark pixels that are not a swatch's).
+  const Image key = legend(whole, 512);
+  for (const ra::audit::Rgb8 c : {ra::audit::kBothColor, ra::audit::kPlatformOnlyColor,
+                                  ra::audit::kReferenceOnlyColor, ra::audit::kViolationColor,
+                                  ra::audit::kIdealColor})
+    EXPECT_GT(pixels_with(key, c), 0);
+  int text = 0;
+  for (int y = 0; y < key.height; ++y)
+    for (int x = 40; x < key.width; ++x) text += key.at(x, y).r < 128;
+  EXPECT_GT(text, 200) << "no legend text";
   // Every lit pixel is a grey block; nothing is platform-only or reference-only on the reference.
   EXPECT_EQ(blocks_with(im, 8, ra::audit::kBothColor), rec.pixels);
   EXPECT_EQ(pixels_with(im, ra::audit::kPlatformOnlyColor), 0);
@@ -141,7 +173,10 @@ TEST(ShowCommand, ATriangleOnTheReferenceIsGreyWithARedOutline) {
   // The outline of a triangle lighting more than 10 pixels is longer than 3 window pixels.
   EXPECT_GT(pixels_with(im, ra::audit::kIdealColor), 3 * 8);
   // Blocks of 8 px carry a grid: a darker border.
-  EXPECT_GT(pixels_with(im, ra::audit::Rgb8{160, 160, 160}), 0);
+  const ra::audit::Rgb8 b = ra::audit::kBothColor;
+  EXPECT_GT(pixels_with(im, ra::audit::Rgb8{uint8_t(b.r * 4 / 5), uint8_t(b.g * 4 / 5),
+                                            uint8_t(b.b * 4 / 5)}),
+            0);
 }
 
 TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
@@ -169,9 +204,9 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
                                     std::to_string(index) + " --scale 4");
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const std::string png = dir + "/run/show/faulty.triangle.v1." + std::to_string(index) + ".png";
-  const Image im = read_image(png);
-  ASSERT_EQ(im.width, 256);  // --scale 4 on the whole 64 x 64 window
-  ASSERT_EQ(im.height, 256);
+  const Image whole = read_image(png);
+  ASSERT_EQ(whole.width, ra::audit::kLegendMinWidth);  // widened for the legend
+  const Image im = picture(whole, 256, 256);  // --scale 4 on the whole 64 x 64 window
   // Of the 2 x runs differing pixels, those GL forbids (centres beyond the snapping allowance of
   // every edge: metrics/conformance.h) are black, the others orange or blue.
   const int black = blocks_with(im, 4, ra::audit::kViolationColor);
@@ -183,7 +218,7 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
             2 * runs);
   EXPECT_EQ(blocks_with(im, 4, ra::audit::kBothColor), ref.size() - runs);
   EXPECT_EQ(field(o.output, "ref_diff"), std::to_string(2 * runs)) << o.output;
-  EXPECT_NE(o.output.find("light grey = lit by both (" + std::to_string(ref.size() - runs) +
+  EXPECT_NE(o.output.find("grey = lit by both (" + std::to_string(ref.size() - runs) +
                           "), orange = platform (faulty) only (" + std::to_string(runs) +
                           "), blue = reference only (" + std::to_string(runs) +
                           "), black = pixels GL forbids (" + std::to_string(black) + ")"),
