@@ -31,6 +31,8 @@ struct Block {
     kFigureList,    // the list of figures (Document::figures) with their pages
     kContents,      // the list of level-1 headings with their pages
     kPageBreak,
+    kImage,         // a PNG in the text (image_path; HTML: image_href), `text` its caption
+    kNotes,         // items, in the small grey type of a table's notes
   };
   Kind kind = Kind::kParagraph;
   int level = 1;
@@ -38,6 +40,9 @@ struct Block {
   std::vector<std::string> items;
   Table table;
   std::string anchor;  // HTML id of a heading
+  std::string image_path;  // kImage: the PNG (absolute, for the PDF)
+  std::string image_href;  // kImage: the PNG relative to the report directory (HTML)
+  double image_height_fraction = 0.42;  // kImage: at most this share of the page's height (PDF)
 };
 
 struct FigureRef {

@@ -131,6 +131,16 @@ std::string render_html(const Document& doc) {
         break;
       }
       case Block::Kind::kPageBreak: break;
+      case Block::Kind::kNotes:
+        o << "<ul class=\"notes\">\n";
+        for (const auto& n : b.items) o << "<li>" << inline_html(n) << "</li>\n";
+        o << "</ul>\n";
+        break;
+      case Block::Kind::kImage:
+        o << "<figure>\n<img src=\"" << html_escape(b.image_href) << "\" alt=\""
+          << html_escape(plain_text(b.text)) << "\">\n<figcaption>" << inline_html(b.text)
+          << "</figcaption>\n</figure>\n";
+        break;
     }
   }
   o << "</body>\n</html>\n";

@@ -225,7 +225,46 @@ class Writer {
       case Block::Kind::kPageBreak:
         if (!page_empty_) new_page();
         break;
+      case Block::Kind::kImage: image(b); break;
+      case Block::Kind::kNotes:
+        for (const std::string& n : b.items) paragraph(n, 11.5, 0, kSans, 0.25);
+        y_ += 7;
+        break;
     }
+  }
+
+  // A PNG scaled to the text width (at most its share of the page's height), its caption under
+  // it. A file that cannot be read is said in its place.
+  void image(const Block& b) {
+    cairo_surface_t* png = cairo_image_surface_create_from_png(b.image_path.c_str());
+    if (cairo_surface_status(png) != CAIRO_STATUS_SUCCESS) {
+      cairo_surface_destroy(png);
+      paragraph("(picture " + b.image_path + " could not be read)", kBody - 2, 0, kSans, 0.4);
+      y_ += 7;
+      return;
+    }
+    const double w = cairo_image_surface_get_width(png), h = cairo_image_surface_get_height(png);
+    font(kSans, false, kBody - 3);
+    const auto caption = wrap(plain_text(b.text), avail());
+    const double caption_h = 8 + double(caption.size()) * (kBody - 3) * kLine;
+    // As large as its share of the page allows, or smaller to stay on this page while it is
+    // still readable (two thirds of that size): a picture is not what should start a new page.
+    const double max_h = b.image_height_fraction * (bottom() - kMarginTop);
+    const double room = bottom() - y_ - 4 - caption_h;
+    const double fit = std::min(max_h, room) >= max_h * 2 / 3 ? std::min(max_h, room) : max_h;
+    const double scale = std::min(avail() / w, fit / h);
+    need(h * scale + caption_h);
+    cairo_save(cr_);
+    cairo_translate(cr_, kMarginX, y_ + 4);
+    cairo_scale(cr_, scale, scale);
+    cairo_set_source_surface(cr_, png, 0, 0);
+    cairo_paint(cr_);
+    cairo_restore(cr_);
+    cairo_surface_destroy(png);
+    y_ += h * scale + 8;
+    page_empty_ = false;
+    paragraph(b.text, kBody - 3, 0, kSans, 0.25);
+    y_ += 7;
   }
 
   void heading(const Block& b) {

@@ -159,6 +159,13 @@ TEST(ReportCommand, HeadlessReportHasEveryTableAndOnePagePerFigure) {
   EXPECT_NE(page1.find("primitives drawn exactly as the reference rasterizer"), std::string::npos)
       << page1;
   EXPECT_NE(page1.find("Run and report by renderaudit "), std::string::npos) << page1;
+  // ... and shows the finding as a picture: one image on page 1, the overview figure in the HTML
+  const std::string images = shell_output("pdfimages -f 1 -l 1 -list '" + pdf + "'");
+  EXPECT_NE(images.find(" image "), std::string::npos) << images;  // a row under the header
+  EXPECT_NE(page1.find("Where each driver lights other pixels than the exact reference"),
+            std::string::npos) << page1;
+  EXPECT_NE(read(run + "/report/report.html").find("<img src=\"../figures/conformance.overview.png\""),
+            std::string::npos);
   EXPECT_EQ(page1.find(", report by renderaudit"), std::string::npos) << "one build: named once";
   // (the crashed shard the manifest lists above fails the audit, and its driver)
   const Outcome audit = run_renderaudit("audit " + run + " " + run + " --no-history");
