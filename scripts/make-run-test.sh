@@ -2,6 +2,8 @@
 # `make run` as a user calls it with an experiment of their own (ctest make_run_lines): the line
 # it prints names that experiment's platforms (not the embedded default's), the run's Markdown
 # table stays in summary.md, and a refused run folder is answered with the OUT= that make takes.
+# `make -o build`: the build is taken as it is (ctest runs beside other tests that use the binary;
+# a relink under them would fail them).
 # Usage: scripts/make-run-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
@@ -24,7 +26,7 @@ far = 10.0
 points = 30
 EOF
 rc=0
-make -s -C "$here" run BUILD="$build" EXPERIMENT="$t/mine.toml" OUT="$t/out" JOBS=2 \
+make -s -o build -C "$here" run BUILD="$build" EXPERIMENT="$t/mine.toml" OUT="$t/out" JOBS=2 \
   > "$t/make.log" 2>&1 || rc=$?
 [ "$rc" = 0 ] || { cat "$t/make.log"; fail "make run exit $rc"; }
 grep -qF "renderaudit: $t/mine.toml draws with osmesa-softpipe" "$t/make.log" \
@@ -35,7 +37,7 @@ grep -qF "summary: $t/out/summary.md" "$t/make.log" || fail "the summary's path 
 
 mkdir -p "$t/foreign" && echo "not a run" > "$t/foreign/notes.txt"
 rc=0
-make -s -C "$here" run BUILD="$build" EXPERIMENT="$t/mine.toml" OUT="$t/foreign" JOBS=2 \
+make -s -o build -C "$here" run BUILD="$build" EXPERIMENT="$t/mine.toml" OUT="$t/foreign" JOBS=2 \
   > "$t/make.log" 2>&1 || rc=$?
 [ "$rc" != 0 ] || fail "a foreign run folder was accepted"
 grep -qF "with make, OUT=DIR names the run folder (now $t/foreign)" "$t/make.log" \
