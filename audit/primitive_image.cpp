@@ -134,6 +134,44 @@ void check_request(const ShowRequest& q, const runner::Experiment& exp, geometry
   }
 }
 
+// Writes `picture` with its legend under it (what each colour means, with the counts of `out`) to
+// the request's PNG, or RUN/show/P.K.vV.I.png; sets out.path and the image's size.
+void write_picture(const OIIO::ImageBuf& buf, const ShowRequest& q, geometry::Kind kind,
+                   PrimitiveImage& out) {
+  out.path = q.out_path.empty()
+                 ? (fs::path(q.run_dir) / "show" /
+                    (q.platform + "." + geometry::kind_name(kind) + ".v" + std::to_string(q.view) +
+                     "." + std::to_string(q.index) + ".png"))
+                       .string()
+                 : q.out_path;
+  std::string ext = fs::path(out.path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".png") throw util::UserError(out.path + ": the image is a PNG: name a .png file");
+  const fs::path parent = fs::path(out.path).parent_path();
+  if (!parent.empty()) {
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+  }
+  // The legend under the picture: what each colour means and how many window pixels have it.
+  const std::vector<LegendEntry> legend = {
+      {kBothColor, "lit by both (" + std::to_string(out.both) + ")"},
+      {kPlatformOnlyColor, "lit by " + q.platform + " only (" + std::to_string(out.platform_only) + ")"},
+      {kReferenceOnlyColor,
+       "lit by the reference rasterizer only (" + std::to_string(out.reference_only) + ")"},
+      {kViolationColor, "forbidden by GL: " + forbidden_pixels_text(out.record.violating_pixels,
+                                                                   out.violating)},
+      {kIdealColor, "the ideal projection", true}};
+  bool text_drawn = true;
+  const OIIO::ImageBuf image = with_legend(buf, legend, &text_drawn);
+  if (!text_drawn) out.legend_note = "the legend's text needs the DejaVu Sans font (Debian: "
+                                     "fonts-dejavu-core); its colour squares are drawn";
+  out.image_width = image.spec().width;
+  out.image_height = image.spec().height;
+  if (!image.write(out.path))
+    throw util::UserError(out.path + ": cannot write the image: " + image.geterror());
+}
+
 }  // namespace
 
 std::string forbidden_pixels_text(int64_t violating_pixels, int64_t marked) {
@@ -274,38 +312,7 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
       line(to_image(pts[i]), to_image(pts[(i + 1) % pts.size()]));
   }
 
-  out.path = q.out_path.empty()
-                 ? (fs::path(q.run_dir) / "show" /
-                    (q.platform + "." + geometry::kind_name(kind) + ".v" + std::to_string(q.view) +
-                     "." + std::to_string(q.index) + ".png"))
-                       .string()
-                 : q.out_path;
-  std::string ext = fs::path(out.path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".png") throw util::UserError(out.path + ": the image is a PNG: name a .png file");
-  const fs::path parent = fs::path(out.path).parent_path();
-  if (!parent.empty()) {
-    std::error_code ec;
-    fs::create_directories(parent, ec);
-  }
-  // The legend under the picture: what each colour means and how many window pixels have it.
-  const std::vector<LegendEntry> legend = {
-      {kBothColor, "lit by both (" + std::to_string(out.both) + ")"},
-      {kPlatformOnlyColor, "lit by " + q.platform + " only (" + std::to_string(out.platform_only) + ")"},
-      {kReferenceOnlyColor,
-       "lit by the reference rasterizer only (" + std::to_string(out.reference_only) + ")"},
-      {kViolationColor, "forbidden by GL: " + forbidden_pixels_text(out.record.violating_pixels,
-                                                                   out.violating)},
-      {kIdealColor, "the ideal projection", true}};
-  bool text_drawn = true;
-  const OIIO::ImageBuf image = with_legend(buf, legend, &text_drawn);
-  if (!text_drawn) out.legend_note = "the legend's text needs the DejaVu Sans font (Debian: "
-                                     "fonts-dejavu-core); its colour squares are drawn";
-  out.image_width = image.spec().width;
-  out.image_height = image.spec().height;
-  if (!image.write(out.path))
-    throw util::UserError(out.path + ": cannot write the image: " + image.geterror());
+  write_picture(buf, q, kind, out);
   return out;
 }
 
