@@ -1,5 +1,7 @@
 # renderaudit: the two commands a new user needs are `make` and `make test` (see README.md).
 BUILD ?= build
+# no "Entering directory" lines from the make that cmake --build runs
+MAKEFLAGS += --no-print-directory
 JOBS ?= $(shell nproc)
 # Release: -O2, no debug information (a third less compile time than RelWithDebInfo).
 BUILD_TYPE ?= Release

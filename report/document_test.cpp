@@ -96,12 +96,42 @@ TEST(ReportPdf, WideAndLongTablesKeepEveryCell) {
   EXPECT_NE(text.find("A wide table (part 2 of"), std::string::npos);
   EXPECT_NE(text.find("A long table (continued)"), std::string::npos);
   for (int n : {0, 57, 119}) EXPECT_NE(text.find(std::to_string(n * n) + "sq"), std::string::npos) << n;
-  EXPECT_EQ(r.heading_pages.at("wide"), 2);  // page 1 holds the title block: a section starts a page
+  // page 1 holds the title block and more than half a page is left: the section starts there
+  EXPECT_EQ(r.heading_pages.at("wide"), 1);
 
   // The same blocks in HTML: one <table> per table, the cells escaped.
   const std::string html = render_html(doc);
   EXPECT_NE(html.find("<caption>A wide table</caption>"), std::string::npos);
   EXPECT_NE(html.find("<td class=\"num\">14161sq</td>"), std::string::npos);
+}
+
+
+// Sections share a page while at least 45% of it is left, and start a new one below that: a
+// section of three lines does not leave a page blank, a section near the bottom is not cut.
+TEST(ReportPdf, ShortSectionsShareAPageAndLateOnesStartANewOne) {
+  Document doc;
+  doc.title = "Sections";
+  const auto section = [&](const std::string& anchor, int lines) {
+    Block h;
+    h.kind = Block::Kind::kHeading;
+    h.text = anchor;
+    h.anchor = anchor;
+    doc.blocks.push_back(h);
+    for (int i = 0; i < lines; ++i) {
+      Block p;
+      p.text = "line " + std::to_string(i) + " of section " + anchor;
+      doc.blocks.push_back(p);
+    }
+  };
+  section("short", 3);   // page 1, under the title
+  section("next", 3);    // page 1 too: most of the page is left
+  section("long", 8);    // page 1 still, ending past its middle
+  section("late", 2);    // less than 45% of page 1 left: page 2
+  const PdfLayoutResult r = write_text_pdf(doc, "", {});
+  EXPECT_EQ(r.heading_pages.at("short"), 1);
+  EXPECT_EQ(r.heading_pages.at("next"), 1);
+  EXPECT_EQ(r.heading_pages.at("long"), 1);
+  EXPECT_EQ(r.heading_pages.at("late"), 2);
 }
 
 }  // namespace

@@ -270,7 +270,12 @@ class Writer {
   void heading(const Block& b) {
     const int level = std::clamp(b.level, 1, 3);
     const double size = kHeadingSize[level];
-    if (level == 1 && !page_empty_ && page_ > 0 && y_ > kMarginTop + 1) new_page();
+    // A section starts a page only where less than this share of the page is left: short
+    // sections (no failures, a short experiment file) share a page instead of leaving it blank.
+    constexpr double kSectionPageShare = 0.45;
+    if (level == 1 && !page_empty_ && page_ > 0 &&
+        bottom() - y_ < kSectionPageShare * (bottom() - kMarginTop))
+      new_page();
     font(kSans, true, size);
     const auto lines = wrap(plain_text(b.text), avail());
     const double h = (level == 1 ? 4 : 14) + double(lines.size()) * size * 1.3 + 4 * kBody * kLine;

@@ -62,7 +62,11 @@ TEST(ReportCommand, HeadlessReportHasEveryTableAndOnePagePerFigure) {
 
   // The figures: as many PDF pages as index.json lists, each PNG and PDF present.
   const auto index = nlohmann::json::parse(read(run + "/figures/index.json"));
-  const auto& figures = index.at("figures");
+  // every figure has a page of its own but the overview, which page 1 shows
+  nlohmann::json figures = nlohmann::json::array();
+  for (const auto& f : index.at("figures"))
+    if (f.at("id") != "conformance.overview") figures.push_back(f);
+  ASSERT_EQ(figures.size() + 1, index.at("figures").size());
   ASSERT_GE(figures.size(), 6u);  // visibility, conformance, 2 box plots, 2 histograms, 2 Q-Q
   EXPECT_EQ(int(figures.size()), figure_pages);
   for (const auto& f : figures) {
