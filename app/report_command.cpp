@@ -7,7 +7,9 @@
 #include "analysis/run_completeness.h"
 #include "app/commands.h"
 #include "plots/plot_run.h"
+#include "report/markdown_document.h"
 #include "report/report.h"
+#include "util/errors.h"
 
 namespace ra::app {
 namespace {
@@ -40,14 +42,31 @@ void register_report_command(CLI::App& app, int& exit_code) {
       "Runs `renderaudit analyze DIR` and `renderaudit plot DIR` first when their output is\n"
       "missing or older than the records (--no-run: stop and name them instead). Needs no display.\n"
       "A run with missing or damaged shards is refused (exit 3) unless --allow-incomplete.\n"
-      "For a study folder (study.json: timing, LOD, regulation): its text, tables and figures.");
+      "For a study folder (study.json: timing, LOD, regulation): its text, tables and figures.\n"
+      "--markdown FILE.md instead: that file as FILE.pdf and FILE.html beside it, its pictures\n"
+      "(![caption](path)) in the text (the driver upgrade's report).");
   static report::ReportOptions options;
   static bool no_run = false;
-  cmd->add_option("dir", options.run_dir, "run directory")->required();
+  static std::string markdown;
+  cmd->add_option("dir", options.run_dir, "run directory");
+  cmd->add_option("--markdown", markdown, "a Markdown file to set as PDF and HTML, instead of a run")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("--no-run", no_run, "do not run missing stages; say which command to run");
   cmd->add_flag("--allow-incomplete", options.allow_incomplete,
                 "report a run with missing or damaged shards, saying so on its first page");
   cmd->callback([&exit_code] {
+    if (!markdown.empty()) {
+      if (!options.run_dir.empty())
+        throw util::UserError("report: give a run directory or --markdown FILE.md, not both");
+      const report::MarkdownDocumentResult r = report::write_markdown_document(markdown);
+      std::printf("report: %d pages, %d pictures", r.pages, r.pictures);
+      if (r.missing_pictures) std::printf(" (%d not found: said in their place)", r.missing_pictures);
+      std::printf("\n%s\n%s\n", r.pdf.c_str(), r.html.c_str());
+      exit_code = kExitOk;
+      return;
+    }
+    if (options.run_dir.empty())
+      throw util::UserError("report needs a run directory (or --markdown FILE.md)");
     try {
       if (runner::read_study_info(options.run_dir))
         prepare_study_report(options.run_dir, !no_run);

@@ -155,6 +155,19 @@ std::vector<Block> parse_markdown(const std::string& markdown, int heading_offse
       blocks.back().items.push_back(line.substr(2));
       continue;
     }
+    // A picture on a line of its own: ![caption](path, relative to the Markdown file)
+    if (line.rfind("![", 0) == 0 && line.back() == ')') {
+      const std::size_t close = line.find("](");
+      if (close != std::string::npos) {
+        flush_paragraph();
+        Block b;
+        b.kind = Block::Kind::kImage;
+        b.text = line.substr(2, close - 2);
+        b.image_href = line.substr(close + 2, line.size() - close - 3);
+        blocks.push_back(b);
+        continue;
+      }
+    }
     // A continuation line of a list item (indented) or of a paragraph.
     if (!blocks.empty() && blocks.back().kind == Block::Kind::kBullets && paragraph.empty() &&
         (lines[i][0] == ' ' || lines[i][0] == '\t')) {

@@ -62,7 +62,8 @@ struct Document {
 
 // Blocks of a Markdown text (see the header comment). Headings are shifted down by
 // `heading_offset` levels (a file's "#" becomes level 1 + offset) and capped at 3. A "###" heading
-// directly followed by a pipe table becomes the table's title.
+// directly followed by a pipe table becomes the table's title. A line "![caption](path)" is a
+// picture (kImage, image_href = path; the caller resolves image_path).
 std::vector<Block> parse_markdown(const std::string& markdown, int heading_offset = 0);
 
 // `text` without Markdown emphasis (** and `), for the PDF.
