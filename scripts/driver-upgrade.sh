@@ -3,7 +3,9 @@
 # end to end: fetch the build into the build cache (renderaudit builds fetch), run
 # experiments/driver-upgrade.toml (nist2008 views; osmesa-* and egl-*, llvmpipe and softpipe, each
 # on both builds), audit every pair with `audit RUN --between P P@backports`, and write one report,
-# OUT/upgrade-report.md, that opens with what changed per driver, back end, kind and view group.
+# OUT/upgrade-report.pdf and .html (set by `renderaudit report --markdown` from the Markdown beside
+# them), that opens with what changed per driver, back end, kind and view group. About 10 minutes
+# on 2 cores (docs/driver-builds.md).
 #
 # Usage: scripts/driver-upgrade.sh [BUILD_DIR] [--smoke]   (MIRROR=URL: another Debian archive)
 #   MESA_SOURCE=DIR [MESA_REF=REF]: also a Mesa built from that source tree (renderaudit builds
@@ -25,6 +27,8 @@ experiment=${EXPERIMENT:-$repo/experiments/driver-upgrade.toml}
 out=${OUT:-$repo/outputs/driver-upgrade}
 
 say() { echo "driver-upgrade: $*"; }
+started=$(date +%s)
+step() { say "step $1 of 4 ($(( ($(date +%s) - started) / 60 )) min so far): $2"; }
 die() { echo "driver-upgrade: $*" >&2; exit 2; }
 [ -x "$ra" ] || die "$ra is not built (make build)"
 
@@ -42,7 +46,7 @@ fi
 if [ $smoke = 1 ] && "$ra" builds list | grep -q "suite $suite"; then
   say "using the cached build of $suite"
 else
-  say "fetching the Mesa of $suite (apt-get download through a private apt configuration)"
+  step 1 "fetching the Mesa of $suite (apt-get download through a private apt configuration)"
   if ! fetched=$("$ra" builds fetch "$suite" ${MIRROR:+--mirror "$MIRROR"} 2>&1); then
     echo "$fetched" >&2
     if echo "$fetched" | grep -q "unreachable"; then
@@ -70,9 +74,9 @@ if [ -n "${MESA_SOURCE:-}" ]; then
   experiment=$out.with-source.toml
 fi
 
-# 2. The run.
-say "running $experiment into $out"
-"$ra" run "$experiment" --out "$out" --quiet || die "the run failed (above); run the same command again to resume"
+# 2. The run, with its progress line (shards done, time left).
+step 2 "running $experiment into $out (resumable: the same command again goes on)"
+"$ra" run "$experiment" --out "$out" --brief || die "the run failed (above); run the same command again to resume"
 
 # 3. The audits: PLATFORM against PLATFORM@BUILD; AUDITED_<BUILD> lists those that ran.
 status=0
@@ -96,12 +100,14 @@ audit_build() {  # BUILD PLATFORM...
 }
 audited=()
 source_audited=()
+step 3 "auditing each platform against its build"
 audit_build backports osmesa-llvmpipe osmesa-softpipe egl-llvmpipe egl-softpipe
 [ -n "${MESA_SOURCE:-}" ] && audit_build source egl-llvmpipe egl-softpipe
 
 # 4. The report: what changed per driver, back end, kind and view group (from the records), the
 # worst primitives with pictures and reproducers, then each audit's own report.
 report=$out/upgrade-report.md
+step 4 "writing the report"
 if [ ${#audited[@]} -gt 0 ]; then
   /usr/bin/python3 "$repo/scripts/upgrade_report.py" "$ra" "$out" backports "${audited[@]}" > "$report" ||
     die "the report failed (above)"
@@ -114,6 +120,9 @@ if [ ${#audited[@]} -gt 0 ]; then
         sed -e 's/^# /## /'
     } >> "$report" || die "the report of the source build failed (above)"
   fi
-  say "report: $report"
+  # the Markdown set as PDF and HTML, its pictures in the pages, like the run reports
+  "$ra" report --markdown "$report" > "$out/upgrade-report.log" 2>&1 ||
+    { cat "$out/upgrade-report.log" >&2; die "setting the report as PDF failed (above)"; }
+  say "report: ${report%.md}.pdf (and .html; the Markdown: $report)"
 fi
 exit $status
