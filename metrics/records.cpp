@@ -52,17 +52,7 @@ void put_optional(std::string& out, int64_t v) {
 }  // namespace
 
 const char* visibility_name(Visibility v) { return kVisibilityNames[int(v)]; }
-bool parse_visibility(const std::string& s, Visibility* out) {
-  for (int i = 0; i < 5; ++i)
-    if (s == kVisibilityNames[i]) return *out = Visibility(i), true;
-  return false;
-}
 const char* status_name(CaseStatus s) { return kStatusNames[int(s)]; }
-bool parse_status(const std::string& s, CaseStatus* out) {
-  for (int i = 0; i < 4; ++i)
-    if (s == kStatusNames[i]) return *out = CaseStatus(i), true;
-  return false;
-}
 
 const char* conformance_name(Conformance c) { return kConformanceNames[int(c)]; }
 

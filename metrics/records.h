@@ -26,12 +26,10 @@ enum class Visibility {
   kMultipleVisible,
 };
 const char* visibility_name(Visibility v);  // "true-visible", ...
-bool parse_visibility(const std::string& s, Visibility* out);
 
 // Case status: the metrics are meaningful only for `ok`.
 enum class CaseStatus { kOk, kInvalid, kCrash, kTimeout };
 const char* status_name(CaseStatus s);  // "ok", "invalid", "crash", "timeout"
-bool parse_status(const std::string& s, CaseStatus* out);
 
 // How a primitive's lit pixels relate to what the GL spec allows (metrics/conformance.h).
 enum class Conformance {

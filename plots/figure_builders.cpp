@@ -8,11 +8,6 @@
 
 namespace ra::plots {
 
-std::string scale_suffix(int exponent) {
-  if (exponent == 0) return "";
-  return "x 10^-" + std::to_string(exponent);
-}
-
 Figure qq_figure(const std::string& id, const std::string& title, const std::string& axis_label,
                  const std::string& x_sample, const std::string& y_sample,
                  const ra::stats::QQPlotData& data, std::size_t n_x, std::size_t n_y, double scale,
@@ -125,42 +120,5 @@ Figure histogram_figure(const std::string& id, const std::string& title,
   return f;
 }
 
-Figure box_plot_figure(const std::string& id, const std::string& title,
-                       const std::string& x_label, const std::string& y_label,
-                       const std::vector<CategorySample>& samples, double scale) {
-  Figure f;
-  f.id = id;
-  f.title = title;
-  f.x_label = x_label;
-  f.y_label = y_label;
-  BoxPlotContent c;
-  for (const auto& s : samples) {
-    if (s.values.empty()) continue;
-    if (std::find(c.categories.begin(), c.categories.end(), s.category) == c.categories.end())
-      c.categories.push_back(s.category);
-    if (std::find(c.series.begin(), c.series.end(), s.series) == c.series.end())
-      c.series.push_back(s.series);
-    const auto mm = std::minmax_element(s.values.begin(), s.values.end());
-    const ra::stats::BoxPlotData d = ra::stats::box_plot(s.values);
-    Box b;
-    b.category = s.category;
-    b.series = s.series;
-    b.lower_whisker = d.lower_whisker * scale;
-    b.q1 = d.q1 * scale;
-    b.median = d.median * scale;
-    b.q3 = d.q3 * scale;
-    b.upper_whisker = d.upper_whisker * scale;
-    b.min = *mm.first * scale;
-    b.max = *mm.second * scale;
-    b.n = d.n;
-    b.n_outliers_low = d.n_outliers_low;
-    b.n_outliers_high = d.n_outliers_high;
-    c.boxes.push_back(b);
-  }
-  f.caption = "Box plots (quartiles Hyndman-Fan 6; whiskers to the most extreme values within "
-              "1.5 IQR); box widths proportional to the number of measurements.";
-  f.content = std::move(c);
-  return f;
-}
 
 }  // namespace ra::plots

@@ -37,17 +37,5 @@ Figure histogram_figure(const std::string& id, const std::string& title,
                         const std::string& axis_label, const std::vector<NamedSample>& samples,
                         double scale = 1.0, std::size_t max_bins = 200);
 
-// Box plots of samples by category and series (paper Figs. 6, 8, 10, 12): quartiles Hyndman-Fan 6,
-// whiskers to the most extreme values within 1.5 IQR of the box. Empty samples are skipped.
-struct CategorySample {
-  std::string category, series;
-  std::vector<double> values;  // record units
-};
-Figure box_plot_figure(const std::string& id, const std::string& title,
-                       const std::string& x_label, const std::string& y_label,
-                       const std::vector<CategorySample>& samples, double scale = 1.0);
-
-// "x 10^-3" style suffix for a display exponent (display_exponent()); "" for 0.
-std::string scale_suffix(int exponent);
 
 }  // namespace ra::plots

@@ -151,7 +151,6 @@ SceneRenderer::~SceneRenderer() {
 const RendererInfo& SceneRenderer::info() const { return impl_->info; }
 const scenes::CameraSettings& SceneRenderer::camera() const { return impl_->cam; }
 bool SceneRenderer::measuring_gpu() const { return impl_->gpu; }
-std::size_t SceneRenderer::object_count() const { return impl_->objects.size(); }
 
 void SceneRenderer::upload(const scenes::Scene& scene) {
   const platforms::GlApi* gl = impl_->gl;

@@ -56,7 +56,7 @@ class SceneRenderer {
   // Makes the context of `platform` (an OSMesa platform of platforms/platform.h; sets GALLIUM_DRIVER
   // and LP_NUM_THREADS=0 unless already set), a framebuffer object of cam.width x cam.height with
   // RGBA8 colour and 24-bit depth. `gpu_timer`: use GL_TIME_ELAPSED when supported.
-  // Throws ra::UserError for a platform without a Mesa driver, std::runtime_error when GL fails.
+  // Throws ra::util::UserError for a platform without a Mesa driver, std::runtime_error when GL fails.
   SceneRenderer(const std::string& platform, const scenes::CameraSettings& cam,
                 bool gpu_timer = true);
   ~SceneRenderer();
@@ -70,7 +70,6 @@ class SceneRenderer {
   // Uploads `scene` (replacing the previous one): per object a vertex buffer (x y z s t floats)
   // and an index buffer holding its strips; every texture. Keeps no pointer into `scene`.
   void upload(const scenes::Scene& scene);
-  std::size_t object_count() const;
 
   // Sets the modelview matrix of `vp` (the projection is the camera's).
   void set_viewpoint(const scenes::Viewpoint& vp);

@@ -26,7 +26,6 @@ class ZstdFrameWriter {
   ZstdFrameWriter& operator=(const ZstdFrameWriter&) = delete;
 
   void write(std::string_view bytes) { pending_.append(bytes); }
-  std::size_t pending_bytes() const { return pending_.size(); }
   // Compresses what was written since the last frame into a frame of its own (nothing if empty).
   void end_frame();
 
