@@ -171,7 +171,7 @@ std::string audit_junit(const AuditResult& r) {
   std::vector<std::vector<Case>> suites(r.pairs.size());
   for (std::size_t p = 0; p < r.pairs.size(); ++p) {
     const std::string cls = class_prefix(r.pairs[p]);
-    Case drivers{cls, "drivers", {}, "", "", "", ""};
+    Case drivers{cls, "drivers", {}, "", "", "", "", ""};
     drivers.properties = {{"baseline_renderer", r.baseline_drivers[p].renderer},
                           {"baseline_version", r.baseline_drivers[p].version},
                           {"current_renderer", r.current_drivers[p].renderer},
@@ -183,7 +183,7 @@ std::string audit_junit(const AuditResult& r) {
     suites[p].push_back(drivers);
     // Shards: missing ones fail (their group's case names them too); worker failures that did not
     // recur are reported in system-out.
-    Case shards{cls, "shards", {}, "", "", "", ""};
+    Case shards{cls, "shards", {}, "", "", "", "", ""};
     auto of_pair = [&](const std::string& side, const std::string& platform) {
       return platform == (side == "baseline" ? r.pairs[p].baseline : r.pairs[p].current);
     };
