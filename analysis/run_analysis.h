@@ -66,7 +66,7 @@ struct AnalyzeResult {
 // Runs the whole analysis and writes DIR/analysis/. First compares the records with the run's plan
 // (run_completeness.h): a run that is not whole throws IncompleteRunError, naming what is missing,
 // unless allow_incomplete (then README.md and the summary start with what is missing). Throws
-// ra::UserError on bad options or input (a missing directory, no records, a malformed record:
+// ra::util::UserError on bad options or input (a missing directory, no records, a malformed record:
 // located messages).
 AnalyzeResult analyze_run(const AnalyzeOptions& options);
 

@@ -49,7 +49,7 @@ struct RunCompleteness {
 };
 
 // Reads DIR/experiment.toml, DIR/manifest.json and DIR/records/ (every records file once, in
-// blocks: memory does not depend on the run's size). Throws ra::UserError when the experiment file
+// blocks: memory does not depend on the run's size). Throws ra::util::UserError when the experiment file
 // is unreadable. `seals`: the seals of records files already read (by file name, as
 // load_run_records reads them), which are then judged without reading those files again.
 using ShardSeals = std::map<std::string, runner::ShardSeal>;  // by file name

@@ -8,7 +8,7 @@
 // Reading: the columns are located by name in records_header() (metrics/records.h stays the single
 // definition of the schema) and every file's header must equal it. The files are parsed in parallel
 // with std::from_chars (locale-independent, exact); only the columns used here are converted, and
-// each of those is validated: a malformed record is a ra::UserError "FILE:LINE: what is wrong".
+// each of those is validated: a malformed record is a ra::util::UserError "FILE:LINE: what is wrong".
 // Records are checked for consistency: a view has the same parameters in every record of every
 // file, the views of a group share field of view, window and clip planes, and no (platform, kind,
 // view, index) appears twice (a copied shard would be counted twice otherwise).
@@ -172,7 +172,7 @@ struct LoadOptions {
   bool read_seals = false;
 };
 
-// Loads DIR/records/*.csv (*.csv.tmp, unfinished shards, are ignored). Throws ra::UserError when
+// Loads DIR/records/*.csv (*.csv.tmp, unfinished shards, are ignored). Throws ra::util::UserError when
 // DIR or DIR/records does not exist, holds no records file, or a file is malformed or inconsistent
 // (message "FILE:LINE: what", or naming both files of an inconsistency).
 RunRecords load_run_records(const std::string& run_dir, const LoadOptions& options = {});

@@ -64,7 +64,7 @@ constexpr int kTallySchemaVersion = 1;
 
 // The document tally.json holds.
 nlohmann::json tally_json(const RunTally& tally);
-// DIR/analysis/tally.json. ra::UserError saying to run `renderaudit analyze DIR` (first, or again)
+// DIR/analysis/tally.json. ra::util::UserError saying to run `renderaudit analyze DIR` (first, or again)
 // when it is missing, not JSON, of another schema version, or lacks a key.
 RunTally read_tally(const std::string& run_dir);
 

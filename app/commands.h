@@ -1,5 +1,5 @@
 // The subcommands of the `renderaudit` program. Each registers itself on the CLI11 app; its
-// callback throws ra::UserError for bad input and sets the process exit code through `exit_code`.
+// callback throws ra::util::UserError for bad input and sets the process exit code through `exit_code`.
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -1,7 +1,7 @@
 // `renderaudit audit`: a run against its baseline (or two platforms of one run), and a verdict.
 //
 //   1. Identity: both runs must be of the same experiment (manifest.json hash and seed), else
-//      ra::UserError (exit 2) naming both hashes. The drivers (GL_RENDERER / GL_VERSION) of both
+//      ra::util::UserError (exit 2) naming both hashes. The drivers (GL_RENDERER / GL_VERSION) of both
 //      sides are read from the manifests; --expect-renderer checks the current side's.
 //   2. Failures: crash / timeout records, planned shards without a records file; the shard failures
 //      the manifest lists are matched to those (a worker failure whose shard then completed
@@ -76,7 +76,7 @@ struct AuditResult {
   std::size_t recovered_count() const;  // manifest failures that did not recur
 };
 
-// Runs the audit (steps 1-6). Throws ra::UserError for bad input (not run directories, different
+// Runs the audit (steps 1-6). Throws ra::util::UserError for bad input (not run directories, different
 // experiments, unknown platforms, a bad regex): nothing is written then.
 AuditResult run_audit(const AuditOptions& options);
 

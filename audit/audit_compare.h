@@ -100,7 +100,7 @@ struct PrimitiveComparison {
 // are reported as missing shards by audit/run_identity.h. `jobs` threads read views in parallel
 // (0: the number of cores). `compare_verdicts` false: the runs were judged by different
 // conformance rules (RunIdentity::conformance_rules), so a class change alone is no change.
-// Throws ra::UserError on a malformed records file.
+// Throws ra::util::UserError on a malformed records file.
 PrimitiveComparison compare_primitives(const std::string& baseline_dir,
                                        const std::string& current_dir,
                                        const std::vector<PlatformPair>& pairs, unsigned jobs = 0,

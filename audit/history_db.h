@@ -45,7 +45,7 @@ constexpr int kHistoryBusyTimeoutMs = 30000;  // how long an appender or reader 
 std::string default_history_path(const std::string& current_run_dir);
 
 // Appends `s` as one audit, in one transaction. Creates the parent directory, the file and the
-// schema when missing. Throws ra::UserError naming the file when it cannot be opened or written,
+// schema when missing. Throws ra::util::UserError naming the file when it cannot be opened or written,
 // is not a renderaudit history database, or has a newer schema version than this program reads.
 void append_history(const std::string& db_path, const AuditSummary& s);
 
@@ -71,7 +71,7 @@ struct HistoryEntry {
 
 // The last `last` audits (0: all), oldest first, read in one transaction (a consistent snapshot).
 // Metric and class rows are ordered by platform, kind, view group, then metric / visibility.
-// Throws ra::UserError naming the file when it is missing ("no history database at FILE"), is not
+// Throws ra::util::UserError naming the file when it is missing ("no history database at FILE"), is not
 // a history database, or has a newer schema version.
 std::vector<HistoryEntry> read_history(const std::string& db_path, std::size_t last = 0);
 

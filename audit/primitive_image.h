@@ -73,7 +73,7 @@ struct PrimitiveImage {
 std::string forbidden_pixels_text(int64_t violating_pixels, int64_t marked);
 
 // Loads RUN/experiment.toml, renders primitive `index` of `kind` in `view` on `platform` in this
-// process, compares it with the reference rasterizer and writes the PNG. Throws ra::UserError
+// process, compares it with the reference rasterizer and writes the PNG. Throws ra::util::UserError
 // saying what is wrong and what is allowed: no run directory, unknown platform or kind, view or
 // index out of range, a scale out of range, a file that cannot be written.
 PrimitiveImage show_primitive(const ShowRequest& request);

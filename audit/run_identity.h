@@ -32,11 +32,11 @@ struct RunIdentity {
   std::vector<ShardFailureNote> manifest_failures;  // in the manifest's order
 };
 
-// Reads DIR/manifest.json and DIR/experiment.toml. Throws ra::UserError naming the file when either
+// Reads DIR/manifest.json and DIR/experiment.toml. Throws ra::util::UserError naming the file when either
 // is missing or unreadable (DIR is then not a run directory).
 RunIdentity load_run_identity(const std::string& dir);
 
-// Throws ra::UserError naming both directories, both experiment hashes and both seeds when the runs
+// Throws ra::util::UserError naming both directories, both experiment hashes and both seeds when the runs
 // are not of the same experiment (different hash or seed).
 void require_same_experiment(const RunIdentity& baseline, const RunIdentity& current);
 

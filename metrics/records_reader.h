@@ -6,7 +6,7 @@
 // for are converted, with std::from_chars (locale-independent, exact). The header must equal
 // records_header() or, for a schema version 2 file, records_header_v2() (its missing cells read as
 // empty); '#' lines (the seal of a shard file, runner/shard_file.h) are skipped and a
-// CRLF file reads as an LF one. Every error is a ra::UserError "FILE:LINE: what is wrong".
+// CRLF file reads as an LF one. Every error is a ra::util::UserError "FILE:LINE: what is wrong".
 #pragma once
 
 #include <array>
@@ -62,7 +62,7 @@ class RecordRow {
   std::int64_t line_ = 0;
 };
 
-// Calls `row` for every record of the file at `path`, in file order. Throws ra::UserError when the
+// Calls `row` for every record of the file at `path`, in file order. Throws ra::util::UserError when the
 // file cannot be read, its header is not the records header, or a row has the wrong number of
 // cells; `row` may throw too (RecordRow::fail names file and line).
 void for_each_record_row(const std::string& path, const std::function<void(const RecordRow&)>& row);

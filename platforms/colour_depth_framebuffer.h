@@ -13,7 +13,7 @@ struct ColourDepthFramebuffer {
   GLuint framebuffer = 0, colour = 0, depth = 0;  // GL names
 };
 
-// Creates and binds it in the current context. Throws ra::UserError when the window exceeds the
+// Creates and binds it in the current context. Throws ra::util::UserError when the window exceeds the
 // driver's GL_MAX_RENDERBUFFER_SIZE (naming `platform`), std::runtime_error when the driver
 // cannot complete it.
 ColourDepthFramebuffer create_colour_depth_framebuffer(const GlApi& gl, int width, int height,

@@ -37,7 +37,7 @@ class GlContext {
 };
 
 // Makes the context of a GL platform (spec.draws_with_gl()) current on the calling thread. Throws
-// ra::UserError naming the platform, the reason (the EGL error name, the missing extension or
+// ra::util::UserError naming the platform, the reason (the EGL error name, the missing extension or
 // library) and what to install; std::runtime_error when the driver fails in an unexpected way.
 std::unique_ptr<GlContext> create_gl_context(const PlatformSpec& spec);
 
@@ -49,7 +49,7 @@ struct EglDevice {
   bool software = false;   // EGL_MESA_device_software: Mesa's llvmpipe, not hardware
 };
 
-// The EGL devices of this machine. Throws ra::UserError when libEGL or EGL_EXT_device_enumeration
+// The EGL devices of this machine. Throws ra::util::UserError when libEGL or EGL_EXT_device_enumeration
 // is missing (with the reason).
 std::vector<EglDevice> list_egl_devices();
 

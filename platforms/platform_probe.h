@@ -26,15 +26,15 @@ PlatformProbe probe_platform(const PlatformSpec& spec);
 
 // The Vulkan devices (index, name, type; platforms/vulkan_context.h), listed in a forked child:
 // a process that has brought up a Vulkan driver must not fork later (NVIDIA's driver deadlocks
-// in the child), and every probe forks. Throws ra::UserError with the child's reason when it
+// in the child), and every probe forks. Throws ra::util::UserError with the child's reason when it
 // cannot list them (no loader, no driver).
 std::vector<VulkanDeviceInfo> list_vulkan_devices_in_child();
 // The EGL devices (platforms/gl_context.h), listed in a forked child for the same reason: a
 // parent that has loaded NVIDIA's EGL driver leaves every later forked probe without a Vulkan or
-// EGL driver. Throws ra::UserError with the reason when EGL cannot list them.
+// EGL driver. Throws ra::util::UserError with the reason when EGL cannot list them.
 std::vector<EglDevice> list_egl_devices_in_child();
 
-// Throws ra::UserError listing every GL platform of `names` that cannot draw here, with each one's
+// Throws ra::util::UserError listing every GL platform of `names` that cannot draw here, with each one's
 // reason (the run then stops before its directory is written). Unknown names are the experiment
 // parser's business and are skipped here.
 void require_platforms_draw(const std::vector<std::string>& names, const std::string& context);

@@ -45,7 +45,7 @@ struct VulkanDeviceInfo {
   std::string line_modes() const;
 };
 
-// The loader's devices. Throws ra::UserError when libvulkan.so.1 cannot be loaded or no instance
+// The loader's devices. Throws ra::util::UserError when libvulkan.so.1 cannot be loaded or no instance
 // can be made (naming the packages), std::runtime_error on an unexpected Vulkan error.
 std::vector<VulkanDeviceInfo> list_vulkan_devices();
 
@@ -54,7 +54,7 @@ std::vector<VulkanDeviceInfo> list_vulkan_devices();
 // meson prefix's lib/<multiarch>), else build_dir + library_path. Throws UserError naming both.
 std::string resolve_icd_library(const std::string& build_dir, const std::string& library_path);
 
-// The device `spec` draws on, among `devices`. Throws ra::UserError naming the platform when it
+// The device `spec` draws on, among `devices`. Throws ra::util::UserError naming the platform when it
 // names no device here (an index beyond the list, no lavapipe, no GPU) or when the device lacks
 // what the platform needs (the Bresenham line mode, 4 samples per pixel), listing the devices.
 const VulkanDeviceInfo& choose_vulkan_device(const PlatformSpec& spec,

@@ -42,7 +42,7 @@ struct RenderedFigure {
 class FigureRenderer {
  public:
   // Makes the off-screen render window. Requires a usable X display (HeadlessDisplay); throws
-  // ra::UserError when OpenGL cannot be used on it.
+  // ra::util::UserError when OpenGL cannot be used on it.
   explicit FigureRenderer(int width = 1123, int height = 794);
   ~FigureRenderer();
   FigureRenderer(const FigureRenderer&) = delete;

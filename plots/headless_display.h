@@ -23,7 +23,7 @@ namespace ra::plots {
 
 class HeadlessDisplay {
  public:
-  // Ensures an X display for this process (see above). Throws ra::UserError saying what to install
+  // Ensures an X display for this process (see above). Throws ra::util::UserError saying what to install
   // (or which DISPLAY to fix) when no display can be had. `log_path` (optional) receives the
   // private server's output; empty: a temporary file, removed when the server stops.
   explicit HeadlessDisplay(const std::string& log_path = "");

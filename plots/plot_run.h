@@ -61,7 +61,7 @@ struct PlotResult {
   double seconds = 0;         // wall-clock, the whole command
 };
 
-// The Figures of a run (no drawing): what plot_run() draws. Throws ra::UserError when
+// The Figures of a run (no drawing): what plot_run() draws. Throws ra::util::UserError when
 // DIR/analysis/figures.json or tally.json is missing ("run `renderaudit analyze DIR` first"),
 // malformed or of another schema version ("... again").
 struct FigurePlan {
@@ -74,7 +74,7 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs = 0);
 // usable display (headless_display.h).
 PlotResult plot_run(const PlotOptions& options);
 
-// Reads DIR/figures/index.json back (for the report). Throws ra::UserError when it is missing or
+// Reads DIR/figures/index.json back (for the report). Throws ra::util::UserError when it is missing or
 // malformed.
 PlotResult read_figure_index(const std::string& run_dir);
 

@@ -71,7 +71,7 @@ std::string plain_text(const std::string& text);
 
 // A table from a CSV file of the analysis stage: leading "# " lines are the title (first) and the
 // notes; then a header row and the rows (RFC 4180 quoting). Columns whose cells all parse as
-// numbers (or are empty) are right-aligned. Throws ra::UserError on unreadable or malformed CSV.
+// numbers (or are empty) are right-aligned. Throws ra::util::UserError on unreadable or malformed CSV.
 Table read_csv_table(const std::string& path);
 
 }  // namespace ra::report

@@ -17,7 +17,7 @@ namespace ra::report {
 // Blocks of the conclusion (a heading "Conclusion", anchor "conclusion", a sentence per platform,
 // then the tables).
 // `tally` is the run's, from DIR/analysis/tally.json; reads DIR/analysis/ and
-// DIR/audit/audit.json; what is missing is left out and said. Throws ra::UserError on unreadable
+// DIR/audit/audit.json; what is missing is left out and said. Throws ra::util::UserError on unreadable
 // files.
 std::vector<Block> headline_blocks(const std::string& run_dir, const analysis::RunTally& tally);
 

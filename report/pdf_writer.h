@@ -35,7 +35,7 @@ struct PdfLayoutResult {
 };
 
 // Writes the text pages of `doc` (everything but the figures) to `path` (empty: lay out only,
-// nothing written). Throws ra::UserError when cairo cannot write the file.
+// nothing written). Throws ra::util::UserError when cairo cannot write the file.
 PdfLayoutResult write_text_pdf(const Document& doc, const std::string& path,
                                const PageNumbers& numbers);
 

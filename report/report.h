@@ -61,7 +61,7 @@ struct ReportResult {
   double seconds = 0;                     // wall-clock
 };
 
-// Writes DIR/report/report.pdf and report.html. Throws ra::UserError when the run directory is not
+// Writes DIR/report/report.pdf and report.html. Throws ra::util::UserError when the run directory is not
 // one, a stage's output is missing or stale (naming the command), or a tool fails (pdfunite:
 // "install poppler-utils"); analysis::IncompleteRunError when the run is not whole and
 // allow_incomplete is false.

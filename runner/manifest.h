@@ -121,7 +121,7 @@ struct RunManifest {
 };
 
 // `manifest` as parsed from `path` (null: nothing known, every field absent). Throws
-// ra::UserError "PATH: 'KEY' must be ... (found ...)".
+// ra::util::UserError "PATH: 'KEY' must be ... (found ...)".
 RunManifest read_manifest(const nlohmann::json& manifest, const std::string& path);
 // DIR/manifest.json at `path`: throws UserError naming the file when it is missing, not JSON, or a
 // field has the wrong type.

@@ -13,7 +13,7 @@ namespace ra::runner {
 
 // Creates DIR (records/, drivers/, logs/, experiment.toml) or reopens a run of the same experiment,
 // holding DIR/.lock for the returned lock's life. `who` names the writer in the lock ("run",
-// "merge"). Throws ra::UserError for a folder of something else (refused before anything is
+// "merge"). Throws ra::util::UserError for a folder of something else (refused before anything is
 // written into it), a run of another experiment, or a directory that cannot be created.
 std::unique_ptr<util::DirLock> prepare_run_dir(const Experiment& exp, const std::string& dir,
                                                const std::string& who = "run");

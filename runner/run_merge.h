@@ -31,7 +31,7 @@ struct MergeResult {
   std::size_t failed_primitives = 0;                 // crash and timeout records DIR holds
 };
 
-// Throws ra::UserError naming the input and what differs.
+// Throws ra::util::UserError naming the input and what differs.
 MergeResult merge_runs(const MergeOptions& options);
 
 }  // namespace ra::runner

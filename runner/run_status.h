@@ -48,7 +48,7 @@ struct RunStatus {
   std::string state() const;
 };
 
-// Throws ra::UserError when DIR is not a run directory. `check_seals` false: count a shard done
+// Throws ra::util::UserError when DIR is not a run directory. `check_seals` false: count a shard done
 // when its file exists, without reading it (`status --quick`).
 RunStatus read_run_status(const std::string& dir, const std::string& squeue = "squeue",
                           bool check_seals = true);

@@ -18,7 +18,7 @@ struct Slice {
   int count = 1;
 };
 
-// Parses "K/N" (1 <= K <= N <= 100000). Throws ra::UserError "--slice 'TEXT': ..." otherwise.
+// Parses "K/N" (1 <= K <= N <= 100000). Throws ra::util::UserError "--slice 'TEXT': ..." otherwise.
 Slice parse_slice(const std::string& text);
 
 // The shards of slice K of N: shards assigned largest expected cost first, each to the slice with

@@ -38,7 +38,7 @@ std::string node_local_reason(const std::string& dir);
 
 // Plans, writes the scripts and submits them (nothing submitted on a dry run). The run options
 // give the experiment, DIR, the cores per task (`jobs`, default 2) and what every slice passes on
-// (--platform, --timeout, --expect-renderer, --shard-order). Throws ra::UserError for a study
+// (--platform, --timeout, --expect-renderer, --shard-order). Throws ra::util::UserError for a study
 // experiment, a node-local DIR, a missing sbatch, or a refused submission (with sbatch's words).
 SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slurm);
 

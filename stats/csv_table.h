@@ -9,7 +9,7 @@
 // - An empty cell is a missing value: numeric accessors skip it and count it.
 // - Numbers are parsed with std::from_chars (locale-independent, exact); "nan", "inf" and anything
 //   that is not entirely a finite number is an error located by file and line.
-// Every problem with the input is reported as ra::UserError "FILE:LINE: what is wrong".
+// Every problem with the input is reported as ra::util::UserError "FILE:LINE: what is wrong".
 #pragma once
 
 #include <cstddef>
@@ -37,7 +37,7 @@ class CsvTable {
   // Parses CSV text. `source` names it in error messages (normally the file path).
   static CsvTable parse(std::string_view text, const std::string& source);
 
-  // Reads and parses a file. Throws ra::UserError when it cannot be read or is not valid CSV.
+  // Reads and parses a file. Throws ra::util::UserError when it cannot be read or is not valid CSV.
   static CsvTable read_file(const std::string& path);
 
   const std::string& source() const { return source_; }
@@ -48,7 +48,7 @@ class CsvTable {
   // Index of the column named `name`, or nullopt.
   std::optional<std::size_t> find_column(std::string_view name) const;
 
-  // Index of the column named `name`; ra::UserError listing the available columns if there is none.
+  // Index of the column named `name`; ra::util::UserError listing the available columns if there is none.
   std::size_t column(std::string_view name) const;
 
   // The cell text (unquoted) at a row (0-based, header excluded) and column.
@@ -57,11 +57,11 @@ class CsvTable {
   // 1-based line of the source on which a row starts.
   std::size_t line(std::size_t row) const { return lines_.at(row); }
 
-  // The number in a cell; nullopt when the cell is empty. ra::UserError "FILE:LINE: column 'c':
+  // The number in a cell; nullopt when the cell is empty. ra::util::UserError "FILE:LINE: column 'c':
   // 'text' is not a finite number" otherwise.
   std::optional<double> number(std::size_t row, std::size_t column) const;
 
-  // Every number of a column (by name), skipping and counting empty cells. ra::UserError on an
+  // Every number of a column (by name), skipping and counting empty cells. ra::util::UserError on an
   // unknown column or a cell that is not a number.
   NumericColumn numeric_column(std::string_view name) const;
 

@@ -10,7 +10,7 @@
 //   and NumPy's default and is offered for comparison with those tools.
 // - Non-finite values (NaN, +-Inf) are rejected with std::invalid_argument: a NaN in a report must
 //   come from a deliberate decision, never from arithmetic on bad input. Callers turn the exception
-//   into a located message (ra::UserError) where they know the file and line.
+//   into a located message (ra::util::UserError) where they know the file and line.
 // - Mean and standard deviation are accurate on data with many constant leading digits (NIST StRD
 //   NUMACC1-4): the data are shifted by their first value, summed with compensation, and the mean
 //   is corrected by a second pass over the residuals.

@@ -34,7 +34,7 @@
 // - R-squared is 1 - RSS / TSS. With an intercept TSS is centred, sum (y - mean y)^2; without one
 //   it is uncentred, sum y^2, as NIST StRD certifies it for its no-intercept models (NoInt1,
 //   NoInt2) and as R's summary.lm reports it. `r_squared_centred` says which.
-// - Bad input throws ra::UserError naming what is wrong: fewer observations than parameters plus
+// - Bad input throws ra::util::UserError naming what is wrong: fewer observations than parameters plus
 //   one, predictors of another length than y, a NaN or infinite value (which column, which
 //   observation), a design whose coefficients the data do not determine (which columns).
 #pragma once
@@ -87,7 +87,7 @@ struct LinearFit {
 // - y: the response.
 // - intercept: whether to fit b0 (a column of ones).
 // - names: one per predictor, for results and messages; empty means "x1", "x2", ...
-// Throws ra::UserError on the bad input listed above.
+// Throws ra::util::UserError on the bad input listed above.
 LinearFit fit_least_squares(const std::vector<std::vector<double>>& predictors,
                             const std::vector<double>& y, bool intercept,
                             const std::vector<std::string>& names = {});
@@ -95,7 +95,7 @@ LinearFit fit_least_squares(const std::vector<std::vector<double>>& predictors,
 // Least-squares fit of a polynomial in x of the given degree: y = b0 + b1 x + ... + bd x^d (b0
 // only with `intercept`). The powers of the double x are formed in binary128, not rounded to
 // doubles, and the fit is always solved in binary128 (see above). Parameters are named
-// "(intercept)", x_name, x_name^2, ... Throws ra::UserError on the bad input listed above, and
+// "(intercept)", x_name, x_name^2, ... Throws ra::util::UserError on the bad input listed above, and
 // when x has fewer distinct values (nonzero ones without an intercept) than the degree needs: the
 // design of powers then has exactly dependent columns.
 LinearFit fit_polynomial(const std::vector<double>& x, const std::vector<double>& y, int degree,

@@ -84,7 +84,7 @@ struct HeuristicFit {
 };
 
 // Fits `h` to y_us[i] (a time in us, e.g. the median of the repetitions) of objects x[i] by least
-// squares. Throws ra::UserError when there are too few samples (fewer than parameters + 2) or the
+// squares. Throws ra::util::UserError when there are too few samples (fewer than parameters + 2) or the
 // design is degenerate (e.g. all #pix zero for H4).
 HeuristicFit fit_heuristic(Heuristic h, const std::vector<ObjectCounts>& x,
                            const std::vector<double>& y_us, bool intercept);

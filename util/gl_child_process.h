@@ -28,7 +28,7 @@ class ChildProcessError : public std::runtime_error {
  public:
   ChildProcessError(const std::string& what, bool user_error)
       : std::runtime_error(what), user_error_(user_error) {}
-  // `work` threw a ra::UserError (bad input rather than a failure of the driver).
+  // `work` threw a ra::util::UserError (bad input rather than a failure of the driver).
   bool user_error() const { return user_error_; }
 
  private:
