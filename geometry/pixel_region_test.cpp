@@ -140,7 +140,9 @@ TEST(BandRegion, HoldsTheDilatedReferenceTriangleOnRandomTriangles) {
       ASSERT_TRUE(bands.contains({lo[y], y}) && bands.contains({hi[y], y}))
           << "trial " << trial << " row " << y << " columns " << lo[y] << "-" << hi[y];
       for (const PixelRect& r : bands.rects)  // one band per row: the ends' band holds the row
-        if (r.y0 <= y && y < r.y1) EXPECT_TRUE(r.x0 <= lo[y] && hi[y] < r.x1);
+        if (r.y0 <= y && y < r.y1) {
+          EXPECT_TRUE(r.x0 <= lo[y] && hi[y] < r.x1);
+        }
     }
     band_area += bands.area();
     box_area += box.area();

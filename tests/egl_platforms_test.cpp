@@ -84,7 +84,9 @@ TEST(EglPlatforms, TheSameDriverThroughEglDrawsWhatItDrawsThroughOsmesa) {
     const double ratio = j["timer_over_cpu"];
     EXPECT_GT(ratio, 0) << p;
     EXPECT_LT(ratio, 1.5) << p;
-    if (std::string(p).find("softpipe") != std::string::npos) EXPECT_GT(ratio, 0.5) << p;
+    if (std::string(p).find("softpipe") != std::string::npos) {
+      EXPECT_GT(ratio, 0.5) << p;
+    }
   }
 }
 
