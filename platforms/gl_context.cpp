@@ -21,6 +21,12 @@ void set_mesa_environment(const PlatformSpec& spec) {
     setenv("MESA_LOADER_DRIVER_OVERRIDE", "zink", 1);
     setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
     unsetenv("GALLIUM_DRIVER");
+    // Mesa's Vulkan device-select layer asks libwayland for a display, which prints "error:
+    // XDG_RUNTIME_DIR is invalid or not set" (twice) when the variable is unset or empty.
+    // Surfaceless drawing needs no display server: a folder that does not exist makes the
+    // connection fail quietly, and changes nothing else (the layer's device order stays).
+    if (const char* x = std::getenv("XDG_RUNTIME_DIR"); !x || !*x)
+      setenv("XDG_RUNTIME_DIR", "/nonexistent/renderaudit-no-display-server", 1);
   } else {
     setenv("GALLIUM_DRIVER", spec.mesa_driver.c_str(), 1);
     // newer Mesa falls back to a software driver through EGL only when this is set

@@ -2,6 +2,7 @@
 #include "plots/figure_planner.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -225,14 +226,16 @@ void plan_conformance_overview(FigurePlanner& p) {
     c.series.push_back(std::move(s));
   }
   if (c.series.empty()) return;
+  // short labels ("T C": triangles of view group C): twelve of them share one short figure
   for (an::PrimitiveKind kind : p.run.kinds())
     for (int g : p.run.view_groups(kind))
-      c.categories.push_back(std::string(an::kind_name(kind)) + "s " + an::view_group_label(g));
+      c.categories.push_back(std::string(1, char(std::toupper(an::kind_name(kind)[0]))) + " " +
+                             an::view_group_label(g));
   Figure f;
   f.id = "conformance.overview";
   f.title = "Pixel sets that differ from the reference rasterizer: " + join(platforms, ", ") +
             ", every kind and view group";
-  f.x_label = "kind and view group";
+  f.x_label = "kind (P points, L line segments, T triangles) and view group";
   f.y_label = "differs (%)";
   // no note inside: the figure is short; its caption says what the bars are
   f.caption = "Where each driver draws other pixels than the exact reference rasterizer, per "

@@ -256,3 +256,14 @@ TEST(EglPlatforms, PlatformsListsWhatCanDrawAndWhyTheRestCannot) {
 }
 
 }  // namespace
+
+// An unset or empty XDG_RUNTIME_DIR (a session without one) makes libwayland complain through
+// Mesa's Vulkan device-select layer under zink; surfaceless drawing needs no display server, and
+// `platforms` prints no such line.
+TEST(EglPlatforms, NoXdgRuntimeDirPrintsNothingFromZink) {
+  for (const char* env : {"env XDG_RUNTIME_DIR= ", "env -u XDG_RUNTIME_DIR "}) {
+    const Outcome o = run_command(env + std::string(RA_BINARY) + " platforms egl-zink");
+    EXPECT_NE(o.output.find("egl-zink"), std::string::npos) << env << o.output;
+    EXPECT_EQ(o.output.find("XDG_RUNTIME_DIR"), std::string::npos) << env << o.output;
+  }
+}
