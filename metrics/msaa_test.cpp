@@ -1,4 +1,4 @@
-// The antialiasing condition (`osmesa-llvmpipe-msaa4`, gl_platform.cpp) and the coverage form
+// The antialiasing condition (`osmesa-llvmpipe-msaa4`, platforms/readback_measurement.cpp) and the coverage form
 // of the triangle metric (measure_triangle_coverage, triangle_metrics.h): coverage is read back as
 // samples lit / 4, the metric compares it with exact pixel areas, the completeness proof still
 // finds a wild pixel, and antialiasing lowers the triangle error (what it buys).

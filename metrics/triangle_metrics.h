@@ -19,7 +19,7 @@
 // by (or lying on) the window sides x = 0, x = W, y = 0, y = H: pixels end exactly there, so no
 // rasterization error is possible along them.
 //
-// Antialiased renderings (multisample platforms, see gl_platform.cpp): a pixel p is partly lit,
+// Antialiased renderings (multisample platforms, see platforms/readback_measurement.cpp): a pixel p is partly lit,
 // with coverage c(p) = samples lit / samples in [0, 1], and the same sums become
 //   TEs_cov = sum_p (c(p) - a(p)) = total coverage - area(proj T)
 //   TEu_cov = sum_p |c(p) - a(p)|

@@ -1,5 +1,5 @@
 // Finding lit pixels in a read-back row of RGBA8 pixels (little-endian: R in the low byte), the
-// inner loop of every readback (gl_platform.cpp, vulkan_platform.cpp). A pixel is lit when its RGB bytes are not all
+// inner loop of every readback (readback_measurement.cpp). A pixel is lit when its RGB bytes are not all
 // zero (`any_colour`) or equal `colour` (the colour a primitive was drawn in); alpha is ignored.
 #pragma once
 

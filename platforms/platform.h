@@ -23,7 +23,7 @@ struct DriverInfo {
   bool timer_query = false;     // GL_ARB_timer_query
   int max_samples = 0;          // GL_MAX_SAMPLES (0 for the non-GL platforms)
   std::string backend;          // GlContext::backend(): how the context was made
-  // GL_TIME_ELAPSED / CPU wall time over the same draws (gl_platform.cpp): near 1 where the
+  // GL_TIME_ELAPSED / CPU wall time over the same draws (RasterDevice::timer_over_cpu): near 1 where the
   // driver's timer measures what the CPU waits for; NaN without a timer query.
   double timer_over_cpu = std::numeric_limits<double>::quiet_NaN();
   // Vulkan platforms only (platforms/vulkan_context.h): lineSubPixelPrecisionBits, strictLines,
@@ -68,7 +68,7 @@ class Platform {
   virtual RenderResult render(const geometry::Primitive& prim,
                               const geometry::PixelRegion& expected) = 0;
   // Draws each primitive as render() would, in order, and returns their results. An
-  // implementation may share one completeness proof among the batch (gl_platform.cpp); this
+  // implementation may share one completeness proof among the batch (readback_measurement.cpp); this
   // default draws them one by one.
   virtual std::vector<RenderResult> render_batch(
       const std::vector<geometry::Primitive>& prims,
@@ -99,7 +99,7 @@ enum class ReadbackMethod {
 std::unique_ptr<Platform> create_gl_platform(
     const PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
     std::vector<uint64_t> wild_pixel_indices = {});
-// A Vulkan platform (spec.draws_with_vulkan(); vulkan_platform.cpp): the same readback methods
+// A Vulkan platform (spec.draws_with_vulkan(); vulkan_device.cpp): the same readback methods
 // and test faults as create_gl_platform.
 std::unique_ptr<Platform> create_vulkan_platform(
     const PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,

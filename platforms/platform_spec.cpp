@@ -36,7 +36,7 @@ const std::vector<PlatformSpec>& platform_specs() {
        B::kEglDevice, ""},
       {"egl-device-msaa4", "the first hardware EGL device, antialiased: 4x multisampling",
        B::kEglDevice, "", 4},
-      // Vulkan (platforms/vulkan_platform.cpp): Mesa's lavapipe, and any Vulkan device.
+      // Vulkan (platforms/vulkan_device.cpp): Mesa's lavapipe, and any Vulkan device.
       {"vk-lavapipe",
        "Mesa's lavapipe (Vulkan on llvmpipe), default lines: rectangles under strictLines",
        B::kVulkan, "lavapipe"},

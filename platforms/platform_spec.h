@@ -28,7 +28,7 @@ struct PlatformSpec {
   std::string mesa_driver;
   // Samples per pixel of the multisample colour buffer drawn into: 0 for the aliased platforms
   // (one sample at the pixel centre, the paper's condition), 4 for the antialiasing condition
-  // (`*-msaa4`, see gl_platform.cpp).
+  // (`*-msaa4`, see platforms/readback_measurement.cpp).
   int samples = 0;
   // kEglDevice: the index among EGL devices (`egl-device:N`); -1 for `egl-device`, the first
   // device that is not Mesa's software one.

@@ -1,4 +1,4 @@
-// What a Vulkan platform draws with (vulkan_platform.cpp): host-visible buffers, the colour
+// What a Vulkan platform draws with (vulkan_device.cpp): host-visible buffers, the colour
 // images, the render pass and one pipeline per primitive kind, with the SPIR-V of
 // platforms/shaders/ compiled at build time and embedded (running needs no shader compiler).
 //

@@ -1,4 +1,4 @@
-// Every fragment of a primitive in the primitive's colour (a 24-bit counter; vulkan_platform.cpp).
+// Every fragment of a primitive in the primitive's colour (a 24-bit counter; vulkan_device.cpp).
 #version 450
 
 layout(push_constant) uniform Draw {

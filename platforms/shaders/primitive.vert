@@ -1,7 +1,7 @@
-// One point, segment or triangle of the Vulkan platforms (vulkan_platform.cpp). The matrix takes
+// One point, segment or triangle of the Vulkan platforms (vulkan_device.cpp). The matrix takes
 // object coordinates to Vulkan clip coordinates: the view's projection x modelview with y negated
 // and z' = (z + w) / 2, formed in double on the CPU, so that the clip volume, the window position
-// and the pixel a fragment lands in are GL's (see vulkan_platform.cpp).
+// and the pixel a fragment lands in are GL's (see vulkan_device.cpp).
 #version 450
 
 layout(location = 0) in vec4 position;

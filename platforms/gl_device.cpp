@@ -1,0 +1,325 @@
+// A GL driver as a RasterDevice (platforms/raster_device.h): every GL back end (OSMesa, Mesa's
+// surfaceless EGL, an EGL device) through one context (platforms/gl_context.h), every GL call
+// through its function table. The measurement itself is platforms/readback_measurement.cpp.
+//
+// Drawing goes to a framebuffer object of the view's size, never to a window-system buffer (EGL
+// has none here; OSMesa's: glFinish on it copies the whole window into the caller's memory, about
+// 150 us at 907x907, 30x the cost of drawing one primitive); with an FBO only the pixels read back
+// are copied, by glReadPixels. The occlusion count is GL_SAMPLES_PASSED; the wait is glFinish.
+//
+// Multisample platforms: the primitive is drawn into a multisample FBO (GL_RGBA8, `samples` samples
+// per pixel, GL_MULTISAMPLE enabled) and resolved (glBlitFramebuffer) into a single-sample FBO that
+// glReadPixels reads. Sample positions (llvmpipe 4x, from glGetMultisamplefv): (0.375, 0.125),
+// (0.875, 0.375), (0.125, 0.625), (0.625, 0.875).
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "platforms/gl_context.h"
+#include "platforms/raster_device.h"
+
+namespace ra::platforms {
+namespace {
+
+class GlDevice : public RasterDevice {
+ public:
+  explicit GlDevice(const PlatformSpec& spec) : name_(spec.name), samples_(spec.samples) {
+    context_ = create_gl_context(spec);  // sets Mesa's environment and checks the driver
+    info_.backend = context_->backend();
+    gl().GenFramebuffers(1, &framebuffer_);
+    gl().BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    gl().GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size_);
+    gl().GenQueries(1, &query_);
+    if (samples_ > 0) init_multisample();
+
+    const char* ext = reinterpret_cast<const char*>(gl().GetString(GL_EXTENSIONS));
+    info_.renderer = reinterpret_cast<const char*>(gl().GetString(GL_RENDERER));
+    info_.version = reinterpret_cast<const char*>(gl().GetString(GL_VERSION));
+    info_.vendor = reinterpret_cast<const char*>(gl().GetString(GL_VENDOR));
+    GLint bits = 0;
+    gl().GetIntegerv(GL_SUBPIXEL_BITS, &bits);
+    info_.subpixel_bits = bits;
+    info_.timer_query = ext && std::strstr(ext, "GL_ARB_timer_query");
+    GLint max_samples = 0;
+    gl().GetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    info_.max_samples = max_samples;
+
+    // The paper's conditions: white on black, size/width 1, no antialiasing, both faces filled.
+    for (GLenum cap : {GL_DEPTH_TEST, GL_LIGHTING, GL_DITHER, GL_POINT_SMOOTH, GL_LINE_SMOOTH,
+                       GL_POLYGON_SMOOTH, GL_MULTISAMPLE, GL_CULL_FACE, GL_BLEND, GL_SCISSOR_TEST})
+      gl().Disable(cap);
+    gl().PointSize(1);
+    gl().LineWidth(1);
+    gl().PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    gl().ClearColor(0, 0, 0, 0);
+    gl().Color4f(1, 1, 1, 1);
+    gl().PixelStorei(GL_PACK_ALIGNMENT, 4);
+    if (samples_ > 0) gl().Enable(GL_MULTISAMPLE);  // the antialiasing condition
+  }
+
+  DriverInfo info() const override { return info_; }
+
+  // Several platforms in one process (tests: an aliased and a multisample one side by side) each
+  // have their own context; GL calls go to the current one.
+  void bind() override { context_->make_current(); }
+
+  void set_view(const geometry::View& view) override {
+    if (view.width != width_ || view.height != height_) resize(view.width, view.height);
+    gl().Viewport(0, 0, width_, height_);
+    if (!warmed_up_) warm_up();
+    gl().MatrixMode(GL_PROJECTION);
+    gl().LoadMatrixd(view.projection.m.data());
+    gl().MatrixMode(GL_MODELVIEW);
+    gl().LoadMatrixd(view.view_matrix.m.data());
+  }
+  int width() const override { return width_; }
+  int height() const override { return height_; }
+
+  double draw(const std::vector<geometry::Primitive>& prims, const std::vector<uint32_t>& colours,
+              bool counted, const geometry::Pixel* wild,
+              const std::vector<geometry::PixelRect>* resolve_rects = nullptr) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (counted) gl().BeginQuery(GL_SAMPLES_PASSED, query_);
+    for (size_t i = 0; i < prims.size(); ++i) {
+      use_colour(colours[i]);
+      draw_primitive(prims[i]);
+    }
+    if (wild) {
+      use_colour(colours.front());
+      draw_wild_pixel(*wild);
+    }
+    if (counted) gl().EndQuery(GL_SAMPLES_PASSED);
+    if (resolve_rects) resolve(*resolve_rects);
+    gl().Finish();
+    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  uint64_t counted_fragments() override {
+    GLuint n = 0;
+    gl().GetQueryObjectuiv(query_, GL_QUERY_RESULT, &n);
+    return n;
+  }
+
+  // Blits the rectangles from the multisample FBO into the resolve FBO (same place).
+  void resolve(const std::vector<geometry::PixelRect>& rects) override {
+    gl().BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+    gl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_framebuffer_);
+    for (const geometry::PixelRect& r : rects)
+      gl().BlitFramebuffer(r.x0, r.y0, r.x1, r.y1, r.x0, r.y0, r.x1, r.y1, GL_COLOR_BUFFER_BIT,
+                           GL_NEAREST);
+    // Steady state: draw (and clear) into the multisample FBO, read from the resolved one.
+    gl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
+    gl().BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_framebuffer_);
+  }
+
+  // glReadPixels of each rectangle (rows bottom-up, as GL window coordinates) into one buffer.
+  void read(const std::vector<geometry::PixelRect>& rects) override {
+    offsets_.clear();
+    size_t total = 0;
+    for (const geometry::PixelRect& r : rects) {
+      offsets_.push_back(total);
+      total += size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
+    }
+    readback_.resize(total);
+    for (size_t i = 0; i < rects.size(); ++i) {
+      const geometry::PixelRect& r = rects[i];
+      gl().ReadPixels(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0, GL_RGBA, GL_UNSIGNED_BYTE,
+                      readback_.data() + offsets_[i]);
+    }
+  }
+  const uint32_t* pixels(size_t i) const override { return readback_.data() + offsets_[i]; }
+  bool rows_top_down() const override { return false; }
+
+  // A whole-window clear is a fast path in Mesa, unlike a scissored one.
+  void clear() override {
+    gl().Clear(GL_COLOR_BUFFER_BIT);
+    gl().Finish();
+  }
+
+  size_t max_batch() const override { return std::numeric_limits<size_t>::max(); }
+
+  // GL_TIME_ELAPSED against the CPU clock over the same draws: 8 rounds of 16 window-filling
+  // quads at 256 x 256, each round between two glFinish; the median of the rounds' ratios. Near 1
+  // where the timer measures what the CPU waits for (llvmpipe times its own rasterization on the
+  // CPU); a GPU that runs while the CPU submits shows less. Leaves the window at 256 x 256 and the
+  // matrices at identity: set_view() sets all of it again.
+  double timer_over_cpu() override {
+    resize(256, 256);
+    gl().Viewport(0, 0, 256, 256);
+    gl().MatrixMode(GL_PROJECTION);
+    gl().LoadIdentity();
+    gl().MatrixMode(GL_MODELVIEW);
+    gl().LoadIdentity();
+    GLuint query = 0;
+    gl().GenQueries(1, &query);
+    std::vector<double> ratios;
+    for (int round = 0; round < 8; ++round) {
+      gl().Finish();
+      const auto t0 = std::chrono::steady_clock::now();
+      gl().BeginQuery(GL_TIME_ELAPSED, query);
+      for (int i = 0; i < 16; ++i) {
+        gl().Begin(GL_TRIANGLES);
+        for (const double* v : {kQuad[0], kQuad[1], kQuad[2], kQuad[0], kQuad[2], kQuad[3]})
+          gl().Vertex2d(v[0], v[1]);
+        gl().End();
+      }
+      gl().EndQuery(GL_TIME_ELAPSED);
+      gl().Finish();
+      const double cpu_ns =
+          std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+      GLuint64 gl_ns = 0;
+      gl().GetQueryObjectui64v(query, GL_QUERY_RESULT, &gl_ns);
+      if (cpu_ns > 0) ratios.push_back(double(gl_ns) / cpu_ns);
+    }
+    clear();
+    if (ratios.empty()) return std::numeric_limits<double>::quiet_NaN();
+    std::sort(ratios.begin(), ratios.end());
+    return 0.5 * (ratios[(ratios.size() - 1) / 2] + ratios[ratios.size() / 2]);
+  }
+
+ private:
+  static constexpr double kQuad[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};  // NDC corners
+  const GlApi& gl() const { return context_->gl(); }
+
+  // The multisample FBO's entry points and its resolve target; fails, naming the platform, when the
+  // driver cannot give `samples_` samples per pixel.
+  void init_multisample() {
+    GLint max_samples = 0;
+    gl().GetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    if (max_samples < samples_)
+      throw std::runtime_error("platform " + name_ + " needs " + std::to_string(samples_) +
+                               " samples per pixel, but this driver (" +
+                               reinterpret_cast<const char*>(gl().GetString(GL_RENDERER)) +
+                               ") has GL_MAX_SAMPLES " + std::to_string(max_samples));
+    gl().GenFramebuffers(1, &resolve_framebuffer_);
+  }
+
+  void use_colour(uint32_t c) {  // 0xBBGGRR
+    gl().Color4ub(GLubyte(c), GLubyte(c >> 8), GLubyte(c >> 16), 255);
+  }
+
+  void draw_primitive(const geometry::Primitive& prim) {
+    static const GLenum modes[] = {GL_POINTS, GL_LINES, GL_TRIANGLES};
+    gl().Begin(modes[int(prim.kind)]);
+    for (int i = 0; i < geometry::vertex_count(prim.kind); ++i)
+      gl().Vertex3d(prim.v[i].x, prim.v[i].y, prim.v[i].z);
+    gl().End();
+  }
+
+  // Lights pixel p through GL (so only the readback can find it): a point at its centre in NDC.
+  void draw_wild_pixel(geometry::Pixel p) {
+    gl().MatrixMode(GL_PROJECTION);
+    gl().PushMatrix();
+    gl().LoadIdentity();
+    gl().MatrixMode(GL_MODELVIEW);
+    gl().PushMatrix();
+    gl().LoadIdentity();
+    gl().Begin(GL_POINTS);
+    gl().Vertex2d(2.0 * (p.x + 0.5) / width_ - 1.0, 2.0 * (p.y + 0.5) / height_ - 1.0);
+    gl().End();
+    gl().PopMatrix();
+    gl().MatrixMode(GL_PROJECTION);
+    gl().PopMatrix();
+    gl().MatrixMode(GL_MODELVIEW);
+  }
+
+  // One small point, line and triangle drawn untimed before the first primitive: the driver
+  // compiles its shaders for this state at the first draw (about 7 ms on llvmpipe), which would
+  // otherwise land in the first primitive's render_us. The caller clears.
+  void warm_up() {
+    gl().MatrixMode(GL_PROJECTION);
+    gl().LoadIdentity();
+    gl().MatrixMode(GL_MODELVIEW);
+    gl().LoadIdentity();
+    gl().Color4f(1, 1, 1, 1);
+    gl().Begin(GL_POINTS);
+    gl().Vertex2d(0, 0);
+    gl().End();
+    gl().Begin(GL_LINES);
+    gl().Vertex2d(-0.01, 0);
+    gl().Vertex2d(0.01, 0.005);
+    gl().End();
+    gl().Begin(GL_TRIANGLES);
+    gl().Vertex2d(-0.01, -0.01);
+    gl().Vertex2d(0.01, -0.01);
+    gl().Vertex2d(0, 0.01);
+    gl().End();
+    gl().Finish();
+    warmed_up_ = true;
+  }
+
+  void resize(int w, int h) {
+    if (w > max_size_ || h > max_size_)
+      throw std::runtime_error("window " + std::to_string(w) + "x" + std::to_string(h) +
+                               " exceeds this driver's GL_MAX_RENDERBUFFER_SIZE " +
+                               std::to_string(max_size_));
+    if (samples_ > 0) return resize_multisample(w, h);
+    if (renderbuffer_) gl().DeleteRenderbuffers(1, &renderbuffer_);
+    gl().GenRenderbuffers(1, &renderbuffer_);
+    gl().BindRenderbuffer(GL_RENDERBUFFER, renderbuffer_);
+    gl().RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    gl().FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_);
+    if (gl().CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("incomplete framebuffer for a " + std::to_string(w) + "x" +
+                               std::to_string(h) + " window");
+    width_ = w;
+    height_ = h;
+  }
+
+  // The multisample FBO (drawn into) and the single-sample resolve FBO (read back), both w x h.
+  void resize_multisample(int w, int h) {
+    const std::string size = std::to_string(w) + "x" + std::to_string(h);
+    if (renderbuffer_) gl().DeleteRenderbuffers(1, &renderbuffer_);
+    if (resolve_renderbuffer_) gl().DeleteRenderbuffers(1, &resolve_renderbuffer_);
+    gl().GenRenderbuffers(1, &renderbuffer_);
+    gl().BindRenderbuffer(GL_RENDERBUFFER, renderbuffer_);
+    gl().RenderbufferStorageMultisample(GL_RENDERBUFFER, samples_, GL_RGBA8, w, h);
+    GLint got = 0;  // GL may give more samples than asked for: coverage would then be k / got
+    gl().GetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &got);
+    if (got != samples_)
+      throw std::runtime_error("platform " + name_ + ": asked for " + std::to_string(samples_) +
+                               " samples per pixel, the driver gave " + std::to_string(got));
+    gl().BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    gl().FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_);
+    if (gl().CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("incomplete multisample framebuffer for a " + size + " window");
+    gl().GenRenderbuffers(1, &resolve_renderbuffer_);
+    gl().BindRenderbuffer(GL_RENDERBUFFER, resolve_renderbuffer_);
+    gl().RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+    gl().BindFramebuffer(GL_FRAMEBUFFER, resolve_framebuffer_);
+    gl().FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                              resolve_renderbuffer_);
+    if (gl().CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("incomplete resolve framebuffer for a " + size + " window");
+    gl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer_);
+    gl().BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_framebuffer_);
+    width_ = w;
+    height_ = h;
+  }
+
+  std::string name_;  // the platform's name, for messages
+  int samples_ = 0;   // PlatformSpec::samples; 0 = aliased
+  std::unique_ptr<GlContext> context_;
+  DriverInfo info_;
+  GLuint framebuffer_ = 0, renderbuffer_ = 0, query_ = 0;
+  // Multisample platforms: the resolve target.
+  GLuint resolve_framebuffer_ = 0, resolve_renderbuffer_ = 0;
+  GLint max_size_ = 0;
+  bool warmed_up_ = false;  // warm_up() has run
+  int width_ = 0, height_ = 0;
+  std::vector<uint32_t> readback_;  // the last read(), rectangle after rectangle
+  std::vector<size_t> offsets_;     // where each rectangle starts in readback_
+};
+
+}  // namespace
+
+std::unique_ptr<RasterDevice> create_gl_device(const PlatformSpec& spec) {
+  return std::make_unique<GlDevice>(spec);
+}
+
+}  // namespace ra::platforms

@@ -1,0 +1,389 @@
+// The measurement of every GL and Vulkan platform: what each primitive lit, found by reading back
+// only the region where it should lie and proving that nothing was lit elsewhere. The driver is
+// reached through a RasterDevice (platforms/raster_device.h); this file holds no API calls.
+//
+// Completeness of the readback: only the expected region is scanned, and an occlusion query
+// counts the fragments the primitive produced. Without multisampling and with no depth or stencil
+// test, every fragment of one point, line or polygon lights a distinct pixel, so when the count
+// equals the number of lit pixels found in the region nothing was lit elsewhere; when it differs,
+// the whole window is scanned (RenderResult::full_scan).
+//
+// No clear between primitives: each primitive is drawn in its own colour (a 24-bit counter) and its
+// pixels are those holding exactly that colour. Coverage does not depend on the colour (it is a
+// vertex attribute, not a rasterization parameter), and a scissored clear is a quad draw in Mesa:
+// it cost 1.7x (llvmpipe) to 1.8x (softpipe) the drawing of a large 907x907 triangle. Should a
+// driver not return the colour exactly, or leave pixels of another colour, the full scan still
+// disagrees with the count and the primitive is drawn again the old way: whole window cleared,
+// white, every non-black pixel taken.
+//
+// Batches: each primitive in its own colour, one occlusion query and one wait around them all (a
+// wait per primitive cost more than a small primitive's drawing: llvmpipe walks all its tiles at
+// every flush). The sum over the batch of the pixels found in each primitive's region with its
+// colour equals the fragment count only when every fragment was found where it belongs and none
+// was overwritten by another (each found pixel is a distinct fragment); any other outcome redraws
+// the batch one primitive at a time, each with its own proof and time.
+//
+// Multisample platforms (PlatformSpec::samples > 0, the antialiasing condition). The primitive is
+// drawn white into a multisample window and the expected region is resolved into a single-sample
+// one, inside render_us: what antialiasing costs includes the resolve. Resolved colours blend
+// with the background, so the colour counter cannot work here: the resolved red value v of a
+// pixel gives the number of its samples the primitive covered, k = round(v * samples / 255)
+// (llvmpipe, 4 samples: v is one of 0, 64, 128, 191, 255 for k = 0..4; any value more than 1 away
+// from 255 k / samples aborts the primitive with the value). Under multisampling the occlusion
+// query counts samples, so the proof compares it with the sum of k over the region read.
+// Clearing: after the readback the primitive is drawn again in black: the same vertices and state
+// but the colour give the same samples (GL invariance; the colour is a vertex attribute), so
+// exactly what it lit is cleared, at one more draw outside render_us (a scissored clear cost 2-3x
+// more, a whole-window clear of the 4x buffer about 25 ms at 907 x 907). Should a sample stay lit
+// anyway, the next primitive's count exposes it (more samples found than passed), and that
+// primitive is drawn again on a cleared window, read whole. Multisample primitives are drawn one
+// at a time.
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "platforms/pixel_scan.h"
+#include "platforms/platform.h"
+#include "platforms/raster_device.h"
+
+namespace ra::platforms {
+namespace {
+
+constexpr uint32_t kAnyColour = 0xffffffffu;  // scan for any pixel that is not black
+
+class ReadbackMeasurement : public Platform {
+ public:
+  ReadbackMeasurement(std::unique_ptr<RasterDevice> device, const PlatformSpec& spec,
+                      ReadbackMethod method, std::vector<uint64_t> wild)
+      : device_(std::move(device)),
+        method_(method),
+        wild_pixel_indices_(std::move(wild)),
+        name_(spec.name),
+        samples_(spec.samples),
+        info_(device_->info()) {
+    if (samples_ > 0) decode_ = samples_from_resolved(samples_);
+  }
+
+  DriverInfo driver_info() const override { return info_; }
+
+  double measure_timer_over_cpu() override {
+    if (!info_.timer_query) return info_.timer_over_cpu;
+    device_->bind();
+    return info_.timer_over_cpu = device_->timer_over_cpu();
+  }
+
+  void set_view(const geometry::View& view) override {
+    device_->bind();
+    device_->set_view(view);
+    clear_all();
+  }
+
+  RenderResult render(const geometry::Primitive& prim,
+                      const geometry::PixelRegion& expected) override {
+    device_->bind();
+    if (samples_ > 0) return render_multisample(prim, expected);
+    RenderResult out;
+    switch (method_) {
+      case ReadbackMethod::kDrawOnly:  // the floor: what the renderer itself must spend
+        out.render_us = device_->draw({prim}, {kWhite}, false, nullptr);
+        return out;
+      case ReadbackMethod::kFullWindow:  // the paper's method: clear, draw, read everything
+        clear_all();
+        out.render_us = device_->draw({prim}, {kWhite}, false, nullptr);
+        read_colour(window(), kAnyColour, out.lit);
+        out.full_scan = true;
+        return out;
+      case ReadbackMethod::kRegionWithProof:
+        break;
+    }
+    reserve_colours(1);
+    const uint32_t colour = ++colour_;
+    const geometry::Pixel* wild = wild_pixel_for(prim, expected);
+    out.render_us = device_->draw({prim}, {colour}, true, wild);
+    const uint64_t fragments = device_->counted_fragments();
+    read_colour(expected, colour, out.lit);
+    if (uint64_t(out.lit.size()) == fragments) return out;
+    out.full_scan = true;
+    out.lit.clear();
+    read_colour(window(), colour, out.lit);
+    if (uint64_t(out.lit.size()) == fragments) return out;
+    // Either the colour did not come back exactly, or the driver produced more fragments than
+    // pixels: it lit some pixel twice (softpipe does, for some large triangles of the nist2008
+    // views: 16,355 fragments for 16,336 pixels in one case). Draw the primitive white on a
+    // cleared window and take every non-black pixel of the whole window: complete by
+    // construction, whatever the count says.
+    clear_all();
+    out.render_us = device_->draw({prim}, {kWhite}, true, wild);
+    const uint64_t again = device_->counted_fragments();
+    out.lit.clear();
+    read_colour(window(), kAnyColour, out.lit);
+    clear_all();
+    check_redraw(uint64_t(out.lit.size()), "pixels", again, "fragments", prim.index);
+    return out;
+  }
+
+  std::vector<RenderResult> render_batch(
+      const std::vector<geometry::Primitive>& prims,
+      const std::vector<geometry::PixelRegion>& expected) override {
+    device_->bind();
+    const bool fits = !prims.empty() && prims.size() <= device_->max_batch() && samples_ == 0;
+    if (method_ == ReadbackMethod::kDrawOnly && fits) {  // the batched floor (benchmark only)
+      std::vector<RenderResult> out(prims.size());
+      const double us =
+          device_->draw(prims, std::vector<uint32_t>(prims.size(), kWhite), false, nullptr);
+      for (RenderResult& r : out)
+        r.render_us = us / double(prims.size()), r.batch_size = int(prims.size());
+      return out;
+    }
+    if (method_ != ReadbackMethod::kRegionWithProof || prims.size() < 2 || !fits)
+      return Platform::render_batch(prims, expected);
+    for (size_t i = 0; i < prims.size(); ++i)  // the test fault is drawn one primitive at a time
+      if (wild_pixel_for(prims[i], expected[i])) return Platform::render_batch(prims, expected);
+    reserve_colours(prims.size());
+    std::vector<uint32_t> colours(prims.size());
+    for (uint32_t& c : colours) c = ++colour_;
+    const double share_us = device_->draw(prims, colours, true, nullptr) / double(prims.size());
+    const uint64_t fragments = device_->counted_fragments();
+    std::vector<RenderResult> out(prims.size());
+    uint64_t found = 0;
+    read_regions(expected);
+    for (size_t i = 0; i < prims.size(); ++i) {
+      out[i].render_us = share_us;
+      out[i].batch_size = int(prims.size());
+      scan_region(i, colours[i], out[i].lit);
+      found += uint64_t(out[i].lit.size());
+    }
+    if (found == fragments) return out;
+    return Platform::render_batch(prims, expected);
+  }
+
+ private:
+  geometry::PixelRegion window() const {
+    return geometry::PixelRegion(geometry::PixelRect{0, 0, device_->width(), device_->height()});
+  }
+
+  geometry::PixelRect clamp(geometry::PixelRect r) const {
+    r.x0 = std::max(r.x0, 0);
+    r.y0 = std::max(r.y0, 0);
+    r.x1 = std::min(r.x1, device_->width());
+    r.y1 = std::min(r.y1, device_->height());
+    return r;
+  }
+
+  // The region's rectangles clamped to the window, the empty ones left out.
+  std::vector<geometry::PixelRect> clamped(const geometry::PixelRegion& region) const {
+    std::vector<geometry::PixelRect> rects;
+    for (const geometry::PixelRect& r : region.rects)
+      if (!clamp(r).empty()) rects.push_back(clamp(r));
+    return rects;
+  }
+
+  // Reads every region's rectangles in one readback; spans_[i] = region i's range in rects_.
+  void read_regions(const std::vector<geometry::PixelRegion>& regions) {
+    rects_.clear();
+    spans_.clear();
+    for (const geometry::PixelRegion& region : regions) {
+      const size_t first = rects_.size();
+      for (const geometry::PixelRect& r : clamped(region)) rects_.push_back(r);
+      spans_.emplace_back(first, rects_.size());
+    }
+    if (!rects_.empty()) device_->read(rects_);
+  }
+
+  // Appends the pixels of region i (read by read_regions) in `colour` (kAnyColour: any that is not
+  // black) to `lit`. The runs of several rectangles side by side (a line's strip: rows interleave)
+  // are put in (y, x) order before they join `lit`.
+  void scan_region(size_t i, uint32_t colour, geometry::PixelSet& lit) {
+    const auto [first, last] = spans_[i];
+    const bool any = colour == kAnyColour, top_down = device_->rows_top_down();
+    auto scan = [&](size_t k, geometry::PixelSet& into) {
+      const geometry::PixelRect& r = rects_[k];
+      scan_rect(device_->pixels(k), size_t(r.x1 - r.x0), top_down, r, any, colour, into);
+    };
+    if (last - first == 1) return scan(first, lit);
+    runs_.clear();
+    geometry::PixelSet part;
+    for (size_t k = first; k < last; ++k) {
+      part.clear();
+      scan(k, part);
+      runs_.insert(runs_.end(), part.runs().begin(), part.runs().end());
+    }
+    append_in_order(runs_, lit);
+  }
+
+  void read_colour(const geometry::PixelRegion& region, uint32_t colour, geometry::PixelSet& lit) {
+    read_regions({region});
+    scan_region(0, colour, lit);
+  }
+
+  // --- multisample platforms -------------------------------------------------------------------
+
+  RenderResult render_multisample(const geometry::Primitive& prim,
+                                  const geometry::PixelRegion& expected) {
+    RenderResult out;
+    out.samples = samples_;
+    const geometry::PixelRegion whole = window();
+    switch (method_) {
+      case ReadbackMethod::kDrawOnly:  // the floor: drawing alone, no resolve
+        out.render_us = device_->draw({prim}, {kWhite}, false, nullptr);
+        device_->draw({prim}, {0}, false, nullptr);
+        return out;
+      case ReadbackMethod::kFullWindow:
+        clear_all();
+        out.render_us = draw_resolved(prim, nullptr, whole, false);
+        read_coverage(whole, out);
+        out.full_scan = true;
+        clear_all();
+        return out;
+      case ReadbackMethod::kRegionWithProof:
+        break;
+    }
+    const geometry::Pixel* wild = wild_pixel_for(prim, expected);
+    out.render_us = draw_resolved(prim, wild, expected, true);
+    uint64_t passed = device_->counted_fragments();
+    if (read_coverage(expected, out) == passed) {
+      device_->draw({prim}, {0}, false, wild);  // black: exactly its samples go back to black
+      return out;
+    }
+    out.full_scan = true;
+    device_->resolve(clamped(whole));
+    uint64_t found = read_coverage(whole, out);
+    clear_all();
+    if (found == passed) return out;
+    // More samples found than passed: some stayed lit from an earlier primitive; fewer: the driver
+    // covered some sample twice. Draw again on the cleared window and read it whole.
+    out.render_us = draw_resolved(prim, wild, whole, true);
+    passed = device_->counted_fragments();
+    found = read_coverage(whole, out);
+    clear_all();
+    check_redraw(found, "samples", passed, "samples passed", prim.index);
+    return out;
+  }
+
+  // Draws the primitive white and resolves `region` in the same timed submission.
+  double draw_resolved(const geometry::Primitive& prim, const geometry::Pixel* wild,
+                       const geometry::PixelRegion& region, bool counted) {
+    const std::vector<geometry::PixelRect> rects = clamped(region);
+    return device_->draw({prim}, {kWhite}, counted, wild, &rects);
+  }
+
+  // Reads the region's resolved pixels and replaces out.lit / out.samples_lit with those that
+  // have any coverage, in (y, x) order; returns the sum of their samples lit.
+  uint64_t read_coverage(const geometry::PixelRegion& region, RenderResult& out) {
+    read_regions({region});
+    covered_.clear();
+    const bool top_down = device_->rows_top_down();
+    for (size_t k = spans_[0].first; k < spans_[0].second; ++k) {
+      const geometry::PixelRect& r = rects_[k];
+      const int w = r.x1 - r.x0, h = r.y1 - r.y0;
+      for (int y = 0; y < h; ++y) {
+        const uint32_t* row = device_->pixels(k) + size_t(top_down ? h - 1 - y : y) * w;
+        for (int x = 0; x < w; ++x) {
+          const uint8_t v = uint8_t(row[x]);  // red: the low byte of a little-endian RGBA8 pixel
+          if (v == 0) continue;
+          const uint8_t k_lit = decode_[v];
+          if (k_lit == 255)
+            throw std::runtime_error("platform " + name_ + ": resolved value " +
+                                     std::to_string(v) + " at pixel (" + std::to_string(r.x0 + x) +
+                                     ", " + std::to_string(r.y0 + y) + ") is no multiple of 255/" +
+                                     std::to_string(samples_));
+          covered_.push_back({r.y0 + y, r.x0 + x, k_lit});
+        }
+      }
+    }
+    if (spans_[0].second - spans_[0].first > 1)  // a line's strip: put in (y, x) order
+      std::sort(covered_.begin(), covered_.end(), [](const Covered& a, const Covered& b) {
+        return a.y != b.y ? a.y < b.y : a.x < b.x;
+      });
+    out.lit.clear();
+    out.samples_lit.clear();
+    out.samples_lit.reserve(covered_.size());
+    uint64_t sum = 0;
+    for (const Covered& c : covered_) {
+      out.lit.append_run(c.y, c.x, c.x + 1);
+      out.samples_lit.push_back(c.k);
+      sum += c.k;
+    }
+    return sum;
+  }
+
+  // --- upkeep ----------------------------------------------------------------------------------
+
+  // The last word on a primitive redrawn on a cleared window and read whole: more lit than the
+  // driver counted cannot be (the primitive fails); fewer means the driver lit some pixel or
+  // sample twice, which is said and kept.
+  static void check_redraw(uint64_t found, const char* found_unit, uint64_t counted,
+                           const char* counted_unit, uint64_t primitive) {
+    if (found > counted)
+      throw std::runtime_error("the driver lit " + std::to_string(found) + " " + found_unit +
+                               " with " + std::to_string(counted) + " " + counted_unit +
+                               " for primitive " + std::to_string(primitive));
+    if (found < counted)
+      std::fprintf(stderr, "primitive %llu: %llu %s for %llu %s (lit twice)\n",
+                   static_cast<unsigned long long>(primitive),
+                   static_cast<unsigned long long>(counted), counted_unit,
+                   static_cast<unsigned long long>(found), found_unit);
+  }
+
+  // Makes room for n more colours before the 24-bit counter reaches kWhite (the redraw's colour):
+  // after 16.7 million primitives in one view.
+  void reserve_colours(size_t n) {
+    if (colour_ + n > kWhite - 1) clear_all();
+  }
+
+  // Clears the whole window (a fast path in Mesa, unlike a scissored clear) and restarts colours.
+  void clear_all() {
+    device_->clear();
+    colour_ = 0;
+  }
+
+  // Test-only fault: where the extra pixel goes (the quadrant opposite the expected region), or
+  // nullptr when this primitive has none.
+  const geometry::Pixel* wild_pixel_for(const geometry::Primitive& prim,
+                                        const geometry::PixelRegion& region) {
+    if (std::find(wild_pixel_indices_.begin(), wild_pixel_indices_.end(), prim.index) ==
+        wild_pixel_indices_.end())
+      return nullptr;
+    wild_ = opposite_quadrant_pixel(region, device_->width(), device_->height());
+    return &wild_;
+  }
+
+  std::unique_ptr<RasterDevice> device_;
+  ReadbackMethod method_;
+  std::vector<uint64_t> wild_pixel_indices_;
+  std::string name_;  // the platform's name, for messages
+  int samples_ = 0;   // PlatformSpec::samples; 0 = aliased
+  DriverInfo info_;
+  uint32_t colour_ = 0;  // of the last primitive drawn; 0 (black) = none since the last clear
+  std::array<uint8_t, 256> decode_{};  // resolved red value -> samples lit (255: invalid)
+  std::vector<geometry::PixelRect> rects_;             // of the last read_regions
+  std::vector<std::pair<size_t, size_t>> spans_;       // region i -> [first, last) of rects_
+  std::vector<geometry::PixelRun> runs_;
+  struct Covered {
+    int32_t y, x;
+    uint8_t k;
+  };
+  std::vector<Covered> covered_;
+  geometry::Pixel wild_;
+};
+
+}  // namespace
+
+std::unique_ptr<Platform> create_gl_platform(const PlatformSpec& spec, ReadbackMethod method,
+                                             std::vector<uint64_t> wild_pixel_indices) {
+  return std::make_unique<ReadbackMeasurement>(create_gl_device(spec), spec, method,
+                                               std::move(wild_pixel_indices));
+}
+
+std::unique_ptr<Platform> create_vulkan_platform(const PlatformSpec& spec, ReadbackMethod method,
+                                                 std::vector<uint64_t> wild_pixel_indices) {
+  return std::make_unique<ReadbackMeasurement>(create_vulkan_device(spec), spec, method,
+                                               std::move(wild_pixel_indices));
+}
+
+}  // namespace ra::platforms
