@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "analysis/run_records.h"
-#include "metrics/records_reader.h"
+#include "rundir/records_reader.h"
 #include "util/program_name.h"
 
 namespace ra::analysis {
@@ -17,7 +17,7 @@ void ConformanceTally::select_group(std::string_view platform, std::string_view 
   reference_ = nullptr;
 }
 
-void ConformanceTally::add(const metrics::RecordRow& row) {
+void ConformanceTally::add(const rundir::RecordRow& row) {
   using C = metrics::RecordColumn;
   ConformanceSummary& s = summary_;
   select_group(row.cell(C::kPlatform), row.cell(C::kKind), row.integer<int>(C::kViewGroup));
@@ -121,7 +121,7 @@ ConformanceSummary summarize_conformance(const std::vector<std::string>& records
     ConformanceTally file(run_dir.empty()
                               ? path
                               : std::filesystem::path(path).lexically_relative(run_dir).string());
-    metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) { file.add(row); });
+    rundir::for_each_record_row(path, [&](const rundir::RecordRow& row) { file.add(row); });
     append_conformance(s, file.take());
   }
   finish_conformance(s);

@@ -16,7 +16,7 @@
 #include <tuple>
 #include <vector>
 
-#include "metrics/records_reader.h"
+#include "rundir/records_reader.h"
 #include "stats/table_writer.h"
 
 namespace ra::analysis {
@@ -87,7 +87,7 @@ ConformanceSummary summarize_conformance(const std::vector<std::string>& records
 class ConformanceTally {
  public:
   explicit ConformanceTally(std::string file) : file_(std::move(file)) {}
-  void add(const metrics::RecordRow& row);
+  void add(const rundir::RecordRow& row);
   ConformanceSummary take() { return std::move(summary_); }
 
  private:

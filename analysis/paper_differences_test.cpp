@@ -10,7 +10,7 @@
 #include "analysis/paper_tables.h"
 #include "analysis/paper_values.h"
 #include "analysis/records_testing.h"
-#include "runner/experiment.h"
+#include "rundir/experiment.h"
 #include "util/errors.h"
 
 namespace ra::analysis {
@@ -34,7 +34,7 @@ points = 4000
 TEST(PaperConventions, PointsWithinHalfAPixelOutsideTheWindowBecomeFalseInvisible) {
   testing::ScopedTempDir dir{"point_margin"};
   std::ofstream(dir.path / "experiment.toml") << kExperiment;
-  const runner::Experiment e = runner::load_experiment((dir.path / "experiment.toml").string());
+  const rundir::Experiment e = rundir::load_experiment((dir.path / "experiment.toml").string());
   std::vector<metrics::Record> rs;
   int in_window = 0, in_band = 0;
   for (std::uint64_t i = 0; i < 4000; ++i) {

@@ -108,14 +108,14 @@ RunRecords load_records(const AnalyzeOptions& o) {
   LoadOptions load;
   load.jobs = o.jobs;
   load.read_seals = std::filesystem::exists(o.run_dir + "/experiment.toml");
-  std::optional<runner::Experiment>
+  std::optional<rundir::Experiment>
       experiment;  // the views and seed that generate each point again
   if (o.point_margin_px > 0) {
     const std::string path = o.run_dir + "/experiment.toml";
     if (!std::filesystem::exists(path))
       throw util::UserError(o.run_dir + ": --point-margin-px needs the run's experiment.toml (" +
                             path + " is missing)");
-    experiment = runner::load_experiment(path);
+    experiment = rundir::load_experiment(path);
     load.point_margin_px = o.point_margin_px;
     load.experiment = &*experiment;
   }

@@ -7,14 +7,14 @@
 #include <set>
 
 #include "metrics/records.h"
-#include "metrics/records_format.h"
-#include "metrics/records_reader.h"
-#include "runner/experiment.h"
-#include "runner/manifest.h"
-#include "runner/shard.h"
-#include "runner/shard_file.h"
-#include "runner/shard_records.h"
-#include "runner/slicing.h"
+#include "rundir/records_format.h"
+#include "rundir/records_reader.h"
+#include "rundir/experiment.h"
+#include "rundir/manifest.h"
+#include "rundir/shard.h"
+#include "rundir/shard_file.h"
+#include "rundir/shard_records.h"
+#include "rundir/slicing.h"
 #include "util/atomic_file.h"
 #include "util/dir_lock.h"
 #include "util/parallel.h"
@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 namespace ra::analysis {
 namespace {
 
-std::string range(const runner::Shard& s) {
+std::string range(const rundir::Shard& s) {
   return "primitives " + std::to_string(s.begin) + "-" + std::to_string(s.end - 1);
 }
 
@@ -79,10 +79,10 @@ RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSe
   const std::string toml = run_dir + "/experiment.toml";
   if (!fs::exists(toml)) return c;
   c.has_plan = true;
-  const runner::Experiment exp = runner::load_experiment(toml);
+  const rundir::Experiment exp = rundir::load_experiment(toml);
   c.writer = util::DirLock::current_holder(run_dir);
   try {
-    const runner::RunManifest m = runner::read_manifest_file(run_dir + "/manifest.json");
+    const rundir::RunManifest m = rundir::read_manifest_file(run_dir + "/manifest.json");
     c.manifest_status = m.status;
     if (m.slice) c.slice_index = m.slice->index, c.slice_count = m.slice->count;
     if (m.platforms_run) c.platforms_run = *m.platforms_run;
@@ -95,13 +95,13 @@ RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSe
                          "(run the same command again to finish it)");
 
   std::set<std::string> planned_files;
-  std::vector<runner::Shard>
+  std::vector<rundir::Shard>
       plan;  // the platforms run (all without --platform), as `status` plans it
-  for (runner::Shard& s : plan_shards(exp)) {
+  for (rundir::Shard& s : plan_shards(exp)) {
     // any platform's, in both formats (a shard with both files is a damaged shard, not a stray)
-    for (const metrics::RecordsFormat f :
-         {metrics::RecordsFormat::kCsv, metrics::RecordsFormat::kCsvZst})
-      planned_files.insert(s.id() + metrics::records_extension(f));
+    for (const rundir::RecordsFormat f :
+         {rundir::RecordsFormat::kCsv, rundir::RecordsFormat::kCsvZst})
+      planned_files.insert(s.id() + rundir::records_extension(f));
     if (c.platforms_run.empty() || std::find(c.platforms_run.begin(), c.platforms_run.end(),
                                              s.platform) != c.platforms_run.end())
       plan.push_back(std::move(s));
@@ -110,18 +110,18 @@ RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSe
   }
   std::set<std::string> own;  // a slice's own shards (ids); empty for a whole run
   if (c.is_slice())
-    for (const runner::Shard& s :
-         shards_of_slice(plan, exp, runner::Slice{c.slice_index, c.slice_count}))
+    for (const rundir::Shard& s :
+         shards_of_slice(plan, exp, rundir::Slice{c.slice_index, c.slice_count}))
       own.insert(s.id());
   // Each shard file is read whole (its seal's hash; decompressed when compressed): the files are
   // checked on every core, then counted in plan order.
   std::vector<std::string> verdicts(plan.size());
   std::vector<char> present(plan.size(), 0);
   util::run_in_parallel(plan.size(), 0, [&](std::size_t i) {
-    const runner::Shard& s = plan[i];
-    runner::ShardRecordsFile file;
+    const rundir::Shard& s = plan[i];
+    rundir::ShardRecordsFile file;
     try {
-      file = runner::find_shard_records(run_dir, s, false);
+      file = rundir::find_shard_records(run_dir, s, false);
     } catch (const util::UserError& e) {  // <id>.csv and <id>.csv.zst both there
       present[i] = 1;
       verdicts[i] = e.what();
@@ -132,11 +132,11 @@ RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSe
     const auto known = seals ? seals->find(fs::path(file.path).filename().string())
                              : ShardSeals::const_iterator();
     verdicts[i] = seals && known != seals->end()
-                      ? runner::shard_records_damage(file.path, s, known->second)
-                      : runner::shard_records_damage(file.path, s);
+                      ? rundir::shard_records_damage(file.path, s, known->second)
+                      : rundir::shard_records_damage(file.path, s);
   });
   for (std::size_t i = 0; i < plan.size(); ++i) {
-    const runner::Shard& s = plan[i];
+    const rundir::Shard& s = plan[i];
     ++c.shards_planned;
     c.primitives_planned += s.size();
     if (c.is_slice() && !own.count(s.id()) && !present[i]) {
@@ -157,7 +157,7 @@ RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSe
   std::error_code ec;
   std::vector<std::string> stray;
   for (const auto& e : fs::directory_iterator(run_dir + "/records", ec))
-    if (metrics::is_records_file_name(e.path().filename().string()) &&
+    if (rundir::is_records_file_name(e.path().filename().string()) &&
         !planned_files.count(e.path().filename().string()))
       stray.push_back(e.path().filename().string());
   std::sort(stray.begin(), stray.end());

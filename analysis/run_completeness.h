@@ -1,5 +1,5 @@
 // Is a run directory whole? Its records are compared with the plan its experiment.toml makes
-// (runner/shard.h): every planned shard must have a sealed records file (runner/shard_file.h)
+// (rundir/shard.h): every planned shard must have a sealed records file (rundir/shard_file.h)
 // holding exactly its primitives, no other records file may be there, and no writer may be at work.
 // `analyze` and `report` check this first and stop (exit 3, kExitIncomplete) when it fails, unless
 // told to go on (--allow-incomplete), in which case what is missing is written at the top of what
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "runner/shard_file.h"
+#include "rundir/shard_file.h"
 #include "util/errors.h"
 
 namespace ra::analysis {
@@ -52,7 +52,7 @@ struct RunCompleteness {
 // blocks: memory does not depend on the run's size). Throws ra::util::UserError when the experiment file
 // is unreadable. `seals`: the seals of records files already read (by file name, as
 // load_run_records reads them), which are then judged without reading those files again.
-using ShardSeals = std::map<std::string, runner::ShardSeal>;  // by file name
+using ShardSeals = std::map<std::string, rundir::ShardSeal>;  // by file name
 RunCompleteness check_run_completeness(const std::string& run_dir,
                                        const ShardSeals* seals = nullptr);
 

@@ -1,6 +1,6 @@
 // Loading a run directory's records into samples; see run_records.h.
 //
-// Speed: the analysis needs 14 of the 37 columns, so each row is read with metrics/records_reader.h
+// Speed: the analysis needs 14 of the 37 columns, so each row is read with rundir/records_reader.h
 // (split in place, only those cells converted) and files are parsed on several threads.
 #include "analysis/run_records.h"
 
@@ -11,10 +11,10 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "metrics/records_format.h"
+#include "rundir/records_format.h"
 #include "util/errors.h"
 #include "metrics/records.h"
-#include "metrics/records_reader.h"
+#include "rundir/records_reader.h"
 #include "geometry/view.h"
 #include "metrics/point_metrics.h"
 #include "util/cell_text.h"
@@ -274,7 +274,7 @@ struct FileChunk {
   std::uint64_t records = 0;
   std::uint64_t points_within_margin = 0;  // LoadOptions::point_margin_px reclassifications
   ConformanceSummary conformance;
-  std::optional<runner::ShardSeal> seal;  // LoadOptions::read_seals
+  std::optional<rundir::ShardSeal> seal;  // LoadOptions::read_seals
 };
 
 // Difference between two views' parameters, "" when equal.
@@ -311,21 +311,21 @@ class FileParser {
       : path_(path), metrics_(metrics), options_(options), conformance_(name) {}
 
   FileChunk parse() {
-    const auto row = [this](const metrics::RecordRow& r) { record(r); };
+    const auto row = [this](const rundir::RecordRow& r) { record(r); };
     if (options_.read_seals) {
-      runner::ShardSealReader seal;
-      metrics::for_each_record_row(path_, row,
+      rundir::ShardSealReader seal;
+      rundir::for_each_record_row(path_, row,
                                    [&seal](std::string_view text) { seal.add(text); });
       chunk_.seal = seal.finish();
     } else {
-      metrics::for_each_record_row(path_, row);
+      rundir::for_each_record_row(path_, row);
     }
     chunk_.conformance = conformance_.take();
     return std::move(chunk_);
   }
 
  private:
-  void record(const metrics::RecordRow& row) {
+  void record(const rundir::RecordRow& row) {
     ++chunk_.records;
     conformance_.add(row);
     const std::string_view platform = row.cell(metrics::RecordColumn::kPlatform);
@@ -408,7 +408,7 @@ class FileParser {
     if (options_.point_margin_px <= 0 || kind != PrimitiveKind::kPoint ||
         visibility != metrics::Visibility::kTrueInvisible)
       return visibility;
-    const runner::Experiment& e = *options_.experiment;
+    const rundir::Experiment& e = *options_.experiment;
     if (view > int(e.views.size()))
       throw util::UserError(path_ + ": view " + std::to_string(view) +
                             " is not in the run's experiment (" + std::to_string(e.views.size()) +
@@ -421,7 +421,7 @@ class FileParser {
     return metrics::Visibility::kFalseInvisible;
   }
 
-  static ViewMeta read_meta(const metrics::RecordRow& row, int view) {
+  static ViewMeta read_meta(const rundir::RecordRow& row, int view) {
     ViewMeta m;
     m.view = view;
     m.view_group = row.integer<int>(metrics::RecordColumn::kViewGroup);
@@ -438,7 +438,7 @@ class FileParser {
     return m;
   }
 
-  void check_meta(const metrics::RecordRow& row, int view) const {
+  void check_meta(const rundir::RecordRow& row, int view) const {
     // the same text as the first record of the view: the same parameters (the usual case, and
     // cheaper than converting 7 numbers per record); otherwise compare the numbers
     bool same_text = true;
@@ -563,7 +563,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
   run.run_dir = run_dir;
   run.point_margin_px = options.point_margin_px;
   for (const auto& e : fs::directory_iterator(records_dir)) {
-    if (ra::metrics::is_records_file_name(e.path().filename().string()) && e.is_regular_file())
+    if (ra::rundir::is_records_file_name(e.path().filename().string()) && e.is_regular_file())
       run.files.push_back(e.path().string());
   }
   std::sort(run.files.begin(), run.files.end());

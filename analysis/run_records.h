@@ -30,8 +30,8 @@
 
 #include "analysis/conformance_summary.h"
 #include "geometry/primitive.h"
-#include "runner/experiment.h"
-#include "runner/shard_file.h"
+#include "rundir/experiment.h"
+#include "rundir/shard_file.h"
 #include "stats/descriptive.h"
 #include "util/parallel.h"
 
@@ -147,7 +147,7 @@ struct RunRecords {
   // same pass over the files; NonOkCase::file relative to run_dir.
   ConformanceSummary conformance;
   // Each file's seal by file name, when LoadOptions::read_seals (check_run_completeness takes it).
-  std::map<std::string, runner::ShardSeal> seals;
+  std::map<std::string, rundir::ShardSeal> seals;
 
   // The kinds that have at least one record, in kAllKinds order.
   std::vector<PrimitiveKind> kinds() const;
@@ -166,8 +166,8 @@ struct LoadOptions {
   // counted false-invisible instead. 0: the records' own classes. Needs `experiment` (the run's
   // views and seed, from which each point is generated again by its index).
   double point_margin_px = 0;
-  const runner::Experiment* experiment = nullptr;
-  // Also read each file's seal (runner/shard_file.h) in the same pass, into RunRecords::seals, so
+  const rundir::Experiment* experiment = nullptr;
+  // Also read each file's seal (rundir/shard_file.h) in the same pass, into RunRecords::seals, so
   // that the completeness check need not read the files again.
   bool read_seals = false;
 };

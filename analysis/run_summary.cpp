@@ -10,11 +10,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "metrics/records_format.h"
+#include "rundir/records_format.h"
+#include "rundir/records_reader.h"
 #include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "metrics/records.h"
-#include "runner/manifest.h"
+#include "rundir/manifest.h"
 
 namespace fs = std::filesystem;
 
@@ -54,13 +55,13 @@ std::string cost_paragraph(const std::string& run_dir, const Cells& cells) {
   double drawing_us = 0;
   for (const auto& [key, c] : cells)
     for (double us : c.render_us) drawing_us += us;
-  runner::RunManifest m;
+  rundir::RunManifest m;
   try {
-    m = runner::read_manifest_file(run_dir + "/manifest.json");
+    m = rundir::read_manifest_file(run_dir + "/manifest.json");
   } catch (const std::exception&) {
     return "";
   }
-  const runner::ManifestInvocation* inv = m.last_invocation();
+  const rundir::ManifestInvocation* inv = m.last_invocation();
   std::ostringstream out;
   out << "\nDrawing (the sum of render_us): " << fmt(drawing_us / 1e6, "%.1f") << " s";
   if (inv && inv->elapsed_s && m.shards && inv->shards_to_run == m.shards->total &&
@@ -85,11 +86,11 @@ std::string write_run_summary(const std::string& run_dir) {
   std::map<Key, Cell> cells;
   std::vector<std::string> files;
   for (const auto& e : fs::directory_iterator(run_dir + "/records"))
-    if (ra::metrics::is_records_file_name(e.path().filename().string()))
+    if (ra::rundir::is_records_file_name(e.path().filename().string()))
       files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
   for (const auto& f : files) {
-    metrics::read_records(f, [&](const metrics::Record& r) {
+    rundir::read_records(f, [&](const metrics::Record& r) {
       Cell& c = cells[{r.platform, r.kind, r.view}];
       c.fov = fmt(r.fov_deg, "%g");
       c.window = std::to_string(r.width) + "x" + std::to_string(r.height);

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "runner/manifest.h"
+#include "rundir/manifest.h"
 #include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -113,7 +113,7 @@ json tally_json(const RunTally& t) {
                      {"true_visible", r.true_visible},
                      {"median_us_true_visible",
                       r.median_us_true_visible ? json(*r.median_us_true_visible) : json()}});
-  json doc = runner::document_header("tally", kTallySchemaVersion, false);
+  json doc = rundir::document_header("tally", kTallySchemaVersion, false);
   doc.update({{"records", t.records},
               {"files", t.files},
               {"groups", groups},

@@ -5,7 +5,7 @@
 // conformance pass, so no later stage tallies the records again) and writes
 // DIR/analysis/tally.json; plot and report read it back.
 //
-// tally.json, schema "renderaudit-tally", schema_version 1 (runner/manifest.h document_header):
+// tally.json, schema "renderaudit-tally", schema_version 1 (rundir/manifest.h document_header):
 // {
 //   "schema": "renderaudit-tally", "schema_version": 1,
 //   "records": 64000, "files": 32,

@@ -1,10 +1,10 @@
 // `renderaudit bisect RUN --between GOOD_PLATFORM BAD_PLATFORM --source MESA --good REF --bad REF
-// [-- PATHS]`: the commit that made a finding (audit/bisect.h), and the report for the driver's
-// developers (audit/bisect_report.h).
+// [-- PATHS]`: the commit that made a finding (triage/bisect.h), and the report for the driver's
+// developers (triage/bisect_report.h).
 #include <cstdio>
 
 #include "app/commands.h"
-#include "audit/bisect.h"
+#include "triage/bisect.h"
 #include "util/errors.h"
 
 namespace ra::app {
@@ -20,7 +20,7 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
       "command goes on where it stopped. Writes OUT/bisect.json and OUT/bisect.md, the report for\n"
       "the driver's developers (reproducer, pictures, versions). Exit 0: first bad commit found;\n"
       "1: only skipped commits are left (the candidates are listed); 2: bad input.");
-  static audit::BisectOptions o;
+  static triage::BisectOptions o;
   static std::vector<std::string> between;
   cmd->add_option("run", o.run_dir, "run directory whose records choose the primitives")->required();
   cmd->add_option("--between", between,
@@ -68,7 +68,7 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
     for (const std::string& k : o.kinds) o.command_line += " --kind " + k;
     for (int v : o.views) o.command_line += " --view " + std::to_string(v);
     for (const std::string& p : o.primitives) o.command_line += " --primitive " + p;
-    if (o.max_primitives != audit::BisectOptions{}.max_primitives)
+    if (o.max_primitives != triage::BisectOptions{}.max_primitives)
       o.command_line += " --max-primitives " + std::to_string(o.max_primitives);
     if (!o.out_dir.empty()) o.command_line += " --out " + o.out_dir;
     for (const std::string& m : o.build.meson_options) o.command_line += " " + m;
@@ -77,7 +77,7 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
       o.command_line += " --";
       for (const std::string& p : o.paths) o.command_line += " " + p;
     }
-    const audit::BisectResult r = audit::run_bisect(
+    const triage::BisectResult r = triage::run_bisect(
         o, [](const std::string& line) { std::fprintf(stderr, "bisect: %s\n", line.c_str()); });
     if (r.found) {
       std::printf("first bad commit: %s %s (%s)\nparent: %s\nreport: %s\n", r.first_bad.c_str(),

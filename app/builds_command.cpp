@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "app/commands.h"
-#include "platforms/driver_build.h"
+#include "rundir/driver_build.h"
 #include "runner/build_fetch.h"
 #include "runner/source_build.h"
 #include "util/errors.h"
@@ -89,7 +89,7 @@ void register_builds_command(CLI::App& app, int& exit_code) {
   auto* l = cmd->add_subcommand("list", "The builds in the build cache");
   l->add_option("--cache", list_cache, "build cache folder");
   l->callback([&exit_code] {
-    const std::string cache = list_cache.empty() ? platforms::build_cache_dir() : list_cache;
+    const std::string cache = list_cache.empty() ? rundir::build_cache_dir() : list_cache;
     const std::vector<runner::BuildSummary> builds = runner::list_builds(cache);
     if (builds.empty())
       std::printf("no builds in %s (renderaudit builds fetch SUITE)\n", cache.c_str());

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "runner/study_dir.h"
+#include "rundir/study_dir.h"
 
 namespace ra::app {
 
@@ -46,7 +46,7 @@ void register_bisect_command(CLI::App& app, int& exit_code);     // the driver c
 
 // The studies (app/study_dispatch.cpp): each returns false when its argument is not a study (an
 // audit experiment or run folder), and otherwise does the study's stage and sets exit_code.
-bool run_study_if_declared(const runner::StudyRunOptions& options, int& exit_code);
+bool run_study_if_declared(const rundir::StudyRunOptions& options, int& exit_code);
 bool analyze_study_if_present(const std::string& dir, int& exit_code);
 bool plot_study_if_present(const std::string& dir, int& exit_code);
 // Before `report` on a LOD or regulation folder: runs its analyze and plot stages when their

@@ -15,15 +15,15 @@ namespace {
 
 // The fixed-name platforms, then egl-device:N for every EGL device (when EGL can list them) and
 // vk-device:N for every Vulkan device (when the Vulkan loader can list them).
-std::vector<platforms::PlatformSpec> platforms_to_probe(std::string* device_note,
+std::vector<rundir::PlatformSpec> platforms_to_probe(std::string* device_note,
                                                         std::string* vulkan_note) {
-  std::vector<platforms::PlatformSpec> specs;
-  for (const platforms::PlatformSpec& s : platforms::platform_specs())
-    if (s.backend != platforms::Backend::kFaulty) specs.push_back(s);
+  std::vector<rundir::PlatformSpec> specs;
+  for (const rundir::PlatformSpec& s : rundir::platform_specs())
+    if (s.backend != rundir::Backend::kFaulty) specs.push_back(s);
   try {
     for (const platforms::EglDevice& d : platforms::list_egl_devices_in_child()) {
-      platforms::PlatformSpec s =
-          *platforms::find_platform("egl-device:" + std::to_string(d.index));
+      rundir::PlatformSpec s =
+          *rundir::find_platform("egl-device:" + std::to_string(d.index));
       s.description = "EGL device " + std::to_string(d.index) +
                       (d.software ? ": Mesa's software device (EGL_MESA_device_software)"
                                   : d.drm_node.empty() ? "" : " (" + d.drm_node + ")");
@@ -35,7 +35,7 @@ std::vector<platforms::PlatformSpec> platforms_to_probe(std::string* device_note
   try {
     // in a child: this process forks for every probe after this (platform_probe.h)
     for (const platforms::VulkanDeviceInfo& d : platforms::list_vulkan_devices_in_child()) {
-      platforms::PlatformSpec s = *platforms::find_platform("vk-device:" + std::to_string(d.index));
+      rundir::PlatformSpec s = *rundir::find_platform("vk-device:" + std::to_string(d.index));
       s.description = "Vulkan device " + std::to_string(d.index) + " (" + d.type + ")";
       specs.push_back(s);
     }
@@ -70,7 +70,7 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
       std::string reasons;
       for (const char* name : {"osmesa-llvmpipe", "egl-llvmpipe"}) {
         const platforms::PlatformProbe p =
-            platforms::probe_platform(*platforms::find_platform(name));
+            platforms::probe_platform(*rundir::find_platform(name));
         if (p.available) {
           std::printf("%s\n", name);
           exit_code = kExitOk;
@@ -81,20 +81,20 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
       throw util::UserError("neither embedded platform can draw on this machine:" + reasons);
     }
     std::string device_note, vulkan_note;
-    std::vector<platforms::PlatformSpec> specs;
+    std::vector<rundir::PlatformSpec> specs;
     if (names.empty()) {
       specs = platforms_to_probe(&device_note, &vulkan_note);
     } else {
       for (const std::string& n : names) {
-        const std::optional<platforms::PlatformSpec> s = platforms::find_platform(n);
+        const std::optional<rundir::PlatformSpec> s = rundir::find_platform(n);
         if (!s)
           throw util::UserError("unknown platform '" + n +
-                                "' (allowed: " + platforms::platform_names() + ")");
+                                "' (allowed: " + rundir::platform_names() + ")");
         specs.push_back(*s);
       }
     }
     nlohmann::json list = nlohmann::json::array();
-    for (const platforms::PlatformSpec& spec : specs) {
+    for (const rundir::PlatformSpec& spec : specs) {
       const platforms::PlatformProbe p = platforms::probe_platform(spec);
       nlohmann::json j = {{"name", spec.name},
                           {"description", spec.description},
@@ -115,7 +115,7 @@ void register_platforms_command(CLI::App& app, int& exit_code) {
         }
       } else {
         j["reason"] = p.reason;
-        j["packages"] = platforms::packages_for(spec);
+        j["packages"] = rundir::packages_for(spec);
       }
       list.push_back(j);
     }

@@ -19,14 +19,14 @@
 
 #include "app/commands.h"
 #include "metrics/records.h"
-#include "metrics/records_format.h"
-#include "metrics/records_reader.h"
-#include "runner/experiment.h"
-#include "runner/shard.h"
-#include "runner/shard_file.h"
+#include "rundir/records_format.h"
+#include "rundir/records_reader.h"
+#include "rundir/experiment.h"
+#include "rundir/shard.h"
+#include "rundir/shard_file.h"
 #include "util/errors.h"
 #include "util/zstd_stream.h"
-#include "runner/shard_records.h"
+#include "rundir/shard_records.h"
 
 namespace ra::app {
 namespace {
@@ -64,10 +64,10 @@ void stream_records(const RecordsOptions& o) {
     throw util::UserError(o.dir +
                           ": no experiment.toml (expected a run directory written by "
                           "`renderaudit run`)");
-  const runner::Experiment exp = runner::load_experiment(toml);
-  const std::optional<metrics::RecordsFormat> format = metrics::parse_records_format(o.format);
+  const rundir::Experiment exp = rundir::load_experiment(toml);
+  const std::optional<rundir::RecordsFormat> format = rundir::parse_records_format(o.format);
   if (!format) throw util::UserError("--format " + o.format + ": unknown (allowed: csv, csv.zst)");
-  if (*format == metrics::RecordsFormat::kCsvZst && ::isatty(STDOUT_FILENO))
+  if (*format == rundir::RecordsFormat::kCsvZst && ::isatty(STDOUT_FILENO))
     throw util::UserError("--format csv.zst writes compressed bytes: redirect or pipe stdout");
 
   check_names(o.platforms, exp.platforms, "--platform", o.dir);
@@ -96,7 +96,7 @@ void stream_records(const RecordsOptions& o) {
 
   std::ios::sync_with_stdio(false);
   std::unique_ptr<util::ZstdFrameWriter> zstd;
-  if (*format == metrics::RecordsFormat::kCsvZst)
+  if (*format == rundir::RecordsFormat::kCsvZst)
     zstd = std::make_unique<util::ZstdFrameWriter>(std::cout);
   std::string text;  // written out every few MiB (one zstd frame each)
   const auto flush = [&] {
@@ -112,16 +112,16 @@ void stream_records(const RecordsOptions& o) {
     text += (i ? "," : "") + std::string(metrics::record_column_name(columns[i]));
   text += '\n';
   std::size_t missing = 0;
-  for (const runner::Shard& s : runner::plan_shards(exp)) {
+  for (const rundir::Shard& s : rundir::plan_shards(exp)) {
     if (!wanted(o.platforms, s.platform) ||
         !wanted(o.kinds, std::string(geometry::kind_name(s.kind))) || !wanted(o.views, s.view))
       continue;
-    const std::string path = runner::trusted_records_path(o.dir, s);  // read once to judge it
+    const std::string path = rundir::trusted_records_path(o.dir, s);  // read once to judge it
     if (path.empty()) {
       ++missing;
       continue;
     }
-    metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) {
+    rundir::for_each_record_row(path, [&](const rundir::RecordRow& row) {
       for (std::size_t i = 0; i < columns.size(); ++i) {
         if (i) text += ',';
         text += row.cell(columns[i]);

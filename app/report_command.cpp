@@ -68,7 +68,7 @@ void register_report_command(CLI::App& app, int& exit_code) {
     if (options.run_dir.empty())
       throw util::UserError("report needs a run directory (or --markdown FILE.md)");
     try {
-      if (runner::read_study_info(options.run_dir))
+      if (rundir::read_study_info(options.run_dir))
         prepare_study_report(options.run_dir, !no_run);
       else if (!no_run)
         prepare_run_report(options.run_dir, options.allow_incomplete);

@@ -4,7 +4,7 @@
 
 #include "analysis/run_summary.h"
 #include "app/commands.h"
-#include "runner/experiment.h"
+#include "rundir/experiment.h"
 #include "runner/run_coordinator.h"
 #include "runner/slurm_submission.h"
 #include "util/errors.h"
@@ -83,14 +83,14 @@ void register_run_command(CLI::App& app, int& exit_code) {
     opt.serve_shards = !worker_per_shard;
     opt.shard_order = shard_order == "plan" ? runner::RunOptions::ShardOrder::kPlan
                                             : runner::RunOptions::ShardOrder::kLargestCostFirst;
-    if (!slice.empty()) opt.slice = runner::parse_slice(slice);
-    runner::StudyRunOptions study;
+    if (!slice.empty()) opt.slice = rundir::parse_slice(slice);
+    rundir::StudyRunOptions study;
     study.experiment = opt.experiment_path;
     study.out_dir = opt.out_dir;
     study.platforms = opt.only_platforms;
     study.progress = !quiet;
     if (slurm) {
-      if (runner::experiment_study_kind(opt.experiment_path) != runner::StudyKind::kAudit)
+      if (rundir::experiment_study_kind(opt.experiment_path) != rundir::StudyKind::kAudit)
         throw util::UserError(opt.experiment_path +
                               ": --slurm runs sharded experiments; a study "
                               "([timing], [lod], [regulation]) runs on one machine");
@@ -114,7 +114,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
     }
     if (run_study_if_declared(study, exit_code)) return;
     if (!quiet) {  // what is drawn with, before the progress line
-      const runner::Experiment exp = runner::load_experiment(opt.experiment_path);
+      const rundir::Experiment exp = rundir::load_experiment(opt.experiment_path);
       const std::vector<std::string> platforms =
           opt.only_platforms.empty() ? exp.platforms : opt.only_platforms;
       std::string list;

@@ -1,5 +1,5 @@
 // `renderaudit show RUN --platform P --kind K --view V --index I [--out FILE.png] [--scale S]`:
-// one primitive of a run, re-rendered in this process, as a PNG (audit/primitive_image.h), and
+// one primitive of a run, re-rendered in this process, as a PNG (triage/primitive_image.h), and
 // its record.
 #include <cerrno>
 #include <cstdio>
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "app/commands.h"
-#include "audit/primitive_image.h"
+#include "triage/primitive_image.h"
 #include "metrics/records.h"
 
 namespace ra::app {
@@ -57,7 +57,7 @@ void register_show_command(CLI::App& app, int& exit_code) {
       "legend of the colours and their counts under the picture.\n"
       "Prints the image's path and the primitive's record (visibility, pixels, metrics, "
       "ref_diff).");
-  static audit::ShowRequest q;
+  static triage::ShowRequest q;
   cmd->add_option("run", q.run_dir, "run directory (holds experiment.toml)")->required();
   cmd->add_option("--platform,-p", q.platform, "platform to render on (any known platform)")
       ->required();
@@ -70,9 +70,9 @@ void register_show_command(CLI::App& app, int& exit_code) {
                   "PNG to write (default: RUN/show/PLATFORM.KIND.vVIEW.INDEX.png)");
   cmd->add_option("--scale", q.scale,
                   "image pixels per window pixel (default: the image is about 512 px)")
-      ->check(CLI::Range(1, audit::kMaxImageScale));
+      ->check(CLI::Range(1, triage::kMaxImageScale));
   cmd->callback([&exit_code] {
-    const audit::PrimitiveImage im = audit::show_primitive(q);
+    const triage::PrimitiveImage im = triage::show_primitive(q);
     const geometry::View& v = im.view;
     std::printf("wrote %s (%d x %d px: window pixels x %d-%d, y %d-%d of %d x %d, %d px each, in "
                 "the top %d x %d; the legend under them)\n",
@@ -84,7 +84,7 @@ void register_show_command(CLI::App& app, int& exit_code) {
         "reference only (%lld), black = pixels GL forbids (%s), red line = ideal projection\n",
         static_cast<long long>(im.both), q.platform.c_str(),
         static_cast<long long>(im.platform_only), static_cast<long long>(im.reference_only),
-        audit::forbidden_pixels_text(im.record.violating_pixels, im.violating).c_str());
+        triage::forbidden_pixels_text(im.record.violating_pixels, im.violating).c_str());
     std::printf("%s %llu, view %d (group %s, fov %g deg, %d x %d px), platform %s:\n",
                 im.record.kind.c_str(), static_cast<unsigned long long>(q.index), v.id,
                 v.group_name().c_str(), v.fov_deg, v.width, v.height, q.platform.c_str());

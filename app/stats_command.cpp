@@ -23,17 +23,17 @@
 #include <utility>
 #include <vector>
 
-#include "metrics/records_format.h"
+#include "rundir/records_format.h"
 #include "stats/box_cox.h"
 #include "stats/csv_table.h"
 #include "stats/descriptive.h"
 #include "stats/hypothesis_tests.h"
 #include "stats/linear_regression.h"
 #include "app/commands.h"
-#include "runner/experiment.h"
-#include "runner/manifest.h"
-#include "runner/shard.h"
-#include "runner/shard_records.h"
+#include "rundir/experiment.h"
+#include "rundir/manifest.h"
+#include "rundir/shard.h"
+#include "rundir/shard_records.h"
 #include "util/errors.h"
 
 namespace ra::app {
@@ -116,7 +116,7 @@ Sample read_sample(const std::string& file, const std::string& column) {
   return Sample{file, column, std::move(c.values), c.n_missing};
 }
 
-// The records files of a run directory, each judged by the seal rule (runner/shard_records.h):
+// The records files of a run directory, each judged by the seal rule (rundir/shard_records.h):
 // a damaged file, or a file that is not one of the plan's shards, stops with its name. A
 // directory without experiment.toml (records gathered by hand) lists records/ as it is.
 std::vector<std::string> run_records_files(const std::string& dir) {
@@ -124,13 +124,13 @@ std::vector<std::string> run_records_files(const std::string& dir) {
   std::vector<std::string> files;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(fs::path(dir) / "records", ec))
-    if (ra::metrics::is_records_file_name(e.path().filename().string()))
+    if (ra::rundir::is_records_file_name(e.path().filename().string()))
       files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
   if (!fs::exists(dir + "/experiment.toml")) return files;
   std::set<std::string> trusted;
-  for (const runner::Shard& s : runner::plan_shards(runner::load_experiment(dir + "/experiment.toml")))
-    if (const std::string p = runner::trusted_records_path(dir, s); !p.empty()) trusted.insert(p);
+  for (const rundir::Shard& s : rundir::plan_shards(rundir::load_experiment(dir + "/experiment.toml")))
+    if (const std::string p = rundir::trusted_records_path(dir, s); !p.empty()) trusted.insert(p);
   for (const std::string& f : files)
     if (!trusted.count(f))
       throw util::UserError(f + ": not a shard of the run's plan (" + dir +
@@ -314,7 +314,7 @@ std::string box_cox_text(const stats::BoxCoxResult& b) {
 void print_json(const json& j) { std::cout << j.dump(2) << "\n"; }
 
 json header_json(const char* command) {
-  json j = runner::document_header("stats", kSchemaVersion, false);
+  json j = rundir::document_header("stats", kSchemaVersion, false);
   j["command"] = command;
   return j;
 }

@@ -1,4 +1,4 @@
-// `run`, `analyze` and `plot` of the studies (runner/study_dir.h): an experiment file with a
+// `run`, `analyze` and `plot` of the studies (rundir/study_dir.h): an experiment file with a
 // [timing], [lod] or [regulation] table, and the folders those studies write. The audit's own
 // commands call these first and go on with the primitive audit when they return false.
 #include <cstdio>
@@ -8,54 +8,54 @@
 #include "app/commands.h"
 #include "regulation/regulation_study.h"
 #include "util/errors.h"
-#include "runner/study_dir.h"
+#include "rundir/study_dir.h"
 #include "terrain_lod/lod_study.h"
 #include "timing/timing_run.h"
 
 namespace ra::app {
 
-bool run_study_if_declared(const runner::StudyRunOptions& options, int& exit_code) {
-  const runner::StudyKind kind = runner::experiment_study_kind(options.experiment);
-  runner::StudyRunResult r;
+bool run_study_if_declared(const rundir::StudyRunOptions& options, int& exit_code) {
+  const rundir::StudyKind kind = rundir::experiment_study_kind(options.experiment);
+  rundir::StudyRunResult r;
   switch (kind) {
-    case runner::StudyKind::kAudit:
+    case rundir::StudyKind::kAudit:
       return false;
-    case runner::StudyKind::kTiming:
+    case rundir::StudyKind::kTiming:
       r = timing::run_timing_study(options);
       break;
-    case runner::StudyKind::kLod:
+    case rundir::StudyKind::kLod:
       r = lod::run_lod_study(options);
       break;
-    case runner::StudyKind::kRegulation:
+    case rundir::StudyKind::kRegulation:
       r = regulation::run_regulation_study(options);
       break;
   }
   std::printf("%s", r.summary.c_str());
   if (!r.summary.empty() && r.summary.back() != '\n') std::printf("\n");
-  if (kind != runner::StudyKind::kTiming)
+  if (kind != rundir::StudyKind::kTiming)
     std::printf("next: renderaudit report %s (runs analyze and plot first)\n", r.dir.c_str());
   exit_code = r.findings ? kExitFindings : kExitOk;
   return true;
 }
 
 bool analyze_study_if_present(const std::string& dir, int& exit_code) {
-  const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
-  if (!info || info->kind == runner::StudyKind::kAudit) return false;
+  const std::optional<rundir::StudyInfo> info = rundir::read_study_info(dir);
+  if (!info || info->kind == rundir::StudyKind::kAudit) return false;
   switch (info->kind) {
-    case runner::StudyKind::kTiming:
+    case rundir::StudyKind::kTiming:
       std::printf("%s: a timing study is analysed as it runs (%s/timing.md); nothing to do\n",
                   dir.c_str(), dir.c_str());
       break;
-    case runner::StudyKind::kLod:
+    case rundir::StudyKind::kLod:
       lod::analyze_lod_study(dir);
       break;
-    case runner::StudyKind::kRegulation:
+    case rundir::StudyKind::kRegulation:
       regulation::analyze_regulation_study(dir);
       break;
-    case runner::StudyKind::kAudit:
+    case rundir::StudyKind::kAudit:
       break;
   }
-  const std::optional<runner::StudyInfo> after = runner::read_study_info(dir);
+  const std::optional<rundir::StudyInfo> after = rundir::read_study_info(dir);
   if (after && !after->document.empty())
     std::printf("analysis: %s/%s\n", dir.c_str(), after->document.c_str());
   exit_code = kExitOk;
@@ -63,20 +63,20 @@ bool analyze_study_if_present(const std::string& dir, int& exit_code) {
 }
 
 bool plot_study_if_present(const std::string& dir, int& exit_code) {
-  const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
-  if (!info || info->kind == runner::StudyKind::kAudit) return false;
+  const std::optional<rundir::StudyInfo> info = rundir::read_study_info(dir);
+  if (!info || info->kind == rundir::StudyKind::kAudit) return false;
   switch (info->kind) {
-    case runner::StudyKind::kTiming:
+    case rundir::StudyKind::kTiming:
       std::printf("%s: a timing study draws its figures as it runs (%s/figures/); nothing to do\n",
                   dir.c_str(), dir.c_str());
       break;
-    case runner::StudyKind::kLod:
+    case rundir::StudyKind::kLod:
       lod::plot_lod_study(dir);
       break;
-    case runner::StudyKind::kRegulation:
+    case rundir::StudyKind::kRegulation:
       regulation::plot_regulation_study(dir);
       break;
-    case runner::StudyKind::kAudit:
+    case rundir::StudyKind::kAudit:
       break;
   }
   std::printf("figures: %s/figures/index.json\n", dir.c_str());
@@ -85,8 +85,8 @@ bool plot_study_if_present(const std::string& dir, int& exit_code) {
 }
 
 bool prepare_study_report(const std::string& dir, bool run_missing) {
-  const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
-  if (!info || info->kind == runner::StudyKind::kAudit || info->kind == runner::StudyKind::kTiming)
+  const std::optional<rundir::StudyInfo> info = rundir::read_study_info(dir);
+  if (!info || info->kind == rundir::StudyKind::kAudit || info->kind == rundir::StudyKind::kTiming)
     return false;
   const bool analysed = info->analysed && !info->document.empty();
   const bool plotted = std::filesystem::exists(dir + "/figures/index.json");

@@ -20,7 +20,7 @@ void register_timing_command(CLI::App& app, int& exit_code) {
       "object measurements, per-object sampling, and Table 6 (average squared error of frame\n"
       "time predictions along each camera path). Each platform is measured in its own process;\n"
       "run it on an otherwise idle machine.");
-  static runner::StudyRunOptions q;
+  static rundir::StudyRunOptions q;
   static bool quiet = false;
   static bool no_figures = false;
   cmd->add_option("experiment", q.experiment, "experiment file ([timing] and [[scene]] tables)")
@@ -32,7 +32,7 @@ void register_timing_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--no-figures", no_figures, "write the JSON and CSV files only");
   cmd->callback([&exit_code] {
     q.progress = !quiet;
-    const runner::StudyRunResult r = timing::run_timing_study(q, !no_figures);
+    const rundir::StudyRunResult r = timing::run_timing_study(q, !no_figures);
     std::printf("%s", r.summary.c_str());
     exit_code = r.findings ? kExitFindings : kExitOk;
   });

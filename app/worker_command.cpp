@@ -5,9 +5,10 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "runner/shard_session.h"
 #include "util/errors.h"
-#include "runner/experiment.h"
-#include "runner/shard.h"
+#include "rundir/experiment.h"
+#include "rundir/shard.h"
 #include "runner/shard_server.h"
 
 namespace ra::app {
@@ -26,8 +27,8 @@ void register_worker_command(CLI::App& app, int& exit_code) {
   cmd->add_option("end", end)->required();
   cmd->add_option("--records-dir", records_dir, "where the records file goes (default DIR/records)");
   cmd->callback([&exit_code] {
-    const runner::Experiment exp = runner::load_experiment(dir + "/experiment.toml");
-    runner::Shard shard{platform, geometry::Kind::kPoint, view, begin, end};
+    const rundir::Experiment exp = rundir::load_experiment(dir + "/experiment.toml");
+    rundir::Shard shard{platform, geometry::Kind::kPoint, view, begin, end};
     if (!geometry::parse_kind(kind, &shard.kind))
       throw util::UserError("unknown kind '" + kind + "'");
     runner::run_shard(dir, exp, shard, records_dir);
@@ -40,7 +41,7 @@ void register_worker_command(CLI::App& app, int& exit_code) {
   serve->add_option("dir", serve_dir)->required();
   serve->add_option("platform", serve_platform)->required();
   serve->callback([&exit_code] {
-    const runner::Experiment exp = runner::load_experiment(serve_dir + "/experiment.toml");
+    const rundir::Experiment exp = rundir::load_experiment(serve_dir + "/experiment.toml");
     runner::serve_shards(serve_dir, exp, serve_platform, std::cin);
     exit_code = kExitOk;
   });

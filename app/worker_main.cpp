@@ -1,7 +1,7 @@
 // renderaudit-worker: the `worker` subcommand alone, in a program that links only the runner.
 // `run` and `audit` start one process per shard (or re-render); the full renderaudit links VTK,
 // cairo, OpenImageIO and SQLite (329 shared libraries) and took 0.6 s to start here, this one
-// 0.03 s. Found beside renderaudit (runner/worker_program.h); renderaudit's own hidden `worker`
+// 0.03 s. Found beside renderaudit (util/worker_program.h); renderaudit's own hidden `worker`
 // subcommand does the same where it is missing.
 #include <CLI/CLI.hpp>
 #include <cstdio>

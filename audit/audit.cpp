@@ -1,6 +1,6 @@
 #include "audit/audit.h"
 
-#include "metrics/records_format.h"
+#include "rundir/records_format.h"
 #include "util/dir_lock.h"
 
 #include <algorithm>
@@ -8,7 +8,7 @@
 #include <regex>
 
 #include "util/errors.h"
-#include "runner/manifest.h"
+#include "rundir/manifest.h"
 
 namespace fs = std::filesystem;
 
@@ -18,7 +18,7 @@ namespace {
 bool has_records(const std::string& dir) {
   if (!fs::is_directory(dir + "/records")) return false;
   for (const auto& e : fs::directory_iterator(dir + "/records"))
-    if (ra::metrics::is_records_file_name(e.path().filename().string())) return true;
+    if (ra::rundir::is_records_file_name(e.path().filename().string())) return true;
   return false;
 }
 
@@ -81,7 +81,7 @@ std::size_t AuditResult::recovered_count() const {
 
 AuditResult run_audit(const AuditOptions& o) {
   AuditResult r;
-  r.date_utc = runner::utc_now_iso8601();
+  r.date_utc = rundir::utc_now_iso8601();
   r.expect_renderer = o.expect_renderer;
   // 1. Identity.
   if (!o.between.empty()) {
@@ -130,16 +130,16 @@ AuditResult run_audit(const AuditOptions& o) {
         m.outcome = FailureOutcome::kPrimitivesFailed;
 
   // 4. Flakes, never re-rendering into a primitive or shard known to crash or hang.
-  KnownFailures avoid;
+  audit::KnownFailures avoid;
   for (const FailedPrimitive& f : r.primitives.failed)
     avoid.add(f.platform, f.kind, f.view, f.index, f.index + 1);
   for (const MissingShard& m : r.missing) avoid.add(m.platform, m.kind, m.view, m.begin, m.end);
-  RerenderOptions ro;
+  audit::RerenderOptions ro;
   ro.run_dir = r.current.dir;
   ro.program = o.program;
   ro.jobs = o.jobs;
   r.flakes =
-      apply_flake_check(r.primitives, r.pairs, r.mode == "between", avoid, o.max_rerenders, ro);
+      audit::apply_flake_check(r.primitives, r.pairs, r.mode == "between", avoid, o.max_rerenders, ro);
 
   // 5. Distributions and classes.
   const analysis::RunRecords current = load_records(r.current.dir, o.jobs);

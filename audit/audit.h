@@ -62,7 +62,7 @@ struct AuditResult {
   std::vector<MissingShard> missing;             // both sides
   std::vector<ManifestFailure> manifest_failures;  // both sides, each with what became of it
   PrimitiveComparison primitives;
-  FlakeCheckSummary flakes;
+  audit::FlakeCheckSummary flakes;
   DistributionAudit distributions;
   std::vector<ClassCountChange> classes;
   Verdict verdict = Verdict::kUnchanged;

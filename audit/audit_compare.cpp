@@ -5,10 +5,11 @@
 #include <filesystem>
 
 #include "analysis/run_records.h"
+#include "rundir/records_reader.h"
 #include "util/errors.h"
-#include "runner/experiment.h"
-#include "runner/shard.h"
-#include "runner/shard_records.h"
+#include "rundir/experiment.h"
+#include "rundir/shard.h"
+#include "rundir/shard_records.h"
 
 namespace fs = std::filesystem;
 
@@ -33,16 +34,16 @@ double headline_value(const metrics::Record& r, geometry::Kind kind) {
 }
 
 // The records of one platform, kind and view of a run, ascending by index.
-std::vector<Row> read_view(const std::string& dir, const std::vector<runner::Shard>& plan,
+std::vector<Row> read_view(const std::string& dir, const std::vector<rundir::Shard>& plan,
                            const std::string& platform, geometry::Kind kind, int view) {
   std::vector<Row> rows;
-  for (const runner::Shard& s : plan) {
+  for (const rundir::Shard& s : plan) {
     if (s.platform != platform || s.kind != kind || s.view != view) continue;
-    // a damaged file stops the audit (the seal rule, runner/shard_records.h); a missing one is
+    // a damaged file stops the audit (the seal rule, rundir/shard_records.h); a missing one is
     // reported by missing_shards()
-    const std::string path = runner::trusted_records_path(dir, s);
+    const std::string path = rundir::trusted_records_path(dir, s);
     if (path.empty()) continue;
-    metrics::read_records(path, [&](const metrics::Record& r) {
+    rundir::read_records(path, [&](const metrics::Record& r) {
       if (r.platform != platform || r.kind != geometry::kind_name(kind) || r.view != view ||
           r.index < s.begin || r.index >= s.end)
         throw util::UserError(path + ": holds a record of " + r.platform + " " + r.kind + " view " +
@@ -75,9 +76,9 @@ struct TaskResult {
 };
 
 TaskResult compare_view(const std::string& baseline_dir,
-                        const std::vector<runner::Shard>& baseline_plan,
+                        const std::vector<rundir::Shard>& baseline_plan,
                         const std::string& current_dir,
-                        const std::vector<runner::Shard>& current_plan, const PlatformPair& pair,
+                        const std::vector<rundir::Shard>& current_plan, const PlatformPair& pair,
                         const Task& t, bool compare_verdicts) {
   TaskResult out;
   out.counts = {t.pair, t.kind, t.view, t.view_group, 0, 0, 0, 0};
@@ -168,11 +169,11 @@ PrimitiveComparison compare_primitives(const std::string& baseline_dir,
                                        const std::string& current_dir,
                                        const std::vector<PlatformPair>& pairs, unsigned jobs,
                                        bool compare_verdicts) {
-  const runner::Experiment baseline_exp =
-      runner::load_experiment(baseline_dir + "/experiment.toml");
-  const runner::Experiment current_exp = runner::load_experiment(current_dir + "/experiment.toml");
-  const std::vector<runner::Shard> baseline_plan = runner::plan_shards(baseline_exp);
-  const std::vector<runner::Shard> current_plan = runner::plan_shards(current_exp);
+  const rundir::Experiment baseline_exp =
+      rundir::load_experiment(baseline_dir + "/experiment.toml");
+  const rundir::Experiment current_exp = rundir::load_experiment(current_dir + "/experiment.toml");
+  const std::vector<rundir::Shard> baseline_plan = rundir::plan_shards(baseline_exp);
+  const std::vector<rundir::Shard> current_plan = rundir::plan_shards(current_exp);
 
   // One task per pair, kind and view (the experiments agree on views and counts: same hash).
   std::vector<Task> tasks;

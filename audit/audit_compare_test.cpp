@@ -31,7 +31,7 @@ std::vector<uint64_t> changed_indices(const PrimitiveComparison& c) {
 TEST(AuditCompare, FindsExactlyThePrimitivesWhosePixelsOrClassDiffer) {
   const std::string a = fresh_dir("cmp_a"), b = fresh_dir("cmp_b");
   const std::string text = experiment_text("\"reference\"", 20, 7);
-  const runner::Experiment exp = write_run(a, text);
+  const rundir::Experiment exp = write_run(a, text);
   write_run(b, text);
   write_points(a, exp, "reference", [&](int view, uint64_t i) {
     return point_record(exp, "reference", view, i, 1000 + i, 0.25);
@@ -60,7 +60,7 @@ TEST(AuditCompare, FindsExactlyThePrimitivesWhosePixelsOrClassDiffer) {
 TEST(AuditCompare, ClassesJudgedByOtherRulesAreNotCompared) {
   const std::string a = fresh_dir("rules_a"), b = fresh_dir("rules_b");
   const std::string text = experiment_text("\"reference\"", 10, 10);
-  const runner::Experiment exp = write_run(a, text);
+  const rundir::Experiment exp = write_run(a, text);
   write_run(b, text);
   auto judged = [&](int view, uint64_t i, metrics::Conformance c) {
     metrics::Record r = point_record(exp, "reference", view, i, 1000 + i, 0.25);
@@ -105,8 +105,8 @@ TEST(RunIdentity, ReadsTheConformanceRulesOfAManifestAndRefusesNonsense) {
 // Another shard size in one run (the [run] table is not part of the experiment) changes nothing.
 TEST(AuditCompare, ShardSizesMayDiffer) {
   const std::string a = fresh_dir("shard_a"), b = fresh_dir("shard_b");
-  const runner::Experiment ea = write_run(a, experiment_text("\"reference\"", 20, 20));
-  const runner::Experiment eb = write_run(b, experiment_text("\"reference\"", 20, 3));
+  const rundir::Experiment ea = write_run(a, experiment_text("\"reference\"", 20, 20));
+  const rundir::Experiment eb = write_run(b, experiment_text("\"reference\"", 20, 3));
   ASSERT_EQ(ea.hash, eb.hash);
   for (auto [dir, exp] : {std::pair{a, &ea}, std::pair{b, &eb}})
     write_points(dir, *exp, "reference", [&](int view, uint64_t i) {
@@ -122,7 +122,7 @@ TEST(AuditCompare, ShardSizesMayDiffer) {
 TEST(AuditCompare, CrashTimeoutAndMissingShardsAreFailures) {
   const std::string a = fresh_dir("fail_a"), b = fresh_dir("fail_b");
   const std::string text = experiment_text("\"reference\"", 20, 5);
-  const runner::Experiment exp = write_run(a, text);
+  const rundir::Experiment exp = write_run(a, text);
   write_run(b, text,
             nlohmann::json::array({{{"shard", "reference.point.v1.15-20"},
                                     {"reason", "crashed (signal 11, Segmentation fault)"}}}));
@@ -164,7 +164,7 @@ TEST(AuditCompare, CrashTimeoutAndMissingShardsAreFailures) {
 // Two platforms of one run: P1 plays the baseline.
 TEST(AuditCompare, BetweenTwoPlatformsOfOneRun) {
   const std::string a = fresh_dir("between");
-  const runner::Experiment exp = write_run(a, experiment_text("\"reference\", \"faulty\"", 10, 10));
+  const rundir::Experiment exp = write_run(a, experiment_text("\"reference\", \"faulty\"", 10, 10));
   write_points(a, exp, "reference", [&](int view, uint64_t i) {
     return point_record(exp, "reference", view, i, i, 0.1);
   });
@@ -180,8 +180,8 @@ TEST(AuditCompare, BetweenTwoPlatformsOfOneRun) {
 // Runs of different experiments are refused with both hashes and seeds in the message.
 TEST(RunIdentity, RefusesDifferentExperimentsNamingBothHashes) {
   const std::string a = fresh_dir("id_a"), b = fresh_dir("id_b");
-  const runner::Experiment ea = write_run(a, experiment_text("\"reference\"", 10, 10, 1));
-  const runner::Experiment eb = write_run(b, experiment_text("\"reference\"", 10, 10, 2));
+  const rundir::Experiment ea = write_run(a, experiment_text("\"reference\"", 10, 10, 1));
+  const rundir::Experiment eb = write_run(b, experiment_text("\"reference\"", 10, 10, 2));
   const RunIdentity ra = load_run_identity(a), rb = load_run_identity(b);
   EXPECT_EQ(ra.drivers.at("reference").renderer, "reference renderer");
   EXPECT_EQ(driver_of(ra, "osmesa-softpipe").renderer, "unknown");

@@ -6,7 +6,7 @@
 #include <tuple>
 
 #include "audit/audit_report.h"
-#include "runner/manifest.h"
+#include "rundir/manifest.h"
 
 namespace ra::audit {
 namespace {
@@ -93,10 +93,10 @@ json comparison_json(const AuditResult& r, const DistributionComparison& c) {
 }  // namespace
 
 json audit_json(const AuditResult& r) {
-  json j = runner::document_header("audit", kAuditSchemaVersion, false);
+  json j = rundir::document_header("audit", kAuditSchemaVersion, false);
   j["tool"] = {{"name", "renderaudit"},
-               {"version", runner::project_version()},
-               {"commit", runner::project_commit()}};
+               {"version", rundir::project_version()},
+               {"commit", rundir::project_commit()}};
   j["date_utc"] = r.date_utc;
   j["mode"] = r.mode;
   j["verdict"] = verdict_name(r.verdict);
@@ -165,7 +165,7 @@ json audit_json(const AuditResult& r) {
   j["changed_primitives"] = {{"total", n_changed}, {"listed", changed.size()}, {"items", changed}};
   j["flakes"] = {{"total", n_flaky}, {"listed", flaky.size()}, {"items", flaky}};
   json batches = json::array();
-  for (const RerenderBatch& b : r.flakes.failed_batches)
+  for (const audit::RerenderBatch& b : r.flakes.failed_batches)
     batches.push_back({{"platform", b.platform},
                        {"kind", geometry::kind_name(b.kind)},
                        {"view", b.view},

@@ -198,7 +198,7 @@ void classes(std::ostream& md, const AuditResult& r) {
 }
 
 void flakes(std::ostream& md, const AuditResult& r) {
-  const FlakeCheckSummary& f = r.flakes;
+  const audit::FlakeCheckSummary& f = r.flakes;
   md << "## Flakes\n\n";
   if (!f.performed) {
     md << "The flake check was off (--max-rerenders 0): every difference counts as a change.\n\n";
@@ -256,7 +256,7 @@ void failures(std::ostream& md, const AuditResult& r) {
     if (m.outcome == FailureOutcome::kUnknown)
       md << "- manifest: " << m.side << " " << m.shard
          << " (not a shard of the experiment): " << m.reason << "\n";
-  for (const RerenderBatch& b : r.flakes.failed_batches)
+  for (const audit::RerenderBatch& b : r.flakes.failed_batches)
     md << "- re-render of " << b.platform << " " << geometry::kind_name(b.kind) << ", view "
        << b.view << ", indices " << b.begin << " to " << b.end - 1 << ": " << b.error << "\n";
 }

@@ -43,7 +43,7 @@ std::vector<GroupOutcome> group_outcomes(const AuditResult& r) {
     for (std::size_t p = 0; p < r.pairs.size(); ++p)
       if (m.platform == (m.side == "baseline" ? r.pairs[p].baseline : r.pairs[p].current))
         ++at(p, m.kind, m.view_group).missing_shards;
-  for (const RerenderBatch& b : r.flakes.failed_batches)
+  for (const audit::RerenderBatch& b : r.flakes.failed_batches)
     for (const ChangedPrimitive& c : r.primitives.changed)
       if (c.recheck == Recheck::kRerenderFailed && c.kind == b.kind && c.view == b.view &&
           c.index >= b.begin && c.index < b.end &&

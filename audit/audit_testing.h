@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "runner/experiment.h"
+#include "rundir/experiment.h"
 #include "metrics/records.h"
-#include "runner/shard.h"
-#include "runner/shard_file.h"
+#include "rundir/shard.h"
+#include "rundir/shard_file.h"
 
 namespace ra::audit::testing {
 
@@ -39,10 +39,10 @@ inline std::string experiment_text(const std::string& platforms, int points, int
 // Writes DIR/experiment.toml and DIR/manifest.json (hash and seed as `run` writes them, drivers
 // named "<platform> renderer" / "<platform> 1.0", the given shard failures); returns the
 // experiment.
-inline runner::Experiment write_run(const std::string& dir, const std::string& text,
+inline rundir::Experiment write_run(const std::string& dir, const std::string& text,
                                     const nlohmann::json& failures = nlohmann::json::array()) {
   std::ofstream(dir + "/experiment.toml") << text;
-  const runner::Experiment exp = runner::parse_experiment(text, dir + "/experiment.toml");
+  const rundir::Experiment exp = rundir::parse_experiment(text, dir + "/experiment.toml");
   nlohmann::json drivers = nlohmann::json::object();
   for (const auto& p : exp.platforms)
     drivers[p] = {{"renderer", p + " renderer"}, {"version", p + " 1.0"}};
@@ -58,7 +58,7 @@ inline runner::Experiment write_run(const std::string& dir, const std::string& t
 }
 
 // A true-visible point record of view `view` of `exp` with lit-pixel hash `hash` and PE `pe`.
-inline metrics::Record point_record(const runner::Experiment& exp, const std::string& platform,
+inline metrics::Record point_record(const rundir::Experiment& exp, const std::string& platform,
                                     int view, uint64_t index, uint64_t hash, double pe) {
   const geometry::View& v = exp.views.at(std::size_t(view - 1));
   metrics::Record r;
@@ -79,17 +79,17 @@ inline metrics::Record point_record(const runner::Experiment& exp, const std::st
 
 // Writes every planned point shard of `platform` in DIR, one record per index made by `make`
 // (index -> record), sealed as `run` writes them; shards listed in `skip` (by id) are left out.
-inline void write_points(const std::string& dir, const runner::Experiment& exp,
+inline void write_points(const std::string& dir, const rundir::Experiment& exp,
                          const std::string& platform,
                          const std::function<metrics::Record(int view, uint64_t index)>& make,
                          const std::vector<std::string>& skip = {}) {
-  for (const runner::Shard& s : runner::plan_shards(exp)) {
+  for (const rundir::Shard& s : rundir::plan_shards(exp)) {
     if (s.platform != platform || s.kind != geometry::Kind::kPoint) continue;
     bool skipped = false;
     for (const auto& id : skip) skipped = skipped || id == s.id();
     if (skipped) continue;
-    runner::RecordsFileWriter out(s.records_path(dir, metrics::RecordsFormat::kCsv),
-                                  metrics::RecordsFormat::kCsv);
+    rundir::RecordsFileWriter out(s.records_path(dir, rundir::RecordsFormat::kCsv),
+                                  rundir::RecordsFormat::kCsv);
     for (uint64_t i = s.begin; i < s.end; ++i) out.write(make(s.view, i));
     out.finish();
   }

@@ -37,7 +37,7 @@ struct TwoRuns {
 TwoRuns make_runs(const std::string& tag, double shift, double offset = 0.01) {
   const std::string a = fresh_dir(tag + "_a"), b = fresh_dir(tag + "_b");
   const std::string text = experiment_text("\"reference\"", 400, 400, 5, 2);
-  const runner::Experiment exp = write_run(a, text);
+  const rundir::Experiment exp = write_run(a, text);
   write_run(b, text);
   auto pe = [&](uint64_t i) { return offset + 0.7 * double((i * 37) % 400) / 400.0; };
   write_points(a, exp, "reference",

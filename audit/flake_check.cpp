@@ -14,13 +14,14 @@
 #include <stdexcept>
 #include <thread>
 
+#include "rundir/records_reader.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
-#include "runner/experiment.h"
-#include "runner/shard.h"
-#include "runner/worker_program.h"
-#include "platforms/renderer_check.h"
-#include "runner/shard_records.h"
+#include "rundir/experiment.h"
+#include "rundir/shard.h"
+#include "util/worker_program.h"
+#include "rundir/driver_build.h"
+#include "rundir/shard_records.h"
 #include "util/errors.h"
 
 namespace fs = std::filesystem;
@@ -30,7 +31,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-runner::Shard shard_of(const RerenderBatch& b) {
+rundir::Shard shard_of(const RerenderBatch& b) {
   return {b.platform, b.kind, b.view, b.begin, b.end};
 }
 
@@ -110,12 +111,12 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   RerenderResult result;
   result.batches = batches;
   if (batches.empty()) return result;
-  const runner::Experiment exp =
+  const rundir::Experiment exp =
       options.experiment_text.empty()
-          ? runner::load_experiment(options.run_dir + "/experiment.toml")
-          : runner::parse_experiment(options.experiment_text, options.run_dir + "/experiment.toml");
+          ? rundir::load_experiment(options.run_dir + "/experiment.toml")
+          : rundir::parse_experiment(options.experiment_text, options.run_dir + "/experiment.toml");
   const double timeout_s = options.timeout_s > 0 ? options.timeout_s : exp.shard_timeout_s;
-  const std::string program = options.program.empty() ? runner::worker_program() : options.program;
+  const std::string program = options.program.empty() ? util::worker_program() : options.program;
   const unsigned jobs =
       options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
 
@@ -143,14 +144,14 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   std::size_t next = 0;
   auto finish = [&](std::size_t b, const std::string& error) {
     RerenderBatch& batch = result.batches[b];
-    const runner::Shard s = shard_of(batch);
+    const rundir::Shard s = shard_of(batch);
     const std::string log = last_log_line(dir + "/logs/" + s.id() + ".log");
     batch.error = error.empty() || log.empty() ? error : error + ": " + log;
     if (!batch.error.empty()) return;
     // the re-render's own file, judged by the seal rule as any reader judges records
-    runner::ShardRecordsFile file;
+    rundir::ShardRecordsFile file;
     try {
-      file = runner::find_shard_records(dir, s);
+      file = rundir::find_shard_records(dir, s);
     } catch (const util::UserError& e) {
       batch.error = e.what();
       return;
@@ -159,7 +160,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
       batch.error = file.path.empty() ? "wrote no records" : file.path + ": damaged: " + file.damage;
       return;
     }
-    metrics::read_records(file.path, [&](const metrics::Record& r) {
+    rundir::read_records(file.path, [&](const metrics::Record& r) {
       result.hashes[{batch.platform, int(batch.kind), batch.view, r.index}] = r.pixel_hash;
       result.pixels[{batch.platform, int(batch.kind), batch.view, r.index}] = r.pixels;
     });
@@ -200,8 +201,8 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   return result;
 }
 
-FlakeCheckSummary apply_flake_check(PrimitiveComparison& comparison,
-                                    const std::vector<PlatformPair>& pairs, bool between,
+FlakeCheckSummary apply_flake_check(audit::PrimitiveComparison& comparison,
+                                    const std::vector<audit::PlatformPair>& pairs, bool between,
                                     const KnownFailures& avoid, std::size_t cap,
                                     const RerenderOptions& options) {
   FlakeCheckSummary s;
@@ -215,7 +216,7 @@ FlakeCheckSummary apply_flake_check(PrimitiveComparison& comparison,
 
   std::vector<RerenderRequest> requests;
   for (std::size_t i = 0; i < n; ++i) {
-    const ChangedPrimitive& c = comparison.changed[i];
+    const audit::ChangedPrimitive& c = comparison.changed[i];
     requests.push_back({pairs[c.pair].current, c.kind, c.view, c.index});
     if (between) requests.push_back({pairs[c.pair].baseline, c.kind, c.view, c.index});
   }
@@ -224,33 +225,33 @@ FlakeCheckSummary apply_flake_check(PrimitiveComparison& comparison,
   s.seconds = r.seconds;
   for (const RerenderBatch& b : r.batches) {
     // A re-render on another driver than the run's is no evidence either way: stop the audit.
-    if (b.error.find(platforms::kDriverMismatch) != std::string::npos)
+    if (b.error.find(rundir::kDriverMismatch) != std::string::npos)
       throw util::UserError("the flake check cannot re-render " + b.platform +
                             " with the driver that "
                             "made " +
                             options.run_dir + ": " +
-                            b.error.substr(b.error.find(platforms::kDriverMismatch)));
+                            b.error.substr(b.error.find(rundir::kDriverMismatch)));
     if (!b.error.empty()) s.failed_batches.push_back(b);
   }
 
   for (std::size_t i = 0; i < n; ++i) {
-    ChangedPrimitive& c = comparison.changed[i];
+    audit::ChangedPrimitive& c = comparison.changed[i];
     const auto now = r.hashes.find({pairs[c.pair].current, int(c.kind), c.view, c.index});
     const auto base = r.hashes.find({pairs[c.pair].baseline, int(c.kind), c.view, c.index});
     if (now == r.hashes.end() || (between && base == r.hashes.end())) {
-      c.recheck = Recheck::kRerenderFailed;
+      c.recheck = audit::Recheck::kRerenderFailed;
       ++s.rerender_failed;
       continue;
     }
     c.rerender_hash = now->second;
     if (c.before.pixel_hash == c.after.pixel_hash) {  // status or class changed, not the pixels:
-      c.recheck = Recheck::kStillDifferent;           // pixels alone cannot clear it
+      c.recheck = audit::Recheck::kStillDifferent;           // pixels alone cannot clear it
       ++s.still_different;
       continue;
     }
     const uint64_t reference = between ? base->second : c.before.pixel_hash;
-    c.recheck = c.rerender_hash == reference ? Recheck::kFlake : Recheck::kStillDifferent;
-    ++(c.recheck == Recheck::kFlake ? s.flakes : s.still_different);
+    c.recheck = c.rerender_hash == reference ? audit::Recheck::kFlake : audit::Recheck::kStillDifferent;
+    ++(c.recheck == audit::Recheck::kFlake ? s.flakes : s.still_different);
   }
   return s;
 }

@@ -59,7 +59,7 @@ struct KnownFailures {
 
 struct RerenderOptions {
   std::string run_dir;     // whose experiment.toml is copied
-  std::string program;     // runs `worker`; empty: runner/worker_program.h
+  std::string program;     // runs `worker`; empty: util/worker_program.h
   unsigned jobs = 0;       // children at once; 0: the number of cores
   double timeout_s = 0;    // per child; 0: the experiment's run.shard_timeout_s
   uint64_t max_gap = 500;  // neighbours less than this far apart share a child
@@ -108,8 +108,8 @@ struct FlakeCheckSummary {
 
 // Re-renders comparison.changed (the first `cap` in their order) and sets each one's recheck.
 // `between`: both sides are platforms of `current` (see the decision above).
-FlakeCheckSummary apply_flake_check(PrimitiveComparison& comparison,
-                                    const std::vector<PlatformPair>& pairs, bool between,
+FlakeCheckSummary apply_flake_check(audit::PrimitiveComparison& comparison,
+                                    const std::vector<audit::PlatformPair>& pairs, bool between,
                                     const KnownFailures& avoid, std::size_t cap,
                                     const RerenderOptions& options);
 

@@ -48,8 +48,8 @@ TEST(PlanRerender, NeverSpansAKnownFailure) {
 
 // Children render what run would have rendered; a crashing child is recorded in its batch.
 TEST(Rerender, RendersInChildrenAndSurvivesACrash) {
-  const std::string dir = testing::fresh_dir("rerender");
-  testing::write_run(dir, testing::experiment_text("\"reference\", \"faulty\"", 10, 10) +
+  const std::string dir = audit::testing::fresh_dir("rerender");
+  audit::testing::write_run(dir, audit::testing::experiment_text("\"reference\", \"faulty\"", 10, 10) +
                               "[faults]\ncrash = [4]\n");
   RerenderOptions o;
   o.run_dir = dir;

@@ -11,11 +11,12 @@
 #include "geometry/primitive.h"
 #include "geometry/reference_rasterizer.h"
 #include "metrics/records.h"
-#include "platforms/driver_build.h"
-#include "runner/experiment.h"
-#include "runner/shard.h"
+#include "rundir/driver_build.h"
+#include "rundir/experiment.h"
+#include "rundir/records_reader.h"
+#include "rundir/shard.h"
 #include "util/errors.h"
-#include "runner/shard_records.h"
+#include "rundir/shard_records.h"
 
 namespace fs = std::filesystem;
 
@@ -174,7 +175,7 @@ std::string comment_safe(const std::string& text) {
 std::string reproducer_environment(const std::string& build_dir, const std::string& mesa_driver) {
   std::string env;
   if (!build_dir.empty()) {
-    const std::string lib = platforms::build_library_dir(build_dir);
+    const std::string lib = rundir::build_library_dir(build_dir);
     env = "LD_LIBRARY_PATH=" + shell_quote(lib) + " ";
     std::error_code ec;
     if (fs::is_directory(lib + "/dri", ec)) env += "LIBGL_DRIVERS_PATH=" + shell_quote(lib + "/dri") + " ";
@@ -186,9 +187,9 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   const std::string toml = q.run_dir + "/experiment.toml";
   if (!fs::is_regular_file(toml))
     throw util::UserError(q.run_dir + ": not a run directory (no experiment.toml)");
-  const runner::Experiment exp = runner::load_experiment(toml);
-  const platforms::PlatformSpec spec = runner::experiment_platform(exp, q.platform);
-  if (!spec.draws_with_gl() || spec.samples > 0 || spec.backend == platforms::Backend::kEglDevice)
+  const rundir::Experiment exp = rundir::load_experiment(toml);
+  const rundir::PlatformSpec spec = rundir::experiment_platform(exp, q.platform);
+  if (!spec.draws_with_gl() || spec.samples > 0 || spec.backend == rundir::Backend::kEglDevice)
     throw util::UserError(
         "reproduce draws through Mesa's surfaceless EGL: --platform must be one of "
         "osmesa-llvmpipe, osmesa-softpipe, egl-llvmpipe, egl-softpipe (or one of "
@@ -203,15 +204,15 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   if (!view) throw util::UserError("the run has no view " + std::to_string(q.view));
   // The worker's record of it.
   std::optional<metrics::Record> record;
-  for (const runner::Shard& s : runner::plan_shards(exp)) {
+  for (const rundir::Shard& s : rundir::plan_shards(exp)) {
     if (s.platform != q.platform || s.kind != kind || s.view != q.view || q.index < s.begin ||
         q.index >= s.end)
       continue;
-    const std::string path = runner::trusted_records_path(q.run_dir, s);
+    const std::string path = rundir::trusted_records_path(q.run_dir, s);
     if (path.empty())
       throw util::UserError(s.records_path(q.run_dir) +
                             ": missing: the run has no record of this primitive");
-    metrics::read_records(path, [&](const metrics::Record& r) {
+    rundir::read_records(path, [&](const metrics::Record& r) {
       if (r.index == q.index) record = r;
     });
   }

@@ -8,8 +8,8 @@
 #include "metrics/conformance.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
-#include "runner/manifest.h"
-#include "runner/shard.h"
+#include "rundir/manifest.h"
+#include "rundir/shard.h"
 #include "util/json_file.h"
 
 namespace fs = std::filesystem;
@@ -38,13 +38,13 @@ RunIdentity load_run_identity(const std::string& dir) {
   run.dir = dir;
   if (!fs::is_directory(dir)) throw util::UserError(dir + ": no such run directory");
   const std::string manifest_path = dir + "/manifest.json";
-  const runner::RunManifest manifest =
-      runner::read_manifest(read_json(manifest_path), manifest_path);
+  const rundir::RunManifest manifest =
+      rundir::read_manifest(read_json(manifest_path), manifest_path);
   const std::string toml = dir + "/experiment.toml";
   if (!fs::exists(toml)) throw util::UserError(toml + ": missing (not a run directory?)");
-  run.experiment = runner::load_experiment(toml);
+  run.experiment = rundir::load_experiment(toml);
 
-  const runner::ManifestExperiment exp = manifest.experiment.value_or(runner::ManifestExperiment{});
+  const rundir::ManifestExperiment exp = manifest.experiment.value_or(rundir::ManifestExperiment{});
   run.name = exp.name.empty() ? run.experiment.name : exp.name;
   run.hash = exp.hash;
   if (run.hash.empty())
@@ -79,7 +79,7 @@ RunIdentity load_run_identity(const std::string& dir) {
     run.drivers[platform] = {platform, string_or(d, "renderer", "unknown"),
                              string_or(d, "version", "unknown")};
 
-  for (const runner::ManifestShardNote& f : manifest.failures_or_none())
+  for (const rundir::ManifestShardNote& f : manifest.failures_or_none())
     run.manifest_failures.push_back({f.shard, f.reason.empty() ? "failed" : f.reason});
   return run;
 }
@@ -146,7 +146,7 @@ DriverIdentity driver_of(const RunIdentity& run, const std::string& platform) {
 std::vector<MissingShard> missing_shards(const RunIdentity& run, const std::string& platform,
                                          const std::string& side) {
   std::vector<MissingShard> out;
-  for (const runner::Shard& s : runner::plan_shards(run.experiment)) {
+  for (const rundir::Shard& s : rundir::plan_shards(run.experiment)) {
     if (s.platform != platform || fs::exists(s.records_path(run.dir))) continue;
     MissingShard m{side, s.platform, s.kind, s.view, 0, s.begin, s.end, s.id(), "no records file"};
     for (const geometry::View& v : run.experiment.views)
@@ -176,11 +176,11 @@ std::vector<ManifestFailure> manifest_failures_of(const RunIdentity& run,
                                                   const std::string& platform,
                                                   const std::string& side) {
   std::vector<ManifestFailure> out;
-  const std::vector<runner::Shard> plan = runner::plan_shards(run.experiment);
+  const std::vector<rundir::Shard> plan = rundir::plan_shards(run.experiment);
   for (const ShardFailureNote& f : run.manifest_failures) {
     if (f.shard.rfind(platform + ".", 0) != 0) continue;
     ManifestFailure m{side, platform, f.shard, f.reason};
-    for (const runner::Shard& s : plan) {
+    for (const rundir::Shard& s : plan) {
       if (s.id() != f.shard) continue;
       m.kind = s.kind, m.view = s.view, m.begin = s.begin, m.end = s.end;
       for (const geometry::View& v : run.experiment.views)

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "audit/audit_summary.h"
-#include "runner/experiment.h"
+#include "rundir/experiment.h"
 #include "geometry/primitive.h"
 
 namespace ra::audit {
@@ -23,7 +23,7 @@ struct ShardFailureNote {
 
 struct RunIdentity {
   std::string dir;         // as given
-  runner::Experiment experiment;  // DIR/experiment.toml (its own [run] shard size)
+  rundir::Experiment experiment;  // DIR/experiment.toml (its own [run] shard size)
   std::string name, hash;  // manifest.json "experiment": name, hash
   uint64_t seed = 0;       // manifest.json "experiment": seed
   std::string status;      // manifest.json "status": "complete", "failed", "running", ...
@@ -44,7 +44,7 @@ void require_same_experiment(const RunIdentity& baseline, const RunIdentity& cur
 // it, e.g. every shard of that platform failed).
 DriverIdentity driver_of(const RunIdentity& run, const std::string& platform);
 
-// A planned shard (runner/shard.h) of a platform that has no records file, i.e. a shard that
+// A planned shard (rundir/shard.h) of a platform that has no records file, i.e. a shard that
 // crashed, timed out or never ran.
 struct MissingShard {
   std::string side;  // "baseline" or "current"

@@ -6,7 +6,7 @@
 //
 //   analysis_bench [--records N] [--platforms P] [--dir DIR] [--jobs J] [--format F] [--keep]
 //
-// --format csv.zst (default) or csv: the records files' format (metrics/records_format.h).
+// --format csv.zst (default) or csv: the records files' format (rundir/records_format.h).
 //
 // The values are random but shaped like the paper's: visibility proportions of its Tables 2, 5, 8;
 // PE the distance to a pixel centre with uniform offsets; LSEs small and positive, LSEu near 0.24
@@ -28,10 +28,11 @@
 
 #include "analysis/run_analysis.h"
 #include "analysis/view_equivalence.h"
+#include "rundir/records_reader.h"
 #include "util/errors.h"
 #include "metrics/records.h"
-#include "metrics/records_format.h"
-#include "runner/shard_file.h"
+#include "rundir/records_format.h"
+#include "rundir/shard_file.h"
 
 namespace fs = std::filesystem;
 
@@ -65,7 +66,7 @@ struct Params {
   std::string dir = "/tmp/ra_analysis_bench";
   unsigned jobs = 0;
   bool keep = false;
-  ra::metrics::RecordsFormat format = ra::metrics::RecordsFormat::kCsvZst;
+  ra::rundir::RecordsFormat format = ra::rundir::RecordsFormat::kCsvZst;
 };
 
 // One synthetic record of a view; the shapes follow the paper's tables.
@@ -131,7 +132,7 @@ ra::metrics::Record synth(Rng& rng, const std::string& platform, int p, const ch
 
 void synthesise(const Params& prm) {
   const std::string stamp = std::to_string(prm.records) + " " + std::to_string(prm.platforms) +
-                            " " + ra::metrics::records_format_name(prm.format);
+                            " " + ra::rundir::records_format_name(prm.format);
   std::ifstream old(prm.dir + "/bench.txt");
   std::string line;
   if (old && std::getline(old, line) && line == stamp) {
@@ -152,11 +153,11 @@ void synthesise(const Params& prm) {
         Rng rng(0x5EEDull * 1000003u + static_cast<std::uint64_t>(p * 100 + k * 10 + view));
         for (std::uint64_t first = 0; first < per_view; first += shard) {
           const std::uint64_t last = std::min(per_view, first + shard);
-          // sealed, as a run writes it (runner/shard_file.h)
-          ra::runner::RecordsFileWriter out(prm.dir + "/records/" + platform + "." + kinds[k] +
+          // sealed, as a run writes it (rundir/shard_file.h)
+          ra::rundir::RecordsFileWriter out(prm.dir + "/records/" + platform + "." + kinds[k] +
                                                 ".v" + std::to_string(view) + "." +
                                                 std::to_string(first) + "-" + std::to_string(last) +
-                                                ra::metrics::records_extension(prm.format),
+                                                ra::rundir::records_extension(prm.format),
                                             prm.format);
           for (std::uint64_t i = first; i < last; ++i)
             out.write(synth(rng, platform, p, kinds[k], view, i));
@@ -193,8 +194,8 @@ int main(int argc, char** argv) {
     } else if (a == "--jobs") {
       prm.jobs = static_cast<unsigned>(std::stoul(value()));
     } else if (a == "--format") {
-      const std::optional<ra::metrics::RecordsFormat> f =
-          ra::metrics::parse_records_format(value());
+      const std::optional<ra::rundir::RecordsFormat> f =
+          ra::rundir::parse_records_format(value());
       if (!f) {
         std::fprintf(stderr, "analysis_bench: --format csv or csv.zst\n");
         return 2;
@@ -221,8 +222,8 @@ int main(int argc, char** argv) {
       const auto t0 = std::chrono::steady_clock::now();
       std::uint64_t n = 0;
       for (const auto& e : fs::directory_iterator(prm.dir + "/records")) {
-        if (ra::metrics::is_records_file_name(e.path().filename().string()))
-          ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record&) { ++n; });
+        if (ra::rundir::is_records_file_name(e.path().filename().string()))
+          ra::rundir::read_records(e.path().string(), [&](const ra::metrics::Record&) { ++n; });
       }
       std::printf("ra::read_records (metrics/records.h, one thread): %llu records in %.2f s\n",
                   static_cast<unsigned long long>(n), seconds_since(t0));

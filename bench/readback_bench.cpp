@@ -31,9 +31,9 @@
 #include <string>
 #include <vector>
 
-#include "metrics/case_measurement.h"
-#include "metrics/effective_subpixel.h"
-#include "runner/experiment.h"
+#include "runner/case_measurement.h"
+#include "runner/effective_subpixel.h"
+#include "rundir/experiment.h"
 #include "platforms/platform.h"
 #include "stats/descriptive.h"
 #include "util/child_process.h"
@@ -91,12 +91,12 @@ nlohmann::json summary_row(const std::string& platform, ra::geometry::Kind kind,
 
 // The aliased GL and Vulkan platforms: the readback this benchmark compares.
 bool benchable(const std::string& name) {
-  const std::optional<ra::platforms::PlatformSpec> spec = ra::platforms::find_platform(name);
+  const std::optional<ra::rundir::PlatformSpec> spec = ra::rundir::find_platform(name);
   return spec && spec->draws_with_driver() && spec->samples == 0;
 }
 
 std::unique_ptr<ra::platforms::Platform> create_bench_platform(
-    const ra::platforms::PlatformSpec& spec, ra::platforms::ReadbackMethod method) {
+    const ra::rundir::PlatformSpec& spec, ra::platforms::ReadbackMethod method) {
   return spec.draws_with_vulkan() ? ra::platforms::create_vulkan_platform(spec, method)
                                   : ra::platforms::create_gl_platform(spec, method);
 }
@@ -104,21 +104,21 @@ std::unique_ptr<ra::platforms::Platform> create_bench_platform(
 // One platform, in this process: prints one JSON object per configuration on stdout, and per
 // kind and window one pooled over both fields of view (fov_deg 0).
 int measure_platform(const Options& opt) {
-  const std::optional<ra::platforms::PlatformSpec> spec =
-      ra::platforms::find_platform(opt.platform);
+  const std::optional<ra::rundir::PlatformSpec> spec =
+      ra::rundir::find_platform(opt.platform);
   if (!benchable(opt.platform)) {  // the aliased readback only
     std::fprintf(stderr, "readback_bench: not an aliased GL or Vulkan platform: %s\n",
                  opt.platform.c_str());
     return 2;
   }
   const char* methods[] = {"floor", "naive", "region", "project", "batched"};
-  // The grid `run`'s workers would measure (metrics/effective_subpixel.h).
+  // The grid `run`'s workers would measure (runner/effective_subpixel.h).
   ra::geometry::SubpixelGrid effective;
   {
     auto probe = create_bench_platform(*spec, ra::platforms::ReadbackMethod::kRegionWithProof);
     probe->set_view(bench_view(30, 128));  // context made and shaders compiled: not timed below
     const auto t0 = Clock::now();
-    effective = ra::metrics::measure_effective_subpixel(*probe).grid;
+    effective = ra::runner::measure_effective_subpixel(*probe).grid;
     std::printf(
         "%s: effective subpixel grid %s, measured in %.1f ms (every worker of `run` "
         "pays this once)\n",
@@ -151,7 +151,7 @@ int measure_platform(const Options& opt) {
               warm.push_back(ra::geometry::make_primitive(7, kind, w));
             for (uint64_t w = 0; w < 16; ++w)
               platform->render(warm[w], ra::geometry::PixelRect{0, 0, window, window});
-            ra::metrics::measure_cases(opt.platform, *platform, view, warm, true);
+            ra::runner::measure_cases(opt.platform, *platform, view, warm, true);
             if (m == 4) {  // the floor with the flush shared by kChunk primitives
               std::vector<double>& us = t.per_primitive["batched"];
               for (size_t i = 0; i < prims.size(); i += kChunk) {
@@ -167,17 +167,17 @@ int measure_platform(const Options& opt) {
               // Exactly what `renderaudit run` does, chunk by chunk, with and without the
               // conformance verdict on the same platform, chunk by chunk, the order alternating:
               // the two are compared side by side, not across rounds.
-              ra::metrics::CaseComparison judged(true, effective), unjudged(true, effective);
+              ra::runner::CaseComparison judged(true, effective), unjudged(true, effective);
               unjudged.conformance = false;
               judged.line_rule = unjudged.line_rule =
-                  ra::metrics::line_rule_for(*spec, platform->driver_info());
+                  ra::runner::line_rule_for(*spec, platform->driver_info());
               for (size_t i = 0; i < prims.size(); i += kChunk) {
                 const std::vector<ra::geometry::Primitive> chunk(
                     prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
                 for (int k = 0; k < 2; ++k) {
                   const bool judge = (k == 0) == ((i / kChunk) % 2 == 0);
                   std::vector<double> cost;
-                  ra::metrics::measure_cases(opt.platform, *platform, view, chunk,
+                  ra::runner::measure_cases(opt.platform, *platform, view, chunk,
                                              judge ? judged : unjudged, &cost);
                   std::vector<double>& us = t.per_primitive[judge ? "project" : "unjudged"];
                   us.insert(us.end(), cost.begin(), cost.end());
@@ -190,7 +190,7 @@ int measure_platform(const Options& opt) {
               const auto t0 = Clock::now();
               if (m == 2) {
                 // One primitive at a time with its own proof: the readback without batching.
-                ra::metrics::measure_case(opt.platform, *platform, view, prim, false);
+                ra::runner::measure_case(opt.platform, *platform, view, prim, false);
               } else {
                 platform->render(prim, {});
               }
@@ -219,7 +219,7 @@ int run_children(const Options& opt, const char* self) {
       std::fprintf(stderr,
                    "readback_bench: --platforms: '%s' is not an aliased GL or Vulkan "
                    "platform (allowed: %s, vk-lavapipe, vk-lavapipe-bresenham, vk-device:N)\n",
-                   p.c_str(), ra::platforms::aliased_gl_platform_names().c_str());
+                   p.c_str(), ra::rundir::aliased_gl_platform_names().c_str());
       return 2;
     }
   }

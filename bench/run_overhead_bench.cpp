@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "metrics/records_reader.h"
-#include "runner/manifest.h"
-#include "runner/shard.h"
+#include "rundir/records_reader.h"
+#include "rundir/manifest.h"
+#include "rundir/shard.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "stats/descriptive.h"
@@ -98,8 +98,8 @@ int main(int argc, char** argv) {
         return 1;
       }
     }
-    const ra::runner::RunManifest m = ra::runner::read_manifest_file(dir + "/manifest.json");
-    const ra::runner::ManifestInvocation* inv = m.last_invocation();
+    const ra::rundir::RunManifest m = ra::rundir::read_manifest_file(dir + "/manifest.json");
+    const ra::rundir::ManifestInvocation* inv = m.last_invocation();
     if (!inv) {
       std::fprintf(stderr, "run_overhead_bench: %s/manifest.json lists no invocation\n", dir.c_str());
       return 1;
@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
       k.worker_s += seconds;
     }
     for (const auto& e : fs::directory_iterator(dir + "/records")) {
-      ra::metrics::for_each_record_row(e.path().string(), [&](const ra::metrics::RecordRow& row) {
+      ra::rundir::for_each_record_row(e.path().string(), [&](const ra::rundir::RecordRow& row) {
         const double us = row.number(ra::metrics::RecordColumn::kRenderUs).value_or(0);
         KindCost& k = round.kinds[std::string(row.cell(ra::metrics::RecordColumn::kPlatform)) +
                                   " " + std::string(row.cell(ra::metrics::RecordColumn::kKind))];

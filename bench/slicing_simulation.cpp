@@ -1,6 +1,6 @@
 // `slicing_simulation RUN_DIR [--cores C] [--nodes 1,4,16,64]`: how a run would scale out. From
 // the measured wall time of each shard (RUN_DIR/manifest.json "shard_seconds") it simulates the run
-// cut into N slices (runner/slicing.h, as `run --slice K/N` cuts it) on N nodes of C cores, each
+// cut into N slices (rundir/slicing.h, as `run --slice K/N` cuts it) on N nodes of C cores, each
 // node starting its shards largest expected cost first on whichever core frees first (as the run
 // coordinator does), and prints the makespan against the ideal total / (N x C), beside the same
 // for slices dealt by count (every N-th shard, as deqp-runner's --fraction deals tests).
@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "runner/experiment.h"
-#include "runner/manifest.h"
-#include "runner/shard.h"
-#include "runner/shard_cost.h"
-#include "runner/slicing.h"
+#include "rundir/experiment.h"
+#include "rundir/manifest.h"
+#include "rundir/shard.h"
+#include "rundir/shard_cost.h"
+#include "rundir/slicing.h"
 #include "util/atomic_file.h"
 
 using namespace ra;
@@ -26,13 +26,13 @@ namespace {
 
 // Makespan of `shards` on `cores` cores: started in largest-expected-cost order, each on the
 // first core to free; durations are the measured ones.
-double node_makespan(const std::vector<ra::runner::Shard>& shards,
-                     const ra::runner::Experiment& exp, int cores,
+double node_makespan(const std::vector<ra::rundir::Shard>& shards,
+                     const ra::rundir::Experiment& exp, int cores,
                      const std::map<std::string, double>& seconds) {
   std::priority_queue<double, std::vector<double>, std::greater<double>> free_at;
   for (int c = 0; c < cores; ++c) free_at.push(0);
   double end = 0;
-  for (const ra::runner::Shard& s : ra::runner::largest_expected_cost_first(shards, exp)) {
+  for (const ra::rundir::Shard& s : ra::rundir::largest_expected_cost_first(shards, exp)) {
     const double start = free_at.top();
     free_at.pop();
     const double finish = start + seconds.at(s.id());
@@ -65,12 +65,12 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const ra::runner::Experiment exp = ra::runner::load_experiment(dir + "/experiment.toml");
-  const ra::runner::RunManifest manifest = ra::runner::read_manifest_file(dir + "/manifest.json");
+  const ra::rundir::Experiment exp = ra::rundir::load_experiment(dir + "/experiment.toml");
+  const ra::rundir::RunManifest manifest = ra::rundir::read_manifest_file(dir + "/manifest.json");
   std::map<std::string, double> seconds =
       manifest.shard_seconds.value_or(std::map<std::string, double>{});
-  std::vector<ra::runner::Shard> shards;
-  for (const ra::runner::Shard& s : ra::runner::plan_shards(exp))
+  std::vector<ra::rundir::Shard> shards;
+  for (const ra::rundir::Shard& s : ra::rundir::plan_shards(exp))
     if (seconds.count(s.id())) shards.push_back(s);
   if (shards.empty()) {
     std::fprintf(stderr, "slicing_simulation: %s/manifest.json has no shard_seconds of this plan\n",
@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   double total = 0;
-  for (const ra::runner::Shard& s : shards) total += seconds[s.id()];
+  for (const ra::rundir::Shard& s : shards) total += seconds[s.id()];
   std::printf("%zu shards with measured times, %.0f worker-seconds; nodes of %d cores\n",
               shards.size(), total, cores);
   std::printf("%6s %12s %12s %10s %14s %10s\n", "nodes", "ideal s", "by cost s", "efficiency",
@@ -86,9 +86,9 @@ int main(int argc, char** argv) {
   for (int n : node_counts) {
     double by_cost = 0, by_count = 0;
     for (int k = 1; k <= n; ++k) {
-      by_cost = std::max(by_cost, node_makespan(ra::runner::shards_of_slice(shards, exp, {k, n}),
+      by_cost = std::max(by_cost, node_makespan(ra::rundir::shards_of_slice(shards, exp, {k, n}),
                                                 exp, cores, seconds));
-      std::vector<ra::runner::Shard> dealt;
+      std::vector<ra::rundir::Shard> dealt;
       for (std::size_t i = std::size_t(k - 1); i < shards.size(); i += std::size_t(n))
         dealt.push_back(shards[i]);
       by_count = std::max(by_count, node_makespan(dealt, exp, cores, seconds));

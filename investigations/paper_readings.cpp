@@ -30,7 +30,7 @@
 #include "metrics/line_metrics.h"
 #include "metrics/point_metrics.h"
 #include "metrics/triangle_metrics.h"
-#include "runner/experiment.h"
+#include "rundir/experiment.h"
 #include "stats/bootstrap.h"
 #include "stats/descriptive.h"
 #include "util/counter_rng.h"
@@ -73,7 +73,7 @@ struct GroupSamples {
   std::array<uint64_t, 4> ideally_visible{}, total{};
 };
 
-geometry::Primitive make(const runner::Experiment& e, geometry::Kind kind, uint64_t i, bool cube) {
+geometry::Primitive make(const rundir::Experiment& e, geometry::Kind kind, uint64_t i, bool cube) {
   if (!cube) return geometry::make_primitive(e.seed, kind, i);
   geometry::Primitive p;
   p.kind = kind;
@@ -92,7 +92,7 @@ bool crosses_near_plane(const geometry::View& v, const geometry::Primitive& p) {
   return false;
 }
 
-GroupSamples measure(const runner::Experiment& e, geometry::Kind kind, const Reading& r,
+GroupSamples measure(const rundir::Experiment& e, geometry::Kind kind, const Reading& r,
                      const Options& o) {
   GroupSamples out;
   std::mutex mu;
@@ -227,7 +227,7 @@ void print_visibility(const std::string& reading, const GroupSamples& s,
 }
 
 // Points within `margin` px outside the window, per view group, scaled to the paper's 200,000.
-void print_point_margins(const runner::Experiment& e, const Options& o) {
+void print_point_margins(const rundir::Experiment& e, const Options& o) {
   std::printf(
       "\n### Points: false-invisible when points within m px outside the window lie in the field "
       "of view (per 200,000 points of a view group; paper, Platform I: 72, 154, 11, 29)\n\n"
@@ -264,7 +264,7 @@ void print_point_margins(const runner::Experiment& e, const Options& o) {
 }
 
 int run(const Options& o) {
-  const runner::Experiment e = runner::load_experiment(o.experiment);
+  const rundir::Experiment e = rundir::load_experiment(o.experiment);
   const analysis::PaperValues paper = analysis::load_paper_values(o.paper);
   std::printf("## Readings of the paper's method on the reference rasterizer\n\n%s, %llu "
               "primitives of each kind per view, bootstrap %d resamples; z against the paper's "

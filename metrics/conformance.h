@@ -73,7 +73,7 @@ struct ConformanceVerdict {
 
 // The verdict for a rendered point, segment or triangle. `exact` is the exact reference's pixels
 // (rasterize_* with an exact grid), `lit` the platform's; `effective` the grid the platform
-// effectively snaps to (metrics/effective_subpixel.h; exact when it does not snap);
+// effectively snaps to (runner/effective_subpixel.h; exact when it does not snap);
 // `near_clipped` near_clipped_vertices() of the primitive (the segment's two ends, the polygon's
 // vertices). `violating`, when given, receives the pixels that break a rule (lit or left dark; a
 // count rule names the reference's pixels it misses).

@@ -8,8 +8,8 @@
 
 #include <cmath>
 
-#include "metrics/case_measurement.h"
-#include "metrics/effective_subpixel.h"
+#include "runner/case_measurement.h"
+#include "runner/effective_subpixel.h"
 #include "platforms/platform.h"
 
 namespace ra::metrics {
@@ -277,19 +277,19 @@ TEST(Conformance, APointMissingFarFromEveryBoundaryIsAViolation) {
 // primitives are visible.
 geometry::View faulty_view() { return geometry::make_view(150, 128, 128); }
 
-std::vector<Record> faulty_records(const platforms::FaultPlan& plan, geometry::Kind kind,
+std::vector<Record> faulty_records(const rundir::FaultPlan& plan, geometry::Kind kind,
                                    geometry::SubpixelGrid* measured) {
   auto platform = platforms::create_faulty_platform(plan);
-  *measured = measure_effective_subpixel(*platform).grid;
+  *measured = runner::measure_effective_subpixel(*platform).grid;
   const geometry::View view = faulty_view();
   platform->set_view(view);
   std::vector<geometry::Primitive> prims;
   for (uint64_t i = 0; i < 1500; ++i) prims.push_back(geometry::make_primitive(7, kind, i));
-  return measure_cases("faulty", *platform, view, prims, CaseComparison(true, *measured));
+  return runner::measure_cases("faulty", *platform, view, prims, runner::CaseComparison(true, *measured));
 }
 
 TEST(Conformance, FaultyPlatformSnappingToSixBitsIsMeasuredAndNeverAViolation) {
-  platforms::FaultPlan plan;
+  rundir::FaultPlan plan;
   plan.snap_bits = 6;
   plan.snap_truncate = true;
   for (geometry::Kind kind :
@@ -311,12 +311,12 @@ TEST(Conformance, FaultyPlatformSnappingToSixBitsIsMeasuredAndNeverAViolation) {
       EXPECT_GT(snapped, 0) << geometry::kind_name(kind);
   }
   geometry::SubpixelGrid grid;
-  faulty_records(platforms::FaultPlan{}, geometry::Kind::kPoint, &grid);
+  faulty_records(rundir::FaultPlan{}, geometry::Kind::kPoint, &grid);
   EXPECT_TRUE(grid.exact());
 }
 
 TEST(Conformance, FaultyPlatformDroppingLineEndsIsWithinSpecShiftedPointsAreCountedExactly) {
-  platforms::FaultPlan drop;
+  rundir::FaultPlan drop;
   drop.drop_line_end_fraction = 1;
   geometry::SubpixelGrid grid;
   int within = 0;
@@ -330,7 +330,7 @@ TEST(Conformance, FaultyPlatformDroppingLineEndsIsWithinSpecShiftedPointsAreCoun
 
   // Points one pixel to the right: a violation of one pixel unless the position lies within the
   // allowance of the pixel's right border (then the shifted pixel is one a snap could give).
-  platforms::FaultPlan shift;
+  rundir::FaultPlan shift;
   shift.shift_fraction = 1;
   const geometry::View view = faulty_view();
   int violations = 0;

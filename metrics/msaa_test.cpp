@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "metrics/case_measurement.h"
+#include "runner/case_measurement.h"
 #include "geometry/clipping.h"
 #include "geometry/pixel_coverage.h"
 #include "platforms/platform.h"
@@ -21,7 +21,7 @@
 namespace ra::metrics {
 namespace {
 
-platforms::PlatformSpec msaa4() { return *platforms::find_platform("osmesa-llvmpipe-msaa4"); }
+rundir::PlatformSpec msaa4() { return *rundir::find_platform("osmesa-llvmpipe-msaa4"); }
 
 // Coverage of each lit pixel of a rendering, by pixel.
 std::map<geometry::Pixel, double> coverage_of(const platforms::RenderResult& r) {
@@ -56,17 +56,17 @@ using stats::median;
 TEST(OsmesaMsaa, PlatformIsInTheTableAndSoftpipeHasNone) {
   EXPECT_EQ(msaa4().samples, 4);
   EXPECT_EQ(msaa4().mesa_driver, "llvmpipe");
-  EXPECT_EQ(msaa4().backend, platforms::Backend::kOsmesa);
-  EXPECT_EQ(platforms::find_platform("osmesa-llvmpipe")->samples, 0);
-  EXPECT_FALSE(platforms::find_platform("osmesa-softpipe-msaa4"));  // softpipe: GL_MAX_SAMPLES 1
-  EXPECT_FALSE(platforms::find_platform("egl-softpipe-msaa4"));
+  EXPECT_EQ(msaa4().backend, rundir::Backend::kOsmesa);
+  EXPECT_EQ(rundir::find_platform("osmesa-llvmpipe")->samples, 0);
+  EXPECT_FALSE(rundir::find_platform("osmesa-softpipe-msaa4"));  // softpipe: GL_MAX_SAMPLES 1
+  EXPECT_FALSE(rundir::find_platform("egl-softpipe-msaa4"));
 }
 
 // Asking for more samples than the driver has fails at creation, naming the platform and the
 // driver's GL_MAX_SAMPLES (llvmpipe has 4).
 TEST(OsmesaMsaa, TooManySamplesFailsWithAClearError) {
-  const platforms::PlatformSpec sixteen{"osmesa-llvmpipe-msaa16", "test",
-                                        platforms::Backend::kOsmesa, "llvmpipe", 16};
+  const rundir::PlatformSpec sixteen{"osmesa-llvmpipe-msaa16", "test",
+                                        rundir::Backend::kOsmesa, "llvmpipe", 16};
   try {
     platforms::create_gl_platform(sixteen);
     FAIL() << "created a 16-sample platform";
@@ -115,7 +115,7 @@ TEST(OsmesaMsaa, PixelCornerTriangleIsCoveredExactly) {
   EXPECT_NEAR(m.te_signed, 0.0, 1e-9);
   EXPECT_EQ(m.rendered, interior + diagonal);
 
-  auto aliased = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
+  auto aliased = platforms::create_gl_platform(*rundir::find_platform("osmesa-llvmpipe"));
   aliased->set_view(view);
   const platforms::RenderResult ra = aliased->render(tri, geometry::PixelRect{0, 0, 64, 64});
   EXPECT_EQ(ra.samples, 0);
@@ -140,7 +140,7 @@ TEST(OsmesaMsaa, CoverageMetricMatchesBruteForceOnRandomTriangles) {
           geometry::clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
       if (poly.status != geometry::ClipStatus::kVisible) continue;
       const platforms::RenderResult r =
-          platform->render(prim, geometry::bounding_rect(poly, 64, 64, kRegionMargin));
+          platform->render(prim, geometry::bounding_rect(poly, 64, 64, runner::kRegionMargin));
       if (r.lit.empty()) continue;
       // The region's count proves completeness: nothing was left lit by the previous triangle
       // (the erase by redrawing in black) and nothing lies outside.
@@ -163,11 +163,11 @@ TEST(OsmesaMsaa, CoverageMetricMatchesBruteForceOnRandomTriangles) {
       ASSERT_NEAR(m.te_signed, te_s, 1e-9) << "triangle " << i << " at FOV " << fov;
       ASSERT_NEAR(m.te_unsigned_norm, te_u / (64.0 * 64.0), 1e-12);
 
-      const Record rec = measure_case("osmesa-llvmpipe-msaa4", *platform, view, prim, true);
+      const Record rec = runner::measure_case("osmesa-llvmpipe-msaa4", *platform, view, prim, true);
       ASSERT_EQ(rec.visibility, Visibility::kTrueVisible);
       ASSERT_EQ(rec.pixels, r.lit.size());
       ASSERT_NEAR(rec.te_u, te_u, 1e-9);
-      ASSERT_EQ(rec.pixel_hash, rendered_pixel_hash(r));  // the same rendering twice
+      ASSERT_EQ(rec.pixel_hash, runner::rendered_pixel_hash(r));  // the same rendering twice
       ++checked;
     }
   }
@@ -189,8 +189,8 @@ TEST(CompletenessMsaa, AWildPixelIsFoundUnderMultisampling) {
   for (geometry::Kind kind : {geometry::Kind::kPoint, geometry::Kind::kLine}) {
     std::vector<geometry::Primitive> prims;
     for (uint64_t i = 0; i < 64; ++i) prims.push_back(geometry::make_primitive(2008, kind, i));
-    const std::vector<Record> c = measure_cases("msaa4", *clean, view, prims, true);
-    const std::vector<Record> w = measure_cases("msaa4", *wild, view, prims, true);
+    const std::vector<Record> c = runner::measure_cases("msaa4", *clean, view, prims, true);
+    const std::vector<Record> w = runner::measure_cases("msaa4", *wild, view, prims, true);
     for (size_t i = 0; i < prims.size(); ++i) {
       const bool planted = i == 5 || i == 40;
       if (planted && c[i].pixels == 128 * 128) continue;  // no room for a wild pixel
@@ -237,18 +237,18 @@ TEST(CompletenessMsaa, AWildPixelIsFoundUnderMultisampling) {
   a.samples_lit = {4, 2};
   platforms::RenderResult b = a;
   b.samples_lit = {4, 3};
-  EXPECT_NE(rendered_pixel_hash(a), rendered_pixel_hash(b));
+  EXPECT_NE(runner::rendered_pixel_hash(a), runner::rendered_pixel_hash(b));
   platforms::RenderResult aliased = a;
   aliased.samples = 0;
   aliased.samples_lit.clear();
-  EXPECT_EQ(rendered_pixel_hash(aliased), geometry::pixel_set_hash(a.lit));
+  EXPECT_EQ(runner::rendered_pixel_hash(aliased), geometry::pixel_set_hash(a.lit));
 }
 
 // (5) What antialiasing buys: on the same 300 random triangles of a nist-like view (FOV 30 and
 // 150, 128 x 128), the median TEu_cov-norm of the 4x platform is strictly below the median
 // aliased TEu-norm.
 TEST(OsmesaMsaa, MultisamplingLowersTheMedianTriangleError) {
-  auto aliased = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
+  auto aliased = platforms::create_gl_platform(*rundir::find_platform("osmesa-llvmpipe"));
   auto msaa = platforms::create_gl_platform(msaa4());
   for (double fov : {30.0, 150.0}) {
     const geometry::View view =
@@ -258,8 +258,8 @@ TEST(OsmesaMsaa, MultisamplingLowersTheMedianTriangleError) {
     std::vector<geometry::Primitive> prims;
     for (uint64_t i = 0; i < 300; ++i)
       prims.push_back(geometry::make_primitive(2008, geometry::Kind::kTriangle, i));
-    const std::vector<Record> a = measure_cases("osmesa-llvmpipe", *aliased, view, prims, true);
-    const std::vector<Record> m = measure_cases("osmesa-llvmpipe-msaa4", *msaa, view, prims, true);
+    const std::vector<Record> a = runner::measure_cases("osmesa-llvmpipe", *aliased, view, prims, true);
+    const std::vector<Record> m = runner::measure_cases("osmesa-llvmpipe-msaa4", *msaa, view, prims, true);
     std::vector<double> te_a, te_m;
     for (size_t i = 0; i < prims.size(); ++i) {
       if (a[i].visibility != Visibility::kTrueVisible ||
@@ -321,7 +321,7 @@ TEST(TriangleCoverage, HandMadePatternGivesHandComputedErrors) {
 // With every lit pixel fully covered the coverage form is the aliased metric (eqs. 9-10).
 TEST(TriangleCoverage, FullCoverageEqualsTheAliasedMetric) {
   const geometry::View view = geometry::make_view(150, 96, 96, 0.01, 10.0, geometry::random_rotation(5, 2));
-  auto platform = platforms::create_gl_platform(*platforms::find_platform("osmesa-llvmpipe"));
+  auto platform = platforms::create_gl_platform(*rundir::find_platform("osmesa-llvmpipe"));
   platform->set_view(view);
   int checked = 0;
   for (uint64_t i = 0; i < 60; ++i) {
@@ -330,7 +330,7 @@ TEST(TriangleCoverage, FullCoverageEqualsTheAliasedMetric) {
         geometry::clip_triangle(view, prim.v[0], prim.v[1], prim.v[2]);
     if (poly.status != geometry::ClipStatus::kVisible) continue;
     const platforms::RenderResult r =
-        platform->render(prim, geometry::bounding_rect(poly, 96, 96, kRegionMargin));
+        platform->render(prim, geometry::bounding_rect(poly, 96, 96, runner::kRegionMargin));
     const std::vector<uint8_t> full(size_t(r.lit.size()), 4);
     const TriangleMetrics a = measure_triangle(poly, r.lit, 96, 96);
     const TriangleMetrics c = measure_triangle_coverage(poly, r.lit, full, 4, 96, 96);

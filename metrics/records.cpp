@@ -9,7 +9,6 @@
 #include <sstream>
 #include <vector>
 
-#include "metrics/records_reader.h"
 #include "util/errors.h"
 
 namespace ra::metrics {
@@ -148,10 +147,6 @@ void write_record(std::ostream& out, const Record& r) {
   std::string line;
   append_record(line, r);
   out << line;
-}
-
-void read_records(const std::string& path, const std::function<void(const Record&)>& row) {
-  for_each_record_row(path, [&](const RecordRow& cells) { row(parse_record(cells)); });
 }
 
 }  // namespace ra::metrics

@@ -97,9 +97,4 @@ std::string records_header_v2();  // the header line of schema version 2 files
 void write_record(std::ostream& out, const Record& r);
 void append_record(std::string& out, const Record& r);  // the same line, appended to `out`
 
-// Reads a records file (.csv or .csv.zst); calls `row` for each record. Throws UserError naming file and line on a
-// malformed row or an unexpected header (a schema change is an error, not a silent shift). A
-// convenience over metrics/records_reader.h, which converts only the cells a caller needs.
-void read_records(const std::string& path, const std::function<void(const Record&)>& row);
-
 }  // namespace ra::metrics

@@ -189,20 +189,20 @@ std::string device_list_text(const std::vector<EglDevice>& devices) {
 
 class EglContext : public GlContext {
  public:
-  explicit EglContext(const PlatformSpec& spec) : egl_(egl_library(spec.name, packages_for(spec))) {
+  explicit EglContext(const rundir::PlatformSpec& spec) : egl_(egl_library(spec.name, rundir::packages_for(spec))) {
     const std::string& who = spec.name;
     if (!egl_.get_platform_display) {
       throw util::UserError(
           who + ": " + egl_.name +
           " lacks EGL_EXT_platform_base (client extension), which headless EGL needs");
     }
-    if (spec.backend == Backend::kEglSurfaceless) {
+    if (spec.backend == rundir::Backend::kEglSurfaceless) {
       const char* client = egl_.query_string(EGL_NO_DISPLAY, EGL_EXTENSIONS);
       if (!has_extension(client, "EGL_MESA_platform_surfaceless")) {
         throw util::UserError(who + ": " + egl_.name +
                               " lacks EGL_MESA_platform_surfaceless: Mesa's EGL is not installed "
                               "(apt-get install " +
-                              packages_for(spec) + ")");
+                              rundir::packages_for(spec) + ")");
       }
       display_ = egl_.get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
                                            nullptr);
@@ -239,7 +239,7 @@ class EglContext : public GlContext {
     EGLint major = 0, minor = 0;
     if (!egl_.initialize(display_, &major, &minor))
       throw util::UserError(who + ": eglInitialize failed with " + egl_.error() +
-                            " (is the driver installed? apt-get install " + packages_for(spec) +
+                            " (is the driver installed? apt-get install " + rundir::packages_for(spec) +
                             ")");
     const char* ext = egl_.query_string(display_, EGL_EXTENSIONS);
     if (!has_extension(ext, "EGL_KHR_surfaceless_context")) {
@@ -299,13 +299,13 @@ thread_local const EglContext* EglContext::current_ = nullptr;
 
 }  // namespace
 
-std::unique_ptr<GlContext> create_egl_context(const PlatformSpec& spec) {
+std::unique_ptr<GlContext> create_egl_context(const rundir::PlatformSpec& spec) {
   return std::make_unique<EglContext>(spec);
 }
 
 std::vector<EglDevice> list_egl_devices() {
-  const PlatformSpec device = *find_platform("egl-device");
-  const EglLibrary& egl = egl_library("egl-device", packages_for(device));
+  const rundir::PlatformSpec device = *rundir::find_platform("egl-device");
+  const EglLibrary& egl = egl_library("egl-device", rundir::packages_for(device));
   const std::vector<EGLDeviceEXT> devices = query_devices(egl, "egl-device");
   std::vector<EglDevice> out;
   for (std::size_t i = 0; i < devices.size(); ++i)

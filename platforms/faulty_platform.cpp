@@ -34,8 +34,8 @@ double fault_draw(const geometry::Primitive& prim, uint64_t salt) {
 
 class FaultyPlatform : public Platform {
  public:
-  explicit FaultyPlatform(FaultPlan plan) : plan_(std::move(plan)) {
-    const std::optional<PlatformSpec> spec = find_platform(plan_.base);
+  explicit FaultyPlatform(rundir::FaultPlan plan) : plan_(std::move(plan)) {
+    const std::optional<rundir::PlatformSpec> spec = rundir::find_platform(plan_.base);
     if (spec && spec->draws_with_gl())  // wild pixels are then drawn by GL itself
       base_ = create_gl_platform(*spec, ReadbackMethod::kRegionWithProof, plan_.wild_pixel);
   }
@@ -106,7 +106,7 @@ class FaultyPlatform : public Platform {
     lit.erase(last);
   }
 
-  FaultPlan plan_;
+  rundir::FaultPlan plan_;
   std::unique_ptr<Platform> base_;  // an OSMesa platform when [faults] base names one
   geometry::View view_;
   // Flaky primitives are wrong on the first attempt only: a re-render (the coordinator's retry of
@@ -116,7 +116,7 @@ class FaultyPlatform : public Platform {
 
 }  // namespace
 
-std::unique_ptr<Platform> create_faulty_platform(const FaultPlan& faults) {
+std::unique_ptr<Platform> create_faulty_platform(const rundir::FaultPlan& faults) {
   return std::make_unique<FaultyPlatform>(faults);
 }
 

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "platforms/driver_build.h"
+#include "rundir/driver_build.h"
 #include "platforms/gl_context_backends.h"
 #include "util/errors.h"
 
@@ -14,8 +14,8 @@ namespace {
 
 // Mesa reads these when the process makes its first context. Only the validated values of
 // PlatformSpec reach them.
-void set_mesa_environment(const PlatformSpec& spec) {
-  if (spec.backend == Backend::kEglDevice) return;  // the device decides
+void set_mesa_environment(const rundir::PlatformSpec& spec) {
+  if (spec.backend == rundir::Backend::kEglDevice) return;  // the device decides
   if (spec.mesa_driver == "zink") {
     // zink is a Gallium driver loaded by the DRI loader; without a GPU it runs on lavapipe
     setenv("MESA_LOADER_DRIVER_OVERRIDE", "zink", 1);
@@ -30,7 +30,7 @@ void set_mesa_environment(const PlatformSpec& spec) {
   } else {
     setenv("GALLIUM_DRIVER", spec.mesa_driver.c_str(), 1);
     // newer Mesa falls back to a software driver through EGL only when this is set
-    if (spec.backend == Backend::kEglSurfaceless) setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
+    if (spec.backend == rundir::Backend::kEglSurfaceless) setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
   }
   // one-primitive frames: llvmpipe's thread hand-off costs more than the drawing
   setenv("LP_NUM_THREADS", "0", 0);
@@ -38,12 +38,12 @@ void set_mesa_environment(const PlatformSpec& spec) {
 
 }  // namespace
 
-std::unique_ptr<GlContext> create_gl_context(const PlatformSpec& spec) {
+std::unique_ptr<GlContext> create_gl_context(const rundir::PlatformSpec& spec) {
   if (!spec.draws_with_gl())
     throw std::logic_error("create_gl_context: " + spec.name + " does not draw with GL");
   set_mesa_environment(spec);
-  load_driver_build(spec);  // the build's libraries by path, before anything asks by soname
-  std::unique_ptr<GlContext> context = spec.backend == Backend::kOsmesa
+  rundir::load_driver_build(spec);  // the build's libraries by path, before anything asks by soname
+  std::unique_ptr<GlContext> context = spec.backend == rundir::Backend::kOsmesa
                                            ? create_osmesa_context(spec)
                                            : create_egl_context(spec);
   // Mesa picks the driver at the process's first context: an earlier context (another study, the

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "platforms/gl_api.h"
-#include "platforms/platform_spec.h"
+#include "rundir/platform_spec.h"
 
 namespace ra::platforms {
 
@@ -39,7 +39,7 @@ class GlContext {
 // Makes the context of a GL platform (spec.draws_with_gl()) current on the calling thread. Throws
 // ra::util::UserError naming the platform, the reason (the EGL error name, the missing extension or
 // library) and what to install; std::runtime_error when the driver fails in an unexpected way.
-std::unique_ptr<GlContext> create_gl_context(const PlatformSpec& spec);
+std::unique_ptr<GlContext> create_gl_context(const rundir::PlatformSpec& spec);
 
 // One device of EGL_EXT_platform_device.
 struct EglDevice {

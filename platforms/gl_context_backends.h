@@ -7,7 +7,7 @@
 
 namespace ra::platforms {
 
-std::unique_ptr<GlContext> create_osmesa_context(const PlatformSpec& spec);   // osmesa_context.cpp
-std::unique_ptr<GlContext> create_egl_context(const PlatformSpec& spec);      // egl_context.cpp
+std::unique_ptr<GlContext> create_osmesa_context(const rundir::PlatformSpec& spec);   // osmesa_context.cpp
+std::unique_ptr<GlContext> create_egl_context(const rundir::PlatformSpec& spec);      // egl_context.cpp
 
 }  // namespace ra::platforms

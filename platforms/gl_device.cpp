@@ -28,7 +28,7 @@ namespace {
 
 class GlDevice : public RasterDevice {
  public:
-  explicit GlDevice(const PlatformSpec& spec) : name_(spec.name), samples_(spec.samples) {
+  explicit GlDevice(const rundir::PlatformSpec& spec) : name_(spec.name), samples_(spec.samples) {
     context_ = create_gl_context(spec);  // sets Mesa's environment and checks the driver
     info_.backend = context_->backend();
     gl().GenFramebuffers(1, &framebuffer_);
@@ -318,7 +318,7 @@ class GlDevice : public RasterDevice {
 
 }  // namespace
 
-std::unique_ptr<RasterDevice> create_gl_device(const PlatformSpec& spec) {
+std::unique_ptr<RasterDevice> create_gl_device(const rundir::PlatformSpec& spec) {
   return std::make_unique<GlDevice>(spec);
 }
 

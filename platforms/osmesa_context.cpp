@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "platforms/driver_build.h"
+#include "rundir/driver_build.h"
 #include "platforms/gl_context_backends.h"
 #include "util/errors.h"
 
@@ -27,10 +27,10 @@ constexpr GLenum kOsmesaRgba = GL_RGBA;
 
 class OsmesaContext : public GlContext {
  public:
-  explicit OsmesaContext(const PlatformSpec& spec) {
+  explicit OsmesaContext(const rundir::PlatformSpec& spec) {
     // A driver build's own library; else RENDERAUDIT_LIBOSMESA, else the installed one.
     const std::string build_library =
-        spec.build.empty() ? "" : build_library_dir(spec.build_dir) + "/libOSMesa.so.8";
+        spec.build.empty() ? "" : rundir::build_library_dir(spec.build_dir) + "/libOSMesa.so.8";
     const char* library = std::getenv("RENDERAUDIT_LIBOSMESA");
     const bool named = build_library.empty() && library && *library;
     if (!build_library.empty()) library = build_library.c_str();
@@ -44,7 +44,7 @@ class OsmesaContext : public GlContext {
                    "OSMesa library or unset it (the default libOSMesa.so.8 comes "
                    "with: apt-get install "
                  : "); install it with: apt-get install ") +
-          packages_for(spec) + (named ? ")" : "") + " (OSMesa was removed from Mesa 25.1; egl-" +
+          rundir::packages_for(spec) + (named ? ")" : "") + " (OSMesa was removed from Mesa 25.1; egl-" +
           spec.mesa_driver + " draws with the same driver through EGL)");
     }
     const auto symbol = [&](const char* name) {
@@ -89,7 +89,7 @@ class OsmesaContext : public GlContext {
 
 }  // namespace
 
-std::unique_ptr<GlContext> create_osmesa_context(const PlatformSpec& spec) {
+std::unique_ptr<GlContext> create_osmesa_context(const rundir::PlatformSpec& spec) {
   return std::make_unique<OsmesaContext>(spec);
 }
 

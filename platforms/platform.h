@@ -11,8 +11,8 @@
 #include "geometry/pixel_set.h"
 #include "geometry/primitive.h"
 #include "geometry/view.h"
-#include "platforms/fault_plan.h"
-#include "platforms/platform_spec.h"
+#include "rundir/fault_plan.h"
+#include "rundir/platform_spec.h"
 
 namespace ra::platforms {
 
@@ -85,7 +85,7 @@ class Platform {
 // unless the user set it: thread hand-off dominates one-primitive frames).
 // `spec` comes from find_platform, or from experiment_platform for a driver build an experiment
 // declares.
-std::unique_ptr<Platform> create_platform(const PlatformSpec& spec, const FaultPlan& faults);
+std::unique_ptr<Platform> create_platform(const rundir::PlatformSpec& spec, const rundir::FaultPlan& faults);
 
 // How a GL or Vulkan platform finds the lit pixels. Only kRegionWithProof is used by `run`; the others
 // exist for the benchmark (`make bench`), which compares them side by side.
@@ -97,14 +97,14 @@ enum class ReadbackMethod {
 // `wild_pixel_indices` (tests only): for these primitive indices GL also lights one pixel far from
 // the primitive, inside the same occlusion query, as a driver bug would; the readback must find it.
 std::unique_ptr<Platform> create_gl_platform(
-    const PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
+    const rundir::PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
     std::vector<uint64_t> wild_pixel_indices = {});
 // A Vulkan platform (spec.draws_with_vulkan(); vulkan_device.cpp): the same readback methods
 // and test faults as create_gl_platform.
 std::unique_ptr<Platform> create_vulkan_platform(
-    const PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
+    const rundir::PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
     std::vector<uint64_t> wild_pixel_indices = {});
 std::unique_ptr<Platform> create_reference_platform();
-std::unique_ptr<Platform> create_faulty_platform(const FaultPlan& faults);
+std::unique_ptr<Platform> create_faulty_platform(const rundir::FaultPlan& faults);
 
 }  // namespace ra::platforms

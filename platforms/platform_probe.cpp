@@ -13,7 +13,7 @@ namespace ra::platforms {
 namespace {
 
 // A Vulkan platform's device, brought up as for drawing (vulkan_context.h), as JSON.
-nlohmann::json vulkan_probe(const PlatformSpec& spec) {
+nlohmann::json vulkan_probe(const rundir::PlatformSpec& spec) {
   const std::unique_ptr<Platform> platform = create_vulkan_platform(spec);
   const DriverInfo d = platform->driver_info();
   return nlohmann::json{{"renderer", d.renderer},
@@ -31,12 +31,12 @@ nlohmann::json vulkan_probe(const PlatformSpec& spec) {
 
 }  // namespace
 
-PlatformProbe probe_platform(const PlatformSpec& spec) {
+PlatformProbe probe_platform(const rundir::PlatformSpec& spec) {
   PlatformProbe out;
   out.name = spec.name;
   if (!spec.draws_with_driver()) {
     out.available = true;
-    out.driver.renderer = spec.backend == Backend::kReference ? "renderaudit reference rasterizer"
+    out.driver.renderer = spec.backend == rundir::Backend::kReference ? "renderaudit reference rasterizer"
                                                               : "renderaudit faulty test platform";
     out.driver.backend = "none";
     return out;
@@ -144,15 +144,15 @@ std::vector<EglDevice> list_egl_devices_in_child() {
 }
 
 void require_platforms_draw(const std::vector<std::string>& names, const std::string& context) {
-  std::vector<PlatformSpec> specs;
+  std::vector<rundir::PlatformSpec> specs;
   for (const std::string& name : names)
-    if (const std::optional<PlatformSpec> spec = find_platform(name)) specs.push_back(*spec);
+    if (const std::optional<rundir::PlatformSpec> spec = rundir::find_platform(name)) specs.push_back(*spec);
   require_platforms_draw(specs, context);
 }
 
-void require_platforms_draw(const std::vector<PlatformSpec>& specs, const std::string& context) {
+void require_platforms_draw(const std::vector<rundir::PlatformSpec>& specs, const std::string& context) {
   std::string problems;
-  for (const PlatformSpec& spec : specs) {
+  for (const rundir::PlatformSpec& spec : specs) {
     if (!spec.draws_with_driver()) continue;
     const PlatformProbe p = probe_platform(spec);
     if (!p.available) problems += "\n  " + spec.name + ": " + p.reason;

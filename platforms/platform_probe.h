@@ -22,7 +22,7 @@ struct PlatformProbe {
 
 // Probes one platform (the non-GL ones are always available). Never throws for a platform that
 // cannot draw: that is the result.
-PlatformProbe probe_platform(const PlatformSpec& spec);
+PlatformProbe probe_platform(const rundir::PlatformSpec& spec);
 
 // The Vulkan devices (index, name, type; platforms/vulkan_context.h), listed in a forked child:
 // a process that has brought up a Vulkan driver must not fork later (NVIDIA's driver deadlocks
@@ -38,7 +38,7 @@ std::vector<EglDevice> list_egl_devices_in_child();
 // reason (the run then stops before its directory is written). Unknown names are the experiment
 // parser's business and are skipped here.
 void require_platforms_draw(const std::vector<std::string>& names, const std::string& context);
-// The same for resolved platforms (an experiment's driver builds: runner/experiment.h).
-void require_platforms_draw(const std::vector<PlatformSpec>& specs, const std::string& context);
+// The same for resolved platforms (an experiment's driver builds: rundir/experiment.h).
+void require_platforms_draw(const std::vector<rundir::PlatformSpec>& specs, const std::string& context);
 
 }  // namespace ra::platforms

@@ -64,7 +64,7 @@ class RasterDevice {
 };
 
 // The devices. Both throw ra::util::UserError naming the platform when the driver cannot serve it.
-std::unique_ptr<RasterDevice> create_gl_device(const PlatformSpec& spec);
-std::unique_ptr<RasterDevice> create_vulkan_device(const PlatformSpec& spec);
+std::unique_ptr<RasterDevice> create_gl_device(const rundir::PlatformSpec& spec);
+std::unique_ptr<RasterDevice> create_vulkan_device(const rundir::PlatformSpec& spec);
 
 }  // namespace ra::platforms

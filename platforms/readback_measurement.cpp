@@ -58,7 +58,7 @@ constexpr uint32_t kAnyColour = 0xffffffffu;  // scan for any pixel that is not 
 
 class ReadbackMeasurement : public Platform {
  public:
-  ReadbackMeasurement(std::unique_ptr<RasterDevice> device, const PlatformSpec& spec,
+  ReadbackMeasurement(std::unique_ptr<RasterDevice> device, const rundir::PlatformSpec& spec,
                       ReadbackMethod method, std::vector<uint64_t> wild)
       : device_(std::move(device)),
         method_(method),
@@ -374,13 +374,13 @@ class ReadbackMeasurement : public Platform {
 
 }  // namespace
 
-std::unique_ptr<Platform> create_gl_platform(const PlatformSpec& spec, ReadbackMethod method,
+std::unique_ptr<Platform> create_gl_platform(const rundir::PlatformSpec& spec, ReadbackMethod method,
                                              std::vector<uint64_t> wild_pixel_indices) {
   return std::make_unique<ReadbackMeasurement>(create_gl_device(spec), spec, method,
                                                std::move(wild_pixel_indices));
 }
 
-std::unique_ptr<Platform> create_vulkan_platform(const PlatformSpec& spec, ReadbackMethod method,
+std::unique_ptr<Platform> create_vulkan_platform(const rundir::PlatformSpec& spec, ReadbackMethod method,
                                                  std::vector<uint64_t> wild_pixel_indices) {
   return std::make_unique<ReadbackMeasurement>(create_vulkan_device(spec), spec, method,
                                                std::move(wild_pixel_indices));

@@ -7,7 +7,7 @@
 
 #include "util/atomic_file.h"
 #include "util/errors.h"
-#include "platforms/driver_build.h"
+#include "rundir/driver_build.h"
 #include "platforms/platform.h"
 
 namespace fs = std::filesystem;
@@ -37,8 +37,8 @@ void require_recorded_libraries(const std::string& path, const std::string& plat
   if (build == driver_file.end() || !build->is_object()) return;
   const auto libraries = build->find("libraries");
   if (libraries == build->end() || !libraries->is_array() || libraries->empty()) return;
-  std::map<std::string, LoadedLibrary> now;  // by file name
-  for (LoadedLibrary& l : loaded_driver_libraries())
+  std::map<std::string, rundir::LoadedLibrary> now;  // by file name
+  for (rundir::LoadedLibrary& l : rundir::loaded_driver_libraries())
     now.emplace(fs::path(l.path).filename().string(), std::move(l));
   for (const nlohmann::json& recorded : *libraries) {
     if (!recorded.is_object() || !recorded.contains("path") || !recorded["path"].is_string() ||
@@ -50,7 +50,7 @@ void require_recorded_libraries(const std::string& path, const std::string& plat
     const auto it = now.find(fs::path(recorded_path).filename().string());
     if (it == now.end() || it->second.fnv1a64 == recorded_hash) continue;
     throw util::UserError(
-        std::string(kDriverMismatch) + ": " + platform + ": library " + it->second.path +
+        std::string(rundir::kDriverMismatch) + ": " + platform + ": library " + it->second.path +
         " has fingerprint " + it->second.fnv1a64 + " (FNV-1a 64 of its bytes), but the run's "
         "records were made with " + recorded_path + " of fingerprint " + recorded_hash + " (" +
         path + "): the file changed since (rebuilt, patched or damaged), so this process would "
@@ -63,7 +63,7 @@ void require_recorded_libraries(const std::string& path, const std::string& plat
 
 void require_run_driver(const std::string& run_dir, const std::string& platform,
                         const DriverInfo& loaded) {
-  const std::optional<PlatformSpec> spec = find_platform(platform);
+  const std::optional<rundir::PlatformSpec> spec = rundir::find_platform(platform);
   if (!spec || !spec->draws_with_driver()) return;
   const std::string path = run_dir + "/drivers/" + platform + ".json";
   std::error_code ec;
@@ -84,7 +84,7 @@ void require_run_driver(const std::string& run_dir, const std::string& platform,
     if (const auto f = b->find("folder"); f != b->end() && f->is_string())
       where = ", build folder " + f->get<std::string>();
   throw util::UserError(
-      std::string(kDriverMismatch) + ": " + platform + ": this process loaded GL_RENDERER '" +
+      std::string(rundir::kDriverMismatch) + ": " + platform + ": this process loaded GL_RENDERER '" +
       loaded.renderer + "' GL_VERSION '" + loaded.version + "' (" + loaded.backend +
       "), but the run's records were made with GL_RENDERER '" + renderer + "' GL_VERSION '" +
       version + "' (" + path + where +
@@ -98,7 +98,7 @@ std::string RendererCheck::mismatch() {
   for (const auto& entry : fs::directory_iterator(run_dir_ + "/drivers", ec)) {
     if (entry.path().extension() != ".json") continue;
     const std::string name = entry.path().stem().string();
-    const std::optional<PlatformSpec> spec = find_platform(name);
+    const std::optional<rundir::PlatformSpec> spec = rundir::find_platform(name);
     if (!spec || !spec->draws_with_driver() || checked_.count(name)) continue;
     checked_.insert(name);
     std::string renderer;

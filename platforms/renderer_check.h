@@ -9,6 +9,8 @@
 #include <set>
 #include <string>
 
+#include "rundir/driver_build.h"
+
 namespace ra::platforms {
 
 struct DriverInfo;
@@ -17,10 +19,9 @@ struct DriverInfo;
 // of a bisection, the audit's re-render, `show`) calls this before drawing. When the run's driver
 // file DIR/drivers/PLATFORM.json exists and names another GL_RENDERER or GL_VERSION than the
 // driver this process loaded, or a library (by file name) whose fingerprint differs from the one
-// this process loaded, throws UserError starting with kDriverMismatch and naming both (callers
+// this process loaded, throws UserError starting with rundir::kDriverMismatch and naming both (callers
 // stop with exit status 2; never a silent re-render on another driver). Does nothing for
 // the non-GL platforms and when no driver file exists yet (the first worker writes it).
-inline constexpr const char* kDriverMismatch = "driver mismatch";
 void require_run_driver(const std::string& run_dir, const std::string& platform,
                         const DriverInfo& loaded);
 

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "platforms/driver_build.h"
+#include "rundir/driver_build.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -52,7 +52,7 @@ std::string type_text(VkPhysicalDeviceType t) {
 std::string resolve_icd_library(const std::string& build_dir, const std::string& library_path) {
   std::error_code ec;
   const std::string in_libs =
-      build_library_dir(build_dir) + "/" + fs::path(library_path).filename().string();
+      rundir::build_library_dir(build_dir) + "/" + fs::path(library_path).filename().string();
   if (fs::exists(in_libs, ec)) return in_libs;
   if (!library_path.empty() && library_path[0] == '/' && fs::exists(build_dir + library_path, ec))
     return build_dir + library_path;
@@ -66,7 +66,7 @@ namespace {
 // by its installed path (/usr/lib/... for a Debian package, the meson prefix it was built for, a
 // temporary folder, for a source build), so a copy naming the library inside the build folder
 // is written there. The ICD file is under usr/share (a Debian package) or share (a meson prefix).
-void use_driver_build(const PlatformSpec& spec) {
+void use_driver_build(const rundir::PlatformSpec& spec) {
   std::error_code ec;
   fs::path icd;
   std::vector<fs::path> icd_dirs = {fs::path(spec.build_dir) / "usr/share/vulkan/icd.d",
@@ -97,7 +97,7 @@ void use_driver_build(const PlatformSpec& spec) {
 }
 
 // One instance per process, made at the first platform: the loader reads its driver list then.
-VkInstance process_instance(const PlatformSpec* spec) {
+VkInstance process_instance(const rundir::PlatformSpec* spec) {
   static VkInstance instance = VK_NULL_HANDLE;
   static std::string made_for_build;
   const std::string build = spec ? spec->build_dir : "";
@@ -110,8 +110,8 @@ VkInstance process_instance(const PlatformSpec* spec) {
   }
   if (spec && !spec->build.empty()) use_driver_build(*spec);
   // The build's lavapipe and the libraries it needs by path, before the loader asks for them
-  // (platforms/driver_build.h); for the installed driver, remember that this process uses it.
-  if (spec) load_driver_build(*spec);
+  // (rundir/driver_build.h); for the installed driver, remember that this process uses it.
+  if (spec) rundir::load_driver_build(*spec);
   // one-primitive frames: llvmpipe's thread hand-off costs more than the drawing (lavapipe too)
   setenv("LP_NUM_THREADS", "0", 0);
   // The loader: RENDERAUDIT_LIBVULKAN when set (another loader, or none, for the tests), else
@@ -262,7 +262,7 @@ std::vector<VulkanDeviceInfo> list_vulkan_devices() {
   return out;
 }
 
-const VulkanDeviceInfo& choose_vulkan_device(const PlatformSpec& spec,
+const VulkanDeviceInfo& choose_vulkan_device(const rundir::PlatformSpec& spec,
                                              const std::vector<VulkanDeviceInfo>& devices) {
   const VulkanDeviceInfo* chosen = nullptr;
   if (spec.device >= 0) {
@@ -287,7 +287,7 @@ const VulkanDeviceInfo& choose_vulkan_device(const PlatformSpec& spec,
   }
   const std::string which =
       "Vulkan device " + std::to_string(chosen->index) + " (" + chosen->name + ")";
-  if (spec.line_mode == PlatformSpec::LineMode::kBresenham && !chosen->bresenham_lines)
+  if (spec.line_mode == rundir::PlatformSpec::LineMode::kBresenham && !chosen->bresenham_lines)
     throw util::UserError(
         "platform " + spec.name + " draws Bresenham lines, but " + which +
         (chosen->line_rasterization
@@ -300,7 +300,7 @@ const VulkanDeviceInfo& choose_vulkan_device(const PlatformSpec& spec,
   return *chosen;
 }
 
-VulkanContext::VulkanContext(const PlatformSpec& spec) {
+VulkanContext::VulkanContext(const rundir::PlatformSpec& spec) {
   if (!spec.draws_with_vulkan())
     throw std::logic_error("VulkanContext: " + spec.name + " does not draw with Vulkan");
   try {
@@ -329,7 +329,7 @@ VulkanContext::VulkanContext(const PlatformSpec& spec) {
   features.occlusionQueryPrecise = info_.precise_occlusion;
   VkPhysicalDeviceLineRasterizationFeaturesEXT line{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_LINE_RASTERIZATION_FEATURES_EXT};
-  line.bresenhamLines = spec.line_mode == PlatformSpec::LineMode::kBresenham;
+  line.bresenhamLines = spec.line_mode == rundir::PlatformSpec::LineMode::kBresenham;
   std::vector<const char*> extensions;
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   if (line.bresenhamLines) {

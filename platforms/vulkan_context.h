@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "platforms/platform_spec.h"
+#include "rundir/platform_spec.h"
 
 namespace ra::platforms {
 
@@ -57,14 +57,14 @@ std::string resolve_icd_library(const std::string& build_dir, const std::string&
 // The device `spec` draws on, among `devices`. Throws ra::util::UserError naming the platform when it
 // names no device here (an index beyond the list, no lavapipe, no GPU) or when the device lacks
 // what the platform needs (the Bresenham line mode, 4 samples per pixel), listing the devices.
-const VulkanDeviceInfo& choose_vulkan_device(const PlatformSpec& spec,
+const VulkanDeviceInfo& choose_vulkan_device(const rundir::PlatformSpec& spec,
                                              const std::vector<VulkanDeviceInfo>& devices);
 
 // A logical device for one Vulkan platform: one graphics queue, the line mode enabled.
 class VulkanContext {
  public:
   // Loads the loader, makes the instance, chooses the device and creates it (errors as above).
-  explicit VulkanContext(const PlatformSpec& spec);
+  explicit VulkanContext(const rundir::PlatformSpec& spec);
   ~VulkanContext();
   VulkanContext(const VulkanContext&) = delete;
   VulkanContext& operator=(const VulkanContext&) = delete;

@@ -64,7 +64,7 @@ struct DrawItem {
 
 class VulkanDevice : public RasterDevice {
  public:
-  explicit VulkanDevice(const PlatformSpec& spec) : samples_(spec.samples) {
+  explicit VulkanDevice(const rundir::PlatformSpec& spec) : samples_(spec.samples) {
     ctx_ = std::make_unique<VulkanContext>(spec);
     const VulkanDeviceInfo& d = ctx_->info();
     info_.renderer = d.name;
@@ -79,7 +79,7 @@ class VulkanDevice : public RasterDevice {
     info_.strict_lines = d.strict_lines;
     info_.line_modes = d.line_modes();
     info_.line_mode =
-        spec.line_mode == PlatformSpec::LineMode::kBresenham ? "bresenham" : "default";
+        spec.line_mode == rundir::PlatformSpec::LineMode::kBresenham ? "bresenham" : "default";
     pipelines_ = create_pipelines(*ctx_, std::max(samples_, 1), spec.line_mode);
     VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -434,7 +434,7 @@ class VulkanDevice : public RasterDevice {
 
 }  // namespace
 
-std::unique_ptr<RasterDevice> create_vulkan_device(const PlatformSpec& spec) {
+std::unique_ptr<RasterDevice> create_vulkan_device(const rundir::PlatformSpec& spec) {
   return std::make_unique<VulkanDevice>(spec);
 }
 

@@ -47,33 +47,33 @@ geometry::PixelRegion whole(const geometry::View& v) {
 #define REQUIRE_LAVAPIPE()                                                        \
   do {                                                                            \
     try {                                                                         \
-      choose_vulkan_device(*find_platform("vk-lavapipe"), list_vulkan_devices()); \
+      choose_vulkan_device(*rundir::find_platform("vk-lavapipe"), list_vulkan_devices()); \
     } catch (const util::UserError& e) {                                          \
       GTEST_SKIP() << "no lavapipe here: " << e.what();                           \
     }                                                                             \
   } while (0)
 
 TEST(VulkanPlatformNames, FixedNamesAndDeviceIndices) {
-  const auto lvp = find_platform("vk-lavapipe");
+  const auto lvp = rundir::find_platform("vk-lavapipe");
   ASSERT_TRUE(lvp);
-  EXPECT_EQ(lvp->backend, Backend::kVulkan);
+  EXPECT_EQ(lvp->backend, rundir::Backend::kVulkan);
   EXPECT_EQ(lvp->mesa_driver, "lavapipe");
   EXPECT_TRUE(lvp->draws_with_driver());
   EXPECT_FALSE(lvp->draws_with_gl());  // not for the GL-only studies
-  EXPECT_FALSE(is_aliased_gl_platform("vk-lavapipe"));
-  EXPECT_EQ(find_platform("vk-lavapipe-bresenham")->line_mode, PlatformSpec::LineMode::kBresenham);
-  EXPECT_EQ(find_platform("vk-lavapipe-msaa4")->samples, 4);
-  const auto d3 = find_platform("vk-device:3");
+  EXPECT_FALSE(rundir::is_aliased_gl_platform("vk-lavapipe"));
+  EXPECT_EQ(rundir::find_platform("vk-lavapipe-bresenham")->line_mode, rundir::PlatformSpec::LineMode::kBresenham);
+  EXPECT_EQ(rundir::find_platform("vk-lavapipe-msaa4")->samples, 4);
+  const auto d3 = rundir::find_platform("vk-device:3");
   ASSERT_TRUE(d3);
   EXPECT_EQ(d3->device, 3);
-  EXPECT_EQ(d3->backend, Backend::kVulkan);
-  EXPECT_EQ(find_platform("vk-device:3-bresenham")->line_mode, PlatformSpec::LineMode::kBresenham);
-  EXPECT_EQ(find_platform("vk-device:3-msaa4")->samples, 4);
-  EXPECT_EQ(find_platform("vk-device")->device, -1);
+  EXPECT_EQ(d3->backend, rundir::Backend::kVulkan);
+  EXPECT_EQ(rundir::find_platform("vk-device:3-bresenham")->line_mode, rundir::PlatformSpec::LineMode::kBresenham);
+  EXPECT_EQ(rundir::find_platform("vk-device:3-msaa4")->samples, 4);
+  EXPECT_EQ(rundir::find_platform("vk-device")->device, -1);
   for (const char* bad : {"vk-device:", "vk-device:x", "vk-device:-1", "vk-device:256",
                           "egl-device:3-bresenham", "vk-device:3-msaa4-bresenham", "vk-device@b"})
-    EXPECT_FALSE(find_platform(bad)) << bad;
-  const auto build = find_platform("vk-lavapipe@mesa-25.0.7");
+    EXPECT_FALSE(rundir::find_platform(bad)) << bad;
+  const auto build = rundir::find_platform("vk-lavapipe@mesa-25.0.7");
   ASSERT_TRUE(build);
   EXPECT_EQ(build->build, "mesa-25.0.7");
 }
@@ -93,7 +93,7 @@ VulkanDeviceInfo device(int index, const std::string& type, bool llvmpipe, bool 
 
 std::string error_of(const std::string& platform, const std::vector<VulkanDeviceInfo>& devices) {
   try {
-    choose_vulkan_device(*find_platform(platform), devices);
+    choose_vulkan_device(*rundir::find_platform(platform), devices);
   } catch (const util::UserError& e) {
     return e.what();
   }
@@ -103,9 +103,9 @@ std::string error_of(const std::string& platform, const std::vector<VulkanDevice
 TEST(VulkanDeviceChoice, EachNameFindsItsDeviceOrSaysWhyNot) {
   const std::vector<VulkanDeviceInfo> devices = {device(0, "cpu", true, true),
                                                  device(1, "discrete GPU", false, false)};
-  EXPECT_EQ(choose_vulkan_device(*find_platform("vk-lavapipe"), devices).index, 0);
-  EXPECT_EQ(choose_vulkan_device(*find_platform("vk-device"), devices).index, 1);  // not the CPU
-  EXPECT_EQ(choose_vulkan_device(*find_platform("vk-device:0"), devices).index, 0);
+  EXPECT_EQ(choose_vulkan_device(*rundir::find_platform("vk-lavapipe"), devices).index, 0);
+  EXPECT_EQ(choose_vulkan_device(*rundir::find_platform("vk-device"), devices).index, 1);  // not the CPU
+  EXPECT_EQ(choose_vulkan_device(*rundir::find_platform("vk-device:0"), devices).index, 0);
   // an index beyond the list names the devices there are
   const std::string beyond = error_of("vk-device:7", devices);
   EXPECT_NE(beyond.find("there is no Vulkan device 7"), std::string::npos) << beyond;
@@ -125,7 +125,7 @@ TEST(VulkanDeviceChoice, EachNameFindsItsDeviceOrSaysWhyNot) {
 
 TEST(VulkanLavapipe, ReportsItsLimits) {
   REQUIRE_LAVAPIPE();
-  const auto p = create_vulkan_platform(*find_platform("vk-lavapipe"));
+  const auto p = create_vulkan_platform(*rundir::find_platform("vk-lavapipe"));
   const DriverInfo d = p->driver_info();
   EXPECT_NE(d.renderer.find("llvmpipe"), std::string::npos) << d.renderer;
   EXPECT_NE(d.version.find("Vulkan 1."), std::string::npos) << d.version;
@@ -139,7 +139,7 @@ TEST(VulkanLavapipe, ReportsItsLimits) {
 TEST(VulkanLavapipe, DrawsInGlWindowCoordinates) {
   REQUIRE_LAVAPIPE();
   const geometry::View view = window_view(128, 96);
-  const auto p = create_vulkan_platform(*find_platform("vk-lavapipe"));
+  const auto p = create_vulkan_platform(*rundir::find_platform("vk-lavapipe"));
   p->set_view(view);
   const geometry::Primitive tri = make(geometry::Kind::kTriangle, {{10.26171875, 5.51171875, 0},
                                                                    {100.74609375, 20.12890625, 0},
@@ -165,7 +165,7 @@ TEST(VulkanLavapipe, DrawsInGlWindowCoordinates) {
 // rectangle, counted here by brute force (every pixel centre against the rectangle).
 TEST(VulkanLavapipe, DefaultLinesAreRectanglesUnderStrictLines) {
   REQUIRE_LAVAPIPE();
-  const auto p = create_vulkan_platform(*find_platform("vk-lavapipe"));
+  const auto p = create_vulkan_platform(*rundir::find_platform("vk-lavapipe"));
   if (!p->driver_info().strict_lines) GTEST_SKIP() << "lavapipe without strictLines";
   const geometry::View view = window_view(64, 64);
   p->set_view(view);
@@ -190,7 +190,7 @@ TEST(VulkanLavapipe, DefaultLinesAreRectanglesUnderStrictLines) {
 // The Bresenham mode is GL's diamond-exit.
 TEST(VulkanLavapipe, BresenhamLinesAreDiamondExit) {
   REQUIRE_LAVAPIPE();
-  const auto p = create_vulkan_platform(*find_platform("vk-lavapipe-bresenham"));
+  const auto p = create_vulkan_platform(*rundir::find_platform("vk-lavapipe-bresenham"));
   const geometry::View view = window_view(64, 64);
   p->set_view(view);
   for (const auto& [a, b] : {std::pair<geometry::Vec2, geometry::Vec2>{{5.37109375, 7.12890625},
@@ -207,7 +207,7 @@ TEST(VulkanLavapipe, BresenhamLinesAreDiamondExit) {
 TEST(VulkanLavapipe, TrianglesSharingAnEdgeLightEachPixelOnce) {
   REQUIRE_LAVAPIPE();
   const geometry::View view = window_view(64, 64);
-  const auto p = create_vulkan_platform(*find_platform("vk-lavapipe"));
+  const auto p = create_vulkan_platform(*rundir::find_platform("vk-lavapipe"));
   p->set_view(view);
   const geometry::Vec3 a{3.12890625, 4.26171875, 0}, b{58.87109375, 9.51171875, 0},
       c{52.37109375, 60.12890625, 0}, d{6.62890625, 55.87109375, 0};
@@ -230,7 +230,7 @@ TEST(VulkanLavapipe, APixelOutsideTheRegionIsFound) {
   REQUIRE_LAVAPIPE();
   const geometry::View view = window_view(128, 128);
   const auto p =
-      create_vulkan_platform(*find_platform("vk-lavapipe"), ReadbackMethod::kRegionWithProof, {5});
+      create_vulkan_platform(*rundir::find_platform("vk-lavapipe"), ReadbackMethod::kRegionWithProof, {5});
   p->set_view(view);
   const geometry::Primitive tri =
       make(geometry::Kind::kTriangle, {{10.25, 10.25, 0}, {20.75, 10.5, 0}, {12.5, 22.75, 0}}, 5);
@@ -239,7 +239,7 @@ TEST(VulkanLavapipe, APixelOutsideTheRegionIsFound) {
   EXPECT_TRUE(r.full_scan);
   EXPECT_EQ(r.lit.size(), geometry::rasterize_reference(view, tri).size() + 1);
   // a batch of small primitives shares one proof, and each gets its own pixels
-  const auto clean = create_vulkan_platform(*find_platform("vk-lavapipe"));
+  const auto clean = create_vulkan_platform(*rundir::find_platform("vk-lavapipe"));
   clean->set_view(view);
   std::vector<geometry::Primitive> prims;
   std::vector<geometry::PixelRegion> regions;
@@ -262,7 +262,7 @@ TEST(VulkanLavapipe, APixelOutsideTheRegionIsFound) {
 TEST(VulkanLavapipe, MultisampleCoverage) {
   REQUIRE_LAVAPIPE();
   const geometry::View view = window_view(64, 64);
-  const auto p = create_vulkan_platform(*find_platform("vk-lavapipe-msaa4"));
+  const auto p = create_vulkan_platform(*rundir::find_platform("vk-lavapipe-msaa4"));
   p->set_view(view);
   const geometry::Primitive tri =
       make(geometry::Kind::kTriangle, {{4.1, 4.3, 0}, {60.2, 8.7, 0}, {20.9, 58.4, 0}});

@@ -133,7 +133,7 @@ VkShaderModule shader(const VulkanContext& ctx, const uint32_t* code, size_t byt
 }  // namespace
 
 VulkanPipelines create_pipelines(const VulkanContext& ctx, int samples,
-                                 PlatformSpec::LineMode line_mode) {
+                                 rundir::PlatformSpec::LineMode line_mode) {
   VulkanPipelines p;
   p.render_pass = create_render_pass(ctx, samples);
   VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
@@ -171,7 +171,7 @@ VulkanPipelines create_pipelines(const VulkanContext& ctx, int samples,
   raster.lineWidth = 1;
   VkPipelineRasterizationLineStateCreateInfoEXT line{
       VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_LINE_STATE_CREATE_INFO_EXT};
-  if (line_mode == PlatformSpec::LineMode::kBresenham) {
+  if (line_mode == rundir::PlatformSpec::LineMode::kBresenham) {
     line.lineRasterizationMode = VK_LINE_RASTERIZATION_MODE_BRESENHAM_EXT;
     raster.pNext = &line;
   }

@@ -8,7 +8,7 @@
 
 #include <array>
 
-#include "platforms/platform_spec.h"
+#include "rundir/platform_spec.h"
 #include "platforms/vulkan_context.h"
 
 namespace ra::platforms {
@@ -52,7 +52,7 @@ struct VulkanPipelines {
   std::array<VkPipeline, 3> by_kind{};  // indexed by int(Kind)
 };
 VulkanPipelines create_pipelines(const VulkanContext& ctx, int samples,
-                                 PlatformSpec::LineMode line_mode);
+                                 rundir::PlatformSpec::LineMode line_mode);
 void destroy_pipelines(const VulkanContext& ctx, VulkanPipelines& p);
 
 }  // namespace ra::platforms

@@ -184,9 +184,9 @@ void parse_random(const Locator& loc, const toml::table& t, RegulationSettings& 
 }  // namespace
 
 void validate_platform(const std::string& name) {
-  if (!platforms::is_aliased_gl_platform(name))
+  if (!rundir::is_aliased_gl_platform(name))
     throw util::UserError("'regulation.platform' = \"" + name + "\" is out of range (allowed: " +
-                          platforms::aliased_gl_platform_names() + ")");
+                          rundir::aliased_gl_platform_names() + ")");
 }
 
 RegulationSettings read_regulation_experiment(const std::string& path) {

@@ -1,4 +1,4 @@
-// The experiment file of the regulation study: a top-level [regulation] table (runner/study_dir.h)
+// The experiment file of the regulation study: a top-level [regulation] table (rundir/study_dir.h)
 // with the study's settings and one [[scene]] table (scenes/scene_spec.h) with its camera path.
 // Every key is checked before anything is computed; an unknown key, a wrong type or a value out of
 // range is a UserError "FILE:LINE:COLUMN: 'regulation.key' = V is out of range (allowed: ...)".
@@ -84,7 +84,7 @@ struct RegulationSettings : scenes::StudySettings {  // file, name, camera
 };
 
 // Throws UserError "'regulation.platform' = "NAME" is out of range (allowed: ...)"
-// unless `name` is one the study can render on (platforms/platform_spec.h).
+// unless `name` is one the study can render on (rundir/platform_spec.h).
 void validate_platform(const std::string& name);
 
 RegulationSettings read_regulation_experiment(const std::string& path);

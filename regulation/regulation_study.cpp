@@ -20,7 +20,7 @@
 #include "regulation/policies.h"
 #include "regulation/random_instances.h"
 #include "regulation/regulation_experiment.h"
-#include "runner/manifest.h"
+#include "rundir/manifest.h"
 #include "stats/descriptive.h"
 #include "stats/table_writer.h"
 #include "util/atomic_file.h"
@@ -320,7 +320,7 @@ std::string summary_text(const json& j, const std::string& dir, std::size_t inst
 }
 }  // namespace
 
-runner::StudyRunResult run_regulation_study(const runner::StudyRunOptions& options) {
+rundir::StudyRunResult run_regulation_study(const rundir::StudyRunOptions& options) {
   const auto t_start = Clock::now();
   RegulationSettings s = read_regulation_experiment(options.experiment);
   if (!options.platforms.empty()) {
@@ -349,7 +349,7 @@ runner::StudyRunResult run_regulation_study(const runner::StudyRunOptions& optio
     if (options.progress) std::fprintf(stderr, "regulation: %s\n", line.c_str());
   };
 
-  json j = runner::document_header("regulation", 1);
+  json j = rundir::document_header("regulation", 1);
   j["experiment"] = {{"file", s.file}, {"name", s.name}};
   std::vector<std::string> findings;
 
@@ -378,16 +378,16 @@ runner::StudyRunResult run_regulation_study(const runner::StudyRunOptions& optio
   j["wall_s"] = seconds_since(t_start);
   util::write_file_atomic(dir + "/regulation.json", j.dump(1) + "\n");
 
-  runner::StudyInfo info;
-  info.kind = runner::StudyKind::kRegulation;
+  rundir::StudyInfo info;
+  info.kind = rundir::StudyKind::kRegulation;
   info.name = s.name;
   info.title = kTitle;
   info.subtitle = "Horvitz & Lengyel (UAI 1997) on " + s.scene.name + ": greedy marginal-value "
                   "regulation against the exact optimum and baselines, and the chosen plans rendered on " +
                   s.platform + ".";
-  runner::write_study_info(dir, info);  // last: the folder is complete
+  rundir::write_study_info(dir, info);  // last: the folder is complete
 
-  runner::StudyRunResult res;
+  rundir::StudyRunResult res;
   res.dir = dir;
   res.findings = !findings.empty();
   res.summary = summary_text(j, dir, instances, findings);
@@ -397,8 +397,8 @@ runner::StudyRunResult run_regulation_study(const runner::StudyRunOptions& optio
 namespace {
 
 json load_complete(const std::string& dir) {
-  const auto info = runner::read_study_info(dir);
-  if (!info || info->kind != runner::StudyKind::kRegulation)
+  const auto info = rundir::read_study_info(dir);
+  if (!info || info->kind != rundir::StudyKind::kRegulation)
     throw util::UserError(dir +
                           " is not a complete regulation study (no study.json of kind regulation: "
                           "run `renderaudit run` on a regulation experiment first)");
@@ -559,15 +559,15 @@ std::string regulation_markdown(const json& j) {
 void analyze_regulation_study(const std::string& dir) {
   const json j = load_complete(dir);
   util::write_file_atomic(dir + "/regulation.md", regulation_markdown(j));
-  runner::StudyInfo info = *runner::read_study_info(dir);
+  rundir::StudyInfo info = *rundir::read_study_info(dir);
   info.document = "regulation.md";
   info.analysed = true;
-  runner::write_study_info(dir, info);
+  rundir::write_study_info(dir, info);
 }
 
 void plot_regulation_study(const std::string& dir) {
   const json j = load_complete(dir);
-  if (!runner::read_study_info(dir)->analysed)
+  if (!rundir::read_study_info(dir)->analysed)
     throw util::UserError(dir + " has not been analysed: run `renderaudit analyze " + dir +
                           "` first");
   plots::StudyFigures figs("regulation");

@@ -13,20 +13,20 @@
 //   pixels.csv        measured #pix only: per planned frame, visible object and level the pixel
 //                     query's count, with the bounding-sphere estimate
 //   regulation.json   settings, summaries and the numbers behind the figures
-//   study.json        kind "regulation" (runner/study_dir.h)
+//   study.json        kind "regulation" (rundir/study_dir.h)
 // `analyze` adds regulation.md (and rewrites study.json), `plot` DIR/figures/.
 #pragma once
 
 #include <string>
 
-#include "runner/study_dir.h"
+#include "rundir/study_dir.h"
 
 namespace ra::regulation {
 
 // Computes and measures; writes study.json last (analysed = false, document empty). findings:
 // a check failed (a greedy / optimal value ratio above 2, the DP differing from brute force, a
 // plan over budget, or the rendering process failing); the summary says which.
-runner::StudyRunResult run_regulation_study(const runner::StudyRunOptions& options);
+rundir::StudyRunResult run_regulation_study(const rundir::StudyRunOptions& options);
 
 // DIR/regulation.md from DIR/regulation.json; study.json rewritten with document = "regulation.md",
 // analysed = true. Throws UserError when DIR is not a complete regulation run.

@@ -24,15 +24,15 @@ TEST(RegulationStudy, SmokeExperimentRunsAnalysesAndPlots) {
   std::filesystem::remove_all(dir);
   EXPECT_THROW(analyze_regulation_study(dir), util::UserError);  // nothing there yet
 
-  runner::StudyRunOptions o;
+  rundir::StudyRunOptions o;
   o.experiment = std::string(RA_SOURCE_DIR) + "/experiments/regulation_smoke.toml";
   o.out_dir = dir;
   o.progress = false;
-  const runner::StudyRunResult r = run_regulation_study(o);
+  const rundir::StudyRunResult r = run_regulation_study(o);
   EXPECT_FALSE(r.findings) << r.summary;
-  const auto info = runner::read_study_info(dir);
+  const auto info = rundir::read_study_info(dir);
   ASSERT_TRUE(info);
-  EXPECT_EQ(info->kind, runner::StudyKind::kRegulation);
+  EXPECT_EQ(info->kind, rundir::StudyKind::kRegulation);
   EXPECT_FALSE(info->analysed);
 
   const auto j = nlohmann::json::parse(util::read_file(dir + "/regulation.json"));
@@ -66,7 +66,7 @@ TEST(RegulationStudy, SmokeExperimentRunsAnalysesAndPlots) {
   EXPECT_EQ(lines, 1 + 4 * 4 * 5);
 
   analyze_regulation_study(dir);
-  const auto info2 = runner::read_study_info(dir);
+  const auto info2 = rundir::read_study_info(dir);
   EXPECT_TRUE(info2->analysed);
   EXPECT_EQ(info2->document, "regulation.md");
   const std::string md = util::read_file(dir + "/regulation.md");
@@ -104,7 +104,7 @@ TEST(RegulationStudy, RerunRemovesDerivedOutputsAndPlotNeedsAnalysis) {
   const std::string toml = quick_experiment("regulation_rerun_test");
   const std::string dir = (std::filesystem::temp_directory_path() / "regulation_rerun_test").string();
   std::filesystem::remove_all(dir);
-  runner::StudyRunOptions o;
+  rundir::StudyRunOptions o;
   o.experiment = toml;
   o.out_dir = dir;
   o.progress = false;
@@ -123,7 +123,7 @@ TEST(RegulationStudy, RerunRemovesDerivedOutputsAndPlotNeedsAnalysis) {
   run_regulation_study(o);
   EXPECT_FALSE(std::filesystem::exists(dir + "/regulation.md"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/figures"));
-  EXPECT_FALSE(runner::read_study_info(dir)->analysed);
+  EXPECT_FALSE(rundir::read_study_info(dir)->analysed);
   EXPECT_TRUE(std::filesystem::exists(dir + "/regulation.json"));
   EXPECT_THROW(plot_regulation_study(dir), util::UserError);
   std::filesystem::remove_all(dir);
@@ -136,7 +136,7 @@ TEST(RegulationStudy, PlatformOverrideIsValidatedDirectly) {
   const std::string toml = quick_experiment("regulation_platform_test");
   const std::string dir = (std::filesystem::temp_directory_path() / "regulation_platform_test").string();
   for (const std::string bad : {"osmesa\"llvmpipe", "reference", "osmesa-llvmpipe\"\nrender = true"}) {
-    runner::StudyRunOptions o;
+    rundir::StudyRunOptions o;
     o.experiment = toml;
     o.out_dir = dir;
     o.progress = false;
@@ -171,11 +171,11 @@ std::vector<std::string> split_csv_line(const std::string& line) {
 TEST(RegulationStudy, MeasuredPixelsAgainstTheEstimatedDisc) {
   const std::string dir = (std::filesystem::temp_directory_path() / "regulation_smoke_pixels").string();
   std::filesystem::remove_all(dir);
-  runner::StudyRunOptions o;
+  rundir::StudyRunOptions o;
   o.experiment = std::string(RA_SOURCE_DIR) + "/experiments/regulation_smoke.toml";
   o.out_dir = dir;
   o.progress = false;
-  const runner::StudyRunResult r = run_regulation_study(o);
+  const rundir::StudyRunResult r = run_regulation_study(o);
   EXPECT_FALSE(r.findings) << r.summary;
   const auto j = nlohmann::json::parse(util::read_file(dir + "/regulation.json"));
   ASSERT_TRUE(j["cost_model"]["pixels_measured"].get<bool>());
@@ -229,11 +229,11 @@ TEST(RegulationStudy, MeasuredPixelsPredictFrameTimesBetter) {
   for (int measured = 0; measured < 2; ++measured) {
     const std::string dir = (tmp / ("regulation_smoke_px" + std::to_string(measured))).string();
     std::filesystem::remove_all(dir);
-    runner::StudyRunOptions o;
+    rundir::StudyRunOptions o;
     o.experiment = measured ? std::string(RA_SOURCE_DIR) + "/experiments/regulation_smoke.toml" : toml;
     o.out_dir = dir;
     o.progress = false;
-    const runner::StudyRunResult r = run_regulation_study(o);
+    const rundir::StudyRunResult r = run_regulation_study(o);
     EXPECT_FALSE(r.findings) << r.summary;
     const auto j = nlohmann::json::parse(util::read_file(dir + "/regulation.json"));
     EXPECT_EQ(j["cost_model"]["pixels_measured"].get<bool>(), measured == 1);
@@ -260,11 +260,11 @@ TEST(RegulationStudy, MeasuredPixelsPredictFrameTimesBetter) {
 TEST(RegulationStudy, DISABLED_DefaultExperiment) {
   const char* out = std::getenv("RA_REGULATION_OUT");
   const char* experiment = std::getenv("RA_REGULATION_EXPERIMENT");
-  runner::StudyRunOptions o;
+  rundir::StudyRunOptions o;
   o.experiment = experiment ? experiment : std::string(RA_SOURCE_DIR) + "/experiments/regulation.toml";
   o.out_dir = out ? out : ::testing::TempDir() + "regulation_default";
   o.progress = true;
-  const runner::StudyRunResult r = run_regulation_study(o);
+  const rundir::StudyRunResult r = run_regulation_study(o);
   std::cerr << r.summary << "\n";
   EXPECT_FALSE(r.findings);
   analyze_regulation_study(o.out_dir);

@@ -18,7 +18,7 @@
 #include <set>
 #include <sstream>
 
-#include "metrics/records_format.h"
+#include "rundir/records_format.h"
 #include "plots/headless_display.h"
 #include "plots/plot_run.h"
 #include "report/document.h"
@@ -31,8 +31,8 @@
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/errors.h"
-#include "runner/manifest.h"
-#include "runner/study_dir.h"
+#include "rundir/manifest.h"
+#include "rundir/study_dir.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -56,7 +56,7 @@ fs::file_time_type newest_input(const std::string& run_dir) {
   fs::file_time_type t = fs::file_time_type::min();
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(fs::path(run_dir) / "records", ec))
-    if (ra::metrics::is_records_file_name(e.path().filename().string()))
+    if (ra::rundir::is_records_file_name(e.path().filename().string()))
       t = std::max(t, fs::last_write_time(e.path(), ec));
   const fs::path manifest = fs::path(run_dir) / "manifest.json";
   if (fs::exists(manifest)) t = std::max(t, fs::last_write_time(manifest, ec));
@@ -120,14 +120,14 @@ Block table_block(Table t) {
 }
 // Which renderaudit made the run and which the report: once when they are the same build.
 std::string version_line(const json& tool) {
-  const std::string run_version = tool.value("version", runner::project_version()) + " (commit " +
-                                  tool.value("commit", runner::project_commit()) + ")";
+  const std::string run_version = tool.value("version", rundir::project_version()) + " (commit " +
+                                  tool.value("commit", rundir::project_commit()) + ")";
   const std::string this_version =
-      runner::project_version() + " (commit " + runner::project_commit() + ")";
+      rundir::project_version() + " (commit " + rundir::project_commit() + ")";
   return (run_version == this_version
               ? "Run and report by renderaudit " + this_version
               : "Run by renderaudit " + run_version + ", report by renderaudit " + this_version) +
-         "; report generated " + runner::utc_now_iso8601() + ".";
+         "; report generated " + rundir::utc_now_iso8601() + ".";
 }
 
 Block bullets(std::vector<std::string> items) {
@@ -257,16 +257,16 @@ Document pdf_document(const Document& doc, const std::set<std::string>& html_onl
 }
 
 // The run as its manifest describes it: the experiment's name (the directory's when it has none).
-std::string run_name(const std::string& run_dir, const runner::ManifestExperiment& exp) {
+std::string run_name(const std::string& run_dir, const rundir::ManifestExperiment& exp) {
   return exp.name.empty() ? fs::path(run_dir).filename().string() : exp.name;
 }
 
 std::string or_unknown(const std::string& text) { return text.empty() ? "?" : text; }
 
 // The title page: what was run, by which renderaudit, and the headline; then the contents.
-void add_title_page(Document& d, const std::string& run_dir, const runner::RunManifest& m,
+void add_title_page(Document& d, const std::string& run_dir, const rundir::RunManifest& m,
                     const analysis::RunTally& tally) {
-  const runner::ManifestExperiment exp = m.experiment.value_or(runner::ManifestExperiment{});
+  const rundir::ManifestExperiment exp = m.experiment.value_or(rundir::ManifestExperiment{});
   const std::string name = run_name(run_dir, exp);
   d.title = "renderaudit report: " + name;
   d.footer = "renderaudit report: " + name + " (" + run_dir + ")";
@@ -286,10 +286,10 @@ void add_title_page(Document& d, const std::string& run_dir, const runner::RunMa
 }
 
 // 1. The run's provenance: experiment, completeness, times, tool, host; the drivers; the file.
-void add_provenance(Document& d, const std::string& run_dir, const runner::RunManifest& m,
+void add_provenance(Document& d, const std::string& run_dir, const rundir::RunManifest& m,
                     const analysis::RunTally& tally,
                     const analysis::RunCompleteness& completeness) {
-  const runner::ManifestExperiment exp = m.experiment.value_or(runner::ManifestExperiment{});
+  const rundir::ManifestExperiment exp = m.experiment.value_or(rundir::ManifestExperiment{});
   const std::string name = run_name(run_dir, exp);
   const json tool = m.tool.is_object() ? m.tool : json::object();
   const json host = m.host.is_object() ? m.host : json::object();
@@ -302,10 +302,10 @@ void add_provenance(Document& d, const std::string& run_dir, const runner::RunMa
     t.right = {false, false};
     std::string plist;
     for (std::size_t i = 0; i < exp.platforms.size(); ++i) plist += (i ? ", " : "") + exp.platforms[i];
-    const std::vector<runner::ManifestInvocation> invocations =
-        m.invocations.value_or(std::vector<runner::ManifestInvocation>{});
+    const std::vector<rundir::ManifestInvocation> invocations =
+        m.invocations.value_or(std::vector<rundir::ManifestInvocation>{});
     double elapsed = 0;
-    for (const runner::ManifestInvocation& inv : invocations)
+    for (const rundir::ManifestInvocation& inv : invocations)
       elapsed += inv.elapsed_s.value_or(0.0);
     auto row = [&](const std::string& k, const std::string& v) { t.rows.push_back({k, v}); };
     row("experiment", name + " (" + or_unknown(exp.file) + ")");
@@ -350,7 +350,7 @@ void add_provenance(Document& d, const std::string& run_dir, const runner::RunMa
         "GL_SUBPIXEL_BITS is what the driver says (GL requires at least 4); the effective grid is "
         "what its pixels show: the subpixel grid (bits, rounding) under which the reference "
         "rasterizer lights the same pixels as the driver for the most of 96 calibration triangles "
-        "(metrics/effective_subpixel.h). A driver whose effective grid is finer than it says only "
+        "(runner/effective_subpixel.h). A driver whose effective grid is finer than it says only "
         "undersells itself; one whose grid is coarser than it says snaps more than it promises, "
         "and one coarser than 4 bits breaks GL's rule.");
     d.blocks.push_back(table_block(std::move(t)));
@@ -366,12 +366,12 @@ void add_provenance(Document& d, const std::string& run_dir, const runner::RunMa
 }
 
 // 2. Shards that failed, records that are not ok, figures not drawn.
-void add_failures(Document& d, const runner::RunManifest& m, const analysis::RunTally& tally,
+void add_failures(Document& d, const rundir::RunManifest& m, const analysis::RunTally& tally,
                   const plots::PlotResult& figures) {
   // 2. Failures.
   d.blocks.push_back(heading("2. Failures and invalid cases", 1, "failures"));
   {
-    const std::vector<runner::ManifestShardNote>& failures = m.failures_or_none();
+    const std::vector<rundir::ManifestShardNote>& failures = m.failures_or_none();
     if (failures.empty()) {
       d.blocks.push_back(paragraph(
           "No shard crashed or timed out (manifest.json: \"failures\" is empty)."));
@@ -381,7 +381,7 @@ void add_failures(Document& d, const runner::RunManifest& m, const analysis::Run
                 std::to_string(failures.size());
       t.header = {"shard (platform.kind.view.index range)", "what happened"};
       t.right = {false, false};
-      for (const runner::ManifestShardNote& f : failures)
+      for (const rundir::ManifestShardNote& f : failures)
         t.rows.push_back({f.shard, or_unknown(f.reason)});
       t.notes.push_back("Their records are missing from every statistic; run the same `renderaudit "
                         "run` command again to retry them (finished shards are kept).");
@@ -612,9 +612,9 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
                        const analysis::RunTally& tally,
                        const analysis::RunCompleteness& completeness) {
   const std::string manifest_path = run_dir + "/manifest.json";
-  const runner::RunManifest m = fs::exists(manifest_path)
-                                    ? runner::read_manifest(read_json(manifest_path), manifest_path)
-                                    : runner::RunManifest{};
+  const rundir::RunManifest m = fs::exists(manifest_path)
+                                    ? rundir::read_manifest(read_json(manifest_path), manifest_path)
+                                    : rundir::RunManifest{};
   Content c;
   add_title_page(c.doc, run_dir, m, tally);
   add_provenance(c.doc, run_dir, m, tally, completeness);
@@ -622,7 +622,7 @@ Content build_document(const std::string& run_dir, const plots::PlotResult& figu
   add_timing(c.doc, tally);
   add_conformance(c, run_dir, tally);
   add_analysis_tables(c, run_dir);
-  add_figure_section(c, figures, m.experiment.value_or(runner::ManifestExperiment{}).platforms);
+  add_figure_section(c, figures, m.experiment.value_or(rundir::ManifestExperiment{}).platforms);
   return c;
 }
 
@@ -682,9 +682,9 @@ void assemble(const Document& doc, const Document& html_doc, const std::string& 
   result.pages = result.text_pages + result.figure_pages;
 }
 
-// The report of a study folder (runner/study_dir.h): its title and subtitle from study.json, its
+// The report of a study folder (rundir/study_dir.h): its title and subtitle from study.json, its
 // markdown document, then its figures (DIR/figures/index.json).
-Document study_document(const std::string& dir, const runner::StudyInfo& info) {
+Document study_document(const std::string& dir, const rundir::StudyInfo& info) {
   Document d;
   d.title = info.title;
   d.footer = info.title + " (" + dir + ")";
@@ -704,12 +704,12 @@ Document study_document(const std::string& dir, const runner::StudyInfo& info) {
 }
 
 // A study folder's description; a timing folder written before study.json existed gets one.
-std::optional<runner::StudyInfo> study_of(const std::string& dir) {
-  std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
+std::optional<rundir::StudyInfo> study_of(const std::string& dir) {
+  std::optional<rundir::StudyInfo> info = rundir::read_study_info(dir);
   if (info || !fs::exists(fs::path(dir) / "timing.json") || fs::is_directory(fs::path(dir) / "records"))
     return info;
-  runner::StudyInfo t;
-  t.kind = runner::StudyKind::kTiming;
+  rundir::StudyInfo t;
+  t.kind = rundir::StudyKind::kTiming;
   t.name = fs::path(dir).filename().string();
   t.title = "renderaudit timing report: " + t.name;
   t.document = "timing.md";
@@ -755,7 +755,7 @@ ReportResult write_report(const ReportOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string& run_dir = options.run_dir;
   if (!fs::is_directory(run_dir)) throw util::UserError(run_dir + ": no such run directory");
-  const std::optional<runner::StudyInfo> study = study_of(run_dir);
+  const std::optional<rundir::StudyInfo> study = study_of(run_dir);
   if (!study && !fs::is_directory(fs::path(run_dir) / "records"))
     throw util::UserError(run_dir +
                           " is not a run directory (no records/ and no study.json): run "
@@ -772,7 +772,7 @@ ReportResult write_report(const ReportOptions& options) {
       throw util::UserError(run_dir + " has not been analysed yet: run `renderaudit analyze " +
                             run_dir + "` and `renderaudit plot " + run_dir + "` first");
     // (a timing study run with --no-figures has none, and says so in its text)
-    if (study->kind != runner::StudyKind::kTiming &&
+    if (study->kind != rundir::StudyKind::kTiming &&
         !fs::exists(fs::path(run_dir) / "figures" / "index.json"))
       throw util::UserError(run_dir + "/figures/index.json is missing: run `renderaudit plot " +
                             run_dir + "` first");

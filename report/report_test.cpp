@@ -118,7 +118,7 @@ TEST(ReportCommand, HeadlessReportHasEveryTableAndOnePagePerFigure) {
   // changed inputs make the analysis stale, so the report runs it again.
   std::string records_file;
   for (const auto& e : fs::directory_iterator(run + "/records"))
-    if (ra::metrics::is_records_file_name(e.path().filename().string()) &&
+    if (ra::rundir::is_records_file_name(e.path().filename().string()) &&
         (records_file.empty() || e.path().string() < records_file))
       records_file = e.path().string();
   {

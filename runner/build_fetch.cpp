@@ -12,9 +12,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "platforms/driver_build.h"
+#include "rundir/driver_build.h"
 #include "platforms/platform_probe.h"
-#include "runner/manifest.h"
+#include "rundir/manifest.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/errors.h"
@@ -175,7 +175,7 @@ nlohmann::json probe_build(BuildSummary& s, const std::string& dir) {
   nlohmann::json gl = nlohmann::json::object();
   for (const auto& [key, platform] : {std::pair{"osmesa", "osmesa-llvmpipe"},
                                       std::pair{"egl", "egl-llvmpipe"}}) {
-    platforms::PlatformSpec spec = *platforms::find_platform(std::string(platform) + "@" + s.name);
+    rundir::PlatformSpec spec = *rundir::find_platform(std::string(platform) + "@" + s.name);
     spec.build_dir = dir;
     const platforms::PlatformProbe p = platforms::probe_platform(spec);
     gl[key] = p.available ? nlohmann::json{{"renderer", p.driver.renderer},
@@ -189,7 +189,7 @@ nlohmann::json probe_build(BuildSummary& s, const std::string& dir) {
 std::vector<std::string> build_libraries(const std::string& dir) {
   std::vector<std::string> files;
   std::error_code ec;
-  const std::string lib_dir = platforms::build_library_dir(dir);
+  const std::string lib_dir = rundir::build_library_dir(dir);
   if (fs::is_directory(lib_dir, ec))
     for (const auto& e : fs::recursive_directory_iterator(lib_dir))
       if (e.is_regular_file() && e.path().string().find(".so") != std::string::npos)
@@ -229,10 +229,10 @@ BuildSummary fetch_build(const FetchOptions& options) {
                           "' is not one Debian archive address (allowed: http://HOST/PATH, "
                           "https://HOST/PATH or file:/PATH; no spaces, quotes, brackets or control "
                           "characters)");
-  if (!platforms::is_build_name(options.suite))
+  if (!rundir::is_build_name(options.suite))
     throw util::UserError("'" + options.suite +
                           "' is not a Debian suite name (letters, digits, ._-)");
-  const std::string cache = options.cache.empty() ? platforms::build_cache_dir() : options.cache;
+  const std::string cache = options.cache.empty() ? rundir::build_cache_dir() : options.cache;
   require_cache_folder(cache);
   std::string work = cache + "/.fetch-" + options.suite + "-XXXXXX";
   if (!::mkdtemp(work.data()))
@@ -244,7 +244,7 @@ BuildSummary fetch_build(const FetchOptions& options) {
     s.debian_version = versions.at("libosmesa6");
     s.name = "mesa-" + upstream_version(s.debian_version);
     s.suite = options.suite;
-    s.fetched_utc = utc_now_iso8601();
+    s.fetched_utc = rundir::utc_now_iso8601();
     // Probe both back ends in children of their own, from the temporary folder.
     const nlohmann::json gl = probe_build(s, root);
     if (s.osmesa_version.empty() && s.egl_version.empty())
@@ -258,7 +258,7 @@ BuildSummary fetch_build(const FetchOptions& options) {
                         {"debian_version", s.debian_version},
                         {"fetched_utc", s.fetched_utc}, {"packages", packages},
                         {"gl", gl},                {"files", s.files}};
-    j.update(document_header("driver-build", 1, false));
+    j.update(rundir::document_header("driver-build", 1, false));
     util::write_file_atomic(root + "/build.json", j.dump(2) + "\n");
     // Into place: a build of the same name is moved aside first, then removed.
     s.dir = cache + "/" + s.name;
@@ -286,7 +286,7 @@ void require_cache_folder(const std::string& cache) {
 std::vector<BuildSummary> list_builds(const std::string& cache_dir) {
   std::vector<BuildSummary> out;
   std::error_code ec;
-  const std::string cache = cache_dir.empty() ? platforms::build_cache_dir() : cache_dir;
+  const std::string cache = cache_dir.empty() ? rundir::build_cache_dir() : cache_dir;
   if (fs::exists(cache, ec) && !fs::is_directory(cache, ec))
     throw util::UserError("the build cache " + cache +
                           " is not a folder (RENDERAUDIT_BUILD_CACHE, --cache): name a folder");

@@ -1,5 +1,5 @@
 // `renderaudit builds fetch SUITE`: a Debian suite's Mesa as a driver build in the build cache
-// (platforms/driver_build.h), with apt's own tools and nothing installed: a private apt
+// (rundir/driver_build.h), with apt's own tools and nothing installed: a private apt
 // configuration (its own sources list, lists and archive folders), `apt-get update`,
 // `apt-get download` of the Mesa packages, `dpkg-deb -x` of each into one folder, a probe of the
 // folder's OSMesa and EGL, then one rename into the cache. Everything happens in a temporary

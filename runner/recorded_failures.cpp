@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "metrics/records.h"
-#include "metrics/records_reader.h"
+#include "rundir/records_reader.h"
 #include "util/errors.h"
 
 namespace fs = std::filesystem;
@@ -14,23 +14,23 @@ std::string failure_key(const std::string& shard, uint64_t index) {
   return shard + "#" + std::to_string(index);
 }
 
-void add_failure_reasons(const RunManifest& manifest, std::map<std::string, std::string>* reasons) {
+void add_failure_reasons(const rundir::RunManifest& manifest, std::map<std::string, std::string>* reasons) {
   if (!manifest.failed_primitives) return;
-  for (const ManifestFailedPrimitive& f : *manifest.failed_primitives)
+  for (const rundir::ManifestFailedPrimitive& f : *manifest.failed_primitives)
     (*reasons)[failure_key(f.shard, f.index)] = f.reason;
 }
 
 std::vector<FailedPrimitive> failed_primitives_in_records(
-    const std::string& dir, const std::vector<Shard>& shards,
+    const std::string& dir, const std::vector<rundir::Shard>& shards,
     const std::map<std::string, std::string>& reasons) {
   const std::string crash = metrics::status_name(metrics::CaseStatus::kCrash);
   const std::string timeout = metrics::status_name(metrics::CaseStatus::kTimeout);
   std::vector<FailedPrimitive> out;
-  for (const Shard& s : shards) {
+  for (const rundir::Shard& s : shards) {
     const std::string path = s.records_path(dir);
     if (!fs::exists(path)) continue;
     try {
-      metrics::for_each_record_row(path, [&](const metrics::RecordRow& row) {
+      rundir::for_each_record_row(path, [&](const rundir::RecordRow& row) {
         const std::string_view status = row.cell(metrics::RecordColumn::kStatus);
         if (status != crash && status != timeout) return;
         FailedPrimitive f;

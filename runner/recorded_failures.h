@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "runner/manifest.h"
-#include "runner/shard.h"
+#include "rundir/manifest.h"
+#include "rundir/shard.h"
 #include "runner/shard_recovery.h"
 
 namespace ra::runner {
@@ -20,13 +20,13 @@ namespace ra::runner {
 // index, see failure_key), or says only that the records hold it. Reads every file once, line by
 // line: memory does not depend on the run's size.
 std::vector<FailedPrimitive> failed_primitives_in_records(
-    const std::string& dir, const std::vector<Shard>& shards,
+    const std::string& dir, const std::vector<rundir::Shard>& shards,
     const std::map<std::string, std::string>& reasons = {});
 
 // "SHARD#INDEX": the key of `reasons`.
 std::string failure_key(const std::string& shard, uint64_t index);
 
 // Adds the reasons `manifest`'s `failed_primitives` list gives, by failure_key.
-void add_failure_reasons(const RunManifest& manifest, std::map<std::string, std::string>* reasons);
+void add_failure_reasons(const rundir::RunManifest& manifest, std::map<std::string, std::string>* reasons);
 
 }  // namespace ra::runner

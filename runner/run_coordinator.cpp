@@ -17,16 +17,16 @@
 #include "metrics/conformance.h"
 #include "platforms/platform_probe.h"
 #include "platforms/renderer_check.h"
-#include "runner/experiment.h"
-#include "runner/manifest.h"
+#include "rundir/experiment.h"
+#include "rundir/manifest.h"
 #include "runner/recorded_failures.h"
 #include "runner/run_dir.h"
 #include "runner/run_plan.h"
 #include "runner/run_tally.h"
-#include "runner/shard.h"
+#include "rundir/shard.h"
 #include "runner/shard_recovery.h"
 #include "runner/worker_pool.h"
-#include "runner/worker_program.h"
+#include "util/worker_program.h"
 #include "util/atomic_file.h"
 #include "util/dir_lock.h"
 #include "util/errors.h"
@@ -78,12 +78,12 @@ class RunSignals {
 // this size the run says how much memory it will take, once, before it starts.
 constexpr double kLargeWorkerBytes = 256.0 * 1024 * 1024;
 
-void note_large_views(const std::vector<Shard>& shards, const Experiment& exp, int jobs) {
+void note_large_views(const std::vector<rundir::Shard>& shards, const rundir::Experiment& exp, int jobs) {
   double largest = 0;
   const geometry::View* at = nullptr;
   for (const geometry::View& v : exp.views) {
     const bool used = std::any_of(shards.begin(), shards.end(),
-                                  [&](const Shard& s) { return s.view == v.id; });
+                                  [&](const rundir::Shard& s) { return s.view == v.id; });
     const double bytes = double(v.width) * v.height * 4;
     if (used && bytes > largest) largest = bytes, at = &v;
   }
@@ -163,13 +163,13 @@ struct ItemEnds {
 // DIR/manifest.json as this invocation starts: what an earlier invocation wrote (an unreadable
 // file: nothing), this invocation added to its invocations, the status "running". Throws
 // UserError when the directory's records were judged by other conformance rules.
-RunManifest starting_manifest(const RunOptions& options, const Experiment& exp, int jobs,
+rundir::RunManifest starting_manifest(const RunOptions& options, const rundir::Experiment& exp, int jobs,
                               size_t shards, size_t shards_to_run, const std::string& path) {
   // A damaged manifest is kept beside, never overwritten unseen: it holds the start time and the
   // earlier invocations.
   nlohmann::json earlier;
   try {
-    earlier = read_manifest_json(path);
+    earlier = rundir::read_manifest_json(path);
   } catch (const util::UserError& e) {
     const std::string kept = path + ".damaged";
     std::error_code ec;
@@ -182,12 +182,12 @@ RunManifest starting_manifest(const RunOptions& options, const Experiment& exp, 
                  "(the start time and earlier invocations are in the kept file)\n",
                  e.what(), kept.c_str());
   }
-  RunManifest m = read_manifest(earlier, path);
-  const std::string started = utc_now_iso8601();
+  rundir::RunManifest m = rundir::read_manifest(earlier, path);
+  const std::string started = rundir::utc_now_iso8601();
   if (m.started.empty()) m.started = started;
   m.schema = "renderaudit-manifest";
-  m.schema_version = kManifestSchemaVersion;
-  m.tool = {{"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
+  m.schema_version = rundir::kManifestSchemaVersion;
+  m.tool = {{"name", "renderaudit"}, {"version", rundir::project_version()}, {"commit", rundir::project_commit()}};
   // A directory's records are judged by one version of the conformance rules.
   const int rules = m.rules_judged_by();
   if (rules != 0 && rules != metrics::kConformanceRulesVersion)
@@ -196,15 +196,15 @@ RunManifest starting_manifest(const RunOptions& options, const Experiment& exp, 
                           std::to_string(metrics::kConformanceRulesVersion) +
                           "; resuming would mix them: run into a new directory");
   m.conformance_rules = metrics::kConformanceRulesVersion;
-  m.experiment = ManifestExperiment{exp.name, options.experiment_path, exp.hash, exp.seed,
+  m.experiment = rundir::ManifestExperiment{exp.name, options.experiment_path, exp.hash, exp.seed,
                                     exp.platforms};
-  m.host = host_description();
+  m.host = rundir::host_description();
   // which platforms' shards this directory is meant to hold (--platform), for `status`
   m.platforms_run.reset();
   if (!options.only_platforms.empty()) m.platforms_run = options.only_platforms;
-  if (options.slice) m.slice = ManifestSlice{options.slice->index, options.slice->count, shards};
+  if (options.slice) m.slice = rundir::ManifestSlice{options.slice->index, options.slice->count, shards};
   if (!m.invocations) m.invocations.emplace();
-  ManifestInvocation now;
+  rundir::ManifestInvocation now;
   now.started = started;
   now.jobs = uint64_t(jobs);
   now.shards_to_run = shards_to_run;
@@ -215,12 +215,12 @@ RunManifest starting_manifest(const RunOptions& options, const Experiment& exp, 
 
 // The manifest as the invocation ends: drivers, times, how well the cores were used, failures,
 // the crash and timeout records the directory holds, and the status.
-void finish_manifest(RunManifest& m, const RunOptions& options, const std::string& dir, int jobs,
-                     double elapsed_s, double busy_s, const std::vector<Shard>& shards,
+void finish_manifest(rundir::RunManifest& m, const RunOptions& options, const std::string& dir, int jobs,
+                     double elapsed_s, double busy_s, const std::vector<rundir::Shard>& shards,
                      RunResult& result) {
   m.drivers = drivers_json(dir);
-  m.finished = utc_now_iso8601();
-  ManifestInvocation& inv = m.invocations->back();
+  m.finished = rundir::utc_now_iso8601();
+  rundir::ManifestInvocation& inv = m.invocations->back();
   inv.elapsed_s = elapsed_s;
   // How well the cores were used: worker-seconds, and the core-seconds no worker used (the tail
   // when the last shards run alone, plus the coordinator's own gaps)
@@ -231,8 +231,8 @@ void finish_manifest(RunManifest& m, const RunOptions& options, const std::strin
   inv.workers = options.serve_shards ? "serve-shards" : "per-shard";
   inv.idle_core_s = std::max(0.0, jobs * elapsed_s - busy_s);
   size_t complete = 0;
-  for (const Shard& s : shards) complete += fs::exists(s.records_path(dir));
-  m.shards = ManifestShardCounts{shards.size(), complete, std::nullopt};
+  for (const rundir::Shard& s : shards) complete += fs::exists(s.records_path(dir));
+  m.shards = rundir::ManifestShardCounts{shards.size(), complete, std::nullopt};
   m.failures.emplace();
   for (const auto& f : result.failures) m.failures->push_back({f.shard, f.reason});
   if (!result.damaged.empty()) {
@@ -261,7 +261,7 @@ void finish_manifest(RunManifest& m, const RunOptions& options, const std::strin
 }  // namespace
 
 RunResult run_experiment(const RunOptions& options) {
-  const Experiment exp = load_experiment(options.experiment_path);
+  const rundir::Experiment exp = rundir::load_experiment(options.experiment_path);
   RunResult result;
   result.run_dir = options.out_dir.empty() ? "outputs/" + exp.name : options.out_dir;
   const std::string& dir = result.run_dir;
@@ -272,12 +272,12 @@ RunResult run_experiment(const RunOptions& options) {
   // stops the run before its directory is touched, rather than filling it with failed shards.
   require_experiment_platforms(exp, options.experiment_path, options.only_platforms);
   {
-    std::vector<platforms::PlatformSpec> specs;
+    std::vector<rundir::PlatformSpec> specs;
     for (const std::string& p : options.only_platforms.empty() ? exp.platforms : options.only_platforms)
-      specs.push_back(experiment_platform(exp, p));
+      specs.push_back(rundir::experiment_platform(exp, p));
     platforms::require_platforms_draw(specs, options.experiment_path);
   }
-  const std::vector<Shard> shards = shards_of_run(exp, options.only_platforms, options.slice);
+  const std::vector<rundir::Shard> shards = shards_of_run(exp, options.only_platforms, options.slice);
   const std::unique_ptr<util::DirLock> lock = prepare_run_dir(exp, dir);
   note_large_views(shards, exp, jobs);
   RunQueue queue = queue_shards(shards, exp, dir,
@@ -290,9 +290,9 @@ RunResult run_experiment(const RunOptions& options) {
 
   // The manifest says "running" before any worker starts.
   const std::string manifest_path = dir + "/manifest.json";
-  RunManifest manifest =
+  rundir::RunManifest manifest =
       starting_manifest(options, exp, jobs, shards.size(), todo.size(), manifest_path);
-  write_manifest(manifest_path, manifest);
+  rundir::write_manifest(manifest_path, manifest);
 
   // The workers, and what follows from each item's end.
   RunSignals signals;
@@ -306,10 +306,10 @@ RunResult run_experiment(const RunOptions& options) {
       std::map<std::string, double>{});
   ItemEnds on_event{result, tally, recovery, todo, shard_seconds, show};
   const std::string program =
-      options.worker_program.empty() ? worker_program() : options.worker_program;
+      options.worker_program.empty() ? util::worker_program() : options.worker_program;
   WorkerPool pool(
       {program, dir, jobs, options.serve_shards, show,
-       metrics::records_extension(exp.records_format)},
+       rundir::records_extension(exp.records_format)},
       [&](const WorkItem& w) { return recovery.records_dir(w); }, std::ref(on_event));
   const std::string this_host = manifest.host.value("hostname", "");
   while (!todo.empty() || !pool.empty()) {
@@ -343,7 +343,7 @@ RunResult run_experiment(const RunOptions& options) {
   manifest.shard_seconds = shard_seconds;
   finish_manifest(manifest, options, dir, jobs, tally.elapsed_s(), pool.busy_seconds(), shards,
                   result);
-  write_manifest(manifest_path, manifest);
+  rundir::write_manifest(manifest_path, manifest);
   return result;
 }
 

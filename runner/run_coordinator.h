@@ -9,7 +9,7 @@
 
 #include "runner/run_plan.h"
 #include "runner/shard_recovery.h"
-#include "runner/slicing.h"
+#include "rundir/slicing.h"
 
 namespace ra::runner {
 
@@ -22,11 +22,11 @@ struct RunOptions {
   std::vector<std::string> only_platforms;  // non-empty: run only these platforms' shards
   std::string worker_program;   // the executable that runs `worker` (default: this one)
   std::string expect_renderer;  // non-empty: ECMAScript regex every driver's GL_RENDERER must match
-  // Which shards start first: the largest expected cost (runner/shard_cost.h; keeps every core
+  // Which shards start first: the largest expected cost (rundir/shard_cost.h; keeps every core
   // busy to the end), or plan order (platform, view, kind, begin).
   enum class ShardOrder { kLargestCostFirst, kPlan } shard_order = ShardOrder::kLargestCostFirst;
-  // Run only slice K of N (runner/slicing.h); none: the whole run.
-  std::optional<Slice> slice;
+  // Run only slice K of N (rundir/slicing.h); none: the whole run.
+  std::optional<rundir::Slice> slice;
   // Whole shards at their first attempt go to worker processes that serve one platform's shards
   // one after another (runner/shard_server.h); false: one process per shard
   // (re-runs and bisection parts always get a process of their own).

@@ -20,7 +20,7 @@ void remove_temporaries(const std::string& dir) {
       if (e.path().extension() == ".tmp") fs::remove(e.path(), ec);
 }
 
-std::unique_ptr<util::DirLock> prepare_run_dir(const Experiment& exp, const std::string& dir,
+std::unique_ptr<util::DirLock> prepare_run_dir(const rundir::Experiment& exp, const std::string& dir,
                                                const std::string& who) {
   std::error_code ec;
   // A folder of something else is refused before anything is written into it (a run's folder
@@ -38,7 +38,7 @@ std::unique_ptr<util::DirLock> prepare_run_dir(const Experiment& exp, const std:
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().filename() != ".lock") empty = false;
   if (fs::exists(copy)) {
-    const Experiment previous = load_experiment(copy);
+    const rundir::Experiment previous = rundir::load_experiment(copy);
     if (previous.hash != exp.hash)
       throw util::UserError(dir + ": holds a run of a different experiment (hash " + previous.hash +
                             ", this one " + exp.hash +

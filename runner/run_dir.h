@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "runner/experiment.h"
+#include "rundir/experiment.h"
 #include "util/dir_lock.h"
 
 namespace ra::runner {
@@ -15,7 +15,7 @@ namespace ra::runner {
 // holding DIR/.lock for the returned lock's life. `who` names the writer in the lock ("run",
 // "merge"). Throws ra::util::UserError for a folder of something else (refused before anything is
 // written into it), a run of another experiment, or a directory that cannot be created.
-std::unique_ptr<util::DirLock> prepare_run_dir(const Experiment& exp, const std::string& dir,
+std::unique_ptr<util::DirLock> prepare_run_dir(const rundir::Experiment& exp, const std::string& dir,
                                                const std::string& who = "run");
 
 // Removes the temporary files of writers that are gone (the caller holds the lock).

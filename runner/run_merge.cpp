@@ -8,13 +8,13 @@
 #include <nlohmann/json.hpp>
 
 #include "metrics/conformance.h"
-#include "runner/experiment.h"
-#include "runner/manifest.h"
+#include "rundir/experiment.h"
+#include "rundir/manifest.h"
 #include "runner/recorded_failures.h"
 #include "runner/run_dir.h"
-#include "runner/shard.h"
-#include "runner/shard_file.h"
-#include "runner/shard_records.h"
+#include "rundir/shard.h"
+#include "rundir/shard_file.h"
+#include "rundir/shard_records.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "util/json_file.h"
@@ -58,15 +58,15 @@ void copy_atomically(const std::string& from, const std::string& to) {
 }
 
 // The inputs' experiment, after checking they hold one experiment cut into one shard size.
-Experiment common_experiment(const MergeOptions& options) {
-  std::vector<Experiment> experiments;
+rundir::Experiment common_experiment(const MergeOptions& options) {
+  std::vector<rundir::Experiment> experiments;
   for (const std::string& in : options.inputs) {
     std::error_code ec;
     if (in == options.out_dir || fs::equivalent(in, options.out_dir, ec))
       throw util::UserError("merge: " + in + " is both an input and --out");
     if (!fs::exists(in + "/experiment.toml"))
       throw util::UserError("merge: " + in + ": not a run directory (no experiment.toml)");
-    experiments.push_back(load_experiment(in + "/experiment.toml"));
+    experiments.push_back(rundir::load_experiment(in + "/experiment.toml"));
     if (experiments.back().hash != experiments.front().hash) {
       throw util::UserError("merge: " + in + " holds experiment " + experiments.back().name +
                             " (hash " + experiments.back().hash + "), " + options.inputs.front() +
@@ -75,7 +75,7 @@ Experiment common_experiment(const MergeOptions& options) {
                             "): only slices of one experiment can be merged");
     }
   }
-  const Experiment& exp = experiments.front();
+  const rundir::Experiment& exp = experiments.front();
   // [run] shard_size is outside the hash but names the records files: slices cut with another
   // size hold none of this plan's shards.
   for (std::size_t i = 1; i < experiments.size(); ++i)
@@ -91,12 +91,12 @@ Experiment common_experiment(const MergeOptions& options) {
 
 // Every platform an input holds records of must say which driver drew them, the same in every
 // input (unless --allow-driver-mismatch).
-void require_one_driver_per_platform(const MergeOptions& options, const std::vector<Shard>& plan) {
+void require_one_driver_per_platform(const MergeOptions& options, const std::vector<rundir::Shard>& plan) {
   if (!options.allow_driver_mismatch) {
     for (const std::string& in : options.inputs) {
       std::set<std::string> platforms;
-      for (const Shard& s : plan)
-        if (!platforms.count(s.platform) && !find_shard_records(in, s, false).path.empty())
+      for (const rundir::Shard& s : plan)
+        if (!platforms.count(s.platform) && !rundir::find_shard_records(in, s, false).path.empty())
           platforms.insert(s.platform);
       for (const std::string& platform : platforms)
         if (!fs::exists(in + "/drivers/" + platform + ".json"))
@@ -124,17 +124,17 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
 // Copies every planned shard DIR lacks from the first input that holds it whole; returns how many
 // shards were taken from each input.
 std::map<std::string, uint64_t> copy_shards(const MergeOptions& options,
-                                            const std::vector<Shard>& plan, MergeResult* result) {
+                                            const std::vector<rundir::Shard>& plan, MergeResult* result) {
   std::map<std::string, uint64_t> taken_from;
-  for (const Shard& s : plan) {
-    const ShardRecordsFile target = find_shard_records(options.out_dir, s);
+  for (const rundir::Shard& s : plan) {
+    const rundir::ShardRecordsFile target = rundir::find_shard_records(options.out_dir, s);
     if (!target.path.empty() && target.damage.empty()) {
       ++result->shards_present;  // an earlier merge put it there
       continue;
     }
     int holders = 0;
     for (const std::string& in : options.inputs) {
-      const ShardRecordsFile held = find_shard_records(in, s);  // the seal rule
+      const rundir::ShardRecordsFile held = rundir::find_shard_records(in, s);  // the seal rule
       if (!held.damage.empty()) result->damaged.push_back(held.path + ": " + held.damage);
       if (held.path.empty() || !held.damage.empty()) continue;
       const std::string& source = held.path;
@@ -153,7 +153,7 @@ std::map<std::string, uint64_t> copy_shards(const MergeOptions& options,
 
 // One version of the conformance rules for every input's records: that version (this
 // renderaudit's when no input says).
-int common_conformance_rules(const std::vector<RunManifest>& inputs, const MergeOptions& options) {
+int common_conformance_rules(const std::vector<rundir::RunManifest>& inputs, const MergeOptions& options) {
   int rules = 0;
   std::string rules_from;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
@@ -170,9 +170,9 @@ int common_conformance_rules(const std::vector<RunManifest>& inputs, const Merge
 }
 
 // An input as the merged manifest lists it: what was taken, its drivers, its own provenance.
-ManifestInput input_entry(const std::string& in, const nlohmann::json& input_manifest,
+rundir::ManifestInput input_entry(const std::string& in, const nlohmann::json& input_manifest,
                           uint64_t shards_taken) {
-  ManifestInput entry;
+  rundir::ManifestInput entry;
   entry.dir = in;
   entry.shards_taken = shards_taken;
   for (const auto& [platform, j] : drivers_of(in))
@@ -186,31 +186,31 @@ ManifestInput input_entry(const std::string& in, const nlohmann::json& input_man
 // The manifest: every input's provenance, the failures they recorded, the merged shard count. It
 // describes what DIR holds however it was assembled: what an earlier merge into DIR took (its
 // inputs, shard times and failures) and what ran in DIR itself (a gather's `run`) stay.
-RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
-                            const std::vector<Shard>& plan,
+rundir::RunManifest merged_manifest(const MergeOptions& options, const rundir::Experiment& exp,
+                            const std::vector<rundir::Shard>& plan,
                             const std::map<std::string, uint64_t>& taken_from,
                             const std::map<std::string, std::string>& driver_file,
                             MergeResult* result) {
   const std::string& out = options.out_dir;
-  const RunManifest before = read_manifest_file_or_empty(out + "/manifest.json");
-  std::vector<RunManifest> inputs;
+  const rundir::RunManifest before = rundir::read_manifest_file_or_empty(out + "/manifest.json");
+  std::vector<rundir::RunManifest> inputs;
   std::vector<nlohmann::json> input_json;
   for (const std::string& in : options.inputs) {
-    input_json.push_back(read_manifest_json(in + "/manifest.json"));
-    inputs.push_back(read_manifest(input_json.back(), in + "/manifest.json"));
+    input_json.push_back(rundir::read_manifest_json(in + "/manifest.json"));
+    inputs.push_back(rundir::read_manifest(input_json.back(), in + "/manifest.json"));
   }
-  RunManifest m;
+  rundir::RunManifest m;
   m.schema = "renderaudit-manifest";
-  m.schema_version = kManifestSchemaVersion;
+  m.schema_version = rundir::kManifestSchemaVersion;
   m.invocations = before.invocations;
-  m.tool = {{"name", "renderaudit"}, {"version", project_version()}, {"commit", project_commit()}};
+  m.tool = {{"name", "renderaudit"}, {"version", rundir::project_version()}, {"commit", rundir::project_commit()}};
   m.conformance_rules = common_conformance_rules(inputs, options);
-  m.experiment = ManifestExperiment{exp.name, out + "/experiment.toml", exp.hash, exp.seed,
+  m.experiment = rundir::ManifestExperiment{exp.name, out + "/experiment.toml", exp.hash, exp.seed,
                                     exp.platforms};
-  m.host = host_description();
-  m.merged = utc_now_iso8601();
+  m.host = rundir::host_description();
+  m.merged = rundir::utc_now_iso8601();
   m.inputs.emplace();
-  for (const ManifestInput& entry : before.inputs.value_or(std::vector<ManifestInput>{}))
+  for (const rundir::ManifestInput& entry : before.inputs.value_or(std::vector<rundir::ManifestInput>{}))
     if (std::find(options.inputs.begin(), options.inputs.end(), entry.dir) == options.inputs.end())
       m.inputs->push_back(entry);  // an earlier merge's input, not merged again now
   m.failures = before.failures_or_none();
@@ -224,8 +224,8 @@ RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
     m.inputs->push_back(input_entry(in, input_json[i], taken == taken_from.end() ? 0 : taken->second));
     for (const auto& [id, seconds] : inputs[i].shard_seconds.value_or(std::map<std::string, double>{}))
       m.shard_seconds->emplace(id, seconds);  // the first that ran it
-    for (const ManifestShardNote& f : inputs[i].failures_or_none())
-      if (std::none_of(m.failures->begin(), m.failures->end(), [&](const ManifestShardNote& g) {
+    for (const rundir::ManifestShardNote& f : inputs[i].failures_or_none())
+      if (std::none_of(m.failures->begin(), m.failures->end(), [&](const rundir::ManifestShardNote& g) {
             return g.shard == f.shard && g.reason == f.reason;
           }))
         m.failures->push_back(f);
@@ -234,7 +234,7 @@ RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
   m.drivers = nlohmann::json::object();
   for (const auto& [platform, path] : driver_file)
     m.drivers[platform] = util::read_json_or_null(out + "/drivers/" + platform + ".json");
-  m.shards = ManifestShardCounts{result->shards_total, result->shards_present,
+  m.shards = rundir::ManifestShardCounts{result->shards_total, result->shards_present,
                                  result->shards_in_several_inputs};
   // the crash and timeout records DIR holds now, whichever merge or run put them there
   m.failed_primitives.emplace();
@@ -252,8 +252,8 @@ RunManifest merged_manifest(const MergeOptions& options, const Experiment& exp,
 
 MergeResult merge_runs(const MergeOptions& options) {
   if (options.inputs.empty()) throw util::UserError("merge: name at least one run directory");
-  const Experiment exp = common_experiment(options);
-  const std::vector<Shard> plan = plan_shards(exp);
+  const rundir::Experiment exp = common_experiment(options);
+  const std::vector<rundir::Shard> plan = rundir::plan_shards(exp);
   require_one_driver_per_platform(options, plan);
 
   const std::unique_ptr<util::DirLock> lock = prepare_run_dir(exp, options.out_dir, "merge");
@@ -268,7 +268,7 @@ MergeResult merge_runs(const MergeOptions& options) {
   for (const auto& [platform, path] : driver_file)
     copy_atomically(path, options.out_dir + "/drivers/" + platform + ".json");
 
-  write_manifest(options.out_dir + "/manifest.json",
+  rundir::write_manifest(options.out_dir + "/manifest.json",
                  merged_manifest(options, exp, plan, taken_from, driver_file, &result));
   return result;
 }

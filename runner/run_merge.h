@@ -3,7 +3,7 @@
 // analyze, plot, report and audit cannot tell from a run made on one machine.
 //
 // Every planned shard is taken from the first input that holds it sealed and whole
-// (runner/shard_file.h) and copied atomically; a shard found in several inputs is taken once. The
+// (rundir/shard_file.h) and copied atomically; a shard found in several inputs is taken once. The
 // inputs must hold the same experiment (its hash), and each platform's driver must say the same
 // GL_RENDERER and GL_VERSION in every input, unless told otherwise (a run across two driver builds
 // would compare nothing). The merged manifest records every input: its slice, host, invocations and

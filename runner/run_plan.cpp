@@ -5,16 +5,16 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "runner/shard_cost.h"
-#include "runner/shard_file.h"
-#include "runner/shard_records.h"
+#include "rundir/shard_cost.h"
+#include "rundir/shard_file.h"
+#include "rundir/shard_records.h"
 #include "util/errors.h"
 
 namespace fs = std::filesystem;
 
 namespace ra::runner {
 
-void require_experiment_platforms(const Experiment& exp, const std::string& experiment_path,
+void require_experiment_platforms(const rundir::Experiment& exp, const std::string& experiment_path,
                                   const std::vector<std::string>& only_platforms) {
   for (const auto& p : only_platforms)
     if (std::find(exp.platforms.begin(), exp.platforms.end(), p) == exp.platforms.end())
@@ -22,12 +22,12 @@ void require_experiment_platforms(const Experiment& exp, const std::string& expe
                             " is not one of the experiment's platforms");
 }
 
-std::vector<Shard> shards_of_run(const Experiment& exp,
+std::vector<rundir::Shard> shards_of_run(const rundir::Experiment& exp,
                                  const std::vector<std::string>& only_platforms,
-                                 const std::optional<Slice>& slice) {
-  std::vector<Shard> all = plan_shards(exp);
+                                 const std::optional<rundir::Slice>& slice) {
+  std::vector<rundir::Shard> all = rundir::plan_shards(exp);
   if (!only_platforms.empty()) {
-    all.erase(std::remove_if(all.begin(), all.end(), [&](const Shard& s) {
+    all.erase(std::remove_if(all.begin(), all.end(), [&](const rundir::Shard& s) {
                 return std::find(only_platforms.begin(), only_platforms.end(), s.platform) ==
                        only_platforms.end();
               }),
@@ -38,16 +38,16 @@ std::vector<Shard> shards_of_run(const Experiment& exp,
                           std::to_string(slice->count) + ": the run has only " +
                           std::to_string(all.size()) + " shards (allowed: N from 1 to " +
                           std::to_string(all.size()) + ")");
-  if (slice) all = shards_of_slice(all, exp, *slice);
+  if (slice) all = rundir::shards_of_slice(all, exp, *slice);
   return all;
 }
 
-RunQueue queue_shards(const std::vector<Shard>& shards, const Experiment& exp,
+RunQueue queue_shards(const std::vector<rundir::Shard>& shards, const rundir::Experiment& exp,
                       const std::string& dir, bool largest_cost_first, double timeout_s) {
   RunQueue q;
-  std::vector<Shard> queued;
-  for (const Shard& s : shards) {
-    const ShardRecordsFile file = find_shard_records(dir, s);  // the seal rule, as readers apply it
+  std::vector<rundir::Shard> queued;
+  for (const rundir::Shard& s : shards) {
+    const rundir::ShardRecordsFile file = rundir::find_shard_records(dir, s);  // the seal rule, as readers apply it
     if (!file.path.empty()) {
       const std::string& path = file.path;
       const std::string& damage = file.damage;
@@ -63,14 +63,14 @@ RunQueue queue_shards(const std::vector<Shard>& shards, const Experiment& exp,
     }
     queued.push_back(s);
   }
-  if (largest_cost_first) queued = largest_expected_cost_first(std::move(queued), exp);
-  for (Shard& s : queued) q.todo.push_back(WorkItem{std::move(s), "", 1, timeout_s});
+  if (largest_cost_first) queued = rundir::largest_expected_cost_first(std::move(queued), exp);
+  for (rundir::Shard& s : queued) q.todo.push_back(WorkItem{std::move(s), "", 1, timeout_s});
   return q;
 }
 
-double expected_cost_of(const Shard& s, const Experiment& exp) {
+double expected_cost_of(const rundir::Shard& s, const rundir::Experiment& exp) {
   for (const geometry::View& v : exp.views)
-    if (v.id == s.view) return expected_shard_cost_us(s, v);
+    if (v.id == s.view) return rundir::expected_shard_cost_us(s, v);
   return double(s.size());
 }
 

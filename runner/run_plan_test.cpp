@@ -1,5 +1,5 @@
 // Tests of runner/run_plan.h on a hand-made experiment whose shards' relative costs are known
-// from the measured ranking (runner/shard_cost.h): softpipe triangles in the 907-pixel view cost
+// from the measured ranking (rundir/shard_cost.h): softpipe triangles in the 907-pixel view cost
 // the most, the reference rasterizer's points the least.
 #include "runner/run_plan.h"
 
@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "runner/shard_file.h"
+#include "rundir/shard_file.h"
 #include "util/errors.h"
 
 namespace fs = std::filesystem;
@@ -17,8 +17,8 @@ namespace fs = std::filesystem;
 namespace ra::runner {
 namespace {
 
-Experiment two_platforms() {
-  Experiment exp;
+rundir::Experiment two_platforms() {
+  rundir::Experiment exp;
   geometry::View small, big;
   small.id = 1, small.width = small.height = 128, small.fov_deg = 30;
   big.id = 2, big.width = big.height = 907, big.fov_deg = 150;
@@ -29,19 +29,19 @@ Experiment two_platforms() {
   return exp;  // 2 platforms x 2 views x 3 kinds x 2 shards = 24 shards
 }
 
-std::vector<std::string> ids(const std::vector<Shard>& shards) {
+std::vector<std::string> ids(const std::vector<rundir::Shard>& shards) {
   std::vector<std::string> out;
-  for (const Shard& s : shards) out.push_back(s.id());
+  for (const rundir::Shard& s : shards) out.push_back(s.id());
   return out;
 }
 
 TEST(RunPlan, ThePlatformFilterKeepsPlanOrder) {
-  const Experiment exp = two_platforms();
+  const rundir::Experiment exp = two_platforms();
   EXPECT_EQ(shards_of_run(exp, {}, std::nullopt).size(), 24u);
-  const std::vector<Shard> soft = shards_of_run(exp, {"osmesa-softpipe"}, std::nullopt);
+  const std::vector<rundir::Shard> soft = shards_of_run(exp, {"osmesa-softpipe"}, std::nullopt);
   ASSERT_EQ(soft.size(), 12u);
-  std::vector<Shard> expected;
-  for (const Shard& s : plan_shards(exp))
+  std::vector<rundir::Shard> expected;
+  for (const rundir::Shard& s : rundir::plan_shards(exp))
     if (s.platform == "osmesa-softpipe") expected.push_back(s);
   EXPECT_EQ(ids(soft), ids(expected));
   EXPECT_THROW(require_experiment_platforms(exp, "e.toml", {"egl-zink"}), util::UserError);
@@ -49,12 +49,12 @@ TEST(RunPlan, ThePlatformFilterKeepsPlanOrder) {
 }
 
 TEST(RunPlan, SlicesPartitionTheRunAndNoSliceIsEmpty) {
-  const Experiment exp = two_platforms();
+  const rundir::Experiment exp = two_platforms();
   std::size_t total = 0;
-  for (int k = 1; k <= 5; ++k) total += shards_of_run(exp, {}, Slice{k, 5}).size();
+  for (int k = 1; k <= 5; ++k) total += shards_of_run(exp, {}, rundir::Slice{k, 5}).size();
   EXPECT_EQ(total, 24u);
   try {
-    shards_of_run(exp, {"reference"}, Slice{1, 13});
+    shards_of_run(exp, {"reference"}, rundir::Slice{1, 13});
     ADD_FAILURE() << "13 slices of 12 shards were accepted";
   } catch (const util::UserError& e) {
     EXPECT_EQ(std::string(e.what()),
@@ -71,25 +71,25 @@ class RunQueueTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
   // A sealed plain-CSV records file of `s` with its size in rows: what check_shard_file accepts.
-  void write_whole(const Shard& s) {
-    const std::string path = s.records_path(dir_, metrics::RecordsFormat::kCsv);
+  void write_whole(const rundir::Shard& s) {
+    const std::string path = s.records_path(dir_, rundir::RecordsFormat::kCsv);
     {
       std::ofstream out(path, std::ios::binary);
       out << "header\n";
       for (uint64_t i = s.begin; i < s.end; ++i) out << i << "\n";
     }
-    seal_shard_file(path);
+    rundir::seal_shard_file(path);
   }
   std::string dir_;
 };
 
 TEST_F(RunQueueTest, ResumesKeepsWholeFilesRedoesDamagedOnesAndStartsTheCostliestFirst) {
-  const Experiment exp = two_platforms();
-  const std::vector<Shard> shards = shards_of_run(exp, {}, std::nullopt);
-  const Shard& whole = shards[0];    // reference point v1 0-1000: kept
-  const Shard& damaged = shards[1];  // reference point v1 1000-2000: cut short
+  const rundir::Experiment exp = two_platforms();
+  const std::vector<rundir::Shard> shards = shards_of_run(exp, {}, std::nullopt);
+  const rundir::Shard& whole = shards[0];    // reference point v1 0-1000: kept
+  const rundir::Shard& damaged = shards[1];  // reference point v1 1000-2000: cut short
   write_whole(whole);
-  const std::string damaged_path = damaged.records_path(dir_, metrics::RecordsFormat::kCsv);
+  const std::string damaged_path = damaged.records_path(dir_, rundir::RecordsFormat::kCsv);
   std::ofstream(damaged_path) << "header\n1\n";
 
   const RunQueue q = queue_shards(shards, exp, dir_, true, 7.5);
@@ -116,13 +116,13 @@ TEST_F(RunQueueTest, ResumesKeepsWholeFilesRedoesDamagedOnesAndStartsTheCostlies
 }
 
 TEST_F(RunQueueTest, PlanOrderQueuesWhatIsLeftInPlanOrder) {
-  const Experiment exp = two_platforms();
-  const std::vector<Shard> shards = shards_of_run(exp, {}, std::nullopt);
+  const rundir::Experiment exp = two_platforms();
+  const std::vector<rundir::Shard> shards = shards_of_run(exp, {}, std::nullopt);
   write_whole(shards[5]);
   const RunQueue q = queue_shards(shards, exp, dir_, false, 1);
-  std::vector<Shard> expected = shards;
+  std::vector<rundir::Shard> expected = shards;
   expected.erase(expected.begin() + 5);
-  std::vector<Shard> got;
+  std::vector<rundir::Shard> got;
   for (const WorkItem& w : q.todo) got.push_back(w.shard);
   EXPECT_EQ(ids(got), ids(expected));
   EXPECT_EQ(q.done_before, 1u);

@@ -7,11 +7,11 @@
 #include <set>
 #include <sstream>
 
-#include "runner/experiment.h"
-#include "runner/manifest.h"
-#include "runner/shard.h"
-#include "runner/shard_records.h"
-#include "runner/slicing.h"
+#include "rundir/experiment.h"
+#include "rundir/manifest.h"
+#include "rundir/shard.h"
+#include "rundir/shard_records.h"
+#include "rundir/slicing.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/dir_lock.h"
@@ -77,9 +77,9 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
     throw util::UserError(dir + ": not a run directory (no experiment.toml)");
   RunStatus s;
   s.dir = dir;
-  const Experiment exp = load_experiment(dir + "/experiment.toml");
+  const rundir::Experiment exp = rundir::load_experiment(dir + "/experiment.toml");
   s.experiment = exp.name;
-  const RunManifest manifest = read_manifest_file_or_empty(dir + "/manifest.json");
+  const rundir::RunManifest manifest = rundir::read_manifest_file_or_empty(dir + "/manifest.json");
   s.manifest_status = manifest.status;
   // the name the run was given (a copy named experiment.toml would name it "experiment")
   if (manifest.experiment && !manifest.experiment->name.empty())
@@ -94,22 +94,22 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
   std::sort(slice_dirs.begin(), slice_dirs.end());
   sources.insert(sources.end(), slice_dirs.begin(), slice_dirs.end());
 
-  std::vector<Shard> shards = plan_shards(exp);
+  std::vector<rundir::Shard> shards = rundir::plan_shards(exp);
   // a run of some platforms only (--platform): the manifest of DIR or of its first slice says so
-  RunManifest platforms_from = manifest;
+  rundir::RunManifest platforms_from = manifest;
   if (!manifest.platforms_run && !slice_dirs.empty())
-    platforms_from = read_manifest_file_or_empty(slice_dirs.front() + "/manifest.json");
+    platforms_from = rundir::read_manifest_file_or_empty(slice_dirs.front() + "/manifest.json");
   if (platforms_from.platforms_run) {
     const auto& keep = *platforms_from.platforms_run;
     shards.erase(std::remove_if(shards.begin(), shards.end(),
-                                [&](const Shard& sh) {
+                                [&](const rundir::Shard& sh) {
                                   return std::find(keep.begin(), keep.end(), sh.platform) ==
                                          keep.end();
                                 }),
                  shards.end());
   }
   if (manifest.slice && slice_dirs.empty()) {
-    shards = shards_of_slice(shards, exp, Slice{manifest.slice->index, manifest.slice->count});
+    shards = rundir::shards_of_slice(shards, exp, rundir::Slice{manifest.slice->index, manifest.slice->count});
     s.slice_index = manifest.slice->index;
     s.slice_count = manifest.slice->count;
   }
@@ -124,9 +124,9 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
       failed.insert(w.progress.failed.begin(), w.progress.failed.end());
       s.writers.push_back(std::move(w));
     } else {
-      const RunManifest m =
-          src == dir ? manifest : read_manifest_file_or_empty(src + "/manifest.json");
-      for (const ManifestShardNote& f : m.failures_or_none()) failed.insert(f.shard);
+      const rundir::RunManifest m =
+          src == dir ? manifest : rundir::read_manifest_file_or_empty(src + "/manifest.json");
+      for (const rundir::ManifestShardNote& f : m.failures_or_none()) failed.insert(f.shard);
     }
   }
   // Each shard's files judged by the seal rule (read whole, on every core), unless told not to.
@@ -135,7 +135,7 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
   util::run_in_parallel(shards.size(), 0, [&](std::size_t i) {
     for (const std::string& src : sources) {
       try {
-        const ShardRecordsFile f = find_shard_records(src, shards[i], check_seals);
+        const rundir::ShardRecordsFile f = rundir::find_shard_records(src, shards[i], check_seals);
         if (!f.path.empty() && f.damage.empty()) have[i] = 1;
         if (!f.damage.empty()) damaged[i].push_back(f.path + ": " + f.damage);
       } catch (const util::UserError& e) {  // both formats of the shard
@@ -145,7 +145,7 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
   });
   s.seals_checked = check_seals;
   for (std::size_t i = 0; i < shards.size(); ++i) {
-    const Shard& sh = shards[i];
+    const rundir::Shard& sh = shards[i];
     const std::string id = sh.id();
     if (!have[i]) s.damaged.insert(s.damaged.end(), damaged[i].begin(), damaged[i].end());
     if (have[i])

@@ -25,7 +25,7 @@ struct SlurmJobStatus {
 struct RunStatus {
   std::string dir, experiment;
   size_t planned = 0, done = 0, running = 0, failed = 0, waiting = 0;
-  // "FILE: why" for each records file the seal rule rejects (runner/shard_records.h); its shard
+  // "FILE: why" for each records file the seal rule rejects (rundir/shard_records.h); its shard
   // is counted neither done nor waiting
   std::vector<std::string> damaged;
   bool seals_checked = true;  // false: `status --quick`, files counted by their presence

@@ -7,13 +7,13 @@
 #include <cmath>
 #include <cstdio>
 
-#include "runner/manifest.h"
+#include "rundir/manifest.h"
 #include "runner/run_progress.h"
 #include "util/duration_text.h"
 
 namespace ra::runner {
 
-RunTally::RunTally(const Experiment& exp, const std::deque<WorkItem>& todo) : exp_(exp) {
+RunTally::RunTally(const rundir::Experiment& exp, const std::deque<WorkItem>& todo) : exp_(exp) {
   shards_to_run_ = todo.size();
   for (const WorkItem& w : todo) {
     primitives_todo_ += w.shard.size();
@@ -43,7 +43,7 @@ void RunTally::write_file(const std::string& dir, const std::string& host, const
   RunProgress p;
   p.host = host;
   p.pid = ::getpid();
-  p.updated_utc = utc_now_iso8601();
+  p.updated_utc = rundir::utc_now_iso8601();
   p.shards_to_run = shards_to_run_;
   p.shards_finished = finished_;
   p.running = pool.busy_shards();

@@ -1,5 +1,5 @@
 // How far a run's invocation is: shards and primitives done, and the time left, estimated in
-// expected cost (runner/shard_cost.h), not in primitives: the most expensive shards run first, so
+// expected cost (rundir/shard_cost.h), not in primitives: the most expensive shards run first, so
 // a rate in primitives per second would overestimate it. Shown on stderr (a progress line) and in
 // DIR/progress.json for `renderaudit status` (runner/run_progress.h).
 #pragma once
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "runner/experiment.h"
+#include "rundir/experiment.h"
 #include "runner/run_plan.h"
 #include "runner/shard_recovery.h"
 #include "runner/worker_pool.h"
@@ -19,7 +19,7 @@ namespace ra::runner {
 class RunTally {
  public:
   // `todo`: what this invocation runs.
-  RunTally(const Experiment& exp, const std::deque<WorkItem>& todo);
+  RunTally(const rundir::Experiment& exp, const std::deque<WorkItem>& todo);
   void item_done(const WorkItem& w);  // a shard or part whose records are committed
   void shard_finished() { ++finished_; }  // a whole shard ended, well or not
   std::size_t finished() const { return finished_; }
@@ -34,7 +34,7 @@ class RunTally {
 
  private:
   using Clock = std::chrono::steady_clock;
-  const Experiment& exp_;
+  const rundir::Experiment& exp_;
   const Clock::time_point start_ = Clock::now();
   Clock::time_point last_line_ = start_ - std::chrono::seconds(1);
   Clock::time_point last_file_ = start_ - std::chrono::seconds(10);

@@ -7,15 +7,16 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rundir/records_reader.h"
 #include "util/atomic_file.h"
-#include "runner/shard_file.h"
-#include "metrics/case_measurement.h"
+#include "rundir/shard_file.h"
+#include "runner/case_measurement.h"
 
 namespace fs = std::filesystem;
 
 namespace ra::runner {
 
-ShardRecovery::ShardRecovery(std::string run_dir, const Experiment& exp, double timeout_s)
+ShardRecovery::ShardRecovery(std::string run_dir, const rundir::Experiment& exp, double timeout_s)
     : run_dir_(std::move(run_dir)), exp_(exp), timeout_s_(timeout_s) {}
 
 std::string ShardRecovery::records_dir(const WorkItem& item) const {
@@ -63,7 +64,7 @@ std::vector<WorkItem> ShardRecovery::on_finished(const WorkItem& item, WorkOutco
   std::vector<WorkItem> next;
   if (outcome == WorkOutcome::kOk) {
     b.parts.push_back(records_dir(item) + "/" + item.shard.id() +
-                      metrics::records_extension(exp_.records_format));
+                      rundir::records_extension(exp_.records_format));
     --b.pending;
   } else if (item.shard.size() == 1) {
     b.failed.push_back({item.parent, item.shard.begin,
@@ -93,9 +94,9 @@ void ShardRecovery::assemble(Bisection& b) {
   std::vector<metrics::Record> records;
   records.reserve(b.shard.size());
   for (const std::string& part : b.parts)
-    metrics::read_records(part, [&](const metrics::Record& r) { records.push_back(r); });
+    rundir::read_records(part, [&](const metrics::Record& r) { records.push_back(r); });
   for (const FailedPrimitive& f : b.failed) {
-    metrics::Record r = metrics::case_identity(
+    metrics::Record r = runner::case_identity(
         b.shard.platform, *view, geometry::make_primitive(exp_.seed, b.shard.kind, f.index));
     r.status = f.status;
     records.push_back(r);
@@ -110,7 +111,7 @@ void ShardRecovery::assemble(Bisection& b) {
   const std::string path = b.shard.records_path(run_dir_, exp_.records_format);
   const std::string tmp = util::create_unique_temp(path);
   try {
-    RecordsFileWriter out(tmp, exp_.records_format);
+    rundir::RecordsFileWriter out(tmp, exp_.records_format);
     for (const metrics::Record& r : records) out.write(r);
     out.finish();
   } catch (...) {

@@ -11,15 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "runner/experiment.h"
+#include "rundir/experiment.h"
 #include "metrics/records.h"
-#include "runner/shard.h"
+#include "rundir/shard.h"
 
 namespace ra::runner {
 
 // One worker process to start: a whole shard, or a part of one being bisected.
 struct WorkItem {
-  Shard shard;         // for a part, `begin`/`end` are the part's range
+  rundir::Shard shard;         // for a part, `begin`/`end` are the part's range
   std::string parent;  // id of the whole shard a part belongs to; empty for a whole shard
   int attempt = 1;     // 2 and above: a re-run (the worker sees RA_RENDER_ATTEMPT)
   double timeout_s = 0;
@@ -39,7 +39,7 @@ class ShardRecovery {
  public:
   // `timeout_s`: the per-shard limit; a part of n primitives of a shard of N gets
   // max(timeout_s * n / N, min(timeout_s, kMinPartTimeout)).
-  ShardRecovery(std::string run_dir, const Experiment& exp, double timeout_s);
+  ShardRecovery(std::string run_dir, const rundir::Experiment& exp, double timeout_s);
   static constexpr double kMinPartTimeout = 5.0;
 
   static std::string parts_dir(const std::string& run_dir) { return run_dir + "/parts"; }
@@ -56,7 +56,7 @@ class ShardRecovery {
 
  private:
   struct Bisection {
-    Shard shard;
+    rundir::Shard shard;
     int pending = 0;                  // parts started and not yet resolved
     std::vector<std::string> parts;   // records files of parts that finished
     std::vector<FailedPrimitive> failed;
@@ -65,7 +65,7 @@ class ShardRecovery {
   void assemble(Bisection& b);
 
   std::string run_dir_;
-  const Experiment& exp_;
+  const rundir::Experiment& exp_;
   double timeout_s_;
   std::map<std::string, Bisection> bisections_;  // by whole-shard id
   std::vector<FailedPrimitive> failed_;

@@ -9,7 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "runner/experiment.h"
+#include "rundir/experiment.h"
+#include "runner/shard_session.h"
 #include "util/child_process.h"
 
 namespace ra::runner {
@@ -60,7 +61,7 @@ ShardCommand parse_shard_command(const std::string& line, const std::string& pla
   return c;
 }
 
-std::string shard_done_line(const Shard& shard) { return kDone + shard.id(); }
+std::string shard_done_line(const rundir::Shard& shard) { return kDone + shard.id(); }
 
 bool parse_shard_done(const std::string& line, std::string* id) {
   if (line.compare(0, std::strlen(kDone), kDone) != 0) return false;
@@ -68,7 +69,7 @@ bool parse_shard_done(const std::string& line, std::string* id) {
   return true;
 }
 
-void serve_shards(const std::string& run_dir, const Experiment& exp, const std::string& platform,
+void serve_shards(const std::string& run_dir, const rundir::Experiment& exp, const std::string& platform,
                   std::istream& commands) {
   ShardSession session(run_dir, exp, platform);
   std::string line;

@@ -17,12 +17,12 @@
 #include <istream>
 #include <string>
 
-#include "runner/shard.h"
+#include "rundir/shard.h"
 
 namespace ra::runner {
 
 struct ShardCommand {
-  Shard shard;
+  rundir::Shard shard;
   std::string records_dir;  // where the records file goes
   std::string log;          // the shard's log: the server's stdout and stderr while it runs
 };
@@ -33,12 +33,12 @@ std::string shard_command_line(const ShardCommand& command);
 ShardCommand parse_shard_command(const std::string& line, const std::string& platform);
 
 // The reply that says `shard` is done (no newline), and whether `line` is one (then *id is set).
-std::string shard_done_line(const Shard& shard);
+std::string shard_done_line(const rundir::Shard& shard);
 bool parse_shard_done(const std::string& line, std::string* id);
 
 // The server's loop: reads commands from `commands` until its end, runs each shard in one
 // ShardSession of `platform`, replies on the message pipe. Throws what a shard throws.
-void serve_shards(const std::string& run_dir, const Experiment& exp, const std::string& platform,
+void serve_shards(const std::string& run_dir, const rundir::Experiment& exp, const std::string& platform,
                   std::istream& commands);
 
 }  // namespace ra::runner

@@ -39,7 +39,7 @@ TEST(ShardServerProtocol, GarbageIsRefusedWithTheLine) {
 }
 
 TEST(ShardServerProtocol, RepliesNameTheirShardAndNothingElseIsAReply) {
-  const Shard s{"reference", geometry::Kind::kLine, 3, 0, 10};
+  const rundir::Shard s{"reference", geometry::Kind::kLine, 3, 0, 10};
   std::string id;
   ASSERT_TRUE(parse_shard_done(shard_done_line(s), &id));
   EXPECT_EQ(id, "reference.line.v3.0-10");

@@ -9,11 +9,11 @@
 #include <regex>
 #include <sstream>
 
-#include "runner/experiment.h"
-#include "runner/manifest.h"
+#include "rundir/experiment.h"
+#include "rundir/manifest.h"
 #include "runner/run_dir.h"
-#include "runner/shard.h"
-#include "runner/worker_program.h"
+#include "rundir/shard.h"
+#include "util/worker_program.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/errors.h"
@@ -143,7 +143,7 @@ std::string node_local_reason(const std::string& dir) {
 }
 
 SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slurm) {
-  const Experiment exp = load_experiment(run.experiment_path);
+  const rundir::Experiment exp = rundir::load_experiment(run.experiment_path);
   validate_slurm_options(slurm);
   SlurmSubmission sub;
   sub.run_dir = fs::weakly_canonical(fs::absolute(run.out_dir.empty() ? "outputs/" + exp.name
@@ -160,10 +160,10 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
           "Choose a directory on a shared file system (or --allow-node-local on a "
           "one-node cluster)");
   }
-  std::vector<Shard> shards = plan_shards(exp);
+  std::vector<rundir::Shard> shards = rundir::plan_shards(exp);
   if (!run.only_platforms.empty())
     shards.erase(std::remove_if(shards.begin(), shards.end(),
-                                [&](const Shard& s) {
+                                [&](const rundir::Shard& s) {
                                   return std::find(run.only_platforms.begin(),
                                                    run.only_platforms.end(),
                                                    s.platform) == run.only_platforms.end();
@@ -237,7 +237,7 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
   sub.gather_job = submit(slurm, {"--dependency=afterany:" + sub.array_job},
                           dir + "/slurm/gather.sbatch");
   nlohmann::json jobs_json = {{"array_job", sub.array_job},  {"gather_job", sub.gather_job},
-                              {"slices", sub.slices},        {"submitted", utc_now_iso8601()},
+                              {"slices", sub.slices},        {"submitted", rundir::utc_now_iso8601()},
                               {"max_parallel", slurm.max_parallel}, {"cpus_per_task", jobs}};
   util::write_file_atomic(dir + "/slurm/jobs.json", jobs_json.dump(1) + "\n");
   return sub;

@@ -11,10 +11,10 @@
 #include <sstream>
 #include <thread>
 
-#include "platforms/driver_build.h"
+#include "rundir/driver_build.h"
 #include "platforms/platform_probe.h"
-#include "platforms/platform_spec.h"
-#include "runner/manifest.h"
+#include "rundir/platform_spec.h"
+#include "rundir/manifest.h"
 #include "runner/meson_plan.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
@@ -206,7 +206,7 @@ nlohmann::json provenance(const SourceBuildOptions& options, const SourceIdentit
         {"key", key}}},
       {"gl", gl},
       {"files", s.files}};
-  j.update(document_header("driver-build", 1, false));
+  j.update(rundir::document_header("driver-build", 1, false));
   return j;
 }
 
@@ -323,9 +323,9 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
     }
   } restore{source, restore_ref != id.commit ? restore_ref : ""};
 
-  const std::string cache = options.cache.empty() ? platforms::build_cache_dir() : options.cache;
+  const std::string cache = options.cache.empty() ? rundir::build_cache_dir() : options.cache;
   const std::string name = source_build_name(id, options);
-  if (!platforms::is_build_name(name))
+  if (!rundir::is_build_name(name))
     throw util::UserError("builds build: '" + name +
                           "' is not a build name (1 to 64 letters, digits, '.', '_', '-')");
   const std::string key = source_build_key(id, options);
@@ -385,7 +385,7 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
     s.origin = "source";
     s.commit = id.commit;
     s.version = id.version;
-    s.fetched_utc = utc_now_iso8601();
+    s.fetched_utc = rundir::utc_now_iso8601();
     nlohmann::json gl = nlohmann::json::object();
     if (options.probe) {
       say("probe: osmesa-llvmpipe and egl-llvmpipe with the build");

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "platforms/driver_build.h"
+#include "rundir/driver_build.h"
 #include "platforms/vulkan_context.h"
 #include "runner/meson_plan.h"
 #include "util/errors.h"
@@ -297,7 +297,7 @@ TEST_F(SourceBuildDirs, AMesonPrefixIsABuildFolderAndItsLavapipeIsFound) {
   fs::create_directories(prefix / "lib/x86_64-linux-gnu");
   std::ofstream(prefix / "lib/x86_64-linux-gnu/libEGL_mesa.so.0") << "";
   std::ofstream(prefix / "lib/x86_64-linux-gnu/libvulkan_lvp.so") << "";
-  EXPECT_EQ(platforms::build_library_dir(prefix.string()),
+  EXPECT_EQ(rundir::build_library_dir(prefix.string()),
             (prefix / "lib/x86_64-linux-gnu").string());
   EXPECT_EQ(platforms::resolve_icd_library(prefix.string(),
                                            "/tmp/gone/install/lib/x86_64-linux-gnu/libvulkan_lvp.so"),

@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "platforms/renderer_check.h"
+#include "rundir/driver_build.h"
 #include "runner/shard_server.h"
 #include "util/child_process.h"
 
@@ -175,7 +175,7 @@ void WorkerPool::start_workers(std::deque<WorkItem>& todo) {
     r.item = w;
     r.started = r.spawned = Clock::now();
     util::ChildSpec spec;
-    const Shard& s = w.shard;
+    const rundir::Shard& s = w.shard;
     spec.own_process_group = true;
     spec.message_pipe = true;
     spec.log_to(log_path(w));  // a server's: until the first command names it again
@@ -250,7 +250,7 @@ void WorkerPool::reaped(pid_t pid, int status) {
     e.reason = util::describe_exit_status(status) + e.log;
   } else {
     // A worker that loaded another driver than the run's: nothing of this run may be drawn here.
-    e.kind = words.find(platforms::kDriverMismatch) != std::string::npos
+    e.kind = words.find(rundir::kDriverMismatch) != std::string::npos
                  ? WorkerEvent::Kind::kDriverMismatch
                  : WorkerEvent::Kind::kFailed;
     e.reason = util::describe_exit_status(status);

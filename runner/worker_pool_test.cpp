@@ -52,7 +52,7 @@ class WorkerPoolTest : public ::testing::Test {
     return events;
   }
   static WorkItem item(const std::string& platform, double timeout_s) {
-    return WorkItem{Shard{platform, geometry::Kind::kPoint, 1, 0, 10}, "", 1, timeout_s};
+    return WorkItem{rundir::Shard{platform, geometry::Kind::kPoint, 1, 0, 10}, "", 1, timeout_s};
   }
   std::string dir_, program_;
 };

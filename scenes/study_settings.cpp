@@ -58,10 +58,10 @@ void read_camera_block(const util::TomlLocator& loc, const toml::table& t, const
 
 std::string read_study_platform(const util::TomlLocator& loc, const toml::node& node,
                                 const std::string& key) {
-  const std::string name = loc.string(node, key, {}, platforms::aliased_gl_platform_names());
-  if (!platforms::is_aliased_gl_platform(name))
+  const std::string name = loc.string(node, key, {}, rundir::aliased_gl_platform_names());
+  if (!rundir::is_aliased_gl_platform(name))
     loc.fail(&node, "'" + key + "' = \"" + name + "\" is out of range (allowed: " +
-                        platforms::aliased_gl_platform_names() + ")");
+                        rundir::aliased_gl_platform_names() + ")");
   return name;
 }
 

@@ -15,7 +15,8 @@ expect=(
   "layout: high/long_function.cpp:8: function long_function is 154 lines (limit 150"
   "layout: low/upward.cpp:3: includes high/, but CMakeLists.txt links low to nothing that gives high"
   "layout: CMakeLists.txt:5: high links low, but no file of high/ includes low/"
-  "layout: 6 finding(s)"
+  "layout: CMakeLists.txt:7: mid is to link no driver code (RA_DRIVER_FREE), but it reaches low: mid -> low"
+  "layout: 7 finding(s)"
 )
 for line in "${expect[@]}"; do
   grep -qF -- "$line" <<<"$out" || { echo "missing: $line"; bad=1; }
@@ -24,4 +25,4 @@ for absent in long_but_whole helpers_testing "namespace ra::mid" detail; do
   if grep -q -- "$absent" <<<"$out"; then echo "reported what the rules allow: $absent"; bad=1; fi
 done
 if [ $bad -ne 0 ]; then echo "--- the check printed:"; echo "$out"; exit 1; fi
-echo "layout check: the fixture's 6 violations found, each with file and line"
+echo "layout check: the fixture's 7 violations found, each with file and line"

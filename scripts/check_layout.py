@@ -8,7 +8,8 @@ Fails (exit 1, one line "layout: FILE:LINE: ..." per finding) on:
     "// Reads better whole:");
   - a namespace that does not match its folder (ra::<folder>, or a name under it);
   - a link between two of the project's libraries in CMakeLists.txt that no include needs, or an
-    include of another library's folder that no link provides, directly or through another link.
+    include of another library's folder that no link provides, directly or through another link;
+  - a folder of RA_DRIVER_FREE (CMakeLists.txt) whose links reach a folder of RA_DRIVERS.
 The layer order is read from CMakeLists.txt (`set(RA_LAYERS ...)`), the one place it is written;
 docs/development.md must list the folders in the same order.
 
@@ -259,6 +260,35 @@ def check_links(root, layers, cmake, findings, included):
             f, k = included[lib][target]
             findings.append("%s:%d: includes %s/, but CMakeLists.txt links %s to nothing that gives %s"
                             % (f, k, target, lib, target))
+    check_driver_free(cmake, links, findings)
+
+
+def read_list(cmake, name):
+    m = re.search(r"set\(%s\s+([^)]*)\)" % name, cmake)
+    return (m.group(1).split(), line_of(cmake, m.start())) if m else ([], 0)
+
+
+def check_driver_free(cmake, links, findings):
+    """The folders of RA_DRIVER_FREE (those that read runs) reach none of RA_DRIVERS (the folders
+    that hold driver code) through their links, directly or through other libraries."""
+    free, line = read_list(cmake, "RA_DRIVER_FREE")
+    drivers, _ = read_list(cmake, "RA_DRIVERS")
+    for lib in free:
+        parent, todo = {lib: None}, [lib]
+        while todo:  # breadth first: the shortest chain of links is the one named
+            t = todo.pop(0)
+            for u in sorted(links.get(t, {})):
+                if u not in parent:
+                    parent[u] = t
+                    todo.append(u)
+        for d in drivers:
+            if d in parent:
+                chain, t = [], d
+                while t is not None:
+                    chain.append(t)
+                    t = parent[t]
+                findings.append("CMakeLists.txt:%d: %s is to link no driver code (RA_DRIVER_FREE), "
+                                "but it reaches %s: %s" % (line, lib, d, " -> ".join(reversed(chain))))
 
 
 def main():

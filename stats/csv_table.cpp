@@ -152,7 +152,7 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& source) {
 }
 
 CsvTable CsvTable::read_file(const std::string& path) {
-  if (util::has_zstd_extension(path)) {  // a compressed records file (metrics/records_format.h)
+  if (util::has_zstd_extension(path)) {  // a compressed records file (rundir/records_format.h)
     try {
       return parse(util::read_zstd_file(path), path);
     } catch (const util::UserError&) {

@@ -68,10 +68,10 @@ LodRenderer::LodRenderer(const std::string& platform, const scenes::CameraSettin
                          const HeightField& f)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
-  const std::optional<platforms::PlatformSpec> spec = platforms::find_platform(platform);
+  const std::optional<rundir::PlatformSpec> spec = rundir::find_platform(platform);
   if (!spec || !spec->draws_with_gl())
     throw util::UserError("platform '" + platform + "' has no GL driver (allowed: " +
-                          platforms::aliased_gl_platform_names() + ")");
+                          rundir::aliased_gl_platform_names() + ")");
   m.cam = cam;
   m.context = platforms::create_gl_context(*spec);  // sets Mesa's environment and checks the driver
   m.gl = &m.context->gl();

@@ -14,7 +14,7 @@
 
 #include "platforms/platform_probe.h"
 #include "plots/figure_set.h"
-#include "runner/manifest.h"
+#include "rundir/manifest.h"
 #include "scenes/camera_path.h"
 #include "stats/descriptive.h"
 #include "terrain_lod/lod_checks.h"
@@ -276,7 +276,7 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
 
 }  // namespace
 
-runner::StudyRunResult run_lod_study(const runner::StudyRunOptions& options) {
+rundir::StudyRunResult run_lod_study(const rundir::StudyRunOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
   const LodSettings s = read_lod_experiment(options.experiment);
   if (!options.platforms.empty() &&
@@ -285,7 +285,7 @@ runner::StudyRunResult run_lod_study(const runner::StudyRunOptions& options) {
                           ", which --platform leaves out");
   platforms::require_platforms_draw({s.platform},
                                     options.experiment);  // before anything is written
-  runner::StudyRunResult result;
+  rundir::StudyRunResult result;
   result.dir = options.out_dir.empty() ? "outputs/" + s.name : options.out_dir;
   prepare_output_dir(result.dir);
 
@@ -347,17 +347,17 @@ runner::StudyRunResult run_lod_study(const runner::StudyRunOptions& options) {
       {"failed_frames", failures},
       {"first_failure", first_failure},
       {"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count()}};
-  summary.update(runner::document_header("lod", 1));
+  summary.update(rundir::document_header("lod", 1));
   util::write_file_atomic(result.dir + "/lod_summary.json", summary.dump(2) + "\n");
 
-  runner::StudyInfo info;
-  info.kind = runner::StudyKind::kLod;
+  rundir::StudyInfo info;
+  info.kind = rundir::StudyKind::kLod;
   info.name = s.name;
   info.title = s.title;
   info.subtitle = "Longest-edge bisection with nested errors and balls on " + field.source + ", " +
                   std::to_string(path.size()) + " frames at " + std::to_string(s.camera.width) + " x " +
                   std::to_string(s.camera.height) + " on " + s.platform + ".";
-  runner::write_study_info(result.dir, info);  // last: a complete run
+  rundir::write_study_info(result.dir, info);  // last: a complete run
 
   std::ostringstream sum;
   sum << "lod: " << path.size() << " frames x " << s.tau.size() << " tau, lambda " << lambda_kind_name(s.lambda)
@@ -530,8 +530,8 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
 }
 
 void analyze_lod_study(const std::string& dir) {
-  const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
-  if (!info || info->kind != runner::StudyKind::kLod)
+  const std::optional<rundir::StudyInfo> info = rundir::read_study_info(dir);
+  if (!info || info->kind != rundir::StudyKind::kLod)
     throw util::UserError(
         dir +
         " is not a complete LOD run (no study.json of kind lod: run `renderaudit run` "
@@ -564,15 +564,15 @@ void analyze_lod_study(const std::string& dir) {
           << r.seams_ok << ',' << r.over_tau << "\n";
   util::write_file_atomic(dir + "/lod_table.csv", table.str());
   util::write_file_atomic(dir + "/lod.md", lod_document(sj, rows));
-  runner::StudyInfo updated = *info;
+  rundir::StudyInfo updated = *info;
   updated.document = "lod.md";
   updated.analysed = true;
-  runner::write_study_info(dir, updated);
+  rundir::write_study_info(dir, updated);
 }
 
 void plot_lod_study(const std::string& dir) {
-  const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
-  if (!info || info->kind != runner::StudyKind::kLod || !info->analysed)
+  const std::optional<rundir::StudyInfo> info = rundir::read_study_info(dir);
+  if (!info || info->kind != rundir::StudyKind::kLod || !info->analysed)
     throw util::UserError(dir + " has not been analysed: run `renderaudit analyze " + dir +
                           "` first");
   const std::vector<TableRow> rows = read_table(dir);

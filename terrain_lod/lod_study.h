@@ -14,14 +14,14 @@
 
 #include <string>
 
-#include "runner/study_dir.h"
+#include "rundir/study_dir.h"
 
 namespace ra::lod {
 
 // Measures; findings = true when a check of the experiment's own lambda failed on some frame
 // (a mesh not conforming, a seam used differently from its two sides, or a measured screen error
 // above tau). Throws UserError for a bad experiment or height file.
-runner::StudyRunResult run_lod_study(const runner::StudyRunOptions& options);
+rundir::StudyRunResult run_lod_study(const rundir::StudyRunOptions& options);
 
 // Throws UserError when `dir` is not a complete LOD run.
 void analyze_lod_study(const std::string& dir);

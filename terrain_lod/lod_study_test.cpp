@@ -73,18 +73,18 @@ TEST(HeightFile, NonFiniteHeightsAndSmallFilesAreRejected) {
 TEST(LodStudy, SmokeExperimentRunsAnalysesAndPlots) {
   const std::string dir = ::testing::TempDir() + "lod_smoke_study";
   std::filesystem::remove_all(dir);
-  runner::StudyRunOptions o;
+  rundir::StudyRunOptions o;
   o.experiment = std::string(RA_SOURCE_DIR) + "/experiments/lod_smoke.toml";
   o.out_dir = dir;
   o.progress = false;
-  const runner::StudyRunResult r = run_lod_study(o);
+  const rundir::StudyRunResult r = run_lod_study(o);
   EXPECT_FALSE(r.findings) << r.summary;
   EXPECT_NE(r.summary.find("every check passed"), std::string::npos) << r.summary;
   EXPECT_THROW(plot_lod_study(dir), util::UserError);  // not analysed yet
   analyze_lod_study(dir);
-  const std::optional<runner::StudyInfo> info = runner::read_study_info(dir);
+  const std::optional<rundir::StudyInfo> info = rundir::read_study_info(dir);
   ASSERT_TRUE(info);
-  EXPECT_EQ(info->kind, runner::StudyKind::kLod);
+  EXPECT_EQ(info->kind, rundir::StudyKind::kLod);
   EXPECT_TRUE(info->analysed);
   EXPECT_EQ(info->document, "lod.md");
   // the table: window lambda at tau 4 is below full resolution, every check passed
@@ -128,11 +128,11 @@ TEST(LodStudy, SmokeExperimentRunsAnalysesAndPlots) {
   }
   // a re-run removes what analyze and plot derived, and plot refuses until analyze runs again
   {
-    const runner::StudyRunResult again = run_lod_study(o);
+    const rundir::StudyRunResult again = run_lod_study(o);
     EXPECT_FALSE(again.findings) << again.summary;
     for (const char* f : {"lod_table.csv", "lod.md", "figures"})
       EXPECT_FALSE(std::filesystem::exists(dir + "/" + f)) << f;
-    const std::optional<runner::StudyInfo> rerun = runner::read_study_info(dir);
+    const std::optional<rundir::StudyInfo> rerun = rundir::read_study_info(dir);
     ASSERT_TRUE(rerun);
     EXPECT_FALSE(rerun->analysed);
     // even with a (stale) table present, plot checks study.json's flag
@@ -158,11 +158,11 @@ TEST(LodStudy, BrokenErrorPropagationIsAFinding) {
   // the same experiment with the broken LOD
   text.replace(text.find("[lod]"), 5, "[lod]\nerror_propagation = \"unnested\"");
   util::write_file_atomic(dir + "/broken.toml", text);
-  runner::StudyRunOptions o;
+  rundir::StudyRunOptions o;
   o.experiment = dir + "/broken.toml";
   o.out_dir = dir + "/out";
   o.progress = false;
-  const runner::StudyRunResult r = run_lod_study(o);
+  const rundir::StudyRunResult r = run_lod_study(o);
   EXPECT_TRUE(r.findings) << r.summary;
   EXPECT_NE(r.summary.find("failed a check"), std::string::npos) << r.summary;
 }
@@ -177,10 +177,10 @@ namespace {
 //   RA_LOD_OUT=DIR terrain_lod_tests --gtest_also_run_disabled_tests --gtest_filter=*DISABLED_Default*
 TEST(LodStudy, DISABLED_DefaultExperiment) {
   const char* out = std::getenv("RA_LOD_OUT");
-  runner::StudyRunOptions o;
+  rundir::StudyRunOptions o;
   o.experiment = std::string(RA_SOURCE_DIR) + "/experiments/lod.toml";
   o.out_dir = out ? out : ::testing::TempDir() + "lod_default";
-  const runner::StudyRunResult r = run_lod_study(o);
+  const rundir::StudyRunResult r = run_lod_study(o);
   std::cerr << r.summary << "\n";
   EXPECT_FALSE(r.findings);
   analyze_lod_study(o.out_dir);

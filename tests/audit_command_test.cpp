@@ -50,7 +50,7 @@ std::vector<std::string> split(const std::string& line) {
 std::map<Key, std::string> records_of(const std::string& run_dir, const std::string& platform) {
   std::map<Key, std::string> out;
   for (const auto& e : fs::directory_iterator(run_dir + "/records")) {
-    if (!ra::metrics::is_records_file_name(e.path().filename().string())) continue;
+    if (!ra::rundir::is_records_file_name(e.path().filename().string())) continue;
     std::istringstream in(read_records_text(e.path().string()));
     std::string line;
     std::getline(in, line);

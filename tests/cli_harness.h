@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "metrics/records.h"
-#include "metrics/records_format.h"
-#include "runner/shard_file.h"
+#include "rundir/records_format.h"
+#include "rundir/shard_file.h"
 #include "util/zstd_stream.h"
 #include "util/child_process.h"
 
@@ -135,7 +135,7 @@ inline void write_records_text(const std::string& path, const std::string& text)
   z.end_frame();
 }
 
-// Seals a records file again after a test edited it (runner/shard_file.h), as if a run had written
+// Seals a records file again after a test edited it (rundir/shard_file.h), as if a run had written
 // those records: drops its old trailer, appends the one its content now has.
 inline void reseal_records_file(const std::string& path) {
   const std::string text = read_records_text(path);
@@ -150,7 +150,7 @@ inline void reseal_records_file(const std::string& path) {
     }
     start = end;
   }
-  write_records_text(path, body + ra::runner::shard_trailer(body, rows));
+  write_records_text(path, body + ra::rundir::shard_trailer(body, rows));
 }
 
 // Every record line of a run directory, with the timing columns (the last two) removed, as a set
@@ -158,7 +158,7 @@ inline void reseal_records_file(const std::string& path) {
 inline std::multiset<std::string> records_without_timing(const std::string& run_dir) {
   std::multiset<std::string> rows;
   for (const auto& e : std::filesystem::directory_iterator(run_dir + "/records")) {
-    if (!ra::metrics::is_records_file_name(e.path().filename().string())) continue;
+    if (!ra::rundir::is_records_file_name(e.path().filename().string())) continue;
     std::istringstream in(read_records_text(e.path().string()));
     std::string line;
     std::getline(in, line);  // header

@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "metrics/records.h"
+#include "rundir/records_reader.h"
 #include "tests/cli_harness.h"
 
 using namespace ra::testing_cli;
@@ -19,7 +20,7 @@ using Key = std::tuple<std::string, int, uint64_t>;  // kind, view, index
 std::map<Key, ra::metrics::Record> load(const std::string& run_dir) {
   std::map<Key, ra::metrics::Record> out;
   for (const auto& e : std::filesystem::directory_iterator(run_dir + "/records"))
-    ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
+    ra::rundir::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
       out[{r.kind, r.view, r.index}] = r;
     });
   return out;

@@ -35,7 +35,7 @@ std::string read_text(const std::string& path) {
 std::map<std::string, std::map<std::string, int>> classes(const std::string& run_dir) {
   std::map<std::string, std::map<std::string, int>> out;
   for (const auto& e : fs::directory_iterator(run_dir + "/records")) {
-    if (!ra::metrics::is_records_file_name(e.path().filename().string())) continue;
+    if (!ra::rundir::is_records_file_name(e.path().filename().string())) continue;
     std::istringstream in(ra::testing_cli::read_records_text(e.path().string()));
     std::string line;
     std::getline(in, line);

@@ -13,7 +13,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "platforms/driver_build.h"
+#include "rundir/driver_build.h"
 #include "tests/cli_harness.h"
 
 namespace fs = std::filesystem;
@@ -82,7 +82,7 @@ std::string simulate_other_build(const std::string& dir) {
 // A fetched Mesa build other than the installed one, or "" (the test then says why it skips).
 std::string other_build_dir() {
   if (const char* d = std::getenv("RENDERAUDIT_TEST_BUILD"); d && *d) return d;
-  return ra::platforms::cached_build_of_suite("bookworm-backports");
+  return ra::rundir::cached_build_of_suite("bookworm-backports");
 }
 
 }  // namespace
@@ -179,7 +179,7 @@ TEST(DriverBuild, AChangedBuildLibraryWithTheSameGlStringsStops) {
 // environment points at the build or not.
 TEST(DriverBuild, TwoBuildsInOneRunAuditTheSameInAnyEnvironment) {
   const std::string build = other_build_dir();
-  if (build.empty() || !fs::exists(ra::platforms::build_library_dir(build) + "/libOSMesa.so.8"))
+  if (build.empty() || !fs::exists(ra::rundir::build_library_dir(build) + "/libOSMesa.so.8"))
     GTEST_SKIP() << "no second Mesa build here: `renderaudit builds fetch bookworm-backports` "
                     "(needs the Debian registry) or RENDERAUDIT_TEST_BUILD=DIR enables this test";
   const std::string dir = fresh_dir("driver_two_builds");
@@ -203,7 +203,7 @@ TEST(DriverBuild, TwoBuildsInOneRunAuditTheSameInAnyEnvironment) {
   const std::string audit = "audit " + dir + "/run --between osmesa-llvmpipe osmesa-llvmpipe@other "
                             "--no-history --out ";
   const Outcome plain = run_renderaudit(audit + dir + "/a1");
-  const std::string lib = ra::platforms::build_library_dir(build);
+  const std::string lib = ra::rundir::build_library_dir(build);
   const Outcome polluted = run_command("env LD_LIBRARY_PATH=" + lib + " RENDERAUDIT_LIBOSMESA=" +
                                        lib + "/libOSMesa.so.8 " + RA_BINARY + " " + audit + dir +
                                        "/a2");
@@ -228,7 +228,7 @@ TEST(DriverBuild, TwoBuildsInOneRunAuditTheSameInAnyEnvironment) {
 TEST(DriverBuild, ElfDependenciesMatchReadelf) {
   const std::string lib = "/usr/lib/x86_64-linux-gnu/libOSMesa.so.8";
   if (!fs::exists(lib)) GTEST_SKIP() << "libosmesa6 is not installed";
-  const ra::platforms::ElfDependencies d = ra::platforms::read_elf_dependencies(fs::canonical(lib));
+  const ra::rundir::ElfDependencies d = ra::rundir::read_elf_dependencies(fs::canonical(lib));
   EXPECT_EQ(d.soname, "libOSMesa.so.8");
   const std::string readelf = shell_output("readelf -d " + fs::canonical(lib).string());
   if (readelf.empty()) GTEST_SKIP() << "readelf (binutils) is not installed";
@@ -237,7 +237,7 @@ TEST(DriverBuild, ElfDependenciesMatchReadelf) {
   EXPECT_EQ(int(d.needed.size()), needed);
   for (const std::string& n : d.needed)
     EXPECT_NE(readelf.find("[" + n + "]"), std::string::npos) << n;
-  EXPECT_TRUE(ra::platforms::read_elf_dependencies("/etc/hostname").soname.empty());
+  EXPECT_TRUE(ra::rundir::read_elf_dependencies("/etc/hostname").soname.empty());
 }
 
 // `builds fetch` from a registry that cannot be reached: a clear error, and the cache as it was.

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/cli_harness.h"
+#include "rundir/records_reader.h"
 #include "util/atomic_file.h"
 
 namespace fs = std::filesystem;
@@ -143,8 +144,8 @@ const char* kCrashing =
 std::size_t crash_records(const std::string& run_dir) {
   std::size_t n = 0;
   for (const auto& e : fs::directory_iterator(run_dir + "/records"))
-    if (ra::metrics::is_records_file_name(e.path().filename().string()))
-      ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
+    if (ra::rundir::is_records_file_name(e.path().filename().string()))
+      ra::rundir::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
         n += r.status == ra::metrics::CaseStatus::kCrash;
       });
   return n;

@@ -9,6 +9,7 @@
 
 #include "stats/descriptive.h"
 #include "metrics/records.h"
+#include "rundir/records_reader.h"
 #include "tests/cli_harness.h"
 
 using namespace ra::testing_cli;
@@ -48,7 +49,7 @@ TEST(PointStatistics, LlvmpipeMatchesUniformErrorAndSolidAngle) {
   std::vector<double> pe;
   std::map<double, std::pair<int, int>> visible;  // fov -> (true-visible, total)
   for (const auto& e : std::filesystem::directory_iterator(dir + "/run/records")) {
-    ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
+    ra::rundir::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
       auto& v = visible[r.fov_deg];
       ++v.second;
       if (r.visibility == ra::metrics::Visibility::kTrueVisible) {

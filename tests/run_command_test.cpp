@@ -10,6 +10,7 @@
 
 #include "metrics/conformance.h"
 #include "metrics/records.h"
+#include "rundir/records_reader.h"
 #include "tests/cli_harness.h"
 #include "util/atomic_file.h"
 
@@ -92,7 +93,7 @@ TEST(RunCommand, AResumedRunEqualsAnUninterruptedOne) {
   // Simulate a run killed mid-way: some shards missing, one half-written temporary file.
   int removed = 0;
   for (const auto& e : fs::directory_iterator(dir + "/resumed/records"))
-    if (removed < 5 && ra::metrics::is_records_file_name(e.path().filename().string()))
+    if (removed < 5 && ra::rundir::is_records_file_name(e.path().filename().string()))
       fs::remove(e.path()), ++removed;
   write_text(dir + "/resumed/records/osmesa-llvmpipe.point.v1.0-50.csv.zst.tmp", "platform,vi");
   const Outcome again = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/resumed");
@@ -155,7 +156,7 @@ TEST(RunCommand, CrashingAndHangingPrimitivesAreBisectedAndRecorded) {
   std::map<uint64_t, ra::metrics::Record> clean, faulty;
   for (const std::string sub : {"clean", "run"})
     for (const auto& e : fs::directory_iterator(dir + "/" + sub + "/records"))
-      ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
+      ra::rundir::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
         (sub == "clean" ? clean : faulty)[r.index] = r;
       });
   ASSERT_EQ(faulty.size(), 20u);
@@ -206,7 +207,7 @@ TEST(RunCommand, ServedShardsEqualOneProcessPerShardAndACrashStaysWithItsShard) 
   EXPECT_EQ(invocation("per-shard").at("workers"), "per-shard");
   for (const auto& e : fs::directory_iterator(dir + "/served/records"))
     EXPECT_TRUE(fs::exists(dir + "/served/logs/" +
-                           ra::metrics::records_file_stem(e.path().filename().string()) + ".log"))
+                           ra::rundir::records_file_stem(e.path().filename().string()) + ".log"))
         << e.path();
 
   const std::string faulty =
@@ -334,7 +335,7 @@ TEST(RunCommand, AnotherShardSizeIntoTheSameDirectoryIsRefused) {
   EXPECT_TRUE(records_without_timing(dir + "/run") == before);  // nothing rendered twice
   std::size_t files = 0;
   for (const auto& e : fs::directory_iterator(dir + "/run/records"))
-    files += ra::metrics::is_records_file_name(e.path().filename().string());
+    files += ra::rundir::is_records_file_name(e.path().filename().string());
   EXPECT_EQ(files, 4u * 3);  // views x shards of 10
   EXPECT_EQ(run_renderaudit("analyze " + dir + "/run").exit_code, 0);
 }
@@ -356,7 +357,7 @@ TEST(RunCommand, ExtremeNearFarRatiosJudgePointsAsAModerateOneDoes) {
   auto judged = [&](const std::string& name) {
     std::map<std::tuple<std::string, int, uint64_t>, Judgement> out;
     for (const auto& e : fs::directory_iterator(dir + "/" + name + "/records"))
-      ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
+      ra::rundir::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
         const double pe = std::isnan(r.pe) ? -1.0 : r.pe;  // empty when not true-visible
         out[{r.platform, r.view, r.index}] = {int(r.visibility), r.pixels, pe, r.ref_diff,
                                               r.pixel_hash, int(r.conformance)};

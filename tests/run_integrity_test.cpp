@@ -219,7 +219,7 @@ TEST(RunIntegrity, AnUnsealedRecordOutsideItsShardIsReported) {
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2").exit_code, 0);
   for (const auto& e : fs::directory_iterator(dir + "/run/records")) {  // as an older version wrote
     const std::string path = e.path().string();
-    write_text(ra::metrics::records_file_stem(path) + ".csv",
+    write_text(ra::rundir::records_file_stem(path) + ".csv",
                as_unsealed_version_2(read_records_text(path)));
     fs::remove(path);
   }

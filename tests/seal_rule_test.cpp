@@ -1,4 +1,4 @@
-// End-to-end tests of the seal rule (runner/shard_records.h): every command that reads a run's
+// End-to-end tests of the seal rule (rundir/shard_records.h): every command that reads a run's
 // records refuses a damaged records file, naming it, as `analyze` does: a compressed file cut at a
 // frame boundary (its first 8,192 rows decode as a valid stream), one cut just before the seal's
 // frame (all rows, no seal), two files run together, a flipped byte, appended text, an empty file,

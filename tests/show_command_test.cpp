@@ -7,9 +7,10 @@
 #include <memory>
 #include <sstream>
 
-#include "audit/image_legend.h"
-#include "audit/primitive_image.h"
-#include "runner/experiment.h"
+#include "triage/image_legend.h"
+#include "rundir/records_reader.h"
+#include "triage/primitive_image.h"
+#include "rundir/experiment.h"
 #include "metrics/records.h"
 #include "geometry/reference_rasterizer.h"
 #include "tests/cli_harness.h"
@@ -31,7 +32,7 @@ std::string experiment(const std::string& platforms, const std::string& extra = 
 struct Image {
   int width = 0, height = 0, channels = 0;
   std::vector<unsigned char> pixels;
-  ra::audit::Rgb8 at(int x, int y) const {
+  ra::triage::Rgb8 at(int x, int y) const {
     const unsigned char* p = &pixels[(std::size_t(y) * width + x) * channels];
     return {p[0], p[1], p[2]};
   }
@@ -50,7 +51,7 @@ Image read_image(const std::string& path) {
 
 // Window pixels (blocks of `scale` image px) whose block has a pixel of `colour`, with a block
 // interior pixel (not the grid border) checked so the red outline cannot hide a block.
-int blocks_with(const Image& im, int scale, ra::audit::Rgb8 colour) {
+int blocks_with(const Image& im, int scale, ra::triage::Rgb8 colour) {
   int n = 0;
   for (int by = 0; by < im.height / scale; ++by)
     for (int bx = 0; bx < im.width / scale; ++bx) {
@@ -83,7 +84,7 @@ Image legend(const Image& whole, int top) {
   return im;
 }
 
-int pixels_with(const Image& im, ra::audit::Rgb8 colour) {
+int pixels_with(const Image& im, ra::triage::Rgb8 colour) {
   int n = 0;
   for (int y = 0; y < im.height; ++y)
     for (int x = 0; x < im.width; ++x) n += im.at(x, y) == colour;
@@ -118,8 +119,8 @@ const std::string& reference_run() {
 ra::metrics::Record largest_triangle(const std::string& run) {
   ra::metrics::Record best;
   for (const auto& e : fs::directory_iterator(run + "/records"))
-    if (ra::metrics::is_records_file_name(e.path().filename().string()))
-      ra::metrics::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
+    if (ra::rundir::is_records_file_name(e.path().filename().string()))
+      ra::rundir::read_records(e.path().string(), [&](const ra::metrics::Record& r) {
         if (r.kind == "triangle" && r.visibility == ra::metrics::Visibility::kTrueVisible &&
             r.pixels > best.pixels)
           best = r;
@@ -151,30 +152,30 @@ TEST(ShowCommand, ATriangleOnTheReferenceIsGreyWithARedOutline) {
 
   const Image whole = read_image(png);
   ASSERT_EQ(whole.width, 512);
-  ASSERT_EQ(whole.height, 512 + 2 * 8 + 5 * ra::audit::kLegendRowHeight);  // the legend's 5 rows
+  ASSERT_EQ(whole.height, 512 + 2 * 8 + 5 * ra::triage::kLegendRowHeight);  // the legend's 5 rows
   ASSERT_EQ(whole.channels, 3);
   const Image im = picture(whole, 512, 512);
   // The legend shows every class's colour, and text (dark pixels that are not a swatch's).
   const Image key = legend(whole, 512);
-  for (const ra::audit::Rgb8 c : {ra::audit::kBothColor, ra::audit::kPlatformOnlyColor,
-                                  ra::audit::kReferenceOnlyColor, ra::audit::kViolationColor,
-                                  ra::audit::kIdealColor})
+  for (const ra::triage::Rgb8 c : {ra::triage::kBothColor, ra::triage::kPlatformOnlyColor,
+                                  ra::triage::kReferenceOnlyColor, ra::triage::kViolationColor,
+                                  ra::triage::kIdealColor})
     EXPECT_GT(pixels_with(key, c), 0);
   int text = 0;
   for (int y = 0; y < key.height; ++y)
     for (int x = 40; x < key.width; ++x) text += key.at(x, y).r < 128;
   EXPECT_GT(text, 200) << "no legend text";
   // Every lit pixel is a grey block; nothing is platform-only or reference-only on the reference.
-  EXPECT_EQ(blocks_with(im, 8, ra::audit::kBothColor), rec.pixels);
-  EXPECT_EQ(pixels_with(im, ra::audit::kPlatformOnlyColor), 0);
-  EXPECT_EQ(pixels_with(im, ra::audit::kReferenceOnlyColor), 0);
+  EXPECT_EQ(blocks_with(im, 8, ra::triage::kBothColor), rec.pixels);
+  EXPECT_EQ(pixels_with(im, ra::triage::kPlatformOnlyColor), 0);
+  EXPECT_EQ(pixels_with(im, ra::triage::kReferenceOnlyColor), 0);
   // A 1-px line cannot cover a block's 7 x 7 interior: every other block shows white.
-  EXPECT_EQ(blocks_with(im, 8, ra::audit::kUnlitColor), 64 * 64 - rec.pixels);
+  EXPECT_EQ(blocks_with(im, 8, ra::triage::kUnlitColor), 64 * 64 - rec.pixels);
   // The outline of a triangle lighting more than 10 pixels is longer than 3 window pixels.
-  EXPECT_GT(pixels_with(im, ra::audit::kIdealColor), 3 * 8);
+  EXPECT_GT(pixels_with(im, ra::triage::kIdealColor), 3 * 8);
   // Blocks of 8 px carry a grid: a darker border.
-  const ra::audit::Rgb8 b = ra::audit::kBothColor;
-  EXPECT_GT(pixels_with(im, ra::audit::Rgb8{uint8_t(b.r * 4 / 5), uint8_t(b.g * 4 / 5),
+  const ra::triage::Rgb8 b = ra::triage::kBothColor;
+  EXPECT_GT(pixels_with(im, ra::triage::Rgb8{uint8_t(b.r * 4 / 5), uint8_t(b.g * 4 / 5),
                                             uint8_t(b.b * 4 / 5)}),
             0);
 }
@@ -187,7 +188,7 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
   write_text(dir + "/run/experiment.toml",
              experiment("\"faulty\"", "[faults]\nshift_fraction = 1.0\n"));
   // A triangle of some size away from the window's right edge, so no shifted pixel falls off.
-  const ra::runner::Experiment exp = ra::runner::load_experiment(dir + "/run/experiment.toml");
+  const ra::rundir::Experiment exp = ra::rundir::load_experiment(dir + "/run/experiment.toml");
   ra::geometry::PixelSet ref;
   uint64_t index = 0;
   for (; index < 20; ++index) {
@@ -205,18 +206,18 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const std::string png = dir + "/run/show/faulty.triangle.v1." + std::to_string(index) + ".png";
   const Image whole = read_image(png);
-  ASSERT_EQ(whole.width, ra::audit::kLegendMinWidth);  // widened for the legend
+  ASSERT_EQ(whole.width, ra::triage::kLegendMinWidth);  // widened for the legend
   const Image im = picture(whole, 256, 256);  // --scale 4 on the whole 64 x 64 window
   // Of the 2 x runs differing pixels, those GL forbids (centres beyond the snapping allowance of
   // every edge: metrics/conformance.h) are black, the others orange or blue.
-  const int black = blocks_with(im, 4, ra::audit::kViolationColor);
+  const int black = blocks_with(im, 4, ra::triage::kViolationColor);
   EXPECT_GT(black, 0);
   EXPECT_EQ(field(o.output, "violating_pixels"), std::to_string(black)) << o.output;
   EXPECT_EQ(field(o.output, "conformance"), "violation") << o.output;
-  EXPECT_EQ(blocks_with(im, 4, ra::audit::kPlatformOnlyColor) + blocks_with(im, 4, ra::audit::kReferenceOnlyColor) +
+  EXPECT_EQ(blocks_with(im, 4, ra::triage::kPlatformOnlyColor) + blocks_with(im, 4, ra::triage::kReferenceOnlyColor) +
                 black,
             2 * runs);
-  EXPECT_EQ(blocks_with(im, 4, ra::audit::kBothColor), ref.size() - runs);
+  EXPECT_EQ(blocks_with(im, 4, ra::triage::kBothColor), ref.size() - runs);
   EXPECT_EQ(field(o.output, "ref_diff"), std::to_string(2 * runs)) << o.output;
   EXPECT_NE(o.output.find("grey = lit by both (" + std::to_string(ref.size() - runs) +
                           "), orange = platform (faulty) only (" + std::to_string(runs) +

@@ -89,10 +89,10 @@ SceneRenderer::SceneRenderer(const std::string& platform, const scenes::CameraSe
                              bool gpu_timer)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
-  const std::optional<platforms::PlatformSpec> spec = platforms::find_platform(platform);
+  const std::optional<rundir::PlatformSpec> spec = rundir::find_platform(platform);
   if (!spec || !spec->draws_with_gl())
     throw util::UserError("platform '" + platform + "' has no GL driver to time (allowed: " +
-                          platforms::aliased_gl_platform_names() + ")");
+                          rundir::aliased_gl_platform_names() + ")");
   m.cam = cam;
   m.info.platform = platform;
   m.info.gallium_driver = spec->mesa_driver;

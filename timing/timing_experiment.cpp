@@ -61,11 +61,11 @@ TimingSettings parse_timing_experiment(const std::string& text, const std::strin
     for (const auto& e : a) {
       const auto* str = e.as_string();
       // The study draws aliased frames: a multisample platform would be measured as aliased.
-      if (!str || !platforms::is_aliased_gl_platform(str->get()))
+      if (!str || !rundir::is_aliased_gl_platform(str->get()))
         loc.fail(&e,
                  "'timing.platforms' holds an unknown, driverless or multisample platform "
                  "(allowed: " +
-                     platforms::aliased_gl_platform_names() + ")");
+                     rundir::aliased_gl_platform_names() + ")");
       for (const auto& p : s.platforms)
         if (p == str->get()) loc.fail(&e, "platform '" + p + "' is listed twice");
       s.platforms.push_back(str->get());

@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "plots/figure_set.h"
-#include "runner/manifest.h"
-#include "runner/study_dir.h"
+#include "rundir/manifest.h"
+#include "rundir/study_dir.h"
 #include "stats/descriptive.h"
 #include "timing/timing_markdown.h"
 #include "util/atomic_file.h"
@@ -208,7 +208,7 @@ plots::Figure path_figure(const std::string& platform, const std::string& scene,
 
 nlohmann::json timing_json(const StudyResults& r) {
   const TimingSettings& s = r.settings;
-  nlohmann::json j = runner::document_header("timing", 1);
+  nlohmann::json j = rundir::document_header("timing", 1);
   j["wall_s"] = r.wall_s;
   nlohmann::json scenes = nlohmann::json::array();
   for (const scenes::SceneSpec& sc : s.scenes)
@@ -477,8 +477,8 @@ std::vector<std::string> write_timing_outputs(const StudyResults& r, const std::
   put("timing.md", timing_markdown(doc));
   put("timing.json", doc.dump(2) + "\n");
   // last: its presence means a complete study folder; the study is analysed as it runs
-  runner::StudyInfo info;
-  info.kind = runner::StudyKind::kTiming;
+  rundir::StudyInfo info;
+  info.kind = rundir::StudyKind::kTiming;
   info.name = r.settings.name;
   info.title = "renderaudit timing report: " + r.settings.name;
   info.subtitle =
@@ -486,7 +486,7 @@ std::vector<std::string> write_timing_outputs(const StudyResults& r, const std::
       "(EGSR 2003) predict it, measured on this machine.";
   info.document = "timing.md";
   info.analysed = true;
-  runner::write_study_info(dir, info);
+  rundir::write_study_info(dir, info);
   written.push_back(dir + "/study.json");
   return written;
 }

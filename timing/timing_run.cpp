@@ -80,7 +80,7 @@ std::string summary_of(const StudyResults& r, const std::string& dir) {
 
 }  // namespace
 
-runner::StudyRunResult run_timing_study(const runner::StudyRunOptions& options, bool figures) {
+rundir::StudyRunResult run_timing_study(const rundir::StudyRunOptions& options, bool figures) {
   const auto t0 = std::chrono::steady_clock::now();
   StudyResults r;
   r.settings = read_timing_experiment(options.experiment);
@@ -124,7 +124,7 @@ runner::StudyRunResult run_timing_study(const runner::StudyRunOptions& options, 
           ", the frames of scene " + r.settings.scenes[i].name + ")");
   }
   std::filesystem::create_directories(dir);
-  runner::StudyRunResult result;
+  rundir::StudyRunResult result;
   result.dir = dir;
   // study_runs independent runs, one after the other, every platform measured afresh in each (a
   // new child process: frame base, object measurements, path, pos tables, system task). The

@@ -4,13 +4,13 @@
 // `renderaudit run` for a file with a [timing] table.
 #pragma once
 
-#include "runner/study_dir.h"
+#include "rundir/study_dir.h"
 
 namespace ra::timing {
 
 // Throws UserError for bad input (file:line:column) or a --platform not in the file. A platform
 // whose measurement failed is named in the summary and sets findings.
-runner::StudyRunResult run_timing_study(const runner::StudyRunOptions& options,
+rundir::StudyRunResult run_timing_study(const rundir::StudyRunOptions& options,
                                         bool figures = true);
 
 }  // namespace ra::timing

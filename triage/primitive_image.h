@@ -1,0 +1,81 @@
+// One primitive of a run, re-rendered and drawn as a PNG for a person to look at (`renderaudit
+// show`): which pixels the platform lit, which the reference rasterizer lights, and the ideal
+// projection on top, so a changed or suspicious record can be seen rather than inferred.
+//
+// The image (OpenImageIO):
+// - shows a rectangle of window pixels: the primitive's clipped bounding box, grown to hold every
+//   pixel either rasterizer lit, plus kImageMargin pixels, clamped to the window; the whole window
+//   when it is small (both sides <= kWholeWindowMax) or nothing is visible;
+// - draws each window pixel as a scale x scale block, rows flipped (GL window y is up, image rows
+//   go down): white = unlit, light grey = lit by both, orange = platform only, blue = reference
+//   only (both differences GL allows), black = a pixel no conforming implementation could light
+//   or leave dark (metrics/conformance.h); blocks of scale >= 8 have a darker 1-px border, a pixel grid;
+// - draws the ideal projection (clipping.h, window coordinates) as a 1-px red line on top: the
+//   clipped polygon's outline, the clipped segment, or a cross at a projected point.
+// The primitive is rendered once; the record printed with the image is measure_case()'s record of
+// that very rendering (it equals the run's record for a deterministic platform).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "geometry/pixel_set.h"
+#include "metrics/records.h"
+#include "geometry/view.h"
+
+namespace ra::triage {
+
+constexpr int kImageMargin = 3;        // window pixels shown around the primitive
+constexpr int kWholeWindowMax = 64;    // windows up to this size are shown whole
+constexpr int kTargetImageSize = 512;  // the default scale makes the longer side about this
+constexpr int kMaxImageScale = 256;
+constexpr int kMaxImageSide = 16384;  // image pixels
+
+// Colours, RGB.
+struct Rgb8 {
+  uint8_t r = 0, g = 0, b = 0;
+  friend bool operator==(Rgb8 a, Rgb8 b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+};
+constexpr Rgb8 kUnlitColor{255, 255, 255};
+constexpr Rgb8 kBothColor{150, 150, 150};  // mid grey: apart from white, the grid and black
+constexpr Rgb8 kPlatformOnlyColor{230, 159, 0};   // Okabe-Ito orange
+constexpr Rgb8 kReferenceOnlyColor{0, 114, 178};  // Okabe-Ito blue
+constexpr Rgb8 kIdealColor{220, 0, 0};
+constexpr Rgb8 kViolationColor{0, 0, 0};
+
+struct ShowRequest {
+  std::string run_dir;   // holds experiment.toml
+  std::string platform;  // any known platform (platform_names()), not only the run's
+  std::string kind;      // "point", "line", "triangle" (or plural)
+  int view = 1;          // 1-based, Table 1 order
+  uint64_t index = 0;    // primitive index under the run's seed
+  std::string out_path;  // .png; empty: RUN/show/PLATFORM.KIND.vVIEW.INDEX.png
+  int scale = 0;         // image pixels per window pixel; 0: about kTargetImageSize px in all
+};
+
+struct PrimitiveImage {
+  std::string path;           // PNG written
+  int width = 0, height = 0;  // the picture of the window pixels, image pixels (top left of the PNG)
+  int image_width = 0, image_height = 0;  // the PNG: the picture, the legend under it
+  std::string legend_note;    // why the legend lacks its text, or ""
+  int scale = 0;              // image pixels per window pixel
+  geometry::PixelRect shown;  // window pixels shown, GL coordinates
+  geometry::View view;
+  metrics::Record record;                                   // measure_case() of this rendering
+  int64_t both = 0, platform_only = 0, reference_only = 0;  // lit pixels, whole window
+  int64_t violating = 0;  // pixels of platform_only + reference_only that GL forbids
+};
+
+// The count of black pixels as `show` states it, consistent with the record's `violating_pixels`
+// (`marked`: the pixels drawn black). The column rule of lines counts the fragments beyond the
+// first of a column (or row) but marks every fragment there, so a column of two fragments is 1
+// violating pixel and 2 black ones: then both numbers are given, e.g. "1 (2 marked: ...)".
+std::string forbidden_pixels_text(int64_t violating_pixels, int64_t marked);
+
+// Loads RUN/experiment.toml, renders primitive `index` of `kind` in `view` on `platform` in this
+// process, compares it with the reference rasterizer and writes the PNG. Throws ra::util::UserError
+// saying what is wrong and what is allowed: no run directory, unknown platform or kind, view or
+// index out of range, a scale out of range, a file that cannot be written.
+PrimitiveImage show_primitive(const ShowRequest& request);
+
+}  // namespace ra::triage
