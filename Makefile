@@ -8,7 +8,7 @@ BUILD_TYPE ?= Release
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
-.PHONY: all deps build install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly timing lod regulation format clean
+.PHONY: all deps build lean bundle install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly timing lod regulation format clean
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
@@ -22,6 +22,19 @@ $(BUILD)/CMakeCache.txt: | deps
 
 build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
+
+# The lean runner for GPU and cluster nodes (docs/operations.md): renderaudit-lean and the worker in
+# build-lean/, configured without VTK, OpenImageIO, cairo or poppler (RA_FIGURES=OFF), so it builds
+# where those are not installed. `make bundle` packs it with the libraries it needs into
+# dist/renderaudit-lean-VERSION-ARCH.tar.gz, to unpack and run on another Linux with its own drivers.
+LEAN_BUILD ?= build-lean
+lean:
+	@test -f $(LEAN_BUILD)/CMakeCache.txt || \
+	  cmake -S . -B $(LEAN_BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DRA_FIGURES=OFF > /dev/null
+	cmake --build $(LEAN_BUILD) -j $(JOBS) --target renderaudit-lean renderaudit-worker
+
+bundle: lean
+	@scripts/make-bundle.sh $(LEAN_BUILD)/renderaudit-lean $(LEAN_BUILD)/renderaudit-worker dist
 
 # Puts the program on PATH, so that the commands the docs and the tool print paste as they are:
 # PREFIX/bin/renderaudit (default ~/.local/bin, which Debian's ~/.profile puts on PATH once it
