@@ -1,5 +1,7 @@
 // The subcommands of the `renderaudit` program. Each registers itself on the CLI11 app; its
 // callback throws ra::util::UserError for bad input and sets the process exit code through `exit_code`.
+// The lean program (renderaudit-lean) defines plot, report, show, history, timing, bisect and the
+// study functions below as stand-ins that name the full build (app/lean_build.cpp).
 #pragma once
 
 #include <CLI/CLI.hpp>
