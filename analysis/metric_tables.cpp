@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "analysis/paper_table_parts.h"
+#include "util/number_text.h"
 
 namespace ra::analysis {
 
@@ -177,7 +178,7 @@ stats::Table physical_units_table(const RunRecords& run, const GroupSummaries& s
       "Table 11 (mirrors the paper's Table 11): median rendering errors converted to "
       "physical units for pixel pitches of ";
   for (std::size_t i = 0; i < options.pixel_pitches_mm.size(); ++i) {
-    t.title += (i ? ", " : "") + fmt_g(options.pixel_pitches_mm[i]);
+    t.title += (i ? ", " : "") + util::significant(options.pixel_pitches_mm[i], 6);
   }
   t.title += " mm: PE and LSEu in mm, TEu in mm^2, unscaled; medians, quartiles " +
              quantile_label(options.quantiles);
@@ -212,7 +213,7 @@ stats::Table physical_units_table(const RunRecords& run, const GroupSummaries& s
     t.rules_before.push_back(t.rows.size());
     for (std::size_t gi = 0; gi <= groups.size(); ++gi) {
       const bool pooled = gi == groups.size();
-      std::vector<stats::TableCell> row = {stats::text_cell(fmt_g(pitch))};
+      std::vector<stats::TableCell> row = {stats::text_cell(util::significant(pitch, 6))};
       if (pooled) {
         row.push_back(stats::text_cell("all"));
         row.push_back(stats::text_cell(""));
@@ -223,7 +224,7 @@ stats::Table physical_units_table(const RunRecords& run, const GroupSummaries& s
           if (!any) any = any_group(run, k, groups[gi]);
         }
         row.push_back(stats::text_cell(any->label));
-        row.push_back(stats::text_cell(fmt_g(any->meta().fov_deg)));
+        row.push_back(stats::text_cell(util::significant(any->meta().fov_deg, 6)));
         row.push_back(stats::text_cell(window_text(any->meta())));
       }
       for (std::size_t p = 0; p < run.platforms.size(); ++p) {

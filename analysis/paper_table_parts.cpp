@@ -3,16 +3,12 @@
 
 #include <cstdio>
 
+#include "util/number_text.h"
+
 namespace ra::analysis::table_parts {
 
 using stats::Description;
 using stats::QuantileDefinition;
-
-std::string fmt_g(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
 
 std::string window_text(const ViewMeta& m) {
   return m.width == m.height ? std::to_string(m.width)
@@ -57,11 +53,11 @@ void add_view_columns(stats::Table& t, bool planes) {
 
 void add_view_cells(std::vector<stats::TableCell>& row, const ViewGroup& g, bool planes) {
   row.push_back(stats::text_cell(g.label));
-  row.push_back(stats::text_cell(fmt_g(g.meta().fov_deg)));
+  row.push_back(stats::text_cell(util::significant(g.meta().fov_deg, 6)));
   row.push_back(stats::text_cell(window_text(g.meta())));
   if (planes) {
-    row.push_back(stats::text_cell(fmt_g(g.meta().near)));
-    row.push_back(stats::text_cell(fmt_g(g.meta().far)));
+    row.push_back(stats::text_cell(util::significant(g.meta().near, 6)));
+    row.push_back(stats::text_cell(util::significant(g.meta().far, 6)));
   }
 }
 
@@ -72,7 +68,7 @@ std::string group_note(const RunRecords& run, PrimitiveKind kind) {
   for (int g : run.view_groups(kind)) {
     const ViewGroup* group = any_group(run, kind, g);
     s += (first ? "" : "; ") + group->label + " = views " + join_ints(group->view_numbers()) +
-         " (FOV " + fmt_g(group->meta().fov_deg) + ", window " + window_text(group->meta()) + ")";
+         " (FOV " + util::significant(group->meta().fov_deg, 6) + ", window " + window_text(group->meta()) + ")";
     first = false;
   }
   return s + " (see view_equivalence.md).";

@@ -12,7 +12,6 @@
 
 namespace ra::analysis::table_parts {
 
-std::string fmt_g(double v);
 // "128" for a square window, "640x480" otherwise.
 std::string window_text(const ViewMeta& m);
 std::string join_ints(const std::vector<int>& v);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "analysis/paper_table_parts.h"
+#include "util/number_text.h"
 
 namespace ra::analysis {
 
@@ -91,7 +92,7 @@ stats::Table speed_table(const RunRecords& run, const TableOptions& options) {
                                   stats::text_cell(kind_name(r.kind))};
     if (r.group) {
       row.push_back(stats::text_cell(r.group->label));
-      row.push_back(stats::text_cell(fmt_g(r.group->meta().fov_deg)));
+      row.push_back(stats::text_cell(util::significant(r.group->meta().fov_deg, 6)));
       row.push_back(stats::text_cell(window_text(r.group->meta())));
     } else {
       row.push_back(stats::text_cell("all"));

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "runner/manifest.h"
+#include "util/number_text.h"
 
 namespace ra::app::stats_presentation {
 
@@ -32,9 +33,7 @@ void out(const char* format, ...) {
 
 std::string text_number(double x) {
   if (std::isinf(x)) return kOutOfRange;
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", x);
-  return buf;
+  return util::significant(x, 10);
 }
 
 json description_json(const stats::Description& d) {

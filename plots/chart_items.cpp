@@ -12,8 +12,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
+
+#include "util/number_text.h"
 
 namespace ra::plots::chart {
 
@@ -297,25 +298,17 @@ double nice_step(double range, int target) {
 
 std::string tick_text(double v, double step) {
   if (std::fabs(v) < step * 1e-9) v = 0;
-  char buf[32];
   const int decimals = std::max(0, int(std::ceil(-std::log10(step) - 1e-9)));
-  std::snprintf(buf, sizeof buf, "%.*f", std::min(decimals, 12), v);
-  return buf;
+  return util::fixed(v, std::min(decimals, 12));
 }
 
 // A tick label for 10^k-scale values on a log axis: plain decimals from 0.001 to 10000 ("0.002",
 // "1", "50"), "10^k" / "2x10^k" beyond.
 std::string log_tick_text(int mantissa, int exponent) {
-  char buf[40];
-  if (exponent >= -3 && exponent <= 4) {
-    std::snprintf(buf, sizeof buf, "%.*f", std::max(0, -exponent),
-                  mantissa * std::pow(10.0, exponent));
-  } else if (mantissa == 1) {
-    std::snprintf(buf, sizeof buf, "10^%d", exponent);
-  } else {
-    std::snprintf(buf, sizeof buf, "%dx10^%d", mantissa, exponent);
-  }
-  return buf;
+  if (exponent >= -3 && exponent <= 4)
+    return util::fixed(mantissa * std::pow(10.0, exponent), std::max(0, -exponent));
+  const std::string power = "10^" + std::to_string(exponent);
+  return mantissa == 1 ? power : std::to_string(mantissa) + "x" + power;
 }
 
 // Ticks of a log10 axis showing [lo, hi] (log10 of display units): every power of ten; with 2 and

@@ -26,6 +26,7 @@
 #include "util/atomic_file.h"
 #include "util/cell_text.h"
 #include "util/errors.h"
+#include "util/number_text.h"
 
 namespace ra::regulation {
 namespace {
@@ -37,11 +38,9 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 
 json nullable(double v) { return std::isfinite(v) ? json(v) : json(); }
 
+// A number of a JSON document through a printf format, "n/a" where it is null (not finite).
 std::string fmt(const json& v, const char* f = "%.4g") {
-  if (!v.is_number()) return "n/a";
-  char b[64];
-  std::snprintf(b, sizeof b, f, v.get<double>());
-  return b;
+  return v.is_number() ? util::format_double(f, v.get<double>()) : "n/a";
 }
 
 // Quantiles of the finite values (HF6); nulls when there are none.

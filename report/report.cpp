@@ -33,18 +33,13 @@
 #include "util/errors.h"
 #include "runner/manifest.h"
 #include "runner/study_dir.h"
+#include "util/number_text.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace ra::report {
 namespace {
-
-std::string fmt(double v, const char* f = "%.4g") {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 std::string str(const json& j) {
   if (j.is_string()) return j.get<std::string>();
@@ -320,7 +315,7 @@ void add_provenance(Document& d, const std::string& run_dir, const runner::RunMa
       row("", "... and " + std::to_string(completeness.problems.size() - 10) + " more");
     row("records", std::to_string(tally.records) + " in " + std::to_string(tally.files) + " files");
     row("started / finished (UTC)", or_unknown(m.started) + " / " + or_unknown(m.finished));
-    row("run time", fmt(elapsed, "%.1f") + " s over " + std::to_string(invocations.size()) +
+    row("run time", util::fixed(elapsed, 1) + " s over " + std::to_string(invocations.size()) +
                         " invocation(s)");
     row("tool", tool.value("name", std::string("renderaudit")) + " " + tool.value("version", "?") +
                     ", commit " + tool.value("commit", "?"));
@@ -448,11 +443,11 @@ void add_timing(Document& d, const analysis::RunTally& tally) {
     for (const auto& k : paper_order(tally.render_time)) {
       const analysis::RenderTime& r = tally.render_time.at(k);
       const double med = r.median_us;
-      t.rows.push_back({k.first, k.second, std::to_string(r.cases), fmt(med, "%.2f"),
-                        fmt(r.iqr_us, "%.2f"), std::to_string(r.true_visible),
-                        r.median_us_true_visible ? fmt(*r.median_us_true_visible, "%.2f")
+      t.rows.push_back({k.first, k.second, std::to_string(r.cases), util::fixed(med, 2),
+                        util::fixed(r.iqr_us, 2), std::to_string(r.true_visible),
+                        r.median_us_true_visible ? util::fixed(*r.median_us_true_visible, 2)
                                                  : "no data",
-                        med > 0 ? fmt(1e6 / med, "%.0f") : "n/a"});
+                        med > 0 ? util::fixed(1e6 / med, 0) : "n/a"});
     }
     if (t.rows.empty()) t.notes.push_back("No record has a render time.");
     d.blocks.push_back(table_block(std::move(t)));
@@ -506,9 +501,9 @@ void add_conformance(Content& c, const std::string& run_dir, const analysis::Run
       const auto label = tally.group_labels.find(k);
       if (label != tally.group_labels.end()) group += " (" + label->second + ")";
       t.rows.push_back({std::get<0>(k), std::get<1>(k), group, std::to_string(cf.compared),
-                        std::to_string(cf.identical), fmt(100 * cf.rate(), "%.2f"),
+                        std::to_string(cf.identical), util::fixed(100 * cf.rate(), 2),
                         std::to_string(cf.drawn), std::to_string(cf.drawn_identical),
-                        cf.drawn ? fmt(100 * cf.drawn_rate(), "%.2f") : "n/a"});
+                        cf.drawn ? util::fixed(100 * cf.drawn_rate(), 2) : "n/a"});
     }
     if (t.rows.empty()) t.notes.push_back("No record carries a reference comparison (ref_diff).");
     d.blocks.push_back(table_block(std::move(t)));

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "stats/binomial_interval.h"
+#include "util/number_text.h"
 
 namespace ra::stats {
 namespace {
@@ -27,12 +28,6 @@ std::vector<std::string> flat_header(const Table& t) {
   return names;
 }
 
-std::string printf_string(const char* format, int precision, double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, precision, value);
-  return buf;
-}
-
 void require_finite(double value, const char* what) {
   if (!std::isfinite(value)) {
     throw std::logic_error(std::string("table_writer: ") + what +
@@ -47,14 +42,14 @@ TableCell text_cell(std::string text) { return TableCell{std::move(text), ""}; }
 
 std::string format_fixed(double value, int decimals) {
   require_finite(value, "format_fixed");
-  std::string s = printf_string("%.*f", decimals, value);
+  std::string s = util::fixed(value, decimals);
   if (s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
   return s;
 }
 
 std::string format_significant(double value, int significant) {
   require_finite(value, "format_significant");
-  return printf_string("%.*g", significant, value == 0 ? 0.0 : value);
+  return util::significant(value == 0 ? 0.0 : value, significant);
 }
 
 TableCell number_cell(double value, int decimals) {

@@ -24,6 +24,7 @@
 #include "util/cell_text.h"
 #include "util/errors.h"
 #include "util/gl_child_process.h"
+#include "util/number_text.h"
 
 namespace ra::lod {
 namespace {
@@ -38,10 +39,7 @@ const char* kFramesHeader =
 
 // A printf format of v, "" for NaN.
 std::string fmt(double v, const char* f) {
-  if (std::isnan(v)) return "";
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
+  return std::isnan(v) ? std::string() : util::format_double(f, v);
 }
 
 scenes::Scene layout_scene(const HeightField& f) {

@@ -4,16 +4,16 @@
 #include <sstream>
 #include <vector>
 
+#include "util/number_text.h"
+
 namespace ra::timing {
 namespace {
 
 using nlohmann::json;
 
+// A number of a JSON document through a printf format, "n/a" where it is null (not finite).
 std::string num(const json& v, const char* format = "%.4g") {
-  if (!v.is_number()) return "n/a";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v.get<double>());
-  return buf;
+  return v.is_number() ? util::format_double(format, v.get<double>()) : "n/a";
 }
 
 std::string row(const std::vector<std::string>& cells) {
