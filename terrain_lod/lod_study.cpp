@@ -60,15 +60,6 @@ scenes::Scene layout_scene(const HeightField& f) {
   return s;
 }
 
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, sep)) out.push_back(cell);
-  if (!line.empty() && line.back() == sep) out.emplace_back();
-  return out;
-}
-
 double cell_number(const std::string& s) { return s.empty() ? std::nan("") : std::stod(s); }
 
 // One (lambda, tau) row of lod_table.csv.
@@ -102,7 +93,7 @@ std::vector<TableRow> read_table(const std::string& dir) {
   std::vector<TableRow> rows;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
-    const auto c = split(line, ',');
+    const auto c = util::split_csv_line(line);
     if (c.size() != 17)
       throw util::UserError(path + ": a row has " + std::to_string(c.size()) + " fields, not 17");
     TableRow r;
@@ -389,7 +380,7 @@ std::vector<TableRow> rows_of_frames(const std::string& dir) {
   while (std::getline(in, line)) {
     ++line_no;
     if (line.empty()) continue;
-    const auto c = split(line, ',');
+    const auto c = util::split_csv_line(line);
     if (c.size() != 21)
       throw util::UserError(dir + "/frames.csv:" + std::to_string(line_no) + ": " +
                             std::to_string(c.size()) + " fields, not 21");
