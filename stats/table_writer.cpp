@@ -162,22 +162,48 @@ std::string render_csv(const Table& t) {
 std::string render_markdown(const Table& t) {
   check_table(t);
   std::string out = "### " + t.title + "\n\n";
-  const std::vector<std::string> header = flat_header(t);
-  out += "|";
-  for (const std::string& h : header) out += " " + markdown_escape(h) + " |";
-  out += "\n|";
-  for (const TableColumn& c : t.columns) out += c.align == Align::kLeft ? " :--- |" : " ---: |";
-  out += "\n";
+  std::vector<Align> align;
+  for (const TableColumn& c : t.columns) align.push_back(c.align);
+  out += markdown_header(flat_header(t), align);
   for (const auto& row : t.rows) {
-    out += "|";
-    for (const TableCell& cell : row) out += " " + markdown_escape(cell.text) + " |";
-    out += "\n";
+    std::vector<std::string> cells;
+    for (const TableCell& cell : row) cells.push_back(cell.text);
+    out += markdown_row(cells);
   }
   if (!t.notes.empty()) {
     out += "\n";
     for (const std::string& note : t.notes) out += "- " + note + "\n";
   }
   return out;
+}
+
+std::string markdown_row(const std::vector<std::string>& cells) {
+  std::string out = "|";
+  for (const std::string& cell : cells) out += " " + markdown_escape(cell) + " |";
+  return out + "\n";
+}
+
+std::string markdown_header(const std::vector<std::string>& names, const std::vector<Align>& align) {
+  if (align.size() != names.size())
+    throw std::logic_error("markdown_header: " + std::to_string(names.size()) + " names, " +
+                           std::to_string(align.size()) + " alignments");
+  std::string out = markdown_row(names) + "|";
+  for (const Align a : align) {
+    switch (a) {
+      case Align::kLeft: out += " :--- |"; break;
+      case Align::kRight: out += " ---: |"; break;
+      case Align::kCenter: out += " :---: |"; break;
+      case Align::kDefault: out += " --- |"; break;
+    }
+  }
+  return out + "\n";
+}
+
+std::string markdown_header(const std::vector<std::string>& names, std::size_t left_columns) {
+  std::vector<Align> align;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    align.push_back(i < left_columns ? Align::kDefault : Align::kRight);
+  return markdown_header(names, align);
 }
 
 std::string render_latex(const Table& t) {
@@ -188,7 +214,8 @@ std::string render_latex(const Table& t) {
   out += "\\caption{" + (t.latex_title.empty() ? latex_text(t.title) : t.latex_title) + "}\n";
   out += "\\label{tab:" + t.file_stem + "}\n";  // labels take '_' as it is
   out += "\\begin{tabular}{";
-  for (const TableColumn& c : t.columns) out += c.align == Align::kLeft ? 'l' : 'r';
+  for (const TableColumn& c : t.columns)
+    out += c.align == Align::kRight ? 'r' : c.align == Align::kCenter ? 'c' : 'l';
   out += "}\n\\toprule\n";
   if (!t.groups.empty()) {
     std::string rules;
