@@ -17,6 +17,7 @@
 #include "runner/manifest.h"
 #include "scenes/camera_path.h"
 #include "stats/descriptive.h"
+#include "stats/table_writer.h"
 #include "terrain_lod/lod_checks.h"
 #include "terrain_lod/lod_experiment.h"
 #include "terrain_lod/lod_renderer.h"
@@ -438,15 +439,9 @@ std::vector<TableRow> rows_of_frames(const std::string& dir) {
 
 // lod.md: the study's text with its check and speed tables, from lod_summary.json and the rows.
 std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
-  auto row = [](const std::vector<std::string>& cells) {
-    std::string s = "|";
-    for (const auto& c : cells) s += " " + c + " |";
-    return s + "\n";
-  };
-  auto header = [&](const std::vector<std::string>& names) {
-    std::string s = row(names) + "|";
-    for (size_t i = 0; i < names.size(); ++i) s += i == 0 ? " --- |" : " ---: |";
-    return s + "\n";
+  // The first column names the row; the others are numbers.
+  const auto header = [](const std::vector<std::string>& names) {
+    return stats::markdown_header(names, 1);
   };
   const std::string main_lambda = sj.value("lambda", "window");
   const json lam = sj.value("lambda_px_per_rad", json::object());
@@ -473,7 +468,7 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
      << header({"lambda (px/rad)", "tau px", "frames", "conforming", "seams ok", "max screen error px",
                 "q90 px", "frames over tau"});
   for (const TableRow& r : rows)
-    md << row({"`" + r.lambda + "` (" + fmt(lam.value(r.lambda, 0.0), "%.0f") + ")", fmt(r.tau, "%g"),
+    md << stats::markdown_row({"`" + r.lambda + "` (" + fmt(lam.value(r.lambda, 0.0), "%.0f") + ")", fmt(r.tau, "%g"),
                std::to_string(r.frames), std::to_string(r.conforming), std::to_string(r.seams_ok),
                (r.over_tau ? "**" + fmt(r.max_screen_error, "%.3f") + "**" : fmt(r.max_screen_error, "%.3f")),
                fmt(r.screen_error_q90, "%.3f"), std::to_string(r.over_tau)});
@@ -489,7 +484,7 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
   for (const TableRow& r : rows) {
     if (!r.timed()) continue;
     if (r.tau == 1) at_one = &r;
-    md << row({fmt(r.tau, "%g"), fmt(r.triangles_median, "%.0f"), fmt(100 * r.triangles_median / r.full_triangles, "%.2f"),
+    md << stats::markdown_row({fmt(r.tau, "%g"), fmt(r.triangles_median, "%.0f"), fmt(100 * r.triangles_median / r.full_triangles, "%.2f"),
                fmt(r.indices_per_triangle, "%.2f"), fmt(r.frame_ms, "%.2f"), fmt(r.full_ms, "%.2f"),
                fmt(r.full_ms / r.frame_ms, "%.1f"), fmt(r.image_mean_abs, "%.3f"), fmt(100 * r.image_differing, "%.3f")});
   }
