@@ -39,7 +39,9 @@ std::vector<std::string> write_figure_set(const std::vector<Figure>& figures, co
         util::commit_file(p, final_path);
         written.push_back(final_path);
       }
-      result.figures.push_back({f.id, figure_kind_name(f), f.section, f.title, f.caption, rf.note,
+      // The figure's own note, as the studies' indexes always had (the regulation study's scatter
+      // notes name the points the renderer also names in the drawn note).
+      result.figures.push_back({f.id, figure_kind_name(f), f.section, f.title, f.caption, f.note,
                                 f.id + ".png", f.id + ".pdf", f.id + ".csv"});
       layouts.push_back(rf.layout);
     }
