@@ -185,9 +185,10 @@ std::string violations_markdown(const ConformanceSummary& s, const std::string& 
         (s.violations.size() > limit ? " (the first " + std::to_string(limit) + ")" : "") +
         "; `renderaudit show` draws one (black: the violating pixels).\n\n";
   using stats::Align;
-  md += stats::markdown_header({"platform", "kind", "view", "index", "violating px", "rules", "draw it"},
-                               {Align::kLeft, Align::kLeft, Align::kRight, Align::kRight,
-                                Align::kRight, Align::kLeft, Align::kLeft});
+  md += stats::markdown_header(
+      {"platform", "kind", "view", "index", "violating px", "rules", "draw it"},
+      {Align::kLeft, Align::kLeft, Align::kRight, Align::kRight, Align::kRight, Align::kLeft,
+       Align::kLeft});
   for (std::size_t i = 0; i < s.violations.size() && i < limit; ++i) {
     const Violation& v = s.violations[i];
     md += "| " + v.platform + " | " + v.kind + " | " + std::to_string(v.view) + " | " +

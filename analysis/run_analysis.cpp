@@ -89,7 +89,8 @@ std::string files_readme(const std::vector<Output>& outputs, const RunRecords& r
                    quantile_label(o.quantiles) +
                    ". Tables come as .csv (title and notes as '# ' lines, then a header row), .md "
                    "and .tex (booktabs).\n\n" +
-                   stats::markdown_header({"file", "what"}, {stats::Align::kLeft, stats::Align::kLeft});
+                   stats::markdown_header({"file", "what"},
+                                          {stats::Align::kLeft, stats::Align::kLeft});
   for (const Output& out : outputs) md += stats::markdown_row({out.name, out.what});
   md += stats::markdown_row({"README.md", "this list"});
   return md;
