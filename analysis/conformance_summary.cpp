@@ -5,6 +5,7 @@
 
 #include "analysis/run_records.h"
 #include "rundir/records_reader.h"
+#include "stats/table_writer.h"
 #include "util/program_name.h"
 
 namespace ra::analysis {
@@ -182,9 +183,12 @@ std::string violations_markdown(const ConformanceSummary& s, const std::string& 
   md += std::to_string(s.violations.size()) +
         " records break a GL rasterization rule (metrics/conformance.h). Worst first" +
         (s.violations.size() > limit ? " (the first " + std::to_string(limit) + ")" : "") +
-        "; `renderaudit show` draws one (black: the violating pixels).\n\n"
-        "| platform | kind | view | index | violating px | rules | draw it |\n"
-        "| :--- | :--- | ---: | ---: | ---: | :--- | :--- |\n";
+        "; `renderaudit show` draws one (black: the violating pixels).\n\n";
+  using stats::Align;
+  md += stats::markdown_header(
+      {"platform", "kind", "view", "index", "violating px", "rules", "draw it"},
+      {Align::kLeft, Align::kLeft, Align::kRight, Align::kRight, Align::kRight, Align::kLeft,
+       Align::kLeft});
   for (std::size_t i = 0; i < s.violations.size() && i < limit; ++i) {
     const Violation& v = s.violations[i];
     md += "| " + v.platform + " | " + v.kind + " | " + std::to_string(v.view) + " | " +

@@ -10,6 +10,7 @@
 #include "stats/distribution_plots.h"
 #include "stats/hypothesis_tests.h"
 #include "analysis/view_equivalence.h"
+#include "rundir/manifest.h"
 
 namespace ra::analysis {
 namespace {
@@ -325,17 +326,15 @@ const char* speed_error_metric(PrimitiveKind kind) {
 }
 
 json figure_data(const RunRecords& run, const FigureOptions& options) {
-  json doc{{"schema", "renderaudit-figures"},
-           {"schema_version", kFiguresSchemaVersion},
-           {"run_dir", run.run_dir},
-           {"platforms", run.platforms},
-           {"quantile_definition", stats::quantile_definition_name(options.quantiles)},
-           {"limits",
-            {{"qq_points_max", options.qq_points_max},
-             {"box_plot_outliers_max", options.box_plot_outliers_max},
-             {"bihistogram_bins_max", options.bihistogram_bins_max},
-             {"bihistogram_central_fraction", options.bihistogram_central_fraction},
-             {"significant_digits", options.significant_digits}}}};
+  json doc = rundir::document_header("figures", kFiguresSchemaVersion, false);
+  doc["run_dir"] = run.run_dir;
+  doc["platforms"] = run.platforms;
+  doc["quantile_definition"] = stats::quantile_definition_name(options.quantiles);
+  doc["limits"] = {{"qq_points_max", options.qq_points_max},
+                   {"box_plot_outliers_max", options.box_plot_outliers_max},
+                   {"bihistogram_bins_max", options.bihistogram_bins_max},
+                   {"bihistogram_central_fraction", options.bihistogram_central_fraction},
+                   {"significant_digits", options.significant_digits}};
 
   // box plots: one figure per kind and metric
   struct BoxFigure {

@@ -19,6 +19,7 @@
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
 #include "analysis/view_equivalence.h"
+#include "stats/table_writer.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -87,10 +88,11 @@ std::string files_readme(const std::vector<Output>& outputs, const RunRecords& r
                    " files); alpha = " + stats::format_significant(o.alpha, 3) + ", quartiles " +
                    quantile_label(o.quantiles) +
                    ". Tables come as .csv (title and notes as '# ' lines, then a header row), .md "
-                   "and .tex (booktabs).\n\n| file | what |\n| :--- | :--- |\n";
-  for (const Output& out : outputs)
-    md += "| " + out.name + " | " + stats::markdown_escape(out.what) + " |\n";
-  md += "| README.md | this list |\n";
+                   "and .tex (booktabs).\n\n" +
+                   stats::markdown_header({"file", "what"},
+                                          {stats::Align::kLeft, stats::Align::kLeft});
+  for (const Output& out : outputs) md += stats::markdown_row({out.name, out.what});
+  md += stats::markdown_row({"README.md", "this list"});
   return md;
 }
 

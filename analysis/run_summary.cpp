@@ -16,6 +16,7 @@
 #include "util/atomic_file.h"
 #include "metrics/records.h"
 #include "rundir/manifest.h"
+#include "util/number_text.h"
 
 namespace fs = std::filesystem;
 
@@ -41,12 +42,6 @@ const char* headline_name(const std::string& kind) {
   return "TEu-norm";
 }
 
-std::string fmt(double v, const char* f = "%.5g") {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 // What the run cost against the drivers' own drawing: the sum of render_us, and, when the last
 // invocation ran every shard, wall time x jobs / drawing (1 = nothing but drawing) and the
 // core-seconds no worker used. "" when the manifest lacks what it needs.
@@ -63,16 +58,16 @@ std::string cost_paragraph(const std::string& run_dir, const Cells& cells) {
   }
   const rundir::ManifestInvocation* inv = m.last_invocation();
   std::ostringstream out;
-  out << "\nDrawing (the sum of render_us): " << fmt(drawing_us / 1e6, "%.1f") << " s";
+  out << "\nDrawing (the sum of render_us): " << util::fixed(drawing_us / 1e6, 1) << " s";
   if (inv && inv->elapsed_s && m.shards && inv->shards_to_run == m.shards->total &&
       drawing_us > 0) {
     const double elapsed = *inv->elapsed_s, jobs = double(inv->jobs);
-    out << "; this invocation ran every shard in " << fmt(elapsed, "%.1f") << " s on " << jobs
-        << " jobs, which is " << fmt(elapsed * jobs / (drawing_us / 1e6), "%.1f")
+    out << "; this invocation ran every shard in " << util::fixed(elapsed, 1) << " s on " << jobs
+        << " jobs, which is " << util::fixed(elapsed * jobs / (drawing_us / 1e6), 1)
         << " times the drivers' own drawing time (wall time x jobs over the drawing: the rest is "
            "starting workers, measuring and writing records)";
     if (inv->idle_core_s)
-      out << ", " << fmt(*inv->idle_core_s, "%.1f") << " core-seconds without a worker (shard order: "
+      out << ", " << util::fixed(*inv->idle_core_s, 1) << " core-seconds without a worker (shard order: "
           << (inv->shard_order.empty() ? "?" : inv->shard_order) << ")";
   }
   out << ".\n";
@@ -92,7 +87,7 @@ std::string write_run_summary(const std::string& run_dir) {
   for (const auto& f : files) {
     rundir::read_records(f, [&](const metrics::Record& r) {
       Cell& c = cells[{r.platform, r.kind, r.view}];
-      c.fov = fmt(r.fov_deg, "%g");
+      c.fov = util::significant(r.fov_deg, 6);
       c.window = std::to_string(r.width) + "x" + std::to_string(r.height);
       if (r.status != metrics::CaseStatus::kOk) {
         ++c.not_ok;
@@ -126,10 +121,10 @@ std::string write_run_summary(const std::string& run_dir) {
       md << "n/a | n/a";
     } else {
       const stats::Description d = stats::describe(c.metric);
-      md << fmt(d.median) << " | " << fmt(d.iqr);
+      md << util::significant(d.median, 5) << " | " << util::significant(d.iqr, 5);
     }
-    md << " | " << (c.compared ? fmt(100.0 * c.conformant / c.compared, "%.2f%%") : "n/a");
-    md << " | " << (c.render_us.empty() ? "n/a" : fmt(stats::describe(c.render_us).median, "%.1f"))
+    md << " | " << (c.compared ? util::format_double("%.2f%%", 100.0 * c.conformant / c.compared) : "n/a");
+    md << " | " << (c.render_us.empty() ? "n/a" : util::fixed(stats::describe(c.render_us).median, 1))
        << " |\n";
   }
   md << cost_paragraph(run_dir, cells);

@@ -11,18 +11,10 @@
 #include "app/commands.h"
 #include "triage/primitive_image.h"
 #include "metrics/records.h"
+#include "util/cell_text.h"
 
 namespace ra::app {
 namespace {
-
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.push_back("");
-  return cells;
-}
 
 // The measured columns of the record (status onwards), as the records file would hold them;
 // columns that do not apply (empty cells) are left out.
@@ -31,8 +23,8 @@ std::string measured_fields(const metrics::Record& r) {
   metrics::write_record(row, r);
   std::string line = row.str();
   if (!line.empty() && line.back() == '\n') line.pop_back();
-  const std::vector<std::string> names = split_csv_line(metrics::records_header());
-  const std::vector<std::string> values = split_csv_line(line);
+  const std::vector<std::string> names = util::split_csv_line(metrics::records_header());
+  const std::vector<std::string> values = util::split_csv_line(line);
   std::string out;
   bool measured = false;
   for (std::size_t i = 0; i < names.size() && i < values.size(); ++i) {

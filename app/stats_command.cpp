@@ -4,12 +4,12 @@
 // Methods and conventions: stats/descriptive.h, hypothesis_tests.h, box_cox.h (NIST e-Handbook),
 // linear_regression.h (QR least squares, NIST StRD).
 //
-// Output: human-readable text, or with --json one JSON object (snake_case keys, doubles written so
-// that they read back exactly). A statistic that is undefined for the data (both samples constant,
-// say) is written as null with a "reason"; NaN never appears.
+// Output (its presentation: stats_presentation.h): human-readable text, or with --json one JSON
+// object (snake_case keys, doubles written so that they read back exactly). A statistic that is
+// undefined for the data (both samples constant, say) is written as null with a "reason"; NaN
+// never appears.
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -30,6 +30,7 @@
 #include "stats/hypothesis_tests.h"
 #include "stats/linear_regression.h"
 #include "app/commands.h"
+#include "app/stats_presentation.h"
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
 #include "rundir/shard.h"
@@ -39,10 +40,8 @@
 namespace ra::app {
 namespace {
 
-using nlohmann::json;
+using namespace stats_presentation;
 using stats::QuantileDefinition;
-
-constexpr int kSchemaVersion = 1;
 
 struct StatsOptions {
   std::vector<std::string> files;
@@ -60,41 +59,6 @@ struct StatsOptions {
 
 QuantileDefinition quantile_definition(const std::string& name) {
   return name == "hf7" ? QuantileDefinition::kHyndmanFan7 : QuantileDefinition::kHyndmanFan6;
-}
-
-// A number for JSON. The statistics library never returns a non-finite value; if it ever did, that
-// is a bug to report loudly, not a NaN to print.
-// A result that is not representable in double precision (a sum of squares of data near 1e200 is
-// near 1e400) is written as a string saying so, never as NaN or inf: the statistics that matter
-// (t, F, p, sd) are computed on scaled data and are always finite.
-constexpr const char* kOutOfRange = "out of double range (|x| > 1.8e308)";
-json number(double x) {
-  if (std::isnan(x)) throw std::logic_error("stats: internal error: a NaN result");
-  if (!std::isfinite(x)) return kOutOfRange;
-  return x;
-}
-
-// printf-style text to std::cout (one stream for text and JSON, so tests can capture both).
-void out(const char* format, ...) __attribute__((format(printf, 1, 2)));
-void out(const char* format, ...) {
-  va_list args;
-  va_start(args, format);
-  va_list again;
-  va_copy(again, args);
-  const int size = std::vsnprintf(nullptr, 0, format, args);
-  va_end(args);
-  std::string text(static_cast<std::size_t>(size > 0 ? size : 0) + 1, '\0');
-  std::vsnprintf(text.data(), text.size(), format, again);
-  va_end(again);
-  text.pop_back();
-  std::cout << text;
-}
-
-std::string text_number(double x) {
-  if (std::isinf(x)) return kOutOfRange;
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", x);
-  return buf;
 }
 
 // One sample: a numeric column of a CSV file, with at least two values.
@@ -185,138 +149,6 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
                           std::to_string(s.n_missing) +
                           " empty cells skipped); at least 2 are needed");
   return s;
-}
-
-json description_json(const stats::Description& d) {
-  return json{{"n", d.n},
-              {"mean", number(d.mean)},
-              {"sd", number(d.sd)},
-              {"median", number(d.median)},
-              {"q1", number(d.q1)},
-              {"q3", number(d.q3)},
-              {"iqr", number(d.iqr)},
-              {"min", number(d.min)},
-              {"max", number(d.max)}};
-}
-
-void print_description_rows(const std::vector<stats::Description>& ds,
-                            const std::vector<std::string>& titles) {
-  out("%-8s", "");
-  for (const auto& t : titles) out(" %24s", t.c_str());
-  out("\n");
-  const auto row = [&](const char* name, auto field) {
-    out("%-8s", name);
-    for (const auto& d : ds) out(" %24s", field(d).c_str());
-    out("\n");
-  };
-  row("n", [](const stats::Description& d) { return std::to_string(d.n); });
-  row("mean", [](const stats::Description& d) { return text_number(d.mean); });
-  row("sd", [](const stats::Description& d) { return text_number(d.sd); });
-  row("median", [](const stats::Description& d) { return text_number(d.median); });
-  row("q1", [](const stats::Description& d) { return text_number(d.q1); });
-  row("q3", [](const stats::Description& d) { return text_number(d.q3); });
-  row("iqr", [](const stats::Description& d) { return text_number(d.iqr); });
-  row("min", [](const stats::Description& d) { return text_number(d.min); });
-  row("max", [](const stats::Description& d) { return text_number(d.max); });
-}
-
-// A test that may be undefined for the data: its JSON and its text line.
-struct Reported {
-  json j;
-  std::string text;
-};
-
-template <typename Compute, typename Fill>
-Reported report_test(const std::vector<std::string>& null_keys, Compute compute, Fill fill) {
-  Reported r;
-  try {
-    fill(compute(), r);
-  } catch (const std::invalid_argument& e) {
-    r.j = json::object();
-    for (const auto& k : null_keys) r.j[k] = nullptr;
-    r.j["reason"] = e.what();
-    r.text = std::string("undefined (") + e.what() + ")";
-  }
-  return r;
-}
-
-Reported t_report(const std::vector<double>& a, const std::vector<double>& b, bool pooled) {
-  return report_test(
-      {"statistic", "df", "p_value"},
-      [&] { return pooled ? stats::t_test_pooled(a, b) : stats::t_test_welch(a, b); },
-      [](const stats::TTestResult& t, Reported& r) {
-        r.j = json{{"statistic", number(t.statistic)},
-                   {"df", number(t.df)},
-                   {"p_value", number(t.p_value)},
-                   {"mean_difference", number(t.mean_difference)},
-                   {"standard_error", number(t.standard_error)}};
-        if (t.pooled_sd) r.j["pooled_sd"] = number(*t.pooled_sd);
-        r.text = "t = " + text_number(t.statistic) + ", df = " + text_number(t.df) +
-                 ", p = " + text_number(t.p_value);
-      });
-}
-
-void fill_f(const stats::FTestResult& f, Reported& r, const char* symbol) {
-  r.j = json{{"statistic", number(f.statistic)},
-             {"df1", number(f.df1)},
-             {"df2", number(f.df2)},
-             {"p_value", number(f.p_value)}};
-  r.text = std::string(symbol) + " = " + text_number(f.statistic) + ", df = (" +
-           text_number(f.df1) + ", " + text_number(f.df2) + "), p = " + text_number(f.p_value);
-}
-
-// Levene's test with each centre: JSON object keyed by centre, and text lines.
-json levene_reports(const std::vector<std::vector<double>>& groups, std::string& text) {
-  json j = json::object();
-  for (const auto center : {stats::LeveneCenter::kMedian, stats::LeveneCenter::kMean,
-                            stats::LeveneCenter::kTrimmedMean}) {
-    const Reported r = report_test(
-        {"statistic", "df1", "df2", "p_value"}, [&] { return stats::levene_test(groups, center); },
-        [](const stats::FTestResult& f, Reported& r) { fill_f(f, r, "W"); });
-    j[stats::levene_center_name(center)] = r.j;
-    char label[64];
-    std::snprintf(
-        label, sizeof label, "  %-28s: ",
-        (std::string("Levene (") + stats::levene_center_name(center) + " centre)").c_str());
-    text += label + r.text + "\n";
-  }
-  return j;
-}
-
-json box_cox_json(const stats::BoxCoxResult& b) {
-  json j{{"method", stats::box_cox_method_name(b.method)},
-         {"applicable", b.applicable},
-         {"n", b.n},
-         {"shift", number(b.shift)}};
-  if (!b.applicable) {
-    j["lambda"] = nullptr;
-    j["reason"] = b.reason;
-    return j;
-  }
-  j["lambda"] = number(b.lambda);
-  j[b.method == stats::BoxCoxMethod::kPpcc ? "correlation" : "log_likelihood"] =
-      number(b.objective);
-  j["ppcc_at_lambda"] = number(b.ppcc_at_lambda);
-  j["at_boundary"] = b.at_boundary;
-  return j;
-}
-
-std::string box_cox_text(const stats::BoxCoxResult& b) {
-  if (!b.applicable) return "not applicable (" + b.reason + ")";
-  std::string s = "lambda = " + text_number(b.lambda);
-  s += b.method == stats::BoxCoxMethod::kPpcc ? ", correlation = " : ", log-likelihood = ";
-  s += text_number(b.objective);
-  if (b.shift != 0) s += ", data shifted by " + text_number(b.shift);
-  if (b.at_boundary) s += " (at the end of the search range [-2, 2])";
-  return s;
-}
-
-void print_json(const json& j) { std::cout << j.dump(2) << "\n"; }
-
-json header_json(const char* command) {
-  json j = rundir::document_header("stats", kSchemaVersion, false);
-  j["command"] = command;
-  return j;
 }
 
 void run_describe(const StatsOptions& o) {

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "audit/audit_report.h"
+#include "stats/table_writer.h"
 
 namespace ra::audit {
 namespace {
@@ -106,9 +107,9 @@ void drivers(std::ostream& md, const AuditResult& r) {
     md << "| GL_VERSION | " << cell(r.baseline_drivers[0].version) << " | "
        << cell(r.current_drivers[0].version) << " |\n";
   } else {
-    md << "| platform | baseline GL_RENDERER | baseline GL_VERSION | current GL_RENDERER | current "
-          "GL_VERSION |\n"
-          "| :--- | :--- | :--- | :--- | :--- |\n";
+    md << stats::markdown_header({"platform", "baseline GL_RENDERER", "baseline GL_VERSION",
+                                  "current GL_RENDERER", "current GL_VERSION"},
+                                 std::vector<stats::Align>(5, stats::Align::kLeft));
     for (std::size_t p = 0; p < r.pairs.size(); ++p)
       md << "| " << cell(r.pairs[p].current) << " | " << cell(r.baseline_drivers[p].renderer)
          << " | " << cell(r.baseline_drivers[p].version) << " | "
@@ -125,10 +126,14 @@ void drivers(std::ostream& md, const AuditResult& r) {
 }
 
 void counts(std::ostream& md, const AuditResult& r) {
+  using stats::Align;
   md << "## Primitives compared (per platform, kind, view group)\n\n"
-        "| platform | kind | group | views | compared | changed | flakes | crash/timeout | missing "
-        "shards | significant tests | outcome |\n"
-        "| :--- | :--- | :---: | :--- | ---: | ---: | ---: | ---: | ---: | ---: | :--- |\n";
+     << stats::markdown_header({"platform", "kind", "group", "views", "compared", "changed",
+                                "flakes", "crash/timeout", "missing shards", "significant tests",
+                                "outcome"},
+                               {Align::kLeft, Align::kLeft, Align::kCenter, Align::kLeft,
+                                Align::kRight, Align::kRight, Align::kRight, Align::kRight,
+                                Align::kRight, Align::kRight, Align::kLeft});
   for (const GroupOutcome& g : group_outcomes(r))
     md << "| " << cell(r.pairs[g.pair].label()) << " | " << geometry::kind_name(g.kind) << " | "
        << g.label << " | " << views_text(g.views) << " | " << g.compared << " | " << g.changed
@@ -153,10 +158,14 @@ void tests(std::ostream& md, const AuditResult& r) {
     md << "No test is significant after correction.\n\n";
     return;
   }
+  using stats::Align;
   md << d.significant << " significant:\n\n"
-     << "| platform | kind | group | metric | unit | n before / after | median before -> after "
-        "(diff) | IQR before -> after (diff) | test | data | p | p (Holm) |\n"
-        "| :--- | :--- | :---: | :--- | :--- | ---: | ---: | ---: | :--- | :--- | ---: | ---: |\n";
+     << stats::markdown_header({"platform", "kind", "group", "metric", "unit", "n before / after",
+                                "median before -> after (diff)", "IQR before -> after (diff)",
+                                "test", "data", "p", "p (Holm)"},
+                               {Align::kLeft, Align::kLeft, Align::kCenter, Align::kLeft,
+                                Align::kLeft, Align::kRight, Align::kRight, Align::kRight,
+                                Align::kLeft, Align::kLeft, Align::kRight, Align::kRight});
   for (const DistributionComparison& c : d.comparisons)
     for (const DistributionTest& t : c.tests) {
       if (!t.significant) continue;

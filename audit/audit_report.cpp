@@ -9,6 +9,7 @@
 
 #include "util/atomic_file.h"
 #include "util/cell_text.h"
+#include "util/number_text.h"
 #include "util/program_name.h"
 
 namespace fs = std::filesystem;
@@ -79,9 +80,7 @@ std::string show_command(const AuditResult& r, const ChangedPrimitive& c) {
 
 std::string format_number(double v, int significant) {
   if (!std::isfinite(v)) return "n/a";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", significant, v);
-  return buf;
+  return util::significant(v, significant);
 }
 
 std::string changed_primitives_csv(const AuditResult& r) {

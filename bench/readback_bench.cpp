@@ -34,6 +34,7 @@
 #include "runner/case_measurement.h"
 #include "runner/effective_subpixel.h"
 #include "rundir/experiment.h"
+#include "rundir/manifest.h"
 #include "platforms/platform.h"
 #include "stats/descriptive.h"
 #include "util/child_process.h"
@@ -329,12 +330,10 @@ int run_children(const Options& opt, const char* self) {
   }
   const std::filesystem::path dir = std::filesystem::path(opt.json_path).parent_path();
   if (!dir.empty()) std::filesystem::create_directories(dir);
-  std::ofstream(opt.json_path) << nlohmann::json({{"schema", "renderaudit-bench-readback"},
-                                                   {"schema_version", 1},
-                                                   {"benchmark", "readback"},
-                                                   {"rows", rows}})
-                                      .dump(2)
-                               << "\n";
+  nlohmann::json doc = ra::rundir::document_header("bench-readback", 1, false);
+  doc["benchmark"] = "readback";
+  doc["rows"] = rows;
+  std::ofstream(opt.json_path) << doc.dump(2) << "\n";
   std::printf("JSON: %s\n", opt.json_path.c_str());
   return 0;
 }

@@ -11,6 +11,7 @@
 #include "analysis/paper_tables.h"
 #include "plots/figure_builders.h"
 #include "metrics/records.h"
+#include "util/number_text.h"
 
 namespace ra::plots {
 namespace {
@@ -34,7 +35,7 @@ struct ComparisonFigures : FigurePlanner {
     auto p = [](const json& v) {
       if (!v.is_number()) return std::string("undefined");
       const double x = v.get<double>();
-      return x < 0.001 ? std::string("p < 0.001") : "p = " + fmt(x, "%.3f");
+      return x < 0.001 ? std::string("p < 0.001") : "p = " + util::fixed(x, 3);
     };
     const json lp = t.value("location_p", json()), sp = t.value("levene_median_p", json());
     const bool orientations = c.value("what", "") == "orientations";
@@ -48,7 +49,7 @@ struct ComparisonFigures : FigurePlanner {
     else
       verdict = t.value("differ", false) ? "the two differ significantly"
                                          : "no significant difference";
-    return "Tests at alpha " + fmt(t.value("alpha", 0.05), "%g") + ": " +
+    return "Tests at alpha " + util::significant(t.value("alpha", 0.05), 6) + ": " +
            (t.value("location", "") == "t_pooled" ? "pooled t " : "Welch t ") + p(lp) +
            ", Levene (median) " + p(sp) + ": " + verdict + ".";
   }
@@ -86,10 +87,10 @@ struct ComparisonFigures : FigurePlanner {
                              std::pow(10.0, e), 100000);
         if (q.value("subsampled", false))
           f.note = "Quantiles of both samples at p = i / 2001, i = 1..2000 (Hyndman-Fan 6); "
-                   "extremes: " + va + " " + fmt(q.value("min_a", 0.0) * std::pow(10.0, e), "%.4g") +
-                   " to " + fmt(q.value("max_a", 0.0) * std::pow(10.0, e), "%.4g") + ", " + vb +
-                   " " + fmt(q.value("min_b", 0.0) * std::pow(10.0, e), "%.4g") + " to " +
-                   fmt(q.value("max_b", 0.0) * std::pow(10.0, e), "%.4g") + ".";
+                   "extremes: " + va + " " + util::significant(q.value("min_a", 0.0) * std::pow(10.0, e), 4) +
+                   " to " + util::significant(q.value("max_a", 0.0) * std::pow(10.0, e), 4) + ", " + vb +
+                   " " + util::significant(q.value("min_b", 0.0) * std::pow(10.0, e), 4) + " to " +
+                   util::significant(q.value("max_b", 0.0) * std::pow(10.0, e), 4) + ".";
         f.caption = "Quantile-quantile plot of " + symbol + " for two views of " +
                     a.value("platform", "") + " that differ only in camera orientation (view "
                     "group " + a.value("view_group", "") + "; the paper's Fig. 4): points on the "

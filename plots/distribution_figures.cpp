@@ -11,6 +11,7 @@
 #include "analysis/paper_tables.h"
 #include "plots/figure_builders.h"
 #include "metrics/records.h"
+#include "util/number_text.h"
 
 namespace ra::plots {
 namespace {
@@ -55,7 +56,7 @@ struct DistributionFigures : FigurePlanner {
           if (b.value("view_group", "?") == g) of_group.push_back(&b);
         Figure f = box_plot(kind, bp, of_group, g);
         f.caption += " One figure per view group: their whisker spans differ by a factor of " +
-                     fmt(largest / smallest, "%.0f") + ", so a shared axis would flatten the "
+                     util::fixed(largest / smallest, 0) + ", so a shared axis would flatten the "
                      "smaller ones.";
         add(std::move(f));
       }
@@ -86,7 +87,7 @@ struct DistributionFigures : FigurePlanner {
     for (const json* b : chosen) {
       const std::string g = b->value("view_group", "?");
       if (!category_of.count(g))
-        category_of[g] = g + ": " + fmt(b->value("fov_deg", 0.0)) + " deg, " +
+        category_of[g] = g + ": " + util::significant(b->value("fov_deg", 0.0), 6) + " deg, " +
                          std::to_string(b->value("width", 0)) + "x" +
                          std::to_string(b->value("height", 0));
     }

@@ -12,17 +12,9 @@
 
 #include "util/cell_text.h"
 #include "util/errors.h"
+#include "util/number_text.h"
 
 namespace ra::plots {
-namespace {
-
-std::string short_num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
-
-}  // namespace
 
 const char* figure_kind_name(const Figure& figure) {
   switch (figure.content.index()) {
@@ -54,8 +46,8 @@ std::string box_plot_outside_note(const BoxPlotContent& content, double y_lo, do
     // The category's short name ("A" of "A: 30 deg, 128x128").
     const std::string cat = b.category.substr(0, b.category.find(':'));
     const std::string who = cat + (content.series.size() > 1 ? " " + b.series : "");
-    if (b.max > y_hi) above.push_back(who + " (max " + short_num(b.max) + ")");
-    if (b.min < y_lo) below.push_back(who + " (min " + short_num(b.min) + ")");
+    if (b.max > y_hi) above.push_back(who + " (max " + util::significant(b.max, 4) + ")");
+    if (b.min < y_lo) below.push_back(who + " (min " + util::significant(b.min, 4) + ")");
   }
   if (above.empty() && below.empty()) return "";
   std::string s =
@@ -75,9 +67,9 @@ std::string scatter_omitted_note(const ScatterContent& content) {
   for (const ScatterSeries& s : content.series) {
     for (std::size_t i = 0; i < s.x.size(); ++i) {
       std::string why;
-      if (content.x_log10 && !(s.x[i] > 0)) why = "x = " + short_num(s.x[i]);
+      if (content.x_log10 && !(s.x[i] > 0)) why = "x = " + util::significant(s.x[i], 4);
       if (content.y_log10 && !(s.y.at(i) > 0))
-        why += (why.empty() ? "" : ", ") + std::string("y = ") + short_num(s.y.at(i));
+        why += (why.empty() ? "" : ", ") + std::string("y = ") + util::significant(s.y.at(i), 4);
       if (why.empty()) continue;
       std::string who = i < s.labels.size() ? s.labels[i] : "";
       if (content.series.size() > 1 || who.empty()) who += (who.empty() ? "" : " ") + s.name;

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "analysis/paper_tables.h"
+#include "util/number_text.h"
 
 namespace ra::plots {
 
@@ -22,7 +23,7 @@ void FigurePlanner::skip(const std::string& section, const std::string& what, co
 }
 
 std::string FigurePlanner::group_label(const an::ViewGroup& g) const {
-  return g.label + ": " + fmt(g.meta().fov_deg) + " deg, " + std::to_string(g.meta().width) +
+  return g.label + ": " + util::significant(g.meta().fov_deg, 6) + " deg, " + std::to_string(g.meta().width) +
          "x" + std::to_string(g.meta().height);
 }
 
@@ -47,12 +48,6 @@ std::string axis_label(const std::string& symbol, const std::string& units, int 
   std::string s = symbol;
   if (exponent > 0) s += " x 10^" + std::to_string(exponent);
   return s + " (" + units + ")";
-}
-
-std::string fmt(double v, const char* f) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
 }
 
 std::string views_text(const nlohmann::json& views) {

@@ -45,7 +45,6 @@ std::string sanitize_id(const std::string& s);  // [a-z0-9._-], others '_'
 int table_exponent(const std::string& column);
 // "PEnorm x 10^3 (sqrt(W*H) units)": the numbers on the axis are the metric times 10^k.
 std::string axis_label(const std::string& symbol, const std::string& units, int exponent);
-std::string fmt(double v, const char* f = "%g");
 std::string views_text(const nlohmann::json& views);
 std::string join(const std::vector<std::string>& v, const std::string& sep);
 std::string groups_text(const std::vector<std::string>& labels);  // "A-D" or "A" or "A, C"

@@ -1,50 +1,55 @@
 // Drawing a study's figures and their index (figure_set.h).
 #include "plots/figure_set.h"
 
+#include <chrono>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <system_error>
 
 #include "plots/figure_renderer.h"
 #include "plots/headless_display.h"
+#include "plots/plot_run.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
 namespace ra::plots {
 
 std::vector<std::string> write_figure_set(const std::vector<Figure>& figures, const std::string& dir) {
+  const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::string> written;
   if (figures.empty()) return written;
-  const std::string fig_dir = dir + "/figures";
+  PlotResult result;
+  result.figures_dir = dir + "/figures";
+  result.index_path = result.figures_dir + "/index.json";
   std::error_code ec;
-  std::filesystem::create_directories(fig_dir, ec);
-  if (!std::filesystem::is_directory(fig_dir))
-    throw util::UserError("cannot create the figure directory " + fig_dir + ": " + ec.message());
+  std::filesystem::create_directories(result.figures_dir, ec);
+  if (!std::filesystem::is_directory(result.figures_dir))
+    throw util::UserError("cannot create the figure directory " + result.figures_dir + ": " +
+                          ec.message());
   HeadlessDisplay display;
+  result.display = display.display();
+  result.private_xvfb = display.private_server();
+  std::vector<FigureLayout> layouts;
   {
     FigureRenderer renderer;
     for (const Figure& f : figures) {
-      const std::string tmp = fig_dir + "/.tmp-" + f.id;
+      const std::string tmp = result.figures_dir + "/.tmp-" + f.id;
       const RenderedFigure rf = renderer.render(f, tmp);
       for (const std::string& p : {rf.png, rf.pdf, rf.csv}) {
-        const std::string final_path = fig_dir + "/" + f.id + p.substr(p.rfind('.'));
+        const std::string final_path = result.figures_dir + "/" + f.id + p.substr(p.rfind('.'));
         util::commit_file(p, final_path);
         written.push_back(final_path);
       }
+      // The figure's own note, as the studies' indexes always had (the regulation study's scatter
+      // notes name the points the renderer also names in the drawn note).
+      result.figures.push_back({f.id, figure_kind_name(f), f.section, f.title, f.caption, f.note,
+                                f.id + ".png", f.id + ".pdf", f.id + ".csv"});
+      layouts.push_back(rf.layout);
     }
   }
   display.stop();
-  nlohmann::json index = {{"schema", "renderaudit-figure-index"}, {"schema_version", 1},
-                          {"run_dir", dir}, {"figures", nlohmann::json::array()},
-                          {"skipped", nlohmann::json::array()}};
-  for (const Figure& f : figures)
-    index["figures"].push_back({{"id", f.id}, {"kind", figure_kind_name(f)},
-                                {"section", f.section}, {"title", f.title},
-                                {"caption", f.caption}, {"note", f.note},
-                                {"png", f.id + ".png"}, {"pdf", f.id + ".pdf"},
-                                {"csv", f.id + ".csv"}});
-  util::write_file_atomic(fig_dir + "/index.json", index.dump(2) + "\n");
-  written.push_back(fig_dir + "/index.json");
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  write_figure_index(dir, result, layouts);
+  written.push_back(result.index_path);
   return written;
 }
 

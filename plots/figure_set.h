@@ -1,6 +1,6 @@
 // Draws a study's figures into DIR/figures/ (STEM.png, STEM.pdf, STEM.csv per figure) and writes
-// DIR/figures/index.json, the index `renderaudit report` reads (plots/plot_run.h's schema), in
-// drawing order. Each figure is drawn under a temporary name and renamed, so that it is either
+// DIR/figures/index.json, the index `renderaudit report` reads (written by plot_run.h's
+// write_figure_index, as `plot` writes it), in drawing order. Each figure is drawn under a temporary name and renamed, so that it is either
 // complete or absent; the index is written last. Starts a private Xvfb when DISPLAY is unset.
 #pragma once
 

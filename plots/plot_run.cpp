@@ -22,6 +22,7 @@
 #include "plots/figure_planner.h"
 #include "plots/figure_renderer.h"
 #include "plots/headless_display.h"
+#include "rundir/manifest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "metrics/records.h"
@@ -32,17 +33,18 @@ using nlohmann::json;
 namespace ra::plots {
 namespace {
 
-json figure_json(const IndexedFigure& f, const FigureLayout* layout) {
+constexpr int kFigureIndexSchemaVersion = 1;
+
+json figure_json(const IndexedFigure& f, const FigureLayout& layout) {
   json j{{"id", f.id},           {"kind", f.kind}, {"section", f.section}, {"title", f.title},
          {"caption", f.caption}, {"note", f.note}, {"png", f.png},         {"pdf", f.pdf},
          {"csv", f.csv}};
-  if (layout)
-    j["layout"] = {{"width", layout->width},         {"height", layout->height},
-                   {"plot_left", layout->plot_left}, {"plot_right", layout->plot_right},
-                   {"plot_top", layout->plot_top},   {"plot_bottom", layout->plot_bottom},
-                   {"x_min", layout->x_min},         {"x_max", layout->x_max},
-                   {"y_min", layout->y_min},         {"y_max", layout->y_max},
-                   {"x_log10", layout->x_log10},     {"y_log10", layout->y_log10}};
+  j["layout"] = {{"width", layout.width},         {"height", layout.height},
+                 {"plot_left", layout.plot_left}, {"plot_right", layout.plot_right},
+                 {"plot_top", layout.plot_top},   {"plot_bottom", layout.plot_bottom},
+                 {"x_min", layout.x_min},         {"x_max", layout.x_max},
+                 {"y_min", layout.y_min},         {"y_max", layout.y_max},
+                 {"x_log10", layout.x_log10},     {"y_log10", layout.y_log10}};
   return j;
 }
 
@@ -111,7 +113,7 @@ PlotResult plot_run(const PlotOptions& options) {
   HeadlessDisplay display;
   result.display = display.display();
   result.private_xvfb = display.private_server();
-  json figures = json::array();
+  std::vector<FigureLayout> layouts;
   {
     FigureRenderer renderer;
     std::map<int, std::unique_ptr<FigureRenderer>> short_renderers;  // by height: Figure::height
@@ -131,29 +133,36 @@ PlotResult plot_run(const PlotOptions& options) {
       IndexedFigure x{f.id,          figure_kind_name(f), f.section,     f.title,
                       f.caption,     r.note,              f.id + ".png", f.id + ".pdf",
                       f.id + ".csv"};
-      figures.push_back(figure_json(x, &r.layout));
+      layouts.push_back(r.layout);
       result.figures.push_back(std::move(x));
     }
     if (options.progress && tty) std::fputc('\n', stderr);
   }
   display.stop();
 
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  write_figure_index(options.run_dir, result, layouts);
+  return result;
+}
+
+void write_figure_index(const std::string& run_dir, const PlotResult& result,
+                        const std::vector<FigureLayout>& layouts) {
+  json figures = json::array();
+  for (std::size_t i = 0; i < result.figures.size(); ++i)
+    figures.push_back(figure_json(result.figures[i], layouts.at(i)));
   json skipped = json::array();
   for (const auto& s : result.skipped)
     skipped.push_back({{"section", s.section}, {"what", s.what}, {"reason", s.reason}});
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  json index{{"schema", "renderaudit-figure-index"},
-             {"schema_version", 1},
-             {"run_dir", options.run_dir},
-             {"png_route", "VTK: vtkWindowToImageFilter -> vtkPNGWriter"},
-             {"pdf_route", "VTK: vtkPDFExporter (vector)"},
-             {"display", result.private_xvfb ? "private Xvfb " + result.display : result.display},
-             {"figures", figures},
-             {"skipped", skipped},
-             {"seconds", result.seconds}};
+  json index = rundir::document_header("figure-index", kFigureIndexSchemaVersion, false);
+  index["run_dir"] = run_dir;
+  index["png_route"] = "VTK: vtkWindowToImageFilter -> vtkPNGWriter";
+  index["pdf_route"] = "VTK: vtkPDFExporter (vector)";
+  index["display"] = result.private_xvfb ? "private Xvfb " + result.display : result.display;
+  index["figures"] = figures;
+  index["skipped"] = skipped;
+  index["seconds"] = result.seconds;
   util::write_file_atomic(result.index_path, index.dump(2) + "\n");
-  return result;
 }
 
 PlotResult read_figure_index(const std::string& run_dir) {

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "plots/figure.h"
+#include "plots/figure_renderer.h"
 
 namespace ra::plots {
 
@@ -73,6 +74,12 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs = 0);
 // Plans and draws every figure, replacing DIR/figures/. Starts a private Xvfb when there is no
 // usable display (headless_display.h).
 PlotResult plot_run(const PlotOptions& options);
+
+// Writes result.index_path, DIR/figures/index.json (the schema above), for the figures and skips
+// `result` lists, layouts[i] the layout figures[i] was drawn with: the one writer of the figure
+// index, for `plot` and for the studies (figure_set.h).
+void write_figure_index(const std::string& run_dir, const PlotResult& result,
+                        const std::vector<FigureLayout>& layouts);
 
 // Reads DIR/figures/index.json back (for the report). Throws ra::util::UserError when it is missing or
 // malformed.

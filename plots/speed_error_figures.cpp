@@ -11,6 +11,7 @@
 #include "analysis/paper_tables.h"
 #include "plots/figure_builders.h"
 #include "metrics/records.h"
+#include "util/number_text.h"
 
 namespace ra::plots {
 namespace {
@@ -63,7 +64,7 @@ struct SpeedErrorFigures : FigurePlanner {
           no_error.push_back(g + " " + platform);
           continue;
         }
-        group_text.emplace(g, g + ": " + fmt(p.value("fov_deg", 0.0)) + " deg, " +
+        group_text.emplace(g, g + ": " + util::significant(p.value("fov_deg", 0.0), 6) + " deg, " +
                                   std::to_string(p.value("width", 0)) + "x" +
                                   std::to_string(p.value("height", 0)));
         se.labels.push_back(g);

@@ -12,6 +12,7 @@
 #include "analysis/paper_tables.h"
 #include "plots/figure_builders.h"
 #include "metrics/records.h"
+#include "util/number_text.h"
 
 namespace ra::plots {
 namespace {
@@ -22,7 +23,7 @@ using nlohmann::json;
 std::string percent_label(double v) {
   if (v == 0) return "0";
   if (v < 0.01) return "<0.01";
-  return fmt(v, v < 10 ? "%.2f" : "%.1f");
+  return util::format_double(v < 10 ? "%.2f" : "%.1f", v);
 }
 
 struct TallyFigures : FigurePlanner {

@@ -8,18 +8,13 @@
 #include "util/errors.h"
 #include "platforms/platform.h"
 #include "scenes/study_settings.h"
+#include "util/number_text.h"
 #include "util/toml_locator.h"
 
 namespace ra::regulation {
 namespace {
 
 using Locator = util::TomlLocator;
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 const toml::table& table_of(const Locator& loc, const toml::table& parent, const std::string& key,
                             const std::string& where, const toml::table& empty) {
@@ -149,7 +144,7 @@ void parse_attention(const Locator& loc, const toml::table& t, RegulationSetting
     double sum = 0;
     for (double v : s.attention.share) sum += v;
     if (std::abs(sum - 1) > 1e-9)
-      loc.fail(n, "'regulation.attention.share' sums to " + fmt(sum) + " (allowed: the shares sum to 1)");
+      loc.fail(n, "'regulation.attention.share' sums to " + util::significant(sum, 6) + " (allowed: the shares sum to 1)");
   }
   const toml::table& tags = table_of(loc, at, "tags", "regulation.attention.tags", empty);
   for (const auto& [key, node] : tags) {

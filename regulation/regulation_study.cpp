@@ -26,6 +26,7 @@
 #include "util/atomic_file.h"
 #include "util/cell_text.h"
 #include "util/errors.h"
+#include "util/number_text.h"
 
 namespace ra::regulation {
 namespace {
@@ -37,11 +38,9 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 
 json nullable(double v) { return std::isfinite(v) ? json(v) : json(); }
 
+// A number of a JSON document through a printf format, "n/a" where it is null (not finite).
 std::string fmt(const json& v, const char* f = "%.4g") {
-  if (!v.is_number()) return "n/a";
-  char b[64];
-  std::snprintf(b, sizeof b, f, v.get<double>());
-  return b;
+  return v.is_number() ? util::format_double(f, v.get<double>()) : "n/a";
 }
 
 // Quantiles of the finite values (HF6); nulls when there are none.
@@ -409,18 +408,6 @@ json load_complete(const std::string& dir) {
   }
 }
 
-std::string row(const std::vector<std::string>& cells) {
-  std::string s = "|";
-  for (const auto& c : cells) s += " " + c + " |";
-  return s + "\n";
-}
-
-std::string header(const std::vector<std::string>& names, std::size_t left) {
-  std::string s = row(names) + "|";
-  for (std::size_t i = 0; i < names.size(); ++i) s += i < left ? " --- |" : " ---: |";
-  return s + "\n";
-}
-
 std::string regulation_markdown(const json& j) {
   std::ostringstream md;
   const json& sc = j["scene"];
@@ -452,14 +439,14 @@ std::string regulation_markdown(const json& j) {
         "`distance` = levels by distance bands scaled until the plan fits.\n\n";
 
   md << "### Attention categories\n\n"
-     << header({"Category", "p(attend)", "Seeded share", "Weight", "Objects"}, 1);
+     << stats::markdown_header({"Category", "p(attend)", "Seeded share", "Weight", "Objects"}, 1);
   for (const auto& [name, c] : j["attention"]["categories"].items())
-    md << row({name, fmt(c["probability"], "%.2f"), fmt(c["share"], "%.2f"), fmt(c["weight"], "%.3f"),
+    md << stats::markdown_row({name, fmt(c["probability"], "%.2f"), fmt(c["share"], "%.2f"), fmt(c["weight"], "%.3f"),
                std::to_string(c.value("objects", 0))});
   md << "\n### Levels of detail (all objects)\n\n"
-     << header({"Level", "Target ratio", "Objects with it", "Triangles", "#tv", "Median error m", "Max error m"}, 1);
+     << stats::markdown_header({"Level", "Target ratio", "Objects with it", "Triangles", "#tv", "Median error m", "Max error m"}, 1);
   for (const json& l : j["lod"])
-    md << row({std::to_string(l.value("level", 0)), fmt(l["target_ratio"], "%.4g"),
+    md << stats::markdown_row({std::to_string(l.value("level", 0)), fmt(l["target_ratio"], "%.4g"),
                std::to_string(l.value("objects_with_level", 0)), std::to_string(l.value("triangles", 0)),
                std::to_string(l.value("transformed", 0)), fmt(l["error_median_m"], "%.3g"),
                fmt(l["error_max_m"], "%.3g")});
@@ -470,9 +457,9 @@ std::string regulation_markdown(const json& j) {
      << "The factor-two guarantee holds for the **value**, the expected perceptual cost saved over "
         "the all-coarsest plan: value(OPT) <= 2 value(greedy). The ratio of the expected costs "
         "themselves has no bound.\n\n"
-     << header({"Quantity", "n", "Median", "q90", "q99", "Max", "Above 2"}, 1);
+     << stats::markdown_header({"Quantity", "n", "Median", "q90", "q99", "Max", "Above 2"}, 1);
   auto qrow = [&](const std::string& name, const json& q, const json& above) {
-    md << row({name, std::to_string(q.value("n", 0)), fmt(q.value("q50", json())), fmt(q.value("q90", json())),
+    md << stats::markdown_row({name, std::to_string(q.value("n", 0)), fmt(q.value("q50", json())), fmt(q.value("q90", json())),
                fmt(q.value("q99", json())), fmt(q.value("max", json())),
                above.is_number() ? std::to_string(above.get<int>()) : "-"});
   };
@@ -501,7 +488,7 @@ std::string regulation_markdown(const json& j) {
   }
   std::vector<std::string> cols = {"Policy"};
   for (const auto& b : budgets) cols.push_back(b + " ms");
-  md << header(cols, 1);
+  md << stats::markdown_header(cols, 1);
   for (const auto& p : policies) {
     std::vector<std::string> cells = {p};
     for (const auto& b : budgets) {
@@ -510,7 +497,7 @@ std::string regulation_markdown(const json& j) {
         if (r.value("policy", "") == p && fmt(r["budget_ms"], "%g") == b) c = fmt(r["mean_expected_cost"]);
       cells.push_back(c);
     }
-    md << row(cells);
+    md << stats::markdown_row(cells);
   }
   if (render.value("enabled", false) && render["error"].is_null()) {
     md << "\n### Rendered plans: frame skips on " << j.value("platform", "") << "\n\n"
@@ -519,11 +506,11 @@ std::string regulation_markdown(const json& j) {
           "its median measured time exceeds the budget. Relative error = (measured - predicted) / "
           "predicted, median over frames; |error| = |predicted - measured| / measured, median over "
           "frames, with the #pix used and (last column) with the estimated #pix for the same plans.\n\n"
-       << header({"Policy", "Budget ms", "Frames", "Skips", "Skip rate", "Mean predicted ms",
+       << stats::markdown_header({"Policy", "Budget ms", "Frames", "Skips", "Skip rate", "Mean predicted ms",
                   "Median measured ms", "Median relative error", "Median abs error",
                   "Median abs error, estimated #pix"}, 1);
     for (const json& r : j["sweep"])
-      md << row({r.value("policy", ""), fmt(r["budget_ms"], "%g"), std::to_string(r.value("rendered", 0)),
+      md << stats::markdown_row({r.value("policy", ""), fmt(r["budget_ms"], "%g"), std::to_string(r.value("rendered", 0)),
                  std::to_string(r.value("skips", 0)), fmt(r["skip_fraction"], "%.2f"),
                  fmt(r["mean_predicted_ms"], "%.2f"), fmt(r["median_measured_ms"], "%.2f"),
                  fmt(r["median_relative_error"], "%+.2f"), fmt(r["median_abs_relative_error"], "%.2f"),

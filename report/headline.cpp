@@ -11,6 +11,7 @@
 #include "analysis/run_tally.h"
 #include "stats/csv_table.h"
 #include "util/atomic_file.h"
+#include "util/number_text.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -27,13 +28,11 @@ Block make_block(Block::Kind kind, const std::string& text = "") {
 
 std::string percent(std::uint64_t part, std::uint64_t whole) {
   if (whole == 0) return "n/a";
-  char buf[32];
   const double p = 100.0 * double(part) / double(whole);
   // never round a share that is not 100% up to "100.00", nor a non-zero one down to "0.00"
   if (part != whole && p > 99.99) return ">99.99";
   if (part != 0 && p < 0.01) return "<0.01";
-  std::snprintf(buf, sizeof buf, "%.2f", p);
-  return buf;
+  return util::fixed(p, 2);
 }
 
 // Per platform: cells of the paper compared, and of those beyond 3 SE (explained or not).

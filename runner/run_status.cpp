@@ -18,6 +18,7 @@
 #include "util/duration_text.h"
 #include "util/errors.h"
 #include "util/json_file.h"
+#include "util/number_text.h"
 #include "util/parallel.h"
 
 namespace fs = std::filesystem;
@@ -182,14 +183,13 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
 std::string format_run_status(const RunStatus& s) {
   std::ostringstream o;
   const double pct = s.planned ? 100.0 * s.done / s.planned : 0;
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.0f%%", pct);
+  const std::string percent = util::fixed(pct, 0) + "%";
   o << s.dir << ": experiment " << s.experiment << ": " << s.state();
   if (s.slice_count > 0)
     o << " (slice " << s.slice_index << " of " << s.slice_count
       << ": its own shards; `renderaudit merge` joins the slices into one run to analyse)";
   o << "\n";
-  o << "  shards: " << s.planned << " planned, " << s.done << " done (" << buf << "), " << s.running
+  o << "  shards: " << s.planned << " planned, " << s.done << " done (" << percent << "), " << s.running
     << " running, " << s.failed << " failed, " << s.waiting << " waiting"
     << (s.damaged.empty() ? ""
         : ", " + std::to_string(s.damaged.size()) +

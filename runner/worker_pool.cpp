@@ -14,6 +14,7 @@
 #include "rundir/driver_build.h"
 #include "runner/shard_server.h"
 #include "util/child_process.h"
+#include "util/number_text.h"
 
 namespace fs = std::filesystem;
 
@@ -293,8 +294,7 @@ void WorkerPool::timed_out(pid_t pid, Clock::time_point now) {
   for (const std::string& id : read_replies(r)) replied |= id == r.item.shard.id();
   ::close(r.message_fd);
   if (r.command_fd >= 0) ::close(r.command_fd);
-  char limit[32];
-  std::snprintf(limit, sizeof limit, "%g", r.item.timeout_s);
+  const std::string limit = util::significant(r.item.timeout_s, 6);
   const std::string written = records_dir_(r.item) + "/" + r.item.shard.id() + settings_.records_extension;
   WorkerEvent e = event(WorkerEvent::Kind::kTimedOut, r.item);
   e.item_s = seconds_between(r.started, now);
@@ -302,7 +302,7 @@ void WorkerPool::timed_out(pid_t pid, Clock::time_point now) {
   if (replied || fs::exists(written)) {
     std::fprintf(stderr, "%srenderaudit: shard %s: its worker hung after writing every record "
                  "(killed after %s s; the shard is complete; log: %s)\n",
-                 line_break(), r.item.shard.id().c_str(), limit, log_path(r.item).c_str());
+                 line_break(), r.item.shard.id().c_str(), limit.c_str(), log_path(r.item).c_str());
     e.kind = WorkerEvent::Kind::kSucceeded;
   } else {
     e.reason = std::string("timed out after ") + limit + " s (killed)";

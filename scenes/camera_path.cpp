@@ -258,10 +258,11 @@ std::vector<Viewpoint> parse_camera_path_csv(const std::string& text, const std:
       continue;
     }
     std::vector<std::string> fields;
-    std::stringstream ls(line);
-    std::string f;
-    while (std::getline(ls, f, ',')) fields.push_back(f);
-    if (!line.empty() && line.back() == ',') fields.push_back("");
+    try {
+      fields = util::split_csv_line(line);
+    } catch (const std::invalid_argument& e) {
+      fail(line_no, e.what());
+    }
     if (fields.size() != 7)
       fail(line_no, "expected 7 comma-separated values (" + std::string(kHeader) + "), found " + std::to_string(fields.size()));
     double v[7];

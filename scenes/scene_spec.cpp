@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "util/errors.h"
+#include "util/number_text.h"
 #include "util/toml_locator.h"
 
 namespace ra::scenes {
@@ -37,12 +38,6 @@ std::string join(const std::set<std::string>& keys) {
   std::string s;
   for (const auto& k : keys) s += (s.empty() ? "" : ", ") + k;
   return s;
-}
-
-std::string number_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 // One table's keys: each reader consumes its key; leftovers are unknown keys.
@@ -75,9 +70,9 @@ class KeyReader {
       v = f->get();
     else
       loc_.fail(n, loc_.key(k) + " must be a number");
-    const std::string allowed = (lo_open ? "> " : "") + number_text(lo) + " to " + number_text(hi);
+    const std::string allowed = (lo_open ? "> " : "") + util::significant(lo, 6) + " to " + util::significant(hi, 6);
     if (!(lo_open ? v > lo : v >= lo) || !(v <= hi))
-      loc_.fail(n, loc_.key(k) + " = " + number_text(v) + " is out of range (allowed: " + allowed + ")");
+      loc_.fail(n, loc_.key(k) + " = " + util::significant(v, 6) + " is out of range (allowed: " + allowed + ")");
     out = v;
   }
 

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "util/number_text.h"
+
 namespace ra::scenes {
 namespace {
 
@@ -53,18 +55,15 @@ SceneStatistics scene_statistics(const Scene& scene, unsigned cache_size, CacheR
 
 std::string format_statistics(const std::string& scene_name, const SceneStatistics& s) {
   std::ostringstream out;
-  char buf[64];
   out << "value                 " << scene_name << "\n";
   out << "#objects              " << s.objects << "\n";
   out << "#triangles            " << s.triangles << "\n";
   out << "#tv (cache " << s.cache_size << ")" << std::string(s.cache_size < 10 ? 3 : s.cache_size < 100 ? 2 : 1, ' ')
       << "       " << s.transformed << "\n";
-  std::snprintf(buf, sizeof buf, "%.2f", s.tv_per_triangle);
-  out << "#tv / tri             " << buf << "\n";
+  out << "#tv / tri             " << util::fixed(s.tv_per_triangle, 2) << "\n";
   out << "#textures             " << s.textures << "\n";
   out << "#state switches (sw)  " << s.state_switches << "\n";
-  std::snprintf(buf, sizeof buf, "%.0f", s.triangles_per_switch);
-  out << "tris / sw             " << buf << "\n";
+  out << "tris / sw             " << util::fixed(s.triangles_per_switch, 0) << "\n";
   return out.str();
 }
 

@@ -4,18 +4,9 @@
 #include <sstream>
 
 #include "platforms/platform.h"
+#include "util/number_text.h"
 
 namespace ra::scenes {
-namespace {
-
-std::string show(double v) {
-  std::ostringstream s;  // as the range errors of TomlLocator::number print values
-  s << v;
-  return s.str();
-}
-
-}  // namespace
-
 StudyFile read_study_file(const util::TomlLocator& loc, const std::string& text,
                           const std::string& where, const std::set<std::string>& other_keys,
                           bool required, StudySettings* s) {
@@ -49,11 +40,11 @@ void read_camera_block(const util::TomlLocator& loc, const toml::table& t, const
     cam->near = loc.number(*n, p + "near", "near > 0 metres", [](double v) { return v > 0; });
   const double near = cam->near;
   if (const auto* n = t.get("far"))
-    cam->far = loc.number(*n, p + "far", "far > near = " + show(near),
+    cam->far = loc.number(*n, p + "far", "far > near = " + util::significant(near, 6),
                           [near](double v) { return v > near; });
   else if (!(cam->far > near))
-    loc.fail(t.get("near"), "'" + p + "near' = " + show(near) +
-                                " is out of range (allowed: near < far = " + show(cam->far) + ")");
+    loc.fail(t.get("near"), "'" + p + "near' = " + util::significant(near, 6) +
+                                " is out of range (allowed: near < far = " + util::significant(cam->far, 6) + ")");
 }
 
 std::string read_study_platform(const util::TomlLocator& loc, const toml::node& node,

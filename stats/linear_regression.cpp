@@ -18,6 +18,7 @@
 #include "stats/binary128_least_squares.h"
 #include "stats/descriptive.h"
 #include "util/errors.h"
+#include "util/number_text.h"
 
 namespace ra::stats {
 namespace {
@@ -154,9 +155,7 @@ void require_finite_column(const std::vector<double>& v, const std::string& what
 
 std::string condition_text(double kappa) {
   if (std::isinf(kappa)) return "infinite (a zero pivot)";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", kappa);
-  return buf;
+  return util::significant(kappa, 3);
 }
 
 // The refusal of a design whose coefficients the data do not determine. `dependent` are the

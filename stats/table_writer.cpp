@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "stats/binomial_interval.h"
+#include "util/number_text.h"
 
 namespace ra::stats {
 namespace {
@@ -27,12 +28,6 @@ std::vector<std::string> flat_header(const Table& t) {
   return names;
 }
 
-std::string printf_string(const char* format, int precision, double value) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, precision, value);
-  return buf;
-}
-
 void require_finite(double value, const char* what) {
   if (!std::isfinite(value)) {
     throw std::logic_error(std::string("table_writer: ") + what +
@@ -47,14 +42,14 @@ TableCell text_cell(std::string text) { return TableCell{std::move(text), ""}; }
 
 std::string format_fixed(double value, int decimals) {
   require_finite(value, "format_fixed");
-  std::string s = printf_string("%.*f", decimals, value);
+  std::string s = util::fixed(value, decimals);
   if (s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
   return s;
 }
 
 std::string format_significant(double value, int significant) {
   require_finite(value, "format_significant");
-  return printf_string("%.*g", significant, value == 0 ? 0.0 : value);
+  return util::significant(value == 0 ? 0.0 : value, significant);
 }
 
 TableCell number_cell(double value, int decimals) {
@@ -167,22 +162,48 @@ std::string render_csv(const Table& t) {
 std::string render_markdown(const Table& t) {
   check_table(t);
   std::string out = "### " + t.title + "\n\n";
-  const std::vector<std::string> header = flat_header(t);
-  out += "|";
-  for (const std::string& h : header) out += " " + markdown_escape(h) + " |";
-  out += "\n|";
-  for (const TableColumn& c : t.columns) out += c.align == Align::kLeft ? " :--- |" : " ---: |";
-  out += "\n";
+  std::vector<Align> align;
+  for (const TableColumn& c : t.columns) align.push_back(c.align);
+  out += markdown_header(flat_header(t), align);
   for (const auto& row : t.rows) {
-    out += "|";
-    for (const TableCell& cell : row) out += " " + markdown_escape(cell.text) + " |";
-    out += "\n";
+    std::vector<std::string> cells;
+    for (const TableCell& cell : row) cells.push_back(cell.text);
+    out += markdown_row(cells);
   }
   if (!t.notes.empty()) {
     out += "\n";
     for (const std::string& note : t.notes) out += "- " + note + "\n";
   }
   return out;
+}
+
+std::string markdown_row(const std::vector<std::string>& cells) {
+  std::string out = "|";
+  for (const std::string& cell : cells) out += " " + markdown_escape(cell) + " |";
+  return out + "\n";
+}
+
+std::string markdown_header(const std::vector<std::string>& names, const std::vector<Align>& align) {
+  if (align.size() != names.size())
+    throw std::logic_error("markdown_header: " + std::to_string(names.size()) + " names, " +
+                           std::to_string(align.size()) + " alignments");
+  std::string out = markdown_row(names) + "|";
+  for (const Align a : align) {
+    switch (a) {
+      case Align::kLeft: out += " :--- |"; break;
+      case Align::kRight: out += " ---: |"; break;
+      case Align::kCenter: out += " :---: |"; break;
+      case Align::kDefault: out += " --- |"; break;
+    }
+  }
+  return out + "\n";
+}
+
+std::string markdown_header(const std::vector<std::string>& names, std::size_t left_columns) {
+  std::vector<Align> align;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    align.push_back(i < left_columns ? Align::kDefault : Align::kRight);
+  return markdown_header(names, align);
 }
 
 std::string render_latex(const Table& t) {
@@ -193,7 +214,8 @@ std::string render_latex(const Table& t) {
   out += "\\caption{" + (t.latex_title.empty() ? latex_text(t.title) : t.latex_title) + "}\n";
   out += "\\label{tab:" + t.file_stem + "}\n";  // labels take '_' as it is
   out += "\\begin{tabular}{";
-  for (const TableColumn& c : t.columns) out += c.align == Align::kLeft ? 'l' : 'r';
+  for (const TableColumn& c : t.columns)
+    out += c.align == Align::kRight ? 'r' : c.align == Align::kCenter ? 'c' : 'l';
   out += "}\n\\toprule\n";
   if (!t.groups.empty()) {
     std::string rules;

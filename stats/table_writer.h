@@ -51,7 +51,9 @@ std::string format_fixed(double value, int decimals);
 // "%.*g"; throws std::logic_error on a non-finite value.
 std::string format_significant(double value, int significant);
 
-enum class Align { kLeft, kRight };
+// A column's alignment. In Markdown: kLeft ":---", kRight "---:", kCenter ":---:", kDefault "---"
+// (the reader's default, left); in LaTeX l, r, c, l.
+enum class Align { kLeft, kRight, kCenter, kDefault };
 
 struct TableColumn {
   std::string name;
@@ -82,6 +84,14 @@ void check_table(const Table& table);
 std::string render_csv(const Table& table);
 std::string render_markdown(const Table& table);
 std::string render_latex(const Table& table);
+
+// A Markdown table written a row at a time between paragraphs (the studies' documents, the audit's
+// report), spelled as render_markdown spells its tables: markdown_header gives the header row and
+// the alignment row, markdown_row one row ("| a | b |\n"); every cell through markdown_escape.
+std::string markdown_header(const std::vector<std::string>& names, const std::vector<Align>& align);
+// The first `left_columns` columns kDefault ("---"), the others kRight.
+std::string markdown_header(const std::vector<std::string>& names, std::size_t left_columns);
+std::string markdown_row(const std::vector<std::string>& cells);
 
 // Escapes for one cell / text fragment (CSV: util/cell_text.h).
 std::string markdown_escape(const std::string& text);

@@ -136,5 +136,17 @@ TEST(TableWriter, InconsistentTablesAreRejected) {
   EXPECT_THROW(render_markdown(t), std::logic_error);
 }
 
+// The row-at-a-time pieces spell a table as render_markdown does, and every alignment as Markdown
+// writes it.
+TEST(TableWriter, MarkdownHeaderAndRows) {
+  EXPECT_EQ(markdown_header({"a", "b", "c", "d"},
+                            {Align::kLeft, Align::kRight, Align::kCenter, Align::kDefault}),
+            "| a | b | c | d |\n| :--- | ---: | :---: | --- |\n");
+  EXPECT_EQ(markdown_header({"Scene", "Method", "Mean"}, 2),
+            "| Scene | Method | Mean |\n| --- | --- | ---: |\n");
+  EXPECT_EQ(markdown_row({"x|y", "two\nlines", ""}), "| x\\|y | two lines |  |\n");
+  EXPECT_THROW(markdown_header({"a", "b"}, {Align::kLeft}), std::logic_error);
+}
+
 }  // namespace
 }  // namespace ra::stats

@@ -17,6 +17,7 @@
 #include "rundir/manifest.h"
 #include "scenes/camera_path.h"
 #include "stats/descriptive.h"
+#include "stats/table_writer.h"
 #include "terrain_lod/lod_checks.h"
 #include "terrain_lod/lod_experiment.h"
 #include "terrain_lod/lod_renderer.h"
@@ -24,6 +25,7 @@
 #include "util/cell_text.h"
 #include "util/errors.h"
 #include "util/gl_child_process.h"
+#include "util/number_text.h"
 
 namespace ra::lod {
 namespace {
@@ -38,10 +40,7 @@ const char* kFramesHeader =
 
 // A printf format of v, "" for NaN.
 std::string fmt(double v, const char* f) {
-  if (std::isnan(v)) return "";
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
+  return std::isnan(v) ? std::string() : util::format_double(f, v);
 }
 
 scenes::Scene layout_scene(const HeightField& f) {
@@ -60,15 +59,6 @@ scenes::Scene layout_scene(const HeightField& f) {
   l.box_min = {0, 0, zmin};
   l.box_max = {(f.nx - 1) * f.spacing, (f.ny - 1) * f.spacing, zmax};
   return s;
-}
-
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, sep)) out.push_back(cell);
-  if (!line.empty() && line.back() == sep) out.emplace_back();
-  return out;
 }
 
 double cell_number(const std::string& s) { return s.empty() ? std::nan("") : std::stod(s); }
@@ -104,7 +94,7 @@ std::vector<TableRow> read_table(const std::string& dir) {
   std::vector<TableRow> rows;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
-    const auto c = split(line, ',');
+    const auto c = util::split_csv_line(line);
     if (c.size() != 17)
       throw util::UserError(path + ": a row has " + std::to_string(c.size()) + " fields, not 17");
     TableRow r;
@@ -391,7 +381,7 @@ std::vector<TableRow> rows_of_frames(const std::string& dir) {
   while (std::getline(in, line)) {
     ++line_no;
     if (line.empty()) continue;
-    const auto c = split(line, ',');
+    const auto c = util::split_csv_line(line);
     if (c.size() != 21)
       throw util::UserError(dir + "/frames.csv:" + std::to_string(line_no) + ": " +
                             std::to_string(c.size()) + " fields, not 21");
@@ -449,15 +439,9 @@ std::vector<TableRow> rows_of_frames(const std::string& dir) {
 
 // lod.md: the study's text with its check and speed tables, from lod_summary.json and the rows.
 std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
-  auto row = [](const std::vector<std::string>& cells) {
-    std::string s = "|";
-    for (const auto& c : cells) s += " " + c + " |";
-    return s + "\n";
-  };
-  auto header = [&](const std::vector<std::string>& names) {
-    std::string s = row(names) + "|";
-    for (size_t i = 0; i < names.size(); ++i) s += i == 0 ? " --- |" : " ---: |";
-    return s + "\n";
+  // The first column names the row; the others are numbers.
+  const auto header = [](const std::vector<std::string>& names) {
+    return stats::markdown_header(names, 1);
   };
   const std::string main_lambda = sj.value("lambda", "window");
   const json lam = sj.value("lambda_px_per_rad", json::object());
@@ -484,7 +468,7 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
      << header({"lambda (px/rad)", "tau px", "frames", "conforming", "seams ok", "max screen error px",
                 "q90 px", "frames over tau"});
   for (const TableRow& r : rows)
-    md << row({"`" + r.lambda + "` (" + fmt(lam.value(r.lambda, 0.0), "%.0f") + ")", fmt(r.tau, "%g"),
+    md << stats::markdown_row({"`" + r.lambda + "` (" + fmt(lam.value(r.lambda, 0.0), "%.0f") + ")", fmt(r.tau, "%g"),
                std::to_string(r.frames), std::to_string(r.conforming), std::to_string(r.seams_ok),
                (r.over_tau ? "**" + fmt(r.max_screen_error, "%.3f") + "**" : fmt(r.max_screen_error, "%.3f")),
                fmt(r.screen_error_q90, "%.3f"), std::to_string(r.over_tau)});
@@ -500,7 +484,7 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
   for (const TableRow& r : rows) {
     if (!r.timed()) continue;
     if (r.tau == 1) at_one = &r;
-    md << row({fmt(r.tau, "%g"), fmt(r.triangles_median, "%.0f"), fmt(100 * r.triangles_median / r.full_triangles, "%.2f"),
+    md << stats::markdown_row({fmt(r.tau, "%g"), fmt(r.triangles_median, "%.0f"), fmt(100 * r.triangles_median / r.full_triangles, "%.2f"),
                fmt(r.indices_per_triangle, "%.2f"), fmt(r.frame_ms, "%.2f"), fmt(r.full_ms, "%.2f"),
                fmt(r.full_ms / r.frame_ms, "%.1f"), fmt(r.image_mean_abs, "%.3f"), fmt(100 * r.image_differing, "%.3f")});
   }

@@ -4,28 +4,17 @@
 #include <sstream>
 #include <vector>
 
+#include "stats/table_writer.h"
+#include "util/number_text.h"
+
 namespace ra::timing {
 namespace {
 
 using nlohmann::json;
 
+// A number of a JSON document through a printf format, "n/a" where it is null (not finite).
 std::string num(const json& v, const char* format = "%.4g") {
-  if (!v.is_number()) return "n/a";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v.get<double>());
-  return buf;
-}
-
-std::string row(const std::vector<std::string>& cells) {
-  std::string s = "|";
-  for (const auto& c : cells) s += " " + c + " |";
-  return s + "\n";
-}
-
-std::string header(const std::vector<std::string>& names, size_t left_columns) {
-  std::string s = row(names) + "|";
-  for (size_t i = 0; i < names.size(); ++i) s += i < left_columns ? " --- |" : " ---: |";
-  return s + "\n";
+  return v.is_number() ? util::format_double(format, v.get<double>()) : "n/a";
 }
 
 // "mean +- sd" of a spread of timing.json's `repeated` block (keys with `unit` appended), scaled.
@@ -63,11 +52,11 @@ void repeated_markdown(const json& rep, std::ostringstream& md) {
         "when its average squared error is the lowest of the scene's row.\n\n";
 
   md << "### System task c (99%) over " << n << " runs\n\n"
-     << header({"Platform", "Runs ok", "Failed", "c mean +- SD, ms", "Min - max, ms",
+     << stats::markdown_header({"Platform", "Runs ok", "Failed", "c mean +- SD, ms", "Min - max, ms",
                 ci + " interval of the mean, ms"}, 1);
   for (const json& p : rep.value("platforms", json::array())) {
     const json c = p.value("system_task_c", json::object());
-    md << row({p.value("name", ""), std::to_string(p.value("runs", 0)),
+    md << stats::markdown_row({p.value("name", ""), std::to_string(p.value("runs", 0)),
                std::to_string(p.value("failed", 0)), mean_sd(c, "_us", 1e-3),
                range(c, "min_us", "max_us", 1e-3), range(c, "ci_low_us", "ci_high_us", 1e-3)});
   }
@@ -83,15 +72,15 @@ void repeated_markdown(const json& rep, std::ostringstream& md) {
     cols.insert(cols.end(), methods.begin(), methods.end());
     md << "### Table 6 over " << n << " runs, " << name
        << ": mean +- SD of the average squared error (ms^2)\n\n"
-       << header(cols, 1);
+       << stats::markdown_header(cols, 1);
     for (const auto& [scene, by_method] : t6.items()) {
       std::vector<std::string> cells = {scene};
       for (const auto& m : methods) cells.push_back(mean_sd(by_method.value(m, json::object())));
-      md << row(cells);
+      md << stats::markdown_row(cells);
     }
     md << "\n### Which method was best, " << name << ": runs won out of " << n
        << " (all methods; in brackets among the paper's forms h1-h4 and pos)\n\n"
-       << header(cols, 1);
+       << stats::markdown_header(cols, 1);
     for (const auto& [scene, rk] : ranking.items()) {
       std::vector<std::string> cells = {scene};
       const json wins = rk.value("wins", json::object());
@@ -99,28 +88,28 @@ void repeated_markdown(const json& rep, std::ostringstream& md) {
       for (const auto& m : methods)
         cells.push_back(std::to_string(wins.value(m, 0)) +
                         (paper.contains(m) ? " (" + std::to_string(paper.value(m, 0)) + ")" : ""));
-      md << row(cells);
+      md << stats::markdown_row(cells);
     }
     md << "\n### Table 6 over " << n << " runs, " << name << ", cell by cell (ms^2)\n\n"
-       << header({"Scene", "Method", "Mean", "SD", "Min - max", ci + " interval of the mean",
+       << stats::markdown_header({"Scene", "Method", "Mean", "SD", "Min - max", ci + " interval of the mean",
                   "Wins"}, 2);
     for (const auto& [scene, by_method] : t6.items()) {
       const json wins = ranking.value(scene, json::object()).value("wins", json::object());
       for (const auto& m : methods) {
         const json c = by_method.value(m, json::object());
-        md << row({scene, m, num(c.value("mean", json())), num(c.value("sd", json()), "%.2g"),
+        md << stats::markdown_row({scene, m, num(c.value("mean", json())), num(c.value("sd", json()), "%.2g"),
                    range(c, "min", "max"), range(c, "ci_low", "ci_high"),
                    std::to_string(wins.value(m, 0))});
       }
     }
     md << "\n### Ranking per run, " << name << " (best first)\n\n"
-       << header({"Scene", "Run", "Methods from the lowest to the highest error"}, 3);
+       << stats::markdown_header({"Scene", "Run", "Methods from the lowest to the highest error"}, 3);
     for (const auto& [scene, rk] : ranking.items()) {
       int k = 0;
       for (const json& order : rk.value("per_run", json::array())) {
         std::string line;
         for (const json& m : order) line += (line.empty() ? "" : " < ") + m.get<std::string>();
-        md << row({scene, std::to_string(++k), line});
+        md << stats::markdown_row({scene, std::to_string(++k), line});
       }
     }
     md << "\n";
@@ -146,10 +135,10 @@ std::string timing_markdown(const json& j) {
 
   const json platforms = j.value("platforms", json::array());
   md << "### Platforms and timers\n\n"
-     << header({"Platform", "GL_RENDERER", "Timer query", "Wall s", "Error"}, 3);
+     << stats::markdown_header({"Platform", "GL_RENDERER", "Timer query", "Wall s", "Error"}, 3);
   for (const json& p : platforms) {
     const json tq = p.value("timer_query", json::object());
-    md << row({p.value("name", ""), p.value("renderer", json::object()).value("renderer", ""),
+    md << stats::markdown_row({p.value("name", ""), p.value("renderer", json::object()).value("renderer", ""),
                tq.value("supported", false) ? "GL_TIME_ELAPSED, " + std::to_string(tq.value("counter_bits", 0)) + " bits" : "no",
                num(p.value("wall_s", json()), "%.0f"),
                p.value("error", json()).is_string() ? p["error"].get<std::string>() : ""});
@@ -157,23 +146,23 @@ std::string timing_markdown(const json& j) {
   md << "\n";
 
   md << "### System task: frame times of one viewpoint and the constant c\n\n"
-     << header({"Platform", "Scene", "Renderings", "Min ms", "Median ms", "q99 ms", "c = q99 - min, ms"}, 2);
+     << stats::markdown_header({"Platform", "Scene", "Renderings", "Min ms", "Median ms", "q99 ms", "c = q99 - min, ms"}, 2);
   for (const json& p : platforms) {
     const json st = p.value("system_task", json());
     if (!st.is_object()) continue;
     auto ms = [&](const char* k) { return st.contains(k) && st[k].is_number() ? num(json(st[k].get<double>() / 1000.0), "%.3f") : "n/a"; };
-    md << row({p.value("name", ""), st.value("scene", ""), std::to_string(st.value("n", 0)),
+    md << stats::markdown_row({p.value("name", ""), st.value("scene", ""), std::to_string(st.value("n", 0)),
                ms("min_us"), ms("median_us"), ms("q99_us"), num(st.value("c_ms", json()), "%.3f")});
   }
   md << "\nc is the width of the one-sided interval from the fastest rendering that holds 99% of "
         "them (Hyndman-Fan 6 quantile): a frame budget of min + c is met by 99% of renderings.\n\n";
 
   md << "### Scenes (the paper's Table 5)\n\n"
-     << header({"Platform", "Scene", "Objects", "Triangles", "#tv", "#tv / tri", "Textures",
+     << stats::markdown_header({"Platform", "Scene", "Objects", "Triangles", "#tv", "#tv / tri", "Textures",
                 "State switches", "Path frames measured", "Object samples"}, 2);
   for (const json& p : platforms)
     for (const json& s : p.value("scenes", json::array()))
-      md << row({p.value("name", ""), s.value("name", ""), std::to_string(s.value("objects", 0)),
+      md << stats::markdown_row({p.value("name", ""), s.value("name", ""), std::to_string(s.value("objects", 0)),
                  std::to_string(s.value("triangles", 0)), std::to_string(s.value("transformed", 0)),
                  num(s.value("tv_per_triangle", json()), "%.2f"), std::to_string(s.value("textures", 0)),
                  std::to_string(s.value("state_switches", 0)),
@@ -182,7 +171,7 @@ std::string timing_markdown(const json& j) {
   md << "\n";
 
   md << "### Fitted heuristics (least squares, QR; CPU medians of the object measurements)\n\n"
-     << header({"Platform", "Heuristic", "Formula", "Coefficients (value +- standard error)", "n", "R^2", "RMSE us"}, 4);
+     << stats::markdown_header({"Platform", "Heuristic", "Formula", "Coefficients (value +- standard error)", "n", "R^2", "RMSE us"}, 4);
   for (const json& p : platforms)
     for (const json& f : p.value("fits", json::array())) {
       std::string coef;
@@ -190,7 +179,7 @@ std::string timing_markdown(const json& j) {
         coef += (coef.empty() ? "" : "; ") + c.value("name", "") + " = " +
                 num(c.value("value", json())) + " +- " + num(c.value("standard_error", json()), "%.2g") +
                 " " + c.value("unit", "");
-      md << row({p.value("name", ""), f.value("heuristic", "") + (f.value("intercept", false) ? " (+b)" : ""),
+      md << stats::markdown_row({p.value("name", ""), f.value("heuristic", "") + (f.value("intercept", false) ? " (+b)" : ""),
                  f.value("formula", ""), coef, std::to_string(f.value("n", 0)),
                  num(f.value("r_squared", json()), "%.3f"), num(f.value("rmse_us", json()), "%.0f")});
     }
@@ -206,26 +195,26 @@ std::string timing_markdown(const json& j) {
     cols.insert(cols.end(), methods.begin(), methods.end());
     md << "### Table 6, " << p.value("name", "")
        << ": average squared error of the predicted frame time along the camera path (ms^2)\n\n"
-       << header(cols, 1);
+       << stats::markdown_header(cols, 1);
     for (const auto& [scene, by_method] : t6.items()) {
       std::vector<std::string> cells = {scene};
       for (const auto& m : methods) cells.push_back(num(by_method.value(m, json()), "%.4g"));
-      md << row(cells);
+      md << stats::markdown_row(cells);
     }
     md << "\nh1-h4: the paper's forms (no intercept); +b: with a per-object intercept; pos: "
           "per-object sampling tables. Predictions add the measured empty frame.\n\n";
   }
 
   md << "### CPU clock against GL_TIME_ELAPSED\n\n"
-     << header({"Platform", "Draws", "Objects: GPU/CPU median ratio", "Pearson r", "Frames: ratio", "Pearson r"}, 1);
+     << stats::markdown_header({"Platform", "Draws", "Objects: GPU/CPU median ratio", "Pearson r", "Frames: ratio", "Pearson r"}, 1);
   for (const json& p : platforms) {
     const json c = p.value("cpu_vs_gpu", json());
     if (!c.is_object()) {
-      md << row({p.value("name", ""), "no GPU timer", "", "", "", ""});
+      md << stats::markdown_row({p.value("name", ""), "no GPU timer", "", "", "", ""});
       continue;
     }
     const json o = c.value("objects", json::object()), f = c.value("frames", json::object());
-    md << row({p.value("name", ""), std::to_string(o.value("n", 0)), num(o.value("median_ratio", json())),
+    md << stats::markdown_row({p.value("name", ""), std::to_string(o.value("n", 0)), num(o.value("median_ratio", json())),
                num(o.value("pearson_r", json()), "%.3f"), num(f.value("median_ratio", json())),
                num(f.value("pearson_r", json()), "%.3f")});
   }

@@ -15,19 +15,13 @@
 #include "util/atomic_file.h"
 #include "util/cell_text.h"
 #include "util/errors.h"
+#include "util/number_text.h"
 
 namespace ra::timing {
 namespace {
 
 // Not-finite values as empty cells.
 std::string num(double v) { return std::isfinite(v) ? util::full_precision(v) : std::string(); }
-
-// A setting such as a confidence level, as written ("0.95", not "0.94999999999999996").
-std::string short_num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 std::string list(const std::vector<double>& v) {
   std::string s;
@@ -410,7 +404,7 @@ std::string table6_repeated_csv(const StudyResults& r) {
         o << util::csv_escape(p.platform) << ',' << util::csv_escape(scene) << ','
           << util::csv_escape(method) << ',' << s.n << ',' << num(s.mean) << ',' << num(s.sd) << ','
           << num(s.min) << ',' << num(s.max) << ',' << num(s.ci_low) << ',' << num(s.ci_high) << ','
-          << short_num(s.confidence) << ',' << rk.wins.at(method) << ','
+          << util::significant(s.confidence, 6) << ',' << rk.wins.at(method) << ','
           << (is_paper_method(method) ? std::to_string(rk.paper_wins.at(method)) : "") << ','
           << ranks << ',' << list(s.values) << '\n';
       }
@@ -429,7 +423,7 @@ std::string system_task_c_repeated_csv(const StudyResults& r) {
     for (double v : c.values) per_run.push_back(v / 1000.0);
     o << util::csv_escape(p.platform) << ',' << p.runs << ',' << p.failed << ',' << ms(c.mean)
       << ',' << ms(c.sd) << ',' << ms(c.min) << ',' << ms(c.max) << ',' << ms(c.ci_low) << ','
-      << ms(c.ci_high) << ',' << short_num(c.confidence) << ',' << list(per_run) << '\n';
+      << ms(c.ci_high) << ',' << util::significant(c.confidence, 6) << ',' << list(per_run) << '\n';
   }
   return o.str();
 }

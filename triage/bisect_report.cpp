@@ -14,6 +14,7 @@
 #include "audit/reproducer.h"
 #include "rundir/driver_build.h"
 #include "rundir/platform_spec.h"
+#include "stats/table_writer.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/duration_text.h"
@@ -195,9 +196,10 @@ void write_bisect_report(const BisectOptions& o, const BisectResult& r,
            << fs::path(png).filename().string() << ")\n";
     }
   }
-  md << "\n## Every selected primitive\n\n| primitive | run: " << o.good_platform << " | run: "
-     << o.bad_platform << " | good ref | parent | first bad | bad ref |\n"
-     << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+  md << "\n## Every selected primitive\n\n"
+     << stats::markdown_header({"primitive", "run: " + o.good_platform, "run: " + o.bad_platform,
+                                "good ref", "parent", "first bad", "bad ref"},
+                               1);
   for (const BisectPrimitive& p : r.selection) {
     const std::string pl = p.label();
     const bool dropped = std::find(r.dropped.begin(), r.dropped.end(), pl) != r.dropped.end();

@@ -9,6 +9,9 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace ra::util {
 namespace {
@@ -51,6 +54,41 @@ TEST(CellText, CsvEscapeMatchesPythonCsv) {
   EXPECT_EQ(csv_escape("say \"hi\""), "\"say \"\"hi\"\"\"");
   EXPECT_EQ(csv_escape("two\nlines"), "\"two\nlines\"");
   EXPECT_EQ(csv_escape("cr\rx"), "\"cr\rx\"");
+}
+
+using Cells = std::vector<std::string>;
+
+// Lines and their cells as Python's csv.reader gives them (list(csv.reader([line]))[0]).
+TEST(CellText, SplitCsvLineMatchesPythonCsv) {
+  EXPECT_EQ(split_csv_line("a,b,c"), (Cells{"a", "b", "c"}));
+  EXPECT_EQ(split_csv_line("a,,c"), (Cells{"a", "", "c"}));
+  EXPECT_EQ(split_csv_line("a,b,"), (Cells{"a", "b", ""}));  // a trailing comma: an empty cell
+  EXPECT_EQ(split_csv_line(",a"), (Cells{"", "a"}));
+  EXPECT_EQ(split_csv_line(" a , b"), (Cells{" a ", " b"}));  // blanks kept
+  EXPECT_EQ(split_csv_line("\"a,b\",c"), (Cells{"a,b", "c"}));
+  EXPECT_EQ(split_csv_line("\"say \"\"hi\"\"\",x"), (Cells{"say \"hi\"", "x"}));
+  EXPECT_EQ(split_csv_line("\"\",x"), (Cells{"", "x"}));
+  EXPECT_EQ(split_csv_line("x,\"a \"\"b\"\", c\""), (Cells{"x", "a \"b\", c"}));
+}
+
+// csv_escape's cells read back as they were, whatever they hold.
+TEST(CellText, SplitCsvLineInvertsCsvEscape) {
+  const Cells cells = {"plain", "a,b", "say \"hi\"", "", ",", "\"\"", " lead", "x,\"y\",z"};
+  std::string line;
+  for (std::size_t i = 0; i < cells.size(); ++i) line += (i ? "," : "") + csv_escape(cells[i]);
+  EXPECT_EQ(split_csv_line(line), cells);
+}
+
+// Python's csv.reader gives [] for an empty line; a CSV file's row of one empty cell is "" here,
+// so that every line has at least one cell (callers skip blank lines themselves).
+TEST(CellText, SplitCsvLineOfNothingIsOneEmptyCell) {
+  EXPECT_EQ(split_csv_line(""), (Cells{""}));
+}
+
+TEST(CellText, SplitCsvLineRefusesBrokenQuotes) {
+  EXPECT_THROW(split_csv_line("\"open,x"), std::invalid_argument);
+  EXPECT_THROW(split_csv_line("\"a\"b,x"), std::invalid_argument);
+  EXPECT_THROW(split_csv_line("a\"b,x"), std::invalid_argument);
 }
 
 }  // namespace

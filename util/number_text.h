@@ -1,0 +1,22 @@
+// Numbers written as text for people: tables, notes, figure labels, summaries. Every such text
+// asks these (full-precision cells that must read back as the same double: cell_text.h). They are
+// printf's conversions, so the text is what `printf FORMAT` gives: "%.4g" of 0.000123456 is
+// "0.0001235", of 1234567 "1.235e+06"; NaN and the infinities are "nan", "inf", "-inf" (callers
+// that write something else for them say so where they call).
+#pragma once
+
+#include <string>
+
+namespace ra::util {
+
+// `v` through a printf format of one double ("%.4g", "%.2f", "%+.1f%%"); never truncated.
+std::string format_double(const char* format, double v);
+
+// `v` with `digits` significant digits, trailing zeros dropped ("%.*g"): significant(1.5, 4) is
+// "1.5", significant(123456, 4) "1.235e+05". significant(v, 6) is printf's plain "%g".
+std::string significant(double v, int digits);
+
+// `v` with `decimals` digits after the point ("%.*f"): fixed(2.0 / 3, 2) is "0.67".
+std::string fixed(double v, int decimals);
+
+}  // namespace ra::util
