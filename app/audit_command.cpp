@@ -69,46 +69,49 @@ void register_audit_command(CLI::App& app, int& exit_code) {
       "once more first: a difference that disappears is reported as a flake, not a change.\n"
       "Writes audit.json, audit.md, junit.xml and changed_primitives.csv into --out and appends\n"
       "a summary to the history database (with --between only when --db names one).");
-  static AuditCli cli;
-  cmd->add_option("runs", cli.dirs, "BASELINE_DIR CURRENT_DIR, or RUN_DIR with --between")
+  struct Options {
+    AuditCli cli;
+  };
+  const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
+  cmd->add_option("runs", opts->cli.dirs, "BASELINE_DIR CURRENT_DIR, or RUN_DIR with --between")
       ->required()
       ->expected(1, 2)
       ->check(CLI::ExistingDirectory);
-  cmd->add_option("--between", cli.options.between,
+  cmd->add_option("--between", opts->cli.options.between,
                   "compare two platforms of one run: P1 (baseline role) and P2")
       ->expected(2);
-  cmd->add_option("--alpha", cli.options.alpha,
+  cmd->add_option("--alpha", opts->cli.options.alpha,
                   "family-wise error rate of the distribution tests (Holm), default 0.05")
       ->check(CLI::Range(1e-12, 0.5));
-  cmd->add_option("--out,-o", cli.options.out_dir,
+  cmd->add_option("--out,-o", opts->cli.options.out_dir,
                   "output directory (default CURRENT_DIR/audit, or RUN_DIR/audit-P1-vs-P2)");
-  cmd->add_option("--db", cli.db,
+  cmd->add_option("--db", opts->cli.db,
                   "history database (default: history.sqlite beside CURRENT_DIR, e.g. "
                   "outputs/history.sqlite for outputs/RUN; with --between none unless --db names "
                   "one)");
-  cmd->add_flag("--no-history", cli.no_history, "do not append to the history database");
-  cmd->add_option("--expect-renderer", cli.options.expect_renderer,
+  cmd->add_flag("--no-history", opts->cli.no_history, "do not append to the history database");
+  cmd->add_option("--expect-renderer", opts->cli.options.expect_renderer,
                   "regular expression (ECMAScript, searched) every current GL_RENDERER must "
                   "match; otherwise the verdict is failed");
-  cmd->add_option("--max-rerenders", cli.options.max_rerenders,
+  cmd->add_option("--max-rerenders", opts->cli.options.max_rerenders,
                   "changed primitives re-rendered by the flake check, default 2000 (0: no check)");
-  cmd->add_option("--jobs,-j", cli.options.jobs,
+  cmd->add_option("--jobs,-j", opts->cli.options.jobs,
                   "threads and re-render processes (default: number of cores)")
       ->check(CLI::Range(1, 1024));
-  cmd->callback([&exit_code] {
-    if (cli.options.between.empty() && cli.dirs.size() != 2)
+  cmd->callback([opts, &exit_code] {
+    if (opts->cli.options.between.empty() && opts->cli.dirs.size() != 2)
       throw util::UserError("audit needs BASELINE_DIR CURRENT_DIR, or RUN_DIR --between P1 P2");
-    if (!cli.options.between.empty() && cli.dirs.size() != 1)
+    if (!opts->cli.options.between.empty() && opts->cli.dirs.size() != 1)
       throw util::UserError("audit --between compares two platforms of one run: give one RUN_DIR");
-    cli.options.current_dir = cli.dirs.back();
-    if (cli.dirs.size() == 2) cli.options.baseline_dir = cli.dirs.front();
+    opts->cli.options.current_dir = opts->cli.dirs.back();
+    if (opts->cli.dirs.size() == 2) opts->cli.options.baseline_dir = opts->cli.dirs.front();
 
     // Any error is exit 2 here: main() maps other exceptions to 1, which an audit reads as
     // "changed".
     audit::AuditResult r;
     std::vector<std::string> files;
     try {
-      r = audit::run_audit(cli.options);
+      r = audit::run_audit(opts->cli.options);
       files = audit::write_audit_outputs(r);
     } catch (const util::UserError&) {
       throw;
@@ -119,16 +122,18 @@ void register_audit_command(CLI::App& app, int& exit_code) {
     exit_code = audit::verdict_exit_code(r.verdict);
     // Two platforms of one run are an ad-hoc comparison, not a night of a series: their history
     // is kept only where asked.
-    if (!cli.options.between.empty() && cli.db.empty() && !cli.no_history) {
+    if (!opts->cli.options.between.empty() && opts->cli.db.empty() && !opts->cli.no_history) {
       std::printf("  history: none kept for --between (--db FILE keeps one)\n");
       return;
     }
-    if (cli.no_history) return;
+    if (opts->cli.no_history) return;
     if (r.verdict == audit::Verdict::kBaseline) {  // the history holds verdicts; this is none
       std::printf("  history: nothing appended (a baseline established: nothing was compared)\n");
       return;
     }
-    const std::string db = cli.db.empty() ? audit::default_history_path(cli.options.current_dir) : cli.db;
+    const std::string db = opts->cli.db.empty()
+                               ? audit::default_history_path(opts->cli.options.current_dir)
+                               : opts->cli.db;
     try {
       audit::append_history(db, r.summary);
       std::printf("  history: appended to %s\n", db.c_str());

@@ -12,73 +12,91 @@ namespace ra::app {
 void register_bisect_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "bisect",
-      "Find the driver commit that changed a run's pixels: the primitives that differ most between\n"
+      "Find the driver commit that changed a run's pixels: the primitives that differ most "
+      "between\n"
       "two platforms of RUN (or those named) are drawn by a build of every commit git bisect\n"
-      "chooses between --good and --bad of a Mesa git tree (built with meson, reused from the build\n"
-      "cache when built before); a commit is good when every selected primitive has the good ref's\n"
+      "chooses between --good and --bad of a Mesa git tree (built with meson, reused from the "
+      "build\n"
+      "cache when built before); a commit is good when every selected primitive has the good "
+      "ref's\n"
       "pixels, bad when every one has the bad ref's, else skipped (said why). Resumable: the same\n"
       "command goes on where it stopped. Writes OUT/bisect.json and OUT/bisect.md, the report for\n"
       "the driver's developers (reproducer, pictures, versions). Exit 0: first bad commit found;\n"
       "1: only skipped commits are left (the candidates are listed); 2: bad input.");
-  static triage::BisectOptions o;
-  static std::vector<std::string> between;
-  cmd->add_option("run", o.run_dir, "run directory whose records choose the primitives")->required();
-  cmd->add_option("--between", between,
+  struct Options {
+    triage::BisectOptions o;
+    std::vector<std::string> between;
+  };
+  const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
+  cmd->add_option("run", opts->o.run_dir, "run directory whose records choose the primitives")
+      ->required();
+  cmd->add_option("--between", opts->between,
                   "GOOD_PLATFORM BAD_PLATFORM: two platforms of the run (e.g. egl-llvmpipe "
                   "egl-llvmpipe@backports)")
       ->expected(2);
-  cmd->add_option("--source", o.source, "Mesa git checkout (each step checks out a commit in it)")
+  cmd->add_option("--source", opts->o.source,
+                  "Mesa git checkout (each step checks out a commit in it)")
       ->required();
-  cmd->add_option("--good", o.good_ref, "a ref that draws as the good platform")->required();
-  cmd->add_option("--bad", o.bad_ref, "a ref that draws as the bad platform")->required();
-  cmd->add_option("--platform", o.platform,
+  cmd->add_option("--good", opts->o.good_ref, "a ref that draws as the good platform")->required();
+  cmd->add_option("--bad", opts->o.bad_ref, "a ref that draws as the bad platform")->required();
+  cmd->add_option("--platform", opts->o.platform,
                   "the platform that draws every build (default: the bad platform without @build; "
                   "egl-llvmpipe for Mesa >= 25.1, which has no OSMesa)");
-  cmd->add_option("--kind", o.kinds, "select only these kinds (point, line, triangle)")
+  cmd->add_option("--kind", opts->o.kinds, "select only these kinds (point, line, triangle)")
       ->check(CLI::IsMember({"point", "line", "triangle"}));
-  cmd->add_option("--view", o.views, "select only these views (1-based)")->check(CLI::Range(1, 1000));
-  cmd->add_option("--primitive", o.primitives,
+  cmd->add_option("--view", opts->o.views, "select only these views (1-based)")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--primitive", opts->o.primitives,
                   "KIND:VIEW:INDEX to select (repeatable) instead of the run's largest changes");
-  cmd->add_option("--max-primitives", o.max_primitives,
+  cmd->add_option("--max-primitives", opts->o.max_primitives,
                   "the run's changed primitives with the largest pixel change, at most this many")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
-  cmd->add_option("--out,-o", o.out_dir, "where bisect.json and bisect.md go (default RUN/bisect)");
-  cmd->add_option("--cache", o.build.cache, "build cache folder");
-  cmd->add_option("--llvm-config", o.build.llvm_config, "the LLVM every build uses")
+  cmd->add_option("--out,-o", opts->o.out_dir,
+                  "where bisect.json and bisect.md go (default RUN/bisect)");
+  cmd->add_option("--cache", opts->o.build.cache, "build cache folder");
+  cmd->add_option("--llvm-config", opts->o.build.llvm_config, "the LLVM every build uses")
       ->capture_default_str();
-  cmd->add_option("--meson-option,-D", o.build.meson_options, "extra meson option KEY=VALUE");
-  cmd->add_option("--build-command", o.build.build_command,
+  cmd->add_option("--meson-option,-D", opts->o.build.meson_options, "extra meson option KEY=VALUE");
+  cmd->add_option("--build-command", opts->o.build.build_command,
                   "a shell command that installs the checked-out commit's driver into "
                   "$RENDERAUDIT_BUILD_PREFIX instead of meson");
-  cmd->add_option("--jobs,-j", o.jobs, "drawing children at once, and ninja jobs");
-  cmd->add_flag("--no-pictures", [](int64_t) { o.pictures = false; }, "no `show` pictures in the report");
-  cmd->add_option("paths", o.paths, "-- PATHS: only commits touching these (git bisect -- PATHS)");
+  cmd->add_option("--jobs,-j", opts->o.jobs, "drawing children at once, and ninja jobs");
+  cmd->add_flag(
+      "--no-pictures", [opts](int64_t) { opts->o.pictures = false; },
+      "no `show` pictures in the report");
+  cmd->add_option("paths", opts->o.paths,
+                  "-- PATHS: only commits touching these (git bisect -- PATHS)");
   cmd->positionals_at_end(false);
-  cmd->callback([&exit_code] {
-    if (!between.empty()) o.good_platform = between[0], o.bad_platform = between[1];
-    o.build.jobs = o.jobs;
-    for (std::string& v : o.build.meson_options)
+  cmd->callback([opts, &exit_code] {
+    if (!opts->between.empty())
+      opts->o.good_platform = opts->between[0], opts->o.bad_platform = opts->between[1];
+    opts->o.build.jobs = opts->o.jobs;
+    for (std::string& v : opts->o.build.meson_options)
       if (v.rfind("-D", 0) != 0) v = "-D" + v;
     // The command as a person would type it again (the report repeats it).
-    o.command_line = "renderaudit bisect " + o.run_dir;
-    if (!between.empty()) o.command_line += " --between " + between[0] + " " + between[1];
-    o.command_line += " --source " + o.source + " --good " + o.good_ref + " --bad " + o.bad_ref;
-    if (!o.platform.empty()) o.command_line += " --platform " + o.platform;
-    for (const std::string& k : o.kinds) o.command_line += " --kind " + k;
-    for (int v : o.views) o.command_line += " --view " + std::to_string(v);
-    for (const std::string& p : o.primitives) o.command_line += " --primitive " + p;
-    if (o.max_primitives != triage::BisectOptions{}.max_primitives)
-      o.command_line += " --max-primitives " + std::to_string(o.max_primitives);
-    if (!o.out_dir.empty()) o.command_line += " --out " + o.out_dir;
-    for (const std::string& m : o.build.meson_options) o.command_line += " " + m;
-    if (!o.build.build_command.empty()) o.command_line += " --build-command '" + o.build.build_command + "'";
-    if (!o.paths.empty()) {
-      o.command_line += " --";
-      for (const std::string& p : o.paths) o.command_line += " " + p;
+    opts->o.command_line = "renderaudit bisect " + opts->o.run_dir;
+    if (!opts->between.empty())
+      opts->o.command_line += " --between " + opts->between[0] + " " + opts->between[1];
+    opts->o.command_line +=
+        " --source " + opts->o.source + " --good " + opts->o.good_ref + " --bad " + opts->o.bad_ref;
+    if (!opts->o.platform.empty()) opts->o.command_line += " --platform " + opts->o.platform;
+    for (const std::string& k : opts->o.kinds) opts->o.command_line += " --kind " + k;
+    for (int v : opts->o.views) opts->o.command_line += " --view " + std::to_string(v);
+    for (const std::string& p : opts->o.primitives) opts->o.command_line += " --primitive " + p;
+    if (opts->o.max_primitives != triage::BisectOptions{}.max_primitives)
+      opts->o.command_line += " --max-primitives " + std::to_string(opts->o.max_primitives);
+    if (!opts->o.out_dir.empty()) opts->o.command_line += " --out " + opts->o.out_dir;
+    for (const std::string& m : opts->o.build.meson_options) opts->o.command_line += " " + m;
+    if (!opts->o.build.build_command.empty())
+      opts->o.command_line += " --build-command '" + opts->o.build.build_command + "'";
+    if (!opts->o.paths.empty()) {
+      opts->o.command_line += " --";
+      for (const std::string& p : opts->o.paths) opts->o.command_line += " " + p;
     }
-    const triage::BisectResult r = triage::run_bisect(
-        o, [](const std::string& line) { std::fprintf(stderr, "bisect: %s\n", line.c_str()); });
+    const triage::BisectResult r = triage::run_bisect(opts->o, [](const std::string& line) {
+      std::fprintf(stderr, "bisect: %s\n", line.c_str());
+    });
     if (r.found) {
       std::printf("first bad commit: %s %s (%s)\nparent: %s\nreport: %s\n", r.first_bad.c_str(),
                   r.first_bad_subject.c_str(), r.first_bad_date.c_str(), r.parent.c_str(),

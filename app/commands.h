@@ -1,8 +1,8 @@
 // The subcommands of the `renderaudit` program. Each registers itself on the CLI11 app; its
 // callback throws ra::util::UserError for bad input and sets the process exit code through `exit_code`.
-// Option values: most commands keep them in function-static variables (the program registers each
-// command once); `analyze` and `stats` own theirs through a shared_ptr that the callback holds,
-// because their tests register the commands again in one process.
+// Option values: each command keeps them in a struct of its own, made at registration and held
+// through a shared_ptr by the callbacks that read them; no static state, so the commands can be
+// registered again in one process (the tests do).
 // The lean program (renderaudit-lean) defines plot, report, show, history, timing, bisect and the
 // study functions below as stand-ins that name the full build (app/lean_build.cpp).
 #pragma once

@@ -138,7 +138,8 @@ void run_history(const HistoryOptions& o, int& exit_code) {
   std::printf(
       "\n(changed: primitives whose pixels changed and stayed changed on re-render; flaky: "
       "changed only once; failed: crash or timeout records; tests: distribution tests "
-      "rejected; compares: a run against its baseline, or two platforms of one run)\n\ndrivers (current run; baseline when it differs):\n");
+      "rejected; compares: a run against its baseline, or two platforms of one run)\n\ndrivers "
+      "(current run; baseline when it differs):\n");
   for (const audit::HistoryEntry& e : h) {
     const audit::AuditSummary& s = e.summary;
     std::printf("  #%lld  %s\n", static_cast<long long>(e.id),
@@ -187,19 +188,22 @@ void register_history_command(CLI::App& app, int& exit_code) {
       "The audit history: the recent audits (date, verdict, runs, drivers, changed / flaky /\n"
       "failed counts) as a table, and a trend figure per metric (median and IQR per platform,\n"
       "kind and view group, over the audits) as PNG + vector PDF + CSV. Needs no display.");
-  static HistoryOptions o;
-  cmd->add_option("--db", o.db,
+  struct Options {
+    HistoryOptions o;
+  };
+  const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
+  cmd->add_option("--db", opts->o.db,
                   "history database: `audit` appends to history.sqlite beside the run it audits "
                   "(outputs/history.sqlite for outputs/RUN); `make nightly` to "
                   "outputs/nightly/history.sqlite")
       ->required();
-  cmd->add_option("--last,-n", o.last, "show the last N audits (default: 20)")
+  cmd->add_option("--last,-n", opts->o.last, "show the last N audits (default: 20)")
       ->check(CLI::Range(std::size_t(1), std::size_t(1000000)));
-  cmd->add_option("--out,-o", o.out_dir,
+  cmd->add_option("--out,-o", opts->o.out_dir,
                   "directory for the trend figures (default: the db's directory /history)");
-  cmd->add_option("--metric,-m", o.metrics,
+  cmd->add_option("--metric,-m", opts->o.metrics,
                   "records column to draw, e.g. te_u (repeatable; default: every metric stored)");
-  cmd->callback([&exit_code] { run_history(o, exit_code); });
+  cmd->callback([opts, &exit_code] { run_history(opts->o, exit_code); });
 }
 
 }  // namespace ra::app

@@ -19,17 +19,21 @@ void register_plot_command(CLI::App& app, int& exit_code) {
       "Needs DIR/analysis/figures.json: run `renderaudit analyze DIR` first. Needs no display:\n"
       "starts a private Xvfb when DISPLAY is unset. For a study folder (study.json), the study's\n"
       "figures.");
-  static plots::PlotOptions options;
-  cmd->add_option("dir", options.run_dir, "run directory")->required();
-  static bool force_progress = false, quiet = false;
-  cmd->add_flag("--progress", force_progress,
+  struct Options {
+    plots::PlotOptions options;
+    bool force_progress = false;
+    bool quiet = false;
+  };
+  const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
+  cmd->add_option("dir", opts->options.run_dir, "run directory")->required();
+  cmd->add_flag("--progress", opts->force_progress,
                 "progress on stderr even when it is not a terminal (a line per figure); on a "
                 "terminal it is shown by default, as one line rewritten");
-  cmd->add_flag("--quiet,-q", quiet, "no progress on stderr");
-  cmd->callback([&exit_code] {
-    options.progress = !quiet && (force_progress || ::isatty(2));
-    if (plot_study_if_present(options.run_dir, exit_code)) return;
-    const plots::PlotResult r = plots::plot_run(options);
+  cmd->add_flag("--quiet,-q", opts->quiet, "no progress on stderr");
+  cmd->callback([opts, &exit_code] {
+    opts->options.progress = !opts->quiet && (opts->force_progress || ::isatty(2));
+    if (plot_study_if_present(opts->options.run_dir, exit_code)) return;
+    const plots::PlotResult r = plots::plot_run(opts->options);
     std::printf("%zu figures (PNG + PDF + CSV) in %s, %.1f s, display %s%s\n", r.figures.size(),
                 r.figures_dir.c_str(), r.seconds, r.display.c_str(),
                 r.private_xvfb ? " (private Xvfb, stopped)" : "");

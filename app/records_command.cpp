@@ -19,14 +19,14 @@
 
 #include "app/commands.h"
 #include "metrics/records.h"
+#include "rundir/experiment.h"
 #include "rundir/records_format.h"
 #include "rundir/records_reader.h"
-#include "rundir/experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"
+#include "rundir/shard_records.h"
 #include "util/errors.h"
 #include "util/zstd_stream.h"
-#include "rundir/shard_records.h"
 
 namespace ra::app {
 namespace {
@@ -137,8 +137,10 @@ void stream_records(const RecordsOptions& o) {
                           std::strerror(errno ? errno : EIO) +
                           "): is the disk it goes to full, or the pipe closed?");
   if (missing > 0)
-    std::fprintf(stderr, "renderaudit: records: %zu planned shards of the selection have no "
-                 "records file yet (`renderaudit status %s` says why)\n", missing, o.dir.c_str());
+    std::fprintf(stderr,
+                 "renderaudit: records: %zu planned shards of the selection have no "
+                 "records file yet (`renderaudit status %s` says why)\n",
+                 missing, o.dir.c_str());
 }
 
 }  // namespace
@@ -148,16 +150,19 @@ void register_records_command(CLI::App& app, int& exit_code) {
       "records",
       "A run's records as one CSV stream on stdout (header first), filtered by platform, kind\n"
       "and view, with the columns asked for; plain or zstd-compressed (docs/records.md).");
-  static RecordsOptions o;
-  cmd->add_option("dir", o.dir, "run directory")->required()->check(CLI::ExistingDirectory);
-  cmd->add_option("--platform", o.platforms, "only this platform (repeatable)");
-  cmd->add_option("--kind", o.kinds, "only this kind: point, line, triangle (repeatable)");
-  cmd->add_option("--view", o.views, "only this view id (repeatable)");
-  cmd->add_option("--columns", o.columns, "these columns, in this order (comma-separated)")
+  struct Options {
+    RecordsOptions o;
+  };
+  const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
+  cmd->add_option("dir", opts->o.dir, "run directory")->required()->check(CLI::ExistingDirectory);
+  cmd->add_option("--platform", opts->o.platforms, "only this platform (repeatable)");
+  cmd->add_option("--kind", opts->o.kinds, "only this kind: point, line, triangle (repeatable)");
+  cmd->add_option("--view", opts->o.views, "only this view id (repeatable)");
+  cmd->add_option("--columns", opts->o.columns, "these columns, in this order (comma-separated)")
       ->delimiter(',');
-  cmd->add_option("--format", o.format, "csv (default) or csv.zst");
-  cmd->callback([&exit_code] {
-    stream_records(o);
+  cmd->add_option("--format", opts->o.format, "csv (default) or csv.zst");
+  cmd->callback([opts, &exit_code] {
+    stream_records(opts->o);
     exit_code = kExitOk;
   });
 }

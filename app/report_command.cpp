@@ -40,39 +40,45 @@ void register_report_command(CLI::App& app, int& exit_code) {
       "completeness, failures, time per primitive, conformance with the reference rasterizer, the\n"
       "view-equivalence tests, every table of DIR/analysis/ and every figure of DIR/figures/.\n"
       "Runs `renderaudit analyze DIR` and `renderaudit plot DIR` first when their output is\n"
-      "missing or older than the records (--no-run: stop and name them instead). Needs no display.\n"
+      "missing or older than the records (--no-run: stop and name them instead). Needs no "
+      "display.\n"
       "A run with missing or damaged shards is refused (exit 3) unless --allow-incomplete.\n"
       "For a study folder (study.json: timing, LOD, regulation): its text, tables and figures.\n"
       "--markdown FILE.md instead: that file as FILE.pdf and FILE.html beside it, its pictures\n"
       "(![caption](path)) in the text (the driver upgrade's report).");
-  static report::ReportOptions options;
-  static bool no_run = false;
-  static std::string markdown;
-  cmd->add_option("dir", options.run_dir, "run directory");
-  cmd->add_option("--markdown", markdown, "a Markdown file to set as PDF and HTML, instead of a run")
+  struct Options {
+    report::ReportOptions options;
+    bool no_run = false;
+    std::string markdown;
+  };
+  const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
+  cmd->add_option("dir", opts->options.run_dir, "run directory");
+  cmd->add_option("--markdown", opts->markdown,
+                  "a Markdown file to set as PDF and HTML, instead of a run")
       ->check(CLI::ExistingFile);
-  cmd->add_flag("--no-run", no_run, "do not run missing stages; say which command to run");
-  cmd->add_flag("--allow-incomplete", options.allow_incomplete,
+  cmd->add_flag("--no-run", opts->no_run, "do not run missing stages; say which command to run");
+  cmd->add_flag("--allow-incomplete", opts->options.allow_incomplete,
                 "report a run with missing or damaged shards, saying so on its first page");
-  cmd->callback([&exit_code] {
-    if (!markdown.empty()) {
-      if (!options.run_dir.empty())
+  cmd->callback([opts, &exit_code] {
+    if (!opts->markdown.empty()) {
+      if (!opts->options.run_dir.empty())
         throw util::UserError("report: give a run directory or --markdown FILE.md, not both");
-      const report::MarkdownDocumentResult r = report::write_markdown_document(markdown);
+      const report::MarkdownDocumentResult r = report::write_markdown_document(opts->markdown);
       std::printf("report: %d pages, %d pictures", r.pages, r.pictures);
-      if (r.missing_pictures) std::printf(" (%d not found: said in their place)", r.missing_pictures);
+      if (r.missing_pictures)
+        std::printf(" (%d not found: said in their place)", r.missing_pictures);
       std::printf("\n%s\n%s\n", r.pdf.c_str(), r.html.c_str());
       exit_code = kExitOk;
       return;
     }
-    if (options.run_dir.empty())
+    if (opts->options.run_dir.empty())
       throw util::UserError("report needs a run directory (or --markdown FILE.md)");
     try {
-      if (rundir::read_study_info(options.run_dir))
-        prepare_study_report(options.run_dir, !no_run);
-      else if (!no_run)
-        prepare_run_report(options.run_dir, options.allow_incomplete);
-      const report::ReportResult r = report::write_report(options);
+      if (rundir::read_study_info(opts->options.run_dir))
+        prepare_study_report(opts->options.run_dir, !opts->no_run);
+      else if (!opts->no_run)
+        prepare_run_report(opts->options.run_dir, opts->options.allow_incomplete);
+      const report::ReportResult r = report::write_report(opts->options);
       std::printf("report: %d pages (%d text, %d figures), %zu tables, %.1f s\n", r.pages,
                   r.text_pages, r.figure_pages, r.table_titles.size(), r.seconds);
       if (!r.completeness.empty()) std::printf("run %s\n", r.completeness.c_str());

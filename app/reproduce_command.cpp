@@ -17,42 +17,51 @@ void register_reproduce_command(CLI::App& app, int& exit_code) {
       "the primitive's coordinates as hex floats, the worker's matrices, viewport and state)\n"
       "that draws it and prints the pixels lit beside the worker's and the reference's; it\n"
       "exits 1 when its pixels differ from the reference's. Prints how to build and run it.");
-  static audit::ReproduceRequest q;
-  static std::string out;
-  cmd->add_option("run", q.run_dir, "run directory (holds experiment.toml)")->required();
-  cmd->add_option("--platform,-p", q.platform, "the record's platform (PLATFORM or PLATFORM@BUILD)")
+  struct Options {
+    audit::ReproduceRequest q;
+    std::string out;
+  };
+  const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
+  cmd->add_option("run", opts->q.run_dir, "run directory (holds experiment.toml)")->required();
+  cmd->add_option("--platform,-p", opts->q.platform,
+                  "the record's platform (PLATFORM or PLATFORM@BUILD)")
       ->required();
-  cmd->add_option("--kind,-k", q.kind, "point, line or triangle")->required();
-  cmd->add_option("--view,-v", q.view, "view number, 1-based (Table 1 order)")->required();
-  cmd->add_option("--index,-i", q.index, "primitive index under the run's seed")
+  cmd->add_option("--kind,-k", opts->q.kind, "point, line or triangle")->required();
+  cmd->add_option("--view,-v", opts->q.view, "view number, 1-based (Table 1 order)")->required();
+  cmd->add_option("--index,-i", opts->q.index, "primitive index under the run's seed")
       ->required()
       ->check(primitive_index_check());
-  cmd->add_option("--out,-o", out, "C file to write (default: RUN/reproduce/PLATFORM.KIND.vV.I.c)");
-  cmd->callback([&exit_code] {
-    const std::string path = !out.empty() ? out
-                                          : q.run_dir + "/reproduce/" + q.platform + "." + q.kind +
-                                                ".v" + std::to_string(q.view) + "." +
-                                                std::to_string(q.index) + ".c";
+  cmd->add_option("--out,-o", opts->out,
+                  "C file to write (default: RUN/reproduce/PLATFORM.KIND.vV.I.c)");
+  cmd->callback([opts, &exit_code] {
+    const std::string path = !opts->out.empty()
+                                 ? opts->out
+                                 : opts->q.run_dir + "/reproduce/" + opts->q.platform + "." +
+                                       opts->q.kind + ".v" + std::to_string(opts->q.view) + "." +
+                                       std::to_string(opts->q.index) + ".c";
     namespace fs = std::filesystem;
     std::error_code ec;
     if (fs::is_directory(path, ec))
-      throw util::UserError("reproduce: --out " + path + " is a folder; name the C file to write "
-                            "(e.g. " + path + "/repro.c)");
+      throw util::UserError("reproduce: --out " + path +
+                            " is a folder; name the C file to write "
+                            "(e.g. " +
+                            path + "/repro.c)");
     const fs::path parent = fs::path(path).parent_path();
     // The default folder RUN/reproduce is made; a folder the user named must exist.
-    if (!out.empty() && !parent.empty() && !fs::is_directory(parent, ec))
+    if (!opts->out.empty() && !parent.empty() && !fs::is_directory(parent, ec))
       throw util::UserError("reproduce: --out " + path + ": the folder " + parent.string() +
                             " does not exist");
-    const audit::Reproducer r = audit::make_reproducer(q, path);
-    if (out.empty()) fs::create_directories(parent);
+    const audit::Reproducer r = audit::make_reproducer(opts->q, path);
+    if (opts->out.empty()) fs::create_directories(parent);
     util::write_file_atomic(path, r.source);
-    std::printf("wrote %s\nbuild: %s\nrun:   %s\nworker: %llu pixels (hash %llu); reference: %llu "
-                "pixels (hash %llu)\n",
-                path.c_str(), r.build_line.c_str(), r.run_line.c_str(),
-                static_cast<unsigned long long>(r.record_pixels),
-                static_cast<unsigned long long>(r.record_hash),
-                static_cast<unsigned long long>(r.reference_pixels),
-                static_cast<unsigned long long>(r.reference_hash));
+    std::printf(
+        "wrote %s\nbuild: %s\nrun:   %s\nworker: %llu pixels (hash %llu); reference: %llu "
+        "pixels (hash %llu)\n",
+        path.c_str(), r.build_line.c_str(), r.run_line.c_str(),
+        static_cast<unsigned long long>(r.record_pixels),
+        static_cast<unsigned long long>(r.record_hash),
+        static_cast<unsigned long long>(r.reference_pixels),
+        static_cast<unsigned long long>(r.reference_hash));
     exit_code = kExitOk;
   });
 }

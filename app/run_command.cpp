@@ -12,6 +12,36 @@
 
 namespace ra::app {
 
+namespace {
+
+// `run --slurm`: the job array and the gather job submitted (or, with --dry-run, printed).
+void submit_to_slurm(const runner::RunOptions& opt, runner::SlurmOptions slurm_opt) {
+  if (rundir::experiment_study_kind(opt.experiment_path) != rundir::StudyKind::kAudit)
+    throw util::UserError(opt.experiment_path +
+                          ": --slurm runs sharded experiments; a study "
+                          "([timing], [lod], [regulation]) runs on one machine");
+  if (opt.slice) throw util::UserError("--slurm cuts the run into slices itself; drop --slice");
+  const char* sbatch = std::getenv("RENDERAUDIT_SBATCH");  // tests substitute a fake
+  if (sbatch && *sbatch) slurm_opt.sbatch = sbatch;
+  const runner::SlurmSubmission sub = runner::submit_slurm_run(opt, slurm_opt);
+  if (slurm_opt.dry_run) {
+    std::printf("# %s/slurm/array.sbatch, submitted with: sbatch --parsable array.sbatch\n%s\n",
+                sub.run_dir.c_str(), sub.array_script.c_str());
+    std::printf(
+        "# %s/slurm/gather.sbatch, submitted with: sbatch --parsable "
+        "--dependency=afterany:ARRAY_JOB gather.sbatch\n%s",
+        sub.run_dir.c_str(), sub.gather_script.c_str());
+    return;
+  }
+  std::printf(
+      "%s: submitted %d slices as Slurm array job %s, gather job %s (afterany)\n"
+      "follow it with: %s status %s [--wait]\n",
+      sub.run_dir.c_str(), sub.slices, sub.array_job.c_str(), sub.gather_job.c_str(),
+      util::program_for_commands().c_str(), sub.run_dir.c_str());
+}
+
+}  // namespace
+
 void register_run_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "run",
@@ -21,112 +51,99 @@ void register_run_command(CLI::App& app, int& exit_code) {
       "A file with a [timing], [lod] or [regulation] table runs that study instead (into DIR,\n"
       "with its study.json; --jobs, --timeout, --expect-renderer and --slice do not apply to\n"
       "studies).");
-  static runner::RunOptions opt;
-  static bool quiet = false;
-  cmd->add_option("experiment", opt.experiment_path, "experiment file (TOML)")
+  struct Options {
+    runner::RunOptions opt;
+    bool quiet = false;
+    std::string shard_order = "cost";
+    std::string slice;
+    bool worker_per_shard = false;
+    bool brief = false;
+    bool slurm = false;
+    runner::SlurmOptions slurm_opt;
+  };
+  const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
+  cmd->add_option("experiment", opts->opt.experiment_path, "experiment file (TOML)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--out,-o", opt.out_dir, "run directory (default: outputs/<name>)");
-  cmd->add_option("--jobs,-j", opt.jobs, "worker processes at once (default: number of cores)")
+  cmd->add_option("--out,-o", opts->opt.out_dir, "run directory (default: outputs/<name>)");
+  cmd->add_option("--jobs,-j", opts->opt.jobs,
+                  "worker processes at once (default: number of cores)")
       ->check(CLI::Range(1, 1024));
-  cmd->add_option("--timeout", opt.timeout_s,
+  cmd->add_option("--timeout", opts->opt.timeout_s,
                   "seconds before a shard is killed (default: run.shard_timeout_s, 600)")
       ->check(CLI::Range(1.0, 86400.0));
-  cmd->add_option("--platform,-p", opt.only_platforms,
+  cmd->add_option("--platform,-p", opts->opt.only_platforms,
                   "run only this platform's shards (repeatable; default: all of the experiment's)");
-  cmd->add_option("--expect-renderer", opt.expect_renderer,
+  cmd->add_option("--expect-renderer", opts->opt.expect_renderer,
                   "stop (exit 2) as soon as a Mesa platform's GL_RENDERER does not match this "
                   "regular expression, e.g. 'llvmpipe'");
-  static std::string shard_order = "cost";
-  cmd->add_option("--shard-order", shard_order,
+  cmd->add_option("--shard-order", opts->shard_order,
                   "which shards start first: cost (the largest expected cost, so that no core "
                   "idles at the end; default) or plan (platform, view, kind)")
       ->check(CLI::IsMember({"cost", "plan"}));
-  static std::string slice;
-  cmd->add_option("--slice", slice,
+  cmd->add_option("--slice", opts->slice,
                   "run only slice K/N of the shards (disjoint, deterministic, balanced by "
                   "expected cost), for N machines; gather them with `renderaudit merge`");
-  static bool worker_per_shard = false;
-  cmd->add_flag("--worker-per-shard", worker_per_shard,
+  cmd->add_flag("--worker-per-shard", opts->worker_per_shard,
                 "start a worker process for every shard (default: a worker serves one platform's "
                 "shards one after another, paying for its start and GL context once)");
-  cmd->add_flag("--quiet,-q", quiet, "no progress line");
-  static bool brief = false;
-  cmd->add_flag("--brief", brief,
+  cmd->add_flag("--quiet,-q", opts->quiet, "no progress line");
+  cmd->add_flag("--brief", opts->brief,
                 "print where the run summary went, not its table (`make` runs with it)");
-  static bool slurm = false;
-  static runner::SlurmOptions slurm_opt;
   auto* on_slurm = cmd->add_flag(
-      "--slurm", slurm,
+      "--slurm", opts->slurm,
       "submit the run to Slurm instead: a job array of --slices tasks (each `run --slice K/N` "
       "into DIR/slices/K, --jobs cores each, default 2) and a gather job that merges them and "
       "finishes the run. DIR must be on a file system every node sees. Watch it with "
       "`renderaudit status DIR`");
-  cmd->add_option("--slices", slurm_opt.slices, "--slurm: array tasks (default: min(shards, 16))")
+  cmd->add_option("--slices", opts->slurm_opt.slices,
+                  "--slurm: array tasks (default: min(shards, 16))")
       ->check(CLI::Range(1, 100000))
       ->needs(on_slurm);
-  cmd->add_option("--partition", slurm_opt.partition, "--slurm: the partition")->needs(on_slurm);
-  cmd->add_option("--max-parallel", slurm_opt.max_parallel,
+  cmd->add_option("--partition", opts->slurm_opt.partition, "--slurm: the partition")
+      ->needs(on_slurm);
+  cmd->add_option("--max-parallel", opts->slurm_opt.max_parallel,
                   "--slurm: at most this many tasks at once (sbatch --array=...%M)")
       ->check(CLI::Range(1, 100000))
       ->needs(on_slurm);
-  cmd->add_option("--time-limit", slurm_opt.time_limit,
+  cmd->add_option("--time-limit", opts->slurm_opt.time_limit,
                   "--slurm: each task's time limit, in sbatch --time syntax (e.g. 2:00:00)")
       ->needs(on_slurm);
-  cmd->add_flag("--dry-run", slurm_opt.dry_run, "--slurm: print the sbatch scripts, submit nothing")
+  cmd->add_flag("--dry-run", opts->slurm_opt.dry_run,
+                "--slurm: print the sbatch scripts, submit nothing")
       ->needs(on_slurm);
-  cmd->add_flag("--allow-node-local", slurm_opt.allow_node_local,
+  cmd->add_flag("--allow-node-local", opts->slurm_opt.allow_node_local,
                 "--slurm: accept a DIR under /tmp or on a tmpfs (a one-node cluster)")
       ->needs(on_slurm);
-  cmd->callback([&exit_code] {
-    opt.progress = !quiet;
-    opt.serve_shards = !worker_per_shard;
-    opt.shard_order = shard_order == "plan" ? runner::RunOptions::ShardOrder::kPlan
-                                            : runner::RunOptions::ShardOrder::kLargestCostFirst;
-    if (!slice.empty()) opt.slice = rundir::parse_slice(slice);
+  cmd->callback([opts, &exit_code] {
+    opts->opt.progress = !opts->quiet;
+    opts->opt.serve_shards = !opts->worker_per_shard;
+    opts->opt.shard_order = opts->shard_order == "plan"
+                                ? runner::RunOptions::ShardOrder::kPlan
+                                : runner::RunOptions::ShardOrder::kLargestCostFirst;
+    if (!opts->slice.empty()) opts->opt.slice = rundir::parse_slice(opts->slice);
     rundir::StudyRunOptions study;
-    study.experiment = opt.experiment_path;
-    study.out_dir = opt.out_dir;
-    study.platforms = opt.only_platforms;
-    study.progress = !quiet;
-    if (slurm) {
-      if (rundir::experiment_study_kind(opt.experiment_path) != rundir::StudyKind::kAudit)
-        throw util::UserError(opt.experiment_path +
-                              ": --slurm runs sharded experiments; a study "
-                              "([timing], [lod], [regulation]) runs on one machine");
-      if (opt.slice) throw util::UserError("--slurm cuts the run into slices itself; drop --slice");
-      const char* sbatch = std::getenv("RENDERAUDIT_SBATCH");  // tests substitute a fake
-      if (sbatch && *sbatch) slurm_opt.sbatch = sbatch;
-      const runner::SlurmSubmission sub = runner::submit_slurm_run(opt, slurm_opt);
-      if (slurm_opt.dry_run) {
-        std::printf("# %s/slurm/array.sbatch, submitted with: sbatch --parsable array.sbatch\n%s\n",
-                    sub.run_dir.c_str(), sub.array_script.c_str());
-        std::printf("# %s/slurm/gather.sbatch, submitted with: sbatch --parsable "
-                    "--dependency=afterany:ARRAY_JOB gather.sbatch\n%s",
-                    sub.run_dir.c_str(), sub.gather_script.c_str());
-        return;
-      }
-      std::printf("%s: submitted %d slices as Slurm array job %s, gather job %s (afterany)\n"
-                  "follow it with: %s status %s [--wait]\n",
-                  sub.run_dir.c_str(), sub.slices, sub.array_job.c_str(), sub.gather_job.c_str(),
-                  util::program_for_commands().c_str(), sub.run_dir.c_str());
-      return;
-    }
+    study.experiment = opts->opt.experiment_path;
+    study.out_dir = opts->opt.out_dir;
+    study.platforms = opts->opt.only_platforms;
+    study.progress = !opts->quiet;
+    if (opts->slurm) return submit_to_slurm(opts->opt, opts->slurm_opt);
     if (run_study_if_declared(study, exit_code)) return;
-    if (!quiet) {  // what is drawn with, before the progress line
-      const rundir::Experiment exp = rundir::load_experiment(opt.experiment_path);
+    if (!opts->quiet) {  // what is drawn with, before the progress line
+      const rundir::Experiment exp = rundir::load_experiment(opts->opt.experiment_path);
       const std::vector<std::string> platforms =
-          opt.only_platforms.empty() ? exp.platforms : opt.only_platforms;
+          opts->opt.only_platforms.empty() ? exp.platforms : opts->opt.only_platforms;
       std::string list;
       for (const std::string& p : platforms) list += (list.empty() ? "" : ", ") + p;
-      std::fprintf(stderr, "renderaudit: %s draws with %s\n", opt.experiment_path.c_str(),
+      std::fprintf(stderr, "renderaudit: %s draws with %s\n", opts->opt.experiment_path.c_str(),
                    list.c_str());
     }
-    const runner::RunResult r = runner::run_experiment(opt);
+    const runner::RunResult r = runner::run_experiment(opts->opt);
     std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
                 r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
                 r.shards_total - r.shards_complete);
-    for (const auto& f : r.failures) std::printf("  worker failed: %s: %s\n", f.shard.c_str(), f.reason.c_str());
+    for (const auto& f : r.failures)
+      std::printf("  worker failed: %s: %s\n", f.shard.c_str(), f.reason.c_str());
     for (const auto& f : r.failed_primitives)
       std::printf("  primitive %llu of %s recorded as %s: %s\n",
                   static_cast<unsigned long long>(f.index), f.shard.c_str(),
@@ -142,12 +159,13 @@ void register_run_command(CLI::App& app, int& exit_code) {
       return;
     }
     const std::string summary = analysis::write_run_summary(r.run_dir);
-    if (!brief) std::printf("%s", summary.c_str());
+    if (!opts->brief) std::printf("%s", summary.c_str());
     std::printf("summary: %s/summary.md\n", r.run_dir.c_str());
     if (r.failed_primitives_held.size() > r.failed_primitives.size())
-      std::printf("  %zu primitives recorded as crash or timeout by earlier invocations or "
-                  "merges (manifest.json lists them)\n",
-                  r.failed_primitives_held.size() - r.failed_primitives.size());
+      std::printf(
+          "  %zu primitives recorded as crash or timeout by earlier invocations or "
+          "merges (manifest.json lists them)\n",
+          r.failed_primitives_held.size() - r.failed_primitives.size());
     // the exit code says what the directory holds, not what this invocation did
     const bool clean = r.shards_complete == r.shards_total && r.failed_primitives_held.empty();
     exit_code = clean ? kExitOk : kExitFindings;

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "app/commands.h"
-#include "triage/primitive_image.h"
 #include "metrics/records.h"
+#include "triage/primitive_image.h"
 #include "util/cell_text.h"
 
 namespace ra::app {
@@ -49,37 +49,41 @@ void register_show_command(CLI::App& app, int& exit_code) {
       "legend of the colours and their counts under the picture.\n"
       "Prints the image's path and the primitive's record (visibility, pixels, metrics, "
       "ref_diff).");
-  static triage::ShowRequest q;
-  cmd->add_option("run", q.run_dir, "run directory (holds experiment.toml)")->required();
-  cmd->add_option("--platform,-p", q.platform, "platform to render on (any known platform)")
+  struct Options {
+    triage::ShowRequest q;
+  };
+  const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
+  cmd->add_option("run", opts->q.run_dir, "run directory (holds experiment.toml)")->required();
+  cmd->add_option("--platform,-p", opts->q.platform, "platform to render on (any known platform)")
       ->required();
-  cmd->add_option("--kind,-k", q.kind, "point, line or triangle")->required();
-  cmd->add_option("--view,-v", q.view, "view number, 1-based (Table 1 order)")->required();
-  cmd->add_option("--index,-i", q.index, "primitive index under the run's seed")
+  cmd->add_option("--kind,-k", opts->q.kind, "point, line or triangle")->required();
+  cmd->add_option("--view,-v", opts->q.view, "view number, 1-based (Table 1 order)")->required();
+  cmd->add_option("--index,-i", opts->q.index, "primitive index under the run's seed")
       ->required()
       ->check(primitive_index_check());
-  cmd->add_option("--out,-o", q.out_path,
+  cmd->add_option("--out,-o", opts->q.out_path,
                   "PNG to write (default: RUN/show/PLATFORM.KIND.vVIEW.INDEX.png)");
-  cmd->add_option("--scale", q.scale,
+  cmd->add_option("--scale", opts->q.scale,
                   "image pixels per window pixel (default: the image is about 512 px)")
       ->check(CLI::Range(1, triage::kMaxImageScale));
-  cmd->callback([&exit_code] {
-    const triage::PrimitiveImage im = triage::show_primitive(q);
+  cmd->callback([opts, &exit_code] {
+    const triage::PrimitiveImage im = triage::show_primitive(opts->q);
     const geometry::View& v = im.view;
-    std::printf("wrote %s (%d x %d px: window pixels x %d-%d, y %d-%d of %d x %d, %d px each, in "
-                "the top %d x %d; the legend under them)\n",
-                im.path.c_str(), im.image_width, im.image_height, im.shown.x0, im.shown.x1 - 1,
-                im.shown.y0, im.shown.y1 - 1, v.width, v.height, im.scale, im.width, im.height);
+    std::printf(
+        "wrote %s (%d x %d px: window pixels x %d-%d, y %d-%d of %d x %d, %d px each, in "
+        "the top %d x %d; the legend under them)\n",
+        im.path.c_str(), im.image_width, im.image_height, im.shown.x0, im.shown.x1 - 1, im.shown.y0,
+        im.shown.y1 - 1, v.width, v.height, im.scale, im.width, im.height);
     if (!im.legend_note.empty()) std::fprintf(stderr, "renderaudit: %s\n", im.legend_note.c_str());
     std::printf(
         "colours: grey = lit by both (%lld), orange = platform (%s) only (%lld), blue = "
         "reference only (%lld), black = pixels GL forbids (%s), red line = ideal projection\n",
-        static_cast<long long>(im.both), q.platform.c_str(),
+        static_cast<long long>(im.both), opts->q.platform.c_str(),
         static_cast<long long>(im.platform_only), static_cast<long long>(im.reference_only),
         triage::forbidden_pixels_text(im.record.violating_pixels, im.violating).c_str());
     std::printf("%s %llu, view %d (group %s, fov %g deg, %d x %d px), platform %s:\n",
-                im.record.kind.c_str(), static_cast<unsigned long long>(q.index), v.id,
-                v.group_name().c_str(), v.fov_deg, v.width, v.height, q.platform.c_str());
+                im.record.kind.c_str(), static_cast<unsigned long long>(opts->q.index), v.id,
+                v.group_name().c_str(), v.fov_deg, v.width, v.height, opts->q.platform.c_str());
     std::printf("%s", measured_fields(im.record).c_str());
     exit_code = kExitOk;
   });

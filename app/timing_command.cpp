@@ -20,19 +20,23 @@ void register_timing_command(CLI::App& app, int& exit_code) {
       "object measurements, per-object sampling, and Table 6 (average squared error of frame\n"
       "time predictions along each camera path). Each platform is measured in its own process;\n"
       "run it on an otherwise idle machine.");
-  static rundir::StudyRunOptions q;
-  static bool quiet = false;
-  static bool no_figures = false;
-  cmd->add_option("experiment", q.experiment, "experiment file ([timing] and [[scene]] tables)")
+  struct Options {
+    rundir::StudyRunOptions q;
+    bool quiet = false;
+    bool no_figures = false;
+  };
+  const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
+  cmd->add_option("experiment", opts->q.experiment,
+                  "experiment file ([timing] and [[scene]] tables)")
       ->required();
-  cmd->add_option("--out,-o", q.out_dir, "output directory (default: outputs/<name>)");
-  cmd->add_option("--platform,-p", q.platforms,
+  cmd->add_option("--out,-o", opts->q.out_dir, "output directory (default: outputs/<name>)");
+  cmd->add_option("--platform,-p", opts->q.platforms,
                   "measure only these platforms of the experiment (repeatable)");
-  cmd->add_flag("--quiet,-q", quiet, "no progress lines on stderr");
-  cmd->add_flag("--no-figures", no_figures, "write the JSON and CSV files only");
-  cmd->callback([&exit_code] {
-    q.progress = !quiet;
-    const rundir::StudyRunResult r = timing::run_timing_study(q, !no_figures);
+  cmd->add_flag("--quiet,-q", opts->quiet, "no progress lines on stderr");
+  cmd->add_flag("--no-figures", opts->no_figures, "write the JSON and CSV files only");
+  cmd->callback([opts, &exit_code] {
+    opts->q.progress = !opts->quiet;
+    const rundir::StudyRunResult r = timing::run_timing_study(opts->q, !opts->no_figures);
     std::printf("%s", r.summary.c_str());
     exit_code = r.findings ? kExitFindings : kExitOk;
   });
