@@ -1,31 +1,47 @@
 // `renderaudit bisect RUN --between GOOD_PLATFORM BAD_PLATFORM --source MESA --good REF --bad REF
-// [-- PATHS]`: the commit that made a finding (triage/bisect.h), and the report for the driver's
+// [-- PATHS]`: the commit that made each change (triage/bisect.h), and the report for the driver's
 // developers (triage/bisect_report.h).
 #include <cstdio>
 
 #include "app/commands.h"
 #include "triage/bisect.h"
 #include "util/errors.h"
+#include "util/interrupt.h"
 
 namespace ra::app {
+
+namespace {
+
+// A word as a POSIX shell reads it back: bare when it is safe, else in single quotes.
+std::string shell_word(const std::string& word) {
+  if (!word.empty() && word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                                              "0123456789@%+=:,./_-") == std::string::npos)
+    return word;
+  std::string q = "'";
+  for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+}  // namespace
 
 void register_bisect_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "bisect",
-      "Find the driver commit that changed a run's pixels: the primitives that differ most "
-      "between\n"
-      "two platforms of RUN (or those named) are drawn by a build of every commit git bisect\n"
-      "chooses between --good and --bad of a Mesa git tree (built with meson, reused from the "
-      "build\n"
-      "cache when built before); a commit is good when every selected primitive has the good "
-      "ref's\n"
-      "pixels, bad when every one has the bad ref's, else skipped (said why). Resumable: the same\n"
-      "command goes on where it stopped. Writes OUT/bisect.json and OUT/bisect.md, the report for\n"
-      "the driver's developers (reproducer, pictures, versions). Exit 0: first bad commit found;\n"
-      "1: only skipped commits are left (the candidates are listed); 2: bad input.");
+      "Name the driver commit that made each change of a run: every primitive whose pixels\n"
+      "differ between two platforms of RUN (a sample covering every kind, view group and GL\n"
+      "verdict change past --max-primitives; or those named) is drawn by builds of the commits\n"
+      "between --good and --bad of a Mesa git tree (one incremental meson build folder, each\n"
+      "build kept in the build cache), the next commit always the one that splits the most\n"
+      "unresolved ranges, until each change sits between two neighbouring commits. A commit that\n"
+      "fails to build is skipped for all. Resumable: the same command goes on where it stopped.\n"
+      "Writes OUT/bisect.json and OUT/bisect.md (a section per culprit: reproducer, pictures, GL\n"
+      "verdict). Prints one line per culprit: `first bad commit: HASH SUBJECT (N primitives)`.\n"
+      "Exit 0: every change named; 1: some are left between failed builds (candidates listed);\n"
+      "2: bad input; 130: interrupted (the tree restored).");
   struct Options {
     triage::BisectOptions o;
     std::vector<std::string> between;
+    bool fresh_builds = false;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
   cmd->add_option("run", opts->o.run_dir, "run directory whose records choose the primitives")
@@ -34,6 +50,8 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
                   "GOOD_PLATFORM BAD_PLATFORM: two platforms of the run (e.g. egl-llvmpipe "
                   "egl-llvmpipe@backports)")
       ->expected(2);
+  cmd->add_option("--baseline", opts->o.baseline_run,
+                  "a second run whose GOOD_PLATFORM is compared with RUN's BAD_PLATFORM");
   cmd->add_option("--source", opts->o.source,
                   "Mesa git checkout (each step checks out a commit in it)")
       ->required();
@@ -47,13 +65,14 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--view", opts->o.views, "select only these views (1-based)")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--primitive", opts->o.primitives,
-                  "KIND:VIEW:INDEX to select (repeatable) instead of the run's largest changes");
+                  "KIND:VIEW:INDEX to select (repeatable) instead of the run's changes");
   cmd->add_option("--max-primitives", opts->o.max_primitives,
-                  "the run's changed primitives with the largest pixel change, at most this many")
+                  "at most this many of the run's changed primitives (past it: a sample covering "
+                  "every kind, view group and verdict change)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
+      ->check(CLI::Range(1, 1000000));
   cmd->add_option("--out,-o", opts->o.out_dir,
-                  "where bisect.json and bisect.md go (default RUN/bisect)");
+                  "the folder for bisect.json and bisect.md (default RUN/bisect)");
   cmd->add_option("--cache", opts->o.build.cache, "build cache folder");
   cmd->add_option("--llvm-config", opts->o.build.llvm_config, "the LLVM every build uses")
       ->capture_default_str();
@@ -61,51 +80,64 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--build-command", opts->o.build.build_command,
                   "a shell command that installs the checked-out commit's driver into "
                   "$RENDERAUDIT_BUILD_PREFIX instead of meson");
+  cmd->add_flag("--fresh-builds", opts->fresh_builds,
+                "a new meson build folder for every commit (default: one incremental folder)");
   cmd->add_option("--jobs,-j", opts->o.jobs, "drawing children at once, and ninja jobs");
   cmd->add_flag(
       "--no-pictures", [opts](int64_t) { opts->o.pictures = false; },
       "no `show` pictures in the report");
-  cmd->add_option("paths", opts->o.paths,
-                  "-- PATHS: only commits touching these (git bisect -- PATHS)");
+  cmd->add_option("paths", opts->o.paths, "-- PATHS: only commits touching these");
   cmd->positionals_at_end(false);
   cmd->callback([opts, &exit_code] {
-    if (!opts->between.empty())
-      opts->o.good_platform = opts->between[0], opts->o.bad_platform = opts->between[1];
-    opts->o.build.jobs = opts->o.jobs;
-    for (std::string& v : opts->o.build.meson_options)
+    triage::BisectOptions& o = opts->o;
+    if (!opts->between.empty()) o.good_platform = opts->between[0], o.bad_platform = opts->between[1];
+    o.build.jobs = o.jobs;
+    o.build.incremental = !opts->fresh_builds;
+    for (std::string& v : o.build.meson_options)
       if (v.rfind("-D", 0) != 0) v = "-D" + v;
-    // The command as a person would type it again (the report repeats it).
-    opts->o.command_line = "renderaudit bisect " + opts->o.run_dir;
+    // The command as a person would paste it again (the report repeats it), every value quoted.
+    std::string& line = o.command_line;
+    line = "renderaudit bisect " + shell_word(o.run_dir);
     if (!opts->between.empty())
-      opts->o.command_line += " --between " + opts->between[0] + " " + opts->between[1];
-    opts->o.command_line +=
-        " --source " + opts->o.source + " --good " + opts->o.good_ref + " --bad " + opts->o.bad_ref;
-    if (!opts->o.platform.empty()) opts->o.command_line += " --platform " + opts->o.platform;
-    for (const std::string& k : opts->o.kinds) opts->o.command_line += " --kind " + k;
-    for (int v : opts->o.views) opts->o.command_line += " --view " + std::to_string(v);
-    for (const std::string& p : opts->o.primitives) opts->o.command_line += " --primitive " + p;
-    if (opts->o.max_primitives != triage::BisectOptions{}.max_primitives)
-      opts->o.command_line += " --max-primitives " + std::to_string(opts->o.max_primitives);
-    if (!opts->o.out_dir.empty()) opts->o.command_line += " --out " + opts->o.out_dir;
-    for (const std::string& m : opts->o.build.meson_options) opts->o.command_line += " " + m;
-    if (!opts->o.build.build_command.empty())
-      opts->o.command_line += " --build-command '" + opts->o.build.build_command + "'";
-    if (!opts->o.paths.empty()) {
-      opts->o.command_line += " --";
-      for (const std::string& p : opts->o.paths) opts->o.command_line += " " + p;
+      line += " --between " + shell_word(opts->between[0]) + " " + shell_word(opts->between[1]);
+    if (!o.baseline_run.empty()) line += " --baseline " + shell_word(o.baseline_run);
+    line += " --source " + shell_word(o.source) + " --good " + shell_word(o.good_ref) + " --bad " +
+            shell_word(o.bad_ref);
+    if (!o.platform.empty()) line += " --platform " + shell_word(o.platform);
+    for (const std::string& k : o.kinds) line += " --kind " + shell_word(k);
+    for (int v : o.views) line += " --view " + std::to_string(v);
+    for (const std::string& p : o.primitives) line += " --primitive " + shell_word(p);
+    if (o.max_primitives != triage::BisectOptions{}.max_primitives)
+      line += " --max-primitives " + std::to_string(o.max_primitives);
+    if (!o.out_dir.empty()) line += " --out " + shell_word(o.out_dir);
+    if (!o.build.cache.empty()) line += " --cache " + shell_word(o.build.cache);
+    if (o.build.llvm_config != runner::SourceBuildOptions{}.llvm_config)
+      line += " --llvm-config " + shell_word(o.build.llvm_config);
+    for (const std::string& m : o.build.meson_options) line += " " + shell_word(m);
+    if (!o.build.build_command.empty()) line += " --build-command " + shell_word(o.build.build_command);
+    if (opts->fresh_builds) line += " --fresh-builds";
+    if (!o.paths.empty()) {
+      line += " --";
+      for (const std::string& p : o.paths) line += " " + shell_word(p);
     }
-    const triage::BisectResult r = triage::run_bisect(opts->o, [](const std::string& line) {
-      std::fprintf(stderr, "bisect: %s\n", line.c_str());
-    });
-    if (r.found) {
-      std::printf("first bad commit: %s %s (%s)\nparent: %s\nreport: %s\n", r.first_bad.c_str(),
-                  r.first_bad_subject.c_str(), r.first_bad_date.c_str(), r.parent.c_str(),
-                  r.report_path.c_str());
-      exit_code = kExitOk;
-    } else {
-      std::printf("no single first bad commit: skipped commits leave %zu candidates\nreport: %s\n",
-                  r.candidates.size(), r.report_path.c_str());
-      exit_code = kExitFindings;
+    try {
+      const triage::BisectResult r = triage::run_bisect(o, [](const std::string& text) {
+        std::fprintf(stderr, "bisect: %s\n", text.c_str());
+      });
+      std::printf("report: %s\n", r.report_path.c_str());
+      for (const triage::Unattributed& u : r.unattributed) {
+        std::string cands;
+        for (const std::string& c : u.candidates) cands += " " + c.substr(0, 12);
+        std::printf("unattributed: %s (one of:%s)\n", u.label.c_str(), cands.c_str());
+      }
+      for (const triage::Culprit& c : r.culprits)
+        std::printf("first bad commit: %s %s (%zu primitive%s)\n", c.commit.c_str(),
+                    c.subject.c_str(), c.primitives.size(), c.primitives.size() == 1 ? "" : "s");
+      exit_code = r.complete() ? kExitOk : kExitFindings;
+    } catch (const util::Interrupted& e) {
+      std::fprintf(stderr, "bisect: %s: the tree is back where it was; the same command resumes\n",
+                   e.what());
+      exit_code = 128 + e.signal;
     }
   });
 }

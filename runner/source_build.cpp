@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <fstream>
 #include <sstream>
 #include <thread>
 
@@ -130,10 +131,27 @@ void run_step(const std::string& step, const std::vector<std::string>& argv, con
   throw util::UserError(message);
 }
 
-// meson setup, ninja, ninja install of `source` into work/install; returns the -D options used.
+// Where meson builds and installs: a fresh folder inside the work folder, or the tree's
+// incremental folder (SourceBuildOptions::incremental), whose native file must outlive the build
+// since meson reads it again when it reconfigures by itself.
+struct MesonFolders {
+  std::string build, prefix, native_file;
+  bool incremental = false;
+};
+
+bool log_says(const std::string& path, const std::string& needle) {
+  try {
+    return util::read_file(path).find(needle) != std::string::npos;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// meson setup (unless the folder is configured with the same options), ninja, ninja install of
+// `source` into folders.prefix; logs in `work`; returns the -D options used.
 std::vector<std::string> run_meson(const SourceBuildOptions& options, const std::string& source,
-                                 const std::string& work, unsigned jobs,
-                                 const std::string& kept_log,
+                                 const MesonFolders& folders, const std::string& work,
+                                 unsigned jobs, const std::string& kept_log,
                                  const std::function<void(const std::string&)>& say,
                                  std::vector<std::string>& notes) {
   std::error_code ec;
@@ -142,9 +160,9 @@ std::vector<std::string> run_meson(const SourceBuildOptions& options, const std:
   if (!fs::exists(opts_file, ec)) opts_file = source + "/meson_options.txt";
   in.options = parse_meson_options(read_trimmed(opts_file));
   in.source_dir = source;
-  in.build_dir = work + "/build";
-  in.prefix = work + "/install";
-  in.native_file = work + "/native.ini";
+  in.build_dir = folders.build;
+  in.prefix = folders.prefix;
+  in.native_file = folders.native_file;
   in.glslang_version = [] {
     const std::string v = first_line({"glslangValidator", "--version"});  // "Glslang Version: 11:12.0.0"
     const auto colon = v.rfind(':');
@@ -160,13 +178,47 @@ std::vector<std::string> run_meson(const SourceBuildOptions& options, const std:
   std::vector<std::string> chosen = plan.chosen;
   chosen.insert(chosen.end(), options.meson_options.begin(), options.meson_options.end());
   const std::vector<std::string> env = {build_path()};
-  say("configure: " + joined(plan.setup));
-  run_step("configure (meson setup)", plan.setup, source, env, work + "/configure.log", kept_log);
+  // An incremental folder configured with the same command is reused as it is (ninja runs meson
+  // again when a meson.build changed); other options (Mesa's change over its history) start it
+  // afresh.
+  const std::string setup_text = joined(plan.setup);
+  const std::string setup_record = folders.build + "/renderaudit-setup.txt";
+  const bool configured = folders.incremental && fs::exists(folders.build + "/build.ninja", ec) &&
+                          read_trimmed(setup_record) == setup_text;
+  const auto configure = [&] {
+    if (folders.incremental) fs::remove_all(folders.build, ec);
+    say("configure: " + setup_text);
+    run_step("configure (meson setup)", plan.setup, source, env, work + "/configure.log", kept_log);
+    if (folders.incremental) util::write_file_atomic(setup_record, setup_text + "\n");
+  };
+  if (configured)
+    say("configure: reusing the incremental build folder " + folders.build);
+  else
+    configure();
   say("compile: " + joined(plan.compile));
-  run_step("compile (ninja)", plan.compile, source, env, work + "/compile.log", kept_log);
+  try {
+    run_step("compile (ninja)", plan.compile, source, env, work + "/compile.log", kept_log);
+  } catch (const util::UserError&) {
+    // meson's own reconfigure failed in a folder configured at a distant commit: once afresh.
+    if (!configured || !log_says(work + "/compile.log", "rebuilding 'build.ninja'")) throw;
+    say("the incremental folder cannot reconfigure itself for this commit: configuring afresh");
+    configure();
+    run_step("compile (ninja)", plan.compile, source, env, work + "/compile.log", kept_log);
+  }
   say("install into the build folder");
+  fs::remove_all(folders.prefix, ec);
   run_step("install (ninja install)", plan.install, source, env, work + "/install.log", kept_log);
   return chosen;
+}
+
+// The incremental folder of a tree and the options that shape its configure.
+std::string incremental_folder(const std::string& cache, const std::string& source,
+                               const SourceBuildOptions& o) {
+  util::Fnv1a64 h;
+  for (const std::string& part : {source, o.llvm_config, o.meson})
+    h.add(part.data(), part.size()), h.add("\n", 1);
+  for (const std::string& m : o.meson_options) h.add(m.data(), m.size()), h.add("\n", 1);
+  return cache + "/.incremental/" + hex64(h.value);
 }
 
 // build.json of a source build: where it came from and how it was built.
@@ -257,13 +309,62 @@ SourceIdentity identify_source(const std::string& source_dir) {
   if (const auto open = changelog.find('('); open != std::string::npos)
     id.debian_version = changelog.substr(open + 1, changelog.find(')', open) - open - 1);
   id.patches = read_trimmed(source_dir + "/debian/patches/series");
+  if (!id.git) id.content_hash = tree_content_hash(source_dir);
   return id;
+}
+
+std::string tree_content_hash(const std::string& dir) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec), end;
+       !ec && it != end; it.increment(ec)) {
+    const fs::path rel = it->path().lexically_relative(dir);
+    if (rel == ".git" || rel == fs::path(util::DirLock::lock_path(dir)).filename()) {
+      if (it->is_directory(ec)) it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_symlink(ec) || it->is_regular_file(ec)) files.push_back(rel.string());
+  }
+  std::sort(files.begin(), files.end());
+  util::Fnv1a64 h;
+  std::vector<char> buf(1 << 16);
+  for (const std::string& f : files) {
+    h.add(f.data(), f.size());
+    h.add("\0", 1);
+    const fs::path path = fs::path(dir) / f;
+    if (fs::is_symlink(path, ec)) {
+      const std::string target = fs::read_symlink(path, ec).string();
+      h.add("link ", 5);
+      h.add(target.data(), target.size());
+      continue;
+    }
+    std::ifstream in(path, std::ios::binary);
+    while (in) {
+      in.read(buf.data(), std::streamsize(buf.size()));
+      if (in.gcount() > 0) h.add(buf.data(), std::size_t(in.gcount()));
+    }
+    h.add("\0", 1);
+  }
+  return hex64(h.value);
+}
+
+std::unique_ptr<util::DirLock> lock_source_tree(const std::string& source,
+                                                const std::string& what) {
+  bool ok = false;
+  const std::string git_dir = git(source, {"rev-parse", "--absolute-git-dir"}, &ok);
+  // The git folder holds the lock of a checkout (no untracked file in the tree); a tree without
+  // git holds its own.
+  return std::make_unique<util::DirLock>(
+      ok && !git_dir.empty() ? git_dir : source, what,
+      "one build or bisection at a time checks out commits in " + source +
+          "; wait for it to finish");
 }
 
 std::string source_build_key(const SourceIdentity& id, const SourceBuildOptions& o) {
   util::Fnv1a64 h;
   const auto add = [&](const std::string& s) { h.add(s.data(), s.size()), h.add("\n", 1); };
-  add(id.git ? "git " + id.commit : "tree " + id.version + " " + id.debian_version);
+  add(id.git ? "git " + id.commit
+             : "tree " + id.version + " " + id.debian_version + " " + id.content_hash);
   add(id.patches);
   std::vector<std::string> opts = o.meson_options;
   for (const std::string& x : opts) add(x);
@@ -296,6 +397,9 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
   if (options.build_command.empty() && !fs::exists(source + "/meson.build", ec))
     throw util::UserError("builds build: " + source +
                           " holds no meson.build: not a Mesa source tree");
+  // Held from the checkout to the install; the caller (a bisection) may hold it already.
+  const std::unique_ptr<util::DirLock> tree_lock =
+      options.source_locked ? nullptr : lock_source_tree(source, "builds build");
   SourceIdentity id = identify_source(source);
   std::string restore_ref;
   if (!options.ref.empty()) {
@@ -321,7 +425,7 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
     ~Restore() {
       if (!ref.empty()) git(dir, {"-c", "advice.detachedHead=false", "checkout", "-q", ref});
     }
-  } restore{source, restore_ref != id.commit ? restore_ref : ""};
+  } restore{source, options.restore_ref && restore_ref != id.commit ? restore_ref : ""};
 
   const std::string cache = options.cache.empty() ? rundir::build_cache_dir() : options.cache;
   const std::string name = source_build_name(id, options);
@@ -334,7 +438,10 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
   if (options.reuse && !id.dirty && fs::exists(target + "/build.json", ec)) {
     try {
       const nlohmann::json j = nlohmann::json::parse(util::read_file(target + "/build.json"));
-      if (j.value("source_build", nlohmann::json::object()).value("key", "") == key) {
+      const nlohmann::json sb = j.value("source_build", nlohmann::json::object());
+      // The key covers the commit; the commit is compared too, so that a build recorded under
+      // another commit (a tree moved during its build) is never taken for this one.
+      if (sb.value("key", "") == key && sb.value("commit", "") == id.commit) {
         result.reused = true;
         result.build = read_build(target);
         say("reused " + name + " (same source and options)");
@@ -365,7 +472,17 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
     const unsigned jobs = options.jobs ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
     std::vector<std::string> chosen;
     if (meson) {
-      chosen = run_meson(options, source, work, jobs, kept_log, say, result.notes);
+      MesonFolders folders{work + "/build", prefix, work + "/native.ini", false};
+      std::unique_ptr<util::DirLock> folder_lock;  // one build at a time in the folder
+      if (options.incremental) {
+        const std::string inc = incremental_folder(cache, source, options);
+        fs::create_directories(inc);
+        folder_lock = std::make_unique<util::DirLock>(inc, "builds build",
+                                                      "wait for that build to finish");
+        folders = {inc + "/build", inc + "/install", inc + "/native.ini", true};
+      }
+      chosen = run_meson(options, source, folders, work, jobs, kept_log, say, result.notes);
+      if (folders.prefix != prefix) fs::rename(folders.prefix, prefix);
     } else {
       fs::create_directories(prefix);
       say("build command: " + options.build_command);
@@ -375,6 +492,16 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
                work + "/configure.log", kept_log);
     }
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // The tree must still be the commit (or content) this build is named after.
+    const SourceIdentity after = identify_source(source);
+    if (after.commit != id.commit || after.dirty != id.dirty ||
+        after.content_hash != id.content_hash)
+      throw util::UserError(
+          "builds build: " + source + " changed while it was built (" +
+          (id.git ? "HEAD was " + id.commit.substr(0, 12) + ", is now " +
+                        (after.commit.empty() ? std::string("none") : after.commit.substr(0, 12))
+                  : std::string("its files changed")) +
+          "): another process used the tree; the build is not kept and the cache is unchanged");
     std::string log;
     for (const char* part : {"/configure.log", "/compile.log", "/install.log"})
       if (fs::exists(work + part, ec)) log += util::read_file(work + part);

@@ -6,15 +6,23 @@
 // happens in a temporary folder inside the cache, moved into place by one rename: a failure
 // (a missing tool or package, a failing configure, compile, install or probe) leaves the cache as
 // it was and names the step, the missing package where meson says which, and the full log.
-// A build of the same commit (or source version) and the same options is reused, not rebuilt;
-// meson uses ccache where it is installed.
+// A build of the same commit (or the same tree content) and the same options is reused, not
+// rebuilt; meson uses ccache where it is installed.
+//
+// One writer per tree: a build holds the source tree's lock (util/dir_lock.h on the git folder,
+// or on the tree itself without git) from checkout to install, so a second build or bisection of
+// the same tree is refused, naming the holder, rather than checking out commits under the first.
+// A build proves it is the commit it is named after: the tree's HEAD is read again after the
+// install, and a build whose tree moved is not kept.
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "runner/build_fetch.h"
+#include "util/dir_lock.h"
 
 namespace ra::runner {
 
@@ -32,7 +40,21 @@ struct SourceBuildOptions {
   unsigned jobs = 0;    // ninja -j; 0: the number of cores
   bool probe = true;    // probe OSMesa and EGL before keeping the build
   bool reuse = true;    // reuse a cached build of the same commit and options
+  // One meson build folder kept across builds of this tree with these options
+  // (CACHE/.incremental/<key>): meson reconfigures by itself and ninja rebuilds only what the new
+  // commit changed, as a hand-run `git bisect run` does. The install still lands in the commit's
+  // own cache folder. False: a fresh build folder each time.
+  bool incremental = false;
+  bool source_locked = false;  // the caller holds lock_source_tree() of `source` already
+  // With `ref`: check the tree's branch out again after the build. A bisection keeps the tree at
+  // its steps' commits and restores it once at the end, so that an incremental build recompiles
+  // only what differs between two steps.
+  bool restore_ref = true;
 };
+
+// Takes the one-writer lock of a source tree for `what` ("bisect", "builds build", "watch"), or
+// throws UserError naming the process that holds it.
+std::unique_ptr<util::DirLock> lock_source_tree(const std::string& source, const std::string& what);
 
 // Where a source tree stands: git commit (and whether uncommitted changes make it another
 // source), or the version of an unpacked source package.
@@ -45,6 +67,7 @@ struct SourceIdentity {
   std::string version;       // the tree's VERSION file ("25.1.0-devel")
   std::string debian_version;  // debian/changelog's first entry, when present
   std::string patches;       // debian/patches/series (the patches a source package applies)
+  std::string content_hash;  // not git: FNV-1a 64 of every file's path and bytes (hex)
 };
 SourceIdentity identify_source(const std::string& source_dir);
 
@@ -60,6 +83,11 @@ struct SourceBuildResult {
 // ("configure", "compile", "install", "probe"). Throws UserError naming the failing step.
 SourceBuildResult build_from_source(const SourceBuildOptions& options,
                                     const std::function<void(const std::string&)>& progress = {});
+
+// FNV-1a 64 (hex) of every regular file and symbolic link under `dir` (relative path and bytes,
+// in path order), leaving out `.git` and the lock file: the identity of a tree without git, so
+// that applying a patch makes it another source.
+std::string tree_content_hash(const std::string& dir);
 
 // The cache name and reuse key of a build of `id` with `options` (tests).
 std::string source_build_name(const SourceIdentity& id, const SourceBuildOptions& options);

@@ -4,28 +4,27 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <nlohmann/json.hpp>
-#include <sstream>
+#include <set>
 
-#include "audit/audit_compare.h"
-#include "triage/bisect_report.h"
 #include "audit/flake_check.h"
-#include "rundir/platform_spec.h"
 #include "rundir/experiment.h"
-#include "rundir/manifest.h"
+#include "rundir/platform_spec.h"
+#include "triage/bisect_plan.h"
+#include "triage/bisect_report.h"
+#include "triage/bisect_selection.h"
+#include "triage/bisect_state.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/duration_text.h"
 #include "util/errors.h"
+#include "util/interrupt.h"
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 namespace ra::triage {
 namespace {
-
 
 struct GitResult {
   bool ok = false;
@@ -51,10 +50,11 @@ std::string git_ok(const std::string& dir, const std::vector<std::string>& args,
   return g.out;
 }
 
-std::string rev(const std::string& dir, const std::string& ref) {
+std::string rev(const std::string& dir, const std::string& ref, const char* option) {
   const GitResult g = git(dir, {"rev-parse", "--verify", "--quiet", ref + "^{commit}"});
   if (!g.ok || g.out.empty())
-    throw util::UserError("bisect: '" + ref + "' is not a commit of " + dir);
+    throw util::UserError(std::string("bisect: ") + option + " '" + ref + "' is not a commit of " +
+                          dir);
   return g.out;
 }
 
@@ -69,98 +69,12 @@ void describe_commit(const std::string& dir, BisectStep& s) {
 
 std::string short_hash(const std::string& c) { return c.substr(0, 12); }
 
-// j[key], or null when absent (no temporary default object to iterate).
-const nlohmann::json& member(const nlohmann::json& j, const char* key) {
-  static const nlohmann::json none;
-  const auto it = j.find(key);
-  return it == j.end() ? none : *it;
-}
-
-nlohmann::json drawing_json(const Drawing& d) {
-  nlohmann::json j = {{"error", d.error}, {"primitives", nlohmann::json::object()}};
-  for (const auto& [label, hash] : d.hashes)
-    j["primitives"][label] = {{"pixel_hash", std::to_string(hash)},
-                              {"pixels", d.pixels.count(label) ? d.pixels.at(label) : -1}};
-  return j;
-}
-
-Drawing drawing_from_json(const nlohmann::json& j) {
-  Drawing d;
-  d.error = j.value("error", "");
-  const nlohmann::json& prims = member(j, "primitives");
-  if (!prims.is_object()) return d;
-  for (const auto& [label, p] : prims.items()) {
-    d.hashes[label] = std::stoull(p.value("pixel_hash", "0"));
-    d.pixels[label] = p.value("pixels", int64_t(-1));
-  }
-  return d;
-}
-
-StepVerdict verdict_of(const std::string& s) {
-  return s == "good" ? StepVerdict::kGood : s == "bad" ? StepVerdict::kBad : StepVerdict::kSkip;
-}
-
-nlohmann::json step_json(const BisectStep& s) {
-  return {{"role", s.role},       {"commit", s.commit},   {"subject", s.subject},
-          {"date", s.date},       {"version", s.version}, {"verdict", verdict_name(s.verdict)},
-          {"reason", s.reason},   {"build", s.build},     {"build_dir", s.build_dir},
-          {"reused", s.reused},   {"build_s", s.build_s}, {"draw_s", s.draw_s},
-          {"drawing", drawing_json(s.drawing)}};
-}
-
-BisectStep step_from_json(const nlohmann::json& j) {
-  BisectStep s;
-  s.role = j.value("role", "");
-  s.commit = j.value("commit", "");
-  s.subject = j.value("subject", "");
-  s.date = j.value("date", "");
-  s.version = j.value("version", "");
-  s.verdict = verdict_of(j.value("verdict", "skip"));
-  s.reason = j.value("reason", "");
-  s.build = j.value("build", "");
-  s.build_dir = j.value("build_dir", "");
-  s.reused = j.value("reused", false);
-  s.build_s = j.value("build_s", 0.0);
-  s.draw_s = j.value("draw_s", 0.0);
-  s.drawing = drawing_from_json(member(j, "drawing"));
-  return s;
-}
-
-// The run's changed primitives between the two platforms, largest pixel change first.
-std::vector<BisectPrimitive> select_from_run(const BisectOptions& o) {
-  std::vector<BisectPrimitive> out;
-  if (!o.primitives.empty()) {
-    for (const std::string& p : o.primitives) out.push_back(parse_primitive(p));
-    return out;
-  }
-  if (o.good_platform.empty() || o.bad_platform.empty())
-    throw util::UserError(
-        "bisect: name the two platforms of the run whose records differ (--between GOOD BAD), "
-        "or the primitives (--primitive KIND:VIEW:INDEX)");
-  const audit::PrimitiveComparison c =
-      audit::compare_primitives(o.run_dir, o.run_dir, {{o.good_platform, o.bad_platform}});
-  for (const audit::ChangedPrimitive& ch : c.changed) {
-    if (!o.kinds.empty() &&
-        std::find(o.kinds.begin(), o.kinds.end(), geometry::kind_name(ch.kind)) == o.kinds.end())
-      continue;
-    if (!o.views.empty() && std::find(o.views.begin(), o.views.end(), ch.view) == o.views.end())
-      continue;
-    if (ch.before.pixel_hash == ch.after.pixel_hash) continue;  // a verdict change only
-    out.push_back({ch.kind, ch.view, ch.index, ch.before.pixels, ch.after.pixels});
-  }
-  std::stable_sort(out.begin(), out.end(), [](const BisectPrimitive& a, const BisectPrimitive& b) {
-    return std::llabs(a.run_bad_pixels - a.run_good_pixels) >
-           std::llabs(b.run_bad_pixels - b.run_good_pixels);
-  });
-  if (out.size() > o.max_primitives) out.resize(o.max_primitives);
-  if (out.empty())
-    throw util::UserError("bisect: no primitive of " + o.run_dir + " has other pixels on " +
-                          o.bad_platform + " than on " + o.good_platform +
-                          " (with the --kind/--view filters): nothing to bisect");
-  return out;
-}
-
 }  // namespace
+
+std::string BisectPrimitive::label() const {
+  return std::string(geometry::kind_name(kind)) + " " + std::to_string(index) + " of view " +
+         std::to_string(view);
+}
 
 std::string bisect_step_experiment(const std::string& run_dir, const std::string& build_dir) {
   std::string text = util::read_file(run_dir + "/experiment.toml");
@@ -172,10 +86,10 @@ std::string bisect_step_experiment(const std::string& run_dir, const std::string
 
 namespace {
 
-Drawing draw_selection(const BisectOptions& o, const std::string& platform,
-                       const std::vector<BisectPrimitive>& selection, const std::string& build_dir) {
+Drawing draw_selection(const BisectOptions& o, const std::vector<BisectPrimitive>& selection,
+                       const std::string& build_dir) {
   std::vector<audit::RerenderRequest> requests;
-  const std::string qualified = platform + "@" + kStepBuild;
+  const std::string qualified = o.platform + "@" + kStepBuild;
   for (const BisectPrimitive& p : selection) requests.push_back({qualified, p.kind, p.view, p.index});
   audit::RerenderOptions ro;
   ro.run_dir = o.run_dir;
@@ -199,147 +113,6 @@ Drawing draw_selection(const BisectOptions& o, const std::string& platform,
   return d;
 }
 
-struct State {
-  std::string path;
-  nlohmann::json inputs;
-  BisectResult result;
-  void save() const {
-    nlohmann::json steps = nlohmann::json::array();
-    for (const BisectStep& s : result.steps) steps.push_back(step_json(s));
-    nlohmann::json selection = nlohmann::json::array();
-    for (const BisectPrimitive& p : result.selection)
-      selection.push_back({{"kind", geometry::kind_name(p.kind)}, {"view", p.view},
-                           {"index", p.index}, {"run_good_pixels", p.run_good_pixels},
-                           {"run_bad_pixels", p.run_bad_pixels}});
-    nlohmann::json confirm = nlohmann::json::object();
-    for (const auto& [k, s] : result.confirm) confirm[k] = step_json(s);
-    nlohmann::json j = {{"inputs", inputs},
-                        {"selection", selection},
-                        {"dropped", result.dropped},
-                        {"good", step_json(result.good)},
-                        {"bad", step_json(result.bad)},
-                        {"steps", steps},
-                        {"found", result.found},
-                        {"first_bad", result.first_bad},
-                        {"first_bad_subject", result.first_bad_subject},
-                        {"first_bad_date", result.first_bad_date},
-                        {"parent", result.parent},
-                        {"candidates", result.candidates},
-                        {"confirm", confirm},
-                        {"total_build_s", result.total_build_s}};
-    j.update(rundir::document_header("bisection", 1, false));
-    util::write_file_atomic(path, j.dump(2) + "\n");
-  }
-};
-
-// What git says after `git bisect start/good/bad/skip`.
-struct GitBisectState {
-  bool done = false, ambiguous = false;
-  std::string first_bad;
-  std::vector<std::string> candidates;
-  int steps_left = -1;  // "roughly N steps"
-};
-
-// `git bisect VERB ...`: git exits non-zero when only skipped commits are left, which is an answer.
-std::string git_bisect(const std::string& dir, const std::vector<std::string>& args) {
-  std::vector<std::string> a = {"bisect"};
-  a.insert(a.end(), args.begin(), args.end());
-  const GitResult g = git(dir, a);
-  if (!g.ok && g.out.find("only 'skip'ped commits left") == std::string::npos)
-    throw util::UserError("bisect: git bisect " + args.front() + " failed in " + dir + ":\n" + g.out);
-  return g.out;
-}
-
-GitBisectState parse_bisect_output(const std::string& out) {
-  GitBisectState s;
-  if (const auto at = out.find(" is the first bad commit"); at != std::string::npos) {
-    s.done = true;
-    const auto line = out.rfind('\n', at);
-    s.first_bad = out.substr(line == std::string::npos ? 0 : line + 1,
-                             at - (line == std::string::npos ? 0 : line + 1));
-    return s;
-  }
-  if (out.find("only 'skip'ped commits left") != std::string::npos) {
-    s.done = s.ambiguous = true;
-    std::istringstream in(out);
-    for (std::string l; std::getline(in, l);)
-      if (l.size() >= 40 && l.find_first_not_of("0123456789abcdef") >= 40)
-        s.candidates.push_back(l.substr(0, 40));
-    return s;
-  }
-  if (const auto at = out.find("(roughly "); at != std::string::npos)
-    s.steps_left = std::atoi(out.c_str() + at + 9);
-  return s;
-}
-
-}  // namespace
-
-std::string BisectPrimitive::label() const {
-  return std::string(geometry::kind_name(kind)) + " " + std::to_string(index) + " of view " +
-         std::to_string(view);
-}
-
-const char* verdict_name(StepVerdict v) {
-  return v == StepVerdict::kGood ? "good" : v == StepVerdict::kBad ? "bad" : "skip";
-}
-
-BisectPrimitive parse_primitive(const std::string& text) {
-  BisectPrimitive p;
-  const auto a = text.find(':'), b = text.rfind(':');
-  char* end = nullptr;
-  bool ok = a != std::string::npos && b != a && geometry::parse_kind(text.substr(0, a), &p.kind);
-  if (ok) {
-    const std::string v = text.substr(a + 1, b - a - 1), i = text.substr(b + 1);
-    const long view = std::strtol(v.c_str(), &end, 10);
-    ok = !v.empty() && *end == 0 && view >= 1 && view <= 1000;
-    p.view = int(view);
-    ok = ok && !i.empty() && i.find_first_not_of("0123456789") == std::string::npos && i.size() < 19;
-    if (ok) p.index = std::stoull(i);
-  }
-  if (!ok)
-    throw util::UserError("bisect: --primitive '" + text +
-                          "' must be KIND:VIEW:INDEX (KIND point, line or triangle; VIEW 1-based; "
-                          "INDEX a primitive index, e.g. line:5:721)");
-  return p;
-}
-
-std::pair<StepVerdict, std::string> judge_drawing(const std::vector<BisectPrimitive>& selection,
-                                              const Drawing& d, const Drawing& good,
-                                              const Drawing& bad) {
-  if (!d.error.empty()) return {StepVerdict::kSkip, "drawing failed: " + d.error};
-  std::size_t like_good = 0, like_bad = 0;
-  std::vector<std::string> neither;
-  for (const BisectPrimitive& p : selection) {
-    const std::string l = p.label();
-    const auto it = d.hashes.find(l);
-    if (it == d.hashes.end()) {
-      neither.push_back(l + ": not drawn");
-      continue;
-    }
-    if (good.hashes.count(l) && it->second == good.hashes.at(l)) {
-      ++like_good;
-    } else if (bad.hashes.count(l) && it->second == bad.hashes.at(l)) {
-      ++like_bad;
-    } else {
-      neither.push_back(l + ": " + std::to_string(d.pixels.at(l)) + " pixels (good ref " +
-                        std::to_string(good.pixels.count(l) ? good.pixels.at(l) : -1) +
-                        ", bad ref " + std::to_string(bad.pixels.count(l) ? bad.pixels.at(l) : -1) +
-                        ")");
-    }
-  }
-  const std::size_t n = selection.size();
-  if (like_good == n) return {StepVerdict::kGood, "all " + std::to_string(n) + " like the good ref"};
-  if (like_bad == n) return {StepVerdict::kBad, "all " + std::to_string(n) + " like the bad ref"};
-  std::string why = "pixels are neither: " + std::to_string(like_good) + " like the good ref, " +
-                    std::to_string(like_bad) + " like the bad ref, " +
-                    std::to_string(neither.size()) + " like neither";
-  for (std::size_t i = 0; i < neither.size() && i < 3; ++i) why += (i ? "; " : " (") + neither[i];
-  if (!neither.empty()) why += neither.size() > 3 ? "; ...)" : ")";
-  return {StepVerdict::kSkip, why};
-}
-
-namespace {
-
 // One invocation of the bisection: its inputs checked, its state, and the steps of the loop.
 class Bisection {
  public:
@@ -349,22 +122,26 @@ class Bisection {
   BisectResult run() {
     const auto t_start = Clock::now();
     check_inputs();
+    const auto lock = runner::lock_source_tree(o_.source, "bisect");
     load_state();
+    util::InterruptScope interrupts;
+    // The tree back on its branch however this ends (a step leaves it at a commit).
+    struct Restore {
+      std::string dir, original;
+      ~Restore() {
+        if (git(dir, {"rev-parse", "HEAD"}).out != git(dir, {"rev-parse", original}).out ||
+            !git(dir, {"symbolic-ref", "-q", "HEAD"}).ok)
+          git(dir, {"checkout", "-q", original});
+      }
+    } restore{o_.source, st_.result.original_head};
+    line_commits();
     draw_references();
-    GitBisectState gs = bisect();
-    if (gs.ambiguous) {
-      st_.result.candidates = gs.candidates;
-      say("skipped commits leave " + std::to_string(gs.candidates.size()) +
-          " candidates for the first bad commit");
-    } else {
-      confirm(gs.first_bad);
-    }
+    attribute();
     BisectResult& r = st_.result;
     r.total_build_s = r.good.build_s + r.bad.build_s;
     for (const BisectStep& s : r.steps) r.total_build_s += s.build_s;
-    for (const auto& [k, s] : r.confirm) r.total_build_s += s.build_s;
     r.seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
-    st_.save();
+    save();
     r.report_path = o_.out_dir + "/bisect.md";
     write_bisect_report(o_, r, judged_, progress_ ? progress_ : [](const std::string&) {});
     return r;
@@ -374,7 +151,9 @@ class Bisection {
   void say(const std::string& s) const {
     if (progress_) progress_(s);
   }
+  void save() const { save_bisect_state(st_.result.json_path, st_); }
 
+  // Everything that can be refused is refused before anything is built.
   void check_inputs() {
     std::error_code ec;
     if (!fs::exists(o_.run_dir + "/experiment.toml", ec))
@@ -389,8 +168,11 @@ class Bisection {
                             " has uncommitted changes; commit or stash them first (each step "
                             "checks out another commit)");
     git_dir_ = git_ok(o_.source, {"rev-parse", "--absolute-git-dir"}, "git rev-parse");
-    good_ = rev(o_.source, o_.good_ref);
-    bad_ = rev(o_.source, o_.bad_ref);
+    good_ = rev(o_.source, o_.good_ref, "--good");
+    bad_ = rev(o_.source, o_.bad_ref, "--bad");
+    if (good_ == bad_)
+      throw util::UserError("bisect: --good " + o_.good_ref + " and --bad " + o_.bad_ref +
+                            " are the same commit (" + short_hash(good_) + "): nothing between them");
     if (!git(o_.source, {"merge-base", "--is-ancestor", good_, bad_}).ok)
       throw util::UserError("bisect: the good ref " + o_.good_ref +
                             " is not an ancestor of the bad ref " + o_.bad_ref + " in " + o_.source);
@@ -403,18 +185,32 @@ class Bisection {
                             "' cannot draw with a driver build (allowed: the osmesa-* and "
                             "surfaceless egl-* platforms, vk-lavapipe, faulty)");
     if (o_.out_dir.empty()) o_.out_dir = o_.run_dir + "/bisect";
+    if (fs::exists(o_.out_dir, ec) && !fs::is_directory(o_.out_dir, ec))
+      throw util::UserError("bisect: --out " + o_.out_dir +
+                            " is a file; --out names a folder for bisect.json and bisect.md");
+    const Selection sel = select_primitives(o_);
+    const std::size_t views = rundir::load_experiment(o_.run_dir + "/experiment.toml").views.size();
+    for (const BisectPrimitive& p : sel.primitives)
+      if (p.view < 1 || std::size_t(p.view) > views)
+        throw util::UserError("bisect: --primitive " + p.label() + ": the run has views 1-" +
+                              std::to_string(views));
+    st_.result.selection = sel.primitives;
+    st_.result.selection_rule = sel.rule;
+    st_.result.changed_in_run = sel.changed;
     fs::create_directories(o_.out_dir, ec);
     if (ec) throw util::UserError(util::io_error_message("cannot create", o_.out_dir));
   }
 
-  // The selection, and the steps of an earlier invocation with the same inputs.
+  // The steps of an earlier invocation with the same inputs; the tree's branch restored when
+  // that invocation was killed at a step.
   void load_state() {
-    st_.path = o_.out_dir + "/bisect.json";
-    st_.result.json_path = st_.path;
-    st_.result.selection = select_from_run(o_);
+    st_.result.json_path = o_.out_dir + "/bisect.json";
     nlohmann::json selection_ids = nlohmann::json::array();
     for (const BisectPrimitive& p : st_.result.selection) selection_ids.push_back(p.label());
     st_.inputs = {{"run", fs::weakly_canonical(o_.run_dir).string()},
+                  {"baseline_run", o_.baseline_run.empty()
+                                       ? ""
+                                       : fs::weakly_canonical(o_.baseline_run).string()},
                   {"source", o_.source},
                   {"good", good_},
                   {"bad", bad_},
@@ -427,35 +223,69 @@ class Bisection {
                   {"meson_options", o_.build.meson_options},
                   {"build_command", o_.build.build_command}};
     std::error_code ec;
-    if (!fs::exists(st_.path, ec)) return;
-    nlohmann::json old;
-    try {
-      old = nlohmann::json::parse(util::read_file(st_.path));
-    } catch (const std::exception& e) {
-      throw util::UserError("bisect: " + st_.path + " is not readable (" + e.what() +
-                            "); move it away to start again");
+    // A bisection of an older renderaudit (git bisect) killed on the way: git knows the branch.
+    if (fs::exists(git_dir_ + "/BISECT_START", ec)) git(o_.source, {"bisect", "reset", "-q"});
+    const GitResult branch = git(o_.source, {"symbolic-ref", "-q", "--short", "HEAD"});
+    st_.result.original_head = branch.ok ? branch.out : git(o_.source, {"rev-parse", "HEAD"}).out;
+    if (!fs::exists(st_.result.json_path, ec)) {
+      save();  // the branch recorded before any checkout, for a resume after kill -9
+      return;
     }
+    BisectState old = load_bisect_state(st_.result.json_path);
     for (const auto& [k, v] : st_.inputs.items())
-      if (!member(old, "inputs").is_object() || member(member(old, "inputs"), k.c_str()) != v)
-        throw util::UserError("bisect: " + st_.path + " holds a bisection of other inputs ('" + k +
+      if (!old.inputs.contains(k) || old.inputs[k] != v)
+        throw util::UserError("bisect: " + st_.result.json_path +
+                              " holds a bisection of other inputs ('" + k +
                               "' differs); choose another --out, or remove it to start again");
-    if (member(old, "steps").is_array())
-      for (const auto& s : member(old, "steps")) st_.result.steps.push_back(step_from_json(s));
-    if (old.contains("good")) st_.result.good = step_from_json(old["good"]);
-    if (old.contains("bad")) st_.result.bad = step_from_json(old["bad"]);
-    if (member(old, "confirm").is_object())
-      for (const auto& [k, s] : member(old, "confirm").items())
-        st_.result.confirm[k] = step_from_json(s);
-    say("resuming " + st_.path + ": " + std::to_string(st_.result.steps.size()) + " steps judged");
+    // Only a detached HEAD is a step's checkout; a branch is where the person put the tree.
+    if (!branch.ok && !old.result.original_head.empty() &&
+        old.result.original_head != st_.result.original_head) {
+      say("returning " + o_.source + " to " + old.result.original_head +
+          ", where the interrupted bisection found it");
+      git_ok(o_.source, {"checkout", "-q", old.result.original_head}, "git checkout");
+      st_.result.original_head = old.result.original_head;
+    }
+    st_.result.steps = old.result.steps;
+    st_.result.good = old.result.good;
+    st_.result.bad = old.result.bad;
+    say("resuming " + st_.result.json_path + ": " + std::to_string(st_.result.steps.size()) +
+        " steps built");
   }
 
-  // Builds and draws one commit (`ref` checked out by builds build; "" as checked out now).
-  void evaluate(BisectStep& s, const std::string& ref) {
+  // The commits from the good ref (position 0) to the bad ref, first parents only.
+  void line_commits() {
+    std::vector<std::string> args = {"rev-list", "--first-parent", "--reverse", bad_, "^" + good_};
+    if (!o_.paths.empty()) {
+      args.push_back("--");
+      args.insert(args.end(), o_.paths.begin(), o_.paths.end());
+    }
+    const std::string out = git_ok(o_.source, args, "git rev-list");
+    line_ = {good_};
+    for (std::size_t at = 0; at < out.size();) {
+      const std::size_t nl = std::min(out.find('\n', at), out.size());
+      if (nl > at) line_.push_back(out.substr(at, nl - at));
+      at = nl + 1;
+    }
+    if (line_.back() != bad_) line_.push_back(bad_);
+    st_.result.commits_in_range = line_.size() - 1;
+    for (std::size_t i = 0; i < st_.result.steps.size(); ++i) {
+      const BisectStep& s = st_.result.steps[i];
+      if (s.position >= line_.size() || line_[s.position] != s.commit)
+        throw util::UserError("bisect: " + st_.result.json_path + ": 'steps[" + std::to_string(i) +
+                              "].position' does not hold its commit on today's line of commits "
+                              "(the history changed?); move the file away to start again");
+    }
+  }
+
+  // Builds and draws one commit.
+  void evaluate(BisectStep& s) {
     describe_commit(o_.source, s);
     runner::SourceBuildOptions b = o_.build;
     b.source = o_.source;
-    b.ref = ref;
+    b.ref = s.commit;
     b.probe = false;  // the drawing is the probe
+    b.source_locked = true;
+    b.restore_ref = false;  // restored once, at the end
     const auto t0 = Clock::now();
     say("  building " + short_hash(s.commit) + (s.version.empty() ? "" : " (" + s.version + ")") +
         " ...");
@@ -468,45 +298,54 @@ class Bisection {
       say(r.reused ? "  reused build " + s.build
                    : "  built " + s.build + " in " + util::duration_text(r.seconds));
     } catch (const util::UserError& e) {
-      s.verdict = StepVerdict::kSkip;
-      s.reason = std::string("build failed: ") + e.what();
+      util::throw_if_interrupted();
+      s.error = std::string("build failed: ") + e.what();
       s.build_s = std::chrono::duration<double>(Clock::now() - t0).count();
       return;
     }
+    util::throw_if_interrupted();
     const auto t1 = Clock::now();
-    s.drawing = draw_selection(o_, o_.platform, st_.result.selection, s.build_dir);
+    s.drawing = draw_selection(o_, judged_.empty() ? st_.result.selection : judged_, s.build_dir);
     s.draw_s = std::chrono::duration<double>(Clock::now() - t1).count();
+    util::throw_if_interrupted();
+    if (!s.drawing.error.empty()) s.error = "drawing failed: " + s.drawing.error;
   }
 
-  void judge(BisectStep& s) const {
-    if (s.build.empty()) return;  // a failed build: skipped, said by evaluate
-    const auto [v, why] =
-        judge_drawing(judged_, s.drawing, st_.result.good.drawing, st_.result.bad.drawing);
-    s.verdict = v;
-    s.reason = why;
+  // What a step drew against the two ends, in words.
+  std::string summary(const Drawing& d) const {
+    std::size_t like_good = 0, like_bad = 0, other = 0;
+    for (const BisectPrimitive& p : judged_) {
+      const std::string l = p.label();
+      const auto it = d.hashes.find(l);
+      if (it == d.hashes.end()) continue;
+      if (it->second == st_.result.good.drawing.hashes.at(l)) ++like_good;
+      else if (it->second == st_.result.bad.drawing.hashes.at(l)) ++like_bad;
+      else ++other;
+    }
+    return std::to_string(like_good) + " like the good ref, " + std::to_string(like_bad) +
+           " like the bad ref, " + std::to_string(other) + " like neither";
   }
 
   // The good and the bad ref drawn; primitives both draw alike say nothing about the change.
   void draw_references() {
-    for (auto [ref, commit, step, role] :
-         {std::tuple{o_.good_ref, good_, &st_.result.good, "good ref"},
-          std::tuple{o_.bad_ref, bad_, &st_.result.bad, "bad ref"}}) {
-      if (step->commit == commit && step->drawing.error.empty() && !step->drawing.hashes.empty())
-        continue;
+    for (auto [ref, commit, step, role, position] :
+         {std::tuple{o_.good_ref, good_, &st_.result.good, "good ref", std::size_t(0)},
+          std::tuple{o_.bad_ref, bad_, &st_.result.bad, "bad ref", line_.size() - 1}}) {
+      if (step->commit == commit && step->error.empty() && !step->drawing.hashes.empty()) continue;
       *step = BisectStep{};
       step->role = role;
       step->commit = commit;
+      step->position = position;
       say(std::string(role) + " " + ref + " (" + short_hash(commit) + ")");
-      evaluate(*step, commit);
+      evaluate(*step);
       if (step->build.empty())
         throw util::UserError("bisect: the " + std::string(role) + " " + ref +
-                              " cannot be built: " + step->reason);
+                              " cannot be built: " + step->error);
       if (!step->drawing.error.empty())
         throw util::UserError("bisect: the build of the " + std::string(role) + " " + ref +
                               " cannot draw the selection with " + o_.platform + ": " +
                               step->drawing.error);
-      step->verdict = step == &st_.result.good ? StepVerdict::kGood : StepVerdict::kBad;
-      st_.save();
+      save();
     }
     st_.result.dropped.clear();
     for (const BisectPrimitive& p : st_.result.selection) {
@@ -525,99 +364,123 @@ class Bisection {
       say(std::to_string(st_.result.dropped.size()) + " of " +
           std::to_string(st_.result.selection.size()) +
           " selected primitives are drawn alike by both refs and are left out");
+    say(std::to_string(judged_.size()) + " primitives to attribute over " +
+        std::to_string(line_.size() - 1) + " commits (" + st_.result.selection_rule + ")");
   }
 
-  // git bisect with the judged steps replayed, then new steps until git names the commit.
-  GitBisectState bisect() {
-    const GitResult branch = git(o_.source, {"symbolic-ref", "-q", "--short", "HEAD"});
-    const std::string original = branch.ok ? branch.out : git(o_.source, {"rev-parse", "HEAD"}).out;
-    std::error_code ec;
-    if (fs::exists(git_dir_ + "/BISECT_START", ec)) git(o_.source, {"bisect", "reset"});
-    std::vector<std::string> start = {"start", bad_, good_};
-    if (!o_.paths.empty()) {
-      start.push_back("--");
-      start.insert(start.end(), o_.paths.begin(), o_.paths.end());
-    }
-    struct Reset {  // the tree back where it was, however this ends
-      std::string dir, original;
-      ~Reset() {
-        git(dir, {"bisect", "reset"});
-        git(dir, {"checkout", "-q", original});
-      }
-    } reset{o_.source, original};
-    GitBisectState gs = parse_bisect_output(git_bisect(o_.source, start));
+  std::map<std::string, uint64_t> judged_hashes(const Drawing& d) const {
+    std::map<std::string, uint64_t> out;
+    for (const BisectPrimitive& p : judged_)
+      if (const auto it = d.hashes.find(p.label()); it != d.hashes.end()) out.insert(*it);
+    return out;
+  }
+
+  // Builds until every change sits between two neighbouring commits.
+  void attribute() {
+    AttributionPlan plan(line_.size() - 1);
+    plan.observe(0, judged_hashes(st_.result.good.drawing));
+    plan.observe(line_.size() - 1, judged_hashes(st_.result.bad.drawing));
     for (const BisectStep& s : st_.result.steps) {
-      if (gs.done) break;
-      gs = parse_bisect_output(git_bisect(o_.source, {verdict_name(s.verdict), s.commit}));
+      if (s.error.empty())
+        plan.observe(s.position, judged_hashes(s.drawing));
+      else
+        plan.fail(s.position);
     }
     double step_seconds = 0;
     int fresh_steps = 0;
-    while (!gs.done) {
+    while (const auto position = plan.next()) {
+      util::throw_if_interrupted();
       BisectStep s;
       s.role = "step";
-      s.commit = git_ok(o_.source, {"rev-parse", "HEAD"}, "git rev-parse");
-      std::string eta;
-      if (gs.steps_left >= 0) {
-        eta = " (roughly " + std::to_string(gs.steps_left + 1) + " to go";
-        if (fresh_steps > 0)
-          eta += ", about " + util::duration_text(step_seconds / fresh_steps * (gs.steps_left + 1));
-        eta += ")";
-      }
+      s.position = *position;
+      s.commit = line_[*position];
+      // Steps left: a binary search of each unresolved range.
+      std::set<std::pair<std::size_t, std::size_t>> gaps;
+      for (const AttributionPlan::Change& c : plan.changes())
+        if (!c.resolved) gaps.insert({c.from, c.to});
+      std::size_t left = 0;
+      for (const auto& [from, to] : gaps) left += std::size_t(std::ceil(std::log2(double(to - from))));
+      std::string eta = " (" + std::to_string(gaps.size()) + " unresolved range" +
+                        (gaps.size() == 1 ? "" : "s") + ", roughly " + std::to_string(left) +
+                        (left == 1 ? " step" : " steps") + " to go";
+      if (fresh_steps > 0) eta += ", about " + util::duration_text(step_seconds / fresh_steps * left);
+      eta += ")";
       const auto t0 = Clock::now();
       say("step " + std::to_string(st_.result.steps.size() + 1) + eta + ": " + short_hash(s.commit) +
-          " " + git(o_.source, {"log", "-1", "--format=%s", "HEAD"}).out);
-      evaluate(s, "");
-      judge(s);
-      say("  " + std::string(verdict_name(s.verdict)) + ": " + s.reason);
+          " " + git(o_.source, {"log", "-1", "--format=%s", s.commit}).out);
+      evaluate(s);
+      if (s.error.empty()) {
+        s.summary = summary(s.drawing);
+        plan.observe(s.position, judged_hashes(s.drawing));
+        say("  drew " + s.summary);
+      } else {
+        plan.fail(s.position);
+        say("  skipped for every primitive: " + s.error);
+      }
       st_.result.steps.push_back(s);
-      st_.save();
+      save();
       step_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
       ++fresh_steps;
-      gs = parse_bisect_output(git_bisect(o_.source, {verdict_name(s.verdict), s.commit}));
     }
-    return gs;
+    collect(plan);
   }
 
-  // The first bad commit and its parent, both drawn (by a step, or now).
-  void confirm(const std::string& first_bad) {
-    BisectResult& r = st_.result;
-    r.found = true;
-    r.first_bad = first_bad;
-    BisectStep fb;
-    fb.commit = first_bad;
-    describe_commit(o_.source, fb);
-    r.first_bad_subject = fb.subject;
-    r.first_bad_date = fb.date;
-    r.parent = git_ok(o_.source, {"rev-parse", first_bad + "^"}, "git rev-parse");
-    for (auto [key, commit] : {std::pair{"first bad", r.first_bad}, std::pair{"parent", r.parent}}) {
-      const BisectStep* known = nullptr;
-      for (const BisectStep* s : {&r.good, &r.bad})
-        if (s->commit == commit) known = s;
-      for (const BisectStep& s : r.steps)
-        if (s.commit == commit && !s.build.empty() && s.drawing.error.empty()) known = &s;
-      if (known) {
-        r.confirm[key] = *known;
+  // Culprits and what stays unattributed, from the plan's changes.
+  void collect(const AttributionPlan& plan) {
+    std::map<std::size_t, const Drawing*> drawn = {{0, &st_.result.good.drawing},
+                                                   {line_.size() - 1, &st_.result.bad.drawing}};
+    for (const BisectStep& s : st_.result.steps)
+      if (s.error.empty()) drawn[s.position] = &s.drawing;
+    std::map<std::size_t, Culprit> by_position;
+    st_.result.unattributed.clear();
+    const auto pixels = [&](std::size_t position, const std::string& l) -> int64_t {
+      const Drawing* d = drawn.at(position);
+      const auto it = d->pixels.find(l);
+      return it == d->pixels.end() ? -1 : it->second;
+    };
+    for (const AttributionPlan::Change& c : plan.changes()) {
+      if (!c.resolved) {
+        Unattributed u{c.label, line_[c.from], line_[c.to], {}};
+        for (std::size_t p : c.candidates) u.candidates.push_back(line_[p]);
+        st_.result.unattributed.push_back(u);
         continue;
       }
-      if (r.confirm.count(key) && r.confirm[key].commit == commit) continue;
-      BisectStep c;
-      c.role = std::string(key) == "parent" ? "parent of the first bad commit" : "first bad commit";
-      c.commit = commit;
-      say("confirming: drawing the " + c.role + " " + short_hash(commit));
-      evaluate(c, commit);
-      judge(c);
-      say("  " + std::string(verdict_name(c.verdict)) + ": " + c.reason);
-      r.confirm[key] = c;
-      st_.save();
+      Culprit& k = by_position[c.to];
+      k.primitives.push_back(c.label);
+      k.pixels[c.label] = {pixels(c.from, c.label), pixels(c.to, c.label)};
     }
-    say("first bad commit: " + r.first_bad + " " + r.first_bad_subject + " (" + r.first_bad_date +
-        ")");
+    st_.result.culprits.clear();
+    for (auto& [position, k] : by_position) {
+      BisectStep info;
+      info.commit = line_[position];
+      describe_commit(o_.source, info);
+      k.commit = info.commit;
+      k.subject = info.subject;
+      k.date = info.date;
+      k.previous = line_[position - 1];
+      k.merge = git(o_.source, {"rev-list", "--parents", "-n", "1", k.commit}).out.find(' ') !=
+                git(o_.source, {"rev-list", "--parents", "-n", "1", k.commit}).out.rfind(' ');
+      // In selection order.
+      std::vector<std::string> ordered;
+      for (const BisectPrimitive& p : judged_)
+        if (std::find(k.primitives.begin(), k.primitives.end(), p.label()) != k.primitives.end())
+          ordered.push_back(p.label());
+      k.primitives = ordered;
+      st_.result.culprits.push_back(k);
+      say("first bad commit: " + k.commit + " " + k.subject + " (" +
+          std::to_string(k.primitives.size()) + " primitives)");
+    }
+    if (!st_.result.unattributed.empty())
+      say(std::to_string(st_.result.unattributed.size()) +
+          " changes stay unattributed: only commits that failed to build lie between two drawn "
+          "commits");
   }
 
   BisectOptions o_;
   std::function<void(const std::string&)> progress_;
-  State st_;
+  BisectState st_;
   std::string git_dir_, good_, bad_;
+  std::vector<std::string> line_;         // position -> commit
   std::vector<BisectPrimitive> judged_;  // the selection less what both refs draw alike
 };
 

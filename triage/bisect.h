@@ -1,20 +1,23 @@
-// `renderaudit bisect`: the driver change that made a finding, found in the driver's git history.
+// `renderaudit bisect`: every driver change a run found, each named to the commit that made it.
 //
 // A run holds two platforms whose records differ (e.g. `egl-llvmpipe` and `egl-llvmpipe@new`);
-// the primitives whose pixels changed most (or those named) are the selection. The good and the
-// bad ref of a Mesa git tree are built (runner/source_build.h) and draw the selection first: their
-// pixel hashes are the two references, and primitives both draw alike are dropped. Then `git
-// bisect` (optionally restricted to paths) chooses commits; each is built (or reused from the build
-// cache), draws the selection in child processes (audit/flake_check.h's re-render, with the
-// commit's build declared in a private copy of the run's experiment), and is judged:
-//   good: every selected primitive has the good ref's pixels;
-//   bad:  every selected primitive has the bad ref's pixels;
-//   skip: the build failed, the drawing failed, or the pixels are neither (each named).
-// Every judged step is written to OUT/bisect.json before git is told, so a bisection that is
-// interrupted resumes where it stopped (the same command; the steps are replayed into git). At the
-// end the first bad commit's parent is drawn too (if no step did), the tree is returned to where
-// it was (`git bisect reset`), and OUT/bisect.md is the report for the driver's developers
-// (triage/bisect_report.h).
+// every primitive whose pixels differ is selected (or a sample that covers each kind, view group
+// and conformance transition, when there are more than --max-primitives; or those named). The
+// good and the bad ref of a Mesa git tree are built (runner/source_build.h, one incremental build
+// folder shared by every step) and draw the selection: their pixel hashes are the two ends, and
+// primitives both draw alike are dropped. The commits between them are a line (`git rev-list
+// --first-parent`, optionally restricted to paths); triage/bisect_plan.h chooses the next commit
+// to build, the one that splits the most unresolved ranges, until each primitive's every change
+// sits between two neighbouring commits. Each built commit draws every selected primitive in
+// child processes (audit/flake_check.h's re-render, the commit's build declared in a private copy
+// of the run's experiment). A commit that fails to build is skipped for all and named.
+//
+// The tree is locked for the whole bisection (one writer per tree), kept at the steps' commits
+// and returned to its branch at the end, also when a signal stops the bisection (the build's
+// process group is stopped first); after kill -9, the next bisection of the tree restores the
+// branch bisect.json recorded. Every built step is written to OUT/bisect.json before the next is
+// chosen, so the same command resumes where it stopped. OUT/bisect.md is the report for the
+// driver's developers: one section per culprit commit (triage/bisect_report.h).
 #pragma once
 
 #include <cstdint>
@@ -33,7 +36,9 @@ struct BisectPrimitive {
   geometry::Kind kind = geometry::Kind::kPoint;
   int view = 0;        // 1-based
   uint64_t index = 0;  // under the run's seed
+  int view_group = -1;  // 0 = A; -1: not from the run
   int64_t run_good_pixels = -1, run_bad_pixels = -1;  // the run's records (-1: not from the run)
+  std::string run_good_conformance, run_bad_conformance;  // the run's GL verdicts ("": none)
   std::string label() const;  // "line 721 of view 5"
 };
 
@@ -44,63 +49,76 @@ struct Drawing {
   std::string error;  // the drawing failed: why
 };
 
-enum class StepVerdict { kGood, kBad, kSkip };
-const char* verdict_name(StepVerdict v);  // "good", "bad", "skip"
-
-// good/bad/skip of a drawing against the two references, with the reason in words
-// ("pixels are neither: 3 like the good ref, 1 like the bad ref, 1 like neither (line 5/721: ...)").
-std::pair<StepVerdict, std::string> judge_drawing(const std::vector<BisectPrimitive>& selection,
-                                              const Drawing& drawing, const Drawing& good,
-                                              const Drawing& bad);
-
 struct BisectStep {
-  std::string role;    // "good ref", "bad ref", "step", "parent of the first bad commit"
+  std::string role;    // "good ref", "bad ref", "step"
   std::string commit, subject, date, version;
-  StepVerdict verdict = StepVerdict::kSkip;
-  std::string reason;
-  std::string build;   // the build's cache name ("" when the build failed)
+  std::size_t position = 0;  // on the line of commits: 0 the good ref, last the bad ref
+  std::string error;         // the build or the drawing failed: why ("" when it drew)
+  std::string summary;       // what it drew against the two ends, in words
+  std::string build;         // the build's cache name ("" when the build failed)
   std::string build_dir;
   bool reused = false;
   double build_s = 0, draw_s = 0;
   Drawing drawing;
 };
 
+// A commit that changed primitives: each of them drew one way at `previous` and another here.
+struct Culprit {
+  std::string commit, subject, date;
+  std::string previous;       // the commit before it on the line (its parent unless paths are given)
+  bool merge = false;         // a merge commit: the change came with its merged branch
+  std::vector<std::string> primitives;               // labels, in selection order
+  std::map<std::string, std::pair<int64_t, int64_t>> pixels;  // label -> lit pixels before, after
+};
+
+// A change whose commit cannot be named: only failed builds lie between two drawn commits.
+struct Unattributed {
+  std::string label;
+  std::string from, to;                 // the drawn commits on either side
+  std::vector<std::string> candidates;  // the commits that may have made it
+};
+
 struct BisectOptions {
   std::string run_dir;                      // where the selection comes from
   std::string good_platform, bad_platform;  // two platforms of the run (--between)
+  std::string baseline_run;  // "": both platforms in run_dir; else good_platform is this run's
   std::string platform;          // draws every build; "": the bad platform without its @build
   std::vector<std::string> kinds;           // selection filters ("line", ...); empty: all
   std::vector<int> views;                   // empty: all
   std::vector<std::string> primitives;      // explicit "KIND:VIEW:INDEX" (instead of the run's)
-  std::size_t max_primitives = 24;          // the largest pixel changes first
+  std::size_t max_primitives = 2000;        // more changed ones: a sample covering every stratum
   std::string source;                       // Mesa git tree
   std::string good_ref, bad_ref;
-  std::vector<std::string> paths;           // restrict the commits (git bisect -- PATHS)
+  std::vector<std::string> paths;           // restrict the commits (rev-list -- PATHS)
   std::string out_dir;                      // "": RUN/bisect
   runner::SourceBuildOptions build;         // cache, LLVM, meson options, build command
   unsigned jobs = 0;                        // drawing children at once
   bool pictures = true;                     // `show` pictures in the report
-  std::string command_line;                 // how it was started (the report repeats it)
+  std::string command_line;                 // how it was started, quoted (the report repeats it)
 };
 
 struct BisectResult {
   std::vector<BisectPrimitive> selection;
+  std::string selection_rule;        // how the selection was made, in words
+  std::size_t changed_in_run = 0;    // changed primitives the run holds (before any sampling)
   std::vector<std::string> dropped;  // selected but drawn alike by both refs
   BisectStep good, bad;
   std::vector<BisectStep> steps;     // in order, resumed ones included
-  bool found = false;
-  std::string first_bad, first_bad_subject, first_bad_date, parent;
-  std::vector<std::string> candidates;  // when skips leave several commits
-  std::map<std::string, BisectStep> confirm;  // "first bad" and "parent": their drawings
-  double seconds = 0;          // this invocation's wall time
-  double total_build_s = 0;    // all steps' builds, resumed ones included
+  std::size_t commits_in_range = 0;  // on the line, the bad ref included
+  std::vector<Culprit> culprits;     // by position on the line
+  std::vector<Unattributed> unattributed;
+  std::string original_head;         // the branch (or commit) the tree is returned to
+  double seconds = 0;                // this invocation's wall time
+  double total_build_s = 0;          // all builds, resumed ones included
   std::string json_path, report_path;
+  bool complete() const { return unattributed.empty() && !culprits.empty(); }
 };
 
 // Runs (or resumes) the bisection. `progress` gets one line per event. Throws UserError for bad
-// input (a run without the platforms, a tree that is not git or has uncommitted changes, refs
-// that are not commits, a good ref that is not an ancestor of the bad one, references that draw
-// the selection alike, an OUT of another bisection).
+// input (checked before anything is built: a run without the platforms, a tree that is not git or
+// has uncommitted changes or is in use, refs that are not commits, equal refs, a good ref that is
+// not an ancestor of the bad one, an OUT that is a file or holds another bisection), and
+// util::Interrupted when a signal stopped it (the tree restored).
 BisectResult run_bisect(const BisectOptions& options,
                         const std::function<void(const std::string&)>& progress = {});
 
@@ -109,8 +127,5 @@ constexpr const char* kStepBuild = "bisect-step";
 
 // The run's experiment.toml with [builds.bisect-step] dir = BUILD_DIR added: what draws a step.
 std::string bisect_step_experiment(const std::string& run_dir, const std::string& build_dir);
-
-// "KIND:VIEW:INDEX" -> primitive; throws UserError naming the allowed form.
-BisectPrimitive parse_primitive(const std::string& text);
 
 }  // namespace ra::triage

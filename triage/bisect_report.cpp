@@ -27,11 +27,6 @@ namespace {
 
 std::string short_hash(const std::string& c) { return c.substr(0, 12); }
 
-std::string pixels_of(const BisectStep& s, const std::string& label) {
-  const auto it = s.drawing.pixels.find(label);
-  return it == s.drawing.pixels.end() ? "-" : std::to_string(it->second);
-}
-
 // `show` of one primitive drawn with a step's build, in a child (one driver per process).
 std::string picture(const BisectOptions& o, const BisectStep& s, const BisectPrimitive& p,
                     const std::string& out_png) {
@@ -91,141 +86,217 @@ std::string rule_meaning(const std::string& rule) {
   return it == m.end() ? rule : it->second;
 }
 
+namespace {
+
+std::string group_letter(int g) { return g >= 0 && g < 26 ? std::string(1, char('A' + g)) : "-"; }
+
+std::string cell(std::string text) {
+  std::replace(text.begin(), text.end(), '|', '/');
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text.size() > 160 ? text.substr(0, 157) + "..." : text;
+}
+
+// "3 lines of group D, 1 triangle of group B"
+std::string composition(const std::vector<const BisectPrimitive*>& prims) {
+  std::map<std::pair<int, int>, int> n;
+  for (const BisectPrimitive* p : prims) ++n[{int(p->kind), p->view_group}];
+  std::string out;
+  for (const auto& [key, count] : n)
+    out += std::string(out.empty() ? "" : ", ") + std::to_string(count) + " " +
+           geometry::kind_name(geometry::Kind(key.first)) + (count == 1 ? "" : "s") +
+           " of group " + group_letter(key.second);
+  return out;
+}
+
+// The run's GL verdicts of the changed primitives, before and after ("within-spec -> violation:
+// 3; exact -> snapped: 1").
+std::string conformance_moves(const std::vector<const BisectPrimitive*>& prims) {
+  std::map<std::pair<std::string, std::string>, int> n;
+  for (const BisectPrimitive* p : prims) ++n[{p->run_good_conformance, p->run_bad_conformance}];
+  std::string out;
+  for (const auto& [key, count] : n)
+    out += std::string(out.empty() ? "" : "; ") + (key.first.empty() ? "-" : key.first) + " -> " +
+           (key.second.empty() ? "-" : key.second) + ": " + std::to_string(count);
+  return out;
+}
+
+}  // namespace
+
 void write_bisect_report(const BisectOptions& o, const BisectResult& r,
                          const std::vector<BisectPrimitive>& judged,
                          const std::function<void(const std::string&)>& say) {
-  const BisectPrimitive& worst = judged.front();
   const rundir::PlatformSpec spec = *rundir::find_platform(o.platform + "@" + kStepBuild);
   const std::string driver = spec.mesa_driver.empty() ? o.platform : spec.mesa_driver;
-  const BisectStep* first_bad = r.confirm.count("first bad") ? &r.confirm.at("first bad") : nullptr;
-  const BisectStep* parent = r.confirm.count("parent") ? &r.confirm.at("parent") : nullptr;
-  const BisectStep& good_side = parent ? *parent : r.good;
-  const BisectStep& bad_side = first_bad ? *first_bad : r.bad;
-  const std::string l = worst.label();
-
-  // The C reproducer, from the run's record on the bad platform (or the drawing platform).
-  audit::Reproducer repro;
-  std::string repro_error;
-  const std::string c_name = std::string(geometry::kind_name(worst.kind)) + "-v" +
-                             std::to_string(worst.view) + "-" + std::to_string(worst.index) + ".c";
-  try {
-    audit::ReproduceRequest q{o.run_dir, o.bad_platform.empty() ? o.platform : o.bad_platform,
-                       geometry::kind_name(worst.kind), worst.view, worst.index};
-    repro = audit::make_reproducer(q, c_name);
-    util::write_file_atomic(o.out_dir + "/" + c_name, repro.source);
-  } catch (const std::exception& e) {
-    repro_error = e.what();
-  }
+  std::map<std::string, const BisectPrimitive*> by_label;
+  for (const BisectPrimitive& p : judged) by_label[p.label()] = &p;
+  std::map<std::string, const BisectStep*> by_commit = {{r.good.commit, &r.good},
+                                                         {r.bad.commit, &r.bad}};
+  for (const BisectStep& s : r.steps)
+    if (s.error.empty()) by_commit[s.commit] = &s;
 
   std::ostringstream md;
-  const std::string change = r.found ? short_hash(r.first_bad) : "(not found)";
-  md << "# " << driver << ": " << l << " drawn with " << pixels_of(bad_side, l)
-     << " pixels instead of " << pixels_of(good_side, l) << " since " << change << "\n\n";
-  md << "**What is wrong.** Since " << (r.found ? "commit " + short_hash(r.first_bad) + " (\"" +
-                                                      r.first_bad_subject + "\")"
-                                                : "a commit between the refs below")
-     << ", " << driver << " (through " << o.platform << ") draws " << l;
-  if (!repro.view_text.empty()) md << " (" << repro.view_text << ")";
-  md << " with " << pixels_of(bad_side, l) << " lit pixels where its parent lit "
-     << pixels_of(good_side, l);
-  if (repro_error.empty()) md << " and the exact reference rasterizer lights " << repro.reference_pixels;
-  md << "; " << judged.size() << " of the " << r.selection.size()
-     << " selected primitives change the same way.\n\n";
-  if (!repro.violated_rules.empty()) {
-    md << "**GL rule broken** (OpenGL 4.6 section 14.5.1 for lines, 14.6.1 polygons, 14.4 points; "
-          "renderaudit's conformance verdict of the run's record):";
-    std::string rules = repro.violated_rules;
-    for (std::size_t at = 0; at <= rules.size();) {
-      const std::size_t plus = std::min(rules.find('+', at), rules.size());
-      const std::string rule = rules.substr(at, plus - at);
-      md << " `" << rule << "`: " << rule_meaning(rule) << (plus < rules.size() ? ";" : ".");
-      at = plus + 1;
-    }
-    md << "\n\n";
-  }
-  md << "## Versions\n\n| side | commit | VERSION | date | " << l << " |\n| --- | --- | --- | --- | ---: |\n";
-  const auto row = [&](const std::string& side, const BisectStep& s) {
-    md << "| " << side << " | " << short_hash(s.commit) << " " << s.subject << " | " << s.version
-       << " | " << s.date.substr(0, 10) << " | " << pixels_of(s, l) << " |\n";
+  md << "# " << driver << ": " << judged.size() << " changed primitives, "
+     << r.culprits.size() << " culprit commit" << (r.culprits.size() == 1 ? "" : "s") << "\n\n";
+  const auto version = [](const BisectStep& s) {
+    return s.version.empty() ? std::string() : " (" + s.version + ")";
   };
-  row("good ref (unaffected)", r.good);
-  if (parent) row("parent of the first bad commit (unaffected)", *parent);
-  if (first_bad) row("**first bad commit**", *first_bad);
-  row("bad ref (affected)", r.bad);
-  if (!o.good_platform.empty())
-    md << "\nThe run compared `" << o.good_platform << "` with `" << o.bad_platform
-       << "` (its `drivers/*.json` name their GL_VERSION).\n";
-  if (r.found) {
-    md << "\n## The first bad commit\n\n```\ncommit " << r.first_bad << "\n"
-       << files_changed(o.source, r.first_bad) << "```\n";
-  } else {
-    md << "\n## No single commit\n\nSkipped commits (that did not build or drew neither "
-          "side's pixels) leave these candidates:\n\n";
-    for (const std::string& c : r.candidates) md << "- " << c << "\n";
-  }
-  md << "\n## Reproducer\n\n";
-  if (repro_error.empty()) {
-    md << "A standalone C program (EGL surfaceless, desktop GL; the primitive's coordinates as hex "
-          "floats), also written as `" << c_name << "`:\n\n```sh\n" << repro.build_line << "\n";
-    const std::string exe = fs::path(c_name).stem().string();
-    if (parent && !parent->build_dir.empty())
-      md << audit::reproducer_environment(parent->build_dir, driver) << " ./" << exe << "   # parent: pixels lit "
-         << pixels_of(*parent, l) << "\n";
-    if (first_bad && !first_bad->build_dir.empty())
-      md << audit::reproducer_environment(first_bad->build_dir, driver) << " ./" << exe << "   # first bad: pixels lit "
-         << pixels_of(*first_bad, l) << "\n";
-    md << "```\n\n```c\n" << repro.source << "```\n";
-  } else {
-    md << "No C reproducer: " << repro_error << "\n";
-  }
-  if (o.pictures) {
-    md << "\n## Pictures\n\n" << l << "; white unlit, grey lit by both, orange lit by the driver "
-          "only, blue lit by the reference only, black a pixel GL forbids; the red line is the "
-          "ideal projection.\n\n";
-    fs::create_directories(o.out_dir + "/pictures");
-    for (const auto& [side, s] : {std::pair{"parent", &good_side}, std::pair{"first-bad", &bad_side}}) {
-      const std::string png = o.out_dir + "/pictures/" + side + "." +
-                              geometry::kind_name(worst.kind) + ".v" + std::to_string(worst.view) +
-                              "." + std::to_string(worst.index) + ".png";
-      const std::string got = picture(o, *s, worst, png);
-      if (got.empty())
-        md << "- " << side << " (" << short_hash(s->commit) << "): no picture (see the command's "
-           << "output)\n";
-      else
-        md << "- " << side << " (" << short_hash(s->commit) << "):\n\n  ![" << side << "](pictures/"
-           << fs::path(png).filename().string() << ")\n";
-    }
-  }
-  md << "\n## Every selected primitive\n\n"
-     << stats::markdown_header({"primitive", "run: " + o.good_platform, "run: " + o.bad_platform,
-                                "good ref", "parent", "first bad", "bad ref"},
-                               1);
-  for (const BisectPrimitive& p : r.selection) {
-    const std::string pl = p.label();
-    const bool dropped = std::find(r.dropped.begin(), r.dropped.end(), pl) != r.dropped.end();
-    md << "| " << pl << (dropped ? " (drawn alike by both refs: left out)" : "") << " | "
-       << (p.run_good_pixels >= 0 ? std::to_string(p.run_good_pixels) : "-") << " | "
-       << (p.run_bad_pixels >= 0 ? std::to_string(p.run_bad_pixels) : "-") << " | "
-       << pixels_of(r.good, pl) << " | " << (parent ? pixels_of(*parent, pl) : "-") << " | "
-       << (first_bad ? pixels_of(*first_bad, pl) : "-") << " | " << pixels_of(r.bad, pl) << " |\n";
-  }
-  md << "\n## The bisection\n\n" << r.steps.size() << " steps";
+  md << "Between " << short_hash(r.good.commit) << version(r.good) << " and "
+     << short_hash(r.bad.commit) << version(r.bad) << ", " << r.commits_in_range << " commits";
   if (!o.paths.empty()) {
-    md << " over the commits touching";
+    md << " touching";
     for (const std::string& p : o.paths) md << " `" << p << "`";
   }
-  md << "; builds took " << util::duration_text(r.total_build_s) << " in all.\n\n"
-     << "| # | commit | subject | verdict | why | build |\n| ---: | --- | --- | --- | --- | ---: |\n";
-  int n = 0;
-  for (const BisectStep& s : r.steps) {
-    std::string why = s.reason;
-    std::replace(why.begin(), why.end(), '|', '/');
-    std::replace(why.begin(), why.end(), '\n', ' ');
-    if (why.size() > 160) why = why.substr(0, 157) + "...";
-    md << "| " << ++n << " | " << short_hash(s.commit) << " | " << s.subject << " | "
-       << verdict_name(s.verdict) << " | " << why << " | "
-       << (s.reused ? "reused" : util::duration_text(s.build_s)) << " |\n";
+  md << ", " << driver << " (through " << o.platform << ") draws " << judged.size()
+     << " of the selected primitives differently. Selection: " << r.selection_rule << ".";
+  if (!r.dropped.empty())
+    md << " " << r.dropped.size() << " selected primitives drew alike on both refs' builds and "
+       << "were left out.";
+  md << "\n\n| commit | subject | date | primitives | which | GL verdicts in the run, before -> "
+        "after |\n| --- | --- | --- | ---: | --- | --- |\n";
+  for (const Culprit& c : r.culprits) {
+    std::vector<const BisectPrimitive*> prims;
+    for (const std::string& l : c.primitives) prims.push_back(by_label.at(l));
+    md << "| [" << short_hash(c.commit) << "](#commit-" << short_hash(c.commit) << ") | "
+       << cell(c.subject) << " | " << c.date.substr(0, 10) << " | " << c.primitives.size()
+       << " | " << composition(prims) << " | " << conformance_moves(prims) << " |\n";
   }
+  if (!r.unattributed.empty())
+    md << "| (unattributed) | only failed builds between two drawn commits | | "
+       << r.unattributed.size() << " | | |\n";
+  std::size_t attributed = 0;
+  for (const Culprit& c : r.culprits) attributed += c.primitives.size();
+  md << "\nChanges attributed: " << attributed << "; unattributed: " << r.unattributed.size()
+     << " (a primitive changed twice counts twice).\n";
+
+  int section = 0;
+  for (const Culprit& c : r.culprits) {
+    ++section;
+    std::vector<const BisectPrimitive*> prims;
+    for (const std::string& l : c.primitives) prims.push_back(by_label.at(l));
+    // Its worst primitive: the largest change of lit pixels.
+    const BisectPrimitive* worst = prims.front();
+    int64_t worst_change = -1;
+    for (const BisectPrimitive* p : prims) {
+      const auto [before, after] = c.pixels.at(p->label());
+      if (std::llabs(after - before) > worst_change) worst = p, worst_change = std::llabs(after - before);
+    }
+    const std::string l = worst->label();
+    const auto [before_px, after_px] = c.pixels.at(l);
+    md << "\n<a id=\"commit-" << short_hash(c.commit) << "\"></a>\n## " << section << ". "
+       << short_hash(c.commit) << " " << c.subject << "\n\n";
+    md << "**What changed.** Since commit " << short_hash(c.commit) << " (" << c.date.substr(0, 10)
+       << "), " << driver << " draws " << c.primitives.size() << " primitive"
+       << (c.primitives.size() == 1 ? "" : "s") << " differently (" << composition(prims)
+       << "); the largest change: " << l << " lit " << after_px << " pixels where "
+       << short_hash(c.previous) << " lit " << before_px << ".";
+    if (c.merge) md << " This is a merge commit: the change came with the branch it merged.";
+    if (!o.paths.empty())
+      md << " The commit before it is the previous one touching the paths given.";
+    md << "\n\n";
+    // The GL verdict: the run's record of the bad side, when this change gave the bad side's pixels.
+    audit::Reproducer repro;
+    std::string repro_error;
+    const std::string c_name = std::string(geometry::kind_name(worst->kind)) + "-v" +
+                               std::to_string(worst->view) + "-" + std::to_string(worst->index) + ".c";
+    try {
+      audit::ReproduceRequest q{o.run_dir, o.bad_platform.empty() ? o.platform : o.bad_platform,
+                                geometry::kind_name(worst->kind), worst->view, worst->index};
+      repro = audit::make_reproducer(q, c_name);
+      util::write_file_atomic(o.out_dir + "/" + c_name, repro.source);
+    } catch (const std::exception& e) {
+      repro_error = e.what();
+    }
+    const BisectStep* after_step = by_commit.count(c.commit) ? by_commit.at(c.commit) : nullptr;
+    const bool final_state = after_step && r.bad.drawing.hashes.count(l) &&
+                             after_step->drawing.hashes.count(l) &&
+                             after_step->drawing.hashes.at(l) == r.bad.drawing.hashes.at(l);
+    if (!final_state) {
+      md << "**GL verdict.** Not judged: this change leads to a state that a later commit changed "
+            "again (the run judged only the bad ref's pixels).\n\n";
+    } else if (!repro.violated_rules.empty()) {
+      md << "**GL rule broken** (OpenGL 4.6 section 14.5.1 for lines, 14.6.1 polygons, 14.4 "
+            "points; the run's verdict of the bad side):";
+      const std::string& rules = repro.violated_rules;
+      for (std::size_t at = 0; at <= rules.size();) {
+        const std::size_t plus = std::min(rules.find('+', at), rules.size());
+        const std::string rule = rules.substr(at, plus - at);
+        md << " `" << rule << "`: " << rule_meaning(rule) << (plus < rules.size() ? ";" : ".");
+        at = plus + 1;
+      }
+      md << "\n\n";
+    } else if (repro_error.empty()) {
+      md << "**GL verdict.** Allowed by GL: " << l << " keeps within the rules after the change "
+         << "(the run's verdict of the bad side: "
+         << (worst->run_bad_conformance.empty() ? "-" : worst->run_bad_conformance)
+         << "); another rounding, not a violation.\n\n";
+    }
+    md << "```\ncommit " << c.commit << "\n" << files_changed(o.source, c.commit) << "```\n\n";
+    const BisectStep* before_step =
+        by_commit.count(c.previous) ? by_commit.at(c.previous) : nullptr;
+    if (repro_error.empty()) {
+      md << "**Reproducer** of " << l << (repro.view_text.empty() ? "" : " (" + repro.view_text + ")")
+         << ": a standalone C program (EGL surfaceless, desktop GL), written as `" << c_name
+         << "`; it prints the pixels it lit.\n\n```sh\n" << repro.build_line << "\n";
+      const std::string exe = fs::path(c_name).stem().string();
+      if (before_step && !before_step->build_dir.empty())
+        md << audit::reproducer_environment(before_step->build_dir, driver) << " ./" << exe
+           << "   # " << short_hash(c.previous) << ": " << before_px << " pixels\n";
+      if (after_step && !after_step->build_dir.empty())
+        md << audit::reproducer_environment(after_step->build_dir, driver) << " ./" << exe
+           << "   # " << short_hash(c.commit) << ": " << after_px << " pixels\n";
+      md << "```\n\n<details><summary>" << c_name << "</summary>\n\n```c\n" << repro.source
+         << "```\n\n</details>\n\n";
+    } else {
+      md << "No C reproducer: " << repro_error << "\n\n";
+    }
+    if (o.pictures && before_step && after_step) {
+      md << "**Pictures** of " << l << ": white unlit, grey lit by both, orange lit by the driver "
+            "only, blue lit by the reference only, black a pixel GL forbids; the red line is the "
+            "ideal projection.\n\n";
+      fs::create_directories(o.out_dir + "/pictures");
+      for (const auto& [side, s] : {std::pair{"before", before_step}, std::pair{"after", after_step}}) {
+        const std::string png = o.out_dir + "/pictures/" + short_hash(c.commit) + "-" + side + "." +
+                                geometry::kind_name(worst->kind) + ".v" +
+                                std::to_string(worst->view) + "." + std::to_string(worst->index) +
+                                ".png";
+        const std::string got = picture(o, *s, *worst, png);
+        md << "- " << side << " (" << short_hash(s->commit) << "): "
+           << (got.empty() ? "no picture (see the command's output)"
+                           : "\n\n  ![" + std::string(side) + "](pictures/" +
+                                 fs::path(png).filename().string() + ")")
+           << "\n";
+      }
+      md << "\n";
+    }
+    md << stats::markdown_header({"primitive", "group", "pixels before", "pixels after",
+                                  "run verdicts, before -> after"},
+                                 1);
+    for (const BisectPrimitive* p : prims) {
+      const auto [b, a] = c.pixels.at(p->label());
+      md << "| " << p->label() << " | " << group_letter(p->view_group) << " | " << b << " | " << a
+         << " | " << (p->run_good_conformance.empty() ? "-" : p->run_good_conformance) << " -> "
+         << (p->run_bad_conformance.empty() ? "-" : p->run_bad_conformance) << " |\n";
+    }
+  }
+  if (!r.unattributed.empty()) {
+    md << "\n## Unattributed\n\nOnly commits that failed to build lie between two drawn commits: "
+          "each of these changes was made by one of its candidates.\n\n"
+       << stats::markdown_header({"primitive", "drawn before", "drawn after", "candidates"}, 1);
+    for (const Unattributed& u : r.unattributed) {
+      std::string cands;
+      for (const std::string& c : u.candidates) cands += (cands.empty() ? "" : " ") + short_hash(c);
+      md << "| " << u.label << " | " << short_hash(u.from) << " | " << short_hash(u.to) << " | "
+         << cands << " |\n";
+    }
+  }
+  md << "\n## The bisection\n\n" << r.steps.size() << " steps over " << r.commits_in_range
+     << " commits; builds took " << util::duration_text(r.total_build_s) << " in all.\n\n"
+     << "| # | commit | subject | drew | build |\n| ---: | --- | --- | --- | ---: |\n";
+  int n = 0;
+  for (const BisectStep& s : r.steps)
+    md << "| " << ++n << " | " << short_hash(s.commit) << " | " << cell(s.subject) << " | "
+       << cell(s.error.empty() ? s.summary : s.error) << " | "
+       << (s.reused ? "reused" : util::duration_text(s.build_s)) << " |\n";
   md << "\n## Repeat it\n\n```sh\n" << o.command_line << "\n```\n";
   util::write_file_atomic(r.report_path, md.str());
   say("report: " + r.report_path);

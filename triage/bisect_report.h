@@ -1,9 +1,10 @@
 // OUT/bisect.md: a bisection written for the driver's developers, ready to paste into their issue
-// tracker: what is wrong in one sentence, the GL rule broken, the versions and commits affected and
-// not, the first bad commit with the files it changed, the standalone C reproducer inline with its
-// build and run lines for both sides of the change, pictures of the worst primitive drawn by the
-// commit and by its parent, every selected primitive's pixels on both sides, the steps of the
-// bisection and the command that repeats it.
+// tracker: the culprit commits in one table (what each changed, by kind, view group and GL
+// verdict), then one section per culprit: what changed in one sentence, the GL rule broken or
+// "allowed by GL", the files it changed, the standalone C reproducer of its worst primitive with
+// the lines that run it on the commit and on the one before, pictures of both, and its primitives'
+// pixels; what stays unattributed and why; the steps of the bisection and the command that
+// repeats it.
 #pragma once
 
 #include <functional>

@@ -1,28 +1,21 @@
-// The bisection's verdicts and selection syntax (the loop itself: scripts/bisect-test.sh, ctest
-// bisect_faulty, with real drawing).
+// The bisection's selection syntax and its state file (the loop itself: scripts/bisect-test.sh,
+// ctest bisect_faulty, with real drawing; the choice of commits: bisect_plan_test.cpp).
 #include "triage/bisect.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
+
+#include "triage/bisect_selection.h"
+#include "triage/bisect_state.h"
+#include "util/atomic_file.h"
 #include "util/errors.h"
+
+namespace fs = std::filesystem;
 
 namespace ra::triage {
 namespace {
-
-std::vector<BisectPrimitive> selection() {
-  return {parse_primitive("line:5:721"), parse_primitive("line:6:6920"),
-          parse_primitive("triangle:1:3")};
-}
-
-Drawing drawing(uint64_t a, uint64_t b, uint64_t c) {
-  Drawing d;
-  const auto s = selection();
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    d.hashes[s[i].label()] = i == 0 ? a : i == 1 ? b : c;
-    d.pixels[s[i].label()] = int64_t(i == 0 ? a : i == 1 ? b : c) * 10;
-  }
-  return d;
-}
 
 TEST(Bisect, PrimitivesAreNamedAsKindViewIndex) {
   const BisectPrimitive p = parse_primitive("line:5:721");
@@ -36,25 +29,78 @@ TEST(Bisect, PrimitivesAreNamedAsKindViewIndex) {
     EXPECT_THROW(parse_primitive(bad), util::UserError) << bad;
 }
 
-TEST(Bisect, AStepIsGoodOrBadOnlyWhenEveryPrimitiveAgrees) {
-  const auto s = selection();
-  const Drawing good = drawing(1, 2, 3), bad = drawing(11, 12, 13);
-  EXPECT_EQ(judge_drawing(s, drawing(1, 2, 3), good, bad).first, StepVerdict::kGood);
-  EXPECT_EQ(judge_drawing(s, drawing(11, 12, 13), good, bad).first, StepVerdict::kBad);
-  const auto [mixed, why] = judge_drawing(s, drawing(1, 12, 99), good, bad);
-  EXPECT_EQ(mixed, StepVerdict::kSkip);
-  EXPECT_EQ(why, "pixels are neither: 1 like the good ref, 1 like the bad ref, 1 like neither "
-                 "(triangle 3 of view 1: 990 pixels (good ref 30, bad ref 130))");
-  Drawing failed = drawing(1, 2, 3);
-  failed.error = "lines 700-721 of view 5: crashed (signal 11)";
-  EXPECT_EQ(judge_drawing(s, failed, good, bad),
-            std::pair(StepVerdict::kSkip,
-                      std::string("drawing failed: lines 700-721 of view 5: crashed (signal 11)")));
-  Drawing missing = drawing(1, 2, 3);
-  missing.hashes.erase("line 721 of view 5");
-  EXPECT_EQ(judge_drawing(s, missing, good, bad).first, StepVerdict::kSkip);
-  EXPECT_NE(judge_drawing(s, missing, good, bad).second.find("line 721 of view 5: not drawn"),
-            std::string::npos);
+BisectState a_state() {
+  BisectState st;
+  st.inputs = {{"good", std::string(40, 'a')}};
+  st.result.original_head = "main";
+  BisectStep s;
+  s.role = "step";
+  s.commit = std::string(40, 'b');
+  s.position = 3;
+  s.summary = "1 like the good ref, 0 like the bad ref, 0 like neither";
+  s.drawing.hashes["line 1 of view 1"] = 18446744073709551615ull;
+  s.drawing.pixels["line 1 of view 1"] = 12;
+  st.result.steps = {s};
+  st.result.good = s;
+  st.result.good.role = "good ref";
+  st.result.good.position = 0;
+  return st;
+}
+
+std::string temp_file() {
+  return (fs::temp_directory_path() / ("bisect-state-" + std::to_string(::getpid()) + ".json"))
+      .string();
+}
+
+TEST(BisectState, ReadsBackWhatItWrote) {
+  const std::string path = temp_file();
+  save_bisect_state(path, a_state());
+  const BisectState back = load_bisect_state(path);
+  EXPECT_EQ(back.inputs, a_state().inputs);
+  EXPECT_EQ(back.result.original_head, "main");
+  ASSERT_EQ(back.result.steps.size(), 1u);
+  EXPECT_EQ(back.result.steps[0].position, 3u);
+  EXPECT_EQ(back.result.steps[0].drawing.hashes.at("line 1 of view 1"), 18446744073709551615ull);
+  EXPECT_EQ(back.result.bad.commit, "");  // not drawn yet
+  fs::remove(path);
+}
+
+TEST(BisectState, ABadFieldIsNamedWithItsFileAndKey) {
+  // Why: a hand-edited or damaged bisect.json said "stoull" or a JSON library code, exit 1.
+  const std::string path = temp_file();
+  const std::vector<std::pair<std::string, std::string>> damage = {
+      {"steps.0.drawing.primitives.line 1 of view 1.pixel_hash", "\"x\""},
+      {"steps.0.drawing.primitives.line 1 of view 1.pixel_hash", "\"99999999999999999999\""},
+      {"steps.0.position", "-1"},
+      {"steps.0.commit", "\"HEAD\""},
+      {"steps.0.build_s", "\"slow\""},
+      {"original_head", "7"},
+      {"steps", "{}"},
+  };
+  for (const auto& [key, value] : damage) {
+    nlohmann::json j = bisect_state_json(a_state());
+    nlohmann::json* at = &j;
+    std::string rest = key, last;
+    for (std::size_t dot; (dot = rest.find('.')) != std::string::npos; rest = rest.substr(dot + 1)) {
+      const std::string part = rest.substr(0, dot);
+      at = at->is_array() ? &(*at)[std::stoul(part)] : &(*at)[part];
+    }
+    (*at)[rest] = nlohmann::json::parse(value);
+    util::write_file_atomic(path, j.dump());
+    try {
+      load_bisect_state(path);
+      ADD_FAILURE() << key << " = " << value << " was accepted";
+    } catch (const util::UserError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find(path), std::string::npos) << m;
+      const std::string leaf = key.substr(key.rfind('.') + 1);
+      EXPECT_NE(m.find(leaf), std::string::npos) << m;
+      EXPECT_EQ(m.find("json.exception"), std::string::npos) << m;
+    }
+  }
+  util::write_file_atomic(path, "{\"version\": 2, \"inputs\": ");
+  EXPECT_THROW(load_bisect_state(path), util::UserError);
+  fs::remove(path);
 }
 
 }  // namespace

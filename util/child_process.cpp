@@ -11,6 +11,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "util/interrupt.h"
+
 extern char** environ;
 
 namespace ra::util {
@@ -172,6 +174,8 @@ ProgramResult run_program(const ChildSpec& spec) {
   ChildSpec s = spec;
   s.capture_output = true;
   const Child c = start_child(s);
+  // An interrupt (util/interrupt.h) stops a child of its own group with everything it started.
+  if (s.own_process_group) set_interruptible_group(c.pid);
   ProgramResult r;
   char buf[4096];
   for (;;) {
@@ -186,6 +190,7 @@ ProgramResult run_program(const ChildSpec& spec) {
   }
   ::close(c.output_fd);
   r.status = wait_child(c.pid);
+  if (s.own_process_group) set_interruptible_group(0);
   return r;
 }
 

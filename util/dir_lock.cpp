@@ -24,7 +24,7 @@ static std::string now_utc() {
   return buf;
 }
 
-DirLock::DirLock(const std::string& dir, const std::string& what) {
+DirLock::DirLock(const std::string& dir, const std::string& what, const std::string& advice) {
   const std::string path = lock_path(dir);
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0)
@@ -42,7 +42,7 @@ DirLock::DirLock(const std::string& dir, const std::string& what) {
       throw UserError(path + ": cannot lock (" + std::string(std::strerror(err)) + ")");
     throw UserError(dir + " is being written by " +
                     (holder.empty() ? std::string("another process") : holder) +
-                    "; wait for it to finish, or choose another --out");
+                    "; " + advice);
   }
   char host[256] = "unknown";
   ::gethostname(host, sizeof host - 1);

@@ -10,9 +10,10 @@ namespace ra::util {
 class DirLock {
  public:
   // Takes the lock on `dir` (which must exist) for `what` ("run", "audit", ...), or throws
-  // UserError "DIR is being written by process P (run) on host H since T" when another process
-  // holds it. The descriptor is close-on-exec: started programs never inherit the lock.
-  DirLock(const std::string& dir, const std::string& what);
+  // UserError "DIR is being written by process P (run) on host H since T; ADVICE" when another
+  // process holds it. The descriptor is close-on-exec: started programs never inherit the lock.
+  DirLock(const std::string& dir, const std::string& what,
+          const std::string& advice = "wait for it to finish, or choose another --out");
   ~DirLock();
   DirLock(const DirLock&) = delete;
   DirLock& operator=(const DirLock&) = delete;

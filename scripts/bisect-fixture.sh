@@ -1,0 +1,61 @@
+# Sourced by the bisection tests: stand-in driver builds and git histories whose commits name
+# them, so that `renderaudit bisect` runs with real drawing and no compiler. The drivers are the
+# `faulty` test platform over the installed Mesa llvmpipe (osmesa-llvmpipe): `faulty@BUILD` draws
+# with BUILD/faults.toml, so
+#   good:    llvmpipe as it is;
+#   bad:     llvmpipe with one wild pixel far from every primitive (wild_pixel);
+#   neither: the wild pixels of even primitives only (half like each side);
+#   broken:  the build command fails.
+# Needs: $build (the build folder), $t (a temporary folder); defines $ra, $cmd, fail, make_run,
+# make_history HISTORY WORD..., c HISTORY N (the commit "cN").
+ra="$build/renderaudit"
+fail() { echo "$(basename "$0"): FAIL: $*" >&2; exit 1; }
+
+mkdir -p "$t/drivers"/{good,bad,neither}
+printf '[faults]\nbase = "osmesa-llvmpipe"\n' > "$t/drivers/good/faults.toml"
+printf '[faults]\nbase = "osmesa-llvmpipe"\nwild_pixel = [%s]\n' "$(seq -s, 0 39)" > "$t/drivers/bad/faults.toml"
+printf '[faults]\nbase = "osmesa-llvmpipe"\nwild_pixel = [%s]\n' "$(seq -s, 0 2 39)" > "$t/drivers/neither/faults.toml"
+
+# A run of 40 lines drawn by the good and the bad driver: every line differs by its wild pixel.
+make_run() {
+  cat > "$t/exp.toml" <<EOT
+name = "bisect-test"
+seed = 7
+platforms = ["faulty@good", "faulty@bad"]
+[builds.good]
+dir = "$t/drivers/good"
+[builds.bad]
+dir = "$t/drivers/bad"
+[views]
+orientations = 1
+fov_deg = [30]
+windows = [128]
+near = 0.01
+far = 10.0
+[primitives]
+points = 0
+lines = 40
+triangles = 0
+EOT
+  "$ra" run "$t/exp.toml" --out "$t/run" --jobs 2 >/dev/null 2>"$t/run.log" || { cat "$t/run.log"; fail "run"; }
+}
+
+# make_history DIR WORD...: commit cI names the I-th driver word.
+make_history() {
+  local g=$1 i=0 d
+  shift
+  mkdir -p "$g"
+  git -C "$g" init -q -b main
+  git -C "$g" config user.email test@example.invalid
+  git -C "$g" config user.name test
+  for d in "$@"; do
+    echo "$d" > "$g/driver"
+    git -C "$g" add driver
+    git -C "$g" commit -q --allow-empty -m "c$i: $d"
+    i=$((i + 1))
+  done
+}
+c() { git -C "$1" rev-parse ":/^c$2:"; }
+# The build command: installs the checked-out commit's driver (SLEEP seconds first, if set).
+cmd='sleep ${RA_TEST_SLEEP:-0}; d=$(cat driver); [ "$d" != broken ] || { echo "cannot build $d" >&2; exit 1; }; cp '"$t"'/drivers/$d/faults.toml "$RENDERAUDIT_BUILD_PREFIX"/'
+export RENDERAUDIT_BUILD_CACHE="$t/cache"

@@ -1,0 +1,72 @@
+// Attributing every changed primitive to its commit at once, with the builds shared.
+//
+// The commits between the good and the bad ref are a line (`git rev-list --first-parent`, perhaps
+// restricted to paths): position 0 is the good ref, position n the bad ref. A built position has a
+// pixel hash for each primitive it drew. For one primitive, two of its built positions with none
+// of its own between them and different hashes hold a change: when they are neighbours on the line
+// the later one is the commit that made it; otherwise the gap is unresolved. The next position to
+// build is the middle of the gap holding the most unresolved changes (ties: the wider gap, then
+// the earlier one), so one build halves the range of every primitive that changed there, and a
+// bisection with one culprit takes the steps of a binary search.
+//
+// A primitive changed twice (good -> state 2 -> bad) shows three states and two changes, each
+// found in turn. A position whose build or drawing failed is skipped for every primitive; a gap
+// whose inner positions all failed ends unresolved with candidates (those positions and the gap's
+// end). A change undone later in the range (A -> B -> A) is seen only where a built position
+// falls inside it: the ends of the range cannot show it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace ra::triage {
+
+class AttributionPlan {
+ public:
+  // Positions 0 (the good ref) to `last` (the bad ref).
+  explicit AttributionPlan(std::size_t last);
+
+  // What the build at `position` drew: pixel hash by primitive label. A primitive missing from
+  // `hashes` is unknown there.
+  void observe(std::size_t position, const std::map<std::string, uint64_t>& hashes);
+  // The build or drawing at `position` failed: no primitive is known there.
+  void fail(std::size_t position);
+
+  // The next position to build; none when every change is attributed or only failed positions
+  // are left inside the unresolved gaps.
+  std::optional<std::size_t> next() const;
+
+  struct Change {
+    std::string label;
+    std::size_t from = 0, to = 0;        // built positions with the two states
+    uint64_t hash_before = 0, hash_after = 0;
+    bool resolved = false;               // to == from + 1: position `to` made it
+    std::vector<std::size_t> candidates;  // unresolved: the failed inner positions and `to`
+  };
+  // Every change seen so far, by label then position.
+  std::vector<Change> changes() const;
+
+  std::size_t last() const { return last_; }
+  bool built(std::size_t position) const { return observed_.count(position) > 0; }
+
+ private:
+  struct Gap {
+    std::size_t from, to;
+    bool operator<(const Gap& o) const { return from != o.from ? from < o.from : to < o.to; }
+  };
+  // Positions of `label`'s known states, in order.
+  std::vector<std::size_t> known_positions(const std::string& label) const;
+  bool open(std::size_t position) const;  // neither built nor failed
+
+  std::size_t last_;
+  std::map<std::size_t, std::map<std::string, uint64_t>> observed_;
+  std::set<std::size_t> failed_;
+  std::set<std::string> labels_;
+};
+
+}  // namespace ra::triage

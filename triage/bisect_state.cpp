@@ -1,0 +1,203 @@
+// Writing and reading OUT/bisect.json (see the header).
+#include "triage/bisect_state.h"
+
+#include <cmath>
+
+#include "rundir/manifest.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
+
+namespace ra::triage {
+namespace {
+
+nlohmann::json drawing_json(const Drawing& d) {
+  nlohmann::json j = {{"error", d.error}, {"primitives", nlohmann::json::object()}};
+  for (const auto& [label, hash] : d.hashes)
+    j["primitives"][label] = {{"pixel_hash", std::to_string(hash)},
+                              {"pixels", d.pixels.count(label) ? d.pixels.at(label) : -1}};
+  return j;
+}
+
+nlohmann::json step_json(const BisectStep& s) {
+  return {{"role", s.role},       {"commit", s.commit},     {"subject", s.subject},
+          {"date", s.date},       {"version", s.version},   {"position", s.position},
+          {"error", s.error},     {"summary", s.summary},   {"build", s.build},
+          {"build_dir", s.build_dir}, {"reused", s.reused}, {"build_s", s.build_s},
+          {"draw_s", s.draw_s},   {"drawing", drawing_json(s.drawing)}};
+}
+
+// Field readers that name the file and the key of what is wrong.
+class Reader {
+ public:
+  explicit Reader(std::string path) : path_(std::move(path)) {}
+
+  [[noreturn]] void bad(const std::string& key, const std::string& what) const {
+    throw util::UserError("bisect: " + path_ + ": '" + key + "' " + what +
+                          "; move the file away to start the bisection again");
+  }
+  const nlohmann::json& at(const nlohmann::json& j, const std::string& parent,
+                           const std::string& key) const {
+    if (!j.is_object()) bad(parent.empty() ? "(top)" : parent, "must be an object");
+    const auto it = j.find(key);
+    if (it == j.end()) bad(name(parent, key), "is missing");
+    return *it;
+  }
+  std::string text(const nlohmann::json& j, const std::string& parent, const std::string& key) const {
+    const nlohmann::json& v = at(j, parent, key);
+    if (!v.is_string()) bad(name(parent, key), "must be a string");
+    return v.get<std::string>();
+  }
+  double number(const nlohmann::json& j, const std::string& parent, const std::string& key) const {
+    const nlohmann::json& v = at(j, parent, key);
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
+      bad(name(parent, key), "must be a number of 0 or more");
+    return v.get<double>();
+  }
+  std::size_t count(const nlohmann::json& j, const std::string& parent, const std::string& key) const {
+    const nlohmann::json& v = at(j, parent, key);
+    if (!v.is_number_unsigned()) bad(name(parent, key), "must be a whole number of 0 or more");
+    return v.get<std::size_t>();
+  }
+  bool flag(const nlohmann::json& j, const std::string& parent, const std::string& key) const {
+    const nlohmann::json& v = at(j, parent, key);
+    if (!v.is_boolean()) bad(name(parent, key), "must be true or false");
+    return v.get<bool>();
+  }
+  static std::string name(const std::string& parent, const std::string& key) {
+    return parent.empty() ? key : parent + "." + key;
+  }
+
+  Drawing drawing(const nlohmann::json& j, const std::string& key) const {
+    Drawing d;
+    d.error = text(j, key, "error");
+    const nlohmann::json& prims = at(j, key, "primitives");
+    if (!prims.is_object()) bad(name(key, "primitives"), "must be an object");
+    for (const auto& [label, p] : prims.items()) {
+      const std::string k = name(key, "primitives") + "[\"" + label + "\"]";
+      const std::string hash = text(p, k, "pixel_hash");
+      if (hash.empty() || hash.size() > 20 || hash.find_first_not_of("0123456789") != std::string::npos)
+        bad(name(k, "pixel_hash"), "must be a decimal 64-bit number as text");
+      try {
+        d.hashes[label] = std::stoull(hash);
+      } catch (const std::exception&) {
+        bad(name(k, "pixel_hash"), "must be a decimal 64-bit number as text");
+      }
+      const nlohmann::json& px = at(p, k, "pixels");
+      if (!px.is_number_integer()) bad(name(k, "pixels"), "must be a whole number");
+      d.pixels[label] = px.get<int64_t>();
+    }
+    return d;
+  }
+
+  BisectStep step(const nlohmann::json& j, const std::string& key) const {
+    BisectStep s;
+    s.role = text(j, key, "role");
+    s.commit = text(j, key, "commit");
+    if (!s.commit.empty() && (s.commit.size() != 40 ||
+                              s.commit.find_first_not_of("0123456789abcdef") != std::string::npos))
+      bad(name(key, "commit"), "must be a full commit hash (40 hexadecimal digits) or empty");
+    s.subject = text(j, key, "subject");
+    s.date = text(j, key, "date");
+    s.version = text(j, key, "version");
+    s.position = count(j, key, "position");
+    s.error = text(j, key, "error");
+    s.summary = text(j, key, "summary");
+    s.build = text(j, key, "build");
+    s.build_dir = text(j, key, "build_dir");
+    s.reused = flag(j, key, "reused");
+    s.build_s = number(j, key, "build_s");
+    s.draw_s = number(j, key, "draw_s");
+    s.drawing = drawing(at(j, key, "drawing"), name(key, "drawing"));
+    return s;
+  }
+
+ private:
+  std::string path_;
+};
+
+}  // namespace
+
+nlohmann::json bisect_state_json(const BisectState& st) {
+  const BisectResult& r = st.result;
+  nlohmann::json steps = nlohmann::json::array();
+  for (const BisectStep& s : r.steps) steps.push_back(step_json(s));
+  nlohmann::json selection = nlohmann::json::array();
+  for (const BisectPrimitive& p : r.selection)
+    selection.push_back({{"kind", geometry::kind_name(p.kind)}, {"view", p.view},
+                         {"index", p.index}, {"view_group", p.view_group},
+                         {"run_good_pixels", p.run_good_pixels},
+                         {"run_bad_pixels", p.run_bad_pixels},
+                         {"run_good_conformance", p.run_good_conformance},
+                         {"run_bad_conformance", p.run_bad_conformance}});
+  nlohmann::json culprits = nlohmann::json::array();
+  for (const Culprit& c : r.culprits) {
+    nlohmann::json prims = nlohmann::json::array();
+    for (const std::string& l : c.primitives)
+      prims.push_back({{"primitive", l},
+                       {"pixels_before", c.pixels.at(l).first},
+                       {"pixels_after", c.pixels.at(l).second}});
+    culprits.push_back({{"commit", c.commit},
+                        {"subject", c.subject},
+                        {"date", c.date},
+                        {"previous", c.previous},
+                        {"merge", c.merge},
+                        {"primitives", prims}});
+  }
+  nlohmann::json unattributed = nlohmann::json::array();
+  for (const Unattributed& u : r.unattributed)
+    unattributed.push_back({{"primitive", u.label},
+                            {"from", u.from},
+                            {"to", u.to},
+                            {"candidates", u.candidates}});
+  nlohmann::json j = {{"inputs", st.inputs},
+                      {"original_head", r.original_head},
+                      {"selection_rule", r.selection_rule},
+                      {"changed_in_run", r.changed_in_run},
+                      {"selection", selection},
+                      {"dropped", r.dropped},
+                      {"commits_in_range", r.commits_in_range},
+                      {"good", step_json(r.good)},
+                      {"bad", step_json(r.bad)},
+                      {"steps", steps},
+                      {"culprits", culprits},
+                      {"unattributed", unattributed},
+                      {"complete", r.complete()},
+                      {"total_build_s", r.total_build_s}};
+  j.update(rundir::document_header("bisection", 2, false));
+  return j;
+}
+
+void save_bisect_state(const std::string& path, const BisectState& st) {
+  util::write_file_atomic(path, bisect_state_json(st).dump(2) + "\n");
+}
+
+BisectState load_bisect_state(const std::string& path) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(util::read_file(path));
+  } catch (const std::exception& e) {
+    throw util::UserError("bisect: " + path + " is not readable JSON (" + e.what() +
+                          "); move it away to start the bisection again");
+  }
+  const Reader rd(path);
+  BisectState st;
+  if (rd.text(j, "", "schema") != "renderaudit-bisection" ||
+      rd.count(j, "", "schema_version") != 2)
+    rd.bad("schema_version", "is not 2 of renderaudit-bisection: written by another renderaudit "
+                             "(a bisection of git bisect's kind)");
+  st.inputs = rd.at(j, "", "inputs");
+  if (!st.inputs.is_object()) rd.bad("inputs", "must be an object");
+  st.result.original_head = rd.text(j, "", "original_head");
+  const nlohmann::json& steps = rd.at(j, "", "steps");
+  if (!steps.is_array()) rd.bad("steps", "must be an array");
+  for (std::size_t i = 0; i < steps.size(); ++i)
+    st.result.steps.push_back(rd.step(steps[i], "steps[" + std::to_string(i) + "]"));
+  for (const char* end : {"good", "bad"}) {
+    const nlohmann::json& s = rd.at(j, "", end);
+    BisectStep step = rd.step(s, end);
+    (std::string(end) == "good" ? st.result.good : st.result.bad) = step;
+  }
+  return st;
+}
+
+}  // namespace ra::triage

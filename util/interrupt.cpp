@@ -1,0 +1,56 @@
+#include "util/interrupt.h"
+
+#include <signal.h>
+
+#include <atomic>
+
+namespace ra::util {
+namespace {
+
+volatile std::sig_atomic_t g_signal = 0;
+std::atomic<pid_t> g_group{0};
+
+void on_signal(int sig) {
+  if (g_signal == 0) g_signal = sig;
+  const pid_t group = g_group.load();
+  if (group > 0) ::kill(-group, SIGTERM);
+}
+
+}  // namespace
+
+Interrupted::Interrupted(int sig)
+    : std::runtime_error(std::string("interrupted by ") + (sig == SIGINT    ? "SIGINT"
+                                                           : sig == SIGTERM ? "SIGTERM"
+                                                           : sig == SIGHUP  ? "SIGHUP"
+                                                                            : "a signal")),
+      signal(sig) {}
+
+InterruptScope::InterruptScope() {
+  g_signal = 0;
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, &old_int_);
+  sigaction(SIGTERM, &sa, &old_term_);
+  sigaction(SIGHUP, &sa, &old_hup_);
+}
+
+InterruptScope::~InterruptScope() {
+  sigaction(SIGINT, &old_int_, nullptr);
+  sigaction(SIGTERM, &old_term_, nullptr);
+  sigaction(SIGHUP, &old_hup_, nullptr);
+}
+
+int interrupt_signal() { return g_signal; }
+
+void throw_if_interrupted() {
+  if (g_signal != 0) throw Interrupted(g_signal);
+}
+
+void set_interruptible_group(pid_t group) {
+  g_group.store(group);
+  // A signal that came before the child's group existed still stops it.
+  if (group > 0 && g_signal != 0) ::kill(-group, SIGTERM);
+}
+
+}  // namespace ra::util
