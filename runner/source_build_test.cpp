@@ -290,6 +290,84 @@ TEST_F(SourceBuildDirs, ABuildCommandInstallsProbesNothingAndIsReused) {
   EXPECT_EQ(cache_listing(), before);
 }
 
+TEST_F(SourceBuildDirs, ATreeWithoutGitIsKeyedOnItsContent) {
+  // Why: a source package's tree was keyed on VERSION and its patch list, so applying the patches
+  // reused the unpatched build.
+  const fs::path tree = root_ / "mesa-25.0.7";
+  fs::create_directories(tree / "src");
+  std::ofstream(tree / "VERSION") << "25.0.7\n";
+  std::ofstream(tree / "src" / "lp_setup_line.c") << "int guard_band = 1;\n";
+  SourceBuildOptions o;
+  o.source = tree.string();
+  o.cache = (root_ / "cache").string();
+  o.probe = false;
+  o.build_command = "mkdir -p \"$RENDERAUDIT_BUILD_PREFIX/lib/x86_64-linux-gnu\" && "
+                    "cp src/lp_setup_line.c \"$RENDERAUDIT_BUILD_PREFIX/lib/x86_64-linux-gnu/\"";
+  const SourceBuildResult first = build_from_source(o);
+  EXPECT_FALSE(first.reused);
+  EXPECT_TRUE(build_from_source(o).reused);
+  std::ofstream(tree / "src" / "lp_setup_line.c") << "int guard_band = 0;\n";  // the patch
+  const SourceBuildResult patched = build_from_source(o);
+  EXPECT_FALSE(patched.reused);
+  EXPECT_EQ(util::read_file(patched.build.dir + "/lib/x86_64-linux-gnu/lp_setup_line.c"),
+            "int guard_band = 0;\n");
+  // The hash is of the files: a lock file or a renamed file count as they should.
+  const std::string hash = tree_content_hash(tree.string());
+  std::ofstream(tree / ".lock") << "process 1 (builds build)\n";
+  EXPECT_EQ(tree_content_hash(tree.string()), hash);
+  fs::rename(tree / "src" / "lp_setup_line.c", tree / "src" / "lp_setup_tri.c");
+  EXPECT_NE(tree_content_hash(tree.string()), hash);
+}
+
+TEST_F(SourceBuildDirs, AnIncrementalFolderRebuildsOnlyWhatTheCommitChanged) {
+  // Why: a bisection step rebuilt Mesa from nothing (7-10 minutes on 2 cores); one meson folder
+  // kept across commits compiles only the files a commit touched, and every commit keeps its own
+  // install in the cache.
+  if (std::system("meson --version >/dev/null 2>&1") != 0 ||
+      std::system("ninja --version >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "meson or ninja not installed (scripts/install-deps.sh installs them)";
+  const fs::path tree = root_ / "mesa";
+  fs::create_directories(tree);
+  std::ofstream(tree / "meson.build")
+      << "project('mesa', 'c')\nshared_library('OSMesa', 'one.c', 'two.c', install: true)\n";
+  std::ofstream(tree / "one.c") << "int one(void) { return 1; }\n";
+  std::ofstream(tree / "two.c") << "int two(void) { return 2; }\n";
+  const std::string git = "git -C " + tree.string() + " -c user.email=t@t -c user.name=t ";
+  ASSERT_EQ(std::system(("git -C " + tree.string() + " init -q && " + git + "add -A && " + git +
+                         "commit -q -m one")
+                            .c_str()),
+            0);
+  SourceBuildOptions o;
+  o.source = tree.string();
+  o.cache = (root_ / "cache").string();
+  o.probe = false;
+  o.incremental = true;
+  o.jobs = 1;
+  o.llvm_config = "/bin/true";  // the project asks for no LLVM
+  std::vector<std::string> said;
+  const auto say = [&](const std::string& s) { said.push_back(s); };
+  const SourceBuildResult first = build_from_source(o, say);
+  ASSERT_FALSE(first.reused);
+  std::ofstream(tree / "two.c") << "int two(void) { return 22; }\n";
+  ASSERT_EQ(std::system((git + "commit -q -am two").c_str()), 0);
+  said.clear();
+  const SourceBuildResult second = build_from_source(o, say);
+  EXPECT_NE(second.build.dir, first.build.dir);
+  EXPECT_TRUE(std::any_of(said.begin(), said.end(), [](const std::string& s) {
+    return s.find("reusing the incremental build folder") != std::string::npos;
+  }));
+  const std::string log = util::read_file(second.build.dir + "/build.log");
+  EXPECT_NE(log.find("two.c"), std::string::npos) << log;
+  EXPECT_EQ(log.find("one.c"), std::string::npos) << "one.c was compiled again:\n" << log;
+  // Both commits' installs stay in the cache, each its own.
+  for (const SourceBuildResult* r : {&first, &second}) {
+    bool has_library = false;
+    for (const auto& e : fs::recursive_directory_iterator(r->build.dir))
+      has_library |= e.path().filename().string().rfind("libOSMesa.so", 0) == 0;
+    EXPECT_TRUE(has_library) << r->build.dir;
+  }
+}
+
 TEST_F(SourceBuildDirs, AMesonPrefixIsABuildFolderAndItsLavapipeIsFound) {
   // The layout `meson install` makes: lib/<multiarch>, share/vulkan/icd.d naming the library by
   // the prefix it was built for (here a temporary folder that no longer exists).

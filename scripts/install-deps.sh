@@ -28,6 +28,7 @@ packages=(
   libsqlite3-dev        # SQLite: audit history database
   libzstd-dev           # zstd: compressed records files (records/*.csv.zst)
   libgtest-dev          # GoogleTest: the test suite
+  meson ninja-build     # tests: the incremental build folder of Mesa builds, on a tiny project
   xvfb                  # a private X server for VTK on machines with no display
   libgl1-mesa-dri       # Mesa's GLX driver inside Xvfb (VTK's OpenGL context for figures)
   libx11-dev            # Xlib: checking that a DISPLAY answers before VTK opens it
