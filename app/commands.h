@@ -48,6 +48,7 @@ void register_records_command(CLI::App& app, int& exit_code);  // a run's record
 void register_builds_command(CLI::App& app, int& exit_code);
 void register_reproduce_command(CLI::App& app, int& exit_code);  // one record as a C program
 void register_bisect_command(CLI::App& app, int& exit_code);     // the driver commit of a change
+void register_watch_command(CLI::App& app, int& exit_code);      // a night following a Mesa branch
 
 // The studies (app/study_dispatch.cpp): each returns false when its argument is not a study (an
 // audit experiment or run folder), and otherwise does the study's stage and sets exit_code.

@@ -111,7 +111,36 @@ std::vector<plots::TrendData> trends(const std::vector<audit::HistoryEntry>& h,
   return out;
 }
 
+// The nights of `renderaudit watch`, when the database holds any: one line each, its culprits
+// below it.
+void print_nights(const HistoryOptions& o) {
+  const std::vector<audit::NightEntry> nights = audit::read_nights(o.db, o.last);
+  if (nights.empty()) return;
+  std::printf("%zu night%s of renderaudit watch (the last ones):\n\n", nights.size(),
+              nights.size() == 1 ? "" : "s");
+  std::vector<std::vector<std::string>> rows = {{"night", "date (UTC)", "commit", "verdict", "note"}};
+  for (const audit::NightEntry& n : nights)
+    rows.push_back({"#" + std::to_string(n.id), n.date_utc, n.commit.substr(0, 12), n.verdict,
+                    n.note.size() > 100 ? n.note.substr(0, 97) + "..." : n.note});
+  const std::string table = text_table(rows, {true, false, false, false, false});
+  std::size_t line = 0;
+  for (std::size_t at = 0; at < table.size(); ++line) {
+    const std::size_t nl = table.find('\n', at);
+    std::printf("%s\n", table.substr(at, nl - at).c_str());
+    at = nl + 1;
+    if (line == 0) continue;
+    const std::string& culprits = nights[line - 1].culprits;
+    for (std::size_t c = 0; c < culprits.size();) {
+      const std::size_t end = std::min(culprits.find('\n', c), culprits.size());
+      std::printf("        culprit: %s\n", culprits.substr(c, end - c).c_str());
+      c = end + 1;
+    }
+  }
+  std::printf("\n");
+}
+
 void run_history(const HistoryOptions& o, int& exit_code) {
+  print_nights(o);
   const std::vector<audit::HistoryEntry> h = audit::read_history(o.db, o.last);
   const int64_t total = audit::history_audit_count(o.db);
   std::printf("%s: %lld audit%s", o.db.c_str(), static_cast<long long>(total),

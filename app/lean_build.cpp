@@ -62,6 +62,12 @@ void register_bisect_command(CLI::App& app, int&) {
                               "the full build");
 }
 
+void register_watch_command(CLI::App& app, int&) {
+  register_full_build_command(app, "watch", "A night following a Mesa branch",
+                              "its bisections draw images of the changed primitives: run it with "
+                              "the full build");
+}
+
 bool run_study_if_declared(const rundir::StudyRunOptions& options, int&) {
   const rundir::StudyKind kind = rundir::experiment_study_kind(options.experiment);
   if (kind == rundir::StudyKind::kAudit) return false;

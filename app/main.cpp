@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   ra::app::register_builds_command(app, exit_code);
   ra::app::register_reproduce_command(app, exit_code);
   ra::app::register_bisect_command(app, exit_code);
+  ra::app::register_watch_command(app, exit_code);
   // A mistyped command ("analyse") is named with the nearest one, before CLI11 would read it as
   // a missing subcommand (or print the main help for `analyse --help`).
   if (argc > 1 && argv[1][0] != '-') {

@@ -67,6 +67,21 @@ CREATE TABLE classes (
 CREATE INDEX metrics_by_series ON metrics (metric, platform, kind, view_group);
 )sql";
 
+// Added in schema version 2.
+constexpr const char* kNightsSql = R"sql(
+CREATE TABLE nights (
+  id INTEGER PRIMARY KEY,
+  date_utc TEXT NOT NULL,
+  source TEXT NOT NULL,
+  commit_hash TEXT NOT NULL,
+  previous_commit TEXT NOT NULL,
+  verdict TEXT NOT NULL,
+  culprits TEXT NOT NULL,
+  run_dir TEXT NOT NULL,
+  note TEXT NOT NULL
+);
+)sql";
+
 // One connection; every failure becomes a UserError naming the file.
 class Connection {
  public:
@@ -182,7 +197,7 @@ int64_t count_tables(Connection& c) {
 }
 
 // What the schema check found.
-enum class SchemaState { kEmpty, kCurrent };
+enum class SchemaState { kEmpty, kVersion1, kCurrent };
 
 // Checks the file's schema version; inside a transaction, so that the answer holds for it.
 SchemaState check_schema(Connection& c) {
@@ -201,7 +216,8 @@ SchemaState check_schema(Connection& c) {
     throw util::UserError(c.path() + ": history schema version " + std::to_string(version) +
                           " is newer than this renderaudit reads (" +
                           std::to_string(kHistorySchemaVersion) + "): use a newer renderaudit");
-  if (version < kHistorySchemaVersion)  // no older versions exist yet
+  if (version == 1) return SchemaState::kVersion1;  // no nights table yet
+  if (version < kHistorySchemaVersion)
     throw util::UserError(c.path() + ": unknown history schema version " + std::to_string(version));
   return SchemaState::kCurrent;
 }
@@ -216,7 +232,61 @@ Connection open_existing(const std::string& path) {
   return Connection(path, SQLITE_OPEN_READWRITE, kHistoryBusyTimeoutMs);
 }
 
+// In a write transaction: the schema created in an empty file, the nights table added to a
+// version 1 file.
+void create_or_migrate(Connection& c) {
+  const SchemaState state = check_schema(c);
+  if (state == SchemaState::kEmpty) {
+    c.exec(kSchemaSql, "cannot create the history schema");
+    c.exec("PRAGMA application_id = " + std::to_string(kApplicationId));
+  }
+  if (state != SchemaState::kCurrent) {
+    c.exec(kNightsSql, "cannot create the history schema");
+    c.exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
+  }
+}
+
+Connection open_for_append(const std::string& db_path, int busy_timeout_ms) {
+  const fs::path parent = fs::path(db_path).parent_path();
+  if (!parent.empty()) {
+    std::error_code ec;
+    fs::create_directories(parent, ec);  // a concurrent appender may create it first: not an error
+    if (!fs::is_directory(parent))
+      throw util::UserError(db_path + ": cannot create the directory " + parent.string() + ": " +
+                            ec.message());
+  }
+  return Connection(db_path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, busy_timeout_ms);
+}
+
 }  // namespace
+
+void append_night(const std::string& db_path, const NightEntry& n) {
+  Connection c = open_for_append(db_path, kHistoryBusyTimeoutMs);
+  c.exec("BEGIN IMMEDIATE", "cannot begin writing the history");
+  create_or_migrate(c);
+  Statement s(c,
+              "INSERT INTO nights (date_utc, source, commit_hash, previous_commit, verdict, "
+              "culprits, run_dir, note) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+  s.bind(1, n.date_utc).bind(2, n.source).bind(3, n.commit).bind(4, n.previous_commit);
+  s.bind(5, n.verdict).bind(6, n.culprits).bind(7, n.run_dir).bind(8, n.note);
+  s.run_once();
+  c.exec("COMMIT", "cannot commit the history");
+}
+
+std::vector<NightEntry> read_nights(const std::string& db_path, std::size_t last) {
+  Connection c = open_existing(db_path);
+  c.exec("BEGIN", "cannot read the history");
+  std::vector<NightEntry> out;
+  if (check_schema(c) != SchemaState::kCurrent) return out;
+  Statement s(c,
+              "SELECT id, date_utc, source, commit_hash, previous_commit, verdict, culprits, "
+              "run_dir, note FROM (SELECT * FROM nights ORDER BY id DESC LIMIT ?) ORDER BY id");
+  s.bind(1, last == 0 ? int64_t(-1) : int64_t(last));
+  while (s.step())
+    out.push_back({s.integer(0), s.text(1), s.text(2), s.text(3), s.text(4), s.text(5),
+                   s.text(6), s.text(7), s.text(8)});
+  return out;
+}
 
 std::string default_history_path(const std::string& current_run_dir) {
   const std::filesystem::path run = std::filesystem::absolute(current_run_dir).lexically_normal();
@@ -229,24 +299,12 @@ void append_history(const std::string& db_path, const AuditSummary& s) {
 
 int64_t append_history(const std::string& db_path, const AuditSummary& s,
                        const AppendOptions& options) {
-  const fs::path parent = fs::path(db_path).parent_path();
-  if (!parent.empty()) {
-    std::error_code ec;
-    fs::create_directories(parent, ec);  // a concurrent appender may create it first: not an error
-    if (!fs::is_directory(parent))
-      throw util::UserError(db_path + ": cannot create the directory " + parent.string() + ": " +
-                            ec.message());
-  }
-  Connection c(db_path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, options.busy_timeout_ms);
+  Connection c = open_for_append(db_path, options.busy_timeout_ms);
   if (options.cache_pages > 0) c.exec("PRAGMA cache_size = " + std::to_string(options.cache_pages));
 
   // IMMEDIATE: take the write lock now, waiting up to the busy timeout for another appender.
   c.exec("BEGIN IMMEDIATE", "cannot begin writing the history");
-  if (check_schema(c) == SchemaState::kEmpty) {
-    c.exec(kSchemaSql, "cannot create the history schema");
-    c.exec("PRAGMA application_id = " + std::to_string(kApplicationId));
-    c.exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
-  }
+  create_or_migrate(c);
 
   Statement audit(c,
                   "INSERT INTO audits (date_utc, experiment, experiment_hash, seed, baseline_run, "
@@ -393,7 +451,7 @@ int64_t history_audit_count(const std::string& db_path) {
   Connection c = open_existing(db_path);
   c.exec("BEGIN", "cannot read the history");
   int64_t n = 0;
-  if (check_schema(c) == SchemaState::kCurrent) {
+  if (check_schema(c) != SchemaState::kEmpty) {
     Statement s(c, "SELECT count(*) FROM audits");
     if (s.step()) n = s.integer(0);
   }

@@ -11,6 +11,11 @@
 //   metrics  (audit_id, platform, kind, view_group, metric) -> n, median, iqr
 //            (median / iqr NULL when not finite, e.g. n = 0)
 //   classes  (audit_id, platform, kind, view_group, visibility) -> count
+//   nights   (version 2) one row per night of `renderaudit watch`: id, date_utc, source, commit,
+//            previous_commit, verdict ('baseline established' | 'nothing new' | 'unchanged' |
+//            'changed' | 'build failed' | 'run failed' | 'moved backwards'), culprits (one
+//            "HASH SUBJECT (N primitives)" per line), run_dir, note. A version 1 database gains
+//            the table at its next append.
 // Child rows reference audits(id); an audit is written in one transaction, so a reader sees all of
 // it or none of it.
 //
@@ -37,7 +42,7 @@
 
 namespace ra::audit {
 
-constexpr int kHistorySchemaVersion = 1;
+constexpr int kHistorySchemaVersion = 2;
 constexpr int kHistoryBusyTimeoutMs = 30000;  // how long an appender or reader waits for the lock
 
 // The history an audit appends to when none is named: history.sqlite beside the current run
@@ -81,5 +86,17 @@ int64_t history_audit_count(const std::string& db_path);
 // "ok" when SQLite's integrity check and foreign-key check find nothing, else their findings, one
 // per line. Same errors as read_history.
 std::string history_integrity(const std::string& db_path);
+
+// One night of `renderaudit watch` (triage/watch.h).
+struct NightEntry {
+  int64_t id = 0;
+  std::string date_utc, source, commit, previous_commit, verdict, culprits, run_dir, note;
+};
+
+// Appends a night, in one transaction (creating the database as append_history does).
+void append_night(const std::string& db_path, const NightEntry& night);
+
+// The last `last` nights (0: all), oldest first; none in a database without nights.
+std::vector<NightEntry> read_nights(const std::string& db_path, std::size_t last = 0);
 
 }  // namespace ra::audit

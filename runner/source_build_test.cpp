@@ -12,6 +12,7 @@
 #include "rundir/driver_build.h"
 #include "platforms/vulkan_context.h"
 #include "runner/meson_plan.h"
+#include "util/atomic_file.h"
 #include "util/errors.h"
 
 namespace fs = std::filesystem;

@@ -10,12 +10,12 @@
 #include "audit/flake_check.h"
 #include "rundir/experiment.h"
 #include "rundir/platform_spec.h"
+#include "runner/git_command.h"
 #include "triage/bisect_plan.h"
 #include "triage/bisect_report.h"
 #include "triage/bisect_selection.h"
 #include "triage/bisect_state.h"
 #include "util/atomic_file.h"
-#include "util/child_process.h"
 #include "util/duration_text.h"
 #include "util/errors.h"
 #include "util/interrupt.h"
@@ -26,22 +26,8 @@ using Clock = std::chrono::steady_clock;
 namespace ra::triage {
 namespace {
 
-struct GitResult {
-  bool ok = false;
-  std::string out;
-};
-
-GitResult git(const std::string& dir, std::vector<std::string> args) {
-  args.insert(args.begin(), {"git", "-C", dir, "-c", "advice.detachedHead=false"});
-  util::ChildSpec spec;
-  spec.argv = args;
-  spec.stdin_null = true;
-  spec.capture_output = true;
-  const util::ProgramResult r = util::run_program(spec);
-  GitResult g{r.exited_ok(), r.output};
-  while (!g.out.empty() && (g.out.back() == '\n' || g.out.back() == ' ')) g.out.pop_back();
-  return g;
-}
+using runner::git;
+using runner::GitResult;
 
 std::string git_ok(const std::string& dir, const std::vector<std::string>& args,
                    const std::string& what) {

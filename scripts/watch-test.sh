@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# `renderaudit watch` over six nights of a Mesa branch made of stand-in builds
+# (scripts/bisect-fixture.sh), no compiler (ctest watch_nights). The watched tree is a clone that
+# follows an upstream; each night commits to the upstream first:
+#   1. c0 good:                      baseline established (exit 0)
+#   2. nothing new:                  said, nothing built or run (exit 0)
+#   3. c1 good, c2 neither, c3 bad:  changed; the even lines named to c2, the odd ones to c3 (exit 1)
+#   4. c4 broken:                    build failed; last night's build stays the baseline (exit 2)
+#   5. c5 bad:                       unchanged against c3 (exit 0)
+#   6. upstream reset to c1:         moved backwards; tonight is the new baseline (exit 1)
+# and `history` lists the six nights with their commits, verdicts and culprits.
+# Usage: scripts/watch-test.sh BUILD_DIR
+set -euo pipefail
+build=$(cd "${1:-build}" && pwd)
+t=$(mktemp -d /tmp/renderaudit-watch-test-XXXXXX)
+trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
+. "$(dirname "$0")/bisect-fixture.sh"
+
+cat > "$t/nightly.toml" <<EOT
+name = "watch-test"
+seed = 7
+platforms = ["faulty"]
+[views]
+orientations = 1
+fov_deg = [30]
+windows = [128]
+near = 0.01
+far = 10.0
+[primitives]
+points = 0
+lines = 40
+triangles = 0
+EOT
+up="$t/upstream"
+make_history "$up" good
+git clone -q "$up" "$t/mesa"
+commit() {  # commit WORD...: the next commits upstream
+  local d n
+  for d in "$@"; do
+    n=$(git -C "$up" rev-list --count HEAD)
+    echo "$d" > "$up/driver"
+    git -C "$up" commit -q --allow-empty -am "c$n: $d"
+  done
+}
+night() {  # night N: one night; exit code in $rc, output in $t/nightN.{out,err}
+  set +e
+  "$ra" watch "$t/mesa" --experiment "$t/nightly.toml" --state "$t/state" --build-command "$cmd" \
+    --jobs 2 --no-pictures >"$t/night$1.out" 2>"$t/night$1.err"
+  rc=$?
+  set -e
+}
+expect() {  # expect N CODE TEXT
+  [ "$rc" = "$2" ] && grep -qF -- "$3" "$t/night$1.out" ||
+    { cat "$t/night$1.out" "$t/night$1.err"; fail "night $1: exit $rc (expected $2), '$3' not said"; }
+}
+
+night 1
+expect 1 0 "night: baseline established"
+night 2
+expect 2 0 "night: nothing new"
+grep -q "^details:" "$t/night2.out" && fail "night 2 made a night folder"
+commit good neither bad
+night 3
+expect 3 1 "night: changed: 40 primitives changed, 2 culprit commit(s)"
+c2=$(c "$up" 2)
+expect 3 1 "first bad commit: $c2 c2: neither (20 primitives of faulty)"
+expect 3 1 "first bad commit: $(c "$up" 3) c3: bad (20 primitives of faulty)"
+commit broken
+night 4
+expect 4 2 "night: build failed"
+grep -q "\"commit\": \"$(c "$up" 3)\"" "$t/state/watch.json" || fail "night 4 replaced the last good build"
+commit bad
+night 5
+expect 5 0 "night: unchanged: no primitive changed ($(c "$up" 5 | cut -c1-12))"
+git -C "$up" reset -q --hard "$(c "$up" 1)"
+night 6
+expect 6 1 "night: moved backwards"
+
+"$ra" history --db "$t/state/history.sqlite" >"$t/history.out" 2>&1 || { cat "$t/history.out"; fail "history"; }
+nights=$(sed -n '/nights of renderaudit watch/,/audits, the last/p' "$t/history.out")
+n=0
+for v in "baseline established" "nothing new" "changed" "build failed" "unchanged" "moved backwards"; do
+  n=$((n + 1))
+  grep -qE "^ *#$n  .*  $v  " <<< "$nights" || { cat "$t/history.out"; fail "history: night $n is not '$v'"; }
+done
+grep -qF "culprit: $c2 c2: neither (20 primitives of faulty)" <<< "$nights" ||
+  { cat "$t/history.out"; fail "history lacks night 3's culprits"; }
+echo "watch-test: 6 nights checked"
+echo "1 passed, 0 failed"
