@@ -215,7 +215,14 @@ class Night {
       if (!f.ok) say("git fetch failed (" + f.out + "): watching the tree's own head");
     }
     runner::GitResult up = git(o_.source, {"rev-parse", "--verify", "-q", "@{upstream}^{commit}"});
-    if (up.ok && !up.out.empty()) return up.out;
+    if (up.ok && !up.out.empty()) {
+      // The branch brought to its head, so that the tree stays where it is built and an
+      // incremental build recompiles only what the night changed; a branch that cannot move
+      // forward (rewritten upstream) is built at the upstream's commit and left as it is.
+      if (!git(o_.source, {"merge", "-q", "--ff-only", "@{upstream}"}).ok)
+        say("the branch cannot be fast-forwarded to its upstream: building the upstream's head");
+      return up.out;
+    }
     up = git(o_.source, {"rev-parse", "--verify", "-q", "HEAD^{commit}"});
     if (!up.ok) throw util::UserError("watch: " + o_.source + " has no commit");
     return up.out;

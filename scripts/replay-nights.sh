@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Replays `renderaudit watch` night by night along a stretch of Mesa's history: NIGHTS commits
+# evenly spaced on the first-parent line FIRST..LAST are, one after the other, the head of the
+# branch `replay` of MESA (a git clone of Mesa), which a second clone follows as its upstream;
+# each night runs `renderaudit watch` on that clone, as cron would. No person chooses anything
+# after the stretch: the loop flags the night a change enters and names its commit.
+#
+#   scripts/replay-nights.sh MESA FIRST LAST NIGHTS EXPERIMENT STATE [watch options...]
+#   e.g. scripts/replay-nights.sh ~/mesa a07fa6516b0~150 a07fa6516b0~-150 10 \
+#          experiments/watch-llvmpipe.toml outputs/replay
+# (REV~-N is not git syntax: FIRST and LAST are commits; docs/nightly-audit.md shows the run.)
+set -euo pipefail
+mesa=$(cd "${1:?MESA}" && pwd)
+first=${2:?FIRST}
+last=${3:?LAST}
+nights=${4:?NIGHTS}
+experiment=${5:?EXPERIMENT}
+state=${6:?STATE}
+shift 6
+ra=${RENDERAUDIT:-$(dirname "$0")/../build/renderaudit}
+
+mapfile -t line < <(git -C "$mesa" rev-list --first-parent --reverse "$first..$last")
+[ ${#line[@]} -ge "$nights" ] || { echo "replay: only ${#line[@]} commits in $first..$last" >&2; exit 2; }
+watched="$state/mesa"
+mkdir -p "$state"
+git -C "$mesa" branch -f replay "${line[0]}"
+[ -d "$watched/.git" ] || git clone -q --branch replay "$mesa" "$watched"
+for ((n = 0; n < nights; n++)); do
+  i=$(( (${#line[@]} - 1) * n / (nights - 1) ))
+  git -C "$mesa" branch -f replay "${line[$i]}"
+  echo "replay: night $((n + 1)) of $nights: $(git -C "$mesa" log -1 --format='%h %s' "${line[$i]}")"
+  set +e
+  "$ra" watch "$watched" --experiment "$experiment" --state "$state" "$@"
+  echo "replay: night $((n + 1)) exit $?"
+  set -e
+done
+"$ra" history --db "$state/history.sqlite" --last "$nights" | sed -n '1,/audits, the last/p'
