@@ -8,7 +8,7 @@ BUILD_TYPE ?= Release
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
-.PHONY: all deps build lean bundle install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly timing lod regulation format clean
+.PHONY: all deps build lean bundle install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly watch timing lod regulation format clean
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
@@ -130,6 +130,16 @@ investigations: build
 # report. Exit code: 0 unchanged, 1 changed, 2 failed.
 nightly: build
 	BUILD=$(BUILD) JOBS=$(JOBS) scripts/nightly.sh
+
+# One night following a Mesa branch (docs/nightly-audit.md, "Following a Mesa branch"): the git
+# tree MESA_SOURCE is fetched, its branch head built (scripts/install-mesa-build-deps.sh installs
+# what that needs) and audited against last night's build, and every change is named to its
+# commit. Exit code: 0 nothing new or unchanged, 1 changed, 2 failed.
+WATCH_EXPERIMENT ?= experiments/watch-llvmpipe.toml
+WATCH_STATE ?= outputs/watch
+watch: build
+	@test -n "$(MESA_SOURCE)" || { echo "make watch: MESA_SOURCE=DIR names the Mesa git clone to follow (docs/nightly-audit.md)" >&2; exit 2; }
+	$(BUILD)/renderaudit watch $(MESA_SOURCE) --experiment $(WATCH_EXPERIMENT) --state $(WATCH_STATE) --jobs $(JOBS)
 
 # The rendering-time study (Wimmer & Wonka 2003): experiments/timing.toml -> outputs/timing/
 # (timing.json, timing.md, CSV files, figures) and its report. About 28 minutes on an idle 2-core

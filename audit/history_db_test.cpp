@@ -140,6 +140,36 @@ TEST(HistoryDb, RoundTripOfSummariesOldestFirst) {
   EXPECT_FALSE(fs::exists(db + "-wal"));
 }
 
+TEST(HistoryDb, AVersion1DatabaseGainsTheNightsAndKeepsItsAudits) {
+  // Why: the nights of `renderaudit watch` share the history file with the audits; a database
+  // written before them must read as it did and take nights from its next append.
+  const std::string db = fresh_dir("history_nights") + "/history.sqlite";
+  append_history(db, make_summary(1));
+  set_pragma(db, "DROP TABLE nights");
+  set_pragma(db, "PRAGMA user_version = 1");  // as version 1 wrote it
+  EXPECT_EQ(history_audit_count(db), 1);
+  EXPECT_TRUE(read_nights(db).empty());
+  NightEntry n;
+  n.date_utc = "2026-11-28T02:00:00Z";
+  n.source = "/srv/mesa";
+  n.commit = std::string(40, 'b');
+  n.previous_commit = std::string(40, 'a');
+  n.verdict = "changed";
+  n.culprits = "c2 one (3 primitives of egl-llvmpipe)\nc3 two (1 primitives of egl-llvmpipe)";
+  n.note = "4 primitives changed";
+  append_night(db, n);
+  append_history(db, make_summary(2));
+  EXPECT_EQ(pragma_value(db, "user_version"), kHistorySchemaVersion);
+  EXPECT_EQ(history_audit_count(db), 2);
+  const std::vector<NightEntry> nights = read_nights(db);
+  ASSERT_EQ(nights.size(), 1u);
+  EXPECT_EQ(nights[0].id, 1);
+  EXPECT_EQ(nights[0].commit, n.commit);
+  EXPECT_EQ(nights[0].culprits, n.culprits);
+  EXPECT_EQ(nights[0].verdict, "changed");
+  EXPECT_EQ(history_integrity(db), "ok");
+}
+
 TEST(HistoryDb, ADuplicatedMetricRowRejectsTheWholeAudit) {
   const std::string db = fresh_dir("history_dup") + "/h.sqlite";
   append_history(db, make_summary(1));
