@@ -1,7 +1,11 @@
 // Building a Mesa source tree into the build cache (see the header).
 #include "runner/source_build.h"
 
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
 
 #include <algorithm>
 #include <chrono>
@@ -19,8 +23,10 @@
 #include "runner/meson_plan.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
+#include "util/duration_text.h"
 #include "util/errors.h"
 #include "util/fnv1a.h"
+#include "util/interrupt.h"
 
 namespace fs = std::filesystem;
 
@@ -101,9 +107,26 @@ std::string joined(const std::vector<std::string>& v) {
 
 // Runs one step with its output in `log`; UserError naming the step, the log's last lines and,
 // for a configure, the package meson says is missing.
+// ninja's last "[n/N]" in its log, as the progress of a compile ("" when it printed none yet).
+std::string ninja_progress(const std::string& log, double elapsed_s) {
+  const std::string tail = tail_of(log, 40);
+  const std::size_t open = tail.rfind("\n[");
+  if (open == std::string::npos) return "";
+  unsigned done = 0, total = 0;
+  if (std::sscanf(tail.c_str() + open + 2, "%u/%u]", &done, &total) != 2 || total == 0 || done == 0)
+    return "";
+  std::string text = "[" + std::to_string(done) + "/" + std::to_string(total) + "] " +
+                     util::duration_text(elapsed_s) + " so far";
+  if (done < total) text += ", about " + util::duration_text(elapsed_s * (total - done) / done) + " left";
+  return text;
+}
+
+// Runs one step with its output in `log`, saying a compile's progress every 30 s; UserError naming
+// the step, the log's last lines and, for a configure, the package meson says is missing.
 void run_step(const std::string& step, const std::vector<std::string>& argv, const std::string& cwd,
               const std::vector<std::string>& env, const std::string& log,
-              const std::string& kept_log) {
+              const std::string& kept_log,
+              const std::function<void(const std::string&)>& say = {}) {
   util::ChildSpec spec;
   spec.argv = argv;
   spec.stdin_null = true;
@@ -111,7 +134,23 @@ void run_step(const std::string& step, const std::vector<std::string>& argv, con
   spec.set_env = env;
   spec.log_to(log);
   spec.own_process_group = true;
-  const util::ProgramResult r = util::run_program(spec);
+  const util::Child child = util::start_child(spec);
+  util::set_interruptible_group(child.pid);  // an interrupt stops the step's whole group
+  const auto t0 = std::chrono::steady_clock::now();
+  auto said = t0;
+  util::ProgramResult r;
+  for (;;) {
+    const pid_t done = ::waitpid(child.pid, &r.status, WNOHANG);
+    if (done == child.pid || (done < 0 && errno != EINTR)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    const auto now = std::chrono::steady_clock::now();
+    if (say && now - said >= std::chrono::seconds(30)) {
+      said = now;
+      const std::string p = ninja_progress(log, std::chrono::duration<double>(now - t0).count());
+      if (!p.empty()) say(step + ": " + p);
+    }
+  }
+  util::set_interruptible_group(0);
   if (r.exited_ok()) return;
   std::error_code ec;
   fs::copy_file(log, kept_log, fs::copy_options::overwrite_existing, ec);
@@ -197,13 +236,13 @@ std::vector<std::string> run_meson(const SourceBuildOptions& options, const std:
     configure();
   say("compile: " + joined(plan.compile));
   try {
-    run_step("compile (ninja)", plan.compile, source, env, work + "/compile.log", kept_log);
+    run_step("compile (ninja)", plan.compile, source, env, work + "/compile.log", kept_log, say);
   } catch (const util::UserError&) {
     // meson's own reconfigure failed in a folder configured at a distant commit: once afresh.
     if (!configured || !log_says(work + "/compile.log", "rebuilding 'build.ninja'")) throw;
     say("the incremental folder cannot reconfigure itself for this commit: configuring afresh");
     configure();
-    run_step("compile (ninja)", plan.compile, source, env, work + "/compile.log", kept_log);
+    run_step("compile (ninja)", plan.compile, source, env, work + "/compile.log", kept_log, say);
   }
   say("install into the build folder");
   fs::remove_all(folders.prefix, ec);
