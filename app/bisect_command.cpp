@@ -6,6 +6,7 @@
 #include "app/commands.h"
 #include "triage/bisect.h"
 #include "util/errors.h"
+#include "util/shell_quote.h"
 
 namespace ra::app {
 
@@ -74,26 +75,29 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
     opts->o.build.jobs = opts->o.jobs;
     for (std::string& v : opts->o.build.meson_options)
       if (v.rfind("-D", 0) != 0) v = "-D" + v;
-    // The command as a person would type it again (the report repeats it).
-    opts->o.command_line = "renderaudit bisect " + opts->o.run_dir;
-    if (!opts->between.empty())
-      opts->o.command_line += " --between " + opts->between[0] + " " + opts->between[1];
-    opts->o.command_line +=
-        " --source " + opts->o.source + " --good " + opts->o.good_ref + " --bad " + opts->o.bad_ref;
-    if (!opts->o.platform.empty()) opts->o.command_line += " --platform " + opts->o.platform;
-    for (const std::string& k : opts->o.kinds) opts->o.command_line += " --kind " + k;
-    for (int v : opts->o.views) opts->o.command_line += " --view " + std::to_string(v);
-    for (const std::string& p : opts->o.primitives) opts->o.command_line += " --primitive " + p;
+    // The command as a person would type it again (the report repeats it), every value one shell
+    // word.
+    std::vector<std::string> w = {"bisect", opts->o.run_dir};
+    auto add = [&w](std::initializer_list<std::string> words) { w.insert(w.end(), words); };
+    if (!opts->between.empty()) add({"--between", opts->between[0], opts->between[1]});
+    add({"--source", opts->o.source, "--good", opts->o.good_ref, "--bad", opts->o.bad_ref});
+    if (!opts->o.platform.empty()) add({"--platform", opts->o.platform});
+    for (const std::string& k : opts->o.kinds) add({"--kind", k});
+    for (int v : opts->o.views) add({"--view", std::to_string(v)});
+    for (const std::string& p : opts->o.primitives) add({"--primitive", p});
     if (opts->o.max_primitives != triage::BisectOptions{}.max_primitives)
-      opts->o.command_line += " --max-primitives " + std::to_string(opts->o.max_primitives);
-    if (!opts->o.out_dir.empty()) opts->o.command_line += " --out " + opts->o.out_dir;
-    for (const std::string& m : opts->o.build.meson_options) opts->o.command_line += " " + m;
-    if (!opts->o.build.build_command.empty())
-      opts->o.command_line += " --build-command '" + opts->o.build.build_command + "'";
+      add({"--max-primitives", std::to_string(opts->o.max_primitives)});
+    if (!opts->o.out_dir.empty()) add({"--out", opts->o.out_dir});
+    if (!opts->o.build.cache.empty()) add({"--cache", opts->o.build.cache});
+    if (opts->o.build.llvm_config != runner::SourceBuildOptions{}.llvm_config)
+      add({"--llvm-config", opts->o.build.llvm_config});
+    for (const std::string& m : opts->o.build.meson_options) add({m});
+    if (!opts->o.build.build_command.empty()) add({"--build-command", opts->o.build.build_command});
     if (!opts->o.paths.empty()) {
-      opts->o.command_line += " --";
-      for (const std::string& p : opts->o.paths) opts->o.command_line += " " + p;
+      add({"--"});
+      for (const std::string& p : opts->o.paths) add({p});
     }
+    opts->o.command_line = "renderaudit " + util::shell_command(w);
     const triage::BisectResult r = triage::run_bisect(opts->o, [](const std::string& line) {
       std::fprintf(stderr, "bisect: %s\n", line.c_str());
     });

@@ -104,6 +104,27 @@ done
   >"$t/b2.out" 2>"$t/b2.err" || { cat "$t/b2.out" "$t/b2.err"; fail "bisect c3..c6"; }
 grep -q "^first bad commit: $(c 4)" "$t/b2.out" || fail "c3..c6: first bad commit is not c4"
 grep -q "skip: pixels are neither: 3 like the good ref, 3 like the bad ref, 0 like neither" "$t/b2.err" || { cat "$t/b2.err"; fail "c5 was not skipped as drawing neither side"; }
+# The report's "Repeat it" command pastes into a shell as the very command that ran: every value
+# one word, though the source folder is named like a command substitution with a quote, the output
+# folder holds a line break and the build command a quote.
+hs="$t/src dir \$(touch $t/PWNED) it's"
+git clone -q "$g" "$hs"
+hout="$t/b6 out
+line"
+hcmd="$cmd; : \"it's\""
+"$ra" bisect "$t/run" --between faulty@good faulty@bad --source "$hs" --good "$(c 3)" \
+  --bad "$(c 6)" --build-command "$hcmd" --max-primitives 6 --out "$hout" --no-pictures \
+  >"$t/b6.out" 2>"$t/b6.err" || { cat "$t/b6.out" "$t/b6.err"; fail "bisect of a source folder with a hostile name"; }
+repeat=$(awk '/^## Repeat it$/ {r = 1; next} r && /^```sh$/ {b = 1; next} b && /^```$/ {exit} b' "$hout/bisect.md")
+mkdir -p "$t/stub"
+printf '#!/bin/sh\nprintf "%%s\\0" "$@" > "$STUB_ARGS"\n' > "$t/stub/renderaudit"
+chmod +x "$t/stub/renderaudit"
+STUB_ARGS="$t/repeat.args" PATH="$t/stub:$PATH" bash -c "$repeat" ||
+  fail "the Repeat it command does not run in bash: $repeat"
+[ ! -e "$t/PWNED" ] || fail "the Repeat it command ran the source folder's \$(touch ...)"
+cmp -s "$t/repeat.args" <(printf '%s\0' bisect "$t/run" --between faulty@good faulty@bad \
+  --source "$hs" --good "$(c 3)" --bad "$(c 6)" --max-primitives 6 --out "$hout" \
+  --build-command "$hcmd") || fail "the Repeat it command is not the command that ran: $repeat"
 # Refs that draw alike: nothing to bisect.
 "$ra" bisect "$t/run" --between faulty@good faulty@bad --source "$g" --good "$(c 1)" \
   --bad "$(c 3)" --build-command "$cmd" --out "$t/b3" --no-pictures >"$t/b3.out" 2>"$t/b3.err" && \

@@ -19,6 +19,7 @@
 #include "util/child_process.h"
 #include "util/duration_text.h"
 #include "util/errors.h"
+#include "util/shell_quote.h"
 
 namespace fs = std::filesystem;
 
@@ -169,10 +170,10 @@ void write_bisect_report(const BisectOptions& o, const BisectResult& r,
           "floats), also written as `" << c_name << "`:\n\n```sh\n" << repro.build_line << "\n";
     const std::string exe = fs::path(c_name).stem().string();
     if (parent && !parent->build_dir.empty())
-      md << audit::reproducer_environment(parent->build_dir, driver) << " ./" << exe << "   # parent: pixels lit "
+      md << audit::reproducer_environment(parent->build_dir, driver) << " " << util::shell_quote("./" + exe) << "   # parent: pixels lit "
          << pixels_of(*parent, l) << "\n";
     if (first_bad && !first_bad->build_dir.empty())
-      md << audit::reproducer_environment(first_bad->build_dir, driver) << " ./" << exe << "   # first bad: pixels lit "
+      md << audit::reproducer_environment(first_bad->build_dir, driver) << " " << util::shell_quote("./" + exe) << "   # first bad: pixels lit "
          << pixels_of(*first_bad, l) << "\n";
     md << "```\n\n```c\n" << repro.source << "```\n";
   } else {
