@@ -7,6 +7,7 @@
 #include "rundir/records_reader.h"
 #include "stats/table_writer.h"
 #include "util/program_name.h"
+#include "util/shell_quote.h"
 
 namespace ra::analysis {
 
@@ -193,8 +194,10 @@ std::string violations_markdown(const ConformanceSummary& s, const std::string& 
     const Violation& v = s.violations[i];
     md += "| " + v.platform + " | " + v.kind + " | " + std::to_string(v.view) + " | " +
           std::to_string(v.index) + " | " + std::to_string(v.violating_pixels) + " | " + v.rules +
-          " | `" + util::program_for_commands() + " show " + run_dir + " -p " + v.platform + " -k " + v.kind + " -v " +
-          std::to_string(v.view) + " -i " + std::to_string(v.index) + "` |\n";
+          " | `" + util::program_for_commands() + " " +
+          util::shell_command({"show", run_dir, "-p", v.platform, "-k", v.kind, "-v",
+                               std::to_string(v.view), "-i", std::to_string(v.index)}) +
+          "` |\n";
   }
   return md;
 }

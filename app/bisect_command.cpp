@@ -7,22 +7,9 @@
 #include "triage/bisect.h"
 #include "util/errors.h"
 #include "util/interrupt.h"
+#include "util/shell_quote.h"
 
 namespace ra::app {
-
-namespace {
-
-// A word as a POSIX shell reads it back: bare when it is safe, else in single quotes.
-std::string shell_word(const std::string& word) {
-  if (!word.empty() && word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
-                                              "0123456789@%+=:,./_-") == std::string::npos)
-    return word;
-  std::string q = "'";
-  for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-}  // namespace
 
 void register_bisect_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
@@ -97,28 +84,28 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
       if (v.rfind("-D", 0) != 0) v = "-D" + v;
     // The command as a person would paste it again (the report repeats it), every value quoted.
     std::string& line = o.command_line;
-    line = "renderaudit bisect " + shell_word(o.run_dir);
+    line = "renderaudit bisect " + util::shell_quote(o.run_dir);
     if (!opts->between.empty())
-      line += " --between " + shell_word(opts->between[0]) + " " + shell_word(opts->between[1]);
-    if (!o.baseline_run.empty()) line += " --baseline " + shell_word(o.baseline_run);
-    line += " --source " + shell_word(o.source) + " --good " + shell_word(o.good_ref) + " --bad " +
-            shell_word(o.bad_ref);
-    if (!o.platform.empty()) line += " --platform " + shell_word(o.platform);
-    for (const std::string& k : o.kinds) line += " --kind " + shell_word(k);
+      line += " --between " + util::shell_quote(opts->between[0]) + " " + util::shell_quote(opts->between[1]);
+    if (!o.baseline_run.empty()) line += " --baseline " + util::shell_quote(o.baseline_run);
+    line += " --source " + util::shell_quote(o.source) + " --good " + util::shell_quote(o.good_ref) + " --bad " +
+            util::shell_quote(o.bad_ref);
+    if (!o.platform.empty()) line += " --platform " + util::shell_quote(o.platform);
+    for (const std::string& k : o.kinds) line += " --kind " + util::shell_quote(k);
     for (int v : o.views) line += " --view " + std::to_string(v);
-    for (const std::string& p : o.primitives) line += " --primitive " + shell_word(p);
+    for (const std::string& p : o.primitives) line += " --primitive " + util::shell_quote(p);
     if (o.max_primitives != triage::BisectOptions{}.max_primitives)
       line += " --max-primitives " + std::to_string(o.max_primitives);
-    if (!o.out_dir.empty()) line += " --out " + shell_word(o.out_dir);
-    if (!o.build.cache.empty()) line += " --cache " + shell_word(o.build.cache);
+    if (!o.out_dir.empty()) line += " --out " + util::shell_quote(o.out_dir);
+    if (!o.build.cache.empty()) line += " --cache " + util::shell_quote(o.build.cache);
     if (o.build.llvm_config != runner::SourceBuildOptions{}.llvm_config)
-      line += " --llvm-config " + shell_word(o.build.llvm_config);
-    for (const std::string& m : o.build.meson_options) line += " " + shell_word(m);
-    if (!o.build.build_command.empty()) line += " --build-command " + shell_word(o.build.build_command);
+      line += " --llvm-config " + util::shell_quote(o.build.llvm_config);
+    for (const std::string& m : o.build.meson_options) line += " " + util::shell_quote(m);
+    if (!o.build.build_command.empty()) line += " --build-command " + util::shell_quote(o.build.build_command);
     if (opts->fresh_builds) line += " --fresh-builds";
     if (!o.paths.empty()) {
       line += " --";
-      for (const std::string& p : o.paths) line += " " + shell_word(p);
+      for (const std::string& p : o.paths) line += " " + util::shell_quote(p);
     }
     try {
       const triage::BisectResult r = triage::run_bisect(o, [](const std::string& text) {

@@ -12,6 +12,11 @@ namespace ra::app {
 namespace {
 
 void print_build(const runner::BuildSummary& b, bool files) {
+  if (!b.damaged.empty()) {
+    std::printf("%s  (damaged: %s)\n  folder: %s\n", b.name.c_str(), b.damaged.c_str(),
+                b.dir.c_str());
+    return;
+  }
   if (b.origin == "source")
     std::printf("%s  (built from source: %s%s, built %s)\n  folder: %s\n", b.name.c_str(),
                 b.version.empty() ? "" : b.version.c_str(),

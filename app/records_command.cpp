@@ -26,6 +26,7 @@
 #include "rundir/shard_file.h"
 #include "rundir/shard_records.h"
 #include "util/errors.h"
+#include "util/shell_quote.h"
 #include "util/zstd_stream.h"
 
 namespace ra::app {
@@ -140,7 +141,7 @@ void stream_records(const RecordsOptions& o) {
     std::fprintf(stderr,
                  "renderaudit: records: %zu planned shards of the selection have no "
                  "records file yet (`renderaudit status %s` says why)\n",
-                 missing, o.dir.c_str());
+                 missing, util::shell_quote(o.dir).c_str());
 }
 
 }  // namespace

@@ -52,8 +52,12 @@ void register_reproduce_command(CLI::App& app, int& exit_code) {
       throw util::UserError("reproduce: --out " + path + ": the folder " + parent.string() +
                             " does not exist");
     const audit::Reproducer r = audit::make_reproducer(opts->q, path);
-    if (opts->out.empty()) fs::create_directories(parent);
-    util::write_file_atomic(path, r.source);
+    try {
+      if (opts->out.empty()) fs::create_directories(parent);
+      util::write_file_atomic(path, r.source);
+    } catch (const std::exception& e) {  // a full disk, a folder it may not write: said, exit 2
+      throw util::UserError("reproduce: cannot write " + path + ": " + e.what());
+    }
     std::printf(
         "wrote %s\nbuild: %s\nrun:   %s\nworker: %llu pixels (hash %llu); reference: %llu "
         "pixels (hash %llu)\n",

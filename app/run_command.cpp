@@ -9,6 +9,7 @@
 #include "runner/slurm_submission.h"
 #include "util/errors.h"
 #include "util/program_name.h"
+#include "util/shell_quote.h"
 
 namespace ra::app {
 
@@ -37,7 +38,7 @@ void submit_to_slurm(const runner::RunOptions& opt, runner::SlurmOptions slurm_o
       "%s: submitted %d slices as Slurm array job %s, gather job %s (afterany)\n"
       "follow it with: %s status %s [--wait]\n",
       sub.run_dir.c_str(), sub.slices, sub.array_job.c_str(), sub.gather_job.c_str(),
-      util::program_for_commands().c_str(), sub.run_dir.c_str());
+      util::program_for_commands().c_str(), util::shell_quote(sub.run_dir).c_str());
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "util/cell_text.h"
 #include "util/number_text.h"
 #include "util/program_name.h"
+#include "util/shell_quote.h"
 
 namespace fs = std::filesystem;
 
@@ -63,18 +64,9 @@ std::vector<GroupOutcome> group_outcomes(const AuditResult& r) {
   return out;
 }
 
-std::string shell_quote(const std::string& s) {
-  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                        "0123456789-_./=:,+@%") == std::string::npos)
-    return s;
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 std::string show_command(const AuditResult& r, const ChangedPrimitive& c) {
-  return util::program_for_commands() + " show " + shell_quote(r.current.dir) + " --platform " +
-         shell_quote(r.pairs[c.pair].current) + " --kind " + geometry::kind_name(c.kind) +
+  return util::program_for_commands() + " show " + util::shell_quote(r.current.dir) + " --platform " +
+         util::shell_quote(r.pairs[c.pair].current) + " --kind " + geometry::kind_name(c.kind) +
          " --view " + std::to_string(c.view) + " --index " + std::to_string(c.index);
 }
 

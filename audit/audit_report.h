@@ -56,6 +56,5 @@ std::vector<std::string> write_audit_outputs(const AuditResult& r);
 
 // Helpers shared by the writers.
 std::string format_number(double v, int significant = 4);  // "n/a" when not finite
-std::string shell_quote(const std::string& s);             // for printed command lines
 
 }  // namespace ra::audit

@@ -17,6 +17,7 @@
 #include "rundir/shard.h"
 #include "util/errors.h"
 #include "rundir/shard_records.h"
+#include "util/shell_quote.h"
 
 namespace fs = std::filesystem;
 
@@ -176,11 +177,11 @@ std::string reproducer_environment(const std::string& build_dir, const std::stri
   std::string env;
   if (!build_dir.empty()) {
     const std::string lib = rundir::build_library_dir(build_dir);
-    env = "LD_LIBRARY_PATH=" + shell_quote(lib) + " ";
+    env = "LD_LIBRARY_PATH=" + util::shell_quote(lib) + " ";
     std::error_code ec;
-    if (fs::is_directory(lib + "/dri", ec)) env += "LIBGL_DRIVERS_PATH=" + shell_quote(lib + "/dri") + " ";
+    if (fs::is_directory(lib + "/dri", ec)) env += "LIBGL_DRIVERS_PATH=" + util::shell_quote(lib + "/dri") + " ";
   }
-  return env + "LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=" + mesa_driver + " LP_NUM_THREADS=0";
+  return env + "LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=" + util::shell_quote(mesa_driver) + " LP_NUM_THREADS=0";
 }
 
 Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_name) {
@@ -231,9 +232,9 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   out.reference_pixels = reference.size();
   out.reference_hash = geometry::pixel_set_hash(reference);
   const std::string exe = fs::path(c_file_name).stem().string();
-  out.build_line = "cc " + shell_quote(c_file_name) + " -o " + shell_quote(exe) + " -lEGL -lOpenGL";
+  out.build_line = "cc " + util::shell_quote(c_file_name) + " -o " + util::shell_quote(exe) + " -lEGL -lOpenGL";
   out.run_line = reproducer_environment(spec.build.empty() ? "" : spec.build_dir, spec.mesa_driver) +
-                 " " + shell_quote("./" + exe);
+                 " " + util::shell_quote("./" + exe);
 
   std::string s = kTemplate;
   std::string vertices;

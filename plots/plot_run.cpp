@@ -25,6 +25,7 @@
 #include "rundir/manifest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "util/shell_quote.h"
 #include "metrics/records.h"
 
 namespace fs = std::filesystem;
@@ -53,7 +54,7 @@ json figure_json(const IndexedFigure& f, const FigureLayout& layout) {
 FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
   const std::string path = run_dir + "/analysis/figures.json";
   if (!fs::exists(path))
-    throw util::UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
+    throw util::UserError(path + " not found: run `renderaudit analyze " + util::shell_quote(run_dir) + "` first");
   json doc;
   try {
     doc = json::parse(util::read_file(path));
@@ -90,7 +91,7 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
     plan_conformance_overview(p);
   } catch (const json::exception& e) {
     throw util::UserError(path + ": unexpected content: " + e.what() +
-                          " (run `renderaudit analyze " + run_dir + "` again)");
+                          " (run `renderaudit analyze " + util::shell_quote(run_dir) + "` again)");
   }
   return plan;
 }

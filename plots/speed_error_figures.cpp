@@ -12,6 +12,7 @@
 #include "plots/figure_builders.h"
 #include "metrics/records.h"
 #include "util/number_text.h"
+#include "util/shell_quote.h"
 
 namespace ra::plots {
 namespace {
@@ -33,7 +34,7 @@ struct SpeedErrorFigures : FigurePlanner {
     if (!entry) {
       skip(section, what,
            "figures.json has no speed_error data for " + section + " (run `renderaudit analyze " +
-               run_dir + "` again)");
+               util::shell_quote(run_dir) + "` again)");
       return;
     }
     const std::string column = entry->value("metric", ""), symbol = entry->value("symbol", column),

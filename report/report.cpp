@@ -33,6 +33,7 @@
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/errors.h"
+#include "util/shell_quote.h"
 #include "rundir/manifest.h"
 #include "rundir/study_dir.h"
 
@@ -164,26 +165,26 @@ std::vector<Step> missing_steps(const std::string& run_dir) {
   std::error_code ec;
   bool analyze = false;
   if (!fs::exists(figures_json)) {
-    steps.push_back({"analyze", "renderaudit analyze " + run_dir, figures_json.string() + " is missing"});
+    steps.push_back({"analyze", "renderaudit analyze " + util::shell_quote(run_dir), figures_json.string() + " is missing"});
     analyze = true;
   } else if (fs::last_write_time(figures_json, ec) < newest_input(run_dir)) {
-    steps.push_back({"analyze", "renderaudit analyze " + run_dir,
+    steps.push_back({"analyze", "renderaudit analyze " + util::shell_quote(run_dir),
                      figures_json.string() + " is older than the records"});
     analyze = true;
   } else if (const fs::path tally = dir / "analysis" / "tally.json"; !fs::exists(tally)) {
-    steps.push_back({"analyze", "renderaudit analyze " + run_dir, tally.string() + " is missing"});
+    steps.push_back({"analyze", "renderaudit analyze " + util::shell_quote(run_dir), tally.string() + " is missing"});
     analyze = true;
   } else if (const std::string problem = tally_problem(run_dir); !problem.empty()) {
     // "PATH: expected schema ... version 1 (run `renderaudit analyze DIR` again)": the reason only
-    steps.push_back({"analyze", "renderaudit analyze " + run_dir,
+    steps.push_back({"analyze", "renderaudit analyze " + util::shell_quote(run_dir),
                      problem.substr(0, problem.find(" (run `"))});
     analyze = true;
   }
   if (analyze || !fs::exists(index)) {
-    steps.push_back({"plot", "renderaudit plot " + run_dir,
+    steps.push_back({"plot", "renderaudit plot " + util::shell_quote(run_dir),
                      analyze ? "the figures follow the analysis" : index.string() + " is missing"});
   } else if (fs::last_write_time(index, ec) < fs::last_write_time(figures_json, ec)) {
-    steps.push_back({"plot", "renderaudit plot " + run_dir, index.string() + " is older than the analysis"});
+    steps.push_back({"plot", "renderaudit plot " + util::shell_quote(run_dir), index.string() + " is older than the analysis"});
   }
   return steps;
 }
@@ -197,7 +198,7 @@ ReportResult write_report(const ReportOptions& options) {
     throw util::UserError(run_dir +
                           " is not a run directory (no records/ and no study.json): run "
                           "`renderaudit run EXPERIMENT.toml --out " +
-                          run_dir + "` first");
+                          util::shell_quote(run_dir) + "` first");
   const std::string pdfunite = plots::find_on_path("pdfunite");
   if (pdfunite.empty())
     throw util::UserError(
@@ -207,7 +208,7 @@ ReportResult write_report(const ReportOptions& options) {
   if (study) {
     if (!study->analysed || study->document.empty() || !fs::exists(fs::path(run_dir) / study->document))
       throw util::UserError(run_dir + " has not been analysed yet: run `renderaudit analyze " +
-                            run_dir + "` and `renderaudit plot " + run_dir + "` first");
+                            run_dir + "` and `renderaudit plot " + util::shell_quote(run_dir) + "` first");
     // (a timing study run with --no-figures has none, and says so in its text)
     if (study->kind != rundir::StudyKind::kTiming &&
         !fs::exists(fs::path(run_dir) / "figures" / "index.json"))
@@ -236,7 +237,7 @@ ReportResult write_report(const ReportOptions& options) {
   Document& doc = content.doc;
   for (const auto& f : doc.figures)
     if (!fs::exists(f.pdf_path))
-      throw util::UserError(f.pdf_path + " is missing: run `renderaudit plot " + run_dir +
+      throw util::UserError(f.pdf_path + " is missing: run `renderaudit plot " + util::shell_quote(run_dir) +
                             "` again");
 
   assemble(pdf_document(doc, content.html_only, content.pdf_pairs_with), doc, run_dir, pdfunite,

@@ -33,6 +33,7 @@
 #include "rundir/manifest.h"
 #include "rundir/study_dir.h"
 #include "util/number_text.h"
+#include "util/shell_quote.h"
 
 
 namespace fs = std::filesystem;
@@ -391,7 +392,7 @@ void add_conformance(RunDocument& c, const std::string& run_dir, const analysis:
       }
     } else {
       d.blocks.push_back(paragraph("analysis/conformance.md is missing: run `renderaudit analyze " +
-                                   run_dir + "`."));
+                                   util::shell_quote(run_dir) + "`."));
     }
     if (fs::exists(dir + "/violations.md")) {
       // The first violations, worst first; the whole list is analysis/violations.md.

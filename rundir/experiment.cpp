@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include "util/errors.h"
+#include "geometry/projection_range.h"
 #include "rundir/driver_build.h"
 #include "rundir/platform_spec.h"
 #include "util/toml_locator.h"
@@ -94,7 +95,8 @@ void parse_views(const util::TomlLocator& loc, const toml::table& root, Experime
   };
 
   std::vector<double> fovs;
-  for (const toml::node* n : one_or_many(required("fov_deg"))) {
+  const std::vector<const toml::node*> fov_nodes = one_or_many(required("fov_deg"));
+  for (const toml::node* n : fov_nodes) {
     const double f = loc.number(*n, "views.fov_deg");
     if (!(f > 0 && f < 180)) loc.fail(n, "field of view out of range (allowed: 0 < fov_deg < 180)");
     fovs.push_back(f);
@@ -112,6 +114,24 @@ void parse_views(const util::TomlLocator& loc, const toml::table& root, Experime
     }
     windows.emplace_back(w, h);
   }
+  // The projection must be finite in double and in float (drivers transform in float). Its entries
+  // are f/aspect and f (f = 1/tan(fov/2)), A = (far+near)/(near-far) and B = 2*far*near/(near-far);
+  // the primitives lie in the unit sphere around the camera, |x|, |y|, |z| <= 1 in eye space, so
+  // clip x, y and z are at most f/aspect, f and |A| + |B|: each entry must be finite in double (B
+  // is computed as 2*far*near/(near-far), whose first products overflow past DBL_MAX/2) and each
+  // bound at most FLT_MAX (geometry::lateral_projection_problem, depth_projection_problem).
+  for (size_t i = 0; i < fovs.size(); ++i)
+    for (auto [w, h] : windows) {
+      const std::string why = geometry::lateral_projection_problem(fovs[i], double(w) / h, 1.0);
+      if (!why.empty()) {
+        std::ostringstream s;
+        s << "'views.fov_deg' = " << fovs[i] << " with window " << w << " x " << h
+          << " is out of range: " << why
+          << " (allowed: 0 < fov_deg < 180 with 1/tan(fov_deg/2) * max(1, height/width) at most "
+             "3.40282e+38, the float range)";
+        loc.fail(fov_nodes[i], s.str());
+      }
+    }
 
   std::vector<const toml::node*> nears = one_or_many(required("near"));
   std::vector<const toml::node*> fars = one_or_many(required("far"));
@@ -123,6 +143,16 @@ void parse_views(const util::TomlLocator& loc, const toml::table& root, Experime
       const double fv = loc.number(*fn, "views.far");
       if (!(fv > nv) || !std::isfinite(fv))
         loc.fail(fn, "far plane must be beyond the near plane (allowed: 0 < near < far < inf)");
+      // The depth entries A and B, as derived above the field of view's check.
+      const std::string why = geometry::depth_projection_problem(nv, fv, 1.0);
+      if (!why.empty()) {
+        std::ostringstream s;
+        s << "'views.far' = " << fv << " with views.near = " << nv << " is out of range: " << why
+          << " (allowed: 0 < near < far with 2*far and 2*far*near at most 1.79769e+308, the "
+             "double range, and |(far+near)/(near-far)| + |2*far*near/(near-far)| at most "
+             "3.40282e+38, the float range)";
+        loc.fail(fn, s.str());
+      }
       planes.emplace_back(nv, fv);
     }
   }

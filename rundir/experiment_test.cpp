@@ -105,6 +105,20 @@ INSTANTIATE_TEST_SUITE_P(
                 "allowed: 0 < near < far"},
         BadCase{"NearEqualsFar", with("near = 0.01", "near = 10.0"), "exp.toml:8:7",
                 "beyond the near plane"},
+        BadCase{"FarOverflowsDouble", with("far = 10.0", "far = 1e308"), "exp.toml:8:7",
+                "'views.far' = 1e+308 with views.near = 0.01 is out of range: "
+                "2*far*near/(near-far) is -inf, not a finite double (allowed: 0 < near < far with "
+                "2*far and 2*far*near at most 1.79769e+308"},
+        BadCase{"FarJustPastHalfTheDoubleRange", with("far = 10.0", "far = 9e307"), "exp.toml:8:7",
+                "2*far*near/(near-far) is -inf, not a finite double"},
+        BadCase{"DepthBeyondFloat", with("near = 0.01\nfar = 10.0", "near = 2e38\nfar = 3e38"),
+                "exp.toml:8:7", "2*far*near/(near-far) is -1.2e+39, beyond the float range"},
+        BadCase{"PlanesTooCloseForFloat",
+                with("near = 0.01\nfar = 10.0", "near = 1e30\nfar = 1.0000000000000002e30"),
+                "exp.toml:8:7", "beyond the float range"},
+        BadCase{"FovTooNarrowForFloat", with("[30, 150]", "[30, 1e-37]"), "exp.toml:5:16",
+                "'views.fov_deg' = 1e-37 with window 128 x 128 is out of range: "
+                "1/tan(fov/2)/aspect is 1.14592e+39, beyond the float range"},
         BadCase{"UnknownPlatform", with("\"osmesa-llvmpipe\"", "\"swrast\""), "exp.toml:2:14",
                 "unknown platform 'swrast' (allowed: osmesa-llvmpipe, osmesa-softpipe, reference"},
         BadCase{"MissingSeed", with("seed = 1", ""), "exp.toml:1:1", "missing key 'seed'"},

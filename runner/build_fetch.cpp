@@ -294,8 +294,15 @@ std::vector<BuildSummary> list_builds(const std::string& cache_dir) {
     if (e.path().filename().string()[0] == '.' || !fs::exists(e.path() / "build.json")) continue;
     try {
       out.push_back(read_build(e.path().string()));
-    } catch (const std::exception&) {
-      continue;  // not ours
+    } catch (const std::exception& x) {
+      BuildSummary s;
+      s.name = e.path().filename().string();
+      s.dir = e.path().string();
+      std::string why = x.what();  // nlohmann's "[json.exception.parse_error.101] " prefix off
+      if (why.rfind("[json.exception.", 0) == 0 && why.find("] ") != std::string::npos)
+        why.erase(0, why.find("] ") + 2);
+      s.damaged = (e.path() / "build.json").string() + ": " + why;
+      out.push_back(s);
     }
   }
   std::sort(out.begin(), out.end(),

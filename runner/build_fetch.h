@@ -28,6 +28,9 @@ struct BuildSummary {
   std::string osmesa_version, egl_version;  // GL_VERSION through each back end ("" if it cannot)
   std::string fetched_utc;                  // when (built, for a source build)
   std::vector<std::string> files;           // the shared libraries, relative to dir
+  // list_builds: "" for a build whose build.json reads, else "FOLDER/build.json: why it does not"
+  // (the other fields are then empty but name and dir, name being the folder's).
+  std::string damaged;
   std::string origin;   // "Debian" (builds fetch) or "source" (builds build)
   std::string commit;   // a source build's git commit ("" when not from git)
   std::string version;  // a source build's VERSION ("25.1.0-devel")
@@ -62,8 +65,8 @@ BuildSummary read_build(const std::string& dir);
 // Makes the cache folder; UserError naming it when it is a file or cannot be made.
 void require_cache_folder(const std::string& cache);
 
-// The builds in the cache (folders with a build.json), by name; UserError when the cache path
-// is a file.
+// The builds in the cache (folders with a build.json), by name, those whose build.json cannot be
+// read among them with `damaged` set; UserError when the cache path is a file.
 std::vector<BuildSummary> list_builds(const std::string& cache = "");
 
 }  // namespace ra::runner

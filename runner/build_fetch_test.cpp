@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 #include "util/errors.h"
 
@@ -61,6 +63,35 @@ TEST(BuildFetch, ACacheThatIsAFileIsNamed) {
     }
   }
   std::remove(file.c_str());
+}
+
+// A build whose build.json is not JSON, or holds a wrong type, is listed as damaged with the file
+// and the reason, beside the good ones.
+TEST(BuildFetch, ABuildWithABadBuildJsonIsListedAsDamaged) {
+  namespace fs = std::filesystem;
+  const fs::path cache =
+      fs::path(::testing::TempDir()) / ("renderaudit-damaged-cache-" + std::to_string(::getpid()));
+  fs::remove_all(cache);
+  const auto write = [&](const std::string& name, const std::string& text) {
+    fs::create_directories(cache / name);
+    std::ofstream(cache / name / "build.json") << text;
+  };
+  write("good", R"({"name": "good", "suite": "bookworm", "files": []})");
+  write("cut", R"({"name": "cut", "sui)");
+  write("typed", R"({"name": 7})");
+  const std::vector<BuildSummary> builds = list_builds(cache.string());
+  ASSERT_EQ(builds.size(), 3u);
+  EXPECT_EQ(builds[0].name, "cut");
+  EXPECT_EQ(builds[0].damaged.rfind((cache / "cut" / "build.json").string() + ": ", 0), 0u)
+      << builds[0].damaged;
+  EXPECT_NE(builds[0].damaged.find("parse error"), std::string::npos) << builds[0].damaged;
+  EXPECT_EQ(builds[1].name, "good");
+  EXPECT_EQ(builds[1].damaged, "");
+  EXPECT_EQ(builds[1].suite, "bookworm");
+  EXPECT_EQ(builds[2].name, "typed");
+  EXPECT_NE(builds[2].damaged.find("type must be string, but is number"), std::string::npos)
+      << builds[2].damaged;
+  fs::remove_all(cache);
 }
 
 }  // namespace

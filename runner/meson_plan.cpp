@@ -1,8 +1,13 @@
 // Choosing meson options from a Mesa tree's own options file (see the header).
 #include "runner/meson_plan.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+
+#include "util/errors.h"
 
 namespace ra::runner {
 namespace {
@@ -121,8 +126,53 @@ bool glslang_builds_lavapipe(const std::string& glslang_version) {
   return v[0] > 12 || (v[0] == 12 && minor >= 2);
 }
 
+std::string meson_string(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {  // a line break would end the string (meson's \xhh escape)
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", u);
+      out += hex;
+      continue;
+    }
+    if (c == '\\' || c == '\'') out += '\\';
+    out += c;
+  }
+  return out + "'";
+}
+
 std::string native_file_text(const std::string& llvm_config) {
-  return "[binaries]\nllvm-config = '" + llvm_config + "'\ncmake = '/bin/false'\n";
+  return "[binaries]\nllvm-config = " + meson_string(llvm_config) + "\ncmake = '/bin/false'\n";
+}
+
+void check_llvm_config(const std::string& path) {
+  std::string shown;  // the path as it can be printed: control characters as \xHH
+  bool control = false;
+  for (unsigned char c : path) {
+    if (c < 0x20 || c == 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", c);
+      shown += hex;
+      control = true;
+    } else {
+      shown += char(c);
+    }
+  }
+  const std::string named = "--llvm-config '" + shown + "'";
+  if (path.empty()) throw util::UserError("builds build: --llvm-config is empty: name llvm-config");
+  if (control)
+    throw util::UserError("builds build: " + named +
+                          " holds a control character (allowed: a path without control "
+                          "characters, e.g. /usr/bin/llvm-config-15)");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw util::UserError("builds build: " + named +
+                          " is missing (llvm-15-dev; scripts/install-mesa-build-deps.sh)");
+  if (!std::filesystem::is_regular_file(path, ec) || ::access(path.c_str(), X_OK) != 0)
+    throw util::UserError("builds build: " + named +
+                          " is not an executable file (allowed: llvm-config, e.g. "
+                          "/usr/bin/llvm-config-15)");
 }
 
 MesonPlan plan_meson_build(const MesonPlanInputs& in) {

@@ -44,7 +44,16 @@ bool glslang_builds_lavapipe(const std::string& glslang_version);
 MesonPlan plan_meson_build(const MesonPlanInputs& in);
 
 // A native file that pins LLVM to `llvm_config` (meson >= 1.3 prefers cmake's LLVM, which on
-// Debian 12 finds the newest installed; cmake is disabled so that llvm-config is used).
+// Debian 12 finds the newest installed; cmake is disabled so that llvm-config is used). The path is
+// written as one meson string (meson_string), so that no text of it becomes an entry of its own.
 std::string native_file_text(const std::string& llvm_config);
+
+// `text` as a meson string literal: in single quotes, with \ and ' escaped by a backslash and
+// control characters as \xhh (so the literal is always on one line).
+std::string meson_string(const std::string& text);
+
+// UserError naming --llvm-config unless `path` is an existing executable regular file (a link to
+// one counts) without control characters (a newline cannot be in a native file's string).
+void check_llvm_config(const std::string& path);
 
 }  // namespace ra::runner

@@ -17,6 +17,7 @@
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/errors.h"
+#include "util/shell_quote.h"
 
 namespace fs = std::filesystem;
 
@@ -25,19 +26,12 @@ namespace {
 
 constexpr long kTmpfsMagic = 0x01021994, kRamfsMagic = 0x858458f6;
 
-// 'text' quoted for bash (single quotes, with ' written as '\'').
-std::string sh_quote(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 // The options every slice and the gather pass on to `run`.
 std::string passed_on(const RunOptions& run, int jobs) {
   std::string s = " --jobs " + std::to_string(jobs) + " --quiet";
-  for (const auto& p : run.only_platforms) s += " --platform " + sh_quote(p);
+  for (const auto& p : run.only_platforms) s += " --platform " + util::shell_quote(p);
   if (run.timeout_s > 0) s += " --timeout " + std::to_string(run.timeout_s);
-  if (!run.expect_renderer.empty()) s += " --expect-renderer " + sh_quote(run.expect_renderer);
+  if (!run.expect_renderer.empty()) s += " --expect-renderer " + util::shell_quote(run.expect_renderer);
   if (run.shard_order == RunOptions::ShardOrder::kPlan) s += " --shard-order plan";
   return s;
 }
@@ -197,7 +191,7 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
       "k=$SLURM_ARRAY_TASK_ID\n"
       "echo \"renderaudit: slice $k/" + n + " on $(hostname) (job ${SLURM_JOB_ID}, restart "
       "${SLURM_RESTART_COUNT:-0})\"\n"
-      "exec " + sh_quote(program) + " run " + sh_quote(experiment) + " --out " + sh_quote(dir) +
+      "exec " + util::shell_quote(program) + " run " + util::shell_quote(experiment) + " --out " + util::shell_quote(dir) +
       "/slices/$k --slice $k/" + n + opts + "\n";
 
   sub.gather_script = header("renderaudit-" + exp.name + "-gather", jobs, slurm,
@@ -208,15 +202,15 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
       "# shards, a failed worker's), with a local run's retries and bisection, and writes the\n"
       "# manifest. Its exit status is the run's: 0 complete, 1 failures, 2 refused.\n"
       "set -u\n"
-      "dir=" + sh_quote(dir) + "\n"
+      "dir=" + util::shell_quote(dir) + "\n"
       "slices=()\n"
       "for d in \"$dir\"/slices/*; do [ -f \"$d/experiment.toml\" ] && slices+=(\"$d\"); done\n"
       "if [ ${#slices[@]} -gt 0 ]; then\n"
-      "  " + sh_quote(program) + " merge \"${slices[@]}\" --out \"$dir\"\n"
+      "  " + util::shell_quote(program) + " merge \"${slices[@]}\" --out \"$dir\"\n"
       "  rc=$?\n"
       "  if [ $rc -gt 1 ]; then echo $rc > \"$dir/slurm/gather.exit\"; exit $rc; fi\n"
       "fi\n" +
-      sh_quote(program) + " run " + sh_quote(experiment) + " --out \"$dir\"" + opts + "\n"
+      util::shell_quote(program) + " run " + util::shell_quote(experiment) + " --out \"$dir\"" + opts + "\n"
       "rc=$?\n"
       "echo $rc > \"$dir/slurm/gather.exit\"\n"
       "exit $rc\n";

@@ -496,9 +496,7 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
         throw util::UserError("builds build: " + tool +
                               " is not installed: scripts/install-mesa-build-deps.sh installs "
                               "what a Mesa build needs (meson >= 1.4 from bookworm-backports)");
-    if (!fs::exists(options.llvm_config, ec))
-      throw util::UserError("builds build: " + options.llvm_config +
-                            " is missing (llvm-15-dev; scripts/install-mesa-build-deps.sh)");
+    check_llvm_config(options.llvm_config);
   }
   require_cache_folder(cache);
   std::string work = cache + "/.source-" + name + "-XXXXXX";

@@ -367,6 +367,52 @@ TEST_F(SourceBuildDirs, AnIncrementalFolderRebuildsOnlyWhatTheCommitChanged) {
       has_library |= e.path().filename().string().rfind("libOSMesa.so", 0) == 0;
     EXPECT_TRUE(has_library) << r->build.dir;
   }
+
+// --llvm-config goes into meson's native file: a path that is not an executable file, or holds a
+// line break and a second entry, is refused naming the option before anything is configured, and
+// a path with quotes and backslashes is written as one meson string.
+TEST_F(SourceBuildDirs, AnLlvmConfigThatIsNotAnExecutableFileIsRefused) {
+  if (std::system("ninja --version >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "ninja not installed (scripts/install-mesa-build-deps.sh)";
+  const fs::path tree = root_ / "mesa";
+  fs::create_directories(tree);
+  std::ofstream(tree / "meson.build") << "project('mesa', 'c')\n";
+  const fs::path fake_meson = root_ / "meson";  // answers --version, as an installed meson would
+  std::ofstream(fake_meson) << "#!/bin/sh\necho 1.4.0\n";
+  fs::permissions(fake_meson, fs::perms::owner_all);
+  const fs::path evil = root_ / "evil.sh";
+  std::ofstream(evil) << "#!/bin/sh\ntouch " << (root_ / "pwned").string() << "\n";
+  fs::permissions(evil, fs::perms::owner_all);
+  const fs::path plain = root_ / "plain";
+  std::ofstream(plain) << "not a program\n";
+  const auto before = cache_listing();
+  SourceBuildOptions o;
+  o.source = tree.string();
+  o.cache = (root_ / "cache").string();
+  o.meson = fake_meson.string();
+  o.probe = false;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {root_.string() + "/x'\nc = '" + evil.string(), "holds a control character"},
+      {root_.string(), "is not an executable file"},
+      {plain.string(), "is not an executable file"},
+      {(root_ / "none").string(), "is missing"}};
+  for (const auto& [path, says] : cases) {
+    o.llvm_config = path;
+    try {
+      build_from_source(o);
+      ADD_FAILURE() << "--llvm-config " << path << " was accepted";
+    } catch (const util::UserError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("--llvm-config '"), std::string::npos) << m;
+      EXPECT_NE(m.find(says), std::string::npos) << m;
+      EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
+  }
+  EXPECT_EQ(cache_listing(), before);
+  EXPECT_FALSE(fs::exists(root_ / "pwned"));
+  EXPECT_EQ(native_file_text("/opt/it's\\llvm\nc = '/evil.sh"),
+            "[binaries]\nllvm-config = '/opt/it\\'s\\\\llvm\\x0ac = \\'/evil.sh'\n"
+            "cmake = '/bin/false'\n");
 }
 
 TEST_F(SourceBuildDirs, AMesonPrefixIsABuildFolderAndItsLavapipeIsFound) {

@@ -3,6 +3,7 @@
 
 #include <sstream>
 
+#include "geometry/projection_range.h"
 #include "platforms/platform.h"
 #include "util/number_text.h"
 
@@ -45,6 +46,26 @@ void read_camera_block(const util::TomlLocator& loc, const toml::table& t, const
   else if (!(cam->far > near))
     loc.fail(t.get("near"), "'" + p + "near' = " + util::significant(near, 6) +
                                 " is out of range (allowed: near < far = " + util::significant(cam->far, 6) + ")");
+  // The projection must be finite in double and in float (drivers transform in float): what is
+  // drawn lies within `far` of the camera in eye space, so with the entries f/aspect, f,
+  // A = (far+near)/(near-far) and B = 2*far*near/(near-far) of the projection, clip x, y and z are
+  // at most f/aspect*far, f*far and |A|*far + |B|; each must be at most FLT_MAX
+  // (geometry::depth_projection_problem, lateral_projection_problem).
+  if (const std::string why = geometry::depth_projection_problem(near, cam->far, cam->far);
+      !why.empty())
+    loc.fail(t.get("far") ? t.get("far") : t.get("near"),
+             "'" + p + "far' = " + util::significant(cam->far, 6) + " with near = " +
+                 util::significant(near, 6) + " is out of range: " + why +
+                 " (allowed: near < far with the clip coordinates of what lies within far of the "
+                 "camera at most 3.40282e+38, the float range)");
+  if (const std::string why = geometry::lateral_projection_problem(
+          cam->fov_y_deg, double(cam->width) / cam->height, cam->far);
+      !why.empty())
+    loc.fail(t.get("fov_deg") ? t.get("fov_deg") : t.get("far"),
+             "'" + p + "fov_deg' = " + util::significant(cam->fov_y_deg, 6) + " with far = " +
+                 util::significant(cam->far, 6) + " is out of range: " + why +
+                 " (allowed: 0 < fov_deg < 180 with 1/tan(fov_deg/2) * max(1, height/width) * "
+                 "far at most 3.40282e+38, the float range)");
 }
 
 std::string read_study_platform(const util::TomlLocator& loc, const toml::node& node,

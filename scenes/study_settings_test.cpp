@@ -55,6 +55,20 @@ TEST(StudySettings, OneWordingOfErrors) {
                                                               "of range (allowed: ", 0),
             0u);
   EXPECT_EQ(error_of("name = \"x\"\n"), "s.toml:1:1: the file needs a [lod] table");
+}
+
+// A camera whose projection overflows in double or float is refused at its key, with the range.
+TEST(StudySettings, AProjectionBeyondTheFloatRangeIsRefused) {
+  for (const char* far : {"1e308", "9e307", "1e39"}) {
+    const std::string e = error_of(std::string("[lod]\nnear = 1\nfar = ") + far + "\n");
+    EXPECT_EQ(e.rfind("s.toml:3:7: 'lod.far' = ", 0), 0u) << e;
+    EXPECT_NE(e.find("is out of range: "), std::string::npos) << e;
+    EXPECT_NE(e.find("3.40282e+38, the float range)"), std::string::npos) << e;
+  }
+  const std::string e = error_of("[lod]\nfov_deg = 1e-36\n");
+  EXPECT_EQ(e.rfind("s.toml:2:11: 'lod.fov_deg' = 1e-36 with far = 20000 is out of range: ", 0), 0u)
+      << e;
+  EXPECT_EQ(error_of("[lod]\nnear = 1\nfar = 1e30\n"), "");
   EXPECT_EQ(error_of("lod = 3\n"), "s.toml:1:7: 'lod' must be a table");
   EXPECT_EQ(error_of("[lod]\n[extra]\n"), "s.toml:2:2: unknown key 'extra' (allowed: lod, name)");
 }

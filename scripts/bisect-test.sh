@@ -76,6 +76,28 @@ bisect b8 "$(c "$g" 0)" "$(c "$g" 10)" --max-primitives 6 --no-pictures
 [ $rc -eq 0 ] && [ "$(culprits b8)" = "c4:6 c5:3 c6:3 " ] || { cat "$t/b8.out" "$t/b8.err"; fail "undone change: $(culprits b8)"; }
 grep -q "$(c "$g" 8 | cut -c1-12)" "$t/b8/bisect.md" && fail "c8 was built although nothing asks for it"
 
+# The report's "Repeat it" command pastes into a shell as the very command that ran: every value
+# one word, though the source folder is named like a command substitution with a quote, the output
+# folder holds a line break and the build command a quote.
+hs="$t/src dir \$(touch $t/PWNED) it's"
+git clone -q "$g" "$hs"
+hout="$t/b6 out
+line"
+hcmd="$cmd; : \"it's\""
+"$ra" bisect "$t/run" --between faulty@good faulty@bad --source "$hs" --good "$(c "$g" 3)" \
+  --bad "$(c "$g" 6)" --build-command "$hcmd" --max-primitives 6 --out "$hout" --no-pictures \
+  >"$t/b6.out" 2>"$t/b6.err" || { cat "$t/b6.out" "$t/b6.err"; fail "bisect of a source folder with a hostile name"; }
+repeat=$(awk '/^## Repeat it$/ {r = 1; next} r && /^```sh$/ {b = 1; next} b && /^```$/ {exit} b' "$hout/bisect.md")
+mkdir -p "$t/stub"
+printf '#!/bin/sh\nprintf "%%s\\0" "$@" > "$STUB_ARGS"\n' > "$t/stub/renderaudit"
+chmod +x "$t/stub/renderaudit"
+STUB_ARGS="$t/repeat.args" PATH="$t/stub:$PATH" bash -c "$repeat" ||
+  fail "the Repeat it command does not run in bash: $repeat"
+[ ! -e "$t/PWNED" ] || fail "the Repeat it command ran the source folder's \$(touch ...)"
+cmp -s "$t/repeat.args" <(printf '%s\0' bisect "$t/run" --between faulty@good faulty@bad \
+  --source "$hs" --good "$(c "$g" 3)" --bad "$(c "$g" 6)" --max-primitives 6 --out "$hout" \
+  --build-command "$hcmd") || fail "the Repeat it command is not the command that ran: $repeat"
+
 # Refs that draw alike: nothing to bisect.
 bisect b3 "$(c "$g" 1)" "$(c "$g" 3)" --no-pictures
 [ $rc -eq 2 ] || fail "c1..c3 (both good) should be refused, exit $rc"

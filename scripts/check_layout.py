@@ -9,7 +9,11 @@ Fails (exit 1, one line "layout: FILE:LINE: ..." per finding) on:
   - a namespace that does not match its folder (ra::<folder>, or a name under it);
   - a link between two of the project's libraries in CMakeLists.txt that no include needs, or an
     include of another library's folder that no link provides, directly or through another link;
-  - a folder of RA_DRIVER_FREE (CMakeLists.txt) whose links reach a folder of RA_DRIVERS.
+  - a folder of RA_DRIVER_FREE (CMakeLists.txt) whose links reach a folder of RA_DRIVERS;
+  - in a shell script under scripts/ or tests/ that sets pipefail, a pipe into a command that may
+    stop reading before the writer is done (`| head`, `| grep -q`, `-m`, `-l`, `--quiet`, ...): the
+    writer then dies of SIGPIPE and the pipeline fails now and then. Capture the output first
+    (out=$(cmd); grep -q X <<<"$out").
 The layer order is read from CMakeLists.txt (`set(RA_LAYERS ...)`), the one place it is written;
 docs/development.md must list the folders in the same order.
 
@@ -291,6 +295,50 @@ def check_driver_free(cmake, links, findings):
                                 "but it reaches %s: %s" % (line, lib, d, " -> ".join(reversed(chain))))
 
 
+# A pipe (not ||) into head, or into grep with an option that stops at the first match or file.
+EARLY_EXIT_PIPE_RE = re.compile(
+    r"(?<![|\\])\|(?!\|)\s*(?:head\b|grep(?:\s+-[A-Za-z]+)*\s+-[A-Za-z]*[qlm]"
+    r"|grep\b[^|]*--(?:quiet|silent|max-count|files-with-matches)\b)")
+PIPEFAIL_RE = re.compile(r"^\s*set\s+(?:-[A-Za-z]*\s+)*-[A-Za-z]*o\s+pipefail|^\s*set\s+-o\s+pipefail", re.M)
+
+
+def shell_scripts(root):
+    """The shell scripts under scripts/ and tests/ (by .sh or a sh/bash first line), the layout
+    check's own fixture aside."""
+    out = []
+    for top in ("scripts", "tests"):
+        for d, dirs, files in os.walk(os.path.join(root, top)):
+            dirs[:] = sorted(x for x in dirs if not (top == "tests" and x == "layout_fixture" and
+                                                     d == os.path.join(root, top)))
+            for f in sorted(files):
+                path = os.path.join(d, f)
+                try:
+                    with open(path, encoding="utf-8", errors="replace") as fh:
+                        first = fh.readline()
+                except OSError:
+                    continue
+                if f.endswith(".sh") or (first.startswith("#!") and re.search(r"\b(ba)?sh\b", first)):
+                    out.append(path)
+    return out
+
+
+def check_pipes(root, findings):
+    for path in shell_scripts(root):
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            text = fh.read()
+        if not PIPEFAIL_RE.search(text):
+            continue
+        for n, line in enumerate(text.split("\n"), 1):
+            if line.lstrip().startswith("#"):
+                continue
+            m = EARLY_EXIT_PIPE_RE.search(line)
+            if m:
+                findings.append("%s:%d: '%s' under pipefail: the command before it dies of SIGPIPE "
+                                "when this one stops reading early, and the pipeline fails by "
+                                "chance; capture the output first (out=$(cmd); grep -q X <<<\"$out\")"
+                                % (os.path.relpath(path, root), n, m.group(0).strip()))
+
+
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
     root = os.path.abspath(root)
@@ -301,6 +349,7 @@ def main():
     check_includes(root, layers, rank, findings, included)
     check_code(root, layers, findings, notes)
     check_links(root, layers, cmake, findings, included)
+    check_pipes(root, findings)
     for n in notes:
         print("layout: note: " + n)
     for f in findings:

@@ -43,13 +43,13 @@ if [ $smoke = 1 ]; then
 fi
 
 # 1. The build: fetched (always for the real audit: the suite's newest), or the cached one.
-if [ $smoke = 1 ] && "$ra" builds list | grep -q "suite $suite"; then
+if [ $smoke = 1 ] && listed=$("$ra" builds list) && grep -q "suite $suite" <<<"$listed"; then
   say "using the cached build of $suite"
 else
   step 1 "fetching the Mesa of $suite (apt-get download through a private apt configuration)"
   if ! fetched=$("$ra" builds fetch "$suite" ${MIRROR:+--mirror "$MIRROR"} 2>&1); then
     echo "$fetched" >&2
-    if echo "$fetched" | grep -q "unreachable"; then
+    if grep -q "unreachable" <<<"$fetched"; then
       echo "driver-upgrade: SKIPPED: the Debian registry (${MIRROR:-deb.debian.org}) cannot be reached from" \
            "here, and no build of $suite is cached; nothing was run" >&2
       exit 77
@@ -64,7 +64,7 @@ if [ -n "${MESA_SOURCE:-}" ]; then
   say "building Mesa from $MESA_SOURCE${MESA_REF:+ at $MESA_REF} (renderaudit builds build; a cold build takes about 10 minutes on 2 cores)"
   built=$("$ra" builds build "$MESA_SOURCE" ${MESA_REF:+--ref "$MESA_REF"}) || die "the source build failed (above)"
   echo "$built"
-  source_dir=$(echo "$built" | sed -n 's/^  folder: //p' | head -1)
+  source_dir=$(sed -n 's/^  folder: //p' <<<"$built" | sed -n 1p)
   [ -n "$source_dir" ] || die "the source build did not say its folder"
   mkdir -p "$out"
   sed -e 's/^platforms = \[/platforms = ["egl-llvmpipe@source", "egl-softpipe@source",\n             /' \

@@ -22,8 +22,10 @@ for bin in "$build/renderaudit-lean" "$build/renderaudit-worker"; do
   loaded=$(ldd "$bin")
   grep -Eq "$figure_libs" <<<"$loaded" && fail "$bin loads a figure library: $(grep -Eo "($figure_libs)[^ ]*" <<<"$loaded" | tr '\n' ' ')"
 done
-# The check can fail: the full program loads them.
-ldd "$build/renderaudit" | grep -Eq "$figure_libs" || fail "the full program loads no figure library: the check above proves nothing"
+# The check can fail: the full program loads them. (ldd's output is read whole before grep looks at
+# it: `ldd | grep -q` under pipefail fails when grep stops at its match and ldd dies of SIGPIPE.)
+loaded=$(ldd "$build/renderaudit")
+grep -Eq "$figure_libs" <<<"$loaded" || fail "the full program loads no figure library: the check above proves nothing"
 
 tarball=$("$root/scripts/make-bundle.sh" "$build/renderaudit-lean" "$build/renderaudit-worker" "$tmp/dist") ||
   { echo "FAIL: make-bundle.sh"; exit 1; }
@@ -38,7 +40,8 @@ for lib in "$bundle"/lib/*.so*; do
     awk -v n="$name" '$1 == n {print $3}' | xargs -r realpath | sort -u)
   [ -n "$where" ] && [ "$where" = "$lib" ] || fail "$name resolves to '$where', not the bundle's $lib"
 done
-env -u LD_LIBRARY_PATH ldd "$bundle/libexec/renderaudit" | grep -q "not found" && fail "a library is not found"
+loaded=$(env -u LD_LIBRARY_PATH ldd "$bundle/libexec/renderaudit")
+grep -q "not found" <<<"$loaded" && fail "a library is not found"
 
 # The same records as the full program.
 "$build/renderaudit" run "$root/experiments/quick.toml" --out "$tmp/full" --quiet > /dev/null ||
@@ -49,7 +52,8 @@ n=0
 for f in "$tmp"/full/records/*.csv.zst; do
   g="$tmp/lean/records/$(basename "$f")"
   [ -f "$g" ] || { fail "the bundle wrote no $(basename "$g")"; continue; }
-  cols=$(zstdcat "$f" | head -1 | tr ',' '\n' | grep -nvx 'render_us\|batch_size' | cut -d: -f1 | paste -sd,)
+  header=$(zstdcat "$f" | sed -n 1p)
+  cols=$(tr ',' '\n' <<<"$header" | grep -nvx 'render_us\|batch_size' | cut -d: -f1 | paste -sd,)
   cmp -s <(zstdcat "$f" | grep -v '^#' | cut -d, -f"$cols") <(zstdcat "$g" | grep -v '^#' | cut -d, -f"$cols") ||
     fail "$(basename "$f") differs between the full program and the bundle"
   n=$((n + 1))

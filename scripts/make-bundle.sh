@@ -64,7 +64,9 @@ cat > "$dir/bin/renderaudit" <<'LAUNCHER'
 # one; and the bundled Vulkan loader and GLVND libEGL only where the node has none of its own.
 here=$(cd "$(dirname "$0")/.." && pwd)
 has_lib() {  # the node's dynamic linker finds this library
-  { /sbin/ldconfig -p 2>/dev/null || ldconfig -p 2>/dev/null; } | grep -q "^[[:space:]]*$1 " && return 0
+  grep -q "^[[:space:]]*$1 " <<LIBS && return 0
+$(/sbin/ldconfig -p 2>/dev/null || ldconfig -p 2>/dev/null)
+LIBS
   for d in $(echo "${LD_LIBRARY_PATH:-}" | tr ':' ' '); do [ -e "$d/$1" ] && return 0; done
   return 1
 }

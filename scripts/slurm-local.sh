@@ -114,7 +114,8 @@ EOF
 slurmctld -i -f "$conf"
 slurmd -f "$conf"
 for _ in $(seq 150); do
-  if sinfo -h -o '%T' 2>/dev/null | grep -qx idle; then
+  states=$(sinfo -h -o '%T' 2>/dev/null || true)
+  if grep -qx idle <<<"$states"; then
     echo "slurm-local: node $host idle ($cpus CPUs); export SLURM_CONF=$conf"
     exit 0
   fi

@@ -91,7 +91,7 @@ step "  scancel ${array}_1 after $(grep -o '"shards_finished": [0-9]*' "$dir/sli
 wait_for 120 "task ${array}_2 to finish a shard" slice_running_with_shards_done "$array" 2
 scontrol requeue "${array}_2" || fail "scontrol requeue ${array}_2"
 # Slurm holds a requeued task back for two minutes (its begin time); a test need not wait
-wait_for 30 "task ${array}_2 to be requeued" bash -c "squeue -h -r -j ${array}_2 -o %T | grep -qx PENDING"
+wait_for 30 "task ${array}_2 to be requeued" bash -c "grep -qx PENDING <<<\"\$(squeue -h -r -j ${array}_2 -o %T)\""
 scontrol update JobId="${array}_2" StartTime=now || fail "scontrol update ${array}_2 StartTime=now"
 step "  requeue ${array}_2 after $(grep -o '"shards_finished": [0-9]*' "$dir/slices/2/progress.json")"
 "$ra" status "$dir" --wait --every 0.5 >"$work/faults-status.log" ||

@@ -1,6 +1,10 @@
 // `renderaudit reproduce`: the C program it writes, built with cc and run, lights exactly the
 // pixels the worker recorded (the records' pixel count and pixel_hash), on the installed llvmpipe.
 #include <gtest/gtest.h>
+#include <sys/mount.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <filesystem>
 #include <fstream>
@@ -160,6 +164,32 @@ TEST(ReproduceCommand, BadIndexAndOutputAreRefusedWithTheirReason) {
   EXPECT_EQ(missing.exit_code, 2) << missing.output;
   EXPECT_NE(missing.output.find("does not exist"), std::string::npos) << missing.output;
   EXPECT_FALSE(fs::exists(dir + "/no"));
+}
+
+// A full disk under --out is said with the file and the system's reason, exit 2 as for other
+// output that cannot be written; nothing is left behind.
+TEST(ReproduceCommand, AFullDiskIsSaidWithExit2) {
+  const std::string dir = fresh_dir("reproduce_full_disk");
+  ASSERT_TRUE(two_line_run(dir));
+  const std::string mnt = dir + "/small";
+  fs::create_directories(mnt);
+  if (::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=64k") != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here (not root?): " << std::strerror(errno);
+  {
+    std::ofstream fill(mnt + "/fill", std::ios::binary);
+    const std::string block(4096, 'x');
+    for (int i = 0; i < 64 && fill; ++i) fill << block << std::flush;
+  }
+  const Outcome o = run_renderaudit("reproduce " + dir +
+                                    "/run --platform osmesa-llvmpipe --kind line --view 1 --index 0"
+                                    " --out " + mnt + "/r.c");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("reproduce: cannot write " + mnt + "/r.c: "), std::string::npos)
+      << o.output;
+  EXPECT_NE(o.output.find("No space left on device"), std::string::npos) << o.output;
+  for (const auto& e : fs::directory_iterator(mnt))
+    EXPECT_EQ(e.path().filename(), "fill") << e.path();
+  ::umount(mnt.c_str());
 }
 
 TEST(Commands, AMistypedCommandIsNamedWithTheNearestOne) {

@@ -62,7 +62,7 @@ TEST(SlurmCommand, DryRunPrintsAnArrayOfSlicesAndAGatherAndWritesNothing) {
   for (const char* line :
        {"#SBATCH --array=1-3%2\n", "#SBATCH --partition=gpu\n", "#SBATCH --time=1:30:00\n",
         "#SBATCH --cpus-per-task=4\n", "#SBATCH --requeue\n", "--slice $k/3 --jobs 4 --quiet "
-        "--platform 'reference' --timeout 60", "/run'/slices/$k", " merge \"${slices[@]}\" --out",
+        "--platform reference --timeout 60", "/run/slices/$k", " merge \"${slices[@]}\" --out",
         "echo $rc > \"$dir/slurm/gather.exit\"", "--dependency=afterany:ARRAY_JOB"})
     EXPECT_NE(o.output.find(line), std::string::npos) << line << "\n" << o.output;
   EXPECT_FALSE(fs::exists(dir + "/run")) << "a dry run writes nothing";

@@ -19,6 +19,7 @@
 #include "util/child_process.h"
 #include "util/duration_text.h"
 #include "util/errors.h"
+#include "util/shell_quote.h"
 
 namespace fs = std::filesystem;
 
@@ -239,10 +240,12 @@ void write_bisect_report(const BisectOptions& o, const BisectResult& r,
          << "`; it prints the pixels it lit.\n\n```sh\n" << repro.build_line << "\n";
       const std::string exe = fs::path(c_name).stem().string();
       if (before_step && !before_step->build_dir.empty())
-        md << audit::reproducer_environment(before_step->build_dir, driver) << " ./" << exe
+        md << audit::reproducer_environment(before_step->build_dir, driver) << " "
+           << util::shell_quote("./" + exe)
            << "   # " << short_hash(c.previous) << ": " << before_px << " pixels\n";
       if (after_step && !after_step->build_dir.empty())
-        md << audit::reproducer_environment(after_step->build_dir, driver) << " ./" << exe
+        md << audit::reproducer_environment(after_step->build_dir, driver) << " "
+           << util::shell_quote("./" + exe)
            << "   # " << short_hash(c.commit) << ": " << after_px << " pixels\n";
       md << "```\n\n<details><summary>" << c_name << "</summary>\n\n```c\n" << repro.source
          << "```\n\n</details>\n\n";

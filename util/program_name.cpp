@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include "util/shell_quote.h"
+
 namespace fs = std::filesystem;
 
 namespace ra::util {
@@ -22,14 +24,7 @@ std::string find_name() {
     if (fs::exists(candidate, ec) && fs::equivalent(candidate, exe, ec)) return "renderaudit";
     if (fs::exists(candidate, ec)) break;  // another renderaudit comes first on PATH
   }
-  // quoted for the shell when the path holds anything but letters, digits and / . _ - +
-  const std::string p = exe.string();
-  if (p.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789/._-+") ==
-      std::string::npos)
-    return p;
-  std::string quoted = "'";
-  for (char c : p) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
+  return shell_quote(exe.string());
 }
 
 }  // namespace
