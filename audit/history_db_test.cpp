@@ -212,9 +212,10 @@ TEST(HistoryDb, ANewerSchemaVersionIsRefused) {
   const std::string db = fresh_dir("history_newer") + "/h.sqlite";
   append_history(db, make_summary(1));
   set_pragma(db, "PRAGMA user_version = " + std::to_string(kHistorySchemaVersion + 1));
-  const std::string expected = db +
-                               ": history schema version 2 is newer than this renderaudit "
-                               "reads (1): use a newer renderaudit";
+  const std::string expected =
+      db + ": history schema version " + std::to_string(kHistorySchemaVersion + 1) +
+      " is newer than this renderaudit reads (" + std::to_string(kHistorySchemaVersion) +
+      "): use a newer renderaudit";
   EXPECT_EQ(error_message<util::UserError>([&] { append_history(db, make_summary(2)); }), expected);
   EXPECT_EQ(error_message<util::UserError>([&] { read_history(db); }), expected);
 }

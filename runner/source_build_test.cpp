@@ -367,6 +367,7 @@ TEST_F(SourceBuildDirs, AnIncrementalFolderRebuildsOnlyWhatTheCommitChanged) {
       has_library |= e.path().filename().string().rfind("libOSMesa.so", 0) == 0;
     EXPECT_TRUE(has_library) << r->build.dir;
   }
+}
 
 // --llvm-config goes into meson's native file: a path that is not an executable file, or holds a
 // line break and a second entry, is refused naming the option before anything is configured, and
