@@ -1,6 +1,10 @@
 // End-to-end tests of `renderaudit records`: one filtered stream of a run's records, from either
 // file format, with the cells as recorded, and clear errors for names the run does not have.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -10,6 +14,8 @@
 #include <vector>
 
 #include "tests/cli_harness.h"
+#include "util/atomic_file.h"
+#include "util/child_process.h"
 #include "util/zstd_stream.h"
 
 namespace fs = std::filesystem;
@@ -159,4 +165,30 @@ TEST_F(RecordsCommand, AFullDiskIsSaidNotCrashedOn) {
       << err;
 }
 
+// A closed pipe on records' output (`renderaudit records RUN | head -0`) is said, exit 2: not
+// the 141 of a process killed by SIGPIPE.
+TEST_F(RecordsCommand, AClosedPipeIsSaidWithExit2) {
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  ::close(fds[0]);  // nobody will read
+  const std::string run = *dir_ + "/run", err_path = *dir_ + "/pipe.err";
+  const pid_t pid = ra::util::fork_child([&]() -> int {
+    ::dup2(fds[1], 1);
+    ::close(fds[1]);
+    ::signal(SIGPIPE, SIG_DFL);  // as a shell starts it
+    const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(err, 2);
+    ::execl(RA_BINARY, RA_BINARY, "records", run.c_str(), static_cast<char*>(nullptr));
+    return 127;
+  });
+  ::close(fds[1]);
+  const int status = ra::util::wait_child(pid);
+  EXPECT_TRUE(WIFEXITED(status)) << "killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), 2);
+  const std::string err = ra::util::read_file(err_path);
+  EXPECT_NE(err.find("cannot write the records to standard output (Broken pipe)"),
+            std::string::npos) << err;
+}
+
 }  // namespace
+

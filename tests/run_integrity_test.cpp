@@ -324,7 +324,7 @@ TEST(RunIntegrity, AFullDiskFailsCleanlyAndTheRerunCompletesIdentically) {
   write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 3000\nlines = 2000\n",
                                          "records_format = \"csv\"\n"));
   const Outcome full = run_renderaudit("run " + dir + "/e.toml --out " + mnt + "/run --jobs 2");
-  EXPECT_EQ(full.exit_code, 1) << full.output;
+  EXPECT_EQ(full.exit_code, 2) << full.output;  // an I/O error (its manifest too), not a finding
   EXPECT_NE(full.output.find("No space left on device"), std::string::npos) << full.output;
   EXPECT_NE(full.output.find("bytes free on the file system of " + mnt + "/run"), std::string::npos)
       << full.output;
@@ -338,6 +338,35 @@ TEST(RunIntegrity, AFullDiskFailsCleanlyAndTheRerunCompletesIdentically) {
   EXPECT_EQ(again.exit_code, 0) << again.output;
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/elsewhere --jobs 2").exit_code, 0);
   EXPECT_EQ(records_without_timing(mnt + "/run"), records_without_timing(dir + "/elsewhere"));
+  ::umount(mnt.c_str());
+}
+
+// A full disk under analyze, merge or reproduce is an error (exit 2, the system's words), never the
+// findings code 1 that says the command ran and found failures.
+TEST(RunIntegrity, AFullDiskIsAnErrorNotAFinding) {
+  const std::string dir = fresh_dir("integrity_full_error");
+  const std::string mnt = dir + "/small";
+  fs::create_directories(mnt);
+  if (::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=4m") != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here (not root?): " << std::strerror(errno);
+  write_text(dir + "/e.toml", experiment("", "\"egl-llvmpipe\"", "points = 200\n"));
+  const Outcome made = run_renderaudit("run " + dir + "/e.toml --out " + mnt + "/run --jobs 2");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  {  // fill the file system to its last byte
+    std::ofstream fill(mnt + "/fill", std::ios::binary);
+    const std::string block(4096, 'x');
+    while (fill.write(block.data(), std::streamsize(block.size()))) {
+    }
+  }
+  for (const std::string& c :
+       {"analyze " + mnt + "/run", "merge " + mnt + "/run --out " + mnt + "/merged",
+        "reproduce " + mnt + "/run --platform egl-llvmpipe --kind point --view 1 --index 5 --out " +
+            mnt + "/r.c"}) {
+    SCOPED_TRACE(c);
+    const Outcome o = run_renderaudit(c);
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find("No space left on device"), std::string::npos) << o.output;
+  }
   ::umount(mnt.c_str());
 }
 
