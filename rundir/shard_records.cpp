@@ -92,7 +92,7 @@ std::string trusted_records_path(const std::string& run_dir, const Shard& s) {
     throw util::UserError(f.path + ": damaged: " + f.damage +
                           "; nothing is concluded from a damaged records file. `renderaudit run` "
                           "of this directory redoes the shard (it keeps this file as " +
-                          f.path + ".damaged)");
+                          f.path + ".damaged, or .damaged.2, ... when that name is taken)");
   return f.path;
 }
 

@@ -203,7 +203,7 @@ std::string format_run_status(const RunStatus& s) {
   if (s.damaged.size() > 20) o << "  ... and " << s.damaged.size() - 20 << " more damaged\n";
   if (!s.damaged.empty() && s.writers.empty())
     o << "  `renderaudit run` of this directory redoes the damaged shards (each file is kept as "
-         ".damaged)\n";
+         ".damaged, or .damaged.2, ... beside copies kept earlier)\n";
   for (const auto& w : s.writers) {
     o << "  writer " << w.dir << ": " << w.holder;
     if (!w.progress.host.empty())

@@ -341,6 +341,30 @@ TEST(RunIntegrity, AFullDiskFailsCleanlyAndTheRerunCompletesIdentically) {
   ::umount(mnt.c_str());
 }
 
+// Every damaged file a resumed run sets aside is kept: a second damage to the same shard, or to the
+// manifest, is kept as .damaged.2 beside the first copy, which keeps its bytes.
+TEST(RunIntegrity, EveryDamagedCopyIsKeptNoneOverwritten) {
+  const std::string dir = fresh_dir("integrity_damaged_copies");
+  write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 200\n"));
+  const std::string run = dir + "/run";
+  const std::string resume = "run " + dir + "/e.toml --out " + run + " --jobs 2";
+  ASSERT_EQ(run_renderaudit(resume).exit_code, 0);
+  const std::string shard = run + "/records/reference.point.v1.0-100.csv.zst";
+  const std::string manifest = run + "/manifest.json";
+  for (const std::string damage : {"first damage\n", "second damage\n"}) {
+    SCOPED_TRACE(damage);
+    write_text(shard, damage);
+    write_text(manifest, damage);
+    const Outcome o = run_renderaudit(resume);
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+  }
+  EXPECT_EQ(read_text(shard + ".damaged"), "first damage\n");
+  EXPECT_EQ(read_text(shard + ".damaged.2"), "second damage\n");
+  EXPECT_EQ(read_text(manifest + ".damaged"), "first damage\n");
+  EXPECT_EQ(read_text(manifest + ".damaged.2"), "second damage\n");
+  EXPECT_EQ(run_renderaudit("status " + run).exit_code, 0);
+}
+
 // A full disk under analyze, merge or reproduce is an error (exit 2, the system's words), never the
 // findings code 1 that says the command ran and found failures.
 TEST(RunIntegrity, AFullDiskIsAnErrorNotAFinding) {
