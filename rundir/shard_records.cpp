@@ -63,11 +63,11 @@ std::string judged(const std::string& path, const Shard& s, std::string why) {
 }  // namespace
 
 std::string shard_records_damage(const std::string& path, const Shard& s) {
-  return judged(path, s, check_shard_file(path, s.size()));
+  return judged(path, s, check_shard_file(path, s));
 }
 
 std::string shard_records_damage(const std::string& path, const Shard& s, const ShardSeal& seal) {
-  return judged(path, s, seal_verdict(seal, s.size(), util::has_zstd_extension(path)));
+  return judged(path, s, seal_verdict(seal, s, util::has_zstd_extension(path)));
 }
 
 ShardRecordsFile find_shard_records(const std::string& run_dir, const Shard& s, bool check_seal) {
