@@ -90,6 +90,39 @@ rundir::Experiment common_experiment(const MergeOptions& options) {
 }
 
 // Every platform an input holds records of must say which driver drew them, the same in every
+// platform -> library file name -> (fingerprint, the driver file that recorded it)
+using LibrariesSeen = std::map<std::string, std::map<std::string, std::pair<std::string, std::string>>>;
+
+// The driver file `path` (of `platform`, JSON `j`) against the libraries the inputs before it
+// recorded (build.libraries: path and FNV-1a 64 of the bytes), matched by file name: GL strings
+// alone cannot tell two builds of one Mesa version apart, and the merged directory keeps one driver
+// file per platform, so slices drawn with other library bytes are refused, not merged under one.
+void require_same_libraries(const std::string& path, const std::string& platform,
+                            const nlohmann::json& j, LibrariesSeen* seen) {
+  const auto build = j.find("build");
+  if (build == j.end() || !build->is_object()) return;
+  const auto libraries = build->find("libraries");
+  if (libraries == build->end() || !libraries->is_array()) return;
+  for (const nlohmann::json& l : *libraries) {
+    if (!l.is_object() || !l.contains("path") || !l["path"].is_string() || !l.contains("fnv1a64") ||
+        !l["fnv1a64"].is_string())
+      throw util::UserError("merge: " + path + ": build.libraries: each entry needs a \"path\" "
+                            "and an \"fnv1a64\" string");
+    const std::string file = fs::path(l["path"].get<std::string>()).filename().string();
+    const std::string fingerprint = l["fnv1a64"].get<std::string>();
+    const auto [it, first] = (*seen)[platform].try_emplace(file, fingerprint, path);
+    if (!first && it->second.first != fingerprint)
+      throw util::UserError(
+          "merge: platform " + platform + " drew with library " + file + " of fingerprint " +
+          fingerprint + " (FNV-1a 64 of its bytes) in " + path + " but of fingerprint " +
+          it->second.first + " in " + it->second.second +
+          ": the same GL strings, other library bytes (another build, or a library rebuilt or "
+          "patched between the slices), so their records are not one run's; run the slices "
+          "again with one build (--allow-driver-mismatch merges them anyway, and the merged "
+          "directory keeps the first input's driver file)");
+  }
+}
+
 // input (unless --allow-driver-mismatch).
 void require_one_driver_per_platform(const MergeOptions& options, const std::vector<rundir::Shard>& plan) {
   if (!options.allow_driver_mismatch) {
@@ -108,6 +141,7 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
   }
   std::map<std::string, std::pair<std::string, std::string>> driver_seen;  // platform -> text, dir
   for (const std::string& in : options.inputs) {
+  LibrariesSeen libraries_seen;
     for (const auto& [platform, j] : drivers_of(in)) {
       if (!j.is_object()) continue;
       const std::string text = j.value("renderer", "") + " | " + j.value("version", "");
@@ -118,6 +152,8 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
                               " (--allow-driver-mismatch merges them anyway)");
       }
     }
+      if (!options.allow_driver_mismatch)
+        require_same_libraries(in + "/drivers/" + platform + ".json", platform, j, &libraries_seen);
   }
 }
 
