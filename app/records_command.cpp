@@ -22,6 +22,7 @@
 #include "rundir/experiment.h"
 #include "rundir/records_format.h"
 #include "rundir/records_reader.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"
 #include "rundir/shard_records.h"
@@ -64,7 +65,7 @@ void stream_records(const RecordsOptions& o) {
     throw util::UserError(o.dir +
                           ": no experiment.toml (expected a run directory written by "
                           "`renderaudit run`)");
-  const rundir::Experiment exp = rundir::load_experiment(toml);
+  const rundir::Experiment exp = rundir::load_run_experiment(o.dir);
   const std::optional<rundir::RecordsFormat> format = rundir::parse_records_format(o.format);
   if (!format) throw util::UserError("--format " + o.format + ": unknown (allowed: csv, csv.zst)");
   if (*format == rundir::RecordsFormat::kCsvZst && ::isatty(STDOUT_FILENO))

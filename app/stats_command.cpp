@@ -33,6 +33,7 @@
 #include "app/stats_presentation.h"
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_records.h"
 #include "util/errors.h"
@@ -93,7 +94,7 @@ std::vector<std::string> run_records_files(const std::string& dir) {
   std::sort(files.begin(), files.end());
   if (!fs::exists(dir + "/experiment.toml")) return files;
   std::set<std::string> trusted;
-  for (const rundir::Shard& s : rundir::plan_shards(rundir::load_experiment(dir + "/experiment.toml")))
+  for (const rundir::Shard& s : rundir::plan_shards(rundir::load_run_experiment(dir)))
     if (const std::string p = rundir::trusted_records_path(dir, s); !p.empty()) trusted.insert(p);
   for (const std::string& f : files)
     if (!trusted.count(f))

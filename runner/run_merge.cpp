@@ -12,6 +12,7 @@
 #include "rundir/manifest.h"
 #include "runner/recorded_failures.h"
 #include "runner/run_dir.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"
 #include "rundir/shard_records.h"
@@ -66,7 +67,7 @@ rundir::Experiment common_experiment(const MergeOptions& options) {
       throw util::UserError("merge: " + in + " is both an input and --out");
     if (!fs::exists(in + "/experiment.toml"))
       throw util::UserError("merge: " + in + ": not a run directory (no experiment.toml)");
-    experiments.push_back(rundir::load_experiment(in + "/experiment.toml"));
+    experiments.push_back(rundir::load_run_experiment(in));
     if (experiments.back().hash != experiments.front().hash) {
       throw util::UserError("merge: " + in + " holds experiment " + experiments.back().name +
                             " (hash " + experiments.back().hash + "), " + options.inputs.front() +
@@ -89,7 +90,6 @@ rundir::Experiment common_experiment(const MergeOptions& options) {
   return exp;
 }
 
-// Every platform an input holds records of must say which driver drew them, the same in every
 // platform -> library file name -> (fingerprint, the driver file that recorded it)
 using LibrariesSeen = std::map<std::string, std::map<std::string, std::pair<std::string, std::string>>>;
 
@@ -123,6 +123,7 @@ void require_same_libraries(const std::string& path, const std::string& platform
   }
 }
 
+// Every platform an input holds records of must say which driver drew them, the same in every
 // input (unless --allow-driver-mismatch).
 void require_one_driver_per_platform(const MergeOptions& options, const std::vector<rundir::Shard>& plan) {
   if (!options.allow_driver_mismatch) {
@@ -140,8 +141,8 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
     }
   }
   std::map<std::string, std::pair<std::string, std::string>> driver_seen;  // platform -> text, dir
-  for (const std::string& in : options.inputs) {
   LibrariesSeen libraries_seen;
+  for (const std::string& in : options.inputs) {
     for (const auto& [platform, j] : drivers_of(in)) {
       if (!j.is_object()) continue;
       const std::string text = j.value("renderer", "") + " | " + j.value("version", "");
@@ -151,9 +152,9 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
                               " but with '" + it->second.first + "' in " + it->second.second +
                               " (--allow-driver-mismatch merges them anyway)");
       }
-    }
       if (!options.allow_driver_mismatch)
         require_same_libraries(in + "/drivers/" + platform + ".json", platform, j, &libraries_seen);
+    }
   }
 }
 

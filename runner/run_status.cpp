@@ -9,6 +9,7 @@
 
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_records.h"
 #include "rundir/slicing.h"
@@ -78,7 +79,7 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
     throw util::UserError(dir + ": not a run directory (no experiment.toml)");
   RunStatus s;
   s.dir = dir;
-  const rundir::Experiment exp = rundir::load_experiment(dir + "/experiment.toml");
+  const rundir::Experiment exp = rundir::load_run_experiment(dir);
   s.experiment = exp.name;
   const rundir::RunManifest manifest = rundir::read_manifest_file_or_empty(dir + "/manifest.json");
   s.manifest_status = manifest.status;

@@ -341,6 +341,53 @@ TEST(RunIntegrity, AFullDiskFailsCleanlyAndTheRerunCompletesIdentically) {
   ::umount(mnt.c_str());
 }
 
+// The manifest's hash is the experiment of the records: a copy of experiment.toml edited after the
+// run (another seed) is refused by a resumed run and by every reader, naming the file, and nothing
+// is drawn or counted against it; put back, the run finishes.
+TEST(RunIntegrity, AnEditedExperimentCopyIsRefusedByEveryReaderAndByRun) {
+  const std::string dir = fresh_dir("integrity_edited_experiment");
+  write_text(dir + "/e.toml", "seed = 2008\nplatforms = [\"reference\"]\n[views]\norientations = 1\n"
+                              "fov_deg = [30]\nwindows = [64]\nnear = 0.01\nfar = 10.0\n"
+                              "[primitives]\npoints = 400\n[run]\nshard_size = 100\n");
+  const std::string run = dir + "/run";
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + run + " --jobs 2 --quiet").exit_code, 0);
+  const std::string copy = run + "/experiment.toml";
+  const std::string original = read_text(copy);
+  std::string edited = original;
+  edited.replace(edited.find("seed = 2008"), 11, "seed = 2009");
+  write_text(copy, edited);
+  const std::string shard = run + "/records/reference.point.v1.300-400.csv.zst";
+  ASSERT_TRUE(fs::remove(shard));
+  const std::string named = copy + ": changed since the run's records were made";
+  const std::vector<std::string> commands = {
+      "run " + copy + " --out " + run + " --jobs 2",
+      "run " + dir + "/e.toml --out " + run + " --jobs 2",
+      "status " + run,
+      "records " + run + " --allow-incomplete",
+      "stats describe " + run + " --column pixels --allow-incomplete",
+      "merge " + run + " --out " + dir + "/merged",
+      "analyze " + run + " --allow-incomplete",
+      "audit " + run + " " + run + " --no-history",
+      "show " + run + " --platform reference --kind point --view 1 --index 15 --out " + dir +
+          "/p.png",
+      "reproduce " + run + " --platform reference --kind point --view 1 --index 15 --out " + dir +
+          "/r.c"};
+  for (const std::string& c : commands) {
+    SCOPED_TRACE(c);
+    const Outcome o = run_renderaudit(c);
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find(named), std::string::npos) << o.output;
+  }
+  EXPECT_FALSE(fs::exists(shard));  // nothing was drawn with the edited seed
+  EXPECT_FALSE(fs::exists(dir + "/merged/records"));
+  EXPECT_FALSE(fs::exists(dir + "/p.png"));
+  EXPECT_FALSE(fs::exists(dir + "/r.c"));
+  write_text(copy, original);
+  const Outcome resumed = run_renderaudit("run " + dir + "/e.toml --out " + run + " --jobs 2");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_TRUE(fs::exists(shard));
+}
+
 // Every damaged file a resumed run sets aside is kept: a second damage to the same shard, or to the
 // manifest, is kept as .damaged.2 beside the first copy, which keeps its bytes.
 TEST(RunIntegrity, EveryDamagedCopyIsKeptNoneOverwritten) {
