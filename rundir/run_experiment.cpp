@@ -1,6 +1,8 @@
 // A run's own experiment, checked against its manifest (see the header).
 #include "rundir/run_experiment.h"
 
+#include <algorithm>
+
 #include "util/errors.h"
 
 namespace ra::rundir {
@@ -32,6 +34,19 @@ Experiment load_run_experiment(const std::string& run_dir) {
   Experiment exp = load_experiment(run_dir + "/experiment.toml");
   require_unchanged_experiment(exp, run_dir);
   return exp;
+}
+
+std::vector<Shard> planned_shards_of_run(const std::string& run_dir, const Experiment& exp) {
+  const RunManifest m = read_manifest_file_or_empty(run_dir + "/manifest.json");
+  std::vector<Shard> plan = plan_shards(exp);
+  if (!m.platforms_run || m.platforms_run->empty()) return plan;
+  const std::vector<std::string>& run = *m.platforms_run;
+  plan.erase(std::remove_if(plan.begin(), plan.end(),
+                            [&](const Shard& s) {
+                              return std::find(run.begin(), run.end(), s.platform) == run.end();
+                            }),
+             plan.end());
+  return plan;
 }
 
 }  // namespace ra::rundir

@@ -7,9 +7,11 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/shard.h"
 
 namespace ra::rundir {
 
@@ -26,5 +28,10 @@ void require_unchanged_experiment(const Experiment& exp, const std::string& run_
 // it cannot read in its own words: analyze, as an incomplete run).
 void require_unchanged_experiment(const Experiment& exp, const RunManifest& manifest,
                                   const std::string& run_dir);
+
+// The shards a run directory is meant to hold, in plan order: its experiment's plan, for the
+// platforms its manifest says were run (`run --platform`, "platforms_run"; every platform when it
+// names none), as `status` counts them. Throws as read_manifest_file does.
+std::vector<Shard> planned_shards_of_run(const std::string& run_dir, const Experiment& exp);
 
 }  // namespace ra::rundir
