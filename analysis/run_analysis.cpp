@@ -19,6 +19,7 @@
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
 #include "analysis/view_equivalence.h"
+#include "rundir/run_experiment.h"
 #include "stats/table_writer.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -117,7 +118,7 @@ RunRecords load_records(const AnalyzeOptions& o) {
     if (!std::filesystem::exists(path))
       throw util::UserError(o.run_dir + ": --point-margin-px needs the run's experiment.toml (" +
                             path + " is missing)");
-    experiment = rundir::load_experiment(path);
+    experiment = rundir::load_run_experiment(o.run_dir);
     load.point_margin_px = o.point_margin_px;
     load.experiment = &*experiment;
   }

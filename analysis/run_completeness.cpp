@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
 #include "metrics/records.h"
@@ -11,6 +12,7 @@
 #include "rundir/records_reader.h"
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"
 #include "rundir/shard_records.h"
@@ -81,14 +83,20 @@ RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSe
   c.has_plan = true;
   const rundir::Experiment exp = rundir::load_experiment(toml);
   c.writer = util::DirLock::current_holder(run_dir);
+  std::optional<rundir::RunManifest> manifest;
   try {
-    const rundir::RunManifest m = rundir::read_manifest_file(run_dir + "/manifest.json");
-    c.manifest_status = m.status;
-    if (m.slice) c.slice_index = m.slice->index, c.slice_count = m.slice->count;
-    if (m.platforms_run) c.platforms_run = *m.platforms_run;
+    manifest = rundir::read_manifest_file(run_dir + "/manifest.json");
   } catch (const std::exception& e) {
     // The reader's own words: the file and the key that is wrong, as status, audit and merge say.
     c.problems.push_back(e.what());
+  }
+  if (manifest) {
+    // the copy is the records' experiment only while the manifest's hash is its own (exit 2)
+    rundir::require_unchanged_experiment(exp, *manifest, run_dir);
+    const rundir::RunManifest& m = *manifest;
+    c.manifest_status = m.status;
+    if (m.slice) c.slice_index = m.slice->index, c.slice_count = m.slice->count;
+    if (m.platforms_run) c.platforms_run = *m.platforms_run;
   }
   if (c.manifest_status == "running" && c.writer.empty())
     c.problems.push_back("the manifest says \"running\" but nobody is writing: the run was killed "

@@ -1,6 +1,7 @@
 // renderaudit: measures how accurately and how fast renderers draw points, lines and triangles.
 // One program, git-style subcommands; see README.md.
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <algorithm>
 #include <exception>
@@ -8,10 +9,15 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "app/exit_status.h"
 #include "util/child_process.h"
 #include "util/errors.h"
 
 int main(int argc, char** argv) {
+  // A closed pipe on stdout (`renderaudit records RUN | head`) is a write error the command says
+  // and exits 2 on, not a silent death by SIGPIPE (exit 141). Children inherit it, as those of
+  // `run` always did (runner/run_coordinator.cpp).
+  std::signal(SIGPIPE, SIG_IGN);
   CLI::App app{
       "renderaudit: how accurately and how fast a renderer draws.\n"
       "Runs declarative experiments (experiments/*.toml) and turns them into statistics."};
@@ -54,14 +60,8 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : ra::app::kExitUsage;
-  } catch (const ra::util::UserError& e) {
-    ra::util::send_message_to_parent(e.what());
-    std::fprintf(stderr, "renderaudit: %s\n", e.what());
-    return ra::app::kExitUsage;
-  } catch (const std::exception& e) {
-    ra::util::send_message_to_parent(e.what());
-    std::fprintf(stderr, "renderaudit: error: %s\n", e.what());
-    return ra::app::kExitFindings;
+  } catch (...) {
+    return ra::app::exit_code_of_current_exception("renderaudit");
   }
   return exit_code;
 }

@@ -25,7 +25,8 @@ void register_merge_command(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--out,-o", opts->opt.out_dir, "the merged run directory")->required();
   cmd->add_flag("--allow-driver-mismatch", opts->opt.allow_driver_mismatch,
-                "merge inputs whose platforms report other GL_RENDERER / GL_VERSION strings");
+                "merge inputs whose platforms report other GL_RENDERER / GL_VERSION strings, or "
+                "drew with other driver library bytes (drivers/P.json build.libraries)");
   cmd->callback([opts, &exit_code] {
     const runner::MergeResult r = runner::merge_runs(opts->opt);
     std::printf(

@@ -14,14 +14,17 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "analysis/run_completeness.h"
 #include "app/commands.h"
 #include "metrics/records.h"
 #include "rundir/experiment.h"
 #include "rundir/records_format.h"
 #include "rundir/records_reader.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"
 #include "rundir/shard_records.h"
@@ -37,6 +40,7 @@ struct RecordsOptions {
   std::vector<std::string> platforms, kinds, columns;
   std::vector<int> views;
   std::string format = "csv";
+  bool allow_incomplete = false;
 };
 
 std::string joined(const std::vector<std::string>& names) {
@@ -65,7 +69,7 @@ void stream_records(const RecordsOptions& o) {
     throw util::UserError(o.dir +
                           ": no experiment.toml (expected a run directory written by "
                           "`renderaudit run`)");
-  const rundir::Experiment exp = rundir::load_experiment(toml);
+  const rundir::Experiment exp = rundir::load_run_experiment(o.dir);
   const std::optional<rundir::RecordsFormat> format = rundir::parse_records_format(o.format);
   if (!format) throw util::UserError("--format " + o.format + ": unknown (allowed: csv, csv.zst)");
   if (*format == rundir::RecordsFormat::kCsvZst && ::isatty(STDOUT_FILENO))
@@ -95,6 +99,29 @@ void stream_records(const RecordsOptions& o) {
     for (std::size_t c = 0; c < metrics::kRecordColumnCount; ++c)
       columns.push_back(static_cast<metrics::RecordColumn>(c));
 
+  // The selection's shards, and those of them the run lacks: an incomplete stream is refused
+  // before anything is written unless asked for, as every statistic over an incomplete run is.
+  std::vector<rundir::Shard> selected;
+  std::set<std::string> planned;  // ids of the shards the run is meant to hold
+  for (const rundir::Shard& s : rundir::planned_shards_of_run(o.dir, exp)) planned.insert(s.id());
+  std::vector<std::string> missing;
+  for (const rundir::Shard& s : rundir::plan_shards(exp)) {
+    if (!wanted(o.platforms, s.platform) ||
+        !wanted(o.kinds, std::string(geometry::kind_name(s.kind))) || !wanted(o.views, s.view))
+      continue;
+    const bool present = !rundir::find_shard_records(o.dir, s, false).path.empty();
+    if (!present && planned.count(s.id())) missing.push_back(s.id());
+    if (present) selected.push_back(s);
+  }
+  if (!missing.empty() && !o.allow_incomplete)
+    throw analysis::IncompleteRunError(
+        o.dir + ": incomplete: " + std::to_string(missing.size()) +
+        " planned shards of the selection have no records file (" + missing.front() +
+        (missing.size() > 1 ? ", ..." : "") +
+        "), so the stream would not be the run's records. Finish the run (the same `renderaudit "
+        "run` command; `renderaudit status " + o.dir + "` says why), or pass --allow-incomplete "
+        "to stream the records it holds");
+
   std::ios::sync_with_stdio(false);
   std::unique_ptr<util::ZstdFrameWriter> zstd;
   if (*format == rundir::RecordsFormat::kCsvZst)
@@ -112,16 +139,9 @@ void stream_records(const RecordsOptions& o) {
   for (std::size_t i = 0; i < columns.size(); ++i)
     text += (i ? "," : "") + std::string(metrics::record_column_name(columns[i]));
   text += '\n';
-  std::size_t missing = 0;
-  for (const rundir::Shard& s : rundir::plan_shards(exp)) {
-    if (!wanted(o.platforms, s.platform) ||
-        !wanted(o.kinds, std::string(geometry::kind_name(s.kind))) || !wanted(o.views, s.view))
-      continue;
+  for (const rundir::Shard& s : selected) {
     const std::string path = rundir::trusted_records_path(o.dir, s);  // read once to judge it
-    if (path.empty()) {
-      ++missing;
-      continue;
-    }
+    if (path.empty()) continue;  // removed since
     rundir::for_each_record_row(path, [&](const rundir::RecordRow& row) {
       for (std::size_t i = 0; i < columns.size(); ++i) {
         if (i) text += ',';
@@ -137,11 +157,11 @@ void stream_records(const RecordsOptions& o) {
     throw util::UserError(std::string("cannot write the records to standard output (") +
                           std::strerror(errno ? errno : EIO) +
                           "): is the disk it goes to full, or the pipe closed?");
-  if (missing > 0)
+  if (!missing.empty())
     std::fprintf(stderr,
-                 "renderaudit: records: %zu planned shards of the selection have no "
-                 "records file yet (`renderaudit status %s` says why)\n",
-                 missing, util::shell_quote(o.dir).c_str());
+                 "renderaudit: records: incomplete run: %zu planned shards of the selection have "
+                 "no records file (`renderaudit status %s` says why)\n",
+                 missing.size(), util::shell_quote(o.dir).c_str());
 }
 
 }  // namespace
@@ -162,8 +182,17 @@ void register_records_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--columns", opts->o.columns, "these columns, in this order (comma-separated)")
       ->delimiter(',');
   cmd->add_option("--format", opts->o.format, "csv (default) or csv.zst");
+  cmd->add_flag("--allow-incomplete", opts->o.allow_incomplete,
+                "stream the records of a run with missing shards (said on stderr); without it "
+                "such a run is refused with exit code 3 before anything is written");
   cmd->callback([opts, &exit_code] {
-    stream_records(opts->o);
+    try {
+      stream_records(opts->o);
+    } catch (const analysis::IncompleteRunError& e) {
+      std::fprintf(stderr, "renderaudit records: %s\n", e.what());
+      exit_code = kExitIncomplete;
+      return;
+    }
     exit_code = kExitOk;
   });
 }

@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/run_completeness.h"
 #include "rundir/records_format.h"
 #include "stats/box_cox.h"
 #include "stats/csv_table.h"
@@ -33,6 +34,7 @@
 #include "app/stats_presentation.h"
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_records.h"
 #include "util/errors.h"
@@ -55,6 +57,7 @@ struct StatsOptions {
   bool no_intercept = false;   // regress
   bool json = false;
   std::vector<std::string> where;  // describe: COLUMN=VALUE conditions every row must meet
+  bool allow_incomplete = false;   // describe: a run directory with missing shards
 };
 
 QuantileDefinition quantile_definition(const std::string& name) {
@@ -80,33 +83,60 @@ Sample read_sample(const std::string& file, const std::string& column) {
   return Sample{file, column, std::move(c.values), c.n_missing};
 }
 
+// The records files of a run directory, and the planned shards it lacks.
+struct RunRecordsFiles {
+  std::vector<std::string> files;
+  std::vector<std::string> missing;  // shard ids, in plan order
+  uint64_t shards_planned = 0, primitives_planned = 0, primitives_missing = 0;
+};
+
 // The records files of a run directory, each judged by the seal rule (rundir/shard_records.h):
 // a damaged file, or a file that is not one of the plan's shards, stops with its name. A
 // directory without experiment.toml (records gathered by hand) lists records/ as it is.
-std::vector<std::string> run_records_files(const std::string& dir) {
+RunRecordsFiles run_records_files(const std::string& dir) {
   namespace fs = std::filesystem;
-  std::vector<std::string> files;
+  RunRecordsFiles out;
+  std::vector<std::string>& files = out.files;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(fs::path(dir) / "records", ec))
     if (ra::rundir::is_records_file_name(e.path().filename().string()))
       files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
-  if (!fs::exists(dir + "/experiment.toml")) return files;
+  if (!fs::exists(dir + "/experiment.toml")) return out;
+  const rundir::Experiment exp = rundir::load_run_experiment(dir);
   std::set<std::string> trusted;
-  for (const rundir::Shard& s : rundir::plan_shards(rundir::load_experiment(dir + "/experiment.toml")))
+  for (const rundir::Shard& s : rundir::plan_shards(exp))
     if (const std::string p = rundir::trusted_records_path(dir, s); !p.empty()) trusted.insert(p);
   for (const std::string& f : files)
     if (!trusted.count(f))
       throw util::UserError(f + ": not a shard of the run's plan (" + dir +
                             "/experiment.toml): its rows would be counted with the run's; move it "
                             "out of records/");
-  return files;
+  for (const rundir::Shard& s : rundir::planned_shards_of_run(dir, exp)) {
+    ++out.shards_planned;
+    out.primitives_planned += s.size();
+    if (rundir::find_shard_records(dir, s, false).path.empty())
+      out.missing.push_back(s.id()), out.primitives_missing += s.size();
+  }
+  return out;
+}
+
+// "2 of 32 planned shards have no records file (X, Y, ...); N of M planned primitives are there"
+std::string missing_shards_text(const RunRecordsFiles& r) {
+  std::string ids;
+  for (std::size_t i = 0; i < r.missing.size() && i < 3; ++i) ids += (i ? ", " : "") + r.missing[i];
+  if (r.missing.size() > 3) ids += ", ...";
+  return std::to_string(r.missing.size()) + " of " + std::to_string(r.shards_planned) +
+         " planned shards have no records file (" + ids + "); " +
+         std::to_string(r.primitives_planned - r.primitives_missing) + " of " +
+         std::to_string(r.primitives_planned) + " planned primitives are there";
 }
 
 // The rows of `column` where every `where` condition (COLUMN=VALUE, the cell's text) holds, from
 // a CSV file or from a run directory's records (DIR/records/*.csv, all with the records header).
 Sample read_selected_sample(const std::string& path, const std::string& column,
-                            const std::vector<std::string>& where) {
+                            const std::vector<std::string>& where, bool allow_incomplete,
+                            std::string* incomplete) {
   namespace fs = std::filesystem;
   std::vector<std::pair<std::string, std::string>> conditions;
   for (const std::string& w : where) {
@@ -119,7 +149,16 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
   std::vector<std::string> files;
   std::string name = path;
   if (fs::is_directory(path)) {
-    files = run_records_files(path);
+    const RunRecordsFiles run = run_records_files(path);
+    files = run.files;
+    if (!run.missing.empty()) {
+      *incomplete = missing_shards_text(run);
+      if (!allow_incomplete)
+        throw analysis::IncompleteRunError(
+            path + ": incomplete: " + *incomplete + ", so no statistic of it is the run's. Finish "
+            "the run (the same `renderaudit run` command; `renderaudit status " + path +
+            "` says why), or pass --allow-incomplete to describe the records it holds");
+    }
     if (files.empty())
       throw util::UserError(
           path +
@@ -152,7 +191,12 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
 }
 
 void run_describe(const StatsOptions& o) {
-  const Sample s = read_selected_sample(o.files.at(0), o.column, o.where);
+  std::string incomplete;  // what a run directory lacks, when --allow-incomplete went on
+  const Sample s =
+      read_selected_sample(o.files.at(0), o.column, o.where, o.allow_incomplete, &incomplete);
+  if (!incomplete.empty())
+    std::fprintf(stderr, "renderaudit stats: %s: incomplete run: %s\n", o.files.at(0).c_str(),
+                 incomplete.c_str());
   const stats::Description d = stats::describe(s.values, quantile_definition(o.quantiles));
   if (o.json) {
     json j = header_json("stats describe");
@@ -161,6 +205,7 @@ void run_describe(const StatsOptions& o) {
     j["column"] = s.column;
     if (!o.where.empty()) j["where"] = o.where;
     j["n_missing"] = s.n_missing;
+    if (!incomplete.empty()) j["incomplete_run"] = incomplete;
     j["description"] = description_json(d);
     print_json(j);
     return;
@@ -170,6 +215,7 @@ void run_describe(const StatsOptions& o) {
   out("%s, column '%s'%s (%zu empty cells skipped); quartiles: %s\n", s.file.c_str(),
       s.column.c_str(), selected.c_str(), s.n_missing,
       stats::quantile_definition_name(quantile_definition(o.quantiles)));
+  if (!incomplete.empty()) out("incomplete run: %s\n", incomplete.c_str());
   print_description_rows({d}, {s.column});
 }
 
@@ -532,9 +578,18 @@ void register_stats_command(CLI::App& app, int& exit_code) {
   describe->add_option("--where,-w", describe_opt->where,
                        "only rows whose cell in COLUMN is VALUE: COLUMN=VALUE, repeatable, e.g. "
                        "--where platform=osmesa-llvmpipe --where kind=line --where view=3");
+  describe->add_flag("--allow-incomplete", describe_opt->allow_incomplete,
+                     "describe a run directory with missing shards (the output says what is "
+                     "missing); without it such a run is refused with exit code 3");
   add_common_options(describe, *describe_opt, true);
   describe->callback([describe_opt, &exit_code] {
-    run_describe(*describe_opt);
+    try {
+      run_describe(*describe_opt);
+    } catch (const analysis::IncompleteRunError& e) {
+      std::fprintf(stderr, "renderaudit stats: %s\n", e.what());
+      exit_code = kExitIncomplete;
+      return;
+    }
     exit_code = kExitOk;
   });
 

@@ -6,6 +6,7 @@
 
 #include "app/commands.h"
 #include "rundir/experiment.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "runner/shard_server.h"
 #include "runner/shard_session.h"
@@ -37,7 +38,7 @@ void register_worker_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--records-dir", opts->records_dir,
                   "where the records file goes (default DIR/records)");
   cmd->callback([opts, &exit_code] {
-    const rundir::Experiment exp = rundir::load_experiment(opts->dir + "/experiment.toml");
+    const rundir::Experiment exp = rundir::load_run_experiment(opts->dir);
     rundir::Shard shard{opts->platform, geometry::Kind::kPoint, opts->view, opts->begin, opts->end};
     if (!geometry::parse_kind(opts->kind, &shard.kind))
       throw util::UserError("unknown kind '" + opts->kind + "'");
@@ -50,7 +51,7 @@ void register_worker_command(CLI::App& app, int& exit_code) {
   serve->add_option("dir", opts->serve_dir)->required();
   serve->add_option("platform", opts->serve_platform)->required();
   serve->callback([opts, &exit_code] {
-    const rundir::Experiment exp = rundir::load_experiment(opts->serve_dir + "/experiment.toml");
+    const rundir::Experiment exp = rundir::load_run_experiment(opts->serve_dir);
     runner::serve_shards(opts->serve_dir, exp, opts->serve_platform, std::cin);
     exit_code = kExitOk;
   });

@@ -8,6 +8,7 @@
 #include <exception>
 
 #include "app/commands.h"
+#include "app/exit_status.h"
 #include "util/child_process.h"
 #include "util/errors.h"
 
@@ -20,14 +21,8 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : ra::app::kExitUsage;
-  } catch (const ra::util::UserError& e) {
-    ra::util::send_message_to_parent(e.what());
-    std::fprintf(stderr, "renderaudit-worker: %s\n", e.what());
-    return ra::app::kExitUsage;
-  } catch (const std::exception& e) {
-    ra::util::send_message_to_parent(e.what());
-    std::fprintf(stderr, "renderaudit-worker: error: %s\n", e.what());
-    return ra::app::kExitFindings;
+  } catch (...) {
+    return ra::app::exit_code_of_current_exception("renderaudit-worker");
   }
   return exit_code;
 }

@@ -8,6 +8,7 @@
 #include "rundir/records_reader.h"
 #include "util/errors.h"
 #include "rundir/experiment.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_records.h"
 
@@ -170,8 +171,8 @@ PrimitiveComparison compare_primitives(const std::string& baseline_dir,
                                        const std::vector<PlatformPair>& pairs, unsigned jobs,
                                        bool compare_verdicts) {
   const rundir::Experiment baseline_exp =
-      rundir::load_experiment(baseline_dir + "/experiment.toml");
-  const rundir::Experiment current_exp = rundir::load_experiment(current_dir + "/experiment.toml");
+      rundir::load_run_experiment(baseline_dir);
+  const rundir::Experiment current_exp = rundir::load_run_experiment(current_dir);
   const std::vector<rundir::Shard> baseline_plan = rundir::plan_shards(baseline_exp);
   const std::vector<rundir::Shard> current_plan = rundir::plan_shards(current_exp);
 

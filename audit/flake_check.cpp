@@ -18,6 +18,7 @@
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "rundir/experiment.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "util/worker_program.h"
 #include "rundir/driver_build.h"
@@ -113,7 +114,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   if (batches.empty()) return result;
   const rundir::Experiment exp =
       options.experiment_text.empty()
-          ? rundir::load_experiment(options.run_dir + "/experiment.toml")
+          ? rundir::load_run_experiment(options.run_dir)
           : rundir::parse_experiment(options.experiment_text, options.run_dir + "/experiment.toml");
   const double timeout_s = options.timeout_s > 0 ? options.timeout_s : exp.shard_timeout_s;
   const std::string program = options.program.empty() ? util::worker_program() : options.program;

@@ -14,6 +14,7 @@
 #include "rundir/driver_build.h"
 #include "rundir/experiment.h"
 #include "rundir/records_reader.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "util/errors.h"
 #include "rundir/shard_records.h"
@@ -188,7 +189,7 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   const std::string toml = q.run_dir + "/experiment.toml";
   if (!fs::is_regular_file(toml))
     throw util::UserError(q.run_dir + ": not a run directory (no experiment.toml)");
-  const rundir::Experiment exp = rundir::load_experiment(toml);
+  const rundir::Experiment exp = rundir::load_run_experiment(q.run_dir);
   const rundir::PlatformSpec spec = rundir::experiment_platform(exp, q.platform);
   if (!spec.draws_with_gl() || spec.samples > 0 || spec.backend == rundir::Backend::kEglDevice)
     throw util::UserError(

@@ -9,6 +9,7 @@
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "rundir/manifest.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "util/json_file.h"
 
@@ -42,7 +43,7 @@ RunIdentity load_run_identity(const std::string& dir) {
       rundir::read_manifest(read_json(manifest_path), manifest_path);
   const std::string toml = dir + "/experiment.toml";
   if (!fs::exists(toml)) throw util::UserError(toml + ": missing (not a run directory?)");
-  run.experiment = rundir::load_experiment(toml);
+  run.experiment = rundir::load_run_experiment(dir);
 
   const rundir::ManifestExperiment exp = manifest.experiment.value_or(rundir::ManifestExperiment{});
   run.name = exp.name.empty() ? run.experiment.name : exp.name;

@@ -15,6 +15,7 @@
 
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_cost.h"
 #include "rundir/slicing.h"
@@ -65,7 +66,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const ra::rundir::Experiment exp = ra::rundir::load_experiment(dir + "/experiment.toml");
+  const ra::rundir::Experiment exp = ra::rundir::load_run_experiment(dir);
   const ra::rundir::RunManifest manifest = ra::rundir::read_manifest_file(dir + "/manifest.json");
   std::map<std::string, double> seconds =
       manifest.shard_seconds.value_or(std::map<std::string, double>{});

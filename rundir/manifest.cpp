@@ -336,7 +336,8 @@ nlohmann::json read_manifest_json(const std::string& path) {
   } catch (const json::exception& e) {
     throw util::UserError(path + ": not a JSON document (" + e.what() +
                           "); `run` of the same experiment into this folder keeps it as "
-                          "manifest.json.damaged and starts a new manifest");
+                          "manifest.json.damaged (or .damaged.2, ... beside copies kept earlier) "
+                          "and starts a new manifest");
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
+#include <vector>
 
 #include "util/atomic_file.h"
 #include "util/fnv1a.h"
@@ -73,12 +74,20 @@ class HeldBackDigest {
     held_.assign(piece.substr(before + 1));
   }
   // The last line (with its '\n', or without one when the stream ends mid-line) and the digest of
-  // everything before it.
-  BodyDigest finish(std::string* last_line) {
+  // everything before it; `first_row` and `last_row`: the first and last lines after the header
+  // before it (without '\n'; empty when there are none).
+  BodyDigest finish(std::string* last_line, std::string* first_row, std::string* last_row) {
     const size_t last = held_.rfind('\n', held_.size() >= 2 ? held_.size() - 2 : 0);
     const size_t cut = held_.size() >= 2 && last != std::string::npos ? last + 1 : 0;
     take(std::string_view(held_).substr(0, cut));
     *last_line = held_.substr(cut);
+    const size_t header_end = head_.find('\n');
+    const size_t row_end =
+        header_end == std::string::npos ? header_end : head_.find('\n', header_end + 1);
+    *first_row = row_end != std::string::npos
+                     ? head_.substr(header_end + 1, row_end - header_end - 1)
+                     : std::string();
+    *last_row = lines_ >= 2 ? last_complete_ : "";
     BodyDigest d;
     d.hash = hash_.value;
     d.rows = lines_ > 0 ? lines_ - 1 : 0;
@@ -86,25 +95,99 @@ class HeldBackDigest {
   }
 
  private:
+  static constexpr size_t kLongestRowKept = 1 << 16;  // a row is about 200 bytes
+
   void take(std::string_view bytes) {
     hash_.add(bytes);
+    const uint64_t before = lines_;
     lines_ += uint64_t(std::count(bytes.begin(), bytes.end(), '\n'));
+    // the header and the first row
+    if (before < 2 && head_.size() < 2 * kLongestRowKept) {
+      head_.append(bytes.substr(0, 2 * kLongestRowKept - head_.size()));
+      const size_t header_end = head_.find('\n');
+      const size_t row_end = header_end == std::string::npos ? header_end
+                                                             : head_.find('\n', header_end + 1);
+      if (row_end != std::string::npos) head_.resize(row_end + 1);
+    }
+    // the last complete line so far, and the line begun after it
+    const size_t end = bytes.rfind('\n');
+    if (end == std::string_view::npos) {
+      if (partial_.size() < kLongestRowKept) partial_.append(bytes.substr(0, kLongestRowKept));
+      return;
+    }
+    const size_t start = end == 0 ? std::string_view::npos : bytes.rfind('\n', end - 1);
+    if (start == std::string_view::npos)
+      last_complete_ = partial_ + std::string(bytes.substr(0, end));
+    else
+      last_complete_.assign(bytes.substr(start + 1, end - start - 1));
+    partial_.assign(bytes.substr(end + 1, kLongestRowKept));
   }
   util::Fnv1a64 hash_;
   uint64_t lines_ = 0;
   std::string held_;  // the last line or two seen, not yet hashed
+  std::string head_;  // the first two lines hashed (the header and the first row)
+  std::string last_complete_, partial_;  // the last whole line hashed, and the one begun after it
 };
 
-std::string check_compressed(const std::string& path, uint64_t expected_rows) {
+// The seal of the file at `path` (decompressed when it is a .csv.zst one), or why it cannot be read.
+std::string read_seal(const std::string& path, ShardSeal* out) {
   ShardSealReader seal;
-  try {
-    util::for_each_zstd_chunk(path, [&](std::string_view c) { seal.add(c); });
-  } catch (const std::runtime_error& e) {
-    const std::string what = e.what();
-    if (what.find("cut short") != std::string::npos) return "no trailer (the file was cut short)";
-    return "damaged: " + what.substr(std::min(what.size(), path.size() + 2));
+  if (util::has_zstd_extension(path)) {
+    try {
+      util::for_each_zstd_chunk(path, [&](std::string_view c) { seal.add(c); });
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      if (what.find("cut short") != std::string::npos) return "no trailer (the file was cut short)";
+      return "damaged: " + what.substr(std::min(what.size(), path.size() + 2));
+    }
+  } else {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return "cannot read it";
+    std::string block(1 << 20, '\0');
+    while (in) {
+      in.read(block.data(), std::streamsize(block.size()));
+      if (in.gcount() <= 0) break;
+      seal.add(std::string_view(block.data(), size_t(in.gcount())));
+    }
+    if (in.bad()) return "cannot read it";
   }
-  return seal_verdict(seal.finish(), expected_rows, true);
+  *out = seal.finish();
+  return "";
+}
+
+// The cells a row names its primitive by: platform, view, kind, index ("" for a row too short).
+struct RowIdentity {
+  std::string platform, view, kind, index;
+};
+RowIdentity row_identity(std::string_view row) {
+  std::vector<std::string_view> cells;
+  for (size_t start = 0; cells.size() <= size_t(metrics::RecordColumn::kIndex);) {
+    const size_t comma = row.find(',', start);
+    cells.push_back(row.substr(start, comma == std::string_view::npos ? row.npos : comma - start));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  if (cells.size() <= size_t(metrics::RecordColumn::kIndex)) return {};
+  const auto cell = [&](metrics::RecordColumn c) { return std::string(cells[size_t(c)]); };
+  return {cell(metrics::RecordColumn::kPlatform), cell(metrics::RecordColumn::kView),
+          cell(metrics::RecordColumn::kKind), cell(metrics::RecordColumn::kIndex)};
+}
+
+std::string primitive_words(const RowIdentity& r) {
+  return r.kind + " " + r.index + " of view " + r.view + " on " + r.platform;
+}
+
+// Empty when `row` records primitive `index` of shard `s`; otherwise what it records instead.
+std::string row_mismatch(std::string_view row, const Shard& s, uint64_t index, const char* which) {
+  const RowIdentity got = row_identity(row);
+  const RowIdentity want{s.platform, std::to_string(s.view), geometry::kind_name(s.kind),
+                         std::to_string(index)};
+  if (got.platform == want.platform && got.view == want.view && got.kind == want.kind &&
+      got.index == want.index)
+    return "";
+  return std::string("its ") + which + " row records " +
+         (got.index.empty() ? std::string("no primitive") : primitive_words(got)) + " where shard " +
+         s.id() + "'s records " + primitive_words(want);
 }
 
 }  // namespace
@@ -175,18 +258,15 @@ uint64_t seal_shard_file(const std::string& path) {
 }
 
 std::string check_shard_file(const std::string& path, uint64_t expected_rows) {
-  if (util::has_zstd_extension(path)) return check_compressed(path, expected_rows);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "cannot read it";
-  ShardSealReader seal;
-  std::string block(1 << 20, '\0');
-  while (in) {
-    in.read(block.data(), std::streamsize(block.size()));
-    if (in.gcount() <= 0) break;
-    seal.add(std::string_view(block.data(), size_t(in.gcount())));
-  }
-  if (in.bad()) return "cannot read it";
-  return seal_verdict(seal.finish(), expected_rows, false);
+  ShardSeal seal;
+  if (std::string why = read_seal(path, &seal); !why.empty()) return why;
+  return seal_verdict(seal, expected_rows, util::has_zstd_extension(path));
+}
+
+std::string check_shard_file(const std::string& path, const Shard& s) {
+  ShardSeal seal;
+  if (std::string why = read_seal(path, &seal); !why.empty()) return why;
+  return seal_verdict(seal, s, util::has_zstd_extension(path));
 }
 
 struct ShardSealReader::Digest {
@@ -200,7 +280,7 @@ void ShardSealReader::add(std::string_view piece) { digest_->held.add(piece); }
 
 ShardSeal ShardSealReader::finish() {
   ShardSeal seal;
-  const BodyDigest d = digest_->held.finish(&seal.last_line);
+  const BodyDigest d = digest_->held.finish(&seal.last_line, &seal.first_row, &seal.last_row);
   seal.hash = d.hash;
   seal.rows = d.rows;
   return seal;
@@ -227,6 +307,17 @@ std::string seal_verdict(const ShardSeal& seal, uint64_t expected_rows, bool com
     return "it holds " + std::to_string(d.rows) + " rows where the shard has " +
            std::to_string(expected_rows) + " primitives";
   return "";
+}
+
+std::string seal_verdict(const ShardSeal& seal, const Shard& s, bool compressed) {
+  if (std::string why = seal_verdict(seal, s.size(), compressed); !why.empty()) return why;
+  if (s.size() == 0) return "";
+  // The hash proves the rows are those the writer wrote, in its order (by index); the first and
+  // last prove which shard it wrote them for.
+  std::string why = row_mismatch(seal.first_row, s, s.begin, "first");
+  if (why.empty()) why = row_mismatch(seal.last_row, s, s.end - 1, "last");
+  if (why.empty()) return "";
+  return why + ": these are another shard's records under this shard's name (copied or renamed)";
 }
 
 }  // namespace ra::rundir

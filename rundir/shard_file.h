@@ -20,6 +20,7 @@
 
 #include "metrics/records.h"
 #include "rundir/records_format.h"
+#include "rundir/shard.h"
 #include "util/fnv1a.h"
 #include "util/zstd_stream.h"
 
@@ -61,6 +62,11 @@ uint64_t seal_shard_file(const std::string& path);
 // `expected_rows` rows; otherwise why not ("no trailer (cut short?)", "rows=... but ... expected",
 // "hash mismatch", ...).
 std::string check_shard_file(const std::string& path, uint64_t expected_rows);
+// The same for the records of shard `s`, and the seal bound to the file's name: its first row
+// records the shard's first primitive and its last row its last one (platform, view, kind and
+// index). The writer writes a shard's rows in index order and the hash covers them all, so a
+// sealed file of another shard (copied or renamed to this one's name) fails here.
+std::string check_shard_file(const std::string& path, const Shard& s);
 
 // What the seal check needs of a shard file's text: the hash and row count of everything before
 // its last line, and that line (the trailer, when the file is sealed).
@@ -68,6 +74,8 @@ struct ShardSeal {
   uint64_t hash = util::Fnv1a64::kOffsetBasis;
   uint64_t rows = 0;
   std::string last_line;  // with its '\n'; without one when the text ends mid-line
+  // the first and last rows before it (the header excluded), without '\n'; empty when none
+  std::string first_row, last_row;
 };
 
 // The seal of a file's text read piece by piece (decompressed), for a reader that reads the whole
@@ -89,5 +97,8 @@ class ShardSealReader {
 // and counts `expected_rows` rows; otherwise why not, in check_shard_file's words. `compressed`:
 // the file is a .csv.zst one.
 std::string seal_verdict(const ShardSeal& seal, uint64_t expected_rows, bool compressed);
+// The verdict of check_shard_file(path, s): the seal counts shard `s`'s rows and its first and last
+// rows are the shard's first and last primitives.
+std::string seal_verdict(const ShardSeal& seal, const Shard& s, bool compressed);
 
 }  // namespace ra::rundir

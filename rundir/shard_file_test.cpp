@@ -83,5 +83,45 @@ TEST_F(ShardFile, AMissingFileSaysSo) {
   EXPECT_EQ(check_shard_file(path_, 3), "cannot read it");
 }
 
+// The seal is bound to the file's name: a whole, sealed file of shard 0-3 is another shard's
+// records under the name of shard 3-6 (or of another view, kind or platform), for check_shard_file
+// and for the verdict on a seal read in a reader's own pass (ShardSealReader, as analyze reads it).
+TEST_F(ShardFile, ASealedFileOfAnotherShardFailsUnderThisShardsName) {
+  std::string text = "platform,view,g,o,f,w,h,n,r,kind,index,more\n";
+  for (int i = 0; i < 3; ++i)
+    text += "reference,2,0,0,30,64,64,0.01,10,line," + std::to_string(i) + ",x\n";
+  write(text);
+  seal_shard_file(path_);
+  const Shard own{"reference", geometry::Kind::kLine, 2, 0, 3};
+  EXPECT_EQ(check_shard_file(path_, own), "");
+  EXPECT_EQ(check_shard_file(path_, 3), "");  // the seal alone holds
+  ShardSealReader reader;
+  reader.add(read());
+  const ShardSeal seal = reader.finish();
+  EXPECT_EQ(seal.first_row, "reference,2,0,0,30,64,64,0.01,10,line,0,x");
+  EXPECT_EQ(seal.last_row, "reference,2,0,0,30,64,64,0.01,10,line,2,x");
+  EXPECT_EQ(seal_verdict(seal, own, false), "");
+  for (const Shard& other : {Shard{"reference", geometry::Kind::kLine, 2, 3, 6},
+                             Shard{"reference", geometry::Kind::kLine, 1, 0, 3},
+                             Shard{"reference", geometry::Kind::kPoint, 2, 0, 3},
+                             Shard{"egl-llvmpipe", geometry::Kind::kLine, 2, 0, 3}}) {
+    SCOPED_TRACE(other.id());
+    const std::string why = check_shard_file(path_, other);
+    EXPECT_NE(why.find("its first row records line 0 of view 2 on reference where shard " +
+                       other.id() + "'s records"),
+              std::string::npos) << why;
+    EXPECT_NE(why.find("another shard's records under this shard's name"), std::string::npos);
+    EXPECT_EQ(seal_verdict(seal, other, false), why);
+  }
+  // the first row right, the last one another primitive's
+  std::string ends_elsewhere = "platform,view,g,o,f,w,h,n,r,kind,index\n";
+  for (int i : {0, 1, 5})
+    ends_elsewhere += "reference,2,0,0,30,64,64,0.01,10,line," + std::to_string(i) + "\n";
+  write(ends_elsewhere);
+  seal_shard_file(path_);
+  EXPECT_NE(check_shard_file(path_, own).find("its last row records line 5 of view 2 on reference"),
+            std::string::npos) << check_shard_file(path_, own);
+}
+
 }  // namespace
 }  // namespace ra::rundir

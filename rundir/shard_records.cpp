@@ -63,11 +63,11 @@ std::string judged(const std::string& path, const Shard& s, std::string why) {
 }  // namespace
 
 std::string shard_records_damage(const std::string& path, const Shard& s) {
-  return judged(path, s, check_shard_file(path, s.size()));
+  return judged(path, s, check_shard_file(path, s));
 }
 
 std::string shard_records_damage(const std::string& path, const Shard& s, const ShardSeal& seal) {
-  return judged(path, s, seal_verdict(seal, s.size(), util::has_zstd_extension(path)));
+  return judged(path, s, seal_verdict(seal, s, util::has_zstd_extension(path)));
 }
 
 ShardRecordsFile find_shard_records(const std::string& run_dir, const Shard& s, bool check_seal) {
@@ -92,7 +92,7 @@ std::string trusted_records_path(const std::string& run_dir, const Shard& s) {
     throw util::UserError(f.path + ": damaged: " + f.damage +
                           "; nothing is concluded from a damaged records file. `renderaudit run` "
                           "of this directory redoes the shard (it keeps this file as " +
-                          f.path + ".damaged)");
+                          f.path + ".damaged, or .damaged.2, ... when that name is taken)");
   return f.path;
 }
 

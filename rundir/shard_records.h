@@ -1,8 +1,9 @@
 // The seal rule, which every command that reads a run's records applies before it trusts a
 // shard's file (analyze, report, audit, records, status, merge, show, reproduce, stats, run):
 //   - a sealed file (rundir/shard_file.h) is trusted when its trailer matches its contents and
-//     counts the shard's rows; a file cut at a frame boundary, two files run together, a changed
-//     byte or appended text all fail it;
+//     counts the shard's rows, and its first and last rows are the shard's first and last
+//     primitives; a file cut at a frame boundary, two files run together, a changed byte,
+//     appended text or another shard's file under this shard's name all fail it;
 //   - a file without a seal is trusted only when it predates the seal: a plain CSV of records
 //     schema version 2 holding each of the shard's primitives once. Every schema version 3 file
 //     and every compressed file was written sealed, so one without its seal is damaged;

@@ -171,12 +171,13 @@ rundir::RunManifest starting_manifest(const RunOptions& options, const rundir::E
   try {
     earlier = rundir::read_manifest_json(path);
   } catch (const util::UserError& e) {
-    const std::string kept = path + ".damaged";
-    std::error_code ec;
-    fs::copy_file(path, kept, fs::copy_options::overwrite_existing, ec);
-    if (ec)
-      throw util::UserError(std::string(e.what()) + "; and it cannot be kept as " + kept + " (" +
-                            ec.message() + "): nothing was run");
+    std::string kept;
+    try {
+      kept = util::keep_damaged_copy(path, false);  // never over a copy an earlier run kept
+    } catch (const std::runtime_error& why) {
+      throw util::UserError(std::string(e.what()) + "; and it cannot be kept (" + why.what() +
+                            "): nothing was run");
+    }
     std::fprintf(stderr,
                  "renderaudit: %s\nrenderaudit: kept it as %s; this run starts a new manifest "
                  "(the start time and earlier invocations are in the kept file)\n",

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include "rundir/manifest.h"
+#include "rundir/run_experiment.h"
 #include "runner/shard_recovery.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -39,6 +41,16 @@ std::unique_ptr<util::DirLock> prepare_run_dir(const rundir::Experiment& exp, co
     if (e.path().filename() != ".lock") empty = false;
   if (fs::exists(copy)) {
     const rundir::Experiment previous = rundir::load_experiment(copy);
+    // The copy is the experiment of the records only while the manifest's hash is its own. A
+    // manifest that is not JSON is kept aside and replaced by the run (starting_manifest): there is
+    // no hash to hold the copy to.
+    bool manifest_readable = true;
+    try {
+      rundir::read_manifest_json(dir + "/manifest.json");
+    } catch (const util::UserError&) {
+      manifest_readable = false;
+    }
+    if (manifest_readable) rundir::require_unchanged_experiment(previous, dir);
     if (previous.hash != exp.hash)
       throw util::UserError(dir + ": holds a run of a different experiment (hash " + previous.hash +
                             ", this one " + exp.hash +

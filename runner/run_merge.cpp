@@ -12,6 +12,7 @@
 #include "rundir/manifest.h"
 #include "runner/recorded_failures.h"
 #include "runner/run_dir.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"
 #include "rundir/shard_records.h"
@@ -66,7 +67,7 @@ rundir::Experiment common_experiment(const MergeOptions& options) {
       throw util::UserError("merge: " + in + " is both an input and --out");
     if (!fs::exists(in + "/experiment.toml"))
       throw util::UserError("merge: " + in + ": not a run directory (no experiment.toml)");
-    experiments.push_back(rundir::load_experiment(in + "/experiment.toml"));
+    experiments.push_back(rundir::load_run_experiment(in));
     if (experiments.back().hash != experiments.front().hash) {
       throw util::UserError("merge: " + in + " holds experiment " + experiments.back().name +
                             " (hash " + experiments.back().hash + "), " + options.inputs.front() +
@@ -89,6 +90,39 @@ rundir::Experiment common_experiment(const MergeOptions& options) {
   return exp;
 }
 
+// platform -> library file name -> (fingerprint, the driver file that recorded it)
+using LibrariesSeen = std::map<std::string, std::map<std::string, std::pair<std::string, std::string>>>;
+
+// The driver file `path` (of `platform`, JSON `j`) against the libraries the inputs before it
+// recorded (build.libraries: path and FNV-1a 64 of the bytes), matched by file name: GL strings
+// alone cannot tell two builds of one Mesa version apart, and the merged directory keeps one driver
+// file per platform, so slices drawn with other library bytes are refused, not merged under one.
+void require_same_libraries(const std::string& path, const std::string& platform,
+                            const nlohmann::json& j, LibrariesSeen* seen) {
+  const auto build = j.find("build");
+  if (build == j.end() || !build->is_object()) return;
+  const auto libraries = build->find("libraries");
+  if (libraries == build->end() || !libraries->is_array()) return;
+  for (const nlohmann::json& l : *libraries) {
+    if (!l.is_object() || !l.contains("path") || !l["path"].is_string() || !l.contains("fnv1a64") ||
+        !l["fnv1a64"].is_string())
+      throw util::UserError("merge: " + path + ": build.libraries: each entry needs a \"path\" "
+                            "and an \"fnv1a64\" string");
+    const std::string file = fs::path(l["path"].get<std::string>()).filename().string();
+    const std::string fingerprint = l["fnv1a64"].get<std::string>();
+    const auto [it, first] = (*seen)[platform].try_emplace(file, fingerprint, path);
+    if (!first && it->second.first != fingerprint)
+      throw util::UserError(
+          "merge: platform " + platform + " drew with library " + file + " of fingerprint " +
+          fingerprint + " (FNV-1a 64 of its bytes) in " + path + " but of fingerprint " +
+          it->second.first + " in " + it->second.second +
+          ": the same GL strings, other library bytes (another build, or a library rebuilt or "
+          "patched between the slices), so their records are not one run's; run the slices "
+          "again with one build (--allow-driver-mismatch merges them anyway, and the merged "
+          "directory keeps the first input's driver file)");
+  }
+}
+
 // Every platform an input holds records of must say which driver drew them, the same in every
 // input (unless --allow-driver-mismatch).
 void require_one_driver_per_platform(const MergeOptions& options, const std::vector<rundir::Shard>& plan) {
@@ -107,6 +141,7 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
     }
   }
   std::map<std::string, std::pair<std::string, std::string>> driver_seen;  // platform -> text, dir
+  LibrariesSeen libraries_seen;
   for (const std::string& in : options.inputs) {
     for (const auto& [platform, j] : drivers_of(in)) {
       if (!j.is_object()) continue;
@@ -117,6 +152,8 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
                               " but with '" + it->second.first + "' in " + it->second.second +
                               " (--allow-driver-mismatch merges them anyway)");
       }
+      if (!options.allow_driver_mismatch)
+        require_same_libraries(in + "/drivers/" + platform + ".json", platform, j, &libraries_seen);
     }
   }
 }

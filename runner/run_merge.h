@@ -5,8 +5,9 @@
 // Every planned shard is taken from the first input that holds it sealed and whole
 // (rundir/shard_file.h) and copied atomically; a shard found in several inputs is taken once. The
 // inputs must hold the same experiment (its hash), and each platform's driver must say the same
-// GL_RENDERER and GL_VERSION in every input, unless told otherwise (a run across two driver builds
-// would compare nothing). The merged manifest records every input: its slice, host, invocations and
+// GL_RENDERER and GL_VERSION and have loaded libraries of the same bytes (the fingerprints of
+// drivers/P.json build.libraries) in every input, unless told otherwise (a run across two driver
+// builds would compare nothing). The merged manifest records every input: its slice, host, invocations and
 // driver strings. DIR is locked while it is written, and a merge over an earlier merge keeps the
 // shards already there (it resumes).
 #pragma once

@@ -8,6 +8,7 @@
 #include "rundir/shard_cost.h"
 #include "rundir/shard_file.h"
 #include "rundir/shard_records.h"
+#include "util/atomic_file.h"
 #include "util/errors.h"
 
 namespace fs = std::filesystem;
@@ -56,9 +57,10 @@ RunQueue queue_shards(const std::vector<rundir::Shard>& shards, const rundir::Ex
         continue;
       }
       // Never counted: set aside (not deleted: it is evidence) and redone.
-      std::fprintf(stderr, "renderaudit: %s: not a complete shard file: %s; redoing shard %s\n",
-                   path.c_str(), damage.c_str(), s.id().c_str());
-      fs::rename(path, path + ".damaged");
+      const std::string kept = util::keep_damaged_copy(path, true);
+      std::fprintf(stderr,
+                   "renderaudit: %s: not a complete shard file: %s; kept as %s, redoing shard %s\n",
+                   path.c_str(), damage.c_str(), kept.c_str(), s.id().c_str());
       q.damaged.push_back({s.id(), damage});
     }
     queued.push_back(s);

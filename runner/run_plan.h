@@ -41,7 +41,8 @@ struct RunQueue {
 };
 
 // The shards of `shards` that DIR still needs. A records file that fails the seal rule
-// (rundir/shard_records.h) is renamed to FILE.damaged (not deleted: it is evidence), said on
+// (rundir/shard_records.h) is renamed to FILE.damaged, or FILE.damaged.2, ... when an earlier
+// copy holds that name (not deleted, never over an earlier copy: it is evidence), said on
 // stderr, and its shard queued; both formats of one shard are refused (util::UserError). Each
 // item gets `timeout_s`.
 RunQueue queue_shards(const std::vector<rundir::Shard>& shards, const rundir::Experiment& exp,

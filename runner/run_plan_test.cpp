@@ -70,13 +70,16 @@ class RunQueueTest : public ::testing::Test {
     fs::create_directories(dir_ + "/records");
   }
   void TearDown() override { fs::remove_all(dir_); }
-  // A sealed plain-CSV records file of `s` with its size in rows: what check_shard_file accepts.
+  // A sealed plain-CSV records file of `s` with its size in rows, each naming its primitive
+  // (platform, view, ..., kind, index) in order: what check_shard_file accepts.
   void write_whole(const rundir::Shard& s) {
     const std::string path = s.records_path(dir_, rundir::RecordsFormat::kCsv);
     {
       std::ofstream out(path, std::ios::binary);
       out << "header\n";
-      for (uint64_t i = s.begin; i < s.end; ++i) out << i << "\n";
+      for (uint64_t i = s.begin; i < s.end; ++i)
+        out << s.platform << "," << s.view << ",0,0,0,0,0,0,0," << geometry::kind_name(s.kind)
+            << "," << i << "\n";
     }
     rundir::seal_shard_file(path);
   }

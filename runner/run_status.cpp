@@ -9,6 +9,7 @@
 
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_records.h"
 #include "rundir/slicing.h"
@@ -78,7 +79,7 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
     throw util::UserError(dir + ": not a run directory (no experiment.toml)");
   RunStatus s;
   s.dir = dir;
-  const rundir::Experiment exp = rundir::load_experiment(dir + "/experiment.toml");
+  const rundir::Experiment exp = rundir::load_run_experiment(dir);
   s.experiment = exp.name;
   const rundir::RunManifest manifest = rundir::read_manifest_file_or_empty(dir + "/manifest.json");
   s.manifest_status = manifest.status;
@@ -203,7 +204,7 @@ std::string format_run_status(const RunStatus& s) {
   if (s.damaged.size() > 20) o << "  ... and " << s.damaged.size() - 20 << " more damaged\n";
   if (!s.damaged.empty() && s.writers.empty())
     o << "  `renderaudit run` of this directory redoes the damaged shards (each file is kept as "
-         ".damaged)\n";
+         ".damaged, or .damaged.2, ... beside copies kept earlier)\n";
   for (const auto& w : s.writers) {
     o << "  writer " << w.dir << ": " << w.holder;
     if (!w.progress.host.empty())

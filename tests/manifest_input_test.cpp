@@ -62,7 +62,8 @@ TEST(ManifestInput, ADeeplyNestedManifestIsRefusedNotACrash) {
 }
 
 // A manifest that is not JSON is damaged (manifests are replaced by an atomic rename): status and
-// merge name it; run keeps it as manifest.json.damaged before writing a new one.
+// merge name it; run keeps it as manifest.json.damaged (then .damaged.2, ...: no copy kept
+// earlier is overwritten) before writing a new one.
 TEST(ManifestInput, AnUnparseableManifestIsNamedAndKeptNotOverwritten) {
   const std::string run = small_run("manifest_unparseable");
   const std::string experiment = fs::path(run).parent_path().string() + "/e.toml";
@@ -75,8 +76,11 @@ TEST(ManifestInput, AnUnparseableManifestIsNamedAndKeptNotOverwritten) {
                {"cut", good.substr(0, good.size() / 2)},
                {"NaN", "{\"status\": NaN}"},
                {"bad UTF-8", "{\"status\": \"complete\", \"reason\": \"\xff\xfe\"}"}};
+  int damage = 0;
   for (const auto& c : cases) {
     SCOPED_TRACE(c.what);
+    const std::string kept_as =
+        run + "/manifest.json.damaged" + (++damage > 1 ? "." + std::to_string(damage) : "");
     write_text(run + "/manifest.json", c.bytes);
     const Outcome status = run_renderaudit("status " + run);
     EXPECT_EQ(status.exit_code, 2) << status.output;
@@ -89,9 +93,9 @@ TEST(ManifestInput, AnUnparseableManifestIsNamedAndKeptNotOverwritten) {
         << merge.output;
     const Outcome resume = run_renderaudit("run " + experiment + " --out " + run + " --quiet");
     EXPECT_EQ(resume.exit_code, 0) << resume.output;
-    EXPECT_NE(resume.output.find("kept it as " + run + "/manifest.json.damaged"), std::string::npos)
+    EXPECT_NE(resume.output.find("kept it as " + kept_as + ";"), std::string::npos)
         << resume.output;
-    std::ifstream kept(run + "/manifest.json.damaged");
+    std::ifstream kept(kept_as);
     EXPECT_EQ(std::string((std::istreambuf_iterator<char>(kept)), std::istreambuf_iterator<char>()),
               c.bytes);
     EXPECT_EQ(run_renderaudit("status " + run).exit_code, 0);  // the new manifest reads

@@ -255,4 +255,35 @@ TEST(MergeCommand, AnotherShardSizeOrAMissingDriverFileIsSaid) {
                             "/n --allow-driver-mismatch").exit_code, 1);  // merged; shards missing
 }
 
+// Slices drawn with other library bytes (another libOSMesa of the same GL strings) are not one
+// run: merge refuses them, naming both driver files and both fingerprints, and writes nothing.
+TEST(MergeCommand, SlicesDrawnWithOtherLibraryBytesAreRefusedNamingBoth) {
+  const std::string dir = fresh_dir("merge_libraries");
+  write_text(dir + "/e.toml",
+             "seed = 11\nplatforms = [\"osmesa-llvmpipe\"]\n[views]\norientations = 1\n"
+             "fov_deg = [30]\nwindows = [64]\nnear = 0.01\nfar = 10.0\n[primitives]\n"
+             "points = 100\n[run]\nshard_size = 50\n");
+  for (const char* k : {"1", "2"})
+    ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/s" + k +
+                              " --quiet --slice " + k + "/2").exit_code, 0);
+  const std::string second = dir + "/s2/drivers/osmesa-llvmpipe.json";
+  nlohmann::json driver = nlohmann::json::parse(ra::util::read_file(second));
+  nlohmann::json& library = driver.at("build").at("libraries").at(0);
+  const std::string first_fingerprint = library.at("fnv1a64").get<std::string>();
+  const std::string other_fingerprint =
+      first_fingerprint == "0123456789abcdef" ? "fedcba9876543210" : "0123456789abcdef";
+  library["fnv1a64"] = other_fingerprint;
+  write_text(second, driver.dump(2) + "\n");
+  const std::string file = fs::path(library.at("path").get<std::string>()).filename().string();
+  const Outcome o = run_renderaudit("merge " + dir + "/s1 " + dir + "/s2 --out " + dir + "/m");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("drew with library " + file + " of fingerprint " + other_fingerprint +
+                          " (FNV-1a 64 of its bytes) in " + second + " but of fingerprint " +
+                          first_fingerprint + " in " + dir + "/s1/drivers/osmesa-llvmpipe.json"),
+            std::string::npos)
+      << o.output;
+  EXPECT_FALSE(fs::exists(dir + "/m"));
+}
+
 }  // namespace
+

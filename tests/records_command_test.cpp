@@ -1,6 +1,10 @@
 // End-to-end tests of `renderaudit records`: one filtered stream of a run's records, from either
 // file format, with the cells as recorded, and clear errors for names the run does not have.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -10,6 +14,8 @@
 #include <vector>
 
 #include "tests/cli_harness.h"
+#include "util/atomic_file.h"
+#include "util/child_process.h"
 #include "util/zstd_stream.h"
 
 namespace fs = std::filesystem;
@@ -159,4 +165,67 @@ TEST_F(RecordsCommand, AFullDiskIsSaidNotCrashedOn) {
       << err;
 }
 
+// A run with a missing shard: `records` and `stats describe` say it is incomplete and exit 3,
+// writing nothing on stdout, unless asked to go on (--allow-incomplete), when they say it too.
+TEST_F(RecordsCommand, AnIncompleteRunIsRefusedByRecordsAndStatsUnlessAllowed) {
+  const std::string run = *dir_ + "/incomplete";
+  fs::remove_all(run);
+  fs::copy(*dir_ + "/run", run, fs::copy_options::recursive);
+  ASSERT_TRUE(fs::remove(run + "/records/reference.point.v1.25-40.csv.zst"));
+  ra::util::ChildSpec spec;
+  spec.argv = {RA_BINARY, "records", run};
+  spec.stdout_path = *dir_ + "/incomplete.out";
+  spec.stderr_path = *dir_ + "/incomplete.err";
+  spec.stdin_null = true;
+  EXPECT_EQ(ra::util::run_program(spec).exit_code(), 3);
+  EXPECT_EQ(fs::file_size(*dir_ + "/incomplete.out"), 0u);
+  const std::string said = ra::util::read_file(*dir_ + "/incomplete.err");
+  EXPECT_NE(said.find(run + ": incomplete: 1 planned shards of the selection have no records file "
+                      "(reference.point.v1.25-40)"),
+            std::string::npos) << said;
+  EXPECT_NE(said.find("--allow-incomplete"), std::string::npos) << said;
+  const Outcome allowed = run_renderaudit("records " + run + " --allow-incomplete");
+  EXPECT_EQ(allowed.exit_code, 0) << allowed.output;
+  EXPECT_NE(allowed.output.find("incomplete run: 1 planned shards"), std::string::npos);
+
+  const Outcome stats = run_renderaudit("stats describe " + run + " --column pixels");
+  EXPECT_EQ(stats.exit_code, 3) << stats.output;
+  EXPECT_NE(stats.output.find(run + ": incomplete: 1 of 8 planned shards have no records file "
+                              "(reference.point.v1.25-40); 125 of 140 planned primitives are there"),
+            std::string::npos) << stats.output;
+  EXPECT_EQ(stats.output.find("quartiles"), std::string::npos) << stats.output;
+  const Outcome stats_allowed =
+      run_renderaudit("stats describe " + run + " --column pixels --allow-incomplete");
+  EXPECT_EQ(stats_allowed.exit_code, 0) << stats_allowed.output;
+  EXPECT_NE(stats_allowed.output.find("incomplete run: 1 of 8 planned shards"), std::string::npos)
+      << stats_allowed.output;
+  EXPECT_EQ(run_renderaudit("stats describe " + *dir_ + "/run --column pixels").exit_code, 0);
+}
+
+// A closed pipe on records' output (`renderaudit records RUN | head -0`) is said, exit 2: not
+// the 141 of a process killed by SIGPIPE.
+TEST_F(RecordsCommand, AClosedPipeIsSaidWithExit2) {
+  int fds[2];
+  ASSERT_EQ(::pipe(fds), 0);
+  ::close(fds[0]);  // nobody will read
+  const std::string run = *dir_ + "/run", err_path = *dir_ + "/pipe.err";
+  const pid_t pid = ra::util::fork_child([&]() -> int {
+    ::dup2(fds[1], 1);
+    ::close(fds[1]);
+    ::signal(SIGPIPE, SIG_DFL);  // as a shell starts it
+    const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(err, 2);
+    ::execl(RA_BINARY, RA_BINARY, "records", run.c_str(), static_cast<char*>(nullptr));
+    return 127;
+  });
+  ::close(fds[1]);
+  const int status = ra::util::wait_child(pid);
+  EXPECT_TRUE(WIFEXITED(status)) << "killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), 2);
+  const std::string err = ra::util::read_file(err_path);
+  EXPECT_NE(err.find("cannot write the records to standard output (Broken pipe)"),
+            std::string::npos) << err;
+}
+
 }  // namespace
+

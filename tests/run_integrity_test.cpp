@@ -324,7 +324,7 @@ TEST(RunIntegrity, AFullDiskFailsCleanlyAndTheRerunCompletesIdentically) {
   write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 3000\nlines = 2000\n",
                                          "records_format = \"csv\"\n"));
   const Outcome full = run_renderaudit("run " + dir + "/e.toml --out " + mnt + "/run --jobs 2");
-  EXPECT_EQ(full.exit_code, 1) << full.output;
+  EXPECT_EQ(full.exit_code, 2) << full.output;  // an I/O error (its manifest too), not a finding
   EXPECT_NE(full.output.find("No space left on device"), std::string::npos) << full.output;
   EXPECT_NE(full.output.find("bytes free on the file system of " + mnt + "/run"), std::string::npos)
       << full.output;
@@ -338,6 +338,106 @@ TEST(RunIntegrity, AFullDiskFailsCleanlyAndTheRerunCompletesIdentically) {
   EXPECT_EQ(again.exit_code, 0) << again.output;
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/elsewhere --jobs 2").exit_code, 0);
   EXPECT_EQ(records_without_timing(mnt + "/run"), records_without_timing(dir + "/elsewhere"));
+  ::umount(mnt.c_str());
+}
+
+// The manifest's hash is the experiment of the records: a copy of experiment.toml edited after the
+// run (another seed) is refused by a resumed run and by every reader, naming the file, and nothing
+// is drawn or counted against it; put back, the run finishes.
+TEST(RunIntegrity, AnEditedExperimentCopyIsRefusedByEveryReaderAndByRun) {
+  const std::string dir = fresh_dir("integrity_edited_experiment");
+  write_text(dir + "/e.toml", "seed = 2008\nplatforms = [\"reference\"]\n[views]\norientations = 1\n"
+                              "fov_deg = [30]\nwindows = [64]\nnear = 0.01\nfar = 10.0\n"
+                              "[primitives]\npoints = 400\n[run]\nshard_size = 100\n");
+  const std::string run = dir + "/run";
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + run + " --jobs 2 --quiet").exit_code, 0);
+  const std::string copy = run + "/experiment.toml";
+  const std::string original = read_text(copy);
+  std::string edited = original;
+  edited.replace(edited.find("seed = 2008"), 11, "seed = 2009");
+  write_text(copy, edited);
+  const std::string shard = run + "/records/reference.point.v1.300-400.csv.zst";
+  ASSERT_TRUE(fs::remove(shard));
+  const std::string named = copy + ": changed since the run's records were made";
+  const std::vector<std::string> commands = {
+      "run " + copy + " --out " + run + " --jobs 2",
+      "run " + dir + "/e.toml --out " + run + " --jobs 2",
+      "status " + run,
+      "records " + run + " --allow-incomplete",
+      "stats describe " + run + " --column pixels --allow-incomplete",
+      "merge " + run + " --out " + dir + "/merged",
+      "analyze " + run + " --allow-incomplete",
+      "audit " + run + " " + run + " --no-history",
+      "show " + run + " --platform reference --kind point --view 1 --index 15 --out " + dir +
+          "/p.png",
+      "reproduce " + run + " --platform reference --kind point --view 1 --index 15 --out " + dir +
+          "/r.c"};
+  for (const std::string& c : commands) {
+    SCOPED_TRACE(c);
+    const Outcome o = run_renderaudit(c);
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find(named), std::string::npos) << o.output;
+  }
+  EXPECT_FALSE(fs::exists(shard));  // nothing was drawn with the edited seed
+  EXPECT_FALSE(fs::exists(dir + "/merged/records"));
+  EXPECT_FALSE(fs::exists(dir + "/p.png"));
+  EXPECT_FALSE(fs::exists(dir + "/r.c"));
+  write_text(copy, original);
+  const Outcome resumed = run_renderaudit("run " + dir + "/e.toml --out " + run + " --jobs 2");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_TRUE(fs::exists(shard));
+}
+
+// Every damaged file a resumed run sets aside is kept: a second damage to the same shard, or to the
+// manifest, is kept as .damaged.2 beside the first copy, which keeps its bytes.
+TEST(RunIntegrity, EveryDamagedCopyIsKeptNoneOverwritten) {
+  const std::string dir = fresh_dir("integrity_damaged_copies");
+  write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 200\n"));
+  const std::string run = dir + "/run";
+  const std::string resume = "run " + dir + "/e.toml --out " + run + " --jobs 2";
+  ASSERT_EQ(run_renderaudit(resume).exit_code, 0);
+  const std::string shard = run + "/records/reference.point.v1.0-100.csv.zst";
+  const std::string manifest = run + "/manifest.json";
+  for (const std::string damage : {"first damage\n", "second damage\n"}) {
+    SCOPED_TRACE(damage);
+    write_text(shard, damage);
+    write_text(manifest, damage);
+    const Outcome o = run_renderaudit(resume);
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+  }
+  EXPECT_EQ(read_text(shard + ".damaged"), "first damage\n");
+  EXPECT_EQ(read_text(shard + ".damaged.2"), "second damage\n");
+  EXPECT_EQ(read_text(manifest + ".damaged"), "first damage\n");
+  EXPECT_EQ(read_text(manifest + ".damaged.2"), "second damage\n");
+  EXPECT_EQ(run_renderaudit("status " + run).exit_code, 0);
+}
+
+// A full disk under analyze, merge or reproduce is an error (exit 2, the system's words), never the
+// findings code 1 that says the command ran and found failures.
+TEST(RunIntegrity, AFullDiskIsAnErrorNotAFinding) {
+  const std::string dir = fresh_dir("integrity_full_error");
+  const std::string mnt = dir + "/small";
+  fs::create_directories(mnt);
+  if (::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=4m") != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here (not root?): " << std::strerror(errno);
+  write_text(dir + "/e.toml", experiment("", "\"egl-llvmpipe\"", "points = 200\n"));
+  const Outcome made = run_renderaudit("run " + dir + "/e.toml --out " + mnt + "/run --jobs 2");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  {  // fill the file system to its last byte
+    std::ofstream fill(mnt + "/fill", std::ios::binary);
+    const std::string block(4096, 'x');
+    while (fill.write(block.data(), std::streamsize(block.size()))) {
+    }
+  }
+  for (const std::string& c :
+       {"analyze " + mnt + "/run", "merge " + mnt + "/run --out " + mnt + "/merged",
+        "reproduce " + mnt + "/run --platform egl-llvmpipe --kind point --view 1 --index 5 --out " +
+            mnt + "/r.c"}) {
+    SCOPED_TRACE(c);
+    const Outcome o = run_renderaudit(c);
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find("No space left on device"), std::string::npos) << o.output;
+  }
   ::umount(mnt.c_str());
 }
 

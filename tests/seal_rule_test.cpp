@@ -175,3 +175,46 @@ TEST(SealRule, BothFormatsOfOneShardAreRefusedNamingBoth) {
   EXPECT_NE(analyze.output.find(both), std::string::npos) << analyze.output;
   EXPECT_TRUE(fs::exists(csv) && fs::exists(zst));  // nothing was removed or renamed
 }
+
+// A sealed file under another shard's name (cp point.v1.0-100 point.v1.100-200): its seal is whole,
+// but its rows are not the shard's, so every reader refuses it as damaged, naming it, and a resumed
+// run sets it aside and draws the shard; nothing is counted twice.
+TEST(SealRule, AShardFileUnderAnotherShardsNameIsDamagedForEveryReader) {
+  const std::string dir = fresh_dir("seal_rule_renamed");
+  write_text(dir + "/e.toml",
+             "name = \"renamed\"\nseed = 3\nplatforms = [\"reference\"]\n[views]\norientations = 1\n"
+             "fov_deg = [30]\nwindows = [64]\nnear = 0.01\nfar = 10.0\n[primitives]\n"
+             "points = 300\n[run]\nshard_size = 100\n");
+  const std::string base = dir + "/base", run = dir + "/copied";
+  ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + base + " --jobs 2 --quiet").exit_code, 0);
+  fs::copy(base, run, fs::copy_options::recursive);
+  const std::string file = run + "/records/reference.point.v1.100-200.csv.zst";
+  fs::copy_file(run + "/records/reference.point.v1.0-100.csv.zst", file,
+                fs::copy_options::overwrite_existing);
+  const Outcome status = run_renderaudit("status " + run);
+  EXPECT_EQ(status.exit_code, 1) << status.output;
+  EXPECT_NE(status.output.find("damaged: " + file), std::string::npos) << status.output;
+  EXPECT_NE(status.output.find("another shard's records under this shard's name"),
+            std::string::npos) << status.output;
+  const Outcome records = run_renderaudit("records " + run);
+  EXPECT_EQ(records.exit_code, 2) << records.output;
+  EXPECT_NE(records.output.find(file + ": damaged: its first row records point 0 of view 1 on "
+                                "reference where shard reference.point.v1.100-200's records "
+                                "point 100"),
+            std::string::npos) << records.output;
+  const Outcome stats = run_renderaudit("stats describe " + run + " --column pixels");
+  EXPECT_EQ(stats.exit_code, 2) << stats.output;
+  EXPECT_NE(stats.output.find(file + ": damaged"), std::string::npos) << stats.output;
+  const Outcome merge = run_renderaudit("merge " + run + " --out " + dir + "/merged");
+  EXPECT_EQ(merge.exit_code, 1) << merge.output;
+  EXPECT_NE(merge.output.find("damaged, not taken: " + file), std::string::npos) << merge.output;
+  EXPECT_EQ(run_renderaudit("analyze " + run).exit_code, 3);
+  EXPECT_EQ(run_renderaudit("audit " + base + " " + run + " --no-history").exit_code, 2);
+  const Outcome resumed = run_renderaudit("run " + dir + "/e.toml --out " + run + " --jobs 2");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find(file + ": not a complete shard file"), std::string::npos)
+      << resumed.output;
+  EXPECT_TRUE(fs::exists(file + ".damaged"));
+  EXPECT_EQ(records_without_timing(run), records_without_timing(base));
+}
+

@@ -21,6 +21,7 @@
 #include "geometry/clipping.h"
 #include "util/errors.h"
 #include "rundir/experiment.h"
+#include "rundir/run_experiment.h"
 #include "platforms/platform.h"
 #include "platforms/renderer_check.h"
 #include "metrics/point_metrics.h"
@@ -185,7 +186,7 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   const std::string toml = (fs::path(q.run_dir) / "experiment.toml").string();
   if (!fs::is_regular_file(toml))
     throw util::UserError(q.run_dir + ": not a run directory (no experiment.toml)");
-  const rundir::Experiment exp = rundir::load_experiment(toml);
+  const rundir::Experiment exp = rundir::load_run_experiment(q.run_dir);
   const rundir::PlatformSpec platform_spec = rundir::experiment_platform(exp, q.platform);
   geometry::Kind kind;
   if (!geometry::parse_kind(q.kind, &kind))

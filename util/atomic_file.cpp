@@ -93,4 +93,32 @@ std::string read_file(const std::string& path) {
   return buf.str();
 }
 
+std::string keep_damaged_copy(const std::string& path, bool move) {
+  for (int n = 1; n <= 100000; ++n) {
+    const std::string kept = path + ".damaged" + (n > 1 ? "." + std::to_string(n) : "");
+    std::error_code ec;
+    if (move) {
+      // a hard link fails on an existing name (no copy is ever replaced); then the name goes
+      if (::link(path.c_str(), kept.c_str()) == 0) {
+        if (::unlink(path.c_str()) != 0)
+          throw std::runtime_error(io_error_message("kept as " + kept + ", but cannot remove", path));
+        return kept;
+      }
+      if (errno == EEXIST) continue;
+      if (std::filesystem::exists(kept, ec)) continue;  // a file system without hard links
+      std::filesystem::rename(path, kept, ec);
+    } else {
+      if (std::filesystem::exists(kept, ec)) continue;
+      std::filesystem::copy_file(path, kept, std::filesystem::copy_options::none, ec);
+      if (ec == std::errc::file_exists) continue;
+    }
+    if (ec)
+      throw std::runtime_error("cannot keep " + path + " as " + kept + ": " + ec.message() +
+                               free_space_note(kept));
+    return kept;
+  }
+  throw std::runtime_error("cannot keep " + path + ": every name " + path +
+                           ".damaged.N up to 100000 is taken");
+}
+
 }  // namespace ra::util

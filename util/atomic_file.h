@@ -27,4 +27,10 @@ std::string free_space_note(const std::string& path);
 // errno says the disk is full.
 std::string io_error_message(const std::string& what, const std::string& path);
 
+// Keeps the file at `path` beside it as evidence, never over a copy kept earlier: as PATH.damaged,
+// or PATH.damaged.2, PATH.damaged.3, ..., the first of these names that no file holds. `move`:
+// the file leaves `path` (renamed); otherwise it is copied. Returns the name it was kept under;
+// throws std::runtime_error naming both files when it cannot be kept.
+std::string keep_damaged_copy(const std::string& path, bool move);
+
 }  // namespace ra::util

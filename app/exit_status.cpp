@@ -1,0 +1,29 @@
+// The exit code of a command stopped by an exception (see the header).
+#include "app/exit_status.h"
+
+#include <cstdio>
+#include <exception>
+
+#include "app/commands.h"
+#include "util/child_process.h"
+#include "util/errors.h"
+
+namespace ra::app {
+
+int exit_code_of_current_exception(const char* program) {
+  try {
+    throw;
+  } catch (const util::UserError& e) {
+    util::send_message_to_parent(e.what());
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+  } catch (const std::exception& e) {
+    util::send_message_to_parent(e.what());
+    std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+  } catch (...) {
+    util::send_message_to_parent("an exception of unknown type");
+    std::fprintf(stderr, "%s: error: an exception of unknown type\n", program);
+  }
+  return kExitError;
+}
+
+}  // namespace ra::app

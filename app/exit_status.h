@@ -1,0 +1,14 @@
+// How a command that stopped on an exception ends: one mapping for renderaudit and
+// renderaudit-worker (app/main.cpp, app/worker_main.cpp).
+#pragma once
+
+namespace ra::app {
+
+// Call inside a catch block of main: says the exception being handled on stderr ("PROGRAM: WHAT"
+// for bad input, util::UserError; "PROGRAM: error: WHAT" for any other) and to a parent renderaudit
+// process, and returns the exit code: kExitError (2) whatever the exception. An I/O failure (a full
+// disk, a closed pipe) or a library's error is an error like bad input, never kExitFindings, which
+// says the command ran and found something (failed shards, a changed verdict).
+int exit_code_of_current_exception(const char* program);
+
+}  // namespace ra::app
