@@ -301,6 +301,21 @@ nlohmann::json provenance(const SourceBuildOptions& options, const SourceIdentit
   return j;
 }
 
+// True when the cached build in `dir` was made from `commit` with the reuse key `key`. The key
+// covers the commit; the commit is compared too, so that a build recorded under another commit (a
+// tree moved during its build) is never taken for this one.
+bool same_build(const std::string& dir, const std::string& key, const std::string& commit) {
+  std::error_code ec;
+  if (!fs::exists(dir + "/build.json", ec)) return false;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(util::read_file(dir + "/build.json"));
+    const nlohmann::json sb = j.value("source_build", nlohmann::json::object());
+    return sb.value("key", "") == key && sb.value("commit", "") == commit;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 }  // namespace
 
 std::string missing_package_hint(const std::string& log) {
@@ -474,20 +489,11 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
   const std::string key = source_build_key(id, options);
   SourceBuildResult result;
   const std::string target = cache + "/" + name;
-  if (options.reuse && !id.dirty && fs::exists(target + "/build.json", ec)) {
-    try {
-      const nlohmann::json j = nlohmann::json::parse(util::read_file(target + "/build.json"));
-      const nlohmann::json sb = j.value("source_build", nlohmann::json::object());
-      // The key covers the commit; the commit is compared too, so that a build recorded under
-      // another commit (a tree moved during its build) is never taken for this one.
-      if (sb.value("key", "") == key && sb.value("commit", "") == id.commit) {
-        result.reused = true;
-        result.build = read_build(target);
-        say("reused " + name + " (same source and options)");
-        return result;
-      }
-    } catch (const std::exception&) {
-    }
+  if (options.reuse && !id.dirty && same_build(target, key, id.commit)) {
+    result.reused = true;
+    result.build = read_build(target);
+    say("reused " + name + " (same source and options)");
+    return result;
   }
   const bool meson = options.build_command.empty();
   if (meson) {

@@ -8,7 +8,7 @@
 #include <set>
 
 #include "audit/flake_check.h"
-#include "rundir/experiment.h"
+#include "rundir/run_experiment.h"
 #include "rundir/platform_spec.h"
 #include "runner/git_command.h"
 #include "triage/bisect_plan.h"
@@ -63,7 +63,7 @@ std::string BisectPrimitive::label() const {
 }
 
 std::string bisect_step_experiment(const std::string& run_dir, const std::string& build_dir) {
-  std::string text = util::read_file(run_dir + "/experiment.toml");
+  std::string text = rundir::load_run_experiment(run_dir).text;  // as the records were drawn
   if (!text.empty() && text.back() != '\n') text += '\n';
   nlohmann::json dir = build_dir;  // a JSON string is a valid TOML basic string
   return text + "\n[builds." + kStepBuild + "]   # added by renderaudit bisect\ndir = " +
@@ -175,7 +175,7 @@ class Bisection {
       throw util::UserError("bisect: --out " + o_.out_dir +
                             " is a file; --out names a folder for bisect.json and bisect.md");
     const Selection sel = select_primitives(o_);
-    const std::size_t views = rundir::load_experiment(o_.run_dir + "/experiment.toml").views.size();
+    const std::size_t views = rundir::load_run_experiment(o_.run_dir).views.size();
     for (const BisectPrimitive& p : sel.primitives)
       if (p.view < 1 || std::size_t(p.view) > views)
         throw util::UserError("bisect: --primitive " + p.label() + ": the run has views 1-" +

@@ -123,6 +123,126 @@ std::string conformance_moves(const std::vector<const BisectPrimitive*>& prims) 
 
 }  // namespace
 
+namespace {
+
+// One culprit's section: what it changed, the GL verdict, its files, the reproducer and pictures
+// of its worst primitive, its primitives' pixels.
+void write_culprit(std::ostringstream& md, int section, const Culprit& c, const BisectOptions& o,
+                 const BisectResult& r, const std::string& driver,
+                 const std::map<std::string, const BisectPrimitive*>& by_label,
+                 const std::map<std::string, const BisectStep*>& by_commit) {
+  std::vector<const BisectPrimitive*> prims;
+  for (const std::string& l : c.primitives) prims.push_back(by_label.at(l));
+  // Its worst primitive: the largest change of lit pixels.
+  const BisectPrimitive* worst = prims.front();
+  int64_t worst_change = -1;
+  for (const BisectPrimitive* p : prims) {
+    const auto [before, after] = c.pixels.at(p->label());
+    if (std::llabs(after - before) > worst_change) worst = p, worst_change = std::llabs(after - before);
+  }
+  const std::string l = worst->label();
+  const auto [before_px, after_px] = c.pixels.at(l);
+  md << "\n<a id=\"commit-" << short_hash(c.commit) << "\"></a>\n## " << section << ". "
+     << short_hash(c.commit) << " " << c.subject << "\n\n";
+  md << "**What changed.** Since commit " << short_hash(c.commit) << " (" << c.date.substr(0, 10)
+     << "), " << driver << " draws " << c.primitives.size() << " primitive"
+     << (c.primitives.size() == 1 ? "" : "s") << " differently (" << composition(prims)
+     << "); the largest change: " << l << " lit " << after_px << " pixels where "
+     << short_hash(c.previous) << " lit " << before_px << ".";
+  if (c.merge) md << " This is a merge commit: the change came with the branch it merged.";
+  if (!o.paths.empty())
+    md << " The commit before it is the previous one touching the paths given.";
+  md << "\n\n";
+  // The GL verdict: the run's record of the bad side, when this change gave the bad side's pixels.
+  audit::Reproducer repro;
+  std::string repro_error;
+  const std::string c_name = std::string(geometry::kind_name(worst->kind)) + "-v" +
+                             std::to_string(worst->view) + "-" + std::to_string(worst->index) + ".c";
+  try {
+    audit::ReproduceRequest q{o.run_dir, o.bad_platform.empty() ? o.platform : o.bad_platform,
+                              geometry::kind_name(worst->kind), worst->view, worst->index};
+    repro = audit::make_reproducer(q, c_name);
+    util::write_file_atomic(o.out_dir + "/" + c_name, repro.source);
+  } catch (const std::exception& e) {
+    repro_error = e.what();
+  }
+  const BisectStep* after_step = by_commit.count(c.commit) ? by_commit.at(c.commit) : nullptr;
+  const bool final_state = after_step && r.bad.drawing.hashes.count(l) &&
+                           after_step->drawing.hashes.count(l) &&
+                           after_step->drawing.hashes.at(l) == r.bad.drawing.hashes.at(l);
+  if (!final_state) {
+    md << "**GL verdict.** Not judged: this change leads to a state that a later commit changed "
+          "again (the run judged only the bad ref's pixels).\n\n";
+  } else if (!repro.violated_rules.empty()) {
+    md << "**GL rule broken** (OpenGL 4.6 section 14.5.1 for lines, 14.6.1 polygons, 14.4 "
+          "points; the run's verdict of the bad side):";
+    const std::string& rules = repro.violated_rules;
+    for (std::size_t at = 0; at <= rules.size();) {
+      const std::size_t plus = std::min(rules.find('+', at), rules.size());
+      const std::string rule = rules.substr(at, plus - at);
+      md << " `" << rule << "`: " << rule_meaning(rule) << (plus < rules.size() ? ";" : ".");
+      at = plus + 1;
+    }
+    md << "\n\n";
+  } else if (repro_error.empty()) {
+    md << "**GL verdict.** Allowed by GL: " << l << " keeps within the rules after the change "
+       << "(the run's verdict of the bad side: "
+       << (worst->run_bad_conformance.empty() ? "-" : worst->run_bad_conformance)
+       << "); another rounding, not a violation.\n\n";
+  }
+  md << "```\ncommit " << c.commit << "\n" << files_changed(o.source, c.commit) << "```\n\n";
+  const BisectStep* before_step =
+      by_commit.count(c.previous) ? by_commit.at(c.previous) : nullptr;
+  if (repro_error.empty()) {
+    md << "**Reproducer** of " << l << (repro.view_text.empty() ? "" : " (" + repro.view_text + ")")
+       << ": a standalone C program (EGL surfaceless, desktop GL), written as `" << c_name
+       << "`; it prints the pixels it lit.\n\n```sh\n" << repro.build_line << "\n";
+    const std::string exe = fs::path(c_name).stem().string();
+    if (before_step && !before_step->build_dir.empty())
+      md << audit::reproducer_environment(before_step->build_dir, driver) << " "
+         << util::shell_quote("./" + exe)
+         << "   # " << short_hash(c.previous) << ": " << before_px << " pixels\n";
+    if (after_step && !after_step->build_dir.empty())
+      md << audit::reproducer_environment(after_step->build_dir, driver) << " "
+         << util::shell_quote("./" + exe)
+         << "   # " << short_hash(c.commit) << ": " << after_px << " pixels\n";
+    md << "```\n\n<details><summary>" << c_name << "</summary>\n\n```c\n" << repro.source
+       << "```\n\n</details>\n\n";
+  } else {
+    md << "No C reproducer: " << repro_error << "\n\n";
+  }
+  if (o.pictures && before_step && after_step) {
+    md << "**Pictures** of " << l << ": white unlit, grey lit by both, orange lit by the driver "
+          "only, blue lit by the reference only, black a pixel GL forbids; the red line is the "
+          "ideal projection.\n\n";
+    fs::create_directories(o.out_dir + "/pictures");
+    for (const auto& [side, s] : {std::pair{"before", before_step}, std::pair{"after", after_step}}) {
+      const std::string png = o.out_dir + "/pictures/" + short_hash(c.commit) + "-" + side + "." +
+                              geometry::kind_name(worst->kind) + ".v" +
+                              std::to_string(worst->view) + "." + std::to_string(worst->index) +
+                              ".png";
+      const std::string got = picture(o, *s, *worst, png);
+      md << "- " << side << " (" << short_hash(s->commit) << "): "
+         << (got.empty() ? "no picture (see the command's output)"
+                         : "\n\n  ![" + std::string(side) + "](pictures/" +
+                               fs::path(png).filename().string() + ")")
+         << "\n";
+    }
+    md << "\n";
+  }
+  md << stats::markdown_header({"primitive", "group", "pixels before", "pixels after",
+                                "run verdicts, before -> after"},
+                               1);
+  for (const BisectPrimitive* p : prims) {
+    const auto [b, a] = c.pixels.at(p->label());
+    md << "| " << p->label() << " | " << group_letter(p->view_group) << " | " << b << " | " << a
+       << " | " << (p->run_good_conformance.empty() ? "-" : p->run_good_conformance) << " -> "
+       << (p->run_bad_conformance.empty() ? "-" : p->run_bad_conformance) << " |\n";
+  }
+  }
+
+}  // namespace
+
 void write_bisect_report(const BisectOptions& o, const BisectResult& r,
                          const std::vector<BisectPrimitive>& judged,
                          const std::function<void(const std::string&)>& say) {
@@ -170,117 +290,7 @@ void write_bisect_report(const BisectOptions& o, const BisectResult& r,
      << " (a primitive changed twice counts twice).\n";
 
   int section = 0;
-  for (const Culprit& c : r.culprits) {
-    ++section;
-    std::vector<const BisectPrimitive*> prims;
-    for (const std::string& l : c.primitives) prims.push_back(by_label.at(l));
-    // Its worst primitive: the largest change of lit pixels.
-    const BisectPrimitive* worst = prims.front();
-    int64_t worst_change = -1;
-    for (const BisectPrimitive* p : prims) {
-      const auto [before, after] = c.pixels.at(p->label());
-      if (std::llabs(after - before) > worst_change) worst = p, worst_change = std::llabs(after - before);
-    }
-    const std::string l = worst->label();
-    const auto [before_px, after_px] = c.pixels.at(l);
-    md << "\n<a id=\"commit-" << short_hash(c.commit) << "\"></a>\n## " << section << ". "
-       << short_hash(c.commit) << " " << c.subject << "\n\n";
-    md << "**What changed.** Since commit " << short_hash(c.commit) << " (" << c.date.substr(0, 10)
-       << "), " << driver << " draws " << c.primitives.size() << " primitive"
-       << (c.primitives.size() == 1 ? "" : "s") << " differently (" << composition(prims)
-       << "); the largest change: " << l << " lit " << after_px << " pixels where "
-       << short_hash(c.previous) << " lit " << before_px << ".";
-    if (c.merge) md << " This is a merge commit: the change came with the branch it merged.";
-    if (!o.paths.empty())
-      md << " The commit before it is the previous one touching the paths given.";
-    md << "\n\n";
-    // The GL verdict: the run's record of the bad side, when this change gave the bad side's pixels.
-    audit::Reproducer repro;
-    std::string repro_error;
-    const std::string c_name = std::string(geometry::kind_name(worst->kind)) + "-v" +
-                               std::to_string(worst->view) + "-" + std::to_string(worst->index) + ".c";
-    try {
-      audit::ReproduceRequest q{o.run_dir, o.bad_platform.empty() ? o.platform : o.bad_platform,
-                                geometry::kind_name(worst->kind), worst->view, worst->index};
-      repro = audit::make_reproducer(q, c_name);
-      util::write_file_atomic(o.out_dir + "/" + c_name, repro.source);
-    } catch (const std::exception& e) {
-      repro_error = e.what();
-    }
-    const BisectStep* after_step = by_commit.count(c.commit) ? by_commit.at(c.commit) : nullptr;
-    const bool final_state = after_step && r.bad.drawing.hashes.count(l) &&
-                             after_step->drawing.hashes.count(l) &&
-                             after_step->drawing.hashes.at(l) == r.bad.drawing.hashes.at(l);
-    if (!final_state) {
-      md << "**GL verdict.** Not judged: this change leads to a state that a later commit changed "
-            "again (the run judged only the bad ref's pixels).\n\n";
-    } else if (!repro.violated_rules.empty()) {
-      md << "**GL rule broken** (OpenGL 4.6 section 14.5.1 for lines, 14.6.1 polygons, 14.4 "
-            "points; the run's verdict of the bad side):";
-      const std::string& rules = repro.violated_rules;
-      for (std::size_t at = 0; at <= rules.size();) {
-        const std::size_t plus = std::min(rules.find('+', at), rules.size());
-        const std::string rule = rules.substr(at, plus - at);
-        md << " `" << rule << "`: " << rule_meaning(rule) << (plus < rules.size() ? ";" : ".");
-        at = plus + 1;
-      }
-      md << "\n\n";
-    } else if (repro_error.empty()) {
-      md << "**GL verdict.** Allowed by GL: " << l << " keeps within the rules after the change "
-         << "(the run's verdict of the bad side: "
-         << (worst->run_bad_conformance.empty() ? "-" : worst->run_bad_conformance)
-         << "); another rounding, not a violation.\n\n";
-    }
-    md << "```\ncommit " << c.commit << "\n" << files_changed(o.source, c.commit) << "```\n\n";
-    const BisectStep* before_step =
-        by_commit.count(c.previous) ? by_commit.at(c.previous) : nullptr;
-    if (repro_error.empty()) {
-      md << "**Reproducer** of " << l << (repro.view_text.empty() ? "" : " (" + repro.view_text + ")")
-         << ": a standalone C program (EGL surfaceless, desktop GL), written as `" << c_name
-         << "`; it prints the pixels it lit.\n\n```sh\n" << repro.build_line << "\n";
-      const std::string exe = fs::path(c_name).stem().string();
-      if (before_step && !before_step->build_dir.empty())
-        md << audit::reproducer_environment(before_step->build_dir, driver) << " "
-           << util::shell_quote("./" + exe)
-           << "   # " << short_hash(c.previous) << ": " << before_px << " pixels\n";
-      if (after_step && !after_step->build_dir.empty())
-        md << audit::reproducer_environment(after_step->build_dir, driver) << " "
-           << util::shell_quote("./" + exe)
-           << "   # " << short_hash(c.commit) << ": " << after_px << " pixels\n";
-      md << "```\n\n<details><summary>" << c_name << "</summary>\n\n```c\n" << repro.source
-         << "```\n\n</details>\n\n";
-    } else {
-      md << "No C reproducer: " << repro_error << "\n\n";
-    }
-    if (o.pictures && before_step && after_step) {
-      md << "**Pictures** of " << l << ": white unlit, grey lit by both, orange lit by the driver "
-            "only, blue lit by the reference only, black a pixel GL forbids; the red line is the "
-            "ideal projection.\n\n";
-      fs::create_directories(o.out_dir + "/pictures");
-      for (const auto& [side, s] : {std::pair{"before", before_step}, std::pair{"after", after_step}}) {
-        const std::string png = o.out_dir + "/pictures/" + short_hash(c.commit) + "-" + side + "." +
-                                geometry::kind_name(worst->kind) + ".v" +
-                                std::to_string(worst->view) + "." + std::to_string(worst->index) +
-                                ".png";
-        const std::string got = picture(o, *s, *worst, png);
-        md << "- " << side << " (" << short_hash(s->commit) << "): "
-           << (got.empty() ? "no picture (see the command's output)"
-                           : "\n\n  ![" + std::string(side) + "](pictures/" +
-                                 fs::path(png).filename().string() + ")")
-           << "\n";
-      }
-      md << "\n";
-    }
-    md << stats::markdown_header({"primitive", "group", "pixels before", "pixels after",
-                                  "run verdicts, before -> after"},
-                                 1);
-    for (const BisectPrimitive* p : prims) {
-      const auto [b, a] = c.pixels.at(p->label());
-      md << "| " << p->label() << " | " << group_letter(p->view_group) << " | " << b << " | " << a
-         << " | " << (p->run_good_conformance.empty() ? "-" : p->run_good_conformance) << " -> "
-         << (p->run_bad_conformance.empty() ? "-" : p->run_bad_conformance) << " |\n";
-    }
-  }
+  for (const Culprit& c : r.culprits) write_culprit(md, ++section, c, o, r, driver, by_label, by_commit);
   if (!r.unattributed.empty()) {
     md << "\n## Unattributed\n\nOnly commits that failed to build lie between two drawn commits: "
           "each of these changes was made by one of its candidates.\n\n"

@@ -7,7 +7,7 @@
 #include <tuple>
 
 #include "audit/audit_compare.h"
-#include "rundir/experiment.h"
+#include "rundir/run_experiment.h"
 #include "rundir/manifest.h"
 #include "util/errors.h"
 
@@ -19,7 +19,7 @@ std::string group_letter(int g) { return g >= 0 && g < 26 ? std::string(1, char(
 // The platforms a run drew (its experiment, less what `run --platform` left out), to name a
 // platform that is not among them.
 void require_platform(const std::string& run, const std::string& platform, const char* option) {
-  std::vector<std::string> drawn = rundir::load_experiment(run + "/experiment.toml").platforms;
+  std::vector<std::string> drawn = rundir::load_run_experiment(run).platforms;
   const rundir::RunManifest m = rundir::read_manifest_file_or_empty(run + "/manifest.json");
   if (m.platforms_run) drawn = *m.platforms_run;
   if (std::find(drawn.begin(), drawn.end(), platform) != drawn.end()) return;
