@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -285,7 +286,10 @@ class Night {
                           {"exit_code", exit_code}};
       j.update(rundir::document_header("watch-night", 1));
       util::write_file_atomic(n_.dir + "/night.json", j.dump(2) + "\n");
-      std::string md = "# Night of " + n_.date_utc + ": " + verdict + "\n\n" + note + ".\n\n" +
+      std::string sentence = note;  // the note as a sentence of its own
+      while (!sentence.empty() && sentence.back() == '.') sentence.pop_back();
+      if (!sentence.empty()) sentence[0] = char(std::toupper(static_cast<unsigned char>(sentence[0])));
+      std::string md = "# Night of " + n_.date_utc + ": " + verdict + "\n\n" + sentence + ".\n\n" +
                        "- tonight: `" + n_.commit + "` " + subject(n_.commit) + "\n" +
                        (n_.previous_commit.empty() ? std::string()
                                                    : "- last night: `" + n_.previous_commit + "` " +
