@@ -20,6 +20,7 @@
 #include "util/dir_lock.h"
 #include "util/duration_text.h"
 #include "util/errors.h"
+#include "util/interrupt.h"
 
 namespace fs = std::filesystem;
 
@@ -118,6 +119,8 @@ class Night {
     if (ec || !fs::is_directory(o_.state, ec))
       throw util::UserError(util::io_error_message("watch: cannot create", o_.state));
     const util::DirLock lock(o_.state, "watch", "one night at a time; wait for it to finish");
+    // A signal stops the build's process group and ends the night unrecorded (util::Interrupted).
+    util::InterruptScope interrupts;
     if (o_.db.empty()) o_.db = o_.state + "/history.sqlite";
     if (!fs::is_regular_file(o_.experiment, ec))
       throw util::UserError("watch: --experiment " + o_.experiment + " is not a file");
@@ -148,6 +151,7 @@ class Night {
     try {
       built = runner::build_from_source(b, [&](const std::string& s) { say("  " + s); });
     } catch (const util::UserError& e) {
+      util::throw_if_interrupted();  // stopped, not failed: nothing recorded
       util::write_file_atomic(n_.dir + "/build-error.txt", std::string(e.what()) + "\n");
       return finish("build failed", std::string(e.what()).substr(0, 400) +
                                         (last.commit.empty() ? "" : "; last night's build stays the baseline"),
@@ -164,6 +168,7 @@ class Night {
     const std::string run = n_.dir + "/run";
     n_.run_dir = run;
     say("run: " + exp);
+    util::throw_if_interrupted();
     const int run_rc = run_self({"run", exp, "--out", run, "--quiet", "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)},
                                 n_.dir + "/run.log");
     if (run_rc != 0 && run_rc != 1)
@@ -184,6 +189,7 @@ class Night {
       const int rc = run_self({"audit", run, "--between", p + "@" + kLastBuild, p + "@" + kTonightBuild,
                                "--out", out, "--db", o_.db, "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)},
                               n_.dir + "/audit-" + p + ".log");
+      util::throw_if_interrupted();
       say("audit " + p + ": exit " + std::to_string(rc) + " (" + out + "/audit.md)");
       if (rc == 2 || rc > 2) failed = true;
       if (rc == 1) {

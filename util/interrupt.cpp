@@ -26,7 +26,8 @@ Interrupted::Interrupted(int sig)
       signal(sig) {}
 
 InterruptScope::InterruptScope() {
-  g_signal = 0;
+  // g_signal is not reset: a scope inside another (a bisection inside a night) keeps a signal
+  // that came before it.
   struct sigaction sa {};
   sa.sa_handler = on_signal;
   sigemptyset(&sa.sa_mask);
