@@ -34,8 +34,14 @@ if [ ! -d "$watched/.git" ]; then
   fi
   git -C "$watched" checkout -q replay 2>/dev/null || true
 fi
+# A replay run again goes on after the last night its state folder watched.
+last=$(sed -n 's/.*"commit": "\([0-9a-f]*\)".*/\1/p' "$state/watch.json" 2>/dev/null || true)
 for ((n = 0; n < nights; n++)); do
   i=$(( (${#line[@]} - 1) * n / (nights - 1) ))
+  if [ -n "$last" ] && git -C "$mesa" merge-base --is-ancestor "${line[$i]}" "$last"; then
+    echo "replay: night $((n + 1)) of $nights: $(git -C "$mesa" log -1 --format=%h "${line[$i]}") watched before"
+    continue
+  fi
   git -C "$mesa" branch -f replay "${line[$i]}"
   echo "replay: night $((n + 1)) of $nights: $(git -C "$mesa" log -1 --format='%h %s' "${line[$i]}")"
   set +e
