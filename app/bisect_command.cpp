@@ -60,15 +60,7 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--out,-o", opts->o.out_dir,
                   "the folder for bisect.json and bisect.md (default RUN/bisect)");
-  cmd->add_option("--cache", opts->o.build.cache, "build cache folder");
-  cmd->add_option("--llvm-config", opts->o.build.llvm_config, "the LLVM every build uses")
-      ->capture_default_str();
-  cmd->add_option("--meson-option,-D", opts->o.build.meson_options, "extra meson option KEY=VALUE");
-  cmd->add_option("--build-command", opts->o.build.build_command,
-                  "a shell command that installs the checked-out commit's driver into "
-                  "$RENDERAUDIT_BUILD_PREFIX instead of meson");
-  cmd->add_flag("--fresh-builds", opts->fresh_builds,
-                "a new meson build folder for every commit (default: one incremental folder)");
+  add_commit_build_options(cmd, opts->o.build, opts->fresh_builds);
   cmd->add_option("--jobs,-j", opts->o.jobs, "drawing children at once, and ninja jobs");
   cmd->add_flag(
       "--no-pictures", [opts](int64_t) { opts->o.pictures = false; },

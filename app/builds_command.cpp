@@ -38,6 +38,18 @@ void print_build(const runner::BuildSummary& b, bool files) {
 
 }  // namespace
 
+void add_commit_build_options(CLI::App* cmd, runner::SourceBuildOptions& build, bool& fresh_builds) {
+  cmd->add_option("--cache", build.cache, "build cache folder");
+  cmd->add_option("--llvm-config", build.llvm_config, "the LLVM every build uses")
+      ->capture_default_str();
+  cmd->add_option("--meson-option,-D", build.meson_options, "extra meson option KEY=VALUE");
+  cmd->add_option("--build-command", build.build_command,
+                  "a shell command that installs the checked-out commit's driver into "
+                  "$RENDERAUDIT_BUILD_PREFIX instead of meson");
+  cmd->add_flag("--fresh-builds", fresh_builds,
+                "a new meson build folder for every commit (default: one incremental folder)");
+}
+
 void register_builds_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "builds",

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rundir/study_dir.h"
+#include "runner/source_build.h"
 
 namespace ra::app {
 
@@ -52,6 +53,10 @@ void register_builds_command(CLI::App& app, int& exit_code);
 void register_reproduce_command(CLI::App& app, int& exit_code);  // one record as a C program
 void register_bisect_command(CLI::App& app, int& exit_code);     // the driver commit of a change
 void register_watch_command(CLI::App& app, int& exit_code);      // a night following a Mesa branch
+
+// The options of building many commits of a Mesa tree (`bisect`, `watch`): --cache,
+// --llvm-config, -D, --build-command and --fresh-builds (set in `fresh_builds`).
+void add_commit_build_options(CLI::App* cmd, runner::SourceBuildOptions& build, bool& fresh_builds);
 
 // The studies (app/study_dispatch.cpp): each returns false when its argument is not a study (an
 // audit experiment or run folder), and otherwise does the study's stage and sets exit_code.

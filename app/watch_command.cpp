@@ -35,15 +35,7 @@ void register_watch_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--state", opts->o.state, "the state folder (last night, nights, history)")
       ->required();
   cmd->add_option("--db", opts->o.db, "history database (default STATE/history.sqlite)");
-  cmd->add_option("--cache", opts->o.build.cache, "build cache folder");
-  cmd->add_option("--llvm-config", opts->o.build.llvm_config, "the LLVM every build uses")
-      ->capture_default_str();
-  cmd->add_option("--meson-option,-D", opts->o.build.meson_options, "extra meson option KEY=VALUE");
-  cmd->add_option("--build-command", opts->o.build.build_command,
-                  "a shell command that installs the checked-out commit's driver into "
-                  "$RENDERAUDIT_BUILD_PREFIX instead of meson");
-  cmd->add_flag("--fresh-builds", opts->fresh_builds,
-                "a new meson build folder for every commit (default: one incremental folder)");
+  add_commit_build_options(cmd, opts->o.build, opts->fresh_builds);
   cmd->add_flag("--no-fetch", opts->no_fetch, "follow the tree's own head (no git fetch)");
   cmd->add_option("--max-primitives", opts->o.max_primitives,
                   "changed primitives each bisection attributes (past it: a stratified sample)")
