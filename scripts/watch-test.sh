@@ -6,7 +6,8 @@
 #   2. nothing new:                  said, nothing built or run (exit 0)
 #   3. c1 good, c2 neither, c3 bad:  changed; the even lines named to c2, the odd ones to c3 (exit 1)
 #   4. c4 broken:                    build failed; last night's build stays the baseline (exit 2)
-#   5. c5 bad:                       unchanged against c3 (exit 0)
+#   5. c5 bad, the tree left detached at c2 (a bisection killed mid-step):
+#                                    back on its branch, unchanged against c3 (exit 0)
 #   6. upstream reset to c1:         moved backwards; tonight is the new baseline (exit 1)
 # and `history` lists the six nights with their commits, verdicts and culprits.
 # Usage: scripts/watch-test.sh BUILD_DIR
@@ -70,8 +71,10 @@ night 4
 expect 4 2 "night: build failed"
 grep -q "\"commit\": \"$(c "$up" 3)\"" "$t/state/watch.json" || fail "night 4 replaced the last good build"
 commit bad
+git -C "$t/mesa" checkout -q --detach "$(c "$up" 2)"
 night 5
 expect 5 0 "night: unchanged: no primitive changed ($(c "$up" 5 | cut -c1-12))"
+grep -qF "watch: returning $t/mesa to its branch main" "$t/night5.err" || fail "night 5 did not say it returned the tree to its branch"
 git -C "$up" reset -q --hard "$(c "$up" 1)"
 night 6
 expect 6 1 "night: moved backwards"

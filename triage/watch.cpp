@@ -34,9 +34,9 @@ constexpr const char* kTonightBuild = "watch-tonight";
 
 std::string short_hash(const std::string& c) { return c.substr(0, 12); }
 
-// The last good night: its commit and build (STATE/watch.json).
+// The last good night: its commit and build, and the branch the tree follows (STATE/watch.json).
 struct LastNight {
-  std::string commit, build_dir;
+  std::string commit, build_dir, branch;
 };
 
 LastNight read_last(const std::string& path) {
@@ -56,6 +56,7 @@ LastNight read_last(const std::string& path) {
                             "' must be a string; remove the file to start again from a new baseline");
   l.commit = j["commit"];
   l.build_dir = j["build_dir"];
+  if (j.contains("branch") && j["branch"].is_string()) l.branch = j["branch"];
   if (!fs::is_directory(l.build_dir, ec))
     throw util::UserError("watch: " + path + ": 'build_dir' " + l.build_dir +
                           " is gone (the build cache was cleared?); remove the file to start again "
@@ -130,7 +131,7 @@ class Night {
     const LastNight last = read_last(o_.state + "/watch.json");
     n_.date_utc = rundir::utc_now_iso8601();
     n_.previous_commit = last.commit;
-    n_.commit = branch_head();
+    n_.commit = branch_head(last.branch);
     say("tonight: " + short_hash(n_.commit) + " " + subject(n_.commit) +
         (last.commit.empty() ? " (no baseline yet)" : "; last night: " + short_hash(last.commit)));
     if (n_.commit == last.commit) return finish("nothing new", "the branch head is last night's commit", 0);
@@ -215,8 +216,23 @@ class Night {
   }
 
   // The commit to build tonight: the upstream of the tree's branch after a fetch, else HEAD.
-  std::string branch_head() {
+  // A tree left detached (a night's bisection killed mid-step) first returns to the branch
+  // earlier nights followed, so that tonight is the branch's head and not a bisection step.
+  std::string branch_head(const std::string& last_branch) {
     const auto tree_lock = runner::lock_source_tree(o_.source, "watch");
+    runner::GitResult on = git(o_.source, {"symbolic-ref", "-q", "--short", "HEAD"});
+    if (!on.ok && !last_branch.empty()) {
+      const std::string at = git(o_.source, {"rev-parse", "--short=12", "HEAD"}).out;
+      say("returning " + o_.source + " to its branch " + last_branch +
+          ": an interrupted night left it detached at " + at);
+      const runner::GitResult co = git(o_.source, {"checkout", "-q", last_branch});
+      if (!co.ok)
+        throw util::UserError("watch: " + o_.source + " is detached at " + at +
+                              " and cannot return to its branch " + last_branch + " (" + co.out +
+                              "); check the branch out by hand");
+      on = git(o_.source, {"symbolic-ref", "-q", "--short", "HEAD"});
+    }
+    branch_ = on.ok ? on.out : "";
     if (o_.fetch && !git(o_.source, {"remote"}).out.empty()) {
       const runner::GitResult f = git(o_.source, {"fetch", "-q"});
       if (!f.ok) say("git fetch failed (" + f.out + "): watching the tree's own head");
@@ -268,7 +284,9 @@ class Night {
 
   void save_last(const std::string& build_dir) const {
     util::write_file_atomic(o_.state + "/watch.json",
-                            nlohmann::json{{"commit", n_.commit}, {"build_dir", build_dir}}.dump(2) + "\n");
+                            nlohmann::json{{"commit", n_.commit}, {"build_dir", build_dir}, {"branch", branch_}}
+                                    .dump(2) +
+                                "\n");
   }
 
   WatchNight finish(const std::string& verdict, const std::string& note, int exit_code) {
@@ -312,6 +330,7 @@ class Night {
   WatchOptions o_;
   std::function<void(const std::string&)> progress_;
   WatchNight n_;
+  std::string branch_;  // the branch the tree is on tonight ("" when detached)
 };
 
 }  // namespace
