@@ -7,7 +7,7 @@
 #     runner/source_build_test.cpp);
 #   - SIGTERM stops the build command's whole process group and restores the branch (exit 143);
 #     after kill -9, the same command restores the branch and resumes;
-#   - bad inputs are refused before anything is built; a bad field of bisect.json is named.
+#   - bad inputs (an untracked file in the tree too) are refused before anything is built; a bad field of bisect.json is named.
 # Usage: scripts/bisect-safety-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
@@ -103,6 +103,10 @@ expect 2 "$t/file.out" "is a file; --out names a folder"
 run_ra "$t/platform.out" bisect "$t/run" --between faulty@good faulty@newer --source "$g" \
   --good "$good" --bad "$bad" --build-command "$cmd" --out "$t/platform"
 expect 2 "$t/platform.out" "names platform 'faulty@newer', which $t/run did not draw (it has: faulty@good, faulty@bad)"
+echo stale > "$g/meson.options"   # what a checkout that failed half-way leaves behind
+run_ra "$t/untracked.out" bisect "${bisect_args[@]}" --out "$t/untracked"
+expect 2 "$t/untracked.out" "has 1 untracked file (meson.options); every step's build would see it"
+rm "$g/meson.options"
 [ "$(ls "$t/cache" | wc -l)" = "$before" ] || fail "a refused bisection built something"
 # A bad field of bisect.json: the file and the key, exit 2.
 sed -i 's/"pixel_hash": "[0-9]*"/"pixel_hash": "x"/' "$t/kill/bisect.json"

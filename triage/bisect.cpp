@@ -153,6 +153,25 @@ class Bisection {
       throw util::UserError("bisect: " + o_.source +
                             " has uncommitted changes; commit or stash them first (each step "
                             "checks out another commit)");
+    // A file git does not track (often left by a checkout that failed half-way) is seen by every
+    // step's build: an old commit's meson refuses a newer meson.options, for one.
+    const std::string untracked =
+        git(o_.source, {"ls-files", "--others", "--exclude-standard", "--directory"}).out;
+    if (!untracked.empty()) {
+      std::vector<std::string> files;
+      for (std::size_t at = 0; at < untracked.size();) {
+        const std::size_t nl = std::min(untracked.find('\n', at), untracked.size());
+        files.push_back(untracked.substr(at, nl - at));
+        at = nl + 1;
+      }
+      std::string shown;
+      for (std::size_t i = 0; i < files.size() && i < 3; ++i) shown += (i ? ", " : "") + files[i];
+      if (files.size() > 3) shown += ", ...";
+      throw util::UserError("bisect: " + o_.source + " has " + std::to_string(files.size()) +
+                            (files.size() == 1 ? " untracked file (" : " untracked files (") + shown +
+                            "); every step's build would see it: `git -C " + o_.source +
+                            " clean -n -d` lists them, `git stash -u` or `git clean -fd` removes them");
+    }
     git_dir_ = git_ok(o_.source, {"rev-parse", "--absolute-git-dir"}, "git rev-parse");
     good_ = rev(o_.source, o_.good_ref, "--good");
     bad_ = rev(o_.source, o_.bad_ref, "--bad");
