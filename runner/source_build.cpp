@@ -105,8 +105,6 @@ std::string joined(const std::vector<std::string>& v) {
   return s;
 }
 
-// Runs one step with its output in `log`; UserError naming the step, the log's last lines and,
-// for a configure, the package meson says is missing.
 // ninja's last "[n/N]" in its log, as the progress of a compile ("" when it printed none yet).
 std::string ninja_progress(const std::string& log, double elapsed_s) {
   const std::string tail = tail_of(log, 40);

@@ -295,7 +295,10 @@ class Bisection {
     say("  building " + short_hash(s.commit) + (s.version.empty() ? "" : " (" + s.version + ")") +
         " ...");
     try {
-      const runner::SourceBuildResult r = runner::build_from_source(b);
+      // Of the build's own lines, only the compile's progress: a distant commit compiles for minutes.
+      const runner::SourceBuildResult r = runner::build_from_source(b, [&](const std::string& line) {
+        if (line.rfind("compile (ninja)", 0) == 0) say("    " + line);
+      });
       s.build = r.build.name;
       s.build_dir = r.build.dir;
       s.reused = r.reused;
