@@ -109,6 +109,17 @@ int run_self(const std::vector<std::string>& args, const std::string& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+}  // namespace
+
+std::string changed_night_note(std::size_t changed, std::size_t attributed, std::size_t culprit_commits) {
+  std::string note = std::to_string(changed) + (changed == 1 ? " primitive changed" : " primitives changed");
+  if (attributed < changed)
+    note += " (" + std::to_string(attributed) + " of them attributed: a sample, see the bisection's report)";
+  return note + ", " + std::to_string(culprit_commits) + " culprit commit(s)";
+}
+
+namespace {
+
 class Night {
  public:
   Night(const WatchOptions& o, const std::function<void(const std::string&)>& progress)
@@ -202,9 +213,8 @@ class Night {
       return finish("run failed", "a driver crashed or the audit failed (" + n_.dir + ")", 2);
     save_last(built.build.dir);
     if (!changed) return finish("unchanged", "no primitive changed", 0);
-    return finish("changed", std::to_string(n_.changed) + " primitives changed, " +
-                                 std::to_string(n_.culprits.size()) + " culprit commit(s)",
-                  1);
+    if (unbisected_) return finish("changed", "primitives changed; a bisection could not run (see the culprits)", 1);
+    return finish("changed", changed_night_note(n_.changed, n_.attributed, culprit_commits_), 1);
   }
 
  private:
@@ -272,13 +282,16 @@ class Night {
       for (const Culprit& c : r.culprits) {
         n_.culprits.push_back(c.commit + " " + c.subject + " (" +
                               std::to_string(c.primitives.size()) + " primitives of " + platform + ")");
-        n_.changed += c.primitives.size();
+        n_.attributed += c.primitives.size();
+        ++culprit_commits_;
       }
+      n_.changed += r.changed_in_run;
       if (!r.unattributed.empty())
         n_.culprits.push_back("unattributed: " + std::to_string(r.unattributed.size()) +
                               " changes of " + platform + " (failed builds between; " + r.report_path + ")");
     } catch (const util::UserError& e) {
       n_.culprits.push_back("no bisection of " + platform + ": " + e.what());
+      unbisected_ = true;
     }
   }
 
@@ -331,6 +344,8 @@ class Night {
   std::function<void(const std::string&)> progress_;
   WatchNight n_;
   std::string branch_;  // the branch the tree is on tonight ("" when detached)
+  std::size_t culprit_commits_ = 0;
+  bool unbisected_ = false;  // a platform's bisection refused to start
 };
 
 }  // namespace

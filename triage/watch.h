@@ -46,9 +46,14 @@ struct WatchNight {
   std::string verdict;                  // see the header
   std::vector<std::string> culprits;    // "HASH SUBJECT (N primitives)"
   std::size_t changed = 0;              // primitives that changed, all platforms
+  std::size_t attributed = 0;           // of them, those the bisections named to a commit
   std::string note;                     // what happened, in a sentence
   int exit_code = 0;
 };
+
+// The note of a night whose primitives changed: "N primitives changed[ (M of them attributed: a
+// sample, ...)], K culprit commit(s)".
+std::string changed_night_note(std::size_t changed, std::size_t attributed, std::size_t culprit_commits);
 
 WatchNight watch_night(const WatchOptions& options,
                        const std::function<void(const std::string&)>& progress = {});
