@@ -7,7 +7,6 @@
 #include "triage/bisect.h"
 #include "util/errors.h"
 #include "util/interrupt.h"
-#include "util/shell_quote.h"
 
 namespace ra::app {
 
@@ -74,31 +73,7 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
     o.build.incremental = !opts->fresh_builds;
     for (std::string& v : o.build.meson_options)
       if (v.rfind("-D", 0) != 0) v = "-D" + v;
-    // The command as a person would paste it again (the report repeats it), every value quoted.
-    std::string& line = o.command_line;
-    line = "renderaudit bisect " + util::shell_quote(o.run_dir);
-    if (!opts->between.empty())
-      line += " --between " + util::shell_quote(opts->between[0]) + " " + util::shell_quote(opts->between[1]);
-    if (!o.baseline_run.empty()) line += " --baseline " + util::shell_quote(o.baseline_run);
-    line += " --source " + util::shell_quote(o.source) + " --good " + util::shell_quote(o.good_ref) + " --bad " +
-            util::shell_quote(o.bad_ref);
-    if (!o.platform.empty()) line += " --platform " + util::shell_quote(o.platform);
-    for (const std::string& k : o.kinds) line += " --kind " + util::shell_quote(k);
-    for (int v : o.views) line += " --view " + std::to_string(v);
-    for (const std::string& p : o.primitives) line += " --primitive " + util::shell_quote(p);
-    if (o.max_primitives != triage::BisectOptions{}.max_primitives)
-      line += " --max-primitives " + std::to_string(o.max_primitives);
-    if (!o.out_dir.empty()) line += " --out " + util::shell_quote(o.out_dir);
-    if (!o.build.cache.empty()) line += " --cache " + util::shell_quote(o.build.cache);
-    if (o.build.llvm_config != runner::SourceBuildOptions{}.llvm_config)
-      line += " --llvm-config " + util::shell_quote(o.build.llvm_config);
-    for (const std::string& m : o.build.meson_options) line += " " + util::shell_quote(m);
-    if (!o.build.build_command.empty()) line += " --build-command " + util::shell_quote(o.build.build_command);
-    if (opts->fresh_builds) line += " --fresh-builds";
-    if (!o.paths.empty()) {
-      line += " --";
-      for (const std::string& p : o.paths) line += " " + util::shell_quote(p);
-    }
+    o.command_line = triage::bisect_command_line(o);
     try {
       const triage::BisectResult r = triage::run_bisect(o, [](const std::string& text) {
         std::fprintf(stderr, "bisect: %s\n", text.c_str());

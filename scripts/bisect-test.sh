@@ -96,7 +96,7 @@ STUB_ARGS="$t/repeat.args" PATH="$t/stub:$PATH" bash -c "$repeat" ||
 [ ! -e "$t/PWNED" ] || fail "the Repeat it command ran the source folder's \$(touch ...)"
 cmp -s "$t/repeat.args" <(printf '%s\0' bisect "$t/run" --between faulty@good faulty@bad \
   --source "$hs" --good "$(c "$g" 3)" --bad "$(c "$g" 6)" --max-primitives 6 --out "$hout" \
-  --build-command "$hcmd") || fail "the Repeat it command is not the command that ran: $repeat"
+  --build-command "$hcmd" --no-pictures) || fail "the Repeat it command is not the command that ran: $repeat"
 
 # Refs that draw alike: nothing to bisect.
 bisect b3 "$(c "$g" 1)" "$(c "$g" 3)" --no-pictures

@@ -19,6 +19,7 @@
 #include "util/duration_text.h"
 #include "util/errors.h"
 #include "util/interrupt.h"
+#include "util/shell_quote.h"
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -493,6 +494,36 @@ class Bisection {
 };
 
 }  // namespace
+
+std::string bisect_command_line(const BisectOptions& o) {
+  using util::shell_quote;
+  std::string line = "renderaudit bisect " + shell_quote(o.run_dir);
+  if (!o.good_platform.empty())
+    line += " --between " + shell_quote(o.good_platform) + " " + shell_quote(o.bad_platform);
+  if (!o.baseline_run.empty()) line += " --baseline " + shell_quote(o.baseline_run);
+  line += " --source " + shell_quote(o.source) + " --good " + shell_quote(o.good_ref) + " --bad " +
+          shell_quote(o.bad_ref);
+  if (!o.platform.empty()) line += " --platform " + shell_quote(o.platform);
+  for (const std::string& k : o.kinds) line += " --kind " + shell_quote(k);
+  for (int v : o.views) line += " --view " + std::to_string(v);
+  for (const std::string& p : o.primitives) line += " --primitive " + shell_quote(p);
+  if (o.max_primitives != BisectOptions{}.max_primitives)
+    line += " --max-primitives " + std::to_string(o.max_primitives);
+  if (!o.out_dir.empty()) line += " --out " + shell_quote(o.out_dir);
+  if (!o.build.cache.empty()) line += " --cache " + shell_quote(o.build.cache);
+  if (o.build.llvm_config != runner::SourceBuildOptions{}.llvm_config)
+    line += " --llvm-config " + shell_quote(o.build.llvm_config);
+  for (const std::string& m : o.build.meson_options) line += " " + shell_quote(m);
+  if (!o.build.build_command.empty()) line += " --build-command " + shell_quote(o.build.build_command);
+  if (!o.build.incremental) line += " --fresh-builds";
+  if (o.jobs) line += " --jobs " + std::to_string(o.jobs);
+  if (!o.pictures) line += " --no-pictures";
+  if (!o.paths.empty()) {
+    line += " --";
+    for (const std::string& p : o.paths) line += " " + shell_quote(p);
+  }
+  return line;
+}
 
 BisectResult run_bisect(const BisectOptions& options,
                         const std::function<void(const std::string&)>& progress) {

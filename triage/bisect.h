@@ -114,6 +114,10 @@ struct BisectResult {
   bool complete() const { return unattributed.empty() && !culprits.empty(); }
 };
 
+// The command that runs these options, as a person would paste it (every value shell-quoted): what
+// the report's "Repeat it" shows.
+std::string bisect_command_line(const BisectOptions& o);
+
 // Runs (or resumes) the bisection. `progress` gets one line per event. Throws UserError for bad
 // input (checked before anything is built: a run without the platforms, a tree that is not git or
 // has uncommitted changes or is in use, refs that are not commits, equal refs, a good ref that is

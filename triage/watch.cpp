@@ -275,7 +275,7 @@ class Night {
     bo.jobs = o_.jobs;
     bo.pictures = o_.pictures;
     bo.max_primitives = o_.max_primitives;
-    bo.command_line = "renderaudit bisect (started by renderaudit watch for " + n_.dir + ")";
+    bo.command_line = bisect_command_line(bo);
     say("bisect " + platform + ": " + short_hash(last_commit) + ".." + short_hash(n_.commit));
     try {
       const BisectResult r = run_bisect(bo, [&](const std::string& s) { say("  " + s); });
