@@ -10,6 +10,9 @@
 # make_history HISTORY WORD..., c HISTORY N (the commit "cN").
 ra="$build/renderaudit"
 fail() { echo "$(basename "$0"): FAIL: $*" >&2; exit 1; }
+# A failed build keeps its log in the temporary folder: the test's own, removed with it.
+mkdir -p "$t/tmp"
+export TMPDIR="$t/tmp"
 
 mkdir -p "$t/drivers"/{good,bad,neither}
 printf '[faults]\nbase = "osmesa-llvmpipe"\n' > "$t/drivers/good/faults.toml"
