@@ -8,7 +8,7 @@ BUILD_TYPE ?= Release
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
 
-.PHONY: all deps build lean bundle install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly watch timing lod regulation format clean
+.PHONY: all deps check-build-tree build lean bundle install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly watch timing lod regulation docs-check format clean
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
@@ -20,7 +20,13 @@ deps:
 $(BUILD)/CMakeCache.txt: | deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE)
 
-build: deps $(BUILD)/CMakeCache.txt
+# A build folder of another source tree (a checkout copied or moved with its build folder keeps
+# CMake's absolute paths) would compile that tree: scripts/check-build-tree.sh stops first and
+# names it.
+check-build-tree:
+	@scripts/check-build-tree.sh $(BUILD)
+
+build: check-build-tree deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
 # The lean runner for GPU and cluster nodes (docs/operations.md): renderaudit-lean and the worker in
@@ -29,6 +35,7 @@ build: deps $(BUILD)/CMakeCache.txt
 # dist/renderaudit-lean-VERSION-ARCH.tar.gz, to unpack and run on another Linux with its own drivers.
 LEAN_BUILD ?= build-lean
 lean:
+	@scripts/check-build-tree.sh $(LEAN_BUILD)
 	@test -f $(LEAN_BUILD)/CMakeCache.txt || \
 	  cmake -S . -B $(LEAN_BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DRA_FIGURES=OFF > /dev/null
 	cmake --build $(LEAN_BUILD) -j $(JOBS) --target renderaudit-lean renderaudit-worker
@@ -164,6 +171,14 @@ regulation: build
 	$(BUILD)/renderaudit plot outputs/regulation
 	$(BUILD)/renderaudit report outputs/regulation
 	@echo "Regulation report: outputs/regulation/report/report.pdf (and report.html)"
+
+# The numbers and names the README and docs quote that a command regenerates (scripts/docs-check.sh):
+# the test count against ctest -N, the command table against renderaudit --help, the quick
+# experiment's figure count against what `renderaudit plot --list` plans for $(OUT). Fails naming
+# file and line. The first two are also the ctest docs_check, part of `make test`.
+docs-check: analyze
+	@cmake --build $(BUILD) -j $(JOBS) --target test_programs > /dev/null
+	@scripts/docs-check.sh $(BUILD) $(OUT)
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')

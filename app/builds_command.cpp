@@ -1,9 +1,12 @@
-// `renderaudit builds fetch SUITE` and `renderaudit builds list`: driver builds in the build cache
-// (runner/build_fetch.h), drawn with as PLATFORM@BUILD.
+// `renderaudit builds fetch SUITE`, `builds build SOURCE`, `builds list` and `builds remove
+// NAME...`: driver builds in the build cache (runner/build_fetch.h, runner/source_build.h), drawn
+// with as PLATFORM@BUILD; their sizes and removal in runner/build_cache.h.
+#include <algorithm>
 #include <cstdio>
 
 #include "app/commands.h"
 #include "rundir/driver_build.h"
+#include "runner/build_cache.h"
 #include "runner/build_fetch.h"
 #include "runner/source_build.h"
 #include "util/errors.h"
@@ -11,19 +14,25 @@
 namespace ra::app {
 namespace {
 
-void print_build(const runner::BuildSummary& b, bool files) {
+// A build's first line starts with its name and its size on disk, the name padded to `width` and
+// the size to 7 characters, so that the sizes of a list form a column.
+void print_build(const runner::BuildSummary& b, bool files, std::size_t width = 0) {
+  std::string size = runner::size_text(runner::disk_usage(b.dir));
+  size.insert(0, size.size() < 7 ? 7 - size.size() : 0, ' ');  // "999 MiB": right-aligned
+  const std::string head =
+      b.name + std::string(width > b.name.size() ? width - b.name.size() : 0, ' ') + "  " + size;
   if (!b.damaged.empty()) {
-    std::printf("%s  (damaged: %s)\n  folder: %s\n", b.name.c_str(), b.damaged.c_str(),
+    std::printf("%s  (damaged: %s)\n  folder: %s\n", head.c_str(), b.damaged.c_str(),
                 b.dir.c_str());
     return;
   }
   if (b.origin == "source")
-    std::printf("%s  (built from source: %s%s, built %s)\n  folder: %s\n", b.name.c_str(),
+    std::printf("%s  (built from source: %s%s, built %s)\n  folder: %s\n", head.c_str(),
                 b.version.empty() ? "" : b.version.c_str(),
                 b.commit.empty() ? "" : (" at commit " + b.commit.substr(0, 12)).c_str(),
                 b.fetched_utc.c_str(), b.dir.c_str());
   else
-    std::printf("%s  (Debian %s, suite %s, fetched %s)\n  folder: %s\n", b.name.c_str(),
+    std::printf("%s  (Debian %s, suite %s, fetched %s)\n  folder: %s\n", head.c_str(),
                 b.debian_version.c_str(), b.suite.c_str(), b.fetched_utc.c_str(), b.dir.c_str());
   std::printf("  OSMesa GL_VERSION: %s\n  EGL    GL_VERSION: %s\n",
               b.osmesa_version.empty() ? "(cannot draw)" : b.osmesa_version.c_str(),
@@ -34,6 +43,20 @@ void print_build(const runner::BuildSummary& b, bool files) {
       "  platforms: osmesa-llvmpipe@%s, osmesa-softpipe@%s, egl-llvmpipe@%s, "
       "egl-softpipe@%s\n",
       b.name.c_str(), b.name.c_str(), b.name.c_str(), b.name.c_str());
+}
+
+// What the cache holds in all, the builds and what else takes room there.
+void print_cache_total(const std::string& cache, std::size_t n_builds) {
+  const runner::CacheUsage u = runner::cache_usage(cache);
+  std::string parts = std::to_string(n_builds) + (n_builds == 1 ? " build " : " builds ") +
+                      runner::size_text(u.builds);
+  if (u.incremental)
+    parts += ", meson build folders kept for incremental builds (.incremental) " +
+             runner::size_text(u.incremental);
+  if (u.unfinished)
+    parts += ", unfinished fetches, builds or removals " + runner::size_text(u.unfinished);
+  std::printf("total %s in %s: %s\n", runner::size_text(u.total).c_str(), cache.c_str(),
+              parts.c_str());
 }
 
 }  // namespace
@@ -53,13 +76,15 @@ void add_commit_build_options(CLI::App* cmd, runner::SourceBuildOptions& build, 
 void register_builds_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "builds",
-      "Driver builds other than the installed Mesa: fetch a Debian suite's Mesa into the "
-      "build cache, list the cache");
+      "Driver builds other than the installed Mesa: fetch a Debian suite's Mesa or build a Mesa "
+      "source tree into the build cache, list the cache with its size, remove builds");
   cmd->require_subcommand(1);
   struct Options {
     runner::FetchOptions fetch;
     runner::SourceBuildOptions build;
     std::string list_cache;
+    std::string remove_cache;
+    std::vector<std::string> remove_names;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
   auto* f = cmd->add_subcommand(
@@ -114,7 +139,10 @@ void register_builds_command(CLI::App& app, int& exit_code) {
                     : ("built in " + std::to_string(int(r.seconds)) + " s; log: " + r.log).c_str());
     exit_code = kExitOk;
   });
-  auto* l = cmd->add_subcommand("list", "The builds in the build cache");
+  auto* l = cmd->add_subcommand(
+      "list",
+      "The builds in the build cache, each with its size on disk (as du counts it), and what the "
+      "cache holds in all");
   l->add_option("--cache", opts->list_cache, "build cache folder");
   l->callback([opts, &exit_code] {
     const std::string cache =
@@ -122,7 +150,27 @@ void register_builds_command(CLI::App& app, int& exit_code) {
     const std::vector<runner::BuildSummary> builds = runner::list_builds(cache);
     if (builds.empty())
       std::printf("no builds in %s (renderaudit builds fetch SUITE)\n", cache.c_str());
-    for (const runner::BuildSummary& b : builds) print_build(b, false);
+    std::size_t width = 0;
+    for (const runner::BuildSummary& b : builds) width = std::max(width, b.name.size());
+    for (const runner::BuildSummary& b : builds) print_build(b, false, width);
+    print_cache_total(cache, builds.size());
+    if (!builds.empty()) std::printf("renderaudit builds remove NAME... deletes builds\n");
+    exit_code = kExitOk;
+  });
+  auto* r = cmd->add_subcommand(
+      "remove",
+      "Delete builds from the build cache: each is first renamed aside inside the cache, then "
+      "deleted, so an interrupted removal never leaves a build that looks whole. Refuses a name "
+      "the cache does not hold (listing those it holds) and a build whose source tree a build, "
+      "bisection or watch night is using now; removes nothing then");
+  r->add_option("name", opts->remove_names, "build names (renderaudit builds list)")->required();
+  r->add_option("--cache", opts->remove_cache, "build cache folder");
+  r->callback([opts, &exit_code] {
+    const std::string cache =
+        opts->remove_cache.empty() ? rundir::build_cache_dir() : opts->remove_cache;
+    for (const runner::RemovedBuild& b : runner::remove_builds(cache, opts->remove_names))
+      std::printf("removed %s (%s)\n", b.name.c_str(), runner::size_text(b.bytes).c_str());
+    print_cache_total(cache, runner::list_builds(cache).size());
     exit_code = kExitOk;
   });
 }

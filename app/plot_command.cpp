@@ -7,8 +7,28 @@
 
 #include "app/commands.h"
 #include "plots/plot_run.h"
+#include "rundir/study_dir.h"
+#include "util/errors.h"
 
 namespace ra::app {
+namespace {
+
+// `plot --list`: the plan without the drawing (a second or two: the records are read, no VTK).
+void list_figures(const plots::PlotOptions& options) {
+  if (rundir::read_study_info(options.run_dir))
+    throw util::UserError("plot --list: " + options.run_dir +
+                          " is a study folder (study.json); --list plans the figures of a run "
+                          "directory");
+  const plots::FigurePlan plan = plots::plan_figures(options.run_dir, options.jobs);
+  for (const plots::Figure& f : plan.figures)
+    std::printf("%s  %s\n", f.id.c_str(), f.title.c_str());
+  for (const plots::SkippedFigure& s : plan.skipped)
+    std::printf("  skipped (%s): %s: %s\n", s.section.c_str(), s.what.c_str(), s.reason.c_str());
+  std::printf("%zu figures planned for %s (nothing drawn)\n", plan.figures.size(),
+              options.run_dir.c_str());
+}
+
+}  // namespace
 
 void register_plot_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
@@ -23,6 +43,7 @@ void register_plot_command(CLI::App& app, int& exit_code) {
     plots::PlotOptions options;
     bool force_progress = false;
     bool quiet = false;
+    bool list = false;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
   cmd->add_option("dir", opts->options.run_dir, "run directory")->required();
@@ -30,8 +51,16 @@ void register_plot_command(CLI::App& app, int& exit_code) {
                 "progress on stderr even when it is not a terminal (a line per figure); on a "
                 "terminal it is shown by default, as one line rewritten");
   cmd->add_flag("--quiet,-q", opts->quiet, "no progress on stderr");
+  cmd->add_flag("--list", opts->list,
+                "print the figures the run would get (id and title, then the count) and the "
+                "skipped ones, drawing nothing and leaving DIR/figures/ as it is");
   cmd->callback([opts, &exit_code] {
     opts->options.progress = !opts->quiet && (opts->force_progress || ::isatty(2));
+    if (opts->list) {
+      list_figures(opts->options);
+      exit_code = kExitOk;
+      return;
+    }
     if (plot_study_if_present(opts->options.run_dir, exit_code)) return;
     const plots::PlotResult r = plots::plot_run(opts->options);
     std::printf("%zu figures (PNG + PDF + CSV) in %s, %.1f s, display %s%s\n", r.figures.size(),

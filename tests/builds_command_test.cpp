@@ -1,0 +1,77 @@
+// `renderaudit builds list` and `builds remove` on a temporary cache of two fake builds (a
+// build.json and a library-sized file each; nothing draws): the size column, the total, a removal
+// that leaves the other build, and an unknown name answered with the names the cache holds.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "runner/build_cache.h"
+#include "tests/cli_harness.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ra::testing_cli::fresh_dir;
+using ra::testing_cli::Outcome;
+using ra::testing_cli::run_renderaudit;
+
+void fake_build(const std::string& cache, const std::string& name, std::size_t bytes) {
+  fs::create_directories(cache + "/" + name + "/lib");
+  std::ofstream(cache + "/" + name + "/lib/libOSMesa.so.8") << std::string(bytes, 'x');
+  std::ofstream(cache + "/" + name + "/build.json")
+      << R"({"name": ")" << name
+      << R"(", "origin": "Debian", "suite": "bookworm", "debian_version": "1", "files": []})";
+}
+
+TEST(BuildsCommand, ListGivesSizesAndATotalAndRemoveLeavesTheOther) {
+  const std::string cache = fresh_dir("builds_command_two") + "/cache";
+  fake_build(cache, "mesa-big", 2'000'000);
+  fake_build(cache, "mesa-small", 300'000);
+  const std::string big = ra::runner::size_text(ra::runner::disk_usage(cache + "/mesa-big"));
+  const std::string small = ra::runner::size_text(ra::runner::disk_usage(cache + "/mesa-small"));
+
+  const Outcome list = run_renderaudit("builds list --cache " + cache);
+  ASSERT_EQ(list.exit_code, 0) << list.output;
+  const auto column = [](std::string size) { return std::string(7 - size.size(), ' ') + size; };
+  EXPECT_NE(list.output.find("mesa-big    " + column(big) + "  (Debian 1, suite bookworm"),
+            std::string::npos)
+      << list.output;
+  EXPECT_NE(list.output.find("mesa-small  " + column(small) + "  (Debian 1"), std::string::npos)
+      << list.output;
+  const std::string total_before = ra::runner::size_text(ra::runner::cache_usage(cache).total);
+  EXPECT_NE(list.output.find("total " + total_before + " in " + cache + ": 2 builds "),
+            std::string::npos)
+      << list.output;
+
+  const Outcome removed = run_renderaudit("builds remove mesa-big --cache " + cache);
+  ASSERT_EQ(removed.exit_code, 0) << removed.output;
+  EXPECT_NE(removed.output.find("removed mesa-big (" + big + ")"), std::string::npos)
+      << removed.output;
+  EXPECT_FALSE(fs::exists(cache + "/mesa-big"));
+  EXPECT_TRUE(fs::exists(cache + "/mesa-small/lib/libOSMesa.so.8"));
+
+  const Outcome after = run_renderaudit("builds list --cache " + cache);
+  ASSERT_EQ(after.exit_code, 0) << after.output;
+  EXPECT_EQ(after.output.find("mesa-big"), std::string::npos) << after.output;
+  const std::string total_after = ra::runner::size_text(ra::runner::cache_usage(cache).total);
+  EXPECT_NE(after.output.find("total " + total_after + " in " + cache + ": 1 build " + small),
+            std::string::npos)
+      << after.output;
+}
+
+TEST(BuildsCommand, RemovingAnUnknownNameNamesTheBuildsThereAndRemovesNothing) {
+  const std::string cache = fresh_dir("builds_command_unknown") + "/cache";
+  fake_build(cache, "mesa-a", 1000);
+  fake_build(cache, "mesa-b", 1000);
+  const Outcome o = run_renderaudit("builds remove mesa-a mesa-25.0.7 --cache " + cache);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("no build 'mesa-25.0.7' in " + cache + "; it holds mesa-a, mesa-b"),
+            std::string::npos)
+      << o.output;
+  EXPECT_TRUE(fs::exists(cache + "/mesa-a/build.json"));
+  EXPECT_TRUE(fs::exists(cache + "/mesa-b/build.json"));
+}
+
+}  // namespace
