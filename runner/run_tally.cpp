@@ -72,6 +72,7 @@ void RunTally::log_line(std::size_t failed) {
   const auto now = Clock::now();
   if (now - last_log_ < std::chrono::seconds(30)) return;
   const int tenths = cost_todo_ > 0 ? int(10 * cost_done_ / cost_todo_) : 0;
+  if (tenths >= 10) return;  // all done: the run's own last line follows
   if (tenths <= logged_tenths_ && now - last_log_ < std::chrono::minutes(5)) return;
   last_log_ = now;
   logged_tenths_ = tenths;
