@@ -7,6 +7,11 @@ JOBS ?= $(shell nproc)
 BUILD_TYPE ?= Release
 EXPERIMENT ?= experiments/quick.toml
 OUT ?= outputs/quick
+# When this make began, and the time since as "41 s" or "2 min 41 s" (in a recipe: $$($(ELAPSED))):
+# each target's last line says how long it took.
+MAKE_START := $(shell date +%s)
+ELAPSED = t=$$(( $$(date +%s) - $(MAKE_START) )); \
+  if [ $$t -ge 60 ]; then echo "$$((t / 60)) min $$((t % 60)) s"; else echo "$$t s"; fi
 
 .PHONY: all deps check-build-tree build lean bundle install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly watch timing lod regulation docs-check format clean
 
@@ -26,8 +31,9 @@ $(BUILD)/CMakeCache.txt: | deps
 check-build-tree:
 	@scripts/check-build-tree.sh $(BUILD)
 
+# Silent when there is nothing to build; what is compiled, and its errors, shown (scripts/build.sh).
 build: check-build-tree deps $(BUILD)/CMakeCache.txt
-	cmake --build $(BUILD) -j $(JOBS)
+	@scripts/build.sh $(BUILD) $(JOBS)
 
 # The lean runner for GPU and cluster nodes (docs/operations.md): renderaudit-lean and the worker in
 # build-lean/, configured without VTK, OpenImageIO, cairo or poppler (RA_FIGURES=OFF), so it builds
@@ -38,7 +44,7 @@ lean:
 	@scripts/check-build-tree.sh $(LEAN_BUILD)
 	@test -f $(LEAN_BUILD)/CMakeCache.txt || \
 	  cmake -S . -B $(LEAN_BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DRA_FIGURES=OFF > /dev/null
-	cmake --build $(LEAN_BUILD) -j $(JOBS) --target renderaudit-lean renderaudit-worker
+	@scripts/build.sh $(LEAN_BUILD) $(JOBS) --target renderaudit-lean renderaudit-worker
 
 bundle: lean
 	@scripts/make-bundle.sh $(LEAN_BUILD)/renderaudit-lean $(LEAN_BUILD)/renderaudit-worker dist
@@ -75,9 +81,11 @@ analyze: run
 plot: analyze
 	@$(BUILD)/renderaudit plot $(OUT)
 
+# `report` ends with what the run found (its violations of GL's rules, from the data); the last
+# line says where the report is and how long it all took.
 report: plot
 	@$(BUILD)/renderaudit report $(OUT)
-	@echo "Report of $(EXPERIMENT): $(OUT)/report/report.pdf (and report.html)"
+	@echo "make report: done in $$($(ELAPSED)): $(OUT)/report/report.pdf (and report.html)"
 	@command -v renderaudit > /dev/null || echo "The program is $(BUILD)/renderaudit;" \
 	  "\`make install\` puts it on PATH as renderaudit (the name the docs use)"
 
@@ -104,7 +112,7 @@ paper: build
 
 # The whole test suite (CTest). CI runs exactly this.
 test: build
-	cmake --build $(BUILD) -j $(JOBS) --target test_programs
+	@scripts/build.sh $(BUILD) $(JOBS) --target test_programs
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # `run --slurm` on a one-machine Slurm (scripts/slurm-local.sh; needs root, installs slurm-wlm and
@@ -118,11 +126,11 @@ slurm-test: build
 # Needs the Debian registry for the fetch; says so and stops where it cannot be reached.
 # MESA_SOURCE=DIR [MESA_REF=REF] adds a Mesa built from source (docs/driver-builds.md).
 driver-upgrade: build
-	scripts/driver-upgrade.sh $(BUILD)
+	@scripts/driver-upgrade.sh $(BUILD)
 
 # Benchmarks: side-by-side medians, printed as tables and written as JSON under outputs/bench/.
 bench: build
-	cmake --build $(BUILD) -j $(JOBS) --target benchmarks
+	@scripts/build.sh $(BUILD) $(JOBS) --target benchmarks
 	$(BUILD)/readback_bench --primitives 300 --rounds 3 --json outputs/bench/readback.json
 	$(BUILD)/analysis_bench --records 2400000 --platforms 2
 	$(BUILD)/run_overhead_bench --rounds 3 --jobs 2 --json outputs/bench/run_overhead.json
@@ -130,13 +138,13 @@ bench: build
 # Investigations: programs whose output a finding of docs/method.md quotes ("Where we differ from the
 # paper and why": the paper's method under candidate readings, on the reference rasterizer).
 investigations: build
-	cmake --build $(BUILD) -j $(JOBS) --target paper_readings
+	@scripts/build.sh $(BUILD) $(JOBS) --target paper_readings
 	$(BUILD)/paper_readings
 
 # The nightly driver audit (docs/nightly-audit.md): run, audit against the baseline, history,
 # report. Exit code: 0 unchanged, 1 changed, 2 failed.
 nightly: build
-	BUILD=$(BUILD) JOBS=$(JOBS) scripts/nightly.sh
+	@BUILD=$(BUILD) JOBS=$(JOBS) scripts/nightly.sh
 
 # One night following a Mesa branch (docs/nightly-audit.md, "Following a Mesa branch"): the git
 # tree MESA_SOURCE is fetched, its branch head built (scripts/install-mesa-build-deps.sh installs

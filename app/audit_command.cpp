@@ -13,6 +13,7 @@
 #include "audit/audit_report.h"
 #include "audit/history_db.h"
 #include "util/errors.h"
+#include "util/number_text.h"
 
 namespace ra::app {
 namespace {
@@ -22,26 +23,81 @@ struct AuditCli {
   audit::AuditOptions options;
   std::string db;
   bool no_history = false;
+  bool brief = false;
 };
 
-void print_result(const audit::AuditResult& r, const std::vector<std::string>& files) {
+// Primitives compared (recorded, on a baseline night), changed and flaky per platform pair.
+struct PairCounts {
+  uint64_t compared = 0, changed = 0, flakes = 0, failed = 0;
+};
+
+PairCounts pair_counts(const audit::AuditResult& r, std::size_t p) {
+  PairCounts n;
+  for (const auto& v : r.primitives.views)
+    if (v.pair == p) n.compared += v.compared;
+  for (const auto& c : r.primitives.changed)
+    if (c.pair == p) ++(c.recheck == audit::Recheck::kFlake ? n.flakes : n.changed);
+  for (const auto& f : r.primitives.failed) n.failed += f.pair == p;
+  return n;
+}
+
+std::string audit_md_path(const audit::AuditResult& r) { return r.out_dir + "/audit.md"; }
+
+// A baseline night compares nothing: it says what was recorded and where, and no count of
+// changes or tests (they would be of the run against itself).
+void print_baseline(const audit::AuditResult& r, const std::vector<std::string>& files,
+                    bool brief) {
+  uint64_t recorded = 0;
+  for (std::size_t p = 0; p < r.pairs.size(); ++p) recorded += pair_counts(r, p).compared;
+  if (brief) {
+    std::printf("audit: baseline established: %s is the baseline (%s primitives); later runs are "
+                "audited against it; %s\n",
+                r.current.dir.c_str(), util::grouped(recorded).c_str(), audit_md_path(r).c_str());
+    return;
+  }
+  std::printf("audit: %s (exit %d): %s is the baseline that later runs are audited against\n",
+              audit::verdict_text(r.verdict).c_str(), audit::verdict_exit_code(r.verdict),
+              r.current.dir.c_str());
+  for (std::size_t p = 0; p < r.pairs.size(); ++p)
+    std::printf("  %s: %s primitives recorded, drawn by %s | %s\n", r.pairs[p].current.c_str(),
+                util::grouped(pair_counts(r, p).compared).c_str(),
+                r.current_drivers[p].renderer.c_str(), r.current_drivers[p].version.c_str());
+  for (const auto& f : files) std::printf("  wrote %s\n", f.c_str());
+}
+
+// --brief: the verdict and its counts in one line, and where audit.md is.
+void print_brief(const audit::AuditResult& r) {
+  PairCounts all;
+  for (std::size_t p = 0; p < r.pairs.size(); ++p) {
+    const PairCounts n = pair_counts(r, p);
+    all.compared += n.compared, all.changed += n.changed, all.flakes += n.flakes;
+    all.failed += n.failed;
+  }
+  std::printf("audit: %s: %s of %s primitives changed, %s flake(s), %s crash/timeout record(s), "
+              "%zu of %zu distribution tests significant; %s\n",
+              audit::verdict_text(r.verdict).c_str(), util::grouped(all.changed).c_str(),
+              util::grouped(all.compared).c_str(), util::grouped(all.flakes).c_str(),
+              util::grouped(all.failed).c_str(), r.distributions.significant,
+              r.distributions.family_size, audit_md_path(r).c_str());
+  for (const auto& m : r.renderer_mismatches) std::printf("  FAILED %s\n", m.c_str());
+}
+
+void print_result(const audit::AuditResult& r, const std::vector<std::string>& files,
+                  bool brief) {
+  if (r.verdict == audit::Verdict::kBaseline) return print_baseline(r, files, brief);
+  if (brief) return print_brief(r);
   std::printf("audit: %s (exit %d)", audit::verdict_text(r.verdict).c_str(),
               audit::verdict_exit_code(r.verdict));
   for (std::size_t i = 0; i < r.reasons.size(); ++i)
     std::printf("%s%s", i ? "; " : ": ", r.reasons[i].c_str());
   std::printf("\n");
   for (std::size_t p = 0; p < r.pairs.size(); ++p) {
-    uint64_t compared = 0, changed = 0, flakes = 0, failed = 0;
-    for (const auto& v : r.primitives.views)
-      if (v.pair == p) compared += v.compared;
-    for (const auto& c : r.primitives.changed)
-      if (c.pair == p) ++(c.recheck == audit::Recheck::kFlake ? flakes : changed);
-    for (const auto& f : r.primitives.failed) failed += f.pair == p;
+    const PairCounts n = pair_counts(r, p);
     std::printf(
         "  %s: %llu of %llu primitives changed, %llu flake(s), %llu crash/timeout record(s)\n",
-        r.pairs[p].label().c_str(), static_cast<unsigned long long>(changed),
-        static_cast<unsigned long long>(compared), static_cast<unsigned long long>(flakes),
-        static_cast<unsigned long long>(failed));
+        r.pairs[p].label().c_str(), static_cast<unsigned long long>(n.changed),
+        static_cast<unsigned long long>(n.compared), static_cast<unsigned long long>(n.flakes),
+        static_cast<unsigned long long>(n.failed));
     std::printf("    baseline %s: %s | %s\n    current  %s: %s | %s\n", r.pairs[p].baseline.c_str(),
                 r.baseline_drivers[p].renderer.c_str(), r.baseline_drivers[p].version.c_str(),
                 r.pairs[p].current.c_str(), r.current_drivers[p].renderer.c_str(),
@@ -65,7 +121,8 @@ void register_audit_command(CLI::App& app, int& exit_code) {
       "(--between), primitive by primitive and in distribution, and give a verdict:\n"
       "exit 0 unchanged, 1 changed, 2 failed (crash/timeout records, missing or failed shards,\n"
       "a driver not matching --expect-renderer) or bad input; a run audited against itself\n"
-      "establishes a baseline (exit 0, nothing compared). Changed primitives are rendered\n"
+      "establishes a baseline (exit 0, nothing compared; recorded in the history as\n"
+      "'baseline'). Changed primitives are rendered\n"
       "once more first: a difference that disappears is reported as a flake, not a change.\n"
       "Writes audit.json, audit.md, junit.xml and changed_primitives.csv into --out and appends\n"
       "a summary to the history database (with --between only when --db names one).");
@@ -90,6 +147,9 @@ void register_audit_command(CLI::App& app, int& exit_code) {
                   "outputs/history.sqlite for outputs/RUN; with --between none unless --db names "
                   "one)");
   cmd->add_flag("--no-history", opts->cli.no_history, "do not append to the history database");
+  cmd->add_flag("--brief", opts->cli.brief,
+                "print the verdict and its counts in one line and where audit.md is (the files "
+                "hold the rest; `make nightly` runs with it)");
   cmd->add_option("--expect-renderer", opts->cli.options.expect_renderer,
                   "regular expression (ECMAScript, searched) every current GL_RENDERER must "
                   "match; otherwise the verdict is failed");
@@ -118,7 +178,7 @@ void register_audit_command(CLI::App& app, int& exit_code) {
     } catch (const std::exception& e) {
       throw util::UserError(std::string("audit failed: ") + e.what());
     }
-    print_result(r, files);
+    print_result(r, files, opts->cli.brief);
     exit_code = audit::verdict_exit_code(r.verdict);
     // Two platforms of one run are an ad-hoc comparison, not a night of a series: their history
     // is kept only where asked.
@@ -127,16 +187,16 @@ void register_audit_command(CLI::App& app, int& exit_code) {
       return;
     }
     if (opts->cli.no_history) return;
-    if (r.verdict == audit::Verdict::kBaseline) {  // the history holds verdicts; this is none
-      std::printf("  history: nothing appended (a baseline established: nothing was compared)\n");
-      return;
-    }
     const std::string db = opts->cli.db.empty()
                                ? audit::default_history_path(opts->cli.options.current_dir)
                                : opts->cli.db;
     try {
       audit::append_history(db, r.summary);
-      std::printf("  history: appended to %s\n", db.c_str());
+      // A baseline night is a night of the series: its row says so, and its metrics are the first
+      // point of every trend.
+      std::printf(r.verdict == audit::Verdict::kBaseline ? "  history: the baseline recorded in %s\n"
+                                                         : "  history: appended to %s\n",
+                  db.c_str());
     } catch (const std::exception& e) {
       std::fprintf(stderr,
                    "renderaudit: the audit files are written, but the history could not be "

@@ -55,6 +55,7 @@ std::string run_name(const std::string& run) {
 // What an audit compared: a run with its baseline ("two runs", what `make nightly` appends), or two
 // platforms of one run (`audit --between`: the same directory on both sides), "P1 vs P2".
 std::string compares_text(const audit::AuditSummary& s) {
+  if (s.verdict == audit::Verdict::kBaseline) return "nothing (baseline recorded)";
   if (s.baseline_run != s.current_run) return "two runs";
   auto platforms = [](const std::vector<audit::DriverIdentity>& drivers) {
     std::string p;
@@ -158,16 +159,20 @@ void run_history(const HistoryOptions& o, int& exit_code) {
   const std::vector<bool> right = {true, false, false, true, true, true, true, false, false, false};
   for (const audit::HistoryEntry& e : h) {
     const audit::AuditSummary& s = e.summary;
+    // a baseline night compared nothing: no counts of changes or tests
+    const bool compared = s.verdict != audit::Verdict::kBaseline;
+    auto count = [&](int64_t n) { return compared ? std::to_string(n) : std::string("-"); };
     rows.push_back({"#" + std::to_string(e.id), s.date_utc, audit::verdict_name(s.verdict),
-                    std::to_string(s.changed_primitives), std::to_string(s.flaky_primitives),
-                    std::to_string(s.failed_primitives), std::to_string(s.significant_tests),
+                    count(s.changed_primitives), count(s.flaky_primitives),
+                    std::to_string(s.failed_primitives), count(s.significant_tests),
                     compares_text(s), run_name(s.current_run), run_name(s.baseline_run)});
   }
   std::printf("%s", text_table(rows, right).c_str());
   std::printf(
       "\n(changed: primitives whose pixels changed and stayed changed on re-render; flaky: "
       "changed only once; failed: crash or timeout records; tests: distribution tests "
-      "rejected; compares: a run against its baseline, or two platforms of one run)\n\ndrivers "
+      "rejected; compares: a run against its baseline, or two platforms of one run; a baseline "
+      "night compares nothing)\n\ndrivers "
       "(current run; baseline when it differs):\n");
   for (const audit::HistoryEntry& e : h) {
     const audit::AuditSummary& s = e.summary;

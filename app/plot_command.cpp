@@ -63,12 +63,14 @@ void register_plot_command(CLI::App& app, int& exit_code) {
     }
     if (plot_study_if_present(opts->options.run_dir, exit_code)) return;
     const plots::PlotResult r = plots::plot_run(opts->options);
-    std::printf("%zu figures (PNG + PDF + CSV) in %s, %.1f s, display %s%s\n", r.figures.size(),
-                r.figures_dir.c_str(), r.seconds, r.display.c_str(),
-                r.private_xvfb ? " (private Xvfb, stopped)" : "");
-    for (const auto& s : r.skipped)
-      std::printf("  skipped (%s): %s: %s\n", s.section.c_str(), s.what.c_str(), s.reason.c_str());
-    std::printf("index: %s\n", r.index_path.c_str());
+    // the figures skipped for lack of data, and why, are in index.json ("skipped")
+    std::printf("plot: %zu figures (PNG + PDF + CSV) in %s, %.1f s, display %s%s; index: %s%s\n",
+                r.figures.size(), r.figures_dir.c_str(), r.seconds, r.display.c_str(),
+                r.private_xvfb ? " (private Xvfb, stopped)" : "", r.index_path.c_str(),
+                r.skipped.empty()
+                    ? ""
+                    : (" (" + std::to_string(r.skipped.size()) + " skipped for lack of data: "
+                       "its \"skipped\" says why)").c_str());
     exit_code = kExitOk;
   });
 }

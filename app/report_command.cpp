@@ -5,6 +5,8 @@
 
 #include "analysis/run_analysis.h"
 #include "analysis/run_completeness.h"
+#include "analysis/run_finding.h"
+#include "analysis/run_tally.h"
 #include "app/commands.h"
 #include "plots/plot_run.h"
 #include "report/markdown_document.h"
@@ -79,10 +81,23 @@ void register_report_command(CLI::App& app, int& exit_code) {
       else if (!opts->no_run)
         prepare_run_report(opts->options.run_dir, opts->options.allow_incomplete);
       const report::ReportResult r = report::write_report(opts->options);
-      std::printf("report: %d pages (%d text, %d figures), %zu tables, %.1f s\n", r.pages,
-                  r.text_pages, r.figure_pages, r.table_titles.size(), r.seconds);
-      if (!r.completeness.empty()) std::printf("run %s\n", r.completeness.c_str());
-      std::printf("%s\n%s\n", r.pdf.c_str(), r.html.c_str());
+      std::printf("report: %s (and report.html): %d pages (%d text, %d figures), %zu tables, "
+                  "%.1f s\n",
+                  r.pdf.c_str(), r.pages, r.text_pages, r.figure_pages, r.table_titles.size(),
+                  r.seconds);
+      if (!r.completeness.empty() && r.completeness.rfind("complete", 0) != 0)
+        std::printf("run %s\n", r.completeness.c_str());
+      // What the run found, from the data: the one line a terminal needs (a study's report has
+      // its own findings in its text). The report is written by now: a tally it cannot read
+      // (an analysis by an older renderaudit) costs the line, not the report.
+      if (!rundir::read_study_info(opts->options.run_dir)) try {
+          std::printf("%s\n",
+                      analysis::run_finding_line(analysis::read_tally(opts->options.run_dir),
+                                                 opts->options.run_dir)
+                          .c_str());
+        } catch (const util::UserError& e) {
+          std::printf("finding: not said here (%s)\n", e.what());
+        }
       exit_code = kExitOk;
     } catch (const analysis::IncompleteRunError& e) {
       std::fprintf(stderr, "renderaudit report: %s\n", e.what());

@@ -8,6 +8,7 @@
 #include "runner/run_coordinator.h"
 #include "runner/slurm_submission.h"
 #include "util/errors.h"
+#include "util/number_text.h"
 #include "util/program_name.h"
 #include "util/shell_quote.h"
 
@@ -90,7 +91,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
                 "shards one after another, paying for its start and GL context once)");
   cmd->add_flag("--quiet,-q", opts->quiet, "no progress line");
   cmd->add_flag("--brief", opts->brief,
-                "print where the run summary went, not its table (`make` runs with it)");
+                "the run in one line (primitives, shards, time) and where its summary went, not its "
+                "table (`make` runs with it)");
   auto* on_slurm = cmd->add_flag(
       "--slurm", opts->slurm,
       "submit the run to Slurm instead: a job array of --slices tasks (each `run --slice K/N` "
@@ -140,9 +142,10 @@ void register_run_command(CLI::App& app, int& exit_code) {
                    list.c_str());
     }
     const runner::RunResult r = runner::run_experiment(opts->opt);
-    std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
-                r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
-                r.shards_total - r.shards_complete);
+    if (!opts->brief)
+      std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
+                  r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
+                  r.shards_total - r.shards_complete);
     for (const auto& f : r.failures)
       std::printf("  worker failed: %s: %s\n", f.shard.c_str(), f.reason.c_str());
     for (const auto& f : r.failed_primitives)
@@ -160,8 +163,21 @@ void register_run_command(CLI::App& app, int& exit_code) {
       return;
     }
     const std::string summary = analysis::write_run_summary(r.run_dir);
-    if (!opts->brief) std::printf("%s", summary.c_str());
-    std::printf("summary: %s/summary.md\n", r.run_dir.c_str());
+    if (!opts->brief) {
+      std::printf("%s", summary.c_str());
+      std::printf("summary: %s/summary.md\n", r.run_dir.c_str());
+    } else {  // the run in one line: its size, what this invocation did, its time, the file
+      const std::size_t incomplete = r.shards_total - r.shards_complete;
+      std::printf("run: %s: %s primitives in %zu shards (%zu run now%s%s), %s; summary: "
+                  "%s/summary.md\n",
+                  r.run_dir.c_str(), util::grouped(r.primitives_total).c_str(), r.shards_total,
+                  r.shards_run,
+                  r.shards_done_before
+                      ? (", " + std::to_string(r.shards_done_before) + " earlier").c_str()
+                      : "",
+                  incomplete ? (", " + std::to_string(incomplete) + " INCOMPLETE").c_str() : "",
+                  util::elapsed_text(r.seconds).c_str(), r.run_dir.c_str());
+    }
     if (r.failed_primitives_held.size() > r.failed_primitives.size())
       std::printf(
           "  %zu primitives recorded as crash or timeout by earlier invocations or "

@@ -270,9 +270,45 @@ void failures(std::ostream& md, const AuditResult& r) {
        << b.view << ", indices " << b.begin << " to " << b.end - 1 << ": " << b.error << "\n";
 }
 
+// A run audited against itself (the first night of a series) compares nothing: its page says
+// what was recorded as the baseline, and no line of it reads as a comparison (no "compared",
+// "unchanged", tests or class counts, which would all be of the run against itself).
+std::string baseline_markdown(const AuditResult& r) {
+  std::ostringstream md;
+  md << "# renderaudit audit: " << upper(verdict_text(r.verdict)) << "\n\n";
+  md << "**Verdict: baseline established** (exit code " << verdict_exit_code(r.verdict)
+     << "): run `" << r.current.dir << "` is recorded as the baseline that later runs of this "
+     << "experiment are audited "
+     << "against; with nothing compared tonight, there are no changes, tests or "
+     << "class counts below.\n\n";
+  md << "Experiment `" << r.current.name << "` (hash " << r.current.hash << ", seed "
+     << r.current.seed << "); recorded " << r.date_utc << ".\n\n";
+  md << "## Drivers recorded\n\n"
+     << stats::markdown_header({"platform", "GL_RENDERER", "GL_VERSION"},
+                               std::vector<stats::Align>(3, stats::Align::kLeft));
+  for (std::size_t p = 0; p < r.pairs.size(); ++p)
+    md << "| " << cell(r.pairs[p].current) << " | " << cell(r.current_drivers[p].renderer)
+       << " | " << cell(r.current_drivers[p].version) << " |\n";
+  using stats::Align;
+  md << "\n## Primitives recorded (per platform, kind, view group)\n\n"
+     << stats::markdown_header({"platform", "kind", "group", "views", "primitives", "outcome"},
+                               {Align::kLeft, Align::kLeft, Align::kCenter, Align::kLeft,
+                                Align::kRight, Align::kLeft});
+  for (const GroupOutcome& g : group_outcomes(r))
+    md << "| " << cell(r.pairs[g.pair].current) << " | " << geometry::kind_name(g.kind) << " | "
+       << g.label << " | " << views_text(g.views) << " | " << g.compared
+       << " | baseline recorded |\n";
+  md << "\n";
+  failures(md, r);
+  md << "\nFiles: `audit.json` (everything), `junit.xml` (every case skipped: nothing was "
+        "judged).\n";
+  return md.str();
+}
+
 }  // namespace
 
 std::string audit_markdown(const AuditResult& r) {
+  if (r.verdict == Verdict::kBaseline) return baseline_markdown(r);
   std::ostringstream md;
   md << "# renderaudit audit: " << upper(verdict_text(r.verdict)) << "\n\n";
   md << "**Verdict: " << verdict_text(r.verdict) << "** (exit code " << verdict_exit_code(r.verdict)

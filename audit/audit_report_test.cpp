@@ -113,6 +113,37 @@ TEST(AuditReport, JunitHasOneCasePerGroup) {
   EXPECT_NE(xml.find("classname=\"renderaudit.audit.osmesa-llvmpipe.line\""), std::string::npos);
 }
 
+std::size_t occurrences(const std::string& text, const std::string& word) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++n;
+  return n;
+}
+
+// A run audited against itself (the first night of a series) compares nothing, so no line of its
+// audit.md reads as a comparison, and every JUnit case is skipped: none was judged.
+TEST(AuditReport, ABaselineNightReadsAsNoComparison) {
+  AuditResult r = result_with({});
+  r.verdict = Verdict::kBaseline;  // decide_verdict says so for one directory on both sides
+  r.reasons = {"the baseline and the current run are one directory"};
+  r.distributions.family_size = 152;
+  const std::string md = audit_markdown(r);
+  EXPECT_EQ(md.rfind("# renderaudit audit: BASELINE ESTABLISHED: NOTHING COMPARED\n", 0), 0u) << md;
+  EXPECT_EQ(occurrences(md, "compared"), occurrences(md, "nothing compared")) << md;
+  for (const char* comparison : {"unchanged", "No test is significant", "same on both sides",
+                                 "New conformance violations", "Changed primitives", "Flakes"})
+    EXPECT_EQ(md.find(comparison), std::string::npos) << comparison << "\n" << md;
+  EXPECT_NE(md.find("| osmesa-llvmpipe | line | A | 1, 2 | 200 | baseline recorded |"),
+            std::string::npos)
+      << md;
+
+  const std::string xml = audit_junit(r);
+  EXPECT_EQ(occurrences(xml, "<testcase "), 4u) << xml;  // drivers, shards, group A, conformance
+  EXPECT_EQ(occurrences(xml, "<skipped message=\"baseline established: nothing compared\"/>"), 4u)
+      << xml;
+  EXPECT_EQ(xml.find("name=\"compared\""), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<property name=\"primitives\" value=\"200\"/>"), std::string::npos) << xml;
+}
+
 // A primitive that now breaks a GL rule (and did not in the baseline) comes first in audit.md and
 // fails the group's conformance testcase; one that already broke it in the baseline does not.
 TEST(AuditReport, NewViolationsComeFirstAndFailTheirConformanceCase) {

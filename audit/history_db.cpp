@@ -30,7 +30,7 @@ CREATE TABLE audits (
   seed TEXT NOT NULL,
   baseline_run TEXT NOT NULL,
   current_run TEXT NOT NULL,
-  verdict TEXT NOT NULL CHECK (verdict IN ('unchanged', 'changed', 'failed')),
+  verdict TEXT NOT NULL CHECK (verdict IN ('unchanged', 'changed', 'failed', 'baseline')),
   changed_primitives INTEGER NOT NULL,
   flaky_primitives INTEGER NOT NULL,
   failed_primitives INTEGER NOT NULL,
@@ -81,6 +81,14 @@ CREATE TABLE nights (
   note TEXT NOT NULL
 );
 )sql";
+
+// Schema version 3 lets an audit row be a baseline night (verdict 'baseline'). A file of an
+// earlier version has the narrower check; widening a CHECK constraint changes no stored row, so
+// SQLite's documented way for such a change applies: the table's CREATE text rewritten in
+// sqlite_schema and the schema version bumped, in the caller's write transaction
+// (https://www.sqlite.org/lang_altertable.html#otheralter).
+constexpr const char* kVerdictCheckBefore3 = "CHECK (verdict IN ('unchanged', 'changed', 'failed'))";
+constexpr const char* kVerdictCheck = "CHECK (verdict IN ('unchanged', 'changed', 'failed', 'baseline'))";
 
 // One connection; every failure becomes a UserError naming the file.
 class Connection {
@@ -197,7 +205,7 @@ int64_t count_tables(Connection& c) {
 }
 
 // What the schema check found.
-enum class SchemaState { kEmpty, kVersion1, kCurrent };
+enum class SchemaState { kEmpty, kVersion1, kVersion2, kCurrent };
 
 // Checks the file's schema version; inside a transaction, so that the answer holds for it.
 SchemaState check_schema(Connection& c) {
@@ -217,6 +225,7 @@ SchemaState check_schema(Connection& c) {
                           " is newer than this renderaudit reads (" +
                           std::to_string(kHistorySchemaVersion) + "): use a newer renderaudit");
   if (version == 1) return SchemaState::kVersion1;  // no nights table yet
+  if (version == 2) return SchemaState::kVersion2;  // no baseline verdict yet
   if (version < kHistorySchemaVersion)
     throw util::UserError(c.path() + ": unknown history schema version " + std::to_string(version));
   return SchemaState::kCurrent;
@@ -233,17 +242,27 @@ Connection open_existing(const std::string& path) {
 }
 
 // In a write transaction: the schema created in an empty file, the nights table added to a
-// version 1 file.
+// version 1 file, the baseline verdict allowed in a version 1 or 2 file.
 void create_or_migrate(Connection& c) {
   const SchemaState state = check_schema(c);
   if (state == SchemaState::kEmpty) {
     c.exec(kSchemaSql, "cannot create the history schema");
     c.exec("PRAGMA application_id = " + std::to_string(kApplicationId));
   }
-  if (state != SchemaState::kCurrent) {
+  if (state == SchemaState::kEmpty || state == SchemaState::kVersion1)
     c.exec(kNightsSql, "cannot create the history schema");
-    c.exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
+  if (state == SchemaState::kVersion1 || state == SchemaState::kVersion2) {
+    const int64_t schema_version = c.pragma_int("schema_version");
+    c.exec("PRAGMA writable_schema = ON", "cannot migrate the history schema");
+    c.exec(std::string("UPDATE sqlite_master SET sql = replace(sql, \"") + kVerdictCheckBefore3 +
+               "\", \"" + kVerdictCheck + "\") WHERE type = 'table' AND name = 'audits'",
+           "cannot migrate the history schema");
+    c.exec("PRAGMA schema_version = " + std::to_string(schema_version + 1),
+           "cannot migrate the history schema");
+    c.exec("PRAGMA writable_schema = OFF", "cannot migrate the history schema");
   }
+  if (state != SchemaState::kCurrent)
+    c.exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
 }
 
 Connection open_for_append(const std::string& db_path, int busy_timeout_ms) {
@@ -277,7 +296,8 @@ std::vector<NightEntry> read_nights(const std::string& db_path, std::size_t last
   Connection c = open_existing(db_path);
   c.exec("BEGIN", "cannot read the history");
   std::vector<NightEntry> out;
-  if (check_schema(c) != SchemaState::kCurrent) return out;
+  const SchemaState state = check_schema(c);
+  if (state == SchemaState::kEmpty || state == SchemaState::kVersion1) return out;
   Statement s(c,
               "SELECT id, date_utc, source, commit_hash, previous_commit, verdict, culprits, "
               "run_dir, note FROM (SELECT * FROM nights ORDER BY id DESC LIMIT ?) ORDER BY id");

@@ -5,7 +5,8 @@
 // Schema (version kHistorySchemaVersion, stored in PRAGMA user_version; docs/operations.md):
 //   audits   one row per audit: id (1, 2, ... in append order), date_utc, experiment,
 //            experiment_hash, seed (decimal text: SQLite integers are signed), baseline_run,
-//            current_run, verdict ('unchanged' | 'changed' | 'failed'), changed_primitives,
+//            current_run, verdict ('unchanged' | 'changed' | 'failed' | 'baseline': a run audited
+//            against itself, the first night of a series), changed_primitives,
 //            flaky_primitives, failed_primitives, significant_tests
 //   drivers  (audit_id, role 'baseline' | 'current', platform) -> renderer, version
 //   metrics  (audit_id, platform, kind, view_group, metric) -> n, median, iqr
@@ -16,6 +17,8 @@
 //            'changed' | 'build failed' | 'run failed' | 'moved backwards'), culprits (one
 //            "HASH SUBJECT (N primitives)" per line), run_dir, note. A version 1 database gains
 //            the table at its next append.
+//   (version 3: audits.verdict may be 'baseline'; a version 1 or 2 database takes it from its
+//   next append on.)
 // Child rows reference audits(id); an audit is written in one transaction, so a reader sees all of
 // it or none of it.
 //
@@ -42,7 +45,7 @@
 
 namespace ra::audit {
 
-constexpr int kHistorySchemaVersion = 2;
+constexpr int kHistorySchemaVersion = 3;
 constexpr int kHistoryBusyTimeoutMs = 30000;  // how long an appender or reader waits for the lock
 
 // The history an audit appends to when none is named: history.sqlite beside the current run

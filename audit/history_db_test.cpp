@@ -170,6 +170,35 @@ TEST(HistoryDb, AVersion1DatabaseGainsTheNightsAndKeepsItsAudits) {
   EXPECT_EQ(history_integrity(db), "ok");
 }
 
+TEST(HistoryDb, AVersion2DatabaseTakesABaselineNight) {
+  // Why: a nightly series records its first night (verdict 'baseline'), and a history written
+  // before that verdict existed (its CHECK lists three verdicts) must take it from its next
+  // append, keeping what it holds.
+  const std::string db = fresh_dir("history_baseline") + "/history.sqlite";
+  append_history(db, make_summary(1));
+  set_pragma(db,
+             "PRAGMA writable_schema = ON; UPDATE sqlite_master SET sql = replace(sql, "
+             "\"'failed', 'baseline')\", \"'failed')\") WHERE name = 'audits'; "
+             "PRAGMA writable_schema = OFF; PRAGMA user_version = 2");  // as version 2 wrote it
+  AuditSummary baseline = make_summary(2);
+  baseline.verdict = Verdict::kBaseline;
+  baseline.baseline_run = baseline.current_run;
+  EXPECT_EQ(append_history(db, baseline, AppendOptions{}), 2);
+  EXPECT_EQ(pragma_value(db, "user_version"), kHistorySchemaVersion);
+  const std::vector<HistoryEntry> all = read_history(db);
+  ASSERT_EQ(all.size(), 2u);
+  expect_same(make_summary(1), all[0].summary);
+  EXPECT_EQ(all[1].summary.verdict, Verdict::kBaseline);
+  EXPECT_EQ(history_integrity(db), "ok");
+  // the check still refuses a verdict that is none of the four
+  sqlite3* h = nullptr;
+  ASSERT_EQ(sqlite3_open(db.c_str(), &h), SQLITE_OK);
+  EXPECT_NE(sqlite3_exec(h, "UPDATE audits SET verdict = 'maybe' WHERE id = 1", nullptr, nullptr,
+                         nullptr),
+            SQLITE_OK);
+  sqlite3_close(h);
+}
+
 TEST(HistoryDb, ADuplicatedMetricRowRejectsTheWholeAudit) {
   const std::string db = fresh_dir("history_dup") + "/h.sqlite";
   append_history(db, make_summary(1));

@@ -288,6 +288,7 @@ RunResult run_experiment(const RunOptions& options) {
   result.shards_done_before = queue.done_before;
   result.damaged = queue.damaged;
   result.shards_total = shards.size();
+  for (const rundir::Shard& s : shards) result.primitives_total += s.size();
 
   // The manifest says "running" before any worker starts.
   const std::string manifest_path = dir + "/manifest.json";
@@ -298,6 +299,7 @@ RunResult run_experiment(const RunOptions& options) {
   // The workers, and what follows from each item's end.
   RunSignals signals;
   const bool show = options.progress && ::isatty(2);
+  const bool log_progress = options.progress && !show;  // a log or CI: whole lines, now and then
   RunTally tally(exp, todo);
   ShardRecovery recovery(dir, exp, timeout_s);
   platforms::RendererCheck renderer_check(dir, options.expect_renderer);
@@ -328,6 +330,7 @@ RunResult run_experiment(const RunOptions& options) {
     pool.enforce_time_limits();
     tally.write_file(dir, this_host, pool, result.failures, false);
     if (show) tally.show_line(result.failures.size());
+    if (log_progress) tally.log_line(result.failures.size());
     // Sleep up to 5 ms, waking at once when a server replies (the next shard is sent at once).
     pool.wait(5);
   }
@@ -342,7 +345,8 @@ RunResult run_experiment(const RunOptions& options) {
   result.worker_processes = pool.processes_started();
   result.failed_primitives = recovery.failed_primitives();
   manifest.shard_seconds = shard_seconds;
-  finish_manifest(manifest, options, dir, jobs, tally.elapsed_s(), pool.busy_seconds(), shards,
+  result.seconds = tally.elapsed_s();
+  finish_manifest(manifest, options, dir, jobs, result.seconds, pool.busy_seconds(), shards,
                   result);
   rundir::write_manifest(manifest_path, manifest);
   return result;

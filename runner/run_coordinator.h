@@ -18,7 +18,8 @@ struct RunOptions {
   std::string out_dir;          // empty: outputs/<experiment name>
   int jobs = 0;                 // 0: the number of cores
   double timeout_s = 0;         // 0: the experiment's run.shard_timeout_s
-  bool progress = true;         // a progress line on stderr (only when it is a terminal)
+  bool progress = true;         // progress on stderr: a line rewritten on a terminal, else a
+                                // whole line now and then (RunTally::log_line)
   std::vector<std::string> only_platforms;  // non-empty: run only these platforms' shards
   std::string worker_program;   // the executable that runs `worker` (default: this one)
   std::string expect_renderer;  // non-empty: ECMAScript regex every driver's GL_RENDERER must match
@@ -39,6 +40,8 @@ struct RunResult {
   size_t shards_total = 0, shards_done_before = 0, shards_run = 0;
   size_t worker_processes = 0;           // processes started (servers count once)
   size_t shards_complete = 0;            // with a records file, this or an earlier invocation
+  unsigned long long primitives_total = 0;  // of every shard of the run (of its slice)
+  double seconds = 0;                    // wall time of this invocation's shards
   std::vector<ShardFailure> failures;    // every worker that crashed, hung or failed (events)
   std::vector<ShardFailure> damaged;     // shard files found incomplete or damaged, then redone
   std::vector<FailedPrimitive> failed_primitives;  // recorded as crash / timeout by this invocation

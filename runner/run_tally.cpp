@@ -10,6 +10,7 @@
 #include "rundir/manifest.h"
 #include "runner/run_progress.h"
 #include "util/duration_text.h"
+#include "util/number_text.h"
 
 namespace ra::runner {
 
@@ -65,6 +66,24 @@ void RunTally::show_line(std::size_t failed) {
   std::fprintf(stderr, "\r[%zu/%zu shards] %llu primitives, %.0f/s, %zu failed, left %s   ",
                finished_, shards_to_run_, primitives_done_, rate, failed,
                util::duration_text(cost_done_ > 0 ? seconds_left(elapsed) : NAN).c_str());
+}
+
+void RunTally::log_line(std::size_t failed) {
+  const auto now = Clock::now();
+  if (now - last_log_ < std::chrono::seconds(30)) return;
+  const int tenths = cost_todo_ > 0 ? int(10 * cost_done_ / cost_todo_) : 0;
+  if (tenths >= 10) return;  // all done: the run's own last line follows
+  if (tenths <= logged_tenths_ && now - last_log_ < std::chrono::minutes(5)) return;
+  last_log_ = now;
+  logged_tenths_ = tenths;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  std::fprintf(stderr, "run: %d%% done (%zu of %zu shards, %s primitives%s), %s so far, %s left\n",
+               cost_todo_ > 0 ? int(100 * cost_done_ / cost_todo_) : 0, finished_, shards_to_run_,
+               util::grouped(primitives_done_).c_str(),
+               failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
+               util::elapsed_text(elapsed).c_str(),
+               cost_done_ > 0 ? ("about " + util::elapsed_text(seconds_left(elapsed))).c_str()
+                              : "time not known yet");
 }
 
 }  // namespace ra::runner

@@ -1,7 +1,7 @@
 // How far a run's invocation is: shards and primitives done, and the time left, estimated in
 // expected cost (rundir/shard_cost.h), not in primitives: the most expensive shards run first, so
-// a rate in primitives per second would overestimate it. Shown on stderr (a progress line) and in
-// DIR/progress.json for `renderaudit status` (runner/run_progress.h).
+// a rate in primitives per second would overestimate it. Shown on stderr (a progress line on a
+// terminal, occasional whole lines elsewhere) and in DIR/progress.json for `renderaudit status` (runner/run_progress.h).
 #pragma once
 
 #include <chrono>
@@ -31,6 +31,10 @@ class RunTally {
                   const std::vector<ShardFailure>& failures, bool at_end);
   // The progress line on stderr, every 250 ms.
   void show_line(std::size_t failed);
+  // Where stderr is not a terminal (a log, a pipe, CI), progress as whole lines instead: one when
+  // another tenth of the expected cost is done, at most every 30 s and at least every 5 minutes,
+  // so a short run prints none and a long one about ten.
+  void log_line(std::size_t failed);
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -38,6 +42,8 @@ class RunTally {
   const Clock::time_point start_ = Clock::now();
   Clock::time_point last_line_ = start_ - std::chrono::seconds(1);
   Clock::time_point last_file_ = start_ - std::chrono::seconds(10);
+  Clock::time_point last_log_ = start_;
+  int logged_tenths_ = 0;  // tenths of the expected cost done at the last logged line
   std::size_t shards_to_run_ = 0, finished_ = 0;
   unsigned long long primitives_done_ = 0, primitives_todo_ = 0;
   double cost_todo_ = 0, cost_done_ = 0;

@@ -56,7 +56,10 @@ else
     fi
     die "the fetch failed (above)"
   fi
-  echo "$fetched"
+  # the build's name and versions; its file list goes to a file
+  mkdir -p "$(dirname "$out")"
+  echo "$fetched" > "$out.fetch.txt"
+  say "fetched $(sed -n 1p <<<"$fetched"); its files: $out.fetch.txt"
 fi
 
 # 1b. A Mesa built from source (optional): its EGL platforms join the experiment.
@@ -74,9 +77,11 @@ if [ -n "${MESA_SOURCE:-}" ]; then
   experiment=$out.with-source.toml
 fi
 
-# 2. The run, with its progress line (shards done, time left).
+# 2. The run, with its progress (on a terminal a line rewritten; in a log a line now and then).
 step 2 "running $experiment into $out (resumable: the same command again goes on)"
-"$ra" run "$experiment" --out "$out" --brief || die "the run failed (above); run the same command again to resume"
+ran=$("$ra" run "$experiment" --out "$out" --brief) || { echo "$ran"; die "the run failed (above); run the same command again to resume"; }
+echo "$ran"
+primitives=$(sed -n 's/^run: .*: \([0-9,]*\) primitives in .*/\1/p' <<<"$ran")
 
 # 3. The audits: PLATFORM against PLATFORM@BUILD; AUDITED_<BUILD> lists those that ran.
 status=0
@@ -88,6 +93,7 @@ audit_build() {  # BUILD PLATFORM...
     dir=$out/audit-$p$suffix
     "$ra" audit "$out" --between "$p" "$p@$build" --no-history --out "$dir" > "$dir.log" 2>&1
     rc=$?
+    [ $rc = 1 ] && changed+=("$p@$build")
     if [ $rc -gt 1 ]; then
       cat "$dir.log" >&2
       say "audit of $p against $p@$build failed (exit $rc)"
@@ -100,6 +106,7 @@ audit_build() {  # BUILD PLATFORM...
 }
 audited=()
 source_audited=()
+changed=()
 step 3 "auditing each platform against its build"
 audit_build backports osmesa-llvmpipe osmesa-softpipe egl-llvmpipe egl-softpipe
 [ -n "${MESA_SOURCE:-}" ] && audit_build source egl-llvmpipe egl-softpipe
@@ -125,4 +132,12 @@ if [ ${#audited[@]} -gt 0 ]; then
     { cat "$out/upgrade-report.log" >&2; die "setting the report as PDF failed (above)"; }
   say "report: ${report%.md}.pdf (and .html; the Markdown: $report)"
 fi
+
+# The last line: what was found, how big the run was, how long it all took.
+took=$(( $(date +%s) - started ))
+n_audits=$(( ${#audited[@]} + ${#source_audited[@]} ))
+found="${#changed[@]} of $n_audits audits changed${changed[*]:+ (${changed[*]})}"
+[ $status = 0 ] || found="$found; an audit FAILED (above)"
+say "done in $((took / 60)) min $((took % 60)) s: ${primitives:-?} primitives, $found;" \
+    "report: $([ ${#audited[@]} -gt 0 ] && echo "${report%.md}.pdf" || echo "none")"
 exit $status

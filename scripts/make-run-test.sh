@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # `make run` as a user calls it with an experiment of their own (ctest make_run_lines): the line
 # it prints names that experiment's platforms (not the embedded default's), the run's Markdown
-# table stays in summary.md, and a refused run folder is answered with the OUT= that make takes.
+# table stays in summary.md and the run is said in one line, `make report` ends with the finding
+# and a line with the report's path and the time, in at most 7 lines, `make build` prints nothing
+# when there is nothing to build, and a refused run folder is answered with the OUT= that make
+# takes.
 # `make -o build`: the build is taken as it is (ctest runs beside other tests that use the binary;
 # a relink under them would fail them).
 # Usage: scripts/make-run-test.sh BUILD_DIR
@@ -34,6 +37,45 @@ grep -qF "renderaudit: $t/mine.toml draws with osmesa-softpipe" "$t/make.log" \
 ! grep -qF "osmesa-llvmpipe" "$t/make.log" || { cat "$t/make.log"; fail "names the default platform"; }
 ! grep -qF "| platform |" "$t/make.log" || fail "the summary's table was printed"
 grep -qF "summary: $t/out/summary.md" "$t/make.log" || fail "the summary's path is not said"
+grep -qE "^run: $t/out: 30 primitives in 1 shards \(1 run now\), [0-9.]+ (s|min)" "$t/make.log" \
+  || { cat "$t/make.log"; fail "no one-line summary of the run"; }
+
+# `make report` on the same run, as a user reads it in a log (not a terminal): a line per stage,
+# the finding from the data, and a last line with the report's path and the time it took.
+rc=0
+(cd "$here" && make -o build report BUILD="$build" EXPERIMENT="$t/mine.toml" OUT="$t/out" JOBS=2) \
+  > "$t/report.log" 2>&1 || rc=$?
+[ "$rc" = 0 ] || { cat "$t/report.log"; fail "make report exit $rc"; }
+grep -qE "^finding: no violation \(no GL rule broken\) in [0-9,]+ primitives; [0-9.]+% drawn exactly" \
+  "$t/report.log" || { cat "$t/report.log"; fail "no finding line"; }
+grep -qE "^make report: done in [0-9]+ (s|min [0-9]+ s): $t/out/report/report.pdf \(and report.html\)$" \
+  "$t/report.log" || { cat "$t/report.log"; fail "no last line with the path and the time"; }
+finding_line=$(grep -n "^finding: " "$t/report.log" | cut -d: -f1)
+[ "$finding_line" -ge "$(( $(wc -l < "$t/report.log") - 2 ))" ] \
+  || { cat "$t/report.log"; fail "the finding is not at the end"; }
+! grep -qE "Built target|^\| |^index: |^/" "$t/report.log" || { cat "$t/report.log"; fail "details printed"; }
+lines=$(grep -vc "make install" "$t/report.log" || true)
+[ "$lines" -le 7 ] || { cat "$t/report.log"; fail "make report printed $lines lines, more than 7"; }
+
+# scripts/build.sh (`make build`): the "Built target" lines that a build with nothing to do
+# consists of are left out, what is compiled is shown, and cmake's exit status is kept.
+mkdir -p "$t/bin"
+cat > "$t/bin/cmake" <<'FAKE'
+#!/bin/sh
+echo "[ 10%] Built target util"
+echo "Consolidate compiler generated dependencies of target rundir"
+[ -n "$FAKE_COMPILE" ] && echo "[ 20%] Building CXX object CMakeFiles/util.dir/util/x.cpp.o"
+echo "[100%] Built target renderaudit"
+exit ${FAKE_RC:-0}
+FAKE
+chmod +x "$t/bin/cmake"
+out=$(PATH="$t/bin:$PATH" "$here/scripts/build.sh" "$t" 2)
+[ -z "$out" ] || fail "a build with nothing to do printed: $out"
+rc=0
+out=$(FAKE_COMPILE=1 FAKE_RC=3 PATH="$t/bin:$PATH" "$here/scripts/build.sh" "$t" 2) || rc=$?
+[ "$rc" = 3 ] || fail "build.sh exit $rc, not cmake's 3"
+[ "$out" = "[ 20%] Building CXX object CMakeFiles/util.dir/util/x.cpp.o" ] \
+  || fail "build.sh printed '$out', not the compile line alone"
 
 mkdir -p "$t/foreign" && echo "not a run" > "$t/foreign/notes.txt"
 rc=0
@@ -42,4 +84,4 @@ make -s -o build -C "$here" run BUILD="$build" EXPERIMENT="$t/mine.toml" OUT="$t
 [ "$rc" != 0 ] || fail "a foreign run folder was accepted"
 grep -qF "with make, OUT=DIR names the run folder (now $t/foreign)" "$t/make.log" \
   || { cat "$t/make.log"; fail "no OUT= advice"; }
-echo "make-run-test: the platform line, a quiet run, the OUT= advice"
+echo "make-run-test: the platform line, a quiet run, the OUT= advice, make report's lines, a quiet build"

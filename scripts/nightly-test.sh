@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # `scripts/nightly.sh` over four nights of a small experiment (ctest nightly_nights):
 #   night 1: no baseline: "baseline established: nothing compared" (exit 0) in the audit, the
-#            report and junit.xml (every case skipped), nothing in the history; never UNCHANGED
-#            or PASS;
-#   night 2: the same experiment: unchanged (exit 0), PASS;
+#            report and junit.xml (every case skipped); nothing reads as a comparison (no
+#            "compared N", "unchanged", tests or class counts; never UNCHANGED or PASS); the
+#            history records the night as the baseline; the terminal says where the baseline is,
+#            in a few lines;
+#   night 2: the same experiment: unchanged (exit 0), PASS; the terminal gives the verdict with its
+#            counts and the files in a few lines (no table, no figure paths);
 #   night 3: the experiment edited: exit 2, the differing lines and the --promote line said, no
 #            "verdict in" a file that was not written, the report says "no verdict" and why;
 #   night 4: after --promote of night 3: unchanged against it.
@@ -47,22 +50,46 @@ night
 [ "$rc" = 0 ] || { cat "$t/night.log"; fail "night 1 exit $rc, not 0"; }
 run1=$(last_run)
 has "$run1/audit/audit.md" "# renderaudit audit: BASELINE ESTABLISHED: NOTHING COMPARED"
-lacks "$run1/audit/audit.md" "UNCHANGED"
-has "$run1/audit/junit.xml" '<skipped message="baseline established: nothing compared"/>'
+has "$run1/audit/audit.md" "| baseline recorded |"
+for word in UNCHANGED unchanged "No test is significant" "same on both sides"; do
+  lacks "$run1/audit/audit.md" "$word"
+done
+# "compared" only in "nothing compared"
+[ "$(grep -o compared "$run1/audit/audit.md" | wc -l)" = \
+  "$(grep -o "nothing compared" "$run1/audit/audit.md" | wc -l)" ] \
+  || fail "$run1/audit/audit.md reads as a comparison: $(grep -n compared "$run1/audit/audit.md")"
+cases=$(grep -c "<testcase " "$run1/audit/junit.xml" || true)
+skipped=$(grep -c '<skipped message="baseline established: nothing compared"/>' "$run1/audit/junit.xml" || true)
+[ "$cases" = "$skipped" ] || fail "junit.xml: $skipped of $cases cases skipped, not all"
 lacks "$run1/audit/junit.xml" "<failure"
 has "$run1/report/report.html" "baseline established: nothing compared"
 lacks "$run1/report/report.html" "PASS"
-has "$t/night.log" "audit: baseline established: nothing compared (exit 0)"
-has "$t/night.log" "history: nothing appended (a baseline established: nothing was compared)"
+has "$t/night.log" "audit: baseline established: $run1 is the baseline"
+has "$t/night.log" "history: the baseline recorded in $t/nightly/history.sqlite"
+has "$t/night.log" "nightly: BASELINE RECORDED (exit 0) in "
+for word in "primitives changed" "significant" "unchanged" "nothing appended"; do
+  lacks "$t/night.log" "$word"
+done
+[ "$(wc -l < "$t/night.log")" -le 8 ] || { cat "$t/night.log"; fail "night 1 printed more than 8 lines"; }
 
 night
 [ "$rc" = 0 ] || { cat "$t/night.log"; fail "night 2 exit $rc, not 0"; }
 run2=$(last_run)
 has "$run2/audit/audit.md" "# renderaudit audit: UNCHANGED"
 has "$run2/report/report.html" "PASS"
+has "$t/night.log" "audit: unchanged: 0 of "
+has "$t/night.log" "nightly: UNCHANGED (exit 0) in "
+has "$t/night.log" "history: $t/nightly/history.txt"
+for word in "| platform |" "trend figures" "wrote "; do
+  lacks "$t/night.log" "$word"
+done
+[ "$(wc -l < "$t/night.log")" -le 8 ] || { cat "$t/night.log"; fail "night 2 printed more than 8 lines"; }
 "$build/renderaudit" history --db "$t/nightly/history.sqlite" > "$t/history.txt"
-has "$t/history.txt" "history.sqlite: 1 audit,"
+has "$t/history.txt" "history.sqlite: 2 audits,"
+has "$t/history.txt" " baseline "
+has "$t/history.txt" "nothing (baseline recorded)"
 has "$t/history.txt" " unchanged "
+has "$t/nightly/history.txt" "history.sqlite: 2 audits,"
 
 experiment 70
 night

@@ -26,34 +26,39 @@ if [[ ${1:-} == --promote ]]; then
   exit 0
 fi
 
+started=$(date +%s)
 tonight="$root/runs/$(date -u +%Y-%m-%dT%H%M%SZ)"
 mkdir -p "$root/runs"
 expect=()
 [[ -n ${EXPECT_RENDERER:-} ]] && expect=(--expect-renderer "$EXPECT_RENDERER")
 
+# Each step prints a line or two; the tables stay in their files (summary.md, audit/audit.md,
+# history.txt), and the last line says what the night found, where, and how long it took.
 status=0
-"$bin" run "$experiment" --out "$tonight" --jobs "$jobs" "${expect[@]}" || status=$?
+"$bin" run "$experiment" --out "$tonight" --jobs "$jobs" --brief "${expect[@]}" || status=$?
 if (( status == 2 || status == 130 )); then
   echo "nightly: the run did not complete (exit $status); see $tonight" >&2
   exit 2
 fi
 
 # The first night audits its run against itself: the audit says "baseline established: nothing
-# compared" (exit 0) in audit.md, the report and junit.xml, and appends nothing to the history.
+# compared" (exit 0) in audit.md, the report and junit.xml (every case skipped), and the history
+# records the night with the verdict "baseline".
 if [[ ! -e $baseline ]]; then
   ln -sfn "$(realpath "$tonight")" "$baseline"
-  echo "nightly: no baseline yet; tonight's run is the baseline: $(realpath "$tonight")"
 fi
 
 verdict=0
-"$bin" audit "$(realpath "$baseline")" "$tonight" --db "$db" 2> "$tonight/audit.stderr" \
+"$bin" audit "$(realpath "$baseline")" "$tonight" --db "$db" --brief 2> "$tonight/audit.stderr" \
   || verdict=$?
 cat "$tonight/audit.stderr" >&2
+refused=0
 if [[ -f $tonight/audit/audit.json ]]; then
   rm -f "$tonight/audit.stderr"
 else
   # The audit refused its input (another experiment, a damaged run): no verdict tonight. The
   # report says why, from audit/refused.txt.
+  refused=1
   mkdir -p "$tonight/audit"
   mv "$tonight/audit.stderr" "$tonight/audit/refused.txt"
   echo "nightly: no verdict tonight: the audit refused to compare $tonight with the baseline" \
@@ -63,11 +68,29 @@ else
 fi
 "$bin" analyze "$tonight" >/dev/null
 "$bin" plot "$tonight" >/dev/null
-"$bin" report "$tonight"
-[[ -f $db ]] && { "$bin" history --db "$db" --last 14 || true; }
-if [[ -f $tonight/audit/audit.md ]]; then
-  echo "nightly: verdict in $tonight/audit/audit.md; report in $tonight/report/report.pdf"
+if ! reported=$("$bin" report "$tonight" 2>&1); then
+  echo "$reported" >&2
+  echo "nightly: the report of $tonight failed (above)" >&2
+  exit 2
+fi
+grep '^finding: ' <<<"$reported" || true
+# The recent history and its trend figures, into files: history.txt beside the database.
+history=""
+if [[ -f $db ]] && "$bin" history --db "$db" --last 14 > "$root/history.txt" 2>&1; then
+  history="; history: $root/history.txt"
+fi
+
+took=$(( $(date +%s) - started ))
+took=$( (( took >= 60 )) && echo "$((took / 60)) min $((took % 60)) s" || echo "$took s")
+report="report: $tonight/report/report.pdf"
+if (( refused )); then
+  echo "nightly: NO VERDICT (exit 2) in $took: the audit refused to compare; $report$history"
+elif (( verdict == 0 )) && [[ "$(realpath "$baseline")" == "$(realpath "$tonight")" ]]; then
+  echo "nightly: BASELINE RECORDED (exit $verdict) in $took: tonight's run is the baseline later" \
+       "nights are audited against: $(realpath "$tonight"); $report$history"
 else
-  echo "nightly: no verdict; report in $tonight/report/report.pdf"
+  names=(UNCHANGED CHANGED FAILED)
+  echo "nightly: ${names[verdict]:-FAILED} (exit $verdict) in $took: $tonight/audit/audit.md;" \
+       "$report$history"
 fi
 exit "$verdict"

@@ -1,6 +1,7 @@
 // Numbers written as text for people; see number_text.h.
 #include "util/number_text.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace ra::util {
@@ -28,6 +29,28 @@ std::string fixed(double v, int decimals) {
   std::snprintf(text.data(), text.size(), "%.*f", decimals, v);
   text.pop_back();
   return text;
+}
+
+std::string grouped(unsigned long long n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+std::string elapsed_text(double seconds) {
+  if (!(seconds >= 0) || !std::isfinite(seconds)) return "?";
+  if (seconds < 9.95) return fixed(seconds, 1) + " s";
+  const long t = std::lround(seconds);
+  if (t < 60) return std::to_string(t) + " s";
+  char buf[48];
+  if (t < 3600)
+    std::snprintf(buf, sizeof buf, "%ld min %ld s", t / 60, t % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%ld h %02ld min", t / 3600, (t / 60) % 60);
+  return buf;
 }
 
 }  // namespace ra::util

@@ -44,5 +44,20 @@ TEST(NumberText, FixedIsPercentStarF) {
   EXPECT_EQ(fixed(-1.25, 1), "-1.2");  // 1.25 is exact: half to even
 }
 
+TEST(NumberText, GroupedPutsCommasBetweenThousands) {
+  EXPECT_EQ(grouped(0), "0");
+  EXPECT_EQ(grouped(999), "999");
+  EXPECT_EQ(grouped(64000), "64,000");
+  EXPECT_EQ(grouped(1900000), "1,900,000");
+}
+
+TEST(NumberText, ElapsedTextReadsAsMinutesPastAMinute) {
+  EXPECT_EQ(elapsed_text(0.42), "0.4 s");
+  EXPECT_EQ(elapsed_text(13.2), "13 s");
+  EXPECT_EQ(elapsed_text(161), "2 min 41 s");
+  EXPECT_EQ(elapsed_text(3900), "1 h 05 min");
+  EXPECT_EQ(elapsed_text(-1), "?");
+}
+
 }  // namespace
 }  // namespace ra::util
