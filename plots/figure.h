@@ -11,12 +11,23 @@
 // (Figs. 6, 8, 10, 12; 1.3.3.7), histograms, and bar charts (visibility classes, conformance).
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "metrics/records.h"
+
 namespace ra::plots {
+
+using Rgb = std::array<unsigned char, 3>;
+
+// The one colour of each GL conformance class (docs/conformance.md) in every figure, whichever
+// classes a figure shows: exact, snapped and within-spec in calm blues from dark to light (best to
+// worst), violation red, the alarming one. kNotCompared: grey.
+Rgb conformance_class_color(metrics::Conformance c);
 
 // Q-Q plot of sample 1 (x) against sample 2 (y), with the line y = x.
 struct QQContent {
@@ -74,12 +85,21 @@ struct BarSeries {
   std::string name;
   std::vector<double> values;       // one per category
   std::vector<std::string> labels;  // text above each bar; empty = none
+  std::optional<Rgb> color;         // a colour of its own (a conformance class); none: the palette's
 };
+// On a log10 axis (y_log10) the bars rise from a floor at least a decade below the smallest
+// positive value (at most 1), so that a share of 2 in 10,000 beside one of 99.9 % has a bar a reader sees; a
+// value of 0 has no bar, only its label.
 struct BarChartContent {
   std::vector<std::string> categories;
   std::vector<BarSeries> series;
-  double y_max = 0;  // fixed top of the y axis when > 0 (e.g. 100 for percentages)
+  double y_max = 0;      // fixed top of the y axis when > 0 (e.g. 100 for percentages)
+  bool y_log10 = false;  // a log10 y axis (display units; ticks at powers of ten)
 };
+// The floor the bars of a log10 bar chart rise from: the power of ten at or below the smallest
+// positive value, divided by 10, at most 1 (display units): 0.001 for 0.02. 0.1 when no value is
+// positive.
+double bar_chart_log_floor(const BarChartContent& content);
 
 // Scatter plot: one marker per point, coloured by series (legend), labelled beside the marker, with
 // optional error bars (e.g. the interquartile range [q1, q3] around a median). Either axis may be
