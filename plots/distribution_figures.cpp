@@ -168,7 +168,9 @@ struct DistributionFigures : FigurePlanner {
             std::pow(10.0, e));
         f.caption = "Histogram of " + std::string(metrics[m].symbol) + " (" +
                     metrics[m].description + ") on " + run.platforms[p] +
-                    ", each view group normalised to area 1, on common bins.";
+                    (samples.size() > 1 ? ", one panel per view group," : "") +
+                    " normalised to area 1, on bins of the group's own spread "
+                    "(Freedman-Diaconis over its central 99 %).";
         f.section = section;
         add(std::move(f));
       }

@@ -67,16 +67,21 @@ struct BoxPlotContent {
   std::vector<Box> boxes;
 };
 
-// Histograms on shared axes: one series draws filled bars, several draw step outlines.
+// Histograms: on shared axes, one series draws filled bars and several draw step outlines; as
+// panels (small multiples), each series has a panel of its own, stacked top to bottom, with its own
+// bins and x axis, so that a narrow group is not squeezed into a few bins of a wide one's axis and
+// no group's outline hides under another's.
 struct HistogramSeries {
   std::string name;
   std::vector<double> edges;         // bins + 1 ascending edges
   std::vector<std::size_t> counts;   // values per bin
   std::vector<double> heights;       // count / (n * width) when density, else count
-  std::size_t n = 0;
+  std::size_t n = 0;                 // values of the series, inside the bins or not
+  std::size_t n_below = 0, n_above = 0;  // values left of the first edge, right of the last
 };
 struct HistogramContent {
   bool density = true;  // heights are densities (area 1 each) rather than counts
+  bool panels = false;  // one panel per series (above) rather than shared axes
   std::vector<HistogramSeries> series;
 };
 

@@ -405,5 +405,22 @@ TEST_F(RendererTest, TheViolationBarIsRed) {
   EXPECT_TRUE(near_color(img.at(x, int(L.plot_bottom) - 4), bar_fill(rgb).data(), 12));
 }
 
+// Why: a narrow view group on a wide one's axis fell into 3 bins, and one group's outline hid
+// another's: each gets a panel of its own, stacked, on its own axis.
+TEST_F(RendererTest, HistogramPanelsStackOneAxisPerGroup) {
+  NamedSample a{"A: 30 deg, 128x128", {}}, b{"B: 30 deg, 907x907", {}};
+  for (int i = 0; i < 1000; ++i)
+    a.values.push_back(std::sin(i * 0.7) + 1), b.values.push_back(0.01 * std::cos(i * 1.3));
+  const Figure f = histogram_figure("panels", "Histogram: test, view groups A, B", "x", {a, b});
+  const RenderedFigure r = renderer_->render(f, temp_dir("panels") + "/panels");
+  ASSERT_EQ(r.panels.size(), 2u);
+  EXPECT_LT(r.panels[0].plot_bottom, r.panels[1].plot_top) << "the first panel is above";
+  EXPECT_GT(r.panels[0].x_max - r.panels[0].x_min, 50 * (r.panels[1].x_max - r.panels[1].x_min));
+  EXPECT_GT(r.panels[1].plot_bottom - r.panels[1].plot_top, 80);
+  const std::string text = squeeze(shell_output("pdftotext -layout '" + r.pdf + "' -"));
+  EXPECT_NE(text.find("A: 30 deg, 128x128 (n = 1000)"), std::string::npos) << text;
+  EXPECT_NE(text.find("B: 30 deg, 907x907 (n = 1000)"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace ra::plots
