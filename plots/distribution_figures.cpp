@@ -118,8 +118,8 @@ struct DistributionFigures : FigurePlanner {
     f.id = "boxplot." + std::string(an::kind_name(kind)) + "." + column +
            (group.empty() ? "" : "." + group);
     f.title = "Box plots of " + symbol + " by " + (group.empty() ? "view group and " : "") +
-              "platform: " + join(c.series, ", ") + ", view group" +
-              (group.empty() ? "s " + groups_text(group_labels) : " " + group);
+              "platform: " + join(c.series, ", ") + ", " +
+              groups_phrase(group.empty() ? group_labels : std::vector<std::string>{group});
     f.x_label = "view group (field of view, window)";
     f.y_label = axis_label(symbol, units, e);
     f.caption = "Box plots of " + symbol + " for " +
@@ -163,12 +163,14 @@ struct DistributionFigures : FigurePlanner {
             "histogram." + std::string(an::kind_name(kind)) + "." + metrics[m].column + "." +
                 run.platforms[p],
             "Histogram of " + std::string(metrics[m].symbol) + ": " + run.platforms[p] +
-                ", view groups " + groups_text(labels),
+                ", " + groups_phrase(labels),
             axis_label(metrics[m].symbol, an::unit_name(metrics[m].unit), e), samples,
             std::pow(10.0, e));
         f.caption = "Histogram of " + std::string(metrics[m].symbol) + " (" +
                     metrics[m].description + ") on " + run.platforms[p] +
-                    ", each view group normalised to area 1, on common bins.";
+                    (samples.size() > 1 ? ", one panel per view group," : "") +
+                    " normalised to area 1, on bins of the group's own spread "
+                    "(Freedman-Diaconis over its central 99 %).";
         f.section = section;
         add(std::move(f));
       }

@@ -16,6 +16,25 @@
 
 namespace ra::plots {
 
+Rgb conformance_class_color(metrics::Conformance c) {
+  switch (c) {
+    case metrics::Conformance::kExact: return {8, 69, 148};         // dark blue
+    case metrics::Conformance::kSnapped: return {49, 130, 189};     // blue
+    case metrics::Conformance::kWithinSpec: return {140, 190, 225};  // light blue
+    case metrics::Conformance::kViolation: return {215, 25, 28};    // red
+    default: return {150, 150, 150};
+  }
+}
+
+double bar_chart_log_floor(const BarChartContent& content) {
+  double smallest = INFINITY;
+  for (const BarSeries& s : content.series)
+    for (double v : s.values)
+      if (v > 0) smallest = std::min(smallest, v);
+  if (!std::isfinite(smallest)) return 0.1;
+  return std::min(1.0, std::pow(10.0, std::floor(std::log10(smallest)) - 1));
+}
+
 const char* figure_kind_name(const Figure& figure) {
   switch (figure.content.index()) {
     case 0: return "qq";

@@ -11,12 +11,23 @@
 // (Figs. 6, 8, 10, 12; 1.3.3.7), histograms, and bar charts (visibility classes, conformance).
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "metrics/records.h"
+
 namespace ra::plots {
+
+using Rgb = std::array<unsigned char, 3>;
+
+// The one colour of each GL conformance class (docs/conformance.md) in every figure, whichever
+// classes a figure shows: exact, snapped and within-spec in calm blues from dark to light (best to
+// worst), violation red, the alarming one. kNotCompared: grey.
+Rgb conformance_class_color(metrics::Conformance c);
 
 // Q-Q plot of sample 1 (x) against sample 2 (y), with the line y = x.
 struct QQContent {
@@ -56,16 +67,21 @@ struct BoxPlotContent {
   std::vector<Box> boxes;
 };
 
-// Histograms on shared axes: one series draws filled bars, several draw step outlines.
+// Histograms: on shared axes, one series draws filled bars and several draw step outlines; as
+// panels (small multiples), each series has a panel of its own, stacked top to bottom, with its own
+// bins and x axis, so that a narrow group is not squeezed into a few bins of a wide one's axis and
+// no group's outline hides under another's.
 struct HistogramSeries {
   std::string name;
   std::vector<double> edges;         // bins + 1 ascending edges
   std::vector<std::size_t> counts;   // values per bin
   std::vector<double> heights;       // count / (n * width) when density, else count
-  std::size_t n = 0;
+  std::size_t n = 0;                 // values of the series, inside the bins or not
+  std::size_t n_below = 0, n_above = 0;  // values left of the first edge, right of the last
 };
 struct HistogramContent {
   bool density = true;  // heights are densities (area 1 each) rather than counts
+  bool panels = false;  // one panel per series (above) rather than shared axes
   std::vector<HistogramSeries> series;
 };
 
@@ -74,12 +90,21 @@ struct BarSeries {
   std::string name;
   std::vector<double> values;       // one per category
   std::vector<std::string> labels;  // text above each bar; empty = none
+  std::optional<Rgb> color;         // a colour of its own (a conformance class); none: the palette's
 };
+// On a log10 axis (y_log10) the bars rise from a floor at least a decade below the smallest
+// positive value (at most 1), so that a share of 2 in 10,000 beside one of 99.9 % has a bar a reader sees; a
+// value of 0 has no bar, only its label.
 struct BarChartContent {
   std::vector<std::string> categories;
   std::vector<BarSeries> series;
-  double y_max = 0;  // fixed top of the y axis when > 0 (e.g. 100 for percentages)
+  double y_max = 0;      // fixed top of the y axis when > 0 (e.g. 100 for percentages)
+  bool y_log10 = false;  // a log10 y axis (display units; ticks at powers of ten)
 };
+// The floor the bars of a log10 bar chart rise from: the power of ten at or below the smallest
+// positive value, divided by 10, at most 1 (display units): 0.001 for 0.02. 0.1 when no value is
+// positive.
+double bar_chart_log_floor(const BarChartContent& content);
 
 // Scatter plot: one marker per point, coloured by series (legend), labelled beside the marker, with
 // optional error bars (e.g. the interquartile range [q1, q3] around a median). Either axis may be

@@ -75,6 +75,51 @@ Figure bihistogram_figure(const std::string& id, const std::string& title,
   return f;
 }
 
+HistogramSeries histogram_series(const NamedSample& sample, double scale, std::size_t max_bins) {
+  HistogramSeries hs;
+  hs.name = sample.name;
+  hs.n = sample.values.size();
+  if (sample.values.empty()) return hs;
+  std::vector<double> sorted = sample.values;
+  std::sort(sorted.begin(), sorted.end());
+  // the central 99 %: a few extreme values must not stretch the axis until the body of the
+  // distribution falls into a few bins
+  double lo = ra::stats::quantile_sorted(sorted, 0.005), hi = ra::stats::quantile_sorted(sorted, 0.995);
+  if (!(hi > lo)) lo = sorted.front(), hi = sorted.back();
+  const double iqr = ra::stats::quantile_sorted(sorted, 0.75) - ra::stats::quantile_sorted(sorted, 0.25);
+  const double n = double(sorted.size());
+  std::size_t bins;
+  if (!(hi > lo)) {
+    bins = 1, lo -= 0.5, hi += 0.5;  // one value: one bin of width 1 centred on it
+  } else {
+    const double width = iqr > 0 ? 2 * iqr / std::cbrt(n) : 0;
+    bins = width > 0 ? std::size_t(std::ceil((hi - lo) / width))
+                     : std::size_t(1 + std::ceil(std::log2(n)));
+    bins = std::clamp<std::size_t>(bins, kHistogramMinBins, std::max<std::size_t>(max_bins, 1));
+  }
+  hs.counts.assign(bins, 0);
+  for (double v : sorted) {
+    if (v < lo) {
+      ++hs.n_below;
+      continue;
+    }
+    if (v > hi) {
+      ++hs.n_above;
+      continue;
+    }
+    std::size_t k = std::size_t((v - lo) / (hi - lo) * double(bins));
+    if (k >= bins) k = bins - 1;
+    ++hs.counts[k];
+  }
+  for (std::size_t i = 0; i <= bins; ++i)
+    hs.edges.push_back((lo + (hi - lo) * double(i) / double(bins)) * scale);
+  for (std::size_t i = 0; i < bins; ++i) {
+    const double w = hs.edges[i + 1] - hs.edges[i];
+    hs.heights.push_back(w > 0 ? double(hs.counts[i]) / (n * w) : 0);
+  }
+  return hs;
+}
+
 Figure histogram_figure(const std::string& id, const std::string& title,
                         const std::string& axis_label, const std::vector<NamedSample>& samples,
                         double scale, std::size_t max_bins) {
@@ -85,40 +130,24 @@ Figure histogram_figure(const std::string& id, const std::string& title,
   f.y_label = "relative frequency (density)";
   HistogramContent c;
   c.density = true;
-  std::vector<double> all;
-  for (const auto& s : samples) all.insert(all.end(), s.values.begin(), s.values.end());
-  if (!all.empty()) {
-    // Common bins: the bihistogram's rule on the combined data (sample 2 = sample 1 is harmless).
-    ra::stats::BihistogramOptions opt;
-    opt.max_bins = max_bins;
-    const auto bins = ra::stats::relative_bihistogram(all, all, opt);
-    std::vector<double> edges;
-    for (double e : bins.edges) edges.push_back(e * scale);
-    for (const auto& s : samples) {
-      if (s.values.empty()) continue;
-      HistogramSeries hs;
-      hs.name = s.name;
-      hs.edges = edges;
-      hs.n = s.values.size();
-      hs.counts.assign(edges.size() - 1, 0);
-      const double lo = bins.edges.front(), hi = bins.edges.back();
-      const std::size_t nb = hs.counts.size();
-      for (double v : s.values) {
-        std::size_t k = hi > lo ? std::size_t((v - lo) / (hi - lo) * double(nb)) : 0;
-        if (k >= nb) k = nb - 1;
-        ++hs.counts[k];
-      }
-      for (std::size_t i = 0; i < nb; ++i) {
-        const double w = edges[i + 1] - edges[i];
-        hs.heights.push_back(w > 0 ? double(hs.counts[i]) / (double(hs.n) * w) : 0);
-      }
-      c.series.push_back(std::move(hs));
-    }
+  std::string beyond;
+  for (const auto& s : samples) {
+    if (s.values.empty()) continue;
+    HistogramSeries hs = histogram_series(s, scale, max_bins);
+    if (hs.n_below + hs.n_above > 0)
+      beyond += (beyond.empty() ? "" : "; ") + hs.name.substr(0, hs.name.find(':')) + " " +
+                std::to_string(hs.n_below) + " below, " + std::to_string(hs.n_above) + " above";
+    c.series.push_back(std::move(hs));
   }
-  f.caption = "Histogram (density: each series has area 1) on common bins.";
+  c.panels = c.series.size() > 1;
+  if (!beyond.empty())
+    f.note = "Bins over each group's central 99 % (Freedman-Diaconis on its own spread); values "
+             "beyond, not drawn: " + beyond + ".";
+  f.caption = c.panels ? "Histograms (density: each has area 1), one panel per series, each on "
+                         "bins of its own spread."
+                       : "Histogram (density: area 1) on bins of the sample's own spread.";
   f.content = std::move(c);
   return f;
 }
-
 
 }  // namespace ra::plots

@@ -26,16 +26,23 @@ Figure bihistogram_figure(const std::string& id, const std::string& title,
                           const std::string& lower_sample, const ra::stats::BihistogramData& data,
                           double scale = 1.0);
 
-// A histogram of one or more samples on common bins (Freedman-Diaconis on the combined data, as
-// relative_bihistogram chooses them), as densities. Empty samples are skipped; returns a figure
-// with no series when every sample is empty.
+// A histogram of one or more samples, as densities. Each sample gets bins of its own spread:
+// Freedman-Diaconis, width = 2 IQR / n^(1/3) (IQR by Hyndman-Fan 6), over its central 99% (the
+// quantiles 0.005 and 0.995; the values beyond are counted in n_below / n_above and in the note),
+// at least kHistogramMinBins and at most `max_bins` bins; Sturges' 1 + ceil(log2 n) when the IQR is
+// 0. Several samples are drawn as panels, one each, so that a narrow group keeps its bins and none
+// hides under another. Empty samples are skipped; returns a figure with no series when every
+// sample is empty.
 struct NamedSample {
   std::string name;
   std::vector<double> values;  // record units
 };
+constexpr std::size_t kHistogramMinBins = 12;
 Figure histogram_figure(const std::string& id, const std::string& title,
                         const std::string& axis_label, const std::vector<NamedSample>& samples,
                         double scale = 1.0, std::size_t max_bins = 200);
+// One sample's series of histogram_figure (record units times `scale` on the edges).
+HistogramSeries histogram_series(const NamedSample& sample, double scale, std::size_t max_bins);
 
 
 }  // namespace ra::plots

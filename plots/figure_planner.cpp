@@ -73,6 +73,10 @@ std::string groups_text(const std::vector<std::string>& labels) {
   return consecutive ? labels.front() + "-" + labels.back() : join(labels, ", ");
 }
 
+std::string groups_phrase(const std::vector<std::string>& labels) {
+  return (labels.size() == 1 ? "view group " : "view groups ") + groups_text(labels);
+}
+
 const char* section_of(an::PrimitiveKind kind) { return an::kind_label_plural(kind); }
 
 }  // namespace ra::plots

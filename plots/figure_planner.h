@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "analysis/run_records.h"
@@ -33,6 +34,11 @@ struct FigurePlanner {
 };
 
 void plan_tally_figures(FigurePlanner& planner, an::PrimitiveKind kind);
+// The bars of a conformance_classes figure: per view group (label, its verdict counts) the shares
+// of snapped, within-spec and violation, named as docs/conformance.md names them and each in
+// conformance_class_color(); the exact share in the group's category ("A (exact 98.4%)").
+BarChartContent conformance_class_bars(
+    const std::vector<std::pair<std::string, an::ConformanceCounts>>& groups);
 // Every kind and view group in one bar chart (conformance.overview): the report's first page.
 void plan_conformance_overview(FigurePlanner& planner);
 void plan_distribution_figures(FigurePlanner& planner, an::PrimitiveKind kind);
@@ -48,6 +54,8 @@ std::string axis_label(const std::string& symbol, const std::string& units, int 
 std::string views_text(const nlohmann::json& views);
 std::string join(const std::vector<std::string>& v, const std::string& sep);
 std::string groups_text(const std::vector<std::string>& labels);  // "A-D" or "A" or "A, C"
+// "view group A" for one, "view groups A-D" (groups_text) for more.
+std::string groups_phrase(const std::vector<std::string>& labels);
 const char* section_of(an::PrimitiveKind kind);
 
 }  // namespace ra::plots

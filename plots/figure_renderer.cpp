@@ -152,20 +152,58 @@ FigureRenderer::FigureRenderer(int width, int height) : impl_(new Impl) {
 
 FigureRenderer::~FigureRenderer() = default;
 
+namespace {
+
+// The charts a figure is drawn in: one, or one per panel (HistogramContent::panels), top first.
+struct Panel {
+  vtkSmartPointer<vtkChartXY> chart;
+  ChartMarks marks;
+  std::string label;  // inside the panel, top left; empty for a single chart
+};
+
+std::vector<Panel> draw_panels(const Figure& figure) {
+  std::vector<Panel> panels;
+  const auto* hist = std::get_if<HistogramContent>(&figure.content);
+  if (hist && hist->panels && hist->series.size() > 1) {
+    for (std::size_t s = 0; s < hist->series.size(); ++s) {
+      const HistogramSeries& se = hist->series[s];
+      Panel p;
+      p.chart = new_chart();
+      p.marks.chart = p.chart;
+      HistogramContent one;
+      one.density = hist->density;
+      one.series = {se};
+      draw_marks(one, p.marks);
+      // this panel's colour, as the group has in every other figure; room above for the label
+      for (vtkIdType i = 0; i < p.chart->GetNumberOfPlots(); ++i)
+        if (auto* shapes = ShapesPlot::SafeDownCast(p.chart->GetPlot(i)))
+          shapes->fill = palette(s, 200), shapes->stroke = palette(s);
+      p.marks.y_hi = p.marks.y_hi / 1.05 * 1.35;
+      p.label = se.name + " (n = " + std::to_string(se.n) + ")";
+      panels.push_back(std::move(p));
+    }
+    panels.front().marks.note = figure.note;
+    return panels;
+  }
+  Panel p;
+  p.chart = new_chart();
+  p.marks.chart = p.chart;
+  p.marks.note = figure.note;
+  std::visit([&](const auto& content) { draw_marks(content, p.marks); }, figure.content);
+  panels.push_back(std::move(p));
+  return panels;
+}
+
+}  // namespace
+
 RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& stem) {
   const float W = float(impl_->width), H = float(impl_->height);
   vtkContextScene* scene = impl_->view->GetScene();
   scene->ClearItems();
 
   RenderedFigure out;
-  vtkSmartPointer<vtkChartXY> chart = new_chart();
-  vtkAxis* xa = chart->GetAxis(vtkAxis::BOTTOM);
-  vtkAxis* ya = chart->GetAxis(vtkAxis::LEFT);
-
-  ChartMarks marks;
-  marks.chart = chart;
-  marks.note = figure.note;
-  std::visit([&](const auto& content) { draw_marks(content, marks); }, figure.content);
+  std::vector<Panel> panels = draw_panels(figure);
+  const ChartMarks& marks = panels.front().marks;
   out.note = marks.note;
   out.layout.x_log10 = marks.x_log10;
   out.layout.y_log10 = marks.y_log10;
@@ -193,11 +231,28 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
     plot_x = left + 0.5f * (plot_w - side);
     plot_w = plot_h = side;
   }
-  chart->SetLayoutStrategy(vtkChart::AXES_TO_RECT);
-  chart->SetSize(vtkRectf(plot_x, bottom, plot_w, plot_h));
-
-  fix_axes(marks, xa, ya);
-  scene->AddItem(chart);
+  // Panels stacked from the top, each with its x tick labels in the gap under it.
+  const float gap = 34;
+  const float n_panels = float(panels.size());
+  const float panel_h = (plot_h - (n_panels - 1) * gap) / n_panels;
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    Panel& p = panels[i];
+    const float y0 = bottom + plot_h - float(i + 1) * panel_h - float(i) * gap;
+    p.chart->SetLayoutStrategy(vtkChart::AXES_TO_RECT);
+    p.chart->SetSize(vtkRectf(plot_x, y0, plot_w, panel_h));
+    fix_axes(p.marks, p.chart->GetAxis(vtkAxis::BOTTOM), p.chart->GetAxis(vtkAxis::LEFT));
+    scene->AddItem(p.chart);
+    if (!p.label.empty()) {
+      auto label = vtkSmartPointer<TextItem>::New();
+      label->lines = {p.label};
+      label->size = kLegendFont;
+      label->bold = true;
+      label->justification = VTK_TEXT_LEFT;
+      label->x = plot_x + 10;
+      label->y = y0 + panel_h - 6;
+      scene->AddItem(label);
+    }
+  }
 
   // Title: shrunk to fit the width (down to 18 px), wrapped when still too long.
   auto title = vtkSmartPointer<TextItem>::New();
@@ -247,19 +302,26 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
 
   write_figure_files(win, figure, stem, &out);
 
-  // Where the plot area ended up, in PNG pixels (rows from the top).
-  const vtkVector2f p1 = xa->GetPosition1(), p2 = xa->GetPosition2();
-  const vtkVector2f q1 = ya->GetPosition1(), q2 = ya->GetPosition2();
-  out.layout.width = impl_->width;
-  out.layout.height = impl_->height;
-  out.layout.plot_left = p1.GetX();
-  out.layout.plot_right = p2.GetX();
-  out.layout.plot_bottom = H - q1.GetY();
-  out.layout.plot_top = H - q2.GetY();
-  out.layout.x_min = xa->GetMinimum();
-  out.layout.x_max = xa->GetMaximum();
-  out.layout.y_min = ya->GetMinimum();
-  out.layout.y_max = ya->GetMaximum();
+  // Where each plot area ended up, in PNG pixels (rows from the top).
+  for (const Panel& p : panels) {
+    vtkAxis* xa = p.chart->GetAxis(vtkAxis::BOTTOM);
+    vtkAxis* ya = p.chart->GetAxis(vtkAxis::LEFT);
+    const vtkVector2f p1 = xa->GetPosition1(), p2 = xa->GetPosition2();
+    const vtkVector2f q1 = ya->GetPosition1(), q2 = ya->GetPosition2();
+    FigureLayout L = out.layout;
+    L.width = impl_->width;
+    L.height = impl_->height;
+    L.plot_left = p1.GetX();
+    L.plot_right = p2.GetX();
+    L.plot_bottom = H - q1.GetY();
+    L.plot_top = H - q2.GetY();
+    L.x_min = xa->GetMinimum();
+    L.x_max = xa->GetMaximum();
+    L.y_min = ya->GetMinimum();
+    L.y_max = ya->GetMaximum();
+    if (panels.size() > 1) out.panels.push_back(L);
+    if (&p == &panels.front()) out.layout = L;
+  }
   return out;
 }
 

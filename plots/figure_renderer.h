@@ -35,7 +35,8 @@ struct FigureLayout {
 
 struct RenderedFigure {
   std::string png, pdf, csv;  // paths written
-  FigureLayout layout;
+  FigureLayout layout;        // the plot; of a figure of panels, the top panel
+  std::vector<FigureLayout> panels;  // each panel's, top to bottom (histogram panels); else empty
   std::string note;  // the note as drawn (the figure's note plus any the renderer adds)
 };
 

@@ -11,11 +11,13 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "stats/csv_table.h"
 #include "stats/distribution_plots.h"
 #include "plots/figure_builders.h"
+#include "plots/figure_planner.h"
 #include "plots/headless_display.h"
 #include "tests/cli_harness.h"
 
@@ -331,6 +333,93 @@ TEST_F(RendererTest, ScatterOnLogAxesPutsMarkersWhereTheValuesAreAndNamesTheOmit
   const auto t = stats::CsvTable::read_file(r.csv);
   EXPECT_EQ(t.row_count(), 4u);
   EXPECT_EQ(t.numeric_column("y").values, (std::vector<double>{0.05, 5, 0.5, 0}));
+}
+
+// A bar's colour where its fill (alpha 220 over the white background) shows.
+std::array<unsigned char, 3> bar_fill(const unsigned char c[3]) {
+  std::array<unsigned char, 3> out{};
+  for (int i = 0; i < 3; ++i) out[i] = (unsigned char)std::lround(c[i] * 220.0 / 255 + 35.0);
+  return out;
+}
+
+// Why: the visibility figures put 2 false-invisible cases in 10,000 on a 0-100 % axis: a bar of
+// 0.01 px, seen only through its label. On the log axis it has a bar a reader sees.
+TEST_F(RendererTest, LogBarsGiveARareClassAVisibleBar) {
+  BarChartContent c;
+  c.categories = {"true-visible", "false-visible", "false-invisible"};
+  c.series = {{"A", {99.97, 0, 0.02}, {"9997", "0", "2"}, std::nullopt}};
+  c.y_max = 100;
+  c.y_log10 = true;
+  Figure f;
+  f.id = "bars_log";
+  f.title = "Visibility classes: test, view group A";
+  f.x_label = "visibility class";
+  f.y_label = "share of the group's cases (%, log scale)";
+  f.content = c;
+  const RenderedFigure r = renderer_->render(f, temp_dir("bars_log") + "/bars_log");
+  const FigureLayout& L = r.layout;
+  ASSERT_TRUE(L.y_log10);
+  EXPECT_NEAR(L.y_min, std::log10(bar_chart_log_floor(c)), 1e-9);
+  EXPECT_NEAR(bar_chart_log_floor(c), 0.001, 1e-12);  // a decade below 0.02
+  const auto row = [&](double v) {
+    return L.plot_top + (L.y_max - std::log10(v)) / (L.y_max - L.y_min) * (L.plot_bottom - L.plot_top);
+  };
+  const auto column = [&](double x) {
+    return int(std::lround(L.plot_left + (x - L.x_min) / (L.x_max - L.x_min) *
+                                             (L.plot_right - L.plot_left)));
+  };
+  const double height = L.plot_bottom - row(0.02);
+  EXPECT_GE(height, 40) << "2 in 10,000 on a 0-100 axis of this size would be "
+                        << 0.02 / 100 * (L.plot_bottom - L.plot_top) << " px";
+  // ... and drawn: the bar's fill just above the axis and just below its top
+  unsigned char c0[3];
+  series_color(0, c0);
+  const auto fill = bar_fill(c0);
+  const RgbImage img = read_png(r.png);
+  const int x = column(3);
+  EXPECT_TRUE(near_color(img.at(x, int(L.plot_bottom) - 4), fill.data(), 12));
+  EXPECT_TRUE(near_color(img.at(x, int(row(0.02)) + 4), fill.data(), 12));
+  EXPECT_FALSE(near_color(img.at(x, int(row(0.02)) - 6), fill.data(), 12));
+  // a count of 0 has no bar, only its label
+  EXPECT_FALSE(near_color(img.at(column(2), int(L.plot_bottom) - 4), fill.data(), 12));
+}
+
+// Why: the conformance classes took the palette's colours by position: violation came out teal.
+TEST_F(RendererTest, TheViolationBarIsRed) {
+  an::ConformanceCounts n;
+  n.exact = 80, n.snapped = 10, n.within_spec = 5, n.violation = 5;
+  Figure f;
+  f.id = "classes";
+  f.title = "GL conformance classes other than exact, test, view group A";
+  f.x_label = "view group";
+  f.y_label = "share of records (%)";
+  f.content = conformance_class_bars({{"A", n}});
+  const RenderedFigure r = renderer_->render(f, temp_dir("classes") + "/classes");
+  const FigureLayout& L = r.layout;
+  const RgbImage img = read_png(r.png);
+  const Rgb red = conformance_class_color(metrics::Conformance::kViolation);
+  const unsigned char rgb[3] = {red[0], red[1], red[2]};
+  const double slot = 0.8 / 3;  // three series: violation is the third bar of the group
+  const int x = int(std::lround(L.plot_left + (1 + slot - L.x_min) / (L.x_max - L.x_min) *
+                                                  (L.plot_right - L.plot_left)));
+  EXPECT_TRUE(near_color(img.at(x, int(L.plot_bottom) - 4), bar_fill(rgb).data(), 12));
+}
+
+// Why: a narrow view group on a wide one's axis fell into 3 bins, and one group's outline hid
+// another's: each gets a panel of its own, stacked, on its own axis.
+TEST_F(RendererTest, HistogramPanelsStackOneAxisPerGroup) {
+  NamedSample a{"A: 30 deg, 128x128", {}}, b{"B: 30 deg, 907x907", {}};
+  for (int i = 0; i < 1000; ++i)
+    a.values.push_back(std::sin(i * 0.7) + 1), b.values.push_back(0.01 * std::cos(i * 1.3));
+  const Figure f = histogram_figure("panels", "Histogram: test, view groups A, B", "x", {a, b});
+  const RenderedFigure r = renderer_->render(f, temp_dir("panels") + "/panels");
+  ASSERT_EQ(r.panels.size(), 2u);
+  EXPECT_LT(r.panels[0].plot_bottom, r.panels[1].plot_top) << "the first panel is above";
+  EXPECT_GT(r.panels[0].x_max - r.panels[0].x_min, 50 * (r.panels[1].x_max - r.panels[1].x_min));
+  EXPECT_GT(r.panels[1].plot_bottom - r.panels[1].plot_top, 80);
+  const std::string text = squeeze(shell_output("pdftotext -layout '" + r.pdf + "' -"));
+  EXPECT_NE(text.find("A: 30 deg, 128x128 (n = 1000)"), std::string::npos) << text;
+  EXPECT_NE(text.find("B: 30 deg, 907x907 (n = 1000)"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -103,26 +103,35 @@ void draw_marks(const BarChartContent& c, ChartMarks& m) {
   const std::size_t C = std::max<std::size_t>(1, c.categories.size());
   const std::size_t S = std::max<std::size_t>(1, c.series.size());
   const double slot = 0.8 / double(S);
+  // On a log axis the bars rise from the floor (log10 units); a value of 0 has its label only.
+  const double floor = c.y_log10 ? std::log10(bar_chart_log_floor(c)) : 0;
+  const auto to_y = [&](double v) { return c.y_log10 ? (v > 0 ? std::log10(v) : floor) : v; };
   double top = 0;
   bool any_label = false;
   for (std::size_t s = 0; s < c.series.size(); ++s) {
+    const BarSeries& se = c.series[s];
+    const auto colour = [&](unsigned char alpha) {
+      return se.color ? Color{(*se.color)[0], (*se.color)[1], (*se.color)[2], alpha}
+                      : palette(s, alpha);
+    };
     auto p = vtkSmartPointer<ShapesPlot>::New();
-    p->fill = palette(s, 220);
-    p->stroke = palette(s);
+    p->fill = colour(220);
+    p->stroke = colour(255);
     p->line_width = 1.0f;
     for (std::size_t i = 0; i < c.categories.size(); ++i) {
-      const double v = c.series[s].values.at(i);
+      const double v = se.values.at(i);
       const double centre = double(i + 1) + (double(s) - 0.5 * double(S - 1)) * slot;
-      p->rects.push_back({centre - 0.45 * slot, centre + 0.45 * slot, 0, v});
+      if (!c.y_log10 || v > 0)
+        p->rects.push_back({centre - 0.45 * slot, centre + 0.45 * slot, floor, to_y(v)});
       top = std::max(top, v);
-      if (i < c.series[s].labels.size() && !c.series[s].labels[i].empty()) {
-        p->labels.push_back({centre, std::max(v, 0.0), c.series[s].labels[i]});
+      if (i < se.labels.size() && !se.labels[i].empty()) {
+        p->labels.push_back({centre, c.y_log10 ? to_y(v) : std::max(v, 0.0), se.labels[i]});
         any_label = true;
       }
     }
     m.add_plot(p);
-    if (c.series.size() > 1 || !c.series[s].name.empty())
-      m.legend.push_back({c.series[s].name, palette(s, 220), LegendItem::kBox});
+    if (c.series.size() > 1 || !se.name.empty())
+      m.legend.push_back({se.name, colour(220), LegendItem::kBox});
   }
   if (c.series.size() == 1 && m.legend.size() == 1) m.legend.clear();
   m.x_lo = 0.5, m.x_hi = double(C) + 0.5;
@@ -130,8 +139,23 @@ void draw_marks(const BarChartContent& c, ChartMarks& m) {
     m.x_ticks.push_back(double(i + 1));
     m.x_tick_labels.push_back(c.categories[i]);
   }
-  m.y_lo = 0;
   const double y_top = c.y_max > 0 ? c.y_max : (top > 0 ? top : 1);
+  if (c.y_log10) {
+    // room for the labels above the bars: a fifth of the decades shown
+    const double hi = std::log10(y_top);
+    m.y_lo = floor;
+    m.y_hi = hi + (any_label ? 0.22 : 0.05) * (hi - floor);
+    m.y_log10 = true;
+    m.x_grid_at_ticks = false;
+    std::vector<double> at;
+    std::vector<std::string> text;
+    log_ticks(floor, hi, &at, &text);
+    for (std::size_t i = 0; i < at.size(); ++i)
+      if (at[i] >= floor - 1e-9 && at[i] <= hi + 1e-9)
+        m.y_ticks.push_back(at[i]), m.y_tick_labels.push_back(text[i]);
+    return;
+  }
+  m.y_lo = 0;
   m.y_hi = any_label ? y_top * 1.22 : y_top * 1.05;  // room for the labels above the bars
   // Ticks only up to the top of the scale (no "120 %").
   const double step = nice_step(y_top, 8);

@@ -89,7 +89,7 @@ struct SpeedErrorFigures : FigurePlanner {
     Figure f;
     f.id = "speed_error." + kname;
     f.title = "Render time against error, " + section + ": " + symbol + " vs time per primitive, " +
-              join(platforms, ", ") + ", view groups " + groups_text(groups);
+              join(platforms, ", ") + ", " + groups_phrase(groups);
     f.x_label = "render time per primitive, median (us, log scale)";
     f.y_label = axis_label(symbol, units, e) + ", median, log scale";
     f.note = "Letters: view groups (" + join(legend, "; ") +

@@ -55,14 +55,18 @@ struct TallyFigures : FigurePlanner {
         c.series.push_back(std::move(s));
         labels.push_back(g->label);
       }
+      // a log axis: 2 false-invisible cases in 10,000 beside 99.9 % true-visible still have a bar
       c.y_max = 100;
+      c.y_log10 = true;
       Figure f;
       f.id = "visibility." + std::string(an::kind_name(kind)) + "." + run.platforms[p];
-      f.title = "Visibility classes of " + section + ": " + run.platforms[p] + ", view groups " +
-                groups_text(labels);
+      f.title = "Visibility classes of " + section + ": " + run.platforms[p] + ", " + groups_phrase(labels);
       f.x_label = "visibility class (paper, section 3.4)";
-      f.y_label = "share of the group's cases (%)";
-      f.note = "Numbers above the bars: counts of cases (status ok). Classes: " +
+      f.y_label = "share of the group's cases (%, log scale)";
+      f.note = "Numbers above the bars: counts of cases (status ok); the axis is logarithmic, "
+               "so that a rare class has a bar of visible height (bars rise from " +
+               util::significant(bar_chart_log_floor(c), 3) + " %; a count of 0 has none). "
+               "Classes: " +
                std::string("true-visible = inside the frustum and drawn; false-visible = drawn "
                            "although outside; false-invisible = not drawn although inside") +
                (kind == an::PrimitiveKind::kPoint ? "; multiple-visible = more than one pixel."
@@ -133,7 +137,7 @@ struct TallyFigures : FigurePlanner {
     Figure f;
     f.id = "conformance." + kname;
     f.title = "Pixel sets that differ from the reference rasterizer, " + section + ": " +
-              join(run.platforms, ", ") + ", view groups " + groups_text(labels);
+              join(run.platforms, ", ") + ", " + groups_phrase(labels);
     f.x_label = "view group (field of view, window)";
     f.y_label = "pixel set differs from the reference (%)";
     f.note = "Share of records (status ok) whose lit pixels differ from the reference "
@@ -154,41 +158,23 @@ struct TallyFigures : FigurePlanner {
     const std::string kname = an::kind_name(kind);
     const std::vector<int> groups = run.view_groups(kind);
     for (const auto& p : run.platforms) {
-      BarChartContent c;
-      const char* names[] = {"", "exact", "snapped", "within-spec", "violation"};
-      std::vector<BarSeries> series(5);
-      for (int k = 1; k < 5; ++k) series[k].name = names[k];
-      bool has = false;
+      std::vector<std::pair<std::string, an::ConformanceCounts>> counts;
       std::vector<std::string> labels;
+      bool has = false;
       for (int g : groups) {
         labels.push_back(an::view_group_label(g));
         const auto it = tally.verdicts.find({p, kname, g});
-        std::uint64_t classes[5] = {};  // indexed by ra::Conformance
-        if (it != tally.verdicts.end()) {
-          classes[int(metrics::Conformance::kExact)] = it->second.exact;
-          classes[int(metrics::Conformance::kSnapped)] = it->second.snapped;
-          classes[int(metrics::Conformance::kWithinSpec)] = it->second.within_spec;
-          classes[int(metrics::Conformance::kViolation)] = it->second.violation;
-        }
-        const std::uint64_t judged = classes[1] + classes[2] + classes[3] + classes[4];
-        has = has || judged > 0;
-        // exact in the category's name, the other classes as bars on an axis of their own size
-        c.categories.push_back(
-            labels.back() +
-            (judged ? " (exact " + percent_label(100.0 * double(classes[1]) / double(judged)) + "%)"
-                    : ""));
-        for (int k = 2; k < 5; ++k) {
-          const double share = judged ? 100.0 * double(classes[k]) / double(judged) : 0;
-          series[k].values.push_back(share);
-          series[k].labels.push_back(judged ? percent_label(share) : "n/a");
-        }
+        const an::ConformanceCounts n =
+            it != tally.verdicts.end() ? it->second : an::ConformanceCounts{};
+        has = has || n.exact + n.snapped + n.within_spec + n.violation > 0;
+        counts.emplace_back(labels.back(), n);
       }
       if (!has) continue;  // the reference platform, or records without verdicts
-      for (int k = 2; k < 5; ++k) c.series.push_back(std::move(series[k]));
+      BarChartContent c = conformance_class_bars(counts);
       Figure f;
       f.id = "conformance_classes." + kname + "." + p;
       f.title = "GL conformance classes other than exact, " + section + ", " + p +
-                ": view groups " + groups_text(labels);
+                ": " + groups_phrase(labels);
       f.x_label = "view group (its exact share)";
       f.y_label = "share of records (%)";
       f.note = "exact (under each group): the reference rasterizer's pixels; snapped: the "
@@ -205,6 +191,35 @@ struct TallyFigures : FigurePlanner {
 };
 
 }  // namespace
+
+BarChartContent conformance_class_bars(
+    const std::vector<std::pair<std::string, an::ConformanceCounts>>& groups) {
+  BarChartContent c;
+  // the names of docs/conformance.md, each class in its one colour (violation red)
+  const metrics::Conformance shown[] = {metrics::Conformance::kSnapped,
+                                        metrics::Conformance::kWithinSpec,
+                                        metrics::Conformance::kViolation};
+  for (metrics::Conformance k : shown) {
+    BarSeries s;
+    s.name = metrics::conformance_name(k);
+    s.color = conformance_class_color(k);
+    c.series.push_back(std::move(s));
+  }
+  for (const auto& [label, n] : groups) {
+    const std::uint64_t judged = n.exact + n.snapped + n.within_spec + n.violation;
+    // exact in the category's name, the other classes as bars on an axis of their own size
+    c.categories.push_back(
+        label + (judged ? " (exact " + percent_label(100.0 * double(n.exact) / double(judged)) + "%)"
+                        : ""));
+    const std::uint64_t count[] = {n.snapped, n.within_spec, n.violation};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double share = judged ? 100.0 * double(count[k]) / double(judged) : 0;
+      c.series[k].values.push_back(share);
+      c.series[k].labels.push_back(judged ? percent_label(share) : "n/a");
+    }
+  }
+  return c;
+}
 
 void plan_conformance_overview(FigurePlanner& p) {
   BarChartContent c;

@@ -6,9 +6,11 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <system_error>
 #include <utility>
@@ -106,6 +108,67 @@ geometry::PixelRect around(const geometry::PixelSet& s, int margin, int width, i
 
 Rgb8 darker(Rgb8 c) { return {uint8_t(c.r * 4 / 5), uint8_t(c.g * 4 / 5), uint8_t(c.b * 4 / 5)}; }
 
+// Clusters of marked points (image pixels): points in cells of side `join` that touch (8
+// neighbours) are one cluster. Returns each cluster's bounding box {x0, y0, x1, y1} (inclusive)
+// and its number of points.
+struct Cluster {
+  std::array<int, 4> box;
+  int64_t points = 0;
+};
+std::vector<Cluster> clusters(const std::vector<std::pair<int, int>>& points, int join) {
+  std::map<std::pair<int, int>, int> cell_of;  // cell -> index into `parent`
+  std::vector<int> parent;
+  const auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const auto& [x, y] : points) {
+    const std::pair<int, int> c{x / join, y / join};
+    if (!cell_of.count(c)) {
+      cell_of[c] = int(parent.size());
+      parent.push_back(int(parent.size()));
+    }
+  }
+  for (const auto& [c, i] : cell_of)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const auto it = cell_of.find({c.first + dx, c.second + dy});
+        if (it != cell_of.end()) parent[find(i)] = find(it->second);
+      }
+  std::map<int, Cluster> of_root;
+  for (const auto& [x, y] : points) {
+    const int root = find(cell_of[{x / join, y / join}]);
+    auto [it, fresh] = of_root.try_emplace(root, Cluster{{x, y, x, y}, 0});
+    auto& b = it->second.box;
+    b = {std::min(b[0], x), std::min(b[1], y), std::max(b[2], x), std::max(b[3], y)};
+    ++it->second.points;
+  }
+  std::vector<Cluster> out;
+  for (const auto& [root, c] : of_root) out.push_back(c);
+  return out;
+}
+
+// Draws the rings on rgb (width x height, blocks of `scale`): every halo first, then every ring,
+// so that a halo never cuts a neighbouring ring. A ring never hides what a window pixel is: it
+// leaves the centre of each block of 3 image pixels or more it crosses.
+void draw_rings(std::vector<uint8_t>& rgb, int width, int height, int scale,
+                const std::vector<MarkerRing>& rings) {
+  for (const bool halo : {true, false})
+    for (const MarkerRing& r : rings)
+      for (int y = std::max(0, r.cy - r.radius - 4); y <= std::min(height - 1, r.cy + r.radius + 4); ++y)
+        for (int x = std::max(0, r.cx - r.radius - 4); x <= std::min(width - 1, r.cx + r.radius + 4);
+             ++x) {
+          const double d = std::hypot(double(x - r.cx), double(y - r.cy)) - double(r.radius);
+          const bool ring = std::fabs(d) <= r.half_width;
+          const bool around = std::fabs(d) <= r.half_width + 1;
+          if (halo ? !around : !ring) continue;
+          if (scale >= 3 && x % scale == scale / 2 && y % scale == scale / 2) continue;
+          const Rgb8 c = halo ? kUnlitColor : kMarkerColor;
+          uint8_t* px = &rgb[(std::size_t(y) * width + x) * 3];
+          px[0] = c.r, px[1] = c.g, px[2] = c.b;
+        }
+}
+
 void check_request(const ShowRequest& q, const rundir::Experiment& exp, geometry::Kind kind) {
   if (q.view < 1 || q.view > int(exp.views.size()))
     throw util::UserError("view " + std::to_string(q.view) + " out of range (allowed: 1 to " +
@@ -155,14 +218,11 @@ void write_picture(const OIIO::ImageBuf& buf, const ShowRequest& q, geometry::Ki
     fs::create_directories(parent, ec);
   }
   // The legend under the picture: what each colour means and how many window pixels have it.
-  const std::vector<LegendEntry> legend = {
-      {kBothColor, "lit by both (" + std::to_string(out.both) + ")"},
-      {kPlatformOnlyColor, "lit by " + q.platform + " only (" + std::to_string(out.platform_only) + ")"},
-      {kReferenceOnlyColor,
-       "lit by the reference rasterizer only (" + std::to_string(out.reference_only) + ")"},
-      {kViolationColor, "forbidden by GL: " + forbidden_pixels_text(out.record.violating_pixels,
-                                                                   out.violating)},
-      {kIdealColor, "the ideal projection", true}};
+  // the reference is not judged against GL's rules (its record says exact: it is the reference)
+  const bool judged = q.platform != "reference" &&
+                      out.record.conformance != metrics::Conformance::kNotCompared;
+  const std::vector<LegendEntry> legend =
+      picture_legend(out.picture, q.platform, judged ? out.record.violating_pixels : -1);
   bool text_drawn = true;
   const OIIO::ImageBuf image = with_legend(buf, legend, &text_drawn);
   if (!text_drawn) out.legend_note = "the legend's text needs the DejaVu Sans font (Debian: "
@@ -180,6 +240,85 @@ std::string forbidden_pixels_text(int64_t violating_pixels, int64_t marked) {
   if (violating_pixels == marked) return std::to_string(marked);
   return std::to_string(violating_pixels) + " (violating_pixels; " + std::to_string(marked) +
          " marked: every fragment of a column or row that holds too many)";
+}
+
+PixelPicture draw_pixel_picture(const geometry::PixelSet& lit, const geometry::PixelSet& reference,
+                                const geometry::PixelSet& violating,
+                                const geometry::PixelRect& shown, int S) {
+  PixelPicture pic;
+  const int cols = shown.x1 - shown.x0, rows = shown.y1 - shown.y0;
+  pic.width = cols * S;
+  pic.height = rows * S;
+  // the colours' counts, whole window
+  for (const geometry::Pixel& p : lit) {
+    if (violating.contains(p)) ++pic.forbidden;
+    else (reference.contains(p) ? pic.both : pic.platform_only) += 1;
+  }
+  for (const geometry::Pixel& p : reference)
+    if (!lit.contains(p)) (violating.contains(p) ? pic.missing : pic.reference_only) += 1;
+  for (const geometry::Pixel& p : violating)
+    if (!lit.contains(p) && !reference.contains(p)) ++pic.missing;
+
+  // Which rasterizer lit each shown pixel: bit 0 platform, bit 1 reference, bit 2 a rule's.
+  std::vector<uint8_t> who(std::size_t(cols) * rows, 0);
+  auto mark = [&](const geometry::PixelSet& s, uint8_t bit) {
+    for (const geometry::Pixel& p : s)
+      if (p.x >= shown.x0 && p.x < shown.x1 && p.y >= shown.y0 && p.y < shown.y1)
+        who[std::size_t(p.y - shown.y0) * cols + (p.x - shown.x0)] |= bit;
+  };
+  mark(lit, 1);
+  mark(reference, 2);
+  mark(violating, 4);
+  const Rgb8 colors[8] = {kUnlitColor,     kPlatformOnlyColor, kReferenceOnlyColor, kBothColor,
+                          kViolationColor, kViolationColor,    kViolationColor,     kViolationColor};
+
+  // Blocks, rows flipped: window row y (up) is image rows (shown.y1 - 1 - y) * S ... + S - 1.
+  pic.rgb.resize(std::size_t(pic.width) * pic.height * 3);
+  std::vector<std::pair<int, int>> marked;  // centres of the black blocks, image pixels
+  for (int wy = 0; wy < rows; ++wy)
+    for (int wx = 0; wx < cols; ++wx) {
+      const uint8_t w = who[std::size_t(wy) * cols + wx];
+      const Rgb8 fill = colors[w];
+      const Rgb8 edge = S >= 8 ? darker(fill) : fill;
+      const int top = (rows - 1 - wy) * S, left = wx * S;
+      if (w & 4) marked.push_back({left + S / 2, top + S / 2});
+      for (int i = 0; i < S; ++i)
+        for (int j = 0; j < S; ++j) {
+          const Rgb8 c = (i == 0 || j == 0) ? edge : fill;
+          uint8_t* px = &pic.rgb[(std::size_t(top + i) * pic.width + left + j) * 3];
+          px[0] = c.r, px[1] = c.g, px[2] = c.b;
+        }
+    }
+
+  // Rings around the marked pixels: clusters of nearby ones share one; too many clusters are
+  // joined over longer distances until a reader can take them in.
+  if (marked.empty()) return pic;
+  std::vector<Cluster> groups;
+  for (int join = std::max(kMarkerJoin, S + 1);; join *= 2) {
+    groups = clusters(marked, join);
+    if (groups.size() <= kMarkerMaxRings || join > pic.width + pic.height) break;
+  }
+  // beyond the cluster's blocks; in a large picture a larger ring, so that it reads at page size
+  const int least = std::max(kMarkerMinRadius, std::max(pic.width, pic.height) / 40);
+  const int margin = std::max(least, S / 2 + 6);
+  for (const Cluster& g : groups) {
+    const auto& b = g.box;
+    const int w = b[2] - b[0] + S, h = b[3] - b[1] + S;  // the blocks' extent
+    // as much black as a square of kMarkerLargeCluster is seen without a ring; a thin crack is not
+    if (g.points * S * S >= int64_t(kMarkerLargeCluster) * kMarkerLargeCluster) {
+      ++pic.large_clusters;
+      continue;
+    }
+    MarkerRing r;
+    r.cx = (b[0] + b[2]) / 2;
+    r.cy = (b[1] + b[3]) / 2;
+    r.radius = int(std::ceil(0.5 * std::hypot(double(w), double(h)))) + margin - S / 2;
+    r.radius = std::max(r.radius, least);
+    r.half_width = std::max(pic.width, pic.height) >= 600 ? 2 : 1;
+    pic.rings.push_back(r);
+  }
+  draw_rings(pic.rgb, pic.width, pic.height, S, pic.rings);
+  return pic;
 }
 
 PrimitiveImage show_primitive(const ShowRequest& q) {
@@ -250,33 +389,9 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   out.width = cols * S;
   out.height = rows * S;
 
-  // Which rasterizer lit each shown pixel: bit 0 platform, bit 1 reference.
-  std::vector<uint8_t> who(std::size_t(cols) * rows, 0);
-  auto mark = [&](const geometry::PixelSet& s, uint8_t bit) {
-    for (const geometry::Pixel& p : s)
-      if (p.x >= shown.x0 && p.x < shown.x1 && p.y >= shown.y0 && p.y < shown.y1)
-        who[std::size_t(p.y - shown.y0) * cols + (p.x - shown.x0)] |= bit;
-  };
-  mark(lit, 1);
-  mark(reference, 2);
-  mark(violating, 4);
-  const Rgb8 colors[8] = {kUnlitColor,     kPlatformOnlyColor, kReferenceOnlyColor, kBothColor,
-                          kViolationColor, kViolationColor,    kViolationColor,     kViolationColor};
-
-  // Blocks, rows flipped: window row y (up) is image rows (shown.y1 - 1 - y) * S ... + S - 1.
-  std::vector<uint8_t> rgb(std::size_t(out.width) * out.height * 3);
-  for (int wy = 0; wy < rows; ++wy)
-    for (int wx = 0; wx < cols; ++wx) {
-      const Rgb8 fill = colors[who[std::size_t(wy) * cols + wx]];
-      const Rgb8 edge = S >= 8 ? darker(fill) : fill;
-      const int top = (rows - 1 - wy) * S, left = wx * S;
-      for (int i = 0; i < S; ++i)
-        for (int j = 0; j < S; ++j) {
-          const Rgb8 c = (i == 0 || j == 0) ? edge : fill;
-          uint8_t* px = &rgb[(std::size_t(top + i) * out.width + left + j) * 3];
-          px[0] = c.r, px[1] = c.g, px[2] = c.b;
-        }
-    }
+  out.picture = draw_pixel_picture(lit, reference, violating, shown, S);
+  std::vector<uint8_t> rgb = std::move(out.picture.rgb);
+  out.picture.rgb.clear();
 
   OIIO::ImageSpec spec(out.width, out.height, 3, OIIO::TypeDesc::UINT8);
   spec.attribute("Software", "renderaudit show");
@@ -285,7 +400,8 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
                                          std::to_string(q.view) + " of " + q.run_dir +
                                          ": grey both, orange platform "
                                          "only, blue reference only (both allowed by GL), black "
-                                         "a pixel GL forbids, red the ideal projection");
+                                         "a pixel GL forbids lit or missing, ringed in magenta, "
+                                         "red the ideal projection");
   OIIO::ImageBuf buf(spec, rgb.data());
 
   // The ideal projection, 1 px wide, on top. Window (x, y) -> image (column, row), clamped so

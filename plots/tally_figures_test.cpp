@@ -1,0 +1,60 @@
+// The conformance classes figure: each class has one colour in every figure, whichever classes a
+// figure holds, and violation is the red one; titles name one view group in the singular.
+#include "plots/figure_planner.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+namespace ra::plots {
+namespace {
+
+using metrics::Conformance;
+
+// Why: the figures showed "violation" in the palette's third colour (teal) and "within-spec" in
+// amber: a colour by position reads backwards, and would change with the classes present.
+TEST(ConformanceClassBars, EachClassHasItsOwnColourWhicheverClassesAreThere) {
+  an::ConformanceCounts only_violations;
+  only_violations.exact = 90, only_violations.violation = 10;
+  an::ConformanceCounts no_violation;
+  no_violation.exact = 50, no_violation.snapped = 30, no_violation.within_spec = 20;
+  const BarChartContent one = conformance_class_bars({{"A", only_violations}});
+  const BarChartContent two = conformance_class_bars({{"A", no_violation}, {"B", only_violations}});
+  const std::map<std::string, Conformance> named = {{"snapped", Conformance::kSnapped},
+                                                    {"within-spec", Conformance::kWithinSpec},
+                                                    {"violation", Conformance::kViolation}};
+  for (const BarChartContent* c : {&one, &two}) {
+    ASSERT_EQ(c->series.size(), 3u);
+    for (const BarSeries& s : c->series) {
+      ASSERT_TRUE(named.count(s.name)) << s.name << ": not a class of docs/conformance.md";
+      ASSERT_TRUE(s.color.has_value()) << s.name;
+      EXPECT_EQ(*s.color, conformance_class_color(named.at(s.name))) << s.name;
+    }
+  }
+  EXPECT_EQ(one.categories, (std::vector<std::string>{"A (exact 90.0%)"}));
+  EXPECT_EQ(one.series[2].labels, (std::vector<std::string>{"10.0"}));
+
+  // violation is the red one; the others are calm (blue above red), darker the better the class
+  const Rgb red = conformance_class_color(Conformance::kViolation);
+  EXPECT_GE(red[0], 180);
+  EXPECT_LE(red[1], 60);
+  EXPECT_LE(red[2], 60);
+  const auto luminance = [](Rgb c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; };
+  double last = -1;
+  for (Conformance k : {Conformance::kExact, Conformance::kSnapped, Conformance::kWithinSpec}) {
+    const Rgb c = conformance_class_color(k);
+    EXPECT_GT(c[2], c[0]) << metrics::conformance_name(k) << " looks alarming";
+    EXPECT_GT(luminance(c), last) << metrics::conformance_name(k);
+    last = luminance(c);
+    EXPECT_NE(c, red);
+  }
+}
+
+TEST(GroupsPhrase, NamesOneViewGroupInTheSingular) {
+  EXPECT_EQ(groups_phrase({"A"}), "view group A");
+  EXPECT_EQ(groups_phrase({"A", "B", "C", "D"}), "view groups A-D");
+  EXPECT_EQ(groups_phrase({"A", "C"}), "view groups A, C");
+}
+
+}  // namespace
+}  // namespace ra::plots
