@@ -208,11 +208,16 @@ class Writer {
         while (std::getline(ss, line)) {
           need(11.5 * 1.35);
           font(kMono, false, 11.5);
-          for (const std::string& l : wrap(line.empty() ? " " : line, avail() - 12)) {
+          for (const std::string& l : wrap(line.empty() ? " " : line, avail() - 24)) {
             need(11.5 * 1.35);
             font(kMono, false, 11.5);
+            // a code block's grey ground, line by line (so that it follows a page break)
+            cairo_set_source_rgb(cr_, 0.95, 0.95, 0.95);
+            cairo_rectangle(cr_, kMarginX, y_, avail(), 11.5 * 1.35);
+            cairo_fill(cr_);
+            color(0);
             y_ += 11.5 * 1.35;
-            text(kMarginX + 12, y_ - 3, l);
+            text(kMarginX + 12, y_ - 3.5, l);
             page_empty_ = false;
           }
         }
@@ -236,6 +241,10 @@ class Writer {
   // A PNG scaled to the text width (at most its share of the page's height), its caption under
   // it. A file that cannot be read is said in its place.
   void image(const Block& b) {
+    if (!b.row.empty()) {
+      image_row(b);
+      return;
+    }
     cairo_surface_t* png = cairo_image_surface_create_from_png(b.image_path.c_str());
     if (cairo_surface_status(png) != CAIRO_STATUS_SUCCESS) {
       cairo_surface_destroy(png);
@@ -264,6 +273,65 @@ class Writer {
     y_ += h * scale + 8;
     page_empty_ = false;
     paragraph(b.text, kBody - 3, 0, kSans, 0.25);
+    y_ += 7;
+  }
+
+  // Pictures side by side, each in an equal share of the text width at the same scale (so that
+  // a before and an after compare pixel for pixel), each caption under its picture, then the
+  // block's own caption under all.
+  void image_row(const Block& b) {
+    constexpr double kGap = 18;
+    const double cell = (avail() - kGap * double(b.row.size() - 1)) / double(b.row.size());
+    std::vector<cairo_surface_t*> pngs;
+    double scale = 1e9, tallest = 0;
+    for (const Picture& p : b.row) {
+      cairo_surface_t* png = cairo_image_surface_create_from_png(p.path.c_str());
+      if (cairo_surface_status(png) != CAIRO_STATUS_SUCCESS) {
+        cairo_surface_destroy(png);
+        png = nullptr;
+      } else {
+        const double w = cairo_image_surface_get_width(png), h = cairo_image_surface_get_height(png);
+        scale = std::min(scale, cell / w);
+        tallest = std::max(tallest, h);
+      }
+      pngs.push_back(png);
+    }
+    const double small = kBody - 3;
+    font(kSans, false, small);
+    std::size_t caption_lines = 1;
+    for (const Picture& p : b.row)
+      caption_lines = std::max(caption_lines, wrap(plain_text(p.caption), cell).size());
+    const double caption_h = 8 + double(caption_lines) * small * kLine;
+    if (tallest > 0) scale = std::min(scale, b.image_height_fraction * (bottom() - kMarginTop) / tallest);
+    const double picture_h = tallest > 0 ? tallest * scale : small * kLine;
+    need(picture_h + caption_h + 4);
+    for (std::size_t i = 0; i < b.row.size(); ++i) {
+      const double x = kMarginX + double(i) * (cell + kGap);
+      if (pngs[i]) {
+        cairo_save(cr_);
+        cairo_translate(cr_, x, y_ + 4);
+        cairo_scale(cr_, scale, scale);
+        cairo_set_source_surface(cr_, pngs[i], 0, 0);
+        cairo_paint(cr_);
+        cairo_restore(cr_);
+        cairo_surface_destroy(pngs[i]);
+      } else {
+        font(kSans, false, small);
+        color(0.4);
+        text(x, y_ + 4 + small, "(picture " + b.row[i].path + " could not be read)");
+      }
+      font(kSans, false, small);
+      color(0.25);
+      double ty = y_ + 8 + picture_h;
+      for (const std::string& l : wrap(plain_text(b.row[i].caption), cell)) {
+        ty += small * kLine;
+        text(x, ty - small * 0.3, l);
+      }
+      color(0);
+    }
+    y_ += picture_h + caption_h + 4;
+    page_empty_ = false;
+    if (!b.text.empty()) paragraph(b.text, small, 0, kSans, 0.25);
     y_ += 7;
   }
 
