@@ -2,6 +2,7 @@
 #include "report/upgrade_headline.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -239,7 +240,12 @@ std::string mesa_version(const std::string& gl_version) {
   if (at == std::string::npos) return "";
   std::size_t end = at + 5;
   while (end < gl_version.size() && gl_version[end] != ' ' && gl_version[end] != ')') ++end;
-  return gl_version.substr(at + 5, end - at - 5);
+  std::string v = gl_version.substr(at + 5, end - at - 5);
+  // a distribution's revision ("-2~bpo12+1") is not Mesa's version; "-devel" is
+  const std::size_t dash = v.find('-');
+  if (dash != std::string::npos && dash + 1 < v.size() && std::isdigit(static_cast<unsigned char>(v[dash + 1])))
+    v.erase(dash);
+  return v;
 }
 
 std::string upgrade_headline(const UpgradeSummary& summary) {

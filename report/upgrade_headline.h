@@ -78,7 +78,8 @@ struct UpgradeBisection {
 // an empty summary.
 std::string upgrade_headline(const UpgradeSummary& summary);
 
-// "25.0.7" from a GL_VERSION ("4.5 (Compatibility Profile) Mesa 25.0.7 (git-...)"); "" if none.
+// "25.0.7" from a GL_VERSION ("4.5 (Compatibility Profile) Mesa 25.0.7-2~bpo12+1", without the
+// distribution's revision; "26.0.0-devel" kept); "" if none.
 std::string mesa_version(const std::string& gl_version);
 
 // The summary in `path`. Throws util::UserError naming the file and the key of what is wrong.

@@ -115,6 +115,7 @@ TEST(UpgradeHeadline, BackEndsThatDifferAreSaidApart) {
 TEST(UpgradeHeadline, MesaVersionFromGlVersion) {
   EXPECT_EQ(mesa_version("4.5 (Compatibility Profile) Mesa 25.0.7 (git-abc)"), "25.0.7");
   EXPECT_EQ(mesa_version("4.5 (Compatibility Profile) Mesa 26.0.0-devel"), "26.0.0-devel");
+  EXPECT_EQ(mesa_version("4.5 (Compatibility Profile) Mesa 25.0.7-2~bpo12+1"), "25.0.7");
   EXPECT_EQ(mesa_version("4.6.0 NVIDIA 550.54"), "");
 }
 
