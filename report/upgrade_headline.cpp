@@ -7,6 +7,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <tuple>
 
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -288,6 +289,7 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
   s.run_dir = text_of(j, "run", "", path);
   s.build = text_of(j, "build", "", path);
   const json& groups = member(j, "groups", "", path);
+  if (!groups.is_array()) throw util::UserError(path + ": 'groups' must be a list");
   for (std::size_t i = 0; i < groups.size(); ++i) {
     const std::string at = "groups[" + std::to_string(i) + "].";
     s.groups.push_back({text_of(groups[i], "label", at, path),
@@ -295,6 +297,7 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
                         int(count_of(groups[i], "window", at, path))});
   }
   const json& pairs = member(j, "pairs", "", path);
+  if (!pairs.is_array()) throw util::UserError(path + ": 'pairs' must be a list");
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const std::string at = "pairs[" + std::to_string(i) + "].";
     const json& p = pairs[i];
@@ -303,6 +306,7 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
                      text_of(p, "build_version", at, path), text_of(p, "fingerprint", at, path),
                      {}};
     const json& strata = member(p, "strata", at, path);
+    if (!strata.is_array()) throw util::UserError(path + ": '" + at + "strata' must be a list");
     for (std::size_t k = 0; k < strata.size(); ++k) {
       const std::string sat = at + "strata[" + std::to_string(k) + "].";
       const json& t = strata[k];

@@ -141,10 +141,11 @@ def main():
     driver = lambda p: json.load(open(os.path.join(run_dir, "drivers", p + ".json")))
 
     # the summary the first sentence is made of, and the distinct findings
-    pairs, findings = [], collections.OrderedDict()
+    pairs, findings, changed_of = [], collections.OrderedDict(), {}
     for p in platforms:
         q = p + "@" + build
         strata, changed = pair_findings(recs, p, q)
+        changed_of[p] = changed
         fp = fingerprint(changed)
         pairs.append({"platform": p, "build_platform": q,
                       "installed_version": driver(p)["version"],
@@ -226,7 +227,7 @@ def main():
               f"{a['distribution_tests']['family_size']} | {c.get('new_violations', 0)} |")
     for pair in pairs:
         p, q = pair["platform"], pair["build_platform"]
-        changed = next(f["changed"] for f in findings.values() if p in f["pairs"])
+        changed = changed_of[p]
         print(f"\n# {p} -> {q}\n")
         print("### Changed primitives per kind and view group\n")
         print("| kind | group | compared | changed | share | not drawn | new violations | "
