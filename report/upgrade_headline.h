@@ -90,7 +90,7 @@ UpgradeSummary read_upgrade_summary(const std::string& path);
 std::vector<UpgradeBisection> find_bisections(const std::string& run_dir);
 
 // A bisection in words: "Bisection of egl-llvmpipe (FILE, 500 primitives): first bad commit
-// `a07fa6516b01` \"subject\" (412 primitives)."
+// `HASH` \"SUBJECT\" (412 primitives)." (the hash shortened to 12 digits).
 std::string bisection_sentence(const UpgradeBisection& bisection);
 
 // The report's opening in Markdown: the sentence in bold, then one line per bisection.
