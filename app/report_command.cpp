@@ -11,6 +11,7 @@
 #include "plots/plot_run.h"
 #include "report/markdown_document.h"
 #include "report/report.h"
+#include "report/upgrade_headline.h"
 #include "util/errors.h"
 
 namespace ra::app {
@@ -47,21 +48,36 @@ void register_report_command(CLI::App& app, int& exit_code) {
       "A run with missing or damaged shards is refused (exit 3) unless --allow-incomplete.\n"
       "For a study folder (study.json: timing, LOD, regulation): its text, tables and figures.\n"
       "--markdown FILE.md instead: that file as FILE.pdf and FILE.html beside it, its pictures\n"
-      "(![caption](path)) in the text (the driver upgrade's report).");
+      "(![caption](path)) in the text (the driver upgrade's report).\n"
+      "--upgrade-headline SUMMARY.json instead: print the driver upgrade report's first sentence\n"
+      "(Markdown), and the culprits of a bisection of its run, from the summary\n"
+      "scripts/upgrade_report.py writes.");
   struct Options {
     report::ReportOptions options;
     bool no_run = false;
     std::string markdown;
+    std::string upgrade_summary;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
   cmd->add_option("dir", opts->options.run_dir, "run directory");
   cmd->add_option("--markdown", opts->markdown,
                   "a Markdown file to set as PDF and HTML, instead of a run")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--upgrade-headline", opts->upgrade_summary,
+                  "print the driver upgrade's first sentence from its summary (upgrade-summary.json)")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("--no-run", opts->no_run, "do not run missing stages; say which command to run");
   cmd->add_flag("--allow-incomplete", opts->options.allow_incomplete,
                 "report a run with missing or damaged shards, saying so on its first page");
   cmd->callback([opts, &exit_code] {
+    if (!opts->upgrade_summary.empty()) {
+      if (!opts->options.run_dir.empty() || !opts->markdown.empty())
+        throw util::UserError("report: --upgrade-headline takes no run directory and no --markdown");
+      std::printf("%s", report::upgrade_headline_markdown(
+                            report::read_upgrade_summary(opts->upgrade_summary)).c_str());
+      exit_code = kExitOk;
+      return;
+    }
     if (!opts->markdown.empty()) {
       if (!opts->options.run_dir.empty())
         throw util::UserError("report: give a run directory or --markdown FILE.md, not both");

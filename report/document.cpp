@@ -48,6 +48,22 @@ bool is_alignment_row(const std::string& line) {
   return s.find('-') != std::string::npos;
 }
 
+// The pictures of a line "![a](p) ![b](q)" (nothing else on it), hrefs as written; none if the
+// line holds anything else.
+std::vector<Picture> pictures_of(const std::string& line) {
+  std::vector<Picture> out;
+  std::size_t at = 0;
+  while (at < line.size()) {
+    if (line.compare(at, 2, "![") != 0) return {};
+    const std::size_t close = line.find("](", at);
+    const std::size_t end = close == std::string::npos ? close : line.find(')', close);
+    if (end == std::string::npos) return {};
+    out.push_back({"", line.substr(close + 2, end - close - 2), line.substr(at + 2, close - at - 2)});
+    at = line.find_first_not_of(" \t", end + 1);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string plain_text(const std::string& text) {
@@ -88,6 +104,23 @@ std::vector<Block> parse_markdown(const std::string& markdown, int heading_offse
     const std::string line = trim(lines[i]);
     if (line.empty()) {
       flush_paragraph();
+      continue;
+    }
+    // A fenced block: its lines as they are, to the closing fence (or the end).
+    if (line.rfind("```", 0) == 0) {
+      flush_paragraph();
+      Block b;
+      b.kind = Block::Kind::kPreformatted;
+      for (++i; i < lines.size() && trim(lines[i]).rfind("```", 0) != 0; ++i)
+        b.text += (b.text.empty() ? "" : "\n") + lines[i];
+      blocks.push_back(b);
+      continue;
+    }
+    if (line == "[TOC]") {
+      flush_paragraph();
+      Block b;
+      b.kind = Block::Kind::kContents;
+      blocks.push_back(b);
       continue;
     }
     if (line[0] == '#') {
@@ -155,15 +188,25 @@ std::vector<Block> parse_markdown(const std::string& markdown, int heading_offse
       blocks.back().items.push_back(line.substr(2));
       continue;
     }
-    // A picture on a line of its own: ![caption](path, relative to the Markdown file)
+    // Pictures on a line of their own: ![caption](path, relative to the Markdown file), one or
+    // several side by side
     if (line.rfind("![", 0) == 0 && line.back() == ')') {
-      const std::size_t close = line.find("](");
-      if (close != std::string::npos) {
+      const std::vector<Picture> pictures = pictures_of(line);
+      if (pictures.size() == 1) {
         flush_paragraph();
         Block b;
         b.kind = Block::Kind::kImage;
-        b.text = line.substr(2, close - 2);
-        b.image_href = line.substr(close + 2, line.size() - close - 3);
+        b.text = pictures[0].caption;
+        b.image_href = pictures[0].href;
+        blocks.push_back(b);
+        continue;
+      }
+      if (pictures.size() > 1) {
+        flush_paragraph();
+        Block b;
+        b.kind = Block::Kind::kImage;
+        b.row = pictures;
+        b.image_height_fraction = 0.62;  // side by side, each is narrow: let them be tall
         blocks.push_back(b);
         continue;
       }

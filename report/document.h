@@ -21,6 +21,13 @@ struct Table {
   std::vector<std::string> notes;         // sentences under the table
 };
 
+// One picture of a row of pictures set side by side (Block::row).
+struct Picture {
+  std::string path;     // the PNG (absolute, for the PDF)
+  std::string href;     // the PNG relative to the report directory (HTML)
+  std::string caption;  // under this picture
+};
+
 struct Block {
   enum class Kind {
     kHeading,       // text, level 1-3
@@ -31,7 +38,8 @@ struct Block {
     kFigureList,    // the list of figures (Document::figures) with their pages
     kContents,      // the list of level-1 headings with their pages
     kPageBreak,
-    kImage,         // a PNG in the text (image_path; HTML: image_href), `text` its caption
+    kImage,         // a PNG in the text (image_path; HTML: image_href), `text` its caption;
+                    // or, where `row` is not empty, its pictures side by side, `text` under all
     kNotes,         // items, in the small grey type of a table's notes
   };
   Kind kind = Kind::kParagraph;
@@ -43,6 +51,7 @@ struct Block {
   std::string image_path;  // kImage: the PNG (absolute, for the PDF)
   std::string image_href;  // kImage: the PNG relative to the report directory (HTML)
   double image_height_fraction = 0.42;  // kImage: at most this share of the page's height (PDF)
+  std::vector<Picture> row;  // kImage: pictures side by side (then image_path is unused)
 };
 
 struct FigureRef {
@@ -63,7 +72,10 @@ struct Document {
 // Blocks of a Markdown text (see the header comment). Headings are shifted down by
 // `heading_offset` levels (a file's "#" becomes level 1 + offset) and capped at 3. A "###" heading
 // directly followed by a pipe table becomes the table's title. A line "![caption](path)" is a
-// picture (kImage, image_href = path; the caller resolves image_path).
+// picture (kImage, image_href = path; the caller resolves image_path); a line of several such
+// pictures is a row of them side by side (Block::row). A fenced block (lines between two "```"
+// lines) is kept line by line (kPreformatted); a line "[TOC]" is the table of contents
+// (kContents).
 std::vector<Block> parse_markdown(const std::string& markdown, int heading_offset = 0);
 
 // `text` without Markdown emphasis (** and `), for the PDF.

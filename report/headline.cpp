@@ -7,6 +7,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 
 #include "analysis/run_tally.h"
 #include "stats/csv_table.h"
@@ -139,19 +140,47 @@ Table findings_table(const std::string& run_dir, const analysis::RunTally& tally
   return t;
 }
 
+// The audit's refusal (the text of audit/refused.txt): its sentences as paragraphs, its indented
+// lines (the experiment files' difference, "- seed = 2008", "+ seed = 2009") as a block of their
+// own, one line each, as a diff reads.
+std::vector<Block> refusal_blocks(const std::string& text) {
+  std::vector<Block> out;
+  std::string paragraph = "**Audit: no verdict.** The audit refused to compare this run with its "
+                          "baseline: ", diff;
+  const auto flush_paragraph = [&] {
+    while (!paragraph.empty() && paragraph.back() == ' ') paragraph.pop_back();
+    if (!paragraph.empty()) out.push_back(make_block(Block::Kind::kParagraph, paragraph));
+    paragraph.clear();
+  };
+  const auto flush_diff = [&] {
+    if (!diff.empty()) out.push_back(make_block(Block::Kind::kPreformatted, diff));
+    diff.clear();
+  };
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("renderaudit: ", 0) == 0) line.erase(0, 13);
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    if (line[0] == ' ' || line[0] == '\t') {  // a line of the difference
+      flush_paragraph();
+      const std::size_t b = line.find_first_not_of(" \t");
+      diff += (diff.empty() ? "" : "\n") + line.substr(b);
+      continue;
+    }
+    flush_diff();
+    paragraph += line + " ";
+  }
+  flush_paragraph();
+  flush_diff();
+  return out;
+}
+
 // The audit's verdict per driver, against the baseline it names.
 std::vector<Block> audit_blocks(const std::string& run_dir) {
   std::vector<Block> out;
   const std::string path = run_dir + "/audit/audit.json";
   const std::string refused = run_dir + "/audit/refused.txt";  // the nightly audit's refusal
   if (!fs::exists(path) && fs::exists(refused)) {
-    std::string why = util::read_file(refused);
-    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
-    if (why.rfind("renderaudit: ", 0) == 0) why.erase(0, 13);
-    out.push_back(make_block(Block::Kind::kParagraph,
-                             "**Audit: no verdict.** The audit refused to compare this run with "
-                             "its baseline: " + why));
-    return out;
+    return refusal_blocks(util::read_file(refused));
   }
   if (!fs::exists(path)) return out;
   const json j = json::parse(util::read_file(path));

@@ -3,7 +3,8 @@
 // analysis/run_tally.h), the violations, and how many of the paper's cells agree
 // (analysis/paper_comparison.csv, paper_differences.csv); for a run with an audit
 // (DIR/audit/audit.json, as `make nightly` writes it), the verdict per driver, PASS or FAIL,
-// against the baseline it names.
+// against the baseline it names; for a night whose audit refused to compare (DIR/audit/refused.txt),
+// the refusal, the experiment files' difference set as a block of its own, a line each.
 #pragma once
 
 #include <string>

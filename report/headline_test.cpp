@@ -6,11 +6,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <vector>
 
 #include "analysis/records_testing.h"
 #include "analysis/run_analysis.h"
 #include "analysis/run_tally.h"
+#include "report/html_writer.h"
+#include "report/pdf_writer.h"
+#include "tests/cli_harness.h"
 
 namespace ra::report {
 namespace {
@@ -119,6 +124,42 @@ TEST(Headline, NumbersAreTheAnalysisTallyOfTheRecords) {
       << text;
   EXPECT_NE(text.find("soft|16|75.00|18.75|1|1|"), std::string::npos) << text;
   EXPECT_NE(text.find("**ref**: no conformance verdict"), std::string::npos) << text;
+}
+
+// Why: a refused night's page 1 ran the experiment files' difference into one line ("- seed =
+// 2008 + seed = 2009 An experiment changed ..."); a difference reads as a diff, a line each.
+TEST(Headline, ARefusedNightSetsTheExperimentDifferenceAsABlockOfLines) {
+  const an::testing::ScopedTempDir scoped("headline_refused");
+  const std::string dir = scoped.path.string();
+  std::filesystem::create_directories(scoped.path / "audit");
+  std::ofstream(scoped.path / "audit" / "refused.txt")
+      << "renderaudit: not runs of the same experiment: baseline b has experiment hash 1 (seed "
+         "2008), current c has experiment hash 2 (seed 2009); an audit compares the same "
+         "primitives, so both runs must come from the same experiment file. Their "
+         "experiment.toml files differ in (- baseline, + current):\n"
+         "  - seed = 2008\n  + seed = 2009\n"
+         "An experiment changed on purpose needs a new baseline: a run of the new experiment "
+         "(for the nightly audit: scripts/nightly.sh --promote c)\n";
+  const std::vector<Block> blocks = headline_blocks(dir, an::RunTally{});
+  ASSERT_GE(blocks.size(), 4u);
+  EXPECT_EQ(blocks[1].kind, Block::Kind::kParagraph);
+  EXPECT_NE(blocks[1].text.find("**Audit: no verdict.**"), std::string::npos) << blocks[1].text;
+  EXPECT_NE(blocks[1].text.find("differ in (- baseline, + current):"), std::string::npos);
+  EXPECT_EQ(blocks[1].text.find("seed = 2008"), std::string::npos) << blocks[1].text;
+  EXPECT_EQ(blocks[2].kind, Block::Kind::kPreformatted);
+  EXPECT_EQ(blocks[2].text, "- seed = 2008\n+ seed = 2009");
+  EXPECT_EQ(blocks[3].kind, Block::Kind::kParagraph);
+  EXPECT_EQ(blocks[3].text.rfind("An experiment changed on purpose", 0), 0u) << blocks[3].text;
+
+  // the HTML sets it as a code block, the PDF a line each
+  Document doc;
+  doc.title = "night";
+  doc.blocks = blocks;
+  EXPECT_NE(render_html(doc).find("<pre>- seed = 2008\n+ seed = 2009</pre>"), std::string::npos);
+  const std::string pdf = (scoped.path / "night.pdf").string();
+  write_text_pdf(doc, pdf, {});
+  const std::string text = ra::testing_cli::shell_output("pdftotext '" + pdf + "' -");
+  EXPECT_NE(text.find("\n- seed = 2008\n+ seed = 2009\n"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -83,7 +83,8 @@ std::string render_html(const Document& doc) {
        "ul.notes{font-size:0.88em;color:#333}\n"
        "figure{margin:2em 0;page-break-inside:avoid}figure img{max-width:100%;border:1px solid #ddd}\n"
        "figcaption{font-size:0.92em;margin-top:0.4em}\npre{background:#f4f4f4;padding:0.8em;"
-       "overflow-x:auto}\n.subtitle{color:#555}\n</style>\n</head>\n<body>\n";
+       "overflow-x:auto}\n.subtitle{color:#555}\n"
+       ".row{display:flex;gap:1.5em}.row figure{flex:1;margin:1em 0}\n</style>\n</head>\n<body>\n";
   o << "<h1 class=\"title\">" << html_escape(doc.title) << "</h1>\n";
   for (const auto& s : doc.subtitle) o << "<p class=\"subtitle\">" << inline_html(s) << "</p>\n";
   for (const Block& b : doc.blocks) {
@@ -137,6 +138,16 @@ std::string render_html(const Document& doc) {
         o << "</ul>\n";
         break;
       case Block::Kind::kImage:
+        if (!b.row.empty()) {  // side by side, each with its caption
+          o << "<div class=\"row\">\n";
+          for (const Picture& p : b.row)
+            o << "<figure>\n<img src=\"" << html_escape(p.href) << "\" alt=\""
+              << html_escape(plain_text(p.caption)) << "\">\n<figcaption>" << inline_html(p.caption)
+              << "</figcaption>\n</figure>\n";
+          o << "</div>\n";
+          if (!b.text.empty()) o << "<p class=\"subtitle\">" << inline_html(b.text) << "</p>\n";
+          break;
+        }
         o << "<figure>\n<img src=\"" << html_escape(b.image_href) << "\" alt=\""
           << html_escape(plain_text(b.text)) << "\">\n<figcaption>" << inline_html(b.text)
           << "</figcaption>\n</figure>\n";

@@ -1,6 +1,9 @@
 // A Markdown file as a document like the run reports: FILE.pdf (cairo, the report's page size
-// and type) and FILE.html beside FILE.md, its pictures ("![caption](path)", relative to the file)
-// set in the text. Used for the driver upgrade's report (scripts/driver-upgrade.sh).
+// and type) and FILE.html beside FILE.md, its pictures ("![caption](path)", relative to the file;
+// several on one line side by side) set in the text. Every heading gets an HTML anchor (its words
+// in lower case joined by dashes, "audit-of-egl-llvmpipe"); a line "[TOC]" lists the level-1
+// headings with their pages (PDF) or links (HTML). Used for the driver upgrade's report
+// (scripts/driver-upgrade.sh).
 #pragma once
 
 #include <string>

@@ -51,5 +51,43 @@ TEST(MarkdownDocument, TablesAndPicturesReachThePdfAndTheHtml) {
   std::filesystem::remove_all(dir);
 }
 
+// Why: the driver upgrade's report had no contents and its HTML no anchors, and its before and
+// after pictures sat one per page; a fenced block ran into one paragraph.
+TEST(MarkdownDocument, ContentsAnchorsPictureRowsAndFencedBlocks) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("renderaudit_markdown_toc_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  OIIO::ImageBuf picture(OIIO::ImageSpec(40, 30, 3, OIIO::TypeDesc::UINT8));
+  ASSERT_TRUE(picture.write((dir / "a.png").string()));
+  ASSERT_TRUE(picture.write((dir / "b.png").string()));
+  std::ofstream(dir / "up.md") << "# Driver upgrade\n\n**llvmpipe stops drawing 3 lines.**\n\n"
+                                  "[TOC]\n\n# The worst line\n\n"
+                                  "![before: 907 pixels](a.png) ![after: 0 pixels](b.png)\n\n"
+                                  "# Audit of egl-llvmpipe\n\n```\n- seed = 2008\n+ seed = 2009\n```\n";
+  const MarkdownDocumentResult r = write_markdown_document((dir / "up.md").string());
+  EXPECT_EQ(r.pictures, 2);
+  EXPECT_EQ(r.missing_pictures, 0);
+  std::ifstream html_in(r.html);
+  const std::string html((std::istreambuf_iterator<char>(html_in)), {});
+  EXPECT_NE(html.find("<h1 id=\"the-worst-line\">"), std::string::npos) << html;
+  EXPECT_NE(html.find("<a href=\"#audit-of-egl-llvmpipe\">Audit of egl-llvmpipe</a>"),
+            std::string::npos) << html;
+  EXPECT_NE(html.find("<div class=\"row\">\n<figure>\n<img src=\"a.png\""), std::string::npos)
+      << html;
+  EXPECT_NE(html.find("<pre>- seed = 2008\n+ seed = 2009</pre>"), std::string::npos) << html;
+  const std::string text = shell_output("pdftotext -layout '" + r.pdf + "' -");
+  EXPECT_NE(text.find("Contents"), std::string::npos) << text;
+  EXPECT_NE(squeeze(text).find("The worst line 1"), std::string::npos) << text;  // its page
+  EXPECT_NE(text.find("- seed = 2008\n"), std::string::npos) << text;
+  const std::string images = shell_output("pdfimages -list '" + r.pdf + "'");
+  std::size_t n = 0;
+  for (std::size_t at = images.find(" 40    30 "); at != std::string::npos;
+       at = images.find(" 40    30 ", at + 1))
+    ++n;
+  EXPECT_EQ(n, 2u) << images;
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace ra::report

@@ -4,8 +4,10 @@
 # experiments/driver-upgrade.toml (nist2008 views; osmesa-* and egl-*, llvmpipe and softpipe, each
 # on both builds), audit every pair with `audit RUN --between P P@backports`, and write one report,
 # OUT/upgrade-report.pdf and .html (set by `renderaudit report --markdown` from the Markdown beside
-# them), that opens with what changed per driver, back end, kind and view group. About 10 minutes
-# on 2 cores (docs/driver-builds.md).
+# them), that opens with one sentence of what changed per driver (made from the counts by
+# `renderaudit report --upgrade-headline`) and the worst primitive before and after, then what
+# changed per back end, kind and view group. The pairs audited are the experiment's platforms P
+# drawn also as P@backports. About 10 minutes on 2 cores (docs/driver-builds.md).
 #
 # Usage: scripts/driver-upgrade.sh [BUILD_DIR] [--smoke]   (MIRROR=URL: another Debian archive)
 #   MESA_SOURCE=DIR [MESA_REF=REF]: also a Mesa built from that source tree (renderaudit builds
@@ -104,27 +106,40 @@ audit_build() {  # BUILD PLATFORM...
     fi
   done
 }
+# The platforms P of the experiment that it also draws as P@BUILD.
+pairs_of() {  # BUILD
+  /usr/bin/python3 -c 'import sys, tomllib
+ps = tomllib.load(open(sys.argv[1], "rb")).get("platforms", [])
+print(" ".join(p for p in ps if "@" not in p and p + "@" + sys.argv[2] in ps))' "$experiment" "$1"
+}
 audited=()
 source_audited=()
 changed=()
 step 3 "auditing each platform against its build"
-audit_build backports osmesa-llvmpipe osmesa-softpipe egl-llvmpipe egl-softpipe
-[ -n "${MESA_SOURCE:-}" ] && audit_build source egl-llvmpipe egl-softpipe
+backports_pairs=$(pairs_of backports) || die "cannot read the platforms of $experiment"
+[ -n "$backports_pairs" ] || die "$experiment draws no platform P beside P@backports: nothing to audit"
+# shellcheck disable=SC2086  # one word per platform
+audit_build backports $backports_pairs
+if [ -n "${MESA_SOURCE:-}" ]; then
+  # shellcheck disable=SC2086
+  audit_build source $(pairs_of source)
+fi
 
-# 4. The report: what changed per driver, back end, kind and view group (from the records), the
-# worst primitives with pictures and reproducers, then each audit's own report.
+# 4. The report: the first sentence says what changed per driver (report/upgrade_headline.h),
+# the worst primitive of each distinct finding before and after, a table of contents, what changed
+# per back end, kind and view group (from the records), then each audit's own report.
 report=$out/upgrade-report.md
 step 4 "writing the report"
 if [ ${#audited[@]} -gt 0 ]; then
   /usr/bin/python3 "$repo/scripts/upgrade_report.py" "$ra" "$out" backports "${audited[@]}" > "$report" ||
     die "the report failed (above)"
   for p in "${audited[@]}"; do
-    { echo; echo "## Audit of $p"; echo; sed -e 's/^# /### /' -e 's/^## /#### /' "$out/audit-$p/audit.md"; } >> "$report"
+    { echo; echo "# Audit of $p"; echo; sed -e 's/^## /### /' -e 's/^# /## /' "$out/audit-$p/audit.md"; } >> "$report"
   done
   if [ ${#source_audited[@]} -gt 0 ]; then
     { echo; echo "# The installed Mesa against Mesa built from source ($MESA_SOURCE${MESA_REF:+ at $MESA_REF})"; echo
       /usr/bin/python3 "$repo/scripts/upgrade_report.py" "$ra" "$out" source "${source_audited[@]}" |
-        sed -e 's/^# /## /'
+        sed -e '/^\[TOC\]$/d' -e 's/^## /### /' -e 's/^# /## /'
     } >> "$report" || die "the report of the source build failed (above)"
   fi
   # the Markdown set as PDF and HTML, its pictures in the pages, like the run reports

@@ -2,45 +2,220 @@
 """The driver-upgrade report (scripts/driver-upgrade.sh): what changed between each platform and
 its build PLATFORM@BUILD in one run, read from the run's records (`renderaudit records`, columns by
 header name) and the audits' audit.json, with pictures (`renderaudit show`) and C reproducers
-(`renderaudit reproduce`) of the worst primitives.
+(`renderaudit reproduce`) of the worst primitive of each distinct finding.
 
 Usage: upgrade_report.py RENDERAUDIT RUN_DIR BUILD PLATFORM... > report.md
-A primitive is changed when its lit pixels (pixel_hash), status or visibility differ; "worst" is
-the largest change in the number of lit pixels."""
+Writes RUN_DIR/upgrade-summary-BUILD.json (schema "renderaudit-upgrade-summary" version 1: per pair
+the counts per kind and view group) and opens the Markdown with the sentence `renderaudit report
+--upgrade-headline` makes of it (report/upgrade_headline.h), then the worst primitive's before and
+after side by side, a table of contents ([TOC]) and one section per finding and per platform.
+
+A primitive is changed when its lit pixels (pixel_hash), status or visibility differ. Each changed
+primitive is one of: not drawn (true-visible -> false-invisible), a new violation (after a GL
+violation, before none), fixed (the reverse), allowed (drawn as GL allows before and after, other
+pixels), other; "worst" is the largest change in the number of lit pixels. Pairs of one driver
+whose changed primitives and their pixels after are the same (one fingerprint) are one finding,
+said once ("identical through OSMesa and EGL")."""
 import collections
 import csv
+import hashlib
 import io
 import json
 import os
+import re
 import subprocess
 import sys
 
 GROUPS = "ABCD"
+ALLOWED = {"exact", "snapped", "within-spec"}
+BACKENDS = {"osmesa": "OSMesa", "egl": "EGL", "vk": "Vulkan", "glx": "GLX"}
+# the findings, most severe first, with how a picture of one is titled
+CATEGORIES = [("not_drawn", "not drawn"), ("new_violation", "that break GL's rules"),
+              ("fixed", "that no longer break GL's rules"), ("other", "changed where GL's rules "
+              "were not judged or already broken"), ("allowed", "lighting other pixels, as GL "
+              "allows")]
 
 
 def records(ra, run_dir, platforms):
     """(platform, kind, view, index) -> the columns the report reads (`renderaudit records`: one
-    stream of the run's records, whichever format its files have)."""
-    out = {}
+    stream of the run's records, whichever format its files have); and group -> (fov, window)."""
+    out, groups = {}, {}
     text = subprocess.run([ra, "records", run_dir], check=True, capture_output=True,
                           text=True).stdout
     for r in csv.DictReader(io.StringIO(text)):
         if r["platform"] not in platforms:
             continue
+        g = int(r["view_group"])
+        groups[GROUPS[g]] = (round(float(r["fov_deg"])), int(r["width"]))
         out[(r["platform"], r["kind"], int(r["view"]), int(r["index"]))] = (
             r["status"], r["visibility"], int(r["pixels"]), r["pixel_hash"],
-            r.get("conformance", ""), int(r["view_group"]))
-    return out
+            r.get("conformance", ""), g)
+    return out, groups
+
+
+def category(before, after):
+    if before[1] == "true-visible" and after[1] == "false-invisible":
+        return "not_drawn"
+    if after[4] == "violation" and before[4] != "violation":
+        return "new_violation"
+    if before[4] == "violation" and after[4] != "violation":
+        return "fixed"
+    if before[4] in ALLOWED and after[4] in ALLOWED:
+        return "allowed"
+    return "other"
+
+
+def mesa(gl_version):
+    """"25.0.7" of "... Mesa 25.0.7-2~bpo12+1": without a Debian revision (as report/upgrade_headline.h)."""
+    m = re.search(r"Mesa ([^\s)]+)", gl_version)
+    return re.sub(r"-[0-9].*$", "", m.group(1)) if m else ""
+
+
+def pair_findings(recs, p, q):
+    """Per (kind, group) the counts of the summary; the changed primitives with their category."""
+    strata = collections.defaultdict(collections.Counter)
+    changed = []
+    for (plat, kind, view, index), before in recs.items():
+        if plat != p:
+            continue
+        after = recs.get((q, kind, view, index))
+        if after is None:
+            continue
+        s = strata[(kind, GROUPS[before[5]])]
+        s["compared"] += 1
+        if (before[0], before[1], before[3]) == (after[0], after[1], after[3]):
+            continue
+        s["changed"] += 1
+        c = category(before, after)
+        s["not_drawn"] += c == "not_drawn"
+        s["newly_drawn"] += before[1] == "false-invisible" and after[1] == "true-visible"
+        s["new_violations"] += after[4] == "violation" and before[4] != "violation"
+        s["fixed_violations"] += c == "fixed"
+        s["allowed"] += c == "allowed"
+        changed.append((c, kind, view, index, before, after))
+    return strata, changed
+
+
+def fingerprint(changed):
+    h = hashlib.sha1()
+    for c, kind, view, index, before, after in sorted(changed, key=lambda x: x[1:4]):
+        h.update(f"{kind} {view} {index} {after[0]} {after[1]} {after[3]}\n".encode())
+    return h.hexdigest()[:16]
+
+
+def picture_pair(ra, run_dir, p, q, kind, view, index, before, after, groups):
+    """Markdown: the primitive drawn by both sides, side by side, and its reproducer."""
+    pictures = os.path.join(run_dir, "upgrade-pictures")
+    os.makedirs(pictures, exist_ok=True)
+    cells = []
+    for plat, state, side in ((p, before, "installed"), (q, after, "upgraded")):
+        png = os.path.join(pictures, f"{plat}.{kind}.v{view}.{index}.png")
+        subprocess.run([ra, "show", run_dir, "--platform", plat, "--kind", kind, "--view",
+                        str(view), "--index", str(index), "--out", png],
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        verdict = state[4] or "not judged"
+        cells.append(f"![{side}, {plat}: {state[2]} pixels lit, {state[1]}, {verdict}]"
+                     f"({os.path.relpath(png, run_dir)})")
+    fov, window = groups[GROUPS[before[5]]]
+    lines = [" ".join(cells), "",
+             f"{kind} {index} of view {view} (FOV {fov}, {window} x {window}). Grey: lit by the "
+             "driver and the exact reference rasterizer; orange: by the driver only; blue: by "
+             "the reference only; black: pixels GL forbids; red: the ideal primitive. "
+             f"`renderaudit show {run_dir} --platform {q} --kind {kind} --view {view} --index "
+             f"{index}` draws it again."]
+    c = os.path.join(pictures, f"{q}.{kind}.v{view}.{index}.c")
+    r = subprocess.run([ra, "reproduce", run_dir, "--platform", q, "--kind", kind, "--view",
+                        str(view), "--index", str(index), "--out", c],
+                       capture_output=True, text=True)
+    if r.returncode == 0:
+        lines.append(f"A C program that draws it: `{os.path.relpath(c, run_dir)}` "
+                     f"({r.stdout.splitlines()[1].replace('build: ', '')}).")
+    return "\n".join(lines) + "\n"
 
 
 def main():
     ra, run_dir, build = sys.argv[1:4]
     platforms = sys.argv[4:]
     names = set(platforms) | {p + "@" + build for p in platforms}
-    recs = records(ra, run_dir, names)
+    recs, groups = records(ra, run_dir, names)
     driver = lambda p: json.load(open(os.path.join(run_dir, "drivers", p + ".json")))
-    print(f"# Driver upgrade: what changed\n\nRun `{run_dir}`; each platform P (the installed "
-          f"Mesa) against P@{build}.\n")
+
+    # the summary the first sentence is made of, and the distinct findings
+    pairs, findings, changed_of = [], collections.OrderedDict(), {}
+    for p in platforms:
+        q = p + "@" + build
+        strata, changed = pair_findings(recs, p, q)
+        changed_of[p] = changed
+        fp = fingerprint(changed)
+        pairs.append({"platform": p, "build_platform": q,
+                      "installed_version": driver(p)["version"],
+                      "build_version": driver(q)["version"], "fingerprint": fp,
+                      "strata": [dict({"kind": k, "group": g}, **{
+                          f: strata[(k, g)][f] for f in
+                          ("compared", "changed", "not_drawn", "newly_drawn", "new_violations",
+                           "fixed_violations", "allowed")}) for (k, g) in sorted(strata)]})
+        backend, _, drv = p.partition("-")
+        key = (drv, fp, json.dumps(pairs[-1]["strata"]))
+        findings.setdefault(key, {"pairs": [], "changed": changed})["pairs"].append(p)
+    summary = {"schema": "renderaudit-upgrade-summary", "schema_version": 1, "run": run_dir,
+               "build": build,
+               "groups": [{"label": g, "fov_deg": groups[g][0], "window": groups[g][1]}
+                          for g in sorted(groups)],
+               "pairs": pairs}
+    summary_path = os.path.join(run_dir, f"upgrade-summary-{build}.json")
+    with open(summary_path, "w") as f:
+        json.dump(summary, f, indent=1)
+    headline = subprocess.run([ra, "report", "--upgrade-headline", summary_path], check=True,
+                              capture_output=True, text=True).stdout
+
+    installed = sorted({mesa(driver(p)["version"]) for p in platforms} - {""})
+    upgraded = sorted({mesa(driver(p + "@" + build)["version"]) for p in platforms} - {""})
+    print("# Driver upgrade: what changed\n")
+    print(headline)
+    print(f"Run `{run_dir}`: each platform P, the installed Mesa ({', '.join(installed)}), "
+          f"against P@{build} (Mesa {', '.join(upgraded)}). View groups: " +
+          ", ".join(f"{g}: FOV {groups[g][0]} at {groups[g][1]} x {groups[g][1]}"
+                    for g in sorted(groups)) + ".\n")
+
+    # one picture set per distinct finding: the worst primitive of each category of each
+    # finding, the most severe first; the first of all on page 1
+    shown = []
+    for (drv, fp, _), f in findings.items():
+        p = f["pairs"][0]
+        backends = " and ".join(BACKENDS.get(x.partition("-")[0], x.partition("-")[0])
+                                for x in f["pairs"])
+        version = mesa(driver(p + "@" + build)["version"]) or "@" + build
+        for rank, (cat, words) in enumerate(CATEGORIES):
+            for kind in sorted({c[1] for c in f["changed"] if c[0] == cat}):
+                members = [c for c in f["changed"] if c[0] == cat and c[1] == kind]
+                _, _, view, index, before, after = max(
+                    members, key=lambda m: (abs(m[5][2] - m[4][2]), -m[2], -m[3]))
+                through = (f"identical through {backends}" if len(f["pairs"]) > 1
+                           else f"through {backends}")
+                title = (f"{drv} {version}: {len(members)} "
+                         f"{kind if len(members) == 1 else kind + 's'} "
+                         f"{words.replace('break ', 'breaks ') if len(members) == 1 else words} "
+                         f"({through}); "
+                         f"the worst, {kind} {index} of view {view}")
+                shown.append((rank, title, p, kind, view, index, before, after))
+    shown.sort(key=lambda s: s[0])
+    print("[TOC]\n")
+    if shown:
+        rank, title, p, kind, view, index, before, after = shown[0]
+        print(f"# {title}\n")
+        print(picture_pair(ra, run_dir, p, p + "@" + build, kind, view, index, before, after,
+                           groups))
+    if len(shown) > 1:
+        print("# The other findings in pictures\n")
+        print("One picture set per distinct finding: the primitive whose lit pixels changed "
+              "most.\n")
+        for rank, title, p, kind, view, index, before, after in shown[1:]:
+            print(f"## {title}\n")
+            print(picture_pair(ra, run_dir, p, p + "@" + build, kind, view, index, before,
+                               after, groups))
+
+    print("# Per platform\n")
+    print("### Changed primitives, tests and new violations per platform\n")
     print("| platform | installed GL_VERSION | build GL_VERSION | compared | changed | "
           "significant tests | new violations |")
     print("| --- | --- | --- | ---: | ---: | ---: | ---: |")
@@ -50,67 +225,34 @@ def main():
         print(f"| {p} | {driver(p)['version']} | {driver(p + '@' + build)['version']} | "
               f"{c['compared']} | {c['changed']} | {a['distribution_tests']['significant']} of "
               f"{a['distribution_tests']['family_size']} | {c.get('new_violations', 0)} |")
-    worst = []
-    for p in platforms:
-        q = p + "@" + build
-        per_group = collections.Counter()
-        compared = collections.Counter()
-        classes = collections.Counter()
-        visibility = collections.Counter()
-        for (plat, kind, view, index), before in recs.items():
-            if plat != p:
-                continue
-            after = recs.get((q, kind, view, index))
-            if after is None:
-                continue
-            key = (kind, GROUPS[before[5]])
-            compared[key] += 1
-            if (before[0], before[1], before[3]) == (after[0], after[1], after[3]):
-                continue
-            per_group[key] += 1
-            classes[(kind, GROUPS[before[5]], before[4] or "n/a", after[4] or "n/a")] += 1
-            if before[1] != after[1]:
-                visibility[(kind, GROUPS[before[5]], before[1], after[1])] += 1
-            worst.append((abs(after[2] - before[2]), p, q, kind, view, index, before[2], after[2]))
-        print(f"\n## {p} -> {q}\n\nChanged primitives per kind and view group (A: FOV 30 at 128, "
-              "B: FOV 150 at 128, C: FOV 30 at 907, D: FOV 150 at 907):\n")
-        print("| kind | group | compared | changed | share |")
-        print("| --- | :---: | ---: | ---: | ---: |")
-        for key in sorted(compared):
-            n, k = compared[key], per_group[key]
-            print(f"| {key[0]} | {key[1]} | {n} | {k} | {100.0 * k / n:.2f}% |")
+    for pair in pairs:
+        p, q = pair["platform"], pair["build_platform"]
+        changed = changed_of[p]
+        print(f"\n# {p} -> {q}\n")
+        print("### Changed primitives per kind and view group\n")
+        print("| kind | group | compared | changed | share | not drawn | new violations | "
+              "as GL allows |")
+        print("| --- | :---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+        for s in pair["strata"]:
+            print(f"| {s['kind']} | {s['group']} | {s['compared']} | {s['changed']} | "
+                  f"{100.0 * s['changed'] / s['compared']:.2f}% | {s['not_drawn']} | "
+                  f"{s['new_violations']} | {s['allowed']} |")
+        classes = collections.Counter((k, GROUPS[b[5]], b[4] or "n/a", a[4] or "n/a")
+                                      for _, k, _, _, b, a in changed)
         if classes:
-            print("\nClass transitions of the changed primitives (exact / snapped / within-spec / "
-                  "violation):\n\n| kind | group | before | after | primitives |\n"
+            print("\n### Class transitions of the changed primitives (exact / snapped / "
+                  "within-spec / violation)\n\n| kind | group | before | after | primitives |\n"
                   "| --- | :---: | --- | --- | ---: |")
             for (kind, g, b, a), n in sorted(classes.items(), key=lambda x: (-x[1], x[0])):
                 print(f"| {kind} | {g} | {b} | {a} | {n} |")
+        visibility = collections.Counter((k, GROUPS[b[5]], b[1], a[1])
+                                         for _, k, _, _, b, a in changed if b[1] != a[1])
         if visibility:
-            print("\nVisibility transitions:\n\n| kind | group | before | after | primitives |\n"
+            print("\n### Visibility transitions (true-visible -> false-invisible: not drawn)\n\n"
+                  "| kind | group | before | after | primitives |\n"
                   "| --- | :---: | --- | --- | ---: |")
             for (kind, g, b, a), n in sorted(visibility.items(), key=lambda x: (-x[1], x[0])):
                 print(f"| {kind} | {g} | {b} | {a} | {n} |")
-    worst.sort(reverse=True)
-    if worst:
-        print("\n## Worst primitives (largest change in pixels lit)\n")
-        pictures = os.path.join(run_dir, "upgrade-pictures")
-        os.makedirs(pictures, exist_ok=True)
-        for delta, p, q, kind, view, index, before, after in worst[:6]:
-            print(f"- {q} {kind}, view {view}, index {index}: {before} -> {after} pixels")
-            for plat in (p, q):
-                png = os.path.join(pictures, f"{plat}.{kind}.v{view}.{index}.png")
-                subprocess.run([ra, "show", run_dir, "--platform", plat, "--kind", kind, "--view",
-                                str(view), "--index", str(index), "--out", png],
-                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-                if os.path.exists(png):
-                    print(f"  ![{plat}]({os.path.relpath(png, run_dir)})")
-            c = os.path.join(pictures, f"{q}.{kind}.v{view}.{index}.c")
-            r = subprocess.run([ra, "reproduce", run_dir, "--platform", q, "--kind", kind,
-                                "--view", str(view), "--index", str(index), "--out", c],
-                               capture_output=True, text=True)
-            if r.returncode == 0:
-                print(f"  reproducer: `{os.path.relpath(c, run_dir)}` "
-                      f"({r.stdout.splitlines()[1].replace('build: ', '')})")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,387 @@
+// The driver upgrade report's first sentence (see the header).
+#include "report/upgrade_headline.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <tuple>
+
+#include "util/atomic_file.h"
+#include "util/errors.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace ra::report {
+namespace {
+
+// 20000 -> "20,000"
+std::string grouped(std::int64_t n) {
+  std::string digits = std::to_string(n < 0 ? -n : n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return (n < 0 ? "-" : "") + out;
+}
+
+std::string plural(const std::string& kind, std::int64_t n) { return n == 1 ? kind : kind + "s"; }
+
+// "osmesa-llvmpipe" -> {"osmesa", "llvmpipe"}; a name without a back end is all driver.
+std::pair<std::string, std::string> backend_and_driver(const std::string& platform) {
+  const std::size_t dash = platform.find('-');
+  if (dash == std::string::npos) return {"", platform};
+  return {platform.substr(0, dash), platform.substr(dash + 1)};
+}
+
+std::string backend_name(const std::string& backend) {
+  static const std::map<std::string, std::string> names = {
+      {"osmesa", "OSMesa"}, {"egl", "EGL"}, {"vk", "Vulkan"}, {"glx", "GLX"}};
+  const auto it = names.find(backend);
+  return it != names.end() ? it->second : backend;
+}
+
+// "A", "A and B", "A, B and C"
+std::string and_list(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == items.size() ? " and " : ", ") + items[i];
+  return out;
+}
+
+// The counts of one kind over the view groups of one pair.
+struct KindCounts {
+  std::int64_t compared = 0, changed = 0, not_drawn = 0, newly_drawn = 0, new_violations = 0,
+               fixed_violations = 0, allowed = 0;
+  std::set<std::string> groups, not_drawn_groups;  // compared in; something not drawn in
+  std::int64_t compared_where_not_drawn = 0;
+};
+
+// Kinds in the order the report names them: most rules broken first, then by name.
+std::vector<std::pair<std::string, KindCounts>> kinds_of(const UpgradePair& p) {
+  std::map<std::string, KindCounts> by_kind;
+  for (const UpgradeStratum& s : p.strata) {
+    KindCounts& k = by_kind[s.kind];
+    k.compared += s.compared, k.changed += s.changed, k.not_drawn += s.not_drawn;
+    k.newly_drawn += s.newly_drawn, k.new_violations += s.new_violations;
+    k.fixed_violations += s.fixed_violations, k.allowed += s.allowed;
+    if (s.compared > 0) k.groups.insert(s.group);
+    if (s.not_drawn > 0) k.not_drawn_groups.insert(s.group);
+  }
+  for (const UpgradeStratum& s : p.strata)
+    if (by_kind[s.kind].not_drawn_groups.count(s.group))
+      by_kind[s.kind].compared_where_not_drawn += s.compared;
+  std::vector<std::pair<std::string, KindCounts>> out(by_kind.begin(), by_kind.end());
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) {
+    return a.second.new_violations + a.second.not_drawn > b.second.new_violations + b.second.not_drawn;
+  });
+  return out;
+}
+
+// " of the FOV-30 907 x 907 views" for the groups `used` among those a kind was compared in
+// ("" when it is all of them).
+std::string views_phrase(const std::set<std::string>& used, const std::set<std::string>& all,
+                         const std::vector<UpgradeViewGroup>& groups) {
+  if (used == all) return "";
+  std::map<std::string, UpgradeViewGroup> by_label;
+  for (const UpgradeViewGroup& g : groups) by_label[g.label] = g;
+  std::set<int> windows, fovs;
+  for (const std::string& u : used) {
+    const auto it = by_label.find(u);
+    if (it == by_label.end()) return " of view groups " + and_list({used.begin(), used.end()});
+    windows.insert(it->second.window), fovs.insert(it->second.fov_deg);
+  }
+  // the groups (of those compared) that share the window, or the field of view, of `used`
+  std::set<std::string> same_window, same_fov;
+  for (const std::string& a : all) {
+    const auto it = by_label.find(a);
+    if (it == by_label.end()) continue;
+    if (windows.size() == 1 && it->second.window == *windows.begin()) same_window.insert(a);
+    if (fovs.size() == 1 && it->second.fov_deg == *fovs.begin()) same_fov.insert(a);
+  }
+  const std::string window = windows.size() == 1 ? std::to_string(*windows.begin()) + " x " +
+                                                       std::to_string(*windows.begin())
+                                                 : "";
+  const std::string fov = fovs.size() == 1 ? "FOV-" + std::to_string(*fovs.begin()) : "";
+  if (!window.empty() && used == same_window) return " of the " + window + " views";
+  if (!fov.empty() && used == same_fov) return " of the " + fov + " views";
+  if (!window.empty() && !fov.empty()) return " of the " + fov + " " + window + " views";
+  return " of view groups " + and_list({used.begin(), used.end()});
+}
+
+// What changed in one pair, clause by clause ("stops drawing ...", "799 lines break ...").
+std::vector<std::string> pair_clauses(const UpgradePair& p,
+                                      const std::vector<UpgradeViewGroup>& groups) {
+  std::vector<std::string> out;
+  for (const auto& [kind, k] : kinds_of(p)) {
+    bool named = false;  // this kind already said: "other" for the rest
+    if (k.not_drawn > 0) {
+      out.push_back("stops drawing " + grouped(k.not_drawn) + " of " +
+                    grouped(k.compared_where_not_drawn) + " " +
+                    plural(kind, k.compared_where_not_drawn) +
+                    views_phrase(k.not_drawn_groups, k.groups, groups));
+      named = true;
+    }
+    if (k.newly_drawn > 0)
+      out.push_back("now draws " + grouped(k.newly_drawn) + " " + plural(kind, k.newly_drawn) +
+                    " that were not drawn");
+    if (k.new_violations > 0)
+      out.push_back(grouped(k.new_violations) + " " + plural(kind, k.new_violations) +
+                    (k.new_violations == 1 ? " breaks" : " break") + " GL's " + kind + " rules");
+    if (k.fixed_violations > 0)
+      out.push_back(grouped(k.fixed_violations) + " " + plural(kind, k.fixed_violations) +
+                    " no longer " + (k.fixed_violations == 1 ? "breaks" : "break") + " GL's " +
+                    kind + " rules");
+    named = named || k.new_violations > 0 || k.fixed_violations > 0;
+    if (k.allowed > 0)
+      out.push_back(grouped(k.allowed) + (named ? " other " : " of " + grouped(k.compared) + " ") +
+                    plural(kind, named ? k.allowed : k.compared) +
+                    (k.allowed == 1 ? " lights" : " light") + " other pixels, as GL allows");
+    const std::int64_t rest = k.changed - k.new_violations - k.fixed_violations - k.allowed;
+    if (rest > 0)
+      out.push_back(grouped(rest) + " more " + plural(kind, rest) +
+                    " change where GL's rules were not judged or already broken");
+  }
+  return out;
+}
+
+bool same_findings(const UpgradePair& a, const UpgradePair& b) {
+  if (a.fingerprint != b.fingerprint || a.strata.size() != b.strata.size()) return false;
+  for (std::size_t i = 0; i < a.strata.size(); ++i) {
+    const UpgradeStratum &x = a.strata[i], &y = b.strata[i];
+    if (std::tie(x.kind, x.group, x.compared, x.changed, x.not_drawn, x.newly_drawn,
+                 x.new_violations, x.fixed_violations, x.allowed) !=
+        std::tie(y.kind, y.group, y.compared, y.changed, y.not_drawn, y.newly_drawn,
+                 y.new_violations, y.fixed_violations, y.allowed))
+      return false;
+  }
+  return true;
+}
+
+std::int64_t changed_of(const UpgradePair& p) {
+  std::int64_t n = 0;
+  for (const UpgradeStratum& s : p.strata) n += s.changed;
+  return n;
+}
+
+std::int64_t broken_of(const UpgradePair& p) {
+  std::int64_t n = 0;
+  for (const UpgradeStratum& s : p.strata) n += s.new_violations + s.not_drawn;
+  return n;
+}
+
+// One driver's part of the sentence, over its pairs (one per back end).
+std::string driver_part(const std::string& driver, const std::vector<const UpgradePair*>& pairs,
+                        const std::string& build, const std::vector<UpgradeViewGroup>& groups) {
+  bool any = false;
+  for (const UpgradePair* p : pairs) any = any || changed_of(*p) > 0;
+  if (!any) return driver + " unchanged";
+  // pairs with the same findings, in the order of the summary
+  std::vector<std::vector<const UpgradePair*>> classes;
+  for (const UpgradePair* p : pairs) {
+    auto it = std::find_if(classes.begin(), classes.end(),
+                           [&](const auto& c) { return same_findings(*c.front(), *p); });
+    if (it == classes.end()) classes.push_back({p});
+    else it->push_back(p);
+  }
+  std::vector<std::string> parts;
+  for (const auto& c : classes) {
+    const std::string version = mesa_version(c.front()->build_version);
+    std::vector<std::string> backends;
+    for (const UpgradePair* p : c) backends.push_back(backend_name(backend_and_driver(p->platform).first));
+    std::string label = driver + " " + (version.empty() ? "@" + build : version);
+    if (classes.size() > 1) label += " through " + and_list(backends);
+    const std::vector<std::string> clauses = pair_clauses(*c.front(), groups);
+    if (clauses.empty()) {
+      parts.push_back(label + " unchanged");
+      continue;
+    }
+    std::string s = label + (clauses.front().rfind("stops", 0) == 0 ||
+                                     clauses.front().rfind("now", 0) == 0
+                                 ? " "
+                                 : ": ");
+    for (std::size_t i = 0; i < clauses.size(); ++i) s += (i ? "; " : "") + clauses[i];
+    if (classes.size() == 1 && c.size() > 1) s += " (identical through " + and_list(backends) + ")";
+    parts.push_back(s);
+  }
+  std::string out;
+  for (std::size_t i = 0; i < parts.size(); ++i) out += (i ? "; " : "") + parts[i];
+  return out;
+}
+
+// Field readers naming the file and the key of what is wrong.
+const json& member(const json& j, const std::string& key, const std::string& where,
+                   const std::string& path) {
+  if (!j.is_object() || !j.contains(key))
+    throw util::UserError(path + ": '" + where + key + "' is missing; write the summary again "
+                          "with scripts/upgrade_report.py");
+  return j.at(key);
+}
+std::string text_of(const json& j, const std::string& key, const std::string& where,
+                    const std::string& path) {
+  const json& v = member(j, key, where, path);
+  if (!v.is_string()) throw util::UserError(path + ": '" + where + key + "' must be a string");
+  return v.get<std::string>();
+}
+std::int64_t count_of(const json& j, const std::string& key, const std::string& where,
+                      const std::string& path) {
+  const json& v = member(j, key, where, path);
+  if (!v.is_number_integer() || v.get<std::int64_t>() < 0)
+    throw util::UserError(path + ": '" + where + key + "' must be a whole number of 0 or more");
+  return v.get<std::int64_t>();
+}
+
+}  // namespace
+
+std::string mesa_version(const std::string& gl_version) {
+  const std::size_t at = gl_version.find("Mesa ");
+  if (at == std::string::npos) return "";
+  std::size_t end = at + 5;
+  while (end < gl_version.size() && gl_version[end] != ' ' && gl_version[end] != ')') ++end;
+  std::string v = gl_version.substr(at + 5, end - at - 5);
+  // a distribution's revision ("-2~bpo12+1") is not Mesa's version; "-devel" is
+  const std::size_t dash = v.find('-');
+  if (dash != std::string::npos && dash + 1 < v.size() && std::isdigit(static_cast<unsigned char>(v[dash + 1])))
+    v.erase(dash);
+  return v;
+}
+
+std::string upgrade_headline(const UpgradeSummary& summary) {
+  if (summary.pairs.empty()) return "no platform was audited.";
+  // drivers in the order of the summary's pairs
+  std::vector<std::string> drivers;
+  std::map<std::string, std::vector<const UpgradePair*>> pairs_of;
+  for (const UpgradePair& p : summary.pairs) {
+    const std::string driver = backend_and_driver(p.platform).second;
+    if (!pairs_of.count(driver)) drivers.push_back(driver);
+    pairs_of[driver].push_back(&p);
+  }
+  // the drivers that broke most rules first, unchanged ones last
+  const auto weight = [&](const std::string& d) {
+    std::int64_t broken = 0, changed = 0;
+    for (const UpgradePair* p : pairs_of[d]) broken += broken_of(*p), changed += changed_of(*p);
+    return std::make_pair(broken, changed);
+  };
+  std::stable_sort(drivers.begin(), drivers.end(),
+                   [&](const std::string& a, const std::string& b) { return weight(a) > weight(b); });
+  std::string out;
+  for (std::size_t i = 0; i < drivers.size(); ++i)
+    out += (i ? "; " : "") + driver_part(drivers[i], pairs_of[drivers[i]], summary.build,
+                                         summary.groups);
+  return out + ".";
+}
+
+UpgradeSummary read_upgrade_summary(const std::string& path) {
+  json j;
+  try {
+    j = json::parse(util::read_file(path));
+  } catch (const std::exception& e) {
+    throw util::UserError("cannot read the upgrade summary " + path + ": " + e.what());
+  }
+  if (!j.is_object() || j.value("schema", "") != "renderaudit-upgrade-summary" ||
+      j.value("schema_version", 0) != 1)
+    throw util::UserError(path + ": not a renderaudit-upgrade-summary of version 1 (written by "
+                          "scripts/upgrade_report.py)");
+  UpgradeSummary s;
+  s.run_dir = text_of(j, "run", "", path);
+  s.build = text_of(j, "build", "", path);
+  const json& groups = member(j, "groups", "", path);
+  if (!groups.is_array()) throw util::UserError(path + ": 'groups' must be a list");
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    const std::string at = "groups[" + std::to_string(i) + "].";
+    s.groups.push_back({text_of(groups[i], "label", at, path),
+                        int(count_of(groups[i], "fov_deg", at, path)),
+                        int(count_of(groups[i], "window", at, path))});
+  }
+  const json& pairs = member(j, "pairs", "", path);
+  if (!pairs.is_array()) throw util::UserError(path + ": 'pairs' must be a list");
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const std::string at = "pairs[" + std::to_string(i) + "].";
+    const json& p = pairs[i];
+    UpgradePair pair{text_of(p, "platform", at, path), text_of(p, "build_platform", at, path),
+                     text_of(p, "installed_version", at, path),
+                     text_of(p, "build_version", at, path), text_of(p, "fingerprint", at, path),
+                     {}};
+    const json& strata = member(p, "strata", at, path);
+    if (!strata.is_array()) throw util::UserError(path + ": '" + at + "strata' must be a list");
+    for (std::size_t k = 0; k < strata.size(); ++k) {
+      const std::string sat = at + "strata[" + std::to_string(k) + "].";
+      const json& t = strata[k];
+      pair.strata.push_back({text_of(t, "kind", sat, path), text_of(t, "group", sat, path),
+                             count_of(t, "compared", sat, path), count_of(t, "changed", sat, path),
+                             count_of(t, "not_drawn", sat, path),
+                             count_of(t, "newly_drawn", sat, path),
+                             count_of(t, "new_violations", sat, path),
+                             count_of(t, "fixed_violations", sat, path),
+                             count_of(t, "allowed", sat, path)});
+    }
+    s.pairs.push_back(std::move(pair));
+  }
+  return s;
+}
+
+std::vector<UpgradeBisection> find_bisections(const std::string& run_dir) {
+  std::vector<fs::path> candidates = {fs::path(run_dir) / "bisect" / "bisect.json",
+                                      fs::absolute(run_dir).parent_path() / "bisect" / "bisect.json"};
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(run_dir, ec))
+    if (e.is_directory() && e.path().filename().string().rfind("audit-", 0) == 0)
+      candidates.push_back(e.path() / "bisect" / "bisect.json");
+  std::sort(candidates.begin() + 2, candidates.end());
+  std::vector<UpgradeBisection> out;
+  std::set<fs::path> seen;
+  const fs::path run = fs::weakly_canonical(run_dir, ec);
+  for (const fs::path& c : candidates) {
+    if (!fs::exists(c) || !seen.insert(fs::weakly_canonical(c, ec)).second) continue;
+    json j;
+    try {
+      j = json::parse(util::read_file(c.string()));
+    } catch (const std::exception&) {
+      continue;
+    }
+    if (!j.is_object() || j.value("schema", "") != "renderaudit-bisection" ||
+        j.value("schema_version", 0) != 2)
+      continue;
+    const json inputs = j.value("inputs", json::object());
+    // a bisection beside the run is of this run only if it says so (or says no run)
+    const std::string of = inputs.is_object() ? inputs.value("run", "") : "";
+    if (!of.empty() && fs::weakly_canonical(of, ec) != run) continue;
+    UpgradeBisection b;
+    b.path = c.string();
+    b.platform = inputs.is_object() ? inputs.value("platform", "") : "";
+    b.selected = std::int64_t(j.value("selection", json::array()).size());
+    b.complete = j.value("complete", false);
+    for (const json& k : j.value("culprits", json::array()))
+      if (k.is_object())
+        b.culprits.push_back({k.value("commit", ""), k.value("subject", ""),
+                              std::int64_t(k.value("primitives", json::array()).size())});
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
+std::string bisection_sentence(const UpgradeBisection& b) {
+  std::string s = "Bisection" + (b.platform.empty() ? "" : " of " + b.platform) + " (`" + b.path +
+                  "`, " + grouped(b.selected) + " " + plural("primitive", b.selected) + ")";
+  if (b.culprits.empty())
+    return s + (b.complete ? ": no commit changed them." : ": no first bad commit named yet.");
+  s += ": ";
+  for (std::size_t i = 0; i < b.culprits.size(); ++i) {
+    const UpgradeCulprit& c = b.culprits[i];
+    s += (i ? "; " : "") + std::string("first bad commit `") + c.commit.substr(0, 12) + "` \"" +
+         c.subject + "\" (" + grouped(c.primitives) + " " + plural("primitive", c.primitives) + ")";
+  }
+  return s + (b.complete ? "." : "; not every change is attributed yet.");
+}
+
+std::string upgrade_headline_markdown(const UpgradeSummary& summary) {
+  std::string out = "**" + upgrade_headline(summary) + "**\n";
+  for (const UpgradeBisection& b : find_bisections(summary.run_dir))
+    out += "\n" + bisection_sentence(b) + "\n";
+  return out;
+}
+
+}  // namespace ra::report

@@ -1,0 +1,99 @@
+// The driver upgrade report's first sentence (scripts/driver-upgrade.sh): what a new Mesa changed,
+// said as a driver developer would say it, from the counts of the audits alone:
+//
+//   "llvmpipe 25.0.7 stops drawing 595 of 20,000 lines of the FOV-30 907 x 907 views; 799 lines
+//    break GL's line rules; 1,210 of 80,000 triangles light other pixels, as GL allows (identical
+//    through OSMesa and EGL); softpipe unchanged."
+//
+// "Not drawn" is a primitive that was true-visible (lit where it should be) and is now
+// false-invisible (nothing lit where something should be, docs/records.md); a rule broken is a
+// new GL violation (metrics/conformance.h: after "violation", before anything else). Platforms
+// are named BACKEND-DRIVER (osmesa-llvmpipe); the pairs of one driver whose changes are the same
+// primitives drawn the same way (equal fingerprints and counts) are said once, "identical
+// through OSMesa and EGL". No number is written here: every one comes from the summary.
+//
+// The summary is the file scripts/upgrade_report.py writes (OUT/upgrade-summary.json, schema
+// "renderaudit-upgrade-summary" version 1): the run, the build's name, the view groups and per
+// pair of platforms the counts below per kind and view group. A bisection of the run
+// (RUN/bisect/bisect.json, RUN/../bisect/bisect.json or RUN/audit-*/bisect/bisect.json, schema
+// "renderaudit-bisection" version 2, written by `renderaudit bisect`) adds its culprits.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ra::report {
+
+// The changed primitives of one kind in one view group of one pair, counted by what changed.
+struct UpgradeStratum {
+  std::string kind;   // "point", "line", "triangle"
+  std::string group;  // view group label, "A".."D"
+  std::int64_t compared = 0;          // primitives drawn on both sides
+  std::int64_t changed = 0;           // pixels, status or visibility differ
+  std::int64_t not_drawn = 0;         // true-visible -> false-invisible
+  std::int64_t newly_drawn = 0;       // false-invisible -> true-visible
+  std::int64_t new_violations = 0;    // after a GL violation, before none
+  std::int64_t fixed_violations = 0;  // before a violation, after none
+  std::int64_t allowed = 0;           // before and after drawn as GL allows, other pixels
+};
+
+// A view group: its label and what its views share (degrees, pixels).
+struct UpgradeViewGroup {
+  std::string label;  // "A"
+  int fov_deg = 0;    // vertical field of view
+  int window = 0;     // square window side
+};
+
+// One platform against its build: "osmesa-llvmpipe" against "osmesa-llvmpipe@backports".
+struct UpgradePair {
+  std::string platform, build_platform;
+  std::string installed_version, build_version;  // GL_VERSION of each side
+  std::string fingerprint;  // of the changed primitives and their pixels after (equal: identical)
+  std::vector<UpgradeStratum> strata;
+};
+
+struct UpgradeSummary {
+  std::string run_dir;  // the run the audits read
+  std::string build;    // "backports"
+  std::vector<UpgradeViewGroup> groups;
+  std::vector<UpgradePair> pairs;
+};
+
+// A culprit of a bisection: the first commit that drew some primitives otherwise.
+struct UpgradeCulprit {
+  std::string commit, subject;
+  std::int64_t primitives = 0;
+};
+
+struct UpgradeBisection {
+  std::string path;      // the bisect.json
+  std::string platform;  // the platform it drew
+  std::int64_t selected = 0;  // primitives it followed
+  bool complete = false;
+  std::vector<UpgradeCulprit> culprits;
+};
+
+// The sentence (see the header comment), ending with a full stop; "no platform was audited." for
+// an empty summary.
+std::string upgrade_headline(const UpgradeSummary& summary);
+
+// "25.0.7" from a GL_VERSION ("4.5 (Compatibility Profile) Mesa 25.0.7-2~bpo12+1", without the
+// distribution's revision; "26.0.0-devel" kept); "" if none.
+std::string mesa_version(const std::string& gl_version);
+
+// The summary in `path`. Throws util::UserError naming the file and the key of what is wrong.
+UpgradeSummary read_upgrade_summary(const std::string& path);
+
+// The bisections of the run beside or under it (see the header comment), each read from its
+// file; a file of another schema is skipped.
+std::vector<UpgradeBisection> find_bisections(const std::string& run_dir);
+
+// A bisection in words: "Bisection of egl-llvmpipe (FILE, 500 primitives): first bad commit
+// `HASH` \"SUBJECT\" (412 primitives)." (the hash shortened to 12 digits).
+std::string bisection_sentence(const UpgradeBisection& bisection);
+
+// The report's opening in Markdown: the sentence in bold, then one line per bisection.
+std::string upgrade_headline_markdown(const UpgradeSummary& summary);
+
+}  // namespace ra::report

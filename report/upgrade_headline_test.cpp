@@ -1,0 +1,158 @@
+// The driver upgrade's first sentence says what changed in words, from the counts alone: a
+// report whose page 1 was a table titled "Table" with "new violations 799" hid that llvmpipe no
+// longer drew some lines. Each test feeds a hand-built summary and asserts the whole sentence.
+#include "report/upgrade_headline.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace ra::report {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The four view groups of the NIST audit: FOV 30 and 150 degrees, 128 and 907 pixels.
+std::vector<UpgradeViewGroup> nist_groups() {
+  return {{"A", 30, 128}, {"B", 150, 128}, {"C", 30, 907}, {"D", 150, 907}};
+}
+
+// 10,000 primitives of each kind per group, nothing changed.
+UpgradePair unchanged_pair(const std::string& platform) {
+  UpgradePair p;
+  p.platform = platform;
+  p.build_platform = platform + "@backports";
+  p.installed_version = "4.5 (Compatibility Profile) Mesa 22.3.6";
+  p.build_version = "4.5 (Compatibility Profile) Mesa 25.0.7 (git-1234)";
+  p.fingerprint = "none";
+  for (const char* kind : {"point", "line", "triangle"})
+    for (const char* g : {"A", "B", "C", "D"}) {
+      UpgradeStratum s;
+      s.kind = kind, s.group = g, s.compared = 10000;
+      p.strata.push_back(s);
+    }
+  return p;
+}
+
+UpgradeStratum& stratum(UpgradePair& p, const std::string& kind, const std::string& group) {
+  for (UpgradeStratum& s : p.strata)
+    if (s.kind == kind && s.group == group) return s;
+  throw std::runtime_error("no stratum " + kind + " " + group);
+}
+
+// llvmpipe's upgrade: lines of group C not drawn and breaking the rules, triangles snapped
+// otherwise in groups A and C.
+UpgradePair llvmpipe_pair(const std::string& platform) {
+  UpgradePair p = unchanged_pair(platform);
+  p.fingerprint = "9f1c";
+  UpgradeStratum& lines = stratum(p, "line", "C");
+  lines.changed = 900, lines.not_drawn = 595, lines.new_violations = 799, lines.allowed = 101;
+  stratum(p, "triangle", "A").changed = stratum(p, "triangle", "A").allowed = 300;
+  stratum(p, "triangle", "C").changed = stratum(p, "triangle", "C").allowed = 910;
+  return p;
+}
+
+UpgradeSummary summary(std::vector<UpgradePair> pairs) {
+  UpgradeSummary s;
+  s.run_dir = "/nonexistent/run";
+  s.build = "backports";
+  s.groups = nist_groups();
+  s.pairs = std::move(pairs);
+  return s;
+}
+
+// Why: the same finding through two back ends is one finding; saying it twice doubled the
+// report's pictures and hid that the back end does not matter.
+TEST(UpgradeHeadline, OneFindingIdenticalThroughOSMesaAndEGL) {
+  const UpgradeSummary s =
+      summary({llvmpipe_pair("osmesa-llvmpipe"), unchanged_pair("osmesa-softpipe"),
+               llvmpipe_pair("egl-llvmpipe"), unchanged_pair("egl-softpipe")});
+  EXPECT_EQ(upgrade_headline(s),
+            "llvmpipe 25.0.7 stops drawing 595 of 10,000 lines of the FOV-30 907 x 907 views; "
+            "799 lines break GL's line rules; 101 other lines light other pixels, as GL allows; "
+            "1,210 of 40,000 triangles light other pixels, as GL allows (identical through "
+            "OSMesa and EGL); softpipe unchanged.");
+}
+
+// Why: a driver with no change is said in one word, not left out (absent reads as not audited).
+TEST(UpgradeHeadline, ADriverWithNoChangeIsUnchanged) {
+  EXPECT_EQ(upgrade_headline(summary({unchanged_pair("osmesa-softpipe"),
+                                      unchanged_pair("egl-softpipe")})),
+            "softpipe unchanged.");
+  EXPECT_EQ(upgrade_headline(summary({})), "no platform was audited.");
+}
+
+// Lines not drawn in both 907 x 907 groups are "of the 907 x 907 views"; a rule broken by one
+// line is singular; with no line not drawn the driver's part starts with a colon.
+TEST(UpgradeHeadline, ViewsAreNamedByWhatTheyShare) {
+  UpgradePair p = llvmpipe_pair("osmesa-llvmpipe");
+  stratum(p, "line", "D").changed = stratum(p, "line", "D").not_drawn = 5;
+  stratum(p, "line", "D").new_violations = 5;
+  EXPECT_EQ(upgrade_headline(summary({p})),
+            "llvmpipe 25.0.7 stops drawing 600 of 20,000 lines of the 907 x 907 views; 804 lines "
+            "break GL's line rules; 101 other lines light other pixels, as GL allows; 1,210 of "
+            "40,000 triangles light other pixels, as GL allows.");
+  UpgradePair one = unchanged_pair("egl-llvmpipe");
+  one.fingerprint = "1";
+  stratum(one, "point", "B").changed = stratum(one, "point", "B").new_violations = 1;
+  EXPECT_EQ(upgrade_headline(summary({one})), "llvmpipe 25.0.7: 1 point breaks GL's point rules.");
+}
+
+// Back ends that differ are said one by one.
+TEST(UpgradeHeadline, BackEndsThatDifferAreSaidApart) {
+  UpgradePair egl = unchanged_pair("egl-llvmpipe");
+  egl.fingerprint = "2";
+  stratum(egl, "triangle", "D").changed = stratum(egl, "triangle", "D").allowed = 7;
+  EXPECT_EQ(upgrade_headline(summary({llvmpipe_pair("osmesa-llvmpipe"), egl})),
+            "llvmpipe 25.0.7 through OSMesa stops drawing 595 of 10,000 lines of the FOV-30 907 x "
+            "907 views; 799 lines break GL's line rules; 101 other lines light other pixels, as GL "
+            "allows; 1,210 of 40,000 triangles light other pixels, as GL allows; llvmpipe 25.0.7 "
+            "through EGL: 7 of 40,000 triangles light other pixels, as GL allows.");
+}
+
+TEST(UpgradeHeadline, MesaVersionFromGlVersion) {
+  EXPECT_EQ(mesa_version("4.5 (Compatibility Profile) Mesa 25.0.7 (git-abc)"), "25.0.7");
+  EXPECT_EQ(mesa_version("4.5 (Compatibility Profile) Mesa 26.0.0-devel"), "26.0.0-devel");
+  EXPECT_EQ(mesa_version("4.5 (Compatibility Profile) Mesa 25.0.7-2~bpo12+1"), "25.0.7");
+  EXPECT_EQ(mesa_version("4.6.0 NVIDIA 550.54"), "");
+}
+
+// Why: where a bisection of the run named its culprits, page 1 names them, with the number of
+// primitives each changed; the summary is read back from the file the script writes.
+TEST(UpgradeHeadline, ABisectionBesideTheRunNamesItsCulprits) {
+  const fs::path dir = fs::temp_directory_path() / ("ra_upgrade_headline_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "run");
+  fs::create_directories(dir / "bisect");
+  const std::string run = (dir / "run").string();
+  std::ofstream(dir / "bisect" / "bisect.json")
+      << R"({"schema": "renderaudit-bisection", "schema_version": 2, "complete": true,
+            "inputs": {"run": ")" << run << R"(", "platform": "egl-llvmpipe"},
+            "selection": [{}, {}, {}],
+            "culprits": [{"commit": "a07fa6516b0123456789012345678901234567ab",
+                          "subject": "llvmpipe/linear: add support for rgba color buffers",
+                          "primitives": [{"primitive": "line 1 of view 5"},
+                                         {"primitive": "line 2 of view 5"}]}]})";
+  std::ofstream(dir / "upgrade-summary.json")
+      << R"({"schema": "renderaudit-upgrade-summary", "schema_version": 1, "run": ")" << run
+      << R"(", "build": "backports", "groups": [{"label": "A", "fov_deg": 30, "window": 128}],
+            "pairs": [{"platform": "egl-softpipe", "build_platform": "egl-softpipe@backports",
+                       "installed_version": "Mesa 22.3.6", "build_version": "Mesa 25.0.7",
+                       "fingerprint": "", "strata": [{"kind": "line", "group": "A",
+                       "compared": 4, "changed": 0, "not_drawn": 0, "newly_drawn": 0,
+                       "new_violations": 0, "fixed_violations": 0, "allowed": 0}]}]})";
+  const UpgradeSummary s = read_upgrade_summary((dir / "upgrade-summary.json").string());
+  ASSERT_EQ(s.pairs.size(), 1u);
+  EXPECT_EQ(s.pairs[0].strata[0].compared, 4);
+  EXPECT_EQ(upgrade_headline_markdown(s),
+            "**softpipe unchanged.**\n\nBisection of egl-llvmpipe (`" +
+                (dir / "bisect" / "bisect.json").string() +
+                "`, 3 primitives): first bad commit `a07fa6516b01` \"llvmpipe/linear: add support "
+                "for rgba color buffers\" (2 primitives).\n");
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ra::report
