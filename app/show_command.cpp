@@ -10,6 +10,7 @@
 
 #include "app/commands.h"
 #include "metrics/records.h"
+#include "triage/image_legend.h"
 #include "triage/primitive_image.h"
 #include "util/cell_text.h"
 
@@ -75,12 +76,10 @@ void register_show_command(CLI::App& app, int& exit_code) {
         im.path.c_str(), im.image_width, im.image_height, im.shown.x0, im.shown.x1 - 1, im.shown.y0,
         im.shown.y1 - 1, v.width, v.height, im.scale, im.width, im.height);
     if (!im.legend_note.empty()) std::fprintf(stderr, "renderaudit: %s\n", im.legend_note.c_str());
-    std::printf(
-        "colours: grey = lit by both (%lld), orange = platform (%s) only (%lld), blue = "
-        "reference only (%lld), black = pixels GL forbids (%s), red line = ideal projection\n",
-        static_cast<long long>(im.both), opts->q.platform.c_str(),
-        static_cast<long long>(im.platform_only), static_cast<long long>(im.reference_only),
-        triage::forbidden_pixels_text(im.record.violating_pixels, im.violating).c_str());
+    // The legend's rows, as the picture gives them: one count per colour, each explained.
+    for (const triage::LegendEntry& e :
+         triage::picture_legend(im.picture, opts->q.platform, im.record.violating_pixels))
+      std::printf("  %s\n", e.text.c_str());
     std::printf("%s %llu, view %d (group %s, fov %g deg, %d x %d px), platform %s:\n",
                 im.record.kind.c_str(), static_cast<unsigned long long>(opts->q.index), v.id,
                 v.group_name().c_str(), v.fov_deg, v.width, v.height, opts->q.platform.c_str());

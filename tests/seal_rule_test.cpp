@@ -106,7 +106,7 @@ TEST(SealRule, TheWholeRunIsReadByEveryReader) {
   ASSERT_EQ(frame_sizes(shard_bytes()).size(), 3u);  // 8,192 rows, 808 rows, the seal
   const Outcome audit = run_renderaudit("audit " + base + " " + base + " --no-history");
   EXPECT_EQ(audit.exit_code, 0) << audit.output;
-  EXPECT_NE(audit.output.find("9000"), std::string::npos) << audit.output;
+  EXPECT_NE(audit.output.find("9,000 primitives recorded"), std::string::npos) << audit.output;  // every row read
   const Outcome status = run_renderaudit("status " + base);
   EXPECT_EQ(status.exit_code, 0) << status.output;
   EXPECT_EQ(run_renderaudit("stats describe " + base + " --column pixels").exit_code, 0);

@@ -235,13 +235,6 @@ void write_picture(const OIIO::ImageBuf& buf, const ShowRequest& q, geometry::Ki
 
 }  // namespace
 
-std::string forbidden_pixels_text(int64_t violating_pixels, int64_t marked) {
-  if (violating_pixels < 0) return std::to_string(marked) + " marked; not judged";
-  if (violating_pixels == marked) return std::to_string(marked);
-  return std::to_string(violating_pixels) + " (violating_pixels; " + std::to_string(marked) +
-         " marked: every fragment of a column or row that holds too many)";
-}
-
 PixelPicture draw_pixel_picture(const geometry::PixelSet& lit, const geometry::PixelSet& reference,
                                 const geometry::PixelSet& violating,
                                 const geometry::PixelRect& shown, int S) {

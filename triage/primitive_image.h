@@ -110,12 +110,6 @@ struct PrimitiveImage {
   PixelPicture picture;   // the colours' counts (forbidden, missing) and the rings (no rgb)
 };
 
-// The count of black pixels as `show` states it, consistent with the record's `violating_pixels`
-// (`marked`: the pixels drawn black). The column rule of lines counts the fragments beyond the
-// first of a column (or row) but marks every fragment there, so a column of two fragments is 1
-// violating pixel and 2 black ones: then both numbers are given, e.g. "1 (2 marked: ...)".
-std::string forbidden_pixels_text(int64_t violating_pixels, int64_t marked);
-
 // Loads RUN/experiment.toml, renders primitive `index` of `kind` in `view` on `platform` in this
 // process, compares it with the reference rasterizer and writes the PNG. Throws ra::util::UserError
 // saying what is wrong and what is allowed: no run directory, unknown platform or kind, view or

@@ -1,5 +1,4 @@
-// `renderaudit show`'s count of black pixels agrees with the record's violating_pixels: a line
-// with two fragments in one column printed "black ... (2)" beside `violating_pixels 1`.
+// `renderaudit show`'s picture: the forbidden and missing pixels ringed, the legend's counts.
 #include "triage/primitive_image.h"
 
 #include <gtest/gtest.h>
@@ -8,14 +7,6 @@
 
 namespace ra::triage {
 namespace {
-
-TEST(ForbiddenPixelsText, SaysTheRecordsCountAndHowManyAreMarkedWhenTheyDiffer) {
-  EXPECT_EQ(forbidden_pixels_text(0, 0), "0");
-  EXPECT_EQ(forbidden_pixels_text(3, 3), "3");
-  const std::string column = forbidden_pixels_text(1, 2);
-  EXPECT_EQ(column.rfind("1 (violating_pixels; 2 marked", 0), 0u) << column;
-  EXPECT_EQ(forbidden_pixels_text(-1, 0), "0 marked; not judged");
-}
 
 // A 40 x 40 block lit by both, and one pixel at (50, 20) lit by the platform alone where GL
 // forbids it, shown in window pixels 0-79 x 0-49.
