@@ -4,7 +4,9 @@
 
 #include <cstdio>
 
-#include "regulation/regulation_study.h"
+#include "regulation/regulation_document.h"
+#include "regulation/regulation_figures.h"
+#include "regulation/regulation_run.h"
 #include "terrain_lod/lod_study.h"
 #include "timing/timing_run.h"
 

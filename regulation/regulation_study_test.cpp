@@ -1,5 +1,7 @@
 // End to end: experiments/regulation_smoke.toml through run / analyze / plot into a temporary folder.
-#include "regulation/regulation_study.h"
+#include "regulation/regulation_document.h"
+#include "regulation/regulation_figures.h"
+#include "regulation/regulation_run.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,6 @@
-// The regulation study: run, analyze, plot (regulation_study.h).
-#include "regulation/regulation_study.h"
+// The regulation study's run (regulation_run.h): random instances against the optimum, the
+// scene's levels of detail, the plans along the camera path rendered and timed.
+#include "regulation/regulation_run.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,17 +13,15 @@
 #include <sstream>
 
 #include "platforms/platform_probe.h"
-#include "plots/figure.h"
-#include "plots/figure_set.h"
 #include "regulation/attention.h"
 #include "regulation/lod_chain.h"
 #include "regulation/plan_rendering.h"
 #include "regulation/policies.h"
 #include "regulation/random_instances.h"
+#include "regulation/regulation_document.h"
 #include "regulation/regulation_experiment.h"
 #include "rundir/manifest.h"
 #include "stats/descriptive.h"
-#include "stats/table_writer.h"
 #include "util/atomic_file.h"
 #include "util/cell_text.h"
 #include "util/errors.h"
@@ -37,11 +36,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 json nullable(double v) { return std::isfinite(v) ? json(v) : json(); }
-
-// A number of a JSON document through a printf format, "n/a" where it is null (not finite).
-std::string fmt(const json& v, const char* f = "%.4g") {
-  return v.is_number() ? util::format_double(f, v.get<double>()) : "n/a";
-}
 
 // Quantiles of the finite values (HF6); nulls when there are none.
 json quantiles(std::vector<double> v) {
@@ -58,10 +52,6 @@ json quantiles(std::vector<double> v) {
 }
 
 const char* kTitle = "Decision-theoretic regulation of levels of detail";
-
-}  // namespace
-
-namespace {
 
 // Random instances: greedy against the exact optimum (and brute force on small ones); writes
 // instances.csv, fills j["random"], returns the number of instances.
@@ -305,18 +295,19 @@ std::string summary_text(const json& j, const std::string& dir, std::size_t inst
                          const std::vector<std::string>& findings) {
   std::ostringstream sum;
   const json& rq = j["random"]["value_ratio"];
-  sum << "regulation study -> " << dir << " (" << fmt(j["wall_s"], "%.1f") << " s)\n"
-      << "random instances: " << instances << ", value(OPT)/value(greedy) max " << fmt(rq.value("max", json()))
-      << ", median " << fmt(rq.value("q50", json())) << "; ratio-only greedy max "
-      << fmt(j["random"]["value_ratio_ratio_only"].value("max", json())) << "\n";
+  sum << "regulation study -> " << dir << " (" << number_or_na(j["wall_s"], "%.1f") << " s)\n"
+      << "random instances: " << instances << ", value(OPT)/value(greedy) max " << number_or_na(rq.value("max", json()))
+      << ", median " << number_or_na(rq.value("q50", json())) << "; ratio-only greedy max "
+      << number_or_na(j["random"]["value_ratio_ratio_only"].value("max", json())) << "\n";
   for (const json& row : j["sweep"])
     if (row["policy"] == "greedy")
-      sum << "budget " << fmt(row["budget_ms"]) << " ms: greedy expected cost "
-          << fmt(row["mean_expected_cost"]) << ", skips " << row["skips"].get<int>() << "/"
+      sum << "budget " << number_or_na(row["budget_ms"]) << " ms: greedy expected cost "
+          << number_or_na(row["mean_expected_cost"]) << ", skips " << row["skips"].get<int>() << "/"
           << row["rendered"].get<int>() << "\n";
   for (const std::string& f : findings) sum << "FINDING: " << f << "\n";
   return sum.str();
 }
+
 }  // namespace
 
 rundir::StudyRunResult run_regulation_study(const rundir::StudyRunOptions& options) {
@@ -391,255 +382,6 @@ rundir::StudyRunResult run_regulation_study(const rundir::StudyRunOptions& optio
   res.findings = !findings.empty();
   res.summary = summary_text(j, dir, instances, findings);
   return res;
-}
-
-namespace {
-
-json load_complete(const std::string& dir) {
-  const auto info = rundir::read_study_info(dir);
-  if (!info || info->kind != rundir::StudyKind::kRegulation)
-    throw util::UserError(dir +
-                          " is not a complete regulation study (no study.json of kind regulation: "
-                          "run `renderaudit run` on a regulation experiment first)");
-  try {
-    return json::parse(util::read_file(dir + "/regulation.json"));
-  } catch (const std::exception& e) {
-    throw util::UserError(dir + "/regulation.json cannot be read: " + e.what());
-  }
-}
-
-std::string regulation_markdown(const json& j) {
-  std::ostringstream md;
-  const json& sc = j["scene"];
-  const json& cm = j["cost_model"];
-  const json& rnd = j["random"];
-  const json& rq = rnd["value_ratio"];
-  md << "# Decision-theoretic regulation\n\n"
-     << "Horvitz & Lengyel, Perception, Attention, and Resources: A Decision-Theoretic Approach to "
-        "Graphics Rendering (UAI 1997), sections 5-7, with levels of detail in place of Talisman's "
-        "sprites: experiment `" << j["experiment"].value("file", "") << "`, scene `"
-     << sc.value("name", "") << "` (" << sc.value("kind", "") << ", " << sc.value("objects", 0)
-     << " objects, " << sc.value("path_frames", 0) << " path frames, planned every "
-     << sc.value("frame_stride", 1) << " frames), computed " << j.value("created_utc", "") << ".\n\n";
-  md << "### Method\n\n"
-     << "- **Levels of detail**: meshoptimizer's `meshopt_simplify` per texture group at the target "
-        "triangle ratios below, restripified; the error of a level is the simplifier's, in metres.\n"
-     << "- **Time** (the timing study's H4): " << fmt(cm["intercept_us"]) << " us + "
-     << fmt(cm["c1_us_per_tv"]) << " us x #tv + " << fmt(cm["c2_us_per_pixel"]) << " us x #pix ("
-     << cm.value("source", "") << "); #pix " << cm.value("pixels", "") << "; knapsack costs rounded up to "
-     << fmt(cm["cost_unit_us"]) << " us.\n"
-     << "- **Perceptual cost** (section 7.2): screen-area fraction x (projected geometric error in "
-        "pixels)^" << fmt(j["attention"]["error_exponent"]) << ", 0 at full detail.\n"
-     << "- **Attention** (equations 4 and 6, alpha = " << fmt(j["attention"]["alpha"])
-     << "): each object is weighted by q + (1 - q) alpha, q = p(A_S | A_O) p(A_O).\n"
-     << "- **Policies**: `greedy` = increments of each object's convex-hull upgrade chain in "
-        "decreasing Phi = gain / cost, compared with the best single-object upgrade (the better "
-        "of the two); `greedy_ratio_only` = without that check; `optimal` = dynamic programme over "
-        "the integer budget; `uniform` = the finest single level for all objects that fits; "
-        "`distance` = levels by distance bands scaled until the plan fits.\n\n";
-
-  md << "### Attention categories\n\n"
-     << stats::markdown_header({"Category", "p(attend)", "Seeded share", "Weight", "Objects"}, 1);
-  for (const auto& [name, c] : j["attention"]["categories"].items())
-    md << stats::markdown_row({name, fmt(c["probability"], "%.2f"), fmt(c["share"], "%.2f"), fmt(c["weight"], "%.3f"),
-               std::to_string(c.value("objects", 0))});
-  md << "\n### Levels of detail (all objects)\n\n"
-     << stats::markdown_header({"Level", "Target ratio", "Objects with it", "Triangles", "#tv", "Median error m", "Max error m"}, 1);
-  for (const json& l : j["lod"])
-    md << stats::markdown_row({std::to_string(l.value("level", 0)), fmt(l["target_ratio"], "%.4g"),
-               std::to_string(l.value("objects_with_level", 0)), std::to_string(l.value("triangles", 0)),
-               std::to_string(l.value("transformed", 0)), fmt(l["error_median_m"], "%.3g"),
-               fmt(l["error_max_m"], "%.3g")});
-  md << "\nAn object whose simplifier could not reduce further keeps fewer levels (counted at its last "
-        "level in the sums).\n\n";
-
-  md << "### Greedy against the optimum on random instances\n\n"
-     << "The factor-two guarantee holds for the **value**, the expected perceptual cost saved over "
-        "the all-coarsest plan: value(OPT) <= 2 value(greedy). The ratio of the expected costs "
-        "themselves has no bound.\n\n"
-     << stats::markdown_header({"Quantity", "n", "Median", "q90", "q99", "Max", "Above 2"}, 1);
-  auto qrow = [&](const std::string& name, const json& q, const json& above) {
-    md << stats::markdown_row({name, std::to_string(q.value("n", 0)), fmt(q.value("q50", json())), fmt(q.value("q90", json())),
-               fmt(q.value("q99", json())), fmt(q.value("max", json())),
-               above.is_number() ? std::to_string(above.get<int>()) : "-"});
-  };
-  qrow("value(OPT) / value(greedy)", rq, rnd["value_ratio_above_2"]);
-  qrow("value(OPT) / value(greedy, ratio only)", rnd["value_ratio_ratio_only"], rnd["value_ratio_ratio_only_above_2"]);
-  qrow("cost(greedy) / cost(OPT), expected perceptual cost", rnd["loss_ratio"], json());
-  md << "\n" << rnd.value("instances", 0) << " instances (" << rnd.value("adversarial", 0)
-     << " adversarial: the trap of the single-item check and its tight case), "
-     << rnd["objects"][0].get<int>() << "-" << rnd["objects"][1].get<int>() << " objects of "
-     << rnd["levels"][0].get<int>() << "-" << rnd["levels"][1].get<int>() << " levels; the DP was checked "
-        "against brute force on " << rnd.value("brute_forced", 0) << " of them ("
-     << rnd.value("dp_mismatches", 0) << " differences); plans over budget: " << rnd.value("over_budget", 0)
-     << ".\n\n";
-
-  const json& render = j["render"];
-  md << "### Expected perceptual cost against the frame budget (camera path)\n\n"
-     << "Mean over the planned frames; the objects may spend the budget minus the empty frame ("
-     << fmt(json(render.value("base_us", 0.0) / 1000.0), "%.3f") << " ms measured).\n\n";
-  std::vector<std::string> budgets;
-  std::vector<std::string> policies;
-  for (const json& r : j["sweep"]) {
-    const std::string b = fmt(r["budget_ms"], "%g");
-    if (std::find(budgets.begin(), budgets.end(), b) == budgets.end()) budgets.push_back(b);
-    const std::string p = r.value("policy", "");
-    if (std::find(policies.begin(), policies.end(), p) == policies.end()) policies.push_back(p);
-  }
-  std::vector<std::string> cols = {"Policy"};
-  for (const auto& b : budgets) cols.push_back(b + " ms");
-  md << stats::markdown_header(cols, 1);
-  for (const auto& p : policies) {
-    std::vector<std::string> cells = {p};
-    for (const auto& b : budgets) {
-      std::string c = "-";
-      for (const json& r : j["sweep"])
-        if (r.value("policy", "") == p && fmt(r["budget_ms"], "%g") == b) c = fmt(r["mean_expected_cost"]);
-      cells.push_back(c);
-    }
-    md << stats::markdown_row(cells);
-  }
-  if (render.value("enabled", false) && render["error"].is_null()) {
-    md << "\n### Rendered plans: frame skips on " << j.value("platform", "") << "\n\n"
-       << render.value("renderer", "") << ", " << render.value("repetitions", 0)
-       << " timed repetitions per plan (clear + chosen levels + glFinish); a frame is skipped when "
-          "its median measured time exceeds the budget. Relative error = (measured - predicted) / "
-          "predicted, median over frames; |error| = |predicted - measured| / measured, median over "
-          "frames, with the #pix used and (last column) with the estimated #pix for the same plans.\n\n"
-       << stats::markdown_header({"Policy", "Budget ms", "Frames", "Skips", "Skip rate", "Mean predicted ms",
-                  "Median measured ms", "Median relative error", "Median abs error",
-                  "Median abs error, estimated #pix"}, 1);
-    for (const json& r : j["sweep"])
-      md << stats::markdown_row({r.value("policy", ""), fmt(r["budget_ms"], "%g"), std::to_string(r.value("rendered", 0)),
-                 std::to_string(r.value("skips", 0)), fmt(r["skip_fraction"], "%.2f"),
-                 fmt(r["mean_predicted_ms"], "%.2f"), fmt(r["median_measured_ms"], "%.2f"),
-                 fmt(r["median_relative_error"], "%+.2f"), fmt(r["median_abs_relative_error"], "%.2f"),
-                 fmt(r["median_abs_relative_error_estimated_pixels"], "%.2f")});
-    const json& ae = render["abs_relative_error"];
-    const json& ee = render["abs_relative_error_estimated_pixels"];
-    md << "\nOver all " << ae.value("n", 0) << " rendered plans, median |predicted - measured| / measured: "
-       << fmt(ae.value("q50", json()), "%.3f") << " (q90 " << fmt(ae.value("q90", json()), "%.3f")
-       << "); with the estimated #pix for the same plans " << fmt(ee.value("q50", json()), "%.3f")
-       << " (q90 " << fmt(ee.value("q90", json()), "%.3f") << ").\n";
-    if (cm.contains("measured_over_estimated_pixels")) {
-      const json& q = cm["measured_over_estimated_pixels"];
-      md << "Measured #pix of the finest level / estimated #pix per (frame, visible object): median "
-         << fmt(q.value("q50", json()), "%.3f") << ", min " << fmt(q.value("min", json()), "%.3g")
-         << ", max " << fmt(q.value("max", json()), "%.3g") << " (n = " << q.value("n", 0) << "; pixels.csv).\n";
-    }
-  } else if (!render["error"].is_null()) {
-    md << "\nRendering failed: " << render["error"].get<std::string>() << "\n";
-  }
-  md << "\n### Findings\n\n";
-  md << "- value(OPT) / value(greedy) on " << rnd.value("instances", 0) << " random instances: max "
-     << fmt(rq.value("max", json())) << ", median " << fmt(rq.value("q50", json()))
-     << " (never above 2: " << (rnd.value("value_ratio_above_2", 1) == 0 ? "yes" : "NO") << "); "
-     << "without the single-item check the max is " << fmt(rnd["value_ratio_ratio_only"].value("max", json()))
-     << ".\n";
-  for (const json& f : j["findings"]) md << "- **Check failed**: " << f.get<std::string>() << "\n";
-  md << "\n";
-  return md.str();
-}
-
-}  // namespace
-
-void analyze_regulation_study(const std::string& dir) {
-  const json j = load_complete(dir);
-  util::write_file_atomic(dir + "/regulation.md", regulation_markdown(j));
-  rundir::StudyInfo info = *rundir::read_study_info(dir);
-  info.document = "regulation.md";
-  info.analysed = true;
-  rundir::write_study_info(dir, info);
-}
-
-void plot_regulation_study(const std::string& dir) {
-  const json j = load_complete(dir);
-  if (!rundir::read_study_info(dir)->analysed)
-    throw util::UserError(dir + " has not been analysed: run `renderaudit analyze " + dir +
-                          "` first");
-  plots::StudyFigures figs("regulation");
-  // 1. distribution of value(OPT) / value(greedy)
-  {
-    std::vector<double> r;
-    for (const json& v : j["random"]["ratios"]) if (v.is_number()) r.push_back(v.get<double>());
-    plots::HistogramSeries hs;
-    hs.name = "greedy with the single-item check";
-    const int bins = 40;
-    for (int i = 0; i <= bins; ++i) hs.edges.push_back(1.0 + double(i) / bins);
-    hs.counts.assign(bins, 0);
-    for (double v : r) hs.counts[std::min(bins - 1, std::max(0, int((v - 1.0) * bins)))] += 1;
-    for (auto c : hs.counts) hs.heights.push_back(double(c));
-    hs.n = r.size();
-    plots::HistogramContent hc;
-    hc.density = false;
-    hc.series.push_back(hs);
-    figs.add("regulation_ratio_histogram", "value(OPT) / value(greedy) on random instances",
-             "value(OPT) / value(greedy)", "instances",
-             "Distribution of the ratio of the optimal to the greedy value (perceptual cost saved "
-             "over the all-coarsest plan) on " +
-                 std::to_string(r.size()) +
-                 " random knapsack instances; the theorem bounds it by 2.",
-             hc);
-  }
-  // y against x of `rows` on log axes, one series per policy in the order they first appear; a
-  // row without a number for y is left out (its policy keeps its place).
-  auto by_policy = [](const json& rows, const char* x, const char* y) {
-    plots::SeriesInOrder by;
-    for (const json& r : rows) {
-      plots::ScatterSeries& s = by[r.value("policy", "")];
-      if (!r[y].is_number()) continue;
-      s.x.push_back(r[x].get<double>());
-      s.y.push_back(r[y].get<double>());
-    }
-    plots::ScatterContent sc;
-    sc.series = by.series();
-    sc.x_log10 = sc.y_log10 = true;
-    return sc;
-  };
-  // 2. expected perceptual cost against budget, one series per policy
-  {
-    const plots::ScatterContent sc = by_policy(j["sweep"], "budget_ms", "mean_expected_cost");
-    figs.add("regulation_cost_vs_budget", "Expected perceptual cost against frame budget",
-             "frame budget (ms)", "mean expected perceptual cost",
-             "Mean expected perceptual cost of the plans along the camera path, per policy and "
-             "budget.",
-             sc)
-        .note = plots::scatter_omitted_note(sc);
-  }
-  // 3. skip rate per budget and policy; 4. measured against predicted
-  if (j["render"].value("enabled", false) && j["render"]["error"].is_null()) {
-    plots::BarChartContent bc;
-    std::map<std::string, std::size_t> series_index;
-    for (const json& r : j["sweep"]) {
-      const std::string b = fmt(r["budget_ms"], "%g") + " ms";
-      if (std::find(bc.categories.begin(), bc.categories.end(), b) == bc.categories.end())
-        bc.categories.push_back(b);
-    }
-    for (const json& r : j["sweep"]) {
-      const std::string p = r.value("policy", "");
-      if (!series_index.count(p)) {
-        series_index[p] = bc.series.size();
-        bc.series.push_back({p, std::vector<double>(bc.categories.size(), 0.0), {}});
-      }
-      const std::string b = fmt(r["budget_ms"], "%g") + " ms";
-      const auto at = std::find(bc.categories.begin(), bc.categories.end(), b) - bc.categories.begin();
-      bc.series[series_index[p]].values[std::size_t(at)] =
-          100.0 * (r["skip_fraction"].is_number() ? r["skip_fraction"].get<double>() : 0.0);
-    }
-    bc.y_max = 100;
-    figs.add("regulation_frame_skips", "Frame skips per budget and policy", "frame budget",
-             "frames over budget (%)",
-             "Share of the planned frames whose median measured time exceeded the budget.", bc);
-
-    const plots::ScatterContent sc = by_policy(j["render"]["points"], "predicted_ms", "measured_ms");
-    figs.add("regulation_measured_vs_predicted", "Measured against predicted frame time",
-             "predicted frame time (ms)", "measured median frame time (ms)",
-             "Each rendered plan: the H4 prediction plus the empty frame against the median "
-             "measured time.",
-             sc)
-        .note = plots::scatter_omitted_note(sc);
-  }
-  figs.write(dir);
 }
 
 }  // namespace ra::regulation

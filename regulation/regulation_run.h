@@ -14,10 +14,9 @@
 //                     query's count, with the bounding-sphere estimate
 //   regulation.json   settings, summaries and the numbers behind the figures
 //   study.json        kind "regulation" (rundir/study_dir.h)
-// `analyze` adds regulation.md (and rewrites study.json), `plot` DIR/figures/.
+// `analyze` adds regulation.md (and rewrites study.json; regulation_document.h), `plot`
+// DIR/figures/ (regulation_figures.h).
 #pragma once
-
-#include <string>
 
 #include "rundir/study_dir.h"
 
@@ -27,12 +26,5 @@ namespace ra::regulation {
 // a check failed (a greedy / optimal value ratio above 2, the DP differing from brute force, a
 // plan over budget, or the rendering process failing); the summary says which.
 rundir::StudyRunResult run_regulation_study(const rundir::StudyRunOptions& options);
-
-// DIR/regulation.md from DIR/regulation.json; study.json rewritten with document = "regulation.md",
-// analysed = true. Throws UserError when DIR is not a complete regulation run.
-void analyze_regulation_study(const std::string& dir);
-
-// The figures through plots::write_figure_set into DIR/figures/. Throws UserError like analyze.
-void plot_regulation_study(const std::string& dir);
 
 }  // namespace ra::regulation

@@ -1,0 +1,22 @@
+// The regulation study's document (`renderaudit analyze`): DIR/regulation.md from the
+// DIR/regulation.json its run wrote (regulation_run.h), and the reading of that file the figures
+// share.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace ra::regulation {
+
+// DIR/regulation.md from DIR/regulation.json; study.json rewritten with document = "regulation.md",
+// analysed = true. Throws UserError when DIR is not a complete regulation run.
+void analyze_regulation_study(const std::string& dir);
+
+// DIR/regulation.json of a complete regulation run. Throws UserError when DIR is not one (no
+// study.json of kind regulation) or the file cannot be read.
+nlohmann::json read_regulation_json(const std::string& dir);
+
+// A number of a JSON document through a printf format, "n/a" where it is null (not finite).
+std::string number_or_na(const nlohmann::json& v, const char* f = "%.4g");
+
+}  // namespace ra::regulation
