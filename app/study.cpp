@@ -7,7 +7,9 @@
 #include "regulation/regulation_document.h"
 #include "regulation/regulation_figures.h"
 #include "regulation/regulation_run.h"
-#include "terrain_lod/lod_study.h"
+#include "terrain_lod/lod_document.h"
+#include "terrain_lod/lod_figures.h"
+#include "terrain_lod/lod_run.h"
 #include "timing/timing_run.h"
 
 namespace ra::app {

@@ -1,6 +1,8 @@
 // End to end: experiments/lod_smoke.toml through run_lod_study, analyze_lod_study and
 // plot_lod_study into a temporary folder; and the experiment file's located errors.
-#include "terrain_lod/lod_study.h"
+#include "terrain_lod/lod_document.h"
+#include "terrain_lod/lod_figures.h"
+#include "terrain_lod/lod_run.h"
 
 #include <gtest/gtest.h>
 

@@ -5,14 +5,12 @@
 // frame and tau refines the LOD (the experiment's lambda, drawn and timed, and each check_lambda,
 // only refined and checked), checks conformity, seams and the measured screen error, draws the
 // LOD and the full-resolution mesh `repetitions` times each and compares their images. Writes
-//   DIR/frames.csv        one row per (lambda, tau, frame) (columns in lod_study.cpp)
+//   DIR/frames.csv        one row per (lambda, tau, frame) (columns in lod_table.h)
 //   DIR/lod_summary.json  settings, terrain, renderer, lambdas, the checks' verdicts
 //   DIR/study.json        last (kind "lod", analysed false)
-// analyze: DIR/lod_table.csv (per lambda and tau), DIR/lod.md, study.json (document "lod.md").
-// plot: DIR/figures/ (speed against image error, triangles and measured screen error against tau).
+// analyze (lod_document.h): DIR/lod_table.csv (per lambda and tau), DIR/lod.md, study.json
+// (document "lod.md"). plot (lod_figures.h): DIR/figures/.
 #pragma once
-
-#include <string>
 
 #include "rundir/study_dir.h"
 
@@ -22,11 +20,5 @@ namespace ra::lod {
 // (a mesh not conforming, a seam used differently from its two sides, or a measured screen error
 // above tau). Throws UserError for a bad experiment or height file.
 rundir::StudyRunResult run_lod_study(const rundir::StudyRunOptions& options);
-
-// Throws UserError when `dir` is not a complete LOD run.
-void analyze_lod_study(const std::string& dir);
-
-// Needs analyze_lod_study's lod_table.csv; throws UserError when it is missing.
-void plot_lod_study(const std::string& dir);
 
 }  // namespace ra::lod
