@@ -51,7 +51,7 @@ double predict_us(const CostModel& m, double transformed_vertices, double pixels
 // ceil(us / unit): conservative integer cost units for the knapsack (>= 0).
 int64_t cost_units(const CostModel& m, double us);
 
-// The H4 fit of `platform` in a timing study's timing.json (timing/timing_report.cpp layout:
+// The H4 fit of `platform` in a timing study's timing.json (timing/timing_outputs.cpp layout:
 // platforms[].name, platforms[].fits[] with heuristic "h4", intercept, parameters b0/c1/c2).
 // `intercept`: the h4+b fit. Keeps pixel_factor, measured_pixels and cost_unit_us of `base`. Throws UserError
 // naming the file when it is unreadable or holds no such fit.

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "util/errors.h"
-#include "timing/timing_report.h"
+#include "timing/timing_outputs.h"
 #include "timing/timing_study.h"
 
 namespace ra::timing {

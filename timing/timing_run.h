@@ -1,6 +1,6 @@
 // The whole rendering-time study from an experiment file: scenes and paths built once, each
 // platform measured in its own child process (timing_study.h), analysed, and written to the
-// output folder (timing_report.h) with its study.json. Called by `renderaudit timing` and by
+// output folder (timing_outputs.h) with its study.json. Called by `renderaudit timing` and by
 // `renderaudit run` for a file with a [timing] table.
 #pragma once
 

@@ -44,7 +44,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "plots/figure.h"
 #include "timing/repeated_runs.h"
 #include "timing/timing_study.h"
 
@@ -67,11 +66,8 @@ std::string pos_tables_csv(const StudyResults& r);
 std::string table6_repeated_csv(const StudyResults& r);
 std::string system_task_c_repeated_csv(const StudyResults& r);
 
-// The figures (plots/figure.h): density of the system task's frame times per platform, and per
-// platform, scene and method the measured and predicted frame times along the path.
-std::vector<plots::Figure> timing_figures(const StudyResults& r);
-
-// Writes everything above into `dir` (created when missing); figures unless `figures` is false.
+// Writes everything above into `dir` (created when missing), with timing.md (timing_document.h)
+// and the figures (timing_figures.h) unless `figures` is false.
 // Returns the paths written.
 std::vector<std::string> write_timing_outputs(const StudyResults& r, const std::string& dir,
                                               bool figures = true);
