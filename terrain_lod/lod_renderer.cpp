@@ -1,5 +1,6 @@
-// Drawing of LOD meshes through a GL platform (lod_renderer.h), into a framebuffer object of the
-// window size (colour and depth); the image is read back only when asked for, outside the timing.
+// Drawing of LOD meshes through a GL platform (lod_renderer.h), into the studies' scene target
+// (scenes/scene_target.h: a framebuffer object of the window size, colour and depth); the image is
+// read back only when asked for, outside the timing.
 #include "terrain_lod/lod_renderer.h"
 
 
@@ -9,10 +10,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "util/errors.h"
-#include "platforms/colour_depth_framebuffer.h"
-#include "platforms/gl_context.h"
-#include "platforms/platform.h"
+#include "scenes/scene_target.h"
 
 namespace ra::lod {
 namespace {
@@ -54,10 +52,10 @@ ImageDifference image_difference(const std::vector<uint8_t>& a, const std::vecto
 }
 
 struct LodRenderer::Impl {
-  scenes::CameraSettings cam;
-  std::unique_ptr<platforms::GlContext> context;
-  const platforms::GlApi* gl = nullptr;  // context->gl()
-  platforms::ColourDepthFramebuffer target;
+  Impl(const std::string& platform, const scenes::CameraSettings& cam)
+      : target(platform, cam), gl(&target.gl()) {}
+  scenes::SceneTarget target;
+  const platforms::GlApi* gl;  // target.gl()
   std::vector<uint8_t> colour;  // the last frame, read back when image() asks for it
   bool colour_stale = true;
   GLuint vbo = 0, ibo = 0;
@@ -66,17 +64,9 @@ struct LodRenderer::Impl {
 
 LodRenderer::LodRenderer(const std::string& platform, const scenes::CameraSettings& cam,
                          const HeightField& f)
-    : impl_(std::make_unique<Impl>()) {
+    : impl_(std::make_unique<Impl>(platform, cam)) {
   Impl& m = *impl_;
-  const std::optional<rundir::PlatformSpec> spec = rundir::find_platform(platform);
-  if (!spec || !spec->draws_with_gl())
-    throw util::UserError("platform '" + platform + "' has no GL driver (allowed: " +
-                          rundir::aliased_gl_platform_names() + ")");
-  m.cam = cam;
-  m.context = platforms::create_gl_context(*spec);  // sets Mesa's environment and checks the driver
-  m.gl = &m.context->gl();
   const platforms::GlApi* gl = m.gl;
-  m.target = platforms::create_colour_depth_framebuffer(*gl, cam.width, cam.height, platform);
   m.colour.assign(size_t(cam.width) * cam.height * 4, 0);
 
   // vertex colours from the full-resolution surface (see the header)
@@ -102,47 +92,32 @@ LodRenderer::LodRenderer(const std::string& platform, const scenes::CameraSettin
       v = {float(i * f.spacing), float(j * f.spacing), float(f.at(i, j)), {0, 0, 0, 255}};
       for (int c = 0; c < 3; ++c) v.rgba[c] = uint8_t(std::clamp(255 * rgb[c] * (0.25 + 0.75 * lambert), 0.0, 255.0));
     }
-  gl->GenBuffers(1, &m.vbo);
+  m.vbo = m.target.new_buffer(GL_ARRAY_BUFFER, verts.data(), verts.size() * sizeof(Vertex),
+                              GL_STATIC_DRAW);
   gl->GenBuffers(1, &m.ibo);
-  gl->BindBuffer(GL_ARRAY_BUFFER, m.vbo);
-  gl->BufferData(GL_ARRAY_BUFFER, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), GL_STATIC_DRAW);
   gl->EnableClientState(GL_VERTEX_ARRAY);
   gl->EnableClientState(GL_COLOR_ARRAY);
   gl->VertexPointer(3, GL_FLOAT, sizeof(Vertex), reinterpret_cast<const void*>(0));
   gl->ColorPointer(4, GL_UNSIGNED_BYTE, sizeof(Vertex), reinterpret_cast<const void*>(3 * sizeof(float)));
-  gl->Viewport(0, 0, cam.width, cam.height);
-  gl->Enable(GL_DEPTH_TEST);
-  gl->DepthFunc(GL_LESS);
   gl->Disable(GL_CULL_FACE);  // seen from below through a crack, a back face still shows
   gl->Disable(GL_LIGHTING);
   gl->ShadeModel(GL_SMOOTH);
   gl->ClearColor(0.55f, 0.70f, 0.90f, 1.0f);  // sky
-  gl->MatrixMode(GL_PROJECTION);
-  gl->LoadMatrixd(scenes::projection_of(cam).m.data());
-  gl->MatrixMode(GL_MODELVIEW);
   if (gl->GetError() != GL_NO_ERROR) throw std::runtime_error("GL error while setting up the terrain renderer");
 }
 
 LodRenderer::~LodRenderer() {
-  if (impl_ && impl_->context) {
-    impl_->context->make_current();
+  if (impl_) {
+    impl_->target.context().make_current();
     impl_->gl->DeleteBuffers(1, &impl_->vbo);
     impl_->gl->DeleteBuffers(1, &impl_->ibo);
   }
 }
 
-std::string LodRenderer::gl_renderer() const {
-  return reinterpret_cast<const char*>(impl_->gl->GetString(GL_RENDERER));
-}
-std::string LodRenderer::gl_version() const {
-  return reinterpret_cast<const char*>(impl_->gl->GetString(GL_VERSION));
-}
+std::string LodRenderer::gl_renderer() const { return impl_->target.gl_string(GL_RENDERER); }
+std::string LodRenderer::gl_version() const { return impl_->target.gl_string(GL_VERSION); }
 
-void LodRenderer::set_viewpoint(const scenes::Viewpoint& vp) {
-  const platforms::GlApi* gl = impl_->gl;
-  gl->MatrixMode(GL_MODELVIEW);
-  gl->LoadMatrixd(scenes::look_at(vp).m.data());
-}
+void LodRenderer::set_viewpoint(const scenes::Viewpoint& vp) { impl_->target.set_viewpoint(vp); }
 
 void LodRenderer::upload(const LodMesh& mesh) {
   Impl& m = *impl_;
@@ -154,8 +129,8 @@ void LodRenderer::upload(const LodMesh& mesh) {
     m.draws.push_back({GLsizei(t.strip.size()), indices.size() * sizeof(uint32_t)});
     indices.insert(indices.end(), t.strip.begin(), t.strip.end());
   }
-  gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ibo);
-  gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), GL_STREAM_DRAW);
+  m.target.fill_buffer(GL_ELEMENT_ARRAY_BUFFER, m.ibo, indices.data(),
+                       indices.size() * sizeof(uint32_t), GL_STREAM_DRAW);
   gl->Finish();
 }
 
@@ -177,8 +152,7 @@ double LodRenderer::draw() {
 const std::vector<uint8_t>& LodRenderer::image() const {
   Impl& m = *impl_;
   if (m.colour_stale) {
-    m.gl->PixelStorei(GL_PACK_ALIGNMENT, 1);
-    m.gl->ReadPixels(0, 0, m.cam.width, m.cam.height, GL_RGBA, GL_UNSIGNED_BYTE, m.colour.data());
+    m.target.read_rgba(m.colour);
     m.colour_stale = false;
   }
   return m.colour;

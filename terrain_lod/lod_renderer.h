@@ -1,7 +1,7 @@
 // GL drawing of the terrain for the LOD study: the whole height field uploaded once as a vertex
 // buffer (x y z floats, RGBA8 colour), each frame's mesh drawn as one GL_TRIANGLE_STRIP per tile
-// from an index buffer, through a GL platform (platforms/gl_context.h) into a window-sized RGBA8 buffer
-// with a 24-bit depth buffer; fixed function, depth test on, no lighting in GL.
+// from an index buffer, through a GL platform into a window-sized RGBA8 buffer with a 24-bit
+// depth buffer (scenes/scene_target.h); fixed function, depth test on, no lighting in GL.
 //
 // Shading (chosen so that geometric differences show): each vertex carries a colour computed once
 // on the CPU from the full-resolution surface: a height-coded ramp (green, brown, grey, white)

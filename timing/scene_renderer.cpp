@@ -1,6 +1,6 @@
 // A scene drawn through a GL platform for the rendering-time study (scene_renderer.h; Wimmer &
-// Wonka 2003, sections 4.2, 7.1). The context comes from platforms/gl_context.h, as the runner's:
-// drawing goes to a framebuffer object of the window size, here with a depth renderbuffer as well.
+// Wonka 2003, sections 4.2, 7.1). The context, the framebuffer object of the window size (colour
+// and depth) and the camera's state come from the studies' scene target (scenes/scene_target.h).
 #include "timing/scene_renderer.h"
 
 
@@ -12,10 +12,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "util/errors.h"
-#include "platforms/colour_depth_framebuffer.h"
-#include "platforms/gl_context.h"
-#include "platforms/platform.h"
+#include "scenes/scene_target.h"
 
 namespace ra::timing {
 namespace {
@@ -35,12 +32,12 @@ struct ObjectBuffers {
 }  // namespace
 
 struct SceneRenderer::Impl {
+  Impl(const std::string& platform, const scenes::CameraSettings& cam)
+      : target(platform, cam, " to time"), gl(&target.gl()) {}
+  scenes::SceneTarget target;
+  const platforms::GlApi* gl;  // target.gl()
   RendererInfo info;
-  scenes::CameraSettings cam;
   bool gpu = false;
-  std::unique_ptr<platforms::GlContext> context;
-  const platforms::GlApi* gl = nullptr;  // context->gl()
-  platforms::ColourDepthFramebuffer target;
   GLuint occlusion_query = 0, timer_query = 0;
   std::vector<ObjectBuffers> objects;
   std::vector<GLuint> textures;
@@ -87,23 +84,16 @@ struct SceneRenderer::Impl {
 
 SceneRenderer::SceneRenderer(const std::string& platform, const scenes::CameraSettings& cam,
                              bool gpu_timer)
-    : impl_(std::make_unique<Impl>()) {
+    : impl_(std::make_unique<Impl>(platform, cam)) {
   Impl& m = *impl_;
-  const std::optional<rundir::PlatformSpec> spec = rundir::find_platform(platform);
-  if (!spec || !spec->draws_with_gl())
-    throw util::UserError("platform '" + platform + "' has no GL driver to time (allowed: " +
-                          rundir::aliased_gl_platform_names() + ")");
-  m.cam = cam;
-  m.info.platform = platform;
-  m.info.gallium_driver = spec->mesa_driver;
-  m.context = platforms::create_gl_context(*spec);  // sets Mesa's environment and checks the driver
-  m.gl = &m.context->gl();
   const platforms::GlApi* gl = m.gl;
-  m.info.backend = m.context->backend();
+  m.info.platform = platform;
+  m.info.gallium_driver = m.target.spec().mesa_driver;
+  m.info.backend = m.target.context().backend();
   m.info.lp_num_threads = std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "";
-  m.info.renderer = reinterpret_cast<const char*>(gl->GetString(GL_RENDERER));
-  m.info.version = reinterpret_cast<const char*>(gl->GetString(GL_VERSION));
-  m.info.vendor = reinterpret_cast<const char*>(gl->GetString(GL_VENDOR));
+  m.info.renderer = m.target.gl_string(GL_RENDERER);
+  m.info.version = m.target.gl_string(GL_VERSION);
+  m.info.vendor = m.target.gl_string(GL_VENDOR);
   const char* ext = reinterpret_cast<const char*>(gl->GetString(GL_EXTENSIONS));
   m.info.timer_query_listed = ext && std::strstr(ext, "GL_ARB_timer_query");
   if (m.info.timer_query_listed) {
@@ -114,7 +104,6 @@ SceneRenderer::SceneRenderer(const std::string& platform, const scenes::CameraSe
   m.info.timer_query = m.info.timer_query_listed && m.info.timer_query_bits > 0;
   m.gpu = gpu_timer && m.info.timer_query;
 
-  m.target = platforms::create_colour_depth_framebuffer(*gl, cam.width, cam.height, platform);
   GLint depth_bits = 0;
   gl->GetIntegerv(GL_DEPTH_BITS, &depth_bits);
   m.info.depth_bits = depth_bits;
@@ -122,10 +111,8 @@ SceneRenderer::SceneRenderer(const std::string& platform, const scenes::CameraSe
   gl->GenQueries(1, &m.occlusion_query);
   gl->GenQueries(1, &m.timer_query);
 
-  // Fixed-function state of the study: depth test, textures replace the colour, no lighting.
-  gl->Viewport(0, 0, cam.width, cam.height);
-  gl->Enable(GL_DEPTH_TEST);
-  gl->DepthFunc(GL_LESS);
+  // Fixed-function state of the study (beside the target's depth test and camera): textures
+  // replace the colour, no lighting.
   gl->Enable(GL_TEXTURE_2D);
   gl->TexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
   for (GLenum cap : {GL_LIGHTING, GL_BLEND, GL_CULL_FACE, GL_DITHER, GL_MULTISAMPLE})
@@ -134,22 +121,18 @@ SceneRenderer::SceneRenderer(const std::string& platform, const scenes::CameraSe
   gl->ClearDepth(1.0);
   gl->EnableClientState(GL_VERTEX_ARRAY);
   gl->EnableClientState(GL_TEXTURE_COORD_ARRAY);
-  gl->MatrixMode(GL_PROJECTION);
-  gl->LoadMatrixd(scenes::projection_of(cam).m.data());
-  gl->MatrixMode(GL_MODELVIEW);
-  gl->LoadIdentity();
   if (gl->GetError() != GL_NO_ERROR) throw std::runtime_error("GL error setting up " + platform);
 }
 
 SceneRenderer::~SceneRenderer() {
-  if (impl_->context) {
-    impl_->context->make_current();
+  if (impl_) {
+    impl_->target.context().make_current();
     impl_->release_scene();
   }
 }
 
 const RendererInfo& SceneRenderer::info() const { return impl_->info; }
-const scenes::CameraSettings& SceneRenderer::camera() const { return impl_->cam; }
+const scenes::CameraSettings& SceneRenderer::camera() const { return impl_->target.camera(); }
 bool SceneRenderer::measuring_gpu() const { return impl_->gpu; }
 
 void SceneRenderer::upload(const scenes::Scene& scene) {
@@ -202,24 +185,16 @@ void SceneRenderer::upload(const scenes::Scene& scene) {
       indices.insert(indices.end(), s.indices.begin(), s.indices.end());
       o.strips.push_back(d);
     }
-    gl->GenBuffers(1, &o.vbo);
-    gl->BindBuffer(GL_ARRAY_BUFFER, o.vbo);
-    gl->BufferData(GL_ARRAY_BUFFER, GLsizeiptr(interleaved.size() * sizeof(float)),
-                  interleaved.data(), GL_STATIC_DRAW);
-    gl->GenBuffers(1, &o.ibo);
-    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, o.ibo);
-    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)),
-                  indices.data(), GL_STATIC_DRAW);
+    o.vbo = m.target.new_buffer(GL_ARRAY_BUFFER, interleaved.data(),
+                                interleaved.size() * sizeof(float), GL_STATIC_DRAW);
+    o.ibo = m.target.new_buffer(GL_ELEMENT_ARRAY_BUFFER, indices.data(),
+                                indices.size() * sizeof(uint32_t), GL_STATIC_DRAW);
   }
   gl->Finish();
   if (gl->GetError() != GL_NO_ERROR) throw std::runtime_error("GL error uploading the scene");
 }
 
-void SceneRenderer::set_viewpoint(const scenes::Viewpoint& vp) {
-  const platforms::GlApi* gl = impl_->gl;
-  gl->MatrixMode(GL_MODELVIEW);
-  gl->LoadMatrixd(scenes::look_at(vp).m.data());
-}
+void SceneRenderer::set_viewpoint(const scenes::Viewpoint& vp) { impl_->target.set_viewpoint(vp); }
 
 DrawTime SceneRenderer::time_draw(const std::vector<int>& objects, bool with_clear,
                                   std::vector<int64_t>* state_changes) {
