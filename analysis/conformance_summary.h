@@ -78,6 +78,7 @@ constexpr std::size_t kNonOkExamples = 30;
 
 // `records_files` in the order their records count (sorted, as load_run_records lists them);
 // NonOkCase::file is relative to `run_dir` when that is given.
+// Used by tests as an independent check of ConformanceTally (a pass of its own over the files).
 ConformanceSummary summarize_conformance(const std::vector<std::string>& records_files,
                                          const std::string& run_dir = "");
 

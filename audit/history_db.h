@@ -88,6 +88,7 @@ int64_t history_audit_count(const std::string& db_path);
 
 // "ok" when SQLite's integrity check and foreign-key check find nothing, else their findings, one
 // per line. Same errors as read_history.
+// Used by tests as an independent check of the database after writes.
 std::string history_integrity(const std::string& db_path);
 
 // One night of `renderaudit watch` (triage/watch.h).

@@ -32,6 +32,7 @@ enum class ClipStatus {
   kInvisible,   // does not meet the closed clip volume
   kInvalid,     // a coordinate is NaN or infinite (or the projection is undefined): no geometry
 };
+// Used by tests to name a status in their messages.
 const char* clip_status_name(ClipStatus s);  // "visible", "degenerate", "invisible", "invalid"
 
 // The six clip planes, in the order used for plane indices below.
@@ -50,6 +51,7 @@ struct ClippedSegment {
   Vec2 p0, p1;        // GL window coordinates (pixels) of those ends: ptProj(e1), ptProj(e2)
   int plane0 = -1, plane1 = -1;  // ClipPlane that cut each end; -1 when it is the input vertex
 
+  // Used by tests as an independent check of the clipped length.
   double window_length() const { return length(p1 - p0); }  // pixels
 };
 

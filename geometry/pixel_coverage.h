@@ -46,8 +46,10 @@ struct PolygonCoverage {
   // Area of pixel (x, y) inside the polygon, px^2; O(log rows + log row partials).
   double area(int32_t x, int32_t y) const;
   // Sum of all pixel areas, px^2 (equals the polygon area up to rounding).
+  // Used by tests as an independent check of the coverage against the polygon area.
   double total_area() const;
   // Number of pixels with positive area.
+  // Used by tests as a check of which pixels the coverage holds.
   int64_t pixel_count() const;
 };
 
@@ -60,6 +62,7 @@ bool compute_coverage(const std::vector<Vec2>& polygon, PolygonCoverage* out);
 
 // Area of one pixel inside a convex polygon (window coordinates), px^2, by clipping the polygon to
 // the pixel square: O(vertices) per pixel. For spot checks; compute_coverage is the fast path.
+// Used by tests as an independent check of compute_coverage (one pixel clipped on its own).
 double pixel_area_in_convex_polygon(const std::vector<Vec2>& polygon, Pixel p);
 
 }  // namespace ra::geometry

@@ -91,6 +91,7 @@ std::vector<Vec2> segment_rectangle(Vec2 a, Vec2 b);
 
 // Whether the sample point q (window coordinates) is covered by the convex counter-clockwise
 // polygon under the top-left rule above. Exact.
+// Used by tests as an independent check of the rasterizer, one sample at a time.
 bool polygon_covers_sample(const std::vector<Vec2>& ccw_polygon, Vec2 q);
 
 // The pixels whose centres the convex counter-clockwise polygon covers (window coordinates, px;

@@ -58,10 +58,12 @@ struct LineMetrics {
 
 // Signed distance from point q to the infinite line through a and b (window coordinates), px:
 // > 0 when q is left of a -> b. Precondition: a != b (returns NaN otherwise).
+// Used by tests as an independent check of the line metrics (distances from first principles).
 double signed_distance_to_line(geometry::Vec2 q, geometry::Vec2 a, geometry::Vec2 b);
 
 // The rendered pixels ordered along the line from e1 to e2 (by the projection of their centres;
 // ties by (y, x)); for e1 == e2, by distance from e1.
+// Used by tests as an independent check of the line metrics (the order they walk a line in).
 std::vector<geometry::Pixel> order_along_line(const geometry::PixelSet& lit, geometry::Vec2 e1,
                                               geometry::Vec2 e2);
 

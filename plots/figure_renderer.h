@@ -63,9 +63,11 @@ struct RgbImage {
   std::vector<unsigned char> rgb;  // width * height * 3
   const unsigned char* at(int x, int y) const { return &rgb[(std::size_t(y) * width + x) * 3]; }
 };
+// Used by tests to read a figure back and check its pixels.
 RgbImage read_png(const std::string& path);
 
 // The colour of series i (0-based) in every figure, RGB.
+// Used by tests to find a series in a figure read back.
 void series_color(std::size_t i, unsigned char rgb[3]);
 
 }  // namespace ra::plots

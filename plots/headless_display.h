@@ -35,8 +35,10 @@ class HeadlessDisplay {
   const std::string& display() const { return display_; }
   // True when this object started a private Xvfb (false: an existing DISPLAY is used).
   bool private_server() const { return pid_ > 0; }
+  // Used by tests to check that the private server is stopped.
   pid_t server_pid() const { return pid_; }
   // The private server's authority file (empty when none was started).
+  // Used by tests to check that the authority file is removed.
   const std::string& authority_file() const { return authority_path_; }
 
   // Stops the private server now (idempotent); DISPLAY is restored to what it was.

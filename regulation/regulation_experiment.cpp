@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "util/errors.h"
-#include "platforms/platform.h"
+#include "rundir/platform_spec.h"
 #include "scenes/study_settings.h"
 #include "util/number_text.h"
 #include "util/toml_locator.h"

@@ -18,6 +18,7 @@ const char* records_extension(RecordsFormat f);  // ".csv", ".csv.zst"
 // True for a file name a records file may have: "*.csv" or "*.csv.zst".
 bool is_records_file_name(std::string_view path);
 // The file name without ".csv" or ".csv.zst" (the shard id for a shard's records file).
+// Used by tests to name the shard of a records file.
 std::string records_file_stem(std::string_view file_name);
 
 }  // namespace ra::rundir

@@ -52,10 +52,12 @@ class RecordsFileWriter {
 };
 
 // The trailer line (with its '\n') for `body`, the file's bytes before it, holding `rows` rows.
+// Used by tests to write sealed files by hand, as an independent check of RecordsFileWriter.
 std::string shard_trailer(std::string_view body, uint64_t rows);
 
 // Appends the trailer to the finished plain CSV file at `path` (a temporary, before it is committed);
 // returns the number of rows. Throws std::runtime_error on I/O failure.
+// Used by tests to seal hand-made shard files; run seals through RecordsFileWriter.
 uint64_t seal_shard_file(const std::string& path);
 
 // Empty when the file at `path` is sealed, its trailer matches its contents and it holds

@@ -28,6 +28,7 @@ std::vector<Shard> shards_of_slice(const std::vector<Shard>& shards, const Exper
                                    const Slice& slice);
 
 // The expected cost of each slice, microseconds (rundir/shard_cost.h), for messages and checks.
+// Used by tests as an independent check that slices balance their cost.
 std::vector<double> slice_costs(const std::vector<Shard>& shards, const Experiment& exp, int count);
 
 }  // namespace ra::rundir

@@ -22,7 +22,7 @@
 #include "runner/recorded_failures.h"
 #include "runner/run_dir.h"
 #include "runner/run_plan.h"
-#include "runner/run_tally.h"
+#include "runner/progress_meter.h"
 #include "rundir/shard.h"
 #include "runner/shard_recovery.h"
 #include "runner/worker_pool.h"
@@ -114,7 +114,7 @@ nlohmann::json drivers_json(const std::string& dir) {
 // yet started; a driver mismatch stops the run; a worker's own error is noted.
 struct ItemEnds {
   RunResult& result;
-  RunTally& tally;
+  ProgressMeter& progress;
   ShardRecovery& recovery;
   std::deque<WorkItem>& todo;
   std::map<std::string, double>& shard_seconds;
@@ -130,12 +130,12 @@ struct ItemEnds {
       case WorkerEvent::Kind::kTimedOut:
         return conclude(e.item, WorkOutcome::kTimeout, e.reason);
       case WorkerEvent::Kind::kDriverMismatch:
-        tally.shard_finished();
+        progress.shard_finished();
         result.failures.push_back({e.item.shard.id(), e.reason + ": " + e.words + e.log});
         if (result.wrong_renderer.empty()) result.wrong_renderer = e.words;
         return;
       case WorkerEvent::Kind::kFailed: {
-        tally.shard_finished();
+        progress.shard_finished();
         const std::string why = e.reason + (e.words.empty() ? "" : ": " + e.words);
         std::fprintf(stderr, "%srenderaudit: shard %s: worker %s\n", show ? "\n" : "",
                      e.item.shard.id().c_str(), why.c_str());
@@ -147,8 +147,8 @@ struct ItemEnds {
 
   void conclude(const WorkItem& w, WorkOutcome outcome, const std::string& reason) {
     if (outcome == WorkOutcome::kOk) {
-      tally.item_done(w);
-      if (!w.is_part()) tally.shard_finished(), ++result.shards_run;
+      progress.item_done(w);
+      if (!w.is_part()) progress.shard_finished(), ++result.shards_run;
     } else if (!w.is_part()) {
       result.failures.push_back({w.shard.id(), reason + (w.attempt == 1 ? "; re-running it"
                                                                         : "; bisecting it")});
@@ -156,7 +156,7 @@ struct ItemEnds {
     bool assembled = false;
     const std::vector<WorkItem> next = recovery.on_finished(w, outcome, reason, &assembled);
     for (auto it = next.rbegin(); it != next.rend(); ++it) todo.push_front(*it);
-    if (assembled) tally.shard_finished(), ++result.shards_run;
+    if (assembled) progress.shard_finished(), ++result.shards_run;
   }
 };
 
@@ -300,14 +300,14 @@ RunResult run_experiment(const RunOptions& options) {
   RunSignals signals;
   const bool show = options.progress && ::isatty(2);
   const bool log_progress = options.progress && !show;  // a log or CI: whole lines, now and then
-  RunTally tally(exp, todo);
+  ProgressMeter progress(exp, todo);
   ShardRecovery recovery(dir, exp, timeout_s);
   platforms::RendererCheck renderer_check(dir, options.expect_renderer);
   // wall seconds of each shard's worker (whole shards run at the first attempt), kept across
   // invocations: what a cost model or a simulation of more machines can learn from
   std::map<std::string, double> shard_seconds = manifest.shard_seconds.value_or(
       std::map<std::string, double>{});
-  ItemEnds on_event{result, tally, recovery, todo, shard_seconds, show};
+  ItemEnds on_event{result, progress, recovery, todo, shard_seconds, show};
   const std::string program =
       options.worker_program.empty() ? util::worker_program() : options.worker_program;
   WorkerPool pool(
@@ -328,15 +328,15 @@ RunResult run_experiment(const RunOptions& options) {
     }
     if (pool.serve(todo)) continue;  // reap everything that is ready before sleeping
     pool.enforce_time_limits();
-    tally.write_file(dir, this_host, pool, result.failures, false);
-    if (show) tally.show_line(result.failures.size());
-    if (log_progress) tally.log_line(result.failures.size());
+    progress.write_file(dir, this_host, pool, result.failures, false);
+    if (show) progress.show_line(result.failures.size());
+    if (log_progress) progress.log_line(result.failures.size());
     // Sleep up to 5 ms, waking at once when a server replies (the next shard is sent at once).
     pool.wait(5);
   }
   if (show) std::fprintf(stderr, "\n");
   pool.stop_all();  // no worker runs past this point
-  tally.write_file(dir, this_host, pool, result.failures, true);
+  progress.write_file(dir, this_host, pool, result.failures, true);
   fs::remove_all(ShardRecovery::parts_dir(dir));
   remove_temporaries(dir);  // what killed (timed-out) workers left half-written
   signals.restore();
@@ -345,7 +345,7 @@ RunResult run_experiment(const RunOptions& options) {
   result.worker_processes = pool.processes_started();
   result.failed_primitives = recovery.failed_primitives();
   manifest.shard_seconds = shard_seconds;
-  result.seconds = tally.elapsed_s();
+  result.seconds = progress.elapsed_s();
   finish_manifest(manifest, options, dir, jobs, result.seconds, pool.busy_seconds(), shards,
                   result);
   rundir::write_manifest(manifest_path, manifest);

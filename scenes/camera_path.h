@@ -51,6 +51,7 @@ std::vector<Viewpoint> read_camera_path_csv(const std::string& path);
 std::vector<Viewpoint> parse_camera_path_csv(const std::string& text, const std::string& file_name);
 // Writes the same format, atomically (round-trips exactly: 17 significant digits); throws
 // std::runtime_error naming the file when it cannot be written.
+// Used by tests as the round trip of parse_camera_path_csv.
 void write_camera_path_csv(const std::vector<Viewpoint>& path, const std::string& file);
 
 }  // namespace ra::scenes

@@ -48,10 +48,12 @@ std::vector<CityBuilding> plan_city(const CityParams& params);
 
 // Triangles of one building as generate_city draws it: per tier 2 * floors * 2 * (bays_x +
 // bays_y) facade triangles (one strip per storey per face) + 2 roof triangles (one strip).
+// Used by tests as an analytic check of generate_city's triangle count.
 int64_t city_building_triangles(const CityBuilding& building);
 
 // Triangles of the ground object: one quad per block and per street cell, i.e. a grid of
 // (2 * blocks_x + 1) x (2 * blocks_y + 1) cells, one strip per row of cells.
+// Used by tests as an analytic check of generate_city's triangle count.
 int64_t city_ground_triangles(const CityParams& params);
 
 // The city: objects[0] is the ground ("ground"), then one object per building ("building K"),

@@ -44,10 +44,12 @@ std::vector<TreePlan> plan_forest(const ForestParams& params);
 //   crown: stacks bands of 2 * slices, and a bottom and a top cap of slices - 2 each (a zig-zag
 //   strip over the end ring, so no degenerate triangles; a cone ends in a ring of 5 % of its
 //   base radius, a sphere at +-80 degrees of latitude).
+// Used by tests as an analytic check of generate_forest's triangle count.
 int64_t tree_triangles(const TreePlan& tree);
 
 // Triangles of the ground object: a 16 x 16 grid of cells, one strip per row: 512.
 constexpr int kForestGroundCells = 16;
+// Used by tests as an analytic check of generate_forest's triangle count.
 int64_t forest_ground_triangles();
 
 // The forest: objects[0] is the ground ("ground"), then one object per tree ("tree K").

@@ -2,9 +2,7 @@
 #include "scenes/scene_statistics.h"
 
 #include <cstdio>
-#include <sstream>
 
-#include "util/number_text.h"
 
 namespace ra::scenes {
 namespace {
@@ -51,20 +49,6 @@ SceneStatistics scene_statistics(const Scene& scene, unsigned cache_size, CacheR
   s.triangles_per_switch =
       s.state_switches > 0 ? static_cast<double>(s.triangles) / s.state_switches : 0.0;
   return s;
-}
-
-std::string format_statistics(const std::string& scene_name, const SceneStatistics& s) {
-  std::ostringstream out;
-  out << "value                 " << scene_name << "\n";
-  out << "#objects              " << s.objects << "\n";
-  out << "#triangles            " << s.triangles << "\n";
-  out << "#tv (cache " << s.cache_size << ")" << std::string(s.cache_size < 10 ? 3 : s.cache_size < 100 ? 2 : 1, ' ')
-      << "       " << s.transformed << "\n";
-  out << "#tv / tri             " << util::fixed(s.tv_per_triangle, 2) << "\n";
-  out << "#textures             " << s.textures << "\n";
-  out << "#state switches (sw)  " << s.state_switches << "\n";
-  out << "tris / sw             " << util::fixed(s.triangles_per_switch, 0) << "\n";
-  return out.str();
 }
 
 }  // namespace ra::scenes

@@ -29,13 +29,11 @@ SceneStatistics scene_statistics(const Scene& scene, unsigned cache_size,
 
 // Texture binds drawing one mesh alone: 1 for its first drawn strip, +1 at every change of
 // texture between consecutive drawn strips (strips of < 3 indices draw nothing).
+// Used by tests as an independent check of scene_texture_binds, mesh by mesh.
 int64_t texture_binds(const StripMesh& mesh);
 
 // Texture binds drawing every object of `scene` in order, state carried across objects (Table
 // 5's #state switches: the forest's 157 trees with bark and leaves give 314).
 int64_t scene_texture_binds(const Scene& scene);
-
-// One row per value, as Table 5 ("#objects  5609"), for logs and reports.
-std::string format_statistics(const std::string& scene_name, const SceneStatistics& stats);
 
 }  // namespace ra::scenes

@@ -64,15 +64,6 @@ TEST(SceneStatistics, EmptySceneHasZeroRatios) {
   EXPECT_EQ(st.triangles_per_switch, 0);
 }
 
-TEST(SceneStatistics, FormattedAsTable5) {
-  const std::string t = format_statistics("forest", scene_statistics(hand_scene(), 16));
-  EXPECT_NE(t.find("#objects              2\n"), std::string::npos) << t;
-  EXPECT_NE(t.find("#triangles            7\n"), std::string::npos) << t;
-  EXPECT_NE(t.find("#tv (cache 16)"), std::string::npos) << t;
-  EXPECT_NE(t.find("#tv / tri             1.43\n"), std::string::npos) << t;
-  EXPECT_NE(t.find("#state switches (sw)  2\n"), std::string::npos) << t;
-}
-
 // A bigger cache never transforms more on the forest (its strips only reuse the previous ring).
 TEST(SceneStatistics, ForestCacheSizes) {
   ForestParams p;

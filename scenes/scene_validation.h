@@ -14,6 +14,7 @@ namespace ra::scenes {
 // range, textures of width * height * 4 bytes, every bounding sphere enclosing all of its
 // object's vertices (with 1e-4 relative slack for float rounding), and the layout box holding
 // every vertex. Reports at most `max_problems` lines.
+// Used by tests as an independent check of every generated scene.
 std::vector<std::string> scene_problems(const Scene& scene, size_t max_problems = 20);
 
 }  // namespace ra::scenes

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "geometry/projection_range.h"
-#include "platforms/platform.h"
+#include "rundir/platform_spec.h"
 #include "util/number_text.h"
 
 namespace ra::scenes {

@@ -37,6 +37,7 @@ int64_t transformed_vertices(const StripMesh& mesh, unsigned cache_size,
 // The same mesh converted to a triangle list with meshopt_unstripify (degenerate triangles
 // dropped) and analysed as a list, each triangle looking up its three vertices: what a renderer
 // drawing GL_TRIANGLES would transform. For comparison only; not the strip model.
+// Used by tests as an independent check of the strip model (meshoptimizer on a list).
 int64_t transformed_vertices_as_triangle_list(const StripMesh& mesh, unsigned cache_size);
 
 }  // namespace ra::scenes

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test of the layout check (ctest layout_fixture): on tests/layout_fixture/, a tree with one
-# violation of each kind, check-layout.sh must fail and name each violation's file and line, and
-# must not report what the rules allow (a long function that says why, test helpers).
+# violation of each kind (a test that includes a higher folder among them), check-layout.sh must
+# fail and name each violation's file and line, and must not report what the rules allow (a long
+# function that says why, test helpers, a test including a higher folder's test-support header).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out=$(scripts/check-layout.sh tests/layout_fixture)
@@ -11,6 +12,7 @@ if [ $rc -ne 1 ]; then echo "expected exit 1, got $rc"; bad=1; fi
 expect=(
   "layout: docs/development.md:4: the source layout lists low high mid; CMakeLists.txt RA_LAYERS is low mid high"
   "layout: low/upward.cpp:3: includes high/ (a folder after low/ in the layer order)"
+  "layout: mid/reaching_test.cpp:5: a test includes high/ (a folder after mid/)"
   "layout: mid/wrong_namespace.h:9: namespace ra::low in mid/ (expected ra::mid)"
   "layout: high/long_function.cpp:8: function long_function is 154 lines (limit 150"
   "layout: low/upward.cpp:3: includes high/, but CMakeLists.txt links low to nothing that gives high"
@@ -18,13 +20,13 @@ expect=(
   "layout: CMakeLists.txt:7: mid is to link no driver code (RA_DRIVER_FREE), but it reaches low: mid -> low"
   "layout: scripts/pipes.sh:4: "
   "grep -q' under pipefail: the command before it dies of SIGPIPE"
-  "layout: 8 finding(s)"
+  "layout: 9 finding(s)"
 )
 for line in "${expect[@]}"; do
   grep -qF -- "$line" <<<"$out" || { echo "missing: $line"; bad=1; }
 done
-for absent in long_but_whole helpers_testing "namespace ra::mid" detail "pipes.sh:[5-8]"; do
+for absent in long_but_whole helpers_testing "reaching_test.cpp:4" "namespace ra::mid" detail "pipes.sh:[5-8]"; do
   if grep -q -- "$absent" <<<"$out"; then echo "reported what the rules allow: $absent"; bad=1; fi
 done
 if [ $bad -ne 0 ]; then echo "--- the check printed:"; echo "$out"; exit 1; fi
-echo "layout check: the fixture's 8 violations found, each with file and line"
+echo "layout check: the fixture's 9 violations found, each with file and line"

@@ -3,6 +3,7 @@
 
 Fails (exit 1, one line "layout: FILE:LINE: ..." per finding) on:
   - an include of a folder that comes after the including folder in the layer order;
+  - a *_test.cpp that includes a folder after its own (a test in a room below the code it tests);
   - a function body over MAX_FUNCTION_LINES lines (signature to closing brace) outside tests, unless
     the comment right above the function says why it reads better whole (a line starting with
     "// Reads better whole:");
@@ -17,8 +18,10 @@ Fails (exit 1, one line "layout: FILE:LINE: ..." per finding) on:
 The layer order is read from CMakeLists.txt (`set(RA_LAYERS ...)`), the one place it is written;
 docs/development.md must list the folders in the same order.
 
-Tests (*_test.cpp, *_testing.h, *_test_util.h, *_test.h, tests/), benchmarks and investigations
-may include anything and are not held to the function limit.
+A *_test.cpp may include only its own folder and folders before it (it lives in the lowest folder
+whose code it exercises), plus the test-support headers of any folder. Test-support headers
+(*_testing.h, *_test_util.h, *_test.h), tests/, benchmarks and investigations may include
+anything; no test is held to the function limit.
 
 Usage: check_layout.py [ROOT]   (ROOT: the source tree, default: this script's parent folder)
 """
@@ -191,6 +194,23 @@ def check_includes(root, layers, rank, findings, included):
                                     % (f, k, target, folder))
 
 
+def check_test_includes(root, layers, rank, findings):
+    """A *_test.cpp tests its own room: it includes its own folder and folders below it, like the
+    code it tests, plus the test-support headers (*_testing.h, *_test_util.h) of any folder."""
+    for folder in layers:
+        for f in source_files(root, folder):
+            if not f.endswith("_test.cpp"):
+                continue
+            for k, line in enumerate(open(os.path.join(root, f), encoding="utf-8"), 1):
+                m = re.match(r'\s*#\s*include\s+"([a-z_]+)/([a-z_0-9]+\.h)"', line)
+                if not m or m.group(1) not in rank or rank[m.group(1)] <= rank[folder]:
+                    continue
+                if is_test_file(m.group(2)):
+                    continue  # test support (a scipy oracle, lines of a text) serves any room
+                findings.append("%s:%d: a test includes %s/ (a folder after %s/): move the test to the "
+                                "lowest folder whose code it exercises" % (f, k, m.group(1), folder))
+
+
 def check_code(root, layers, findings, notes):
     seen_long = set()
     for folder in layers:
@@ -347,6 +367,7 @@ def main():
     findings, notes, included = [], [], {}
     check_docs_order(root, layers, findings)
     check_includes(root, layers, rank, findings, included)
+    check_test_includes(root, layers, rank, findings)
     check_code(root, layers, findings, notes)
     check_links(root, layers, cmake, findings, included)
     check_pipes(root, findings)

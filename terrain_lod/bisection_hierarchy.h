@@ -55,6 +55,7 @@ class TileTopology {
   const std::vector<int>& parents(int v) const { return parents_[size_t(v)]; }
   int depth(int v) const { return depth_[size_t(v)]; }  // bisection level: centre 1; corners 0
   // Split vertices, deepest (finest) first: a child always comes before its parents.
+  // Used by tests as a check of the hierarchy's order.
   const std::vector<int>& fine_to_coarse() const { return order_; }
 
  private:

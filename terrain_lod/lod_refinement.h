@@ -45,6 +45,7 @@ std::vector<uint32_t> build_strip(const std::vector<Triangle>& triangles, int* s
 
 // GL's reading of a strip: triangle k is (s[k], s[k+1], s[k+2]), odd k reversed to
 // (s[k+1], s[k], s[k+2]); degenerate ones (a repeated vertex) are left out.
+// Used by tests as an independent check of the strips (GL's own reading of them).
 std::vector<Triangle> decode_strip(const std::vector<uint32_t>& strip);
 
 }  // namespace ra::lod

@@ -5,7 +5,7 @@
 #include <set>
 #include <sstream>
 
-#include "platforms/platform.h"
+#include "rundir/platform_spec.h"
 #include "scenes/study_settings.h"
 #include "util/errors.h"
 #include "util/toml_locator.h"

@@ -1,6 +1,6 @@
-// The Vulkan platforms: their names, the device choice and its errors, and what lavapipe draws
-// against the reference rasterizer and GL (skipped, with the reason, where no Vulkan loader or
-// lavapipe is installed).
+// The Vulkan device (vulkan_device.cpp, vulkan_context.cpp): the platforms' names, the device
+// choice and its errors, and what lavapipe draws against the reference rasterizer and GL (skipped,
+// with the reason, where no Vulkan loader or lavapipe is installed).
 #include <gtest/gtest.h>
 
 #include <cstdlib>

@@ -1,5 +1,5 @@
 // How far a run's invocation is (see the header).
-#include "runner/run_tally.h"
+#include "runner/progress_meter.h"
 
 #include <unistd.h>
 
@@ -14,7 +14,8 @@
 
 namespace ra::runner {
 
-RunTally::RunTally(const rundir::Experiment& exp, const std::deque<WorkItem>& todo) : exp_(exp) {
+ProgressMeter::ProgressMeter(const rundir::Experiment& exp, const std::deque<WorkItem>& todo)
+    : exp_(exp) {
   shards_to_run_ = todo.size();
   for (const WorkItem& w : todo) {
     primitives_todo_ += w.shard.size();
@@ -22,22 +23,23 @@ RunTally::RunTally(const rundir::Experiment& exp, const std::deque<WorkItem>& to
   }
 }
 
-void RunTally::item_done(const WorkItem& w) {
+void ProgressMeter::item_done(const WorkItem& w) {
   primitives_done_ += w.shard.size();
   cost_done_ += expected_cost_of(w.shard, exp_);
 }
 
-double RunTally::elapsed_s() const {
+double ProgressMeter::elapsed_s() const {
   return std::chrono::duration<double>(Clock::now() - start_).count();
 }
 
-double RunTally::seconds_left(double elapsed_s) const {
+double ProgressMeter::seconds_left(double elapsed_s) const {
   if (cost_done_ <= 0) return -1.0;
   return elapsed_s * std::max(0.0, cost_todo_ - cost_done_) / cost_done_;
 }
 
-void RunTally::write_file(const std::string& dir, const std::string& host, const WorkerPool& pool,
-                          const std::vector<ShardFailure>& failures, bool at_end) {
+void ProgressMeter::write_file(const std::string& dir, const std::string& host,
+                               const WorkerPool& pool, const std::vector<ShardFailure>& failures,
+                               bool at_end) {
   const auto now = Clock::now();
   if (!at_end && now - last_file_ <= std::chrono::seconds(2)) return;
   last_file_ = now;
@@ -57,7 +59,7 @@ void RunTally::write_file(const std::string& dir, const std::string& host, const
   write_run_progress(dir, p);
 }
 
-void RunTally::show_line(std::size_t failed) {
+void ProgressMeter::show_line(std::size_t failed) {
   const auto now = Clock::now();
   if (now - last_line_ <= std::chrono::milliseconds(250)) return;
   last_line_ = now;
@@ -68,7 +70,7 @@ void RunTally::show_line(std::size_t failed) {
                util::duration_text(cost_done_ > 0 ? seconds_left(elapsed) : NAN).c_str());
 }
 
-void RunTally::log_line(std::size_t failed) {
+void ProgressMeter::log_line(std::size_t failed) {
   const auto now = Clock::now();
   if (now - last_log_ < std::chrono::seconds(30)) return;
   const int tenths = cost_todo_ > 0 ? int(10 * cost_done_ / cost_todo_) : 0;

@@ -16,14 +16,14 @@
 
 namespace ra::runner {
 
-class RunTally {
+class ProgressMeter {
  public:
   // `todo`: what this invocation runs.
-  RunTally(const rundir::Experiment& exp, const std::deque<WorkItem>& todo);
+  ProgressMeter(const rundir::Experiment& exp, const std::deque<WorkItem>& todo);
   void item_done(const WorkItem& w);  // a shard or part whose records are committed
   void shard_finished() { ++finished_; }  // a whole shard ended, well or not
   std::size_t finished() const { return finished_; }
-  double elapsed_s() const;  // wall seconds since the tally began
+  double elapsed_s() const;  // wall seconds since the meter began
   // Seconds left at `elapsed_s`; negative while nothing is done.
   double seconds_left(double elapsed_s) const;
   // DIR/progress.json: every 2 s, and when `at_end`.
