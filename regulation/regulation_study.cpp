@@ -26,6 +26,7 @@
 #include "util/atomic_file.h"
 #include "util/cell_text.h"
 #include "util/errors.h"
+#include "util/json_number.h"
 #include "util/number_text.h"
 
 namespace ra::regulation {
@@ -35,13 +36,6 @@ using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-json nullable(double v) { return std::isfinite(v) ? json(v) : json(); }
-
-// A number of a JSON document through a printf format, "n/a" where it is null (not finite).
-std::string fmt(const json& v, const char* f = "%.4g") {
-  return v.is_number() ? util::format_double(f, v.get<double>()) : "n/a";
-}
 
 // Quantiles of the finite values (HF6); nulls when there are none.
 json quantiles(std::vector<double> v) {
@@ -100,8 +94,8 @@ std::size_t random_instances_stage(const RegulationSettings& s, const std::strin
                  {"loss_ratio", quantiles(loss_ratio)},
                  {"seconds", seconds_since(t)}};
   std::vector<json> r, ro;
-  for (double v : ratio) r.push_back(nullable(v));
-  for (double v : ratio_only) ro.push_back(nullable(v));
+  for (double v : ratio) r.push_back(util::finite_or_null(v));
+  for (double v : ratio_only) ro.push_back(util::finite_or_null(v));
   j["random"]["ratios"] = r;
   j["random"]["ratios_ratio_only"] = ro;
   if (over2) findings.push_back(std::to_string(over2) + " random instances with value(OPT) / value(greedy) > 2");
@@ -305,14 +299,14 @@ std::string summary_text(const json& j, const std::string& dir, std::size_t inst
                          const std::vector<std::string>& findings) {
   std::ostringstream sum;
   const json& rq = j["random"]["value_ratio"];
-  sum << "regulation study -> " << dir << " (" << fmt(j["wall_s"], "%.1f") << " s)\n"
-      << "random instances: " << instances << ", value(OPT)/value(greedy) max " << fmt(rq.value("max", json()))
-      << ", median " << fmt(rq.value("q50", json())) << "; ratio-only greedy max "
-      << fmt(j["random"]["value_ratio_ratio_only"].value("max", json())) << "\n";
+  sum << "regulation study -> " << dir << " (" << util::json_number_text(j["wall_s"], "%.1f") << " s)\n"
+      << "random instances: " << instances << ", value(OPT)/value(greedy) max " << util::json_number_text(rq.value("max", json()))
+      << ", median " << util::json_number_text(rq.value("q50", json())) << "; ratio-only greedy max "
+      << util::json_number_text(j["random"]["value_ratio_ratio_only"].value("max", json())) << "\n";
   for (const json& row : j["sweep"])
     if (row["policy"] == "greedy")
-      sum << "budget " << fmt(row["budget_ms"]) << " ms: greedy expected cost "
-          << fmt(row["mean_expected_cost"]) << ", skips " << row["skips"].get<int>() << "/"
+      sum << "budget " << util::json_number_text(row["budget_ms"]) << " ms: greedy expected cost "
+          << util::json_number_text(row["mean_expected_cost"]) << ", skips " << row["skips"].get<int>() << "/"
           << row["rendered"].get<int>() << "\n";
   for (const std::string& f : findings) sum << "FINDING: " << f << "\n";
   return sum.str();
@@ -424,13 +418,13 @@ std::string regulation_markdown(const json& j) {
   md << "### Method\n\n"
      << "- **Levels of detail**: meshoptimizer's `meshopt_simplify` per texture group at the target "
         "triangle ratios below, restripified; the error of a level is the simplifier's, in metres.\n"
-     << "- **Time** (the timing study's H4): " << fmt(cm["intercept_us"]) << " us + "
-     << fmt(cm["c1_us_per_tv"]) << " us x #tv + " << fmt(cm["c2_us_per_pixel"]) << " us x #pix ("
+     << "- **Time** (the timing study's H4): " << util::json_number_text(cm["intercept_us"]) << " us + "
+     << util::json_number_text(cm["c1_us_per_tv"]) << " us x #tv + " << util::json_number_text(cm["c2_us_per_pixel"]) << " us x #pix ("
      << cm.value("source", "") << "); #pix " << cm.value("pixels", "") << "; knapsack costs rounded up to "
-     << fmt(cm["cost_unit_us"]) << " us.\n"
+     << util::json_number_text(cm["cost_unit_us"]) << " us.\n"
      << "- **Perceptual cost** (section 7.2): screen-area fraction x (projected geometric error in "
-        "pixels)^" << fmt(j["attention"]["error_exponent"]) << ", 0 at full detail.\n"
-     << "- **Attention** (equations 4 and 6, alpha = " << fmt(j["attention"]["alpha"])
+        "pixels)^" << util::json_number_text(j["attention"]["error_exponent"]) << ", 0 at full detail.\n"
+     << "- **Attention** (equations 4 and 6, alpha = " << util::json_number_text(j["attention"]["alpha"])
      << "): each object is weighted by q + (1 - q) alpha, q = p(A_S | A_O) p(A_O).\n"
      << "- **Policies**: `greedy` = increments of each object's convex-hull upgrade chain in "
         "decreasing Phi = gain / cost, compared with the best single-object upgrade (the better "
@@ -441,15 +435,15 @@ std::string regulation_markdown(const json& j) {
   md << "### Attention categories\n\n"
      << stats::markdown_header({"Category", "p(attend)", "Seeded share", "Weight", "Objects"}, 1);
   for (const auto& [name, c] : j["attention"]["categories"].items())
-    md << stats::markdown_row({name, fmt(c["probability"], "%.2f"), fmt(c["share"], "%.2f"), fmt(c["weight"], "%.3f"),
+    md << stats::markdown_row({name, util::json_number_text(c["probability"], "%.2f"), util::json_number_text(c["share"], "%.2f"), util::json_number_text(c["weight"], "%.3f"),
                std::to_string(c.value("objects", 0))});
   md << "\n### Levels of detail (all objects)\n\n"
      << stats::markdown_header({"Level", "Target ratio", "Objects with it", "Triangles", "#tv", "Median error m", "Max error m"}, 1);
   for (const json& l : j["lod"])
-    md << stats::markdown_row({std::to_string(l.value("level", 0)), fmt(l["target_ratio"], "%.4g"),
+    md << stats::markdown_row({std::to_string(l.value("level", 0)), util::json_number_text(l["target_ratio"], "%.4g"),
                std::to_string(l.value("objects_with_level", 0)), std::to_string(l.value("triangles", 0)),
-               std::to_string(l.value("transformed", 0)), fmt(l["error_median_m"], "%.3g"),
-               fmt(l["error_max_m"], "%.3g")});
+               std::to_string(l.value("transformed", 0)), util::json_number_text(l["error_median_m"], "%.3g"),
+               util::json_number_text(l["error_max_m"], "%.3g")});
   md << "\nAn object whose simplifier could not reduce further keeps fewer levels (counted at its last "
         "level in the sums).\n\n";
 
@@ -459,8 +453,8 @@ std::string regulation_markdown(const json& j) {
         "themselves has no bound.\n\n"
      << stats::markdown_header({"Quantity", "n", "Median", "q90", "q99", "Max", "Above 2"}, 1);
   auto qrow = [&](const std::string& name, const json& q, const json& above) {
-    md << stats::markdown_row({name, std::to_string(q.value("n", 0)), fmt(q.value("q50", json())), fmt(q.value("q90", json())),
-               fmt(q.value("q99", json())), fmt(q.value("max", json())),
+    md << stats::markdown_row({name, std::to_string(q.value("n", 0)), util::json_number_text(q.value("q50", json())), util::json_number_text(q.value("q90", json())),
+               util::json_number_text(q.value("q99", json())), util::json_number_text(q.value("max", json())),
                above.is_number() ? std::to_string(above.get<int>()) : "-"});
   };
   qrow("value(OPT) / value(greedy)", rq, rnd["value_ratio_above_2"]);
@@ -477,11 +471,11 @@ std::string regulation_markdown(const json& j) {
   const json& render = j["render"];
   md << "### Expected perceptual cost against the frame budget (camera path)\n\n"
      << "Mean over the planned frames; the objects may spend the budget minus the empty frame ("
-     << fmt(json(render.value("base_us", 0.0) / 1000.0), "%.3f") << " ms measured).\n\n";
+     << util::json_number_text(json(render.value("base_us", 0.0) / 1000.0), "%.3f") << " ms measured).\n\n";
   std::vector<std::string> budgets;
   std::vector<std::string> policies;
   for (const json& r : j["sweep"]) {
-    const std::string b = fmt(r["budget_ms"], "%g");
+    const std::string b = util::json_number_text(r["budget_ms"], "%g");
     if (std::find(budgets.begin(), budgets.end(), b) == budgets.end()) budgets.push_back(b);
     const std::string p = r.value("policy", "");
     if (std::find(policies.begin(), policies.end(), p) == policies.end()) policies.push_back(p);
@@ -494,7 +488,7 @@ std::string regulation_markdown(const json& j) {
     for (const auto& b : budgets) {
       std::string c = "-";
       for (const json& r : j["sweep"])
-        if (r.value("policy", "") == p && fmt(r["budget_ms"], "%g") == b) c = fmt(r["mean_expected_cost"]);
+        if (r.value("policy", "") == p && util::json_number_text(r["budget_ms"], "%g") == b) c = util::json_number_text(r["mean_expected_cost"]);
       cells.push_back(c);
     }
     md << stats::markdown_row(cells);
@@ -510,31 +504,31 @@ std::string regulation_markdown(const json& j) {
                   "Median measured ms", "Median relative error", "Median abs error",
                   "Median abs error, estimated #pix"}, 1);
     for (const json& r : j["sweep"])
-      md << stats::markdown_row({r.value("policy", ""), fmt(r["budget_ms"], "%g"), std::to_string(r.value("rendered", 0)),
-                 std::to_string(r.value("skips", 0)), fmt(r["skip_fraction"], "%.2f"),
-                 fmt(r["mean_predicted_ms"], "%.2f"), fmt(r["median_measured_ms"], "%.2f"),
-                 fmt(r["median_relative_error"], "%+.2f"), fmt(r["median_abs_relative_error"], "%.2f"),
-                 fmt(r["median_abs_relative_error_estimated_pixels"], "%.2f")});
+      md << stats::markdown_row({r.value("policy", ""), util::json_number_text(r["budget_ms"], "%g"), std::to_string(r.value("rendered", 0)),
+                 std::to_string(r.value("skips", 0)), util::json_number_text(r["skip_fraction"], "%.2f"),
+                 util::json_number_text(r["mean_predicted_ms"], "%.2f"), util::json_number_text(r["median_measured_ms"], "%.2f"),
+                 util::json_number_text(r["median_relative_error"], "%+.2f"), util::json_number_text(r["median_abs_relative_error"], "%.2f"),
+                 util::json_number_text(r["median_abs_relative_error_estimated_pixels"], "%.2f")});
     const json& ae = render["abs_relative_error"];
     const json& ee = render["abs_relative_error_estimated_pixels"];
     md << "\nOver all " << ae.value("n", 0) << " rendered plans, median |predicted - measured| / measured: "
-       << fmt(ae.value("q50", json()), "%.3f") << " (q90 " << fmt(ae.value("q90", json()), "%.3f")
-       << "); with the estimated #pix for the same plans " << fmt(ee.value("q50", json()), "%.3f")
-       << " (q90 " << fmt(ee.value("q90", json()), "%.3f") << ").\n";
+       << util::json_number_text(ae.value("q50", json()), "%.3f") << " (q90 " << util::json_number_text(ae.value("q90", json()), "%.3f")
+       << "); with the estimated #pix for the same plans " << util::json_number_text(ee.value("q50", json()), "%.3f")
+       << " (q90 " << util::json_number_text(ee.value("q90", json()), "%.3f") << ").\n";
     if (cm.contains("measured_over_estimated_pixels")) {
       const json& q = cm["measured_over_estimated_pixels"];
       md << "Measured #pix of the finest level / estimated #pix per (frame, visible object): median "
-         << fmt(q.value("q50", json()), "%.3f") << ", min " << fmt(q.value("min", json()), "%.3g")
-         << ", max " << fmt(q.value("max", json()), "%.3g") << " (n = " << q.value("n", 0) << "; pixels.csv).\n";
+         << util::json_number_text(q.value("q50", json()), "%.3f") << ", min " << util::json_number_text(q.value("min", json()), "%.3g")
+         << ", max " << util::json_number_text(q.value("max", json()), "%.3g") << " (n = " << q.value("n", 0) << "; pixels.csv).\n";
     }
   } else if (!render["error"].is_null()) {
     md << "\nRendering failed: " << render["error"].get<std::string>() << "\n";
   }
   md << "\n### Findings\n\n";
   md << "- value(OPT) / value(greedy) on " << rnd.value("instances", 0) << " random instances: max "
-     << fmt(rq.value("max", json())) << ", median " << fmt(rq.value("q50", json()))
+     << util::json_number_text(rq.value("max", json())) << ", median " << util::json_number_text(rq.value("q50", json()))
      << " (never above 2: " << (rnd.value("value_ratio_above_2", 1) == 0 ? "yes" : "NO") << "); "
-     << "without the single-item check the max is " << fmt(rnd["value_ratio_ratio_only"].value("max", json()))
+     << "without the single-item check the max is " << util::json_number_text(rnd["value_ratio_ratio_only"].value("max", json()))
      << ".\n";
   for (const json& f : j["findings"]) md << "- **Check failed**: " << f.get<std::string>() << "\n";
   md << "\n";
@@ -611,7 +605,7 @@ void plot_regulation_study(const std::string& dir) {
     plots::BarChartContent bc;
     std::map<std::string, std::size_t> series_index;
     for (const json& r : j["sweep"]) {
-      const std::string b = fmt(r["budget_ms"], "%g") + " ms";
+      const std::string b = util::json_number_text(r["budget_ms"], "%g") + " ms";
       if (std::find(bc.categories.begin(), bc.categories.end(), b) == bc.categories.end())
         bc.categories.push_back(b);
     }
@@ -621,7 +615,7 @@ void plot_regulation_study(const std::string& dir) {
         series_index[p] = bc.series.size();
         bc.series.push_back({p, std::vector<double>(bc.categories.size(), 0.0), {}});
       }
-      const std::string b = fmt(r["budget_ms"], "%g") + " ms";
+      const std::string b = util::json_number_text(r["budget_ms"], "%g") + " ms";
       const auto at = std::find(bc.categories.begin(), bc.categories.end(), b) - bc.categories.begin();
       bc.series[series_index[p]].values[std::size_t(at)] =
           100.0 * (r["skip_fraction"].is_number() ? r["skip_fraction"].get<double>() : 0.0);

@@ -38,11 +38,6 @@ const char* kFramesHeader =
     "screen_checked,screen_excluded,worst_x_px,worst_y_px,frame_us_median,frame_us_repetitions,"
     "full_triangles,full_us_median,image_mean_abs,image_differing,screen_partially_visible,screen_holes";
 
-// A printf format of v, "" for NaN.
-std::string fmt(double v, const char* f) {
-  return std::isnan(v) ? std::string() : util::format_double(f, v);
-}
-
 scenes::Scene layout_scene(const HeightField& f) {
   scenes::Scene s;
   s.kind = "terrain";
@@ -229,10 +224,10 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
           if (kind == s.lambda) {
             ++main_failures;
             if (first_failure.empty())
-              first_failure = "frame " + std::to_string(fi) + ", tau " + fmt(tau, "%g") + ": " +
+              first_failure = "frame " + std::to_string(fi) + ", tau " + util::format_double_or_empty("%g", tau) + ": " +
                               (!conf.conforming ? conf.first_problem
                                : !seams.ok     ? seams.first_problem
-                                               : "measured screen error " + fmt(se.max_px, "%.3g") + " px > tau");
+                                               : "measured screen error " + util::format_double_or_empty("%.3g", se.max_px) + " px > tau");
           }
         }
         double med = std::nan(""), mean_abs = std::nan(""), differing = std::nan("");
@@ -240,10 +235,10 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
         if (kind == s.lambda) {  // drawn by draw_frames
           const json& drawn_lod = drawn_frame.at("lod").at(ti);
           if (drawn_lod.at("triangles").get<size_t>() != mesh.triangle_count())
-            throw std::runtime_error("lod: frame " + std::to_string(fi) + ", tau " + fmt(tau, "%g") +
+            throw std::runtime_error("lod: frame " + std::to_string(fi) + ", tau " + util::format_double_or_empty("%g", tau) +
                                      ": the measuring process drew another mesh");
           const std::vector<double> us = drawn_lod.at("us").get<std::vector<double>>();
-          for (size_t r = 0; r < us.size(); ++r) reps += (r ? ";" : "") + fmt(us[r], "%.1f");
+          for (size_t r = 0; r < us.size(); ++r) reps += (r ? ";" : "") + util::format_double_or_empty("%.1f", us[r]);
           med = stats::median_or_nan(us);
           mean_abs = drawn_lod.at("image_mean_abs").get<double>();
           differing = drawn_lod.at("image_differing").get<double>();
@@ -252,10 +247,10 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
             << ',' << mesh.triangle_count() << ',' << mesh.vertex_count() << ','
             << mesh.strip_index_count() << ',' << int(conf.conforming) << ',' << int(seams.ok)
             << ',' << util::full_precision_or_empty(se.max_px) << ',' << se.checked << ','
-            << se.excluded << ',' << fmt(se.worst_x, "%.1f") << ',' << fmt(se.worst_y, "%.1f")
-            << ',' << fmt(med, "%.1f") << ',' << reps << ',' << full.triangle_count() << ','
-            << fmt(full_median, "%.1f") << ',' << fmt(mean_abs, "%.6g") << ','
-            << fmt(differing, "%.6g") << ',' << se.partially_visible << ',' << se.holes << "\n";
+            << se.excluded << ',' << util::format_double_or_empty("%.1f", se.worst_x) << ',' << util::format_double_or_empty("%.1f", se.worst_y)
+            << ',' << util::format_double_or_empty("%.1f", med) << ',' << reps << ',' << full.triangle_count() << ','
+            << util::format_double_or_empty("%.1f", full_median) << ',' << util::format_double_or_empty("%.6g", mean_abs) << ','
+            << util::format_double_or_empty("%.6g", differing) << ',' << se.partially_visible << ',' << se.holes << "\n";
       }
     if (progress && (fi % 10 == 0 || fi + 1 == path.size()))
       std::cerr << "lod: frame " << fi + 1 << "/" << path.size() << "\n";
@@ -468,10 +463,10 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
      << header({"lambda (px/rad)", "tau px", "frames", "conforming", "seams ok", "max screen error px",
                 "q90 px", "frames over tau"});
   for (const TableRow& r : rows)
-    md << stats::markdown_row({"`" + r.lambda + "` (" + fmt(lam.value(r.lambda, 0.0), "%.0f") + ")", fmt(r.tau, "%g"),
+    md << stats::markdown_row({"`" + r.lambda + "` (" + util::format_double_or_empty("%.0f", lam.value(r.lambda, 0.0)) + ")", util::format_double_or_empty("%g", r.tau),
                std::to_string(r.frames), std::to_string(r.conforming), std::to_string(r.seams_ok),
-               (r.over_tau ? "**" + fmt(r.max_screen_error, "%.3f") + "**" : fmt(r.max_screen_error, "%.3f")),
-               fmt(r.screen_error_q90, "%.3f"), std::to_string(r.over_tau)});
+               (r.over_tau ? "**" + util::format_double_or_empty("%.3f", r.max_screen_error) + "**" : util::format_double_or_empty("%.3f", r.max_screen_error)),
+               util::format_double_or_empty("%.3f", r.screen_error_q90), std::to_string(r.over_tau)});
   md << "\n`planar` is the paper's lambda = w / (2 tan(phi / 2)) (the focal length in pixels: pixels per "
         "radian on the viewing axis), `spherical` its w / phi, `window` the largest pixels per radian "
         "anywhere in the window, f / cos^2 of the corner angle, with rho = lambda 2 asin(eps / (2 (d - r - eps))) "
@@ -484,9 +479,9 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
   for (const TableRow& r : rows) {
     if (!r.timed()) continue;
     if (r.tau == 1) at_one = &r;
-    md << stats::markdown_row({fmt(r.tau, "%g"), fmt(r.triangles_median, "%.0f"), fmt(100 * r.triangles_median / r.full_triangles, "%.2f"),
-               fmt(r.indices_per_triangle, "%.2f"), fmt(r.frame_ms, "%.2f"), fmt(r.full_ms, "%.2f"),
-               fmt(r.full_ms / r.frame_ms, "%.1f"), fmt(r.image_mean_abs, "%.3f"), fmt(100 * r.image_differing, "%.3f")});
+    md << stats::markdown_row({util::format_double_or_empty("%g", r.tau), util::format_double_or_empty("%.0f", r.triangles_median), util::format_double_or_empty("%.2f", 100 * r.triangles_median / r.full_triangles),
+               util::format_double_or_empty("%.2f", r.indices_per_triangle), util::format_double_or_empty("%.2f", r.frame_ms), util::format_double_or_empty("%.2f", r.full_ms),
+               util::format_double_or_empty("%.1f", r.full_ms / r.frame_ms), util::format_double_or_empty("%.3f", r.image_mean_abs), util::format_double_or_empty("%.3f", 100 * r.image_differing)});
   }
   md << "\nFrame time: steady clock around clear + the tiles' strips + glFinish, the median of "
      << sj.value("repetitions", 0) << " repetitions per frame, then the median over frames. Image "
@@ -499,15 +494,15 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
       if (r.tau == 1 && r.lambda == "planar") planar_max = r.max_screen_error;
       else if (r.tau == 1 && r.lambda == "spherical") spherical_max = r.max_screen_error;
     md << "### At tau = 1 pixel\n\n"
-       << "- LOD triangles (median over frames): **" << fmt(at_one->triangles_median, "%.0f") << "** against "
-       << fmt(at_one->full_triangles, "%.0f") << " at full resolution ("
-       << fmt(100 * at_one->triangles_median / at_one->full_triangles, "%.1f") << " %).\n"
-       << "- Frame time (median): **" << fmt(at_one->frame_ms, "%.2f") << " ms** against "
-       << fmt(at_one->full_ms, "%.2f") << " ms at full resolution.\n"
-       << "- Measured maximum screen error over all frames: **" << fmt(at_one->max_screen_error, "%.3f")
+       << "- LOD triangles (median over frames): **" << util::format_double_or_empty("%.0f", at_one->triangles_median) << "** against "
+       << util::format_double_or_empty("%.0f", at_one->full_triangles) << " at full resolution ("
+       << util::format_double_or_empty("%.1f", 100 * at_one->triangles_median / at_one->full_triangles) << " %).\n"
+       << "- Frame time (median): **" << util::format_double_or_empty("%.2f", at_one->frame_ms) << " ms** against "
+       << util::format_double_or_empty("%.2f", at_one->full_ms) << " ms at full resolution.\n"
+       << "- Measured maximum screen error over all frames: **" << util::format_double_or_empty("%.3f", at_one->max_screen_error)
        << " px** with lambda `" << main_lambda << "`";
-    if (!std::isnan(planar_max)) md << "; " << fmt(planar_max, "%.3f") << " px with the paper's planar lambda";
-    if (!std::isnan(spherical_max)) md << "; " << fmt(spherical_max, "%.3f") << " px with its spherical lambda";
+    if (!std::isnan(planar_max)) md << "; " << util::format_double_or_empty("%.3f", planar_max) << " px with the paper's planar lambda";
+    if (!std::isnan(spherical_max)) md << "; " << util::format_double_or_empty("%.3f", spherical_max) << " px with its spherical lambda";
     md << ".\n\n";
   }
   return md.str();
@@ -560,7 +555,7 @@ void plot_lod_study(const std::string& dir) {
     throw util::UserError(dir + " has not been analysed: run `renderaudit analyze " + dir +
                           "` first");
   const std::vector<TableRow> rows = read_table(dir);
-  auto label = [](double tau) { return "tau " + fmt(tau, "%g"); };
+  auto label = [](double tau) { return "tau " + util::format_double_or_empty("%g", tau); };
   plots::StudyFigures figures("lod");
   {  // speed against error
     plots::ScatterContent c;
