@@ -23,11 +23,10 @@ stats::Table uncertainty_table(const RunRecords& run, const GroupSummaries& summ
   t.title =
       "Uncertainty of Tables 3, 4, 6, 7, 9, 10: bootstrap standard error (SE) and 95% "
       "percentile interval of each median and IQR, in the units and scale of its table";
-  for (const char* c : {"Table", "Metric", "View", "Platform"})
-    t.columns.push_back({c, stats::Align::kLeft});
-  for (const char* c :
-       {"n", "Median", "SE", "95% low", "95% high", "IQR", "SE", "95% low", "95% high"})
-    t.columns.push_back({c, stats::Align::kRight});
+  stats::add_columns(t, {"Table", "Metric", "View", "Platform"}, stats::Align::kLeft);
+  stats::add_columns(
+      t, {"n", "Median", "SE", "95% low", "95% high", "IQR", "SE", "95% low", "95% high"},
+      stats::Align::kRight);
   for (const MetricTableSpec& spec : metric_table_specs()) {
     if (!std::isdigit(static_cast<unsigned char>(spec.number.back()))) continue;  // supplements
     const std::size_t metric = metric_index(spec.kind, spec.column);

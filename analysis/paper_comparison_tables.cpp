@@ -118,10 +118,9 @@ stats::Table paper_comparison_table(const RunRecords& run, const GroupSummaries&
   t.title =
       "Ours beside the paper's: each median and IQR of Tables 3, 4, 6, 7, 9, 10 with its "
       "bootstrap SE, the paper's Platform I and II, and z = (ours - paper) / SE of the difference";
-  for (const char* c : {"Table", "Statistic", "View", "Platform"})
-    t.columns.push_back({c, stats::Align::kLeft});
-  for (const char* c : {"Ours", "SE", "Paper I", "z I", "Paper II", "z II", "Beyond 3 SE of"})
-    t.columns.push_back({c, stats::Align::kRight});
+  stats::add_columns(t, {"Table", "Statistic", "View", "Platform"}, stats::Align::kLeft);
+  stats::add_columns(t, {"Ours", "SE", "Paper I", "z I", "Paper II", "z II", "Beyond 3 SE of"},
+                     stats::Align::kRight);
   std::size_t flagged = 0, differing = 0;  // beyond 3 SE of one paper platform; of every one
   const std::vector<PaperCell> cells = paper_cells(run, summaries, options);
   for (const PaperCell& c : cells) {
@@ -175,10 +174,8 @@ stats::Table paper_differences_table(const RunRecords& run, const GroupSummaries
   t.title =
       "Where we differ from the paper and why: every cell beyond 3 SE of each of the paper's "
       "platforms that gives a value, with the explanation established for it";
-  for (const char* c : {"Table", "Statistic", "View", "Platform"})
-    t.columns.push_back({c, stats::Align::kLeft});
-  for (const char* c : {"Ours", "Paper I", "z I", "Paper II", "z II"})
-    t.columns.push_back({c, stats::Align::kRight});
+  stats::add_columns(t, {"Table", "Statistic", "View", "Platform"}, stats::Align::kLeft);
+  stats::add_columns(t, {"Ours", "Paper I", "z I", "Paper II", "z II"}, stats::Align::kRight);
   t.columns.push_back({"Why", stats::Align::kLeft});
   const std::vector<PaperCell> cells = paper_cells(run, summaries, options);
   std::vector<std::size_t> cited;  // indices into options.paper_differences, in citation order

@@ -4,18 +4,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <tuple>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "metrics/records.h"
+#include "rundir/manifest.h"
 #include "rundir/records_format.h"
 #include "rundir/records_reader.h"
 #include "stats/descriptive.h"
+#include "stats/table_writer.h"
 #include "util/atomic_file.h"
-#include "metrics/records.h"
-#include "rundir/manifest.h"
 #include "util/number_text.h"
 
 namespace fs = std::filesystem;
@@ -106,12 +106,13 @@ std::string write_run_summary(const std::string& run_dir) {
 
   std::ostringstream md;
   md << "# Run summary: " << run_dir << "\n\n"
-     << "Counts of the visibility classes (paper, section 3.4), the median and IQR (Hyndman-Fan 6)\n"
+     << "Counts of the visibility classes (paper, section 3.4), the median and IQR (Hyndman-Fan "
+        "6)\n"
      << "of each kind's headline metric over true-visible cases, the share of cases whose pixels\n"
      << "equal the reference rasterizer's, and the median render time (draw + glFinish).\n\n"
      << "| platform | kind | view | FOV | window | true-vis | true-invis | false-vis | false-invis "
         "| multiple | invalid/failed | metric | median | IQR | ref-equal | median us |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+     << stats::markdown_compact_rule(16);
   for (auto& [key, c] : cells) {
     const auto& [platform, kind, view] = key;
     md << "| " << platform << " | " << kind << " | " << view << " | " << c.fov << " | " << c.window;

@@ -12,6 +12,28 @@ using namespace table_parts;
 using stats::Description;
 using stats::QuantileDefinition;
 
+namespace {
+
+// One row per platform and view group of `kind` (platform, view, then the cells `counts` adds
+// from the group's visibility counts), a rule above each platform's first.
+template <typename Counts>
+void add_group_rows(const RunRecords& run, PrimitiveKind kind, stats::Table& t,
+                    const Counts& counts) {
+  for (std::size_t p = 0; p < run.platforms.size(); ++p) {
+    bool first = true;
+    for (const ViewGroup* g : run.groups_of(p, kind)) {
+      if (first) t.rules_before.push_back(t.rows.size());
+      first = false;
+      std::vector<stats::TableCell> row = {stats::text_cell(run.platforms[p]),
+                                           stats::text_cell(g->label)};
+      counts(row, g->counts());
+      t.rows.push_back(std::move(row));
+    }
+  }
+}
+
+}  // namespace
+
 // So that two platforms' (or the paper's) counts can be compared with their uncertainty.
 stats::Table visibility_share_table(const RunRecords& run, PrimitiveKind kind) {
   const int number = kind == PrimitiveKind::kPoint ? 2 : kind == PrimitiveKind::kLine ? 5 : 8;
@@ -30,21 +52,13 @@ stats::Table visibility_share_table(const RunRecords& run, PrimitiveKind kind) {
                {"False invisible", stats::Align::kRight}};
   if (multiple) t.columns.push_back({"Multiple visible", stats::Align::kRight});
   const int classes = multiple ? 5 : 4;
-  for (std::size_t p = 0; p < run.platforms.size(); ++p) {
-    bool first = true;
-    for (const ViewGroup* g : run.groups_of(p, kind)) {
-      if (first) t.rules_before.push_back(t.rows.size());
-      first = false;
-      const VisibilityCounts c = g->counts();
-      std::uint64_t ok = 0;
-      for (std::uint64_t n : c.by_class) ok += n;
-      std::vector<stats::TableCell> row = {stats::text_cell(run.platforms[p]), stats::text_cell(g->label),
-                                    stats::count_cell(ok)};
-      for (int v = 0; v < classes; ++v)
-        row.push_back(stats::share_cell(c.by_class[static_cast<std::size_t>(v)], ok));
-      t.rows.push_back(std::move(row));
-    }
-  }
+  add_group_rows(run, kind, t, [&](std::vector<stats::TableCell>& row, const VisibilityCounts& c) {
+    std::uint64_t ok = 0;
+    for (std::uint64_t n : c.by_class) ok += n;
+    row.push_back(stats::count_cell(ok));
+    for (int v = 0; v < classes; ++v)
+      row.push_back(stats::share_cell(c.by_class[static_cast<std::size_t>(v)], ok));
+  });
   t.notes = {"Shares of the records with status ok; the interval is exact (Clopper-Pearson, "
              "stats/binomial_interval.h). CSV: the share alone.",
              group_note(run, kind)};
@@ -76,22 +90,14 @@ stats::Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
   if (invalid) t.columns.push_back({"Invalid", stats::Align::kRight});
   if (crash) t.columns.push_back({"Crash", stats::Align::kRight});
   if (timeout) t.columns.push_back({"Timeout", stats::Align::kRight});
-  for (std::size_t p = 0; p < run.platforms.size(); ++p) {
-    bool first = true;
-    for (const ViewGroup* g : run.groups_of(p, kind)) {
-      if (first) t.rules_before.push_back(t.rows.size());
-      first = false;
-      const VisibilityCounts c = g->counts();
-      std::vector<stats::TableCell> row = {stats::text_cell(run.platforms[p]), stats::text_cell(g->label)};
-      for (int v = 0; v < 4; ++v)
-        row.push_back(stats::count_cell(c.by_class[static_cast<std::size_t>(v)]));
-      if (multiple) row.push_back(stats::count_cell(c.by_class[4]));
-      if (invalid) row.push_back(stats::count_cell(c.invalid));
-      if (crash) row.push_back(stats::count_cell(c.crash));
-      if (timeout) row.push_back(stats::count_cell(c.timeout));
-      t.rows.push_back(std::move(row));
-    }
-  }
+  add_group_rows(run, kind, t, [&](std::vector<stats::TableCell>& row, const VisibilityCounts& c) {
+    for (int v = 0; v < 4; ++v)
+      row.push_back(stats::count_cell(c.by_class[static_cast<std::size_t>(v)]));
+    if (multiple) row.push_back(stats::count_cell(c.by_class[4]));
+    if (invalid) row.push_back(stats::count_cell(c.invalid));
+    if (crash) row.push_back(stats::count_cell(c.crash));
+    if (timeout) row.push_back(stats::count_cell(c.timeout));
+  });
   t.notes = {
       "Classes (paper section 3.4) count records with status ok; invalid, crash and "
       "timeout records are counted apart, in their own columns when there are any.",

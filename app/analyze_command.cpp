@@ -10,6 +10,7 @@
 #include "analysis/run_completeness.h"
 #include "app/commands.h"
 #include "util/errors.h"
+#include "util/number_text.h"
 
 namespace ra::app {
 
@@ -98,11 +99,8 @@ void register_analyze_command(CLI::App& app, int& exit_code) {
     if (!o->quiet) std::cout << r.summary;
     if (o->timings) {
       std::cout << "Timings (s):";
-      for (const auto& t : r.timings) {
-        char buf[64];
-        std::snprintf(buf, sizeof buf, " %s %.3f", t.stage.c_str(), t.seconds);
-        std::cout << buf;
-      }
+      for (const auto& t : r.timings)
+        std::cout << util::format_text(" %s %.3f", t.stage.c_str(), t.seconds);
       std::cout << "\n";
     }
     std::cout << "Wrote " << r.files.size() << " files to " << r.out_dir

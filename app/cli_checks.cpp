@@ -22,6 +22,17 @@ CLI::Validator primitive_index_check() {
       "INDEX");
 }
 
+void add_primitive_options(CLI::App* cmd, const PrimitiveOptions& into,
+                           const std::string& platform_help) {
+  cmd->add_option("run", into.run_dir, "run directory (holds experiment.toml)")->required();
+  cmd->add_option("--platform,-p", into.platform, platform_help)->required();
+  cmd->add_option("--kind,-k", into.kind, "point, line or triangle")->required();
+  cmd->add_option("--view,-v", into.view, "view number, 1-based (Table 1 order)")->required();
+  cmd->add_option("--index,-i", into.index, "primitive index under the run's seed")
+      ->required()
+      ->check(primitive_index_check());
+}
+
 }  // namespace ra::app
 
 namespace ra::app {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,18 @@ constexpr int kExitIncomplete = 3;  // analyze / report: the run is not whole (m
 // --index checked as text: a conversion to an unsigned number would turn -1, and any number past
 // the largest, into 18446744073709551615 (app/cli_checks.cpp).
 CLI::Validator primitive_index_check();
+
+// The options that name one primitive of a run, as `reproduce` and `show` take them: RUN,
+// --platform (its help given: what the platform is for), --kind, --view and --index, all required.
+struct PrimitiveOptions {
+  std::string& run_dir;
+  std::string& platform;
+  std::string& kind;
+  int& view;
+  uint64_t& index;
+};
+void add_primitive_options(CLI::App* cmd, const PrimitiveOptions& into,
+                           const std::string& platform_help);
 
 // The name of `names` nearest to `typed` (edit distance at most a third of its length, at least
 // 2), or "" when none is that near.

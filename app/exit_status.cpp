@@ -1,6 +1,7 @@
 // The exit code of a command stopped by an exception (see the header).
 #include "app/exit_status.h"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 
@@ -24,6 +25,18 @@ int exit_code_of_current_exception(const char* program) {
     std::fprintf(stderr, "%s: error: an exception of unknown type\n", program);
   }
   return kExitError;
+}
+
+int run_command_line(CLI::App& app, int argc, char** argv, const int& exit_code,
+                     const char* program) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : kExitUsage;
+  } catch (...) {
+    return exit_code_of_current_exception(program);
+  }
+  return exit_code;
 }
 
 }  // namespace ra::app

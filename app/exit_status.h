@@ -2,7 +2,15 @@
 // renderaudit-worker (app/main.cpp, app/worker_main.cpp).
 #pragma once
 
+#include <CLI/CLI.hpp>
+
 namespace ra::app {
+
+// Parses the command line into `app` and runs the chosen subcommand (which sets `exit_code`), then
+// returns the process's exit code: `exit_code`; 0 for --help and --version; kExitUsage for a
+// command line CLI11 rejects; exit_code_of_current_exception(program) when the command throws.
+int run_command_line(CLI::App& app, int argc, char** argv, const int& exit_code,
+                     const char* program);
 
 // Call inside a catch block of main: says the exception being handled on stderr ("PROGRAM: WHAT"
 // for bad input, util::UserError; "PROGRAM: error: WHAT" for any other) and to a parent renderaudit

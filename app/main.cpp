@@ -1,17 +1,14 @@
 // renderaudit: measures how accurately and how fast renderers draw points, lines and triangles.
 // One program, git-style subcommands; see README.md.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
-#include <algorithm>
-#include <exception>
 #include <string>
 #include <vector>
 
 #include "app/commands.h"
 #include "app/exit_status.h"
-#include "util/child_process.h"
-#include "util/errors.h"
 
 int main(int argc, char** argv) {
   // A closed pipe on stdout (`renderaudit records RUN | head`) is a write error the command says
@@ -56,12 +53,5 @@ int main(int argc, char** argv) {
       return ra::app::kExitUsage;
     }
   }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : ra::app::kExitUsage;
-  } catch (...) {
-    return ra::app::exit_code_of_current_exception("renderaudit");
-  }
-  return exit_code;
+  return ra::app::run_command_line(app, argc, argv, exit_code, "renderaudit");
 }

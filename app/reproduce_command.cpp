@@ -22,15 +22,9 @@ void register_reproduce_command(CLI::App& app, int& exit_code) {
     std::string out;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
-  cmd->add_option("run", opts->q.run_dir, "run directory (holds experiment.toml)")->required();
-  cmd->add_option("--platform,-p", opts->q.platform,
-                  "the record's platform (PLATFORM or PLATFORM@BUILD)")
-      ->required();
-  cmd->add_option("--kind,-k", opts->q.kind, "point, line or triangle")->required();
-  cmd->add_option("--view,-v", opts->q.view, "view number, 1-based (Table 1 order)")->required();
-  cmd->add_option("--index,-i", opts->q.index, "primitive index under the run's seed")
-      ->required()
-      ->check(primitive_index_check());
+  add_primitive_options(
+      cmd, {opts->q.run_dir, opts->q.platform, opts->q.kind, opts->q.view, opts->q.index},
+      "the record's platform (PLATFORM or PLATFORM@BUILD)");
   cmd->add_option("--out,-o", opts->out,
                   "C file to write (default: RUN/reproduce/PLATFORM.KIND.vV.I.c)");
   cmd->callback([opts, &exit_code] {

@@ -13,6 +13,7 @@
 #include "triage/image_legend.h"
 #include "triage/primitive_image.h"
 #include "util/cell_text.h"
+#include "util/number_text.h"
 
 namespace ra::app {
 namespace {
@@ -31,9 +32,7 @@ std::string measured_fields(const metrics::Record& r) {
   for (std::size_t i = 0; i < names.size() && i < values.size(); ++i) {
     measured = measured || names[i] == "status";
     if (!measured || values[i].empty()) continue;
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "  %-16s %s\n", names[i].c_str(), values[i].c_str());
-    out += buf;
+    out += util::format_text("  %-16s %s\n", names[i].c_str(), values[i].c_str());
   }
   return out;
 }
@@ -54,14 +53,9 @@ void register_show_command(CLI::App& app, int& exit_code) {
     triage::ShowRequest q;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
-  cmd->add_option("run", opts->q.run_dir, "run directory (holds experiment.toml)")->required();
-  cmd->add_option("--platform,-p", opts->q.platform, "platform to render on (any known platform)")
-      ->required();
-  cmd->add_option("--kind,-k", opts->q.kind, "point, line or triangle")->required();
-  cmd->add_option("--view,-v", opts->q.view, "view number, 1-based (Table 1 order)")->required();
-  cmd->add_option("--index,-i", opts->q.index, "primitive index under the run's seed")
-      ->required()
-      ->check(primitive_index_check());
+  add_primitive_options(
+      cmd, {opts->q.run_dir, opts->q.platform, opts->q.kind, opts->q.view, opts->q.index},
+      "platform to render on (any known platform)");
   cmd->add_option("--out,-o", opts->q.out_path,
                   "PNG to write (default: RUN/show/PLATFORM.KIND.vVIEW.INDEX.png)");
   cmd->add_option("--scale", opts->q.scale,

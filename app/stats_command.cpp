@@ -13,10 +13,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -24,19 +22,19 @@
 #include <vector>
 
 #include "analysis/run_completeness.h"
-#include "rundir/records_format.h"
-#include "stats/box_cox.h"
-#include "stats/csv_table.h"
-#include "stats/descriptive.h"
-#include "stats/hypothesis_tests.h"
-#include "stats/linear_regression.h"
 #include "app/commands.h"
 #include "app/stats_presentation.h"
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/records_format.h"
 #include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_records.h"
+#include "stats/box_cox.h"
+#include "stats/column_samples.h"
+#include "stats/descriptive.h"
+#include "stats/hypothesis_tests.h"
+#include "stats/linear_regression.h"
 #include "util/errors.h"
 
 namespace ra::app {
@@ -44,6 +42,7 @@ namespace {
 
 using namespace stats_presentation;
 using stats::QuantileDefinition;
+using Sample = stats::ColumnSample;
 
 struct StatsOptions {
   std::vector<std::string> files;
@@ -62,25 +61,6 @@ struct StatsOptions {
 
 QuantileDefinition quantile_definition(const std::string& name) {
   return name == "hf7" ? QuantileDefinition::kHyndmanFan7 : QuantileDefinition::kHyndmanFan6;
-}
-
-// One sample: a numeric column of a CSV file, with at least two values.
-struct Sample {
-  std::string file;
-  std::string column;
-  std::vector<double> values;
-  std::size_t n_missing = 0;
-};
-
-Sample read_sample(const std::string& file, const std::string& column) {
-  const stats::CsvTable table = stats::CsvTable::read_file(file);
-  stats::NumericColumn c = table.numeric_column(column);
-  if (c.values.size() < 2) {
-    throw util::UserError(
-        file + ": column '" + column + "' has " + std::to_string(c.values.size()) + " value(s) (" +
-        std::to_string(c.n_missing) + " empty cells skipped); at least 2 are needed");
-  }
-  return Sample{file, column, std::move(c.values), c.n_missing};
 }
 
 // The records files of a run directory, and the planned shards it lacks.
@@ -138,14 +118,7 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
                             const std::vector<std::string>& where, bool allow_incomplete,
                             std::string* incomplete) {
   namespace fs = std::filesystem;
-  std::vector<std::pair<std::string, std::string>> conditions;
-  for (const std::string& w : where) {
-    const std::size_t eq = w.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw util::UserError("--where '" + w +
-                            "': expected COLUMN=VALUE, e.g. platform=osmesa-llvmpipe");
-    conditions.emplace_back(w.substr(0, eq), w.substr(eq + 1));
-  }
+  const stats::RowConditions conditions = stats::parse_row_conditions(where);
   std::vector<std::string> files;
   std::string name = path;
   if (fs::is_directory(path)) {
@@ -169,24 +142,8 @@ Sample read_selected_sample(const std::string& path, const std::string& column,
     files.push_back(path);
   }
   Sample s{name, column, {}, 0};
-  for (const std::string& file : files) {
-    const stats::CsvTable t = stats::CsvTable::read_file(file);
-    const std::size_t col = t.column(column);
-    std::vector<std::pair<std::size_t, std::string>> conds;
-    for (const auto& [c, v] : conditions) conds.emplace_back(t.column(c), v);
-    for (std::size_t r = 0; r < t.row_count(); ++r) {
-      bool keep = true;
-      for (const auto& [c, v] : conds) keep = keep && t.cell(r, c) == v;
-      if (!keep) continue;
-      if (const std::optional<double> x = t.number(r, col)) s.values.push_back(*x);
-      else ++s.n_missing;
-    }
-  }
-  if (s.values.size() < 2)
-    throw util::UserError(name + ": column '" + column + "' has " +
-                          std::to_string(s.values.size()) + " value(s) in the rows selected (" +
-                          std::to_string(s.n_missing) +
-                          " empty cells skipped); at least 2 are needed");
+  for (const std::string& file : files) stats::add_selected_values(file, conditions, s);
+  stats::require_two_selected_values(s);
   return s;
 }
 
@@ -220,8 +177,8 @@ void run_describe(const StatsOptions& o) {
 }
 
 void run_compare(const StatsOptions& o) {
-  const Sample a = read_sample(o.files.at(0), o.column);
-  const Sample b = read_sample(o.files.at(1), o.column);
+  const Sample a = stats::read_column_sample(o.files.at(0), o.column);
+  const Sample b = stats::read_column_sample(o.files.at(1), o.column);
   const QuantileDefinition q = quantile_definition(o.quantiles);
   const stats::Description da = stats::describe(a.values, q);
   const stats::Description db = stats::describe(b.values, q);
@@ -270,37 +227,10 @@ void run_compare(const StatsOptions& o) {
 
 void run_anova(const StatsOptions& o) {
   const std::string& file = o.files.at(0);
-  const stats::CsvTable table = stats::CsvTable::read_file(file);
-  const std::size_t group_column = table.column(o.group);
-  const std::size_t value_column = table.column(o.value);
-
-  // groups in order of first appearance; rows missing the group or the value are skipped
-  std::vector<std::string> names;
-  std::map<std::string, std::size_t> index;
-  std::vector<std::vector<double>> groups;
-  std::size_t n_missing = 0;
-  for (std::size_t row = 0; row < table.row_count(); ++row) {
-    const std::string& label = table.cell(row, group_column);
-    const std::optional<double> value = table.number(row, value_column);
-    if (label.empty() || !value) {
-      ++n_missing;
-      continue;
-    }
-    auto [it, inserted] = index.emplace(label, names.size());
-    if (inserted) {
-      names.push_back(label);
-      groups.emplace_back();
-    }
-    groups[it->second].push_back(*value);
-  }
-  std::size_t n = 0;
-  for (const auto& g : groups) n += g.size();
-  if (groups.size() < 2 || n <= groups.size()) {
-    throw util::UserError(file + ": column '" + o.group + "' gives " +
-                          std::to_string(groups.size()) + " group(s) with " + std::to_string(n) +
-                          " value(s) of '" + o.value +
-                          "'; ANOVA needs at least 2 groups and more values than groups");
-  }
+  const stats::GroupedValues grouped = stats::read_grouped_values(file, o.group, o.value);
+  const std::vector<std::string>& names = grouped.names;
+  const std::vector<std::vector<double>>& groups = grouped.groups;
+  const std::size_t n = grouped.n, n_missing = grouped.n_missing;
 
   const Reported anova = report_test(
       {"f", "p_value"}, [&] { return stats::one_way_anova(groups); },
@@ -371,32 +301,6 @@ void run_anova(const StatsOptions& o) {
   out("\nLevene tests of equal variances (e-Handbook 1.3.5.10)\n%s", levene_text.c_str());
 }
 
-// Least squares of one column on others. Rows with an empty cell in any of the columns used are
-// skipped and counted; a cell that is not a number stops with file:line (CsvTable::number).
-// "--poly COLUMN:DEGREE" -> the column and the degree (1..kMaxPolynomialDegree).
-constexpr int kMaxPolynomialDegree = 30;
-std::pair<std::string, int> parse_poly(const std::string& file, const std::string& spec) {
-  const auto colon = spec.rfind(':');
-  const std::string column = colon == std::string::npos ? "" : spec.substr(0, colon);
-  const std::string degree = colon == std::string::npos ? "" : spec.substr(colon + 1);
-  int d = 0;
-  std::size_t used = 0;
-  try {
-    d = std::stoi(degree, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (column.empty() || used == 0 || used != degree.size() || d < 1 ||
-      d > kMaxPolynomialDegree) {
-    throw util::UserError(file + ": --poly '" + spec +
-                          "' is not COLUMN:DEGREE with a column name and "
-                          "a degree from 1 to " +
-                          std::to_string(kMaxPolynomialDegree) +
-                          " (e.g. --poly x:10 fits x, x^2, ..., x^10)");
-  }
-  return {column, d};
-}
-
 // Least squares of one column on others, or on a polynomial in one column. Rows with an empty
 // cell in any of the columns used are skipped and counted; a cell that is not a number stops with
 // file:line (CsvTable::number).
@@ -410,46 +314,15 @@ void run_regress(const StatsOptions& o) {
   int degree = 0;
   std::vector<std::string> columns = o.x;
   if (!o.poly.empty()) {
-    auto [column, d] = parse_poly(file, o.poly);
+    auto [column, d] = stats::parse_polynomial_spec(file, o.poly);
     columns = {column};
     degree = d;
   }
-  std::set<std::string> seen;
-  for (const auto& name : columns) {
-    if (name.empty()) throw util::UserError(file + ": --x has an empty column name");
-    if (!seen.insert(name).second) {
-      throw util::UserError(file + ": --x names column '" + name +
-                            "' twice; each predictor may appear once");
-    }
-    if (name == o.y) {
-      throw util::UserError(file + ": column '" + name +
-                            "' is both the response (--y) and a predictor (--x or --poly)");
-    }
-  }
-  const stats::CsvTable table = stats::CsvTable::read_file(file);
-  const std::size_t y_column = table.column(o.y);
-  std::vector<std::size_t> x_columns;
-  for (const auto& name : columns) x_columns.push_back(table.column(name));
-
-  std::vector<double> y;
-  std::vector<std::vector<double>> predictors(columns.size());
-  std::size_t n_missing = 0;
-  std::vector<double> row_x(columns.size());
-  for (std::size_t row = 0; row < table.row_count(); ++row) {
-    const std::optional<double> value = table.number(row, y_column);
-    bool complete = value.has_value();
-    for (std::size_t j = 0; j < x_columns.size(); ++j) {
-      const std::optional<double> v = table.number(row, x_columns[j]);
-      if (v) row_x[j] = *v;
-      complete = complete && v.has_value();
-    }
-    if (!complete) {
-      ++n_missing;
-      continue;
-    }
-    y.push_back(*value);
-    for (std::size_t j = 0; j < row_x.size(); ++j) predictors[j].push_back(row_x[j]);
-  }
+  stats::check_predictor_names(file, columns, o.y);
+  const stats::RegressionData data = stats::read_regression_data(file, o.y, columns);
+  const std::vector<double>& y = data.y;
+  const std::vector<std::vector<double>>& predictors = data.x;
+  const std::size_t n_missing = data.n_missing;
 
   stats::LinearFit fit;
   const std::string design =

@@ -20,15 +20,8 @@ json number(double x) {
 void out(const char* format, ...) {
   va_list args;
   va_start(args, format);
-  va_list again;
-  va_copy(again, args);
-  const int size = std::vsnprintf(nullptr, 0, format, args);
+  std::cout << util::format_text_v(format, args);
   va_end(args);
-  std::string text(static_cast<std::size_t>(size > 0 ? size : 0) + 1, '\0');
-  std::vsnprintf(text.data(), text.size(), format, again);
-  va_end(again);
-  text.pop_back();
-  std::cout << text;
 }
 
 std::string text_number(double x) {

@@ -4,25 +4,14 @@
 // 0.03 s. Found beside renderaudit (util/worker_program.h); renderaudit's own hidden `worker`
 // subcommand does the same where it is missing.
 #include <CLI/CLI.hpp>
-#include <cstdio>
-#include <exception>
 
 #include "app/commands.h"
 #include "app/exit_status.h"
-#include "util/child_process.h"
-#include "util/errors.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"renderaudit-worker: runs one shard of a run (started by `renderaudit run`)"};
   app.require_subcommand(1);
   int exit_code = ra::app::kExitOk;
   ra::app::register_worker_command(app, exit_code);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : ra::app::kExitUsage;
-  } catch (...) {
-    return ra::app::exit_code_of_current_exception("renderaudit-worker");
-  }
-  return exit_code;
+  return ra::app::run_command_line(app, argc, argv, exit_code, "renderaudit-worker");
 }

@@ -7,13 +7,12 @@
 
 #include "audit/audit_report.h"
 #include "rundir/manifest.h"
+#include "util/json_number.h"
 
 namespace ra::audit {
 namespace {
 
 using nlohmann::json;
-
-json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json state_json(const PrimitiveState& s, geometry::Kind kind) {
   return {{"status", metrics::status_name(s.status)},
@@ -21,7 +20,7 @@ json state_json(const PrimitiveState& s, geometry::Kind kind) {
           {"pixels", s.pixels},
           {"pixel_hash", std::to_string(s.pixel_hash)},  // a string: JSON readers lose 64-bit ints
           {"metric", headline_metric(kind)},
-          {"value", number_or_null(s.metric)},
+          {"value", util::finite_or_null(s.metric)},
           {"ref_diff", s.ref_diff >= 0 ? json(s.ref_diff) : json(nullptr)},
           {"conformance", s.conformance == metrics::Conformance::kNotCompared
                               ? json(nullptr)
@@ -79,12 +78,12 @@ json comparison_json(const AuditResult& r, const DistributionComparison& c) {
           {"unit", analysis::unit_name(m.unit)},
           {"n_before", c.n_before},
           {"n_after", c.n_after},
-          {"median_before", number_or_null(c.median_before)},
-          {"median_after", number_or_null(c.median_after)},
-          {"median_difference", number_or_null(c.median_difference())},
-          {"iqr_before", number_or_null(c.iqr_before)},
-          {"iqr_after", number_or_null(c.iqr_after)},
-          {"iqr_difference", number_or_null(c.iqr_difference())},
+          {"median_before", util::finite_or_null(c.median_before)},
+          {"median_after", util::finite_or_null(c.median_after)},
+          {"median_difference", util::finite_or_null(c.median_difference())},
+          {"iqr_before", util::finite_or_null(c.iqr_before)},
+          {"iqr_after", util::finite_or_null(c.iqr_after)},
+          {"iqr_difference", util::finite_or_null(c.iqr_difference())},
           {"box_cox", bc},
           {"tests", tests},
           {"significant", c.significant()}};

@@ -101,7 +101,8 @@ void drivers(std::ostream& md, const AuditResult& r) {
   md << "## Drivers\n\n";
   if (r.mode == "between") {
     md << "| | " << cell(r.pairs[0].baseline) << " (baseline role) | " << cell(r.pairs[0].current)
-       << " |\n| :--- | :--- | :--- |\n";
+       << " |\n"
+       << stats::markdown_rule({stats::Align::kLeft, stats::Align::kLeft, stats::Align::kLeft});
     md << "| GL_RENDERER | " << cell(r.baseline_drivers[0].renderer) << " | "
        << cell(r.current_drivers[0].renderer) << " |\n";
     md << "| GL_VERSION | " << cell(r.baseline_drivers[0].version) << " | "
@@ -200,9 +201,12 @@ void classes(std::ostream& md, const AuditResult& r) {
     md << "Every class count is the same on both sides.\n\n";
     return;
   }
+  using stats::Align;
   md << "Counts that differ (all of them: `audit.json` key `visibility`):\n\n"
-        "| platform | kind | group | class | before | after | difference |\n"
-        "| :--- | :--- | :---: | :--- | ---: | ---: | ---: |\n"
+     << stats::markdown_header(
+            {"platform", "kind", "group", "class", "before", "after", "difference"},
+            {Align::kLeft, Align::kLeft, Align::kCenter, Align::kLeft, Align::kRight, Align::kRight,
+             Align::kRight})
      << rows.str() << "\n";
 }
 

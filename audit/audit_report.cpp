@@ -81,7 +81,6 @@ std::string changed_primitives_csv(const AuditResult& r) {
          "visibility_before,visibility_after,pixels_before,pixels_after,metric,value_before,"
          "value_after,ref_diff_before,ref_diff_after,pixel_hash_before,pixel_hash_after,"
          "pixel_hash_rerender\n";
-  auto value = [](double v) { return std::isfinite(v) ? util::full_precision(v) : std::string(); };
   auto diff = [](int64_t d) { return d >= 0 ? std::to_string(d) : std::string(); };
   for (const ChangedPrimitive& c : r.primitives.changed) {
     const bool rerendered = c.recheck == Recheck::kStillDifferent || c.recheck == Recheck::kFlake;
@@ -91,9 +90,10 @@ std::string changed_primitives_csv(const AuditResult& r) {
         << metrics::status_name(c.after.status) << ','
         << metrics::visibility_name(c.before.visibility) << ','
         << metrics::visibility_name(c.after.visibility) << ',' << c.before.pixels << ','
-        << c.after.pixels << ',' << headline_metric(c.kind) << ',' << value(c.before.metric) << ','
-        << value(c.after.metric) << ',' << diff(c.before.ref_diff) << ',' << diff(c.after.ref_diff)
-        << ',' << c.before.pixel_hash << ',' << c.after.pixel_hash << ','
+        << c.after.pixels << ',' << headline_metric(c.kind) << ','
+        << util::full_precision_if_finite(c.before.metric) << ','
+        << util::full_precision_if_finite(c.after.metric) << ',' << diff(c.before.ref_diff) << ','
+        << diff(c.after.ref_diff) << ',' << c.before.pixel_hash << ',' << c.after.pixel_hash << ','
         << (rerendered ? std::to_string(c.rerender_hash) : "") << '\n';
   }
   return out.str();

@@ -361,24 +361,29 @@ int64_t append_history(const std::string& db_path, const AuditSummary& s,
       written();
     }
   }
-  Statement metric(c,
-                   "INSERT INTO metrics (audit_id, platform, kind, view_group, metric, n, median, "
-                   "iqr) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
-  for (const MetricSummary& m : s.metrics) {
-    metric.bind(1, id).bind(2, m.platform).bind(3, m.kind).bind(4, int64_t(m.view_group));
-    metric.bind(5, m.metric).bind(6, m.n).bind_real(7, m.median).bind_real(8, m.iqr);
-    metric.run_once();
-    written();
-  }
-  Statement cls(c,
-                "INSERT INTO classes (audit_id, platform, kind, view_group, visibility, count) "
-                "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
-  for (const ClassCount& k : s.classes) {
-    cls.bind(1, id).bind(2, k.platform).bind(3, k.kind).bind(4, int64_t(k.view_group));
-    cls.bind(5, k.visibility).bind(6, k.count);
-    cls.run_once();
-    written();
-  }
+  // One prepared INSERT, run once for each of `list`, `bind` giving a row's values after audit_id.
+  const auto insert_each = [&](const char* sql, const auto& list, const auto& bind) {
+    Statement insert(c, sql);
+    for (const auto& row : list) {
+      bind(insert.bind(1, id), row);
+      insert.run_once();
+      written();
+    }
+  };
+  insert_each(
+      "INSERT INTO metrics (audit_id, platform, kind, view_group, metric, n, median, "
+      "iqr) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)",
+      s.metrics, [](Statement& st, const MetricSummary& m) {
+        st.bind(2, m.platform).bind(3, m.kind).bind(4, int64_t(m.view_group));
+        st.bind(5, m.metric).bind(6, m.n).bind_real(7, m.median).bind_real(8, m.iqr);
+      });
+  insert_each(
+      "INSERT INTO classes (audit_id, platform, kind, view_group, visibility, count) "
+      "VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
+      s.classes, [](Statement& st, const ClassCount& k) {
+        st.bind(2, k.platform).bind(3, k.kind).bind(4, int64_t(k.view_group));
+        st.bind(5, k.visibility).bind(6, k.count);
+      });
   c.exec("COMMIT", "cannot commit the audit to the history");
   return id;
 }

@@ -18,12 +18,13 @@
 #include <string>
 #include <vector>
 
-#include "rundir/records_reader.h"
 #include "rundir/manifest.h"
+#include "rundir/records_reader.h"
 #include "rundir/shard.h"
+#include "stats/descriptive.h"
+#include "stats/table_writer.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
-#include "stats/descriptive.h"
 
 namespace fs = std::filesystem;
 using namespace ra;
@@ -131,10 +132,14 @@ int main(int argc, char** argv) {
 
   std::printf("\nWhole run against the drivers' own drawing: %s, --jobs %d, %d rounds\n\n",
               experiment.c_str(), jobs, rounds);
+  using stats::Align;
   std::printf(
-      "| round | workers | processes | wall s | worker-s | drawing s (sum render_us) | "
-      "wall x jobs / drawing | worker-s / drawing |\n"
-      "| ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+      "%s", stats::markdown_header(
+                {"round", "workers", "processes", "wall s", "worker-s", "drawing s (sum render_us)",
+                 "wall x jobs / drawing", "worker-s / drawing"},
+                {Align::kRight, Align::kDefault, Align::kRight, Align::kRight, Align::kRight,
+                 Align::kRight, Align::kRight, Align::kRight})
+                .c_str());
   std::vector<double> ratio, worker_ratio, ratio_per_shard, worker_ratio_per_shard;
   auto print_round = [&](size_t r, const Round& x, const char* workers, std::vector<double>& rs,
                          std::vector<double>& ws) {
@@ -158,9 +163,10 @@ int main(int argc, char** argv) {
   std::printf(
       "\nPer primitive (medians over the rounds, serve-shards): the worker's time (its shard's "
       "wall time / primitives) against the drawing (render_us), the floor\n\n");
-  std::printf(
-      "| platform | kind | primitives | drawing us | worker us | worker / drawing |\n"
-      "| --- | --- | ---: | ---: | ---: | ---: |\n");
+  std::printf("%s", stats::markdown_header({"platform", "kind", "primitives", "drawing us",
+                                            "worker us", "worker / drawing"},
+                                           2)
+                        .c_str());
   nlohmann::json out = {{"experiment", experiment},
                         {"jobs", jobs},
                         {"rounds", rounds},

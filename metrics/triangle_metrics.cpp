@@ -52,6 +52,18 @@ TriangleMetrics invalid_metrics(int64_t rendered) {
   return m;
 }
 
+// What both measures know before their walk: invalid metrics for an invalid projection, else the
+// pixels lit and the projected area (0 when the triangle is clipped away).
+TriangleMetrics started_metrics(const geometry::ClippedPolygon& proj,
+                                const geometry::PixelSet& lit) {
+  if (proj.status == geometry::ClipStatus::kInvalid) return invalid_metrics(lit.size());
+  TriangleMetrics m;
+  m.rendered = lit.size();
+  m.valid = true;
+  m.projected_area = proj.status == geometry::ClipStatus::kVisible ? proj.area : 0.0;
+  return m;
+}
+
 }  // namespace
 
 double visible_edge_length(const geometry::ClippedPolygon& proj) {
@@ -93,11 +105,8 @@ TriangleMetrics measure_triangle(const geometry::View& view, const geometry::Pri
 TriangleMetrics measure_triangle(const geometry::ClippedPolygon& proj,
                                  const geometry::PolygonCoverage& cov,
                                  const geometry::PixelSet& lit, int width, int height) {
-  if (proj.status == geometry::ClipStatus::kInvalid) return invalid_metrics(lit.size());
-  TriangleMetrics m;
-  m.rendered = lit.size();
-  m.valid = true;
-  m.projected_area = proj.status == geometry::ClipStatus::kVisible ? proj.area : 0.0;
+  TriangleMetrics m = started_metrics(proj, lit);
+  if (!m.valid) return m;
 
   // Walk the coverage rows and the lit runs together. Lit pixels in no coverage row, or in a row
   // but neither in its run nor among its partial pixels, are wholly outside (outside = 1).
@@ -163,11 +172,8 @@ TriangleMetrics measure_triangle_coverage(const geometry::ClippedPolygon& proj,
     throw std::invalid_argument("measure_triangle_coverage: " + std::to_string(samples_lit.size()) +
                                 " coverage values for " + std::to_string(lit.size()) +
                                 " pixels, " + std::to_string(samples) + " samples per pixel");
-  if (proj.status == geometry::ClipStatus::kInvalid) return invalid_metrics(lit.size());
-  TriangleMetrics m;
-  m.rendered = lit.size();
-  m.valid = true;
-  m.projected_area = proj.status == geometry::ClipStatus::kVisible ? proj.area : 0.0;
+  TriangleMetrics m = started_metrics(proj, lit);
+  if (!m.valid) return m;
 
   // Where each lit run's coverage values start in samples_lit.
   const std::vector<geometry::PixelRun>& runs = lit.runs();

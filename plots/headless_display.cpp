@@ -11,10 +11,10 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <ctime>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -22,6 +22,7 @@
 
 #include "util/child_process.h"
 #include "util/errors.h"
+#include "util/path_search.h"
 
 namespace ra::plots {
 namespace {
@@ -100,19 +101,6 @@ bool wait_exit(pid_t pid, double seconds, int* status) {
 
 }  // namespace
 
-std::string find_on_path(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  const std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
-  std::stringstream ss(dirs);
-  std::string dir;
-  while (std::getline(ss, dir, ':')) {
-    if (dir.empty()) continue;
-    const std::string candidate = dir + "/" + program;
-    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
-  }
-  return "";
-}
-
 bool x_display_usable(const std::string& display) {
   if (display.empty()) return false;
   Display* dpy = XOpenDisplay(display.c_str());
@@ -132,7 +120,7 @@ HeadlessDisplay::HeadlessDisplay(const std::string& log_path) {
     return;
   }
 
-  const std::string xvfb = find_on_path("Xvfb");
+  const std::string xvfb = util::find_on_path("Xvfb");
   if (xvfb.empty()) throw util::UserError(std::string(kInstallHint) + " (Xvfb is not installed).");
 
   if (log_path.empty()) {

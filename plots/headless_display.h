@@ -60,7 +60,4 @@ class HeadlessDisplay {
 // True when an X server with the GLX extension answers at `display` (e.g. ":0").
 bool x_display_usable(const std::string& display);
 
-// Path of an executable found on PATH, or "" (e.g. find_on_path("Xvfb")).
-std::string find_on_path(const std::string& program);
-
 }  // namespace ra::plots

@@ -3,15 +3,16 @@
 #include "plots/headless_display.h"
 
 #include <gtest/gtest.h>
-#include <fstream>
 #include <signal.h>
 #include <sys/stat.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "util/errors.h"
+#include "util/path_search.h"
 
 namespace ra::plots {
 namespace {
@@ -45,7 +46,8 @@ bool process_alive(pid_t pid) { return ::kill(pid, 0) == 0; }
 // Why: CI has no display; VTK would segfault. The private server must come up, be usable, and be
 // gone afterwards (no Xvfb left behind by a test or by `renderaudit plot`).
 TEST(HeadlessDisplay, StartsAPrivateXvfbWhenThereIsNoDisplayAndStopsIt) {
-  if (find_on_path("Xvfb").empty()) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
+  if (util::find_on_path("Xvfb").empty())
+    GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
   ScopedEnv no_display("DISPLAY", nullptr);
   pid_t pid = -1;
   std::string socket;
@@ -69,7 +71,8 @@ TEST(HeadlessDisplay, StartsAPrivateXvfbWhenThereIsNoDisplayAndStopsIt) {
 // Why: the private server must not be open to every local user (issue: no access control). Only a
 // client holding its cookie (the 0600 file named in XAUTHORITY) connects.
 TEST(HeadlessDisplay, OnlyAClientHoldingTheCookieConnects) {
-  if (find_on_path("Xvfb").empty()) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
+  if (util::find_on_path("Xvfb").empty())
+    GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
   ScopedEnv no_display("DISPLAY", nullptr);
   HeadlessDisplay d;
   ASSERT_TRUE(d.private_server());
@@ -93,7 +96,8 @@ TEST(HeadlessDisplay, OnlyAClientHoldingTheCookieConnects) {
 
 // Why: a DISPLAY that names no server (a stale ssh forward, say) must not reach VTK either.
 TEST(HeadlessDisplay, ReplacesADisplayWhereNoServerAnswers) {
-  if (find_on_path("Xvfb").empty()) GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
+  if (util::find_on_path("Xvfb").empty())
+    GTEST_SKIP() << "Xvfb is not installed (apt-get install xvfb)";
   ScopedEnv bad_display("DISPLAY", ":987");
   HeadlessDisplay d;
   EXPECT_TRUE(d.private_server());

@@ -19,11 +19,6 @@ namespace {
 
 namespace an = ra::analysis;
 
-// Not-finite values as empty cells.
-std::string finite_or_empty(double v) {
-  return std::isfinite(v) ? util::full_precision(v) : std::string();
-}
-
 // The trend's own numbers, in record units (the box plot's CSV would show the bands as quartiles).
 void write_trend_csv(const TrendData& data, const std::string& path) {
   std::ofstream out(path, std::ios::trunc);
@@ -32,8 +27,9 @@ void write_trend_csv(const TrendData& data, const std::string& path) {
     for (const TrendPoint& p : s.points)
       out << util::csv_escape(data.audits.at(p.audit)) << ','
           << util::csv_escape(p.audit < data.dates.size() ? data.dates[p.audit] : "") << ','
-          << util::csv_escape(s.name) << ',' << p.n << ',' << finite_or_empty(p.median) << ','
-          << finite_or_empty(p.iqr) << '\n';
+          << util::csv_escape(s.name) << ',' << p.n << ','
+          << util::full_precision_if_finite(p.median) << ','
+          << util::full_precision_if_finite(p.iqr) << '\n';
   out.close();
   if (!out) throw util::UserError("cannot write " + path);
 }

@@ -10,15 +10,11 @@
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "util/number_text.h"
+#include "util/json_number.h"
 
 namespace ra::regulation {
 
 using nlohmann::json;
-
-// A number of a JSON document through a printf format, "n/a" where it is null (not finite).
-std::string number_or_na(const json& v, const char* f) {
-  return v.is_number() ? util::format_double(f, v.get<double>()) : "n/a";
-}
 
 json read_regulation_json(const std::string& dir) {
   const auto info = rundir::read_study_info(dir);
@@ -51,13 +47,13 @@ std::string regulation_markdown(const json& j) {
   md << "### Method\n\n"
      << "- **Levels of detail**: meshoptimizer's `meshopt_simplify` per texture group at the target "
         "triangle ratios below, restripified; the error of a level is the simplifier's, in metres.\n"
-     << "- **Time** (the timing study's H4): " << number_or_na(cm["intercept_us"]) << " us + "
-     << number_or_na(cm["c1_us_per_tv"]) << " us x #tv + " << number_or_na(cm["c2_us_per_pixel"]) << " us x #pix ("
+     << "- **Time** (the timing study's H4): " << util::json_number_text(cm["intercept_us"]) << " us + "
+     << util::json_number_text(cm["c1_us_per_tv"]) << " us x #tv + " << util::json_number_text(cm["c2_us_per_pixel"]) << " us x #pix ("
      << cm.value("source", "") << "); #pix " << cm.value("pixels", "") << "; knapsack costs rounded up to "
-     << number_or_na(cm["cost_unit_us"]) << " us.\n"
+     << util::json_number_text(cm["cost_unit_us"]) << " us.\n"
      << "- **Perceptual cost** (section 7.2): screen-area fraction x (projected geometric error in "
-        "pixels)^" << number_or_na(j["attention"]["error_exponent"]) << ", 0 at full detail.\n"
-     << "- **Attention** (equations 4 and 6, alpha = " << number_or_na(j["attention"]["alpha"])
+        "pixels)^" << util::json_number_text(j["attention"]["error_exponent"]) << ", 0 at full detail.\n"
+     << "- **Attention** (equations 4 and 6, alpha = " << util::json_number_text(j["attention"]["alpha"])
      << "): each object is weighted by q + (1 - q) alpha, q = p(A_S | A_O) p(A_O).\n"
      << "- **Policies**: `greedy` = increments of each object's convex-hull upgrade chain in "
         "decreasing Phi = gain / cost, compared with the best single-object upgrade (the better "
@@ -68,15 +64,15 @@ std::string regulation_markdown(const json& j) {
   md << "### Attention categories\n\n"
      << stats::markdown_header({"Category", "p(attend)", "Seeded share", "Weight", "Objects"}, 1);
   for (const auto& [name, c] : j["attention"]["categories"].items())
-    md << stats::markdown_row({name, number_or_na(c["probability"], "%.2f"), number_or_na(c["share"], "%.2f"), number_or_na(c["weight"], "%.3f"),
+    md << stats::markdown_row({name, util::json_number_text(c["probability"], "%.2f"), util::json_number_text(c["share"], "%.2f"), util::json_number_text(c["weight"], "%.3f"),
                std::to_string(c.value("objects", 0))});
   md << "\n### Levels of detail (all objects)\n\n"
      << stats::markdown_header({"Level", "Target ratio", "Objects with it", "Triangles", "#tv", "Median error m", "Max error m"}, 1);
   for (const json& l : j["lod"])
-    md << stats::markdown_row({std::to_string(l.value("level", 0)), number_or_na(l["target_ratio"], "%.4g"),
+    md << stats::markdown_row({std::to_string(l.value("level", 0)), util::json_number_text(l["target_ratio"], "%.4g"),
                std::to_string(l.value("objects_with_level", 0)), std::to_string(l.value("triangles", 0)),
-               std::to_string(l.value("transformed", 0)), number_or_na(l["error_median_m"], "%.3g"),
-               number_or_na(l["error_max_m"], "%.3g")});
+               std::to_string(l.value("transformed", 0)), util::json_number_text(l["error_median_m"], "%.3g"),
+               util::json_number_text(l["error_max_m"], "%.3g")});
   md << "\nAn object whose simplifier could not reduce further keeps fewer levels (counted at its last "
         "level in the sums).\n\n";
 
@@ -86,8 +82,8 @@ std::string regulation_markdown(const json& j) {
         "themselves has no bound.\n\n"
      << stats::markdown_header({"Quantity", "n", "Median", "q90", "q99", "Max", "Above 2"}, 1);
   auto qrow = [&](const std::string& name, const json& q, const json& above) {
-    md << stats::markdown_row({name, std::to_string(q.value("n", 0)), number_or_na(q.value("q50", json())), number_or_na(q.value("q90", json())),
-               number_or_na(q.value("q99", json())), number_or_na(q.value("max", json())),
+    md << stats::markdown_row({name, std::to_string(q.value("n", 0)), util::json_number_text(q.value("q50", json())), util::json_number_text(q.value("q90", json())),
+               util::json_number_text(q.value("q99", json())), util::json_number_text(q.value("max", json())),
                above.is_number() ? std::to_string(above.get<int>()) : "-"});
   };
   qrow("value(OPT) / value(greedy)", rq, rnd["value_ratio_above_2"]);
@@ -104,11 +100,11 @@ std::string regulation_markdown(const json& j) {
   const json& render = j["render"];
   md << "### Expected perceptual cost against the frame budget (camera path)\n\n"
      << "Mean over the planned frames; the objects may spend the budget minus the empty frame ("
-     << number_or_na(json(render.value("base_us", 0.0) / 1000.0), "%.3f") << " ms measured).\n\n";
+     << util::json_number_text(json(render.value("base_us", 0.0) / 1000.0), "%.3f") << " ms measured).\n\n";
   std::vector<std::string> budgets;
   std::vector<std::string> policies;
   for (const json& r : j["sweep"]) {
-    const std::string b = number_or_na(r["budget_ms"], "%g");
+    const std::string b = util::json_number_text(r["budget_ms"], "%g");
     if (std::find(budgets.begin(), budgets.end(), b) == budgets.end()) budgets.push_back(b);
     const std::string p = r.value("policy", "");
     if (std::find(policies.begin(), policies.end(), p) == policies.end()) policies.push_back(p);
@@ -121,7 +117,7 @@ std::string regulation_markdown(const json& j) {
     for (const auto& b : budgets) {
       std::string c = "-";
       for (const json& r : j["sweep"])
-        if (r.value("policy", "") == p && number_or_na(r["budget_ms"], "%g") == b) c = number_or_na(r["mean_expected_cost"]);
+        if (r.value("policy", "") == p && util::json_number_text(r["budget_ms"], "%g") == b) c = util::json_number_text(r["mean_expected_cost"]);
       cells.push_back(c);
     }
     md << stats::markdown_row(cells);
@@ -137,31 +133,31 @@ std::string regulation_markdown(const json& j) {
                   "Median measured ms", "Median relative error", "Median abs error",
                   "Median abs error, estimated #pix"}, 1);
     for (const json& r : j["sweep"])
-      md << stats::markdown_row({r.value("policy", ""), number_or_na(r["budget_ms"], "%g"), std::to_string(r.value("rendered", 0)),
-                 std::to_string(r.value("skips", 0)), number_or_na(r["skip_fraction"], "%.2f"),
-                 number_or_na(r["mean_predicted_ms"], "%.2f"), number_or_na(r["median_measured_ms"], "%.2f"),
-                 number_or_na(r["median_relative_error"], "%+.2f"), number_or_na(r["median_abs_relative_error"], "%.2f"),
-                 number_or_na(r["median_abs_relative_error_estimated_pixels"], "%.2f")});
+      md << stats::markdown_row({r.value("policy", ""), util::json_number_text(r["budget_ms"], "%g"), std::to_string(r.value("rendered", 0)),
+                 std::to_string(r.value("skips", 0)), util::json_number_text(r["skip_fraction"], "%.2f"),
+                 util::json_number_text(r["mean_predicted_ms"], "%.2f"), util::json_number_text(r["median_measured_ms"], "%.2f"),
+                 util::json_number_text(r["median_relative_error"], "%+.2f"), util::json_number_text(r["median_abs_relative_error"], "%.2f"),
+                 util::json_number_text(r["median_abs_relative_error_estimated_pixels"], "%.2f")});
     const json& ae = render["abs_relative_error"];
     const json& ee = render["abs_relative_error_estimated_pixels"];
     md << "\nOver all " << ae.value("n", 0) << " rendered plans, median |predicted - measured| / measured: "
-       << number_or_na(ae.value("q50", json()), "%.3f") << " (q90 " << number_or_na(ae.value("q90", json()), "%.3f")
-       << "); with the estimated #pix for the same plans " << number_or_na(ee.value("q50", json()), "%.3f")
-       << " (q90 " << number_or_na(ee.value("q90", json()), "%.3f") << ").\n";
+       << util::json_number_text(ae.value("q50", json()), "%.3f") << " (q90 " << util::json_number_text(ae.value("q90", json()), "%.3f")
+       << "); with the estimated #pix for the same plans " << util::json_number_text(ee.value("q50", json()), "%.3f")
+       << " (q90 " << util::json_number_text(ee.value("q90", json()), "%.3f") << ").\n";
     if (cm.contains("measured_over_estimated_pixels")) {
       const json& q = cm["measured_over_estimated_pixels"];
       md << "Measured #pix of the finest level / estimated #pix per (frame, visible object): median "
-         << number_or_na(q.value("q50", json()), "%.3f") << ", min " << number_or_na(q.value("min", json()), "%.3g")
-         << ", max " << number_or_na(q.value("max", json()), "%.3g") << " (n = " << q.value("n", 0) << "; pixels.csv).\n";
+         << util::json_number_text(q.value("q50", json()), "%.3f") << ", min " << util::json_number_text(q.value("min", json()), "%.3g")
+         << ", max " << util::json_number_text(q.value("max", json()), "%.3g") << " (n = " << q.value("n", 0) << "; pixels.csv).\n";
     }
   } else if (!render["error"].is_null()) {
     md << "\nRendering failed: " << render["error"].get<std::string>() << "\n";
   }
   md << "\n### Findings\n\n";
   md << "- value(OPT) / value(greedy) on " << rnd.value("instances", 0) << " random instances: max "
-     << number_or_na(rq.value("max", json())) << ", median " << number_or_na(rq.value("q50", json()))
+     << util::json_number_text(rq.value("max", json())) << ", median " << util::json_number_text(rq.value("q50", json()))
      << " (never above 2: " << (rnd.value("value_ratio_above_2", 1) == 0 ? "yes" : "NO") << "); "
-     << "without the single-item check the max is " << number_or_na(rnd["value_ratio_ratio_only"].value("max", json()))
+     << "without the single-item check the max is " << util::json_number_text(rnd["value_ratio_ratio_only"].value("max", json()))
      << ".\n";
   for (const json& f : j["findings"]) md << "- **Check failed**: " << f.get<std::string>() << "\n";
   md << "\n";

@@ -16,7 +16,4 @@ void analyze_regulation_study(const std::string& dir);
 // study.json of kind regulation) or the file cannot be read.
 nlohmann::json read_regulation_json(const std::string& dir);
 
-// A number of a JSON document through a printf format, "n/a" where it is null (not finite).
-std::string number_or_na(const nlohmann::json& v, const char* f = "%.4g");
-
 }  // namespace ra::regulation

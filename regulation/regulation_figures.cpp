@@ -12,6 +12,7 @@
 #include "regulation/regulation_document.h"
 #include "rundir/study_dir.h"
 #include "util/errors.h"
+#include "util/json_number.h"
 
 namespace ra::regulation {
 
@@ -76,7 +77,7 @@ void plot_regulation_study(const std::string& dir) {
     plots::BarChartContent bc;
     std::map<std::string, std::size_t> series_index;
     for (const json& r : j["sweep"]) {
-      const std::string b = number_or_na(r["budget_ms"], "%g") + " ms";
+      const std::string b = util::json_number_text(r["budget_ms"], "%g") + " ms";
       if (std::find(bc.categories.begin(), bc.categories.end(), b) == bc.categories.end())
         bc.categories.push_back(b);
     }
@@ -86,7 +87,7 @@ void plot_regulation_study(const std::string& dir) {
         series_index[p] = bc.series.size();
         bc.series.push_back({p, std::vector<double>(bc.categories.size(), 0.0), {}});
       }
-      const std::string b = number_or_na(r["budget_ms"], "%g") + " ms";
+      const std::string b = util::json_number_text(r["budget_ms"], "%g") + " ms";
       const auto at = std::find(bc.categories.begin(), bc.categories.end(), b) - bc.categories.begin();
       bc.series[series_index[p]].values[std::size_t(at)] =
           100.0 * (r["skip_fraction"].is_number() ? r["skip_fraction"].get<double>() : 0.0);

@@ -25,6 +25,7 @@
 #include "util/atomic_file.h"
 #include "util/cell_text.h"
 #include "util/errors.h"
+#include "util/json_number.h"
 #include "util/number_text.h"
 
 namespace ra::regulation {
@@ -34,8 +35,6 @@ using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-json nullable(double v) { return std::isfinite(v) ? json(v) : json(); }
 
 // Quantiles of the finite values (HF6); nulls when there are none.
 json quantiles(std::vector<double> v) {
@@ -90,8 +89,8 @@ std::size_t random_instances_stage(const RegulationSettings& s, const std::strin
                  {"loss_ratio", quantiles(loss_ratio)},
                  {"seconds", seconds_since(t)}};
   std::vector<json> r, ro;
-  for (double v : ratio) r.push_back(nullable(v));
-  for (double v : ratio_only) ro.push_back(nullable(v));
+  for (double v : ratio) r.push_back(util::finite_or_null(v));
+  for (double v : ratio_only) ro.push_back(util::finite_or_null(v));
   j["random"]["ratios"] = r;
   j["random"]["ratios_ratio_only"] = ro;
   if (over2) findings.push_back(std::to_string(over2) + " random instances with value(OPT) / value(greedy) > 2");
@@ -295,14 +294,14 @@ std::string summary_text(const json& j, const std::string& dir, std::size_t inst
                          const std::vector<std::string>& findings) {
   std::ostringstream sum;
   const json& rq = j["random"]["value_ratio"];
-  sum << "regulation study -> " << dir << " (" << number_or_na(j["wall_s"], "%.1f") << " s)\n"
-      << "random instances: " << instances << ", value(OPT)/value(greedy) max " << number_or_na(rq.value("max", json()))
-      << ", median " << number_or_na(rq.value("q50", json())) << "; ratio-only greedy max "
-      << number_or_na(j["random"]["value_ratio_ratio_only"].value("max", json())) << "\n";
+  sum << "regulation study -> " << dir << " (" << util::json_number_text(j["wall_s"], "%.1f") << " s)\n"
+      << "random instances: " << instances << ", value(OPT)/value(greedy) max " << util::json_number_text(rq.value("max", json()))
+      << ", median " << util::json_number_text(rq.value("q50", json())) << "; ratio-only greedy max "
+      << util::json_number_text(j["random"]["value_ratio_ratio_only"].value("max", json())) << "\n";
   for (const json& row : j["sweep"])
     if (row["policy"] == "greedy")
-      sum << "budget " << number_or_na(row["budget_ms"]) << " ms: greedy expected cost "
-          << number_or_na(row["mean_expected_cost"]) << ", skips " << row["skips"].get<int>() << "/"
+      sum << "budget " << util::json_number_text(row["budget_ms"]) << " ms: greedy expected cost "
+          << util::json_number_text(row["mean_expected_cost"]) << ", skips " << row["skips"].get<int>() << "/"
           << row["rendered"].get<int>() << "\n";
   for (const std::string& f : findings) sum << "FINDING: " << f << "\n";
   return sum.str();

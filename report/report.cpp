@@ -19,23 +19,23 @@
 #include <set>
 #include <sstream>
 
-#include "rundir/records_format.h"
-#include "plots/headless_display.h"
+#include "analysis/run_completeness.h"
+#include "analysis/run_records.h"
+#include "analysis/run_tally.h"
 #include "plots/plot_run.h"
 #include "report/document.h"
 #include "report/headline.h"
 #include "report/html_writer.h"
 #include "report/pdf_writer.h"
 #include "report/run_document.h"
-#include "analysis/run_completeness.h"
-#include "analysis/run_records.h"
-#include "analysis/run_tally.h"
+#include "rundir/manifest.h"
+#include "rundir/records_format.h"
+#include "rundir/study_dir.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/errors.h"
+#include "util/path_search.h"
 #include "util/shell_quote.h"
-#include "rundir/manifest.h"
-#include "rundir/study_dir.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -199,7 +199,7 @@ ReportResult write_report(const ReportOptions& options) {
                           " is not a run directory (no records/ and no study.json): run "
                           "`renderaudit run EXPERIMENT.toml --out " +
                           util::shell_quote(run_dir) + "` first");
-  const std::string pdfunite = plots::find_on_path("pdfunite");
+  const std::string pdfunite = util::find_on_path("pdfunite");
   if (pdfunite.empty())
     throw util::UserError(
         "pdfunite not found: install poppler-utils (apt-get install poppler-utils)");

@@ -79,9 +79,7 @@ std::string fingerprint_file(const std::string& path) {
   std::vector<char> buf(1 << 20);
   for (ssize_t n; (n = ::read(fd, buf.data(), buf.size())) > 0;) h.add(buf.data(), size_t(n));
   ::close(fd);
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.value));
-  return hex;
+  return util::hex64(h.value);
 }
 
 }  // namespace

@@ -8,10 +8,11 @@
 #define TOML_EXCEPTIONS 1
 #include <toml++/toml.h>
 
-#include "util/errors.h"
 #include "geometry/projection_range.h"
 #include "rundir/driver_build.h"
 #include "rundir/platform_spec.h"
+#include "util/errors.h"
+#include "util/fnv1a.h"
 #include "util/toml_locator.h"
 
 namespace ra::rundir {
@@ -34,14 +35,9 @@ std::string canonical_hash(toml::table root) {
   root.erase("run");
   std::ostringstream canon;
   canon << root;
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : canon.str()) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
+  util::Fnv1a64 h;
+  h.add(canon.str());
+  return util::hex64(h.value);
 }
 
 std::vector<uint64_t> index_list(const util::TomlLocator& loc, const toml::node& node,

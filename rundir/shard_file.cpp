@@ -1,7 +1,6 @@
 #include "rundir/shard_file.h"
 
 #include <algorithm>
-#include <cinttypes>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -15,12 +14,6 @@ namespace ra::rundir {
 namespace {
 
 constexpr std::string_view kTrailerPrefix = "# complete rows=";
-
-std::string hex64(uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016" PRIx64, v);
-  return buf;
-}
 
 // Hash and row count of the first `length` bytes of `in` (the header line excluded from rows),
 // read in blocks: memory does not depend on the file's size.
@@ -52,7 +45,8 @@ BodyDigest digest(std::istream& in, uint64_t length) {
 }
 
 std::string trailer_of(const BodyDigest& d) {
-  return std::string(kTrailerPrefix) + std::to_string(d.rows) + " fnv1a64=" + hex64(d.hash) + "\n";
+  return std::string(kTrailerPrefix) + std::to_string(d.rows) + " fnv1a64=" + util::hex64(d.hash) +
+         "\n";
 }
 
 // The digest of a decompressed stream whose last line is the trailer: every line but the most

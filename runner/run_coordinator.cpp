@@ -19,6 +19,7 @@
 #include "platforms/renderer_check.h"
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/shard.h"
 #include "runner/recorded_failures.h"
 #include "runner/run_dir.h"
 #include "runner/run_plan.h"
@@ -26,11 +27,12 @@
 #include "rundir/shard.h"
 #include "runner/shard_recovery.h"
 #include "runner/worker_pool.h"
-#include "util/worker_program.h"
 #include "util/atomic_file.h"
 #include "util/dir_lock.h"
 #include "util/errors.h"
+#include "util/interrupt.h"
 #include "util/json_file.h"
+#include "util/worker_program.h"
 
 namespace fs = std::filesystem;
 
@@ -47,13 +49,7 @@ void on_signal(int) { g_interrupted = 1; }
 // are restored at the end.
 class RunSignals {
  public:
-  RunSignals() {
-    struct sigaction sa {};
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, &old_int_);
-    sigaction(SIGTERM, &sa, &old_term_);
-    sigaction(SIGHUP, &sa, &old_hup_);
+  RunSignals() : stop_(on_signal) {
     struct sigaction ignore_pipe {};
     ignore_pipe.sa_handler = SIG_IGN;
     sigemptyset(&ignore_pipe.sa_mask);
@@ -62,15 +58,14 @@ class RunSignals {
   void restore() {
     if (restored_) return;
     restored_ = true;
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
-    sigaction(SIGHUP, &old_hup_, nullptr);
+    stop_.restore();
     sigaction(SIGPIPE, &old_pipe_, nullptr);
   }
   ~RunSignals() { restore(); }
 
  private:
-  struct sigaction old_int_ {}, old_term_ {}, old_hup_ {}, old_pipe_ {};
+  util::StopSignals stop_;
+  struct sigaction old_pipe_ {};
   bool restored_ = false;
 };
 

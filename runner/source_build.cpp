@@ -76,12 +76,6 @@ std::string read_trimmed(const std::string& path) {
   return s;
 }
 
-std::string hex64(uint64_t v) {
-  char b[17];
-  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(v));
-  return b;
-}
-
 // The last `lines` lines of a file ("" when unreadable).
 std::string tail_of(const std::string& path, std::size_t lines) {
   std::string text;
@@ -255,7 +249,7 @@ std::string incremental_folder(const std::string& cache, const std::string& sour
   for (const std::string& part : {source, o.llvm_config, o.meson})
     h.add(part.data(), part.size()), h.add("\n", 1);
   for (const std::string& m : o.meson_options) h.add(m.data(), m.size()), h.add("\n", 1);
-  return cache + "/.incremental/" + hex64(h.value);
+  return cache + "/.incremental/" + util::hex64(h.value);
 }
 
 // build.json of a source build: where it came from and how it was built.
@@ -397,7 +391,7 @@ std::string tree_content_hash(const std::string& dir) {
     }
     h.add("\0", 1);
   }
-  return hex64(h.value);
+  return util::hex64(h.value);
 }
 
 std::unique_ptr<util::DirLock> lock_source_tree(const std::string& source,
@@ -422,7 +416,7 @@ std::string source_build_key(const SourceIdentity& id, const SourceBuildOptions&
   for (const std::string& x : opts) add(x);
   add(o.llvm_config);
   add(o.build_command);
-  return hex64(h.value);
+  return util::hex64(h.value);
 }
 
 std::string source_build_name(const SourceIdentity& id, const SourceBuildOptions& o) {

@@ -70,6 +70,10 @@ TableCell share_cell(std::uint64_t k, std::uint64_t n) {
           format_significant(share, 9)};
 }
 
+void add_columns(Table& table, const std::vector<std::string>& names, Align align) {
+  for (const std::string& name : names) table.columns.push_back({name, align});
+}
+
 void check_table(const Table& t) {
   if (t.columns.empty()) throw std::logic_error("table " + t.file_stem + ": no columns");
   if (!t.groups.empty()) {
@@ -187,7 +191,11 @@ std::string markdown_header(const std::vector<std::string>& names, const std::ve
   if (align.size() != names.size())
     throw std::logic_error("markdown_header: " + std::to_string(names.size()) + " names, " +
                            std::to_string(align.size()) + " alignments");
-  std::string out = markdown_row(names) + "|";
+  return markdown_row(names) + markdown_rule(align);
+}
+
+std::string markdown_rule(const std::vector<Align>& align) {
+  std::string out = "|";
   for (const Align a : align) {
     switch (a) {
       case Align::kLeft: out += " :--- |"; break;
@@ -196,6 +204,12 @@ std::string markdown_header(const std::vector<std::string>& names, const std::ve
       case Align::kDefault: out += " --- |"; break;
     }
   }
+  return out + "\n";
+}
+
+std::string markdown_compact_rule(std::size_t columns) {
+  std::string out = "|";
+  for (std::size_t i = 0; i < columns; ++i) out += "---|";
   return out + "\n";
 }
 

@@ -78,6 +78,9 @@ struct Table {
   std::vector<std::size_t> rules_before;     // row indices preceded by a rule (LaTeX \midrule)
 };
 
+// Appends columns named `names`, each aligned `align`, to `table.columns`.
+void add_columns(Table& table, const std::vector<std::string>& names, Align align);
+
 // Throws std::logic_error when the table is inconsistent (row width, group spans).
 void check_table(const Table& table);
 
@@ -92,6 +95,11 @@ std::string markdown_header(const std::vector<std::string>& names, const std::ve
 // The first `left_columns` columns kDefault ("---"), the others kRight.
 std::string markdown_header(const std::vector<std::string>& names, std::size_t left_columns);
 std::string markdown_row(const std::vector<std::string>& cells);
+// The alignment row alone ("| :--- | ---: |\n"), below a header row that is not a row of names
+// (cells spelled by the caller). markdown_compact_rule: `columns` kDefault columns spelled without
+// blanks ("|---|---|\n"), as the run summary writes its table.
+std::string markdown_rule(const std::vector<Align>& align);
+std::string markdown_compact_rule(std::size_t columns);
 
 // Escapes for one cell / text fragment (CSV: util/cell_text.h).
 std::string markdown_escape(const std::string& text);

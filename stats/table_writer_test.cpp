@@ -146,6 +146,8 @@ TEST(TableWriter, MarkdownHeaderAndRows) {
             "| Scene | Method | Mean |\n| --- | --- | ---: |\n");
   EXPECT_EQ(markdown_row({"x|y", "two\nlines", ""}), "| x\\|y | two lines |  |\n");
   EXPECT_THROW(markdown_header({"a", "b"}, {Align::kLeft}), std::logic_error);
+  EXPECT_EQ(markdown_rule({Align::kLeft, Align::kRight}), "| :--- | ---: |\n");
+  EXPECT_EQ(markdown_compact_rule(3), "|---|---|---|\n");
 }
 
 }  // namespace

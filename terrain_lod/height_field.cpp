@@ -9,20 +9,30 @@
 #include "util/errors.h"
 
 namespace ra::lod {
+namespace {
+
+// An nx x ny field `spacing` apart whose vertex (i, j) is height(i, j); no source named yet.
+template <typename Height>
+HeightField sampled_field(int nx, int ny, double spacing, const Height& height) {
+  HeightField f;
+  f.nx = nx;
+  f.ny = ny;
+  f.spacing = spacing;
+  f.z.resize(static_cast<size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) f.z[static_cast<size_t>(j) * nx + i] = height(i, j);
+  return f;
+}
+
+}  // namespace
 
 HeightField generate_height_field(const scenes::TerrainParams& params, int nx, int ny) {
   scenes::TerrainParams p = params;
   p.size = 2;  // validate() checks size; ours is nx, ny
   scenes::validate(p);
-  HeightField f;
-  f.nx = nx;
-  f.ny = ny;
-  f.spacing = p.spacing;
-  f.z.resize(static_cast<size_t>(nx) * ny);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      f.z[static_cast<size_t>(j) * nx + i] =
-          scenes::terrain_height(p, i * p.spacing, j * p.spacing);
+  HeightField f = sampled_field(nx, ny, p.spacing, [&](int i, int j) {
+    return scenes::terrain_height(p, i * p.spacing, j * p.spacing);
+  });
   f.source = "generated terrain (seed " + std::to_string(p.seed) + ")";
   return f;
 }
@@ -71,13 +81,8 @@ HeightField crop_to_tiles(const HeightField& field, int tile_size, int max_tiles
                           std::to_string(tile_size) + " x " + std::to_string(tile_size));
   const int nx = tx * cells + 1, ny = ty * cells + 1;
   if (nx == field.nx && ny == field.ny) return field;
-  HeightField out;
-  out.nx = nx;
-  out.ny = ny;
-  out.spacing = field.spacing;
-  out.z.resize(static_cast<size_t>(nx) * ny);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) out.z[static_cast<size_t>(j) * nx + i] = field.at(i, j);
+  HeightField out =
+      sampled_field(nx, ny, field.spacing, [&](int i, int j) { return field.at(i, j); });
   out.source = field.source + ", cropped from " + std::to_string(field.nx) + " x " +
                std::to_string(field.ny) + " to " + std::to_string(nx) + " x " + std::to_string(ny) +
                " vertices (" + std::to_string(tx) + " x " + std::to_string(ty) + " tiles)";

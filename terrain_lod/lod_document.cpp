@@ -12,6 +12,7 @@
 #include "terrain_lod/lod_table.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "util/number_text.h"
 
 namespace ra::lod {
 namespace {
@@ -49,10 +50,10 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
      << header({"lambda (px/rad)", "tau px", "frames", "conforming", "seams ok", "max screen error px",
                 "q90 px", "frames over tau"});
   for (const TableRow& r : rows)
-    md << stats::markdown_row({"`" + r.lambda + "` (" + format_or_empty(lam.value(r.lambda, 0.0), "%.0f") + ")", format_or_empty(r.tau, "%g"),
+    md << stats::markdown_row({"`" + r.lambda + "` (" + util::format_double_or_empty("%.0f", lam.value(r.lambda, 0.0)) + ")", util::format_double_or_empty("%g", r.tau),
                std::to_string(r.frames), std::to_string(r.conforming), std::to_string(r.seams_ok),
-               (r.over_tau ? "**" + format_or_empty(r.max_screen_error, "%.3f") + "**" : format_or_empty(r.max_screen_error, "%.3f")),
-               format_or_empty(r.screen_error_q90, "%.3f"), std::to_string(r.over_tau)});
+               (r.over_tau ? "**" + util::format_double_or_empty("%.3f", r.max_screen_error) + "**" : util::format_double_or_empty("%.3f", r.max_screen_error)),
+               util::format_double_or_empty("%.3f", r.screen_error_q90), std::to_string(r.over_tau)});
   md << "\n`planar` is the paper's lambda = w / (2 tan(phi / 2)) (the focal length in pixels: pixels per "
         "radian on the viewing axis), `spherical` its w / phi, `window` the largest pixels per radian "
         "anywhere in the window, f / cos^2 of the corner angle, with rho = lambda 2 asin(eps / (2 (d - r - eps))) "
@@ -65,9 +66,9 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
   for (const TableRow& r : rows) {
     if (!r.timed()) continue;
     if (r.tau == 1) at_one = &r;
-    md << stats::markdown_row({format_or_empty(r.tau, "%g"), format_or_empty(r.triangles_median, "%.0f"), format_or_empty(100 * r.triangles_median / r.full_triangles, "%.2f"),
-               format_or_empty(r.indices_per_triangle, "%.2f"), format_or_empty(r.frame_ms, "%.2f"), format_or_empty(r.full_ms, "%.2f"),
-               format_or_empty(r.full_ms / r.frame_ms, "%.1f"), format_or_empty(r.image_mean_abs, "%.3f"), format_or_empty(100 * r.image_differing, "%.3f")});
+    md << stats::markdown_row({util::format_double_or_empty("%g", r.tau), util::format_double_or_empty("%.0f", r.triangles_median), util::format_double_or_empty("%.2f", 100 * r.triangles_median / r.full_triangles),
+               util::format_double_or_empty("%.2f", r.indices_per_triangle), util::format_double_or_empty("%.2f", r.frame_ms), util::format_double_or_empty("%.2f", r.full_ms),
+               util::format_double_or_empty("%.1f", r.full_ms / r.frame_ms), util::format_double_or_empty("%.3f", r.image_mean_abs), util::format_double_or_empty("%.3f", 100 * r.image_differing)});
   }
   md << "\nFrame time: steady clock around clear + the tiles' strips + glFinish, the median of "
      << sj.value("repetitions", 0) << " repetitions per frame, then the median over frames. Image "
@@ -80,15 +81,15 @@ std::string lod_document(const json& sj, const std::vector<TableRow>& rows) {
       if (r.tau == 1 && r.lambda == "planar") planar_max = r.max_screen_error;
       else if (r.tau == 1 && r.lambda == "spherical") spherical_max = r.max_screen_error;
     md << "### At tau = 1 pixel\n\n"
-       << "- LOD triangles (median over frames): **" << format_or_empty(at_one->triangles_median, "%.0f") << "** against "
-       << format_or_empty(at_one->full_triangles, "%.0f") << " at full resolution ("
-       << format_or_empty(100 * at_one->triangles_median / at_one->full_triangles, "%.1f") << " %).\n"
-       << "- Frame time (median): **" << format_or_empty(at_one->frame_ms, "%.2f") << " ms** against "
-       << format_or_empty(at_one->full_ms, "%.2f") << " ms at full resolution.\n"
-       << "- Measured maximum screen error over all frames: **" << format_or_empty(at_one->max_screen_error, "%.3f")
+       << "- LOD triangles (median over frames): **" << util::format_double_or_empty("%.0f", at_one->triangles_median) << "** against "
+       << util::format_double_or_empty("%.0f", at_one->full_triangles) << " at full resolution ("
+       << util::format_double_or_empty("%.1f", 100 * at_one->triangles_median / at_one->full_triangles) << " %).\n"
+       << "- Frame time (median): **" << util::format_double_or_empty("%.2f", at_one->frame_ms) << " ms** against "
+       << util::format_double_or_empty("%.2f", at_one->full_ms) << " ms at full resolution.\n"
+       << "- Measured maximum screen error over all frames: **" << util::format_double_or_empty("%.3f", at_one->max_screen_error)
        << " px** with lambda `" << main_lambda << "`";
-    if (!std::isnan(planar_max)) md << "; " << format_or_empty(planar_max, "%.3f") << " px with the paper's planar lambda";
-    if (!std::isnan(spherical_max)) md << "; " << format_or_empty(spherical_max, "%.3f") << " px with its spherical lambda";
+    if (!std::isnan(planar_max)) md << "; " << util::format_double_or_empty("%.3f", planar_max) << " px with the paper's planar lambda";
+    if (!std::isnan(spherical_max)) md << "; " << util::format_double_or_empty("%.3f", spherical_max) << " px with its spherical lambda";
     md << ".\n\n";
   }
   return md.str();

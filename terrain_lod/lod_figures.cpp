@@ -8,6 +8,7 @@
 #include "rundir/study_dir.h"
 #include "terrain_lod/lod_table.h"
 #include "util/errors.h"
+#include "util/number_text.h"
 
 namespace ra::lod {
 
@@ -17,7 +18,7 @@ void plot_lod_study(const std::string& dir) {
     throw util::UserError(dir + " has not been analysed: run `renderaudit analyze " + dir +
                           "` first");
   const std::vector<TableRow> rows = read_table(dir);
-  auto label = [](double tau) { return "tau " + format_or_empty(tau, "%g"); };
+  auto label = [](double tau) { return "tau " + util::format_double_or_empty("%g", tau); };
   plots::StudyFigures figures("lod");
   {  // speed against error
     plots::ScatterContent c;

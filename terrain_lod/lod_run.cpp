@@ -157,10 +157,10 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
           if (kind == s.lambda) {
             ++main_failures;
             if (first_failure.empty())
-              first_failure = "frame " + std::to_string(fi) + ", tau " + format_or_empty(tau, "%g") + ": " +
+              first_failure = "frame " + std::to_string(fi) + ", tau " + util::format_double_or_empty("%g", tau) + ": " +
                               (!conf.conforming ? conf.first_problem
                                : !seams.ok     ? seams.first_problem
-                                               : "measured screen error " + format_or_empty(se.max_px, "%.3g") + " px > tau");
+                                               : "measured screen error " + util::format_double_or_empty("%.3g", se.max_px) + " px > tau");
           }
         }
         double med = std::nan(""), mean_abs = std::nan(""), differing = std::nan("");
@@ -168,10 +168,10 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
         if (kind == s.lambda) {  // drawn by draw_frames
           const json& drawn_lod = drawn_frame.at("lod").at(ti);
           if (drawn_lod.at("triangles").get<size_t>() != mesh.triangle_count())
-            throw std::runtime_error("lod: frame " + std::to_string(fi) + ", tau " + format_or_empty(tau, "%g") +
+            throw std::runtime_error("lod: frame " + std::to_string(fi) + ", tau " + util::format_double_or_empty("%g", tau) +
                                      ": the measuring process drew another mesh");
           const std::vector<double> us = drawn_lod.at("us").get<std::vector<double>>();
-          for (size_t r = 0; r < us.size(); ++r) reps += (r ? ";" : "") + format_or_empty(us[r], "%.1f");
+          for (size_t r = 0; r < us.size(); ++r) reps += (r ? ";" : "") + util::format_double_or_empty("%.1f", us[r]);
           med = stats::median_or_nan(us);
           mean_abs = drawn_lod.at("image_mean_abs").get<double>();
           differing = drawn_lod.at("image_differing").get<double>();
@@ -180,10 +180,10 @@ FrameChecks check_frames(const LodSettings& s, const HeightField& field,
             << ',' << mesh.triangle_count() << ',' << mesh.vertex_count() << ','
             << mesh.strip_index_count() << ',' << int(conf.conforming) << ',' << int(seams.ok)
             << ',' << util::full_precision_or_empty(se.max_px) << ',' << se.checked << ','
-            << se.excluded << ',' << format_or_empty(se.worst_x, "%.1f") << ',' << format_or_empty(se.worst_y, "%.1f")
-            << ',' << format_or_empty(med, "%.1f") << ',' << reps << ',' << full.triangle_count() << ','
-            << format_or_empty(full_median, "%.1f") << ',' << format_or_empty(mean_abs, "%.6g") << ','
-            << format_or_empty(differing, "%.6g") << ',' << se.partially_visible << ',' << se.holes << "\n";
+            << se.excluded << ',' << util::format_double_or_empty("%.1f", se.worst_x) << ',' << util::format_double_or_empty("%.1f", se.worst_y)
+            << ',' << util::format_double_or_empty("%.1f", med) << ',' << reps << ',' << full.triangle_count() << ','
+            << util::format_double_or_empty("%.1f", full_median) << ',' << util::format_double_or_empty("%.6g", mean_abs) << ','
+            << util::format_double_or_empty("%.6g", differing) << ',' << se.partially_visible << ',' << se.holes << "\n";
       }
     if (progress && (fi % 10 == 0 || fi + 1 == path.size()))
       std::cerr << "lod: frame " << fi + 1 << "/" << path.size() << "\n";

@@ -25,11 +25,6 @@ const char* kTableHeader =
 
 }  // namespace
 
-// A printf format of v, "" for NaN.
-std::string format_or_empty(double v, const char* f) {
-  return std::isnan(v) ? std::string() : util::format_double(f, v);
-}
-
 std::vector<TableRow> rows_of_frames(const std::string& dir) {
   std::istringstream in(util::read_file(dir + "/frames.csv"));
   std::string line;

@@ -39,7 +39,5 @@ std::string lod_table_csv(const std::vector<TableRow>& rows);
 // DIR/lod_table.csv read back. Throws UserError when it is missing or not of this version.
 std::vector<TableRow> read_table(const std::string& dir);
 
-// A printf format of v, "" for NaN.
-std::string format_or_empty(double v, const char* f);
 
 }  // namespace ra::lod

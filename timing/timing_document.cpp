@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "stats/table_writer.h"
+#include "util/json_number.h"
 #include "util/number_text.h"
 
 namespace ra::timing {
@@ -13,18 +14,13 @@ namespace {
 
 using nlohmann::json;
 
-// A number of a JSON document through a printf format, "n/a" where it is null (not finite).
-std::string num(const json& v, const char* format = "%.4g") {
-  return v.is_number() ? util::format_double(format, v.get<double>()) : "n/a";
-}
-
 // "mean +- sd" of a spread of timing.json's `repeated` block (keys with `unit` appended), scaled.
 std::string mean_sd(const json& spread, const std::string& unit = "", double scale = 1) {
   auto v = [&](const char* k) {
     const json x = spread.value(std::string(k) + unit, json());
     return x.is_number() ? json(x.get<double>() * scale) : json();
   };
-  return num(v("mean")) + " +- " + num(v("sd"), "%.2g");
+  return util::json_number_text(v("mean")) + " +- " + util::json_number_text(v("sd"), "%.2g");
 }
 
 // "lo - hi" of two numbers of a spread, scaled.
@@ -34,13 +30,13 @@ std::string range(const json& spread, const std::string& lo, const std::string& 
     const json x = spread.value(k, json());
     return x.is_number() ? json(x.get<double>() * scale) : json();
   };
-  return num(v(lo)) + " - " + num(v(hi));
+  return util::json_number_text(v(lo)) + " - " + util::json_number_text(v(hi));
 }
 
 // Table 6 and c over the repeated runs (timing.json's `repeated`, repeated_runs.h).
 void repeated_markdown(const json& rep, std::ostringstream& md) {
   const std::string n = std::to_string(rep.value("runs", 0));
-  const std::string ci = num(json(100 * rep.value("confidence", 0.95)), "%.0f") + "%";
+  const std::string ci = util::json_number_text(json(100 * rep.value("confidence", 0.95)), "%.0f") + "%";
   md << "## Repeated runs: Table 6 and c over " << n << " independent measurements\n\n"
      << "The study was measured " << n << " times, one run after the other: in each run every "
         "platform was measured afresh (frame base, object measurements, camera paths, per-object "
@@ -98,7 +94,7 @@ void repeated_markdown(const json& rep, std::ostringstream& md) {
       const json wins = ranking.value(scene, json::object()).value("wins", json::object());
       for (const auto& m : methods) {
         const json c = by_method.value(m, json::object());
-        md << stats::markdown_row({scene, m, num(c.value("mean", json())), num(c.value("sd", json()), "%.2g"),
+        md << stats::markdown_row({scene, m, util::json_number_text(c.value("mean", json())), util::json_number_text(c.value("sd", json()), "%.2g"),
                    range(c, "min", "max"), range(c, "ci_low", "ci_high"),
                    std::to_string(wins.value(m, 0))});
       }
@@ -141,7 +137,7 @@ std::string timing_markdown(const json& j) {
     const json tq = p.value("timer_query", json::object());
     md << stats::markdown_row({p.value("name", ""), p.value("renderer", json::object()).value("renderer", ""),
                tq.value("supported", false) ? "GL_TIME_ELAPSED, " + std::to_string(tq.value("counter_bits", 0)) + " bits" : "no",
-               num(p.value("wall_s", json()), "%.0f"),
+               util::json_number_text(p.value("wall_s", json()), "%.0f"),
                p.value("error", json()).is_string() ? p["error"].get<std::string>() : ""});
   }
   md << "\n";
@@ -151,9 +147,9 @@ std::string timing_markdown(const json& j) {
   for (const json& p : platforms) {
     const json st = p.value("system_task", json());
     if (!st.is_object()) continue;
-    auto ms = [&](const char* k) { return st.contains(k) && st[k].is_number() ? num(json(st[k].get<double>() / 1000.0), "%.3f") : "n/a"; };
+    auto ms = [&](const char* k) { return st.contains(k) && st[k].is_number() ? util::json_number_text(json(st[k].get<double>() / 1000.0), "%.3f") : "n/a"; };
     md << stats::markdown_row({p.value("name", ""), st.value("scene", ""), std::to_string(st.value("n", 0)),
-               ms("min_us"), ms("median_us"), ms("q99_us"), num(st.value("c_ms", json()), "%.3f")});
+               ms("min_us"), ms("median_us"), ms("q99_us"), util::json_number_text(st.value("c_ms", json()), "%.3f")});
   }
   md << "\nc is the width of the one-sided interval from the fastest rendering that holds 99% of "
         "them (Hyndman-Fan 6 quantile): a frame budget of min + c is met by 99% of renderings.\n\n";
@@ -165,7 +161,7 @@ std::string timing_markdown(const json& j) {
     for (const json& s : p.value("scenes", json::array()))
       md << stats::markdown_row({p.value("name", ""), s.value("name", ""), std::to_string(s.value("objects", 0)),
                  std::to_string(s.value("triangles", 0)), std::to_string(s.value("transformed", 0)),
-                 num(s.value("tv_per_triangle", json()), "%.2f"), std::to_string(s.value("textures", 0)),
+                 util::json_number_text(s.value("tv_per_triangle", json()), "%.2f"), std::to_string(s.value("textures", 0)),
                  std::to_string(s.value("state_switches", 0)),
                  std::to_string(s.value("frames_measured", 0)),
                  std::to_string(s.value("object_samples", 0))});
@@ -178,11 +174,11 @@ std::string timing_markdown(const json& j) {
       std::string coef;
       for (const json& c : f.value("parameters", json::array()))
         coef += (coef.empty() ? "" : "; ") + c.value("name", "") + " = " +
-                num(c.value("value", json())) + " +- " + num(c.value("standard_error", json()), "%.2g") +
+                util::json_number_text(c.value("value", json())) + " +- " + util::json_number_text(c.value("standard_error", json()), "%.2g") +
                 " " + c.value("unit", "");
       md << stats::markdown_row({p.value("name", ""), f.value("heuristic", "") + (f.value("intercept", false) ? " (+b)" : ""),
                  f.value("formula", ""), coef, std::to_string(f.value("n", 0)),
-                 num(f.value("r_squared", json()), "%.3f"), num(f.value("rmse_us", json()), "%.0f")});
+                 util::json_number_text(f.value("r_squared", json()), "%.3f"), util::json_number_text(f.value("rmse_us", json()), "%.0f")});
     }
   md << "\n";
 
@@ -199,7 +195,7 @@ std::string timing_markdown(const json& j) {
        << stats::markdown_header(cols, 1);
     for (const auto& [scene, by_method] : t6.items()) {
       std::vector<std::string> cells = {scene};
-      for (const auto& m : methods) cells.push_back(num(by_method.value(m, json()), "%.4g"));
+      for (const auto& m : methods) cells.push_back(util::json_number_text(by_method.value(m, json()), "%.4g"));
       md << stats::markdown_row(cells);
     }
     md << "\nh1-h4: the paper's forms (no intercept); +b: with a per-object intercept; pos: "
@@ -215,9 +211,9 @@ std::string timing_markdown(const json& j) {
       continue;
     }
     const json o = c.value("objects", json::object()), f = c.value("frames", json::object());
-    md << stats::markdown_row({p.value("name", ""), std::to_string(o.value("n", 0)), num(o.value("median_ratio", json())),
-               num(o.value("pearson_r", json()), "%.3f"), num(f.value("median_ratio", json())),
-               num(f.value("pearson_r", json()), "%.3f")});
+    md << stats::markdown_row({p.value("name", ""), std::to_string(o.value("n", 0)), util::json_number_text(o.value("median_ratio", json())),
+               util::json_number_text(o.value("pearson_r", json()), "%.3f"), util::json_number_text(f.value("median_ratio", json())),
+               util::json_number_text(f.value("pearson_r", json()), "%.3f")});
   }
   md << "\n";
   if (j.contains("repeated") && j["repeated"].is_object()) repeated_markdown(j["repeated"], md);

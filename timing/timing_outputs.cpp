@@ -16,35 +16,34 @@
 #include "util/atomic_file.h"
 #include "util/cell_text.h"
 #include "util/errors.h"
+#include "util/json_number.h"
 #include "util/number_text.h"
 
 namespace ra::timing {
 namespace {
 
 // Not-finite values as empty cells.
-std::string num(double v) { return std::isfinite(v) ? util::full_precision(v) : std::string(); }
 
 std::string list(const std::vector<double>& v) {
   std::string s;
-  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ";" : "") + num(v[i]);
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ";" : "") + util::full_precision_if_finite(v[i]);
   return s;
 }
 
-nlohmann::json nullable(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
 nlohmann::json fit_json(const HeuristicFit& f) {
   nlohmann::json j = {{"heuristic", heuristic_name(f.heuristic)},
                       {"formula", heuristic_formula(f.heuristic)},
                       {"intercept", f.intercept},
                       {"n", f.n},
-                      {"rmse_us", nullable(f.rmse)},
-                      {"r_squared", nullable(f.r_squared)}};
+                      {"rmse_us", util::finite_or_null(f.rmse)},
+                      {"r_squared", util::finite_or_null(f.r_squared)}};
   j["parameters"] = nlohmann::json::array();
   for (std::size_t k = 0; k < f.coefficients.size(); ++k)
     j["parameters"].push_back({{"name", f.names[k]},
                                {"unit", f.units[k]},
-                               {"value", nullable(f.coefficients[k])},
-                               {"standard_error", nullable(f.standard_errors[k])}});
+                               {"value", util::finite_or_null(f.coefficients[k])},
+                               {"standard_error", util::finite_or_null(f.standard_errors[k])}});
   if (f.heuristic == Heuristic::kH3) {
     j["geometry_limited"] = f.geometry_limited;
     j["raster_limited"] = f.raster_limited;
@@ -56,17 +55,17 @@ nlohmann::json fit_json(const HeuristicFit& f) {
 }
 
 nlohmann::json comparison_json(const CpuGpuComparison& c) {
-  return {{"n", c.n}, {"median_ratio", nullable(c.median_ratio)}, {"pearson_r", nullable(c.pearson_r)}};
+  return {{"n", c.n}, {"median_ratio", util::finite_or_null(c.median_ratio)}, {"pearson_r", util::finite_or_null(c.pearson_r)}};
 }
 
 // A quantity over the repeated runs; `unit` is appended to the names of the numbers ("_us").
 nlohmann::json spread_json(const RunSpread& s, const std::string& unit) {
   nlohmann::json per_run = nlohmann::json::array();
-  for (double v : s.values) per_run.push_back(nullable(v));
+  for (double v : s.values) per_run.push_back(util::finite_or_null(v));
   return {{"per_run" + unit, per_run},       {"n", s.n},
-          {"mean" + unit, nullable(s.mean)}, {"sd" + unit, nullable(s.sd)},
-          {"min" + unit, nullable(s.min)},   {"max" + unit, nullable(s.max)},
-          {"ci_low" + unit, nullable(s.ci_low)}, {"ci_high" + unit, nullable(s.ci_high)}};
+          {"mean" + unit, util::finite_or_null(s.mean)}, {"sd" + unit, util::finite_or_null(s.sd)},
+          {"min" + unit, util::finite_or_null(s.min)},   {"max" + unit, util::finite_or_null(s.max)},
+          {"ci_low" + unit, util::finite_or_null(s.ci_low)}, {"ci_high" + unit, util::finite_or_null(s.ci_high)}};
 }
 
 nlohmann::json repeated_json(const StudyResults& r) {
@@ -224,10 +223,10 @@ std::string object_samples_csv(const StudyResults& r) {
     for (const SceneMeasurements& s : m.scenes)
       for (const ObjectSample& x : s.object_samples)
         o << util::csv_escape(m.renderer.platform) << ',' << util::csv_escape(s.name) << ','
-          << x.object << ',' << num(x.alpha) << ',' << num(x.gamma) << ',' << num(x.phi) << ','
+          << x.object << ',' << util::full_precision_if_finite(x.alpha) << ',' << util::full_precision_if_finite(x.gamma) << ',' << util::full_precision_if_finite(x.phi) << ','
           << x.triangles << ',' << x.vertices << ',' << x.transformed << ',' << x.pixels << ','
-          << x.state_changes << ',' << x.cpu_us.size() << ',' << num(stats::median(x.cpu_us)) << ','
-          << num(stats::median_or_nan(x.gpu_us)) << ',' << list(x.cpu_us) << ',' << list(x.gpu_us)
+          << x.state_changes << ',' << x.cpu_us.size() << ',' << util::full_precision_if_finite(stats::median(x.cpu_us)) << ','
+          << util::full_precision_if_finite(stats::median_or_nan(x.gpu_us)) << ',' << list(x.cpu_us) << ',' << list(x.gpu_us)
           << '\n';
   return o.str();
 }
@@ -258,9 +257,9 @@ std::string frames_csv(const StudyResults& r) {
               sw += x.state_changes;
         o << util::csv_escape(m.renderer.platform) << ',' << util::csv_escape(s.name) << ','
           << fs.frame << ',' << fs.objects.size() << ',' << tris << ',' << verts << ',' << tv << ','
-          << pix << ',' << sw << ',' << fs.cpu_us.size() << ',' << num(preds[f].measured_us) << ','
-          << num(preds[f].measured_gpu_us);
-        for (const std::string& meth : methods) o << ',' << num(preds[f].predicted_us.at(meth));
+          << pix << ',' << sw << ',' << fs.cpu_us.size() << ',' << util::full_precision_if_finite(preds[f].measured_us) << ','
+          << util::full_precision_if_finite(preds[f].measured_gpu_us);
+        for (const std::string& meth : methods) o << ',' << util::full_precision_if_finite(preds[f].predicted_us.at(meth));
         o << ',' << list(fs.cpu_us) << ',' << list(fs.gpu_us) << '\n';
       }
     }
@@ -279,9 +278,9 @@ std::string pos_tables_csv(const StudyResults& r) {
           for (int k = 0; k < g.n_gamma; ++k)
             for (int j = 0; j < g.n_phi; ++j)
               o << util::csv_escape(m.renderer.platform) << ',' << util::csv_escape(s.name) << ','
-                << t.object << ',' << i << ',' << k << ',' << j << ',' << num(g.alpha_at(i)) << ','
-                << num(g.gamma_at(k)) << ',' << num(g.phi_at(j)) << ','
-                << (t.table.pruned_row(i) ? 1 : 0) << ',' << num(t.table.at(i, k, j)) << '\n';
+                << t.object << ',' << i << ',' << k << ',' << j << ',' << util::full_precision_if_finite(g.alpha_at(i)) << ','
+                << util::full_precision_if_finite(g.gamma_at(k)) << ',' << util::full_precision_if_finite(g.phi_at(j)) << ','
+                << (t.table.pruned_row(i) ? 1 : 0) << ',' << util::full_precision_if_finite(t.table.at(i, k, j)) << '\n';
       }
   return o.str();
 }
@@ -302,8 +301,8 @@ std::string table6_repeated_csv(const StudyResults& r) {
           ranks += (k ? ";" : "") + std::to_string(at - order.begin() + 1);
         }
         o << util::csv_escape(p.platform) << ',' << util::csv_escape(scene) << ','
-          << util::csv_escape(method) << ',' << s.n << ',' << num(s.mean) << ',' << num(s.sd) << ','
-          << num(s.min) << ',' << num(s.max) << ',' << num(s.ci_low) << ',' << num(s.ci_high) << ','
+          << util::csv_escape(method) << ',' << s.n << ',' << util::full_precision_if_finite(s.mean) << ',' << util::full_precision_if_finite(s.sd) << ','
+          << util::full_precision_if_finite(s.min) << ',' << util::full_precision_if_finite(s.max) << ',' << util::full_precision_if_finite(s.ci_low) << ',' << util::full_precision_if_finite(s.ci_high) << ','
           << util::significant(s.confidence, 6) << ',' << rk.wins.at(method) << ','
           << (is_paper_method(method) ? std::to_string(rk.paper_wins.at(method)) : "") << ','
           << ranks << ',' << list(s.values) << '\n';
@@ -316,7 +315,7 @@ std::string system_task_c_repeated_csv(const StudyResults& r) {
   std::ostringstream o;
   o << "platform,runs,failed,mean_ms,sd_ms,min_ms,max_ms,ci_low_ms,ci_high_ms,confidence,"
        "c_ms_per_run\n";
-  auto ms = [](double us) { return num(us / 1000.0); };
+  auto ms = [](double us) { return util::full_precision_if_finite(us / 1000.0); };
   for (const RepeatedPlatform& p : r.repeated) {
     const RunSpread& c = p.c_us;
     std::vector<double> per_run;

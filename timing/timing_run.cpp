@@ -1,7 +1,6 @@
 // The rendering-time study from an experiment file (timing_run.h).
 #include "timing/timing_run.h"
 
-#include "platforms/platform_probe.h"
 #include <chrono>
 #include <cmath>
 #include <cstdarg>
@@ -12,20 +11,13 @@
 
 #include "util/errors.h"
 #include "timing/timing_outputs.h"
+#include "platforms/platform_probe.h"
 #include "timing/timing_study.h"
+#include "util/errors.h"
+#include "util/number_text.h"
 
 namespace ra::timing {
 namespace {
-
-std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-std::string format(const char* fmt, ...) {
-  char buf[512];
-  va_list args;
-  va_start(args, fmt);
-  std::vsnprintf(buf, sizeof buf, fmt, args);
-  va_end(args);
-  return buf;
-}
 
 std::string summary_of(const StudyResults& r, const std::string& dir) {
   std::string s;
@@ -36,38 +28,41 @@ std::string summary_of(const StudyResults& r, const std::string& dir) {
       continue;
     }
     const PlatformAnalysis& a = r.analysed[i];
-    s += format("%s (%s): %.0f s; GL_TIME_ELAPSED %s\n", m.renderer.platform.c_str(),
-                m.renderer.renderer.c_str(), m.seconds,
-                m.renderer.timer_query ? "supported" : "not supported");
-    s += format("  system task: %zu renderings, min %.3f ms, median %.3f ms, c (99%%) = %.3f ms\n",
-                a.system.n, a.system.min_us / 1000, a.system.median_us / 1000, a.system.c_us / 1000);
+    s += util::format_text("%s (%s): %.0f s; GL_TIME_ELAPSED %s\n", m.renderer.platform.c_str(),
+                           m.renderer.renderer.c_str(), m.seconds,
+                           m.renderer.timer_query ? "supported" : "not supported");
+    s += util::format_text(
+        "  system task: %zu renderings, min %.3f ms, median %.3f ms, c (99%%) = %.3f ms\n",
+        a.system.n, a.system.min_us / 1000, a.system.median_us / 1000, a.system.c_us / 1000);
     if (a.gpu_measured)
-      s += format("  GPU/CPU timer: median ratio %.3f (objects), %.3f (frames); r = %.3f, %.3f\n",
-                  a.cpu_gpu_objects.median_ratio, a.cpu_gpu_frames.median_ratio,
-                  a.cpu_gpu_objects.pearson_r, a.cpu_gpu_frames.pearson_r);
-    s += format("  Table 6 (average squared error, ms^2):\n    %-10s", "scene");
-    for (const std::string& meth : a.methods) s += format(" %9s", meth.c_str());
+      s += util::format_text(
+          "  GPU/CPU timer: median ratio %.3f (objects), %.3f (frames); r = %.3f, %.3f\n",
+          a.cpu_gpu_objects.median_ratio, a.cpu_gpu_frames.median_ratio,
+          a.cpu_gpu_objects.pearson_r, a.cpu_gpu_frames.pearson_r);
+    s += util::format_text("  Table 6 (average squared error, ms^2):\n    %-10s", "scene");
+    for (const std::string& meth : a.methods) s += util::format_text(" %9s", meth.c_str());
     s += "\n";
     for (const auto& [scene, row] : a.table6_ms2) {
-      s += format("    %-10s", scene.c_str());
-      for (const std::string& meth : a.methods) s += format(" %9.4g", row.at(meth));
+      s += util::format_text("    %-10s", scene.c_str());
+      for (const std::string& meth : a.methods) s += util::format_text(" %9.4g", row.at(meth));
       s += "\n";
     }
   }
   for (const RepeatedPlatform& p : r.repeated) {
-    s += format("%s over %d runs (%d failed; the files above are run 1's):\n", p.platform.c_str(),
-                p.runs, p.failed);
+    s += util::format_text("%s over %d runs (%d failed; the files above are run 1's):\n",
+                           p.platform.c_str(), p.runs, p.failed);
     const RunSpread& c = p.c_us;
-    s += format("  c (99%%) = %.3f ms, SD %.3f, min-max %.3f-%.3f, %.0f%% t interval of the mean "
-                "%.3f-%.3f ms\n",
-                c.mean / 1000, c.sd / 1000, c.min / 1000, c.max / 1000, 100 * c.confidence,
-                c.ci_low / 1000, c.ci_high / 1000);
+    s += util::format_text(
+        "  c (99%%) = %.3f ms, SD %.3f, min-max %.3f-%.3f, %.0f%% t interval of the mean "
+        "%.3f-%.3f ms\n",
+        c.mean / 1000, c.sd / 1000, c.min / 1000, c.max / 1000, 100 * c.confidence, c.ci_low / 1000,
+        c.ci_high / 1000);
     s += "  best method (runs won):";
     const char* sep = " ";
     for (const auto& [scene, rk] : p.ranking) {
       s += sep + scene + ":";
       for (const std::string& m : p.methods)
-        if (rk.wins.at(m)) s += format(" %s %d", m.c_str(), rk.wins.at(m));
+        if (rk.wins.at(m)) s += util::format_text(" %s %d", m.c_str(), rk.wins.at(m));
       sep = "; ";
     }
     s += "\n";
@@ -133,7 +128,7 @@ rundir::StudyRunResult run_timing_study(const rundir::StudyRunOptions& options, 
   std::vector<std::vector<RunOutcome>> outcomes(platforms.size());
   std::vector<std::string> methods;
   for (int run = 0; run < runs; ++run) {
-    const std::string tag = runs > 1 ? format("run %d/%d: ", run + 1, runs) : "";
+    const std::string tag = runs > 1 ? util::format_text("run %d/%d: ", run + 1, runs) : "";
     const Progress run_progress =
         progress && runs > 1 ? Progress([&](const std::string& line) { progress(tag + line); })
                              : progress;

@@ -7,14 +7,15 @@
 #include <filesystem>
 #include <set>
 
-#include "audit/flake_check.h"
-#include "rundir/run_experiment.h"
 #include "rundir/platform_spec.h"
+#include "rundir/run_experiment.h"
 #include "runner/git_command.h"
+#include "triage/bisect_judging.h"
 #include "triage/bisect_plan.h"
 #include "triage/bisect_report.h"
 #include "triage/bisect_selection.h"
 #include "triage/bisect_state.h"
+#include "triage/bisect_step.h"
 #include "util/atomic_file.h"
 #include "util/duration_text.h"
 #include "util/errors.h"
@@ -45,17 +46,6 @@ std::string rev(const std::string& dir, const std::string& ref, const char* opti
   return g.out;
 }
 
-// subject, date (ISO), VERSION file of a commit
-void describe_commit(const std::string& dir, BisectStep& s) {
-  const std::string info = git(dir, {"log", "-1", "--format=%cI%n%s", s.commit}).out;
-  s.date = info.substr(0, info.find('\n'));
-  s.subject = info.find('\n') == std::string::npos ? "" : info.substr(info.find('\n') + 1);
-  const GitResult v = git(dir, {"show", s.commit + ":VERSION"});
-  s.version = v.ok ? v.out : "";
-}
-
-std::string short_hash(const std::string& c) { return c.substr(0, 12); }
-
 }  // namespace
 
 std::string BisectPrimitive::label() const {
@@ -63,42 +53,7 @@ std::string BisectPrimitive::label() const {
          std::to_string(view);
 }
 
-std::string bisect_step_experiment(const std::string& run_dir, const std::string& build_dir) {
-  std::string text = rundir::load_run_experiment(run_dir).text;  // as the records were drawn
-  if (!text.empty() && text.back() != '\n') text += '\n';
-  nlohmann::json dir = build_dir;  // a JSON string is a valid TOML basic string
-  return text + "\n[builds." + kStepBuild + "]   # added by renderaudit bisect\ndir = " +
-         dir.dump() + "\n";
-}
-
 namespace {
-
-Drawing draw_selection(const BisectOptions& o, const std::vector<BisectPrimitive>& selection,
-                       const std::string& build_dir) {
-  std::vector<audit::RerenderRequest> requests;
-  const std::string qualified = o.platform + "@" + kStepBuild;
-  for (const BisectPrimitive& p : selection) requests.push_back({qualified, p.kind, p.view, p.index});
-  audit::RerenderOptions ro;
-  ro.run_dir = o.run_dir;
-  ro.jobs = o.jobs;
-  ro.attempt = 1;
-  ro.experiment_text = bisect_step_experiment(o.run_dir, build_dir);
-  ro.copy_driver_files = false;  // another driver than the run's, by design
-  const audit::RerenderResult r = audit::rerender(audit::plan_rerender(requests, {}, 500), ro);
-  Drawing d;
-  for (const audit::RerenderBatch& b : r.batches)
-    if (!b.error.empty() && d.error.empty())
-      d.error = std::string(geometry::kind_name(b.kind)) + "s " + std::to_string(b.begin) + "-" +
-                std::to_string(b.end - 1) + " of view " + std::to_string(b.view) + ": " + b.error;
-  for (const BisectPrimitive& p : selection) {
-    const auto key = std::tuple{qualified, int(p.kind), p.view, p.index};
-    if (const auto it = r.hashes.find(key); it != r.hashes.end()) {
-      d.hashes[p.label()] = it->second;
-      d.pixels[p.label()] = r.pixels.at(key);
-    }
-  }
-  return d;
-}
 
 // One invocation of the bisection: its inputs checked, its state, and the steps of the loop.
 class Bisection {
@@ -137,6 +92,9 @@ class Bisection {
  private:
   void say(const std::string& s) const {
     if (progress_) progress_(s);
+  }
+  std::function<void(const std::string&)> say_fn() const {
+    return [this](const std::string& s) { say(s); };
   }
   void save() const { save_bisect_state(st_.result.json_path, st_); }
 
@@ -283,58 +241,6 @@ class Bisection {
     }
   }
 
-  // Builds and draws one commit.
-  void evaluate(BisectStep& s) {
-    describe_commit(o_.source, s);
-    runner::SourceBuildOptions b = o_.build;
-    b.source = o_.source;
-    b.ref = s.commit;
-    b.probe = false;  // the drawing is the probe
-    b.source_locked = true;
-    b.restore_ref = false;  // restored once, at the end
-    const auto t0 = Clock::now();
-    say("  building " + short_hash(s.commit) + (s.version.empty() ? "" : " (" + s.version + ")") +
-        " ...");
-    try {
-      // Of the build's own lines, only the compile's progress: a distant commit compiles for minutes.
-      const runner::SourceBuildResult r = runner::build_from_source(b, [&](const std::string& line) {
-        if (line.rfind("compile (ninja)", 0) == 0) say("    " + line);
-      });
-      s.build = r.build.name;
-      s.build_dir = r.build.dir;
-      s.reused = r.reused;
-      s.build_s = r.seconds;
-      say(r.reused ? "  reused build " + s.build
-                   : "  built " + s.build + " in " + util::duration_text(r.seconds));
-    } catch (const util::UserError& e) {
-      util::throw_if_interrupted();
-      s.error = std::string("build failed: ") + e.what();
-      s.build_s = std::chrono::duration<double>(Clock::now() - t0).count();
-      return;
-    }
-    util::throw_if_interrupted();
-    const auto t1 = Clock::now();
-    s.drawing = draw_selection(o_, judged_.empty() ? st_.result.selection : judged_, s.build_dir);
-    s.draw_s = std::chrono::duration<double>(Clock::now() - t1).count();
-    util::throw_if_interrupted();
-    if (!s.drawing.error.empty()) s.error = "drawing failed: " + s.drawing.error;
-  }
-
-  // What a step drew against the two ends, in words.
-  std::string summary(const Drawing& d) const {
-    std::size_t like_good = 0, like_bad = 0, other = 0;
-    for (const BisectPrimitive& p : judged_) {
-      const std::string l = p.label();
-      const auto it = d.hashes.find(l);
-      if (it == d.hashes.end()) continue;
-      if (it->second == st_.result.good.drawing.hashes.at(l)) ++like_good;
-      else if (it->second == st_.result.bad.drawing.hashes.at(l)) ++like_bad;
-      else ++other;
-    }
-    return std::to_string(like_good) + " like the good ref, " + std::to_string(like_bad) +
-           " like the bad ref, " + std::to_string(other) + " like neither";
-  }
-
   // The good and the bad ref drawn; primitives both draw alike say nothing about the change.
   void draw_references() {
     for (auto [ref, commit, step, role, position] :
@@ -346,7 +252,7 @@ class Bisection {
       step->commit = commit;
       step->position = position;
       say(std::string(role) + " " + ref + " (" + short_hash(commit) + ")");
-      evaluate(*step);
+      build_and_draw_step(o_, st_.result.selection, *step, say_fn());
       if (step->build.empty())
         throw util::UserError("bisect: the " + std::string(role) + " " + ref +
                               " cannot be built: " + step->error);
@@ -356,14 +262,8 @@ class Bisection {
                               step->drawing.error);
       save();
     }
-    st_.result.dropped.clear();
-    for (const BisectPrimitive& p : st_.result.selection) {
-      const std::string l = p.label();
-      if (st_.result.good.drawing.hashes.at(l) == st_.result.bad.drawing.hashes.at(l))
-        st_.result.dropped.push_back(l);
-      else
-        judged_.push_back(p);
-    }
+    split_by_ends(st_.result.selection, st_.result.good.drawing, st_.result.bad.drawing, judged_,
+                  st_.result.dropped);
     if (judged_.empty())
       throw util::UserError("bisect: the builds of " + o_.good_ref + " and " + o_.bad_ref +
                             " draw all " + std::to_string(st_.result.selection.size()) +
@@ -377,21 +277,14 @@ class Bisection {
         std::to_string(line_.size() - 1) + " commits (" + st_.result.selection_rule + ")");
   }
 
-  std::map<std::string, uint64_t> judged_hashes(const Drawing& d) const {
-    std::map<std::string, uint64_t> out;
-    for (const BisectPrimitive& p : judged_)
-      if (const auto it = d.hashes.find(p.label()); it != d.hashes.end()) out.insert(*it);
-    return out;
-  }
-
   // Builds until every change sits between two neighbouring commits.
   void attribute() {
     AttributionPlan plan(line_.size() - 1);
-    plan.observe(0, judged_hashes(st_.result.good.drawing));
-    plan.observe(line_.size() - 1, judged_hashes(st_.result.bad.drawing));
+    plan.observe(0, judged_hashes(judged_, st_.result.good.drawing));
+    plan.observe(line_.size() - 1, judged_hashes(judged_, st_.result.bad.drawing));
     for (const BisectStep& s : st_.result.steps) {
       if (s.error.empty())
-        plan.observe(s.position, judged_hashes(s.drawing));
+        plan.observe(s.position, judged_hashes(judged_, s.drawing));
       else
         plan.fail(s.position);
     }
@@ -417,10 +310,11 @@ class Bisection {
       const auto t0 = Clock::now();
       say("step " + std::to_string(st_.result.steps.size() + 1) + eta + ": " + short_hash(s.commit) +
           " " + git(o_.source, {"log", "-1", "--format=%s", s.commit}).out);
-      evaluate(s);
+      build_and_draw_step(o_, judged_, s, say_fn());
       if (s.error.empty()) {
-        s.summary = summary(s.drawing);
-        plan.observe(s.position, judged_hashes(s.drawing));
+        s.summary =
+            drawing_summary(judged_, st_.result.good.drawing, st_.result.bad.drawing, s.drawing);
+        plan.observe(s.position, judged_hashes(judged_, s.drawing));
         say("  drew " + s.summary);
       } else {
         plan.fail(s.position);
@@ -431,58 +325,7 @@ class Bisection {
       step_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
       ++fresh_steps;
     }
-    collect(plan);
-  }
-
-  // Culprits and what stays unattributed, from the plan's changes.
-  void collect(const AttributionPlan& plan) {
-    std::map<std::size_t, const Drawing*> drawn = {{0, &st_.result.good.drawing},
-                                                   {line_.size() - 1, &st_.result.bad.drawing}};
-    for (const BisectStep& s : st_.result.steps)
-      if (s.error.empty()) drawn[s.position] = &s.drawing;
-    std::map<std::size_t, Culprit> by_position;
-    st_.result.unattributed.clear();
-    const auto pixels = [&](std::size_t position, const std::string& l) -> int64_t {
-      const Drawing* d = drawn.at(position);
-      const auto it = d->pixels.find(l);
-      return it == d->pixels.end() ? -1 : it->second;
-    };
-    for (const AttributionPlan::Change& c : plan.changes()) {
-      if (!c.resolved) {
-        Unattributed u{c.label, line_[c.from], line_[c.to], {}};
-        for (std::size_t p : c.candidates) u.candidates.push_back(line_[p]);
-        st_.result.unattributed.push_back(u);
-        continue;
-      }
-      Culprit& k = by_position[c.to];
-      k.primitives.push_back(c.label);
-      k.pixels[c.label] = {pixels(c.from, c.label), pixels(c.to, c.label)};
-    }
-    st_.result.culprits.clear();
-    for (auto& [position, k] : by_position) {
-      BisectStep info;
-      info.commit = line_[position];
-      describe_commit(o_.source, info);
-      k.commit = info.commit;
-      k.subject = info.subject;
-      k.date = info.date;
-      k.previous = line_[position - 1];
-      k.merge = git(o_.source, {"rev-list", "--parents", "-n", "1", k.commit}).out.find(' ') !=
-                git(o_.source, {"rev-list", "--parents", "-n", "1", k.commit}).out.rfind(' ');
-      // In selection order.
-      std::vector<std::string> ordered;
-      for (const BisectPrimitive& p : judged_)
-        if (std::find(k.primitives.begin(), k.primitives.end(), p.label()) != k.primitives.end())
-          ordered.push_back(p.label());
-      k.primitives = ordered;
-      st_.result.culprits.push_back(k);
-      say("first bad commit: " + k.commit + " " + k.subject + " (" +
-          std::to_string(k.primitives.size()) + " primitives)");
-    }
-    if (!st_.result.unattributed.empty())
-      say(std::to_string(st_.result.unattributed.size()) +
-          " changes stay unattributed: only commits that failed to build lie between two drawn "
-          "commits");
+    collect_culprits(plan, line_, judged_, o_.source, st_.result, say_fn());
   }
 
   BisectOptions o_;

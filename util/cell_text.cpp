@@ -17,6 +17,10 @@ std::string full_precision_or_empty(double v) {
   return std::isnan(v) ? std::string() : full_precision(v);
 }
 
+std::string full_precision_if_finite(double v) {
+  return std::isfinite(v) ? full_precision(v) : std::string();
+}
+
 std::string csv_escape(const std::string& text) {
   if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
   std::string s = "\"";

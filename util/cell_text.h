@@ -16,6 +16,9 @@ std::string full_precision(double v);
 // The same, but "" for NaN: an empty cell means "not applicable" in the project's CSV files.
 std::string full_precision_or_empty(double v);
 
+// The same, but "" for NaN and the infinities alike.
+std::string full_precision_if_finite(double v);
+
 // One CSV cell (RFC 4180): the text unchanged unless it holds a comma, a double quote, CR or LF;
 // then in double quotes with every quote doubled.
 std::string csv_escape(const std::string& text);

@@ -4,6 +4,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <string>
 #include <string_view>
 
 namespace ra::util {
@@ -19,5 +21,13 @@ struct Fnv1a64 {
   }
   void add(std::string_view s) { add(s.data(), s.size()); }
 };
+
+// A 64-bit hash as the project writes it in files and folder names: 16 lower-case hex digits,
+// zero-padded ("00c0ffee00c0ffee").
+inline std::string hex64(uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
 
 }  // namespace ra::util

@@ -25,22 +25,26 @@ Interrupted::Interrupted(int sig)
                                                                             : "a signal")),
       signal(sig) {}
 
-InterruptScope::InterruptScope() {
-  // g_signal is not reset: a scope inside another (a bisection inside a night) keeps a signal
-  // that came before it.
+StopSignals::StopSignals(void (*handler)(int)) {
   struct sigaction sa {};
-  sa.sa_handler = on_signal;
+  sa.sa_handler = handler;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, &old_int_);
   sigaction(SIGTERM, &sa, &old_term_);
   sigaction(SIGHUP, &sa, &old_hup_);
 }
 
-InterruptScope::~InterruptScope() {
+void StopSignals::restore() {
+  if (restored_) return;
+  restored_ = true;
   sigaction(SIGINT, &old_int_, nullptr);
   sigaction(SIGTERM, &old_term_, nullptr);
   sigaction(SIGHUP, &old_hup_, nullptr);
 }
+
+// g_signal is not reset: a scope inside another (a bisection inside a night) keeps a signal that
+// came before it.
+InterruptScope::InterruptScope() : signals_(on_signal) {}
 
 int interrupt_signal() { return g_signal; }
 

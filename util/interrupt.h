@@ -20,15 +20,28 @@ struct Interrupted : std::runtime_error {
   int signal;
 };
 
+// SIGINT, SIGTERM and SIGHUP handled by `handler` while this lives; the handlers before come back
+// at restore() or at the end. InterruptScope and a run's own signal handling both stand on it.
+class StopSignals {
+ public:
+  explicit StopSignals(void (*handler)(int));
+  ~StopSignals() { restore(); }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  void restore();
+
+ private:
+  struct sigaction old_int_ {
+  }, old_term_{}, old_hup_{};
+  bool restored_ = false;
+};
+
 class InterruptScope {
  public:
   InterruptScope();
-  ~InterruptScope();
-  InterruptScope(const InterruptScope&) = delete;
-  InterruptScope& operator=(const InterruptScope&) = delete;
 
  private:
-  struct sigaction old_int_ {}, old_term_ {}, old_hup_ {};
+  StopSignals signals_;
 };
 
 // The signal that interrupted the command (0: none yet).

@@ -2,6 +2,7 @@
 #include "util/number_text.h"
 
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 
 namespace ra::util {
@@ -13,6 +14,29 @@ std::string format_double(const char* format, double v) {
   if (static_cast<std::size_t>(n) < sizeof buf) return std::string(buf, static_cast<std::size_t>(n));
   std::string text(static_cast<std::size_t>(n) + 1, '\0');  // "%f" of 1e300: 300 digits and more
   std::snprintf(text.data(), text.size(), format, v);
+  text.pop_back();
+  return text;
+}
+
+std::string format_double_or_empty(const char* format, double v) {
+  return std::isnan(v) ? std::string() : format_double(format, v);
+}
+
+std::string format_text(const char* format, ...) {
+  va_list args;
+  va_start(args, format);
+  std::string text = format_text_v(format, args);
+  va_end(args);
+  return text;
+}
+
+std::string format_text_v(const char* format, va_list args) {
+  va_list again;
+  va_copy(again, args);
+  const int n = std::vsnprintf(nullptr, 0, format, args);
+  std::string text(static_cast<std::size_t>(n > 0 ? n : 0) + 1, '\0');
+  std::vsnprintf(text.data(), text.size(), format, again);
+  va_end(again);
   text.pop_back();
   return text;
 }

@@ -5,12 +5,21 @@
 // that write something else for them say so where they call).
 #pragma once
 
+#include <cstdarg>
 #include <string>
 
 namespace ra::util {
 
 // `v` through a printf format of one double ("%.4g", "%.2f", "%+.1f%%"); never truncated.
 std::string format_double(const char* format, double v);
+
+// `v` through `format` as format_double, "" when `v` is NaN (an empty table cell; the infinities
+// are still written).
+std::string format_double_or_empty(const char* format, double v);
+
+// printf into a string of any length: format_text("%s: %d", name, n).
+std::string format_text(const char* format, ...) __attribute__((format(printf, 1, 2)));
+std::string format_text_v(const char* format, va_list args);
 
 // `v` with `digits` significant digits, trailing zeros dropped ("%.*g"): significant(1.5, 4) is
 // "1.5", significant(123456, 4) "1.235e+05". significant(v, 6) is printf's plain "%g".

@@ -7,6 +7,10 @@
 #include <cmath>
 #include <limits>
 
+#include "util/cell_text.h"
+#include "util/fnv1a.h"
+#include "util/json_number.h"
+
 namespace ra::util {
 namespace {
 
@@ -57,6 +61,23 @@ TEST(NumberText, ElapsedTextReadsAsMinutesPastAMinute) {
   EXPECT_EQ(elapsed_text(161), "2 min 41 s");
   EXPECT_EQ(elapsed_text(3900), "1 h 05 min");
   EXPECT_EQ(elapsed_text(-1), "?");
+}
+
+// The small spellings every writer shares: printf into a string of any length, the empty cell of a
+// missing number, a JSON null read as "n/a", a 64-bit hash as 16 hex digits.
+TEST(NumberText, SharedSpellingsOfMissingNumbersAndHashes) {
+  EXPECT_EQ(format_text("%s has %d", "a", 3), "a has 3");
+  EXPECT_EQ(format_text("%s", std::string(600, 'x').c_str()).size(), 600u);
+  EXPECT_EQ(format_double_or_empty("%.1f", std::nan("")), "");
+  EXPECT_EQ(format_double_or_empty("%.1f", INFINITY), "inf");
+  EXPECT_EQ(full_precision_if_finite(-INFINITY), "");
+  EXPECT_EQ(full_precision_if_finite(0.5), "0.5");
+  EXPECT_EQ(json_number_text(nlohmann::json()), "n/a");
+  EXPECT_EQ(json_number_text(nlohmann::json(1234567.0)), "1.235e+06");
+  EXPECT_EQ(json_number_text(nlohmann::json(2), "%.2f"), "2.00");
+  EXPECT_TRUE(finite_or_null(std::nan("")).is_null());
+  EXPECT_EQ(finite_or_null(1.5), nlohmann::json(1.5));
+  EXPECT_EQ(hex64(0xc0ffee), "0000000000c0ffee");
 }
 
 }  // namespace

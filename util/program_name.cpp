@@ -1,10 +1,9 @@
 // The program's name in printed commands (see the header).
 #include "util/program_name.h"
 
-#include <cstdlib>
 #include <filesystem>
-#include <sstream>
 
+#include "util/path_search.h"
 #include "util/shell_quote.h"
 
 namespace fs = std::filesystem;
@@ -16,10 +15,7 @@ std::string find_name() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (ec || exe.filename() != "renderaudit") return "renderaudit";
-  const char* path = std::getenv("PATH");
-  std::istringstream dirs(path ? path : "");
-  for (std::string dir; std::getline(dirs, dir, ':');) {
-    if (dir.empty()) continue;  // the current folder: not a name that pastes elsewhere
+  for (const std::string& dir : path_folders()) {  // not the current folder: no name that pastes
     const fs::path candidate = fs::path(dir) / "renderaudit";
     if (fs::exists(candidate, ec) && fs::equivalent(candidate, exe, ec)) return "renderaudit";
     if (fs::exists(candidate, ec)) break;  // another renderaudit comes first on PATH
