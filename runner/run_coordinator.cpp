@@ -20,7 +20,7 @@
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
 #include "runner/recorded_failures.h"
-#include "runner/run_dir.h"
+#include "runner/output_dir.h"
 #include "runner/run_plan.h"
 #include "runner/run_tally.h"
 #include "rundir/shard.h"

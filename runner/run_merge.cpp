@@ -11,7 +11,7 @@
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
 #include "runner/recorded_failures.h"
-#include "runner/run_dir.h"
+#include "runner/output_dir.h"
 #include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"

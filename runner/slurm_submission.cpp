@@ -11,7 +11,7 @@
 
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
-#include "runner/run_dir.h"
+#include "runner/output_dir.h"
 #include "rundir/shard.h"
 #include "util/worker_program.h"
 #include "util/atomic_file.h"

@@ -1,5 +1,5 @@
-// Creating and reopening run directories (see the header).
-#include "runner/run_dir.h"
+// Creating, reopening and claiming a run's output directory (see the header).
+#include "runner/output_dir.h"
 
 #include <filesystem>
 #include <system_error>
