@@ -134,11 +134,8 @@ RunTally read_tally(const std::string& run_dir) {
     throw util::UserError(path + ": not valid JSON: " + e.what() + " (run `renderaudit analyze " +
                     run_dir + "` again)");
   }
-  if (j.value("schema", "") != "renderaudit-tally" ||
-      j.value("schema_version", 0) != kTallySchemaVersion)
-    throw util::UserError(path + ": expected schema renderaudit-tally version " +
-                    std::to_string(kTallySchemaVersion) + " (run `renderaudit analyze " + run_dir +
-                    "` again)");
+  rundir::require_document_header(j, "tally", kTallySchemaVersion, path,
+                                  "run `renderaudit analyze " + run_dir + "` again");
   RunTally t;
   try {
     t.records = j.at("records").get<std::uint64_t>();

@@ -16,6 +16,7 @@
 
 #include <unistd.h>
 
+#include "analysis/figure_data.h"
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
 #include "plots/figure_builders.h"
@@ -61,11 +62,8 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
   } catch (const json::exception& e) {
     throw util::UserError(path + ": not valid JSON: " + e.what());
   }
-  if (doc.value("schema", "") != "renderaudit-figures" || doc.value("schema_version", 0) != 1)
-    throw util::UserError(path +
-                          ": expected schema renderaudit-figures version 1 (run `renderaudit "
-                          "analyze " +
-                          run_dir + "` again)");
+  rundir::require_document_header(doc, "figures", an::kFiguresSchemaVersion, path,
+                                  "run `renderaudit analyze " + run_dir + "` again");
   const an::RunTally tally = an::read_tally(run_dir);
 
   an::LoadOptions lo;
@@ -175,9 +173,8 @@ PlotResult read_figure_index(const std::string& run_dir) {
   r.index_path = path;
   try {
     const json doc = json::parse(util::read_file(path));
-    if (doc.value("schema", "") != "renderaudit-figure-index")
-      throw util::UserError(path + ": not a figure index (run `renderaudit plot " + run_dir +
-                            "` again)");
+    rundir::require_document_header(doc, "figure-index", kFigureIndexSchemaVersion, path,
+                                    "run `renderaudit plot " + run_dir + "` again");
     for (const json& f : doc.at("figures"))
       r.figures.push_back({f.at("id"), f.at("kind"), f.value("section", ""), f.value("title", ""),
                            f.value("caption", ""), f.value("note", ""), f.at("png"), f.at("pdf"),

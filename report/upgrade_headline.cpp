@@ -9,6 +9,7 @@
 #include <set>
 #include <tuple>
 
+#include "rundir/manifest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -281,10 +282,8 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
   } catch (const std::exception& e) {
     throw util::UserError("cannot read the upgrade summary " + path + ": " + e.what());
   }
-  if (!j.is_object() || j.value("schema", "") != "renderaudit-upgrade-summary" ||
-      j.value("schema_version", 0) != 1)
-    throw util::UserError(path + ": not a renderaudit-upgrade-summary of version 1 (written by "
-                          "scripts/upgrade_report.py)");
+  rundir::require_document_header(j, "upgrade-summary", 1, path,
+                                  "written by scripts/upgrade_report.py");
   UpgradeSummary s;
   s.run_dir = text_of(j, "run", "", path);
   s.build = text_of(j, "build", "", path);
@@ -342,9 +341,7 @@ std::vector<UpgradeBisection> find_bisections(const std::string& run_dir) {
     } catch (const std::exception&) {
       continue;
     }
-    if (!j.is_object() || j.value("schema", "") != "renderaudit-bisection" ||
-        j.value("schema_version", 0) != 2)
-      continue;
+    if (!rundir::has_document_header(j, "bisection", 2)) continue;
     const json inputs = j.value("inputs", json::object());
     // a bisection beside the run is of this run only if it says so (or says no run)
     const std::string of = inputs.is_object() ? inputs.value("run", "") : "";
