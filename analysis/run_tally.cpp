@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -124,7 +125,7 @@ json tally_json(const RunTally& t) {
 }
 
 RunTally read_tally(const std::string& run_dir) {
-  const std::string path = run_dir + "/analysis/tally.json";
+  const std::string path = rundir::run_folder::tally(run_dir);
   if (!std::filesystem::exists(path))
     throw util::UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
   json j;

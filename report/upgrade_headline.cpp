@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -323,12 +324,14 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
 }
 
 std::vector<UpgradeBisection> find_bisections(const std::string& run_dir) {
-  std::vector<fs::path> candidates = {fs::path(run_dir) / "bisect" / "bisect.json",
-                                      fs::absolute(run_dir).parent_path() / "bisect" / "bisect.json"};
+  namespace folder = rundir::run_folder;
+  std::vector<fs::path> candidates = {
+      folder::bisection(folder::bisect(run_dir)),
+      folder::bisection(folder::bisect(fs::absolute(run_dir).parent_path().string()))};
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(run_dir, ec))
     if (e.is_directory() && e.path().filename().string().rfind("audit-", 0) == 0)
-      candidates.push_back(e.path() / "bisect" / "bisect.json");
+      candidates.push_back(folder::bisection(folder::bisect(e.path().string())));
   std::sort(candidates.begin() + 2, candidates.end());
   std::vector<UpgradeBisection> out;
   std::set<fs::path> seen;

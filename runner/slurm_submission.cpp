@@ -11,6 +11,7 @@
 
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "runner/output_dir.h"
 #include "rundir/shard.h"
 #include "util/worker_program.h"
@@ -177,7 +178,7 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
   // the tasks (another experiment's hash), never mixed in.
   std::string experiment = fs::absolute(run.experiment_path).lexically_normal().string();
   if (!slurm.allow_node_local && !node_local_reason(experiment).empty())
-    experiment = dir + "/experiment.toml";
+    experiment = rundir::run_folder::experiment(dir);
   const std::string n = std::to_string(sub.slices);
   const std::string opts = passed_on(run, jobs);
 
@@ -204,7 +205,8 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
       "set -u\n"
       "dir=" + util::shell_quote(dir) + "\n"
       "slices=()\n"
-      "for d in \"$dir\"/slices/*; do [ -f \"$d/experiment.toml\" ] && slices+=(\"$d\"); done\n"
+      "for d in \"$dir\"/slices/*; do [ -f \"$d/" + rundir::run_folder::kExperimentFile +
+      "\" ] && slices+=(\"$d\"); done\n"
       "if [ ${#slices[@]} -gt 0 ]; then\n"
       "  " + util::shell_quote(program) + " merge \"${slices[@]}\" --out \"$dir\"\n"
       "  rc=$?\n"
@@ -222,7 +224,7 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
   prepare_run_dir(exp, dir, "run --slurm");
   std::error_code ec;
   fs::create_directories(dir + "/slurm", ec);
-  fs::create_directories(dir + "/slices", ec);
+  fs::create_directories(rundir::run_folder::slices(dir), ec);
   if (ec) throw util::UserError(dir + "/slices: cannot create (" + ec.message() + ")");
   fs::remove(dir + "/slurm/gather.exit", ec);
   util::write_file_atomic(dir + "/slurm/array.sbatch", sub.array_script);
@@ -233,7 +235,7 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
   nlohmann::json jobs_json = {{"array_job", sub.array_job},  {"gather_job", sub.gather_job},
                               {"slices", sub.slices},        {"submitted", rundir::utc_now_iso8601()},
                               {"max_parallel", slurm.max_parallel}, {"cpus_per_task", jobs}};
-  util::write_file_atomic(dir + "/slurm/jobs.json", jobs_json.dump(1) + "\n");
+  util::write_file_atomic(rundir::run_folder::slurm_jobs(dir), jobs_json.dump(1) + "\n");
   return sub;
 }
 
