@@ -180,7 +180,8 @@ std::vector<Block> refusal_blocks(const std::string& text) {
 std::vector<Block> audit_blocks(const std::string& run_dir) {
   std::vector<Block> out;
   const std::string path = rundir::run_folder::audit_json(rundir::run_folder::audit(run_dir));
-  const std::string refused = run_dir + "/audit/refused.txt";  // the nightly audit's refusal
+  // the nightly audit's refusal
+  const std::string refused = rundir::run_folder::audit(run_dir) + "/refused.txt";
   if (!fs::exists(path) && fs::exists(refused)) {
     return refusal_blocks(util::read_file(refused));
   }

@@ -21,7 +21,8 @@ std::string shard_log(Dir dir, const std::string& shard, bool retry) {
 }
 std::string parts(Dir dir) { return in(dir, "parts"); }
 std::string slices(Dir dir) { return in(dir, "slices"); }
-std::string slurm_jobs(Dir dir) { return in(dir, "slurm/jobs.json"); }
+std::string slurm(Dir dir) { return in(dir, "slurm"); }
+std::string slurm_jobs(Dir dir) { return slurm(dir) + "/jobs.json"; }
 std::string progress(Dir dir) { return in(dir, "progress.json"); }
 std::string summary(Dir dir) { return in(dir, "summary.md"); }
 std::string study(Dir dir) { return in(dir, "study.json"); }

@@ -21,6 +21,7 @@ std::string logs(Dir dir);         // logs/: one log per shard a worker drew
 std::string shard_log(Dir dir, const std::string& shard, bool retry = false);
 std::string parts(Dir dir);        // parts/: the halves of a shard cut to find a crash
 std::string slices(Dir dir);       // slices/: a Slurm submission's slice folders
+std::string slurm(Dir dir);        // slurm/: a Slurm submission's scripts, logs and exit status
 std::string slurm_jobs(Dir dir);   // slurm/jobs.json: a Slurm submission's jobs
 std::string progress(Dir dir);     // progress.json: a running run's counts (runner/run_progress.h)
 std::string summary(Dir dir);      // summary.md: the summary `run` and `merge` print, kept

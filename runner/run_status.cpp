@@ -179,7 +179,7 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
     for (const auto& j : s.jobs)
       if (j.id.rfind(s.array_job + "_", 0) == 0 && is_pending(j.state)) ++s.slices_not_started;
     try {
-      s.gather_exit = std::stoi(util::read_file(dir + "/slurm/gather.exit"));
+      s.gather_exit = std::stoi(util::read_file(rundir::run_folder::slurm(dir) + "/gather.exit"));
     } catch (const std::exception&) {
     }
   }
