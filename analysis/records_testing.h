@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rundir/run_folder.h"
 #include "stats/stats_testing.h"
 #include "analysis/paper_values.h"
 #include "metrics/records.h"
@@ -77,8 +78,9 @@ inline metrics::Record unmeasured_line(const std::string& platform, int view, st
 inline std::string write_records(const std::filesystem::path& run,
                                  const std::vector<metrics::Record>& records,
                                  const std::string& name = "x.csv") {
-  std::filesystem::create_directories(run / "records");
-  const auto path = run / "records" / name;
+  const std::filesystem::path records = rundir::run_folder::records(run.string());
+  std::filesystem::create_directories(records);
+  const auto path = records / name;
   std::ofstream out(path);
   out << metrics::records_header() << "\n";
   for (const metrics::Record& r : records) write_record(out, r);

@@ -20,6 +20,7 @@
 #include "analysis/run_records.h"
 #include "analysis/view_equivalence.h"
 #include "rundir/run_experiment.h"
+#include "rundir/run_folder.h"
 #include "stats/table_writer.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -110,11 +111,11 @@ void refuse_if_incomplete(const RunCompleteness& completeness, const AnalyzeOpti
 RunRecords load_records(const AnalyzeOptions& o) {
   LoadOptions load;
   load.jobs = o.jobs;
-  load.read_seals = std::filesystem::exists(o.run_dir + "/experiment.toml");
+  load.read_seals = std::filesystem::exists(rundir::run_folder::experiment(o.run_dir));
   std::optional<rundir::Experiment>
       experiment;  // the views and seed that generate each point again
   if (o.point_margin_px > 0) {
-    const std::string path = o.run_dir + "/experiment.toml";
+    const std::string path = rundir::run_folder::experiment(o.run_dir);
     if (!std::filesystem::exists(path))
       throw util::UserError(o.run_dir + ": --point-margin-px needs the run's experiment.toml (" +
                             path + " is missing)");
@@ -242,13 +243,13 @@ std::vector<Output> render_outputs(const RunRecords& run, const AnalyzeOptions& 
     outputs.push_back({t.file_stem + ".md", what + " (Markdown)", md});
     outputs.push_back({t.file_stem + ".tex", what + " (LaTeX)", stats::render_latex(t)});
   }
-  outputs.push_back({"tally.json",
+  outputs.push_back({rundir::run_folder::kTallyFile,
                      "what plot and report count: records, conformance with the reference and GL "
                      "verdicts per view group, records not ok, render time (schema "
                      "renderaudit-tally v" +
                          std::to_string(kTallySchemaVersion) + ", analysis/run_tally.h)",
                      tally_json(tally_run(run, conformance)).dump(2) + "\n"});
-  outputs.push_back({"figures.json",
+  outputs.push_back({rundir::run_folder::kFigureDataFile,
                      "figure data for the plots stage: box plots, Q-Q plots, relative "
                      "bihistograms, speed against error (schema renderaudit-figures v" +
                          std::to_string(kFiguresSchemaVersion) + ", analysis/figure_data.h)",
@@ -262,7 +263,7 @@ std::vector<Output> render_outputs(const RunRecords& run, const AnalyzeOptions& 
 void write_outputs(const AnalyzeOptions& o, const std::vector<Output>& outputs,
                    const RunRecords& run, const RunCompleteness& completeness,
                    AnalyzeResult& result) {
-  const fs::path out_dir = fs::path(o.run_dir) / "analysis";
+  const fs::path out_dir = rundir::run_folder::analysis(o.run_dir);
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec)

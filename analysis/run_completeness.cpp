@@ -13,6 +13,7 @@
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
 #include "rundir/run_experiment.h"
+#include "rundir/run_folder.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"
 #include "rundir/shard_records.h"
@@ -78,14 +79,14 @@ std::string RunCompleteness::remedy(const std::string& command) const {
 
 RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSeals* seals) {
   RunCompleteness c;
-  const std::string toml = run_dir + "/experiment.toml";
+  const std::string toml = rundir::run_folder::experiment(run_dir);
   if (!fs::exists(toml)) return c;
   c.has_plan = true;
   const rundir::Experiment exp = rundir::load_experiment(toml);
   c.writer = util::DirLock::current_holder(run_dir);
   std::optional<rundir::RunManifest> manifest;
   try {
-    manifest = rundir::read_manifest_file(run_dir + "/manifest.json");
+    manifest = rundir::read_manifest_file(rundir::run_folder::manifest(run_dir));
   } catch (const std::exception& e) {
     // The reader's own words: the file and the key that is wrong, as status, audit and merge say.
     c.problems.push_back(e.what());
@@ -164,7 +165,7 @@ RunCompleteness check_run_completeness(const std::string& run_dir, const ShardSe
   }
   std::error_code ec;
   std::vector<std::string> stray;
-  for (const auto& e : fs::directory_iterator(run_dir + "/records", ec))
+  for (const auto& e : fs::directory_iterator(rundir::run_folder::records(run_dir), ec))
     if (rundir::is_records_file_name(e.path().filename().string()) &&
         !planned_files.count(e.path().filename().string()))
       stray.push_back(e.path().filename().string());

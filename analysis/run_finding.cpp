@@ -5,6 +5,7 @@
 #include <map>
 
 #include "analysis/run_records.h"
+#include "rundir/run_folder.h"
 #include "util/number_text.h"
 
 namespace ra::analysis {
@@ -58,7 +59,7 @@ std::string run_finding_line(const RunTally& tally, const std::string& run_dir) 
       first_kind = false;
     }
   }
-  return line + failures + "; each in " + run_dir + "/analysis/violations.md";
+  return line + failures + "; each in " + rundir::run_folder::analysis(run_dir) + "/violations.md";
 }
 
 }  // namespace ra::analysis

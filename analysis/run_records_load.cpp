@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "rundir/records_format.h"
+#include "rundir/run_folder.h"
 #include "util/errors.h"
 #include "metrics/records.h"
 #include "rundir/records_reader.h"
@@ -342,7 +343,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
                     ": no such directory (expected a run directory written by "
                     "`renderaudit run`)");
   }
-  const fs::path records_dir = fs::path(run_dir) / "records";
+  const fs::path records_dir = rundir::run_folder::records(run_dir);
   if (!fs::is_directory(records_dir, ec)) {
     throw util::UserError(run_dir + ": no records directory (" + records_dir.string() +
                     "); is this a run directory written by `renderaudit run`?");

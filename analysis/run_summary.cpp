@@ -13,6 +13,7 @@
 #include "rundir/manifest.h"
 #include "rundir/records_format.h"
 #include "rundir/records_reader.h"
+#include "rundir/run_folder.h"
 #include "stats/descriptive.h"
 #include "stats/table_writer.h"
 #include "util/atomic_file.h"
@@ -52,7 +53,7 @@ std::string cost_paragraph(const std::string& run_dir, const Cells& cells) {
     for (double us : c.render_us) drawing_us += us;
   rundir::RunManifest m;
   try {
-    m = rundir::read_manifest_file(run_dir + "/manifest.json");
+    m = rundir::read_manifest_file(rundir::run_folder::manifest(run_dir));
   } catch (const std::exception&) {
     return "";
   }
@@ -80,7 +81,7 @@ std::string write_run_summary(const std::string& run_dir) {
   using Key = std::tuple<std::string, std::string, int>;  // platform, kind, view
   std::map<Key, Cell> cells;
   std::vector<std::string> files;
-  for (const auto& e : fs::directory_iterator(run_dir + "/records"))
+  for (const auto& e : fs::directory_iterator(rundir::run_folder::records(run_dir)))
     if (ra::rundir::is_records_file_name(e.path().filename().string()))
       files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
@@ -129,7 +130,7 @@ std::string write_run_summary(const std::string& run_dir) {
        << " |\n";
   }
   md << cost_paragraph(run_dir, cells);
-  util::write_file_atomic(run_dir + "/summary.md", md.str());
+  util::write_file_atomic(rundir::run_folder::summary(run_dir), md.str());
   return md.str();
 }
 

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -124,7 +125,7 @@ json tally_json(const RunTally& t) {
 }
 
 RunTally read_tally(const std::string& run_dir) {
-  const std::string path = run_dir + "/analysis/tally.json";
+  const std::string path = rundir::run_folder::tally(run_dir);
   if (!std::filesystem::exists(path))
     throw util::UserError(path + " not found: run `renderaudit analyze " + run_dir + "` first");
   json j;
@@ -134,11 +135,8 @@ RunTally read_tally(const std::string& run_dir) {
     throw util::UserError(path + ": not valid JSON: " + e.what() + " (run `renderaudit analyze " +
                     run_dir + "` again)");
   }
-  if (j.value("schema", "") != "renderaudit-tally" ||
-      j.value("schema_version", 0) != kTallySchemaVersion)
-    throw util::UserError(path + ": expected schema renderaudit-tally version " +
-                    std::to_string(kTallySchemaVersion) + " (run `renderaudit analyze " + run_dir +
-                    "` again)");
+  rundir::require_document_header(j, "tally", kTallySchemaVersion, path,
+                                  "run `renderaudit analyze " + run_dir + "` again");
   RunTally t;
   try {
     t.records = j.at("records").get<std::uint64_t>();

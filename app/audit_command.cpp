@@ -12,6 +12,7 @@
 #include "audit/audit.h"
 #include "audit/audit_report.h"
 #include "audit/history_db.h"
+#include "rundir/run_folder.h"
 #include "util/errors.h"
 #include "util/number_text.h"
 
@@ -41,7 +42,9 @@ PairCounts pair_counts(const audit::AuditResult& r, std::size_t p) {
   return n;
 }
 
-std::string audit_md_path(const audit::AuditResult& r) { return r.out_dir + "/audit.md"; }
+std::string audit_md_path(const audit::AuditResult& r) {
+  return rundir::run_folder::audit_md(r.out_dir);
+}
 
 // A baseline night compares nothing: it says what was recorded and where, and no count of
 // changes or tests (they would be of the run against itself).

@@ -25,6 +25,7 @@
 #include "rundir/records_format.h"
 #include "rundir/records_reader.h"
 #include "rundir/run_experiment.h"
+#include "rundir/run_folder.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"
 #include "rundir/shard_records.h"
@@ -64,7 +65,7 @@ bool wanted(const std::vector<T>& filter, const T& value) {
 }
 
 void stream_records(const RecordsOptions& o) {
-  const std::string toml = o.dir + "/experiment.toml";
+  const std::string toml = rundir::run_folder::experiment(o.dir);
   if (!std::filesystem::exists(toml))
     throw util::UserError(o.dir +
                           ": no experiment.toml (expected a run directory written by "

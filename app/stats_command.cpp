@@ -22,6 +22,8 @@
 #include <vector>
 
 #include "analysis/run_completeness.h"
+#include "rundir/records_format.h"
+#include "rundir/run_folder.h"
 #include "app/commands.h"
 #include "app/stats_presentation.h"
 #include "rundir/experiment.h"
@@ -78,20 +80,20 @@ RunRecordsFiles run_records_files(const std::string& dir) {
   RunRecordsFiles out;
   std::vector<std::string>& files = out.files;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(fs::path(dir) / "records", ec))
+  for (const auto& e : fs::directory_iterator(rundir::run_folder::records(dir), ec))
     if (ra::rundir::is_records_file_name(e.path().filename().string()))
       files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
-  if (!fs::exists(dir + "/experiment.toml")) return out;
+  if (!fs::exists(rundir::run_folder::experiment(dir))) return out;
   const rundir::Experiment exp = rundir::load_run_experiment(dir);
   std::set<std::string> trusted;
   for (const rundir::Shard& s : rundir::plan_shards(exp))
     if (const std::string p = rundir::trusted_records_path(dir, s); !p.empty()) trusted.insert(p);
   for (const std::string& f : files)
     if (!trusted.count(f))
-      throw util::UserError(f + ": not a shard of the run's plan (" + dir +
-                            "/experiment.toml): its rows would be counted with the run's; move it "
-                            "out of records/");
+      throw util::UserError(f + ": not a shard of the run's plan (" +
+                            rundir::run_folder::experiment(dir) +
+                            "): its rows would be counted with the run's; move it out of records/");
   for (const rundir::Shard& s : rundir::planned_shards_of_run(dir, exp)) {
     ++out.shards_planned;
     out.primitives_planned += s.size();

@@ -9,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/study.h"
+#include "rundir/run_folder.h"
 #include "rundir/study_dir.h"
 
 namespace ra::app {
@@ -60,7 +61,7 @@ bool prepare_study_report(const std::string& dir, bool run_missing) {
   const std::unique_ptr<Study> study = info ? study_of(info->kind) : nullptr;
   if (!study || !study->has_report()) return false;
   const bool analysed = info->analysed && !info->document.empty();
-  const bool plotted = std::filesystem::exists(dir + "/figures/index.json");
+  const bool plotted = std::filesystem::exists(rundir::run_folder::figure_index(dir));
   if (analysed && plotted) return false;
   if (!run_missing) return false;  // the report names the missing commands
   int ignored = 0;

@@ -1,6 +1,7 @@
 #include "audit/audit.h"
 
 #include "rundir/records_format.h"
+#include "rundir/run_folder.h"
 #include "util/dir_lock.h"
 
 #include <algorithm>
@@ -16,8 +17,8 @@ namespace ra::audit {
 namespace {
 
 bool has_records(const std::string& dir) {
-  if (!fs::is_directory(dir + "/records")) return false;
-  for (const auto& e : fs::directory_iterator(dir + "/records"))
+  if (!fs::is_directory(rundir::run_folder::records(dir))) return false;
+  for (const auto& e : fs::directory_iterator(rundir::run_folder::records(dir)))
     if (ra::rundir::is_records_file_name(e.path().filename().string())) return true;
   return false;
 }
@@ -100,7 +101,7 @@ AuditResult run_audit(const AuditOptions& o) {
     r.current = load_run_identity(o.current_dir);
     require_same_experiment(r.baseline, r.current);
     for (const auto& p : r.current.experiment.platforms) r.pairs.push_back({p, p});
-    r.out_dir = o.out_dir.empty() ? o.current_dir + "/audit" : o.out_dir;
+    r.out_dir = o.out_dir.empty() ? rundir::run_folder::audit(o.current_dir) : o.out_dir;
   }
   // The audited run must not change under us, and its audit/ has one writer (util/dir_lock.h).
   const util::DirLock lock(o.current_dir, "audit");

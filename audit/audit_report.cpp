@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/cell_text.h"
 #include "util/number_text.h"
@@ -102,9 +103,9 @@ std::string changed_primitives_csv(const AuditResult& r) {
 std::vector<std::string> write_audit_outputs(const AuditResult& r) {
   fs::create_directories(r.out_dir);
   const std::vector<std::pair<std::string, std::string>> files = {
-      {"audit.json", audit_json(r).dump(2) + "\n"},
-      {"audit.md", audit_markdown(r)},
-      {"junit.xml", audit_junit(r)},
+      {rundir::run_folder::kAuditJsonFile, audit_json(r).dump(2) + "\n"},
+      {rundir::run_folder::kAuditMdFile, audit_markdown(r)},
+      {rundir::run_folder::kAuditJunitFile, audit_junit(r)},
       {"changed_primitives.csv", changed_primitives_csv(r)}};
   std::vector<std::string> paths;
   for (const auto& [name, content] : files) {

@@ -13,6 +13,7 @@
 
 #include "rundir/experiment.h"
 #include "metrics/records.h"
+#include "rundir/run_folder.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"
 
@@ -22,7 +23,7 @@ namespace ra::audit::testing {
 inline std::string fresh_dir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / ("renderaudit_audit_" + name);
   std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir / "records");
+  std::filesystem::create_directories(rundir::run_folder::records(dir.string()));
   return dir.string();
 }
 
@@ -41,8 +42,9 @@ inline std::string experiment_text(const std::string& platforms, int points, int
 // experiment.
 inline rundir::Experiment write_run(const std::string& dir, const std::string& text,
                                     const nlohmann::json& failures = nlohmann::json::array()) {
-  std::ofstream(dir + "/experiment.toml") << text;
-  const rundir::Experiment exp = rundir::parse_experiment(text, dir + "/experiment.toml");
+  std::ofstream(rundir::run_folder::experiment(dir)) << text;
+  const rundir::Experiment exp =
+      rundir::parse_experiment(text, rundir::run_folder::experiment(dir));
   nlohmann::json drivers = nlohmann::json::object();
   for (const auto& p : exp.platforms)
     drivers[p] = {{"renderer", p + " renderer"}, {"version", p + " 1.0"}};
@@ -53,7 +55,7 @@ inline rundir::Experiment write_run(const std::string& dir, const std::string& t
       {"drivers", drivers},
       {"failures", failures},
       {"status", failures.empty() ? "complete" : "failed"}};
-  std::ofstream(dir + "/manifest.json") << manifest.dump(2);
+  std::ofstream(rundir::run_folder::manifest(dir)) << manifest.dump(2);
   return exp;
 }
 

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "rundir/records_reader.h"
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "rundir/experiment.h"
@@ -50,7 +51,7 @@ pid_t spawn(const std::string& program, const std::string& dir, const RerenderBa
                std::to_string(b.begin),
                std::to_string(b.end)};
   spec.set_env = {"RA_RENDER_ATTEMPT=" + std::to_string(attempt)};
-  spec.log_to(dir + "/logs/" + shard_of(b).id() + ".log");
+  spec.log_to(rundir::run_folder::shard_log(dir, shard_of(b).id()));
   spec.stdin_null = true;
   spec.own_process_group = true;
   return util::start_child(spec).pid;
@@ -115,7 +116,8 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   const rundir::Experiment exp =
       options.experiment_text.empty()
           ? rundir::load_run_experiment(options.run_dir)
-          : rundir::parse_experiment(options.experiment_text, options.run_dir + "/experiment.toml");
+          : rundir::parse_experiment(options.experiment_text,
+                                     rundir::run_folder::experiment(options.run_dir));
   const double timeout_s = options.timeout_s > 0 ? options.timeout_s : exp.shard_timeout_s;
   const std::string program = options.program.empty() ? util::worker_program() : options.program;
   const unsigned jobs =
@@ -127,14 +129,19 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
     throw std::runtime_error("cannot create a temporary directory for the flake check: " +
                              std::string(std::strerror(errno)));
   const std::string dir = templ;
-  for (const char* sub : {"/records", "/drivers", "/logs"}) fs::create_directories(dir + sub);
-  util::write_file_atomic(dir + "/experiment.toml", exp.text);
+  for (const std::string& folder :
+       {rundir::run_folder::records(dir), rundir::run_folder::drivers(dir),
+        rundir::run_folder::logs(dir)})
+    fs::create_directories(folder);
+  util::write_file_atomic(rundir::run_folder::experiment(dir), exp.text);
   // The run's driver files: each re-render worker checks the driver it loaded against them
   // (platforms/renderer_check.h) and stops rather than draw with another.
   std::error_code copy_ec;
-  for (const auto& e : fs::directory_iterator(options.run_dir + "/drivers", copy_ec))
+  for (const auto& e :
+       fs::directory_iterator(rundir::run_folder::drivers(options.run_dir), copy_ec))
     if (options.copy_driver_files && e.path().extension() == ".json")
-      fs::copy_file(e.path(), dir + "/drivers/" + e.path().filename().string(), copy_ec);
+      fs::copy_file(e.path(), rundir::run_folder::drivers(dir) + "/" + e.path().filename().string(),
+                    copy_ec);
 
   struct Running {
     std::size_t batch;
@@ -146,7 +153,7 @@ RerenderResult rerender(const std::vector<RerenderBatch>& batches, const Rerende
   auto finish = [&](std::size_t b, const std::string& error) {
     RerenderBatch& batch = result.batches[b];
     const rundir::Shard s = shard_of(batch);
-    const std::string log = last_log_line(dir + "/logs/" + s.id() + ".log");
+    const std::string log = last_log_line(rundir::run_folder::shard_log(dir, s.id()));
     batch.error = error.empty() || log.empty() ? error : error + ": " + log;
     if (!batch.error.empty()) return;
     // the re-render's own file, judged by the seal rule as any reader judges records

@@ -15,6 +15,7 @@
 #include "rundir/experiment.h"
 #include "rundir/records_reader.h"
 #include "rundir/run_experiment.h"
+#include "rundir/run_folder.h"
 #include "rundir/shard.h"
 #include "util/errors.h"
 #include "rundir/shard_records.h"
@@ -186,7 +187,7 @@ std::string reproducer_environment(const std::string& build_dir, const std::stri
 }
 
 Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_name) {
-  const std::string toml = q.run_dir + "/experiment.toml";
+  const std::string toml = rundir::run_folder::experiment(q.run_dir);
   if (!fs::is_regular_file(toml))
     throw util::UserError(q.run_dir + ": not a run directory (no experiment.toml)");
   const rundir::Experiment exp = rundir::load_run_experiment(q.run_dir);

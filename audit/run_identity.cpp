@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "metrics/conformance.h"
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "rundir/manifest.h"
@@ -38,10 +39,10 @@ RunIdentity load_run_identity(const std::string& dir) {
   RunIdentity run;
   run.dir = dir;
   if (!fs::is_directory(dir)) throw util::UserError(dir + ": no such run directory");
-  const std::string manifest_path = dir + "/manifest.json";
+  const std::string manifest_path = rundir::run_folder::manifest(dir);
   const rundir::RunManifest manifest =
       rundir::read_manifest(read_json(manifest_path), manifest_path);
-  const std::string toml = dir + "/experiment.toml";
+  const std::string toml = rundir::run_folder::experiment(dir);
   if (!fs::exists(toml)) throw util::UserError(toml + ": missing (not a run directory?)");
   run.experiment = rundir::load_run_experiment(dir);
 
@@ -66,8 +67,8 @@ RunIdentity load_run_identity(const std::string& dir) {
   // Drivers: the manifest's copy, else what the workers wrote into drivers/ (a run killed before
   // its manifest was finished still has those).
   nlohmann::json drivers = manifest.drivers.is_object() ? manifest.drivers : nlohmann::json::object();
-  if (fs::is_directory(dir + "/drivers"))
-    for (const auto& e : fs::directory_iterator(dir + "/drivers")) {
+  if (fs::is_directory(rundir::run_folder::drivers(dir)))
+    for (const auto& e : fs::directory_iterator(rundir::run_folder::drivers(dir))) {
       const std::string platform = e.path().stem().string();
       if (e.path().extension() != ".json" || drivers.contains(platform)) continue;
       try {
@@ -93,7 +94,7 @@ std::string experiment_difference(const std::string& baseline_dir, const std::st
                                   std::size_t most = 8) {
   const auto lines = [](const std::string& dir) {
     std::vector<std::string> out;
-    std::istringstream in(util::read_file(dir + "/experiment.toml"));
+    std::istringstream in(util::read_file(rundir::run_folder::experiment(dir)));
     for (std::string line; std::getline(in, line);)
       if (line.find_first_not_of(" \t") != std::string::npos) out.push_back(line);
     return out;

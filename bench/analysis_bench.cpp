@@ -29,6 +29,7 @@
 #include "analysis/run_analysis.h"
 #include "analysis/view_equivalence.h"
 #include "rundir/records_reader.h"
+#include "rundir/run_folder.h"
 #include "util/errors.h"
 #include "metrics/records.h"
 #include "rundir/records_format.h"
@@ -140,7 +141,7 @@ void synthesise(const Params& prm) {
     return;
   }
   fs::remove_all(prm.dir);
-  fs::create_directories(prm.dir + "/records");
+  fs::create_directories(ra::rundir::run_folder::records(prm.dir));
   const char* kinds[] = {"point", "line", "triangle"};
   const std::uint64_t per_view = prm.records / (static_cast<std::uint64_t>(prm.platforms) * 3 * 8);
   const std::uint64_t shard = 5000;
@@ -154,11 +155,11 @@ void synthesise(const Params& prm) {
         for (std::uint64_t first = 0; first < per_view; first += shard) {
           const std::uint64_t last = std::min(per_view, first + shard);
           // sealed, as a run writes it (rundir/shard_file.h)
-          ra::rundir::RecordsFileWriter out(prm.dir + "/records/" + platform + "." + kinds[k] +
-                                                ".v" + std::to_string(view) + "." +
-                                                std::to_string(first) + "-" + std::to_string(last) +
-                                                ra::rundir::records_extension(prm.format),
-                                            prm.format);
+          ra::rundir::RecordsFileWriter out(
+              ra::rundir::run_folder::records(prm.dir) + "/" + platform + "." + kinds[k] + ".v" +
+                  std::to_string(view) + "." + std::to_string(first) + "-" + std::to_string(last) +
+                  ra::rundir::records_extension(prm.format),
+              prm.format);
           for (std::uint64_t i = first; i < last; ++i)
             out.write(synth(rng, platform, p, kinds[k], view, i));
           out.finish();
@@ -221,7 +222,7 @@ int main(int argc, char** argv) {
     {
       const auto t0 = std::chrono::steady_clock::now();
       std::uint64_t n = 0;
-      for (const auto& e : fs::directory_iterator(prm.dir + "/records")) {
+      for (const auto& e : fs::directory_iterator(ra::rundir::run_folder::records(prm.dir))) {
         if (ra::rundir::is_records_file_name(e.path().filename().string()))
           ra::rundir::read_records(e.path().string(), [&](const ra::metrics::Record&) { ++n; });
       }

@@ -20,6 +20,7 @@
 
 #include "rundir/manifest.h"
 #include "rundir/records_reader.h"
+#include "rundir/run_folder.h"
 #include "rundir/shard.h"
 #include "stats/descriptive.h"
 #include "stats/table_writer.h"
@@ -74,7 +75,7 @@ int main(int argc, char** argv) {
   const std::string program =
       (fs::read_symlink("/proc/self/exe").parent_path() / "renderaudit").string();
   std::vector<Round> results, per_shard;  // the default (served shards), and --worker-per-shard
-  if (!from.empty()) rounds = 1, experiment = from + "/experiment.toml";
+  if (!from.empty()) rounds = 1, experiment = ra::rundir::run_folder::experiment(from);
   for (int r = 1; r <= rounds; ++r)
   for (const bool served : {true, false}) {
     if (!from.empty() && !served) continue;
@@ -99,7 +100,8 @@ int main(int argc, char** argv) {
         return 1;
       }
     }
-    const ra::rundir::RunManifest m = ra::rundir::read_manifest_file(dir + "/manifest.json");
+    const ra::rundir::RunManifest m =
+        ra::rundir::read_manifest_file(ra::rundir::run_folder::manifest(dir));
     const ra::rundir::ManifestInvocation* inv = m.last_invocation();
     if (!inv) {
       std::fprintf(stderr, "run_overhead_bench: %s/manifest.json lists no invocation\n", dir.c_str());
@@ -117,7 +119,7 @@ int main(int argc, char** argv) {
       KindCost& k = round.kinds[id.substr(0, a) + " " + id.substr(a + 1, b - a - 1)];
       k.worker_s += seconds;
     }
-    for (const auto& e : fs::directory_iterator(dir + "/records")) {
+    for (const auto& e : fs::directory_iterator(ra::rundir::run_folder::records(dir))) {
       ra::rundir::for_each_record_row(e.path().string(), [&](const ra::rundir::RecordRow& row) {
         const double us = row.number(ra::metrics::RecordColumn::kRenderUs).value_or(0);
         KindCost& k = round.kinds[std::string(row.cell(ra::metrics::RecordColumn::kPlatform)) +

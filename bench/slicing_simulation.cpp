@@ -16,6 +16,7 @@
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
 #include "rundir/run_experiment.h"
+#include "rundir/run_folder.h"
 #include "rundir/shard.h"
 #include "rundir/shard_cost.h"
 #include "rundir/slicing.h"
@@ -67,7 +68,8 @@ int main(int argc, char** argv) {
     }
   }
   const ra::rundir::Experiment exp = ra::rundir::load_run_experiment(dir);
-  const ra::rundir::RunManifest manifest = ra::rundir::read_manifest_file(dir + "/manifest.json");
+  const ra::rundir::RunManifest manifest =
+      ra::rundir::read_manifest_file(ra::rundir::run_folder::manifest(dir));
   std::map<std::string, double> seconds =
       manifest.shard_seconds.value_or(std::map<std::string, double>{});
   std::vector<ra::rundir::Shard> shards;

@@ -5,6 +5,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "rundir/driver_build.h"
@@ -65,7 +66,7 @@ void require_run_driver(const std::string& run_dir, const std::string& platform,
                         const DriverInfo& loaded) {
   const std::optional<rundir::PlatformSpec> spec = rundir::find_platform(platform);
   if (!spec || !spec->draws_with_driver()) return;
-  const std::string path = run_dir + "/drivers/" + platform + ".json";
+  const std::string path = rundir::run_folder::driver(run_dir, platform);
   std::error_code ec;
   if (!fs::exists(path, ec)) return;
   nlohmann::json j;
@@ -95,7 +96,7 @@ void require_run_driver(const std::string& run_dir, const std::string& platform,
 std::string RendererCheck::mismatch() {
   if (pattern_.empty()) return "";
   std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(run_dir_ + "/drivers", ec)) {
+  for (const auto& entry : fs::directory_iterator(rundir::run_folder::drivers(run_dir_), ec)) {
     if (entry.path().extension() != ".json") continue;
     const std::string name = entry.path().stem().string();
     const std::optional<rundir::PlatformSpec> spec = rundir::find_platform(name);

@@ -8,6 +8,7 @@
 #include "plots/figure_renderer.h"
 #include "plots/headless_display.h"
 #include "plots/plot_run.h"
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -18,8 +19,8 @@ std::vector<std::string> write_figure_set(const std::vector<Figure>& figures, co
   std::vector<std::string> written;
   if (figures.empty()) return written;
   PlotResult result;
-  result.figures_dir = dir + "/figures";
-  result.index_path = result.figures_dir + "/index.json";
+  result.figures_dir = rundir::run_folder::figures(dir);
+  result.index_path = rundir::run_folder::figure_index(dir);
   std::error_code ec;
   std::filesystem::create_directories(result.figures_dir, ec);
   if (!std::filesystem::is_directory(result.figures_dir))

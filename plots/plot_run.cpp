@@ -16,6 +16,7 @@
 
 #include <unistd.h>
 
+#include "analysis/figure_data.h"
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
 #include "plots/figure_builders.h"
@@ -23,6 +24,7 @@
 #include "plots/figure_renderer.h"
 #include "plots/headless_display.h"
 #include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "util/shell_quote.h"
@@ -52,7 +54,7 @@ json figure_json(const IndexedFigure& f, const FigureLayout& layout) {
 }  // namespace
 
 FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
-  const std::string path = run_dir + "/analysis/figures.json";
+  const std::string path = rundir::run_folder::figure_data(run_dir);
   if (!fs::exists(path))
     throw util::UserError(path + " not found: run `renderaudit analyze " + util::shell_quote(run_dir) + "` first");
   json doc;
@@ -61,11 +63,8 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
   } catch (const json::exception& e) {
     throw util::UserError(path + ": not valid JSON: " + e.what());
   }
-  if (doc.value("schema", "") != "renderaudit-figures" || doc.value("schema_version", 0) != 1)
-    throw util::UserError(path +
-                          ": expected schema renderaudit-figures version 1 (run `renderaudit "
-                          "analyze " +
-                          run_dir + "` again)");
+  rundir::require_document_header(doc, "figures", an::kFiguresSchemaVersion, path,
+                                  "run `renderaudit analyze " + run_dir + "` again");
   const an::RunTally tally = an::read_tally(run_dir);
 
   an::LoadOptions lo;
@@ -103,8 +102,8 @@ PlotResult plot_run(const PlotOptions& options) {
   FigurePlan plan = plan_figures(options.run_dir, options.jobs);
 
   PlotResult result;
-  result.figures_dir = (fs::path(options.run_dir) / "figures").string();
-  result.index_path = result.figures_dir + "/index.json";
+  result.figures_dir = rundir::run_folder::figures(options.run_dir);
+  result.index_path = rundir::run_folder::figure_index(options.run_dir);
   result.skipped = plan.skipped;
 
   // Figures of an earlier plot are replaced as a whole: the directory describes the last plot.
@@ -167,17 +166,16 @@ void write_figure_index(const std::string& run_dir, const PlotResult& result,
 }
 
 PlotResult read_figure_index(const std::string& run_dir) {
-  const std::string path = run_dir + "/figures/index.json";
+  const std::string path = rundir::run_folder::figure_index(run_dir);
   if (!fs::exists(path))
     throw util::UserError(path + " not found: run `renderaudit plot " + run_dir + "` first");
   PlotResult r;
-  r.figures_dir = run_dir + "/figures";
+  r.figures_dir = rundir::run_folder::figures(run_dir);
   r.index_path = path;
   try {
     const json doc = json::parse(util::read_file(path));
-    if (doc.value("schema", "") != "renderaudit-figure-index")
-      throw util::UserError(path + ": not a figure index (run `renderaudit plot " + run_dir +
-                            "` again)");
+    rundir::require_document_header(doc, "figure-index", kFigureIndexSchemaVersion, path,
+                                    "run `renderaudit plot " + run_dir + "` again");
     for (const json& f : doc.at("figures"))
       r.figures.push_back({f.at("id"), f.at("kind"), f.value("section", ""), f.value("title", ""),
                            f.value("caption", ""), f.value("note", ""), f.at("png"), f.at("pdf"),

@@ -21,6 +21,7 @@
 #include "regulation/regulation_document.h"
 #include "regulation/regulation_experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "stats/descriptive.h"
 #include "util/atomic_file.h"
 #include "util/cell_text.h"
@@ -330,10 +331,11 @@ rundir::StudyRunResult run_regulation_study(const rundir::StudyRunOptions& optio
   std::filesystem::create_directories(dir, ec);
   if (!std::filesystem::is_directory(dir))
     throw util::UserError("cannot create the output directory " + dir + ": " + ec.message());
-  std::filesystem::remove(dir + "/study.json");  // a folder is complete only when it is rewritten
+  // a folder is complete only when it is rewritten
+  std::filesystem::remove(rundir::run_folder::study(dir));
   // derived outputs of an earlier run (analyze, plot) would describe the old numbers
   std::filesystem::remove(dir + "/regulation.md", ec);
-  std::filesystem::remove_all(dir + "/figures", ec);
+  std::filesystem::remove_all(rundir::run_folder::figures(dir), ec);
   auto say = [&](const std::string& line) {
     if (options.progress) std::fprintf(stderr, "regulation: %s\n", line.c_str());
   };

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "analysis/run_tally.h"
+#include "rundir/run_folder.h"
 #include "stats/csv_table.h"
 #include "util/atomic_file.h"
 #include "util/number_text.h"
@@ -97,7 +98,8 @@ Table findings_table(const std::string& run_dir, const analysis::RunTally& tally
     p.within_spec += n.within_spec, p.violation += n.violation;
     p.violating_pixels += n.violating_pixels;
   }
-  const std::map<std::string, PaperAgreement> paper = paper_agreement(run_dir + "/analysis");
+  const std::map<std::string, PaperAgreement> paper =
+      paper_agreement(rundir::run_folder::analysis(run_dir));
   std::set<std::string> platforms;
   for (const auto& [p, n] : per) platforms.insert(p);
   for (const auto& [p, a] : paper) platforms.insert(p);
@@ -177,8 +179,9 @@ std::vector<Block> refusal_blocks(const std::string& text) {
 // The audit's verdict per driver, against the baseline it names.
 std::vector<Block> audit_blocks(const std::string& run_dir) {
   std::vector<Block> out;
-  const std::string path = run_dir + "/audit/audit.json";
-  const std::string refused = run_dir + "/audit/refused.txt";  // the nightly audit's refusal
+  const std::string path = rundir::run_folder::audit_json(rundir::run_folder::audit(run_dir));
+  // the nightly audit's refusal
+  const std::string refused = rundir::run_folder::audit(run_dir) + "/refused.txt";
   if (!fs::exists(path) && fs::exists(refused)) {
     return refusal_blocks(util::read_file(refused));
   }
@@ -268,7 +271,7 @@ std::vector<Block> headline_blocks(const std::string& run_dir, const analysis::R
   t.table.notes.clear();
   out.push_back(std::move(t));
   // The finding as a picture: where each driver's pixels differ from the reference's.
-  const std::string overview = run_dir + "/figures/conformance.overview.png";
+  const std::string overview = rundir::run_folder::figures(run_dir) + "/conformance.overview.png";
   if (fs::exists(overview)) {
     Block image = make_block(Block::Kind::kImage,
                              "Where each driver lights other pixels than the exact reference "

@@ -28,8 +28,12 @@
 #include "report/html_writer.h"
 #include "report/pdf_writer.h"
 #include "report/run_document.h"
+#include "analysis/run_completeness.h"
+#include "analysis/run_records.h"
+#include "analysis/run_tally.h"
 #include "rundir/manifest.h"
 #include "rundir/records_format.h"
+#include "rundir/run_folder.h"
 #include "rundir/study_dir.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
@@ -46,10 +50,10 @@ namespace {
 fs::file_time_type newest_input(const std::string& run_dir) {
   fs::file_time_type t = fs::file_time_type::min();
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(fs::path(run_dir) / "records", ec))
+  for (const auto& e : fs::directory_iterator(rundir::run_folder::records(run_dir), ec))
     if (ra::rundir::is_records_file_name(e.path().filename().string()))
       t = std::max(t, fs::last_write_time(e.path(), ec));
-  const fs::path manifest = fs::path(run_dir) / "manifest.json";
+  const fs::path manifest = rundir::run_folder::manifest(run_dir);
   if (fs::exists(manifest)) t = std::max(t, fs::last_write_time(manifest, ec));
   return t;
 }
@@ -68,10 +72,10 @@ std::string tally_problem(const std::string& run_dir) {
 // report.html; fills the paths and page counts of `result`.
 void assemble(const Document& doc, const Document& html_doc, const std::string& run_dir,
               const std::string& pdfunite, ReportResult& result) {
-  const fs::path out_dir = fs::path(run_dir) / "report";
+  const fs::path out_dir = rundir::run_folder::report(run_dir);
   fs::create_directories(out_dir);
-  result.pdf = (out_dir / "report.pdf").string();
-  result.html = (out_dir / "report.html").string();
+  result.pdf = rundir::run_folder::report_pdf(run_dir);
+  result.html = rundir::run_folder::report_html(run_dir);
 
   // Text pages: lay out until the page numbers they print are the ones they get.
   PageNumbers numbers;
@@ -129,7 +133,7 @@ Document study_document(const std::string& dir, const rundir::StudyInfo& info) {
   if (!info.subtitle.empty()) d.subtitle = {info.subtitle};
   for (Block& b : parse_markdown(util::read_file(dir + "/" + info.document)))
     d.blocks.push_back(std::move(b));
-  if (!fs::exists(dir + "/figures/index.json")) return d;
+  if (!fs::exists(rundir::run_folder::figure_index(dir))) return d;
   const plots::PlotResult figures = plots::read_figure_index(dir);
   Block heading_block;
   heading_block.kind = Block::Kind::kHeading;
@@ -144,7 +148,8 @@ Document study_document(const std::string& dir, const rundir::StudyInfo& info) {
 // A study folder's description; a timing folder written before study.json existed gets one.
 std::optional<rundir::StudyInfo> study_of(const std::string& dir) {
   std::optional<rundir::StudyInfo> info = rundir::read_study_info(dir);
-  if (info || !fs::exists(fs::path(dir) / "timing.json") || fs::is_directory(fs::path(dir) / "records"))
+  if (info || !fs::exists(rundir::run_folder::timing(dir)) ||
+      fs::is_directory(rundir::run_folder::records(dir)))
     return info;
   rundir::StudyInfo t;
   t.kind = rundir::StudyKind::kTiming;
@@ -160,8 +165,8 @@ std::optional<rundir::StudyInfo> study_of(const std::string& dir) {
 std::vector<Step> missing_steps(const std::string& run_dir) {
   std::vector<Step> steps;
   const fs::path dir(run_dir);
-  const fs::path figures_json = dir / "analysis" / "figures.json";
-  const fs::path index = dir / "figures" / "index.json";
+  const fs::path figures_json = rundir::run_folder::figure_data(dir.string());
+  const fs::path index = rundir::run_folder::figure_index(dir.string());
   std::error_code ec;
   bool analyze = false;
   if (!fs::exists(figures_json)) {
@@ -171,7 +176,7 @@ std::vector<Step> missing_steps(const std::string& run_dir) {
     steps.push_back({"analyze", "renderaudit analyze " + util::shell_quote(run_dir),
                      figures_json.string() + " is older than the records"});
     analyze = true;
-  } else if (const fs::path tally = dir / "analysis" / "tally.json"; !fs::exists(tally)) {
+  } else if (const fs::path tally = rundir::run_folder::tally(dir.string()); !fs::exists(tally)) {
     steps.push_back({"analyze", "renderaudit analyze " + util::shell_quote(run_dir), tally.string() + " is missing"});
     analyze = true;
   } else if (const std::string problem = tally_problem(run_dir); !problem.empty()) {
@@ -194,7 +199,7 @@ ReportResult write_report(const ReportOptions& options) {
   const std::string& run_dir = options.run_dir;
   if (!fs::is_directory(run_dir)) throw util::UserError(run_dir + ": no such run directory");
   const std::optional<rundir::StudyInfo> study = study_of(run_dir);
-  if (!study && !fs::is_directory(fs::path(run_dir) / "records"))
+  if (!study && !fs::is_directory(rundir::run_folder::records(run_dir)))
     throw util::UserError(run_dir +
                           " is not a run directory (no records/ and no study.json): run "
                           "`renderaudit run EXPERIMENT.toml --out " +
@@ -211,9 +216,9 @@ ReportResult write_report(const ReportOptions& options) {
                             run_dir + "` and `renderaudit plot " + util::shell_quote(run_dir) + "` first");
     // (a timing study run with --no-figures has none, and says so in its text)
     if (study->kind != rundir::StudyKind::kTiming &&
-        !fs::exists(fs::path(run_dir) / "figures" / "index.json"))
-      throw util::UserError(run_dir + "/figures/index.json is missing: run `renderaudit plot " +
-                            run_dir + "` first");
+        !fs::exists(rundir::run_folder::figure_index(run_dir)))
+      throw util::UserError(rundir::run_folder::figure_index(run_dir) +
+                            " is missing: run `renderaudit plot " + run_dir + "` first");
     const Document doc = study_document(run_dir, *study);
     assemble(doc, doc, run_dir, pdfunite, result);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

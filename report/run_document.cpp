@@ -27,6 +27,7 @@
 #include "analysis/run_completeness.h"
 #include "analysis/run_records.h"
 #include "analysis/run_tally.h"
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/errors.h"
@@ -272,7 +273,7 @@ void add_provenance(Document& d, const std::string& run_dir, const rundir::RunMa
         "and one coarser than 4 bits breaks GL's rule.");
     d.blocks.push_back(table_block(std::move(t)));
   }
-  const std::string toml = run_dir + "/experiment.toml";
+  const std::string toml = rundir::run_folder::experiment(run_dir);
   if (fs::exists(toml)) {
     d.blocks.push_back(heading("The experiment file (experiment.toml, copied into the run)", 2));
     Block b;
@@ -383,7 +384,7 @@ void add_conformance(RunDocument& c, const std::string& run_dir, const analysis:
   // 4. Conformance.
   d.blocks.push_back(heading("4. Does each driver rasterize as GL allows?", 1, "conformance"));
   {
-    const std::string dir = run_dir + "/analysis";
+    const std::string dir = rundir::run_folder::analysis(run_dir);
     if (fs::exists(dir + "/conformance.md")) {
       for (Block& b : parse_markdown(util::read_file(dir + "/conformance.md"), 1)) {
         if (b.kind == Block::Kind::kTable && !b.table.title.empty())
@@ -437,7 +438,7 @@ void add_conformance(RunDocument& c, const std::string& run_dir, const analysis:
 void add_analysis_tables(RunDocument& c, const std::string& run_dir) {
   Document& d = c.doc;
   // 5. View equivalence.
-  const std::string analysis = run_dir + "/analysis";
+  const std::string analysis = rundir::run_folder::analysis(run_dir);
   d.blocks.push_back(heading("5. View pooling: the equivalence tests", 1, "equivalence"));
   {
     const std::string csv = analysis + "/view_equivalence.csv", md = analysis + "/view_equivalence.md";
@@ -580,7 +581,7 @@ Document pdf_document(const Document& doc, const std::set<std::string>& html_onl
 RunDocument build_run_document(const std::string& run_dir, const plots::PlotResult& figures,
                                const analysis::RunTally& tally,
                                const analysis::RunCompleteness& completeness) {
-  const std::string manifest_path = run_dir + "/manifest.json";
+  const std::string manifest_path = rundir::run_folder::manifest(run_dir);
   const rundir::RunManifest m = fs::exists(manifest_path)
                                     ? rundir::read_manifest(read_json(manifest_path), manifest_path)
                                     : rundir::RunManifest{};

@@ -9,6 +9,8 @@
 #include <set>
 #include <tuple>
 
+#include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -281,10 +283,8 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
   } catch (const std::exception& e) {
     throw util::UserError("cannot read the upgrade summary " + path + ": " + e.what());
   }
-  if (!j.is_object() || j.value("schema", "") != "renderaudit-upgrade-summary" ||
-      j.value("schema_version", 0) != 1)
-    throw util::UserError(path + ": not a renderaudit-upgrade-summary of version 1 (written by "
-                          "scripts/upgrade_report.py)");
+  rundir::require_document_header(j, "upgrade-summary", 1, path,
+                                  "written by scripts/upgrade_report.py");
   UpgradeSummary s;
   s.run_dir = text_of(j, "run", "", path);
   s.build = text_of(j, "build", "", path);
@@ -324,12 +324,14 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
 }
 
 std::vector<UpgradeBisection> find_bisections(const std::string& run_dir) {
-  std::vector<fs::path> candidates = {fs::path(run_dir) / "bisect" / "bisect.json",
-                                      fs::absolute(run_dir).parent_path() / "bisect" / "bisect.json"};
+  namespace folder = rundir::run_folder;
+  std::vector<fs::path> candidates = {
+      folder::bisection(folder::bisect(run_dir)),
+      folder::bisection(folder::bisect(fs::absolute(run_dir).parent_path().string()))};
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(run_dir, ec))
     if (e.is_directory() && e.path().filename().string().rfind("audit-", 0) == 0)
-      candidates.push_back(e.path() / "bisect" / "bisect.json");
+      candidates.push_back(folder::bisection(folder::bisect(e.path().string())));
   std::sort(candidates.begin() + 2, candidates.end());
   std::vector<UpgradeBisection> out;
   std::set<fs::path> seen;
@@ -342,9 +344,7 @@ std::vector<UpgradeBisection> find_bisections(const std::string& run_dir) {
     } catch (const std::exception&) {
       continue;
     }
-    if (!j.is_object() || j.value("schema", "") != "renderaudit-bisection" ||
-        j.value("schema_version", 0) != 2)
-      continue;
+    if (!rundir::has_document_header(j, "bisection", 2)) continue;
     const json inputs = j.value("inputs", json::object());
     // a bisection beside the run is of this run only if it says so (or says no run)
     const std::string of = inputs.is_object() ? inputs.value("run", "") : "";

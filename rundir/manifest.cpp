@@ -60,6 +60,22 @@ nlohmann::json document_header(const std::string& name, int version, bool proven
   return j;
 }
 
+bool has_document_header(const nlohmann::json& doc, const std::string& name, int version) {
+  if (!doc.is_object()) return false;
+  const auto schema = doc.find("schema");
+  const auto schema_version = doc.find("schema_version");
+  return schema != doc.end() && schema->is_string() &&
+         schema->get<std::string>() == "renderaudit-" + name && schema_version != doc.end() &&
+         schema_version->is_number_integer() && schema_version->get<int64_t>() == version;
+}
+
+void require_document_header(const nlohmann::json& doc, const std::string& name, int version,
+                             const std::string& path, const std::string& remedy) {
+  if (has_document_header(doc, name, version)) return;
+  throw util::UserError(path + ": expected schema renderaudit-" + name + " version " +
+                        std::to_string(version) + (remedy.empty() ? "" : " (" + remedy + ")"));
+}
+
 namespace {
 
 using json = nlohmann::json;

@@ -22,6 +22,14 @@ std::string utc_now_iso8601();
 // {"schema": "renderaudit-NAME", "schema_version": VERSION} and, with `provenance`, "tool" (name,
 // version, commit), "host" (host_description) and "created_utc", as the run manifest has.
 nlohmann::json document_header(const std::string& name, int version, bool provenance = true);
+// The check every reader of such a document makes before it reads on: whether `doc` is an object
+// whose "schema" is "renderaudit-NAME" and whose "schema_version" is `version`.
+bool has_document_header(const nlohmann::json& doc, const std::string& name, int version);
+// The same, as an error: unless has_document_header, throws util::UserError
+// "PATH: expected schema renderaudit-NAME version VERSION (REMEDY)", the parenthesis only when
+// `remedy` is not empty (e.g. "run `renderaudit analyze DIR` again").
+void require_document_header(const nlohmann::json& doc, const std::string& name, int version,
+                             const std::string& path, const std::string& remedy = "");
 
 }  // namespace ra::rundir
 

@@ -3,20 +3,21 @@
 
 #include <algorithm>
 
+#include "rundir/run_folder.h"
 #include "util/errors.h"
 
 namespace ra::rundir {
 
 void require_unchanged_experiment(const Experiment& exp, const std::string& run_dir) {
-  require_unchanged_experiment(exp, read_manifest_file_or_empty(run_dir + "/manifest.json"),
+  require_unchanged_experiment(exp, read_manifest_file_or_empty(run_folder::manifest(run_dir)),
                                run_dir);
 }
 
 void require_unchanged_experiment(const Experiment& exp, const RunManifest& m,
                                   const std::string& run_dir) {
-  const std::string manifest_path = run_dir + "/manifest.json";
+  const std::string manifest_path = run_folder::manifest(run_dir);
   if (!m.experiment || m.experiment->hash.empty() || m.experiment->hash == exp.hash) return;
-  const std::string toml = run_dir + "/experiment.toml";
+  const std::string toml = run_folder::experiment(run_dir);
   const ManifestExperiment& recorded = *m.experiment;
   const std::string recorded_seed =
       recorded.seed ? ", seed " + std::to_string(*recorded.seed) : std::string();
@@ -31,13 +32,13 @@ void require_unchanged_experiment(const Experiment& exp, const RunManifest& m,
 }
 
 Experiment load_run_experiment(const std::string& run_dir) {
-  Experiment exp = load_experiment(run_dir + "/experiment.toml");
+  Experiment exp = load_experiment(run_folder::experiment(run_dir));
   require_unchanged_experiment(exp, run_dir);
   return exp;
 }
 
 std::vector<Shard> planned_shards_of_run(const std::string& run_dir, const Experiment& exp) {
-  const RunManifest m = read_manifest_file_or_empty(run_dir + "/manifest.json");
+  const RunManifest m = read_manifest_file_or_empty(run_folder::manifest(run_dir));
   std::vector<Shard> plan = plan_shards(exp);
   if (!m.platforms_run || m.platforms_run->empty()) return plan;
   const std::vector<std::string>& run = *m.platforms_run;

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "rundir/experiment.h"
+#include "rundir/run_folder.h"
 
 namespace ra::rundir {
 
@@ -14,7 +15,7 @@ std::string Shard::id() const {
 }
 
 std::string Shard::records_path(const std::string& run_dir, rundir::RecordsFormat format) const {
-  return run_dir + "/records/" + id() + rundir::records_extension(format);
+  return run_folder::records(run_dir) + "/" + id() + rundir::records_extension(format);
 }
 
 std::string Shard::records_path(const std::string& run_dir) const {

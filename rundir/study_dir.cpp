@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "util/toml_locator.h"
@@ -51,11 +52,11 @@ void write_study_info(const std::string& dir, const StudyInfo& info) {
                             {"document", info.document},
                             {"analysed", info.analysed}};
   j.update(document_header("study", 1, false));
-  util::write_file_atomic(dir + "/study.json", j.dump(2) + "\n");
+  util::write_file_atomic(run_folder::study(dir), j.dump(2) + "\n");
 }
 
 std::optional<StudyInfo> read_study_info(const std::string& dir) {
-  const std::string path = dir + "/study.json";
+  const std::string path = run_folder::study(dir);
   if (!std::filesystem::exists(path)) return std::nullopt;
   std::ifstream in(path);
   StudyInfo info;

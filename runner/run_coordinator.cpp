@@ -19,9 +19,10 @@
 #include "platforms/renderer_check.h"
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "rundir/shard.h"
 #include "runner/recorded_failures.h"
-#include "runner/run_dir.h"
+#include "runner/output_dir.h"
 #include "runner/run_plan.h"
 #include "runner/progress_meter.h"
 #include "rundir/shard.h"
@@ -93,7 +94,7 @@ void note_large_views(const std::vector<rundir::Shard>& shards, const rundir::Ex
 
 nlohmann::json drivers_json(const std::string& dir) {
   nlohmann::json out = nlohmann::json::object();
-  for (const auto& e : fs::directory_iterator(dir + "/drivers")) {
+  for (const auto& e : fs::directory_iterator(rundir::run_folder::drivers(dir))) {
     if (e.path().extension() != ".json") continue;
     try {
       out[e.path().stem().string()] =
@@ -286,7 +287,7 @@ RunResult run_experiment(const RunOptions& options) {
   for (const rundir::Shard& s : shards) result.primitives_total += s.size();
 
   // The manifest says "running" before any worker starts.
-  const std::string manifest_path = dir + "/manifest.json";
+  const std::string manifest_path = rundir::run_folder::manifest(dir);
   rundir::RunManifest manifest =
       starting_manifest(options, exp, jobs, shards.size(), todo.size(), manifest_path);
   rundir::write_manifest(manifest_path, manifest);

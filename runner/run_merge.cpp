@@ -10,8 +10,9 @@
 #include "metrics/conformance.h"
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "runner/recorded_failures.h"
-#include "runner/run_dir.h"
+#include "runner/output_dir.h"
 #include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"
@@ -29,7 +30,7 @@ namespace {
 std::map<std::string, nlohmann::json> drivers_of(const std::string& dir) {
   std::map<std::string, nlohmann::json> out;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir + "/drivers", ec))
+  for (const auto& e : fs::directory_iterator(rundir::run_folder::drivers(dir), ec))
     if (e.path().extension() == ".json")
       out[e.path().stem().string()] = util::read_json_or_null(e.path().string());
   return out;
@@ -65,7 +66,7 @@ rundir::Experiment common_experiment(const MergeOptions& options) {
     std::error_code ec;
     if (in == options.out_dir || fs::equivalent(in, options.out_dir, ec))
       throw util::UserError("merge: " + in + " is both an input and --out");
-    if (!fs::exists(in + "/experiment.toml"))
+    if (!fs::exists(rundir::run_folder::experiment(in)))
       throw util::UserError("merge: " + in + ": not a run directory (no experiment.toml)");
     experiments.push_back(rundir::load_run_experiment(in));
     if (experiments.back().hash != experiments.front().hash) {
@@ -133,7 +134,7 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
         if (!platforms.count(s.platform) && !rundir::find_shard_records(in, s, false).path.empty())
           platforms.insert(s.platform);
       for (const std::string& platform : platforms)
-        if (!fs::exists(in + "/drivers/" + platform + ".json"))
+        if (!fs::exists(rundir::run_folder::driver(in, platform)))
           throw util::UserError(
               "merge: " + in + " holds records of " + platform + " but no drivers/" + platform +
               ".json, so the driver that drew them cannot be compared "
@@ -153,7 +154,8 @@ void require_one_driver_per_platform(const MergeOptions& options, const std::vec
                               " (--allow-driver-mismatch merges them anyway)");
       }
       if (!options.allow_driver_mismatch)
-        require_same_libraries(in + "/drivers/" + platform + ".json", platform, j, &libraries_seen);
+        require_same_libraries(rundir::run_folder::driver(in, platform), platform, j,
+                               &libraries_seen);
     }
   }
 }
@@ -176,7 +178,8 @@ std::map<std::string, uint64_t> copy_shards(const MergeOptions& options,
       if (held.path.empty() || !held.damage.empty()) continue;
       const std::string& source = held.path;
       if (++holders == 1) {
-        copy_atomically(source, options.out_dir + "/records/" + fs::path(source).filename().string());
+        copy_atomically(source, rundir::run_folder::records(options.out_dir) + "/" +
+                                    fs::path(source).filename().string());
         ++result->shards_copied;
         ++result->shards_present;
         ++taken_from[in];
@@ -194,7 +197,7 @@ int common_conformance_rules(const std::vector<rundir::RunManifest>& inputs, con
   int rules = 0;
   std::string rules_from;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
-    const std::string path = options.inputs[i] + "/manifest.json";
+    const std::string path = rundir::run_folder::manifest(options.inputs[i]);
     const int r = inputs[i].rules_judged_by();
     if (r == 0) continue;
     if (rules != 0 && r != rules)
@@ -229,12 +232,13 @@ rundir::RunManifest merged_manifest(const MergeOptions& options, const rundir::E
                             const std::map<std::string, std::string>& driver_file,
                             MergeResult* result) {
   const std::string& out = options.out_dir;
-  const rundir::RunManifest before = rundir::read_manifest_file_or_empty(out + "/manifest.json");
+  const rundir::RunManifest before =
+      rundir::read_manifest_file_or_empty(rundir::run_folder::manifest(out));
   std::vector<rundir::RunManifest> inputs;
   std::vector<nlohmann::json> input_json;
   for (const std::string& in : options.inputs) {
-    input_json.push_back(rundir::read_manifest_json(in + "/manifest.json"));
-    inputs.push_back(rundir::read_manifest(input_json.back(), in + "/manifest.json"));
+    input_json.push_back(rundir::read_manifest_json(rundir::run_folder::manifest(in)));
+    inputs.push_back(rundir::read_manifest(input_json.back(), rundir::run_folder::manifest(in)));
   }
   rundir::RunManifest m;
   m.schema = "renderaudit-manifest";
@@ -242,8 +246,8 @@ rundir::RunManifest merged_manifest(const MergeOptions& options, const rundir::E
   m.invocations = before.invocations;
   m.tool = {{"name", "renderaudit"}, {"version", rundir::project_version()}, {"commit", rundir::project_commit()}};
   m.conformance_rules = common_conformance_rules(inputs, options);
-  m.experiment = rundir::ManifestExperiment{exp.name, out + "/experiment.toml", exp.hash, exp.seed,
-                                    exp.platforms};
+  m.experiment = rundir::ManifestExperiment{exp.name, rundir::run_folder::experiment(out), exp.hash,
+                                            exp.seed, exp.platforms};
   m.host = rundir::host_description();
   m.merged = rundir::utc_now_iso8601();
   m.inputs.emplace();
@@ -270,7 +274,7 @@ rundir::RunManifest merged_manifest(const MergeOptions& options, const rundir::E
   }
   m.drivers = nlohmann::json::object();
   for (const auto& [platform, path] : driver_file)
-    m.drivers[platform] = util::read_json_or_null(out + "/drivers/" + platform + ".json");
+    m.drivers[platform] = util::read_json_or_null(rundir::run_folder::driver(out, platform));
   m.shards = rundir::ManifestShardCounts{result->shards_total, result->shards_present,
                                  result->shards_in_several_inputs};
   // the crash and timeout records DIR holds now, whichever merge or run put them there
@@ -301,12 +305,12 @@ MergeResult merge_runs(const MergeOptions& options) {
   std::map<std::string, std::string> driver_file;
   for (auto it = options.inputs.rbegin(); it != options.inputs.rend(); ++it)
     for (const auto& [platform, j] : drivers_of(*it))
-      driver_file[platform] = *it + "/drivers/" + platform + ".json";
+      driver_file[platform] = rundir::run_folder::driver(*it, platform);
   for (const auto& [platform, path] : driver_file)
-    copy_atomically(path, options.out_dir + "/drivers/" + platform + ".json");
+    copy_atomically(path, rundir::run_folder::driver(options.out_dir, platform));
 
-  rundir::write_manifest(options.out_dir + "/manifest.json",
-                 merged_manifest(options, exp, plan, taken_from, driver_file, &result));
+  rundir::write_manifest(rundir::run_folder::manifest(options.out_dir),
+                         merged_manifest(options, exp, plan, taken_from, driver_file, &result));
   return result;
 }
 

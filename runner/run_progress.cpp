@@ -1,6 +1,7 @@
 // DIR/progress.json (see the header).
 #include "runner/run_progress.h"
 
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 
 namespace ra::runner {
@@ -40,7 +41,9 @@ RunProgress run_progress_from_json(const nlohmann::json& j) {
   return p;
 }
 
-std::string progress_path(const std::string& run_dir) { return run_dir + "/progress.json"; }
+std::string progress_path(const std::string& run_dir) {
+  return rundir::run_folder::progress(run_dir);
+}
 
 void write_run_progress(const std::string& run_dir, const RunProgress& p) {
   try {

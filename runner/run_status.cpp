@@ -10,6 +10,7 @@
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
 #include "rundir/run_experiment.h"
+#include "rundir/run_folder.h"
 #include "rundir/shard.h"
 #include "rundir/shard_records.h"
 #include "rundir/slicing.h"
@@ -75,13 +76,14 @@ std::string RunStatus::state() const {
 }
 
 RunStatus read_run_status(const std::string& dir, const std::string& squeue, bool check_seals) {
-  if (!fs::exists(dir + "/experiment.toml"))
+  if (!fs::exists(rundir::run_folder::experiment(dir)))
     throw util::UserError(dir + ": not a run directory (no experiment.toml)");
   RunStatus s;
   s.dir = dir;
   const rundir::Experiment exp = rundir::load_run_experiment(dir);
   s.experiment = exp.name;
-  const rundir::RunManifest manifest = rundir::read_manifest_file_or_empty(dir + "/manifest.json");
+  const rundir::RunManifest manifest =
+      rundir::read_manifest_file_or_empty(rundir::run_folder::manifest(dir));
   s.manifest_status = manifest.status;
   // the name the run was given (a copy named experiment.toml would name it "experiment")
   if (manifest.experiment && !manifest.experiment->name.empty())
@@ -91,8 +93,9 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
   std::vector<std::string> sources = {dir};
   std::error_code ec;
   std::vector<std::string> slice_dirs;
-  for (const auto& e : fs::directory_iterator(dir + "/slices", ec))
-    if (fs::exists(e.path() / "experiment.toml")) slice_dirs.push_back(e.path().string());
+  for (const auto& e : fs::directory_iterator(rundir::run_folder::slices(dir), ec))
+    if (fs::exists(rundir::run_folder::experiment(e.path().string())))
+      slice_dirs.push_back(e.path().string());
   std::sort(slice_dirs.begin(), slice_dirs.end());
   sources.insert(sources.end(), slice_dirs.begin(), slice_dirs.end());
 
@@ -100,7 +103,8 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
   // a run of some platforms only (--platform): the manifest of DIR or of its first slice says so
   rundir::RunManifest platforms_from = manifest;
   if (!manifest.platforms_run && !slice_dirs.empty())
-    platforms_from = rundir::read_manifest_file_or_empty(slice_dirs.front() + "/manifest.json");
+    platforms_from =
+        rundir::read_manifest_file_or_empty(rundir::run_folder::manifest(slice_dirs.front()));
   if (platforms_from.platforms_run) {
     const auto& keep = *platforms_from.platforms_run;
     shards.erase(std::remove_if(shards.begin(), shards.end(),
@@ -127,7 +131,8 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
       s.writers.push_back(std::move(w));
     } else {
       const rundir::RunManifest m =
-          src == dir ? manifest : rundir::read_manifest_file_or_empty(src + "/manifest.json");
+          src == dir ? manifest
+                     : rundir::read_manifest_file_or_empty(rundir::run_folder::manifest(src));
       for (const rundir::ManifestShardNote& f : m.failures_or_none()) failed.insert(f.shard);
     }
   }
@@ -164,7 +169,7 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
   for (const auto& w : s.writers)
     if (w.progress.left_s >= 0) s.left_s = std::max(s.left_s, w.progress.left_s);
 
-  const nlohmann::json jobs = util::read_json_or_null(dir + "/slurm/jobs.json");
+  const nlohmann::json jobs = util::read_json_or_null(rundir::run_folder::slurm_jobs(dir));
   if (jobs.is_object()) {
     s.slurm = true;
     s.array_job = jobs.value("array_job", "");
@@ -174,7 +179,7 @@ RunStatus read_run_status(const std::string& dir, const std::string& squeue, boo
     for (const auto& j : s.jobs)
       if (j.id.rfind(s.array_job + "_", 0) == 0 && is_pending(j.state)) ++s.slices_not_started;
     try {
-      s.gather_exit = std::stoi(util::read_file(dir + "/slurm/gather.exit"));
+      s.gather_exit = std::stoi(util::read_file(rundir::run_folder::slurm(dir) + "/gather.exit"));
     } catch (const std::exception&) {
     }
   }

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "rundir/records_reader.h"
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "rundir/shard_file.h"
 #include "runner/case_measurement.h"
@@ -20,7 +21,7 @@ ShardRecovery::ShardRecovery(std::string run_dir, const rundir::Experiment& exp,
     : run_dir_(std::move(run_dir)), exp_(exp), timeout_s_(timeout_s) {}
 
 std::string ShardRecovery::records_dir(const WorkItem& item) const {
-  return item.is_part() ? parts_dir(run_dir_) : run_dir_ + "/records";
+  return item.is_part() ? parts_dir(run_dir_) : rundir::run_folder::records(run_dir_);
 }
 
 std::vector<WorkItem> ShardRecovery::split(const WorkItem& item) {

@@ -13,6 +13,7 @@
 
 #include "rundir/experiment.h"
 #include "metrics/records.h"
+#include "rundir/run_folder.h"
 #include "rundir/shard.h"
 
 namespace ra::runner {
@@ -42,7 +43,9 @@ class ShardRecovery {
   ShardRecovery(std::string run_dir, const rundir::Experiment& exp, double timeout_s);
   static constexpr double kMinPartTimeout = 5.0;
 
-  static std::string parts_dir(const std::string& run_dir) { return run_dir + "/parts"; }
+  static std::string parts_dir(const std::string& run_dir) {
+    return rundir::run_folder::parts(run_dir);
+  }
   // Where the worker for `item` writes its records: DIR/records, or DIR/parts for a part.
   std::string records_dir(const WorkItem& item) const;
 

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "rundir/shard_file.h"
 #include "runner/case_measurement.h"
@@ -29,7 +30,7 @@ namespace ra::runner {
 static void write_driver_info(const std::string& run_dir, const rundir::PlatformSpec& spec,
                               platforms::Platform& platform,
                               const runner::EffectiveSubpixel& effective) {
-  const std::string path = run_dir + "/drivers/" + spec.name + ".json";
+  const std::string path = rundir::run_folder::driver(run_dir, spec.name);
   struct stat st;
   if (::stat(path.c_str(), &st) == 0) return;
   platform.measure_timer_over_cpu();

@@ -11,7 +11,8 @@
 
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
-#include "runner/run_dir.h"
+#include "rundir/run_folder.h"
+#include "runner/output_dir.h"
 #include "rundir/shard.h"
 #include "util/worker_program.h"
 #include "util/atomic_file.h"
@@ -177,11 +178,12 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
   // the tasks (another experiment's hash), never mixed in.
   std::string experiment = fs::absolute(run.experiment_path).lexically_normal().string();
   if (!slurm.allow_node_local && !node_local_reason(experiment).empty())
-    experiment = dir + "/experiment.toml";
+    experiment = rundir::run_folder::experiment(dir);
   const std::string n = std::to_string(sub.slices);
   const std::string opts = passed_on(run, jobs);
+  const std::string slurm_dir = rundir::run_folder::slurm(dir);
 
-  sub.array_script = header("renderaudit-" + exp.name, jobs, slurm, dir + "/slurm/slice-%a.log");
+  sub.array_script = header("renderaudit-" + exp.name, jobs, slurm, slurm_dir + "/slice-%a.log");
   sub.array_script += "#SBATCH --array=1-" + n +
                       (slurm.max_parallel > 0 ? "%" + std::to_string(slurm.max_parallel) : "") +
                       "\n";
@@ -194,8 +196,8 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
       "exec " + util::shell_quote(program) + " run " + util::shell_quote(experiment) + " --out " + util::shell_quote(dir) +
       "/slices/$k --slice $k/" + n + opts + "\n";
 
-  sub.gather_script = header("renderaudit-" + exp.name + "-gather", jobs, slurm,
-                             dir + "/slurm/gather.log");
+  sub.gather_script =
+      header("renderaudit-" + exp.name + "-gather", jobs, slurm, slurm_dir + "/gather.log");
   sub.gather_script +=
       "# Runs after every task of the array has ended, however it ended (afterany): merges the\n"
       "# slices into the run directory, then runs what is still missing there (a cancelled task's\n"
@@ -204,7 +206,8 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
       "set -u\n"
       "dir=" + util::shell_quote(dir) + "\n"
       "slices=()\n"
-      "for d in \"$dir\"/slices/*; do [ -f \"$d/experiment.toml\" ] && slices+=(\"$d\"); done\n"
+      "for d in \"$dir\"/slices/*; do [ -f \"$d/" + rundir::run_folder::kExperimentFile +
+      "\" ] && slices+=(\"$d\"); done\n"
       "if [ ${#slices[@]} -gt 0 ]; then\n"
       "  " + util::shell_quote(program) + " merge \"${slices[@]}\" --out \"$dir\"\n"
       "  rc=$?\n"
@@ -221,19 +224,21 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
   // DIR made (or reopened: the same experiment only) before anything is submitted
   prepare_run_dir(exp, dir, "run --slurm");
   std::error_code ec;
-  fs::create_directories(dir + "/slurm", ec);
-  fs::create_directories(dir + "/slices", ec);
-  if (ec) throw util::UserError(dir + "/slices: cannot create (" + ec.message() + ")");
-  fs::remove(dir + "/slurm/gather.exit", ec);
-  util::write_file_atomic(dir + "/slurm/array.sbatch", sub.array_script);
-  util::write_file_atomic(dir + "/slurm/gather.sbatch", sub.gather_script);
-  sub.array_job = submit(slurm, {}, dir + "/slurm/array.sbatch");
-  sub.gather_job = submit(slurm, {"--dependency=afterany:" + sub.array_job},
-                          dir + "/slurm/gather.sbatch");
+  fs::create_directories(slurm_dir, ec);
+  fs::create_directories(rundir::run_folder::slices(dir), ec);
+  if (ec)
+    throw util::UserError(rundir::run_folder::slices(dir) + ": cannot create (" + ec.message() +
+                          ")");
+  fs::remove(slurm_dir + "/gather.exit", ec);
+  util::write_file_atomic(slurm_dir + "/array.sbatch", sub.array_script);
+  util::write_file_atomic(slurm_dir + "/gather.sbatch", sub.gather_script);
+  sub.array_job = submit(slurm, {}, slurm_dir + "/array.sbatch");
+  sub.gather_job =
+      submit(slurm, {"--dependency=afterany:" + sub.array_job}, slurm_dir + "/gather.sbatch");
   nlohmann::json jobs_json = {{"array_job", sub.array_job},  {"gather_job", sub.gather_job},
                               {"slices", sub.slices},        {"submitted", rundir::utc_now_iso8601()},
                               {"max_parallel", slurm.max_parallel}, {"cpus_per_task", jobs}};
-  util::write_file_atomic(dir + "/slurm/jobs.json", jobs_json.dump(1) + "\n");
+  util::write_file_atomic(rundir::run_folder::slurm_jobs(dir), jobs_json.dump(1) + "\n");
   return sub;
 }
 

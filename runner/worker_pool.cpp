@@ -12,6 +12,7 @@
 #include <filesystem>
 
 #include "rundir/driver_build.h"
+#include "rundir/run_folder.h"
 #include "runner/shard_server.h"
 #include "util/child_process.h"
 #include "util/number_text.h"
@@ -95,7 +96,7 @@ std::vector<std::string> WorkerPool::busy_shards() const {
 }
 
 std::string WorkerPool::log_path(const WorkItem& item) const {
-  return settings_.dir + "/logs/" + item.shard.id() + (item.attempt > 1 ? ".retry" : "") + ".log";
+  return rundir::run_folder::shard_log(settings_.dir, item.shard.id(), item.attempt > 1);
 }
 
 // A shard a server may take: a whole one at its first attempt (re-runs and bisection parts get

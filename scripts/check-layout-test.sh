@@ -20,13 +20,15 @@ expect=(
   "layout: CMakeLists.txt:7: mid is to link no driver code (RA_DRIVER_FREE), but it reaches low: mid -> low"
   "layout: scripts/pipes.sh:4: "
   "grep -q' under pipefail: the command before it dies of SIGPIPE"
-  "layout: 9 finding(s)"
+  "layout: mid/run_names.cpp:7: spells the run folder's manifest.json as a path; build it with rundir/run_folder.h"
+  "layout: mid/run_names.cpp:8: spells the run folder's experiment.toml as a path"
+  "layout: 11 finding(s)"
 )
 for line in "${expect[@]}"; do
   grep -qF -- "$line" <<<"$out" || { echo "missing: $line"; bad=1; }
 done
-for absent in long_but_whole helpers_testing "reaching_test.cpp:4" "namespace ra::mid" detail "pipes.sh:[5-8]"; do
+for absent in long_but_whole helpers_testing "namespace ra::mid" detail "pipes.sh:[5-8]" "run_names.cpp:[0-69]" "reaching_test.cpp:4"; do
   if grep -q -- "$absent" <<<"$out"; then echo "reported what the rules allow: $absent"; bad=1; fi
 done
 if [ $bad -ne 0 ]; then echo "--- the check printed:"; echo "$out"; exit 1; fi
-echo "layout check: the fixture's 9 violations found, each with file and line"
+echo "layout check: the fixture's 11 violations found, each with file and line"

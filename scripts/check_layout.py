@@ -11,6 +11,9 @@ Fails (exit 1, one line "layout: FILE:LINE: ..." per finding) on:
   - a link between two of the project's libraries in CMakeLists.txt that no include needs, or an
     include of another library's folder that no link provides, directly or through another link;
   - a folder of RA_DRIVER_FREE (CMakeLists.txt) whose links reach a folder of RA_DRIVERS;
+  - outside rundir/, a run folder's file name spelled as a path ("/manifest.json" or
+    / "manifest.json", and the other names of RUN_FOLDER_NAMES): paths into a run directory are
+    built by rundir/run_folder.h; prose (a help text's "holds experiment.toml") is not a path;
   - in a shell script under scripts/ or tests/ that sets pipefail, a pipe into a command that may
     stop reading before the writer is done (`| head`, `| grep -q`, `-m`, `-l`, `--quiet`, ...): the
     writer then dies of SIGPIPE and the pipeline fails now and then. Capture the output first
@@ -39,6 +42,15 @@ NAMESPACE_OF_FOLDER = {
 # Functions over the limit not yet split, as (file, function name) pairs. An entry
 # whose function is now short is reported as stale (not an error) so that it can be removed.
 KNOWN_LONG_FUNCTIONS = set()
+
+
+# The file names of a run directory (rundir/run_folder.h) and the folder that alone spells them.
+RUN_FOLDER_NAMES = ("experiment.toml", "manifest.json", "tally.json", "figures.json", "index.json",
+                    "bisect.json", "study.json", "progress.json", "timing.json")
+RUN_FOLDER_HOME = "rundir"
+# A literal that starts with "/NAME" (dir + "/manifest.json"), or "NAME" after the path operator /.
+RUN_FOLDER_PATH_RE = re.compile(r'"/(%s)\b|/\s*"(%s)"' % (
+    "|".join(re.escape(n) for n in RUN_FOLDER_NAMES), "|".join(re.escape(n) for n in RUN_FOLDER_NAMES)))
 
 
 def is_test_file(path):
@@ -256,6 +268,23 @@ def check_code(root, layers, findings, notes):
             notes.append("%s: %s is no longer over the limit: remove it from KNOWN_LONG_FUNCTIONS" % (f, name))
 
 
+def check_run_folder_names(root, layers, findings):
+    """Outside rundir/, no non-test file builds a path into a run directory by its file's name."""
+    for folder in layers:
+        if folder == RUN_FOLDER_HOME:
+            continue
+        for f in source_files(root, folder):
+            if is_test_file(f):
+                continue
+            for k, line in enumerate(open(os.path.join(root, f), encoding="utf-8"), 1):
+                if line.lstrip().startswith("//"):
+                    continue
+                m = RUN_FOLDER_PATH_RE.search(line)
+                if m:
+                    findings.append("%s:%d: spells the run folder's %s as a path; build it with "
+                                    "rundir/run_folder.h" % (f, k, m.group(1) or m.group(2)))
+
+
 def check_links(root, layers, cmake, findings, included):
     """Links between the project's libraries (target_link_libraries of a layer folder's library)
     against the folders its non-test files include."""
@@ -370,6 +399,7 @@ def main():
     check_test_includes(root, layers, rank, findings)
     check_code(root, layers, findings, notes)
     check_links(root, layers, cmake, findings, included)
+    check_run_folder_names(root, layers, findings)
     check_pipes(root, findings)
     for n in notes:
         print("layout: note: " + n)

@@ -13,6 +13,7 @@
 
 #include "platforms/platform_probe.h"
 #include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "scenes/camera_path.h"
 #include "stats/descriptive.h"
 #include "terrain_lod/lod_checks.h"
@@ -92,14 +93,16 @@ void prepare_output_dir(const std::string& dir) {
   std::filesystem::create_directories(dir, ec);
   if (!std::filesystem::is_directory(dir))
     throw util::UserError("cannot create the output directory " + dir + ": " + ec.message());
-  std::filesystem::remove(dir + "/study.json", ec);  // a rerun is incomplete until it ends
+  // a rerun is incomplete until it ends
+  std::filesystem::remove(rundir::run_folder::study(dir), ec);
   // and what analyze / plot derived from an earlier run no longer describes this one
   std::filesystem::remove(dir + "/lod_table.csv", ec);
   std::filesystem::remove(dir + "/lod.md", ec);
-  std::filesystem::remove_all(dir + "/figures", ec);
-  for (const char* f : {"/lod_table.csv", "/lod.md", "/figures"})
-    if (std::filesystem::exists(dir + f))
-      throw util::UserError("cannot remove the stale " + dir + f + " of an earlier run");
+  std::filesystem::remove_all(rundir::run_folder::figures(dir), ec);
+  for (const std::string& f :
+       {dir + "/lod_table.csv", dir + "/lod.md", rundir::run_folder::figures(dir)})
+    if (std::filesystem::exists(f))
+      throw util::UserError("cannot remove the stale " + f + " of an earlier run");
 }
 
 // The height field of the experiment: generated, or read from its file and cropped to whole tiles.

@@ -9,6 +9,7 @@
 
 #include "plots/figure_set.h"
 #include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "rundir/study_dir.h"
 #include "stats/descriptive.h"
 #include "timing/timing_document.h"
@@ -349,7 +350,7 @@ std::vector<std::string> write_timing_outputs(const StudyResults& r, const std::
     for (const std::string& p : plots::write_figure_set(timing_figures(r), dir)) written.push_back(p);
   const nlohmann::json doc = timing_json(r);
   put("timing.md", timing_markdown(doc));
-  put("timing.json", doc.dump(2) + "\n");
+  put(rundir::run_folder::kTimingFile, doc.dump(2) + "\n");
   // last: its presence means a complete study folder; the study is analysed as it runs
   rundir::StudyInfo info;
   info.kind = rundir::StudyKind::kTiming;
@@ -361,7 +362,7 @@ std::vector<std::string> write_timing_outputs(const StudyResults& r, const std::
   info.document = "timing.md";
   info.analysed = true;
   rundir::write_study_info(dir, info);
-  written.push_back(dir + "/study.json");
+  written.push_back(rundir::run_folder::study(dir));
   return written;
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rundir/run_folder.h"
 #include "util/errors.h"
 #include "timing/timing_outputs.h"
 #include "platforms/platform_probe.h"
@@ -67,7 +68,8 @@ std::string summary_of(const StudyResults& r, const std::string& dir) {
     }
     s += "\n";
   }
-  s += "wrote " + dir + "/timing.json (and object_samples.csv, frames.csv, pos_tables.csv, " +
+  s += "wrote " + rundir::run_folder::timing(dir) +
+       " (and object_samples.csv, frames.csv, pos_tables.csv, " +
        (r.repeated.empty() ? "" : "table6_repeated.csv, system_task_c_repeated.csv, ") +
        "figures/)\n";
   return s;

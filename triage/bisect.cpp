@@ -9,6 +9,7 @@
 
 #include "rundir/platform_spec.h"
 #include "rundir/run_experiment.h"
+#include "rundir/run_folder.h"
 #include "runner/git_command.h"
 #include "triage/bisect_judging.h"
 #include "triage/bisect_plan.h"
@@ -84,7 +85,7 @@ class Bisection {
     for (const BisectStep& s : r.steps) r.total_build_s += s.build_s;
     r.seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
     save();
-    r.report_path = o_.out_dir + "/bisect.md";
+    r.report_path = rundir::run_folder::bisection_md(o_.out_dir);
     write_bisect_report(o_, r, judged_, progress_ ? progress_ : [](const std::string&) {});
     return r;
   }
@@ -101,7 +102,7 @@ class Bisection {
   // Everything that can be refused is refused before anything is built.
   void check_inputs() {
     std::error_code ec;
-    if (!fs::exists(o_.run_dir + "/experiment.toml", ec))
+    if (!fs::exists(rundir::run_folder::experiment(o_.run_dir), ec))
       throw util::UserError("bisect: " + o_.run_dir + " is not a run directory (no experiment.toml)");
     if (o_.source.empty() || !fs::is_directory(o_.source, ec))
       throw util::UserError("bisect: --source '" + o_.source + "' is not a folder");
@@ -148,7 +149,7 @@ class Bisection {
       throw util::UserError("bisect: platform '" + o_.platform +
                             "' cannot draw with a driver build (allowed: the osmesa-* and "
                             "surfaceless egl-* platforms, vk-lavapipe, faulty)");
-    if (o_.out_dir.empty()) o_.out_dir = o_.run_dir + "/bisect";
+    if (o_.out_dir.empty()) o_.out_dir = rundir::run_folder::bisect(o_.run_dir);
     if (fs::exists(o_.out_dir, ec) && !fs::is_directory(o_.out_dir, ec))
       throw util::UserError("bisect: --out " + o_.out_dir +
                             " is a file; --out names a folder for bisect.json and bisect.md");
@@ -168,7 +169,7 @@ class Bisection {
   // The steps of an earlier invocation with the same inputs; the tree's branch restored when
   // that invocation was killed at a step.
   void load_state() {
-    st_.result.json_path = o_.out_dir + "/bisect.json";
+    st_.result.json_path = rundir::run_folder::bisection(o_.out_dir);
     nlohmann::json selection_ids = nlohmann::json::array();
     for (const BisectPrimitive& p : st_.result.selection) selection_ids.push_back(p.label());
     st_.inputs = {{"run", fs::weakly_canonical(o_.run_dir).string()},

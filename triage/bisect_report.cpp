@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "rundir/run_folder.h"
 #include "triage/primitive_image.h"
 #include "audit/reproducer.h"
 #include "rundir/driver_build.h"
@@ -35,7 +36,8 @@ std::string picture(const BisectOptions& o, const BisectStep& s, const BisectPri
   const std::string dir = o.out_dir + "/.show-" + short_hash(s.commit);
   std::error_code ec;
   fs::create_directories(dir, ec);
-  util::write_file_atomic(dir + "/experiment.toml", bisect_step_experiment(o.run_dir, s.build_dir));
+  util::write_file_atomic(rundir::run_folder::experiment(dir),
+                          bisect_step_experiment(o.run_dir, s.build_dir));
   const pid_t pid = util::fork_child([&] {
     try {
       ShowRequest q;

@@ -9,6 +9,7 @@
 #include "audit/audit_compare.h"
 #include "rundir/run_experiment.h"
 #include "rundir/manifest.h"
+#include "rundir/run_folder.h"
 #include "util/errors.h"
 
 namespace ra::triage {
@@ -20,7 +21,8 @@ std::string group_letter(int g) { return g >= 0 && g < 26 ? std::string(1, char(
 // platform that is not among them.
 void require_platform(const std::string& run, const std::string& platform, const char* option) {
   std::vector<std::string> drawn = rundir::load_run_experiment(run).platforms;
-  const rundir::RunManifest m = rundir::read_manifest_file_or_empty(run + "/manifest.json");
+  const rundir::RunManifest m =
+      rundir::read_manifest_file_or_empty(rundir::run_folder::manifest(run));
   if (m.platforms_run) drawn = *m.platforms_run;
   if (std::find(drawn.begin(), drawn.end(), platform) != drawn.end()) return;
   std::string have;

@@ -181,8 +181,7 @@ BisectState load_bisect_state(const std::string& path) {
   }
   const Reader rd(path);
   BisectState st;
-  if (rd.text(j, "", "schema") != "renderaudit-bisection" ||
-      rd.count(j, "", "schema_version") != 2)
+  if (!rundir::has_document_header(j, "bisection", 2))
     rd.bad("schema_version", "is not 2 of renderaudit-bisection: written by another renderaudit "
                              "(a bisection of git bisect's kind)");
   st.inputs = rd.at(j, "", "inputs");

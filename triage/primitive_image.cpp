@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "rundir/run_folder.h"
 #include "triage/image_legend.h"
 #include "runner/case_measurement.h"
 #include "metrics/conformance.h"
@@ -315,7 +316,7 @@ PixelPicture draw_pixel_picture(const geometry::PixelSet& lit, const geometry::P
 }
 
 PrimitiveImage show_primitive(const ShowRequest& q) {
-  const std::string toml = (fs::path(q.run_dir) / "experiment.toml").string();
+  const std::string toml = rundir::run_folder::experiment(q.run_dir);
   if (!fs::is_regular_file(toml))
     throw util::UserError(q.run_dir + ": not a run directory (no experiment.toml)");
   const rundir::Experiment exp = rundir::load_run_experiment(q.run_dir);

@@ -13,6 +13,7 @@
 #include "audit/history_db.h"
 #include "rundir/manifest.h"
 #include "rundir/platform_spec.h"
+#include "rundir/run_folder.h"
 #include "runner/git_command.h"
 #include "triage/bisect.h"
 #include "util/atomic_file.h"
@@ -175,7 +176,7 @@ class Night {
     // Both builds drawn tonight, in one run.
     std::vector<std::string> platforms;
     const std::string last_dir = backwards ? "" : last.build_dir;
-    const std::string exp = n_.dir + "/experiment.toml";
+    const std::string exp = rundir::run_folder::experiment(n_.dir);
     util::write_file_atomic(exp, night_experiment(o_.experiment, last_dir, built.build.dir, platforms));
     const std::string run = n_.dir + "/run";
     n_.run_dir = run;

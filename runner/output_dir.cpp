@@ -1,11 +1,12 @@
-// Creating and reopening run directories (see the header).
-#include "runner/run_dir.h"
+// Creating, reopening and claiming a run's output directory (see the header).
+#include "runner/output_dir.h"
 
 #include <filesystem>
 #include <system_error>
 
 #include "rundir/manifest.h"
 #include "rundir/run_experiment.h"
+#include "rundir/run_folder.h"
 #include "runner/shard_recovery.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -17,8 +18,9 @@ namespace ra::runner {
 // Temporary files of writers that are gone (we hold the lock, so none is being written).
 void remove_temporaries(const std::string& dir) {
   std::error_code ec;
-  for (const char* sub : {"/records", "/drivers", ""})
-    for (const auto& e : fs::directory_iterator(dir + sub, ec))
+  for (const std::string& folder :
+       {rundir::run_folder::records(dir), rundir::run_folder::drivers(dir), dir})
+    for (const auto& e : fs::directory_iterator(folder, ec))
       if (e.path().extension() == ".tmp") fs::remove(e.path(), ec);
 }
 
@@ -28,17 +30,18 @@ std::unique_ptr<util::DirLock> prepare_run_dir(const rundir::Experiment& exp, co
   // A folder of something else is refused before anything is written into it (a run's folder
   // has experiment.toml, or at least the .lock of a run that is making it).
   if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec) &&
-      !fs::exists(dir + "/experiment.toml") && !fs::exists(util::DirLock::lock_path(dir)))
+      !fs::exists(rundir::run_folder::experiment(dir)) &&
+      !fs::exists(util::DirLock::lock_path(dir)))
     throw util::UserError(dir +
                           ": exists and is not a run directory (no experiment.toml); choose "
                           "another --out");
   fs::create_directories(dir, ec);
   if (ec) throw util::UserError(dir + ": cannot create the run directory (" + ec.message() + ")");
   auto lock = std::make_unique<util::DirLock>(dir, who);
-  const std::string copy = dir + "/experiment.toml";
+  const std::string copy = rundir::run_folder::experiment(dir);
   bool empty = true;
   for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().filename() != ".lock") empty = false;
+    if (e.path() != fs::path(util::DirLock::lock_path(dir))) empty = false;
   if (fs::exists(copy)) {
     const rundir::Experiment previous = rundir::load_experiment(copy);
     // The copy is the experiment of the records only while the manifest's hash is its own. A
@@ -46,7 +49,7 @@ std::unique_ptr<util::DirLock> prepare_run_dir(const rundir::Experiment& exp, co
     // no hash to hold the copy to.
     bool manifest_readable = true;
     try {
-      rundir::read_manifest_json(dir + "/manifest.json");
+      rundir::read_manifest_json(rundir::run_folder::manifest(dir));
     } catch (const util::UserError&) {
       manifest_readable = false;
     }
@@ -70,11 +73,13 @@ std::unique_ptr<util::DirLock> prepare_run_dir(const rundir::Experiment& exp, co
                           ": exists and is not a run directory (no experiment.toml); choose "
                           "another --out");
   }
-  for (const char* sub : {"/records", "/drivers", "/logs"}) {
-    fs::create_directories(dir + sub, ec);
-    if (ec) throw util::UserError(dir + sub + ": cannot create (" + ec.message() + ")");
+  for (const std::string& folder :
+       {rundir::run_folder::records(dir), rundir::run_folder::drivers(dir),
+        rundir::run_folder::logs(dir)}) {
+    fs::create_directories(folder, ec);
+    if (ec) throw util::UserError(folder + ": cannot create (" + ec.message() + ")");
   }
-  fs::remove_all(ShardRecovery::parts_dir(dir));  // a bisection cut short restarts from scratch
+  fs::remove_all(rundir::run_folder::parts(dir));  // a bisection cut short restarts from scratch
   if (!fs::exists(copy)) util::write_file_atomic(copy, exp.text);
   remove_temporaries(dir);  // what a killed run left behind: their shards are redone
   return lock;

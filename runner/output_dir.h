@@ -1,6 +1,7 @@
-// A run directory being written: created (or reopened) and locked before anything in it is judged,
-// so that two writers started together never judge each other's half-made directory. Used by
-// `run` and `merge`.
+// The output directory of a run being written (`run`, `merge`, a Slurm submission): created or
+// reopened, and claimed by its lock before anything in it is judged, so that two writers started
+// together never judge each other's half-made directory. The names of what it holds are
+// rundir/run_folder.h's.
 #pragma once
 
 #include <memory>
