@@ -78,9 +78,9 @@ inline metrics::Record unmeasured_line(const std::string& platform, int view, st
 inline std::string write_records(const std::filesystem::path& run,
                                  const std::vector<metrics::Record>& records,
                                  const std::string& name = "x.csv") {
-  const std::filesystem::path records = rundir::run_folder::records(run.string());
-  std::filesystem::create_directories(records);
-  const auto path = records / name;
+  const std::filesystem::path folder = rundir::run_folder::records(run.string());
+  std::filesystem::create_directories(folder);
+  const auto path = folder / name;
   std::ofstream out(path);
   out << metrics::records_header() << "\n";
   for (const metrics::Record& r : records) write_record(out, r);
