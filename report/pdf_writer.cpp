@@ -1,46 +1,23 @@
-// Text and table pages with cairo (see pdf_writer.h).
+// The report's text pages: its blocks set on PDF pages (see pdf_writer.h).
 #include "report/pdf_writer.h"
 
-#include <cairo-pdf.h>
 #include <cairo.h>
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "util/errors.h"
+#include "report/pdf_tables.h"
 
 namespace ra::report {
 namespace {
 
-constexpr const char* kSans = "DejaVu Sans";
-constexpr const char* kMono = "DejaVu Sans Mono";
-constexpr double kMarginX = 60, kMarginTop = 54, kMarginBottom = 58;
-constexpr double kBody = 14, kLine = 1.42;
-constexpr double kTableFont = 11.5, kTableFontMin = 9, kPad = 5;
-constexpr double kHeadingSize[4] = {0, 24, 18, 15};
+constexpr double kHeadingSize[4] = {0, 24, 18, 15};  // points, by heading level
 
-cairo_status_t discard(void*, const unsigned char*, unsigned int) { return CAIRO_STATUS_SUCCESS; }
-
-class Writer {
+class Writer : public PdfTables {
  public:
   Writer(const Document& doc, const std::string& path, const PageNumbers& numbers)
-      : doc_(doc), numbers_(numbers) {
-    surface_ = path.empty()
-                   ? cairo_pdf_surface_create_for_stream(discard, nullptr, kPageWidth, kPageHeight)
-                   : cairo_pdf_surface_create(path.c_str(), kPageWidth, kPageHeight);
-    if (cairo_surface_status(surface_) != CAIRO_STATUS_SUCCESS)
-      throw util::UserError("cannot create " + path + ": " +
-                            cairo_status_to_string(cairo_surface_status(surface_)));
-    cairo_pdf_surface_set_metadata(surface_, CAIRO_PDF_METADATA_TITLE, doc.title.c_str());
-    cairo_pdf_surface_set_metadata(surface_, CAIRO_PDF_METADATA_CREATOR, "renderaudit report");
-    cr_ = cairo_create(surface_);
-    path_ = path;
-  }
-  ~Writer() {
-    if (cr_) cairo_destroy(cr_);
-    if (surface_) cairo_surface_destroy(surface_);
-  }
+      : PdfTables(path, doc.title, doc.footer, numbers.total), doc_(doc), numbers_(numbers) {}
 
   PdfLayoutResult run() {
     start_page();
@@ -54,103 +31,15 @@ class Writer {
       block(b);
       keep_with_next_ = 0;
     }
-    finish_page();
-    cairo_surface_finish(surface_);
-    if (cairo_surface_status(surface_) != CAIRO_STATUS_SUCCESS)
-      throw util::UserError("cannot write " + path_ + ": " +
-                            cairo_status_to_string(cairo_surface_status(surface_)));
+    close();
     return {page_, heading_pages_};
   }
 
  private:
   const Document& doc_;
   const PageNumbers& numbers_;
-  std::string path_;
-  cairo_surface_t* surface_ = nullptr;
-  cairo_t* cr_ = nullptr;
-  int page_ = 0;
-  double y_ = 0;  // top of the free space, points from the top
-  bool page_empty_ = true;
   std::map<std::string, int> heading_pages_;
   double keep_with_next_ = 0;  // points of the next block a heading keeps on its page
-
-  double avail() const { return kPageWidth - 2 * kMarginX; }
-  double bottom() const { return kPageHeight - kMarginBottom; }
-
-  void font(const char* family, bool bold, double size) {
-    cairo_select_font_face(cr_, family, CAIRO_FONT_SLANT_NORMAL,
-                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr_, size);
-  }
-  double width(const std::string& s) {
-    cairo_text_extents_t e;
-    cairo_text_extents(cr_, s.c_str(), &e);
-    return e.x_advance;
-  }
-  void color(double g) { cairo_set_source_rgb(cr_, g, g, g); }
-  void text(double x, double baseline, const std::string& s) {
-    cairo_move_to(cr_, x, baseline);
-    cairo_show_text(cr_, s.c_str());
-  }
-
-  // Lines of at most `max` points, broken at spaces (a word longer than a line is cut).
-  std::vector<std::string> wrap(const std::string& s, double max) {
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string word, cur;
-    while (ss >> word) {
-      const std::string cand = cur.empty() ? word : cur + " " + word;
-      if (width(cand) <= max || cur.empty()) {
-        cur = cand;
-        while (width(cur) > max && cur.size() > 1) {  // an overlong word: cut it
-          std::size_t n = cur.size();
-          while (n > 1 && width(cur.substr(0, n)) > max) --n;
-          out.push_back(cur.substr(0, n));
-          cur = cur.substr(n);
-        }
-      } else {
-        out.push_back(cur);
-        cur = word;
-        while (width(cur) > max && cur.size() > 1) {
-          std::size_t n = cur.size();
-          while (n > 1 && width(cur.substr(0, n)) > max) --n;
-          out.push_back(cur.substr(0, n));
-          cur = cur.substr(n);
-        }
-      }
-    }
-    if (!cur.empty()) out.push_back(cur);
-    if (out.empty()) out.push_back("");
-    return out;
-  }
-
-  void start_page() {
-    ++page_;
-    y_ = kMarginTop;
-    page_empty_ = true;
-  }
-  void finish_page() {
-    font(kSans, false, 10.5);
-    color(0.4);
-    text(kMarginX, kPageHeight - 28, doc_.footer);
-    const std::string right = "page " + std::to_string(page_) +
-                              (numbers_.total ? " of " + std::to_string(numbers_.total) : "");
-    text(kPageWidth - kMarginX - width(right), kPageHeight - 28, right);
-    cairo_set_line_width(cr_, 0.6);
-    cairo_move_to(cr_, kMarginX, kPageHeight - 44);
-    cairo_line_to(cr_, kPageWidth - kMarginX, kPageHeight - 44);
-    cairo_stroke(cr_);
-    color(0);
-    cairo_show_page(cr_);
-  }
-  void new_page() {
-    finish_page();
-    start_page();
-  }
-  // Ensures `h` points of space, starting a page when needed.
-  void need(double h) {
-    if (y_ + h > bottom() && !page_empty_) new_page();
-  }
 
   void title_block() {
     font(kSans, true, 28);
@@ -170,21 +59,6 @@ class Writer {
     color(0);
     y_ += 18;
     page_empty_ = false;
-  }
-
-  void paragraph(const std::string& s, double size = kBody, double indent = 0,
-                 const char* family = kSans, double grey = 0, bool bold = false) {
-    font(family, bold, size);
-    const auto lines = wrap(plain_text(s), avail() - indent);
-    for (const std::string& l : lines) {
-      need(size * kLine);
-      font(family, bold, size);
-      color(grey);
-      y_ += size * kLine;
-      text(kMarginX + indent, y_ - size * 0.3, l);
-      page_empty_ = false;
-    }
-    color(0);
   }
 
   void block(const Block& b) {
@@ -436,216 +310,6 @@ class Writer {
     }
     y_ += 6;
     page_empty_ = false;
-  }
-
-  // --- tables
-  struct Fit {
-    double size = kTableFont;
-    std::vector<double> widths;  // per column, including padding
-  };
-
-  double longest_word(const std::string& s) {
-    double w = 0;
-    std::stringstream ss(s);
-    std::string word;
-    while (ss >> word) w = std::max(w, width(word));
-    return w;
-  }
-
-  // Column widths at a font size: each column at least as wide as its widest cell and its
-  // header's longest word; the space left over goes to headers that would otherwise wrap,
-  // narrowest need first, so that as many as possible stay on one line.
-  Fit fit_columns(const Table& t, const std::vector<std::size_t>& cols, double size) {
-    Fit f;
-    f.size = size;
-    const double cap = 0.42 * avail();
-    std::vector<double> want;
-    for (std::size_t c : cols) {
-      font(kSans, false, size);
-      double w = 0;
-      for (const auto& row : t.rows) w = std::max(w, width(plain_text(row[c])));
-      font(kSans, true, size);
-      w = std::max(w, longest_word(plain_text(t.header[c])));
-      const double full = width(plain_text(t.header[c]));
-      f.widths.push_back(std::min(w, cap) + 2 * kPad);
-      want.push_back(std::max(w, full) + 2 * kPad);  // no wrapping at all
-    }
-    double spare = avail() - sum(f.widths);
-    std::vector<std::size_t> order(cols.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return want[a] - f.widths[a] < want[b] - f.widths[b];
-    });
-    for (std::size_t k : order) {
-      const double extra = want[k] - f.widths[k];
-      if (extra <= 0) continue;
-      if (extra > spare) break;
-      f.widths[k] = want[k];
-      spare -= extra;
-    }
-    // What is left widens the column that still wraps most.
-    if (spare > 0 && !order.empty()) {
-      std::size_t most = order.front();
-      for (std::size_t k : order)
-        if (want[k] - f.widths[k] > want[most] - f.widths[most]) most = k;
-      if (want[most] > f.widths[most]) f.widths[most] += std::min(spare, want[most] - f.widths[most]);
-    }
-    return f;
-  }
-  static double sum(const std::vector<double>& v) {
-    double s = 0;
-    for (double x : v) s += x;
-    return s;
-  }
-
-  void table(const Table& t) {
-    if (t.header.empty()) {
-      if (!t.title.empty()) paragraph(t.title);
-      return;
-    }
-    std::vector<std::size_t> all;
-    for (std::size_t c = 0; c < t.header.size(); ++c) all.push_back(c);
-    double size = kTableFont;
-    Fit f = fit_columns(t, all, size);
-    while (sum(f.widths) > avail() && size > kTableFontMin) {
-      size -= 0.5;
-      f = fit_columns(t, all, size);
-    }
-    if (sum(f.widths) <= avail()) {
-      table_part(t, all, f, "");
-    } else {
-      // Column groups: the leading key columns (the first, and text columns right after it, at
-      // most 3) repeated in each group.
-      std::vector<std::size_t> keys = {0};
-      for (std::size_t c = 1; c < t.header.size() && c < 3 && !t.right[c]; ++c) keys.push_back(c);
-      double key_w = 0;
-      for (std::size_t k = 0; k < keys.size(); ++k) key_w += f.widths[keys[k]];
-      std::vector<std::vector<std::size_t>> groups;
-      double w = key_w;
-      for (std::size_t c = keys.size(); c < t.header.size(); ++c) {
-        if (groups.empty() || w + f.widths[c] > avail()) {
-          groups.push_back(keys);
-          w = key_w;
-        }
-        groups.back().push_back(c);
-        w += f.widths[c];
-      }
-      for (std::size_t g = 0; g < groups.size(); ++g) {
-        Fit fg;
-        fg.size = f.size;
-        for (std::size_t c : groups[g]) fg.widths.push_back(f.widths[c]);
-        table_part(t, groups[g], fg,
-                   " (part " + std::to_string(g + 1) + " of " + std::to_string(groups.size()) +
-                       ": columns " + t.header[groups[g][keys.size()]] + " to " +
-                       t.header[groups[g].back()] + ")");
-      }
-    }
-    if (!t.notes.empty()) {
-      for (const std::string& n : t.notes) paragraph(n, 11.5, 0, kSans, 0.25);
-    }
-    y_ += 12;
-  }
-
-  void table_part(const Table& t, const std::vector<std::size_t>& cols, const Fit& f,
-                  const std::string& suffix) {
-    const double size = f.size, lh = size * 1.32;
-    const double title_size = 13;
-    // The cell lines of every row, wrapped in their columns.
-    auto cell_lines = [&](const std::string& s, double w, bool bold) {
-      font(kSans, bold, size);
-      return wrap(plain_text(s), w - 2 * kPad);
-    };
-    std::vector<std::vector<std::string>> header_lines;
-    std::size_t header_n = 1;
-    for (std::size_t k = 0; k < cols.size(); ++k) {
-      header_lines.push_back(cell_lines(t.header[cols[k]], f.widths[k], true));
-      header_n = std::max(header_n, header_lines.back().size());
-    }
-    const double header_h = double(header_n) * lh + 2 * kPad;
-    const double table_w = sum(f.widths);
-
-    auto draw_title = [&](bool continued) {
-      const std::string title = (t.title.empty() ? std::string("Table") : plain_text(t.title)) +
-                                suffix + (continued ? " (continued)" : "");
-      font(kSans, true, title_size);
-      for (const std::string& l : wrap(title, avail())) {
-        y_ += title_size * 1.32;
-        font(kSans, true, title_size);
-        color(0);
-        text(kMarginX, y_ - 3, l);
-      }
-      y_ += 6;
-    };
-    auto draw_header = [&] {
-      cairo_set_source_rgb(cr_, 0.90, 0.92, 0.95);
-      cairo_rectangle(cr_, kMarginX, y_, table_w, header_h);
-      cairo_fill(cr_);
-      color(0);
-      cairo_set_line_width(cr_, 1.0);
-      cairo_move_to(cr_, kMarginX, y_);
-      cairo_line_to(cr_, kMarginX + table_w, y_);
-      cairo_stroke(cr_);
-      double x = kMarginX;
-      for (std::size_t k = 0; k < cols.size(); ++k) {
-        font(kSans, true, size);
-        for (std::size_t i = 0; i < header_lines[k].size(); ++i) {
-          const std::string& l = header_lines[k][i];
-          const double tx = t.right[cols[k]] ? x + f.widths[k] - kPad - width(l) : x + kPad;
-          text(tx, y_ + kPad + double(i + 1) * lh - size * 0.3, l);
-        }
-        x += f.widths[k];
-      }
-      y_ += header_h;
-      cairo_move_to(cr_, kMarginX, y_);
-      cairo_line_to(cr_, kMarginX + table_w, y_);
-      cairo_stroke(cr_);
-    };
-
-    // Keep the title, the header and two rows together.
-    font(kSans, true, title_size);
-    const double title_h = double(wrap(plain_text(t.title) + suffix, avail()).size()) * title_size * 1.32 + 6;
-    need(title_h + header_h + 2 * (lh + 2 * kPad) + 8);
-    y_ += 4;
-    draw_title(false);
-    draw_header();
-    page_empty_ = false;
-    for (std::size_t r = 0; r < t.rows.size(); ++r) {
-      std::vector<std::vector<std::string>> lines;
-      std::size_t n = 1;
-      for (std::size_t k = 0; k < cols.size(); ++k) {
-        lines.push_back(cell_lines(t.rows[r][cols[k]], f.widths[k], false));
-        n = std::max(n, lines.back().size());
-      }
-      const double rh = double(n) * lh + 2 * kPad - 2;
-      if (y_ + rh > bottom()) {
-        new_page();
-        draw_title(true);
-        draw_header();
-        page_empty_ = false;
-      }
-      if (r % 2 == 1) {
-        cairo_set_source_rgb(cr_, 0.965, 0.965, 0.965);
-        cairo_rectangle(cr_, kMarginX, y_, table_w, rh);
-        cairo_fill(cr_);
-        color(0);
-      }
-      double x = kMarginX;
-      font(kSans, false, size);
-      for (std::size_t k = 0; k < cols.size(); ++k) {
-        for (std::size_t i = 0; i < lines[k].size(); ++i) {
-          const std::string& l = lines[k][i];
-          const double tx = t.right[cols[k]] ? x + f.widths[k] - kPad - width(l) : x + kPad;
-          text(tx, y_ + kPad - 1 + double(i + 1) * lh - size * 0.3, l);
-        }
-        x += f.widths[k];
-      }
-      y_ += rh;
-    }
-    cairo_set_line_width(cr_, 1.0);
-    cairo_move_to(cr_, kMarginX, y_);
-    cairo_line_to(cr_, kMarginX + table_w, y_);
-    cairo_stroke(cr_);
-    y_ += 10;
   }
 
   std::string page_text(int page) { return page > 0 ? std::to_string(page) : "?"; }
