@@ -15,6 +15,7 @@
 #include "geometry/pixel_region.h"
 #include "geometry/pixel_set.h"
 #include "platforms/platform.h"
+#include "platforms/window_view_testing.h"
 
 namespace ra::platforms {
 namespace {
@@ -25,29 +26,11 @@ using geometry::Vec2;
 
 constexpr int kSize = 16;
 
-// World (x, y, -1) -> window (x, y), exactly for dyadic x and y (as in reference_platform_test).
-geometry::View window_view() {
-  geometry::View v;
-  v.width = v.height = kSize;
-  v.view_matrix = geometry::Mat4::identity();
-  v.projection = geometry::Mat4::identity();
-  v.projection.at(0, 0) = 2.0 / kSize;
-  v.projection.at(0, 3) = -1;
-  v.projection.at(1, 1) = 2.0 / kSize;
-  v.projection.at(1, 3) = -1;
-  v.projection.at(2, 2) = 0;
-  v.view_projection = v.projection;
-  return v;
-}
+geometry::View window_view() { return testing::window_view(kSize); }
 
 geometry::Primitive primitive(geometry::Kind kind, std::vector<Vec2> window_points,
                               uint64_t index = 0) {
-  geometry::Primitive p;
-  p.kind = kind;
-  p.index = index;
-  for (size_t i = 0; i < window_points.size(); ++i)
-    p.v[i] = geometry::Vec3{window_points[i].x, window_points[i].y, -1};
-  return p;
+  return testing::window_primitive(kind, window_points, index);
 }
 
 const geometry::PixelRegion& whole() {

@@ -13,6 +13,7 @@
 #include "geometry/pixel_region.h"
 #include "geometry/pixel_set.h"
 #include "platforms/platform.h"
+#include "platforms/window_view_testing.h"
 
 namespace ra::platforms {
 namespace {
@@ -25,27 +26,10 @@ using geometry::Vec2;
 
 rundir::PlatformSpec llvmpipe() { return *rundir::find_platform("osmesa-llvmpipe"); }
 
-// World (x, y, -1) -> window (x, y) of a size x size window, exactly for dyadic x and y.
-geometry::View window_view(int size) {
-  geometry::View v;
-  v.width = v.height = size;
-  v.view_matrix = geometry::Mat4::identity();
-  v.projection = geometry::Mat4::identity();
-  v.projection.at(0, 0) = 2.0 / size;
-  v.projection.at(0, 3) = -1;
-  v.projection.at(1, 1) = 2.0 / size;
-  v.projection.at(1, 3) = -1;
-  v.projection.at(2, 2) = 0;
-  v.view_projection = v.projection;
-  return v;
-}
+using testing::window_view;
 
 geometry::Primitive triangle(Vec2 a, Vec2 b, Vec2 c, uint64_t index = 0) {
-  geometry::Primitive p;
-  p.kind = geometry::Kind::kTriangle;
-  p.index = index;
-  p.v = {geometry::Vec3{a.x, a.y, -1}, geometry::Vec3{b.x, b.y, -1}, geometry::Vec3{c.x, c.y, -1}};
-  return p;
+  return testing::window_primitive(geometry::Kind::kTriangle, {a, b, c}, index);
 }
 
 // The clipped primitive's window bounding box grown by two pixels (what the runner reads).

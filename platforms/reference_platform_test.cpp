@@ -16,6 +16,7 @@
 #include "geometry/pixel_region.h"
 #include "geometry/pixel_set.h"
 #include "platforms/platform.h"
+#include "platforms/window_view_testing.h"
 
 namespace ra::platforms {
 namespace {
@@ -26,28 +27,10 @@ using geometry::Vec2;
 
 constexpr int kSize = 16;
 
-// World (x, y, z) -> clip (2x/W - 1, 2y/H - 1, 0, 1): window (x, y), exactly for dyadic x, y. The
-// modelview is the identity, so a point at z = -1 lies between the near (0.01) and far (10) planes.
-geometry::View window_view() {
-  geometry::View v;
-  v.width = v.height = kSize;
-  v.view_matrix = geometry::Mat4::identity();
-  v.projection = geometry::Mat4::identity();
-  v.projection.at(0, 0) = 2.0 / kSize;
-  v.projection.at(0, 3) = -1;
-  v.projection.at(1, 1) = 2.0 / kSize;
-  v.projection.at(1, 3) = -1;
-  v.projection.at(2, 2) = 0;
-  v.view_projection = v.projection;
-  return v;
-}
+geometry::View window_view() { return testing::window_view(kSize); }
 
 geometry::Primitive primitive(geometry::Kind kind, std::vector<Vec2> window_points) {
-  geometry::Primitive p;
-  p.kind = kind;
-  for (size_t i = 0; i < window_points.size(); ++i)
-    p.v[i] = geometry::Vec3{window_points[i].x, window_points[i].y, -1};
-  return p;
+  return testing::window_primitive(kind, window_points);
 }
 
 PixelSet draw(geometry::Kind kind, std::vector<Vec2> window_points) {
