@@ -200,7 +200,7 @@ TEST(AnalyzeCommand, BadOptionsAndInputAreUserErrors) {
   EXPECT_NE(user_error([&] { analyze_run(o); }).find("no records files"), std::string::npos);
   const std::string path = write_records(dir, {point("p", 1, 0, 0.3)});
   std::ofstream(path, std::ios::app) << "p,1,0,1,30,128,128,0.01,10,point,1,ok\n";
-  EXPECT_NE(user_error([&] { analyze_run(o); }).find(path + ":3: expected 37 fields, found 12"),
+  EXPECT_NE(user_error([&] { analyze_run(o); }).find(path + ":3: expected 39 fields, found 12"),
             std::string::npos);
   o.alpha = 1.5;
   EXPECT_NE(user_error([&] { analyze_run(o); }).find("--alpha 1.5"), std::string::npos);

@@ -1,6 +1,6 @@
 // Loading a run directory's records into samples (load_run_records, run_records.h).
 //
-// Speed: the analysis needs 14 of the 37 columns, so each row is read with rundir/records_reader.h
+// Speed: the analysis needs 14 of the 39 columns, so each row is read with rundir/records_reader.h
 // (split in place, only those cells converted) and files are parsed on several threads.
 #include "analysis/run_records.h"
 

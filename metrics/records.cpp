@@ -26,7 +26,7 @@ const char* const kColumns[] = {
     "extent_error", "lse_s_norm", "lse_u_norm",    "chain_8connected", "gaps",  "te_s",
     "te_u",      "te_s_norm",  "te_u_norm",        "te_u_edge_norm", "full_window",
     "simply_connected", "ref_diff", "pixel_hash",  "render_us", "batch_size",
-    "conformance", "violating_pixels", "violated_rules"};
+    "conformance", "violating_pixels", "violated_rules", "host_us", "clock"};
 constexpr int kColumnCount = sizeof(kColumns) / sizeof(kColumns[0]);
 static_assert(kColumnCount == int(kRecordColumnCount), "RecordColumn and kColumns must agree");
 
@@ -72,6 +72,12 @@ std::optional<RecordColumn> find_record_column(std::string_view name) {
 std::string records_header() {
   std::string h;
   for (int i = 0; i < kColumnCount; ++i) h += (i ? "," : "") + std::string(kColumns[i]);
+  return h;
+}
+
+std::string records_header_v3() {
+  std::string h;
+  for (int i = 0; i < int(kRecordColumnCountV3); ++i) h += (i ? "," : "") + std::string(kColumns[i]);
   return h;
 }
 
@@ -140,6 +146,10 @@ void append_record(std::string& out, const Record& r) {
   put_optional(out, r.violating_pixels);
   sep();
   out += r.violated_rules;
+  sep();
+  put_double(out, r.host_us);
+  sep();
+  out += r.clock;
   out += '\n';
 }
 

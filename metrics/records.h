@@ -14,9 +14,10 @@
 
 namespace ra::metrics {
 
-// 2: batch_size after render_us; 3: conformance, violating_pixels, violated_rules at the end
-// (version 2 files are still read: those cells are empty, "not compared").
-constexpr int kRecordsSchemaVersion = 3;
+// 2: batch_size after render_us; 3: conformance, violating_pixels, violated_rules at the end;
+// 4: host_us and clock at the end. Files of versions 2 and 3 are still read: the cells they lack
+// are empty ("not compared"; no host time, clock unsaid: the host's).
+constexpr int kRecordsSchemaVersion = 4;
 
 enum class Visibility {
   kTrueVisible,
@@ -68,11 +69,15 @@ struct Record {
   // Pixels in the symmetric difference with the reference rasterizer (0 = conformant).
   int64_t ref_diff = -1;
   uint64_t pixel_hash = 0;  // FNV-1a of the sorted lit pixels (exact comparison across runs)
-  double render_us = kNA;   // CPU time of draw + glFinish, microseconds (a batch's share)
-  int64_t batch_size = 0;   // primitives drawn under that one glFinish (1: alone; 0: not drawn)
+  double render_us = kNA;   // the drawing's time on `clock`, microseconds (a batch's share)
+  int64_t batch_size = 0;   // primitives drawn under that one wait (1: alone; 0: not drawn)
   Conformance conformance = Conformance::kNotCompared;
   int64_t violating_pixels = -1;  // pixels of the verdict kViolation (0 otherwise; -1 not compared)
   std::string violated_rules;     // the rules broken, '+'-joined (conformance.h); empty if none
+  // The host's CPU time of draw and wait, microseconds, this primitive's share of its batch;
+  // equal to render_us where `clock` is "host".
+  double host_us = kNA;
+  std::string clock;  // "host" or "device" (render_us from the device's timestamps); "" not drawn
 };
 
 // The columns of a records row, in file order (records_header() spells them).
@@ -81,17 +86,19 @@ enum class RecordColumn : std::size_t {
   kIndex, kStatus, kVisibility, kPixels, kPe, kPeNorm, kLseS, kLseU, kExtentError, kLseSNorm,
   kLseUNorm, kChain8Connected, kGaps, kTeS, kTeU, kTeSNorm, kTeUNorm, kTeUEdgeNorm, kFullWindow,
   kSimplyConnected, kRefDiff, kPixelHash, kRenderUs, kBatchSize, kConformance, kViolatingPixels,
-  kViolatedRules,
+  kViolatedRules, kHostUs, kClock,
 };
-constexpr std::size_t kRecordColumnCount = 37;
-// Version 2 files have the first 34 columns only.
+constexpr std::size_t kRecordColumnCount = 39;
+// Version 2 files have the first 34 columns only, version 3 files the first 37.
 constexpr std::size_t kRecordColumnCountV2 = 34;
+constexpr std::size_t kRecordColumnCountV3 = 37;
 const char* record_column_name(RecordColumn c);  // "platform", "view", ...
 // The column called `name`, or nullopt.
 std::optional<RecordColumn> find_record_column(std::string_view name);
 
 std::string records_header();  // the header line, without newline
 std::string records_header_v2();  // the header line of schema version 2 files
+std::string records_header_v3();  // the header line of schema version 3 files
 // One line, with newline. Numbers are written shortest round-trip (std::to_chars): each reads back
 // as the very same double.
 void write_record(std::ostream& out, const Record& r);

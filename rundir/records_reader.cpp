@@ -72,7 +72,8 @@ class RecordsFileReader {
         callback_(row),
         text_(text),
         header_(metrics::records_header()),
-        header_v2_(metrics::records_header_v2()) {
+        header_v2_(metrics::records_header_v2()),
+        header_v3_(metrics::records_header_v3()) {
     row_.file_ = &path_;
   }
 
@@ -134,6 +135,8 @@ class RecordsFileReader {
     if (row_.line_ == 1) {
       if (text == header_v2_)
         columns_ = metrics::kRecordColumnCountV2;  // the later cells stay empty: "not compared"
+      else if (text == header_v3_)
+        columns_ = metrics::kRecordColumnCountV3;
       else if (text != header_)
         bad_header();
       return;
@@ -161,7 +164,7 @@ class RecordsFileReader {
   const std::string path_;
   const std::function<void(const RecordRow&)>& callback_;
   const std::function<void(std::string_view)>* text_;  // may be null
-  const std::string header_, header_v2_;
+  const std::string header_, header_v2_, header_v3_;
   std::size_t columns_ = metrics::kRecordColumnCount;
   std::string carry_;  // an incomplete line from the previous piece
   RecordRow row_;
@@ -193,6 +196,7 @@ int records_schema_version(const std::string& path) {
   }
   if (!first.empty() && first.back() == '\r') first.pop_back();
   if (first == metrics::records_header()) return metrics::kRecordsSchemaVersion;
+  if (first == metrics::records_header_v3()) return 3;
   if (first == metrics::records_header_v2()) return 2;
   return 0;
 }
@@ -248,6 +252,8 @@ metrics::Record parse_record(const RecordRow& row) {
   r.conformance = row.conformance();
   r.violating_pixels = row.optional_integer<int64_t>(C::kViolatingPixels, -1);
   r.violated_rules = std::string(row.cell(C::kViolatedRules));
+  r.host_us = number(C::kHostUs);
+  r.clock = std::string(row.cell(C::kClock));
   return r;
 }
 

@@ -4,7 +4,7 @@
 // pieces of 1 MiB), each row is split
 // in place (cells are views into the buffer, nothing is copied), and only the cells a caller asks
 // for are converted, with std::from_chars (locale-independent, exact). The header must equal
-// records_header() or, for a schema version 2 file, records_header_v2() (its missing cells read as
+// records_header() or, for a file of schema version 2 or 3, records_header_v2() or _v3() (its missing cells read as
 // empty); '#' lines (the seal of a shard file, rundir/shard_file.h) are skipped and a
 // CRLF file reads as an LF one. Every error is a ra::util::UserError "FILE:LINE: what is wrong".
 #pragma once
@@ -71,7 +71,7 @@ void for_each_record_row(const std::string& path, const std::function<void(const
 void for_each_record_row(const std::string& path, const std::function<void(const RecordRow&)>& row,
                          const std::function<void(std::string_view)>& text);
 
-// The schema version of the file's header line (3, or 2 for records_header_v2()); 0 when the
+// The schema version of the file's header line (4; 3 or 2 for records_header_v3() or _v2()); 0 when the
 // file is unreadable or its first line is not a records header.
 int records_schema_version(const std::string& path);
 

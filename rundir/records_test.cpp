@@ -5,6 +5,8 @@
 #include "metrics/records.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 #include <unistd.h>
 
 #include <filesystem>
@@ -98,6 +100,8 @@ TEST_F(RecordsReader, EveryColumnSurvivesAWriteAndARead) {
   r.conformance = metrics::Conformance::kViolation;
   r.violating_pixels = 7;
   r.violated_rules = "line-deviation+line-count";
+  r.host_us = 0.5;
+  r.clock = "device";
   std::ostringstream out;
   out << metrics::records_header() << '\n';
   metrics::write_record(out, r);
@@ -114,6 +118,8 @@ TEST_F(RecordsReader, EveryColumnSurvivesAWriteAndARead) {
   EXPECT_EQ(rows[0].conformance, metrics::Conformance::kViolation);
   EXPECT_EQ(rows[0].violating_pixels, 7);
   EXPECT_EQ(rows[0].violated_rules, "line-deviation+line-count");
+  EXPECT_EQ(rows[0].host_us, 0.5);
+  EXPECT_EQ(rows[0].clock, "device");
 }
 
 // Schema version 2 files (34 columns, before the conformance verdict) stay readable: the verdict
@@ -129,7 +135,7 @@ TEST_F(RecordsReader, SchemaVersion2FilesReadWithoutAVerdict) {
   metrics::write_record(row, r);
   std::string v2 = row.str();
   v2.erase(v2.size() - 1);                 // newline
-  for (int k = 0; k < 3; ++k) v2.erase(v2.rfind(','));  // the three version 3 cells
+  for (int k = 0; k < 5; ++k) v2.erase(v2.rfind(','));  // the version 3 and 4 cells
   const auto rows = read(metrics::records_header_v2() + "\n" + v2 + "\n");
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].index, 9u);
@@ -139,6 +145,34 @@ TEST_F(RecordsReader, SchemaVersion2FilesReadWithoutAVerdict) {
   EXPECT_EQ(rows[0].violating_pixels, -1);
   EXPECT_THROW(read(metrics::records_header_v2() + "\n" + row.str()), util::UserError);
   EXPECT_EQ(metrics::records_header().rfind(metrics::records_header_v2() + ",conformance,", 0), 0u);
+}
+
+// Schema version 3 files (37 columns, before the host's time and the clock) stay readable: no
+// host time, no clock named. A version 4 row in a version 3 file is an error.
+TEST_F(RecordsReader, SchemaVersion3FilesReadWithoutHostTimeOrClock) {
+  metrics::Record r;
+  r.platform = "vk-lavapipe";
+  r.kind = "triangle";
+  r.index = 11;
+  r.render_us = 31.5;
+  r.batch_size = 1;
+  r.conformance = metrics::Conformance::kExact;
+  r.violating_pixels = 0;
+  r.host_us = 31.5;
+  r.clock = "host";
+  std::ostringstream row;
+  metrics::write_record(row, r);
+  std::string v3 = row.str();
+  v3.erase(v3.size() - 1);
+  for (int k = 0; k < 2; ++k) v3.erase(v3.rfind(','));  // host_us, clock
+  const auto rows = read(metrics::records_header_v3() + "\n" + v3 + "\n");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].render_us, 31.5);
+  EXPECT_EQ(rows[0].conformance, metrics::Conformance::kExact);
+  EXPECT_TRUE(std::isnan(rows[0].host_us));
+  EXPECT_EQ(rows[0].clock, "");
+  EXPECT_THROW(read(metrics::records_header_v3() + "\n" + row.str()), util::UserError);
+  EXPECT_EQ(metrics::records_header(), metrics::records_header_v3() + ",host_us,clock");
 }
 
 TEST_F(RecordsReader, RowsStraddlingTheReadBlocksAreReadWhole) {
@@ -175,7 +209,7 @@ TEST_F(RecordsReader, AWrongHeaderAndAShortRowAreErrorsWithTheirLine) {
     read(text_ + "reference,1,0\n");
     FAIL() << "a short row was accepted";
   } catch (const util::UserError& e) {
-    EXPECT_EQ(std::string(e.what()), path_ + ":4: expected 37 fields, found 3");
+    EXPECT_EQ(std::string(e.what()), path_ + ":4: expected 39 fields, found 3");
   }
 }
 

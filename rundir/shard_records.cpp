@@ -20,7 +20,7 @@ std::string primitive_range(const Shard& s) {
 }
 
 // A file without a seal (`no_seal` says so). The seal came during records schema version 2, so
-// every version 3 file was written sealed: one of version 3 without its seal is damaged (cut
+// every file of version 3 or later was written sealed: one without its seal is damaged (cut
 // short, or edited). A version 2 file may predate the seal: it is checked row by row instead.
 // Empty when it holds each of the shard's primitives exactly once and nothing else.
 std::string check_unsealed(const std::string& path, const Shard& s, const std::string& no_seal) {
@@ -28,9 +28,8 @@ std::string check_unsealed(const std::string& path, const Shard& s, const std::s
   // A compressed file cut inside its first frame shows no header at all; compression came after
   // the seal, so such a file was written sealed and is simply cut short.
   if (version == 0 && util::has_zstd_extension(path)) return no_seal;
-  if (version == metrics::kRecordsSchemaVersion)
-    return no_seal + "; records of schema version " +
-           std::to_string(metrics::kRecordsSchemaVersion) +
+  if (version >= 3)
+    return no_seal + "; records of schema version " + std::to_string(version) +
            " are always written sealed, so this file is damaged";
   if (version != 2) return "unexpected header";
   std::vector<bool> seen(s.size(), false);

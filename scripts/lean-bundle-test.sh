@@ -3,7 +3,7 @@
 # worker load no figure library (VTK, OpenImageIO, cairo, poppler, X11), where the full program
 # does; the bundle (scripts/make-bundle.sh), unpacked in another folder, finds every library it
 # carries inside itself, runs experiments/quick.toml to records identical to the full program's
-# (every column but render_us and batch_size), audits them as unchanged, and refuses `plot` naming
+# (every column but render_us, batch_size and host_us), audits them as unchanged, and refuses `plot` naming
 # the full build.
 # Usage: lean-bundle-test.sh BUILD_DIR
 set -uo pipefail
@@ -53,7 +53,7 @@ for f in "$tmp"/full/records/*.csv.zst; do
   g="$tmp/lean/records/$(basename "$f")"
   [ -f "$g" ] || { fail "the bundle wrote no $(basename "$g")"; continue; }
   header=$(zstdcat "$f" | sed -n 1p)
-  cols=$(tr ',' '\n' <<<"$header" | grep -nvx 'render_us\|batch_size' | cut -d: -f1 | paste -sd,)
+  cols=$(tr ',' '\n' <<<"$header" | grep -nvx 'render_us\|batch_size\|host_us' | cut -d: -f1 | paste -sd,)
   cmp -s <(zstdcat "$f" | grep -v '^#' | cut -d, -f"$cols") <(zstdcat "$g" | grep -v '^#' | cut -d, -f"$cols") ||
     fail "$(basename "$f") differs between the full program and the bundle"
   n=$((n + 1))

@@ -2,7 +2,7 @@
 # `make slurm-test`: `renderaudit run --slurm` on a real Slurm (one machine, scripts/slurm-local.sh).
 #
 #   1. experiments/quick.toml as a job array of 4 slices: the gathered run's records equal a local
-#      run's in every column but render_us, and `audit` against the local run says unchanged.
+#      run's in every column but render_us and host_us, and `audit` against the local run says unchanged.
 #   2. tests/data/slurm_faults.toml (both Mesa platforms, 128 shards of unequal cost) with one task
 #      cancelled by scancel in the middle of its slice and another requeued (what Slurm does when
 #      a node fails) in the middle of its own: the gathered run is complete, every primitive is
@@ -34,10 +34,10 @@ trap '"$repo/scripts/slurm-local.sh" stop "$state" >/dev/null 2>&1' EXIT
 rm -rf "$work"
 mkdir -p "$work"
 
-# The records of a run (either file format, `renderaudit records`) with their timing column
-# (render_us, the 33rd) left out, sorted.
+# The records of a run (either file format, `renderaudit records`) with their timing columns
+# (render_us and host_us, the 33rd and 38th) left out, sorted.
 records_without_timing() {
-  "$ra" records "$1" | tail -n +2 | cut -d, -f1-32,34- | sort
+  "$ra" records "$1" | tail -n +2 | cut -d, -f1-32,34-37,39- | sort
 }
 same_records() {  # LOCAL SLURM
   records_without_timing "$1" >"$work/a.csv"

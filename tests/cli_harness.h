@@ -153,25 +153,32 @@ inline void reseal_records_file(const std::string& path) {
   write_records_text(path, body + ra::rundir::shard_trailer(body, rows));
 }
 
-// Every record line of a run directory, with the timing columns (the last two) removed, as a set
-// ordered by content: equal sets mean identical records whatever the sharding.
+// Every record line of a run directory, with the timing columns removed, as a set ordered by
+// content: equal sets mean identical records whatever the sharding.
 inline std::multiset<std::string> records_without_timing(const std::string& run_dir) {
+  // render_us, batch_size, host_us and clock depend on timing and on how the primitives fell
+  // into batches.
+  using C = metrics::RecordColumn;
+  const std::set<std::size_t> timing = {std::size_t(C::kRenderUs), std::size_t(C::kBatchSize),
+                                        std::size_t(C::kHostUs), std::size_t(C::kClock)};
   std::multiset<std::string> rows;
   for (const auto& e : std::filesystem::directory_iterator(run_dir + "/records")) {
     if (!ra::rundir::is_records_file_name(e.path().filename().string())) continue;
     std::istringstream in(read_records_text(e.path().string()));
     std::string line;
     std::getline(in, line);  // header
-    // The columns render_us and batch_size depend on timing and on how the primitives fell
-    // into batches.
-    const std::size_t timing = static_cast<std::size_t>(metrics::RecordColumn::kRenderUs);
-    static_assert(static_cast<std::size_t>(metrics::RecordColumn::kBatchSize) == timing + 1);
     while (std::getline(in, line)) {
       if (line.empty() || line[0] == '#') continue;  // the shard file's seal
-      std::size_t begin = 0;  // of cell `timing`
-      for (std::size_t k = 0; k < timing; ++k) begin = line.find(',', begin) + 1;
-      const std::size_t end = line.find(',', line.find(',', begin) + 1);  // after batch_size
-      rows.insert(line.substr(0, begin) + (end == std::string::npos ? "" : line.substr(end + 1)));
+      std::string kept;
+      std::size_t begin = 0;
+      for (std::size_t k = 0;; ++k) {
+        const std::size_t comma = line.find(',', begin);
+        if (!timing.count(k))
+          kept += line.substr(begin, comma == std::string::npos ? comma : comma - begin) + ",";
+        if (comma == std::string::npos) break;
+        begin = comma + 1;
+      }
+      rows.insert(kept);
     }
   }
   return rows;

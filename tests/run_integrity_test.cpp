@@ -194,7 +194,7 @@ TEST(RunIntegrity, AnalyzeAndReportRefuseAnIncompleteRunAndSayWhatIsMissing) {
 }
 
 // A records file of schema version 2 as written before shard files were sealed: the seal gone, the
-// header of version 2, each row without the last three (version 3) cells.
+// header of version 2, each row without the last five cells (those versions 3 and 4 added).
 std::string as_unsealed_version_2(const std::string& sealed) {
   std::string out;
   std::istringstream lines(sealed);
@@ -205,7 +205,7 @@ std::string as_unsealed_version_2(const std::string& sealed) {
       out += ra::metrics::records_header_v2() + "\n";
       continue;
     }
-    for (int cells = 0; cells < 3; ++cells) line.erase(line.rfind(','));
+    for (int cells = 0; cells < 5; ++cells) line.erase(line.rfind(','));
     out += line + "\n";
   }
   return out;
@@ -236,10 +236,10 @@ TEST(RunIntegrity, AnUnsealedRecordOutsideItsShardIsReported) {
       << a.output;
 }
 
-// Every records file of schema version 3 was written sealed: one without its seal is damaged for
-// analyze as it is for run (which redoes it), even when its rows look whole: nothing vouches for
-// its values any more.
-TEST(RunIntegrity, AnUnsealedVersion3FileIsDamagedForAnalyzeAsForRun) {
+// Every records file of schema version 3 or later was written sealed: one without its seal is
+// damaged for analyze as it is for run (which redoes it), even when its rows look whole: nothing
+// vouches for its values any more.
+TEST(RunIntegrity, AnUnsealedFileOfTheCurrentVersionIsDamagedForAnalyzeAsForRun) {
   const std::string dir = fresh_dir("integrity_unsealed_v3");
   write_text(dir + "/e.toml", experiment("", "\"reference\"", "points = 200\n"));
   ASSERT_EQ(run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2").exit_code, 0);
@@ -251,7 +251,9 @@ TEST(RunIntegrity, AnUnsealedVersion3FileIsDamagedForAnalyzeAsForRun) {
   EXPECT_EQ(a.exit_code, 3) << a.output;
   EXPECT_NE(a.output.find("damaged shard reference.point.v1.0-100: no trailer"), std::string::npos)
       << a.output;
-  EXPECT_NE(a.output.find("records of schema version 3 are always written sealed"),
+  EXPECT_NE(a.output.find("records of schema version " +
+                         std::to_string(ra::metrics::kRecordsSchemaVersion) +
+                         " are always written sealed"),
             std::string::npos)
       << a.output;
   const Outcome r = run_renderaudit("run " + dir + "/e.toml --out " + dir + "/run --jobs 2");
