@@ -82,7 +82,7 @@ class FaultyPlatform : public Platform {
                       (anchor.y + view_.height / 2) % view_.height});
     }
     out.lit.clip_to({0, 0, view_.width, view_.height});
-    out.render_us = 0;
+    out.render_us = out.host_us = 0;
     out.full_scan = true;
     return out;
   }

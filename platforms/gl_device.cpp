@@ -7,6 +7,11 @@
 // 150 us at 907x907, 30x the cost of drawing one primitive); with an FBO only the pixels read back
 // are copied, by glReadPixels. The occlusion count is GL_SAMPLES_PASSED; the wait is glFinish.
 //
+// Layers: one more FBO per layer, each with its own RGBA8 renderbuffer of the view's size, made
+// as layer 0's is: the same storage, viewport and state, so a primitive rasterizes to the same
+// pixels in any layer. draw_each() binds each primitive's layer, brackets it with its own
+// GL_SAMPLES_PASSED query (and, timed, a GL_TIME_ELAPSED query), and calls glFinish once.
+//
 // Multisample platforms: the primitive is drawn into a multisample FBO (GL_RGBA8, `samples` samples
 // per pixel, GL_MULTISAMPLE enabled) and resolved (glBlitFramebuffer) into a single-sample FBO that
 // glReadPixels reads. Sample positions (llvmpipe 4x, from glGetMultisamplefv): (0.375, 0.125),
@@ -28,11 +33,13 @@ namespace {
 
 class GlDevice : public RasterDevice {
  public:
-  explicit GlDevice(const rundir::PlatformSpec& spec) : name_(spec.name), samples_(spec.samples) {
+  GlDevice(const rundir::PlatformSpec& spec, int max_layers)
+      : name_(spec.name), samples_(spec.samples), max_layers_(max_layers) {
     context_ = create_gl_context(spec);  // sets Mesa's environment and checks the driver
     info_.backend = context_->backend();
     gl().GenFramebuffers(1, &framebuffer_);
     gl().BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    layer_framebuffers_ = {framebuffer_};
     gl().GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size_);
     gl().GenQueries(1, &query_);
     if (samples_ > 0) init_multisample();
@@ -48,6 +55,9 @@ class GlDevice : public RasterDevice {
     GLint max_samples = 0;
     gl().GetIntegerv(GL_MAX_SAMPLES, &max_samples);
     info_.max_samples = max_samples;
+    const std::string renderer = info_.renderer;
+    draws_on_host_ = renderer.rfind("llvmpipe", 0) == 0 || renderer.rfind("softpipe", 0) == 0 ||
+                     renderer.rfind("Software Rasterizer", 0) == 0;
 
     // The paper's conditions: white on black, size/width 1, no antialiasing, both faces filled.
     for (GLenum cap : {GL_DEPTH_TEST, GL_LIGHTING, GL_DITHER, GL_POINT_SMOOTH, GL_LINE_SMOOTH,
@@ -105,6 +115,47 @@ class GlDevice : public RasterDevice {
     return n;
   }
 
+  int layers() const override { return int(layer_framebuffers_.size()); }
+
+  double draw_each(const std::vector<geometry::Primitive>& prims,
+                   const std::vector<uint32_t>& colours, const std::vector<int>& layers,
+                   bool timed) override {
+    grow_queries(prims.size(), timed);
+    timed_ = timed;
+    const auto t0 = std::chrono::steady_clock::now();
+    int bound = 0;
+    for (size_t i = 0; i < prims.size(); ++i) {
+      if (layers[i] != bound) {
+        bound = layers[i];
+        gl().BindFramebuffer(GL_FRAMEBUFFER, layer_framebuffers_[size_t(bound)]);
+      }
+      if (timed) gl().BeginQuery(GL_TIME_ELAPSED, time_queries_[i]);
+      gl().BeginQuery(GL_SAMPLES_PASSED, count_queries_[i]);
+      use_colour(colours[i]);
+      draw_primitive(prims[i]);
+      gl().EndQuery(GL_SAMPLES_PASSED);
+      if (timed) gl().EndQuery(GL_TIME_ELAPSED);
+    }
+    if (bound != 0) gl().BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    gl().Finish();
+    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  uint64_t fragments_of(size_t i) override {
+    GLuint n = 0;
+    gl().GetQueryObjectuiv(count_queries_.at(i), GL_QUERY_RESULT, &n);
+    return n;
+  }
+
+  double device_us_of(size_t i) override {
+    if (!timed_) return std::numeric_limits<double>::quiet_NaN();
+    GLuint64 ns = 0;
+    gl().GetQueryObjectui64v(time_queries_.at(i), GL_QUERY_RESULT, &ns);
+    return double(ns) / 1e3;
+  }
+
+  bool device_clock() const override { return info_.timer_query && !draws_on_host_; }
+
   // Blits the rectangles from the multisample FBO into the resolve FBO (same place).
   void resolve(const std::vector<geometry::PixelRect>& rects) override {
     gl().BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
@@ -118,7 +169,7 @@ class GlDevice : public RasterDevice {
   }
 
   // glReadPixels of each rectangle (rows bottom-up, as GL window coordinates) into one buffer.
-  void read(const std::vector<geometry::PixelRect>& rects) override {
+  void read(const std::vector<geometry::PixelRect>& rects, const std::vector<int>& layers) override {
     offsets_.clear();
     size_t total = 0;
     for (const geometry::PixelRect& r : rects) {
@@ -126,17 +177,29 @@ class GlDevice : public RasterDevice {
       total += size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
     }
     readback_.resize(total);
+    int bound = 0;
     for (size_t i = 0; i < rects.size(); ++i) {
       const geometry::PixelRect& r = rects[i];
+      const int layer = layers.empty() ? 0 : layers[i];
+      if (layer != bound) {
+        bound = layer;
+        gl().BindFramebuffer(GL_READ_FRAMEBUFFER, layer_framebuffers_[size_t(layer)]);
+      }
       gl().ReadPixels(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0, GL_RGBA, GL_UNSIGNED_BYTE,
                       readback_.data() + offsets_[i]);
     }
+    if (bound != 0) gl().BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
   }
   const uint32_t* pixels(size_t i) const override { return readback_.data() + offsets_[i]; }
   bool rows_top_down() const override { return false; }
 
   // A whole-window clear is a fast path in Mesa, unlike a scissored one.
   void clear() override {
+    for (size_t k = 1; k < layer_framebuffers_.size(); ++k) {
+      gl().BindFramebuffer(GL_FRAMEBUFFER, layer_framebuffers_[k]);
+      gl().Clear(GL_COLOR_BUFFER_BIT);
+    }
+    if (layer_framebuffers_.size() > 1) gl().BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
     gl().Clear(GL_COLOR_BUFFER_BIT);
     gl().Finish();
   }
@@ -199,6 +262,18 @@ class GlDevice : public RasterDevice {
     gl().GenFramebuffers(1, &resolve_framebuffer_);
   }
 
+  // At least n occlusion queries (and n timer queries when `timed`) for draw_each().
+  void grow_queries(size_t n, bool timed) {
+    auto grow = [&](std::vector<GLuint>& queries) {
+      if (queries.size() >= n) return;
+      const size_t had = queries.size();
+      queries.resize(n);
+      gl().GenQueries(GLsizei(n - had), queries.data() + had);
+    };
+    grow(count_queries_);
+    if (timed) grow(time_queries_);
+  }
+
   void use_colour(uint32_t c) {  // 0xBBGGRR
     gl().Color4ub(GLubyte(c), GLubyte(c >> 8), GLubyte(c >> 16), 255);
   }
@@ -259,14 +334,28 @@ class GlDevice : public RasterDevice {
                                " exceeds this driver's GL_MAX_RENDERBUFFER_SIZE " +
                                std::to_string(max_size_));
     if (samples_ > 0) return resize_multisample(w, h);
-    if (renderbuffer_) gl().DeleteRenderbuffers(1, &renderbuffer_);
-    gl().GenRenderbuffers(1, &renderbuffer_);
-    gl().BindRenderbuffer(GL_RENDERBUFFER, renderbuffer_);
-    gl().RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
-    gl().FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_);
-    if (gl().CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw std::runtime_error("incomplete framebuffer for a " + std::to_string(w) + "x" +
-                               std::to_string(h) + " window");
+    if (!layer_renderbuffers_.empty()) {
+      gl().DeleteRenderbuffers(GLsizei(layer_renderbuffers_.size()), layer_renderbuffers_.data());
+      gl().DeleteFramebuffers(GLsizei(layer_framebuffers_.size() - 1),
+                              layer_framebuffers_.data() + 1);
+    }
+    const int layers =
+        max_layers_ == 0 && !device_clock() ? 1 : layers_for_window(w, h, max_layers_);
+    layer_renderbuffers_.assign(size_t(layers), 0);
+    layer_framebuffers_.assign(size_t(layers), framebuffer_);
+    gl().GenRenderbuffers(layers, layer_renderbuffers_.data());
+    if (layers > 1) gl().GenFramebuffers(layers - 1, layer_framebuffers_.data() + 1);
+    for (int k = 0; k < layers; ++k) {  // layer 0 last: its FBO stays bound
+      const size_t l = size_t(layers - 1 - k);
+      gl().BindFramebuffer(GL_FRAMEBUFFER, layer_framebuffers_[l]);
+      gl().BindRenderbuffer(GL_RENDERBUFFER, layer_renderbuffers_[l]);
+      gl().RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h);
+      gl().FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                   layer_renderbuffers_[l]);
+      if (gl().CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("incomplete framebuffer for a " + std::to_string(w) + "x" +
+                                 std::to_string(h) + " window (layer " + std::to_string(l) + ")");
+    }
     width_ = w;
     height_ = h;
   }
@@ -304,9 +393,16 @@ class GlDevice : public RasterDevice {
 
   std::string name_;  // the platform's name, for messages
   int samples_ = 0;   // PlatformSpec::samples; 0 = aliased
+  int max_layers_ = 0;  // create_gl_device's cap on layers_for_window (0: none)
   std::unique_ptr<GlContext> context_;
   DriverInfo info_;
+  bool draws_on_host_ = false;  // a Mesa CPU rasterizer (GL_RENDERER says which)
+  // framebuffer_ is layer 0 (and, multisampled, the multisample FBO); renderbuffer_ its storage
+  // on the multisample platforms, which have one layer.
   GLuint framebuffer_ = 0, renderbuffer_ = 0, query_ = 0;
+  std::vector<GLuint> layer_framebuffers_, layer_renderbuffers_;  // per layer; [0] = framebuffer_
+  std::vector<GLuint> count_queries_, time_queries_;  // draw_each's, per primitive
+  bool timed_ = false;                                // the last draw_each was timed
   // Multisample platforms: the resolve target.
   GLuint resolve_framebuffer_ = 0, resolve_renderbuffer_ = 0;
   GLint max_size_ = 0;
@@ -318,8 +414,8 @@ class GlDevice : public RasterDevice {
 
 }  // namespace
 
-std::unique_ptr<RasterDevice> create_gl_device(const rundir::PlatformSpec& spec) {
-  return std::make_unique<GlDevice>(spec);
+std::unique_ptr<RasterDevice> create_gl_device(const rundir::PlatformSpec& spec, int max_layers) {
+  return std::make_unique<GlDevice>(spec, max_layers);
 }
 
 }  // namespace ra::platforms

@@ -32,6 +32,10 @@ struct DriverInfo {
   int line_subpixel_bits = 0;
   bool strict_lines = false;
   std::string line_modes = "", line_mode = "";
+  // The measurement's choices (readback_measurement.cpp): the clock render_us reads ("host" or
+  // "device"), and whether overlapping primitives share a batch in layers of the window.
+  std::string clock = "host";
+  bool layered = false;
 };
 
 // One primitive as rendered.
@@ -43,10 +47,14 @@ struct RenderResult {
   // lit pixel is wholly lit).
   int samples = 0;
   std::vector<uint8_t> samples_lit;
-  // CPU wall time of draw + glFinish, microseconds; for a batch drawn under one glFinish, the
-  // batch's time divided equally among its `batch_size` primitives. Multisample platforms: draw +
-  // resolve of the expected region (glBlitFramebuffer) + glFinish.
+  // The drawing's time in microseconds, on the clock `device_clock` names. The host's clock: CPU
+  // wall time of draw + glFinish (Vulkan: record, submit, fence wait); for a batch drawn under one
+  // wait, the batch's time divided equally among its `batch_size` primitives; multisample
+  // platforms: draw + resolve of the expected region + the wait. The device's clock: its
+  // timestamps around this primitive's draw alone.
   double render_us = 0;
+  double host_us = 0;         // the host's clock, always: this primitive's share of the wait
+  bool device_clock = false;  // render_us is the device's time (else host_us)
   int batch_size = 1;
   bool full_scan = false;   // the whole window was inspected (no proof for a partial readback)
 };
@@ -70,14 +78,20 @@ class Platform {
   // Draws each primitive as render() would, in order, and returns their results. An
   // implementation may share one completeness proof among the batch (readback_measurement.cpp); this
   // default draws them one by one.
+  // `layers` (empty: every primitive in layer 0, their regions pairwise disjoint): the layer of
+  // each primitive, below batch_layers(), as platforms/layer_packing.h packs them.
   virtual std::vector<RenderResult> render_batch(
       const std::vector<geometry::Primitive>& prims,
-      const std::vector<geometry::PixelRegion>& expected) {
+      const std::vector<geometry::PixelRegion>& expected, const std::vector<int>& layers = {}) {
+    (void)layers;
     std::vector<RenderResult> out;
     out.reserve(prims.size());
     for (size_t i = 0; i < prims.size(); ++i) out.push_back(render(prims[i], expected[i]));
     return out;
   }
+  // How many layers a batch may use in the current view (1: overlapping primitives are never
+  // drawn in one batch).
+  virtual int batch_layers() const { return 1; }
 };
 
 // Creates the platform for this process. GL platforms make their context with
@@ -94,16 +108,29 @@ enum class ReadbackMethod {
   kFullWindow,       // clear and read back the whole window for every primitive (the paper's way)
   kDrawOnly,         // draw + glFinish, nothing read: the floor (RenderResult::lit stays empty)
 };
+// How a GL or Vulkan platform batches and times; the defaults are what `run` does.
+struct BatchOptions {
+  // Layers of the window (platforms/raster_device.h create_gl_device): 0 as the device decides
+  // (layers where the device's clock times each primitive), 1 none (overlapping primitives drawn
+  // one at a time), N at most N.
+  int max_layers = 0;
+  // Which clock render_us reads: kAuto the device's where it times the drawing itself
+  // (RasterDevice::device_clock), else the host's; kDevice forces the device's timer (tests: it
+  // must have one).
+  enum class Clock { kAuto, kHost, kDevice };
+  Clock clock = Clock::kAuto;
+};
+
 // `wild_pixel_indices` (tests only): for these primitive indices GL also lights one pixel far from
 // the primitive, inside the same occlusion query, as a driver bug would; the readback must find it.
 std::unique_ptr<Platform> create_gl_platform(
     const rundir::PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
-    std::vector<uint64_t> wild_pixel_indices = {});
+    std::vector<uint64_t> wild_pixel_indices = {}, const BatchOptions& batching = {});
 // A Vulkan platform (spec.draws_with_vulkan(); vulkan_device.cpp): the same readback methods
 // and test faults as create_gl_platform.
 std::unique_ptr<Platform> create_vulkan_platform(
     const rundir::PlatformSpec& spec, ReadbackMethod method = ReadbackMethod::kRegionWithProof,
-    std::vector<uint64_t> wild_pixel_indices = {});
+    std::vector<uint64_t> wild_pixel_indices = {}, const BatchOptions& batching = {});
 std::unique_ptr<Platform> create_reference_platform();
 std::unique_ptr<Platform> create_faulty_platform(const rundir::FaultPlan& faults);
 

@@ -46,12 +46,35 @@ class RasterDevice {
                       const std::vector<geometry::PixelRect>* resolve = nullptr) = 0;
   // Fragments (samples) that passed during the last counted draw.
   virtual uint64_t counted_fragments() = 0;
+
+  // --- layered drawing: primitives that cannot overwrite each other, many per submission -------
+  // The window has layers() colour images of its size (at least 1; draw(), resolve() and clear()
+  // use layer 0, clear() clears them all). Each primitive of draw_each() goes into its own layer
+  // (or shares one with primitives whose pixels it cannot reach), so overlapping lines and
+  // triangles are drawn in one submission with one wait.
+  virtual int layers() const = 0;
+  // Draws prims[i] in colours[i] into layer layers[i], in order, as one submission that the CPU
+  // waits for, each primitive inside its own occlusion query and, with `timed`, between two of the
+  // device's timestamps; returns the CPU time of it all in microseconds. Aliased windows only.
+  virtual double draw_each(const std::vector<geometry::Primitive>& prims,
+                           const std::vector<uint32_t>& colours, const std::vector<int>& layers,
+                           bool timed) = 0;
+  // Of primitive i of the last draw_each(): the fragments that passed, and the device's time
+  // between its timestamps in microseconds (NaN when it was not timed).
+  virtual uint64_t fragments_of(size_t i) = 0;
+  virtual double device_us_of(size_t i) = 0;
+  // True where the device's clock times the drawing itself: a timer query, on a device that is
+  // not the host's CPU (Mesa's llvmpipe, softpipe and lavapipe draw on the CPU; their timers see
+  // part of their work: llvmpipe's 0.07 of it, docs/records.md).
+  virtual bool device_clock() const = 0;
   // Resolves these rectangles of the multisample window into the single-sample one, untimed.
   virtual void resolve(const std::vector<geometry::PixelRect>& rects) = 0;
-  // Copies these rectangles (inside the window) of the single-sample window to host memory.
+  // Copies these rectangles (inside the window) of the single-sample window to host memory, rect i
+  // from layer layers[i] (all from layer 0 when `layers` is empty).
   // pixels(i) is rectangle i's first row, its rows r.x1 - r.x0 pixels apart: the row of y = r.y0
   // first, or with rows_top_down() the row of y = r.y1 - 1 first. Valid until the next call.
-  virtual void read(const std::vector<geometry::PixelRect>& rects) = 0;
+  virtual void read(const std::vector<geometry::PixelRect>& rects,
+                    const std::vector<int>& layers = {}) = 0;
   virtual const uint32_t* pixels(size_t i) const = 0;
   virtual bool rows_top_down() const = 0;
   // Clears the whole window (every sample) to black and waits.
@@ -63,8 +86,20 @@ class RasterDevice {
   virtual double timer_over_cpu() = 0;
 };
 
+// How many layers a device gives a window of w x h pixels: as many as kLayerBudgetBytes of RGBA8
+// hold, at most kMaxLayers (a 907 x 907 view: 40; 128 x 128: 64), at least 1. `max_layers` > 0
+// caps it (tests, benchmarks; 1 turns layered drawing off).
+constexpr size_t kLayerBudgetBytes = size_t(128) << 20;
+constexpr int kMaxLayers = 64;
+int layers_for_window(int w, int h, int max_layers);
+
 // The devices. Both throw ra::util::UserError naming the platform when the driver cannot serve it.
-std::unique_ptr<RasterDevice> create_gl_device(const rundir::PlatformSpec& spec);
-std::unique_ptr<RasterDevice> create_vulkan_device(const rundir::PlatformSpec& spec);
+// `max_layers` 0 (what `run` uses): layers_for_window's layers on a device with device_clock(),
+// one elsewhere. On the CPU drivers a batch's shared wait would replace each line's and
+// triangle's own time, and llvmpipe gains nothing: it rasterizes its scene at every change of
+// framebuffer (docs/benchmarks.md). Else as layers_for_window's.
+std::unique_ptr<RasterDevice> create_gl_device(const rundir::PlatformSpec& spec, int max_layers = 0);
+std::unique_ptr<RasterDevice> create_vulkan_device(const rundir::PlatformSpec& spec,
+                                                   int max_layers = 0);
 
 }  // namespace ra::platforms

@@ -20,7 +20,7 @@ class ReferencePlatform : public Platform {
     RenderResult out;
     const auto t0 = std::chrono::steady_clock::now();
     out.lit = geometry::rasterize_reference(view_, prim);
-    out.render_us =
+    out.render_us = out.host_us =
         std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     out.full_scan = true;  // nothing is read back: the set is complete by construction
     return out;

@@ -16,6 +16,11 @@
 //
 // Multisample platforms: drawn into a 4-sample image and resolved with vkCmdResolveImage into a
 // single-sample one, which the readback copies.
+//
+// Layers: the aliased image has layers() array layers and a framebuffer per layer. draw_each()
+// records every primitive of the batch in one command buffer: a render pass per run of
+// primitives in the same layer, each primitive inside its own occlusion query and, timed, between
+// a top-of-pipe and a bottom-of-pipe timestamp; one submission, one fence wait.
 
 #include <algorithm>
 #include <array>
@@ -64,7 +69,8 @@ struct DrawItem {
 
 class VulkanDevice : public RasterDevice {
  public:
-  explicit VulkanDevice(const rundir::PlatformSpec& spec) : samples_(spec.samples) {
+  VulkanDevice(const rundir::PlatformSpec& spec, int max_layers)
+      : samples_(spec.samples), max_layers_(samples_ > 0 ? 1 : max_layers) {
     ctx_ = std::make_unique<VulkanContext>(spec);
     const VulkanDeviceInfo& d = ctx_->info();
     info_.renderer = d.name;
@@ -94,11 +100,11 @@ class VulkanDevice : public RasterDevice {
     vk_check(vkCreateFence(dev(), &fence, nullptr, &fence_), "vkCreateFence");
     VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     q.queryType = VK_QUERY_TYPE_OCCLUSION;
-    q.queryCount = 1;
+    q.queryCount = uint32_t(kMaxPrimitives);  // draw() uses the first; draw_each() one each
     vk_check(vkCreateQueryPool(dev(), &q, nullptr, &occlusion_), "vkCreateQueryPool");
     if (d.timestamps) {
       q.queryType = VK_QUERY_TYPE_TIMESTAMP;
-      q.queryCount = 2;
+      q.queryCount = uint32_t(2 * kMaxPrimitives);
       vk_check(vkCreateQueryPool(dev(), &q, nullptr, &timestamps_), "vkCreateQueryPool");
     }
     vertices_ = create_host_buffer(*ctx_, kMaxVertices * 4 * sizeof(float),
@@ -131,20 +137,9 @@ class VulkanDevice : public RasterDevice {
   double draw(const std::vector<geometry::Primitive>& prims, const std::vector<uint32_t>& colours,
               bool counted, const geometry::Pixel* wild,
               const std::vector<geometry::PixelRect>* resolve_rects = nullptr) override {
-    std::vector<DrawItem> items;
+    std::vector<DrawItem> items = load_vertices(prims, colours);
     float* v = static_cast<float*>(vertices_.mapped);
-    uint32_t next = 0;
-    for (size_t i = 0; i < prims.size(); ++i) {
-      const geometry::Primitive& p = prims[i];
-      DrawItem item{next, uint32_t(geometry::vertex_count(p.kind)), p.kind, colours[i], false};
-      for (uint32_t k = 0; k < item.count; ++k, ++next) {
-        v[4 * next] = float(p.v[k].x);
-        v[4 * next + 1] = float(p.v[k].y);
-        v[4 * next + 2] = float(p.v[k].z);
-        v[4 * next + 3] = 1;
-      }
-      items.push_back(item);
-    }
+    const uint32_t next = items.empty() ? 0 : items.back().first + items.back().count;
     if (wild) {  // a point at the pixel's centre, in Vulkan clip coordinates
       v[4 * next] = float(2.0 * (wild->x + 0.5) / width_ - 1.0);
       v[4 * next + 1] = float(1.0 - 2.0 * (wild->y + 0.5) / height_);
@@ -159,12 +154,64 @@ class VulkanDevice : public RasterDevice {
     return micros_since(t0);
   }
 
-  uint64_t counted_fragments() override {
+  uint64_t counted_fragments() override { return fragments_of(0); }
+
+  int layers() const override { return int(framebuffers_.size()); }
+
+  double draw_each(const std::vector<geometry::Primitive>& prims,
+                   const std::vector<uint32_t>& colours, const std::vector<int>& layers,
+                   bool timed) override {
+    if (prims.size() > kMaxPrimitives)
+      throw std::logic_error("draw_each: more primitives than the vertex buffer holds");
+    timed_ = timed && timestamps_;
+    std::vector<DrawItem> items = load_vertices(prims, colours);
+    const auto t0 = Clock::now();
+    begin();
+    const uint32_t n = uint32_t(prims.size());
+    vkCmdResetQueryPool(cb_, occlusion_, 0, n);
+    if (timed_) vkCmdResetQueryPool(cb_, timestamps_, 0, 2 * n);
+    const VkQueryControlFlags precise =
+        ctx_->info().precise_occlusion ? VK_QUERY_CONTROL_PRECISE_BIT : 0;
+    for (uint32_t i = 0; i < n;) {
+      uint32_t end = i + 1;  // primitives i..end-1 share a layer: one render pass
+      while (end < n && layers[end] == layers[i]) ++end;
+      begin_render_pass(framebuffers_[size_t(layers[i])]);
+      int bound = -1;
+      for (; i < end; ++i) {
+        if (timed_) vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_, 2 * i);
+        vkCmdBeginQuery(cb_, occlusion_, i, precise);
+        record_item(items[i], bound);
+        vkCmdEndQuery(cb_, occlusion_, i);
+        if (timed_)
+          vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps_, 2 * i + 1);
+      }
+      vkCmdEndRenderPass(cb_);
+    }
+    submit_and_wait();
+    return micros_since(t0);
+  }
+
+  uint64_t fragments_of(size_t i) override {
     uint64_t n = 0;
-    vk_check(vkGetQueryPoolResults(dev(), occlusion_, 0, 1, sizeof n, &n, sizeof n,
+    vk_check(vkGetQueryPoolResults(dev(), occlusion_, uint32_t(i), 1, sizeof n, &n, sizeof n,
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
              "vkGetQueryPoolResults");
     return n;
+  }
+
+  double device_us_of(size_t i) override {
+    if (!timed_) return std::numeric_limits<double>::quiet_NaN();
+    uint64_t ticks[2] = {0, 0};
+    vk_check(vkGetQueryPoolResults(dev(), timestamps_, uint32_t(2 * i), 2, sizeof ticks, ticks,
+                                   sizeof(uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+             "vkGetQueryPoolResults");
+    if (ticks[1] < ticks[0]) return std::numeric_limits<double>::quiet_NaN();
+    return double(ticks[1] - ticks[0]) * ctx_->info().timestamp_period_ns / 1e3;
+  }
+
+  bool device_clock() const override {
+    return ctx_->info().timestamps && ctx_->info().type != "cpu";
   }
 
   void resolve(const std::vector<geometry::PixelRect>& rects) override {
@@ -174,15 +221,17 @@ class VulkanDevice : public RasterDevice {
   }
 
   // One copy of every rectangle into the host buffer, one submission.
-  void read(const std::vector<geometry::PixelRect>& rects) override {
+  void read(const std::vector<geometry::PixelRect>& rects, const std::vector<int>& layers) override {
     offsets_.clear();
     std::vector<VkBufferImageCopy> copies;
     size_t offset = 0;
-    for (const geometry::PixelRect& r : rects) {
+    for (size_t i = 0; i < rects.size(); ++i) {
+      const geometry::PixelRect& r = rects[i];
       offsets_.push_back(offset);
       VkBufferImageCopy c{};
       c.bufferOffset = offset * 4;
-      c.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      c.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, uint32_t(layers.empty() ? 0 : layers[i]),
+                            1};
       c.imageOffset = {r.x0, height_ - r.y1, 0};  // framebuffer y points down
       c.imageExtent = {uint32_t(r.x1 - r.x0), uint32_t(r.y1 - r.y0), 1};
       copies.push_back(c);
@@ -215,7 +264,8 @@ class VulkanDevice : public RasterDevice {
     begin();
     transfer_barrier();
     const VkClearColorValue black{{0, 0, 0, 0}};
-    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0,
+                                        VK_REMAINING_ARRAY_LAYERS};
     for (VkImage image : {target_.image, resolved_.image})
       if (image) vkCmdClearColorImage(cb_, image, VK_IMAGE_LAYOUT_GENERAL, &black, 1, &range);
     submit_and_wait();
@@ -273,16 +323,23 @@ class VulkanDevice : public RasterDevice {
 
   void resize(int w, int h) {
     destroy_targets();
-    target_ = create_colour_image(*ctx_, w, h, std::max(samples_, 1));
+    const int layers = samples_ > 0 || (max_layers_ == 0 && !device_clock())
+                           ? 1
+                           : layers_for_window(w, h, max_layers_);
+    target_ = create_colour_image(*ctx_, w, h, std::max(samples_, 1), layers);
     if (samples_ > 0) resolved_ = create_colour_image(*ctx_, w, h, 1);
-    VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fb.renderPass = pipelines_.render_pass;
-    fb.attachmentCount = 1;
-    fb.pAttachments = &target_.view;
-    fb.width = uint32_t(w);
-    fb.height = uint32_t(h);
-    fb.layers = 1;
-    vk_check(vkCreateFramebuffer(dev(), &fb, nullptr, &framebuffer_), "vkCreateFramebuffer");
+    for (VkImageView view : target_.views) {
+      VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+      fb.renderPass = pipelines_.render_pass;
+      fb.attachmentCount = 1;
+      fb.pAttachments = &view;
+      fb.width = uint32_t(w);
+      fb.height = uint32_t(h);
+      fb.layers = 1;
+      framebuffers_.push_back(VK_NULL_HANDLE);
+      vk_check(vkCreateFramebuffer(dev(), &fb, nullptr, &framebuffers_.back()),
+               "vkCreateFramebuffer");
+    }
     width_ = w;
     height_ = h;
     // The images start undefined: into GENERAL, where they stay (vulkan_resources.h).
@@ -295,7 +352,7 @@ class VulkanDevice : public RasterDevice {
       b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
       b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
       b.image = image;
-      b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
       vkCmdPipelineBarrier(cb_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                            0, 0, nullptr, 0, nullptr, 1, &b);
     }
@@ -303,8 +360,8 @@ class VulkanDevice : public RasterDevice {
   }
 
   void destroy_targets() {
-    if (framebuffer_) vkDestroyFramebuffer(dev(), framebuffer_, nullptr);
-    framebuffer_ = VK_NULL_HANDLE;
+    for (VkFramebuffer fb : framebuffers_) vkDestroyFramebuffer(dev(), fb, nullptr);
+    framebuffers_.clear();
     destroy_image(*ctx_, target_);
     destroy_image(*ctx_, resolved_);
   }
@@ -346,9 +403,41 @@ class VulkanDevice : public RasterDevice {
     if (counted)
       vkCmdBeginQuery(cb_, occlusion_, 0,
                       ctx_->info().precise_occlusion ? VK_QUERY_CONTROL_PRECISE_BIT : 0);
+    begin_render_pass(framebuffers_.front());
+    int bound = -1;
+    for (const DrawItem& item : items) record_item(item, bound);
+    vkCmdEndRenderPass(cb_);
+    if (counted) vkCmdEndQuery(cb_, occlusion_, 0);
+    if (counted && timestamps_)
+      vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps_, 1);
+  }
+
+  // Writes the primitives' vertices (object coordinates, w = 1) into the vertex buffer.
+  std::vector<DrawItem> load_vertices(const std::vector<geometry::Primitive>& prims,
+                                      const std::vector<uint32_t>& colours) {
+    std::vector<DrawItem> items;
+    float* v = static_cast<float*>(vertices_.mapped);
+    uint32_t next = 0;
+    for (size_t i = 0; i < prims.size(); ++i) {
+      const geometry::Primitive& p = prims[i];
+      DrawItem item{next, uint32_t(geometry::vertex_count(p.kind)), p.kind, colours[i], false};
+      for (uint32_t k = 0; k < item.count; ++k, ++next) {
+        v[4 * next] = float(p.v[k].x);
+        v[4 * next + 1] = float(p.v[k].y);
+        v[4 * next + 2] = float(p.v[k].z);
+        v[4 * next + 3] = 1;
+      }
+      items.push_back(item);
+    }
+    return items;
+  }
+
+  // Begins the render pass on `framebuffer` with the whole window's viewport and scissor and
+  // the vertex buffer bound.
+  void begin_render_pass(VkFramebuffer framebuffer) {
     VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     rp.renderPass = pipelines_.render_pass;
-    rp.framebuffer = framebuffer_;
+    rp.framebuffer = framebuffer;
     rp.renderArea = {{0, 0}, {uint32_t(width_), uint32_t(height_)}};
     vkCmdBeginRenderPass(cb_, &rp, VK_SUBPASS_CONTENTS_INLINE);
     const VkViewport viewport{0, 0, float(width_), float(height_), 0, 1};
@@ -357,28 +446,25 @@ class VulkanDevice : public RasterDevice {
     vkCmdSetScissor(cb_, 0, 1, &scissor);
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cb_, 0, 1, &vertices_.buffer, &offset);
-    int bound = -1;
-    DrawConstants c{};
-    for (const DrawItem& item : items) {
-      if (int(item.kind) != bound) {
-        bound = int(item.kind);
-        vkCmdBindPipeline(cb_, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.by_kind[bound]);
-      }
-      for (int i = 0; i < 16; ++i)
-        c.clip_from_object[i] = item.identity ? (i % 5 == 0 ? 1.0f : 0.0f) : clip_from_object_[i];
-      c.colour[0] = float(item.colour & 0xff) / 255.0f;
-      c.colour[1] = float((item.colour >> 8) & 0xff) / 255.0f;
-      c.colour[2] = float((item.colour >> 16) & 0xff) / 255.0f;
-      c.colour[3] = 1;
-      vkCmdPushConstants(cb_, pipelines_.layout,
-                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof c,
-                         &c);
-      vkCmdDraw(cb_, item.count, 1, item.first, 0);
+  }
+
+  // One draw inside the render pass: its kind's pipeline (when `bound` is another), its matrix
+  // and colour as push constants.
+  void record_item(const DrawItem& item, int& bound) {
+    if (int(item.kind) != bound) {
+      bound = int(item.kind);
+      vkCmdBindPipeline(cb_, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.by_kind[size_t(bound)]);
     }
-    vkCmdEndRenderPass(cb_);
-    if (counted) vkCmdEndQuery(cb_, occlusion_, 0);
-    if (counted && timestamps_)
-      vkCmdWriteTimestamp(cb_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps_, 1);
+    DrawConstants c{};
+    for (int i = 0; i < 16; ++i)
+      c.clip_from_object[i] = item.identity ? (i % 5 == 0 ? 1.0f : 0.0f) : clip_from_object_[i];
+    c.colour[0] = float(item.colour & 0xff) / 255.0f;
+    c.colour[1] = float((item.colour >> 8) & 0xff) / 255.0f;
+    c.colour[2] = float((item.colour >> 16) & 0xff) / 255.0f;
+    c.colour[3] = 1;
+    vkCmdPushConstants(cb_, pipelines_.layout,
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof c, &c);
+    vkCmdDraw(cb_, item.count, 1, item.first, 0);
   }
 
   // Records the resolve of the rectangles (same place in both images).
@@ -411,11 +497,12 @@ class VulkanDevice : public RasterDevice {
            geometry::Vec3{0, 0.01, -0.5}};
     const std::vector<geometry::PixelRect> all = {{0, 0, width_, height_}};
     draw({p, l, t}, {1, 1, 1}, true, nullptr, samples_ > 0 ? &all : nullptr);
-    read({{0, 0, 1, 1}});
+    read({{0, 0, 1, 1}}, {});
     warmed_up_ = true;
   }
 
   int samples_ = 0;
+  int max_layers_ = 0;  // create_vulkan_device's cap on layers_for_window (0: none)
   std::unique_ptr<VulkanContext> ctx_;
   DriverInfo info_;
   VulkanPipelines pipelines_;
@@ -425,7 +512,8 @@ class VulkanDevice : public RasterDevice {
   VkQueryPool occlusion_ = VK_NULL_HANDLE, timestamps_ = VK_NULL_HANDLE;
   VulkanBuffer vertices_, readback_;
   VulkanImage target_, resolved_;
-  VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
+  std::vector<VkFramebuffer> framebuffers_;  // one per layer of target_
+  bool timed_ = false;                       // the last draw_each wrote timestamps
   int width_ = 0, height_ = 0;
   float clip_from_object_[16] = {};
   bool warmed_up_ = false;
@@ -434,8 +522,9 @@ class VulkanDevice : public RasterDevice {
 
 }  // namespace
 
-std::unique_ptr<RasterDevice> create_vulkan_device(const rundir::PlatformSpec& spec) {
-  return std::make_unique<VulkanDevice>(spec);
+std::unique_ptr<RasterDevice> create_vulkan_device(const rundir::PlatformSpec& spec,
+                                                   int max_layers) {
+  return std::make_unique<VulkanDevice>(spec, max_layers);
 }
 
 }  // namespace ra::platforms

@@ -44,14 +44,14 @@ void destroy_buffer(const VulkanContext& ctx, VulkanBuffer& b) {
   b = VulkanBuffer{};
 }
 
-VulkanImage create_colour_image(const VulkanContext& ctx, int w, int h, int samples) {
+VulkanImage create_colour_image(const VulkanContext& ctx, int w, int h, int samples, int layers) {
   VulkanImage out;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;
   info.format = VK_FORMAT_R8G8B8A8_UNORM;
   info.extent = {uint32_t(w), uint32_t(h), 1};
   info.mipLevels = 1;
-  info.arrayLayers = 1;
+  info.arrayLayers = uint32_t(layers);
   info.samples = VkSampleCountFlagBits(samples);
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
@@ -66,17 +66,22 @@ VulkanImage create_colour_image(const VulkanContext& ctx, int w, int h, int samp
   alloc.memoryTypeIndex = ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   vk_check(vkAllocateMemory(ctx.device(), &alloc, nullptr, &out.memory), "vkAllocateMemory");
   vk_check(vkBindImageMemory(ctx.device(), out.image, out.memory, 0), "vkBindImageMemory");
-  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  view.image = out.image;
-  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  view.format = info.format;
-  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vk_check(vkCreateImageView(ctx.device(), &view, nullptr, &out.view), "vkCreateImageView");
+  for (int k = 0; k < layers; ++k) {
+    VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    view.image = out.image;
+    view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view.format = info.format;
+    view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, uint32_t(k), 1};
+    out.views.push_back(VK_NULL_HANDLE);
+    vk_check(vkCreateImageView(ctx.device(), &view, nullptr, &out.views.back()),
+             "vkCreateImageView");
+  }
   return out;
 }
 
 void destroy_image(const VulkanContext& ctx, VulkanImage& image) {
-  if (image.view) vkDestroyImageView(ctx.device(), image.view, nullptr);
+  for (VkImageView v : image.views)
+    if (v) vkDestroyImageView(ctx.device(), v, nullptr);
   if (image.image) vkDestroyImage(ctx.device(), image.image, nullptr);
   if (image.memory) vkFreeMemory(ctx.device(), image.memory, nullptr);
   image = VulkanImage{};

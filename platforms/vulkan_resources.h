@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "rundir/platform_spec.h"
 #include "platforms/vulkan_context.h"
@@ -25,15 +26,15 @@ VulkanBuffer create_host_buffer(const VulkanContext& ctx, VkDeviceSize size,
                                 VkBufferUsageFlags usage, bool cached);
 void destroy_buffer(const VulkanContext& ctx, VulkanBuffer& b);
 
-// An RGBA8 colour image of w x h pixels and `samples` samples per pixel (1 or more), in
-// device-local memory, usable as colour attachment and as copy / resolve / clear source and
-// destination.
+// An RGBA8 colour image of w x h pixels, `layers` array layers and `samples` samples per pixel
+// (1 or more), in device-local memory, usable as colour attachment and as copy / resolve / clear
+// source and destination; views[k] sees layer k alone.
 struct VulkanImage {
   VkImage image = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  VkImageView view = VK_NULL_HANDLE;
+  std::vector<VkImageView> views;
 };
-VulkanImage create_colour_image(const VulkanContext& ctx, int w, int h, int samples);
+VulkanImage create_colour_image(const VulkanContext& ctx, int w, int h, int samples, int layers = 1);
 void destroy_image(const VulkanContext& ctx, VulkanImage& image);
 
 // What the shaders get per draw (push constants, 80 bytes): the matrix from object to Vulkan

@@ -9,6 +9,7 @@
 #include "metrics/point_metrics.h"
 #include "geometry/reference_rasterizer.h"
 #include "metrics/triangle_metrics.h"
+#include "platforms/layer_packing.h"
 
 namespace ra::runner {
 
@@ -110,6 +111,8 @@ metrics::Record finish_case(PreparedCase& c, const geometry::View& view, const g
       break;
   }
   rec.render_us = rendered.render_us;
+  rec.host_us = rendered.host_us;
+  rec.clock = rendered.device_clock ? "device" : "host";
   rec.batch_size = rendered.batch_size;
   rec.pixel_hash = rendered_pixel_hash(rendered);
   if (!comparison.with_reference) {
@@ -198,11 +201,13 @@ std::vector<metrics::Record> measure_cases(const std::string& platform_name, pla
   std::vector<size_t> batch;  // indices into prims
   std::vector<geometry::Primitive> batch_prims;
   std::vector<geometry::PixelRegion> batch_regions;
+  std::vector<int> batch_layers;
+  platforms::LayerPacker packer(platform.batch_layers(), kMaxBatch, kBatchMaxRegionArea);
   auto flush = [&] {
     if (batch.empty()) return;
     auto t0 = Clock::now();
     const std::vector<platforms::RenderResult> results =
-        platform.render_batch(batch_prims, batch_regions);
+        platform.render_batch(batch_prims, batch_regions, batch_layers);
     const double shared = since(t0) / double(batch.size());  // the batch shares its proof
     for (size_t k = 0; k < batch.size(); ++k) {
       t0 = Clock::now();
@@ -210,22 +215,26 @@ std::vector<metrics::Record> measure_cases(const std::string& platform_name, pla
                                       comparison);
       cost[batch[k]] += shared + since(t0);
     }
-    batch.clear(), batch_prims.clear(), batch_regions.clear();
+    batch.clear(), batch_prims.clear(), batch_regions.clear(), batch_layers.clear();
+    packer.clear();
   };
   for (size_t i = 0; i < prims.size(); ++i) {
     if (cases[i].rec.status == metrics::CaseStatus::kInvalid) {
       records[i] = cases[i].rec;
       continue;
     }
-    // Batch small primitives with disjoint regions (the usual case for all but large triangles
-    // and lines), so that one completeness proof covers the batch; a large one goes alone.
+    // Small primitives with disjoint regions share a layer; one that overlaps them takes another
+    // layer, a large one a layer of its own (platforms/layer_packing.h). On a platform with one
+    // layer, a batch is small primitives with disjoint regions under one completeness proof, and
+    // a large primitive goes alone.
     const geometry::PixelRegion& r = cases[i].expected;
-    const bool large = r.area() > kBatchMaxRegionArea;
-    bool clash = batch.size() >= kMaxBatch || large;
-    for (size_t k = 0; k < batch_regions.size() && !clash; ++k) clash = batch_regions[k].overlaps(r);
-    if (clash) flush();
+    int layer = packer.place(r);
+    if (layer < 0) {
+      flush();
+      layer = packer.place(r);
+    }
     batch.push_back(i), batch_prims.push_back(prims[i]), batch_regions.push_back(r);
-    if (large) flush();
+    batch_layers.push_back(layer);
   }
   flush();
   if (cost_us) *cost_us = std::move(cost);

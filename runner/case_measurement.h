@@ -22,9 +22,10 @@ constexpr int kRegionMargin = 2;
 constexpr int64_t kTriangleBandMinArea = 128 * 128;
 constexpr int kTriangleBandRows = 32;
 
-// Primitives whose expected regions are disjoint and at most this large (px^2) are drawn in
-// batches of up to kMaxBatch under one completeness proof (Platform::render_batch); larger ones
-// are drawn alone, where the proof's fixed cost no longer matters.
+// Primitives are drawn in batches of up to kMaxBatch (Platform::render_batch). Those whose
+// expected regions are disjoint and at most this large (px^2) share a layer of the window (on a
+// platform with one layer: one completeness proof); a larger one takes a layer of its own (on a
+// platform with one layer it is drawn alone, where the proof's fixed cost no longer matters).
 constexpr int64_t kBatchMaxRegionArea = 64 * 64;
 constexpr size_t kMaxBatch = 64;
 

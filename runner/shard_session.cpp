@@ -38,7 +38,8 @@ static void write_driver_info(const std::string& run_dir, const rundir::Platform
   nlohmann::json j = {{"renderer", info.renderer},           {"version", info.version},
                       {"vendor", info.vendor},               {"subpixel_bits", info.subpixel_bits},
                       {"timer_query", info.timer_query},     {"max_samples", info.max_samples},
-                      {"backend", info.backend},
+                      {"backend", info.backend},             {"clock", info.clock},
+                      {"layered", info.layered},
                       {"timer_over_cpu", std::isnan(info.timer_over_cpu)
                                              ? nlohmann::json()
                                              : nlohmann::json(info.timer_over_cpu)}};
