@@ -134,6 +134,8 @@ bench: build
 	$(BUILD)/readback_bench --primitives 300 --rounds 3 --json outputs/bench/readback.json
 	$(BUILD)/analysis_bench --records 2400000 --platforms 2
 	$(BUILD)/run_overhead_bench --rounds 3 --jobs 2 --json outputs/bench/run_overhead.json
+	$(BUILD)/layered_bench --platform osmesa-llvmpipe --primitives 2000
+	$(BUILD)/layered_bench --platform vk-lavapipe --primitives 2000
 
 # Investigations: programs whose output a finding of docs/method.md quotes ("Where we differ from the
 # paper and why": the paper's method under candidate readings, on the reference rasterizer).

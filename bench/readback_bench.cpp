@@ -10,7 +10,10 @@
 //   project  everything `renderaudit run` does (measure_cases: small primitives batched under one
 //            proof, ideal geometry, metrics, reference rasterizer comparison, conformance verdict
 //            on the platform's measured effective subpixel grid);
-//   unjudged the same without the conformance verdict: project / unjudged - 1 is its cost.
+//   unjudged the same without the conformance verdict: project / unjudged - 1 is its cost;
+//   layered  project with overlapping lines and triangles drawn together, each in its own layer
+//            of the window (platforms/layer_packing.h), on every device (`run` layers only where
+//            the device's clock times each primitive: GPUs).
 // Mesa picks its driver once per process, so each platform is measured in a child process
 // (`readback_bench --platform P`), one per platform and round, the platforms alternating; the
 // parent gathers the rows into one table (and EGL / OSMesa ratios) and a JSON file.
@@ -36,6 +39,7 @@
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
 #include "platforms/platform.h"
+#include "platforms/raster_device.h"
 #include "stats/descriptive.h"
 #include "util/child_process.h"
 
@@ -83,7 +87,7 @@ nlohmann::json summary_row(const std::string& platform, ra::geometry::Kind kind,
                         {"window", window},
                         {"fov_deg", fov},
                         {"primitives", primitives}};
-  for (const char* m : {"floor", "batched", "naive", "region", "project", "unjudged"}) {
+  for (const char* m : {"floor", "batched", "naive", "region", "project", "unjudged", "layered"}) {
     row[std::string(m) + "_us"] = median(t.per_primitive.at(m));
     row[std::string(m) + "_mean_us"] = mean(t.per_primitive.at(m));
   }
@@ -96,10 +100,16 @@ bool benchable(const std::string& name) {
   return spec && spec->draws_with_driver() && spec->samples == 0;
 }
 
+// `layered`: overlapping primitives share batches in the window's layers on every device (run
+// layers them only where the device's clock times each primitive).
 std::unique_ptr<ra::platforms::Platform> create_bench_platform(
-    const ra::rundir::PlatformSpec& spec, ra::platforms::ReadbackMethod method) {
-  return spec.draws_with_vulkan() ? ra::platforms::create_vulkan_platform(spec, method)
-                                  : ra::platforms::create_gl_platform(spec, method);
+    const ra::rundir::PlatformSpec& spec, ra::platforms::ReadbackMethod method,
+    bool layered = false) {
+  ra::platforms::BatchOptions batching;
+  if (layered) batching.max_layers = ra::platforms::kMaxLayers;
+  return spec.draws_with_vulkan()
+             ? ra::platforms::create_vulkan_platform(spec, method, {}, batching)
+             : ra::platforms::create_gl_platform(spec, method, {}, batching);
 }
 
 // One platform, in this process: prints one JSON object per configuration on stdout, and per
@@ -112,7 +122,7 @@ int measure_platform(const Options& opt) {
                  opt.platform.c_str());
     return 2;
   }
-  const char* methods[] = {"floor", "naive", "region", "project", "batched"};
+  const char* methods[] = {"floor", "naive", "region", "project", "batched", "layered"};
   // The grid `run`'s workers would measure (runner/effective_subpixel.h).
   ra::geometry::SubpixelGrid effective;
   {
@@ -138,12 +148,12 @@ int measure_platform(const Options& opt) {
           for (int i = 0; i < opt.primitives; ++i)
             prims.push_back(
                 ra::geometry::make_primitive(2008, kind, uint64_t(round) * opt.primitives + i));
-          for (int m = 0; m < 5; ++m) {  // interleaved: every method in every round
+          for (int m = 0; m < 6; ++m) {  // interleaved: every method in every round
             const ra::platforms::ReadbackMethod rm =
                 m == 0 || m == 4 ? ra::platforms::ReadbackMethod::kDrawOnly
                 : m == 1         ? ra::platforms::ReadbackMethod::kFullWindow
                                  : ra::platforms::ReadbackMethod::kRegionWithProof;
-            auto platform = create_bench_platform(*spec, rm);
+            auto platform = create_bench_platform(*spec, rm, m == 5);
             platform->set_view(view);
             // Mesa compiles its shaders on the first draws, single and batched (the first batch
             // cost 8 ms on llvmpipe): keep that out of the timings.
@@ -161,6 +171,19 @@ int measure_platform(const Options& opt) {
                 for (const ra::platforms::RenderResult& r : platform->render_batch(
                          chunk, std::vector<ra::geometry::PixelRegion>(chunk.size())))
                   us.push_back(r.render_us);
+              }
+              continue;
+            }
+            if (m == 5) {  // what `run` does, with every device's layers
+              ra::runner::CaseComparison judged(true, effective);
+              judged.line_rule = ra::runner::line_rule_for(*spec, platform->driver_info());
+              for (size_t i = 0; i < prims.size(); i += kChunk) {
+                const std::vector<ra::geometry::Primitive> chunk(
+                    prims.begin() + i, prims.begin() + std::min(prims.size(), i + kChunk));
+                std::vector<double> cost;
+                ra::runner::measure_cases(opt.platform, *platform, view, chunk, judged, &cost);
+                std::vector<double>& us = t.per_primitive["layered"];
+                us.insert(us.end(), cost.begin(), cost.end());
               }
               continue;
             }
@@ -282,29 +305,32 @@ int run_children(const Options& opt, const char* self) {
       "what `run` spends per primitive (its batch's drawing and proof shared equally, plus its own\n"
       "geometry, metrics, reference comparison and conformance verdict); batched: the floor with\n"
       "one glFinish per %d primitives; verdict: what the conformance verdict adds to project\n"
-      "(project / project without it - 1, of means). ratios: of medians, and naive/project of\n"
-      "means.\n",
+      "(project / project without it - 1, of means); layered: project with overlapping lines and\n"
+      "triangles drawn together in layers of the window, on every device. ratios: of medians, and\n"
+      "naive/project and layered/project of means.\n",
       opt.primitives, opt.rounds, kChunk);
-  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s\n", "platform", "kind",
-              "window", "fov", "floor", "batched", "naive", "region", "project", "floor", "project",
-              "project", "naive", "verdict");
-  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s\n", "", "", "", "",
-              "median", "median", "median", "median", "median", "mean", "mean", "/floor", "/proj",
-              "cost");
+  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s %8s\n", "platform",
+              "kind", "window", "fov", "floor", "batched", "naive", "region", "project", "layered",
+              "floor", "project", "project", "naive", "verdict", "layered");
+  std::printf("%-16s %-9s %6s %5s %8s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s %8s\n", "", "", "", "",
+              "median", "median", "median", "median", "median", "median", "mean", "mean", "/floor",
+              "/proj", "cost", "/proj");
   for (const auto& r : rows) {
     const double fov = r["fov_deg"];
     const std::string fov_text = fov == 0 ? "both" : std::to_string(int(fov));
     const double floor = r["floor_us"], project = r["project_us"];
     const double verdict_cost =
         r["project_mean_us"].get<double>() / r["unjudged_mean_us"].get<double>() - 1;
-    std::printf("%-16s %-9s %6d %5s %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %7.2f %7.1f %7.1f%%\n",
-                r["platform"].get<std::string>().c_str(), r["kind"].get<std::string>().c_str(),
-                r["window"].get<int>(), fov_text.c_str(), floor, r["batched_us"].get<double>(),
-                r["naive_us"].get<double>(),
-                r["region_us"].get<double>(), project, r["floor_mean_us"].get<double>(),
-                r["project_mean_us"].get<double>(), project / floor,
-                r["naive_mean_us"].get<double>() / r["project_mean_us"].get<double>(),
-                100 * verdict_cost);
+    std::printf(
+        "%-16s %-9s %6d %5s %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %8.1f %7.2f %7.1f %7.1f%% "
+        "%8.2f\n",
+        r["platform"].get<std::string>().c_str(), r["kind"].get<std::string>().c_str(),
+        r["window"].get<int>(), fov_text.c_str(), floor, r["batched_us"].get<double>(),
+        r["naive_us"].get<double>(), r["region_us"].get<double>(), project,
+        r["layered_us"].get<double>(), r["floor_mean_us"].get<double>(),
+        r["project_mean_us"].get<double>(), project / floor,
+        r["naive_mean_us"].get<double>() / r["project_mean_us"].get<double>(), 100 * verdict_cost,
+        r["layered_mean_us"].get<double>() / r["project_mean_us"].get<double>());
   }
   // EGL against OSMesa on the same driver: the back end's own cost
   bool header = false;
