@@ -229,9 +229,15 @@ std::string view_group_label(int view_group) {
 }
 
 const char* const kVulkanRenderTimeNote =
-    "On a Vulkan platform (vk-*) render_us is the CPU time of recording the primitive's commands, "
-    "submitting them and waiting for their fence (batches share one submission as GL's share one "
-    "glFinish); copying the pixels back is a submission of its own, outside it.";
+    "On a Vulkan platform (vk-*) on the host's clock render_us is the CPU time of recording the "
+    "primitive's commands, submitting them and waiting for their fence (batches share one "
+    "submission as GL's share one glFinish); copying the pixels back is a submission of its own, "
+    "outside it.";
+
+const char* const kDeviceClockNote =
+    "Where a GPU's driver times each draw itself (records column clock = device: egl-device, "
+    "vk-device), render_us is the device's time around the primitive's own draw, batch or not, "
+    "and the host's share of the submission and wait is the column host_us.";
 
 bool is_vulkan_platform(const std::string& platform) { return platform.rfind("vk-", 0) == 0; }
 

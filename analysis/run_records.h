@@ -191,6 +191,8 @@ std::vector<double> merge_sorted(const std::vector<const std::vector<double>*>& 
 // What render_us means on a Vulkan platform (vk-*), for the notes of the tables and report
 // sections that show it when a run has one.
 extern const char* const kVulkanRenderTimeNote;
+// What render_us is on the device's clock (records column clock).
+extern const char* const kDeviceClockNote;
 bool is_vulkan_platform(const std::string& platform);
 
 }  // namespace ra::analysis

@@ -118,7 +118,8 @@ stats::Table speed_table(const RunRecords& run, const TableOptions& options) {
       "runner: alone for a large primitive, an equal share of one glFinish for small ones drawn "
       "in a batch (records column batch_size); on an antialiased platform it includes the "
       "resolve of the multisample buffer. It depends on the machine and its load, unlike the "
-      "errors."};
+      "errors.",
+      kDeviceClockNote};
   if (std::any_of(run.platforms.begin(), run.platforms.end(), is_vulkan_platform))
     t.notes.push_back(kVulkanRenderTimeNote);
   return t;

@@ -167,7 +167,8 @@ TEST(SpeedTableKinds, EachKindShowsItsHeadlineErrorWithThePapersDecimals) {
   EXPECT_EQ(texts(table.rows[0]),
             (std::vector<std::string>{"p1", "triangle", "A", "30", "128", "1", "12.50", "0.00",
                                       "1", "12.50", "0.00", "TEu (px^2)", "1.500", "0.000"}));
-  EXPECT_EQ(table.notes.size(), 2u);
+  EXPECT_EQ(table.notes.size(), 3u);
+  EXPECT_EQ(table.notes[2], kDeviceClockNote);
   EXPECT_EQ(table.notes[0],
             "Cases: records with status ok and a render time; True visible: those of them that "
             "are true-visible (the error is measured on these).");

@@ -107,8 +107,8 @@ struct SpeedErrorFigures : FigurePlanner {
         doc.value("quantile_definition", std::string("hyndman_fan_6")) +
         "); both axes log10. Small primitives are drawn in batches under one glFinish and each is "
         "given an equal share of its batch's time (records column batch_size), so render_us is a "
-        "per-primitive average over the batch, not the latency of one draw. Times depend on the "
-        "machine and its load.";
+        "per-primitive average over the batch, not the latency of one draw. " +
+        std::string(analysis::kDeviceClockNote) + " Times depend on the machine and its load.";
     f.section = section;
     f.content = std::move(c);
     add(std::move(f));

@@ -351,7 +351,8 @@ void add_timing(Document& d, const analysis::RunTally& tally) {
       "in batches of up to 64 under one glFinish and each gets an equal share of the batch's "
       "time (records column batch_size). Medians and IQRs (Hyndman-Fan 6) over the "
       "records with status ok; the analysis table 'Render time beside error' breaks them down by "
-      "view group. Times depend on the machine and its load, unlike the errors."));
+      "view group. Times depend on the machine and its load, unlike the errors. " +
+      std::string(analysis::kDeviceClockNote)));
   for (const auto& [key, time] : tally.render_time)
     if (analysis::is_vulkan_platform(key.first)) {
       d.blocks.push_back(paragraph(analysis::kVulkanRenderTimeNote));
