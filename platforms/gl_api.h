@@ -23,7 +23,8 @@ namespace ra::platforms {
   X(Finish) X(FramebufferRenderbuffer) X(GenBuffers) X(GenFramebuffers) X(GenQueries)          \
   X(GenRenderbuffers) X(GenTextures) X(GetError) X(GetIntegerv) X(GetMultisamplefv)            \
   X(GetQueryObjectui64v) X(GetQueryObjectuiv) X(GetQueryiv) X(GetRenderbufferParameteriv)      \
-  X(GetString) X(LineWidth) X(LoadIdentity) X(LoadMatrixd) X(MatrixMode) X(PixelStorei)        \
+  X(GetString) X(LineWidth) X(LoadIdentity) X(LoadMatrixd) X(MapBufferRange) X(MatrixMode)     \
+  X(PixelStorei) X(UnmapBuffer)                                                                \
   X(PointSize) X(PolygonMode) X(PopMatrix) X(PushMatrix) X(ReadBuffer) X(ReadPixels)           \
   X(RenderbufferStorage) X(RenderbufferStorageMultisample) X(ShadeModel) X(TexCoordPointer)    \
   X(TexEnvi) X(TexImage2D) X(TexParameteri) X(Vertex2d) X(Vertex3d) X(VertexPointer)           \

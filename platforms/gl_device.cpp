@@ -10,7 +10,10 @@
 // Layers: one more FBO per layer, each with its own RGBA8 renderbuffer of the view's size, made
 // as layer 0's is: the same storage, viewport and state, so a primitive rasterizes to the same
 // pixels in any layer. draw_each() binds each primitive's layer, brackets it with its own
-// GL_SAMPLES_PASSED query (and, timed, a GL_TIME_ELAPSED query), and calls glFinish once.
+// GL_SAMPLES_PASSED query (and, timed, a GL_TIME_ELAPSED query), and calls glFinish once. A
+// layered window reads back through a pixel pack buffer: every rectangle's glReadPixels queued
+// into it, one map for them all, where each glReadPixels into client memory would wait for the
+// device (a batch's line strips are hundreds of rectangles).
 //
 // Multisample platforms: the primitive is drawn into a multisample FBO (GL_RGBA8, `samples` samples
 // per pixel, GL_MULTISAMPLE enabled) and resolved (glBlitFramebuffer) into a single-sample FBO that
@@ -177,6 +180,16 @@ class GlDevice : public RasterDevice {
       total += size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
     }
     readback_.resize(total);
+    const bool packed = layer_framebuffers_.size() > 1 && total > 0;
+    if (packed) {
+      if (!pack_buffer_) gl().GenBuffers(1, &pack_buffer_);
+      gl().BindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer_);
+      if (total > pack_capacity_) {
+        pack_capacity_ = std::max<size_t>(total, size_t(1) << 18);
+        gl().BufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(pack_capacity_ * 4), nullptr,
+                        GL_STREAM_READ);
+      }
+    }
     int bound = 0;
     for (size_t i = 0; i < rects.size(); ++i) {
       const geometry::PixelRect& r = rects[i];
@@ -185,10 +198,19 @@ class GlDevice : public RasterDevice {
         bound = layer;
         gl().BindFramebuffer(GL_READ_FRAMEBUFFER, layer_framebuffers_[size_t(layer)]);
       }
-      gl().ReadPixels(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0, GL_RGBA, GL_UNSIGNED_BYTE,
-                      readback_.data() + offsets_[i]);
+      void* to = packed ? reinterpret_cast<void*>(offsets_[i] * 4)
+                        : static_cast<void*>(readback_.data() + offsets_[i]);
+      gl().ReadPixels(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0, GL_RGBA, GL_UNSIGNED_BYTE, to);
     }
     if (bound != 0) gl().BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+    if (packed) {
+      const void* from =
+          gl().MapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(total * 4), GL_MAP_READ_BIT);
+      if (!from) throw std::runtime_error("platform " + name_ + ": glMapBufferRange failed");
+      std::memcpy(readback_.data(), from, total * 4);
+      gl().UnmapBuffer(GL_PIXEL_PACK_BUFFER);
+      gl().BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    }
   }
   const uint32_t* pixels(size_t i) const override { return readback_.data() + offsets_[i]; }
   bool rows_top_down() const override { return false; }
@@ -402,6 +424,8 @@ class GlDevice : public RasterDevice {
   GLuint framebuffer_ = 0, renderbuffer_ = 0, query_ = 0;
   std::vector<GLuint> layer_framebuffers_, layer_renderbuffers_;  // per layer; [0] = framebuffer_
   std::vector<GLuint> count_queries_, time_queries_;  // draw_each's, per primitive
+  GLuint pack_buffer_ = 0;    // a layered window's readback (GL_PIXEL_PACK_BUFFER)
+  size_t pack_capacity_ = 0;  // its size in pixels
   bool timed_ = false;                                // the last draw_each was timed
   // Multisample platforms: the resolve target.
   GLuint resolve_framebuffer_ = 0, resolve_renderbuffer_ = 0;
