@@ -42,16 +42,6 @@ std::unique_ptr<platforms::Platform> make(const rundir::PlatformSpec& spec, int 
                                              batching);
 }
 
-// The record as written with its timing columns emptied.
-std::string without_timing(metrics::Record r) {
-  r.render_us = r.host_us = metrics::kNA;
-  r.batch_size = 0;
-  r.clock.clear();
-  std::string line;
-  metrics::append_record(line, r);
-  return line;
-}
-
 struct Way {
   double wall_s = 0;
   std::vector<double> render_us, host_us;
@@ -118,11 +108,13 @@ int main(int argc, char** argv) {
           }
           for (size_t i = 0; i < prims.size(); ++i) {
             ++cell.records;
-            if (without_timing(a[i]) == without_timing(b[i])) ++cell.equal;
+            const std::string one = metrics::untimed_record_line(a[i]);
+            const std::string many = metrics::untimed_record_line(b[i]);
+            if (one == many) ++cell.equal;
             else if (cell.records - cell.equal <= 3)
               std::fprintf(stderr, "differs: view %d %s %llu\n  %s  %s", view.id,
                            geometry::kind_name(kind), (unsigned long long)prims[i].index,
-                           without_timing(a[i]).c_str(), without_timing(b[i]).c_str());
+                           one.c_str(), many.c_str());
             if (a[i].status != metrics::CaseStatus::kOk) continue;
             for (auto [way, r] : {std::pair{&cell.single, &a[i]}, std::pair{&cell.layered, &b[i]}}) {
               way->render_us.push_back(r->render_us);

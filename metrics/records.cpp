@@ -153,6 +153,15 @@ void append_record(std::string& out, const Record& r) {
   out += '\n';
 }
 
+std::string untimed_record_line(Record r) {
+  r.render_us = r.host_us = kNA;
+  r.batch_size = 0;
+  r.clock.clear();
+  std::string line;
+  append_record(line, r);
+  return line;
+}
+
 void write_record(std::ostream& out, const Record& r) {
   std::string line;
   append_record(line, r);

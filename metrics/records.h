@@ -103,5 +103,8 @@ std::string records_header_v3();  // the header line of schema version 3 files
 // as the very same double.
 void write_record(std::ostream& out, const Record& r);
 void append_record(std::string& out, const Record& r);  // the same line, appended to `out`
+// The record's line with its timing columns (render_us, batch_size, host_us, clock) emptied:
+// what two measurements of the same primitive on a deterministic driver agree on.
+std::string untimed_record_line(Record r);
 
 }  // namespace ra::metrics

@@ -175,6 +175,23 @@ TEST_F(RecordsReader, SchemaVersion3FilesReadWithoutHostTimeOrClock) {
   EXPECT_EQ(metrics::records_header(), metrics::records_header_v3() + ",host_us,clock");
 }
 
+// Two measurements of one primitive that differ only in their clocks and batching have the same
+// untimed line; any measured column tells them apart.
+TEST(UntimedRecordLine, DropsTheTimingColumnsOnly) {
+  metrics::Record a;
+  a.platform = "vk-device";
+  a.kind = "line";
+  a.pixels = 12;
+  a.pixel_hash = 99;
+  a.render_us = 3.5, a.host_us = 40, a.batch_size = 40, a.clock = "device";
+  metrics::Record b = a;
+  b.render_us = 250, b.host_us = 250, b.batch_size = 1, b.clock = "host";
+  EXPECT_EQ(metrics::untimed_record_line(a), metrics::untimed_record_line(b));
+  EXPECT_EQ(metrics::untimed_record_line(a).find("3.5"), std::string::npos);
+  b.pixel_hash = 98;
+  EXPECT_NE(metrics::untimed_record_line(a), metrics::untimed_record_line(b));
+}
+
 TEST_F(RecordsReader, RowsStraddlingTheReadBlocksAreReadWhole) {
   // more than 4 MiB of rows, so that some row crosses the reader's block boundary
   std::ostringstream out;

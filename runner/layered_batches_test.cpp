@@ -37,16 +37,6 @@ bool available(const std::string& name, std::string* why) {
   }
 }
 
-// The record as written, its timing columns emptied: everything a measurement decides.
-std::string without_timing(metrics::Record r) {
-  r.render_us = r.host_us = metrics::kNA;
-  r.batch_size = 0;
-  r.clock.clear();
-  std::string line;
-  metrics::append_record(line, r);
-  return line;
-}
-
 std::vector<geometry::Primitive> primitives(geometry::Kind kind, uint64_t n) {
   std::vector<geometry::Primitive> prims;
   for (uint64_t i = 0; i < n; ++i) prims.push_back(geometry::make_primitive(2008, kind, i));
@@ -81,7 +71,7 @@ TEST_P(LayeredBatches, EqualOneAtATimeRecords) {
         ASSERT_EQ(a.size(), b.size());
         int64_t drawn_together = 0, lit = 0;
         for (size_t i = 0; i < a.size(); ++i) {
-          ASSERT_EQ(without_timing(a[i]), without_timing(b[i]))
+          ASSERT_EQ(metrics::untimed_record_line(a[i]), metrics::untimed_record_line(b[i]))
               << GetParam() << " " << geometry::kind_name(kind) << " " << size << " FOV " << fov;
           EXPECT_EQ(b[i].clock, "host");
           EXPECT_EQ(b[i].render_us, b[i].host_us);
@@ -118,7 +108,8 @@ TEST_P(LayeredBatches, TheDeviceClockTimesEachPrimitive) {
     const auto t = measure_cases(GetParam(), *timed, view, prims, true);
     const auto p = measure_cases(GetParam(), *plain, view, prims, true);
     for (size_t i = 0; i < t.size(); ++i) {
-      ASSERT_EQ(without_timing(t[i]), without_timing(p[i])) << geometry::kind_name(kind) << i;
+      ASSERT_EQ(metrics::untimed_record_line(t[i]), metrics::untimed_record_line(p[i]))
+          << geometry::kind_name(kind) << i;
       if (t[i].status != metrics::CaseStatus::kOk) continue;
       EXPECT_EQ(t[i].clock, "device");
       EXPECT_EQ(p[i].clock, "host");
