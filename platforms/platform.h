@@ -119,6 +119,11 @@ struct BatchOptions {
   // must have one).
   enum class Clock { kAuto, kHost, kDevice };
   Clock clock = Clock::kAuto;
+  // Where the lit pixels of an aliased window are found: kHost over the pixels read back (what
+  // `run` does), kDevice by a compute pass that sends only a bit per pixel and a count per region
+  // (RasterDevice::scans; platforms/lit_mask.h): benchmarks and tests, the device must have it.
+  enum class Scan { kHost, kDevice };
+  Scan scan = Scan::kHost;
 };
 
 // `wild_pixel_indices` (tests only): for these primitive indices GL also lights one pixel far from

@@ -20,6 +20,7 @@
 namespace ra::platforms {
 
 constexpr uint32_t kWhite = 0x00ffffffu;  // the colour of full coverage (and the last of the counter)
+constexpr uint32_t kAnyColour = 0xffffffffu;  // scan for any pixel that is not black
 
 class RasterDevice {
  public:
@@ -77,6 +78,19 @@ class RasterDevice {
                     const std::vector<int>& layers = {}) = 0;
   virtual const uint32_t* pixels(size_t i) const = 0;
   virtual bool rows_top_down() const = 0;
+
+  // --- the lit-pixel scan on the device (platforms/lit_mask.h) -------------------------------
+  // True where the device can find lit pixels itself: a compute pass, so that only a bit per
+  // pixel and a count per rectangle cross the bus.
+  virtual bool scans() const { return false; }
+  // As read(), but the device compares: bit (x, y) of rectangle i's mask is set when that pixel's
+  // RGB equal colours[i] (kAnyColour: any colour but black). mask(i) holds rectangle i's rows,
+  // (width + 31) / 32 words apart, in pixels()'s row order; lit_count(i) its bits set. Valid
+  // until the next call.
+  virtual void scan(const std::vector<geometry::PixelRect>& rects, const std::vector<int>& layers,
+                    const std::vector<uint32_t>& colours);
+  virtual const uint32_t* mask(size_t i) const;
+  virtual uint64_t lit_count(size_t i) const;
   // Clears the whole window (every sample) to black and waits.
   virtual void clear() = 0;
   // The most primitives one draw() takes.

@@ -36,6 +36,10 @@
 // around its own draw; host_us is its share of the host's submission and wait. Elsewhere both
 // are the host's clock.
 //
+// Where the lit pixels are found: on the host, over the pixels read back (what `run` does), or,
+// with BatchOptions::Scan::kDevice, on the device (platforms/lit_mask.h: a bit per pixel of the
+// region's colour comes back instead of the pixels). Same pixels, same proofs either way.
+//
 // Multisample platforms (PlatformSpec::samples > 0, the antialiasing condition). The primitive is
 // drawn white into a multisample window and the expected region is resolved into a single-sample
 // one, inside render_us: what antialiasing costs includes the resolve. Resolved colours blend
@@ -61,14 +65,13 @@
 #include <vector>
 
 #include "platforms/layer_packing.h"
+#include "platforms/lit_mask.h"
 #include "platforms/pixel_scan.h"
 #include "platforms/platform.h"
 #include "platforms/raster_device.h"
 
 namespace ra::platforms {
 namespace {
-
-constexpr uint32_t kAnyColour = 0xffffffffu;  // scan for any pixel that is not black
 
 class ReadbackMeasurement : public Platform {
  public:
@@ -94,6 +97,11 @@ class ReadbackMeasurement : public Platform {
           throw std::logic_error("platform " + name_ + " has no timer for the device's clock");
         device_clock_ = aliased_proof;
         break;
+    }
+    if (batching.scan == BatchOptions::Scan::kDevice) {
+      if (!device_->scans())
+        throw std::logic_error("platform " + name_ + " cannot find lit pixels on the device");
+      device_scan_ = samples_ == 0;
     }
     // As the devices decide their layers (raster_device.h create_gl_device).
     layered_ = aliased_proof && (batching.max_layers > 1 ||
@@ -194,7 +202,7 @@ class ReadbackMeasurement : public Platform {
     const uint64_t fragments = device_->counted_fragments();
     std::vector<RenderResult> out(prims.size());
     uint64_t found = 0;
-    read_regions(expected);
+    read_regions(expected, {}, colours);
     for (size_t i = 0; i < prims.size(); ++i) {
       out[i].render_us = out[i].host_us = share_us;
       out[i].batch_size = int(prims.size());
@@ -219,7 +227,7 @@ class ReadbackMeasurement : public Platform {
     std::vector<RenderResult> out(n);
     std::vector<uint64_t> fragments(n);
     std::vector<size_t> unproven;
-    read_regions(expected, layers);
+    read_regions(expected, layers, colours);
     for (size_t i = 0; i < n; ++i) {
       out[i].host_us = host_us / double(n);
       out[i].device_clock = device_clock_;
@@ -234,7 +242,7 @@ class ReadbackMeasurement : public Platform {
     for (size_t i : unproven) {
       out[i].full_scan = true;
       out[i].lit.clear();
-      read_regions({window()}, {layers[i]});
+      read_regions({window()}, {layers[i]}, {colours[i]});
       scan_region(0, colours[i], out[i].lit);
       if (uint64_t(out[i].lit.size()) != fragments[i]) redraw.push_back(i);
     }
@@ -290,21 +298,28 @@ class ReadbackMeasurement : public Platform {
   }
 
   // Reads every region's rectangles in one readback, region i from layer layers[i] (layer 0 when
-  // `layers` is empty); spans_[i] = region i's range in rects_.
+  // `layers` is empty); spans_[i] = region i's range in rects_. With the scan on the device,
+  // region i is scanned there for colours[i] (one per region; empty: read the pixels).
   void read_regions(const std::vector<geometry::PixelRegion>& regions,
-                    const std::vector<int>& layers = {}) {
+                    const std::vector<int>& layers = {},
+                    const std::vector<uint32_t>& colours = {}) {
     rects_.clear();
     spans_.clear();
     rect_layers_.clear();
+    rect_colours_.clear();
     for (size_t i = 0; i < regions.size(); ++i) {
       const size_t first = rects_.size();
       for (const geometry::PixelRect& r : clamped(regions[i])) {
         rects_.push_back(r);
         if (!layers.empty()) rect_layers_.push_back(layers[i]);
+        if (!colours.empty()) rect_colours_.push_back(colours[i]);
       }
       spans_.emplace_back(first, rects_.size());
     }
-    if (!rects_.empty()) device_->read(rects_, rect_layers_);
+    scanned_ = device_scan_ && !colours.empty();
+    if (rects_.empty()) return;
+    if (scanned_) device_->scan(rects_, rect_layers_, rect_colours_);
+    else device_->read(rects_, rect_layers_);
   }
 
   // Appends the pixels of region i (read by read_regions) in `colour` (kAnyColour: any that is not
@@ -315,7 +330,11 @@ class ReadbackMeasurement : public Platform {
     const bool any = colour == kAnyColour, top_down = device_->rows_top_down();
     auto scan = [&](size_t k, geometry::PixelSet& into) {
       const geometry::PixelRect& r = rects_[k];
-      scan_rect(device_->pixels(k), size_t(r.x1 - r.x0), top_down, r, any, colour, into);
+      if (!scanned_)
+        return scan_rect(device_->pixels(k), size_t(r.x1 - r.x0), top_down, r, any, colour, into);
+      if (rect_colours_[k] != colour)
+        throw std::logic_error("scan_region: scanned on the device for another colour");
+      append_mask_runs(device_->mask(k), uint32_t(r.x1 - r.x0 + 31) / 32, top_down, r, into);
     };
     if (last - first == 1) return scan(first, lit);
     runs_.clear();
@@ -329,7 +348,7 @@ class ReadbackMeasurement : public Platform {
   }
 
   void read_colour(const geometry::PixelRegion& region, uint32_t colour, geometry::PixelSet& lit) {
-    read_regions({region});
+    read_regions({region}, {}, {colour});
     scan_region(0, colour, lit);
   }
 
@@ -476,6 +495,9 @@ class ReadbackMeasurement : public Platform {
   std::vector<geometry::PixelRect> rects_;             // of the last read_regions
   std::vector<std::pair<size_t, size_t>> spans_;       // region i -> [first, last) of rects_
   std::vector<int> rect_layers_;                       // the layer of each of rects_ (or empty)
+  std::vector<uint32_t> rect_colours_;  // the colour each of rects_ was scanned for on the device
+  bool scanned_ = false;      // the last read_regions scanned on the device: masks, not pixels
+  bool device_scan_ = false;  // BatchOptions::Scan::kDevice (aliased windows)
   bool layered_ = false;       // batches may use the device's layers (aliased, region with proof)
   bool device_clock_ = false;  // render_us from the device's timestamps (see the top)
   std::vector<geometry::PixelRun> runs_;

@@ -216,6 +216,7 @@ VulkanDeviceInfo describe(VkPhysicalDevice pd, int index, uint32_t* graphics_fam
     if (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) {
       *graphics_family = i;
       d.timestamps = families[i].timestampValidBits > 0;
+      d.queue_computes = (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) != 0;
       break;
     }
   return d;

@@ -40,6 +40,7 @@ struct VulkanDeviceInfo {
   double timestamp_period_ns = 0;  // limits.timestampPeriod
   int max_samples = 1;             // the largest of limits.framebufferColorSampleCounts
   bool precise_occlusion = false;  // features.occlusionQueryPrecise
+  bool queue_computes = false;     // the graphics queue runs compute shaders too (the lit-pixel scan)
 
   // "rectangular, bresenham, smooth" (the modes VK_EXT_line_rasterization offers), or "default".
   std::string line_modes() const;

@@ -21,6 +21,9 @@
 // records every primitive of the batch in one command buffer: a render pass per run of
 // primitives in the same layer, each primitive inside its own occlusion query and, timed, between
 // a top-of-pipe and a bottom-of-pipe timestamp; one submission, one fence wait.
+//
+// The scan on the device (scan(), platforms/vulkan_lit_mask.h): the copies of read() go into a
+// device-local buffer, and a compute pass in the same submission leaves a bit per pixel.
 
 #include <algorithm>
 #include <array>
@@ -33,7 +36,9 @@
 #include <vector>
 
 #include "platforms/raster_device.h"
+#include "platforms/lit_mask.h"
 #include "platforms/vulkan_context.h"
+#include "platforms/vulkan_lit_mask.h"
 #include "platforms/vulkan_resources.h"
 
 namespace ra::platforms {
@@ -113,6 +118,7 @@ class VulkanDevice : public RasterDevice {
 
   ~VulkanDevice() override {
     vkDeviceWaitIdle(dev());
+    lit_mask_.reset();
     destroy_targets();
     destroy_buffer(*ctx_, vertices_);
     destroy_buffer(*ctx_, readback_);
@@ -222,25 +228,12 @@ class VulkanDevice : public RasterDevice {
 
   // One copy of every rectangle into the host buffer, one submission.
   void read(const std::vector<geometry::PixelRect>& rects, const std::vector<int>& layers) override {
-    offsets_.clear();
-    std::vector<VkBufferImageCopy> copies;
-    size_t offset = 0;
-    for (size_t i = 0; i < rects.size(); ++i) {
-      const geometry::PixelRect& r = rects[i];
-      offsets_.push_back(offset);
-      VkBufferImageCopy c{};
-      c.bufferOffset = offset * 4;
-      c.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, uint32_t(layers.empty() ? 0 : layers[i]),
-                            1};
-      c.imageOffset = {r.x0, height_ - r.y1, 0};  // framebuffer y points down
-      c.imageExtent = {uint32_t(r.x1 - r.x0), uint32_t(r.y1 - r.y0), 1};
-      copies.push_back(c);
-      offset += size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
-    }
+    size_t pixel_count = 0;
+    const std::vector<VkBufferImageCopy> copies = image_copies(rects, layers, &pixel_count);
     if (copies.empty()) return;
-    if (offset * 4 > readback_.size) {
+    if (pixel_count * 4 > readback_.size) {
       destroy_buffer(*ctx_, readback_);
-      readback_ = create_host_buffer(*ctx_, std::max<VkDeviceSize>(offset * 4, 1 << 20),
+      readback_ = create_host_buffer(*ctx_, std::max<VkDeviceSize>(pixel_count * 4, 1 << 20),
                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     }
     begin();
@@ -258,6 +251,28 @@ class VulkanDevice : public RasterDevice {
     return static_cast<const uint32_t*>(readback_.mapped) + offsets_[i];
   }
   bool rows_top_down() const override { return true; }
+
+  bool scans() const override { return samples_ == 0 && ctx_->info().queue_computes; }
+
+  // The copies of read(), into the scan's device-local buffer, and the pass: one submission.
+  void scan(const std::vector<geometry::PixelRect>& rects, const std::vector<int>& layers,
+            const std::vector<uint32_t>& colours) override {
+    if (!scans()) RasterDevice::scan(rects, layers, colours);
+    if (!lit_mask_) lit_mask_ = std::make_unique<VulkanLitMask>(*ctx_);
+    scan_layout_ = lay_out_lit_masks(rects, colours);
+    if (rects.empty()) return;
+    size_t pixel_count = 0;
+    const std::vector<VkBufferImageCopy> copies = image_copies(rects, layers, &pixel_count);
+    const VkBuffer pixels = lit_mask_->prepare(scan_layout_);
+    begin();
+    transfer_barrier();
+    vkCmdCopyImageToBuffer(cb_, read_image().image, VK_IMAGE_LAYOUT_GENERAL, pixels,
+                           uint32_t(copies.size()), copies.data());
+    lit_mask_->record(cb_, scan_layout_);
+    submit_and_wait();
+  }
+  const uint32_t* mask(size_t i) const override { return lit_mask_->mask(scan_layout_, i); }
+  uint64_t lit_count(size_t i) const override { return lit_mask_->count(i); }
 
   // Clears both images.
   void clear() override {
@@ -316,6 +331,30 @@ class VulkanDevice : public RasterDevice {
     char buf[16];
     std::snprintf(buf, sizeof buf, "%04x", v);
     return buf;
+  }
+
+  // A copy per rectangle (inside the window) from its layer into a buffer, packed one after
+  // another (offsets_); *pixel_count: their pixels in all.
+  std::vector<VkBufferImageCopy> image_copies(const std::vector<geometry::PixelRect>& rects,
+                                              const std::vector<int>& layers,
+                                              size_t* pixel_count) {
+    offsets_.clear();
+    std::vector<VkBufferImageCopy> copies;
+    size_t offset = 0;
+    for (size_t i = 0; i < rects.size(); ++i) {
+      const geometry::PixelRect& r = rects[i];
+      offsets_.push_back(offset);
+      VkBufferImageCopy c{};
+      c.bufferOffset = offset * 4;
+      c.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, uint32_t(layers.empty() ? 0 : layers[i]),
+                            1};
+      c.imageOffset = {r.x0, height_ - r.y1, 0};  // framebuffer y points down
+      c.imageExtent = {uint32_t(r.x1 - r.x0), uint32_t(r.y1 - r.y0), 1};
+      copies.push_back(c);
+      offset += size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
+    }
+    *pixel_count = offset;
+    return copies;
   }
 
   // The image drawn into (4 samples on the multisample platforms) and, there, the resolve target.
@@ -518,6 +557,8 @@ class VulkanDevice : public RasterDevice {
   float clip_from_object_[16] = {};
   bool warmed_up_ = false;
   std::vector<size_t> offsets_;  // where each rectangle of the last read() starts in readback_
+  std::unique_ptr<VulkanLitMask> lit_mask_;  // the scan on the device, made at its first use
+  LitMaskLayout scan_layout_;                // of the last scan()
 };
 
 }  // namespace

@@ -9,8 +9,10 @@
 
 namespace ra::platforms {
 
-VulkanBuffer create_host_buffer(const VulkanContext& ctx, VkDeviceSize size,
-                                VkBufferUsageFlags usage, bool cached) {
+namespace {
+
+VulkanBuffer create_buffer(const VulkanContext& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                           VkMemoryPropertyFlags preferred, VkMemoryPropertyFlags required) {
   VulkanBuffer b;
   b.size = size;
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -20,22 +22,35 @@ VulkanBuffer create_host_buffer(const VulkanContext& ctx, VkDeviceSize size,
   vk_check(vkCreateBuffer(ctx.device(), &info, nullptr, &b.buffer), "vkCreateBuffer");
   VkMemoryRequirements req{};
   vkGetBufferMemoryRequirements(ctx.device(), b.buffer, &req);
-  const VkMemoryPropertyFlags host =
-      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
   uint32_t type = 0;
   try {
-    type = ctx.memory_type(req.memoryTypeBits,
-                           cached ? host | VK_MEMORY_PROPERTY_HOST_CACHED_BIT : host);
+    type = ctx.memory_type(req.memoryTypeBits, preferred);
   } catch (const std::runtime_error&) {
-    type = ctx.memory_type(req.memoryTypeBits, host);
+    type = ctx.memory_type(req.memoryTypeBits, required);
   }
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex = type;
   vk_check(vkAllocateMemory(ctx.device(), &alloc, nullptr, &b.memory), "vkAllocateMemory");
   vk_check(vkBindBufferMemory(ctx.device(), b.buffer, b.memory, 0), "vkBindBufferMemory");
+  return b;
+}
+
+}  // namespace
+
+VulkanBuffer create_host_buffer(const VulkanContext& ctx, VkDeviceSize size,
+                                VkBufferUsageFlags usage, bool cached) {
+  const VkMemoryPropertyFlags host =
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  VulkanBuffer b =
+      create_buffer(ctx, size, usage, cached ? host | VK_MEMORY_PROPERTY_HOST_CACHED_BIT : host, host);
   vk_check(vkMapMemory(ctx.device(), b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
   return b;
+}
+
+VulkanBuffer create_device_buffer(const VulkanContext& ctx, VkDeviceSize size,
+                                  VkBufferUsageFlags usage) {
+  return create_buffer(ctx, size, usage, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
 }
 
 void destroy_buffer(const VulkanContext& ctx, VulkanBuffer& b) {
@@ -126,7 +141,9 @@ VkRenderPass create_render_pass(const VulkanContext& ctx, int samples) {
   return pass;
 }
 
-VkShaderModule shader(const VulkanContext& ctx, const uint32_t* code, size_t bytes) {
+}  // namespace
+
+VkShaderModule create_shader_module(const VulkanContext& ctx, const uint32_t* code, size_t bytes) {
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   info.codeSize = bytes;
   info.pCode = code;
@@ -134,8 +151,6 @@ VkShaderModule shader(const VulkanContext& ctx, const uint32_t* code, size_t byt
   vk_check(vkCreateShaderModule(ctx.device(), &info, nullptr, &m), "vkCreateShaderModule");
   return m;
 }
-
-}  // namespace
 
 VulkanPipelines create_pipelines(const VulkanContext& ctx, int samples,
                                  rundir::PlatformSpec::LineMode line_mode) {
@@ -149,8 +164,8 @@ VulkanPipelines create_pipelines(const VulkanContext& ctx, int samples,
   vk_check(vkCreatePipelineLayout(ctx.device(), &layout, nullptr, &p.layout),
            "vkCreatePipelineLayout");
 
-  VkShaderModule vert = shader(ctx, kPrimitiveVert, sizeof(kPrimitiveVert));
-  VkShaderModule frag = shader(ctx, kPrimitiveFrag, sizeof(kPrimitiveFrag));
+  VkShaderModule vert = create_shader_module(ctx, kPrimitiveVert, sizeof(kPrimitiveVert));
+  VkShaderModule frag = create_shader_module(ctx, kPrimitiveFrag, sizeof(kPrimitiveFrag));
   VkPipelineShaderStageCreateInfo stages[2] = {
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT,
        vert, "main", nullptr},

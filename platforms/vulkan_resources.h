@@ -24,7 +24,12 @@ struct VulkanBuffer {
 // `cached`: ask for host-cached memory first (readback: the CPU reads every byte).
 VulkanBuffer create_host_buffer(const VulkanContext& ctx, VkDeviceSize size,
                                 VkBufferUsageFlags usage, bool cached);
+// A buffer in device-local memory (not mapped): what stays on the device.
+VulkanBuffer create_device_buffer(const VulkanContext& ctx, VkDeviceSize size,
+                                  VkBufferUsageFlags usage);
 void destroy_buffer(const VulkanContext& ctx, VulkanBuffer& b);
+// A shader module of embedded SPIR-V (`bytes` long).
+VkShaderModule create_shader_module(const VulkanContext& ctx, const uint32_t* code, size_t bytes);
 
 // An RGBA8 colour image of w x h pixels, `layers` array layers and `samples` samples per pixel
 // (1 or more), in device-local memory, usable as colour attachment and as copy / resolve / clear

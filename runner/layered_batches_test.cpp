@@ -2,7 +2,8 @@
 // triangles drawn many per wait, each in its own layer with its own proof, give records equal in
 // every column but the timing ones to those of primitives drawn one at a time, on llvmpipe (GL)
 // and lavapipe (Vulkan; skipped where it is missing); and the device's clock, where asked for,
-// fills render_us from timestamps with the host's share of the wait beside it.
+// fills render_us from timestamps with the host's share of the wait beside it. The scan on the
+// device gives the host scan's records.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -150,6 +151,70 @@ TEST(LayeredBatchesProof, AnOverwrittenPrimitiveIsDrawnAgainAlone) {
   EXPECT_FALSE(together[1].full_scan);
   EXPECT_EQ(together[1].batch_size, 2);
   EXPECT_GT(alone_a.lit.size(), 100u);
+}
+
+// The scan on the device (platforms/lit_mask.h), forced on lavapipe, with layers and without:
+// every record equal to the host scan's in every column but timing, and the proofs' fallbacks
+// (a primitive searched in its whole layer, then drawn again alone) take the same path.
+TEST(DeviceScan, EqualsTheHostScanRecordForRecord) {
+  std::string why;
+  if (!available("vk-lavapipe", &why)) GTEST_SKIP() << why;
+  platforms::BatchOptions host, device_one_layer, device_layered;
+  host.max_layers = device_one_layer.max_layers = 1;
+  device_layered.max_layers = 16;
+  device_one_layer.scan = device_layered.scan = platforms::BatchOptions::Scan::kDevice;
+  auto reference = make_platform("vk-lavapipe", host);
+  auto one_layer = make_platform("vk-lavapipe", device_one_layer);
+  auto layered = make_platform("vk-lavapipe", device_layered);
+  for (int size : {128, 907}) {
+    const geometry::View view =
+        geometry::make_view(size == 128 ? 150.0 : 30.0, size, size, 0.01, 10.0,
+                            geometry::random_rotation(2008, 3));
+    for (auto* p : {reference.get(), one_layer.get(), layered.get()}) p->set_view(view);
+    for (geometry::Kind kind :
+         {geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle}) {
+      const std::vector<geometry::Primitive> prims = primitives(kind, 80);
+      const auto a = measure_cases("vk-lavapipe", *reference, view, prims, true);
+      for (auto* p : {one_layer.get(), layered.get()}) {
+        const auto b = measure_cases("vk-lavapipe", *p, view, prims, true);
+        ASSERT_EQ(a.size(), b.size());
+        int64_t lit = 0;
+        for (size_t i = 0; i < a.size(); ++i) {
+          ASSERT_EQ(metrics::untimed_record_line(a[i]), metrics::untimed_record_line(b[i]))
+              << geometry::kind_name(kind) << " " << size << " layers " << p->batch_layers();
+          lit += b[i].pixels;
+        }
+        EXPECT_GT(lit, 0) << geometry::kind_name(kind) << " " << size;
+      }
+    }
+  }
+}
+
+TEST(DeviceScan, AnOverwrittenPrimitiveIsFoundByItsRedrawAlone) {
+  std::string why;
+  if (!available("vk-lavapipe", &why)) GTEST_SKIP() << why;
+  platforms::BatchOptions device;
+  device.max_layers = 4;
+  device.clock = platforms::BatchOptions::Clock::kDevice;  // each primitive its own proof
+  device.scan = platforms::BatchOptions::Scan::kDevice;
+  auto scanned = make_platform("vk-lavapipe", device);
+  auto plain = make_platform("vk-lavapipe", {});
+  const geometry::View view = geometry::make_view(90, 64, 64);
+  scanned->set_view(view);
+  plain->set_view(view);
+  geometry::Primitive a, b;
+  a.kind = b.kind = geometry::Kind::kTriangle;
+  a.v = {geometry::Vec3{-0.5, -0.5, -1}, geometry::Vec3{0.5, -0.5, -1}, geometry::Vec3{0, 0.5, -1}};
+  b.v = {geometry::Vec3{-0.5, 0.5, -1}, geometry::Vec3{0.5, 0.5, -1}, geometry::Vec3{0, -0.5, -1}};
+  b.index = 1;
+  const geometry::PixelRegion whole(geometry::PixelRect{0, 0, 64, 64});
+  const auto together = scanned->render_batch({a, b}, {whole, whole}, {0, 0});
+  ASSERT_EQ(together.size(), 2u);
+  EXPECT_EQ(together[0].lit, plain->render(a, whole).lit);
+  EXPECT_EQ(together[1].lit, plain->render(b, whole).lit);
+  EXPECT_TRUE(together[0].full_scan);
+  EXPECT_EQ(together[0].batch_size, 1);
+  EXPECT_GT(together[0].lit.size(), 100u);
 }
 
 }  // namespace
