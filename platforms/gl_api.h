@@ -30,14 +30,27 @@ namespace ra::platforms {
   X(TexEnvi) X(TexImage2D) X(TexParameteri) X(Vertex2d) X(Vertex3d) X(VertexPointer)           \
   X(Viewport)
 
+// GL 4.3's compute shaders and storage buffers: only the lit-pixel scan on the device uses them
+// (gl_lit_mask.cpp), so a driver without them still draws.
+#define RA_GL_COMPUTE_FUNCTIONS(X)                                                             \
+  X(AttachShader) X(BindBufferBase) X(BufferSubData) X(CompileShader) X(CreateProgram)         \
+  X(CreateShader) X(DeleteProgram) X(DeleteShader) X(DispatchCompute) X(GetIntegeri_v)         \
+  X(GetProgramInfoLog) X(GetProgramiv) X(GetShaderInfoLog) X(GetShaderiv)                      \
+  X(GetUniformLocation) X(LinkProgram) X(MemoryBarrier) X(ShaderSource) X(Uniform1ui)          \
+  X(UseProgram)
+
 struct GlApi {
 #define RA_GL_MEMBER(name) decltype(&::gl##name) name = nullptr;
   RA_GL_FUNCTIONS(RA_GL_MEMBER)
+  RA_GL_COMPUTE_FUNCTIONS(RA_GL_MEMBER)
 #undef RA_GL_MEMBER
 
   // Fetches every function with `get_proc` ("glClear" -> address). Throws std::runtime_error
-  // naming the first one the driver does not give.
+  // naming the first one of RA_GL_FUNCTIONS the driver does not give; those of
+  // RA_GL_COMPUTE_FUNCTIONS stay null when missing (has_compute()).
   void load(const std::function<void*(const char*)>& get_proc);
+  // Every compute entry point was given (whether the context's version has them: GL_VERSION).
+  bool has_compute() const;
 };
 
 }  // namespace ra::platforms

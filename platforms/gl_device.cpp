@@ -15,6 +15,9 @@
 // into it, one map for them all, where each glReadPixels into client memory would wait for the
 // device (a batch's line strips are hundreds of rectangles).
 //
+// The scan on the device (scan(), platforms/gl_lit_mask.h; GL 4.3): the rectangles' glReadPixels
+// go into a buffer that stays on the device, and a compute shader leaves a bit per pixel.
+//
 // Multisample platforms: the primitive is drawn into a multisample FBO (GL_RGBA8, `samples` samples
 // per pixel, GL_MULTISAMPLE enabled) and resolved (glBlitFramebuffer) into a single-sample FBO that
 // glReadPixels reads. Sample positions (llvmpipe 4x, from glGetMultisamplefv): (0.375, 0.125),
@@ -22,6 +25,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -29,6 +33,8 @@
 #include <vector>
 
 #include "platforms/gl_context.h"
+#include "platforms/gl_lit_mask.h"
+#include "platforms/lit_mask.h"
 #include "platforms/raster_device.h"
 
 namespace ra::platforms {
@@ -61,6 +67,10 @@ class GlDevice : public RasterDevice {
     const std::string renderer = info_.renderer;
     draws_on_host_ = renderer.rfind("llvmpipe", 0) == 0 || renderer.rfind("softpipe", 0) == 0 ||
                      renderer.rfind("Software Rasterizer", 0) == 0;
+    int major = 0, minor = 0;  // GL_VERSION begins "major.minor"
+    std::sscanf(info_.version.c_str(), "%d.%d", &major, &minor);
+    if (gl().has_compute() && (major > 4 || (major == 4 && minor >= 3)))
+      glsl_for_scan_ = major > 4 || minor >= 5 ? 450 : 430;
 
     // The paper's conditions: white on black, size/width 1, no antialiasing, both faces filled.
     for (GLenum cap : {GL_DEPTH_TEST, GL_LIGHTING, GL_DITHER, GL_POINT_SMOOTH, GL_LINE_SMOOTH,
@@ -73,6 +83,13 @@ class GlDevice : public RasterDevice {
     gl().Color4f(1, 1, 1, 1);
     gl().PixelStorei(GL_PACK_ALIGNMENT, 4);
     if (samples_ > 0) gl().Enable(GL_MULTISAMPLE);  // the antialiasing condition
+  }
+
+  // The scan's GL objects go with this context, whichever is current now.
+  ~GlDevice() override {
+    if (!lit_mask_) return;
+    context_->make_current();
+    lit_mask_.reset();
   }
 
   DriverInfo info() const override { return info_; }
@@ -173,12 +190,7 @@ class GlDevice : public RasterDevice {
 
   // glReadPixels of each rectangle (rows bottom-up, as GL window coordinates) into one buffer.
   void read(const std::vector<geometry::PixelRect>& rects, const std::vector<int>& layers) override {
-    offsets_.clear();
-    size_t total = 0;
-    for (const geometry::PixelRect& r : rects) {
-      offsets_.push_back(total);
-      total += size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
-    }
+    const size_t total = pack_offsets(rects);
     readback_.resize(total);
     const bool packed = layer_framebuffers_.size() > 1 && total > 0;
     if (packed) {
@@ -190,19 +202,7 @@ class GlDevice : public RasterDevice {
                         GL_STREAM_READ);
       }
     }
-    int bound = 0;
-    for (size_t i = 0; i < rects.size(); ++i) {
-      const geometry::PixelRect& r = rects[i];
-      const int layer = layers.empty() ? 0 : layers[i];
-      if (layer != bound) {
-        bound = layer;
-        gl().BindFramebuffer(GL_READ_FRAMEBUFFER, layer_framebuffers_[size_t(layer)]);
-      }
-      void* to = packed ? reinterpret_cast<void*>(offsets_[i] * 4)
-                        : static_cast<void*>(readback_.data() + offsets_[i]);
-      gl().ReadPixels(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0, GL_RGBA, GL_UNSIGNED_BYTE, to);
-    }
-    if (bound != 0) gl().BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+    read_pixels(rects, layers, packed ? nullptr : readback_.data());
     if (packed) {
       const void* from =
           gl().MapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(total * 4), GL_MAP_READ_BIT);
@@ -214,6 +214,24 @@ class GlDevice : public RasterDevice {
   }
   const uint32_t* pixels(size_t i) const override { return readback_.data() + offsets_[i]; }
   bool rows_top_down() const override { return false; }
+
+  bool scans() const override { return samples_ == 0 && glsl_for_scan_ > 0; }
+
+  // The rectangles read into the scan's buffer on the device, and the pass.
+  void scan(const std::vector<geometry::PixelRect>& rects, const std::vector<int>& layers,
+            const std::vector<uint32_t>& colours) override {
+    if (!scans()) RasterDevice::scan(rects, layers, colours);
+    if (!lit_mask_) lit_mask_ = std::make_unique<GlLitMask>(gl(), glsl_for_scan_, name_);
+    scan_layout_ = lay_out_lit_masks(rects, colours);
+    if (rects.empty()) return;
+    pack_offsets(rects);
+    gl().BindBuffer(GL_PIXEL_PACK_BUFFER, lit_mask_->prepare(scan_layout_));
+    read_pixels(rects, layers, nullptr);
+    gl().BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    lit_mask_->run(scan_layout_);
+  }
+  const uint32_t* mask(size_t i) const override { return lit_mask_->mask(scan_layout_, i); }
+  uint64_t lit_count(size_t i) const override { return lit_mask_->count(i); }
 
   // A whole-window clear is a fast path in Mesa, unlike a scissored one.
   void clear() override {
@@ -270,6 +288,36 @@ class GlDevice : public RasterDevice {
  private:
   static constexpr double kQuad[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};  // NDC corners
   const GlApi& gl() const { return context_->gl(); }
+
+  // Where each rectangle starts when they are packed one after another (offsets_); returns their
+  // pixels in all.
+  size_t pack_offsets(const std::vector<geometry::PixelRect>& rects) {
+    offsets_.clear();
+    size_t total = 0;
+    for (const geometry::PixelRect& r : rects) {
+      offsets_.push_back(total);
+      total += size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
+    }
+    return total;
+  }
+
+  // glReadPixels of rectangle i from its layer to offsets_[i] of `to`, or of the bound pixel
+  // pack buffer when `to` is null.
+  void read_pixels(const std::vector<geometry::PixelRect>& rects, const std::vector<int>& layers,
+                   uint32_t* to) {
+    int bound = 0;
+    for (size_t i = 0; i < rects.size(); ++i) {
+      const geometry::PixelRect& r = rects[i];
+      const int layer = layers.empty() ? 0 : layers[i];
+      if (layer != bound) {
+        bound = layer;
+        gl().BindFramebuffer(GL_READ_FRAMEBUFFER, layer_framebuffers_[size_t(layer)]);
+      }
+      void* at = to ? static_cast<void*>(to + offsets_[i]) : reinterpret_cast<void*>(offsets_[i] * 4);
+      gl().ReadPixels(r.x0, r.y0, r.x1 - r.x0, r.y1 - r.y0, GL_RGBA, GL_UNSIGNED_BYTE, at);
+    }
+    if (bound != 0) gl().BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
+  }
 
   // The multisample FBO's entry points and its resolve target; fails, naming the platform, when the
   // driver cannot give `samples_` samples per pixel.
@@ -433,7 +481,10 @@ class GlDevice : public RasterDevice {
   bool warmed_up_ = false;  // warm_up() has run
   int width_ = 0, height_ = 0;
   std::vector<uint32_t> readback_;  // the last read(), rectangle after rectangle
-  std::vector<size_t> offsets_;     // where each rectangle starts in readback_
+  std::vector<size_t> offsets_;     // where each rectangle starts in readback_ (or a buffer)
+  int glsl_for_scan_ = 0;  // the GLSL version the scan on the device compiles for; 0: none (< 4.3)
+  std::unique_ptr<GlLitMask> lit_mask_;  // the scan on the device, made at its first use
+  LitMaskLayout scan_layout_;            // of the last scan()
 };
 
 }  // namespace

@@ -4,13 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <random>
 
 #include "geometry/reference_rasterizer.h"
-#include "platforms/lit_mask.h"
-#include "platforms/pixel_scan.h"
 #include "platforms/platform.h"
-#include "platforms/raster_device.h"
 #include "platforms/vulkan_context.h"
 #include "util/errors.h"
 
@@ -288,66 +284,6 @@ TEST(VulkanLavapipe, MultisampleCoverage) {
   const RenderResult again = p->render(tri, whole(view));
   EXPECT_EQ(again.lit, r.lit);
   EXPECT_EQ(again.samples_lit, r.samples_lit);
-}
-
-// The scan on the device (lit_mask.h): for rectangles anywhere in a layered window, of any size
-// around the 32-pixel words, its masks hold exactly the pixels the host finds in the pixels read
-// back, for a primitive's colour and for any colour, and its counts are their number.
-TEST(VulkanLavapipe, ScanOnTheDeviceFindsWhatTheHostFinds) {
-  REQUIRE_LAVAPIPE();
-  const auto device = create_vulkan_device(*rundir::find_platform("vk-lavapipe"), 3);
-  ASSERT_TRUE(device->scans());
-  const geometry::View view = window_view(150, 97);
-  device->set_view(view);
-  device->clear();
-  ASSERT_EQ(device->layers(), 3);
-  std::mt19937 rng(5);
-  auto coordinate = [&](int size) { return std::uniform_real_distribution<>(-5, size + 5)(rng); };
-  std::vector<geometry::Primitive> prims;
-  std::vector<uint32_t> colours;
-  std::vector<int> layers;
-  for (int i = 0; i < 30; ++i) {
-    const geometry::Kind kind = geometry::Kind(i % 3);
-    geometry::Primitive p;
-    p.kind = kind;
-    for (geometry::Vec3& v : p.v) v = {coordinate(150), coordinate(97), 0};
-    prims.push_back(p);
-    colours.push_back(uint32_t(1 + i) * 0x010203u);
-    layers.push_back(i % 3);
-  }
-  device->draw_each(prims, colours, layers, false);
-  std::vector<geometry::PixelRect> rects;
-  std::vector<int> rect_layers;
-  std::vector<uint32_t> rect_colours;
-  for (int i = 0; i < 60; ++i) {
-    const int x0 = int(rng() % 150), y0 = int(rng() % 97);
-    const int x1 = x0 + 1 + int(rng() % uint32_t(150 - x0)), y1 = y0 + 1 + int(rng() % uint32_t(97 - y0));
-    rects.push_back({x0, y0, x1, y1});
-    rect_layers.push_back(i % 3);
-    rect_colours.push_back(i % 4 == 0 ? kAnyColour : colours[size_t(rng() % 30)]);
-  }
-  rects.push_back({0, 0, 150, 97});  // the whole window, for the colour of a large triangle
-  rect_layers.push_back(2);
-  rect_colours.push_back(colours[29]);
-  device->read(rects, rect_layers);
-  std::vector<geometry::PixelSet> host(rects.size());
-  for (size_t i = 0; i < rects.size(); ++i) {
-    const geometry::PixelRect& r = rects[i];
-    scan_rect(device->pixels(i), size_t(r.x1 - r.x0), device->rows_top_down(), r,
-              rect_colours[i] == kAnyColour, rect_colours[i], host[i]);
-  }
-  device->scan(rects, rect_layers, rect_colours);
-  int64_t lit = 0;
-  for (size_t i = 0; i < rects.size(); ++i) {
-    const geometry::PixelRect& r = rects[i];
-    geometry::PixelSet on_device;
-    append_mask_runs(device->mask(i), uint32_t(r.x1 - r.x0 + 31) / 32, device->rows_top_down(), r,
-                     on_device);
-    ASSERT_EQ(on_device, host[i]) << "rectangle " << i;
-    EXPECT_EQ(device->lit_count(i), uint64_t(host[i].size())) << "rectangle " << i;
-    lit += host[i].size();
-  }
-  EXPECT_GT(lit, 2000);  // the rectangles found something: the test compares real pixels
 }
 
 }  // namespace

@@ -153,19 +153,21 @@ TEST(LayeredBatchesProof, AnOverwrittenPrimitiveIsDrawnAgainAlone) {
   EXPECT_GT(alone_a.lit.size(), 100u);
 }
 
-// The scan on the device (platforms/lit_mask.h), forced on lavapipe, with layers and without:
+// The scan on the device (platforms/lit_mask.h), forced, with layers and without:
 // every record equal to the host scan's in every column but timing, and the proofs' fallbacks
 // (a primitive searched in its whole layer, then drawn again alone) take the same path.
-TEST(DeviceScan, EqualsTheHostScanRecordForRecord) {
+class DeviceScan : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(DeviceScan, EqualsTheHostScanRecordForRecord) {
   std::string why;
-  if (!available("vk-lavapipe", &why)) GTEST_SKIP() << why;
+  if (!available(GetParam(), &why)) GTEST_SKIP() << why;
   platforms::BatchOptions host, device_one_layer, device_layered;
   host.max_layers = device_one_layer.max_layers = 1;
   device_layered.max_layers = 16;
   device_one_layer.scan = device_layered.scan = platforms::BatchOptions::Scan::kDevice;
-  auto reference = make_platform("vk-lavapipe", host);
-  auto one_layer = make_platform("vk-lavapipe", device_one_layer);
-  auto layered = make_platform("vk-lavapipe", device_layered);
+  auto reference = make_platform(GetParam(), host);
+  auto one_layer = make_platform(GetParam(), device_one_layer);
+  auto layered = make_platform(GetParam(), device_layered);
   for (int size : {128, 907}) {
     const geometry::View view =
         geometry::make_view(size == 128 ? 150.0 : 30.0, size, size, 0.01, 10.0,
@@ -174,9 +176,9 @@ TEST(DeviceScan, EqualsTheHostScanRecordForRecord) {
     for (geometry::Kind kind :
          {geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle}) {
       const std::vector<geometry::Primitive> prims = primitives(kind, 80);
-      const auto a = measure_cases("vk-lavapipe", *reference, view, prims, true);
+      const auto a = measure_cases(GetParam(), *reference, view, prims, true);
       for (auto* p : {one_layer.get(), layered.get()}) {
-        const auto b = measure_cases("vk-lavapipe", *p, view, prims, true);
+        const auto b = measure_cases(GetParam(), *p, view, prims, true);
         ASSERT_EQ(a.size(), b.size());
         int64_t lit = 0;
         for (size_t i = 0; i < a.size(); ++i) {
@@ -190,15 +192,15 @@ TEST(DeviceScan, EqualsTheHostScanRecordForRecord) {
   }
 }
 
-TEST(DeviceScan, AnOverwrittenPrimitiveIsFoundByItsRedrawAlone) {
+TEST_P(DeviceScan, AnOverwrittenPrimitiveIsFoundByItsRedrawAlone) {
   std::string why;
-  if (!available("vk-lavapipe", &why)) GTEST_SKIP() << why;
+  if (!available(GetParam(), &why)) GTEST_SKIP() << why;
   platforms::BatchOptions device;
   device.max_layers = 4;
   device.clock = platforms::BatchOptions::Clock::kDevice;  // each primitive its own proof
   device.scan = platforms::BatchOptions::Scan::kDevice;
-  auto scanned = make_platform("vk-lavapipe", device);
-  auto plain = make_platform("vk-lavapipe", {});
+  auto scanned = make_platform(GetParam(), device);
+  auto plain = make_platform(GetParam(), {});
   const geometry::View view = geometry::make_view(90, 64, 64);
   scanned->set_view(view);
   plain->set_view(view);
@@ -216,6 +218,9 @@ TEST(DeviceScan, AnOverwrittenPrimitiveIsFoundByItsRedrawAlone) {
   EXPECT_EQ(together[0].batch_size, 1);
   EXPECT_GT(together[0].lit.size(), 100u);
 }
+
+INSTANTIATE_TEST_SUITE_P(MesaDrivers, DeviceScan,
+                         ::testing::Values("osmesa-llvmpipe", "vk-lavapipe"));
 
 }  // namespace
 }  // namespace ra::runner

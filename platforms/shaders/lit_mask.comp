@@ -3,7 +3,8 @@
 // cross the bus. One invocation per 32-bit mask word: bit b of word k of a rectangle is the pixel
 // in column 32 (k % words_per_row) + b of its row k / words_per_row (rows in the order they were
 // copied), set when the pixel's RGB bytes equal the rectangle's colour (0xffffffff: any colour but
-// black); alpha is ignored. Compiled to SPIR-V for Vulkan (VULKAN defined); GL compiles the text.
+// black); alpha is ignored. Compiled to SPIR-V for Vulkan (VULKAN defined); GL compiles the text
+// (as GLSL 4.30 where the context is older than 4.5).
 #version 450
 layout(local_size_x = 64) in;
 
@@ -32,22 +33,22 @@ uniform uint word_base;  // of this dispatch: one holds at most 65,535 groups
 #endif
 
 void main() {
-  const uint g = word_base + gl_GlobalInvocationID.x;  // the mask word, over all rectangles
+  uint g = word_base + gl_GlobalInvocationID.x;  // the mask word, over all rectangles
   if (g >= word_count) return;
   uint lo = 0, hi = rect_count - 1;  // the last rectangle whose mask starts at or before g
   while (lo < hi) {
-    const uint mid = (lo + hi + 1) / 2;
+    uint mid = (lo + hi + 1) / 2;
     if (rects[mid].first_word <= g) lo = mid;
     else hi = mid - 1;
   }
-  const Rect r = rects[lo];
-  const uint k = g - r.first_word;
-  const uint row = k / r.words_per_row, x0 = 32 * (k % r.words_per_row);
-  const uint first = r.first_pixel + row * r.width + x0;
-  const uint n = min(32u, r.width - x0);
+  Rect r = rects[lo];
+  uint k = g - r.first_word;
+  uint row = k / r.words_per_row, x0 = 32u * (k % r.words_per_row);
+  uint first = r.first_pixel + row * r.width + x0;
+  uint n = min(32u, r.width - x0);
   uint word = 0;
   for (uint b = 0; b < n; ++b) {
-    const uint rgb = pixels[first + b] & 0x00ffffffu;
+    uint rgb = pixels[first + b] & 0x00ffffffu;
     if (r.colour == 0xffffffffu ? rgb != 0u : rgb == r.colour) word |= 1u << b;
   }
   words[rect_count + g] = word;
