@@ -59,6 +59,15 @@ struct RenderResult {
   bool full_scan = false;   // the whole window was inspected (no proof for a partial readback)
 };
 
+// Where a GL or Vulkan platform's time went since it was made: host microseconds summed over
+// every call (benchmarks: bench/layered_bench.cpp).
+struct StageTimes {
+  double draw_us = 0;       // drawing: recording, submission and the wait for the device
+  double device_us = 0;     // of which the device's timestamps saw (draws timed by the device)
+  double transfer_us = 0;   // copies of regions to the host, or the scan on the device, and waits
+  double host_scan_us = 0;  // finding lit pixels in what came back (pixels, or the device's bits)
+};
+
 class Platform {
  public:
   virtual ~Platform() = default;
@@ -92,6 +101,8 @@ class Platform {
   // How many layers a batch may use in the current view (1: overlapping primitives are never
   // drawn in one batch).
   virtual int batch_layers() const { return 1; }
+  // Zero where the platform does not keep them (the reference and test platforms).
+  virtual StageTimes stage_times() const { return {}; }
 };
 
 // Creates the platform for this process. GL platforms make their context with

@@ -57,6 +57,7 @@
 // at a time.
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -109,6 +110,7 @@ class ReadbackMeasurement : public Platform {
   }
 
   int batch_layers() const override { return layered_ ? device_->layers() : 1; }
+  StageTimes stage_times() const override { return stages_; }
 
   DriverInfo driver_info() const override {
     DriverInfo info = info_;
@@ -136,11 +138,11 @@ class ReadbackMeasurement : public Platform {
     RenderResult out;
     switch (method_) {
       case ReadbackMethod::kDrawOnly:  // the floor: what the renderer itself must spend
-        out.render_us = out.host_us = device_->draw({prim}, {kWhite}, false, nullptr);
+        out.render_us = out.host_us = draw_on_device({prim}, {kWhite}, false, nullptr);
         return out;
       case ReadbackMethod::kFullWindow:  // the paper's method: clear, draw, read everything
         clear_all();
-        out.render_us = out.host_us = device_->draw({prim}, {kWhite}, false, nullptr);
+        out.render_us = out.host_us = draw_on_device({prim}, {kWhite}, false, nullptr);
         read_colour(window(), kAnyColour, out.lit);
         out.full_scan = true;
         return out;
@@ -151,7 +153,7 @@ class ReadbackMeasurement : public Platform {
     if (device_clock_ && !wild) return render_each({prim}, {expected}, {0}).front();
     reserve_colours(1);
     const uint32_t colour = ++colour_;
-    out.render_us = out.host_us = device_->draw({prim}, {colour}, true, wild);
+    out.render_us = out.host_us = draw_on_device({prim}, {colour}, true, wild);
     const uint64_t fragments = device_->counted_fragments();
     read_colour(expected, colour, out.lit);
     if (uint64_t(out.lit.size()) == fragments) return out;
@@ -176,7 +178,7 @@ class ReadbackMeasurement : public Platform {
     if (method_ == ReadbackMethod::kDrawOnly && fits) {  // the batched floor (benchmark only)
       std::vector<RenderResult> out(prims.size());
       const double us =
-          device_->draw(prims, std::vector<uint32_t>(prims.size(), kWhite), false, nullptr);
+          draw_on_device(prims, std::vector<uint32_t>(prims.size(), kWhite), false, nullptr);
       for (RenderResult& r : out)
         r.render_us = r.host_us = us / double(prims.size()), r.batch_size = int(prims.size());
       return out;
@@ -198,7 +200,7 @@ class ReadbackMeasurement : public Platform {
     reserve_colours(prims.size());
     std::vector<uint32_t> colours(prims.size());
     for (uint32_t& c : colours) c = ++colour_;
-    const double share_us = device_->draw(prims, colours, true, nullptr) / double(prims.size());
+    const double share_us = draw_on_device(prims, colours, true, nullptr) / double(prims.size());
     const uint64_t fragments = device_->counted_fragments();
     std::vector<RenderResult> out(prims.size());
     uint64_t found = 0;
@@ -223,7 +225,7 @@ class ReadbackMeasurement : public Platform {
     reserve_colours(n);
     std::vector<uint32_t> colours(n);
     for (uint32_t& c : colours) c = ++colour_;
-    const double host_us = device_->draw_each(prims, colours, layers, device_clock_);
+    const double host_us = draw_each_on_device(prims, colours, layers, device_clock_);
     std::vector<RenderResult> out(n);
     std::vector<uint64_t> fragments(n);
     std::vector<size_t> unproven;
@@ -263,11 +265,11 @@ class ReadbackMeasurement : public Platform {
     clear_all();
     uint64_t again = 0;
     if (device_clock_ && !wild) {
-      out.host_us = device_->draw_each({prim}, {kWhite}, {0}, true);
+      out.host_us = draw_each_on_device({prim}, {kWhite}, {0}, true);
       out.render_us = device_->device_us_of(0);
       again = device_->fragments_of(0);
     } else {
-      out.render_us = out.host_us = device_->draw({prim}, {kWhite}, true, wild);
+      out.render_us = out.host_us = draw_on_device({prim}, {kWhite}, true, wild);
       again = device_->counted_fragments();
     }
     out.full_scan = true;
@@ -318,14 +320,21 @@ class ReadbackMeasurement : public Platform {
     }
     scanned_ = device_scan_ && !colours.empty();
     if (rects_.empty()) return;
+    const auto t0 = std::chrono::steady_clock::now();
     if (scanned_) device_->scan(rects_, rect_layers_, rect_colours_);
     else device_->read(rects_, rect_layers_);
+    stages_.transfer_us += micros_since(t0);
   }
 
   // Appends the pixels of region i (read by read_regions) in `colour` (kAnyColour: any that is not
   // black) to `lit`. The runs of several rectangles side by side (a line's strip: rows interleave)
   // are put in (y, x) order before they join `lit`.
   void scan_region(size_t i, uint32_t colour, geometry::PixelSet& lit) {
+    const auto t0 = std::chrono::steady_clock::now();
+    scan_region_untimed(i, colour, lit);
+    stages_.host_scan_us += micros_since(t0);
+  }
+  void scan_region_untimed(size_t i, uint32_t colour, geometry::PixelSet& lit) {
     const auto [first, last] = spans_[i];
     const bool any = colour == kAnyColour, top_down = device_->rows_top_down();
     auto scan = [&](size_t k, geometry::PixelSet& into) {
@@ -361,8 +370,8 @@ class ReadbackMeasurement : public Platform {
     const geometry::PixelRegion whole = window();
     switch (method_) {
       case ReadbackMethod::kDrawOnly:  // the floor: drawing alone, no resolve
-        out.render_us = out.host_us = device_->draw({prim}, {kWhite}, false, nullptr);
-        device_->draw({prim}, {0}, false, nullptr);
+        out.render_us = out.host_us = draw_on_device({prim}, {kWhite}, false, nullptr);
+        draw_on_device({prim}, {0}, false, nullptr);
         return out;
       case ReadbackMethod::kFullWindow:
         clear_all();
@@ -378,7 +387,7 @@ class ReadbackMeasurement : public Platform {
     out.render_us = out.host_us = draw_resolved(prim, wild, expected, true);
     uint64_t passed = device_->counted_fragments();
     if (read_coverage(expected, out) == passed) {
-      device_->draw({prim}, {0}, false, wild);  // black: exactly its samples go back to black
+      draw_on_device({prim}, {0}, false, wild);  // black: exactly its samples go back to black
       return out;
     }
     out.full_scan = true;
@@ -400,7 +409,7 @@ class ReadbackMeasurement : public Platform {
   double draw_resolved(const geometry::Primitive& prim, const geometry::Pixel* wild,
                        const geometry::PixelRegion& region, bool counted) {
     const std::vector<geometry::PixelRect> rects = clamped(region);
-    return device_->draw({prim}, {kWhite}, counted, wild, &rects);
+    return draw_on_device({prim}, {kWhite}, counted, wild, &rects);
   }
 
   // Reads the region's resolved pixels and replaces out.lit / out.samples_lit with those that
@@ -444,6 +453,29 @@ class ReadbackMeasurement : public Platform {
   }
 
   // --- upkeep ----------------------------------------------------------------------------------
+
+  // The device's draws, their host time added to stages_.
+  double draw_on_device(const std::vector<geometry::Primitive>& prims,
+                        const std::vector<uint32_t>& colours, bool counted,
+                        const geometry::Pixel* wild,
+                        const std::vector<geometry::PixelRect>* resolve = nullptr) {
+    const double us = device_->draw(prims, colours, counted, wild, resolve);
+    stages_.draw_us += us;
+    return us;
+  }
+  double draw_each_on_device(const std::vector<geometry::Primitive>& prims,
+                             const std::vector<uint32_t>& colours, const std::vector<int>& layers,
+                             bool timed) {
+    const double us = device_->draw_each(prims, colours, layers, timed);
+    stages_.draw_us += us;
+    if (timed)
+      for (size_t i = 0; i < prims.size(); ++i) stages_.device_us += device_->device_us_of(i);
+    return us;
+  }
+
+  static double micros_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  }
 
   // The last word on a primitive redrawn on a cleared window and read whole: more lit than the
   // driver counted cannot be (the primitive fails); fewer means the driver lit some pixel or
@@ -498,6 +530,7 @@ class ReadbackMeasurement : public Platform {
   std::vector<uint32_t> rect_colours_;  // the colour each of rects_ was scanned for on the device
   bool scanned_ = false;      // the last read_regions scanned on the device: masks, not pixels
   bool device_scan_ = false;  // BatchOptions::Scan::kDevice (aliased windows)
+  StageTimes stages_;         // where the time went (stage_times)
   bool layered_ = false;       // batches may use the device's layers (aliased, region with proof)
   bool device_clock_ = false;  // render_us from the device's timestamps (see the top)
   std::vector<geometry::PixelRun> runs_;
