@@ -13,7 +13,7 @@ MAKE_START := $(shell date +%s)
 ELAPSED = t=$$(( $$(date +%s) - $(MAKE_START) )); \
   if [ $$t -ge 60 ]; then echo "$$((t / 60)) min $$((t % 60)) s"; else echo "$$t s"; fi
 
-.PHONY: all deps check-build-tree build lean bundle install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly watch timing lod regulation docs-check format clean
+.PHONY: all deps check-build-tree build lean bundle gpu-kit install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly watch timing lod regulation docs-check format clean
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
@@ -48,6 +48,12 @@ lean:
 
 bundle: lean
 	@scripts/make-bundle.sh $(LEAN_BUILD)/renderaudit-lean $(LEAN_BUILD)/renderaudit-worker dist
+
+# What bench/gpu-check.sh measures on a GPU node: the lean bundle and the lean build's
+# layered_bench, in dist/.
+gpu-kit: bundle
+	@scripts/build.sh $(LEAN_BUILD) $(JOBS) --target layered_bench
+	install -m 755 $(LEAN_BUILD)/layered_bench dist/layered_bench
 
 # Puts the program on PATH, so that the commands the docs and the tool print paste as they are:
 # PREFIX/bin/renderaudit (default ~/.local/bin, which Debian's ~/.profile puts on PATH once it

@@ -129,6 +129,8 @@ int main(int argc, char** argv) {
             way.stages.device_us += after.device_us - before.device_us;
             way.stages.transfer_us += after.transfer_us - before.transfer_us;
             way.stages.host_scan_us += after.host_scan_us - before.host_scan_us;
+            way.stages.results_us += after.results_us - before.results_us;
+            way.stages.clear_us += after.clear_us - before.clear_us;
           }
           for (size_t i = 0; i < prims.size(); ++i) {
             ++cell.records;
@@ -186,18 +188,21 @@ int main(int argc, char** argv) {
         "\nWhere the time went, microseconds per primitive (host clock; device: what the device's\n"
         "timestamps saw of the drawing, where it timed it): drawing = recording, submission and the\n"
         "wait; transfer = copies to the host or the scan on the device, and their waits; host scan =\n"
-        "finding lit pixels in what came back; rest = the reference rasterizer, metrics, upkeep.\n");
-    std::printf("%-9s %6s %4s %9s %9s %9s %9s %9s %9s\n", "kind", "window", "way", "wall",
-                "drawing", "device", "transfer", "host scan", "rest");
+        "finding lit pixels in what came back; results = fetching counts and timestamps; clear =\n"
+        "clearing the window; rest = the reference rasterizer, metrics, upkeep.\n");
+    std::printf("%-9s %6s %4s %9s %9s %9s %9s %9s %9s %9s %9s\n", "kind", "window", "way", "wall",
+                "drawing", "device", "transfer", "host scan", "results", "clear", "rest");
     for (const auto& [key, c] : cells)
       for (const auto& [name, way] : {std::pair{a_name, &c.single}, std::pair{b_name, &c.layered}}) {
         const double n = double(c.records);
         const platforms::StageTimes& t = way->stages;
         const double wall = way->wall_s * 1e6 / n;
-        std::printf("%-9s %6d %4s %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f\n",
+        std::printf("%-9s %6d %4s %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f\n",
                     geometry::kind_name(geometry::Kind(key.first)), key.second, name, wall,
                     t.draw_us / n, t.device_us / n, t.transfer_us / n, t.host_scan_us / n,
-                    wall - (t.draw_us + t.transfer_us + t.host_scan_us) / n);
+                    t.results_us / n, t.clear_us / n,
+                    wall - (t.draw_us + t.transfer_us + t.host_scan_us + t.results_us +
+                            t.clear_us) / n);
       }
     if (status) std::printf("NOT IDENTICAL: the records of %s differ from those of %s\n", b_name, a_name);
     return status;

@@ -66,6 +66,8 @@ struct StageTimes {
   double device_us = 0;     // of which the device's timestamps saw (draws timed by the device)
   double transfer_us = 0;   // copies of regions to the host, or the scan on the device, and waits
   double host_scan_us = 0;  // finding lit pixels in what came back (pixels, or the device's bits)
+  double results_us = 0;    // fetching occlusion counts and timestamps from the device
+  double clear_us = 0;      // clearing the window (views, redraws, a spent colour counter)
 };
 
 class Platform {

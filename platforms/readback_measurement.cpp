@@ -58,6 +58,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -154,7 +155,7 @@ class ReadbackMeasurement : public Platform {
     reserve_colours(1);
     const uint32_t colour = ++colour_;
     out.render_us = out.host_us = draw_on_device({prim}, {colour}, true, wild);
-    const uint64_t fragments = device_->counted_fragments();
+    const uint64_t fragments = counted_fragments();
     read_colour(expected, colour, out.lit);
     if (uint64_t(out.lit.size()) == fragments) return out;
     out.full_scan = true;
@@ -201,7 +202,7 @@ class ReadbackMeasurement : public Platform {
     std::vector<uint32_t> colours(prims.size());
     for (uint32_t& c : colours) c = ++colour_;
     const double share_us = draw_on_device(prims, colours, true, nullptr) / double(prims.size());
-    const uint64_t fragments = device_->counted_fragments();
+    const uint64_t fragments = counted_fragments();
     std::vector<RenderResult> out(prims.size());
     uint64_t found = 0;
     read_regions(expected, {}, colours);
@@ -233,10 +234,10 @@ class ReadbackMeasurement : public Platform {
     for (size_t i = 0; i < n; ++i) {
       out[i].host_us = host_us / double(n);
       out[i].device_clock = device_clock_;
-      out[i].render_us = device_clock_ ? device_->device_us_of(i) : out[i].host_us;
+      out[i].render_us = device_clock_ ? device_us_of(i) : out[i].host_us;
       out[i].batch_size = int(n);
       scan_region(i, colours[i], out[i].lit);
-      fragments[i] = device_->fragments_of(i);
+      fragments[i] = fragments_of(i);
       if (uint64_t(out[i].lit.size()) != fragments[i]) unproven.push_back(i);
     }
     // Before anything is cleared: each unproven primitive's colour anywhere in its layer.
@@ -266,11 +267,11 @@ class ReadbackMeasurement : public Platform {
     uint64_t again = 0;
     if (device_clock_ && !wild) {
       out.host_us = draw_each_on_device({prim}, {kWhite}, {0}, true);
-      out.render_us = device_->device_us_of(0);
-      again = device_->fragments_of(0);
+      out.render_us = device_us_of(0);
+      again = fragments_of(0);
     } else {
       out.render_us = out.host_us = draw_on_device({prim}, {kWhite}, true, wild);
-      again = device_->counted_fragments();
+      again = counted_fragments();
     }
     out.full_scan = true;
     out.lit.clear();
@@ -385,7 +386,7 @@ class ReadbackMeasurement : public Platform {
     }
     const geometry::Pixel* wild = wild_pixel_for(prim, expected);
     out.render_us = out.host_us = draw_resolved(prim, wild, expected, true);
-    uint64_t passed = device_->counted_fragments();
+    uint64_t passed = counted_fragments();
     if (read_coverage(expected, out) == passed) {
       draw_on_device({prim}, {0}, false, wild);  // black: exactly its samples go back to black
       return out;
@@ -398,7 +399,7 @@ class ReadbackMeasurement : public Platform {
     // More samples found than passed: some stayed lit from an earlier primitive; fewer: the driver
     // covered some sample twice. Draw again on the cleared window and read it whole.
     out.render_us = out.host_us = draw_resolved(prim, wild, whole, true);
-    passed = device_->counted_fragments();
+    passed = counted_fragments();
     found = read_coverage(whole, out);
     clear_all();
     check_redraw(found, "samples", passed, "samples passed", prim.index);
@@ -468,9 +469,29 @@ class ReadbackMeasurement : public Platform {
                              bool timed) {
     const double us = device_->draw_each(prims, colours, layers, timed);
     stages_.draw_us += us;
-    if (timed)
-      for (size_t i = 0; i < prims.size(); ++i) stages_.device_us += device_->device_us_of(i);
     return us;
+  }
+
+  // The device's time of primitive i of the last timed draw_each, added to stages_.
+  double device_us_of(size_t i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double us = device_->device_us_of(i);
+    stages_.results_us += micros_since(t0);
+    if (std::isfinite(us)) stages_.device_us += us;
+    return us;
+  }
+  // The occlusion counts, the time of fetching them added to stages_.
+  uint64_t counted_fragments() {
+    const auto t0 = std::chrono::steady_clock::now();
+    const uint64_t n = device_->counted_fragments();
+    stages_.results_us += micros_since(t0);
+    return n;
+  }
+  uint64_t fragments_of(size_t i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const uint64_t n = device_->fragments_of(i);
+    stages_.results_us += micros_since(t0);
+    return n;
   }
 
   static double micros_since(std::chrono::steady_clock::time_point t0) {
@@ -501,7 +522,9 @@ class ReadbackMeasurement : public Platform {
 
   // Clears the whole window (a fast path in Mesa, unlike a scissored clear) and restarts colours.
   void clear_all() {
+    const auto t0 = std::chrono::steady_clock::now();
     device_->clear();
+    stages_.clear_us += micros_since(t0);
     colour_ = 0;
   }
 

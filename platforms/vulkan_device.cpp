@@ -153,6 +153,8 @@ class VulkanDevice : public RasterDevice {
       v[4 * next + 3] = 1;
       items.push_back({next, 1, geometry::Kind::kPoint, colours.front(), true});
     }
+    each_fragments_.clear();  // counted_fragments() now reads this draw's one query
+    each_ticks_.clear();
     const auto t0 = Clock::now();
     record_draws(items, counted);
     if (resolve_rects) record_resolve(*resolve_rects);
@@ -160,7 +162,11 @@ class VulkanDevice : public RasterDevice {
     return micros_since(t0);
   }
 
-  uint64_t counted_fragments() override { return fragments_of(0); }
+  uint64_t counted_fragments() override {
+    uint64_t n = 0;
+    query_results(occlusion_, 0, 1, &n);
+    return n;
+  }
 
   int layers() const override { return int(framebuffers_.size()); }
 
@@ -194,26 +200,26 @@ class VulkanDevice : public RasterDevice {
       vkCmdEndRenderPass(cb_);
     }
     submit_and_wait();
+    // Every count (and timestamp) of the batch in one call: one call each cost lavapipe 14 us.
+    each_fragments_.assign(n, 0);
+    query_results(occlusion_, 0, n, each_fragments_.data());
+    each_ticks_.assign(timed_ ? 2 * n : 0, 0);
+    if (timed_) query_results(timestamps_, 0, 2 * n, each_ticks_.data());
     return micros_since(t0);
   }
 
   uint64_t fragments_of(size_t i) override {
+    if (i < each_fragments_.size()) return each_fragments_[i];
     uint64_t n = 0;
-    vk_check(vkGetQueryPoolResults(dev(), occlusion_, uint32_t(i), 1, sizeof n, &n, sizeof n,
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-             "vkGetQueryPoolResults");
+    query_results(occlusion_, uint32_t(i), 1, &n);
     return n;
   }
 
   double device_us_of(size_t i) override {
-    if (!timed_) return std::numeric_limits<double>::quiet_NaN();
-    uint64_t ticks[2] = {0, 0};
-    vk_check(vkGetQueryPoolResults(dev(), timestamps_, uint32_t(2 * i), 2, sizeof ticks, ticks,
-                                   sizeof(uint64_t),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-             "vkGetQueryPoolResults");
-    if (ticks[1] < ticks[0]) return std::numeric_limits<double>::quiet_NaN();
-    return double(ticks[1] - ticks[0]) * ctx_->info().timestamp_period_ns / 1e3;
+    if (!timed_ || 2 * i + 1 >= each_ticks_.size()) return std::numeric_limits<double>::quiet_NaN();
+    const uint64_t begin = each_ticks_[2 * i], end = each_ticks_[2 * i + 1];
+    if (end < begin) return std::numeric_limits<double>::quiet_NaN();
+    return double(end - begin) * ctx_->info().timestamp_period_ns / 1e3;
   }
 
   bool device_clock() const override {
@@ -327,6 +333,14 @@ class VulkanDevice : public RasterDevice {
 
  private:
   VkDevice dev() const { return ctx_->device(); }
+
+  // Queries first .. first + count - 1 of `pool` as 64-bit values, waiting for them.
+  void query_results(VkQueryPool pool, uint32_t first, uint32_t count, uint64_t* values) {
+    vk_check(vkGetQueryPoolResults(dev(), pool, first, count, sizeof(uint64_t) * count, values,
+                                   sizeof(uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+             "vkGetQueryPoolResults");
+  }
   static std::string hex(uint32_t v) {
     char buf[16];
     std::snprintf(buf, sizeof buf, "%04x", v);
@@ -553,6 +567,8 @@ class VulkanDevice : public RasterDevice {
   VulkanImage target_, resolved_;
   std::vector<VkFramebuffer> framebuffers_;  // one per layer of target_
   bool timed_ = false;                       // the last draw_each wrote timestamps
+  std::vector<uint64_t> each_fragments_;     // the last draw_each's counts, per primitive
+  std::vector<uint64_t> each_ticks_;         // and its timestamps, two per primitive (timed)
   int width_ = 0, height_ = 0;
   float clip_from_object_[16] = {};
   bool warmed_up_ = false;
