@@ -32,13 +32,12 @@ tar -C "$unpacked" -xzf "$bundle"
 root=$(ls -d "$unpacked"/renderaudit-lean-*)
 ra="$root/bin/renderaudit"
 # layered_bench needs what the bundled program needs: the launcher's library path, as it sets it.
-bench_env() {
-  local path="$root/lib"
-  "$root/libexec/renderaudit" --version > /dev/null 2>&1 || path="$root/lib/compat:$path"
-  /sbin/ldconfig -p 2>/dev/null | grep -q 'libvulkan.so.1 ' || path="$path:$root/lib/loaders/vulkan"
-  /sbin/ldconfig -p 2>/dev/null | grep -q 'libEGL.so.1 ' || path="$path:$root/lib/loaders/egl"
-  LD_LIBRARY_PATH="$path${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$@"
-}
+libs="$root/lib"
+"$root/libexec/renderaudit" --version > /dev/null 2>&1 || libs="$root/lib/compat:$libs"
+/sbin/ldconfig -p 2>/dev/null | grep -q 'libvulkan.so.1 ' || libs="$libs:$root/lib/loaders/vulkan"
+/sbin/ldconfig -p 2>/dev/null | grep -q 'libEGL.so.1 ' || libs="$libs:$root/lib/loaders/egl"
+bench=(env "LD_LIBRARY_PATH=$libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$kit/layered_bench"
+       --experiment "$root/experiments/nist2008.toml" --primitives "$primitives")
 step() {  # step LIMIT_S NAME COMMAND...: runs it, prints its time and exit status
   local limit=$1 name=$2
   shift 2
@@ -57,10 +56,8 @@ step() {  # step LIMIT_S NAME COMMAND...: runs it, prints its time and exit stat
 } > "$out/gpu.txt" 2>&1
 cat "$out/gpu.txt"
 for p in $platforms; do
-  step 150 "layers $p" bench_env "$kit/layered_bench" --platform "$p" --primitives "$primitives" \
-    --versus layers 2>&1 | tee "$out/layers-$p.txt"
-  step 150 "scan $p" bench_env "$kit/layered_bench" --platform "$p" --primitives "$primitives" \
-    --versus scan 2>&1 | tee "$out/scan-$p.txt"
+  step 150 "layers $p" "${bench[@]}" --platform "$p" --versus layers 2>&1 | tee "$out/layers-$p.txt"
+  step 150 "scan $p" "${bench[@]}" --platform "$p" --versus scan 2>&1 | tee "$out/scan-$p.txt"
 done
 for p in $platforms; do
   exp="$out/quick-$p.toml"
