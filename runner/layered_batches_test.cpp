@@ -126,12 +126,14 @@ INSTANTIATE_TEST_SUITE_P(MesaDrivers, LayeredBatches,
 
 // Two overlapping triangles forced into one layer: the second overwrites part of the first, whose
 // count then exceeds its pixels; it is found whole by its redraw alone, as if drawn alone.
-TEST(LayeredBatchesProof, AnOverwrittenPrimitiveIsDrawnAgainAlone) {
+void expect_overwritten_primitive_drawn_again_alone(const std::string& platform,
+                                                    platforms::BatchOptions::Scan scan) {
   platforms::BatchOptions device;
   device.max_layers = 4;
-  device.clock = platforms::BatchOptions::Clock::kDevice;
-  auto timed = make_platform("osmesa-llvmpipe", device);
-  auto plain = make_platform("osmesa-llvmpipe", {});
+  device.clock = platforms::BatchOptions::Clock::kDevice;  // each primitive its own proof
+  device.scan = scan;
+  auto timed = make_platform(platform, device);
+  auto plain = make_platform(platform, {});
   const geometry::View view = geometry::make_view(90, 64, 64);
   timed->set_view(view);
   plain->set_view(view);
@@ -144,13 +146,18 @@ TEST(LayeredBatchesProof, AnOverwrittenPrimitiveIsDrawnAgainAlone) {
   const auto together = timed->render_batch({a, b}, {whole, whole}, {0, 0});
   const auto alone_a = plain->render(a, whole), alone_b = plain->render(b, whole);
   ASSERT_EQ(together.size(), 2u);
-  EXPECT_EQ(together[0].lit, alone_a.lit);
-  EXPECT_EQ(together[1].lit, alone_b.lit);
+  EXPECT_EQ(together[0].lit, alone_a.lit) << platform;
+  EXPECT_EQ(together[1].lit, alone_b.lit) << platform;
   EXPECT_TRUE(together[0].full_scan);   // a's proof failed in the batch
   EXPECT_EQ(together[0].batch_size, 1); // and it was drawn again alone
   EXPECT_FALSE(together[1].full_scan);
   EXPECT_EQ(together[1].batch_size, 2);
   EXPECT_GT(alone_a.lit.size(), 100u);
+}
+
+TEST(LayeredBatchesProof, AnOverwrittenPrimitiveIsDrawnAgainAlone) {
+  expect_overwritten_primitive_drawn_again_alone("osmesa-llvmpipe",
+                                                 platforms::BatchOptions::Scan::kHost);
 }
 
 // The scan on the device (platforms/lit_mask.h), forced, with layers and without:
@@ -195,28 +202,7 @@ TEST_P(DeviceScan, EqualsTheHostScanRecordForRecord) {
 TEST_P(DeviceScan, AnOverwrittenPrimitiveIsFoundByItsRedrawAlone) {
   std::string why;
   if (!available(GetParam(), &why)) GTEST_SKIP() << why;
-  platforms::BatchOptions device;
-  device.max_layers = 4;
-  device.clock = platforms::BatchOptions::Clock::kDevice;  // each primitive its own proof
-  device.scan = platforms::BatchOptions::Scan::kDevice;
-  auto scanned = make_platform(GetParam(), device);
-  auto plain = make_platform(GetParam(), {});
-  const geometry::View view = geometry::make_view(90, 64, 64);
-  scanned->set_view(view);
-  plain->set_view(view);
-  geometry::Primitive a, b;
-  a.kind = b.kind = geometry::Kind::kTriangle;
-  a.v = {geometry::Vec3{-0.5, -0.5, -1}, geometry::Vec3{0.5, -0.5, -1}, geometry::Vec3{0, 0.5, -1}};
-  b.v = {geometry::Vec3{-0.5, 0.5, -1}, geometry::Vec3{0.5, 0.5, -1}, geometry::Vec3{0, -0.5, -1}};
-  b.index = 1;
-  const geometry::PixelRegion whole(geometry::PixelRect{0, 0, 64, 64});
-  const auto together = scanned->render_batch({a, b}, {whole, whole}, {0, 0});
-  ASSERT_EQ(together.size(), 2u);
-  EXPECT_EQ(together[0].lit, plain->render(a, whole).lit);
-  EXPECT_EQ(together[1].lit, plain->render(b, whole).lit);
-  EXPECT_TRUE(together[0].full_scan);
-  EXPECT_EQ(together[0].batch_size, 1);
-  EXPECT_GT(together[0].lit.size(), 100u);
+  expect_overwritten_primitive_drawn_again_alone(GetParam(), platforms::BatchOptions::Scan::kDevice);
 }
 
 INSTANTIATE_TEST_SUITE_P(MesaDrivers, DeviceScan,
