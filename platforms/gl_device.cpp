@@ -13,7 +13,8 @@
 // GL_SAMPLES_PASSED query (and, timed, a GL_TIME_ELAPSED query), and calls glFinish once. A
 // layered window reads back through a pixel pack buffer: every rectangle's glReadPixels queued
 // into it, one map for them all, where each glReadPixels into client memory would wait for the
-// device (a batch's line strips are hundreds of rectangles).
+// device (a batch's line strips are hundreds of rectangles); the pixels are scanned in the mapped
+// buffer, which stays mapped until the next read.
 //
 // The scan on the device (scan(), platforms/gl_lit_mask.h; GL 4.3): the rectangles' glReadPixels
 // go into a buffer that stays on the device, and a compute shader leaves a bit per pixel.
@@ -188,31 +189,34 @@ class GlDevice : public RasterDevice {
     gl().BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_framebuffer_);
   }
 
-  // glReadPixels of each rectangle (rows bottom-up, as GL window coordinates) into one buffer.
+  // glReadPixels of each rectangle (rows bottom-up, as GL window coordinates) into one buffer:
+  // client memory, or, on a layered window, the pixel pack buffer, left mapped and scanned where
+  // it lies (no copy) until the next read.
   void read(const std::vector<geometry::PixelRect>& rects, const std::vector<int>& layers) override {
     const size_t total = pack_offsets(rects);
-    readback_.resize(total);
+    unmap_pack_buffer();
     const bool packed = layer_framebuffers_.size() > 1 && total > 0;
-    if (packed) {
-      if (!pack_buffer_) gl().GenBuffers(1, &pack_buffer_);
-      gl().BindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer_);
-      if (total > pack_capacity_) {
-        pack_capacity_ = std::max<size_t>(total, size_t(1) << 18);
-        gl().BufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(pack_capacity_ * 4), nullptr,
-                        GL_STREAM_READ);
-      }
+    if (!packed) {
+      readback_.resize(total);
+      read_pixels(rects, layers, readback_.data());
+      return;
     }
-    read_pixels(rects, layers, packed ? nullptr : readback_.data());
-    if (packed) {
-      const void* from =
-          gl().MapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(total * 4), GL_MAP_READ_BIT);
-      if (!from) throw std::runtime_error("platform " + name_ + ": glMapBufferRange failed");
-      std::memcpy(readback_.data(), from, total * 4);
-      gl().UnmapBuffer(GL_PIXEL_PACK_BUFFER);
-      gl().BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    if (!pack_buffer_) gl().GenBuffers(1, &pack_buffer_);
+    gl().BindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer_);
+    if (total > pack_capacity_) {
+      pack_capacity_ = std::max<size_t>(total, size_t(1) << 18);
+      gl().BufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(pack_capacity_ * 4), nullptr,
+                      GL_STREAM_READ);
     }
+    read_pixels(rects, layers, nullptr);
+    packed_pixels_ = static_cast<const uint32_t*>(
+        gl().MapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(total * 4), GL_MAP_READ_BIT));
+    gl().BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    if (!packed_pixels_) throw std::runtime_error("platform " + name_ + ": glMapBufferRange failed");
   }
-  const uint32_t* pixels(size_t i) const override { return readback_.data() + offsets_[i]; }
+  const uint32_t* pixels(size_t i) const override {
+    return (packed_pixels_ ? packed_pixels_ : readback_.data()) + offsets_[i];
+  }
   bool rows_top_down() const override { return false; }
 
   bool scans() const override { return samples_ == 0 && glsl_for_scan_ > 0; }
@@ -225,6 +229,7 @@ class GlDevice : public RasterDevice {
     scan_layout_ = lay_out_lit_masks(rects, colours);
     if (rects.empty()) return;
     pack_offsets(rects);
+    unmap_pack_buffer();  // pixels() is over: a scan replaces the last read
     gl().BindBuffer(GL_PIXEL_PACK_BUFFER, lit_mask_->prepare(scan_layout_));
     read_pixels(rects, layers, nullptr);
     gl().BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
@@ -288,6 +293,15 @@ class GlDevice : public RasterDevice {
  private:
   static constexpr double kQuad[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};  // NDC corners
   const GlApi& gl() const { return context_->gl(); }
+
+  // Ends the last read's mapping of the pixel pack buffer (before it is written again).
+  void unmap_pack_buffer() {
+    if (!packed_pixels_) return;
+    gl().BindBuffer(GL_PIXEL_PACK_BUFFER, pack_buffer_);
+    gl().UnmapBuffer(GL_PIXEL_PACK_BUFFER);
+    gl().BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    packed_pixels_ = nullptr;
+  }
 
   // Where each rectangle starts when they are packed one after another (offsets_); returns their
   // pixels in all.
@@ -473,6 +487,7 @@ class GlDevice : public RasterDevice {
   std::vector<GLuint> layer_framebuffers_, layer_renderbuffers_;  // per layer; [0] = framebuffer_
   std::vector<GLuint> count_queries_, time_queries_;  // draw_each's, per primitive
   GLuint pack_buffer_ = 0;    // a layered window's readback (GL_PIXEL_PACK_BUFFER)
+  const uint32_t* packed_pixels_ = nullptr;  // pack_buffer_ mapped by the last read, or null
   size_t pack_capacity_ = 0;  // its size in pixels
   bool timed_ = false;                                // the last draw_each was timed
   // Multisample platforms: the resolve target.
