@@ -7,7 +7,8 @@
 #   gpu.txt             the GPU and its driver; the node's platforms
 #   layers-P.txt        layered_bench --versus layers on P (one layer against layered, identity)
 #   scan-P.txt          layered_bench --versus scan on P (host scan against the device's)
-#   quick-P/            the quick experiment on P (`run --jobs 8`), its speed table and wall time
+#   quick-P/            the quick experiment on P (`run --jobs 8`; its time from start to sealed
+#                       records is the step's), and its speed table
 # for P = vk-device and egl-device, each step under its own time limit, so that a slow step costs
 # its limit and no more. PRIMITIVES per kind and view for layered_bench (default 2000: 48,000 per
 # way over the eight nist2008 views). PLATFORMS="..." measures other platforms (a dry run on the
@@ -38,11 +39,11 @@ libs="$root/lib"
 /sbin/ldconfig -p 2>/dev/null | grep -q 'libEGL.so.1 ' || libs="$libs:$root/lib/loaders/egl"
 bench=(env "LD_LIBRARY_PATH=$libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$kit/layered_bench"
        --experiment "$root/experiments/nist2008.toml" --primitives "$primitives")
-step() {  # step LIMIT_S NAME COMMAND...: runs it, prints its time and exit status
-  local limit=$1 name=$2
-  shift 2
+step() {  # step LIMIT_S NAME LOG COMMAND...: runs it into LOG, prints its time and exit status
+  local limit=$1 name=$2 log=$3
+  shift 3
   local t0=$SECONDS
-  timeout "$limit" "$@"
+  timeout "$limit" "$@" > "$log" 2>&1
   local rc=$?
   echo "[$name: exit $rc after $((SECONDS - t0)) s, limit $limit s]"
 }
@@ -56,15 +57,15 @@ step() {  # step LIMIT_S NAME COMMAND...: runs it, prints its time and exit stat
 } > "$out/gpu.txt" 2>&1
 cat "$out/gpu.txt"
 for p in $platforms; do
-  step 150 "layers $p" "${bench[@]}" --platform "$p" --versus layers 2>&1 | tee "$out/layers-$p.txt"
-  step 150 "scan $p" "${bench[@]}" --platform "$p" --versus scan 2>&1 | tee "$out/scan-$p.txt"
+  for way in layers scan; do
+    step 150 "$way $p" "$out/$way-$p.txt" "${bench[@]}" --platform "$p" --versus "$way"
+    cat "$out/$way-$p.txt"
+  done
 done
 for p in $platforms; do
   exp="$out/quick-$p.toml"
   sed -e "s/^name = .*/name = \"quick-$p\"/" -e "s/^platforms = .*/platforms = [\"$p\"]/" \
     "$root/experiments/quick.toml" > "$exp"
-  t0=$SECONDS
-  step 120 "quick $p" "$ra" run "$exp" --jobs 8 --out "$out/quick-$p" > "$out/quick-$p.log" 2>&1
-  echo "quick $p: $((SECONDS - t0)) s from start to sealed records" | tee -a "$out/quick-$p.log"
+  step 120 "quick $p" "$out/quick-$p.log" "$ra" run "$exp" --jobs 8 --out "$out/quick-$p"
   "$ra" analyze "$out/quick-$p" > /dev/null 2>&1 && cat "$out/quick-$p/analysis/speed.md" 2>/dev/null
 done

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# The GPU measurement script (bench/gpu-check.sh; ctest gpu_check), run here on Mesa's drivers as
+# docs/operations.md says to try it before a GPU is at hand: from a kit like `make gpu-kit`'s
+# (the bundle and layered_bench), every step exits 0, both benchmarks compare identical records
+# and print where the time went, and the quick experiment runs to 64,000 records and a speed table.
+# Usage: gpu-check-test.sh BUILD_DIR
+set -uo pipefail
+build=$(cd "${1:?usage: $0 BUILD_DIR}" && pwd)
+root=$(cd "$(dirname "$0")/.." && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+bad=0
+fail() { echo "FAIL: $*"; bad=1; }
+for bin in renderaudit-lean renderaudit-worker layered_bench; do
+  [ -x "$build/$bin" ] || { echo "FAIL: $build/$bin not built (cmake --build BUILD --target test_programs)"; exit 1; }
+done
+"$root/scripts/make-bundle.sh" "$build/renderaudit-lean" "$build/renderaudit-worker" "$tmp/kit" > /dev/null ||
+  { echo "FAIL: make-bundle.sh"; exit 1; }
+install -m 755 "$build/layered_bench" "$tmp/kit/layered_bench"
+
+platforms="osmesa-llvmpipe vk-lavapipe"
+vulkan_why=$("$build/renderaudit-lean" platforms 2>&1 | grep '^vk-lavapipe ' | grep 'cannot draw')
+[ -n "$vulkan_why" ] && platforms="osmesa-llvmpipe"  # no lavapipe here: GL alone
+(cd "$root" && PLATFORMS="$platforms" bench/gpu-check.sh "$tmp/kit" "$tmp/out" 20) > "$tmp/log" 2>&1 ||
+  fail "gpu-check.sh: exit $?"
+grep -q "^renderaudit " "$tmp/out/gpu.txt" || fail "gpu.txt names no program version"
+steps=$(grep -c '^\[.*: exit ' "$tmp/log")
+failed=$(grep '^\[.*: exit ' "$tmp/log" | grep -vc ': exit 0 ')
+[ "$steps" = $((3 * $(wc -w <<<"$platforms"))) ] || fail "$steps steps ran, not 3 per platform"
+[ "$failed" = 0 ] || fail "$failed steps failed: $(grep '^\[.*: exit ' "$tmp/log" | grep -v ': exit 0 ')"
+for p in $platforms; do
+  for way in layers scan; do
+    f="$tmp/out/$way-$p.txt"
+    grep -q "NOT IDENTICAL" "$f" && fail "$way-$p: records differ"
+    # six rows (3 kinds x 2 windows) of records compared, each all identical (80 = 20 x 4 views)
+    n=$(awk '$3 == 80 && $4 == 80' "$f" | wc -l)
+    [ "$n" = 6 ] || fail "$way-$p: $n rows of 80 identical records, not 6"
+    grep -q "Where the time went" "$f" || fail "$way-$p: no table of where the time went"
+  done
+  rows=$(for f in "$tmp/out/quick-$p"/records/*.csv.zst; do zstdcat "$f" | grep -vc '^#'; done |
+    awk '{s += $1 - 1} END {print s}')
+  [ "$rows" = 64000 ] || fail "quick-$p: $rows records, not 64000"
+  [ -s "$tmp/out/quick-$p/analysis/speed.md" ] || fail "quick-$p: no speed table"
+done
+
+if [ $bad -ne 0 ]; then
+  sed -n 1,40p "$tmp/log"
+  exit 1
+fi
+echo "gpu-check.sh on $platforms: every step exit 0, records identical both ways, quick runs complete"
