@@ -142,6 +142,8 @@ bench: build
 	$(BUILD)/run_overhead_bench --rounds 3 --jobs 2 --json outputs/bench/run_overhead.json
 	$(BUILD)/layered_bench --platform osmesa-llvmpipe --primitives 2000
 	$(BUILD)/layered_bench --platform vk-lavapipe --primitives 2000
+	$(BUILD)/layered_bench --platform osmesa-llvmpipe --primitives 2000 --versus scan
+	$(BUILD)/layered_bench --platform vk-lavapipe --primitives 2000 --versus scan
 
 # Investigations: programs whose output a finding of docs/method.md quotes ("Where we differ from the
 # paper and why": the paper's method under candidate readings, on the reference rasterizer).
