@@ -20,6 +20,12 @@ if [ $# -lt 2 ]; then
 fi
 kit=$1 out=$2 primitives=${3:-2000}
 platforms=${PLATFORMS:-vk-device egl-device}
+for p in $platforms; do  # names go into file names and a sed replacement: platform names only
+  if ! [[ $p =~ ^[A-Za-z0-9][A-Za-z0-9:@._-]*$ ]]; then
+    echo "gpu-check: PLATFORMS: '$p' is not a platform name (letters, digits, : @ . _ -)" >&2
+    exit 2
+  fi
+done
 bundle=$(ls "$kit"/renderaudit-lean-*.tar.gz 2>/dev/null | head -1)
 if [ -z "$bundle" ] || [ ! -x "$kit/layered_bench" ]; then
   echo "gpu-check: $kit holds no lean bundle and layered_bench: run 'make gpu-kit' first" >&2
@@ -35,8 +41,10 @@ ra="$root/bin/renderaudit"
 # layered_bench needs what the bundled program needs: the launcher's library path, as it sets it.
 libs="$root/lib"
 "$root/libexec/renderaudit" --version > /dev/null 2>&1 || libs="$root/lib/compat:$libs"
-/sbin/ldconfig -p 2>/dev/null | grep -q 'libvulkan.so.1 ' || libs="$libs:$root/lib/loaders/vulkan"
-/sbin/ldconfig -p 2>/dev/null | grep -q 'libEGL.so.1 ' || libs="$libs:$root/lib/loaders/egl"
+# (ldconfig's list read whole first: `ldconfig | grep -q` under pipefail fails when grep stops early)
+known=$(/sbin/ldconfig -p 2>/dev/null || true)
+grep -q 'libvulkan.so.1 ' <<<"$known" || libs="$libs:$root/lib/loaders/vulkan"
+grep -q 'libEGL.so.1 ' <<<"$known" || libs="$libs:$root/lib/loaders/egl"
 bench=(env "LD_LIBRARY_PATH=$libs${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$kit/layered_bench"
        --experiment "$root/experiments/nist2008.toml" --primitives "$primitives")
 step() {  # step LIMIT_S NAME LOG COMMAND...: runs it into LOG, prints its time and exit status
