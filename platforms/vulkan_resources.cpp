@@ -54,8 +54,8 @@ VulkanBuffer create_device_buffer(const VulkanContext& ctx, VkDeviceSize size,
 }
 
 void destroy_buffer(const VulkanContext& ctx, VulkanBuffer& b) {
-  if (b.memory) vkFreeMemory(ctx.device(), b.memory, nullptr);  // unmaps
   if (b.buffer) vkDestroyBuffer(ctx.device(), b.buffer, nullptr);
+  if (b.memory) vkFreeMemory(ctx.device(), b.memory, nullptr);  // unmaps
   b = VulkanBuffer{};
 }
 

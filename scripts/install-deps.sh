@@ -15,6 +15,7 @@ packages=(
   mesa-vulkan-drivers   # lavapipe, Mesa's Vulkan driver on llvmpipe: vk-lavapipe (and egl-zink)
   libvulkan-dev         # Vulkan headers (the loader's functions are fetched at run time)
   libvulkan-volk-dev    # volk: fetches the Vulkan functions from the loader it opens
+  vulkan-validationlayers  # tests: Khronos validation over the Vulkan paths (api_validation)
   glslang-tools         # glslangValidator: the shaders compiled to SPIR-V at build time, embedded
   libvtk9-dev           # VTK: figures (charts to PNG and PDF)
   libopenimageio-dev    # OpenImageIO: PNG of single primitives (renderaudit show)

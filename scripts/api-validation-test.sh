@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# The drawing paths under the GL and Vulkan APIs' own validators (ctest api_validation): Mesa's
+# reports of GL errors (MESA_DEBUG) on llvmpipe, and Khronos validation with synchronization
+# validation on lavapipe, which runs commands in order and so hides a missing barrier that a GPU
+# would not. Each validator is first shown to catch a deliberate misuse
+# (tests/api_misuse_probe.cpp); then the tests of every drawing path (one primitive at a time,
+# layered batches, the scan on the device, multisampling, Bresenham lines) and the layered benchmark
+# both ways run under it, and it must report nothing.
+# Exit 1 naming the package when the validation layer is missing; 77 (skipped) when lavapipe
+# cannot be brought up here and the GL half passed.
+# Usage: api-validation-test.sh BUILD_DIR
+set -uo pipefail
+build=$(cd "${1:?usage: $0 BUILD_DIR}" && pwd)
+root=$(cd "$(dirname "$0")/.." && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+bad=0
+fail() { echo "FAIL: $*"; bad=1; }
+for bin in renderaudit_tests layered_bench api_misuse_probe; do
+  [ -x "$build/$bin" ] || { echo "FAIL: $build/$bin not built (cmake --build BUILD --target test_programs)"; exit 1; }
+done
+
+# Runs "$@" with its output in $tmp/$name.log; fails when it exits non-zero or when a line
+# matches $pattern (the validator's report), printing how many and the first three.
+check_clean() {
+  local name=$1 pattern=$2
+  shift 2
+  "$@" > "$tmp/$name.log" 2>&1 || fail "$name: exit $? ($(tail -n 3 "$tmp/$name.log" | tr '\n' ' '))"
+  local n
+  n=$(grep -cE "$pattern" "$tmp/$name.log")
+  [ "$n" = 0 ] || fail "$name: the validator reported $n times; the first:"$'\n'"$(grep -E "$pattern" \
+    "$tmp/$name.log" | awk 'NR <= 3' | cut -c1-400)"
+}
+
+# The paths' tests: both Mesa drivers' layered batches and device scan (MesaDrivers/*), the GL
+# framebuffer, readback and multisampling, the Vulkan device's own tests.
+gl_tests='MesaDrivers/*:ColourDepthFramebufferTest.*:ReadbackMeasurement.*:OsmesaMsaa.*:CaseMeasurement*:LayeredBatchesProof.*:TriangleCoverage.*'
+vulkan_tests='MesaDrivers/*:VulkanLavapipe.*:VulkanDeviceChoice.*:VulkanRectangleLines.*'
+
+# GL: Mesa prints "Mesa: User error: GL_... in glCall(...)" for every GL error under MESA_DEBUG.
+gl_report='^Mesa: (User error|warning)'
+MESA_DEBUG=1 "$build/api_misuse_probe" gl > "$tmp/gl-probe.log" 2>&1 ||
+  fail "api_misuse_probe gl: exit $? ($(tr '\n' ' ' < "$tmp/gl-probe.log"))"
+grep -qE "$gl_report" "$tmp/gl-probe.log" ||
+  fail "MESA_DEBUG reported no error for glEnable(0xdead): GL errors would go unseen ($(tr '\n' ' ' < "$tmp/gl-probe.log"))"
+export MESA_DEBUG=1
+check_clean gl-tests "$gl_report" "$build/renderaudit_tests" --gtest_filter="$gl_tests"
+check_clean gl-layers "$gl_report" "$build/layered_bench" --experiment "$root/experiments/nist2008.toml" --platform osmesa-llvmpipe --primitives 40
+check_clean gl-scan "$gl_report" "$build/layered_bench" --experiment "$root/experiments/nist2008.toml" --platform osmesa-llvmpipe --primitives 40 --versus scan
+unset MESA_DEBUG
+
+# Vulkan: errors only (the warnings are design choices: every image in VK_IMAGE_LAYOUT_GENERAL,
+# vulkan_resources.h), synchronization validation on, each report a "Validation Error" line.
+cat > "$tmp/vk_layer_settings.txt" <<'EOF'
+khronos_validation.report_flags = error
+khronos_validation.enables = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT
+khronos_validation.debug_action = VK_DBG_LAYER_ACTION_LOG_MSG
+khronos_validation.log_filename = stdout
+EOF
+export VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation VK_LAYER_SETTINGS_PATH=$tmp
+vk_report='Validation Error'
+"$build/api_misuse_probe" vulkan > "$tmp/vk-probe.log" 2>&1
+probe=$?
+if [ $probe = 1 ] && [ $bad = 0 ]; then
+  echo "SKIP (Vulkan half): $(tr '\n' ' ' < "$tmp/vk-probe.log")"
+  exit 77
+fi
+[ $probe = 0 ] || fail "api_misuse_probe vulkan: exit $probe ($(tr '\n' ' ' < "$tmp/vk-probe.log"))"
+if ! grep -q "SYNC-HAZARD-READ-AFTER-WRITE" "$tmp/vk-probe.log"; then
+  if ! ls /usr/share/vulkan/explicit_layer.d/*khronos_validation* > /dev/null 2>&1; then
+    echo "FAIL: the Khronos validation layer is not installed: Debian package vulkan-validationlayers" \
+      "(scripts/install-deps.sh installs it)"
+    exit 1
+  fi
+  fail "synchronization validation missed a fill read by a copy with no barrier: Vulkan hazards would go unseen ($(tr '\n' ' ' < "$tmp/vk-probe.log" | cut -c1-2000))"
+fi
+check_clean vk-tests "$vk_report" "$build/renderaudit_tests" --gtest_filter="$vulkan_tests"
+check_clean vk-layers "$vk_report" "$build/layered_bench" --experiment "$root/experiments/nist2008.toml" --platform vk-lavapipe --primitives 40
+check_clean vk-scan "$vk_report" "$build/layered_bench" --experiment "$root/experiments/nist2008.toml" --platform vk-lavapipe --primitives 40 --versus scan
+[ $bad = 0 ] && echo "OK: no GL error and no Vulkan validation error or hazard on any drawing path"
+exit $bad
