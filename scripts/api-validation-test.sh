@@ -9,16 +9,8 @@
 # Exit 1 naming the package when the validation layer is missing; 77 (skipped) when lavapipe
 # cannot be brought up here and the GL half passed.
 # Usage: api-validation-test.sh BUILD_DIR
-set -uo pipefail
-build=$(cd "${1:?usage: $0 BUILD_DIR}" && pwd)
-root=$(cd "$(dirname "$0")/.." && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-bad=0
-fail() { echo "FAIL: $*"; bad=1; }
-for bin in renderaudit_tests layered_bench api_misuse_probe; do
-  [ -x "$build/$bin" ] || { echo "FAIL: $build/$bin not built (cmake --build BUILD --target test_programs)"; exit 1; }
-done
+source "$(dirname "$0")/test-common.sh"  # build, root, tmp, fail, require_built
+require_built renderaudit_tests layered_bench api_misuse_probe
 
 # Runs "$@" with its output in $tmp/$name.log; fails when it exits non-zero or when a line
 # matches $pattern (the validator's report), printing how many and the first three.

@@ -4,16 +4,8 @@
 # (the bundle and layered_bench), every step exits 0, both benchmarks compare identical records
 # and print where the time went, and the quick experiment runs to 64,000 records and a speed table.
 # Usage: gpu-check-test.sh BUILD_DIR
-set -uo pipefail
-build=$(cd "${1:?usage: $0 BUILD_DIR}" && pwd)
-root=$(cd "$(dirname "$0")/.." && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-bad=0
-fail() { echo "FAIL: $*"; bad=1; }
-for bin in renderaudit-lean renderaudit-worker layered_bench; do
-  [ -x "$build/$bin" ] || { echo "FAIL: $build/$bin not built (cmake --build BUILD --target test_programs)"; exit 1; }
-done
+source "$(dirname "$0")/test-common.sh"  # build, root, tmp, fail, require_built
+require_built renderaudit-lean renderaudit-worker layered_bench
 "$root/scripts/make-bundle.sh" "$build/renderaudit-lean" "$build/renderaudit-worker" "$tmp/kit" > /dev/null ||
   { echo "FAIL: make-bundle.sh"; exit 1; }
 install -m 755 "$build/layered_bench" "$tmp/kit/layered_bench"

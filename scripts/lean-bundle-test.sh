@@ -6,17 +6,11 @@
 # (every column but render_us, batch_size and host_us), audits them as unchanged, and refuses `plot` naming
 # the full build.
 # Usage: lean-bundle-test.sh BUILD_DIR
-set -uo pipefail
-build=$(cd "${1:?usage: $0 BUILD_DIR}" && pwd)
-root=$(cd "$(dirname "$0")/.." && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-bad=0
-fail() { echo "FAIL: $*"; bad=1; }
+source "$(dirname "$0")/test-common.sh"  # build, root, tmp, fail, require_built
 figure_libs='libvtk|libOpenImageIO|libcairo|libpoppler|libX11|libmpi'
 
+require_built renderaudit-lean renderaudit-worker
 for bin in "$build/renderaudit-lean" "$build/renderaudit-worker"; do
-  [ -x "$bin" ] || { echo "FAIL: $bin not built (cmake --build BUILD --target renderaudit-lean)"; exit 1; }
   needed=$(readelf -d "$bin" | awk '/NEEDED/ {gsub(/[][]/, "", $5); print $5}')
   grep -Eq "$figure_libs" <<<"$needed" && fail "$bin needs a figure library: $(grep -E "$figure_libs" <<<"$needed" | tr '\n' ' ')"
   loaded=$(ldd "$bin")
