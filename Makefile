@@ -50,10 +50,12 @@ bundle: lean
 	@scripts/make-bundle.sh $(LEAN_BUILD)/renderaudit-lean $(LEAN_BUILD)/renderaudit-worker dist
 
 # What bench/gpu-check.sh measures on a GPU node: the lean bundle and the lean build's
-# layered_bench, in dist/.
+# layered_bench, in dist/, with the Khronos validation layer installed here (22 MB) to validate the
+# Vulkan paths on the GPU.
 gpu-kit: bundle
 	@scripts/build.sh $(LEAN_BUILD) $(JOBS) --target layered_bench
 	install -m 755 $(LEAN_BUILD)/layered_bench dist/layered_bench
+	@scripts/kit-validation-layer.sh dist
 
 # Puts the program on PATH, so that the commands the docs and the tool print paste as they are:
 # PREFIX/bin/renderaudit (default ~/.local/bin, which Debian's ~/.profile puts on PATH once it

@@ -9,6 +9,10 @@
 #   scan-P.txt          layered_bench --versus scan on P (host scan against the device's)
 #   quick-P/            the quick experiment on P (`run --jobs 8`; its time from start to sealed
 #                       records is the step's), and its speed table
+#   validation-WAY-P.log  for a Vulkan P, when the kit carries the validation layer
+#                       (scripts/kit-validation-layer.sh): every error and hazard Khronos validation
+#                       with synchronization validation reports in layered_bench --versus WAY at 40
+#                       primitives per kind and view (the file is created when the layer loads)
 # for P = vk-device and egl-device, each step under its own time limit, so that a slow step costs
 # its limit and no more. PRIMITIVES per kind and view for layered_bench (default 2000: 48,000 per
 # way over the eight nist2008 views). PLATFORMS="..." measures other platforms (a dry run on the
@@ -76,4 +80,26 @@ for p in $platforms; do
     "$root/experiments/quick.toml" > "$exp"
   step 120 "quick $p" "$out/quick-$p.log" "$ra" run "$exp" --jobs 8 --out "$out/quick-$p"
   "$ra" analyze "$out/quick-$p" > /dev/null 2>&1 && cat "$out/quick-$p/analysis/speed.md" 2>/dev/null
+done
+# Validation last: it measures nothing, and a slow GPU node spends its time on the measurements.
+layer_dir=$kit/vulkan-validation
+for p in $platforms; do
+  [[ $p == vk-* && -f $layer_dir/VkLayer_khronos_validation.json ]] || continue
+  for way in layers scan; do
+    log="$out/validation-$way-$p.log"
+    rm -f "$log"
+    settings=$(mktemp -d -p "$unpacked")
+    printf '%s\n' "khronos_validation.report_flags = error" \
+      "khronos_validation.enables = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT" \
+      "khronos_validation.debug_action = VK_DBG_LAYER_ACTION_LOG_MSG" \
+      "khronos_validation.log_filename = $log" > "$settings/vk_layer_settings.txt"
+    step 60 "validation $way $p" "$out/validation-$way-$p.txt" env "VK_LAYER_PATH=$(cd "$layer_dir" && pwd)" \
+      VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation "VK_LAYER_SETTINGS_PATH=$settings" \
+      "${bench[@]}" --primitives 40 --platform "$p" --versus "$way"
+    if [ -f "$log" ]; then
+      echo "[validation $way $p: $(grep -c 'Validation Error' "$log") errors and hazards reported]"
+    else
+      echo "[validation $way $p: the validation layer did not load]"
+    fi
+  done
 done

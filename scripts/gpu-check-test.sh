@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # The GPU measurement script (bench/gpu-check.sh; ctest gpu_check), run here on Mesa's drivers as
 # docs/operations.md says to try it before a GPU is at hand: from a kit like `make gpu-kit`'s
-# (the bundle and layered_bench), every step exits 0, both benchmarks compare identical records
-# and print where the time went, and the quick experiment runs to 64,000 records and a speed table.
+# (the bundle, layered_bench and the validation layer), every step exits 0, both benchmarks
+# compare identical records and print where the time went, the quick experiment runs to 64,000
+# records and a speed table, and Khronos validation loads and reports nothing on lavapipe.
 # Usage: gpu-check-test.sh BUILD_DIR
 source "$(dirname "$0")/test-common.sh"  # build, root, tmp, fail, require_built
 require_built renderaudit-lean renderaudit-worker layered_bench
 "$root/scripts/make-bundle.sh" "$build/renderaudit-lean" "$build/renderaudit-worker" "$tmp/kit" > /dev/null ||
   { echo "FAIL: make-bundle.sh"; exit 1; }
 install -m 755 "$build/layered_bench" "$tmp/kit/layered_bench"
+"$root/scripts/kit-validation-layer.sh" "$tmp/kit" 2> /dev/null || fail "kit-validation-layer.sh"
 
 platforms="osmesa-llvmpipe vk-lavapipe"
 vulkan_why=$("$build/renderaudit-lean" platforms 2>&1 | grep '^vk-lavapipe ' | grep 'cannot draw')
@@ -18,7 +20,11 @@ vulkan_why=$("$build/renderaudit-lean" platforms 2>&1 | grep '^vk-lavapipe ' | g
 grep -q "^renderaudit " "$tmp/out/gpu.txt" || fail "gpu.txt names no program version"
 steps=$(grep -c '^\[.*: exit ' "$tmp/log")
 failed=$(grep '^\[.*: exit ' "$tmp/log" | grep -vc ': exit 0 ')
-[ "$steps" = $((3 * $(wc -w <<<"$platforms"))) ] || fail "$steps steps ran, not 3 per platform"
+# 3 steps per platform, and 2 validation steps per Vulkan platform when the kit has the layer
+validated=""
+[ -d "$tmp/kit/vulkan-validation" ] && validated=$(grep -o 'vk-[^ ]*' <<<"$platforms")
+expected=$((3 * $(wc -w <<<"$platforms") + 2 * $(wc -w <<<"$validated")))
+[ "$steps" = "$expected" ] || fail "$steps steps ran, not $expected"
 [ "$failed" = 0 ] || fail "$failed steps failed: $(grep '^\[.*: exit ' "$tmp/log" | grep -v ': exit 0 ')"
 for p in $platforms; do
   for way in layers scan; do
@@ -33,6 +39,13 @@ for p in $platforms; do
     awk '{s += $1 - 1} END {print s}')
   [ "$rows" = 64000 ] || fail "quick-$p: $rows records, not 64000"
   [ -s "$tmp/out/quick-$p/analysis/speed.md" ] || fail "quick-$p: no speed table"
+done
+for p in $validated; do
+  for way in layers scan; do
+    f="$tmp/out/validation-$way-$p.log"
+    [ -f "$f" ] || fail "validation-$way-$p: the layer did not load (no $f)"
+    [ -f "$f" ] && grep -q 'Validation Error' "$f" && fail "validation-$way-$p: $(grep -c 'Validation Error' "$f") errors"
+  done
 done
 
 if [ $bad -ne 0 ]; then
