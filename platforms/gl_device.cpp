@@ -41,6 +41,15 @@
 namespace ra::platforms {
 namespace {
 
+// Whether a GL_RENDERER names one of Mesa's CPU rasterizers: llvmpipe, softpipe, swrast, or zink
+// on lavapipe ("zink (llvmpipe (LLVM 15.0.6, 256 bits))"), whose timer sees only part of the work.
+bool draws_on_cpu(const std::string& renderer) {
+  const std::string zink = "zink (";
+  const std::string r = renderer.rfind(zink, 0) == 0 ? renderer.substr(zink.size()) : renderer;
+  return r.rfind("llvmpipe", 0) == 0 || r.rfind("softpipe", 0) == 0 ||
+         r.rfind("Software Rasterizer", 0) == 0;
+}
+
 class GlDevice : public RasterDevice {
  public:
   GlDevice(const rundir::PlatformSpec& spec, int max_layers)
@@ -66,8 +75,7 @@ class GlDevice : public RasterDevice {
     gl().GetIntegerv(GL_MAX_SAMPLES, &max_samples);
     info_.max_samples = max_samples;
     const std::string renderer = info_.renderer;
-    draws_on_host_ = renderer.rfind("llvmpipe", 0) == 0 || renderer.rfind("softpipe", 0) == 0 ||
-                     renderer.rfind("Software Rasterizer", 0) == 0;
+    draws_on_host_ = draws_on_cpu(renderer);
     int major = 0, minor = 0;  // GL_VERSION begins "major.minor"
     std::sscanf(info_.version.c_str(), "%d.%d", &major, &minor);
     if (gl().has_compute() && (major > 4 || (major == 4 && minor >= 3)))
@@ -480,7 +488,7 @@ class GlDevice : public RasterDevice {
   int max_layers_ = 0;  // create_gl_device's cap on layers_for_window (0: none)
   std::unique_ptr<GlContext> context_;
   DriverInfo info_;
-  bool draws_on_host_ = false;  // a Mesa CPU rasterizer (GL_RENDERER says which)
+  bool draws_on_host_ = false;  // a Mesa CPU rasterizer (draws_on_cpu of GL_RENDERER)
   // framebuffer_ is layer 0 (and, multisampled, the multisample FBO); renderbuffer_ its storage
   // on the multisample platforms, which have one layer.
   GLuint framebuffer_ = 0, renderbuffer_ = 0, query_ = 0;

@@ -1,6 +1,6 @@
 // The lit-pixel scan on the device (lit_mask.h; gl_lit_mask.cpp, vulkan_lit_mask.cpp), on
-// llvmpipe through GL and lavapipe through Vulkan (skipped, with the reason, where either cannot be
-// brought up): for rectangles anywhere in a layered window, of any size around the 32-pixel words,
+// llvmpipe through GL, lavapipe through Vulkan and zink on lavapipe (GL over Vulkan; each skipped,
+// with the reason, where it cannot be brought up): for rectangles anywhere in a layered window, of any size around the 32-pixel words,
 // its masks hold exactly the pixels the host finds in the same rectangles read back, for a
 // primitive's colour and for any colour, and its counts are their number.
 #include <gtest/gtest.h>
@@ -99,7 +99,7 @@ TEST_P(ScanOnTheDevice, FindsWhatTheHostFinds) {
 }
 
 INSTANTIATE_TEST_SUITE_P(MesaDrivers, ScanOnTheDevice,
-                         ::testing::Values("osmesa-llvmpipe", "vk-lavapipe"));
+                         ::testing::Values("osmesa-llvmpipe", "vk-lavapipe", "egl-zink"));
 
 }  // namespace
 }  // namespace ra::platforms

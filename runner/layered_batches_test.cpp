@@ -1,7 +1,8 @@
 // Layered batches (platforms/layer_packing.h, RasterDevice::draw_each): overlapping lines and
 // triangles drawn many per wait, each in its own layer with its own proof, give records equal in
-// every column but the timing ones to those of primitives drawn one at a time, on llvmpipe (GL)
-// and lavapipe (Vulkan; skipped where it is missing); and the device's clock, where asked for,
+// every column but the timing ones to those of primitives drawn one at a time, on llvmpipe (GL),
+// lavapipe (Vulkan) and zink on lavapipe (GL whose commands become Vulkan submissions, as on a
+// GPU's Vulkan driver; each skipped where it is missing); and the device's clock, where asked for,
 // fills render_us from timestamps with the host's share of the wait beside it. The scan on the
 // device gives the host scan's records.
 #include <gtest/gtest.h>
@@ -122,7 +123,7 @@ TEST_P(LayeredBatches, TheDeviceClockTimesEachPrimitive) {
 }
 
 INSTANTIATE_TEST_SUITE_P(MesaDrivers, LayeredBatches,
-                         ::testing::Values("osmesa-llvmpipe", "vk-lavapipe"));
+                         ::testing::Values("osmesa-llvmpipe", "vk-lavapipe", "egl-zink"));
 
 // Two overlapping triangles forced into one layer: the second overwrites part of the first, whose
 // count then exceeds its pixels; it is found whole by its redraw alone, as if drawn alone.
@@ -206,7 +207,7 @@ TEST_P(DeviceScan, AnOverwrittenPrimitiveIsFoundByItsRedrawAlone) {
 }
 
 INSTANTIATE_TEST_SUITE_P(MesaDrivers, DeviceScan,
-                         ::testing::Values("osmesa-llvmpipe", "vk-lavapipe"));
+                         ::testing::Values("osmesa-llvmpipe", "vk-lavapipe", "egl-zink"));
 
 }  // namespace
 }  // namespace ra::runner
