@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "platforms/gl_context.h"
+#include "platforms/gl_lit_mask.h"
 #include "platforms/lit_mask.h"
 #include "platforms/pixel_scan.h"
 #include "platforms/raster_device.h"
@@ -100,6 +102,19 @@ TEST_P(ScanOnTheDevice, FindsWhatTheHostFinds) {
 
 INSTANTIATE_TEST_SUITE_P(MesaDrivers, ScanOnTheDevice,
                          ::testing::Values("osmesa-llvmpipe", "vk-lavapipe", "egl-zink"));
+
+// The GLSL 4.30 text, which a context older than 4.5 gets, compiles and links as the 4.50 text does:
+// every GL driver here is 4.5 or has no compute shaders, so this is the only place it is compiled.
+TEST(GlLitMask, CompilesAsGlsl430And450) {
+  std::unique_ptr<GlContext> context;
+  try {
+    context = create_gl_context(*rundir::find_platform("osmesa-llvmpipe"));
+  } catch (const util::UserError& e) {
+    GTEST_SKIP() << e.what();
+  }
+  for (int version : {430, 450})
+    EXPECT_NO_THROW(GlLitMask(context->gl(), version, "osmesa-llvmpipe")) << "GLSL " << version;
+}
 
 }  // namespace
 }  // namespace ra::platforms
