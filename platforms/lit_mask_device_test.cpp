@@ -12,6 +12,7 @@
 #include "platforms/gl_context.h"
 #include "platforms/gl_lit_mask.h"
 #include "platforms/lit_mask.h"
+#include "platforms/mesa_drivers_testing.h"
 #include "platforms/pixel_scan.h"
 #include "platforms/raster_device.h"
 #include "platforms/window_view_testing.h"
@@ -101,7 +102,8 @@ TEST_P(ScanOnTheDevice, FindsWhatTheHostFinds) {
 }
 
 INSTANTIATE_TEST_SUITE_P(MesaDrivers, ScanOnTheDevice,
-                         ::testing::Values("osmesa-llvmpipe", "vk-lavapipe", "egl-zink"));
+                         platforms::testing::mesa_drivers(),
+                         platforms::testing::platform_test_name);
 
 // The GLSL 4.30 text, which a context older than 4.5 gets, compiles and links as the 4.50 text does:
 // every GL driver here is 4.5 or has no compute shaders, so this is the only place it is compiled.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "platforms/platform.h"
+#include "platforms/mesa_drivers_testing.h"
 #include "platforms/vulkan_context.h"
 #include "runner/case_measurement.h"
 #include "util/errors.h"
@@ -123,7 +124,8 @@ TEST_P(LayeredBatches, TheDeviceClockTimesEachPrimitive) {
 }
 
 INSTANTIATE_TEST_SUITE_P(MesaDrivers, LayeredBatches,
-                         ::testing::Values("osmesa-llvmpipe", "vk-lavapipe", "egl-zink"));
+                         platforms::testing::mesa_drivers(),
+                         platforms::testing::platform_test_name);
 
 // Two overlapping triangles forced into one layer: the second overwrites part of the first, whose
 // count then exceeds its pixels; it is found whole by its redraw alone, as if drawn alone.
@@ -207,7 +209,8 @@ TEST_P(DeviceScan, AnOverwrittenPrimitiveIsFoundByItsRedrawAlone) {
 }
 
 INSTANTIATE_TEST_SUITE_P(MesaDrivers, DeviceScan,
-                         ::testing::Values("osmesa-llvmpipe", "vk-lavapipe", "egl-zink"));
+                         platforms::testing::mesa_drivers(),
+                         platforms::testing::platform_test_name);
 
 }  // namespace
 }  // namespace ra::runner
