@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -77,7 +78,8 @@ void use_driver_build(const rundir::PlatformSpec& spec) {
   if (icd.empty())
     throw util::UserError(
         "platform " + spec.name + ": the driver build folder " + spec.build_dir +
-        " holds no lavapipe (" + icd_dirs[0].string() + "/lvp_icd.*.json, or share/vulkan/icd.d "
+        " holds no lavapipe (" + icd_dirs[0].string() +
+        "/lvp_icd.*.json, or share/vulkan/icd.d "
         "of a meson prefix); unpack the build's mesa-vulkan-drivers package into it, or build "
         "Mesa with -Dvulkan-drivers=swrast");
   nlohmann::json j;
@@ -87,8 +89,7 @@ void use_driver_build(const rundir::PlatformSpec& spec) {
     throw util::UserError(icd.string() + ": not a readable Vulkan driver file (" + e.what() + ")");
   }
   std::string library = j["ICD"].value("library_path", "");
-  if (library.empty())
-    throw util::UserError(icd.string() + ": 'ICD.library_path' is missing");
+  if (library.empty()) throw util::UserError(icd.string() + ": 'ICD.library_path' is missing");
   j["ICD"]["library_path"] = resolve_icd_library(spec.build_dir, library);
   const std::string local = spec.build_dir + "/renderaudit_lvp_icd.json";
   util::write_file_atomic(local, j.dump(2) + "\n");
@@ -215,7 +216,8 @@ VulkanDeviceInfo describe(VkPhysicalDevice pd, int index, uint32_t* graphics_fam
   for (uint32_t i = 0; i < n; ++i)
     if (families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) {
       *graphics_family = i;
-      d.timestamps = families[i].timestampValidBits > 0;
+      d.timestamp_valid_bits = int(families[i].timestampValidBits);
+      d.timestamps = d.timestamp_valid_bits > 0;
       d.queue_computes = (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) != 0;
       break;
     }
@@ -244,6 +246,16 @@ std::string device_list(const std::vector<VulkanDeviceInfo>& devices) {
 void vk_check(VkResult r, const char* what) {
   if (r != VK_SUCCESS)
     throw std::runtime_error(std::string(what) + " failed with VkResult " + std::to_string(int(r)));
+}
+
+double timestamp_interval_us(uint64_t begin, uint64_t end, int valid_bits, double period_ns) {
+  if (valid_bits <= 0) return std::numeric_limits<double>::quiet_NaN();
+  if (valid_bits < 64) {
+    const uint64_t mask = (uint64_t(1) << valid_bits) - 1;
+    return double((end - begin) & mask) * period_ns / 1e3;  // modular: one wrap comes out right
+  }
+  if (end < begin) return std::numeric_limits<double>::quiet_NaN();
+  return double(end - begin) * period_ns / 1e3;
 }
 
 std::string VulkanDeviceInfo::line_modes() const {

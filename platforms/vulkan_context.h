@@ -37,17 +37,19 @@ struct VulkanDeviceInfo {
   bool line_rasterization = false;  // VK_EXT_line_rasterization
   bool rectangular_lines = false, bresenham_lines = false, smooth_lines = false;
   bool timestamps = false;         // the graphics queue has timestampValidBits > 0
+  int timestamp_valid_bits = 0;    // its timestampValidBits: the counter wraps at 2^bits (36 on
+                                   // some Intel GPUs, 64 on NVIDIA and AMD)
   double timestamp_period_ns = 0;  // limits.timestampPeriod
   int max_samples = 1;             // the largest of limits.framebufferColorSampleCounts
   bool precise_occlusion = false;  // features.occlusionQueryPrecise
-  bool queue_computes = false;     // the graphics queue runs compute shaders too (the lit-pixel scan)
+  bool queue_computes = false;  // the graphics queue runs compute shaders too (the lit-pixel scan)
 
   // "rectangular, bresenham, smooth" (the modes VK_EXT_line_rasterization offers), or "default".
   std::string line_modes() const;
 };
 
-// The loader's devices. Throws ra::util::UserError when libvulkan.so.1 cannot be loaded or no instance
-// can be made (naming the packages), std::runtime_error on an unexpected Vulkan error.
+// The loader's devices. Throws ra::util::UserError when libvulkan.so.1 cannot be loaded or no
+// instance can be made (naming the packages), std::runtime_error on an unexpected Vulkan error.
 std::vector<VulkanDeviceInfo> list_vulkan_devices();
 
 // The lavapipe library a build's ICD file names by `library_path` (an absolute, installed path):
@@ -55,8 +57,8 @@ std::vector<VulkanDeviceInfo> list_vulkan_devices();
 // meson prefix's lib/<multiarch>), else build_dir + library_path. Throws UserError naming both.
 std::string resolve_icd_library(const std::string& build_dir, const std::string& library_path);
 
-// The device `spec` draws on, among `devices`. Throws ra::util::UserError naming the platform when it
-// names no device here (an index beyond the list, no lavapipe, no GPU) or when the device lacks
+// The device `spec` draws on, among `devices`. Throws ra::util::UserError naming the platform when
+// it names no device here (an index beyond the list, no lavapipe, no GPU) or when the device lacks
 // what the platform needs (the Bresenham line mode, 4 samples per pixel), listing the devices.
 const VulkanDeviceInfo& choose_vulkan_device(const rundir::PlatformSpec& spec,
                                              const std::vector<VulkanDeviceInfo>& devices);
@@ -88,6 +90,11 @@ class VulkanContext {
   uint32_t queue_family_ = 0;
   VulkanDeviceInfo info_;
 };
+
+// Microseconds from timestamp `begin` to timestamp `end` of a counter of `valid_bits` bits that
+// ticks every `period_ns` nanoseconds: bits above valid_bits ignored, one wrap between the two
+// counted. NaN without a counter (valid_bits 0), or when a 64-bit `end` precedes `begin`.
+double timestamp_interval_us(uint64_t begin, uint64_t end, int valid_bits, double period_ns);
 
 // Throws std::runtime_error naming `what` and the VkResult when `r` is not VK_SUCCESS.
 void vk_check(VkResult r, const char* what);

@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -35,8 +36,8 @@
 #include <string>
 #include <vector>
 
-#include "platforms/raster_device.h"
 #include "platforms/lit_mask.h"
+#include "platforms/raster_device.h"
 #include "platforms/vulkan_context.h"
 #include "platforms/vulkan_lit_mask.h"
 #include "platforms/vulkan_resources.h"
@@ -70,7 +71,6 @@ struct DrawItem {
   uint32_t colour = 0;    // 0xBBGGRR
   bool identity = false;  // vertices already in Vulkan clip coordinates (the test's wild pixel)
 };
-
 
 class VulkanDevice : public RasterDevice {
  public:
@@ -217,9 +217,9 @@ class VulkanDevice : public RasterDevice {
 
   double device_us_of(size_t i) override {
     if (!timed_ || 2 * i + 1 >= each_ticks_.size()) return std::numeric_limits<double>::quiet_NaN();
-    const uint64_t begin = each_ticks_[2 * i], end = each_ticks_[2 * i + 1];
-    if (end < begin) return std::numeric_limits<double>::quiet_NaN();
-    return double(end - begin) * ctx_->info().timestamp_period_ns / 1e3;
+    return timestamp_interval_us(each_ticks_[2 * i], each_ticks_[2 * i + 1],
+                                 ctx_->info().timestamp_valid_bits,
+                                 ctx_->info().timestamp_period_ns);
   }
 
   bool device_clock() const override {
@@ -233,7 +233,8 @@ class VulkanDevice : public RasterDevice {
   }
 
   // One copy of every rectangle into the host buffer, one submission.
-  void read(const std::vector<geometry::PixelRect>& rects, const std::vector<int>& layers) override {
+  void read(const std::vector<geometry::PixelRect>& rects,
+            const std::vector<int>& layers) override {
     size_t pixel_count = 0;
     const std::vector<VkBufferImageCopy> copies = image_copies(rects, layers, &pixel_count);
     if (copies.empty()) return;
@@ -322,8 +323,9 @@ class VulkanDevice : public RasterDevice {
           vkGetQueryPoolResults(dev(), timestamps_, 0, 2, sizeof ticks, ticks, sizeof(uint64_t),
                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
           "vkGetQueryPoolResults");
-      const double device_us = double(ticks[1] - ticks[0]) * ctx_->info().timestamp_period_ns / 1e3;
-      if (cpu_us > 0 && ticks[1] >= ticks[0]) ratios.push_back(device_us / cpu_us);
+      const double device_us = timestamp_interval_us(
+          ticks[0], ticks[1], ctx_->info().timestamp_valid_bits, ctx_->info().timestamp_period_ns);
+      if (cpu_us > 0 && std::isfinite(device_us)) ratios.push_back(device_us / cpu_us);
     }
     clear();
     if (ratios.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -336,10 +338,10 @@ class VulkanDevice : public RasterDevice {
 
   // Queries first .. first + count - 1 of `pool` as 64-bit values, waiting for them.
   void query_results(VkQueryPool pool, uint32_t first, uint32_t count, uint64_t* values) {
-    vk_check(vkGetQueryPoolResults(dev(), pool, first, count, sizeof(uint64_t) * count, values,
-                                   sizeof(uint64_t),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-             "vkGetQueryPoolResults");
+    vk_check(
+        vkGetQueryPoolResults(dev(), pool, first, count, sizeof(uint64_t) * count, values,
+                              sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+        "vkGetQueryPoolResults");
   }
   static std::string hex(uint32_t v) {
     char buf[16];
@@ -350,8 +352,7 @@ class VulkanDevice : public RasterDevice {
   // A copy per rectangle (inside the window) from its layer into a buffer, packed one after
   // another (offsets_); *pixel_count: their pixels in all.
   std::vector<VkBufferImageCopy> image_copies(const std::vector<geometry::PixelRect>& rects,
-                                              const std::vector<int>& layers,
-                                              size_t* pixel_count) {
+                                              const std::vector<int>& layers, size_t* pixel_count) {
     offsets_.clear();
     std::vector<VkBufferImageCopy> copies;
     size_t offset = 0;

@@ -3,6 +3,7 @@
 // with the reason, where no Vulkan loader or lavapipe is installed).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 
 #include "geometry/reference_rasterizer.h"
@@ -44,13 +45,13 @@ geometry::PixelRegion whole(const geometry::View& v) {
 }
 
 // Skips the calling test (with the reason) where lavapipe cannot be brought up.
-#define REQUIRE_LAVAPIPE()                                                        \
-  do {                                                                            \
-    try {                                                                         \
+#define REQUIRE_LAVAPIPE()                                                                \
+  do {                                                                                    \
+    try {                                                                                 \
       choose_vulkan_device(*rundir::find_platform("vk-lavapipe"), list_vulkan_devices()); \
-    } catch (const util::UserError& e) {                                          \
-      GTEST_SKIP() << "no lavapipe here: " << e.what();                           \
-    }                                                                             \
+    } catch (const util::UserError& e) {                                                  \
+      GTEST_SKIP() << "no lavapipe here: " << e.what();                                   \
+    }                                                                                     \
   } while (0)
 
 TEST(VulkanPlatformNames, FixedNamesAndDeviceIndices) {
@@ -61,13 +62,15 @@ TEST(VulkanPlatformNames, FixedNamesAndDeviceIndices) {
   EXPECT_TRUE(lvp->draws_with_driver());
   EXPECT_FALSE(lvp->draws_with_gl());  // not for the GL-only studies
   EXPECT_FALSE(rundir::is_aliased_gl_platform("vk-lavapipe"));
-  EXPECT_EQ(rundir::find_platform("vk-lavapipe-bresenham")->line_mode, rundir::PlatformSpec::LineMode::kBresenham);
+  EXPECT_EQ(rundir::find_platform("vk-lavapipe-bresenham")->line_mode,
+            rundir::PlatformSpec::LineMode::kBresenham);
   EXPECT_EQ(rundir::find_platform("vk-lavapipe-msaa4")->samples, 4);
   const auto d3 = rundir::find_platform("vk-device:3");
   ASSERT_TRUE(d3);
   EXPECT_EQ(d3->device, 3);
   EXPECT_EQ(d3->backend, rundir::Backend::kVulkan);
-  EXPECT_EQ(rundir::find_platform("vk-device:3-bresenham")->line_mode, rundir::PlatformSpec::LineMode::kBresenham);
+  EXPECT_EQ(rundir::find_platform("vk-device:3-bresenham")->line_mode,
+            rundir::PlatformSpec::LineMode::kBresenham);
   EXPECT_EQ(rundir::find_platform("vk-device:3-msaa4")->samples, 4);
   EXPECT_EQ(rundir::find_platform("vk-device")->device, -1);
   for (const char* bad : {"vk-device:", "vk-device:x", "vk-device:-1", "vk-device:256",
@@ -104,7 +107,8 @@ TEST(VulkanDeviceChoice, EachNameFindsItsDeviceOrSaysWhyNot) {
   const std::vector<VulkanDeviceInfo> devices = {device(0, "cpu", true, true),
                                                  device(1, "discrete GPU", false, false)};
   EXPECT_EQ(choose_vulkan_device(*rundir::find_platform("vk-lavapipe"), devices).index, 0);
-  EXPECT_EQ(choose_vulkan_device(*rundir::find_platform("vk-device"), devices).index, 1);  // not the CPU
+  EXPECT_EQ(choose_vulkan_device(*rundir::find_platform("vk-device"), devices).index,
+            1);  // not the CPU
   EXPECT_EQ(choose_vulkan_device(*rundir::find_platform("vk-device:0"), devices).index, 0);
   // an index beyond the list names the devices there are
   const std::string beyond = error_of("vk-device:7", devices);
@@ -121,6 +125,21 @@ TEST(VulkanDeviceChoice, EachNameFindsItsDeviceOrSaysWhyNot) {
   EXPECT_NE(no_gpu.find("no Vulkan device here is a GPU"), std::string::npos) << no_gpu;
   const std::string no_lvp = error_of("vk-lavapipe", {devices[1]});
   EXPECT_NE(no_lvp.find("mesa-vulkan-drivers"), std::string::npos) << no_lvp;
+}
+
+// Timestamps of a counter narrower than 64 bits wrap (timestampValidBits 36 on some Intel GPUs):
+// the interval across one wrap, the bits above the valid ones ignored, and no counter at all.
+TEST(VulkanTimestamps, IntervalsAcrossAWrap) {
+  const uint64_t top36 = uint64_t(1) << 36;
+  EXPECT_DOUBLE_EQ(timestamp_interval_us(1000, 3000, 64, 1.0), 2.0);
+  EXPECT_DOUBLE_EQ(timestamp_interval_us(top36 - 10, 5, 36, 1.5), 15 * 1.5 / 1e3);
+  EXPECT_DOUBLE_EQ(
+      timestamp_interval_us((uint64_t(1) << 40) | 100, (uint64_t(1) << 41) | 150, 36, 2.0),
+      50 * 2.0 / 1e3);
+  EXPECT_DOUBLE_EQ(timestamp_interval_us(7, 7, 36, 1.0), 0.0);
+  EXPECT_TRUE(
+      std::isnan(timestamp_interval_us(3000, 1000, 64, 1.0)));  // a 64-bit counter never wraps
+  EXPECT_TRUE(std::isnan(timestamp_interval_us(1000, 3000, 0, 1.0)));
 }
 
 TEST(VulkanLavapipe, ReportsItsLimits) {
@@ -229,8 +248,8 @@ TEST(VulkanLavapipe, TrianglesSharingAnEdgeLightEachPixelOnce) {
 TEST(VulkanLavapipe, APixelOutsideTheRegionIsFound) {
   REQUIRE_LAVAPIPE();
   const geometry::View view = window_view(128, 128);
-  const auto p =
-      create_vulkan_platform(*rundir::find_platform("vk-lavapipe"), ReadbackMethod::kRegionWithProof, {5});
+  const auto p = create_vulkan_platform(*rundir::find_platform("vk-lavapipe"),
+                                        ReadbackMethod::kRegionWithProof, {5});
   p->set_view(view);
   const geometry::Primitive tri =
       make(geometry::Kind::kTriangle, {{10.25, 10.25, 0}, {20.75, 10.5, 0}, {12.5, 22.75, 0}}, 5);
