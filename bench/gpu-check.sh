@@ -93,8 +93,9 @@ for p in $platforms; do
       "khronos_validation.enables = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT" \
       "khronos_validation.debug_action = VK_DBG_LAYER_ACTION_LOG_MSG" \
       "khronos_validation.log_filename = $log" > "$settings/vk_layer_settings.txt"
-    step 60 "validation $way $p" "$out/validation-$way-$p.txt" env "VK_LAYER_PATH=$(cd "$layer_dir" && pwd)" \
-      VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation "VK_LAYER_SETTINGS_PATH=$settings" \
+    step 60 "validation $way $p" "$out/validation-$way-$p.txt" \
+      env "VK_LAYER_PATH=$(cd "$layer_dir" && pwd)" VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation \
+      "VK_LAYER_SETTINGS_PATH=$settings" \
       "${bench[@]}" --primitives 40 --platform "$p" --versus "$way"
     if [ -f "$log" ]; then
       echo "[validation $way $p: $(grep -c 'Validation Error' "$log") errors and hazards reported]"

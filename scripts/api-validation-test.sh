@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The drawing paths under the GL and Vulkan APIs' own validators (ctest api_validation): Mesa's
-# reports of GL errors (MESA_DEBUG) on llvmpipe, and Khronos validation with synchronization
+# reports of GL errors (MESA_DEBUG) on llvmpipe and zink, and Khronos validation with synchronization
 # validation on lavapipe, which runs commands in order and so hides a missing barrier that a GPU
 # would not. Each validator is first shown to catch a deliberate misuse
 # (tests/api_misuse_probe.cpp); then the tests of every drawing path (one primitive at a time,
@@ -11,6 +11,7 @@
 # Usage: api-validation-test.sh BUILD_DIR
 source "$(dirname "$0")/test-common.sh"  # build, root, tmp, fail, require_built
 require_built renderaudit_tests layered_bench api_misuse_probe
+bench=("$build/layered_bench" --experiment "$root/experiments/nist2008.toml" --primitives 40)
 
 # Runs "$@" with its output in $tmp/$name.log; fails when it exits non-zero or when a line
 # matches $pattern (the validator's report), printing how many and the first three.
@@ -35,12 +36,12 @@ vulkan_tests='MesaDrivers/*:VulkanLavapipe.*:VulkanDeviceChoice.*:VulkanRectangl
 gl_report='^Mesa: (User error|warning)'
 MESA_DEBUG=1 "$build/api_misuse_probe" gl > "$tmp/gl-probe.log" 2>&1 ||
   fail "api_misuse_probe gl: exit $? ($(tr '\n' ' ' < "$tmp/gl-probe.log"))"
-grep -qE "$gl_report" "$tmp/gl-probe.log" ||
-  fail "MESA_DEBUG reported no error for glEnable(0xdead): GL errors would go unseen ($(tr '\n' ' ' < "$tmp/gl-probe.log"))"
+grep -qE "$gl_report" "$tmp/gl-probe.log" || fail "MESA_DEBUG reported no error for glEnable(0xdead):" \
+  "GL errors would go unseen ($(tr '\n' ' ' < "$tmp/gl-probe.log"))"
 export MESA_DEBUG=1
 check_clean gl-tests "$gl_report" "$build/renderaudit_tests" --gtest_filter="$gl_tests"
-check_clean gl-layers "$gl_report" "$build/layered_bench" --experiment "$root/experiments/nist2008.toml" --platform osmesa-llvmpipe --primitives 40
-check_clean gl-scan "$gl_report" "$build/layered_bench" --experiment "$root/experiments/nist2008.toml" --platform osmesa-llvmpipe --primitives 40 --versus scan
+check_clean gl-layers "$gl_report" "${bench[@]}" --platform osmesa-llvmpipe
+check_clean gl-scan "$gl_report" "${bench[@]}" --platform osmesa-llvmpipe --versus scan
 unset MESA_DEBUG
 
 # Vulkan: errors only (the warnings are design choices: every image in VK_IMAGE_LAYOUT_GENERAL,
@@ -66,10 +67,11 @@ if ! grep -q "SYNC-HAZARD-READ-AFTER-WRITE" "$tmp/vk-probe.log"; then
       "(scripts/install-deps.sh installs it)"
     exit 1
   fi
-  fail "synchronization validation missed a fill read by a copy with no barrier: Vulkan hazards would go unseen ($(tr '\n' ' ' < "$tmp/vk-probe.log" | cut -c1-2000))"
+  fail "synchronization validation missed a fill read by a copy with no barrier:" \
+    "Vulkan hazards would go unseen ($(tr '\n' ' ' < "$tmp/vk-probe.log" | cut -c1-2000))"
 fi
 check_clean vk-tests "$vk_report" "$build/renderaudit_tests" --gtest_filter="$vulkan_tests"
-check_clean vk-layers "$vk_report" "$build/layered_bench" --experiment "$root/experiments/nist2008.toml" --platform vk-lavapipe --primitives 40
-check_clean vk-scan "$vk_report" "$build/layered_bench" --experiment "$root/experiments/nist2008.toml" --platform vk-lavapipe --primitives 40 --versus scan
+check_clean vk-layers "$vk_report" "${bench[@]}" --platform vk-lavapipe
+check_clean vk-scan "$vk_report" "${bench[@]}" --platform vk-lavapipe --versus scan
 [ $bad = 0 ] && echo "OK: no GL error and no Vulkan validation error or hazard on any drawing path"
 exit $bad
