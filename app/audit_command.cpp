@@ -193,7 +193,7 @@ void register_audit_command(CLI::App& app, int& exit_code) {
                 "also judge drawing time: both sides drawn again alone, interleaved with an A/A "
                 "control, per kind and view group (docs/nightly-audit.md)");
   cmd->add_option("--speed-repeats", opts->cli.options.speed.repeats,
-                  "rounds of fresh processes per side, default 3")
+                  "rounds of fresh processes per side, default 4 (an even number: the sides take turns first and last equally often)")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--speed-primitives", opts->cli.options.speed.per_view,
                   "primitives of each kind and view timed, default 100")
@@ -213,7 +213,7 @@ void register_audit_command(CLI::App& app, int& exit_code) {
     if (!opts->cli.options.between.empty() && opts->cli.dirs.size() != 1)
       throw util::UserError("audit --between compares two platforms of one run: give one RUN_DIR");
     opts->cli.options.current_dir = opts->cli.dirs.back();
-    if (opts->cli.options.speed.enabled)
+    if (opts->cli.options.speed.enabled && !opts->cli.brief)  // --brief: the verdict alone
       opts->cli.options.progress = [](const std::string& line) {
         std::fprintf(stderr, "audit: %s\n", line.c_str());
       };

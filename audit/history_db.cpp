@@ -85,7 +85,7 @@ CREATE TABLE nights (
 
 // Added in schema version 4.
 constexpr const char* kSpeedSql = R"sql(
-CREATE TABLE speed (
+CREATE TABLE IF NOT EXISTS speed (
   audit_id INTEGER NOT NULL REFERENCES audits(id),
   platform TEXT NOT NULL,
   baseline_platform TEXT NOT NULL,

@@ -37,7 +37,8 @@ SpeedDecision decide_speed(double low, double high, double threshold, double con
                            int repeats) {
   SpeedDecision d;
   if (!(low > 0 && high >= low && std::isfinite(high))) return d;
-  const double b = std::max(std::log1p(threshold), control_bound);
+  // The band's edge belongs to it, whatever the last bit of log(1 + threshold) is.
+  const double b = std::max(std::log1p(threshold), control_bound) + 1e-12;
   const double lo = std::log(low), hi = std::log(high);
   if (lo > b) {
     d.verdict = SpeedVerdict::kSlower;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include "audit/distribution_audit.h"
 #include "stats/box_cox.h"
 #include "stats/stats_testing.h"
 

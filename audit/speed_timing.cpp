@@ -67,8 +67,11 @@ std::string last_nonempty_line(const std::string& path) {
 std::string draw_once(const std::string& program, const std::string& dir, const TimingSide& side,
                       const std::vector<TimingRange>& ranges, double timeout_s, SideTiming& out) {
   std::error_code ec;
-  fs::remove_all(rundir::run_folder::records(dir), ec);
-  fs::create_directories(rundir::run_folder::records(dir));
+  const std::string warmup = dir + "/warmup";
+  for (const std::string& folder : {rundir::run_folder::records(dir), warmup}) {
+    fs::remove_all(folder, ec);
+    fs::create_directories(folder);
+  }
   const std::string log = rundir::run_folder::logs(dir) + "/serve.log";
   util::ChildSpec spec;
   spec.argv = {program, "serve-shards", dir, side.platform, "--alone"};
@@ -76,12 +79,16 @@ std::string draw_once(const std::string& program, const std::string& dir, const 
   spec.command_pipe = true;
   spec.own_process_group = true;
   const util::Child child = util::start_child(spec);
+  // Each range twice, the first time untimed: a driver compiles its code for a state when it first
+  // draws in it (llvmpipe's JIT took a third of the first primitives' time here), and only the
+  // second pass measures the drawing itself. Every shard's output goes to the one log: the last
+  // words of a failure are found there.
   std::string commands;
-  for (const TimingRange& r : ranges) {
-    const rundir::Shard shard{side.platform, r.kind, r.view, r.begin, r.end};
-    // Every shard's output goes to the one log: the last words of a failure are found there.
-    commands += rundir::shard_command_line({shard, rundir::run_folder::records(dir), log}) + "\n";
-  }
+  for (const std::string& records : {warmup, rundir::run_folder::records(dir)})
+    for (const TimingRange& r : ranges) {
+      const rundir::Shard shard{side.platform, r.kind, r.view, r.begin, r.end};
+      commands += rundir::shard_command_line({shard, records, log}) + "\n";
+    }
   // A child that died early makes the write fail (EPIPE; SIGPIPE is ignored by the program):
   // its exit status says why below.
   for (std::size_t done = 0; done < commands.size();) {

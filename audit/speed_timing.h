@@ -6,10 +6,13 @@
 //   `run` uses), drawing every primitive of the sample alone (a batch of one): its render_us is
 //   the primitive's own time on the platform's clock, never a batch's mean, so it means the same
 //   on every side whatever pixels the sides draw (docs/records.md, "Comparing drawing time").
+//   It draws the sample twice and keeps the second pass: the first pays for the driver compiling
+//   its code for each new state.
 // - No two processes draw at once: a side never shares the cores with another side.
 // - Round r draws the sides in order 0, 1, ..., k-1 when r is even and in reverse when it is odd
 //   (ABC, CBA, ...): over two rounds every side has the same mean position, so a drift linear in
-//   time adds the same to each side.
+//   time adds the same to each side. An odd number of rounds leaves the first and last sides one
+//   position apart; the default is even.
 // - The children load each side's platform (PLATFORM@BUILD) from the side's experiment and check
 //   GL_RENDERER and GL_VERSION against the side's run's driver files, as the flake check's do
 //   (audit/flake_check.h): a side whose driver is no longer what made its run fails with the
@@ -46,7 +49,7 @@ struct TimingRange {
 };
 
 struct TimingOptions {
-  int repeats = 3;        // rounds: each side drawn this many times, each in a fresh process
+  int repeats = 4;        // rounds: each side drawn this many times, each in a fresh process
   std::string program;    // runs `serve-shards`; empty: util/worker_program.h
   double timeout_s = 0;   // per process; 0: the first side's experiment's run.shard_timeout_s
 };

@@ -141,7 +141,7 @@ TEST(SpeedAuditInput, ABadSlowdownIsALocatedError) {
              "slowdown = -0.5\n");
   const Outcome o = run_renderaudit("run " + dir + "/bad.toml --out " + dir + "/run");
   EXPECT_EQ(o.exit_code, 2) << o.output;
-  EXPECT_NE(o.output.find("bad.toml:13:"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("bad.toml:12:12: "), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("'faults.slowdown' out of range (allowed: 0 to 100"), std::string::npos)
       << o.output;
   EXPECT_FALSE(fs::exists(dir + "/run"));
