@@ -14,7 +14,7 @@ TEST(GitRefCheck, AFullHashIsAccepted) {
 // A state file edited by hand or by an attacker: every one of these would reach git as an option
 // or as a revision expression, not as the commit the night recorded.
 TEST(GitRefCheck, AnythingButAFullHashIsRefused) {
-  for (const std::string bad :
+  for (const std::string& bad :
        {std::string(), std::string("--output=/tmp/x"), std::string("HEAD"), std::string(39, 'a'),
         std::string(41, 'a'), std::string(40, 'g'), std::string(40, 'A'),
         std::string(39, 'a') + "\n", std::string("-") + std::string(39, 'a'), std::string(63, 'b')})
