@@ -55,14 +55,14 @@ LastNight read_last(const std::string& path) {
     j = nlohmann::json::parse(util::read_file(path));
   } catch (const nlohmann::json::parse_error& e) {
     throw util::UserError("watch: " + path + ": not a whole JSON document (it breaks off or is " +
-                          "garbled at byte " + std::to_string(e.byte) +
-                          "; a write cut short?)" + start_again);
+                          "garbled at byte " + std::to_string(e.byte) + "; a write cut short?)" +
+                          start_again);
   } catch (const std::exception& e) {
     throw util::UserError("watch: " + path + ": cannot be read (" + e.what() + ")" + start_again);
   }
   if (!j.is_object())
-    throw util::UserError("watch: " + path + ": must be a JSON object (commit, build_dir, branch, " +
-                          "source)" + start_again);
+    throw util::UserError("watch: " + path +
+                          ": must be a JSON object (commit, build_dir, branch, source)" + start_again);
   const auto text = [&](const char* key, bool required) -> std::string {
     if (!j.contains(key)) {
       if (required)
@@ -161,9 +161,11 @@ int run_self(const std::vector<std::string>& args, const std::string& log) {
 }  // namespace
 
 std::string changed_night_note(const NightCounts& n) {
-  std::string note = std::to_string(n.changed) + (n.changed == 1 ? " primitive changed" : " primitives changed");
+  std::string note =
+      std::to_string(n.changed) + (n.changed == 1 ? " primitive changed" : " primitives changed");
   if (n.bisected < n.changed)
-    note += " (" + std::to_string(n.bisected) + " of them bisected: a sample, see the bisection's report)";
+    note += " (" + std::to_string(n.bisected) +
+            " of them bisected: a sample, see the bisection's report)";
   note += ", " + std::to_string(n.culprit_commits) + " culprit commit(s)";
   if (n.unattributed > 0)
     note += ", " + std::to_string(n.unattributed) +
@@ -171,9 +173,11 @@ std::string changed_night_note(const NightCounts& n) {
   return note;
 }
 
-bool night_moves_baseline(const std::string& verdict, const std::vector<std::string>& not_bisected) {
+bool night_moves_baseline(const std::string& verdict,
+                          const std::vector<std::string>& not_bisected) {
   if (verdict == "changed") return not_bisected.empty();
-  return verdict == "baseline established" || verdict == "moved backwards" || verdict == "unchanged";
+  return verdict == "baseline established" || verdict == "moved backwards" ||
+         verdict == "unchanged";
 }
 
 std::vector<std::string> night_lines(const WatchNight& n) {
@@ -223,10 +227,12 @@ class Night {
     }
     say("tonight: " + short_hash(n_.commit) + " " + subject(n_.commit) +
         (last.commit.empty() ? " (no baseline yet)" : "; last night: " + short_hash(last.commit)));
-    if (n_.commit == last.commit) return finish("nothing new", "the branch head is last night's commit", 0, "");
+    if (n_.commit == last.commit)
+      return finish("nothing new", "the branch head is last night's commit", 0, "");
     const bool backwards =
         !last.commit.empty() &&
-        !git(o_.source, {"merge-base", "--is-ancestor", "--end-of-options", last.commit, n_.commit}).ok;
+        !git(o_.source, {"merge-base", "--is-ancestor", "--end-of-options", last.commit, n_.commit})
+             .ok;
     std::string stamp = n_.date_utc;
     for (char& ch : stamp)
       if (ch == ':') ch = '-';
@@ -244,8 +250,9 @@ class Night {
     } catch (const util::UserError& e) {
       util::throw_if_interrupted();  // stopped, not failed: nothing recorded
       util::write_file_atomic(n_.dir + "/build-error.txt", std::string(e.what()) + "\n");
-      return finish("build failed", std::string(e.what()).substr(0, 400) +
-                                        (last.commit.empty() ? "" : "; last night's build stays the baseline"),
+      return finish("build failed",
+                    std::string(e.what()).substr(0, 400) +
+                        (last.commit.empty() ? "" : "; last night's build stays the baseline"),
                     2, "");
     }
     say(built.reused ? "build: reused " + built.build.name
@@ -261,8 +268,9 @@ class Night {
     const int run_rc = run_self({"run", exp, "--out", run, "--quiet", "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)},
                                 n_.dir + "/run.log");
     if (run_rc != 0 && run_rc != 1)
-      return finish("run failed", "the run exited " + std::to_string(run_rc) + " (" + n_.dir +
-                                      "/run.log)", 2, "");
+      return finish("run failed",
+                    "the run exited " + std::to_string(run_rc) + " (" + n_.dir + "/run.log)", 2,
+                    "");
     if (last_dir.empty())
       return finish(backwards ? "moved backwards" : "baseline established",
                     backwards ? "the branch no longer holds last night's commit " +
@@ -274,9 +282,10 @@ class Night {
     bool changed = false, failed = false;
     for (const std::string& p : platforms_) {
       const std::string out = n_.dir + "/audit-" + p;
-      const int rc = run_self({"audit", run, "--between", p + "@" + kLastBuild, p + "@" + kTonightBuild,
-                               "--out", out, "--db", night_db(), "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)},
-                              n_.dir + "/audit-" + p + ".log");
+      const int rc = run_self(
+          {"audit", run, "--between", p + "@" + kLastBuild, p + "@" + kTonightBuild, "--out", out,
+           "--db", night_db(), "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)},
+          n_.dir + "/audit-" + p + ".log");
       say("audit " + p + ": exit " + std::to_string(rc) + " (" + out + "/audit.md)");
       if (rc == 2 || rc > 2) failed = true;
       if (rc == 1) {
@@ -324,10 +333,10 @@ class Night {
       }
     }
     if (follows.empty() || follows == o_.source) return;
-    throw util::UserError("watch: " + where + ": the state folder " + o_.state + " follows the tree " +
-                          follows + ", not " + o_.source + "; give " + o_.source +
-                          " a state folder of its own (--state), or remove " + o_.state +
-                          "/watch.json to follow it from a new baseline");
+    throw util::UserError("watch: " + where + ": the state folder " + o_.state +
+                          " follows the tree " + follows + ", not " + o_.source + "; give " +
+                          o_.source + " a state folder of its own (--state), or remove " +
+                          o_.state + "/watch.json to follow it from a new baseline");
   }
 
   // The experiment as tonight's run will read it, checked before anything is built: a platform
@@ -335,8 +344,8 @@ class Night {
   void check_experiment(const std::string& last_build_dir) {
     (void)rundir::load_experiment(o_.experiment);
     platforms_ = watched_platforms(o_.experiment, parse_toml(o_.experiment));
-    const std::string text = night_experiment(
-        o_.experiment, last_build_dir, last_build_dir.empty() ? o_.state : last_build_dir);
+    const std::string text = night_experiment(o_.experiment, last_build_dir,
+                                              last_build_dir.empty() ? o_.state : last_build_dir);
     (void)rundir::parse_experiment(text, o_.experiment);
   }
 
@@ -357,7 +366,8 @@ class Night {
       const std::string at = git(o_.source, {"rev-parse", "--short=12", "HEAD"}).out;
       say("returning " + o_.source + " to its branch " + last_branch +
           ": an interrupted night left it detached at " + at);
-      const runner::GitResult co = git(o_.source, {"switch", "-q", "--end-of-options", last_branch});
+      const runner::GitResult co =
+          git(o_.source, {"switch", "-q", "--end-of-options", last_branch});
       if (!co.ok)
         throw util::UserError("watch: " + o_.source + " is detached at " + at +
                               " and cannot return to its branch " + last_branch + " (" + co.out +
@@ -373,7 +383,8 @@ class Night {
         return {"fetch failed", "git fetch in " + o_.source + " failed (" +
                                     f.out.substr(0, f.out.find('\n')).substr(0, 300) +
                                     "): upstream cannot be seen, nothing was built; check the "
-                                    "remote's address and the network (git -C " + o_.source + " fetch)"};
+                                    "remote's address and the network (git -C " +
+                                    o_.source + " fetch)"};
     }
     // The branch's configured upstream, also when its remote-tracking ref is gone.
     const std::string upstream =
@@ -384,8 +395,8 @@ class Night {
     if (!upstream.empty() && !(up.ok && !up.out.empty()))
       return {"upstream gone", "the upstream of the branch " + branch_ + ", " + upstream +
                                    ", is gone (deleted or renamed upstream): nothing was built; "
-                                   "point the branch at the branch to follow (git -C " + o_.source +
-                                   " branch --set-upstream-to=REMOTE/BRANCH)"};
+                                   "point the branch at the branch to follow (git -C " +
+                                   o_.source + " branch --set-upstream-to=REMOTE/BRANCH)"};
     if (up.ok && !up.out.empty()) {
       // The branch brought to its head, so that the tree stays where it is built and an
       // incremental build recompiles only what the night changed; a branch that cannot move
@@ -429,7 +440,8 @@ class Night {
       n_.counts.bisected += r.selection.size();
       n_.counts.unattributed += r.unattributed.size();
       if (!r.unattributed.empty())
-        n_.unattributed.push_back(std::to_string(r.unattributed.size()) + " changes of " + platform +
+        n_.unattributed.push_back(std::to_string(r.unattributed.size()) + " changes of " +
+                                  platform +
                                   ": only commits that failed to build lie between the commits " +
                                   "drawn on either side (" + r.report_path + ")");
     } catch (const util::UserError& e) {
@@ -439,13 +451,12 @@ class Night {
   }
 
   void save_last(const std::string& build_dir) const {
-    util::write_file_atomic(o_.state + "/watch.json",
-                            nlohmann::json{{"commit", n_.commit},
-                                           {"build_dir", build_dir},
-                                           {"branch", branch_},
-                                           {"source", o_.source}}
-                                    .dump(2) +
-                                "\n");
+    util::write_file_atomic(o_.state + "/watch.json", nlohmann::json{{"commit", n_.commit},
+                                                                     {"build_dir", build_dir},
+                                                                     {"branch", branch_},
+                                                                     {"source", o_.source}}
+                                                              .dump(2) +
+                                                          "\n");
   }
 
   // Records the night (night.json and night.md, then the history: the night's row, then its
@@ -477,8 +488,10 @@ class Night {
     } catch (const std::exception& x) {
       util::throw_if_interrupted();
       throw util::UserError(
-          std::string("watch: ") + x.what() + "; tonight (" + verdict + ") is not recorded in the history" +
-          (n_.dir.empty() ? std::string() : " (it is in " + n_.dir + "/night.md)") + ", and " + o_.state +
+          std::string("watch: ") + x.what() + "; tonight (" + verdict +
+          ") is not recorded in the history" +
+          (n_.dir.empty() ? std::string() : " (it is in " + n_.dir + "/night.md)") + ", and " +
+          o_.state +
           "/watch.json stays at last night's commit so the next night finds it again; make the "
           "history writable");
     }
@@ -487,17 +500,23 @@ class Night {
   }
 
   void write_night_files() const {
-    nlohmann::json j = {{"date_utc", n_.date_utc}, {"commit", n_.commit},
-                        {"previous_commit", n_.previous_commit}, {"verdict", n_.verdict},
-                        {"note", n_.note}, {"culprits", n_.culprits},
-                        {"unattributed", n_.unattributed}, {"not_bisected", n_.not_bisected},
-                        {"baseline_kept", n_.baseline_kept}, {"changed", n_.counts.changed},
+    nlohmann::json j = {{"date_utc", n_.date_utc},
+                        {"commit", n_.commit},
+                        {"previous_commit", n_.previous_commit},
+                        {"verdict", n_.verdict},
+                        {"note", n_.note},
+                        {"culprits", n_.culprits},
+                        {"unattributed", n_.unattributed},
+                        {"not_bisected", n_.not_bisected},
+                        {"baseline_kept", n_.baseline_kept},
+                        {"changed", n_.counts.changed},
                         {"exit_code", n_.exit_code}};
     j.update(rundir::document_header("watch-night", 1));
     util::write_file_atomic(n_.dir + "/night.json", j.dump(2) + "\n");
     std::string sentence = n_.note;  // the note as a sentence of its own
     while (!sentence.empty() && sentence.back() == '.') sentence.pop_back();
-    if (!sentence.empty()) sentence[0] = char(std::toupper(static_cast<unsigned char>(sentence[0])));
+    if (!sentence.empty())
+      sentence[0] = char(std::toupper(static_cast<unsigned char>(sentence[0])));
     std::string md = "# Night of " + n_.date_utc + ": " + n_.verdict + "\n\n" + sentence + ".\n\n" +
                      "- tonight: `" + n_.commit + "` " + subject(n_.commit) + "\n" +
                      (n_.previous_commit.empty() ? std::string()
@@ -522,7 +541,7 @@ class Night {
   std::function<void(const std::string&)> progress_;
   WatchNight n_;
   std::vector<std::string> platforms_;  // the experiment's, checked before the night
-  std::string branch_;  // the branch the tree is on tonight ("" when detached)
+  std::string branch_;                  // the branch the tree is on tonight ("" when detached)
 };
 
 }  // namespace

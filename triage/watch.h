@@ -52,10 +52,10 @@ struct WatchOptions {
 
 // What the bisections of a changed night found, all platforms together.
 struct NightCounts {
-  std::size_t changed = 0;          // primitives that changed (the bisected platforms')
-  std::size_t bisected = 0;         // of them, those bisected (fewer: a sample)
-  std::size_t attributed = 0;       // of those, the ones named to a commit
-  std::size_t unattributed = 0;     // of those, the ones only failed builds separate from a cause
+  std::size_t changed = 0;       // primitives that changed (the bisected platforms')
+  std::size_t bisected = 0;      // of them, those bisected (fewer: a sample)
+  std::size_t attributed = 0;    // of those, the ones named to a commit
+  std::size_t unattributed = 0;  // of those, the ones only failed builds separate from a cause
   std::size_t culprit_commits = 0;
 };
 
@@ -65,7 +65,7 @@ struct WatchNight {
   std::string commit;                   // tonight's ("" when upstream could not be read)
   std::string previous_commit;          // last good night's ("" on night 1)
   std::string verdict;                  // see the header
-  std::vector<std::string> culprits;      // "HASH SUBJECT (N primitives of P)": named commits only
+  std::vector<std::string> culprits;    // "HASH SUBJECT (N primitives of P)": named commits only
   std::vector<std::string> unattributed;  // "N changes of P: ..." that no commit could be named for
   std::vector<std::string> not_bisected;  // "P: why": platforms whose bisection could not run
   NightCounts counts;

@@ -17,15 +17,17 @@ NightCounts counts(std::size_t changed, std::size_t bisected, std::size_t attrib
 }
 
 TEST(ChangedNightNote, EveryChangeAttributed) {
-  EXPECT_EQ(changed_night_note(counts(40, 40, 40, 0, 2)), "40 primitives changed, 2 culprit commit(s)");
+  EXPECT_EQ(changed_night_note(counts(40, 40, 40, 0, 2)),
+            "40 primitives changed, 2 culprit commit(s)");
   EXPECT_EQ(changed_night_note(counts(1, 1, 1, 0, 1)), "1 primitive changed, 1 culprit commit(s)");
 }
 
 // A night past --max-primitives attributes a sample: the note must not call the sample the change.
 TEST(ChangedNightNote, ASampleIsNotCalledTheWholeChange) {
-  EXPECT_EQ(changed_night_note(counts(2005, 2000, 2000, 0, 1)),
-            "2005 primitives changed (2000 of them bisected: a sample, see the bisection's report), "
-            "1 culprit commit(s)");
+  EXPECT_EQ(
+      changed_night_note(counts(2005, 2000, 2000, 0, 1)),
+      "2005 primitives changed (2000 of them bisected: a sample, see the bisection's report), "
+      "1 culprit commit(s)");
 }
 
 // Every change bisected, none named (only failed builds between): not a sample, and said.
@@ -70,7 +72,8 @@ TEST(NightMovesBaseline, AChangedNightWhoseBisectionCouldNotRunKeepsTheBaseline)
   EXPECT_TRUE(night_moves_baseline("changed", {}));
   for (const char* v : {"baseline established", "moved backwards", "unchanged"})
     EXPECT_TRUE(night_moves_baseline(v, {})) << v;
-  for (const char* v : {"nothing new", "build failed", "run failed", "fetch failed", "upstream gone"})
+  for (const char* v :
+       {"nothing new", "build failed", "run failed", "fetch failed", "upstream gone"})
     EXPECT_FALSE(night_moves_baseline(v, {})) << v;
 }
 

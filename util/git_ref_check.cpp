@@ -16,7 +16,8 @@ std::string commit_hash_problem(const std::string& s) {
 
 std::string branch_name_problem(const std::string& s) {
   if (s.empty()) return "must be a branch name, not empty";
-  if (s[0] == '-') return "must be a branch name, never starting with '-' (git would read an option)";
+  if (s[0] == '-')
+    return "must be a branch name, never starting with '-' (git would read an option)";
   if (s == "@") return "must be a branch name, not '@'";
   for (const char c : s) {
     const auto u = static_cast<unsigned char>(c);
@@ -27,11 +28,13 @@ std::string branch_name_problem(const std::string& s) {
   if (s.find("..") != std::string::npos) return "must be a branch name, without '..'";
   if (s.find("@{") != std::string::npos) return "must be a branch name, without '@{'";
   if (s.find("//") != std::string::npos) return "must be a branch name, without '//'";
-  if (s.back() == '/' || s.back() == '.') return "must be a branch name, not ending with '/' or '.'";
+  if (s.back() == '/' || s.back() == '.')
+    return "must be a branch name, not ending with '/' or '.'";
   for (std::size_t start = 0; start <= s.size();) {
     const std::size_t end = std::min(s.find('/', start), s.size());
     const std::string part = s.substr(start, end - start);
-    if (part.empty() || part[0] == '.') return "must be a branch name, no part of it starting with '.'";
+    if (part.empty() || part[0] == '.')
+      return "must be a branch name, no part of it starting with '.'";
     if (part.size() >= 5 && part.compare(part.size() - 5, 5, ".lock") == 0)
       return "must be a branch name, no part of it ending with '.lock'";
     start = end + 1;

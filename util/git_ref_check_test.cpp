@@ -28,9 +28,14 @@ TEST(GitRefCheck, OrdinaryBranchNamesAreAccepted) {
 
 // What `git check-ref-format --branch` refuses, and names starting with '-' (options).
 TEST(GitRefCheck, NamesGitRefusesOrReadsAsOptionsAreRefused) {
-  for (const std::string bad :
-       {"", "-", "--orphan=pwned", "-b", "@", "a..b", "a b", "a\nb", "a~1", "a^", "a:b", "a?", "a*",
-        "a[", "a\\b", "x@{1}", "a//b", "a/", "a.", ".a", "a/.b", "a.lock", "a/b.lock/c", "/a"})
+  for (const std::string bad : {"",       "-",          "--orphan=pwned",
+                                "-b",     "@",          "a..b",
+                                "a b",    "a\nb",       "a~1",
+                                "a^",     "a:b",        "a?",
+                                "a*",     "a[",         "a\\b",
+                                "x@{1}",  "a//b",       "a/",
+                                "a.",     ".a",         "a/.b",
+                                "a.lock", "a/b.lock/c", "/a"})
     EXPECT_NE(branch_name_problem(bad), "") << bad;
 }
 
