@@ -6,8 +6,10 @@
 #     watch.json, a commit or branch in it that git would read as an option, a platform that
 #     cannot draw a build, a count the run refuses, a state folder that follows another tree;
 #   an experiment path with a line break stays in the night's experiment.toml's comment;
-#   SIGTERM during a night's bisection or run stops it (exit 143) with no audit row in the history;
+#   SIGTERM during a night's bisection, SIGTERM or SIGINT during its run stop it (exit 128 + the
+#     signal) with no audit row in the history;
 #   changes that only failed builds separate from their cause are "unattributed:", not culprits;
+#   a bisection that cannot run is "not bisected:" and its changes are bisected the next night;
 #   a history that cannot be written keeps the "moved backwards" finding for the next night;
 #   a fetch that fails and an upstream branch that is gone are errors (exit 2), said and recorded.
 # Usage: scripts/watch-faults-test.sh BUILD_DIR
@@ -39,7 +41,11 @@ mkdir -p "$t/drivers/hang"
 printf '[faults]\nbase = "osmesa-llvmpipe"\nhang = [5]\n' > "$t/drivers/hang/faults.toml"
 # The build of a "neither" commit waits while $t/slow exists (it says so in $t/sleeping), so that a
 # signal can come during a night's bisection; the same command on every night (it keys the builds).
-cmd='if [ -e '"$t"'/slow ] && [ "$(cat driver)" = neither ]; then touch '"$t"'/sleeping; sleep 300; fi; '"$cmd"
+# The build of a "bad-stray" commit leaves an untracked file in the tree, which the night's
+# bisection refuses (a tree that is not its commit cannot be bisected).
+cp -r "$t/drivers/bad" "$t/drivers/bad-stray"
+cmd='if [ -e '"$t"'/slow ] && [ "$(cat driver)" = neither ]; then touch '"$t"'/sleeping; sleep 300; fi; '\
+'[ "$(cat driver)" != bad-stray ] || touch stray.txt; '"$cmd"
 up="$t/upstream"
 make_history "$up" good
 git clone -q "$up" "$t/mesa"
@@ -160,24 +166,39 @@ night unattributed
 expect unattributed 1 "night: changed: 40 primitives changed, 0 culprit commit(s), 40 change(s) not attributed"
 expect unattributed 1 "unattributed: 40 changes of faulty: only commits that failed to build"
 ! grep -qE "^first bad commit:|a sample" "$t/unattributed.out" || { show unattributed; fail "unattributed changes said as culprits or a sample"; }
-c5=$(c "$up" 5)
 
-# SIGTERM during the run (a driver that hangs): the run is stopped, no audit.
+# A bisection that cannot run: its changes are not culprits, and they are kept: the baseline
+# stays, so that the next night bisects them.
+commit bad-stray
+night stray
+expect stray 1 "not bisected: faulty: "
+! grep -q "^first bad commit:" "$t/stray.out" || { show stray; fail "a bisection that could not run printed a first bad commit"; }
+c5=$(c "$up" 5)
+grep -q "\"commit\": \"$c5\"" "$t/state/watch.json" || fail "a night whose bisection could not run moved the baseline"
+rm "$t/mesa/stray.txt"
+night stray-again
+expect stray-again 1 "first bad commit: $(c "$up" 6) c6: bad-stray (40 primitives of faulty)"
+c6=$(c "$up" 6)
+
+# SIGTERM or SIGINT during the run (a driver that hangs): the run is stopped, not waited for (it
+# would end at the hung primitive's shard timeout), no audit, watch.json stays.
 commit hang
 n_audits=$(audits)
-start_night run-term
-until grep -q "^watch: run: " "$t/run-term.err" 2>/dev/null; do
-  kill -0 "$pid" 2>/dev/null || { wait "$pid" || true; show run-term; fail "the night ended before its run"; }
-  sleep 0.2
+for sig in TERM INT; do
+  start_night "run-$sig"
+  until grep -q "^watch: run: " "$t/run-$sig.err" 2>/dev/null; do
+    kill -0 "$pid" 2>/dev/null || { wait "$pid" || true; show "run-$sig"; fail "the night ended before its run"; }
+    sleep 0.2
+  done
+  kill "-$sig" "$pid"
+  set +e; wait "$pid"; rc=$?; set -e
+  want=$((128 + $(kill -l "$sig")))
+  [ "$rc" = "$want" ] || { show "run-$sig"; fail "SIG$sig during the run: exit $rc, not $want"; }
+  [ "$(audits)" = "$n_audits" ] || fail "SIG$sig during the run left an audit row in the history"
+  run_dir=$(sed -n 's|^watch: run: \(.*\)/experiment.toml$|\1/run|p' "$t/run-$sig.err")
+  ! grep -qs '"status": "complete' "$run_dir/manifest.json" || fail "SIG$sig during the night's run let the run finish"
+  grep -q "\"commit\": \"$c6\"" "$t/state/watch.json" || fail "an interrupted night moved watch.json"
 done
-kill -TERM "$pid"
-set +e; wait "$pid"; rc=$?; set -e
-[ "$rc" = 143 ] || { show run-term; fail "SIGTERM during the run: exit $rc, not 143"; }
-[ "$(audits)" = "$n_audits" ] || fail "SIGTERM during the run left an audit row in the history"
-# Stopped, not waited for: the run did not go on to its end (a hung primitive's shard timeout).
-run_dir=$(sed -n 's|^watch: run: \(.*\)/experiment.toml$|\1/run|p' "$t/run-term.err")
-! grep -qs '"status": "complete"' "$run_dir/manifest.json" || fail "SIGTERM during the night's run let the run finish"
-grep -q "\"commit\": \"$c5\"" "$t/state/watch.json" || fail "an interrupted night moved watch.json"
 
 # A history that cannot be written: the "moved backwards" finding is kept for the next night.
 git -C "$up" reset -q --hard "$(c "$up" 1)"
