@@ -14,8 +14,9 @@
 //   classes  (audit_id, platform, kind, view_group, visibility) -> count
 //   nights   (version 2) one row per night of `renderaudit watch`: id, date_utc, source, commit,
 //            previous_commit, verdict ('baseline established' | 'nothing new' | 'unchanged' |
-//            'changed' | 'build failed' | 'run failed' | 'moved backwards'), culprits (one
-//            "HASH SUBJECT (N primitives)" per line), run_dir, note. A version 1 database gains
+//            'changed' | 'build failed' | 'run failed' | 'moved backwards' | 'fetch failed' |
+//            'upstream gone'), culprits (one "HASH SUBJECT (N primitives)" per line), run_dir,
+//            note. A version 1 database gains
 //            the table at its next append.
 //   (version 3: audits.verdict may be 'baseline'; a version 1 or 2 database takes it from its
 //   next append on.)
