@@ -1,6 +1,7 @@
 #include "audit/speed_audit.h"
 
 #include <algorithm>
+#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -14,12 +15,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kMaxRepeatsToSettle = 1000;
-
-std::vector<double> log_ratios(const std::vector<double>& over, const std::vector<double>& under) {
-  std::vector<double> d(over.size());
-  for (std::size_t i = 0; i < d.size(); ++i) d[i] = std::log(over[i] / under[i]);
-  return d;
-}
 
 }  // namespace
 
@@ -59,42 +54,86 @@ SpeedDecision decide_speed(double low, double high, double threshold, double con
   return d;
 }
 
-SpeedComparison compare_speed(const std::vector<double>& baseline_us,
-                              const std::vector<double>& current_us,
-                              const std::vector<double>& control_us, double threshold,
-                              int repeats) {
-  if (current_us.size() != baseline_us.size() ||
-      (!control_us.empty() && control_us.size() != baseline_us.size()))
-    throw std::invalid_argument("compare_speed: the sides' samples differ in size");
+RoundInterval round_interval(const std::vector<double>& d) {
+  RoundInterval out{kNaN, kNaN, kNaN};
+  if (d.empty()) return out;
+  const stats::MeanVariance mv = stats::mean_and_variance(d);
+  out.ratio = std::exp(mv.mean);
+  if (d.size() < 2) return out;
+  const boost::math::students_t t(double(d.size() - 1));
+  const double half =
+      boost::math::quantile(boost::math::complement(t, 0.025)) * std::sqrt(mv.variance / double(d.size()));
+  out.low = std::exp(mv.mean - half);
+  out.high = std::exp(mv.mean + half);
+  return out;
+}
+
+namespace {
+
+// The Hodges-Lehmann estimate of round r's paired log ratios over every primitive.
+double round_log_ratio(const RoundTimes& over, const RoundTimes& under, std::size_t r) {
+  std::vector<double> d(over.size());
+  for (std::size_t i = 0; i < d.size(); ++i) d[i] = std::log(over[i][r] / under[i][r]);
+  return stats::hodges_lehmann(d);
+}
+
+std::vector<double> per_primitive_medians(const RoundTimes& t) {
+  std::vector<double> out;
+  for (const std::vector<double>& rounds : t) out.push_back(stats::median(rounds));
+  return out;
+}
+
+}  // namespace
+
+SpeedComparison compare_speed(const RoundTimes& baseline_us, const RoundTimes& current_us,
+                              const RoundTimes& control_us, double threshold) {
+  const std::size_t n = baseline_us.size();
+  const std::size_t rounds = n ? baseline_us[0].size() : 0;
+  auto shaped = [&](const RoundTimes& t) {
+    if (t.size() != n) return false;
+    for (const std::vector<double>& r : t)
+      if (r.size() != rounds) return false;
+    return true;
+  };
+  if (!shaped(baseline_us) || !shaped(current_us) || (!control_us.empty() && !shaped(control_us)))
+    throw std::invalid_argument("compare_speed: the sides' samples differ in shape");
   SpeedComparison c;
-  c.n = baseline_us.size();
-  c.repeats = repeats;
+  c.n = n;
+  c.repeats = int(rounds);
   c.ratio = c.low = c.high = kNaN;
   c.control_ratio = c.control_low = c.control_high = kNaN;
-  c.baseline_median_us = stats::median_or_nan(baseline_us);
-  c.current_median_us = stats::median_or_nan(current_us);
   c.band = std::exp(std::log1p(threshold));  // without a control; widened by it below
-  stats::SignedRankInterval ci;
-  try {
-    ci = stats::signed_rank_interval(log_ratios(current_us, baseline_us));
-  } catch (const std::invalid_argument&) {
-    c.reason = std::to_string(c.n) + " primitive(s) timed on every side: at least 6 are needed";
+  if (n == 0 || rounds == 0) {
+    c.reason = "no primitive timed on every side";
     return c;
   }
-  c.ratio = std::exp(ci.estimate), c.low = std::exp(ci.low), c.high = std::exp(ci.high);
+  const std::vector<double> base = per_primitive_medians(baseline_us),
+                            cur = per_primitive_medians(current_us);
+  c.baseline_median_us = stats::median(base);
+  c.current_median_us = stats::median(cur);
+  std::vector<double> d, a;
+  for (std::size_t r = 0; r < rounds; ++r) {
+    d.push_back(round_log_ratio(current_us, baseline_us, r));
+    if (!control_us.empty()) a.push_back(round_log_ratio(control_us, baseline_us, r));
+  }
+  const RoundInterval ratio = round_interval(d);
+  c.ratio = ratio.ratio, c.low = ratio.low, c.high = ratio.high;
   double control_bound = 0;
-  if (!control_us.empty()) {
-    const stats::SignedRankInterval a = stats::signed_rank_interval(log_ratios(control_us, baseline_us));
-    c.control_ratio = std::exp(a.estimate), c.control_low = std::exp(a.low),
-    c.control_high = std::exp(a.high);
-    control_bound = std::max(std::fabs(a.low), std::fabs(a.high));
+  if (!a.empty()) {
+    const RoundInterval control = round_interval(a);
+    c.control_ratio = control.ratio, c.control_low = control.low, c.control_high = control.high;
+    control_bound = std::fabs(std::log(control.ratio));
   }
   c.band = std::exp(std::max(std::log1p(threshold), control_bound));
-  const SpeedDecision d = decide_speed(c.low, c.high, threshold, control_bound, repeats);
-  c.verdict = d.verdict;
-  c.repeats_to_settle = d.repeats_to_settle;
+  if (rounds < 2) {
+    c.reason = "one round: an interval needs at least 2 (--speed-repeats)";
+  } else {
+    const SpeedDecision decision = decide_speed(c.low, c.high, threshold, control_bound, int(rounds));
+    c.verdict = decision.verdict;
+    c.repeats_to_settle = decision.repeats_to_settle;
+  }
   // The mission's tests beside the interval: one Box-Cox lambda for both samples.
-  const analysis::SampleComparison s = analysis::compare_samples({baseline_us, current_us});
+  const analysis::SampleComparison s = analysis::compare_samples({base, cur});
   c.box_cox = s.box_cox;
   c.welch = s.transformed.welch;
   c.levene = s.transformed.levene_median;

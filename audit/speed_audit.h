@@ -8,22 +8,28 @@
 // `repeats` interleaved rounds of fresh processes. Each primitive's time on a side is the median of
 // its rounds (microseconds, render_us's clock).
 //
-// Statistics, per pair, kind and view group (n primitives with a time on every side):
-// - ratio: exp of the Hodges-Lehmann estimate of the paired log ratios log(current / baseline), and
-//   the signed-rank 95% interval (stats/signed_rank.h): paired, since one primitive can take 100
-//   times another's time, and the pairing removes that spread from the comparison;
-// - beside it, the mission's tests on the two samples of per-primitive times: Welch's t and
-//   Levene's (median centre) on Box-Cox transformed times, one lambda for both samples chosen on
-//   the pooled data (analysis/view_equivalence.h), Holm-adjusted over every speed test of the
-//   audit (a family of their own: the pixel distributions' family and adjusted p-values stay what
-//   they are without timing);
+// Statistics, per pair, kind and view group (n primitives with a time on every side in every
+// round):
+// - ratio: the unit of replication is the round, not the primitive. Every primitive of one
+//   process shares that process's luck (what else the machine ran then, where its memory landed),
+//   so primitives of one round are not independent evidence; rounds are. Per round r, d_r is the
+//   Hodges-Lehmann estimate (stats/signed_rank.h) of the paired log ratios log(current / baseline)
+//   of that round's processes (paired: one primitive can take 100 times another's time, and the
+//   pairing removes that spread). The ratio is exp(mean of d_r), its 95% interval exp of Student's
+//   t interval over the rounds (mean +- t(0.975, R - 1) sd / sqrt(R)): wide when the rounds
+//   disagree, which is what a loaded machine does.
+// - beside it, the mission's tests on the two samples of per-primitive times (each the median of
+//   its rounds): Welch's t and Levene's (median centre) on Box-Cox transformed times, one lambda
+//   for both samples chosen on the pooled data (analysis/view_equivalence.h), Holm-adjusted over
+//   every speed test of the audit (a family of their own: the pixel distributions' family and
+//   adjusted p-values stay what they are without timing);
 // - the control's ratio and interval, the same way: what two identical sides show on this machine
 //   now.
-// Verdict (decide_speed): with b = max(log(1 + threshold), the control interval's largest |log|),
-// `slower` when the whole interval lies above exp(b), `faster` when it lies below exp(-b), `same`
-// when it lies within [exp(-b), exp(b)], else `unknown`, with about how many repeats would settle
-// it. The tests do not decide: a significant test with an interval inside the band is a change
-// too small to matter.
+// Verdict (decide_speed): with b = max(log(1 + threshold), |log control ratio|), `slower` when the
+// whole interval lies above exp(b), `faster` when it lies below exp(-b), `same` when it lies
+// within [exp(-b), exp(b)], else `unknown`, with about how many repeats would settle it. The
+// tests do not decide: a significant test with an interval inside the band is a change too small
+// to matter.
 #pragma once
 
 #include <cstddef>
@@ -61,8 +67,8 @@ struct SpeedDecision {
 };
 
 // The verdict of an interval [low, high] of a ratio (current / baseline, both > 0) against the band
-// [1/exp(b), exp(b)], b = max(log(1 + threshold), control_bound) (control_bound: the A/A interval's
-// largest |log|, 0 without a control), measured with `repeats` repeats.
+// [1/exp(b), exp(b)], b = max(log(1 + threshold), control_bound) (control_bound: |log| of the A/A
+// control's ratio, 0 without a control), measured with `repeats` repeats.
 SpeedDecision decide_speed(double low, double high, double threshold, double control_bound,
                            int repeats);
 
@@ -90,12 +96,19 @@ struct SpeedComparison {
   std::string reason;  // why unknown when no interval could be formed
 };
 
-// Per-primitive times of one pair, kind and view group: element i of each vector is primitive i
-// (microseconds, > 0); control may be empty (no control).
-SpeedComparison compare_speed(const std::vector<double>& baseline_us,
-                              const std::vector<double>& current_us,
-                              const std::vector<double>& control_us, double threshold,
-                              int repeats);
+// Times of one pair, kind and view group: element [i][r] is primitive i's time in round r
+// (microseconds, > 0), the same number of rounds for every primitive and side; control may be
+// empty (no control). Throws std::invalid_argument for sides of different shapes.
+using RoundTimes = std::vector<std::vector<double>>;
+SpeedComparison compare_speed(const RoundTimes& baseline_us, const RoundTimes& current_us,
+                              const RoundTimes& control_us, double threshold);
+
+// The ratio's estimate and 95% interval from per-round log ratios (see above): exp(mean) and exp
+// of Student's t interval; NaN interval with fewer than 2 rounds. Exposed for tests.
+struct RoundInterval {
+  double ratio = 0, low = 0, high = 0;
+};
+RoundInterval round_interval(const std::vector<double>& log_ratios);
 
 struct SpeedAudit {
   bool performed = false;

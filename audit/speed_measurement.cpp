@@ -27,14 +27,14 @@ std::vector<TimingRange> timing_ranges(const rundir::Experiment& exp, const Plat
   return out;
 }
 
-// The median of a primitive's rounds; NaN when it has none or a time that is not positive (a
-// platform that does not time its drawing).
-double primitive_time(const SideTiming& side, const TimedKey& key) {
+// A primitive's time in every round, or empty when a round lacks it or has a time that is not
+// positive (a platform that does not time its drawing).
+std::vector<double> primitive_rounds(const SideTiming& side, const TimedKey& key, int rounds) {
   const auto it = side.render_us.find(key);
-  if (it == side.render_us.end() || it->second.empty()) return -1;
+  if (it == side.render_us.end() || int(it->second.size()) != rounds) return {};
   for (double t : it->second)
-    if (!(t > 0)) return -1;
-  return stats::median(it->second);
+    if (!(t > 0)) return {};
+  return it->second;
 }
 
 }  // namespace
@@ -78,7 +78,7 @@ SpeedAudit audit_speed(const RunIdentity& baseline, const RunIdentity& current,
 
     // Per kind and view group: the primitives timed on every side.
     struct Samples {
-      std::vector<double> base, cur, ctl;
+      RoundTimes base, cur, ctl;
     };
     std::map<std::pair<int, int>, Samples> groups;
     for (const TimingRange& r : ranges) {
@@ -89,13 +89,15 @@ SpeedAudit audit_speed(const RunIdentity& baseline, const RunIdentity& current,
       if (failed) continue;
       for (uint64_t i = r.begin; i < r.end; ++i) {
         const TimedKey key{int(r.kind), r.view, i};
-        const double b = primitive_time(t.sides[0], key), c = primitive_time(t.sides[1], key),
-                     a = primitive_time(t.sides[2], key);
-        if (b > 0 && c > 0 && a > 0) g.base.push_back(b), g.cur.push_back(c), g.ctl.push_back(a);
+        std::vector<double> b = primitive_rounds(t.sides[0], key, options.repeats),
+                            c = primitive_rounds(t.sides[1], key, options.repeats),
+                            a = primitive_rounds(t.sides[2], key, options.repeats);
+        if (b.empty() || c.empty() || a.empty()) continue;
+        g.base.push_back(std::move(b)), g.cur.push_back(std::move(c)), g.ctl.push_back(std::move(a));
       }
     }
     for (const auto& [key, g] : groups) {
-      SpeedComparison c = compare_speed(g.base, g.cur, g.ctl, options.threshold, options.repeats);
+      SpeedComparison c = compare_speed(g.base, g.cur, g.ctl, options.threshold);
       c.pair = p;
       c.platform = pair.current;
       c.baseline_platform = pair.baseline;

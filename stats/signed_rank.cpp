@@ -72,6 +72,21 @@ double signed_rank_upper_tail(std::size_t n, double t) {
   return std::min(1.0, sum);
 }
 
+double hodges_lehmann(const std::vector<double>& differences) {
+  const std::size_t n = differences.size();
+  if (n == 0) throw std::invalid_argument("Hodges-Lehmann estimate: no differences");
+  for (double d : differences)
+    if (!std::isfinite(d))
+      throw std::invalid_argument("Hodges-Lehmann estimate: a difference is not finite");
+  std::vector<double> walsh;
+  walsh.reserve(n * (n + 1) / 2);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) walsh.push_back(0.5 * (differences[i] + differences[j]));
+  const std::size_t total = walsh.size();
+  const double upper_middle = kth_smallest(walsh, total / 2 + 1);
+  return total % 2 ? upper_middle : 0.5 * (upper_middle + kth_smallest(walsh, total / 2));
+}
+
 SignedRankInterval signed_rank_interval(const std::vector<double>& differences, double level) {
   if (!(level > 0 && level < 1))
     throw std::invalid_argument("signed-rank interval: level must be in (0, 1)");

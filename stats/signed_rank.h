@@ -33,6 +33,10 @@ struct SignedRankInterval {
 // otherwise. `level` in (0, 1).
 SignedRankInterval signed_rank_interval(const std::vector<double>& differences, double level = 0.95);
 
+// The Hodges-Lehmann estimate alone (the median of the Walsh averages), for any n >= 1; units of
+// the data. Throws std::invalid_argument for an empty or non-finite input.
+double hodges_lehmann(const std::vector<double>& differences);
+
 // P(T+ >= t) under the null hypothesis for n differences, exactly (n <= 300) or by the normal
 // approximation with continuity correction. Exposed for tests.
 double signed_rank_upper_tail(std::size_t n, double t);

@@ -98,6 +98,10 @@ TEST(SignedRank, HardCases) {
   EXPECT_DOUBLE_EQ(six.low, 0.1);
   EXPECT_DOUBLE_EQ(six.high, 0.6);
   EXPECT_DOUBLE_EQ(six.estimate, 0.35);
+  // The estimate alone, for any n: the interval's, and the value itself for one difference.
+  EXPECT_EQ(hodges_lehmann({0.3}), 0.3);
+  EXPECT_DOUBLE_EQ(hodges_lehmann({0.1, 0.2, 0.3, 0.4, 0.5, 0.6}), six.estimate);
+  EXPECT_THROW(hodges_lehmann({}), std::invalid_argument);
   // Constant differences: a point interval at the constant.
   const SignedRankInterval flat = signed_rank_interval(std::vector<double>(40, -0.25));
   EXPECT_EQ(flat.low, -0.25);
