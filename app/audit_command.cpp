@@ -193,7 +193,7 @@ void register_audit_command(CLI::App& app, int& exit_code) {
                 "also judge drawing time: both sides drawn again alone, interleaved with an A/A "
                 "control, per kind and view group (docs/nightly-audit.md)");
   cmd->add_option("--speed-repeats", opts->cli.options.speed.repeats,
-                  "rounds of fresh processes per side, default 4 (an even number: the sides take turns first and last equally often)")
+                  "rounds of fresh processes per side, the replicates of the interval, default 10")
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--speed-primitives", opts->cli.options.speed.per_view,
                   "primitives of each kind and view timed, default 100")

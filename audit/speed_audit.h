@@ -51,7 +51,7 @@ const char* speed_verdict_name(SpeedVerdict v);  // "same", "faster", "slower", 
 
 struct SpeedOptions {
   bool enabled = false;     // `audit --speed`
-  int repeats = 4;          // rounds of fresh processes per side (>= 1; even: see round_order)
+  int repeats = 10;         // rounds: fresh processes per side (>= 2 for an interval)
   uint64_t per_view = 100;  // primitives of each kind and view timed
   double threshold = 0.05;  // a change counts only when its whole interval lies beyond this
   bool warn_only = false;   // a slowdown is reported but does not make the verdict `changed`

@@ -61,9 +61,10 @@ SpeedAudit audit_speed(const RunIdentity& baseline, const RunIdentity& current,
         sides, ranges, to, [&](int round, std::size_t side, double seconds) {
           if (!progress) return;
           char line[256];
-          std::snprintf(line, sizeof line, "timing %s: round %d of %d, %s (%s): %.1f s",
-                        pair.label().c_str(), round + 1, options.repeats, sides[side].label.c_str(),
-                        sides[side].platform.c_str(), seconds);
+          (void)side;
+          std::snprintf(line, sizeof line,
+                        "timing %s: round %d of %d (baseline, current and control): %.1f s",
+                        pair.label().c_str(), round + 1, options.repeats, seconds);
           progress(line);
         });
     audit.seconds += t.seconds;

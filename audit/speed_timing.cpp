@@ -1,5 +1,6 @@
 #include "audit/speed_timing.h"
 
+#include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -63,71 +64,93 @@ std::string last_nonempty_line(const std::string& path) {
   return last;
 }
 
-// One process of one side: draws every range alone and returns "" or why it failed.
-std::string draw_once(const std::string& program, const std::string& dir, const TimingSide& side,
-                      const std::vector<TimingRange>& ranges, double timeout_s, SideTiming& out) {
-  std::error_code ec;
-  const std::string warmup = dir + "/warmup";
-  for (const std::string& folder : {rundir::run_folder::records(dir), warmup}) {
-    fs::remove_all(folder, ec);
-    fs::create_directories(folder);
-  }
-  const std::string log = rundir::run_folder::logs(dir) + "/serve.log";
+// A shard server of one side for one round: alive for the whole round, drawing when told.
+struct Server {
+  util::Child child;
+  std::string log;
+  std::string unread;  // what its message pipe said, not yet taken as replies
+  std::string error;   // non-empty: it failed, and why
+};
+
+void start_server(Server& s, const std::string& program, const std::string& dir,
+                  const TimingSide& side) {
+  s.log = rundir::run_folder::logs(dir) + "/serve.log";
   util::ChildSpec spec;
   spec.argv = {program, "serve-shards", dir, side.platform, "--alone"};
-  spec.log_to(log);
+  spec.log_to(s.log);
   spec.command_pipe = true;
+  spec.message_pipe = true;
   spec.own_process_group = true;
-  const util::Child child = util::start_child(spec);
-  // Each range twice, the first time untimed: a driver compiles its code for a state when it first
-  // draws in it (llvmpipe's JIT took a third of the first primitives' time here), and only the
-  // second pass measures the drawing itself. Every shard's output goes to the one log: the last
-  // words of a failure are found there.
-  std::string commands;
-  for (const std::string& records : {warmup, rundir::run_folder::records(dir)})
-    for (const TimingRange& r : ranges) {
-      const rundir::Shard shard{side.platform, r.kind, r.view, r.begin, r.end};
-      commands += rundir::shard_command_line({shard, records, log}) + "\n";
-    }
-  // A child that died early makes the write fail (EPIPE; SIGPIPE is ignored by the program):
-  // its exit status says why below.
-  for (std::size_t done = 0; done < commands.size();) {
-    const ssize_t n = ::write(child.command_fd, commands.data() + done, commands.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    done += std::size_t(n);
-  }
-  ::close(child.command_fd);
-  const auto started = Clock::now();
+  s.child = util::start_child(spec);
+}
+
+// Why a server that stopped answering stopped: its exit status and its log's last line.
+std::string why_failed(Server& s, const std::string& what) {
   int status = 0;
-  for (;;) {
-    const pid_t r = ::waitpid(child.pid, &status, WNOHANG);
-    if (r == child.pid) break;
-    if (r < 0 && errno != EINTR) return "cannot wait for the timing process";
-    if (seconds_since(started) > timeout_s) {
-      ::kill(-child.pid, SIGKILL);
-      ::waitpid(child.pid, &status, 0);
-      return "timed out after " + std::to_string(int(timeout_s)) + " s (killed)";
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
-    const std::string last = last_nonempty_line(log);
+  if (::waitpid(s.child.pid, &status, WNOHANG) == s.child.pid) {
+    s.child.pid = -1;
+    const std::string last = last_nonempty_line(s.log);
     return util::describe_exit_status(status) + (last.empty() ? "" : ": " + last);
   }
-  for (const TimingRange& r : ranges) {
-    const rundir::Shard shard{side.platform, r.kind, r.view, r.begin, r.end};
-    const rundir::ShardRecordsFile file = rundir::find_shard_records(dir, shard);
-    if (file.path.empty()) return "wrote no records for " + shard.id();
-    if (!file.damage.empty()) return file.path + ": damaged: " + file.damage;
-    rundir::read_records(file.path, [&](const metrics::Record& rec) {
-      if (rec.status != metrics::CaseStatus::kOk) return;
-      const TimedKey key{int(r.kind), r.view, rec.index};
-      out.render_us[key].push_back(rec.render_us);
-      out.pixel_hash[key] = rec.pixel_hash;
-    });
+  return what;
+}
+
+// Sends one shard to the server and waits for its reply; false (and s.error) when it fails or
+// takes longer than timeout_s.
+bool draw_shard(Server& s, const rundir::Shard& shard, const std::string& records,
+                double timeout_s) {
+  const std::string line = rundir::shard_command_line({shard, records, s.log}) + "\n";
+  for (std::size_t done = 0; done < line.size();) {
+    const ssize_t n = ::write(s.child.command_fd, line.data() + done, line.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {  // a server that died: EPIPE (SIGPIPE is ignored by the program)
+      s.error = why_failed(s, "its command pipe is closed");
+      return false;
+    }
+    done += std::size_t(n);
   }
-  return "";
+  const auto started = Clock::now();
+  for (;;) {
+    s.unread += util::drain_fd(s.child.message_fd);
+    for (std::size_t nl; (nl = s.unread.find('\n')) != std::string::npos;) {
+      const std::string reply = s.unread.substr(0, nl);
+      s.unread.erase(0, nl + 1);
+      std::string id;
+      if (rundir::parse_shard_done(reply, &id) && id == shard.id()) return true;
+    }
+    int status = 0;
+    if (::waitpid(s.child.pid, &status, WNOHANG) == s.child.pid) {
+      s.child.pid = -1;
+      const std::string last = last_nonempty_line(s.log);
+      s.error = util::describe_exit_status(status) + (last.empty() ? "" : ": " + last);
+      return false;
+    }
+    if (seconds_since(started) > timeout_s) {
+      s.error = "timed out after " + std::to_string(int(timeout_s)) + " s on " + shard.id();
+      return false;
+    }
+    pollfd p{s.child.message_fd, POLLIN, 0};
+    ::poll(&p, 1, 20);
+  }
+}
+
+// Ends a server: end of input, then its exit (killed when it does not come).
+void stop_server(Server& s) {
+  if (s.child.command_fd >= 0) ::close(s.child.command_fd), s.child.command_fd = -1;
+  if (s.child.pid > 0) {
+    const auto started = Clock::now();
+    int status = 0;
+    while (::waitpid(s.child.pid, &status, WNOHANG) != s.child.pid) {
+      if (seconds_since(started) > 30) {
+        ::kill(-s.child.pid, SIGKILL);
+        ::waitpid(s.child.pid, &status, 0);
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    s.child.pid = -1;
+  }
+  if (s.child.message_fd >= 0) ::close(s.child.message_fd), s.child.message_fd = -1;
 }
 
 }  // namespace
@@ -137,6 +160,70 @@ std::vector<std::size_t> round_order(std::size_t sides, int round) {
   for (std::size_t i = 0; i < sides; ++i) order[i] = round % 2 == 0 ? i : sides - 1 - i;
   return order;
 }
+
+namespace {
+
+// One round: a fresh server per side, each warmed up on every range, then the ranges drawn in
+// turn, one side after another, the sides' order alternating from range to range.
+void draw_round(const std::string& program, const std::vector<std::string>& folders,
+                const std::vector<TimingSide>& sides, const std::vector<TimingRange>& ranges,
+                double timeout_s, int round, TimingResult& result) {
+  std::vector<Server> servers(sides.size());
+  std::error_code ec;
+  for (std::size_t s = 0; s < sides.size(); ++s) {
+    if (!result.sides[s].error.empty()) continue;
+    for (const std::string& folder : {rundir::run_folder::records(folders[s]),
+                                      folders[s] + "/warmup"}) {
+      fs::remove_all(folder, ec);
+      fs::create_directories(folder);
+    }
+    start_server(servers[s], program, folders[s], sides[s]);
+  }
+  auto shard_of = [&](std::size_t s, const TimingRange& r) {
+    return rundir::Shard{sides[s].platform, r.kind, r.view, r.begin, r.end};
+  };
+  // The first pass pays for the driver compiling its code for each new state (llvmpipe's JIT
+  // took a third of the first primitives' time); only the second is kept.
+  for (std::size_t s = 0; s < sides.size(); ++s)
+    for (const TimingRange& r : ranges)
+      if (servers[s].child.pid > 0 && servers[s].error.empty())
+        draw_shard(servers[s], shard_of(s, r), folders[s] + "/warmup", timeout_s);
+  for (std::size_t k = 0; k < ranges.size(); ++k)
+    for (std::size_t s : round_order(sides.size(), round + int(k))) {
+      Server& server = servers[s];
+      if (server.child.pid <= 0 || !server.error.empty()) continue;
+      const auto t0 = Clock::now();
+      draw_shard(server, shard_of(s, ranges[k]), rundir::run_folder::records(folders[s]),
+                 timeout_s);
+      result.sides[s].seconds += seconds_since(t0);
+    }
+  for (std::size_t s = 0; s < sides.size(); ++s) {
+    stop_server(servers[s]);
+    SideTiming& out = result.sides[s];
+    if (!out.error.empty()) continue;
+    if (!servers[s].error.empty()) {
+      out.error = servers[s].error;
+      continue;
+    }
+    for (const TimingRange& r : ranges) {
+      const rundir::Shard shard = shard_of(s, r);
+      const rundir::ShardRecordsFile file = rundir::find_shard_records(folders[s], shard);
+      if (file.path.empty() || !file.damage.empty()) {
+        out.error = file.path.empty() ? "wrote no records for " + shard.id()
+                                      : file.path + ": damaged: " + file.damage;
+        break;
+      }
+      rundir::read_records(file.path, [&](const metrics::Record& rec) {
+        if (rec.status != metrics::CaseStatus::kOk) return;
+        const TimedKey key{int(r.kind), r.view, rec.index};
+        out.render_us[key].push_back(rec.render_us);
+        out.pixel_hash[key] = rec.pixel_hash;
+      });
+    }
+  }
+}
+
+}  // namespace
 
 TimingResult time_interleaved(const std::vector<TimingSide>& sides,
                               const std::vector<TimingRange>& ranges, const TimingOptions& options,
@@ -160,15 +247,9 @@ TimingResult time_interleaved(const std::vector<TimingSide>& sides,
   try {
     for (int round = 0; round < options.repeats; ++round) {
       result.order.push_back(round_order(sides.size(), round));
-      for (std::size_t s : result.order.back()) {
-        SideTiming& out = result.sides[s];
-        if (!out.error.empty()) continue;
-        const auto started = Clock::now();
-        out.error = draw_once(program, folders[s], sides[s], ranges, timeout_s, out);
-        const double took = seconds_since(started);
-        out.seconds += took;
-        if (progress) progress(round, s, took);
-      }
+      const auto started = Clock::now();
+      draw_round(program, folders, sides, ranges, timeout_s, round, result);
+      if (progress) progress(round, sides.size(), seconds_since(started));
     }
   } catch (...) {
     std::error_code ec;

@@ -2,17 +2,20 @@
 // run's experiment and driver build) draw the same primitives, one process at a time, their
 // processes interleaved in rounds, so that the machine's drift and load fall on every side alike.
 //
-// - Each side of each round is one fresh process (`serve-shards DIR PLATFORM --alone`, the worker
-//   `run` uses), drawing every primitive of the sample alone (a batch of one): its render_us is
-//   the primitive's own time on the platform's clock, never a batch's mean, so it means the same
-//   on every side whatever pixels the sides draw (docs/records.md, "Comparing drawing time").
-//   It draws the sample twice and keeps the second pass: the first pays for the driver compiling
-//   its code for each new state.
-// - No two processes draw at once: a side never shares the cores with another side.
-// - Round r draws the sides in order 0, 1, ..., k-1 when r is even and in reverse when it is odd
-//   (ABC, CBA, ...): over two rounds every side has the same mean position, so a drift linear in
-//   time adds the same to each side. An odd number of rounds leaves the first and last sides one
-//   position apart; the default is even.
+// - Each round starts a fresh process per side (`serve-shards DIR PLATFORM --alone`, the worker
+//   `run` uses), which draws every primitive of the sample alone (a batch of one): its render_us
+//   is the primitive's own time on the platform's clock, never a batch's mean, so it means the
+//   same on every side whatever pixels the sides draw (docs/records.md, "Comparing drawing
+//   time"). Each process first draws the whole sample once untimed: the first pass pays for the
+//   driver compiling code for each new state.
+// - Then the sides take turns range by range (one kind and view: milliseconds of drawing), one
+//   process drawing at a time while the others wait for their next command, the order of the
+//   sides reversed from one range to the next (ABC, CBA, ...): a change of the machine's load
+//   slower than a few ranges falls on every side alike, and over two ranges every side has the
+//   same mean position.
+// - Fresh processes every round: what stays with a process for its life (the core it runs on,
+//   where its memory landed) differs from round to round, so the rounds are the replicates
+//   (audit/speed_audit.h).
 // - The children load each side's platform (PLATFORM@BUILD) from the side's experiment and check
 //   GL_RENDERER and GL_VERSION against the side's run's driver files, as the flake check's do
 //   (audit/flake_check.h): a side whose driver is no longer what made its run fails with the
@@ -49,7 +52,7 @@ struct TimingRange {
 };
 
 struct TimingOptions {
-  int repeats = 4;        // rounds: each side drawn this many times, each in a fresh process
+  int repeats = 10;       // rounds: each side drawn this many times, each in a fresh process
   std::string program;    // runs `serve-shards`; empty: util/worker_program.h
   double timeout_s = 0;   // per process; 0: the first side's experiment's run.shard_timeout_s
 };
@@ -67,17 +70,17 @@ struct SideTiming {
 
 struct TimingResult {
   std::vector<SideTiming> sides;               // as given
-  std::vector<std::vector<std::size_t>> order;  // per round, the sides in the order drawn
+  std::vector<std::vector<std::size_t>> order;  // per round, the order of its first range
   double seconds = 0;                          // wall time of everything
 };
 
-// The order of round `round` (0-based) over `sides` sides.
-std::vector<std::size_t> round_order(std::size_t sides, int round);
+// The order of the sides for turn `turn` (0-based): forward when even, reversed when odd.
+std::vector<std::size_t> round_order(std::size_t sides, int turn);
 
 // Draws every range on every side, `options.repeats` rounds. A side whose process fails is not
 // drawn again (its error says why); the others go on. Throws std::runtime_error only when a
 // temporary folder cannot be made; util::UserError for a side's experiment that does not parse.
-// `progress` (may be empty) is told after each process: round, side, seconds it took.
+// `progress` (may be empty) is told after each round: the round, sides.size(), its seconds.
 TimingResult time_interleaved(
     const std::vector<TimingSide>& sides, const std::vector<TimingRange>& ranges,
     const TimingOptions& options,
