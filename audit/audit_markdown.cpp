@@ -160,17 +160,20 @@ void speed(std::ostream& md, const AuditResult& r) {
   if (!s.performed) return;
   md << "## Drawing time\n\n"
      << "Per platform, kind and view group: the current side's drawing time over the "
-        "baseline's, the Hodges-Lehmann ratio of the paired per-primitive times with its "
-        "signed-rank 95% interval. The first "
+        "baseline's. The first "
      << s.options.per_view << " primitives of each kind and view were drawn alone by the "
      << "baseline, the current side and a control (the baseline again), in " << s.options.repeats
-     << " interleaved rounds of fresh processes (" << s.processes << " processes, "
-     << format_number(s.seconds, 3) << " s); a primitive's time is the median of its rounds. "
-     << "A change counts only when its whole interval lies beyond the band: "
+     << " rounds of fresh processes (" << s.processes << " processes, "
+     << format_number(s.seconds, 3)
+     << " s), the sides taking turns range by range within a round after a warm-up pass. Each "
+        "round gives one estimate, the Hodges-Lehmann median of its paired per-primitive log "
+        "ratios; the ratio is exp of their mean, the interval Student's t over the rounds (the "
+        "rounds are the replicates: a process's luck is shared by all its primitives). A change "
+        "counts only when its whole interval lies beyond the band: "
      << format_number(100 * s.options.threshold, 3)
-     << "%, or wider where the control (two identical sides) moved more. Welch's t and Levene's "
-        "test on Box-Cox transformed times (one lambda), Holm-adjusted over these tests, are "
-        "shown beside it; they do not decide.\n\n";
+     << "%, or the control's ratio where the control (two identical sides) moved more. Welch's t "
+        "and Levene's test on Box-Cox transformed per-primitive times (one lambda), "
+        "Holm-adjusted over these tests, are shown beside it; they do not decide.\n\n";
   for (const std::string& e : s.errors) md << "- Not timed: " << e << "\n";
   if (!s.errors.empty()) md << "\n";
   using stats::Align;

@@ -5,8 +5,7 @@
 // Measurement (audit/speed_timing.h): the first `per_view` primitives of every kind and view
 // (primitive i is a pure function of seed, kind and i, so these are a random sample) are drawn
 // alone by the baseline side, the current side and the control (the baseline drawn again), in
-// `repeats` interleaved rounds of fresh processes. Each primitive's time on a side is the median of
-// its rounds (microseconds, render_us's clock).
+// `repeats` rounds of fresh processes that take turns (microseconds, render_us's clock).
 //
 // Statistics, per pair, kind and view group (n primitives with a time on every side in every
 // round):

@@ -280,11 +280,11 @@ std::vector<Block> audit_blocks(const std::string& run_dir) {
                          row.value("verdict", "?")});
   }
   time.notes.push_back(
-      "Each primitive drawn alone by both sides and a control (the baseline again), in "
-      "interleaved rounds; the ratio is the Hodges-Lehmann estimate of the paired per-primitive "
-      "ratios with its signed-rank interval. Slower or faster only when the whole "
-      "interval lies beyond the threshold and the control's own spread; audit/audit.md has the "
-      "control, the tests and the method.");
+      "Each primitive drawn alone by both sides and a control (the baseline again), in rounds "
+      "of fresh processes taking turns; the ratio and its 95% interval come from the rounds' "
+      "paired estimates. Slower or faster only when the whole interval lies beyond the "
+      "threshold and the control's own ratio; audit/audit.md has the control, the tests and the "
+      "method.");
   Block tb = make_block(Block::Kind::kTable);
   tb.table = std::move(time);
   out.push_back(std::move(tb));
