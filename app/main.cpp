@@ -11,9 +11,10 @@
 #include "app/exit_status.h"
 
 int main(int argc, char** argv) {
-  // A closed pipe on stdout (`renderaudit records RUN | head`) is a write error the command says
-  // and exits 2 on, not a silent death by SIGPIPE (exit 141). Children inherit it, as those of
-  // `run` always did (runner/run_coordinator.cpp).
+  // A closed pipe on stdout (`renderaudit records RUN | head`) reaches the writer as EPIPE, which
+  // ends the command quietly (util/standard_output.h), while a full disk stays an error it says:
+  // not a death by SIGPIPE (exit 141) that cannot tell the two apart. Children inherit it, as
+  // those of `run` must (runner/run_coordinator.cpp).
   std::signal(SIGPIPE, SIG_IGN);
   CLI::App app{
       "renderaudit: how accurately and how fast a renderer draws.\n"
@@ -53,5 +54,6 @@ int main(int argc, char** argv) {
       return ra::app::kExitUsage;
     }
   }
-  return ra::app::run_command_line(app, argc, argv, exit_code, "renderaudit");
+  return ra::app::exit_code_after_stdout(
+      ra::app::run_command_line(app, argc, argv, exit_code, "renderaudit"), "renderaudit");
 }
