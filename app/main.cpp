@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
   ra::app::register_merge_command(app, exit_code);
   ra::app::register_status_command(app, exit_code);
   ra::app::register_records_command(app, exit_code);
+  ra::app::register_conformance_command(app, exit_code);
   ra::app::register_builds_command(app, exit_code);
   ra::app::register_reproduce_command(app, exit_code);
   ra::app::register_bisect_command(app, exit_code);

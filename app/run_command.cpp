@@ -62,6 +62,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
     bool brief = false;
     bool slurm = false;
     runner::SlurmOptions slurm_opt;
+    ConformanceGate gate;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
   cmd->add_option("experiment", opts->opt.experiment_path, "experiment file (TOML)")
@@ -90,6 +91,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
                 "start a worker process for every shard (default: a worker serves one platform's "
                 "shards one after another, paying for its start and GL context once)");
   cmd->add_flag("--quiet,-q", opts->quiet, "no progress line");
+  add_conformance_gate_options(cmd, opts->gate);
   cmd->add_flag("--brief", opts->brief,
                 "the run in one line (primitives, shards, time) and where its summary went, not its "
                 "table (`make` runs with it)");
@@ -130,7 +132,18 @@ void register_run_command(CLI::App& app, int& exit_code) {
     study.out_dir = opts->opt.out_dir;
     study.platforms = opts->opt.only_platforms;
     study.progress = !opts->quiet;
-    if (opts->slurm) return submit_to_slurm(opts->opt, opts->slurm_opt);
+    if (opts->slurm) {
+      if (opts->gate.fail_on_violations || !opts->gate.expectations.empty())
+        throw util::UserError("--fail-on-violations and --expectations judge a finished run: "
+                              "with --slurm, run `renderaudit conformance DIR` after the gather");
+      return submit_to_slurm(opts->opt, opts->slurm_opt);
+    }
+    read_conformance_gate(opts->gate);  // a malformed file stops the run before it starts
+    if (opts->gate.fail_on_violations &&
+        rundir::experiment_study_kind(opts->opt.experiment_path) != rundir::StudyKind::kAudit)
+      throw util::UserError(opts->opt.experiment_path +
+                            ": --fail-on-violations judges the primitives of an audit "
+                            "experiment; a study has no verdicts");
     if (run_study_if_declared(study, exit_code)) return;
     if (!opts->quiet) {  // what is drawn with, before the progress line
       const rundir::Experiment exp = rundir::load_experiment(opts->opt.experiment_path);
@@ -185,7 +198,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
           r.failed_primitives_held.size() - r.failed_primitives.size());
     // the exit code says what the directory holds, not what this invocation did
     const bool clean = r.shards_complete == r.shards_total && r.failed_primitives_held.empty();
-    exit_code = clean ? kExitOk : kExitFindings;
+    exit_code = conformance_gate_exit(opts->gate, r.run_dir, clean ? kExitOk : kExitFindings);
   });
 }
 
