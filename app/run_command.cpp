@@ -42,6 +42,15 @@ void submit_to_slurm(const runner::RunOptions& opt, runner::SlurmOptions slurm_o
       util::program_for_commands().c_str(), util::shell_quote(sub.run_dir).c_str());
 }
 
+// Whether an error names the run folder `out` (or a file in it) first, as every refusal of the
+// folder does ("DIR: holds a run of a different experiment", "DIR is being written by ...",
+// "DIR/experiment.toml: changed since ..."), unlike an error in the experiment file.
+bool about_run_folder(const std::string& message, std::string out) {
+  while (out.size() > 1 && out.back() == '/') out.pop_back();
+  return !out.empty() && message.rfind(out, 0) == 0 && message.size() > out.size() &&
+         (message[out.size()] == ':' || message[out.size()] == '/' || message[out.size()] == ' ');
+}
+
 }  // namespace
 
 void register_run_command(CLI::App& app, int& exit_code) {
@@ -154,7 +163,19 @@ void register_run_command(CLI::App& app, int& exit_code) {
       std::fprintf(stderr, "renderaudit: %s draws with %s\n", opts->opt.experiment_path.c_str(),
                    list.c_str());
     }
-    const runner::RunResult r = runner::run_experiment(opts->opt);
+    // Where the folder was named by something other than --out (make's OUT=DIR), the caller
+    // says how in RENDERAUDIT_OUT_HINT, and an error about the folder ends with it.
+    const runner::RunResult r = [&] {
+      try {
+        return runner::run_experiment(opts->opt);
+      } catch (const util::UserError& e) {
+        const char* hint = std::getenv("RENDERAUDIT_OUT_HINT");
+        if (hint && *hint && about_run_folder(e.what(), opts->opt.out_dir) &&
+            !about_run_folder(e.what(), opts->opt.experiment_path))
+          throw util::UserError(std::string(e.what()) + "\nrenderaudit: " + hint);
+        throw;
+      }
+    }();
     if (!opts->brief)
       std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
                   r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
