@@ -13,12 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "analysis/conformance_expectations.h"
 #include "rundir/study_dir.h"
 #include "runner/source_build.h"
-
-namespace ra::analysis {
-struct Expectations;
-}
 
 namespace ra::app {
 

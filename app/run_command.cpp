@@ -51,6 +51,36 @@ bool about_run_folder(const std::string& message, std::string out) {
          (message[out.size()] == ':' || message[out.size()] == '/' || message[out.size()] == ' ');
 }
 
+// Runs the experiment. Where the folder was named by something other than --out (make's
+// OUT=DIR), the caller says how in RENDERAUDIT_OUT_HINT, and an error about the folder ends
+// with it.
+runner::RunResult run_with_folder_hint(const runner::RunOptions& opt) {
+  try {
+    return runner::run_experiment(opt);
+  } catch (const util::UserError& e) {
+    const char* hint = std::getenv("RENDERAUDIT_OUT_HINT");
+    if (hint && *hint && about_run_folder(e.what(), opt.out_dir) &&
+        !about_run_folder(e.what(), opt.experiment_path))
+      throw util::UserError(std::string(e.what()) + "\nrenderaudit: " + hint);
+    throw;
+  }
+}
+
+// The shards of the run (not with --brief, whose one line says them), then each worker that
+// failed and each primitive recorded as crash or timeout by this invocation.
+void say_shards(const runner::RunResult& r, bool brief) {
+  if (!brief)
+    std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
+                r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
+                r.shards_total - r.shards_complete);
+  for (const auto& f : r.failures)
+    std::printf("  worker failed: %s: %s\n", f.shard.c_str(), f.reason.c_str());
+  for (const auto& f : r.failed_primitives)
+    std::printf("  primitive %llu of %s recorded as %s: %s\n",
+                static_cast<unsigned long long>(f.index), f.shard.c_str(),
+                metrics::status_name(f.status), f.reason.c_str());
+}
+
 }  // namespace
 
 void register_run_command(CLI::App& app, int& exit_code) {
@@ -163,29 +193,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
       std::fprintf(stderr, "renderaudit: %s draws with %s\n", opts->opt.experiment_path.c_str(),
                    list.c_str());
     }
-    // Where the folder was named by something other than --out (make's OUT=DIR), the caller
-    // says how in RENDERAUDIT_OUT_HINT, and an error about the folder ends with it.
-    const runner::RunResult r = [&] {
-      try {
-        return runner::run_experiment(opts->opt);
-      } catch (const util::UserError& e) {
-        const char* hint = std::getenv("RENDERAUDIT_OUT_HINT");
-        if (hint && *hint && about_run_folder(e.what(), opts->opt.out_dir) &&
-            !about_run_folder(e.what(), opts->opt.experiment_path))
-          throw util::UserError(std::string(e.what()) + "\nrenderaudit: " + hint);
-        throw;
-      }
-    }();
-    if (!opts->brief)
-      std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
-                  r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
-                  r.shards_total - r.shards_complete);
-    for (const auto& f : r.failures)
-      std::printf("  worker failed: %s: %s\n", f.shard.c_str(), f.reason.c_str());
-    for (const auto& f : r.failed_primitives)
-      std::printf("  primitive %llu of %s recorded as %s: %s\n",
-                  static_cast<unsigned long long>(f.index), f.shard.c_str(),
-                  metrics::status_name(f.status), f.reason.c_str());
+    const runner::RunResult r = run_with_folder_hint(opts->opt);
+    say_shards(r, opts->brief);
     if (!r.wrong_renderer.empty()) {
       std::printf("stopped: %s\n", r.wrong_renderer.c_str());
       exit_code = kExitUsage;
