@@ -23,8 +23,8 @@ namespace ra::app {
 constexpr int kExitOk = 0;
 constexpr int kExitFindings = 1;  // the command ran, and what it found is not clean (failed shards)
 constexpr int kExitUsage = 2;     // bad input: nothing was run
-// an error stopped the command: bad input, or an I/O failure (a full disk, a closed pipe); never
-// kExitFindings (app/exit_status.h)
+// an error stopped the command: bad input, or an I/O failure (a full disk); never kExitFindings
+// (app/exit_status.h). A reader of stdout that stopped early is no error: the command's own code.
 constexpr int kExitError = kExitUsage;
 constexpr int kExitIncomplete = 3;  // analyze / report: the run is not whole (missing or damaged
                                     // shards, a writer at work); nothing written

@@ -2,13 +2,16 @@
 // `analyze` are classified as predicted: snapping to 5 bits is measured as such and is
 // never a violation; dropping every line's last pixel is within the GL rules; shifting every
 // primitive by one pixel is a violation that violations.md lists and an audit against the clean
-// run reports first, with a failing conformance testcase.
+// run reports first, with a failing conformance testcase. `renderaudit conformance` turns such a
+// run into a CI verdict: exit 5 with violations, JUnit, and an expectations file that makes the
+// known ones pass.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 
 #include "tests/cli_harness.h"

@@ -3,6 +3,7 @@
 
 #include <poll.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -19,6 +20,21 @@ namespace {
   if (error == EPIPE || (error == 0 && stdout_reader_gone())) throw StdoutReaderGone();
   throw UserError("cannot write " + what + " to standard output (" +
                   std::strerror(error ? error : EIO) + ")");
+}
+
+// The cause of a write that failed before the last flush, when its errno is lost (C's stdio keeps
+// only a flag): a write of nothing still fails on a device that refuses every write (/dev/full:
+// ENOSPC), and a file on a file system without a free block was cut by a full disk. 0 when
+// neither tells.
+int stdout_failure_cause() {
+  errno = 0;
+  if (::write(STDOUT_FILENO, "", 0) < 0) return errno;
+  struct stat st {};
+  struct statvfs fs {};
+  if (::fstat(STDOUT_FILENO, &st) == 0 && S_ISREG(st.st_mode) &&
+      ::fstatvfs(STDOUT_FILENO, &fs) == 0 && fs.f_bavail == 0)
+    return ENOSPC;
+  return 0;
 }
 
 }  // namespace
@@ -52,7 +68,7 @@ StdoutOutcome finish_stdout() {
   const int error = flushed ? 0 : errno;
   if (flushed && !std::ferror(stdout) && std::cout.good()) return {};
   if (error == EPIPE || stdout_reader_gone()) return {StdoutState::kReaderGone, EPIPE};
-  return {StdoutState::kFailed, error};
+  return {StdoutState::kFailed, error ? error : stdout_failure_cause()};
 }
 
 }  // namespace ra::util

@@ -31,7 +31,9 @@ void write_stdout(std::string_view bytes, const std::string& what = "the output"
 enum class StdoutState { kWritten, kReaderGone, kFailed };
 struct StdoutOutcome {
   StdoutState state = StdoutState::kWritten;
-  int error = 0;  // kFailed: the errno of the failed flush, 0 when an earlier write failed
+  // kFailed: the errno of the failed flush; when an earlier write failed (its errno is lost), the
+  // cause found after the fact (ENOSPC on a device or file system that takes nothing more), else 0
+  int error = 0;
 };
 StdoutOutcome finish_stdout();
 
