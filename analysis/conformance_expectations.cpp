@@ -26,7 +26,8 @@ namespace fs = std::filesystem;
 namespace ra::analysis {
 namespace {
 
-using Key = std::tuple<std::string, std::string, int, std::uint64_t>;  // platform, kind, view, index
+using Key =
+    std::tuple<std::string, std::string, int, std::uint64_t>;  // platform, kind, view, index
 
 std::string primitive_name(const std::string& platform, const std::string& kind, int view,
                            std::uint64_t index) {
@@ -63,11 +64,21 @@ std::string xml(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
       default:
         out += static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t' ? ' ' : c;
     }
@@ -130,9 +141,11 @@ Expectations parse_expectations(const std::string& text, const std::string& path
     for (std::string w; words >> w;) f.push_back(w);
     if (f.empty()) continue;
     if (f.size() != 4) {
-      errors.push_back(at + "expected four fields, PLATFORM KIND VIEW INDEX (e.g. "
-                            "'osmesa-softpipe line 5 721'), found " + std::to_string(f.size()) +
-                       ": '" + content.substr(0, content.find_last_not_of(" \t\r") + 1) +
+      errors.push_back(at +
+                       "expected four fields, PLATFORM KIND VIEW INDEX (e.g. "
+                       "'osmesa-softpipe line 5 721'), found " +
+                       std::to_string(f.size()) + ": '" +
+                       content.substr(0, content.find_last_not_of(" \t\r") + 1) +
                        "'; write the line so, or start it with '#'");
       continue;
     }
@@ -156,8 +169,8 @@ Expectations parse_expectations(const std::string& text, const std::string& path
     if (!ok) continue;
     const auto [it, fresh] = seen.emplace(Key{v.platform, v.kind, v.view, v.index}, line);
     if (!fresh) {
-      errors.push_back(at + v.name() + " is listed already on line " +
-                       std::to_string(it->second) + "; remove one of the two");
+      errors.push_back(at + v.name() + " is listed already on line " + std::to_string(it->second) +
+                       "; remove one of the two");
       continue;
     }
     e.entries.push_back(v);
@@ -223,10 +236,11 @@ ConformanceCheck check_conformance(const std::string& run_dir, const Expectation
   std::vector<std::string> files;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(rundir::run_folder::records(run_dir), ec))
-    if (rundir::is_records_file_name(e.path().filename().string())) files.push_back(e.path().string());
+    if (rundir::is_records_file_name(e.path().filename().string()))
+      files.push_back(e.path().string());
   if (ec)
-    throw util::UserError(rundir::run_folder::records(run_dir) + ": cannot read (" +
-                          ec.message() + ")");
+    throw util::UserError(rundir::run_folder::records(run_dir) + ": cannot read (" + ec.message() +
+                          ")");
   std::sort(files.begin(), files.end());
   using C = metrics::RecordColumn;
   for (const std::string& file : files) {
@@ -304,7 +318,8 @@ std::string expectations_text(const ConformanceCheck& c) {
       "# line: PLATFORM KIND VIEW INDEX. `renderaudit conformance RUN --expectations FILE` passes\n"
       "# on these, fails on any other violation and reports those no longer violations.\n"
       "# Written by `renderaudit conformance --write-expectations` from a run of the experiment\n"
-      "# with hash " + c.experiment_hash + ": the indices name primitives of that experiment only.\n";
+      "# with hash " +
+      c.experiment_hash + ": the indices name primitives of that experiment only.\n";
   for (const ConformanceCase& k : c.cases)
     for (const FoundViolation& v : k.violations)
       out += v.name() + "  # " + std::to_string(v.violating_pixels) + " px: " + v.rules + "\n";
@@ -346,7 +361,8 @@ std::string conformance_junit(const ConformanceCheck& c) {
                                " violating pixel(s) (" + v.rules + "); " +
                                show_command(c.run_dir, v.platform, v.kind, v.view, v.index) + "\n";
       if (v.expected_at)
-        known += "known (" + c.expectations_path + ":" + std::to_string(v.expected_at) + "): " + line;
+        known +=
+            "known (" + c.expectations_path + ":" + std::to_string(v.expected_at) + "): " + line;
       else
         fresh_text << line;
     }
@@ -359,8 +375,7 @@ std::string conformance_junit(const ConformanceCheck& c) {
     if (fresh) {
       ++s.failures;
       tc << "      <failure type=\"violation\" message=\""
-         << xml(plural(fresh, "primitive breaks", "primitives break") +
-                " a rasterization rule" +
+         << xml(plural(fresh, "primitive breaks", "primitives break") + " a rasterization rule" +
                 (c.expectations_path.empty() ? "" : ", not listed in " + c.expectations_path))
          << "\">" << xml(fresh_text.str()) << "</failure>\n";
     } else if (k.judged == 0) {
@@ -378,10 +393,11 @@ std::string conformance_junit(const ConformanceCheck& c) {
   std::ostringstream out;
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"renderaudit "
          "conformance\" tests=\""
-      << tests << "\" failures=\"" << failures << "\" errors=\"0\" skipped=\"" << skipped << "\">\n";
+      << tests << "\" failures=\"" << failures << "\" errors=\"0\" skipped=\"" << skipped
+      << "\">\n";
   for (const Suite& s : suites)
-    out << "  <testsuite name=\"" << xml(s.platform) << "\" tests=\"" << s.tests
-        << "\" failures=\"" << s.failures << "\" errors=\"0\" skipped=\"" << s.skipped << "\">\n"
+    out << "  <testsuite name=\"" << xml(s.platform) << "\" tests=\"" << s.tests << "\" failures=\""
+        << s.failures << "\" errors=\"0\" skipped=\"" << s.skipped << "\">\n"
         << s.body << "  </testsuite>\n";
   out << "</testsuites>\n";
   return out.str();
@@ -393,18 +409,18 @@ std::string conformance_text(const ConformanceCheck& c, bool verdict, std::size_
   std::string out = "conformance: " + c.run_dir + ": " + util::grouped(c.judged()) +
                     " primitives judged, " + plural(all, "violation", "violations");
   if (!file.empty())
-    out += " (" + util::grouped(all - fresh) + " listed in " + file + ", " +
-           util::grouped(fresh) + " new; " + plural(fixed, "listed primitive", "listed primitives") +
-           " no longer " + (fixed == 1 ? "a violation" : "violations") + ")";
+    out += " (" + util::grouped(all - fresh) + " listed in " + file + ", " + util::grouped(fresh) +
+           " new; " + plural(fixed, "listed primitive", "listed primitives") + " no longer " +
+           (fixed == 1 ? "a violation" : "violations") + ")";
   out += "\n";
   if (!verdict) return out;
   std::size_t said = 0;
   for (const ConformanceCase& k : c.cases)
     for (const FoundViolation& v : k.violations)
       if (!v.expected_at && said++ < limit)
-        out += "new: " + v.name() + ": " + std::to_string(v.violating_pixels) +
-               " violating px (" + v.rules + "): " +
-               show_command(c.run_dir, v.platform, v.kind, v.view, v.index) + "\n";
+        out += "new: " + v.name() + ": " + std::to_string(v.violating_pixels) + " violating px (" +
+               v.rules + "): " + show_command(c.run_dir, v.platform, v.kind, v.view, v.index) +
+               "\n";
   if (said > limit)
     out += "  and " + util::grouped(said - limit) +
            " more new (each in the JUnit file, --junit FILE, and in --write-expectations FILE)\n";
@@ -413,15 +429,14 @@ std::string conformance_text(const ConformanceCheck& c, bool verdict, std::size_
       out += "fixed: " + o.listed.name() + " (" + file + ":" + std::to_string(o.listed.line) +
              ") is now " + o.now + ": remove its line\n";
     for (const ListedOutcome& o : k.not_judged)
-      out += "not judged: " + o.listed.name() + " (" + file + ":" +
-             std::to_string(o.listed.line) + "): " + o.now + "\n";
+      out += "not judged: " + o.listed.name() + " (" + file + ":" + std::to_string(o.listed.line) +
+             "): " + o.now + "\n";
   }
   for (const ExpectedViolation& v : c.platform_not_run)
     out += "not judged: " + v.name() + " (" + file + ":" + std::to_string(v.line) +
            "): the run did not draw " + v.platform + "\n";
   if (fresh)
-    out += "conformance: FAIL: " +
-           plural(fresh, "violation", "violations") +
+    out += "conformance: FAIL: " + plural(fresh, "violation", "violations") +
            (file.empty() ? " of the rasterization rules (no expectations file: each is new)"
                          : " not listed in " + file) +
            "\n";

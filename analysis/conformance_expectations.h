@@ -53,8 +53,8 @@ struct FoundViolation {
   int view = 0;
   std::uint64_t index = 0;
   std::int64_t violating_pixels = 0;
-  std::string rules;    // violated_rules as recorded, e.g. "line-column"
-  int expected_at = 0;  // its line in the expectations file; 0: not listed (new)
+  std::string rules;         // violated_rules as recorded, e.g. "line-column"
+  int expected_at = 0;       // its line in the expectations file; 0: not listed (new)
   std::string name() const;  // "faulty line 1 17"
 };
 
@@ -68,7 +68,7 @@ struct ListedOutcome {
 struct ConformanceCase {
   std::string platform, kind;
   int view = 0;
-  std::string view_label;  // "150 deg, 64x64"
+  std::string view_label;     // "150 deg, 64x64"
   std::uint64_t records = 0;  // records of it in the run
   std::uint64_t judged = 0;   // of them, with a verdict (status ok, not the reference platform)
   std::vector<FoundViolation> violations;  // every one, known and new, by index

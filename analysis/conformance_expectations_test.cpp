@@ -45,15 +45,17 @@ TEST(ConformanceExpectations, EveryMalformedLineIsSaidWithItsPlace) {
   );
   EXPECT_NE(err.find("known.txt:1: expected four fields, PLATFORM KIND VIEW INDEX (e.g. "
                      "'osmesa-softpipe line 5 721'), found 3: 'faulty line 1'"),
-            std::string::npos) << err;
+            std::string::npos)
+      << err;
   EXPECT_NE(err.find("known.txt:2: expected four fields"), std::string::npos) << err;
   EXPECT_NE(err.find("known.txt:3: kind 'lines' is not one of point, line, triangle"),
-            std::string::npos) << err;
-  EXPECT_NE(err.find("known.txt:4: view '0' is not a view id"), std::string::npos) << err;
-  EXPECT_NE(err.find("known.txt:5: index '-2' is not a primitive index"), std::string::npos)
+            std::string::npos)
       << err;
+  EXPECT_NE(err.find("known.txt:4: view '0' is not a view id"), std::string::npos) << err;
+  EXPECT_NE(err.find("known.txt:5: index '-2' is not a primitive index"), std::string::npos) << err;
   EXPECT_NE(err.find("known.txt:7: faulty line 1 2 is listed already on line 6; remove one"),
-            std::string::npos) << err;
+            std::string::npos)
+      << err;
   EXPECT_EQ(err.find("known.txt:6:"), std::string::npos) << err;
 }
 

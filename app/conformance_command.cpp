@@ -1,8 +1,9 @@
 // `renderaudit conformance RUN [--expectations FILE] [--junit FILE] [--write-expectations FILE]`:
-// a run's violations of the rasterization rules as a CI verdict (analysis/conformance_expectations.h):
-// an exit code, JUnit XML, and an expectations file of the known violations, written from a run
-// and then honoured. `run` and `report` take --fail-on-violations and --expectations for the same
-// verdict at their end (add_conformance_gate_options).
+// a run's violations of the rasterization rules as a CI verdict
+// (analysis/conformance_expectations.h): an exit code, JUnit XML, and an expectations file of the
+// known violations, written from a run and then honoured. `run` and `report` take
+// --fail-on-violations and --expectations for the same verdict at their end
+// (add_conformance_gate_options).
 #include <cstdio>
 
 #include "analysis/conformance_expectations.h"
@@ -35,13 +36,12 @@ void add_conformance_gate_options(CLI::App* cmd, ConformanceGate& gate) {
 void read_conformance_gate(ConformanceGate& gate) {
   if (!gate.expectations.empty()) {
     gate.fail_on_violations = true;
-    gate.parsed = std::make_shared<analysis::Expectations>(
-        analysis::read_expectations(gate.expectations));
+    gate.parsed =
+        std::make_shared<analysis::Expectations>(analysis::read_expectations(gate.expectations));
   }
 }
 
-int conformance_gate_exit(const ConformanceGate& gate, const std::string& run_dir,
-                          int exit_code) {
+int conformance_gate_exit(const ConformanceGate& gate, const std::string& run_dir, int exit_code) {
   if (!gate.fail_on_violations) return exit_code;
   const analysis::ConformanceCheck c = analysis::check_conformance(run_dir, gate.parsed.get());
   std::printf("%s", analysis::conformance_text(c).c_str());
@@ -63,8 +63,9 @@ void register_conformance_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--expectations", o->expectations,
                   "the known violations (plain text, PLATFORM KIND VIEW INDEX per line)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--junit", o->junit, "write JUnit XML there (a test case per platform x kind "
-                                       "x view)");
+  cmd->add_option("--junit", o->junit,
+                  "write JUnit XML there (a test case per platform x kind "
+                  "x view)");
   cmd->add_option("--write-expectations", o->write_expectations,
                   "write the run's violations there as an expectations file");
   cmd->add_flag("--fail-on-fixed", o->fail_on_fixed,
@@ -77,8 +78,8 @@ void register_conformance_command(CLI::App& app, int& exit_code) {
     // The expectations are read first: a malformed file stops before anything is read or written.
     std::unique_ptr<analysis::Expectations> expected;
     if (!o->expectations.empty())
-      expected = std::make_unique<analysis::Expectations>(
-          analysis::read_expectations(o->expectations));
+      expected =
+          std::make_unique<analysis::Expectations>(analysis::read_expectations(o->expectations));
     const analysis::RunCompleteness whole = analysis::check_run_completeness(o->run_dir);
     if (!whole.complete()) {
       if (!o->allow_incomplete) {
