@@ -93,7 +93,8 @@ plot: analyze
 # `report` ends with what the run found (its violations of GL's rules, from the data); the last
 # line says where the report is and how long it all took, and, until `make install` has put the
 # program in PREFIX/bin, how to. FAIL_ON_VIOLATIONS=1 makes a violation of GL's rules fail it
-# (exit 5), EXPECTATIONS=FILE all but those FILE lists (docs/conformance.md#conformance-in-ci).
+# (renderaudit exits 5; make says "Error 5" and exits 2), EXPECTATIONS=FILE all but those FILE
+# lists (docs/conformance.md#conformance-in-ci).
 FAIL_ON_VIOLATIONS ?=
 EXPECTATIONS ?=
 CONFORMANCE_FLAGS = $(if $(FAIL_ON_VIOLATIONS),--fail-on-violations) \
