@@ -71,16 +71,17 @@ install: build
 
 # The embedded default is osmesa-llvmpipe; where OSMesa is missing (Mesa >= 25.1) the same driver
 # is drawn through EGL (experiments/quick-egl.toml), and the line below says so. `run` names the
-# experiment's own platforms; each stage prints a line or two, the tables stay in their files.
+# experiment's own platforms; each stage prints a line or two, the tables stay in their files. An
+# error about the run folder (not one in the experiment file) ends with RENDERAUDIT_OUT_HINT: with
+# make, the folder is OUT=DIR, not --out.
 run: build
 	@platform=$$($(BUILD)/renderaudit platforms --embedded-default) || exit 2; \
 	experiment=$(EXPERIMENT); \
 	if [ "$$platform" = egl-llvmpipe ] && [ "$$experiment" = experiments/quick.toml ]; then \
 	  experiment=experiments/quick-egl.toml; \
 	  echo "renderaudit: no OSMesa here: the embedded default draws llvmpipe through EGL ($$experiment)"; fi; \
-	$(BUILD)/renderaudit run $$experiment --out $(OUT) --brief || { rc=$$?; \
-	  if [ $$rc = 2 ]; then echo "renderaudit: with make, OUT=DIR names the run folder (now $(OUT))" >&2; fi; \
-	  exit $$rc; }
+	RENDERAUDIT_OUT_HINT="with make, OUT=DIR names the run folder (now $(OUT))" \
+	  $(BUILD)/renderaudit run $$experiment --out $(OUT) --brief
 
 analyze: run
 	@$(BUILD)/renderaudit analyze $(OUT) --quiet
@@ -90,12 +91,21 @@ plot: analyze
 	@$(BUILD)/renderaudit plot $(OUT)
 
 # `report` ends with what the run found (its violations of GL's rules, from the data); the last
-# line says where the report is and how long it all took.
+# line says where the report is and how long it all took, and, until `make install` has put the
+# program in PREFIX/bin, how to. FAIL_ON_VIOLATIONS=1 makes a violation of GL's rules fail it
+# (renderaudit exits 5; make says "Error 5" and exits 2), EXPECTATIONS=FILE all but those FILE
+# lists (docs/conformance.md#conformance-in-ci).
+FAIL_ON_VIOLATIONS ?=
+EXPECTATIONS ?=
+CONFORMANCE_FLAGS = $(if $(FAIL_ON_VIOLATIONS),--fail-on-violations) \
+  $(if $(EXPECTATIONS),--expectations $(EXPECTATIONS))
 report: plot
-	@$(BUILD)/renderaudit report $(OUT)
-	@echo "make report: done in $$($(ELAPSED)): $(OUT)/report/report.pdf (and report.html)"
-	@command -v renderaudit > /dev/null || echo "The program is $(BUILD)/renderaudit;" \
-	  "\`make install\` puts it on PATH as renderaudit (the name the docs use)"
+	@rc=0; $(BUILD)/renderaudit report $(OUT) $(CONFORMANCE_FLAGS) || rc=$$?; \
+	echo "make report: done in $$($(ELAPSED)): $(OUT)/report/report.pdf (and report.html)"; \
+	command -v renderaudit > /dev/null || [ -x $(PREFIX)/bin/renderaudit ] || \
+	  echo "The program is $(BUILD)/renderaudit; \`make install\` puts it on PATH as renderaudit" \
+	    "(the name the docs use)"; \
+	exit $$rc
 
 # The NIST paper's experiment on both Mesa drivers, read two ways (docs/reproduce-paper.md): as its
 # text gives it, and with the near plane at 1e-5, which its Table 10 needs. Both are analysed with

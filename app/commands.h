@@ -9,9 +9,11 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "analysis/conformance_expectations.h"
 #include "rundir/study_dir.h"
 #include "runner/source_build.h"
 
@@ -21,12 +23,16 @@ namespace ra::app {
 constexpr int kExitOk = 0;
 constexpr int kExitFindings = 1;  // the command ran, and what it found is not clean (failed shards)
 constexpr int kExitUsage = 2;     // bad input: nothing was run
-// an error stopped the command: bad input, or an I/O failure (a full disk, a closed pipe); never
-// kExitFindings (app/exit_status.h)
+// an error stopped the command: bad input, or an I/O failure (a full disk); never kExitFindings
+// (app/exit_status.h). A reader of stdout that stopped early is no error: the command's own code.
 constexpr int kExitError = kExitUsage;
 constexpr int kExitIncomplete = 3;  // analyze / report: the run is not whole (missing or damaged
                                     // shards, a writer at work); nothing written
                                     // (--allow-incomplete goes on)
+// conformance, and run / report with --fail-on-violations: the run breaks a rasterization rule
+// in a primitive the expectations do not list. Its own code, so that a CI job tells a driver
+// that breaks GL's rules from a run that failed (1) or could not start (2); 4 is status's.
+constexpr int kExitViolations = 5;
 
 // --index checked as text: a conversion to an unsigned number would turn -1, and any number past
 // the largest, into 18446744073709551615 (app/cli_checks.cpp).
@@ -66,6 +72,21 @@ void register_builds_command(CLI::App& app, int& exit_code);
 void register_reproduce_command(CLI::App& app, int& exit_code);  // one record as a C program
 void register_bisect_command(CLI::App& app, int& exit_code);     // the driver commit of a change
 void register_watch_command(CLI::App& app, int& exit_code);      // a night following a Mesa branch
+void register_conformance_command(CLI::App& app, int& exit_code);  // violations as a CI verdict
+
+// `run` and `report` --fail-on-violations [--expectations FILE] (app/conformance_command.cpp):
+// the verdict of `renderaudit conformance` at their end. read_conformance_gate reads the file
+// before any work (a malformed one stops the command first); conformance_gate_exit prints the
+// verdict and returns kExitViolations when `exit_code` is kExitOk and a violation is not listed,
+// else `exit_code` (a failed run keeps its own code).
+struct ConformanceGate {
+  bool fail_on_violations = false;
+  std::string expectations;
+  std::shared_ptr<analysis::Expectations> parsed;
+};
+void add_conformance_gate_options(CLI::App* cmd, ConformanceGate& gate);
+void read_conformance_gate(ConformanceGate& gate);
+int conformance_gate_exit(const ConformanceGate& gate, const std::string& run_dir, int exit_code);
 
 // The options of building many commits of a Mesa tree (`bisect`, `watch`): --cache,
 // --llvm-config, -D, --build-command and --fresh-builds (set in `fresh_builds`).

@@ -3,17 +3,21 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 
 #include "app/commands.h"
 #include "util/child_process.h"
 #include "util/errors.h"
+#include "util/standard_output.h"
 
 namespace ra::app {
 
 int exit_code_of_current_exception(const char* program) {
   try {
     throw;
+  } catch (const util::StdoutReaderGone&) {
+    return kExitOk;
   } catch (const util::UserError& e) {
     util::send_message_to_parent(e.what());
     std::fprintf(stderr, "%s: %s\n", program, e.what());
@@ -24,6 +28,14 @@ int exit_code_of_current_exception(const char* program) {
     util::send_message_to_parent("an exception of unknown type");
     std::fprintf(stderr, "%s: error: an exception of unknown type\n", program);
   }
+  return kExitError;
+}
+
+int exit_code_after_stdout(int exit_code, const char* program) {
+  const util::StdoutOutcome o = util::finish_stdout();
+  if (o.state != util::StdoutState::kFailed) return exit_code;
+  std::fprintf(stderr, "%s: cannot write to standard output (%s)\n", program,
+               o.error ? std::strerror(o.error) : "a write failed: is the disk full?");
   return kExitError;
 }
 

@@ -15,8 +15,16 @@ int run_command_line(CLI::App& app, int argc, char** argv, const int& exit_code,
 // Call inside a catch block of main: says the exception being handled on stderr ("PROGRAM: WHAT"
 // for bad input, util::UserError; "PROGRAM: error: WHAT" for any other) and to a parent renderaudit
 // process, and returns the exit code: kExitError (2) whatever the exception. An I/O failure (a full
-// disk, a closed pipe) or a library's error is an error like bad input, never kExitFindings, which
-// says the command ran and found something (failed shards, a changed verdict).
+// disk) or a library's error is an error like bad input, never kExitFindings, which says the
+// command ran and found something (failed shards, a changed verdict). The one exception that is
+// not an error: util::StdoutReaderGone, a reader of standard output that stopped early (`| head`),
+// ends the command quietly with kExitOk, as `cat` ends when its reader is gone.
 int exit_code_of_current_exception(const char* program);
+
+// Call when the command has ended with `exit_code`: checks what it wrote to standard output
+// (util/standard_output.h). Written, or its reader gone (quietly): `exit_code`. Any other failed
+// write (a full disk): says "PROGRAM: cannot write to standard output (WHY)" and returns
+// kExitError: a command whose output was lost did not do what it was asked.
+int exit_code_after_stdout(int exit_code, const char* program);
 
 }  // namespace ra::app

@@ -11,9 +11,10 @@
 #include "app/exit_status.h"
 
 int main(int argc, char** argv) {
-  // A closed pipe on stdout (`renderaudit records RUN | head`) is a write error the command says
-  // and exits 2 on, not a silent death by SIGPIPE (exit 141). Children inherit it, as those of
-  // `run` always did (runner/run_coordinator.cpp).
+  // A closed pipe on stdout (`renderaudit records RUN | head`) reaches the writer as EPIPE, which
+  // ends the command quietly (util/standard_output.h), while a full disk stays an error it says:
+  // not a death by SIGPIPE (exit 141) that cannot tell the two apart. Children inherit it, as
+  // those of `run` must (runner/run_coordinator.cpp).
   std::signal(SIGPIPE, SIG_IGN);
   CLI::App app{
       "renderaudit: how accurately and how fast a renderer draws.\n"
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
   ra::app::register_merge_command(app, exit_code);
   ra::app::register_status_command(app, exit_code);
   ra::app::register_records_command(app, exit_code);
+  ra::app::register_conformance_command(app, exit_code);
   ra::app::register_builds_command(app, exit_code);
   ra::app::register_reproduce_command(app, exit_code);
   ra::app::register_bisect_command(app, exit_code);
@@ -53,5 +55,6 @@ int main(int argc, char** argv) {
       return ra::app::kExitUsage;
     }
   }
-  return ra::app::run_command_line(app, argc, argv, exit_code, "renderaudit");
+  return ra::app::exit_code_after_stdout(
+      ra::app::run_command_line(app, argc, argv, exit_code, "renderaudit"), "renderaudit");
 }

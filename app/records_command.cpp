@@ -7,14 +7,12 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -31,6 +29,7 @@
 #include "rundir/shard_records.h"
 #include "util/errors.h"
 #include "util/shell_quote.h"
+#include "util/standard_output.h"
 #include "util/zstd_stream.h"
 
 namespace ra::app {
@@ -123,17 +122,21 @@ void stream_records(const RecordsOptions& o) {
         "run` command; `renderaudit status " + o.dir + "` says why), or pass --allow-incomplete "
         "to stream the records it holds");
 
-  std::ios::sync_with_stdio(false);
+  // Written to the descriptor directly, so that a reader gone (`| head`) stops the stream at
+  // once and a full disk is said with its cause (util/standard_output.h).
+  std::ostringstream compressed;
   std::unique_ptr<util::ZstdFrameWriter> zstd;
   if (*format == rundir::RecordsFormat::kCsvZst)
-    zstd = std::make_unique<util::ZstdFrameWriter>(std::cout);
+    zstd = std::make_unique<util::ZstdFrameWriter>(compressed);
   std::string text;  // written out every few MiB (one zstd frame each)
   const auto flush = [&] {
     if (zstd) {
       zstd->write(text);
       zstd->end_frame();
+      util::write_stdout(compressed.str(), "the records");
+      compressed.str("");
     } else {
-      std::cout.write(text.data(), std::streamsize(text.size()));
+      util::write_stdout(text, "the records");
     }
     text.clear();
   };
@@ -153,11 +156,6 @@ void stream_records(const RecordsOptions& o) {
     });
   }
   flush();
-  std::cout.flush();
-  if (!std::cout)
-    throw util::UserError(std::string("cannot write the records to standard output (") +
-                          std::strerror(errno ? errno : EIO) +
-                          "): is the disk it goes to full, or the pipe closed?");
   if (!missing.empty())
     std::fprintf(stderr,
                  "renderaudit: records: incomplete run: %zu planned shards of the selection have "

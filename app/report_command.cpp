@@ -57,6 +57,7 @@ void register_report_command(CLI::App& app, int& exit_code) {
     bool no_run = false;
     std::string markdown;
     std::string upgrade_summary;
+    ConformanceGate gate;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
   cmd->add_option("dir", opts->options.run_dir, "run directory");
@@ -69,6 +70,7 @@ void register_report_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--no-run", opts->no_run, "do not run missing stages; say which command to run");
   cmd->add_flag("--allow-incomplete", opts->options.allow_incomplete,
                 "report a run with missing or damaged shards, saying so on its first page");
+  add_conformance_gate_options(cmd, opts->gate);
   cmd->callback([opts, &exit_code] {
     if (!opts->upgrade_summary.empty()) {
       if (!opts->options.run_dir.empty() || !opts->markdown.empty())
@@ -91,6 +93,11 @@ void register_report_command(CLI::App& app, int& exit_code) {
     }
     if (opts->options.run_dir.empty())
       throw util::UserError("report needs a run directory (or --markdown FILE.md)");
+    read_conformance_gate(opts->gate);  // a malformed file stops before any work
+    if (opts->gate.fail_on_violations && rundir::read_study_info(opts->options.run_dir))
+      throw util::UserError(opts->options.run_dir +
+                            ": --fail-on-violations judges a run's primitives; a study folder "
+                            "has no verdicts");
     try {
       if (rundir::read_study_info(opts->options.run_dir))
         prepare_study_report(opts->options.run_dir, !opts->no_run);
@@ -114,7 +121,7 @@ void register_report_command(CLI::App& app, int& exit_code) {
         } catch (const util::UserError& e) {
           std::printf("finding: not said here (%s)\n", e.what());
         }
-      exit_code = kExitOk;
+      exit_code = conformance_gate_exit(opts->gate, opts->options.run_dir, kExitOk);
     } catch (const analysis::IncompleteRunError& e) {
       std::fprintf(stderr, "renderaudit report: %s\n", e.what());
       exit_code = kExitIncomplete;

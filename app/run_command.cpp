@@ -42,6 +42,45 @@ void submit_to_slurm(const runner::RunOptions& opt, runner::SlurmOptions slurm_o
       util::program_for_commands().c_str(), util::shell_quote(sub.run_dir).c_str());
 }
 
+// Whether an error names the run folder `out` (or a file in it) first, as every refusal of the
+// folder does ("DIR: holds a run of a different experiment", "DIR is being written by ...",
+// "DIR/experiment.toml: changed since ..."), unlike an error in the experiment file.
+bool about_run_folder(const std::string& message, std::string out) {
+  while (out.size() > 1 && out.back() == '/') out.pop_back();
+  return !out.empty() && message.rfind(out, 0) == 0 && message.size() > out.size() &&
+         (message[out.size()] == ':' || message[out.size()] == '/' || message[out.size()] == ' ');
+}
+
+// Runs the experiment. Where the folder was named by something other than --out (make's
+// OUT=DIR), the caller says how in RENDERAUDIT_OUT_HINT, and an error about the folder ends
+// with it.
+runner::RunResult run_with_folder_hint(const runner::RunOptions& opt) {
+  try {
+    return runner::run_experiment(opt);
+  } catch (const util::UserError& e) {
+    const char* hint = std::getenv("RENDERAUDIT_OUT_HINT");
+    if (hint && *hint && about_run_folder(e.what(), opt.out_dir) &&
+        !about_run_folder(e.what(), opt.experiment_path))
+      throw util::UserError(std::string(e.what()) + "\nrenderaudit: " + hint);
+    throw;
+  }
+}
+
+// The shards of the run (not with --brief, whose one line says them), then each worker that
+// failed and each primitive recorded as crash or timeout by this invocation.
+void say_shards(const runner::RunResult& r, bool brief) {
+  if (!brief)
+    std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
+                r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
+                r.shards_total - r.shards_complete);
+  for (const auto& f : r.failures)
+    std::printf("  worker failed: %s: %s\n", f.shard.c_str(), f.reason.c_str());
+  for (const auto& f : r.failed_primitives)
+    std::printf("  primitive %llu of %s recorded as %s: %s\n",
+                static_cast<unsigned long long>(f.index), f.shard.c_str(),
+                metrics::status_name(f.status), f.reason.c_str());
+}
+
 }  // namespace
 
 void register_run_command(CLI::App& app, int& exit_code) {
@@ -62,6 +101,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
     bool brief = false;
     bool slurm = false;
     runner::SlurmOptions slurm_opt;
+    ConformanceGate gate;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
   cmd->add_option("experiment", opts->opt.experiment_path, "experiment file (TOML)")
@@ -90,6 +130,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
                 "start a worker process for every shard (default: a worker serves one platform's "
                 "shards one after another, paying for its start and GL context once)");
   cmd->add_flag("--quiet,-q", opts->quiet, "no progress line");
+  add_conformance_gate_options(cmd, opts->gate);
   cmd->add_flag("--brief", opts->brief,
                 "the run in one line (primitives, shards, time) and where its summary went, not its "
                 "table (`make` runs with it)");
@@ -130,7 +171,18 @@ void register_run_command(CLI::App& app, int& exit_code) {
     study.out_dir = opts->opt.out_dir;
     study.platforms = opts->opt.only_platforms;
     study.progress = !opts->quiet;
-    if (opts->slurm) return submit_to_slurm(opts->opt, opts->slurm_opt);
+    if (opts->slurm) {
+      if (opts->gate.fail_on_violations || !opts->gate.expectations.empty())
+        throw util::UserError("--fail-on-violations and --expectations judge a finished run: "
+                              "with --slurm, run `renderaudit conformance DIR` after the gather");
+      return submit_to_slurm(opts->opt, opts->slurm_opt);
+    }
+    read_conformance_gate(opts->gate);  // a malformed file stops the run before it starts
+    if (opts->gate.fail_on_violations &&
+        rundir::experiment_study_kind(opts->opt.experiment_path) != rundir::StudyKind::kAudit)
+      throw util::UserError(opts->opt.experiment_path +
+                            ": --fail-on-violations judges the primitives of an audit "
+                            "experiment; a study has no verdicts");
     if (run_study_if_declared(study, exit_code)) return;
     if (!opts->quiet) {  // what is drawn with, before the progress line
       const rundir::Experiment exp = rundir::load_experiment(opts->opt.experiment_path);
@@ -141,17 +193,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
       std::fprintf(stderr, "renderaudit: %s draws with %s\n", opts->opt.experiment_path.c_str(),
                    list.c_str());
     }
-    const runner::RunResult r = runner::run_experiment(opts->opt);
-    if (!opts->brief)
-      std::printf("%s: %zu shards (%zu finished earlier, %zu run now, %zu incomplete)\n",
-                  r.run_dir.c_str(), r.shards_total, r.shards_done_before, r.shards_run,
-                  r.shards_total - r.shards_complete);
-    for (const auto& f : r.failures)
-      std::printf("  worker failed: %s: %s\n", f.shard.c_str(), f.reason.c_str());
-    for (const auto& f : r.failed_primitives)
-      std::printf("  primitive %llu of %s recorded as %s: %s\n",
-                  static_cast<unsigned long long>(f.index), f.shard.c_str(),
-                  metrics::status_name(f.status), f.reason.c_str());
+    const runner::RunResult r = run_with_folder_hint(opts->opt);
+    say_shards(r, opts->brief);
     if (!r.wrong_renderer.empty()) {
       std::printf("stopped: %s\n", r.wrong_renderer.c_str());
       exit_code = kExitUsage;
@@ -185,7 +228,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
           r.failed_primitives_held.size() - r.failed_primitives.size());
     // the exit code says what the directory holds, not what this invocation did
     const bool clean = r.shards_complete == r.shards_total && r.failed_primitives_held.empty();
-    exit_code = clean ? kExitOk : kExitFindings;
+    exit_code = conformance_gate_exit(opts->gate, r.run_dir, clean ? kExitOk : kExitFindings);
   });
 }
 

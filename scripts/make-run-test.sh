@@ -2,9 +2,10 @@
 # `make run` as a user calls it with an experiment of their own (ctest make_run_lines): the line
 # it prints names that experiment's platforms (not the embedded default's), the run's Markdown
 # table stays in summary.md and the run is said in one line, `make report` ends with the finding
-# and a line with the report's path and the time, in at most 7 lines, `make build` prints nothing
-# when there is nothing to build, and a refused run folder is answered with the OUT= that make
-# takes.
+# and a line with the report's path and the time, in at most 7 lines (and the `make install` hint
+# only until the program is installed), FAIL_ON_VIOLATIONS=1 judges the run's conformance at the
+# end, `make build` prints nothing when there is nothing to build, and a refused run folder is
+# answered with the OUT= that make takes (an error in the experiment file is not).
 # `make -o build`: the build is taken as it is (ctest runs beside other tests that use the binary;
 # a relink under them would fail them).
 # Usage: scripts/make-run-test.sh BUILD_DIR
@@ -43,8 +44,8 @@ grep -qE "^run: $t/out: 30 primitives in 1 shards \(1 run now\), [0-9.]+ (s|min)
 # `make report` on the same run, as a user reads it in a log (not a terminal): a line per stage,
 # the finding from the data, and a last line with the report's path and the time it took.
 rc=0
-(cd "$here" && make -o build report BUILD="$build" EXPERIMENT="$t/mine.toml" OUT="$t/out" JOBS=2) \
-  > "$t/report.log" 2>&1 || rc=$?
+(cd "$here" && make -o build report BUILD="$build" EXPERIMENT="$t/mine.toml" OUT="$t/out" JOBS=2 \
+  PREFIX="$t/not-installed") > "$t/report.log" 2>&1 || rc=$?
 [ "$rc" = 0 ] || { cat "$t/report.log"; fail "make report exit $rc"; }
 grep -qE "^finding: no violation \(no GL rule broken\) in [0-9,]+ primitives; [0-9.]+% drawn exactly" \
   "$t/report.log" || { cat "$t/report.log"; fail "no finding line"; }
@@ -56,6 +57,28 @@ finding_line=$(grep -n "^finding: " "$t/report.log" | cut -d: -f1)
 ! grep -qE "Built target|^\| |^index: |^/" "$t/report.log" || { cat "$t/report.log"; fail "details printed"; }
 lines=$(grep -vc "make install" "$t/report.log" || true)
 [ "$lines" -le 7 ] || { cat "$t/report.log"; fail "make report printed $lines lines, more than 7"; }
+# The `make install` hint until it has run (and renderaudit is not on PATH), never after it.
+if ! command -v renderaudit > /dev/null; then
+  grep -qF '`make install` puts it on PATH' "$t/report.log" \
+    || { cat "$t/report.log"; fail "no make install hint before make install"; }
+fi
+mkdir -p "$t/installed/bin" && cp "$build/renderaudit" "$t/installed/bin/renderaudit"
+quick=(-o build -o run -o analyze -o plot)  # the report stage alone: the run is analysed
+rc=0
+(cd "$here" && make "${quick[@]}" report BUILD="$build" EXPERIMENT="$t/mine.toml" OUT="$t/out" \
+  PREFIX="$t/installed") > "$t/installed.log" 2>&1 || rc=$?
+[ "$rc" = 0 ] || { cat "$t/installed.log"; fail "make report (installed) exit $rc"; }
+! grep -qF "make install" "$t/installed.log" \
+  || { cat "$t/installed.log"; fail "the make install hint after make install"; }
+
+# FAIL_ON_VIOLATIONS=1: the run's conformance judged at the end of the report; this run breaks
+# no rule, so it passes, and the report's last line still comes.
+rc=0
+(cd "$here" && make "${quick[@]}" report BUILD="$build" EXPERIMENT="$t/mine.toml" OUT="$t/out" \
+  FAIL_ON_VIOLATIONS=1) > "$t/gate.log" 2>&1 || rc=$?
+[ "$rc" = 0 ] || { cat "$t/gate.log"; fail "make report FAIL_ON_VIOLATIONS=1 exit $rc"; }
+grep -qF "conformance: PASS: no violation" "$t/gate.log" || { cat "$t/gate.log"; fail "no conformance verdict"; }
+grep -qE "^make report: done in " "$t/gate.log" || { cat "$t/gate.log"; fail "no last line"; }
 
 # scripts/build.sh (`make build`): the "Built target" lines that a build with nothing to do
 # consists of are left out, what is compiled is shown, and cmake's exit status is kept.
@@ -84,4 +107,14 @@ make -s -o build -C "$here" run BUILD="$build" EXPERIMENT="$t/mine.toml" OUT="$t
 [ "$rc" != 0 ] || fail "a foreign run folder was accepted"
 grep -qF "with make, OUT=DIR names the run folder (now $t/foreign)" "$t/make.log" \
   || { cat "$t/make.log"; fail "no OUT= advice"; }
-echo "make-run-test: the platform line, a quiet run, the OUT= advice, make report's lines, a quiet build"
+
+# An error in the experiment file is not about the run folder: no OUT= advice.
+printf 'name = "bad"\nseed = 1\nplatforms = ["osmesa-softpipe"]\n[views]\norientatons = 1\n' \
+  > "$t/bad.toml"
+rc=0
+make -s -o build -C "$here" run BUILD="$build" EXPERIMENT="$t/bad.toml" OUT="$t/bad" JOBS=2 \
+  > "$t/bad.log" 2>&1 || rc=$?
+[ "$rc" = 2 ] || { cat "$t/bad.log"; fail "a broken experiment file: exit $rc, not 2"; }
+grep -qF "$t/bad.toml:" "$t/bad.log" || { cat "$t/bad.log"; fail "the error is not located"; }
+! grep -qF "OUT=DIR" "$t/bad.log" || { cat "$t/bad.log"; fail "OUT= advice for an experiment-file error"; }
+echo "make-run-test: the platform line, a quiet run, the OUT= advice where it fits, make report's lines and hints, a quiet build"

@@ -7,7 +7,7 @@
 #            in a few lines;
 #   night 2: the same experiment: unchanged (exit 0), PASS; the terminal gives the verdict with its
 #            counts and the files in a few lines (no table, no figure paths);
-#   night 3: the experiment edited: exit 2, the differing lines and the --promote line said, no
+#   night 3: the experiment edited: exit 2, the differing lines and the --promote line said (once), no
 #            "verdict in" a file that was not written, the report says "no verdict" and why;
 #   night 4: after --promote of night 3: unchanged against it.
 # Usage: scripts/nightly-test.sh BUILD_DIR
@@ -101,6 +101,8 @@ has "$t/night.log" "not runs of the same experiment"
 has "$t/night.log" "- points = 60"
 has "$t/night.log" "+ points = 70"
 has "$t/night.log" "scripts/nightly.sh --promote $run3"
+promotes=$(grep -c -- "--promote" "$t/night.log" || true)
+[ "$promotes" = 1 ] || { cat "$t/night.log"; fail "night 3 says the --promote command $promotes times, not once"; }
 lacks "$t/night.log" "verdict in"
 [ ! -e "$run3/audit/audit.md" ] || fail "night 3 wrote an audit.md"
 has "$run3/report/report.html" "no verdict"

@@ -69,10 +69,10 @@ else
   refused=1
   mkdir -p "$tonight/audit"
   mv "$tonight/audit.stderr" "$tonight/audit/refused.txt"
+  # The audit's message above says how to promote tonight's run where that is the remedy (an
+  # experiment changed on purpose); it is not said twice.
   echo "nightly: no verdict tonight: the audit refused to compare $tonight with the baseline" \
        "$(realpath "$baseline") (above)." >&2
-  echo "nightly: if the experiment ($experiment) was changed on purpose, make tonight's run the" \
-       "new baseline: scripts/nightly.sh --promote $tonight" >&2
 fi
 "$bin" analyze "$tonight" >/dev/null
 "$bin" plot "$tonight" >/dev/null

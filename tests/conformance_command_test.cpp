@@ -2,13 +2,16 @@
 // `analyze` are classified as predicted: snapping to 5 bits is measured as such and is
 // never a violation; dropping every line's last pixel is within the GL rules; shifting every
 // primitive by one pixel is a violation that violations.md lists and an audit against the clean
-// run reports first, with a failing conformance testcase.
+// run reports first, with a failing conformance testcase. `renderaudit conformance` turns such a
+// run into a CI verdict: exit 5 with violations, JUnit, and an expectations file that makes the
+// known ones pass.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 
 #include "tests/cli_harness.h"
@@ -119,6 +122,112 @@ TEST(ConformanceCommand, FaultyVariantsAreClassifiedAsPredicted) {
   const std::string junit = read_text(out + "/junit.xml");
   EXPECT_NE(junit.find("name=\"conformance, group A (view 1)\""), std::string::npos) << junit;
   EXPECT_NE(junit.find("<failure type=\"violation\""), std::string::npos) << junit;
+}
+
+// The lines of an expectations file that name a primitive (comments and blank lines left out).
+std::vector<std::string> listed_lines(const std::string& path) {
+  std::vector<std::string> out;
+  std::istringstream in(read_text(path));
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line[0] != '#') out.push_back(line);
+  return out;
+}
+
+// CI on a run with violations (the faulty platform shifting 5% of its primitives one pixel):
+// `run --fail-on-violations` and `conformance` fail it with exit 5 and a failing JUnit case; the
+// expectations file written from the run makes it pass; a violation not listed fails again, named;
+// a run of a driver that shifts fewer (a subset) passes and reports the listed ones it fixed.
+TEST(ConformanceCommand, ARunWithViolationsFailsCIAndPassesWithItsExpectations) {
+  const std::string dir = fresh_dir("conformance_ci");
+  write_text(dir + "/e.toml", faulty_experiment("shift_fraction = 0.05\n"));
+  const Outcome run = run_renderaudit("run " + dir + "/e.toml --out " + dir +
+                                      "/run --jobs 2 --quiet --fail-on-violations");
+  EXPECT_EQ(run.exit_code, 5) << run.output;
+  EXPECT_NE(run.output.find("conformance: FAIL: "), std::string::npos) << run.output;
+
+  const std::string r = dir + "/run";
+  const Outcome ci = run_renderaudit("conformance " + r + " --junit " + dir + "/junit.xml");
+  EXPECT_EQ(ci.exit_code, 5) << ci.output;
+  EXPECT_NE(ci.output.find("new: faulty "), std::string::npos) << ci.output;
+  EXPECT_NE(ci.output.find(" show " + r + " -p faulty -k "), std::string::npos) << ci.output;
+  const std::string junit = read_text(dir + "/junit.xml");
+  EXPECT_NE(junit.find("<testcase classname=\"renderaudit.conformance.faulty.triangle\" "
+                       "name=\"view 1 (150 deg, 64x64)\""),
+            std::string::npos) << junit;
+  EXPECT_NE(junit.find("<failure type=\"violation\""), std::string::npos) << junit;
+
+  // Written from the run: one line per violation, PLATFORM KIND VIEW INDEX, sorted; exit 0.
+  const std::string known = dir + "/known.txt";
+  const Outcome wrote = run_renderaudit("conformance " + r + " --write-expectations " + known);
+  EXPECT_EQ(wrote.exit_code, 0) << wrote.output;
+  const std::vector<std::string> lines = listed_lines(known);
+  ASSERT_GE(lines.size(), 3u) << read_text(known);
+  const std::regex form(R"(faulty (point|line|triangle) 1 \d+  # \d+ px: [a-z, -]+)");
+  for (const std::string& l : lines) EXPECT_TRUE(std::regex_match(l, form)) << l;
+  EXPECT_NE(wrote.output.find("expectations: " + std::to_string(lines.size()) +
+                              " violations written to " + known),
+            std::string::npos) << wrote.output;
+
+  const Outcome pass = run_renderaudit("conformance " + r + " --expectations " + known +
+                                       " --junit " + dir + "/pass.xml");
+  EXPECT_EQ(pass.exit_code, 0) << pass.output;
+  EXPECT_NE(pass.output.find("conformance: PASS: every violation is listed in " + known),
+            std::string::npos) << pass.output;
+  EXPECT_EQ(read_text(dir + "/pass.xml").find("<failure"), std::string::npos);
+  EXPECT_NE(read_text(dir + "/pass.xml").find("known (" + known + ":"), std::string::npos);
+
+  // One violation taken off the list: new again, named, exit 5.
+  std::string fewer = read_text(known);
+  const std::string dropped = lines.back().substr(0, lines.back().find("  #"));
+  fewer.erase(fewer.find(lines.back()), lines.back().size() + 1);
+  write_text(dir + "/fewer.txt", fewer);
+  const Outcome fresh = run_renderaudit("conformance " + r + " --expectations " + dir +
+                                        "/fewer.txt");
+  EXPECT_EQ(fresh.exit_code, 5) << fresh.output;
+  EXPECT_NE(fresh.output.find("new: " + dropped + ": "), std::string::npos) << fresh.output;
+  EXPECT_NE(fresh.output.find("conformance: FAIL: 1 violation not listed in " + dir +
+                              "/fewer.txt"),
+            std::string::npos) << fresh.output;
+
+  // A driver that shifts fewer primitives (a subset of these): what it no longer breaks is
+  // reported as fixed, with the line to remove; it passes unless --fail-on-fixed.
+  write_text(dir + "/better.toml", faulty_experiment("shift_fraction = 0.01\n"));
+  ASSERT_EQ(run_renderaudit("run " + dir + "/better.toml --out " + dir + "/better --jobs 2 --quiet")
+                .exit_code, 0);
+  const Outcome better =
+      run_renderaudit("conformance " + dir + "/better --expectations " + known);
+  EXPECT_EQ(better.exit_code, 0) << better.output;
+  EXPECT_NE(better.output.find("fixed: faulty "), std::string::npos) << better.output;
+  EXPECT_TRUE(std::regex_search(better.output,
+                                std::regex(" is now (exact|snapped|within-spec): remove its line")))
+      << better.output;
+  EXPECT_NE(better.output.find("(" + known + ":"), std::string::npos) << better.output;
+  EXPECT_EQ(run_renderaudit("conformance " + dir + "/better --expectations " + known +
+                            " --fail-on-fixed").exit_code, 5);
+
+  // Malformed and stale lines: each said with its place, exit 2, nothing judged.
+  write_text(dir + "/bad.txt",
+             "# known\nfaulty point 1\nfaulty pointy 1 2\nnosuch point 1 2\n"
+             "faulty point 9 2\nfaulty point 1 600\n" + lines.front() + "\n" + lines.front() + "\n");
+  const Outcome malformed =
+      run_renderaudit("conformance " + r + " --expectations " + dir + "/bad.txt");
+  EXPECT_EQ(malformed.exit_code, 2) << malformed.output;
+  for (const std::string& at : {":2: expected four fields", ":3: kind 'pointy'", ":8: faulty "})
+    EXPECT_NE(malformed.output.find(dir + "/bad.txt" + at), std::string::npos) << malformed.output;
+  EXPECT_EQ(malformed.output.find("conformance: "), std::string::npos) << malformed.output;
+  write_text(dir + "/stale.txt", "nosuch point 1 2\nfaulty point 9 2\nfaulty point 1 600\n");
+  const Outcome stale =
+      run_renderaudit("conformance " + r + " --expectations " + dir + "/stale.txt");
+  EXPECT_EQ(stale.exit_code, 2) << stale.output;
+  for (const std::string& at : {":1: platform 'nosuch' is not in the experiment of ",
+                                ":2: view 9 is not in the experiment of ",
+                                ":3: index 600 is past the 600 points per view"})
+    EXPECT_NE(stale.output.find(dir + "/stale.txt" + at), std::string::npos) << stale.output;
+  // run reads the file before it draws: a malformed one stops it with nothing written
+  const Outcome refused = run_renderaudit("run " + dir + "/e.toml --out " + dir +
+                                          "/never --quiet --expectations " + dir + "/bad.txt");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_FALSE(fs::exists(dir + "/never"));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -202,29 +203,86 @@ TEST_F(RecordsCommand, AnIncompleteRunIsRefusedByRecordsAndStatsUnlessAllowed) {
   EXPECT_EQ(run_renderaudit("stats describe " + *dir_ + "/run --column pixels").exit_code, 0);
 }
 
-// A closed pipe on records' output (`renderaudit records RUN | head -0`) is said, exit 2: not
-// the 141 of a process killed by SIGPIPE.
-TEST_F(RecordsCommand, AClosedPipeIsSaidWithExit2) {
+// Runs renderaudit with `args` and its stdout on the write end of a pipe whose read end is
+// already closed (a reader that stopped before the first byte: a write can only fail with EPIPE),
+// or on /dev/full (every write fails with ENOSPC). Returns the exit status (128 + signal when
+// killed) and what it said on stderr.
+struct Ended {
+  int status = -1;
+  std::string err;
+};
+Ended run_into(const std::vector<std::string>& args, bool dev_full, const std::string& err_path) {
   int fds[2];
-  ASSERT_EQ(::pipe(fds), 0);
+  if (::pipe(fds) != 0) return {};
   ::close(fds[0]);  // nobody will read
-  const std::string run = *dir_ + "/run", err_path = *dir_ + "/pipe.err";
   const pid_t pid = ra::util::fork_child([&]() -> int {
-    ::dup2(fds[1], 1);
-    ::close(fds[1]);
+    const int out = dev_full ? ::open("/dev/full", O_WRONLY) : fds[1];
+    ::dup2(out, 1);
     ::signal(SIGPIPE, SIG_DFL);  // as a shell starts it
     const int err = ::open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     ::dup2(err, 2);
-    ::execl(RA_BINARY, RA_BINARY, "records", run.c_str(), static_cast<char*>(nullptr));
+    std::vector<char*> argv{const_cast<char*>(RA_BINARY)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(RA_BINARY, argv.data());
     return 127;
   });
   ::close(fds[1]);
   const int status = ra::util::wait_child(pid);
-  EXPECT_TRUE(WIFEXITED(status)) << "killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), 2);
-  const std::string err = ra::util::read_file(err_path);
-  EXPECT_NE(err.find("cannot write the records to standard output (Broken pipe)"),
-            std::string::npos) << err;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status),
+          ra::util::read_file(err_path)};
+}
+
+// A reader that stops early (`renderaudit records RUN | head`) is normal use: every command that
+// writes to stdout ends quietly with its own exit code, as cat does, not with exit 2 and an error
+// (nor the 141 of a death by SIGPIPE). A full disk (/dev/full) stays an error, said with its cause.
+TEST_F(RecordsCommand, AReaderThatStopsEarlyEndsACommandQuietlyAFullDiskDoesNot) {
+  const std::string run = *dir_ + "/run", err = *dir_ + "/pipe.err";
+  const std::vector<std::vector<std::string>> commands = {
+      {"records", run},
+      {"records", run, "--format", "csv.zst"},
+      {"stats", "describe", run, "--column", "pixels"},
+      {"show", run, "-p", "reference", "-k", "line", "-v", "1", "-i", "3", "-o",
+       *dir_ + "/line.png"},
+      {"run", *dir_ + "/e.toml", "--out", run, "--jobs", "2", "--quiet"},
+      {"--help"},
+  };
+  for (const auto& args : commands) {
+    std::string line;
+    for (const std::string& a : args) line += " " + a;
+    const Ended gone = run_into(args, false, err);
+    EXPECT_EQ(gone.status, 0) << line << ": " << gone.err;
+    EXPECT_EQ(gone.err, "") << line;
+    if (args.front() == "run" || args.front() == "--help") continue;  // output to a pipe only
+    const Ended full = run_into(args, true, err);
+    EXPECT_EQ(full.status, 2) << line << ": " << full.err;
+    EXPECT_NE(full.err.find("standard output (No space left on device)"), std::string::npos)
+        << line << ": " << full.err;
+  }
+}
+
+// The same through a real pipe into `head -3`, with a stream larger than a pipe holds (64 KiB),
+// so that records is still writing when head has gone: three lines, exit 0, nothing on stderr.
+TEST_F(RecordsCommand, RecordsIntoHeadEndsQuietly) {
+  write_text(*dir_ + "/large.toml",
+             "seed = 9\nplatforms = [\"reference\"]\n[views]\norientations = 1\nfov_deg = [30]\n"
+             "windows = [32]\nnear = 0.01\nfar = 10.0\n[primitives]\npoints = 4000\n");
+  const std::string large = *dir_ + "/large";
+  ASSERT_EQ(run_renderaudit("run " + *dir_ + "/large.toml --out " + large + " --jobs 2 --quiet")
+                .exit_code, 0);
+  ra::util::ChildSpec spec;
+  spec.argv = {"/bin/bash", "-c",
+               "set -o pipefail; \"$0\" records \"$1\" | head -3 > \"$2\"", RA_BINARY, large,
+               *dir_ + "/head.out"};
+  spec.stdin_null = true;
+  const ra::util::ProgramResult r = ra::util::run_program(spec);
+  EXPECT_EQ(r.exit_code(), 0) << r.output;
+  EXPECT_EQ(r.output, "");
+  const std::string head = ra::util::read_file(*dir_ + "/head.out");
+  EXPECT_EQ(std::count(head.begin(), head.end(), '\n'), 3) << head;
+  EXPECT_EQ(head.rfind(ra::metrics::records_header(), 0), 0u) << head;
+  const Outcome all = run_renderaudit("records " + large);
+  EXPECT_GT(all.output.size(), std::size_t{256} << 10);  // far more than a pipe holds
 }
 
 }  // namespace
