@@ -111,6 +111,8 @@ void print_speed(const audit::AuditResult& r) {
                   c.repeats_to_settle);
     else if (!c.reason.empty())
       std::printf(" (%s)", c.reason.c_str());
+    else if (c.verdict == audit::SpeedVerdict::kUnknown)
+      std::printf(" (at the band's edge: more repeats will hardly settle it)");
     std::printf("\n");
   }
 }

@@ -14,7 +14,7 @@ namespace ra::audit {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int kMaxRepeatsToSettle = 1000;
+constexpr int kMaxRepeatsToSettle = 200;
 
 }  // namespace
 
@@ -48,7 +48,8 @@ SpeedDecision decide_speed(double low, double high, double threshold, double con
     const double room = std::fabs(std::fabs(centre) - b);
     if (room > 0 && half > 0) {
       const double r = std::ceil(std::max(1, repeats) * (half / room) * (half / room));
-      d.repeats_to_settle = int(std::min<double>(r, kMaxRepeatsToSettle));
+      // Past the cap the estimate sits on the band's edge: no practical number of repeats.
+      d.repeats_to_settle = r <= kMaxRepeatsToSettle ? int(r) : 0;
     }
   }
   return d;

@@ -60,8 +60,8 @@ struct SpeedOptions {
 struct SpeedDecision {
   SpeedVerdict verdict = SpeedVerdict::kUnknown;
   // kUnknown: about this many repeats in all would narrow the interval enough (assuming its width
-  // shrinks as 1 / sqrt(repeats)); 0 when repeats cannot settle it (the estimate sits on the band's
-  // edge: more primitives or a different threshold).
+  // shrinks as 1 / sqrt(repeats)); 0 when no practical number can (over 200: the estimate sits on
+  // the band's edge).
   int repeats_to_settle = 0;
 };
 
