@@ -58,10 +58,6 @@ LastNight read_last(const std::string& path) {
   l.commit = j["commit"];
   l.build_dir = j["build_dir"];
   if (j.contains("branch") && j["branch"].is_string()) l.branch = j["branch"];
-  if (!fs::is_directory(l.build_dir, ec))
-    throw util::UserError("watch: " + path + ": 'build_dir' " + l.build_dir +
-                          " is gone (the build cache was cleared?); remove the file to start again "
-                          "from a new baseline");
   return l;
 }
 
@@ -140,7 +136,7 @@ class Night {
     if (!fs::is_directory(o_.source, ec) || !git(o_.source, {"rev-parse", "--git-dir"}).ok)
       throw util::UserError("watch: " + o_.source + " is not a git checkout");
     o_.source = fs::canonical(o_.source).string();
-    const LastNight last = read_last(o_.state + "/watch.json");
+    LastNight last = read_last(o_.state + "/watch.json");
     n_.date_utc = rundir::utc_now_iso8601();
     n_.previous_commit = last.commit;
     n_.commit = branch_head(last.branch);
@@ -160,6 +156,12 @@ class Night {
     b.source = o_.source;
     b.ref = n_.commit;
     b.probe = false;  // the run is the probe
+    // Last night's build, held against `builds remove` all night; built again if it is gone.
+    runner::SourceBuildResult last_build;
+    if (!backwards && !last.commit.empty()) {
+      last_build = runner::use_source_build(last.build_dir, last.commit, b, [&](const std::string& s) { say("  " + s); });
+      last.build_dir = last_build.build.dir;
+    }
     runner::SourceBuildResult built;
     try {
       built = runner::build_from_source(b, [&](const std::string& s) { say("  " + s); });
