@@ -481,6 +481,45 @@ std::string source_build_name(const SourceIdentity& id, const SourceBuildOptions
   return name;
 }
 
+namespace {
+
+// Checks the tree out at options.ref for a build of that commit alone (a tree with changes or
+// untracked files is refused) and returns where to check it out again after the build; `id` is
+// then the commit's.
+std::string check_out_ref(const SourceBuildOptions& options, const std::string& source,
+                          SourceIdentity& id) {
+  std::string restore_ref;
+  if (!id.git) throw util::UserError("builds build: --ref needs a git checkout; " + source + " is not one");
+  if (id.dirty)
+    throw util::UserError("builds build: " + source +
+                          " has uncommitted changes; commit or stash them before --ref");
+  // A build of a commit is that commit's files and nothing else.
+  if (!id.untracked.empty())
+    throw util::UserError("builds build: " + source + " has " +
+                          untracked_text(id.untracked, id.untracked_count) +
+                          "; a build of " + options.ref +
+                          " would see it and be kept as that commit's: `git -C " + source +
+                          " clean -n -d` lists them, `git stash -u` or `git clean -fd` removes "
+                          "them");
+  bool ok = false;
+  const std::string commit = git(
+      source, {"rev-parse", "--verify", "--quiet", "--end-of-options", options.ref + "^{commit}"},
+      &ok);
+  if (!ok || commit.empty())
+    throw util::UserError("builds build: '" + options.ref + "' is not a commit of " + source);
+  bool on_branch = false;
+  restore_ref = git(source, {"symbolic-ref", "-q", "--short", "HEAD"}, &on_branch);
+  if (!on_branch) restore_ref = id.commit;
+  if (commit != id.commit) {
+    git(source, {"-c", "advice.detachedHead=false", "checkout", "-q", "--detach", commit}, &ok);
+    if (!ok) throw util::UserError("builds build: cannot check out " + options.ref + " in " + source);
+  }
+  id = identify_source(source);
+  return restore_ref;
+}
+
+}  // namespace
+
 SourceBuildResult build_from_source(const SourceBuildOptions& options,
                                     const std::function<void(const std::string&)>& progress) {
   const auto say = [&](const std::string& s) {
@@ -497,35 +536,7 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
   const std::unique_ptr<util::DirLock> tree_lock =
       options.source_locked ? nullptr : lock_source_tree(source, "builds build");
   SourceIdentity id = identify_source(source);
-  std::string restore_ref;
-  if (!options.ref.empty()) {
-    if (!id.git) throw util::UserError("builds build: --ref needs a git checkout; " + source + " is not one");
-    if (id.dirty)
-      throw util::UserError("builds build: " + source +
-                            " has uncommitted changes; commit or stash them before --ref");
-    // A build of a commit is that commit's files and nothing else.
-    if (!id.untracked.empty())
-      throw util::UserError("builds build: " + source + " has " +
-                            untracked_text(id.untracked, id.untracked_count) +
-                            "; a build of " + options.ref +
-                            " would see it and be kept as that commit's: `git -C " + source +
-                            " clean -n -d` lists them, `git stash -u` or `git clean -fd` removes "
-                            "them");
-    bool ok = false;
-    const std::string commit = git(
-        source, {"rev-parse", "--verify", "--quiet", "--end-of-options", options.ref + "^{commit}"},
-        &ok);
-    if (!ok || commit.empty())
-      throw util::UserError("builds build: '" + options.ref + "' is not a commit of " + source);
-    bool on_branch = false;
-    restore_ref = git(source, {"symbolic-ref", "-q", "--short", "HEAD"}, &on_branch);
-    if (!on_branch) restore_ref = id.commit;
-    if (commit != id.commit) {
-      git(source, {"-c", "advice.detachedHead=false", "checkout", "-q", "--detach", commit}, &ok);
-      if (!ok) throw util::UserError("builds build: cannot check out " + options.ref + " in " + source);
-    }
-    id = identify_source(source);
-  }
+  const std::string restore_ref = options.ref.empty() ? "" : check_out_ref(options, source, id);
   struct Restore {
     std::string dir, ref;
     ~Restore() {

@@ -59,7 +59,7 @@ source_changed=$(changed "$run/audit-faulty-source")
 # The source part, as driver-upgrade.sh writes it.
 /usr/bin/python3 "$script" --audit-suffix -source "$ra" "$run" source faulty >"$t/source.md" 2>"$t/source.err" ||
   { cat "$t/source.err"; fail "upgrade_report.py (source) failed"; }
-row=$(grep '^| faulty | ' "$t/source.md" | head -1)
+row=$(grep -m1 '^| faulty | ' "$t/source.md")
 [ "$(cut -d'|' -f6 <<<"$row" | tr -d ' ')" = "$source_changed" ] ||
   { echo "$row"; fail "the source part's table does not show the source audit's $source_changed changed (backports: $backports_changed)"; }
 for g in A B C D E F; do
@@ -76,7 +76,9 @@ set -e
 # The `renderaudit show` line: the words that ran, nothing run.
 /usr/bin/python3 "$script" "$ra" "$run" backports faulty >"$t/backports.md" 2>"$t/backports.err" ||
   { cat "$t/backports.err"; fail "upgrade_report.py (backports) failed"; }
-show=$(grep -o '`renderaudit show [^`]*`' "$t/backports.md" | head -1 | tr -d '`')
+show=$(grep -o -m1 '`renderaudit show [^`]*`' "$t/backports.md")
+show=${show%%$'\n'*}
+show=${show//\`/}
 [ -n "$show" ] || fail "no renderaudit show line in the report"
 mkdir -p "$t/stub"
 printf '#!/bin/sh\nprintf "%%s\\0" "$@" > "$STUB_ARGS"\n' > "$t/stub/renderaudit"
