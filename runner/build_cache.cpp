@@ -150,6 +150,15 @@ CacheUsage cache_usage(const std::string& cache_dir) {
   return u;
 }
 
+bool build_drawn_with_now(const std::string& dir) {
+  const int fd = lock_for_removal(dir, false);
+  if (fd >= 0) {
+    ::close(fd);
+    return false;
+  }
+  return errno == EWOULDBLOCK;
+}
+
 std::string build_in_use_by(const std::string& dir) {
   std::string source;
   try {
@@ -246,7 +255,7 @@ std::vector<RemovedBuild> remove_builds(const std::string& cache_dir,
     const std::string dir = cache + "/" + name;
     const std::string aside =
         cache + "/" + kRemovingPrefix + name + "-" + std::to_string(::getpid());
-    RemovedBuild r{name, disk_usage(dir)};
+    RemovedBuild r{name, disk_usage(dir), ""};
     // One rename takes it out of the cache; only then are its files deleted.
     fs::rename(dir, aside, ec);
     if (ec) {

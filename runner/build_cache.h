@@ -55,6 +55,9 @@ struct CacheUsage {
 };
 CacheUsage cache_usage(const std::string& cache);
 
+// Whether a process holds BuildInUse on the build folder `dir` now. Takes nothing.
+bool build_drawn_with_now(const std::string& dir);
+
 // Who holds the source tree of the build folder `dir` now ("process P (bisect) on host H since
 // T"), or "" when nobody does or the build is not from a source tree.
 std::string build_in_use_by(const std::string& dir);

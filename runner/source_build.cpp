@@ -640,6 +640,11 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
     // Held before it is in the cache (the lock moves with the folder): no removal between.
     result.in_use = std::make_shared<BuildInUse>(prefix);
     const std::string old = work + "/replaced";
+    // A build of the same name that a process draws with (a night, a bisection) stays.
+    if (build_drawn_with_now(target))
+      throw util::UserError("builds build: " + name + " in " + cache +
+                            " is in use: a process draws with it now; wait for it to finish, or "
+                            "build under another --name; the build cache is unchanged");
     if (fs::exists(target, ec)) fs::rename(target, old);
     fs::rename(prefix, target);
     fs::remove_all(work, ec);
