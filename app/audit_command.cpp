@@ -6,6 +6,7 @@
 // compared: not run directories, different experiments, an unknown platform), as for every command
 // (app/commands.h), and a history database that could not be appended (the audit files are written
 // first, so the verdict is not lost; the message says so).
+#include <cmath>
 #include <cstdio>
 
 #include "app/commands.h"
@@ -82,7 +83,36 @@ void print_brief(const audit::AuditResult& r) {
               util::grouped(all.compared).c_str(), util::grouped(all.flakes).c_str(),
               util::grouped(all.failed).c_str(), r.distributions.significant,
               r.distributions.family_size, audit_md_path(r).c_str());
+  if (r.speed.performed)
+    std::printf("  drawing time: %zu slower, %zu faster, %zu same, %zu unknown of %zu groups\n",
+                r.speed.count(audit::SpeedVerdict::kSlower),
+                r.speed.count(audit::SpeedVerdict::kFaster),
+                r.speed.count(audit::SpeedVerdict::kSame),
+                r.speed.count(audit::SpeedVerdict::kUnknown), r.speed.comparisons.size());
   for (const auto& m : r.renderer_mismatches) std::printf("  FAILED %s\n", m.c_str());
+}
+
+// One line per timed group: "  drawing time osmesa-llvmpipe triangle D: 0.742x [0.71, 0.77] faster".
+void print_speed(const audit::AuditResult& r) {
+  if (!r.speed.performed) return;
+  std::printf("  drawing time (current / baseline, 95%% interval; %d repeats, %llu primitives per "
+              "kind and view):\n",
+              r.speed.options.repeats, static_cast<unsigned long long>(r.speed.options.per_view));
+  for (const auto& c : r.speed.comparisons) {
+    std::printf("    %s %s %s: ", r.pairs[c.pair].label().c_str(), geometry::kind_name(c.kind),
+                c.group.c_str());
+    if (std::isfinite(c.ratio))
+      std::printf("%.3fx [%.3f, %.3f] %s", c.ratio, c.low, c.high,
+                  audit::speed_verdict_name(c.verdict));
+    else
+      std::printf("%s", audit::speed_verdict_name(c.verdict));
+    if (c.verdict == audit::SpeedVerdict::kUnknown && c.repeats_to_settle > 0)
+      std::printf(" (about %d repeats would settle it: --speed-repeats %d)", c.repeats_to_settle,
+                  c.repeats_to_settle);
+    else if (!c.reason.empty())
+      std::printf(" (%s)", c.reason.c_str());
+    std::printf("\n");
+  }
 }
 
 void print_result(const audit::AuditResult& r, const std::vector<std::string>& files,
@@ -112,6 +142,7 @@ void print_result(const audit::AuditResult& r, const std::vector<std::string>& f
                 r.flakes.not_checked);
   std::printf("  significant distribution tests: %zu of %zu (Holm, alpha %g)\n",
               r.distributions.significant, r.distributions.family_size, r.distributions.alpha);
+  print_speed(r);
   for (const auto& f : files) std::printf("  wrote %s\n", f.c_str());
 }
 
@@ -158,6 +189,21 @@ void register_audit_command(CLI::App& app, int& exit_code) {
                   "match; otherwise the verdict is failed");
   cmd->add_option("--max-rerenders", opts->cli.options.max_rerenders,
                   "changed primitives re-rendered by the flake check, default 2000 (0: no check)");
+  cmd->add_flag("--speed", opts->cli.options.speed.enabled,
+                "also judge drawing time: both sides drawn again alone, interleaved with an A/A "
+                "control, per kind and view group (docs/nightly-audit.md)");
+  cmd->add_option("--speed-repeats", opts->cli.options.speed.repeats,
+                  "rounds of fresh processes per side, default 4 (an even number: the sides take turns first and last equally often)")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--speed-primitives", opts->cli.options.speed.per_view,
+                  "primitives of each kind and view timed, default 100")
+      ->check(CLI::Range(uint64_t(6), uint64_t(1000000)));
+  cmd->add_option("--speed-threshold", opts->cli.options.speed.threshold,
+                  "a time change counts only when its whole 95% interval lies beyond this "
+                  "fraction, default 0.05")
+      ->check(CLI::Range(0.0, 10.0));
+  cmd->add_flag("--speed-warn-only", opts->cli.options.speed.warn_only,
+                "a slower group is reported but does not make the verdict 'changed'");
   cmd->add_option("--jobs,-j", opts->cli.options.jobs,
                   "threads and re-render processes (default: number of cores)")
       ->check(CLI::Range(1, 1024));
@@ -167,6 +213,10 @@ void register_audit_command(CLI::App& app, int& exit_code) {
     if (!opts->cli.options.between.empty() && opts->cli.dirs.size() != 1)
       throw util::UserError("audit --between compares two platforms of one run: give one RUN_DIR");
     opts->cli.options.current_dir = opts->cli.dirs.back();
+    if (opts->cli.options.speed.enabled && !opts->cli.brief)  // --brief: the verdict alone
+      opts->cli.options.progress = [](const std::string& line) {
+        std::fprintf(stderr, "audit: %s\n", line.c_str());
+      };
     if (opts->cli.dirs.size() == 2) opts->cli.options.baseline_dir = opts->cli.dirs.front();
 
     // Any error is exit 2 here: main() maps other exceptions to 1, which an audit reads as

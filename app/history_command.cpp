@@ -3,6 +3,7 @@
 // (plots/trend_figure.h) as PNG + PDF + CSV.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -12,6 +13,8 @@
 
 #include "app/commands.h"
 #include "audit/history_db.h"
+#include "stats/change_points.h"
+#include "stats/descriptive.h"
 #include "plots/trend_figure.h"
 #include "util/errors.h"
 
@@ -112,6 +115,91 @@ std::vector<plots::TrendData> trends(const std::vector<audit::HistoryEntry>& h,
   return out;
 }
 
+// Drawing time per platform x kind x view group over the audits that timed it (`audit --speed`):
+// the current side's median render_us, and the nights where it stepped (stats/change_points.h,
+// on log times: a step is a ratio). Printed, and drawn as one more trend (no IQR is stored: each
+// box is flat).
+struct SpeedSeries {
+  std::string name;
+  std::vector<std::size_t> audits;  // index into the history shown
+  std::vector<double> median_us;
+  std::vector<stats::ChangePoint> changes;  // index into audits / median_us
+};
+
+std::vector<SpeedSeries> speed_series(const std::vector<audit::HistoryEntry>& h) {
+  std::map<std::tuple<std::string, std::string, int>, SpeedSeries> series;
+  for (std::size_t a = 0; a < h.size(); ++a)
+    for (const audit::SpeedSummary& s : h[a].summary.speed) {
+      if (!(s.current_median_us > 0)) continue;
+      SpeedSeries& x = series[{s.platform, s.kind, s.view_group}];
+      x.name = s.platform + " " + s.kind + " " + group_name(s.view_group);
+      x.audits.push_back(a);
+      x.median_us.push_back(s.current_median_us);
+    }
+  std::vector<SpeedSeries> out;
+  for (auto& [key, x] : series) {
+    std::vector<double> logs;
+    for (double t : x.median_us) logs.push_back(std::log(t));
+    x.changes = stats::e_divisive(logs);
+    out.push_back(std::move(x));
+  }
+  return out;
+}
+
+void print_speed_series(const std::vector<audit::HistoryEntry>& h,
+                        const std::vector<SpeedSeries>& series) {
+  if (series.empty()) return;
+  std::printf("\ndrawing time (median render_us of the timed sample, per audit with --speed; change "
+              "points: E-Divisive on log time, at least 3 audits a side, p < 0.01):\n");
+  for (const SpeedSeries& x : series) {
+    std::printf("  %s: %zu audits, %.4g us last", x.name.c_str(), x.audits.size(),
+                x.median_us.back());
+    if (x.changes.empty()) std::printf("; no change point\n");
+    for (std::size_t c = 0; c < x.changes.size(); ++c) {
+      const std::size_t at = x.changes[c].index;
+      const std::size_t from = c ? x.changes[c - 1].index : 0;
+      const std::size_t to = c + 1 < x.changes.size() ? x.changes[c + 1].index : x.audits.size();
+      auto median_of = [&](std::size_t b, std::size_t e) {
+        std::vector<double> v(x.median_us.begin() + long(b), x.median_us.begin() + long(e));
+        return stats::median(v);
+      };
+      const double before = median_of(from, at), after = median_of(at, to);
+      std::printf("; step at #%lld (%s): %.4g -> %.4g us (%.3fx, p %.3g)",
+                  static_cast<long long>(h[x.audits[at]].id),
+                  h[x.audits[at]].summary.date_utc.c_str(), before, after, after / before,
+                  x.changes[c].p_value);
+    }
+    if (!x.changes.empty()) std::printf("\n");
+  }
+}
+
+plots::TrendData speed_trend(const std::vector<audit::HistoryEntry>& h,
+                             const std::vector<SpeedSeries>& series) {
+  plots::TrendData t;
+  t.id = "trend_render_us";
+  t.metric = "render_us";
+  for (const audit::HistoryEntry& e : h) {
+    t.audits.push_back("#" + std::to_string(e.id));
+    t.dates.push_back(e.summary.date_utc);
+  }
+  std::string changes;
+  for (const SpeedSeries& x : series) {
+    plots::TrendSeries s;
+    s.name = x.name;
+    for (std::size_t i = 0; i < x.audits.size(); ++i)
+      s.points.push_back({x.audits[i], x.median_us[i], NAN, 0});
+    for (const stats::ChangePoint& c : x.changes)
+      changes += (changes.empty() ? "" : ", ") + x.name + " at #" +
+                 std::to_string(h[x.audits[c.index]].id);
+    t.series.push_back(std::move(s));
+  }
+  t.note = "Drawing time: the median render_us (microseconds) of the sample `audit --speed` "
+           "drew on the current side; no IQR is kept, so each box is a line. Change points "
+           "(E-Divisive, at least 3 audits a side, p < 0.01): " +
+           (changes.empty() ? std::string("none") : changes) + ".";
+  return t;
+}
+
 // The nights of `renderaudit watch`, when the database holds any: one line each, its culprits
 // below it.
 void print_nights(const HistoryOptions& o) {
@@ -183,6 +271,9 @@ void run_history(const HistoryOptions& o, int& exit_code) {
       std::printf("  %*s  baseline: %s\n", int(std::to_string(e.id).size()) + 1, "", base.c_str());
   }
 
+  const std::vector<SpeedSeries> speed = speed_series(h);
+  print_speed_series(h, speed);
+
   // Metrics to draw: those asked for, or every metric in the audits shown, in first-seen order.
   std::vector<std::string> present;
   for (const audit::HistoryEntry& e : h)
@@ -205,8 +296,9 @@ void run_history(const HistoryOptions& o, int& exit_code) {
   }
   const std::string out_dir =
       o.out_dir.empty() ? (fs::path(o.db).parent_path() / "history").string() : o.out_dir;
-  const std::vector<plots::RenderedFigure> figures =
-      plots::draw_trend_figures(trends(h, metrics), out_dir);
+  std::vector<plots::TrendData> all = trends(h, metrics);
+  if (!speed.empty()) all.push_back(speed_trend(h, speed));
+  const std::vector<plots::RenderedFigure> figures = plots::draw_trend_figures(all, out_dir);
   std::printf("\ntrend figures (median and IQR per platform, kind and view group) in %s:\n",
               out_dir.c_str());
   for (const plots::RenderedFigure& f : figures)

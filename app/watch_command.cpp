@@ -20,9 +20,11 @@ void register_watch_command(CLI::App& app, int& exit_code) {
       "primitives changed, name the commit of every change between the two nights (as `bisect`).\n"
       "The history database (STATE/history.sqlite; `renderaudit history --db` shows it) records\n"
       "each night's commit, verdict and culprits; STATE/nights/<UTC>/night.md says what happened.\n"
-      "A night whose head is last night's commit costs a fetch. Exit 0: nothing new, unchanged or\n"
-      "a first baseline; 1: changed (or the branch moved backwards); 2: the build, the run or a\n"
-      "driver failed, or bad input.");
+      "A night whose head is last night's commit costs a fetch; a fetch that fails or an upstream\n"
+      "branch that is gone is an error, never \"nothing new\". Exit 0: nothing new, unchanged or\n"
+      "a first baseline; 1: changed (or the branch moved backwards); 2: the fetch, the build, the\n"
+      "run or a driver failed, or bad input (a damaged watch.json, a state of another tree, an\n"
+      "experiment whose platforms cannot draw a build).");
   struct Options {
     triage::WatchOptions o;
     bool fresh_builds = false, no_fetch = false;
@@ -56,10 +58,7 @@ void register_watch_command(CLI::App& app, int& exit_code) {
       const triage::WatchNight n = triage::watch_night(o, [](const std::string& text) {
         std::fprintf(stderr, "watch: %s\n", text.c_str());
       });
-      std::printf("night: %s: %s (%s)\n", n.verdict.c_str(), n.note.c_str(),
-                  n.commit.substr(0, 12).c_str());
-      if (!n.dir.empty()) std::printf("details: %s/night.md\n", n.dir.c_str());
-      for (const std::string& c : n.culprits) std::printf("first bad commit: %s\n", c.c_str());
+      for (const std::string& line : triage::night_lines(n)) std::printf("%s\n", line.c_str());
       exit_code = n.exit_code;
     } catch (const util::Interrupted& e) {
       std::fprintf(stderr, "watch: %s\n", e.what());

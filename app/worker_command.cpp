@@ -27,6 +27,7 @@ void register_worker_command(CLI::App& app, int& exit_code) {
     uint64_t end = 0;
     std::string serve_dir;
     std::string serve_platform;
+    bool alone = false;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
   cmd->add_option("dir", opts->dir)->required();
@@ -50,9 +51,10 @@ void register_worker_command(CLI::App& app, int& exit_code) {
   serve->group("");
   serve->add_option("dir", opts->serve_dir)->required();
   serve->add_option("platform", opts->serve_platform)->required();
+  serve->add_flag("--alone", opts->alone, "draw every primitive alone (timing comparisons)");
   serve->callback([opts, &exit_code] {
     const rundir::Experiment exp = rundir::load_run_experiment(opts->serve_dir);
-    runner::serve_shards(opts->serve_dir, exp, opts->serve_platform, std::cin);
+    runner::serve_shards(opts->serve_dir, exp, opts->serve_platform, std::cin, opts->alone);
     exit_code = kExitOk;
   });
 }

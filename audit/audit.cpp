@@ -5,6 +5,7 @@
 #include "util/dir_lock.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <regex>
 
@@ -150,8 +151,15 @@ AuditResult run_audit(const AuditOptions& o) {
   r.distributions = audit_distributions(baseline, current, r.pairs, o.alpha, o.jobs);
   r.classes = compare_class_counts(baseline, current, r.pairs);
 
-  // 6. Verdict, and the history record.
-  decide_verdict(r);
+  // 6. Drawing time, interleaved and judged. A baseline night compares nothing.
+  if (o.speed.enabled && !r.self_audit()) {
+    SpeedOptions so = o.speed;
+    if (so.program.empty()) so.program = o.program;
+    r.speed = audit_speed(r.baseline, r.current, r.pairs, avoid, so, o.progress);
+  }
+
+  // 7. Verdict, and the history record.
+  decide_verdict(r, o.speed.warn_only);
   if (!same_rules)
     r.reasons.push_back("conformance classes not compared: the baseline was judged by conformance "
                         "rules " + std::to_string(r.baseline.conformance_rules) + ", the run by " +
@@ -161,7 +169,28 @@ AuditResult run_audit(const AuditOptions& o) {
   return r;
 }
 
-void decide_verdict(AuditResult& r) {
+namespace {
+
+// "triangles of view group D 1.31x [1.25, 1.38] slower" for each group that moved.
+std::vector<std::string> speed_reasons(const AuditResult& r, bool warn_only) {
+  std::vector<std::string> out;
+  for (const SpeedComparison& c : r.speed.comparisons) {
+    if (c.verdict != SpeedVerdict::kSlower && c.verdict != SpeedVerdict::kFaster) continue;
+    char text[256];
+    std::snprintf(text, sizeof text, "%s draws %ss of view group %s %s: %.3gx [%.3g, %.3g]%s",
+                  c.platform.c_str(), geometry::kind_name(c.kind), c.group.c_str(),
+                  speed_verdict_name(c.verdict), c.ratio, c.low, c.high,
+                  c.verdict == SpeedVerdict::kSlower && warn_only ? " (a warning: --speed-warn-only)"
+                                                                   : "");
+    out.push_back(text);
+  }
+  for (const std::string& e : r.speed.errors) out.push_back("drawing time not compared: " + e);
+  return out;
+}
+
+}  // namespace
+
+void decide_verdict(AuditResult& r, bool speed_warn_only) {
   r.reasons.clear();
   const std::size_t failed = r.primitives.failed.size();
   if (failed) r.reasons.push_back(std::to_string(failed) + " crash/timeout record(s)");
@@ -188,11 +217,17 @@ void decide_verdict(AuditResult& r) {
     return;
   }
   const std::size_t changed = r.changed_count();
-  if (changed) {
+  const std::size_t slower = r.speed.count(SpeedVerdict::kSlower);
+  if (changed || (slower && !speed_warn_only)) {
     r.verdict = Verdict::kChanged;
-    r.reasons.push_back(std::to_string(changed) + " primitive(s) changed" +
-                        (r.flake_count() ? " (and " + std::to_string(r.flake_count()) + " flake(s))"
-                                         : std::string()));
+    if (changed)
+      r.reasons.push_back(std::to_string(changed) + " primitive(s) changed" +
+                          (r.flake_count() ? " (and " + std::to_string(r.flake_count()) +
+                                                 " flake(s))"
+                                           : std::string()));
+    else
+      r.reasons.push_back("no primitive changed, but drawing time did");
+    for (const std::string& s : speed_reasons(r, speed_warn_only)) r.reasons.push_back(s);
     if (r.distributions.significant)
       r.reasons.push_back(std::to_string(r.distributions.significant) +
                           " distribution test(s) significant after Holm correction");
@@ -206,6 +241,7 @@ void decide_verdict(AuditResult& r) {
                       (r.flake_count() ? " (" + std::to_string(r.flake_count()) +
                                              " difference(s) disappeared on re-render: flakes)"
                                        : std::string()));
+  for (const std::string& s : speed_reasons(r, speed_warn_only)) r.reasons.push_back(s);
   if (r.distributions.significant)
     r.reasons.push_back(std::to_string(r.distributions.significant) +
                         " distribution test(s) significant after Holm correction, caused by the "
@@ -231,6 +267,11 @@ AuditSummary make_summary(const AuditResult& r, const analysis::RunRecords& curr
   s.flaky_primitives = int64_t(r.flake_count());
   s.failed_primitives = int64_t(r.primitives.failed.size());
   s.significant_tests = int64_t(r.distributions.significant);
+  for (const SpeedComparison& c : r.speed.comparisons)
+    s.speed.push_back({c.platform, c.baseline_platform, geometry::kind_name(c.kind),
+                       c.view_group + 1, int64_t(c.n), c.ratio, c.low, c.high,
+                       c.baseline_median_us, c.current_median_us,
+                       speed_verdict_name(c.verdict)});
   const auto hf6 = stats::QuantileDefinition::kHyndmanFan6;
   for (const PlatformPair& pair : r.pairs) {
     const std::size_t p = platform_index(current, pair.current);

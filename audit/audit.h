@@ -11,14 +11,16 @@
 //   4. Flakes: every changed primitive rendered once more (audit/flake_check.h).
 //   5. Per distribution: Welch t and Levene, raw and Box-Cox, Holm-corrected, effect sizes; and the
 //      visibility-class counts (audit/distribution_audit.h).
-//   6. Verdict (audit/audit_summary.h Verdict, also the exit code):
+//   6. Drawing time, when asked (--speed): the sides drawn again, interleaved, and judged per pair,
+//      kind and view group (audit/speed_audit.h).
+//   7. Verdict (audit/audit_summary.h Verdict, also the exit code):
 //      failed (2)    a crash / timeout record or a missing shard on either side, a manifest
 //                    failure of a shard not in the plan, a re-render that crashed or hung, or a
 //                    current driver not matching --expect-renderer;
 //      changed (1)   otherwise, when a primitive's pixels, status or class differ and the
-//      difference
-//                    did not disappear on re-render (flakes do not count; changed primitives over
-//                    the re-render cap count as changed);
+//                    difference did not disappear on re-render (flakes do not count; changed
+//                    primitives over the re-render cap count as changed), or when a group draws
+//                    `slower` (unless --speed-warn-only);
 //      baseline (0)  otherwise, when the baseline and the current run are one directory (the first
 //                    night of a nightly series): nothing was compared;
 //      unchanged (0) otherwise. Significant distribution tests do not decide on their own: the same
@@ -27,6 +29,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +38,7 @@
 #include "audit/distribution_audit.h"
 #include "audit/flake_check.h"
 #include "audit/run_identity.h"
+#include "audit/speed_audit.h"
 
 namespace ra::audit {
 
@@ -48,6 +52,8 @@ struct AuditOptions {
   std::size_t max_rerenders = 2000;  // flake check cap; 0 turns the check off
   unsigned jobs = 0;                 // threads and re-render children; 0: the number of cores
   std::string program;               // runs `worker` for re-renders; empty: worker_program()
+  SpeedOptions speed;                // step 6; off unless speed.enabled
+  std::function<void(const std::string&)> progress;  // one line per timing process; may be empty
 };
 
 struct AuditResult {
@@ -65,6 +71,7 @@ struct AuditResult {
   audit::FlakeCheckSummary flakes;
   DistributionAudit distributions;
   std::vector<ClassCountChange> classes;
+  SpeedAudit speed;  // performed only when asked
   Verdict verdict = Verdict::kUnchanged;
   std::vector<std::string> reasons;  // why the verdict, one line each
   AuditSummary summary;              // what goes into the history database
@@ -76,12 +83,13 @@ struct AuditResult {
   std::size_t recovered_count() const;  // manifest failures that did not recur
 };
 
-// Runs the audit (steps 1-6). Throws ra::util::UserError for bad input (not run directories, different
+// Runs the audit (steps 1-7). Throws ra::util::UserError for bad input (not run directories, different
 // experiments, unknown platforms, a bad regex): nothing is written then.
 AuditResult run_audit(const AuditOptions& options);
 
-// Sets result.verdict and result.reasons from what was found (rule 6 above).
-void decide_verdict(AuditResult& result);
+// Sets result.verdict and result.reasons from what was found (rule 7 above). `speed_warn_only`:
+// a slower group is a reason, not a change.
+void decide_verdict(AuditResult& result, bool speed_warn_only = false);
 
 // The history record: identity, drivers, verdict and counts, and per current platform x kind x view
 // group (1-based, 1 = A) every metric's n, median and IQR and every class count of the current

@@ -56,6 +56,40 @@ json test_json(const DistributionTest& t) {
   return j;
 }
 
+json outcome_json(const analysis::TestOutcome& t, double p_holm) {
+  if (!t.defined) return {{"defined", false}, {"reason", t.reason}};
+  return {{"defined", true},       {"statistic", t.statistic}, {"df1", t.df1},
+          {"df2", t.df2},          {"p_value", t.p_value},     {"p_adjusted", p_holm}};
+}
+
+// One object per platform pair, kind and view group (docs/nightly-audit.md): ratio = current /
+// baseline drawing time, its 95% interval, the verdict.
+json speed_json(const SpeedComparison& c) {
+  json box_cox = c.box_cox.applicable ? json{{"applied", true}, {"lambda", c.box_cox.lambda}}
+                                      : json{{"applied", false}, {"reason", c.box_cox.reason}};
+  return {{"platform", c.platform},
+          {"baseline_platform", c.baseline_platform},
+          {"kind", geometry::kind_name(c.kind)},
+          {"group", c.group},
+          {"ratio", util::finite_or_null(c.ratio)},
+          {"low", util::finite_or_null(c.low)},
+          {"high", util::finite_or_null(c.high)},
+          {"verdict", speed_verdict_name(c.verdict)},
+          {"n", c.n},
+          {"repeats", c.repeats},
+          {"baseline_median_us", util::finite_or_null(c.baseline_median_us)},
+          {"current_median_us", util::finite_or_null(c.current_median_us)},
+          {"control", {{"ratio", util::finite_or_null(c.control_ratio)},
+                       {"low", util::finite_or_null(c.control_low)},
+                       {"high", util::finite_or_null(c.control_high)}}},
+          {"band", util::finite_or_null(c.band)},
+          {"repeats_to_settle", c.repeats_to_settle > 0 ? json(c.repeats_to_settle) : json(nullptr)},
+          {"reason", c.reason.empty() ? json(nullptr) : json(c.reason)},
+          {"box_cox", box_cox},
+          {"welch_t", outcome_json(c.welch, c.welch_p_holm)},
+          {"levene_median", outcome_json(c.levene, c.levene_p_holm)}};
+}
+
 json comparison_json(const AuditResult& r, const DistributionComparison& c) {
   const analysis::MetricSpec& m = analysis::kind_metrics(c.kind)[c.metric];
   json bc = {{"applied", c.box_cox.applicable}};
@@ -237,6 +271,19 @@ json audit_json(const AuditResult& r) {
                        {"after", c.after},
                        {"difference", int64_t(c.after) - int64_t(c.before)}});
   j["visibility"] = classes;
+  json speed = json::array();
+  for (const SpeedComparison& c : r.speed.comparisons) speed.push_back(speed_json(c));
+  j["speed"] = speed;
+  j["speed_measurement"] = {{"performed", r.speed.performed},
+                            {"repeats", r.speed.options.repeats},
+                            {"primitives_per_view", r.speed.options.per_view},
+                            {"threshold", r.speed.options.threshold},
+                            {"warn_only", r.speed.options.warn_only},
+                            {"interval", "hodges-lehmann, signed-rank 95%"},
+                            {"tests", "welch_t and levene_median on box-cox, holm-bonferroni"},
+                            {"processes", r.speed.processes},
+                            {"seconds", r.speed.seconds},
+                            {"errors", r.speed.errors}};
   return j;
 }
 

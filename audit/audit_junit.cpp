@@ -15,6 +15,7 @@
 //   property is its number of primitives, "primitives")
 //       <testcase classname="renderaudit.audit.PLATFORM.KIND" name="conformance, group A (...)">
 //         <failure type="violation">primitives breaking a GL rule the baseline did not break
+#include <cstdio>
 #include <sstream>
 
 #include "audit/audit_report.h"
@@ -165,6 +166,41 @@ Case conformance_case(const AuditResult& r, const GroupOutcome& g) {
   return c;
 }
 
+// One case per timed pair, kind and view group: fails when the group draws slower (a skipped
+// case under --speed-warn-only, with the same message); faster, same and unknown pass, saying so.
+Case speed_case(const AuditResult& r, const SpeedComparison& s) {
+  Case c;
+  c.classname = class_prefix(r.pairs[s.pair]) + "." + geometry::kind_name(s.kind);
+  c.name = "drawing time, group " + s.group;
+  auto number = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.4g", v);
+    return std::string(text);
+  };
+  c.properties = {{"verdict", speed_verdict_name(s.verdict)},
+                  {"ratio", number(s.ratio)},
+                  {"low", number(s.low)},
+                  {"high", number(s.high)},
+                  {"primitives", std::to_string(s.n)},
+                  {"repeats", std::to_string(s.repeats)}};
+  const std::string message = "draws " + std::string(geometry::kind_name(s.kind)) +
+                              "s of group " + s.group + " " + speed_verdict_name(s.verdict) + ": " +
+                              number(s.ratio) + "x [" + number(s.low) + ", " + number(s.high) +
+                              "], band " + number(s.band) + "x";
+  if (s.verdict == SpeedVerdict::kSlower) {
+    if (r.speed.options.warn_only) {
+      c.skipped = "slower, a warning only (--speed-warn-only): " + message;
+    } else {
+      c.failure_type = "slower";
+      c.failure_message = message;
+      c.failure_text = message + "\n";
+    }
+  } else {
+    c.system_out = message + (s.reason.empty() ? "" : " (" + s.reason + ")") + "\n";
+  }
+  return c;
+}
+
 }  // namespace
 
 std::string audit_junit(const AuditResult& r) {
@@ -211,6 +247,7 @@ std::string audit_junit(const AuditResult& r) {
     suites[g.pair].push_back(group_case(r, g));
     suites[g.pair].push_back(conformance_case(r, g));
   }
+  for (const SpeedComparison& s : r.speed.comparisons) suites[s.pair].push_back(speed_case(r, s));
   // A run against itself judges nothing: every case is skipped (drivers and shards too: their
   // failures would have made the verdict "failed"), with only the primitives recorded as data.
   if (r.verdict == Verdict::kBaseline)

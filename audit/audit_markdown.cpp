@@ -1,5 +1,7 @@
 // audit.md: the summary a person reads first (audit/audit_report.h).
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "audit/audit_report.h"
@@ -143,6 +145,58 @@ void counts(std::ostream& md, const AuditResult& r) {
   md << "\nPer view: `audit.json` key `views`. A primitive is changed when its lit pixels "
         "(records' "
         "`pixel_hash`), its status or its visibility class differ.\n\n";
+}
+
+// "1.31x [1.25, 1.38]" of a ratio and its interval; "-" when undefined.
+std::string ratio_text(double ratio, double low, double high) {
+  if (!std::isfinite(ratio)) return "-";
+  char text[96];
+  std::snprintf(text, sizeof text, "%.3fx [%.3f, %.3f]", ratio, low, high);
+  return text;
+}
+
+void speed(std::ostream& md, const AuditResult& r) {
+  const SpeedAudit& s = r.speed;
+  if (!s.performed) return;
+  md << "## Drawing time\n\n"
+     << "Per platform, kind and view group: the current side's drawing time over the "
+        "baseline's, the Hodges-Lehmann ratio of the paired per-primitive times with its "
+        "signed-rank 95% interval. The first "
+     << s.options.per_view << " primitives of each kind and view were drawn alone by the "
+     << "baseline, the current side and a control (the baseline again), in " << s.options.repeats
+     << " interleaved rounds of fresh processes (" << s.processes << " processes, "
+     << format_number(s.seconds, 3) << " s); a primitive's time is the median of its rounds. "
+     << "A change counts only when its whole interval lies beyond the band: "
+     << format_number(100 * s.options.threshold, 3)
+     << "%, or wider where the control (two identical sides) moved more. Welch's t and Levene's "
+        "test on Box-Cox transformed times (one lambda), Holm-adjusted over these tests, are "
+        "shown beside it; they do not decide.\n\n";
+  for (const std::string& e : s.errors) md << "- Not timed: " << e << "\n";
+  if (!s.errors.empty()) md << "\n";
+  using stats::Align;
+  md << stats::markdown_header({"platform", "kind", "group", "n", "median us before -> after",
+                                "ratio [95%]", "control [95%]", "band", "Welch p (Holm)",
+                                "Levene p (Holm)", "verdict"},
+                               {Align::kLeft, Align::kLeft, Align::kCenter, Align::kRight,
+                                Align::kRight, Align::kRight, Align::kRight, Align::kRight,
+                                Align::kRight, Align::kRight, Align::kLeft});
+  for (const SpeedComparison& c : s.comparisons) {
+    std::string verdict = speed_verdict_name(c.verdict);
+    if (c.verdict == SpeedVerdict::kUnknown)
+      verdict += c.repeats_to_settle > 0
+                     ? ": about " + std::to_string(c.repeats_to_settle) +
+                           " repeats would settle it (--speed-repeats)"
+                     : (c.reason.empty() ? ": at the band's edge" : ": " + c.reason);
+    md << "| " << cell(r.pairs[c.pair].label()) << " | " << geometry::kind_name(c.kind) << " | "
+       << c.group << " | " << c.n << " | " << format_number(c.baseline_median_us, 3) << " -> "
+       << format_number(c.current_median_us, 3) << " | " << ratio_text(c.ratio, c.low, c.high)
+       << " | " << ratio_text(c.control_ratio, c.control_low, c.control_high) << " | "
+       << (std::isfinite(c.band) ? format_number(c.band, 4) + "x" : std::string("-")) << " | "
+       << (c.welch.defined ? format_number(c.welch_p_holm, 3) : std::string("-")) << " | "
+       << (c.levene.defined ? format_number(c.levene_p_holm, 3) : std::string("-")) << " | "
+       << cell(verdict) << " |\n";
+  }
+  md << "\n";
 }
 
 void tests(std::ostream& md, const AuditResult& r) {
@@ -329,6 +383,7 @@ std::string audit_markdown(const AuditResult& r) {
   new_violations(md, r);
   drivers(md, r);
   counts(md, r);
+  speed(md, r);
   md << "## Changed primitives\n\n";
   list_primitives(md, r, false);
   md << "\n";

@@ -1,6 +1,6 @@
 // What `renderaudit audit` writes into its output directory, each file atomically (temp + rename,
 // util/atomic_file.h):
-//   audit.json              everything, machine-readable ("schema_version": 1; keys in docs/nightly-audit.md)
+//   audit.json              everything, machine-readable ("schema_version": 2; keys in docs/nightly-audit.md)
 //   audit.md                for a person, read first: verdict, new conformance violations (first:
 //                           what a driver team must see), drivers side by side, counts, the
 //                           changed primitives (first 50 + total, each with its `renderaudit show`
@@ -22,7 +22,7 @@
 
 namespace ra::audit {
 
-constexpr int kAuditSchemaVersion = 1;
+constexpr int kAuditSchemaVersion = 2;  // 2 added `speed` and `speed_measurement`
 constexpr std::size_t kMarkdownListed = 50;  // changed primitives and flakes shown in audit.md
 constexpr std::size_t kJsonListed = 10000;   // ... in audit.json (all in changed_primitives.csv)
 

@@ -190,7 +190,7 @@ TEST(AuditReport, JsonCarriesSchemaVersionAndLists) {
   AuditResult r = result_with({Recheck::kStillDifferent, Recheck::kFlake});
   decide_verdict(r);
   const nlohmann::json j = audit_json(r);
-  EXPECT_EQ(j["schema_version"], 1);
+  EXPECT_EQ(j["schema_version"], 2);
   EXPECT_EQ(j["verdict"], "changed");
   EXPECT_EQ(j["exit_code"], 1);
   EXPECT_EQ(j["changed_primitives"]["total"], 1);

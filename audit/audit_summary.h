@@ -41,6 +41,17 @@ struct DriverIdentity {
   std::string platform, renderer, version;  // GL_RENDERER / GL_VERSION from the manifest
 };
 
+// Drawing time of one platform pair, kind and view group (audit/speed_audit.h): current over
+// baseline, the Hodges-Lehmann ratio and its 95% interval, medians in microseconds.
+struct SpeedSummary {
+  std::string platform, baseline_platform, kind;
+  int view_group = 0;  // 1..4 = groups A..D
+  int64_t n = 0;       // primitives timed on every side
+  double ratio = 0, low = 0, high = 0;
+  double baseline_median_us = 0, current_median_us = 0;
+  std::string verdict;  // "same", "faster", "slower", "unknown"
+};
+
 struct AuditSummary {
   std::string date_utc;          // ISO 8601, e.g. "YYYY-MM-DDTHH:MM:SSZ": when the audit ran
   std::string experiment, experiment_hash;
@@ -54,6 +65,7 @@ struct AuditSummary {
   int64_t significant_tests = 0;          // distribution tests rejected after correction
   std::vector<MetricSummary> metrics;
   std::vector<ClassCount> classes;
+  std::vector<SpeedSummary> speed;  // empty unless the audit timed the drawing
 };
 
 }  // namespace ra::audit

@@ -4,6 +4,7 @@
 #include <sqlite3.h>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -79,6 +80,25 @@ CREATE TABLE nights (
   culprits TEXT NOT NULL,
   run_dir TEXT NOT NULL,
   note TEXT NOT NULL
+);
+)sql";
+
+// Added in schema version 4.
+constexpr const char* kSpeedSql = R"sql(
+CREATE TABLE IF NOT EXISTS speed (
+  audit_id INTEGER NOT NULL REFERENCES audits(id),
+  platform TEXT NOT NULL,
+  baseline_platform TEXT NOT NULL,
+  kind TEXT NOT NULL,
+  view_group INTEGER NOT NULL,
+  n INTEGER NOT NULL,
+  ratio REAL,
+  low REAL,
+  high REAL,
+  baseline_median_us REAL,
+  current_median_us REAL,
+  verdict TEXT NOT NULL,
+  UNIQUE (audit_id, platform, kind, view_group)
 );
 )sql";
 
@@ -205,7 +225,7 @@ int64_t count_tables(Connection& c) {
 }
 
 // What the schema check found.
-enum class SchemaState { kEmpty, kVersion1, kVersion2, kCurrent };
+enum class SchemaState { kEmpty, kVersion1, kVersion2, kVersion3, kCurrent };
 
 // Checks the file's schema version; inside a transaction, so that the answer holds for it.
 SchemaState check_schema(Connection& c) {
@@ -226,6 +246,7 @@ SchemaState check_schema(Connection& c) {
                           std::to_string(kHistorySchemaVersion) + "): use a newer renderaudit");
   if (version == 1) return SchemaState::kVersion1;  // no nights table yet
   if (version == 2) return SchemaState::kVersion2;  // no baseline verdict yet
+  if (version == 3) return SchemaState::kVersion3;  // no speed table yet
   if (version < kHistorySchemaVersion)
     throw util::UserError(c.path() + ": unknown history schema version " + std::to_string(version));
   return SchemaState::kCurrent;
@@ -261,8 +282,10 @@ void create_or_migrate(Connection& c) {
            "cannot migrate the history schema");
     c.exec("PRAGMA writable_schema = OFF", "cannot migrate the history schema");
   }
-  if (state != SchemaState::kCurrent)
+  if (state != SchemaState::kCurrent) {
+    c.exec(kSpeedSql, "cannot create the history schema");
     c.exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
+  }
 }
 
 Connection open_for_append(const std::string& db_path, int busy_timeout_ms) {
@@ -384,6 +407,16 @@ int64_t append_history(const std::string& db_path, const AuditSummary& s,
         st.bind(2, k.platform).bind(3, k.kind).bind(4, int64_t(k.view_group));
         st.bind(5, k.visibility).bind(6, k.count);
       });
+  insert_each(
+      "INSERT INTO speed (audit_id, platform, baseline_platform, kind, view_group, n, ratio, low, "
+      "high, baseline_median_us, current_median_us, verdict) "
+      "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)",
+      s.speed, [](Statement& st, const SpeedSummary& x) {
+        st.bind(2, x.platform).bind(3, x.baseline_platform).bind(4, x.kind);
+        st.bind(5, int64_t(x.view_group)).bind(6, x.n).bind_real(7, x.ratio);
+        st.bind_real(8, x.low).bind_real(9, x.high).bind_real(10, x.baseline_median_us);
+        st.bind_real(11, x.current_median_us).bind(12, x.verdict);
+      });
   c.exec("COMMIT", "cannot commit the audit to the history");
   return id;
 }
@@ -435,7 +468,34 @@ std::vector<HistoryEntry> read_history(const std::string& db_path, std::size_t l
   Statement k(c,
               "SELECT platform, kind, view_group, visibility, count FROM classes "
               "WHERE audit_id = ?1 ORDER BY rowid");
+  // A database from before the speed table has no speed rows to read.
+  const bool has_speed = c.pragma_int("user_version") >= 4;
+  std::optional<Statement> sp;
+  if (has_speed)
+    sp.emplace(c,
+               "SELECT platform, baseline_platform, kind, view_group, n, ratio, low, high, "
+               "baseline_median_us, current_median_us, verdict FROM speed WHERE audit_id = ?1 "
+               "ORDER BY rowid");
   for (HistoryEntry& e : out) {
+    if (sp) {
+      sp->bind(1, e.id);
+      while (sp->step()) {
+        SpeedSummary x;
+        x.platform = sp->text(0);
+        x.baseline_platform = sp->text(1);
+        x.kind = sp->text(2);
+        x.view_group = int(sp->integer(3));
+        x.n = sp->integer(4);
+        x.ratio = sp->real(5);
+        x.low = sp->real(6);
+        x.high = sp->real(7);
+        x.baseline_median_us = sp->real(8);
+        x.current_median_us = sp->real(9);
+        x.verdict = sp->text(10);
+        e.summary.speed.push_back(std::move(x));
+      }
+      sp->reset();
+    }
     d.bind(1, e.id);
     while (d.step()) {
       DriverIdentity x{d.text(1), d.text(2), d.text(3)};

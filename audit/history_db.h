@@ -14,11 +14,17 @@
 //   classes  (audit_id, platform, kind, view_group, visibility) -> count
 //   nights   (version 2) one row per night of `renderaudit watch`: id, date_utc, source, commit,
 //            previous_commit, verdict ('baseline established' | 'nothing new' | 'unchanged' |
-//            'changed' | 'build failed' | 'run failed' | 'moved backwards'), culprits (one
-//            "HASH SUBJECT (N primitives)" per line), run_dir, note. A version 1 database gains
+//            'changed' | 'build failed' | 'run failed' | 'moved backwards' | 'fetch failed' |
+//            'upstream gone'), culprits (one "HASH SUBJECT (N primitives)" per line), run_dir,
+//            note. A version 1 database gains
 //            the table at its next append.
 //   (version 3: audits.verdict may be 'baseline'; a version 1 or 2 database takes it from its
 //   next append on.)
+//   speed    (version 4) (audit_id, platform, kind, view_group) -> baseline_platform, n, ratio,
+//            low, high (current / baseline drawing time and its 95% interval), baseline_median_us,
+//            current_median_us, verdict ('same' | 'faster' | 'slower' | 'unknown'); rows only
+//            for audits that timed the drawing (`audit --speed`). An earlier database gains the
+//            table at its next append.
 // Child rows reference audits(id); an audit is written in one transaction, so a reader sees all of
 // it or none of it.
 //
@@ -45,7 +51,7 @@
 
 namespace ra::audit {
 
-constexpr int kHistorySchemaVersion = 3;
+constexpr int kHistorySchemaVersion = 4;
 constexpr int kHistoryBusyTimeoutMs = 30000;  // how long an appender or reader waits for the lock
 
 // The history an audit appends to when none is named: history.sqlite beside the current run

@@ -46,6 +46,10 @@ AuditSummary make_summary(int k, std::size_t metric_rows = 6) {
   s.classes = {{"osmesa-llvmpipe", "point", "true-visible", 1, 950},
                {"osmesa-llvmpipe", "point", "false-invisible", 1, 3 + k},
                {"osmesa-softpipe", "point", "crash", 2, 1}};
+  s.speed = {{"osmesa-llvmpipe", "osmesa-llvmpipe", "triangle", 4, 200, 0.74 + 0.01 * k, 0.71, 0.77,
+              310.5, 229.75, "faster"},
+             {"osmesa-llvmpipe", "osmesa-llvmpipe", "point", 1, 5, NAN, NAN, NAN, 7.5, 7.25,
+              "unknown"}};
   return s;
 }
 
@@ -91,6 +95,21 @@ void expect_same(const AuditSummary& a, const AuditSummary& b) {
     EXPECT_EQ(a.classes[i].visibility, b.classes[i].visibility);
     EXPECT_EQ(a.classes[i].view_group, b.classes[i].view_group);
     EXPECT_EQ(a.classes[i].count, b.classes[i].count);
+  }
+  ASSERT_EQ(a.speed.size(), b.speed.size());
+  auto same_real = [](double x, double y) { return std::isnan(x) ? std::isnan(y) : x == y; };
+  for (std::size_t i = 0; i < a.speed.size(); ++i) {
+    const SpeedSummary &x = a.speed[i], &y = b.speed[i];
+    EXPECT_EQ(x.platform, y.platform);
+    EXPECT_EQ(x.baseline_platform, y.baseline_platform);
+    EXPECT_EQ(x.kind, y.kind);
+    EXPECT_EQ(x.view_group, y.view_group);
+    EXPECT_EQ(x.n, y.n);
+    EXPECT_TRUE(same_real(x.ratio, y.ratio) && same_real(x.low, y.low) &&
+                same_real(x.high, y.high));
+    EXPECT_EQ(x.baseline_median_us, y.baseline_median_us);
+    EXPECT_EQ(x.current_median_us, y.current_median_us);
+    EXPECT_EQ(x.verdict, y.verdict);
   }
 }
 
@@ -167,6 +186,26 @@ TEST(HistoryDb, AVersion1DatabaseGainsTheNightsAndKeepsItsAudits) {
   EXPECT_EQ(nights[0].commit, n.commit);
   EXPECT_EQ(nights[0].culprits, n.culprits);
   EXPECT_EQ(nights[0].verdict, "changed");
+  EXPECT_EQ(history_integrity(db), "ok");
+}
+
+TEST(HistoryDb, AVersion3DatabaseGainsTheSpeedTableAndKeepsItsAudits) {
+  // Why: drawing-time verdicts go into a table of their own; a history written before it must
+  // read as it did (no speed rows) and take them from its next append.
+  const std::string db = fresh_dir("history_speed") + "/history.sqlite";
+  AuditSummary old = make_summary(1);
+  old.speed.clear();
+  append_history(db, old);
+  set_pragma(db, "DROP TABLE speed; PRAGMA user_version = 3");  // as version 3 wrote it
+  std::vector<HistoryEntry> all = read_history(db);
+  ASSERT_EQ(all.size(), 1u);
+  expect_same(old, all[0].summary);
+  append_history(db, make_summary(2));
+  EXPECT_EQ(pragma_value(db, "user_version"), kHistorySchemaVersion);
+  all = read_history(db);
+  ASSERT_EQ(all.size(), 2u);
+  expect_same(old, all[0].summary);
+  expect_same(make_summary(2), all[1].summary);
   EXPECT_EQ(history_integrity(db), "ok");
 }
 

@@ -64,7 +64,32 @@ class FaultyPlatform : public Platform {
     if (listed(plan_.crash, prim.index)) std::raise(SIGSEGV);  // what a crashing driver does
     if (listed(plan_.hang, prim.index))
       for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
-    if (base_) return base_->render(prim, expected);
+    const auto t0 = Clock::now();
+    RenderResult out = base_ ? base_->render(prim, expected) : draw_reference(prim);
+    if (plan_.timed) {
+      // The base's own measure of its drawing where it has one (a GL driver's), else the wall
+      // time of the reference rasterization; the slowdown is spent here, inside the drawing.
+      const double drawn_us = base_ ? out.render_us : microseconds_since(t0);
+      const double extra_us = plan_.slows(prim.kind) ? plan_.slowdown * drawn_us : 0;
+      const auto spin_from = Clock::now();
+      while (microseconds_since(spin_from) < extra_us) {
+      }
+      const double spun_us = microseconds_since(spin_from);
+      if (base_)
+        out.render_us += spun_us, out.host_us += spun_us;
+      else
+        out.render_us = out.host_us = microseconds_since(t0);
+    }
+    return out;
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  static double microseconds_since(Clock::time_point t) {
+    return std::chrono::duration<double, std::micro>(Clock::now() - t).count();
+  }
+
+  RenderResult draw_reference(const geometry::Primitive& prim) {
     RenderResult out;
     const geometry::SubpixelGrid grid(plan_.snap_bits, plan_.snap_truncate
                                                            ? geometry::SnapRounding::kTruncate
@@ -82,12 +107,11 @@ class FaultyPlatform : public Platform {
                       (anchor.y + view_.height / 2) % view_.height});
     }
     out.lit.clip_to({0, 0, view_.width, view_.height});
-    out.render_us = out.host_us = 0;
+    out.render_us = out.host_us = 0;  // untimed unless the plan asks (FaultPlan::timed)
     out.full_scan = true;
     return out;
   }
 
- private:
   // Removes the pixel nearest the segment's second end along its major axis, as a Bresenham
   // loop that stops one step early does.
   void drop_last_pixel(const geometry::Primitive& prim, geometry::SubpixelGrid grid,

@@ -80,6 +80,7 @@ Figure trend_figure(const TrendData& data) {
   if (!data.audits.empty() && data.dates.size() == data.audits.size())
     f.note += " Audits " + data.audits.front() + " (" + data.dates.front() + ") to " +
               data.audits.back() + " (" + data.dates.back() + ").";
+  if (!data.note.empty()) f.note += " " + data.note;
 
   BoxPlotContent c;
   c.categories = data.audits;

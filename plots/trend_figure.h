@@ -39,6 +39,7 @@ struct TrendData {
   std::vector<std::string> audits;  // x categories, oldest first, e.g. "#12"
   std::vector<std::string> dates;   // the audits' dates (ISO 8601), same order
   std::vector<TrendSeries> series;
+  std::string note;  // appended to the figure's note (e.g. change points found in the series)
 };
 
 // The y-axis label of a metric column and the power of ten its values are shown at: the paper's

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -233,9 +234,19 @@ std::vector<Block> audit_blocks(const std::string& run_dir) {
   t.header = {"platform", "baseline platform", "verdict", "compared", "changed", "flaky",
               "failed (primitives, shards)", "missing shards"};
   t.right = {false, false, false, true, true, true, true, true};
+  // Drawing time (audit --speed): a group that draws slower fails its driver unless the audit
+  // made that a warning.
+  const json speed = j.value("speed", json::array());
+  const bool speed_warn_only =
+      j.value("speed_measurement", json::object()).value("warn_only", false);
+  std::set<std::string> slower;
+  for (const auto& row : speed)
+    if (row.is_object() && row.value("verdict", "") == "slower" && !speed_warn_only)
+      slower.insert(row.value("platform", "?"));
   for (const auto& [p, d] : drivers) {
     const std::int64_t miss = missing.count(p) ? missing.at(p) : 0;
-    const bool pass = d.changed == 0 && d.failed == 0 && miss == 0 && !mismatched.count(p);
+    const bool pass = d.changed == 0 && d.failed == 0 && miss == 0 && !mismatched.count(p) &&
+                      !slower.count(p);
     t.rows.push_back({p, d.baseline, pass ? "PASS" : "FAIL", std::to_string(d.compared),
                       std::to_string(d.changed), std::to_string(d.flakes),
                       std::to_string(d.failed), std::to_string(miss)});
@@ -244,9 +255,39 @@ std::vector<Block> audit_blocks(const std::string& run_dir) {
     t.notes.push_back("A driver whose GL_RENDERER does not match --expect-renderer fails.");
   for (const auto& r : j.value("reasons", json::array()))
     if (r.is_string()) t.notes.push_back(r.get<std::string>());
+  if (!slower.empty()) t.notes.push_back("A driver that draws a kind and view group slower fails.");
   Block b = make_block(Block::Kind::kTable);
   b.table = std::move(t);
   out.push_back(std::move(b));
+  if (speed.empty()) return out;
+  Table time;
+  time.title = "Drawing time against the baseline";
+  time.header = {"platform", "kind", "group", "current / baseline [95%]", "verdict"};
+  time.right = {false, false, false, true, false};
+  auto fixed3 = [](const json& v) {
+    if (!v.is_number()) return std::string("-");
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", v.get<double>());
+    return std::string(text);
+  };
+  for (const auto& row : speed) {
+    if (!row.is_object()) continue;
+    time.rows.push_back({row.value("platform", "?"), row.value("kind", "?"),
+                         row.value("group", "?"),
+                         fixed3(row.value("ratio", json())) + " [" +
+                             fixed3(row.value("low", json())) + ", " +
+                             fixed3(row.value("high", json())) + "]",
+                         row.value("verdict", "?")});
+  }
+  time.notes.push_back(
+      "Each primitive drawn alone by both sides and a control (the baseline again), in "
+      "interleaved rounds; the ratio is the Hodges-Lehmann estimate of the paired per-primitive "
+      "ratios with its signed-rank interval. Slower or faster only when the whole "
+      "interval lies beyond the threshold and the control's own spread; audit/audit.md has the "
+      "control, the tests and the method.");
+  Block tb = make_block(Block::Kind::kTable);
+  tb.table = std::move(time);
+  out.push_back(std::move(tb));
   return out;
 }
 

@@ -13,7 +13,7 @@
 #include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
-#include "util/git_ref.h"
+#include "util/git_ref_check.h"
 #include "util/json_seal.h"
 
 namespace fs = std::filesystem;

@@ -251,7 +251,8 @@ rundir::FaultPlan parse_fault_plan(const util::TomlLocator& loc, const toml::tab
   rundir::FaultPlan plan;
   loc.reject_unknown_keys(t, "faults.",
                           {"base", "crash", "hang", "hang_at_exit", "wild_pixel", "shift_fraction", "flaky_fraction",
-                           "snap_bits", "snap_rounding", "drop_line_end_fraction"});
+                           "snap_bits", "snap_rounding", "drop_line_end_fraction", "slowdown",
+                           "slowdown_kinds"});
   if (const toml::node* n = t.get("base")) {
     const auto* name = n->as_string();
     const std::optional<rundir::PlatformSpec> spec =
@@ -285,6 +286,26 @@ rundir::FaultPlan parse_fault_plan(const util::TomlLocator& loc, const toml::tab
       *dst = loc.number(*n, std::string("faults.") + key);
       if (!(*dst >= 0 && *dst <= 1)) loc.fail(n, std::string("'faults.") + key + "' out of range (allowed: 0 to 1)");
     }
+  }
+  if (const toml::node* n = t.get("slowdown")) {
+    plan.timed = true;
+    plan.slowdown = loc.number(*n, "faults.slowdown");
+    if (!(plan.slowdown >= 0 && plan.slowdown <= 100))
+      loc.fail(n, "'faults.slowdown' out of range (allowed: 0 to 100, the added fraction of the "
+                  "drawing time)");
+  }
+  if (const toml::node* n = t.get("slowdown_kinds")) {
+    const auto* list = n->as_array();
+    if (!list) loc.fail(n, "'faults.slowdown_kinds' must be a list of kinds (allowed: point, line, triangle)");
+    for (const toml::node& e : *list) {
+      geometry::Kind k{};
+      const auto* name = e.as_string();
+      if (!name || !geometry::parse_kind(name->get(), &k))
+        loc.fail(&e, "'faults.slowdown_kinds': not a kind (allowed: point, line, triangle)");
+      plan.slowdown_kinds.push_back(k);
+    }
+    if (!t.get("slowdown"))
+      loc.fail(n, "'faults.slowdown_kinds' needs 'faults.slowdown' (the fraction to slow them by)");
   }
   return plan;
 }

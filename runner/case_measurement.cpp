@@ -183,7 +183,8 @@ CaseComparison::LineRule line_rule_for(const rundir::PlatformSpec& spec,
 std::vector<metrics::Record> measure_cases(const std::string& platform_name, platforms::Platform& platform,
                                   const geometry::View& view,
                                   const std::vector<geometry::Primitive>& prims,
-                                  const CaseComparison& comparison, std::vector<double>* cost_us) {
+                                  const CaseComparison& comparison, std::vector<double>* cost_us,
+                                  size_t max_batch) {
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t0) {
     return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
@@ -202,7 +203,9 @@ std::vector<metrics::Record> measure_cases(const std::string& platform_name, pla
   std::vector<geometry::Primitive> batch_prims;
   std::vector<geometry::PixelRegion> batch_regions;
   std::vector<int> batch_layers;
-  platforms::LayerPacker packer(platform.batch_layers(), kMaxBatch, kBatchMaxRegionArea);
+  platforms::LayerPacker packer(max_batch > 1 ? platform.batch_layers() : 1,
+                                std::max<size_t>(1, std::min(max_batch, kMaxBatch)),
+                                kBatchMaxRegionArea);
   auto flush = [&] {
     if (batch.empty()) return;
     auto t0 = Clock::now();

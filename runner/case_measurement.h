@@ -59,12 +59,14 @@ CaseComparison::LineRule line_rule_for(const rundir::PlatformSpec& spec,
 // conformance verdict; see CaseComparison). Primitives with NaN/inf coordinates, or no projection, are never drawn:
 // status invalid. `cost_us` (for benchmarks), when given, receives each primitive's share of the
 // wall time in microseconds: its own geometry and measurement, plus an equal share of its batch's
-// drawing and proof.
+// drawing and proof. `max_batch` 1 draws every primitive alone (for timing comparisons: then
+// render_us is the primitive's own time on every platform, whatever its neighbours' pixels).
 std::vector<metrics::Record> measure_cases(const std::string& platform_name, platforms::Platform& platform,
                                   const geometry::View& view,
                                   const std::vector<geometry::Primitive>& prims,
                                   const CaseComparison& comparison,
-                                  std::vector<double>* cost_us = nullptr);
+                                  std::vector<double>* cost_us = nullptr,
+                                  size_t max_batch = kMaxBatch);
 // The same for one primitive.
 metrics::Record measure_case(const std::string& platform_name, platforms::Platform& platform,
                     const geometry::View& view, const geometry::Primitive& prim,

@@ -112,7 +112,8 @@ void ShardSession::run(const rundir::Shard& shard, const std::string& records_di
       for (uint64_t i = first; i < std::min(shard.end, first + kChunk); ++i)
         prims.push_back(geometry::make_primitive(exp_.seed, shard.kind, i));
       for (const metrics::Record& r :
-           runner::measure_cases(shard.platform, *platform_, *view, prims, comparison))
+           runner::measure_cases(shard.platform, *platform_, *view, prims, comparison, nullptr,
+                                 max_batch_ ? max_batch_ : runner::kMaxBatch))
         out.write(r);
     }
     out.finish();

@@ -25,6 +25,9 @@ class ShardSession {
   // Throws on I/O failure (the coordinator reports it) and lets a crashing driver crash the
   // process (the coordinator reports that too).
   void run(const rundir::Shard& shard, const std::string& records_dir = "");
+  // Every primitive drawn alone (a batch of one): what a timing comparison draws, so that
+  // render_us means the same on both sides (runner/case_measurement.h measure_cases).
+  void draw_alone() { max_batch_ = 1; }
 
  private:
   std::string run_dir_;
@@ -32,6 +35,7 @@ class ShardSession {
   std::string platform_name_;
   std::unique_ptr<platforms::Platform> platform_;  // null until the first shard
   runner::EffectiveSubpixel effective_;
+  size_t max_batch_ = 0;  // 0: measure_cases' default
 };
 
 // One shard in a session of its own (the `worker` subcommand).

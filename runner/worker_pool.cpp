@@ -39,7 +39,7 @@ std::vector<std::string> read_replies(Running& r) {
   for (size_t nl; (nl = r.unread.find('\n', start)) != std::string::npos; start = nl + 1) {
     const std::string line = r.unread.substr(start, nl - start);
     std::string id;
-    if (parse_shard_done(line, &id))
+    if (rundir::parse_shard_done(line, &id))
       done.push_back(id);
     else
       r.words += line + "\n";
@@ -120,7 +120,7 @@ std::deque<WorkItem>::iterator WorkerPool::next_for_server(std::deque<WorkItem>&
 // Sends `item` to a server; false when it is gone (it will be reaped as such).
 bool WorkerPool::send_command(Running& r, const WorkItem& item) {
   const std::string line =
-      shard_command_line({item.shard, records_dir_(item), log_path(item)}) + "\n";
+      rundir::shard_command_line({item.shard, records_dir_(item), log_path(item)}) + "\n";
   size_t done = 0;
   while (done < line.size()) {
     const ssize_t n = ::write(r.command_fd, line.data() + done, line.size() - done);

@@ -7,7 +7,9 @@
 #   scripts/nightly.sh --promote RUN_DIR     # make RUN_DIR the baseline from now on
 #
 # Settings (environment): NIGHTLY_EXPERIMENT (experiments/nightly.toml), NIGHTLY_DIR
-# (outputs/nightly), BUILD (build), JOBS (nproc), EXPECT_RENDERER (a GL_RENDERER regex, optional).
+# (outputs/nightly), BUILD (build), JOBS (nproc), EXPECT_RENDERER (a GL_RENDERER regex, optional),
+# NIGHTLY_SPEED: `on` (default: drawing time judged too, a slower group makes the night
+# CHANGED), `warn` (judged, a slower group only reported), `off`.
 set -euo pipefail
 
 experiment=${NIGHTLY_EXPERIMENT:-experiments/nightly.toml}
@@ -31,6 +33,12 @@ tonight="$root/runs/$(date -u +%Y-%m-%dT%H%M%SZ)"
 mkdir -p "$root/runs"
 expect=()
 [[ -n ${EXPECT_RENDERER:-} ]] && expect=(--expect-renderer "$EXPECT_RENDERER")
+case ${NIGHTLY_SPEED:-on} in
+  on) speed=(--speed) ;;
+  warn) speed=(--speed --speed-warn-only) ;;
+  off) speed=() ;;
+  *) echo "nightly: NIGHTLY_SPEED='$NIGHTLY_SPEED' (allowed: on, warn, off)" >&2; exit 2 ;;
+esac
 
 # Each step prints a line or two; the tables stay in their files (summary.md, audit/audit.md,
 # history.txt), and the last line says what the night found, where, and how long it took.
@@ -49,8 +57,8 @@ if [[ ! -e $baseline ]]; then
 fi
 
 verdict=0
-"$bin" audit "$(realpath "$baseline")" "$tonight" --db "$db" --brief 2> "$tonight/audit.stderr" \
-  || verdict=$?
+"$bin" audit "$(realpath "$baseline")" "$tonight" --db "$db" --brief "${speed[@]}" \
+  2> "$tonight/audit.stderr" || verdict=$?
 cat "$tonight/audit.stderr" >&2
 refused=0
 if [[ -f $tonight/audit/audit.json ]]; then

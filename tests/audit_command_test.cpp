@@ -112,7 +112,7 @@ TEST(AuditCommand, ARerunOfTheSameExperimentIsUnchanged) {
   ASSERT_EQ(o.exit_code, 0) << o.output;
   EXPECT_NE(o.output.find("audit: unchanged (exit 0)"), std::string::npos) << o.output;
   const nlohmann::json j = read_json(dir + "/cur/audit/audit.json");
-  EXPECT_EQ(j["schema_version"], 1);
+  EXPECT_EQ(j["schema_version"], 2);
   EXPECT_EQ(j["verdict"], "unchanged");
   EXPECT_EQ(j["counts"]["compared"], 3 * 20);
   EXPECT_EQ(j["counts"]["changed"], 0);

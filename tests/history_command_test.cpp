@@ -150,3 +150,35 @@ TEST(HistoryCommand, AMissingDatabaseOrMetricIsAClearError) {
 }
 
 }  // namespace
+
+namespace {
+
+// Sixteen nights of `audit --speed`: triangles of group D drew at 300 us, from night 9 on at
+// 230 us (a faster driver), with 2% of noise; lines of group C stayed at 40 us.
+TEST(HistoryCommand, DrawingTimeNamesTheNightItStepped) {
+  const std::string dir = fresh_dir("history_speed");
+  const std::string db = dir + "/history.sqlite";
+  const double noise[16] = {1.01, 0.99, 1.02, 0.98, 1.0,  1.01, 0.99, 1.02,
+                            0.98, 1.0,  1.01, 0.99, 1.02, 0.98, 1.0,  1.01};
+  for (int k = 1; k <= 16; ++k) {
+    ra::audit::AuditSummary s = audit(1);
+    s.date_utc = "2026-12-" + std::string(k < 10 ? "0" : "") + std::to_string(k) + "T03:00:00Z";
+    const double tri = (k < 9 ? 300.0 : 230.0) * noise[k - 1];
+    s.speed = {{"osmesa-llvmpipe", "osmesa-llvmpipe", "triangle", 4, 100, 1, 0.97, 1.03, tri, tri,
+                "same"},
+               {"osmesa-llvmpipe", "osmesa-llvmpipe", "line", 3, 100, 1, 0.97, 1.03, 40,
+                40 * noise[(k + 5) % 16], "same"}};
+    ra::audit::append_history(db, s);
+  }
+  const Outcome o = run_renderaudit("history --db " + db + " --last 16 --out " + dir + "/h");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("osmesa-llvmpipe triangle D: 16 audits"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("step at #9 (2026-12-09T03:00:00Z)"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("osmesa-llvmpipe line C: 16 audits, 40.4 us last; no change point"),
+            std::string::npos)
+      << o.output;
+  EXPECT_TRUE(fs::exists(dir + "/h/trend_render_us.png"));
+  EXPECT_EQ(lines_in(dir + "/h/trend_render_us.csv"), 1u + 2 * 16);  // header, 2 series x 16
+}
+
+}  // namespace

@@ -6,7 +6,7 @@
 #include "rundir/manifest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
-#include "util/git_ref.h"
+#include "util/git_ref_check.h"
 #include "util/json_seal.h"
 
 namespace ra::triage {

@@ -3,7 +3,7 @@
 // after it was written (a flipped digit of a pixel hash, a primitive lost from a drawing) is
 // refused before any of it is used. Read back field by field: a missing or mistyped field is a
 // UserError naming the file and the key ("steps[3].commit"), never a JSON library message; a commit
-// is a full hash and the original head a branch name or a full hash (util/git_ref.h), so that no
+// is a full hash and the original head a branch name or a full hash (util/git_ref_check.h), so that no
 // value reaches git as an option. Version 2 files, from before the seal, are read with the same
 // checks of each field; the bisection checks every drawing against its selection on resume.
 #pragma once

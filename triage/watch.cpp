@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "audit/history_db.h"
+#include "rundir/experiment.h"
 #include "rundir/manifest.h"
 #include "rundir/platform_spec.h"
 #include "rundir/run_folder.h"
@@ -21,6 +22,7 @@
 #include "util/dir_lock.h"
 #include "util/duration_text.h"
 #include "util/errors.h"
+#include "util/git_ref_check.h"
 #include "util/interrupt.h"
 
 namespace fs = std::filesystem;
@@ -35,45 +37,63 @@ constexpr const char* kTonightBuild = "watch-tonight";
 
 std::string short_hash(const std::string& c) { return c.substr(0, 12); }
 
-// The last good night: its commit and build, and the branch the tree follows (STATE/watch.json).
+// The last good night: its commit and build, the branch the tree follows and the tree itself
+// (STATE/watch.json). Every value is checked before it reaches git or a path: the file is input
+// like any other, and a commit such as `--output=FILE` would be read by git as an option.
 struct LastNight {
-  std::string commit, build_dir, branch;
+  std::string commit, build_dir, branch, source;
 };
 
 LastNight read_last(const std::string& path) {
   LastNight l;
   std::error_code ec;
   if (!fs::exists(path, ec)) return l;
+  const std::string start_again =
+      "; remove the file to start again from a new baseline (the history keeps every night)";
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(util::read_file(path));
+  } catch (const nlohmann::json::parse_error& e) {
+    throw util::UserError("watch: " + path + ": not a whole JSON document (it breaks off or is " +
+                          "garbled at byte " + std::to_string(e.byte) + "; a write cut short?)" +
+                          start_again);
   } catch (const std::exception& e) {
-    throw util::UserError("watch: " + path + " is not readable JSON (" + e.what() +
-                          "); remove it to start again from a new baseline");
+    throw util::UserError("watch: " + path + ": cannot be read (" + e.what() + ")" + start_again);
   }
-  for (const char* key : {"commit", "build_dir"})
-    if (!j.is_object() || !j.contains(key) || !j[key].is_string())
-      throw util::UserError("watch: " + path + ": '" + key +
-                            "' must be a string; remove the file to start again from a new baseline");
-  l.commit = j["commit"];
-  l.build_dir = j["build_dir"];
-  if (j.contains("branch") && j["branch"].is_string()) l.branch = j["branch"];
+  if (!j.is_object())
+    throw util::UserError("watch: " + path +
+                          ": must be a JSON object (commit, build_dir, branch, source)" + start_again);
+  const auto text = [&](const char* key, bool required) -> std::string {
+    if (!j.contains(key)) {
+      if (required)
+        throw util::UserError("watch: " + path + ": " + key + ": missing" + start_again);
+      return "";
+    }
+    if (!j[key].is_string())
+      throw util::UserError("watch: " + path + ": " + key + ": must be a string" + start_again);
+    return j[key].get<std::string>();
+  };
+  l.commit = text("commit", true);
+  l.build_dir = text("build_dir", true);
+  l.branch = text("branch", false);
+  l.source = text("source", false);
+  if (const std::string why = util::commit_hash_problem(l.commit); !why.empty())
+    throw util::UserError("watch: " + path + ": commit: " + why + start_again);
+  // "" is a tree that was detached on the night that wrote the file: no branch to return to.
+  if (!l.branch.empty())
+    if (const std::string why = util::branch_name_problem(l.branch); !why.empty())
+      throw util::UserError("watch: " + path + ": branch: " + why + start_again);
+  if (l.build_dir.empty() || l.build_dir[0] != '/')
+    throw util::UserError("watch: " + path + ": build_dir: must be an absolute path" + start_again);
   return l;
 }
 
-// The experiment with each platform P drawn by last night's and tonight's builds.
-std::string night_experiment(const std::string& file, const std::string& last_dir,
-                             const std::string& tonight_dir, std::vector<std::string>& platforms) {
-  toml::table t;
-  try {
-    t = toml::parse_file(file);
-  } catch (const toml::parse_error& e) {
-    throw util::UserError("watch: " + file + ": " + std::string(e.description()));
-  }
+// The platforms of the experiment file, each of which must be able to draw a driver build.
+std::vector<std::string> watched_platforms(const std::string& file, const toml::table& t) {
   const toml::array* list = t["platforms"].as_array();
   if (!list || list->empty())
-    throw util::UserError("watch: " + file + ": 'platforms' must name the platforms to watch");
-  toml::array both;
+    throw util::UserError("watch: " + file + ": platforms: must name the platforms to watch");
+  std::vector<std::string> platforms;
   for (const toml::node& n : *list) {
     const std::string p = n.value_or(std::string());
     if (p.find('@') != std::string::npos || !rundir::find_platform(p + "@" + kTonightBuild))
@@ -81,6 +101,26 @@ std::string night_experiment(const std::string& file, const std::string& last_di
                             "' cannot draw a driver build (allowed: the osmesa-* and surfaceless "
                             "egl-* platforms, vk-lavapipe, faulty, without @BUILD)");
     platforms.push_back(p);
+  }
+  return platforms;
+}
+
+toml::table parse_toml(const std::string& file) {
+  try {
+    return toml::parse_file(file);
+  } catch (const toml::parse_error& e) {
+    throw util::UserError("watch: " + file + ": " + std::string(e.description()));
+  }
+}
+
+// The experiment with each platform P drawn by last night's and tonight's builds. The file's path
+// is written into a comment as a JSON string (escaped): a line break in it would end the comment
+// and make the rest of the path TOML of the night's experiment.
+std::string night_experiment(const std::string& file, const std::string& last_dir,
+                             const std::string& tonight_dir) {
+  toml::table t = parse_toml(file);
+  toml::array both;
+  for (const std::string& p : watched_platforms(file, t)) {
     if (!last_dir.empty()) both.push_back(p + "@" + kLastBuild);
     both.push_back(p + "@" + kTonightBuild);
   }
@@ -90,29 +130,62 @@ std::string night_experiment(const std::string& file, const std::string& last_di
   if (!last_dir.empty()) builds.insert_or_assign(kLastBuild, toml::table{{"dir", last_dir}});
   builds.insert_or_assign(kTonightBuild, toml::table{{"dir", tonight_dir}});
   std::ostringstream out;
-  out << "# " << file << " as `renderaudit watch` ran it tonight\n" << t << "\n";
+  out << "# the experiment file as `renderaudit watch` ran it tonight: "
+      << nlohmann::json(file).dump(-1, ' ', true, nlohmann::json::error_handler_t::replace) << "\n"
+      << t << "\n";
   return out.str();
 }
 
-// This program, run as a child with its output in `log`; returns the exit code.
+// This program, run as a child with its output in `log`; returns the exit code. The child has a
+// process group of its own that a signal to this process stops (util/interrupt.h), so a night
+// interrupted during its run or audit stops them with it rather than waiting for their end.
 int run_self(const std::vector<std::string>& args, const std::string& log) {
+  util::throw_if_interrupted();
   util::ChildSpec spec;
   spec.argv = {fs::read_symlink("/proc/self/exe").string()};
   spec.argv.insert(spec.argv.end(), args.begin(), args.end());
   spec.stdin_null = true;
+  spec.own_process_group = true;
   spec.log_to(log);
   const util::Child c = util::start_child(spec);
+  util::set_interruptible_group(c.pid);
   const int status = util::wait_child(c.pid);
+  util::set_interruptible_group(0);
+  util::throw_if_interrupted();
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 }  // namespace
 
-std::string changed_night_note(std::size_t changed, std::size_t attributed, std::size_t culprit_commits) {
-  std::string note = std::to_string(changed) + (changed == 1 ? " primitive changed" : " primitives changed");
-  if (attributed < changed)
-    note += " (" + std::to_string(attributed) + " of them attributed: a sample, see the bisection's report)";
-  return note + ", " + std::to_string(culprit_commits) + " culprit commit(s)";
+std::string changed_night_note(const NightCounts& n) {
+  std::string note =
+      std::to_string(n.changed) + (n.changed == 1 ? " primitive changed" : " primitives changed");
+  if (n.bisected < n.changed)
+    note += " (" + std::to_string(n.bisected) +
+            " of them bisected: a sample, see the bisection's report)";
+  note += ", " + std::to_string(n.culprit_commits) + " culprit commit(s)";
+  if (n.unattributed > 0)
+    note += ", " + std::to_string(n.unattributed) +
+            " change(s) not attributed (only commits that failed to build lie between)";
+  return note;
+}
+
+bool night_moves_baseline(const std::string& verdict,
+                          const std::vector<std::string>& not_bisected) {
+  if (verdict == "changed") return not_bisected.empty();
+  return verdict == "baseline established" || verdict == "moved backwards" ||
+         verdict == "unchanged";
+}
+
+std::vector<std::string> night_lines(const WatchNight& n) {
+  std::vector<std::string> lines;
+  lines.push_back("night: " + n.verdict + ": " + n.note +
+                  (n.commit.empty() ? std::string() : " (" + n.commit.substr(0, 12) + ")"));
+  if (!n.dir.empty()) lines.push_back("details: " + n.dir + "/night.md");
+  for (const std::string& c : n.culprits) lines.push_back("first bad commit: " + c);
+  for (const std::string& u : n.unattributed) lines.push_back("unattributed: " + u);
+  for (const std::string& p : n.not_bisected) lines.push_back("not bisected: " + p);
+  return lines;
 }
 
 namespace {
@@ -128,7 +201,8 @@ class Night {
     if (ec || !fs::is_directory(o_.state, ec))
       throw util::UserError(util::io_error_message("watch: cannot create", o_.state));
     const util::DirLock lock(o_.state, "watch", "one night at a time; wait for it to finish");
-    // A signal stops the build's process group and ends the night unrecorded (util::Interrupted).
+    // A signal stops the build's, the run's or the audit's process group and ends the night
+    // unrecorded (util::Interrupted).
     util::InterruptScope interrupts;
     if (o_.db.empty()) o_.db = o_.state + "/history.sqlite";
     if (!fs::is_regular_file(o_.experiment, ec))
@@ -136,15 +210,26 @@ class Night {
     if (!fs::is_directory(o_.source, ec) || !git(o_.source, {"rev-parse", "--git-dir"}).ok)
       throw util::UserError("watch: " + o_.source + " is not a git checkout");
     o_.source = fs::canonical(o_.source).string();
+    // Bad input is refused here, before anything is fetched or built, and is no night.
     LastNight last = read_last(o_.state + "/watch.json");
+    check_same_tree(last);
+    check_experiment(last.build_dir);
+
     n_.date_utc = rundir::utc_now_iso8601();
     n_.previous_commit = last.commit;
-    n_.commit = branch_head(last.branch);
+    const Unseen unseen = branch_head(last.branch);
+    if (!unseen.verdict.empty()) {
+      say(unseen.why);
+      return finish(unseen.verdict, unseen.why, 2, "");
+    }
     say("tonight: " + short_hash(n_.commit) + " " + subject(n_.commit) +
         (last.commit.empty() ? " (no baseline yet)" : "; last night: " + short_hash(last.commit)));
-    if (n_.commit == last.commit) return finish("nothing new", "the branch head is last night's commit", 0);
-    const bool backwards = !last.commit.empty() &&
-                           !git(o_.source, {"merge-base", "--is-ancestor", last.commit, n_.commit}).ok;
+    if (n_.commit == last.commit)
+      return finish("nothing new", "the branch head is last night's commit", 0, "");
+    const bool backwards =
+        !last.commit.empty() &&
+        !git(o_.source, {"merge-base", "--is-ancestor", "--end-of-options", last.commit, n_.commit})
+             .ok;
     std::string stamp = n_.date_utc;
     for (char& ch : stamp)
       if (ch == ':') ch = '-';
@@ -168,43 +253,42 @@ class Night {
     } catch (const util::UserError& e) {
       util::throw_if_interrupted();  // stopped, not failed: nothing recorded
       util::write_file_atomic(n_.dir + "/build-error.txt", std::string(e.what()) + "\n");
-      return finish("build failed", std::string(e.what()).substr(0, 400) +
-                                        (last.commit.empty() ? "" : "; last night's build stays the baseline"),
-                    2);
+      return finish("build failed",
+                    std::string(e.what()).substr(0, 400) +
+                        (last.commit.empty() ? "" : "; last night's build stays the baseline"),
+                    2, "");
     }
     say(built.reused ? "build: reused " + built.build.name
                      : "build: " + built.build.name + " in " + util::duration_text(built.seconds));
 
     // Both builds drawn tonight, in one run.
-    std::vector<std::string> platforms;
     const std::string last_dir = backwards ? "" : last.build_dir;
     const std::string exp = rundir::run_folder::experiment(n_.dir);
-    util::write_file_atomic(exp, night_experiment(o_.experiment, last_dir, built.build.dir, platforms));
+    util::write_file_atomic(exp, night_experiment(o_.experiment, last_dir, built.build.dir));
     const std::string run = n_.dir + "/run";
     n_.run_dir = run;
     say("run: " + exp);
-    util::throw_if_interrupted();
     const int run_rc = run_self({"run", exp, "--out", run, "--quiet", "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)},
                                 n_.dir + "/run.log");
     if (run_rc != 0 && run_rc != 1)
-      return finish("run failed", "the run exited " + std::to_string(run_rc) + " (" + n_.dir +
-                                      "/run.log)", 2);
-    if (last_dir.empty()) {
-      save_last(built.build.dir);
+      return finish("run failed",
+                    "the run exited " + std::to_string(run_rc) + " (" + n_.dir + "/run.log)", 2,
+                    "");
+    if (last_dir.empty())
       return finish(backwards ? "moved backwards" : "baseline established",
                     backwards ? "the branch no longer holds last night's commit " +
                                     short_hash(last.commit) + ": tonight is the new baseline"
                               : "tonight's build is the baseline from now on",
-                    backwards ? 1 : 0);
-    }
-    // Audit each platform; attribute what changed.
+                    backwards ? 1 : 0, built.build.dir);
+    // Audit each platform; attribute what changed. The audits keep their history in the night's
+    // folder until the night is recorded (see the header).
     bool changed = false, failed = false;
-    for (const std::string& p : platforms) {
+    for (const std::string& p : platforms_) {
       const std::string out = n_.dir + "/audit-" + p;
-      const int rc = run_self({"audit", run, "--between", p + "@" + kLastBuild, p + "@" + kTonightBuild,
-                               "--out", out, "--db", o_.db, "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)},
-                              n_.dir + "/audit-" + p + ".log");
-      util::throw_if_interrupted();
+      const int rc = run_self(
+          {"audit", run, "--between", p + "@" + kLastBuild, p + "@" + kTonightBuild, "--out", out,
+           "--db", night_db(), "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)},
+          n_.dir + "/audit-" + p + ".log");
       say("audit " + p + ": exit " + std::to_string(rc) + " (" + out + "/audit.md)");
       if (rc == 2 || rc > 2) failed = true;
       if (rc == 1) {
@@ -213,11 +297,18 @@ class Night {
       }
     }
     if (failed)
-      return finish("run failed", "a driver crashed or the audit failed (" + n_.dir + ")", 2);
-    save_last(built.build.dir);
-    if (!changed) return finish("unchanged", "no primitive changed", 0);
-    if (unbisected_) return finish("changed", "primitives changed; a bisection could not run (see the culprits)", 1);
-    return finish("changed", changed_night_note(n_.changed, n_.attributed, culprit_commits_), 1);
+      return finish("run failed", "a driver crashed or the audit failed (" + n_.dir + ")", 2, "");
+    if (!changed) return finish("unchanged", "no primitive changed", 0, built.build.dir);
+    const bool moves = night_moves_baseline("changed", n_.not_bisected);
+    std::string note = n_.counts.bisected > 0 || n_.not_bisected.empty()
+                           ? changed_night_note(n_.counts)
+                           : std::string("primitives changed");
+    if (!moves)
+      note += "; " + std::to_string(n_.not_bisected.size()) + " platform(s) not bisected: their " +
+              "changes are kept, last night's commit " + short_hash(last.commit) +
+              " stays the baseline and the next night bisects them with its own";
+    n_.baseline_kept = !moves;
+    return finish("changed", note, 1, moves ? built.build.dir : "");
   }
 
  private:
@@ -225,20 +316,61 @@ class Night {
     if (progress_) progress_(s);
   }
   std::string subject(const std::string& commit) const {
-    return git(o_.source, {"log", "-1", "--format=%s", commit}).out;
+    return git(o_.source, {"log", "-1", "--format=%s", "--end-of-options", commit}).out;
+  }
+  std::string night_db() const { return n_.dir + "/audits.sqlite"; }
+
+  // A state folder follows one tree: another tree's commits would read as a branch that moved
+  // backwards, and the state would silently switch trees. A watch.json without `source` (written
+  // before it was recorded) is checked against the history's last night.
+  void check_same_tree(const LastNight& last) const {
+    std::string follows = last.source, where = o_.state + "/watch.json: source";
+    std::error_code ec;
+    if (follows.empty() && !last.commit.empty() && fs::exists(o_.db, ec)) {
+      try {
+        const std::vector<audit::NightEntry> nights = audit::read_nights(o_.db, 1);
+        if (!nights.empty()) follows = nights.back().source;
+        where = o_.db + ": the last night's source";
+      } catch (const util::UserError&) {
+        // A history that cannot be read is said when the night is appended.
+      }
+    }
+    if (follows.empty() || follows == o_.source) return;
+    throw util::UserError("watch: " + where + ": the state folder " + o_.state +
+                          " follows the tree " + follows + ", not " + o_.source + "; give " +
+                          o_.source + " a state folder of its own (--state), or remove " +
+                          o_.state + "/watch.json to follow it from a new baseline");
   }
 
-  // The commit to build tonight: the upstream of the tree's branch after a fetch, else HEAD.
+  // The experiment as tonight's run will read it, checked before anything is built: a platform
+  // that cannot draw a build, or a count the run would refuse, is bad input and not a night.
+  void check_experiment(const std::string& last_build_dir) {
+    (void)rundir::load_experiment(o_.experiment);
+    platforms_ = watched_platforms(o_.experiment, parse_toml(o_.experiment));
+    const std::string text = night_experiment(o_.experiment, last_build_dir,
+                                              last_build_dir.empty() ? o_.state : last_build_dir);
+    (void)rundir::parse_experiment(text, o_.experiment);
+  }
+
+  // Why upstream cannot be seen tonight: a verdict ("fetch failed", "upstream gone") and a note.
+  struct Unseen {
+    std::string verdict, why;
+  };
+
+  // Brings the commit to build tonight into n_.commit: the upstream of the tree's branch after a
+  // fetch, else HEAD. Returns an empty Unseen, or why upstream cannot be seen (a fetch that fails,
+  // an upstream branch deleted or renamed): such a night is an error, never "nothing new".
   // A tree left detached (a night's bisection killed mid-step) first returns to the branch
   // earlier nights followed, so that tonight is the branch's head and not a bisection step.
-  std::string branch_head(const std::string& last_branch) {
+  Unseen branch_head(const std::string& last_branch) {
     const auto tree_lock = runner::lock_source_tree(o_.source, "watch");
     runner::GitResult on = git(o_.source, {"symbolic-ref", "-q", "--short", "HEAD"});
     if (!on.ok && !last_branch.empty()) {
       const std::string at = git(o_.source, {"rev-parse", "--short=12", "HEAD"}).out;
       say("returning " + o_.source + " to its branch " + last_branch +
           ": an interrupted night left it detached at " + at);
-      const runner::GitResult co = git(o_.source, {"checkout", "-q", last_branch});
+      const runner::GitResult co =
+          git(o_.source, {"switch", "-q", "--end-of-options", last_branch});
       if (!co.ok)
         throw util::UserError("watch: " + o_.source + " is detached at " + at +
                               " and cannot return to its branch " + last_branch + " (" + co.out +
@@ -247,21 +379,40 @@ class Night {
     }
     branch_ = on.ok ? on.out : "";
     if (o_.fetch && !git(o_.source, {"remote"}).out.empty()) {
-      const runner::GitResult f = git(o_.source, {"fetch", "-q"});
-      if (!f.ok) say("git fetch failed (" + f.out + "): watching the tree's own head");
+      // --prune: an upstream branch deleted or renamed upstream loses its remote-tracking ref, so
+      // it is seen as gone rather than followed at its last known commit forever.
+      const runner::GitResult f = git(o_.source, {"fetch", "-q", "--prune"});
+      if (!f.ok)
+        return {"fetch failed", "git fetch in " + o_.source + " failed (" +
+                                    f.out.substr(0, f.out.find('\n')).substr(0, 300) +
+                                    "): upstream cannot be seen, nothing was built; check the "
+                                    "remote's address and the network (git -C " +
+                                    o_.source + " fetch)"};
     }
+    // The branch's configured upstream, also when its remote-tracking ref is gone.
+    const std::string upstream =
+        branch_.empty()
+            ? ""
+            : git(o_.source, {"for-each-ref", "--format=%(upstream)", "refs/heads/" + branch_}).out;
     runner::GitResult up = git(o_.source, {"rev-parse", "--verify", "-q", "@{upstream}^{commit}"});
+    if (!upstream.empty() && !(up.ok && !up.out.empty()))
+      return {"upstream gone", "the upstream of the branch " + branch_ + ", " + upstream +
+                                   ", is gone (deleted or renamed upstream): nothing was built; "
+                                   "point the branch at the branch to follow (git -C " +
+                                   o_.source + " branch --set-upstream-to=REMOTE/BRANCH)"};
     if (up.ok && !up.out.empty()) {
       // The branch brought to its head, so that the tree stays where it is built and an
       // incremental build recompiles only what the night changed; a branch that cannot move
       // forward (rewritten upstream) is built at the upstream's commit and left as it is.
       if (!git(o_.source, {"merge", "-q", "--ff-only", "@{upstream}"}).ok)
         say("the branch cannot be fast-forwarded to its upstream: building the upstream's head");
-      return up.out;
+      n_.commit = up.out;
+      return {};
     }
     up = git(o_.source, {"rev-parse", "--verify", "-q", "HEAD^{commit}"});
     if (!up.ok) throw util::UserError("watch: " + o_.source + " has no commit");
-    return up.out;
+    n_.commit = up.out;
+    return {};
   }
 
   void attribute(const std::string& platform, const std::string& last_commit) {
@@ -285,30 +436,41 @@ class Night {
       for (const Culprit& c : r.culprits) {
         n_.culprits.push_back(c.commit + " " + c.subject + " (" +
                               std::to_string(c.primitives.size()) + " primitives of " + platform + ")");
-        n_.attributed += c.primitives.size();
-        ++culprit_commits_;
+        n_.counts.attributed += c.primitives.size();
+        ++n_.counts.culprit_commits;
       }
-      n_.changed += r.changed_in_run;
+      n_.counts.changed += r.changed_in_run;
+      n_.counts.bisected += r.selection.size();
+      n_.counts.unattributed += r.unattributed.size();
       if (!r.unattributed.empty())
-        n_.culprits.push_back("unattributed: " + std::to_string(r.unattributed.size()) +
-                              " changes of " + platform + " (failed builds between; " + r.report_path + ")");
+        n_.unattributed.push_back(std::to_string(r.unattributed.size()) + " changes of " +
+                                  platform +
+                                  ": only commits that failed to build lie between the commits " +
+                                  "drawn on either side (" + r.report_path + ")");
     } catch (const util::UserError& e) {
-      n_.culprits.push_back("no bisection of " + platform + ": " + e.what());
-      unbisected_ = true;
+      util::throw_if_interrupted();  // stopped, not refused: the night ends unrecorded
+      n_.not_bisected.push_back(platform + ": " + e.what());
     }
   }
 
   void save_last(const std::string& build_dir) const {
-    util::write_file_atomic(o_.state + "/watch.json",
-                            nlohmann::json{{"commit", n_.commit}, {"build_dir", build_dir}, {"branch", branch_}}
-                                    .dump(2) +
-                                "\n");
+    util::write_file_atomic(o_.state + "/watch.json", nlohmann::json{{"commit", n_.commit},
+                                                                     {"build_dir", build_dir},
+                                                                     {"branch", branch_},
+                                                                     {"source", o_.source}}
+                                                              .dump(2) +
+                                                          "\n");
   }
 
-  WatchNight finish(const std::string& verdict, const std::string& note, int exit_code) {
+  // Records the night (night.json and night.md, then the history: the night's row, then its
+  // audits), then moves watch.json to tonight's build when `baseline` names one. A history that
+  // cannot be written leaves watch.json as it was, so the next night finds the same again.
+  WatchNight finish(const std::string& verdict, const std::string& note, int exit_code,
+                    const std::string& baseline) {
     n_.verdict = verdict;
     n_.note = note;
     n_.exit_code = exit_code;
+    if (!n_.dir.empty()) write_night_files();
     audit::NightEntry e;
     e.date_utc = n_.date_utc;
     e.source = o_.source;
@@ -318,37 +480,71 @@ class Night {
     for (const std::string& c : n_.culprits) e.culprits += (e.culprits.empty() ? "" : "\n") + c;
     e.run_dir = n_.run_dir;
     e.note = note;
-    audit::append_night(o_.db, e);
-    if (!n_.dir.empty()) {
-      nlohmann::json j = {{"date_utc", n_.date_utc}, {"commit", n_.commit},
-                          {"previous_commit", n_.previous_commit}, {"verdict", verdict},
-                          {"note", note}, {"culprits", n_.culprits}, {"changed", n_.changed},
-                          {"exit_code", exit_code}};
-      j.update(rundir::document_header("watch-night", 1));
-      util::write_file_atomic(n_.dir + "/night.json", j.dump(2) + "\n");
-      std::string sentence = note;  // the note as a sentence of its own
-      while (!sentence.empty() && sentence.back() == '.') sentence.pop_back();
-      if (!sentence.empty()) sentence[0] = char(std::toupper(static_cast<unsigned char>(sentence[0])));
-      std::string md = "# Night of " + n_.date_utc + ": " + verdict + "\n\n" + sentence + ".\n\n" +
-                       "- tonight: `" + n_.commit + "` " + subject(n_.commit) + "\n" +
-                       (n_.previous_commit.empty() ? std::string()
-                                                   : "- last night: `" + n_.previous_commit + "` " +
-                                                         subject(n_.previous_commit) + "\n");
-      if (!n_.culprits.empty()) {
-        md += "\n## Culprits\n\n";
-        for (const std::string& c : n_.culprits) md += "- " + c + "\n";
-      }
-      util::write_file_atomic(n_.dir + "/night.md", md);
+    for (const std::string& u : n_.unattributed) e.note += "; unattributed: " + u;
+    for (const std::string& p : n_.not_bisected) e.note += "; not bisected: " + p;
+    try {
+      audit::append_night(o_.db, e);
+      std::error_code ec;
+      if (!n_.dir.empty() && fs::exists(night_db(), ec))
+        for (const audit::HistoryEntry& h : audit::read_history(night_db()))
+          audit::append_history(o_.db, h.summary);
+    } catch (const std::exception& x) {
+      util::throw_if_interrupted();
+      throw util::UserError(
+          std::string("watch: ") + x.what() + "; tonight (" + verdict +
+          ") is not recorded in the history" +
+          (n_.dir.empty() ? std::string() : " (it is in " + n_.dir + "/night.md)") + ", and " +
+          o_.state +
+          "/watch.json stays at last night's commit so the next night finds it again; make the "
+          "history writable");
     }
+    if (!baseline.empty()) save_last(baseline);
     return n_;
+  }
+
+  void write_night_files() const {
+    nlohmann::json j = {{"date_utc", n_.date_utc},
+                        {"commit", n_.commit},
+                        {"previous_commit", n_.previous_commit},
+                        {"verdict", n_.verdict},
+                        {"note", n_.note},
+                        {"culprits", n_.culprits},
+                        {"unattributed", n_.unattributed},
+                        {"not_bisected", n_.not_bisected},
+                        {"baseline_kept", n_.baseline_kept},
+                        {"changed", n_.counts.changed},
+                        {"exit_code", n_.exit_code}};
+    j.update(rundir::document_header("watch-night", 1));
+    util::write_file_atomic(n_.dir + "/night.json", j.dump(2) + "\n");
+    std::string sentence = n_.note;  // the note as a sentence of its own
+    while (!sentence.empty() && sentence.back() == '.') sentence.pop_back();
+    if (!sentence.empty())
+      sentence[0] = char(std::toupper(static_cast<unsigned char>(sentence[0])));
+    std::string md = "# Night of " + n_.date_utc + ": " + n_.verdict + "\n\n" + sentence + ".\n\n" +
+                     "- tonight: `" + n_.commit + "` " + subject(n_.commit) + "\n" +
+                     (n_.previous_commit.empty() ? std::string()
+                                                 : "- last night: `" + n_.previous_commit + "` " +
+                                                       subject(n_.previous_commit) + "\n");
+    if (!n_.culprits.empty()) {
+      md += "\n## Culprits\n\n";
+      for (const std::string& c : n_.culprits) md += "- " + c + "\n";
+    }
+    if (!n_.unattributed.empty()) {
+      md += "\n## Not attributed\n\n";
+      for (const std::string& u : n_.unattributed) md += "- " + u + "\n";
+    }
+    if (!n_.not_bisected.empty()) {
+      md += "\n## Not bisected (kept for the next night)\n\n";
+      for (const std::string& p : n_.not_bisected) md += "- " + p + "\n";
+    }
+    util::write_file_atomic(n_.dir + "/night.md", md);
   }
 
   WatchOptions o_;
   std::function<void(const std::string&)> progress_;
   WatchNight n_;
-  std::string branch_;  // the branch the tree is on tonight ("" when detached)
-  std::size_t culprit_commits_ = 0;
-  bool unbisected_ = false;  // a platform's bisection refused to start
+  std::vector<std::string> platforms_;  // the experiment's, checked before the night
+  std::string branch_;                  // the branch the tree is on tonight ("" when detached)
 };
 
 }  // namespace

@@ -1,11 +1,11 @@
-// The shard server's protocol: commands and replies survive any path, and garbage is refused.
-#include "runner/shard_server.h"
+// The shard servers' protocol: commands and replies survive any path, and garbage is refused.
+#include "rundir/shard_command.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-namespace ra::runner {
+namespace ra::rundir {
 namespace {
 
 TEST(ShardServerProtocol, ACommandSurvivesPathsWithSpacesTabsNewlinesAndQuotes) {
@@ -39,7 +39,7 @@ TEST(ShardServerProtocol, GarbageIsRefusedWithTheLine) {
 }
 
 TEST(ShardServerProtocol, RepliesNameTheirShardAndNothingElseIsAReply) {
-  const rundir::Shard s{"reference", geometry::Kind::kLine, 3, 0, 10};
+  const Shard s{"reference", geometry::Kind::kLine, 3, 0, 10};
   std::string id;
   ASSERT_TRUE(parse_shard_done(shard_done_line(s), &id));
   EXPECT_EQ(id, "reference.line.v3.0-10");
@@ -48,4 +48,4 @@ TEST(ShardServerProtocol, RepliesNameTheirShardAndNothingElseIsAReply) {
 }
 
 }  // namespace
-}  // namespace ra::runner
+}  // namespace ra::rundir
