@@ -34,6 +34,8 @@ void print_build(const runner::BuildSummary& b, bool files, std::size_t width = 
   else
     std::printf("%s  (Debian %s, suite %s, fetched %s)\n  folder: %s\n", head.c_str(),
                 b.debian_version.c_str(), b.suite.c_str(), b.fetched_utc.c_str(), b.dir.c_str());
+  if (!b.recorded_name.empty())
+    std::printf("  renamed by hand: its build.json calls it %s\n", b.recorded_name.c_str());
   std::printf("  OSMesa GL_VERSION: %s\n  EGL    GL_VERSION: %s\n",
               b.osmesa_version.empty() ? "(cannot draw)" : b.osmesa_version.c_str(),
               b.egl_version.empty() ? "(cannot draw)" : b.egl_version.c_str());
@@ -168,8 +170,14 @@ void register_builds_command(CLI::App& app, int& exit_code) {
   r->callback([opts, &exit_code] {
     const std::string cache =
         opts->remove_cache.empty() ? rundir::build_cache_dir() : opts->remove_cache;
-    for (const runner::RemovedBuild& b : runner::remove_builds(cache, opts->remove_names))
+    for (const runner::RemovedBuild& b : runner::remove_builds(cache, opts->remove_names)) {
       std::printf("removed %s (%s)\n", b.name.c_str(), runner::size_text(b.bytes).c_str());
+      if (!b.left.empty())
+        std::fprintf(stderr,
+                     "builds remove: %s is no longer a build, but its files in %s could not all "
+                     "be deleted; the next `builds remove` deletes them\n",
+                     b.name.c_str(), b.left.c_str());
+    }
     print_cache_total(cache, runner::list_builds(cache).size());
     exit_code = kExitOk;
   });

@@ -13,6 +13,8 @@
 #include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "util/git_ref_check.h"
+#include "util/json_seal.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -236,6 +238,64 @@ std::int64_t count_of(const json& j, const std::string& key, const std::string& 
   return v.get<std::int64_t>();
 }
 
+// The counts of a stratum are parts of one another (each changed primitive is counted once among
+// not drawn / newly drawn and once among new violation / fixed / allowed / other), and every sum
+// the sentence makes stays far from 2^63: each count is at most `compared`, whose total over the
+// summary is kept under 2^62.
+void check_stratum(const UpgradeStratum& s, const std::string& at, const std::string& path,
+                   std::int64_t& total_compared) {
+  const auto bad = [&](const std::string& what) {
+    throw util::UserError(path + ": '" + at + what +
+                          ": the counts do not add up; write the summary again with "
+                          "scripts/upgrade_report.py");
+  };
+  if (s.changed > s.compared)
+    bad("changed' (" + std::to_string(s.changed) + ") is more than 'compared' (" +
+        std::to_string(s.compared) + ")");
+  if (s.not_drawn > s.changed - s.newly_drawn)
+    bad("not_drawn' (" + std::to_string(s.not_drawn) + ") and 'newly_drawn' (" +
+        std::to_string(s.newly_drawn) + ") are more than 'changed' (" +
+        std::to_string(s.changed) + ")");
+  if (s.new_violations > s.changed || s.fixed_violations > s.changed - s.new_violations ||
+      s.allowed > s.changed - s.new_violations - s.fixed_violations)
+    bad("new_violations', 'fixed_violations' and 'allowed' (" +
+        std::to_string(s.new_violations) + ", " + std::to_string(s.fixed_violations) + ", " +
+        std::to_string(s.allowed) + ") are more than 'changed' (" + std::to_string(s.changed) +
+        ")");
+  constexpr std::int64_t kMost = std::int64_t(1) << 62;
+  if (s.compared > kMost - total_compared)
+    throw util::UserError(path + ": '" + at + "compared' (" + std::to_string(s.compared) +
+                          ") takes the summary past 2^62 primitives, more than any run holds; "
+                          "write the summary again with scripts/upgrade_report.py");
+  total_compared += s.compared;
+}
+
+// A bisect.json read for its culprits, every field checked: a damaged or foreign file is named
+// with its key, never a JSON library message.
+struct BisectionReader {
+  std::string path;
+  [[noreturn]] void bad(const std::string& key, const std::string& what) const {
+    throw util::UserError(path + ": '" + key + "' " + what +
+                          "; run the bisection again (renderaudit bisect) or move the file away");
+  }
+  const json& at(const json& j, const std::string& key, const std::string& where) const {
+    if (!j.is_object()) bad(where.empty() ? "(top)" : where, "must be an object");
+    const auto it = j.find(key);
+    if (it == j.end()) bad(where.empty() ? key : where + "." + key, "is missing");
+    return *it;
+  }
+  std::string text(const json& j, const std::string& key, const std::string& where) const {
+    const json& v = at(j, key, where);
+    if (!v.is_string()) bad(where.empty() ? key : where + "." + key, "must be a string");
+    return v.get<std::string>();
+  }
+  const json& list(const json& j, const std::string& key, const std::string& where) const {
+    const json& v = at(j, key, where);
+    if (!v.is_array()) bad(where.empty() ? key : where + "." + key, "must be a list");
+    return v;
+  }
+};
+
 }  // namespace
 
 std::string mesa_version(const std::string& gl_version) {
@@ -298,6 +358,7 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
   }
   const json& pairs = member(j, "pairs", "", path);
   if (!pairs.is_array()) throw util::UserError(path + ": 'pairs' must be a list");
+  std::int64_t total_compared = 0;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const std::string at = "pairs[" + std::to_string(i) + "].";
     const json& p = pairs[i];
@@ -317,6 +378,7 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
                              count_of(t, "new_violations", sat, path),
                              count_of(t, "fixed_violations", sat, path),
                              count_of(t, "allowed", sat, path)});
+      check_stratum(pair.strata.back(), sat, path, total_compared);
     }
     s.pairs.push_back(std::move(pair));
   }
@@ -344,20 +406,39 @@ std::vector<UpgradeBisection> find_bisections(const std::string& run_dir) {
     } catch (const std::exception&) {
       continue;
     }
-    if (!rundir::has_document_header(j, "bisection", 2)) continue;
-    const json inputs = j.value("inputs", json::object());
+    // Version 3 is sealed (triage/bisect_state.h); version 2 is from before the seal.
+    const bool sealed = rundir::has_document_header(j, "bisection", 3);
+    if (!sealed && !rundir::has_document_header(j, "bisection", 2)) continue;
+    const BisectionReader rd{c.string()};
+    if (sealed)
+      if (const std::string problem = util::seal_problem(j); !problem.empty())
+        throw util::UserError(c.string() + ": " + problem +
+                              "; run the bisection again (renderaudit bisect) or move the file "
+                              "away");
+    const json& inputs = rd.at(j, "inputs", "");
     // a bisection beside the run is of this run only if it says so (or says no run)
-    const std::string of = inputs.is_object() ? inputs.value("run", "") : "";
+    const std::string of = inputs.contains("run") ? rd.text(inputs, "run", "inputs") : "";
     if (!of.empty() && fs::weakly_canonical(of, ec) != run) continue;
     UpgradeBisection b;
     b.path = c.string();
-    b.platform = inputs.is_object() ? inputs.value("platform", "") : "";
-    b.selected = std::int64_t(j.value("selection", json::array()).size());
-    b.complete = j.value("complete", false);
-    for (const json& k : j.value("culprits", json::array()))
-      if (k.is_object())
-        b.culprits.push_back({k.value("commit", ""), k.value("subject", ""),
-                              std::int64_t(k.value("primitives", json::array()).size())});
+    b.platform = inputs.contains("platform") ? rd.text(inputs, "platform", "inputs") : "";
+    b.selected = std::int64_t(rd.list(j, "selection", "").size());
+    const json& complete = rd.at(j, "complete", "");
+    if (!complete.is_boolean()) rd.bad("complete", "must be true or false");
+    b.complete = complete.get<bool>();
+    const json& culprits = rd.list(j, "culprits", "");
+    for (std::size_t i = 0; i < culprits.size(); ++i) {
+      const std::string key = "culprits[" + std::to_string(i) + "]";
+      UpgradeCulprit k{rd.text(culprits[i], "commit", key), rd.text(culprits[i], "subject", key),
+                       std::int64_t(rd.list(culprits[i], "primitives", key).size())};
+      if (const std::string problem = util::commit_hash_problem(k.commit); !problem.empty())
+        rd.bad(key + ".commit", problem);
+      if (k.primitives > b.selected)
+        rd.bad(key + ".primitives", "lists " + std::to_string(k.primitives) +
+                                        " primitives, more than the " +
+                                        std::to_string(b.selected) + " selected");
+      b.culprits.push_back(std::move(k));
+    }
     out.push_back(std::move(b));
   }
   return out;

@@ -16,7 +16,10 @@
 // "renderaudit-upgrade-summary" version 1): the run, the build's name, the view groups and per
 // pair of platforms the counts below per kind and view group. A bisection of the run
 // (RUN/bisect/bisect.json, RUN/../bisect/bisect.json or RUN/audit-*/bisect/bisect.json, schema
-// "renderaudit-bisection" version 2, written by `renderaudit bisect`) adds its culprits.
+// "renderaudit-bisection" version 3, sealed, or 2, written by `renderaudit bisect`) adds its
+// culprits. Both files are read field by field: a missing or mistyped field, counts that do not
+// add up (more not drawn than changed, more changed than compared) or a total past 2^62 is a
+// UserError naming the file and the key.
 #pragma once
 
 #include <cstdint>
@@ -86,7 +89,7 @@ std::string mesa_version(const std::string& gl_version);
 UpgradeSummary read_upgrade_summary(const std::string& path);
 
 // The bisections of the run beside or under it (see the header comment), each read from its
-// file; a file of another schema is skipped.
+// file; a file of another schema is skipped, a damaged one (its seal, a field) is a UserError.
 std::vector<UpgradeBisection> find_bisections(const std::string& run_dir);
 
 // A bisection in words: "Bisection of egl-llvmpipe (FILE, 500 primitives): first bad commit

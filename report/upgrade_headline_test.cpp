@@ -7,7 +7,10 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <cstdint>
 #include <fstream>
+
+#include "util/errors.h"
 
 namespace ra::report {
 namespace {
@@ -151,6 +154,74 @@ TEST(UpgradeHeadline, ABisectionBesideTheRunNamesItsCulprits) {
                 (dir / "bisect" / "bisect.json").string() +
                 "`, 3 primitives): first bad commit `a07fa6516b01` \"llvmpipe/linear: add support "
                 "for rgba color buffers\" (2 primitives).\n");
+  fs::remove_all(dir);
+}
+
+// The message `read_upgrade_summary` (or the bisection it reads) stops with; "" when it reads.
+std::string summary_error(const fs::path& dir, const std::string& strata,
+                          const std::string& culprit_commit = "\"" + std::string(40, 'a') + "\"") {
+  fs::remove_all(dir);
+  fs::create_directories(dir / "run" / "bisect");
+  const std::string run = (dir / "run").string();
+  std::ofstream(dir / "run" / "bisect" / "bisect.json")
+      << R"({"schema": "renderaudit-bisection", "schema_version": 2, "complete": true,
+            "inputs": {"run": ")" << run << R"(", "platform": "egl-llvmpipe"}, "selection": [{}],
+            "culprits": [{"commit": )" << culprit_commit << R"(, "subject": "s",
+                          "primitives": [{"primitive": "line 1 of view 1"}]}]})";
+  std::ofstream(dir / "upgrade-summary.json")
+      << R"({"schema": "renderaudit-upgrade-summary", "schema_version": 1, "run": ")" << run
+      << R"(", "build": "backports", "groups": [{"label": "A", "fov_deg": 30, "window": 128}],
+            "pairs": [{"platform": "egl-llvmpipe", "build_platform": "egl-llvmpipe@backports",
+                       "installed_version": "Mesa 22.3.6", "build_version": "Mesa 25.0.7",
+                       "fingerprint": "f", "strata": )" << strata << "}]}";
+  try {
+    upgrade_headline_markdown(read_upgrade_summary((dir / "upgrade-summary.json").string()));
+  } catch (const util::UserError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string a_stratum(const std::string& compared, const std::string& changed,
+                      const std::string& not_drawn) {
+  return R"([{"kind": "line", "group": "A", "compared": )" + compared + R"(, "changed": )" +
+         changed + R"(, "not_drawn": )" + not_drawn +
+         R"(, "newly_drawn": 0, "new_violations": 0, "fixed_violations": 0, "allowed": 0}])";
+}
+
+// Why: a number where a commit belongs ended in a bare "[json.exception.type_error.302]"; "stops
+// drawing 1,000 of 100 lines" passed with exit 0; counts near 2^63 overflowed and the clause
+// vanished.
+TEST(UpgradeHeadline, ADamagedSummaryOrBisectionIsNamedWithItsFileAndKey) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("ra_upgrade_headline_bad_" + std::to_string(getpid()));
+  const std::string bisect_json = (dir / "run" / "bisect" / "bisect.json").string();
+  const std::string summary_json = (dir / "upgrade-summary.json").string();
+  EXPECT_EQ(summary_error(dir, a_stratum("100", "10", "5")), "");
+
+  std::string e = summary_error(dir, a_stratum("100", "10", "5"), "7");
+  EXPECT_NE(e.find(bisect_json + ": 'culprits[0].commit' must be a string"), std::string::npos) << e;
+  EXPECT_EQ(e.find("json.exception"), std::string::npos) << e;
+  e = summary_error(dir, a_stratum("100", "10", "5"), "\"--output=x\"");
+  EXPECT_NE(e.find(bisect_json + ": 'culprits[0].commit' must be a full commit hash"),
+            std::string::npos)
+      << e;
+
+  e = summary_error(dir, a_stratum("100", "100", "1000"));
+  EXPECT_NE(e.find(summary_json + ": 'pairs[0].strata[0].not_drawn' (1000)"), std::string::npos) << e;
+  EXPECT_NE(e.find("the counts do not add up"), std::string::npos) << e;
+  e = summary_error(dir, a_stratum("100", "1000", "0"));
+  EXPECT_NE(e.find("'pairs[0].strata[0].changed' (1000) is more than 'compared' (100)"),
+            std::string::npos)
+      << e;
+
+  const std::string near = std::to_string(INT64_MAX - 1);
+  // two strata of 2^63 - 2 lines each: their sum would wrap
+  const std::string one = a_stratum(near, near, near);
+  e = summary_error(dir, one.substr(0, one.size() - 1) + ", " + one.substr(1));
+  EXPECT_NE(e.find("'pairs[0].strata[0].compared' (" + near + ") takes the summary past 2^62"),
+            std::string::npos)
+      << e;
   fs::remove_all(dir);
 }
 

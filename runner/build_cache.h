@@ -11,7 +11,11 @@
 //
 // A build in use is refused: a source build (`builds build`, bisect, watch) whose source tree is
 // held by a build, bisection or night now (lock_source_tree, source_build.h) may be drawn with or
-// rebuilt by that process until it ends.
+// rebuilt by that process until it ends; and a build a process draws with holds BuildInUse, a
+// shared lock (flock) on BUILD/.in-use that `builds remove` must take exclusively. The lock is
+// the kernel's, so a user killed however it dies holds nothing. A removal holds its exclusive lock
+// on the file (which moves with the folder) until the folder is gone, and deletes that file last,
+// so that a second removal's clean-up of unfinished removals leaves a running one alone.
 #pragma once
 
 #include <cstdint>
@@ -19,6 +23,24 @@
 #include <vector>
 
 namespace ra::runner {
+
+// A build held for drawing: `builds remove` refuses it while this object lives (any number of
+// users share it).
+class BuildInUse {
+ public:
+  // Takes the shared lock of the build folder `dir`. UserError when the folder holds no build
+  // (removed, or never built) or a removal holds it now. In a folder this process cannot write
+  // (another user's cache), nothing is taken: such a build cannot be removed from here either.
+  explicit BuildInUse(const std::string& dir);
+  ~BuildInUse();
+  BuildInUse(const BuildInUse&) = delete;
+  BuildInUse& operator=(const BuildInUse&) = delete;
+
+  static std::string lock_path(const std::string& dir);  // DIR/.in-use
+
+ private:
+  int fd_ = -1;
+};
 
 // Bytes allocated on disk to `path` and everything under it (0 when it does not exist).
 std::uintmax_t disk_usage(const std::string& path);
@@ -33,6 +55,9 @@ struct CacheUsage {
 };
 CacheUsage cache_usage(const std::string& cache);
 
+// Whether a process holds BuildInUse on the build folder `dir` now. Takes nothing.
+bool build_drawn_with_now(const std::string& dir);
+
 // Who holds the source tree of the build folder `dir` now ("process P (bisect) on host H since
 // T"), or "" when nobody does or the build is not from a source tree.
 std::string build_in_use_by(const std::string& dir);
@@ -40,12 +65,16 @@ std::string build_in_use_by(const std::string& dir);
 struct RemovedBuild {
   std::string name;
   std::uintmax_t bytes = 0;  // disk usage freed
+  // Not empty when the build left the cache but its files could not all be deleted: the folder
+  // they are in and why (the next removal deletes it).
+  std::string left;
 };
 
-// Removes the builds `names` from the cache (empty: build_cache_dir()). Checks every name first
-// and removes none when one fails: UserError when a name is not a build of the cache (naming the
-// builds it holds) or when a build is in use (naming the process). Also deletes what earlier
-// removals left (.removing-*).
+// Removes the builds `names` (folder names, as `builds list` shows them) from the cache (empty:
+// build_cache_dir()). Checks every name first and removes none when one fails: UserError when a
+// name is not a build folder of the cache (naming the builds it holds) or when a build is in use
+// (a process holds its source tree or draws with it: BuildInUse). Also deletes what earlier
+// removals left (.removing-*), but not a removal that is running now.
 std::vector<RemovedBuild> remove_builds(const std::string& cache,
                                         const std::vector<std::string>& names);
 

@@ -2,7 +2,9 @@
 // build.json and a file of known size each, nothing that draws.
 #include "runner/build_cache.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -143,6 +145,73 @@ TEST(BuildCache, WhatAnInterruptedRemovalLeftIsNoBuildAndGoesNextTime) {
   ASSERT_EQ(list_builds(cache.dir.string()).size(), 1u);
   EXPECT_GT(cache_usage(cache.dir.string()).unfinished, 0u);
   remove_builds(cache.dir.string(), {"mesa-b"});
+  EXPECT_TRUE(fs::is_empty(cache.dir));
+}
+
+// A build a process draws with (a watch night's two builds) is refused, and so is a request that
+// names it beside another build; once the user ends, it goes.
+TEST(BuildCache, ABuildDrawnWithIsRefusedUntilItsUserEnds) {
+  const FakeCache cache("drawn");
+  cache.add("mesa-a", 1000);
+  cache.add("mesa-b", 1000);
+  {
+    const BuildInUse night((cache.dir / "mesa-a").string());
+    const BuildInUse another_user((cache.dir / "mesa-a").string());  // users share the build
+    const std::string e = error_of([&] { remove_builds(cache.dir.string(), {"mesa-b", "mesa-a"}); });
+    EXPECT_NE(e.find("builds remove: mesa-a is in use: a process draws with it now"),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find("nothing was removed"), std::string::npos) << e;
+    EXPECT_EQ(list_builds(cache.dir.string()).size(), 2u);
+  }
+  EXPECT_EQ(remove_builds(cache.dir.string(), {"mesa-b", "mesa-a"}).size(), 2u);
+  EXPECT_TRUE(fs::is_empty(cache.dir));
+  // A build that is gone cannot be held: the user is told, not left to draw with nothing.
+  EXPECT_NE(error_of([&] { BuildInUse gone((cache.dir / "mesa-a").string()); }).find("is gone"),
+            std::string::npos);
+}
+
+// A removal running now (its folder renamed aside, its lock held) is not another removal's
+// leftover: the second's clean-up leaves it to finish.
+TEST(BuildCache, ARemovalRunningNowIsLeftAloneByAnotherOnesCleanUp) {
+  const FakeCache cache("concurrent");
+  cache.add("mesa-a", 1000);
+  cache.add("mesa-b", 1000);
+  const fs::path aside = cache.dir / ".removing-mesa-a-4242";
+  fs::rename(cache.dir / "mesa-a", aside);
+  const int fd = ::open(BuildInUse::lock_path(aside.string()).c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  EXPECT_EQ(remove_builds(cache.dir.string(), {"mesa-b"}).size(), 1u);
+  EXPECT_TRUE(fs::exists(aside / "build.json")) << "the running removal's folder was deleted";
+  ::close(fd);  // that removal died: its folder is a leftover now
+  cache.add("mesa-c", 1000);
+  remove_builds(cache.dir.string(), {"mesa-c"});
+  EXPECT_TRUE(fs::is_empty(cache.dir));
+}
+
+// A build folder renamed by hand is listed and removed by its folder's name (what PLATFORM@NAME
+// draws); a request naming what build.json says removes nothing at all.
+TEST(BuildCache, ABuildRenamedByHandIsItsFolderAndAPartialRequestRemovesNothing) {
+  const FakeCache cache("renamed");
+  cache.add("mesa-aaa", 1000);
+  cache.add("mesa-bbb", 1000);
+  fs::rename(cache.dir / "mesa-aaa", cache.dir / "mesa-ccc");
+  const std::vector<BuildSummary> listed = list_builds(cache.dir.string());
+  ASSERT_EQ(listed.size(), 2u);
+  EXPECT_EQ(listed[0].name, "mesa-bbb");
+  EXPECT_EQ(listed[1].name, "mesa-ccc");
+  EXPECT_EQ(listed[1].recorded_name, "mesa-aaa");
+  const std::string e = error_of([&] { remove_builds(cache.dir.string(), {"mesa-bbb", "mesa-aaa"}); });
+  EXPECT_NE(e.find("no build 'mesa-aaa' in " + cache.dir.string() + "; it holds mesa-bbb, mesa-ccc"),
+            std::string::npos)
+      << e;
+  EXPECT_TRUE(fs::exists(cache.dir / "mesa-bbb" / "build.json"));
+  const std::vector<RemovedBuild> removed =
+      remove_builds(cache.dir.string(), {"mesa-bbb", "mesa-ccc"});
+  ASSERT_EQ(removed.size(), 2u);
+  EXPECT_EQ(removed[1].name, "mesa-ccc");
+  EXPECT_EQ(removed[1].left, "");
   EXPECT_TRUE(fs::is_empty(cache.dir));
 }
 

@@ -293,7 +293,10 @@ std::vector<BuildSummary> list_builds(const std::string& cache_dir) {
   for (const auto& e : fs::directory_iterator(cache, ec)) {
     if (e.path().filename().string()[0] == '.' || !fs::exists(e.path() / "build.json")) continue;
     try {
-      out.push_back(read_build(e.path().string()));
+      BuildSummary b = read_build(e.path().string());
+      if (b.name != e.path().filename().string()) b.recorded_name = b.name;
+      b.name = e.path().filename().string();
+      out.push_back(b);
     } catch (const std::exception& x) {
       BuildSummary s;
       s.name = e.path().filename().string();

@@ -34,6 +34,9 @@ struct BuildSummary {
   std::string origin;   // "Debian" (builds fetch) or "source" (builds build)
   std::string commit;   // a source build's git commit ("" when not from git)
   std::string version;  // a source build's VERSION ("25.1.0-devel")
+  // list_builds: the name build.json records when the folder was renamed since (the folder's name
+  // is the build's: PLATFORM@FOLDER draws it, `builds remove FOLDER` removes it); else "".
+  std::string recorded_name;
 };
 
 // The Mesa packages a build is made of: those every suite must have, and those only some releases

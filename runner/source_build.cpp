@@ -273,6 +273,8 @@ nlohmann::json provenance(const SourceBuildOptions& options, const SourceIdentit
         {"subject", id.subject},
         {"commit_date", id.date},
         {"dirty", id.dirty},
+        {"untracked", id.untracked},
+        {"clean", id.clean()},
         {"version", id.version},
         {"debian_version", id.debian_version},
         {"patches", id.patches},
@@ -295,17 +297,28 @@ nlohmann::json provenance(const SourceBuildOptions& options, const SourceIdentit
 
 // True when the cached build in `dir` was made from `commit` with the reuse key `key`. The key
 // covers the commit; the commit is compared too, so that a build recorded under another commit (a
-// tree moved during its build) is never taken for this one.
+// tree moved during its build) is never taken for this one; and a git build must record that its
+// tree was clean (no untracked or changed file), else it may not be the commit's.
 bool same_build(const std::string& dir, const std::string& key, const std::string& commit) {
   std::error_code ec;
   if (!fs::exists(dir + "/build.json", ec)) return false;
   try {
     const nlohmann::json j = nlohmann::json::parse(util::read_file(dir + "/build.json"));
     const nlohmann::json sb = j.value("source_build", nlohmann::json::object());
-    return sb.value("key", "") == key && sb.value("commit", "") == commit;
+    const bool proven = !sb.value("git", false) || sb.value("clean", false) == true;
+    return sb.value("key", "") == key && sb.value("commit", "") == commit && proven;
   } catch (const std::exception&) {
     return false;
   }
+}
+
+// "1 untracked file (meson.options)", "5 untracked files (a, b, c, d, ...)".
+std::string untracked_text(const std::vector<std::string>& files, std::size_t count) {
+  std::string shown;
+  for (const std::string& f : files) shown += (shown.empty() ? "" : ", ") + f;
+  if (count > files.size()) shown += ", ...";
+  return std::to_string(count) + (count == 1 ? " untracked file (" : " untracked files (") +
+         shown + ")";
 }
 
 }  // namespace
@@ -349,6 +362,17 @@ SourceIdentity identify_source(const std::string& source_dir) {
     id.date = info.substr(0, info.find('\n'));
     id.subject = info.find('\n') == std::string::npos ? "" : info.substr(info.find('\n') + 1);
     id.dirty = !git(source_dir, {"status", "--porcelain", "--untracked-files=no"}).empty();
+    // What meson reads besides the commit's files: anything git neither tracks nor ignores.
+    const std::string others =
+        git(source_dir, {"ls-files", "--others", "--exclude-standard", "--directory",
+                         "--no-empty-directory"});
+    id.untracked_count = 0;
+    for (std::size_t at = 0; at < others.size();) {
+      const std::size_t nl = std::min(others.find('\n', at), others.size());
+      if (nl > at && id.untracked.size() < 4) id.untracked.push_back(others.substr(at, nl - at));
+      if (nl > at) ++id.untracked_count;
+      at = nl + 1;
+    }
   }
   id.version = read_trimmed(source_dir + "/VERSION");
   const std::string changelog = read_trimmed(source_dir + "/debian/changelog");
@@ -357,6 +381,32 @@ SourceIdentity identify_source(const std::string& source_dir) {
   id.patches = read_trimmed(source_dir + "/debian/patches/series");
   if (!id.git) id.content_hash = tree_content_hash(source_dir);
   return id;
+}
+
+SourceBuildResult use_source_build(const std::string& dir, const std::string& commit,
+                                   SourceBuildOptions options,
+                                   const std::function<void(const std::string&)>& progress) {
+  std::error_code ec;
+  const std::string json = dir + "/build.json";
+  try {
+    if (fs::exists(json, ec)) {
+      const nlohmann::json j = nlohmann::json::parse(util::read_file(json));
+      const nlohmann::json sb = j.value("source_build", nlohmann::json::object());
+      if (sb.value("commit", "") == commit && sb.value("clean", false) == true) {
+        SourceBuildResult r;
+        r.in_use = std::make_shared<BuildInUse>(dir);
+        r.build = read_build(dir);
+        r.reused = true;
+        return r;
+      }
+    }
+  } catch (const std::exception&) {
+    // damaged or removed just now: built again
+  }
+  if (progress)
+    progress(dir + " no longer holds the build of " + commit.substr(0, 12) + ": building it again");
+  options.ref = commit;
+  return build_from_source(options, progress);
 }
 
 std::string tree_content_hash(const std::string& dir) {
@@ -424,12 +474,51 @@ std::string source_build_name(const SourceIdentity& id, const SourceBuildOptions
   std::string name = id.git ? "mesa-" + id.commit.substr(0, 12)
                             : "mesa-" + (id.version.empty() ? std::string("unknown") : id.version) +
                                   "-src";
-  if (id.dirty) name += "-dirty";
+  if (id.dirty || !id.untracked.empty()) name += "-dirty";  // not its commit's files alone
   const bool defaults = o.meson_options.empty() && o.build_command.empty() &&
                         o.llvm_config == SourceBuildOptions{}.llvm_config;
   if (!defaults) name += "-" + source_build_key(id, o).substr(0, 6);
   return name;
 }
+
+namespace {
+
+// Checks the tree out at options.ref for a build of that commit alone (a tree with changes or
+// untracked files is refused) and returns where to check it out again after the build; `id` is
+// then the commit's.
+std::string check_out_ref(const SourceBuildOptions& options, const std::string& source,
+                          SourceIdentity& id) {
+  std::string restore_ref;
+  if (!id.git) throw util::UserError("builds build: --ref needs a git checkout; " + source + " is not one");
+  if (id.dirty)
+    throw util::UserError("builds build: " + source +
+                          " has uncommitted changes; commit or stash them before --ref");
+  // A build of a commit is that commit's files and nothing else.
+  if (!id.untracked.empty())
+    throw util::UserError("builds build: " + source + " has " +
+                          untracked_text(id.untracked, id.untracked_count) +
+                          "; a build of " + options.ref +
+                          " would see it and be kept as that commit's: `git -C " + source +
+                          " clean -n -d` lists them, `git stash -u` or `git clean -fd` removes "
+                          "them");
+  bool ok = false;
+  const std::string commit = git(
+      source, {"rev-parse", "--verify", "--quiet", "--end-of-options", options.ref + "^{commit}"},
+      &ok);
+  if (!ok || commit.empty())
+    throw util::UserError("builds build: '" + options.ref + "' is not a commit of " + source);
+  bool on_branch = false;
+  restore_ref = git(source, {"symbolic-ref", "-q", "--short", "HEAD"}, &on_branch);
+  if (!on_branch) restore_ref = id.commit;
+  if (commit != id.commit) {
+    git(source, {"-c", "advice.detachedHead=false", "checkout", "-q", "--detach", commit}, &ok);
+    if (!ok) throw util::UserError("builds build: cannot check out " + options.ref + " in " + source);
+  }
+  id = identify_source(source);
+  return restore_ref;
+}
+
+}  // namespace
 
 SourceBuildResult build_from_source(const SourceBuildOptions& options,
                                     const std::function<void(const std::string&)>& progress) {
@@ -447,29 +536,11 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
   const std::unique_ptr<util::DirLock> tree_lock =
       options.source_locked ? nullptr : lock_source_tree(source, "builds build");
   SourceIdentity id = identify_source(source);
-  std::string restore_ref;
-  if (!options.ref.empty()) {
-    if (!id.git) throw util::UserError("builds build: --ref needs a git checkout; " + source + " is not one");
-    if (id.dirty)
-      throw util::UserError("builds build: " + source +
-                            " has uncommitted changes; commit or stash them before --ref");
-    bool ok = false;
-    const std::string commit = git(source, {"rev-parse", "--verify", "--quiet", options.ref + "^{commit}"}, &ok);
-    if (!ok || commit.empty())
-      throw util::UserError("builds build: '" + options.ref + "' is not a commit of " + source);
-    bool on_branch = false;
-    restore_ref = git(source, {"symbolic-ref", "-q", "--short", "HEAD"}, &on_branch);
-    if (!on_branch) restore_ref = id.commit;
-    if (commit != id.commit) {
-      git(source, {"-c", "advice.detachedHead=false", "checkout", "-q", "--detach", commit}, &ok);
-      if (!ok) throw util::UserError("builds build: cannot check out " + options.ref + " in " + source);
-    }
-    id = identify_source(source);
-  }
+  const std::string restore_ref = options.ref.empty() ? "" : check_out_ref(options, source, id);
   struct Restore {
     std::string dir, ref;
     ~Restore() {
-      if (!ref.empty()) git(dir, {"-c", "advice.detachedHead=false", "checkout", "-q", ref});
+      if (!ref.empty()) git(dir, {"-c", "advice.detachedHead=false", "checkout", "-q", ref, "--"});
     }
   } restore{source, options.restore_ref && restore_ref != id.commit ? restore_ref : ""};
 
@@ -481,11 +552,16 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
   const std::string key = source_build_key(id, options);
   SourceBuildResult result;
   const std::string target = cache + "/" + name;
-  if (options.reuse && !id.dirty && same_build(target, key, id.commit)) {
-    result.reused = true;
-    result.build = read_build(target);
-    say("reused " + name + " (same source and options)");
-    return result;
+  if (options.reuse && (id.clean() || !id.git) && same_build(target, key, id.commit)) {
+    try {
+      result.in_use = std::make_shared<BuildInUse>(target);
+      result.reused = true;
+      result.build = read_build(target);
+      say("reused " + name + " (same source and options)");
+      return result;
+    } catch (const util::UserError&) {
+      result = SourceBuildResult{};  // removed just now: built again below
+    }
   }
   const bool meson = options.build_command.empty();
   if (meson) {
@@ -561,7 +637,14 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
     const nlohmann::json j = provenance(options, id, s, gl, chosen, key, jobs, result);
     util::write_file_atomic(prefix + "/build.json", j.dump(2) + "\n");
     s.dir = target;
+    // Held before it is in the cache (the lock moves with the folder): no removal between.
+    result.in_use = std::make_shared<BuildInUse>(prefix);
     const std::string old = work + "/replaced";
+    // A build of the same name that a process draws with (a night, a bisection) stays.
+    if (build_drawn_with_now(target))
+      throw util::UserError("builds build: " + name + " in " + cache +
+                            " is in use: a process draws with it now; wait for it to finish, or "
+                            "build under another --name; the build cache is unchanged");
     if (fs::exists(target, ec)) fs::rename(target, old);
     fs::rename(prefix, target);
     fs::remove_all(work, ec);

@@ -12,8 +12,15 @@
 // One writer per tree: a build holds the source tree's lock (util/dir_lock.h on the git folder,
 // or on the tree itself without git) from checkout to install, so a second build or bisection of
 // the same tree is refused, naming the holder, rather than checking out commits under the first.
-// A build proves it is the commit it is named after: the tree's HEAD is read again after the
-// install, and a build whose tree moved is not kept.
+// A build proves it is the commit it is named after: a git tree with a file git does not track
+// (an untracked meson.options, as a checkout that failed half-way leaves) is refused for --ref
+// (watch, bisect: every build of a commit) and built as it is only under a "-dirty" name; the
+// tree's HEAD is read again after the install, and a build whose tree moved is not kept. build.json
+// records the proof ("clean": the tree was the commit, nothing changed or added), and only a build
+// with that proof is reused for its commit; an older one is built again.
+//
+// A build returned is held for use (BuildInUse, build_cache.h) for as long as its result lives, so
+// that `builds remove` cannot delete it under a night or a bisection that draws with it.
 #pragma once
 
 #include <functional>
@@ -21,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "runner/build_cache.h"
 #include "runner/build_fetch.h"
 #include "util/dir_lock.h"
 
@@ -62,6 +70,9 @@ struct SourceIdentity {
   std::string source;        // the tree's folder, canonical
   bool git = false;
   bool dirty = false;        // git: tracked files differ from the commit
+  std::vector<std::string> untracked;  // git: files it does not track nor ignore (the first 4)
+  std::size_t untracked_count = 0;     // all of them
+  bool clean() const { return git && !dirty && untracked.empty(); }  // the tree is its commit
   std::string commit;        // full hash ("" when not git)
   std::string subject, date; // the commit's
   std::string version;       // the tree's VERSION file ("25.1.0-devel")
@@ -77,12 +88,20 @@ struct SourceBuildResult {
   double seconds = 0;     // configure + compile + install (0 when reused)
   std::string log;        // the build log (kept in the build folder as build.log)
   std::vector<std::string> notes;  // what the plan left out (lavapipe, OSMesa)
+  std::shared_ptr<BuildInUse> in_use;  // the build held against `builds remove` (see the header)
 };
 
 // Builds (or reuses) and returns the build. `progress` receives one line per step
 // ("configure", "compile", "install", "probe"). Throws UserError naming the failing step.
 SourceBuildResult build_from_source(const SourceBuildOptions& options,
                                     const std::function<void(const std::string&)>& progress = {});
+
+// The build of `commit` in `dir` (last night's, a bisection's end), held for use; built again
+// with `options` at ref `commit` when `dir` no longer holds it (removed, the cache cleared) or
+// holds no proof that it is that commit's. Throws UserError as build_from_source does.
+SourceBuildResult use_source_build(const std::string& dir, const std::string& commit,
+                                   SourceBuildOptions options,
+                                   const std::function<void(const std::string&)>& progress = {});
 
 // FNV-1a 64 (hex) of every regular file and symbolic link under `dir` (relative path and bytes,
 // in path order), leaving out `.git` and the lock file: the identity of a tree without git, so

@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
 
 #include "rundir/driver_build.h"
 #include "platforms/vulkan_context.h"
@@ -289,6 +291,73 @@ TEST_F(SourceBuildDirs, ABuildCommandInstallsProbesNothingAndIsReused) {
     EXPECT_NE(std::string(e.what()).find("compile error"), std::string::npos) << e.what();
   }
   EXPECT_EQ(cache_listing(), before);
+}
+
+TEST_F(SourceBuildDirs, AFileGitDoesNotTrackMakesABuildNotItsCommits) {
+  // Why: an untracked meson.options (what a checkout that failed half-way leaves) was built into
+  // the cached build of the commit, which every later night and bisection then reused.
+  const fs::path tree = root_ / "mesa";
+  fs::create_directories(tree);
+  ASSERT_EQ(std::system(("git -C " + tree.string() + " init -q && git -C " + tree.string() +
+                         " -c user.email=t@t -c user.name=t commit -q --allow-empty -m one")
+                            .c_str()),
+            0);
+  SourceBuildOptions o;
+  o.source = tree.string();
+  o.cache = (root_ / "cache").string();
+  o.probe = false;
+  o.build_command = "mkdir -p \"$RENDERAUDIT_BUILD_PREFIX/lib/x86_64-linux-gnu\"";
+  std::ofstream(tree / "meson.options") << "option('stale', type: 'boolean')\n";
+  o.ref = "HEAD";
+  try {
+    build_from_source(o);
+    FAIL() << "a tree with an untracked file was built for --ref";
+  } catch (const util::UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("has 1 untracked file (meson.options)"), std::string::npos)
+        << e.what();
+  }
+  o.ref = "";  // as it is: built, but not under the commit's name and never reused
+  const std::string tainted = build_from_source(o).build.name;  // not held: replaced below
+  EXPECT_NE(tainted.find("-dirty"), std::string::npos) << tainted;
+  EXPECT_FALSE(build_from_source(o).reused);
+  fs::remove(tree / "meson.options");
+  const BuildSummary clean = build_from_source(o).build;
+  EXPECT_EQ(clean.name.find("-dirty"), std::string::npos) << clean.name;
+  EXPECT_TRUE(build_from_source(o).reused);
+  // A build that does not record a clean tree (made before the record) is built again.
+  nlohmann::json j = nlohmann::json::parse(util::read_file(clean.dir + "/build.json"));
+  EXPECT_EQ(j["source_build"]["clean"], true);
+  j["source_build"].erase("clean");
+  util::write_file_atomic(clean.dir + "/build.json", j.dump());
+  EXPECT_FALSE(build_from_source(o).reused);
+}
+
+TEST_F(SourceBuildDirs, ABuildAProcessDrawsWithIsNotReplaced) {
+  // Why: `builds build --rebuild` moved a build aside under a night that drew with it.
+  const fs::path tree = root_ / "mesa";
+  fs::create_directories(tree);
+  ASSERT_EQ(std::system(("git -C " + tree.string() + " init -q && git -C " + tree.string() +
+                         " -c user.email=t@t -c user.name=t commit -q --allow-empty -m one")
+                            .c_str()),
+            0);
+  SourceBuildOptions o;
+  o.source = tree.string();
+  o.cache = (root_ / "cache").string();
+  o.probe = false;
+  o.build_command = "mkdir -p \"$RENDERAUDIT_BUILD_PREFIX/lib/x86_64-linux-gnu\"";
+  std::shared_ptr<BuildInUse> night = build_from_source(o).in_use;
+  ASSERT_TRUE(night);
+  o.reuse = false;
+  try {
+    build_from_source(o);
+    FAIL() << "a build drawn with was replaced";
+  } catch (const util::UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("is in use: a process draws with it now"),
+              std::string::npos)
+        << e.what();
+  }
+  night.reset();
+  EXPECT_FALSE(build_from_source(o).reused);
 }
 
 TEST_F(SourceBuildDirs, ATreeWithoutGitIsKeyedOnItsContent) {

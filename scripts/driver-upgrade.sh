@@ -90,6 +90,7 @@ status=0
 audit_build() {  # BUILD PLATFORM...
   local build=$1 p dir rc suffix
   shift
+  # the folder upgrade_report.py is told of (--audit-suffix) for a build other than backports
   suffix=$([ "$build" = backports ] || echo "-$build")
   for p in "$@"; do
     dir=$out/audit-$p$suffix
@@ -138,7 +139,8 @@ if [ ${#audited[@]} -gt 0 ]; then
   done
   if [ ${#source_audited[@]} -gt 0 ]; then
     { echo; echo "# The installed Mesa against Mesa built from source ($MESA_SOURCE${MESA_REF:+ at $MESA_REF})"; echo
-      /usr/bin/python3 "$repo/scripts/upgrade_report.py" "$ra" "$out" source "${source_audited[@]}" |
+      /usr/bin/python3 "$repo/scripts/upgrade_report.py" --audit-suffix -source "$ra" "$out" source \
+        "${source_audited[@]}" |
         sed -e '/^\[TOC\]$/d' -e 's/^## /### /' -e 's/^# /## /'
     } >> "$report" || die "the report of the source build failed (above)"
   fi

@@ -4,7 +4,10 @@ its build PLATFORM@BUILD in one run, read from the run's records (`renderaudit r
 header name) and the audits' audit.json, with pictures (`renderaudit show`) and C reproducers
 (`renderaudit reproduce`) of the worst primitive of each distinct finding.
 
-Usage: upgrade_report.py RENDERAUDIT RUN_DIR BUILD PLATFORM... > report.md
+Usage: upgrade_report.py [--audit-suffix SUFFIX] RENDERAUDIT RUN_DIR BUILD PLATFORM... > report.md
+The audit of PLATFORM against PLATFORM@BUILD is read from RUN_DIR/audit-PLATFORM<SUFFIX>/audit.json
+(driver-upgrade.sh: no suffix for backports, "-source" for the source build) and must say that it
+compared those two platforms. Exit 2 for bad input: a missing or other audit.
 Writes RUN_DIR/upgrade-summary-BUILD.json (schema "renderaudit-upgrade-summary" version 1: per pair
 the counts per kind and view group) and opens the Markdown with the sentence `renderaudit report
 --upgrade-headline` makes of it (report/upgrade_headline.h), then the worst primitive's before and
@@ -23,10 +26,25 @@ import io
 import json
 import os
 import re
+import shlex
 import subprocess
 import sys
 
-GROUPS = "ABCD"
+
+def group_label(g):
+    """View group g (0-based) as the records and the headline name it: A..Z, then AA, AB, ..."""
+    label = ""
+    g += 1
+    while g:
+        g, r = divmod(g - 1, 26)
+        label = chr(ord("A") + r) + label
+    return label
+
+
+def die(message):
+    print(f"upgrade_report.py: {message}", file=sys.stderr)
+    sys.exit(2)
+
 ALLOWED = {"exact", "snapped", "within-spec"}
 BACKENDS = {"osmesa": "OSMesa", "egl": "EGL", "vk": "Vulkan", "glx": "GLX"}
 # the findings, most severe first, with how a picture of one is titled
@@ -46,7 +64,7 @@ def records(ra, run_dir, platforms):
         if r["platform"] not in platforms:
             continue
         g = int(r["view_group"])
-        groups[GROUPS[g]] = (round(float(r["fov_deg"])), int(r["width"]))
+        groups[group_label(g)] = (round(float(r["fov_deg"])), int(r["width"]))
         out[(r["platform"], r["kind"], int(r["view"]), int(r["index"]))] = (
             r["status"], r["visibility"], int(r["pixels"]), r["pixel_hash"],
             r.get("conformance", ""), g)
@@ -81,7 +99,7 @@ def pair_findings(recs, p, q):
         after = recs.get((q, kind, view, index))
         if after is None:
             continue
-        s = strata[(kind, GROUPS[before[5]])]
+        s = strata[(kind, group_label(before[5]))]
         s["compared"] += 1
         if (before[0], before[1], before[3]) == (after[0], after[1], after[3]):
             continue
@@ -116,13 +134,16 @@ def picture_pair(ra, run_dir, p, q, kind, view, index, before, after, groups):
         verdict = state[4] or "not judged"
         cells.append(f"![{side}, {plat}: {state[2]} pixels lit, {state[1]}, {verdict}]"
                      f"({os.path.relpath(png, run_dir)})")
-    fov, window = groups[GROUPS[before[5]]]
+    fov, window = groups[group_label(before[5])]
+    # a command to paste: every word one shell word, whatever the run folder is called
+    show = " ".join(shlex.quote(w) for w in ["renderaudit", "show", run_dir, "--platform", q,
+                                             "--kind", kind, "--view", str(view),
+                                             "--index", str(index)])
     lines = [" ".join(cells), "",
              f"{kind} {index} of view {view} (FOV {fov}, {window} x {window}). Grey: lit by the "
              "driver and the exact reference rasterizer; orange: by the driver only; blue: by "
              "the reference only; black: pixels GL forbids; red: the ideal primitive. "
-             f"`renderaudit show {run_dir} --platform {q} --kind {kind} --view {view} --index "
-             f"{index}` draws it again."]
+             f"`{show}` draws it again."]
     c = os.path.join(pictures, f"{q}.{kind}.v{view}.{index}.c")
     r = subprocess.run([ra, "reproduce", run_dir, "--platform", q, "--kind", kind, "--view",
                         str(view), "--index", str(index), "--out", c],
@@ -133,9 +154,36 @@ def picture_pair(ra, run_dir, p, q, kind, view, index, before, after, groups):
     return "\n".join(lines) + "\n"
 
 
+def audit_of(run_dir, p, q, suffix):
+    """The audit.json of p against q, checked to be that pair's."""
+    path = os.path.join(run_dir, f"audit-{p}{suffix}", "audit.json")
+    try:
+        with open(path) as f:
+            a = json.load(f)
+    except (OSError, ValueError) as e:
+        die(f"{path}: cannot read the audit of {p} against {q} ({e}); run "
+            f"`renderaudit audit {shlex.quote(run_dir)} --between {shlex.quote(p)} "
+            f"{shlex.quote(q)} --out {shlex.quote(os.path.dirname(path))}`")
+    pairs = a.get("pairs") if isinstance(a, dict) else None
+    if not isinstance(pairs, list) or not any(
+            isinstance(x, dict) and x.get("baseline_platform") == p and
+            x.get("current_platform") == q for x in pairs):
+        die(f"{path}: 'pairs' does not compare {p} with {q}: this is another audit's folder "
+            "(give the right --audit-suffix)")
+    return a
+
+
 def main():
-    ra, run_dir, build = sys.argv[1:4]
-    platforms = sys.argv[4:]
+    args = sys.argv[1:]
+    suffix = ""
+    if args[:1] == ["--audit-suffix"]:
+        if len(args) < 2:
+            die("--audit-suffix needs a value")
+        suffix, args = args[1], args[2:]
+    if len(args) < 4:
+        die("usage: upgrade_report.py [--audit-suffix SUFFIX] RENDERAUDIT RUN_DIR BUILD PLATFORM...")
+    ra, run_dir, build = args[:3]
+    platforms = args[3:]
     names = set(platforms) | {p + "@" + build for p in platforms}
     recs, groups = records(ra, run_dir, names)
     driver = lambda p: json.load(open(os.path.join(run_dir, "drivers", p + ".json")))
@@ -220,7 +268,7 @@ def main():
           "significant tests | new violations |")
     print("| --- | --- | --- | ---: | ---: | ---: | ---: |")
     for p in platforms:
-        a = json.load(open(os.path.join(run_dir, f"audit-{p}", "audit.json")))
+        a = audit_of(run_dir, p, p + "@" + build, suffix)
         c = a["counts"]
         print(f"| {p} | {driver(p)['version']} | {driver(p + '@' + build)['version']} | "
               f"{c['compared']} | {c['changed']} | {a['distribution_tests']['significant']} of "
@@ -237,7 +285,7 @@ def main():
             print(f"| {s['kind']} | {s['group']} | {s['compared']} | {s['changed']} | "
                   f"{100.0 * s['changed'] / s['compared']:.2f}% | {s['not_drawn']} | "
                   f"{s['new_violations']} | {s['allowed']} |")
-        classes = collections.Counter((k, GROUPS[b[5]], b[4] or "n/a", a[4] or "n/a")
+        classes = collections.Counter((k, group_label(b[5]), b[4] or "n/a", a[4] or "n/a")
                                       for _, k, _, _, b, a in changed)
         if classes:
             print("\n### Class transitions of the changed primitives (exact / snapped / "
@@ -245,7 +293,7 @@ def main():
                   "| --- | :---: | --- | --- | ---: |")
             for (kind, g, b, a), n in sorted(classes.items(), key=lambda x: (-x[1], x[0])):
                 print(f"| {kind} | {g} | {b} | {a} | {n} |")
-        visibility = collections.Counter((k, GROUPS[b[5]], b[1], a[1])
+        visibility = collections.Counter((k, group_label(b[5]), b[1], a[1])
                                          for _, k, _, _, b, a in changed if b[1] != a[1])
         if visibility:
             print("\n### Visibility transitions (true-visible -> false-invisible: not drawn)\n\n"

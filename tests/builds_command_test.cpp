@@ -1,6 +1,7 @@
 // `renderaudit builds list` and `builds remove` on a temporary cache of two fake builds (a
 // build.json and a library-sized file each; nothing draws): the size column, the total, a removal
-// that leaves the other build, and an unknown name answered with the names the cache holds.
+// that leaves the other build, an unknown name answered with the names the cache holds, and a
+// folder renamed by hand.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -72,6 +73,30 @@ TEST(BuildsCommand, RemovingAnUnknownNameNamesTheBuildsThereAndRemovesNothing) {
       << o.output;
   EXPECT_TRUE(fs::exists(cache + "/mesa-a/build.json"));
   EXPECT_TRUE(fs::exists(cache + "/mesa-b/build.json"));
+}
+
+// A folder renamed by hand is the build of its new name: listed and removed by it (exit 0, each
+// removal said); a request naming what build.json says removes nothing at all (exit 2).
+TEST(BuildsCommand, ABuildRenamedByHandIsItsFolderAndARemovalThatSucceededExits0) {
+  const std::string cache = fresh_dir("builds_command_renamed") + "/cache";
+  fake_build(cache, "mesa-aaa", 1000);
+  fake_build(cache, "mesa-bbb", 1000);
+  fs::rename(cache + "/mesa-aaa", cache + "/mesa-ccc");
+  const Outcome list = run_renderaudit("builds list --cache " + cache);
+  ASSERT_EQ(list.exit_code, 0) << list.output;
+  EXPECT_NE(list.output.find("mesa-ccc "), std::string::npos) << list.output;
+  EXPECT_NE(list.output.find("renamed by hand: its build.json calls it mesa-aaa"),
+            std::string::npos)
+      << list.output;
+  const Outcome partial = run_renderaudit("builds remove mesa-bbb mesa-aaa --cache " + cache);
+  EXPECT_EQ(partial.exit_code, 2) << partial.output;
+  EXPECT_NE(partial.output.find("no build 'mesa-aaa'"), std::string::npos) << partial.output;
+  EXPECT_TRUE(fs::exists(cache + "/mesa-bbb/build.json")) << "removed part of the request";
+  const Outcome both = run_renderaudit("builds remove mesa-bbb mesa-ccc --cache " + cache);
+  EXPECT_EQ(both.exit_code, 0) << both.output;
+  EXPECT_NE(both.output.find("removed mesa-bbb ("), std::string::npos) << both.output;
+  EXPECT_NE(both.output.find("removed mesa-ccc ("), std::string::npos) << both.output;
+  EXPECT_FALSE(fs::exists(cache + "/mesa-ccc"));
 }
 
 }  // namespace

@@ -40,7 +40,8 @@ std::string git_ok(const std::string& dir, const std::vector<std::string>& args,
 }
 
 std::string rev(const std::string& dir, const std::string& ref, const char* option) {
-  const GitResult g = git(dir, {"rev-parse", "--verify", "--quiet", ref + "^{commit}"});
+  const GitResult g =
+      git(dir, {"rev-parse", "--verify", "--quiet", "--end-of-options", ref + "^{commit}"});
   if (!g.ok || g.out.empty())
     throw util::UserError(std::string("bisect: ") + option + " '" + ref + "' is not a commit of " +
                           dir);
@@ -69,12 +70,14 @@ class Bisection {
     load_state();
     util::InterruptScope interrupts;
     // The tree back on its branch however this ends (a step leaves it at a commit).
+    // `original` is a branch name or a hash (checked where it is read), given to git as a revision.
     struct Restore {
       std::string dir, original;
       ~Restore() {
-        if (git(dir, {"rev-parse", "HEAD"}).out != git(dir, {"rev-parse", original}).out ||
+        if (git(dir, {"rev-parse", "HEAD"}).out !=
+                git(dir, {"rev-parse", "--verify", "--quiet", "--end-of-options", original}).out ||
             !git(dir, {"symbolic-ref", "-q", "HEAD"}).ok)
-          git(dir, {"checkout", "-q", original});
+          git(dir, {"checkout", "-q", original, "--"});
       }
     } restore{o_.source, st_.result.original_head};
     line_commits();
@@ -99,6 +102,24 @@ class Bisection {
   }
   void save() const { save_bisect_state(st_.result.json_path, st_); }
 
+  // A drawing read back from bisect.json holds exactly the primitives its step drew: the ends the
+  // whole selection, a step those the ends do not draw alike.
+  void require_drawn(const BisectStep& s, const std::string& key,
+                     const std::vector<BisectPrimitive>& drawn) const {
+    const auto bad = [&](const std::string& label, const std::string& what) {
+      throw util::UserError("bisect: " + st_.result.json_path + ": '" + key +
+                            ".drawing.primitives[\"" + label + "\"]' " + what +
+                            "; move the file away to start the bisection again");
+    };
+    std::set<std::string> labels;
+    for (const BisectPrimitive& p : drawn) {
+      labels.insert(p.label());
+      if (!s.drawing.hashes.count(p.label())) bad(p.label(), "is missing");
+    }
+    for (const auto& [label, hash] : s.drawing.hashes)
+      if (!labels.count(label)) bad(label, "is not a primitive this step drew");
+  }
+
   // Everything that can be refused is refused before anything is built.
   void check_inputs() {
     std::error_code ec;
@@ -107,6 +128,19 @@ class Bisection {
     if (o_.source.empty() || !fs::is_directory(o_.source, ec))
       throw util::UserError("bisect: --source '" + o_.source + "' is not a folder");
     o_.source = fs::canonical(o_.source).string();
+    if (o_.out_dir.empty()) o_.out_dir = rundir::run_folder::bisect(o_.run_dir);
+    if (fs::exists(o_.out_dir, ec) && !fs::is_directory(o_.out_dir, ec))
+      throw util::UserError("bisect: --out " + o_.out_dir +
+                            " is a file; --out names a folder for bisect.json and bisect.md");
+    // Inside the tree, the bisection's own state would be an untracked file that every step's
+    // build sees, and that the advice for untracked files (`git clean`) would delete.
+    const fs::path out = fs::weakly_canonical(fs::absolute(o_.out_dir), ec);
+    const fs::path rel = out.lexically_relative(o_.source);
+    if (!ec && !rel.empty() && *rel.begin() != "..")
+      throw util::UserError("bisect: --out " + o_.out_dir + " is inside the source tree " +
+                            o_.source +
+                            ": every step's build would see bisect.json, and cleaning the tree "
+                            "would delete it; choose a folder outside " + o_.source);
     if (!git(o_.source, {"rev-parse", "--git-dir"}).ok)
       throw util::UserError("bisect: " + o_.source + " is not a git checkout");
     if (!git(o_.source, {"status", "--porcelain", "--untracked-files=no"}).out.empty())
@@ -149,10 +183,6 @@ class Bisection {
       throw util::UserError("bisect: platform '" + o_.platform +
                             "' cannot draw with a driver build (allowed: the osmesa-* and "
                             "surfaceless egl-* platforms, vk-lavapipe, faulty)");
-    if (o_.out_dir.empty()) o_.out_dir = rundir::run_folder::bisect(o_.run_dir);
-    if (fs::exists(o_.out_dir, ec) && !fs::is_directory(o_.out_dir, ec))
-      throw util::UserError("bisect: --out " + o_.out_dir +
-                            " is a file; --out names a folder for bisect.json and bisect.md");
     const Selection sel = select_primitives(o_);
     const std::size_t views = rundir::load_run_experiment(o_.run_dir).views.size();
     for (const BisectPrimitive& p : sel.primitives)
@@ -207,7 +237,7 @@ class Bisection {
         old.result.original_head != st_.result.original_head) {
       say("returning " + o_.source + " to " + old.result.original_head +
           ", where the interrupted bisection found it");
-      git_ok(o_.source, {"checkout", "-q", old.result.original_head}, "git checkout");
+      git_ok(o_.source, {"checkout", "-q", old.result.original_head, "--"}, "git checkout");
       st_.result.original_head = old.result.original_head;
     }
     st_.result.steps = old.result.steps;
@@ -233,12 +263,18 @@ class Bisection {
     }
     if (line_.back() != bad_) line_.push_back(bad_);
     st_.result.commits_in_range = line_.size() - 1;
+    std::set<std::size_t> positions;
     for (std::size_t i = 0; i < st_.result.steps.size(); ++i) {
       const BisectStep& s = st_.result.steps[i];
+      const std::string key = "steps[" + std::to_string(i) + "].position";
       if (s.position >= line_.size() || line_[s.position] != s.commit)
-        throw util::UserError("bisect: " + st_.result.json_path + ": 'steps[" + std::to_string(i) +
-                              "].position' does not hold its commit on today's line of commits "
+        throw util::UserError("bisect: " + st_.result.json_path + ": '" + key +
+                              "' does not hold its commit on today's line of commits "
                               "(the history changed?); move the file away to start again");
+      if (s.position == 0 || s.position + 1 == line_.size() || !positions.insert(s.position).second)
+        throw util::UserError("bisect: " + st_.result.json_path + ": '" + key +
+                              "' is an end or a step already built (each commit between the ends "
+                              "is built once); move the file away to start again");
     }
   }
 
@@ -247,7 +283,10 @@ class Bisection {
     for (auto [ref, commit, step, role, position] :
          {std::tuple{o_.good_ref, good_, &st_.result.good, "good ref", std::size_t(0)},
           std::tuple{o_.bad_ref, bad_, &st_.result.bad, "bad ref", line_.size() - 1}}) {
-      if (step->commit == commit && step->error.empty() && !step->drawing.hashes.empty()) continue;
+      if (step->commit == commit && step->error.empty() && !step->drawing.hashes.empty()) {
+        require_drawn(*step, role == std::string("good ref") ? "good" : "bad", st_.result.selection);
+        continue;
+      }
       *step = BisectStep{};
       step->role = role;
       step->commit = commit;
@@ -283,11 +322,14 @@ class Bisection {
     AttributionPlan plan(line_.size() - 1);
     plan.observe(0, judged_hashes(judged_, st_.result.good.drawing));
     plan.observe(line_.size() - 1, judged_hashes(judged_, st_.result.bad.drawing));
-    for (const BisectStep& s : st_.result.steps) {
-      if (s.error.empty())
+    for (std::size_t i = 0; i < st_.result.steps.size(); ++i) {
+      const BisectStep& s = st_.result.steps[i];
+      if (s.error.empty()) {
+        require_drawn(s, "steps[" + std::to_string(i) + "]", judged_);
         plan.observe(s.position, judged_hashes(judged_, s.drawing));
-      else
+      } else {
         plan.fail(s.position);
+      }
     }
     double step_seconds = 0;
     int fresh_steps = 0;

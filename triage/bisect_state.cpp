@@ -6,6 +6,8 @@
 #include "rundir/manifest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "util/git_ref_check.h"
+#include "util/json_seal.h"
 
 namespace ra::triage {
 namespace {
@@ -92,10 +94,14 @@ class Reader {
   BisectStep step(const nlohmann::json& j, const std::string& key) const {
     BisectStep s;
     s.role = text(j, key, "role");
+    const std::string role = key == "good" ? "good ref" : key == "bad" ? "bad ref" : "step";
+    // An end not drawn yet is written with no role and no commit.
+    if (s.role != role && !(role != "step" && s.role.empty()))
+      bad(name(key, "role"), "must be \"" + role + "\"");
     s.commit = text(j, key, "commit");
-    if (!s.commit.empty() && (s.commit.size() != 40 ||
-                              s.commit.find_first_not_of("0123456789abcdef") != std::string::npos))
-      bad(name(key, "commit"), "must be a full commit hash (40 hexadecimal digits) or empty");
+    if (!s.commit.empty() && !util::commit_hash_problem(s.commit).empty())
+      bad(name(key, "commit"), util::commit_hash_problem(s.commit) + " or empty");
+    if (s.commit.empty() && role == "step") bad(name(key, "commit"), "must be a full commit hash");
     s.subject = text(j, key, "subject");
     s.date = text(j, key, "date");
     s.version = text(j, key, "version");
@@ -163,8 +169,8 @@ nlohmann::json bisect_state_json(const BisectState& st) {
                       {"unattributed", unattributed},
                       {"complete", r.complete()},
                       {"total_build_s", r.total_build_s}};
-  j.update(rundir::document_header("bisection", 2, false));
-  return j;
+  j.update(rundir::document_header("bisection", kBisectStateVersion, false));
+  return util::sealed(j);
 }
 
 void save_bisect_state(const std::string& path, const BisectState& st) {
@@ -181,12 +187,26 @@ BisectState load_bisect_state(const std::string& path) {
   }
   const Reader rd(path);
   BisectState st;
-  if (!rundir::has_document_header(j, "bisection", 2))
-    rd.bad("schema_version", "is not 2 of renderaudit-bisection: written by another renderaudit "
-                             "(a bisection of git bisect's kind)");
+  // Version 2 was written before the seal: still read, each field checked on its own.
+  const bool sealed = rundir::has_document_header(j, "bisection", kBisectStateVersion);
+  if (!sealed && !rundir::has_document_header(j, "bisection", 2))
+    rd.bad("schema_version", "is not " + std::to_string(kBisectStateVersion) +
+                                 " (or 2) of renderaudit-bisection: written by another "
+                                 "renderaudit (a bisection of git bisect's kind)");
+  if (sealed)
+    if (const std::string problem = util::seal_problem(j); !problem.empty())
+      throw util::UserError("bisect: " + path + ": " + problem +
+                            "; move the file away to start the bisection again");
   st.inputs = rd.at(j, "", "inputs");
   if (!st.inputs.is_object()) rd.bad("inputs", "must be an object");
   st.result.original_head = rd.text(j, "", "original_head");
+  // Checked out again after a kill -9: a branch or a commit, never something git reads as an
+  // option (`--orphan=x`).
+  const std::string& head = st.result.original_head;
+  if (!head.empty() && !util::commit_hash_problem(head).empty() &&
+      !util::branch_name_problem(head).empty())
+    rd.bad("original_head", "must be the branch the tree was on or a full commit hash (" +
+                                util::branch_name_problem(head) + ")");
   const nlohmann::json& steps = rd.at(j, "", "steps");
   if (!steps.is_array()) rd.bad("steps", "must be an array");
   for (std::size_t i = 0; i < steps.size(); ++i)

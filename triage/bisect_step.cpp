@@ -73,6 +73,7 @@ void build_and_draw_step(const BisectOptions& o, const std::vector<BisectPrimiti
   b.source_locked = true;
   b.restore_ref = false;  // restored once, at the end
   const auto t0 = Clock::now();
+  std::shared_ptr<runner::BuildInUse> in_use;  // the build kept from `builds remove` while drawn
   say("  building " + short_hash(s.commit) + (s.version.empty() ? "" : " (" + s.version + ")") +
       " ...");
   try {
@@ -80,6 +81,7 @@ void build_and_draw_step(const BisectOptions& o, const std::vector<BisectPrimiti
     const runner::SourceBuildResult r = runner::build_from_source(b, [&](const std::string& line) {
       if (line.rfind("compile (ninja)", 0) == 0) say("    " + line);
     });
+    in_use = r.in_use;
     s.build = r.build.name;
     s.build_dir = r.build.dir;
     s.reused = r.reused;

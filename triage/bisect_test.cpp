@@ -6,11 +6,13 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <functional>
 
 #include "triage/bisect_selection.h"
 #include "triage/bisect_state.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "util/json_seal.h"
 
 namespace fs = std::filesystem;
 
@@ -75,6 +77,10 @@ TEST(BisectState, ABadFieldIsNamedWithItsFileAndKey) {
       {"steps.0.commit", "\"HEAD\""},
       {"steps.0.build_s", "\"slow\""},
       {"original_head", "7"},
+      {"original_head", "\"--orphan=pwned\""},
+      {"original_head", "\"main..x\""},
+      {"steps.0.commit", "\"--output=/tmp/x\""},
+      {"steps.0.role", "\"good ref\""},
       {"steps", "{}"},
   };
   for (const auto& [key, value] : damage) {
@@ -86,7 +92,8 @@ TEST(BisectState, ABadFieldIsNamedWithItsFileAndKey) {
       at = at->is_array() ? &(*at)[std::stoul(part)] : &(*at)[part];
     }
     (*at)[rest] = nlohmann::json::parse(value);
-    util::write_file_atomic(path, j.dump());
+    // Sealed again: the field's own check is what is tested here, not the seal.
+    util::write_file_atomic(path, util::sealed(j).dump());
     try {
       load_bisect_state(path);
       ADD_FAILURE() << key << " = " << value << " was accepted";
@@ -100,6 +107,38 @@ TEST(BisectState, ABadFieldIsNamedWithItsFileAndKey) {
   }
   util::write_file_atomic(path, "{\"version\": 2, \"inputs\": ");
   EXPECT_THROW(load_bisect_state(path), util::UserError);
+  fs::remove(path);
+}
+
+TEST(BisectState, ACopyChangedAfterItWasWrittenIsRefusedByItsSeal) {
+  // Why: one flipped digit of a pixel hash named an extra culprit with exit 0; a primitive lost
+  // from a drawing ended in "map::at".
+  const std::string path = temp_file();
+  for (const auto& damage : std::vector<std::function<void(nlohmann::json&)>>{
+           [](nlohmann::json& j) {
+             j["steps"][0]["drawing"]["primitives"]["line 1 of view 1"]["pixel_hash"] =
+                 "18446744073709551614";
+           },
+           [](nlohmann::json& j) { j["good"]["drawing"]["primitives"].erase("line 1 of view 1"); },
+           [](nlohmann::json& j) { j.erase("seal"); }}) {
+    nlohmann::json j = bisect_state_json(a_state());
+    damage(j);
+    util::write_file_atomic(path, j.dump(2));
+    try {
+      load_bisect_state(path);
+      ADD_FAILURE() << "a damaged copy was accepted: " << j.dump();
+    } catch (const util::UserError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find(path + ": 'seal'"), std::string::npos) << m;
+      EXPECT_NE(m.find("move the file away"), std::string::npos) << m;
+    }
+  }
+  // A file of version 2, written before the seal, is still read (each field checked).
+  nlohmann::json v2 = bisect_state_json(a_state());
+  v2.erase("seal");
+  v2["schema_version"] = 2;
+  util::write_file_atomic(path, v2.dump(2));
+  EXPECT_EQ(load_bisect_state(path).result.steps.size(), 1u);
   fs::remove(path);
 }
 

@@ -85,9 +85,6 @@ LastNight read_last(const std::string& path) {
       throw util::UserError("watch: " + path + ": branch: " + why + start_again);
   if (l.build_dir.empty() || l.build_dir[0] != '/')
     throw util::UserError("watch: " + path + ": build_dir: must be an absolute path" + start_again);
-  if (!fs::is_directory(l.build_dir, ec))
-    throw util::UserError("watch: " + path + ": build_dir: " + l.build_dir +
-                          " is gone (the build cache was cleared?)" + start_again);
   return l;
 }
 
@@ -214,7 +211,7 @@ class Night {
       throw util::UserError("watch: " + o_.source + " is not a git checkout");
     o_.source = fs::canonical(o_.source).string();
     // Bad input is refused here, before anything is fetched or built, and is no night.
-    const LastNight last = read_last(o_.state + "/watch.json");
+    LastNight last = read_last(o_.state + "/watch.json");
     check_same_tree(last);
     check_experiment(last.build_dir);
 
@@ -244,6 +241,12 @@ class Night {
     b.source = o_.source;
     b.ref = n_.commit;
     b.probe = false;  // the run is the probe
+    // Last night's build, held against `builds remove` all night; built again if it is gone.
+    runner::SourceBuildResult last_build;
+    if (!backwards && !last.commit.empty()) {
+      last_build = runner::use_source_build(last.build_dir, last.commit, b, [&](const std::string& s) { say("  " + s); });
+      last.build_dir = last_build.build.dir;
+    }
     runner::SourceBuildResult built;
     try {
       built = runner::build_from_source(b, [&](const std::string& s) { say("  " + s); });

@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# scripts/upgrade_report.py on a real run of stand-in drivers (scripts/bisect-fixture.sh), no Mesa
+# build (ctest upgrade_report): the installed driver `faulty` (llvmpipe) against two builds drawn in
+# one run, faulty@backports (a wild pixel on every line) and faulty@source (on the even lines
+# only), audited into the folders scripts/driver-upgrade.sh uses (audit-P, audit-P-source):
+#   - the source part's per-platform table shows the source audit's counts, not the backports ones,
+#     and an audit of another pair in the folder is refused (exit 2, the file named);
+#   - six view groups (3 fields of view x 2 windows) are named A-F, no crash past four;
+#   - the `renderaudit show` line pastes as one word per argument though the run folder is named
+#     like a command substitution, and runs nothing.
+# Usage: scripts/upgrade-report-test.sh BUILD_DIR
+set -euo pipefail
+build=$(cd "${1:-build}" && pwd)
+t=$(mktemp -d /tmp/renderaudit-upgrade-report-XXXXXX)
+trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
+. "$(dirname "$0")/bisect-fixture.sh"
+script="$(cd "$(dirname "$0")" && pwd)/upgrade_report.py"
+
+run="$t/out \$(touch $t/PWNED) it's"
+cat > "$t/upgrade.toml" <<EOT
+name = "upgrade-report-test"
+seed = 7
+platforms = ["faulty", "faulty@backports", "faulty@source"]
+[faults]
+base = "osmesa-llvmpipe"
+[builds.backports]
+dir = "$t/drivers/bad"
+[builds.source]
+dir = "$t/drivers/neither"
+[views]
+orientations = 1
+fov_deg = [30, 60, 90]
+windows = [64, 128]
+near = 0.01
+far = 10.0
+[primitives]
+points = 0
+lines = 8
+triangles = 0
+EOT
+"$ra" run "$t/upgrade.toml" --out "$run" --jobs 2 >/dev/null 2>"$t/run.log" || { cat "$t/run.log"; fail "run"; }
+for b in backports source; do
+  suffix=$([ $b = backports ] || echo "-$b")
+  set +e
+  "$ra" audit "$run" --between faulty "faulty@$b" --no-history --out "$run/audit-faulty$suffix" \
+    >"$t/audit-$b.log" 2>&1
+  rc=$?
+  set -e
+  [ $rc -le 1 ] || { cat "$t/audit-$b.log"; fail "audit of faulty@$b exited $rc"; }
+done
+changed() {  # changed AUDIT_FOLDER: the audit's count of changed primitives
+  /usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["counts"]["changed"])' "$1/audit.json"
+}
+backports_changed=$(changed "$run/audit-faulty")
+source_changed=$(changed "$run/audit-faulty-source")
+[ "$backports_changed" != "$source_changed" ] ||
+  fail "the two builds changed as many primitives ($source_changed): the test proves nothing"
+
+# The source part, as driver-upgrade.sh writes it.
+/usr/bin/python3 "$script" --audit-suffix -source "$ra" "$run" source faulty >"$t/source.md" 2>"$t/source.err" ||
+  { cat "$t/source.err"; fail "upgrade_report.py (source) failed"; }
+row=$(grep -m1 '^| faulty | ' "$t/source.md")
+[ "$(cut -d'|' -f6 <<<"$row" | tr -d ' ')" = "$source_changed" ] ||
+  { echo "$row"; fail "the source part's table does not show the source audit's $source_changed changed (backports: $backports_changed)"; }
+for g in A B C D E F; do
+  grep -q "^| line | $g | " "$t/source.md" || fail "view group $g is not in the per-kind table"
+done
+# An audit folder of another pair is refused, naming the file.
+set +e
+/usr/bin/python3 "$script" "$ra" "$run" source faulty >"$t/wrong.md" 2>"$t/wrong.err"
+rc=$?
+set -e
+[ $rc = 2 ] && grep -qF "$run/audit-faulty/audit.json: 'pairs' does not compare faulty with faulty@source" "$t/wrong.err" ||
+  { cat "$t/wrong.err"; fail "another pair's audit: exit $rc"; }
+
+# The `renderaudit show` line: the words that ran, nothing run.
+/usr/bin/python3 "$script" "$ra" "$run" backports faulty >"$t/backports.md" 2>"$t/backports.err" ||
+  { cat "$t/backports.err"; fail "upgrade_report.py (backports) failed"; }
+show=$(grep -o -m1 '`renderaudit show [^`]*`' "$t/backports.md")
+show=${show%%$'\n'*}
+show=${show//\`/}
+[ -n "$show" ] || fail "no renderaudit show line in the report"
+mkdir -p "$t/stub"
+printf '#!/bin/sh\nprintf "%%s\\0" "$@" > "$STUB_ARGS"\n' > "$t/stub/renderaudit"
+chmod +x "$t/stub/renderaudit"
+(cd "$t" && STUB_ARGS="$t/show.args" PATH="$t/stub:$PATH" bash -c "$show") || fail "the show line does not run in bash: $show"
+[ ! -e "$t/PWNED" ] || fail "pasting the show line ran the run folder's \$(touch ...)"
+[ "$(tr '\0' '\n' <"$t/show.args" | sed -n 2p)" = "$run" ] || fail "the show line's run folder is not one word: $show"
+echo "upgrade-report-test: the source part, six view groups, the show line checked"
+echo "1 passed, 0 failed"
