@@ -90,6 +90,24 @@ json speed_json(const SpeedComparison& c) {
           {"levene_median", outcome_json(c.levene, c.levene_p_holm)}};
 }
 
+// `speed` (one object per pair, kind and view group) and `speed_measurement` (how).
+void add_speed(json& j, const SpeedAudit& s) {
+  json speed = json::array();
+  for (const SpeedComparison& c : s.comparisons) speed.push_back(speed_json(c));
+  j["speed"] = speed;
+  j["speed_measurement"] = {
+      {"performed", s.performed},
+      {"repeats", s.options.repeats},
+      {"primitives_per_view", s.options.per_view},
+      {"threshold", s.options.threshold},
+      {"warn_only", s.options.warn_only},
+      {"interval", "student t over rounds of hodges-lehmann paired log ratios, 95%"},
+      {"tests", "welch_t and levene_median on box-cox, holm-bonferroni"},
+      {"processes", s.processes},
+      {"seconds", s.seconds},
+      {"errors", s.errors}};
+}
+
 json comparison_json(const AuditResult& r, const DistributionComparison& c) {
   const analysis::MetricSpec& m = analysis::kind_metrics(c.kind)[c.metric];
   json bc = {{"applied", c.box_cox.applicable}};
@@ -271,19 +289,7 @@ json audit_json(const AuditResult& r) {
                        {"after", c.after},
                        {"difference", int64_t(c.after) - int64_t(c.before)}});
   j["visibility"] = classes;
-  json speed = json::array();
-  for (const SpeedComparison& c : r.speed.comparisons) speed.push_back(speed_json(c));
-  j["speed"] = speed;
-  j["speed_measurement"] = {{"performed", r.speed.performed},
-                            {"repeats", r.speed.options.repeats},
-                            {"primitives_per_view", r.speed.options.per_view},
-                            {"threshold", r.speed.options.threshold},
-                            {"warn_only", r.speed.options.warn_only},
-                            {"interval", "hodges-lehmann, signed-rank 95%"},
-                            {"tests", "welch_t and levene_median on box-cox, holm-bonferroni"},
-                            {"processes", r.speed.processes},
-                            {"seconds", r.speed.seconds},
-                            {"errors", r.speed.errors}};
+  add_speed(j, r.speed);
   return j;
 }
 
