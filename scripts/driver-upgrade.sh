@@ -74,8 +74,9 @@ if [ -n "${MESA_SOURCE:-}" ]; then
   mkdir -p "$out"
   sed -e 's/^platforms = \[/platforms = ["egl-llvmpipe@source", "egl-softpipe@source",\n             /' \
       "$experiment" > "$out.with-source.toml"
-  printf '\n[builds.source]     # renderaudit builds build %s\ndir = "%s"\n' \
-    "$MESA_SOURCE${MESA_REF:+ --ref $MESA_REF}" "$source_dir" >> "$out.with-source.toml"
+  # The source path and the ref are the user's: escaped, never pasted into TOML as they are.
+  /usr/bin/python3 "$repo/scripts/build_table.py" source "$source_dir" \
+    "renderaudit builds build $MESA_SOURCE${MESA_REF:+ --ref $MESA_REF}" >> "$out.with-source.toml"
   experiment=$out.with-source.toml
 fi
 

@@ -7,7 +7,9 @@
 #     and an audit of another pair in the folder is refused (exit 2, the file named);
 #   - six view groups (3 fields of view x 2 windows) are named A-F, no crash past four;
 #   - the `renderaudit show` line pastes as one word per argument though the run folder is named
-#     like a command substitution, and runs nothing.
+#     like a command substitution, and runs nothing;
+#   - the [builds.source] table driver-upgrade.sh appends (scripts/build_table.py) keeps a source
+#     path and ref with newlines, quotes and TOML of their own inside their string and comment.
 # Usage: scripts/upgrade-report-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
@@ -86,5 +88,19 @@ chmod +x "$t/stub/renderaudit"
 (cd "$t" && STUB_ARGS="$t/show.args" PATH="$t/stub:$PATH" bash -c "$show") || fail "the show line does not run in bash: $show"
 [ ! -e "$t/PWNED" ] || fail "pasting the show line ran the run folder's \$(touch ...)"
 [ "$(tr '\0' '\n' <"$t/show.args" | sed -n 2p)" = "$run" ] || fail "the show line's run folder is not one word: $show"
-echo "upgrade-report-test: the source part, six view groups, the show line checked"
+# The [builds.source] table driver-upgrade.sh appends: a source path and a ref with a newline, a
+# quote, a backslash and TOML of their own read back as themselves, adding no key or table.
+hostile=$'/srv/mesa "x"\\\nrun.shard_size = 7 #'
+ref=$'main\n[bogus]'
+{ cat "$t/upgrade.toml"; /usr/bin/python3 "$(dirname "$script")/build_table.py" source2 "$hostile" \
+    "renderaudit builds build $hostile --ref $ref"; } > "$t/with-source.toml"
+/usr/bin/python3 - "$t/with-source.toml" "$hostile" <<'EOP' || fail "build_table.py wrote TOML that reads back otherwise"
+import sys, tomllib
+doc = tomllib.load(open(sys.argv[1], "rb"))
+assert doc["builds"]["source2"] == {"dir": sys.argv[2]}, doc["builds"]
+assert "bogus" not in doc and "shard_size" not in doc.get("run", {}), doc
+EOP
+grep -q 'scripts/build_table.py" source "$source_dir"' "$(dirname "$script")/driver-upgrade.sh" ||
+  fail "driver-upgrade.sh does not write its [builds.source] table with build_table.py"
+echo "upgrade-report-test: the source part, six view groups, the show line, the build table checked"
 echo "1 passed, 0 failed"
