@@ -253,8 +253,13 @@ class Night {
     } catch (const util::UserError& e) {
       util::throw_if_interrupted();  // stopped, not failed: nothing recorded
       util::write_file_atomic(n_.dir + "/build-error.txt", std::string(e.what()) + "\n");
+      // One line: the error's first line; meson's and ninja's whole output is in the file.
+      std::string first = e.what();
+      first = first.substr(0, first.find('\n'));
+      if (first.size() > 160) first = first.substr(0, 157) + "...";
       return finish("build failed",
-                    std::string(e.what()).substr(0, 400) +
+                    "the build of " + n_.commit.substr(0, 12) + " failed (" + first +
+                        "; the whole error: " + n_.dir + "/build-error.txt)" +
                         (last.commit.empty() ? "" : "; last night's build stays the baseline"),
                     2, "");
     }
