@@ -76,12 +76,12 @@ commit broken
 night 4
 expect 4 2 "night: build failed: the build of $(c "$up" 4 | cut -c1-12) failed ("
 # One line on stdout, the whole error in its file; night.md says it as a sentence.
-[ "$(grep -c 'build-error.txt' "$t/night4.out")" = 1 ] &&
-  grep 'night: build failed' "$t/night4.out" | grep -qF 'build-error.txt' ||
+failed_line=$(grep 'night: build failed' "$t/night4.out" || true)
+[ "$(grep -c 'build-error.txt' "$t/night4.out")" = 1 ] && [[ $failed_line == *build-error.txt* ]] ||
   { cat "$t/night4.out"; fail "night 4's build failure is not one line naming build-error.txt"; }
 night4_md="$(ls -d "$t"/state/nights/* | tail -1)/night.md"
-sed -n 3p "$night4_md" | grep -q '^The build of ' ||
-  fail "night 4's night.md does not start with what failed: $(sed -n 3p "$night4_md")"
+sentence=$(sed -n 3p "$night4_md")
+[[ $sentence == "The build of "* ]] || fail "night 4's night.md does not start with what failed: $sentence"
 grep -q "\"commit\": \"$(c "$up" 3)\"" "$t/state/watch.json" || fail "night 4 replaced the last good build"
 commit bad
 git -C "$t/mesa" checkout -q --detach "$(c "$up" 2)"
