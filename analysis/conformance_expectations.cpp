@@ -20,6 +20,7 @@
 #include "util/number_text.h"
 #include "util/program_name.h"
 #include "util/shell_quote.h"
+#include "util/xml_text.h"
 
 namespace fs = std::filesystem;
 
@@ -60,31 +61,7 @@ std::string show_command(const std::string& run_dir, const std::string& platform
                               std::to_string(view), "-i", std::to_string(index)});
 }
 
-std::string xml(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t' ? ' ' : c;
-    }
-  }
-  return out;
-}
+std::string xml(const std::string& s) { return util::xml_text(s); }
 
 std::string plural(std::size_t n, const std::string& one, const std::string& many) {
   return util::grouped(n) + " " + (n == 1 ? one : many);

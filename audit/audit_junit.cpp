@@ -19,38 +19,12 @@
 #include <sstream>
 
 #include "audit/audit_report.h"
+#include "util/xml_text.h"
 
 namespace ra::audit {
 namespace {
 
-std::string xml(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t')
-          out += ' ';
-        else
-          out += c;
-    }
-  }
-  return out;
-}
+std::string xml(const std::string& s) { return util::xml_text(s); }
 
 // "renderaudit.audit.PLATFORM", or "renderaudit.audit.P1-vs-P2" (CI tools read the classname as a
 // dotted path: no spaces).
