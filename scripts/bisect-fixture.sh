@@ -6,8 +6,8 @@
 #   bad:     llvmpipe with one wild pixel far from every primitive (wild_pixel);
 #   neither: the wild pixels of even primitives only (half like each side);
 #   broken:  the build command fails.
-# Needs: $build (the build folder), $t (a temporary folder); defines $ra, $cmd, fail, make_run,
-# make_history HISTORY WORD..., c HISTORY N (the commit "cN").
+# Needs: $build (the build folder), $t (a temporary folder); defines $ra, $cmd, fail,
+# forty_lines_toml, make_run, make_history HISTORY WORD..., c HISTORY N (the commit "cN").
 ra="$build/renderaudit"
 fail() { echo "$(basename "$0"): FAIL: $*" >&2; exit 1; }
 # A failed build keeps its log in the temporary folder: the test's own, removed with it.
@@ -19,27 +19,20 @@ printf '[faults]\nbase = "osmesa-llvmpipe"\n' > "$t/drivers/good/faults.toml"
 printf '[faults]\nbase = "osmesa-llvmpipe"\nwild_pixel = [%s]\n' "$(seq -s, 0 39)" > "$t/drivers/bad/faults.toml"
 printf '[faults]\nbase = "osmesa-llvmpipe"\nwild_pixel = [%s]\n' "$(seq -s, 0 2 39)" > "$t/drivers/neither/faults.toml"
 
+# forty_lines_toml NAME PLATFORMS [MORE]: the tests' experiment (40 lines of one 128 x 128 view,
+# seed 7) on stdout, PLATFORMS the TOML list's inside, MORE TOML lines after it.
+forty_lines_toml() {
+  printf 'name = "%s"\nseed = 7\nplatforms = [%s]\n' "$1" "$2"
+  printf '[views]\norientations = 1\nfov_deg = [30]\nwindows = [128]\nnear = 0.01\nfar = 10.0\n'
+  printf '[primitives]\npoints = 0\nlines = 40\ntriangles = 0\n'
+  [ -z "${3:-}" ] || printf '%s\n' "$3"
+}
+
 # A run of 40 lines drawn by the good and the bad driver: every line differs by its wild pixel.
 make_run() {
-  cat > "$t/exp.toml" <<EOT
-name = "bisect-test"
-seed = 7
-platforms = ["faulty@good", "faulty@bad"]
-[builds.good]
-dir = "$t/drivers/good"
-[builds.bad]
-dir = "$t/drivers/bad"
-[views]
-orientations = 1
-fov_deg = [30]
-windows = [128]
-near = 0.01
-far = 10.0
-[primitives]
-points = 0
-lines = 40
-triangles = 0
-EOT
+  forty_lines_toml bisect-test '"faulty@good", "faulty@bad"' \
+    "[builds.good]"$'\n'"dir = \"$t/drivers/good\""$'\n'"[builds.bad]"$'\n'"dir = \"$t/drivers/bad\"" \
+    > "$t/exp.toml"
   "$ra" run "$t/exp.toml" --out "$t/run" --jobs 2 >/dev/null 2>"$t/run.log" || { cat "$t/run.log"; fail "run"; }
 }
 

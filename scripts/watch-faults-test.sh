@@ -19,23 +19,7 @@ t=$(mktemp -d /tmp/renderaudit-watch-faults-XXXXXX)
 trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
 . "$(dirname "$0")/bisect-fixture.sh"
 
-cat > "$t/nightly.toml" <<EOT
-name = "watch-faults-test"
-seed = 7
-platforms = ["faulty"]
-[views]
-orientations = 1
-fov_deg = [30]
-windows = [128]
-near = 0.01
-far = 10.0
-[primitives]
-points = 0
-lines = 40
-triangles = 0
-[run]
-shard_timeout_s = 120
-EOT
+forty_lines_toml watch-faults-test '"faulty"' $'[run]\nshard_timeout_s = 120' > "$t/nightly.toml"
 # A driver that hangs on one primitive (a run that only a signal or its shard timeout ends).
 mkdir -p "$t/drivers/hang"
 printf '[faults]\nbase = "osmesa-llvmpipe"\nhang = [5]\n' > "$t/drivers/hang/faults.toml"

@@ -17,21 +17,7 @@ t=$(mktemp -d /tmp/renderaudit-watch-test-XXXXXX)
 trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
 . "$(dirname "$0")/bisect-fixture.sh"
 
-cat > "$t/nightly.toml" <<EOT
-name = "watch-test"
-seed = 7
-platforms = ["faulty"]
-[views]
-orientations = 1
-fov_deg = [30]
-windows = [128]
-near = 0.01
-far = 10.0
-[primitives]
-points = 0
-lines = 40
-triangles = 0
-EOT
+forty_lines_toml watch-test '"faulty"' > "$t/nightly.toml"
 up="$t/upstream"
 make_history "$up" good
 git clone -q "$up" "$t/mesa"
