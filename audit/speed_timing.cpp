@@ -217,7 +217,6 @@ void draw_round(const std::string& program, const std::vector<std::string>& fold
         if (rec.status != metrics::CaseStatus::kOk) return;
         const TimedKey key{int(r.kind), r.view, rec.index};
         out.render_us[key].push_back(rec.render_us);
-        out.pixel_hash[key] = rec.pixel_hash;
       });
     }
   }

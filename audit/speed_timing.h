@@ -61,9 +61,8 @@ struct TimingOptions {
 using TimedKey = std::tuple<int, int, uint64_t>;
 
 struct SideTiming {
-  // render_us of each round in which the primitive was drawn (rounds in order), and its pixels
+  // render_us of each round in which the primitive was drawn (rounds in order)
   std::map<TimedKey, std::vector<double>> render_us;
-  std::map<TimedKey, uint64_t> pixel_hash;
   std::string error;   // non-empty: a process of this side failed (its last words)
   double seconds = 0;  // wall time of this side's processes, all rounds
 };
