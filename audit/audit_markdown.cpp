@@ -147,14 +147,6 @@ void counts(std::ostream& md, const AuditResult& r) {
         "`pixel_hash`), its status or its visibility class differ.\n\n";
 }
 
-// "1.31x [1.25, 1.38]" of a ratio and its interval; "-" when undefined.
-std::string ratio_text(double ratio, double low, double high) {
-  if (!std::isfinite(ratio)) return "-";
-  char text[96];
-  std::snprintf(text, sizeof text, "%.3fx [%.3f, %.3f]", ratio, low, high);
-  return text;
-}
-
 void speed(std::ostream& md, const AuditResult& r) {
   const SpeedAudit& s = r.speed;
   if (!s.performed) return;
@@ -192,8 +184,8 @@ void speed(std::ostream& md, const AuditResult& r) {
                      : (c.reason.empty() ? ": at the band's edge" : ": " + c.reason);
     md << "| " << cell(r.pairs[c.pair].label()) << " | " << geometry::kind_name(c.kind) << " | "
        << c.group << " | " << c.n << " | " << format_number(c.baseline_median_us, 3) << " -> "
-       << format_number(c.current_median_us, 3) << " | " << ratio_text(c.ratio, c.low, c.high)
-       << " | " << ratio_text(c.control_ratio, c.control_low, c.control_high) << " | "
+       << format_number(c.current_median_us, 3) << " | " << speed_ratio_text(c.ratio, c.low, c.high)
+       << " | " << speed_ratio_text(c.control_ratio, c.control_low, c.control_high) << " | "
        << (std::isfinite(c.band) ? format_number(c.band, 4) + "x" : std::string("-")) << " | "
        << (c.welch.defined ? format_number(c.welch_p_holm, 3) : std::string("-")) << " | "
        << (c.levene.defined ? format_number(c.levene_p_holm, 3) : std::string("-")) << " | "

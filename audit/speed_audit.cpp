@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -69,14 +70,25 @@ RoundInterval round_interval(const std::vector<double>& d) {
   return out;
 }
 
-namespace {
-
-// The Hodges-Lehmann estimate of round r's paired log ratios over every primitive.
-double round_log_ratio(const RoundTimes& over, const RoundTimes& under, std::size_t r) {
-  std::vector<double> d(over.size());
-  for (std::size_t i = 0; i < d.size(); ++i) d[i] = std::log(over[i][r] / under[i][r]);
-  return stats::hodges_lehmann(d);
+std::string speed_ratio_text(double ratio, double low, double high) {
+  if (!std::isfinite(ratio)) return "-";
+  char text[96];
+  std::snprintf(text, sizeof text, "%.3fx [%.3f, %.3f]", ratio, low, high);
+  return text;
 }
+
+std::vector<double> round_log_ratios(const RoundTimes& over, const RoundTimes& under) {
+  std::vector<double> out;
+  const std::size_t rounds = over.empty() ? 0 : over[0].size();
+  std::vector<double> d(over.size());
+  for (std::size_t r = 0; r < rounds; ++r) {
+    for (std::size_t i = 0; i < d.size(); ++i) d[i] = std::log(over[i][r] / under[i][r]);
+    out.push_back(stats::hodges_lehmann(d));
+  }
+  return out;
+}
+
+namespace {
 
 std::vector<double> per_primitive_medians(const RoundTimes& t) {
   std::vector<double> out;
@@ -112,11 +124,9 @@ SpeedComparison compare_speed(const RoundTimes& baseline_us, const RoundTimes& c
                             cur = per_primitive_medians(current_us);
   c.baseline_median_us = stats::median(base);
   c.current_median_us = stats::median(cur);
-  std::vector<double> d, a;
-  for (std::size_t r = 0; r < rounds; ++r) {
-    d.push_back(round_log_ratio(current_us, baseline_us, r));
-    if (!control_us.empty()) a.push_back(round_log_ratio(control_us, baseline_us, r));
-  }
+  const std::vector<double> d = round_log_ratios(current_us, baseline_us);
+  const std::vector<double> a =
+      control_us.empty() ? std::vector<double>{} : round_log_ratios(control_us, baseline_us);
   const RoundInterval ratio = round_interval(d);
   c.ratio = ratio.ratio, c.low = ratio.low, c.high = ratio.high;
   double control_bound = 0;

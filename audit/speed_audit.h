@@ -95,10 +95,9 @@ struct SpeedComparison {
   std::string reason;  // why unknown when no interval could be formed
 };
 
-// Times of one pair, kind and view group: element [i][r] is primitive i's time in round r
-// (microseconds, > 0), the same number of rounds for every primitive and side; control may be
-// empty (no control). Throws std::invalid_argument for sides of different shapes.
-using RoundTimes = std::vector<std::vector<double>>;
+// Times of one pair, kind and view group (RoundTimes, audit/speed_timing.h), the same number of
+// rounds for every primitive and side; control may be empty (no control). Throws
+// std::invalid_argument for sides of different shapes.
 SpeedComparison compare_speed(const RoundTimes& baseline_us, const RoundTimes& current_us,
                               const RoundTimes& control_us, double threshold);
 
@@ -108,6 +107,13 @@ struct RoundInterval {
   double ratio = 0, low = 0, high = 0;
 };
 RoundInterval round_interval(const std::vector<double>& log_ratios);
+
+// "1.310x [1.250, 1.380]" of a ratio and its interval; "-" when undefined.
+std::string speed_ratio_text(double ratio, double low, double high);
+
+// Per round r, the Hodges-Lehmann estimate of the paired log ratios log(over[i][r] / under[i][r])
+// over the primitives i: the per-round statistic round_interval summarises. Same shapes required.
+std::vector<double> round_log_ratios(const RoundTimes& over, const RoundTimes& under);
 
 struct SpeedAudit {
   bool performed = false;

@@ -27,16 +27,6 @@ std::vector<TimingRange> timing_ranges(const rundir::Experiment& exp, const Plat
   return out;
 }
 
-// A primitive's time in every round, or empty when a round lacks it or has a time that is not
-// positive (a platform that does not time its drawing).
-std::vector<double> primitive_rounds(const SideTiming& side, const TimedKey& key, int rounds) {
-  const auto it = side.render_us.find(key);
-  if (it == side.render_us.end() || int(it->second.size()) != rounds) return {};
-  for (double t : it->second)
-    if (!(t > 0)) return {};
-  return it->second;
-}
-
 }  // namespace
 
 SpeedAudit audit_speed(const RunIdentity& baseline, const RunIdentity& current,
@@ -81,21 +71,21 @@ SpeedAudit audit_speed(const RunIdentity& baseline, const RunIdentity& current,
     struct Samples {
       RoundTimes base, cur, ctl;
     };
-    std::map<std::pair<int, int>, Samples> groups;
+    std::map<std::pair<int, int>, std::vector<TimedKey>> group_keys;
     for (const TimingRange& r : ranges) {
-      const geometry::View* view = nullptr;
+      int group = 0;
       for (const geometry::View& v : exp.views)
-        if (v.id == r.view) view = &v;
-      Samples& g = groups[{int(r.kind), view ? view->group : 0}];
+        if (v.id == r.view) group = v.group;
+      std::vector<TimedKey>& keys = group_keys[{int(r.kind), group}];
+      for (uint64_t i = r.begin; i < r.end; ++i) keys.push_back({int(r.kind), r.view, i});
+    }
+    std::map<std::pair<int, int>, Samples> groups;
+    for (const auto& [key, keys] : group_keys) {
+      Samples& g = groups[key];
       if (failed) continue;
-      for (uint64_t i = r.begin; i < r.end; ++i) {
-        const TimedKey key{int(r.kind), r.view, i};
-        std::vector<double> b = primitive_rounds(t.sides[0], key, options.repeats),
-                            c = primitive_rounds(t.sides[1], key, options.repeats),
-                            a = primitive_rounds(t.sides[2], key, options.repeats);
-        if (b.empty() || c.empty() || a.empty()) continue;
-        g.base.push_back(std::move(b)), g.cur.push_back(std::move(c)), g.ctl.push_back(std::move(a));
-      }
+      std::vector<RoundTimes> t3 =
+          common_round_times({&t.sides[0], &t.sides[1], &t.sides[2]}, keys, options.repeats);
+      g.base = std::move(t3[0]), g.cur = std::move(t3[1]), g.ctl = std::move(t3[2]);
     }
     for (const auto& [key, g] : groups) {
       SpeedComparison c = compare_speed(g.base, g.cur, g.ctl, options.threshold);

@@ -155,6 +155,34 @@ void stop_server(Server& s) {
 
 }  // namespace
 
+std::vector<RoundTimes> common_round_times(const std::vector<const SideTiming*>& sides,
+                                           const std::vector<TimedKey>& keys, int rounds) {
+  std::vector<RoundTimes> out(sides.size());
+  for (const TimedKey& key : keys) {
+    std::vector<const std::vector<double>*> times;
+    for (const SideTiming* side : sides) {
+      const auto it = side->render_us.find(key);
+      if (it == side->render_us.end() || int(it->second.size()) != rounds) break;
+      bool positive = true;
+      for (double t : it->second) positive = positive && t > 0;
+      if (!positive) break;
+      times.push_back(&it->second);
+    }
+    if (times.size() != sides.size()) continue;
+    for (std::size_t s = 0; s < sides.size(); ++s) out[s].push_back(*times[s]);
+  }
+  return out;
+}
+
+void append_rounds(SideTiming& into, const SideTiming& more) {
+  for (const auto& [key, rounds] : more.render_us) {
+    std::vector<double>& to = into.render_us[key];
+    to.insert(to.end(), rounds.begin(), rounds.end());
+  }
+  if (into.error.empty()) into.error = more.error;
+  into.seconds += more.seconds;
+}
+
 std::vector<std::size_t> round_order(std::size_t sides, int round) {
   std::vector<std::size_t> order(sides);
   for (std::size_t i = 0; i < sides; ++i) order[i] = round % 2 == 0 ? i : sides - 1 - i;

@@ -60,6 +60,10 @@ struct TimingOptions {
 // (kind, view, index)
 using TimedKey = std::tuple<int, int, uint64_t>;
 
+// Times of one side for a set of primitives: element [i][r] is primitive i's time in round r
+// (microseconds, > 0), the same number of rounds for every primitive.
+using RoundTimes = std::vector<std::vector<double>>;
+
 struct SideTiming {
   // render_us of each round in which the primitive was drawn (rounds in order)
   std::map<TimedKey, std::vector<double>> render_us;
@@ -72,6 +76,15 @@ struct TimingResult {
   std::vector<std::vector<std::size_t>> order;  // per round, the order of its first range
   double seconds = 0;                          // wall time of everything
 };
+
+// Per side, the times of those `keys` that every side drew in every one of `rounds` rounds with a
+// positive time (a platform that does not time its drawing gives 0): element [side][i][r], the
+// same primitives in the same order on every side.
+std::vector<RoundTimes> common_round_times(const std::vector<const SideTiming*>& sides,
+                                           const std::vector<TimedKey>& keys, int rounds);
+
+// `more`'s rounds appended to `into`'s, primitive by primitive (a repeat of the same timing).
+void append_rounds(SideTiming& into, const SideTiming& more);
 
 // The order of the sides for turn `turn` (0-based): forward when even, reversed when odd.
 std::vector<std::size_t> round_order(std::size_t sides, int turn);
