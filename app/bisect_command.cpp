@@ -22,6 +22,9 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
       "fails to build is skipped for all. Resumable: the same command goes on where it stopped.\n"
       "Writes OUT/bisect.json and OUT/bisect.md (a section per culprit: reproducer, pictures, GL\n"
       "verdict). Prints one line per culprit: `first bad commit: HASH SUBJECT (N primitives)`.\n"
+      "With --speed, drawing time too: the groups whose time moved between the refs are placed\n"
+      "at each step and their commits named, `first slower commit: HASH SUBJECT (KIND, view\n"
+      "group G: RATIO x [LOW, HIGH])` or `first faster commit: ...` (docs/driver-builds.md).\n"
       "Exit 0: every change named; 1: some are left between failed builds (candidates listed);\n"
       "2: bad input; 130: interrupted (the tree restored).");
   struct Options {
@@ -64,6 +67,10 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
   cmd->add_flag(
       "--no-pictures", [opts](int64_t) { opts->o.pictures = false; },
       "no `show` pictures in the report");
+  add_speed_attribution_options(
+      cmd, opts->o.speed,
+      "also attribute drawing-time changes: the refs timed with an A/A control, each step's time "
+      "placed between theirs, each culprit confirmed beside its parent");
   cmd->add_option("paths", opts->o.paths, "-- PATHS: only commits touching these");
   cmd->positionals_at_end(false);
   cmd->callback([opts, &exit_code] {
@@ -71,8 +78,7 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
     if (!opts->between.empty()) o.good_platform = opts->between[0], o.bad_platform = opts->between[1];
     o.build.jobs = o.jobs;
     o.build.incremental = !opts->fresh_builds;
-    for (std::string& v : o.build.meson_options)
-      if (v.rfind("-D", 0) != 0) v = "-D" + v;
+    check_speed_options("bisect", o.speed);
     o.command_line = triage::bisect_command_line(o);
     try {
       const triage::BisectResult r = triage::run_bisect(o, [](const std::string& text) {
@@ -84,9 +90,18 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
         for (const std::string& c : u.candidates) cands += " " + c.substr(0, 12);
         std::printf("unattributed: %s (one of:%s)\n", u.label.c_str(), cands.c_str());
       }
+      for (const triage::SpeedUnattributed& u : r.speed_unattributed) {
+        std::string cands;
+        for (const std::string& c : u.candidates) cands += " " + c.substr(0, 12);
+        std::printf("unattributed: %s (%s%s)\n", u.group.label().c_str(), u.why.c_str(),
+                    cands.empty() ? "" : ("; one of:" + cands).c_str());
+      }
       for (const triage::Culprit& c : r.culprits)
         std::printf("first bad commit: %s %s (%zu primitive%s)\n", c.commit.c_str(),
                     c.subject.c_str(), c.primitives.size(), c.primitives.size() == 1 ? "" : "s");
+      for (const triage::SpeedCulprit& c : r.speed_culprits)
+        for (const std::string& line : triage::speed_culprit_lines(c))
+          std::printf("%s\n", line.c_str());
       exit_code = r.complete() ? kExitOk : kExitFindings;
     } catch (const util::Interrupted& e) {
       std::fprintf(stderr, "bisect: %s: the tree is back where it was; the same command resumes\n",

@@ -75,6 +75,29 @@ void add_commit_build_options(CLI::App* cmd, runner::SourceBuildOptions& build, 
                 "a new meson build folder for every commit (default: one incremental folder)");
 }
 
+void add_speed_attribution_options(CLI::App* cmd, triage::BisectSpeedOptions& speed,
+                                   const std::string& what) {
+  cmd->add_flag("--speed", speed.enabled, what);
+  cmd->add_option("--speed-repeats", speed.repeats,
+                  "rounds of fresh processes per side in each timing, default 10")
+      ->check(CLI::Range(2, 1000));
+  cmd->add_option("--speed-primitives", speed.per_view,
+                  "primitives of each kind and view timed, default 100")
+      ->check(CLI::Range(uint64_t(6), uint64_t(1000000)));
+  cmd->add_option("--speed-threshold", speed.threshold,
+                  "a time change counts only when its whole 95% interval lies beyond this "
+                  "fraction, default 0.05")
+      ->check(CLI::Range(0.0, 10.0));
+}
+
+void check_speed_options(const std::string& command, const triage::BisectSpeedOptions& speed) {
+  const triage::BisectSpeedOptions d;
+  if (!speed.enabled &&
+      (speed.repeats != d.repeats || speed.per_view != d.per_view || speed.threshold != d.threshold))
+    throw util::UserError(command + ": --speed-repeats, --speed-primitives and --speed-threshold "
+                          "go with --speed");
+}
+
 void register_builds_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand(
       "builds",

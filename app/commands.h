@@ -16,6 +16,7 @@
 #include "analysis/conformance_expectations.h"
 #include "rundir/study_dir.h"
 #include "runner/source_build.h"
+#include "triage/bisect_speed.h"
 
 namespace ra::app {
 
@@ -91,6 +92,12 @@ int conformance_gate_exit(const ConformanceGate& gate, const std::string& run_di
 // The options of building many commits of a Mesa tree (`bisect`, `watch`): --cache,
 // --llvm-config, -D, --build-command and --fresh-builds (set in `fresh_builds`).
 void add_commit_build_options(CLI::App* cmd, runner::SourceBuildOptions& build, bool& fresh_builds);
+// --speed, --speed-repeats, --speed-primitives, --speed-threshold of `bisect` and `watch`
+// (`what` says what --speed does there); check_speed_options refuses the last three without
+// --speed.
+void add_speed_attribution_options(CLI::App* cmd, triage::BisectSpeedOptions& speed,
+                                   const std::string& what);
+void check_speed_options(const std::string& command, const triage::BisectSpeedOptions& speed);
 
 // The studies (app/study_dispatch.cpp): each returns false when its argument is not a study (an
 // audit experiment or run folder), and otherwise does the study's stage and sets exit_code.

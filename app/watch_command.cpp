@@ -43,6 +43,10 @@ void register_watch_command(CLI::App& app, int& exit_code) {
                   "changed primitives each bisection attributes (past it: a stratified sample)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000000));
+  add_speed_attribution_options(
+      cmd, opts->o.speed,
+      "also judge drawing time: each audit times both builds (warn-only), and a night whose time "
+      "moved is bisected for it (`first slower commit:` / `first faster commit:` lines)");
   cmd->add_option("--jobs,-j", opts->o.jobs, "processes at once, and ninja jobs");
   cmd->add_flag(
       "--no-pictures", [opts](int64_t) { opts->o.pictures = false; },
@@ -52,6 +56,7 @@ void register_watch_command(CLI::App& app, int& exit_code) {
     o.build.jobs = o.jobs;
     o.build.incremental = !opts->fresh_builds;
     o.fetch = !opts->no_fetch;
+    check_speed_options("watch", o.speed);
     for (std::string& v : o.build.meson_options)
       if (v.rfind("-D", 0) != 0) v = "-D" + v;
     try {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 
@@ -82,6 +83,7 @@ class Bisection {
     } restore{o_.source, st_.result.original_head};
     line_commits();
     draw_references();
+    time_references();
     attribute();
     BisectResult& r = st_.result;
     r.total_build_s = r.good.build_s + r.bad.build_s;
@@ -217,6 +219,10 @@ class Bisection {
                   {"llvm_config", o_.build.llvm_config},
                   {"meson_options", o_.build.meson_options},
                   {"build_command", o_.build.build_command}};
+    if (o_.speed.enabled)
+      st_.inputs["speed"] = {{"repeats", o_.speed.repeats},
+                             {"per_view", o_.speed.per_view},
+                             {"threshold", o_.speed.threshold}};
     std::error_code ec;
     // A bisection of an older renderaudit (git bisect) killed on the way: git knows the branch.
     if (fs::exists(git_dir_ + "/BISECT_START", ec)) git(o_.source, {"bisect", "reset", "-q"});
@@ -227,6 +233,10 @@ class Bisection {
       return;
     }
     BisectState old = load_bisect_state(st_.result.json_path);
+    if (old.inputs.contains("speed") && !st_.inputs.contains("speed"))
+      throw util::UserError("bisect: " + st_.result.json_path +
+                            " holds a bisection of drawing time too (--speed); repeat its "
+                            "--speed options, choose another --out, or remove it to start again");
     for (const auto& [k, v] : st_.inputs.items())
       if (!old.inputs.contains(k) || old.inputs[k] != v)
         throw util::UserError("bisect: " + st_.result.json_path +
@@ -243,6 +253,7 @@ class Bisection {
     st_.result.steps = old.result.steps;
     st_.result.good = old.result.good;
     st_.result.bad = old.result.bad;
+    st_.result.speed_ends = old.result.speed_ends;
     say("resuming " + st_.result.json_path + ": " + std::to_string(st_.result.steps.size()) +
         " steps built");
   }
@@ -304,11 +315,12 @@ class Bisection {
     }
     split_by_ends(st_.result.selection, st_.result.good.drawing, st_.result.bad.drawing, judged_,
                   st_.result.dropped);
-    if (judged_.empty())
+    if (judged_.empty() && !o_.speed.enabled)
       throw util::UserError("bisect: the builds of " + o_.good_ref + " and " + o_.bad_ref +
                             " draw all " + std::to_string(st_.result.selection.size()) +
                             " selected primitives alike on " + o_.platform +
                             ": the change is not between these refs (or not in this platform)");
+    if (judged_.empty()) return;  // drawing time only: time_references() decides
     if (!st_.result.dropped.empty())
       say(std::to_string(st_.result.dropped.size()) + " of " +
           std::to_string(st_.result.selection.size()) +
@@ -317,16 +329,110 @@ class Bisection {
         std::to_string(line_.size() - 1) + " commits (" + st_.result.selection_rule + ")");
   }
 
+  // --speed: the ends timed (the good ref, the bad ref, the good ref again); the groups that
+  // moved are attributed beside the primitives.
+  void time_references() {
+    BisectResult& r = st_.result;
+    if (o_.speed.enabled) {
+      if (r.speed_ends.empty()) {
+        const auto t0 = Clock::now();
+        r.speed_ends = time_ends(o_, speed_groups(o_), r.good.build_dir, r.bad.build_dir, say_fn());
+        say("timed the refs in " +
+            util::duration_text(std::chrono::duration<double>(Clock::now() - t0).count()));
+        save();
+      }
+      for (const SpeedAtEnds& e : r.speed_ends) {
+        const audit::SpeedComparison& c = e.comparison;
+        std::string line = e.group.label() + ": " + audit::speed_ratio_text(c.ratio, c.low, c.high) +
+                           " " + audit::speed_verdict_name(c.verdict) + " (control " +
+                           audit::speed_ratio_text(c.control_ratio, c.control_low, c.control_high) +
+                           ")";
+        if (c.verdict == audit::SpeedVerdict::kUnknown)
+          line += c.reason.empty() ? ": not attributed; about " +
+                                         std::to_string(c.repeats_to_settle) +
+                                         " --speed-repeats would settle it"
+                                   : ": not attributed, " + c.reason;
+        say(line);
+        if (e.moved()) moved_.push_back(e);
+      }
+    }
+    if (judged_.empty() && moved_.empty())
+      throw util::UserError(
+          "bisect: the builds of " + o_.good_ref + " and " + o_.bad_ref + " draw all " +
+          std::to_string(r.selection.size()) + " selected primitives alike on " + o_.platform +
+          " and no group's drawing time moved beyond the threshold: nothing to attribute between "
+          "these refs (or not in this platform)");
+  }
+
+  // The pixel hashes of a step's primitives and the places of its drawing times, as the plan reads
+  // them (a time unknown at the step is left out: unknown there).
+  std::map<std::string, uint64_t> observation(const BisectStep& s) const {
+    std::map<std::string, uint64_t> out = judged_hashes(judged_, s.drawing);
+    for (const StepTime& t : s.speed)
+      if (t.place != TimePlace::kUnknown && tracked(t.group))
+        out[t.group.label()] = t.place == TimePlace::kAsGood ? kGoodTime : kBadTime;
+    return out;
+  }
+  bool tracked(const SpeedGroup& g) const {
+    if (given_up_.count(g.label())) return false;
+    for (const SpeedAtEnds& e : moved_)
+      if (e.group == g) return true;
+    return false;
+  }
+
+  // A group unknown at kMaxUnknownSteps steps is given up (its time moved in small steps, or the
+  // machine is too noisy to place it): reported unattributed with its range.
+  void count_unknowns(const BisectStep& s, AttributionPlan& plan,
+                      std::map<std::string, int>& unknowns) {
+    for (const StepTime& t : s.speed) {
+      const std::string label = t.group.label();
+      if (t.place != TimePlace::kUnknown || !tracked(t.group)) continue;
+      if (++unknowns[label] < kMaxUnknownSteps) continue;
+      SpeedUnattributed u{t.group, line_.front(), line_.back(), {}, ""};
+      for (const AttributionPlan::Change& c : plan.changes())
+        if (c.label == label && !c.resolved) u.from = line_[c.from], u.to = line_[c.to];
+      u.why = "its time could not be placed between the ends' at " +
+              std::to_string(kMaxUnknownSteps) +
+              " steps: it moved in several smaller steps, or the machine is too noisy (more "
+              "--speed-repeats)";
+      st_.result.speed_unattributed.push_back(u);
+      plan.forget(label);
+      given_up_.insert(label);
+      say(label + ": given up, " + u.why);
+    }
+  }
+
+  // The moved groups whose unresolved range holds `position`.
+  std::vector<SpeedGroup> groups_to_time(const AttributionPlan& plan, std::size_t position) const {
+    std::vector<SpeedGroup> out;
+    for (const SpeedAtEnds& e : moved_) {
+      if (!tracked(e.group)) continue;
+      for (const AttributionPlan::Change& c : plan.changes())
+        if (c.label == e.group.label() && !c.resolved && c.from < position && position < c.to)
+          out.push_back(e.group);
+    }
+    return out;
+  }
+
   // Builds until every change sits between two neighbouring commits.
   void attribute() {
     AttributionPlan plan(line_.size() - 1);
-    plan.observe(0, judged_hashes(judged_, st_.result.good.drawing));
-    plan.observe(line_.size() - 1, judged_hashes(judged_, st_.result.bad.drawing));
+    std::map<std::string, uint64_t> good = judged_hashes(judged_, st_.result.good.drawing),
+                                    bad = judged_hashes(judged_, st_.result.bad.drawing);
+    for (const SpeedAtEnds& e : moved_) {
+      good[e.group.label()] = kGoodTime;
+      bad[e.group.label()] = kBadTime;
+    }
+    plan.observe(0, good);
+    plan.observe(line_.size() - 1, bad);
+    st_.result.speed_unattributed.clear();
+    std::map<std::string, int> unknowns;
     for (std::size_t i = 0; i < st_.result.steps.size(); ++i) {
       const BisectStep& s = st_.result.steps[i];
       if (s.error.empty()) {
         require_drawn(s, "steps[" + std::to_string(i) + "]", judged_);
-        plan.observe(s.position, judged_hashes(judged_, s.drawing));
+        plan.observe(s.position, observation(s));
+        count_unknowns(s, plan, unknowns);
       } else {
         plan.fail(s.position);
       }
@@ -353,12 +459,19 @@ class Bisection {
       const auto t0 = Clock::now();
       say("step " + std::to_string(st_.result.steps.size() + 1) + eta + ": " + short_hash(s.commit) +
           " " + git(o_.source, {"log", "-1", "--format=%s", s.commit}).out);
+      const std::vector<SpeedGroup> timed = groups_to_time(plan, s.position);
       build_and_draw_step(o_, judged_, s, say_fn());
       if (s.error.empty()) {
-        s.summary =
-            drawing_summary(judged_, st_.result.good.drawing, st_.result.bad.drawing, s.drawing);
-        plan.observe(s.position, judged_hashes(judged_, s.drawing));
+        if (!timed.empty()) {
+          const auto t1 = Clock::now();
+          s.speed = time_step(o_, timed, st_.result.good.build_dir, s.build_dir,
+                              st_.result.bad.build_dir, say_fn());
+          s.time_s = std::chrono::duration<double>(Clock::now() - t1).count();
+        }
+        s.summary = step_summary(s);
+        plan.observe(s.position, observation(s));
         say("  drew " + s.summary);
+        count_unknowns(s, plan, unknowns);
       } else {
         plan.fail(s.position);
         say("  skipped for every primitive: " + s.error);
@@ -369,6 +482,72 @@ class Bisection {
       ++fresh_steps;
     }
     collect_culprits(plan, line_, judged_, o_.source, st_.result, say_fn());
+    collect_speed_culprits(plan);
+  }
+
+  // What a step drew, in words: its primitives against the ends, then its drawing times.
+  std::string step_summary(const BisectStep& s) const {
+    std::string out = judged_.empty() ? std::string()
+                                      : drawing_summary(judged_, st_.result.good.drawing,
+                                                        st_.result.bad.drawing, s.drawing);
+    for (const StepTime& t : s.speed) {
+      char share[64] = "";
+      if (std::isfinite(t.share))
+        std::snprintf(share, sizeof share, ", %.0f%% of the way", 100 * t.share);
+      out += std::string(out.empty() ? "" : "; ") + t.group.text() + " time " +
+             time_place_name(t.place) + " (" +
+             (t.note.empty() ? audit::speed_ratio_text(t.ratio, t.low, t.high) + " the good ref's" +
+                                   share
+                             : t.note) +
+             ")";
+    }
+    return out;
+  }
+
+  // The moved groups' changes as speed culprits (each confirmed beside the commit before it) and
+  // what stays unattributed.
+  void collect_speed_culprits(const AttributionPlan& plan) {
+    BisectResult& r = st_.result;
+    r.speed_culprits.clear();
+    std::map<std::size_t, std::string> build_at = {{0, r.good.build_dir},
+                                                   {line_.size() - 1, r.bad.build_dir}};
+    for (const BisectStep& s : r.steps)
+      if (s.error.empty()) build_at[s.position] = s.build_dir;
+    std::map<std::size_t, SpeedCulprit> by_position;
+    for (const SpeedAtEnds& e : moved_) {
+      if (!tracked(e.group)) continue;
+      for (const AttributionPlan::Change& c : plan.changes()) {
+        if (c.label != e.group.label()) continue;
+        if (!c.resolved) {
+          SpeedUnattributed u{e.group, line_[c.from], line_[c.to], {}, ""};
+          for (std::size_t p : c.candidates) u.candidates.push_back(line_[p]);
+          u.why = "only commits that failed to build lie between";
+          r.speed_unattributed.push_back(u);
+          continue;
+        }
+        // Back from the bad ref's time to the good ref's (a step misplaced, or a change undone
+        // later): the other direction.
+        const bool onward = c.hash_before == kGoodTime;
+        const audit::SpeedVerdict other = e.comparison.verdict == audit::SpeedVerdict::kSlower
+                                              ? audit::SpeedVerdict::kFaster
+                                              : audit::SpeedVerdict::kSlower;
+        SpeedCulprit& k = by_position[c.to];
+        k.moves.push_back({e.group, onward ? e.comparison.verdict : other, {}, ""});
+      }
+    }
+    for (auto& [position, k] : by_position) {
+      BisectStep info;
+      info.commit = line_[position];
+      describe_commit(o_.source, info);
+      k.commit = info.commit;
+      k.subject = info.subject;
+      k.date = info.date;
+      k.previous = line_[position - 1];
+      say("confirming " + short_hash(k.commit) + " " + k.subject + " beside " +
+          short_hash(k.previous));
+      confirm_speed_culprit(o_, k, build_at.at(position - 1), build_at.at(position), say_fn());
+      r.speed_culprits.push_back(k);
+    }
   }
 
   BisectOptions o_;
@@ -377,6 +556,11 @@ class Bisection {
   std::string git_dir_, good_, bad_;
   std::vector<std::string> line_;         // position -> commit
   std::vector<BisectPrimitive> judged_;  // the selection less what both refs draw alike
+  std::vector<SpeedAtEnds> moved_;        // --speed: the groups whose drawing time moved
+  std::set<std::string> given_up_;        // their labels no step could place
+  // A group's drawing time in the plan: a two-valued "hash" (bisect_plan.h).
+  static constexpr uint64_t kGoodTime = 1, kBadTime = 2;
+  static constexpr int kMaxUnknownSteps = 3;
 };
 
 }  // namespace
@@ -404,6 +588,18 @@ std::string bisect_command_line(const BisectOptions& o) {
   if (!o.build.incremental) line += " --fresh-builds";
   if (o.jobs) line += " --jobs " + std::to_string(o.jobs);
   if (!o.pictures) line += " --no-pictures";
+  if (o.speed.enabled) {
+    const BisectSpeedOptions d;
+    line += " --speed";
+    if (o.speed.repeats != d.repeats) line += " --speed-repeats " + std::to_string(o.speed.repeats);
+    if (o.speed.per_view != d.per_view)
+      line += " --speed-primitives " + std::to_string(o.speed.per_view);
+    if (o.speed.threshold != d.threshold) {
+      char t[32];
+      std::snprintf(t, sizeof t, "%g", o.speed.threshold);
+      line += std::string(" --speed-threshold ") + t;
+    }
+  }
   if (!o.paths.empty()) {
     line += " --";
     for (const std::string& p : o.paths) line += " " + shell_quote(p);

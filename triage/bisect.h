@@ -28,6 +28,7 @@
 
 #include "geometry/primitive.h"
 #include "runner/source_build.h"
+#include "triage/bisect_speed.h"
 
 namespace ra::triage {
 
@@ -60,6 +61,10 @@ struct BisectStep {
   bool reused = false;
   double build_s = 0, draw_s = 0;
   Drawing drawing;
+  // --speed: where this step's drawing time lies between the ends', for the groups whose
+  // unresolved range holds it (empty for the ends and for steps no time range asked for)
+  std::vector<StepTime> speed;
+  double time_s = 0;  // seconds of timing
 };
 
 // A commit that changed primitives: each of them drew one way at `previous` and another here.
@@ -94,6 +99,7 @@ struct BisectOptions {
   runner::SourceBuildOptions build;         // cache, LLVM, meson options, build command
   unsigned jobs = 0;                        // drawing children at once
   bool pictures = true;                     // `show` pictures in the report
+  BisectSpeedOptions speed;                 // --speed: attribute drawing-time changes too
   std::string command_line;                 // how it was started, quoted (the report repeats it)
 };
 
@@ -107,11 +113,20 @@ struct BisectResult {
   std::size_t commits_in_range = 0;  // on the line, the bad ref included
   std::vector<Culprit> culprits;     // by position on the line
   std::vector<Unattributed> unattributed;
+  // --speed: every timed group at the ends, the commits that moved a group's drawing time, and
+  // the moved groups no commit could be named for
+  std::vector<SpeedAtEnds> speed_ends;
+  std::vector<SpeedCulprit> speed_culprits;
+  std::vector<SpeedUnattributed> speed_unattributed;
   std::string original_head;         // the branch (or commit) the tree is returned to
   double seconds = 0;                // this invocation's wall time
   double total_build_s = 0;          // all builds, resumed ones included
   std::string json_path, report_path;
-  bool complete() const { return unattributed.empty() && !culprits.empty(); }
+  // Every change named: pixels and (with --speed) drawing time, at least one culprit.
+  bool complete() const {
+    return unattributed.empty() && speed_unattributed.empty() &&
+           (!culprits.empty() || !speed_culprits.empty());
+  }
 };
 
 // The command that runs these options, as a person would paste it (every value shell-quoted): what

@@ -2,6 +2,7 @@
 #include "triage/bisect_judging.h"
 
 #include <algorithm>
+#include <set>
 
 #include "runner/git_command.h"
 #include "triage/bisect_step.h"
@@ -62,7 +63,10 @@ void collect_culprits(const AttributionPlan& plan, const std::vector<std::string
     const auto it = d->pixels.find(l);
     return it == d->pixels.end() ? -1 : it->second;
   };
+  std::set<std::string> primitives;  // the plan also holds drawing times (bisect_speed.h)
+  for (const BisectPrimitive& p : judged) primitives.insert(p.label());
   for (const AttributionPlan::Change& c : plan.changes()) {
+    if (!primitives.count(c.label)) continue;
     if (!c.resolved) {
       Unattributed u{c.label, line[c.from], line[c.to], {}};
       for (std::size_t p : c.candidates) u.candidates.push_back(line[p]);
@@ -91,8 +95,10 @@ void collect_culprits(const AttributionPlan& plan, const std::vector<std::string
         ordered.push_back(p.label());
     k.primitives = ordered;
     r.culprits.push_back(k);
-    say("first bad commit: " + k.commit + " " + k.subject + " (" +
-        std::to_string(k.primitives.size()) + " primitives)");
+    // Not the "first bad commit:" line itself: the command prints it on stdout, and a terminal
+    // shows both streams.
+    say("named " + short_hash(k.commit) + " " + k.subject + ": " +
+        std::to_string(k.primitives.size()) + " primitives");
   }
   if (!r.unattributed.empty())
     say(std::to_string(r.unattributed.size()) +

@@ -17,6 +17,11 @@ void AttributionPlan::fail(std::size_t position) {
   if (!observed_.count(position)) failed_.insert(position);
 }
 
+void AttributionPlan::forget(const std::string& label) {
+  labels_.erase(label);
+  for (auto& [position, hashes] : observed_) hashes.erase(label);
+}
+
 bool AttributionPlan::open(std::size_t p) const { return !observed_.count(p) && !failed_.count(p); }
 
 std::vector<std::size_t> AttributionPlan::known_positions(const std::string& label) const {

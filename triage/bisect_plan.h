@@ -36,6 +36,9 @@ class AttributionPlan {
   void observe(std::size_t position, const std::map<std::string, uint64_t>& hashes);
   // The build or drawing at `position` failed: no primitive is known there.
   void fail(std::size_t position);
+  // `label` is no longer attributed: forgotten at every position (a drawing time the steps could
+  // not place).
+  void forget(const std::string& label);
 
   // The next position to build; none when every change is attributed or only failed positions
   // are left inside the unresolved gaps.

@@ -243,6 +243,105 @@ void write_culprit(std::ostringstream& md, int section, const Culprit& c, const 
   }
   }
 
+// "3.025x the time (95%: 2.597-3.525; the A/A control 0.996x)"
+std::string time_words(const audit::SpeedComparison& c) {
+  if (!std::isfinite(c.ratio)) return "no ratio (" + (c.reason.empty() ? "too few rounds" : c.reason) + ")";
+  char text[160];
+  std::snprintf(text, sizeof text, "%.3fx the time (95%%: %.3f-%.3f; the A/A control %.3fx)",
+                c.ratio, c.low, c.high, c.control_ratio);
+  return text;
+}
+
+// The drawing time at the ends, each speed culprit, and what stays unattributed.
+void write_speed(std::ostringstream& md, int section, const BisectOptions& o, const BisectResult& r,
+                 const std::string& driver) {
+  md << "\n## Drawing time\n\nThe first " << o.speed.per_view
+     << " primitives of each kind and view of every group, drawn alone by the good ref, the bad "
+        "ref and the good ref again (an A/A control), "
+     << o.speed.repeats
+     << " rounds of fresh processes taking turns; the ratio is the bad ref's time over the good "
+        "ref's, with its 95% interval over the rounds. A group moved when its whole interval lies "
+        "beyond "
+     << 100 * o.speed.threshold
+     << "% and beyond the control's ratio (the band).\n\n"
+     << stats::markdown_header({"group", "good ref median (us)", "bad ref median (us)",
+                                "bad / good [95%]", "control [95%]", "band", "verdict"},
+                               1);
+  for (const SpeedAtEnds& e : r.speed_ends) {
+    const audit::SpeedComparison& c = e.comparison;
+    char medians[96];
+    std::snprintf(medians, sizeof medians, "%.1f | %.1f", c.baseline_median_us, c.current_median_us);
+    char band[32];
+    std::snprintf(band, sizeof band, "%.3f", c.band);
+    md << "| " << e.group.text() << " | " << medians << " | "
+       << audit::speed_ratio_text(c.ratio, c.low, c.high) << " | "
+       << audit::speed_ratio_text(c.control_ratio, c.control_low, c.control_high) << " | " << band
+       << " | " << audit::speed_verdict_name(c.verdict)
+       << (c.verdict == audit::SpeedVerdict::kUnknown
+               ? (c.reason.empty() ? ", not attributed (about " +
+                                         std::to_string(c.repeats_to_settle) + " repeats would settle it)"
+                                   : ", " + c.reason)
+               : std::string())
+       << " |\n";
+  }
+  for (const SpeedCulprit& c : r.speed_culprits) {
+    md << "\n<a id=\"time-" << short_hash(c.commit) << "\"></a>\n## " << ++section
+       << ". Drawing time: " << short_hash(c.commit) << " " << c.subject << "\n\n**What changed.** "
+       << "At commit " << short_hash(c.commit) << " (" << c.date.substr(0, 10) << "), " << driver
+       << " draws";
+    for (std::size_t i = 0; i < c.moves.size(); ++i) {
+      const SpeedCulprit::Move& m = c.moves[i];
+      md << (i == 0 ? " " : i + 1 == c.moves.size() ? " and " : ", ") << "the "
+         << m.group.text() << " " << audit::speed_verdict_name(m.direction);
+    }
+    md << " than " << short_hash(c.previous)
+       << ", the commit before it. Confirmed by drawing the two beside each other (the commit "
+          "before drawn twice, the control), the commit's time over the one before:\n\n"
+       << stats::markdown_header({"group", "direction", "time over the commit before",
+                                  "verdict of the confirmation"},
+                                 4);
+    for (const SpeedCulprit::Move& m : c.moves)
+      md << "| " << m.group.text() << " | " << audit::speed_verdict_name(m.direction) << " | "
+         << (m.error.empty() ? time_words(m.confirmation) : "not timed: " + cell(m.error)) << " | "
+         << (m.error.empty() ? audit::speed_verdict_name(m.confirmation.verdict) : "-") << " |\n";
+    md << "\n**How it was found.** Each step's time of the group was placed between the ends' "
+          "(0% the good ref's time, 100% the bad ref's, on a log scale): \"as bad\" when the 95% "
+          "interval lies above the middle, \"as good\" below it.\n\n"
+       << stats::markdown_header({"step", "commit", "group", "step / good ref [95%]",
+                                  "of the way [95%]", "rounds", "place"},
+                                 3);
+    int n = 0;
+    for (const BisectStep& s : r.steps) {
+      ++n;
+      for (const StepTime& t : s.speed) {
+        bool mine = false;
+        for (const SpeedCulprit::Move& m : c.moves) mine = mine || m.group == t.group;
+        if (!mine) continue;
+        char share[96] = "-";
+        if (std::isfinite(t.share))
+          std::snprintf(share, sizeof share, "%.0f%% [%.0f%%, %.0f%%]", 100 * t.share,
+                        100 * t.share_low, 100 * t.share_high);
+        md << "| " << n << " | " << short_hash(s.commit) << " | " << t.group.text() << " | "
+           << audit::speed_ratio_text(t.ratio, t.low, t.high) << " | " << share << " | "
+           << t.repeats << " | " << time_place_name(t.place)
+           << (t.note.empty() ? "" : " (" + cell(t.note) + ")") << " |\n";
+      }
+    }
+    const std::string files = files_changed(o.source, c.commit);
+    if (!files.empty()) md << "\n**The commit.**\n\n```\n" << files << "```\n";
+  }
+  if (!r.speed_unattributed.empty()) {
+    md << "\n## Drawing time not attributed\n\n"
+       << stats::markdown_header({"group", "placed before", "placed after", "why", "candidates"}, 5);
+    for (const SpeedUnattributed& u : r.speed_unattributed) {
+      std::string cands;
+      for (const std::string& c : u.candidates) cands += (cands.empty() ? "" : " ") + short_hash(c);
+      md << "| " << u.group.text() << " | " << short_hash(u.from) << " | " << short_hash(u.to)
+         << " | " << cell(u.why) << " | " << (cands.empty() ? "-" : cands) << " |\n";
+    }
+  }
+}
+
 }  // namespace
 
 void write_bisect_report(const BisectOptions& o, const BisectResult& r,
@@ -258,41 +357,56 @@ void write_bisect_report(const BisectOptions& o, const BisectResult& r,
     if (s.error.empty()) by_commit[s.commit] = &s;
 
   std::ostringstream md;
-  md << "# " << driver << ": " << judged.size() << " changed primitives, "
-     << r.culprits.size() << " culprit commit" << (r.culprits.size() == 1 ? "" : "s") << "\n\n";
+  std::size_t moved = 0;
+  for (const SpeedAtEnds& e : r.speed_ends) moved += e.moved() ? 1 : 0;
+  const std::string time_title = "drawing time of " + std::to_string(moved) +
+                                 (moved == 1 ? " group" : " groups") + " moved, " +
+                                 std::to_string(r.speed_culprits.size()) + " commit" +
+                                 (r.speed_culprits.size() == 1 ? "" : "s");
   const auto version = [](const BisectStep& s) {
     return s.version.empty() ? std::string() : " (" + s.version + ")";
   };
-  md << "Between " << short_hash(r.good.commit) << version(r.good) << " and "
-     << short_hash(r.bad.commit) << version(r.bad) << ", " << r.commits_in_range << " commits";
+  std::string range = "Between " + short_hash(r.good.commit) + version(r.good) + " and " +
+                      short_hash(r.bad.commit) + version(r.bad) + ", " +
+                      std::to_string(r.commits_in_range) + " commits";
   if (!o.paths.empty()) {
-    md << " touching";
-    for (const std::string& p : o.paths) md << " `" << p << "`";
+    range += " touching";
+    for (const std::string& p : o.paths) range += " `" + p + "`";
   }
-  md << ", " << driver << " (through " << o.platform << ") draws " << judged.size()
-     << " of the selected primitives differently. Selection: " << r.selection_rule << ".";
-  if (!r.dropped.empty())
-    md << " " << r.dropped.size() << " selected primitives drew alike on both refs' builds and "
-       << "were left out.";
-  md << "\n\n| commit | subject | date | primitives | which | GL verdicts in the run, before -> "
-        "after |\n| --- | --- | --- | ---: | --- | --- |\n";
-  for (const Culprit& c : r.culprits) {
-    std::vector<const BisectPrimitive*> prims;
-    for (const std::string& l : c.primitives) prims.push_back(by_label.at(l));
-    md << "| [" << short_hash(c.commit) << "](#commit-" << short_hash(c.commit) << ") | "
-       << cell(c.subject) << " | " << c.date.substr(0, 10) << " | " << c.primitives.size()
-       << " | " << composition(prims) << " | " << conformance_moves(prims) << " |\n";
+  if (judged.empty()) {  // drawing time only (--speed)
+    md << "# " << driver << ": " << time_title << "\n\n"
+       << range << ", " << driver << " (through " << o.platform
+       << ") draws every selected primitive alike (" << r.selection_rule
+       << "); its drawing time is below.\n";
+  } else {
+    md << "# " << driver << ": " << judged.size() << " changed primitives, "
+       << r.culprits.size() << " culprit commit" << (r.culprits.size() == 1 ? "" : "s");
+    if (o.speed.enabled) md << "; " << time_title;
+    md << "\n\n" << range << ", " << driver << " (through " << o.platform << ") draws " << judged.size()
+       << " of the selected primitives differently. Selection: " << r.selection_rule << ".";
+    if (!r.dropped.empty())
+      md << " " << r.dropped.size() << " selected primitives drew alike on both refs' builds and "
+         << "were left out.";
+    md << "\n\n| commit | subject | date | primitives | which | GL verdicts in the run, before -> "
+          "after |\n| --- | --- | --- | ---: | --- | --- |\n";
+    for (const Culprit& c : r.culprits) {
+      std::vector<const BisectPrimitive*> prims;
+      for (const std::string& l : c.primitives) prims.push_back(by_label.at(l));
+      md << "| [" << short_hash(c.commit) << "](#commit-" << short_hash(c.commit) << ") | "
+         << cell(c.subject) << " | " << c.date.substr(0, 10) << " | " << c.primitives.size()
+         << " | " << composition(prims) << " | " << conformance_moves(prims) << " |\n";
+    }
+    if (!r.unattributed.empty())
+      md << "| (unattributed) | only failed builds between two drawn commits | | "
+         << r.unattributed.size() << " | | |\n";
+    std::size_t attributed = 0;
+    for (const Culprit& c : r.culprits) attributed += c.primitives.size();
+    md << "\nChanges attributed: " << attributed << "; unattributed: " << r.unattributed.size()
+       << " (a primitive changed twice counts twice).\n";
   }
-  if (!r.unattributed.empty())
-    md << "| (unattributed) | only failed builds between two drawn commits | | "
-       << r.unattributed.size() << " | | |\n";
-  std::size_t attributed = 0;
-  for (const Culprit& c : r.culprits) attributed += c.primitives.size();
-  md << "\nChanges attributed: " << attributed << "; unattributed: " << r.unattributed.size()
-     << " (a primitive changed twice counts twice).\n";
-
   int section = 0;
   for (const Culprit& c : r.culprits) write_culprit(md, ++section, c, o, r, driver, by_label, by_commit);
+  if (o.speed.enabled) write_speed(md, section, o, r, driver);
   if (!r.unattributed.empty()) {
     md << "\n## Unattributed\n\nOnly commits that failed to build lie between two drawn commits: "
           "each of these changes was made by one of its candidates.\n\n"

@@ -71,6 +71,11 @@ Selection select_primitives(const BisectOptions& o) {
     strata[{int(p.kind), p.view_group, p.run_good_conformance, p.run_bad_conformance}].push_back(p);
     ++sel.changed;
   }
+  if (sel.changed == 0 && o.speed.enabled) {
+    sel.rule = "no primitive has other pixels on " + o.bad_platform + " than on " +
+               o.good_platform + ": drawing time only";
+    return sel;
+  }
   if (sel.changed == 0)
     throw util::UserError("bisect: no primitive of " + o.run_dir + " has other pixels on " +
                           o.bad_platform + " than on " + o.good_platform +

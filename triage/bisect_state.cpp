@@ -2,7 +2,10 @@
 #include "triage/bisect_state.h"
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
+#include "analysis/view_equivalence.h"
 #include "rundir/manifest.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
@@ -20,12 +23,49 @@ nlohmann::json drawing_json(const Drawing& d) {
   return j;
 }
 
+// A number that may be undefined (no interval): null in JSON.
+nlohmann::json maybe(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+
+nlohmann::json step_time_json(const StepTime& t) {
+  return {{"kind", geometry::kind_name(t.group.kind)},
+          {"view_group", t.group.view_group},
+          {"place", time_place_name(t.place)},
+          {"ratio", maybe(t.ratio)},
+          {"low", maybe(t.low)},
+          {"high", maybe(t.high)},
+          {"share", maybe(t.share)},
+          {"share_low", maybe(t.share_low)},
+          {"share_high", maybe(t.share_high)},
+          {"repeats", t.repeats},
+          {"note", t.note}};
+}
+
+nlohmann::json comparison_json(const audit::SpeedComparison& c) {
+  return {{"n", c.n},
+          {"repeats", c.repeats},
+          {"baseline_median_us", maybe(c.baseline_median_us)},
+          {"current_median_us", maybe(c.current_median_us)},
+          {"ratio", maybe(c.ratio)},
+          {"low", maybe(c.low)},
+          {"high", maybe(c.high)},
+          {"control_ratio", maybe(c.control_ratio)},
+          {"control_low", maybe(c.control_low)},
+          {"control_high", maybe(c.control_high)},
+          {"band", maybe(c.band)},
+          {"verdict", audit::speed_verdict_name(c.verdict)},
+          {"repeats_to_settle", c.repeats_to_settle},
+          {"reason", c.reason}};
+}
+
 nlohmann::json step_json(const BisectStep& s) {
+  nlohmann::json speed = nlohmann::json::array();
+  for (const StepTime& t : s.speed) speed.push_back(step_time_json(t));
   return {{"role", s.role},       {"commit", s.commit},     {"subject", s.subject},
           {"date", s.date},       {"version", s.version},   {"position", s.position},
           {"error", s.error},     {"summary", s.summary},   {"build", s.build},
           {"build_dir", s.build_dir}, {"reused", s.reused}, {"build_s", s.build_s},
-          {"draw_s", s.draw_s},   {"drawing", drawing_json(s.drawing)}};
+          {"draw_s", s.draw_s},   {"drawing", drawing_json(s.drawing)},
+          {"speed", speed},       {"time_s", s.time_s}};
 }
 
 // Field readers that name the file and the key of what is wrong.
@@ -64,6 +104,71 @@ class Reader {
     const nlohmann::json& v = at(j, parent, key);
     if (!v.is_boolean()) bad(name(parent, key), "must be true or false");
     return v.get<bool>();
+  }
+  // A number or null (undefined: NaN).
+  double maybe_number(const nlohmann::json& j, const std::string& parent,
+                      const std::string& key) const {
+    const nlohmann::json& v = at(j, parent, key);
+    if (v.is_null()) return std::numeric_limits<double>::quiet_NaN();
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
+      bad(name(parent, key), "must be a number or null");
+    return v.get<double>();
+  }
+  int integer(const nlohmann::json& j, const std::string& parent, const std::string& key,
+              int lo, int hi) const {
+    const nlohmann::json& v = at(j, parent, key);
+    if (!v.is_number_integer() || v.get<int64_t>() < lo || v.get<int64_t>() > hi)
+      bad(name(parent, key), "must be a whole number from " + std::to_string(lo) + " to " +
+                                 std::to_string(hi));
+    return int(v.get<int64_t>());
+  }
+  SpeedGroup group(const nlohmann::json& j, const std::string& key) const {
+    SpeedGroup g;
+    if (!geometry::parse_kind(text(j, key, "kind"), &g.kind))
+      bad(name(key, "kind"), "must be point, line or triangle");
+    g.view_group = integer(j, key, "view_group", 0, 25);
+    return g;
+  }
+  StepTime step_time(const nlohmann::json& j, const std::string& key) const {
+    StepTime t;
+    t.group = group(j, key);
+    try {
+      t.place = parse_time_place(text(j, key, "place"));
+    } catch (const std::invalid_argument&) {
+      bad(name(key, "place"), "must be \"as good\", \"as bad\" or \"unknown\"");
+    }
+    t.ratio = maybe_number(j, key, "ratio");
+    t.low = maybe_number(j, key, "low");
+    t.high = maybe_number(j, key, "high");
+    t.share = maybe_number(j, key, "share");
+    t.share_low = maybe_number(j, key, "share_low");
+    t.share_high = maybe_number(j, key, "share_high");
+    t.repeats = integer(j, key, "repeats", 0, 100000);
+    t.note = text(j, key, "note");
+    return t;
+  }
+  audit::SpeedComparison comparison(const nlohmann::json& j, const std::string& key) const {
+    audit::SpeedComparison c;
+    c.n = count(j, key, "n");
+    c.repeats = integer(j, key, "repeats", 0, 100000);
+    c.baseline_median_us = maybe_number(j, key, "baseline_median_us");
+    c.current_median_us = maybe_number(j, key, "current_median_us");
+    c.ratio = maybe_number(j, key, "ratio");
+    c.low = maybe_number(j, key, "low");
+    c.high = maybe_number(j, key, "high");
+    c.control_ratio = maybe_number(j, key, "control_ratio");
+    c.control_low = maybe_number(j, key, "control_low");
+    c.control_high = maybe_number(j, key, "control_high");
+    c.band = maybe_number(j, key, "band");
+    const std::string verdict = text(j, key, "verdict");
+    bool known = false;
+    for (audit::SpeedVerdict v : {audit::SpeedVerdict::kSame, audit::SpeedVerdict::kFaster,
+                                  audit::SpeedVerdict::kSlower, audit::SpeedVerdict::kUnknown})
+      if (verdict == audit::speed_verdict_name(v)) c.verdict = v, known = true;
+    if (!known) bad(name(key, "verdict"), "must be same, faster, slower or unknown");
+    c.repeats_to_settle = integer(j, key, "repeats_to_settle", 0, 1000000);
+    c.reason = text(j, key, "reason");
+    return c;
   }
   static std::string name(const std::string& parent, const std::string& key) {
     return parent.empty() ? key : parent + "." + key;
@@ -114,6 +219,14 @@ class Reader {
     s.build_s = number(j, key, "build_s");
     s.draw_s = number(j, key, "draw_s");
     s.drawing = drawing(at(j, key, "drawing"), name(key, "drawing"));
+    // Written by `bisect --speed` (absent from files of bisections of pixels only).
+    if (j.contains("speed")) {
+      const nlohmann::json& speed = at(j, key, "speed");
+      if (!speed.is_array()) bad(name(key, "speed"), "must be an array");
+      for (std::size_t i = 0; i < speed.size(); ++i)
+        s.speed.push_back(step_time(speed[i], name(key, "speed") + "[" + std::to_string(i) + "]"));
+      s.time_s = number(j, key, "time_s");
+    }
     return s;
   }
 
@@ -155,6 +268,41 @@ nlohmann::json bisect_state_json(const BisectState& st) {
                             {"from", u.from},
                             {"to", u.to},
                             {"candidates", u.candidates}});
+  nlohmann::json speed_ends = nlohmann::json::array();
+  for (const SpeedAtEnds& e : r.speed_ends) {
+    nlohmann::json g = comparison_json(e.comparison);
+    g["kind"] = geometry::kind_name(e.group.kind);
+    g["view_group"] = e.group.view_group;
+    g["group"] = analysis::view_group_label(e.group.view_group);
+    speed_ends.push_back(g);
+  }
+  nlohmann::json speed_culprits = nlohmann::json::array();
+  for (const SpeedCulprit& c : r.speed_culprits) {
+    nlohmann::json moves = nlohmann::json::array();
+    for (const SpeedCulprit::Move& m : c.moves) {
+      nlohmann::json g = comparison_json(m.confirmation);
+      g["kind"] = geometry::kind_name(m.group.kind);
+      g["view_group"] = m.group.view_group;
+      g["group"] = analysis::view_group_label(m.group.view_group);
+      g["direction"] = audit::speed_verdict_name(m.direction);
+      g["error"] = m.error;
+      moves.push_back(g);
+    }
+    speed_culprits.push_back({{"commit", c.commit},
+                              {"subject", c.subject},
+                              {"date", c.date},
+                              {"previous", c.previous},
+                              {"moves", moves}});
+  }
+  nlohmann::json speed_unattributed = nlohmann::json::array();
+  for (const SpeedUnattributed& u : r.speed_unattributed)
+    speed_unattributed.push_back({{"kind", geometry::kind_name(u.group.kind)},
+                                  {"view_group", u.group.view_group},
+                                  {"group", analysis::view_group_label(u.group.view_group)},
+                                  {"from", u.from},
+                                  {"to", u.to},
+                                  {"candidates", u.candidates},
+                                  {"why", u.why}});
   nlohmann::json j = {{"inputs", st.inputs},
                       {"original_head", r.original_head},
                       {"selection_rule", r.selection_rule},
@@ -167,6 +315,9 @@ nlohmann::json bisect_state_json(const BisectState& st) {
                       {"steps", steps},
                       {"culprits", culprits},
                       {"unattributed", unattributed},
+                      {"speed_ends", speed_ends},
+                      {"speed_culprits", speed_culprits},
+                      {"speed_unattributed", speed_unattributed},
                       {"complete", r.complete()},
                       {"total_build_s", r.total_build_s}};
   j.update(rundir::document_header("bisection", kBisectStateVersion, false));
@@ -211,6 +362,18 @@ BisectState load_bisect_state(const std::string& path) {
   if (!steps.is_array()) rd.bad("steps", "must be an array");
   for (std::size_t i = 0; i < steps.size(); ++i)
     st.result.steps.push_back(rd.step(steps[i], "steps[" + std::to_string(i) + "]"));
+  if (j.contains("speed_ends")) {
+    const nlohmann::json& ends = rd.at(j, "", "speed_ends");
+    if (!ends.is_array()) rd.bad("speed_ends", "must be an array");
+    for (std::size_t i = 0; i < ends.size(); ++i) {
+      const std::string key = "speed_ends[" + std::to_string(i) + "]";
+      SpeedAtEnds e{rd.group(ends[i], key), rd.comparison(ends[i], key)};
+      e.comparison.kind = e.group.kind;
+      e.comparison.view_group = e.group.view_group;
+      e.comparison.group = analysis::view_group_label(e.group.view_group);
+      st.result.speed_ends.push_back(e);
+    }
+  }
   for (const char* end : {"good", "bad"}) {
     const nlohmann::json& s = rd.at(j, "", end);
     BisectStep step = rd.step(s, end);

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -158,6 +159,13 @@ int run_self(const std::vector<std::string>& args, const std::string& log) {
 }  // namespace
 
 std::string changed_night_note(const NightCounts& n) {
+  const std::string time =
+      n.time_moved == 0
+          ? std::string()
+          : "drawing time of " + std::to_string(n.time_moved) +
+                (n.time_moved == 1 ? " group" : " groups") + " moved, " +
+                std::to_string(n.speed_culprit_commits) + " commit(s) named";
+  if (n.changed == 0 && n.time_moved > 0) return "no primitive changed; " + time;
   std::string note =
       std::to_string(n.changed) + (n.changed == 1 ? " primitive changed" : " primitives changed");
   if (n.bisected < n.changed)
@@ -167,6 +175,7 @@ std::string changed_night_note(const NightCounts& n) {
   if (n.unattributed > 0)
     note += ", " + std::to_string(n.unattributed) +
             " change(s) not attributed (only commits that failed to build lie between)";
+  if (!time.empty()) note += "; " + time;
   return note;
 }
 
@@ -183,6 +192,7 @@ std::vector<std::string> night_lines(const WatchNight& n) {
                   (n.commit.empty() ? std::string() : " (" + n.commit.substr(0, 12) + ")"));
   if (!n.dir.empty()) lines.push_back("details: " + n.dir + "/night.md");
   for (const std::string& c : n.culprits) lines.push_back("first bad commit: " + c);
+  for (const std::string& c : n.speed_culprits) lines.push_back(c);
   for (const std::string& u : n.unattributed) lines.push_back("unattributed: " + u);
   for (const std::string& p : n.not_bisected) lines.push_back("not bisected: " + p);
   return lines;
@@ -290,20 +300,34 @@ class Night {
     bool changed = false, failed = false;
     for (const std::string& p : platforms_) {
       const std::string out = n_.dir + "/audit-" + p;
-      const int rc = run_self(
-          {"audit", run, "--between", p + "@" + kLastBuild, p + "@" + kTonightBuild, "--out", out,
-           "--db", night_db(), "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)},
-          n_.dir + "/audit-" + p + ".log");
+      std::vector<std::string> args = {"audit", run, "--between", p + "@" + kLastBuild,
+                                       p + "@" + kTonightBuild, "--out", out, "--db", night_db(),
+                                       "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)};
+      if (o_.speed.enabled) {
+        char threshold[32];
+        std::snprintf(threshold, sizeof threshold, "%g", o_.speed.threshold);
+        args.insert(args.end(), {"--speed", "--speed-warn-only", "--speed-repeats",
+                                 std::to_string(o_.speed.repeats), "--speed-primitives",
+                                 std::to_string(o_.speed.per_view), "--speed-threshold", threshold});
+      }
+      const int rc = run_self(args, n_.dir + "/audit-" + p + ".log");
       say("audit " + p + ": exit " + std::to_string(rc) + " (" + out + "/audit.md)");
       if (rc == 2 || rc > 2) failed = true;
-      if (rc == 1) {
+      const std::size_t moved = rc == 0 || rc == 1 ? time_moved(out) : 0;
+      if (moved > 0) say("audit " + p + ": drawing time of " + std::to_string(moved) + " group(s) moved");
+      n_.counts.time_moved += moved;
+      if (rc == 1 || moved > 0) {
         changed = true;
         attribute(p, last.commit);
       }
     }
     if (failed)
       return finish("run failed", "a driver crashed or the audit failed (" + n_.dir + ")", 2, "");
-    if (!changed) return finish("unchanged", "no primitive changed", 0, built.build.dir);
+    if (!changed)
+      return finish("unchanged",
+                    o_.speed.enabled ? "no primitive changed, no drawing time moved"
+                                     : "no primitive changed",
+                    0, built.build.dir);
     const bool moves = night_moves_baseline("changed", n_.not_bisected);
     std::string note = n_.counts.bisected > 0 || n_.not_bisected.empty()
                            ? changed_night_note(n_.counts)
@@ -420,6 +444,24 @@ class Night {
     return {};
   }
 
+  // --speed: the groups an audit found faster or slower (its audit.json's `speed` array).
+  std::size_t time_moved(const std::string& audit_dir) const {
+    if (!o_.speed.enabled) return 0;
+    try {
+      const nlohmann::json j = nlohmann::json::parse(util::read_file(audit_dir + "/audit.json"));
+      std::size_t n = 0;
+      if (j.contains("speed"))
+        for (const nlohmann::json& row : j.at("speed")) {
+          const std::string v = row.at("verdict").get<std::string>();
+          n += v == "faster" || v == "slower" ? 1 : 0;
+        }
+      return n;
+    } catch (const std::exception& e) {
+      throw util::UserError("watch: " + audit_dir + "/audit.json cannot be read for its drawing "
+                            "times: " + e.what());
+    }
+  }
+
   void attribute(const std::string& platform, const std::string& last_commit) {
     BisectOptions bo;
     bo.run_dir = n_.run_dir;
@@ -434,6 +476,7 @@ class Night {
     bo.jobs = o_.jobs;
     bo.pictures = o_.pictures;
     bo.max_primitives = o_.max_primitives;
+    bo.speed = o_.speed;
     bo.command_line = bisect_command_line(bo);
     say("bisect " + platform + ": " + short_hash(last_commit) + ".." + short_hash(n_.commit));
     try {
@@ -444,6 +487,14 @@ class Night {
         n_.counts.attributed += c.primitives.size();
         ++n_.counts.culprit_commits;
       }
+      for (const SpeedCulprit& c : r.speed_culprits) {
+        for (const std::string& line : speed_culprit_lines(c, platform + ": "))
+          n_.speed_culprits.push_back(line);
+        ++n_.counts.speed_culprit_commits;
+      }
+      for (const SpeedUnattributed& u : r.speed_unattributed)
+        n_.unattributed.push_back(u.group.label() + " of " + platform + ": " + u.why + " (" +
+                                  r.report_path + ")");
       n_.counts.changed += r.changed_in_run;
       n_.counts.bisected += r.selection.size();
       n_.counts.unattributed += r.unattributed.size();
@@ -483,6 +534,8 @@ class Night {
     e.previous_commit = n_.previous_commit;
     e.verdict = verdict;
     for (const std::string& c : n_.culprits) e.culprits += (e.culprits.empty() ? "" : "\n") + c;
+    for (const std::string& c : n_.speed_culprits)
+      e.culprits += (e.culprits.empty() ? "" : "\n") + c;
     e.run_dir = n_.run_dir;
     e.note = note;
     for (const std::string& u : n_.unattributed) e.note += "; unattributed: " + u;
@@ -514,6 +567,8 @@ class Night {
                         {"verdict", n_.verdict},
                         {"note", n_.note},
                         {"culprits", n_.culprits},
+                        {"speed_culprits", n_.speed_culprits},
+                        {"time_moved", n_.counts.time_moved},
                         {"unattributed", n_.unattributed},
                         {"not_bisected", n_.not_bisected},
                         {"baseline_kept", n_.baseline_kept},
@@ -533,6 +588,10 @@ class Night {
     if (!n_.culprits.empty()) {
       md += "\n## Culprits\n\n";
       for (const std::string& c : n_.culprits) md += "- " + c + "\n";
+    }
+    if (!n_.speed_culprits.empty()) {
+      md += "\n## Drawing time\n\n";
+      for (const std::string& c : n_.speed_culprits) md += "- " + c + "\n";
     }
     if (!n_.unattributed.empty()) {
       md += "\n## Not attributed\n\n";

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "runner/source_build.h"
+#include "triage/bisect_speed.h"
 
 namespace ra::triage {
 
@@ -48,6 +49,9 @@ struct WatchOptions {
   std::size_t max_primitives = 2000;  // per bisection
   bool pictures = true;
   bool fetch = true;       // git fetch when the tree has a remote
+  // --speed: each audit judges drawing time too (warn-only: a slower group is a finding, not a
+  // failed audit), and a night whose time moved is bisected for it (triage/bisect_speed.h)
+  BisectSpeedOptions speed;
 };
 
 // What the bisections of a changed night found, all platforms together.
@@ -57,6 +61,8 @@ struct NightCounts {
   std::size_t attributed = 0;    // of those, the ones named to a commit
   std::size_t unattributed = 0;  // of those, the ones only failed builds separate from a cause
   std::size_t culprit_commits = 0;
+  std::size_t time_moved = 0;             // --speed: groups whose drawing time moved (audits)
+  std::size_t speed_culprit_commits = 0;  // commits named for them
 };
 
 struct WatchNight {
@@ -66,6 +72,8 @@ struct WatchNight {
   std::string previous_commit;          // last good night's ("" on night 1)
   std::string verdict;                  // see the header
   std::vector<std::string> culprits;    // "HASH SUBJECT (N primitives of P)": named commits only
+  // --speed: "first slower commit: HASH SUBJECT (P: GROUP: RATIO x [LOW, HIGH])", or faster
+  std::vector<std::string> speed_culprits;
   std::vector<std::string> unattributed;  // "N changes of P: ..." that no commit could be named for
   std::vector<std::string> not_bisected;  // "P: why": platforms whose bisection could not run
   NightCounts counts;
@@ -74,8 +82,10 @@ struct WatchNight {
   int exit_code = 0;
 };
 
-// The note of a night whose primitives changed: "N primitives changed[ (M of them bisected: a
-// sample, ...)], K culprit commit(s)[, U not attributed (...)]".
+// The note of a night whose primitives or drawing time changed: "N primitives changed[ (M of
+// them bisected: a sample, ...)], K culprit commit(s)[, U not attributed (...)][; drawing time of
+// G group(s) moved, S commit(s) named]"; a night of time alone: "no primitive changed; drawing
+// time of G group(s) moved, S commit(s) named".
 std::string changed_night_note(const NightCounts& counts);
 
 // Whether tonight's build becomes the baseline the next night compares with: yes for a baseline,
@@ -86,7 +96,7 @@ std::string changed_night_note(const NightCounts& counts);
 bool night_moves_baseline(const std::string& verdict, const std::vector<std::string>& not_bisected);
 
 // What `watch` prints on stdout for a night: "night: VERDICT: NOTE (COMMIT)", the night's folder,
-// one "first bad commit: ..." per named commit, and the changes no commit was named for under
+// one "first bad commit: ..." per named commit, the "first slower/faster commit: ..." lines, and the changes no commit was named for under
 // words of their own ("unattributed: ...", "not bisected: ..."), so that a script reading "first
 // bad commit:" lines reads culprits only.
 std::vector<std::string> night_lines(const WatchNight& night);
