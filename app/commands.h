@@ -17,6 +17,7 @@
 #include "rundir/study_dir.h"
 #include "runner/source_build.h"
 #include "triage/bisect_speed.h"
+#include "util/nearest_name.h"
 
 namespace ra::app {
 
@@ -51,9 +52,7 @@ struct PrimitiveOptions {
 void add_primitive_options(CLI::App* cmd, const PrimitiveOptions& into,
                            const std::string& platform_help);
 
-// The name of `names` nearest to `typed` (edit distance at most a third of its length, at least
-// 2), or "" when none is that near.
-std::string nearest_name(const std::string& typed, const std::vector<std::string>& names);
+using util::nearest_name;  // util/nearest_name.h
 
 void register_run_command(CLI::App& app, int& exit_code);
 void register_worker_command(CLI::App& app, int& exit_code);  // internal: one shard, one process

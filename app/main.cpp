@@ -9,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/exit_status.h"
+#include "app/help_format.h"
 
 int main(int argc, char** argv) {
   // A closed pipe on stdout (`renderaudit records RUN | head`) reaches the writer as EPIPE, which
@@ -41,9 +42,29 @@ int main(int argc, char** argv) {
   ra::app::register_reproduce_command(app, exit_code);
   ra::app::register_bisect_command(app, exit_code);
   ra::app::register_watch_command(app, exit_code);
+  ra::app::use_help_format(app);
+  // `renderaudit help [COMMAND]`: the same as `--help`.
+  if (argc > 1 && std::string(argv[1]) == "help") {
+    if (argc == 2) {
+      std::fputs(app.help().c_str(), stdout);
+      return ra::app::kExitOk;
+    }
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      if (sub->get_name() == argv[2]) {
+        std::fputs(sub->help().c_str(), stdout);
+        return ra::app::kExitOk;
+      }
+      names.push_back(sub->get_name());
+    }
+    const std::string near = ra::app::nearest_name(argv[2], names);
+    std::fprintf(stderr, "renderaudit: unknown command '%s'%s (renderaudit --help lists them)\n",
+                 argv[2], near.empty() ? "" : ("; did you mean '" + near + "'?").c_str());
+    return ra::app::kExitUsage;
+  }
   // A mistyped command ("analyse") is named with the nearest one, before CLI11 would read it as
   // a missing subcommand (or print the main help for `analyse --help`).
-  if (argc > 1 && argv[1][0] != '-') {
+  if (argc > 1 && argv[1][0] != '-' && std::string(argv[1]) != "help") {
     std::vector<std::string> names;
     for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
       names.push_back(sub->get_name());

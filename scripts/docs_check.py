@@ -76,14 +76,15 @@ def check_test_count(build):
 
 
 def subcommands(argv):
-    """The subcommand names in the help of `argv` (CLI11: a SUBCOMMANDS: heading, a name per line
-    indented by two spaces, wrapped descriptions indented further)."""
+    """The subcommand names in the help of `argv` (a "Commands:" heading, or CLI11's own
+    "Subcommands:", a name per line indented by two spaces, wrapped descriptions indented
+    further)."""
     rc, out = run(argv + ["--help"])
     if rc != 0:
         sys.exit(f"docs-check: `{' '.join(argv)} --help` failed (exit {rc}): {out[-500:]}")
     names, inside = [], False
     for line in out.split("\n"):
-        if re.match(r"^subcommands:\s*$", line, re.I):
+        if re.match(r"^(sub)?commands:\s*$", line, re.I):
             inside = True
         elif inside and re.match(r"^  \S", line):
             names.append(line.split()[0])

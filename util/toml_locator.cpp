@@ -7,8 +7,10 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "util/errors.h"
+#include "util/nearest_name.h"
 
 namespace ra::util {
 
@@ -29,12 +31,15 @@ void TomlLocator::fail_at(toml::source_position at, const std::string& message) 
 
 void TomlLocator::reject_unknown_keys(const toml::table& table, const std::string& where,
                                       const std::set<std::string>& allowed) const {
+  const std::vector<std::string> names(allowed.begin(), allowed.end());
   for (const auto& [key, node] : table) {
     if (allowed.count(std::string(key.str()))) continue;
     std::string list;
     for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-    fail_at(key.source().begin,
-            "unknown key '" + where + std::string(key.str()) + "' (allowed: " + list + ")");
+    const std::string near = nearest_name(std::string(key.str()), names);
+    fail_at(key.source().begin, "unknown key '" + where + std::string(key.str()) + "'" +
+                                    (near.empty() ? "" : "; did you mean '" + near + "'?") +
+                                    " (allowed: " + list + ")");
   }
 }
 
