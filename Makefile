@@ -13,7 +13,7 @@ MAKE_START := $(shell date +%s)
 ELAPSED = t=$$(( $$(date +%s) - $(MAKE_START) )); \
   if [ $$t -ge 60 ]; then echo "$$((t / 60)) min $$((t % 60)) s"; else echo "$$t s"; fi
 
-.PHONY: all deps check-build-tree build lean bundle gpu-kit install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly watch timing lod regulation docs-check format clean FORCE
+.PHONY: all deps check-build-tree build lean bundle gpu-kit install run analyze plot report paper test slurm-test driver-upgrade check-per-view bench investigations nightly watch timing lod regulation docs-check format clean FORCE
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
 # and ends with its report ($(OUT)/report/report.pdf and .html), printing the path. A run that
@@ -172,8 +172,20 @@ slurm-test: build
 # (scripts/driver-upgrade.sh): fetch, run, audit, report (outputs/driver-upgrade/upgrade-report.md).
 # Needs the Debian registry for the fetch; says so and stops where it cannot be reached.
 # MESA_SOURCE=DIR [MESA_REF=REF] adds a Mesa built from source (docs/driver-builds.md).
-driver-upgrade: build
-	@scripts/driver-upgrade.sh $(BUILD)
+# PER_VIEW=N: N primitives per kind and view instead of the experiment's 10,000, in a copy of it
+# (scripts/cut-experiment.sh; of EXPERIMENT=FILE where given) written beside its own run folder:
+# outputs/driver-upgrade-N.toml and outputs/driver-upgrade-N/, or OUT=DIR. N is checked before
+# anything is built or fetched.
+PER_VIEW ?=
+DRIVER_UPGRADE_EXPERIMENT = $(if $(filter command line,$(origin EXPERIMENT)),$(EXPERIMENT),experiments/driver-upgrade.toml)
+DRIVER_UPGRADE_OUT = $(if $(filter command line,$(origin OUT)),$(OUT),outputs/driver-upgrade-$(PER_VIEW))
+driver-upgrade: $(if $(strip $(PER_VIEW)),check-per-view) build
+	@$(if $(strip $(PER_VIEW)),scripts/cut-experiment.sh $(DRIVER_UPGRADE_EXPERIMENT) \
+	  '$(PER_VIEW)' $(DRIVER_UPGRADE_OUT).toml && \
+	  EXPERIMENT=$(DRIVER_UPGRADE_OUT).toml OUT=$(DRIVER_UPGRADE_OUT)) \
+	  scripts/driver-upgrade.sh $(BUILD)
+check-per-view:
+	@scripts/cut-experiment.sh --check '$(PER_VIEW)'
 
 # Benchmarks: side-by-side medians, printed as tables and written as JSON under outputs/bench/.
 bench: build

@@ -6,8 +6,9 @@
 # only until the program is installed), FAIL_ON_VIOLATIONS=1 judges the run's conformance at the
 # end, the default target leaves the report as it is when neither the run nor the program changed
 # (and makes it again when one did), `make build` prints nothing when there is nothing to build,
-# and a refused run folder is answered with the OUT= that make takes (an error in the experiment
-# file is not).
+# a refused run folder is answered with the OUT= that make takes (an error in the experiment
+# file is not), and `make driver-upgrade PER_VIEW=N` cuts the experiment to N per kind and view
+# and refuses an N that is not a positive whole number before anything else.
 # `make -o build`: the build is taken as it is (ctest runs beside other tests that use the binary;
 # a relink under them would fail them).
 # Usage: scripts/make-run-test.sh BUILD_DIR
@@ -157,4 +158,22 @@ make -s -o build -C "$here" run BUILD="$build" EXPERIMENT="$t/bad.toml" OUT="$t/
 [ "$rc" = 2 ] || { cat "$t/bad.log"; fail "a broken experiment file: exit $rc, not 2"; }
 grep -qF "$t/bad.toml:" "$t/bad.log" || { cat "$t/bad.log"; fail "the error is not located"; }
 ! grep -qF "OUT=DIR" "$t/bad.log" || { cat "$t/bad.log"; fail "OUT= advice for an experiment-file error"; }
-echo "make-run-test: the platform line, a quiet run, the OUT= advice where it fits, make report's lines and hints, make's report kept while nothing changed, a quiet build"
+# `make driver-upgrade PER_VIEW=N`: N checked first (no fetch, no run), the cut copy as asked.
+for bad in abc 0 -5 1.5 0100 "1 2" 100000001; do
+  rc=0
+  (cd "$here" && make -o build driver-upgrade PER_VIEW="$bad" OUT="$t/du") > "$t/du.log" 2>&1 || rc=$?
+  [ "$rc" = 2 ] || { cat "$t/du.log"; fail "make driver-upgrade PER_VIEW=$bad: exit $rc, not 2"; }
+  grep -qF "make driver-upgrade: PER_VIEW=$bad is not a number of primitives per kind and view" \
+    "$t/du.log" || { cat "$t/du.log"; fail "PER_VIEW=$bad: no message saying why"; }
+  ! grep -qF "driver-upgrade: step" "$t/du.log" || fail "PER_VIEW=$bad: the upgrade started"
+  [ ! -e "$t/du" ] && [ ! -e "$t/du.toml" ] || fail "PER_VIEW=$bad: files written"
+done
+"$here/scripts/cut-experiment.sh" "$here/experiments/driver-upgrade.toml" 7 "$t/cut.toml" > /dev/null
+cut=$(grep -E '^(name|points|lines|triangles|shard_size) = ' "$t/cut.toml" | tr '\n' ' ')
+[ "$cut" = 'name = "driver-upgrade-7" points = 7 lines = 7 triangles = 7 shard_size = 7 ' ] \
+  || fail "the cut experiment reads: $cut"
+diff <(grep -vE '^(name|points|lines|triangles|shard_size) = ' "$here/experiments/driver-upgrade.toml") \
+  <(grep -vE '^(name|points|lines|triangles|shard_size) = ' "$t/cut.toml") > /dev/null \
+  || fail "the cut experiment differs in more than its name, counts and shard size"
+
+echo "make-run-test: the platform line, a quiet run, the OUT= advice where it fits, make report's lines and hints, make's report kept while nothing changed, a quiet build, PER_VIEW"
