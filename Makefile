@@ -13,11 +13,19 @@ MAKE_START := $(shell date +%s)
 ELAPSED = t=$$(( $$(date +%s) - $(MAKE_START) )); \
   if [ $$t -ge 60 ]; then echo "$$((t / 60)) min $$((t % 60)) s"; else echo "$$t s"; fi
 
-.PHONY: all deps check-build-tree build lean bundle gpu-kit install run analyze plot report paper test slurm-test driver-upgrade bench investigations nightly watch timing lod regulation docs-check format clean
+.PHONY: all deps check-build-tree build lean bundle gpu-kit install run analyze plot report paper test slurm-test driver-upgrade check-per-view bench investigations nightly watch timing lod regulation docs-check format clean FORCE
 
 # Installs what is missing, builds, runs the default experiment, analyses it, draws its figures
-# and ends with its report ($(OUT)/report/report.pdf and .html), printing the path.
-all: report
+# and ends with its report ($(OUT)/report/report.pdf and .html), printing the path. A run that
+# drew nothing new and a program not rebuilt leave the report as it is: its analysis, figures and
+# report are made again only when something they are made from changed (REPORT_INPUTS, asked of
+# a second make, which reads the run's files as `run` left them). `make report` makes all four.
+all: run
+	@if $(MAKE) -q $(REPORT_PDF) MAKE_START=$(MAKE_START) 2> /dev/null; then \
+	  echo "make: up to date in $$($(ELAPSED)): $(REPORT_PDF) (and report.html): the run and the" \
+	    "program are as they were when it was made (\`make report\` makes it again)"; \
+	  $(INSTALL_HINT); \
+	else $(MAKE) $(REPORT_PDF) MAKE_START=$(MAKE_START); fi
 
 deps:
 	@scripts/install-deps.sh
@@ -83,12 +91,14 @@ run: build
 	RENDERAUDIT_OUT_HINT="with make, OUT=DIR names the run folder (now $(OUT))" \
 	  $(BUILD)/renderaudit run $$experiment --out $(OUT) --brief
 
+ANALYZE_STAGE = $(BUILD)/renderaudit analyze $(OUT) --quiet
 analyze: run
-	@$(BUILD)/renderaudit analyze $(OUT) --quiet
+	@$(ANALYZE_STAGE)
 
 # Figures and report need no display: a private Xvfb is started when DISPLAY is unset.
+PLOT_STAGE = $(BUILD)/renderaudit plot $(OUT)
 plot: analyze
-	@$(BUILD)/renderaudit plot $(OUT)
+	@$(PLOT_STAGE)
 
 # `report` ends with what the run found (its violations of GL's rules, from the data); the last
 # line says where the report is and how long it all took, and, until `make install` has put the
@@ -99,13 +109,32 @@ FAIL_ON_VIOLATIONS ?=
 EXPECTATIONS ?=
 CONFORMANCE_FLAGS = $(if $(FAIL_ON_VIOLATIONS),--fail-on-violations) \
   $(if $(EXPECTATIONS),--expectations $(EXPECTATIONS))
+INSTALL_HINT = command -v renderaudit > /dev/null || [ -x $(PREFIX)/bin/renderaudit ] || \
+  echo "The program is $(BUILD)/renderaudit; \`make install\` puts it on PATH as renderaudit" \
+    "(the name the docs use)"
+REPORT_STAGE = rc=0; $(BUILD)/renderaudit report $(OUT) $(CONFORMANCE_FLAGS) || rc=$$?; \
+  echo "make report: done in $$($(ELAPSED)): $(OUT)/report/report.pdf (and report.html)"; \
+  $(INSTALL_HINT); \
+  exit $$rc
 report: plot
-	@rc=0; $(BUILD)/renderaudit report $(OUT) $(CONFORMANCE_FLAGS) || rc=$$?; \
-	echo "make report: done in $$($(ELAPSED)): $(OUT)/report/report.pdf (and report.html)"; \
-	command -v renderaudit > /dev/null || [ -x $(PREFIX)/bin/renderaudit ] || \
-	  echo "The program is $(BUILD)/renderaudit; \`make install\` puts it on PATH as renderaudit" \
-	    "(the name the docs use)"; \
-	exit $$rc
+	@$(REPORT_STAGE)
+
+# What the default target's analysis, figures and report are made from: the program, the run's
+# experiment and records (a shard is renamed into records/ when drawn: the folder's time moves;
+# `run` rewrites only its manifest and summary when it draws nothing), a study's study.json
+# (rewritten by each run of a study) and the paper's values that `analyze` compares with. A
+# missing analysis, figures folder or report, or FAIL_ON_VIOLATIONS / EXPECTATIONS (a verdict
+# asked for), makes them again whatever the times.
+REPORT_PDF = $(OUT)/report/report.pdf
+REPORT_OUTPUTS = $(OUT)/analysis $(OUT)/figures $(OUT)/report/report.html
+REPORT_INPUTS = $(BUILD)/renderaudit $(wildcard $(OUT)/experiment.toml $(OUT)/study.json \
+  $(OUT)/records $(OUT)/records/* experiments/papers/nist2008-tables.toml) \
+  $(if $(strip $(CONFORMANCE_FLAGS))$(filter-out $(wildcard $(REPORT_OUTPUTS)),$(REPORT_OUTPUTS)),FORCE)
+$(REPORT_PDF): $(REPORT_INPUTS)
+	@$(ANALYZE_STAGE)
+	@$(PLOT_STAGE)
+	@$(REPORT_STAGE)
+FORCE:
 
 # The NIST paper's experiment on both Mesa drivers, read two ways (docs/reproduce-paper.md): as its
 # text gives it, and with the near plane at 1e-5, which its Table 10 needs. Both are analysed with
@@ -143,8 +172,20 @@ slurm-test: build
 # (scripts/driver-upgrade.sh): fetch, run, audit, report (outputs/driver-upgrade/upgrade-report.md).
 # Needs the Debian registry for the fetch; says so and stops where it cannot be reached.
 # MESA_SOURCE=DIR [MESA_REF=REF] adds a Mesa built from source (docs/driver-builds.md).
-driver-upgrade: build
-	@scripts/driver-upgrade.sh $(BUILD)
+# PER_VIEW=N: N primitives per kind and view instead of the experiment's 10,000, in a copy of it
+# (scripts/cut-experiment.sh; of EXPERIMENT=FILE where given) written beside its own run folder:
+# outputs/driver-upgrade-N.toml and outputs/driver-upgrade-N/, or OUT=DIR. N is checked before
+# anything is built or fetched.
+PER_VIEW ?=
+DRIVER_UPGRADE_EXPERIMENT = $(if $(filter command line,$(origin EXPERIMENT)),$(EXPERIMENT),experiments/driver-upgrade.toml)
+DRIVER_UPGRADE_OUT = $(if $(filter command line,$(origin OUT)),$(OUT),outputs/driver-upgrade-$(PER_VIEW))
+driver-upgrade: $(if $(strip $(PER_VIEW)),check-per-view) build
+	@$(if $(strip $(PER_VIEW)),scripts/cut-experiment.sh $(DRIVER_UPGRADE_EXPERIMENT) \
+	  '$(PER_VIEW)' $(DRIVER_UPGRADE_OUT).toml && \
+	  EXPERIMENT=$(DRIVER_UPGRADE_OUT).toml OUT=$(DRIVER_UPGRADE_OUT)) \
+	  scripts/driver-upgrade.sh $(BUILD)
+check-per-view:
+	@scripts/cut-experiment.sh --check '$(PER_VIEW)'
 
 # Benchmarks: side-by-side medians, printed as tables and written as JSON under outputs/bench/.
 bench: build

@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "app/commands.h"
@@ -49,10 +50,40 @@ std::string text_table(const std::vector<std::vector<std::string>>& rows,
   return out;
 }
 
-std::string run_name(const std::string& run) {
-  const fs::path p = fs::path(run).lexically_normal();
-  const std::string name = (p.has_filename() ? p : p.parent_path()).filename().string();
-  return name.empty() ? run : name;
+// The folders of a run's path, the last one last ("/srv/runs/n-2/" -> srv, runs, n-2).
+std::vector<std::string> folders(const std::string& run) {
+  std::vector<std::string> out;
+  for (const fs::path& part : fs::path(run).lexically_normal())
+    if (!part.empty() && part != "/" && part != ".") out.push_back(part.string());
+  return out;
+}
+
+// The last `n` folders of `f`, joined with '/'.
+std::string last_folders(const std::vector<std::string>& f, std::size_t n) {
+  std::string s;
+  for (std::size_t i = f.size() - std::min(n, f.size()); i < f.size(); ++i)
+    s += (s.empty() ? "" : "/") + f[i];
+  return s;
+}
+
+// How the table names an audit's current and baseline run: the run folder's name, with the folder
+// above it where the name is "run" (a night of `renderaudit watch` keeps its run in
+// nights/<UTC>/run), and more of the path until the two names differ. An audit of two platforms of
+// one run (`audit --between`) has the same folder on both sides: its baseline reads "same run", the
+// platforms being in the compares column.
+std::pair<std::string, std::string> run_labels(const std::string& current,
+                                               const std::string& baseline) {
+  const std::vector<std::string> c = folders(current), b = folders(baseline);
+  if (c.empty() || b.empty())
+    return {c.empty() ? current : last_folders(c, 1), b.empty() ? baseline : last_folders(b, 1)};
+  auto start = [](const std::vector<std::string>& f) -> std::size_t {
+    return f.back() == "run" ? 2 : 1;
+  };
+  std::size_t nc = start(c), nb = start(b);
+  if (c == b) return {last_folders(c, nc), "same run"};
+  while (last_folders(c, nc) == last_folders(b, nb) && (nc < c.size() || nb < b.size()))
+    ++nc, ++nb;
+  return {last_folders(c, nc), last_folders(b, nb)};
 }
 
 // What an audit compared: a run with its baseline ("two runs", what `make nightly` appends), or two
@@ -250,17 +281,19 @@ void run_history(const HistoryOptions& o, int& exit_code) {
     // a baseline night compared nothing: no counts of changes or tests
     const bool compared = s.verdict != audit::Verdict::kBaseline;
     auto count = [&](int64_t n) { return compared ? std::to_string(n) : std::string("-"); };
+    const auto [current, baseline] = run_labels(s.current_run, s.baseline_run);
     rows.push_back({"#" + std::to_string(e.id), s.date_utc, audit::verdict_name(s.verdict),
                     count(s.changed_primitives), count(s.flaky_primitives),
                     std::to_string(s.failed_primitives), count(s.significant_tests),
-                    compares_text(s), run_name(s.current_run), run_name(s.baseline_run)});
+                    compares_text(s), current, baseline});
   }
   std::printf("%s", text_table(rows, right).c_str());
   std::printf(
       "\n(changed: primitives whose pixels changed and stayed changed on re-render; flaky: "
       "changed only once; failed: crash or timeout records; tests: distribution tests "
       "rejected; compares: a run against its baseline, or two platforms of one run; a baseline "
-      "night compares nothing)\n\ndrivers "
+      "night compares nothing; same run: the baseline side is the current run, two of its "
+      "platforms or a baseline night)\n\ndrivers "
       "(current run; baseline when it differs):\n");
   for (const audit::HistoryEntry& e : h) {
     const audit::AuditSummary& s = e.summary;

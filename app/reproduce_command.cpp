@@ -15,8 +15,11 @@ void register_reproduce_command(CLI::App& app, int& exit_code) {
       "reproduce",
       "Write one record of a run as a small standalone C program (EGL surfaceless + desktop GL,\n"
       "the primitive's coordinates as hex floats, the worker's matrices, viewport and state)\n"
-      "that draws it and prints the pixels lit beside the worker's and the reference's; it\n"
-      "exits 1 when its pixels differ from the reference's. Prints how to build and run it.");
+      "that draws it and prints the pixels lit beside the worker's and the reference's. Prints\n"
+      "how to build it (beside the C file) and run it. The program exits 0 when its pixels are\n"
+      "the reference's, or the worker's and the run found them allowed by GL (a snapped or\n"
+      "rounded difference); 1 when they are the worker's and break GL's rules; 3 when they are\n"
+      "neither (another driver or build: not judged); 2 when EGL or GL fails.");
   struct Options {
     audit::ReproduceRequest q;
     std::string out;
@@ -26,7 +29,8 @@ void register_reproduce_command(CLI::App& app, int& exit_code) {
       cmd, {opts->q.run_dir, opts->q.platform, opts->q.kind, opts->q.view, opts->q.index},
       "the record's platform (PLATFORM or PLATFORM@BUILD)");
   cmd->add_option("--out,-o", opts->out,
-                  "C file to write (default: RUN/reproduce/PLATFORM.KIND.vV.I.c)");
+                  "C file to write (default: RUN/reproduce/PLATFORM.KIND.vV.I.c); the program is "
+                  "built beside it, without the .c");
   cmd->callback([opts, &exit_code] {
     const std::string path = !opts->out.empty()
                                  ? opts->out
@@ -53,11 +57,11 @@ void register_reproduce_command(CLI::App& app, int& exit_code) {
       throw util::UserError("reproduce: cannot write " + path + ": " + e.what());
     }
     std::printf(
-        "wrote %s\nbuild: %s\nrun:   %s\nworker: %llu pixels (hash %llu); reference: %llu "
+        "wrote %s\nbuild: %s\nrun:   %s\nworker: %llu pixels (hash %llu), %s; reference: %llu "
         "pixels (hash %llu)\n",
         path.c_str(), r.build_line.c_str(), r.run_line.c_str(),
         static_cast<unsigned long long>(r.record_pixels),
-        static_cast<unsigned long long>(r.record_hash),
+        static_cast<unsigned long long>(r.record_hash), r.verdict.text.c_str(),
         static_cast<unsigned long long>(r.reference_pixels),
         static_cast<unsigned long long>(r.reference_hash));
     exit_code = kExitOk;

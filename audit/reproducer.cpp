@@ -1,9 +1,11 @@
 // A record as a standalone C program (see the header).
 #include "audit/reproducer.h"
 
+#include <cctype>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 
@@ -46,8 +48,11 @@ constexpr const char* kTemplate = R"(/* @TITLE@
  *   build: @BUILD@
  *   run:   @RUN@
  * Prints the pixels lit and their hash (FNV-1a 64 over each row's runs: y, x_begin, x_end as
- * 32-bit little-endian integers), then the worker's and the reference's. Exit 0: the pixels
- * equal the reference's; 1: they differ; 2: EGL or GL failed. */
+ * 32-bit little-endian integers), then the worker's and the reference's, and a verdict. The
+ * run's verdict of the worker's pixels: @WORKER_VERDICT_TEXT@; other pixels are not judged here.
+ * Exit 0: the pixels are the reference's, or the worker's and GL allows them; 1: they are the
+ * worker's and break GL's rules; 3: they are neither (drawn otherwise than the run drew it:
+ * another driver or build), not judged; 2: EGL or GL failed. */
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/gl.h>
@@ -66,6 +71,9 @@ static const int vertex_count = @COUNT@;
 static const double vertices[3][3] = {@VERTICES@};  /* object = world coordinates */
 static const uint64_t worker_pixels = @RECORD_PIXELS@u, worker_hash = @RECORD_HASH@u;
 static const uint64_t reference_pixels = @REF_PIXELS@u, reference_hash = @REF_HASH@u;
+/* the run's verdict of the worker's pixels: 0 allowed by GL, 1 a violation, 3 not judged */
+static const int worker_verdict = @WORKER_VERDICT@;
+static const char worker_verdict_text[] = "@WORKER_VERDICT_TEXT@";
 
 static uint64_t mix(uint64_t h, int32_t value) {
   uint32_t v = (uint32_t)value;
@@ -147,7 +155,18 @@ int main(void) {
   printf("reference   %llu (hash %llu)\n", (unsigned long long)reference_pixels,
          (unsigned long long)reference_hash);
   free(rgba);
-  return lit == reference_pixels && hash == reference_hash ? 0 : 1;
+  if (lit == reference_pixels && hash == reference_hash) {
+    printf("verdict     the reference's pixels\n");
+    return 0;
+  }
+  if (lit == worker_pixels && hash == worker_hash) {
+    printf("verdict     the worker's pixels: %s\n", worker_verdict_text);
+    return worker_verdict;
+  }
+  printf("verdict     neither the worker's nor the reference's pixels: drawn otherwise than\n"
+         "            the run drew it (another driver or build?); not judged here (renderaudit\n"
+         "            show draws it with a platform and judges it)\n");
+  return 3;
 }
 )";
 
@@ -173,7 +192,42 @@ std::string comment_safe(const std::string& text) {
   return out;
 }
 
+// Text safe inside the generated C file's string literals and comments: a verdict's words and
+// rule names are letters, digits, blanks and "+-():,'"; anything else (a hostile records file) is
+// dropped.
+std::string literal_safe(const std::string& text) {
+  std::string out;
+  for (const char c : text)
+    if (std::isalnum(static_cast<unsigned char>(c)) || (c && std::strchr(" +-():,'", c))) out += c;
+  return out;
+}
+
 }  // namespace
+
+ReproducerVerdict reproducer_verdict(metrics::Conformance conformance,
+                                     const std::string& violated_rules) {
+  switch (conformance) {
+    case metrics::Conformance::kExact:
+      return {kReproducerAllowed, "exact (the reference's)"};
+    case metrics::Conformance::kSnapped:
+    case metrics::Conformance::kWithinSpec:
+      return {kReproducerAllowed, std::string("allowed by GL (") +
+                                      metrics::conformance_name(conformance) + ")"};
+    case metrics::Conformance::kViolation:
+      return {kReproducerViolation, "breaking GL's rules (" +
+                                        (violated_rules.empty() ? "violation" : violated_rules) +
+                                        ")"};
+    case metrics::Conformance::kNotCompared:
+      break;
+  }
+  return {kReproducerNotJudged, "not judged against GL's rules by the run"};
+}
+
+std::string reproducer_program(const std::string& c_file_name) {
+  fs::path program = fs::path(c_file_name).replace_extension();
+  if (program == fs::path(c_file_name)) program += ".out";  // a C file named without .c
+  return program.string();
+}
 
 std::string reproducer_environment(const std::string& build_dir, const std::string& mesa_driver) {
   std::string env;
@@ -233,10 +287,16 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
                   std::to_string(view->width) + " x " + std::to_string(view->height);
   out.reference_pixels = reference.size();
   out.reference_hash = geometry::pixel_set_hash(reference);
-  const std::string exe = fs::path(c_file_name).stem().string();
-  out.build_line = "cc " + util::shell_quote(c_file_name) + " -o " + util::shell_quote(exe) + " -lEGL -lOpenGL";
-  out.run_line = reproducer_environment(spec.build.empty() ? "" : spec.build_dir, spec.mesa_driver) +
-                 " " + util::shell_quote("./" + exe);
+  // The program is built beside its C file, wherever the commands are pasted.
+  out.program = reproducer_program(c_file_name);
+  out.build_line = "cc " + util::shell_quote(c_file_name) + " -o " +
+                   util::shell_quote(out.program) + " -lEGL -lOpenGL";
+  const std::string run = fs::path(out.program).has_parent_path() ? out.program
+                                                                   : "./" + out.program;
+  out.run_line = reproducer_environment(spec.build.empty() ? "" : spec.build_dir,
+                                        spec.mesa_driver) +
+                 " " + util::shell_quote(run);
+  out.verdict = reproducer_verdict(record->conformance, record->violated_rules);
 
   std::string s = kTemplate;
   std::string vertices;
@@ -262,6 +322,8 @@ Reproducer make_reproducer(const ReproduceRequest& q, const std::string& c_file_
   fill(s, "RECORD_HASH", std::to_string(out.record_hash));
   fill(s, "REF_PIXELS", std::to_string(out.reference_pixels));
   fill(s, "REF_HASH", std::to_string(out.reference_hash));
+  fill(s, "WORKER_VERDICT", std::to_string(out.verdict.exit_code));
+  fill(s, "WORKER_VERDICT_TEXT", literal_safe(out.verdict.text));
   out.source = s;
   return out;
 }

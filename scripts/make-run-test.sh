@@ -4,8 +4,11 @@
 # table stays in summary.md and the run is said in one line, `make report` ends with the finding
 # and a line with the report's path and the time, in at most 7 lines (and the `make install` hint
 # only until the program is installed), FAIL_ON_VIOLATIONS=1 judges the run's conformance at the
-# end, `make build` prints nothing when there is nothing to build, and a refused run folder is
-# answered with the OUT= that make takes (an error in the experiment file is not).
+# end, the default target leaves the report as it is when neither the run nor the program changed
+# (and makes it again when one did), `make build` prints nothing when there is nothing to build,
+# a refused run folder is answered with the OUT= that make takes (an error in the experiment
+# file is not), and `make driver-upgrade PER_VIEW=N` cuts the experiment to N per kind and view
+# and refuses an N that is not a positive whole number before anything else.
 # `make -o build`: the build is taken as it is (ctest runs beside other tests that use the binary;
 # a relink under them would fail them).
 # Usage: scripts/make-run-test.sh BUILD_DIR
@@ -80,6 +83,44 @@ rc=0
 grep -qF "conformance: PASS: no violation" "$t/gate.log" || { cat "$t/gate.log"; fail "no conformance verdict"; }
 grep -qE "^make report: done in " "$t/gate.log" || { cat "$t/gate.log"; fail "no last line"; }
 
+# The default target (`make`) on a run that draws nothing new with a program not rebuilt: no
+# analysis, figures or report again, the report untouched, a line saying so. The program is a copy
+# here, so that its time can move without touching the build other tests use.
+mkdir -p "$t/b"
+cp -p "$build/renderaudit" "$build/renderaudit-worker" "$t/b/"
+pdf=$t/out/report/report.pdf
+default_make() {  # LOG [make arguments]
+  local log=$1 rc=0
+  shift
+  (cd "$here" && make -o build BUILD="$t/b" EXPERIMENT="$t/mine.toml" OUT="$t/out" JOBS=2 \
+    PREFIX="$t/installed" "$@") > "$log" 2>&1 || rc=$?
+  [ "$rc" = 0 ] || { cat "$log"; fail "make (the default target) exit $rc"; }
+}
+made=$(stat -c %y "$pdf")
+default_make "$t/same.log"
+grep -qE "^make: up to date in [0-9]+ (s|min [0-9]+ s): $pdf \(and report.html\)" "$t/same.log" \
+  || { cat "$t/same.log"; fail "a second make does not say the report is up to date"; }
+! grep -qE "^(Wrote |plot: |report: |finding: |make report: )" "$t/same.log" \
+  || { cat "$t/same.log"; fail "a second make analysed, plotted or reported again"; }
+[ "$(stat -c %y "$pdf")" = "$made" ] || fail "a second make wrote the report again"
+# FAIL_ON_VIOLATIONS=1 asks for a verdict: the stages run whatever the times.
+default_make "$t/same-gate.log" FAIL_ON_VIOLATIONS=1
+grep -qF "conformance: PASS: no violation" "$t/same-gate.log" \
+  || { cat "$t/same-gate.log"; fail "make FAIL_ON_VIOLATIONS=1 gave no verdict on an unchanged run"; }
+# A program built again, then a run that drew a shard again: the report is made again each time.
+touch "$t/b/renderaudit"
+made=$(stat -c %y "$pdf")
+default_make "$t/program.log"
+grep -qE "^make report: done in " "$t/program.log" || { cat "$t/program.log"; fail "a new program: no report"; }
+[ "$(stat -c %y "$pdf")" != "$made" ] || fail "a new program: the report was not written again"
+rm "$t/out/records/"*
+made=$(stat -c %y "$pdf")
+default_make "$t/run.log"
+grep -qE "^run: $t/out: 30 primitives in 1 shards \(1 run now" "$t/run.log" \
+  || { cat "$t/run.log"; fail "the shard was not drawn again"; }
+grep -qE "^make report: done in " "$t/run.log" || { cat "$t/run.log"; fail "a changed run: no report"; }
+[ "$(stat -c %y "$pdf")" != "$made" ] || fail "a changed run: the report was not written again"
+
 # scripts/build.sh (`make build`): the "Built target" lines that a build with nothing to do
 # consists of are left out, what is compiled is shown, and cmake's exit status is kept.
 mkdir -p "$t/bin"
@@ -117,4 +158,22 @@ make -s -o build -C "$here" run BUILD="$build" EXPERIMENT="$t/bad.toml" OUT="$t/
 [ "$rc" = 2 ] || { cat "$t/bad.log"; fail "a broken experiment file: exit $rc, not 2"; }
 grep -qF "$t/bad.toml:" "$t/bad.log" || { cat "$t/bad.log"; fail "the error is not located"; }
 ! grep -qF "OUT=DIR" "$t/bad.log" || { cat "$t/bad.log"; fail "OUT= advice for an experiment-file error"; }
-echo "make-run-test: the platform line, a quiet run, the OUT= advice where it fits, make report's lines and hints, a quiet build"
+# `make driver-upgrade PER_VIEW=N`: N checked first (no fetch, no run), the cut copy as asked.
+for bad in abc 0 -5 1.5 0100 "1 2" 100000001; do
+  rc=0
+  (cd "$here" && make -o build driver-upgrade PER_VIEW="$bad" OUT="$t/du") > "$t/du.log" 2>&1 || rc=$?
+  [ "$rc" = 2 ] || { cat "$t/du.log"; fail "make driver-upgrade PER_VIEW=$bad: exit $rc, not 2"; }
+  grep -qF "make driver-upgrade: PER_VIEW=$bad is not a number of primitives per kind and view" \
+    "$t/du.log" || { cat "$t/du.log"; fail "PER_VIEW=$bad: no message saying why"; }
+  ! grep -qF "driver-upgrade: step" "$t/du.log" || fail "PER_VIEW=$bad: the upgrade started"
+  [ ! -e "$t/du" ] && [ ! -e "$t/du.toml" ] || fail "PER_VIEW=$bad: files written"
+done
+"$here/scripts/cut-experiment.sh" "$here/experiments/driver-upgrade.toml" 7 "$t/cut.toml" > /dev/null
+cut=$(grep -E '^(name|points|lines|triangles|shard_size) = ' "$t/cut.toml" | tr '\n' ' ')
+[ "$cut" = 'name = "driver-upgrade-7" points = 7 lines = 7 triangles = 7 shard_size = 7 ' ] \
+  || fail "the cut experiment reads: $cut"
+diff <(grep -vE '^(name|points|lines|triangles|shard_size) = ' "$here/experiments/driver-upgrade.toml") \
+  <(grep -vE '^(name|points|lines|triangles|shard_size) = ' "$t/cut.toml") > /dev/null \
+  || fail "the cut experiment differs in more than its name, counts and shard size"
+
+echo "make-run-test: the platform line, a quiet run, the OUT= advice where it fits, make report's lines and hints, make's report kept while nothing changed, a quiet build, PER_VIEW"

@@ -129,6 +129,34 @@ TEST(HistoryCommand, PrintsTheRecentAuditsAndDrawsATrendPerMetric) {
   EXPECT_TRUE(fs::exists(dir + "/figs/trend_te_s.pdf")) << "every metric by default";
 }
 
+// A night of `renderaudit watch` audits two platforms of one run, nights/<UTC>/run: the current
+// run is named with its night, and the baseline side is said to be that same run (the platforms
+// are in the compares column), not "run" twice. Two runs both called "run" are named by the
+// folders that tell them apart.
+TEST(HistoryCommand, CurrentAndBaselineRunsAreToldApart) {
+  const std::string dir = fresh_dir("history_run_labels");
+  const std::string db = dir + "/history.sqlite";
+  ra::audit::AuditSummary night = audit(1);
+  night.current_run = night.baseline_run = "/state/nights/2026-11-12T03-00-00Z/run";
+  night.baseline_drivers = {{"egl-llvmpipe@last", "llvmpipe", "4.5 Mesa 25.1.0-devel"}};
+  night.current_drivers = {{"egl-llvmpipe@tonight", "llvmpipe", "4.5 Mesa 25.1.0-devel"}};
+  ra::audit::append_history(db, night);
+  ra::audit::AuditSummary runs = audit(2);
+  runs.baseline_run = "/state/nights/2026-11-11T03-00-00Z/run";
+  runs.current_run = "/state/nights/2026-11-12T03-00-00Z/run/";
+  ra::audit::append_history(db, runs);
+  const Outcome o = run_renderaudit("history --db " + db + " --metric te_u --out " + dir + "/h");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(table_row(o.output, "#1"),
+            "#1 2026-11-11T03:00:00Z unchanged 0 0 0 0 egl-llvmpipe@last vs egl-llvmpipe@tonight "
+            "2026-11-12T03-00-00Z/run same run")
+      << o.output;
+  EXPECT_EQ(table_row(o.output, "#2"),
+            "#2 2026-11-12T03:00:00Z unchanged 0 2 0 0 two runs 2026-11-12T03-00-00Z/run "
+            "2026-11-11T03-00-00Z/run")
+      << o.output;
+}
+
 TEST(HistoryCommand, AMissingDatabaseOrMetricIsAClearError) {
   const std::string dir = fresh_dir("history_cmd_errors");
   const Outcome missing = run_renderaudit("history --db " + dir + "/none.sqlite");
