@@ -246,16 +246,18 @@ std::map<std::pair<std::string, std::string>, std::string> time_findings(const U
   return out;
 }
 
-// "the triangles of the FOV-150 907 x 907 views 22% faster (95%: 20-25%)" for the group `t` of
-// the first pair of `c`, over the same group of every pair of `c`: the range of the estimates and
-// an interval holding each pair's, in whole percents (the interval rounded outwards).
-std::string time_clause(const UpgradeTime& t, const std::vector<const UpgradePair*>& c,
+// "the triangles of the FOV-150 907 x 907 views 22% faster (95%: 20-25%)": the groups `used` in
+// which every pair of `c` draws `kind` `verdict` ("faster" or "slower"), with the range of their
+// estimates and an interval holding each of theirs, in whole percents (the interval rounded
+// outwards).
+std::string time_clause(const std::string& kind, const std::string& verdict,
+                        const std::set<std::string>& used, const std::vector<const UpgradePair*>& c,
                         const std::vector<UpgradeViewGroup>& groups) {
-  const bool faster = t.verdict == "faster";
+  const bool faster = verdict == "faster";
   double est_low = INFINITY, est_high = -INFINITY, low = INFINITY, high = -INFINITY;
   for (const UpgradePair* p : c)
     for (const UpgradeTime& u : p->speed) {
-      if (u.kind != t.kind || u.group != t.group) continue;
+      if (u.kind != kind || !used.count(u.group)) continue;
       // percent of the installed time: faster 1 - ratio, slower ratio - 1
       const double est = 100 * (faster ? 1 - u.ratio : u.ratio - 1);
       est_low = std::min(est_low, est), est_high = std::max(est_high, est);
@@ -269,10 +271,10 @@ std::string time_clause(const UpgradeTime& t, const std::vector<const UpgradePai
   const std::string lo = whole(std::floor(low + kSlack)), hi = whole(std::ceil(high - kSlack));
   std::set<std::string> timed;  // the groups this kind was timed in
   for (const UpgradeTime& u : c.front()->speed)
-    if (u.kind == t.kind) timed.insert(u.group);
-  return "the " + plural(t.kind, 2) + views_phrase({t.group}, timed, groups) + " " +
-         (a == b ? a : a + "-" + b) + "% " + t.verdict +
-         " (95%: " + (lo == hi ? lo : lo + "-" + hi) + "%)";
+    if (u.kind == kind) timed.insert(u.group);
+  return "the " + plural(kind, 2) + views_phrase(used, timed, groups) + " " +
+         (a == b ? a : a + "-" + b) + "% " + verdict + " (95%: " + (lo == hi ? lo : lo + "-" + hi) +
+         "%)";
 }
 
 // One driver's clauses on drawing time, over its timed pairs: one per class of pairs that call
@@ -296,9 +298,17 @@ std::vector<std::string> driver_time_parts(const std::string& driver,
   }
   std::vector<std::string> parts;
   for (const auto& c : classes) {
+    // one clause per kind and verdict, over its groups, in the order of the first
+    std::vector<std::pair<std::string, std::string>> order;
+    std::map<std::pair<std::string, std::string>, std::set<std::string>> used;
+    for (const UpgradeTime& t : c.front()->speed) {
+      if (!faster_or_slower(t)) continue;
+      if (!used.count({t.kind, t.verdict})) order.push_back({t.kind, t.verdict});
+      used[{t.kind, t.verdict}].insert(t.group);
+    }
     std::vector<std::string> clauses;
-    for (const UpgradeTime& t : c.front()->speed)
-      if (faster_or_slower(t)) clauses.push_back(time_clause(t, c, groups));
+    for (const auto& [kind, verdict] : order)
+      clauses.push_back(time_clause(kind, verdict, used[{kind, verdict}], c, groups));
     if (clauses.empty()) continue;
     parts.push_back(driver_label(driver, c, build, pairs.size() > 1) + " draws " +
                     and_list(clauses));

@@ -19,26 +19,26 @@
 //    unchanged or not measurably different; the drawing time of 2 groups could not be judged at
 //    this noise."
 //
-// Only the groups (a kind in a view group of a pair) the audit called faster or slower get a
-// clause, in the summary's order. The percentages are of the time ratio upgraded / installed:
-// faster, 1 - ratio (its interval 1 - high .. 1 - low); slower, ratio - 1 (low - 1 .. high - 1);
-// the estimate rounded, the interval rounded outwards so that it still holds the audit's. Pairs
-// of one driver that call the same groups faster and slower are said once, "llvmpipe 25.0.7
-// through OSMesa and EGL draws ...", with the range of their estimates ("21-22% faster") and one
-// interval holding all of theirs; pairs that differ are said one by one, each through its back
-// end. The groups judged the same and the unknown ones are counted over every pair. A summary
-// without drawing times (from audits without --speed, or written before they were kept) gives the
-// first sentence alone.
+// Only the groups (a kind in a view group of a pair) the audit called faster or slower are said, in
+// the summary's order, one clause per kind and verdict over the view groups it holds (named as the
+// pixel part names them). The percentages are of the time ratio upgraded / installed: faster,
+// 1 - ratio (its interval 1 - high .. 1 - low); slower, ratio - 1 (low - 1 .. high - 1); the
+// estimate rounded, the interval rounded outwards so that it still holds the audit's; a clause
+// over several groups gives the range of their estimates ("21-22% faster") and one interval
+// holding all of theirs. Pairs of one driver that call the same groups faster and slower are said
+// once, "llvmpipe 25.0.7 through OSMesa and EGL draws ...", their numbers held the same way; pairs
+// that differ are said one by one, each through its back end. The groups judged the same and the
+// unknown ones are counted over every pair. A summary without drawing times (from audits without
+// --speed, or written before they were kept) gives the first sentence alone.
 //
 // The summary is the file scripts/upgrade_report.py writes (OUT/upgrade-summary-BUILD.json, schema
-// "renderaudit-upgrade-summary" version 1): the run, the build's name, the view groups and per
-// pair of platforms the counts below per kind and view group, and, where its audit judged drawing
-// time, the verdicts (`speed`). `speed` is an optional key of version 1, not a version 2: no key
-// that was there changed meaning, this reader takes summaries with and without it, and an older
-// one, which checks the keys it reads and ignores others, reads a summary with it as before.
-// A bisection of the run
-// (RUN/bisect/bisect.json, RUN/../bisect/bisect.json or RUN/audit-*/bisect/bisect.json, schema
-// "renderaudit-bisection" version 3, sealed, or 2, written by `renderaudit bisect`) adds its
+// "renderaudit-upgrade-summary" version 1): the run, the build's name, the view groups and per pair
+// of platforms the counts below per kind and view group, and, where its audit judged drawing time,
+// the verdicts (`speed`). `speed` is an optional key of version 1, not a version 2: no key that was
+// there changed meaning, this reader takes summaries with and without it, and an older one, which
+// checks the keys it reads and ignores others, reads a summary with it as before. A bisection of
+// the run (RUN/bisect/bisect.json, RUN/../bisect/bisect.json or RUN/audit-*/bisect/bisect.json,
+// schema "renderaudit-bisection" version 3, sealed, or 2, written by `renderaudit bisect`) adds its
 // culprits. Both files are read field by field: a missing or mistyped field, counts that do not
 // add up (more not drawn than changed, more changed than compared), a total past 2^62, or a time
 // ratio that contradicts its verdict (a faster group whose interval reaches 1) is a UserError

@@ -161,7 +161,7 @@ TEST(UpgradeHeadline, FasterAndSlowerGroupsAreSaidInWords) {
             "of the FOV-150 907 x 907 views 21-22% faster (95%: 19-25%); other drawing times "
             "unchanged or not measurably different.");
 
-  // One pair alone: its own numbers, no back end named; a slower group of all 907 x 907 views.
+  // One pair alone: its own numbers, no back end named.
   UpgradePair one = unchanged_pair("egl-llvmpipe");
   time_all_same(one);
   time_of(one, "triangle", "D") = {"triangle", "D", 0.78, 0.75, 0.80, "faster"};
@@ -169,6 +169,22 @@ TEST(UpgradeHeadline, FasterAndSlowerGroupsAreSaidInWords) {
             "llvmpipe unchanged. llvmpipe 25.0.7 draws the triangles of the FOV-150 907 x 907 "
             "views 22% faster (95%: 20-25%); other drawing times unchanged or not measurably "
             "different.");
+  // Groups of one kind and verdict are one clause, named by what their views share, with the
+  // range of their estimates: lines slower in every group, triangles faster in both 907 x 907.
+  time_of(one, "triangle", "C") = {"triangle", "C", 0.80, 0.78, 0.82, "faster"};
+  for (const char* g : {"A", "B", "C", "D"})
+    time_of(one, "line", g) = {"line", g, 1.10, 1.06, 1.15, "slower"};
+  EXPECT_EQ(time_sentence(summary({one})),
+            "llvmpipe 25.0.7 draws the lines 10% slower (95%: 6-15%) and the triangles of the 907 "
+            "x 907 views 20-22% faster (95%: 18-25%); other drawing times unchanged or not "
+            "measurably different.");
+  // Every group said: no "other".
+  for (const char* kind : {"point", "triangle"})
+    for (const char* g : {"A", "B", "C", "D"})
+      time_of(one, kind, g) = {kind, g, 1.10, 1.06, 1.15, "slower"};
+  EXPECT_EQ(time_sentence(summary({one})),
+            "llvmpipe 25.0.7 draws the points 10% slower (95%: 6-15%), the lines 10% slower (95%: "
+            "6-15%) and the triangles 10% slower (95%: 6-15%).");
 
   // Back ends whose verdicts differ are said one by one, each named.
   time_of(egl, "triangle", "D").verdict = "same";
