@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -152,6 +153,14 @@ std::vector<std::string> pair_clauses(const UpgradePair& p,
   return out;
 }
 
+// "OSMesa", "EGL" of each pair, in order.
+std::vector<std::string> backends_of(const std::vector<const UpgradePair*>& pairs) {
+  std::vector<std::string> out;
+  for (const UpgradePair* p : pairs)
+    out.push_back(backend_name(backend_and_driver(p->platform).first));
+  return out;
+}
+
 bool same_findings(const UpgradePair& a, const UpgradePair& b) {
   if (a.fingerprint != b.fingerprint || a.strata.size() != b.strata.size()) return false;
   for (std::size_t i = 0; i < a.strata.size(); ++i) {
@@ -177,6 +186,16 @@ std::int64_t broken_of(const UpgradePair& p) {
   return n;
 }
 
+// "llvmpipe 25.0.7" (the build's Mesa version, else "@BUILD"), "... through OSMesa and EGL" when
+// the driver's pairs fall in more than one class.
+std::string driver_label(const std::string& driver, const std::vector<const UpgradePair*>& c,
+                         const std::string& build, bool several_classes) {
+  const std::string version = mesa_version(c.front()->build_version);
+  std::string label = driver + " " + (version.empty() ? "@" + build : version);
+  if (several_classes) label += " through " + and_list(backends_of(c));
+  return label;
+}
+
 // One driver's part of the sentence, over its pairs (one per back end).
 std::string driver_part(const std::string& driver, const std::vector<const UpgradePair*>& pairs,
                         const std::string& build, const std::vector<UpgradeViewGroup>& groups) {
@@ -193,11 +212,8 @@ std::string driver_part(const std::string& driver, const std::vector<const Upgra
   }
   std::vector<std::string> parts;
   for (const auto& c : classes) {
-    const std::string version = mesa_version(c.front()->build_version);
-    std::vector<std::string> backends;
-    for (const UpgradePair* p : c) backends.push_back(backend_name(backend_and_driver(p->platform).first));
-    std::string label = driver + " " + (version.empty() ? "@" + build : version);
-    if (classes.size() > 1) label += " through " + and_list(backends);
+    const std::vector<std::string> backends = backends_of(c);
+    const std::string label = driver_label(driver, c, build, classes.size() > 1);
     const std::vector<std::string> clauses = pair_clauses(*c.front(), groups);
     if (clauses.empty()) {
       parts.push_back(label + " unchanged");
@@ -214,6 +230,116 @@ std::string driver_part(const std::string& driver, const std::vector<const Upgra
   std::string out;
   for (std::size_t i = 0; i < parts.size(); ++i) out += (i ? "; " : "") + parts[i];
   return out;
+}
+
+// Drawing time: what the second sentence says (see the header).
+
+bool faster_or_slower(const UpgradeTime& t) {
+  return t.verdict == "faster" || t.verdict == "slower";
+}
+
+// The groups a pair calls faster or slower, (kind, group) -> verdict: what its clauses say.
+std::map<std::pair<std::string, std::string>, std::string> time_findings(const UpgradePair& p) {
+  std::map<std::pair<std::string, std::string>, std::string> out;
+  for (const UpgradeTime& t : p.speed)
+    if (faster_or_slower(t)) out[{t.kind, t.group}] = t.verdict;
+  return out;
+}
+
+// "the triangles of the FOV-150 907 x 907 views 22% faster (95%: 20-25%)": the groups `used` in
+// which every pair of `c` draws `kind` `verdict` ("faster" or "slower"), with the range of their
+// estimates and an interval holding each of theirs, in whole percents (the interval rounded
+// outwards).
+std::string time_clause(const std::string& kind, const std::string& verdict,
+                        const std::set<std::string>& used, const std::vector<const UpgradePair*>& c,
+                        const std::vector<UpgradeViewGroup>& groups) {
+  const bool faster = verdict == "faster";
+  double est_low = INFINITY, est_high = -INFINITY, low = INFINITY, high = -INFINITY;
+  for (const UpgradePair* p : c)
+    for (const UpgradeTime& u : p->speed) {
+      if (u.kind != kind || !used.count(u.group)) continue;
+      // percent of the installed time: faster 1 - ratio, slower ratio - 1
+      const double est = 100 * (faster ? 1 - u.ratio : u.ratio - 1);
+      est_low = std::min(est_low, est), est_high = std::max(est_high, est);
+      low = std::min(low, 100 * (faster ? 1 - u.high : u.low - 1));
+      high = std::max(high, 100 * (faster ? 1 - u.low : u.high - 1));
+    }
+  const auto whole = [](double v) { return std::to_string(static_cast<long long>(v)); };
+  // outwards, but not past a whole number that only floating point missed (100 * (1 - 0.8))
+  constexpr double kSlack = 1e-9;
+  const std::string a = whole(std::round(est_low)), b = whole(std::round(est_high));
+  const std::string lo = whole(std::floor(low + kSlack)), hi = whole(std::ceil(high - kSlack));
+  std::set<std::string> timed;  // the groups this kind was timed in
+  for (const UpgradeTime& u : c.front()->speed)
+    if (u.kind == kind) timed.insert(u.group);
+  return "the " + plural(kind, 2) + views_phrase(used, timed, groups) + " " +
+         (a == b ? a : a + "-" + b) + "% " + verdict + " (95%: " + (lo == hi ? lo : lo + "-" + hi) +
+         "%)";
+}
+
+// One driver's clauses on drawing time, over its timed pairs: one per class of pairs that call
+// the same groups faster and slower, none for a class that calls none. A driver audited through
+// more than one back end names those of each clause ("llvmpipe 25.0.7 through OSMesa and EGL
+// draws ..."): a clause without them would read as true of every back end, timed or not.
+std::vector<std::string> driver_time_parts(const std::string& driver,
+                                           const std::vector<const UpgradePair*>& pairs,
+                                           const std::string& build,
+                                           const std::vector<UpgradeViewGroup>& groups) {
+  std::vector<std::vector<const UpgradePair*>> classes;
+  for (const UpgradePair* p : pairs) {
+    if (!p->timed) continue;
+    auto it = std::find_if(classes.begin(), classes.end(), [&](const auto& c) {
+      return time_findings(*c.front()) == time_findings(*p);
+    });
+    if (it == classes.end())
+      classes.push_back({p});
+    else
+      it->push_back(p);
+  }
+  std::vector<std::string> parts;
+  for (const auto& c : classes) {
+    // one clause per kind and verdict, over its groups, in the order of the first
+    std::vector<std::pair<std::string, std::string>> order;
+    std::map<std::pair<std::string, std::string>, std::set<std::string>> used;
+    for (const UpgradeTime& t : c.front()->speed) {
+      if (!faster_or_slower(t)) continue;
+      if (!used.count({t.kind, t.verdict})) order.push_back({t.kind, t.verdict});
+      used[{t.kind, t.verdict}].insert(t.group);
+    }
+    std::vector<std::string> clauses;
+    for (const auto& [kind, verdict] : order)
+      clauses.push_back(time_clause(kind, verdict, used[{kind, verdict}], c, groups));
+    if (clauses.empty()) continue;
+    parts.push_back(driver_label(driver, c, build, pairs.size() > 1) + " draws " +
+                    and_list(clauses));
+  }
+  return parts;
+}
+
+// The sentence on drawing time, "" where no pair was timed.
+std::string time_sentence(const UpgradeSummary& summary, const std::vector<std::string>& drivers,
+                          const std::map<std::string, std::vector<const UpgradePair*>>& pairs_of) {
+  std::vector<std::string> parts;
+  for (const std::string& d : drivers)
+    for (std::string& part : driver_time_parts(d, pairs_of.at(d), summary.build, summary.groups))
+      parts.push_back(std::move(part));
+  const bool named = !parts.empty();
+  std::int64_t same = 0, unknown = 0;
+  for (const UpgradePair& p : summary.pairs)
+    for (const UpgradeTime& t : p.speed)
+      same += t.verdict == "same", unknown += t.verdict == "unknown";
+  if (same > 0)
+    parts.push_back(std::string(named ? "other " : "") +
+                    "drawing times unchanged or not measurably different");
+  if (unknown > 0)
+    parts.push_back("the drawing time of " + grouped(unknown) + " " + plural("group", unknown) +
+                    " could not be judged at this noise");
+  if (parts.empty()) return "";
+  std::string out;
+  for (std::size_t i = 0; i < parts.size(); ++i) out += (i ? "; " : "") + parts[i];
+  // a driver's name keeps its case ("llvmpipe"); the sentence's own words start with a capital
+  if (!named) out[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(out[0])));
+  return out + ".";
 }
 
 // Field readers naming the file and the key of what is wrong.
@@ -236,6 +362,44 @@ std::int64_t count_of(const json& j, const std::string& key, const std::string& 
   if (!v.is_number_integer() || v.get<std::int64_t>() < 0)
     throw util::UserError(path + ": '" + where + key + "' must be a whole number of 0 or more");
   return v.get<std::int64_t>();
+}
+
+// A time ratio or an end of its interval: a number above 0, or null (NaN) where the audit formed
+// none.
+double ratio_of(const json& j, const std::string& key, const std::string& where,
+                const std::string& path) {
+  const json& v = member(j, key, where, path);
+  if (v.is_null()) return NAN;
+  if (!v.is_number() || !(v.get<double>() > 0) || !std::isfinite(v.get<double>()))
+    throw util::UserError(path + ": '" + where + key +
+                          "' must be a number above 0, or null where no interval was formed");
+  return v.get<double>();
+}
+
+// One group's drawing time; a faster or slower verdict needs its numbers, on its side of 1.
+UpgradeTime time_of(const json& j, const std::string& at, const std::string& path) {
+  UpgradeTime t{text_of(j, "kind", at, path),   text_of(j, "group", at, path),
+                ratio_of(j, "ratio", at, path), ratio_of(j, "low", at, path),
+                ratio_of(j, "high", at, path),  text_of(j, "verdict", at, path)};
+  if (t.verdict != "faster" && t.verdict != "slower" && t.verdict != "same" &&
+      t.verdict != "unknown")
+    throw util::UserError(path + ": '" + at + "verdict' is '" + t.verdict +
+                          "' (allowed: faster, slower, same, unknown)");
+  if (!faster_or_slower(t)) return t;
+  const auto bad = [&](const std::string& what) {
+    throw util::UserError(path + ": '" + at + what + " for a '" + t.verdict +
+                          "' verdict; write the summary again with scripts/upgrade_report.py");
+  };
+  if (std::isnan(t.ratio) || std::isnan(t.low) || std::isnan(t.high))
+    bad("ratio', 'low' and 'high' must be numbers");
+  if (!(t.low <= t.ratio && t.ratio <= t.high))
+    bad("low' <= 'ratio' <= 'high' does not hold (" + std::to_string(t.low) + ", " +
+        std::to_string(t.ratio) + ", " + std::to_string(t.high) + ")");
+  if (t.verdict == "faster" && !(t.high < 1))
+    bad("high' (" + std::to_string(t.high) + ") must be below 1");
+  if (t.verdict == "slower" && !(t.low > 1))
+    bad("low' (" + std::to_string(t.low) + ") must be above 1");
+  return t;
 }
 
 // The counts of a stratum are parts of one another (each changed primitive is counted once among
@@ -333,7 +497,8 @@ std::string upgrade_headline(const UpgradeSummary& summary) {
   for (std::size_t i = 0; i < drivers.size(); ++i)
     out += (i ? "; " : "") + driver_part(drivers[i], pairs_of[drivers[i]], summary.build,
                                          summary.groups);
-  return out + ".";
+  const std::string time = time_sentence(summary, drivers, pairs_of);
+  return out + "." + (time.empty() ? "" : " " + time);
 }
 
 UpgradeSummary read_upgrade_summary(const std::string& path) {
@@ -362,9 +527,13 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const std::string at = "pairs[" + std::to_string(i) + "].";
     const json& p = pairs[i];
-    UpgradePair pair{text_of(p, "platform", at, path), text_of(p, "build_platform", at, path),
+    UpgradePair pair{text_of(p, "platform", at, path),
+                     text_of(p, "build_platform", at, path),
                      text_of(p, "installed_version", at, path),
-                     text_of(p, "build_version", at, path), text_of(p, "fingerprint", at, path),
+                     text_of(p, "build_version", at, path),
+                     text_of(p, "fingerprint", at, path),
+                     {},
+                     false,
                      {}};
     const json& strata = member(p, "strata", at, path);
     if (!strata.is_array()) throw util::UserError(path + ": '" + at + "strata' must be a list");
@@ -379,6 +548,14 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
                              count_of(t, "fixed_violations", sat, path),
                              count_of(t, "allowed", sat, path)});
       check_stratum(pair.strata.back(), sat, path, total_compared);
+    }
+    // optional: absent where the audit did not judge drawing time
+    if (p.contains("speed")) {
+      const json& speed = p.at("speed");
+      if (!speed.is_array()) throw util::UserError(path + ": '" + at + "speed' must be a list");
+      pair.timed = true;
+      for (std::size_t k = 0; k < speed.size(); ++k)
+        pair.speed.push_back(time_of(speed[k], at + "speed[" + std::to_string(k) + "].", path));
     }
     s.pairs.push_back(std::move(pair));
   }

@@ -12,14 +12,37 @@
 // primitives drawn the same way (equal fingerprints and counts) are said once, "identical
 // through OSMesa and EGL". No number is written here: every one comes from the summary.
 //
-// The summary is the file scripts/upgrade_report.py writes (OUT/upgrade-summary.json, schema
-// "renderaudit-upgrade-summary" version 1): the run, the build's name, the view groups and per
-// pair of platforms the counts below per kind and view group. A bisection of the run
-// (RUN/bisect/bisect.json, RUN/../bisect/bisect.json or RUN/audit-*/bisect/bisect.json, schema
-// "renderaudit-bisection" version 3, sealed, or 2, written by `renderaudit bisect`) adds its
+// Where the audits judged drawing time (`audit --speed`), a second sentence says it:
+//
+//   "llvmpipe 25.0.7 draws the lines of the FOV-30 907 x 907 views 16% slower (95%: 9-24%) and
+//    the triangles of the FOV-150 907 x 907 views 22% faster (95%: 20-25%); other drawing times
+//    unchanged or not measurably different; the drawing time of 2 groups could not be judged at
+//    this noise."
+//
+// Only the groups (a kind in a view group of a pair) the audit called faster or slower are said, in
+// the summary's order, one clause per kind and verdict over the view groups it holds (named as the
+// pixel part names them). The percentages are of the time ratio upgraded / installed: faster,
+// 1 - ratio (its interval 1 - high .. 1 - low); slower, ratio - 1 (low - 1 .. high - 1); the
+// estimate rounded, the interval rounded outwards so that it still holds the audit's; a clause
+// over several groups gives the range of their estimates ("21-22% faster") and one interval
+// holding all of theirs. Pairs of one driver that call the same groups faster and slower are said
+// once, "llvmpipe 25.0.7 through OSMesa and EGL draws ...", their numbers held the same way; pairs
+// that differ are said one by one, each through its back end. The groups judged the same and the
+// unknown ones are counted over every pair. A summary without drawing times (from audits without
+// --speed, or written before they were kept) gives the first sentence alone.
+//
+// The summary is the file scripts/upgrade_report.py writes (OUT/upgrade-summary-BUILD.json, schema
+// "renderaudit-upgrade-summary" version 1): the run, the build's name, the view groups and per pair
+// of platforms the counts below per kind and view group, and, where its audit judged drawing time,
+// the verdicts (`speed`). `speed` is an optional key of version 1, not a version 2: no key that was
+// there changed meaning, this reader takes summaries with and without it, and an older one, which
+// checks the keys it reads and ignores others, reads a summary with it as before. A bisection of
+// the run (RUN/bisect/bisect.json, RUN/../bisect/bisect.json or RUN/audit-*/bisect/bisect.json,
+// schema "renderaudit-bisection" version 3, sealed, or 2, written by `renderaudit bisect`) adds its
 // culprits. Both files are read field by field: a missing or mistyped field, counts that do not
-// add up (more not drawn than changed, more changed than compared) or a total past 2^62 is a
-// UserError naming the file and the key.
+// add up (more not drawn than changed, more changed than compared), a total past 2^62, or a time
+// ratio that contradicts its verdict (a faster group whose interval reaches 1) is a UserError
+// naming the file and the key.
 #pragma once
 
 #include <cstdint>
@@ -48,12 +71,23 @@ struct UpgradeViewGroup {
   int window = 0;     // square window side
 };
 
+// The drawing time of one kind in one view group of one pair, as its audit judged it
+// (audit/speed_audit.h): ratio = upgraded / installed time, dimensionless, with its 95% interval.
+struct UpgradeTime {
+  std::string kind;                     // "point", "line", "triangle"
+  std::string group;                    // view group label, "A".."D"
+  double ratio = 0, low = 0, high = 0;  // > 0; NaN where no interval could be formed (unknown)
+  std::string verdict;  // "faster" (high < 1), "slower" (low > 1), "same", "unknown"
+};
+
 // One platform against its build: "osmesa-llvmpipe" against "osmesa-llvmpipe@backports".
 struct UpgradePair {
   std::string platform, build_platform;
   std::string installed_version, build_version;  // GL_VERSION of each side
   std::string fingerprint;  // of the changed primitives and their pixels after (equal: identical)
   std::vector<UpgradeStratum> strata;
+  bool timed = false;              // its audit judged drawing time (the summary has `speed`)
+  std::vector<UpgradeTime> speed;  // per kind and view group, in the audit's order
 };
 
 struct UpgradeSummary {
@@ -77,8 +111,8 @@ struct UpgradeBisection {
   std::vector<UpgradeCulprit> culprits;
 };
 
-// The sentence (see the header comment), ending with a full stop; "no platform was audited." for
-// an empty summary.
+// The sentence (see the header comment), ending with a full stop, and after it the sentence on
+// drawing time where any pair was timed; "no platform was audited." for an empty summary.
 std::string upgrade_headline(const UpgradeSummary& summary);
 
 // "25.0.7" from a GL_VERSION ("4.5 (Compatibility Profile) Mesa 25.0.7-2~bpo12+1", without the

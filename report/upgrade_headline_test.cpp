@@ -6,8 +6,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <filesystem>
+#include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 
 #include "util/errors.h"
@@ -115,6 +116,100 @@ TEST(UpgradeHeadline, BackEndsThatDifferAreSaidApart) {
             "through EGL: 7 of 40,000 triangles light other pixels, as GL allows.");
 }
 
+// Every kind in every group judged the same: ratio 1 within +-2%.
+void time_all_same(UpgradePair& p) {
+  p.timed = true;
+  for (const char* kind : {"point", "line", "triangle"})
+    for (const char* g : {"A", "B", "C", "D"})
+      p.speed.push_back({kind, g, 1.0, 0.98, 1.02, "same"});
+}
+
+UpgradeTime& time_of(UpgradePair& p, const std::string& kind, const std::string& group) {
+  for (UpgradeTime& t : p.speed)
+    if (t.kind == kind && t.group == group) return t;
+  throw std::runtime_error("no time " + kind + " " + group);
+}
+
+// The headline after its first sentence, the one on pixels (the headline of the summary without
+// its drawing times, which must open it).
+std::string time_sentence(UpgradeSummary s) {
+  const std::string all = upgrade_headline(s);
+  for (UpgradePair& p : s.pairs) p.timed = false, p.speed.clear();
+  const std::string pixels = upgrade_headline(s);
+  EXPECT_EQ(all.substr(0, pixels.size() + 1), pixels + " ") << all;
+  return all.size() > pixels.size() ? all.substr(pixels.size() + 1) : "";
+}
+
+// Why: page 1 said what the upgrade did to pixels and nothing of time, though the audits had
+// judged it. A faster and a slower group are said in words with their percentages (faster: 1 -
+// ratio, its interval from 1 - high to 1 - low; slower: ratio - 1), the rest in one clause; the
+// same verdicts through OSMesa and EGL are said once, with both back ends' numbers held.
+TEST(UpgradeHeadline, FasterAndSlowerGroupsAreSaidInWords) {
+  UpgradePair osmesa = llvmpipe_pair("osmesa-llvmpipe"), egl = llvmpipe_pair("egl-llvmpipe");
+  UpgradePair softpipe = unchanged_pair("osmesa-softpipe");
+  for (UpgradePair* p : {&osmesa, &egl, &softpipe}) time_all_same(*p);
+  time_of(osmesa, "line", "C") = {"line", "C", 1.16, 1.09, 1.24, "slower"};
+  time_of(osmesa, "triangle", "D") = {"triangle", "D", 0.78, 0.75, 0.80, "faster"};
+  time_of(egl, "line", "C") = {"line", "C", 1.16, 1.093, 1.238, "slower"};
+  time_of(egl, "triangle", "D") = {"triangle", "D", 0.79, 0.76, 0.81, "faster"};
+  EXPECT_EQ(upgrade_headline(summary({osmesa, softpipe, egl})),
+            "llvmpipe 25.0.7 stops drawing 595 of 10,000 lines of the FOV-30 907 x 907 views; "
+            "799 lines break GL's line rules; 101 other lines light other pixels, as GL allows; "
+            "1,210 of 40,000 triangles light other pixels, as GL allows (identical through "
+            "OSMesa and EGL); softpipe unchanged. llvmpipe 25.0.7 through OSMesa and EGL draws "
+            "the lines of the FOV-30 907 x 907 views 16% slower (95%: 9-24%) and the triangles "
+            "of the FOV-150 907 x 907 views 21-22% faster (95%: 19-25%); other drawing times "
+            "unchanged or not measurably different.");
+
+  // One pair alone: its own numbers, no back end named.
+  UpgradePair one = unchanged_pair("egl-llvmpipe");
+  time_all_same(one);
+  time_of(one, "triangle", "D") = {"triangle", "D", 0.78, 0.75, 0.80, "faster"};
+  EXPECT_EQ(upgrade_headline(summary({one})),
+            "llvmpipe unchanged. llvmpipe 25.0.7 draws the triangles of the FOV-150 907 x 907 "
+            "views 22% faster (95%: 20-25%); other drawing times unchanged or not measurably "
+            "different.");
+  // Groups of one kind and verdict are one clause, named by what their views share, with the
+  // range of their estimates: lines slower in every group, triangles faster in both 907 x 907.
+  time_of(one, "triangle", "C") = {"triangle", "C", 0.80, 0.78, 0.82, "faster"};
+  for (const char* g : {"A", "B", "C", "D"})
+    time_of(one, "line", g) = {"line", g, 1.10, 1.06, 1.15, "slower"};
+  EXPECT_EQ(time_sentence(summary({one})),
+            "llvmpipe 25.0.7 draws the lines 10% slower (95%: 6-15%) and the triangles of the 907 "
+            "x 907 views 20-22% faster (95%: 18-25%); other drawing times unchanged or not "
+            "measurably different.");
+  // Every group said: no "other".
+  for (const char* kind : {"point", "triangle"})
+    for (const char* g : {"A", "B", "C", "D"})
+      time_of(one, kind, g) = {kind, g, 1.10, 1.06, 1.15, "slower"};
+  EXPECT_EQ(time_sentence(summary({one})),
+            "llvmpipe 25.0.7 draws the points 10% slower (95%: 6-15%), the lines 10% slower (95%: "
+            "6-15%) and the triangles 10% slower (95%: 6-15%).");
+
+  // Back ends whose verdicts differ are said one by one, each named.
+  time_of(egl, "triangle", "D").verdict = "same";
+  EXPECT_EQ(time_sentence(summary({osmesa, egl})),
+            "llvmpipe 25.0.7 through OSMesa draws the lines of the FOV-30 907 x 907 views 16% "
+            "slower (95%: 9-24%) and the triangles of the FOV-150 907 x 907 views 22% faster "
+            "(95%: 20-25%); llvmpipe 25.0.7 through EGL draws the lines of the FOV-30 907 x 907 "
+            "views 16% slower (95%: 9-24%); other drawing times unchanged or not measurably "
+            "different.");
+}
+
+// Why: a group the audit could not judge is neither unchanged nor changed; one short clause
+// counts them, and only where there are any.
+TEST(UpgradeHeadline, UnknownDrawingTimesAreCountedInOneClause) {
+  UpgradePair p = unchanged_pair("osmesa-softpipe");
+  p.timed = true;
+  p.speed = {{"line", "A", NAN, NAN, NAN, "unknown"}, {"line", "B", 1.04, 0.9, 1.2, "unknown"}};
+  EXPECT_EQ(upgrade_headline(summary({p})),
+            "softpipe unchanged. The drawing time of 2 groups could not be judged at this noise.");
+  p.speed.push_back({"line", "C", 1.0, 0.99, 1.01, "same"});
+  EXPECT_EQ(upgrade_headline(summary({p})),
+            "softpipe unchanged. Drawing times unchanged or not measurably different; the drawing "
+            "time of 2 groups could not be judged at this noise.");
+}
+
 TEST(UpgradeHeadline, MesaVersionFromGlVersion) {
   EXPECT_EQ(mesa_version("4.5 (Compatibility Profile) Mesa 25.0.7 (git-abc)"), "25.0.7");
   EXPECT_EQ(mesa_version("4.5 (Compatibility Profile) Mesa 26.0.0-devel"), "26.0.0-devel");
@@ -220,6 +315,84 @@ TEST(UpgradeHeadline, ADamagedSummaryOrBisectionIsNamedWithItsFileAndKey) {
   const std::string one = a_stratum(near, near, near);
   e = summary_error(dir, one.substr(0, one.size() - 1) + ", " + one.substr(1));
   EXPECT_NE(e.find("'pairs[0].strata[0].compared' (" + near + ") takes the summary past 2^62"),
+            std::string::npos)
+      << e;
+  fs::remove_all(dir);
+}
+
+// Why: summaries written before drawing times were kept (no `speed`) still read, and say
+// nothing of time; a summary with `speed` reads each field, null where no interval was formed.
+TEST(UpgradeHeadline, DrawingTimesAreReadFromTheSummaryAndOptional) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("ra_upgrade_headline_speed_" + std::to_string(getpid()));
+  const std::string stratum = a_stratum("100", "0", "0");
+  EXPECT_EQ(summary_error(dir, stratum), "");
+  UpgradeSummary s = read_upgrade_summary((dir / "upgrade-summary.json").string());
+  ASSERT_EQ(s.pairs.size(), 1u);
+  EXPECT_FALSE(s.pairs[0].timed);
+  EXPECT_EQ(upgrade_headline(s), "llvmpipe unchanged.");
+
+  EXPECT_EQ(summary_error(dir, stratum + R"(, "speed": [
+      {"kind": "line", "group": "A", "ratio": 1.3, "low": 1.2, "high": 1.4, "verdict": "slower"},
+      {"kind": "point", "group": "A", "ratio": null, "low": null, "high": null,
+       "verdict": "unknown"}])"),
+            "");
+  s = read_upgrade_summary((dir / "upgrade-summary.json").string());
+  ASSERT_TRUE(s.pairs[0].timed);
+  ASSERT_EQ(s.pairs[0].speed.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.pairs[0].speed[0].low, 1.2);
+  EXPECT_TRUE(std::isnan(s.pairs[0].speed[1].ratio));
+  EXPECT_EQ(upgrade_headline(s),
+            "llvmpipe unchanged. llvmpipe 25.0.7 draws the lines 30% slower (95%: 20-40%); the "
+            "drawing time of 1 group could not be judged at this noise.");
+  fs::remove_all(dir);
+}
+
+// Why: a mistyped drawing time must stop with the file and the key, as every other field does,
+// not end in a JSON library message or a sentence that says "-3% faster".
+TEST(UpgradeHeadline, AMistypedDrawingTimeIsNamedWithItsFileAndKey) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("ra_upgrade_headline_speed_bad_" + std::to_string(getpid()));
+  const std::string summary_json = (dir / "upgrade-summary.json").string();
+  const std::string stratum = a_stratum("100", "0", "0");
+  const auto error_of = [&](const std::string& speed) {
+    return summary_error(dir, stratum + R"(, "speed": )" + speed);
+  };
+  const auto group = [](const std::string& ratio, const std::string& low, const std::string& high,
+                        const std::string& verdict) {
+    return R"([{"kind": "line", "group": "A", "ratio": )" + ratio + R"(, "low": )" + low +
+           R"(, "high": )" + high + R"(, "verdict": ")" + verdict + R"("}])";
+  };
+  EXPECT_EQ(error_of(group("0.8", "0.7", "0.9", "faster")), "");
+
+  std::string e = error_of(R"("fast")");
+  EXPECT_EQ(e, summary_json + ": 'pairs[0].speed' must be a list");
+  e = error_of(group(R"("0.8")", "0.7", "0.9", "faster"));
+  EXPECT_NE(e.find(summary_json + ": 'pairs[0].speed[0].ratio' must be a number above 0"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(e.find("json.exception"), std::string::npos) << e;
+  e = error_of(group("0.8", "-0.7", "0.9", "faster"));
+  EXPECT_NE(e.find(summary_json + ": 'pairs[0].speed[0].low' must be a number above 0"),
+            std::string::npos)
+      << e;
+  e = error_of(group("0.8", "0.7", "0.9", "quicker"));
+  EXPECT_NE(e.find(summary_json + ": 'pairs[0].speed[0].verdict' is 'quicker' (allowed: faster, "
+                                  "slower, same, unknown)"),
+            std::string::npos)
+      << e;
+  e = error_of(R"([{"kind": "line", "group": "A", "ratio": 1, "low": 1, "high": 1}])");
+  EXPECT_NE(e.find(summary_json + ": 'pairs[0].speed[0].verdict' is missing"), std::string::npos)
+      << e;
+  // a faster group whose interval reaches 1, a slower one without numbers: no words for them
+  e = error_of(group("0.97", "0.9", "1.03", "faster"));
+  EXPECT_NE(e.find(summary_json + ": 'pairs[0].speed[0].high' (1.030000) must be below 1 for a "
+                                  "'faster' verdict"),
+            std::string::npos)
+      << e;
+  e = error_of(group("null", "null", "null", "slower"));
+  EXPECT_NE(e.find(summary_json + ": 'pairs[0].speed[0].ratio', 'low' and 'high' must be numbers "
+                                  "for a 'slower' verdict"),
             std::string::npos)
       << e;
   fs::remove_all(dir);

@@ -2,21 +2,31 @@
 # `make driver-upgrade`: the installed Mesa against the newest Mesa of Debian's bookworm-backports,
 # end to end: fetch the build into the build cache (renderaudit builds fetch), run
 # experiments/driver-upgrade.toml (nist2008 views; osmesa-* and egl-*, llvmpipe and softpipe, each
-# on both builds), audit every pair with `audit RUN --between P P@backports`, and write one report,
-# OUT/upgrade-report.pdf and .html (set by `renderaudit report --markdown` from the Markdown beside
-# them), that opens with one sentence of what changed per driver (made from the counts by
-# `renderaudit report --upgrade-headline`) and the worst primitive before and after, then what
-# changed per back end, kind and view group. The pairs audited are the experiment's platforms P
-# drawn also as P@backports. About 10 minutes on 2 cores (docs/driver-builds.md).
+# on both builds), audit every pair with `audit RUN --between P P@backports` (pixels, and drawing
+# time: both sides drawn again, --speed), and write one report, OUT/upgrade-report.pdf and .html
+# (set by `renderaudit report --markdown` from the Markdown beside them), that opens with one
+# sentence of what changed per driver and one of what got faster or slower (made from the counts
+# and the time verdicts by `renderaudit report --upgrade-headline`) and the worst primitive before
+# and after, then what changed per back end, kind and view group. The pairs audited are the
+# experiment's platforms P drawn also as P@backports. About 10 minutes on 2 cores for the pixels;
+# timing the drawing adds, on the same 2 cores under load, about 35 s per llvmpipe pair and
+# 2.5 min per softpipe pair (softpipe draws the 907 x 907 views slowly): about 6 minutes for the
+# four pairs (docs/driver-builds.md).
 #
 # Usage: scripts/driver-upgrade.sh [BUILD_DIR] [--smoke]   (MIRROR=URL: another Debian archive)
 #   MESA_SOURCE=DIR [MESA_REF=REF]: also a Mesa built from that source tree (renderaudit builds
 #   build; scripts/install-mesa-build-deps.sh first), drawn through EGL as egl-*@source and
 #   audited against the installed Mesa, so the report covers three versions side by side.
-#   --smoke: 40 primitives per kind and view into BUILD_DIR/driver-upgrade-smoke, and a build
-#   already in the cache is used as is (the test suite's run of this script).
-# Exit 0: every audit ran (whatever it found); 2: a step failed; 77: the Debian registry cannot
-# be reached and no build is cached (the test suite then skips, loudly).
+#   UPGRADE_SPEED: `on` (default: each audit also judges drawing time with --speed-warn-only, so a
+#   slower driver is reported, in its audit's line and on page 1, but changes no exit code and no
+#   count of changed audits; the audit's defaults, 10 rounds of 100 primitives per kind and view),
+#   `off` (pixels only).
+#   --smoke: 40 primitives per kind and view into BUILD_DIR/driver-upgrade-smoke, drawing time in
+#   3 rounds (about 1 minute for the four pairs), and a build already in the cache is used as is
+#   (the test suite's run of this script).
+# Exit 0: every audit ran (whatever it found); 2: a step failed or UPGRADE_SPEED is neither on nor
+# off; 77: the Debian registry cannot be reached and no build is cached (the test suite then skips,
+# loudly).
 set -uo pipefail
 
 build=${1:-build}
@@ -33,6 +43,14 @@ started=$(date +%s)
 step() { say "step $1 of 4 ($(( ($(date +%s) - started) / 60 )) min so far): $2"; }
 die() { echo "driver-upgrade: $*" >&2; exit 2; }
 [ -x "$ra" ] || die "$ra is not built (make build)"
+# Drawing time judged by each audit (a slower group a warning: the audits' exit codes, and so this
+# script's counts, stay those of the pixels); the smoke run's fewer rounds only exercise it.
+case ${UPGRADE_SPEED:-on} in
+  on) speed=(--speed --speed-warn-only) rounds=10
+      if [ $smoke = 1 ]; then speed+=(--speed-repeats 3) rounds=3; fi ;;
+  off) speed=() ;;
+  *) die "UPGRADE_SPEED='$UPGRADE_SPEED' (allowed: on, off)" ;;
+esac
 
 if [ $smoke = 1 ]; then
   out=$(cd "$build" && pwd)/driver-upgrade-smoke
@@ -95,11 +113,14 @@ audit_build() {  # BUILD PLATFORM...
   suffix=$([ "$build" = backports ] || echo "-$build")
   for p in "$@"; do
     dir=$out/audit-$p$suffix
-    "$ra" audit "$out" --between "$p" "$p@$build" --no-history --out "$dir" > "$dir.log" 2>&1
+    # its verdict on stdout (the first line: what changed, every faster or slower group among the
+    # reasons); the timing's progress and any error on stderr, kept apart
+    "$ra" audit "$out" --between "$p" "$p@$build" --no-history "${speed[@]}" --out "$dir" \
+      > "$dir.log" 2> "$dir.stderr.log"
     rc=$?
     [ $rc = 1 ] && changed+=("$p@$build")
     if [ $rc -gt 1 ]; then
-      cat "$dir.log" >&2
+      cat "$dir.log" "$dir.stderr.log" >&2
       say "audit of $p against $p@$build failed (exit $rc)"
       status=2
     else
@@ -117,7 +138,9 @@ print(" ".join(p for p in ps if "@" not in p and p + "@" + sys.argv[2] in ps))' 
 audited=()
 source_audited=()
 changed=()
-step 3 "auditing each platform against its build"
+step 3 "auditing each platform against its build$([ ${#speed[@]} = 0 ] ||
+  echo ", timing the drawing too ($rounds rounds per pair: under a minute for llvmpipe, longer" \
+       "for softpipe; UPGRADE_SPEED=off: pixels only)")"
 backports_pairs=$(pairs_of backports) || die "cannot read the platforms of $experiment"
 [ -n "$backports_pairs" ] || die "$experiment draws no platform P beside P@backports: nothing to audit"
 # shellcheck disable=SC2086  # one word per platform

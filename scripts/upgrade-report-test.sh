@@ -9,7 +9,11 @@
 #   - the `renderaudit show` line pastes as one word per argument though the run folder is named
 #     like a command substitution, and runs nothing;
 #   - the [builds.source] table driver-upgrade.sh appends (scripts/build_table.py) keeps a source
-#     path and ref with newlines, quotes and TOML of their own inside their string and comment.
+#     path and ref with newlines, quotes and TOML of their own inside their string and comment;
+#   - drawing time: faulty@backports also draws 3 times as long ([faults] slowdown = 2) and its
+#     audit judges time as driver-upgrade.sh's do (--speed --speed-warn-only, 3 rounds: about 2 s);
+#     the summary carries its verdicts (slower, never faster or the same) and page 1 says so; the
+#     source audit, not timed, leaves `speed` out and page 1 without a word of time.
 # Usage: scripts/upgrade-report-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
@@ -19,6 +23,9 @@ trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
 script="$(cd "$(dirname "$0")" && pwd)/upgrade_report.py"
 
 run="$t/out \$(touch $t/PWNED) it's"
+# the bad driver, also drawing 3 times as long
+mkdir -p "$t/drivers/bad-slow"
+printf 'slowdown = 2\n' | cat "$t/drivers/bad/faults.toml" - > "$t/drivers/bad-slow/faults.toml"
 cat > "$t/upgrade.toml" <<EOT
 name = "upgrade-report-test"
 seed = 7
@@ -26,7 +33,7 @@ platforms = ["faulty", "faulty@backports", "faulty@source"]
 [faults]
 base = "osmesa-llvmpipe"
 [builds.backports]
-dir = "$t/drivers/bad"
+dir = "$t/drivers/bad-slow"
 [builds.source]
 dir = "$t/drivers/neither"
 [views]
@@ -43,9 +50,11 @@ EOT
 "$ra" run "$t/upgrade.toml" --out "$run" --jobs 2 >/dev/null 2>"$t/run.log" || { cat "$t/run.log"; fail "run"; }
 for b in backports source; do
   suffix=$([ $b = backports ] || echo "-$b")
+  speed=()
+  [ $b = source ] || speed=(--speed --speed-warn-only --speed-repeats 3)
   set +e
-  "$ra" audit "$run" --between faulty "faulty@$b" --no-history --out "$run/audit-faulty$suffix" \
-    >"$t/audit-$b.log" 2>&1
+  "$ra" audit "$run" --between faulty "faulty@$b" --no-history "${speed[@]}" \
+    --out "$run/audit-faulty$suffix" >"$t/audit-$b.log" 2>&1
   rc=$?
   set -e
   [ $rc -le 1 ] || { cat "$t/audit-$b.log"; fail "audit of faulty@$b exited $rc"; }
@@ -78,6 +87,28 @@ set -e
 # The `renderaudit show` line: the words that ran, nothing run.
 /usr/bin/python3 "$script" "$ra" "$run" backports faulty >"$t/backports.md" 2>"$t/backports.err" ||
   { cat "$t/backports.err"; fail "upgrade_report.py (backports) failed"; }
+
+# Drawing time: the timed audit's verdicts in the summary and on page 1, none from the untimed one.
+/usr/bin/python3 - "$run" "$t/backports.md" "$t/source.md" <<'EOP' || fail "the drawing times of the summary or page 1 (above)"
+import json, re, sys
+run, backports_md, source_md = sys.argv[1:]
+speed = json.load(open(f"{run}/upgrade-summary-backports.json"))["pairs"][0].get("speed")
+assert speed is not None, "the timed audit's pair has no 'speed'"
+assert sorted(s["group"] for s in speed) == list("ABCDEF"), speed
+for s in speed:
+    assert set(s) == {"kind", "group", "ratio", "low", "high", "verdict"}, s
+    # 3 times as long is never faster or the same; under heavy load a group may stay unknown
+    assert s["kind"] == "line" and s["verdict"] in ("slower", "unknown"), s
+slower = [s for s in speed if s["verdict"] == "slower"]
+assert slower, f"a driver 3 times as slow is slower in no group: {speed}"
+page1 = open(backports_md).read().splitlines()[2]
+assert re.search(r"\. faulty \S+ draws the lines [0-9-]+% slower \(95%: [0-9-]+%\)", page1), page1
+assert ("could not be judged" in page1) == (len(slower) < len(speed)), page1
+source = json.load(open(f"{run}/upgrade-summary-source.json"))["pairs"][0]
+assert "speed" not in source, source
+page1 = open(source_md).read().splitlines()[2]
+assert not re.search(r"(faster|slower) \(95%|drawing time", page1), page1
+EOP
 show=$(grep -o -m1 '`renderaudit show [^`]*`' "$t/backports.md")
 show=${show%%$'\n'*}
 show=${show//\`/}
@@ -102,5 +133,5 @@ assert "bogus" not in doc and "shard_size" not in doc.get("run", {}), doc
 EOP
 grep -q 'scripts/build_table.py" source "$source_dir"' "$(dirname "$script")/driver-upgrade.sh" ||
   fail "driver-upgrade.sh does not write its [builds.source] table with build_table.py"
-echo "upgrade-report-test: the source part, six view groups, the show line, the build table checked"
+echo "upgrade-report-test: the source part, six view groups, the show line, the build table, drawing times checked"
 echo "1 passed, 0 failed"

@@ -9,9 +9,11 @@ The audit of PLATFORM against PLATFORM@BUILD is read from RUN_DIR/audit-PLATFORM
 (driver-upgrade.sh: no suffix for backports, "-source" for the source build) and must say that it
 compared those two platforms. Exit 2 for bad input: a missing or other audit.
 Writes RUN_DIR/upgrade-summary-BUILD.json (schema "renderaudit-upgrade-summary" version 1: per pair
-the counts per kind and view group) and opens the Markdown with the sentence `renderaudit report
---upgrade-headline` makes of it (report/upgrade_headline.h), then the worst primitive's before and
-after side by side, a table of contents ([TOC]) and one section per finding and per platform.
+the counts per kind and view group and, where the audit judged drawing time (`audit --speed`), its
+verdicts per kind and view group as `speed`, copied from audit.json) and opens the Markdown with
+the sentences `renderaudit report --upgrade-headline` makes of it (report/upgrade_headline.h), then
+the worst primitive's before and after side by side, a table of contents ([TOC]) and one section
+per finding and per platform.
 
 A primitive is changed when its lit pixels (pixel_hash), status or visibility differ. Each changed
 primitive is one of: not drawn (true-visible -> false-invisible), a new violation (after a GL
@@ -173,6 +175,18 @@ def audit_of(run_dir, p, q, suffix):
     return a
 
 
+def speed_of(audit, p, q):
+    """The drawing-time verdicts of p against q as the summary keeps them, None where the audit did
+    not judge drawing time (the summary then has no `speed`: not timed)."""
+    measured = audit.get("speed_measurement")
+    if not isinstance(measured, dict) or measured.get("performed") is not True:
+        return None
+    return [{k: row.get(k) for k in ("kind", "group", "ratio", "low", "high", "verdict")}
+            for row in audit.get("speed", [])
+            if isinstance(row, dict) and row.get("baseline_platform") == p and
+            row.get("platform") == q]
+
+
 def main():
     args = sys.argv[1:]
     suffix = ""
@@ -188,7 +202,8 @@ def main():
     recs, groups = records(ra, run_dir, names)
     driver = lambda p: json.load(open(os.path.join(run_dir, "drivers", p + ".json")))
 
-    # the summary the first sentence is made of, and the distinct findings
+    # the summary the first sentences are made of, and the distinct findings
+    audits = {p: audit_of(run_dir, p, p + "@" + build, suffix) for p in platforms}
     pairs, findings, changed_of = [], collections.OrderedDict(), {}
     for p in platforms:
         q = p + "@" + build
@@ -202,6 +217,9 @@ def main():
                           f: strata[(k, g)][f] for f in
                           ("compared", "changed", "not_drawn", "newly_drawn", "new_violations",
                            "fixed_violations", "allowed")}) for (k, g) in sorted(strata)]})
+        speed = speed_of(audits[p], p, q)
+        if speed is not None:
+            pairs[-1]["speed"] = speed
         backend, _, drv = p.partition("-")
         key = (drv, fp, json.dumps(pairs[-1]["strata"]))
         findings.setdefault(key, {"pairs": [], "changed": changed})["pairs"].append(p)
@@ -213,8 +231,12 @@ def main():
     summary_path = os.path.join(run_dir, f"upgrade-summary-{build}.json")
     with open(summary_path, "w") as f:
         json.dump(summary, f, indent=1)
-    headline = subprocess.run([ra, "report", "--upgrade-headline", summary_path], check=True,
-                              capture_output=True, text=True).stdout
+    made = subprocess.run([ra, "report", "--upgrade-headline", summary_path],
+                          capture_output=True, text=True)
+    if made.returncode != 0:
+        die(f"`renderaudit report --upgrade-headline {summary_path}` failed: "
+            f"{made.stderr.strip()}")
+    headline = made.stdout
 
     installed = sorted({mesa(driver(p)["version"]) for p in platforms} - {""})
     upgraded = sorted({mesa(driver(p + "@" + build)["version"]) for p in platforms} - {""})
@@ -268,7 +290,7 @@ def main():
           "significant tests | new violations |")
     print("| --- | --- | --- | ---: | ---: | ---: | ---: |")
     for p in platforms:
-        a = audit_of(run_dir, p, p + "@" + build, suffix)
+        a = audits[p]
         c = a["counts"]
         print(f"| {p} | {driver(p)['version']} | {driver(p + '@' + build)['version']} | "
               f"{c['compared']} | {c['changed']} | {a['distribution_tests']['significant']} of "
