@@ -81,7 +81,7 @@ INSTANTIATE_TEST_SUITE_P(
     AllRules, ExperimentErrors,
     testing::Values(
         BadCase{"UnknownKey", with("[primitives]", "[primitives]\npoint = 3"), "exp.toml:10:1",
-                "unknown key 'primitives.point' (allowed: lines, points, triangles)"},
+                "unknown key 'primitives.point'; did you mean 'points'? (allowed: lines, points, triangles)"},
         BadCase{"UnknownTopLevelKey", with("seed = 1", "seed = 1\nsede = 2"), "exp.toml:2:1",
                 "unknown key 'sede'"},
         BadCase{"WrongType", with("points = 10", "points = \"ten\""), "exp.toml:10:10",
