@@ -348,10 +348,12 @@ class Bisection {
                            audit::speed_ratio_text(c.control_ratio, c.control_low, c.control_high) +
                            ")";
         if (c.verdict == audit::SpeedVerdict::kUnknown)
-          line += c.reason.empty() ? ": not attributed; about " +
-                                         std::to_string(c.repeats_to_settle) +
-                                         " --speed-repeats would settle it"
-                                   : ": not attributed, " + c.reason;
+          line += !c.reason.empty() ? ": not attributed, " + c.reason
+                  : c.repeats_to_settle > 0
+                      ? ": not attributed; about " + std::to_string(c.repeats_to_settle) +
+                            " --speed-repeats would settle it"
+                      : ": not attributed; the estimate sits at the band's edge, more repeats "
+                        "would not settle it";
         say(line);
         if (e.moved()) moved_.push_back(e);
       }

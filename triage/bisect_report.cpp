@@ -278,9 +278,11 @@ void write_speed(std::ostringstream& md, int section, const BisectOptions& o, co
        << audit::speed_ratio_text(c.control_ratio, c.control_low, c.control_high) << " | " << band
        << " | " << audit::speed_verdict_name(c.verdict)
        << (c.verdict == audit::SpeedVerdict::kUnknown
-               ? (c.reason.empty() ? ", not attributed (about " +
-                                         std::to_string(c.repeats_to_settle) + " repeats would settle it)"
-                                   : ", " + c.reason)
+               ? (!c.reason.empty() ? ", " + c.reason
+                  : c.repeats_to_settle > 0
+                      ? ", not attributed (about " + std::to_string(c.repeats_to_settle) +
+                            " repeats would settle it)"
+                      : ", not attributed (at the band's edge)")
                : std::string())
        << " |\n";
   }
