@@ -172,6 +172,7 @@ void draw_marks(const BoxPlotContent& bp, ChartMarks& m) {
   if (beyond_plot) marks += "; triangles at the edge: beyond the plot";
   m.note += std::string(m.note.empty() ? "" : "\n") + marks + ".";
   m.x_lo = 0.5, m.x_hi = double(C) + 0.5;
+  m.x_categories = true;
   for (std::size_t c = 0; c < bp.categories.size(); ++c) {
     m.x_ticks.push_back(double(c + 1));
     m.x_tick_labels.push_back(bp.categories[c]);
