@@ -46,6 +46,10 @@ void plan_comparison_figures(FigurePlanner& planner, an::PrimitiveKind kind);
 void plan_speed_error_figures(FigurePlanner& planner, an::PrimitiveKind kind);
 
 // Wording helpers of the families.
+// What a box plot shows, named by what varies in it: "Box plot of TEu" (one box), "Box plots of
+// TEu by view group" (one platform), "... by platform" (one view group), "... by view group and
+// platform".
+std::string box_plot_title(const std::string& symbol, const BoxPlotContent& content);
 std::string sanitize_id(const std::string& s);  // [a-z0-9._-], others '_'
 // The x 10^k the paper's tables use for a metric column; -1 when no table shows it.
 int table_exponent(const std::string& column);

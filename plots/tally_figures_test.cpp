@@ -1,5 +1,6 @@
 // The conformance classes figure: each class has one colour in every figure, whichever classes a
-// figure holds, and violation is the red one; titles name one view group in the singular.
+// figure holds, and violation is the red one; titles name one view group in the singular and a
+// box plot for what it shows.
 #include "plots/figure_planner.h"
 
 #include <gtest/gtest.h>
@@ -48,6 +49,33 @@ TEST(ConformanceClassBars, EachClassHasItsOwnColourWhicheverClassesAreThere) {
     last = luminance(c);
     EXPECT_NE(c, red);
   }
+}
+
+// Why: a figure of one box was titled "Box plots of TEu by platform": it shows one platform's box
+// of one view group, and says so.
+TEST(BoxPlotTitle, NamesWhatVariesAndASingleBoxInTheSingular) {
+  BoxPlotContent one;
+  one.categories = {"B: 150 deg, 128x128"};
+  one.series = {"osmesa-llvmpipe"};
+  one.boxes = {{"B: 150 deg, 128x128", "osmesa-llvmpipe", 9, 26, 33, 38, 56, 0.5, 80, 200, 3, 2}};
+  EXPECT_EQ(box_plot_title("TEu", one), "Box plot of TEu");
+
+  BoxPlotContent groups = one;
+  groups.categories.push_back("D: 150 deg, 907x907");
+  groups.boxes.push_back(one.boxes[0]);
+  groups.boxes[1].category = "D: 150 deg, 907x907";
+  EXPECT_EQ(box_plot_title("TEu", groups), "Box plots of TEu by view group");
+
+  BoxPlotContent platforms = one;
+  platforms.series.push_back("osmesa-softpipe");
+  platforms.boxes.push_back(one.boxes[0]);
+  platforms.boxes[1].series = "osmesa-softpipe";
+  EXPECT_EQ(box_plot_title("TEu", platforms), "Box plots of TEu by platform");
+
+  BoxPlotContent both = groups;
+  both.series.push_back("osmesa-softpipe");
+  both.boxes.push_back(platforms.boxes[1]);
+  EXPECT_EQ(box_plot_title("TEu", both), "Box plots of TEu by view group and platform");
 }
 
 TEST(GroupsPhrase, NamesOneViewGroupInTheSingular) {
