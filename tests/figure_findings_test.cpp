@@ -4,6 +4,7 @@
 //     checked against a count over the records, on an axis zoomed to the largest bar;
 //   - box plots of a metric whose view groups differ tenfold in spread (TEs-norm: the 907 x 907
 //     groups' normalised errors are about 50 times smaller) get an axis per group;
+//   - the percentages of a bar figure share one number of decimals;
 //   - a box plot's title says what varies in it (view group, platform) and a single box is
 //     "Box plot of".
 #include <gtest/gtest.h>
@@ -167,6 +168,12 @@ TEST(FigureFindings, BoxPlotsOfGroupsTenfoldApartGetAnAxisEach) {
 
 namespace {
 
+// Decimals of a label ("38.00": 2; "<0.01": 2; "0": 0).
+int decimals(const std::string& label) {
+  const auto dot = label.find('.');
+  return dot == std::string::npos ? 0 : int(label.size() - dot - 1);
+}
+
 // The cells of a figure's CSV, by column name, row by row.
 std::vector<std::map<std::string, std::string>> figure_rows(const std::string& csv) {
   std::istringstream text(read_records_text(csv));
@@ -184,6 +191,23 @@ std::vector<std::map<std::string, std::string>> figure_rows(const std::string& c
 }
 
 }  // namespace
+
+TEST(FigureFindings, ABarFigureWritesItsPercentagesOneWay) {
+  std::string run;
+  const auto& figures = plotted(&run);
+  for (const char* id : {"conformance.triangle", "conformance.overview"}) {
+    ASSERT_TRUE(figures.count(id)) << id;
+    int checked = 0, places = -1;
+    for (const auto& row : figure_rows(run + "/figures/" + id + ".csv")) {
+      const std::string& label = row.at("label");
+      if (label == "0" || label == "n/a") continue;  // none at all; nothing compared
+      if (places < 0) places = decimals(label);
+      EXPECT_EQ(decimals(label), places) << id << ": " << label;
+      ++checked;
+    }
+    EXPECT_GE(checked, 4) << id;
+  }
+}
 
 TEST(FigureFindings, ABoxPlotIsTitledForWhatVariesInIt) {
   std::string run;
