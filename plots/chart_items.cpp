@@ -302,6 +302,24 @@ std::string tick_text(double v, double step) {
   return util::fixed(v, std::min(decimals, 12));
 }
 
+void linear_ticks(double lo, double hi, float pixels, float spacing_px, std::vector<double>* at,
+                  std::vector<std::string>* text) {
+  if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi)) return;
+  // the smallest step of 1, 2 or 5 x 10^k that keeps the ticks spacing_px apart
+  const double least = (hi - lo) * double(spacing_px) / double(std::max(pixels, spacing_px));
+  double step = std::pow(10.0, std::floor(std::log10(least)));
+  for (const double m : {1.0, 2.0, 5.0, 10.0})
+    if (m * step >= least * (1 - 1e-9)) {
+      step *= m;
+      break;
+    }
+  // k * step rather than a running sum: no 0.30000000000000004 creeps into a position
+  for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; ++k) {
+    at->push_back(k * step);
+    text->push_back(tick_text(k * step, step));
+  }
+}
+
 // A tick label for 10^k-scale values on a log axis: plain decimals from 0.001 to 10000 ("0.002",
 // "1", "50"), "10^k" / "2x10^k" beyond.
 std::string log_tick_text(int mantissa, int exponent) {

@@ -127,8 +127,14 @@ class LegendItem : public vtkContextItem {
 
 // "Nice" tick step for a range: 1, 2 or 5 x 10^k, about `target` ticks.
 double nice_step(double range, int target = 7);
-// A tick label of v with as many decimals as the step needs.
+// A tick label of v with as many decimals as the step needs: every tick of an axis alike
+// ("0.00", "0.05", "0.10").
 std::string tick_text(double v, double step);
+// Ticks of a linear axis showing [lo, hi], `pixels` long: the multiples of the smallest step of 1,
+// 2 or 5 x 10^k that keeps them at least `spacing_px` apart, each labelled by tick_text with the
+// step's decimals.
+void linear_ticks(double lo, double hi, float pixels, float spacing_px, std::vector<double>* at,
+                  std::vector<std::string>* text);
 // A tick label for 10^k-scale values on a log axis: plain decimals from 0.001 to 10000 ("0.002",
 // "1", "50"), "10^k" / "2x10^k" beyond.
 std::string log_tick_text(int mantissa, int exponent);

@@ -24,6 +24,9 @@ struct ChartMarks {
   double x_lo = NAN, x_hi = NAN, y_lo = NAN, y_hi = NAN;
   bool square = false;           // equal axes (Q-Q plots)
   bool x_grid_at_ticks = false;  // custom x ticks keep their grid lines (log axes)
+  // The x ticks name categories (bars, boxes): each label sits under its slot without a tick mark,
+  // which would stand between the words of a label ("P|A") and marks no value.
+  bool x_categories = false;
   std::vector<double> x_ticks, y_ticks;
   std::vector<std::string> x_tick_labels, y_tick_labels;
   std::string note;  // the figure's note and what the drawing adds to it

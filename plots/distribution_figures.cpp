@@ -117,18 +117,21 @@ struct DistributionFigures : FigurePlanner {
     Figure f;
     f.id = "boxplot." + std::string(an::kind_name(kind)) + "." + column +
            (group.empty() ? "" : "." + group);
-    f.title = "Box plots of " + symbol + " by " + (group.empty() ? "view group and " : "") +
-              "platform: " + join(c.series, ", ") + ", " +
+    f.title = box_plot_title(symbol, c) + ": " + join(c.series, ", ") + ", " +
               groups_phrase(group.empty() ? group_labels : std::vector<std::string>{group});
     f.x_label = "view group (field of view, window)";
     f.y_label = axis_label(symbol, units, e);
-    f.caption = "Box plots of " + symbol + " for " +
-                (group.empty() ? "each view group" : "view group " + group) +
-                " and platform (quartiles " +
-                doc.value("quantile_definition", std::string("hyndman_fan_6")) +
-                "; whiskers to the most extreme values within 1.5 IQR); box widths proportional "
-                "to the number of measurements; the y range is restricted to the box bodies as "
-                "in the paper's Figs. 6, 8, 10 and 12.";
+    const bool one = c.boxes.size() == 1;
+    f.caption = (one ? "Box plot of " + symbol + " for view group " + group_labels.front() +
+                           " on " + c.series.front()
+                     : "Box plots of " + symbol + " for " +
+                           (group.empty() ? "each view group" : "view group " + group) +
+                           (c.series.size() > 1 ? " and platform" : " on " + c.series.front())) +
+                " (quartiles " + doc.value("quantile_definition", std::string("hyndman_fan_6")) +
+                "; whiskers to the most extreme values within 1.5 IQR); " +
+                (one ? "" : "box widths proportional to the number of measurements; ") +
+                "the y range is restricted to the " + (one ? "box's body" : "box bodies") +
+                " as in the paper's Figs. 6, 8, 10 and 12.";
     f.section = section_of(kind);
     f.content = std::move(c);
     return f;

@@ -3,6 +3,7 @@
 #include "plots/chart_marks.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -166,12 +167,21 @@ void draw_marks(const BoxPlotContent& bp, ChartMarks& m) {
     beyond_whiskers = beyond_whiskers || x.max > x.upper_whisker || x.min < x.lower_whisker;
   }
   for (const EdgeMarker& e : edge_markers) beyond_plot = beyond_plot || e.max > m.y_hi || e.min < m.y_lo;
-  std::string marks = "Box widths proportional to n";
-  if (beyond_whiskers) marks += "; open circles: minimum and maximum beyond the whiskers";
-  else if (whiskers) marks += "; whiskers to the minimum and maximum";
-  if (beyond_plot) marks += "; triangles at the edge: beyond the plot";
-  m.note += std::string(m.note.empty() ? "" : "\n") + marks + ".";
+  std::vector<std::string> parts;
+  if (bp.boxes.size() > 1) parts.push_back("box widths proportional to n");
+  if (beyond_whiskers)
+    parts.push_back("open circles: minimum and maximum beyond the whiskers");
+  else if (whiskers)
+    parts.push_back("whiskers to the minimum and maximum");
+  if (beyond_plot) parts.push_back("triangles at the edge: beyond the plot");
+  std::string marks;
+  for (const std::string& p : parts) marks += (marks.empty() ? "" : "; ") + p;
+  if (!marks.empty()) {
+    marks[0] = char(std::toupper(static_cast<unsigned char>(marks[0])));
+    m.note += std::string(m.note.empty() ? "" : "\n") + marks + ".";
+  }
   m.x_lo = 0.5, m.x_hi = double(C) + 0.5;
+  m.x_categories = true;
   for (std::size_t c = 0; c < bp.categories.size(); ++c) {
     m.x_ticks.push_back(double(c + 1));
     m.x_tick_labels.push_back(bp.categories[c]);

@@ -26,6 +26,18 @@ Rgb conformance_class_color(metrics::Conformance c) {
   }
 }
 
+Rgb differs_share_color(bool lit_pixels_only) {
+  return lit_pixels_only ? Rgb{213, 94, 0} : Rgb{0, 114, 178};
+}
+
+Rgb platform_shade(Rgb base, std::size_t p, std::size_t n) {
+  const double white = n > 1 ? 0.55 * double(std::min(p, n - 1)) / double(n - 1) : 0;
+  Rgb out{};
+  for (std::size_t i = 0; i < 3; ++i)
+    out[i] = static_cast<unsigned char>(std::lround(base[i] + white * (255 - base[i])));
+  return out;
+}
+
 double bar_chart_log_floor(const BarChartContent& content) {
   double smallest = INFINITY;
   for (const BarSeries& s : content.series)

@@ -29,6 +29,17 @@ using Rgb = std::array<unsigned char, 3>;
 // worst), violation red, the alarming one. kNotCompared: grey.
 Rgb conformance_class_color(metrics::Conformance c);
 
+// The two shares of the conformance figures (conformance.KIND, conformance.overview) that differ
+// from the reference rasterizer: of all compared cases in Okabe-Ito blue, of the cases with lit
+// pixels in its vermillion.
+Rgb differs_share_color(bool lit_pixels_only);
+
+// Platform p of n in a class's colour `base`: the first platform (the experiment's baseline) in
+// `base` itself, each further one lighter, mixed with up to 55 % white. Mixing with white keeps
+// the hue: one class is one family of colours across the platforms of a figure, and the legend is
+// needed only to tell the platforms apart.
+Rgb platform_shade(Rgb base, std::size_t p, std::size_t n);
+
 // Q-Q plot of sample 1 (x) against sample 2 (y), with the line y = x.
 struct QQContent {
   std::string x_sample, y_sample;  // legend names of the samples, e.g. "view 1", "view 2"

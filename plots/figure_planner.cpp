@@ -77,6 +77,16 @@ std::string groups_phrase(const std::vector<std::string>& labels) {
   return (labels.size() == 1 ? "view group " : "view groups ") + groups_text(labels);
 }
 
+std::string box_plot_title(const std::string& symbol, const BoxPlotContent& content) {
+  if (content.boxes.size() <= 1) return "Box plot of " + symbol;
+  const bool groups = content.categories.size() > 1, platforms = content.series.size() > 1;
+  return "Box plots of " + symbol +
+         (groups && platforms ? " by view group and platform"
+          : groups            ? " by view group"
+          : platforms         ? " by platform"
+                              : "");
+}
+
 const char* section_of(an::PrimitiveKind kind) { return an::kind_label_plural(kind); }
 
 }  // namespace ra::plots

@@ -73,8 +73,16 @@ vtkSmartPointer<vtkChartXY> new_chart() {
   return chart;
 }
 
-// The ranges and ticks the figure's drawing chose, on VTK's axes.
-void fix_axes(const ChartMarks& marks, vtkAxis* xa, vtkAxis* ya) {
+// Every tick mark is kTickLength px long and its label starts kTickLabelGap px beyond its end, so
+// that no tick reaches into a label (VTK's 5 and 7 left 1 px: "35-" read as one word).
+constexpr float kTickLength = 5, kTickLabelGap = 6;
+// Automatic ticks of a linear axis: at least this many pixels apart (x labels are wider).
+constexpr float kXTickSpacing = 80, kYTickSpacing = 36;
+
+// The ranges and ticks the figure's drawing chose, on VTK's axes of w x h pixels. A linear axis
+// without ticks of its own gets them here (linear_ticks), never VTK's: VTK labels 0.1 beside 0.12,
+// one label with the decimals of the step for every tick of the axis reads as one scale.
+void fix_axes(const ChartMarks& marks, vtkAxis* xa, vtkAxis* ya, float w, float h) {
   auto apply_range = [](vtkAxis* ax, double lo, double hi) {
     if (std::isnan(lo)) return;
     ax->SetBehavior(vtkAxis::FIXED);
@@ -83,8 +91,11 @@ void fix_axes(const ChartMarks& marks, vtkAxis* xa, vtkAxis* ya) {
   };
   apply_range(xa, marks.x_lo, marks.x_hi);
   apply_range(ya, marks.y_lo, marks.y_hi);
-  auto custom_ticks = [](vtkAxis* ax, const std::vector<double>& at,
-                         const std::vector<std::string>& text) {
+  auto ticks = [](vtkAxis* ax, std::vector<double> at, std::vector<std::string> text, double lo,
+                  double hi, bool log, float pixels, float spacing) {
+    ax->SetTickLength(kTickLength);
+    ax->SetLabelOffset(kTickLength + kTickLabelGap);
+    if (at.empty() && !log && !std::isnan(lo)) linear_ticks(lo, hi, pixels, spacing, &at, &text);
     if (at.empty()) return;
     vtkNew<vtkDoubleArray> pos;
     vtkNew<vtkStringArray> lab;
@@ -94,9 +105,13 @@ void fix_axes(const ChartMarks& marks, vtkAxis* xa, vtkAxis* ya) {
     }
     ax->SetCustomTickPositions(pos, lab);
   };
-  custom_ticks(xa, marks.x_ticks, marks.x_tick_labels);
-  custom_ticks(ya, marks.y_ticks, marks.y_tick_labels);
+  ticks(xa, marks.x_ticks, marks.x_tick_labels, marks.x_lo, marks.x_hi, marks.x_log10, w,
+        kXTickSpacing);
+  // equal axes (Q-Q) get equal ticks
+  ticks(ya, marks.y_ticks, marks.y_tick_labels, marks.y_lo, marks.y_hi, marks.y_log10, h,
+        marks.square ? kXTickSpacing : kYTickSpacing);
   if (!marks.x_ticks.empty() && !marks.x_grid_at_ticks) xa->SetGridVisible(false);
+  if (marks.x_categories) xa->SetTicksVisible(false);
 }
 
 // STEM.png (the window as rendered), STEM.pdf (the same scene, vector) and STEM.csv (the data).
@@ -240,7 +255,8 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
     const float y0 = bottom + plot_h - float(i + 1) * panel_h - float(i) * gap;
     p.chart->SetLayoutStrategy(vtkChart::AXES_TO_RECT);
     p.chart->SetSize(vtkRectf(plot_x, y0, plot_w, panel_h));
-    fix_axes(p.marks, p.chart->GetAxis(vtkAxis::BOTTOM), p.chart->GetAxis(vtkAxis::LEFT));
+    fix_axes(p.marks, p.chart->GetAxis(vtkAxis::BOTTOM), p.chart->GetAxis(vtkAxis::LEFT), plot_w,
+             panel_h);
     scene->AddItem(p.chart);
     if (!p.label.empty()) {
       auto label = vtkSmartPointer<TextItem>::New();
@@ -319,6 +335,21 @@ RenderedFigure FigureRenderer::render(const Figure& figure, const std::string& s
     L.x_max = xa->GetMaximum();
     L.y_min = ya->GetMinimum();
     L.y_max = ya->GetMaximum();
+    L.x_ticks_visible = xa->GetTicksVisible();
+    for (vtkAxis* ax : {xa, ya}) {
+      std::vector<double>& at = ax == xa ? L.x_ticks : L.y_ticks;
+      std::vector<std::string>& text = ax == xa ? L.x_tick_labels : L.y_tick_labels;
+      vtkDoubleArray* pos = ax->GetTickPositions();
+      vtkStringArray* lab = ax->GetTickLabels();
+      for (vtkIdType i = 0; pos && lab && i < pos->GetNumberOfTuples(); ++i) {
+        const double v = pos->GetValue(i);
+        if (v < ax->GetMinimum() - 1e-9 * std::fabs(ax->GetMaximum() - ax->GetMinimum()) ||
+            v > ax->GetMaximum() + 1e-9 * std::fabs(ax->GetMaximum() - ax->GetMinimum()))
+          continue;  // VTK draws only the ticks in range
+        at.push_back(v);
+        text.push_back(i < lab->GetNumberOfValues() ? lab->GetValue(i) : "");
+      }
+    }
     if (panels.size() > 1) out.panels.push_back(L);
     if (&p == &panels.front()) out.layout = L;
   }

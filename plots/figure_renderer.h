@@ -31,6 +31,11 @@ struct FigureLayout {
   double x_min = 0, x_max = 0;           // data range along x (display units)
   double y_min = 0, y_max = 0;           // data range along y
   bool x_log10 = false, y_log10 = false;  // the axis shows log10 of the values
+  // The ticks as drawn: positions in the axis' units (log10 on a log axis) and their labels;
+  // x_ticks_visible false: the x labels name categories and have no tick marks.
+  std::vector<double> x_ticks, y_ticks;
+  std::vector<std::string> x_tick_labels, y_tick_labels;
+  bool x_ticks_visible = true;
 };
 
 struct RenderedFigure {

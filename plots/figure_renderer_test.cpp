@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -403,6 +404,101 @@ TEST_F(RendererTest, TheViolationBarIsRed) {
   const int x = int(std::lround(L.plot_left + (1 + slot - L.x_min) / (L.x_max - L.x_min) *
                                                   (L.plot_right - L.plot_left)));
   EXPECT_TRUE(near_color(img.at(x, int(L.plot_bottom) - 4), bar_fill(rgb).data(), 12));
+}
+
+// Rows and columns of a figure's plot where values lie (linear axes), and dark ink.
+struct PlotPixels {
+  const FigureLayout& L;
+  const RgbImage& img;
+  int column(double x) const {
+    return int(std::lround(
+        L.plot_left + (x - L.x_min) / (L.x_max - L.x_min) * (L.plot_right - L.plot_left) - 0.5));
+  }
+  int row(double y) const {
+    return int(std::lround(
+        L.plot_top + (L.y_max - y) / (L.y_max - L.y_min) * (L.plot_bottom - L.plot_top) - 0.5));
+  }
+  bool dark(int x, int y) const {
+    const unsigned char* p = img.at(x, y);
+    return p[0] + p[1] + p[2] < 600;  // text and tick marks, their anti-aliased edges too
+  }
+};
+
+// Why: the first page's figure drew a tick mark between the letters of every category ("P|A"),
+// and each y tick ended 1 px from its label ("35-"). A category has no tick mark; a tick ends
+// with background between it and its label.
+TEST_F(RendererTest, NoTickMarkReachesALabel) {
+  BarChartContent c;
+  c.categories = {"P A", "P B", "L A", "T D"};
+  c.series = {{"p", {0.5, 3.25, 14.7, 38.0}, {"0.50", "3.25", "14.70", "38.00"}, std::nullopt}};
+  Figure f;
+  f.id = "ticks_bars";
+  f.title = "Pixel sets that differ: test";
+  f.x_label = "kind and view group";
+  f.y_label = "differs (%)";
+  f.content = c;
+  const RenderedFigure r = renderer_->render(f, temp_dir("ticks_bars") + "/ticks_bars");
+  const FigureLayout& L = r.layout;
+  const RgbImage img = read_png(r.png);
+  const PlotPixels px{L, img};
+  EXPECT_FALSE(L.x_ticks_visible);
+  ASSERT_EQ(L.x_tick_labels, c.categories);
+  // under each category, down to where its label begins: nothing (the middle of "P A" is the
+  // space between its letters)
+  const int axis = int(L.plot_bottom);
+  for (std::size_t i = 0; i < L.x_ticks.size(); ++i)
+    for (int y = axis + 2; y <= axis + 8; ++y)
+      EXPECT_FALSE(px.dark(px.column(L.x_ticks[i]), y)) << c.categories[i] << ", row " << y;
+  // each y tick: its mark left of the axis, background, then its label
+  ASSERT_GE(L.y_ticks.size(), 3u);
+  const int left = int(L.plot_left);
+  for (std::size_t i = 0; i < L.y_ticks.size(); ++i) {
+    const int y = px.row(L.y_ticks[i]);
+    EXPECT_TRUE(px.dark(left - 3, y) || px.dark(left - 3, y - 1) || px.dark(left - 3, y + 1))
+        << "no tick mark at " << L.y_tick_labels[i];
+    int ink = 0;
+    for (int dy = -10; dy <= 10; ++dy)
+      for (int x = left - 9; x <= left - 7; ++x) ink += px.dark(x, y + dy);
+    EXPECT_EQ(ink, 0) << "tick " << L.y_tick_labels[i] << " reaches its label";
+  }
+}
+
+// Decimals of a tick label ("0.10": 2, "100": 0).
+int decimals(const std::string& label) {
+  const auto dot = label.find('.');
+  return dot == std::string::npos ? 0 : int(label.size() - dot - 1);
+}
+
+// Why: VTK's own ticks labelled a histogram's axis 0.08, 0.1, 0.12: one scale written three ways.
+// Every tick of a linear axis has the decimals of the axis' step; its mark stops short of its
+// label.
+TEST_F(RendererTest, AnAxisWritesEveryTickWithTheSameDecimals) {
+  NamedSample a{"A: 30 deg, 128x128", {}};
+  for (int i = 0; i < 2000; ++i) a.values.push_back(0.28 * std::pow((i + 0.5) / 2000, 3));
+  const Figure f =
+      histogram_figure("ticks_hist", "Histogram of LSEs: test, view group A", "LSEs (px)", {a});
+  const RenderedFigure r = renderer_->render(f, temp_dir("ticks_hist") + "/ticks_hist");
+  const FigureLayout& L = r.layout;
+  EXPECT_TRUE(L.x_ticks_visible);
+  for (const auto* labels : {&L.x_tick_labels, &L.y_tick_labels}) {
+    ASSERT_GE(labels->size(), 4u);
+    for (const std::string& l : *labels)
+      EXPECT_EQ(decimals(l), decimals(labels->front())) << l << " beside " << labels->front();
+  }
+  EXPECT_NE(std::find(L.x_tick_labels.begin(), L.x_tick_labels.end(), "0.10"),
+            L.x_tick_labels.end());
+  // the labels are the positions, in the axis' decimals
+  for (std::size_t i = 0; i < L.x_ticks.size(); ++i)
+    EXPECT_NEAR(std::stod(L.x_tick_labels[i]), L.x_ticks[i], 1e-12) << L.x_tick_labels[i];
+  // x tick marks end above the labels: background between, across the plot's width
+  const RgbImage img = read_png(r.png);
+  const PlotPixels px{L, img};
+  const int axis = int(L.plot_bottom);
+  EXPECT_TRUE(px.dark(px.column(L.x_ticks[1]), axis + 3)) << "no tick mark";
+  int ink = 0;
+  for (int x = int(L.plot_left); x < int(L.plot_right); ++x)
+    for (int y = axis + 6; y <= axis + 8; ++y) ink += px.dark(x, y);
+  EXPECT_EQ(ink, 0) << "a tick mark reaches down to its label";
 }
 
 // Why: a narrow view group on a wide one's axis fell into 3 bins, and one group's outline hid

@@ -135,6 +135,7 @@ void draw_marks(const BarChartContent& c, ChartMarks& m) {
   }
   if (c.series.size() == 1 && m.legend.size() == 1) m.legend.clear();
   m.x_lo = 0.5, m.x_hi = double(C) + 0.5;
+  m.x_categories = true;
   for (std::size_t i = 0; i < c.categories.size(); ++i) {
     m.x_ticks.push_back(double(i + 1));
     m.x_tick_labels.push_back(c.categories[i]);

@@ -19,13 +19,6 @@ namespace {
 
 using nlohmann::json;
 
-// A percentage above a bar, with the digits a small share needs: "0", "<0.01", "0.25", "12.5".
-std::string percent_label(double v) {
-  if (v == 0) return "0";
-  if (v < 0.01) return "<0.01";
-  return util::format_double(v < 10 ? "%.2f" : "%.1f", v);
-}
-
 struct TallyFigures : FigurePlanner {
   void visibility(an::PrimitiveKind kind) {
     const std::string section = section_of(kind);
@@ -86,8 +79,7 @@ struct TallyFigures : FigurePlanner {
     const std::string section = section_of(kind);
     const std::string kname = an::kind_name(kind);
     std::vector<int> groups = run.view_groups(kind);
-    BarChartContent c;
-    std::vector<std::string> labels;
+    std::vector<std::string> categories, labels;
     for (int g : groups) {
       std::string label = an::view_group_label(g);
       labels.push_back(label);
@@ -98,38 +90,19 @@ struct TallyFigures : FigurePlanner {
           break;
         }
       }
-      c.categories.push_back(label);
+      categories.push_back(label);
     }
-    bool any = false;
+    std::vector<PlatformAgreement> platforms;
     for (const auto& p : run.platforms) {
-      BarSeries all, drawn;
-      all.name = p + ", all cases";
-      drawn.name = p + ", cases with lit pixels";
-      bool has = false;
+      PlatformAgreement a{p, {}};
       for (int g : groups) {
         const auto it = tally.reference.find({p, kname, g});
-        if (it == tally.reference.end() || it->second.compared == 0) {
-          all.values.push_back(0), all.labels.push_back("n/a");
-          drawn.values.push_back(0), drawn.labels.push_back("n/a");
-          continue;
-        }
-        has = true;
-        const an::ReferenceAgreement& cf = it->second;
-        // the part that is not exact: where the finding is (99.99 % beside 98.96 % on a 0-100
-        // axis look alike; 0.01 % beside 1.04 % do not)
-        const double differs = 100 * (1 - cf.rate());
-        all.values.push_back(differs);
-        all.labels.push_back(percent_label(differs));
-        const double drawn_differs = cf.drawn ? 100 * (1 - cf.drawn_rate()) : 0;
-        drawn.values.push_back(drawn_differs);
-        drawn.labels.push_back(cf.drawn ? percent_label(drawn_differs) : "n/a");
+        a.groups.push_back(it == tally.reference.end() ? nullptr : &it->second);
       }
-      if (!has) continue;
-      any = true;
-      c.series.push_back(std::move(all));
-      c.series.push_back(std::move(drawn));
+      platforms.push_back(std::move(a));
     }
-    if (!any) {
+    BarChartContent c = conformance_bars(categories, platforms);
+    if (c.series.empty()) {
       skip(section, "conformance with the reference rasterizer",
            "no " + section + " record has a reference comparison (ref_diff)");
       return;
@@ -140,10 +113,15 @@ struct TallyFigures : FigurePlanner {
               join(run.platforms, ", ") + ", " + groups_phrase(labels);
     f.x_label = "view group (field of view, window)";
     f.y_label = "pixel set differs from the reference (%)";
-    f.note = "Share of records (status ok) whose lit pixels differ from the reference "
-             "rasterizer's (ref_diff > 0), per platform: over all compared cases, and over the "
-             "cases where either rasterizer lit a pixel; the rest are identical. Numbers above "
-             "the bars: percent. The axis starts at 0 and ends above the largest share.";
+    f.note =
+        "Share of records (status ok) whose lit pixels differ from the reference "
+        "rasterizer's (ref_diff > 0), per platform: over all compared cases, and over the "
+        "cases where either rasterizer lit a pixel; the rest are identical. " +
+        std::string(c.series.size() > 2 ? "Each share in its colour, each platform in a "
+                                          "shade of it. "
+                                        : "") +
+        "Numbers above the bars: percent. The axis starts at 0 and ends above the largest "
+        "share.";
     f.caption = "Driver versus reference conformance for " + section +
                 ": the share of cases whose pixel set differs from the project's exact "
                 "rasterizer's, per view group and platform (the rest are identical).";
@@ -192,6 +170,59 @@ struct TallyFigures : FigurePlanner {
 
 }  // namespace
 
+int percent_decimals(const std::vector<double>& shares) {
+  for (double v : shares)
+    if (v > 0 && v < 10) return 2;
+  return 1;
+}
+
+std::string percent_text(double v, int decimals) {
+  if (v == 0) return "0";
+  const double unit = std::pow(10.0, -decimals);
+  if (v < unit) return "<" + util::fixed(unit, decimals);
+  if (v < 100 && v > 100 - 0.5 * unit) return ">" + util::fixed(100 - unit, decimals);
+  return util::fixed(v, decimals);
+}
+
+BarChartContent conformance_bars(const std::vector<std::string>& categories,
+                                 const std::vector<PlatformAgreement>& platforms) {
+  BarChartContent c;
+  c.categories = categories;
+  std::vector<const PlatformAgreement*> shown;
+  for (const PlatformAgreement& p : platforms)
+    for (const an::ReferenceAgreement* a : p.groups)
+      if (a && a->compared > 0) {
+        shown.push_back(&p);
+        break;
+      }
+  // share by share, each platform in a shade of the share's colour; values first, labels when
+  // the format of the whole figure is known
+  std::vector<double> all_values;
+  for (const bool lit : {false, true})
+    for (std::size_t k = 0; k < shown.size(); ++k) {
+      BarSeries s;
+      s.name = shown[k]->platform + (lit ? ", cases with lit pixels" : ", all cases");
+      s.color = platform_shade(differs_share_color(lit), k, shown.size());
+      for (std::size_t g = 0; g < categories.size(); ++g) {
+        const an::ReferenceAgreement* a =
+            g < shown[k]->groups.size() ? shown[k]->groups[g] : nullptr;
+        const bool compared = a && a->compared > 0 && (!lit || a->drawn > 0);
+        // the part that is not exact: where the finding is (99.99 % beside 98.96 % on a 0-100
+        // axis look alike; 0.01 % beside 1.04 % do not)
+        const double differs = !compared ? 0 : 100 * (1 - (lit ? a->drawn_rate() : a->rate()));
+        s.values.push_back(differs);
+        s.labels.push_back(compared ? "" : "n/a");
+        if (compared) all_values.push_back(differs);
+      }
+      c.series.push_back(std::move(s));
+    }
+  const int decimals = percent_decimals(all_values);
+  for (BarSeries& s : c.series)
+    for (std::size_t g = 0; g < s.values.size(); ++g)
+      if (s.labels[g].empty()) s.labels[g] = percent_text(s.values[g], decimals);
+  return c;
+}
+
 BarChartContent conformance_class_bars(
     const std::vector<std::pair<std::string, an::ConformanceCounts>>& groups) {
   BarChartContent c;
@@ -205,18 +236,27 @@ BarChartContent conformance_class_bars(
     s.color = conformance_class_color(k);
     c.series.push_back(std::move(s));
   }
+  // every share of the figure, the exact ones under the groups' names too, in one format
+  std::vector<double> exact, all;
   for (const auto& [label, n] : groups) {
     const std::uint64_t judged = n.exact + n.snapped + n.within_spec + n.violation;
-    // exact in the category's name, the other classes as bars on an axis of their own size
-    c.categories.push_back(
-        label + (judged ? " (exact " + percent_label(100.0 * double(n.exact) / double(judged)) + "%)"
-                        : ""));
+    exact.push_back(judged ? 100.0 * double(n.exact) / double(judged) : NAN);
     const std::uint64_t count[] = {n.snapped, n.within_spec, n.violation};
     for (std::size_t k = 0; k < 3; ++k) {
       const double share = judged ? 100.0 * double(count[k]) / double(judged) : 0;
       c.series[k].values.push_back(share);
-      c.series[k].labels.push_back(judged ? percent_label(share) : "n/a");
+      if (judged) all.push_back(share);
     }
+    if (judged) all.push_back(exact.back());
+  }
+  const int decimals = percent_decimals(all);
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const bool judged = !std::isnan(exact[g]);
+    // exact in the category's name, the other classes as bars on an axis of their own size
+    c.categories.push_back(groups[g].first +
+                           (judged ? " (exact " + percent_text(exact[g], decimals) + "%)" : ""));
+    for (BarSeries& s : c.series)
+      s.labels.push_back(judged ? percent_text(s.values[g], decimals) : "n/a");
   }
   return c;
 }
@@ -224,6 +264,7 @@ BarChartContent conformance_class_bars(
 void plan_conformance_overview(FigurePlanner& p) {
   BarChartContent c;
   std::vector<std::string> platforms;
+  std::vector<double> all;
   for (const auto& name : p.run.platforms) {
     BarSeries s;
     s.name = name;
@@ -235,13 +276,22 @@ void plan_conformance_overview(FigurePlanner& p) {
         has = has || compared;
         const double differs = compared ? 100 * (1 - it->second.rate()) : 0;
         s.values.push_back(differs);
-        s.labels.push_back(compared ? percent_label(differs) : "n/a");
+        s.labels.push_back(compared ? "" : "n/a");
+        if (compared) all.push_back(differs);
       }
     if (!has) continue;  // the reference platform
     platforms.push_back(name);
     c.series.push_back(std::move(s));
   }
   if (c.series.empty()) return;
+  // the share of all cases, as in each kind's conformance figure: its colour, a shade per platform
+  const int decimals = percent_decimals(all);
+  for (std::size_t k = 0; k < c.series.size(); ++k) {
+    BarSeries& s = c.series[k];
+    s.color = platform_shade(differs_share_color(false), k, c.series.size());
+    for (std::size_t i = 0; i < s.values.size(); ++i)
+      if (s.labels[i].empty()) s.labels[i] = percent_text(s.values[i], decimals);
+  }
   // short labels ("T C": triangles of view group C): twelve of them share one short figure
   for (an::PrimitiveKind kind : p.run.kinds())
     for (int g : p.run.view_groups(kind))

@@ -3,11 +3,15 @@
 //   - the conformance bars show the share that differs from the reference rasterizer (small),
 //     checked against a count over the records, on an axis zoomed to the largest bar;
 //   - box plots of a metric whose view groups differ tenfold in spread (TEs-norm: the 907 x 907
-//     groups' normalised errors are about 50 times smaller) get an axis per group.
+//     groups' normalised errors are about 50 times smaller) get an axis per group;
+//   - the percentages of a bar figure share one number of decimals;
+//   - a box plot's title says what varies in it (view group, platform) and a single box is
+//     "Box plot of".
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -160,4 +164,70 @@ TEST(FigureFindings, BoxPlotsOfGroupsTenfoldApartGetAnAxisEach) {
     EXPECT_GE(y_max, hi) << id;
     EXPECT_GT(hi - lo, 0.3 * (y_max - y_min)) << id << ": the boxes are flat on their own axis";
   }
+}
+
+namespace {
+
+// Decimals of a label ("38.00": 2; "<0.01": 2; "0": 0).
+int decimals(const std::string& label) {
+  const auto dot = label.find('.');
+  return dot == std::string::npos ? 0 : int(label.size() - dot - 1);
+}
+
+// The cells of a figure's CSV, by column name, row by row.
+std::vector<std::map<std::string, std::string>> figure_rows(const std::string& csv) {
+  std::istringstream text(read_records_text(csv));
+  std::string line;
+  std::getline(text, line);
+  const std::vector<std::string> header = split(line);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(text, line)) {
+    const std::vector<std::string> c = split(line);
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < header.size() && i < c.size(); ++i) row[header[i]] = c[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST(FigureFindings, ABarFigureWritesItsPercentagesOneWay) {
+  std::string run;
+  const auto& figures = plotted(&run);
+  for (const char* id : {"conformance.triangle", "conformance.overview"}) {
+    ASSERT_TRUE(figures.count(id)) << id;
+    int checked = 0, places = -1;
+    for (const auto& row : figure_rows(run + "/figures/" + id + ".csv")) {
+      const std::string& label = row.at("label");
+      if (label == "0" || label == "n/a") continue;  // none at all; nothing compared
+      if (places < 0) places = decimals(label);
+      EXPECT_EQ(decimals(label), places) << id << ": " << label;
+      ++checked;
+    }
+    EXPECT_GE(checked, 4) << id;
+  }
+}
+
+TEST(FigureFindings, ABoxPlotIsTitledForWhatVariesInIt) {
+  std::string run;
+  const auto& figures = plotted(&run);
+  int checked = 0;
+  for (const auto& [id, f] : figures) {
+    if (f.at("kind") != "boxplot") continue;
+    std::set<std::string> categories, platforms;
+    const auto rows = figure_rows(run + "/figures/" + id + ".csv");
+    for (const auto& row : rows)
+      categories.insert(row.at("category")), platforms.insert(row.at("series"));
+    const std::string title = f.at("title");
+    const std::string by = categories.size() > 1 && platforms.size() > 1
+                               ? " by view group and platform:"
+                           : categories.size() > 1 ? " by view group:"
+                           : platforms.size() > 1  ? " by platform:"
+                                                   : ":";
+    EXPECT_EQ(title.rfind(rows.size() == 1 ? "Box plot of " : "Box plots of ", 0), 0u) << title;
+    EXPECT_NE(title.find(by), std::string::npos) << title << " (" << rows.size() << " boxes)";
+    ++checked;
+  }
+  EXPECT_GE(checked, 5);
 }
