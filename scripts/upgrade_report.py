@@ -160,14 +160,16 @@ def fingerprint(changed):
 
 
 def picture_pair(ra, run_dir, p, q, kind, view, index, before, after, groups):
-    """Markdown: the primitive drawn by both sides, side by side, and its reproducer."""
+    """Markdown: the primitive drawn by both sides, side by side, and its reproducer. Each side is
+    drawn `--against` the other: both pictures show the same window pixels at the same scale, with
+    the same inset around the pixels the two draw otherwise."""
     pictures = os.path.join(run_dir, "upgrade-pictures")
     os.makedirs(pictures, exist_ok=True)
     cells = []
-    for plat, state, side in ((p, before, "installed"), (q, after, "upgraded")):
+    for plat, other, state, side in ((p, q, before, "installed"), (q, p, after, "upgraded")):
         png = os.path.join(pictures, f"{plat}.{kind}.v{view}.{index}.png")
-        subprocess.run([ra, "show", run_dir, "--platform", plat, "--kind", kind, "--view",
-                        str(view), "--index", str(index), "--out", png],
+        subprocess.run([ra, "show", run_dir, "--platform", plat, "--against", other, "--kind",
+                        kind, "--view", str(view), "--index", str(index), "--out", png],
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         verdict = state[4] or "not judged"
         cells.append(f"![{side}, {plat}: {state[2]} pixels lit, {state[1]}, {verdict}]"
@@ -180,8 +182,10 @@ def picture_pair(ra, run_dir, p, q, kind, view, index, before, after, groups):
     lines = [" ".join(cells), "",
              f"{kind} {index} of view {view} (FOV {fov}, {window} x {window}). Grey: lit by the "
              "driver and the exact reference rasterizer; orange: by the driver only; blue: by "
-             "the reference only; black: pixels GL forbids; red: the ideal primitive. "
-             f"`{show}` draws it again."]
+             "the reference only; black: lit where GL forbids it; hatched green: left dark where "
+             "GL requires it (both ringed in magenta); red: the ideal primitive. The framed "
+             "pixels are enlarged under each picture, those the two drivers draw otherwise "
+             f"dotted in magenta. `{show}` draws it again."]
     c = os.path.join(pictures, f"{q}.{kind}.v{view}.{index}.c")
     r = subprocess.run([ra, "reproduce", run_dir, "--platform", q, "--kind", kind, "--view",
                         str(view), "--index", str(index), "--out", c],
@@ -285,7 +289,8 @@ def main():
                     for g in sorted(groups)) + ".\n")
 
     # one picture set per distinct finding: the worst primitive of each category of each
-    # finding, the most severe first; the first of all on page 1
+    # finding, the most severe first; on page 1 the most striking of those breaking GL's rules
+    # (not drawn, new violation): the largest change in pixels lit
     shown = []
     for (drv, fp, _), f in findings.items():
         p = f["pairs"][0]
@@ -303,6 +308,11 @@ def main():
                          f"the worst, {kind} {index} of view {view}")
                 shown.append((rank, title, p, kind, view, index, before, after))
     shown.sort(key=lambda s: s[0])
+    severe = [s for s in shown if CATEGORIES[s[0]][0] in ("not_drawn", "new_violation")]
+    if severe:
+        lead = max(severe, key=lambda s: abs(s[7][2] - s[6][2]))
+        shown.remove(lead)
+        shown.insert(0, lead)
     print("[TOC]\n")
     if shown:
         rank, title, p, kind, view, index, before, after = shown[0]
