@@ -152,10 +152,10 @@ std::vector<LegendEntry> picture_legend(const ComposedPicture& c, const std::str
   if (c.drawn_otherwise >= 0)
     rows.push_back({kMarkerColor,
                     "drawn otherwise by " + other + ": " + pixels_text(c.drawn_otherwise) +
-                        (c.drawn_otherwise == 0 ? ""
-                         : !in.window.empty()   ? " (dotted in the inset)"
-                                                : " (dotted)"),
-                    Swatch::kDot});
+                        (!c.dotted            ? ""
+                         : !in.window.empty() ? " (dotted in the inset)"
+                                              : " (dotted)"),
+                    c.dotted ? Swatch::kDot : Swatch::kNone});
   return rows;
 }
 
@@ -163,14 +163,19 @@ OIIO::ImageBuf with_legend(const PixelPicture& picture, const PixelPicture& inse
                            const std::vector<LegendEntry>& entries, bool* text_drawn,
                            std::pair<int, int>* inset_at) {
   const bool has_inset = !inset.rgb.empty();
+  // a picture taller than wide (a steep line) has the inset and the rows on its right, else under
+  const bool beside = picture.height > picture.width;
   // the text sized to what the PNG will be: the picture, or the inset and a column beside it
-  const int base = std::max({picture.width, kLegendMinWidth, has_inset ? 2 * inset.width : 0});
+  const int base =
+      std::max({picture.width, picture.height, kLegendMinWidth, has_inset ? 2 * inset.width : 0});
   const int size = legend_font_size(base);
   const int pad = size / 2 + 2, line_h = size * 5 / 4, swatch = size;
   const int frame = has_inset ? std::max(2, size / 6) : 0;
+  // where the inset and the rows begin: under the picture or beside it, past a 1-px rule
+  const int bx = beside ? picture.width + 1 : 0, by = beside ? 0 : picture.height + 1;
   // the inset framed on the left, the rows beside it in a column of at least 16 em
-  const int left = has_inset ? pad + inset.width + 2 * frame + pad : 0;
-  const int column = std::max(base - left - pad, 16 * size);
+  const int left = bx + (has_inset ? pad + inset.width + 2 * frame + pad : 0);
+  const int column = std::max(beside ? 0 : base - left - pad, 16 * size);
   const int text_x = left + pad + swatch + pad;
   std::vector<std::vector<std::string>> lines;
   int rows_h = 0, text_w = 0;
@@ -179,17 +184,21 @@ OIIO::ImageBuf with_legend(const PixelPicture& picture, const PixelPicture& inse
     rows_h += int(lines.back().size()) * line_h + size / 3;
     for (const std::string& l : lines.back()) text_w = std::max(text_w, text_width(l, size));
   }
-  const int width = std::max(base, text_x + text_w + pad);
-  const int top = picture.height + 1;  // under the rule between picture and legend
   const int band = std::max(has_inset ? inset.height + 2 * frame + 2 * pad : 0, rows_h + 2 * pad);
-  OIIO::ImageSpec spec(width, top + band, 3, OIIO::TypeDesc::UINT8);
+  const int width = std::max({beside ? 0 : base, kLegendMinWidth, text_x + text_w + pad});
+  const int height = beside ? std::max(picture.height, band) : by + band;
+  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
   OIIO::ImageBuf out(spec);
-  fill(out, kUnlitColor, 0, width, 0, top + band);
+  fill(out, kUnlitColor, 0, width, 0, height);
   OIIO::ImageBufAlgo::paste(out, 0, 0, 0, 0, image_of(picture));
-  fill(out, Rgb8{120, 120, 120}, 0, width, top - 1, top);  // a rule between picture and legend
+  // a rule between picture and legend
+  if (beside)
+    fill(out, Rgb8{120, 120, 120}, bx - 1, bx, 0, height);
+  else
+    fill(out, Rgb8{120, 120, 120}, 0, width, by - 1, by);
   if (inset_at) *inset_at = {-1, -1};
   if (has_inset) {
-    const int x = pad + frame, y = top + pad + frame;
+    const int x = bx + pad + frame, y = by + pad + frame;
     OIIO::ImageBufAlgo::paste(out, x, y, 0, 0, image_of(inset));
     outline(out, kFrameColor, x - frame, x + inset.width + frame, y - frame,
             y + inset.height + frame, frame);
@@ -197,7 +206,7 @@ OIIO::ImageBuf with_legend(const PixelPicture& picture, const PixelPicture& inse
   }
   *text_drawn = true;
   const float black[3] = {0, 0, 0};
-  int y = top + pad;
+  int y = by + pad;
   for (std::size_t i = 0; i < entries.size(); ++i) {
     draw_swatch(out, entries[i], left + pad, y + (line_h - swatch) / 2, swatch);
     for (const std::string& l : lines[i]) {

@@ -3,10 +3,11 @@
 // itself away from the terminal. Text in DejaVu Sans (Debian's fonts-dejavu-core) through
 // OpenImageIO; image pixels, origin at the top left.
 //
-// The PNG: the picture at the top; under it the inset, framed, on the left (where there is one)
-// and the legend's rows beside it. The text is sized to the PNG (about 1/32 of the picture's
-// width, or of twice the inset's, 14 px at least), so that it reads at the size the PNG is set on
-// a page (900 px wide set 3 inches wide: 7 pt), and a row too long for its column wraps.
+// The PNG: the picture at the top left; under it (on its right, for a picture taller than wide)
+// the inset, framed, where there is one, and the legend's rows beside that. The text is sized to
+// the PNG (about 1/32 of the picture's longer side, or of twice the inset's width, 14 px at
+// least), so that it reads at the size the PNG is set on a page (900 px set 3 inches wide: 7 pt),
+// and a row too long for its column wraps.
 #pragma once
 
 #include <OpenImageIO/imagebuf.h>
@@ -54,7 +55,8 @@ std::vector<LegendEntry> picture_legend(const ComposedPicture& picture, const st
 std::string pixels_text(int64_t n);
 
 // The picture's PNG (see the header comment): `picture` (width x height, rgb rows from the top) at
-// the top left, `inset` framed under it where its rgb is not empty, the legend's rows. `text_drawn`
+// the top left, `inset` framed under or beside it where its rgb is not empty, the legend's rows.
+// `text_drawn`
 // is set false when the font could not be loaded (the swatches are drawn; the caller says so).
 // `inset_at` receives the inset's top left in the PNG ({-1, -1} where none).
 OIIO::ImageBuf with_legend(const PixelPicture& picture, const PixelPicture& inset,

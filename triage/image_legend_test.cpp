@@ -81,6 +81,7 @@ TEST(PictureLegend, NamesTheInsetAndThePixelsDrawnOtherwise) {
   const InsetChoice& in = pic.inset_choice;
   ASSERT_FALSE(in.window.empty());
   pic.drawn_otherwise = 3;
+  pic.dotted = true;
   const std::vector<LegendEntry> rows = picture_legend(pic, "p", "p@backports", 1);
   ASSERT_GE(rows.size(), 2u);
   EXPECT_EQ(rows[rows.size() - 2].text, "framed: window pixels x " + std::to_string(in.window.x0) +
@@ -91,6 +92,12 @@ TEST(PictureLegend, NamesTheInsetAndThePixelsDrawnOtherwise) {
   EXPECT_EQ(rows[rows.size() - 2].swatch, Swatch::kFrame);
   EXPECT_EQ(rows.back().text, "drawn otherwise by p@backports: 3 pixels (dotted in the inset)");
   EXPECT_EQ(rows.back().swatch, Swatch::kDot);
+  // too many to dot (a change seen without them): said, not dotted
+  pic.drawn_otherwise = 20233;
+  pic.dotted = false;
+  const LegendEntry many = picture_legend(pic, "p", "p@backports", 1).back();
+  EXPECT_EQ(many.text, "drawn otherwise by p@backports: 20233 pixels");
+  EXPECT_EQ(many.swatch, Swatch::kNone);
 }
 
 // Why: the legend was 14 px text under pictures of 900 px, about 3 pt once the picture was set on
@@ -125,6 +132,25 @@ TEST(PictureLegend, ReadsAtPageSizeWithTheInsetBesideIt) {
   EXPECT_GT(pixels_with(png, kFrameColor, wide.height), 2 * (384 + 144));
   // the hatched swatch: the only green in the legend, about half of its 26 x 26
   EXPECT_NEAR(double(pixels_with(png, kMissingColor, wide.height)), 26 * 26 / 2.0, 26);
+}
+
+// A picture taller than wide (a steep line's strip) has the inset and the rows on its right, so
+// that the PNG is not twice as tall as wide and shrunk to fit a page's height.
+TEST(PictureLegend, ATallPictureHasItsLegendBeside) {
+  PixelPicture tall;
+  tall.width = 156, tall.height = 550;
+  tall.rgb.assign(std::size_t(tall.width) * tall.height * 3, 255);
+  PixelPicture inset;
+  inset.width = 312, inset.height = 416;
+  inset.rgb.assign(std::size_t(inset.width) * inset.height * 3, 150);
+  const std::vector<LegendEntry> rows = picture_legend(one_forbidden(8), "p", "", 1);
+  bool text = false;
+  std::pair<int, int> at;
+  const OIIO::ImageBuf png = with_legend(tall, inset, rows, &text, &at);
+  EXPECT_GT(at.first, tall.width);  // beside the picture
+  EXPECT_LT(at.second, 40);         // at its top
+  EXPECT_LT(png.spec().height, tall.height * 5 / 4);
+  EXPECT_LT(png.spec().height, png.spec().width);
 }
 
 }  // namespace

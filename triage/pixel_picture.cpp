@@ -219,17 +219,25 @@ std::vector<geometry::Pixel> differing(const geometry::PixelSet& a, const geomet
 }
 
 // A magenta dot on each block of `pixels` within `shown`, drawn at `scale`: small enough that the
-// block's own colour stays what is seen.
-void dot(PixelPicture& pic, const std::vector<geometry::Pixel>& pixels,
+// block's own colour stays what is seen. Only where they are few (at most an eighth of the
+// pixels shown): a change of many pixels is seen without them, and dots all over would hide it.
+// Returns whether it dotted them.
+bool dot(PixelPicture& pic, const std::vector<geometry::Pixel>& pixels,
          const geometry::PixelRect& shown, int S) {
+  const auto in = [&](const geometry::Pixel& p) {
+    return p.x >= shown.x0 && p.x < shown.x1 && p.y >= shown.y0 && p.y < shown.y1;
+  };
+  const int64_t n = std::count_if(pixels.begin(), pixels.end(), in);
+  if (n == 0 || n * 8 > shown.area()) return false;
   const double r = std::max(1.0, S / 6.0);
   for (const geometry::Pixel& p : pixels) {
-    if (p.x < shown.x0 || p.x >= shown.x1 || p.y < shown.y0 || p.y >= shown.y1) continue;
+    if (!in(p)) continue;
     const double cx = (p.x - shown.x0) * S + S / 2.0, cy = (shown.y1 - 1 - p.y) * S + S / 2.0;
     for (int y = int(cy - r) - 1; y <= int(cy + r) + 1; ++y)
       for (int x = int(cx - r) - 1; x <= int(cx + r) + 1; ++x)
         if (std::hypot(x + 0.5 - cx, y + 0.5 - cy) <= r) put(pic, x, y, kMarkerColor);
   }
+  return true;
 }
 
 // An outline `width` image pixels wide just inside the rectangle [x0, x1] x [y0, y1] (inclusive)
@@ -373,7 +381,8 @@ ComposedPicture compose_picture(const PictureLayers& L, const geometry::PixelRec
   out.inset_choice = choose_inset(L, scale);
   const InsetChoice& in = out.inset_choice;
   if (in.window.empty()) {  // the pixels are seen in the picture: the ones drawn otherwise dotted
-    if (L.has_other && scale >= 3) dot(out.main, differing(L.lit, L.other), shown, scale);
+    if (L.has_other && scale >= 3)
+      out.dotted = dot(out.main, differing(L.lit, L.other), shown, scale);
     return out;
   }
   // where the inset lies in the picture: a frame, with a white halo, thick enough for the page
@@ -388,7 +397,7 @@ ComposedPicture compose_picture(const PictureLayers& L, const geometry::PixelRec
   const int S = in.scale;
   out.inset = draw_pixel_picture(L.lit, L.reference, L.violating, in.window, S);
   draw_ideal(out.inset, L.ideal, in.window, S, false);
-  if (L.has_other) dot(out.inset, differing(L.lit, L.other), in.window, S);
+  if (L.has_other) out.dotted = dot(out.inset, differing(L.lit, L.other), in.window, S);
   return out;
 }
 

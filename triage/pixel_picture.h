@@ -32,8 +32,9 @@
 //   given (`show --against`: then two pictures of one scale, each given the other's drawing, inset
 //   the same window pixels), else the forbidden and missing ones, else those lit by one
 //   rasterizer only;
-// - where another platform's drawing is given, a magenta dot on each pixel it draws otherwise: in
-//   the inset, or in the picture where there is none.
+// - where another platform's drawing is given, a magenta dot on each pixel it draws otherwise, in
+//   the inset (in the picture where there is none), where those are few: at most an eighth of the
+//   pixels there (a change of many pixels is seen without them).
 #pragma once
 
 #include <cstddef>
@@ -134,12 +135,13 @@ InsetChoice choose_inset(const PictureLayers& layers, int scale);
 
 // The whole picture: `main` the picture of `shown` with the ideal projection and the inset's
 // frame on it; `inset`, where one was chosen, the inset drawn the same way (rgb empty where none);
-// the pixels drawn otherwise dotted in the inset, or in `main` where there is none.
+// the pixels drawn otherwise dotted in the inset, or in `main` where there is none, where few.
 struct ComposedPicture {
   PixelPicture main, inset;
   InsetChoice inset_choice;
   int frame_width = 0;           // image pixels of the frame's line, in both
   int64_t drawn_otherwise = -1;  // pixels the other platform draws otherwise; -1: none given
+  bool dotted = false;           // they are dotted (in the inset, or in `main` where none)
 };
 ComposedPicture compose_picture(const PictureLayers& layers, const geometry::PixelRect& shown,
                                 int scale);
