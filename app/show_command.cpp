@@ -10,7 +10,6 @@
 
 #include "app/commands.h"
 #include "metrics/records.h"
-#include "triage/image_legend.h"
 #include "triage/primitive_image.h"
 #include "util/cell_text.h"
 #include "util/number_text.h"
@@ -44,9 +43,13 @@ void register_show_command(CLI::App& app, int& exit_code) {
       "show",
       "Re-render one primitive of a run on a platform, in this process, and write it as a PNG:\n"
       "each window pixel a block (grey: lit by the platform and the reference rasterizer;\n"
-      "orange: platform only; blue: reference only; black: pixels GL forbids, lit or left dark\n"
-      "where no conforming implementation could) and the ideal projection as a red line, with a\n"
-      "legend of the colours and their counts under the picture.\n"
+      "orange: platform only; blue: reference only; black: lit where GL forbids it; hatched\n"
+      "green: left dark where GL requires it; both ringed in magenta) and the ideal projection\n"
+      "as a red line, with a legend of the colours and their counts under the picture. Where a\n"
+      "window pixel is too small to see, an inset enlarges the pixels that differ.\n"
+      "--against P2 draws the same primitive on P2 too (in a child process): the picture then\n"
+      "shows the window pixels of both drawings and insets the pixels P2 draws otherwise, so that\n"
+      "`show -p P --against P2` and `show -p P2 --against P` make a pair that compares.\n"
       "Prints the image's path and the primitive's record (visibility, pixels, metrics, "
       "ref_diff).");
   struct Options {
@@ -58,6 +61,10 @@ void register_show_command(CLI::App& app, int& exit_code) {
       "platform to render on (any known platform)");
   cmd->add_option("--out,-o", opts->q.out_path,
                   "PNG to write (default: RUN/show/PLATFORM.KIND.vVIEW.INDEX.png)");
+  cmd->add_option("--against", opts->q.against,
+                  "another platform drawing the same primitive, e.g. P@BUILD: the same window "
+                  "pixels shown, the pixels it draws otherwise in an inset")
+      ->option_text("P2");
   cmd->add_option("--scale", opts->q.scale,
                   "image pixels per window pixel (default: the image is about 512 px)")
       ->check(CLI::Range(1, triage::kMaxImageScale));
@@ -71,9 +78,7 @@ void register_show_command(CLI::App& app, int& exit_code) {
         im.shown.y1 - 1, v.width, v.height, im.scale, im.width, im.height);
     if (!im.legend_note.empty()) std::fprintf(stderr, "renderaudit: %s\n", im.legend_note.c_str());
     // The legend's rows, as the picture gives them: one count per colour, each explained.
-    for (const triage::LegendEntry& e :
-         triage::picture_legend(im.picture, opts->q.platform, im.record.violating_pixels))
-      std::printf("  %s\n", e.text.c_str());
+    for (const std::string& row : im.legend) std::printf("  %s\n", row.c_str());
     std::printf("%s %llu, view %d (group %s, fov %g deg, %d x %d px), platform %s:\n",
                 im.record.kind.c_str(), static_cast<unsigned long long>(opts->q.index), v.id,
                 v.group_name().c_str(), v.fov_deg, v.width, v.height, opts->q.platform.c_str());

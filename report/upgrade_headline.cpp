@@ -61,6 +61,8 @@ std::string and_list(const std::vector<std::string>& items) {
 struct KindCounts {
   std::int64_t compared = 0, changed = 0, not_drawn = 0, newly_drawn = 0, new_violations = 0,
                fixed_violations = 0, allowed = 0;
+  std::int64_t not_drawn_violations = 0;
+  bool overlap_known = true;  // every stratum said its not_drawn_violations
   std::set<std::string> groups, not_drawn_groups;  // compared in; something not drawn in
   std::int64_t compared_where_not_drawn = 0;
 };
@@ -73,6 +75,8 @@ std::vector<std::pair<std::string, KindCounts>> kinds_of(const UpgradePair& p) {
     k.compared += s.compared, k.changed += s.changed, k.not_drawn += s.not_drawn;
     k.newly_drawn += s.newly_drawn, k.new_violations += s.new_violations;
     k.fixed_violations += s.fixed_violations, k.allowed += s.allowed;
+    if (s.not_drawn_violations < 0) k.overlap_known = false;
+    else k.not_drawn_violations += s.not_drawn_violations;
     if (s.compared > 0) k.groups.insert(s.group);
     if (s.not_drawn > 0) k.not_drawn_groups.insert(s.group);
   }
@@ -117,6 +121,15 @@ std::string views_phrase(const std::set<std::string>& used, const std::set<std::
   return " of view groups " + and_list({used.begin(), used.end()});
 }
 
+// How many of a kind's new violations are among its primitives not drawn: "595 of them not drawn
+// at all", "all 3 not drawn at all", "none of them among the 12 not drawn".
+std::string among_not_drawn(const KindCounts& k) {
+  const std::int64_t n = k.not_drawn_violations;
+  if (n == 0) return "none of them among the " + grouped(k.not_drawn) + " not drawn";
+  if (n < k.new_violations) return grouped(n) + " of them not drawn at all";
+  return k.new_violations == 1 ? "not drawn at all" : "all " + grouped(n) + " not drawn at all";
+}
+
 // What changed in one pair, clause by clause ("stops drawing ...", "799 lines break ...").
 std::vector<std::string> pair_clauses(const UpgradePair& p,
                                       const std::vector<UpgradeViewGroup>& groups) {
@@ -133,9 +146,12 @@ std::vector<std::string> pair_clauses(const UpgradePair& p,
     if (k.newly_drawn > 0)
       out.push_back("now draws " + grouped(k.newly_drawn) + " " + plural(kind, k.newly_drawn) +
                     " that were not drawn");
+    // of those breaking the rules, how many are among the not drawn (see the header)
+    const bool nest = k.overlap_known && k.not_drawn > 0;
     if (k.new_violations > 0)
       out.push_back(grouped(k.new_violations) + " " + plural(kind, k.new_violations) +
-                    (k.new_violations == 1 ? " breaks" : " break") + " GL's " + kind + " rules");
+                    (k.new_violations == 1 ? " breaks" : " break") + " GL's " + kind + " rules" +
+                    (nest ? ", " + among_not_drawn(k) : ""));
     if (k.fixed_violations > 0)
       out.push_back(grouped(k.fixed_violations) + " " + plural(kind, k.fixed_violations) +
                     " no longer " + (k.fixed_violations == 1 ? "breaks" : "break") + " GL's " +
@@ -146,9 +162,16 @@ std::vector<std::string> pair_clauses(const UpgradePair& p,
                     plural(kind, named ? k.allowed : k.compared) +
                     (k.allowed == 1 ? " lights" : " light") + " other pixels, as GL allows");
     const std::int64_t rest = k.changed - k.new_violations - k.fixed_violations - k.allowed;
+    // the not drawn that break no new rule are among these
+    const std::int64_t rest_not_drawn = nest ? k.not_drawn - k.not_drawn_violations : 0;
     if (rest > 0)
       out.push_back(grouped(rest) + " more " + plural(kind, rest) +
-                    " change where GL's rules were not judged or already broken");
+                    (rest == 1 ? " changes" : " change") +
+                    " where GL's rules were not judged or already broken" +
+                    (rest_not_drawn == 0      ? ""
+                     : rest_not_drawn == rest ? (rest == 1 ? " (not drawn)" : " (all not drawn)")
+                                              : " (" + grouped(rest_not_drawn) +
+                                                    " of them not drawn)"));
   }
   return out;
 }
@@ -166,9 +189,9 @@ bool same_findings(const UpgradePair& a, const UpgradePair& b) {
   for (std::size_t i = 0; i < a.strata.size(); ++i) {
     const UpgradeStratum &x = a.strata[i], &y = b.strata[i];
     if (std::tie(x.kind, x.group, x.compared, x.changed, x.not_drawn, x.newly_drawn,
-                 x.new_violations, x.fixed_violations, x.allowed) !=
+                 x.new_violations, x.fixed_violations, x.allowed, x.not_drawn_violations) !=
         std::tie(y.kind, y.group, y.compared, y.changed, y.not_drawn, y.newly_drawn,
-                 y.new_violations, y.fixed_violations, y.allowed))
+                 y.new_violations, y.fixed_violations, y.allowed, y.not_drawn_violations))
       return false;
   }
   return true;
@@ -426,6 +449,14 @@ void check_stratum(const UpgradeStratum& s, const std::string& at, const std::st
         std::to_string(s.new_violations) + ", " + std::to_string(s.fixed_violations) + ", " +
         std::to_string(s.allowed) + ") are more than 'changed' (" + std::to_string(s.changed) +
         ")");
+  // not drawn and breaking the rules: of both; the rest of the not drawn among the "more"
+  if (s.not_drawn_violations >= 0 &&
+      (s.not_drawn_violations > std::min(s.not_drawn, s.new_violations) ||
+       s.not_drawn - s.not_drawn_violations >
+           s.changed - s.new_violations - s.fixed_violations - s.allowed))
+    bad("not_drawn_violations' (" + std::to_string(s.not_drawn_violations) +
+        ") is more than 'not_drawn' (" + std::to_string(s.not_drawn) + ") or 'new_violations' (" +
+        std::to_string(s.new_violations) + "), or leaves more not drawn than changed otherwise");
   constexpr std::int64_t kMost = std::int64_t(1) << 62;
   if (s.compared > kMost - total_compared)
     throw util::UserError(path + ": '" + at + "compared' (" + std::to_string(s.compared) +
@@ -547,6 +578,9 @@ UpgradeSummary read_upgrade_summary(const std::string& path) {
                              count_of(t, "new_violations", sat, path),
                              count_of(t, "fixed_violations", sat, path),
                              count_of(t, "allowed", sat, path)});
+      // optional: absent from a summary written before it was kept
+      if (t.is_object() && t.contains("not_drawn_violations"))
+        pair.strata.back().not_drawn_violations = count_of(t, "not_drawn_violations", sat, path);
       check_stratum(pair.strata.back(), sat, path, total_compared);
     }
     // optional: absent where the audit did not judge drawing time

@@ -2,12 +2,18 @@
 // said as a driver developer would say it, from the counts of the audits alone:
 //
 //   "llvmpipe 25.0.7 stops drawing 595 of 20,000 lines of the FOV-30 907 x 907 views; 799 lines
-//    break GL's line rules; 1,210 of 80,000 triangles light other pixels, as GL allows (identical
-//    through OSMesa and EGL); softpipe unchanged."
+//    break GL's line rules, 595 of them not drawn at all; 1,210 of 80,000 triangles light other
+//    pixels, as GL allows (identical through OSMesa and EGL); softpipe unchanged."
 //
 // "Not drawn" is a primitive that was true-visible (lit where it should be) and is now
 // false-invisible (nothing lit where something should be, docs/records.md); a rule broken is a
-// new GL violation (metrics/conformance.h: after "violation", before anything else). Platforms
+// new GL violation (metrics/conformance.h: after "violation", before anything else). The two
+// overlap, and the sentence says how: of the lines that break the rules, how many are among those
+// not drawn ("595 of them not drawn at all"); a primitive not drawn that breaks no new rule (its
+// rules were already broken, or not judged) is among the last clause's "more" ("1 more line
+// changes where GL's rules were not judged or already broken (not drawn)"), so that the counts of
+// a kind add up for a reader: not drawn = not drawn and breaking the rules + not drawn in the last
+// clause. A summary written before it kept that overlap says the counts without it. Platforms
 // are named BACKEND-DRIVER (osmesa-llvmpipe); the pairs of one driver whose changes are the same
 // primitives drawn the same way (equal fingerprints and counts) are said once, "identical
 // through OSMesa and EGL". No number is written here: every one comes from the summary.
@@ -34,13 +40,15 @@
 // The summary is the file scripts/upgrade_report.py writes (OUT/upgrade-summary-BUILD.json, schema
 // "renderaudit-upgrade-summary" version 1): the run, the build's name, the view groups and per pair
 // of platforms the counts below per kind and view group, and, where its audit judged drawing time,
-// the verdicts (`speed`). `speed` is an optional key of version 1, not a version 2: no key that was
-// there changed meaning, this reader takes summaries with and without it, and an older one, which
-// checks the keys it reads and ignores others, reads a summary with it as before. A bisection of
+// the verdicts (`speed`). `speed` and a stratum's `not_drawn_violations` are optional keys of
+// version 1, not a version 2: no key that was there changed meaning, this reader takes summaries
+// with and without them, and an older one, which checks the keys it reads and ignores others,
+// reads a summary with them as before. A bisection of
 // the run (RUN/bisect/bisect.json, RUN/../bisect/bisect.json or RUN/audit-*/bisect/bisect.json,
 // schema "renderaudit-bisection" version 3, sealed, or 2, written by `renderaudit bisect`) adds its
 // culprits. Both files are read field by field: a missing or mistyped field, counts that do not
-// add up (more not drawn than changed, more changed than compared), a total past 2^62, or a time
+// add up (more not drawn than changed, more changed than compared, more not drawn and breaking the
+// rules than either), a total past 2^62, or a time
 // ratio that contradicts its verdict (a faster group whose interval reaches 1) is a UserError
 // naming the file and the key.
 #pragma once
@@ -62,6 +70,9 @@ struct UpgradeStratum {
   std::int64_t new_violations = 0;    // after a GL violation, before none
   std::int64_t fixed_violations = 0;  // before a violation, after none
   std::int64_t allowed = 0;           // before and after drawn as GL allows, other pixels
+  // not drawn and a new violation (of both counts above); -1: the summary does not say (written
+  // before its optional key `not_drawn_violations`)
+  std::int64_t not_drawn_violations = -1;
 };
 
 // A view group: its label and what its views share (degrees, pixels).

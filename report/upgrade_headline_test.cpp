@@ -34,7 +34,7 @@ UpgradePair unchanged_pair(const std::string& platform) {
   for (const char* kind : {"point", "line", "triangle"})
     for (const char* g : {"A", "B", "C", "D"}) {
       UpgradeStratum s;
-      s.kind = kind, s.group = g, s.compared = 10000;
+      s.kind = kind, s.group = g, s.compared = 10000, s.not_drawn_violations = 0;
       p.strata.push_back(s);
     }
   return p;
@@ -53,6 +53,7 @@ UpgradePair llvmpipe_pair(const std::string& platform) {
   p.fingerprint = "9f1c";
   UpgradeStratum& lines = stratum(p, "line", "C");
   lines.changed = 900, lines.not_drawn = 595, lines.new_violations = 799, lines.allowed = 101;
+  lines.not_drawn_violations = 595;
   stratum(p, "triangle", "A").changed = stratum(p, "triangle", "A").allowed = 300;
   stratum(p, "triangle", "C").changed = stratum(p, "triangle", "C").allowed = 910;
   return p;
@@ -75,7 +76,8 @@ TEST(UpgradeHeadline, OneFindingIdenticalThroughOSMesaAndEGL) {
                llvmpipe_pair("egl-llvmpipe"), unchanged_pair("egl-softpipe")});
   EXPECT_EQ(upgrade_headline(s),
             "llvmpipe 25.0.7 stops drawing 595 of 10,000 lines of the FOV-30 907 x 907 views; "
-            "799 lines break GL's line rules; 101 other lines light other pixels, as GL allows; "
+            "799 lines break GL's line rules, 595 of them not drawn at all; 101 other lines light "
+            "other pixels, as GL allows; "
             "1,210 of 40,000 triangles light other pixels, as GL allows (identical through "
             "OSMesa and EGL); softpipe unchanged.");
 }
@@ -93,11 +95,11 @@ TEST(UpgradeHeadline, ADriverWithNoChangeIsUnchanged) {
 TEST(UpgradeHeadline, ViewsAreNamedByWhatTheyShare) {
   UpgradePair p = llvmpipe_pair("osmesa-llvmpipe");
   stratum(p, "line", "D").changed = stratum(p, "line", "D").not_drawn = 5;
-  stratum(p, "line", "D").new_violations = 5;
+  stratum(p, "line", "D").new_violations = stratum(p, "line", "D").not_drawn_violations = 5;
   EXPECT_EQ(upgrade_headline(summary({p})),
             "llvmpipe 25.0.7 stops drawing 600 of 20,000 lines of the 907 x 907 views; 804 lines "
-            "break GL's line rules; 101 other lines light other pixels, as GL allows; 1,210 of "
-            "40,000 triangles light other pixels, as GL allows.");
+            "break GL's line rules, 600 of them not drawn at all; 101 other lines light other "
+            "pixels, as GL allows; 1,210 of 40,000 triangles light other pixels, as GL allows.");
   UpgradePair one = unchanged_pair("egl-llvmpipe");
   one.fingerprint = "1";
   stratum(one, "point", "B").changed = stratum(one, "point", "B").new_violations = 1;
@@ -111,9 +113,56 @@ TEST(UpgradeHeadline, BackEndsThatDifferAreSaidApart) {
   stratum(egl, "triangle", "D").changed = stratum(egl, "triangle", "D").allowed = 7;
   EXPECT_EQ(upgrade_headline(summary({llvmpipe_pair("osmesa-llvmpipe"), egl})),
             "llvmpipe 25.0.7 through OSMesa stops drawing 595 of 10,000 lines of the FOV-30 907 x "
-            "907 views; 799 lines break GL's line rules; 101 other lines light other pixels, as GL "
-            "allows; 1,210 of 40,000 triangles light other pixels, as GL allows; llvmpipe 25.0.7 "
-            "through EGL: 7 of 40,000 triangles light other pixels, as GL allows.");
+            "907 views; 799 lines break GL's line rules, 595 of them not drawn at all; 101 other "
+            "lines light other pixels, as GL allows; 1,210 of 40,000 triangles light other "
+            "pixels, as GL allows; llvmpipe 25.0.7 through EGL: 7 of 40,000 triangles light other "
+            "pixels, as GL allows.");
+}
+
+// Why: page 1 said "stops drawing 53 of 2,000 lines ...; 75 lines break GL's line rules; ...; 1
+// more line change where GL's rules were not judged or already broken", and only a table pages
+// later showed that 52 of the 53 are among the 75. The sentence says how the counts nest: the
+// lines breaking the rules, how many of them not drawn; the one not drawn that breaks no new rule
+// among the "more".
+TEST(UpgradeHeadline, TheCountsSayHowTheyNest) {
+  UpgradePair p = unchanged_pair("osmesa-llvmpipe");
+  p.fingerprint = "3";
+  UpgradeStratum& c = stratum(p, "line", "C");
+  c.compared = 2000, c.changed = 333, c.not_drawn = 53, c.new_violations = 75;
+  c.not_drawn_violations = 52, c.allowed = 257;
+  EXPECT_EQ(upgrade_headline(summary({p})),
+            "llvmpipe 25.0.7 stops drawing 53 of 2,000 lines of the FOV-30 907 x 907 views; 75 "
+            "lines break GL's line rules, 52 of them not drawn at all; 257 other lines light "
+            "other pixels, as GL allows; 1 more line changes where GL's rules were not judged or "
+            "already broken (not drawn).");
+  // every line breaking the rules not drawn; the more of several kinds
+  c.changed = 340, c.not_drawn = 75, c.not_drawn_violations = 75;
+  EXPECT_EQ(upgrade_headline(summary({p})),
+            "llvmpipe 25.0.7 stops drawing 75 of 2,000 lines of the FOV-30 907 x 907 views; 75 "
+            "lines break GL's line rules, all 75 not drawn at all; 257 other lines light other "
+            "pixels, as GL allows; 8 more lines change where GL's rules were not judged or "
+            "already broken.");
+  c.not_drawn = 78;  // 3 of the 8 more not drawn
+  const std::string more = upgrade_headline(summary({p}));
+  EXPECT_EQ(more.substr(more.find("8 more")),
+            "8 more lines change where GL's rules were not judged or already broken (3 of them "
+            "not drawn).");
+  // none of those breaking the rules among the not drawn; one line of each
+  c.changed = 13, c.not_drawn = 12, c.new_violations = 1, c.not_drawn_violations = 0;
+  c.allowed = 0;
+  EXPECT_EQ(upgrade_headline(summary({p})),
+            "llvmpipe 25.0.7 stops drawing 12 of 2,000 lines of the FOV-30 907 x 907 views; 1 "
+            "line breaks GL's line rules, none of them among the 12 not drawn; 12 more lines "
+            "change where GL's rules were not judged or already broken (all not drawn).");
+  c.changed = 1, c.not_drawn = 1, c.not_drawn_violations = 1;
+  EXPECT_EQ(upgrade_headline(summary({p})),
+            "llvmpipe 25.0.7 stops drawing 1 of 2,000 lines of the FOV-30 907 x 907 views; 1 line "
+            "breaks GL's line rules, not drawn at all.");
+  // a summary written before the overlap was kept: the counts without it
+  for (UpgradeStratum& s : p.strata) s.not_drawn_violations = -1;
+  EXPECT_EQ(upgrade_headline(summary({p})),
+            "llvmpipe 25.0.7 stops drawing 1 of 2,000 lines of the FOV-30 907 x 907 views; 1 line "
+            "breaks GL's line rules.");
 }
 
 // Every kind in every group judged the same: ratio 1 within +-2%.
@@ -154,7 +203,8 @@ TEST(UpgradeHeadline, FasterAndSlowerGroupsAreSaidInWords) {
   time_of(egl, "triangle", "D") = {"triangle", "D", 0.79, 0.76, 0.81, "faster"};
   EXPECT_EQ(upgrade_headline(summary({osmesa, softpipe, egl})),
             "llvmpipe 25.0.7 stops drawing 595 of 10,000 lines of the FOV-30 907 x 907 views; "
-            "799 lines break GL's line rules; 101 other lines light other pixels, as GL allows; "
+            "799 lines break GL's line rules, 595 of them not drawn at all; 101 other lines light "
+            "other pixels, as GL allows; "
             "1,210 of 40,000 triangles light other pixels, as GL allows (identical through "
             "OSMesa and EGL); softpipe unchanged. llvmpipe 25.0.7 through OSMesa and EGL draws "
             "the lines of the FOV-30 907 x 907 views 16% slower (95%: 9-24%) and the triangles "
@@ -317,6 +367,38 @@ TEST(UpgradeHeadline, ADamagedSummaryOrBisectionIsNamedWithItsFileAndKey) {
   EXPECT_NE(e.find("'pairs[0].strata[0].compared' (" + near + ") takes the summary past 2^62"),
             std::string::npos)
       << e;
+  fs::remove_all(dir);
+}
+
+// A stratum's not_drawn_violations is read where the summary has it, and must be of both its not
+// drawn and its new violations.
+TEST(UpgradeHeadline, TheOverlapOfNotDrawnAndRulesBrokenIsReadAndChecked) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("ra_upgrade_headline_overlap_" + std::to_string(getpid()));
+  const auto with = [](const std::string& overlap) {
+    return R"([{"kind": "line", "group": "A", "compared": 100, "changed": 10, "not_drawn": 6,
+                "newly_drawn": 0, "new_violations": 8, "fixed_violations": 0, "allowed": 0,
+                "not_drawn_violations": )" + overlap + "}]";
+  };
+  EXPECT_EQ(summary_error(dir, with("5")), "");
+  UpgradeSummary s = read_upgrade_summary((dir / "upgrade-summary.json").string());
+  EXPECT_EQ(s.pairs[0].strata[0].not_drawn_violations, 5);
+  EXPECT_EQ(upgrade_headline(s),
+            "llvmpipe 25.0.7 stops drawing 6 of 100 lines; 8 lines break GL's line rules, 5 of "
+            "them not drawn at all; 2 more lines change where GL's rules were not judged or "
+            "already broken (1 of them not drawn).");
+  // without the key: not said
+  EXPECT_EQ(summary_error(dir, a_stratum("100", "10", "5")), "");
+  s = read_upgrade_summary((dir / "upgrade-summary.json").string());
+  EXPECT_EQ(s.pairs[0].strata[0].not_drawn_violations, -1);
+  // more than its not drawn; leaving more not drawn than the changes not otherwise counted
+  for (const std::string bad : {"7", "3"}) {
+    const std::string e = summary_error(dir, with(bad));
+    EXPECT_NE(e.find("'pairs[0].strata[0].not_drawn_violations' (" + bad + ")"),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find("the counts do not add up"), std::string::npos) << e;
+  }
   fs::remove_all(dir);
 }
 

@@ -8,6 +8,8 @@
 #   - six view groups (3 fields of view x 2 windows) are named A-F, no crash past four;
 #   - the `renderaudit show` line pastes as one word per argument though the run folder is named
 #     like a command substitution, and runs nothing;
+#   - every picture the report names was drawn (each side `show --against` the other, the other
+#     drawn with a driver build in a child process);
 #   - the [builds.source] table driver-upgrade.sh appends (scripts/build_table.py) keeps a source
 #     path and ref with newlines, quotes and TOML of their own inside their string and comment;
 #   - drawing time: faulty@backports also draws 3 times as long ([faults] slowdown = 2) and its
@@ -88,6 +90,16 @@ set -e
 /usr/bin/python3 "$script" "$ra" "$run" backports faulty >"$t/backports.md" 2>"$t/backports.err" ||
   { cat "$t/backports.err"; fail "upgrade_report.py (backports) failed"; }
 
+# The pictures: each one the report names is there, a pair per finding.
+/usr/bin/python3 - "$run" "$t/backports.md" <<'EOP' || fail "the report's pictures (above)"
+import os, re, sys
+run, md = sys.argv[1:]
+pictures = re.findall(r"!\[[^]]*\]\(([^)]+\.png)\)", open(md).read())
+assert pictures and len(pictures) % 2 == 0, pictures
+missing = [p for p in pictures if not os.path.isfile(os.path.join(run, p))]
+assert not missing, f"pictures not drawn: {missing}"
+EOP
+
 # Drawing time: the timed audit's verdicts in the summary and on page 1, none from the untimed one.
 /usr/bin/python3 - "$run" "$t/backports.md" "$t/source.md" <<'EOP' || fail "the drawing times of the summary or page 1 (above)"
 import json, re, sys
@@ -133,5 +145,5 @@ assert "bogus" not in doc and "shard_size" not in doc.get("run", {}), doc
 EOP
 grep -q 'scripts/build_table.py" source "$source_dir"' "$(dirname "$script")/driver-upgrade.sh" ||
   fail "driver-upgrade.sh does not write its [builds.source] table with build_table.py"
-echo "upgrade-report-test: the source part, six view groups, the show line, the build table, drawing times checked"
+echo "upgrade-report-test: the source part, six view groups, the show line, the pictures, the build table, drawing times checked"
 echo "1 passed, 0 failed"

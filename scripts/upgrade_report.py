@@ -9,8 +9,10 @@ The audit of PLATFORM against PLATFORM@BUILD is read from RUN_DIR/audit-PLATFORM
 (driver-upgrade.sh: no suffix for backports, "-source" for the source build) and must say that it
 compared those two platforms. Exit 2 for bad input: a missing or other audit.
 Writes RUN_DIR/upgrade-summary-BUILD.json (schema "renderaudit-upgrade-summary" version 1: per pair
-the counts per kind and view group and, where the audit judged drawing time (`audit --speed`), its
-verdicts per kind and view group as `speed`, copied from audit.json) and opens the Markdown with
+the counts per kind and view group, among them `not_drawn_violations`, the primitives both not
+drawn and a new violation, so that page 1 says how the two nest, and, where the audit judged
+drawing time (`audit --speed`), its verdicts per kind and view group as `speed`, copied from
+audit.json) and opens the Markdown with
 the sentences `renderaudit report --upgrade-headline` makes of it (report/upgrade_headline.h), then
 the worst primitive's before and after side by side, a table of contents ([TOC]) and one section
 per finding and per platform.
@@ -18,7 +20,9 @@ per finding and per platform.
 A primitive is changed when its lit pixels (pixel_hash), status or visibility differ. Each changed
 primitive is one of: not drawn (true-visible -> false-invisible), a new violation (after a GL
 violation, before none), fixed (the reverse), allowed (drawn as GL allows before and after, other
-pixels), other; "worst" is the largest change in the number of lit pixels. Pairs of one driver
+pixels), other; "worst" is the largest change in the number of lit pixels. A not drawn primitive
+is most often also a new violation: the pictures' titles say how many of each finding are among
+the other, in the numbers of page 1. Pairs of one driver
 whose changed primitives and their pixels after are the same (one fingerprint) are one finding,
 said once ("identical through OSMesa and EGL")."""
 import collections
@@ -73,6 +77,11 @@ def records(ra, run_dir, platforms):
     return out, groups
 
 
+def breaks(before, after):
+    """A new violation: after one of GL's rules broken, before none (counted with the not drawn)."""
+    return after[4] == "violation" and before[4] != "violation"
+
+
 def category(before, after):
     if before[1] == "true-visible" and after[1] == "false-invisible":
         return "not_drawn"
@@ -109,11 +118,38 @@ def pair_findings(recs, p, q):
         c = category(before, after)
         s["not_drawn"] += c == "not_drawn"
         s["newly_drawn"] += before[1] == "false-invisible" and after[1] == "true-visible"
-        s["new_violations"] += after[4] == "violation" and before[4] != "violation"
+        s["new_violations"] += breaks(before, after)
+        s["not_drawn_violations"] += c == "not_drawn" and breaks(before, after)
         s["fixed_violations"] += c == "fixed"
         s["allowed"] += c == "allowed"
         changed.append((c, kind, view, index, before, after))
     return strata, changed
+
+
+def finding_words(cat, kind, changed):
+    """How a picture's title counts a finding, nested as page 1 nests the counts (a not drawn
+    primitive is counted on page 1 among those breaking the rules, or else among the "more"):
+    "53 lines not drawn (52 of them breaking GL's rules)", "23 of the 75 lines that break GL's
+    rules, drawn (the other 52 are not drawn)"."""
+    of_kind = [c for c in changed if c[1] == kind]
+    n = sum(c[0] == cat for c in of_kind)
+    kinds = kind if n == 1 else kind + "s"
+    words = dict(CATEGORIES)[cat]
+    if cat == "not_drawn":
+        both = sum(c[0] == "not_drawn" and breaks(c[4], c[5]) for c in of_kind)
+        if not both:
+            return f"{n} {kinds} {words}"
+        return (f"{n} {kinds} {words} (" + ("breaking GL's rules" if n == 1 else
+                                            "all breaking GL's rules" if both == n else
+                                            f"{both} of them breaking GL's rules") + ")")
+    if cat in ("new_violation", "other"):
+        # the not drawn that page 1 counts with this finding
+        also = sum(c[0] == "not_drawn" and breaks(c[4], c[5]) == (cat == "new_violation")
+                   for c in of_kind)
+        if also:
+            return (f"{n} of the {n + also} {kind}s {words}, drawn (the other {also} "
+                    f"{'is' if also == 1 else 'are'} not drawn)")
+    return f"{n} {kinds} {words.replace('break ', 'breaks ') if n == 1 else words}"
 
 
 def fingerprint(changed):
@@ -124,14 +160,16 @@ def fingerprint(changed):
 
 
 def picture_pair(ra, run_dir, p, q, kind, view, index, before, after, groups):
-    """Markdown: the primitive drawn by both sides, side by side, and its reproducer."""
+    """Markdown: the primitive drawn by both sides, side by side, and its reproducer. Each side is
+    drawn `--against` the other: both pictures show the same window pixels at the same scale, with
+    the same inset around the pixels the two draw otherwise."""
     pictures = os.path.join(run_dir, "upgrade-pictures")
     os.makedirs(pictures, exist_ok=True)
     cells = []
-    for plat, state, side in ((p, before, "installed"), (q, after, "upgraded")):
+    for plat, other, state, side in ((p, q, before, "installed"), (q, p, after, "upgraded")):
         png = os.path.join(pictures, f"{plat}.{kind}.v{view}.{index}.png")
-        subprocess.run([ra, "show", run_dir, "--platform", plat, "--kind", kind, "--view",
-                        str(view), "--index", str(index), "--out", png],
+        subprocess.run([ra, "show", run_dir, "--platform", plat, "--against", other, "--kind",
+                        kind, "--view", str(view), "--index", str(index), "--out", png],
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         verdict = state[4] or "not judged"
         cells.append(f"![{side}, {plat}: {state[2]} pixels lit, {state[1]}, {verdict}]"
@@ -144,8 +182,10 @@ def picture_pair(ra, run_dir, p, q, kind, view, index, before, after, groups):
     lines = [" ".join(cells), "",
              f"{kind} {index} of view {view} (FOV {fov}, {window} x {window}). Grey: lit by the "
              "driver and the exact reference rasterizer; orange: by the driver only; blue: by "
-             "the reference only; black: pixels GL forbids; red: the ideal primitive. "
-             f"`{show}` draws it again."]
+             "the reference only; black: lit where GL forbids it; hatched green: left dark where "
+             "GL requires it (both ringed in magenta); red: the ideal primitive. The framed "
+             "pixels are enlarged under each picture, those the two drivers draw otherwise "
+             f"dotted in magenta. `{show}` draws it again."]
     c = os.path.join(pictures, f"{q}.{kind}.v{view}.{index}.c")
     r = subprocess.run([ra, "reproduce", run_dir, "--platform", q, "--kind", kind, "--view",
                         str(view), "--index", str(index), "--out", c],
@@ -216,7 +256,8 @@ def main():
                       "strata": [dict({"kind": k, "group": g}, **{
                           f: strata[(k, g)][f] for f in
                           ("compared", "changed", "not_drawn", "newly_drawn", "new_violations",
-                           "fixed_violations", "allowed")}) for (k, g) in sorted(strata)]})
+                           "fixed_violations", "allowed", "not_drawn_violations")})
+                          for (k, g) in sorted(strata)]})
         speed = speed_of(audits[p], p, q)
         if speed is not None:
             pairs[-1]["speed"] = speed
@@ -248,27 +289,30 @@ def main():
                     for g in sorted(groups)) + ".\n")
 
     # one picture set per distinct finding: the worst primitive of each category of each
-    # finding, the most severe first; the first of all on page 1
+    # finding, the most severe first; on page 1 the most striking of those breaking GL's rules
+    # (not drawn, new violation): the largest change in pixels lit
     shown = []
     for (drv, fp, _), f in findings.items():
         p = f["pairs"][0]
         backends = " and ".join(BACKENDS.get(x.partition("-")[0], x.partition("-")[0])
                                 for x in f["pairs"])
         version = mesa(driver(p + "@" + build)["version"]) or "@" + build
-        for rank, (cat, words) in enumerate(CATEGORIES):
+        for rank, (cat, _) in enumerate(CATEGORIES):
             for kind in sorted({c[1] for c in f["changed"] if c[0] == cat}):
                 members = [c for c in f["changed"] if c[0] == cat and c[1] == kind]
                 _, _, view, index, before, after = max(
                     members, key=lambda m: (abs(m[5][2] - m[4][2]), -m[2], -m[3]))
                 through = (f"identical through {backends}" if len(f["pairs"]) > 1
                            else f"through {backends}")
-                title = (f"{drv} {version}: {len(members)} "
-                         f"{kind if len(members) == 1 else kind + 's'} "
-                         f"{words.replace('break ', 'breaks ') if len(members) == 1 else words} "
-                         f"({through}); "
+                title = (f"{drv} {version}, {through}: {finding_words(cat, kind, f['changed'])}; "
                          f"the worst, {kind} {index} of view {view}")
                 shown.append((rank, title, p, kind, view, index, before, after))
     shown.sort(key=lambda s: s[0])
+    severe = [s for s in shown if CATEGORIES[s[0]][0] in ("not_drawn", "new_violation")]
+    if severe:
+        lead = max(severe, key=lambda s: abs(s[7][2] - s[6][2]))
+        shown.remove(lead)
+        shown.insert(0, lead)
     print("[TOC]\n")
     if shown:
         rank, title, p, kind, view, index, before, after = shown[0]

@@ -140,8 +140,9 @@ TEST(ShowCommand, ATriangleOnTheReferenceIsGreyWithARedOutline) {
                                     "--index " +
                                     std::to_string(rec.index) + " --out " + png);
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  EXPECT_NE(o.output.find("wrote " + png +
-                          " (512 x 638 px: window pixels x 0-63, y 0-63 of "
+  const Image whole = read_image(png);
+  EXPECT_NE(o.output.find("wrote " + png + " (512 x " + std::to_string(whole.height) +
+                          " px: window pixels x 0-63, y 0-63 of "
                           "64 x 64, 8 px each, in the top 512 x 512; the legend under them)"),
             std::string::npos)
       << o.output;
@@ -152,15 +153,15 @@ TEST(ShowCommand, ATriangleOnTheReferenceIsGreyWithARedOutline) {
   EXPECT_NE(field(o.output, "te_u"), "") << o.output;
   EXPECT_EQ(field(o.output, "pe"), "") << "point metrics do not apply to a triangle";
 
-  const Image whole = read_image(png);
   ASSERT_EQ(whole.width, 512);
-  ASSERT_EQ(whole.height, 512 + 2 * 8 + 5 * ra::triage::kLegendRowHeight);  // the legend's 5 rows
+  // the legend's 5 rows under the picture, in text sized to it (no inset at 8 px a pixel)
+  ASSERT_GE(whole.height, 512 + 5 * ra::triage::legend_font_size(512));
   ASSERT_EQ(whole.channels, 3);
   const Image im = picture(whole, 512, 512);
   // The legend shows every class's colour, and text (dark pixels that are not a swatch's).
   const Image key = legend(whole, 512);
   for (const ra::triage::Rgb8 c : {ra::triage::kBothColor, ra::triage::kPlatformOnlyColor,
-                                  ra::triage::kReferenceOnlyColor, ra::triage::kViolationColor,
+                                  ra::triage::kReferenceOnlyColor, ra::triage::kForbiddenColor,
                                   ra::triage::kIdealColor})
     EXPECT_GT(pixels_with(key, c), 0);
   int text = 0;
@@ -211,8 +212,10 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
   ASSERT_GE(whole.width, ra::triage::kLegendMinWidth);  // widened for the legend's explanations
   const Image im = picture(whole, 256, 256);  // --scale 4 on the whole 64 x 64 window
   // Of the 2 x runs differing pixels, those GL forbids (centres beyond the snapping allowance of
-  // every edge: metrics/conformance.h) are black, the others orange or blue.
-  const int black = blocks_with(im, 4, ra::triage::kViolationColor);
+  // every edge: metrics/conformance.h) are black where lit and hatched green where missing, the
+  // others orange or blue.
+  const int black = blocks_with(im, 4, ra::triage::kForbiddenColor) +
+                    blocks_with(im, 4, ra::triage::kMissingColor);
   EXPECT_GT(black, 0);
   EXPECT_EQ(field(o.output, "violating_pixels"), std::to_string(black)) << o.output;
   EXPECT_EQ(field(o.output, "conformance"), "violation") << o.output;
@@ -225,7 +228,8 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
   EXPECT_NE(o.output.find("  lit by both: " + ra::triage::pixels_text(ref.size() - runs) + "\n"),
             std::string::npos)
       << o.output;
-  // The black blocks are the forbidden ones and the missing ones, each counted on its own row.
+  // The black and green blocks are the forbidden ones and the missing ones, each counted on its
+  // own row.
   long long forbidden = -1, missing = -1;
   const std::size_t f = o.output.find("  forbidden by GL: "), m = o.output.find("  missing: ");
   ASSERT_NE(f, std::string::npos) << o.output;
@@ -234,6 +238,68 @@ TEST(ShowCommand, PlatformOnlyAndReferenceOnlyPixelsHaveTheirColours) {
   ASSERT_EQ(std::sscanf(o.output.c_str() + m, "  missing: %lld", &missing), 1);
   EXPECT_EQ(forbidden + missing, black) << o.output;
   EXPECT_EQ(o.output.find("black = pixels GL forbids"), std::string::npos) << o.output;
+}
+
+// The line of show's legend that starts with `start`, or "".
+std::string legend_line(const std::string& output, const std::string& start) {
+  const std::size_t at = output.find("\n  " + start);
+  return at == std::string::npos ? "" : output.substr(at + 3, output.find('\n', at + 3) - at - 3);
+}
+
+// Why: the upgrade report set an installed and an upgraded picture side by side, each of its own
+// window pixels and scale, and a few pixels apart they looked the same. Each drawn --against the
+// other (the other in a child process), both show the same window pixels with the same inset
+// around the pixels the two draw otherwise, and say how many those are.
+TEST(ShowCommand, APairDrawnAgainstEachOtherInsetsTheSamePixels) {
+  const std::string dir = fresh_dir("show_against");
+  fs::create_directories(dir + "/run");
+  // faulty (reference base) draws every primitive one pixel to the right; 128 x 128: at the
+  // default scale of 4 px a pixel, an inset
+  std::string toml = experiment("\"faulty\", \"reference\"", "[faults]\nshift_fraction = 1.0\n");
+  toml.replace(toml.find("windows = [64]"), 14, "windows = [128]");
+  write_text(dir + "/run/experiment.toml", toml);
+  const ra::rundir::Experiment exp = ra::rundir::load_experiment(dir + "/run/experiment.toml");
+  uint64_t index = 0;
+  ra::geometry::PixelSet ref;
+  for (; index < 20; ++index) {
+    ref = ra::geometry::rasterize_reference(
+        exp.views[0], ra::geometry::make_primitive(exp.seed, ra::geometry::Kind::kTriangle, index));
+    bool inside = ref.size() >= 20;
+    for (const ra::geometry::PixelRun& r : ref.runs()) inside = inside && r.x_end < 128;
+    if (inside) break;
+  }
+  ASSERT_LT(index, 20u) << "no suitable triangle under this seed";
+  const std::string args = " -k triangle -v 1 -i " + std::to_string(index);
+  const Outcome a = run_renderaudit("show " + dir + "/run -p faulty --against reference" + args +
+                                    " -o " + dir + "/a.png");
+  const Outcome b = run_renderaudit("show " + dir + "/run -p reference --against faulty" + args +
+                                    " -o " + dir + "/b.png");
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  // each row's run moved one pixel: its left end lost, a pixel past its right end gained
+  const std::string n = ra::triage::pixels_text(2 * int64_t(ref.runs().size()));
+  EXPECT_EQ(legend_line(a.output, "drawn otherwise"),
+            "drawn otherwise by reference: " + n + " (dotted in the inset)")
+      << a.output;
+  EXPECT_EQ(legend_line(b.output, "drawn otherwise"),
+            "drawn otherwise by faulty: " + n + " (dotted in the inset)")
+      << b.output;
+  const std::string framed = legend_line(a.output, "framed: window pixels");
+  EXPECT_NE(framed, "") << a.output;
+  EXPECT_EQ(framed, legend_line(b.output, "framed: window pixels")) << b.output;
+  // the same window pixels at the same scale
+  const std::string shown_a = a.output.substr(a.output.find("window pixels x "), 60);
+  EXPECT_EQ(shown_a, b.output.substr(b.output.find("window pixels x "), 60));
+  // the inset's dots in both PNGs, under the picture
+  for (const std::string& png : {dir + "/a.png", dir + "/b.png"}) {
+    const Image im = read_image(png);
+    EXPECT_GT(pixels_with(legend(im, 512), ra::triage::kMarkerColor), 0) << png;
+  }
+  // a platform against itself says so
+  const Outcome self = run_renderaudit("show " + dir + "/run -p faulty --against faulty" + args);
+  EXPECT_EQ(self.exit_code, 2) << self.output;
+  EXPECT_NE(self.output.find("--against faulty is the platform drawn"), std::string::npos)
+      << self.output;
 }
 
 TEST(ShowCommand, BadRequestsSayWhatIsAllowed) {

@@ -1,34 +1,34 @@
 // One primitive as a PNG: platform pixels, reference pixels and the ideal projection
-// (primitive_image.h).
+// (primitive_image.h), drawn by pixel_picture.h.
 #include "triage/primitive_image.h"
 
 #include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <system_error>
 #include <utility>
 #include <vector>
 
-#include "rundir/run_folder.h"
-#include "triage/image_legend.h"
-#include "runner/case_measurement.h"
-#include "metrics/conformance.h"
-#include "runner/effective_subpixel.h"
 #include "geometry/clipping.h"
-#include "util/errors.h"
-#include "rundir/experiment.h"
-#include "rundir/run_experiment.h"
+#include "geometry/reference_rasterizer.h"
+#include "metrics/conformance.h"
+#include "metrics/point_metrics.h"
 #include "platforms/platform.h"
 #include "platforms/renderer_check.h"
-#include "metrics/point_metrics.h"
-#include "geometry/reference_rasterizer.h"
+#include "rundir/experiment.h"
+#include "rundir/run_experiment.h"
+#include "rundir/run_folder.h"
+#include "runner/case_measurement.h"
+#include "runner/effective_subpixel.h"
+#include "triage/image_legend.h"
+#include "util/errors.h"
+#include "util/gl_child_process.h"
 
 namespace fs = std::filesystem;
 
@@ -107,67 +107,16 @@ geometry::PixelRect around(const geometry::PixelSet& s, int margin, int width, i
           std::min(height, r.y1 + margin)};
 }
 
-Rgb8 darker(Rgb8 c) { return {uint8_t(c.r * 4 / 5), uint8_t(c.g * 4 / 5), uint8_t(c.b * 4 / 5)}; }
-
-// Clusters of marked points (image pixels): points in cells of side `join` that touch (8
-// neighbours) are one cluster. Returns each cluster's bounding box {x0, y0, x1, y1} (inclusive)
-// and its number of points.
-struct Cluster {
-  std::array<int, 4> box;
-  int64_t points = 0;
-};
-std::vector<Cluster> clusters(const std::vector<std::pair<int, int>>& points, int join) {
-  std::map<std::pair<int, int>, int> cell_of;  // cell -> index into `parent`
-  std::vector<int> parent;
-  const auto find = [&](int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  for (const auto& [x, y] : points) {
-    const std::pair<int, int> c{x / join, y / join};
-    if (!cell_of.count(c)) {
-      cell_of[c] = int(parent.size());
-      parent.push_back(int(parent.size()));
-    }
-  }
-  for (const auto& [c, i] : cell_of)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const auto it = cell_of.find({c.first + dx, c.second + dy});
-        if (it != cell_of.end()) parent[find(i)] = find(it->second);
-      }
-  std::map<int, Cluster> of_root;
-  for (const auto& [x, y] : points) {
-    const int root = find(cell_of[{x / join, y / join}]);
-    auto [it, fresh] = of_root.try_emplace(root, Cluster{{x, y, x, y}, 0});
-    auto& b = it->second.box;
-    b = {std::min(b[0], x), std::min(b[1], y), std::max(b[2], x), std::max(b[3], y)};
-    ++it->second.points;
-  }
-  std::vector<Cluster> out;
-  for (const auto& [root, c] : of_root) out.push_back(c);
-  return out;
-}
-
-// Draws the rings on rgb (width x height, blocks of `scale`): every halo first, then every ring,
-// so that a halo never cuts a neighbouring ring. A ring never hides what a window pixel is: it
-// leaves the centre of each block of 3 image pixels or more it crosses.
-void draw_rings(std::vector<uint8_t>& rgb, int width, int height, int scale,
-                const std::vector<MarkerRing>& rings) {
-  for (const bool halo : {true, false})
-    for (const MarkerRing& r : rings)
-      for (int y = std::max(0, r.cy - r.radius - 4); y <= std::min(height - 1, r.cy + r.radius + 4); ++y)
-        for (int x = std::max(0, r.cx - r.radius - 4); x <= std::min(width - 1, r.cx + r.radius + 4);
-             ++x) {
-          const double d = std::hypot(double(x - r.cx), double(y - r.cy)) - double(r.radius);
-          const bool ring = std::fabs(d) <= r.half_width;
-          const bool around = std::fabs(d) <= r.half_width + 1;
-          if (halo ? !around : !ring) continue;
-          if (scale >= 3 && x % scale == scale / 2 && y % scale == scale / 2) continue;
-          const Rgb8 c = halo ? kUnlitColor : kMarkerColor;
-          uint8_t* px = &rgb[(std::size_t(y) * width + x) * 3];
-          px[0] = c.r, px[1] = c.g, px[2] = c.b;
-        }
+// A planned crash or hang of the faulty platform: said instead of drawn (it aborts or sleeps
+// forever on these by design).
+void check_planned_faults(const std::string& platform, const rundir::Experiment& exp,
+                          uint64_t index) {
+  if (platform != "faulty") return;
+  for (const auto& [list, what] :
+       {std::pair{&exp.faults.crash, "crash"}, std::pair{&exp.faults.hang, "hang"}})
+    if (std::find(list->begin(), list->end(), index) != list->end())
+      throw util::UserError("primitive " + std::to_string(index) + " is a planned " + what +
+                            " of the faulty platform ([faults] " + what + " in " + exp.path + ")");
 }
 
 void check_request(const ShowRequest& q, const rundir::Experiment& exp, geometry::Kind kind) {
@@ -188,21 +137,84 @@ void check_request(const ShowRequest& q, const rundir::Experiment& exp, geometry
   if (q.scale < 0 || q.scale > kMaxImageScale)
     throw util::UserError("scale " + std::to_string(q.scale) + " out of range (allowed: 1 to " +
                           std::to_string(kMaxImageScale) + ")");
-  if (q.platform == "faulty") {
-    // The faulty platform aborts or sleeps forever on these by design: say so instead.
-    for (const auto& [list, what] :
-         {std::pair{&exp.faults.crash, "crash"}, std::pair{&exp.faults.hang, "hang"}})
-      if (std::find(list->begin(), list->end(), q.index) != list->end())
-        throw util::UserError("primitive " + std::to_string(q.index) + " is a planned " + what +
-                              " of the faulty platform ([faults] " + what + " in " + exp.path +
-                              ")");
-  }
+  if (q.against == q.platform)
+    throw util::UserError("--against " + q.against +
+                          " is the platform drawn: name another, e.g. its driver build");
+  check_planned_faults(q.platform, exp, q.index);
+  if (!q.against.empty()) check_planned_faults(q.against, exp, q.index);
 }
 
-// Writes `picture` with its legend under it (what each colour means, with the counts of `out`) to
-// the request's PNG, or RUN/show/P.K.vV.I.png; sets out.path and the image's size.
-void write_picture(const OIIO::ImageBuf& buf, const ShowRequest& q, geometry::Kind kind,
-                   PrimitiveImage& out) {
+// What one platform drew of a primitive, measured as the run's workers measure it.
+struct Drawing {
+  metrics::Record record;
+  geometry::PixelSet lit, reference, violating;
+  bool judged = false;  // against GL's rules (not the reference itself)
+};
+
+// Draws `prim` in `view` on `platform` in this process: the driver that made the run's records,
+// or a clear stop (renderer_check.h), on the grid the run's workers measured (the same
+// calibration: deterministic platforms agree).
+Drawing draw_on(const std::string& run_dir, const rundir::Experiment& exp,
+                const std::string& platform, const geometry::View& view,
+                const geometry::Primitive& prim) {
+  const rundir::PlatformSpec spec = rundir::experiment_platform(exp, platform);
+  const std::unique_ptr<platforms::Platform> p =
+      platforms::create_platform(spec, rundir::fault_plan_for(exp, spec));
+  platforms::require_run_driver(run_dir, platform, p->driver_info());
+  Drawing d;
+  const bool is_reference = platform == "reference";
+  const geometry::SubpixelGrid effective =
+      is_reference ? geometry::SubpixelGrid{} : runner::measure_effective_subpixel(*p).grid;
+  RecordingPlatform recorder(*p);
+  recorder.set_view(view);
+  runner::CaseComparison comparison(!is_reference, effective);
+  comparison.line_rule = runner::line_rule_for(spec, p->driver_info());
+  const bool rectangles = comparison.line_rule == runner::CaseComparison::LineRule::kRectangle;
+  d.record = runner::measure_case(platform, recorder, view, prim, comparison);
+  d.lit = recorder.last.lit;
+  d.reference = geometry::rasterize_reference(view, prim);
+  if (rectangles && prim.kind == geometry::Kind::kLine) {  // Vulkan's strict lines: the rectangle's
+    const geometry::ClippedSegment segment = geometry::clip_segment(view, prim.v[0], prim.v[1]);
+    d.reference.clear();
+    if (segment.status == geometry::ClipStatus::kVisible) {
+      const auto [a, b] = rectangle_ends(segment, metrics::near_clipped_vertices(view, prim));
+      d.reference = geometry::rasterize_rectangle_segment(a, b, view.width, view.height);
+    }
+  }
+  if (!is_reference)
+    metrics::judge_primitive(view, prim, d.lit, effective, &d.violating, rectangles);
+  // the reference is not judged against GL's rules (its record says exact: it is the reference)
+  d.judged = !is_reference && d.record.conformance != metrics::Conformance::kNotCompared;
+  return d;
+}
+
+// The pixels `against` lit of `prim`, drawn in a child process (one Mesa per process) before this
+// one draws: the child's runs come back as JSON [[y, x_begin, x_end], ...].
+geometry::PixelSet lit_elsewhere(const ShowRequest& q, const rundir::Experiment& exp,
+                                 const geometry::View& view, const geometry::Primitive& prim) {
+  nlohmann::json runs;
+  try {
+    runs = util::run_in_child(fs::temp_directory_path().string(),
+                              "renderaudit-show-" + std::to_string(::getpid()), [&] {
+                                const Drawing d = draw_on(q.run_dir, exp, q.against, view, prim);
+                                nlohmann::json out = nlohmann::json::array();
+                                for (const geometry::PixelRun& r : d.lit.runs())
+                                  out.push_back({r.y, r.x_begin, r.x_end});
+                                return out;
+                              });
+  } catch (const std::exception& e) {
+    throw util::UserError("--against " + q.against + ": " + e.what());
+  }
+  geometry::PixelSet lit;
+  for (const nlohmann::json& r : runs)
+    lit.append_run(r.at(0).get<int32_t>(), r.at(1).get<int32_t>(), r.at(2).get<int32_t>());
+  return lit;
+}
+
+// Writes the composed picture with its legend under it (what each colour means, with the counts
+// of `out`) to the request's PNG, or RUN/show/P.K.vV.I.png; sets out.path and the image's size.
+void write_picture(const ComposedPicture& picture, const ShowRequest& q, geometry::Kind kind,
+                   bool judged, PrimitiveImage& out) {
   out.path = q.out_path.empty()
                  ? (fs::path(q.run_dir) / "show" /
                     (q.platform + "." + geometry::kind_name(kind) + ".v" + std::to_string(q.view) +
@@ -218,109 +230,43 @@ void write_picture(const OIIO::ImageBuf& buf, const ShowRequest& q, geometry::Ki
     std::error_code ec;
     fs::create_directories(parent, ec);
   }
-  // The legend under the picture: what each colour means and how many window pixels have it.
-  // the reference is not judged against GL's rules (its record says exact: it is the reference)
-  const bool judged = q.platform != "reference" &&
-                      out.record.conformance != metrics::Conformance::kNotCompared;
   const std::vector<LegendEntry> legend =
-      picture_legend(out.picture, q.platform, judged ? out.record.violating_pixels : -1);
+      picture_legend(picture, q.platform, q.against, judged ? out.record.violating_pixels : -1);
+  for (const LegendEntry& e : legend) out.legend.push_back(e.text);
   bool text_drawn = true;
-  const OIIO::ImageBuf image = with_legend(buf, legend, &text_drawn);
-  if (!text_drawn) out.legend_note = "the legend's text needs the DejaVu Sans font (Debian: "
-                                     "fonts-dejavu-core); its colour squares are drawn";
+  std::pair<int, int> inset_at;
+  OIIO::ImageBuf image = with_legend(picture.main, picture.inset, legend, &text_drawn, &inset_at);
+  if (!text_drawn)
+    out.legend_note =
+        "the legend's text needs the DejaVu Sans font (Debian: "
+        "fonts-dejavu-core); its colour squares are drawn";
+  out.inset_x = inset_at.first, out.inset_y = inset_at.second;
   out.image_width = image.spec().width;
   out.image_height = image.spec().height;
+  image.specmod().attribute("Software", "renderaudit show");
+  image.specmod().attribute(
+      "ImageDescription",
+      q.platform + " " + geometry::kind_name(kind) + " " + std::to_string(q.index) + ", view " +
+          std::to_string(q.view) + " of " + q.run_dir +
+          ": grey both, orange platform only, blue reference only (both allowed by GL), black a "
+          "pixel GL forbids lit, hatched green one GL requires missing, ringed in magenta, red "
+          "the ideal projection" +
+          (q.against.empty() ? ""
+                             : "; magenta squares in the inset: drawn otherwise by " + q.against));
   if (!image.write(out.path))
     throw util::UserError(out.path + ": cannot write the image: " + image.geterror());
 }
 
 }  // namespace
 
-PixelPicture draw_pixel_picture(const geometry::PixelSet& lit, const geometry::PixelSet& reference,
-                                const geometry::PixelSet& violating,
-                                const geometry::PixelRect& shown, int S) {
-  PixelPicture pic;
-  const int cols = shown.x1 - shown.x0, rows = shown.y1 - shown.y0;
-  pic.width = cols * S;
-  pic.height = rows * S;
-  // the colours' counts, whole window
-  for (const geometry::Pixel& p : lit) {
-    if (violating.contains(p)) ++pic.forbidden;
-    else (reference.contains(p) ? pic.both : pic.platform_only) += 1;
-  }
-  for (const geometry::Pixel& p : reference)
-    if (!lit.contains(p)) (violating.contains(p) ? pic.missing : pic.reference_only) += 1;
-  for (const geometry::Pixel& p : violating)
-    if (!lit.contains(p) && !reference.contains(p)) ++pic.missing;
-
-  // Which rasterizer lit each shown pixel: bit 0 platform, bit 1 reference, bit 2 a rule's.
-  std::vector<uint8_t> who(std::size_t(cols) * rows, 0);
-  auto mark = [&](const geometry::PixelSet& s, uint8_t bit) {
-    for (const geometry::Pixel& p : s)
-      if (p.x >= shown.x0 && p.x < shown.x1 && p.y >= shown.y0 && p.y < shown.y1)
-        who[std::size_t(p.y - shown.y0) * cols + (p.x - shown.x0)] |= bit;
-  };
-  mark(lit, 1);
-  mark(reference, 2);
-  mark(violating, 4);
-  const Rgb8 colors[8] = {kUnlitColor,     kPlatformOnlyColor, kReferenceOnlyColor, kBothColor,
-                          kViolationColor, kViolationColor,    kViolationColor,     kViolationColor};
-
-  // Blocks, rows flipped: window row y (up) is image rows (shown.y1 - 1 - y) * S ... + S - 1.
-  pic.rgb.resize(std::size_t(pic.width) * pic.height * 3);
-  std::vector<std::pair<int, int>> marked;  // centres of the black blocks, image pixels
-  for (int wy = 0; wy < rows; ++wy)
-    for (int wx = 0; wx < cols; ++wx) {
-      const uint8_t w = who[std::size_t(wy) * cols + wx];
-      const Rgb8 fill = colors[w];
-      const Rgb8 edge = S >= 8 ? darker(fill) : fill;
-      const int top = (rows - 1 - wy) * S, left = wx * S;
-      if (w & 4) marked.push_back({left + S / 2, top + S / 2});
-      for (int i = 0; i < S; ++i)
-        for (int j = 0; j < S; ++j) {
-          const Rgb8 c = (i == 0 || j == 0) ? edge : fill;
-          uint8_t* px = &pic.rgb[(std::size_t(top + i) * pic.width + left + j) * 3];
-          px[0] = c.r, px[1] = c.g, px[2] = c.b;
-        }
-    }
-
-  // Rings around the marked pixels: clusters of nearby ones share one; too many clusters are
-  // joined over longer distances until a reader can take them in.
-  if (marked.empty()) return pic;
-  std::vector<Cluster> groups;
-  for (int join = std::max(kMarkerJoin, S + 1);; join *= 2) {
-    groups = clusters(marked, join);
-    if (groups.size() <= kMarkerMaxRings || join > pic.width + pic.height) break;
-  }
-  // beyond the cluster's blocks; in a large picture a larger ring, so that it reads at page size
-  const int least = std::max(kMarkerMinRadius, std::max(pic.width, pic.height) / 40);
-  const int margin = std::max(least, S / 2 + 6);
-  for (const Cluster& g : groups) {
-    const auto& b = g.box;
-    const int w = b[2] - b[0] + S, h = b[3] - b[1] + S;  // the blocks' extent
-    // as much black as a square of kMarkerLargeCluster is seen without a ring; a thin crack is not
-    if (g.points * S * S >= int64_t(kMarkerLargeCluster) * kMarkerLargeCluster) {
-      ++pic.large_clusters;
-      continue;
-    }
-    MarkerRing r;
-    r.cx = (b[0] + b[2]) / 2;
-    r.cy = (b[1] + b[3]) / 2;
-    r.radius = int(std::ceil(0.5 * std::hypot(double(w), double(h)))) + margin - S / 2;
-    r.radius = std::max(r.radius, least);
-    r.half_width = std::max(pic.width, pic.height) >= 600 ? 2 : 1;
-    pic.rings.push_back(r);
-  }
-  draw_rings(pic.rgb, pic.width, pic.height, S, pic.rings);
-  return pic;
-}
-
 PrimitiveImage show_primitive(const ShowRequest& q) {
   const std::string toml = rundir::run_folder::experiment(q.run_dir);
   if (!fs::is_regular_file(toml))
     throw util::UserError(q.run_dir + ": not a run directory (no experiment.toml)");
   const rundir::Experiment exp = rundir::load_run_experiment(q.run_dir);
-  const rundir::PlatformSpec platform_spec = rundir::experiment_platform(exp, q.platform);
+  // an unknown platform said first
+  rundir::experiment_platform(exp, q.platform);
+  if (!q.against.empty()) rundir::experiment_platform(exp, q.against);
   geometry::Kind kind;
   if (!geometry::parse_kind(q.kind, &kind))
     throw util::UserError("unknown kind '" + q.kind + "' (allowed: point, line, triangle)");
@@ -332,49 +278,42 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   const geometry::View& view = out.view;
   const geometry::Primitive prim = geometry::make_primitive(exp.seed, kind, q.index);
 
+  // The other platform first, in a child, before this process makes a context of its own.
+  PictureLayers layers;
+  layers.window_width = view.width, layers.window_height = view.height;
+  layers.has_other = !q.against.empty();
+  if (layers.has_other) layers.other = lit_elsewhere(q, exp, view, prim);
   // Render once, measure that rendering, and rasterize the reference for comparison.
-  const std::unique_ptr<platforms::Platform> platform =
-      platforms::create_platform(platform_spec, rundir::fault_plan_for(exp, platform_spec));
-  // The driver that made the run's records, or a clear stop (renderer_check.h).
-  platforms::require_run_driver(q.run_dir, q.platform, platform->driver_info());
-  const bool is_reference = q.platform == "reference";
-  // The grid the runner's workers measured (the same calibration: deterministic platforms agree).
-  const geometry::SubpixelGrid effective =
-      is_reference ? geometry::SubpixelGrid{} : runner::measure_effective_subpixel(*platform).grid;
-  RecordingPlatform recorder(*platform);
-  recorder.set_view(view);
-  runner::CaseComparison comparison(!is_reference, effective);
-  comparison.line_rule = runner::line_rule_for(platform_spec, platform->driver_info());
-  const bool rectangles = comparison.line_rule == runner::CaseComparison::LineRule::kRectangle;
-  out.record = runner::measure_case(q.platform, recorder, view, prim, comparison);
-  const geometry::PixelSet& lit = recorder.last.lit;
-  geometry::PixelSet reference = geometry::rasterize_reference(view, prim);
-  if (rectangles &&
-      kind == geometry::Kind::kLine) {  // Vulkan's strict lines: the rectangle's pixels
-    const geometry::ClippedSegment segment = geometry::clip_segment(view, prim.v[0], prim.v[1]);
-    reference.clear();
-    if (segment.status == geometry::ClipStatus::kVisible) {
-      const auto [a, b] = rectangle_ends(segment, metrics::near_clipped_vertices(view, prim));
-      reference = geometry::rasterize_rectangle_segment(a, b, view.width, view.height);
-    }
-  }
-  geometry::PixelSet violating;
-  if (!is_reference) metrics::judge_primitive(view, prim, lit, effective, &violating, rectangles);
-  out.violating = violating.size();
-  for (const geometry::Pixel& p : lit) (reference.contains(p) ? out.both : out.platform_only) += 1;
-  for (const geometry::Pixel& p : reference)
-    if (!lit.contains(p)) ++out.reference_only;
+  Drawing d = draw_on(q.run_dir, exp, q.platform, view, prim);
+  out.record = d.record;
+  out.violating = d.violating.size();
+  for (const geometry::Pixel& p : d.lit)
+    (d.reference.contains(p) ? out.both : out.platform_only) += 1;
+  for (const geometry::Pixel& p : d.reference)
+    if (!d.lit.contains(p)) ++out.reference_only;
 
-  // The window pixels shown.
+  // The window pixels shown: the same for both sides of a pair.
   const IdealShape ideal = ideal_shape(view, prim);
-  geometry::PixelRect shown =
-      unite(ideal.rect, unite(around(lit, kImageMargin, view.width, view.height),
-                              around(reference, kImageMargin, view.width, view.height)));
-  if (shown.empty() || (view.width <= kWholeWindowMax && view.height <= kWholeWindowMax))
-    shown = {0, 0, view.width, view.height};
+  const auto shown_with = [&](int margin) {
+    geometry::PixelRect r = unite(around(d.lit, margin, view.width, view.height),
+                                  around(d.reference, margin, view.width, view.height));
+    r = unite(unite(r, around(layers.other, margin, view.width, view.height)), ideal.rect);
+    if (r.empty() || (view.width <= kWholeWindowMax && view.height <= kWholeWindowMax))
+      r = {0, 0, view.width, view.height};
+    return r;
+  };
+  geometry::PixelRect shown = shown_with(kImageMargin);
+  const auto scale_of = [&](const geometry::PixelRect& r) {
+    return q.scale > 0 ? q.scale
+                       : std::max(1, kTargetImageSize / std::max(r.x1 - r.x0, r.y1 - r.y0));
+  };
+  // room for the rings around what is drawn, at the scale it is drawn at (the same scale)
+  const int reach = marker_ring_reach(
+      scale_of(shown) * std::max(shown.x1 - shown.x0, shown.y1 - shown.y0), scale_of(shown));
+  const int S = scale_of(shown);
+  shown = shown_with(std::max(kImageMargin, (reach + S - 1) / S));
   out.shown = shown;
   const int cols = shown.x1 - shown.x0, rows = shown.y1 - shown.y0;
-  const int S = q.scale > 0 ? q.scale : std::max(1, kTargetImageSize / std::max(cols, rows));
   if (int64_t(cols) * S > kMaxImageSide || int64_t(rows) * S > kMaxImageSide)
     throw util::UserError("the image would be " + std::to_string(int64_t(cols) * S) + " x " +
                           std::to_string(int64_t(rows) * S) + " px (at most " +
@@ -383,48 +322,14 @@ PrimitiveImage show_primitive(const ShowRequest& q) {
   out.width = cols * S;
   out.height = rows * S;
 
-  out.picture = draw_pixel_picture(lit, reference, violating, shown, S);
-  std::vector<uint8_t> rgb = std::move(out.picture.rgb);
-  out.picture.rgb.clear();
-
-  OIIO::ImageSpec spec(out.width, out.height, 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("Software", "renderaudit show");
-  spec.attribute("ImageDescription", q.platform + " " + geometry::kind_name(kind) + " " +
-                                         std::to_string(q.index) + ", view " +
-                                         std::to_string(q.view) + " of " + q.run_dir +
-                                         ": grey both, orange platform "
-                                         "only, blue reference only (both allowed by GL), black "
-                                         "a pixel GL forbids lit or missing, ringed in magenta, "
-                                         "red the ideal projection");
-  OIIO::ImageBuf buf(spec, rgb.data());
-
-  // The ideal projection, 1 px wide, on top. Window (x, y) -> image (column, row), clamped so
-  // that ends on the window's far edges land on the last pixel.
-  auto to_image = [&](geometry::Vec2 p) {
-    const int ix = int(std::floor((p.x - shown.x0) * S));
-    const int iy = int(std::floor((shown.y1 - p.y) * S));
-    return std::pair<int, int>{std::clamp(ix, 0, out.width - 1), std::clamp(iy, 0, out.height - 1)};
-  };
-  const float red[3] = {kIdealColor.r / 255.f, kIdealColor.g / 255.f, kIdealColor.b / 255.f};
-  auto line = [&](std::pair<int, int> a, std::pair<int, int> b) {
-    OIIO::ImageBufAlgo::render_line(buf, a.first, a.second, b.first, b.second, red);
-  };
-  const std::vector<geometry::Vec2>& pts = ideal.points;
-  if (pts.size() == 1) {
-    const auto c = to_image(pts[0]);
-    const int arm = std::max(3, S / 3);
-    line({std::max(0, c.first - arm), c.second},
-         {std::min(out.width - 1, c.first + arm), c.second});
-    line({c.first, std::max(0, c.second - arm)},
-         {c.first, std::min(out.height - 1, c.second + arm)});
-  } else if (pts.size() == 2) {
-    line(to_image(pts[0]), to_image(pts[1]));
-  } else {
-    for (std::size_t i = 0; i < pts.size(); ++i)
-      line(to_image(pts[i]), to_image(pts[(i + 1) % pts.size()]));
-  }
-
-  write_picture(buf, q, kind, out);
+  layers.lit = std::move(d.lit);
+  layers.reference = std::move(d.reference);
+  layers.violating = std::move(d.violating);
+  layers.ideal = ideal.points;
+  out.picture = compose_picture(layers, shown, S);
+  write_picture(out.picture, q, kind, d.judged, out);
+  out.picture.main.rgb.clear();
+  out.picture.inset.rgb.clear();
   return out;
 }
 
