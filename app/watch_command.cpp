@@ -47,6 +47,10 @@ void register_watch_command(CLI::App& app, int& exit_code) {
       cmd, opts->o.speed,
       "also judge drawing time: each audit times both builds (warn-only), and a night whose time "
       "moved is bisected for it (`first slower commit:` / `first faster commit:` lines)");
+  cmd->add_option("--keep-nights", opts->o.keep_nights,
+                  "keep the folders of the N newest nights, removing older ones once a night is "
+                  "recorded (default 0: keep every night; a night's folder is about 17 MB)")
+      ->check(CLI::Range(std::size_t(0), std::size_t(1000000)));
   cmd->add_option("--jobs,-j", opts->o.jobs, "processes at once, and ninja jobs");
   cmd->add_flag(
       "--no-pictures", [opts](int64_t) { opts->o.pictures = false; },

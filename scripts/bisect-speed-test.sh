@@ -11,7 +11,8 @@
 #     line with its confirmed ratio; bisect.json and bisect.md carry them;
 #   - refs that differ neither in pixels nor in time: nothing named (exit 2);
 #   - one commit that changes both pixels and time: named for both;
-#   - a watch night whose time moved: the audit finds it, the night names the slower commit.
+#   - a watch night whose time moved: the audit finds it, the night names the slower commit;
+#     --keep-nights 1 leaves tonight's folder only.
 # Usage: scripts/bisect-speed-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
@@ -121,7 +122,8 @@ git clone -q "$up" "$t/watched"
 night() {  # night N
   set +e
   "$ra" watch "$t/watched" --experiment "$t/nightly.toml" --state "$t/state" --build-command "$cmd" \
-    --jobs 2 --no-pictures --speed --speed-repeats 8 --speed-primitives 60 >"$t/night$1.out" 2>"$t/night$1.err"
+    --jobs 2 --no-pictures --speed --speed-repeats 8 --speed-primitives 60 --keep-nights 1 \
+    >"$t/night$1.out" 2>"$t/night$1.err"
   rc=$?
   set -e
 }
@@ -139,4 +141,7 @@ grep -qE "^first slower commit: $(c "$up" 2) c2: both-slow \(faulty: triangles, 
   { show night2; fail "night 2 does not name c2 as the first slower commit"; }
 grep -q "culprit: first slower commit: $(c "$up" 2)" <("$ra" history --db "$t/state/history.sqlite" 2>&1) ||
   fail "the history does not keep night 2's slower commit"
+# --keep-nights 1: night 1's folder removed once night 2 was recorded, tonight's kept.
+[ "$(ls "$t/state/nights")" = "$(basename "$(dirname "$(sed -n 's/^details: //p' "$t/night2.out")")")" ] ||
+  fail "--keep-nights 1 left $(ls "$t/state/nights" | tr '\n' ' ')"
 echo "bisect-speed-test: ok"

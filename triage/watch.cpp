@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -184,6 +185,28 @@ bool night_moves_baseline(const std::string& verdict,
   if (verdict == "changed") return not_bisected.empty();
   return verdict == "baseline established" || verdict == "moved backwards" ||
          verdict == "unchanged";
+}
+
+std::vector<std::string> nights_to_prune(std::vector<std::string> names, std::size_t keep,
+                                         const std::string& tonight) {
+  // A night's stamp: 2026-11-29T02-00-00Z (rundir::utc_now_iso8601 with ':' made '-').
+  const auto stamp = [](const std::string& n) {
+    if (n.size() != 20 || n[4] != '-' || n[7] != '-' || n[10] != 'T' || n[13] != '-' ||
+        n[16] != '-' || n[19] != 'Z')
+      return false;
+    for (std::size_t i : {0, 1, 2, 3, 5, 6, 8, 9, 11, 12, 14, 15, 17, 18})
+      if (!std::isdigit(static_cast<unsigned char>(n[i]))) return false;
+    return true;
+  };
+  std::vector<std::string> nights;
+  for (const std::string& n : names)
+    if (stamp(n)) nights.push_back(n);
+  std::sort(nights.begin(), nights.end());
+  std::vector<std::string> out;
+  if (keep == 0 || nights.size() <= keep) return out;
+  for (std::size_t i = 0; i + keep < nights.size(); ++i)
+    if (nights[i] != tonight) out.push_back(nights[i]);
+  return out;
 }
 
 std::vector<std::string> night_lines(const WatchNight& n) {
@@ -557,7 +580,23 @@ class Night {
           "history writable");
     }
     if (!baseline.empty()) save_last(baseline);
+    prune_nights();
     return n_;
+  }
+
+  // --keep-nights: the oldest nights' folders removed once tonight is recorded.
+  void prune_nights() const {
+    if (o_.keep_nights == 0) return;
+    std::error_code ec;
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(o_.state + "/nights", ec))
+      if (e.is_directory(ec)) names.push_back(e.path().filename().string());
+    const std::string tonight = n_.dir.empty() ? "" : fs::path(n_.dir).filename().string();
+    const std::vector<std::string> old = nights_to_prune(names, o_.keep_nights, tonight);
+    for (const std::string& n : old) fs::remove_all(o_.state + "/nights/" + n, ec);
+    if (!old.empty())
+      say("removed the folders of " + std::to_string(old.size()) + " old night(s) (--keep-nights " +
+          std::to_string(o_.keep_nights) + "; the history keeps their rows)");
   }
 
   void write_night_files() const {

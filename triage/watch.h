@@ -52,6 +52,9 @@ struct WatchOptions {
   // --speed: each audit judges drawing time too (warn-only: a slower group is a finding, not a
   // failed audit), and a night whose time moved is bisected for it (triage/bisect_speed.h)
   BisectSpeedOptions speed;
+  // --keep-nights N: after a night is recorded, the folders of all but the N newest nights are
+  // removed (0: every night kept; the history keeps its rows, their folders gone)
+  std::size_t keep_nights = 0;
 };
 
 // What the bisections of a changed night found, all platforms together.
@@ -100,6 +103,11 @@ bool night_moves_baseline(const std::string& verdict, const std::vector<std::str
 // words of their own ("unattributed: ...", "not bisected: ..."), so that a script reading "first
 // bad commit:" lines reads culprits only.
 std::vector<std::string> night_lines(const WatchNight& night);
+
+// The night folders (nights/<UTC>, names that sort in time) to remove so that the `keep` newest
+// stay; never `tonight`. Names that are not a night's stamp are left alone. Empty when keep is 0.
+std::vector<std::string> nights_to_prune(std::vector<std::string> names, std::size_t keep,
+                                         const std::string& tonight);
 
 WatchNight watch_night(const WatchOptions& options,
                        const std::function<void(const std::string&)>& progress = {});

@@ -77,5 +77,20 @@ TEST(NightMovesBaseline, AChangedNightWhoseBisectionCouldNotRunKeepsTheBaseline)
     EXPECT_FALSE(night_moves_baseline(v, {})) << v;
 }
 
+
+TEST(NightsToPrune, TheOldestBeyondKeepAndNeverTonightOrAnotherFolder) {
+  const std::vector<std::string> names = {"2026-11-03T02-00-00Z", "2026-11-01T02-00-00Z",
+                                          "notes", "2026-11-02T02-00-00Z",
+                                          "2026-11-04T02-00-00Z", "2026-11-0XT02-00-00Z"};
+  EXPECT_EQ(nights_to_prune(names, 2, "2026-11-04T02-00-00Z"),
+            (std::vector<std::string>{"2026-11-01T02-00-00Z", "2026-11-02T02-00-00Z"}));
+  EXPECT_EQ(nights_to_prune(names, 1, "2026-11-04T02-00-00Z").size(), 3u);
+  EXPECT_TRUE(nights_to_prune(names, 0, "").empty());  // 0: keep every night
+  EXPECT_TRUE(nights_to_prune(names, 4, "").empty());
+  // Tonight is never removed, even when a clock set back makes it sort first.
+  EXPECT_EQ(nights_to_prune(names, 1, "2026-11-01T02-00-00Z"),
+            (std::vector<std::string>{"2026-11-02T02-00-00Z", "2026-11-03T02-00-00Z"}));
+}
+
 }  // namespace
 }  // namespace ra::triage
