@@ -85,7 +85,7 @@ void plot_regulation_study(const std::string& dir) {
       const std::string p = r.value("policy", "");
       if (!series_index.count(p)) {
         series_index[p] = bc.series.size();
-        bc.series.push_back({p, std::vector<double>(bc.categories.size(), 0.0), {}});
+        bc.series.push_back({p, std::vector<double>(bc.categories.size(), 0.0), {}, std::nullopt});
       }
       const std::string b = util::json_number_text(r["budget_ms"], "%g") + " ms";
       const auto at = std::find(bc.categories.begin(), bc.categories.end(), b) - bc.categories.begin();
