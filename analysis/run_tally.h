@@ -1,7 +1,8 @@
 // What plot and report show of a run beside the figure data: the number of records and files, per
 // platform, kind and view group the GL verdicts, the agreement with the reference rasterizer and
 // the camera label, the records whose status is not `ok`, and per platform and kind the render time
-// (microseconds of CPU time, draw + glFinish). `analyze` computes it (from load_run_records and the
+// (render_us, microseconds on the clock the records' `clock` names: the host's draw + wait, or the
+// device's timer). `analyze` computes it (from load_run_records and the
 // conformance pass, so no later stage tallies the records again) and writes
 // DIR/analysis/tally.json; plot and report read it back.
 //

@@ -9,7 +9,7 @@
 //
 // Batching: the changed indices of one platform, kind and view are cut into index ranges, one child
 // each; neighbours closer than `max_gap` (500) share a range: starting a child costs 0.3 to 1.5 s
-// (the program links VTK; the driver compiles its shaders), about what a few hundred primitives
+// (the program loads its libraries; the driver compiles its shaders), about what a few hundred primitives
 // cost to draw, so the unchanged ones in between are rendered too and ignored. A range never spans
 // a primitive known to crash or hang (a crash/timeout record or a missing shard), so the check
 // cannot trip over a known failure. Up to `jobs` children run at once.

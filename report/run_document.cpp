@@ -346,8 +346,9 @@ void add_failures(Document& d, const rundir::RunManifest& m, const analysis::Run
 void add_timing(Document& d, const analysis::RunTally& tally) {
   d.blocks.push_back(heading("3. Time per primitive", 1, "timing"));
   d.blocks.push_back(paragraph(
-      "render_us is the CPU time of a primitive's draw call and glFinish, measured by the "
-      "runner (microseconds). A large primitive is drawn and timed alone; small ones are drawn "
+      "render_us is the time of a primitive's drawing in microseconds, measured by the runner "
+      "on the clock the records' clock column names: on the host, the CPU time of the draw call "
+      "and glFinish; on a GPU with a timer, the device's own. A large primitive is drawn and timed alone; small ones are drawn "
       "in batches of up to 64 under one glFinish and each gets an equal share of the batch's "
       "time (records column batch_size). Medians and IQRs (Hyndman-Fan 6) over the "
       "records with status ok; the analysis table 'Render time beside error' breaks them down by "
