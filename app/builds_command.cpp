@@ -1,14 +1,14 @@
 // `renderaudit builds fetch SUITE`, `builds build SOURCE`, `builds list` and `builds remove
-// NAME...`: driver builds in the build cache (runner/build_fetch.h, runner/source_build.h), drawn
-// with as PLATFORM@BUILD; their sizes and removal in runner/build_cache.h.
+// NAME...`: driver builds in the build cache (builds/build_fetch.h, builds/source_build.h), drawn
+// with as PLATFORM@BUILD; their sizes and removal in builds/build_cache.h.
 #include <algorithm>
 #include <cstdio>
 
 #include "app/commands.h"
-#include "rundir/driver_build.h"
-#include "runner/build_cache.h"
-#include "runner/build_fetch.h"
-#include "runner/source_build.h"
+#include "rundir/build_record.h"
+#include "builds/build_cache.h"
+#include "builds/build_fetch.h"
+#include "builds/source_build.h"
 #include "util/errors.h"
 
 namespace ra::app {
@@ -16,8 +16,8 @@ namespace {
 
 // A build's first line starts with its name and its size on disk, the name padded to `width` and
 // the size to 7 characters, so that the sizes of a list form a column.
-void print_build(const runner::BuildSummary& b, bool files, std::size_t width = 0) {
-  std::string size = runner::size_text(runner::disk_usage(b.dir));
+void print_build(const rundir::BuildRecord& b, bool files, std::size_t width = 0) {
+  std::string size = builds::size_text(builds::disk_usage(b.dir));
   size.insert(0, size.size() < 7 ? 7 - size.size() : 0, ' ');  // "999 MiB": right-aligned
   const std::string head =
       b.name + std::string(width > b.name.size() ? width - b.name.size() : 0, ' ') + "  " + size;
@@ -49,21 +49,21 @@ void print_build(const runner::BuildSummary& b, bool files, std::size_t width = 
 
 // What the cache holds in all, the builds and what else takes room there.
 void print_cache_total(const std::string& cache, std::size_t n_builds) {
-  const runner::CacheUsage u = runner::cache_usage(cache);
+  const builds::CacheUsage u = builds::cache_usage(cache);
   std::string parts = std::to_string(n_builds) + (n_builds == 1 ? " build " : " builds ") +
-                      runner::size_text(u.builds);
+                      builds::size_text(u.builds);
   if (u.incremental)
     parts += ", meson build folders kept for incremental builds (.incremental) " +
-             runner::size_text(u.incremental);
+             builds::size_text(u.incremental);
   if (u.unfinished)
-    parts += ", unfinished fetches, builds or removals " + runner::size_text(u.unfinished);
-  std::printf("total %s in %s: %s\n", runner::size_text(u.total).c_str(), cache.c_str(),
+    parts += ", unfinished fetches, builds or removals " + builds::size_text(u.unfinished);
+  std::printf("total %s in %s: %s\n", builds::size_text(u.total).c_str(), cache.c_str(),
               parts.c_str());
 }
 
 }  // namespace
 
-void add_commit_build_options(CLI::App* cmd, runner::SourceBuildOptions& build, bool& fresh_builds) {
+void add_commit_build_options(CLI::App* cmd, builds::SourceBuildOptions& build, bool& fresh_builds) {
   cmd->add_option("--cache", build.cache, "build cache folder");
   cmd->add_option("--llvm-config", build.llvm_config, "the LLVM every build uses")
       ->capture_default_str();
@@ -105,8 +105,8 @@ void register_builds_command(CLI::App& app, int& exit_code) {
       "source tree into the build cache, list the cache with its size, remove builds");
   cmd->require_subcommand(1);
   struct Options {
-    runner::FetchOptions fetch;
-    runner::SourceBuildOptions build;
+    builds::FetchOptions fetch;
+    builds::SourceBuildOptions build;
     std::string list_cache;
     std::string remove_cache;
     std::vector<std::string> remove_names;
@@ -123,7 +123,7 @@ void register_builds_command(CLI::App& app, int& exit_code) {
                 "build cache folder (default $RENDERAUDIT_BUILD_CACHE, else "
                 "~/.cache/renderaudit/builds)");
   f->callback([opts, &exit_code] {
-    const runner::BuildSummary b = runner::fetch_build(opts->fetch);
+    const rundir::BuildRecord b = builds::fetch_build(opts->fetch);
     print_build(b, true);
     exit_code = kExitOk;
   });
@@ -154,7 +154,7 @@ void register_builds_command(CLI::App& app, int& exit_code) {
   b->callback([opts, &exit_code] {
     for (std::string& v : opts->build.meson_options)
       if (v.rfind("-D", 0) != 0) v = "-D" + v;
-    const runner::SourceBuildResult r = runner::build_from_source(
+    const builds::SourceBuildResult r = builds::build_from_source(
         opts->build,
         [](const std::string& line) { std::fprintf(stderr, "builds build: %s\n", line.c_str()); });
     print_build(r.build, false);
@@ -172,12 +172,12 @@ void register_builds_command(CLI::App& app, int& exit_code) {
   l->callback([opts, &exit_code] {
     const std::string cache =
         opts->list_cache.empty() ? rundir::build_cache_dir() : opts->list_cache;
-    const std::vector<runner::BuildSummary> builds = runner::list_builds(cache);
+    const std::vector<rundir::BuildRecord> builds = rundir::list_cached_builds(cache);
     if (builds.empty())
       std::printf("no builds in %s (renderaudit builds fetch SUITE)\n", cache.c_str());
     std::size_t width = 0;
-    for (const runner::BuildSummary& b : builds) width = std::max(width, b.name.size());
-    for (const runner::BuildSummary& b : builds) print_build(b, false, width);
+    for (const rundir::BuildRecord& b : builds) width = std::max(width, b.name.size());
+    for (const rundir::BuildRecord& b : builds) print_build(b, false, width);
     print_cache_total(cache, builds.size());
     if (!builds.empty()) std::printf("renderaudit builds remove NAME... deletes builds\n");
     exit_code = kExitOk;
@@ -193,15 +193,15 @@ void register_builds_command(CLI::App& app, int& exit_code) {
   r->callback([opts, &exit_code] {
     const std::string cache =
         opts->remove_cache.empty() ? rundir::build_cache_dir() : opts->remove_cache;
-    for (const runner::RemovedBuild& b : runner::remove_builds(cache, opts->remove_names)) {
-      std::printf("removed %s (%s)\n", b.name.c_str(), runner::size_text(b.bytes).c_str());
+    for (const builds::RemovedBuild& b : builds::remove_builds(cache, opts->remove_names)) {
+      std::printf("removed %s (%s)\n", b.name.c_str(), builds::size_text(b.bytes).c_str());
       if (!b.left.empty())
         std::fprintf(stderr,
                      "builds remove: %s is no longer a build, but its files in %s could not all "
                      "be deleted; the next `builds remove` deletes them\n",
                      b.name.c_str(), b.left.c_str());
     }
-    print_cache_total(cache, runner::list_builds(cache).size());
+    print_cache_total(cache, rundir::list_cached_builds(cache).size());
     exit_code = kExitOk;
   });
 }

@@ -15,7 +15,7 @@
 
 #include "analysis/conformance_expectations.h"
 #include "rundir/study_dir.h"
-#include "runner/source_build.h"
+#include "builds/source_build.h"
 #include "triage/bisect_speed.h"
 #include "util/nearest_name.h"
 
@@ -90,7 +90,7 @@ int conformance_gate_exit(const ConformanceGate& gate, const std::string& run_di
 
 // The options of building many commits of a Mesa tree (`bisect`, `watch`): --cache,
 // --llvm-config, -D, --build-command and --fresh-builds (set in `fresh_builds`).
-void add_commit_build_options(CLI::App* cmd, runner::SourceBuildOptions& build, bool& fresh_builds);
+void add_commit_build_options(CLI::App* cmd, builds::SourceBuildOptions& build, bool& fresh_builds);
 // --speed, --speed-repeats, --speed-primitives, --speed-threshold of `bisect` and `watch`
 // (`what` says what --speed does there); check_speed_options refuses the last three without
 // --speed.

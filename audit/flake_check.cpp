@@ -22,7 +22,7 @@
 #include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "util/worker_program.h"
-#include "rundir/driver_build.h"
+#include "rundir/platform_spec.h"
 #include "rundir/shard_records.h"
 #include "util/errors.h"
 

@@ -13,7 +13,7 @@
 #include "geometry/primitive.h"
 #include "geometry/reference_rasterizer.h"
 #include "metrics/records.h"
-#include "rundir/driver_build.h"
+#include "rundir/build_record.h"
 #include "rundir/experiment.h"
 #include "rundir/records_reader.h"
 #include "rundir/run_experiment.h"

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "rundir/driver_build.h"
+#include "platforms/driver_loading.h"
 #include "platforms/gl_context_backends.h"
 #include "util/errors.h"
 
@@ -42,7 +42,7 @@ std::unique_ptr<GlContext> create_gl_context(const rundir::PlatformSpec& spec) {
   if (!spec.draws_with_gl())
     throw std::logic_error("create_gl_context: " + spec.name + " does not draw with GL");
   set_mesa_environment(spec);
-  rundir::load_driver_build(spec);  // the build's libraries by path, before anything asks by soname
+  load_driver_build(spec);  // the build's libraries by path, before anything asks by soname
   std::unique_ptr<GlContext> context = spec.backend == rundir::Backend::kOsmesa
                                            ? create_osmesa_context(spec)
                                            : create_egl_context(spec);

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "rundir/driver_build.h"
+#include "rundir/build_record.h"
 #include "platforms/gl_context_backends.h"
 #include "util/errors.h"
 

@@ -5,11 +5,12 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "platforms/driver_loading.h"
+#include "platforms/platform.h"
 #include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
-#include "rundir/driver_build.h"
-#include "platforms/platform.h"
+#include "util/json_file.h"
 
 namespace fs = std::filesystem;
 
@@ -38,8 +39,8 @@ void require_recorded_libraries(const std::string& path, const std::string& plat
   if (build == driver_file.end() || !build->is_object()) return;
   const auto libraries = build->find("libraries");
   if (libraries == build->end() || !libraries->is_array() || libraries->empty()) return;
-  std::map<std::string, rundir::LoadedLibrary> now;  // by file name
-  for (rundir::LoadedLibrary& l : rundir::loaded_driver_libraries())
+  std::map<std::string, LoadedLibrary> now;  // by file name
+  for (LoadedLibrary& l : loaded_driver_libraries())
     now.emplace(fs::path(l.path).filename().string(), std::move(l));
   for (const nlohmann::json& recorded : *libraries) {
     if (!recorded.is_object() || !recorded.contains("path") || !recorded["path"].is_string() ||
@@ -71,7 +72,7 @@ void require_run_driver(const std::string& run_dir, const std::string& platform,
   if (!fs::exists(path, ec)) return;
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(util::read_file(path));
+    j = util::parse_json_document(util::read_file(path), path);
   } catch (const std::exception& e) {
     throw util::UserError(path + ": not a readable driver file (" + e.what() + ")");
   }
@@ -104,8 +105,8 @@ std::string RendererCheck::mismatch() {
     checked_.insert(name);
     std::string renderer;
     try {
-      renderer =
-          nlohmann::json::parse(util::read_file(entry.path().string())).value("renderer", "");
+      const std::string path = entry.path().string();
+      renderer = util::parse_json_document(util::read_file(path), path).value("renderer", "");
     } catch (const std::exception&) {
       checked_.erase(name);  // being written: look again next time
       continue;

@@ -9,7 +9,7 @@
 #include <set>
 #include <string>
 
-#include "rundir/driver_build.h"
+#include "rundir/platform_spec.h"
 
 namespace ra::platforms {
 

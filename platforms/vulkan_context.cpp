@@ -10,7 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "rundir/driver_build.h"
+#include "platforms/driver_loading.h"
+#include "rundir/build_record.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -111,8 +112,8 @@ VkInstance process_instance(const rundir::PlatformSpec* spec) {
   }
   if (spec && !spec->build.empty()) use_driver_build(*spec);
   // The build's lavapipe and the libraries it needs by path, before the loader asks for them
-  // (rundir/driver_build.h); for the installed driver, remember that this process uses it.
-  if (spec) rundir::load_driver_build(*spec);
+  // (platforms/driver_loading.h); for the installed driver, remember that this process uses it.
+  if (spec) load_driver_build(*spec);
   // one-primitive frames: llvmpipe's thread hand-off costs more than the drawing (lavapipe too)
   setenv("LP_NUM_THREADS", "0", 0);
   // The loader: RENDERAUDIT_LIBVULKAN when set (another loader, or none, for the tests), else

@@ -9,7 +9,7 @@
 #include <toml++/toml.h>
 
 #include "geometry/projection_range.h"
-#include "rundir/driver_build.h"
+#include "rundir/build_record.h"
 #include "rundir/platform_spec.h"
 #include "util/errors.h"
 #include "util/fnv1a.h"

@@ -18,7 +18,7 @@
 namespace ra::rundir {
 
 // `[builds.NAME]`: a driver build the experiment's `PLATFORM@NAME` platforms draw with
-// (rundir/driver_build.h). Its folder: `dir` (absolute, or under ~/), else the newest build
+// (rundir/build_record.h). Its folder: `dir` (absolute, or under ~/), else the newest build
 // that `renderaudit builds fetch SUITE` put in the cache for `suite`, else NAME in the cache.
 struct DriverBuildDecl {
   std::string name;

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <charconv>
 
-#include "rundir/driver_build.h"
+#include "rundir/build_record.h"
 
 namespace ra::rundir {
 

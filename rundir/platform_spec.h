@@ -9,6 +9,11 @@
 
 namespace ra::rundir {
 
+// The first words of every refusal to draw with another driver than the one that made a run's
+// records (platforms/renderer_check.h); the processes that start drawers (the coordinator, the
+// audit's re-renders) recognise a child's refusal by them.
+inline constexpr const char* kDriverMismatch = "driver mismatch";
+
 // How a platform draws.
 enum class Backend {
   kOsmesa,          // Mesa's OSMesa (libOSMesa.so.8); the driver picked by GALLIUM_DRIVER
@@ -33,7 +38,7 @@ struct PlatformSpec {
   // kEglDevice: the index among EGL devices (`egl-device:N`); -1 for `egl-device`, the first
   // device that is not Mesa's software one.
   int device = -1;
-  // `PLATFORM@BUILD`: the driver build it draws with (rundir/driver_build.h) and the folder
+  // `PLATFORM@BUILD`: the driver build it draws with (rundir/build_record.h) and the folder
   // that build's files were unpacked into; both empty for the installed driver.
   std::string build = "";
   std::string build_dir = "";

@@ -3,6 +3,7 @@
 
 #include "rundir/run_folder.h"
 #include "util/atomic_file.h"
+#include "util/json_file.h"
 
 namespace ra::runner {
 
@@ -54,7 +55,8 @@ void write_run_progress(const std::string& run_dir, const RunProgress& p) {
 
 RunProgress read_run_progress(const std::string& run_dir) {
   try {
-    return run_progress_from_json(nlohmann::json::parse(util::read_file(progress_path(run_dir))));
+    const std::string path = progress_path(run_dir);
+    return run_progress_from_json(util::parse_json_document(util::read_file(path), path));
   } catch (const std::exception&) {
     return {};
   }

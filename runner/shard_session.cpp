@@ -18,7 +18,7 @@
 #include "runner/effective_subpixel.h"
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
-#include "rundir/driver_build.h"
+#include "platforms/driver_loading.h"
 #include "platforms/platform.h"
 #include "platforms/renderer_check.h"
 
@@ -54,7 +54,7 @@ static void write_driver_info(const std::string& run_dir, const rundir::Platform
   // loaded, by path and content fingerprint: what a re-render must load to draw the same.
   if (spec.draws_with_driver()) {
     nlohmann::json libs = nlohmann::json::array();
-    for (const rundir::LoadedLibrary& l : rundir::loaded_driver_libraries())
+    for (const platforms::LoadedLibrary& l : platforms::loaded_driver_libraries())
       libs.push_back({{"path", l.path}, {"fnv1a64", l.fnv1a64}});
     j["build"] = {{"name", spec.build.empty() ? nlohmann::json() : nlohmann::json(spec.build)},
                   {"folder", spec.build.empty() ? nlohmann::json() : nlohmann::json(spec.build_dir)},

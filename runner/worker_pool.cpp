@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "rundir/driver_build.h"
+#include "rundir/platform_spec.h"
 #include "rundir/run_folder.h"
 #include "runner/shard_server.h"
 #include "util/child_process.h"

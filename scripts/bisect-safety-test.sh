@@ -4,7 +4,7 @@
 #   - a second bisection, or `builds build --ref`, on a tree a bisection is using is refused,
 #     naming the holder, and the first bisection's answer is right;
 #   - a build whose tree moved under it is not kept (a tree without git keyed on its content:
-#     runner/source_build_test.cpp);
+#     builds/source_build_test.cpp);
 #   - SIGTERM stops the build command's whole process group and restores the branch (exit 143);
 #     after kill -9, the same command restores the branch and resumes;
 #   - bad inputs (an untracked file in the tree too, an --out inside the tree) are refused before

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "runner/build_cache.h"
+#include "builds/build_cache.h"
 #include "tests/cli_harness.h"
 
 namespace {
@@ -30,8 +30,8 @@ TEST(BuildsCommand, ListGivesSizesAndATotalAndRemoveLeavesTheOther) {
   const std::string cache = fresh_dir("builds_command_two") + "/cache";
   fake_build(cache, "mesa-big", 2'000'000);
   fake_build(cache, "mesa-small", 300'000);
-  const std::string big = ra::runner::size_text(ra::runner::disk_usage(cache + "/mesa-big"));
-  const std::string small = ra::runner::size_text(ra::runner::disk_usage(cache + "/mesa-small"));
+  const std::string big = ra::builds::size_text(ra::builds::disk_usage(cache + "/mesa-big"));
+  const std::string small = ra::builds::size_text(ra::builds::disk_usage(cache + "/mesa-small"));
 
   const Outcome list = run_renderaudit("builds list --cache " + cache);
   ASSERT_EQ(list.exit_code, 0) << list.output;
@@ -41,7 +41,7 @@ TEST(BuildsCommand, ListGivesSizesAndATotalAndRemoveLeavesTheOther) {
       << list.output;
   EXPECT_NE(list.output.find("mesa-small  " + column(small) + "  (Debian 1"), std::string::npos)
       << list.output;
-  const std::string total_before = ra::runner::size_text(ra::runner::cache_usage(cache).total);
+  const std::string total_before = ra::builds::size_text(ra::builds::cache_usage(cache).total);
   EXPECT_NE(list.output.find("total " + total_before + " in " + cache + ": 2 builds "),
             std::string::npos)
       << list.output;
@@ -56,7 +56,7 @@ TEST(BuildsCommand, ListGivesSizesAndATotalAndRemoveLeavesTheOther) {
   const Outcome after = run_renderaudit("builds list --cache " + cache);
   ASSERT_EQ(after.exit_code, 0) << after.output;
   EXPECT_EQ(after.output.find("mesa-big"), std::string::npos) << after.output;
-  const std::string total_after = ra::runner::size_text(ra::runner::cache_usage(cache).total);
+  const std::string total_after = ra::builds::size_text(ra::builds::cache_usage(cache).total);
   EXPECT_NE(after.output.find("total " + total_after + " in " + cache + ": 1 build " + small),
             std::string::npos)
       << after.output;

@@ -13,7 +13,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "rundir/driver_build.h"
+#include "platforms/driver_loading.h"
+#include "rundir/build_record.h"
 #include "tests/cli_harness.h"
 
 namespace fs = std::filesystem;
@@ -228,7 +229,7 @@ TEST(DriverBuild, TwoBuildsInOneRunAuditTheSameInAnyEnvironment) {
 TEST(DriverBuild, ElfDependenciesMatchReadelf) {
   const std::string lib = "/usr/lib/x86_64-linux-gnu/libOSMesa.so.8";
   if (!fs::exists(lib)) GTEST_SKIP() << "libosmesa6 is not installed";
-  const ra::rundir::ElfDependencies d = ra::rundir::read_elf_dependencies(fs::canonical(lib));
+  const ra::platforms::ElfDependencies d = ra::platforms::read_elf_dependencies(fs::canonical(lib));
   EXPECT_EQ(d.soname, "libOSMesa.so.8");
   const std::string readelf = shell_output("readelf -d " + fs::canonical(lib).string());
   if (readelf.empty()) GTEST_SKIP() << "readelf (binutils) is not installed";
@@ -237,7 +238,7 @@ TEST(DriverBuild, ElfDependenciesMatchReadelf) {
   EXPECT_EQ(int(d.needed.size()), needed);
   for (const std::string& n : d.needed)
     EXPECT_NE(readelf.find("[" + n + "]"), std::string::npos) << n;
-  EXPECT_TRUE(ra::rundir::read_elf_dependencies("/etc/hostname").soname.empty());
+  EXPECT_TRUE(ra::platforms::read_elf_dependencies("/etc/hostname").soname.empty());
 }
 
 // `builds fetch` from a registry that cannot be reached: a clear error, and the cache as it was.

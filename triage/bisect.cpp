@@ -11,7 +11,7 @@
 #include "rundir/platform_spec.h"
 #include "rundir/run_experiment.h"
 #include "rundir/run_folder.h"
-#include "runner/git_command.h"
+#include "builds/git_command.h"
 #include "triage/bisect_judging.h"
 #include "triage/bisect_plan.h"
 #include "triage/bisect_report.h"
@@ -30,8 +30,8 @@ using Clock = std::chrono::steady_clock;
 namespace ra::triage {
 namespace {
 
-using runner::git;
-using runner::GitResult;
+using builds::git;
+using builds::GitResult;
 
 std::string git_ok(const std::string& dir, const std::vector<std::string>& args,
                    const std::string& what) {
@@ -67,7 +67,7 @@ class Bisection {
   BisectResult run() {
     const auto t_start = Clock::now();
     check_inputs();
-    const auto lock = runner::lock_source_tree(o_.source, "bisect");
+    const auto lock = builds::lock_source_tree(o_.source, "bisect");
     load_state();
     util::InterruptScope interrupts;
     // The tree back on its branch however this ends (a step leaves it at a commit).
@@ -583,7 +583,7 @@ std::string bisect_command_line(const BisectOptions& o) {
     line += " --max-primitives " + std::to_string(o.max_primitives);
   if (!o.out_dir.empty()) line += " --out " + shell_quote(o.out_dir);
   if (!o.build.cache.empty()) line += " --cache " + shell_quote(o.build.cache);
-  if (o.build.llvm_config != runner::SourceBuildOptions{}.llvm_config)
+  if (o.build.llvm_config != builds::SourceBuildOptions{}.llvm_config)
     line += " --llvm-config " + shell_quote(o.build.llvm_config);
   for (const std::string& m : o.build.meson_options) line += " " + shell_quote(m);
   if (!o.build.build_command.empty()) line += " --build-command " + shell_quote(o.build.build_command);

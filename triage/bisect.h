@@ -3,7 +3,7 @@
 // A run holds two platforms whose records differ (e.g. `egl-llvmpipe` and `egl-llvmpipe@new`);
 // every primitive whose pixels differ is selected (or a sample that covers each kind, view group
 // and conformance transition, when there are more than --max-primitives; or those named). The
-// good and the bad ref of a Mesa git tree are built (runner/source_build.h, one incremental build
+// good and the bad ref of a Mesa git tree are built (builds/source_build.h, one incremental build
 // folder shared by every step) and draw the selection: their pixel hashes are the two ends, and
 // primitives both draw alike are dropped. The commits between them are a line (`git rev-list
 // --first-parent`, optionally restricted to paths); triage/bisect_plan.h chooses the next commit
@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "geometry/primitive.h"
-#include "runner/source_build.h"
+#include "builds/source_build.h"
 #include "triage/bisect_speed.h"
 
 namespace ra::triage {
@@ -96,7 +96,7 @@ struct BisectOptions {
   std::string good_ref, bad_ref;
   std::vector<std::string> paths;           // restrict the commits (rev-list -- PATHS)
   std::string out_dir;                      // "": RUN/bisect
-  runner::SourceBuildOptions build;         // cache, LLVM, meson options, build command
+  builds::SourceBuildOptions build;         // cache, LLVM, meson options, build command
   unsigned jobs = 0;                        // drawing children at once
   bool pictures = true;                     // `show` pictures in the report
   BisectSpeedOptions speed;                 // --speed: attribute drawing-time changes too

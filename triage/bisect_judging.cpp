@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <set>
 
-#include "runner/git_command.h"
+#include "builds/git_command.h"
 #include "triage/bisect_step.h"
 
 namespace ra::triage {
@@ -51,7 +51,7 @@ std::string drawing_summary(const std::vector<BisectPrimitive>& judged, const Dr
 void collect_culprits(const AttributionPlan& plan, const std::vector<std::string>& line,
                       const std::vector<BisectPrimitive>& judged, const std::string& source,
                       BisectResult& r, const std::function<void(const std::string&)>& say) {
-  using runner::git;
+  using builds::git;
   std::map<std::size_t, const Drawing*> drawn = {{0, &r.good.drawing},
                                                  {line.size() - 1, &r.bad.drawing}};
   for (const BisectStep& s : r.steps)

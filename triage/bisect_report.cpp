@@ -13,7 +13,6 @@
 #include "rundir/run_folder.h"
 #include "triage/primitive_image.h"
 #include "audit/reproducer.h"
-#include "rundir/driver_build.h"
 #include "rundir/platform_spec.h"
 #include "stats/table_writer.h"
 #include "util/atomic_file.h"

@@ -5,7 +5,7 @@
 
 #include "audit/flake_check.h"
 #include "rundir/run_experiment.h"
-#include "runner/git_command.h"
+#include "builds/git_command.h"
 #include "util/duration_text.h"
 #include "util/errors.h"
 #include "util/interrupt.h"
@@ -14,8 +14,8 @@ using Clock = std::chrono::steady_clock;
 
 namespace ra::triage {
 
-using runner::git;
-using runner::GitResult;
+using builds::git;
+using builds::GitResult;
 
 std::string short_hash(const std::string& c) { return c.substr(0, 12); }
 
@@ -66,19 +66,19 @@ Drawing draw_selection(const BisectOptions& o, const std::vector<BisectPrimitive
 void build_and_draw_step(const BisectOptions& o, const std::vector<BisectPrimitive>& primitives,
                          BisectStep& s, const std::function<void(const std::string&)>& say) {
   describe_commit(o.source, s);
-  runner::SourceBuildOptions b = o.build;
+  builds::SourceBuildOptions b = o.build;
   b.source = o.source;
   b.ref = s.commit;
   b.probe = false;  // the drawing is the probe
   b.source_locked = true;
   b.restore_ref = false;  // restored once, at the end
   const auto t0 = Clock::now();
-  std::shared_ptr<runner::BuildInUse> in_use;  // the build kept from `builds remove` while drawn
+  std::shared_ptr<builds::BuildInUse> in_use;  // the build kept from `builds remove` while drawn
   say("  building " + short_hash(s.commit) + (s.version.empty() ? "" : " (" + s.version + ")") +
       " ...");
   try {
     // Of the build's own lines, only the compile's progress: a distant commit compiles for minutes.
-    const runner::SourceBuildResult r = runner::build_from_source(b, [&](const std::string& line) {
+    const builds::SourceBuildResult r = builds::build_from_source(b, [&](const std::string& line) {
       if (line.rfind("compile (ninja)", 0) == 0) say("    " + line);
     });
     in_use = r.in_use;

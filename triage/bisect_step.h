@@ -1,5 +1,5 @@
 // One step of a bisection: a commit of the Mesa tree described (subject, date, VERSION), built
-// (runner/source_build.h, the tree already locked and left at the commit) and made to draw the
+// (builds/source_build.h, the tree already locked and left at the commit) and made to draw the
 // primitives under judgement on the platform, through the audit's re-rendering of a run with the
 // step's build added to the run's experiment (bisect_step_experiment).
 #pragma once

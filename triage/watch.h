@@ -4,7 +4,7 @@
 // A night: check the state and the experiment (before anything is built: bad input is refused,
 // exit 2, and is no night); bring the tree's branch head (`git fetch` where the tree has a remote,
 // then its upstream; else its HEAD); when it is last night's commit, say so and stop ("nothing
-// new"). Otherwise build it (runner/source_build.h, one incremental build folder), then run the
+// new"). Otherwise build it (builds/source_build.h, one incremental build folder), then run the
 // experiment with last night's build and tonight's side by side in one run (platforms P@watch-last
 // and P@watch-tonight for each of the file's platforms P: both drawn tonight, on the same machine,
 // so a difference is the driver's), audit the two (`audit --between`), and when primitives
@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-#include "runner/source_build.h"
+#include "builds/source_build.h"
 #include "triage/bisect_speed.h"
 
 namespace ra::triage {
@@ -44,7 +44,7 @@ struct WatchOptions {
   std::string experiment;  // the experiment file (its platforms must be able to draw a build)
   std::string state;       // the state folder
   std::string db;          // "": STATE/history.sqlite
-  runner::SourceBuildOptions build;  // cache, LLVM, meson options, build command
+  builds::SourceBuildOptions build;  // cache, LLVM, meson options, build command
   unsigned jobs = 0;
   std::size_t max_primitives = 2000;  // per bisection
   bool pictures = true;

@@ -1,7 +1,7 @@
 // Building Mesa from source, without compiling Mesa: the meson command lines chosen from real
 // options files of two Mesa eras, the provenance and reuse keys, and the failure paths (a failing
 // configure, a failing build command, a tree that is not Mesa) leaving the cache as it was.
-#include "runner/source_build.h"
+#include "builds/source_build.h"
 
 #include <gtest/gtest.h>
 
@@ -11,14 +11,14 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "rundir/driver_build.h"
+#include "rundir/build_record.h"
 #include "platforms/vulkan_context.h"
-#include "runner/meson_plan.h"
+#include "builds/meson_plan.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
 namespace fs = std::filesystem;
-namespace ra::runner {
+namespace ra::builds {
 namespace {
 
 // Excerpts of meson_options.txt as Mesa 23.0-devel (2022-11) and 25.1-devel (2025-01) spell them.
@@ -321,7 +321,7 @@ TEST_F(SourceBuildDirs, AFileGitDoesNotTrackMakesABuildNotItsCommits) {
   EXPECT_NE(tainted.find("-dirty"), std::string::npos) << tainted;
   EXPECT_FALSE(build_from_source(o).reused);
   fs::remove(tree / "meson.options");
-  const BuildSummary clean = build_from_source(o).build;
+  const rundir::BuildRecord clean = build_from_source(o).build;
   EXPECT_EQ(clean.name.find("-dirty"), std::string::npos) << clean.name;
   EXPECT_TRUE(build_from_source(o).reused);
   // A build that does not record a clean tree (made before the record) is built again.
@@ -508,4 +508,4 @@ TEST_F(SourceBuildDirs, AMesonPrefixIsABuildFolderAndItsLavapipeIsFound) {
 }
 
 }  // namespace
-}  // namespace ra::runner
+}  // namespace ra::builds

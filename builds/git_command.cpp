@@ -1,8 +1,8 @@
-#include "runner/git_command.h"
+#include "builds/git_command.h"
 
 #include "util/child_process.h"
 
-namespace ra::runner {
+namespace ra::builds {
 
 GitResult git(const std::string& dir, std::vector<std::string> args) {
   args.insert(args.begin(), {"git", "-C", dir, "-c", "advice.detachedHead=false"});
@@ -16,4 +16,4 @@ GitResult git(const std::string& dir, std::vector<std::string> args) {
   return g;
 }
 
-}  // namespace ra::runner
+}  // namespace ra::builds

@@ -1,5 +1,5 @@
 // Choosing meson options from a Mesa tree's own options file (see the header).
-#include "runner/meson_plan.h"
+#include "builds/meson_plan.h"
 
 #include <unistd.h>
 
@@ -9,7 +9,7 @@
 
 #include "util/errors.h"
 
-namespace ra::runner {
+namespace ra::builds {
 namespace {
 
 // The quoted strings of `s` in order ('x' or "x").
@@ -238,4 +238,4 @@ MesonPlan plan_meson_build(const MesonPlanInputs& in) {
   return p;
 }
 
-}  // namespace ra::runner
+}  // namespace ra::builds

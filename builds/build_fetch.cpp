@@ -1,5 +1,5 @@
 // Fetching a Debian suite's Mesa into the build cache (see the header).
-#include "runner/build_fetch.h"
+#include "builds/build_fetch.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "rundir/driver_build.h"
+#include "rundir/build_record.h"
 #include "platforms/platform_probe.h"
 #include "rundir/manifest.h"
 #include "util/atomic_file.h"
@@ -21,7 +21,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra::runner {
+namespace ra::builds {
 namespace {
 
 // Runs a program to its end; UserError with its last lines when it fails.
@@ -53,27 +53,6 @@ std::string upstream_version(std::string v) {
 }
 
 }  // namespace
-
-BuildSummary read_build(const std::string& dir) {
-  const nlohmann::json j = nlohmann::json::parse(util::read_file(dir + "/build.json"));
-  BuildSummary s;
-  s.dir = dir;
-  s.name = j.value("name", "");
-  s.suite = j.value("suite", "");
-  s.debian_version = j.value("debian_version", "");
-  s.fetched_utc = j.value("fetched_utc", "");
-  if (j.contains("gl")) {
-    s.osmesa_version = j["gl"].value("osmesa", nlohmann::json::object()).value("version", "");
-    s.egl_version = j["gl"].value("egl", nlohmann::json::object()).value("version", "");
-  }
-  for (const auto& f : j.value("files", nlohmann::json::array())) s.files.push_back(f);
-  s.origin = j.value("origin", "Debian");
-  if (j.contains("source_build")) {
-    s.commit = j["source_build"].value("commit", "");
-    s.version = j["source_build"].value("version", "");
-  }
-  return s;
-}
 
 namespace {
 
@@ -171,7 +150,7 @@ std::map<std::string, std::string> download_and_unpack(const FetchOptions& o, co
 
 }  // namespace
 
-nlohmann::json probe_build(BuildSummary& s, const std::string& dir) {
+nlohmann::json probe_build(rundir::BuildRecord& s, const std::string& dir) {
   nlohmann::json gl = nlohmann::json::object();
   for (const auto& [key, platform] : {std::pair{"osmesa", "osmesa-llvmpipe"},
                                       std::pair{"egl", "egl-llvmpipe"}}) {
@@ -223,7 +202,7 @@ bool is_mirror_url(const std::string& url) {
   return url.compare(0, 6, "file:/") == 0 && url.size() > 6;
 }
 
-BuildSummary fetch_build(const FetchOptions& options) {
+rundir::BuildRecord fetch_build(const FetchOptions& options) {
   if (!is_mirror_url(options.mirror))
     throw util::UserError("builds fetch: --mirror '" + options.mirror +
                           "' is not one Debian archive address (allowed: http://HOST/PATH, "
@@ -240,7 +219,7 @@ BuildSummary fetch_build(const FetchOptions& options) {
   const std::string root = work + "/build";
   try {
     const std::map<std::string, std::string> versions = download_and_unpack(options, work, root);
-    BuildSummary s;
+    rundir::BuildRecord s;
     s.debian_version = versions.at("libosmesa6");
     s.name = "mesa-" + upstream_version(s.debian_version);
     s.suite = options.suite;
@@ -258,8 +237,8 @@ BuildSummary fetch_build(const FetchOptions& options) {
                         {"debian_version", s.debian_version},
                         {"fetched_utc", s.fetched_utc}, {"packages", packages},
                         {"gl", gl},                {"files", s.files}};
-    j.update(rundir::document_header("driver-build", 1, false));
-    util::write_file_atomic(root + "/build.json", j.dump(2) + "\n");
+    j.update(rundir::document_header(rundir::kBuildDocument, rundir::kBuildDocumentVersion, false));
+    util::write_file_atomic(rundir::build_record_path(root), j.dump(2) + "\n");
     // Into place: a build of the same name is moved aside first, then removed.
     s.dir = cache + "/" + s.name;
     const std::string old = work + "/replaced";
@@ -283,34 +262,4 @@ void require_cache_folder(const std::string& cache) {
   if (ec) throw util::UserError(util::io_error_message("cannot create the build cache", cache));
 }
 
-std::vector<BuildSummary> list_builds(const std::string& cache_dir) {
-  std::vector<BuildSummary> out;
-  std::error_code ec;
-  const std::string cache = cache_dir.empty() ? rundir::build_cache_dir() : cache_dir;
-  if (fs::exists(cache, ec) && !fs::is_directory(cache, ec))
-    throw util::UserError("the build cache " + cache +
-                          " is not a folder (RENDERAUDIT_BUILD_CACHE, --cache): name a folder");
-  for (const auto& e : fs::directory_iterator(cache, ec)) {
-    if (e.path().filename().string()[0] == '.' || !fs::exists(e.path() / "build.json")) continue;
-    try {
-      BuildSummary b = read_build(e.path().string());
-      if (b.name != e.path().filename().string()) b.recorded_name = b.name;
-      b.name = e.path().filename().string();
-      out.push_back(b);
-    } catch (const std::exception& x) {
-      BuildSummary s;
-      s.name = e.path().filename().string();
-      s.dir = e.path().string();
-      std::string why = x.what();  // nlohmann's "[json.exception.parse_error.101] " prefix off
-      if (why.rfind("[json.exception.", 0) == 0 && why.find("] ") != std::string::npos)
-        why.erase(0, why.find("] ") + 2);
-      s.damaged = (e.path() / "build.json").string() + ": " + why;
-      out.push_back(s);
-    }
-  }
-  std::sort(out.begin(), out.end(),
-            [](const BuildSummary& a, const BuildSummary& b) { return a.name < b.name; });
-  return out;
-}
-
-}  // namespace ra::runner
+}  // namespace ra::builds

@@ -1,5 +1,5 @@
 // Building a Mesa source tree into the build cache (see the header).
-#include "runner/source_build.h"
+#include "builds/source_build.h"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,11 +16,11 @@
 #include <sstream>
 #include <thread>
 
-#include "rundir/driver_build.h"
+#include "rundir/build_record.h"
 #include "platforms/platform_probe.h"
 #include "rundir/platform_spec.h"
 #include "rundir/manifest.h"
-#include "runner/meson_plan.h"
+#include "builds/meson_plan.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
 #include "util/duration_text.h"
@@ -30,7 +30,7 @@
 
 namespace fs = std::filesystem;
 
-namespace ra::runner {
+namespace ra::builds {
 namespace {
 
 // The tools meson's Mesa build runs (python3 with mako among them) are Debian's, in /usr/bin:
@@ -254,7 +254,7 @@ std::string incremental_folder(const std::string& cache, const std::string& sour
 
 // build.json of a source build: where it came from and how it was built.
 nlohmann::json provenance(const SourceBuildOptions& options, const SourceIdentity& id,
-                          const BuildSummary& s, const nlohmann::json& gl,
+                          const rundir::BuildRecord& s, const nlohmann::json& gl,
                           const std::vector<std::string>& chosen, const std::string& key,
                           unsigned jobs, const SourceBuildResult& result) {
   const bool meson = options.build_command.empty();
@@ -291,7 +291,7 @@ nlohmann::json provenance(const SourceBuildOptions& options, const SourceIdentit
         {"key", key}}},
       {"gl", gl},
       {"files", s.files}};
-  j.update(rundir::document_header("driver-build", 1, false));
+  j.update(rundir::document_header(rundir::kBuildDocument, rundir::kBuildDocumentVersion, false));
   return j;
 }
 
@@ -300,13 +300,10 @@ nlohmann::json provenance(const SourceBuildOptions& options, const SourceIdentit
 // tree moved during its build) is never taken for this one; and a git build must record that its
 // tree was clean (no untracked or changed file), else it may not be the commit's.
 bool same_build(const std::string& dir, const std::string& key, const std::string& commit) {
-  std::error_code ec;
-  if (!fs::exists(dir + "/build.json", ec)) return false;
+  if (!rundir::is_build_folder(dir)) return false;
   try {
-    const nlohmann::json j = nlohmann::json::parse(util::read_file(dir + "/build.json"));
-    const nlohmann::json sb = j.value("source_build", nlohmann::json::object());
-    const bool proven = !sb.value("git", false) || sb.value("clean", false) == true;
-    return sb.value("key", "") == key && sb.value("commit", "") == commit && proven;
+    const rundir::BuildRecord b = rundir::read_build_record(dir);
+    return b.key == key && b.commit == commit && (!b.from_git || b.clean);
   } catch (const std::exception&) {
     return false;
   }
@@ -386,16 +383,13 @@ SourceIdentity identify_source(const std::string& source_dir) {
 SourceBuildResult use_source_build(const std::string& dir, const std::string& commit,
                                    SourceBuildOptions options,
                                    const std::function<void(const std::string&)>& progress) {
-  std::error_code ec;
-  const std::string json = dir + "/build.json";
   try {
-    if (fs::exists(json, ec)) {
-      const nlohmann::json j = nlohmann::json::parse(util::read_file(json));
-      const nlohmann::json sb = j.value("source_build", nlohmann::json::object());
-      if (sb.value("commit", "") == commit && sb.value("clean", false) == true) {
+    if (rundir::is_build_folder(dir)) {
+      rundir::BuildRecord b = rundir::read_build_record(dir);
+      if (b.commit == commit && b.clean) {
         SourceBuildResult r;
         r.in_use = std::make_shared<BuildInUse>(dir);
-        r.build = read_build(dir);
+        r.build = std::move(b);
         r.reused = true;
         return r;
       }
@@ -556,7 +550,7 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
     try {
       result.in_use = std::make_shared<BuildInUse>(target);
       result.reused = true;
-      result.build = read_build(target);
+      result.build = rundir::read_build_record(target);
       say("reused " + name + " (same source and options)");
       return result;
     } catch (const util::UserError&) {
@@ -618,7 +612,7 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
       if (fs::exists(work + part, ec)) log += util::read_file(work + part);
     util::write_file_atomic(prefix + "/build.log", log);
 
-    BuildSummary s;
+    rundir::BuildRecord s;
     s.name = name;
     s.origin = "source";
     s.commit = id.commit;
@@ -635,7 +629,7 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
     }
     s.files = build_libraries(prefix);
     const nlohmann::json j = provenance(options, id, s, gl, chosen, key, jobs, result);
-    util::write_file_atomic(prefix + "/build.json", j.dump(2) + "\n");
+    util::write_file_atomic(rundir::build_record_path(prefix), j.dump(2) + "\n");
     s.dir = target;
     // Held before it is in the cache (the lock moves with the folder): no removal between.
     result.in_use = std::make_shared<BuildInUse>(prefix);
@@ -657,4 +651,4 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
   }
 }
 
-}  // namespace ra::runner
+}  // namespace ra::builds

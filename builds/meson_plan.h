@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace ra::runner {
+namespace ra::builds {
 
 // One option of a meson options file: its type ("boolean", "feature", "combo", "array",
 // "string", "integer") and, for combo and array, its choices.
@@ -56,4 +56,4 @@ std::string meson_string(const std::string& text);
 // one counts) without control characters (a newline cannot be in a native file's string).
 void check_llvm_config(const std::string& path);
 
-}  // namespace ra::runner
+}  // namespace ra::builds

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace ra::runner {
+namespace ra::builds {
 
 struct GitResult {
   bool ok = false;  // git exited 0
@@ -15,4 +15,4 @@ struct GitResult {
 // git -C DIR ARGS... (detached-HEAD advice off).
 GitResult git(const std::string& dir, std::vector<std::string> args);
 
-}  // namespace ra::runner
+}  // namespace ra::builds

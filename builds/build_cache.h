@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-namespace ra::runner {
+namespace ra::builds {
 
 // A build held for drawing: `builds remove` refuses it while this object lives (any number of
 // users share it).
@@ -82,4 +82,4 @@ std::vector<RemovedBuild> remove_builds(const std::string& cache,
 // 119 MiB), 3 significant digits at most.
 std::string size_text(std::uintmax_t bytes);
 
-}  // namespace ra::runner
+}  // namespace ra::builds

@@ -1,5 +1,5 @@
 // Loading a driver build by absolute path, and listing what a process loaded (see the header).
-#include "rundir/driver_build.h"
+#include "platforms/driver_loading.h"
 
 #include <dlfcn.h>
 #include <elf.h>
@@ -15,21 +15,19 @@
 #include <map>
 #include <set>
 
-#include <nlohmann/json.hpp>
-
-#include "util/atomic_file.h"
+#include "rundir/build_record.h"
 #include "util/errors.h"
 #include "util/fnv1a.h"
 
 namespace fs = std::filesystem;
 
-namespace ra::rundir {
+namespace ra::platforms {
 namespace {
 
 // The library a back end asks for by soname; the build must hold it.
-std::string root_soname(const PlatformSpec& spec) {
-  if (spec.backend == Backend::kVulkan) return "libvulkan_lvp.so";  // lavapipe
-  return spec.backend == Backend::kOsmesa ? "libOSMesa.so.8" : "libEGL_mesa.so.0";
+std::string root_soname(const rundir::PlatformSpec& spec) {
+  if (spec.backend == rundir::Backend::kVulkan) return "libvulkan_lvp.so";  // lavapipe
+  return spec.backend == rundir::Backend::kOsmesa ? "libOSMesa.so.8" : "libEGL_mesa.so.0";
 }
 
 bool read_at(int fd, uint64_t offset, void* out, size_t n) {
@@ -84,45 +82,6 @@ std::string fingerprint_file(const std::string& path) {
 
 }  // namespace
 
-std::string build_cache_dir() {
-  if (const char* c = std::getenv("RENDERAUDIT_BUILD_CACHE"); c && *c) return c;
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
-    return std::string(x) + "/renderaudit/builds";
-  const char* home = std::getenv("HOME");
-  return std::string(home && *home ? home : "/tmp") + "/.cache/renderaudit/builds";
-}
-
-std::string cached_build_of_suite(const std::string& suite) {
-  std::string best;
-  fs::file_time_type best_time{};
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(build_cache_dir(), ec)) {
-    const std::string info = e.path().string() + "/build.json";
-    if (e.path().filename().string().rfind(".", 0) == 0 || !fs::exists(info, ec)) continue;
-    try {
-      const nlohmann::json j = nlohmann::json::parse(util::read_file(info));
-      if (j.value("suite", "") != suite) continue;
-    } catch (const std::exception&) {
-      continue;
-    }
-    const auto t = fs::last_write_time(info, ec);
-    if (best.empty() || t > best_time) best = e.path().string(), best_time = t;
-  }
-  return best;
-}
-
-std::string build_library_dir(const std::string& dir) {
-  // Debian packages unpacked (usr/lib/<multiarch>), a meson install prefix (lib/<multiarch>), others.
-  const std::vector<std::string> candidates = {dir + "/usr/lib/x86_64-linux-gnu", dir + "/usr/lib",
-                                               dir + "/lib/x86_64-linux-gnu", dir + "/lib", dir};
-  std::error_code ec;
-  for (const std::string& c : candidates)
-    if (fs::exists(c + "/libOSMesa.so.8", ec) || fs::exists(c + "/libEGL_mesa.so.0", ec) ||
-        fs::exists(c + "/libvulkan_lvp.so", ec))
-      return c;
-  return candidates.front();
-}
-
 ElfDependencies read_elf_dependencies(const std::string& path) {
   ElfDependencies out;
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -176,9 +135,9 @@ std::vector<LoadedLibrary> loaded_driver_libraries() {
   return out;
 }
 
-void load_driver_build(const PlatformSpec& spec) {
+void load_driver_build(const rundir::PlatformSpec& spec) {
   ProcessDriver& current = process_driver();
-  const std::string wanted = spec.build.empty() ? "" : build_library_dir(spec.build_dir);
+  const std::string wanted = spec.build.empty() ? "" : rundir::build_library_dir(spec.build_dir);
   if (current.chosen) {
     if (current.lib_dir == wanted) return;
     const auto what = [](const std::string& d) {
@@ -236,4 +195,4 @@ void load_driver_build(const PlatformSpec& spec) {
   current = {true, wanted, spec.name};
 }
 
-}  // namespace ra::rundir
+}  // namespace ra::platforms

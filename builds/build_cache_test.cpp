@@ -1,6 +1,6 @@
 // The build cache's sizes and removal (build_cache.h), on a temporary cache of fake builds: a
 // build.json and a file of known size each, nothing that draws.
-#include "runner/build_cache.h"
+#include "builds/build_cache.h"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -12,11 +12,11 @@
 #include <functional>
 #include <string>
 
-#include "runner/build_fetch.h"
-#include "runner/source_build.h"
+#include "builds/build_fetch.h"
+#include "builds/source_build.h"
 #include "util/errors.h"
 
-namespace ra::runner {
+namespace ra::builds {
 namespace {
 
 namespace fs = std::filesystem;
@@ -80,7 +80,7 @@ TEST(BuildCache, RemovingOneBuildLeavesTheOtherAndTheTotalFalls) {
   ASSERT_EQ(removed.size(), 1u);
   EXPECT_EQ(removed[0].name, "mesa-a");
   EXPECT_EQ(removed[0].bytes, a);
-  const std::vector<BuildSummary> left = list_builds(cache.dir.string());
+  const std::vector<rundir::BuildRecord> left = rundir::list_cached_builds(cache.dir.string());
   ASSERT_EQ(left.size(), 1u);
   EXPECT_EQ(left[0].name, "mesa-b");
   EXPECT_TRUE(fs::exists(cache.dir / "mesa-b" / "lib" / "libOSMesa.so.8"));
@@ -103,7 +103,7 @@ TEST(BuildCache, AnUnknownNameRemovesNothingAndNamesTheBuildsThere) {
   });
   EXPECT_NE(e.find("no build 'mesa-25.0.7' in " + cache.dir.string()), std::string::npos) << e;
   EXPECT_NE(e.find("it holds mesa-a, mesa-b"), std::string::npos) << e;
-  EXPECT_EQ(list_builds(cache.dir.string()).size(), 2u);
+  EXPECT_EQ(rundir::list_cached_builds(cache.dir.string()).size(), 2u);
 
   const FakeCache empty("empty");
   EXPECT_NE(
@@ -142,7 +142,7 @@ TEST(BuildCache, WhatAnInterruptedRemovalLeftIsNoBuildAndGoesNextTime) {
   cache.add("mesa-a", 1000);
   cache.add("mesa-b", 1000);
   fs::rename(cache.dir / "mesa-a", cache.dir / ".removing-mesa-a-1");
-  ASSERT_EQ(list_builds(cache.dir.string()).size(), 1u);
+  ASSERT_EQ(rundir::list_cached_builds(cache.dir.string()).size(), 1u);
   EXPECT_GT(cache_usage(cache.dir.string()).unfinished, 0u);
   remove_builds(cache.dir.string(), {"mesa-b"});
   EXPECT_TRUE(fs::is_empty(cache.dir));
@@ -162,7 +162,7 @@ TEST(BuildCache, ABuildDrawnWithIsRefusedUntilItsUserEnds) {
               std::string::npos)
         << e;
     EXPECT_NE(e.find("nothing was removed"), std::string::npos) << e;
-    EXPECT_EQ(list_builds(cache.dir.string()).size(), 2u);
+    EXPECT_EQ(rundir::list_cached_builds(cache.dir.string()).size(), 2u);
   }
   EXPECT_EQ(remove_builds(cache.dir.string(), {"mesa-b", "mesa-a"}).size(), 2u);
   EXPECT_TRUE(fs::is_empty(cache.dir));
@@ -197,7 +197,7 @@ TEST(BuildCache, ABuildRenamedByHandIsItsFolderAndAPartialRequestRemovesNothing)
   cache.add("mesa-aaa", 1000);
   cache.add("mesa-bbb", 1000);
   fs::rename(cache.dir / "mesa-aaa", cache.dir / "mesa-ccc");
-  const std::vector<BuildSummary> listed = list_builds(cache.dir.string());
+  const std::vector<rundir::BuildRecord> listed = rundir::list_cached_builds(cache.dir.string());
   ASSERT_EQ(listed.size(), 2u);
   EXPECT_EQ(listed[0].name, "mesa-bbb");
   EXPECT_EQ(listed[1].name, "mesa-ccc");
@@ -216,4 +216,4 @@ TEST(BuildCache, ABuildRenamedByHandIsItsFolderAndAPartialRequestRemovesNothing)
 }
 
 }  // namespace
-}  // namespace ra::runner
+}  // namespace ra::builds

@@ -1,6 +1,6 @@
 // `renderaudit builds build SOURCE`: a Mesa source tree (a git checkout, at a ref or as it is, or
 // an unpacked source package with its patches applied) built with meson for the software drivers
-// only (runner/meson_plan.h) into an install prefix, probed through OSMesa and EGL as
+// only (builds/meson_plan.h) into an install prefix, probed through OSMesa and EGL as
 // `builds fetch` probes, and kept in the build cache with its provenance in build.json (source,
 // commit or version, meson options, LLVM, compiler and meson versions, build time). Everything
 // happens in a temporary folder inside the cache, moved into place by one rename: a failure
@@ -28,11 +28,11 @@
 #include <string>
 #include <vector>
 
-#include "runner/build_cache.h"
-#include "runner/build_fetch.h"
+#include "builds/build_cache.h"
+#include "builds/build_fetch.h"
 #include "util/dir_lock.h"
 
-namespace ra::runner {
+namespace ra::builds {
 
 struct SourceBuildOptions {
   std::string source;   // the Mesa source tree
@@ -83,7 +83,7 @@ struct SourceIdentity {
 SourceIdentity identify_source(const std::string& source_dir);
 
 struct SourceBuildResult {
-  BuildSummary build;
+  rundir::BuildRecord build;
   bool reused = false;
   double seconds = 0;     // configure + compile + install (0 when reused)
   std::string log;        // the build log (kept in the build folder as build.log)
@@ -116,4 +116,4 @@ std::string source_build_key(const SourceIdentity& id, const SourceBuildOptions&
 // ("Dependency \"libdrm\" not found" -> "libdrm-dev"), or "" when it names nothing known.
 std::string missing_package_hint(const std::string& meson_log);
 
-}  // namespace ra::runner
+}  // namespace ra::builds

@@ -1,5 +1,5 @@
 // `builds fetch --mirror` takes one archive address: nothing else can reach apt's sources list.
-#include "runner/build_fetch.h"
+#include "builds/build_fetch.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 
 #include "util/errors.h"
 
-namespace ra::runner {
+namespace ra::builds {
 namespace {
 
 TEST(BuildFetch, MirrorIsOneArchiveAddress) {
@@ -40,15 +40,15 @@ TEST(BuildFetch, AMirrorWithASecondSourceLineIsRefusedBeforeAnythingIsWritten) {
 }
 
 }  // namespace
-}  // namespace ra::runner
+}  // namespace ra::builds
 
-namespace ra::runner {
+namespace ra::builds {
 namespace {
 
 TEST(BuildFetch, ACacheThatIsAFileIsNamed) {
   const std::string file = ::testing::TempDir() + "renderaudit-cache-file-" + std::to_string(::getpid());
   { std::FILE* f = std::fopen(file.c_str(), "w"); ASSERT_NE(f, nullptr); std::fclose(f); }
-  for (auto call : {+[](const std::string& c) { list_builds(c); },
+  for (auto call : {+[](const std::string& c) { rundir::list_cached_builds(c); },
                     +[](const std::string& c) {
                       FetchOptions o;
                       o.suite = "bookworm-backports";
@@ -79,7 +79,7 @@ TEST(BuildFetch, ABuildWithABadBuildJsonIsListedAsDamaged) {
   write("good", R"({"name": "good", "suite": "bookworm", "files": []})");
   write("cut", R"({"name": "cut", "sui)");
   write("typed", R"({"name": 7})");
-  const std::vector<BuildSummary> builds = list_builds(cache.string());
+  const std::vector<rundir::BuildRecord> builds = rundir::list_cached_builds(cache.string());
   ASSERT_EQ(builds.size(), 3u);
   EXPECT_EQ(builds[0].name, "cut");
   EXPECT_EQ(builds[0].damaged.rfind((cache / "cut" / "build.json").string() + ": ", 0), 0u)
@@ -95,4 +95,4 @@ TEST(BuildFetch, ABuildWithABadBuildJsonIsListedAsDamaged) {
 }
 
 }  // namespace
-}  // namespace ra::runner
+}  // namespace ra::builds

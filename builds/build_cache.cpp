@@ -1,5 +1,5 @@
 // The build cache's sizes and the removal of builds (see the header).
-#include "runner/build_cache.h"
+#include "builds/build_cache.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -16,16 +16,16 @@
 #include <set>
 #include <utility>
 
-#include "rundir/driver_build.h"
-#include "runner/build_fetch.h"
-#include "runner/git_command.h"
+#include "rundir/build_record.h"
+#include "builds/build_fetch.h"
+#include "builds/git_command.h"
 #include "util/atomic_file.h"
 #include "util/dir_lock.h"
 #include "util/errors.h"
 
 namespace fs = std::filesystem;
 
-namespace ra::runner {
+namespace ra::builds {
 namespace {
 
 constexpr const char* kRemovingPrefix = ".removing-";
@@ -85,7 +85,7 @@ BuildInUse::BuildInUse(const std::string& dir) {
                            " is gone (removed with `renderaudit builds remove`, or the cache was "
                            "cleared); build it again";
   std::error_code ec;
-  if (!fs::is_regular_file(dir + "/build.json", ec)) throw util::UserError(gone);
+  if (!fs::is_regular_file(rundir::build_record_path(dir), ec)) throw util::UserError(gone);
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0 && (errno == EACCES || errno == EROFS || errno == EPERM)) {
     fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -100,7 +100,7 @@ BuildInUse::BuildInUse(const std::string& dir) {
                           "build it again when that is done");
   }
   // A removal may have renamed the folder away between the open and the lock.
-  if (!same_file(fd_, path) || !fs::is_regular_file(dir + "/build.json", ec)) {
+  if (!same_file(fd_, path) || !fs::is_regular_file(rundir::build_record_path(dir), ec)) {
     ::close(fd_);
     fd_ = -1;
     throw util::UserError(gone);
@@ -142,7 +142,7 @@ CacheUsage cache_usage(const std::string& cache_dir) {
     else if (starts_with(name, ".fetch-") || starts_with(name, ".source-") ||
              starts_with(name, kRemovingPrefix))
       u.unfinished += bytes;
-    else if (name[0] != '.' && fs::exists(e.path() / "build.json", ec))
+    else if (rundir::is_build_folder(e.path().string()))
       u.builds += bytes;
   }
   struct stat st {};
@@ -162,9 +162,9 @@ bool build_drawn_with_now(const std::string& dir) {
 std::string build_in_use_by(const std::string& dir) {
   std::string source;
   try {
-    const nlohmann::json j = nlohmann::json::parse(util::read_file(dir + "/build.json"));
-    if (j.value("origin", "") != "source" || !j.contains("source_build")) return "";
-    source = j["source_build"].value("source", "");
+    const rundir::BuildRecord b = rundir::read_build_record(dir);
+    if (b.origin != "source") return "";
+    source = b.source;
   } catch (const std::exception&) {
     return "";  // a damaged build.json names no tree: nothing can be holding it
   }
@@ -203,9 +203,9 @@ std::vector<RemovedBuild> remove_builds(const std::string& cache_dir,
   }
 
   // A build is its folder: PLATFORM@FOLDER draws it, whatever its build.json calls it.
-  const std::vector<BuildSummary> builds = list_builds(cache);
+  const std::vector<rundir::BuildRecord> builds = rundir::list_cached_builds(cache);
   std::vector<std::string> held;
-  for (const BuildSummary& b : builds) held.push_back(fs::path(b.dir).filename().string());
+  for (const rundir::BuildRecord& b : builds) held.push_back(fs::path(b.dir).filename().string());
   std::vector<std::string> wanted, unknown;
   for (const std::string& name : names)
     if (std::find(wanted.begin(), wanted.end(), name) == wanted.end()) wanted.push_back(name);
@@ -288,4 +288,4 @@ std::string size_text(std::uintmax_t bytes) {
   return buf;
 }
 
-}  // namespace ra::runner
+}  // namespace ra::builds

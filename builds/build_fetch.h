@@ -1,5 +1,5 @@
 // `renderaudit builds fetch SUITE`: a Debian suite's Mesa as a driver build in the build cache
-// (rundir/driver_build.h), with apt's own tools and nothing installed: a private apt
+// (rundir/build_record.h), with apt's own tools and nothing installed: a private apt
 // configuration (its own sources list, lists and archive folders), `apt-get update`,
 // `apt-get download` of the Mesa packages, `dpkg-deb -x` of each into one folder, a probe of the
 // folder's OSMesa and EGL, then one rename into the cache. Everything happens in a temporary
@@ -11,32 +11,14 @@
 #include <string>
 #include <vector>
 
-namespace ra::runner {
+#include "rundir/build_record.h"
+
+namespace ra::builds {
 
 struct FetchOptions {
   std::string suite;                               // e.g. "bookworm-backports"
   std::string mirror = "http://deb.debian.org/debian";
   std::string cache;                               // empty: build_cache_dir()
-};
-
-// What a build folder holds (build.json in it).
-struct BuildSummary {
-  std::string name;    // "mesa-25.0.7": the upstream version of its libosmesa6
-  std::string dir;     // its folder in the cache
-  std::string suite;   // where it came from
-  std::string debian_version;  // "25.0.7-2~bpo12+1"
-  std::string osmesa_version, egl_version;  // GL_VERSION through each back end ("" if it cannot)
-  std::string fetched_utc;                  // when (built, for a source build)
-  std::vector<std::string> files;           // the shared libraries, relative to dir
-  // list_builds: "" for a build whose build.json reads, else "FOLDER/build.json: why it does not"
-  // (the other fields are then empty but name and dir, name being the folder's).
-  std::string damaged;
-  std::string origin;   // "Debian" (builds fetch) or "source" (builds build)
-  std::string commit;   // a source build's git commit ("" when not from git)
-  std::string version;  // a source build's VERSION ("25.1.0-devel")
-  // list_builds: the name build.json records when the folder was renamed since (the folder's name
-  // is the build's: PLATFORM@FOLDER draws it, `builds remove FOLDER` removes it); else "".
-  std::string recorded_name;
 };
 
 // The Mesa packages a build is made of: those every suite must have, and those only some releases
@@ -47,7 +29,7 @@ const std::vector<std::string>& optional_build_packages();
 // Probes osmesa-llvmpipe and egl-llvmpipe with the build folder `dir` (named s.name), each in a
 // child; sets s.osmesa_version and s.egl_version ("" when one cannot draw) and returns the GL
 // strings or errors as build.json keeps them ({"osmesa": {...}, "egl": {...}}).
-nlohmann::json probe_build(BuildSummary& s, const std::string& dir);
+nlohmann::json probe_build(rundir::BuildRecord& s, const std::string& dir);
 
 // The shared libraries of a build folder, relative to it, sorted.
 std::vector<std::string> build_libraries(const std::string& dir);
@@ -60,16 +42,9 @@ bool is_mirror_url(const std::string& url);
 // Fetches, unpacks, probes and moves the build into the cache (replacing a build of the same
 // name). Throws UserError for an unreachable suite, a missing package, a missing tool (apt-get,
 // dpkg-deb) or a build that cannot draw; the cache is then unchanged.
-BuildSummary fetch_build(const FetchOptions& options);
-
-// What the build folder `dir` holds (its build.json); throws when it has none.
-BuildSummary read_build(const std::string& dir);
+rundir::BuildRecord fetch_build(const FetchOptions& options);
 
 // Makes the cache folder; UserError naming it when it is a file or cannot be made.
 void require_cache_folder(const std::string& cache);
 
-// The builds in the cache (folders with a build.json), by name, those whose build.json cannot be
-// read among them with `damaged` set; UserError when the cache path is a file.
-std::vector<BuildSummary> list_builds(const std::string& cache = "");
-
-}  // namespace ra::runner
+}  // namespace ra::builds
