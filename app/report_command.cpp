@@ -12,6 +12,7 @@
 #include "report/markdown_document.h"
 #include "report/report.h"
 #include "report/upgrade_headline.h"
+#include "triage/upgrade_report.h"
 #include "util/errors.h"
 
 namespace ra::app {
@@ -49,14 +50,17 @@ void register_report_command(CLI::App& app, int& exit_code) {
       "For a study folder (study.json: timing, LOD, regulation): its text, tables and figures.\n"
       "--markdown FILE.md instead: that file as FILE.pdf and FILE.html beside it, its pictures\n"
       "(![caption](path)) in the text (the driver upgrade's report).\n"
+      "--upgrade BUILD --platforms P... instead: print the driver upgrade report (Markdown) of\n"
+      "each P against P@BUILD in DIR, from the audits in DIR/audit-P (--audit-suffix S:\n"
+      "DIR/audit-PS), and write DIR/upgrade-summary-BUILD.json and the pictures it shows.\n"
       "--upgrade-headline SUMMARY.json instead: print the driver upgrade report's first sentence\n"
-      "(Markdown), and the culprits of a bisection of its run, from the summary\n"
-      "scripts/upgrade_report.py writes.");
+      "(Markdown), and the culprits of a bisection of its run, from that summary.");
   struct Options {
     report::ReportOptions options;
     bool no_run = false;
     std::string markdown;
     std::string upgrade_summary;
+    triage::UpgradeReportOptions upgrade;
     ConformanceGate gate;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks
@@ -67,6 +71,16 @@ void register_report_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--upgrade-headline", opts->upgrade_summary,
                   "print the driver upgrade's first sentence from its summary (upgrade-summary.json)")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--upgrade", opts->upgrade.build,
+                  "the driver upgrade report of DIR against BUILD (needs --platforms)")
+      ->option_text("BUILD");
+  cmd->add_option("--platforms", opts->upgrade.platforms,
+                  "with --upgrade: the platforms P audited against P@BUILD")
+      ->expected(1, -1)
+      ->option_text("P ...");
+  cmd->add_option("--audit-suffix", opts->upgrade.audit_suffix,
+                  "with --upgrade: the audits are in DIR/audit-P<SUFFIX> (default: DIR/audit-P)")
+      ->option_text("SUFFIX");
   cmd->add_flag("--no-run", opts->no_run, "do not run missing stages; say which command to run");
   cmd->add_flag("--allow-incomplete", opts->options.allow_incomplete,
                 "report a run with missing or damaged shards, saying so on its first page");
@@ -80,6 +94,18 @@ void register_report_command(CLI::App& app, int& exit_code) {
       exit_code = kExitOk;
       return;
     }
+    if (!opts->upgrade.build.empty()) {
+      if (opts->options.run_dir.empty() || opts->upgrade.platforms.empty() ||
+          !opts->markdown.empty())
+        throw util::UserError(
+            "report --upgrade BUILD needs a run directory and --platforms P..., and no --markdown");
+      opts->upgrade.run_dir = opts->options.run_dir;
+      std::printf("%s", triage::upgrade_report_markdown(opts->upgrade).c_str());
+      exit_code = kExitOk;
+      return;
+    }
+    if (!opts->upgrade.platforms.empty() || !opts->upgrade.audit_suffix.empty())
+      throw util::UserError("report: --platforms and --audit-suffix go with --upgrade BUILD");
     if (!opts->markdown.empty()) {
       if (!opts->options.run_dir.empty())
         throw util::UserError("report: give a run directory or --markdown FILE.md, not both");

@@ -37,8 +37,13 @@ std::string report(Dir dir) { return in(dir, "report"); }
 std::string report_pdf(Dir dir) { return report(dir) + "/report.pdf"; }
 std::string report_html(Dir dir) { return report(dir) + "/report.html"; }
 std::string audit(Dir dir) { return in(dir, "audit"); }
+std::string named_audit(Dir dir, const std::string& name) { return dir + "/audit-" + name; }
 std::string audit_json(Dir audit_dir) { return in(audit_dir, kAuditJsonFile); }
 std::string audit_md(Dir audit_dir) { return in(audit_dir, kAuditMdFile); }
+std::string upgrade_summary(Dir dir, const std::string& build) {
+  return dir + "/upgrade-summary-" + build + ".json";
+}
+std::string upgrade_pictures(Dir dir) { return in(dir, "upgrade-pictures"); }
 std::string bisect(Dir dir) { return in(dir, "bisect"); }
 std::string bisection(Dir bisect_dir) { return in(bisect_dir, "bisect.json"); }
 std::string bisection_md(Dir bisect_dir) { return in(bisect_dir, "bisect.md"); }

@@ -37,8 +37,13 @@ std::string report(Dir dir);       // report/: what `report` writes
 std::string report_pdf(Dir dir);   // report/report.pdf
 std::string report_html(Dir dir);  // report/report.html
 std::string audit(Dir dir);        // audit/: `audit`'s default --out
+// audit-NAME/: an audit of NAME ("P" or "P-source": the driver upgrade's, scripts/driver-upgrade.sh)
+std::string named_audit(Dir dir, const std::string& name);
 std::string audit_json(Dir audit_dir);  // AUDIT/audit.json: the verdict, everything (audit/)
 std::string audit_md(Dir audit_dir);    // AUDIT/audit.md: the verdict to read
+// upgrade-summary-BUILD.json: the driver upgrade's counts against BUILD (report/upgrade_summary.h)
+std::string upgrade_summary(Dir dir, const std::string& build);
+std::string upgrade_pictures(Dir dir);  // upgrade-pictures/: its pictures and C reproducers
 std::string bisect(Dir dir);       // bisect/: `bisect`'s default --out
 std::string bisection(Dir bisect_dir);     // OUT/bisect.json: the bisection's state and result
 std::string bisection_md(Dir bisect_dir);  // OUT/bisect.md: its report

@@ -109,7 +109,7 @@ status=0
 audit_build() {  # BUILD PLATFORM...
   local build=$1 p dir rc suffix
   shift
-  # the folder upgrade_report.py is told of (--audit-suffix) for a build other than backports
+  # the folder the report is told of (report --audit-suffix) for a build other than backports
   suffix=$([ "$build" = backports ] || echo "-$build")
   for p in "$@"; do
     dir=$out/audit-$p$suffix
@@ -150,21 +150,21 @@ if [ -n "${MESA_SOURCE:-}" ]; then
   audit_build source $(pairs_of source)
 fi
 
-# 4. The report: the first sentence says what changed per driver (report/upgrade_headline.h),
-# the worst primitive of each distinct finding before and after, a table of contents, what changed
-# per back end, kind and view group (from the records), then each audit's own report.
+# 4. The report (`renderaudit report --upgrade`, triage/upgrade_report.h): the first sentence says
+# what changed per driver, the worst primitive of each distinct finding before and after, a table
+# of contents, what changed per back end, kind and view group (the audits' comparison), then each
+# audit's own report.
 report=$out/upgrade-report.md
 step 4 "writing the report"
 if [ ${#audited[@]} -gt 0 ]; then
-  /usr/bin/python3 "$repo/scripts/upgrade_report.py" "$ra" "$out" backports "${audited[@]}" > "$report" ||
+  "$ra" report "$out" --upgrade backports --platforms "${audited[@]}" > "$report" ||
     die "the report failed (above)"
   for p in "${audited[@]}"; do
     { echo; echo "# Audit of $p"; echo; sed -e 's/^## /### /' -e 's/^# /## /' "$out/audit-$p/audit.md"; } >> "$report"
   done
   if [ ${#source_audited[@]} -gt 0 ]; then
     { echo; echo "# The installed Mesa against Mesa built from source ($MESA_SOURCE${MESA_REF:+ at $MESA_REF})"; echo
-      /usr/bin/python3 "$repo/scripts/upgrade_report.py" --audit-suffix -source "$ra" "$out" source \
-        "${source_audited[@]}" |
+      "$ra" report "$out" --upgrade source --audit-suffix -source --platforms "${source_audited[@]}" |
         sed -e '/^\[TOC\]$/d' -e 's/^## /### /' -e 's/^# /## /'
     } >> "$report" || die "the report of the source build failed (above)"
   fi

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# scripts/upgrade_report.py on a real run of stand-in drivers (scripts/bisect-fixture.sh), no Mesa
-# build (ctest upgrade_report): the installed driver `faulty` (llvmpipe) against two builds drawn in
+# `renderaudit report RUN --upgrade BUILD` (the driver upgrade report, triage/upgrade_report.h) on a
+# real run of stand-in drivers (scripts/bisect-fixture.sh), no Mesa build (ctest upgrade_report): the installed driver `faulty` (llvmpipe) against two builds drawn in
 # one run, faulty@backports (a wild pixel on every line) and faulty@source (on the even lines
 # only), audited into the folders scripts/driver-upgrade.sh uses (audit-P, audit-P-source):
 #   - the source part's per-platform table shows the source audit's counts, not the backports ones,
 #     and an audit of another pair in the folder is refused (exit 2, the file named);
+#   - the summary's counts per kind and view group add up to the audit's own count of changed
+#     primitives (one comparison, the audit's);
 #   - six view groups (3 fields of view x 2 windows) are named A-F, no crash past four;
 #   - the `renderaudit show` line pastes as one word per argument though the run folder is named
 #     like a command substitution, and runs nothing;
@@ -22,7 +24,7 @@ build=$(cd "${1:-build}" && pwd)
 t=$(mktemp -d /tmp/renderaudit-upgrade-report-XXXXXX)
 trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
 . "$(dirname "$0")/bisect-fixture.sh"
-script="$(cd "$(dirname "$0")" && pwd)/upgrade_report.py"
+scripts="$(cd "$(dirname "$0")" && pwd)"
 
 run="$t/out \$(touch $t/PWNED) it's"
 # the bad driver, also drawing 3 times as long
@@ -70,8 +72,8 @@ source_changed=$(changed "$run/audit-faulty-source")
   fail "the two builds changed as many primitives ($source_changed): the test proves nothing"
 
 # The source part, as driver-upgrade.sh writes it.
-/usr/bin/python3 "$script" --audit-suffix -source "$ra" "$run" source faulty >"$t/source.md" 2>"$t/source.err" ||
-  { cat "$t/source.err"; fail "upgrade_report.py (source) failed"; }
+"$ra" report "$run" --upgrade source --audit-suffix -source --platforms faulty >"$t/source.md" 2>"$t/source.err" ||
+  { cat "$t/source.err"; fail "report --upgrade (source) failed"; }
 row=$(grep -m1 '^| faulty | ' "$t/source.md")
 [ "$(cut -d'|' -f6 <<<"$row" | tr -d ' ')" = "$source_changed" ] ||
   { echo "$row"; fail "the source part's table does not show the source audit's $source_changed changed (backports: $backports_changed)"; }
@@ -80,15 +82,15 @@ for g in A B C D E F; do
 done
 # An audit folder of another pair is refused, naming the file.
 set +e
-/usr/bin/python3 "$script" "$ra" "$run" source faulty >"$t/wrong.md" 2>"$t/wrong.err"
+"$ra" report "$run" --upgrade source --platforms faulty >"$t/wrong.md" 2>"$t/wrong.err"
 rc=$?
 set -e
 [ $rc = 2 ] && grep -qF "$run/audit-faulty/audit.json: 'pairs' does not compare faulty with faulty@source" "$t/wrong.err" ||
   { cat "$t/wrong.err"; fail "another pair's audit: exit $rc"; }
 
 # The `renderaudit show` line: the words that ran, nothing run.
-/usr/bin/python3 "$script" "$ra" "$run" backports faulty >"$t/backports.md" 2>"$t/backports.err" ||
-  { cat "$t/backports.err"; fail "upgrade_report.py (backports) failed"; }
+"$ra" report "$run" --upgrade backports --platforms faulty >"$t/backports.md" 2>"$t/backports.err" ||
+  { cat "$t/backports.err"; fail "report --upgrade (backports) failed"; }
 
 # The pictures: each one the report names is there, a pair per finding.
 /usr/bin/python3 - "$run" "$t/backports.md" <<'EOP' || fail "the report's pictures (above)"
@@ -116,6 +118,12 @@ assert slower, f"a driver 3 times as slow is slower in no group: {speed}"
 page1 = open(backports_md).read().splitlines()[2]
 assert re.search(r"\. faulty \S+ draws the lines [0-9-]+% slower \(95%: [0-9-]+%\)", page1), page1
 assert ("could not be judged" in page1) == (len(slower) < len(speed)), page1
+# the counts per kind and view group are the audit's own: they add up to its count of changed
+for build, folder in (("backports", "audit-faulty"), ("source", "audit-faulty-source")):
+    pair = json.load(open(f"{run}/upgrade-summary-{build}.json"))["pairs"][0]
+    audit = json.load(open(f"{run}/{folder}/audit.json"))["counts"]
+    assert sum(s["changed"] for s in pair["strata"]) == audit["changed"], (build, pair, audit)
+    assert sum(s["compared"] for s in pair["strata"]) == audit["compared"], (build, pair, audit)
 source = json.load(open(f"{run}/upgrade-summary-source.json"))["pairs"][0]
 assert "speed" not in source, source
 page1 = open(source_md).read().splitlines()[2]
@@ -135,7 +143,7 @@ chmod +x "$t/stub/renderaudit"
 # quote, a backslash and TOML of their own read back as themselves, adding no key or table.
 hostile=$'/srv/mesa "x"\\\nrun.shard_size = 7 #'
 ref=$'main\n[bogus]'
-{ cat "$t/upgrade.toml"; /usr/bin/python3 "$(dirname "$script")/build_table.py" source2 "$hostile" \
+{ cat "$t/upgrade.toml"; /usr/bin/python3 "$scripts/build_table.py" source2 "$hostile" \
     "renderaudit builds build $hostile --ref $ref"; } > "$t/with-source.toml"
 /usr/bin/python3 - "$t/with-source.toml" "$hostile" <<'EOP' || fail "build_table.py wrote TOML that reads back otherwise"
 import sys, tomllib
@@ -143,7 +151,7 @@ doc = tomllib.load(open(sys.argv[1], "rb"))
 assert doc["builds"]["source2"] == {"dir": sys.argv[2]}, doc["builds"]
 assert "bogus" not in doc and "shard_size" not in doc.get("run", {}), doc
 EOP
-grep -q 'scripts/build_table.py" source "$source_dir"' "$(dirname "$script")/driver-upgrade.sh" ||
+grep -q 'scripts/build_table.py" source "$source_dir"' "$scripts/driver-upgrade.sh" ||
   fail "driver-upgrade.sh does not write its [builds.source] table with build_table.py"
-echo "upgrade-report-test: the source part, six view groups, the show line, the pictures, the build table, drawing times checked"
+echo "upgrade-report-test: the source part, six view groups, the audit's counts, the show line, the pictures, the build table, drawing times checked"
 echo "1 passed, 0 failed"

@@ -1,0 +1,115 @@
+// audit.json read back (see the header).
+#include "audit/audit_document.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "audit/audit_report.h"
+#include "rundir/manifest.h"
+#include "rundir/run_folder.h"
+#include "util/atomic_file.h"
+#include "util/errors.h"
+#include "util/json_file.h"
+
+namespace ra::audit {
+namespace {
+
+using nlohmann::json;
+
+// Field readers naming the file and the key of what is wrong.
+struct Reader {
+  std::string path;
+  [[noreturn]] void bad(const std::string& key, const std::string& what) const {
+    throw util::UserError(path + ": '" + key + "' " + what +
+                          "; run the audit again (renderaudit audit) to write it whole");
+  }
+  const json& at(const json& j, const std::string& key, const std::string& where) const {
+    const std::string name = where.empty() ? key : where + "." + key;
+    if (!j.is_object() || !j.contains(key)) bad(name, "is missing");
+    return j.at(key);
+  }
+  std::string text(const json& j, const std::string& key, const std::string& where) const {
+    const json& v = at(j, key, where);
+    if (!v.is_string()) bad(where + "." + key, "must be a string");
+    return v.get<std::string>();
+  }
+  uint64_t count(const json& j, const std::string& key, const std::string& where) const {
+    const json& v = at(j, key, where);
+    if (!v.is_number_unsigned()) bad(where + "." + key, "must be a whole number of 0 or more");
+    return v.get<uint64_t>();
+  }
+  // a time ratio: a number, or null where none was formed
+  double ratio(const json& j, const std::string& key, const std::string& where) const {
+    const json& v = at(j, key, where);
+    if (v.is_null()) return NAN;
+    if (!v.is_number()) bad(where + "." + key, "must be a number or null");
+    return v.get<double>();
+  }
+  const json& list(const json& j, const std::string& key, const std::string& where) const {
+    const json& v = at(j, key, where);
+    if (!v.is_array()) bad(where.empty() ? key : where + "." + key, "must be a list");
+    return v;
+  }
+};
+
+}  // namespace
+
+bool AuditDocument::compares(const std::string& baseline, const std::string& current) const {
+  for (const AuditedPair& p : pairs)
+    if (p.baseline == baseline && p.current == current) return true;
+  return false;
+}
+
+AuditDocument read_audit_document(const std::string& audit_dir) {
+  AuditDocument d;
+  d.path = rundir::run_folder::audit_json(audit_dir);
+  json j;
+  try {
+    j = util::parse_json_document(util::read_file(d.path), d.path);
+  } catch (const util::UserError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw util::UserError(d.path + ": cannot read the audit (" + e.what() + ")");
+  }
+  rundir::require_document_header(j, "audit", kAuditSchemaVersion, d.path,
+                                  "run the audit again with this renderaudit");
+  const Reader rd{d.path};
+  const json& pairs = rd.list(j, "pairs", "");
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const std::string at = "pairs[" + std::to_string(i) + "]";
+    d.pairs.push_back({rd.text(pairs[i], "baseline_platform", at),
+                       rd.text(pairs[i], "current_platform", at)});
+  }
+  const json& counts = rd.at(j, "counts", "");
+  d.compared = rd.count(counts, "compared", "counts");
+  d.changed = rd.count(counts, "changed", "counts");
+  d.new_violations = rd.count(counts, "new_violations", "counts");
+  const json& tests = rd.at(j, "distribution_tests", "");
+  d.significant_tests = rd.count(tests, "significant", "distribution_tests");
+  d.family_size = rd.count(tests, "family_size", "distribution_tests");
+  const json& measured = rd.at(j, "speed_measurement", "");
+  const json& performed = rd.at(measured, "performed", "speed_measurement");
+  if (!performed.is_boolean()) rd.bad("speed_measurement.performed", "must be true or false");
+  d.timed = performed.get<bool>();
+  const json& speed = rd.list(j, "speed", "");
+  for (std::size_t i = 0; i < speed.size(); ++i) {
+    const std::string at = "speed[" + std::to_string(i) + "]";
+    const json& s = speed[i];
+    d.speed.push_back({rd.text(s, "baseline_platform", at), rd.text(s, "platform", at),
+                       rd.text(s, "kind", at), rd.text(s, "group", at), rd.text(s, "verdict", at),
+                       rd.ratio(s, "ratio", at), rd.ratio(s, "low", at), rd.ratio(s, "high", at)});
+  }
+  const json& flakes = rd.at(j, "flakes", "");
+  d.flakes_total = rd.count(flakes, "total", "flakes");
+  const json& items = rd.list(flakes, "items", "flakes");
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const std::string at = "flakes.items[" + std::to_string(i) + "]";
+    const json& f = items[i];
+    d.flakes.push_back({rd.text(f, "baseline_platform", at), rd.text(f, "platform", at),
+                        rd.text(f, "kind", at), int(rd.count(f, "view", at)),
+                        rd.count(f, "index", at)});
+  }
+  return d;
+}
+
+}  // namespace ra::audit
