@@ -11,6 +11,8 @@
 #include "app/study.h"
 #include "rundir/run_folder.h"
 #include "rundir/study_dir.h"
+#include "util/program_name.h"
+#include "util/shell_quote.h"
 
 namespace ra::app {
 
@@ -66,11 +68,13 @@ bool prepare_study_report(const std::string& dir, bool run_missing) {
   if (!run_missing) return false;  // the report names the missing commands
   int ignored = 0;
   if (!analysed) {
-    std::fprintf(stderr, "report: running `renderaudit analyze %s`\n", dir.c_str());
+    std::fprintf(stderr, "report: running `%s analyze %s`\n", util::program_for_commands().c_str(),
+                 util::shell_quote(dir).c_str());
     analyze_study_if_present(dir, ignored);
   }
   if (!analysed || !plotted) {
-    std::fprintf(stderr, "report: running `renderaudit plot %s`\n", dir.c_str());
+    std::fprintf(stderr, "report: running `%s plot %s`\n", util::program_for_commands().c_str(),
+                 util::shell_quote(dir).c_str());
     plot_study_if_present(dir, ignored);
   }
   return true;

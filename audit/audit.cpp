@@ -94,8 +94,9 @@ AuditResult run_audit(const AuditOptions& o) {
     r.baseline = r.current;
     for (const auto& p : o.between) require_platform(r.current, p);
     r.pairs.push_back({o.between[0], o.between[1]});
-    r.out_dir = o.out_dir.empty() ? o.current_dir + "/audit-" + o.between[0] + "-vs-" + o.between[1]
-                                  : o.out_dir;
+    r.out_dir = o.out_dir.empty()
+                    ? rundir::run_folder::audit_between(o.current_dir, o.between[0], o.between[1])
+                    : o.out_dir;
   } else {
     r.mode = "runs";
     r.baseline = load_run_identity(o.baseline_dir);

@@ -19,10 +19,11 @@
 #include <vector>
 
 #include "audit/audit.h"
+#include "rundir/audit_document.h"
 
 namespace ra::audit {
 
-constexpr int kAuditSchemaVersion = 2;  // 2 added `speed` and `speed_measurement`
+constexpr int kAuditSchemaVersion = rundir::kAuditDocumentVersion;  // its one reader's
 constexpr std::size_t kMarkdownListed = 50;  // changed primitives and flakes shown in audit.md
 constexpr std::size_t kJsonListed = 10000;   // ... in audit.json (all in changed_primitives.csv)
 

@@ -19,15 +19,6 @@ namespace fs = std::filesystem;
 namespace ra::audit {
 namespace {
 
-nlohmann::json read_json(const std::string& path) {
-  if (!fs::exists(path)) throw util::UserError(path + ": missing (not a run directory?)");
-  try {
-    return util::parse_json_document(util::read_file(path), path);
-  } catch (const nlohmann::json::exception& e) {
-    throw util::UserError(path + ": not valid JSON (" + e.what() + ")");
-  }
-}
-
 std::string string_or(const nlohmann::json& j, const char* key, const std::string& fallback) {
   return j.is_object() && j.contains(key) && j[key].is_string() ? j[key].get<std::string>()
                                                                 : fallback;
@@ -40,8 +31,9 @@ RunIdentity load_run_identity(const std::string& dir) {
   run.dir = dir;
   if (!fs::is_directory(dir)) throw util::UserError(dir + ": no such run directory");
   const std::string manifest_path = rundir::run_folder::manifest(dir);
-  const rundir::RunManifest manifest =
-      rundir::read_manifest(read_json(manifest_path), manifest_path);
+  if (!fs::exists(manifest_path))
+    throw util::UserError(manifest_path + ": missing (not a run directory?)");
+  const rundir::RunManifest manifest = rundir::read_manifest_file(manifest_path);
   const std::string toml = rundir::run_folder::experiment(dir);
   if (!fs::exists(toml)) throw util::UserError(toml + ": missing (not a run directory?)");
   run.experiment = rundir::load_run_experiment(dir);

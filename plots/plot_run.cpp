@@ -28,6 +28,7 @@
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "util/shell_quote.h"
+#include "util/json_file.h"
 #include "metrics/records.h"
 
 namespace fs = std::filesystem;
@@ -59,7 +60,7 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
     throw util::UserError(path + " not found: run `renderaudit analyze " + util::shell_quote(run_dir) + "` first");
   json doc;
   try {
-    doc = json::parse(util::read_file(path));
+    doc = util::parse_json_document(util::read_file(path), path);
   } catch (const json::exception& e) {
     throw util::UserError(path + ": not valid JSON: " + e.what());
   }
@@ -173,7 +174,7 @@ PlotResult read_figure_index(const std::string& run_dir) {
   r.figures_dir = rundir::run_folder::figures(run_dir);
   r.index_path = path;
   try {
-    const json doc = json::parse(util::read_file(path));
+    const json doc = util::parse_json_document(util::read_file(path), path);
     rundir::require_document_header(doc, "figure-index", kFigureIndexSchemaVersion, path,
                                     "run `renderaudit plot " + run_dir + "` again");
     for (const json& f : doc.at("figures"))

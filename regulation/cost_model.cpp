@@ -7,6 +7,7 @@
 
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "util/json_file.h"
 
 namespace ra::regulation {
 
@@ -22,7 +23,7 @@ CostModel cost_model_from_timing_json(const std::string& path, const std::string
                                       bool intercept, const CostModel& base) {
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(util::read_file(path));
+    j = util::parse_json_document(util::read_file(path), path);
   } catch (const std::exception& e) {
     throw util::UserError(path + ": cannot read the timing study's output (" + e.what() + ")");
   }

@@ -11,6 +11,7 @@
 #include "util/errors.h"
 #include "util/number_text.h"
 #include "util/json_number.h"
+#include "util/json_file.h"
 
 namespace ra::regulation {
 
@@ -23,7 +24,7 @@ json read_regulation_json(const std::string& dir) {
                           " is not a complete regulation study (no study.json of kind regulation: "
                           "run `renderaudit run` on a regulation experiment first)");
   try {
-    return json::parse(util::read_file(dir + "/regulation.json"));
+    return util::parse_json_document(util::read_file(dir + "/regulation.json"), dir + "/regulation.json");
   } catch (const std::exception& e) {
     throw util::UserError(dir + "/regulation.json cannot be read: " + e.what());
   }

@@ -2,6 +2,7 @@
 #include "report/headline.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include <sstream>
 
 #include "analysis/run_tally.h"
+#include "rundir/audit_document.h"
 #include "rundir/run_folder.h"
 #include "stats/csv_table.h"
 #include "util/atomic_file.h"
@@ -187,10 +189,9 @@ std::vector<Block> audit_blocks(const std::string& run_dir) {
     return refusal_blocks(util::read_file(refused));
   }
   if (!fs::exists(path)) return out;
-  const json j = json::parse(util::read_file(path));
-  const std::string verdict = j.value("verdict", "?");
-  const json baseline = j.value("baseline", json::object());
-  std::string baseline_dir = baseline.value("run_dir", "?");
+  const rundir::AuditDocument a = rundir::read_audit_document(rundir::run_folder::audit(run_dir));
+  const std::string& verdict = a.verdict;
+  const std::string& baseline_dir = a.baseline_dir;
   if (verdict == "baseline") {  // the run audited against itself: no verdict about any driver
     out.push_back(make_block(
         Block::Kind::kParagraph,
@@ -210,25 +211,22 @@ std::vector<Block> audit_blocks(const std::string& run_dir) {
     std::int64_t compared = 0, changed = 0, flakes = 0, failed = 0;
   };
   std::map<std::string, Driver> drivers;
-  for (const auto& v : j.value("views", json::array())) {
-    Driver& d = drivers[v.value("platform", "?")];
-    d.baseline = v.value("baseline_platform", "?");
-    d.compared += v.value("compared", std::int64_t{0});
-    d.changed += v.value("changed", std::int64_t{0});
-    d.flakes += v.value("flakes", std::int64_t{0});
-    d.failed += v.value("failed", std::int64_t{0});
+  for (const rundir::AuditDocument::ViewRow& v : a.views) {
+    Driver& d = drivers[v.platform];
+    d.baseline = v.baseline_platform;
+    d.compared += v.compared;
+    d.changed += v.changed;
+    d.flakes += v.flakes;
+    d.failed += v.failed;
   }
-  const json failures = j.value("failures", json::object());
   std::map<std::string, std::int64_t> missing;
-  for (const auto& m : failures.value("missing_shards", json::array()))
-    if (m.is_object()) ++missing[m.value("platform", "?")];
+  for (const std::string& p : a.missing_shard_platforms) ++missing[p];
   // shard failures the manifest lists that did not recover on re-run count against their driver
-  for (const auto& m : failures.value("manifest", json::array()))
-    if (m.is_object() && m.value("outcome", "") != "recovered")
-      ++drivers[m.value("platform", "?")].failed;
+  for (const rundir::AuditDocument::ShardFailure& m : a.manifest_failures)
+    if (m.outcome != "recovered") ++drivers[m.platform].failed;
   std::set<std::string> mismatched;
-  for (const auto& m : failures.value("renderer_mismatches", json::array()))  // "PLATFORM: ..."
-    if (m.is_string()) mismatched.insert(m.get<std::string>().substr(0, m.get<std::string>().find(':')));
+  for (const std::string& m : a.renderer_mismatches)  // "PLATFORM: ..."
+    mismatched.insert(m.substr(0, m.find(':')));
   Table t;
   t.title = "Audit verdict per driver";
   t.header = {"platform", "baseline platform", "verdict", "compared", "changed", "flaky",
@@ -236,13 +234,9 @@ std::vector<Block> audit_blocks(const std::string& run_dir) {
   t.right = {false, false, false, true, true, true, true, true};
   // Drawing time (audit --speed): a group that draws slower fails its driver unless the audit
   // made that a warning.
-  const json speed = j.value("speed", json::array());
-  const bool speed_warn_only =
-      j.value("speed_measurement", json::object()).value("warn_only", false);
   std::set<std::string> slower;
-  for (const auto& row : speed)
-    if (row.is_object() && row.value("verdict", "") == "slower" && !speed_warn_only)
-      slower.insert(row.value("platform", "?"));
+  for (const rundir::AuditedTime& row : a.speed)
+    if (row.verdict == "slower" && !a.speed_warn_only) slower.insert(row.platform);
   for (const auto& [p, d] : drivers) {
     const std::int64_t miss = missing.count(p) ? missing.at(p) : 0;
     const bool pass = d.changed == 0 && d.failed == 0 && miss == 0 && !mismatched.count(p) &&
@@ -253,32 +247,26 @@ std::vector<Block> audit_blocks(const std::string& run_dir) {
   }
   if (!mismatched.empty())
     t.notes.push_back("A driver whose GL_RENDERER does not match --expect-renderer fails.");
-  for (const auto& r : j.value("reasons", json::array()))
-    if (r.is_string()) t.notes.push_back(r.get<std::string>());
+  for (const std::string& r : a.reasons) t.notes.push_back(r);
   if (!slower.empty()) t.notes.push_back("A driver that draws a kind and view group slower fails.");
   Block b = make_block(Block::Kind::kTable);
   b.table = std::move(t);
   out.push_back(std::move(b));
-  if (speed.empty()) return out;
+  if (a.speed.empty()) return out;
   Table time;
   time.title = "Drawing time against the baseline";
   time.header = {"platform", "kind", "group", "current / baseline [95%]", "verdict"};
   time.right = {false, false, false, true, false};
-  auto fixed3 = [](const json& v) {
-    if (!v.is_number()) return std::string("-");
+  auto fixed3 = [](double v) {
+    if (!std::isfinite(v)) return std::string("-");
     char text[32];
-    std::snprintf(text, sizeof text, "%.3f", v.get<double>());
+    std::snprintf(text, sizeof text, "%.3f", v);
     return std::string(text);
   };
-  for (const auto& row : speed) {
-    if (!row.is_object()) continue;
-    time.rows.push_back({row.value("platform", "?"), row.value("kind", "?"),
-                         row.value("group", "?"),
-                         fixed3(row.value("ratio", json())) + " [" +
-                             fixed3(row.value("low", json())) + ", " +
-                             fixed3(row.value("high", json())) + "]",
-                         row.value("verdict", "?")});
-  }
+  for (const rundir::AuditedTime& row : a.speed)
+    time.rows.push_back({row.platform, row.kind, row.group,
+                         fixed3(row.ratio) + " [" + fixed3(row.low) + ", " + fixed3(row.high) + "]",
+                         row.verdict});
   time.notes.push_back(
       "Each primitive drawn alone by both sides and a control (the baseline again), in rounds "
       "of fresh processes taking turns; the ratio and its 95% interval come from the rounds' "

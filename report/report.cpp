@@ -39,6 +39,7 @@
 #include "util/child_process.h"
 #include "util/errors.h"
 #include "util/path_search.h"
+#include "util/program_name.h"
 #include "util/shell_quote.h"
 
 namespace fs = std::filesystem;
@@ -164,32 +165,36 @@ std::optional<rundir::StudyInfo> study_of(const std::string& dir) {
 
 std::vector<Step> missing_steps(const std::string& run_dir) {
   std::vector<Step> steps;
+  // Commands as the user pastes them: this program's path as invoked (util/program_name.h).
+  const std::string analyze_line =
+      util::program_for_commands() + " analyze " + util::shell_quote(run_dir);
+  const std::string plot_line = util::program_for_commands() + " plot " + util::shell_quote(run_dir);
   const fs::path dir(run_dir);
   const fs::path figures_json = rundir::run_folder::figure_data(dir.string());
   const fs::path index = rundir::run_folder::figure_index(dir.string());
   std::error_code ec;
   bool analyze = false;
   if (!fs::exists(figures_json)) {
-    steps.push_back({"analyze", "renderaudit analyze " + util::shell_quote(run_dir), figures_json.string() + " is missing"});
+    steps.push_back({"analyze", analyze_line, figures_json.string() + " is missing"});
     analyze = true;
   } else if (fs::last_write_time(figures_json, ec) < newest_input(run_dir)) {
-    steps.push_back({"analyze", "renderaudit analyze " + util::shell_quote(run_dir),
+    steps.push_back({"analyze", analyze_line,
                      figures_json.string() + " is older than the records"});
     analyze = true;
   } else if (const fs::path tally = rundir::run_folder::tally(dir.string()); !fs::exists(tally)) {
-    steps.push_back({"analyze", "renderaudit analyze " + util::shell_quote(run_dir), tally.string() + " is missing"});
+    steps.push_back({"analyze", analyze_line, tally.string() + " is missing"});
     analyze = true;
   } else if (const std::string problem = tally_problem(run_dir); !problem.empty()) {
     // "PATH: expected schema ... version 1 (run `renderaudit analyze DIR` again)": the reason only
-    steps.push_back({"analyze", "renderaudit analyze " + util::shell_quote(run_dir),
+    steps.push_back({"analyze", analyze_line,
                      problem.substr(0, problem.find(" (run `"))});
     analyze = true;
   }
   if (analyze || !fs::exists(index)) {
-    steps.push_back({"plot", "renderaudit plot " + util::shell_quote(run_dir),
+    steps.push_back({"plot", plot_line,
                      analyze ? "the figures follow the analysis" : index.string() + " is missing"});
   } else if (fs::last_write_time(index, ec) < fs::last_write_time(figures_json, ec)) {
-    steps.push_back({"plot", "renderaudit plot " + util::shell_quote(run_dir), index.string() + " is older than the analysis"});
+    steps.push_back({"plot", plot_line, index.string() + " is older than the analysis"});
   }
   return steps;
 }

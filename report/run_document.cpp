@@ -49,14 +49,6 @@ std::string str(const json& j) {
   return j.dump();
 }
 
-json read_json(const std::string& path) {
-  try {
-    return json::parse(util::read_file(path));
-  } catch (const std::exception& e) {
-    throw util::UserError(path + ": cannot read as JSON: " + e.what());
-  }
-}
-
 // Kinds in the paper's order: points, lines, triangles, then anything else.
 int kind_rank(const std::string& kind) {
   return kind == "point" ? 0 : kind == "line" ? 1 : kind == "triangle" ? 2 : 3;
@@ -584,9 +576,7 @@ RunDocument build_run_document(const std::string& run_dir, const plots::PlotResu
                                const analysis::RunTally& tally,
                                const analysis::RunCompleteness& completeness) {
   const std::string manifest_path = rundir::run_folder::manifest(run_dir);
-  const rundir::RunManifest m = fs::exists(manifest_path)
-                                    ? rundir::read_manifest(read_json(manifest_path), manifest_path)
-                                    : rundir::RunManifest{};
+  const rundir::RunManifest m = rundir::read_manifest_file_or_empty(manifest_path);
   RunDocument c;
   add_title_page(c.doc, run_dir, m, tally);
   add_provenance(c.doc, run_dir, m, tally, completeness);

@@ -76,9 +76,15 @@ bool is_build_folder(const std::string& dir) {
 
 BuildRecord read_build_record(const std::string& dir) {
   const std::string path = build_record_path(dir);
+  std::string text;
+  try {
+    text = util::read_file(path);
+  } catch (const std::exception& e) {
+    throw util::UserError(e.what());  // "cannot read PATH"
+  }
   json j;
   try {
-    j = util::parse_json_document(util::read_file(path), path);
+    j = util::parse_json_document(text, path);
   } catch (const json::exception& e) {
     throw util::UserError(path + ": " + without_library_prefix(e.what()));
   }

@@ -326,15 +326,8 @@ RunManifest read_manifest(const json& m, const std::string& path) {
 }
 
 RunManifest read_manifest_file(const std::string& path) {
-  json m;
-  try {
-    m = util::parse_json_document(util::read_file(path), path);
-  } catch (const json::exception& e) {
-    throw util::UserError(path + ": not a JSON document (" + e.what() + ")");
-  } catch (const std::runtime_error& e) {
-    throw util::UserError(e.what());
-  }
-  if (!m.is_object()) bad_field(path, "(the document)", "a JSON object", m);
+  const json m = read_manifest_json(path);
+  if (m.is_null()) throw util::UserError(path + ": missing (not a run directory?)");
   return read_manifest(m, path);
 }
 

@@ -4,7 +4,7 @@
 namespace ra::rundir::run_folder {
 namespace {
 
-std::string in(Dir dir, const char* name) { return dir + "/" + name; }
+std::string in(Dir dir, const std::string& name) { return dir + "/" + name; }
 
 }  // namespace
 
@@ -37,11 +37,15 @@ std::string report(Dir dir) { return in(dir, "report"); }
 std::string report_pdf(Dir dir) { return report(dir) + "/report.pdf"; }
 std::string report_html(Dir dir) { return report(dir) + "/report.html"; }
 std::string audit(Dir dir) { return in(dir, "audit"); }
-std::string named_audit(Dir dir, const std::string& name) { return dir + "/audit-" + name; }
+std::string named_audit(Dir dir, const std::string& name) { return in(dir, "audit-" + name); }
+std::string audit_between(Dir dir, const std::string& a, const std::string& b) {
+  return in(dir, "audit-" + a + "-vs-" + b);
+}
+std::string named_bisect(Dir dir, const std::string& name) { return in(dir, "bisect-" + name); }
 std::string audit_json(Dir audit_dir) { return in(audit_dir, kAuditJsonFile); }
 std::string audit_md(Dir audit_dir) { return in(audit_dir, kAuditMdFile); }
 std::string upgrade_summary(Dir dir, const std::string& build) {
-  return dir + "/upgrade-summary-" + build + ".json";
+  return in(dir, "upgrade-summary-" + build + ".json");
 }
 std::string upgrade_pictures(Dir dir) { return in(dir, "upgrade-pictures"); }
 std::string bisect(Dir dir) { return in(dir, "bisect"); }

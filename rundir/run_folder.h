@@ -37,8 +37,13 @@ std::string report(Dir dir);       // report/: what `report` writes
 std::string report_pdf(Dir dir);   // report/report.pdf
 std::string report_html(Dir dir);  // report/report.html
 std::string audit(Dir dir);        // audit/: `audit`'s default --out
-// audit-NAME/: an audit of NAME ("P" or "P-source": the driver upgrade's, scripts/driver-upgrade.sh)
+// audit-NAME/: an audit of NAME ("P" or "P-source": the driver upgrade's, scripts/driver-upgrade.sh;
+// "P" in a night of `watch`, STATE/nights/N)
 std::string named_audit(Dir dir, const std::string& name);
+// audit-A-vs-B/: `audit DIR --between A B`'s default --out
+std::string audit_between(Dir dir, const std::string& a, const std::string& b);
+// bisect-P/: the bisection of platform P in a night of `watch`
+std::string named_bisect(Dir dir, const std::string& name);
 std::string audit_json(Dir audit_dir);  // AUDIT/audit.json: the verdict, everything (audit/)
 std::string audit_md(Dir audit_dir);    // AUDIT/audit.md: the verdict to read
 // upgrade-summary-BUILD.json: the driver upgrade's counts against BUILD (report/upgrade_summary.h)

@@ -10,6 +10,7 @@
 #include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "util/json_file.h"
 #include "util/toml_locator.h"
 
 namespace ra::rundir {
@@ -58,10 +59,9 @@ void write_study_info(const std::string& dir, const StudyInfo& info) {
 std::optional<StudyInfo> read_study_info(const std::string& dir) {
   const std::string path = run_folder::study(dir);
   if (!std::filesystem::exists(path)) return std::nullopt;
-  std::ifstream in(path);
   StudyInfo info;
   try {
-    const nlohmann::json j = nlohmann::json::parse(in);
+    const nlohmann::json j = util::parse_json_document(util::read_file(path), path);
     const std::string kind = j.at("kind").get<std::string>();
     bool known = false;
     for (StudyKind k : {StudyKind::kAudit, StudyKind::kTiming, StudyKind::kLod, StudyKind::kRegulation})

@@ -13,6 +13,7 @@
 #include "util/atomic_file.h"
 #include "util/errors.h"
 #include "util/number_text.h"
+#include "util/json_file.h"
 
 namespace ra::lod {
 namespace {
@@ -109,7 +110,7 @@ void analyze_lod_study(const std::string& dir) {
       throw util::UserError(dir + " is not a complete LOD run: " + f + " is missing");
   json sj;
   try {
-    sj = json::parse(util::read_file(dir + "/lod_summary.json"));
+    sj = util::parse_json_document(util::read_file(dir + "/lod_summary.json"), dir + "/lod_summary.json");
   } catch (const json::exception& e) {
     throw util::UserError(dir + "/lod_summary.json: " + e.what());
   }

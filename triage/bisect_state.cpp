@@ -11,6 +11,7 @@
 #include "util/errors.h"
 #include "util/git_ref_check.h"
 #include "util/json_seal.h"
+#include "util/json_file.h"
 
 namespace ra::triage {
 namespace {
@@ -331,7 +332,7 @@ void save_bisect_state(const std::string& path, const BisectState& st) {
 BisectState load_bisect_state(const std::string& path) {
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(util::read_file(path));
+    j = util::parse_json_document(util::read_file(path), path);
   } catch (const std::exception& e) {
     throw util::UserError("bisect: " + path + " is not readable JSON (" + e.what() +
                           "); move it away to start the bisection again");

@@ -23,12 +23,12 @@ using audit::ChangeCategory;
 using audit::ChangedPrimitive;
 
 // The audit of p against q, checked to be that pair's.
-audit::AuditDocument audit_of(const UpgradeReportOptions& o, const std::string& p,
+rundir::AuditDocument audit_of(const UpgradeReportOptions& o, const std::string& p,
                               const std::string& q) {
   const std::string dir = rundir::run_folder::named_audit(o.run_dir, p + o.audit_suffix);
-  audit::AuditDocument a;
+  rundir::AuditDocument a;
   try {
-    a = audit::read_audit_document(dir);
+    a = rundir::read_audit_document(dir);
   } catch (const util::UserError& e) {
     throw util::UserError(std::string(e.what()) + "; the audit of " + p + " against " + q +
                           " is made by `renderaudit audit " +
@@ -44,7 +44,7 @@ audit::AuditDocument audit_of(const UpgradeReportOptions& o, const std::string& 
 std::vector<ChangedPrimitive> without_flakes(const std::vector<ChangedPrimitive>& changed,
                                              const UpgradeSide& s) {
   std::set<std::tuple<std::string, int, uint64_t>> flakes;
-  for (const audit::AuditedFlake& f : s.audit.flakes)
+  for (const rundir::AuditedFlake& f : s.audit.flakes)
     if (f.baseline_platform == s.platform && f.platform == s.build_platform)
       flakes.insert({f.kind, f.view, f.index});
   std::vector<ChangedPrimitive> out;
@@ -86,10 +86,10 @@ std::vector<report::UpgradeStratum> strata_of(const std::vector<audit::ChangeCou
 }
 
 // The drawing-time verdicts of the pair, where its audit judged drawing time.
-void add_speed(report::UpgradePair& pair, const audit::AuditDocument& a) {
+void add_speed(report::UpgradePair& pair, const rundir::AuditDocument& a) {
   pair.timed = a.timed;
   if (!a.timed) return;
-  for (const audit::AuditedTime& t : a.speed)
+  for (const rundir::AuditedTime& t : a.speed)
     if (t.baseline_platform == pair.platform && t.platform == pair.build_platform)
       pair.speed.push_back({t.kind, t.group, t.ratio, t.low, t.high, t.verdict});
 }

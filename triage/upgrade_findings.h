@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "audit/audit_compare.h"
-#include "audit/audit_document.h"
+#include "rundir/audit_document.h"
 #include "audit/change_counts.h"
 #include "report/upgrade_summary.h"
 
@@ -36,7 +36,7 @@ struct UpgradeReportOptions {
 // One platform against its build.
 struct UpgradeSide {
   std::string platform, build_platform;
-  audit::AuditDocument audit;
+  rundir::AuditDocument audit;
   std::vector<audit::ChangedPrimitive> changed;  // as the audit counts them (no flakes)
 };
 

@@ -206,7 +206,7 @@ std::string upgrade_report_markdown(const UpgradeReportOptions& o) {
      << "| platform | installed GL_VERSION | build GL_VERSION | compared | changed | significant "
         "tests | new violations |\n| --- | --- | --- | ---: | ---: | ---: | ---: |\n";
   for (std::size_t i = 0; i < u.sides.size(); ++i) {
-    const audit::AuditDocument& a = u.sides[i].audit;
+    const rundir::AuditDocument& a = u.sides[i].audit;
     const report::UpgradePair& p = u.summary.pairs[i];
     md << "| " << p.platform << " | " << p.installed_version << " | " << p.build_version << " | "
        << a.compared << " | " << a.changed << " | " << a.significant_tests << " of "

@@ -13,11 +13,12 @@
 #include <toml++/toml.h>
 
 #include "audit/history_db.h"
+#include "rundir/audit_document.h"
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
 #include "rundir/platform_spec.h"
 #include "rundir/run_folder.h"
-#include "runner/git_command.h"
+#include "builds/git_command.h"
 #include "triage/bisect.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
@@ -26,13 +27,14 @@
 #include "util/errors.h"
 #include "util/git_ref_check.h"
 #include "util/interrupt.h"
+#include "util/json_file.h"
 
 namespace fs = std::filesystem;
 
 namespace ra::triage {
 namespace {
 
-using runner::git;
+using builds::git;
 
 constexpr const char* kLastBuild = "watch-last";
 constexpr const char* kTonightBuild = "watch-tonight";
@@ -54,7 +56,7 @@ LastNight read_last(const std::string& path) {
       "; remove the file to start again from a new baseline (the history keeps every night)";
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(util::read_file(path));
+    j = util::parse_json_document(util::read_file(path), path);
   } catch (const nlohmann::json::parse_error& e) {
     throw util::UserError("watch: " + path + ": not a whole JSON document (it breaks off or is " +
                           "garbled at byte " + std::to_string(e.byte) + "; a write cut short?)" +
@@ -270,19 +272,19 @@ class Night {
     fs::create_directories(n_.dir, ec);
 
     // Tonight's build.
-    runner::SourceBuildOptions b = o_.build;
+    builds::SourceBuildOptions b = o_.build;
     b.source = o_.source;
     b.ref = n_.commit;
     b.probe = false;  // the run is the probe
     // Last night's build, held against `builds remove` all night; built again if it is gone.
-    runner::SourceBuildResult last_build;
+    builds::SourceBuildResult last_build;
     if (!backwards && !last.commit.empty()) {
-      last_build = runner::use_source_build(last.build_dir, last.commit, b, [&](const std::string& s) { say("  " + s); });
+      last_build = builds::use_source_build(last.build_dir, last.commit, b, [&](const std::string& s) { say("  " + s); });
       last.build_dir = last_build.build.dir;
     }
-    runner::SourceBuildResult built;
+    builds::SourceBuildResult built;
     try {
-      built = runner::build_from_source(b, [&](const std::string& s) { say("  " + s); });
+      built = builds::build_from_source(b, [&](const std::string& s) { say("  " + s); });
     } catch (const util::UserError& e) {
       util::throw_if_interrupted();  // stopped, not failed: nothing recorded
       util::write_file_atomic(n_.dir + "/build-error.txt", std::string(e.what()) + "\n");
@@ -322,7 +324,7 @@ class Night {
     // folder until the night is recorded (see the header).
     bool changed = false, failed = false;
     for (const std::string& p : platforms_) {
-      const std::string out = n_.dir + "/audit-" + p;
+      const std::string out = rundir::run_folder::named_audit(n_.dir, p);
       std::vector<std::string> args = {"audit", run, "--between", p + "@" + kLastBuild,
                                        p + "@" + kTonightBuild, "--out", out, "--db", night_db(),
                                        "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)};
@@ -333,8 +335,8 @@ class Night {
                                  std::to_string(o_.speed.repeats), "--speed-primitives",
                                  std::to_string(o_.speed.per_view), "--speed-threshold", threshold});
       }
-      const int rc = run_self(args, n_.dir + "/audit-" + p + ".log");
-      say("audit " + p + ": exit " + std::to_string(rc) + " (" + out + "/audit.md)");
+      const int rc = run_self(args, out + ".log");
+      say("audit " + p + ": exit " + std::to_string(rc) + " (" + rundir::run_folder::audit_md(out) + ")");
       if (rc == 2 || rc > 2) failed = true;
       const std::size_t moved = rc == 0 || rc == 1 ? time_moved(out) : 0;
       if (moved > 0) say("audit " + p + ": drawing time of " + std::to_string(moved) + " group(s) moved");
@@ -415,13 +417,13 @@ class Night {
   // A tree left detached (a night's bisection killed mid-step) first returns to the branch
   // earlier nights followed, so that tonight is the branch's head and not a bisection step.
   Unseen branch_head(const std::string& last_branch) {
-    const auto tree_lock = runner::lock_source_tree(o_.source, "watch");
-    runner::GitResult on = git(o_.source, {"symbolic-ref", "-q", "--short", "HEAD"});
+    const auto tree_lock = builds::lock_source_tree(o_.source, "watch");
+    builds::GitResult on = git(o_.source, {"symbolic-ref", "-q", "--short", "HEAD"});
     if (!on.ok && !last_branch.empty()) {
       const std::string at = git(o_.source, {"rev-parse", "--short=12", "HEAD"}).out;
       say("returning " + o_.source + " to its branch " + last_branch +
           ": an interrupted night left it detached at " + at);
-      const runner::GitResult co =
+      const builds::GitResult co =
           git(o_.source, {"switch", "-q", "--end-of-options", last_branch});
       if (!co.ok)
         throw util::UserError("watch: " + o_.source + " is detached at " + at +
@@ -433,7 +435,7 @@ class Night {
     if (o_.fetch && !git(o_.source, {"remote"}).out.empty()) {
       // --prune: an upstream branch deleted or renamed upstream loses its remote-tracking ref, so
       // it is seen as gone rather than followed at its last known commit forever.
-      const runner::GitResult f = git(o_.source, {"fetch", "-q", "--prune"});
+      const builds::GitResult f = git(o_.source, {"fetch", "-q", "--prune"});
       if (!f.ok)
         return {"fetch failed", "git fetch in " + o_.source + " failed (" +
                                     f.out.substr(0, f.out.find('\n')).substr(0, 300) +
@@ -446,7 +448,7 @@ class Night {
         branch_.empty()
             ? ""
             : git(o_.source, {"for-each-ref", "--format=%(upstream)", "refs/heads/" + branch_}).out;
-    runner::GitResult up = git(o_.source, {"rev-parse", "--verify", "-q", "@{upstream}^{commit}"});
+    builds::GitResult up = git(o_.source, {"rev-parse", "--verify", "-q", "@{upstream}^{commit}"});
     if (!upstream.empty() && !(up.ok && !up.out.empty()))
       return {"upstream gone", "the upstream of the branch " + branch_ + ", " + upstream +
                                    ", is gone (deleted or renamed upstream): nothing was built; "
@@ -471,17 +473,10 @@ class Night {
   std::size_t time_moved(const std::string& audit_dir) const {
     if (!o_.speed.enabled) return 0;
     try {
-      const nlohmann::json j = nlohmann::json::parse(util::read_file(audit_dir + "/audit.json"));
-      std::size_t n = 0;
-      if (j.contains("speed"))
-        for (const nlohmann::json& row : j.at("speed")) {
-          const std::string v = row.at("verdict").get<std::string>();
-          n += v == "faster" || v == "slower" ? 1 : 0;
-        }
-      return n;
+      return rundir::read_audit_document(audit_dir).time_moved();
     } catch (const std::exception& e) {
-      throw util::UserError("watch: " + audit_dir + "/audit.json cannot be read for its drawing "
-                            "times: " + e.what());
+      throw util::UserError("watch: cannot read the night's drawing times: " +
+                            std::string(e.what()));
     }
   }
 
@@ -494,7 +489,7 @@ class Night {
     bo.source = o_.source;
     bo.good_ref = last_commit;
     bo.bad_ref = n_.commit;
-    bo.out_dir = n_.dir + "/bisect-" + platform;
+    bo.out_dir = rundir::run_folder::named_bisect(n_.dir, platform);
     bo.build = o_.build;
     bo.jobs = o_.jobs;
     bo.pictures = o_.pictures;
