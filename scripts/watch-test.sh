@@ -53,10 +53,10 @@ c2=$(c "$up" 2)
 expect 3 1 "first bad commit: $c2 c2: neither (20 primitives of faulty)"
 expect 3 1 "first bad commit: $(c "$up" 3) c3: bad (20 primitives of faulty)"
 # The night's bisection report repeats a command that runs, not a description of one.
-grep -A3 '^## Repeat it' "$t"/state/nights/*/bisect-faulty/bisect.md |
-  grep -qF -- "renderaudit bisect $t/state/nights/" || fail "night 3's bisection report has no command to repeat"
-grep -A3 '^## Repeat it' "$t"/state/nights/*/bisect-faulty/bisect.md |
-  grep -qF -- "--between faulty@watch-last faulty@watch-tonight --source $t/mesa --good $(c "$up" 0)" ||
+repeat=$(grep -A3 '^## Repeat it' "$t"/state/nights/*/bisect-faulty/bisect.md || true)
+grep -qF -- "renderaudit bisect $t/state/nights/" <<<"$repeat" ||
+  fail "night 3's bisection report has no command to repeat"
+grep -qF -- "--between faulty@watch-last faulty@watch-tonight --source $t/mesa --good $(c "$up" 0)" <<<"$repeat" ||
   fail "night 3's Repeat it is not the bisection it ran"
 commit broken
 night 4
