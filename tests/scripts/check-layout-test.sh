@@ -4,7 +4,7 @@
 # fail and name each violation's file and line, and must not report what the rules allow (a long
 # function that says why, test helpers, a test including a higher folder's test-support header).
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 out=$(scripts/check-layout.sh tests/layout_fixture)
 rc=$?
 bad=0

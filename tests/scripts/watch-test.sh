@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # `renderaudit watch` over six nights of a Mesa branch made of stand-in builds
-# (scripts/bisect-fixture.sh), no compiler (ctest watch_nights). The watched tree is a clone that
+# (tests/scripts/bisect-fixture.sh), no compiler (ctest watch_nights). The watched tree is a clone that
 # follows an upstream; each night commits to the upstream first:
 #   1. c0 good:                      baseline established (exit 0)
 #   2. nothing new:                  said, nothing built or run (exit 0)
@@ -10,7 +10,7 @@
 #                                    back on its branch, unchanged against c3 (exit 0)
 #   6. upstream reset to c1:         moved backwards; tonight is the new baseline (exit 1)
 # and `history` lists the six nights with their commits, verdicts and culprits.
-# Usage: scripts/watch-test.sh BUILD_DIR
+# Usage: tests/scripts/watch-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
 t=$(mktemp -d /tmp/renderaudit-watch-test-XXXXXX)
