@@ -166,7 +166,7 @@ test: build
 # munge): a job array against a local run, then a cancelled and a requeued task. Also in `make test`
 # (skipped there, loudly, where no Slurm can be started).
 slurm-test: build
-	scripts/slurm-test.sh $(BUILD)
+	tests/scripts/slurm-test.sh $(BUILD)
 
 # The installed Mesa against the newest Mesa of Debian's bookworm-backports on the nist2008 views
 # (scripts/driver-upgrade.sh): fetch, run, audit, report (outputs/driver-upgrade/upgrade-report.md).

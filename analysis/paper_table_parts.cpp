@@ -109,16 +109,4 @@ std::vector<double> pooled_all(const RunRecords& run, std::size_t p, PrimitiveKi
   return merge_sorted(parts);
 }
 
-const char* headline_column(PrimitiveKind kind) {
-  switch (kind) {
-    case PrimitiveKind::kPoint:
-      return "pe";
-    case PrimitiveKind::kLine:
-      return "lse_u";
-    case PrimitiveKind::kTriangle:
-      return "te_u";
-  }
-  return "";
-}
-
 }  // namespace ra::analysis::table_parts

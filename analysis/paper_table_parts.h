@@ -33,7 +33,5 @@ std::optional<stats::Description> describe_if_any(const std::vector<double>& asc
 // All view groups of a platform and kind pooled.
 std::vector<double> pooled_all(const RunRecords& run, std::size_t p, PrimitiveKind kind,
                                std::size_t metric);
-// The column of each kind's headline error: pe, lse_u, te_u.
-const char* headline_column(PrimitiveKind kind);
 
 }  // namespace ra::analysis::table_parts

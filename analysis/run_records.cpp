@@ -30,13 +30,6 @@ const char* kind_label_plural(PrimitiveKind kind) {
   return "unknown";
 }
 
-std::optional<PrimitiveKind> parse_kind(std::string_view name) {
-  for (PrimitiveKind k : kAllKinds) {
-    if (name == kind_name(k)) return k;
-  }
-  return std::nullopt;
-}
-
 const char* unit_name(MetricUnit unit) {
   switch (unit) {
     case MetricUnit::kPixels:

@@ -47,7 +47,6 @@ using ra::geometry::kind_name;
 
 // "points", "line segments", "triangles": the words of the paper's captions, for table titles.
 const char* kind_label_plural(PrimitiveKind kind);
-std::optional<PrimitiveKind> parse_kind(std::string_view name);  // the records' spelling
 
 // What a metric's values measure, for unit labels and conversions to physical units.
 enum class MetricUnit {

@@ -121,7 +121,8 @@ class FileParser {
     conformance_.add(row);
     const std::string_view platform = row.cell(metrics::RecordColumn::kPlatform);
     if (platform.empty()) row.fail("column 'platform' is empty");
-    const std::optional<PrimitiveKind> kind = parse_kind(row.cell(metrics::RecordColumn::kKind));
+    const std::optional<PrimitiveKind> kind = geometry::parse_kind(
+        row.cell(metrics::RecordColumn::kKind), geometry::KindSpelling::kName);
     if (!kind) {
       row.fail("unknown kind '" + std::string(row.cell(metrics::RecordColumn::kKind)) +
                "' (allowed: point, line, triangle)");

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "analysis/paper_table_parts.h"
+#include "metrics/headline_metric.h"
 #include "util/number_text.h"
 
 namespace ra::analysis {
@@ -56,7 +57,7 @@ stats::Table speed_table(const RunRecords& run, const TableOptions& options) {
   std::vector<Computed> computed(rows.size());
   util::run_in_parallel(rows.size(), options.jobs, [&](std::size_t i) {
     const Row& r = rows[i];
-    const std::size_t metric = metric_index(r.kind, headline_column(r.kind));
+    const std::size_t metric = metric_index(r.kind, metrics::headline_column(r.kind));
     std::vector<const std::vector<double>*> all, visible, error;
     for (const ViewGroup* g : run.groups_of(r.platform, r.kind)) {
       if (r.group && g != r.group) continue;
@@ -101,7 +102,7 @@ stats::Table speed_table(const RunRecords& run, const TableOptions& options) {
     }
     pair(row, computed[i].all, true, 2);
     pair(row, computed[i].visible, true, 2);
-    const std::size_t metric = metric_index(r.kind, headline_column(r.kind));
+    const std::size_t metric = metric_index(r.kind, metrics::headline_column(r.kind));
     const MetricSpec& spec = kind_metrics(r.kind)[metric];
     row.push_back(stats::text_cell(std::string(spec.symbol) + " (" + unit_name(spec.unit) + ")"));
     // the decimals of the paper's non-normalized tables: PE 5 (Table 3), LSEu 4, TEu 3

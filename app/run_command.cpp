@@ -7,6 +7,7 @@
 #include "rundir/experiment.h"
 #include "runner/run_coordinator.h"
 #include "runner/slurm_submission.h"
+#include "util/duration_text.h"
 #include "util/errors.h"
 #include "util/number_text.h"
 #include "util/program_name.h"

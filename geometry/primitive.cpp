@@ -22,14 +22,18 @@ const char* kind_plural(Kind k) {
   return "?";
 }
 
-bool parse_kind(const std::string& s, Kind* out) {
+std::optional<Kind> parse_kind(std::string_view s, KindSpelling spelling) {
   for (Kind k : {Kind::kPoint, Kind::kLine, Kind::kTriangle}) {
-    if (s == kind_name(k) || s == kind_plural(k)) {
-      *out = k;
-      return true;
-    }
+    if (s == kind_name(k) || (spelling == KindSpelling::kNameOrPlural && s == kind_plural(k)))
+      return k;
   }
-  return false;
+  return std::nullopt;
+}
+
+bool parse_kind(const std::string& s, Kind* out) {
+  const std::optional<Kind> k = parse_kind(s, KindSpelling::kNameOrPlural);
+  if (k) *out = *k;
+  return k.has_value();
 }
 
 static util::RngStream stream_of(Kind k) {

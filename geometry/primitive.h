@@ -4,7 +4,9 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "geometry/vector_math.h"
 
@@ -14,7 +16,11 @@ enum class Kind { kPoint = 0, kLine = 1, kTriangle = 2 };
 
 const char* kind_name(Kind k);        // "point", "line", "triangle"
 const char* kind_plural(Kind k);      // "points", "lines", "triangles" (experiment-file keys)
-bool parse_kind(const std::string& s, Kind* out);  // accepts singular or plural
+// Where a kind is read, how it may be spelled: the name only where kind_name wrote it (records),
+// the name or the plural where a person writes it (experiment files, command lines, documents).
+enum class KindSpelling { kName, kNameOrPlural };
+std::optional<Kind> parse_kind(std::string_view s, KindSpelling spelling);
+bool parse_kind(const std::string& s, Kind* out);  // singular or plural, into *out: false if neither
 inline int vertex_count(Kind k) { return static_cast<int>(k) + 1; }
 
 struct Primitive {

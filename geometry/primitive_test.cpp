@@ -50,5 +50,18 @@ TEST(Primitive, UniformInTheUnitSphere) {
   EXPECT_NEAR(sum_x / n, 0.0, 4 * std::sqrt(0.2 / n));  // var of x in the ball = 1/5
 }
 
+// Records hold the name only (a plural there is a broken file); people may write either.
+TEST(Primitive, ParseKindBySpelling) {
+  EXPECT_EQ(parse_kind("line", KindSpelling::kName), Kind::kLine);
+  EXPECT_EQ(parse_kind("lines", KindSpelling::kName), std::nullopt);
+  EXPECT_EQ(parse_kind("triangles", KindSpelling::kNameOrPlural), Kind::kTriangle);
+  EXPECT_EQ(parse_kind("Point", KindSpelling::kNameOrPlural), std::nullopt);  // case counts
+  Kind k = Kind::kLine;
+  EXPECT_TRUE(parse_kind(std::string("points"), &k));
+  EXPECT_EQ(k, Kind::kPoint);
+  EXPECT_FALSE(parse_kind(std::string("quad"), &k));
+  EXPECT_EQ(k, Kind::kPoint);  // left as it was
+}
+
 }  // namespace
 }  // namespace ra::geometry

@@ -1,6 +1,6 @@
 // Test support (platforms/ and runner/ tests): the Mesa drivers that the device-level tests run on,
 // each test skipped where its driver cannot be brought up, and the tests named by platform
-// (".../egl_zink") so that a filter can pick drivers: scripts/api-validation-test.sh leaves zink
+// (".../egl_zink") so that a filter can pick drivers: tests/scripts/api-validation-test.sh leaves zink
 // out of Vulkan validation, since zink's Vulkan calls are Mesa's, not the project's.
 #pragma once
 

@@ -22,6 +22,7 @@
 
 #include "util/child_process.h"
 #include "util/errors.h"
+#include "util/interrupt.h"
 #include "util/path_search.h"
 
 namespace ra::plots {
@@ -35,9 +36,8 @@ constexpr const char* kInstallHint =
 
 // The private server of this process, for the exit and signal handlers (async-signal-safe).
 volatile pid_t g_server_pid = -1;
-struct sigaction g_old_actions[3];
-constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
-bool g_handlers_installed = false;
+// The handlers that stop it on SIGINT, SIGTERM and SIGHUP: installed once, for the process's life.
+util::StopSignals* g_stop_signals = nullptr;
 
 // Stops the server and reaps it (up to 2 s), using async-signal-safe calls only.
 void kill_server_now() {
@@ -59,24 +59,15 @@ void kill_server_now() {
 
 void on_signal(int sig) {
   kill_server_now();
-  // Restore the previous disposition and re-raise: the process ends as it would have.
-  for (int i = 0; i < 3; ++i)
-    if (kSignals[i] == sig) ::sigaction(sig, &g_old_actions[i], nullptr);
+  // The previous handler back, and the signal again: the process ends as it would have.
+  if (g_stop_signals) g_stop_signals->restore(sig);
   ::raise(sig);
 }
 
 void install_handlers_once() {
-  if (g_handlers_installed) return;
-  g_handlers_installed = true;
+  if (g_stop_signals) return;
   std::atexit(kill_server_now);
-  for (int i = 0; i < 3; ++i) {
-    struct sigaction sa {};
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    ::sigaction(kSignals[i], &sa, &g_old_actions[i]);
-    // Keep "ignored" signals ignored (e.g. SIGHUP under nohup).
-    if (g_old_actions[i].sa_handler == SIG_IGN) ::sigaction(kSignals[i], &g_old_actions[i], nullptr);
-  }
+  g_stop_signals = new util::StopSignals(on_signal);  // never restored as a whole: see above
 }
 
 std::string read_tail(const std::string& path, std::size_t max_chars = 2000) {

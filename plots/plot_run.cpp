@@ -14,8 +14,6 @@
 #include <set>
 #include <sstream>
 
-#include <unistd.h>
-
 #include "analysis/figure_data.h"
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
@@ -27,6 +25,7 @@
 #include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
+#include "util/progress_line.h"
 #include "util/shell_quote.h"
 #include "util/json_file.h"
 #include "metrics/records.h"
@@ -124,12 +123,12 @@ PlotResult plot_run(const PlotOptions& options) {
       if (!r) r = std::make_unique<FigureRenderer>(1123, f.height);
       return *r;
     };
-    const bool tty = ::isatty(2);
+    util::ProgressLine line;  // one line rewritten on a terminal, a line per figure in a log
     for (std::size_t i = 0; i < plan.figures.size(); ++i) {
       const Figure& f = plan.figures[i];
-      if (options.progress)  // one line rewritten on a terminal, a line per figure in a log
-        std::fprintf(stderr, tty ? "\r[%zu/%zu] %s\033[K" : "[%zu/%zu] %s\n", i + 1,
-                     plan.figures.size(), f.id.c_str());
+      if (options.progress)
+        line.show("[" + std::to_string(i + 1) + "/" + std::to_string(plan.figures.size()) + "] " +
+                  f.id);
       const RenderedFigure r = renderer_for(f).render(f, result.figures_dir + "/" + f.id);
       IndexedFigure x{f.id,          figure_kind_name(f), f.section,     f.title,
                       f.caption,     r.note,              f.id + ".png", f.id + ".pdf",
@@ -137,7 +136,7 @@ PlotResult plot_run(const PlotOptions& options) {
       layouts.push_back(r.layout);
       result.figures.push_back(std::move(x));
     }
-    if (options.progress && tty) std::fputc('\n', stderr);
+    line.end();
   }
   display.stop();
 

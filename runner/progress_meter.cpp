@@ -59,15 +59,23 @@ void ProgressMeter::write_file(const std::string& dir, const std::string& host,
   write_run_progress(dir, p);
 }
 
+void ProgressMeter::show(std::size_t failed) {
+  if (line_.terminal())
+    show_line(failed);
+  else
+    log_line(failed);
+}
+
 void ProgressMeter::show_line(std::size_t failed) {
   const auto now = Clock::now();
   if (now - last_line_ <= std::chrono::milliseconds(250)) return;
   last_line_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double rate = primitives_done_ / std::max(elapsed, 1e-9);
-  std::fprintf(stderr, "\r[%zu/%zu shards] %llu primitives, %.0f/s, %zu failed, left %s   ",
-               finished_, shards_to_run_, primitives_done_, rate, failed,
-               util::duration_text(cost_done_ > 0 ? seconds_left(elapsed) : NAN).c_str());
+  line_.show(util::format_text(
+      "[%zu/%zu shards] %llu primitives, %.0f/s, %zu failed, left %s", finished_, shards_to_run_,
+      primitives_done_, rate, failed,
+      util::duration_text(cost_done_ > 0 ? seconds_left(elapsed) : NAN).c_str()));
 }
 
 void ProgressMeter::log_line(std::size_t failed) {
@@ -79,13 +87,14 @@ void ProgressMeter::log_line(std::size_t failed) {
   last_log_ = now;
   logged_tenths_ = tenths;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  std::fprintf(stderr, "run: %d%% done (%zu of %zu shards, %s primitives%s), %s so far, %s left\n",
-               cost_todo_ > 0 ? int(100 * cost_done_ / cost_todo_) : 0, finished_, shards_to_run_,
-               util::grouped(primitives_done_).c_str(),
-               failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
-               util::elapsed_text(elapsed).c_str(),
-               cost_done_ > 0 ? ("about " + util::elapsed_text(seconds_left(elapsed))).c_str()
-                              : "time not known yet");
+  line_.show(util::format_text(
+      "run: %d%% done (%zu of %zu shards, %s primitives%s), %s so far, %s left",
+      cost_todo_ > 0 ? int(100 * cost_done_ / cost_todo_) : 0, finished_, shards_to_run_,
+      util::grouped(primitives_done_).c_str(),
+      failed ? (", " + std::to_string(failed) + " failed").c_str() : "",
+      util::elapsed_text(elapsed).c_str(),
+      cost_done_ > 0 ? ("about " + util::elapsed_text(seconds_left(elapsed))).c_str()
+                     : "time not known yet"));
 }
 
 }  // namespace ra::runner

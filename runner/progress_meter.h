@@ -13,6 +13,7 @@
 #include "runner/run_plan.h"
 #include "runner/shard_recovery.h"
 #include "runner/worker_pool.h"
+#include "util/progress_line.h"
 
 namespace ra::runner {
 
@@ -29,16 +30,22 @@ class ProgressMeter {
   // DIR/progress.json: every 2 s, and when `at_end`.
   void write_file(const std::string& dir, const std::string& host, const WorkerPool& pool,
                   const std::vector<ShardFailure>& failures, bool at_end);
-  // The progress line on stderr, every 250 ms.
-  void show_line(std::size_t failed);
-  // Where stderr is not a terminal (a log, a pipe, CI), progress as whole lines instead: one when
-  // another tenth of the expected cost is done, at most every 30 s and at least every 5 minutes,
-  // so a short run prints none and a long one about ten.
-  void log_line(std::size_t failed);
+  // Progress on stderr (util/progress_line.h): on a terminal the line rewritten every 250 ms;
+  // elsewhere (a log, a pipe, CI) a whole line when another tenth of the expected cost is done,
+  // at most every 30 s and at least every 5 minutes, so a short run prints none and a long one
+  // about ten.
+  void show(std::size_t failed);
+  // Ends the terminal's progress line, so that what follows starts on a line of its own.
+  void end_line() { line_.end(); }
+  bool on_terminal() const { return line_.terminal(); }
 
  private:
   using Clock = std::chrono::steady_clock;
+  void show_line(std::size_t failed);
+  void log_line(std::size_t failed);
+
   const rundir::Experiment& exp_;
+  util::ProgressLine line_;
   const Clock::time_point start_ = Clock::now();
   Clock::time_point last_line_ = start_ - std::chrono::seconds(1);
   Clock::time_point last_file_ = start_ - std::chrono::seconds(10);

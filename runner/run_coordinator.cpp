@@ -294,9 +294,8 @@ RunResult run_experiment(const RunOptions& options) {
 
   // The workers, and what follows from each item's end.
   RunSignals signals;
-  const bool show = options.progress && ::isatty(2);
-  const bool log_progress = options.progress && !show;  // a log or CI: whole lines, now and then
   ProgressMeter progress(exp, todo);
+  const bool show = options.progress && progress.on_terminal();  // a line rewritten in place
   ShardRecovery recovery(dir, exp, timeout_s);
   platforms::RendererCheck renderer_check(dir, options.expect_renderer);
   // wall seconds of each shard's worker (whole shards run at the first attempt), kept across
@@ -325,12 +324,11 @@ RunResult run_experiment(const RunOptions& options) {
     if (pool.serve(todo)) continue;  // reap everything that is ready before sleeping
     pool.enforce_time_limits();
     progress.write_file(dir, this_host, pool, result.failures, false);
-    if (show) progress.show_line(result.failures.size());
-    if (log_progress) progress.log_line(result.failures.size());
+    if (options.progress) progress.show(result.failures.size());
     // Sleep up to 5 ms, waking at once when a server replies (the next shard is sent at once).
     pool.wait(5);
   }
-  if (show) std::fprintf(stderr, "\n");
+  progress.end_line();
   pool.stop_all();  // no worker runs past this point
   progress.write_file(dir, this_host, pool, result.failures, true);
   fs::remove_all(ShardRecovery::parts_dir(dir));

@@ -19,7 +19,7 @@ struct RunOptions {
   int jobs = 0;                 // 0: the number of cores
   double timeout_s = 0;         // 0: the experiment's run.shard_timeout_s
   bool progress = true;         // progress on stderr: a line rewritten on a terminal, else a
-                                // whole line now and then (ProgressMeter::log_line)
+                                // whole line now and then (ProgressMeter::show)
   std::vector<std::string> only_platforms;  // non-empty: run only these platforms' shards
   std::string worker_program;   // the executable that runs `worker` (default: this one)
   std::string expect_renderer;  // non-empty: ECMAScript regex every driver's GL_RENDERER must match

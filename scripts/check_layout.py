@@ -17,7 +17,7 @@ Fails (exit 1, one line "layout: FILE:LINE: ..." per finding) on:
   - in a shell script under scripts/ or tests/ that sets pipefail, a pipe into a command that may
     stop reading before the writer is done (`| head`, `| grep -q`, `-m`, `-l`, `--quiet`, ...): the
     writer then dies of SIGPIPE and the pipeline fails now and then. Capture the output first
-    (out=$(cmd); grep -q X <<<"$out").
+    (out=$(cmd); grep -q X <<<"$out"). A pipe continued on the next line (after `|` or `\\`) counts.
 The layer order is read from CMakeLists.txt (`set(RA_LAYERS ...)`), the one place it is written;
 docs/development.md must list the folders in the same order.
 
@@ -371,21 +371,45 @@ def shell_scripts(root):
     return out
 
 
+def shell_commands(text):
+    """The script's lines joined where a command goes on: after a line that ends in a pipe or a
+    backslash (`grep -A3 X file |` NEWLINE `grep -qF Y`), comment lines inside skipped. Yields
+    (command, line_of) where line_of(offset) is the script's line of an offset in the command."""
+    command, starts = "", []  # starts: (offset in command, line number) of each joined line
+    for n, line in enumerate(text.split("\n"), 1):
+        if line.lstrip().startswith("#"):
+            if not command:
+                continue
+            line = ""
+        if command:
+            command += " "
+        starts.append((len(command), n))
+        code = line.rstrip()
+        if code.endswith("\\") and not code.endswith("\\\\"):
+            command += code[:-1]
+            continue
+        command += code
+        if code.endswith("|") and not code.endswith("||"):
+            continue
+        if command.strip():
+            yield command, (lambda offset, s=starts: max(n for o, n in s if o <= offset))
+        command, starts = "", []
+    if command.strip():
+        yield command, (lambda offset, s=starts: max(n for o, n in s if o <= offset))
+
+
 def check_pipes(root, findings):
     for path in shell_scripts(root):
         with open(path, encoding="utf-8", errors="replace") as fh:
             text = fh.read()
         if not PIPEFAIL_RE.search(text):
             continue
-        for n, line in enumerate(text.split("\n"), 1):
-            if line.lstrip().startswith("#"):
-                continue
-            m = EARLY_EXIT_PIPE_RE.search(line)
-            if m:
+        for command, line_of in shell_commands(text):
+            for m in EARLY_EXIT_PIPE_RE.finditer(command):
                 findings.append("%s:%d: '%s' under pipefail: the command before it dies of SIGPIPE "
                                 "when this one stops reading early, and the pipeline fails by "
                                 "chance; capture the output first (out=$(cmd); grep -q X <<<\"$out\")"
-                                % (os.path.relpath(path, root), n, m.group(0).strip()))
+                                % (os.path.relpath(path, root), line_of(m.start()), " ".join(m.group(0).split())))
 
 
 def main():

@@ -88,8 +88,13 @@ if [[ -f $db ]] && "$bin" history --db "$db" --last 14 > "$root/history.txt" 2>&
   history="; history: $root/history.txt"
 fi
 
+# How long the night took, in the words of the program's summaries (util::elapsed_text) in whole
+# seconds: the script times the commands it runs, so it spells the time itself rather than ask a
+# binary that may be the thing that failed.
 took=$(( $(date +%s) - started ))
-took=$( (( took >= 60 )) && echo "$((took / 60)) min $((took % 60)) s" || echo "$took s")
+if (( took >= 3600 )); then took=$(printf '%d h %02d min' $((took / 3600)) $((took / 60 % 60)))
+elif (( took >= 60 )); then took="$((took / 60)) min $((took % 60)) s"
+else took="$took s"; fi
 report="report: $tonight/report/report.pdf"
 if (( refused )); then
   echo "nightly: NO VERDICT (exit 2) in $took: the audit refused to compare; $report$history"

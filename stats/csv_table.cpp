@@ -7,13 +7,21 @@
 #include <sstream>
 #include <system_error>
 
+#include "util/cell_text.h"
 #include "util/errors.h"
 #include "util/zstd_stream.h"
 
 namespace ra::stats {
 namespace {
 
-bool is_blank(char c) { return c == ' ' || c == '\t'; }
+// Cells of tables that people edit: blanks around them dropped, a line end ends a row.
+constexpr util::CsvRules kTableRules{true, true};
+
+std::size_t lines_in(std::string_view text, std::size_t from, std::size_t to) {
+  std::size_t n = 0;
+  for (std::size_t k = from; k < to; ++k) n += text[k] == '\n';
+  return n;
+}
 
 std::string located(const std::string& source, std::size_t line, const std::string& what) {
   return source + ":" + std::to_string(line) + ": " + what;
@@ -56,54 +64,16 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& source) {
     bool any_quoted = false;
     bool end_of_record = false;
     while (!end_of_record) {
+      const std::size_t cell_start = i;
+      bool quoted = false;
       std::string cell;
-      while (i < size && is_blank(text[i])) ++i;
-      if (i < size && text[i] == '"') {
-        // quoted cell: up to the closing quote; "" is a literal quote
-        any_quoted = true;
-        const std::size_t open_line = line;
-        ++i;
-        bool closed = false;
-        while (i < size) {
-          const char c = text[i++];
-          if (c == '"') {
-            if (i < size && text[i] == '"') {
-              cell += '"';
-              ++i;
-            } else {
-              closed = true;
-              break;
-            }
-          } else {
-            if (c == '\n') ++line;
-            cell += c;
-          }
-        }
-        if (!closed) {
-          throw util::UserError(located(source, open_line, "a quoted cell is never closed"));
-        }
-        while (i < size && is_blank(text[i])) ++i;
-        if (i < size && text[i] != ',' && text[i] != '\n' && text[i] != '\r') {
-          throw util::UserError(
-              located(source, line,
-                      "unexpected text after a quoted cell (a quote inside a quoted "
-                      "cell is written \"\")"));
-        }
-      } else {
-        const std::size_t start = i;
-        while (i < size && text[i] != ',' && text[i] != '\n' && text[i] != '\r') {
-          if (text[i] == '"') {
-            throw util::UserError(
-                located(source, line,
-                        "a double quote inside an unquoted cell (quote the whole cell "
-                        "and write the quote as \"\")"));
-          }
-          ++i;
-        }
-        std::size_t stop = i;
-        while (stop > start && is_blank(text[stop - 1])) --stop;
-        cell.assign(text.substr(start, stop - start));
+      try {
+        cell = util::read_csv_cell(text, i, kTableRules, &quoted);
+      } catch (const util::CsvCellError& e) {
+        throw util::UserError(located(source, line + lines_in(text, cell_start, e.at), e.what()));
       }
+      any_quoted = any_quoted || quoted;
+      line += lines_in(text, cell_start, i);  // a quoted cell may hold line ends
       record.push_back(std::move(cell));
 
       // what ends the cell: a comma (another cell follows), a line end or the end of the text

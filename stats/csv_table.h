@@ -1,7 +1,8 @@
 // A small CSV reader for the analysis stage: a header row of column names, then rows of cells.
 // - Cells are separated by commas; a cell may be enclosed in double quotes, inside which commas,
-//   line breaks and doubled quotes ("") are literal. Spaces and tabs around unquoted cells are
-//   dropped. Lines end in LF or CRLF; blank lines are skipped; a UTF-8 byte order mark is ignored.
+//   line breaks and doubled quotes ("") are literal. Spaces and tabs around cells are dropped
+//   (util::read_csv_cell under the table rules; split_csv_line keeps them). Lines end in LF or
+//   CRLF; blank lines are skipped; a UTF-8 byte order mark is ignored.
 // - A line that starts with '#' is a comment and is skipped (a records file ends with its seal,
 //   `# complete rows=N fnv1a64=H`); a cell that starts with '#' is quoted or not first in its row.
 // - Every row must have as many cells as the header (an unexpected cell is an error, never a

@@ -1,4 +1,4 @@
-// The positive control of scripts/api-validation-test.sh: one misuse of each API that the test's
+// The positive control of tests/scripts/api-validation-test.sh: one misuse of each API that the test's
 // validators must report, so that a clean run of the real paths under them means something.
 //   gl      an invalid enum to glEnable on osmesa-llvmpipe: Mesa prints "Mesa: User error" under
 //           MESA_DEBUG;

@@ -1,7 +1,7 @@
 // `run --slurm` without a cluster: the sbatch scripts it writes (dry run), its refusals, and the
 // whole path through a stand-in sbatch that runs each array task and then the gather at once, as
 // Slurm would; and `renderaudit status` of finished, running and sliced runs. The same run on a
-// real Slurm, with a cancelled and a requeued task, is scripts/slurm-test.sh (ctest
+// real Slurm, with a cancelled and a requeued task, is tests/scripts/slurm-test.sh (ctest
 // slurm_job_array).
 #include <gtest/gtest.h>
 

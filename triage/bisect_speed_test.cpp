@@ -1,6 +1,6 @@
 // Drawing time in a bisection: where a step's time lies between the ends' (place_step), the
 // culprit lines, the plan giving up a group, and bisect.json keeping the times (the timing itself:
-// scripts/bisect-speed-test.sh, ctest bisect_speed, with real drawing).
+// tests/scripts/bisect-speed-test.sh, ctest bisect_speed, with real drawing).
 #include "triage/bisect_speed.h"
 
 #include <gtest/gtest.h>

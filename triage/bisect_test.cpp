@@ -1,4 +1,4 @@
-// The bisection's selection syntax and its state file (the loop itself: scripts/bisect-test.sh,
+// The bisection's selection syntax and its state file (the loop itself: tests/scripts/bisect-test.sh,
 // ctest bisect_faulty, with real drawing; the choice of commits: bisect_plan_test.cpp).
 #include "triage/bisect.h"
 

@@ -31,45 +31,67 @@ std::string csv_escape(const std::string& text) {
   return s + "\"";
 }
 
+namespace {
+
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+}  // namespace
+
+std::string read_csv_cell(std::string_view text, std::size_t& pos, CsvRules rules, bool* quoted) {
+  const std::size_t n = text.size();
+  const auto ends_cell = [&](char c) {
+    return c == ',' || (rules.line_ends_end_cells && (c == '\n' || c == '\r'));
+  };
+  if (rules.trim_blanks)
+    while (pos < n && is_blank(text[pos])) ++pos;
+  std::string cell;
+  if (quoted) *quoted = pos < n && text[pos] == '"';
+  if (pos < n && text[pos] == '"') {  // quoted: up to the closing quote; "" is a literal quote
+    const std::size_t open = pos++;
+    bool closed = false;
+    while (pos < n) {
+      const char c = text[pos++];
+      if (c != '"') {
+        cell += c;
+      } else if (pos < n && text[pos] == '"') {
+        cell += '"';
+        ++pos;
+      } else {
+        closed = true;
+        break;
+      }
+    }
+    if (!closed) throw CsvCellError("a quoted cell is never closed", open);
+    if (rules.trim_blanks)
+      while (pos < n && is_blank(text[pos])) ++pos;
+    if (pos < n && !ends_cell(text[pos]))
+      throw CsvCellError(
+          "unexpected text after a quoted cell (a quote inside a quoted cell is written \"\")",
+          pos);
+    return cell;
+  }
+  const std::size_t start = pos;
+  while (pos < n && !ends_cell(text[pos])) {
+    if (text[pos] == '"')
+      throw CsvCellError(
+          "a double quote inside an unquoted cell (quote the whole cell and write the quote as "
+          "\"\")",
+          pos);
+    ++pos;
+  }
+  std::size_t stop = pos;
+  if (rules.trim_blanks)
+    while (stop > start && is_blank(text[stop - 1])) --stop;
+  return std::string(text.substr(start, stop - start));
+}
+
 std::vector<std::string> split_csv_line(const std::string& line) {
   std::vector<std::string> cells;
-  std::size_t i = 0;
-  const std::size_t n = line.size();
+  std::size_t pos = 0;
   while (true) {
-    std::string cell;
-    if (i < n && line[i] == '"') {  // quoted: up to the closing quote; "" is a literal quote
-      ++i;
-      bool closed = false;
-      while (i < n) {
-        const char c = line[i++];
-        if (c != '"') {
-          cell += c;
-        } else if (i < n && line[i] == '"') {
-          cell += '"';
-          ++i;
-        } else {
-          closed = true;
-          break;
-        }
-      }
-      if (!closed) throw std::invalid_argument("a quoted cell is never closed");
-      if (i < n && line[i] != ',')
-        throw std::invalid_argument(
-            "text after a quoted cell (a quote inside a quoted cell is written \"\")");
-    } else {
-      const std::size_t start = i;
-      while (i < n && line[i] != ',') {
-        if (line[i] == '"')
-          throw std::invalid_argument(
-              "a double quote inside an unquoted cell (quote the whole cell and write the quote "
-              "as \"\")");
-        ++i;
-      }
-      cell = line.substr(start, i - start);
-    }
-    cells.push_back(std::move(cell));
-    if (i >= n) return cells;
-    ++i;  // the comma: another cell follows
+    cells.push_back(read_csv_cell(line, pos, CsvRules{}));
+    if (pos >= line.size()) return cells;
+    ++pos;  // the comma: another cell follows
   }
 }
 

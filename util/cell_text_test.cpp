@@ -91,5 +91,44 @@ TEST(CellText, SplitCsvLineRefusesBrokenQuotes) {
   EXPECT_THROW(split_csv_line("a\"b,x"), std::invalid_argument);
 }
 
+// The table reader's rules: blanks around cells dropped, quoted or not; a line end ends a cell,
+// and `pos` stays on it so that the reader can end the row.
+TEST(CellText, ReadCsvCellUnderTheTableRules) {
+  const CsvRules table{true, true};
+  const std::string text = "  a b  , \"x,y\" ,c\r\nnext";
+  std::size_t pos = 0;
+  bool quoted = true;
+  EXPECT_EQ(read_csv_cell(text, pos, table, &quoted), "a b");
+  EXPECT_FALSE(quoted);
+  EXPECT_EQ(text[pos], ',');
+  ++pos;
+  EXPECT_EQ(read_csv_cell(text, pos, table, &quoted), "x,y");
+  EXPECT_TRUE(quoted);
+  ++pos;
+  EXPECT_EQ(read_csv_cell(text, pos, table), "c");
+  EXPECT_EQ(text[pos], '\r');
+  // The same text split as a line: blanks kept, CR and LF ordinary characters.
+  EXPECT_THROW(split_csv_line(text), std::invalid_argument);  // " \"x,y\" " is not one cell
+  EXPECT_EQ(split_csv_line("  a b  ,c\r"), (Cells{"  a b  ", "c\r"}));
+}
+
+// Where each broken cell is found: the opening quote of a cell never closed, the text after a
+// closing quote, the stray quote (the table reader names the line from it).
+TEST(CellText, ReadCsvCellSaysWhereTheCellIsBroken) {
+  const auto error_at = [](const std::string& text) -> std::size_t {
+    std::size_t pos = 0;
+    try {
+      read_csv_cell(text, pos, CsvRules{true, true});
+    } catch (const CsvCellError& e) {
+      return e.at;
+    }
+    return std::string::npos;
+  };
+  EXPECT_EQ(error_at("  \"open\nstill"), 2u);
+  EXPECT_EQ(error_at("\"a\" b"), 4u);  // blanks after the closing quote are dropped first
+  EXPECT_EQ(error_at("ab\"c"), 2u);
+  EXPECT_EQ(error_at("fine"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace ra::util

@@ -29,17 +29,21 @@ StopSignals::StopSignals(void (*handler)(int)) {
   struct sigaction sa {};
   sa.sa_handler = handler;
   sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, &old_int_);
-  sigaction(SIGTERM, &sa, &old_term_);
-  sigaction(SIGHUP, &sa, &old_hup_);
+  for (int i = 0; i < 3; ++i) {
+    sigaction(kSignals[i], nullptr, &old_[i]);
+    if (old_[i].sa_handler != SIG_IGN) sigaction(kSignals[i], &sa, nullptr);
+  }
 }
 
 void StopSignals::restore() {
   if (restored_) return;
   restored_ = true;
-  sigaction(SIGINT, &old_int_, nullptr);
-  sigaction(SIGTERM, &old_term_, nullptr);
-  sigaction(SIGHUP, &old_hup_, nullptr);
+  for (int sig : kSignals) restore(sig);
+}
+
+void StopSignals::restore(int sig) const {
+  for (int i = 0; i < 3; ++i)
+    if (kSignals[i] == sig) sigaction(sig, &old_[i], nullptr);
 }
 
 // g_signal is not reset: a scope inside another (a bisection inside a night) keeps a signal that

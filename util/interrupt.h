@@ -21,18 +21,24 @@ struct Interrupted : std::runtime_error {
 };
 
 // SIGINT, SIGTERM and SIGHUP handled by `handler` while this lives; the handlers before come back
-// at restore() or at the end. InterruptScope and a run's own signal handling both stand on it.
+// at restore() or at the end. A signal ignored before stays ignored (SIGHUP under nohup: whoever
+// started the command asked for it to outlive the terminal). InterruptScope, a run's own signal
+// handling and the plots' private X server (plots/headless_display.cpp) all stand on it.
 class StopSignals {
  public:
+  static constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+
   explicit StopSignals(void (*handler)(int));
   ~StopSignals() { restore(); }
   StopSignals(const StopSignals&) = delete;
   StopSignals& operator=(const StopSignals&) = delete;
   void restore();
+  // Puts back the handler `sig` had before, and only that one. Async-signal-safe: a handler that
+  // cleans up and then ends the process as the signal would have calls it, then raises `sig`.
+  void restore(int sig) const;
 
  private:
-  struct sigaction old_int_ {
-  }, old_term_{}, old_hup_{};
+  struct sigaction old_[3] = {};
   bool restored_ = false;
 };
 

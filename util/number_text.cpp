@@ -64,17 +64,4 @@ std::string grouped(unsigned long long n) {
   return out;
 }
 
-std::string elapsed_text(double seconds) {
-  if (!(seconds >= 0) || !std::isfinite(seconds)) return "?";
-  if (seconds < 9.95) return fixed(seconds, 1) + " s";
-  const long t = std::lround(seconds);
-  if (t < 60) return std::to_string(t) + " s";
-  char buf[48];
-  if (t < 3600)
-    std::snprintf(buf, sizeof buf, "%ld min %ld s", t / 60, t % 60);
-  else
-    std::snprintf(buf, sizeof buf, "%ld h %02ld min", t / 3600, (t / 60) % 60);
-  return buf;
-}
-
 }  // namespace ra::util

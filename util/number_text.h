@@ -31,8 +31,4 @@ std::string fixed(double v, int decimals);
 // A count with its thousands grouped by commas, as the summaries print them: 64000 is "64,000".
 std::string grouped(unsigned long long n);
 
-// Wall time as a person reads it in a summary line: "0.4 s", "13 s", "2 min 41 s", "1 h 05 min";
-// "?" when not finite or negative.
-std::string elapsed_text(double seconds);
-
 }  // namespace ra::util

@@ -55,14 +55,6 @@ TEST(NumberText, GroupedPutsCommasBetweenThousands) {
   EXPECT_EQ(grouped(1900000), "1,900,000");
 }
 
-TEST(NumberText, ElapsedTextReadsAsMinutesPastAMinute) {
-  EXPECT_EQ(elapsed_text(0.42), "0.4 s");
-  EXPECT_EQ(elapsed_text(13.2), "13 s");
-  EXPECT_EQ(elapsed_text(161), "2 min 41 s");
-  EXPECT_EQ(elapsed_text(3900), "1 h 05 min");
-  EXPECT_EQ(elapsed_text(-1), "?");
-}
-
 // The small spellings every writer shares: printf into a string of any length, the empty cell of a
 // missing number, a JSON null read as "n/a", a 64-bit hash as 16 hex digits.
 TEST(NumberText, SharedSpellingsOfMissingNumbersAndHashes) {

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # `renderaudit bisect` end to end with real drawing and no compiler (ctest bisect_faulty): stand-in
-# driver builds and git histories (scripts/bisect-fixture.sh). History g: c0-c3 good, c4 bad,
+# driver builds and git histories (tests/scripts/bisect-fixture.sh). History g: c0-c3 good, c4 bad,
 # c5 neither (the odd lines back to good), c6 bad, c7 bad, c8 good again, c9 broken, c10 bad.
 # Checked: every change named to its commit, also a primitive changed three times; two culprits of
 # disjoint primitives; a change next to a build that fails (candidates, exit 1); a change undone
 # inside the range (not seen: the documented limit); refs that draw alike; a resumed
 # multi-primitive bisection; other inputs refused; the report's parts.
-# Usage: scripts/bisect-test.sh BUILD_DIR
+# Usage: tests/scripts/bisect-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
 t=$(mktemp -d /tmp/renderaudit-bisect-test-XXXXXX)

@@ -10,10 +10,10 @@
 #   night 3: the experiment edited: exit 2, the differing lines and the --promote line said (once), no
 #            "verdict in" a file that was not written, the report says "no verdict" and why;
 #   night 4: after --promote of night 3: unchanged against it.
-# Usage: scripts/nightly-test.sh BUILD_DIR
+# Usage: tests/scripts/nightly-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
-here=$(cd "$(dirname "$0")/.." && pwd)
+here=$(cd "$(dirname "$0")/../.." && pwd)
 t=$(mktemp -d /tmp/renderaudit-nightly-test-XXXXXX)
 trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
 fail() { echo "nightly-test: FAIL: $*" >&2; exit 1; }

@@ -11,10 +11,10 @@
 # and refuses an N that is not a positive whole number before anything else.
 # `make -o build`: the build is taken as it is (ctest runs beside other tests that use the binary;
 # a relink under them would fail them).
-# Usage: scripts/make-run-test.sh BUILD_DIR
+# Usage: tests/scripts/make-run-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
-here=$(cd "$(dirname "$0")/.." && pwd)
+here=$(cd "$(dirname "$0")/../.." && pwd)
 t=$(mktemp -d /tmp/renderaudit-make-run-test-XXXXXX)
 trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
 fail() { echo "make-run-test: FAIL: $*" >&2; exit 1; }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # `renderaudit report RUN --upgrade BUILD` (the driver upgrade report, triage/upgrade_report.h) on a
-# real run of stand-in drivers (scripts/bisect-fixture.sh), no Mesa build (ctest upgrade_report): the installed driver `faulty` (llvmpipe) against two builds drawn in
+# real run of stand-in drivers (tests/scripts/bisect-fixture.sh), no Mesa build (ctest upgrade_report): the installed driver `faulty` (llvmpipe) against two builds drawn in
 # one run, faulty@backports (a wild pixel on every line) and faulty@source (on the even lines
 # only), audited into the folders scripts/driver-upgrade.sh uses (audit-P, audit-P-source):
 #   - the source part's per-platform table shows the source audit's counts, not the backports ones,
@@ -18,13 +18,13 @@
 #     audit judges time as driver-upgrade.sh's do (--speed --speed-warn-only, 3 rounds: about 2 s);
 #     the summary carries its verdicts (slower, never faster or the same) and page 1 says so; the
 #     source audit, not timed, leaves `speed` out and page 1 without a word of time.
-# Usage: scripts/upgrade-report-test.sh BUILD_DIR
+# Usage: tests/scripts/upgrade-report-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
 t=$(mktemp -d /tmp/renderaudit-upgrade-report-XXXXXX)
 trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
 . "$(dirname "$0")/bisect-fixture.sh"
-scripts="$(cd "$(dirname "$0")" && pwd)"
+scripts="$(cd "$(dirname "$0")/../../scripts" && pwd)"
 
 run="$t/out \$(touch $t/PWNED) it's"
 # the bad driver, also drawing 3 times as long

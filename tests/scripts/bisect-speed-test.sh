@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # `renderaudit bisect --speed` and `watch --speed` end to end with real drawing and no compiler
-# (ctest bisect_speed): stand-in builds (scripts/bisect-fixture.sh) that draw the same pixels and
+# (ctest bisect_speed): stand-in builds (tests/scripts/bisect-fixture.sh) that draw the same pixels and
 # differ in drawing time only, through the faulty platform's [faults] slowdown (a busy wait inside
 # the timed drawing: the build draws those kinds three times as long).
 #   lines-slow: lines slowed;  both-slow: lines and triangles;  tris-slow: triangles only;
@@ -13,7 +13,7 @@
 #   - one commit that changes both pixels and time: named for both;
 #   - a watch night whose time moved: the audit finds it, the night names the slower commit;
 #     --keep-nights 1 leaves tonight's folder only.
-# Usage: scripts/bisect-speed-test.sh BUILD_DIR
+# Usage: tests/scripts/bisect-speed-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
 t=$(mktemp -d /tmp/renderaudit-bisect-speed-test-XXXXXX)

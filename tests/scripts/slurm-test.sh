@@ -8,13 +8,13 @@
 #      a node fails) in the middle of its own: the gathered run is complete, every primitive is
 #      there once, and its records equal a local run's.
 #
-# Usage: scripts/slurm-test.sh [BUILD_DIR]   (default build). Exit 0 pass, 1 fail, 77 when no
+# Usage: tests/scripts/slurm-test.sh [BUILD_DIR]   (default build). Exit 0 pass, 1 fail, 77 when no
 # Slurm cluster could be started here (not root, no packages): the test is then skipped, loudly.
 set -uo pipefail
 
 build=${1:-build}
 ra=$(cd "$build" && pwd)/renderaudit
-repo=$(cd "$(dirname "$0")/.." && pwd)
+repo=$(cd "$(dirname "$0")/../.." && pwd)
 work=$(cd "$build" && pwd)/slurm-test   # under the build tree
 # One node: a run directory under /tmp (a checkout there) is as shared as any, so allow it.
 one_node=--allow-node-local

@@ -5,9 +5,9 @@
 # fail naming each file and line; on the same tree with the numbers right it must pass. The build
 # folder is a stand-in: a CTestTestfile.cmake of three tests and a `renderaudit` script that prints
 # a help text and a figure plan.
-# Usage: scripts/docs-check-test.sh
+# Usage: tests/scripts/docs-check-test.sh
 set -uo pipefail
-here=$(cd "$(dirname "$0")/.." && pwd)
+here=$(cd "$(dirname "$0")/../.." && pwd)
 t=$(mktemp -d /tmp/renderaudit-docs-check-test-XXXXXX)
 trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
 bad=0

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One writer per Mesa tree, builds that prove their commit, and bisections that leave the tree as
-# they found it (ctest bisect_safety), with the stand-in builds of scripts/bisect-fixture.sh:
+# they found it (ctest bisect_safety), with the stand-in builds of tests/scripts/bisect-fixture.sh:
 #   - a second bisection, or `builds build --ref`, on a tree a bisection is using is refused,
 #     naming the holder, and the first bisection's answer is right;
 #   - a build whose tree moved under it is not kept (a tree without git keyed on its content:
@@ -14,7 +14,7 @@
 #     proof that its tree was clean is built again, not reused;
 #   - `builds remove` refuses the builds a watch night draws with, and the next night rebuilds a
 #     baseline build that was removed.
-# Usage: scripts/bisect-safety-test.sh BUILD_DIR
+# Usage: tests/scripts/bisect-safety-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
 t=$(mktemp -d /tmp/renderaudit-bisect-safety-XXXXXX)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # `renderaudit watch` over six nights of a Mesa branch made of stand-in builds
-# (scripts/bisect-fixture.sh), no compiler (ctest watch_nights). The watched tree is a clone that
+# (tests/scripts/bisect-fixture.sh), no compiler (ctest watch_nights). The watched tree is a clone that
 # follows an upstream; each night commits to the upstream first:
 #   1. c0 good:                      baseline established (exit 0)
 #   2. nothing new:                  said, nothing built or run (exit 0)
@@ -10,7 +10,7 @@
 #                                    back on its branch, unchanged against c3 (exit 0)
 #   6. upstream reset to c1:         moved backwards; tonight is the new baseline (exit 1)
 # and `history` lists the six nights with their commits, verdicts and culprits.
-# Usage: scripts/watch-test.sh BUILD_DIR
+# Usage: tests/scripts/watch-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
 t=$(mktemp -d /tmp/renderaudit-watch-test-XXXXXX)
@@ -53,10 +53,10 @@ c2=$(c "$up" 2)
 expect 3 1 "first bad commit: $c2 c2: neither (20 primitives of faulty)"
 expect 3 1 "first bad commit: $(c "$up" 3) c3: bad (20 primitives of faulty)"
 # The night's bisection report repeats a command that runs, not a description of one.
-grep -A3 '^## Repeat it' "$t"/state/nights/*/bisect-faulty/bisect.md |
-  grep -qF -- "renderaudit bisect $t/state/nights/" || fail "night 3's bisection report has no command to repeat"
-grep -A3 '^## Repeat it' "$t"/state/nights/*/bisect-faulty/bisect.md |
-  grep -qF -- "--between faulty@watch-last faulty@watch-tonight --source $t/mesa --good $(c "$up" 0)" ||
+repeat=$(grep -A3 '^## Repeat it' "$t"/state/nights/*/bisect-faulty/bisect.md || true)
+grep -qF -- "renderaudit bisect $t/state/nights/" <<<"$repeat" ||
+  fail "night 3's bisection report has no command to repeat"
+grep -qF -- "--between faulty@watch-last faulty@watch-tonight --source $t/mesa --good $(c "$up" 0)" <<<"$repeat" ||
   fail "night 3's Repeat it is not the bisection it ran"
 commit broken
 night 4

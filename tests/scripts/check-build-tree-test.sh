@@ -3,9 +3,9 @@
 # CMakeCache.txt names another source tree, or another build folder, is refused by the script and
 # by `make`, naming the tree it belongs to and the two ways on; a folder of this tree, and one not
 # yet configured, pass.
-# Usage: scripts/check-build-tree-test.sh
+# Usage: tests/scripts/check-build-tree-test.sh
 set -uo pipefail
-here=$(cd "$(dirname "$0")/.." && pwd -P)
+here=$(cd "$(dirname "$0")/../.." && pwd -P)
 t=$(mktemp -d /tmp/renderaudit-build-tree-test-XXXXXX)
 t=$(cd "$t" && pwd -P)
 trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # `renderaudit watch` under bad input, faults and signals, over a branch of stand-in builds
-# (scripts/bisect-fixture.sh), no compiler (ctest watch_faults). Each check is one guarantee of
+# (tests/scripts/bisect-fixture.sh), no compiler (ctest watch_faults). Each check is one guarantee of
 # docs/reliability.md ("The nightly that follows a branch"):
 #   refused before anything is built (exit 2, no night, nothing in the history): a truncated
 #     watch.json, a commit or branch in it that git would read as an option, a platform that
@@ -12,7 +12,7 @@
 #   a bisection that cannot run is "not bisected:" and its changes are bisected the next night;
 #   a history that cannot be written keeps the "moved backwards" finding for the next night;
 #   a fetch that fails and an upstream branch that is gone are errors (exit 2), said and recorded.
-# Usage: scripts/watch-faults-test.sh BUILD_DIR
+# Usage: tests/scripts/watch-faults-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
 t=$(mktemp -d /tmp/renderaudit-watch-faults-XXXXXX)
