@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "analysis/run_records.h"
+#include "metrics/headline_metric.h"
 #include "rundir/records_reader.h"
 #include "util/errors.h"
 #include "rundir/experiment.h"
@@ -21,18 +22,6 @@ struct Row {
   uint64_t index = 0;
   PrimitiveState state;
 };
-
-double headline_value(const metrics::Record& r, geometry::Kind kind) {
-  switch (kind) {
-    case geometry::Kind::kPoint:
-      return r.pe;
-    case geometry::Kind::kLine:
-      return r.lse_u;
-    case geometry::Kind::kTriangle:
-      return r.te_u;
-  }
-  return metrics::kNA;
-}
 
 // The records of one platform, kind and view of a run, ascending by index.
 std::vector<Row> read_view(const std::string& dir, const std::vector<rundir::Shard>& plan,
@@ -52,7 +41,7 @@ std::vector<Row> read_view(const std::string& dir, const std::vector<rundir::Sha
                               ", outside its shard");
       rows.push_back(
           {r.index,
-           {r.status, r.visibility, r.pixels, r.pixel_hash, headline_value(r, kind), r.ref_diff,
+           {r.status, r.visibility, r.pixels, r.pixel_hash, metrics::headline_value(r, kind), r.ref_diff,
             r.conformance, r.violating_pixels}});
     });
   }
@@ -128,17 +117,7 @@ std::string PlatformPair::label() const {
   return baseline == current ? current : baseline + " vs " + current;
 }
 
-const char* headline_metric(geometry::Kind kind) {
-  switch (kind) {
-    case geometry::Kind::kPoint:
-      return "pe";
-    case geometry::Kind::kLine:
-      return "lse_u";
-    case geometry::Kind::kTriangle:
-      return "te_u";
-  }
-  return "";
-}
+const char* headline_metric(geometry::Kind kind) { return metrics::headline_column(kind); }
 
 const char* recheck_name(Recheck r) {
   switch (r) {
