@@ -76,18 +76,29 @@ std::optional<std::size_t> AttributionPlan::next() const {
 
 std::vector<std::size_t> AttributionPlan::next_k(std::size_t k) const {
   const std::map<Gap, std::size_t> count = splittable_gaps();
-  // Share the k builds out, one at a time, to the gap where one more removes the most search.
   std::map<Gap, std::size_t> builds, room;
   for (const auto& [gap, n] : count) room[gap] = open_inside(gap);
-  for (std::size_t b = 0; b < k; ++b) {
+  // First one build in each gap, the gaps with the most changes first (ties: the wider, then the
+  // earlier): a round splits as many unresolved changes as it can.
+  std::vector<Gap> order;
+  for (const auto& [gap, n] : count) order.push_back(gap);
+  std::stable_sort(order.begin(), order.end(), [&](const Gap& x, const Gap& y) {
+    if (count.at(x) != count.at(y)) return count.at(x) > count.at(y);
+    return x.to - x.from > y.to - y.from;
+  });
+  std::size_t left = k;
+  for (const Gap& g : order)
+    if (left > 0) builds[g] = 1, --left;
+  // Then each further build to the gap with the most rounds still ahead of it, log(width) /
+  // log(builds + 1), so that no gap's search outlasts the others' (ties: as above).
+  for (; left > 0; --left) {
     const Gap* best = nullptr;
-    double best_gain = 0;
-    for (const auto& [gap, n] : count) {  // in gap order: the earlier wins a full tie
-      const std::size_t j = builds[gap];
-      if (j >= room[gap]) continue;
-      const double gain = double(n) * std::log2(double(j + 2) / double(j + 1));
-      const bool wider = best && gap.to - gap.from > best->to - best->from;
-      if (!best || gain > best_gain || (gain == best_gain && wider)) best = &gap, best_gain = gain;
+    double best_depth = 0;
+    for (const Gap& g : order) {
+      const std::size_t j = builds[g];
+      if (j == 0 || j >= room[g]) continue;
+      const double depth = std::log(double(g.to - g.from)) / std::log(double(j + 1));
+      if (!best || depth > best_depth) best = &g, best_depth = depth;
     }
     if (!best) break;
     ++builds[*best];

@@ -15,12 +15,12 @@
 // end). A change undone later in the range (A -> B -> A) is seen only where a built position
 // falls inside it: the ends of the range cannot show it.
 //
-// K builds at once (`bisect --ways K`, next_k): the K builds are shared out over the gaps one at a
-// time, each to the gap where one more build removes the most of the search still ahead,
-// count x log2((j + 2) / (j + 1)) for a gap of `count` unresolved changes that holds j of this
-// round's builds already (ties as next(): the wider gap, then the earlier one); each gap's j
-// builds then stand evenly spaced in it. One culprit in n commits thus takes about
-// log_(K+1) n rounds, and next_k(1) is next().
+// K builds at once (`bisect --ways K`, next_k): first one build in each gap, the gaps with the
+// most unresolved changes first (ties as next(): the wider, then the earlier), so that a round
+// splits as many unresolved changes as it can; each further build goes to the gap with the most
+// rounds still ahead of it, log(width) / log(builds + 1), so that a gap of few changes is not
+// left to the last rounds; each gap's builds then stand evenly spaced in it. One culprit in n
+// commits thus takes about log_(K+1) n rounds, and next_k(1) is next().
 #pragma once
 
 #include <cstddef>

@@ -224,19 +224,34 @@ TEST(AttributionPlanK, OneGapGetsEvenlySpacedBuilds) {
   EXPECT_EQ(plan.unresolved(), 1u);
 }
 
-TEST(AttributionPlanK, TheBuildsGoWhereTheMostChangesWait) {
-  // Why: "split the most unresolved changes": a gap of three changes gets more of the round than
-  // a gap of one, and each gap gets at least one once the first's gain has dropped.
+TEST(AttributionPlanK, EveryGapGetsABuildTheMostChangesFirst) {
+  // Why: "split the most unresolved changes": one build splits every change of its gap, so a
+  // round covers the gaps in order of their changes before it splits any gap twice.
   AttributionPlan plan(64);
   plan.observe(0, {{"a", 1}, {"b", 1}, {"c", 1}, {"d", 1}});
   plan.observe(32, {{"a", 2}, {"b", 2}, {"c", 2}, {"d", 1}});
   plan.observe(64, {{"a", 2}, {"b", 2}, {"c", 2}, {"d", 2}});
   EXPECT_EQ(plan.next_k(1), (std::vector<std::size_t>{16}));
-  EXPECT_EQ(plan.next_k(2), (std::vector<std::size_t>{10, 21}));
-  const std::vector<std::size_t> four = plan.next_k(4);
-  ASSERT_EQ(four.size(), 4u);
-  EXPECT_EQ(std::count_if(four.begin(), four.end(), [](std::size_t p) { return p > 32; }), 1);
+  EXPECT_EQ(plan.next_k(2), (std::vector<std::size_t>{16, 48}));
+  EXPECT_EQ(plan.next_k(4), (std::vector<std::size_t>{10, 21, 42, 53}));
   EXPECT_EQ(plan.unresolved(), 4u);
+}
+
+TEST(AttributionPlanK, AGapOfFewChangesIsNotLeftToTheLastRounds) {
+  // Why: rounds, not builds, are the wall time: a gap of one change beside a gap of a thousand
+  // gets its share of every round, so both searches end together.
+  std::map<std::string, uint64_t> good, mid, bad;
+  for (int i = 0; i < 1000; ++i) {
+    const std::string l = "many" + std::to_string(i);
+    good[l] = 1, mid[l] = 1, bad[l] = 2;
+  }
+  good["one"] = 1, mid["one"] = 2, bad["one"] = 2;
+  AttributionPlan plan(2000);
+  plan.observe(0, good);
+  plan.observe(1000, mid);
+  plan.observe(2000, bad);
+  const std::vector<std::size_t> round = plan.next_k(6);
+  EXPECT_EQ(std::count_if(round.begin(), round.end(), [](std::size_t p) { return p < 1000; }), 3);
 }
 
 TEST(AttributionPlanK, FailedAndBuiltPositionsAreNeverChosenAndFewOpenGiveFewBuilds) {
