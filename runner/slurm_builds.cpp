@@ -203,8 +203,9 @@ class SlurmBuilds : public CommitBuilds {
         out[line.substr(0, sp)] = line.substr(sp + 1);
       at = nl + 1;
     }
-    // squeue failing (the controller busy) must not read as every task gone
-    if (!r.exited_ok())
+    // squeue failing (the controller busy) must not read as every task gone; a job the controller
+    // has forgotten (long ended) is gone.
+    if (!r.exited_ok() && r.output.find("Invalid job id") == std::string::npos)
       for (std::size_t i = 0; i < tasks_.size(); ++i) out[id(i)] = "UNKNOWN";
     return out;
   }
