@@ -5,7 +5,8 @@
 # the same culprits with --ways 1 and --ways 3 on a history of several changes; two culprits; a
 # failed build inside a round (next to the change: candidates, exit 1); a round interrupted with
 # SIGINT (exit 130, its builds stopped, every worktree removed, the tree where it was) and
-# resumed by the same command.
+# resumed by the same command; a round killed with -9, its worktrees removed by the next bisection
+# (with --ways 1: the ways may change on resume).
 # Usage: scripts/bisect-ways-test.sh BUILD_DIR
 set -euo pipefail
 build=$(cd "${1:-build}" && pwd)
@@ -131,8 +132,8 @@ rc=$?
 set -e
 [ $rc = 130 ] || { cat "$t/int.err"; fail "SIGINT: exit $rc, not 130"; }
 grep -q "interrupted by SIGINT: the tree is back where it was; the same command resumes" "$t/int.err" || fail "not said"
-sleep 0.5
-! pgrep -f "sleep 29\.3" >/dev/null || fail "a build of the round was left running"
+for _ in $(seq 50); do pgrep -f "^sleep 29\.3" >/dev/null || break; sleep 0.1; done
+! pgrep -f "^sleep 29\.3" >/dev/null || { ps -o pid,ppid,pgid,stat,cmd -p "$(pgrep -d, -f "^sleep 29\.3")"; fail "a build of the round was left running"; }
 no_worktrees "$h4"
 [ "$(git -C "$h4" symbolic-ref --short HEAD)" = topic ] || fail "the tree is not back on its branch"
 /usr/bin/python3 - "$t/int/bisect.json" <<'PY' || fail "the interrupted round's record"
@@ -147,5 +148,24 @@ grep -q "resuming .*: 0 steps built" "$t/int2.err" || { cat "$t/int2.err"; fail 
 [ "$(culprits int2)" = "c9: bad (6 primitives);" ] || fail "resumed: $(culprits int2)"
 no_worktrees "$h4"
 [ "$(git -C "$h4" symbolic-ref --short HEAD)" = topic ] || fail "the resumed bisection moved the tree"
-echo "bisect-ways-test: 7 bisections checked"
+# kill -9 during a round leaves its worktrees; the next bisection of the tree removes them and the
+# same command resumes.
+export RENDERAUDIT_BUILD_CACHE="$t/cache-kill"
+RA_WAYS_SLOW=1 "$ra" bisect "$t/run" --between faulty@good faulty@bad --source "$h4" --good "$(c "$h4" 0)" \
+  --bad "$(c "$h4" 16)" --build-command "$cmd" --out "$t/kill" --jobs 2 --max-primitives 6 \
+  --no-pictures --ways 3 >"$t/kill.out" 2>"$t/kill.err" &
+victim=$!
+pids+=("$victim")
+for _ in $(seq 1200); do [ "$(grep -c '^bisect:   building .* in /' "$t/kill.err" 2>/dev/null)" = 3 ] && break; sleep 0.1; done
+sleep 1
+kill -9 "$victim"
+wait "$victim" 2>/dev/null || true
+[ "$(git -C "$h4" worktree list | wc -l)" = 4 ] || fail "kill -9 should leave the round's worktrees (the test proves nothing)"
+"$ra" bisect "$t/run" --between faulty@good faulty@bad --source "$h4" --good "$(c "$h4" 0)" \
+  --bad "$(c "$h4" 16)" --build-command "$cmd" --out "$t/kill" --jobs 2 --max-primitives 6 \
+  --no-pictures --ways 1 >"$t/kill2.out" 2>"$t/kill2.err" || { cat "$t/kill2.err"; fail "after kill -9"; }
+[ "$(culprits kill2)" = "c9: bad (6 primitives);" ] || fail "after kill -9: $(culprits kill2)"
+no_worktrees "$h4"
+[ "$(git -C "$h4" symbolic-ref --short HEAD)" = topic ] || fail "after kill -9 the tree is not back on its branch"
+echo "bisect-ways-test: 9 bisections checked"
 echo "1 passed, 0 failed"

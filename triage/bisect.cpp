@@ -11,6 +11,7 @@
 #include "rundir/platform_spec.h"
 #include "rundir/run_experiment.h"
 #include "rundir/run_folder.h"
+#include "runner/build_slots.h"
 #include "runner/git_command.h"
 #include "triage/bisect_judging.h"
 #include "triage/bisect_plan.h"
@@ -68,6 +69,9 @@ class Bisection {
     const auto t_start = Clock::now();
     check_inputs();
     const auto lock = runner::lock_source_tree(o_.source, "bisect");
+    // Worktrees a killed --ways bisection left are removed, whatever this one's --ways.
+    std::error_code ec;
+    if (fs::is_directory(git_dir_ + "/renderaudit-bisect", ec)) runner::BuildSlots{o_.source};
     load_state();
     util::InterruptScope interrupts;
     // The tree back on its branch however this ends (a step leaves it at a commit).
