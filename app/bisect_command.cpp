@@ -2,6 +2,7 @@
 // [-- PATHS]`: the commit that made each change (triage/bisect.h), and the report for the driver's
 // developers (triage/bisect_report.h).
 #include <cstdio>
+#include <cstdlib>
 
 #include "app/commands.h"
 #include "triage/bisect.h"
@@ -22,6 +23,9 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
       "fails to build is skipped for all. Resumable: the same command goes on where it stopped.\n"
       "Writes OUT/bisect.json and OUT/bisect.md (a section per culprit: reproducer, pictures, GL\n"
       "verdict). Prints one line per culprit: `first bad commit: HASH SUBJECT (N primitives)`.\n"
+      "With --ways K, K commits are built at once each round (each in a git worktree; --slurm: as\n"
+      "a Slurm job array), and each round prints `round R: K builds (...), N changes\n"
+      "unresolved, about M rounds to go`; the end `R rounds, B builds, T of building`.\n"
       "With --speed, drawing time too: the groups whose time moved between the refs are placed\n"
       "at each step and their commits named, `first slower commit: HASH SUBJECT (KIND, view\n"
       "group G: RATIO x [LOW, HIGH])` or `first faster commit: ...` (docs/driver-builds.md).\n"
@@ -71,12 +75,40 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
       cmd, opts->o.speed,
       "also attribute drawing-time changes: the refs timed with an A/A control, each step's time "
       "placed between theirs, each culprit confirmed beside its parent");
+  cmd->add_option("--ways", opts->o.ways,
+                  "build this many commits at once each round, each in a git worktree of its own "
+                  "(ninja -j max(1, jobs / WAYS) each): one culprit in n commits takes about "
+                  "log_(WAYS+1) n rounds")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  auto* on_slurm = cmd->add_flag(
+      "--slurm", opts->o.slurm,
+      "each round's builds as the tasks of a Slurm job array (the source's git folder and the "
+      "build cache on a file system every node sees; drawing stays here)");
+  cmd->add_option("--partition", opts->o.slurm_options.partition, "--slurm: the partition")
+      ->needs(on_slurm);
+  cmd->add_option("--max-parallel", opts->o.slurm_options.max_parallel,
+                  "--slurm: at most this many builds at once (sbatch --array=...%M)")
+      ->check(CLI::Range(1, 100000))
+      ->needs(on_slurm);
+  cmd->add_option("--time-limit", opts->o.slurm_options.time_limit,
+                  "--slurm: each build's time limit, in sbatch --time syntax (e.g. 2:00:00)")
+      ->needs(on_slurm);
+  cmd->add_flag("--allow-node-local", opts->o.slurm_options.allow_node_local,
+                "--slurm: accept a source or build cache that looks local to one node (/tmp, "
+                "tmpfs), for a one-node cluster")
+      ->needs(on_slurm);
   cmd->add_option("paths", opts->o.paths, "-- PATHS: only commits touching these");
   cmd->positionals_at_end(false);
   cmd->callback([opts, &exit_code] {
     triage::BisectOptions& o = opts->o;
     if (!opts->between.empty()) o.good_platform = opts->between[0], o.bad_platform = opts->between[1];
     o.build.jobs = o.jobs;
+    // As `builds build` spells them: a build at once (--ways) finds its own in the cache.
+    for (std::string& v : o.build.meson_options)
+      if (v.rfind("-D", 0) != 0) v = "-D" + v;
+    if (const char* sbatch = std::getenv("RENDERAUDIT_SBATCH"); sbatch && *sbatch)
+      o.slurm_options.sbatch = sbatch;
     o.build.incremental = !opts->fresh_builds;
     check_speed_options("bisect", o.speed);
     o.command_line = triage::bisect_command_line(o);

@@ -10,6 +10,7 @@
 #include "builds/build_fetch.h"
 #include "builds/source_build.h"
 #include "util/errors.h"
+#include "util/interrupt.h"
 
 namespace ra::app {
 namespace {
@@ -151,12 +152,29 @@ void register_builds_command(CLI::App& app, int& exit_code) {
   b->add_flag(
       "--rebuild", [opts](int64_t) { opts->build.reuse = false; },
       "build even when a build of the same commit and options is cached");
+  b->add_flag("--incremental", opts->build.incremental,
+              "one meson build folder kept for this tree and options (CACHE/.incremental): ninja "
+              "rebuilds only what the next commit changed");
+  b->add_flag(
+      "--no-probe", [opts](int64_t) { opts->build.probe = false; },
+      "keep the build without probing OSMesa and EGL (its user draws with it: a bisection)");
   b->callback([opts, &exit_code] {
     for (std::string& v : opts->build.meson_options)
       if (v.rfind("-D", 0) != 0) v = "-D" + v;
-    const builds::SourceBuildResult r = builds::build_from_source(
-        opts->build,
-        [](const std::string& line) { std::fprintf(stderr, "builds build: %s\n", line.c_str()); });
+    // A signal stops the build's whole process group (a bisection cancels a build it no longer
+    // needs with SIGTERM).
+    util::InterruptScope interrupts;
+    builds::SourceBuildResult r;
+    try {
+      r = builds::build_from_source(opts->build, [](const std::string& line) {
+        std::fprintf(stderr, "builds build: %s\n", line.c_str());
+      });
+    } catch (const util::UserError&) {
+      if (util::interrupt_signal() == 0) throw;
+      std::fprintf(stderr, "builds build: interrupted; the build cache is unchanged\n");
+      exit_code = 128 + util::interrupt_signal();
+      return;
+    }
     print_build(r.build, false);
     std::printf("  %s\n",
                 r.reused

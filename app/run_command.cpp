@@ -18,7 +18,7 @@ namespace ra::app {
 namespace {
 
 // `run --slurm`: the job array and the gather job submitted (or, with --dry-run, printed).
-void submit_to_slurm(const runner::RunOptions& opt, runner::SlurmOptions slurm_opt) {
+void submit_to_slurm(const runner::RunOptions& opt, util::SlurmOptions slurm_opt) {
   if (rundir::experiment_study_kind(opt.experiment_path) != rundir::StudyKind::kAudit)
     throw util::UserError(opt.experiment_path +
                           ": --slurm runs sharded experiments; a study "
@@ -101,7 +101,7 @@ void register_run_command(CLI::App& app, int& exit_code) {
     bool worker_per_shard = false;
     bool brief = false;
     bool slurm = false;
-    runner::SlurmOptions slurm_opt;
+    util::SlurmOptions slurm_opt;
     ConformanceGate gate;
   };
   const auto opts = std::make_shared<Options>();  // alive as long as the callbacks

@@ -380,6 +380,23 @@ SourceIdentity identify_source(const std::string& source_dir) {
   return id;
 }
 
+std::optional<SourceBuildResult> cached_source_build(const SourceBuildOptions& options) {
+  const SourceIdentity id = identify_source(fs::canonical(options.source).string());
+  if (!id.clean()) return std::nullopt;
+  const std::string cache = options.cache.empty() ? rundir::build_cache_dir() : options.cache;
+  const std::string target = cache + "/" + source_build_name(id, options);
+  if (!same_build(target, source_build_key(id, options), id.commit)) return std::nullopt;
+  try {
+    SourceBuildResult r;
+    r.in_use = std::make_shared<BuildInUse>(target);
+    r.build = rundir::read_build_record(target);
+    r.reused = true;
+    return r;
+  } catch (const util::UserError&) {
+    return std::nullopt;  // removed just now
+  }
+}
+
 SourceBuildResult use_source_build(const std::string& dir, const std::string& commit,
                                    SourceBuildOptions options,
                                    const std::function<void(const std::string&)>& progress) {

@@ -25,6 +25,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,11 @@ struct SourceBuildResult {
 // ("configure", "compile", "install", "probe"). Throws UserError naming the failing step.
 SourceBuildResult build_from_source(const SourceBuildOptions& options,
                                     const std::function<void(const std::string&)>& progress = {});
+
+// The cached build of the tree `options.source` as it stands (its commit, clean) with these
+// options, held for use and marked reused; none when the cache holds no such build. What a
+// bisection reads after building a commit in a process of its own (`builds build`, a Slurm task).
+std::optional<SourceBuildResult> cached_source_build(const SourceBuildOptions& options);
 
 // The build of `commit` in `dir` (last night's, a bisection's end), held for use; built again
 // with `options` at ref `commit` when `dir` no longer holds it (removed, the cache cleared) or

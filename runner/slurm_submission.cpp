@@ -1,8 +1,6 @@
 // Submitting a run to Slurm (see the header).
 #include "runner/slurm_submission.h"
 
-#include <sys/vfs.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -25,8 +23,6 @@ namespace fs = std::filesystem;
 namespace ra::runner {
 namespace {
 
-constexpr long kTmpfsMagic = 0x01021994, kRamfsMagic = 0x858458f6;
-
 // The options every slice and the gather pass on to `run`.
 std::string passed_on(const RunOptions& run, int jobs) {
   std::string s = " --jobs " + std::to_string(jobs) + " --quiet";
@@ -37,118 +33,20 @@ std::string passed_on(const RunOptions& run, int jobs) {
   return s;
 }
 
-// Why `value` cannot stand in an #SBATCH line, or "". sbatch reads those lines with a tokenizer of
-// its own (no shell): white space ends a value (a newline would end the line, and the next one runs
-// as a command), quotes and backslashes are consumed or fatal, '#' starts a comment, and in a file
-// name '%' introduces a pattern (%j, %a). Such characters are refused rather than escaped: no
-// quoting is carried the same way by every Slurm version.
-std::string sbatch_value_problem(const std::string& value) {
-  for (const char c : value) {
-    const unsigned char u = static_cast<unsigned char>(c);
-    if (c == '\n' || c == '\r') return "a line break would end the #SBATCH line";
-    if (u < 0x20 || u == 0x7f) return "a control character cannot be carried";
-    if (c == ' ') return "sbatch splits an #SBATCH line at white space";
-    if (c == '\'' || c == '"' || c == '\\') return std::string("sbatch's #SBATCH parser consumes ") + c;
-    if (c == '#') return "'#' starts a comment in an #SBATCH line";
-    if (c == '%') return "sbatch expands '%' patterns (%j, %a) in file names";
-  }
-  return "";
-}
-
-void require_sbatch_value(const std::string& what, const std::string& value) {
-  if (const std::string why = sbatch_value_problem(value); !why.empty())
-    throw util::UserError("--slurm: " + what + " '" + value +
-                          "' cannot go into an sbatch script: " + why +
-                          " (allowed: no white space, quotes, backslash, '#' or '%')");
-}
-
-// The values that reach #SBATCH lines: partition names as Slurm spells them (letters, digits, '_',
-// '-', '.', and ',' between several), a time limit in sbatch --time syntax.
-void validate_slurm_options(const SlurmOptions& slurm) {
-  static const std::regex partition("[A-Za-z0-9_.-]+(,[A-Za-z0-9_.-]+)*");
-  if (!slurm.partition.empty() && !std::regex_match(slurm.partition, partition))
-    throw util::UserError("--partition '" + slurm.partition +
-                          "': not a Slurm partition name (allowed: "
-                          "letters, digits, '_', '-', '.', and ',' between several partitions)");
-  static const std::regex time(
-      "[0-9]+(:[0-9]+){0,2}|[0-9]+-[0-9]+(:[0-9]+){0,2}|UNLIMITED|INFINITE|unlimited|infinite");
-  if (!slurm.time_limit.empty() && !std::regex_match(slurm.time_limit, time))
-    throw util::UserError("--time-limit '" + slurm.time_limit +
-                          "': not in sbatch --time syntax "
-                          "(allowed: MINUTES, MINUTES:SECONDS, HOURS:MINUTES:SECONDS, DAYS-HOURS, "
-                          "DAYS-HOURS:MINUTES, DAYS-HOURS:MINUTES:SECONDS, UNLIMITED)");
-}
-
-std::string header(const std::string& job_name, int jobs, const SlurmOptions& slurm,
-                   const std::string& log) {
-  std::string s = "#!/bin/bash\n";
-  s += "#SBATCH --job-name=" + job_name + "\n";
-  s += "#SBATCH --cpus-per-task=" + std::to_string(jobs) + "\n";
-  s += "#SBATCH --requeue\n";  // a node failure runs the task again; it resumes
-  s += "#SBATCH --open-mode=append\n";  // a requeued task's log follows the first attempt's
-  s += "#SBATCH --output=" + log + "\n";
-  if (!slurm.partition.empty()) s += "#SBATCH --partition=" + slurm.partition + "\n";
-  if (!slurm.time_limit.empty()) s += "#SBATCH --time=" + slurm.time_limit + "\n";
-  return s;
-}
-
-std::string submit(const SlurmOptions& slurm, const std::vector<std::string>& args,
-                   const std::string& script_path) {
-  util::ChildSpec spec;
-  spec.argv = {slurm.sbatch, "--parsable"};
-  spec.argv.insert(spec.argv.end(), args.begin(), args.end());
-  spec.argv.push_back(script_path);
-  spec.capture_output = true;
-  spec.stdin_null = true;
-  const util::ProgramResult r = util::run_program(spec);
-  if (r.exit_code() == 127)
-    throw util::UserError("--slurm: cannot run '" + slurm.sbatch +
-                          "' (is this a Slurm login node? Debian: apt-get install slurm-client)");
-  std::string out = r.output;
-  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
-  if (!r.exited_ok())
-    throw util::UserError("--slurm: sbatch refused " + script_path + " (" +
-                          util::describe_exit_status(r.status) + "): " + out);
-  // --parsable prints "JOBID" or "JOBID;CLUSTER" as its last line
-  std::string id = out.substr(out.find_last_of('\n') == std::string::npos ? 0
-                                                                          : out.find_last_of('\n') + 1);
-  id = id.substr(0, id.find(';'));
-  if (id.empty() || !std::all_of(id.begin(), id.end(), ::isdigit))
-    throw util::UserError("--slurm: sbatch answered '" + out + "', not a job id");
-  return id;
-}
-
 }  // namespace
 
-std::string node_local_reason(const std::string& dir) {
-  for (const char* prefix : {"/tmp", "/var/tmp", "/dev/shm", "/run"}) {
-    const std::string p = prefix;
-    if (dir == p || dir.rfind(p + "/", 0) == 0)
-      return "is under " + p + ", which every node has its own of";
-  }
-  // the nearest existing ancestor's file system
-  fs::path probe = dir;
-  std::error_code ec;
-  while (!probe.empty() && !fs::exists(probe, ec)) probe = probe.parent_path();
-  struct statfs st {};
-  if (!probe.empty() && ::statfs(probe.c_str(), &st) == 0 &&
-      (long(st.f_type) == kTmpfsMagic || long(st.f_type) == kRamfsMagic))
-    return "is on a tmpfs (the memory of one node)";
-  return "";
-}
-
-SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slurm) {
+SlurmSubmission submit_slurm_run(const RunOptions& run, const util::SlurmOptions& slurm) {
   const rundir::Experiment exp = rundir::load_experiment(run.experiment_path);
-  validate_slurm_options(slurm);
+  util::validate_slurm_options(slurm);
   SlurmSubmission sub;
   sub.run_dir = fs::weakly_canonical(fs::absolute(run.out_dir.empty() ? "outputs/" + exp.name
                                                                       : run.out_dir))
                     .string();
   const std::string& dir = sub.run_dir;
-  require_sbatch_value("--out", dir);  // in --output=DIR/slurm/...
-  require_sbatch_value(run.experiment_path + ": the experiment's name", exp.name);  // --job-name
+  util::require_sbatch_value("--out", dir);  // in --output=DIR/slurm/...
+  util::require_sbatch_value(run.experiment_path + ": the experiment's name", exp.name);  // --job-name
   if (!slurm.allow_node_local) {
-    if (const std::string why = node_local_reason(dir); !why.empty())
+    if (const std::string why = util::node_local_reason(dir); !why.empty())
       throw util::UserError(
           "--slurm: --out " + dir + " " + why +
           "; the tasks on other nodes could not write it nor the gather read it. "
@@ -177,13 +75,13 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
   // otherwise the run's copy on the shared disk. A file changed after submission is refused by
   // the tasks (another experiment's hash), never mixed in.
   std::string experiment = fs::absolute(run.experiment_path).lexically_normal().string();
-  if (!slurm.allow_node_local && !node_local_reason(experiment).empty())
+  if (!slurm.allow_node_local && !util::node_local_reason(experiment).empty())
     experiment = rundir::run_folder::experiment(dir);
   const std::string n = std::to_string(sub.slices);
   const std::string opts = passed_on(run, jobs);
   const std::string slurm_dir = rundir::run_folder::slurm(dir);
 
-  sub.array_script = header("renderaudit-" + exp.name, jobs, slurm, slurm_dir + "/slice-%a.log");
+  sub.array_script = util::sbatch_header("renderaudit-" + exp.name, jobs, slurm, slurm_dir + "/slice-%a.log", true);
   sub.array_script += "#SBATCH --array=1-" + n +
                       (slurm.max_parallel > 0 ? "%" + std::to_string(slurm.max_parallel) : "") +
                       "\n";
@@ -197,7 +95,7 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
       "/slices/$k --slice $k/" + n + opts + "\n";
 
   sub.gather_script =
-      header("renderaudit-" + exp.name + "-gather", jobs, slurm, slurm_dir + "/gather.log");
+      util::sbatch_header("renderaudit-" + exp.name + "-gather", jobs, slurm, slurm_dir + "/gather.log", true);
   sub.gather_script +=
       "# Runs after every task of the array has ended, however it ended (afterany): merges the\n"
       "# slices into the run directory, then runs what is still missing there (a cancelled task's\n"
@@ -232,9 +130,9 @@ SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slur
   fs::remove(slurm_dir + "/gather.exit", ec);
   util::write_file_atomic(slurm_dir + "/array.sbatch", sub.array_script);
   util::write_file_atomic(slurm_dir + "/gather.sbatch", sub.gather_script);
-  sub.array_job = submit(slurm, {}, slurm_dir + "/array.sbatch");
+  sub.array_job = util::submit_sbatch(slurm, {}, slurm_dir + "/array.sbatch");
   sub.gather_job =
-      submit(slurm, {"--dependency=afterany:" + sub.array_job}, slurm_dir + "/gather.sbatch");
+      util::submit_sbatch(slurm, {"--dependency=afterany:" + sub.array_job}, slurm_dir + "/gather.sbatch");
   nlohmann::json jobs_json = {{"array_job", sub.array_job},  {"gather_job", sub.gather_job},
                               {"slices", sub.slices},        {"submitted", rundir::utc_now_iso8601()},
                               {"max_parallel", slurm.max_parallel}, {"cpus_per_task", jobs}};

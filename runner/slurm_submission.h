@@ -12,18 +12,9 @@
 #include <string>
 
 #include "runner/run_coordinator.h"
+#include "util/slurm_sbatch.h"
 
 namespace ra::runner {
-
-struct SlurmOptions {
-  int slices = 0;            // array tasks; 0: min(shards, 16)
-  int max_parallel = 0;      // at most this many tasks at once (--array=1-N%M); 0: no limit
-  std::string partition;     // empty: the cluster's default
-  std::string time_limit;    // per task, in sbatch's --time syntax (e.g. "2:00:00"); empty: none
-  bool dry_run = false;      // print the scripts and the sbatch commands, submit nothing
-  bool allow_node_local = false;  // accept a DIR that looks node-local (/tmp, tmpfs)
-  std::string sbatch = "sbatch";  // the submitting program (tests may substitute it)
-};
 
 struct SlurmSubmission {
   std::string run_dir;                      // absolute
@@ -32,14 +23,10 @@ struct SlurmSubmission {
   std::string array_job, gather_job;        // job ids; empty on a dry run
 };
 
-// Why `dir` (absolute) is obviously local to one node ("is under /tmp", "is on a tmpfs"), or ""
-// when it may be shared.
-std::string node_local_reason(const std::string& dir);
-
 // Plans, writes the scripts and submits them (nothing submitted on a dry run). The run options
 // give the experiment, DIR, the cores per task (`jobs`, default 2) and what every slice passes on
 // (--platform, --timeout, --expect-renderer, --shard-order). Throws ra::util::UserError for a study
 // experiment, a node-local DIR, a missing sbatch, or a refused submission (with sbatch's words).
-SlurmSubmission submit_slurm_run(const RunOptions& run, const SlurmOptions& slurm);
+SlurmSubmission submit_slurm_run(const RunOptions& run, const util::SlurmOptions& slurm);
 
 }  // namespace ra::runner

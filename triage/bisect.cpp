@@ -11,10 +11,12 @@
 #include "rundir/platform_spec.h"
 #include "rundir/run_experiment.h"
 #include "rundir/run_folder.h"
+#include "builds/build_slots.h"
 #include "builds/git_command.h"
 #include "triage/bisect_judging.h"
 #include "triage/bisect_plan.h"
 #include "triage/bisect_report.h"
+#include "triage/bisect_rounds.h"
 #include "triage/bisect_selection.h"
 #include "triage/bisect_state.h"
 #include "triage/bisect_step.h"
@@ -22,7 +24,6 @@
 #include "util/duration_text.h"
 #include "util/errors.h"
 #include "util/interrupt.h"
-#include "util/shell_quote.h"
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -68,6 +69,9 @@ class Bisection {
     const auto t_start = Clock::now();
     check_inputs();
     const auto lock = builds::lock_source_tree(o_.source, "bisect");
+    // Worktrees a killed --ways bisection left are removed, whatever this one's --ways.
+    std::error_code ec;
+    if (fs::is_directory(git_dir_ + "/renderaudit-bisect", ec)) builds::BuildSlots{o_.source};
     load_state();
     util::InterruptScope interrupts;
     // The tree back on its branch however this ends (a step leaves it at a commit).
@@ -85,6 +89,7 @@ class Bisection {
     draw_references();
     time_references();
     attribute();
+    say(rounds_summary(st_.result));
     BisectResult& r = st_.result;
     r.total_build_s = r.good.build_s + r.bad.build_s;
     for (const BisectStep& s : r.steps) r.total_build_s += s.build_s;
@@ -145,6 +150,12 @@ class Bisection {
                             "would delete it; choose a folder outside " + o_.source);
     if (!git(o_.source, {"rev-parse", "--git-dir"}).ok)
       throw util::UserError("bisect: " + o_.source + " is not a git checkout");
+    // A step's timing (--speed) compares the step with both ends on this machine, one after the
+    // other; builds at once would time one another's load.
+    if (o_.speed.enabled && (o_.ways > 1 || o_.slurm))
+      throw util::UserError("bisect: --speed times each step beside the ends on one quiet machine; "
+                            "it does not go with --ways above 1 or --slurm (drop --speed, or bisect "
+                            "the pixels with --ways first and the drawing time on the range left)");
     if (!git(o_.source, {"status", "--porcelain", "--untracked-files=no"}).out.empty())
       throw util::UserError("bisect: " + o_.source +
                             " has uncommitted changes; commit or stash them first (each step "
@@ -251,6 +262,7 @@ class Bisection {
       st_.result.original_head = old.result.original_head;
     }
     st_.result.steps = old.result.steps;
+    st_.result.rounds = old.result.rounds;
     st_.result.good = old.result.good;
     st_.result.bad = old.result.bad;
     st_.result.speed_ends = old.result.speed_ends;
@@ -439,6 +451,23 @@ class Bisection {
         plan.fail(s.position);
       }
     }
+    if (o_.ways > 1 || o_.slurm) {
+      RoundContext c{o_, line_, judged_, st_.result, plan, say_fn(), [this] { save(); },
+                     [&](BisectStep& s) {
+                       s.summary = step_summary(s);
+                       plan.observe(s.position, observation(s));
+                     }};
+      run_rounds(c);
+    } else {
+      one_at_a_time(plan, unknowns);
+    }
+    collect_culprits(plan, line_, judged_, o_.source, st_.result, say_fn());
+    collect_speed_culprits(plan);
+  }
+
+  // --ways 1: a round is one build, in the tree itself (its incremental build folder).
+  void one_at_a_time(AttributionPlan& plan, std::map<std::string, int>& unknowns) {
+    RoundContext rounds{o_, line_, judged_, st_.result, plan, say_fn(), {}, {}};
     double step_seconds = 0;
     int fresh_steps = 0;
     while (const auto position = plan.next()) {
@@ -459,6 +488,8 @@ class Bisection {
       if (fresh_steps > 0) eta += ", about " + util::duration_text(step_seconds / fresh_steps * left);
       eta += ")";
       const auto t0 = Clock::now();
+      const std::size_t round = begin_round(rounds, {*position}, "tree").round - 1;
+      say(round_line(st_.result.rounds[round]));
       say("step " + std::to_string(st_.result.steps.size() + 1) + eta + ": " + short_hash(s.commit) +
           " " + git(o_.source, {"log", "-1", "--format=%s", s.commit}).out);
       const std::vector<SpeedGroup> timed = groups_to_time(plan, s.position);
@@ -476,15 +507,18 @@ class Bisection {
         count_unknowns(s, plan, unknowns);
       } else {
         plan.fail(s.position);
+        st_.result.rounds[round].failed.push_back(s.commit);
         say("  skipped for every primitive: " + s.error);
       }
       st_.result.steps.push_back(s);
-      save();
       step_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
       ++fresh_steps;
+      BisectRound& r = st_.result.rounds[round];
+      r.build_wall_s = s.build_s;
+      r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      r.finished = true;
+      save();
     }
-    collect_culprits(plan, line_, judged_, o_.source, st_.result, say_fn());
-    collect_speed_culprits(plan);
   }
 
   // What a step drew, in words: its primitives against the ends, then its drawing times.
@@ -566,48 +600,6 @@ class Bisection {
 };
 
 }  // namespace
-
-std::string bisect_command_line(const BisectOptions& o) {
-  using util::shell_quote;
-  std::string line = "renderaudit bisect " + shell_quote(o.run_dir);
-  if (!o.good_platform.empty())
-    line += " --between " + shell_quote(o.good_platform) + " " + shell_quote(o.bad_platform);
-  if (!o.baseline_run.empty()) line += " --baseline " + shell_quote(o.baseline_run);
-  line += " --source " + shell_quote(o.source) + " --good " + shell_quote(o.good_ref) + " --bad " +
-          shell_quote(o.bad_ref);
-  if (!o.platform.empty()) line += " --platform " + shell_quote(o.platform);
-  for (const std::string& k : o.kinds) line += " --kind " + shell_quote(k);
-  for (int v : o.views) line += " --view " + std::to_string(v);
-  for (const std::string& p : o.primitives) line += " --primitive " + shell_quote(p);
-  if (o.max_primitives != BisectOptions{}.max_primitives)
-    line += " --max-primitives " + std::to_string(o.max_primitives);
-  if (!o.out_dir.empty()) line += " --out " + shell_quote(o.out_dir);
-  if (!o.build.cache.empty()) line += " --cache " + shell_quote(o.build.cache);
-  if (o.build.llvm_config != builds::SourceBuildOptions{}.llvm_config)
-    line += " --llvm-config " + shell_quote(o.build.llvm_config);
-  for (const std::string& m : o.build.meson_options) line += " " + shell_quote(m);
-  if (!o.build.build_command.empty()) line += " --build-command " + shell_quote(o.build.build_command);
-  if (!o.build.incremental) line += " --fresh-builds";
-  if (o.jobs) line += " --jobs " + std::to_string(o.jobs);
-  if (!o.pictures) line += " --no-pictures";
-  if (o.speed.enabled) {
-    const BisectSpeedOptions d;
-    line += " --speed";
-    if (o.speed.repeats != d.repeats) line += " --speed-repeats " + std::to_string(o.speed.repeats);
-    if (o.speed.per_view != d.per_view)
-      line += " --speed-primitives " + std::to_string(o.speed.per_view);
-    if (o.speed.threshold != d.threshold) {
-      char t[32];
-      std::snprintf(t, sizeof t, "%g", o.speed.threshold);
-      line += std::string(" --speed-threshold ") + t;
-    }
-  }
-  if (!o.paths.empty()) {
-    line += " --";
-    for (const std::string& p : o.paths) line += " " + shell_quote(p);
-  }
-  return line;
-}
 
 BisectResult run_bisect(const BisectOptions& options,
                         const std::function<void(const std::string&)>& progress) {

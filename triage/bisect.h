@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "geometry/primitive.h"
+#include "util/slurm_sbatch.h"
 #include "builds/source_build.h"
 #include "triage/bisect_speed.h"
 
@@ -67,6 +68,21 @@ struct BisectStep {
   double time_s = 0;  // seconds of timing
 };
 
+// One round of builds: --ways K commits built at once (one a round with --ways 1, in the tree).
+struct BisectRound {
+  std::size_t round = 0;                  // 1-based, counted over every invocation
+  std::size_t ways = 1;                   // the --ways it ran with
+  std::string where;                      // "tree" (--ways 1), "worktrees", "slurm"
+  std::vector<std::string> commits;       // chosen, in line order
+  std::vector<std::string> failed;        // their builds or drawings failed
+  std::vector<std::string> cancelled;     // stopped: another result of the round resolved them
+  std::size_t unresolved = 0;             // changes unresolved when it began
+  std::size_t rounds_to_go = 0;           // the estimate said then, this round included
+  double build_wall_s = 0;                // from its start to its last build's end
+  double seconds = 0;                     // the whole round, drawing included
+  bool finished = false;                  // false: interrupted (its finished steps are kept)
+};
+
 // A commit that changed primitives: each of them drew one way at `previous` and another here.
 struct Culprit {
   std::string commit, subject, date;
@@ -101,6 +117,12 @@ struct BisectOptions {
   bool pictures = true;                     // `show` pictures in the report
   BisectSpeedOptions speed;                 // --speed: attribute drawing-time changes too
   std::string command_line;                 // how it was started, quoted (the report repeats it)
+  // --ways K: K commits built at once each round, each in a git worktree of its own
+  // (builds/build_slots.h) by a `builds build` process with ninja -j max(1, jobs / K); --slurm:
+  // as the tasks of a Slurm job array (builds/slurm_builds.h). Drawing stays here.
+  std::size_t ways = 1;
+  bool slurm = false;
+  util::SlurmOptions slurm_options;
 };
 
 struct BisectResult {
@@ -110,6 +132,7 @@ struct BisectResult {
   std::vector<std::string> dropped;  // selected but drawn alike by both refs
   BisectStep good, bad;
   std::vector<BisectStep> steps;     // in order, resumed ones included
+  std::vector<BisectRound> rounds;   // resumed ones included
   std::size_t commits_in_range = 0;  // on the line, the bad ref included
   std::vector<Culprit> culprits;     // by position on the line
   std::vector<Unattributed> unattributed;

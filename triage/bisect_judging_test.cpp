@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "runner/git_command.h"
+#include "builds/git_command.h"
 
 namespace fs = std::filesystem;
 
@@ -73,7 +73,7 @@ TEST(BisectJudging, AStepIsSummedUpAgainstTheEnds) {
 
 // A history of `n` commits in a fresh repository, oldest first: "c0" ... "c{n-1}".
 std::vector<std::string> make_history(const std::string& dir, int n) {
-  using runner::git;
+  using builds::git;
   fs::create_directories(dir);
   if (!git(dir, {"init", "-q"}).ok) return {};
   std::vector<std::string> commits;

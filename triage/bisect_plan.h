@@ -14,6 +14,13 @@
 // whose inner positions all failed ends unresolved with candidates (those positions and the gap's
 // end). A change undone later in the range (A -> B -> A) is seen only where a built position
 // falls inside it: the ends of the range cannot show it.
+//
+// K builds at once (`bisect --ways K`, next_k): first one build in each gap, the gaps with the
+// most unresolved changes first (ties as next(): the wider, then the earlier), so that a round
+// splits as many unresolved changes as it can; each further build goes to the gap with the most
+// rounds still ahead of it, log(width) / log(builds + 1), so that a gap of few changes is not
+// left to the last rounds; each gap's builds then stand evenly spaced in it. One culprit in n
+// commits thus takes about log_(K+1) n rounds, and next_k(1) is next().
 #pragma once
 
 #include <cstddef>
@@ -43,6 +50,17 @@ class AttributionPlan {
   // The next position to build; none when every change is attributed or only failed positions
   // are left inside the unresolved gaps.
   std::optional<std::size_t> next() const;
+  // Up to `k` positions to build at once (fewer when fewer are open inside unresolved gaps),
+  // in increasing order; empty when next() is none.
+  std::vector<std::size_t> next_k(std::size_t k) const;
+  // Whether a build at `position` would still split an unresolved change (a build of a round
+  // whose range another result of the round already resolved is not needed).
+  bool needed(std::size_t position) const;
+  // Unresolved changes whose gap still holds an open position.
+  std::size_t unresolved() const;
+  // About how many rounds of `k` builds are left: the deepest gap's search, its share of the k
+  // builds spread evenly over the gaps.
+  std::size_t rounds_to_go(std::size_t k) const;
 
   struct Change {
     std::string label;
@@ -62,6 +80,9 @@ class AttributionPlan {
     std::size_t from, to;
     bool operator<(const Gap& o) const { return from != o.from ? from < o.from : to < o.to; }
   };
+  // Unresolved changes by gap, for the gaps that hold an open position.
+  std::map<Gap, std::size_t> splittable_gaps() const;
+  std::size_t open_inside(const Gap& g) const;
   // Positions of `label`'s known states, in order.
   std::vector<std::size_t> known_positions(const std::string& label) const;
   bool open(std::size_t position) const;  // neither built nor failed

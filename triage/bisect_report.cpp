@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "rundir/run_folder.h"
+#include "triage/bisect_rounds.h"
 #include "triage/primitive_image.h"
 #include "audit/reproducer.h"
 #include "rundir/platform_spec.h"
@@ -427,6 +428,20 @@ void write_bisect_report(const BisectOptions& o, const BisectResult& r,
     md << "| " << ++n << " | " << short_hash(s.commit) << " | " << cell(s.subject) << " | "
        << cell(s.error.empty() ? s.summary : s.error) << " | "
        << (s.reused ? "reused" : util::duration_text(s.build_s)) << " |\n";
+  if (!r.rounds.empty()) {
+    md << "\n" << rounds_summary(r) << ":\n\n"
+       << "| round | builds | where | failed | cancelled | unresolved before | building | round |\n"
+       << "| ---: | --- | --- | ---: | ---: | ---: | ---: | ---: |\n";
+    for (const BisectRound& round : r.rounds) {
+      std::string commits;
+      for (const std::string& c : round.commits) commits += (commits.empty() ? "" : " ") + short_hash(c);
+      md << "| " << round.round << " | " << commits << " | " << round.where << " | "
+         << round.failed.size() << " | " << round.cancelled.size() << " | " << round.unresolved
+         << " | " << util::duration_text(round.build_wall_s) << " | "
+         << (round.finished ? util::duration_text(round.seconds) : std::string("interrupted"))
+         << " |\n";
+    }
+  }
   md << "\n## Repeat it\n\n```sh\n" << o.command_line << "\n```\n";
   util::write_file_atomic(r.report_path, md.str());
   say("report: " + r.report_path);

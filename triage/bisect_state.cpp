@@ -69,6 +69,15 @@ nlohmann::json step_json(const BisectStep& s) {
           {"speed", speed},       {"time_s", s.time_s}};
 }
 
+nlohmann::json round_json(const BisectRound& r) {
+  return {{"round", r.round},           {"ways", r.ways},
+          {"where", r.where},           {"commits", r.commits},
+          {"failed", r.failed},         {"cancelled", r.cancelled},
+          {"unresolved", r.unresolved}, {"rounds_to_go", r.rounds_to_go},
+          {"build_wall_s", r.build_wall_s}, {"seconds", r.seconds},
+          {"finished", r.finished}};
+}
+
 // Field readers that name the file and the key of what is wrong.
 class Reader {
  public:
@@ -197,6 +206,36 @@ class Reader {
     return d;
   }
 
+  std::vector<std::string> commits(const nlohmann::json& j, const std::string& parent,
+                                   const std::string& key) const {
+    const nlohmann::json& v = at(j, parent, key);
+    if (!v.is_array()) bad(name(parent, key), "must be an array");
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::string k = name(parent, key) + "[" + std::to_string(i) + "]";
+      if (!v[i].is_string() || !util::commit_hash_problem(v[i].get<std::string>()).empty())
+        bad(k, "must be a full commit hash");
+      out.push_back(v[i].get<std::string>());
+    }
+    return out;
+  }
+
+  BisectRound round(const nlohmann::json& j, const std::string& key) const {
+    BisectRound r;
+    r.round = count(j, key, "round");
+    r.ways = count(j, key, "ways");
+    r.where = text(j, key, "where");
+    r.commits = commits(j, key, "commits");
+    r.failed = commits(j, key, "failed");
+    r.cancelled = commits(j, key, "cancelled");
+    r.unresolved = count(j, key, "unresolved");
+    r.rounds_to_go = count(j, key, "rounds_to_go");
+    r.build_wall_s = number(j, key, "build_wall_s");
+    r.seconds = number(j, key, "seconds");
+    r.finished = flag(j, key, "finished");
+    return r;
+  }
+
   BisectStep step(const nlohmann::json& j, const std::string& key) const {
     BisectStep s;
     s.role = text(j, key, "role");
@@ -241,6 +280,8 @@ nlohmann::json bisect_state_json(const BisectState& st) {
   const BisectResult& r = st.result;
   nlohmann::json steps = nlohmann::json::array();
   for (const BisectStep& s : r.steps) steps.push_back(step_json(s));
+  nlohmann::json rounds = nlohmann::json::array();
+  for (const BisectRound& round : r.rounds) rounds.push_back(round_json(round));
   nlohmann::json selection = nlohmann::json::array();
   for (const BisectPrimitive& p : r.selection)
     selection.push_back({{"kind", geometry::kind_name(p.kind)}, {"view", p.view},
@@ -314,6 +355,7 @@ nlohmann::json bisect_state_json(const BisectState& st) {
                       {"good", step_json(r.good)},
                       {"bad", step_json(r.bad)},
                       {"steps", steps},
+                      {"rounds", rounds},
                       {"culprits", culprits},
                       {"unattributed", unattributed},
                       {"speed_ends", speed_ends},
@@ -363,6 +405,13 @@ BisectState load_bisect_state(const std::string& path) {
   if (!steps.is_array()) rd.bad("steps", "must be an array");
   for (std::size_t i = 0; i < steps.size(); ++i)
     st.result.steps.push_back(rd.step(steps[i], "steps[" + std::to_string(i) + "]"));
+  // Written since builds at once (`--ways`); absent from older files.
+  if (j.contains("rounds")) {
+    const nlohmann::json& rounds = rd.at(j, "", "rounds");
+    if (!rounds.is_array()) rd.bad("rounds", "must be an array");
+    for (std::size_t i = 0; i < rounds.size(); ++i)
+      st.result.rounds.push_back(rd.round(rounds[i], "rounds[" + std::to_string(i) + "]"));
+  }
   if (j.contains("speed_ends")) {
     const nlohmann::json& ends = rd.at(j, "", "speed_ends");
     if (!ends.is_array()) rd.bad("speed_ends", "must be an array");

@@ -95,6 +95,11 @@ void build_and_draw_step(const BisectOptions& o, const std::vector<BisectPrimiti
     return;
   }
   util::throw_if_interrupted();
+  draw_built_step(o, primitives, s);
+}
+
+void draw_built_step(const BisectOptions& o, const std::vector<BisectPrimitive>& primitives,
+                     BisectStep& s) {
   if (primitives.empty()) return;  // drawing time only (--speed): timed by the caller
   const auto t1 = Clock::now();
   s.drawing = draw_selection(o, primitives, s.build_dir);

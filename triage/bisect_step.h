@@ -29,4 +29,8 @@ Drawing draw_selection(const BisectOptions& o, const std::vector<BisectPrimitive
 void build_and_draw_step(const BisectOptions& o, const std::vector<BisectPrimitive>& primitives,
                          BisectStep& s, const std::function<void(const std::string&)>& say);
 
+// Draws `primitives` with the step's build (s.build_dir), filling its drawing, draw time and error.
+void draw_built_step(const BisectOptions& o, const std::vector<BisectPrimitive>& primitives,
+                     BisectStep& s);
+
 }  // namespace ra::triage

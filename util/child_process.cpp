@@ -100,6 +100,9 @@ Child start_child(const ChildSpec& spec) {
     ::execvpe(argv[0], argv.data(), envp.data());
     ::_exit(127);
   }
+  // The group made on both sides of the fork: a kill(-pid) right after start_child returns (a
+  // signal that came meanwhile) must not find the group missing while the child runs on.
+  if (spec.own_process_group) ::setpgid(pid, pid);
   Child child;
   child.pid = pid;
   if (spec.capture_output) {
