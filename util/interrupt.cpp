@@ -31,7 +31,9 @@ StopSignals::StopSignals(void (*handler)(int)) {
   sigemptyset(&sa.sa_mask);
   for (int i = 0; i < 3; ++i) {
     sigaction(kSignals[i], nullptr, &old_[i]);
-    if (old_[i].sa_handler != SIG_IGN) sigaction(kSignals[i], &sa, nullptr);
+    // SIGHUP ignored stays ignored (nohup); SIGINT ignored is a shell's doing for a background
+    // job, and the user's Ctrl-C or kill -INT must still stop the command.
+    if (kSignals[i] != SIGHUP || old_[i].sa_handler != SIG_IGN) sigaction(kSignals[i], &sa, nullptr);
   }
 }
 

@@ -21,8 +21,8 @@ struct Interrupted : std::runtime_error {
 };
 
 // SIGINT, SIGTERM and SIGHUP handled by `handler` while this lives; the handlers before come back
-// at restore() or at the end. A signal ignored before stays ignored (SIGHUP under nohup: whoever
-// started the command asked for it to outlive the terminal). InterruptScope, a run's own signal
+// at restore() or at the end. SIGHUP ignored before stays ignored (under nohup: whoever started the
+// command asked for it to outlive the terminal). InterruptScope, a run's own signal
 // handling and the plots' private X server (plots/headless_display.cpp) all stand on it.
 class StopSignals {
  public:

@@ -118,14 +118,10 @@ make_history "$h4" "${words[@]//broken/good}"
 git -C "$h4" checkout -q -b topic
 ends="$(c "$h4" 0) $(c "$h4" 16)"
 cmd='case " '"$ends"' " in *" $RENDERAUDIT_SOURCE_COMMIT "*) ;; *) [ -z "${RA_WAYS_SLOW:-}" ] || sleep 29.3;; esac; '"$cmd"
-# Job control on for this one start: a script's background job otherwise begins with SIGINT
-# ignored, and the program keeps a signal ignored that it was started with (as nohup intends).
-set -m
 RA_WAYS_SLOW=1 "$ra" bisect "$t/run" --between faulty@good faulty@bad --source "$h4" --good "$(c "$h4" 0)" \
   --bad "$(c "$h4" 16)" --build-command "$cmd" --out "$t/int" --jobs 2 --max-primitives 6 \
   --no-pictures --ways 3 >"$t/int.out" 2>"$t/int.err" &
 victim=$!
-set +m
 pids+=("$victim")
 for _ in $(seq 1200); do [ "$(grep -c '^bisect:   building .* in /' "$t/int.err" 2>/dev/null)" = 3 ] && break; sleep 0.1; done
 [ "$(grep -c '^bisect:   building .* in /' "$t/int.err")" = 3 ] || { cat "$t/int.err"; fail "the round's three builds did not start"; }
