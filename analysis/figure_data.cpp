@@ -59,7 +59,7 @@ struct Side {
 struct Comparison {
   std::string what;
   std::string figure;
-  PrimitiveKind kind;
+  geometry::Kind kind;
   std::size_t metric;
   Side a, b;
   json result;  // filled in parallel; null when a side has no data
@@ -182,7 +182,7 @@ bool differ_only_in_fov(const ViewGroup& a, const ViewGroup& b) {
 std::vector<Comparison> plan_comparisons(const RunRecords& run) {
   std::vector<Comparison> plan;
   const std::size_t platforms = run.platforms.size();
-  for (PrimitiveKind kind : run.kinds()) {
+  for (geometry::Kind kind : run.kinds()) {
     const std::size_t headline = std::min<std::size_t>(2, kind_metrics(kind).size());
     for (std::size_t m = 0; m < headline; ++m) {
       for (std::size_t p = 0; p < platforms; ++p) {
@@ -274,7 +274,7 @@ void quartiles_json(json& j, const std::vector<double>& ascending, const std::st
 
 // One kind's speed-against-error points: per platform and view group, the render time of every
 // `ok` record with a time (speed_table's data) beside the normalised unsigned error.
-json speed_error_json(const RunRecords& run, PrimitiveKind kind, const FigureOptions& o) {
+json speed_error_json(const RunRecords& run, geometry::Kind kind, const FigureOptions& o) {
   const char* column = speed_error_metric(kind);
   const std::size_t metric = metric_index(kind, column);
   const MetricSpec& spec = kind_metrics(kind)[metric];
@@ -313,13 +313,13 @@ json speed_error_json(const RunRecords& run, PrimitiveKind kind, const FigureOpt
 
 }  // namespace
 
-const char* speed_error_metric(PrimitiveKind kind) {
+const char* speed_error_metric(geometry::Kind kind) {
   switch (kind) {
-    case PrimitiveKind::kPoint:
+    case geometry::Kind::kPoint:
       return "pe_norm";
-    case PrimitiveKind::kLine:
+    case geometry::Kind::kLine:
       return "lse_u_norm";
-    case PrimitiveKind::kTriangle:
+    case geometry::Kind::kTriangle:
       return "te_u_norm";
   }
   return "";
@@ -338,12 +338,12 @@ json figure_data(const RunRecords& run, const FigureOptions& options) {
 
   // box plots: one figure per kind and metric
   struct BoxFigure {
-    PrimitiveKind kind;
+    geometry::Kind kind;
     std::size_t metric;
     json result;
   };
   std::vector<BoxFigure> boxes;
-  for (PrimitiveKind kind : run.kinds()) {
+  for (geometry::Kind kind : run.kinds()) {
     for (std::size_t m = 0; m < kind_metrics(kind).size(); ++m) boxes.push_back({kind, m, nullptr});
   }
   std::vector<Comparison> plan = plan_comparisons(run);
@@ -409,7 +409,7 @@ json figure_data(const RunRecords& run, const FigureOptions& options) {
   doc["box_plots"] = std::move(box_list);
   doc["comparisons"] = std::move(comparisons);
   json speed = json::array();
-  for (PrimitiveKind kind : run.kinds()) speed.push_back(speed_error_json(run, kind, options));
+  for (geometry::Kind kind : run.kinds()) speed.push_back(speed_error_json(run, kind, options));
   doc["speed_error"] = std::move(speed);
   return doc;
 }

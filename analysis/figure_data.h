@@ -95,7 +95,7 @@ struct FigureOptions {
 
 // The records column of the error the speed-against-error points use for `kind`: its normalised
 // unsigned metric ("pe_norm", "lse_u_norm", "te_u_norm").
-const char* speed_error_metric(PrimitiveKind kind);
+const char* speed_error_metric(geometry::Kind kind);
 
 // The whole figures.json document for a run.
 nlohmann::json figure_data(const RunRecords& run, const FigureOptions& options = {});

@@ -152,23 +152,24 @@ stats::Table metric_table(const RunRecords& run, const GroupSummaries& summaries
 stats::Table physical_units_table(const RunRecords& run, const GroupSummaries& summaries,
                            const TableOptions& options) {
   struct Column {
-    PrimitiveKind kind;
+    geometry::Kind kind;
     const char* metric;
     const char* name;
     int power;  // 1: length, 2: area
     int decimals;
   };
   std::vector<Column> columns;
-  const std::vector<PrimitiveKind> kinds = run.kinds();
-  const auto has = [&](PrimitiveKind k) {
+  const std::vector<geometry::Kind> kinds = run.kinds();
+  const auto has = [&](geometry::Kind k) {
     return std::find(kinds.begin(), kinds.end(), k) != kinds.end();
   };
-  if (has(PrimitiveKind::kPoint)) columns.push_back({PrimitiveKind::kPoint, "pe", "PE (mm)", 1, 3});
-  if (has(PrimitiveKind::kLine)) {
-    columns.push_back({PrimitiveKind::kLine, "lse_u", "LSEu (mm)", 1, 3});
+  if (has(geometry::Kind::kPoint))
+    columns.push_back({geometry::Kind::kPoint, "pe", "PE (mm)", 1, 3});
+  if (has(geometry::Kind::kLine)) {
+    columns.push_back({geometry::Kind::kLine, "lse_u", "LSEu (mm)", 1, 3});
   }
-  if (has(PrimitiveKind::kTriangle)) {
-    columns.push_back({PrimitiveKind::kTriangle, "te_u", "TEu (mm^2)", 2, 2});
+  if (has(geometry::Kind::kTriangle)) {
+    columns.push_back({geometry::Kind::kTriangle, "te_u", "TEu (mm^2)", 2, 2});
   }
 
   stats::Table t;
@@ -219,7 +220,7 @@ stats::Table physical_units_table(const RunRecords& run, const GroupSummaries& s
         row.push_back(stats::text_cell(""));
       } else {
         const ViewGroup* any = nullptr;
-        for (PrimitiveKind k : kinds) {
+        for (geometry::Kind k : kinds) {
           if (!any) any = any_group(run, k, groups[gi]);
         }
         row.push_back(stats::text_cell(any->label));

@@ -71,7 +71,7 @@ TEST(PaperConventions, PointsWithinHalfAPixelOutsideTheWindowBecomeFalseInvisibl
             std::uint64_t(4000 - in_window - in_band));
   EXPECT_EQ(c.by_class[int(metrics::Visibility::kTrueVisible)], std::uint64_t(in_window));
   EXPECT_EQ(paper.points_within_margin, std::uint64_t(in_band));
-  const stats::Table t2 = visibility_table(paper, PrimitiveKind::kPoint);
+  const stats::Table t2 = visibility_table(paper, geometry::Kind::kPoint);
   bool noted = false;
   for (const std::string& n : t2.notes)
     noted = noted || n.find("--point-margin-px 0.5): " + std::to_string(in_band)) != std::string::npos;

@@ -22,7 +22,7 @@ std::string join_ints(const std::vector<int>& v) {
 }
 
 // The parameters of view group `g` of a kind, from the first platform that has it.
-const ViewGroup* any_group(const RunRecords& run, PrimitiveKind kind, int g) {
+const ViewGroup* any_group(const RunRecords& run, geometry::Kind kind, int g) {
   for (std::size_t p = 0; p < run.platforms.size(); ++p) {
     if (const ViewGroup* group = run.find_group(p, kind, g)) return group;
   }
@@ -62,7 +62,7 @@ void add_view_cells(std::vector<stats::TableCell>& row, const ViewGroup& g, bool
 }
 
 // "View groups: A = views 1, 2 (FOV 30, window 128); ..."
-std::string group_note(const RunRecords& run, PrimitiveKind kind) {
+std::string group_note(const RunRecords& run, geometry::Kind kind) {
   std::string s = "View groups pool the views that differ only by camera orientation: ";
   bool first = true;
   for (int g : run.view_groups(kind)) {
@@ -100,7 +100,7 @@ std::optional<Description> describe_if_any(const std::vector<double>& ascending,
 }
 
 // All view groups of a platform and kind pooled.
-std::vector<double> pooled_all(const RunRecords& run, std::size_t p, PrimitiveKind kind,
+std::vector<double> pooled_all(const RunRecords& run, std::size_t p, geometry::Kind kind,
                                std::size_t metric) {
   std::vector<const std::vector<double>*> parts;
   for (const ViewGroup* g : run.groups_of(p, kind)) {

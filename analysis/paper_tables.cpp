@@ -21,7 +21,7 @@ std::string quantile_label(QuantileDefinition q) {
 }
 
 const std::vector<MetricTableSpec>& metric_table_specs() {
-  using K = PrimitiveKind;
+  using K = geometry::Kind;
   static const std::vector<MetricTableSpec> specs = {
       {"3", K::kPoint, "pe", 0, 5, "Summary of non-normalized point rendering errors",
        "table03_pe"},
@@ -77,14 +77,14 @@ GroupSummaries::GroupSummaries(const RunRecords& run, QuantileDefinition quantil
   }
 }
 
-const Description* GroupSummaries::find(std::size_t platform, PrimitiveKind kind,
+const Description* GroupSummaries::find(std::size_t platform, geometry::Kind kind,
                                         std::size_t metric, int view_group) const {
   const auto it = d_.find(std::make_tuple(platform, static_cast<int>(kind), metric, view_group));
   return it == d_.end() ? nullptr : &it->second;
 }
 
-const stats::MedianIqrBootstrap* GroupSummaries::bootstrap(std::size_t platform, PrimitiveKind kind,
-                                                           std::size_t metric,
+const stats::MedianIqrBootstrap* GroupSummaries::bootstrap(std::size_t platform,
+                                                           geometry::Kind kind, std::size_t metric,
                                                            int view_group) const {
   const auto it = b_.find(std::make_tuple(platform, static_cast<int>(kind), metric, view_group));
   return it == b_.end() ? nullptr : &it->second;
@@ -92,12 +92,12 @@ const stats::MedianIqrBootstrap* GroupSummaries::bootstrap(std::size_t platform,
 
 std::vector<stats::Table> paper_tables(const RunRecords& run, const TableOptions& options) {
   const GroupSummaries summaries(run, options.quantiles, options.jobs, options.bootstrap);
-  const std::vector<PrimitiveKind> kinds = run.kinds();
-  const auto has = [&](PrimitiveKind k) {
+  const std::vector<geometry::Kind> kinds = run.kinds();
+  const auto has = [&](geometry::Kind k) {
     return std::find(kinds.begin(), kinds.end(), k) != kinds.end();
   };
   std::vector<stats::Table> tables;
-  const auto metric_tables = [&](PrimitiveKind kind, bool supplements) {
+  const auto metric_tables = [&](geometry::Kind kind, bool supplements) {
     for (const MetricTableSpec& spec : metric_table_specs()) {
       const bool is_supplement = !std::isdigit(static_cast<unsigned char>(spec.number.back()));
       if (spec.kind == kind && is_supplement == supplements) {
@@ -109,13 +109,13 @@ std::vector<stats::Table> paper_tables(const RunRecords& run, const TableOptions
       }
     }
   };
-  for (PrimitiveKind kind : kAllKinds) {
+  for (geometry::Kind kind : kAllKinds) {
     if (!has(kind)) continue;
     tables.push_back(visibility_table(run, kind));
     tables.push_back(visibility_share_table(run, kind));
     metric_tables(kind, false);
   }
-  for (PrimitiveKind kind : kAllKinds) {
+  for (geometry::Kind kind : kAllKinds) {
     if (has(kind)) metric_tables(kind, true);
   }
   if (!kinds.empty() && options.bootstrap.resamples > 0)

@@ -45,7 +45,7 @@ namespace ra::analysis {
 // One of the paper's metric tables (or a supplement in the same layout).
 struct MetricTableSpec {
   std::string number;  // "3", "6", "6s" (supplement): names the paper table it mirrors
-  PrimitiveKind kind;
+  geometry::Kind kind;
   const char* column;       // records column
   int scale_exponent;       // values shown = metric x 10^scale_exponent
   int decimals;             // decimals shown (Markdown, LaTeX)
@@ -79,9 +79,9 @@ class GroupSummaries {
   // bootstrap.resamples > 0: also the bootstrap of each sample's median and IQR.
   GroupSummaries(const RunRecords& run, stats::QuantileDefinition quantiles, unsigned jobs,
                  stats::BootstrapOptions bootstrap = {0});
-  const stats::Description* find(std::size_t platform, PrimitiveKind kind, std::size_t metric,
+  const stats::Description* find(std::size_t platform, geometry::Kind kind, std::size_t metric,
                                  int view_group) const;
-  const stats::MedianIqrBootstrap* bootstrap(std::size_t platform, PrimitiveKind kind,
+  const stats::MedianIqrBootstrap* bootstrap(std::size_t platform, geometry::Kind kind,
                                              std::size_t metric, int view_group) const;
 
  private:
@@ -93,10 +93,10 @@ class GroupSummaries {
 std::string quantile_label(stats::QuantileDefinition q);
 
 // Table 2 (points), 5 (lines) or 8 (triangles): visibility-class counts by platform and view group.
-stats::Table visibility_table(const RunRecords& run, PrimitiveKind kind);
+stats::Table visibility_table(const RunRecords& run, geometry::Kind kind);
 // Its supplement (table02s, 05s, 08s): each class as a percentage of the group's ok records with
 // its Clopper-Pearson 95% interval.
-stats::Table visibility_share_table(const RunRecords& run, PrimitiveKind kind);
+stats::Table visibility_share_table(const RunRecords& run, geometry::Kind kind);
 
 // A metric table: median and IQR by view group (rows) and platform (column blocks).
 stats::Table metric_table(const RunRecords& run, const GroupSummaries& summaries,
@@ -133,7 +133,7 @@ stats::Table speed_table(const RunRecords& run, const TableOptions& options);
 
 // Two platforms compared on one kind, metric and view group.
 struct PlatformComparison {
-  PrimitiveKind kind = PrimitiveKind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   std::size_t metric = 0;
   int view_group = 0;
   std::string label;

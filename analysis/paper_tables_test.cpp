@@ -132,7 +132,7 @@ TEST_F(PaperTables, QuantileDefinitionHf7) {
 }
 
 TEST_F(PaperTables, VisibilityCounts) {
-  const stats::Table t = visibility_table(run_, PrimitiveKind::kPoint);
+  const stats::Table t = visibility_table(run_, geometry::Kind::kPoint);
   EXPECT_EQ(t.file_stem, "table02_point_visibility");
   std::vector<std::string> names;
   for (const auto& c : t.columns) names.push_back(c.name);
@@ -150,7 +150,7 @@ TEST_F(PaperTables, VisibilityCounts) {
 // Shares of the ok records (the timeout apart) with Clopper-Pearson intervals: SciPy 1.10's
 // binomtest(k, 14).proportion_ci(0.95, "exact") for p1's group A.
 TEST_F(PaperTables, VisibilitySharesWithIntervals) {
-  const stats::Table t = visibility_share_table(run_, PrimitiveKind::kPoint);
+  const stats::Table t = visibility_share_table(run_, geometry::Kind::kPoint);
   EXPECT_EQ(t.file_stem, "table02s_point_visibility_shares");
   ASSERT_EQ(t.rows.size(), 4u);
   EXPECT_EQ(texts(t.rows[0]),

@@ -16,7 +16,7 @@ std::vector<PlatformComparison> compare_platforms(const RunRecords& run,
                                                   const GroupSummaries& summaries,
                                                   const TableOptions& options) {
   std::vector<PlatformComparison> out;
-  for (PrimitiveKind kind : run.kinds()) {
+  for (geometry::Kind kind : run.kinds()) {
     for (std::size_t m = 0; m < kind_metrics(kind).size(); ++m) {
       for (int g : run.view_groups(kind)) {
         for (std::size_t a = 0; a < run.platforms.size(); ++a) {

@@ -71,7 +71,7 @@ TEST_F(PlatformComparisonTable, EveryPairIsComparedWhereBothPlatformsHaveTheGrou
       {0, "A", 0, 1}, {0, "A", 0, 2}, {0, "A", 1, 2}, {0, "B", 0, 2},
       {1, "A", 0, 1}, {1, "A", 0, 2}, {1, "A", 1, 2}, {1, "B", 0, 2}};
   for (std::size_t i = 0; i < rows_.size(); ++i) {
-    EXPECT_EQ(rows_[i].kind, PrimitiveKind::kPoint);
+    EXPECT_EQ(rows_[i].kind, geometry::Kind::kPoint);
     EXPECT_EQ(std::tuple(rows_[i].metric, rows_[i].label, rows_[i].platform_a, rows_[i].platform_b),
               want[i])
         << i;

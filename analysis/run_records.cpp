@@ -18,13 +18,13 @@
 
 namespace ra::analysis {
 
-const char* kind_label_plural(PrimitiveKind kind) {
+const char* kind_label_plural(geometry::Kind kind) {
   switch (kind) {
-    case PrimitiveKind::kPoint:
+    case geometry::Kind::kPoint:
       return "points";
-    case PrimitiveKind::kLine:
+    case geometry::Kind::kLine:
       return "line segments";
-    case PrimitiveKind::kTriangle:
+    case geometry::Kind::kTriangle:
       return "triangles";
   }
   return "unknown";
@@ -44,8 +44,8 @@ const char* unit_name(MetricUnit unit) {
   return "unknown";
 }
 
-const std::vector<MetricSpec>& kind_metrics(PrimitiveKind kind) {
-  using K = PrimitiveKind;
+const std::vector<MetricSpec>& kind_metrics(geometry::Kind kind) {
+  using K = geometry::Kind;
   using U = MetricUnit;
   static const std::array<std::vector<MetricSpec>, kKindCount> metrics = {
       std::vector<MetricSpec>{
@@ -75,7 +75,7 @@ const std::vector<MetricSpec>& kind_metrics(PrimitiveKind kind) {
   return metrics[static_cast<std::size_t>(kind)];
 }
 
-std::size_t metric_index(PrimitiveKind kind, std::string_view column) {
+std::size_t metric_index(geometry::Kind kind, std::string_view column) {
   const auto& metrics = kind_metrics(kind);
   for (std::size_t m = 0; m < metrics.size(); ++m) {
     if (column == metrics[m].column) return m;
@@ -175,9 +175,9 @@ std::vector<int> ViewGroup::view_numbers() const {
   return numbers;
 }
 
-std::vector<PrimitiveKind> RunRecords::kinds() const {
-  std::vector<PrimitiveKind> present;
-  for (PrimitiveKind k : kAllKinds) {
+std::vector<geometry::Kind> RunRecords::kinds() const {
+  std::vector<geometry::Kind> present;
+  for (geometry::Kind k : kAllKinds) {
     for (const auto& [key, data] : views) {
       if (key.kind == k) {
         present.push_back(k);
@@ -189,7 +189,7 @@ std::vector<PrimitiveKind> RunRecords::kinds() const {
 }
 
 std::vector<const ViewGroup*> RunRecords::groups_of(std::size_t platform,
-                                                    PrimitiveKind kind) const {
+                                                    geometry::Kind kind) const {
   std::vector<const ViewGroup*> out;
   for (const ViewGroup& g : groups) {
     if (g.platform == platform && g.kind == kind) out.push_back(&g);
@@ -197,7 +197,7 @@ std::vector<const ViewGroup*> RunRecords::groups_of(std::size_t platform,
   return out;
 }
 
-const ViewGroup* RunRecords::find_group(std::size_t platform, PrimitiveKind kind,
+const ViewGroup* RunRecords::find_group(std::size_t platform, geometry::Kind kind,
                                         int view_group) const {
   for (const ViewGroup& g : groups) {
     if (g.platform == platform && g.kind == kind && g.view_group == view_group) return &g;
@@ -205,7 +205,7 @@ const ViewGroup* RunRecords::find_group(std::size_t platform, PrimitiveKind kind
   return nullptr;
 }
 
-std::vector<int> RunRecords::view_groups(PrimitiveKind kind) const {
+std::vector<int> RunRecords::view_groups(geometry::Kind kind) const {
   std::vector<int> numbers;
   for (const ViewGroup& g : groups) {
     if (g.kind == kind) numbers.push_back(g.view_group);

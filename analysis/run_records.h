@@ -37,16 +37,15 @@
 
 namespace ra::analysis {
 
-// The kind of a record is the project's one primitive kind (geometry/primitive.h); records spell
-// it with kind_name: "point", "line", "triangle".
-using PrimitiveKind = geometry::Kind;
+// The kind of a record is the project's one primitive kind, geometry::Kind (geometry/primitive.h);
+// records spell it with kind_name: "point", "line", "triangle".
 constexpr std::size_t kKindCount = 3;
-constexpr std::array<PrimitiveKind, kKindCount> kAllKinds = {
-    PrimitiveKind::kPoint, PrimitiveKind::kLine, PrimitiveKind::kTriangle};
+constexpr std::array<geometry::Kind, kKindCount> kAllKinds = {
+    geometry::Kind::kPoint, geometry::Kind::kLine, geometry::Kind::kTriangle};
 using ra::geometry::kind_name;
 
 // "points", "line segments", "triangles": the words of the paper's captions, for table titles.
-const char* kind_label_plural(PrimitiveKind kind);
+const char* kind_label_plural(geometry::Kind kind);
 
 // What a metric's values measure, for unit labels and conversions to physical units.
 enum class MetricUnit {
@@ -60,7 +59,7 @@ const char* unit_name(MetricUnit unit);  // "px", "px^2", "sqrt(W*H) units", "W*
 // One error-metric column of the records.
 struct MetricSpec {
   const char* column;       // records column, e.g. "pe_norm"
-  PrimitiveKind kind;       // the kind whose records carry it
+  geometry::Kind kind;      // the kind whose records carry it
   const char* symbol;       // the paper's symbol, e.g. "PEnorm"
   const char* description;  // e.g. "normalized point rendering error"
   MetricUnit unit;
@@ -69,10 +68,10 @@ struct MetricSpec {
 // The metrics analysed for a kind, the paper's headline ones first: points PE, PEnorm; lines
 // LSEs-norm, LSEu-norm, LSEs, LSEu; triangles TEs-norm, TEu-norm, TEs, TEu, TEu-edge-norm (TEu per
 // pixel of visible edge, pixels).
-const std::vector<MetricSpec>& kind_metrics(PrimitiveKind kind);
+const std::vector<MetricSpec>& kind_metrics(geometry::Kind kind);
 
 // The index of `column` in kind_metrics(kind); std::logic_error when it is not one of them.
-std::size_t metric_index(PrimitiveKind kind, std::string_view column);
+std::size_t metric_index(geometry::Kind kind, std::string_view column);
 
 // The parameters of one view (docs/records.md).
 struct ViewMeta {
@@ -108,7 +107,7 @@ struct ViewData {
 
 struct ViewKey {
   std::size_t platform = 0;  // index into RunRecords::platforms
-  PrimitiveKind kind = PrimitiveKind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view = 0;
   bool operator<(const ViewKey& o) const;
 };
@@ -116,7 +115,7 @@ struct ViewKey {
 // The views of one platform and kind that differ only by camera orientation.
 struct ViewGroup {
   std::size_t platform = 0;
-  PrimitiveKind kind = PrimitiveKind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view_group = 0;
   std::string label;                   // "A", "B", ... (ra::View::group_name)
   std::vector<const ViewData*> views;  // ascending by orientation, then view number
@@ -149,13 +148,13 @@ struct RunRecords {
   std::map<std::string, rundir::ShardSeal> seals;
 
   // The kinds that have at least one record, in kAllKinds order.
-  std::vector<PrimitiveKind> kinds() const;
+  std::vector<geometry::Kind> kinds() const;
   // The groups of one platform and kind, ascending by view_group.
-  std::vector<const ViewGroup*> groups_of(std::size_t platform, PrimitiveKind kind) const;
+  std::vector<const ViewGroup*> groups_of(std::size_t platform, geometry::Kind kind) const;
   // The group, or nullptr.
-  const ViewGroup* find_group(std::size_t platform, PrimitiveKind kind, int view_group) const;
+  const ViewGroup* find_group(std::size_t platform, geometry::Kind kind, int view_group) const;
   // The view groups numbers present for a kind on any platform, ascending.
-  std::vector<int> view_groups(PrimitiveKind kind) const;
+  std::vector<int> view_groups(geometry::Kind kind) const;
 };
 
 struct LoadOptions {

@@ -31,7 +31,7 @@ using MetricColumns = std::array<std::vector<metrics::RecordColumn>, kKindCount>
 
 MetricColumns make_metric_columns() {
   MetricColumns columns;
-  for (PrimitiveKind k : kAllKinds) {
+  for (geometry::Kind k : kAllKinds) {
     for (const MetricSpec& m : kind_metrics(k)) {
       const std::optional<metrics::RecordColumn> c = metrics::find_record_column(m.column);
       if (!c) {
@@ -121,8 +121,8 @@ class FileParser {
     conformance_.add(row);
     const std::string_view platform = row.cell(metrics::RecordColumn::kPlatform);
     if (platform.empty()) row.fail("column 'platform' is empty");
-    const std::optional<PrimitiveKind> kind = geometry::parse_kind(
-        row.cell(metrics::RecordColumn::kKind), geometry::KindSpelling::kName);
+    const std::optional<geometry::Kind> kind =
+        geometry::parse_kind(row.cell(metrics::RecordColumn::kKind), geometry::KindSpelling::kName);
     if (!kind) {
       row.fail("unknown kind '" + std::string(row.cell(metrics::RecordColumn::kKind)) +
                "' (allowed: point, line, triangle)");
@@ -195,9 +195,9 @@ class FileParser {
 
   // The class under LoadOptions::point_margin_px: a true-invisible point within the margin outside
   // the window is false-invisible (nothing is drawn outside a window, so it is never lit).
-  metrics::Visibility paper_point_class(PrimitiveKind kind, int view, std::uint64_t index,
-                               metrics::Visibility visibility) {
-    if (options_.point_margin_px <= 0 || kind != PrimitiveKind::kPoint ||
+  metrics::Visibility paper_point_class(geometry::Kind kind, int view, std::uint64_t index,
+                                        metrics::Visibility visibility) {
+    if (options_.point_margin_px <= 0 || kind != geometry::Kind::kPoint ||
         visibility != metrics::Visibility::kTrueInvisible)
       return visibility;
     const rundir::Experiment& e = *options_.experiment;
@@ -253,7 +253,7 @@ class FileParser {
   ConformanceTally conformance_;
   PartialView* current_ = nullptr;
   std::string current_platform_;
-  PrimitiveKind current_kind_ = PrimitiveKind::kPoint;
+  geometry::Kind current_kind_ = geometry::Kind::kPoint;
   int current_view_ = 0;
 };
 
@@ -314,7 +314,7 @@ std::vector<ViewGroup> view_groups_of(const std::map<ViewKey, ViewData>& views,
     });
     ViewGroup g;
     g.platform = std::get<0>(key);
-    g.kind = static_cast<PrimitiveKind>(std::get<1>(key));
+    g.kind = static_cast<geometry::Kind>(std::get<1>(key));
     g.view_group = std::get<2>(key);
     g.label = view_group_label(g.view_group);
     g.views = members;
@@ -431,10 +431,10 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
           where += (where.empty() ? "" : ", ") + run.files[r.file];
       }
       throw util::UserError("records of platform " + std::get<0>(key) + ", kind " +
-                      kind_name(static_cast<PrimitiveKind>(std::get<1>(key))) + ", view " +
-                      std::to_string(std::get<2>(key)) + ", index " + std::to_string(*dup) +
-                      " appear more than once (in " + where +
-                      "); remove the duplicated records file");
+                            kind_name(static_cast<geometry::Kind>(std::get<1>(key))) + ", view " +
+                            std::to_string(std::get<2>(key)) + ", index " + std::to_string(*dup) +
+                            " appear more than once (in " + where +
+                            "); remove the duplicated records file");
     }
     std::vector<std::uint64_t>().swap(m.view.indices);
   }
@@ -446,7 +446,7 @@ RunRecords load_run_records(const std::string& run_dir, const LoadOptions& optio
     const std::size_t p = static_cast<std::size_t>(
         std::lower_bound(run.platforms.begin(), run.platforms.end(), std::get<0>(key)) -
         run.platforms.begin());
-    run.views.emplace(ViewKey{p, static_cast<PrimitiveKind>(std::get<1>(key)), std::get<2>(key)},
+    run.views.emplace(ViewKey{p, static_cast<geometry::Kind>(std::get<1>(key)), std::get<2>(key)},
                       std::move(m.view.data));
   }
 

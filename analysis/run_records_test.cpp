@@ -47,14 +47,14 @@ TEST(RunRecords, CountsSamplesAndGroups) {
   EXPECT_EQ(run.record_count, rs.size() + 2);
   ASSERT_EQ(run.platforms, (std::vector<std::string>{"p0", "p1"}));  // sorted by name
 
-  const ViewData& v1 = run.views.at(ViewKey{1, PrimitiveKind::kPoint, 1});
+  const ViewData& v1 = run.views.at(ViewKey{1, geometry::Kind::kPoint, 1});
   EXPECT_EQ(v1.counts.by_class, (std::array<std::uint64_t, 5>{2, 1, 1, 1, 1}));
   EXPECT_EQ(v1.counts.invalid, 1u);
   EXPECT_EQ(v1.counts.crash, 1u);
   EXPECT_EQ(v1.counts.timeout, 0u);
-  EXPECT_EQ(v1.values[metric_index(PrimitiveKind::kPoint, "pe")],
+  EXPECT_EQ(v1.values[metric_index(geometry::Kind::kPoint, "pe")],
             (std::vector<double>{0.10, 0.30}));
-  EXPECT_EQ(v1.values[metric_index(PrimitiveKind::kPoint, "pe_norm")],
+  EXPECT_EQ(v1.values[metric_index(geometry::Kind::kPoint, "pe_norm")],
             (std::vector<double>{0.10 / 128, 0.30 / 128}));
   EXPECT_EQ(v1.render_us_visible.size(), 2u);
   EXPECT_EQ(v1.render_us_other.size(), 4u);  // the ok records that are not true-visible
@@ -62,24 +62,25 @@ TEST(RunRecords, CountsSamplesAndGroups) {
   EXPECT_EQ(v1.meta.width, 128);
 
   // group A of p1 pools views 1 and 2, ascending
-  const ViewGroup* a = run.find_group(1, PrimitiveKind::kPoint, 0);
+  const ViewGroup* a = run.find_group(1, geometry::Kind::kPoint, 0);
   ASSERT_NE(a, nullptr);
   EXPECT_EQ(a->label, "A");
   EXPECT_EQ(a->view_numbers(), (std::vector<int>{1, 2}));
   EXPECT_EQ(a->pooled(0), (std::vector<double>{0.10, 0.25, 0.30}));
   EXPECT_EQ(a->counts().by_class[0], 3u);
-  const ViewGroup* b = run.find_group(1, PrimitiveKind::kPoint, 1);
+  const ViewGroup* b = run.find_group(1, geometry::Kind::kPoint, 1);
   ASSERT_NE(b, nullptr);
   EXPECT_EQ(b->count(0), 0u);
 
   // a line whose metric cells are empty: counted as true-visible, values missing, no NaN
-  const ViewData& line = run.views.at(ViewKey{1, PrimitiveKind::kLine, 1});
+  const ViewData& line = run.views.at(ViewKey{1, geometry::Kind::kLine, 1});
   EXPECT_EQ(line.counts.by_class[0], 1u);
   for (std::size_t m = 0; m < line.values.size(); ++m) {
     EXPECT_TRUE(line.values[m].empty());
     EXPECT_EQ(line.missing[m], 1u);
   }
-  EXPECT_EQ(run.kinds(), (std::vector<PrimitiveKind>{PrimitiveKind::kPoint, PrimitiveKind::kLine}));
+  EXPECT_EQ(run.kinds(),
+            (std::vector<geometry::Kind>{geometry::Kind::kPoint, geometry::Kind::kLine}));
   EXPECT_EQ(view_group_label(27), "AB");
 }
 

@@ -39,12 +39,12 @@ stats::Table speed_table(const RunRecords& run, const TableOptions& options) {
 
   struct Row {
     std::size_t platform;
-    PrimitiveKind kind;
+    geometry::Kind kind;
     const ViewGroup* group;  // nullptr: all groups pooled
   };
   std::vector<Row> rows;
   for (std::size_t p = 0; p < run.platforms.size(); ++p) {
-    for (PrimitiveKind k : run.kinds()) {
+    for (geometry::Kind k : run.kinds()) {
       const auto groups = run.groups_of(p, k);
       if (groups.empty()) continue;
       for (const ViewGroup* g : groups) rows.push_back({p, k, g});
@@ -107,9 +107,9 @@ stats::Table speed_table(const RunRecords& run, const TableOptions& options) {
     row.push_back(stats::text_cell(std::string(spec.symbol) + " (" + unit_name(spec.unit) + ")"));
     // the decimals of the paper's non-normalized tables: PE 5 (Table 3), LSEu 4, TEu 3
     pair(row, computed[i].error, false,
-         r.kind == PrimitiveKind::kPoint  ? 5
-         : r.kind == PrimitiveKind::kLine ? 4
-                                          : 3);
+         r.kind == geometry::Kind::kPoint  ? 5
+         : r.kind == geometry::Kind::kLine ? 4
+                                           : 3);
     t.rows.push_back(std::move(row));
   }
   t.notes = {

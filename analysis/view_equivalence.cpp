@@ -246,7 +246,7 @@ std::vector<ViewEquivalence> assess_view_equivalence(const RunRecords& run,
   };
   std::vector<Task> tasks;
   for (std::size_t p = 0; p < run.platforms.size(); ++p) {
-    for (PrimitiveKind kind : run.kinds()) {
+    for (geometry::Kind kind : run.kinds()) {
       for (std::size_t m = 0; m < kind_metrics(kind).size(); ++m) {
         for (const ViewGroup* g : run.groups_of(p, kind)) tasks.push_back({g, m});
       }
@@ -523,7 +523,7 @@ std::string view_equivalence_markdown(const RunRecords& run,
   }
 
   for (std::size_t p = 0; p < run.platforms.size(); ++p) {
-    for (PrimitiveKind kind : run.kinds()) {
+    for (geometry::Kind kind : run.kinds()) {
       stats::Table t;
       t.title = run.platforms[p] + ", " + kind_label_plural(kind) + ": p-values (raw | Box-Cox)";
       for (const char* c : {"metric", "group", "views", "n", "median"}) {

@@ -113,7 +113,7 @@ Verdict decide_equivalence(const std::vector<std::vector<double>>& samples,
 // The orientation views of one platform, kind, metric and view group compared.
 struct ViewEquivalence {
   std::size_t platform = 0;
-  PrimitiveKind kind = PrimitiveKind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   std::size_t metric = 0;  // index into kind_metrics(kind)
   int view_group = 0;
   std::string label;  // "A", ...

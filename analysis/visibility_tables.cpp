@@ -17,7 +17,7 @@ namespace {
 // One row per platform and view group of `kind` (platform, view, then the cells `counts` adds
 // from the group's visibility counts), a rule above each platform's first.
 template <typename Counts>
-void add_group_rows(const RunRecords& run, PrimitiveKind kind, stats::Table& t,
+void add_group_rows(const RunRecords& run, geometry::Kind kind, stats::Table& t,
                     const Counts& counts) {
   for (std::size_t p = 0; p < run.platforms.size(); ++p) {
     bool first = true;
@@ -35,15 +35,15 @@ void add_group_rows(const RunRecords& run, PrimitiveKind kind, stats::Table& t,
 }  // namespace
 
 // So that two platforms' (or the paper's) counts can be compared with their uncertainty.
-stats::Table visibility_share_table(const RunRecords& run, PrimitiveKind kind) {
-  const int number = kind == PrimitiveKind::kPoint ? 2 : kind == PrimitiveKind::kLine ? 5 : 8;
+stats::Table visibility_share_table(const RunRecords& run, geometry::Kind kind) {
+  const int number = kind == geometry::Kind::kPoint ? 2 : kind == geometry::Kind::kLine ? 5 : 8;
   stats::Table t;
   t.file_stem = "table0" + std::to_string(number) + "s_" + kind_name(kind) + "_visibility_shares";
   t.title = "Table " + std::to_string(number) + "s (supplements Table " + std::to_string(number) +
             "): the share of " + kind_label_plural(kind) +
             " in each visibility category, percent of the view group's ok records, with "
             "Clopper-Pearson 95% intervals";
-  bool multiple = kind == PrimitiveKind::kPoint;
+  bool multiple = kind == geometry::Kind::kPoint;
   for (const ViewGroup& g : run.groups)
     if (g.kind == kind) multiple = multiple || g.counts().by_class[4] > 0;
   t.columns = {{"Platform", stats::Align::kLeft},       {"View", stats::Align::kLeft},
@@ -65,15 +65,15 @@ stats::Table visibility_share_table(const RunRecords& run, PrimitiveKind kind) {
   return t;
 }
 
-stats::Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
-  const int number = kind == PrimitiveKind::kPoint ? 2 : kind == PrimitiveKind::kLine ? 5 : 8;
+stats::Table visibility_table(const RunRecords& run, geometry::Kind kind) {
+  const int number = kind == geometry::Kind::kPoint ? 2 : kind == geometry::Kind::kLine ? 5 : 8;
   stats::Table t;
   t.file_stem = "table0" + std::to_string(number) + "_" + kind_name(kind) + "_visibility";
   t.title = "Table " + std::to_string(number) + " (mirrors the paper's Table " +
             std::to_string(number) + "): the counts of " + kind_label_plural(kind) +
             " rendered in each visibility category for each view group and platform; counts of "
             "records, unscaled";
-  bool multiple = kind == PrimitiveKind::kPoint;
+  bool multiple = kind == geometry::Kind::kPoint;
   bool invalid = false, crash = false, timeout = false;
   for (const ViewGroup& g : run.groups) {
     if (g.kind != kind) continue;
@@ -102,7 +102,7 @@ stats::Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
       "Classes (paper section 3.4) count records with status ok; invalid, crash and "
       "timeout records are counted apart, in their own columns when there are any.",
       group_note(run, kind)};
-  if (kind == PrimitiveKind::kPoint && run.point_margin_px > 0) {
+  if (kind == geometry::Kind::kPoint && run.point_margin_px > 0) {
     t.notes.push_back(
         "The paper's point convention (--point-margin-px " +
         stats::format_significant(run.point_margin_px, 6) + "): " +
@@ -110,7 +110,7 @@ stats::Table visibility_table(const RunRecords& run, PrimitiveKind kind) {
         " true-invisible points whose projection lies within that many pixels outside the window "
         "are counted false-invisible (docs/method.md, \"Where we differ from the paper\").");
   }
-  if (kind != PrimitiveKind::kPoint && multiple) {
+  if (kind != geometry::Kind::kPoint && multiple) {
     t.notes.push_back(
         "Multiple visible is shown because the records use it for this kind (the "
         "paper uses it for points only).");

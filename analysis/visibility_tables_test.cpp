@@ -83,7 +83,7 @@ RunRecords load(const testing::ScopedTempDir& dir, const std::vector<metrics::Re
 TEST(VisibilityTables, LineCountsPerGroupWithStatusColumnsOnlyWhereUsed) {
   testing::ScopedTempDir dir{"visibility_lines"};
   const RunRecords run = load(dir, line_run());
-  const stats::Table t = visibility_table(run, PrimitiveKind::kLine);
+  const stats::Table t = visibility_table(run, geometry::Kind::kLine);
   EXPECT_EQ(t.file_stem, "table05_line_visibility");
   EXPECT_EQ(t.title.rfind("Table 5 (mirrors the paper's Table 5): the counts of line segments", 0),
             0u)
@@ -111,7 +111,7 @@ TEST(VisibilityTables, AMultipleVisibleLineAddsItsColumnAndSaysWhy) {
   rs.push_back(line("p2", 1, 7, Visibility::kMultipleVisible));
   rs.push_back(line("p2", 1, 8, Visibility::kTrueVisible, CaseStatus::kTimeout));
   const RunRecords run = load(dir, rs);
-  const stats::Table t = visibility_table(run, PrimitiveKind::kLine);
+  const stats::Table t = visibility_table(run, geometry::Kind::kLine);
   EXPECT_EQ(column_names(t),
             (std::vector<std::string>{"Platform", "View", "True visible", "True invisible",
                                       "False visible", "False invisible", "Multiple visible",
@@ -132,7 +132,7 @@ TEST(VisibilityTables, AMultipleVisibleLineAddsItsColumnAndSaysWhy) {
 TEST(VisibilityTables, SharesArePercentagesOfOkRecordsWithExactIntervals) {
   testing::ScopedTempDir dir{"visibility_shares"};
   const RunRecords run = load(dir, line_run());
-  const stats::Table t = visibility_share_table(run, PrimitiveKind::kLine);
+  const stats::Table t = visibility_share_table(run, geometry::Kind::kLine);
   EXPECT_EQ(t.file_stem, "table05s_line_visibility_shares");
   EXPECT_EQ(column_names(t),
             (std::vector<std::string>{"Platform", "View", "Records", "True visible",
@@ -166,20 +166,20 @@ TEST(VisibilityTables, PointsHaveTheMultipleColumnAndNameTheMarginConvention) {
   testing::ScopedTempDir dir{"visibility_points"};
   RunRecords run = load(dir, {point("p1", 1, 0, 0.2), point("p1", 2, 1, 0.3),
                               point("p1", 1, 2, 0, Visibility::kFalseInvisible)});
-  stats::Table t = visibility_table(run, PrimitiveKind::kPoint);
+  stats::Table t = visibility_table(run, geometry::Kind::kPoint);
   EXPECT_EQ(t.file_stem, "table02_point_visibility");
   EXPECT_EQ(t.columns.back().name, "Multiple visible");
   EXPECT_EQ(texts(t.rows[0]), (std::vector<std::string>{"p1", "A", "2", "0", "0", "1", "0"}));
   EXPECT_EQ(t.notes.size(), 2u);
   run.point_margin_px = 0.5;
   run.points_within_margin = 1;
-  t = visibility_table(run, PrimitiveKind::kPoint);
+  t = visibility_table(run, geometry::Kind::kPoint);
   ASSERT_EQ(t.notes.size(), 3u);
   EXPECT_EQ(t.notes[2],
             "The paper's point convention (--point-margin-px 0.5): 1 true-invisible points whose "
             "projection lies within that many pixels outside the window are counted "
             "false-invisible (docs/method.md, \"Where we differ from the paper\").");
-  EXPECT_EQ(visibility_share_table(run, PrimitiveKind::kPoint).columns.back().name,
+  EXPECT_EQ(visibility_share_table(run, geometry::Kind::kPoint).columns.back().name,
             "Multiple visible");
 }
 
@@ -187,11 +187,11 @@ TEST(VisibilityTables, PointsHaveTheMultipleColumnAndNameTheMarginConvention) {
 TEST(VisibilityTables, AKindWithoutRecordsHasNoRows) {
   testing::ScopedTempDir dir{"visibility_empty"};
   const RunRecords run = load(dir, line_run());
-  const stats::Table t = visibility_table(run, PrimitiveKind::kTriangle);
+  const stats::Table t = visibility_table(run, geometry::Kind::kTriangle);
   EXPECT_EQ(t.file_stem, "table08_triangle_visibility");
   EXPECT_TRUE(t.rows.empty());
   EXPECT_EQ(t.columns.size(), 6u);
-  const stats::Table s = visibility_share_table(run, PrimitiveKind::kTriangle);
+  const stats::Table s = visibility_share_table(run, geometry::Kind::kTriangle);
   EXPECT_EQ(s.file_stem, "table08s_triangle_visibility_shares");
   EXPECT_TRUE(s.rows.empty());
 }

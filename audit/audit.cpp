@@ -277,7 +277,7 @@ AuditSummary make_summary(const AuditResult& r, const analysis::RunRecords& curr
   for (const PlatformPair& pair : r.pairs) {
     const std::size_t p = platform_index(current, pair.current);
     if (p == current.platforms.size()) continue;
-    for (analysis::PrimitiveKind kind : analysis::kAllKinds)
+    for (geometry::Kind kind : analysis::kAllKinds)
       for (const analysis::ViewGroup* g : current.groups_of(p, kind)) {
         const auto& metrics = analysis::kind_metrics(kind);
         for (std::size_t m = 0; m < metrics.size(); ++m) {

@@ -7,17 +7,17 @@
 namespace ra::audit {
 namespace {
 
-using analysis::PrimitiveKind;
+using geometry::Kind;
 
 struct Task {
   std::size_t pair;
-  PrimitiveKind kind;
+  geometry::Kind kind;
   int view_group;
   std::size_t metric;
 };
 
 const analysis::ViewGroup* group_of(const analysis::RunRecords& run, const std::string& platform,
-                                    PrimitiveKind kind, int view_group) {
+                                    geometry::Kind kind, int view_group) {
   const std::size_t p = platform_index(run, platform);
   return p < run.platforms.size() ? run.find_group(p, kind, view_group) : nullptr;
 }
@@ -26,7 +26,7 @@ const analysis::ViewGroup* group_of(const analysis::RunRecords& run, const std::
 std::vector<std::pair<int, std::string>> groups_of_pair(const analysis::RunRecords& baseline,
                                                         const analysis::RunRecords& current,
                                                         const PlatformPair& pair,
-                                                        PrimitiveKind kind) {
+                                                        geometry::Kind kind) {
   std::set<std::pair<int, std::string>> out;
   for (const auto& [run, platform] :
        {std::pair{&baseline, &pair.baseline}, std::pair{&current, &pair.current}}) {
@@ -123,7 +123,7 @@ DistributionAudit audit_distributions(const analysis::RunRecords& baseline,
   std::vector<Task> tasks;
   std::vector<std::string> labels;
   for (std::size_t p = 0; p < pairs.size(); ++p)
-    for (PrimitiveKind kind : analysis::kAllKinds)
+    for (geometry::Kind kind : analysis::kAllKinds)
       for (const auto& [group, label] : groups_of_pair(baseline, current, pairs[p], kind))
         for (std::size_t m = 0; m < analysis::kind_metrics(kind).size(); ++m) {
           tasks.push_back({p, kind, group, m});
@@ -167,7 +167,7 @@ std::vector<ClassCountChange> compare_class_counts(const analysis::RunRecords& b
                                                    const std::vector<PlatformPair>& pairs) {
   std::vector<ClassCountChange> out;
   for (std::size_t p = 0; p < pairs.size(); ++p)
-    for (PrimitiveKind kind : analysis::kAllKinds)
+    for (geometry::Kind kind : analysis::kAllKinds)
       for (const auto& [group, label] : groups_of_pair(baseline, current, pairs[p], kind)) {
         const auto* gb = group_of(baseline, pairs[p].baseline, kind, group);
         const auto* ga = group_of(current, pairs[p].current, kind, group);

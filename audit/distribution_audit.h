@@ -47,7 +47,7 @@ struct DistributionTest {
 // Baseline against current for one pair, kind, view group and metric.
 struct DistributionComparison {
   std::size_t pair = 0;
-  analysis::PrimitiveKind kind = analysis::PrimitiveKind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view_group = 0;      // 0 = A
   std::string label;       // "A", ...
   std::size_t metric = 0;  // index into analysis::kind_metrics(kind)
@@ -84,7 +84,7 @@ DistributionAudit audit_distributions(const analysis::RunRecords& baseline,
 // Visibility-class (and non-ok status) counts of one pair, kind and view group on both sides.
 struct ClassCountChange {
   std::size_t pair = 0;
-  analysis::PrimitiveKind kind = analysis::PrimitiveKind::kPoint;
+  geometry::Kind kind = geometry::Kind::kPoint;
   int view_group = 0;
   std::string label;
   std::string visibility;  // "true-visible", ..., or "invalid", "crash", "timeout"

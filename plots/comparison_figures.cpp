@@ -54,7 +54,7 @@ struct ComparisonFigures : FigurePlanner {
            ", Levene (median) " + p(sp) + ": " + verdict + ".";
   }
 
-  void comparisons(an::PrimitiveKind kind) {
+  void comparisons(geometry::Kind kind) {
     const std::string section = section_of(kind);
     for (const json& c : doc.value("comparisons", json::array())) {
       if (c.value("kind", "") != an::kind_name(kind)) continue;
@@ -157,7 +157,7 @@ struct ComparisonFigures : FigurePlanner {
 
 }  // namespace
 
-void plan_comparison_figures(FigurePlanner& planner, an::PrimitiveKind kind) {
+void plan_comparison_figures(FigurePlanner& planner, geometry::Kind kind) {
   ComparisonFigures f{planner};
   f.comparisons(kind);
 }

@@ -24,7 +24,7 @@ struct DistributionFigures : FigurePlanner {
   // 907 x 907 groups against the 128 x 128 ones).
   static constexpr double kSharedAxisSpanRatio = 10;
 
-  void box_plots(an::PrimitiveKind kind) {
+  void box_plots(geometry::Kind kind) {
     const std::string section = section_of(kind);
     for (const json& bp : doc.value("box_plots", json::array())) {
       if (bp.value("kind", "") != an::kind_name(kind)) continue;
@@ -64,7 +64,7 @@ struct DistributionFigures : FigurePlanner {
   }
 
   // The box plot of `chosen` boxes of one metric (all view groups, or the one named `group`).
-  Figure box_plot(an::PrimitiveKind kind, const json& bp, const std::vector<const json*>& chosen,
+  Figure box_plot(geometry::Kind kind, const json& bp, const std::vector<const json*>& chosen,
                   const std::string& group) {
     const std::string column = bp.value("metric", ""), symbol = bp.value("symbol", column),
                       units = bp.value("units", "");
@@ -137,7 +137,7 @@ struct DistributionFigures : FigurePlanner {
     return f;
   }
 
-  void histograms(an::PrimitiveKind kind) {
+  void histograms(geometry::Kind kind) {
     const std::string section = section_of(kind);
     const auto& metrics = an::kind_metrics(kind);
     for (std::size_t p = 0; p < run.platforms.size(); ++p) {
@@ -183,7 +183,7 @@ struct DistributionFigures : FigurePlanner {
 
 }  // namespace
 
-void plan_distribution_figures(FigurePlanner& planner, an::PrimitiveKind kind) {
+void plan_distribution_figures(FigurePlanner& planner, geometry::Kind kind) {
   DistributionFigures f{planner};
   f.box_plots(kind);
   f.histograms(kind);

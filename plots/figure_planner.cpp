@@ -87,6 +87,6 @@ std::string box_plot_title(const std::string& symbol, const BoxPlotContent& cont
                               : "");
 }
 
-const char* section_of(an::PrimitiveKind kind) { return an::kind_label_plural(kind); }
+const char* section_of(geometry::Kind kind) { return an::kind_label_plural(kind); }
 
 }  // namespace ra::plots

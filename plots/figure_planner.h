@@ -33,7 +33,7 @@ struct FigurePlanner {
   std::string group_label(const an::ViewGroup& g) const;  // "A: 30 deg, 128x128"
 };
 
-void plan_tally_figures(FigurePlanner& planner, an::PrimitiveKind kind);
+void plan_tally_figures(FigurePlanner& planner, geometry::Kind kind);
 // The bars of a conformance_classes figure: per view group (label, its verdict counts) the shares
 // of snapped, within-spec and violation, named as docs/conformance.md names them and each in
 // conformance_class_color(); the exact share in the group's category ("A (exact 98.4%)").
@@ -61,9 +61,9 @@ int percent_decimals(const std::vector<double>& shares);
 std::string percent_text(double v, int decimals);
 // Every kind and view group in one bar chart (conformance.overview): the report's first page.
 void plan_conformance_overview(FigurePlanner& planner);
-void plan_distribution_figures(FigurePlanner& planner, an::PrimitiveKind kind);
-void plan_comparison_figures(FigurePlanner& planner, an::PrimitiveKind kind);
-void plan_speed_error_figures(FigurePlanner& planner, an::PrimitiveKind kind);
+void plan_distribution_figures(FigurePlanner& planner, geometry::Kind kind);
+void plan_comparison_figures(FigurePlanner& planner, geometry::Kind kind);
+void plan_speed_error_figures(FigurePlanner& planner, geometry::Kind kind);
 
 // Wording helpers of the families.
 // What a box plot shows, named by what varies in it: "Box plot of TEu" (one box), "Box plots of
@@ -80,6 +80,6 @@ std::string join(const std::vector<std::string>& v, const std::string& sep);
 std::string groups_text(const std::vector<std::string>& labels);  // "A-D" or "A" or "A, C"
 // "view group A" for one, "view groups A-D" (groups_text) for more.
 std::string groups_phrase(const std::vector<std::string>& labels);
-const char* section_of(an::PrimitiveKind kind);
+const char* section_of(geometry::Kind kind);
 
 }  // namespace ra::plots

@@ -75,7 +75,7 @@ FigurePlan plan_figures(const std::string& run_dir, unsigned jobs) {
   std::set<std::string> ids;
   FigurePlanner p{run_dir, doc, run, tally, plan, ids};
   try {
-    for (an::PrimitiveKind kind : an::kAllKinds) {
+    for (geometry::Kind kind : an::kAllKinds) {
       const auto kinds = run.kinds();
       if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) {
         p.skip(section_of(kind), "every figure of " + std::string(section_of(kind)),

@@ -22,7 +22,7 @@ using nlohmann::json;
 struct SpeedErrorFigures : FigurePlanner {
   // Speed against error: one point per platform x view group, x = median render time
   // per primitive, y = median of the kind's normalised unsigned error, IQR bars on both, log axes.
-  void speed_error(an::PrimitiveKind kind) {
+  void speed_error(geometry::Kind kind) {
     const std::string section = section_of(kind);
     const std::string kname = an::kind_name(kind);
     const json* entry = nullptr;  // into doc (not into a copy of its array)
@@ -117,7 +117,7 @@ struct SpeedErrorFigures : FigurePlanner {
 
 }  // namespace
 
-void plan_speed_error_figures(FigurePlanner& planner, an::PrimitiveKind kind) {
+void plan_speed_error_figures(FigurePlanner& planner, geometry::Kind kind) {
   SpeedErrorFigures f{planner};
   f.speed_error(kind);
 }

@@ -20,14 +20,14 @@ namespace {
 using nlohmann::json;
 
 struct TallyFigures : FigurePlanner {
-  void visibility(an::PrimitiveKind kind) {
+  void visibility(geometry::Kind kind) {
     const std::string section = section_of(kind);
     for (std::size_t p = 0; p < run.platforms.size(); ++p) {
       const auto groups = run.groups_of(p, kind);
       if (groups.empty()) continue;
       BarChartContent c;
       for (int v = 0; v < 5; ++v) {
-        if (kind != an::PrimitiveKind::kPoint && v == int(metrics::Visibility::kMultipleVisible))
+        if (kind != geometry::Kind::kPoint && v == int(metrics::Visibility::kMultipleVisible))
           continue;
         c.categories.push_back(metrics::visibility_name(metrics::Visibility(v)));
       }
@@ -39,7 +39,7 @@ struct TallyFigures : FigurePlanner {
         BarSeries s;
         s.name = group_label(*g);
         for (int v = 0; v < 5; ++v) {
-          if (kind != an::PrimitiveKind::kPoint && v == int(metrics::Visibility::kMultipleVisible))
+          if (kind != geometry::Kind::kPoint && v == int(metrics::Visibility::kMultipleVisible))
             continue;
           const auto n = counts.by_class[std::size_t(v)];
           s.values.push_back(ok ? 100.0 * double(n) / double(ok) : 0);
@@ -56,18 +56,22 @@ struct TallyFigures : FigurePlanner {
       f.title = "Visibility classes of " + section + ": " + run.platforms[p] + ", " + groups_phrase(labels);
       f.x_label = "visibility class (paper, section 3.4)";
       f.y_label = "share of the group's cases (%, log scale)";
-      f.note = "Numbers above the bars: counts of cases (status ok); the axis is logarithmic, "
-               "so that a rare class has a bar of visible height (bars rise from " +
-               util::significant(bar_chart_log_floor(c), 3) + " %; a count of 0 has none). "
-               "Classes: " +
-               std::string("true-visible = inside the frustum and drawn; false-visible = drawn "
-                           "although outside; false-invisible = not drawn although inside") +
-               (kind == an::PrimitiveKind::kPoint ? "; multiple-visible = more than one pixel."
-                                                  : ".");
+      f.note =
+          "Numbers above the bars: counts of cases (status ok); the axis is logarithmic, "
+          "so that a rare class has a bar of visible height (bars rise from " +
+          util::significant(bar_chart_log_floor(c), 3) +
+          " %; a count of 0 has none). "
+          "Classes: " +
+          std::string(
+              "true-visible = inside the frustum and drawn; false-visible = drawn "
+              "although outside; false-invisible = not drawn although inside") +
+          (kind == geometry::Kind::kPoint ? "; multiple-visible = more than one pixel." : ".");
       f.caption = "Visibility classes of " + section + " on " + run.platforms[p] +
                   " per view group, as shares of the group's cases with counts above the bars "
                   "(the paper's Table " +
-                  (kind == an::PrimitiveKind::kPoint ? "2" : kind == an::PrimitiveKind::kLine ? "5" : "8") +
+                  (kind == geometry::Kind::kPoint  ? "2"
+                   : kind == geometry::Kind::kLine ? "5"
+                                                   : "8") +
                   " as a picture).";
       f.section = section;
       f.content = std::move(c);
@@ -75,7 +79,7 @@ struct TallyFigures : FigurePlanner {
     }
   }
 
-  void conformance(an::PrimitiveKind kind) {
+  void conformance(geometry::Kind kind) {
     const std::string section = section_of(kind);
     const std::string kname = an::kind_name(kind);
     std::vector<int> groups = run.view_groups(kind);
@@ -131,7 +135,7 @@ struct TallyFigures : FigurePlanner {
   }
 
   // The GL verdicts per view group, one figure per platform that has them.
-  void conformance_classes(an::PrimitiveKind kind) {
+  void conformance_classes(geometry::Kind kind) {
     const std::string section = section_of(kind);
     const std::string kname = an::kind_name(kind);
     const std::vector<int> groups = run.view_groups(kind);
@@ -269,7 +273,7 @@ void plan_conformance_overview(FigurePlanner& p) {
     BarSeries s;
     s.name = name;
     bool has = false;
-    for (an::PrimitiveKind kind : p.run.kinds())
+    for (geometry::Kind kind : p.run.kinds())
       for (int g : p.run.view_groups(kind)) {
         const auto it = p.tally.reference.find({name, an::kind_name(kind), g});
         const bool compared = it != p.tally.reference.end() && it->second.compared > 0;
@@ -293,7 +297,7 @@ void plan_conformance_overview(FigurePlanner& p) {
       if (s.labels[i].empty()) s.labels[i] = percent_text(s.values[i], decimals);
   }
   // short labels ("T C": triangles of view group C): twelve of them share one short figure
-  for (an::PrimitiveKind kind : p.run.kinds())
+  for (geometry::Kind kind : p.run.kinds())
     for (int g : p.run.view_groups(kind))
       c.categories.push_back(std::string(1, char(std::toupper(an::kind_name(kind)[0]))) + " " +
                              an::view_group_label(g));
@@ -314,7 +318,7 @@ void plan_conformance_overview(FigurePlanner& p) {
   p.add(std::move(f));
 }
 
-void plan_tally_figures(FigurePlanner& planner, an::PrimitiveKind kind) {
+void plan_tally_figures(FigurePlanner& planner, geometry::Kind kind) {
   TallyFigures f{planner};
   f.visibility(kind);
   f.conformance(kind);

@@ -43,7 +43,7 @@ std::string trend_axis_label(const std::string& metric, double max_abs, int* exp
   if (e < 0) e = display_exponent(max_abs);
   *exponent = e;
   std::string symbol = metric, units;
-  for (an::PrimitiveKind k : an::kAllKinds)
+  for (geometry::Kind k : an::kAllKinds)
     for (const an::MetricSpec& m : an::kind_metrics(k))
       if (metric == m.column) symbol = m.symbol, units = an::unit_name(m.unit);
   // Same form as the run figures' axes: the numbers shown are the metric x 10^e.
