@@ -2,13 +2,14 @@
 #include <cstdio>
 
 #include "triage/bisect.h"
+#include "util/program_name.h"
 #include "util/shell_quote.h"
 
 namespace ra::triage {
 
 std::string bisect_command_line(const BisectOptions& o) {
   using util::shell_quote;
-  std::string line = "renderaudit bisect " + shell_quote(o.run_dir);
+  std::string line = util::program_for_commands() + " bisect " + shell_quote(o.run_dir);
   if (!o.good_platform.empty())
     line += " --between " + shell_quote(o.good_platform) + " " + shell_quote(o.bad_platform);
   if (!o.baseline_run.empty()) line += " --baseline " + shell_quote(o.baseline_run);

@@ -86,8 +86,9 @@ void collect_culprits(const AttributionPlan& plan, const std::vector<std::string
     k.subject = info.subject;
     k.date = info.date;
     k.previous = line[position - 1];
-    k.merge = git(source, {"rev-list", "--parents", "-n", "1", k.commit}).out.find(' ') !=
-              git(source, {"rev-list", "--parents", "-n", "1", k.commit}).out.rfind(' ');
+    // "COMMIT PARENT..." : a merge names two parents or more.
+    const std::string parents = git(source, {"rev-list", "--parents", "-n", "1", k.commit}).out;
+    k.merge = parents.find(' ') != parents.rfind(' ');
     // In selection order.
     std::vector<std::string> ordered;
     for (const BisectPrimitive& p : judged)

@@ -88,6 +88,11 @@ hcmd="$cmd; : \"it's\""
   --bad "$(c "$g" 6)" --build-command "$hcmd" --max-primitives 6 --out "$hout" --no-pictures \
   >"$t/b6.out" 2>"$t/b6.err" || { cat "$t/b6.out" "$t/b6.err"; fail "bisect of a source folder with a hostile name"; }
 repeat=$(awk '/^## Repeat it$/ {r = 1; next} r && /^```sh$/ {b = 1; next} b && /^```$/ {exit} b' "$hout/bisect.md")
+# It names this program as it runs here (the build folder's is not on PATH), then a stand-in
+# takes its place to record the words it is given.
+[ "${repeat%% bisect *}" = "$(realpath "$ra")" ] ||
+  fail "the Repeat it command does not name the program that ran: $repeat"
+repeat="renderaudit bisect ${repeat#* bisect }"
 mkdir -p "$t/stub"
 printf '#!/bin/sh\nprintf "%%s\\0" "$@" > "$STUB_ARGS"\n' > "$t/stub/renderaudit"
 chmod +x "$t/stub/renderaudit"
