@@ -125,8 +125,9 @@ void register_bisect_command(CLI::App& app, int& exit_code) {
       for (const triage::SpeedUnattributed& u : r.speed_unattributed) {
         std::string cands;
         for (const std::string& c : u.candidates) cands += " " + c.substr(0, 12);
-        std::printf("unattributed: %s (%s%s)\n", u.group.label().c_str(), u.why.c_str(),
-                    cands.empty() ? "" : ("; one of:" + cands).c_str());
+        std::printf("unattributed: %s (%s%s%s)\n", u.group.label().c_str(), u.why.c_str(),
+                    cands.empty() ? "" : ("; one of:" + cands).c_str(),
+                    u.next_command.empty() ? "" : ("; without them: " + u.next_command).c_str());
       }
       for (const triage::Culprit& c : r.culprits)
         std::printf("first bad commit: %s %s (%zu primitive%s)\n", c.commit.c_str(),

@@ -402,7 +402,7 @@ class Bisection {
       const std::string label = t.group.label();
       if (t.place != TimePlace::kUnknown || !tracked(t.group)) continue;
       if (++unknowns[label] < kMaxUnknownSteps) continue;
-      SpeedUnattributed u{t.group, line_.front(), line_.back(), {}, ""};
+      SpeedUnattributed u{t.group, line_.front(), line_.back(), {}, "", ""};
       for (const AttributionPlan::Change& c : plan.changes())
         if (c.label == label && !c.resolved) u.from = line_[c.from], u.to = line_[c.to];
       u.why = "its time could not be placed between the ends' at " +
@@ -540,7 +540,7 @@ class Bisection {
     return out;
   }
 
-  // The moved groups' changes as speed culprits (each confirmed beside the commit before it) and
+  // The moved groups' changes as speed culprits (each confirmed beside its git parent) and
   // what stays unattributed.
   void collect_speed_culprits(const AttributionPlan& plan) {
     BisectResult& r = st_.result;
@@ -555,7 +555,7 @@ class Bisection {
       for (const AttributionPlan::Change& c : plan.changes()) {
         if (c.label != e.group.label()) continue;
         if (!c.resolved) {
-          SpeedUnattributed u{e.group, line_[c.from], line_[c.to], {}, ""};
+          SpeedUnattributed u{e.group, line_[c.from], line_[c.to], {}, "", ""};
           for (std::size_t p : c.candidates) u.candidates.push_back(line_[p]);
           u.why = "only commits that failed to build lie between";
           r.speed_unattributed.push_back(u);
@@ -568,7 +568,11 @@ class Bisection {
                                               ? audit::SpeedVerdict::kFaster
                                               : audit::SpeedVerdict::kSlower;
         SpeedCulprit& k = by_position[c.to];
-        k.moves.push_back({e.group, onward ? e.comparison.verdict : other, {}, ""});
+        k.moves.push_back({e.group,
+                           onward ? e.comparison.verdict : other,
+                           {},
+                           "",
+                           onward ? TimePlace::kAsBad : TimePlace::kAsGood});
       }
     }
     for (auto& [position, k] : by_position) {
@@ -579,10 +583,11 @@ class Bisection {
       k.subject = info.subject;
       k.date = info.date;
       k.previous = line_[position - 1];
-      say("confirming " + short_hash(k.commit) + " " + k.subject + " beside " +
-          short_hash(k.previous));
-      confirm_speed_culprit(o_, k, build_at.at(position - 1), build_at.at(position), say_fn());
-      r.speed_culprits.push_back(k);
+      confirm_speed_culprit(
+          o_, k,
+          {r.good.build_dir, build_at.at(position - 1), build_at.at(position), r.bad.build_dir},
+          r.speed_unattributed, say_fn());
+      if (!k.moves.empty()) r.speed_culprits.push_back(k);
     }
   }
 

@@ -296,12 +296,19 @@ void write_speed(std::ostringstream& md, int section, const BisectOptions& o, co
       md << (i == 0 ? " " : i + 1 == c.moves.size() ? " and " : ", ") << "the "
          << m.group.text() << " " << audit::speed_verdict_name(m.direction);
     }
-    md << " than " << short_hash(c.previous)
-       << ", the commit before it. Confirmed by drawing the two beside each other (the commit "
-          "before drawn twice, the control), the commit's time over the one before:\n\n"
-       << stats::markdown_header({"group", "direction", "time over the commit before",
-                                  "verdict of the confirmation"},
-                                 4);
+    if (!c.beside_note.empty())
+      md << " than " << short_hash(c.previous)
+         << ", the commit before it among those touching the paths given; " << c.beside_note;
+    else if (c.beside != c.previous)
+      md << " than " << short_hash(c.beside) << ", its git parent (the commit before it among "
+         << "those touching the paths given is " << short_hash(c.previous) << ")";
+    else
+      md << " than " << short_hash(c.previous) << ", the commit before it";
+    md << ". Confirmed by drawing the two beside each other (the commit before drawn twice, the "
+          "control), the commit's time over the one before:\n\n"
+       << stats::markdown_header(
+              {"group", "direction", "time over the commit before", "verdict of the confirmation"},
+              4);
     for (const SpeedCulprit::Move& m : c.moves)
       md << "| " << m.group.text() << " | " << audit::speed_verdict_name(m.direction) << " | "
          << (m.error.empty() ? time_words(m.confirmation) : "not timed: " + cell(m.error)) << " | "
@@ -312,23 +319,25 @@ void write_speed(std::ostringstream& md, int section, const BisectOptions& o, co
        << stats::markdown_header({"step", "commit", "group", "step / good ref [95%]",
                                   "of the way [95%]", "rounds", "place"},
                                  3);
+    const auto row = [&](const std::string& step, const std::string& commit, const StepTime& t) {
+      bool mine = false;
+      for (const SpeedCulprit::Move& m : c.moves) mine = mine || m.group == t.group;
+      if (!mine) return;
+      char share[96] = "-";
+      if (std::isfinite(t.share))
+        std::snprintf(share, sizeof share, "%.0f%% [%.0f%%, %.0f%%]", 100 * t.share,
+                      100 * t.share_low, 100 * t.share_high);
+      md << "| " << step << " | " << short_hash(commit) << " | " << t.group.text() << " | "
+         << audit::speed_ratio_text(t.ratio, t.low, t.high) << " | " << share << " | "
+         << t.repeats << " | " << time_place_name(t.place)
+         << (t.note.empty() ? "" : " (" + cell(t.note) + ")") << " |\n";
+    };
     int n = 0;
     for (const BisectStep& s : r.steps) {
       ++n;
-      for (const StepTime& t : s.speed) {
-        bool mine = false;
-        for (const SpeedCulprit::Move& m : c.moves) mine = mine || m.group == t.group;
-        if (!mine) continue;
-        char share[96] = "-";
-        if (std::isfinite(t.share))
-          std::snprintf(share, sizeof share, "%.0f%% [%.0f%%, %.0f%%]", 100 * t.share,
-                        100 * t.share_low, 100 * t.share_high);
-        md << "| " << n << " | " << short_hash(s.commit) << " | " << t.group.text() << " | "
-           << audit::speed_ratio_text(t.ratio, t.low, t.high) << " | " << share << " | "
-           << t.repeats << " | " << time_place_name(t.place)
-           << (t.note.empty() ? "" : " (" + cell(t.note) + ")") << " |\n";
-      }
+      for (const StepTime& t : s.speed) row(std::to_string(n), s.commit, t);
     }
+    for (const StepTime& t : c.parent_places) row("git parent", c.beside, t);
     const std::string files = files_changed(o.source, c.commit);
     if (!files.empty()) md << "\n**The commit.**\n\n```\n" << files << "```\n";
   }
@@ -341,6 +350,10 @@ void write_speed(std::ostringstream& md, int section, const BisectOptions& o, co
       md << "| " << u.group.text() << " | " << short_hash(u.from) << " | " << short_hash(u.to)
          << " | " << cell(u.why) << " | " << (cands.empty() ? "-" : cands) << " |\n";
     }
+    for (const SpeedUnattributed& u : r.speed_unattributed)
+      if (!u.next_command.empty())
+        md << "\nThe bisection that names the " << u.group.text() << " move:\n\n```sh\n"
+           << u.next_command << "\n```\n";
   }
 }
 

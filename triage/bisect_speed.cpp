@@ -10,9 +10,11 @@
 #include <stdexcept>
 
 #include "analysis/view_equivalence.h"
+#include "builds/git_command.h"
 #include "rundir/run_experiment.h"
 #include "stats/descriptive.h"
 #include "triage/bisect.h"
+#include "triage/bisect_step.h"
 #include "util/errors.h"
 #include "util/interrupt.h"
 
@@ -87,6 +89,72 @@ std::vector<double> sided(const std::vector<double>& a, const std::vector<double
   std::vector<double> v(a.size());
   for (std::size_t r = 0; r < a.size(); ++r) v[r] = sign * (a[r] - b[r] / 2);
   return v;
+}
+
+// The timing of a culprit's moves beside `beside_build`.
+void confirm_moves(const BisectOptions& o, SpeedCulprit& c, const std::string& beside_build,
+                   const std::string& culprit_build,
+                   const std::function<void(const std::string&)>& say) {
+  std::vector<SpeedGroup> groups;
+  for (const SpeedCulprit::Move& m : c.moves) groups.push_back(m.group);
+  const GroupSample sample = sample_of(o, groups);
+  const std::vector<audit::TimingSide> sides = {build_side(o, "the commit before", beside_build),
+                                                build_side(o, "the culprit", culprit_build),
+                                                build_side(o, "the control", beside_build)};
+  const audit::TimingResult t = time_sides(
+      o, sides, sample, c.commit.substr(0, 12) + " beside " + c.beside.substr(0, 12), say);
+  const std::string e = side_errors(sides, t);
+  for (SpeedCulprit::Move& m : c.moves) {
+    if (!e.empty()) {
+      m.error = e;
+      continue;
+    }
+    const auto keys = sample.keys.find(m.group);
+    const std::vector<audit::RoundTimes> times = audit::common_round_times(
+        {&t.sides[0], &t.sides[1], &t.sides[2]},
+        keys == sample.keys.end() ? std::vector<audit::TimedKey>{} : keys->second, o.speed.repeats);
+    m.confirmation = audit::compare_speed(times[0], times[1], times[2], o.speed.threshold);
+    m.confirmation.kind = m.group.kind;
+    m.confirmation.view_group = m.group.view_group;
+    m.confirmation.group = analysis::view_group_label(m.group.view_group);
+  }
+}
+
+// The moves whose time the culprit's git parent already has (placed where the culprit is): they
+// happened in a commit the paths left out, between `c.previous` and the parent. Each leaves `c`
+// for `unattributed`, with the bisection without paths that would name it.
+void move_out_what_the_parent_has(const BisectOptions& o, SpeedCulprit& c,
+                                  std::vector<SpeedUnattributed>& unattributed) {
+  BisectOptions outside = o;
+  outside.good_ref = c.previous;
+  outside.bad_ref = c.beside;
+  outside.paths.clear();
+  outside.kinds.clear();
+  outside.out_dir = o.out_dir + "/before-" + short_hash(c.commit);
+  std::vector<SpeedCulprit::Move> kept, moved_out;
+  for (std::size_t i = 0; i < c.moves.size(); ++i) {
+    const bool before =
+        i < c.parent_places.size() && c.parent_places[i].place == c.moves[i].at_culprit;
+    (before ? moved_out : kept).push_back(c.moves[i]);
+    if (before) outside.kinds.push_back(geometry::kind_name(c.moves[i].group.kind));
+  }
+  if (moved_out.empty()) return;
+  std::sort(outside.kinds.begin(), outside.kinds.end());
+  outside.kinds.erase(std::unique(outside.kinds.begin(), outside.kinds.end()), outside.kinds.end());
+  const std::string count =
+      builds::git(o.source, {"rev-list", "--first-parent", "--count", c.previous + ".." + c.beside})
+          .out;
+  // "N commits after PREVIOUS up to the parent": the parent itself when N is 1.
+  const std::string where = count == "1" ? "the parent itself"
+                                         : "one of the " + count + " commits after " +
+                                               short_hash(c.previous) + " up to the parent";
+  for (const SpeedCulprit::Move& m : moved_out)
+    unattributed.push_back({m.group, c.previous, c.beside, {},
+                            "its git parent " + short_hash(c.beside) + " draws it as " +
+                                short_hash(c.commit) + " does (" + time_place_name(m.at_culprit) +
+                                "): the move lies in " + where + ", which the paths leave out",
+                            bisect_command_line(outside)});
+  c.moves = kept;
 }
 
 }  // namespace
@@ -247,33 +315,37 @@ std::vector<StepTime> time_step(const BisectOptions& o, const std::vector<SpeedG
   return out;
 }
 
-void confirm_speed_culprit(const BisectOptions& o, SpeedCulprit& c,
-                           const std::string& previous_build, const std::string& culprit_build,
+void confirm_speed_culprit(const BisectOptions& o, SpeedCulprit& c, const CulpritBuilds& at,
+                           std::vector<SpeedUnattributed>& unattributed,
                            const std::function<void(const std::string&)>& say) {
-  std::vector<SpeedGroup> groups;
-  for (const SpeedCulprit::Move& m : c.moves) groups.push_back(m.group);
-  const GroupSample sample = sample_of(o, groups);
-  const std::vector<audit::TimingSide> sides = {build_side(o, "the commit before", previous_build),
-                                                build_side(o, "the culprit", culprit_build),
-                                                build_side(o, "the control", previous_build)};
-  const audit::TimingResult t = time_sides(
-      o, sides, sample, c.commit.substr(0, 12) + " beside " + c.previous.substr(0, 12), say);
-  const std::string e = side_errors(sides, t);
-  std::vector<audit::SpeedComparison> comparisons;
-  for (SpeedCulprit::Move& m : c.moves) {
-    if (!e.empty()) {
-      m.error = e;
-      continue;
+  c.beside = c.previous;
+  std::string beside_build = at.previous;
+  const builds::GitResult p =
+      builds::git(o.source, {"rev-parse", "--verify", "--quiet", c.commit + "^1"});
+  const std::string parent = p.ok ? p.out : "";
+  if (!parent.empty() && parent != c.previous) {
+    say("  its git parent " + short_hash(parent) + " is not the commit before it among those " +
+        "touching the paths (" + short_hash(c.previous) + "): building and placing the parent");
+    BisectStep step;
+    step.role = "git parent";
+    step.commit = parent;
+    build_and_draw_step(o, {}, step, say);
+    if (!step.error.empty()) {
+      c.beside_note = "its git parent " + short_hash(parent) + " could not be built (" +
+                      step.error + "), so it was timed beside " + short_hash(c.previous) +
+                      ", the commit before it among those touching the paths";
+    } else {
+      c.beside = parent;
+      beside_build = step.build_dir;
+      std::vector<SpeedGroup> groups;
+      for (const SpeedCulprit::Move& m : c.moves) groups.push_back(m.group);
+      c.parent_places = time_step(o, groups, at.good, beside_build, at.bad, say);
+      move_out_what_the_parent_has(o, c, unattributed);
     }
-    const auto keys = sample.keys.find(m.group);
-    const std::vector<audit::RoundTimes> times = audit::common_round_times(
-        {&t.sides[0], &t.sides[1], &t.sides[2]},
-        keys == sample.keys.end() ? std::vector<audit::TimedKey>{} : keys->second, o.speed.repeats);
-    m.confirmation = audit::compare_speed(times[0], times[1], times[2], o.speed.threshold);
-    m.confirmation.kind = m.group.kind;
-    m.confirmation.view_group = m.group.view_group;
-    m.confirmation.group = analysis::view_group_label(m.group.view_group);
   }
+  if (c.moves.empty()) return;
+  say("confirming " + short_hash(c.commit) + " " + c.subject + " beside " + short_hash(c.beside));
+  confirm_moves(o, c, beside_build, at.culprit, say);
 }
 
 std::vector<std::string> speed_culprit_lines(const SpeedCulprit& c, const std::string& lead) {

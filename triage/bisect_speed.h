@@ -19,8 +19,11 @@
 //   the machine is too noisy): a group whose time moved in several commits is attributed to the
 //   one that carries it past the middle of its ends' times.
 // - The culprit: the commit where a group's time changes from "as good" to "as bad" between
-//   neighbouring built commits; its confirmation is the commit over the one before it, timed with
-//   an A/A control, the ratio stdout and the report give.
+//   neighbouring built commits; its confirmation is the commit over its git parent, timed with
+//   an A/A control, the ratio stdout and the report give. With paths, the line's neighbour can lie
+//   many commits back: the parent is built and placed like a step, and a group it already draws
+//   as the culprit does is not the culprit's: it is reported unattributed, its move among the
+//   commits outside the paths between the two, with the bisection that would name it.
 #pragma once
 
 #include <cstdint>
@@ -95,14 +98,25 @@ StepTime place_step(const audit::RoundTimes& good, const audit::RoundTimes& step
 // A commit that moved the drawing time of one or more groups.
 struct SpeedCulprit {
   std::string commit, subject, date;
-  std::string previous;  // the commit before it on the line
+  std::string previous;  // the commit before it on the line (with paths: the paths' previous)
+  // The commit the confirmation drew it beside: its git parent (first parent); `previous` only
+  // when the parent differs and failed to build, `beside_note` then saying so.
+  std::string beside, beside_note;
   struct Move {
     SpeedGroup group;
     audit::SpeedVerdict direction = audit::SpeedVerdict::kUnknown;  // at the ends: faster, slower
-    audit::SpeedComparison confirmation;  // the commit over `previous`, with an A/A control
+    audit::SpeedComparison confirmation;  // the commit over `beside`, with an A/A control
     std::string error;                    // the confirmation could not be timed: why
+    TimePlace at_culprit = TimePlace::kAsBad;  // the culprit's place (as good: a move back)
   };
   std::vector<Move> moves;
+  // With paths that left commits out before it: where its git parent's time lies, per move.
+  std::vector<StepTime> parent_places;
+};
+
+// The builds a culprit's confirmation draws with: the ends', the line's commit before it, its own.
+struct CulpritBuilds {
+  std::string good, previous, culprit, bad;
 };
 
 // A group whose time moved between the ends but whose commit cannot be named.
@@ -111,6 +125,7 @@ struct SpeedUnattributed {
   std::string from, to;                 // the commits with a decided place on either side
   std::vector<std::string> candidates;  // only failed builds between: the commits that may have
   std::string why;
+  std::string next_command;  // the bisection that would name it, where one can ("": none)
 };
 
 // The kinds and view groups of the run that a bisection times: those with primitives, less what
@@ -130,9 +145,13 @@ std::vector<StepTime> time_step(const BisectOptions& o, const std::vector<SpeedG
                                 const std::string& bad_build,
                                 const std::function<void(const std::string&)>& say);
 
-// Each move of `c` confirmed: the culprit's build over the previous commit's, with a control.
-void confirm_speed_culprit(const BisectOptions& o, SpeedCulprit& c,
-                           const std::string& previous_build, const std::string& culprit_build,
+// Each move of `c` confirmed: the culprit's build over its git parent's, with a control. The
+// parent is `c.previous` unless paths left commits out between them; then the parent is built
+// (the source tree left at it) and placed between the ends as a step is: a move it already has
+// (placed where the culprit is) leaves `c` for `unattributed`, with the bisection without paths
+// that would name it.
+void confirm_speed_culprit(const BisectOptions& o, SpeedCulprit& c, const CulpritBuilds& at,
+                           std::vector<SpeedUnattributed>& unattributed,
                            const std::function<void(const std::string&)>& say);
 
 // The stdout lines of a culprit: one "first slower commit: HASH SUBJECT (GROUP: RATIO x [LOW,

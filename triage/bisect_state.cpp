@@ -320,6 +320,8 @@ nlohmann::json bisect_state_json(const BisectState& st) {
   }
   nlohmann::json speed_culprits = nlohmann::json::array();
   for (const SpeedCulprit& c : r.speed_culprits) {
+    nlohmann::json parent_places = nlohmann::json::array();
+    for (const StepTime& t : c.parent_places) parent_places.push_back(step_time_json(t));
     nlohmann::json moves = nlohmann::json::array();
     for (const SpeedCulprit::Move& m : c.moves) {
       nlohmann::json g = comparison_json(m.confirmation);
@@ -334,6 +336,9 @@ nlohmann::json bisect_state_json(const BisectState& st) {
                               {"subject", c.subject},
                               {"date", c.date},
                               {"previous", c.previous},
+                              {"confirmed_beside", c.beside},
+                              {"confirmed_beside_note", c.beside_note},
+                              {"parent_places", parent_places},
                               {"moves", moves}});
   }
   nlohmann::json speed_unattributed = nlohmann::json::array();
@@ -344,7 +349,8 @@ nlohmann::json bisect_state_json(const BisectState& st) {
                                   {"from", u.from},
                                   {"to", u.to},
                                   {"candidates", u.candidates},
-                                  {"why", u.why}});
+                                  {"why", u.why},
+                                  {"next_command", u.next_command}});
   nlohmann::json j = {{"inputs", st.inputs},
                       {"original_head", r.original_head},
                       {"selection_rule", r.selection_rule},

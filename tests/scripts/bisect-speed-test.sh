@@ -11,6 +11,8 @@
 #     line with its confirmed ratio; bisect.json and bisect.md carry them;
 #   - refs that differ neither in pixels nor in time: nothing named (exit 2);
 #   - one commit that changes both pixels and time: named for both;
+#   - with paths: a culprit timed beside its git parent, not the paths' previous commit; a move
+#     in a commit the paths leave out unattributed, with the bisection without paths;
 #   - a watch night whose time moved: the audit finds it, the night names the slower commit;
 #     --keep-nights 1 leaves tonight's folder only.
 # Usage: tests/scripts/bisect-speed-test.sh BUILD_DIR
@@ -114,6 +116,60 @@ REPEATS=24 bisect b3 pixels "$g3" "$(c "$g3" 0)" "$(c "$g3" 3)" --kind line
 grep -qE "^first slower commit: $(c "$g3" 2) c2: plain-bad \(lines, view group A: [0-9.]+x " "$t/b3.out" ||
   { show b3; fail "c2 not named as the first slower commit of lines"; }
 grep -q "triangles" "$t/b3.out" && { show b3; fail "--kind line timed triangles"; }
+
+# With paths (-- src), the line skips the commits that touch nothing under src/ (c2, c3, c5).
+# Triangles slow down at c3, which the paths leave out: the line names c4, whose git parent c3
+# already draws them slowly, so they are unattributed with the bisection without paths over c2
+# and c3. Lines slow down at c6, inside the paths, whose git parent c5 is not on the line:
+# confirmed beside c5.
+path_history() {  # path_history DIR WORD[:src]...: commit cI installs WORD, touches src/ if :src
+  local g=$1 i=0 w
+  shift
+  make_history "$g"
+  mkdir -p "$g/src"
+  for w in "$@"; do
+    echo "${w%:src}" > "$g/driver"
+    echo "$i" > "$g/notes"
+    [ "$w" = "${w%:src}" ] || echo "$i" > "$g/src/file"
+    git -C "$g" add -A
+    git -C "$g" commit -q -m "c$i: ${w%:src}"
+    i=$((i + 1))
+  done
+}
+run paths plain both-slow
+g5="$t/mesa5"
+path_history "$g5" plain plain:src plain tris-slow tris-slow:src tris-slow both-slow:src both-slow:src
+bisect b5 paths "$g5" "$(c "$g5" 0)" "$(c "$g5" 7)" -- src
+[ $rc -eq 1 ] || { show b5; fail "bisect --speed -- src: exit $rc, not 1 (a move unattributed)"; }
+grep -qE "^first slower commit: $(c "$g5" 6) c6: both-slow \(lines, view group A: [0-9.]+x " "$t/b5.out" ||
+  { show b5; fail "c6 not named as the first slower commit of lines"; }
+[ "$(grep -c '^first \(slower\|faster\) commit:' "$t/b5.out")" = 1 ] ||
+  { show b5; fail "c4, whose git parent draws the triangles as slowly, named"; }
+short() { c "$@" | cut -c1-12; }
+grep -qF "unattributed: drawing time of triangles, view group A (its git parent $(short "$g5" 3) draws it as $(short "$g5" 4) does (as bad): the move lies in one of the 2 commits after $(short "$g5" 1) up to the parent, which the paths leave out; without them: " "$t/b5.out" ||
+  { show b5; fail "the triangles' move outside the paths not said"; }
+without=$(grep "^unattributed: drawing time of triangles" "$t/b5.out")
+for part in "--good $(c "$g5" 1) --bad $(c "$g5" 3) " "--kind triangle --out $t/b5/before-$(short "$g5" 4) " "--speed-repeats 8 --speed-primitives 60)"; do
+  grep -qF -- "$part" <<<"$without" || { show b5; fail "the bisection without paths lacks '$part'"; }
+done
+grep -qF -- " -- " <<<"$without" && { show b5; fail "the bisection without paths keeps the paths"; }
+/usr/bin/python3 - "$t/b5/bisect.json" "$(c "$g5" 6)" "$(c "$g5" 5)" "$(c "$g5" 1)" "$(c "$g5" 3)" <<'PY' || fail "bisect.json of b5"
+import json, sys
+j = json.load(open(sys.argv[1]))
+[k] = j["speed_culprits"]
+assert (k["commit"], k["confirmed_beside"], k["confirmed_beside_note"]) == (sys.argv[2], sys.argv[3], ""), k
+assert [(p["kind"], p["place"]) for p in k["parent_places"]] == [("line", "as good")], k
+assert [(m["kind"], m["verdict"]) for m in k["moves"]] == [("line", "slower")], k
+[u] = j["speed_unattributed"]
+assert (u["kind"], u["from"], u["to"]) == ("triangle", sys.argv[4], sys.argv[5]), u
+assert f" --good {sys.argv[4]} --bad {sys.argv[5]} " in u["next_command"] and " -- " not in u["next_command"], u
+PY
+grep -qF "than $(short "$g5" 5), its git parent (the commit before it among those touching the paths given is $(short "$g5" 4))" "$t/b5/bisect.md" ||
+  fail "bisect.md does not say c6 was timed beside its git parent"
+grep -qE "^\| git parent \| $(short "$g5" 5) \| lines, view group A \| .* \| as good \|$" "$t/b5/bisect.md" ||
+  fail "bisect.md does not show where c6's git parent was placed"
+named=$(grep -A3 -F "The bisection that names the triangles, view group A move:" "$t/b5/bisect.md")
+grep -qF -- "--good $(c "$g5" 1) --bad $(c "$g5" 3) " <<<"$named" || fail "bisect.md lacks the bisection without paths"
 
 # A watch night whose time moved: last night lines-slow, tonight two commits later tris-slow.
 printf 'name = "watch-speed"\nseed = 5\nplatforms = ["faulty"]\n[views]\norientations = 1\nfov_deg = [150]\nwindows = [256]\nnear = 0.01\nfar = 10.0\n[primitives]\npoints = 0\nlines = 0\ntriangles = 60\n' > "$t/nightly.toml"
