@@ -1,5 +1,5 @@
-// The driver upgrade report's first sentence (scripts/driver-upgrade.sh): what a new Mesa changed,
-// said as a driver developer would say it, from the counts of the audits alone:
+// The driver upgrade report's opening sentences (scripts/driver-upgrade.sh). The first says what a
+// new Mesa changed, as a driver developer would say it, from the counts of the audits alone:
 //
 //   "llvmpipe 25.0.7 stops drawing 595 of 20,000 lines of the FOV-30 907 x 907 views; 799 lines
 //    break GL's line rules, 595 of them not drawn at all; 1,210 of 80,000 triangles light other
@@ -68,7 +68,7 @@ struct UpgradeBisection {
 
 // The sentence (see the header comment), ending with a full stop, and after it the sentence on
 // drawing time where any pair was timed; "no platform was audited." for an empty summary.
-std::string upgrade_headline(const UpgradeSummary& summary);
+std::string upgrade_sentences(const UpgradeSummary& summary);
 
 // "25.0.7" from a GL_VERSION ("4.5 (Compatibility Profile) Mesa 25.0.7-2~bpo12+1", without the
 // distribution's revision; "26.0.0-devel" kept); "" if none.
@@ -83,6 +83,6 @@ std::vector<UpgradeBisection> find_bisections(const std::string& run_dir);
 std::string bisection_sentence(const UpgradeBisection& bisection);
 
 // The report's opening in Markdown: the sentence in bold, then one line per bisection.
-std::string upgrade_headline_markdown(const UpgradeSummary& summary);
+std::string upgrade_sentences_markdown(const UpgradeSummary& summary);
 
 }  // namespace ra::report

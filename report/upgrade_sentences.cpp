@@ -1,5 +1,5 @@
-// The driver upgrade report's first sentence (see the header).
-#include "report/upgrade_headline.h"
+// The driver upgrade report's sentences (see the header).
+#include "report/upgrade_sentences.h"
 
 #include <algorithm>
 #include <cctype>
@@ -406,7 +406,7 @@ std::string mesa_version(const std::string& gl_version) {
   return v;
 }
 
-std::string upgrade_headline(const UpgradeSummary& summary) {
+std::string upgrade_sentences(const UpgradeSummary& summary) {
   if (summary.pairs.empty()) return "no platform was audited.";
   // drivers in the order of the summary's pairs
   std::vector<std::string> drivers;
@@ -505,8 +505,8 @@ std::string bisection_sentence(const UpgradeBisection& b) {
   return s + (b.complete ? "." : "; not every change is attributed yet.");
 }
 
-std::string upgrade_headline_markdown(const UpgradeSummary& summary) {
-  std::string out = "**" + upgrade_headline(summary) + "**\n";
+std::string upgrade_sentences_markdown(const UpgradeSummary& summary) {
+  std::string out = "**" + upgrade_sentences(summary) + "**\n";
   for (const UpgradeBisection& b : find_bisections(summary.run_dir))
     out += "\n" + bisection_sentence(b) + "\n";
   return out;
