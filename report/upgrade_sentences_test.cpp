@@ -281,8 +281,11 @@ TEST(UpgradeSentences, ABisectionBesideTheRunNamesItsCulprits) {
             "selection": [{}, {}, {}],
             "culprits": [{"commit": "a07fa6516b0123456789012345678901234567ab",
                           "subject": "llvmpipe/linear: add support for rgba color buffers",
-                          "primitives": [{"primitive": "line 1 of view 5"},
-                                         {"primitive": "line 2 of view 5"}]}]})";
+                          "date": "2025-03-04T10:00:00+01:00",
+                          "primitives": [{"primitive": "line 1 of view 5", "pixels_before": 9,
+                                          "pixels_after": 0},
+                                         {"primitive": "line 2 of view 5", "pixels_before": 7,
+                                          "pixels_after": 0}]}]})";
   std::ofstream(dir / "upgrade-summary.json")
       << R"({"schema": "renderaudit-upgrade-summary", "schema_version": 1, "run": ")" << run
       << R"(", "build": "backports", "groups": [{"label": "A", "fov_deg": 30, "window": 128}],
@@ -311,8 +314,9 @@ std::string summary_error(const fs::path& dir, const std::string& strata,
   std::ofstream(dir / "run" / "bisect" / "bisect.json")
       << R"({"schema": "renderaudit-bisection", "schema_version": 2, "complete": true,
             "inputs": {"run": ")" << run << R"(", "platform": "egl-llvmpipe"}, "selection": [{}],
-            "culprits": [{"commit": )" << culprit_commit << R"(, "subject": "s",
-                          "primitives": [{"primitive": "line 1 of view 1"}]}]})";
+            "culprits": [{"commit": )" << culprit_commit << R"(, "subject": "s", "date": "d",
+                          "primitives": [{"primitive": "line 1 of view 1", "pixels_before": 3,
+                                          "pixels_after": 0}]}]})";
   std::ofstream(dir / "upgrade-summary.json")
       << R"({"schema": "renderaudit-upgrade-summary", "schema_version": 1, "run": ")" << run
       << R"(", "build": "backports", "groups": [{"label": "A", "fov_deg": 30, "window": 128}],
