@@ -5,10 +5,13 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <tuple>
 #include <vector>
 
+#include "geometry/primitive.h"
+#include "metrics/headline_metric.h"
 #include "metrics/records.h"
 #include "rundir/manifest.h"
 #include "rundir/records_format.h"
@@ -30,18 +33,6 @@ struct Cell {
   std::vector<double> metric, render_us;
   std::string fov, window;
 };
-
-// The metric the summary shows for each kind (the paper's headline metric).
-double headline_metric(const metrics::Record& r) {
-  if (r.kind == "point") return r.pe;
-  if (r.kind == "line") return r.lse_u_norm;
-  return r.te_u_norm;
-}
-const char* headline_name(const std::string& kind) {
-  if (kind == "point") return "PE (px)";
-  if (kind == "line") return "LSEu-norm";
-  return "TEu-norm";
-}
 
 // What the run cost against the drivers' own drawing: the sum of render_us, and, when the last
 // invocation ran every shard, wall time x jobs / drawing (1 = nothing but drawing) and the
@@ -95,8 +86,11 @@ std::string write_run_summary(const std::string& run_dir) {
         return;
       }
       ++c.visibility[int(r.visibility)];
-      if (r.visibility == metrics::Visibility::kTrueVisible && !std::isnan(headline_metric(r)))
-        c.metric.push_back(headline_metric(r));
+      const std::optional<geometry::Kind> kind =
+          geometry::parse_kind(r.kind, geometry::KindSpelling::kName);
+      const double metric = kind ? metrics::summary_metric_value(r, *kind) : metrics::kNA;
+      if (r.visibility == metrics::Visibility::kTrueVisible && !std::isnan(metric))
+        c.metric.push_back(metric);
       if (!std::isnan(r.render_us)) c.render_us.push_back(r.render_us);
       if (r.ref_diff >= 0) {
         ++c.compared;
@@ -118,7 +112,9 @@ std::string write_run_summary(const std::string& run_dir) {
     const auto& [platform, kind, view] = key;
     md << "| " << platform << " | " << kind << " | " << view << " | " << c.fov << " | " << c.window;
     for (uint64_t n : c.visibility) md << " | " << n;
-    md << " | " << c.not_ok << " | " << headline_name(kind) << " | ";
+    const std::optional<geometry::Kind> k =
+        geometry::parse_kind(kind, geometry::KindSpelling::kName);
+    md << " | " << c.not_ok << " | " << (k ? metrics::summary_metric_label(*k) : "n/a") << " | ";
     if (c.metric.empty()) {
       md << "n/a | n/a";
     } else {

@@ -11,7 +11,7 @@
 #include "plots/plot_run.h"
 #include "report/markdown_document.h"
 #include "report/report.h"
-#include "report/upgrade_headline.h"
+#include "report/upgrade_sentences.h"
 #include "triage/upgrade_report.h"
 #include "util/errors.h"
 
@@ -89,7 +89,7 @@ void register_report_command(CLI::App& app, int& exit_code) {
     if (!opts->upgrade_summary.empty()) {
       if (!opts->options.run_dir.empty() || !opts->markdown.empty())
         throw util::UserError("report: --upgrade-headline takes no run directory and no --markdown");
-      std::printf("%s", report::upgrade_headline_markdown(
+      std::printf("%s", report::upgrade_sentences_markdown(
                             report::read_upgrade_summary(opts->upgrade_summary)).c_str());
       exit_code = kExitOk;
       return;

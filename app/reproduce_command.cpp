@@ -5,6 +5,7 @@
 
 #include "app/commands.h"
 #include "audit/reproducer.h"
+#include "rundir/run_folder.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
@@ -32,11 +33,11 @@ void register_reproduce_command(CLI::App& app, int& exit_code) {
                   "C file to write (default: RUN/reproduce/PLATFORM.KIND.vV.I.c); the program is "
                   "built beside it, without the .c");
   cmd->callback([opts, &exit_code] {
-    const std::string path = !opts->out.empty()
-                                 ? opts->out
-                                 : opts->q.run_dir + "/reproduce/" + opts->q.platform + "." +
-                                       opts->q.kind + ".v" + std::to_string(opts->q.view) + "." +
-                                       std::to_string(opts->q.index) + ".c";
+    const std::string path =
+        !opts->out.empty() ? opts->out
+                           : rundir::run_folder::reproducer_source(opts->q.run_dir, opts->q.platform,
+                                                                   opts->q.kind, opts->q.view,
+                                                                   opts->q.index);
     namespace fs = std::filesystem;
     std::error_code ec;
     if (fs::is_directory(path, ec))

@@ -1,5 +1,5 @@
 // What changed between the two sides of an audit, counted per pair, kind and view group: the
-// numbers of the driver upgrade report (report/upgrade_headline.h says them in words). They are
+// numbers of the driver upgrade report (report/upgrade_sentences.h says them in words). They are
 // counted from the audit's own comparison (audit/audit_compare.h), so a primitive is changed here
 // exactly when the audit calls it changed: its status, visibility, lit pixels or GL verdict
 // differ, it took no worker down on either side, and its difference did not disappear on

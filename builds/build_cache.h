@@ -10,7 +10,7 @@
 // is never half removed under its own name.
 //
 // A build in use is refused: a source build (`builds build`, bisect, watch) whose source tree is
-// held by a build, bisection or night now (lock_source_tree, source_build.h) may be drawn with or
+// held by a build, bisection or night now (lock_source_tree, source_tree.h) may be drawn with or
 // rebuilt by that process until it ends; and a build a process draws with holds BuildInUse, a
 // shared lock (flock) on BUILD/.in-use that `builds remove` must take exclusively. The lock is
 // the kernel's, so a user killed however it dies holds nothing. A removal holds its exclusive lock

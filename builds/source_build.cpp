@@ -12,7 +12,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <fstream>
 #include <sstream>
 #include <thread>
 
@@ -20,6 +19,7 @@
 #include "platforms/platform_probe.h"
 #include "rundir/platform_spec.h"
 #include "rundir/manifest.h"
+#include "builds/git_command.h"
 #include "builds/meson_plan.h"
 #include "util/atomic_file.h"
 #include "util/child_process.h"
@@ -57,23 +57,6 @@ std::string first_line(const std::vector<std::string>& argv) {
   std::string line = r.output.substr(0, r.output.find('\n'));
   while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
   return line;
-}
-
-std::string git(const std::string& dir, std::vector<std::string> args, bool* ok = nullptr) {
-  args.insert(args.begin(), {"git", "-C", dir});
-  const util::ProgramResult r = run_captured(args);
-  if (ok) *ok = r.exited_ok();
-  std::string out = r.output;
-  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
-  return out;
-}
-
-std::string read_trimmed(const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return "";
-  std::string s = util::read_file(path);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
-  return s;
 }
 
 // The last `lines` lines of a file ("" when unreadable).
@@ -189,7 +172,7 @@ std::vector<std::string> run_meson(const SourceBuildOptions& options, const std:
   MesonPlanInputs in;
   std::string opts_file = source + "/meson.options";
   if (!fs::exists(opts_file, ec)) opts_file = source + "/meson_options.txt";
-  in.options = parse_meson_options(read_trimmed(opts_file));
+  in.options = parse_meson_options(read_tree_file(opts_file));
   in.source_dir = source;
   in.build_dir = folders.build;
   in.prefix = folders.prefix;
@@ -215,7 +198,7 @@ std::vector<std::string> run_meson(const SourceBuildOptions& options, const std:
   const std::string setup_text = joined(plan.setup);
   const std::string setup_record = folders.build + "/renderaudit-setup.txt";
   const bool configured = folders.incremental && fs::exists(folders.build + "/build.ninja", ec) &&
-                          read_trimmed(setup_record) == setup_text;
+                          read_tree_file(setup_record) == setup_text;
   const auto configure = [&] {
     if (folders.incremental) fs::remove_all(folders.build, ec);
     say("configure: " + setup_text);
@@ -309,15 +292,6 @@ bool same_build(const std::string& dir, const std::string& key, const std::strin
   }
 }
 
-// "1 untracked file (meson.options)", "5 untracked files (a, b, c, d, ...)".
-std::string untracked_text(const std::vector<std::string>& files, std::size_t count) {
-  std::string shown;
-  for (const std::string& f : files) shown += (shown.empty() ? "" : ", ") + f;
-  if (count > files.size()) shown += ", ...";
-  return std::to_string(count) + (count == 1 ? " untracked file (" : " untracked files (") +
-         shown + ")";
-}
-
 }  // namespace
 
 std::string missing_package_hint(const std::string& log) {
@@ -344,40 +318,6 @@ std::string missing_package_hint(const std::string& log) {
       if (line.find(word) != std::string::npos) return package;
   }
   return "";
-}
-
-SourceIdentity identify_source(const std::string& source_dir) {
-  SourceIdentity id;
-  id.source = source_dir;
-  bool ok = false;
-  const std::string top = git(source_dir, {"rev-parse", "--show-toplevel"}, &ok);
-  std::error_code ec;
-  if (ok && fs::equivalent(top, source_dir, ec)) {
-    id.git = true;
-    id.commit = git(source_dir, {"rev-parse", "HEAD"});
-    const std::string info = git(source_dir, {"log", "-1", "--format=%cI%n%s", "HEAD"});
-    id.date = info.substr(0, info.find('\n'));
-    id.subject = info.find('\n') == std::string::npos ? "" : info.substr(info.find('\n') + 1);
-    id.dirty = !git(source_dir, {"status", "--porcelain", "--untracked-files=no"}).empty();
-    // What meson reads besides the commit's files: anything git neither tracks nor ignores.
-    const std::string others =
-        git(source_dir, {"ls-files", "--others", "--exclude-standard", "--directory",
-                         "--no-empty-directory"});
-    id.untracked_count = 0;
-    for (std::size_t at = 0; at < others.size();) {
-      const std::size_t nl = std::min(others.find('\n', at), others.size());
-      if (nl > at && id.untracked.size() < 4) id.untracked.push_back(others.substr(at, nl - at));
-      if (nl > at) ++id.untracked_count;
-      at = nl + 1;
-    }
-  }
-  id.version = read_trimmed(source_dir + "/VERSION");
-  const std::string changelog = read_trimmed(source_dir + "/debian/changelog");
-  if (const auto open = changelog.find('('); open != std::string::npos)
-    id.debian_version = changelog.substr(open + 1, changelog.find(')', open) - open - 1);
-  id.patches = read_trimmed(source_dir + "/debian/patches/series");
-  if (!id.git) id.content_hash = tree_content_hash(source_dir);
-  return id;
 }
 
 std::optional<SourceBuildResult> cached_source_build(const SourceBuildOptions& options) {
@@ -420,53 +360,6 @@ SourceBuildResult use_source_build(const std::string& dir, const std::string& co
   return build_from_source(options, progress);
 }
 
-std::string tree_content_hash(const std::string& dir) {
-  std::vector<std::string> files;
-  std::error_code ec;
-  for (fs::recursive_directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec), end;
-       !ec && it != end; it.increment(ec)) {
-    const fs::path rel = it->path().lexically_relative(dir);
-    if (rel == ".git" || rel == fs::path(util::DirLock::lock_path(dir)).filename()) {
-      if (it->is_directory(ec)) it.disable_recursion_pending();
-      continue;
-    }
-    if (it->is_symlink(ec) || it->is_regular_file(ec)) files.push_back(rel.string());
-  }
-  std::sort(files.begin(), files.end());
-  util::Fnv1a64 h;
-  std::vector<char> buf(1 << 16);
-  for (const std::string& f : files) {
-    h.add(f.data(), f.size());
-    h.add("\0", 1);
-    const fs::path path = fs::path(dir) / f;
-    if (fs::is_symlink(path, ec)) {
-      const std::string target = fs::read_symlink(path, ec).string();
-      h.add("link ", 5);
-      h.add(target.data(), target.size());
-      continue;
-    }
-    std::ifstream in(path, std::ios::binary);
-    while (in) {
-      in.read(buf.data(), std::streamsize(buf.size()));
-      if (in.gcount() > 0) h.add(buf.data(), std::size_t(in.gcount()));
-    }
-    h.add("\0", 1);
-  }
-  return util::hex64(h.value);
-}
-
-std::unique_ptr<util::DirLock> lock_source_tree(const std::string& source,
-                                                const std::string& what) {
-  bool ok = false;
-  const std::string git_dir = git(source, {"rev-parse", "--absolute-git-dir"}, &ok);
-  // The git folder holds the lock of a checkout (no untracked file in the tree); a tree without
-  // git holds its own.
-  return std::make_unique<util::DirLock>(
-      ok && !git_dir.empty() ? git_dir : source, what,
-      "one build or bisection at a time checks out commits in " + source +
-          "; wait for it to finish");
-}
-
 std::string source_build_key(const SourceIdentity& id, const SourceBuildOptions& o) {
   util::Fnv1a64 h;
   const auto add = [&](const std::string& s) { h.add(s.data(), s.size()), h.add("\n", 1); };
@@ -492,45 +385,6 @@ std::string source_build_name(const SourceIdentity& id, const SourceBuildOptions
   return name;
 }
 
-namespace {
-
-// Checks the tree out at options.ref for a build of that commit alone (a tree with changes or
-// untracked files is refused) and returns where to check it out again after the build; `id` is
-// then the commit's.
-std::string check_out_ref(const SourceBuildOptions& options, const std::string& source,
-                          SourceIdentity& id) {
-  std::string restore_ref;
-  if (!id.git) throw util::UserError("builds build: --ref needs a git checkout; " + source + " is not one");
-  if (id.dirty)
-    throw util::UserError("builds build: " + source +
-                          " has uncommitted changes; commit or stash them before --ref");
-  // A build of a commit is that commit's files and nothing else.
-  if (!id.untracked.empty())
-    throw util::UserError("builds build: " + source + " has " +
-                          untracked_text(id.untracked, id.untracked_count) +
-                          "; a build of " + options.ref +
-                          " would see it and be kept as that commit's: `git -C " + source +
-                          " clean -n -d` lists them, `git stash -u` or `git clean -fd` removes "
-                          "them");
-  bool ok = false;
-  const std::string commit = git(
-      source, {"rev-parse", "--verify", "--quiet", "--end-of-options", options.ref + "^{commit}"},
-      &ok);
-  if (!ok || commit.empty())
-    throw util::UserError("builds build: '" + options.ref + "' is not a commit of " + source);
-  bool on_branch = false;
-  restore_ref = git(source, {"symbolic-ref", "-q", "--short", "HEAD"}, &on_branch);
-  if (!on_branch) restore_ref = id.commit;
-  if (commit != id.commit) {
-    git(source, {"-c", "advice.detachedHead=false", "checkout", "-q", "--detach", commit}, &ok);
-    if (!ok) throw util::UserError("builds build: cannot check out " + options.ref + " in " + source);
-  }
-  id = identify_source(source);
-  return restore_ref;
-}
-
-}  // namespace
-
 SourceBuildResult build_from_source(const SourceBuildOptions& options,
                                     const std::function<void(const std::string&)>& progress) {
   const auto say = [&](const std::string& s) {
@@ -547,11 +401,12 @@ SourceBuildResult build_from_source(const SourceBuildOptions& options,
   const std::unique_ptr<util::DirLock> tree_lock =
       options.source_locked ? nullptr : lock_source_tree(source, "builds build");
   SourceIdentity id = identify_source(source);
-  const std::string restore_ref = options.ref.empty() ? "" : check_out_ref(options, source, id);
+  const std::string restore_ref =
+      options.ref.empty() ? "" : check_out_for_build(source, options.ref, id);
   struct Restore {
     std::string dir, ref;
     ~Restore() {
-      if (!ref.empty()) git(dir, {"-c", "advice.detachedHead=false", "checkout", "-q", ref, "--"});
+      if (!ref.empty()) git(dir, {"checkout", "-q", ref, "--"});
     }
   } restore{source, options.restore_ref && restore_ref != id.commit ? restore_ref : ""};
 

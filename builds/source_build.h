@@ -9,10 +9,8 @@
 // A build of the same commit (or the same tree content) and the same options is reused, not
 // rebuilt; meson uses ccache where it is installed.
 //
-// One writer per tree: a build holds the source tree's lock (util/dir_lock.h on the git folder,
-// or on the tree itself without git) from checkout to install, so a second build or bisection of
-// the same tree is refused, naming the holder, rather than checking out commits under the first.
-// A build proves it is the commit it is named after: a git tree with a file git does not track
+// One writer per tree: a build holds the source tree's lock (builds/source_tree.h) from checkout
+// to install. A build proves it is the commit it is named after: a git tree with a file git does not track
 // (an untracked meson.options, as a checkout that failed half-way leaves) is refused for --ref
 // (watch, bisect: every build of a commit) and built as it is only under a "-dirty" name; the
 // tree's HEAD is read again after the install, and a build whose tree moved is not kept. build.json
@@ -31,7 +29,7 @@
 
 #include "builds/build_cache.h"
 #include "builds/build_fetch.h"
-#include "util/dir_lock.h"
+#include "builds/source_tree.h"
 
 namespace ra::builds {
 
@@ -61,28 +59,6 @@ struct SourceBuildOptions {
   bool restore_ref = true;
 };
 
-// Takes the one-writer lock of a source tree for `what` ("bisect", "builds build", "watch"), or
-// throws UserError naming the process that holds it.
-std::unique_ptr<util::DirLock> lock_source_tree(const std::string& source, const std::string& what);
-
-// Where a source tree stands: git commit (and whether uncommitted changes make it another
-// source), or the version of an unpacked source package.
-struct SourceIdentity {
-  std::string source;        // the tree's folder, canonical
-  bool git = false;
-  bool dirty = false;        // git: tracked files differ from the commit
-  std::vector<std::string> untracked;  // git: files it does not track nor ignore (the first 4)
-  std::size_t untracked_count = 0;     // all of them
-  bool clean() const { return git && !dirty && untracked.empty(); }  // the tree is its commit
-  std::string commit;        // full hash ("" when not git)
-  std::string subject, date; // the commit's
-  std::string version;       // the tree's VERSION file ("25.1.0-devel")
-  std::string debian_version;  // debian/changelog's first entry, when present
-  std::string patches;       // debian/patches/series (the patches a source package applies)
-  std::string content_hash;  // not git: FNV-1a 64 of every file's path and bytes (hex)
-};
-SourceIdentity identify_source(const std::string& source_dir);
-
 struct SourceBuildResult {
   rundir::BuildRecord build;
   bool reused = false;
@@ -108,11 +84,6 @@ std::optional<SourceBuildResult> cached_source_build(const SourceBuildOptions& o
 SourceBuildResult use_source_build(const std::string& dir, const std::string& commit,
                                    SourceBuildOptions options,
                                    const std::function<void(const std::string&)>& progress = {});
-
-// FNV-1a 64 (hex) of every regular file and symbolic link under `dir` (relative path and bytes,
-// in path order), leaving out `.git` and the lock file: the identity of a tree without git, so
-// that applying a patch makes it another source.
-std::string tree_content_hash(const std::string& dir);
 
 // The cache name and reuse key of a build of `id` with `options` (tests).
 std::string source_build_name(const SourceIdentity& id, const SourceBuildOptions& options);

@@ -24,7 +24,7 @@
 #include "analysis/run_tally.h"
 #include "plots/plot_run.h"
 #include "report/document.h"
-#include "report/headline.h"
+#include "report/conclusion.h"
 #include "report/html_writer.h"
 #include "report/pdf_writer.h"
 #include "report/run_document.h"

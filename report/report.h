@@ -1,6 +1,6 @@
 // `renderaudit report DIR`: one document about a run, as DIR/report/report.pdf and
 // DIR/report/report.html:
-//   0. on the title page, the conclusion (report/headline.h): per platform the conformance
+//   0. on the title page, the conclusion (report/conclusion.h): per platform the conformance
 //      summary, violations and agreement with the paper; for an audited run, the verdict per
 //      driver against the baseline;
 //   1. the experiment and its provenance (manifest.json: experiment, seed, platforms with their

@@ -21,7 +21,7 @@
 #include "plots/headless_display.h"
 #include "plots/plot_run.h"
 #include "report/document.h"
-#include "report/headline.h"
+#include "report/conclusion.h"
 #include "report/html_writer.h"
 #include "report/pdf_writer.h"
 #include "analysis/run_completeness.h"
@@ -173,7 +173,7 @@ std::string run_name(const std::string& run_dir, const rundir::ManifestExperimen
 
 std::string or_unknown(const std::string& text) { return text.empty() ? "?" : text; }
 
-// The title page: what was run, by which renderaudit, and the headline; then the contents.
+// The title page: what was run, by which renderaudit, and the conclusion; then the contents.
 void add_title_page(Document& d, const std::string& run_dir, const rundir::RunManifest& m,
                     const analysis::RunTally& tally) {
   const rundir::ManifestExperiment exp = m.experiment.value_or(rundir::ManifestExperiment{});
@@ -189,7 +189,7 @@ void add_title_page(Document& d, const std::string& run_dir, const rundir::RunMa
           (exp.seed ? std::to_string(*exp.seed) : "") + ".",
       version_line(m.tool.is_object() ? m.tool : json::object())};
   // The conclusion first, on the title page; the contents and the detail after it.
-  for (Block& b : headline_blocks(run_dir, tally)) d.blocks.push_back(std::move(b));
+  for (Block& b : conclusion_blocks(run_dir, tally)) d.blocks.push_back(std::move(b));
   Block contents;
   contents.kind = Block::Kind::kContents;
   d.blocks.push_back(contents);

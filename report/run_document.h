@@ -1,4 +1,4 @@
-// The document of a run's report (report.h, sections 0-8): the title page and its headline, the
+// The document of a run's report (report.h, sections 0-8): the title page and its conclusion, the
 // provenance, failures, render time, conformance, the analysis' tables and the figures, from the
 // run directory's files. report.cpp lays it out as PDF and HTML.
 #pragma once

@@ -3,7 +3,7 @@
 // against its build), the counts of what changed per kind and view group (audit/change_counts.h
 // counts them) and, where its audit judged drawing time, the verdicts (`speed`). Written and read
 // here only; `renderaudit report RUN --upgrade BUILD` writes it (triage/upgrade_report.h) and
-// report/upgrade_headline.h says it in words.
+// report/upgrade_sentences.h says it in words.
 //
 // `speed` and a stratum's `not_drawn_violations` are optional keys of version 1, not a version 2:
 // no key that was there changed meaning, this reader takes summaries with and without them, and an

@@ -1,5 +1,5 @@
 // The upgrade summary is written and read by one module: what is written reads back as it was,
-// optional keys included, so the headline said from the file is the headline said from memory.
+// optional keys included, so the sentences said from the file are those said from memory.
 #include "report/upgrade_summary.h"
 
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "report/upgrade_headline.h"
+#include "report/upgrade_sentences.h"
 
 namespace ra::report {
 namespace {
@@ -42,7 +42,7 @@ TEST(UpgradeSummary, WhatIsWrittenReadsBackAsItWas) {
   EXPECT_TRUE(std::isnan(r.pairs[0].speed[1].ratio));
   EXPECT_EQ(r.pairs[0].strata[0].not_drawn_violations, 2);
   EXPECT_FALSE(r.pairs[1].timed);
-  EXPECT_EQ(upgrade_headline(r), upgrade_headline(s));
+  EXPECT_EQ(upgrade_sentences(r), upgrade_sentences(s));
 }
 
 }  // namespace

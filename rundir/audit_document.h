@@ -1,6 +1,6 @@
 // audit.json read back: the one reader of the document audit/ writes (audit_json.cpp; keys in
 // docs/nightly-audit.md), for every later reader of a finished audit: the report's first page
-// (report/headline), the night of `watch`, the driver upgrade report (triage/upgrade_report.h).
+// (report/conclusion), the night of `watch`, the driver upgrade report (triage/upgrade_report.h).
 // Each field is checked; a damaged or foreign file is a UserError naming the file and the key.
 #pragma once
 

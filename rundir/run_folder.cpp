@@ -37,6 +37,12 @@ std::string report(Dir dir) { return in(dir, "report"); }
 std::string report_pdf(Dir dir) { return report(dir) + "/report.pdf"; }
 std::string report_html(Dir dir) { return report(dir) + "/report.html"; }
 std::string audit(Dir dir) { return in(dir, "audit"); }
+std::string reproduce(Dir dir) { return in(dir, "reproduce"); }
+std::string reproducer_source(Dir dir, const std::string& platform, const std::string& kind,
+                              int view, std::uint64_t index) {
+  return reproduce(dir) + "/" + platform + "." + kind + ".v" + std::to_string(view) + "." +
+         std::to_string(index) + ".c";
+}
 std::string named_audit(Dir dir, const std::string& name) { return in(dir, "audit-" + name); }
 std::string audit_between(Dir dir, const std::string& a, const std::string& b) {
   return in(dir, "audit-" + a + "-vs-" + b);

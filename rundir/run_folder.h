@@ -5,6 +5,7 @@
 // DIR + "/" + the name. What each file holds is documented where it is written and read.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace ra::rundir::run_folder {
@@ -37,6 +38,10 @@ std::string report(Dir dir);       // report/: what `report` writes
 std::string report_pdf(Dir dir);   // report/report.pdf
 std::string report_html(Dir dir);  // report/report.html
 std::string audit(Dir dir);        // audit/: `audit`'s default --out
+std::string reproduce(Dir dir);    // reproduce/: `reproduce`'s default folder for its C files
+// reproduce/PLATFORM.KIND.vVIEW.INDEX.c: `reproduce`'s C file of one record by default
+std::string reproducer_source(Dir dir, const std::string& platform, const std::string& kind,
+                              int view, std::uint64_t index);
 // audit-NAME/: an audit of NAME ("P" or "P-source": the driver upgrade's, scripts/driver-upgrade.sh;
 // "P" in a night of `watch`, STATE/nights/N)
 std::string named_audit(Dir dir, const std::string& name);

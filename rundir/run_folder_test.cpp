@@ -23,6 +23,9 @@ TEST(RunFolder, NamesTheFilesAndFoldersOfARunDirectory) {
   EXPECT_EQ(report_pdf("out/q"), "out/q/report/report.pdf");
   EXPECT_EQ(audit_json(audit("out/q")), "out/q/audit/audit.json");
   EXPECT_EQ(bisection(bisect("out/q")), "out/q/bisect/bisect.json");
+  EXPECT_EQ(reproduce("out/q"), "out/q/reproduce");
+  EXPECT_EQ(reproducer_source("out/q", "osmesa-llvmpipe", "line", 5, 721),
+            "out/q/reproduce/osmesa-llvmpipe.line.v5.721.c");
   EXPECT_EQ(study("out/q"), "out/q/study.json");
 }
 

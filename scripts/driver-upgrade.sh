@@ -1,39 +1,41 @@
 #!/usr/bin/env bash
 # `make driver-upgrade`: the installed Mesa against the newest Mesa of Debian's bookworm-backports,
-# end to end: fetch the build into the build cache (renderaudit builds fetch), run
+# end to end: fetch the driver build into the build cache (renderaudit builds fetch), run
 # experiments/driver-upgrade.toml (nist2008 views; osmesa-* and egl-*, llvmpipe and softpipe, each
-# on both builds), audit every pair with `audit RUN --between P P@backports` (pixels, and drawing
-# time: both sides drawn again, --speed), and write one report, OUT/upgrade-report.pdf and .html
-# (set by `renderaudit report --markdown` from the Markdown beside them), that opens with one
-# sentence of what changed per driver and one of what got faster or slower (made from the counts
-# and the time verdicts by `renderaudit report --upgrade-headline`) and the worst primitive before
-# and after, then what changed per back end, kind and view group. The pairs audited are the
-# experiment's platforms P drawn also as P@backports. About 10 minutes on 2 cores for the pixels;
-# timing the drawing adds, on the same 2 cores under load, about 35 s per llvmpipe pair and
-# 2.5 min per softpipe pair (softpipe draws the 907 x 907 views slowly): about 6 minutes for the
-# four pairs (docs/driver-builds.md).
+# on the installed Mesa and on the driver build), audit every pair with `audit RUN --between P
+# P@backports` (pixels, and drawing time: both sides drawn again, --speed), and write one report,
+# OUT/upgrade-report.pdf and .html (set by `renderaudit report --markdown` from the Markdown beside
+# them), that opens with one sentence of what changed per driver and one of what got faster or
+# slower (made from the counts and the time verdicts by `renderaudit report --upgrade-headline`)
+# and the worst primitive before and after, then what changed per back end, kind and view group.
+# The pairs audited are the experiment's platforms P drawn also as P@backports. About 10 minutes
+# on 2 cores for the pixels; timing the drawing adds, on the same 2 cores under load, about 35 s
+# per llvmpipe pair and 2.5 min per softpipe pair (softpipe draws the 907 x 907 views slowly):
+# about 6 minutes for the four pairs (docs/driver-builds.md).
 #
-# Usage: scripts/driver-upgrade.sh [BUILD_DIR] [--smoke]   (MIRROR=URL: another Debian archive)
-#   MESA_SOURCE=DIR [MESA_REF=REF]: also a Mesa built from that source tree (renderaudit builds
+# Usage: scripts/driver-upgrade.sh [PROGRAM_DIR] [--smoke]   (MIRROR=URL: another Debian archive)
+#   PROGRAM_DIR: the program's build folder, where CMake built renderaudit (default: build). A
+#   driver build is a Mesa in the build cache (renderaudit builds), named P@BUILD in the experiment.
+#   MESA_SOURCE=DIR [MESA_REF=REF]: also a driver build of that Mesa source tree (renderaudit builds
 #   build; scripts/install-mesa-build-deps.sh first), drawn through EGL as egl-*@source and
 #   audited against the installed Mesa, so the report covers three versions side by side.
 #   UPGRADE_SPEED: `on` (default: each audit also judges drawing time with --speed-warn-only, so a
 #   slower driver is reported, in its audit's line and on page 1, but changes no exit code and no
 #   count of changed audits; the audit's defaults, 10 rounds of 100 primitives per kind and view),
 #   `off` (pixels only).
-#   --smoke: 40 primitives per kind and view into BUILD_DIR/driver-upgrade-smoke, drawing time in
-#   3 rounds (about 1 minute for the four pairs), and a build already in the cache is used as is
-#   (the test suite's run of this script).
+#   --smoke: 40 primitives per kind and view into PROGRAM_DIR/driver-upgrade-smoke, drawing time
+#   in 3 rounds (about 1 minute for the four pairs), and a driver build already in the cache is
+#   used as is (the test suite's run of this script).
 # Exit 0: every audit ran (whatever it found); 2: a step failed or UPGRADE_SPEED is neither on nor
-# off; 77: the Debian registry cannot be reached and no build is cached (the test suite then skips,
-# loudly).
+# off; 77: the Debian registry cannot be reached and no driver build is cached (the test suite then
+# skips, loudly).
 set -uo pipefail
 
-build=${1:-build}
+program_dir=${1:-build}
 smoke=0
 [ "${2:-}" = --smoke ] && smoke=1
 repo=$(cd "$(dirname "$0")/.." && pwd)
-ra=$(cd "$build" && pwd)/renderaudit
+ra=$(cd "$program_dir" && pwd)/renderaudit
 suite=bookworm-backports
 experiment=${EXPERIMENT:-$repo/experiments/driver-upgrade.toml}
 out=${OUT:-$repo/outputs/driver-upgrade}
@@ -53,7 +55,7 @@ case ${UPGRADE_SPEED:-on} in
 esac
 
 if [ $smoke = 1 ]; then
-  out=$(cd "$build" && pwd)/driver-upgrade-smoke
+  out=$(cd "$program_dir" && pwd)/driver-upgrade-smoke
   rm -rf "$out"
   mkdir -p "$out"
   sed -e 's/^name = .*/name = "driver-upgrade-smoke"/' \
@@ -62,7 +64,7 @@ if [ $smoke = 1 ]; then
   experiment=$out.toml
 fi
 
-# 1. The build: fetched (always for the real audit: the suite's newest), or the cached one.
+# 1. The driver build: fetched (always for the real audit: the suite's newest), or the cached one.
 if [ $smoke = 1 ] && listed=$("$ra" builds list) && grep -q "suite $suite" <<<"$listed"; then
   say "using the cached build of $suite"
 else
@@ -76,13 +78,13 @@ else
     fi
     die "the fetch failed (above)"
   fi
-  # the build's name and versions; its file list goes to a file
+  # the driver build's name and versions; its file list goes to a file
   mkdir -p "$(dirname "$out")"
   echo "$fetched" > "$out.fetch.txt"
   say "fetched $(sed -n 1p <<<"$fetched"); its files: $out.fetch.txt"
 fi
 
-# 1b. A Mesa built from source (optional): its EGL platforms join the experiment.
+# 1b. A driver build of a Mesa source tree (optional): its EGL platforms join the experiment.
 if [ -n "${MESA_SOURCE:-}" ]; then
   say "building Mesa from $MESA_SOURCE${MESA_REF:+ at $MESA_REF} (renderaudit builds build; a cold build takes about 10 minutes on 2 cores)"
   built=$("$ra" builds build "$MESA_SOURCE" ${MESA_REF:+--ref "$MESA_REF"}) || die "the source build failed (above)"
@@ -104,33 +106,35 @@ ran=$("$ra" run "$experiment" --out "$out" --brief) || { echo "$ran"; die "the r
 echo "$ran"
 primitives=$(sed -n 's/^run: .*: \([0-9,]*\) primitives in .*/\1/p' <<<"$ran")
 
-# 3. The audits: PLATFORM against PLATFORM@BUILD; AUDITED_<BUILD> lists those that ran.
+# 3. The audits: PLATFORM against PLATFORM@DRIVER_BUILD; `audited` (backports) and
+# `source_audited` list those that ran.
 status=0
-audit_build() {  # BUILD PLATFORM...
-  local build=$1 p dir rc suffix
+audit_driver_build() {  # DRIVER_BUILD PLATFORM...
+  local driver_build=$1 p dir rc suffix
   shift
-  # the folder the report is told of (report --audit-suffix) for a build other than backports
-  suffix=$([ "$build" = backports ] || echo "-$build")
+  # the folder the report is told of (report --audit-suffix) for a driver build other than
+  # backports
+  suffix=$([ "$driver_build" = backports ] || echo "-$driver_build")
   for p in "$@"; do
     dir=$out/audit-$p$suffix
     # its verdict on stdout (the first line: what changed, every faster or slower group among the
     # reasons); the timing's progress and any error on stderr, kept apart
-    "$ra" audit "$out" --between "$p" "$p@$build" --no-history "${speed[@]}" --out "$dir" \
+    "$ra" audit "$out" --between "$p" "$p@$driver_build" --no-history "${speed[@]}" --out "$dir" \
       > "$dir.log" 2> "$dir.stderr.log"
     rc=$?
-    [ $rc = 1 ] && changed+=("$p@$build")
+    [ $rc = 1 ] && changed+=("$p@$driver_build")
     if [ $rc -gt 1 ]; then
       cat "$dir.log" "$dir.stderr.log" >&2
-      say "audit of $p against $p@$build failed (exit $rc)"
+      say "audit of $p against $p@$driver_build failed (exit $rc)"
       status=2
     else
-      say "audit of $p against $p@$build: $(head -1 "$dir.log")"
-      [ "$build" = backports ] && audited+=("$p") || source_audited+=("$p")
+      say "audit of $p against $p@$driver_build: $(head -1 "$dir.log")"
+      [ "$driver_build" = backports ] && audited+=("$p") || source_audited+=("$p")
     fi
   done
 }
-# The platforms P of the experiment that it also draws as P@BUILD.
-pairs_of() {  # BUILD
+# The platforms P of the experiment that it also draws as P@DRIVER_BUILD.
+pairs_of() {  # DRIVER_BUILD
   /usr/bin/python3 -c 'import sys, tomllib
 ps = tomllib.load(open(sys.argv[1], "rb")).get("platforms", [])
 print(" ".join(p for p in ps if "@" not in p and p + "@" + sys.argv[2] in ps))' "$experiment" "$1"
@@ -144,10 +148,10 @@ step 3 "auditing each platform against its build$([ ${#speed[@]} = 0 ] ||
 backports_pairs=$(pairs_of backports) || die "cannot read the platforms of $experiment"
 [ -n "$backports_pairs" ] || die "$experiment draws no platform P beside P@backports: nothing to audit"
 # shellcheck disable=SC2086  # one word per platform
-audit_build backports $backports_pairs
+audit_driver_build backports $backports_pairs
 if [ -n "${MESA_SOURCE:-}" ]; then
   # shellcheck disable=SC2086
-  audit_build source $(pairs_of source)
+  audit_driver_build source $(pairs_of source)
 fi
 
 # 4. The report (`renderaudit report --upgrade`, triage/upgrade_report.h): the first sentence says

@@ -369,7 +369,7 @@ nlohmann::json bisect_state_json(const BisectState& st) {
                       {"speed_unattributed", speed_unattributed},
                       {"complete", r.complete()},
                       {"total_build_s", r.total_build_s}};
-  j.update(rundir::document_header("bisection", kBisectStateVersion, false));
+  j.update(rundir::document_header(rundir::kBisectionDocument, kBisectStateVersion, false));
   return util::sealed(j);
 }
 
@@ -388,15 +388,15 @@ BisectState load_bisect_state(const std::string& path) {
   const Reader rd(path);
   BisectState st;
   // Version 2 was written before the seal: still read, each field checked on its own.
-  const bool sealed = rundir::has_document_header(j, "bisection", kBisectStateVersion);
-  if (!sealed && !rundir::has_document_header(j, "bisection", 2))
-    rd.bad("schema_version", "is not " + std::to_string(kBisectStateVersion) +
-                                 " (or 2) of renderaudit-bisection: written by another "
+  const int version = rundir::bisection_version(j);
+  if (version == 0)
+    rd.bad("schema_version", "is not " + std::to_string(kBisectStateVersion) + " (or " +
+                                 std::to_string(rundir::kUnsealedBisectionVersion) +
+                                 ") of renderaudit-bisection: written by another "
                                  "renderaudit (a bisection of git bisect's kind)");
-  if (sealed)
-    if (const std::string problem = util::seal_problem(j); !problem.empty())
-      throw util::UserError("bisect: " + path + ": " + problem +
-                            "; move the file away to start the bisection again");
+  if (const std::string problem = rundir::bisection_seal_problem(j, version); !problem.empty())
+    throw util::UserError("bisect: " + path + ": " + problem +
+                          "; move the file away to start the bisection again");
   st.inputs = rd.at(j, "", "inputs");
   if (!st.inputs.is_object()) rd.bad("inputs", "must be an object");
   st.result.original_head = rd.text(j, "", "original_head");

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "rundir/bisection_document.h"
 #include "triage/bisect.h"
 
 namespace ra::triage {
@@ -20,8 +21,9 @@ struct BisectState {
   BisectResult result;
 };
 
-// The document written to bisect.json (schema "bisection", this version, sealed).
-constexpr int kBisectStateVersion = 3;
+// The document written to bisect.json (schema rundir::kBisectionDocument, this version, sealed;
+// rundir/bisection_document.h reads its header, and its culprits for the readers outside triage/).
+constexpr int kBisectStateVersion = rundir::kBisectionDocumentVersion;
 nlohmann::json bisect_state_json(const BisectState& state);
 void save_bisect_state(const std::string& path, const BisectState& state);
 

@@ -10,7 +10,7 @@
 
 #include "analysis/run_records.h"
 #include "audit/run_identity.h"
-#include "report/upgrade_headline.h"
+#include "report/upgrade_sentences.h"
 #include "rundir/run_folder.h"
 #include "util/errors.h"
 #include "util/fnv1a.h"

@@ -11,7 +11,7 @@
 
 #include "analysis/run_records.h"
 #include "audit/reproducer.h"
-#include "report/upgrade_headline.h"
+#include "report/upgrade_sentences.h"
 #include "rundir/run_folder.h"
 #include "triage/primitive_image.h"
 #include "util/atomic_file.h"
@@ -183,7 +183,7 @@ std::string upgrade_report_markdown(const UpgradeReportOptions& o) {
                                 rundir::run_folder::upgrade_summary(o.run_dir, o.build));
   std::ostringstream md;
   md << "# Driver upgrade: what changed\n\n"
-     << report::upgrade_headline_markdown(u.summary) << "\n"
+     << report::upgrade_sentences_markdown(u.summary) << "\n"
      << "Run `" << o.run_dir << "`: each platform P, the installed Mesa ("
      << mesa_versions(u.summary, false) << "), against P@" << o.build << " (Mesa "
      << mesa_versions(u.summary, true) << "). View groups: ";

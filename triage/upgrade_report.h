@@ -3,7 +3,7 @@
 // run, in Markdown, in one process from the audit's own comparison (triage/upgrade_findings.h).
 //
 // It writes RUN/upgrade-summary-BUILD.json (report/upgrade_summary.h) and opens the Markdown with
-// the sentences report/upgrade_headline.h makes of it, then the worst primitive's before and after
+// the sentences report/upgrade_sentences.h makes of it, then the worst primitive's before and after
 // side by side, a table of contents ([TOC]), one picture set per other finding, a table per
 // platform (the audit's counts and tests) and one section per pair: the changed primitives per
 // kind and view group, their class and visibility transitions.

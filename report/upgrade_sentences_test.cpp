@@ -1,7 +1,7 @@
 // The driver upgrade's first sentence says what changed in words, from the counts alone: a
 // report whose page 1 was a table titled "Table" with "new violations 799" hid that llvmpipe no
 // longer drew some lines. Each test feeds a hand-built summary and asserts the whole sentence.
-#include "report/upgrade_headline.h"
+#include "report/upgrade_sentences.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -70,11 +70,11 @@ UpgradeSummary summary(std::vector<UpgradePair> pairs) {
 
 // Why: the same finding through two back ends is one finding; saying it twice doubled the
 // report's pictures and hid that the back end does not matter.
-TEST(UpgradeHeadline, OneFindingIdenticalThroughOSMesaAndEGL) {
+TEST(UpgradeSentences, OneFindingIdenticalThroughOSMesaAndEGL) {
   const UpgradeSummary s =
       summary({llvmpipe_pair("osmesa-llvmpipe"), unchanged_pair("osmesa-softpipe"),
                llvmpipe_pair("egl-llvmpipe"), unchanged_pair("egl-softpipe")});
-  EXPECT_EQ(upgrade_headline(s),
+  EXPECT_EQ(upgrade_sentences(s),
             "llvmpipe 25.0.7 stops drawing 595 of 10,000 lines of the FOV-30 907 x 907 views; "
             "799 lines break GL's line rules, 595 of them not drawn at all; 101 other lines light "
             "other pixels, as GL allows; "
@@ -83,35 +83,35 @@ TEST(UpgradeHeadline, OneFindingIdenticalThroughOSMesaAndEGL) {
 }
 
 // Why: a driver with no change is said in one word, not left out (absent reads as not audited).
-TEST(UpgradeHeadline, ADriverWithNoChangeIsUnchanged) {
-  EXPECT_EQ(upgrade_headline(summary({unchanged_pair("osmesa-softpipe"),
+TEST(UpgradeSentences, ADriverWithNoChangeIsUnchanged) {
+  EXPECT_EQ(upgrade_sentences(summary({unchanged_pair("osmesa-softpipe"),
                                       unchanged_pair("egl-softpipe")})),
             "softpipe unchanged.");
-  EXPECT_EQ(upgrade_headline(summary({})), "no platform was audited.");
+  EXPECT_EQ(upgrade_sentences(summary({})), "no platform was audited.");
 }
 
 // Lines not drawn in both 907 x 907 groups are "of the 907 x 907 views"; a rule broken by one
 // line is singular; with no line not drawn the driver's part starts with a colon.
-TEST(UpgradeHeadline, ViewsAreNamedByWhatTheyShare) {
+TEST(UpgradeSentences, ViewsAreNamedByWhatTheyShare) {
   UpgradePair p = llvmpipe_pair("osmesa-llvmpipe");
   stratum(p, "line", "D").changed = stratum(p, "line", "D").not_drawn = 5;
   stratum(p, "line", "D").new_violations = stratum(p, "line", "D").not_drawn_violations = 5;
-  EXPECT_EQ(upgrade_headline(summary({p})),
+  EXPECT_EQ(upgrade_sentences(summary({p})),
             "llvmpipe 25.0.7 stops drawing 600 of 20,000 lines of the 907 x 907 views; 804 lines "
             "break GL's line rules, 600 of them not drawn at all; 101 other lines light other "
             "pixels, as GL allows; 1,210 of 40,000 triangles light other pixels, as GL allows.");
   UpgradePair one = unchanged_pair("egl-llvmpipe");
   one.fingerprint = "1";
   stratum(one, "point", "B").changed = stratum(one, "point", "B").new_violations = 1;
-  EXPECT_EQ(upgrade_headline(summary({one})), "llvmpipe 25.0.7: 1 point breaks GL's point rules.");
+  EXPECT_EQ(upgrade_sentences(summary({one})), "llvmpipe 25.0.7: 1 point breaks GL's point rules.");
 }
 
 // Back ends that differ are said one by one.
-TEST(UpgradeHeadline, BackEndsThatDifferAreSaidApart) {
+TEST(UpgradeSentences, BackEndsThatDifferAreSaidApart) {
   UpgradePair egl = unchanged_pair("egl-llvmpipe");
   egl.fingerprint = "2";
   stratum(egl, "triangle", "D").changed = stratum(egl, "triangle", "D").allowed = 7;
-  EXPECT_EQ(upgrade_headline(summary({llvmpipe_pair("osmesa-llvmpipe"), egl})),
+  EXPECT_EQ(upgrade_sentences(summary({llvmpipe_pair("osmesa-llvmpipe"), egl})),
             "llvmpipe 25.0.7 through OSMesa stops drawing 595 of 10,000 lines of the FOV-30 907 x "
             "907 views; 799 lines break GL's line rules, 595 of them not drawn at all; 101 other "
             "lines light other pixels, as GL allows; 1,210 of 40,000 triangles light other "
@@ -124,43 +124,43 @@ TEST(UpgradeHeadline, BackEndsThatDifferAreSaidApart) {
 // later showed that 52 of the 53 are among the 75. The sentence says how the counts nest: the
 // lines breaking the rules, how many of them not drawn; the one not drawn that breaks no new rule
 // among the "more".
-TEST(UpgradeHeadline, TheCountsSayHowTheyNest) {
+TEST(UpgradeSentences, TheCountsSayHowTheyNest) {
   UpgradePair p = unchanged_pair("osmesa-llvmpipe");
   p.fingerprint = "3";
   UpgradeStratum& c = stratum(p, "line", "C");
   c.compared = 2000, c.changed = 333, c.not_drawn = 53, c.new_violations = 75;
   c.not_drawn_violations = 52, c.allowed = 257;
-  EXPECT_EQ(upgrade_headline(summary({p})),
+  EXPECT_EQ(upgrade_sentences(summary({p})),
             "llvmpipe 25.0.7 stops drawing 53 of 2,000 lines of the FOV-30 907 x 907 views; 75 "
             "lines break GL's line rules, 52 of them not drawn at all; 257 other lines light "
             "other pixels, as GL allows; 1 more line changes where GL's rules were not judged or "
             "already broken (not drawn).");
   // every line breaking the rules not drawn; the more of several kinds
   c.changed = 340, c.not_drawn = 75, c.not_drawn_violations = 75;
-  EXPECT_EQ(upgrade_headline(summary({p})),
+  EXPECT_EQ(upgrade_sentences(summary({p})),
             "llvmpipe 25.0.7 stops drawing 75 of 2,000 lines of the FOV-30 907 x 907 views; 75 "
             "lines break GL's line rules, all 75 not drawn at all; 257 other lines light other "
             "pixels, as GL allows; 8 more lines change where GL's rules were not judged or "
             "already broken.");
   c.not_drawn = 78;  // 3 of the 8 more not drawn
-  const std::string more = upgrade_headline(summary({p}));
+  const std::string more = upgrade_sentences(summary({p}));
   EXPECT_EQ(more.substr(more.find("8 more")),
             "8 more lines change where GL's rules were not judged or already broken (3 of them "
             "not drawn).");
   // none of those breaking the rules among the not drawn; one line of each
   c.changed = 13, c.not_drawn = 12, c.new_violations = 1, c.not_drawn_violations = 0;
   c.allowed = 0;
-  EXPECT_EQ(upgrade_headline(summary({p})),
+  EXPECT_EQ(upgrade_sentences(summary({p})),
             "llvmpipe 25.0.7 stops drawing 12 of 2,000 lines of the FOV-30 907 x 907 views; 1 "
             "line breaks GL's line rules, none of them among the 12 not drawn; 12 more lines "
             "change where GL's rules were not judged or already broken (all not drawn).");
   c.changed = 1, c.not_drawn = 1, c.not_drawn_violations = 1;
-  EXPECT_EQ(upgrade_headline(summary({p})),
+  EXPECT_EQ(upgrade_sentences(summary({p})),
             "llvmpipe 25.0.7 stops drawing 1 of 2,000 lines of the FOV-30 907 x 907 views; 1 line "
             "breaks GL's line rules, not drawn at all.");
   // a summary written before the overlap was kept: the counts without it
   for (UpgradeStratum& s : p.strata) s.not_drawn_violations = -1;
-  EXPECT_EQ(upgrade_headline(summary({p})),
+  EXPECT_EQ(upgrade_sentences(summary({p})),
             "llvmpipe 25.0.7 stops drawing 1 of 2,000 lines of the FOV-30 907 x 907 views; 1 line "
             "breaks GL's line rules.");
 }
@@ -179,12 +179,12 @@ UpgradeTime& time_of(UpgradePair& p, const std::string& kind, const std::string&
   throw std::runtime_error("no time " + kind + " " + group);
 }
 
-// The headline after its first sentence, the one on pixels (the headline of the summary without
+// The sentence on drawing time, after the one on pixels (the sentences of the summary without
 // its drawing times, which must open it).
 std::string time_sentence(UpgradeSummary s) {
-  const std::string all = upgrade_headline(s);
+  const std::string all = upgrade_sentences(s);
   for (UpgradePair& p : s.pairs) p.timed = false, p.speed.clear();
-  const std::string pixels = upgrade_headline(s);
+  const std::string pixels = upgrade_sentences(s);
   EXPECT_EQ(all.substr(0, pixels.size() + 1), pixels + " ") << all;
   return all.size() > pixels.size() ? all.substr(pixels.size() + 1) : "";
 }
@@ -193,7 +193,7 @@ std::string time_sentence(UpgradeSummary s) {
 // judged it. A faster and a slower group are said in words with their percentages (faster: 1 -
 // ratio, its interval from 1 - high to 1 - low; slower: ratio - 1), the rest in one clause; the
 // same verdicts through OSMesa and EGL are said once, with both back ends' numbers held.
-TEST(UpgradeHeadline, FasterAndSlowerGroupsAreSaidInWords) {
+TEST(UpgradeSentences, FasterAndSlowerGroupsAreSaidInWords) {
   UpgradePair osmesa = llvmpipe_pair("osmesa-llvmpipe"), egl = llvmpipe_pair("egl-llvmpipe");
   UpgradePair softpipe = unchanged_pair("osmesa-softpipe");
   for (UpgradePair* p : {&osmesa, &egl, &softpipe}) time_all_same(*p);
@@ -201,7 +201,7 @@ TEST(UpgradeHeadline, FasterAndSlowerGroupsAreSaidInWords) {
   time_of(osmesa, "triangle", "D") = {"triangle", "D", 0.78, 0.75, 0.80, "faster"};
   time_of(egl, "line", "C") = {"line", "C", 1.16, 1.093, 1.238, "slower"};
   time_of(egl, "triangle", "D") = {"triangle", "D", 0.79, 0.76, 0.81, "faster"};
-  EXPECT_EQ(upgrade_headline(summary({osmesa, softpipe, egl})),
+  EXPECT_EQ(upgrade_sentences(summary({osmesa, softpipe, egl})),
             "llvmpipe 25.0.7 stops drawing 595 of 10,000 lines of the FOV-30 907 x 907 views; "
             "799 lines break GL's line rules, 595 of them not drawn at all; 101 other lines light "
             "other pixels, as GL allows; "
@@ -215,7 +215,7 @@ TEST(UpgradeHeadline, FasterAndSlowerGroupsAreSaidInWords) {
   UpgradePair one = unchanged_pair("egl-llvmpipe");
   time_all_same(one);
   time_of(one, "triangle", "D") = {"triangle", "D", 0.78, 0.75, 0.80, "faster"};
-  EXPECT_EQ(upgrade_headline(summary({one})),
+  EXPECT_EQ(upgrade_sentences(summary({one})),
             "llvmpipe unchanged. llvmpipe 25.0.7 draws the triangles of the FOV-150 907 x 907 "
             "views 22% faster (95%: 20-25%); other drawing times unchanged or not measurably "
             "different.");
@@ -248,19 +248,19 @@ TEST(UpgradeHeadline, FasterAndSlowerGroupsAreSaidInWords) {
 
 // Why: a group the audit could not judge is neither unchanged nor changed; one short clause
 // counts them, and only where there are any.
-TEST(UpgradeHeadline, UnknownDrawingTimesAreCountedInOneClause) {
+TEST(UpgradeSentences, UnknownDrawingTimesAreCountedInOneClause) {
   UpgradePair p = unchanged_pair("osmesa-softpipe");
   p.timed = true;
   p.speed = {{"line", "A", NAN, NAN, NAN, "unknown"}, {"line", "B", 1.04, 0.9, 1.2, "unknown"}};
-  EXPECT_EQ(upgrade_headline(summary({p})),
+  EXPECT_EQ(upgrade_sentences(summary({p})),
             "softpipe unchanged. The drawing time of 2 groups could not be judged at this noise.");
   p.speed.push_back({"line", "C", 1.0, 0.99, 1.01, "same"});
-  EXPECT_EQ(upgrade_headline(summary({p})),
+  EXPECT_EQ(upgrade_sentences(summary({p})),
             "softpipe unchanged. Drawing times unchanged or not measurably different; the drawing "
             "time of 2 groups could not be judged at this noise.");
 }
 
-TEST(UpgradeHeadline, MesaVersionFromGlVersion) {
+TEST(UpgradeSentences, MesaVersionFromGlVersion) {
   EXPECT_EQ(mesa_version("4.5 (Compatibility Profile) Mesa 25.0.7 (git-abc)"), "25.0.7");
   EXPECT_EQ(mesa_version("4.5 (Compatibility Profile) Mesa 26.0.0-devel"), "26.0.0-devel");
   EXPECT_EQ(mesa_version("4.5 (Compatibility Profile) Mesa 25.0.7-2~bpo12+1"), "25.0.7");
@@ -269,8 +269,8 @@ TEST(UpgradeHeadline, MesaVersionFromGlVersion) {
 
 // Why: where a bisection of the run named its culprits, page 1 names them, with the number of
 // primitives each changed; the summary is read back from the file the script writes.
-TEST(UpgradeHeadline, ABisectionBesideTheRunNamesItsCulprits) {
-  const fs::path dir = fs::temp_directory_path() / ("ra_upgrade_headline_" + std::to_string(getpid()));
+TEST(UpgradeSentences, ABisectionBesideTheRunNamesItsCulprits) {
+  const fs::path dir = fs::temp_directory_path() / ("ra_upgrade_sentences_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "run");
   fs::create_directories(dir / "bisect");
@@ -281,8 +281,11 @@ TEST(UpgradeHeadline, ABisectionBesideTheRunNamesItsCulprits) {
             "selection": [{}, {}, {}],
             "culprits": [{"commit": "a07fa6516b0123456789012345678901234567ab",
                           "subject": "llvmpipe/linear: add support for rgba color buffers",
-                          "primitives": [{"primitive": "line 1 of view 5"},
-                                         {"primitive": "line 2 of view 5"}]}]})";
+                          "date": "2025-03-04T10:00:00+01:00",
+                          "primitives": [{"primitive": "line 1 of view 5", "pixels_before": 9,
+                                          "pixels_after": 0},
+                                         {"primitive": "line 2 of view 5", "pixels_before": 7,
+                                          "pixels_after": 0}]}]})";
   std::ofstream(dir / "upgrade-summary.json")
       << R"({"schema": "renderaudit-upgrade-summary", "schema_version": 1, "run": ")" << run
       << R"(", "build": "backports", "groups": [{"label": "A", "fov_deg": 30, "window": 128}],
@@ -294,7 +297,7 @@ TEST(UpgradeHeadline, ABisectionBesideTheRunNamesItsCulprits) {
   const UpgradeSummary s = read_upgrade_summary((dir / "upgrade-summary.json").string());
   ASSERT_EQ(s.pairs.size(), 1u);
   EXPECT_EQ(s.pairs[0].strata[0].compared, 4);
-  EXPECT_EQ(upgrade_headline_markdown(s),
+  EXPECT_EQ(upgrade_sentences_markdown(s),
             "**softpipe unchanged.**\n\nBisection of egl-llvmpipe (`" +
                 (dir / "bisect" / "bisect.json").string() +
                 "`, 3 primitives): first bad commit `a07fa6516b01` \"llvmpipe/linear: add support "
@@ -311,8 +314,9 @@ std::string summary_error(const fs::path& dir, const std::string& strata,
   std::ofstream(dir / "run" / "bisect" / "bisect.json")
       << R"({"schema": "renderaudit-bisection", "schema_version": 2, "complete": true,
             "inputs": {"run": ")" << run << R"(", "platform": "egl-llvmpipe"}, "selection": [{}],
-            "culprits": [{"commit": )" << culprit_commit << R"(, "subject": "s",
-                          "primitives": [{"primitive": "line 1 of view 1"}]}]})";
+            "culprits": [{"commit": )" << culprit_commit << R"(, "subject": "s", "date": "d",
+                          "primitives": [{"primitive": "line 1 of view 1", "pixels_before": 3,
+                                          "pixels_after": 0}]}]})";
   std::ofstream(dir / "upgrade-summary.json")
       << R"({"schema": "renderaudit-upgrade-summary", "schema_version": 1, "run": ")" << run
       << R"(", "build": "backports", "groups": [{"label": "A", "fov_deg": 30, "window": 128}],
@@ -320,7 +324,7 @@ std::string summary_error(const fs::path& dir, const std::string& strata,
                        "installed_version": "Mesa 22.3.6", "build_version": "Mesa 25.0.7",
                        "fingerprint": "f", "strata": )" << strata << "}]}";
   try {
-    upgrade_headline_markdown(read_upgrade_summary((dir / "upgrade-summary.json").string()));
+    upgrade_sentences_markdown(read_upgrade_summary((dir / "upgrade-summary.json").string()));
   } catch (const util::UserError& e) {
     return e.what();
   }
@@ -337,9 +341,9 @@ std::string a_stratum(const std::string& compared, const std::string& changed,
 // Why: a number where a commit belongs ended in a bare "[json.exception.type_error.302]"; "stops
 // drawing 1,000 of 100 lines" passed with exit 0; counts near 2^63 overflowed and the clause
 // vanished.
-TEST(UpgradeHeadline, ADamagedSummaryOrBisectionIsNamedWithItsFileAndKey) {
+TEST(UpgradeSentences, ADamagedSummaryOrBisectionIsNamedWithItsFileAndKey) {
   const fs::path dir =
-      fs::temp_directory_path() / ("ra_upgrade_headline_bad_" + std::to_string(getpid()));
+      fs::temp_directory_path() / ("ra_upgrade_sentences_bad_" + std::to_string(getpid()));
   const std::string bisect_json = (dir / "run" / "bisect" / "bisect.json").string();
   const std::string summary_json = (dir / "upgrade-summary.json").string();
   EXPECT_EQ(summary_error(dir, a_stratum("100", "10", "5")), "");
@@ -372,9 +376,9 @@ TEST(UpgradeHeadline, ADamagedSummaryOrBisectionIsNamedWithItsFileAndKey) {
 
 // A stratum's not_drawn_violations is read where the summary has it, and must be of both its not
 // drawn and its new violations.
-TEST(UpgradeHeadline, TheOverlapOfNotDrawnAndRulesBrokenIsReadAndChecked) {
+TEST(UpgradeSentences, TheOverlapOfNotDrawnAndRulesBrokenIsReadAndChecked) {
   const fs::path dir =
-      fs::temp_directory_path() / ("ra_upgrade_headline_overlap_" + std::to_string(getpid()));
+      fs::temp_directory_path() / ("ra_upgrade_sentences_overlap_" + std::to_string(getpid()));
   const auto with = [](const std::string& overlap) {
     return R"([{"kind": "line", "group": "A", "compared": 100, "changed": 10, "not_drawn": 6,
                 "newly_drawn": 0, "new_violations": 8, "fixed_violations": 0, "allowed": 0,
@@ -383,7 +387,7 @@ TEST(UpgradeHeadline, TheOverlapOfNotDrawnAndRulesBrokenIsReadAndChecked) {
   EXPECT_EQ(summary_error(dir, with("5")), "");
   UpgradeSummary s = read_upgrade_summary((dir / "upgrade-summary.json").string());
   EXPECT_EQ(s.pairs[0].strata[0].not_drawn_violations, 5);
-  EXPECT_EQ(upgrade_headline(s),
+  EXPECT_EQ(upgrade_sentences(s),
             "llvmpipe 25.0.7 stops drawing 6 of 100 lines; 8 lines break GL's line rules, 5 of "
             "them not drawn at all; 2 more lines change where GL's rules were not judged or "
             "already broken (1 of them not drawn).");
@@ -404,15 +408,15 @@ TEST(UpgradeHeadline, TheOverlapOfNotDrawnAndRulesBrokenIsReadAndChecked) {
 
 // Why: summaries written before drawing times were kept (no `speed`) still read, and say
 // nothing of time; a summary with `speed` reads each field, null where no interval was formed.
-TEST(UpgradeHeadline, DrawingTimesAreReadFromTheSummaryAndOptional) {
+TEST(UpgradeSentences, DrawingTimesAreReadFromTheSummaryAndOptional) {
   const fs::path dir =
-      fs::temp_directory_path() / ("ra_upgrade_headline_speed_" + std::to_string(getpid()));
+      fs::temp_directory_path() / ("ra_upgrade_sentences_speed_" + std::to_string(getpid()));
   const std::string stratum = a_stratum("100", "0", "0");
   EXPECT_EQ(summary_error(dir, stratum), "");
   UpgradeSummary s = read_upgrade_summary((dir / "upgrade-summary.json").string());
   ASSERT_EQ(s.pairs.size(), 1u);
   EXPECT_FALSE(s.pairs[0].timed);
-  EXPECT_EQ(upgrade_headline(s), "llvmpipe unchanged.");
+  EXPECT_EQ(upgrade_sentences(s), "llvmpipe unchanged.");
 
   EXPECT_EQ(summary_error(dir, stratum + R"(, "speed": [
       {"kind": "line", "group": "A", "ratio": 1.3, "low": 1.2, "high": 1.4, "verdict": "slower"},
@@ -424,7 +428,7 @@ TEST(UpgradeHeadline, DrawingTimesAreReadFromTheSummaryAndOptional) {
   ASSERT_EQ(s.pairs[0].speed.size(), 2u);
   EXPECT_DOUBLE_EQ(s.pairs[0].speed[0].low, 1.2);
   EXPECT_TRUE(std::isnan(s.pairs[0].speed[1].ratio));
-  EXPECT_EQ(upgrade_headline(s),
+  EXPECT_EQ(upgrade_sentences(s),
             "llvmpipe unchanged. llvmpipe 25.0.7 draws the lines 30% slower (95%: 20-40%); the "
             "drawing time of 1 group could not be judged at this noise.");
   fs::remove_all(dir);
@@ -432,9 +436,9 @@ TEST(UpgradeHeadline, DrawingTimesAreReadFromTheSummaryAndOptional) {
 
 // Why: a mistyped drawing time must stop with the file and the key, as every other field does,
 // not end in a JSON library message or a sentence that says "-3% faster".
-TEST(UpgradeHeadline, AMistypedDrawingTimeIsNamedWithItsFileAndKey) {
+TEST(UpgradeSentences, AMistypedDrawingTimeIsNamedWithItsFileAndKey) {
   const fs::path dir =
-      fs::temp_directory_path() / ("ra_upgrade_headline_speed_bad_" + std::to_string(getpid()));
+      fs::temp_directory_path() / ("ra_upgrade_sentences_speed_bad_" + std::to_string(getpid()));
   const std::string summary_json = (dir / "upgrade-summary.json").string();
   const std::string stratum = a_stratum("100", "0", "0");
   const auto error_of = [&](const std::string& speed) {

@@ -1,24 +1,19 @@
-// The driver upgrade report's first sentence (see the header).
-#include "report/upgrade_headline.h"
+// The driver upgrade report's sentences (see the header).
+#include "report/upgrade_sentences.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <map>
-#include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <tuple>
 
-#include "rundir/manifest.h"
 #include "rundir/run_folder.h"
-#include "util/atomic_file.h"
-#include "util/errors.h"
-#include "util/git_ref_check.h"
-#include "util/json_seal.h"
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 
 namespace ra::report {
 namespace {
@@ -365,32 +360,6 @@ std::string time_sentence(const UpgradeSummary& summary, const std::vector<std::
   return out + ".";
 }
 
-// A bisect.json read for its culprits, every field checked: a damaged or foreign file is named
-// with its key, never a JSON library message.
-struct BisectionReader {
-  std::string path;
-  [[noreturn]] void bad(const std::string& key, const std::string& what) const {
-    throw util::UserError(path + ": '" + key + "' " + what +
-                          "; run the bisection again (renderaudit bisect) or move the file away");
-  }
-  const json& at(const json& j, const std::string& key, const std::string& where) const {
-    if (!j.is_object()) bad(where.empty() ? "(top)" : where, "must be an object");
-    const auto it = j.find(key);
-    if (it == j.end()) bad(where.empty() ? key : where + "." + key, "is missing");
-    return *it;
-  }
-  std::string text(const json& j, const std::string& key, const std::string& where) const {
-    const json& v = at(j, key, where);
-    if (!v.is_string()) bad(where.empty() ? key : where + "." + key, "must be a string");
-    return v.get<std::string>();
-  }
-  const json& list(const json& j, const std::string& key, const std::string& where) const {
-    const json& v = at(j, key, where);
-    if (!v.is_array()) bad(where.empty() ? key : where + "." + key, "must be a list");
-    return v;
-  }
-};
-
 }  // namespace
 
 std::string mesa_version(const std::string& gl_version) {
@@ -406,7 +375,7 @@ std::string mesa_version(const std::string& gl_version) {
   return v;
 }
 
-std::string upgrade_headline(const UpgradeSummary& summary) {
+std::string upgrade_sentences(const UpgradeSummary& summary) {
   if (summary.pairs.empty()) return "no platform was audited.";
   // drivers in the order of the summary's pairs
   std::vector<std::string> drivers;
@@ -432,7 +401,7 @@ std::string upgrade_headline(const UpgradeSummary& summary) {
   return out + "." + (time.empty() ? "" : " " + time);
 }
 
-std::vector<UpgradeBisection> find_bisections(const std::string& run_dir) {
+std::vector<rundir::BisectionDocument> find_bisections(const std::string& run_dir) {
   namespace folder = rundir::run_folder;
   std::vector<fs::path> candidates = {
       folder::bisection(folder::bisect(run_dir)),
@@ -442,72 +411,39 @@ std::vector<UpgradeBisection> find_bisections(const std::string& run_dir) {
     if (e.is_directory() && e.path().filename().string().rfind("audit-", 0) == 0)
       candidates.push_back(folder::bisection(folder::bisect(e.path().string())));
   std::sort(candidates.begin() + 2, candidates.end());
-  std::vector<UpgradeBisection> out;
+  std::vector<rundir::BisectionDocument> out;
   std::set<fs::path> seen;
   const fs::path run = fs::weakly_canonical(run_dir, ec);
   for (const fs::path& c : candidates) {
     if (!fs::exists(c) || !seen.insert(fs::weakly_canonical(c, ec)).second) continue;
-    json j;
-    try {
-      j = json::parse(util::read_file(c.string()));
-    } catch (const std::exception&) {
-      continue;
-    }
-    // Version 3 is sealed (triage/bisect_state.h); version 2 is from before the seal.
-    const bool sealed = rundir::has_document_header(j, "bisection", 3);
-    if (!sealed && !rundir::has_document_header(j, "bisection", 2)) continue;
-    const BisectionReader rd{c.string()};
-    if (sealed)
-      if (const std::string problem = util::seal_problem(j); !problem.empty())
-        throw util::UserError(c.string() + ": " + problem +
-                              "; run the bisection again (renderaudit bisect) or move the file "
-                              "away");
-    const json& inputs = rd.at(j, "inputs", "");
+    std::optional<rundir::BisectionDocument> b = rundir::read_bisection_document_if_any(c.string());
+    if (!b) continue;
     // a bisection beside the run is of this run only if it says so (or says no run)
-    const std::string of = inputs.contains("run") ? rd.text(inputs, "run", "inputs") : "";
-    if (!of.empty() && fs::weakly_canonical(of, ec) != run) continue;
-    UpgradeBisection b;
-    b.path = c.string();
-    b.platform = inputs.contains("platform") ? rd.text(inputs, "platform", "inputs") : "";
-    b.selected = std::int64_t(rd.list(j, "selection", "").size());
-    const json& complete = rd.at(j, "complete", "");
-    if (!complete.is_boolean()) rd.bad("complete", "must be true or false");
-    b.complete = complete.get<bool>();
-    const json& culprits = rd.list(j, "culprits", "");
-    for (std::size_t i = 0; i < culprits.size(); ++i) {
-      const std::string key = "culprits[" + std::to_string(i) + "]";
-      UpgradeCulprit k{rd.text(culprits[i], "commit", key), rd.text(culprits[i], "subject", key),
-                       std::int64_t(rd.list(culprits[i], "primitives", key).size())};
-      if (const std::string problem = util::commit_hash_problem(k.commit); !problem.empty())
-        rd.bad(key + ".commit", problem);
-      if (k.primitives > b.selected)
-        rd.bad(key + ".primitives", "lists " + std::to_string(k.primitives) +
-                                        " primitives, more than the " +
-                                        std::to_string(b.selected) + " selected");
-      b.culprits.push_back(std::move(k));
-    }
-    out.push_back(std::move(b));
+    if (!b->run.empty() && fs::weakly_canonical(b->run, ec) != run) continue;
+    out.push_back(std::move(*b));
   }
   return out;
 }
 
-std::string bisection_sentence(const UpgradeBisection& b) {
+std::string bisection_sentence(const rundir::BisectionDocument& b) {
+  const auto selected = std::int64_t(b.selected);
   std::string s = "Bisection" + (b.platform.empty() ? "" : " of " + b.platform) + " (`" + b.path +
-                  "`, " + grouped(b.selected) + " " + plural("primitive", b.selected) + ")";
+                  "`, " + grouped(selected) + " " + plural("primitive", selected) + ")";
   if (b.culprits.empty())
     return s + (b.complete ? ": no commit changed them." : ": no first bad commit named yet.");
   s += ": ";
   for (std::size_t i = 0; i < b.culprits.size(); ++i) {
-    const UpgradeCulprit& c = b.culprits[i];
+    const rundir::BisectionCulprit& c = b.culprits[i];
+    const auto changed = std::int64_t(c.primitives.size());
     s += (i ? "; " : "") + std::string("first bad commit `") + c.commit.substr(0, 12) + "` \"" +
-         c.subject + "\" (" + grouped(c.primitives) + " " + plural("primitive", c.primitives) + ")";
+         c.subject + "\" (" + grouped(changed) + " " + plural("primitive", changed) + ")";
   }
   return s + (b.complete ? "." : "; not every change is attributed yet.");
 }
 
-std::string upgrade_headline_markdown(const UpgradeSummary& summary) {
-  std::string out = "**" + upgrade_headline(summary) + "**\n";
-  for (const UpgradeBisection& b : find_bisections(summary.run_dir))
+std::string upgrade_sentences_markdown(const UpgradeSummary& summary) {
+  std::string out = "**" + upgrade_sentences(summary) + "**\n";
+  for (const rundir::BisectionDocument& b : find_bisections(summary.run_dir))
     out += "\n" + bisection_sentence(b) + "\n";
   return out;
 }

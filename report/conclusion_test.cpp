@@ -1,7 +1,7 @@
 // The report's conclusion counts what `analyze` counted: on a small synthetic run analysed by
-// analyze_run, analysis/tally.json equals the counts the records were built with, and the
-// headline's sentence and findings row carry exactly those numbers (read back from the file).
-#include "report/headline.h"
+// analyze_run, analysis/tally.json equals the counts the records were built with, and its
+// sentence and findings row carry exactly those numbers (read back from the file).
+#include "report/conclusion.h"
 
 #include <gtest/gtest.h>
 
@@ -71,8 +71,8 @@ std::string all_text(const std::vector<Block>& blocks) {
 
 // Why: plot and report no longer read the records; what they show must be what analyze counted,
 // and that must be what the records hold.
-TEST(Headline, NumbersAreTheAnalysisTallyOfTheRecords) {
-  const an::testing::ScopedTempDir scoped("headline_tally");
+TEST(Conclusion, NumbersAreTheAnalysisTallyOfTheRecords) {
+  const an::testing::ScopedTempDir scoped("conclusion_tally");
   const std::string dir = scoped.path.string();
   an::testing::write_records(scoped.path, verdict_run());
   an::AnalyzeOptions o;
@@ -116,8 +116,8 @@ TEST(Headline, NumbersAreTheAnalysisTallyOfTheRecords) {
   ASSERT_TRUE(rt.median_us_true_visible);
   EXPECT_DOUBLE_EQ(*rt.median_us_true_visible, 13);
 
-  // The headline says the file's numbers: 12 of 16 exact (75.00%), 3 other (18.75%), 1 violation.
-  const std::string text = all_text(headline_blocks(dir, t));
+  // The conclusion says the file's numbers: 12 of 16 exact (75.00%), 3 other (18.75%), 1 violation.
+  const std::string text = all_text(conclusion_blocks(dir, t));
   EXPECT_NE(text.find("**soft**: 75.00% of 16 primitives drawn exactly as the reference "
                       "rasterizer, **1 violating GL's rules** (1 pixels)"),
             std::string::npos)
@@ -128,8 +128,8 @@ TEST(Headline, NumbersAreTheAnalysisTallyOfTheRecords) {
 
 // Why: a refused night's page 1 ran the experiment files' difference into one line ("- seed =
 // 2008 + seed = 2009 An experiment changed ..."); a difference reads as a diff, a line each.
-TEST(Headline, ARefusedNightSetsTheExperimentDifferenceAsABlockOfLines) {
-  const an::testing::ScopedTempDir scoped("headline_refused");
+TEST(Conclusion, ARefusedNightSetsTheExperimentDifferenceAsABlockOfLines) {
+  const an::testing::ScopedTempDir scoped("conclusion_refused");
   const std::string dir = scoped.path.string();
   std::filesystem::create_directories(scoped.path / "audit");
   std::ofstream(scoped.path / "audit" / "refused.txt")
@@ -140,7 +140,7 @@ TEST(Headline, ARefusedNightSetsTheExperimentDifferenceAsABlockOfLines) {
          "  - seed = 2008\n  + seed = 2009\n"
          "An experiment changed on purpose needs a new baseline: a run of the new experiment "
          "(for the nightly audit: scripts/nightly.sh --promote c)\n";
-  const std::vector<Block> blocks = headline_blocks(dir, an::RunTally{});
+  const std::vector<Block> blocks = conclusion_blocks(dir, an::RunTally{});
   ASSERT_GE(blocks.size(), 4u);
   EXPECT_EQ(blocks[1].kind, Block::Kind::kParagraph);
   EXPECT_NE(blocks[1].text.find("**Audit: no verdict.**"), std::string::npos) << blocks[1].text;

@@ -20,6 +20,6 @@ namespace ra::report {
 // `tally` is the run's, from DIR/analysis/tally.json; reads DIR/analysis/ and
 // DIR/audit/audit.json; what is missing is left out and said. Throws ra::util::UserError on unreadable
 // files.
-std::vector<Block> headline_blocks(const std::string& run_dir, const analysis::RunTally& tally);
+std::vector<Block> conclusion_blocks(const std::string& run_dir, const analysis::RunTally& tally);
 
 }  // namespace ra::report

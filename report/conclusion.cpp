@@ -1,5 +1,5 @@
 // The report's conclusion (see the header).
-#include "report/headline.h"
+#include "report/conclusion.h"
 
 #include <algorithm>
 #include <cmath>
@@ -281,7 +281,7 @@ std::vector<Block> audit_blocks(const std::string& run_dir) {
 
 }  // namespace
 
-std::vector<Block> headline_blocks(const std::string& run_dir, const analysis::RunTally& tally) {
+std::vector<Block> conclusion_blocks(const std::string& run_dir, const analysis::RunTally& tally) {
   std::vector<Block> out;
   Block h = make_block(Block::Kind::kHeading, "Conclusion");
   h.level = 2;  // on the title page (a level-1 heading would start a page)

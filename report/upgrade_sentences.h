@@ -1,5 +1,5 @@
-// The driver upgrade report's first sentence (scripts/driver-upgrade.sh): what a new Mesa changed,
-// said as a driver developer would say it, from the counts of the audits alone:
+// The driver upgrade report's opening sentences (scripts/driver-upgrade.sh). The first says what a
+// new Mesa changed, as a driver developer would say it, from the counts of the audits alone:
 //
 //   "llvmpipe 25.0.7 stops drawing 595 of 20,000 lines of the FOV-30 907 x 907 views; 799 lines
 //    break GL's line rules, 595 of them not drawn at all; 1,210 of 80,000 triangles light other
@@ -39,50 +39,36 @@
 //
 // The summary is report/upgrade_summary.h's document (RUN/upgrade-summary-BUILD.json). A bisection
 // of the run (RUN/bisect/bisect.json, RUN/../bisect/bisect.json or RUN/audit-*/bisect/bisect.json,
-// schema "renderaudit-bisection" version 3, sealed, or 2, written by `renderaudit bisect`) adds its
-// culprits, read field by field: a missing or mistyped field is a UserError naming the file and
-// the key.
+// written by `renderaudit bisect`) adds its culprits, read by rundir/bisection_document.h: a
+// missing or mistyped field is a UserError naming the file and the key.
 #pragma once
 
-#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "report/upgrade_summary.h"
+#include "rundir/bisection_document.h"
 
 namespace ra::report {
 
-// A culprit of a bisection: the first commit that drew some primitives otherwise.
-struct UpgradeCulprit {
-  std::string commit, subject;
-  std::int64_t primitives = 0;
-};
-
-struct UpgradeBisection {
-  std::string path;      // the bisect.json
-  std::string platform;  // the platform it drew
-  std::int64_t selected = 0;  // primitives it followed
-  bool complete = false;
-  std::vector<UpgradeCulprit> culprits;
-};
-
 // The sentence (see the header comment), ending with a full stop, and after it the sentence on
 // drawing time where any pair was timed; "no platform was audited." for an empty summary.
-std::string upgrade_headline(const UpgradeSummary& summary);
+std::string upgrade_sentences(const UpgradeSummary& summary);
 
 // "25.0.7" from a GL_VERSION ("4.5 (Compatibility Profile) Mesa 25.0.7-2~bpo12+1", without the
 // distribution's revision; "26.0.0-devel" kept); "" if none.
 std::string mesa_version(const std::string& gl_version);
 
-// The bisections of the run beside or under it (see the header comment), each read from its
-// file; a file of another schema is skipped, a damaged one (its seal, a field) is a UserError.
-std::vector<UpgradeBisection> find_bisections(const std::string& run_dir);
+// The bisections of the run beside or under it (see the header comment), each read from its file
+// (rundir/bisection_document.h); a file of another schema is skipped, a damaged one (its seal, a
+// field) is a UserError.
+std::vector<rundir::BisectionDocument> find_bisections(const std::string& run_dir);
 
 // A bisection in words: "Bisection of egl-llvmpipe (FILE, 500 primitives): first bad commit
 // `HASH` \"SUBJECT\" (412 primitives)." (the hash shortened to 12 digits).
-std::string bisection_sentence(const UpgradeBisection& bisection);
+std::string bisection_sentence(const rundir::BisectionDocument& bisection);
 
 // The report's opening in Markdown: the sentence in bold, then one line per bisection.
-std::string upgrade_headline_markdown(const UpgradeSummary& summary);
+std::string upgrade_sentences_markdown(const UpgradeSummary& summary);
 
 }  // namespace ra::report
