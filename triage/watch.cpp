@@ -4,9 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cctype>
-#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -35,9 +33,6 @@ namespace ra::triage {
 namespace {
 
 using builds::git;
-
-constexpr const char* kLastBuild = "watch-last";
-constexpr const char* kTonightBuild = "watch-tonight";
 
 std::string short_hash(const std::string& c) { return c.substr(0, 12); }
 
@@ -161,56 +156,6 @@ int run_self(const std::vector<std::string>& args, const std::string& log) {
 
 }  // namespace
 
-std::string changed_night_note(const NightCounts& n) {
-  const std::string time =
-      n.time_moved == 0
-          ? std::string()
-          : "drawing time of " + std::to_string(n.time_moved) +
-                (n.time_moved == 1 ? " group" : " groups") + " moved, " +
-                std::to_string(n.speed_culprit_commits) + " commit(s) named";
-  if (n.changed == 0 && n.time_moved > 0) return "no primitive changed; " + time;
-  std::string note =
-      std::to_string(n.changed) + (n.changed == 1 ? " primitive changed" : " primitives changed");
-  if (n.bisected < n.changed)
-    note += " (" + std::to_string(n.bisected) +
-            " of them bisected: a sample, see the bisection's report)";
-  note += ", " + std::to_string(n.culprit_commits) + " culprit commit(s)";
-  if (n.unattributed > 0)
-    note += ", " + std::to_string(n.unattributed) +
-            " change(s) not attributed (only commits that failed to build lie between)";
-  if (!time.empty()) note += "; " + time;
-  return note;
-}
-
-bool night_moves_baseline(const std::string& verdict,
-                          const std::vector<std::string>& not_bisected) {
-  if (verdict == "changed") return not_bisected.empty();
-  return verdict == "baseline established" || verdict == "moved backwards" ||
-         verdict == "unchanged";
-}
-
-std::vector<std::string> nights_to_prune(std::vector<std::string> names, std::size_t keep,
-                                         const std::string& tonight) {
-  // A night's stamp: 2026-11-29T02-00-00Z (rundir::utc_now_iso8601 with ':' made '-').
-  const auto stamp = [](const std::string& n) {
-    if (n.size() != 20 || n[4] != '-' || n[7] != '-' || n[10] != 'T' || n[13] != '-' ||
-        n[16] != '-' || n[19] != 'Z')
-      return false;
-    for (std::size_t i : {0, 1, 2, 3, 5, 6, 8, 9, 11, 12, 14, 15, 17, 18})
-      if (!std::isdigit(static_cast<unsigned char>(n[i]))) return false;
-    return true;
-  };
-  std::vector<std::string> nights;
-  for (const std::string& n : names)
-    if (stamp(n)) nights.push_back(n);
-  std::sort(nights.begin(), nights.end());
-  std::vector<std::string> out;
-  if (keep == 0 || nights.size() <= keep) return out;
-  for (std::size_t i = 0; i + keep < nights.size(); ++i)
-    if (nights[i] != tonight) out.push_back(nights[i]);
-  return out;
-}
-
 std::vector<std::string> night_lines(const WatchNight& n) {
   std::vector<std::string> lines;
   lines.push_back("night: " + n.verdict + ": " + n.note +
@@ -255,20 +200,17 @@ class Night {
     const Unseen unseen = branch_head(last.branch);
     if (!unseen.verdict.empty()) {
       say(unseen.why);
-      return finish(unseen.verdict, unseen.why, 2, "");
+      return finish(unseen_night(unseen.verdict, unseen.why));
     }
     say("tonight: " + short_hash(n_.commit) + " " + subject(n_.commit) +
         (last.commit.empty() ? " (no baseline yet)" : "; last night: " + short_hash(last.commit)));
-    if (n_.commit == last.commit)
-      return finish("nothing new", "the branch head is last night's commit", 0, "");
-    const bool backwards =
+    const bool descends =
         !last.commit.empty() &&
-        !git(o_.source, {"merge-base", "--is-ancestor", "--end-of-options", last.commit, n_.commit})
-             .ok;
-    std::string stamp = n_.date_utc;
-    for (char& ch : stamp)
-      if (ch == ':') ch = '-';
-    n_.dir = o_.state + "/nights/" + stamp;
+        git(o_.source, {"merge-base", "--is-ancestor", "--end-of-options", last.commit, n_.commit})
+            .ok;
+    const NightKind kind = night_kind(last.commit, n_.commit, descends);
+    if (kind == NightKind::nothing_new) return finish(nothing_new_night());
+    n_.dir = o_.state + "/nights/" + night_folder_name(n_.date_utc);
     fs::create_directories(n_.dir, ec);
 
     // Tonight's build.
@@ -278,7 +220,7 @@ class Night {
     b.probe = false;  // the run is the probe
     // Last night's build, held against `builds remove` all night; built again if it is gone.
     builds::SourceBuildResult last_build;
-    if (!backwards && !last.commit.empty()) {
+    if (kind == NightKind::compare) {
       last_build = builds::use_source_build(last.build_dir, last.commit, b, [&](const std::string& s) { say("  " + s); });
       last.build_dir = last_build.build.dir;
     }
@@ -287,82 +229,47 @@ class Night {
       built = builds::build_from_source(b, [&](const std::string& s) { say("  " + s); });
     } catch (const util::UserError& e) {
       util::throw_if_interrupted();  // stopped, not failed: nothing recorded
-      util::write_file_atomic(n_.dir + "/build-error.txt", std::string(e.what()) + "\n");
-      // One line: the error's first line; meson's and ninja's whole output is in the file.
-      std::string first = e.what();
-      first = first.substr(0, first.find('\n'));
-      if (first.size() > 160) first = first.substr(0, 157) + "...";
-      return finish("build failed",
-                    "the build of " + n_.commit.substr(0, 12) + " failed (" + first +
-                        "; the whole error: " + n_.dir + "/build-error.txt)" +
-                        (last.commit.empty() ? "" : "; last night's build stays the baseline"),
-                    2, "");
+      const std::string error_file = n_.dir + "/build-error.txt";
+      util::write_file_atomic(error_file, std::string(e.what()) + "\n");
+      return finish(build_failed_night(n_.commit, e.what(), error_file, !last.commit.empty()));
     }
     say(built.reused ? "build: reused " + built.build.name
                      : "build: " + built.build.name + " in " + util::duration_text(built.seconds));
 
     // Both builds drawn tonight, in one run.
-    const std::string last_dir = backwards ? "" : last.build_dir;
+    const std::string last_dir = kind == NightKind::compare ? last.build_dir : "";
     const std::string exp = rundir::run_folder::experiment(n_.dir);
     util::write_file_atomic(exp, night_experiment(o_.experiment, last_dir, built.build.dir));
     const std::string run = n_.dir + "/run";
     n_.run_dir = run;
     say("run: " + exp);
-    const int run_rc = run_self({"run", exp, "--out", run, "--quiet", "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)},
-                                n_.dir + "/run.log");
-    if (run_rc != 0 && run_rc != 1)
-      return finish("run failed",
-                    "the run exited " + std::to_string(run_rc) + " (" + n_.dir + "/run.log)", 2,
-                    "");
-    if (last_dir.empty())
-      return finish(backwards ? "moved backwards" : "baseline established",
-                    backwards ? "the branch no longer holds last night's commit " +
-                                    short_hash(last.commit) + ": tonight is the new baseline"
-                              : "tonight's build is the baseline from now on",
-                    backwards ? 1 : 0, built.build.dir);
+    const int run_rc = run_self(run_arguments(exp, run, o_.jobs), n_.dir + "/run.log");
+    if (!run_finished(run_rc)) return finish(run_failed_night(run_rc, n_.dir + "/run.log"));
+    if (kind != NightKind::compare)
+      return finish(uncompared_night(kind, last.commit), built.build.dir);
     // Audit each platform; attribute what changed. The audits keep their history in the night's
     // folder until the night is recorded (see the header).
-    bool changed = false, failed = false;
+    ComparedNight found;
     for (const std::string& p : platforms_) {
       const std::string out = rundir::run_folder::named_audit(n_.dir, p);
-      std::vector<std::string> args = {"audit", run, "--between", p + "@" + kLastBuild,
-                                       p + "@" + kTonightBuild, "--out", out, "--db", night_db(),
-                                       "--jobs", std::to_string(o_.jobs ? o_.jobs : 2)};
-      if (o_.speed.enabled) {
-        char threshold[32];
-        std::snprintf(threshold, sizeof threshold, "%g", o_.speed.threshold);
-        args.insert(args.end(), {"--speed", "--speed-warn-only", "--speed-repeats",
-                                 std::to_string(o_.speed.repeats), "--speed-primitives",
-                                 std::to_string(o_.speed.per_view), "--speed-threshold", threshold});
-      }
-      const int rc = run_self(args, out + ".log");
+      const int rc =
+          run_self(audit_arguments(p, run, out, night_db(), o_.jobs, o_.speed), out + ".log");
       say("audit " + p + ": exit " + std::to_string(rc) + " (" + rundir::run_folder::audit_md(out) + ")");
-      if (rc == 2 || rc > 2) failed = true;
-      const std::size_t moved = rc == 0 || rc == 1 ? time_moved(out) : 0;
+      if (audit_failed(rc)) found.audit_failed = true;
+      const std::size_t moved = audit_judged(rc) ? time_moved(out) : 0;
       if (moved > 0) say("audit " + p + ": drawing time of " + std::to_string(moved) + " group(s) moved");
       n_.counts.time_moved += moved;
-      if (rc == 1 || moved > 0) {
-        changed = true;
+      if (platform_needs_bisection(rc, moved)) {
+        found.changed = true;
         attribute(p, last.commit);
       }
     }
-    if (failed)
-      return finish("run failed", "a driver crashed or the audit failed (" + n_.dir + ")", 2, "");
-    if (!changed)
-      return finish("unchanged",
-                    o_.speed.enabled ? "no primitive changed, no drawing time moved"
-                                     : "no primitive changed",
-                    0, built.build.dir);
-    const bool moves = night_moves_baseline("changed", n_.not_bisected);
-    std::string note = n_.counts.bisected > 0 || n_.not_bisected.empty()
-                           ? changed_night_note(n_.counts)
-                           : std::string("primitives changed");
-    if (!moves)
-      note += "; " + std::to_string(n_.not_bisected.size()) + " platform(s) not bisected: their " +
-              "changes are kept, last night's commit " + short_hash(last.commit) +
-              " stays the baseline and the next night bisects them with its own";
-    n_.baseline_kept = !moves;
-    return finish("changed", note, 1, moves ? built.build.dir : "");
+    found.counts = n_.counts;
+    found.not_bisected = n_.not_bisected;
+    found.speed = o_.speed.enabled;
+    found.last_commit = last.commit;
+    found.night_dir = n_.dir;
+    return finish(compared_night(found), built.build.dir);
   }
 
  private:
@@ -481,14 +388,15 @@ class Night {
   }
 
   void attribute(const std::string& platform, const std::string& last_commit) {
+    const NightBisection between = night_bisection(platform, last_commit, n_.commit);
     BisectOptions bo;
     bo.run_dir = n_.run_dir;
-    bo.good_platform = platform + "@" + kLastBuild;
-    bo.bad_platform = platform + "@" + kTonightBuild;
+    bo.good_platform = between.good_platform;
+    bo.bad_platform = between.bad_platform;
     bo.platform = platform;
     bo.source = o_.source;
-    bo.good_ref = last_commit;
-    bo.bad_ref = n_.commit;
+    bo.good_ref = between.good_ref;
+    bo.bad_ref = between.bad_ref;
     bo.out_dir = rundir::run_folder::named_bisect(n_.dir, platform);
     bo.build = o_.build;
     bo.jobs = o_.jobs;
@@ -537,13 +445,16 @@ class Night {
   }
 
   // Records the night (night.json and night.md, then the history: the night's row, then its
-  // audits), then moves watch.json to tonight's build when `baseline` names one. A history that
-  // cannot be written leaves watch.json as it was, so the next night finds the same again.
-  WatchNight finish(const std::string& verdict, const std::string& note, int exit_code,
-                    const std::string& baseline) {
+  // audits), then moves watch.json to tonight's build (`tonight_build`) when the night moves the
+  // baseline. A history that cannot be written leaves watch.json as it was, so the next night
+  // finds the same again.
+  WatchNight finish(const NightEnd& end, const std::string& tonight_build = "") {
+    const std::string& verdict = end.verdict;
+    const std::string& note = end.note;
     n_.verdict = verdict;
     n_.note = note;
-    n_.exit_code = exit_code;
+    n_.exit_code = end.exit_code;
+    n_.baseline_kept = end.baseline_kept;
     if (!n_.dir.empty()) write_night_files();
     audit::NightEntry e;
     e.date_utc = n_.date_utc;
@@ -574,7 +485,7 @@ class Night {
           "/watch.json stays at last night's commit so the next night finds it again; make the "
           "history writable");
     }
-    if (!baseline.empty()) save_last(baseline);
+    if (end.moves_baseline) save_last(tonight_build);
     prune_nights();
     return n_;
   }

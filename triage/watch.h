@@ -16,7 +16,8 @@
 // fails is "build failed" (last night's build stays the one compared with tomorrow); a driver that
 // crashes or a run that fails is "run failed"; a branch that moved backwards or was rewritten is
 // "moved backwards" (tonight becomes the baseline, nothing is bisected). Exit code: 0 nothing new,
-// unchanged or a baseline; 1 changed; 2 failed or bad input.
+// unchanged or a baseline; 1 changed or moved backwards; 2 failed or bad input. The night's
+// decisions, apart from the work, are triage/watch_plan.h's.
 //
 // A night is recorded before the state moves on: night.json and night.md, then the history, then
 // watch.json. A night that cannot record itself keeps last night's state, so the next night finds
@@ -36,6 +37,7 @@
 
 #include "builds/source_build.h"
 #include "triage/bisect_speed.h"
+#include "triage/watch_plan.h"
 
 namespace ra::triage {
 
@@ -57,17 +59,6 @@ struct WatchOptions {
   std::size_t keep_nights = 0;
 };
 
-// What the bisections of a changed night found, all platforms together.
-struct NightCounts {
-  std::size_t changed = 0;       // primitives that changed (the bisected platforms')
-  std::size_t bisected = 0;      // of them, those bisected (fewer: a sample)
-  std::size_t attributed = 0;    // of those, the ones named to a commit
-  std::size_t unattributed = 0;  // of those, the ones only failed builds separate from a cause
-  std::size_t culprit_commits = 0;
-  std::size_t time_moved = 0;             // --speed: groups whose drawing time moved (audits)
-  std::size_t speed_culprit_commits = 0;  // commits named for them
-};
-
 struct WatchNight {
   std::string date_utc, dir;            // the night's folder ("" on a night with nothing new)
   std::string run_dir;                  // the night's run ("" when none was made)
@@ -85,29 +76,11 @@ struct WatchNight {
   int exit_code = 0;
 };
 
-// The note of a night whose primitives or drawing time changed: "N primitives changed[ (M of
-// them bisected: a sample, ...)], K culprit commit(s)[, U not attributed (...)][; drawing time of
-// G group(s) moved, S commit(s) named]"; a night of time alone: "no primitive changed; drawing
-// time of G group(s) moved, S commit(s) named".
-std::string changed_night_note(const NightCounts& counts);
-
-// Whether tonight's build becomes the baseline the next night compares with: yes for a baseline,
-// a moved-backwards, an unchanged or a changed night, unless a bisection could not run (then its
-// changes stay between the baseline and the next night's head, to be bisected then). Changes
-// that only failed builds separate from their cause advance: building those commits again would
-// fail again, and their candidates are named.
-bool night_moves_baseline(const std::string& verdict, const std::vector<std::string>& not_bisected);
-
 // What `watch` prints on stdout for a night: "night: VERDICT: NOTE (COMMIT)", the night's folder,
-// one "first bad commit: ..." per named commit, the "first slower/faster commit: ..." lines, and the changes no commit was named for under
-// words of their own ("unattributed: ...", "not bisected: ..."), so that a script reading "first
-// bad commit:" lines reads culprits only.
+// one "first bad commit: ..." per named commit, the "first slower/faster commit: ..." lines, and
+// the changes no commit was named for under words of their own ("unattributed: ...", "not
+// bisected: ..."), so that a script reading "first bad commit:" lines reads culprits only.
 std::vector<std::string> night_lines(const WatchNight& night);
-
-// The night folders (nights/<UTC>, names that sort in time) to remove so that the `keep` newest
-// stay; never `tonight`. Names that are not a night's stamp are left alone. Empty when keep is 0.
-std::vector<std::string> nights_to_prune(std::vector<std::string> names, std::size_t keep,
-                                         const std::string& tonight);
 
 WatchNight watch_night(const WatchOptions& options,
                        const std::function<void(const std::string&)>& progress = {});

@@ -1,4 +1,4 @@
-# Sourced by the bisection tests: stand-in driver builds and git histories whose commits name
+# Sourced by the bisection and watch tests: stand-in driver builds and git histories whose commits name
 # them, so that `renderaudit bisect` runs with real drawing and no compiler. The drivers are the
 # `faulty` test platform over the installed Mesa llvmpipe (osmesa-llvmpipe): `faulty@BUILD` draws
 # with BUILD/faults.toml, so
@@ -6,8 +6,11 @@
 #   bad:     llvmpipe with one wild pixel far from every primitive (wild_pixel);
 #   neither: the wild pixels of even primitives only (half like each side);
 #   broken:  the build command fails.
-# Needs: $build (the build folder), $t (a temporary folder); defines $ra, $cmd, fail,
-# forty_lines_toml, make_run, make_history HISTORY WORD..., c HISTORY N (the commit "cN").
+# Sourced after test-common.sh (or with $build, the build folder, and $t, a temporary folder, set);
+# defines $ra, $cmd, forty_lines_toml, make_run, make_history HISTORY WORD..., c HISTORY N (the
+# commit "cN"), make_upstream CLONE WORD... and commit WORD... (a branch a watch follows). A test
+# that sources it stops at its first failure: set -e, and fail MESSAGE says it and exits 1.
+set -e
 ra="$build/renderaudit"
 fail() { echo "$(basename "$0"): FAIL: $*" >&2; exit 1; }
 # A failed build keeps its log in the temporary folder: the test's own, removed with it.
@@ -52,6 +55,25 @@ make_history() {
   done
 }
 c() { git -C "$1" rev-parse ":/^c$2:"; }
+
+# make_upstream CLONE WORD...: $up, a history of WORD... (make_history), and CLONE, a clone whose
+# branch follows it as a watched Mesa tree follows upstream; commit WORD... adds the next commits
+# upstream (cN: WORD, installing WORD's driver).
+make_upstream() {
+  local clone=$1
+  shift
+  up="$t/upstream"
+  make_history "$up" "$@"
+  git clone -q "$up" "$clone"
+}
+commit() {
+  local d n
+  for d in "$@"; do
+    n=$(git -C "$up" rev-list --count HEAD)
+    echo "$d" > "$up/driver"
+    git -C "$up" commit -q --allow-empty -am "c$n: $d"
+  done
+}
 # The build command: installs the checked-out commit's driver (SLEEP seconds first, if set).
 cmd='sleep ${RA_TEST_SLEEP:-0}; d=$(cat driver); [ "$d" != broken ] || { echo "cannot build $d" >&2; exit 1; }; cp '"$t"'/drivers/$d/faults.toml "$RENDERAUDIT_BUILD_PREFIX"/'
 export RENDERAUDIT_BUILD_CACHE="$t/cache"

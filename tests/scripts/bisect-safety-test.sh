@@ -15,16 +15,8 @@
 #   - `builds remove` refuses the builds a watch night draws with, and the next night rebuilds a
 #     baseline build that was removed.
 # Usage: tests/scripts/bisect-safety-test.sh BUILD_DIR
-set -euo pipefail
-build=$(cd "${1:-build}" && pwd)
-t=$(mktemp -d /tmp/renderaudit-bisect-safety-XXXXXX)
-pids=()
-cleanup() {
-  for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done
-  pkill -f "sleep 29\.7" 2>/dev/null || true
-  [ -n "${KEEP:-}" ] || rm -rf "$t"
-}
-trap cleanup EXIT
+. "$(dirname "$0")/test-common.sh"
+on_exit='pkill -f "sleep 29\.7" 2>/dev/null || true'
 . "$(dirname "$0")/bisect-fixture.sh"
 make_run
 g="$t/mesa"
@@ -177,16 +169,14 @@ grep -q "reused build $(basename "$c4_dir")" "$t/proof.out" && fail "a build wit
 # SIGSTOP once its run is set up, its build done and the tree free), and a night whose baseline
 # build was removed builds it again.
 export RENDERAUDIT_BUILD_CACHE="$t/cache-watch"
-up="$t/upstream"
-make_history "$up" good
-git clone -q "$up" "$t/wmesa"
+make_upstream "$t/wmesa" good
 sed -e 's/^platforms = .*/platforms = ["faulty"]/' -e '/^\[builds/,/^dir/d' \
     -e 's/^lines = .*/lines = 400/' "$t/exp.toml" > "$t/nightly.toml"
 watch_args=("$t/wmesa" --experiment "$t/nightly.toml" --state "$t/wstate" --build-command "$cmd"
             --jobs 2 --no-pictures)
 "$ra" watch "${watch_args[@]}" >"$t/night1.out" 2>"$t/night1.err" ||
   { cat "$t/night1.out" "$t/night1.err"; fail "night 1"; }
-echo bad > "$up/driver" && git -C "$up" commit -q -am "c1: bad"
+commit bad
 "$ra" watch "${watch_args[@]}" >"$t/night2.out" 2>"$t/night2.err" &
 victim=$!
 pids+=("$victim")
@@ -209,7 +199,7 @@ set -e
 tonight=$(ls "$RENDERAUDIT_BUILD_CACHE" | grep "^mesa-$(git -C "$up" rev-parse HEAD | cut -c1-12)")
 run_ra "$t/remove-baseline.out" builds remove "$tonight"
 expect 0 "$t/remove-baseline.out" "removed $tonight ("
-git -C "$up" commit -q --allow-empty -m "c2: bad"
+commit bad
 set +e
 "$ra" watch "${watch_args[@]}" >"$t/night3.out" 2>"$t/night3.err"
 rc=$?

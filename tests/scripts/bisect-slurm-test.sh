@@ -6,21 +6,17 @@
 #   2. a build that fails inside a round: its task submitted again once, then counted as failed,
 #      the change next to it left with candidates (exit 1); no worktree left behind;
 #   3. a task cancelled under its build (as when its node dies): submitted again, the culprit named.
-# Usage: tests/scripts/bisect-slurm-test.sh [BUILD_DIR]. Exit 0 pass, 1 fail, 77 when no Slurm cluster
+# Usage: tests/scripts/bisect-slurm-test.sh BUILD_DIR. Exit 0 pass, 1 fail, 77 when no Slurm cluster
 # could be started here (not root, no packages): the test is then skipped, loudly.
-set -uo pipefail
-build=$(cd "${1:-build}" && pwd)
-repo=$(cd "$(dirname "$0")/../.." && pwd)
+. "$(dirname "$0")/test-common.sh"
 state=${RENDERAUDIT_SLURM_STATE:-/tmp/renderaudit-slurm-bisect-test}
 export SLURM_CONF=$state/slurm.conf
 export PATH=$PATH:/usr/sbin
-if ! "$repo/scripts/slurm-local.sh" start "$state"; then
+if ! "$root/scripts/slurm-local.sh" start "$state"; then
   echo "bisect-slurm-test: SKIPPED: no Slurm cluster could be started on this machine" >&2
   exit 77
 fi
-t=$(mktemp -d /tmp/renderaudit-bisect-slurm-XXXXXX)
-trap '"$repo/scripts/slurm-local.sh" stop "$state" >/dev/null 2>&1; [ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
-set -e
+on_exit='"$root/scripts/slurm-local.sh" stop "$state" >/dev/null 2>&1'
 . "$(dirname "$0")/bisect-fixture.sh"
 make_run
 
@@ -79,6 +75,7 @@ ends=" $(c "$h4" 0) $(c "$h4" 16) "
 cmd='case "'"$ends"'" in *" $RENDERAUDIT_SOURCE_COMMIT "*) ;; *) [ -e '"$t"'/killed ] || sleep 20;; esac; '"$cmd"
 bisect k3 "$h4" "$(c "$h4" 0)" "$(c "$h4" 16)" --slurm --allow-node-local &
 victim=$!
+pids+=("$victim")
 for _ in $(seq 600); do
   job=$(sed -n 's/^bisect: round 1: 3 builds submitted as Slurm array job \([0-9]*\)$/\1/p' "$t/k3.err" 2>/dev/null || true)
   [ -n "$job" ] && [ "$(squeue -h -r -j "${job}_2" -o %T 2>/dev/null)" = RUNNING ] && break

@@ -8,15 +8,7 @@
 # resumed by the same command; a round killed with -9, its worktrees removed by the next bisection
 # (with --ways 1: the ways may change on resume).
 # Usage: tests/scripts/bisect-ways-test.sh BUILD_DIR
-set -euo pipefail
-build=$(cd "${1:-build}" && pwd)
-t=$(mktemp -d /tmp/renderaudit-bisect-ways-XXXXXX)
-pids=()
-cleanup() {
-  for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done
-  [ -n "${KEEP:-}" ] || rm -rf "$t"
-}
-trap cleanup EXIT
+. "$(dirname "$0")/test-common.sh"
 . "$(dirname "$0")/bisect-fixture.sh"
 make_run
 

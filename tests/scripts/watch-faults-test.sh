@@ -13,10 +13,7 @@
 #   a history that cannot be written keeps the "moved backwards" finding for the next night;
 #   a fetch that fails and an upstream branch that is gone are errors (exit 2), said and recorded.
 # Usage: tests/scripts/watch-faults-test.sh BUILD_DIR
-set -euo pipefail
-build=$(cd "${1:-build}" && pwd)
-t=$(mktemp -d /tmp/renderaudit-watch-faults-XXXXXX)
-trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
+. "$(dirname "$0")/test-common.sh"
 . "$(dirname "$0")/bisect-fixture.sh"
 
 forty_lines_toml watch-faults-test '"faulty"' $'[run]\nshard_timeout_s = 120' > "$t/nightly.toml"
@@ -30,17 +27,7 @@ printf '[faults]\nbase = "osmesa-llvmpipe"\nhang = [5]\n' > "$t/drivers/hang/fau
 cp -r "$t/drivers/bad" "$t/drivers/bad-stray"
 cmd='if [ -e '"$t"'/slow ] && [ "$(cat driver)" = neither ]; then touch '"$t"'/sleeping; sleep 300; fi; '\
 '[ "$(cat driver)" != bad-stray ] || touch stray.txt; '"$cmd"
-up="$t/upstream"
-make_history "$up" good
-git clone -q "$up" "$t/mesa"
-commit() {  # commit WORD...: the next commits upstream
-  local d n
-  for d in "$@"; do
-    n=$(git -C "$up" rev-list --count HEAD)
-    echo "$d" > "$up/driver"
-    git -C "$up" commit -q --allow-empty -am "c$n: $d"
-  done
-}
+make_upstream "$t/mesa" good
 watch() {  # watch NAME ARGS...: one night; exit code in $rc, output in $t/NAME.{out,err}
   local name=$1
   shift
@@ -58,6 +45,7 @@ start_night() {  # start_night NAME: a night of the main state folder in the bac
   "$ra" watch --build-command "$cmd" --jobs 2 --no-pictures "$t/mesa" --experiment "$t/nightly.toml" \
     --state "$t/state" >"$t/$1.out" 2>"$t/$1.err" &
   pid=$!
+  pids+=("$pid")
 }
 show() { cat "$t/$1.out" "$t/$1.err"; }
 expect() {  # expect NAME CODE TEXT: said on stdout

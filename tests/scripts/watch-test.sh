@@ -11,24 +11,11 @@
 #   6. upstream reset to c1:         moved backwards; tonight is the new baseline (exit 1)
 # and `history` lists the six nights with their commits, verdicts and culprits.
 # Usage: tests/scripts/watch-test.sh BUILD_DIR
-set -euo pipefail
-build=$(cd "${1:-build}" && pwd)
-t=$(mktemp -d /tmp/renderaudit-watch-test-XXXXXX)
-trap '[ -n "${KEEP:-}" ] || rm -rf "$t"' EXIT
+. "$(dirname "$0")/test-common.sh"
 . "$(dirname "$0")/bisect-fixture.sh"
 
 forty_lines_toml watch-test '"faulty"' > "$t/nightly.toml"
-up="$t/upstream"
-make_history "$up" good
-git clone -q "$up" "$t/mesa"
-commit() {  # commit WORD...: the next commits upstream
-  local d n
-  for d in "$@"; do
-    n=$(git -C "$up" rev-list --count HEAD)
-    echo "$d" > "$up/driver"
-    git -C "$up" commit -q --allow-empty -am "c$n: $d"
-  done
-}
+make_upstream "$t/mesa" good
 night() {  # night N: one night; exit code in $rc, output in $t/nightN.{out,err}
   set +e
   "$ra" watch "$t/mesa" --experiment "$t/nightly.toml" --state "$t/state" --build-command "$cmd" \
