@@ -2,6 +2,8 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -55,13 +57,29 @@ Child start_child(const ChildSpec& spec) {
     throw std::runtime_error("cannot create a pipe: " + why);
   }
   const pid_t parent = ::getpid();
+  // The stop signals held from fork until the child has dropped the parent's handlers: one sent
+  // to the child before its exec (an interrupt forwarded to its group) would be caught by a copy
+  // of the parent's handler and lost, and the child would run on.
+  sigset_t stop, before;
+  sigemptyset(&stop);
+  for (int sig : StopSignals::kSignals) sigaddset(&stop, sig);
+  ::pthread_sigmask(SIG_BLOCK, &stop, &before);
   const pid_t pid = ::fork();
+  if (pid != 0) ::pthread_sigmask(SIG_SETMASK, &before, nullptr);
   if (pid < 0) {
     close_all();
     throw std::runtime_error(std::string("cannot start ") + spec.argv[0] + ": fork failed: " +
                              std::strerror(errno));
   }
   if (pid == 0) {  // only async-signal-safe calls from here to exec
+    for (int sig : StopSignals::kSignals) {
+      struct sigaction now {};
+      ::sigaction(sig, nullptr, &now);
+      if (now.sa_handler == SIG_IGN) continue;  // ignored stays ignored, as through exec
+      now.sa_handler = SIG_DFL;
+      ::sigaction(sig, &now, nullptr);
+    }
+    ::pthread_sigmask(SIG_SETMASK, &before, nullptr);  // a signal held now stops the child
     die_with_parent(parent, spec.death_signal);
     if (spec.own_process_group) ::setpgid(0, 0);
     if (spec.command_pipe) {

@@ -86,6 +86,39 @@ TEST(ChildProcess, AChildDiesWithItsParent) {
   ::close(pipefd[1]);
 }
 
+// A stop signal sent to a child the moment it starts (the parent's interrupt handler forwarding
+// one, util/interrupt.h) stops it, even while it runs the parent's code between fork and exec,
+// where the parent's handler would have caught and lost it.
+TEST(ChildProcess, AStopSignalAtStartStopsTheChild) {
+  struct sigaction caught {}, old {};
+  caught.sa_handler = [](int) {};
+  sigemptyset(&caught.sa_mask);
+  ASSERT_EQ(::sigaction(SIGTERM, &caught, &old), 0);
+  int survived = 0;
+  for (int i = 0; i < 100 && survived < 3; ++i) {
+    ChildSpec spec;
+    spec.argv = {"sleep", "30"};
+    spec.own_process_group = true;
+    const pid_t pid = start_child(spec).pid;
+    ::kill(-pid, SIGTERM);
+    int status = 0;
+    pid_t done = 0;
+    for (int wait_ms = 0; wait_ms < 3000 && done == 0; wait_ms += 5) {
+      done = ::waitpid(pid, &status, WNOHANG);
+      if (done == 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    if (done == 0) {  // still sleeping: the signal was lost
+      ++survived;
+      ::kill(pid, SIGKILL);
+      wait_child(pid);
+    } else {
+      EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "status " << status;
+    }
+  }
+  ::sigaction(SIGTERM, &old, nullptr);
+  EXPECT_EQ(survived, 0) << "children outlived a SIGTERM sent at their start";
+}
+
 // The worker program's error reaches the parent through the message pipe, not only its log.
 TEST(ChildProcess, TheMessagePipeCarriesTheChildsError) {
   ChildSpec spec;
