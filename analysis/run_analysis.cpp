@@ -303,7 +303,7 @@ AnalyzeResult analyze_run(const AnalyzeOptions& o) {
   }
   const RunCompleteness completeness = check_run_completeness(o.run_dir, &run.seals);
   refuse_if_incomplete(completeness, o);
-  result.completeness = completeness.headline();
+  result.completeness = completeness.one_line();
   result.records = run.record_count;
   result.timings.push_back({"load", watch.lap()});
 

@@ -34,7 +34,7 @@ std::string range(const rundir::Shard& s) {
 
 }  // namespace
 
-std::string RunCompleteness::headline() const {
+std::string RunCompleteness::one_line() const {
   if (!has_plan) return "completeness unknown: no experiment.toml, so no plan to compare with";
   std::string h = complete() ? "complete: " : "INCOMPLETE: ";
   if (is_slice() && shards_of_other_slices > 0)
@@ -58,7 +58,7 @@ std::string RunCompleteness::headline() const {
 }
 
 std::string RunCompleteness::markdown(std::size_t max_listed) const {
-  std::string md = "**Run " + headline() + ".**\n";
+  std::string md = "**Run " + one_line() + ".**\n";
   if (!problems.empty()) {
     md += "\n";
     for (std::size_t i = 0; i < problems.size() && i < max_listed; ++i) md += "- " + problems[i] + "\n";

@@ -40,8 +40,8 @@ struct RunCompleteness {
     return has_plan && problems.empty() && writer.empty() && shards_of_other_slices == 0;
   }
   // "complete: 16 of 16 shards, 64000 of 64000 primitives", or what is wrong, in one line.
-  std::string headline() const;
-  // Markdown: the headline and the problems (at most `max_listed`, then how many more).
+  std::string one_line() const;
+  // Markdown: that line and the problems (at most `max_listed`, then how many more).
   std::string markdown(std::size_t max_listed = 20) const;
   // What to do about it, one sentence for `command` ("analyze", "report"): finish the run, or for
   // a slice, merge the slices.

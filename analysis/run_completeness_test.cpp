@@ -92,7 +92,7 @@ TEST_F(RunCompletenessTest, AWholeRunCountsEveryShardAndPrimitive) {
   EXPECT_EQ(c.primitives_planned, 4u);
   EXPECT_EQ(c.primitives_present, 4u);
   EXPECT_TRUE(c.problems.empty());
-  EXPECT_EQ(c.headline(), "complete: 2 of 2 shards, 4 of 4 primitives (manifest: complete)");
+  EXPECT_EQ(c.one_line(), "complete: 2 of 2 shards, 4 of 4 primitives (manifest: complete)");
   EXPECT_EQ(c.markdown(), "**Run complete: 2 of 2 shards, 4 of 4 primitives (manifest: complete).**\n");
 }
 
@@ -106,7 +106,7 @@ TEST_F(RunCompletenessTest, AMissingShardIsNamedWithItsPrimitives) {
   EXPECT_EQ(c.primitives_present, 2u);
   EXPECT_EQ(c.problems, (std::vector<std::string>{
                             "missing shard reference.point.v1.2-4 (primitives 2-3)"}));
-  EXPECT_EQ(c.headline(),
+  EXPECT_EQ(c.one_line(),
             "INCOMPLETE: 1 of 2 shards, 2 of 4 primitives; 1 problem (manifest: complete)");
   EXPECT_EQ(c.remedy("analyze"),
             "Finish the run (the same `renderaudit run` command), or pass --allow-incomplete to "
@@ -127,7 +127,7 @@ TEST_F(RunCompletenessTest, ADamagedShardAndAStrayFileAreProblems) {
   EXPECT_EQ(c.problems[1],
             "records/reference.point.v1.0-4.csv is not a shard of this experiment's plan (another "
             "shard_size?): its records would be counted twice");
-  EXPECT_NE(c.headline().find("; 2 problems"), std::string::npos) << c.headline();
+  EXPECT_NE(c.one_line().find("; 2 problems"), std::string::npos) << c.one_line();
   const std::string md = c.markdown(1);
   EXPECT_NE(md.find("\n- " + c.problems[0] + "\n"), std::string::npos) << md;
   EXPECT_EQ(md.find(c.problems[1]), std::string::npos) << md;
@@ -141,7 +141,7 @@ TEST_F(RunCompletenessTest, NoExperimentFileMeansCompletenessIsUnknown) {
   EXPECT_FALSE(c.has_plan);
   EXPECT_FALSE(c.complete());
   EXPECT_EQ(c.shards_planned, 0u);
-  EXPECT_EQ(c.headline(), "completeness unknown: no experiment.toml, so no plan to compare with");
+  EXPECT_EQ(c.one_line(), "completeness unknown: no experiment.toml, so no plan to compare with");
 }
 
 // "running" with nobody writing: the run was killed, a problem. With a writer holding the
@@ -159,8 +159,8 @@ TEST_F(RunCompletenessTest, ARunningManifestIsKilledWithoutAWriterAndIncompleteW
   EXPECT_FALSE(running.writer.empty());
   EXPECT_TRUE(running.problems.empty());
   EXPECT_FALSE(running.complete());
-  EXPECT_NE(running.headline().find("; being written now by " + running.writer), std::string::npos)
-      << running.headline();
+  EXPECT_NE(running.one_line().find("; being written now by " + running.writer), std::string::npos)
+      << running.one_line();
 }
 
 // The headline and remedy of a slice (one machine's share) and of a run of some platforms,
@@ -176,7 +176,7 @@ TEST(RunCompletenessText, ASliceAndAPlatformSubsetSayWhatTheyAre) {
   slice.slice_count = 3;
   slice.shards_of_other_slices = 4;
   EXPECT_FALSE(slice.complete());
-  EXPECT_EQ(slice.headline(),
+  EXPECT_EQ(slice.one_line(),
             "a slice (2 of 3, one machine's share; 4 shards belong to the other slices): 2 of 6 "
             "shards, 200 of 600 primitives");
   EXPECT_EQ(slice.remedy("report"),
@@ -190,7 +190,7 @@ TEST(RunCompletenessText, ASliceAndAPlatformSubsetSayWhatTheyAre) {
   some.platforms_run = {"osmesa-llvmpipe", "osmesa-softpipe"};
   some.shards_of_other_platforms = 2;
   EXPECT_TRUE(some.complete());
-  EXPECT_EQ(some.headline(),
+  EXPECT_EQ(some.one_line(),
             "complete: 2 of 2 shards, 10 of 10 primitives of the platforms run (--platform "
             "osmesa-llvmpipe, osmesa-softpipe; the 2 shards of the others were not asked for)");
 }

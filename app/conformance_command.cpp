@@ -84,12 +84,12 @@ void register_conformance_command(CLI::App& app, int& exit_code) {
     if (!whole.complete()) {
       if (!o->allow_incomplete) {
         std::fprintf(stderr, "renderaudit conformance: %s: %s\n%s\n", o->run_dir.c_str(),
-                     whole.headline().c_str(), whole.remedy("conformance").c_str());
+                     whole.one_line().c_str(), whole.remedy("conformance").c_str());
         exit_code = kExitIncomplete;
         return;
       }
       std::fprintf(stderr, "renderaudit conformance: %s: %s\n", o->run_dir.c_str(),
-                   whole.headline().c_str());
+                   whole.one_line().c_str());
     }
     const analysis::ConformanceCheck c = analysis::check_conformance(o->run_dir, expected.get());
     if (!o->junit.empty()) util::write_file_atomic(o->junit, analysis::conformance_junit(c));

@@ -207,7 +207,7 @@ class HelpFormatter : public CLI::Formatter {
     static const std::map<std::string, std::string> paths = {
         {"out", "DIR"},        {"source", "DIR"},   {"cache", "DIR"},  {"state", "DIR"},
         {"baseline", "DIR"},   {"db", "FILE"},      {"experiment", "FILE"},
-        {"expectations", "FILE"}, {"markdown", "FILE"}, {"upgrade-headline", "FILE"},
+        {"expectations", "FILE"}, {"markdown", "FILE"}, {"upgrade-sentences", "FILE"},
         {"program", "FILE"},   {"llvm-config", "FILE"}};
     const auto it = paths.find(o->get_single_name());
     if (it != paths.end()) return it->second;

@@ -53,7 +53,7 @@ void register_report_command(CLI::App& app, int& exit_code) {
       "--upgrade BUILD --platforms P... instead: print the driver upgrade report (Markdown) of\n"
       "each P against P@BUILD in DIR, from the audits in DIR/audit-P (--audit-suffix S:\n"
       "DIR/audit-PS), and write DIR/upgrade-summary-BUILD.json and the pictures it shows.\n"
-      "--upgrade-headline SUMMARY.json instead: print the driver upgrade report's first sentence\n"
+      "--upgrade-sentences SUMMARY.json instead: print the driver upgrade report's first sentence\n"
       "(Markdown), and the culprits of a bisection of its run, from that summary.");
   struct Options {
     report::ReportOptions options;
@@ -68,8 +68,8 @@ void register_report_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--markdown", opts->markdown,
                   "a Markdown file to set as PDF and HTML, instead of a run")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--upgrade-headline", opts->upgrade_summary,
-                  "print the driver upgrade's first sentence from its summary (upgrade-summary.json)")
+  cmd->add_option("--upgrade-sentences", opts->upgrade_summary,
+                  "print the driver upgrade's sentences from its summary (upgrade-summary-BUILD.json)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--upgrade", opts->upgrade.build,
                   "the driver upgrade report of DIR against BUILD (needs --platforms)")
@@ -88,7 +88,7 @@ void register_report_command(CLI::App& app, int& exit_code) {
   cmd->callback([opts, &exit_code] {
     if (!opts->upgrade_summary.empty()) {
       if (!opts->options.run_dir.empty() || !opts->markdown.empty())
-        throw util::UserError("report: --upgrade-headline takes no run directory and no --markdown");
+        throw util::UserError("report: --upgrade-sentences takes no run directory and no --markdown");
       std::printf("%s", report::upgrade_sentences_markdown(
                             report::read_upgrade_summary(opts->upgrade_summary)).c_str());
       exit_code = kExitOk;

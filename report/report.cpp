@@ -239,7 +239,7 @@ ReportResult write_report(const ReportOptions& options) {
   if (completeness.has_plan && !completeness.complete() && !options.allow_incomplete)
     throw analysis::IncompleteRunError(run_dir + ": " + completeness.markdown() +
                                        completeness.remedy("report"));
-  result.completeness = completeness.headline();
+  result.completeness = completeness.one_line();
 
   const plots::PlotResult figures = plots::read_figure_index(run_dir);
   const analysis::RunTally tally = analysis::read_tally(run_dir);

@@ -223,7 +223,7 @@ void add_provenance(Document& d, const std::string& run_dir, const rundir::RunMa
     row("seed", exp.seed ? std::to_string(*exp.seed) : "");
     row("platforms", plist);
     // What the records say, checked against the plan; the manifest's own word in brackets.
-    row("completeness", completeness.headline());
+    row("completeness", completeness.one_line());
     for (std::size_t i = 0; i < completeness.problems.size() && i < 10; ++i)
       row(i == 0 ? "what is missing" : "", completeness.problems[i]);
     if (completeness.problems.size() > 10)

@@ -6,7 +6,7 @@
 # P@backports` (pixels, and drawing time: both sides drawn again, --speed), and write one report,
 # OUT/upgrade-report.pdf and .html (set by `renderaudit report --markdown` from the Markdown beside
 # them), that opens with one sentence of what changed per driver and one of what got faster or
-# slower (made from the counts and the time verdicts by `renderaudit report --upgrade-headline`)
+# slower (made from the counts and the time verdicts by `renderaudit report --upgrade-sentences`)
 # and the worst primitive before and after, then what changed per back end, kind and view group.
 # The pairs audited are the experiment's platforms P drawn also as P@backports. About 10 minutes
 # on 2 cores for the pixels; timing the drawing adds, on the same 2 cores under load, about 35 s

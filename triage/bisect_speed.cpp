@@ -131,12 +131,15 @@ void move_out_what_the_parent_has(const BisectOptions& o, SpeedCulprit& c,
   outside.paths.clear();
   outside.kinds.clear();
   outside.out_dir = o.out_dir + "/before-" + short_hash(c.commit);
-  std::vector<SpeedCulprit::Move> kept, moved_out;
+  std::vector<SpeedCulprit::Move> kept;
+  std::vector<std::pair<SpeedCulprit::Move, StepTime>> moved_out;  // with the parent's place
   for (std::size_t i = 0; i < c.moves.size(); ++i) {
-    const bool before =
-        i < c.parent_places.size() && c.parent_places[i].place == c.moves[i].at_culprit;
-    (before ? moved_out : kept).push_back(c.moves[i]);
-    if (before) outside.kinds.push_back(geometry::kind_name(c.moves[i].group.kind));
+    if (i < c.parent_places.size() && c.parent_places[i].place == c.moves[i].at_culprit) {
+      moved_out.push_back({c.moves[i], c.parent_places[i]});
+      outside.kinds.push_back(geometry::kind_name(c.moves[i].group.kind));
+    } else {
+      kept.push_back(c.moves[i]);
+    }
   }
   if (moved_out.empty()) return;
   std::sort(outside.kinds.begin(), outside.kinds.end());
@@ -148,12 +151,17 @@ void move_out_what_the_parent_has(const BisectOptions& o, SpeedCulprit& c,
   const std::string where = count == "1" ? "the parent itself"
                                          : "one of the " + count + " commits after " +
                                                short_hash(c.previous) + " up to the parent";
-  for (const SpeedCulprit::Move& m : moved_out)
+  for (const auto& [m, t] : moved_out) {
+    char place[96];
+    std::snprintf(place, sizeof place, ", %.0f%% of the way", 100 * t.share);
     unattributed.push_back({m.group, c.previous, c.beside, {},
                             "its git parent " + short_hash(c.beside) + " draws it as " +
-                                short_hash(c.commit) + " does (" + time_place_name(m.at_culprit) +
-                                "): the move lies in " + where + ", which the paths leave out",
+                                short_hash(c.commit) + " does (" + time_place_name(t.place) +
+                                ": " + audit::speed_ratio_text(t.ratio, t.low, t.high) +
+                                " the good ref's" + place + "): the move lies in " + where +
+                                ", which the paths leave out",
                             bisect_command_line(outside)});
+  }
   c.moves = kept;
 }
 

@@ -146,7 +146,7 @@ grep -qE "^first slower commit: $(c "$g5" 6) c6: both-slow \(lines, view group A
 [ "$(grep -c '^first \(slower\|faster\) commit:' "$t/b5.out")" = 1 ] ||
   { show b5; fail "c4, whose git parent draws the triangles as slowly, named"; }
 short() { c "$@" | cut -c1-12; }
-grep -qF "unattributed: drawing time of triangles, view group A (its git parent $(short "$g5" 3) draws it as $(short "$g5" 4) does (as bad): the move lies in one of the 2 commits after $(short "$g5" 1) up to the parent, which the paths leave out; without them: " "$t/b5.out" ||
+grep -qE "^unattributed: drawing time of triangles, view group A \(its git parent $(short "$g5" 3) draws it as $(short "$g5" 4) does \(as bad: [0-9.]+x \[[0-9.]+, [0-9.]+\] the good ref's, [0-9]+% of the way\): the move lies in one of the 2 commits after $(short "$g5" 1) up to the parent, which the paths leave out; without them: " "$t/b5.out" ||
   { show b5; fail "the triangles' move outside the paths not said"; }
 without=$(grep "^unattributed: drawing time of triangles" "$t/b5.out")
 for part in "--good $(c "$g5" 1) --bad $(c "$g5" 3) " "--kind triangle --out $t/b5/before-$(short "$g5" 4) " "--speed-repeats 8 --speed-primitives 60)"; do
