@@ -22,7 +22,7 @@
 #include "rundir/run_folder.h"
 #include "rundir/shard.h"
 #include "runner/recorded_failures.h"
-#include "runner/output_dir.h"
+#include "runner/prepare_run_dir.h"
 #include "runner/run_plan.h"
 #include "runner/progress_meter.h"
 #include "rundir/shard.h"

@@ -12,7 +12,7 @@
 #include "rundir/manifest.h"
 #include "rundir/run_folder.h"
 #include "runner/recorded_failures.h"
-#include "runner/output_dir.h"
+#include "runner/prepare_run_dir.h"
 #include "rundir/run_experiment.h"
 #include "rundir/shard.h"
 #include "rundir/shard_file.h"

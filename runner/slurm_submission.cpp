@@ -10,7 +10,7 @@
 #include "rundir/experiment.h"
 #include "rundir/manifest.h"
 #include "rundir/run_folder.h"
-#include "runner/output_dir.h"
+#include "runner/prepare_run_dir.h"
 #include "rundir/shard.h"
 #include "util/worker_program.h"
 #include "util/atomic_file.h"

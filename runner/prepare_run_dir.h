@@ -1,4 +1,4 @@
-// The output directory of a run being written (`run`, `merge`, a Slurm submission): created or
+// The run folder of a run being written (`run`, `merge`, a Slurm submission): created or
 // reopened, and claimed by its lock before anything in it is judged, so that two writers started
 // together never judge each other's half-made directory. The names of what it holds are
 // rundir/run_folder.h's.

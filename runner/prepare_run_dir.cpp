@@ -1,5 +1,5 @@
 // Creating, reopening and claiming a run's output directory (see the header).
-#include "runner/output_dir.h"
+#include "runner/prepare_run_dir.h"
 
 #include <filesystem>
 #include <system_error>
