@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "analysis/paper_table_parts.h"
+#include "analysis/view_equivalence_report.h"
 
 namespace ra::analysis {
 

@@ -18,7 +18,7 @@
 #include "analysis/run_tally.h"
 #include "analysis/paper_tables.h"
 #include "analysis/run_records.h"
-#include "analysis/view_equivalence.h"
+#include "analysis/view_equivalence_report.h"
 #include "rundir/run_experiment.h"
 #include "rundir/run_folder.h"
 #include "stats/table_writer.h"

@@ -36,7 +36,6 @@
 
 #include "stats/descriptive.h"
 #include "analysis/run_records.h"
-#include "stats/table_writer.h"
 
 namespace ra::analysis {
 
@@ -136,19 +135,5 @@ struct EquivalenceOptions {
 // Every platform, kind, metric and view group of the run, in that order.
 std::vector<ViewEquivalence> assess_view_equivalence(const RunRecords& run,
                                                      const EquivalenceOptions& options);
-
-// The results as one long table (a row per comparison, every statistic): view_equivalence.csv.
-stats::Table view_equivalence_table(const RunRecords& run, const std::vector<ViewEquivalence>& results,
-                             const EquivalenceOptions& options);
-
-// The report for reading: the rule, the verdicts, every pair not equivalent said explicitly, the
-// pooling note, and a table of p-values per platform and kind: view_equivalence.md.
-std::string view_equivalence_markdown(const RunRecords& run,
-                                      const std::vector<ViewEquivalence>& results,
-                                      const EquivalenceOptions& options);
-
-// Cells for reports: the p-value (3 significant digits) or statistic (4), "undefined" otherwise.
-stats::TableCell p_value_cell(const TestOutcome& outcome);
-stats::TableCell statistic_cell(const TestOutcome& outcome);
 
 }  // namespace ra::analysis

@@ -2,6 +2,7 @@
 // rule (location t / ANOVA and Levene median on raw data), pairs made deliberately not equivalent,
 // degenerate samples without NaN, and the reports.
 #include "analysis/view_equivalence.h"
+#include "analysis/view_equivalence_report.h"
 
 #include <gtest/gtest.h>
 

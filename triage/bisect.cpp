@@ -8,19 +8,16 @@
 #include <filesystem>
 #include <set>
 
-#include "rundir/platform_spec.h"
-#include "rundir/run_experiment.h"
 #include "rundir/run_folder.h"
 #include "builds/build_slots.h"
 #include "builds/git_command.h"
+#include "triage/bisect_inputs.h"
 #include "triage/bisect_judging.h"
 #include "triage/bisect_plan.h"
 #include "triage/bisect_report.h"
 #include "triage/bisect_rounds.h"
-#include "triage/bisect_selection.h"
 #include "triage/bisect_state.h"
 #include "triage/bisect_step.h"
-#include "util/atomic_file.h"
 #include "util/duration_text.h"
 #include "util/errors.h"
 #include "util/interrupt.h"
@@ -41,24 +38,6 @@ std::string git_ok(const std::string& dir, const std::vector<std::string>& args,
   return g.out;
 }
 
-std::string rev(const std::string& dir, const std::string& ref, const char* option) {
-  const GitResult g =
-      git(dir, {"rev-parse", "--verify", "--quiet", "--end-of-options", ref + "^{commit}"});
-  if (!g.ok || g.out.empty())
-    throw util::UserError(std::string("bisect: ") + option + " '" + ref + "' is not a commit of " +
-                          dir);
-  return g.out;
-}
-
-}  // namespace
-
-std::string BisectPrimitive::label() const {
-  return std::string(geometry::kind_name(kind)) + " " + std::to_string(index) + " of view " +
-         std::to_string(view);
-}
-
-namespace {
-
 // One invocation of the bisection: its inputs checked, its state, and the steps of the loop.
 class Bisection {
  public:
@@ -67,7 +46,10 @@ class Bisection {
 
   BisectResult run() {
     const auto t_start = Clock::now();
-    check_inputs();
+    const CheckedInputs in = check_bisect_inputs(o_, st_.result);
+    git_dir_ = in.git_dir;
+    good_ = in.good;
+    bad_ = in.bad;
     const auto lock = builds::lock_source_tree(o_.source, "bisect");
     // Worktrees a killed --ways bisection left are removed, whatever this one's --ways.
     std::error_code ec;
@@ -125,88 +107,6 @@ class Bisection {
     }
     for (const auto& [label, hash] : s.drawing.hashes)
       if (!labels.count(label)) bad(label, "is not a primitive this step drew");
-  }
-
-  // Everything that can be refused is refused before anything is built.
-  void check_inputs() {
-    std::error_code ec;
-    if (!fs::exists(rundir::run_folder::experiment(o_.run_dir), ec))
-      throw util::UserError("bisect: " + o_.run_dir + " is not a run directory (no experiment.toml)");
-    if (o_.source.empty() || !fs::is_directory(o_.source, ec))
-      throw util::UserError("bisect: --source '" + o_.source + "' is not a folder");
-    o_.source = fs::canonical(o_.source).string();
-    if (o_.out_dir.empty()) o_.out_dir = rundir::run_folder::bisect(o_.run_dir);
-    if (fs::exists(o_.out_dir, ec) && !fs::is_directory(o_.out_dir, ec))
-      throw util::UserError("bisect: --out " + o_.out_dir +
-                            " is a file; --out names a folder for bisect.json and bisect.md");
-    // Inside the tree, the bisection's own state would be an untracked file that every step's
-    // build sees, and that the advice for untracked files (`git clean`) would delete.
-    const fs::path out = fs::weakly_canonical(fs::absolute(o_.out_dir), ec);
-    const fs::path rel = out.lexically_relative(o_.source);
-    if (!ec && !rel.empty() && *rel.begin() != "..")
-      throw util::UserError("bisect: --out " + o_.out_dir + " is inside the source tree " +
-                            o_.source +
-                            ": every step's build would see bisect.json, and cleaning the tree "
-                            "would delete it; choose a folder outside " + o_.source);
-    if (!git(o_.source, {"rev-parse", "--git-dir"}).ok)
-      throw util::UserError("bisect: " + o_.source + " is not a git checkout");
-    // A step's timing (--speed) compares the step with both ends on this machine, one after the
-    // other; builds at once would time one another's load.
-    if (o_.speed.enabled && (o_.ways > 1 || o_.slurm))
-      throw util::UserError("bisect: --speed times each step beside the ends on one quiet machine; "
-                            "it does not go with --ways above 1 or --slurm (drop --speed, or bisect "
-                            "the pixels with --ways first and the drawing time on the range left)");
-    if (!git(o_.source, {"status", "--porcelain", "--untracked-files=no"}).out.empty())
-      throw util::UserError("bisect: " + o_.source +
-                            " has uncommitted changes; commit or stash them first (each step "
-                            "checks out another commit)");
-    // A file git does not track (often left by a checkout that failed half-way) is seen by every
-    // step's build: an old commit's meson refuses a newer meson.options, for one.
-    const std::string untracked =
-        git(o_.source, {"ls-files", "--others", "--exclude-standard", "--directory"}).out;
-    if (!untracked.empty()) {
-      std::vector<std::string> files;
-      for (std::size_t at = 0; at < untracked.size();) {
-        const std::size_t nl = std::min(untracked.find('\n', at), untracked.size());
-        files.push_back(untracked.substr(at, nl - at));
-        at = nl + 1;
-      }
-      std::string shown;
-      for (std::size_t i = 0; i < files.size() && i < 3; ++i) shown += (i ? ", " : "") + files[i];
-      if (files.size() > 3) shown += ", ...";
-      throw util::UserError("bisect: " + o_.source + " has " + std::to_string(files.size()) +
-                            (files.size() == 1 ? " untracked file (" : " untracked files (") + shown +
-                            "); every step's build would see it: `git -C " + o_.source +
-                            " clean -n -d` lists them, `git stash -u` or `git clean -fd` removes them");
-    }
-    git_dir_ = git_ok(o_.source, {"rev-parse", "--absolute-git-dir"}, "git rev-parse");
-    good_ = rev(o_.source, o_.good_ref, "--good");
-    bad_ = rev(o_.source, o_.bad_ref, "--bad");
-    if (good_ == bad_)
-      throw util::UserError("bisect: --good " + o_.good_ref + " and --bad " + o_.bad_ref +
-                            " are the same commit (" + short_hash(good_) + "): nothing between them");
-    if (!git(o_.source, {"merge-base", "--is-ancestor", good_, bad_}).ok)
-      throw util::UserError("bisect: the good ref " + o_.good_ref +
-                            " is not an ancestor of the bad ref " + o_.bad_ref + " in " + o_.source);
-    if (o_.platform.empty()) o_.platform = rundir::split_build(o_.bad_platform).first;
-    if (o_.platform.empty())
-      throw util::UserError("bisect: name the platform that draws each build (--platform, e.g. "
-                            "egl-llvmpipe)");
-    if (!rundir::find_platform(o_.platform + "@" + kStepBuild))
-      throw util::UserError("bisect: platform '" + o_.platform +
-                            "' cannot draw with a driver build (allowed: the osmesa-* and "
-                            "surfaceless egl-* platforms, vk-lavapipe, faulty)");
-    const Selection sel = select_primitives(o_);
-    const std::size_t views = rundir::load_run_experiment(o_.run_dir).views.size();
-    for (const BisectPrimitive& p : sel.primitives)
-      if (p.view < 1 || std::size_t(p.view) > views)
-        throw util::UserError("bisect: --primitive " + p.label() + ": the run has views 1-" +
-                              std::to_string(views));
-    st_.result.selection = sel.primitives;
-    st_.result.selection_rule = sel.rule;
-    st_.result.changed_in_run = sel.changed;
-    fs::create_directories(o_.out_dir, ec);
-    if (ec) throw util::UserError(util::io_error_message("cannot create", o_.out_dir));
   }
 
   // The steps of an earlier invocation with the same inputs; the tree's branch restored when

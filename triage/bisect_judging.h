@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "triage/bisect.h"
+#include "triage/bisect_types.h"
 #include "triage/bisect_plan.h"
 
 namespace ra::triage {

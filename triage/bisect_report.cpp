@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "rundir/run_folder.h"
+#include "triage/bisect.h"
 #include "triage/bisect_rounds.h"
 #include "triage/primitive_image.h"
 #include "audit/reproducer.h"

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "triage/bisect.h"
+#include "triage/bisect_types.h"
 #include "triage/bisect_plan.h"
 
 namespace ra::triage {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "triage/bisect.h"
+#include "triage/bisect_types.h"
 
 namespace ra::triage {
 

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "rundir/bisection_document.h"
-#include "triage/bisect.h"
+#include "triage/bisect_types.h"
 
 namespace ra::triage {
 

@@ -6,6 +6,7 @@
 #include "audit/flake_check.h"
 #include "rundir/run_experiment.h"
 #include "builds/git_command.h"
+#include "triage/bisect.h"
 #include "util/duration_text.h"
 #include "util/errors.h"
 #include "util/interrupt.h"

@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "rundir/run_folder.h"
+#include "triage/bisect.h"
 #include "util/atomic_file.h"
 #include "util/errors.h"
 
