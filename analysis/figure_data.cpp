@@ -10,6 +10,7 @@
 #include "stats/distribution_plots.h"
 #include "stats/hypothesis_tests.h"
 #include "analysis/view_equivalence.h"
+#include "metrics/headline_metric.h"
 #include "rundir/manifest.h"
 
 namespace ra::analysis {
@@ -313,17 +314,7 @@ json speed_error_json(const RunRecords& run, geometry::Kind kind, const FigureOp
 
 }  // namespace
 
-const char* speed_error_metric(geometry::Kind kind) {
-  switch (kind) {
-    case geometry::Kind::kPoint:
-      return "pe_norm";
-    case geometry::Kind::kLine:
-      return "lse_u_norm";
-    case geometry::Kind::kTriangle:
-      return "te_u_norm";
-  }
-  return "";
-}
+const char* speed_error_metric(geometry::Kind kind) { return metrics::headline_norm_column(kind); }
 
 json figure_data(const RunRecords& run, const FigureOptions& options) {
   json doc = rundir::document_header("figures", kFiguresSchemaVersion, false);

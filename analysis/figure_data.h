@@ -94,7 +94,7 @@ struct FigureOptions {
 };
 
 // The records column of the error the speed-against-error points use for `kind`: its normalised
-// unsigned metric ("pe_norm", "lse_u_norm", "te_u_norm").
+// unsigned metric, the headline error over the window (metrics/headline_metric.h: "pe_norm", ...).
 const char* speed_error_metric(geometry::Kind kind);
 
 // The whole figures.json document for a run.
